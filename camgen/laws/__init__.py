@@ -1,0 +1,60 @@
+"""Follower motion laws and their registry.
+
+Every law is a normalised rise f(u) on u in [0, 1] (see :mod:`camgen.laws.base`).
+``make_law(name, **params)`` builds one from its registry name and parameters, and
+``LAW_PARAMS`` says which template keys each law takes.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from camgen.errors import SpecError
+from camgen.laws.base import Law
+from camgen.laws.piecewise import BlendedUniform, DraftedUniform, Parabolic, Uniform
+from camgen.laws.polynomial import PolynomialLaw, from_conditions, poly345, poly4567
+from camgen.laws.trig import Cycloidal, Harmonic
+
+
+def _modified_uniform(form: str = "blended", blend: float = 0.25, blend_law: str = "cycloidal",
+                      k: float | None = None) -> Law:
+    """Blended by default; the drafted form needs ``k`` = prime radius x angle / lift."""
+    if form == "blended":
+        return BlendedUniform(blend=blend, blend_law=blend_law)
+    if form == "drafted":
+        if k is None:
+            raise SpecError("the drafted form needs the cam's prime radius; build it as part of a cam", "form")
+        return DraftedUniform(k=k)
+    raise SpecError(f"must be 'blended' or 'drafted' (got {form!r})", "form")
+
+
+#: registry name -> (factory, template keys it takes)
+REGISTRY: Mapping[str, tuple[Callable[..., Law], tuple[str, ...]]] = {
+    "uniform": (Uniform, ()),
+    "modified-uniform": (_modified_uniform, ("form", "blend", "blend_law")),
+    "parabolic": (Parabolic, ("ratio",)),
+    "harmonic": (Harmonic, ()),
+    "cycloidal": (Cycloidal, ()),
+    "polynomial-345": (poly345, ()),
+    "polynomial-4567": (poly4567, ()),
+    "polynomial": (from_conditions, ("conditions", "degree")),
+}
+
+LAW_NAMES: tuple[str, ...] = tuple(REGISTRY)
+LAW_PARAMS: Mapping[str, tuple[str, ...]] = {name: keys for name, (_, keys) in REGISTRY.items()}
+#: the laws of the standard comparison table (the general polynomial needs conditions)
+TABLE_LAWS: tuple[str, ...] = LAW_NAMES[:-1]
+
+
+def make_law(name: str, **params: Any) -> Law:
+    """The law registered as ``name``, built with ``params`` (template keys, plus ``k`` for drafted forms)."""
+    try:
+        factory, _ = REGISTRY[name]
+    except KeyError:
+        raise SpecError(f"unknown law {name!r}; known laws: {', '.join(LAW_NAMES)}", "law") from None
+    return factory(**params)
+
+
+__all__ = ["Law", "LAW_NAMES", "LAW_PARAMS", "TABLE_LAWS", "PolynomialLaw", "make_law", "from_conditions",
+           "Uniform", "BlendedUniform", "DraftedUniform", "Parabolic", "Harmonic", "Cycloidal", "poly345",
+           "poly4567"]

@@ -1,0 +1,93 @@
+"""The base of every motion law: a normalised rise f(u) on u in [0, 1].
+
+A law knows nothing of lifts, angles or segments: it gives f, f', f'', f''' with
+respect to u = theta / beta, with f(0) = 0 and f(1) = 1. Scaling to a segment
+(s = h f, s' = h/beta f', s'' = h/beta^2 f'', s''' = h/beta^3 f''') happens once, in
+:mod:`camgen.program`, for every law.
+"""
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from camgen.numeric import left_of, maximise
+
+#: names of the derivatives of f in the order :meth:`Law.derivatives` returns them
+ORDERS = ("s", "v", "a", "j")
+
+
+@dataclass(frozen=True)
+class Law(ABC):
+    """A normalised rise law. Subclasses are frozen dataclasses of their parameters."""
+
+    #: registry name, e.g. ``"cycloidal"``
+    name: ClassVar[str]
+
+    @abstractmethod
+    def derivatives(self, u: ArrayLike) -> np.ndarray:
+        """Array of shape ``(4, *u.shape)``: f, df/du, d2f/du2, d3f/du3 at ``u`` in [0, 1].
+
+        Where pieces meet (see :attr:`breakpoints`) the value of the piece on the
+        right is returned; evaluate just below a breakpoint for the left limit.
+        """
+
+    @property
+    def breakpoints(self) -> tuple[float, ...]:
+        """Interior values of u where the law changes piece (and a derivative may jump)."""
+        return ()
+
+    def pieces(self) -> list[tuple[float, float]]:
+        """Closed sub-intervals of [0, 1] on which the law is smooth, with left limits at their right ends."""
+        edges = [0.0, *sorted(set(self.breakpoints)), 1.0]
+        return [(a, left_of(b) if b < 1.0 else 1.0) for a, b in zip(edges[:-1], edges[1:]) if b > a]
+
+    def peaks(self) -> np.ndarray:
+        """Peak magnitudes of f', f'', f''' over [0, 1]: the (Cv, Ca, Cj) coefficients for h = beta = 1."""
+        out = np.zeros(3)
+        for a, b in self.pieces():
+            for k in (1, 2, 3):
+                _, value = maximise(lambda u, k=k: np.abs(self.derivatives(u)[k]), a, b)
+                out[k - 1] = max(out[k - 1], value)
+        return out
+
+    def jumps(self) -> list[tuple[float, int, float]]:
+        """Jumps of f', f'', f''' inside the law and at its ends against dwells.
+
+        Returns ``(u, order, right - left)`` for every jump larger than 1e-9 of the
+        law's own peak of that order (order 1 = velocity, 2 = acceleration, 3 = jerk).
+        At u = 0 and u = 1 the neighbour is taken to be a dwell (all derivatives zero).
+        """
+        scale = np.maximum(self.peaks(), 1.0)
+        found: list[tuple[float, int, float]] = []
+        zero = np.zeros(4)
+        points = [(0.0, zero, self.derivatives(0.0))]
+        points += [(u, self.derivatives(left_of(u)), self.derivatives(u)) for u in sorted(set(self.breakpoints))]
+        points.append((1.0, self.derivatives(1.0), zero))
+        for u, left, right in points:
+            for k in (1, 2, 3):
+                step = float(right[k] - left[k])
+                if abs(step) > 1e-9 * scale[k - 1]:
+                    found.append((u, k, step))
+        return found
+
+    def infinite(self) -> list[str]:
+        """Which of "v", "a", "j" become infinite in a segment that starts and ends at dwells.
+
+        A jump in f' makes the acceleration (and jerk) infinite; a jump in f'' makes
+        the jerk infinite; a jump in f''' is a finite jerk step. f itself never jumps.
+        """
+        orders = {k for _, k, _ in self.jumps()}
+        if 1 in orders:
+            return ["a", "j"]
+        if 2 in orders:
+            return ["j"]
+        return []
+
+
+def as_array(u: ArrayLike) -> np.ndarray:
+    """``u`` as a float array (a 0-d array for a scalar)."""
+    return np.asarray(u, dtype=float)

@@ -1,0 +1,34 @@
+"""Trigonometric laws: simple harmonic and cycloidal."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from camgen.laws.base import Law, as_array
+
+
+@dataclass(frozen=True)
+class Harmonic(Law):
+    """Simple harmonic: f = (1 - cos(pi u)) / 2. Jerk is infinite at both ends (acceleration jumps)."""
+
+    name = "harmonic"
+
+    def derivatives(self, u: ArrayLike) -> np.ndarray:
+        x = np.pi * as_array(u)
+        c, s = np.cos(x), np.sin(x)
+        return np.stack([(1 - c) / 2, np.pi / 2 * s, np.pi**2 / 2 * c, -(np.pi**3) / 2 * s])
+
+
+@dataclass(frozen=True)
+class Cycloidal(Law):
+    """Cycloidal: f = u - sin(2 pi u) / (2 pi). Acceleration is zero at both ends."""
+
+    name = "cycloidal"
+
+    def derivatives(self, u: ArrayLike) -> np.ndarray:
+        u = as_array(u)
+        x = 2 * np.pi * u
+        c, s = np.cos(x), np.sin(x)
+        return np.stack([u - s / (2 * np.pi), 1 - c, 2 * np.pi * s, 4 * np.pi**2 * c])

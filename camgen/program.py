@@ -1,0 +1,206 @@
+"""Motion programs: rise, dwell and return segments covering exactly 360 degrees.
+
+Units: angles in radians inside (degrees only at the interface), displacement in mm
+(or degrees of arm swing for an oscillating follower). Derivatives are with respect
+to cam angle: s' in mm/rad, s'' in mm/rad^2, s''' in mm/rad^3. Theta is measured from
+the start of the first segment, in the cam's sense of rotation.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from camgen.errors import SpecError
+from camgen.laws import Law
+from camgen.numeric import left_of
+
+Kind = Literal["rise", "dwell", "return"]
+TWO_PI = 2.0 * math.pi
+#: relative size of a derivative jump that counts as a discontinuity
+JUMP_TOL = 1e-9
+QUANTITIES = {1: "velocity", 2: "acceleration", 3: "jerk"}
+CONSEQUENCES = {1: "infinite acceleration", 2: "infinite jerk", 3: "finite jerk step"}
+
+
+@dataclass(frozen=True)
+class Segment:
+    """One segment of a program.
+
+    A rise takes s from ``level`` to ``level + lift`` with s = level + h f(u); a return
+    mirrors it, s = level - h + h f(1 - u), from ``level`` down to ``level - lift``;
+    a dwell holds ``level``. ``start`` and ``beta`` are in radians.
+    """
+
+    kind: Kind
+    start: float
+    beta: float
+    lift: float = 0.0
+    level: float = 0.0
+    law: Law | None = None
+
+    @property
+    def end(self) -> float:
+        return self.start + self.beta
+
+    @property
+    def end_level(self) -> float:
+        return self.level + {"rise": self.lift, "return": -self.lift, "dwell": 0.0}[self.kind]
+
+    def scale(self) -> np.ndarray:
+        """Natural magnitudes h/beta^k of s, s', s'', s''' in this segment (k = 0..3)."""
+        h = self.lift if self.kind != "dwell" else 0.0
+        return h / self.beta ** np.arange(4)
+
+    def evaluate(self, theta: ArrayLike) -> np.ndarray:
+        """s, s', s'', s''' (shape ``(4, *theta.shape)``) at cam angles inside this segment (radians)."""
+        theta = np.asarray(theta, dtype=float)
+        flat = theta.ravel()
+        if self.kind == "dwell" or self.law is None:
+            out = np.zeros((4, flat.size))
+            out[0] = self.level
+        else:
+            u = np.clip((flat - self.start) / self.beta, 0.0, 1.0)
+            out = self._from_law(self.law.derivatives(u if self.kind == "rise" else 1.0 - u))
+        return out.reshape((4, *theta.shape))
+
+    def _from_law(self, f: np.ndarray) -> np.ndarray:
+        """s, s', s'', s''' from the law's f, f', f'', f''' (shape (4, n)) at the law's own argument."""
+        out = f * self.scale()[:, None]
+        if self.kind == "return":
+            out *= np.array([1.0, -1.0, 1.0, -1.0])[:, None]
+            out[0] += self.level - self.lift
+        else:
+            out[0] += self.level
+        return out
+
+    def inner_limits(self) -> list[tuple[float, np.ndarray, np.ndarray]]:
+        """``(theta, left, right)``: s, s', s'', s''' on each side of every breakpoint of the law.
+
+        Limits are taken exactly in the law's own variable; a return runs its law
+        backwards, so there the law's left limit is the limit from the right in theta.
+        """
+        if self.law is None or self.kind == "dwell":
+            return []
+        out = []
+        for b in sorted(set(self.law.breakpoints)):
+            lo = self._from_law(self.law.derivatives(np.array([left_of(b)])))[:, 0]
+            hi = self._from_law(self.law.derivatives(np.array([b])))[:, 0]
+            if self.kind == "rise":
+                out.append((self.start + b * self.beta, lo, hi))
+            else:
+                out.append((self.start + (1.0 - b) * self.beta, hi, lo))
+        return out
+
+
+@dataclass(frozen=True)
+class Jump:
+    """A discontinuity of a derivative of s at cam angle ``at_deg``.
+
+    ``order`` 1, 2, 3 for s', s'', s''' (velocity, acceleration, jerk); ``jump`` is
+    right minus left in mm/rad^order; ``inside`` is True when it lies inside a
+    segment's law rather than at a segment boundary.
+    """
+
+    at_deg: float
+    order: int
+    jump: float
+    inside: bool
+
+    @property
+    def quantity(self) -> str:
+        return QUANTITIES[self.order]
+
+    @property
+    def consequence(self) -> str:
+        return CONSEQUENCES[self.order]
+
+    def as_dict(self) -> dict:
+        return {"at_deg": self.at_deg, "quantity": self.quantity, "jump": self.jump,
+                "units": f"mm/rad^{self.order}" if self.order > 1 else "mm/rad",
+                "consequence": self.consequence, "where": "inside segment" if self.inside else "segment boundary"}
+
+
+@dataclass(frozen=True)
+class Program:
+    """Ordered segments covering exactly one turn; s is continuous and returns to its start."""
+
+    segments: tuple[Segment, ...]
+
+    def __post_init__(self) -> None:
+        if not self.segments:
+            raise SpecError("needs at least one segment", "motion")
+        total = sum(seg.beta for seg in self.segments)
+        if abs(total - TWO_PI) > 1e-9:
+            raise SpecError(f"segment angles add up to {math.degrees(total):.6g} degrees; they must add up to 360",
+                            "motion")
+        first, last = self.segments[0], self.segments[-1]
+        if abs(last.end_level - first.level) > 1e-9 * max(1.0, self.max_lift):
+            raise SpecError(f"the follower ends the turn at s = {last.end_level:.6g} mm but starts at "
+                            f"s = {first.level:.6g} mm; rises and returns must balance over 360 degrees", "motion")
+        low = min(min(seg.level, seg.end_level) for seg in self.segments)
+        if low < -1e-9:
+            i = next(i for i, seg in enumerate(self.segments) if min(seg.level, seg.end_level) == low)
+            raise SpecError(f"takes the follower to s = {low:.6g} mm, below its lowest position (s = 0); "
+                            "start the program with a rise or dwell", f"motion[{i}]")
+
+    @property
+    def max_lift(self) -> float:
+        return max(max(seg.level, seg.end_level) for seg in self.segments)
+
+    @property
+    def starts(self) -> np.ndarray:
+        return np.array([seg.start for seg in self.segments])
+
+    def segment_index(self, theta: ArrayLike) -> np.ndarray:
+        """Index of the segment holding each angle (a boundary belongs to the segment it starts)."""
+        t = np.mod(np.asarray(theta, dtype=float), TWO_PI)
+        return np.clip(np.searchsorted(self.starts, t, side="right") - 1, 0, len(self.segments) - 1)
+
+    def evaluate(self, theta: ArrayLike) -> np.ndarray:
+        """s, s', s'', s''' (shape ``(4, n)``) at any cam angles (radians, taken modulo 2 pi)."""
+        t = np.mod(np.atleast_1d(np.asarray(theta, dtype=float)), TWO_PI)
+        idx = self.segment_index(t)
+        out = np.empty((4, t.size))
+        for i in np.unique(idx):
+            mask = idx == i
+            out[:, mask] = self.segments[i].evaluate(t[mask])
+        return out
+
+    def jumps(self) -> list[Jump]:
+        """Every jump of s', s'', s''' at segment boundaries (360 wrapping to 0) and inside laws.
+
+        A jump counts when it exceeds 1e-9 of the larger natural scale h/beta^k of
+        the segments on either side.
+        """
+        found: list[Jump] = []
+        n = len(self.segments)
+        for i, seg in enumerate(self.segments):
+            nxt = self.segments[(i + 1) % n]
+            left = seg.evaluate(np.array(seg.end))
+            right = nxt.evaluate(np.array(nxt.start))
+            scale = np.maximum(seg.scale(), nxt.scale())
+            found += _compare(seg.end, left, right, scale, inside=False)
+            for t, lo, hi in seg.inner_limits():
+                found += _compare(t, lo, hi, seg.scale(), inside=True)
+        return sorted(found, key=lambda j: (j.at_deg, j.order))
+
+
+def _compare(theta: float, left: np.ndarray, right: np.ndarray, scale: np.ndarray, inside: bool) -> list[Jump]:
+    at_deg = round(math.degrees(theta), 9) % 360.0
+    return [Jump(at_deg, k, float(right[k] - left[k]), inside) for k in (1, 2, 3)
+            if abs(right[k] - left[k]) > JUMP_TOL * max(scale[k], 1e-300)]
+
+
+def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program:
+    """A program from ``(kind, angle in degrees, lift in mm, law)`` steps, laid end to end from theta = 0."""
+    segments, start, level = [], 0.0, 0.0
+    for kind, angle_deg, lift, law in steps:
+        beta = math.radians(angle_deg)
+        seg = Segment(kind, start, beta, lift if kind != "dwell" else 0.0, level, law if kind != "dwell" else None)
+        segments.append(seg)
+        start, level = start + beta, seg.end_level
+    return Program(tuple(segments))

@@ -1,0 +1,1 @@
+"""linkgen: planar linkages, their kinematics and their parts."""
