@@ -1,0 +1,96 @@
+"""Design checks of a cam: pressure angle, curvature and undercut, and the largest roller that fits."""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from camgen.cam import Cam, build_cam
+from camgen.followers.base import PitchGeometry
+from camgen.numeric import maximise
+from camgen.spec import CamTemplate
+
+
+@dataclass(frozen=True)
+class CamAnalysis:
+    """Extremes over the whole cycle. Angles in degrees of cam rotation, radii in mm.
+
+    ``pitch_rho_min_mm`` is the smallest radius of curvature where the pitch curve is
+    convex; the cam surface there has ``profile_rho_min_mm`` = that minus the roller
+    radius. ``*_concave_*`` are the smallest concave radii (None where the curve is
+    convex throughout); a cutter must be no larger than the profile's. ``undercut``
+    is True where a convex pitch radius is smaller than the roller radius.
+    """
+
+    pressure_angle_max_deg: float
+    pressure_angle_max_at_deg: float
+    pitch_rho_min_mm: float
+    pitch_rho_min_at_deg: float
+    profile_rho_min_mm: float
+    pitch_concave_rho_min_mm: float | None
+    profile_concave_rho_min_mm: float | None
+    concave_at_deg: float | None
+    undercut: bool
+
+
+def _peak(cam: Cam, quantity: Callable[[PitchGeometry], np.ndarray]) -> tuple[float, float]:
+    """Largest value of ``quantity`` over all segments: (value, cam angle in degrees)."""
+    best = (-math.inf, 0.0)
+    for i, seg in enumerate(cam.program.segments):
+        theta, value = maximise(lambda t, i=i: quantity(cam.segment_pitch(i, t)), seg.start, seg.end)
+        if value > best[0]:
+            best = (value, math.degrees(theta) % 360.0)
+    return best
+
+
+def convex_curvature_max(cam: Cam) -> tuple[float, float]:
+    """Largest convex curvature of the pitch curve (1/mm) and where (degrees)."""
+    return _peak(cam, lambda g: g.kappa)
+
+
+def analyse(cam: Cam) -> CamAnalysis:
+    """Pressure angle, curvature and undercut of ``cam``, each located to ~1e-9 degrees."""
+    pa, pa_at = _peak(cam, lambda g: np.abs(g.pressure_angle))
+    kmax, kmax_at = convex_curvature_max(cam)
+    kmin, kmin_at = _peak(cam, lambda g: -g.kappa)
+    rr = cam.roller_radius
+    rho = 1.0 / kmax
+    convex_corners = [i for i, turn in cam.corners() if turn > 0]
+    if convex_corners:  # a convex corner of the pitch curve is a zero radius of curvature
+        rho, kmax_at = 0.0, math.degrees(cam.program.segments[convex_corners[0]].end) % 360.0
+    concave = 1.0 / kmin if kmin > 0 else None
+    return CamAnalysis(
+        pressure_angle_max_deg=math.degrees(pa), pressure_angle_max_at_deg=pa_at,
+        pitch_rho_min_mm=rho, pitch_rho_min_at_deg=kmax_at, profile_rho_min_mm=rho - rr,
+        pitch_concave_rho_min_mm=concave, profile_concave_rho_min_mm=None if concave is None else concave + rr,
+        concave_at_deg=kmin_at if concave is not None else None, undercut=rho < rr)
+
+
+def largest_roller(template: CamTemplate) -> float | None:
+    """The largest roller radius (mm) that does not undercut with the template's base radius.
+
+    The pitch curve depends on the roller (prime radius = base + roller), so this
+    bisects on the roller radius for min convex pitch radius = roller radius.
+    Returns None when no roller fits: the pitch curve has a convex corner (a
+    velocity jump), or even a vanishing roller undercuts.
+    """
+    def margin(rr: float) -> float:
+        return 1.0 / convex_curvature_max(build_cam(template, roller_radius=rr))[0] - rr
+
+    if any(turn > 0 for _, turn in build_cam(template).corners()):
+        return None
+
+    lo = max(0.0, abs(template.follower.offset) - template.cam.base_radius) + 1e-9
+    hi = template.follower.roller_radius
+    if margin(lo) <= 0:
+        return None
+    if margin(hi) >= 0:
+        return hi
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if margin(mid) >= 0 else (lo, mid)
+        if hi - lo < 1e-9 * hi:
+            break
+    return lo

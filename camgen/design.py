@@ -1,0 +1,111 @@
+"""A cam design from a template: the cam, its checks, its outline and its part. No I/O."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from camgen.analysis import CamAnalysis, analyse, largest_roller
+from camgen.cam import Cam, build_cam
+from camgen.errors import DesignError
+from camgen.outline import Outline, envelope_outline, exact_outline
+from camgen.parts.drawing import Circle, Part
+from camgen.program import Jump
+from camgen.spec import CamTemplate
+
+#: usual upper limit of the pressure angle for a translating follower (degrees)
+PRESSURE_ANGLE_LIMIT = 30.0
+#: thinnest wall between the bore and the outline before a warning (mm)
+THIN_WALL = 2.0
+
+
+@dataclass(frozen=True)
+class CamDesign:
+    """Everything known about one cam before anything is written."""
+
+    template: CamTemplate
+    cam: Cam
+    analysis: CamAnalysis
+    jumps: tuple[Jump, ...]
+    outline: Outline
+    part: Part
+    wall_mm: float
+    warnings: tuple[str, ...]
+
+
+def _undercut_message(template: CamTemplate, cam: Cam, a: CamAnalysis) -> str:
+    rr = cam.roller_radius
+    corner = a.pitch_rho_min_mm == 0.0
+    where = f"undercut at {a.pitch_rho_min_at_deg:.2f} degrees: "
+    if corner:
+        return (where + "the follower velocity jumps there, so the pitch curve has a convex corner that no roller "
+                "can follow; use a law with continuous velocity (e.g. modified-uniform) or set "
+                "cam.allow_undercut = true")
+    best = largest_roller(template)
+    fits = (f"the largest roller that fits is {best:.4g} mm" if best is not None
+            else "no roller fits this base radius")
+    return (where + f"the pitch curve's radius of curvature is {a.pitch_rho_min_mm:.4g} mm, smaller than "
+            f"follower.roller_radius {rr:.4g} mm; {fits} (or enlarge cam.base_radius, or set "
+            "cam.allow_undercut = true)")
+
+
+def design_cam(template: CamTemplate) -> CamDesign:
+    """Build, check and outline the cam a template describes.
+
+    Raises :class:`DesignError` for an undercut (unless ``cam.allow_undercut``) and for
+    a bore that leaves no material.
+    """
+    cam = build_cam(template)
+    a = analyse(cam)
+    if a.undercut and not template.cam.allow_undercut:
+        raise DesignError(_undercut_message(template, cam, a))
+    tol = template.output.tolerance
+    outline = envelope_outline(cam, tol) if a.undercut else exact_outline(cam, tol)
+
+    import shapely
+
+    body = shapely.Polygon(outline.contour.flatten(tol))
+    reach = float(body.exterior.distance(shapely.Point(0.0, 0.0)))
+    wall = reach - template.cam.bore / 2.0
+    if template.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and wall > 0):
+        raise DesignError(f"cam.bore: {template.cam.bore:.4g} mm leaves no material; the outline comes within "
+                          f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
+    holes = (Circle((0.0, 0.0), template.cam.bore / 2.0),) if template.cam.bore > 0 else ()
+    part = Part(template.name, outline.contour, holes, template.cam.thickness, tol)
+    jumps = tuple(cam.program.jumps())
+    return CamDesign(template, cam, a, jumps, outline, part, wall, _warnings(template, a, jumps, wall))
+
+
+def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float) -> tuple[str, ...]:
+    out = []
+    if a.pressure_angle_max_deg > PRESSURE_ANGLE_LIMIT:
+        out.append(f"pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
+                   f"{a.pressure_angle_max_at_deg:.2f} degrees), above the usual {PRESSURE_ANGLE_LIMIT:g} degree "
+                   "limit for translating followers: enlarge the base radius, lengthen the segment or add an offset")
+    for j in jumps:
+        if j.order < 3:
+            out.append(f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}")
+    if a.undercut:
+        out.append(f"undercut allowed: the outline is the cutter's envelope, and near {a.pitch_rho_min_at_deg:.2f} "
+                   "degrees the follower does not follow the motion law")
+    if template.cam.bore > 0 and wall < THIN_WALL:
+        out.append(f"only {wall:.3g} mm of material between the bore and the outline")
+    if a.profile_concave_rho_min_mm is not None and a.profile_concave_rho_min_mm < 1.0:
+        out.append(f"concave radius of {a.profile_concave_rho_min_mm:.3g} mm at {a.concave_at_deg:.2f} degrees: "
+                   "the cutting tool or laser kerf must be smaller")
+    return tuple(out)
+
+
+def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarray]:
+    """Cam angles (rad) and s, s', s'', s''' on every segment's closed interval, segment after segment.
+
+    Jumps show as two values at one angle (for plots). ``per_segment`` points a segment.
+    """
+    thetas, motions = [], []
+    for seg in cam.program.segments:
+        t = np.linspace(seg.start, seg.end, per_segment if seg.kind != "dwell" else 2)
+        thetas.append(t)
+        motions.append(seg.evaluate(t))
+    return np.concatenate(thetas), np.concatenate(motions, axis=1)
+
+

@@ -1,0 +1,174 @@
+"""The cam outline as exported: exact arcs where the surface is an arc, tolerance-driven chords elsewhere.
+
+Vertices lie on the exact surface C = P - Rr n (the pitch curve offset inwards by
+the roller radius along its analytic normal). On a rise or return their spacing
+follows the surface's own curvature, chord ~ sqrt(8 tol rho), so the vertex count
+is what the tolerance needs; the chord error is then measured against the exact
+surface and the spacing tightened until it is within the tolerance. Dwells are
+arcs about the cam centre and concave pitch corners are arcs of the roller radius
+about the corner: both are exported as exact arcs.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from camgen.cam import Cam
+from camgen.followers.base import PitchGeometry
+from camgen.parts.drawing import Contour, arc_steps
+from camgen.surface import surface_deviation
+
+#: interior points per chord at which the chord error is measured
+_PROBES = 8
+#: fraction of the tolerance the first spacing aims at
+_AIM = 0.9
+
+
+@dataclass(frozen=True)
+class Outline:
+    """A cam outline: a counter-clockwise contour, its measured max error (mm) and how it was made.
+
+    ``envelope`` is True when an undercut was allowed and the contour is the
+    envelope a cutter would leave (the offset's loops removed).
+    """
+
+    contour: Contour
+    max_error_mm: float
+    envelope: bool
+
+
+def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
+    return g.point - rr * g.normal
+
+
+def _chord_error(cam: Cam, index: int, theta: np.ndarray) -> float:
+    """Largest distance of the exact surface from the chords between consecutive ``theta`` (mm)."""
+    rr = cam.roller_radius
+    ends = _surface(cam.segment_pitch(index, theta), rr)
+    frac = np.arange(1, _PROBES + 1) / (_PROBES + 1)
+    inner = (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
+    x = _surface(cam.segment_pitch(index, inner), rr).reshape(len(theta) - 1, _PROBES, 2)
+    a, b = ends[:-1, None, :], ends[1:, None, :]
+    ab = b - a
+    length2 = (ab**2).sum(axis=2)
+    t = np.clip(((x - a) * ab).sum(axis=2) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
+    return float(np.linalg.norm(a + t[..., None] * ab - x, axis=2).max())
+
+
+def _spacing(cam: Cam, index: int, tolerance: float, factor: float) -> np.ndarray:
+    """Cam angles for chords within ~``tolerance`` mm of the surface, from its curvature (``factor`` >= 1 densifies)."""
+    seg = cam.program.segments[index]
+    aux = np.linspace(seg.start, seg.end, 257)
+    g = cam.segment_pitch(index, aux)
+    k, rr = g.kappa, cam.roller_radius
+    # chord ~ sqrt(8 tol rho_c) along a surface of speed |P'| |1 - Rr k|: samples per radian
+    density = np.linalg.norm(g.d1, axis=1) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(aux))])
+    n = max(1, math.ceil(cum[-1] * factor))
+    if cum[-1] <= 0:
+        return np.linspace(seg.start, seg.end, n + 1)
+    return np.interp(np.linspace(0.0, cum[-1], n + 1), cum, aux)
+
+
+def _sampled(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, float]:
+    """Angles of the vertices of one moving segment, and their measured chord error."""
+    factor = 1.0
+    for _ in range(40):
+        theta = _spacing(cam, index, tolerance, factor)
+        err = _chord_error(cam, index, theta)
+        if err <= tolerance:
+            return theta, err
+        factor *= max(1.1, math.sqrt(err / tolerance))
+    raise ArithmeticError(f"outline of segment {index} does not converge to {tolerance} mm")
+
+
+def _dwell(cam: Cam, index: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """Vertices and bulges of a dwell's exact arc about the cam centre (up to 90 degrees an arc)."""
+    seg = cam.program.segments[index]
+    n = max(1, math.ceil(seg.beta / (math.pi / 2) - 1e-12))
+    theta = seg.start + seg.beta * np.arange(n + 1) / n
+    pts = _surface(cam.segment_pitch(index, theta), cam.roller_radius)
+    radius = float(np.linalg.norm(pts[0]))
+    probe = seg.start + seg.beta * (np.arange(1, 8 * n) / (8 * n))
+    err = float(np.abs(np.linalg.norm(_surface(cam.segment_pitch(index, probe), cam.roller_radius), axis=1)
+                       - radius).max())
+    bulge = math.tan(-cam.follower.sense * seg.beta / n / 4.0)
+    return pts[:-1], np.full(n, bulge), err
+
+
+def _corner_arc(cam: Cam, index: int) -> tuple[np.ndarray, float, float]:
+    """At the end of segment ``index``: the roller-radius arc round a concave pitch corner.
+
+    Returns its start vertex, its bulge and its signed included angle (rad).
+    """
+    segments = cam.program.segments
+    j = (index + 1) % len(segments)
+    before = cam.segment_pitch(index, segments[index].end)
+    after = cam.segment_pitch(j, segments[j].start)
+    centre = before.point[0]
+    a = _surface(before, cam.roller_radius)[0] - centre
+    b = _surface(after, cam.roller_radius)[0] - centre
+    angle = math.atan2(a[0] * b[1] - a[1] * b[0], float(a @ b))
+    return _surface(before, cam.roller_radius)[0], math.tan(angle / 4.0), angle
+
+
+def exact_outline(cam: Cam, tolerance: float) -> Outline:
+    """The outline of a cam without undercut or convex corners (see the module docstring)."""
+    corners = dict(cam.corners())
+    if any(turn > 0 for turn in corners.values()):
+        raise ValueError("the pitch curve has a convex corner: use envelope_outline")
+    verts, bulges, worst = [], [], 0.0
+    for i, seg in enumerate(cam.program.segments):
+        if seg.kind == "dwell":
+            v, b, err = _dwell(cam, i)
+        else:
+            theta, err = _sampled(cam, i, tolerance)
+            v, b = _surface(cam.segment_pitch(i, theta[:-1]), cam.roller_radius), np.zeros(len(theta) - 1)
+        verts.append(v)
+        bulges.append(b)
+        worst = max(worst, err)
+        if i in corners:
+            start, bulge, _ = _corner_arc(cam, i)
+            verts.append(start[None, :])
+            bulges.append(np.array([bulge]))
+    contour = Contour(np.concatenate(verts), np.concatenate(bulges))
+    return Outline(contour if contour.area > 0 else contour.reversed(), worst, envelope=False)
+
+
+def envelope_outline(cam: Cam, tolerance: float) -> Outline:
+    """The surface a cutter of the roller's size would leave: the offset curve with its loops removed.
+
+    The raw offset (chords from the curvature, roller-radius arcs at corners) is
+    noded with shapely, split into faces, and the largest face is the cam. Its
+    error is measured as the deviation of points along every edge from the exact
+    envelope (distance Rr from the pitch curve).
+    """
+    import shapely
+
+    rr = cam.roller_radius
+    pts = []
+    for i, seg in enumerate(cam.program.segments):
+        theta = _spacing(cam, i, tolerance, 1.0)
+        pts.append(_surface(cam.segment_pitch(i, theta[:-1]), rr))
+        # the segment's last surface point, then round the pitch point to the next segment's first
+        centre = cam.segment_pitch(i, seg.end).point[0]
+        start, _, angle = _corner_arc(cam, i)
+        a = math.atan2(start[1] - centre[1], start[0] - centre[0])
+        a = a + angle * np.arange(arc_steps(rr, angle, tolerance)) / arc_steps(rr, angle, tolerance)
+        pts.append(centre + rr * np.column_stack([np.cos(a), np.sin(a)]))
+    ring = np.concatenate(pts)
+    line = shapely.LineString(np.vstack([ring, ring[:1]]))
+    faces = list(shapely.polygonize(shapely.get_parts(shapely.union_all(line))).geoms)
+    if not faces:
+        raise ArithmeticError("the cam outline has no enclosed area")
+    body = shapely.orient_polygons(max(faces, key=lambda f: f.area))
+    v = np.asarray(body.exterior.coords)[:-1]
+    keep = np.linalg.norm(v - np.roll(v, 1, axis=0), axis=1) > 1e-12
+    v = v[keep]
+    frac = np.arange(_PROBES + 1) / (_PROBES + 1)
+    w = np.roll(v, -1, axis=0)
+    probes = (v[:, None, :] + (w - v)[:, None, :] * frac[None, :, None]).reshape(-1, 2)
+    err = float(np.abs(surface_deviation(cam, probes)).max())
+    return Outline(Contour(v), err, envelope=True)

@@ -1,0 +1,152 @@
+"""Neutral plane geometry for parts: closed contours of lines and exact arcs, circles, layers.
+
+Writers (DXF, STL, ...) take these and nothing else; nothing here knows a file
+format. Lengths in mm; counter-clockwise is positive (seen from +Z).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.array(a, dtype=float)
+    a.setflags(write=False)
+    return a
+
+
+def arc_steps(radius: float, angle: float, tolerance: float) -> int:
+    """Chords needed for an arc of ``radius`` (mm) through ``angle`` (rad) to stay within ``tolerance`` (mm)."""
+    if radius <= tolerance:
+        return max(1, math.ceil(abs(angle) / (2 * math.pi / 3)))
+    max_step = 2.0 * math.acos(1.0 - tolerance / radius)
+    return max(1, math.ceil(abs(angle) / max_step))
+
+
+@dataclass(frozen=True)
+class Contour:
+    """A closed contour in LWPOLYLINE form.
+
+    Piece i runs from ``vertices[i]`` to ``vertices[i + 1]`` (the last back to the
+    first): a straight line where ``bulges[i]`` is 0, otherwise a circular arc with
+    bulge = tan(included angle / 4), positive for a counter-clockwise arc.
+    """
+
+    vertices: np.ndarray
+    bulges: np.ndarray = field(default=None)  # type: ignore[assignment]
+
+    def __post_init__(self) -> None:
+        v = _frozen(self.vertices)
+        b = _frozen(np.zeros(len(v)) if self.bulges is None else self.bulges)
+        if v.ndim != 2 or v.shape[1] != 2 or len(v) < 2 or b.shape != (len(v),):
+            raise ValueError("a contour needs n >= 2 vertices (n, 2) and n bulges")
+        object.__setattr__(self, "vertices", v)
+        object.__setattr__(self, "bulges", b)
+
+    @property
+    def n_arcs(self) -> int:
+        return int(np.count_nonzero(self.bulges))
+
+    @property
+    def n_lines(self) -> int:
+        return len(self.bulges) - self.n_arcs
+
+    def _arcs(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Per piece: start, end, chord length, signed included angle, centre (arcs only meaningful)."""
+        p, q = self.vertices, np.roll(self.vertices, -1, axis=0)
+        chord = np.linalg.norm(q - p, axis=1)
+        angle = 4.0 * np.arctan(self.bulges)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            h = np.where(self.bulges != 0, chord / (2.0 * np.tan(angle / 2.0)), 0.0)
+            d = (q - p) / np.where(chord > 0, chord, 1.0)[:, None]
+        centre = (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
+        return p, q, chord, angle, centre
+
+    @property
+    def area(self) -> float:
+        """Signed area (mm^2, counter-clockwise positive), exact for the arcs."""
+        p, q, chord, angle, _ = self._arcs()
+        polygon = 0.5 * float(np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            radius = np.where(self.bulges != 0, chord / (2.0 * np.abs(np.sin(angle / 2.0))), 0.0)
+        return polygon + float(np.sum(0.5 * radius**2 * (angle - np.sin(angle))))
+
+    def reversed(self) -> "Contour":
+        """The same contour traversed the other way."""
+        v = self.vertices[::-1]
+        b = -np.roll(self.bulges[::-1], -1)
+        return Contour(v, b)
+
+    def flatten(self, tolerance: float) -> np.ndarray:
+        """Polygon vertices (m, 2), first not repeated, with every arc split into chords within ``tolerance`` mm."""
+        p, _, chord, angle, centre = self._arcs()
+        out = []
+        for i in range(len(p)):
+            out.append(p[i][None, :])
+            if self.bulges[i] != 0:
+                radius = chord[i] / (2.0 * abs(math.sin(angle[i] / 2.0)))
+                n = arc_steps(radius, angle[i], tolerance)
+                start = math.atan2(p[i, 1] - centre[i, 1], p[i, 0] - centre[i, 0])
+                a = start + angle[i] * np.arange(1, n) / n
+                out.append(centre[i] + radius * np.column_stack([np.cos(a), np.sin(a)]))
+        return np.concatenate(out)
+
+
+@dataclass(frozen=True)
+class Circle:
+    """A full circle: ``centre`` (x, y) in mm and ``radius`` in mm."""
+
+    centre: tuple[float, float]
+    radius: float
+
+    @property
+    def area(self) -> float:
+        return math.pi * self.radius**2
+
+    def flatten(self, tolerance: float) -> np.ndarray:
+        """Counter-clockwise polygon (m, 2) with vertices on the circle, chords within ``tolerance`` mm."""
+        n = max(arc_steps(self.radius, 2 * math.pi, tolerance), 8)
+        a = 2 * math.pi * np.arange(n) / n
+        return np.column_stack([self.centre[0] + self.radius * np.cos(a), self.centre[1] + self.radius * np.sin(a)])
+
+
+Shape = Contour | Circle
+
+
+@dataclass(frozen=True)
+class Part:
+    """A flat part: one outer contour (counter-clockwise), holes, a thickness (mm) and a tolerance (mm).
+
+    ``tolerance`` is the chord tolerance used wherever exact arcs must become
+    polygons (meshes, plots).
+    """
+
+    name: str
+    outline: Contour
+    holes: tuple[Shape, ...]
+    thickness: float
+    tolerance: float
+
+    @property
+    def area(self) -> float:
+        """Plan area in mm^2: outline minus holes, exact."""
+        return self.outline.area - sum(abs(h.area) for h in self.holes)
+
+
+#: layer names used in every drawing
+LAYER_OUTLINE = "OUTLINE"
+LAYER_HOLES = "HOLES"
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """Shapes on named layers, in mm, ready for any 2-D writer."""
+
+    items: tuple[tuple[str, Shape], ...]
+
+    @classmethod
+    def of_part(cls, part: Part) -> "Drawing":
+        """A part's outline on ``OUTLINE`` and its holes on ``HOLES``."""
+        return cls(((LAYER_OUTLINE, part.outline), *((LAYER_HOLES, h) for h in part.holes)))

@@ -1,0 +1,42 @@
+"""Solids from parts: a plate part extruded to its thickness with manifold3d.
+
+Arcs and circles become chords within the part's tolerance, so the mesh has no
+more triangles than that tolerance needs. manifold3d guarantees a closed,
+consistently oriented (outward) two-manifold.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from camgen.errors import ExportError
+from camgen.parts.drawing import Part
+
+
+@dataclass(frozen=True)
+class Mesh:
+    """A triangle mesh in mm: ``vertices`` (n, 3) and ``faces`` (m, 3), outward (counter-clockwise) faces."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
+
+def _ccw(points: np.ndarray, ccw: bool) -> np.ndarray:
+    x, y = points[:, 0], points[:, 1]
+    area = 0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
+    return points if (area > 0) == ccw else points[::-1]
+
+
+def extrude(part: Part) -> Mesh:
+    """The part as a solid from z = 0 to z = thickness, holes cut through."""
+    import manifold3d
+
+    tol = part.tolerance
+    polygons = [_ccw(part.outline.flatten(tol), True)] + [_ccw(h.flatten(tol), False) for h in part.holes]
+    section = manifold3d.CrossSection(polygons, manifold3d.FillRule.Positive)
+    solid = manifold3d.Manifold.extrude(section, part.thickness)
+    if solid.status() != manifold3d.Error.NoError or solid.is_empty():
+        raise ExportError(f"{part.name}: could not build a solid ({solid.status()})")
+    mesh = solid.to_mesh()
+    return Mesh(np.asarray(mesh.vert_properties)[:, :3].astype(float), np.asarray(mesh.tri_verts, dtype=np.int64))
