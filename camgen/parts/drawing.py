@@ -64,6 +64,13 @@ class Contour:
         centre = (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
         return p, q, chord, angle, centre
 
+    def arcs(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The arc pieces: their indices, centres (k, 2), radii (k,) and signed included angles (k,) in rad."""
+        _, _, chord, angle, centre = self._arcs()
+        idx = np.flatnonzero(self.bulges)
+        radius = chord[idx] / (2.0 * np.abs(np.sin(angle[idx] / 2.0)))
+        return idx, centre[idx], radius, angle[idx]
+
     @property
     def area(self) -> float:
         """Signed area (mm^2, counter-clockwise positive), exact for the arcs."""

@@ -1,0 +1,78 @@
+"""The ``camgen`` command: load -> validate -> build -> write. Errors: one line on stderr, exit code 2."""
+from __future__ import annotations
+
+import functools
+import json
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import click
+
+from camgen.errors import CamgenError
+
+
+def _user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
+    """Turn the project's errors into ``error: <one line>`` and exit code 2."""
+    @functools.wraps(func)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return func(*args, **kwargs)
+        except CamgenError as exc:
+            click.echo(f"error: {exc}", err=True)
+            sys.exit(2)
+    return wrapper
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="camgen")
+def main() -> None:
+    """camgen: disc cams from motion requirements to DXF, STL, plots and a report."""
+
+
+@main.command()
+@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
+              help="Output folder (default: out/<name>/).")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="Override a template field before validation, e.g. --set motion.0.lift=25 (repeatable).")
+@_user_errors
+def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
+    """Build the cam described by TEMPLATE (a TOML file)."""
+    from camgen.design import design_cam
+    from camgen.outputs import write_cam
+    from camgen.spec import load_template
+
+    spec = load_template(template, overrides)
+    design = design_cam(spec)
+    directory = output if output is not None else Path("out") / spec.name
+    report = write_cam(design, directory)
+    a = design.analysis
+    click.echo(f"{spec.name}: pressure angle max {a.pressure_angle_max_deg:.2f} deg at "
+               f"{a.pressure_angle_max_at_deg:.2f} deg; min convex radius {a.profile_rho_min_mm:.3f} mm (cam), "
+               f"{a.pitch_rho_min_mm:.3f} mm (pitch) at {a.pitch_rho_min_at_deg:.2f} deg")
+    click.echo(f"outline: {report['outline_vertices']} vertices ({report['outline_arcs']} exact arcs), "
+               f"max error {report['outline_max_error_mm']:.2e} mm (tolerance {report['tolerance_mm']:g} mm)")
+    for warning in report["warnings"]:
+        click.echo(f"warning: {warning}")
+    for name in report["files"].values():
+        click.echo(f"wrote {directory / name}")
+
+
+@main.command()
+@click.option("--json", "as_json", is_flag=True, help="Print the table as JSON.")
+def laws(as_json: bool) -> None:
+    """Compare the motion laws for lift h = 1 over beta = 1 rad: peak velocity, acceleration, jerk."""
+    from camgen.laws.table import law_table
+
+    rows = law_table()
+    if as_json:
+        click.echo(json.dumps(rows, indent=2))
+        return
+    click.echo(f"{'law':<18}{'Cv':>10}{'Ca':>10}{'Cj':>10}   infinite between dwells")
+    for row in rows:
+        inf = ", ".join({"v": "velocity", "a": "acceleration", "j": "jerk"}[k] for k in row["infinite"]) or "-"
+        click.echo(f"{row['law']:<18}{row['cv']:>10.4f}{row['ca']:>10.4f}{row['cj']:>10.4f}   {inf}")
+    click.echo("Cv, Ca, Cj: peak |s'|, |s''|, |s'''| inside the segment for h = beta = 1 "
+               "(modified-uniform: cycloidal blends over 0.25 of beta)")

@@ -1,0 +1,52 @@
+"""Write a cam design's files: DXF, STL, JSON report and plots, all-or-nothing."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from camgen.design import CamDesign
+from camgen.errors import ExportError
+from camgen.parts.drawing import Drawing
+from camgen.parts.files import staged
+from camgen.report import cam_report, report_json
+
+
+def write_cam(design: CamDesign, directory: str | Path) -> dict[str, Any]:
+    """Write the files the template's ``output.formats`` asks for into ``directory``; return the report.
+
+    Names: ``<name>.dxf``, ``<name>.stl``, ``<name>.json``, ``<name>-svaj.png|svg``,
+    ``<name>-cam.png|svg``. Nothing is left behind if any of them fails.
+    """
+    formats = set(design.template.output.formats)
+    name = design.template.name
+    files: dict[str, str] = {}
+    mesh_check = None
+    with staged(directory) as stage:
+        if "dxf" in formats:
+            from camgen.parts.dxf import write_dxf
+
+            files["dxf"] = stage.write(f"{name}.dxf", lambda p: write_dxf(Drawing.of_part(design.part), p)).name
+        if "stl" in formats:
+            from camgen.parts.mesh import extrude
+            from camgen.parts.stl import check_mesh, stl_bytes
+
+            mesh = extrude(design.part)
+            mesh_check = check_mesh(mesh)
+            if not mesh_check.ok:
+                raise ExportError(f"{name}: the mesh is not a closed outward solid ({mesh_check})")
+            files["stl"] = stage.write_bytes(f"{name}.stl", stl_bytes(mesh)).name
+        plot_formats = [f for f in ("png", "svg") if f in formats]
+        if plot_formats:
+            from camgen.plots import cam_figure, svaj_figure
+
+            for kind, make in (("svaj", svaj_figure), ("cam", cam_figure)):
+                fig = make(design)
+                for fmt in plot_formats:
+                    files[f"{kind}_{fmt}"] = stage.write(
+                        f"{name}-{kind}.{fmt}", lambda p, fig=fig, fmt=fmt: fig.savefig(p, format=fmt, dpi=120)).name
+        report = cam_report(design, mesh_check, files)
+        if "json" in formats:
+            files["json"] = f"{name}.json"
+            report["files"] = dict(files)
+            stage.write(f"{name}.json", lambda p: p.write_text(report_json(report), encoding="utf-8"))
+    return report

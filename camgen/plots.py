@@ -1,0 +1,88 @@
+"""Plots of a cam: the S-V-A-J diagram and the cam drawing with its checks marked.
+
+Uses matplotlib's object API (no pyplot state) with the Agg canvas; imported only
+when a plot is asked for (0.6 s).
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from camgen.design import CamDesign, sample_cycle
+
+
+def _figure(width: float, height: float) -> Any:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, height), layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def svaj_figure(design: CamDesign) -> Any:
+    """Displacement, velocity, acceleration and jerk against cam angle (per radian of cam angle)."""
+    theta, motion = sample_cycle(design.cam)
+    deg = np.degrees(theta)
+    fig = _figure(8, 9)
+    axes = fig.subplots(4, 1, sharex=True)
+    labels = ["s (mm)", "s' (mm/rad)", "s'' (mm/rad²)", "s''' (mm/rad³)"]
+    for k, ax in enumerate(axes):
+        ax.plot(deg, motion[k], color="C0", lw=1.2)
+        ax.axhline(0, color="0.6", lw=0.6)
+        for seg in design.cam.program.segments:
+            ax.axvline(math.degrees(seg.start), color="0.85", lw=0.6, zorder=0)
+        for j in design.jumps:
+            if j.order < 3 and j.order + 1 == k:
+                ax.annotate("∞", (j.at_deg, 0), color="C3", ha="center", va="bottom", fontsize=12)
+        ax.set_ylabel(labels[k])
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel("cam angle θ (degrees)")
+    axes[-1].set_xlim(0, 360)
+    axes[-1].set_xticks(range(0, 361, 30))
+    axes[0].set_title(f"{design.template.name}: S-V-A-J (∞ marks infinite acceleration or jerk)")
+    return fig
+
+
+def cam_figure(design: CamDesign) -> Any:
+    """The cam at theta = 0: outline, pitch curve, base and prime circles, follower, checks marked."""
+    cam, a, t = design.cam, design.analysis, design.template
+    fig = _figure(8, 9)
+    ax = fig.add_subplot()
+    ring = design.outline.contour.flatten(t.output.tolerance)
+    ax.fill(ring[:, 0], ring[:, 1], color="0.88", zorder=0)
+    ax.plot(*np.vstack([ring, ring[:1]]).T, color="k", lw=1.2, label="cam outline")
+    pitch = cam.pitch(np.linspace(0, 2 * math.pi, 721)).point
+    ax.plot(pitch[:, 0], pitch[:, 1], "--", color="C0", lw=0.8, label="pitch curve")
+    circle = np.linspace(0, 2 * math.pi, 361)
+    for radius, style, label in ((cam.base_radius, ":", "base circle"),
+                                 (cam.follower.prime_radius, "-.", "prime circle")):
+        ax.plot(radius * np.cos(circle), radius * np.sin(circle), style, color="0.5", lw=0.7, label=label)
+    if t.cam.bore > 0:
+        r = t.cam.bore / 2
+        ax.fill(r * np.cos(circle), r * np.sin(circle), color="white", ec="k", lw=0.8)
+    start = cam.pitch(np.array([0.0]))
+    rr, e = cam.roller_radius, cam.follower.offset
+    ax.plot(start.point[0, 0] + rr * np.cos(circle), start.point[0, 1] + rr * np.sin(circle), color="C2", lw=1)
+    top = cam.follower.d0 + cam.program.max_lift + 2 * rr
+    ax.plot([e, e], [start.point[0, 1], top], color="C2", lw=2, label="follower at θ = 0")
+    pa = cam.pitch(np.radians([a.pressure_angle_max_at_deg])).point[0]
+    ax.plot(*pa, "o", color="C3", label=f"max pressure angle {a.pressure_angle_max_deg:.1f}° "
+                                        f"at θ = {a.pressure_angle_max_at_deg:.1f}°")
+    g = cam.pitch(np.radians([a.pitch_rho_min_at_deg]))
+    rho = (g.point - rr * g.normal)[0]
+    ax.plot(*rho, "s", color="C1", label=f"min convex radius {a.profile_rho_min_mm:.2f} mm (pitch "
+                                          f"{a.pitch_rho_min_mm:.2f}) at θ = {a.pitch_rho_min_at_deg:.1f}°")
+    arrow = 1 if t.cam.rotation == "ccw" else -1
+    ax.annotate("", xy=(0.25 * cam.base_radius * arrow, -0.2 * cam.base_radius),
+                xytext=(-0.25 * cam.base_radius * arrow, -0.2 * cam.base_radius),
+                arrowprops={"arrowstyle": "->", "connectionstyle": f"arc3,rad={0.5 * arrow}", "color": "0.3"})
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.grid(alpha=0.3)
+    fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    ax.set_title(f"{t.name}: cam at θ = 0 ({t.cam.rotation}), roller {rr:g} mm, offset {e:g} mm")
+    return fig

@@ -1,0 +1,69 @@
+"""The JSON report of a cam: every figure a designer checks before cutting, in mm and degrees."""
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+from camgen import __version__
+from camgen.design import PRESSURE_ANGLE_LIMIT, CamDesign
+from camgen.parts.stl import MeshCheck
+
+
+def _r(x: float | None, digits: int = 9) -> float | None:
+    return None if x is None else round(float(x), digits)
+
+
+def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str, str] | None = None) -> dict[str, Any]:
+    """The report as a JSON-ready dict (keys carry their units)."""
+    t, cam, a, outline = design.template, design.cam, design.analysis, design.outline
+    segments = [{
+        "index": i, "type": spec.type, "law": spec.law, **spec.law_params(),
+        "start_deg": _r(math.degrees(seg.start)), "angle_deg": spec.angle, "lift_mm": spec.lift,
+    } for i, (spec, seg) in enumerate(zip(t.motion, cam.program.segments))]
+    report: dict[str, Any] = {
+        "name": t.name,
+        "generator": f"camgen {__version__}",
+        "conventions": {
+            "units": "mm and degrees; derivatives of s per radian of cam angle",
+            "theta_zero": "follower on +Y at theta = 0; theta grows in the cam's sense of rotation",
+            "rotation": t.cam.rotation,
+            "offset": "positive offset puts the follower axis at +X (right of the cam centre, follower on top)",
+            "pressure_angle": "atan((s' - sense * offset) / (d0 + s)), sense +1 for ccw",
+        },
+        "cam": {"base_radius_mm": t.cam.base_radius, "prime_radius_mm": t.prime_radius,
+                "thickness_mm": t.cam.thickness, "bore_mm": t.cam.bore, "rotation": t.cam.rotation},
+        "follower": {"type": t.follower.type, "roller_radius_mm": t.follower.roller_radius,
+                     "offset_mm": t.follower.offset},
+        "segments": segments,
+        "lift_max_mm": _r(cam.program.max_lift),
+        "pressure_angle_max_deg": _r(a.pressure_angle_max_deg),
+        "pressure_angle_max_at_deg": _r(a.pressure_angle_max_at_deg),
+        "pressure_angle_limit_deg": PRESSURE_ANGLE_LIMIT,
+        "pitch_rho_min_mm": _r(a.pitch_rho_min_mm),
+        "pitch_rho_min_at_deg": _r(a.pitch_rho_min_at_deg),
+        "profile_rho_min_mm": _r(a.profile_rho_min_mm),
+        "pitch_concave_rho_min_mm": _r(a.pitch_concave_rho_min_mm),
+        "profile_concave_rho_min_mm": _r(a.profile_concave_rho_min_mm),
+        "concave_rho_min_at_deg": _r(a.concave_at_deg),
+        "undercut": a.undercut,
+        "envelope": outline.envelope,
+        "outline_vertices": len(outline.contour.vertices),
+        "outline_arcs": outline.contour.n_arcs,
+        "outline_lines": outline.contour.n_lines,
+        "outline_max_error_mm": float(outline.max_error_mm),
+        "tolerance_mm": t.output.tolerance,
+        "area_mm2": _r(design.part.area, 6),
+        "wall_mm": _r(design.wall_mm, 6) if t.cam.bore > 0 else None,
+        "continuity": [j.as_dict() for j in design.jumps],
+        "warnings": list(design.warnings),
+    }
+    if mesh is not None:
+        report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
+                          "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles}
+    report["files"] = dict(files or {})
+    return report
+
+
+def report_json(report: dict[str, Any]) -> str:
+    return json.dumps(report, indent=2, allow_nan=False) + "\n"
