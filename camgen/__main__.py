@@ -1,0 +1,4 @@
+"""``python -m camgen`` runs the command line."""
+from camgen.cli import main
+
+main()

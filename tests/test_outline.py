@@ -1,0 +1,69 @@
+"""The exported outline: within tolerance of the exact surface, with vertices the tolerance needs."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from camgen.cam import build_cam
+from camgen.outline import exact_outline
+from camgen.surface import surface_deviation
+from tests.conftest import template
+
+
+def along(contour, tolerance: float, per_edge: int = 8) -> np.ndarray:
+    """Points along a contour's pieces (arcs flattened far finer than the tolerance)."""
+    v = contour.flatten(tolerance * 1e-2)
+    w = np.roll(v, -1, axis=0)
+    f = np.arange(per_edge) / per_edge
+    return (v[:, None, :] + (w - v)[:, None, :] * f[None, :, None]).reshape(-1, 2)
+
+
+@pytest.mark.parametrize("tol", [1e-1, 1e-2, 1e-3, 1e-4])
+def test_outline_within_tolerance_by_two_measures(tol):
+    cam = build_cam(template())
+    outline = exact_outline(cam, tol)
+    assert 0 < outline.max_error_mm <= tol
+    # independent: distance of points of the polyline to the pitch curve, minus the roller radius
+    deviation = np.abs(surface_deviation(cam, along(outline.contour, tol))).max()
+    assert deviation <= tol
+    assert deviation == pytest.approx(outline.max_error_mm, rel=0.05)
+
+
+def test_vertex_count_follows_the_tolerance_not_a_fixed_count():
+    """Chord error ~ spacing^2, so 100x tighter tolerance needs ~10x the vertices."""
+    cam = build_cam(template())
+    counts = [len(exact_outline(cam, tol).contour.vertices) for tol in (1e-2, 1e-4)]
+    assert 8.5 < counts[1] / counts[0] < 11.5
+    # and the error sits close to the tolerance: no vertex is wasted
+    assert exact_outline(cam, 1e-3).max_error_mm > 0.7e-3
+
+
+def test_outline_is_a_valid_counter_clockwise_ring():
+    import shapely
+
+    outline = exact_outline(build_cam(template()), 0.01)
+    assert outline.contour.area > 0
+    ring = outline.contour.flatten(0.001)
+    assert shapely.Polygon(ring).is_valid
+    steps = np.linalg.norm(np.diff(np.vstack([ring, ring[:1]]), axis=0), axis=1)
+    assert steps.min() > 1e-6                                       # no duplicate or zero-length pieces
+
+
+def test_dwells_are_exact_arcs_about_the_cam_centre():
+    cam = build_cam(template())
+    outline = exact_outline(cam, 0.01)
+    _, centres, radii, angles = outline.contour.arcs()
+    assert np.abs(centres).max() < 1e-9
+    base = math.hypot(5.0, cam.follower.d0) - 10.0
+    top = math.hypot(5.0, cam.follower.d0 + 20.0) - 10.0
+    assert sorted(radii) == pytest.approx([base, top], abs=1e-9)
+    assert np.abs(angles) == pytest.approx([math.radians(60)] * 2, abs=1e-12)
+
+
+def test_area_converges_to_the_exact_area():
+    cam = build_cam(template())
+    areas = [exact_outline(cam, tol).contour.area for tol in (1e-2, 1e-3, 1e-4, 1e-5)]
+    diffs = np.abs(np.diff(areas))
+    assert diffs[1] < diffs[0] / 5 and diffs[2] < diffs[1] / 5

@@ -1,0 +1,34 @@
+"""The README's promises: its Python example runs, and its key table documents every template key."""
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from camgen.spec import CamSpec, FollowerSpec, OutputSpec, SegmentSpec
+from tests.conftest import ROOT
+
+README = (ROOT / "README.md").read_text()
+
+
+def test_readme_opens_with_the_two_commands():
+    blocks = re.findall(r"```sh\n(.*?)```", README, re.S)
+    assert blocks[0].splitlines() == ["pip install . && camgen build templates/rdrd.toml",
+                                      "pip install '.[test]' && python -m pytest -q"]
+    assert "pip install '.[test]' && python -m pytest -q" in (ROOT / ".ci" / "run").read_text()
+
+
+@pytest.mark.parametrize("prefix, model", [("cam", CamSpec), ("follower", FollowerSpec),
+                                           ("motion[i]", SegmentSpec), ("output", OutputSpec)])
+def test_every_template_key_is_documented(prefix, model):
+    for key in model.model_fields:
+        assert f"| `{prefix}.{key}` |" in README, f"{prefix}.{key} is not in the README's key table"
+
+
+def test_python_example_runs(tmp_path, monkeypatch):
+    code = re.findall(r"```python\n(.*?)```", README, re.S)[0]
+    (tmp_path / "templates").mkdir()
+    (tmp_path / "templates" / "rdrd.toml").write_text((ROOT / "templates" / "rdrd.toml").read_text())
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "README.md", "exec"), {})
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["rdrd-10", "rdrd-15", "rdrd-20"]
