@@ -3,8 +3,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
-
 from camgen.analysis import CamAnalysis, analyse, largest_roller
 from camgen.cam import Cam, build_cam
 from camgen.errors import DesignError
@@ -94,18 +92,4 @@ def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wa
         out.append(f"concave radius of {a.profile_concave_rho_min_mm:.3g} mm at {a.concave_at_deg:.2f} degrees: "
                    "the cutting tool or laser kerf must be smaller")
     return tuple(out)
-
-
-def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarray]:
-    """Cam angles (rad) and s, s', s'', s''' on every segment's closed interval, segment after segment.
-
-    Jumps show as two values at one angle (for plots). ``per_segment`` points a segment.
-    """
-    thetas, motions = [], []
-    for seg in cam.program.segments:
-        t = np.linspace(seg.start, seg.end, per_segment if seg.kind != "dwell" else 2)
-        thetas.append(t)
-        motions.append(seg.evaluate(t))
-    return np.concatenate(thetas), np.concatenate(motions, axis=1)
-
 

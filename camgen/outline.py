@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from camgen.cam import Cam
+from camgen.errors import DesignError
 from camgen.followers.base import PitchGeometry
 from camgen.parts.drawing import Contour, arc_steps
 from camgen.surface import surface_deviation
@@ -81,7 +82,8 @@ def _sampled(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, float]
         if err <= tolerance:
             return theta, err
         factor *= max(1.1, math.sqrt(err / tolerance))
-    raise ArithmeticError(f"outline of segment {index} does not converge to {tolerance} mm")
+    raise DesignError(f"output.tolerance: the outline of motion[{index}] cannot be brought within {tolerance} mm "
+                      f"(reached {err:.3g} mm); loosen the tolerance")
 
 
 def _dwell(cam: Cam, index: int) -> tuple[np.ndarray, np.ndarray, float]:
@@ -143,26 +145,38 @@ def envelope_outline(cam: Cam, tolerance: float) -> Outline:
     The raw offset (chords from the curvature, roller-radius arcs at corners) is
     noded with shapely, split into faces, and the largest face is the cam. Its
     error is measured as the deviation of points along every edge from the exact
-    envelope (distance Rr from the pitch curve).
+    envelope (distance Rr from the pitch curve), and the sampling is tightened
+    until that is within the tolerance.
     """
+    factor = 1.0
+    for _ in range(12):
+        outline = _envelope(cam, tolerance, factor)
+        if outline.max_error_mm <= tolerance:
+            return outline
+        factor *= max(1.2, math.sqrt(outline.max_error_mm / tolerance))
+    raise DesignError(f"output.tolerance: the undercut envelope cannot be brought within {tolerance} mm "
+                      f"(reached {outline.max_error_mm:.3g} mm); loosen the tolerance")
+
+
+def _envelope(cam: Cam, tolerance: float, factor: float) -> Outline:
     import shapely
 
     rr = cam.roller_radius
     pts = []
     for i, seg in enumerate(cam.program.segments):
-        theta = _spacing(cam, i, tolerance, 1.0)
+        theta = _spacing(cam, i, tolerance, factor)
         pts.append(_surface(cam.segment_pitch(i, theta[:-1]), rr))
         # the segment's last surface point, then round the pitch point to the next segment's first
         centre = cam.segment_pitch(i, seg.end).point[0]
         start, _, angle = _corner_arc(cam, i)
-        a = math.atan2(start[1] - centre[1], start[0] - centre[0])
-        a = a + angle * np.arange(arc_steps(rr, angle, tolerance)) / arc_steps(rr, angle, tolerance)
+        n = arc_steps(rr, angle, tolerance / factor**2)
+        a = math.atan2(start[1] - centre[1], start[0] - centre[0]) + angle * np.arange(n) / n
         pts.append(centre + rr * np.column_stack([np.cos(a), np.sin(a)]))
     ring = np.concatenate(pts)
     line = shapely.LineString(np.vstack([ring, ring[:1]]))
     faces = list(shapely.polygonize(shapely.get_parts(shapely.union_all(line))).geoms)
     if not faces:
-        raise ArithmeticError("the cam outline has no enclosed area")
+        raise DesignError("the cam outline encloses no area")
     body = shapely.orient_polygons(max(faces, key=lambda f: f.area))
     v = np.asarray(body.exterior.coords)[:-1]
     keep = np.linalg.norm(v - np.roll(v, 1, axis=0), axis=1) > 1e-12

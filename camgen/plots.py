@@ -10,7 +10,21 @@ from typing import Any
 
 import numpy as np
 
-from camgen.design import CamDesign, sample_cycle
+from camgen.cam import Cam
+from camgen.design import CamDesign
+
+
+def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarray]:
+    """Cam angles (rad) and s, s', s'', s''' on every segment's closed interval, segment after segment.
+
+    Jumps show as two values at one angle (for plots). ``per_segment`` points a segment.
+    """
+    thetas, motions = [], []
+    for seg in cam.program.segments:
+        t = np.linspace(seg.start, seg.end, per_segment if seg.kind != "dwell" else 2)
+        thetas.append(t)
+        motions.append(seg.evaluate(t))
+    return np.concatenate(thetas), np.concatenate(motions, axis=1)
 
 
 def _figure(width: float, height: float) -> Any:

@@ -11,21 +11,24 @@ import numpy as np
 
 from camgen.cam import Cam
 
-#: coarse pitch samples per radian before the Newton refinement
-_COARSE = 120
+#: spacing of the coarse pitch samples that start the Newton refinement (mm), and their least number a segment
+_COARSE_MM = 0.25
+_COARSE_MIN = 64
 _NEWTON_STEPS = 8
 
 
 def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
     """Distance (mm) from each of ``points`` (n, 2) to the exact pitch curve.
 
-    For each segment: the nearest of a coarse sample, then Newton's method on
+    For each segment: the nearest of a coarse sample every 0.25 mm along the curve, then Newton's method on
     (P(theta) - X) . P'(theta) = 0 within the segment; the smallest over segments.
     """
     points = np.asarray(points, dtype=float).reshape(-1, 2)
     best = np.full(len(points), np.inf)
     for i, seg in enumerate(cam.program.segments):
-        grid = np.linspace(seg.start, seg.end, max(3, int(_COARSE * seg.beta) + 2))
+        aux = np.linspace(seg.start, seg.end, 257)
+        length = float(np.linalg.norm(np.diff(cam.segment_pitch(i, aux).point, axis=0), axis=1).sum())
+        grid = np.linspace(seg.start, seg.end, max(_COARSE_MIN, int(length / _COARSE_MM) + 2))
         coarse = cam.segment_pitch(i, grid).point
         theta = np.empty(len(points))
         for lo in range(0, len(points), 4096):

@@ -1,0 +1,1 @@
+"""Followers: each turns a motion program into a pitch curve and its contact geometry (see ``base``)."""
