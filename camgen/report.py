@@ -20,7 +20,7 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
     segments = [{
         "index": i, "type": spec.type, "law": spec.law, **spec.law_params(),
         "start_deg": _r(math.degrees(seg.start)), "angle_deg": spec.angle, "lift_mm": spec.lift,
-    } for i, (spec, seg) in enumerate(zip(t.motion, cam.program.segments))]
+    } for i, (spec, seg) in enumerate(zip(t.motion, cam.program.segments, strict=True))]
     report: dict[str, Any] = {
         "name": t.name,
         "generator": f"camgen {__version__}",

@@ -21,6 +21,8 @@ from camgen.laws import LAW_NAMES, LAW_PARAMS
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
 FORMATS = ("dxf", "stl", "json", "png", "svg")
+#: every law parameter key a segment may carry
+LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
 
 def _unit(unit: str) -> dict[str, str]:
@@ -88,9 +90,6 @@ class SegmentSpec(_Model):
     def law_params(self) -> dict[str, Any]:
         """The law parameters given for this segment."""
         return {k: getattr(self, k) for k in LAW_PARAMS.get(self.law or "", ()) if getattr(self, k) is not None}
-
-
-LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
 
 class OutputSpec(_Model):

@@ -132,7 +132,7 @@ def test_drafted_uniform_needs_room():
 
 def test_general_polynomial_reproduces_345_and_4567():
     c345 = [(0, 0, 0), (0, 1, 0), (0, 2, 0), (1, 0, 1), (1, 1, 0), (1, 2, 0)]
-    c4567 = c345 + [(0, 3, 0), (1, 3, 0)]
+    c4567 = [*c345, (0, 3, 0), (1, 3, 0)]
     u = np.linspace(0, 1, 501)
     for conds, name in ((c345, "polynomial-345"), (c4567, "polynomial-4567")):
         general, fixed = from_conditions(conds).derivatives(u), make_law(name).derivatives(u)

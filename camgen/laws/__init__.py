@@ -55,6 +55,5 @@ def make_law(name: str, **params: Any) -> Law:
     return factory(**params)
 
 
-__all__ = ["Law", "LAW_NAMES", "LAW_PARAMS", "TABLE_LAWS", "PolynomialLaw", "make_law", "from_conditions",
-           "Uniform", "BlendedUniform", "DraftedUniform", "Parabolic", "Harmonic", "Cycloidal", "poly345",
-           "poly4567"]
+__all__ = ["LAW_NAMES", "LAW_PARAMS", "TABLE_LAWS", "BlendedUniform", "Cycloidal", "DraftedUniform", "Harmonic",
+           "Law", "Parabolic", "PolynomialLaw", "Uniform", "from_conditions", "make_law", "poly345", "poly4567"]

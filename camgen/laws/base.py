@@ -8,6 +8,7 @@ respect to u = theta / beta, with f(0) = 0 and f(1) = 1. Scaling to a segment
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from itertools import pairwise
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -15,10 +16,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.numeric import left_of, maximise
-
-#: names of the derivatives of f in the order :meth:`Law.derivatives` returns them
-ORDERS = ("s", "v", "a", "j")
-
 
 @dataclass(frozen=True)
 class Law(ABC):
@@ -43,7 +40,7 @@ class Law(ABC):
     def pieces(self) -> list[tuple[float, float]]:
         """Closed sub-intervals of [0, 1] on which the law is smooth, with left limits at their right ends."""
         edges = [0.0, *sorted(set(self.breakpoints)), 1.0]
-        return [(a, left_of(b) if b < 1.0 else 1.0) for a, b in zip(edges[:-1], edges[1:]) if b > a]
+        return [(a, left_of(b) if b < 1.0 else 1.0) for a, b in pairwise(edges) if b > a]
 
     def peaks(self) -> np.ndarray:
         """Peak magnitudes of f', f'', f''' over [0, 1]: the (Cv, Ca, Cj) coefficients for h = beta = 1."""

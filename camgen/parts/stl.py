@@ -21,7 +21,7 @@ class MeshCheck:
         return self.watertight and self.winding_consistent and self.volume_mm3 > 0
 
 
-def _trimesh(mesh: Mesh):  # noqa: ANN202 - trimesh is imported lazily
+def _trimesh(mesh: Mesh):  # returns a trimesh.Trimesh; trimesh is imported lazily
     import trimesh
 
     return trimesh.Trimesh(vertices=mesh.vertices, faces=mesh.faces, process=False)
