@@ -33,7 +33,8 @@ def dxf_document(drawing: Drawing, version: str = "R2010") -> Any:
         if isinstance(shape, Circle):
             msp.add_circle(shape.centre, shape.radius, dxfattribs=attribs)
         elif isinstance(shape, Contour):
-            points = [(x, y, 0.0, 0.0, b) for (x, y), b in zip(shape.vertices.tolist(), shape.bulges.tolist(), strict=True)]
+            pairs = zip(shape.vertices.tolist(), shape.bulges.tolist(), strict=True)
+            points = [(x, y, 0.0, 0.0, b) for (x, y), b in pairs]
             msp.add_lwpolyline(points, format="xyseb", close=True, dxfattribs=attribs)
         else:
             raise ExportError(f"cannot write a {type(shape).__name__} to DXF")
