@@ -175,3 +175,15 @@ def test_concave_corner_is_an_exact_arc_of_the_roller_radius():
     top = math.hypot(5.0, cam.follower.d0 + 20.0) - 10.0
     assert np.sort(radii[~at_corner]) == pytest.approx([40.0, top], abs=1e-9)  # dwells: arcs about the centre
     assert np.linalg.norm(centres[~at_corner], axis=1).max() < 1e-9
+
+
+def test_drafted_modified_uniform_takes_its_ratio_from_the_prime_circle():
+    """Drafted form: k = Rp * beta / h, so the diagram's end arcs have radius h on the prime-circle arc length."""
+    d = design_cam(template({"motion.0.law": "modified-uniform", "motion.0.form": "drafted"}))
+    law = d.cam.program.segments[0].law
+    assert law.k == pytest.approx(50.0 * math.radians(120.0) / 20.0, rel=1e-15)
+    # s in mm against x = Rp * theta in mm: the first arc is a circle of radius h = 20 about (0, h)
+    theta = np.linspace(0, law.u1 * math.radians(120.0), 30)
+    s = d.cam.program.evaluate(theta)[0]
+    assert np.abs((50.0 * theta) ** 2 + (s - 20.0) ** 2 - 20.0**2).max() < 1e-9
+    assert not d.analysis.undercut and d.outline.max_error_mm <= 0.01
