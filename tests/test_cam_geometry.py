@@ -156,7 +156,8 @@ def test_velocity_jump_makes_a_corner_that_is_refused_or_enveloped():
 def test_concave_corner_is_an_exact_arc_of_the_roller_radius():
     """Uniform start from a dwell, then a polynomial matching its velocity: one concave pitch corner."""
     raw = {"motion.0.law": "uniform", "motion.0.lift": 10.0, "motion.0.angle": 60.0}
-    from camgen.spec import apply_overrides, validate_template
+    from camgen.spec import validate_template
+    from camgen.templates import apply_overrides
     from tests.conftest import RDRD
 
     data = apply_overrides(RDRD, list(raw.items()))

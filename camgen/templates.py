@@ -1,0 +1,181 @@
+"""Templates in general: TOML loading, ``--set`` overrides and one-line validation errors.
+
+Shared by camgen and linkgen. A template is validated by a pydantic model derived
+from :class:`Model`; :func:`validate` turns pydantic's first error into a
+:class:`~camgen.errors.SpecError` naming the field, the rule and the value given,
+with the field's unit (from ``json_schema_extra={"unit": ...}``), e.g.
+``motion[2].angle: must be > 0 and <= 360 degrees (got -30)``.
+"""
+from __future__ import annotations
+
+import copy
+import tomllib
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any, TypeVar
+
+from pydantic import BaseModel, ConfigDict, ValidationError
+
+from camgen.errors import SpecError
+
+M = TypeVar("M", bound=BaseModel)
+
+#: pattern of a part name: safe as a file name
+NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9._-]{0,99}$"
+
+
+class Model(BaseModel):
+    """Base of every template model: frozen, no unknown keys, no NaN or infinity."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid", allow_inf_nan=False, strict=False)
+
+
+def unit(name: str) -> dict[str, str]:
+    """``json_schema_extra`` naming a field's unit, used in error messages."""
+    return {"unit": name}
+
+
+def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:
+    """``key=value`` strings as (dotted key, value); values are read as TOML values, else kept as text."""
+    out = []
+    for pair in pairs:
+        key, sep, text = pair.partition("=")
+        if not sep or not key.strip():
+            raise SpecError(f"expected key=value, e.g. motion.0.lift=25 (got {pair!r})", "--set")
+        try:
+            value = tomllib.loads(f"v = {text.strip()}")["v"]
+        except tomllib.TOMLDecodeError:
+            value = text.strip()
+        out.append((key.strip(), value))
+    return out
+
+
+def apply_overrides(raw: Mapping[str, Any], overrides: Iterable[tuple[str, Any]]) -> dict[str, Any]:
+    """A copy of the raw template with each dotted key set (list items by index: ``motion.0.lift``)."""
+    data = copy.deepcopy(dict(raw))
+    for key, value in overrides:
+        node: Any = data
+        parts = key.split(".")
+        for depth, part in enumerate(parts):
+            last = depth == len(parts) - 1
+            where = ".".join(parts[: depth + 1])
+            if isinstance(node, list):
+                if not part.isdigit() or int(part) >= len(node):
+                    raise SpecError(f"no item {part} in '{'.'.join(parts[:depth]) or key}' "
+                                    f"(it has {len(node)} items, indexed from 0)", f"--set {key}")
+                index: Any = int(part)
+            elif isinstance(node, dict):
+                index = part
+            else:
+                raise SpecError(f"'{'.'.join(parts[:depth])}' is a value, not a table", f"--set {key}")
+            if last:
+                node[index] = value
+            else:
+                if isinstance(node, dict) and index not in node:
+                    node[index] = {}
+                node = node[index]
+                if not isinstance(node, (dict, list)):
+                    raise SpecError(f"'{where}' is a value, not a table", f"--set {key}")
+    return data
+
+
+def validate(model: type[M], raw: Mapping[str, Any]) -> M:
+    """``model`` validated from a raw mapping, or a one-line :class:`SpecError`."""
+    try:
+        return model.model_validate(raw)
+    except ValidationError as exc:
+        raise _first_error(exc, model) from None
+
+
+def read_toml(path: str | Path, overrides: Iterable[str] = ()) -> dict[str, Any]:
+    """A TOML file as a raw mapping with ``key=value`` overrides merged in (before any validation)."""
+    path = Path(path)
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise SpecError(f"no such file: {path}", "template") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise SpecError(f"{path} is not valid TOML: {exc}", "template") from None
+    return apply_overrides(raw, parse_overrides(overrides))
+
+
+_WORDS = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<", "less_than_equal": "<="}
+
+
+def _path(loc: tuple) -> str:
+    text = ""
+    for part in loc:
+        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
+    return text
+
+
+def _unwrap(annotation: Any) -> Any:
+    """The model inside ``Optional[...]`` and ``list[...]`` annotations (or the annotation itself)."""
+    for _ in range(3):
+        args = [a for a in getattr(annotation, "__args__", ()) if a is not type(None)]
+        if hasattr(annotation, "model_fields") or not args:
+            break
+        annotation = args[0]
+    return annotation
+
+
+def _field(root: type[BaseModel], loc: tuple) -> Any:
+    """The pydantic FieldInfo at ``loc`` below the ``root`` model, or None."""
+    model: Any = root
+    info = None
+    for part in loc:
+        if isinstance(part, int):
+            continue
+        fields = getattr(model, "model_fields", None)
+        if not fields or part not in fields:
+            return None
+        info = fields[part]
+        model = _unwrap(info.annotation)
+    return info
+
+
+def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
+    err = exc.errors(include_url=False)[0]
+    loc, kind, ctx = tuple(err["loc"]), err["type"], err.get("ctx", {})
+    given = err.get("input")
+    info = _field(root, loc)
+    unit = ((info.json_schema_extra or {}) if info is not None else {}).get("unit", "")
+    got = f" (got {given!r})" if not isinstance(given, (dict, list)) else ""
+    if kind in _WORDS:
+        bound = ctx[{"greater_than": "gt", "greater_than_equal": "ge", "less_than": "lt",
+                     "less_than_equal": "le"}[kind]]
+        bounds = [f"{_WORDS[k]} {getattr(m, a)}" for k, a in (("greater_than", "gt"), ("greater_than_equal", "ge"),
+                                                               ("less_than", "lt"), ("less_than_equal", "le"))
+                  for m in (info.metadata if info is not None else []) if getattr(m, a, None) is not None]
+        rule = " and ".join(bounds) if bounds else f"{_WORDS[kind]} {bound}"
+        msg = f"must be {rule}{' ' + unit if unit else ''}{got}"
+    elif kind == "finite_number":
+        msg = f"must be a finite number{' of ' + unit if unit else ''}{got}"
+    elif kind == "missing":
+        what = info.description if info is not None and info.description else "a value"
+        msg = f"missing: give {what}{' in ' + unit if unit else ''}"
+    elif kind == "extra_forbidden":
+        parent = _field(root, loc[:-1])
+        model = _unwrap(parent.annotation) if parent is not None else root
+        keys = ", ".join(getattr(model, "model_fields", {}))
+        msg = f"unknown key; known keys here: {keys}"
+    elif kind == "literal_error":
+        msg = f"must be one of {ctx.get('expected')}{got}"
+    elif kind in ("float_type", "float_parsing", "int_type", "int_parsing", "int_from_float"):
+        msg = f"must be a {'whole ' if kind.startswith('int') else ''}number{' of ' + unit if unit else ''}{got}"
+    elif kind == "too_short":
+        msg = f"needs at least {ctx.get('min_length')} item(s)"
+    elif kind == "string_pattern_mismatch":
+        msg = f"must be letters, digits, '.', '_' or '-', starting with a letter or digit{got}"
+    elif kind == "value_error":
+        text = str(ctx.get("error", err["msg"]))
+        head, sep, rest = text.partition(": ")
+        if sep and " " not in head:  # the validator named a field below loc
+            loc = loc + tuple(int(p) if p.isdigit() else p for p in head.replace("[", ".").replace("]", "")
+                              .split("."))
+            text = rest
+        return SpecError(text, _path(loc) or None)
+    else:
+        msg = f"{err['msg'][0].lower()}{err['msg'][1:]}{got}"
+    return SpecError(msg, _path(loc) or None)
+
