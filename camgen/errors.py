@@ -33,5 +33,9 @@ class DesignError(CamgenError, ValueError):
     """A valid spec whose part cannot be made as asked (undercut, no wall round the bore)."""
 
 
+class SolverError(CamgenError, ArithmeticError):
+    """A numerical method failed: a singular Jacobian, or no convergence within its limits."""
+
+
 class ExportError(CamgenError, OSError):
     """An output file could not be written."""

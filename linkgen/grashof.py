@@ -1,0 +1,102 @@
+"""Grashof classification of a four-bar chain, for any link as ground and any neighbour as input.
+
+With shortest S, longest L and the others P, Q:
+
+* class I   (S + L < P + Q, Grashof): the shortest link turns fully against both neighbours;
+* class II  (S + L > P + Q, non-Grashof): no link turns fully (triple rocker);
+* class III (S + L = P + Q, change point): the chain can fold flat and switch assembly.
+
+S + L = P + Q counts as class III within 1e-12 of the longest link, so lengths that
+differ from a change point only by rounding are named as change points.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from camgen.errors import SpecError
+
+#: relative tolerance (of the longest link) of the change-point test S + L = P + Q
+CHANGE_POINT_TOL = 1e-12
+
+
+@dataclass(frozen=True)
+class Grashof:
+    """Class and inversion of a four-bar with links in loop order ground, input, coupler, output.
+
+    ``inversion`` is ``crank-rocker`` (input turns fully, output rocks),
+    ``rocker-crank`` (the reverse), ``double-crank``, ``double-rocker`` or
+    ``triple-rocker``; class III names are prefixed ``change-point``. ``form`` names
+    the special change-point shapes ``parallelogram``, ``deltoid`` (kite) and
+    ``rhombus`` (all four equal). ``margin`` is (P + Q) - (S + L) in mm.
+    """
+
+    grashof_class: str
+    inversion: str
+    form: str | None
+    input_turns_fully: bool
+    output_turns_fully: bool
+    margin: float
+
+
+def check_lengths(lengths: dict[str, float]) -> None:
+    """Refuse lengths that are not positive and finite, or that cannot close a loop."""
+    for name, value in lengths.items():
+        if not (value > 0 and value < float("inf")):
+            raise SpecError(f"must be a finite length > 0 mm (got {value})", name)
+    longest = max(lengths, key=lengths.get)
+    others = sum(lengths.values()) - lengths[longest]
+    if lengths[longest] >= others * (1 - CHANGE_POINT_TOL):
+        raise SpecError(f"{lengths[longest]:.6g} mm is not shorter than the other three links together "
+                        f"({others:.6g} mm): the chain cannot close except flat", longest)
+
+
+def classify(ground: float, input: float, coupler: float, output: float) -> Grashof:  # noqa: A002
+    """Classify the four-bar with links in loop order ground, input, coupler, output (mm)."""
+    links = [ground, input, coupler, output]
+    s, big = min(links), max(links)
+    p_q = sum(links) - s - big
+    margin = p_q - (s + big)
+    tol = CHANGE_POINT_TOL * big
+    if margin > tol:
+        cls = "I"
+    elif margin < -tol:
+        cls = "II"
+    else:
+        cls = "III"
+    if cls == "II":
+        return Grashof("II", "triple-rocker", None, False, False, margin)
+    shortest = [abs(x - s) <= tol for x in links]
+    ground_s, input_s, _, output_s = shortest
+    input_full = ground_s or input_s
+    output_full = ground_s or output_s
+    if input_full and output_full:
+        name = "double-crank"
+    elif input_full:
+        name = "crank-rocker"
+    elif output_full:
+        name = "rocker-crank"
+    else:
+        name = "double-rocker"
+    form = None
+    if cls == "III":
+        name = f"change-point {name}"
+        eq = [[abs(a - b) <= tol for b in links] for a in links]
+        if eq[0][1] and eq[0][2] and eq[0][3]:
+            form = "rhombus"
+        elif eq[0][2] and eq[1][3]:
+            form = "parallelogram"
+        elif (eq[0][1] and eq[2][3]) or (eq[0][3] and eq[1][2]):
+            form = "deltoid"
+    return Grashof(cls, name, form, input_full, output_full, margin)
+
+
+def classify_chain(lengths: tuple[float, float, float, float], ground: int, input: int) -> Grashof:  # noqa: A002
+    """Classify a chain of four links given in loop order, with link ``ground`` fixed and ``input`` driven.
+
+    The input must be a neighbour of the ground (index difference 1 modulo 4).
+    """
+    if (input - ground) % 4 not in (1, 3):
+        raise SpecError(f"the input link must be next to the ground link (ground {ground}, input {input})", "input")
+    step = 1 if (input - ground) % 4 == 1 else -1
+    g, i, c, o = (lengths[(ground + k * step) % 4] for k in range(4))
+    return classify(g, i, c, o)
