@@ -13,7 +13,7 @@ import click
 from camgen.errors import CamgenError
 
 
-def _user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
+def user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
     """Turn the project's errors into ``error: <one line>`` and exit code 2."""
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
@@ -37,7 +37,7 @@ def main() -> None:
               help="Output folder (default: out/<name>/).")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help="Override a template field before validation, e.g. --set motion.0.lift=25 (repeatable).")
-@_user_errors
+@user_errors
 def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
     """Build the cam described by TEMPLATE (a TOML file)."""
     from camgen.design import design_cam

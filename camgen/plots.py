@@ -1,4 +1,4 @@
-"""Plots of a cam: the S-V-A-J diagram and the cam drawing with its checks marked.
+"""Plots of a cam: the S-V-A-J diagram and the cam drawing with its checks marked; :func:`figure` for all plots.
 
 Uses matplotlib's object API (no pyplot state) with the Agg canvas; imported only
 when a plot is asked for (0.6 s).
@@ -27,7 +27,7 @@ def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarr
     return np.concatenate(thetas), np.concatenate(motions, axis=1)
 
 
-def _figure(width: float, height: float) -> Any:
+def figure(width: float, height: float) -> Any:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -40,7 +40,7 @@ def svaj_figure(design: CamDesign) -> Any:
     """Displacement, velocity, acceleration and jerk against cam angle (per radian of cam angle)."""
     theta, motion = sample_cycle(design.cam)
     deg = np.degrees(theta)
-    fig = _figure(8, 9)
+    fig = figure(8, 9)
     axes = fig.subplots(4, 1, sharex=True)
     labels = ["s (mm)", "s' (mm/rad)", "s'' (mm/rad²)", "s''' (mm/rad³)"]
     for k, ax in enumerate(axes):
@@ -63,7 +63,7 @@ def svaj_figure(design: CamDesign) -> Any:
 def cam_figure(design: CamDesign) -> Any:
     """The cam at theta = 0: outline, pitch curve, base and prime circles, follower, checks marked."""
     cam, a, t = design.cam, design.analysis, design.template
-    fig = _figure(8, 9)
+    fig = figure(8, 9)
     ax = fig.add_subplot()
     ring = design.outline.contour.flatten(t.output.tolerance)
     ax.fill(ring[:, 0], ring[:, 1], color="0.88", zorder=0)

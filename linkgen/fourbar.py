@@ -216,6 +216,23 @@ class FourBar:
         self._check_reach(t)
         return self._poses(t, np.full(t.shape, _sign(assembly)))
 
+    def rocker_positions(self, theta4: ArrayLike, assembly: Assembly = "open") -> Poses:
+        """Poses when the rocker drives, at rocker angles ``theta4`` (rad).
+
+        Solved on the mirror image (reflected across the perpendicular bisector of
+        the ground, the rocker becomes the crank) and reflected back; ``assembly``
+        names the two solutions as the rocker sees them, i.e. the mirror's labels.
+        """
+        t4 = np.atleast_1d(np.asarray(theta4, dtype=float))
+        m = FourBar(self.ground, self.rocker, self.coupler, self.crank).positions(math.pi - t4, assembly)
+        a = np.column_stack([self.ground - m.b[:, 0], m.b[:, 1]])
+        b = np.column_stack([self.ground - m.a[:, 0], m.a[:, 1]])
+        theta2 = np.arctan2(a[:, 1], a[:, 0])
+        theta3 = np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0])
+        ang = theta3 + self.point_angle
+        point = a + self.point_distance * np.column_stack([np.cos(ang), np.sin(ang)])
+        return Poses(theta2, theta3, t4, m.gamma, a, b, point, m.assembly)
+
     def change_points(self) -> tuple[float, ...]:
         """Crank angles (radians, 0 or pi) where the two assemblies cross: all four links collinear."""
         tol = FEASIBILITY_TOL * self.longest

@@ -1,0 +1,4 @@
+"""``python -m linkgen`` runs the command line."""
+from linkgen.cli import main
+
+main()

@@ -1,0 +1,91 @@
+"""The ``linkgen`` command: load -> validate -> analyse -> print and write. Errors: one line, exit code 2."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import click
+
+from camgen.cli import user_errors
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="camgen")
+def main() -> None:
+    """linkgen: four-bars, slider-cranks and friends, right up to the dead centres."""
+
+
+@main.command()
+@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("--angle", type=float, default=None,
+              help="Input angle in degrees (the rocker's when linkage.input = 'rocker'): adds the positions there.")
+@click.option("--method", type=click.Choice(["closed", "newton"]), default="closed", show_default=True,
+              help="newton also prints the Newton-Raphson iteration table (needs --angle).")
+@click.option("--json", "as_json", is_flag=True, help="Print the report as JSON.")
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
+              help="Folder for the report and plots (default: out/<name>/).")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="Override a template field before validation, e.g. --set linkage.crank=60 (repeatable).")
+@user_errors
+def analyze(template: Path, angle: float | None, method: str, as_json: bool, output: Path | None,
+            overrides: tuple[str, ...]) -> None:
+    """Analyse the linkage described by TEMPLATE (a TOML file)."""
+    from camgen.errors import SpecError
+    from linkgen.analyze import analyze as run
+    from linkgen.outputs import write_analysis
+    from linkgen.spec import load_linkage
+
+    spec = load_linkage(template, overrides)
+    if method == "newton" and angle is None:
+        raise SpecError("the Newton-Raphson table needs an input angle: add --angle DEG", "--method")
+    report = run(spec, angle, method)
+    directory = output if output is not None else Path("out") / spec.name
+    files = write_analysis(spec, report, directory)
+    if as_json:
+        click.echo(json.dumps({**report, "files": files}, indent=2))
+        return
+    _print_text(report)
+    for name in files.values():
+        click.echo(f"wrote {directory / name}")
+
+
+def _print_text(r: dict[str, Any]) -> None:
+    out = click.echo
+    out(f"{r['name']}: {r['type']}, lengths {r['lengths_mm']}")
+    if "grashof_class" in r:
+        form = f" ({r['form']})" if r.get("form") else ""
+        out(f"Grashof class {r['grashof_class']}: {r['inversion']}{form}")
+    if "input_range_deg" in r:
+        rng = r["input_range_deg"]
+        out("input turns fully" if rng is None else f"input reaches {rng} degrees")
+    if "transmission_min_deg" in r:
+        out(f"transmission angle {r['transmission_min_deg']:.3f} to {r['transmission_max_deg']:.3f} degrees "
+            f"(at crank {r['transmission_min_at_crank_deg']:.3f} and {r['transmission_max_at_crank_deg']:.3f})")
+    for d in r.get("dead_centres", []):
+        where = (f"rocker {d['rocker_deg']:.4f} deg" if "rocker_deg" in d else f"slider {d['slider_mm']:.4f} mm")
+        out(f"  {d['kind']:<16} crank {d['crank_deg']:9.4f} deg  {where}  {d.get('meaning', '')}")
+    for key, label in (("time_ratio", "time ratio"), ("rocker_swing_deg", "rocker swing (deg)"),
+                       ("stroke_mm", "stroke (mm)"), ("approximation_error_max_mm", "approximation error (mm)")):
+        if r.get(key) is not None:
+            out(f"{label}: {r[key]:.6g}")
+    if "straightness" in r:
+        s = r["straightness"]
+        out(f"straight stroke {s['stroke_mm']:.6g} mm within {s['error_mm']:.4g} mm "
+            f"({100 * s['error_ratio']:.3f} %), input {s['input_from_deg']:.2f} to {s['input_to_deg']:.2f} deg")
+    positions = r.get("positions")
+    if positions:
+        if "slider_mm" in positions:
+            out(f"at crank {positions['crank_deg']:.4f} deg: slider {positions['slider_mm']:.6f} mm, "
+                f"v {positions['velocity_mm_s']:.6g} mm/s, a {positions['acceleration_mm_s2']:.6g} mm/s^2")
+        else:
+            for assembly, p in positions.items():
+                out(f"{assembly:>8}: coupler {p['coupler_deg']:.6f} deg, rocker {p['rocker_deg']:.6f} deg, "
+                    f"transmission {p['transmission_deg']:.6f} deg")
+    for warning in r.get("warnings", []):
+        out(f"warning: {warning}")
+    if "newton" in r:
+        out("Newton-Raphson (" + r["newton"]["start"] + "):")
+        out(f"{'it':>3} {'coupler deg':>16} {'rocker deg':>16} {'residual mm':>12}")
+        for s in r["newton"]["iterations"]:
+            out(f"{s['iteration']:>3} {s['coupler_deg']:>16.10f} {s['rocker_deg']:>16.10f} {s['residual_mm']:>12.3e}")
