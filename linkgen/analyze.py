@@ -162,9 +162,13 @@ def _slider_report(spec: Any, mech: Any, angle: float | None) -> dict[str, Any]:
         if isinstance(mech, SliderCrank):
             pos["rod_deg"] = _deg(m.rod[0])
             if mech.offset == 0:
-                d, v, a = mech.approximation(m.theta)
-                pos["approximation"] = {"displacement_from_tdc_mm": _num(d[0]),
-                                        "error_mm": _num(mech.position(0.0) - m.x[0] - d[0])}
+                d, d1, d2 = mech.approximation(m.theta)
+                # displacement from TDC is x(0) - x, so its rates are -v and -a
+                pos["approximation"] = {
+                    "displacement_from_tdc_mm": _num(d[0]), "error_mm": _num(mech.position(0.0) - m.x[0] - d[0]),
+                    "velocity_mm_s": _num(d1[0] * omega), "velocity_error_mm_s": _num(-m.v[0] - d1[0] * omega),
+                    "acceleration_mm_s2": _num(d2[0] * omega**2),
+                    "acceleration_error_mm_s2": _num(-m.a[0] - d2[0] * omega**2)}
         elif isinstance(mech, (CrankShaper, Whitworth)):
             pos["link_deg"] = round(math.degrees(m.rod[0]), 9)
         report["positions"] = pos

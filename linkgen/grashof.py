@@ -50,9 +50,9 @@ def check_lengths(lengths: dict[str, float]) -> None:
                         f"({others:.6g} mm): the chain cannot close except flat", longest)
 
 
-def classify(ground: float, input: float, coupler: float, output: float) -> Grashof:  # noqa: A002
-    """Classify the four-bar with links in loop order ground, input, coupler, output (mm)."""
-    links = [ground, input, coupler, output]
+def classify(ground: float, driven: float, coupler: float, output: float) -> Grashof:
+    """Classify the four-bar with links in loop order ground, driven (input), coupler, output (mm)."""
+    links = [ground, driven, coupler, output]
     s, big = min(links), max(links)
     p_q = sum(links) - s - big
     margin = p_q - (s + big)
@@ -90,13 +90,13 @@ def classify(ground: float, input: float, coupler: float, output: float) -> Gras
     return Grashof(cls, name, form, input_full, output_full, margin)
 
 
-def classify_chain(lengths: tuple[float, float, float, float], ground: int, input: int) -> Grashof:  # noqa: A002
-    """Classify a chain of four links given in loop order, with link ``ground`` fixed and ``input`` driven.
+def classify_chain(lengths: tuple[float, float, float, float], ground: int, driven: int) -> Grashof:
+    """Classify a chain of four links given in loop order, with link ``ground`` fixed and link ``driven`` as input.
 
     The input must be a neighbour of the ground (index difference 1 modulo 4).
     """
-    if (input - ground) % 4 not in (1, 3):
-        raise SpecError(f"the input link must be next to the ground link (ground {ground}, input {input})", "input")
-    step = 1 if (input - ground) % 4 == 1 else -1
+    if (driven - ground) % 4 not in (1, 3):
+        raise SpecError(f"the input link must be next to the ground link (ground {ground}, input {driven})", "input")
+    step = 1 if (driven - ground) % 4 == 1 else -1
     g, i, c, o = (lengths[(ground + k * step) % 4] for k in range(4))
     return classify(g, i, c, o)
