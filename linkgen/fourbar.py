@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.errors import SolverError, SpecError
-from linkgen.grashof import Grashof, check_lengths, classify
+from linkgen.grashof import CHANGE_POINT_TOL, Grashof, check_lengths, classify
 
 Assembly = Literal["open", "crossed"]
 ASSEMBLIES: tuple[str, ...] = ("open", "crossed")
@@ -235,7 +235,7 @@ class FourBar:
 
     def change_points(self) -> tuple[float, ...]:
         """Crank angles (radians, 0 or pi) where the two assemblies cross: all four links collinear."""
-        tol = FEASIBILITY_TOL * self.longest
+        tol = CHANGE_POINT_TOL * self.longest
         l1, l2, l3, l4 = self.ground, self.crank, self.coupler, self.rocker
         out = []
         if abs(abs(l1 - l2) - abs(l3 - l4)) <= tol:

@@ -6,8 +6,9 @@ With shortest S, longest L and the others P, Q:
 * class II  (S + L > P + Q, non-Grashof): no link turns fully (triple rocker);
 * class III (S + L = P + Q, change point): the chain can fold flat and switch assembly.
 
-S + L = P + Q counts as class III within 1e-12 of the longest link, so lengths that
-differ from a change point only by rounding are named as change points.
+S + L = P + Q counts as class III within 1e-10 of the longest link: lengths that
+differ from a change point by rounding or by far less than any part can be made
+to are named, and solved, as change points.
 """
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ from dataclasses import dataclass
 from camgen.errors import SpecError
 
 #: relative tolerance (of the longest link) of the change-point test S + L = P + Q
-CHANGE_POINT_TOL = 1e-12
+CHANGE_POINT_TOL = 1e-10
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,222 @@
+"""Four-bar kinematics against hand solutions, an independent textbook formula, Newton-Raphson and finite differences."""
+from __future__ import annotations
+
+import math
+
+import mpmath
+import numpy as np
+import pytest
+
+from camgen.errors import SolverError, SpecError
+from linkgen.fourbar import FourBar
+
+CRANK_ROCKER = FourBar(180, 80, 200, 150)
+CASES = [CRANK_ROCKER, FourBar(6, 2, 7, 9), FourBar(50, 150, 200, 180), FourBar(100, 70, 60, 80),
+         FourBar(180, 150, 50, 200)]
+
+
+def wrap(x):
+    return np.angle(np.exp(1j * np.asarray(x)))
+
+
+def reachable_grid(fb: FourBar, n: int = 361) -> np.ndarray:
+    ranges = fb.input_ranges()
+    if ranges is None:
+        return np.linspace(0, 2 * math.pi, n)
+    lo, hi = ranges[0]
+    return np.linspace(lo, hi, n)[1:-1]
+
+
+def test_hand_solved_3_4_5_pose():
+    """O2 = (0, 0), O4 = (4, 0), crank 3 at 90 degrees: A = (0, 3), |A O4| = 5; coupler 3 and rocker 4 make a right
+    angle at B. Open: B = A + 9/5 u + 12/5 n = (2.88, 3.84); crossed: B = (0, 0). Solved by hand."""
+    fb = FourBar(4, 3, 3, 4)
+    op = fb.positions([math.pi / 2], "open")
+    assert op.b[0] == pytest.approx([2.88, 3.84], abs=1e-14)
+    assert math.degrees(op.gamma[0]) == pytest.approx(90.0, abs=1e-12)
+    assert math.degrees(op.theta3[0]) == pytest.approx(math.degrees(math.atan2(0.84, 2.88)), abs=1e-12)
+    cr = fb.positions([math.pi / 2], "crossed")
+    assert cr.b[0] == pytest.approx([0.0, 0.0], abs=1e-14)
+    assert math.degrees(wrap(cr.theta4[0])) == pytest.approx(180.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("fb", CASES, ids=lambda f: f"{f.ground}-{f.crank}-{f.coupler}-{f.rocker}")
+def test_rocker_angle_matches_the_freudenstein_form(fb):
+    """Independent closed form: Norton, Design of Machinery (5th ed.), eq. 4.10 with K1..K3 (Freudenstein);
+    its minus root is the open assembly, the plus root the crossed one."""
+    l1, l2, l3, l4 = fb.ground, fb.crank, fb.coupler, fb.rocker
+    t2 = reachable_grid(fb)
+    k1, k2, k3 = l1 / l2, l1 / l4, (l2**2 - l3**2 + l4**2 + l1**2) / (2 * l2 * l4)
+    a = np.cos(t2) - k1 - k2 * np.cos(t2) + k3
+    b = -2 * np.sin(t2)
+    c = k1 - (k2 + 1) * np.cos(t2) + k3
+    root = np.sqrt(np.maximum(b * b - 4 * a * c, 0))
+    for assembly, sign in (("open", -1), ("crossed", 1)):
+        t4 = 2 * np.arctan2(-b + sign * root, 2 * a)
+        assert np.abs(wrap(fb.positions(t2, assembly).theta4 - t4)).max() < 1e-9
+
+
+@pytest.mark.parametrize("fb", CASES, ids=lambda f: f"{f.ground}-{f.crank}-{f.coupler}-{f.rocker}")
+def test_closed_form_and_newton_agree_over_full_sweeps(fb):
+    t2 = reachable_grid(fb, 181)
+    poses = fb.sweep(t2, "open")
+    guess = (poses.theta3[0] + 0.3, poses.theta4[0] - 0.3)
+    for k, t in enumerate(t2):
+        r = fb.newton(float(t), guess)
+        assert abs(wrap(r.theta3 - poses.theta3[k])) < 1e-10
+        assert abs(wrap(r.theta4 - poses.theta4[k])) < 1e-10
+        guess = (r.theta3, r.theta4)                              # continuation, as a user would sweep
+
+
+def test_newton_table_converges_quadratically():
+    fb = CRANK_ROCKER
+    exact = fb.positions([math.radians(30)])
+    r = fb.newton(math.radians(30), (exact.theta3[0] + 0.17, exact.theta4[0] - 0.17))
+    res = [s.residual for s in r.steps]
+    assert res[-1] <= 1e-12 * fb.longest
+    assert 3 <= len(res) <= 8
+    # quadratic: each step's residual is at most ~C * previous^2
+    for before, after in zip(res[1:-1], res[2:], strict=False):
+        assert after <= 10 * before**2 / fb.longest + 1e-12
+
+
+def test_newton_fails_clearly_at_a_singular_jacobian():
+    fb = FourBar(100, 70, 60, 80)
+    with pytest.raises(SolverError, match="singular Jacobian at iteration 0"):
+        fb.newton(0.5, (0.3, 0.3))                                 # coupler and rocker collinear in the guess
+    with pytest.raises(SolverError, match="singular Jacobian"):     # a parallelogram at its change point
+        FourBar(4, 2, 4, 2).newton(0.0, (0.1, 0.1))
+    with pytest.raises(SolverError, match="did not converge"):
+        CRANK_ROCKER.newton(0.5, (2.0, 1.0), max_iter=1)
+
+
+@pytest.mark.parametrize("fb", CASES, ids=lambda f: f"{f.ground}-{f.crank}-{f.coupler}-{f.rocker}")
+def test_velocity_and_acceleration_match_finite_differences(fb):
+    omega, h = 2.5, 1e-6
+    t2 = reachable_grid(fb, 40)[2:-2]
+    p, pp, pm = fb.positions(t2), fb.positions(t2 + h), fb.positions(t2 - h)
+    w3, w4 = fb.velocities(p, omega)
+    a3, a4 = fb.accelerations(p, omega)
+    assert np.abs(wrap(pp.theta3 - pm.theta3) / (2 * h) * omega - w3).max() < 1e-6
+    assert np.abs(wrap(pp.theta4 - pm.theta4) / (2 * h) * omega - w4).max() < 1e-6
+    n3 = wrap(pp.theta3 - 2 * p.theta3 + pm.theta3) / h**2 * omega**2
+    n4 = wrap(pp.theta4 - 2 * p.theta4 + pm.theta4) / h**2 * omega**2
+    assert np.abs(n3 - a3).max() < 1e-2 * max(1.0, np.abs(a3).max())
+    assert np.abs(n4 - a4).max() < 1e-2 * max(1.0, np.abs(a4).max())
+    ma = fb.mechanical_advantage(p)
+    assert np.allclose(ma, np.abs(omega / w4), rtol=1e-9)
+
+
+def test_crank_rocker_dead_centres_by_hand():
+    """Law of cosines in triangle O2-B-O4 with O2B = 80 + 200 (extended) and 200 - 80 (folded)."""
+    fb = CRANK_ROCKER
+    ext = math.degrees(math.acos((180**2 + 280**2 - 150**2) / (2 * 180 * 280)))
+    fold = math.degrees(math.acos((180**2 + 120**2 - 150**2) / (2 * 180 * 120))) + 180
+    dead = {d.kind: d for d in fb.dead_centres("open")}
+    assert set(dead) == {"extended", "folded"}
+    assert math.degrees(dead["extended"].crank) % 360 == pytest.approx(ext, abs=1e-9)
+    assert math.degrees(dead["folded"].crank) % 360 == pytest.approx(fold, abs=1e-9)
+    travel = fold - ext
+    assert fb.time_ratio("open") == pytest.approx(travel / (360 - travel), rel=1e-12)
+    # the rocker stops there: its angular velocity is zero, and the mechanical advantage unbounded
+    for d in dead.values():
+        pose = fb.positions([d.crank])
+        assert abs(fb.velocities(pose, 1.0)[1][0]) < 1e-9
+        assert math.degrees(pose.theta4[0]) == pytest.approx(math.degrees(d.rocker), abs=1e-9)
+
+
+def test_transmission_extremes_by_hand():
+    (gmin, at_min), (gmax, at_max) = CRANK_ROCKER.transmission_extremes()
+    assert math.degrees(gmin) == pytest.approx(math.degrees(math.acos((200**2 + 150**2 - 100**2) / 60000)), abs=1e-10)
+    assert math.degrees(gmax) == pytest.approx(math.degrees(math.acos((200**2 + 150**2 - 260**2) / 60000)), abs=1e-10)
+    assert (at_min, at_max) == (0.0, pytest.approx(math.pi))
+    sweep = CRANK_ROCKER.positions(np.linspace(0, 2 * math.pi, 3601)).gamma
+    assert gmin <= sweep.min() + 1e-15 and gmax >= sweep.max() - 1e-15
+
+
+def test_non_grashof_range_and_out_of_range_error():
+    """Toggle where Z = L3 + L4: cos t2 = (L1^2 + L2^2 - (L3 + L4)^2) / (2 L1 L2)."""
+    fb = FourBar(100, 70, 60, 80)
+    limit = math.acos((100**2 + 70**2 - 140**2) / (2 * 100 * 70))
+    assert fb.input_ranges() == ((pytest.approx(-limit), pytest.approx(limit)),)
+    with pytest.raises(SpecError, match=r"out of reach; this linkage reaches crank angles \[-109.616, 109.616\]"):
+        fb.positions([limit + 1e-6])
+    kinds = {d.kind for d in fb.dead_centres()}
+    assert "toggle-extended" in kinds
+
+
+def _reference_pose(fb: FourBar, t2: float, sign: int) -> tuple[float, float]:
+    """theta3, theta4 with 50 significant digits (mpmath), by the same triangle but in high precision."""
+    mpmath.mp.dps = 50
+    l1, l2, l3, l4 = (mpmath.mpf(x) for x in (fb.ground, fb.crank, fb.coupler, fb.rocker))
+    t = mpmath.mpf(t2)
+    dx, dy = l1 - l2 * mpmath.cos(t), -l2 * mpmath.sin(t)
+    z = mpmath.sqrt(dx**2 + dy**2)
+    delta = mpmath.atan2(dy, dx)
+    # an input that rounds to the toggle may lie a hair beyond it in 50 digits: that pose is the toggle's
+    alpha = mpmath.acos(max(-1, min(1, (l3**2 + z**2 - l4**2) / (2 * l3 * z))))
+    beta = mpmath.acos(max(-1, min(1, (l4**2 + z**2 - l3**2) / (2 * l4 * z))))
+    return float(delta + sign * alpha), float(delta + mpmath.pi - sign * beta)
+
+
+@pytest.mark.parametrize("offset", [0.0, 1e-12, 1e-9])
+@pytest.mark.parametrize("fb", [FourBar(100, 70, 60, 80), FourBar(100, 60, 40, 90)], ids=["triple", "double"])
+def test_poses_at_and_within_1e_12_of_a_toggle_are_finite_and_correct(fb, offset):
+    for lo, hi in fb.input_ranges():
+        for t2 in (lo + offset, hi - offset):
+            for sign, assembly in ((1, "open"), (-1, "crossed")):
+                p = fb.positions([t2], assembly)
+                assert np.isfinite(p.theta3).all() and np.isfinite(p.theta4).all()
+                assert np.linalg.norm(p.b[0] - p.a[0]) == pytest.approx(fb.coupler, rel=1e-13)
+                assert np.linalg.norm(p.b[0] - [fb.ground, 0]) == pytest.approx(fb.rocker, rel=1e-13)
+                t3, t4 = _reference_pose(fb, t2, sign)
+                # near a toggle the pose moves like sqrt(distance): 1e-12 rad of input is ~1e-6 rad of pose,
+                # so compare to what double precision can carry there
+                assert abs(wrap(p.theta3[0] - t3)) < 2e-7
+                assert abs(wrap(p.theta4[0] - t4)) < 2e-7
+
+
+def test_parallelogram_swept_through_its_flat_positions_stays_a_parallelogram():
+    fb = FourBar(100, 40, 100, 40)
+    assert fb.change_points() == (0.0, math.pi)
+    t2 = np.radians(np.linspace(10, 730, 1441))          # twice round, through 180, 360, 540 and 720 degrees
+    p = fb.sweep(t2, "open")
+    assert np.abs(wrap(p.theta3)).max() < 1e-12          # the coupler stays parallel to the ground
+    assert np.abs(p.b - p.a - [100, 0]).max() < 1e-13 * 100
+    assert np.abs(wrap(p.theta4 - p.theta2)).max() < 1e-12
+    anti = fb.sweep(t2, "crossed")                       # the other branch stays the anti-parallelogram
+    assert np.abs(wrap(anti.theta3)).max() > 0.5
+    d2 = np.abs(np.diff(np.unwrap(anti.theta3), 2)).max()
+    assert d2 < 1e-3                                     # smooth: no switch back to the parallelogram
+
+
+def test_deltoid_coincident_pivot_is_a_clear_error():
+    fb = FourBar(100, 100, 40, 40)
+    with pytest.raises(SpecError, match="undetermined"):
+        fb.positions([0.0])
+    assert np.isfinite(fb.positions([0.3]).theta3).all()
+
+
+def test_rocker_input_positions_close_the_loop():
+    fb = CRANK_ROCKER
+    t4 = np.radians(np.linspace(66, 136, 15))
+    for assembly in ("open", "crossed"):
+        p = fb.rocker_positions(t4, assembly)
+        assert np.allclose(np.linalg.norm(p.a, axis=1), fb.crank, rtol=1e-13)
+        assert np.allclose(np.linalg.norm(p.b - p.a, axis=1), fb.coupler, rtol=1e-13)
+        assert np.allclose(p.b, np.column_stack([180 + 150 * np.cos(t4), 150 * np.sin(t4)]), atol=1e-12)
+
+
+def test_coupler_point_sits_on_the_coupler_plate():
+    fb = FourBar(180, 80, 200, 150, point_distance=120.0, point_angle=math.radians(30))
+    p = fb.positions(np.linspace(0, 2 * math.pi, 50))
+    ab, ap = p.b - p.a, p.point - p.a
+    assert np.allclose(np.linalg.norm(ap, axis=1), 120.0, rtol=1e-13)
+    angle = np.arctan2(ab[:, 0] * ap[:, 1] - ab[:, 1] * ap[:, 0], (ab * ap).sum(axis=1))
+    assert np.allclose(angle, math.radians(30), atol=1e-12)
+
+
+def test_vectorised_positions_are_fast_and_never_nan():
+    t2 = np.linspace(0, 2 * math.pi, 100_000)
+    p = CRANK_ROCKER.positions(t2, "crossed")
+    assert np.isfinite(p.theta3).all() and np.isfinite(p.gamma).all()
