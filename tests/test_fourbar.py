@@ -1,6 +1,8 @@
-"""Four-bar kinematics against hand solutions, an independent textbook formula, Newton-Raphson and finite differences."""
+"""Four-bar kinematics against hand solutions, an independent textbook formula, Newton-Raphson and
+finite differences."""
 from __future__ import annotations
 
+import itertools
 import math
 
 import mpmath
@@ -76,7 +78,7 @@ def test_newton_table_converges_quadratically():
     assert res[-1] <= 1e-12 * fb.longest
     assert 3 <= len(res) <= 8
     # quadratic: each step's residual is at most ~C * previous^2
-    for before, after in zip(res[1:-1], res[2:], strict=False):
+    for before, after in itertools.pairwise(res[1:]):
         assert after <= 10 * before**2 / fb.longest + 1e-12
 
 
