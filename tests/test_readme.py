@@ -25,6 +25,14 @@ def test_every_template_key_is_documented(prefix, model):
         assert f"| `{prefix}.{key}` |" in README, f"{prefix}.{key} is not in the README's key table"
 
 
+def test_every_linkage_key_is_documented():
+    from linkgen.spec import SPECS
+
+    for spec in set(SPECS.values()):
+        for key in spec.model_fields:
+            assert f"| `linkage.{key}` |" in README, f"linkage.{key} is not in the README's linkgen key table"
+
+
 def test_python_example_runs(tmp_path, monkeypatch):
     code = re.findall(r"```python\n(.*?)```", README, re.S)[0]
     (tmp_path / "templates").mkdir()
