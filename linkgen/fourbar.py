@@ -64,7 +64,7 @@ class Poses:
     gamma: np.ndarray          # transmission angle
     a: np.ndarray              # (n, 2) crank pin
     b: np.ndarray              # (n, 2) coupler-rocker pin
-    point: np.ndarray          # (n, 2) coupler point (B's... A itself when no point is given)
+    point: np.ndarray          # (n, 2) coupler point (the crank pin A when point_distance is 0)
     assembly: np.ndarray       # +1 open, -1 crossed, per pose
 
 
