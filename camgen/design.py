@@ -71,10 +71,12 @@ def design_cam(template: CamTemplate) -> CamDesign:
     holes = (Circle((0.0, 0.0), template.cam.bore / 2.0),) if template.cam.bore > 0 else ()
     part = Part(template.name, outline.contour, holes, template.cam.thickness, tol)
     jumps = tuple(cam.program.jumps())
-    return CamDesign(template, cam, a, jumps, outline, part, wall, _warnings(template, a, jumps, wall))
+    warnings = _warnings(template, a, jumps, wall, cam.program.segments)
+    return CamDesign(template, cam, a, jumps, outline, part, wall, warnings)
 
 
-def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float) -> tuple[str, ...]:
+def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,
+              segments: tuple) -> tuple[str, ...]:
     out = []
     if a.pressure_angle_max_deg > PRESSURE_ANGLE_LIMIT:
         out.append(f"pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
@@ -88,6 +90,11 @@ def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wa
                    "degrees the follower does not follow the motion law")
     if template.cam.bore > 0 and wall < THIN_WALL:
         out.append(f"only {wall:.3g} mm of material between the bore and the outline")
+    for i, seg in enumerate(segments):
+        over = seg.law.overshoot() if hasattr(seg.law, "overshoot") else 0.0
+        if over > 1e-9:
+            out.append(f"motion[{i}]: the spline through the points overshoots by {100 * over:.3g} % of the lift "
+                       "between them; add points where it bulges")
     if a.profile_concave_rho_min_mm is not None and a.profile_concave_rho_min_mm < 1.0:
         out.append(f"concave radius of {a.profile_concave_rho_min_mm:.3g} mm at {a.concave_at_deg:.2f} degrees: "
                    "the cutting tool or laser kerf must be smaller")

@@ -56,6 +56,9 @@ class SegmentSpec(Model):
     conditions: list[tuple[float, int, float]] | None = Field(
         None, description="polynomial: [u, derivative order, value] in normalised units")
     degree: int | None = Field(None, ge=1, description="polynomial: degree (default: conditions - 1)")
+    points: list[tuple[float, float]] | None = Field(
+        None, description="spline: [u, f] points in normalised units from [0, 0] to [1, 1]")
+    ends: Literal["dwell", "natural"] | None = Field(None, description="spline: end conditions")
 
     @model_validator(mode="after")
     def _fits_type(self) -> "SegmentSpec":
@@ -75,6 +78,8 @@ class SegmentSpec(Model):
             raise ValueError(f"{key}: not a parameter of law '{self.law}' (its parameters: {takes})")
         if self.law == "polynomial" and self.conditions is None:
             raise ValueError("conditions: required for law 'polynomial' ([[u, order, value], ...])")
+        if self.law == "spline" and self.points is None:
+            raise ValueError("points: required for law 'spline' ([[u, f], ...] from [0, 0] to [1, 1])")
         return self
 
     def law_params(self) -> dict[str, Any]:

@@ -160,7 +160,8 @@ def test_laws_json_table():
     result = CliRunner().invoke(main, ["laws", "--json"])
     rows = {row["law"]: row for row in json.loads(result.output)}
     assert list(rows) == ["uniform", "modified-uniform", "parabolic", "harmonic", "cycloidal",
-                          "polynomial-345", "polynomial-4567"]
+                          "polynomial-345", "polynomial-4567", "modified-trapezoid", "modified-sine",
+                          "double-harmonic"]
     assert rows["cycloidal"]["cj"] == pytest.approx(4 * np.pi**2)
     text = CliRunner().invoke(main, ["laws"]).output
     assert "cycloidal" in text and "6.2832" in text

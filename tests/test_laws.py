@@ -20,6 +20,8 @@ ALL_LAWS = [
     DraftedUniform(math.sqrt(3)), DraftedUniform(2.5), DraftedUniform(12.0),
     from_conditions([(0, 0, 0), (0, 1, 0), (0, 2, 0), (0, 3, 0), (0.5, 0, 0.5), (1, 0, 1), (1, 1, 0), (1, 2, 0),
                      (1, 3, 0)]),
+    make_law("modified-trapezoid"), make_law("modified-sine"), make_law("double-harmonic"),
+    make_law("spline", points=[[0, 0], [0.3, 0.1], [0.5, 0.5], [0.7, 0.95], [1, 1]]),
 ]
 
 
@@ -73,7 +75,7 @@ def test_end_values(law):
 def test_analytic_derivatives_match_numeric(law):
     """Central differences of f, f', f'' inside each smooth piece match f', f'', f'''."""
     h = 1e-6
-    for a, b in law.pieces():
+    for a, b in law.smooth_intervals():
         u = np.linspace(a, b, 41)[1:-1]
         if len(u) == 0 or b - a < 4 * h:
             continue
@@ -167,3 +169,58 @@ def test_general_polynomial_bad_conditions(conds, words):
     with pytest.raises(SpecError, match=words) as err:
         from_conditions(conds)
     assert str(err.value).startswith("conditions:")
+
+
+@pytest.mark.parametrize("name, cv, ca, cj", [
+    ("modified-trapezoid", 2.000, 4.888, 61.43),       # Norton, Design of Machinery, Table 8-3
+    ("modified-sine", 1.760, 5.528, 69.47),
+])
+def test_published_coefficients_of_the_acceleration_laws(name, cv, ca, cj):
+    row = _table()[name]
+    assert row["cv"] == pytest.approx(cv, abs=6e-4)
+    assert row["ca"] == pytest.approx(ca, abs=6e-4)
+    assert row["cj"] == pytest.approx(cj, abs=6e-3)
+    assert row["infinite"] == []
+
+
+def test_modified_trapezoid_closed_form_peaks():
+    """Its acceleration peak A follows from Cv = A (1/4 + 1/(2 pi)) = 2; its jerk peak is 4 pi A."""
+    a = 2 / (0.25 + 1 / (2 * PI))
+    law = make_law("modified-trapezoid")
+    assert law.peaks()[1] == pytest.approx(a, rel=1e-12)
+    assert law.peaks()[2] == pytest.approx(4 * PI * a, rel=1e-12)
+    assert law.derivatives(np.array([0.5]))[1, 0] == pytest.approx(2.0, rel=1e-12)
+
+
+def test_double_harmonic_has_no_acceleration_at_its_start_and_pi_squared_at_its_end():
+    f = make_law("double-harmonic").derivatives(np.array([0.0, 1.0]))
+    assert f[2] == pytest.approx([0.0, -PI**2], abs=1e-12)
+    assert make_law("double-harmonic").infinite() == ["j"]
+
+
+def test_spline_through_two_points_is_the_345_polynomial():
+    """A quintic with zero velocity and acceleration at both ends through (0, 0) and (1, 1) is 3-4-5."""
+    u = np.linspace(0, 1, 101)
+    spline = make_law("spline", points=[[0, 0], [1, 1]]).derivatives(u)
+    assert np.abs(spline - make_law("polynomial-345").derivatives(u)).max() < 1e-9
+
+
+def test_spline_passes_through_its_points_smoothly_and_reports_overshoot():
+    pts = [[0, 0], [0.3, 0.1], [0.5, 0.5], [0.7, 0.95], [1, 1]]
+    law = make_law("spline", points=pts)
+    assert law.derivatives(np.array([p[0] for p in pts]))[0] == pytest.approx([p[1] for p in pts], abs=1e-12)
+    assert law.infinite() == []                         # zero velocity and acceleration at both ends
+    assert law.overshoot() > 0.0                        # steep then flat: it bulges above the lift near the end
+    assert make_law("spline", points=[[0, 0], [0.5, 0.5], [1, 1]]).overshoot() == 0.0
+    free = make_law("spline", points=pts, ends="natural")
+    assert abs(free.derivatives(np.array([0.0]))[1, 0]) > 0.1   # natural ends leave the velocity free
+
+
+@pytest.mark.parametrize("points, words", [
+    ([[0, 0]], "at least two"),
+    ([[0, 0], [0.5, 0.2], [0.5, 0.6], [1, 1]], "increase strictly"),
+    ([[0, 0], [1, 0.9]], "end at \\[1, 1\\]"),
+])
+def test_spline_bad_points(points, words):
+    with pytest.raises(SpecError, match=words):
+        make_law("spline", points=points)

@@ -10,10 +10,12 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from camgen.errors import SpecError
+from camgen.laws.accel import AccelerationLaw, modified_sine, modified_trapezoid
 from camgen.laws.base import Law
 from camgen.laws.piecewise import BlendedUniform, DraftedUniform, Parabolic, Uniform
 from camgen.laws.polynomial import PolynomialLaw, from_conditions, poly345, poly4567
-from camgen.laws.trig import Cycloidal, Harmonic
+from camgen.laws.spline import SplineLaw, spline_law
+from camgen.laws.trig import Cycloidal, DoubleHarmonic, Harmonic
 
 
 def _modified_uniform(form: str = "blended", blend: float = 0.25, blend_law: str = "cycloidal",
@@ -37,13 +39,17 @@ REGISTRY: Mapping[str, tuple[Callable[..., Law], tuple[str, ...]]] = {
     "cycloidal": (Cycloidal, ()),
     "polynomial-345": (poly345, ()),
     "polynomial-4567": (poly4567, ()),
+    "modified-trapezoid": (modified_trapezoid, ()),
+    "modified-sine": (modified_sine, ()),
+    "double-harmonic": (DoubleHarmonic, ()),
     "polynomial": (from_conditions, ("conditions", "degree")),
+    "spline": (spline_law, ("points", "ends")),
 }
 
 LAW_NAMES: tuple[str, ...] = tuple(REGISTRY)
 LAW_PARAMS: Mapping[str, tuple[str, ...]] = {name: keys for name, (_, keys) in REGISTRY.items()}
-#: the laws of the standard comparison table (the general polynomial needs conditions)
-TABLE_LAWS: tuple[str, ...] = LAW_NAMES[:-1]
+#: the laws of the standard comparison table (the general polynomial and the spline need data)
+TABLE_LAWS: tuple[str, ...] = tuple(n for n in LAW_NAMES if n not in ("polynomial", "spline"))
 
 
 def make_law(name: str, **params: Any) -> Law:
@@ -55,5 +61,7 @@ def make_law(name: str, **params: Any) -> Law:
     return factory(**params)
 
 
-__all__ = ["LAW_NAMES", "LAW_PARAMS", "TABLE_LAWS", "BlendedUniform", "Cycloidal", "DraftedUniform", "Harmonic",
-           "Law", "Parabolic", "PolynomialLaw", "Uniform", "from_conditions", "make_law", "poly345", "poly4567"]
+__all__ = ["LAW_NAMES", "LAW_PARAMS", "TABLE_LAWS", "AccelerationLaw", "BlendedUniform", "Cycloidal",
+           "DoubleHarmonic", "DraftedUniform", "Harmonic", "Law", "Parabolic", "PolynomialLaw", "SplineLaw",
+           "Uniform", "from_conditions", "make_law", "modified_sine", "modified_trapezoid", "poly345", "poly4567",
+           "spline_law"]

@@ -37,7 +37,7 @@ class Law(ABC):
         """Interior values of u where the law changes piece (and a derivative may jump)."""
         return ()
 
-    def pieces(self) -> list[tuple[float, float]]:
+    def smooth_intervals(self) -> list[tuple[float, float]]:
         """Closed sub-intervals of [0, 1] on which the law is smooth, with left limits at their right ends."""
         edges = [0.0, *sorted(set(self.breakpoints)), 1.0]
         return [(a, left_of(b) if b < 1.0 else 1.0) for a, b in pairwise(edges) if b > a]
@@ -45,7 +45,7 @@ class Law(ABC):
     def peaks(self) -> np.ndarray:
         """Peak magnitudes of f', f'', f''' over [0, 1]: the (Cv, Ca, Cj) coefficients for h = beta = 1."""
         out = np.zeros(3)
-        for a, b in self.pieces():
+        for a, b in self.smooth_intervals():
             for k in (1, 2, 3):
                 _, value = maximise(lambda u, k=k: np.abs(self.derivatives(u)[k]), a, b)
                 out[k - 1] = max(out[k - 1], value)

@@ -32,3 +32,21 @@ class Cycloidal(Law):
         x = 2 * np.pi * u
         c, s = np.cos(x), np.sin(x)
         return np.stack([u - s / (2 * np.pi), 1 - c, 2 * np.pi * s, 4 * np.pi**2 * c])
+
+
+@dataclass(frozen=True)
+class DoubleHarmonic(Law):
+    """Double harmonic: f = ((1 - cos(pi u)) - (1 - cos(2 pi u)) / 4) / 2.
+
+    Zero acceleration at the start, -pi^2 at the end: meant for a rise followed at
+    once by a return (no dwell), where its acceleration then runs on smoothly.
+    """
+
+    name = "double-harmonic"
+
+    def derivatives(self, u: ArrayLike) -> np.ndarray:
+        x = np.pi * as_array(u)
+        c1, s1, c2, s2 = np.cos(x), np.sin(x), np.cos(2 * x), np.sin(2 * x)
+        pi = np.pi
+        return np.stack([((1 - c1) - (1 - c2) / 4) / 2, (pi * s1 - pi / 2 * s2) / 2,
+                         (pi**2 * c1 - pi**2 * c2) / 2, (-(pi**3) * s1 + 2 * pi**3 * s2) / 2])
