@@ -50,12 +50,34 @@ def convex_curvature_max(cam: Cam) -> tuple[float, float]:
     return _peak(cam, lambda g: g.kappa)
 
 
+def pressure_angle_max(cam: Cam) -> float:
+    """Peak |pressure angle| over the cycle (degrees)."""
+    return math.degrees(_peak(cam, lambda g: np.abs(g.pressure_angle))[0])
+
+
+def profile_rho_min(cam: Cam) -> float:
+    """Smallest convex radius of the cam surface (mm); for a flat face the profile's smallest radius."""
+    if cam.follower.flat:
+        return -_peak(cam, lambda g: -g.rho)[0]
+    return 1.0 / convex_curvature_max(cam)[0] - cam.contact_radius
+
+
 def analyse(cam: Cam) -> CamAnalysis:
-    """Pressure angle, curvature and undercut of ``cam``, each located to ~1e-9 degrees."""
+    """Pressure angle, curvature and undercut of ``cam``, each located to ~1e-9 degrees.
+
+    For a flat face the profile itself is analysed: its radius of curvature must
+    stay positive, and ``undercut`` means it does not (the profile folds into a cusp).
+    """
     pa, pa_at = _peak(cam, lambda g: np.abs(g.pressure_angle))
+    if cam.follower.flat:
+        neg, at = _peak(cam, lambda g: -g.rho)
+        return CamAnalysis(
+            pressure_angle_max_deg=math.degrees(pa), pressure_angle_max_at_deg=pa_at,
+            pitch_rho_min_mm=-neg, pitch_rho_min_at_deg=at, profile_rho_min_mm=-neg,
+            pitch_concave_rho_min_mm=None, profile_concave_rho_min_mm=None, concave_at_deg=None, undercut=-neg <= 0)
     kmax, kmax_at = convex_curvature_max(cam)
     kmin, kmin_at = _peak(cam, lambda g: -g.kappa)
-    rr = cam.roller_radius
+    rr = cam.contact_radius
     rho = 1.0 / kmax
     convex_corners = [i for i, turn in cam.corners() if turn > 0]
     if convex_corners:  # a convex corner of the pitch curve is a zero radius of curvature
@@ -74,8 +96,10 @@ def largest_roller(template: CamTemplate) -> float | None:
     The pitch curve depends on the roller (prime radius = base + roller), so this
     bisects on the roller radius for min convex pitch radius = roller radius.
     Returns None when no roller fits: the pitch curve has a convex corner (a
-    velocity jump), or even a vanishing roller undercuts.
+    velocity jump), or even a vanishing roller undercuts, or the follower has no roller.
     """
+    if template.follower.roller_radius is None:
+        return None
     def margin(rr: float) -> float:
         return 1.0 / convex_curvature_max(build_cam(template, roller_radius=rr))[0] - rr
 
@@ -83,6 +107,9 @@ def largest_roller(template: CamTemplate) -> float | None:
         return None
 
     lo = max(0.0, abs(template.follower.offset) - template.cam.base_radius) + 1e-9
+    if template.follower.type == "oscillating-roller":
+        f = template.follower
+        lo = max(lo, abs(f.pivot_distance - f.arm_length) - template.cam.base_radius + 1e-9)
     hi = template.follower.roller_radius
     if margin(lo) <= 0:
         return None

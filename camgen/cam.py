@@ -8,7 +8,8 @@ import numpy as np
 
 from camgen.errors import SpecError
 from camgen.followers.base import PitchGeometry
-from camgen.followers.translating_roller import TranslatingRoller
+from camgen.followers.oscillating import OscillatingFlat, OscillatingRoller
+from camgen.followers.translating import TranslatingFlat, TranslatingRoller
 from camgen.laws import make_law
 from camgen.program import Program, build_program
 from camgen.spec import CamTemplate
@@ -16,7 +17,7 @@ from camgen.spec import CamTemplate
 
 @dataclass(frozen=True)
 class Cam:
-    """A disc cam driving a translating roller follower.
+    """A disc cam driving a follower (any of :mod:`camgen.followers`).
 
     Lengths in mm, angles in radians. theta = 0 puts the follower on +Y; the cam
     turns counter-clockwise for ``follower.sense`` = +1 (see
@@ -25,14 +26,15 @@ class Cam:
 
     name: str
     program: Program
-    follower: TranslatingRoller
+    follower: Follower
     base_radius: float
     thickness: float
     bore: float
 
     @property
-    def roller_radius(self) -> float:
-        return self.follower.roller_radius
+    def contact_radius(self) -> float:
+        """The roller's radius; 0 for knife edges and flat faces (mm)."""
+        return self.follower.contact_radius
 
     def pitch(self, theta: np.ndarray) -> PitchGeometry:
         """Pitch geometry at any cam angles (radians); a segment boundary takes the later segment."""
@@ -64,23 +66,48 @@ class Cam:
         return out
 
 
-def build_cam(template: CamTemplate, roller_radius: float | None = None) -> Cam:
-    """The :class:`Cam` a template describes (``roller_radius`` overrides the template's, in mm)."""
-    rr = template.follower.roller_radius if roller_radius is None else roller_radius
-    prime = template.cam.base_radius + rr
+Follower = TranslatingRoller | TranslatingFlat | OscillatingRoller | OscillatingFlat
+
+
+def make_follower(template: CamTemplate, base_radius: float, roller_radius: float) -> Follower:
+    """The follower a template describes on a cam of ``base_radius`` with a roller of ``roller_radius`` (mm)."""
+    f = template.follower
+    sense = 1 if template.cam.rotation == "ccw" else -1
+    prime = base_radius + roller_radius
+    if f.type in ("translating-roller", "knife-edge"):
+        return TranslatingRoller(prime, roller_radius, f.offset, sense)
+    if f.type == "translating-flat":
+        return TranslatingFlat(base_radius, sense)
+    if f.type == "oscillating-roller":
+        return OscillatingRoller(f.pivot_distance, f.arm_length, prime, roller_radius, sense)
+    return OscillatingFlat(f.pivot_distance, base_radius, sense)
+
+
+def _drafted_ratio(template: CamTemplate, angle: float, lift: float, prime: float, index: int) -> float:
+    """k = Rp beta / h of the drafted modified-uniform law; h is the rise along the follower's path (mm)."""
+    f = template.follower
+    if f.type == "oscillating-flat":
+        raise SpecError("the drafted form needs a roller, knife-edge or translating follower", f"motion[{index}].form")
+    travel = f.arm_length * math.radians(lift) if f.type == "oscillating-roller" else lift
+    return prime * math.radians(angle) / travel
+
+
+def build_cam(template: CamTemplate, roller_radius: float | None = None, base_radius: float | None = None) -> Cam:
+    """The :class:`Cam` a template describes; ``roller_radius``, ``base_radius`` (mm) override the template's."""
+    rr = template.follower.contact_radius if roller_radius is None else roller_radius
+    rb = template.cam.base_radius if base_radius is None else base_radius
+    prime = rb + rr
     steps = []
     for i, seg in enumerate(template.motion):
         law = None
         if seg.type != "dwell":
             params = seg.law_params()
             if seg.law == "modified-uniform" and params.get("form") == "drafted":
-                params["k"] = prime * math.radians(seg.angle) / seg.lift
+                params["k"] = _drafted_ratio(template, seg.angle, seg.lift, prime, i)
             try:
                 law = make_law(seg.law, **params)
             except SpecError as exc:
                 raise exc.under(f"motion[{i}]") from None
         steps.append((seg.type, seg.angle, seg.lift or 0.0, law))
-    sense = 1 if template.cam.rotation == "ccw" else -1
-    return Cam(name=template.name, program=build_program(steps),
-               follower=TranslatingRoller(prime, rr, template.follower.offset, sense),
-               base_radius=template.cam.base_radius, thickness=template.cam.thickness, bore=template.cam.bore)
+    return Cam(name=template.name, program=build_program(steps), follower=make_follower(template, rb, rr),
+               base_radius=rb, thickness=template.cam.thickness, bore=template.cam.bore)

@@ -9,10 +9,9 @@ from camgen.errors import DesignError
 from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.parts.drawing import Circle, Part
 from camgen.program import Jump
-from camgen.spec import CamTemplate
+from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
+from camgen.spec import CamTemplate, with_base_radius
 
-#: usual upper limit of the pressure angle for a translating follower (degrees)
-PRESSURE_ANGLE_LIMIT = 30.0
 #: thinnest wall between the bore and the outline before a warning (mm)
 THIN_WALL = 2.0
 
@@ -29,10 +28,16 @@ class CamDesign:
     part: Part
     wall_mm: float
     warnings: tuple[str, ...]
+    sizing: Sizing | None = None
 
 
 def _undercut_message(template: CamTemplate, cam: Cam, a: CamAnalysis) -> str:
-    rr = cam.roller_radius
+    if cam.follower.flat:
+        smallest = smallest_for_curvature(template)
+        return (f"cusp at {a.pitch_rho_min_at_deg:.2f} degrees: the profile's radius of curvature falls to "
+                f"{a.profile_rho_min_mm:.4g} mm, so the flat face cannot follow the law there; the smallest "
+                f"cam.base_radius that works is {smallest:.4g} mm")
+    rr = cam.contact_radius
     corner = a.pitch_rho_min_mm == 0.0
     where = f"undercut at {a.pitch_rho_min_at_deg:.2f} degrees: "
     if corner:
@@ -50,12 +55,18 @@ def _undercut_message(template: CamTemplate, cam: Cam, a: CamAnalysis) -> str:
 def design_cam(template: CamTemplate) -> CamDesign:
     """Build, check and outline the cam a template describes.
 
-    Raises :class:`DesignError` for an undercut (unless ``cam.allow_undercut``) and for
-    a bore that leaves no material.
+    Raises :class:`DesignError` for an undercut (unless ``cam.allow_undercut``; never
+    for a flat face's cusp) and for a bore that leaves no material. ``base_radius =
+    "auto"`` is first replaced by the smallest that meets the limits (see
+    :mod:`camgen.sizing`).
     """
+    sizing = None
+    if template.cam.base_radius == "auto":
+        sizing = size_cam(template)
+        template = with_base_radius(template, sizing.base_radius_mm)
     cam = build_cam(template)
     a = analyse(cam)
-    if a.undercut and not template.cam.allow_undercut:
+    if a.undercut and (cam.follower.flat or not template.cam.allow_undercut):
         raise DesignError(_undercut_message(template, cam, a))
     tol = template.output.tolerance
     outline = envelope_outline(cam, tol) if a.undercut else exact_outline(cam, tol)
@@ -72,16 +83,17 @@ def design_cam(template: CamTemplate) -> CamDesign:
     part = Part(template.name, outline.contour, holes, template.cam.thickness, tol)
     jumps = tuple(cam.program.jumps())
     warnings = _warnings(template, a, jumps, wall, cam.program.segments)
-    return CamDesign(template, cam, a, jumps, outline, part, wall, warnings)
+    return CamDesign(template, cam, a, jumps, outline, part, wall, warnings, sizing)
 
 
 def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,
               segments: tuple) -> tuple[str, ...]:
     out = []
-    if a.pressure_angle_max_deg > PRESSURE_ANGLE_LIMIT:
+    limit = pressure_limit(template)
+    if a.pressure_angle_max_deg > limit:
         out.append(f"pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
-                   f"{a.pressure_angle_max_at_deg:.2f} degrees), above the usual {PRESSURE_ANGLE_LIMIT:g} degree "
-                   "limit for translating followers: enlarge the base radius, lengthen the segment or add an offset")
+                   f"{a.pressure_angle_max_at_deg:.2f} degrees), above the {limit:g} degree limit: enlarge the "
+                   "base radius, lengthen the segment or add an offset")
     for j in jumps:
         if j.order < 3:
             out.append(f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}")

@@ -46,7 +46,7 @@ def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
 
 def _chord_error(cam: Cam, index: int, theta: np.ndarray) -> float:
     """Largest distance of the exact surface from the chords between consecutive ``theta`` (mm)."""
-    rr = cam.roller_radius
+    rr = cam.contact_radius
     ends = _surface(cam.segment_pitch(index, theta), rr)
     frac = np.arange(1, _PROBES + 1) / (_PROBES + 1)
     inner = (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
@@ -63,7 +63,7 @@ def _spacing(cam: Cam, index: int, tolerance: float, factor: float) -> np.ndarra
     seg = cam.program.segments[index]
     aux = np.linspace(seg.start, seg.end, 257)
     g = cam.segment_pitch(index, aux)
-    k, rr = g.kappa, cam.roller_radius
+    k, rr = g.kappa, cam.contact_radius
     # chord ~ sqrt(8 tol rho_c) along a surface of speed |P'| |1 - Rr k|: samples per radian
     density = np.linalg.norm(g.d1, axis=1) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(aux))])
@@ -91,10 +91,10 @@ def _dwell(cam: Cam, index: int) -> tuple[np.ndarray, np.ndarray, float]:
     seg = cam.program.segments[index]
     n = max(1, math.ceil(seg.beta / (math.pi / 2) - 1e-12))
     theta = seg.start + seg.beta * np.arange(n + 1) / n
-    pts = _surface(cam.segment_pitch(index, theta), cam.roller_radius)
+    pts = _surface(cam.segment_pitch(index, theta), cam.contact_radius)
     radius = float(np.linalg.norm(pts[0]))
     probe = seg.start + seg.beta * (np.arange(1, 8 * n) / (8 * n))
-    err = float(np.abs(np.linalg.norm(_surface(cam.segment_pitch(index, probe), cam.roller_radius), axis=1)
+    err = float(np.abs(np.linalg.norm(_surface(cam.segment_pitch(index, probe), cam.contact_radius), axis=1)
                        - radius).max())
     bulge = math.tan(-cam.follower.sense * seg.beta / n / 4.0)
     return pts[:-1], np.full(n, bulge), err
@@ -110,10 +110,10 @@ def _corner_arc(cam: Cam, index: int) -> tuple[np.ndarray, float, float]:
     before = cam.segment_pitch(index, segments[index].end)
     after = cam.segment_pitch(j, segments[j].start)
     centre = before.point[0]
-    a = _surface(before, cam.roller_radius)[0] - centre
-    b = _surface(after, cam.roller_radius)[0] - centre
+    a = _surface(before, cam.contact_radius)[0] - centre
+    b = _surface(after, cam.contact_radius)[0] - centre
     angle = math.atan2(a[0] * b[1] - a[1] * b[0], float(a @ b))
-    return _surface(before, cam.roller_radius)[0], math.tan(angle / 4.0), angle
+    return _surface(before, cam.contact_radius)[0], math.tan(angle / 4.0), angle
 
 
 def exact_outline(cam: Cam, tolerance: float) -> Outline:
@@ -127,7 +127,7 @@ def exact_outline(cam: Cam, tolerance: float) -> Outline:
             v, b, err = _dwell(cam, i)
         else:
             theta, err = _sampled(cam, i, tolerance)
-            v, b = _surface(cam.segment_pitch(i, theta[:-1]), cam.roller_radius), np.zeros(len(theta) - 1)
+            v, b = _surface(cam.segment_pitch(i, theta[:-1]), cam.contact_radius), np.zeros(len(theta) - 1)
         verts.append(v)
         bulges.append(b)
         worst = max(worst, err)
@@ -161,7 +161,7 @@ def envelope_outline(cam: Cam, tolerance: float) -> Outline:
 def _envelope(cam: Cam, tolerance: float, factor: float) -> Outline:
     import shapely
 
-    rr = cam.roller_radius
+    rr = cam.contact_radius
     pts = []
     for i, seg in enumerate(cam.program.segments):
         theta = _spacing(cam, i, tolerance, factor)

@@ -78,7 +78,7 @@ def cam_figure(design: CamDesign) -> Any:
         r = t.cam.bore / 2
         ax.fill(r * np.cos(circle), r * np.sin(circle), color="white", ec="k", lw=0.8)
     start = cam.pitch(np.array([0.0]))
-    rr, e = cam.roller_radius, cam.follower.offset
+    rr, e = cam.contact_radius, cam.follower.offset
     ax.plot(start.point[0, 0] + rr * np.cos(circle), start.point[0, 1] + rr * np.sin(circle), color="C2", lw=1)
     top = cam.follower.d0 + cam.program.max_lift + 2 * rr
     ax.plot([e, e], [start.point[0, 1], top], color="C2", lw=2, label="follower at θ = 0")

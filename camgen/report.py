@@ -6,7 +6,8 @@ import math
 from typing import Any
 
 from camgen import __version__
-from camgen.design import PRESSURE_ANGLE_LIMIT, CamDesign
+from camgen.design import CamDesign
+from camgen.sizing import pressure_limit
 from camgen.parts.stl import MeshCheck
 
 
@@ -39,7 +40,7 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
         "lift_max_mm": _r(cam.program.max_lift),
         "pressure_angle_max_deg": _r(a.pressure_angle_max_deg),
         "pressure_angle_max_at_deg": _r(a.pressure_angle_max_at_deg),
-        "pressure_angle_limit_deg": PRESSURE_ANGLE_LIMIT,
+        "pressure_angle_limit_deg": pressure_limit(t),
         "pitch_rho_min_mm": _r(a.pitch_rho_min_mm),
         "pitch_rho_min_at_deg": _r(a.pitch_rho_min_at_deg),
         "profile_rho_min_mm": _r(a.profile_rho_min_mm),

@@ -8,11 +8,12 @@ the field, what is allowed and what was given, e.g.
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.templates import NAME_PATTERN, Model, read_toml, unit, validate
@@ -26,19 +27,71 @@ LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 class CamSpec(Model):
     """The cam body."""
 
-    base_radius: float = Field(gt=0, description="base circle radius", json_schema_extra=unit("mm"))
+    base_radius: float | Literal["auto"] = Field(description="base circle radius, or \"auto\" for the smallest "
+                                                 "that meets the limits", json_schema_extra=unit("mm"))
     thickness: float = Field(gt=0, description="plate thickness (STL extrusion)", json_schema_extra=unit("mm"))
     bore: float = Field(0.0, ge=0, description="bore diameter, 0 for none", json_schema_extra=unit("mm"))
     rotation: Literal["ccw", "cw"] = Field("ccw", description="sense of rotation seen from +Z")
     allow_undercut: bool = Field(False, description="export the cutter's envelope instead of refusing an undercut")
+    max_pressure_angle: float | None = Field(None, gt=0, lt=90, description="pressure-angle limit for sizing "
+                                             "(default 30, oscillating 40)", json_schema_extra=unit("degrees"))
+    min_rho_margin: float = Field(0.0, ge=0, description="sizing: least convex radius of the cam surface",
+                                  json_schema_extra=unit("mm"))
+
+    @field_validator("base_radius", mode="before")
+    @classmethod
+    def _radius(cls, value: Any) -> Any:
+        if value == "auto":
+            return value
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ValueError(f'must be a number of mm or "auto" (got {value!r})')
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f'must be > 0 mm, or "auto" (got {value!r})')
+        return float(value)
+
+
+FOLLOWER_KEYS = {
+    "translating-roller": ({"roller_radius"}, {"offset"}),
+    "knife-edge": (set(), {"offset"}),
+    "translating-flat": (set(), {"face_margin"}),
+    "oscillating-roller": ({"roller_radius", "pivot_distance", "arm_length"}, set()),
+    "oscillating-flat": ({"pivot_distance"}, {"face_margin"}),
+}
+FOLLOWER_TYPES = tuple(FOLLOWER_KEYS)
 
 
 class FollowerSpec(Model):
-    """The follower."""
+    """The follower; which keys a type needs and takes is in FOLLOWER_KEYS."""
 
-    type: Literal["translating-roller"] = Field(description="follower type")
-    roller_radius: float = Field(gt=0, description="roller radius", json_schema_extra=unit("mm"))
+    type: Literal[FOLLOWER_TYPES] = Field(description="follower type")  # type: ignore[valid-type]
+    roller_radius: float | None = Field(None, gt=0, description="roller radius", json_schema_extra=unit("mm"))
     offset: float = Field(0.0, description="follower axis offset, + to the right (+X)", json_schema_extra=unit("mm"))
+    pivot_distance: float | None = Field(None, gt=0, description="oscillating: cam centre to arm pivot",
+                                         json_schema_extra=unit("mm"))
+    arm_length: float | None = Field(None, gt=0, description="oscillating roller: pivot to roller centre",
+                                     json_schema_extra=unit("mm"))
+    face_margin: float = Field(2.0, ge=0, description="flat face: extra face beyond the contact's travel, each side",
+                               json_schema_extra=unit("mm"))
+
+    @model_validator(mode="after")
+    def _keys_fit_type(self) -> "FollowerSpec":
+        needs, takes = FOLLOWER_KEYS[self.type]
+        for key in sorted(needs):
+            if getattr(self, key) is None:
+                raise ValueError(f"{key}: required for a {self.type} follower")
+        for key in sorted(self.model_fields_set - needs - takes - {"type"}):
+            allowed = ", ".join(sorted(needs | takes)) or "none"
+            raise ValueError(f"{key}: not used by a {self.type} follower (its keys: {allowed})")
+        return self
+
+    @property
+    def oscillating(self) -> bool:
+        return self.type.startswith("oscillating")
+
+    @property
+    def contact_radius(self) -> float:
+        """Roller radius, 0 for knife edges and flat faces (mm)."""
+        return self.roller_radius or 0.0
 
 
 class SegmentSpec(Model):
@@ -47,7 +100,7 @@ class SegmentSpec(Model):
     type: Literal["rise", "dwell", "return"] = Field(description="segment type")
     angle: float = Field(gt=0, le=360, description="cam angle of the segment", json_schema_extra=unit("degrees"))
     lift: float | None = Field(None, gt=0, description="follower travel (rise and return)",
-                               json_schema_extra=unit("mm"))
+                               json_schema_extra=unit("mm, or degrees of arm swing for an oscillating follower"))
     law: LawName | None = Field(None, description="motion law (rise and return)")  # type: ignore[valid-type]
     ratio: float | None = Field(None, gt=0, description="parabolic: acceleration ratio a1/a2")
     form: Literal["blended", "drafted"] | None = Field(None, description="modified-uniform: form")
@@ -110,15 +163,21 @@ class CamTemplate(Model):
         total = sum(seg.angle for seg in self.motion)
         if abs(total - 360.0) > 1e-9:
             raise ValueError(f"motion: segment angles add up to {total:.6g} degrees; they must add up to 360")
-        prime = self.cam.base_radius + self.follower.roller_radius
+        prime = self.prime_radius
         if not abs(self.follower.offset) < prime:
             raise ValueError(f"follower.offset: |offset| must be < the prime radius {prime:.6g} mm "
                              f"(base_radius + roller_radius; got {self.follower.offset:.6g} mm)")
+        if self.follower.oscillating:
+            for i, seg in enumerate(self.motion):
+                if seg.lift is not None and seg.lift >= 90:
+                    raise ValueError(f"motion[{i}].lift: an arm swing must be < 90 degrees (got {seg.lift:.6g})")
         return self
 
     @property
     def prime_radius(self) -> float:
-        return self.cam.base_radius + self.follower.roller_radius
+        """Base radius plus the roller's (mm): the circle the roller's centre rides at rest (inf while "auto")."""
+        rb = self.cam.base_radius
+        return (rb if isinstance(rb, float) else math.inf) + self.follower.contact_radius
 
 
 def validate_template(raw: Mapping[str, Any]) -> CamTemplate:
@@ -129,3 +188,10 @@ def validate_template(raw: Mapping[str, Any]) -> CamTemplate:
 def load_template(path: str | Path, overrides: Iterable[str] = ()) -> CamTemplate:
     """Read a TOML cam template, merge ``key=value`` overrides, validate."""
     return validate_template(read_toml(path, overrides))
+
+
+def with_base_radius(template: CamTemplate, base_radius: float) -> CamTemplate:
+    """The same template with ``cam.base_radius`` set, validated afresh."""
+    raw = template.model_dump()
+    raw["cam"]["base_radius"] = base_radius
+    return validate_template(raw)

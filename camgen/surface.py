@@ -49,4 +49,4 @@ def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
 
 def surface_deviation(cam: Cam, points: np.ndarray) -> np.ndarray:
     """Signed deviation (mm) of points from the exact cam surface: + outside the cam, - inside."""
-    return pitch_distance(cam, points) - cam.roller_radius
+    return pitch_distance(cam, points) - cam.contact_radius

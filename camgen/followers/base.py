@@ -9,9 +9,19 @@ Frames and signs (all followers):
   from the cam centre, like the base circle), negative where concave. The radius of
   curvature is 1 / kappa; an inflection has kappa = 0 (infinite radius).
 * ``normal`` is the outward unit normal (away from the cam material).
+* The pressure angle is the angle between the contact normal and the direction in
+  which the follower's contact point (a roller's centre) moves as the follower
+  rises; its sign is positive while the follower is driven "uphill" on a
+  counter-clockwise cam.
+
+Two shared constructions serve every follower: :func:`from_centre_path` for
+rollers and knife edges (the pitch curve is the path of the roller's centre) and
+:func:`from_support` for flat faces (the cam profile is the envelope of the face's
+line, given by its distance p from the cam centre and its normal angle alpha).
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,15 +29,21 @@ import numpy as np
 
 @dataclass(frozen=True)
 class PitchGeometry:
-    """Pitch curve samples in the cam frame (mm, radians); arrays of shape (n,) or (n, 2)."""
+    """Pitch curve samples in the cam frame (mm, radians); arrays of shape (n,) or (n, 2).
+
+    For flat-faced followers the "pitch curve" is the cam profile itself (the contact
+    radius is 0) and ``rho`` carries its radius of curvature, finite even where the
+    profile would fold into a cusp (rho <= 0).
+    """
 
     theta: np.ndarray          # cam angle, rad
-    point: np.ndarray          # (n, 2) pitch point (roller centre), mm
+    point: np.ndarray          # (n, 2) pitch point (roller centre, or contact point of a flat face), mm
     d1: np.ndarray             # (n, 2) dP/dtheta, mm/rad
     d2: np.ndarray             # (n, 2) d2P/dtheta2, mm/rad^2
     normal: np.ndarray         # (n, 2) outward unit normal
     kappa: np.ndarray          # (n,) signed curvature of the pitch curve, 1/mm, convex > 0
-    pressure_angle: np.ndarray  # (n,) rad, signed (see the follower's docstring)
+    pressure_angle: np.ndarray  # (n,) rad, signed (see the module docstring)
+    rho: np.ndarray | None = None  # (n,) radius of curvature of a flat face's profile, mm
 
 
 def rotate(vectors: np.ndarray, angle: np.ndarray) -> np.ndarray:
@@ -35,3 +51,66 @@ def rotate(vectors: np.ndarray, angle: np.ndarray) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     x, y = vectors[:, 0], vectors[:, 1]
     return np.column_stack([c * x - s * y, s * x + c * y])
+
+
+def perp(v: np.ndarray) -> np.ndarray:
+    """(n, 2) vectors turned a quarter counter-clockwise: J v."""
+    return np.column_stack([-v[:, 1], v[:, 0]])
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def signed_pressure_angle(direction: np.ndarray, normal: np.ndarray, sense: int) -> np.ndarray:
+    """Angle (rad) from the follower's direction of travel to the contact normal, both in the fixed frame."""
+    return sense * np.arctan2(_cross(direction, normal), (direction * normal).sum(axis=1))
+
+
+def from_centre_path(theta: np.ndarray, q: np.ndarray, q1: np.ndarray, q2: np.ndarray, direction: np.ndarray,
+                     sense: int) -> PitchGeometry:
+    """Pitch geometry from the roller centre's path in the fixed frame.
+
+    ``q``, ``q1``, ``q2`` (n, 2): the centre and its first and second derivatives with
+    respect to cam angle; ``direction`` (n, 2): unit direction in which the centre
+    moves as the follower rises. In the cam frame P = R(-sense theta) q, so
+    P' = R(...)(q' - sense J q) and P'' = R(...)(q'' - 2 sense J q' - q).
+    """
+    t = q1 - sense * perp(q)
+    a = q2 - 2 * sense * perp(q1) - q
+    speed = np.linalg.norm(t, axis=1)
+    kappa = -sense * _cross(t, a) / speed**3
+    normal = sense * perp(t) / speed[:, None]
+    turn = -sense * theta
+    return PitchGeometry(theta=theta, point=rotate(q, turn), d1=rotate(t, turn), d2=rotate(a, turn),
+                         normal=rotate(normal, turn), kappa=kappa,
+                         pressure_angle=signed_pressure_angle(direction, normal, sense))
+
+
+def from_support(theta: np.ndarray, p: np.ndarray, alpha: np.ndarray, derivs: np.ndarray, sense: int,
+                 travel: Callable[[np.ndarray], np.ndarray]) -> PitchGeometry:
+    """Profile of a flat face: the envelope of the lines x . n(alpha) = p in the cam frame.
+
+    ``derivs`` (6, n) holds p', p'', p''', alpha', alpha'', alpha''' with respect to
+    cam angle. The contact point is C = p n + p_a J n with p_a = dp/dalpha, the radius
+    of curvature rho = p + d2p/dalpha2, and C' = rho alpha' J n. ``travel`` maps the
+    contact points in the fixed frame (n, 2) to the unit direction in which the
+    face's material point there moves as the follower rises (for the pressure angle).
+    """
+    p1, p2, p3, a1, a2, a3 = derivs
+    n = np.column_stack([np.cos(alpha), np.sin(alpha)])
+    t = perp(n)
+    pa = p1 / a1
+    paa = (p2 * a1 - p1 * a2) / a1**3
+    paa1 = ((p3 * a1 - p1 * a3) * a1 - 3 * a2 * (p2 * a1 - p1 * a2)) / a1**4
+    rho = p + paa
+    rho1 = p1 + paa1
+    point = p[:, None] * n + pa[:, None] * t
+    d1 = (rho * a1)[:, None] * t
+    d2 = (rho1 * a1 + rho * a2)[:, None] * t - (rho * a1**2)[:, None] * n
+    with np.errstate(divide="ignore"):
+        kappa = np.where(rho != 0, 1.0 / rho, np.inf)
+    back = sense * theta                     # the fixed frame is the cam frame turned back by the cam's rotation
+    pressure = signed_pressure_angle(travel(rotate(point, back)), rotate(n, back), sense)
+    return PitchGeometry(theta=theta, point=point, d1=d1, d2=d2, normal=n, kappa=kappa,
+                         pressure_angle=pressure, rho=rho)

@@ -1,0 +1,126 @@
+"""Sizing a cam: the cam-factor table (quick method) and the smallest base radius (exact method).
+
+Quick method: prime radius Rp = f h / beta, with the cam factor f = Cv cot(phi_max)
+from the law's peak slope Cv (h = beta = 1) for a centred translating roller; for
+the drafted modified uniform law f follows from its arcs: the straight stretch's
+slope angle alpha equals the pressure angle, so f = k = (2 - cos alpha) / sin alpha.
+
+Exact method: bisection on the base radius for the smallest one meeting the
+pressure-angle limit, and for the smallest meeting the curvature margin (the cam's
+smallest convex radius at least ``min_rho_margin`` mm; for a flat face its radius of
+curvature everywhere); the larger decides, and the result says which.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from camgen.analysis import pressure_angle_max, profile_rho_min
+from camgen.cam import Cam, build_cam
+from camgen.errors import CamgenError, DesignError
+from camgen.laws import make_law
+from camgen.spec import CamTemplate
+
+FACTOR_LAWS = ("uniform", "modified-uniform", "harmonic", "parabolic", "cycloidal")
+FACTOR_ANGLES = tuple(range(10, 50, 5))
+
+
+def cam_factor(law: str, pressure_angle_deg: float) -> float:
+    """f such that Rp = f h / beta keeps a centred translating roller's pressure angle within the limit."""
+    phi = math.radians(pressure_angle_deg)
+    if law == "modified-uniform":                 # drafted: the line's slope angle is the pressure angle
+        return (2 - math.cos(phi)) / math.sin(phi)
+    cv = float(make_law(law).peaks()[0])
+    return cv / math.tan(phi)
+
+
+def factor_table() -> dict[str, dict[str, float]]:
+    """``{law: {angle: f}}`` for pressure-angle limits 10 to 45 degrees."""
+    return {law: {str(a): cam_factor(law, a) for a in FACTOR_ANGLES} for law in FACTOR_LAWS}
+
+
+@dataclass(frozen=True)
+class Sizing:
+    """The smallest base radius (mm), which constraint decided it and each constraint's own smallest radius."""
+
+    base_radius_mm: float
+    decided_by: str
+    pressure_radius_mm: float
+    curvature_radius_mm: float
+    max_pressure_angle_deg: float
+    min_rho_margin_mm: float
+
+
+def pressure_limit(template: CamTemplate) -> float:
+    """The template's pressure-angle limit, or the usual 30 degrees (translating) / 40 (oscillating)."""
+    if template.cam.max_pressure_angle is not None:
+        return template.cam.max_pressure_angle
+    return 40.0 if template.follower.oscillating else 30.0
+
+
+def _domain(template: CamTemplate) -> tuple[float, float]:
+    """Base radii (mm) for which the follower can be assembled at all: (lowest, highest), exclusive."""
+    f, rr = template.follower, template.follower.contact_radius
+    lo, hi = 0.0, math.inf
+    if f.type in ("translating-roller", "knife-edge"):
+        lo = max(lo, abs(f.offset) - rr)
+    elif f.type == "oscillating-roller":
+        lo, hi = max(lo, abs(f.pivot_distance - f.arm_length) - rr), f.pivot_distance + f.arm_length - rr
+    elif f.type == "oscillating-flat":
+        hi = f.pivot_distance
+    return lo, hi
+
+
+def _smallest(template: CamTemplate, ok: Callable[[Cam], bool], what: str) -> float:
+    """Smallest base radius (to 1e-9 relative) at which ``ok(cam)`` holds, by bisection."""
+    lo, top = _domain(template)
+    lift = max(seg.lift or 0.0 for seg in template.motion)
+
+    def holds(rb: float) -> bool:
+        try:
+            return ok(build_cam(template, base_radius=rb))
+        except CamgenError:
+            return False
+
+    hi = max(template.cam.base_radius if isinstance(template.cam.base_radius, float) else 0.0, lo + lift, 1.0)
+    while not holds(hi):
+        nxt = hi * 2 if math.isinf(top) else 0.5 * (hi + top)
+        if nxt > 1e7 or nxt - hi < 1e-9 * max(hi, 1.0):
+            raise DesignError(f"no base radius meets the {what} (searched up to {hi:.6g} mm)")
+        hi = nxt
+    low = lo
+    for _ in range(200):
+        mid = 0.5 * (low + hi)
+        if holds(mid):
+            hi = mid
+        else:
+            low = mid
+        if hi - low <= 1e-9 * hi:
+            break
+    return hi
+
+
+def size_cam(template: CamTemplate) -> Sizing:
+    """The smallest base radius meeting the pressure-angle limit and the curvature margin."""
+    limit = pressure_limit(template)
+    margin = template.cam.min_rho_margin
+    if any(turn > 0 for _, turn in build_cam(template, base_radius=_probe(template)).corners()) \
+            and template.follower.contact_radius > 0:
+        raise DesignError("the follower velocity jumps (a convex pitch corner): no base radius gives the roller a "
+                          "path it can follow; use a law with continuous velocity")
+    pressure = _smallest(template, lambda cam: pressure_angle_max(cam) <= limit,
+                         f"pressure-angle limit of {limit:g} degrees")
+    curvature = smallest_for_curvature(template, margin)
+    decided = "pressure angle" if pressure >= curvature else "curvature"
+    return Sizing(max(pressure, curvature), decided, pressure, curvature, limit, margin)
+
+
+def _probe(template: CamTemplate) -> float:
+    lo, hi = _domain(template)
+    return min(lo + max(seg.lift or 0.0 for seg in template.motion) + 1.0, 0.5 * (lo + hi) if hi < math.inf else math.inf)
+
+
+def smallest_for_curvature(template: CamTemplate, margin: float = 0.0) -> float:
+    """Smallest base radius (mm) whose cam surface keeps every convex radius above ``margin`` mm."""
+    return _smallest(template, lambda cam: profile_rho_min(cam) > margin, f"curvature margin of {margin:g} mm")
