@@ -50,6 +50,13 @@ def convex_curvature_max(cam: Cam) -> tuple[float, float]:
     return _peak(cam, lambda g: g.kappa)
 
 
+def face_extent(cam: Cam) -> tuple[float, float]:
+    """Nearest and farthest contact positions along a flat face (mm; see the follower's ``face_position``)."""
+    hi = _peak(cam, lambda g: cam.follower.face_position(g))[0]
+    lo = -_peak(cam, lambda g: -cam.follower.face_position(g))[0]
+    return lo, hi
+
+
 def pressure_angle_max(cam: Cam) -> float:
     """Peak |pressure angle| over the cycle (degrees)."""
     return math.degrees(_peak(cam, lambda g: np.abs(g.pressure_angle))[0])

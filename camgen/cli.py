@@ -61,6 +61,42 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 
 
 @main.command()
+@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path), required=False)
+@click.option("--factors", is_flag=True, help="Print the cam-factor table instead (no template needed).")
+@click.option("--json", "as_json", is_flag=True, help="Print JSON.")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a template field.")
+@user_errors
+def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[str, ...]) -> None:
+    """Smallest base radius for TEMPLATE, or (--factors) the cam factors f with Rp = f h / beta."""
+    from camgen.errors import SpecError
+    from camgen.sizing import FACTOR_ANGLES, factor_table, size_cam
+    from camgen.spec import load_template
+
+    if factors:
+        table = factor_table()
+        if as_json:
+            click.echo(json.dumps(table, indent=2))
+            return
+        click.echo(f"{'law':<18}" + "".join(f"{a:>8}" for a in FACTOR_ANGLES) + "   (max pressure angle, degrees)")
+        for law, row in table.items():
+            click.echo(f"{law:<18}" + "".join(f"{row[str(a)]:>8.3f}" for a in FACTOR_ANGLES))
+        click.echo("prime radius = f x lift / segment angle (radians); modified-uniform in its drafted form")
+        return
+    if template is None:
+        raise SpecError("give a TEMPLATE, or --factors for the cam-factor table", "size")
+    s = size_cam(load_template(template, overrides))
+    result = {"base_radius_mm": s.base_radius_mm, "decided_by": s.decided_by,
+              "pressure_radius_mm": s.pressure_radius_mm, "curvature_radius_mm": s.curvature_radius_mm,
+              "max_pressure_angle_deg": s.max_pressure_angle_deg, "min_rho_margin_mm": s.min_rho_margin_mm}
+    if as_json:
+        click.echo(json.dumps(result, indent=2))
+        return
+    click.echo(f"smallest base radius {s.base_radius_mm:.4f} mm, decided by the {s.decided_by} "
+               f"(pressure angle <= {s.max_pressure_angle_deg:g} deg needs {s.pressure_radius_mm:.4f} mm; "
+               f"convex radius > {s.min_rho_margin_mm:g} mm needs {s.curvature_radius_mm:.4f} mm)")
+
+
+@main.command()
 @click.option("--json", "as_json", is_flag=True, help="Print the table as JSON.")
 def laws(as_json: bool) -> None:
     """Compare the motion laws for lift h = 1 over beta = 1 rad: peak velocity, acceleration, jerk."""

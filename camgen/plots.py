@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from camgen.cam import Cam
+from camgen.analysis import face_extent
 from camgen.design import CamDesign
 
 
@@ -42,7 +43,8 @@ def svaj_figure(design: CamDesign) -> Any:
     deg = np.degrees(theta)
     fig = figure(8, 9)
     axes = fig.subplots(4, 1, sharex=True)
-    labels = ["s (mm)", "s' (mm/rad)", "s'' (mm/rad²)", "s''' (mm/rad³)"]
+    u = design.cam.follower.lift_unit
+    labels = [f"s ({u})", f"s' ({u}/rad)", f"s'' ({u}/rad²)", f"s''' ({u}/rad³)"]
     for k, ax in enumerate(axes):
         ax.plot(deg, motion[k], color="C0", lw=1.2)
         ax.axhline(0, color="0.6", lw=0.6)
@@ -60,6 +62,28 @@ def svaj_figure(design: CamDesign) -> Any:
     return fig
 
 
+def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:
+    """The follower at theta = 0: roller and axis, flat face, or arm on its pivot."""
+    g = cam.pitch(np.array([0.0]))
+    contact, rr, f = g.point[0], cam.contact_radius, cam.follower
+    style = {"color": "C2", "lw": 2}
+    reach = cam.base_radius + cam.program.max_lift if f.lift_unit == "mm" else cam.base_radius
+    if hasattr(f, "pivot"):
+        pivot = f.pivot
+        ax.plot(*pivot, "^", color="C2", ms=9)
+        end = pivot + 1.2 * (contact - pivot) if f.flat else contact
+        ax.plot([pivot[0], end[0]], [pivot[1], end[1]], label="follower at θ = 0", **style)
+    elif f.flat:
+        lo, hi = face_extent(cam)
+        y = contact[1]
+        ax.plot([lo - 5, hi + 5], [y, y], label="follower at θ = 0", **style)
+        ax.plot([0, 0], [y, y + 0.5 * reach], **style)
+    else:
+        ax.plot([f.offset, f.offset], [contact[1], reach + 2 * rr], label="follower at θ = 0", **style)
+    if rr > 0:
+        ax.plot(contact[0] + rr * np.cos(circle), contact[1] + rr * np.sin(circle), color="C2", lw=1)
+
+
 def cam_figure(design: CamDesign) -> Any:
     """The cam at theta = 0: outline, pitch curve, base and prime circles, follower, checks marked."""
     cam, a, t = design.cam, design.analysis, design.template
@@ -71,22 +95,20 @@ def cam_figure(design: CamDesign) -> Any:
     pitch = cam.pitch(np.linspace(0, 2 * math.pi, 721)).point
     ax.plot(pitch[:, 0], pitch[:, 1], "--", color="C0", lw=0.8, label="pitch curve")
     circle = np.linspace(0, 2 * math.pi, 361)
-    for radius, style, label in ((cam.base_radius, ":", "base circle"),
-                                 (cam.follower.prime_radius, "-.", "prime circle")):
+    circles = [(cam.base_radius, ":", "base circle")]
+    if cam.contact_radius > 0:
+        circles.append((cam.base_radius + cam.contact_radius, "-.", "prime circle"))
+    for radius, style, label in circles:
         ax.plot(radius * np.cos(circle), radius * np.sin(circle), style, color="0.5", lw=0.7, label=label)
     if t.cam.bore > 0:
         r = t.cam.bore / 2
         ax.fill(r * np.cos(circle), r * np.sin(circle), color="white", ec="k", lw=0.8)
-    start = cam.pitch(np.array([0.0]))
-    rr, e = cam.contact_radius, cam.follower.offset
-    ax.plot(start.point[0, 0] + rr * np.cos(circle), start.point[0, 1] + rr * np.sin(circle), color="C2", lw=1)
-    top = cam.follower.d0 + cam.program.max_lift + 2 * rr
-    ax.plot([e, e], [start.point[0, 1], top], color="C2", lw=2, label="follower at θ = 0")
+    _draw_follower(ax, cam, circle)
     pa = cam.pitch(np.radians([a.pressure_angle_max_at_deg])).point[0]
     ax.plot(*pa, "o", color="C3", label=f"max pressure angle {a.pressure_angle_max_deg:.1f}° "
                                         f"at θ = {a.pressure_angle_max_at_deg:.1f}°")
     g = cam.pitch(np.radians([a.pitch_rho_min_at_deg]))
-    rho = (g.point - rr * g.normal)[0]
+    rho = (g.point - cam.contact_radius * g.normal)[0]
     ax.plot(*rho, "s", color="C1", label=f"min convex radius {a.profile_rho_min_mm:.2f} mm (pitch "
                                           f"{a.pitch_rho_min_mm:.2f}) at θ = {a.pitch_rho_min_at_deg:.1f}°")
     arrow = 1 if t.cam.rotation == "ccw" else -1
@@ -98,5 +120,5 @@ def cam_figure(design: CamDesign) -> Any:
     ax.set_ylabel("y (mm)")
     ax.grid(alpha=0.3)
     fig.legend(loc="outside lower center", ncols=2, fontsize=8)
-    ax.set_title(f"{t.name}: cam at θ = 0 ({t.cam.rotation}), roller {rr:g} mm, offset {e:g} mm")
+    ax.set_title(f"{t.name}: cam at θ = 0 ({t.cam.rotation}), {t.follower.type} follower")
     return fig

@@ -6,6 +6,7 @@ import math
 from typing import Any
 
 from camgen import __version__
+from camgen.analysis import face_extent
 from camgen.design import CamDesign
 from camgen.sizing import pressure_limit
 from camgen.parts.stl import MeshCheck
@@ -30,14 +31,17 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
             "theta_zero": "follower on +Y at theta = 0; theta grows in the cam's sense of rotation",
             "rotation": t.cam.rotation,
             "offset": "positive offset puts the follower axis at +X (right of the cam centre, follower on top)",
-            "pressure_angle": "atan((s' - sense * offset) / (d0 + s)), sense +1 for ccw",
+            "pressure_angle": "angle between the contact normal and the follower's direction of travel at the "
+                              "contact; for a translating roller atan((s' - sense * offset) / (d0 + s)), sense +1 "
+                              "for ccw",
         },
-        "cam": {"base_radius_mm": t.cam.base_radius, "prime_radius_mm": t.prime_radius,
+        "cam": {"base_radius_mm": cam.base_radius, "prime_radius_mm": cam.base_radius + cam.contact_radius,
                 "thickness_mm": t.cam.thickness, "bore_mm": t.cam.bore, "rotation": t.cam.rotation},
         "follower": {"type": t.follower.type, "roller_radius_mm": t.follower.roller_radius,
-                     "offset_mm": t.follower.offset},
+                     "offset_mm": t.follower.offset, "pivot_distance_mm": t.follower.pivot_distance,
+                     "arm_length_mm": t.follower.arm_length},
         "segments": segments,
-        "lift_max_mm": _r(cam.program.max_lift),
+        f"lift_max_{'deg' if cam.follower.lift_unit == 'deg' else 'mm'}": _r(cam.program.max_lift),
         "pressure_angle_max_deg": _r(a.pressure_angle_max_deg),
         "pressure_angle_max_at_deg": _r(a.pressure_angle_max_at_deg),
         "pressure_angle_limit_deg": pressure_limit(t),
@@ -59,6 +63,24 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
         "continuity": [j.as_dict() for j in design.jumps],
         "warnings": list(design.warnings),
     }
+    f = cam.follower
+    if f.flat:
+        lo, hi = face_extent(cam)
+        report["face_position_min_mm"], report["face_position_max_mm"] = _r(lo), _r(hi)
+        report["face_width_mm"] = _r(hi - lo + 2 * t.follower.face_margin)
+        report["face_measured_from"] = "the follower's axis (+X)" if t.follower.type == "translating-flat" \
+            else "the pivot, along the face"
+    if hasattr(f, "pivot"):
+        report["follower"]["pivot_mm"] = [_r(x) for x in f.pivot]
+    if hasattr(f, "rest_angle"):
+        report["follower"]["rest_angle_deg"] = _r(math.degrees(f.rest_angle))
+    if design.sizing is not None:
+        s = design.sizing
+        report["sizing"] = {"base_radius_mm": _r(s.base_radius_mm), "decided_by": s.decided_by,
+                            "pressure_radius_mm": _r(s.pressure_radius_mm),
+                            "curvature_radius_mm": _r(s.curvature_radius_mm),
+                            "max_pressure_angle_deg": s.max_pressure_angle_deg,
+                            "min_rho_margin_mm": s.min_rho_margin_mm}
     if mesh is not None:
         report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
                           "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles}

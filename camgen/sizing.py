@@ -118,7 +118,8 @@ def size_cam(template: CamTemplate) -> Sizing:
 
 def _probe(template: CamTemplate) -> float:
     lo, hi = _domain(template)
-    return min(lo + max(seg.lift or 0.0 for seg in template.motion) + 1.0, 0.5 * (lo + hi) if hi < math.inf else math.inf)
+    middle = 0.5 * (lo + hi) if hi < math.inf else math.inf
+    return min(lo + max(seg.lift or 0.0 for seg in template.motion) + 1.0, middle)
 
 
 def smallest_for_curvature(template: CamTemplate, margin: float = 0.0) -> float:

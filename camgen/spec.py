@@ -192,6 +192,6 @@ def load_template(path: str | Path, overrides: Iterable[str] = ()) -> CamTemplat
 
 def with_base_radius(template: CamTemplate, base_radius: float) -> CamTemplate:
     """The same template with ``cam.base_radius`` set, validated afresh."""
-    raw = template.model_dump()
+    raw = template.model_dump(exclude_unset=True)        # keys as the user gave them, not every default
     raw["cam"]["base_radius"] = base_radius
     return validate_template(raw)

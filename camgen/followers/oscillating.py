@@ -136,7 +136,7 @@ class OscillatingFlat:
 
         return from_support(theta, p, alpha, derivs, sigma, travel)
 
-    def face_positions(self, geometry: PitchGeometry) -> np.ndarray:
+    def face_position(self, geometry: PitchGeometry) -> np.ndarray:
         """Distance (mm) from the pivot along the face to the contact point, for each sample."""
         back = self.sense * geometry.theta
         contact = rotate(geometry.point, back)

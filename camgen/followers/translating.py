@@ -24,7 +24,7 @@ from typing import ClassVar
 import numpy as np
 
 from camgen.errors import SpecError
-from camgen.followers.base import PitchGeometry, from_centre_path, from_support
+from camgen.followers.base import PitchGeometry, from_centre_path, from_support, rotate
 
 
 @dataclass(frozen=True)
@@ -82,6 +82,6 @@ class TranslatingFlat:
         return from_support(theta, self.base_radius + s, math.pi / 2 - self.sense * theta, derivs, self.sense,
                             lambda contact: up)
 
-    def face_offsets(self, motion: np.ndarray) -> np.ndarray:
-        """Where the face touches the cam, along the face from the follower's axis (mm, +X positive)."""
-        return self.sense * motion[1]
+    def face_position(self, geometry: PitchGeometry) -> np.ndarray:
+        """Where the face touches the cam: along the face from the follower's axis (mm, +X positive), = sense s'."""
+        return rotate(geometry.point, self.sense * geometry.theta)[:, 0]

@@ -1,0 +1,209 @@
+"""Knife edge, flat faces and oscillating followers, measured on the geometry they produce; sizing."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from camgen.analysis import analyse, face_extent, pressure_angle_max, profile_rho_min
+from camgen.cam import build_cam
+from camgen.design import design_cam
+from camgen.errors import DesignError, SpecError
+from camgen.followers.base import rotate
+from camgen.laws import DraftedUniform, make_law
+from camgen.sizing import FACTOR_LAWS, cam_factor, factor_table, size_cam
+from camgen.surface import surface_deviation
+
+FLAT = {"follower.type": "translating-flat", "follower.roller_radius": None, "follower.offset": None,
+        "motion.0.lift": 15.0, "motion.2.lift": 15.0}
+OSC_ROLLER = {"follower.type": "oscillating-roller", "follower.offset": None, "follower.roller_radius": 8.0,
+              "follower.pivot_distance": 110.0, "follower.arm_length": 90.0, "motion.0.lift": 20.0,
+              "motion.2.lift": 20.0, "motion.2.law": "cycloidal"}
+OSC_FLAT = {"follower.type": "oscillating-flat", "follower.offset": None, "follower.roller_radius": None,
+            "follower.pivot_distance": 120.0, "motion.0.lift": 8.0, "motion.2.lift": 8.0,
+            "motion.2.law": "cycloidal", "cam.base_radius": 60.0}
+
+
+def spec(changes: dict):
+    """rdrd with changes; a value of None removes the key."""
+    from camgen.spec import validate_template
+    from tests.conftest import RDRD
+    import copy
+
+    raw = copy.deepcopy(RDRD)
+    for key, value in changes.items():
+        head, _, rest = key.partition(".")
+        node = raw[head]
+        parts = rest.split(".")
+        for p in parts[:-1]:
+            node = node[int(p)] if isinstance(node, list) else node[p]
+        last = parts[-1]
+        if value is None:
+            node.pop(last, None)
+        else:
+            node[int(last) if isinstance(node, list) else last] = value
+    return validate_template(raw)
+
+
+def numeric_curvature(points: np.ndarray, h: float) -> np.ndarray:
+    """Signed curvature of points sampled at equal parameter steps h (finite differences of the points only)."""
+    d1 = (points[2:] - points[:-2]) / (2 * h)
+    d2 = (points[2:] - 2 * points[1:-1] + points[:-2]) / h**2
+    return (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / np.linalg.norm(d1, axis=1) ** 3
+
+
+def test_flat_face_curvature_from_the_sampled_profile():
+    """rho = Rb + s + s'' against the curvature of the profile's sampled points."""
+    cam = build_cam(spec(FLAT))
+    h = 1e-4
+    for i, seg in enumerate(cam.program.segments):
+        t = np.arange(seg.start + 2 * h, seg.end - 2 * h, h * 50)
+        grid = (t[:, None] + np.array([-h, 0.0, h])).ravel()
+        pts = cam.segment_pitch(i, grid).point.reshape(-1, 3, 2)
+        kappa = np.array([-numeric_curvature(p, h)[0] for p in pts])     # the profile runs clockwise (ccw cam)
+        s = seg.evaluate(t)
+        assert np.abs(1 / kappa - (40.0 + s[0] + s[2])).max() < 1e-4
+
+
+def test_flat_face_width_from_the_sampled_profile():
+    """Turn densely sampled profile points back by each cam angle: the highest is where the face touches."""
+    d = design_cam(spec(FLAT))
+    profile = d.cam.pitch(np.radians(np.arange(0, 360, 0.01))).point
+    theta = np.radians(np.arange(0, 360, 0.25))
+    offsets = []
+    for th in theta:
+        fixed = rotate(profile, np.full(len(profile), th))
+        offsets.append(fixed[np.argmax(fixed[:, 1]), 0])
+    lo, hi = face_extent(d.cam)
+    assert min(offsets) == pytest.approx(lo, abs=0.05) and max(offsets) == pytest.approx(hi, abs=0.05)
+    # textbook: the contact sits at s' from the axis, so the face spans the range of s'
+    s1 = d.cam.program.evaluate(np.radians(np.arange(0, 360, 0.01)))[1]
+    assert (lo, hi) == (pytest.approx(s1.min(), abs=1e-6), pytest.approx(s1.max(), abs=1e-6))
+    from camgen.report import cam_report
+
+    assert cam_report(d)["face_width_mm"] == pytest.approx(hi - lo + 2 * 2.0)
+    assert analyse(d.cam).pressure_angle_max_deg == pytest.approx(0.0, abs=1e-12)
+
+
+def test_flat_face_cusp_is_refused_with_the_smallest_base_radius():
+    """rho = Rb + s + s'' moves one for one with Rb, so the smallest base radius is Rb - rho_min."""
+    t = spec({**FLAT, "cam.base_radius": 5.0, "cam.bore": 0.0})
+    rho = profile_rho_min(build_cam(t))
+    assert rho < 0
+    with pytest.raises(DesignError, match=rf"cusp at .* smallest cam.base_radius that works is {5.0 - rho:.4g} mm"):
+        design_cam(t)
+    ok = design_cam(spec({**FLAT, "cam.base_radius": 5.0 - rho + 0.1, "cam.bore": 0.0}))
+    assert ok.analysis.profile_rho_min_mm == pytest.approx(0.1, abs=1e-9)
+
+
+def test_knife_edge_profile_is_the_pitch_curve():
+    d = design_cam(spec({"follower.type": "knife-edge", "follower.roller_radius": None}))
+    assert d.cam.contact_radius == 0.0
+    pts = d.outline.contour.flatten(1e-3)
+    assert np.abs(surface_deviation(d.cam, pts)).max() <= 0.01
+    assert d.analysis.pitch_rho_min_mm == pytest.approx(d.analysis.profile_rho_min_mm)
+
+
+def test_oscillating_roller_pressure_angle_measured_on_the_geometry():
+    """Angle between the contact normal (from the sampled pitch curve) and the roller centre's path
+    (square to the arm)."""
+    cam = build_cam(spec(OSC_ROLLER))
+    f = cam.follower
+    assert math.degrees(f.rest_angle) == pytest.approx(
+        math.degrees(math.acos((110**2 + 90**2 - 48**2) / (2 * 110 * 90))), abs=1e-12)
+    h = 1e-5
+    for i, seg in enumerate(cam.program.segments):
+        t = np.linspace(seg.start + 1e-3, seg.end - 1e-3, 40)
+        p0 = cam.segment_pitch(i, t).point
+        tangent = (cam.segment_pitch(i, t + h).point - cam.segment_pitch(i, t - h).point) / (2 * h)
+        centre = rotate(p0, t)                                          # fixed frame (ccw cam)
+        tangent = rotate(tangent, t)
+        normal = np.column_stack([tangent[:, 1], -tangent[:, 0]])      # outward for a ccw cam
+        arm = centre - f.pivot
+        path = np.column_stack([-arm[:, 1], arm[:, 0]])
+        cosang = np.abs((normal * path).sum(1)) / np.linalg.norm(normal, axis=1) / np.linalg.norm(path, axis=1)
+        measured = np.degrees(np.arccos(np.clip(cosang, -1, 1)))
+        assert np.abs(measured - np.degrees(np.abs(cam.segment_pitch(i, t).pressure_angle))).max() < 1e-5
+
+
+def test_oscillating_roller_swings_by_the_lift():
+    cam = build_cam(spec(OSC_ROLLER))
+    f = cam.follower
+    top = rotate(cam.pitch(np.radians([150.0])).point, np.radians([150.0]))[0] - f.pivot
+    rest = np.array([0.0, 48.0]) - f.pivot
+    angle = math.degrees(math.acos(top @ rest / (np.linalg.norm(top) * np.linalg.norm(rest))))
+    assert angle == pytest.approx(20.0, abs=1e-9)
+    assert np.linalg.norm(top) == pytest.approx(90.0)
+
+
+def test_oscillating_flat_face_touches_its_envelope():
+    """Each face line is tangent to the profile: the profile lies on the cam side, touching at the contact."""
+    d = design_cam(spec(OSC_FLAT))
+    cam, f = d.cam, d.cam.follower
+    outline = d.outline.contour.flatten(1e-4)
+    for th in np.radians(np.arange(0, 360, 7.0)):
+        g = cam.pitch(np.array([th]))
+        n = g.normal[0]
+        p = g.point[0] @ n                                             # distance of the face line from the centre
+        assert p - 0.01 <= (outline @ n).max() <= p + 1e-9          # within the outline's chord tolerance
+    # a face through the pivot is pushed square to itself: pressure angle 0
+    assert analyse(cam).pressure_angle_max_deg == pytest.approx(0.0, abs=1e-9)
+    assert pressure_angle_max(cam) < 1e-9
+    assert np.linalg.norm(f.pivot) == pytest.approx(120.0)
+
+
+def test_factor_table_against_the_laws_peak_slopes():
+    table = factor_table()
+    assert list(table) == list(FACTOR_LAWS)
+    assert list(table["cycloidal"]) == [str(a) for a in range(10, 50, 5)]
+    for law in ("uniform", "harmonic", "parabolic", "cycloidal"):
+        cv = make_law(law).peaks()[0]
+        for angle, f in table[law].items():
+            assert f * math.tan(math.radians(int(angle))) == pytest.approx(cv, rel=1e-12)
+
+
+def test_drafted_modified_uniform_factor_from_its_arcs():
+    """With k = f, the drafted law's straight stretch climbs at exactly the allowed pressure angle."""
+    for angle in range(10, 50, 5):
+        law = DraftedUniform(cam_factor("modified-uniform", angle))
+        assert math.degrees(law._alpha) == pytest.approx(angle, abs=1e-9)
+
+
+@pytest.mark.parametrize("changes, decided", [
+    ({}, "pressure angle"),
+    ({"cam.min_rho_margin": 45.0}, "curvature"),
+    ({**OSC_ROLLER, "cam.max_pressure_angle": 35.0}, "pressure angle"),
+    (FLAT, "curvature"),
+])
+def test_sized_radius_meets_its_limit_and_099_of_it_does_not(changes, decided):
+    t = spec(changes)
+    s = size_cam(t)
+    assert s.decided_by == decided
+    at = build_cam(t, base_radius=s.base_radius_mm)
+    below = build_cam(t, base_radius=0.99 * s.base_radius_mm)
+    if decided == "pressure angle":
+        assert pressure_angle_max(at) <= s.max_pressure_angle_deg
+        assert pressure_angle_max(below) > s.max_pressure_angle_deg
+    else:
+        assert profile_rho_min(at) > s.min_rho_margin_mm
+        assert profile_rho_min(below) <= s.min_rho_margin_mm
+
+
+def test_auto_base_radius_builds_at_the_sized_radius():
+    d = design_cam(spec({"cam.base_radius": "auto", "cam.bore": 0.0}))
+    assert d.sizing is not None and d.sizing.decided_by == "pressure angle"
+    assert d.cam.base_radius == pytest.approx(d.sizing.base_radius_mm)
+    assert d.analysis.pressure_angle_max_deg <= 30.0 + 1e-9
+
+
+@pytest.mark.parametrize("changes, message", [
+    ({"follower.type": "oscillating-roller"}, "follower.arm_length: required for a oscillating-roller"),
+    ({"follower.type": "translating-flat", "follower.offset": None},
+     "follower.roller_radius: not used by a translating-flat follower"),
+    ({**OSC_ROLLER, "follower.arm_length": 10.0}, "follower.arm_length: the arm cannot put the roller"),
+    ({**OSC_ROLLER, "motion.0.lift": 95.0, "motion.2.lift": 95.0}, "motion[0].lift: an arm swing must be < 90"),
+])
+def test_follower_errors_name_the_field(changes, message):
+    with pytest.raises(SpecError, match=message.replace("[", r"\[").replace("]", r"\]")):
+        design_cam(spec(changes))
