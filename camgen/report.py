@@ -8,6 +8,7 @@ from typing import Any
 from camgen import __version__
 from camgen.analysis import face_extent
 from camgen.design import CamDesign
+from camgen.dynamics import speed_report
 from camgen.sizing import pressure_limit
 from camgen.parts.stl import MeshCheck
 
@@ -74,6 +75,19 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
         report["follower"]["pivot_mm"] = [_r(x) for x in f.pivot]
     if hasattr(f, "rest_angle"):
         report["follower"]["rest_angle_deg"] = _r(math.degrees(f.rest_angle))
+    if t.cam.rpm is not None:
+        parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(t.motion) if seg.law == "parabolic"]
+        report["speed"] = speed_report(cam, t.cam.rpm, t.follower.mass, t.follower.spring_rate, t.follower.preload,
+                                       parabolic)
+        contact = report["speed"]["contact"]
+        if contact and contact.get("holds") is False:
+            if contact["mode"] == "gravity":
+                report["warnings"].append(f"the follower leaves the cam near {contact['liftoff_at_deg']:.1f} degrees: "
+                                          f"gravity holds it only up to {contact['liftoff_rpm']:.4g} rpm")
+            else:
+                report["warnings"].append(
+                    f"the spring loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
+                    f"{contact['force_min_n']:.3g} N): a preload of {contact['preload_needed_n']:.4g} N would hold it")
     if design.sizing is not None:
         s = design.sizing
         report["sizing"] = {"base_radius_mm": _r(s.base_radius_mm), "decided_by": s.decided_by,

@@ -37,6 +37,8 @@ class CamSpec(Model):
                                              "(default 30, oscillating 40)", json_schema_extra=unit("degrees"))
     min_rho_margin: float = Field(0.0, ge=0, description="sizing: least convex radius of the cam surface",
                                   json_schema_extra=unit("mm"))
+    rpm: float | None = Field(None, gt=0, description="cam speed for velocities, accelerations and contact",
+                              json_schema_extra=unit("rpm"))
 
     @field_validator("base_radius", mode="before")
     @classmethod
@@ -58,6 +60,8 @@ FOLLOWER_KEYS = {
     "oscillating-flat": ({"pivot_distance"}, {"face_margin"}),
 }
 FOLLOWER_TYPES = tuple(FOLLOWER_KEYS)
+#: keys every follower takes: its mass and its return spring
+DYNAMIC_KEYS = {"mass", "spring_rate", "preload"}
 
 
 class FollowerSpec(Model):
@@ -72,6 +76,9 @@ class FollowerSpec(Model):
                                      json_schema_extra=unit("mm"))
     face_margin: float = Field(2.0, ge=0, description="flat face: extra face beyond the contact's travel, each side",
                                json_schema_extra=unit("mm"))
+    mass: float | None = Field(None, gt=0, description="moving mass of the follower", json_schema_extra=unit("kg"))
+    spring_rate: float | None = Field(None, ge=0, description="return spring rate", json_schema_extra=unit("N/mm"))
+    preload: float | None = Field(None, ge=0, description="return spring force at s = 0", json_schema_extra=unit("N"))
 
     @model_validator(mode="after")
     def _keys_fit_type(self) -> "FollowerSpec":
@@ -79,7 +86,7 @@ class FollowerSpec(Model):
         for key in sorted(needs):
             if getattr(self, key) is None:
                 raise ValueError(f"{key}: required for a {self.type} follower")
-        for key in sorted(self.model_fields_set - needs - takes - {"type"}):
+        for key in sorted(self.model_fields_set - needs - takes - DYNAMIC_KEYS - {"type"}):
             allowed = ", ".join(sorted(needs | takes)) or "none"
             raise ValueError(f"{key}: not used by a {self.type} follower (its keys: {allowed})")
         return self
