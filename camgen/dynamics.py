@@ -32,7 +32,7 @@ class Peak:
     at_deg: float
 
 
-def _peak(cam: Cam, func) -> Peak:  # noqa: ANN001 - func maps s, s', s'', s''' arrays to an array
+def _peak(cam: Cam, func) -> Peak:
     best = Peak(-math.inf, 0.0)
     for seg in cam.program.segments:
         t, v = maximise(lambda x, seg=seg: func(seg.evaluate(x)), seg.start, seg.end)
