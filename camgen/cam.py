@@ -9,6 +9,7 @@ import numpy as np
 from camgen.errors import SpecError
 from camgen.followers.base import PitchGeometry
 from camgen.followers.oscillating import OscillatingFlat, OscillatingRoller
+from camgen.followers.plate import PlateRoller
 from camgen.followers.translating import TranslatingFlat, TranslatingRoller
 from camgen.laws import make_law
 from camgen.program import Program, build_program
@@ -35,6 +36,11 @@ class Cam:
     def contact_radius(self) -> float:
         """The roller's radius; 0 for knife edges and flat faces (mm)."""
         return self.follower.contact_radius
+
+    @property
+    def is_plate(self) -> bool:
+        """True for a linear (plate) cam, whose frame is the plate's (see :mod:`camgen.followers.plate`)."""
+        return isinstance(self.follower, PlateRoller)
 
     def pitch(self, theta: np.ndarray) -> PitchGeometry:
         """Pitch geometry at any cam angles (radians); a segment boundary takes the later segment."""
@@ -66,7 +72,7 @@ class Cam:
         return out
 
 
-Follower = TranslatingRoller | TranslatingFlat | OscillatingRoller | OscillatingFlat
+Follower = TranslatingRoller | TranslatingFlat | OscillatingRoller | OscillatingFlat | PlateRoller
 
 
 def make_follower(template: CamTemplate, base_radius: float, roller_radius: float) -> Follower:
@@ -74,6 +80,8 @@ def make_follower(template: CamTemplate, base_radius: float, roller_radius: floa
     f = template.follower
     sense = 1 if template.cam.rotation == "ccw" else -1
     prime = base_radius + roller_radius
+    if template.cam.kind == "plate":
+        return PlateRoller(base_radius, roller_radius, template.cam.travel)
     if f.type in ("translating-roller", "knife-edge"):
         return TranslatingRoller(prime, roller_radius, f.offset, sense)
     if f.type == "translating-flat":

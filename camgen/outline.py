@@ -117,13 +117,20 @@ def _corner_arc(cam: Cam, index: int) -> tuple[np.ndarray, float, float]:
 
 
 def exact_outline(cam: Cam, tolerance: float) -> Outline:
-    """The outline of a cam without undercut or convex corners (see the module docstring)."""
+    """The outline of a cam without undercut or convex corners (see the module docstring).
+
+    A plate cam's dwells are straight, and its profile is closed by the plate: flat
+    ends one roller radius beyond the travel (where the roller can still sit) and the
+    bottom edge on y = 0.
+    """
     corners = dict(cam.corners())
     if any(turn > 0 for turn in corners.values()):
         raise ValueError("the pitch curve has a convex corner: use envelope_outline")
     verts, bulges, worst = [], [], 0.0
     for i, seg in enumerate(cam.program.segments):
-        if seg.kind == "dwell":
+        if seg.kind == "dwell" and cam.is_plate:
+            v, b, err = _surface(cam.segment_pitch(i, seg.start), cam.contact_radius), np.zeros(1), 0.0
+        elif seg.kind == "dwell":
             v, b, err = _dwell(cam, i)
         else:
             theta, err = _sampled(cam, i, tolerance)
@@ -135,8 +142,22 @@ def exact_outline(cam: Cam, tolerance: float) -> Outline:
             start, bulge, _ = _corner_arc(cam, i)
             verts.append(start[None, :])
             bulges.append(np.array([bulge]))
+    if cam.is_plate:
+        verts, bulges = _close_plate(cam, verts, bulges)
     contour = Contour(np.concatenate(verts), np.concatenate(bulges))
     return Outline(contour if contour.area > 0 else contour.reversed(), worst, envelope=False)
+
+
+def _close_plate(cam: Cam, verts: list, bulges: list) -> tuple[list, list]:
+    """Add a plate's end point, its flat ends and its bottom edge to the profile's vertices."""
+    segments = cam.program.segments
+    last = _surface(cam.segment_pitch(len(segments) - 1, segments[-1].end), cam.contact_radius)[0]
+    first = np.concatenate(verts)[0]
+    rr = cam.contact_radius
+    tail = np.array([last, [last[0] + rr, last[1]], [last[0] + rr, 0.0], [first[0] - rr, 0.0],
+                     [first[0] - rr, first[1]]])
+    keep = np.concatenate([[True], np.linalg.norm(np.diff(tail, axis=0), axis=1) > 1e-12])
+    return [*verts, tail[keep]], [*bulges, np.zeros(int(keep.sum()))]
 
 
 def envelope_outline(cam: Cam, tolerance: float) -> Outline:

@@ -79,7 +79,8 @@ def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:
         ax.plot([lo - 5, hi + 5], [y, y], label="follower at θ = 0", **style)
         ax.plot([0, 0], [y, y + 0.5 * reach], **style)
     else:
-        ax.plot([f.offset, f.offset], [contact[1], reach + 2 * rr], label="follower at θ = 0", **style)
+        x = getattr(f, "offset", contact[0])
+        ax.plot([x, x], [contact[1], reach + 2 * rr], label="follower at θ = 0", **style)
     if rr > 0:
         ax.plot(contact[0] + rr * np.cos(circle), contact[1] + rr * np.sin(circle), color="C2", lw=1)
 
@@ -87,7 +88,7 @@ def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:
 def cam_figure(design: CamDesign) -> Any:
     """The cam at theta = 0: outline, pitch curve, base and prime circles, follower, checks marked."""
     cam, a, t = design.cam, design.analysis, design.template
-    fig = figure(8, 9)
+    fig = figure(10, 5) if cam.is_plate else figure(8, 9)
     ax = fig.add_subplot()
     ring = design.outline.contour.flatten(t.output.tolerance)
     ax.fill(ring[:, 0], ring[:, 1], color="0.88", zorder=0)
@@ -95,11 +96,14 @@ def cam_figure(design: CamDesign) -> Any:
     pitch = cam.pitch(np.linspace(0, 2 * math.pi, 721)).point
     ax.plot(pitch[:, 0], pitch[:, 1], "--", color="C0", lw=0.8, label="pitch curve")
     circle = np.linspace(0, 2 * math.pi, 361)
-    circles = [(cam.base_radius, ":", "base circle")]
-    if cam.contact_radius > 0:
-        circles.append((cam.base_radius + cam.contact_radius, "-.", "prime circle"))
-    for radius, style, label in circles:
-        ax.plot(radius * np.cos(circle), radius * np.sin(circle), style, color="0.5", lw=0.7, label=label)
+    if cam.is_plate:
+        ax.axhline(cam.base_radius, ls=":", color="0.5", lw=0.7, label="base line")
+    else:
+        circles = [(cam.base_radius, ":", "base circle")]
+        if cam.contact_radius > 0:
+            circles.append((cam.base_radius + cam.contact_radius, "-.", "prime circle"))
+        for radius, style, label in circles:
+            ax.plot(radius * np.cos(circle), radius * np.sin(circle), style, color="0.5", lw=0.7, label=label)
     if t.cam.bore > 0:
         r = t.cam.bore / 2
         ax.fill(r * np.cos(circle), r * np.sin(circle), color="white", ec="k", lw=0.8)
@@ -111,14 +115,16 @@ def cam_figure(design: CamDesign) -> Any:
     rho = (g.point - cam.contact_radius * g.normal)[0]
     ax.plot(*rho, "s", color="C1", label=f"min convex radius {a.profile_rho_min_mm:.2f} mm (pitch "
                                           f"{a.pitch_rho_min_mm:.2f}) at θ = {a.pitch_rho_min_at_deg:.1f}°")
-    arrow = 1 if t.cam.rotation == "ccw" else -1
-    ax.annotate("", xy=(0.25 * cam.base_radius * arrow, -0.2 * cam.base_radius),
-                xytext=(-0.25 * cam.base_radius * arrow, -0.2 * cam.base_radius),
-                arrowprops={"arrowstyle": "->", "connectionstyle": f"arc3,rad={0.5 * arrow}", "color": "0.3"})
+    if not cam.is_plate:
+        arrow = 1 if t.cam.rotation == "ccw" else -1
+        ax.annotate("", xy=(0.25 * cam.base_radius * arrow, -0.2 * cam.base_radius),
+                    xytext=(-0.25 * cam.base_radius * arrow, -0.2 * cam.base_radius),
+                    arrowprops={"arrowstyle": "->", "connectionstyle": f"arc3,rad={0.5 * arrow}", "color": "0.3"})
     ax.set_aspect("equal")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.grid(alpha=0.3)
     fig.legend(loc="outside lower center", ncols=2, fontsize=8)
-    ax.set_title(f"{t.name}: cam at θ = 0 ({t.cam.rotation}), {t.follower.type} follower")
+    what = "plate cam; θ spreads over the travel" if cam.is_plate else f"cam at θ = 0 ({t.cam.rotation})"
+    ax.set_title(f"{t.name}: {what}, {t.follower.type} follower")
     return fig

@@ -25,8 +25,11 @@ LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
 
 class CamSpec(Model):
-    """The cam body."""
+    """The cam body: a disc, or a plate (linear cam) whose ``base_radius`` is its height under the profile."""
 
+    kind: Literal["disc", "plate"] = Field("disc", description="disc cam, or plate (linear) cam")
+    travel: float | None = Field(None, gt=0, description="plate cam: length the program's 360 degrees spread over",
+                                 json_schema_extra=unit("mm"))
     base_radius: float | Literal["auto"] = Field(description="base circle radius, or \"auto\" for the smallest "
                                                  "that meets the limits", json_schema_extra=unit("mm"))
     thickness: float = Field(gt=0, description="plate thickness (STL extrusion)", json_schema_extra=unit("mm"))
@@ -174,6 +177,16 @@ class CamTemplate(Model):
         if not abs(self.follower.offset) < prime:
             raise ValueError(f"follower.offset: |offset| must be < the prime radius {prime:.6g} mm "
                              f"(base_radius + roller_radius; got {self.follower.offset:.6g} mm)")
+        if self.cam.kind == "plate":
+            if self.cam.travel is None:
+                raise ValueError("cam.travel: required for a plate cam (mm)")
+            if self.follower.type not in ("translating-roller", "knife-edge"):
+                raise ValueError(f"follower.type: a plate cam takes a translating-roller or knife-edge follower "
+                                 f"(got {self.follower.type!r})")
+            if self.follower.offset != 0 or self.cam.bore != 0:
+                raise ValueError(f"cam.{'bore' if self.cam.bore else 'offset'}: not used by a plate cam")
+        elif self.cam.travel is not None:
+            raise ValueError("cam.travel: only for a plate cam (cam.kind = \"plate\")")
         if self.follower.oscillating:
             for i, seg in enumerate(self.motion):
                 if seg.lift is not None and seg.lift >= 90:

@@ -1,0 +1,46 @@
+"""A roller (or knife edge) on a linear (plate) cam: the plate slides, the follower translates across it.
+
+The plate's frame: its bottom edge on y = 0, the program's 360 degrees spread over
+``travel`` mm along +X (x = travel theta / 2 pi); the roller's centre rides at
+y = base_height + roller radius + s. The plate's top edge is that path offset down by
+the roller radius. Pressure angle: atan(ds/dx), positive while the follower rises.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from camgen.followers.base import PitchGeometry, perp
+
+
+@dataclass(frozen=True)
+class PlateRoller:
+    """Roller of ``roller_radius`` mm (0: knife edge) over a plate ``base_height`` mm high, ``travel`` mm long."""
+
+    base_height: float
+    roller_radius: float
+    travel: float
+
+    flat: ClassVar[bool] = False
+    lift_unit: ClassVar[str] = "mm"
+    sense: ClassVar[int] = 1          # the top edge runs left to right: convex corners turn clockwise
+
+    @property
+    def contact_radius(self) -> float:
+        return self.roller_radius
+
+    def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
+        """The roller centre's path in the plate frame at parameters ``theta`` (rad) of the program."""
+        s, s1, s2 = motion[0], motion[1], motion[2]
+        c = self.travel / (2 * math.pi)                      # dx / dtheta
+        point = np.column_stack([c * theta, self.base_height + self.roller_radius + s])
+        d1 = np.column_stack([np.full_like(s, c), s1])
+        d2 = np.column_stack([np.zeros_like(s), s2])
+        speed = np.hypot(c, s1)
+        normal = perp(d1) / speed[:, None]                   # up, away from the plate
+        kappa = -c * s2 / speed**3                           # bulging up is convex
+        return PitchGeometry(theta=theta, point=point, d1=d1, d2=d2, normal=normal, kappa=kappa,
+                             pressure_angle=np.arctan2(s1, c))
