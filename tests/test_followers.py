@@ -14,6 +14,7 @@ from camgen.followers.base import rotate
 from camgen.laws import DraftedUniform, make_law
 from camgen.sizing import FACTOR_LAWS, cam_factor, factor_table, size_cam
 from camgen.surface import surface_deviation
+from tests.conftest import template
 
 FLAT = {"follower.type": "translating-flat", "follower.roller_radius": None, "follower.offset": None,
         "motion.0.lift": 15.0, "motion.2.lift": 15.0}
@@ -207,3 +208,22 @@ def test_auto_base_radius_builds_at_the_sized_radius():
 def test_follower_errors_name_the_field(changes, message):
     with pytest.raises(SpecError, match=message.replace("[", r"\[").replace("]", r"\]")):
         design_cam(spec(changes))
+
+
+def test_size_command(tmp_path):
+    import json
+
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+    from tests.conftest import ROOT
+
+    table = json.loads(CliRunner().invoke(main, ["size", "--factors", "--json"]).output)
+    assert all(table[law] == pytest.approx(row) for law, row in factor_table().items())
+    assert set(table) == {"uniform", "modified-uniform", "harmonic", "parabolic", "cycloidal"}
+    assert set(table["harmonic"]) == {"10", "15", "20", "25", "30", "35", "40", "45"}
+    r = json.loads(CliRunner().invoke(main, ["size", str(ROOT / "templates" / "rdrd.toml"), "--json"]).output)
+    assert r["decided_by"] == "pressure angle"
+    assert r["base_radius_mm"] == pytest.approx(size_cam(template()).base_radius_mm)
+    bad = CliRunner().invoke(main, ["size"])
+    assert bad.exit_code == 2 and "give a TEMPLATE" in bad.stderr
