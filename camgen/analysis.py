@@ -9,7 +9,6 @@ import numpy as np
 
 from camgen.cam import Cam, build_cam
 from camgen.followers.base import PitchGeometry
-from camgen.numeric import maximise
 from camgen.spec import CamTemplate
 
 
@@ -36,13 +35,8 @@ class CamAnalysis:
 
 
 def _peak(cam: Cam, quantity: Callable[[PitchGeometry], np.ndarray]) -> tuple[float, float]:
-    """Largest value of ``quantity`` over all segments: (value, cam angle in degrees)."""
-    best = (-math.inf, 0.0)
-    for i, seg in enumerate(cam.program.segments):
-        theta, value = maximise(lambda t, i=i: quantity(cam.segment_pitch(i, t)), seg.start, seg.end)
-        if value > best[0]:
-            best = (value, math.degrees(theta) % 360.0)
-    return best
+    """Largest value of a pitch-geometry ``quantity`` over the cycle: (value, cam angle in degrees)."""
+    return cam.program.peak(lambda i, t: quantity(cam.segment_pitch(i, t)))
 
 
 def convex_curvature_max(cam: Cam) -> tuple[float, float]:

@@ -14,13 +14,13 @@ The follower's axis is +Y (its rise is upward).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from camgen.cam import Cam
-from camgen.numeric import maximise
 
 #: standard gravity, mm/s^2
 G_MM = 9806.65
@@ -28,17 +28,14 @@ G_MM = 9806.65
 
 @dataclass(frozen=True)
 class Peak:
-    value: float     # magnitude
+    value: float     # largest value
     at_deg: float
 
 
-def _peak(cam: Cam, func) -> Peak:
-    best = Peak(-math.inf, 0.0)
-    for seg in cam.program.segments:
-        t, v = maximise(lambda x, seg=seg: func(seg.evaluate(x)), seg.start, seg.end)
-        if v > best.value:
-            best = Peak(v, math.degrees(t) % 360.0)
-    return best
+def _peak(cam: Cam, func: Callable[[np.ndarray], np.ndarray]) -> Peak:
+    """Largest value over the cycle of ``func`` of the motion (its four rows: s and three derivatives)."""
+    segments = cam.program.segments
+    return Peak(*cam.program.peak(lambda i, t: func(segments[i].evaluate(t))))
 
 
 def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | None,

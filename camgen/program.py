@@ -8,6 +8,7 @@ the start of the first segment, in the cam's sense of rotation.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -16,7 +17,7 @@ from numpy.typing import ArrayLike
 
 from camgen.errors import SpecError
 from camgen.laws import Law
-from camgen.numeric import left_of
+from camgen.numeric import left_of, maximise
 
 Kind = Literal["rise", "dwell", "return"]
 TWO_PI = 2.0 * math.pi
@@ -169,6 +170,19 @@ class Program:
             mask = idx == i
             out[:, mask] = self.segments[i].evaluate(t[mask])
         return out
+
+    def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
+        """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)).
+
+        Each segment is searched on its own closed interval (one-sided values at its
+        ends), to ~1e-12 of its angle (see :func:`camgen.numeric.maximise`).
+        """
+        best = (-math.inf, 0.0)
+        for i, seg in enumerate(self.segments):
+            theta, value = maximise(lambda t, i=i: func(i, t), seg.start, seg.end)
+            if value > best[0]:
+                best = (value, math.degrees(theta) % 360.0)
+        return best
 
     def jumps(self) -> list[Jump]:
         """Every jump of s', s'', s''' at segment boundaries (360 wrapping to 0) and inside laws.
