@@ -9,6 +9,7 @@ import numpy as np
 
 from camgen.cam import Cam, build_cam
 from camgen.followers.base import PitchGeometry
+from camgen.numeric import boundary
 from camgen.spec import CamTemplate
 
 
@@ -116,9 +117,4 @@ def largest_roller(template: CamTemplate) -> float | None:
         return None
     if margin(hi) >= 0:
         return hi
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if margin(mid) >= 0 else (lo, mid)
-        if hi - lo < 1e-9 * hi:
-            break
-    return lo
+    return boundary(lambda rr: margin(rr) >= 0, lo, hi)

@@ -34,3 +34,19 @@ def maximise(func: ArrayFunc, a: float, b: float, *, n: int = 1025, rounds: int 
 def left_of(x: float) -> float:
     """The float just below ``x``: evaluates a piecewise function's left-hand limit."""
     return float(np.nextafter(x, -np.inf))
+
+
+def boundary(holds: Callable[[float], bool], good: float, bad: float, rel: float = 1e-9) -> float:
+    """Bisection for where ``holds`` changes between ``good`` (True there) and ``bad`` (False there).
+
+    Returns the last point found on the good side, within ``rel`` of the boundary.
+    """
+    for _ in range(200):
+        if abs(good - bad) <= rel * max(abs(good), abs(bad)):
+            break
+        mid = 0.5 * (good + bad)
+        if holds(mid):
+            good = mid
+        else:
+            bad = mid
+    return good

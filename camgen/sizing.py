@@ -20,6 +20,7 @@ from camgen.analysis import pressure_angle_max, profile_rho_min
 from camgen.cam import Cam, build_cam
 from camgen.errors import CamgenError, DesignError
 from camgen.laws import make_law
+from camgen.numeric import boundary
 from camgen.spec import CamTemplate
 
 FACTOR_LAWS = ("uniform", "modified-uniform", "harmonic", "parabolic", "cycloidal")
@@ -89,16 +90,7 @@ def _smallest(template: CamTemplate, ok: Callable[[Cam], bool], what: str) -> fl
         if nxt > 1e7 or nxt - hi < 1e-9 * max(hi, 1.0):
             raise DesignError(f"no base radius meets the {what} (searched up to {hi:.6g} mm)")
         hi = nxt
-    low = lo
-    for _ in range(200):
-        mid = 0.5 * (low + hi)
-        if holds(mid):
-            hi = mid
-        else:
-            low = mid
-        if hi - low <= 1e-9 * hi:
-            break
-    return hi
+    return boundary(holds, hi, lo)
 
 
 def size_cam(template: CamTemplate) -> Sizing:
