@@ -69,7 +69,7 @@ def design_cam(template: CamTemplate) -> CamDesign:
     if a.undercut and (cam.follower.flat or not template.cam.allow_undercut):
         raise DesignError(_undercut_message(template, cam, a))
     tol = template.output.tolerance
-    outline = envelope_outline(cam, tol) if a.undercut else exact_outline(cam, tol)
+    outline = envelope_outline(cam, tol) if a.undercut else exact_outline(cam, tol, template.output.curves)
 
     import shapely
 

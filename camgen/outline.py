@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from camgen.biarcs import arc_distance, biarcs
 from camgen.cam import Cam
 from camgen.errors import DesignError
 from camgen.followers.base import PitchGeometry
@@ -86,6 +87,40 @@ def _sampled(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, float]
                       f"(reached {err:.3g} mm); loosen the tolerance")
 
 
+def _biarcs(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """Vertices and bulges of one moving segment as biarcs, two arcs a span; and their measured error.
+
+    Spans start coarse (the chord spacing for 1 mm); a span whose exact surface strays
+    an error e > ``tolerance`` from its biarc is cut into ceil(1.2 (e / tolerance)^(1/3))
+    equal parts, since a biarc's error falls as the cube of its span; until none strays.
+    """
+    rr = cam.contact_radius
+    theta = _spacing(cam, index, max(tolerance, 1.0), 1.0)
+    frac = np.arange(1, 2 * _PROBES + 1) / (2 * _PROBES + 1)
+    for _ in range(40):
+        g = cam.segment_pitch(index, theta)
+        pts = _surface(g, rr)
+        tan = g.d1 / np.linalg.norm(g.d1, axis=1)[:, None]
+        p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
+        junction, b1, b2 = biarcs(p0, t0, p1, t1)
+        inner = (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
+        x = _surface(cam.segment_pitch(index, inner), rr).reshape(len(theta) - 1, len(frac), 2)
+        err = np.minimum(arc_distance(x, p0, junction, b1), arc_distance(x, junction, p1, b2)).max(axis=1)
+        bad = err > tolerance
+        if not bad.any():
+            verts = np.empty((2 * len(p0), 2))
+            verts[0::2], verts[1::2] = p0, junction
+            bulges = np.empty(2 * len(p0))
+            bulges[0::2], bulges[1::2] = b1, b2
+            return verts, bulges, float(err.max())
+        parts = np.ceil(1.2 * np.cbrt(err[bad] / tolerance)).astype(int)
+        cuts = [a + (b - a) * np.arange(1, k) / k for a, b, k in zip(theta[:-1][bad], theta[1:][bad], parts,
+                                                                        strict=True)]
+        theta = np.sort(np.concatenate([theta, *cuts]))
+    raise DesignError(f"output.tolerance: the biarcs of motion[{index}] cannot be brought within {tolerance} mm; "
+                      "loosen the tolerance")
+
+
 def _dwell(cam: Cam, index: int) -> tuple[np.ndarray, np.ndarray, float]:
     """Vertices and bulges of a dwell's exact arc about the cam centre (up to 90 degrees an arc)."""
     seg = cam.program.segments[index]
@@ -116,10 +151,12 @@ def _corner_arc(cam: Cam, index: int) -> tuple[np.ndarray, float, float]:
     return _surface(before, cam.contact_radius)[0], math.tan(angle / 4.0), angle
 
 
-def exact_outline(cam: Cam, tolerance: float) -> Outline:
+def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines") -> Outline:
     """The outline of a cam without undercut or convex corners (see the module docstring).
 
-    A plate cam's dwells are straight, and its profile is closed by the plate: flat
+    ``curves`` is ``"polylines"`` (chords) or ``"biarcs"`` (tangent-continuous arcs,
+    far fewer entities for the same tolerance). A plate cam's dwells are straight,
+    and its profile is closed by the plate: flat
     ends one roller radius beyond the travel (where the roller can still sit) and the
     bottom edge on y = 0.
     """
@@ -132,6 +169,8 @@ def exact_outline(cam: Cam, tolerance: float) -> Outline:
             v, b, err = _surface(cam.segment_pitch(i, seg.start), cam.contact_radius), np.zeros(1), 0.0
         elif seg.kind == "dwell":
             v, b, err = _dwell(cam, i)
+        elif curves == "biarcs":
+            v, b, err = _biarcs(cam, i, tolerance)
         else:
             theta, err = _sampled(cam, i, tolerance)
             v, b = _surface(cam.segment_pitch(i, theta[:-1]), cam.contact_radius), np.zeros(len(theta) - 1)

@@ -157,6 +157,7 @@ class OutputSpec(Model):
                              "exact cam surface", json_schema_extra=unit("mm"))
     formats: tuple[Literal[FORMATS], ...] = Field(FORMATS, min_length=1,  # type: ignore[valid-type]
                                                   description="files to write")
+    curves: Literal["polylines", "biarcs"] = Field("polylines", description="how curved stretches are written")
 
 
 class CamTemplate(Model):

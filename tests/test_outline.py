@@ -67,3 +67,51 @@ def test_area_converges_to_the_exact_area():
     areas = [exact_outline(cam, tol).contour.area for tol in (1e-2, 1e-3, 1e-4, 1e-5)]
     diffs = np.abs(np.diff(areas))
     assert diffs[1] < diffs[0] / 5 and diffs[2] < diffs[1] / 5
+
+
+def test_biarcs_within_tolerance_with_far_fewer_entities():
+    cam = build_cam(template())
+    for tol in (1e-2, 1e-4):
+        poly, arcs = exact_outline(cam, tol), exact_outline(cam, tol, "biarcs")
+        assert arcs.max_error_mm <= tol
+        assert np.abs(surface_deviation(cam, along(arcs.contour, tol))).max() <= tol
+        assert len(arcs.contour.vertices) < len(poly.contour.vertices) / 3
+        assert arcs.contour.n_lines == 0
+
+
+def test_error_order_of_polylines_about_2_and_of_biarcs_at_least_2_5():
+    from camgen.convergence import convergence, error_order
+
+    cam = build_cam(template())
+    poly = convergence(cam, [1e-2, 1e-3, 1e-4], "polylines", repeats=1)
+    arcs = convergence(cam, [1e-2, 1e-3, 1e-4], "biarcs", repeats=1)
+    assert all(r.max_error_mm <= r.tolerance_mm for r in poly + arcs)
+    assert 1.8 < error_order(poly) < 2.2
+    assert error_order(arcs) >= 2.5
+
+
+def test_biarcs_read_back_from_the_dxf_are_tangent_continuous(tmp_path):
+    """At every vertex the arc arriving and the arc leaving share their tangent (G1), as a CNC controller wants."""
+    import ezdxf
+
+    from camgen.design import design_cam
+    from camgen.outputs import write_cam
+    from camgen.parts.drawing import Contour
+
+    design = design_cam(template({"output.curves": "biarcs", "output.formats": ["dxf"]}))
+    write_cam(design, tmp_path)
+    pl = ezdxf.readfile(tmp_path / "rdrd.dxf").modelspace().query("LWPOLYLINE")[0]
+    pts = np.array([(x, y, b) for x, y, _, _, b in pl.get_points("xyseb")])
+    c = Contour(pts[:, :2], pts[:, 2])
+    p, q = c.vertices, np.roll(c.vertices, -1, axis=0)
+    chord = np.arctan2(q[:, 1] - p[:, 1], q[:, 0] - p[:, 0])
+    half = 2 * np.arctan(c.bulges)                       # half the included angle
+    leave, arrive = chord - half, chord + half           # tangent directions at a piece's start and end
+    turn = np.angle(np.exp(1j * (leave - np.roll(arrive, 1))))
+    assert np.abs(turn).max() < 1e-6
+    # the dwells are still exact arcs about the cam centre
+    _, centres, radii, _ = c.arcs()
+    at_centre = np.linalg.norm(centres, axis=1) < 1e-9
+    cam = design.cam
+    assert sorted(np.round(radii[at_centre], 9)) == pytest.approx(
+        [math.hypot(5.0, cam.follower.d0) - 10.0, math.hypot(5.0, cam.follower.d0 + 20.0) - 10.0], abs=1e-9)
