@@ -7,17 +7,9 @@ import numpy as np
 import pytest
 
 from camgen.cam import build_cam
+from camgen.convergence import contour_error
 from camgen.outline import exact_outline
-from camgen.surface import surface_deviation
 from tests.conftest import template
-
-
-def along(contour, tolerance: float, per_edge: int = 8) -> np.ndarray:
-    """Points along a contour's pieces (arcs flattened far finer than the tolerance)."""
-    v = contour.flatten(tolerance * 1e-2)
-    w = np.roll(v, -1, axis=0)
-    f = np.arange(per_edge) / per_edge
-    return (v[:, None, :] + (w - v)[:, None, :] * f[None, :, None]).reshape(-1, 2)
 
 
 @pytest.mark.parametrize("tol", [1e-1, 1e-2, 1e-3, 1e-4])
@@ -26,7 +18,7 @@ def test_outline_within_tolerance_by_two_measures(tol):
     outline = exact_outline(cam, tol)
     assert 0 < outline.max_error_mm <= tol
     # independent: distance of points of the polyline to the pitch curve, minus the roller radius
-    deviation = np.abs(surface_deviation(cam, along(outline.contour, tol))).max()
+    deviation = contour_error(cam, outline.contour, tol)
     assert deviation <= tol
     assert deviation == pytest.approx(outline.max_error_mm, rel=0.05)
 
@@ -74,7 +66,7 @@ def test_biarcs_within_tolerance_with_far_fewer_entities():
     for tol in (1e-2, 1e-4):
         poly, arcs = exact_outline(cam, tol), exact_outline(cam, tol, "biarcs")
         assert arcs.max_error_mm <= tol
-        assert np.abs(surface_deviation(cam, along(arcs.contour, tol))).max() <= tol
+        assert contour_error(cam, arcs.contour, tol) <= tol
         assert len(arcs.contour.vertices) < len(poly.contour.vertices) / 3
         assert arcs.contour.n_lines == 0
 
