@@ -31,11 +31,16 @@ class Cam:
     base_radius: float
     thickness: float
     bore: float
+    #: how far outside the true cam surface the surface to export lies (mm): half the laser's kerf
+    surface_offset: float = 0.0
 
     @property
     def contact_radius(self) -> float:
-        """The roller's radius; 0 for knife edges and flat faces (mm)."""
-        return self.follower.contact_radius
+        """Distance of the exported surface from the pitch curve, inwards (mm).
+
+        The roller's radius (0 for knife edges and flat faces) less ``surface_offset``.
+        """
+        return self.follower.contact_radius - self.surface_offset
 
     @property
     def is_plate(self) -> bool:

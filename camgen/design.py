@@ -1,13 +1,13 @@
 """A cam design from a template: the cam, its checks, its outline and its part. No I/O."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from camgen.analysis import CamAnalysis, analyse, largest_roller
 from camgen.cam import Cam, build_cam
 from camgen.errors import DesignError
 from camgen.outline import Outline, envelope_outline, exact_outline
-from camgen.parts.drawing import Circle, Part
+from camgen.parts.drawing import Circle, Contour, Part
 from camgen.program import Jump
 from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
 from camgen.spec import CamTemplate, with_base_radius
@@ -24,8 +24,10 @@ class CamDesign:
     cam: Cam
     analysis: CamAnalysis
     jumps: tuple[Jump, ...]
-    outline: Outline
-    part: Part
+    outline: Outline           # the nominal outline
+    part: Part                 # the nominal part
+    cut: tuple[Outline, Part]  # what the cut files carry: outline grown and holes shrunk by half the kerf
+    printed: Part              # what the printed files carry: holes opened by the clearance
     wall_mm: float
     warnings: tuple[str, ...]
     sizing: Sizing | None = None
@@ -79,11 +81,22 @@ def design_cam(template: CamTemplate) -> CamDesign:
     if template.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and wall > 0):
         raise DesignError(f"cam.bore: {template.cam.bore:.4g} mm leaves no material; the outline comes within "
                           f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
-    holes = (Circle((0.0, 0.0), template.cam.bore / 2.0),) if template.cam.bore > 0 else ()
-    part = Part(template.name, outline.contour, holes, template.cam.thickness, tol)
+    bore = template.cam.bore / 2.0
+    kerf, clearance = template.output.kerf, template.output.clearance
+
+    def plate(contour: Contour, hole_radius: float) -> Part:
+        holes = (Circle((0.0, 0.0), hole_radius),) if template.cam.bore > 0 else ()
+        return Part(template.name, contour, holes, template.cam.thickness, tol)
+
+    part = plate(outline.contour, bore)
+    cut = outline
+    if kerf > 0:
+        grown = replace(cam, surface_offset=kerf / 2)
+        cut = envelope_outline(grown, tol) if a.undercut else exact_outline(grown, tol, template.output.curves)
+    cut_part, printed = plate(cut.contour, bore - kerf / 2), plate(outline.contour, bore + clearance / 2)
     jumps = tuple(cam.program.jumps())
     warnings = _warnings(template, a, jumps, wall, cam.program.segments)
-    return CamDesign(template, cam, a, jumps, outline, part, wall, warnings, sizing)
+    return CamDesign(template, cam, a, jumps, outline, part, (cut, cut_part), printed, wall, warnings, sizing)
 
 
 def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,

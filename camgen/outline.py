@@ -192,9 +192,10 @@ def _close_plate(cam: Cam, verts: list, bulges: list) -> tuple[list, list]:
     segments = cam.program.segments
     last = _surface(cam.segment_pitch(len(segments) - 1, segments[-1].end), cam.contact_radius)[0]
     first = np.concatenate(verts)[0]
-    rr = cam.contact_radius
-    tail = np.array([last, [last[0] + rr, last[1]], [last[0] + rr, 0.0], [first[0] - rr, 0.0],
-                     [first[0] - rr, first[1]]])
+    out = cam.follower.contact_radius + cam.surface_offset      # the flat ends, beyond the roller's reach
+    low = -cam.surface_offset                                     # the bottom edge
+    tail = np.array([last, [last[0] + out, last[1]], [last[0] + out, low], [first[0] - out, low],
+                     [first[0] - out, first[1]]])
     keep = np.concatenate([[True], np.linalg.norm(np.diff(tail, axis=0), axis=1) > 1e-12])
     return [*verts, tail[keep]], [*bulges, np.zeros(int(keep.sum()))]
 

@@ -25,12 +25,12 @@ def write_cam(design: CamDesign, directory: str | Path) -> dict[str, Any]:
         if "dxf" in formats:
             from camgen.parts.dxf import write_dxf
 
-            files["dxf"] = stage.write(f"{name}.dxf", lambda p: write_dxf(Drawing.of_part(design.part), p)).name
+            files["dxf"] = stage.write(f"{name}.dxf", lambda p: write_dxf(Drawing.of_part(design.cut[1]), p)).name
         if "stl" in formats:
             from camgen.parts.mesh import extrude
             from camgen.parts.stl import check_mesh, stl_bytes
 
-            mesh = extrude(design.part)
+            mesh = extrude(design.printed)
             mesh_check = check_mesh(mesh)
             if not mesh_check.ok:
                 raise ExportError(f"{name}: the mesh is not a closed outward solid ({mesh_check})")

@@ -158,6 +158,10 @@ class OutputSpec(Model):
     formats: tuple[Literal[FORMATS], ...] = Field(FORMATS, min_length=1,  # type: ignore[valid-type]
                                                   description="files to write")
     curves: Literal["polylines", "biarcs"] = Field("polylines", description="how curved stretches are written")
+    kerf: float = Field(0.0, ge=0, le=5, description="laser kerf: cut files grow outlines and shrink holes by half",
+                        json_schema_extra=unit("mm"))
+    clearance: float = Field(0.0, ge=0, le=5, description="printing clearance: printed holes grow by this in "
+                             "diameter", json_schema_extra=unit("mm"))
 
 
 class CamTemplate(Model):

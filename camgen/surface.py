@@ -48,5 +48,10 @@ def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
 
 
 def surface_deviation(cam: Cam, points: np.ndarray) -> np.ndarray:
-    """Signed deviation (mm) of points from the exact cam surface: + outside the cam, - inside."""
+    """Deviation (mm) of points from the exact cam surface: distance to the pitch curve less the contact radius.
+
+    For a roller it is signed: negative outside the cam (towards the roller), positive
+    into the material. For a knife edge or flat face (contact radius 0) it is the
+    plain distance, never negative.
+    """
     return pitch_distance(cam, points) - cam.contact_radius

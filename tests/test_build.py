@@ -178,3 +178,30 @@ def test_installed_command_runs_as_a_process(tmp_path):
                          cwd=tmp_path, capture_output=True, text=True)
     assert bad.returncode == 2 and bad.stderr.startswith("error: cam.bore: must be >= 0 mm")
     assert "Traceback" not in bad.stderr
+
+
+def test_kerf_and_clearance_move_the_edges_by_the_stated_amount(tmp_path):
+    """Kerf 0.2: the cut outline lies 0.1 mm outside the cam surface and the cut bore is 0.1 mm smaller in radius;
+    clearance 0.3: the printed bore is 0.15 mm larger in radius. Measured on the files as re-read."""
+    import ezdxf
+    import trimesh
+
+    out = tmp_path / "o"
+    result = CliRunner().invoke(main, ["build", str(TEMPLATE), "-o", str(out), "--set", "output.kerf=0.2",
+                                       "--set", "output.clearance=0.3", "--set", "output.formats=['dxf','stl','json']"])
+    assert result.exit_code == 0, result.output
+    msp = ezdxf.readfile(out / "rdrd.dxf").modelspace()
+    pl = msp.query("LWPOLYLINE")[0]
+    pts = np.array([(x, y, b) for x, y, _, _, b in pl.get_points("xyseb")])
+    contour = Contour(pts[:, :2], pts[:, 2])
+    on = contour.flatten(1e-4)
+    deviation = surface_deviation(build_cam(template()), on)          # negative: outside the nominal surface
+    assert deviation.min() >= -0.1 - 1e-9 and deviation.max() <= -0.1 + 0.01 + 1e-9
+    assert msp.query("CIRCLE")[0].dxf.radius == pytest.approx(5.0 - 0.1, abs=1e-12)
+    mesh = trimesh.load(out / "rdrd.stl")
+    radial = np.linalg.norm(mesh.vertices[:, :2], axis=1)
+    assert radial.min() == pytest.approx(5.0 + 0.15, abs=1e-5)         # on the bore circle, to float32 (STL)
+    report = json.loads((out / "rdrd.json").read_text())
+    assert (report["kerf_mm"], report["clearance_mm"], report["bore_cut_mm"], report["bore_printed_mm"]) == \
+        (0.2, 0.3, pytest.approx(9.8), pytest.approx(10.3))
+    assert report["outline_max_error_mm"] <= 0.01
