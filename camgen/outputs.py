@@ -14,19 +14,28 @@ from camgen.report import cam_report, report_json
 def write_cam(design: CamDesign, directory: str | Path) -> dict[str, Any]:
     """Write the files the template's ``output.formats`` asks for into ``directory``; return the report.
 
-    Names: ``<name>.dxf``, ``<name>.stl``, ``<name>.json``, ``<name>-svaj.png|svg``,
-    ``<name>-cam.png|svg``. Nothing is left behind if any of them fails.
+    Names: ``<name>.dxf``, ``<name>-cut.svg`` (cut files, kerf applied), ``<name>.stl``,
+    ``<name>.3mf`` (printed files, clearance applied), ``<name>.json``,
+    ``<name>-svaj.png|svg``, ``<name>-cam.png|svg`` (plots). Nothing is left behind if any fails.
     """
     formats = set(design.template.output.formats)
     name = design.template.name
     files: dict[str, str] = {}
     mesh_check = None
     with staged(directory) as stage:
+        out = design.template.output
+        cut_drawing = Drawing.of_part(design.cut[1])
         if "dxf" in formats:
             from camgen.parts.dxf import write_dxf
 
-            files["dxf"] = stage.write(f"{name}.dxf", lambda p: write_dxf(Drawing.of_part(design.cut[1]), p)).name
-        if "stl" in formats:
+            files["dxf"] = stage.write(f"{name}.dxf", lambda p: write_dxf(
+                cut_drawing, p, out.dxf_version, out.dxf, out.tolerance)).name
+        if "cut-svg" in formats:
+            from camgen.parts.svg import svg_document
+
+            files["cut_svg"] = stage.write(f"{name}-cut.svg", lambda p: p.write_text(
+                svg_document(cut_drawing), encoding="utf-8")).name
+        if formats & {"stl", "3mf"}:
             from camgen.parts.mesh import extrude
             from camgen.parts.stl import check_mesh, stl_bytes
 
@@ -34,7 +43,12 @@ def write_cam(design: CamDesign, directory: str | Path) -> dict[str, Any]:
             mesh_check = check_mesh(mesh)
             if not mesh_check.ok:
                 raise ExportError(f"{name}: the mesh is not a closed outward solid ({mesh_check})")
-            files["stl"] = stage.write_bytes(f"{name}.stl", stl_bytes(mesh)).name
+            if "stl" in formats:
+                files["stl"] = stage.write_bytes(f"{name}.stl", stl_bytes(mesh)).name
+            if "3mf" in formats:
+                from camgen.parts.threemf import threemf_bytes
+
+                files["3mf"] = stage.write_bytes(f"{name}.3mf", threemf_bytes(mesh)).name
         plot_formats = [f for f in ("png", "svg") if f in formats]
         if plot_formats:
             from camgen.plots import cam_figure, svaj_figure

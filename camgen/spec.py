@@ -19,7 +19,7 @@ from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.templates import NAME_PATTERN, Model, read_toml, unit, validate
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
-FORMATS = ("dxf", "stl", "json", "png", "svg")
+FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg")
 #: every law parameter key a segment may carry
 LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
@@ -158,6 +158,9 @@ class OutputSpec(Model):
     formats: tuple[Literal[FORMATS], ...] = Field(FORMATS, min_length=1,  # type: ignore[valid-type]
                                                   description="files to write")
     curves: Literal["polylines", "biarcs"] = Field("polylines", description="how curved stretches are written")
+    dxf: Literal["polyline-bulge", "lines-arcs", "segments"] = Field(
+        "polyline-bulge", description="DXF flavour: bulged polylines, LINE/ARC entities, or chords only")
+    dxf_version: Literal["R2010", "R12"] = Field("R2010", description="DXF version (R12 for old controllers)")
     kerf: float = Field(0.0, ge=0, le=5, description="laser kerf: cut files grow outlines and shrink holes by half",
                         json_schema_extra=unit("mm"))
     clearance: float = Field(0.0, ge=0, le=5, description="printing clearance: printed holes grow by this in "

@@ -1,49 +1,101 @@
 """The project's one DXF writer: a :class:`~camgen.parts.drawing.Drawing` to a DXF file.
 
-Millimetres are declared in the header ($INSUNITS = 4, $MEASUREMENT = 1); contours
-become closed LWPOLYLINEs whose arcs are exact bulges, circles become CIRCLEs; each
-drawing layer becomes a DXF layer. ezdxf is imported here only (0.4 s).
+Millimetres are declared in the header ($INSUNITS = 4, $MEASUREMENT = 1; R12 has no
+units header, its numbers are millimetres all the same). Each drawing layer becomes
+a DXF layer. Three flavours, for the readers users have:
+
+* ``polyline-bulge`` (default): each contour a closed LWPOLYLINE (R12: POLYLINE) whose
+  arcs are exact bulges; circles as CIRCLE.
+* ``lines-arcs``: each piece a LINE or an ARC, circles as CIRCLE, for readers that
+  ignore bulges (OpenSCAD's import drops them without a word).
+* ``segments``: LINEs only, arcs and circles as chords within the tolerance.
+
+ezdxf is imported here only (0.4 s).
 """
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from camgen.errors import ExportError
 from camgen.parts.drawing import Circle, Contour, Drawing
 
 #: ACI colour of each layer a laser job usually maps to an operation
-LAYER_COLOURS = {"OUTLINE": 7, "HOLES": 1}
+LAYER_COLOURS = {"OUTLINE": 7, "HOLES": 1, "ENGRAVE": 5}
+FLAVOURS = ("polyline-bulge", "lines-arcs", "segments")
+VERSIONS = ("R2010", "R12")
 
 
-def dxf_document(drawing: Drawing, version: str = "R2010") -> Any:
-    """An ezdxf document holding ``drawing``; raises :class:`ExportError` if ezdxf's audit finds errors."""
+def _pieces(msp: Any, contour: Contour, attribs: dict) -> None:
+    """A contour as LINE and ARC entities."""
+    idx, centres, radii, sweeps = contour.arcs()
+    arcs = {int(i): (c, r, s) for i, c, r, s in zip(idx, centres, radii, sweeps, strict=True)}
+    p, q = contour.vertices, np.roll(contour.vertices, -1, axis=0)
+    for i in range(len(p)):
+        if i not in arcs:
+            msp.add_line(tuple(p[i]), tuple(q[i]), dxfattribs=attribs)
+            continue
+        c, r, sweep = arcs[i]
+        a0 = math.degrees(math.atan2(p[i][1] - c[1], p[i][0] - c[0]))
+        a1 = math.degrees(math.atan2(q[i][1] - c[1], q[i][0] - c[0]))
+        start, end = (a0, a1) if sweep > 0 else (a1, a0)      # DXF arcs run counter-clockwise
+        msp.add_arc(tuple(c), float(r), start, end, dxfattribs=attribs)
+
+
+def dxf_document(drawing: Drawing, version: str = "R2010", flavour: str = "polyline-bulge",
+                 tolerance: float = 0.01) -> Any:
+    """An ezdxf document holding ``drawing``; raises :class:`ExportError` if ezdxf's audit finds errors.
+
+    ``tolerance`` (mm) is the chord tolerance of the ``segments`` flavour.
+    """
     import ezdxf
     from ezdxf import units
 
+    if version not in VERSIONS or flavour not in FLAVOURS:
+        raise ExportError(f"unknown DXF version {version!r} or flavour {flavour!r}")
     doc = ezdxf.new(version, setup=False)
-    doc.units = units.MM
-    doc.header["$MEASUREMENT"] = 1
+    if version != "R12":
+        doc.units = units.MM
+        doc.header["$MEASUREMENT"] = 1
     doc.header["$LUNITS"] = 2
     msp = doc.modelspace()
     for layer, shape in drawing.items:
         if layer not in doc.layers:
             doc.layers.add(layer, color=LAYER_COLOURS.get(layer, 7))
         attribs = {"layer": layer}
-        if isinstance(shape, Circle):
+        if flavour == "segments":
+            ring = shape.flatten(tolerance)
+            for a, b in zip(ring, np.roll(ring, -1, axis=0), strict=True):
+                msp.add_line(tuple(a), tuple(b), dxfattribs=attribs)
+        elif isinstance(shape, Circle):
             msp.add_circle(shape.centre, shape.radius, dxfattribs=attribs)
-        elif isinstance(shape, Contour):
-            pairs = zip(shape.vertices.tolist(), shape.bulges.tolist(), strict=True)
-            points = [(x, y, 0.0, 0.0, b) for (x, y), b in pairs]
-            msp.add_lwpolyline(points, format="xyseb", close=True, dxfattribs=attribs)
+        elif flavour == "lines-arcs":
+            _pieces(msp, shape, attribs)
         else:
-            raise ExportError(f"cannot write a {type(shape).__name__} to DXF")
+            pairs = zip(shape.vertices.tolist(), shape.bulges.tolist(), strict=True)
+            if version == "R12":
+                msp.add_polyline2d([(x, y, b) for (x, y), b in pairs], format="xyb", close=True, dxfattribs=attribs)
+            else:
+                msp.add_lwpolyline([(x, y, 0.0, 0.0, b) for (x, y), b in pairs], format="xyseb", close=True,
+                                   dxfattribs=attribs)
     auditor = doc.audit()
     if auditor.has_errors:
         raise ExportError(f"the DXF failed ezdxf's audit: {auditor.errors[0].message}")
     return doc
 
 
-def write_dxf(drawing: Drawing, path: Path, version: str = "R2010") -> None:
+def write_dxf(drawing: Drawing, path: Path, version: str = "R2010", flavour: str = "polyline-bulge",
+              tolerance: float = 0.01) -> None:
     """Write ``drawing`` to ``path`` as DXF."""
-    dxf_document(drawing, version).saveas(path)
+    import logging
+
+    log = logging.getLogger("ezdxf")
+    level = log.level
+    log.setLevel(logging.ERROR)           # R12 has no units header; ezdxf's notice of it is not the user's concern
+    try:
+        dxf_document(drawing, version, flavour, tolerance).saveas(path)
+    finally:
+        log.setLevel(level)

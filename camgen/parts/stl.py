@@ -21,7 +21,7 @@ class MeshCheck:
         return self.watertight and self.winding_consistent and self.volume_mm3 > 0
 
 
-def _trimesh(mesh: Mesh):  # returns a trimesh.Trimesh; trimesh is imported lazily
+def trimesh_of(mesh: Mesh):  # noqa: ANN201 - a trimesh.Trimesh; trimesh is imported lazily
     import trimesh
 
     return trimesh.Trimesh(vertices=mesh.vertices, faces=mesh.faces, process=False)
@@ -29,13 +29,13 @@ def _trimesh(mesh: Mesh):  # returns a trimesh.Trimesh; trimesh is imported lazi
 
 def check_mesh(mesh: Mesh) -> MeshCheck:
     """Check ``mesh`` with trimesh (positive volume means outward normals)."""
-    tm = _trimesh(mesh)
+    tm = trimesh_of(mesh)
     return MeshCheck(bool(tm.is_watertight), bool(tm.is_winding_consistent), float(tm.volume), len(tm.faces))
 
 
 def stl_bytes(mesh: Mesh) -> bytes:
     """``mesh`` as binary STL."""
-    return _trimesh(mesh).export(file_type="stl")
+    return trimesh_of(mesh).export(file_type="stl")
 
 
 def write_stl(mesh: Mesh, path: Path) -> None:

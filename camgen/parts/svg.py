@@ -1,0 +1,76 @@
+"""The project's one SVG cut-file writer: a drawing in millimetres for laser software.
+
+The page is the drawing's bounding box plus a margin, sized in mm (width="..mm"), with
+a viewBox in the same millimetres, so 1 user unit is 1 mm. SVG's y axis points down:
+points are mirrored (y -> top - y), which turns counter-clockwise arcs clockwise.
+Each layer is a group with its own colour; strokes are hairlines (0.01 mm), no
+fill, as laser software expects for cut and score lines. Arcs stay exact (A commands).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from camgen.parts.drawing import Circle, Contour, Drawing
+
+LAYER_RGB = {"OUTLINE": "#ff0000", "HOLES": "#0000ff", "ENGRAVE": "#000000"}
+HAIRLINE_MM = 0.01
+MARGIN_MM = 2.0
+
+
+def _bounds(drawing: Drawing) -> tuple[float, float, float, float]:
+    pts = [s.flatten(0.01) for _, s in drawing.items]
+    allp = np.vstack(pts)
+    return float(allp[:, 0].min()), float(allp[:, 1].min()), float(allp[:, 0].max()), float(allp[:, 1].max())
+
+
+def _num(x: float) -> str:
+    return f"{x:.6f}".rstrip("0").rstrip(".")
+
+
+def svg_document(drawing: Drawing) -> str:
+    """The drawing as an SVG document (text)."""
+    x0, y0, x1, y1 = _bounds(drawing)
+    left, top = x0 - MARGIN_MM, y1 + MARGIN_MM
+    width, height = (x1 - x0) + 2 * MARGIN_MM, (y1 - y0) + 2 * MARGIN_MM
+
+    def pt(p: np.ndarray) -> str:
+        return f"{_num(p[0] - left)},{_num(top - p[1])}"
+
+    groups: dict[str, list[str]] = {}
+    for layer, shape in drawing.items:
+        if isinstance(shape, Circle):
+            cx, cy = shape.centre
+            groups.setdefault(layer, []).append(
+                f'<circle cx="{_num(cx - left)}" cy="{_num(top - cy)}" r="{_num(shape.radius)}"/>')
+            continue
+        groups.setdefault(layer, []).append(f'<path d="{_path(shape, pt)}"/>')
+    body = []
+    for layer, items in groups.items():
+        colour = LAYER_RGB.get(layer, "#000000")
+        body.append(f'<g id="{layer}" fill="none" stroke="{colour}" stroke-width="{HAIRLINE_MM}">')
+        body.extend(f"  {item}" for item in items)
+        body.append("</g>")
+    return ("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+            f'<svg xmlns="http://www.w3.org/2000/svg" version="1.1" width="{_num(width)}mm" '
+            f'height="{_num(height)}mm" viewBox="0 0 {_num(width)} {_num(height)}">\n'
+            + "\n".join(body) + "\n</svg>\n")
+
+
+def _path(contour: Contour, pt) -> str:  # noqa: ANN001 - pt maps a point to SVG text
+    idx, _, radii, sweeps = contour.arcs()
+    arcs = {int(i): (r, s) for i, r, s in zip(idx, radii, sweeps, strict=True)}
+    v = contour.vertices
+    parts = [f"M{pt(v[0])}"]
+    for i in range(len(v)):
+        end = v[(i + 1) % len(v)]
+        if i in arcs:
+            r, sweep = arcs[i]
+            large = 1 if abs(sweep) > math.pi else 0
+            flag = 0 if sweep > 0 else 1           # mirrored y: counter-clockwise becomes clockwise
+            parts.append(f"A{_num(r)},{_num(r)} 0 {large} {flag} {pt(end)}")
+        elif i < len(v) - 1:
+            parts.append(f"L{pt(end)}")
+    parts.append("Z")
+    return " ".join(parts)
