@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 from pathlib import Path
 
 from camgen.parts.mesh import Mesh
@@ -21,7 +22,8 @@ class MeshCheck:
         return self.watertight and self.winding_consistent and self.volume_mm3 > 0
 
 
-def trimesh_of(mesh: Mesh):  # noqa: ANN201 - a trimesh.Trimesh; trimesh is imported lazily
+def trimesh_of(mesh: Mesh) -> Any:
+    """``mesh`` as a trimesh.Trimesh (trimesh is imported here, lazily)."""
     import trimesh
 
     return trimesh.Trimesh(vertices=mesh.vertices, faces=mesh.faces, process=False)

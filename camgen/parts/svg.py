@@ -9,6 +9,7 @@ fill, as laser software expects for cut and score lines. Arcs stay exact (A comm
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -58,7 +59,7 @@ def svg_document(drawing: Drawing) -> str:
             + "\n".join(body) + "\n</svg>\n")
 
 
-def _path(contour: Contour, pt) -> str:  # noqa: ANN001 - pt maps a point to SVG text
+def _path(contour: Contour, pt: Callable[[np.ndarray], str]) -> str:
     idx, _, radii, sweeps = contour.arcs()
     arcs = {int(i): (r, s) for i, r, s in zip(idx, radii, sweeps, strict=True)}
     v = contour.vertices
