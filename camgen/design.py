@@ -1,13 +1,18 @@
 """A cam design from a template: the cam, its checks, its outline and its part. No I/O."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
 
 from camgen.analysis import CamAnalysis, analyse, largest_roller
 from camgen.cam import Cam, build_cam
 from camgen.errors import DesignError
 from camgen.outline import Outline, envelope_outline, exact_outline
-from camgen.parts.drawing import Circle, Contour, Part
+from camgen.parts.drawing import LAYER_ENGRAVE, Circle, Contour, Part, Polyline, Text
+from camgen.parts.hub import bolt_holes, key_for, keyed_bore
 from camgen.program import Jump
 from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
 from camgen.spec import CamTemplate, with_base_radius
@@ -81,22 +86,73 @@ def design_cam(template: CamTemplate) -> CamDesign:
     if template.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and wall > 0):
         raise DesignError(f"cam.bore: {template.cam.bore:.4g} mm leaves no material; the outline comes within "
                           f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
-    bore = template.cam.bore / 2.0
     kerf, clearance = template.output.kerf, template.output.clearance
+    _check_holes(template, body)
+    marks = _engraving(template, cam, reach) if template.hub.engrave else ()
+    hub = template.hub
+    boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
 
-    def plate(contour: Contour, hole_radius: float) -> Part:
-        holes = (Circle((0.0, 0.0), hole_radius),) if template.cam.bore > 0 else ()
-        return Part(template.name, contour, holes, template.cam.thickness, tol)
+    def plate(contour: Contour, grow: float) -> Part:
+        return Part(template.name, contour, _holes(template, grow), template.cam.thickness, tol, marks, boss,
+                    hub.set_screw)
 
-    part = plate(outline.contour, bore)
+    part = plate(outline.contour, 0.0)
     cut = outline
     if kerf > 0:
         grown = replace(cam, surface_offset=kerf / 2)
         cut = envelope_outline(grown, tol) if a.undercut else exact_outline(grown, tol, template.output.curves)
-    cut_part, printed = plate(cut.contour, bore - kerf / 2), plate(outline.contour, bore + clearance / 2)
+    cut_part, printed = plate(cut.contour, -kerf / 2), plate(outline.contour, clearance / 2)
     jumps = tuple(cam.program.jumps())
     warnings = _warnings(template, a, jumps, wall, cam.program.segments)
     return CamDesign(template, cam, a, jumps, outline, part, (cut, cut_part), printed, wall, warnings, sizing)
+
+
+def _holes(template: CamTemplate, grow: float) -> tuple:
+    """The bore (keyed or round) and the mounting holes, their edges moved out by ``grow`` mm."""
+    hub, bore = template.hub, template.cam.bore
+    out: list = []
+    if bore > 0:
+        out.append(keyed_bore(bore, grow) if hub.keyway else Circle((0.0, 0.0), bore / 2 + grow))
+    if hub.bolt_holes:
+        out.extend(bolt_holes(hub.bolt_circle, hub.bolt_holes, hub.bolt_hole_diameter, grow))
+    return tuple(out)
+
+
+def _check_holes(template: CamTemplate, body: Any) -> None:
+    """Every hole must lie inside the cam with material round it."""
+    import shapely
+
+    for hole in _holes(template, 0.0):
+        ring = shapely.Polygon(hole.flatten(template.output.tolerance))
+        if not body.contains(ring) or body.exterior.distance(ring) <= 0:
+            field = "hub.bolt_circle" if isinstance(hole, Circle) and hole.centre != (0.0, 0.0) else "cam.bore"
+            raise DesignError(f"{field}: a hole reaches the cam's outline (it comes within "
+                              f"{body.exterior.distance(ring):.3g} mm); make it smaller or move it in")
+
+
+def _engraving(template: CamTemplate, cam: Cam, reach: float) -> tuple:
+    """ENGRAVE marks, in the band between the outermost hole and the outline: the part's name, an arrow
+    in the sense of rotation and a tick towards the follower at theta = 0."""
+    hub = template.hub
+    inner = template.cam.bore / 2 + (key_for(template.cam.bore)[1] if hub.keyway else 0.0)
+    if hub.bolt_holes:
+        inner = max(inner, hub.bolt_circle / 2 + hub.bolt_hole_diameter / 2)
+    mid = inner + 0.5 * (reach - inner)
+    height = max(1.0, min(5.0, 0.3 * (reach - inner)))
+    name = Text(template.name, (-0.3 * height * len(template.name), -mid - 0.5 * height), height)
+    sense = 1 if template.cam.rotation == "ccw" else -1
+
+    def at(radius: float, degrees: float) -> np.ndarray:
+        return radius * np.array([math.cos(math.radians(degrees)), math.sin(math.radians(degrees))])
+
+    start, end = 200.0, 200.0 + sense * 60.0
+    shaft = Polyline(np.array([at(mid, start), at(mid, end)]), np.array([math.tan(sense * math.radians(60) / 4)]))
+    back = end - sense * 8.0
+    head = Polyline(np.array([at(mid + height / 2, back), at(mid, end), at(mid - height / 2, back)]), np.zeros(2))
+    contact = cam.pitch(np.array([0.0])).point[0]
+    direction = contact / np.linalg.norm(contact)
+    tick = Polyline(np.array([direction * (reach - 2 * height), direction * (reach - height)]), np.zeros(1))
+    return tuple((LAYER_ENGRAVE, mark) for mark in (name, shaft, head, tick))
 
 
 def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,

@@ -150,6 +150,32 @@ class SegmentSpec(Model):
         return {k: getattr(self, k) for k in LAW_PARAMS.get(self.law or "", ()) if getattr(self, k) is not None}
 
 
+class HubSpec(Model):
+    """Hub features: a keyed bore, a boss with a set screw (printed part only), bolt-circle holes, engraving."""
+
+    keyway: bool = Field(False, description="cut a DIN 6885-1 keyway for the bore")
+    boss_diameter: float = Field(0.0, ge=0, description="printed hub boss diameter, 0 for none",
+                                 json_schema_extra=unit("mm"))
+    boss_height: float = Field(0.0, ge=0, description="printed hub boss height above the cam",
+                               json_schema_extra=unit("mm"))
+    set_screw: float = Field(0.0, ge=0, description="radial set-screw hole diameter through the boss, 0 for none",
+                             json_schema_extra=unit("mm"))
+    bolt_circle: float = Field(0.0, ge=0, description="mounting-hole circle diameter", json_schema_extra=unit("mm"))
+    bolt_holes: int = Field(0, ge=0, le=36, description="number of mounting holes")
+    bolt_hole_diameter: float = Field(0.0, ge=0, description="mounting-hole diameter", json_schema_extra=unit("mm"))
+    engrave: bool = Field(False, description="add an ENGRAVE layer: name, rotation arrow, theta = 0 mark")
+
+    @model_validator(mode="after")
+    def _consistent(self) -> "HubSpec":
+        if (self.boss_diameter > 0) != (self.boss_height > 0):
+            raise ValueError("boss_height: give both boss_diameter and boss_height (mm), or neither")
+        if self.set_screw > 0 and not (self.boss_height > 0 and self.set_screw < self.boss_height):
+            raise ValueError(f"set_screw: needs a boss taller than the screw ({self.set_screw:g} mm)")
+        if self.bolt_holes > 0 and not (self.bolt_circle > 0 and self.bolt_hole_diameter > 0):
+            raise ValueError("bolt_circle: bolt holes need bolt_circle and bolt_hole_diameter (mm)")
+        return self
+
+
 class OutputSpec(Model):
     """What to write and how accurately."""
 
@@ -174,6 +200,7 @@ class CamTemplate(Model):
     cam: CamSpec
     follower: FollowerSpec
     motion: list[SegmentSpec] = Field(min_length=1, description="segments in order from theta = 0")
+    hub: HubSpec = HubSpec()
     output: OutputSpec = OutputSpec()
 
     @model_validator(mode="after")
@@ -195,6 +222,12 @@ class CamTemplate(Model):
                 raise ValueError(f"cam.{'bore' if self.cam.bore else 'offset'}: not used by a plate cam")
         elif self.cam.travel is not None:
             raise ValueError("cam.travel: only for a plate cam (cam.kind = \"plate\")")
+        hub = self.hub
+        if hub.keyway and not 6 < self.cam.bore <= 110:
+            raise ValueError(f"hub.keyway: DIN 6885-1 keys need a bore over 6 up to 110 mm (cam.bore is "
+                             f"{self.cam.bore:g} mm)")
+        if hub.boss_diameter and hub.boss_diameter <= self.cam.bore:
+            raise ValueError(f"hub.boss_diameter: must be larger than the bore ({self.cam.bore:g} mm)")
         if self.follower.oscillating:
             for i, seg in enumerate(self.motion):
                 if seg.lift is not None and seg.lift >= 90:

@@ -5,7 +5,7 @@ import re
 
 import pytest
 
-from camgen.spec import CamSpec, FollowerSpec, OutputSpec, SegmentSpec
+from camgen.spec import CamSpec, FollowerSpec, HubSpec, OutputSpec, SegmentSpec
 from tests.conftest import ROOT
 
 README = (ROOT / "README.md").read_text()
@@ -19,7 +19,7 @@ def test_readme_opens_with_the_two_commands():
 
 
 @pytest.mark.parametrize("prefix, model", [("cam", CamSpec), ("follower", FollowerSpec),
-                                           ("motion[i]", SegmentSpec), ("output", OutputSpec)])
+                                           ("motion[i]", SegmentSpec), ("hub", HubSpec), ("output", OutputSpec)])
 def test_every_template_key_is_documented(prefix, model):
     for key in model.model_fields:
         assert f"| `{prefix}.{key}` |" in README, f"{prefix}.{key} is not in the README's key table"

@@ -119,6 +119,34 @@ class Circle:
         return np.column_stack([self.centre[0] + self.radius * np.cos(a), self.centre[1] + self.radius * np.sin(a)])
 
 
+@dataclass(frozen=True)
+class Polyline:
+    """An open line (marks to engrave): vertices (n, 2) in mm; ``bulges`` (n - 1) as in :class:`Contour`."""
+
+    vertices: np.ndarray
+    bulges: np.ndarray
+
+    def flatten(self, tolerance: float) -> np.ndarray:
+        """Points along the line, arcs within ``tolerance`` mm (the closing piece of a contour left off)."""
+        pts = Contour(self.vertices, np.append(self.bulges, 0.0)).flatten(tolerance)
+        end = int(np.flatnonzero(np.all(np.isclose(pts, self.vertices[-1]), axis=1))[-1])
+        return pts[:end + 1]
+
+
+@dataclass(frozen=True)
+class Text:
+    """A line of text to engrave: lower-left ``position`` (mm), ``height`` (mm), ``angle`` (degrees, ccw)."""
+
+    text: str
+    position: tuple[float, float]
+    height: float
+    angle: float = 0.0
+
+    def flatten(self, tolerance: float) -> np.ndarray:
+        """Its anchor point only (for bounds)."""
+        return np.array([self.position])
+
+
 Shape = Contour | Circle
 
 
@@ -127,7 +155,9 @@ class Part:
     """A flat part: one outer contour (counter-clockwise), holes, a thickness (mm) and a tolerance (mm).
 
     ``tolerance`` is the chord tolerance used wherever exact arcs must become
-    polygons (meshes, plots).
+    polygons (meshes, plots). ``marks`` are (layer, shape) pairs drawn but not cut
+    (engraving). A hub ``boss`` (diameter, height; mm) stands on the top face round
+    the first hole, with a radial ``set_screw`` hole (diameter, mm) through it.
     """
 
     name: str
@@ -135,6 +165,9 @@ class Part:
     holes: tuple[Shape, ...]
     thickness: float
     tolerance: float
+    marks: tuple[tuple[str, Polyline | Text], ...] = ()
+    boss: tuple[float, float] | None = None
+    set_screw: float = 0.0
 
     @property
     def area(self) -> float:
@@ -145,15 +178,16 @@ class Part:
 #: layer names used in every drawing
 LAYER_OUTLINE = "OUTLINE"
 LAYER_HOLES = "HOLES"
+LAYER_ENGRAVE = "ENGRAVE"
 
 
 @dataclass(frozen=True)
 class Drawing:
     """Shapes on named layers, in mm, ready for any 2-D writer."""
 
-    items: tuple[tuple[str, Shape], ...]
+    items: tuple[tuple[str, Shape | Polyline | Text], ...]
 
     @classmethod
     def of_part(cls, part: Part) -> "Drawing":
-        """A part's outline on ``OUTLINE`` and its holes on ``HOLES``."""
-        return cls(((LAYER_OUTLINE, part.outline), *((LAYER_HOLES, h) for h in part.holes)))
+        """A part's outline on ``OUTLINE``, its holes on ``HOLES`` and its marks on their own layers."""
+        return cls(((LAYER_OUTLINE, part.outline), *((LAYER_HOLES, h) for h in part.holes), *part.marks))

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from camgen.errors import ExportError
-from camgen.parts.drawing import Circle, Contour, Drawing
+from camgen.parts.drawing import Circle, Contour, Drawing, Polyline, Text
 
 #: ACI colour of each layer a laser job usually maps to an operation
 LAYER_COLOURS = {"OUTLINE": 7, "HOLES": 1, "ENGRAVE": 5}
@@ -29,12 +29,12 @@ FLAVOURS = ("polyline-bulge", "lines-arcs", "segments")
 VERSIONS = ("R2010", "R12")
 
 
-def _pieces(msp: Any, contour: Contour, attribs: dict) -> None:
-    """A contour as LINE and ARC entities."""
+def _pieces(msp: Any, contour: Contour, attribs: dict, closed: bool = True) -> None:
+    """A contour (or, ``closed`` False, an open line) as LINE and ARC entities."""
     idx, centres, radii, sweeps = contour.arcs()
     arcs = {int(i): (c, r, s) for i, c, r, s in zip(idx, centres, radii, sweeps, strict=True)}
     p, q = contour.vertices, np.roll(contour.vertices, -1, axis=0)
-    for i in range(len(p)):
+    for i in range(len(p) if closed else len(p) - 1):
         if i not in arcs:
             msp.add_line(tuple(p[i]), tuple(q[i]), dxfattribs=attribs)
             continue
@@ -43,6 +43,21 @@ def _pieces(msp: Any, contour: Contour, attribs: dict) -> None:
         a1 = math.degrees(math.atan2(q[i][1] - c[1], q[i][0] - c[0]))
         start, end = (a0, a1) if sweep > 0 else (a1, a0)      # DXF arcs run counter-clockwise
         msp.add_arc(tuple(c), float(r), start, end, dxfattribs=attribs)
+
+
+def _open_line(msp: Any, line: Polyline, attribs: dict, version: str, flavour: str, tolerance: float) -> None:
+    if flavour == "segments":
+        pts = line.flatten(tolerance)
+        for a, b in zip(pts[:-1], pts[1:], strict=True):
+            msp.add_line(tuple(a), tuple(b), dxfattribs=attribs)
+    elif flavour == "lines-arcs":
+        _pieces(msp, Contour(line.vertices, np.append(line.bulges, 0.0)), attribs, closed=False)
+    else:
+        pts = [(x, y, b) for (x, y), b in zip(line.vertices.tolist(), [*line.bulges.tolist(), 0.0], strict=True)]
+        if version == "R12":
+            msp.add_polyline2d(pts, format="xyb", dxfattribs=attribs)
+        else:
+            msp.add_lwpolyline([(x, y, 0.0, 0.0, b) for x, y, b in pts], format="xyseb", dxfattribs=attribs)
 
 
 def dxf_document(drawing: Drawing, version: str = "R2010", flavour: str = "polyline-bulge",
@@ -66,7 +81,12 @@ def dxf_document(drawing: Drawing, version: str = "R2010", flavour: str = "polyl
         if layer not in doc.layers:
             doc.layers.add(layer, color=LAYER_COLOURS.get(layer, 7))
         attribs = {"layer": layer}
-        if flavour == "segments":
+        if isinstance(shape, Text):
+            msp.add_text(shape.text, height=shape.height, rotation=shape.angle,
+                         dxfattribs=attribs).set_placement(shape.position)
+        elif isinstance(shape, Polyline):
+            _open_line(msp, shape, attribs, version, flavour, tolerance)
+        elif flavour == "segments":
             ring = shape.flatten(tolerance)
             for a, b in zip(ring, np.roll(ring, -1, axis=0), strict=True):
                 msp.add_line(tuple(a), tuple(b), dxfattribs=attribs)

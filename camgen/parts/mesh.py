@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from camgen.errors import ExportError
-from camgen.parts.drawing import Part
+from camgen.parts.drawing import Circle, Part, arc_steps
 
 
 @dataclass(frozen=True)
@@ -29,13 +29,29 @@ def _ccw(points: np.ndarray, ccw: bool) -> np.ndarray:
 
 
 def extrude(part: Part) -> Mesh:
-    """The part as a solid from z = 0 to z = thickness, holes cut through."""
+    """The part as a solid from z = 0 to z = thickness, holes cut through.
+
+    A hub boss stands on the top face round the first hole (the bore), to
+    z = thickness + boss height, and a radial set-screw hole runs from the bore
+    through the boss along +Y at the boss's mid-height.
+    """
     import manifold3d
 
     tol = part.tolerance
     polygons = [_ccw(part.outline.flatten(tol), True)] + [_ccw(h.flatten(tol), False) for h in part.holes]
     section = manifold3d.CrossSection(polygons, manifold3d.FillRule.Positive)
     solid = manifold3d.Manifold.extrude(section, part.thickness)
+    if part.boss is not None:
+        diameter, height = part.boss
+        ring = [_ccw(Circle((0.0, 0.0), diameter / 2).flatten(tol), True)]
+        ring += [_ccw(part.holes[0].flatten(tol), False)] if part.holes else []
+        boss = manifold3d.Manifold.extrude(manifold3d.CrossSection(ring, manifold3d.FillRule.Positive), height)
+        solid = solid + boss.translate((0.0, 0.0, part.thickness))
+        if part.set_screw > 0:
+            r = part.set_screw / 2
+            screw = manifold3d.Manifold.cylinder(diameter, r, r, arc_steps(r, 2 * np.pi, tol))
+            screw = screw.rotate((-90.0, 0.0, 0.0)).translate((0.0, 0.0, part.thickness + height / 2))
+            solid = solid - screw
     if solid.status() != manifold3d.Error.NoError or solid.is_empty():
         raise ExportError(f"{part.name}: could not build a solid ({solid.status()})")
     mesh = solid.to_mesh()

@@ -13,7 +13,9 @@ from collections.abc import Callable
 
 import numpy as np
 
-from camgen.parts.drawing import Circle, Contour, Drawing
+from xml.sax.saxutils import escape
+
+from camgen.parts.drawing import Circle, Contour, Drawing, Polyline, Text
 
 LAYER_RGB = {"OUTLINE": "#ff0000", "HOLES": "#0000ff", "ENGRAVE": "#000000"}
 HAIRLINE_MM = 0.01
@@ -41,6 +43,17 @@ def svg_document(drawing: Drawing) -> str:
 
     groups: dict[str, list[str]] = {}
     for layer, shape in drawing.items:
+        if isinstance(shape, Text):
+            x, y = shape.position
+            groups.setdefault(layer, []).append(
+                f'<text x="{_num(x - left)}" y="{_num(top - y)}" font-size="{_num(shape.height)}" '
+                f'font-family="sans-serif" stroke="none" fill="currentColor" '
+                f'transform="rotate({_num(-shape.angle)} {_num(x - left)} {_num(top - y)})">{escape(shape.text)}</text>')
+            continue
+        if isinstance(shape, Polyline):
+            groups.setdefault(layer, []).append(
+                f'<path d="{_path(Contour(shape.vertices, np.append(shape.bulges, 0.0)), pt, closed=False)}"/>')
+            continue
         if isinstance(shape, Circle):
             cx, cy = shape.centre
             groups.setdefault(layer, []).append(
@@ -50,7 +63,7 @@ def svg_document(drawing: Drawing) -> str:
     body = []
     for layer, items in groups.items():
         colour = LAYER_RGB.get(layer, "#000000")
-        body.append(f'<g id="{layer}" fill="none" stroke="{colour}" stroke-width="{HAIRLINE_MM}">')
+        body.append(f'<g id="{layer}" fill="none" stroke="{colour}" color="{colour}" stroke-width="{HAIRLINE_MM}">')
         body.extend(f"  {item}" for item in items)
         body.append("</g>")
     return ("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -59,19 +72,20 @@ def svg_document(drawing: Drawing) -> str:
             + "\n".join(body) + "\n</svg>\n")
 
 
-def _path(contour: Contour, pt: Callable[[np.ndarray], str]) -> str:
+def _path(contour: Contour, pt: Callable[[np.ndarray], str], closed: bool = True) -> str:
     idx, _, radii, sweeps = contour.arcs()
     arcs = {int(i): (r, s) for i, r, s in zip(idx, radii, sweeps, strict=True)}
     v = contour.vertices
     parts = [f"M{pt(v[0])}"]
-    for i in range(len(v)):
+    for i in range(len(v) if closed else len(v) - 1):
         end = v[(i + 1) % len(v)]
         if i in arcs:
             r, sweep = arcs[i]
             large = 1 if abs(sweep) > math.pi else 0
             flag = 0 if sweep > 0 else 1           # mirrored y: counter-clockwise becomes clockwise
             parts.append(f"A{_num(r)},{_num(r)} 0 {large} {flag} {pt(end)}")
-        elif i < len(v) - 1:
+        elif i < len(v) - 1:                       # a closed path's last line is drawn by Z
             parts.append(f"L{pt(end)}")
-    parts.append("Z")
+    if closed:
+        parts.append("Z")
     return " ".join(parts)
