@@ -65,7 +65,7 @@ def test_bolt_holes_and_engraving(tmp_path):
 
 
 def test_bolt_circle_outside_the_cam_is_refused():
-    with pytest.raises(DesignError, match="hub.bolt_circle: a hole reaches the cam's outline"):
+    with pytest.raises(DesignError, match=r"hub\.bolt_circle: a hole reaches the cam's outline"):
         design_cam(template({**BASE, "cam.bore": 12.0, "hub.bolt_circle": 80.0, "hub.bolt_holes": 3,
                              "hub.bolt_hole_diameter": 4.0}))
 

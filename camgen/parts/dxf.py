@@ -15,6 +15,7 @@ ezdxf is imported here only (0.4 s).
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
@@ -48,7 +49,7 @@ def _pieces(msp: Any, contour: Contour, attribs: dict, closed: bool = True) -> N
 def _open_line(msp: Any, line: Polyline, attribs: dict, version: str, flavour: str, tolerance: float) -> None:
     if flavour == "segments":
         pts = line.flatten(tolerance)
-        for a, b in zip(pts[:-1], pts[1:], strict=True):
+        for a, b in pairwise(pts):
             msp.add_line(tuple(a), tuple(b), dxfattribs=attribs)
     elif flavour == "lines-arcs":
         _pieces(msp, Contour(line.vertices, np.append(line.bulges, 0.0)), attribs, closed=False)

@@ -63,7 +63,8 @@ def svg_document(drawing: Drawing) -> str:
     body = []
     for layer, items in groups.items():
         colour = LAYER_RGB.get(layer, "#000000")
-        body.append(f'<g id="{layer}" fill="none" stroke="{colour}" color="{colour}" stroke-width="{HAIRLINE_MM}">')
+        body.append(f'<g id="{layer}" fill="none" stroke="{colour}" color="{colour}" '
+                    f'stroke-width="{HAIRLINE_MM}">')
         body.extend(f"  {item}" for item in items)
         body.append("</g>")
     return ("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
