@@ -48,7 +48,8 @@ def svg_document(drawing: Drawing) -> str:
             groups.setdefault(layer, []).append(
                 f'<text x="{_num(x - left)}" y="{_num(top - y)}" font-size="{_num(shape.height)}" '
                 f'font-family="sans-serif" stroke="none" fill="currentColor" '
-                f'transform="rotate({_num(-shape.angle)} {_num(x - left)} {_num(top - y)})">{escape(shape.text)}</text>')
+                f'transform="rotate({_num(-shape.angle)} {_num(x - left)} {_num(top - y)})">'
+                f'{escape(shape.text)}</text>')
             continue
         if isinstance(shape, Polyline):
             groups.setdefault(layer, []).append(
