@@ -106,7 +106,7 @@ def _meshlab(path: Path) -> dict:
 
 
 def test_pymeshlab_finds_a_closed_two_manifold_of_our_volume(files):
-    out, design = files
+    out, _ = files
     m = _meshlab(out / "rdrd.stl")
     assert m["manifold"] and m["boundary_edges"] == 0 and m["self_intersecting"] == 0
     import trimesh
@@ -131,7 +131,7 @@ def _admesh(path: Path) -> dict:
 
 
 def test_admesh_exact_check(files):
-    out, design = files
+    out, _ = files
     stats = _admesh(out / "rdrd.stl")
     assert all(stats[k] == 0 for k in stats if k != "volume"), stats
     import trimesh
@@ -228,22 +228,25 @@ def _librecad_extent(dxf: Path, tmp: Path) -> tuple[float, float]:
     return (x1 - x0) / 50 * 25.4, (y1 - y0) / 50 * 25.4
 
 
+def _true_size(dxf: Path, ring: np.ndarray, tmp: Path) -> bool:
+    width, height = _librecad_extent(dxf, tmp)
+    # a pixel at 50 dpi is 0.5 mm
+    return abs(width - np.ptp(ring[:, 0])) <= 1.5 and abs(height - np.ptp(ring[:, 1])) <= 1.5
+
+
 def test_librecad_prints_the_drawing_at_its_true_size(files, tmp_path):
     out, design = files
-    ring = design.cut[1].outline.flatten(1e-3)
-    width, height = _librecad_extent(out / "rdrd.dxf", tmp_path)
-    assert width == pytest.approx(np.ptp(ring[:, 0]), abs=1.5)        # a pixel at 50 dpi is 0.5 mm
-    assert height == pytest.approx(np.ptp(ring[:, 1]), abs=1.5)
+    assert _true_size(out / "rdrd.dxf", design.cut[1].outline.flatten(1e-3), tmp_path)
 
 
-def test_librecad_check_sees_a_wrong_size(files, tmp_path):
-    """The same measurement on a drawing declared in metres comes out 1000 times off: the check can fail."""
+def test_librecad_size_check_rejects_a_drawing_in_the_wrong_unit(files, tmp_path):
+    """Our outline written in centimetres by mistake: LibreCAD prints it a tenth of the size, and the check says so."""
     import ezdxf
 
+    _, design = files
+    ring = design.cut[1].outline.flatten(1e-3)
     doc = ezdxf.new("R2010")
     doc.units = ezdxf.units.MM
-    doc.modelspace().add_lwpolyline([(0, 0), (100, 0), (100, 60), (0, 60)], close=True)
-    doc.saveas(tmp_path / "box.dxf")
-    width, height = _librecad_extent(tmp_path / "box.dxf", tmp_path)
-    assert (width, height) == (pytest.approx(100, abs=1.5), pytest.approx(60, abs=1.5))
-    assert not (width == pytest.approx(200, abs=1.5))
+    doc.modelspace().add_lwpolyline((ring / 10).tolist(), close=True)
+    doc.saveas(tmp_path / "cm.dxf")
+    assert not _true_size(tmp_path / "cm.dxf", ring, tmp_path)

@@ -9,7 +9,7 @@ import json
 import os
 import sys
 
-import FreeCAD  # noqa: F401 - FreeCAD's modules, present only inside freecadcmd
+import FreeCAD  # FreeCAD's modules, present only inside freecadcmd
 import Import
 import Part
 
@@ -42,8 +42,8 @@ def main():
     areas = sorted(found["wires"])
     wanted = sorted(expect["areas"])          # [area, allowed difference] pairs, mm^2
     ok = (not found["problems"] and len(areas) == len(wanted)
-          and all(abs(a - b) <= tol for a, (b, tol) in zip(areas, wanted))
-          and all(abs(a - b) <= expect["box_tol"] for a, b in zip(found["box"], expect["box"])))
+          and all(abs(a - b) <= tol for a, (b, tol) in zip(areas, wanted, strict=True))
+          and all(abs(a - b) <= expect["box_tol"] for a, b in zip(found["box"], expect["box"], strict=True)))
     print(json.dumps(found))
     return 0 if ok else 1
 
