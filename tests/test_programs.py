@@ -40,6 +40,7 @@ def files(tmp_path_factory):
     for flavour in ("lines-arcs", "segments"):
         d = design_cam(template({**HUB, "output.formats": ["dxf"], "output.dxf": flavour}))
         write_cam(d, out / flavour)
+    write_cam(design_cam(template({**HUB, "output.formats": ["dxf"], "output.dxf_version": "R12"})), out / "R12")
     import ezdxf
     import trimesh
 
@@ -78,7 +79,7 @@ def _freecad(dxf: Path, expect: dict) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, timeout=300)
 
 
-@pytest.mark.parametrize("flavour", ["polyline-bulge", "lines-arcs", "segments"])
+@pytest.mark.parametrize("flavour", ["polyline-bulge", "lines-arcs", "segments", "R12"])
 def test_freecad_imports_every_dxf_as_closed_valid_faces(files, flavour):
     out, design = files
     path = out / "rdrd.dxf" if flavour == "polyline-bulge" else out / flavour / "rdrd.dxf"
