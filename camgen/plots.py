@@ -128,3 +128,26 @@ def cam_figure(design: CamDesign) -> Any:
     what = "plate cam; θ spreads over the travel" if cam.is_plate else f"cam at θ = 0 ({t.cam.rotation})"
     ax.set_title(f"{t.name}: {what}, {t.follower.type} follower")
     return fig
+
+
+def drawing_figure(drawing: Any, title: str, tolerance: float = 0.05) -> Any:
+    """Any drawing, one colour per layer (paths dashed), equal axes in mm."""
+    fig = figure(9, 7)
+    ax = fig.add_subplot()
+    colours: dict[str, str] = {}
+    for layer, shape in drawing.items:
+        colour = colours.setdefault(layer, f"C{len(colours) % 10}")
+        pts = shape.flatten(tolerance)
+        closed = not hasattr(shape, "text") and type(shape).__name__ != "Polyline"
+        if closed:
+            pts = np.vstack([pts, pts[:1]])
+        ax.plot(pts[:, 0], pts[:, 1], "--" if layer == "PATH" else "-", color=colour, lw=1,
+                label=layer if list(colours).index(layer) == len(colours) - 1 and colours[layer] == colour
+                and not any(line.get_label() == layer for line in ax.lines) else None)
+    ax.set_aspect("equal")
+    ax.grid(alpha=0.3)
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    fig.legend(loc="outside lower center", ncols=3, fontsize=8)
+    ax.set_title(title)
+    return fig

@@ -50,6 +50,29 @@ def analyze(template: Path, angle: float | None, method: str, as_json: bool, out
         click.echo(f"wrote {directory / name}")
 
 
+@main.command()
+@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
+              help="Output folder (default: out/<name>/).")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a template field.")
+@user_errors
+def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
+    """Make the parts of the linkage in TEMPLATE: cut sheet, assembly drawing, meshes and the report."""
+    from linkgen.analyze import analyze as run
+    from linkgen.build import build_parts
+    from linkgen.outputs import write_analysis
+    from linkgen.spec import load_linkage
+
+    spec = load_linkage(template, overrides)
+    built = build_parts(spec)
+    directory = output if output is not None else Path("out") / spec.name
+    files = write_analysis(spec, run(spec), directory, built)
+    order = sorted(built.layers, key=lambda k: built.layers[k])
+    click.echo(f"{spec.name}: {len(built.parts)} parts; layers from the bottom: {', '.join(order)}")
+    for name in files.values():
+        click.echo(f"wrote {directory / name}")
+
+
 def _print_text(r: dict[str, Any]) -> None:
     out = click.echo
     out(f"{r['name']}: {r['type']}, lengths {r['lengths_mm']}")

@@ -5,18 +5,24 @@ import math
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
+from camgen.errors import ExportError
 from camgen.parts.files import staged
 from camgen.report import report_json
 from linkgen.analyze import build_linkage
 from linkgen.fourbar import FourBar
 
 
-def write_analysis(template: Any, report: dict[str, Any], directory: str | Path) -> dict[str, str]:
-    """Write the files ``output.formats`` asks for; return their names by kind."""
+def write_analysis(template: Any, report: dict[str, Any], directory: str | Path,
+                   build: Any = None) -> dict[str, str]:
+    """Write the files ``output.formats`` asks for (with ``build``, the parts too); return their names by kind."""
     formats = set(template.output.formats)
     name, spec = template.name, template.linkage
     files: dict[str, str] = {}
     with staged(directory) as stage:
+        if build is not None:
+            report = {**report, **_write_parts(stage, template, build, formats, files)}
         plots = [f for f in ("png", "svg") if f in formats]
         if plots:
             from linkgen import plots as lp
@@ -38,3 +44,59 @@ def write_analysis(template: Any, report: dict[str, Any], directory: str | Path)
             stage.write(f"{name}.json", lambda p: p.write_text(report_json({**report, "files": files}),
                                                                   encoding="utf-8"))
     return files
+
+
+def _write_parts(stage: Any, template: Any, build: Any, formats: set, files: dict[str, str]) -> dict[str, Any]:
+    """Sheet and assembly drawings, a mesh per part, an optional pin; returns the report's parts section."""
+    from camgen.parts.dxf import write_dxf
+    from camgen.parts.svg import svg_document
+
+    name, table = template.name, template.parts
+    tol = table.tolerance
+    for kind, drawing in (("sheet", build.sheet), ("assembly", build.assembly)):
+        if "dxf" in formats:
+            files[f"{kind}_dxf"] = stage.write(f"{name}-{kind}.dxf", lambda p, d=drawing: write_dxf(
+                d, p, tolerance=tol)).name
+        if "svg" in formats:
+            files[f"{kind}_svg"] = stage.write(f"{name}-{kind}.svg", lambda p, d=drawing: p.write_text(
+                svg_document(d), encoding="utf-8")).name
+    if "png" in formats:
+        from camgen.plots import drawing_figure
+
+        fig = drawing_figure(build.assembly, f"{name}: assembly at the dead centres, with the path")
+        files["assembly_png"] = stage.write(f"{name}-assembly.png", lambda p: fig.savefig(p, format="png",
+                                                                                         dpi=120)).name
+    parts_report = []
+    if formats & {"stl", "3mf"}:
+        from camgen.parts.mesh import extrude, pin
+        from camgen.parts.stl import check_mesh, stl_bytes
+        from camgen.parts.threemf import threemf_bytes
+
+        meshes = [(part.name, extrude(part)) for part in build.printed]
+        if table.pins:
+            top = max(build.layers.values()) + 1
+            meshes.append(("pin", pin(table.pin_diameter, top * table.thickness + 1.0, tol)))
+        for part_name, mesh in meshes:
+            check = check_mesh(mesh)
+            if not check.ok:
+                raise ExportError(f"{name}-{part_name}: the mesh is not a closed outward solid")
+            if "stl" in formats:
+                files[f"{part_name}_stl"] = stage.write_bytes(f"{name}-{part_name}.stl", stl_bytes(mesh)).name
+            if "3mf" in formats:
+                files[f"{part_name}_3mf"] = stage.write_bytes(f"{name}-{part_name}.3mf", threemf_bytes(mesh)).name
+    spec = build.spec
+    for link in build.parts:
+        holes = [{"x_mm": round(c[0], 9), "y_mm": round(c[1], 9)} for c in link.centres]
+        entry = {"name": link.name, "layer": build.layers[link.name], "holes": holes,
+                 "width_mm": 2 * link.half_width, "thickness_mm": spec.thickness,
+                 "cut_hole_diameter_mm": spec.pin_diameter + spec.clearance - spec.kerf,
+                 "printed_hole_diameter_mm": spec.pin_diameter + spec.clearance}
+        if len(link.centres) >= 2:
+            entry["hole_distance_mm"] = float(np.linalg.norm(link.centres[1] - link.centres[0]))
+        parts_report.append(entry)
+    order = sorted(build.layers, key=lambda k: build.layers[k])
+    return {"parts": parts_report, "layer_order": order, "layers": dict(build.layers),
+            "allowances": {"kerf_mm": spec.kerf, "clearance_mm": spec.clearance,
+                           "cut_holes": "pin + clearance - kerf", "cut_outlines": "grown by kerf / 2",
+                           "printed_holes": "pin + clearance"},
+            "assembly_layers": [f"DC{i + 1}-{k}" for i, (k, _) in enumerate(build.positions)]}

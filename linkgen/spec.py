@@ -17,7 +17,7 @@ from camgen.templates import NAME_PATTERN, Model, read_toml, unit, validate
 
 LINKAGE_TYPES = ("four-bar", "slider-crank", "scotch-yoke", "whitworth", "crank-shaper",
                  "chebyshev", "hoekens", "roberts", "watt")
-FORMATS = ("json", "png", "svg")
+FORMATS = ("json", "png", "svg", "dxf", "stl", "3mf")
 
 
 def _length(description: str) -> Any:
@@ -85,10 +85,40 @@ class LinkOutputSpec(Model):
                                                   description="files to write")
 
 
+class LinkOverride(Model):
+    width: float = Field(gt=0, description="this link's width", json_schema_extra=unit("mm"))
+
+
+class PartsTableSpec(Model):
+    """Parts to cut and print (``linkgen build``)."""
+
+    width: float = _length("bar width")
+    thickness: float = _length("plate thickness")
+    pin_diameter: float = _length("pin diameter")
+    clearance: float = Field(0.2, ge=0, description="pin clearance: holes are pin + clearance",
+                             json_schema_extra=unit("mm"))
+    kerf: float = Field(0.0, ge=0, description="laser kerf: cut holes shrink by it, outlines grow by half",
+                        json_schema_extra=unit("mm"))
+    margin: float = Field(3.0, ge=0, description="sheet: gap between parts beyond the kerf",
+                          json_schema_extra=unit("mm"))
+    sheet: tuple[float, float] = Field((600.0, 400.0), description="sheet width and height",
+                                       json_schema_extra=unit("mm"))
+    pins: bool = Field(False, description="also write a printable pin (cylinder with a head)")
+    tolerance: float = Field(0.01, ge=1e-6, le=1, description="chord tolerance of meshes and sheets",
+                             json_schema_extra=unit("mm"))
+    ground: LinkOverride | None = None
+    crank: LinkOverride | None = None
+    coupler: LinkOverride | None = None
+    rocker: LinkOverride | None = None
+    rod: LinkOverride | None = None
+    slider: LinkOverride | None = None
+
+
 def _template(spec: type[Model]) -> type[Model]:
     class Template(Model):
         name: str = Field(pattern=NAME_PATTERN, description="linkage name, used for file names")
         linkage: spec  # type: ignore[valid-type]
+        parts: PartsTableSpec | None = None
         output: LinkOutputSpec = LinkOutputSpec()
 
     Template.__name__ = f"{spec.__name__}Template"

@@ -71,6 +71,20 @@ class Contour:
         radius = chord[idx] / (2.0 * np.abs(np.sin(angle[idx] / 2.0)))
         return idx, centre[idx], radius, angle[idx]
 
+    def bounds(self) -> tuple[float, float, float, float]:
+        """Exact (xmin, ymin, xmax, ymax) in mm: the vertices and the extreme points of the arcs."""
+        pts = [self.vertices]
+        p = self.vertices
+        for i, centre, radius, sweep in zip(*self.arcs(), strict=True):
+            start = math.atan2(p[i][1] - centre[1], p[i][0] - centre[0])
+            for k in range(-4, 9):                      # axis directions 0, 90, 180, 270 degrees, any turn
+                angle = k * math.pi / 2
+                off = (angle - start) if sweep > 0 else (start - angle)
+                if 0 < off < abs(sweep):
+                    pts.append(centre + radius * np.array([[math.cos(angle), math.sin(angle)]]))
+        allp = np.vstack(pts)
+        return float(allp[:, 0].min()), float(allp[:, 1].min()), float(allp[:, 0].max()), float(allp[:, 1].max())
+
     @property
     def area(self) -> float:
         """Signed area (mm^2, counter-clockwise positive), exact for the arcs."""

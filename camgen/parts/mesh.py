@@ -56,3 +56,14 @@ def extrude(part: Part) -> Mesh:
         raise ExportError(f"{part.name}: could not build a solid ({solid.status()})")
     mesh = solid.to_mesh()
     return Mesh(np.asarray(mesh.vert_properties)[:, :3].astype(float), np.asarray(mesh.tri_verts, dtype=np.int64))
+
+
+def pin(diameter: float, length: float, tolerance: float) -> Mesh:
+    """A pin: a shank of ``diameter`` and ``length`` (mm) under a head 1.8 x as wide and half a diameter high."""
+    import manifold3d
+
+    r, head = diameter / 2, 0.9 * diameter
+    shank = manifold3d.Manifold.cylinder(length, r, r, arc_steps(r, 2 * np.pi, tolerance))
+    cap = manifold3d.Manifold.cylinder(diameter / 2, head, head, arc_steps(head, 2 * np.pi, tolerance))
+    mesh = (shank + cap.translate((0.0, 0.0, length))).to_mesh()
+    return Mesh(np.asarray(mesh.vert_properties)[:, :3].astype(float), np.asarray(mesh.tri_verts, dtype=np.int64))
