@@ -33,6 +33,13 @@ def test_every_linkage_key_is_documented():
             assert f"| `linkage.{key}` |" in README, f"linkage.{key} is not in the README's linkgen key table"
 
 
+def test_every_parts_key_is_documented():
+    from linkgen.spec import PartsTableSpec
+
+    for key in PartsTableSpec.model_fields:
+        assert f"`parts.{key}`" in README, f"parts.{key} is not in the README"
+
+
 def test_python_example_runs(tmp_path, monkeypatch):
     code = re.findall(r"```python\n(.*?)```", README, re.S)[0]
     (tmp_path / "templates").mkdir()
