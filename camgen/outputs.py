@@ -51,13 +51,13 @@ def write_cam(design: CamDesign, directory: str | Path) -> dict[str, Any]:
                 files["3mf"] = stage.write_bytes(f"{name}.3mf", threemf_bytes(mesh)).name
         plot_formats = [f for f in ("png", "svg") if f in formats]
         if plot_formats:
-            from camgen.plots import cam_figure, svaj_figure
+            from camgen.plots import cam_figure, save, svaj_figure
 
             for kind, make in (("svaj", svaj_figure), ("cam", cam_figure)):
                 fig = make(design)
                 for fmt in plot_formats:
                     files[f"{kind}_{fmt}"] = stage.write(
-                        f"{name}-{kind}.{fmt}", lambda p, fig=fig, fmt=fmt: fig.savefig(p, format=fmt, dpi=120)).name
+                        f"{name}-{kind}.{fmt}", lambda p, fig=fig, fmt=fmt: save(fig, p, fmt)).name
         report = cam_report(design, mesh_check, files)
         if "json" in formats:
             files["json"] = f"{name}.json"

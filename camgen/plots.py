@@ -28,6 +28,14 @@ def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarr
     return np.concatenate(thetas), np.concatenate(motions, axis=1)
 
 
+def save(fig: Any, path: Any, fmt: str) -> None:
+    """Save a figure reproducibly: no date in the metadata, fixed SVG ids."""
+    import matplotlib
+
+    with matplotlib.rc_context({"svg.hashsalt": "camgen"}):
+        fig.savefig(path, format=fmt, dpi=120, metadata={"Date": None} if fmt == "svg" else None)
+
+
 def figure(width: float, height: float) -> Any:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure

@@ -25,6 +25,7 @@ def write_analysis(template: Any, report: dict[str, Any], directory: str | Path,
             report = {**report, **_write_parts(stage, template, build, formats, files)}
         plots = [f for f in ("png", "svg") if f in formats]
         if plots:
+            from camgen.plots import save
             from linkgen import plots as lp
 
             mech = build_linkage(spec)
@@ -38,7 +39,7 @@ def write_analysis(template: Any, report: dict[str, Any], directory: str | Path,
             for kind, fig in figures.items():
                 for fmt in plots:
                     files[f"{kind}_{fmt}"] = stage.write(
-                        f"{name}-{kind}.{fmt}", lambda p, fig=fig, fmt=fmt: fig.savefig(p, format=fmt, dpi=120)).name
+                        f"{name}-{kind}.{fmt}", lambda p, fig=fig, fmt=fmt: save(fig, p, fmt)).name
         if "json" in formats:
             files["json"] = f"{name}.json"
             stage.write(f"{name}.json", lambda p: p.write_text(report_json({**report, "files": files}),
@@ -61,11 +62,10 @@ def _write_parts(stage: Any, template: Any, build: Any, formats: set, files: dic
             files[f"{kind}_svg"] = stage.write(f"{name}-{kind}.svg", lambda p, d=drawing: p.write_text(
                 svg_document(d), encoding="utf-8")).name
     if "png" in formats:
-        from camgen.plots import drawing_figure
+        from camgen.plots import drawing_figure, save
 
         fig = drawing_figure(build.assembly, f"{name}: assembly at the dead centres, with the path")
-        files["assembly_png"] = stage.write(f"{name}-assembly.png", lambda p: fig.savefig(p, format="png",
-                                                                                         dpi=120)).name
+        files["assembly_png"] = stage.write(f"{name}-assembly.png", lambda p: save(fig, p, "png")).name
     parts_report = []
     if formats & {"stl", "3mf"}:
         from camgen.parts.mesh import extrude, pin

@@ -140,3 +140,24 @@ def test_3mf_is_a_watertight_solid_of_the_right_volume(tmp_path):
     mesh = trimesh.load(tmp_path / "rdrd.3mf", force="mesh")
     assert mesh.is_watertight and mesh.is_winding_consistent
     assert mesh.volume == pytest.approx(design.printed.area * 8.0, rel=1e-3)
+
+
+def test_every_file_is_reproducible_across_processes(tmp_path):
+    """The same template gives the same bytes in two processes with different string-hash seeds
+    (no dates, GUIDs or set orders leak into DXF, SVG, STL, 3MF, PNG or JSON)."""
+    import os
+    import sys
+
+    from tests.conftest import ROOT
+
+    outs = []
+    for seed in ("1", "2"):
+        out = tmp_path / seed
+        env = {**os.environ, "PYTHONHASHSEED": seed}
+        subprocess.run([sys.executable, "-m", "camgen", "build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(out)],
+                       env=env, check=True, capture_output=True, timeout=300)
+        outs.append(out)
+    names = sorted(p.name for p in outs[0].iterdir())
+    assert names == sorted(p.name for p in outs[1].iterdir()) and len(names) == 9
+    for name in names:
+        assert (outs[0] / name).read_bytes() == (outs[1] / name).read_bytes(), name

@@ -14,6 +14,7 @@ ezdxf is imported here only (0.4 s).
 """
 from __future__ import annotations
 
+import io
 import math
 from itertools import pairwise
 from pathlib import Path
@@ -108,15 +109,38 @@ def dxf_document(drawing: Drawing, version: str = "R2010", flavour: str = "polyl
     return doc
 
 
+def _sorted_classes(text: str) -> str:
+    """The CLASSES section's records sorted by class name.
+
+    ezdxf adds a CLASS for each entity type in use by iterating a set, whose order
+    follows Python's per-process string hashing; the records are independent, so
+    sorting them makes the same drawing give the same bytes in every process.
+    """
+    head, sep, rest = text.partition("  0\nSECTION\n  2\nCLASSES\n")
+    if not sep:
+        return text
+    body, end, tail = rest.partition("  0\nENDSEC\n")
+    records = ["  0\nCLASS\n" + r for r in body.split("  0\nCLASS\n") if r]
+    return head + sep + "".join(sorted(records, key=lambda r: r.split("\n")[3])) + end + tail
+
+
 def write_dxf(drawing: Drawing, path: Path, version: str = "R2010", flavour: str = "polyline-bulge",
               tolerance: float = 0.01) -> None:
     """Write ``drawing`` to ``path`` as DXF."""
     import logging
 
+    import ezdxf
+
     log = logging.getLogger("ezdxf")
-    level = log.level
+    level, fixed = log.level, ezdxf.options.write_fixed_meta_data_for_testing
     log.setLevel(logging.ERROR)           # R12 has no units header; ezdxf's notice of it is not the user's concern
+    # fixed dates and GUIDs: the same drawing always gives the same bytes (reproducible builds and families)
+    ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
-        dxf_document(drawing, version, flavour, tolerance).saveas(path)
+        doc = dxf_document(drawing, version, flavour, tolerance)
+        stream = io.StringIO()
+        doc.write(stream)
+        path.write_text(_sorted_classes(stream.getvalue()), encoding=doc.output_encoding, errors="replace")
     finally:
         log.setLevel(level)
+        ezdxf.options.write_fixed_meta_data_for_testing = fixed

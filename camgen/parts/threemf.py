@@ -1,10 +1,33 @@
 """The project's one 3MF writer (via trimesh; millimetres, 3MF's default unit)."""
 from __future__ import annotations
 
+import hashlib
+import itertools
+import re
+import uuid
+
 from camgen.parts.mesh import Mesh
 from camgen.parts.stl import trimesh_of
 
 
 def threemf_bytes(mesh: Mesh) -> bytes:
-    """``mesh`` as a 3MF package."""
-    return trimesh_of(mesh).export(file_type="3mf")
+    """``mesh`` as a 3MF package, repacked with fixed entry dates so the same mesh gives the same bytes."""
+    import io
+    import zipfile
+
+    raw = zipfile.ZipFile(io.BytesIO(trimesh_of(mesh).export(file_type="3mf")))
+    digest = hashlib.sha256(mesh.vertices.tobytes() + mesh.faces.tobytes()).hexdigest()
+    count = itertools.count()
+
+    def fixed(_: re.Match) -> str:     # trimesh draws random object UUIDs: derive them from the mesh instead
+        return f'UUID="{uuid.uuid5(uuid.NAMESPACE_URL, f"camgen:{digest}:{next(count)}")}"'
+
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as package:
+        for name in sorted(raw.namelist()):
+            data = raw.read(name)
+            if name.endswith(".model"):
+                data = re.sub(r'UUID="[0-9a-fA-F-]+"', fixed, data.decode("utf-8")).encode("utf-8")
+            package.writestr(zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0)), data,
+                             compress_type=zipfile.ZIP_DEFLATED)
+    return out.getvalue()
