@@ -97,6 +97,38 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
 
 
 @main.command()
+@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
+              help="Folder of the family: one sub-folder a member, summary.csv, summary.json, overview.png.")
+@click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True, help="Processes to build with.")
+@user_errors
+def family(template: Path, output: Path, jobs: int) -> None:
+    """Build every member of the family a TEMPLATE's [sweep] table describes; re-running resumes."""
+    from camgen.family import check_all, members, read_family, run_family, write_summary
+    from camgen.outputs import build_member
+    from camgen.plots import overview_png
+    from camgen.spec import validate_template
+
+    raw, sweep = read_family(template)
+    items = members(raw, sweep)
+    check_all(items, validate_template)
+    rows = run_family(items, output, build_member, jobs)
+    keys = [k for k, _ in items[0].values]
+    write_summary(rows, output, keys, overview_png(rows, f"{raw.get('name')}: {len(rows)} members"))
+    report_family(rows, output)
+
+
+def report_family(rows: list[dict], output: Path) -> None:
+    ok = sum(r["status"] == "ok" for r in rows)
+    reused = sum(bool(r.get("reused")) for r in rows)
+    click.echo(f"{len(rows)} members: {ok} built, {len(rows) - ok} failed ({reused} already there); "
+               f"summary in {output / 'summary.csv'}")
+    for r in rows:
+        if r["status"] != "ok":
+            click.echo(f"failed {r['name']}: {r['error']}")
+
+
+@main.command()
 @click.option("--json", "as_json", is_flag=True, help="Print the table as JSON.")
 def laws(as_json: bool) -> None:
     """Compare the motion laws for lift h = 1 over beta = 1 rad: peak velocity, acceleration, jerk."""

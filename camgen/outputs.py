@@ -64,3 +64,17 @@ def write_cam(design: CamDesign, directory: str | Path) -> dict[str, Any]:
             report["files"] = dict(files)
             stage.write(f"{name}.json", lambda p: p.write_text(report_json(report), encoding="utf-8"))
     return report
+
+
+def build_member(raw: dict, folder: Path) -> dict[str, Any]:
+    """Build one family member from its raw template into ``folder``; its summary figures and a thumbnail."""
+    from camgen.design import design_cam
+    from camgen.spec import validate_template
+
+    design = design_cam(validate_template(raw))
+    report = write_cam(design, folder)
+    ring = design.outline.contour.flatten(max(design.template.output.tolerance, 0.2))
+    return {"pressure_angle_max_deg": report["pressure_angle_max_deg"],
+            "profile_rho_min_mm": report["profile_rho_min_mm"], "undercut": report["undercut"],
+            "outline_vertices": report["outline_vertices"], "outline_max_error_mm": report["outline_max_error_mm"],
+            "files": " ".join(sorted(report["files"].values())), "thumbnail": ring.round(3).tolist()}

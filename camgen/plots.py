@@ -159,3 +159,27 @@ def drawing_figure(drawing: Any, title: str, tolerance: float = 0.05) -> Any:
     fig.legend(loc="outside lower center", ncols=3, fontsize=8)
     ax.set_title(title)
     return fig
+
+
+def overview_png(rows: list[dict], title: str) -> bytes:
+    """A grid of the members' outlines (their thumbnails), failed members shown as their names."""
+    import io
+
+    n = max(1, len(rows))
+    cols = min(8, n)
+    grid = math.ceil(n / cols)
+    fig = figure(1.6 * cols, 1.7 * grid + 0.4)
+    for k, row in enumerate(rows):
+        ax = fig.add_subplot(grid, cols, k + 1)
+        ax.set_axis_off()
+        ax.set_title(row["name"], fontsize=5)
+        if row.get("thumbnail"):
+            ring = np.array(row["thumbnail"])
+            ax.fill(ring[:, 0], ring[:, 1], color="0.85", ec="k", lw=0.5)
+            ax.set_aspect("equal")
+        else:
+            ax.text(0.5, 0.5, "failed", color="C3", ha="center", va="center", fontsize=7, transform=ax.transAxes)
+    fig.suptitle(title, fontsize=9)
+    out = io.BytesIO()
+    save(fig, out, "png")
+    return out.getvalue()

@@ -73,6 +73,27 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
         click.echo(f"wrote {directory / name}")
 
 
+@main.command()
+@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
+              help="Folder of the family: one sub-folder a member, summary.csv and summary.json.")
+@click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True, help="Processes to build with.")
+@user_errors
+def family(template: Path, output: Path, jobs: int) -> None:
+    """Analyse (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes."""
+    from camgen.cli import report_family
+    from camgen.family import check_all, members, read_family, run_family, write_summary
+    from linkgen.outputs import build_member
+    from linkgen.spec import validate_linkage
+
+    raw, sweep = read_family(template)
+    items = members(raw, sweep)
+    check_all(items, validate_linkage)
+    rows = run_family(items, output, build_member, jobs)
+    write_summary(rows, output, [k for k, _ in items[0].values])
+    report_family(rows, output)
+
+
 def _print_text(r: dict[str, Any]) -> None:
     out = click.echo
     out(f"{r['name']}: {r['type']}, lengths {r['lengths_mm']}")

@@ -100,3 +100,18 @@ def _write_parts(stage: Any, template: Any, build: Any, formats: set, files: dic
                            "cut_holes": "pin + clearance - kerf", "cut_outlines": "grown by kerf / 2",
                            "printed_holes": "pin + clearance"},
             "assembly_layers": [f"DC{i + 1}-{k}" for i, (k, _) in enumerate(build.positions)]}
+
+
+def build_member(raw: dict, folder: Path) -> dict[str, Any]:
+    """Analyse one family member (and make its parts when it has a [parts] table) into ``folder``."""
+    from linkgen.analyze import analyze
+    from linkgen.build import build_parts
+    from linkgen.spec import validate_linkage
+
+    spec = validate_linkage(raw)
+    report = analyze(spec)
+    built = build_parts(spec) if spec.parts is not None else None
+    files = write_analysis(spec, report, folder, built)
+    keep = ("grashof_class", "inversion", "transmission_min_deg", "transmission_max_deg", "time_ratio",
+            "stroke_mm", "input_range_deg")
+    return {**{k: report[k] for k in keep if k in report}, "files": " ".join(sorted(files.values()))}

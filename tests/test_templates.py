@@ -12,9 +12,30 @@ from tests.conftest import ROOT
 TEMPLATES = sorted((ROOT / "templates").glob("*.toml"))
 
 
-@pytest.mark.parametrize("path", TEMPLATES, ids=lambda p: p.name)
+def _is_linkage(path) -> bool:
+    from camgen.family import read_family
+
+    raw, _ = read_family(path)
+    return "linkage" in raw
+
+
+@pytest.mark.parametrize("path", [p for p in TEMPLATES if "sweep" in tomllib.loads(p.read_text())],
+                         ids=lambda p: p.name)
+def test_bundled_family(path, tmp_path):
+    from camgen.cli import main as camgen
+    from linkgen.cli import main as linkgen
+
+    main = linkgen if _is_linkage(path) else camgen
+    result = CliRunner().invoke(main, ["family", str(path), "-o", str(tmp_path), "--jobs", "2"])
+    assert result.exit_code == 0, result.output
+    rows = json.loads((tmp_path / "summary.json").read_text())
+    assert rows and all(r["status"] == "ok" for r in rows)
+
+
+@pytest.mark.parametrize("path", [p for p in TEMPLATES if "sweep" not in tomllib.loads(p.read_text())],
+                         ids=lambda p: p.name)
 def test_bundled_template(path, tmp_path):
-    is_linkage = "linkage" in tomllib.loads(path.read_text())
+    is_linkage = _is_linkage(path)
     if is_linkage:
         from linkgen.cli import main
 

@@ -1,0 +1,126 @@
+"""Families: sweep expansion, parallel builds identical to serial ones, failures recorded, resuming, bad sweeps."""
+from __future__ import annotations
+
+import json
+import shutil
+
+import pytest
+from click.testing import CliRunner
+
+from camgen.cli import main
+from camgen.errors import SpecError
+from camgen.family import members, read_family
+from tests.conftest import ROOT
+
+RDRD = ROOT / "templates" / "rdrd.toml"
+
+
+def family_file(tmp_path, body: str, name: str = "fam.toml"):
+    path = tmp_path / name
+    shutil.copy(RDRD, tmp_path / "rdrd.toml")
+    path.write_text(f'base = "rdrd.toml"\nname = "fam"\n{body}')
+    return path
+
+
+def test_expansion_products_ranges_zips_and_names(tmp_path):
+    path = family_file(tmp_path, '[sweep]\n"follower.offset" = [0.0, 5.0]\n"follower.roller_radius" = '
+                                 '{start = 6, stop = 10, step = 2}\n[sweep.zip]\n"motion.0.lift" = [10, 20]\n'
+                                 '"motion.2.lift" = [10, 20]\n')
+    raw, sweep = read_family(path)
+    items = members(raw, sweep)
+    assert len(items) == 2 * 3 * 2
+    assert items[0].name == "fam-offset0-roller_radius6-0lift10-2lift10"
+    assert items[-1].name == "fam-offset5-roller_radius10-0lift20-2lift20"
+    assert len({m.name for m in items}) == len(items)
+    assert [m.name for m in members(*read_family(path))] == [m.name for m in items]       # stable
+    m = items[-1]
+    assert m.raw["follower"]["roller_radius"] == 10 and m.raw["motion"][2]["lift"] == 20
+    assert m.raw["cam"]["base_radius"] == 40.0                                            # from the base
+
+
+def test_base_includes_merge_tables_and_replace_lists(tmp_path):
+    family_file(tmp_path, "", name="mid.toml")
+    (tmp_path / "mid.toml").write_text('base = "rdrd.toml"\nname = "mid"\n[cam]\nbore = 6.0\n')
+    (tmp_path / "top.toml").write_text('base = "mid.toml"\n[cam]\nthickness = 5.0\n[sweep]\n"cam.bore" = [4, 6]\n')
+    raw, sweep = read_family(tmp_path / "top.toml")
+    assert (raw["name"], raw["cam"]["bore"], raw["cam"]["thickness"], raw["cam"]["base_radius"]) == \
+        ("mid", 6.0, 5.0, 40.0)
+    assert [m.raw["cam"]["bore"] for m in members(raw, sweep)] == [4, 6]
+
+
+@pytest.mark.parametrize("body, words", [
+    ('[sweep]\n"motion.0.lif" = [1, 2]\n', "member fam-lif1: motion[0].lif: unknown key"),
+    ('[sweep]\n"cam.base_radius" = [-1, 40]\n', "member fam-base_radius-1: cam.base_radius: must be > 0 mm"),
+    ('[sweep]\n"cam.bore" = {start = 5, stop = 1, step = 1}\n', "sweep.cam.bore: a range needs"),
+    ('[sweep.zip]\n"motion.0.lift" = [1, 2]\n"motion.2.lift" = [1]\n', "zipped lists must have equal lengths"),
+    ('[sweep]\n"cam.bore" = []\n', "sweep.cam.bore: needs at least one value"),
+])
+def test_bad_sweeps_are_clear_errors_before_any_work(tmp_path, body, words):
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["family", str(family_file(tmp_path, body)), "-o", str(out)])
+    assert result.exit_code == 2 and words in result.stderr
+    assert not out.exists()
+
+
+FIFTY = ('[output]\nformats = ["dxf", "json"]\n[sweep]\n"follower.offset" = [0.0, 2.0, 4.0, 6.0, 8.0]\n'
+         '[sweep.zip]\n"motion.0.lift" = {start = 3, stop = 30, step = 3}\n'
+         '"motion.2.lift" = {start = 3, stop = 30, step = 3}\n')
+
+
+def _files(root):
+    return {p.relative_to(root).as_posix(): p.read_bytes() for p in sorted(root.rglob("*")) if p.is_file()}
+
+
+def test_fifty_cams_with_two_jobs_match_one_job_byte_for_byte(tmp_path):
+    path = family_file(tmp_path, FIFTY)
+    for jobs in (1, 2):
+        result = CliRunner().invoke(main, ["family", str(path), "-o", str(tmp_path / f"j{jobs}"), "--jobs", str(jobs)])
+        assert result.exit_code == 0, result.output
+    one, two = _files(tmp_path / "j1"), _files(tmp_path / "j2")
+    assert len(json.loads(one["summary.json"])) == 50
+    assert one.keys() == two.keys() and all(one[k] == two[k] for k in one)
+
+
+def test_failing_members_are_recorded_and_the_others_built(tmp_path):
+    path = family_file(tmp_path, '[output]\nformats = ["json"]\n[sweep]\n"cam.base_radius" = [6, 40]\n'
+                                 '[sweep.zip]\n"motion.0.angle" = [40, 120]\n"motion.1.angle" = [140, 60]\n')
+    result = CliRunner().invoke(main, ["family", str(path), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    rows = {r["name"]: r for r in json.loads((tmp_path / "out" / "summary.json").read_text())}
+    failed = [r for r in rows.values() if r["status"] == "failed"]
+    assert failed and all(r["error"] for r in failed)
+    assert any("undercut" in r["error"] or "leaves no material" in r["error"] for r in failed)
+    assert sum(r["status"] == "ok" for r in rows.values()) >= 1
+    csv = (tmp_path / "out" / "summary.csv").read_text().splitlines()
+    assert csv[0].startswith("name,cam.base_radius,motion.0.angle,motion.1.angle,status,error")
+    assert len(csv) == 1 + len(rows)
+
+
+def test_an_interrupted_run_resumes_without_rebuilding_finished_members(tmp_path):
+    path = family_file(tmp_path, '[output]\nformats = ["dxf", "json"]\n[sweep]\n"follower.offset" = [0.0, 3.0, 6.0]\n')
+    out = tmp_path / "out"
+    assert CliRunner().invoke(main, ["family", str(path), "-o", str(out)]).exit_code == 0
+    done = sorted(p for p in out.iterdir() if p.is_dir())
+    stamps = {p: (p / f"{p.name}.dxf").stat().st_mtime_ns for p in done}
+    (done[1] / ".inputs").unlink()                    # as if the run was stopped before this member finished
+    result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert result.exit_code == 0 and "(2 already there)" in result.output
+    assert (done[0] / f"{done[0].name}.dxf").stat().st_mtime_ns == stamps[done[0]]
+    assert (done[2] / f"{done[2].name}.dxf").stat().st_mtime_ns == stamps[done[2]]
+    assert (done[1] / ".inputs").exists()
+    leftovers = [p for p in out.rglob(".*.tmp")]
+    assert leftovers == []                            # no half-written file anywhere
+
+
+def test_changed_inputs_rebuild(tmp_path):
+    path = family_file(tmp_path, '[output]\nformats = ["json"]\n[sweep]\n"follower.offset" = [0.0, 3.0]\n')
+    out = tmp_path / "out"
+    CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    path.write_text(path.read_text().replace('formats = ["json"]', 'formats = ["json"]\ntolerance = 0.005'))
+    result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert "(0 already there)" in result.output
+
+
+def test_member_names_errors_for_collisions():
+    with pytest.raises(SpecError, match="share a name"):
+        members({"name": "x"}, {"a.b": ["1", 1]})
