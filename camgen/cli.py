@@ -101,8 +101,10 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
 @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
               help="Folder of the family: one sub-folder a member, summary.csv, summary.json, overview.png.")
 @click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True, help="Processes to build with.")
+@click.option("--scheduler", metavar="ADDRESS", default=None,
+              help="Build on the Dask cluster at ADDRESS (e.g. tcp://host:8786) instead of local processes.")
 @user_errors
-def family(template: Path, output: Path, jobs: int) -> None:
+def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
     """Build every member of the family a TEMPLATE's [sweep] table describes; re-running resumes."""
     from camgen.family import check_all, members, read_family, run_family, write_summary
     from camgen.outputs import build_member
@@ -112,7 +114,7 @@ def family(template: Path, output: Path, jobs: int) -> None:
     raw, sweep = read_family(template)
     items = members(raw, sweep)
     check_all(items, validate_template)
-    rows = run_family(items, output, build_member, jobs)
+    rows = run_family(items, output, build_member, jobs, scheduler=scheduler)
     keys = [k for k, _ in items[0].values]
     write_summary(rows, output, keys, overview_png(rows, f"{raw.get('name')}: {len(rows)} members"))
     report_family(rows, output)

@@ -37,6 +37,10 @@ class CamDesign:
     warnings: tuple[str, ...]
     sizing: Sizing | None = None
 
+    def _repr_svg_(self) -> str:
+        """Jupyter shows the cam as it will be cut."""
+        return self.cut[1]._repr_svg_()
+
 
 def _undercut_message(template: CamTemplate, cam: Cam, a: CamAnalysis) -> str:
     if cam.follower.flat:

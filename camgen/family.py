@@ -201,8 +201,9 @@ def _run_one_packed(args: tuple) -> dict:
 
 
 def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: int = 1,
-               progress: bool | None = None) -> list[dict]:
-    """Build every member (``jobs`` processes), resuming where a previous run stopped; rows sorted by name."""
+               progress: bool | None = None, scheduler: str | None = None) -> list[dict]:
+    """Build every member (``jobs`` local processes, or the Dask cluster at ``scheduler``), resuming where a
+    previous run stopped; rows sorted by name. Workers write into ``root``, which they must share."""
     from tqdm import tqdm
 
     root = Path(root)
@@ -210,7 +211,16 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
     bar = tqdm(total=len(items), unit="part", disable=not sys.stderr.isatty() if progress is None else not progress)
     rows = []
     work = [(builder, m, root) for m in items]
-    if jobs <= 1:
+    if scheduler is not None:
+        try:
+            from dask.distributed import Client, as_completed
+        except ImportError:
+            raise SpecError("needs dask.distributed: pip install 'camgen[dask]'", "--scheduler") from None
+        with Client(scheduler) as client:
+            for future in as_completed(client.map(_run_one_packed, work, pure=False)):
+                rows.append(future.result())
+                bar.update()
+    elif jobs <= 1:
         for args in work:
             rows.append(_run_one_packed(args))
             bar.update()

@@ -78,8 +78,10 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
               help="Folder of the family: one sub-folder a member, summary.csv and summary.json.")
 @click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True, help="Processes to build with.")
+@click.option("--scheduler", metavar="ADDRESS", default=None,
+              help="Build on the Dask cluster at ADDRESS (e.g. tcp://host:8786) instead of local processes.")
 @user_errors
-def family(template: Path, output: Path, jobs: int) -> None:
+def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
     """Analyse (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes."""
     from camgen.cli import report_family
     from camgen.family import check_all, members, read_family, run_family, write_summary
@@ -89,7 +91,7 @@ def family(template: Path, output: Path, jobs: int) -> None:
     raw, sweep = read_family(template)
     items = members(raw, sweep)
     check_all(items, validate_linkage)
-    rows = run_family(items, output, build_member, jobs)
+    rows = run_family(items, output, build_member, jobs, scheduler=scheduler)
     write_summary(rows, output, [k for k, _ in items[0].values])
     report_family(rows, output)
 

@@ -126,6 +126,20 @@ class FourBar:
         if not (math.isfinite(self.point_distance) and self.point_distance >= 0):
             raise SpecError(f"must be a finite distance >= 0 mm (got {self.point_distance})", "linkage.point_distance")
 
+    def _repr_svg_(self) -> str:
+        """Jupyter shows the linkage at its first reachable crank angle, with the coupler point's path."""
+        from camgen.parts.drawing import Drawing, Polyline
+        from camgen.parts.svg import svg_document
+
+        ranges = self.input_ranges()
+        lo, hi = (0.0, TWO_PI) if ranges is None else ranges[0]
+        start = lo + 0.1 * (hi - lo) if ranges else math.radians(30)
+        p = self.positions([start])
+        links = np.array([[0.0, 0.0], p.a[0], p.b[0], [self.ground, 0.0], [0.0, 0.0]])
+        path = self.sweep(np.linspace(lo, hi, 181)).point
+        items = [("LINKS", Polyline(links, np.zeros(4))), ("PATH", Polyline(path, np.zeros(len(path) - 1)))]
+        return svg_document(Drawing(tuple(items)), stroke_width=0.5)
+
     # ------------------------------------------------------------------ classification
 
     @property

@@ -124,3 +124,18 @@ def test_changed_inputs_rebuild(tmp_path):
 def test_member_names_errors_for_collisions():
     with pytest.raises(SpecError, match="share a name"):
         members({"name": "x"}, {"a.b": ["1", 1]})
+
+
+def test_a_dask_cluster_builds_the_same_bytes(tmp_path):
+    """The same family on a LocalCluster on loopback (two worker processes) gives the files of one local job."""
+    distributed = pytest.importorskip("dask.distributed", reason="dask.distributed is not installed")
+    path = family_file(tmp_path, FIFTY)
+    assert CliRunner().invoke(main, ["family", str(path), "-o", str(tmp_path / "local")]).exit_code == 0
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None,
+                                  processes=True) as cluster:
+        result = CliRunner().invoke(main, ["family", str(path), "-o", str(tmp_path / "dask"),
+                                           "--scheduler", cluster.scheduler_address])
+    assert result.exit_code == 0, result.output
+    local, remote = _files(tmp_path / "local"), _files(tmp_path / "dask")
+    assert local.keys() == remote.keys() and all(local[k] == remote[k] for k in local)
+    assert len(json.loads(remote["summary.json"])) == 50

@@ -41,7 +41,7 @@ def test_every_parts_key_is_documented():
 
 
 def test_python_example_runs(tmp_path, monkeypatch):
-    code = re.findall(r"```python\n(.*?)```", README, re.S)[0]
+    code = "\n".join(re.findall(r"```python\n(.*?)```", README, re.S))
     (tmp_path / "templates").mkdir()
     (tmp_path / "templates" / "rdrd.toml").write_text((ROOT / "templates" / "rdrd.toml").read_text())
     monkeypatch.chdir(tmp_path)

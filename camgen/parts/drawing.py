@@ -188,6 +188,9 @@ class Part:
         """Plan area in mm^2: outline minus holes, exact."""
         return self.outline.area - sum(abs(h.area) for h in self.holes)
 
+    def _repr_svg_(self) -> str:
+        return Drawing.of_part(self)._repr_svg_()
+
 
 #: layer names used in every drawing
 LAYER_OUTLINE = "OUTLINE"
@@ -200,6 +203,12 @@ class Drawing:
     """Shapes on named layers, in mm, ready for any 2-D writer."""
 
     items: tuple[tuple[str, Shape | Polyline | Text], ...]
+
+    def _repr_svg_(self) -> str:
+        """Jupyter shows the drawing (strokes 0.3 mm wide, so they show on screen)."""
+        from camgen.parts.svg import svg_document
+
+        return svg_document(self, stroke_width=0.3)
 
     @classmethod
     def of_part(cls, part: Part) -> "Drawing":

@@ -32,8 +32,8 @@ def _num(x: float) -> str:
     return f"{x:.6f}".rstrip("0").rstrip(".")
 
 
-def svg_document(drawing: Drawing) -> str:
-    """The drawing as an SVG document (text)."""
+def svg_document(drawing: Drawing, stroke_width: float = HAIRLINE_MM) -> str:
+    """The drawing as an SVG document (text); ``stroke_width`` in mm (hairline for laser software)."""
     x0, y0, x1, y1 = _bounds(drawing)
     left, top = x0 - MARGIN_MM, y1 + MARGIN_MM
     width, height = (x1 - x0) + 2 * MARGIN_MM, (y1 - y0) + 2 * MARGIN_MM
@@ -65,7 +65,7 @@ def svg_document(drawing: Drawing) -> str:
     for layer, items in groups.items():
         colour = LAYER_RGB.get(layer, "#000000")
         body.append(f'<g id="{layer}" fill="none" stroke="{colour}" color="{colour}" '
-                    f'stroke-width="{HAIRLINE_MM}">')
+                    f'stroke-width="{stroke_width}">')
         body.extend(f"  {item}" for item in items)
         body.append("</g>")
     return ("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
