@@ -236,7 +236,7 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
 def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview: bytes | None = None) -> list[str]:
     """summary.csv and summary.json (one row per member), and the overview picture, all-or-nothing."""
     columns = ["name", *keys, "status", "error"]
-    extra = sorted({k for r in rows for k in r} - set(columns) - {"reused", "thumbnail"})
+    extra = sorted({k for r in rows for k in r} - set(columns) - {"reused", "thumbnail", "thumbnail_kind"})
     columns += extra
     clean = [{k: r.get(k, "") for k in columns} for r in rows]
     text = io.StringIO()

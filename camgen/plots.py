@@ -162,7 +162,7 @@ def drawing_figure(drawing: Any, title: str, tolerance: float = 0.05) -> Any:
 
 
 def overview_png(rows: list[dict], title: str) -> bytes:
-    """A grid of the members' outlines (their thumbnails), failed members shown as their names."""
+    """A grid of the members' thumbnails (cam outlines, or linkage paths), failed members marked."""
     import io
 
     n = max(1, len(rows))
@@ -175,7 +175,10 @@ def overview_png(rows: list[dict], title: str) -> bytes:
         ax.set_title(row["name"], fontsize=5)
         if row.get("thumbnail"):
             ring = np.array(row["thumbnail"])
-            ax.fill(ring[:, 0], ring[:, 1], color="0.85", ec="k", lw=0.5)
+            if row.get("thumbnail_kind") == "path":
+                ax.plot(ring[:, 0], ring[:, 1], color="C0", lw=0.8)
+            else:
+                ax.fill(ring[:, 0], ring[:, 1], color="0.85", ec="k", lw=0.5)
             ax.set_aspect("equal")
         else:
             ax.text(0.5, 0.5, "failed", color="C3", ha="center", va="center", fontsize=7, transform=ax.transAxes)

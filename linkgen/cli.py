@@ -92,7 +92,10 @@ def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> No
     items = members(raw, sweep)
     check_all(items, validate_linkage)
     rows = run_family(items, output, build_member, jobs, scheduler=scheduler)
-    write_summary(rows, output, [k for k, _ in items[0].values])
+    from camgen.plots import overview_png
+
+    write_summary(rows, output, [k for k, _ in items[0].values],
+                  overview_png(rows, f"{raw.get('name')}: {len(rows)} members"))
     report_family(rows, output)
 
 

@@ -114,4 +114,25 @@ def build_member(raw: dict, folder: Path) -> dict[str, Any]:
     files = write_analysis(spec, report, folder, built)
     keep = ("grashof_class", "inversion", "transmission_min_deg", "transmission_max_deg", "time_ratio",
             "stroke_mm", "input_range_deg")
-    return {**{k: report[k] for k in keep if k in report}, "files": " ".join(sorted(files.values()))}
+    row = {**{k: report[k] for k in keep if k in report}, "files": " ".join(sorted(files.values()))}
+    if "straightness" in report:
+        row["straightness_error_mm"] = report["straightness"]["error_mm"]
+    return {**row, **_thumbnail(spec)}
+
+
+def _thumbnail(spec: Any) -> dict[str, Any]:
+    """The path a four-bar's coupler point (or rocker pin) traces, for the family's overview picture."""
+    import math
+
+    from linkgen.analyze import build_linkage
+    from linkgen.fourbar import FourBar
+
+    mech = build_linkage(spec.linkage)
+    fb = mech if isinstance(mech, FourBar) else getattr(mech, "linkage", None)
+    if fb is None:
+        return {}
+    ranges = fb.input_ranges()
+    lo, hi = (0.0, 2 * math.pi) if ranges is None else ranges[0]
+    poses = fb.sweep(np.linspace(lo, hi, 121), getattr(spec.linkage, "assembly", getattr(mech, "assembly", "open")))
+    path = poses.point if fb.point_distance > 0 else poses.b
+    return {"thumbnail": path.round(3).tolist(), "thumbnail_kind": "path"}
