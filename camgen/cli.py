@@ -131,6 +131,22 @@ def report_family(rows: list[dict], output: Path) -> None:
 
 
 @main.command()
+@click.option("--quick", is_flag=True, help="Fewer tolerances, sizes and repeats (a minute, not ten).")
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=Path("out/bench"),
+              show_default=True, help="Folder for RESULTS.md, results.json and the plots.")
+@user_errors
+def bench(quick: bool, output: Path) -> None:
+    """Measure speed against error, peers, throughput, memory and the hard cases on this machine."""
+    from camgen.bench import run_bench
+
+    results = run_bench(output, quick)
+    wrong = [c for c in results["hard_cases"] if c["outcome"].startswith("WRONG")]
+    click.echo(f"wrote {output / 'RESULTS.md'}, {output / 'results.json'}, {output / 'speed-vs-error.png'}")
+    click.echo(f"{len(results['outlines'])} outline rows; {len(results['hard_cases'])} hard cases, "
+               f"{len(wrong)} wrong")
+
+
+@main.command()
 @click.option("--json", "as_json", is_flag=True, help="Print the table as JSON.")
 def laws(as_json: bool) -> None:
     """Compare the motion laws for lift h = 1 over beta = 1 rad: peak velocity, acceleration, jerk."""

@@ -26,6 +26,8 @@ from camgen.surface import surface_deviation
 _PROBES = 8
 #: fraction of the tolerance the first spacing aims at
 _AIM = 0.9
+#: fraction of the tolerance a biarc's probed error must stay under
+_BIARC_AIM = 0.95
 
 
 @dataclass(frozen=True)
@@ -106,14 +108,14 @@ def _biarcs(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, np.ndar
         inner = (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
         x = _surface(cam.segment_pitch(index, inner), rr).reshape(len(theta) - 1, len(frac), 2)
         err = np.minimum(arc_distance(x, p0, junction, b1), arc_distance(x, junction, p1, b2)).max(axis=1)
-        bad = err > tolerance
+        bad = err > _BIARC_AIM * tolerance      # a margin for the maximum falling between the probes
         if not bad.any():
             verts = np.empty((2 * len(p0), 2))
             verts[0::2], verts[1::2] = p0, junction
             bulges = np.empty(2 * len(p0))
             bulges[0::2], bulges[1::2] = b1, b2
             return verts, bulges, float(err.max())
-        parts = np.ceil(1.2 * np.cbrt(err[bad] / tolerance)).astype(int)
+        parts = np.ceil(1.2 * np.cbrt(err[bad] / (_BIARC_AIM * tolerance))).astype(int)
         cuts = [a + (b - a) * np.arange(1, k) / k for a, b, k in zip(theta[:-1][bad], theta[1:][bad], parts,
                                                                         strict=True)]
         theta = np.sort(np.concatenate([theta, *cuts]))

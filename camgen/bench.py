@@ -1,0 +1,306 @@
+"""``camgen bench``: speed against error, peers measured in the same run, throughput, memory, hard cases.
+
+Every figure is measured here, on this machine, in this run; nothing is asserted about time.
+Results go to ``RESULTS.md`` (tables a user can read), ``results.json`` and plots.
+"""
+from __future__ import annotations
+
+import json
+import math
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from camgen.cam import build_cam
+from camgen.convergence import contour_error, convergence
+from camgen.spec import validate_template
+from camgen.templates import apply_overrides
+
+#: the standard cams: the reference rise-dwell-return-dwell with one law family each
+STANDARD = {"cycloidal": "cycloidal", "harmonic": "harmonic", "polynomial": "polynomial-345",
+            "modified-sine": "modified-sine"}
+BASE = {"name": "bench", "cam": {"base_radius": 40.0, "thickness": 8.0, "bore": 10.0},
+        "follower": {"type": "translating-roller", "roller_radius": 10.0, "offset": 5.0},
+        "motion": [{"type": "rise", "law": "cycloidal", "lift": 20.0, "angle": 120.0}, {"type": "dwell", "angle": 60.0},
+                   {"type": "return", "law": "cycloidal", "lift": 20.0, "angle": 120.0},
+                   {"type": "dwell", "angle": 60.0}]}
+
+
+def _template(law: str, **changes: Any):
+    """The standard cam with ``law``; a change to None removes that key."""
+    raw = apply_overrides(BASE, [("motion.0.law", law), ("motion.2.law", law),
+                                 *((k, v) for k, v in changes.items() if v is not None)])
+    for key in (k for k, v in changes.items() if v is None):
+        table, field = key.rsplit(".", 1)
+        raw[table].pop(field, None)
+    return validate_template(raw)
+
+
+def _timed(func: Callable[[], Any], repeats: int) -> tuple[Any, float]:
+    times, result = [], None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        result = func()
+        times.append(time.perf_counter() - start)
+    return result, statistics.median(times)
+
+
+def outline_speed(tolerances: list[float], repeats: int) -> list[dict]:
+    rows = []
+    for family, law in STANDARD.items():
+        cam = build_cam(_template(law))
+        for curves in ("polylines", "biarcs"):
+            for r in convergence(cam, tolerances, curves, repeats):
+                rows.append({"cam": family, "method": f"camgen {curves}", "tolerance_mm": r.tolerance_mm,
+                             "entities": r.entities, "max_error_mm": r.max_error_mm, "seconds": r.seconds})
+    return rows
+
+
+def naive_peer(resolutions: list[int], repeats: int) -> list[dict]:
+    """Uniform samples of the pitch curve, offset inwards with shapely's buffer (what a quick script does)."""
+    import shapely
+
+    from camgen.parts.drawing import Contour
+
+    cam = build_cam(_template("cycloidal"))
+    rows = []
+    for n in resolutions:
+        def run(n: int = n) -> Any:
+            pitch = cam.pitch(np.linspace(0, 2 * math.pi, n, endpoint=False)).point
+            return shapely.Polygon(pitch).buffer(-cam.contact_radius, quad_segs=8)
+
+        poly, seconds = _timed(run, repeats)
+        ring = np.asarray(poly.exterior.coords)[:-1]
+        rows.append({"cam": "cycloidal", "method": f"naive: {n} pitch samples + shapely buffer",
+                     "tolerance_mm": None, "entities": len(ring),
+                     "max_error_mm": contour_error(cam, Contour(ring), 1e-3), "seconds": seconds})
+    return rows
+
+
+def mechanism_peer(repeats: int) -> dict:
+    """The ``mechanism`` package's cam profile (knife edge, its own sampling) against our exact surface."""
+    try:
+        from mechanism import Cam
+    except ImportError:
+        return {"method": "mechanism", "status": "not installed (pip install '.[bench]')"}
+    cam = build_cam(_template("cycloidal", **{"follower.type": "knife-edge", "follower.roller_radius": None,
+                                              "follower.offset": 0.0}))
+
+    def run() -> np.ndarray:
+        peer = Cam(motion=[("Rise", 20, 120), ("Dwell", 60), ("Fall", 20, 120), ("Dwell", 60)], degrees=True,
+                   omega=1.0)
+        x, y = peer._get_motion_type("cycloidal").get_profile(40, peer.thetas_r)
+        return np.column_stack([x, y])
+
+    try:
+        pts, seconds = _timed(run, repeats)
+    except Exception as exc:  # a peer's own failure is a result to report
+        return {"method": "mechanism", "status": f"failed: {exc}"}
+    # measured like ours: the polyline through its points (vertices and chord midpoints) against our exact
+    # surface; its frame conventions differ from ours, so in the best of the eight axis symmetries
+    from camgen.parts.drawing import Contour
+
+    best = math.inf
+    for swap in (False, True):
+        for sx in (1, -1):
+            for sy in (1, -1):
+                p = (pts[:, ::-1] if swap else pts) * [sx, sy]
+                best = min(best, contour_error(cam, Contour(p), 1e-3))
+    return {"method": "mechanism", "status": "measured", "cam": "cycloidal (knife edge)", "entities": len(pts),
+            "max_error_mm": best, "seconds": seconds}
+
+
+def linkage_speed(repeats: int) -> list[dict]:
+    from linkgen.fourbar import FourBar
+
+    fb = FourBar(180, 80, 200, 150)
+    rows = []
+    for n in (360, 100_000):
+        t = np.linspace(0, 2 * math.pi, n)
+        _, ours = _timed(lambda t=t: fb.positions(t), repeats)
+
+        def plain(t: np.ndarray = t) -> np.ndarray:
+            z2 = 180**2 + 80**2 - 2 * 180 * 80 * np.cos(t)
+            return np.arccos(np.clip((200**2 + 150**2 - z2) / (2 * 200 * 150), -1, 1))
+
+        _, naive = _timed(plain, repeats)
+        rows += [{"method": "linkgen closed form (both angles, stable at toggles)", "angles": n, "seconds": ours},
+                 {"method": "plain numpy arccos (transmission angle only)", "angles": n, "seconds": naive}]
+    for peer in ("pylinkage", "numba"):
+        try:
+            __import__(peer)
+            status = "installed; not yet compared in this version of the bench"
+        except ImportError:
+            status = "not installed (pip install '.[bench]')"
+        rows.append({"method": peer, "angles": None, "seconds": None, "status": status})
+    return rows
+
+
+def throughput(count: int, out: Path) -> list[dict]:
+    from camgen.family import members, run_family
+    from camgen.outputs import build_member
+
+    raw = apply_overrides(BASE, [("output.formats", ["dxf", "stl"])])
+    lifts = list(np.round(np.linspace(5, 30, count), 6))
+    items = members(raw, {"zip": {"motion.0.lift": lifts, "motion.2.lift": lifts}})
+    rows = []
+    for jobs in (1, 2):
+        start = time.perf_counter()
+        run_family(items, out / f"family-{jobs}", build_member, jobs, progress=False)
+        seconds = time.perf_counter() - start
+        rows.append({"what": f"family of {count} cams, DXF + STL, {jobs} job(s)", "seconds": seconds,
+                     "cams_per_second": count / seconds})
+    start = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "camgen", "build", str(Path(__file__).parent.parent / "templates" /
+                                                                 "rdrd.toml"), "-o", str(out / "build")],
+                   check=True, capture_output=True)
+    rows.append({"what": "camgen build templates/rdrd.toml, whole process", "seconds": time.perf_counter() - start,
+                 "cams_per_second": None})
+    return rows
+
+
+def hard_cases() -> list[dict]:
+    """Each hard case with what happened: a sound value, or a clean refusal (never NaN or garbage)."""
+    import shapely
+
+    from camgen.design import design_cam
+    from camgen.errors import CamgenError
+    from camgen.laws import from_conditions
+    from linkgen.fourbar import FourBar
+    from linkgen.slidercrank import SliderCrank
+
+    rows = []
+
+    def record(name: str, func: Callable[[], str]) -> None:
+        try:
+            rows.append({"case": name, "outcome": func()})
+        except CamgenError as exc:
+            rows.append({"case": name, "outcome": f"refused: {exc}"})
+
+    def cam(changes: dict) -> str:
+        d = design_cam(validate_template(apply_overrides(BASE, list(changes.items()))))
+        ring = d.outline.contour.flatten(0.01)
+        sound = np.isfinite(ring).all() and shapely.Polygon(ring).is_valid and d.outline.max_error_mm <= 0.01
+        return f"{'ok' if sound else 'WRONG'}: error {d.outline.max_error_mm:.2e} mm, pressure angle " \
+               f"{d.analysis.pressure_angle_max_deg:.2f} deg"
+
+    rho = design_cam(validate_template(apply_overrides(BASE, [("follower.offset", 0.0)]))).analysis.pitch_rho_min_mm
+    for side, sign in (("below", -1), ("above", 1)):
+        record(f"roller radius 1e-9 {side} the smallest convex radius",
+               lambda s=sign: cam({"follower.offset": 0.0, "follower.roller_radius": rho + s * 1e-9,
+                                   "cam.base_radius": 50.0 - rho - s * 1e-9, "cam.bore": 0.0}))
+    record("rise over 1 degree", lambda: cam({"motion.0.angle": 1.0, "motion.1.angle": 179.0}))
+    record("rise over 358.9999 degrees", lambda: cam({"motion.0.angle": 358.9999, "motion.1.angle": 0.5,
+                                                       "motion.2.angle": 0.5, "motion.3.angle": 0.0001}))
+    record("lift 10 x the base radius", lambda: cam({"motion.0.lift": 400.0, "motion.2.lift": 400.0}))
+    record("offset 1e-9 inside the prime radius", lambda: cam({"follower.offset": 50 - 1e-9}))
+    for degree in (7, 11, 15, 19):
+        m = (degree - 1) // 2
+
+        def poly(m: int = m) -> str:
+            conds = [(0, k, 0) for k in range(m + 1)] + [(1, 0, 1)] + [(1, k, 0) for k in range(1, m + 1)]
+            u = np.linspace(0, 1, 1001)
+            exact = u ** (m + 1) * sum(math.comb(m + k, k) * (1 - u) ** k for k in range(m + 1))
+            err = float(np.abs(from_conditions(conds).derivatives(u)[0] - exact).max())
+            return f"{'ok' if err < 1e-10 else 'WRONG'}: max deviation {err:.1e} from the closed form"
+
+        record(f"polynomial law of degree {degree}", poly)
+    fb = FourBar(100, 70, 60, 80)
+    _, hi = fb.input_ranges()[0]
+    for offset in (0.0, 1e-12):
+        def toggle(offset: float = offset) -> str:
+            p = fb.positions([hi - offset])
+            closes = abs(np.linalg.norm(p.b[0] - p.a[0]) - 60) < 1e-9
+            return f"{'ok' if closes and np.isfinite(p.theta4).all() else 'WRONG'}: transmission " \
+                   f"{math.degrees(p.gamma[0]):.6f} deg"
+
+        record(f"four-bar {offset:g} rad inside its toggle", toggle)
+    record("four-bar 1e-6 rad beyond its toggle", lambda: str(fb.positions([hi + 1e-6]).theta3))
+    par = FourBar(100, 40, 100, 40)
+    record("parallelogram through its change points", lambda: "ok" if np.abs(np.sin(par.sweep(
+        np.radians(np.linspace(10, 730, 1441)), "open").theta3)).max() < 1e-12 else "WRONG")
+    sc = SliderCrank(50.0, 50.0 + 1e-9)
+    record("slider-crank with rod = crank + 1e-9", lambda: "ok" if np.isfinite(sc.motion(
+        np.linspace(0, 2 * math.pi, 721), 1.0).a).all() else "WRONG")
+    return rows
+
+
+def _plot(rows: list[dict], path: Path) -> None:
+    from camgen.plots import figure, save
+
+    fig = figure(10, 4.5)
+    ax1, ax2 = fig.subplots(1, 2)
+    for method in sorted({r["method"] for r in rows}):
+        pts = sorted((r["entities"], r["max_error_mm"], r["seconds"]) for r in rows if r["method"] == method
+                     and r["cam"] == "cycloidal")
+        if not pts:
+            continue
+        e, err, sec = zip(*pts, strict=True)
+        ax1.loglog(e, err, "o-", label=method, ms=3)
+        ax2.loglog(sec, err, "o-", label=method, ms=3)
+    ax1.set_xlabel("entities in the file")
+    ax2.set_xlabel("seconds to build the outline")
+    for ax in (ax1, ax2):
+        ax.set_ylabel("measured max error (mm)")
+        ax.grid(alpha=0.3, which="both")
+    ax1.legend(fontsize=7)
+    ax1.set_title("cycloidal cam: error against entities")
+    ax2.set_title("error against time")
+    save(fig, path, "png")
+
+
+def run_bench(out: str | Path, quick: bool = False) -> dict:
+    """Run everything; write RESULTS.md, results.json and speed-vs-error.png into ``out``; return the results."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    tolerances = [1e-1, 1e-2, 1e-3] if quick else [1e-1, 1e-2, 1e-3, 1e-4, 1e-5]
+    repeats = 1 if quick else 5
+    outlines = outline_speed(tolerances, repeats)
+    outlines += naive_peer([90, 360] if quick else [90, 360, 1440, 5760, 23040], repeats)
+    peer = mechanism_peer(repeats)
+    with tempfile.TemporaryDirectory() as tmp:
+        flow = throughput(10 if quick else 200, Path(tmp))
+    results = {"quick": quick, "python": sys.version.split()[0], "outlines": outlines, "mechanism": peer,
+               "linkages": linkage_speed(repeats), "throughput": flow,
+               "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+               "hard_cases": hard_cases()}
+    _plot(outlines, out / "speed-vs-error.png")
+    (out / "results.json").write_text(json.dumps(results, indent=2, default=str) + "\n")
+    (out / "RESULTS.md").write_text(_markdown(results))
+    return results
+
+
+def _markdown(r: dict) -> str:
+    lines = ["# camgen bench", "", f"Python {r['python']}; {'quick run' if r['quick'] else 'full run'}; "
+             "median of repeats; errors measured against the exact cam surface.", "",
+             "## Cam outlines: speed against error", "",
+             "| cam | method | tolerance (mm) | entities | measured max error (mm) | seconds |",
+             "|---|---|---|---|---|---|"]
+    for row in r["outlines"]:
+        tol = "-" if row["tolerance_mm"] is None else f"{row['tolerance_mm']:g}"
+        lines.append(f"| {row['cam']} | {row['method']} | {tol} | {row['entities']} | {row['max_error_mm']:.2e} | "
+                     f"{row['seconds']:.4f} |")
+    m = r["mechanism"]
+    lines += ["", "## Peer: the mechanism package", "",
+              (f"cycloidal cam, knife edge: {m['entities']} points, max error {m['max_error_mm']:.2e} mm, "
+               f"{m['seconds']:.4f} s" if m.get("status") == "measured" else f"mechanism: {m['status']}"), "",
+              "## Linkage positions", "", "| method | angles | seconds | status |", "|---|---|---|---|"]
+    for row in r["linkages"]:
+        sec = "-" if row.get("seconds") is None else f"{row['seconds']:.5f}"
+        lines.append(f"| {row['method']} | {row.get('angles') or '-'} | {sec} | {row.get('status', 'measured')} |")
+    lines += ["", "## Throughput", "", "| what | seconds | cams per second |", "|---|---|---|"]
+    for row in r["throughput"]:
+        cps = "-" if row["cams_per_second"] is None else f"{row['cams_per_second']:.1f}"
+        lines.append(f"| {row['what']} | {row['seconds']:.2f} | {cps} |")
+    lines += ["", f"Peak resident memory: {r['peak_memory_mb']:.0f} MB.", "", "## Hard cases", "",
+              "| case | outcome |", "|---|---|"]
+    lines += [f"| {row['case']} | {row['outcome']} |" for row in r["hard_cases"]]
+    return "\n".join(lines) + "\n"

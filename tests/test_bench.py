@@ -1,0 +1,28 @@
+"""``camgen bench --quick``: every figure is produced, every error is below its tolerance, peers are reported."""
+from __future__ import annotations
+
+import json
+
+from click.testing import CliRunner
+
+from camgen.cli import main
+
+
+def test_quick_bench_produces_every_figure(tmp_path):
+    result = CliRunner().invoke(main, ["bench", "--quick", "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    assert {p.name for p in tmp_path.iterdir()} == {"RESULTS.md", "results.json", "speed-vs-error.png"}
+    r = json.loads((tmp_path / "results.json").read_text())
+    ours = [row for row in r["outlines"] if row["method"].startswith("camgen")]
+    assert len(ours) == 4 * 2 * 3                          # four standard cams, two modes, three tolerances
+    assert all(0 < row["max_error_mm"] <= row["tolerance_mm"] and row["seconds"] > 0 for row in ours)
+    naive = [row for row in r["outlines"] if row["method"].startswith("naive")]
+    assert len(naive) == 2 and all(row["max_error_mm"] > 0 for row in naive)
+    assert r["mechanism"]["status"] == "measured" or r["mechanism"]["status"].startswith("not installed")
+    assert {row["method"] for row in r["linkages"]} >= {"pylinkage", "numba"}
+    assert all(row.get("status") for row in r["linkages"] if row["seconds"] is None)   # never skipped silently
+    assert [row["cams_per_second"] > 0 for row in r["throughput"][:2]] == [True, True]
+    assert r["peak_memory_mb"] > 0
+    assert r["hard_cases"] and not [c for c in r["hard_cases"] if c["outcome"].startswith("WRONG")]
+    text = (tmp_path / "RESULTS.md").read_text()
+    assert "## Hard cases" in text and "## Throughput" in text
