@@ -119,28 +119,60 @@ def mechanism_peer(repeats: int) -> dict:
 
 
 def linkage_speed(repeats: int) -> list[dict]:
+    """Rocker-pin positions of the reference crank-rocker at 360 and 100 000 crank angles: ours, a plain numpy
+    closed form (arccos), and pylinkage (plain steps, and its numba-compiled steps), with their accuracy."""
     from linkgen.fourbar import FourBar
 
     fb = FourBar(180, 80, 200, 150)
     rows = []
     for n in (360, 100_000):
-        t = np.linspace(0, 2 * math.pi, n)
-        _, ours = _timed(lambda t=t: fb.positions(t), repeats)
+        t = 2 * math.pi / n * np.arange(1, n + 1)
+        exact, ours = _timed(lambda t=t: fb.positions(t).b, repeats)
 
         def plain(t: np.ndarray = t) -> np.ndarray:
-            z2 = 180**2 + 80**2 - 2 * 180 * 80 * np.cos(t)
-            return np.arccos(np.clip((200**2 + 150**2 - z2) / (2 * 200 * 150), -1, 1))
+            ax, ay = 80 * np.cos(t), 80 * np.sin(t)
+            dx, dy = 180 - ax, -ay
+            z = np.hypot(dx, dy)
+            alpha = np.arccos(np.clip((200**2 + z**2 - 150**2) / (2 * 200 * z), -1, 1))
+            th3 = np.arctan2(dy, dx) + alpha
+            return np.column_stack([ax + 200 * np.cos(th3), ay + 200 * np.sin(th3)])
 
-        _, naive = _timed(plain, repeats)
-        rows += [{"method": "linkgen closed form (both angles, stable at toggles)", "angles": n, "seconds": ours},
-                 {"method": "plain numpy arccos (transmission angle only)", "angles": n, "seconds": naive}]
-    for peer in ("pylinkage", "numba"):
-        try:
-            __import__(peer)
-            status = "installed; not yet compared in this version of the bench"
-        except ImportError:
-            status = "not installed (pip install '.[bench]')"
-        rows.append({"method": peer, "angles": None, "seconds": None, "status": status})
+        naive, seconds = _timed(plain, repeats)
+        rows += [{"method": "linkgen closed form (stable at toggles)", "angles": n, "seconds": ours,
+                  "max_error_mm": 0.0},
+                 {"method": "plain numpy closed form (arccos)", "angles": n, "seconds": seconds,
+                  "max_error_mm": float(np.abs(naive - exact).max())}]
+        rows += _pylinkage(n, exact, repeats)
+    return rows
+
+
+def _pylinkage(n: int, exact: np.ndarray, repeats: int) -> list[dict]:
+    try:
+        import pylinkage as pl
+    except ImportError:
+        return [{"method": "pylinkage", "angles": n, "seconds": None,
+                 "status": "not installed (pip install '.[bench]')"}]
+    try:
+        import numba  # noqa: F401 - pylinkage compiles its fast steps with it where it installs
+        fast_name = "pylinkage step_fast (numba)"
+    except ImportError:
+        fast_name = "pylinkage step_fast (numba not installed)"
+
+    def linkage() -> Any:
+        o2, o4 = pl.Ground(0, 0), pl.Ground(180, 0)
+        crank = pl.Crank(o2, 80, angular_velocity=2 * math.pi / n, initial_angle=0.0)
+        return pl.Linkage([o2, o4, crank, pl.RRRDyad(crank, o4, 200, 150, x=245, y=135)])
+
+    rows = []
+    for name, run in (("pylinkage step (plain Python)", lambda: np.array([c[3] for c in linkage().step(iterations=n)],
+                                                                      dtype=float)),
+                      (fast_name, lambda: linkage().step_fast(iterations=n)[:, 3, :])):
+        start = time.perf_counter()
+        run()
+        first = time.perf_counter() - start
+        result, seconds = _timed(run, repeats)
+        rows.append({"method": name, "angles": n, "seconds": seconds, "first_call_seconds": first,
+                     "max_error_mm": float(np.abs(result - exact).max())})
     return rows
 
 
@@ -292,11 +324,18 @@ def _markdown(r: dict) -> str:
     lines += ["", "## Peer: the mechanism package", "",
               (f"cycloidal cam, knife edge: {m['entities']} points, max error {m['max_error_mm']:.2e} mm, "
                f"{m['seconds']:.4f} s" if m.get("status") == "measured" else f"mechanism: {m['status']}"), "",
-              "## Linkage positions", "", "| method | angles | seconds | status |", "|---|---|---|---|"]
+              "## Linkage positions (rocker pin of the reference crank-rocker)", "",
+              "| method | angles | seconds | max error (mm) | status |", "|---|---|---|---|---|"]
     for row in r["linkages"]:
         sec = "-" if row.get("seconds") is None else f"{row['seconds']:.5f}"
-        lines.append(f"| {row['method']} | {row.get('angles') or '-'} | {sec} | {row.get('status', 'measured')} |")
-    lines += ["", "## Throughput", "", "| what | seconds | cams per second |", "|---|---|---|"]
+        err = "-" if row.get("max_error_mm") is None else f"{row['max_error_mm']:.1e}"
+        status = row.get("status", "measured")
+        lines.append(f"| {row['method']} | {row.get('angles') or '-'} | {sec} | {err} | {status} |")
+    lines += ["", "Errors of linkage positions are against linkgen's closed form (which the tests check against "
+              "50-digit references); pylinkage's first call includes its compilation: "
+              + "; ".join(f"{row['method']} at {row['angles']}: {row['first_call_seconds']:.3f} s"
+                          for row in r["linkages"] if "first_call_seconds" in row) + ".",
+              "", "## Throughput", "", "| what | seconds | cams per second |", "|---|---|---|"]
     for row in r["throughput"]:
         cps = "-" if row["cams_per_second"] is None else f"{row['cams_per_second']:.1f}"
         lines.append(f"| {row['what']} | {row['seconds']:.2f} | {cps} |")

@@ -19,8 +19,10 @@ def test_quick_bench_produces_every_figure(tmp_path):
     naive = [row for row in r["outlines"] if row["method"].startswith("naive")]
     assert len(naive) == 2 and all(row["max_error_mm"] > 0 for row in naive)
     assert r["mechanism"]["status"] == "measured" or r["mechanism"]["status"].startswith("not installed")
-    assert {row["method"] for row in r["linkages"]} >= {"pylinkage", "numba"}
+    methods = {row["method"] for row in r["linkages"]}
+    assert any(m.startswith("pylinkage") for m in methods)                              # measured, or said missing
     assert all(row.get("status") for row in r["linkages"] if row["seconds"] is None)   # never skipped silently
+    assert all(row["max_error_mm"] < 1e-6 for row in r["linkages"] if row.get("max_error_mm") is not None)
     assert [row["cams_per_second"] > 0 for row in r["throughput"][:2]] == [True, True]
     assert r["peak_memory_mb"] > 0
     assert r["hard_cases"] and not [c for c in r["hard_cases"] if c["outcome"].startswith("WRONG")]
