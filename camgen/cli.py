@@ -96,28 +96,33 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
                f"convex radius > {s.min_rho_margin_mm:g} mm needs {s.curvature_radius_mm:.4f} mm)")
 
 
+def family_options(func: Callable[..., Any]) -> Callable[..., Any]:
+    """The options every ``family`` command takes."""
+    for option in reversed((
+        click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path)),
+        click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
+                     help="Folder of the family: one sub-folder a member, summary.csv, summary.json, "
+                          "overview.png."),
+        click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True,
+                     help="Processes to build with."),
+        click.option("--scheduler", metavar="ADDRESS", default=None,
+                     help="Build on the Dask cluster at ADDRESS (e.g. tcp://host:8786) instead of local "
+                          "processes."),
+    )):
+        func = option(func)
+    return func
+
+
 @main.command()
-@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
-              help="Folder of the family: one sub-folder a member, summary.csv, summary.json, overview.png.")
-@click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True, help="Processes to build with.")
-@click.option("--scheduler", metavar="ADDRESS", default=None,
-              help="Build on the Dask cluster at ADDRESS (e.g. tcp://host:8786) instead of local processes.")
+@family_options
 @user_errors
 def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
     """Build every member of the family a TEMPLATE's [sweep] table describes; re-running resumes."""
-    from camgen.family import check_all, members, read_family, run_family, write_summary
+    from camgen.family import build_family
     from camgen.outputs import build_member
-    from camgen.plots import overview_png
     from camgen.spec import validate_template
 
-    raw, sweep = read_family(template)
-    items = members(raw, sweep)
-    check_all(items, validate_template)
-    rows = run_family(items, output, build_member, jobs, scheduler=scheduler)
-    keys = [k for k, _ in items[0].values]
-    write_summary(rows, output, keys, overview_png(rows, f"{raw.get('name')}: {len(rows)} members"))
-    report_family(rows, output)
+    report_family(build_family(template, output, validate_template, build_member, jobs, scheduler), output)
 
 
 def report_family(rows: list[dict], output: Path) -> None:

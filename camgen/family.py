@@ -252,3 +252,17 @@ def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview:
         if overview is not None:
             written.append(stage.write_bytes("overview.png", overview).name)
     return written
+
+
+def build_family(template: str | Path, root: str | Path, validate: Callable[[dict], Any], builder: Builder,
+                 jobs: int = 1, scheduler: str | None = None) -> list[dict]:
+    """Everything ``family`` does: expand, validate every member, build (or resume), write the summary."""
+    from camgen.plots import overview_png
+
+    raw, sweep = read_family(template)
+    items = members(raw, sweep)
+    check_all(items, validate)
+    rows = run_family(items, root, builder, jobs, scheduler=scheduler)
+    write_summary(rows, root, [k for k, _ in items[0].values],
+                  overview_png(rows, f"{raw.get('name')}: {len(rows)} members"))
+    return rows

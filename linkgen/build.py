@@ -39,9 +39,9 @@ def parts_spec(table: Any) -> PartsSpec:
     return spec
 
 
-def _mechanism(template: Any) -> tuple[Any, tuple[LinkPart, ...], Placement, list, str]:
+def _mechanism(template: Any, spec: PartsSpec) -> tuple[Any, tuple[LinkPart, ...], Placement, list, str]:
+    """The linkage, its parts, their placement over the motion, the dead centres to draw, the assembly."""
     mech = build_linkage(template.linkage)
-    spec = parts_spec(template.parts)
     if hasattr(mech, "straightness"):
         mech = mech.linkage
     if isinstance(mech, FourBar):
@@ -103,8 +103,8 @@ def build_parts(template: Any) -> LinkageBuild:
     if template.parts is None:
         raise SpecError("missing: give a [parts] table (width, thickness, pin_diameter, ...)", "parts")
     table = template.parts
-    mech, parts, sweep, dead, assembly = _mechanism(template)
     spec = parts_spec(table)
+    mech, parts, sweep, dead, assembly = _mechanism(template, spec)
     layers = layer_order(parts, sweep, (spec.pin_diameter) / 2)
     cut = tuple(p.part(spec, True, table.tolerance) for p in parts)
     printed = tuple(p.part(spec, False, table.tolerance) for p in parts)

@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 
-from camgen.cli import user_errors
+from camgen.cli import family_options, report_family, user_errors
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -74,29 +74,15 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 
 
 @main.command()
-@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
-              help="Folder of the family: one sub-folder a member, summary.csv and summary.json.")
-@click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True, help="Processes to build with.")
-@click.option("--scheduler", metavar="ADDRESS", default=None,
-              help="Build on the Dask cluster at ADDRESS (e.g. tcp://host:8786) instead of local processes.")
+@family_options
 @user_errors
 def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
     """Analyse (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes."""
-    from camgen.cli import report_family
-    from camgen.family import check_all, members, read_family, run_family, write_summary
+    from camgen.family import build_family
     from linkgen.outputs import build_member
     from linkgen.spec import validate_linkage
 
-    raw, sweep = read_family(template)
-    items = members(raw, sweep)
-    check_all(items, validate_linkage)
-    rows = run_family(items, output, build_member, jobs, scheduler=scheduler)
-    from camgen.plots import overview_png
-
-    write_summary(rows, output, [k for k, _ in items[0].values],
-                  overview_png(rows, f"{raw.get('name')}: {len(rows)} members"))
-    report_family(rows, output)
+    report_family(build_family(template, output, validate_linkage, build_member, jobs, scheduler), output)
 
 
 def _print_text(r: dict[str, Any]) -> None:
