@@ -43,9 +43,16 @@ def _sign(assembly: str) -> int:
     return 1 if assembly == "open" else -1
 
 
-def _area4(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
-    """Four times the area of triangles with sides a, b, c (Kahan); 0 where they only just close."""
-    x, y, z = np.sort(np.stack([a, b, c]), axis=0)[::-1]
+def _area4(a: float, b: float, c: np.ndarray) -> np.ndarray:
+    """Four times the area of triangles with sides a, b (numbers) and c (array), by Kahan's stable form of
+    Heron's formula with the sides sorted x >= y >= z; 0 where they only just close.
+
+    With two sides fixed, the order is chosen by comparisons alone (no arithmetic), so it is exact.
+    """
+    p, q = max(a, b), min(a, b)
+    x = np.maximum(c, p)
+    z = np.minimum(c, q)
+    y = np.where(c > p, p, np.where(c < q, q, c))
     prod = (x + (y + z)) * (z - (x - y)) * (z + (x - y)) * (x + (y - z))
     return np.sqrt(np.maximum(prod, 0.0))
 
@@ -184,7 +191,8 @@ class FourBar:
             return ((a_lo, TWO_PI - a_lo),)
         return ((a_lo, a_hi), (TWO_PI - a_hi, TWO_PI - a_lo))
 
-    def _check_reach(self, theta2: np.ndarray) -> None:
+    def _check_reach(self, theta2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The vector A -> O4 and its length at each crank angle, or a clear error if one is out of reach."""
         dx, dy = self._z(theta2)
         z = np.hypot(dx, dy)
         tol = FEASIBILITY_TOL * self.longest
@@ -199,14 +207,19 @@ class FourBar:
             first = math.degrees(float(np.asarray(theta2)[z <= tol][0]))
             raise SpecError(f"at crank angle {first:.6g} degrees the crank pin sits on the rocker pivot, so the "
                             "coupler's position is undetermined (a deltoid change point)", "angle")
+        return dx, dy, z
 
     # ------------------------------------------------------------------ positions
 
-    def _poses(self, theta2: np.ndarray, sign: np.ndarray) -> Poses:
+    def _poses(self, theta2: np.ndarray, sign: np.ndarray,
+               reach: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> Poses:
         l1, l3, l4 = self.ground, self.coupler, self.rocker
-        dx, dy = self._z(theta2)
-        z = np.hypot(dx, dy)
-        area4 = _area4(np.full_like(z, l3), np.full_like(z, l4), z)
+        if reach is None:
+            dx, dy = self._z(theta2)
+            z = np.hypot(dx, dy)
+        else:
+            dx, dy, z = reach
+        area4 = _area4(l3, l4, z)
         delta = np.arctan2(dy, dx)                                # direction A -> O4
         alpha = np.arctan2(area4, l3**2 + z**2 - l4**2)           # angle at A in triangle A B O4
         beta = np.arctan2(area4, l4**2 + z**2 - l3**2)            # angle at O4
@@ -215,8 +228,11 @@ class FourBar:
         theta4 = delta + math.pi - sign * beta
         a = np.column_stack([self.crank * np.cos(theta2), self.crank * np.sin(theta2)])
         b = np.column_stack([l1 + l4 * np.cos(theta4), l4 * np.sin(theta4)])
-        ang = theta3 + self.point_angle
-        point = a + self.point_distance * np.column_stack([np.cos(ang), np.sin(ang)])
+        if self.point_distance:
+            ang = theta3 + self.point_angle
+            point = a + self.point_distance * np.column_stack([np.cos(ang), np.sin(ang)])
+        else:
+            point = a
         return Poses(theta2, theta3, theta4, gamma, a, b, point, sign)
 
     def positions(self, theta2: ArrayLike, assembly: Assembly = "open") -> Poses:
@@ -227,8 +243,7 @@ class FourBar:
         points; use :meth:`sweep` to follow one branch through them.
         """
         t = np.atleast_1d(np.asarray(theta2, dtype=float))
-        self._check_reach(t)
-        return self._poses(t, np.full(t.shape, _sign(assembly)))
+        return self._poses(t, np.full(t.shape, _sign(assembly)), self._check_reach(t))
 
     def rocker_positions(self, theta4: ArrayLike, assembly: Assembly = "open") -> Poses:
         """Poses when the rocker drives, at rocker angles ``theta4`` (rad).
@@ -267,13 +282,13 @@ class FourBar:
         the smooth branch, so a parallelogram stays a parallelogram.
         """
         t = np.atleast_1d(np.asarray(theta2, dtype=float))
-        self._check_reach(t)
+        reach = self._check_reach(t)
         flips = np.zeros(t.shape, dtype=int)
         for cp in self.change_points():
             turn = np.floor((t - cp) / TWO_PI)
             flips[1:] += np.cumsum(np.abs(np.diff(turn))).astype(int)
         sign = _sign(assembly) * np.where(flips % 2 == 0, 1, -1)
-        return self._poses(t, sign)
+        return self._poses(t, sign, reach)
 
     # ------------------------------------------------------------------ Newton-Raphson
 
