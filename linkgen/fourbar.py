@@ -220,14 +220,20 @@ class FourBar:
         else:
             dx, dy, z = reach
         area4 = _area4(l3, l4, z)
-        delta = np.arctan2(dy, dx)                                # direction A -> O4
-        alpha = np.arctan2(area4, l3**2 + z**2 - l4**2)           # angle at A in triangle A B O4
-        beta = np.arctan2(area4, l4**2 + z**2 - l3**2)            # angle at O4
-        gamma = np.arctan2(area4, l3**2 + l4**2 - z**2)           # angle at B: transmission angle
-        theta3 = delta + sign * alpha
-        theta4 = delta + math.pi - sign * beta
-        a = np.column_stack([self.crank * np.cos(theta2), self.crank * np.sin(theta2)])
-        b = np.column_stack([l1 + l4 * np.cos(theta4), l4 * np.sin(theta4)])
+        # A -> B is the unit vector A -> O4 turned by the triangle's angle at A (its cosine by the law of
+        # cosines, its sine from the stable area): no angle needs computing to place B
+        two_l3z = 2.0 * l3 * z
+        cos_a = (l3**2 + z**2 - l4**2) / two_l3z
+        sin_a = sign * area4 / two_l3z
+        ux, uy = dx / z, dy / z
+        ex, ey = cos_a * ux - sin_a * uy, cos_a * uy + sin_a * ux
+        ax, ay = self.crank * np.cos(theta2), self.crank * np.sin(theta2)
+        bx, by = ax + l3 * ex, ay + l3 * ey
+        theta3 = np.arctan2(ey, ex)
+        theta4 = np.arctan2(by, bx - l1)
+        gamma = np.arctan2(area4, l3**2 + l4**2 - z**2)           # angle at B: the transmission angle
+        a = np.column_stack([ax, ay])
+        b = np.column_stack([bx, by])
         if self.point_distance:
             ang = theta3 + self.point_angle
             point = a + self.point_distance * np.column_stack([np.cos(ang), np.sin(ang)])
