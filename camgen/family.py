@@ -72,11 +72,12 @@ def _with_base(path: Path, seen: set) -> dict:
 
     if path.resolve() in seen:
         raise SpecError(f"{path.name} includes itself", "base")
+    field = "base" if seen else "template"             # the first file read is the template itself
     seen.add(path.resolve())
     try:
         raw = tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
-        raise SpecError(f"no such file: {path}", "base" if seen else "template") from None
+        raise SpecError(f"no such file: {path}", field) from None
     except tomllib.TOMLDecodeError as exc:
         raise SpecError(f"{path} is not valid TOML: {exc}", "template") from None
     base = raw.pop("base", None)

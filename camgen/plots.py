@@ -144,14 +144,13 @@ def drawing_figure(drawing: Any, title: str, tolerance: float = 0.05) -> Any:
     ax = fig.add_subplot()
     colours: dict[str, str] = {}
     for layer, shape in drawing.items:
+        first = layer not in colours                      # label each layer once in the legend
         colour = colours.setdefault(layer, f"C{len(colours) % 10}")
         pts = shape.flatten(tolerance)
-        closed = not hasattr(shape, "text") and type(shape).__name__ != "Polyline"
-        if closed:
-            pts = np.vstack([pts, pts[:1]])
+        if not hasattr(shape, "text") and type(shape).__name__ != "Polyline":
+            pts = np.vstack([pts, pts[:1]])            # close contours and circles
         ax.plot(pts[:, 0], pts[:, 1], "--" if layer == "PATH" else "-", color=colour, lw=1,
-                label=layer if list(colours).index(layer) == len(colours) - 1 and colours[layer] == colour
-                and not any(line.get_label() == layer for line in ax.lines) else None)
+                label=layer if first else None)
     ax.set_aspect("equal")
     ax.grid(alpha=0.3)
     ax.set_xlabel("x (mm)")

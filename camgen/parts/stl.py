@@ -3,7 +3,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Any
-from pathlib import Path
 
 from camgen.parts.mesh import Mesh
 
@@ -39,6 +38,3 @@ def stl_bytes(mesh: Mesh) -> bytes:
     """``mesh`` as binary STL."""
     return trimesh_of(mesh).export(file_type="stl")
 
-
-def write_stl(mesh: Mesh, path: Path) -> None:
-    path.write_bytes(stl_bytes(mesh))
