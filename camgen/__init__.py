@@ -13,7 +13,7 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
-__version__ = "0.1.0"
+from camgen.core import VERSION as __version__
 
 _EXPORTS = {
     # motion laws and programs
@@ -29,14 +29,14 @@ _EXPORTS = {
     "design_cam": "camgen.design", "CamDesign": "camgen.design", "size_cam": "camgen.sizing",
     "convergence": "camgen.convergence",
     # parts and exporters
-    "Contour": "camgen.parts.drawing", "Circle": "camgen.parts.drawing", "Part": "camgen.parts.drawing",
-    "Drawing": "camgen.parts.drawing", "write_dxf": "camgen.parts.dxf", "svg_document": "camgen.parts.svg",
-    "extrude": "camgen.parts.mesh", "stl_bytes": "camgen.parts.stl", "threemf_bytes": "camgen.parts.threemf",
+    "Contour": "camgen.core.parts", "Circle": "camgen.core.parts", "Part": "camgen.core.parts",
+    "Drawing": "camgen.core.parts", "write_dxf": "camgen.core.writers.dxf", "svg_document": "camgen.core.writers.svg",
+    "extrude": "camgen.core.solids", "stl_bytes": "camgen.core.writers.stl", "threemf_bytes": "camgen.core.writers.threemf",
     "write_cam": "camgen.outputs",
     # families
-    "read_family": "camgen.family", "members": "camgen.family", "run_family": "camgen.family",
+    "read_family": "camgen.core.family", "members": "camgen.core.family", "run_family": "camgen.core.family",
     # errors
-    "CamgenError": "camgen.errors", "SpecError": "camgen.errors", "DesignError": "camgen.errors",
+    "CamgenError": "camgen.core.errors", "SpecError": "camgen.core.errors", "DesignError": "camgen.core.errors",
 }
 
 __all__ = ["__version__", *_EXPORTS]

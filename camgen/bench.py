@@ -22,7 +22,7 @@ import numpy as np
 from camgen.cam import build_cam
 from camgen.convergence import contour_error, convergence
 from camgen.spec import validate_template
-from camgen.templates import apply_overrides
+from camgen.core.spec import apply_overrides
 
 #: the standard cams: the reference rise-dwell-return-dwell with one law family each
 STANDARD = {"cycloidal": "cycloidal", "harmonic": "harmonic", "polynomial": "polynomial-345",
@@ -68,7 +68,7 @@ def naive_peer(resolutions: list[int], repeats: int) -> list[dict]:
     """Uniform samples of the pitch curve, offset inwards with shapely's buffer (what a quick script does)."""
     import shapely
 
-    from camgen.parts.drawing import Contour
+    from camgen.core.shapes import Contour
 
     cam = build_cam(_template("cycloidal"))
     rows = []
@@ -106,7 +106,7 @@ def mechanism_peer(repeats: int) -> dict:
         return {"method": "mechanism", "status": f"failed: {exc}"}
     # measured like ours: the polyline through its points (vertices and chord midpoints) against our exact
     # surface; its frame conventions differ from ours, so in the best of the eight axis symmetries
-    from camgen.parts.drawing import Contour
+    from camgen.core.shapes import Contour
 
     best = math.inf
     for swap in (False, True):
@@ -177,7 +177,7 @@ def _pylinkage(n: int, exact: np.ndarray, repeats: int) -> list[dict]:
 
 
 def throughput(count: int, out: Path) -> list[dict]:
-    from camgen.family import members, run_family
+    from camgen.core.family import members, run_family
     from camgen.outputs import build_member
 
     raw = apply_overrides(BASE, [("output.formats", ["dxf", "stl"])])
@@ -204,7 +204,7 @@ def hard_cases() -> list[dict]:
     import shapely
 
     from camgen.design import design_cam
-    from camgen.errors import CamgenError
+    from camgen.core.errors import CamgenError
     from camgen.laws import from_conditions
     from linkgen.fourbar import FourBar
     from linkgen.slidercrank import SliderCrank
@@ -266,7 +266,8 @@ def hard_cases() -> list[dict]:
 
 
 def _plot(rows: list[dict], path: Path) -> None:
-    from camgen.plots import figure, save
+    from camgen.core.figures import figure
+    from camgen.core.writers.figure import save
 
     fig = figure(10, 4.5)
     ax1, ax2 = fig.subplots(1, 2)

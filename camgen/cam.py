@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.followers.base import PitchGeometry
 from camgen.followers.oscillating import OscillatingFlat, OscillatingRoller
 from camgen.followers.plate import PlateRoller

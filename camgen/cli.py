@@ -1,28 +1,13 @@
 """The ``camgen`` command: load -> validate -> build -> write. Errors: one line on stderr, exit code 2."""
 from __future__ import annotations
 
-import functools
 import json
-import sys
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import click
 
-from camgen.errors import CamgenError
-
-
-def user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
-    """Turn the project's errors into ``error: <one line>`` and exit code 2."""
-    @functools.wraps(func)
-    def wrapper(*args: Any, **kwargs: Any) -> Any:
-        try:
-            return func(*args, **kwargs)
-        except CamgenError as exc:
-            click.echo(f"error: {exc}", err=True)
-            sys.exit(2)
-    return wrapper
+from camgen.core.cli import family_options, report_family, user_errors
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -68,7 +53,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 @user_errors
 def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[str, ...]) -> None:
     """Smallest base radius for TEMPLATE, or (--factors) the cam factors f with Rp = f h / beta."""
-    from camgen.errors import SpecError
+    from camgen.core.errors import SpecError
     from camgen.sizing import FACTOR_ANGLES, factor_table, size_cam
     from camgen.spec import load_template
 
@@ -96,43 +81,16 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
                f"convex radius > {s.min_rho_margin_mm:g} mm needs {s.curvature_radius_mm:.4f} mm)")
 
 
-def family_options(func: Callable[..., Any]) -> Callable[..., Any]:
-    """The options every ``family`` command takes."""
-    for option in reversed((
-        click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path)),
-        click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
-                     help="Folder of the family: one sub-folder a member, summary.csv, summary.json, "
-                          "overview.png."),
-        click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True,
-                     help="Processes to build with."),
-        click.option("--scheduler", metavar="ADDRESS", default=None,
-                     help="Build on the Dask cluster at ADDRESS (e.g. tcp://host:8786) instead of local "
-                          "processes."),
-    )):
-        func = option(func)
-    return func
-
-
 @main.command()
 @family_options
 @user_errors
 def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
     """Build every member of the family a TEMPLATE's [sweep] table describes; re-running resumes."""
-    from camgen.family import build_family
+    from camgen.core.family import build_family
     from camgen.outputs import build_member
     from camgen.spec import validate_template
 
     report_family(build_family(template, output, validate_template, build_member, jobs, scheduler), output)
-
-
-def report_family(rows: list[dict], output: Path) -> None:
-    ok = sum(r["status"] == "ok" for r in rows)
-    reused = sum(bool(r.get("reused")) for r in rows)
-    click.echo(f"{len(rows)} members: {ok} built, {len(rows) - ok} failed ({reused} already there); "
-               f"summary in {output / 'summary.csv'}")
-    for r in rows:
-        if r["status"] != "ok":
-            click.echo(f"failed {r['name']}: {r['error']}")
 
 
 @main.command()

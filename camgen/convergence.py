@@ -15,7 +15,7 @@ import numpy as np
 
 from camgen.cam import Cam
 from camgen.outline import exact_outline
-from camgen.parts.drawing import Contour
+from camgen.core.shapes import Contour
 from camgen.surface import surface_deviation
 
 

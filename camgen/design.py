@@ -7,12 +7,14 @@ from typing import Any
 
 import numpy as np
 
-from camgen.analysis import CamAnalysis, analyse, largest_roller
+from camgen.analysis import CamAnalysis, analyse, face_extent, largest_roller
 from camgen.cam import Cam, build_cam
-from camgen.errors import DesignError
+from camgen.dynamics import speed_report
+from camgen.core.errors import DesignError
 from camgen.outline import Outline, envelope_outline, exact_outline
-from camgen.parts.drawing import LAYER_ENGRAVE, Circle, Contour, Part, Polyline, Text
-from camgen.parts.hub import bolt_holes, key_for, keyed_bore
+from camgen.core.parts import LAYER_ENGRAVE, Part
+from camgen.core.shapes import Circle, Contour, Polyline, Text
+from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.program import Jump
 from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
 from camgen.spec import CamTemplate, with_base_radius
@@ -35,7 +37,15 @@ class CamDesign:
     printed: Part              # what the printed files carry: holes opened by the clearance
     wall_mm: float
     warnings: tuple[str, ...]
+    pressure_limit_deg: float
+    face_extent: tuple[float, float] | None       # flat faces: nearest and farthest contact along the face (mm)
+    speed: dict[str, Any] | None                  # with cam.rpm: peak rates and the contact check
     sizing: Sizing | None = None
+
+    @property
+    def tolerance(self) -> float:
+        """The chord tolerance (mm) every curve of this design was made to."""
+        return self.template.output.tolerance
 
     def _repr_svg_(self) -> str:
         """Jupyter shows the cam as it will be cut."""
@@ -107,8 +117,31 @@ def design_cam(template: CamTemplate) -> CamDesign:
         cut = envelope_outline(grown, tol) if a.undercut else exact_outline(grown, tol, template.output.curves)
     cut_part, printed = plate(cut.contour, -kerf / 2), plate(outline.contour, clearance / 2)
     jumps = tuple(cam.program.jumps())
-    warnings = _warnings(template, a, jumps, wall, cam.program.segments)
-    return CamDesign(template, cam, a, jumps, outline, part, (cut, cut_part), printed, wall, warnings, sizing)
+    speed = _speed(template, cam)
+    warnings = _warnings(template, a, jumps, wall, cam.program.segments) + _contact_warnings(speed)
+    extent = face_extent(cam) if cam.follower.flat else None
+    return CamDesign(template, cam, a, jumps, outline, part, (cut, cut_part), printed, wall, warnings,
+                     pressure_limit(template), extent, speed, sizing)
+
+
+def _speed(template: CamTemplate, cam: Cam) -> dict[str, Any] | None:
+    """Peak rates and the contact check at ``cam.rpm`` (None without a speed)."""
+    t = template
+    if t.cam.rpm is None:
+        return None
+    parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(t.motion) if seg.law == "parabolic"]
+    return speed_report(cam, t.cam.rpm, t.follower.mass, t.follower.spring_rate, t.follower.preload, parabolic)
+
+
+def _contact_warnings(speed: dict[str, Any] | None) -> tuple[str, ...]:
+    contact = speed and speed["contact"]
+    if not contact or contact.get("holds") is not False:
+        return ()
+    if contact["mode"] == "gravity":
+        return (f"the follower leaves the cam near {contact['liftoff_at_deg']:.1f} degrees: "
+                f"gravity holds it only up to {contact['liftoff_rpm']:.4g} rpm",)
+    return (f"the spring loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
+            f"{contact['force_min_n']:.3g} N): a preload of {contact['preload_needed_n']:.4g} N would hold it",)
 
 
 def _holes(template: CamTemplate, grow: float) -> tuple:

@@ -17,9 +17,9 @@ import numpy as np
 
 from camgen.biarcs import arc_distance, biarcs
 from camgen.cam import Cam
-from camgen.errors import DesignError
+from camgen.core.errors import DesignError
 from camgen.followers.base import PitchGeometry
-from camgen.parts.drawing import Contour, arc_steps
+from camgen.core.shapes import Contour, arc_steps
 from camgen.surface import surface_deviation
 
 #: interior points per chord at which the chord error is measured

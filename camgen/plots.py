@@ -1,4 +1,4 @@
-"""Plots of a cam: the S-V-A-J diagram and the cam drawing with its checks marked; :func:`figure` for all plots.
+"""Plots of a cam: the S-V-A-J diagram and the cam drawing with its checks marked.
 
 Uses matplotlib's object API (no pyplot state) with the Agg canvas; imported only
 when a plot is asked for (0.6 s).
@@ -12,6 +12,7 @@ import numpy as np
 
 from camgen.cam import Cam
 from camgen.analysis import face_extent
+from camgen.core.figures import figure
 from camgen.design import CamDesign
 
 
@@ -26,23 +27,6 @@ def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarr
         thetas.append(t)
         motions.append(seg.evaluate(t))
     return np.concatenate(thetas), np.concatenate(motions, axis=1)
-
-
-def save(fig: Any, path: Any, fmt: str) -> None:
-    """Save a figure reproducibly: no date in the metadata, fixed SVG ids."""
-    import matplotlib
-
-    with matplotlib.rc_context({"svg.hashsalt": "camgen"}):
-        fig.savefig(path, format=fmt, dpi=120, metadata={"Date": None} if fmt == "svg" else None)
-
-
-def figure(width: float, height: float) -> Any:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(width, height), layout="constrained")
-    FigureCanvasAgg(fig)
-    return fig
 
 
 def svaj_figure(design: CamDesign) -> Any:
@@ -136,52 +120,3 @@ def cam_figure(design: CamDesign) -> Any:
     what = "plate cam; θ spreads over the travel" if cam.is_plate else f"cam at θ = 0 ({t.cam.rotation})"
     ax.set_title(f"{t.name}: {what}, {t.follower.type} follower")
     return fig
-
-
-def drawing_figure(drawing: Any, title: str, tolerance: float = 0.05) -> Any:
-    """Any drawing, one colour per layer (paths dashed), equal axes in mm."""
-    fig = figure(9, 7)
-    ax = fig.add_subplot()
-    colours: dict[str, str] = {}
-    for layer, shape in drawing.items:
-        first = layer not in colours                      # label each layer once in the legend
-        colour = colours.setdefault(layer, f"C{len(colours) % 10}")
-        pts = shape.flatten(tolerance)
-        if not hasattr(shape, "text") and type(shape).__name__ != "Polyline":
-            pts = np.vstack([pts, pts[:1]])            # close contours and circles
-        ax.plot(pts[:, 0], pts[:, 1], "--" if layer == "PATH" else "-", color=colour, lw=1,
-                label=layer if first else None)
-    ax.set_aspect("equal")
-    ax.grid(alpha=0.3)
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
-    fig.legend(loc="outside lower center", ncols=3, fontsize=8)
-    ax.set_title(title)
-    return fig
-
-
-def overview_png(rows: list[dict], title: str) -> bytes:
-    """A grid of the members' thumbnails (cam outlines, or linkage paths), failed members marked."""
-    import io
-
-    n = max(1, len(rows))
-    cols = min(8, n)
-    grid = math.ceil(n / cols)
-    fig = figure(1.6 * cols, 1.7 * grid + 0.4)
-    for k, row in enumerate(rows):
-        ax = fig.add_subplot(grid, cols, k + 1)
-        ax.set_axis_off()
-        ax.set_title(row["name"], fontsize=5)
-        if row.get("thumbnail"):
-            ring = np.array(row["thumbnail"])
-            if row.get("thumbnail_kind") == "path":
-                ax.plot(ring[:, 0], ring[:, 1], color="C0", lw=0.8)
-            else:
-                ax.fill(ring[:, 0], ring[:, 1], color="0.85", ec="k", lw=0.5)
-            ax.set_aspect("equal")
-        else:
-            ax.text(0.5, 0.5, "failed", color="C3", ha="center", va="center", fontsize=7, transform=ax.transAxes)
-    fig.suptitle(title, fontsize=9)
-    out = io.BytesIO()
-    save(fig, out, "png")
-    return out.getvalue()

@@ -15,7 +15,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.laws import Law
 from camgen.numeric import left_of, maximise
 

@@ -1,23 +1,23 @@
-"""The JSON report of a cam: every figure a designer checks before cutting, in mm and degrees."""
+"""The report of a cam design: every figure a designer checks before cutting, in mm and degrees.
+
+Pure formatting of a finished :class:`~camgen.design.CamDesign` (and the check of its
+solid, when one was made): nothing here computes a peak or reads a template.
+"""
 from __future__ import annotations
 
-import json
 import math
 from typing import Any
 
-from camgen import __version__
-from camgen.analysis import face_extent
+from camgen.core import VERSION as __version__
+from camgen.core.solids import MeshCheck
 from camgen.design import CamDesign
-from camgen.dynamics import speed_report
-from camgen.sizing import pressure_limit
-from camgen.parts.stl import MeshCheck
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:
     return None if x is None else round(float(x), digits)
 
 
-def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str, str] | None = None) -> dict[str, Any]:
+def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, Any]:
     """The report as a JSON-ready dict (keys carry their units)."""
     t, cam, a, outline = design.template, design.cam, design.analysis, design.outline
     segments = [{
@@ -45,7 +45,7 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
         f"lift_max_{'deg' if cam.follower.lift_unit == 'deg' else 'mm'}": _r(cam.program.max_lift),
         "pressure_angle_max_deg": _r(a.pressure_angle_max_deg),
         "pressure_angle_max_at_deg": _r(a.pressure_angle_max_at_deg),
-        "pressure_angle_limit_deg": pressure_limit(t),
+        "pressure_angle_limit_deg": design.pressure_limit_deg,
         "pitch_rho_min_mm": _r(a.pitch_rho_min_mm),
         "pitch_rho_min_at_deg": _r(a.pitch_rho_min_at_deg),
         "profile_rho_min_mm": _r(a.profile_rho_min_mm),
@@ -72,8 +72,8 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
         "warnings": list(design.warnings),
     }
     f = cam.follower
-    if f.flat:
-        lo, hi = face_extent(cam)
+    if design.face_extent is not None:
+        lo, hi = design.face_extent
         report["face_position_min_mm"], report["face_position_max_mm"] = _r(lo), _r(hi)
         report["face_width_mm"] = _r(hi - lo + 2 * t.follower.face_margin)
         report["face_measured_from"] = "the follower's axis (+X)" if t.follower.type == "translating-flat" \
@@ -82,19 +82,8 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
         report["follower"]["pivot_mm"] = [_r(x) for x in f.pivot]
     if hasattr(f, "rest_angle"):
         report["follower"]["rest_angle_deg"] = _r(math.degrees(f.rest_angle))
-    if t.cam.rpm is not None:
-        parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(t.motion) if seg.law == "parabolic"]
-        report["speed"] = speed_report(cam, t.cam.rpm, t.follower.mass, t.follower.spring_rate, t.follower.preload,
-                                       parabolic)
-        contact = report["speed"]["contact"]
-        if contact and contact.get("holds") is False:
-            if contact["mode"] == "gravity":
-                report["warnings"].append(f"the follower leaves the cam near {contact['liftoff_at_deg']:.1f} degrees: "
-                                          f"gravity holds it only up to {contact['liftoff_rpm']:.4g} rpm")
-            else:
-                report["warnings"].append(
-                    f"the spring loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
-                    f"{contact['force_min_n']:.3g} N): a preload of {contact['preload_needed_n']:.4g} N would hold it")
+    if design.speed is not None:
+        report["speed"] = design.speed
     if design.sizing is not None:
         s = design.sizing
         report["sizing"] = {"base_radius_mm": _r(s.base_radius_mm), "decided_by": s.decided_by,
@@ -105,9 +94,4 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None, files: dict[str
     if mesh is not None:
         report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
                           "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles}
-    report["files"] = dict(files or {})
     return report
-
-
-def report_json(report: dict[str, Any]) -> str:
-    return json.dumps(report, indent=2, allow_nan=False) + "\n"

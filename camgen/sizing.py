@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from camgen.analysis import pressure_angle_max, profile_rho_min
 from camgen.cam import Cam, build_cam
-from camgen.errors import CamgenError, DesignError
+from camgen.core.errors import CamgenError, DesignError
 from camgen.laws import make_law
 from camgen.numeric import boundary
 from camgen.spec import CamTemplate

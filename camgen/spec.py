@@ -2,7 +2,7 @@
 
 A template is a TOML file (or the same mapping from Python). :func:`load_template`
 reads it, merges ``--set`` overrides into the raw mapping, then validates it all at
-once; every problem becomes a :class:`~camgen.errors.SpecError` whose message names
+once; every problem becomes a :class:`~camgen.core.errors.SpecError` whose message names
 the field, what is allowed and what was given, e.g.
 ``motion[2].angle: must be > 0 degrees (got -30)``.
 """
@@ -16,7 +16,7 @@ from typing import Any, Literal
 from pydantic import Field, field_validator, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
-from camgen.templates import NAME_PATTERN, Model, read_toml, unit, validate
+from camgen.core.spec import NAME_PATTERN, Model, read_template, unit, validate
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
 FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg")
@@ -242,13 +242,13 @@ class CamTemplate(Model):
 
 
 def validate_template(raw: Mapping[str, Any]) -> CamTemplate:
-    """A :class:`CamTemplate` from a raw mapping, or a one-line :class:`~camgen.errors.SpecError`."""
+    """A :class:`CamTemplate` from a raw mapping, or a one-line :class:`~camgen.core.errors.SpecError`."""
     return validate(CamTemplate, raw)
 
 
 def load_template(path: str | Path, overrides: Iterable[str] = ()) -> CamTemplate:
     """Read a TOML cam template, merge ``key=value`` overrides, validate."""
-    return validate_template(read_toml(path, overrides))
+    return validate_template(read_template(path, overrides))
 
 
 def with_base_radius(template: CamTemplate, base_radius: float) -> CamTemplate:

@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from linkgen.fourbar import ASSEMBLIES, FourBar, Poses
 from linkgen.quickreturn import CrankShaper, Whitworth
 from linkgen.slidercrank import ScotchYoke, SliderCrank

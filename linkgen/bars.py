@@ -16,62 +16,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camgen.errors import DesignError, SpecError
-from camgen.parts.drawing import Circle, Contour, Part
+from camgen.core.errors import DesignError, SpecError
+from camgen.core.parts import Part
+from camgen.core.shapes import Circle, Contour, rounded_hull
 from linkgen.fourbar import FourBar
 from linkgen.slidercrank import SliderCrank
-
-
-def rounded_hull(centres: np.ndarray, radius: float) -> Contour:
-    """Counter-clockwise outline at ``radius`` round the convex hull of ``centres`` (k, 2): lines and exact arcs."""
-    pts = np.asarray(centres, dtype=float)
-    hull = _hull(pts)
-    n = len(hull)
-    if n == 1:
-        c = hull[0]
-        return Contour(np.array([c + np.array([radius, 0.0]), c - np.array([radius, 0.0])]), np.array([1.0, 1.0]))
-    verts, bulges = [], []
-    for i in range(n):
-        a, b, c = hull[i], hull[(i + 1) % n], hull[(i + 2) % n]
-        d1, d2 = b - a, c - b
-        n1 = np.array([d1[1], -d1[0]]) / np.linalg.norm(d1)            # outward for a ccw hull
-        n2 = np.array([d2[1], -d2[0]]) / np.linalg.norm(d2)
-        turn = math.atan2(n1[0] * n2[1] - n1[1] * n2[0], float(n1 @ n2))
-        if turn <= 0:                                                   # a straight-through vertex
-            turn += 2 * math.pi if n == 2 else 0.0
-        verts += [a + radius * n1, b + radius * n1]
-        bulges += [0.0, math.tan(turn / 4)]
-    return Contour(np.array(verts), np.array(bulges))
-
-
-def _turn(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> float:
-    """Twice the signed area of triangle a, b, c: > 0 for a counter-clockwise turn."""
-    return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
-
-
-def _hull(pts: np.ndarray) -> np.ndarray:
-    """Convex hull of points, counter-clockwise (monotone chain); collinear points dropped."""
-    unique = np.unique(np.round(pts, 12), axis=0)
-    if len(unique) <= 2:
-        return unique
-
-    def half(points: np.ndarray) -> list:
-        out: list = []
-        for p in points:
-            while len(out) >= 2 and _turn(out[-2], out[-1], p) <= 0:
-                out.pop()
-            out.append(p)
-        return out
-
-    lower, upper = half(unique), half(unique[::-1])
-    return np.array(lower[:-1] + upper[:-1])
-
-
-def transform(contour: Contour, angle: float, shift: np.ndarray) -> Contour:
-    """``contour`` turned by ``angle`` (rad, ccw) about the origin then moved by ``shift``: arcs stay exact."""
-    c, s = math.cos(angle), math.sin(angle)
-    v = contour.vertices @ np.array([[c, s], [-s, c]]) + shift
-    return Contour(v, contour.bulges)
 
 
 @dataclass(frozen=True)
@@ -182,8 +131,8 @@ def layer_order(parts: tuple[LinkPart, ...], placement: Placement, pin_radius: f
 
     moving = [p for p in parts if p.moving]
     n = len(placement.angles["crank"])
-    shapes = {p.name: [shapely.Polygon(transform(p.outline(), placement.angles[p.name][k],
-                                                 placement.origins[p.name][k]).flatten(0.05)) for k in range(n)]
+    shapes = {p.name: [shapely.Polygon(p.outline().moved(placement.angles[p.name][k],
+                                                                     placement.origins[p.name][k]).flatten(0.05)) for k in range(n)]
               for p in moving}
     joined = {frozenset(names) for names, _ in placement.joints.values()}
     clash = {}

@@ -7,11 +7,12 @@ from typing import Any
 
 import numpy as np
 
-from camgen.errors import DesignError, SpecError
-from camgen.parts.drawing import LAYER_HOLES, LAYER_OUTLINE, Circle, Contour, Drawing, Part, Polyline
+from camgen.core.errors import DesignError, SpecError
+from camgen.core.parts import LAYER_HOLES, LAYER_OUTLINE, Drawing, Part
+from camgen.core.shapes import Contour, Polyline
 from linkgen.analyze import build_linkage
 from linkgen.bars import (LinkPart, Placement, PartsSpec, check_spec, fourbar_parts, fourbar_placement,
-                          layer_order, slidercrank_parts, slidercrank_placement, transform)
+                          layer_order, slidercrank_parts, slidercrank_placement)
 from linkgen.fourbar import FourBar
 from linkgen.slidercrank import SliderCrank
 
@@ -68,18 +69,10 @@ def _placement_at(mech: Any, angle: float, assembly: str) -> Placement:
 
 def _place(part: Part, angle: float, shift: np.ndarray) -> tuple[Contour, list]:
     """The part's outline and holes turned by ``angle`` (rad) and moved by ``shift`` (mm)."""
-    c, s = math.cos(angle), math.sin(angle)
-    holes: list = []
-    for hole in part.holes:
-        if isinstance(hole, Circle):
-            x, y = hole.centre
-            holes.append(Circle((c * x - s * y + shift[0], s * x + c * y + shift[1]), hole.radius))
-        else:
-            holes.append(transform(hole, angle, shift))
-    return transform(part.outline, angle, shift), holes
+    return part.outline.moved(angle, shift), [hole.moved(angle, shift) for hole in part.holes]
 
 
-def _sheet(cut: tuple[Part, ...], size: tuple[float, float], gap: float) -> Drawing:
+def _sheet(cut: tuple[Part, ...], size: tuple[float, float], gap: float, tolerance: float) -> Drawing:
     """Shelf packing, left to right in rows, each part shifted so its box starts at the cursor."""
     width, height = size
     x = y = row = 0.0
@@ -95,7 +88,7 @@ def _sheet(cut: tuple[Part, ...], size: tuple[float, float], gap: float) -> Draw
         outline, holes = _place(part, 0.0, np.array([x, y]) - lo)
         items += [(LAYER_OUTLINE, outline), *((LAYER_HOLES, h) for h in holes)]
         x, row = x + span[0] + gap, max(row, span[1])
-    return Drawing(tuple(items))
+    return Drawing(tuple(items), tolerance)
 
 
 def build_parts(template: Any) -> LinkageBuild:
@@ -108,7 +101,7 @@ def build_parts(template: Any) -> LinkageBuild:
     layers = layer_order(parts, sweep, (spec.pin_diameter) / 2)
     cut = tuple(p.part(spec, True, table.tolerance) for p in parts)
     printed = tuple(p.part(spec, False, table.tolerance) for p in parts)
-    sheet = _sheet(cut, table.sheet, spec.kerf + table.margin)
+    sheet = _sheet(cut, table.sheet, spec.kerf + table.margin, table.tolerance)
     items: list = []
     for i, (kind, angle) in enumerate(dead):
         place = _placement_at(mech, angle, assembly)
@@ -118,7 +111,7 @@ def build_parts(template: Any) -> LinkageBuild:
             items += [(layer, outline), *((layer, h) for h in holes)]
     points = _path(mech, sweep, assembly)
     items.append(("PATH", Polyline(points, np.zeros(len(points) - 1))))
-    return LinkageBuild(parts, spec, layers, cut, printed, sheet, Drawing(tuple(items)), tuple(dead))
+    return LinkageBuild(parts, spec, layers, cut, printed, sheet, Drawing(tuple(items), table.tolerance), tuple(dead))
 
 
 def _path(mech: Any, sweep: Placement, assembly: str) -> np.ndarray:

@@ -7,7 +7,7 @@ from typing import Any
 
 import click
 
-from camgen.cli import family_options, report_family, user_errors
+from camgen.core.cli import family_options, report_family, user_errors
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -31,7 +31,7 @@ def main() -> None:
 def analyze(template: Path, angle: float | None, method: str, as_json: bool, output: Path | None,
             overrides: tuple[str, ...]) -> None:
     """Analyse the linkage described by TEMPLATE (a TOML file)."""
-    from camgen.errors import SpecError
+    from camgen.core.errors import SpecError
     from linkgen.analyze import analyze as run
     from linkgen.outputs import write_analysis
     from linkgen.spec import load_linkage
@@ -78,7 +78,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 @user_errors
 def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
     """Analyse (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes."""
-    from camgen.family import build_family
+    from camgen.core.family import build_family
     from linkgen.outputs import build_member
     from linkgen.spec import validate_linkage
 

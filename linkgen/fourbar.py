@@ -27,7 +27,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from camgen.errors import SolverError, SpecError
+from camgen.core.errors import SolverError, SpecError
 from linkgen.grashof import CHANGE_POINT_TOL, Grashof, check_lengths, classify
 
 Assembly = Literal["open", "crossed"]
@@ -135,8 +135,9 @@ class FourBar:
 
     def _repr_svg_(self) -> str:
         """Jupyter shows the linkage at its first reachable crank angle, with the coupler point's path."""
-        from camgen.parts.drawing import Drawing, Polyline
-        from camgen.parts.svg import svg_document
+        from camgen.core.parts import Drawing
+        from camgen.core.shapes import Polyline
+        from camgen.core.writers.svg import svg_document
 
         ranges = self.input_ranges()
         lo, hi = (0.0, TWO_PI) if ranges is None else ranges[0]
@@ -145,7 +146,7 @@ class FourBar:
         links = np.array([[0.0, 0.0], p.a[0], p.b[0], [self.ground, 0.0], [0.0, 0.0]])
         path = self.sweep(np.linspace(lo, hi, 181)).point
         items = [("LINKS", Polyline(links, np.zeros(4))), ("PATH", Polyline(path, np.zeros(len(path) - 1)))]
-        return svg_document(Drawing(tuple(items)), stroke_width=0.5)
+        return svg_document(Drawing(tuple(items), 0.01), stroke_width=0.5)
 
     # ------------------------------------------------------------------ classification
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 
 #: relative tolerance (of the longest link) of the change-point test S + L = P + Q
 CHANGE_POINT_TOL = 1e-10

@@ -1,6 +1,6 @@
 """Plots of a linkage: transmission angle over the cycle, the linkage at its dead centres, slider motion.
 
-matplotlib's object API through :func:`camgen.plots.figure`; imported only when a plot is asked for.
+matplotlib's object API through :func:`camgen.core.figures.figure`; imported only when a plot is asked for.
 """
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.plots import figure
+from camgen.core.figures import figure
 from linkgen.fourbar import FourBar, Poses
 
 

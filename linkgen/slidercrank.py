@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 
 TWO_PI = 2.0 * math.pi
 

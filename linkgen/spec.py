@@ -12,12 +12,12 @@ from typing import Any, Literal
 
 from pydantic import Field
 
-from camgen.errors import SpecError
-from camgen.templates import NAME_PATTERN, Model, read_toml, unit, validate
+from camgen.core.errors import SpecError
+from camgen.core.spec import NAME_PATTERN, Model, read_template, unit, validate
 
 LINKAGE_TYPES = ("four-bar", "slider-crank", "scotch-yoke", "whitworth", "crank-shaper",
                  "chebyshev", "hoekens", "roberts", "watt")
-FORMATS = ("json", "png", "svg", "dxf", "stl", "3mf")
+FORMATS = ("json", "png", "svg", "cut-svg", "dxf", "stl", "3mf")
 
 
 def _length(description: str) -> Any:
@@ -148,4 +148,4 @@ def validate_linkage(raw: Mapping[str, Any]) -> Any:
 
 def load_linkage(path: str | Path, overrides: Iterable[str] = ()) -> Any:
     """Read a TOML linkage template, merge ``key=value`` overrides, validate."""
-    return validate_linkage(read_toml(path, overrides))
+    return validate_linkage(read_template(path, overrides))

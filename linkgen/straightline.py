@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from linkgen.fourbar import FourBar
 
 #: (ground, crank, coupler, rocker, point distance, point angle rad, assembly, stroke), in units of size

@@ -31,6 +31,6 @@ def raw() -> dict:
 def template(overrides: dict | None = None, **changes):
     """A validated template: rdrd with dotted-key ``overrides`` applied."""
     from camgen.spec import validate_template
-    from camgen.templates import apply_overrides
+    from camgen.core.spec import apply_overrides
 
     return validate_template(apply_overrides(RDRD, list((overrides or {}).items())))

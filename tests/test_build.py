@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from camgen.cam import build_cam
 from camgen.cli import main
-from camgen.parts.drawing import Contour
+from camgen.core.shapes import Contour
 from camgen.surface import surface_deviation
 from tests.conftest import ROOT, template
 
@@ -145,8 +145,8 @@ def test_missing_key_and_bad_toml(tmp_path):
 
 
 def test_a_failing_writer_leaves_no_file(tmp_path, monkeypatch):
-    import camgen.parts.stl as stl
-    from camgen.errors import ExportError
+    import camgen.core.writers.stl as stl
+    from camgen.core.errors import ExportError
 
     def broken(mesh):
         raise ExportError("disk full")

@@ -9,7 +9,7 @@ import pytest
 from camgen.analysis import analyse, largest_roller
 from camgen.cam import build_cam
 from camgen.design import design_cam
-from camgen.errors import DesignError
+from camgen.core.errors import DesignError
 from tests.conftest import template
 
 
@@ -157,7 +157,7 @@ def test_concave_corner_is_an_exact_arc_of_the_roller_radius():
     """Uniform start from a dwell, then a polynomial matching its velocity: one concave pitch corner."""
     raw = {"motion.0.law": "uniform", "motion.0.lift": 10.0, "motion.0.angle": 60.0}
     from camgen.spec import validate_template
-    from camgen.templates import apply_overrides
+    from camgen.core.spec import apply_overrides
     from tests.conftest import RDRD
 
     data = apply_overrides(RDRD, list(raw.items()))

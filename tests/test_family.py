@@ -8,8 +8,8 @@ import pytest
 from click.testing import CliRunner
 
 from camgen.cli import main
-from camgen.errors import SpecError
-from camgen.family import members, read_family
+from camgen.core.errors import SpecError
+from camgen.core.family import members, read_family
 from tests.conftest import ROOT
 
 RDRD = ROOT / "templates" / "rdrd.toml"

@@ -9,7 +9,7 @@ import pytest
 from camgen.analysis import analyse, face_extent, pressure_angle_max, profile_rho_min
 from camgen.cam import build_cam
 from camgen.design import design_cam
-from camgen.errors import DesignError, SpecError
+from camgen.core.errors import DesignError, SpecError
 from camgen.followers.base import rotate
 from camgen.laws import DraftedUniform, make_law
 from camgen.sizing import FACTOR_LAWS, cam_factor, factor_table, size_cam

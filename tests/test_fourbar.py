@@ -9,7 +9,7 @@ import mpmath
 import numpy as np
 import pytest
 
-from camgen.errors import SolverError, SpecError
+from camgen.core.errors import SolverError, SpecError
 from linkgen.fourbar import FourBar
 
 CRANK_ROCKER = FourBar(180, 80, 200, 150)

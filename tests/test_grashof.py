@@ -5,7 +5,7 @@ import itertools
 
 import pytest
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from linkgen.grashof import classify, classify_chain
 
 # A Grashof chain in loop order with the shortest link at index 0 (2 + 6 < 4 + 5).

@@ -8,7 +8,7 @@ import pytest
 import shapely
 
 from camgen.design import design_cam
-from camgen.errors import DesignError, SpecError
+from camgen.core.errors import DesignError, SpecError
 from tests.conftest import template
 
 

@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from camgen.design import design_cam
-from camgen.errors import DesignError
+from camgen.core.errors import DesignError
 from camgen.outputs import write_cam
-from camgen.parts.drawing import Contour
-from camgen.parts.hub import key_for
+from camgen.core.shapes import Contour
+from camgen.core.features import key_for
 from tests.conftest import template
 
 BASE = {"cam.base_radius": 40.0, "output.formats": ["dxf", "stl"]}

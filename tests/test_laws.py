@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from numpy.polynomial import Polynomial
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.laws import BlendedUniform, DraftedUniform, Parabolic, from_conditions, make_law
 from camgen.laws.table import law_table
 

@@ -10,7 +10,6 @@ import pytest
 import shapely
 from click.testing import CliRunner
 
-from linkgen.bars import transform
 from linkgen.build import build_parts
 from linkgen.cli import main
 from linkgen.spec import load_linkage
@@ -33,7 +32,7 @@ def _sheet_parts(path):
     """Each part on the sheet: its outline polygon and its hole circles (centre, radius)."""
     import ezdxf
 
-    from camgen.parts.drawing import Contour
+    from camgen.core.shapes import Contour
 
     msp = ezdxf.readfile(path).modelspace()
     outlines = []
@@ -119,7 +118,7 @@ def test_parts_on_one_layer_never_meet_over_a_full_sweep():
         if b.layers[p.name] != b.layers[q.name]:
             continue
         def at(part, k):
-            return shapely.Polygon(transform(part.outline(), place.angles[part.name][k],
+            return shapely.Polygon(part.outline().moved(place.angles[part.name][k],
                                              place.origins[part.name][k]).flatten(0.01))
 
         for k in range(721):

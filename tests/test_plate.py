@@ -9,7 +9,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main
 from camgen.design import design_cam
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.surface import surface_deviation
 from camgen.spec import validate_template
 

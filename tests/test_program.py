@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.laws import make_law
 from camgen.program import build_program
 

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from linkgen.quickreturn import CrankShaper, Whitworth
 from linkgen.slidercrank import ScotchYoke, SliderCrank
 from linkgen.straightline import straight_line

@@ -13,7 +13,7 @@ TEMPLATES = sorted((ROOT / "templates").glob("*.toml"))
 
 
 def _is_linkage(path) -> bool:
-    from camgen.family import read_family
+    from camgen.core.family import read_family
 
     raw, _ = read_family(path)
     return "linkage" in raw

@@ -23,7 +23,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.followers.base import PitchGeometry, from_centre_path, from_support, rotate
 
 

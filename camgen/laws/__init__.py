@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.laws.accel import AccelerationLaw, modified_sine, modified_trapezoid
 from camgen.laws.base import Law
 from camgen.laws.piecewise import BlendedUniform, DraftedUniform, Parabolic, Uniform

@@ -9,7 +9,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.laws.base import Law, as_array
 
 

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.polynomial import Chebyshev, Polynomial
 from numpy.typing import ArrayLike
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.laws.base import Law, as_array
 
 #: most derivative orders a boundary condition may name

@@ -17,7 +17,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 from camgen.laws.base import Law, as_array
 
 ENDS = {"dwell": ([(1, 0.0), (2, 0.0)], [(1, 0.0), (2, 0.0)]),

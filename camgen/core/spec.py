@@ -1,8 +1,9 @@
-"""Templates in general: TOML loading, ``--set`` overrides and one-line validation errors.
+"""The spec machinery of both products: TOML templates, ``base`` includes, ``--set`` overrides, validation.
 
-Shared by camgen and linkgen. A template is validated by a pydantic model derived
+A *template* is what a user writes (a TOML file, or the same mapping from Python); its
+*spec* is the validated, frozen model of it. A template is validated by a pydantic model derived
 from :class:`Model`; :func:`validate` turns pydantic's first error into a
-:class:`~camgen.errors.SpecError` naming the field, the rule and the value given,
+:class:`~camgen.core.errors.SpecError` naming the field, the rule and the value given,
 with the field's unit (from ``json_schema_extra={"unit": ...}``), e.g.
 ``motion[2].angle: must be > 0 and <= 360 degrees (got -30)``.
 """
@@ -16,7 +17,7 @@ from typing import Any, TypeVar
 
 from pydantic import BaseModel, ConfigDict, ValidationError
 
-from camgen.errors import SpecError
+from camgen.core.errors import SpecError
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -87,16 +88,38 @@ def validate(model: type[M], raw: Mapping[str, Any]) -> M:
         raise _first_error(exc, model) from None
 
 
-def read_toml(path: str | Path, overrides: Iterable[str] = ()) -> dict[str, Any]:
-    """A TOML file as a raw mapping with ``key=value`` overrides merged in (before any validation)."""
-    path = Path(path)
+def read_template(path: str | Path, overrides: Iterable[str] = ()) -> dict[str, Any]:
+    """A TOML template as a raw mapping: its ``base`` (a template it starts from, path relative to it)
+    merged under it, then ``key=value`` overrides merged in, all before any validation."""
+    return apply_overrides(_with_base(Path(path), set()), parse_overrides(overrides))
+
+
+def _with_base(path: Path, seen: set) -> dict:
+    if path.resolve() in seen:
+        raise SpecError(f"{path.name} includes itself", "base")
+    field = "base" if seen else "template"             # the first file read is the template itself
+    seen.add(path.resolve())
     try:
         raw = tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
-        raise SpecError(f"no such file: {path}", "template") from None
+        raise SpecError(f"no such file: {path}", field) from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise SpecError(f"{path} is not valid TOML: {exc}", "template") from None
-    return apply_overrides(raw, parse_overrides(overrides))
+    base = raw.pop("base", None)
+    if base is None:
+        return raw
+    return merge(_with_base(path.parent / base, seen), raw)
+
+
+def merge(base: Mapping[str, Any], top: Mapping[str, Any]) -> dict[str, Any]:
+    """``top`` over ``base``: tables merge key by key, everything else (lists included) replaces."""
+    out = copy.deepcopy(dict(base))
+    for key, value in top.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = merge(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
 
 
 _WORDS = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<", "less_than_equal": "<="}

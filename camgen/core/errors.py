@@ -1,7 +1,7 @@
 """The project's error contract: one base class, one subclass per kind of failure.
 
 Every subclass also derives from the matching builtin, so callers may catch either
-``camgen.errors.SpecError`` or plain ``ValueError``. Messages are one line, in the
+``camgen.core.errors.SpecError`` or plain ``ValueError``. Messages are one line, in the
 user's terms (field names, mm, degrees); the CLI prints them and exits with code 2.
 """
 from __future__ import annotations

@@ -20,7 +20,6 @@ its inputs, written last: a re-run skips members whose hash matches.
 """
 from __future__ import annotations
 
-import copy
 import csv
 import hashlib
 import io
@@ -35,10 +34,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from camgen import __version__
-from camgen.errors import CamgenError, SpecError
-from camgen.parts.files import staged
-from camgen.templates import apply_overrides
+from camgen.core import VERSION as __version__
+from camgen.core.errors import CamgenError, SpecError
+from camgen.core.bundle import staged
+from camgen.core.writers.figure import save
+from camgen.core.spec import apply_overrides, read_template
 
 MARKER = ".inputs"
 
@@ -59,42 +59,11 @@ class Member:
 
 def read_family(path: str | Path) -> tuple[dict, dict]:
     """The raw template (its ``base`` merged in) and its sweep table."""
-    path = Path(path)
-    raw = _with_base(path, set())
+    raw = read_template(path)
     sweep = raw.pop("sweep", {})
     if not isinstance(sweep, Mapping):
         raise SpecError("must be a table of key = values", "sweep")
     return raw, dict(sweep)
-
-
-def _with_base(path: Path, seen: set) -> dict:
-    import tomllib
-
-    if path.resolve() in seen:
-        raise SpecError(f"{path.name} includes itself", "base")
-    field = "base" if seen else "template"             # the first file read is the template itself
-    seen.add(path.resolve())
-    try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise SpecError(f"no such file: {path}", field) from None
-    except tomllib.TOMLDecodeError as exc:
-        raise SpecError(f"{path} is not valid TOML: {exc}", "template") from None
-    base = raw.pop("base", None)
-    if base is None:
-        return raw
-    return _merge(_with_base(path.parent / base, seen), raw)
-
-
-def _merge(base: dict, top: dict) -> dict:
-    """``top`` over ``base``: tables merge key by key, everything else (lists included) replaces."""
-    out = copy.deepcopy(base)
-    for key, value in top.items():
-        if isinstance(value, dict) and isinstance(out.get(key), dict):
-            out[key] = _merge(out[key], value)
-        else:
-            out[key] = copy.deepcopy(value)
-    return out
 
 
 def _values(key: str, spec: Any) -> list:
@@ -234,8 +203,8 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
     return sorted(rows, key=lambda r: r["name"])
 
 
-def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview: bytes | None = None) -> list[str]:
-    """summary.csv and summary.json (one row per member), and the overview picture, all-or-nothing."""
+def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview: Any = None) -> list[str]:
+    """summary.csv and summary.json (one row per member), and the overview figure as PNG, all-or-nothing."""
     columns = ["name", *keys, "status", "error"]
     extra = sorted({k for r in rows for k in r} - set(columns) - {"reused", "thumbnail", "thumbnail_kind"})
     columns += extra
@@ -251,19 +220,19 @@ def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview:
         written.append(stage.write("summary.json", lambda p: p.write_text(
             json.dumps(clean, indent=2, default=str) + "\n")).name)
         if overview is not None:
-            written.append(stage.write_bytes("overview.png", overview).name)
+            written.append(stage.write("overview.png", lambda p: save(overview, p, "png")).name)
     return written
 
 
 def build_family(template: str | Path, root: str | Path, validate: Callable[[dict], Any], builder: Builder,
                  jobs: int = 1, scheduler: str | None = None) -> list[dict]:
     """Everything ``family`` does: expand, validate every member, build (or resume), write the summary."""
-    from camgen.plots import overview_png
+    from camgen.core.figures import overview_figure
 
     raw, sweep = read_family(template)
     items = members(raw, sweep)
     check_all(items, validate)
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
     write_summary(rows, root, [k for k, _ in items[0].values],
-                  overview_png(rows, f"{raw.get('name')}: {len(rows)} members"))
+                  overview_figure(rows, f"{raw.get('name')}: {len(rows)} members"))
     return rows

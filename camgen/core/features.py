@@ -15,8 +15,8 @@ import math
 
 import numpy as np
 
-from camgen.errors import SpecError
-from camgen.parts.drawing import Circle, Contour
+from camgen.core.errors import SpecError
+from camgen.core.shapes import Circle, Contour
 
 #: (over d, up to d, key width b, hub keyseat depth t2), mm; DIN 6885-1
 KEYS = (

@@ -10,20 +10,27 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-
-import numpy as np
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from xml.sax.saxutils import escape
 
-from camgen.parts.drawing import Circle, Contour, Drawing, Polyline, Text
+import numpy as np
+
+from camgen.core.shapes import Circle, Contour, Polyline, Text
+
+if TYPE_CHECKING:
+    from camgen.core.parts import Drawing
 
 LAYER_RGB = {"OUTLINE": "#ff0000", "HOLES": "#0000ff", "ENGRAVE": "#000000"}
 HAIRLINE_MM = 0.01
 MARGIN_MM = 2.0
+#: chord tolerance (mm) of the points that size the page; the 2 mm margin absorbs far more
+PAGE_SAMPLING_MM = 0.01
 
 
 def _bounds(drawing: Drawing) -> tuple[float, float, float, float]:
-    pts = [s.flatten(0.01) for _, s in drawing.items]
+    pts = [s.flatten(PAGE_SAMPLING_MM) for _, s in drawing.items]
     allp = np.vstack(pts)
     return float(allp[:, 0].min()), float(allp[:, 1].min()), float(allp[:, 0].max()), float(allp[:, 1].max())
 
@@ -91,3 +98,11 @@ def _path(contour: Contour, pt: Callable[[np.ndarray], str], closed: bool = True
     if closed:
         parts.append("Z")
     return " ".join(parts)
+
+
+def write_svg(drawing: Drawing, path: Path, options: Any = None) -> None:
+    """Write ``drawing`` to ``path`` as a cut SVG (hairline strokes)."""
+    path.write_text(svg_document(drawing), encoding="utf-8")
+
+
+WRITERS = {"cut-svg": write_svg}

@@ -1,4 +1,4 @@
-"""The project's one DXF writer: a :class:`~camgen.parts.drawing.Drawing` to a DXF file.
+"""The project's one DXF writer: a :class:`~camgen.core.parts.Drawing` to a DXF file.
 
 Millimetres are declared in the header ($INSUNITS = 4, $MEASUREMENT = 1; R12 has no
 units header, its numbers are millimetres all the same). Each drawing layer becomes
@@ -18,17 +18,21 @@ import io
 import math
 from itertools import pairwise
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from camgen.errors import ExportError
-from camgen.parts.drawing import Circle, Contour, Drawing, Polyline, Text
+from camgen.core.errors import ExportError
+from camgen.core.shapes import Circle, Contour, Polyline, Text
+from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, WriteOptions
+
+if TYPE_CHECKING:
+    from camgen.core.parts import Drawing
+from camgen.core.parts import Drawing
+from camgen.core.shapes import Circle, Contour, Polyline, Text
 
 #: ACI colour of each layer a laser job usually maps to an operation
 LAYER_COLOURS = {"OUTLINE": 7, "HOLES": 1, "ENGRAVE": 5}
-FLAVOURS = ("polyline-bulge", "lines-arcs", "segments")
-VERSIONS = ("R2010", "R12")
 
 
 def _pieces(msp: Any, contour: Contour, attribs: dict, closed: bool = True) -> None:
@@ -62,16 +66,15 @@ def _open_line(msp: Any, line: Polyline, attribs: dict, version: str, flavour: s
             msp.add_lwpolyline([(x, y, 0.0, 0.0, b) for x, y, b in pts], format="xyseb", dxfattribs=attribs)
 
 
-def dxf_document(drawing: Drawing, version: str = "R2010", flavour: str = "polyline-bulge",
-                 tolerance: float = 0.01) -> Any:
+def dxf_document(drawing: Drawing, version: str = "R2010", flavour: str = "polyline-bulge") -> Any:
     """An ezdxf document holding ``drawing``; raises :class:`ExportError` if ezdxf's audit finds errors.
 
-    ``tolerance`` (mm) is the chord tolerance of the ``segments`` flavour.
+    The ``segments`` flavour turns arcs into chords within the drawing's tolerance.
     """
     import ezdxf
     from ezdxf import units
 
-    if version not in VERSIONS or flavour not in FLAVOURS:
+    if version not in DXF_VERSIONS or flavour not in DXF_FLAVOURS:
         raise ExportError(f"unknown DXF version {version!r} or flavour {flavour!r}")
     doc = ezdxf.new(version, setup=False)
     if version != "R12":
@@ -87,9 +90,9 @@ def dxf_document(drawing: Drawing, version: str = "R2010", flavour: str = "polyl
             msp.add_text(shape.text, height=shape.height, rotation=shape.angle,
                          dxfattribs=attribs).set_placement(shape.position)
         elif isinstance(shape, Polyline):
-            _open_line(msp, shape, attribs, version, flavour, tolerance)
+            _open_line(msp, shape, attribs, version, flavour, drawing.tolerance)
         elif flavour == "segments":
-            ring = shape.flatten(tolerance)
+            ring = shape.flatten(drawing.tolerance)
             for a, b in zip(ring, np.roll(ring, -1, axis=0), strict=True):
                 msp.add_line(tuple(a), tuple(b), dxfattribs=attribs)
         elif isinstance(shape, Circle):
@@ -124,9 +127,8 @@ def _sorted_classes(text: str) -> str:
     return head + sep + "".join(sorted(records, key=lambda r: r.split("\n")[3])) + end + tail
 
 
-def write_dxf(drawing: Drawing, path: Path, version: str = "R2010", flavour: str = "polyline-bulge",
-              tolerance: float = 0.01) -> None:
-    """Write ``drawing`` to ``path`` as DXF."""
+def write_dxf(drawing: Drawing, path: Path, options: WriteOptions = WriteOptions()) -> None:
+    """Write ``drawing`` to ``path`` as DXF, in the flavour and version ``options`` ask for."""
     import logging
 
     import ezdxf
@@ -137,10 +139,13 @@ def write_dxf(drawing: Drawing, path: Path, version: str = "R2010", flavour: str
     # fixed dates and GUIDs: the same drawing always gives the same bytes (reproducible builds and families)
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
-        doc = dxf_document(drawing, version, flavour, tolerance)
+        doc = dxf_document(drawing, options.dxf_version, options.dxf_flavour)
         stream = io.StringIO()
         doc.write(stream)
         path.write_text(_sorted_classes(stream.getvalue()), encoding=doc.output_encoding, errors="replace")
     finally:
         log.setLevel(level)
         ezdxf.options.write_fixed_meta_data_for_testing = fixed
+
+
+WRITERS = {"dxf": write_dxf}

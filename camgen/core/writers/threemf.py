@@ -6,8 +6,10 @@ import itertools
 import re
 import uuid
 
-from camgen.parts.mesh import Mesh
-from camgen.parts.stl import trimesh_of
+from pathlib import Path
+from typing import Any
+
+from camgen.core.solids import Mesh, trimesh_of
 
 
 def threemf_bytes(mesh: Mesh) -> bytes:
@@ -31,3 +33,10 @@ def threemf_bytes(mesh: Mesh) -> bytes:
             package.writestr(zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0)), data,
                              compress_type=zipfile.ZIP_DEFLATED)
     return out.getvalue()
+
+
+def write_3mf(mesh: Mesh, path: Path, options: Any = None) -> None:
+    path.write_bytes(threemf_bytes(mesh))
+
+
+WRITERS = {"3mf": write_3mf}

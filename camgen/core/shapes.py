@@ -1,7 +1,7 @@
-"""Neutral plane geometry for parts: closed contours of lines and exact arcs, circles, layers.
+"""Plane geometry with exact arcs: closed contours of lines and arcs, circles, open lines, text.
 
-Writers (DXF, STL, ...) take these and nothing else; nothing here knows a file
-format. Lengths in mm; counter-clockwise is positive (seen from +Z).
+Parts and drawings are made of these; nothing here knows a file format. Lengths in
+mm, angles in radians; counter-clockwise is positive (seen from +Z).
 """
 from __future__ import annotations
 
@@ -15,6 +15,11 @@ def _frozen(a: np.ndarray) -> np.ndarray:
     a = np.array(a, dtype=float)
     a.setflags(write=False)
     return a
+
+
+def _moved(points: np.ndarray, angle: float, shift: np.ndarray) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return points @ np.array([[c, s], [-s, c]]) + shift
 
 
 def arc_steps(radius: float, angle: float, tolerance: float) -> int:
@@ -100,6 +105,10 @@ class Contour:
         b = -np.roll(self.bulges[::-1], -1)
         return Contour(v, b)
 
+    def moved(self, angle: float, shift: np.ndarray) -> "Contour":
+        """The contour turned by ``angle`` (rad, ccw) about the origin, then moved by ``shift`` (mm): arcs stay exact."""
+        return Contour(_moved(self.vertices, angle, shift), self.bulges)
+
     def flatten(self, tolerance: float) -> np.ndarray:
         """Polygon vertices (m, 2), first not repeated, with every arc split into chords within ``tolerance`` mm."""
         p, _, chord, angle, centre = self._arcs()
@@ -125,6 +134,12 @@ class Circle:
     @property
     def area(self) -> float:
         return math.pi * self.radius**2
+
+    def moved(self, angle: float, shift: np.ndarray) -> "Circle":
+        """The circle turned by ``angle`` (rad, ccw) about the origin, then moved by ``shift`` (mm)."""
+        c, s = math.cos(angle), math.sin(angle)
+        x, y = self.centre
+        return Circle((c * x - s * y + shift[0], s * x + c * y + shift[1]), self.radius)
 
     def flatten(self, tolerance: float) -> np.ndarray:
         """Counter-clockwise polygon (m, 2) with vertices on the circle, chords within ``tolerance`` mm."""
@@ -164,53 +179,46 @@ class Text:
 Shape = Contour | Circle
 
 
-@dataclass(frozen=True)
-class Part:
-    """A flat part: one outer contour (counter-clockwise), holes, a thickness (mm) and a tolerance (mm).
-
-    ``tolerance`` is the chord tolerance used wherever exact arcs must become
-    polygons (meshes, plots). ``marks`` are (layer, shape) pairs drawn but not cut
-    (engraving). A hub ``boss`` (diameter, height; mm) stands on the top face round
-    the first hole, with a radial ``set_screw`` hole (diameter, mm) through it.
-    """
-
-    name: str
-    outline: Contour
-    holes: tuple[Shape, ...]
-    thickness: float
-    tolerance: float
-    marks: tuple[tuple[str, Polyline | Text], ...] = ()
-    boss: tuple[float, float] | None = None
-    set_screw: float = 0.0
-
-    @property
-    def area(self) -> float:
-        """Plan area in mm^2: outline minus holes, exact."""
-        return self.outline.area - sum(abs(h.area) for h in self.holes)
-
-    def _repr_svg_(self) -> str:
-        return Drawing.of_part(self)._repr_svg_()
+def rounded_hull(centres: np.ndarray, radius: float) -> Contour:
+    """Counter-clockwise outline at ``radius`` mm round the convex hull of ``centres`` (k, 2): lines and exact arcs."""
+    pts = np.asarray(centres, dtype=float)
+    hull = convex_hull(pts)
+    n = len(hull)
+    if n == 1:
+        c = hull[0]
+        return Contour(np.array([c + np.array([radius, 0.0]), c - np.array([radius, 0.0])]), np.array([1.0, 1.0]))
+    verts, bulges = [], []
+    for i in range(n):
+        a, b, c = hull[i], hull[(i + 1) % n], hull[(i + 2) % n]
+        d1, d2 = b - a, c - b
+        n1 = np.array([d1[1], -d1[0]]) / np.linalg.norm(d1)            # outward for a ccw hull
+        n2 = np.array([d2[1], -d2[0]]) / np.linalg.norm(d2)
+        turn = math.atan2(n1[0] * n2[1] - n1[1] * n2[0], float(n1 @ n2))
+        if turn <= 0:                                                   # a straight-through vertex
+            turn += 2 * math.pi if n == 2 else 0.0
+        verts += [a + radius * n1, b + radius * n1]
+        bulges += [0.0, math.tan(turn / 4)]
+    return Contour(np.array(verts), np.array(bulges))
 
 
-#: layer names used in every drawing
-LAYER_OUTLINE = "OUTLINE"
-LAYER_HOLES = "HOLES"
-LAYER_ENGRAVE = "ENGRAVE"
+def _turn(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> float:
+    """Twice the signed area of triangle a, b, c: > 0 for a counter-clockwise turn."""
+    return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
 
 
-@dataclass(frozen=True)
-class Drawing:
-    """Shapes on named layers, in mm, ready for any 2-D writer."""
+def convex_hull(pts: np.ndarray) -> np.ndarray:
+    """Convex hull of points (k, 2), counter-clockwise (monotone chain); collinear points dropped."""
+    unique = np.unique(np.round(pts, 12), axis=0)
+    if len(unique) <= 2:
+        return unique
 
-    items: tuple[tuple[str, Shape | Polyline | Text], ...]
+    def half(points: np.ndarray) -> list:
+        out: list = []
+        for p in points:
+            while len(out) >= 2 and _turn(out[-2], out[-1], p) <= 0:
+                out.pop()
+            out.append(p)
+        return out
 
-    def _repr_svg_(self) -> str:
-        """Jupyter shows the drawing (strokes 0.3 mm wide, so they show on screen)."""
-        from camgen.parts.svg import svg_document
-
-        return svg_document(self, stroke_width=0.3)
-
-    @classmethod
-    def of_part(cls, part: Part) -> "Drawing":
-        """A part's outline on ``OUTLINE``, its holes on ``HOLES`` and its marks on their own layers."""
-        return cls(((LAYER_OUTLINE, part.outline), *((LAYER_HOLES, h) for h in part.holes), *part.marks))
+    lower, upper = half(unique), half(unique[::-1])
+    return np.array(lower[:-1] + upper[:-1])

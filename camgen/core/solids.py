@@ -7,11 +7,13 @@ consistently oriented (outward) two-manifold.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from camgen.errors import ExportError
-from camgen.parts.drawing import Circle, Part, arc_steps
+from camgen.core.errors import ExportError
+from camgen.core.parts import Part
+from camgen.core.shapes import Circle, arc_steps
 
 
 @dataclass(frozen=True)
@@ -67,3 +69,30 @@ def pin(diameter: float, length: float, tolerance: float) -> Mesh:
     cap = manifold3d.Manifold.cylinder(diameter / 2, head, head, arc_steps(head, 2 * np.pi, tolerance))
     mesh = (shank + cap.translate((0.0, 0.0, length))).to_mesh()
     return Mesh(np.asarray(mesh.vert_properties)[:, :3].astype(float), np.asarray(mesh.tri_verts, dtype=np.int64))
+
+
+@dataclass(frozen=True)
+class MeshCheck:
+    """What trimesh says of a mesh: closed, consistently wound, outward, and its volume (mm^3)."""
+
+    watertight: bool
+    winding_consistent: bool
+    volume_mm3: float
+    triangles: int
+
+    @property
+    def ok(self) -> bool:
+        return self.watertight and self.winding_consistent and self.volume_mm3 > 0
+
+
+def trimesh_of(mesh: Mesh) -> Any:
+    """``mesh`` as a trimesh.Trimesh (trimesh is imported here, lazily)."""
+    import trimesh
+
+    return trimesh.Trimesh(vertices=mesh.vertices, faces=mesh.faces, process=False)
+
+
+def check_mesh(mesh: Mesh) -> MeshCheck:
+    """Check ``mesh`` with trimesh (positive volume means outward normals)."""
+    tm = trimesh_of(mesh)
+    return MeshCheck(bool(tm.is_watertight), bool(tm.is_winding_consistent), float(tm.volume), len(tm.faces))

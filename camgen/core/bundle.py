@@ -1,0 +1,132 @@
+"""A result's files: what is written, under which names, and writing them all-or-nothing.
+
+A :class:`Bundle` lists :class:`Item` s, each a finished payload (a drawing, a mesh, a
+report, a figure or a function that makes it) and the files it becomes, one
+:class:`Entry` a format. :func:`write_bundle` hands each payload to the writer of each
+of its formats (:mod:`camgen.core.writers`) and nothing more. Every file is first
+written to a hidden temporary name beside its target; only when all of them are
+written are they renamed into place, so a failure leaves no half-written file and no
+temporary behind.
+"""
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from camgen.core.errors import ExportError
+from camgen.core.writers import WriteOptions, writer
+
+
+class Staging:
+    """Collects temporary files and their final names; see :func:`staged`."""
+
+    def __init__(self, directory: Path) -> None:
+        self.directory = directory
+        self.pending: list[tuple[Path, Path]] = []
+
+    def write(self, name: str, write: Callable[[Path], None]) -> Path:
+        """Call ``write(temporary path)``; the file takes ``name`` when the whole stage commits."""
+        final = self.directory / name
+        temp = self.directory / f".{name}.{os.getpid()}.tmp"
+        self.pending.append((temp, final))
+        write(temp)
+        if not temp.exists():
+            raise ExportError(f"{name}: the writer produced no file")
+        return final
+
+    def write_bytes(self, name: str, data: bytes) -> Path:
+        return self.write(name, lambda p: p.write_bytes(data))
+
+
+@contextmanager
+def staged(directory: str | Path) -> Iterator[Staging]:
+    """Stage files in ``directory`` (created if missing); rename them all into place on success."""
+    directory = Path(directory)
+    try:
+        directory.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise ExportError(f"cannot create output folder {directory}: {exc.strerror}") from None
+    stage = Staging(directory)
+    try:
+        yield stage
+    except BaseException:
+        for temp, _ in stage.pending:
+            temp.unlink(missing_ok=True)
+        raise
+    try:
+        for temp, final in stage.pending:
+            os.replace(temp, final)
+    except OSError as exc:
+        for temp, _ in stage.pending:
+            temp.unlink(missing_ok=True)
+        raise ExportError(f"cannot write to {directory}: {exc.strerror}") from None
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One file: its ``format`` (see :data:`camgen.core.writers.FORMATS`), its ``key`` in the report's
+    ``files`` map and its file ``name``."""
+
+    format: str
+    key: str
+    name: str
+
+
+@dataclass(frozen=True)
+class Report:
+    """A report payload: a JSON-ready dict; when written, the bundle's ``files`` map is added at its end."""
+
+    data: dict[str, Any]
+
+
+@dataclass(frozen=True)
+class Item:
+    """A payload and the files it becomes. ``payload`` may be a function of no arguments that makes it
+    (a figure): it is called once, only if one of the item's files is written."""
+
+    payload: Any
+    entries: tuple[Entry, ...]
+
+
+def item(payload: Any, entries: Iterable[tuple[str, str, str]], formats: Iterable[str]) -> Item | None:
+    """An :class:`Item` of ``(format, key, name)`` entries, keeping those whose format is in ``formats``;
+    None when none is (then a lazy payload is never made)."""
+    wanted = set(formats)
+    kept = tuple(Entry(*e) for e in entries if e[0] in wanted)
+    return Item(payload, kept) if kept else None
+
+
+@dataclass(frozen=True)
+class Bundle:
+    """The files a result is written as, in order, and the writers' options."""
+
+    items: tuple[Item, ...]
+    options: WriteOptions = field(default_factory=WriteOptions)
+
+    @classmethod
+    def of(cls, items: Iterable[Item | None], options: WriteOptions | None = None) -> Bundle:
+        """A bundle of the given items, dropping the Nones :func:`item` returns for unwanted files."""
+        return cls(tuple(i for i in items if i is not None), options or WriteOptions())
+
+    @property
+    def files(self) -> dict[str, str]:
+        """``{key: file name}`` of every file, in the order they are written."""
+        return {e.key: e.name for i in self.items for e in i.entries}
+
+
+def write_bundle(bundle: Bundle, directory: str | Path) -> dict[str, str]:
+    """Write every file of ``bundle`` into ``directory``, all or nothing; return ``{key: file name}``."""
+    files = bundle.files
+    with staged(directory) as stage:
+        for it in bundle.items:
+            payload = it.payload() if callable(it.payload) else it.payload
+            if isinstance(payload, Report):
+                payload = {**payload.data, "files": dict(files)}
+            for entry in it.entries:
+                write = writer(entry.format)
+                stage.write(entry.name, lambda p, w=write, x=payload: w(x, p, bundle.options))
+    return files

@@ -1,0 +1,56 @@
+"""Command-line plumbing both ``camgen`` and ``linkgen`` use: the error contract, the family options.
+
+Only command-line modules print or exit: a library call raises, and :func:`user_errors`
+turns the project's errors into one line on stderr and exit code 2.
+"""
+from __future__ import annotations
+
+import functools
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import click
+
+from camgen.core.errors import CamgenError
+
+
+def user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
+    """Turn the project's errors into ``error: <one line>`` and exit code 2."""
+    @functools.wraps(func)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            return func(*args, **kwargs)
+        except CamgenError as exc:
+            click.echo(f"error: {exc}", err=True)
+            sys.exit(2)
+    return wrapper
+
+
+def family_options(func: Callable[..., Any]) -> Callable[..., Any]:
+    """The options every ``family`` command takes."""
+    for option in reversed((
+        click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path)),
+        click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
+                     help="Folder of the family: one sub-folder a member, summary.csv, summary.json, "
+                          "overview.png."),
+        click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True,
+                     help="Processes to build with."),
+        click.option("--scheduler", metavar="ADDRESS", default=None,
+                     help="Build on the Dask cluster at ADDRESS (e.g. tcp://host:8786) instead of local "
+                          "processes."),
+    )):
+        func = option(func)
+    return func
+
+
+def report_family(rows: list[dict], output: Path) -> None:
+    """Print a family run's outcome: counts, where the summary is, and each failure with its reason."""
+    ok = sum(r["status"] == "ok" for r in rows)
+    reused = sum(bool(r.get("reused")) for r in rows)
+    click.echo(f"{len(rows)} members: {ok} built, {len(rows) - ok} failed ({reused} already there); "
+               f"summary in {output / 'summary.csv'}")
+    for r in rows:
+        if r["status"] != "ok":
+            click.echo(f"failed {r['name']}: {r['error']}")

@@ -1,0 +1,108 @@
+"""Flat parts and drawings, and the process allowances applied to them in one place.
+
+A :class:`Part` is what a cutter cuts or a printer extrudes: one outer contour, holes,
+marks to engrave, a thickness. A :class:`Drawing` is shapes on named layers, ready for
+any 2-D writer. :class:`Allowances` turns a nominal part into the part as cut (kerf)
+and as printed (clearance), for every product alike. Lengths in mm.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+from camgen.core.shapes import Circle, Contour, Polyline, Shape, Text
+
+
+@dataclass(frozen=True)
+class Part:
+    """A flat part: one outer contour (counter-clockwise), holes, a thickness (mm) and a tolerance (mm).
+
+    ``tolerance`` is the chord tolerance used wherever exact arcs must become
+    polygons (meshes, plots). ``marks`` are (layer, shape) pairs drawn but not cut
+    (engraving). A hub ``boss`` (diameter, height; mm) stands on the top face round
+    the first hole, with a radial ``set_screw`` hole (diameter, mm) through it.
+    """
+
+    name: str
+    outline: Contour
+    holes: tuple[Shape, ...]
+    thickness: float
+    tolerance: float
+    marks: tuple[tuple[str, Polyline | Text], ...] = ()
+    boss: tuple[float, float] | None = None
+    set_screw: float = 0.0
+
+    @property
+    def area(self) -> float:
+        """Plan area in mm^2: outline minus holes, exact."""
+        return self.outline.area - sum(abs(h.area) for h in self.holes)
+
+    def _repr_svg_(self) -> str:
+        return Drawing.of_part(self)._repr_svg_()
+
+
+#: layer names used in every drawing
+LAYER_OUTLINE = "OUTLINE"
+LAYER_HOLES = "HOLES"
+LAYER_ENGRAVE = "ENGRAVE"
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """Shapes on named layers, in mm, ready for any 2-D writer.
+
+    ``tolerance`` (mm) is the chord tolerance wherever a writer must turn arcs into
+    lines (the DXF ``segments`` flavour, previews).
+    """
+
+    items: tuple[tuple[str, Shape | Polyline | Text], ...]
+    tolerance: float
+
+    def _repr_svg_(self) -> str:
+        """Jupyter shows the drawing (strokes 0.3 mm wide, so they show on screen)."""
+        from camgen.core.writers.svg import svg_document
+
+        return svg_document(self, stroke_width=0.3)
+
+    @classmethod
+    def of_part(cls, part: Part) -> "Drawing":
+        """A part's outline on ``OUTLINE``, its holes on ``HOLES`` and its marks on their own layers."""
+        return cls(((LAYER_OUTLINE, part.outline), *((LAYER_HOLES, h) for h in part.holes), *part.marks),
+                   part.tolerance)
+
+
+class PartMaker(Protocol):
+    """Anything that can make its part with its outline and holes moved outwards (into the air) by given
+    distances (mm, negative inwards), exactly: cams regenerate their outline from the offset surface,
+    bars round their hole centres at a larger radius."""
+
+    def part(self, outline_grow: float, hole_grow: float) -> Part: ...
+
+
+@dataclass(frozen=True)
+class Allowances:
+    """Process allowances (mm), the one place they are applied.
+
+    ``kerf``: the laser burns kerf/2 either side of its path, so a cut part's outline
+    is moved out by kerf/2 and its holes in by kerf/2 (a hole's diameter less the kerf).
+    ``clearance``: a printed hole is opened by this in diameter (clearance/2 a side).
+    """
+
+    kerf: float = 0.0
+    clearance: float = 0.0
+
+    def cut(self, maker: PartMaker) -> Part:
+        """The part as the cut files carry it."""
+        return maker.part(self.kerf / 2, -self.kerf / 2)
+
+    def printed(self, maker: PartMaker) -> Part:
+        """The part as the printed files carry it."""
+        return maker.part(0.0, self.clearance / 2)
+
+    def cut_diameter(self, diameter: float) -> float:
+        """A hole of ``diameter`` mm as drawn in a cut file."""
+        return diameter - self.kerf
+
+    def printed_diameter(self, diameter: float) -> float:
+        """A hole of ``diameter`` mm as made in a printed file."""
+        return diameter + self.clearance

@@ -1,0 +1,52 @@
+"""One writer a format, behind one registry, for every product.
+
+A writer serialises one finished payload into one file and computes nothing: no
+kinematics, no searches, no template reading. Formats and the payload each takes:
+
+=========  ==================================================  ===========================
+format     file                                                payload
+=========  ==================================================  ===========================
+dxf        DXF (flavour and version from :class:`WriteOptions`)  :class:`~camgen.core.parts.Drawing`
+cut-svg    SVG in mm for laser software (hairline strokes)     :class:`~camgen.core.parts.Drawing`
+stl        binary STL                                          :class:`~camgen.core.solids.Mesh`
+3mf        3MF package (millimetres)                           :class:`~camgen.core.solids.Mesh`
+json       the report, ``indent=2``, no NaN                    ``dict``
+png, svg   a figure (matplotlib)                               ``matplotlib.figure.Figure``
+=========  ==================================================  ===========================
+
+Writers are imported only when a file of their format is written, so a JSON-only
+build never loads ezdxf, trimesh or matplotlib.
+"""
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Literal
+
+#: every format a bundle can write, in the order their files are listed by default
+FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg")
+DXF_FLAVOURS = ("polyline-bulge", "lines-arcs", "segments")
+DXF_VERSIONS = ("R2010", "R12")
+
+_MODULES = {"dxf": "dxf", "cut-svg": "svg", "stl": "stl", "3mf": "threemf", "json": "report", "png": "figure",
+            "svg": "figure"}
+
+
+@dataclass(frozen=True)
+class WriteOptions:
+    """Settings of the writers that are the user's choice, not the result's (the tolerance travels with the
+    drawing, the allowances with the part)."""
+
+    dxf_version: Literal["R2010", "R12"] = "R2010"
+    dxf_flavour: Literal["polyline-bulge", "lines-arcs", "segments"] = "polyline-bulge"
+
+
+Writer = Callable[[Any, Path, WriteOptions], None]
+
+
+def writer(fmt: str) -> Writer:
+    """The writer of format ``fmt`` (one of :data:`FORMATS`): ``writer(fmt)(payload, path, options)``."""
+    module = importlib.import_module(f"camgen.core.writers.{_MODULES[fmt]}")
+    return module.WRITERS[fmt]
