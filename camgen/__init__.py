@@ -29,9 +29,10 @@ _EXPORTS = {
     "design_cam": "camgen.design", "CamDesign": "camgen.design", "size_cam": "camgen.sizing",
     "convergence": "camgen.convergence",
     # parts and exporters
-    "Contour": "camgen.core.parts", "Circle": "camgen.core.parts", "Part": "camgen.core.parts",
+    "Contour": "camgen.core.shapes", "Circle": "camgen.core.shapes", "Part": "camgen.core.parts",
     "Drawing": "camgen.core.parts", "write_dxf": "camgen.core.writers.dxf", "svg_document": "camgen.core.writers.svg",
-    "extrude": "camgen.core.solids", "stl_bytes": "camgen.core.writers.stl", "threemf_bytes": "camgen.core.writers.threemf",
+    "extrude": "camgen.core.solids", "stl_bytes": "camgen.core.writers.stl",
+    "threemf_bytes": "camgen.core.writers.threemf",
     "write_cam": "camgen.outputs",
     # families
     "read_family": "camgen.core.family", "members": "camgen.core.family", "run_family": "camgen.core.family",

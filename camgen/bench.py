@@ -8,11 +8,11 @@ from __future__ import annotations
 import json
 import math
 import resource
-import statistics
 import subprocess
 import sys
 import tempfile
 import time
+import tomllib
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from camgen.cam import build_cam
+from camgen.core.timing import timed
 from camgen.convergence import contour_error, convergence
 from camgen.spec import validate_template
 from camgen.core.spec import apply_overrides
@@ -27,11 +28,35 @@ from camgen.core.spec import apply_overrides
 #: the standard cams: the reference rise-dwell-return-dwell with one law family each
 STANDARD = {"cycloidal": "cycloidal", "harmonic": "harmonic", "polynomial": "polynomial-345",
             "modified-sine": "modified-sine"}
-BASE = {"name": "bench", "cam": {"base_radius": 40.0, "thickness": 8.0, "bore": 10.0},
-        "follower": {"type": "translating-roller", "roller_radius": 10.0, "offset": 5.0},
-        "motion": [{"type": "rise", "law": "cycloidal", "lift": 20.0, "angle": 120.0}, {"type": "dwell", "angle": 60.0},
-                   {"type": "return", "law": "cycloidal", "lift": 20.0, "angle": 120.0},
-                   {"type": "dwell", "angle": 60.0}]}
+#: the reference cam as a template (the bundled templates/rdrd.toml with cycloidal laws); the bench writes it
+#: out to time ``camgen build`` as a whole process, so it needs no checkout
+BASE_TOML = """name = "bench"
+[cam]
+base_radius = 40.0
+thickness = 8.0
+bore = 10.0
+[follower]
+type = "translating-roller"
+roller_radius = 10.0
+offset = 5.0
+[[motion]]
+type = "rise"
+law = "cycloidal"
+lift = 20.0
+angle = 120.0
+[[motion]]
+type = "dwell"
+angle = 60.0
+[[motion]]
+type = "return"
+law = "cycloidal"
+lift = 20.0
+angle = 120.0
+[[motion]]
+type = "dwell"
+angle = 60.0
+"""
+BASE = tomllib.loads(BASE_TOML)
 
 
 def _template(law: str, **changes: Any):
@@ -42,15 +67,6 @@ def _template(law: str, **changes: Any):
         table, field = key.rsplit(".", 1)
         raw[table].pop(field, None)
     return validate_template(raw)
-
-
-def _timed(func: Callable[[], Any], repeats: int) -> tuple[Any, float]:
-    times, result = [], None
-    for _ in range(repeats):
-        start = time.perf_counter()
-        result = func()
-        times.append(time.perf_counter() - start)
-    return result, statistics.median(times)
 
 
 def outline_speed(tolerances: list[float], repeats: int) -> list[dict]:
@@ -77,7 +93,7 @@ def naive_peer(resolutions: list[int], repeats: int) -> list[dict]:
             pitch = cam.pitch(np.linspace(0, 2 * math.pi, n, endpoint=False)).point
             return shapely.Polygon(pitch).buffer(-cam.contact_radius, quad_segs=8)
 
-        poly, seconds = _timed(run, repeats)
+        poly, seconds = timed(run, repeats)
         ring = np.asarray(poly.exterior.coords)[:-1]
         rows.append({"cam": "cycloidal", "method": f"naive: {n} pitch samples + shapely buffer",
                      "tolerance_mm": None, "entities": len(ring),
@@ -101,7 +117,7 @@ def mechanism_peer(repeats: int) -> dict:
         return np.column_stack([x, y])
 
     try:
-        pts, seconds = _timed(run, repeats)
+        pts, seconds = timed(run, repeats)
     except Exception as exc:  # a peer's own failure is a result to report
         return {"method": "mechanism", "status": f"failed: {exc}"}
     # measured like ours: the polyline through its points (vertices and chord midpoints) against our exact
@@ -118,64 +134,6 @@ def mechanism_peer(repeats: int) -> dict:
             "max_error_mm": best, "seconds": seconds}
 
 
-def linkage_speed(repeats: int) -> list[dict]:
-    """Rocker-pin positions of the reference crank-rocker at 360 and 100 000 crank angles: ours, a plain numpy
-    closed form (arccos), and pylinkage (plain steps, and its numba-compiled steps), with their accuracy."""
-    from linkgen.fourbar import FourBar
-
-    fb = FourBar(180, 80, 200, 150)
-    rows = []
-    for n in (360, 100_000):
-        t = 2 * math.pi / n * np.arange(1, n + 1)
-        exact, ours = _timed(lambda t=t: fb.positions(t).b, repeats)
-
-        def plain(t: np.ndarray = t) -> np.ndarray:
-            ax, ay = 80 * np.cos(t), 80 * np.sin(t)
-            dx, dy = 180 - ax, -ay
-            z = np.hypot(dx, dy)
-            alpha = np.arccos(np.clip((200**2 + z**2 - 150**2) / (2 * 200 * z), -1, 1))
-            th3 = np.arctan2(dy, dx) + alpha
-            return np.column_stack([ax + 200 * np.cos(th3), ay + 200 * np.sin(th3)])
-
-        naive, seconds = _timed(plain, repeats)
-        rows += [{"method": "linkgen closed form (stable at toggles)", "angles": n, "seconds": ours,
-                  "max_error_mm": 0.0},
-                 {"method": "plain numpy closed form (arccos)", "angles": n, "seconds": seconds,
-                  "max_error_mm": float(np.abs(naive - exact).max())}]
-        rows += _pylinkage(n, exact, repeats)
-    return rows
-
-
-def _pylinkage(n: int, exact: np.ndarray, repeats: int) -> list[dict]:
-    try:
-        import pylinkage as pl
-    except ImportError:
-        return [{"method": "pylinkage", "angles": n, "seconds": None,
-                 "status": "not installed (pip install '.[bench]')"}]
-    try:
-        import numba  # noqa: F401 - pylinkage compiles its fast steps with it where it installs
-        fast_name = "pylinkage step_fast (numba)"
-    except ImportError:
-        fast_name = "pylinkage step_fast (numba not installed)"
-
-    def linkage() -> Any:
-        o2, o4 = pl.Ground(0, 0), pl.Ground(180, 0)
-        crank = pl.Crank(o2, 80, angular_velocity=2 * math.pi / n, initial_angle=0.0)
-        return pl.Linkage([o2, o4, crank, pl.RRRDyad(crank, o4, 200, 150, x=245, y=135)])
-
-    rows = []
-    for name, run in (("pylinkage step (plain Python)", lambda: np.array([c[3] for c in linkage().step(iterations=n)],
-                                                                      dtype=float)),
-                      (fast_name, lambda: linkage().step_fast(iterations=n)[:, 3, :])):
-        start = time.perf_counter()
-        run()
-        first = time.perf_counter() - start
-        result, seconds = _timed(run, repeats)
-        rows.append({"method": name, "angles": n, "seconds": seconds, "first_call_seconds": first,
-                     "max_error_mm": float(np.abs(result - exact).max())})
-    return rows
-
-
 def throughput(count: int, out: Path) -> list[dict]:
     from camgen.core.family import members, run_family
     from camgen.outputs import build_member
@@ -190,11 +148,12 @@ def throughput(count: int, out: Path) -> list[dict]:
         seconds = time.perf_counter() - start
         rows.append({"what": f"family of {count} cams, DXF + STL, {jobs} job(s)", "seconds": seconds,
                      "cams_per_second": count / seconds})
+    template = out / "bench.toml"
+    template.write_text(BASE_TOML, encoding="utf-8")
     start = time.perf_counter()
-    subprocess.run([sys.executable, "-m", "camgen", "build", str(Path(__file__).parent.parent / "templates" /
-                                                                 "rdrd.toml"), "-o", str(out / "build")],
+    subprocess.run([sys.executable, "-m", "camgen", "build", str(template), "-o", str(out / "build")],
                    check=True, capture_output=True)
-    rows.append({"what": "camgen build templates/rdrd.toml, whole process", "seconds": time.perf_counter() - start,
+    rows.append({"what": "camgen build of the reference cam, whole process", "seconds": time.perf_counter() - start,
                  "cams_per_second": None})
     return rows
 
@@ -206,8 +165,6 @@ def hard_cases() -> list[dict]:
     from camgen.design import design_cam
     from camgen.core.errors import CamgenError
     from camgen.laws import from_conditions
-    from linkgen.fourbar import FourBar
-    from linkgen.slidercrank import SliderCrank
 
     rows = []
 
@@ -245,23 +202,6 @@ def hard_cases() -> list[dict]:
             return f"{'ok' if err < 1e-10 else 'WRONG'}: max deviation {err:.1e} from the closed form"
 
         record(f"polynomial law of degree {degree}", poly)
-    fb = FourBar(100, 70, 60, 80)
-    _, hi = fb.input_ranges()[0]
-    for offset in (0.0, 1e-12):
-        def toggle(offset: float = offset) -> str:
-            p = fb.positions([hi - offset])
-            closes = abs(np.linalg.norm(p.b[0] - p.a[0]) - 60) < 1e-9
-            return f"{'ok' if closes and np.isfinite(p.theta4).all() else 'WRONG'}: transmission " \
-                   f"{math.degrees(p.gamma[0]):.6f} deg"
-
-        record(f"four-bar {offset:g} rad inside its toggle", toggle)
-    record("four-bar 1e-6 rad beyond its toggle", lambda: str(fb.positions([hi + 1e-6]).theta3))
-    par = FourBar(100, 40, 100, 40)
-    record("parallelogram through its change points", lambda: "ok" if np.abs(np.sin(par.sweep(
-        np.radians(np.linspace(10, 730, 1441)), "open").theta3)).max() < 1e-12 else "WRONG")
-    sc = SliderCrank(50.0, 50.0 + 1e-9)
-    record("slider-crank with rod = crank + 1e-9", lambda: "ok" if np.isfinite(sc.motion(
-        np.linspace(0, 2 * math.pi, 721), 1.0).a).all() else "WRONG")
     return rows
 
 
@@ -302,7 +242,7 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         flow = throughput(10 if quick else 200, Path(tmp))
     results = {"quick": quick, "python": sys.version.split()[0], "outlines": outlines, "mechanism": peer,
-               "linkages": linkage_speed(repeats), "throughput": flow,
+               "throughput": flow,
                "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
                "hard_cases": hard_cases()}
     _plot(outlines, out / "speed-vs-error.png")
@@ -325,18 +265,7 @@ def _markdown(r: dict) -> str:
     lines += ["", "## Peer: the mechanism package", "",
               (f"cycloidal cam, knife edge: {m['entities']} points, max error {m['max_error_mm']:.2e} mm, "
                f"{m['seconds']:.4f} s" if m.get("status") == "measured" else f"mechanism: {m['status']}"), "",
-              "## Linkage positions (rocker pin of the reference crank-rocker)", "",
-              "| method | angles | seconds | max error (mm) | status |", "|---|---|---|---|---|"]
-    for row in r["linkages"]:
-        sec = "-" if row.get("seconds") is None else f"{row['seconds']:.5f}"
-        err = "-" if row.get("max_error_mm") is None else f"{row['max_error_mm']:.1e}"
-        status = row.get("status", "measured")
-        lines.append(f"| {row['method']} | {row.get('angles') or '-'} | {sec} | {err} | {status} |")
-    lines += ["", "Errors of linkage positions are against linkgen's closed form (which the tests check against "
-              "50-digit references); pylinkage's first call includes its compilation: "
-              + "; ".join(f"{row['method']} at {row['angles']}: {row['first_call_seconds']:.3f} s"
-                          for row in r["linkages"] if "first_call_seconds" in row) + ".",
-              "", "## Throughput", "", "| what | seconds | cams per second |", "|---|---|---|"]
+              "## Throughput", "", "| what | seconds | cams per second |", "|---|---|---|"]
     for row in r["throughput"]:
         cps = "-" if row["cams_per_second"] is None else f"{row['cams_per_second']:.1f}"
         lines.append(f"| {row['what']} | {row['seconds']:.2f} | {cps} |")

@@ -23,6 +23,10 @@ from linkgen.fourbar import FourBar
 from linkgen.slidercrank import SliderCrank
 
 
+#: chord tolerance (mm) of the outlines checked for collisions between moving parts
+COLLISION_TOLERANCE_MM = 0.05
+
+
 @dataclass(frozen=True)
 class PartsSpec:
     """Dimensions (mm) shared by all parts, with per-link width overrides."""
@@ -131,8 +135,8 @@ def layer_order(parts: tuple[LinkPart, ...], placement: Placement, pin_radius: f
 
     moving = [p for p in parts if p.moving]
     n = len(placement.angles["crank"])
-    shapes = {p.name: [shapely.Polygon(p.outline().moved(placement.angles[p.name][k],
-                                                                     placement.origins[p.name][k]).flatten(0.05)) for k in range(n)]
+    shapes = {p.name: [shapely.Polygon(p.outline().moved(placement.angles[p.name][k], placement.origins[p.name][k])
+                                       .flatten(COLLISION_TOLERANCE_MM)) for k in range(n)]
               for p in moving}
     joined = {frozenset(names) for names, _ in placement.joints.values()}
     clash = {}

@@ -85,6 +85,21 @@ def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> No
     report_family(build_family(template, output, validate_linkage, build_member, jobs, scheduler), output)
 
 
+@main.command()
+@click.option("--quick", is_flag=True, help="Fewer repeats.")
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=Path("out/linkgen-bench"),
+              show_default=True, help="Folder for RESULTS.md and results.json.")
+@user_errors
+def bench(quick: bool, output: Path) -> None:
+    """Measure linkage positions against a plain closed form and pylinkage, and rerun the hard cases."""
+    from linkgen.bench import run_bench
+
+    results = run_bench(output, quick)
+    wrong = [c for c in results["hard_cases"] if c["outcome"].startswith("WRONG")]
+    click.echo(f"wrote {output / 'RESULTS.md'}, {output / 'results.json'}")
+    click.echo(f"{len(results['linkages'])} position rows; {len(results['hard_cases'])} hard cases, {len(wrong)} wrong")
+
+
 def _print_text(r: dict[str, Any]) -> None:
     out = click.echo
     out(f"{r['name']}: {r['type']}, lengths {r['lengths_mm']}")

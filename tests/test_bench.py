@@ -1,4 +1,5 @@
-"""``camgen bench --quick``: every figure is produced, every error is below its tolerance, peers are reported."""
+"""``camgen bench --quick`` and ``linkgen bench --quick``: every figure is produced, every error is below its
+tolerance, peers are reported."""
 from __future__ import annotations
 
 import json
@@ -6,6 +7,7 @@ import json
 from click.testing import CliRunner
 
 from camgen.cli import main
+from linkgen.cli import main as linkgen
 
 
 def test_quick_bench_produces_every_figure(tmp_path):
@@ -19,12 +21,20 @@ def test_quick_bench_produces_every_figure(tmp_path):
     naive = [row for row in r["outlines"] if row["method"].startswith("naive")]
     assert len(naive) == 2 and all(row["max_error_mm"] > 0 for row in naive)
     assert r["mechanism"]["status"] == "measured" or r["mechanism"]["status"].startswith("not installed")
-    methods = {row["method"] for row in r["linkages"]}
-    assert any(m.startswith("pylinkage") for m in methods)                              # measured, or said missing
-    assert all(row.get("status") for row in r["linkages"] if row["seconds"] is None)   # never skipped silently
-    assert all(row["max_error_mm"] < 1e-6 for row in r["linkages"] if row.get("max_error_mm") is not None)
     assert [row["cams_per_second"] > 0 for row in r["throughput"][:2]] == [True, True]
     assert r["peak_memory_mb"] > 0
     assert r["hard_cases"] and not [c for c in r["hard_cases"] if c["outcome"].startswith("WRONG")]
     text = (tmp_path / "RESULTS.md").read_text()
     assert "## Hard cases" in text and "## Throughput" in text
+
+
+def test_quick_linkgen_bench(tmp_path):
+    result = CliRunner().invoke(linkgen, ["bench", "--quick", "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    assert {p.name for p in tmp_path.iterdir()} == {"RESULTS.md", "results.json"}
+    r = json.loads((tmp_path / "results.json").read_text())
+    methods = {row["method"] for row in r["linkages"]}
+    assert any(m.startswith("pylinkage") for m in methods)                              # measured, or said missing
+    assert all(row.get("status") for row in r["linkages"] if row["seconds"] is None)   # never skipped silently
+    assert all(row["max_error_mm"] < 1e-6 for row in r["linkages"] if row.get("max_error_mm") is not None)
+    assert r["hard_cases"] and not [c for c in r["hard_cases"] if c["outcome"].startswith("WRONG")]

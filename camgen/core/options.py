@@ -3,10 +3,10 @@
 One helper for every such option, so a typo always gets the same kind of message, naming
 the field, the closest valid value and all of them::
 
-    >>> choose("cycloid", ("harmonic", "cycloidal"), "motion[0].law")
+    >>> choose("cycloid", ("harmonic", "cycloidal"), "law")
     Traceback (most recent call last):
     ...
-    camgen.core.errors.SpecError: motion[0].law: unknown value 'cycloid' (did you mean 'cycloidal'?); one of harmonic, cycloidal
+    camgen.core.errors.SpecError: law: unknown value 'cycloid' (did you mean 'cycloidal'?); one of harmonic, cycloidal
 """
 from __future__ import annotations
 

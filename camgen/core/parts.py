@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol
 
-from camgen.core.shapes import Circle, Contour, Polyline, Shape, Text
+from camgen.core.shapes import Contour, Polyline, Shape, Text
 
 
 @dataclass(frozen=True)

@@ -106,7 +106,7 @@ class Contour:
         return Contour(v, b)
 
     def moved(self, angle: float, shift: np.ndarray) -> "Contour":
-        """The contour turned by ``angle`` (rad, ccw) about the origin, then moved by ``shift`` (mm): arcs stay exact."""
+        """The contour turned by ``angle`` (rad, ccw) about the origin, then moved by ``shift`` (mm); arcs stay arcs."""
         return Contour(_moved(self.vertices, angle, shift), self.bulges)
 
     def flatten(self, tolerance: float) -> np.ndarray:

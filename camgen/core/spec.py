@@ -13,11 +13,12 @@ import copy
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, Literal, TypeVar
 
-from pydantic import BaseModel, ConfigDict, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from camgen.core.errors import SpecError
+from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, FORMATS, WriteOptions
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -34,6 +35,30 @@ class Model(BaseModel):
 def unit(name: str) -> dict[str, str]:
     """``json_schema_extra`` naming a field's unit, used in error messages."""
     return {"unit": name}
+
+
+def name_field(what: str) -> Any:
+    """The ``name`` field of a template: safe as a file name."""
+    return Field(pattern=NAME_PATTERN, description=f"{what} name, used for file names")
+
+
+class OutputTable(Model):
+    """The ``[output]`` table every product takes: which files to write, and the DXF's flavour and version.
+
+    Products extend it with their own keys (camgen: the outline's tolerance and curves, kerf, clearance).
+    """
+
+    formats: tuple[Literal[FORMATS], ...] = Field(FORMATS, min_length=1,  # type: ignore[valid-type]
+                                                  description="files to write")
+    dxf: Literal[DXF_FLAVOURS] = Field(  # type: ignore[valid-type]
+        "polyline-bulge", description="DXF flavour: bulged polylines, LINE/ARC entities, or chords only")
+    dxf_version: Literal[DXF_VERSIONS] = Field("R2010",  # type: ignore[valid-type]
+                                               description="DXF version (R12 for old controllers)")
+
+    @property
+    def write_options(self) -> WriteOptions:
+        """The writers' options these keys ask for."""
+        return WriteOptions(self.dxf_version, self.dxf)
 
 
 def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:

@@ -29,7 +29,6 @@ from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, WriteOptions
 if TYPE_CHECKING:
     from camgen.core.parts import Drawing
 from camgen.core.parts import Drawing
-from camgen.core.shapes import Circle, Contour, Polyline, Text
 
 #: ACI colour of each layer a laser job usually maps to an operation
 LAYER_COLOURS = {"OUTLINE": 7, "HOLES": 1, "ENGRAVE": 5}
@@ -127,8 +126,10 @@ def _sorted_classes(text: str) -> str:
     return head + sep + "".join(sorted(records, key=lambda r: r.split("\n")[3])) + end + tail
 
 
-def write_dxf(drawing: Drawing, path: Path, options: WriteOptions = WriteOptions()) -> None:
-    """Write ``drawing`` to ``path`` as DXF, in the flavour and version ``options`` ask for."""
+def write_dxf(drawing: Drawing, path: Path, options: WriteOptions | None = None) -> None:
+    """Write ``drawing`` to ``path`` as DXF, in the flavour and version ``options`` ask for (default: R2010 with
+    bulged polylines)."""
+    options = options or WriteOptions()
     import logging
 
     import ezdxf
