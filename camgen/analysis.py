@@ -8,9 +8,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from camgen.cam import Cam, build_cam
+from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
 from camgen.numeric import boundary
-from camgen.spec import CamTemplate
+from camgen.spec import CamSpec
 
 
 @dataclass(frozen=True)
@@ -64,7 +65,7 @@ def profile_rho_min(cam: Cam) -> float:
     return 1.0 / convex_curvature_max(cam)[0] - cam.contact_radius
 
 
-def analyse(cam: Cam) -> CamAnalysis:
+def analyze(cam: Cam) -> CamAnalysis:
     """Pressure angle, curvature and undercut of ``cam``, each located to ~1e-9 degrees.
 
     For a flat face the profile itself is analysed: its radius of curvature must
@@ -92,27 +93,24 @@ def analyse(cam: Cam) -> CamAnalysis:
         concave_at_deg=kmin_at if concave is not None else None, undercut=rho < rr)
 
 
-def largest_roller(template: CamTemplate) -> float | None:
-    """The largest roller radius (mm) that does not undercut with the template's base radius.
+def largest_roller(spec: CamSpec) -> float | None:
+    """The largest roller radius (mm) that does not undercut with the spec's base radius.
 
     The pitch curve depends on the roller (prime radius = base + roller), so this
     bisects on the roller radius for min convex pitch radius = roller radius.
     Returns None when no roller fits: the pitch curve has a convex corner (a
     velocity jump), or even a vanishing roller undercuts, or the follower has no roller.
     """
-    if template.follower.roller_radius is None:
+    if spec.follower.roller_radius is None:
         return None
     def margin(rr: float) -> float:
-        return 1.0 / convex_curvature_max(build_cam(template, roller_radius=rr))[0] - rr
+        return 1.0 / convex_curvature_max(build_cam(spec, roller_radius=rr))[0] - rr
 
-    if any(turn > 0 for _, turn in build_cam(template).corners()):
+    if any(turn > 0 for _, turn in build_cam(spec).corners()):
         return None
 
-    lo = max(0.0, abs(template.follower.offset) - template.cam.base_radius) + 1e-9
-    if template.follower.type == "oscillating-roller":
-        f = template.follower
-        lo = max(lo, abs(f.pivot_distance - f.arm_length) - template.cam.base_radius + 1e-9)
-    hi = template.follower.roller_radius
+    lo = FOLLOWERS[spec.follower.type].roller_floor(spec.follower, spec.cam.base_radius) + 1e-9
+    hi = spec.follower.roller_radius
     if margin(lo) <= 0:
         return None
     if margin(hi) >= 0:

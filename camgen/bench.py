@@ -22,7 +22,7 @@ import numpy as np
 from camgen.cam import build_cam
 from camgen.core.timing import timed
 from camgen.convergence import contour_error, convergence
-from camgen.spec import validate_template
+from camgen.spec import validate_spec
 from camgen.core.spec import apply_overrides
 
 #: the standard cams: the reference rise-dwell-return-dwell with one law family each
@@ -66,7 +66,7 @@ def _template(law: str, **changes: Any):
     for key in (k for k, v in changes.items() if v is None):
         table, field = key.rsplit(".", 1)
         raw[table].pop(field, None)
-    return validate_template(raw)
+    return validate_spec(raw)
 
 
 def outline_speed(tolerances: list[float], repeats: int) -> list[dict]:
@@ -175,13 +175,13 @@ def hard_cases() -> list[dict]:
             rows.append({"case": name, "outcome": f"refused: {exc}"})
 
     def cam(changes: dict) -> str:
-        d = design_cam(validate_template(apply_overrides(BASE, list(changes.items()))))
+        d = design_cam(validate_spec(apply_overrides(BASE, list(changes.items()))))
         ring = d.outline.contour.flatten(0.01)
         sound = np.isfinite(ring).all() and shapely.Polygon(ring).is_valid and d.outline.max_error_mm <= 0.01
         return f"{'ok' if sound else 'WRONG'}: error {d.outline.max_error_mm:.2e} mm, pressure angle " \
                f"{d.analysis.pressure_angle_max_deg:.2f} deg"
 
-    rho = design_cam(validate_template(apply_overrides(BASE, [("follower.offset", 0.0)]))).analysis.pitch_rho_min_mm
+    rho = design_cam(validate_spec(apply_overrides(BASE, [("follower.offset", 0.0)]))).analysis.pitch_rho_min_mm
     for side, sign in (("below", -1), ("above", 1)):
         record(f"roller radius 1e-9 {side} the smallest convex radius",
                lambda s=sign: cam({"follower.offset": 0.0, "follower.roller_radius": rho + s * 1e-9,

@@ -1,19 +1,20 @@
-"""A disc cam built from a validated template: kinematics and exact geometry, no I/O."""
+"""A disc cam built from a validated spec: kinematics and exact geometry, no I/O."""
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import SpecError
+from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
-from camgen.followers.oscillating import OscillatingFlat, OscillatingRoller
 from camgen.followers.plate import PlateRoller
-from camgen.followers.translating import TranslatingFlat, TranslatingRoller
+from camgen.kinds import kind_of
 from camgen.laws import make_law
 from camgen.program import Program, build_program
-from camgen.spec import CamTemplate
+from camgen.spec import CamSpec
 
 
 @dataclass(frozen=True)
@@ -27,20 +28,16 @@ class Cam:
 
     name: str
     program: Program
-    follower: Follower
+    follower: Any                  # one of camgen.followers' followers, or a plate's roller
     base_radius: float
     thickness: float
     bore: float
-    #: how far outside the true cam surface the surface to export lies (mm): half the laser's kerf
-    surface_offset: float = 0.0
 
     @property
     def contact_radius(self) -> float:
-        """Distance of the exported surface from the pitch curve, inwards (mm).
-
-        The roller's radius (0 for knife edges and flat faces) less ``surface_offset``.
-        """
-        return self.follower.contact_radius - self.surface_offset
+        """Distance of the cam surface from the pitch curve, inwards (mm): the roller's radius (0 for knife
+        edges and flat faces)."""
+        return self.follower.contact_radius
 
     @property
     def is_plate(self) -> bool:
@@ -77,50 +74,30 @@ class Cam:
         return out
 
 
-Follower = TranslatingRoller | TranslatingFlat | OscillatingRoller | OscillatingFlat | PlateRoller
-
-
-def make_follower(template: CamTemplate, base_radius: float, roller_radius: float) -> Follower:
-    """The follower a template describes on a cam of ``base_radius`` with a roller of ``roller_radius`` (mm)."""
-    f = template.follower
-    sense = 1 if template.cam.rotation == "ccw" else -1
-    prime = base_radius + roller_radius
-    if template.cam.kind == "plate":
-        return PlateRoller(base_radius, roller_radius, template.cam.travel)
-    if f.type in ("translating-roller", "knife-edge"):
-        return TranslatingRoller(prime, roller_radius, f.offset, sense)
-    if f.type == "translating-flat":
-        return TranslatingFlat(base_radius, sense)
-    if f.type == "oscillating-roller":
-        return OscillatingRoller(f.pivot_distance, f.arm_length, prime, roller_radius, sense)
-    return OscillatingFlat(f.pivot_distance, base_radius, sense)
-
-
-def _drafted_ratio(template: CamTemplate, angle: float, lift: float, prime: float, index: int) -> float:
+def _drafted_ratio(spec: CamSpec, angle: float, lift: float, prime: float, index: int) -> float:
     """k = Rp beta / h of the drafted modified-uniform law; h is the rise along the follower's path (mm)."""
-    f = template.follower
-    if f.type == "oscillating-flat":
+    path_length = FOLLOWERS[spec.follower.type].path_length
+    if path_length is None:
         raise SpecError("the drafted form needs a roller, knife-edge or translating follower", f"motion[{index}].form")
-    travel = f.arm_length * math.radians(lift) if f.type == "oscillating-roller" else lift
-    return prime * math.radians(angle) / travel
+    return prime * math.radians(angle) / path_length(spec.follower, lift)
 
 
-def build_cam(template: CamTemplate, roller_radius: float | None = None, base_radius: float | None = None) -> Cam:
-    """The :class:`Cam` a template describes; ``roller_radius``, ``base_radius`` (mm) override the template's."""
-    rr = template.follower.contact_radius if roller_radius is None else roller_radius
-    rb = template.cam.base_radius if base_radius is None else base_radius
+def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: float | None = None) -> Cam:
+    """The :class:`Cam` a spec describes; ``roller_radius``, ``base_radius`` (mm) override the spec's."""
+    rr = spec.follower.contact_radius if roller_radius is None else roller_radius
+    rb = spec.cam.base_radius if base_radius is None else base_radius
     prime = rb + rr
     steps = []
-    for i, seg in enumerate(template.motion):
+    for i, seg in enumerate(spec.motion):
         law = None
         if seg.type != "dwell":
             params = seg.law_params()
             if seg.law == "modified-uniform" and params.get("form") == "drafted":
-                params["k"] = _drafted_ratio(template, seg.angle, seg.lift, prime, i)
+                params["k"] = _drafted_ratio(spec, seg.angle, seg.lift, prime, i)
             try:
                 law = make_law(seg.law, **params)
             except SpecError as exc:
                 raise exc.under(f"motion[{i}]") from None
         steps.append((seg.type, seg.angle, seg.lift or 0.0, law))
-    return Cam(name=template.name, program=build_program(steps), follower=make_follower(template, rb, rr),
-               base_radius=rb, thickness=template.cam.thickness, bore=template.cam.bore)
+    return Cam(name=spec.name, program=build_program(steps), follower=kind_of(spec.cam.kind).follower(spec, rb, rr),
+               base_radius=rb, thickness=spec.cam.thickness, bore=spec.cam.bore)

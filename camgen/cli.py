@@ -26,9 +26,9 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
     """Build the cam described by TEMPLATE (a TOML file)."""
     from camgen.design import design_cam
     from camgen.outputs import write_cam
-    from camgen.spec import load_template
+    from camgen.spec import load_spec
 
-    spec = load_template(template, overrides)
+    spec = load_spec(template, overrides)
     design = design_cam(spec)
     directory = output if output is not None else Path("out") / spec.name
     report = write_cam(design, directory)
@@ -54,7 +54,7 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
     """Smallest base radius for TEMPLATE, or (--factors) the cam factors f with Rp = f h / beta."""
     from camgen.core.errors import SpecError
     from camgen.sizing import FACTOR_ANGLES, factor_table, size_cam
-    from camgen.spec import load_template
+    from camgen.spec import load_spec
 
     if factors:
         table = factor_table()
@@ -68,7 +68,7 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
         return
     if template is None:
         raise SpecError("give a TEMPLATE, or --factors for the cam-factor table", "size")
-    s = size_cam(load_template(template, overrides))
+    s = size_cam(load_spec(template, overrides))
     result = {"base_radius_mm": s.base_radius_mm, "decided_by": s.decided_by,
               "pressure_radius_mm": s.pressure_radius_mm, "curvature_radius_mm": s.curvature_radius_mm,
               "max_pressure_angle_deg": s.max_pressure_angle_deg, "min_rho_margin_mm": s.min_rho_margin_mm}
@@ -87,9 +87,9 @@ def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> No
     """Build every member of the family a TEMPLATE's [sweep] table describes; re-running resumes."""
     from camgen.core.family import build_family
     from camgen.outputs import build_member
-    from camgen.spec import validate_template
+    from camgen.spec import validate_spec
 
-    report_family(build_family(template, output, validate_template, build_member, jobs, scheduler), output)
+    report_family(build_family(template, output, validate_spec, build_member, jobs, scheduler), output)
 
 
 @main.command()

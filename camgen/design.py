@@ -1,23 +1,24 @@
-"""A cam design from a template: the cam, its checks, its outline and its part. No I/O."""
+"""A cam design from a spec: the cam, its checks, its outline and its part. No I/O."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from camgen.analysis import CamAnalysis, analyse, face_extent, largest_roller
+from camgen.analysis import CamAnalysis, analyze, face_extent, largest_roller
 from camgen.cam import Cam, build_cam
 from camgen.dynamics import speed_report
 from camgen.core.errors import DesignError
 from camgen.outline import Outline, envelope_outline, exact_outline
-from camgen.core.parts import LAYER_ENGRAVE, Part
-from camgen.core.shapes import Circle, Contour, Polyline, Text
+from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
+from camgen.core.shapes import Circle, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
+from camgen.kinds import kind_of
 from camgen.program import Jump
 from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
-from camgen.spec import CamTemplate, with_base_radius
+from camgen.spec import CamSpec, with_base_radius
 
 #: thinnest wall between the bore and the outline before a warning (mm)
 THIN_WALL = 2.0
@@ -27,14 +28,16 @@ THIN_WALL = 2.0
 class CamDesign:
     """Everything known about one cam before anything is written."""
 
-    template: CamTemplate
+    spec: CamSpec
     cam: Cam
     analysis: CamAnalysis
     jumps: tuple[Jump, ...]
     outline: Outline           # the nominal outline
     part: Part                 # the nominal part
-    cut: tuple[Outline, Part]  # what the cut files carry: outline grown and holes shrunk by half the kerf
-    printed: Part              # what the printed files carry: holes opened by the clearance
+    cut_outline: Outline       # the outline the cut files carry: the surface moved out by half the kerf
+    cut: Part                  # the part as cut: that outline, holes shrunk by half the kerf
+    printed: Part              # the part as printed: holes opened by the clearance
+    allowances: Allowances
     wall_mm: float
     warnings: tuple[str, ...]
     pressure_limit_deg: float
@@ -45,16 +48,16 @@ class CamDesign:
     @property
     def tolerance(self) -> float:
         """The chord tolerance (mm) every curve of this design was made to."""
-        return self.template.output.tolerance
+        return self.spec.output.tolerance
 
     def _repr_svg_(self) -> str:
         """Jupyter shows the cam as it will be cut."""
-        return self.cut[1]._repr_svg_()
+        return self.cut._repr_svg_()
 
 
-def _undercut_message(template: CamTemplate, cam: Cam, a: CamAnalysis) -> str:
+def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
     if cam.follower.flat:
-        smallest = smallest_for_curvature(template)
+        smallest = smallest_for_curvature(spec)
         return (f"cusp at {a.pitch_rho_min_at_deg:.2f} degrees: the profile's radius of curvature falls to "
                 f"{a.profile_rho_min_mm:.4g} mm, so the flat face cannot follow the law there; the smallest "
                 f"cam.base_radius that works is {smallest:.4g} mm")
@@ -65,7 +68,7 @@ def _undercut_message(template: CamTemplate, cam: Cam, a: CamAnalysis) -> str:
         return (where + "the follower velocity jumps there, so the pitch curve has a convex corner that no roller "
                 "can follow; use a law with continuous velocity (e.g. modified-uniform) or set "
                 "cam.allow_undercut = true")
-    best = largest_roller(template)
+    best = largest_roller(spec)
     fits = (f"the largest roller that fits is {best:.4g} mm" if best is not None
             else "no roller fits this base radius")
     return (where + f"the pitch curve's radius of curvature is {a.pitch_rho_min_mm:.4g} mm, smaller than "
@@ -73,8 +76,13 @@ def _undercut_message(template: CamTemplate, cam: Cam, a: CamAnalysis) -> str:
             "cam.allow_undercut = true)")
 
 
-def design_cam(template: CamTemplate) -> CamDesign:
-    """Build, check and outline the cam a template describes.
+def design_cam(spec: CamSpec) -> Any:
+    """The design of the cam ``spec`` describes, by its kind's designer (see :mod:`camgen.kinds`)."""
+    return kind_of(spec.cam.kind).designer()(spec)
+
+
+def design_profile(spec: CamSpec) -> CamDesign:
+    """Build, check and outline a cam cut to a profile (a disc or a plate) as ``spec`` describes.
 
     Raises :class:`DesignError` for an undercut (unless ``cam.allow_undercut``; never
     for a flat face's cusp) and for a bore that leaves no material. ``base_radius =
@@ -82,51 +90,63 @@ def design_cam(template: CamTemplate) -> CamDesign:
     :mod:`camgen.sizing`).
     """
     sizing = None
-    if template.cam.base_radius == "auto":
-        sizing = size_cam(template)
-        template = with_base_radius(template, sizing.base_radius_mm)
-    cam = build_cam(template)
-    a = analyse(cam)
-    if a.undercut and (cam.follower.flat or not template.cam.allow_undercut):
-        raise DesignError(_undercut_message(template, cam, a))
-    tol = template.output.tolerance
-    outline = envelope_outline(cam, tol) if a.undercut else exact_outline(cam, tol, template.output.curves)
+    if spec.cam.base_radius == "auto":
+        sizing = size_cam(spec)
+        spec = with_base_radius(spec, sizing.base_radius_mm)
+    cam = build_cam(spec)
+    a = analyze(cam)
+    if a.undercut and (cam.follower.flat or not spec.cam.allow_undercut):
+        raise DesignError(_undercut_message(spec, cam, a))
+    tol = spec.output.tolerance
+    outline = envelope_outline(cam, tol) if a.undercut else exact_outline(cam, tol, spec.output.curves)
 
     import shapely
 
     body = shapely.Polygon(outline.contour.flatten(tol))
     reach = float(body.exterior.distance(shapely.Point(0.0, 0.0)))
-    wall = reach - template.cam.bore / 2.0
-    if template.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and wall > 0):
-        raise DesignError(f"cam.bore: {template.cam.bore:.4g} mm leaves no material; the outline comes within "
+    wall = reach - spec.cam.bore / 2.0
+    if spec.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and wall > 0):
+        raise DesignError(f"cam.bore: {spec.cam.bore:.4g} mm leaves no material; the outline comes within "
                           f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
-    kerf, clearance = template.output.kerf, template.output.clearance
-    _check_holes(template, body)
-    marks = _engraving(template, cam, reach) if template.hub.engrave else ()
-    hub = template.hub
-    boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
-
-    def plate(contour: Contour, grow: float) -> Part:
-        return Part(template.name, contour, _holes(template, grow), template.cam.thickness, tol, marks, boss,
-                    hub.set_screw)
-
-    part = plate(outline.contour, 0.0)
-    cut = outline
-    if kerf > 0:
-        grown = replace(cam, surface_offset=kerf / 2)
-        cut = envelope_outline(grown, tol) if a.undercut else exact_outline(grown, tol, template.output.curves)
-    cut_part, printed = plate(cut.contour, -kerf / 2), plate(outline.contour, clearance / 2)
+    _check_holes(spec, body)
+    marks = _engraving(spec, cam, reach) if spec.hub.engrave else ()
+    profile = _Profile(spec, cam, a.undercut, marks, outline)
+    allowances = Allowances(spec.output.kerf, spec.output.clearance)
+    part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
-    speed = _speed(template, cam)
-    warnings = _warnings(template, a, jumps, wall, cam.program.segments) + _contact_warnings(speed)
+    speed = _speed(spec, cam)
+    warnings = _warnings(spec, a, jumps, wall, cam.program.segments) + _contact_warnings(speed)
     extent = face_extent(cam) if cam.follower.flat else None
-    return CamDesign(template, cam, a, jumps, outline, part, (cut, cut_part), printed, wall, warnings,
-                     pressure_limit(template), extent, speed, sizing)
+    return CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
+                     allowances, wall, warnings, pressure_limit(spec), extent, speed, sizing)
 
 
-def _speed(template: CamTemplate, cam: Cam) -> dict[str, Any] | None:
+class _Profile:
+    """The cam as a part at any offset of its surface (a :class:`~camgen.core.parts.PartMaker`): the outline is
+    made afresh from the exact surface moved out by the offset (so kerf stays exact), once per offset."""
+
+    def __init__(self, spec: CamSpec, cam: Cam, undercut: bool, marks: tuple, nominal: Outline) -> None:
+        self.spec, self.cam, self.undercut, self.marks = spec, cam, undercut, marks
+        self._outlines = {0.0: nominal}
+
+    def outline(self, offset: float) -> Outline:
+        """The outline of the surface moved out of the cam by ``offset`` mm."""
+        if offset not in self._outlines:
+            t = self.spec
+            self._outlines[offset] = (envelope_outline(self.cam, t.output.tolerance, offset) if self.undercut
+                                      else exact_outline(self.cam, t.output.tolerance, t.output.curves, offset))
+        return self._outlines[offset]
+
+    def part(self, outline_grow: float, hole_grow: float) -> Part:
+        t, hub = self.spec, self.spec.hub
+        boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
+        return Part(t.name, self.outline(outline_grow).contour, _holes(t, hole_grow), t.cam.thickness,
+                    t.output.tolerance, self.marks, boss, hub.set_screw)
+
+
+def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
     """Peak rates and the contact check at ``cam.rpm`` (None without a speed)."""
-    t = template
+    t = spec
     if t.cam.rpm is None:
         return None
     parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(t.motion) if seg.law == "parabolic"]
@@ -144,9 +164,9 @@ def _contact_warnings(speed: dict[str, Any] | None) -> tuple[str, ...]:
             f"{contact['force_min_n']:.3g} N): a preload of {contact['preload_needed_n']:.4g} N would hold it",)
 
 
-def _holes(template: CamTemplate, grow: float) -> tuple:
+def _holes(spec: CamSpec, grow: float) -> tuple:
     """The bore (keyed or round) and the mounting holes, their edges moved out by ``grow`` mm."""
-    hub, bore = template.hub, template.cam.bore
+    hub, bore = spec.hub, spec.cam.bore
     out: list = []
     if bore > 0:
         out.append(keyed_bore(bore, grow) if hub.keyway else Circle((0.0, 0.0), bore / 2 + grow))
@@ -155,29 +175,29 @@ def _holes(template: CamTemplate, grow: float) -> tuple:
     return tuple(out)
 
 
-def _check_holes(template: CamTemplate, body: Any) -> None:
+def _check_holes(spec: CamSpec, body: Any) -> None:
     """Every hole must lie inside the cam with material round it."""
     import shapely
 
-    for hole in _holes(template, 0.0):
-        ring = shapely.Polygon(hole.flatten(template.output.tolerance))
+    for hole in _holes(spec, 0.0):
+        ring = shapely.Polygon(hole.flatten(spec.output.tolerance))
         if not body.contains(ring) or body.exterior.distance(ring) <= 0:
             field = "hub.bolt_circle" if isinstance(hole, Circle) and hole.centre != (0.0, 0.0) else "cam.bore"
             raise DesignError(f"{field}: a hole reaches the cam's outline (it comes within "
                               f"{body.exterior.distance(ring):.3g} mm); make it smaller or move it in")
 
 
-def _engraving(template: CamTemplate, cam: Cam, reach: float) -> tuple:
+def _engraving(spec: CamSpec, cam: Cam, reach: float) -> tuple:
     """ENGRAVE marks, in the band between the outermost hole and the outline: the part's name, an arrow
     in the sense of rotation and a tick towards the follower at theta = 0."""
-    hub = template.hub
-    inner = template.cam.bore / 2 + (key_for(template.cam.bore)[1] if hub.keyway else 0.0)
+    hub = spec.hub
+    inner = spec.cam.bore / 2 + (key_for(spec.cam.bore)[1] if hub.keyway else 0.0)
     if hub.bolt_holes:
         inner = max(inner, hub.bolt_circle / 2 + hub.bolt_hole_diameter / 2)
     mid = inner + 0.5 * (reach - inner)
     height = max(1.0, min(5.0, 0.3 * (reach - inner)))
-    name = Text(template.name, (-0.3 * height * len(template.name), -mid - 0.5 * height), height)
-    sense = 1 if template.cam.rotation == "ccw" else -1
+    name = Text(spec.name, (-0.3 * height * len(spec.name), -mid - 0.5 * height), height)
+    sense = 1 if spec.cam.rotation == "ccw" else -1
 
     def at(radius: float, degrees: float) -> np.ndarray:
         return radius * np.array([math.cos(math.radians(degrees)), math.sin(math.radians(degrees))])
@@ -192,10 +212,10 @@ def _engraving(template: CamTemplate, cam: Cam, reach: float) -> tuple:
     return tuple((LAYER_ENGRAVE, mark) for mark in (name, shaft, head, tick))
 
 
-def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,
+def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,
               segments: tuple) -> tuple[str, ...]:
     out = []
-    limit = pressure_limit(template)
+    limit = pressure_limit(spec)
     if a.pressure_angle_max_deg > limit:
         out.append(f"pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
                    f"{a.pressure_angle_max_at_deg:.2f} degrees), above the {limit:g} degree limit: enlarge the "
@@ -206,7 +226,7 @@ def _warnings(template: CamTemplate, a: CamAnalysis, jumps: tuple[Jump, ...], wa
     if a.undercut:
         out.append(f"undercut allowed: the outline is the cutter's envelope, and near {a.pitch_rho_min_at_deg:.2f} "
                    "degrees the follower does not follow the motion law")
-    if template.cam.bore > 0 and wall < THIN_WALL:
+    if spec.cam.bore > 0 and wall < THIN_WALL:
         out.append(f"only {wall:.3g} mm of material between the bore and the outline")
     for i, seg in enumerate(segments):
         over = seg.law.overshoot() if hasattr(seg.law, "overshoot") else 0.0

@@ -47,9 +47,9 @@ def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
     return g.point - rr * g.normal
 
 
-def _chord_error(cam: Cam, index: int, theta: np.ndarray) -> float:
-    """Largest distance of the exact surface from the chords between consecutive ``theta`` (mm)."""
-    rr = cam.contact_radius
+def _chord_error(cam: Cam, index: int, theta: np.ndarray, rr: float) -> float:
+    """Largest distance of the exact surface (``rr`` mm inside the pitch curve) from the chords between
+    consecutive ``theta`` (mm)."""
     ends = _surface(cam.segment_pitch(index, theta), rr)
     frac = np.arange(1, _PROBES + 1) / (_PROBES + 1)
     inner = (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
@@ -61,12 +61,12 @@ def _chord_error(cam: Cam, index: int, theta: np.ndarray) -> float:
     return float(np.linalg.norm(a + t[..., None] * ab - x, axis=2).max())
 
 
-def _spacing(cam: Cam, index: int, tolerance: float, factor: float) -> np.ndarray:
+def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float) -> np.ndarray:
     """Cam angles for chords within ~``tolerance`` mm of the surface, from its curvature (``factor`` >= 1 densifies)."""
     seg = cam.program.segments[index]
     aux = np.linspace(seg.start, seg.end, 257)
     g = cam.segment_pitch(index, aux)
-    k, rr = g.kappa, cam.contact_radius
+    k = g.kappa
     # chord ~ sqrt(8 tol rho_c) along a surface of speed |P'| |1 - Rr k|: samples per radian
     density = np.linalg.norm(g.d1, axis=1) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(aux))])
@@ -76,12 +76,12 @@ def _spacing(cam: Cam, index: int, tolerance: float, factor: float) -> np.ndarra
     return np.interp(np.linspace(0.0, cum[-1], n + 1), cum, aux)
 
 
-def _sampled(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, float]:
+def _sampled(cam: Cam, index: int, tolerance: float, rr: float) -> tuple[np.ndarray, float]:
     """Angles of the vertices of one moving segment, and their measured chord error."""
     factor = 1.0
     for _ in range(40):
-        theta = _spacing(cam, index, tolerance, factor)
-        err = _chord_error(cam, index, theta)
+        theta = _spacing(cam, index, tolerance, factor, rr)
+        err = _chord_error(cam, index, theta, rr)
         if err <= tolerance:
             return theta, err
         factor *= max(1.1, math.sqrt(err / tolerance))
@@ -89,15 +89,14 @@ def _sampled(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, float]
                       f"(reached {err:.3g} mm); loosen the tolerance")
 
 
-def _biarcs(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, np.ndarray, float]:
+def _biarcs(cam: Cam, index: int, tolerance: float, rr: float) -> tuple[np.ndarray, np.ndarray, float]:
     """Vertices and bulges of one moving segment as biarcs, two arcs a span; and their measured error.
 
     Spans start coarse (the chord spacing for 1 mm); a span whose exact surface strays
     an error e > ``tolerance`` from its biarc is cut into ceil(1.2 (e / tolerance)^(1/3))
     equal parts, since a biarc's error falls as the cube of its span; until none strays.
     """
-    rr = cam.contact_radius
-    theta = _spacing(cam, index, max(tolerance, 1.0), 1.0)
+    theta = _spacing(cam, index, max(tolerance, 1.0), 1.0, rr)
     frac = np.arange(1, 2 * _PROBES + 1) / (2 * _PROBES + 1)
     for _ in range(40):
         g = cam.segment_pitch(index, theta)
@@ -123,22 +122,22 @@ def _biarcs(cam: Cam, index: int, tolerance: float) -> tuple[np.ndarray, np.ndar
                       "loosen the tolerance")
 
 
-def _dwell(cam: Cam, index: int) -> tuple[np.ndarray, np.ndarray, float]:
+def _dwell(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, np.ndarray, float]:
     """Vertices and bulges of a dwell's exact arc about the cam centre (up to 90 degrees an arc)."""
     seg = cam.program.segments[index]
     n = max(1, math.ceil(seg.beta / (math.pi / 2) - 1e-12))
     theta = seg.start + seg.beta * np.arange(n + 1) / n
-    pts = _surface(cam.segment_pitch(index, theta), cam.contact_radius)
+    pts = _surface(cam.segment_pitch(index, theta), rr)
     radius = float(np.linalg.norm(pts[0]))
     probe = seg.start + seg.beta * (np.arange(1, 8 * n) / (8 * n))
-    err = float(np.abs(np.linalg.norm(_surface(cam.segment_pitch(index, probe), cam.contact_radius), axis=1)
+    err = float(np.abs(np.linalg.norm(_surface(cam.segment_pitch(index, probe), rr), axis=1)
                        - radius).max())
     bulge = math.tan(-cam.follower.sense * seg.beta / n / 4.0)
     return pts[:-1], np.full(n, bulge), err
 
 
-def _corner_arc(cam: Cam, index: int) -> tuple[np.ndarray, float, float]:
-    """At the end of segment ``index``: the roller-radius arc round a concave pitch corner.
+def _corner_arc(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, float, float]:
+    """At the end of segment ``index``: the arc of radius ``rr`` round a concave pitch corner.
 
     Returns its start vertex, its bulge and its signed included angle (rad).
     """
@@ -147,14 +146,15 @@ def _corner_arc(cam: Cam, index: int) -> tuple[np.ndarray, float, float]:
     before = cam.segment_pitch(index, segments[index].end)
     after = cam.segment_pitch(j, segments[j].start)
     centre = before.point[0]
-    a = _surface(before, cam.contact_radius)[0] - centre
-    b = _surface(after, cam.contact_radius)[0] - centre
+    a = _surface(before, rr)[0] - centre
+    b = _surface(after, rr)[0] - centre
     angle = math.atan2(a[0] * b[1] - a[1] * b[0], float(a @ b))
-    return _surface(before, cam.contact_radius)[0], math.tan(angle / 4.0), angle
+    return _surface(before, rr)[0], math.tan(angle / 4.0), angle
 
 
-def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines") -> Outline:
-    """The outline of a cam without undercut or convex corners (see the module docstring).
+def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset: float = 0.0) -> Outline:
+    """The outline of a cam without undercut or convex corners (see the module docstring), moved out of the
+    cam by ``offset`` mm along its normal (half a laser's kerf for a cut file; exact, not a polygon offset).
 
     ``curves`` is ``"polylines"`` (chords) or ``"biarcs"`` (tangent-continuous arcs,
     far fewer entities for the same tolerance). A plate cam's dwells are straight,
@@ -165,55 +165,58 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines") -> Outl
     corners = dict(cam.corners())
     if any(turn > 0 for turn in corners.values()):
         raise ValueError("the pitch curve has a convex corner: use envelope_outline")
+    rr = cam.contact_radius - offset
     verts, bulges, worst = [], [], 0.0
     for i, seg in enumerate(cam.program.segments):
         if seg.kind == "dwell" and cam.is_plate:
-            v, b, err = _surface(cam.segment_pitch(i, seg.start), cam.contact_radius), np.zeros(1), 0.0
+            v, b, err = _surface(cam.segment_pitch(i, seg.start), rr), np.zeros(1), 0.0
         elif seg.kind == "dwell":
-            v, b, err = _dwell(cam, i)
+            v, b, err = _dwell(cam, i, rr)
         elif curves == "biarcs":
-            v, b, err = _biarcs(cam, i, tolerance)
+            v, b, err = _biarcs(cam, i, tolerance, rr)
         else:
-            theta, err = _sampled(cam, i, tolerance)
-            v, b = _surface(cam.segment_pitch(i, theta[:-1]), cam.contact_radius), np.zeros(len(theta) - 1)
+            theta, err = _sampled(cam, i, tolerance, rr)
+            v, b = _surface(cam.segment_pitch(i, theta[:-1]), rr), np.zeros(len(theta) - 1)
         verts.append(v)
         bulges.append(b)
         worst = max(worst, err)
         if i in corners:
-            start, bulge, _ = _corner_arc(cam, i)
+            start, bulge, _ = _corner_arc(cam, i, rr)
             verts.append(start[None, :])
             bulges.append(np.array([bulge]))
     if cam.is_plate:
-        verts, bulges = _close_plate(cam, verts, bulges)
+        verts, bulges = _close_plate(cam, verts, bulges, offset)
     contour = Contour(np.concatenate(verts), np.concatenate(bulges))
     return Outline(contour if contour.area > 0 else contour.reversed(), worst, envelope=False)
 
 
-def _close_plate(cam: Cam, verts: list, bulges: list) -> tuple[list, list]:
-    """Add a plate's end point, its flat ends and its bottom edge to the profile's vertices."""
+def _close_plate(cam: Cam, verts: list, bulges: list, offset: float) -> tuple[list, list]:
+    """Add a plate's end point, its flat ends and its bottom edge (all moved out by ``offset`` mm) to the
+    profile's vertices."""
     segments = cam.program.segments
-    last = _surface(cam.segment_pitch(len(segments) - 1, segments[-1].end), cam.contact_radius)[0]
+    last = _surface(cam.segment_pitch(len(segments) - 1, segments[-1].end), cam.contact_radius - offset)[0]
     first = np.concatenate(verts)[0]
-    out = cam.follower.contact_radius + cam.surface_offset      # the flat ends, beyond the roller's reach
-    low = -cam.surface_offset                                     # the bottom edge
+    out = cam.contact_radius + offset      # the flat ends, beyond the roller's reach
+    low = -offset                          # the bottom edge
     tail = np.array([last, [last[0] + out, last[1]], [last[0] + out, low], [first[0] - out, low],
                      [first[0] - out, first[1]]])
     keep = np.concatenate([[True], np.linalg.norm(np.diff(tail, axis=0), axis=1) > 1e-12])
     return [*verts, tail[keep]], [*bulges, np.zeros(int(keep.sum()))]
 
 
-def envelope_outline(cam: Cam, tolerance: float) -> Outline:
+def envelope_outline(cam: Cam, tolerance: float, offset: float = 0.0) -> Outline:
     """The surface a cutter of the roller's size would leave: the offset curve with its loops removed.
 
     The raw offset (chords from the curvature, roller-radius arcs at corners) is
     noded with shapely, split into faces, and the largest face is the cam. Its
     error is measured as the deviation of points along every edge from the exact
     envelope (distance Rr from the pitch curve), and the sampling is tightened
-    until that is within the tolerance.
+    until that is within the tolerance. ``offset`` moves it out of the cam (mm), as for
+    :func:`exact_outline`.
     """
     factor = 1.0
     for _ in range(12):
-        outline = _envelope(cam, tolerance, factor)
+        outline = _envelope(cam, tolerance, factor, offset)
         if outline.max_error_mm <= tolerance:
             return outline
         factor *= max(1.2, math.sqrt(outline.max_error_mm / tolerance))
@@ -221,17 +224,17 @@ def envelope_outline(cam: Cam, tolerance: float) -> Outline:
                       f"(reached {outline.max_error_mm:.3g} mm); loosen the tolerance")
 
 
-def _envelope(cam: Cam, tolerance: float, factor: float) -> Outline:
+def _envelope(cam: Cam, tolerance: float, factor: float, offset: float) -> Outline:
     import shapely
 
-    rr = cam.contact_radius
+    rr = cam.contact_radius - offset
     pts = []
     for i, seg in enumerate(cam.program.segments):
-        theta = _spacing(cam, i, tolerance, factor)
+        theta = _spacing(cam, i, tolerance, factor, rr)
         pts.append(_surface(cam.segment_pitch(i, theta[:-1]), rr))
         # the segment's last surface point, then round the pitch point to the next segment's first
         centre = cam.segment_pitch(i, seg.end).point[0]
-        start, _, angle = _corner_arc(cam, i)
+        start, _, angle = _corner_arc(cam, i, rr)
         n = arc_steps(rr, angle, tolerance / factor**2)
         a = math.atan2(start[1] - centre[1], start[0] - centre[0]) + angle * np.arange(n) / n
         pts.append(centre + rr * np.column_stack([np.cos(a), np.sin(a)]))
@@ -247,5 +250,5 @@ def _envelope(cam: Cam, tolerance: float, factor: float) -> Outline:
     frac = np.arange(_PROBES + 1) / (_PROBES + 1)
     w = np.roll(v, -1, axis=0)
     probes = (v[:, None, :] + (w - v)[:, None, :] * frac[None, :, None]).reshape(-1, 2)
-    err = float(np.abs(surface_deviation(cam, probes)).max())
+    err = float(np.abs(surface_deviation(cam, probes, offset)).max())
     return Outline(Contour(v), err, envelope=True)

@@ -15,13 +15,14 @@ from camgen.core.errors import ExportError
 from camgen.core.parts import Drawing
 from camgen.core.writers import WriteOptions
 from camgen.design import CamDesign
+from camgen.kinds import kind_of
 from camgen.report import cam_report
 
 
 def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     """The files of ``design`` and its report (without the ``files`` map, which the bundle adds)."""
-    out = design.template.output
-    formats, name = out.formats, design.template.name
+    out = design.spec.output
+    formats, name = out.formats, design.spec.name
     mesh = mesh_check = None
     if {"stl", "3mf"} & set(formats):
         from camgen.core.solids import check_mesh, extrude
@@ -38,7 +39,7 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
         return {"svaj": plots.svaj_figure, "cam": plots.cam_figure}[kind](design)
 
     items = [
-        item(Drawing.of_part(design.cut[1]), [("dxf", "dxf", f"{name}.dxf"),
+        item(Drawing.of_part(design.cut), [("dxf", "dxf", f"{name}.dxf"),
                                               ("cut-svg", "cut_svg", f"{name}-cut.svg")], formats),
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
         *(item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
@@ -49,18 +50,19 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf)), report
 
 
-def write_cam(design: CamDesign, directory: str | Path) -> dict[str, Any]:
-    """Write the files of ``design`` into ``directory``, all or nothing; return the report with its ``files``."""
-    bundle, report = cam_bundle(design)
+def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:
+    """Write the files of ``design`` (of any cam kind) into ``directory``, all or nothing; return the report with
+    its ``files``."""
+    bundle, report = kind_of(design.spec.cam.kind).bundler()(design)
     return {**report, "files": write_bundle(bundle, directory)}
 
 
 def build_member(raw: dict, folder: Path) -> dict[str, Any]:
-    """Build one family member from its raw template into ``folder``; its summary figures and a thumbnail."""
+    """Build one family member from its raw spec into ``folder``; its summary figures and a thumbnail."""
     from camgen.design import design_cam
-    from camgen.spec import validate_template
+    from camgen.spec import validate_spec
 
-    design = design_cam(validate_template(raw))
+    design = design_cam(validate_spec(raw))
     report = write_cam(design, folder)
     ring = design.outline.contour.flatten(max(design.tolerance, 0.2))
     return {"pressure_angle_max_deg": report["pressure_angle_max_deg"],

@@ -50,7 +50,7 @@ def svaj_figure(design: CamDesign) -> Any:
     axes[-1].set_xlabel("cam angle θ (degrees)")
     axes[-1].set_xlim(0, 360)
     axes[-1].set_xticks(range(0, 361, 30))
-    axes[0].set_title(f"{design.template.name}: S-V-A-J (∞ marks infinite acceleration or jerk)")
+    axes[0].set_title(f"{design.spec.name}: S-V-A-J (∞ marks infinite acceleration or jerk)")
     return fig
 
 
@@ -79,7 +79,7 @@ def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:
 
 def cam_figure(design: CamDesign) -> Any:
     """The cam at theta = 0: outline, pitch curve, base and prime circles, follower, checks marked."""
-    cam, a, t = design.cam, design.analysis, design.template
+    cam, a, t = design.cam, design.analysis, design.spec
     fig = figure(10, 5) if cam.is_plate else figure(8, 9)
     ax = fig.add_subplot()
     ring = design.outline.contour.flatten(t.output.tolerance)

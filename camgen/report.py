@@ -1,7 +1,7 @@
 """The report of a cam design: every figure a designer checks before cutting, in mm and degrees.
 
 Pure formatting of a finished :class:`~camgen.design.CamDesign` (and the check of its
-solid, when one was made): nothing here computes a peak or reads a template.
+solid, when one was made): nothing here computes a peak or reads a spec.
 """
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ def _r(x: float | None, digits: int = 9) -> float | None:
 
 def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, Any]:
     """The report as a JSON-ready dict (keys carry their units)."""
-    t, cam, a, outline = design.template, design.cam, design.analysis, design.outline
+    t, cam, a, outline = design.spec, design.cam, design.analysis, design.outline
     segments = [{
         "index": i, "type": spec.type, "law": spec.law, **spec.law_params(),
         "start_deg": _r(math.degrees(seg.start)), "angle_deg": spec.angle, "lift_mm": spec.lift,
@@ -54,10 +54,10 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, An
         "concave_rho_min_at_deg": _r(a.concave_at_deg),
         "undercut": a.undercut,
         "envelope": outline.envelope,
-        "outline_vertices": len(design.cut[0].contour.vertices),
-        "outline_arcs": design.cut[0].contour.n_arcs,
-        "outline_lines": design.cut[0].contour.n_lines,
-        "outline_max_error_mm": float(design.cut[0].max_error_mm),
+        "outline_vertices": len(design.cut_outline.contour.vertices),
+        "outline_arcs": design.cut_outline.contour.n_arcs,
+        "outline_lines": design.cut_outline.contour.n_lines,
+        "outline_max_error_mm": float(design.cut_outline.max_error_mm),
         "outline_note": "the DXF's outline as written" + (
             f", measured against the cam surface moved out by half the kerf ({t.output.kerf / 2:g} mm)"
             if t.output.kerf else ""),
@@ -76,8 +76,7 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, An
         lo, hi = design.face_extent
         report["face_position_min_mm"], report["face_position_max_mm"] = _r(lo), _r(hi)
         report["face_width_mm"] = _r(hi - lo + 2 * t.follower.face_margin)
-        report["face_measured_from"] = "the follower's axis (+X)" if t.follower.type == "translating-flat" \
-            else "the pivot, along the face"
+        report["face_measured_from"] = f.face_origin
     if hasattr(f, "pivot"):
         report["follower"]["pivot_mm"] = [_r(x) for x in f.pivot]
     if hasattr(f, "rest_angle"):

@@ -19,9 +19,10 @@ from dataclasses import dataclass
 from camgen.analysis import pressure_angle_max, profile_rho_min
 from camgen.cam import Cam, build_cam
 from camgen.core.errors import CamgenError, DesignError
+from camgen.followers import FOLLOWERS
 from camgen.laws import make_law
 from camgen.numeric import boundary
-from camgen.spec import CamTemplate
+from camgen.spec import CamSpec
 
 FACTOR_LAWS = ("uniform", "modified-uniform", "harmonic", "parabolic", "cycloidal")
 FACTOR_ANGLES = tuple(range(10, 50, 5))
@@ -53,38 +54,30 @@ class Sizing:
     min_rho_margin_mm: float
 
 
-def pressure_limit(template: CamTemplate) -> float:
-    """The template's pressure-angle limit, or the usual 30 degrees (translating) / 40 (oscillating)."""
-    if template.cam.max_pressure_angle is not None:
-        return template.cam.max_pressure_angle
-    return 40.0 if template.follower.oscillating else 30.0
+def pressure_limit(spec: CamSpec) -> float:
+    """The spec's pressure-angle limit, or the usual 30 degrees (translating) / 40 (oscillating)."""
+    if spec.cam.max_pressure_angle is not None:
+        return spec.cam.max_pressure_angle
+    return 40.0 if spec.follower.oscillating else 30.0
 
 
-def _domain(template: CamTemplate) -> tuple[float, float]:
+def _domain(spec: CamSpec) -> tuple[float, float]:
     """Base radii (mm) for which the follower can be assembled at all: (lowest, highest), exclusive."""
-    f, rr = template.follower, template.follower.contact_radius
-    lo, hi = 0.0, math.inf
-    if f.type in ("translating-roller", "knife-edge"):
-        lo = max(lo, abs(f.offset) - rr)
-    elif f.type == "oscillating-roller":
-        lo, hi = max(lo, abs(f.pivot_distance - f.arm_length) - rr), f.pivot_distance + f.arm_length - rr
-    elif f.type == "oscillating-flat":
-        hi = f.pivot_distance
-    return lo, hi
+    return FOLLOWERS[spec.follower.type].base_radius_range(spec.follower, spec.follower.contact_radius)
 
 
-def _smallest(template: CamTemplate, ok: Callable[[Cam], bool], what: str) -> float:
+def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
     """Smallest base radius (to 1e-9 relative) at which ``ok(cam)`` holds, by bisection."""
-    lo, top = _domain(template)
-    lift = max(seg.lift or 0.0 for seg in template.motion)
+    lo, top = _domain(spec)
+    lift = max(seg.lift or 0.0 for seg in spec.motion)
 
     def holds(rb: float) -> bool:
         try:
-            return ok(build_cam(template, base_radius=rb))
+            return ok(build_cam(spec, base_radius=rb))
         except CamgenError:
             return False
 
-    hi = max(template.cam.base_radius if isinstance(template.cam.base_radius, float) else 0.0, lo + lift, 1.0)
+    hi = max(spec.cam.base_radius if isinstance(spec.cam.base_radius, float) else 0.0, lo + lift, 1.0)
     while not holds(hi):
         nxt = hi * 2 if math.isinf(top) else 0.5 * (hi + top)
         if nxt > 1e7 or nxt - hi < 1e-9 * max(hi, 1.0):
@@ -93,27 +86,27 @@ def _smallest(template: CamTemplate, ok: Callable[[Cam], bool], what: str) -> fl
     return boundary(holds, hi, lo)
 
 
-def size_cam(template: CamTemplate) -> Sizing:
+def size_cam(spec: CamSpec) -> Sizing:
     """The smallest base radius meeting the pressure-angle limit and the curvature margin."""
-    limit = pressure_limit(template)
-    margin = template.cam.min_rho_margin
-    if any(turn > 0 for _, turn in build_cam(template, base_radius=_probe(template)).corners()) \
-            and template.follower.contact_radius > 0:
+    limit = pressure_limit(spec)
+    margin = spec.cam.min_rho_margin
+    if any(turn > 0 for _, turn in build_cam(spec, base_radius=_probe(spec)).corners()) \
+            and spec.follower.contact_radius > 0:
         raise DesignError("the follower velocity jumps (a convex pitch corner): no base radius gives the roller a "
                           "path it can follow; use a law with continuous velocity")
-    pressure = _smallest(template, lambda cam: pressure_angle_max(cam) <= limit,
+    pressure = _smallest(spec, lambda cam: pressure_angle_max(cam) <= limit,
                          f"pressure-angle limit of {limit:g} degrees")
-    curvature = smallest_for_curvature(template, margin)
+    curvature = smallest_for_curvature(spec, margin)
     decided = "pressure angle" if pressure >= curvature else "curvature"
     return Sizing(max(pressure, curvature), decided, pressure, curvature, limit, margin)
 
 
-def _probe(template: CamTemplate) -> float:
-    lo, hi = _domain(template)
+def _probe(spec: CamSpec) -> float:
+    lo, hi = _domain(spec)
     middle = 0.5 * (lo + hi) if hi < math.inf else math.inf
-    return min(lo + max(seg.lift or 0.0 for seg in template.motion) + 1.0, middle)
+    return min(lo + max(seg.lift or 0.0 for seg in spec.motion) + 1.0, middle)
 
 
-def smallest_for_curvature(template: CamTemplate, margin: float = 0.0) -> float:
+def smallest_for_curvature(spec: CamSpec, margin: float = 0.0) -> float:
     """Smallest base radius (mm) whose cam surface keeps every convex radius above ``margin`` mm."""
-    return _smallest(template, lambda cam: profile_rho_min(cam) > margin, f"curvature margin of {margin:g} mm")
+    return _smallest(spec, lambda cam: profile_rho_min(cam) > margin, f"curvature margin of {margin:g} mm")

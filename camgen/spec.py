@@ -1,8 +1,8 @@
-"""Cam templates: the validated, frozen description of one cam.
+"""Cam specs: the validated, frozen description of one cam.
 
-A template is a TOML file (or the same mapping from Python). :func:`load_template`
+A template is a TOML file (or the same mapping from Python); :func:`load_spec`
 reads it, merges ``--set`` overrides into the raw mapping, then validates it all at
-once; every problem becomes a :class:`~camgen.core.errors.SpecError` whose message names
+once into a :class:`CamSpec`; every problem becomes a :class:`~camgen.core.errors.SpecError` whose message names
 the field, what is allowed and what was given, e.g.
 ``motion[2].angle: must be > 0 degrees (got -30)``.
 """
@@ -16,18 +16,20 @@ from typing import Any, Literal
 from pydantic import Field, field_validator, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
-from camgen.core.spec import NAME_PATTERN, Model, read_template, unit, validate
+from camgen.core.spec import Model, name_field, read_template, unit, validate
+from camgen.core.spec import OutputTable as CoreOutputTable
+from camgen.followers import FOLLOWERS
+from camgen.kinds import CAM_KINDS
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
-FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg")
 #: every law parameter key a segment may carry
 LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
 
-class CamSpec(Model):
+class CamTable(Model):
     """The cam body: a disc, or a plate (linear cam) whose ``base_radius`` is its height under the profile."""
 
-    kind: Literal["disc", "plate"] = Field("disc", description="disc cam, or plate (linear) cam")
+    kind: Literal[tuple(CAM_KINDS)] = Field("disc", description="cam kind")  # type: ignore[valid-type]
     travel: float | None = Field(None, gt=0, description="plate cam: length the program's 360 degrees spread over",
                                  json_schema_extra=unit("mm"))
     base_radius: float | Literal["auto"] = Field(description="base circle radius, or \"auto\" for the smallest "
@@ -55,20 +57,13 @@ class CamSpec(Model):
         return float(value)
 
 
-FOLLOWER_KEYS = {
-    "translating-roller": ({"roller_radius"}, {"offset"}),
-    "knife-edge": (set(), {"offset"}),
-    "translating-flat": (set(), {"face_margin"}),
-    "oscillating-roller": ({"roller_radius", "pivot_distance", "arm_length"}, set()),
-    "oscillating-flat": ({"pivot_distance"}, {"face_margin"}),
-}
-FOLLOWER_TYPES = tuple(FOLLOWER_KEYS)
+FOLLOWER_TYPES = tuple(FOLLOWERS)
 #: keys every follower takes: its mass and its return spring
 DYNAMIC_KEYS = {"mass", "spring_rate", "preload"}
 
 
-class FollowerSpec(Model):
-    """The follower; which keys a type needs and takes is in FOLLOWER_KEYS."""
+class FollowerTable(Model):
+    """The follower; which keys a type needs and takes its :class:`~camgen.followers.FollowerType` says."""
 
     type: Literal[FOLLOWER_TYPES] = Field(description="follower type")  # type: ignore[valid-type]
     roller_radius: float | None = Field(None, gt=0, description="roller radius", json_schema_extra=unit("mm"))
@@ -84,8 +79,8 @@ class FollowerSpec(Model):
     preload: float | None = Field(None, ge=0, description="return spring force at s = 0", json_schema_extra=unit("N"))
 
     @model_validator(mode="after")
-    def _keys_fit_type(self) -> "FollowerSpec":
-        needs, takes = FOLLOWER_KEYS[self.type]
+    def _keys_fit_type(self) -> "FollowerTable":
+        needs, takes = FOLLOWERS[self.type].needs, FOLLOWERS[self.type].takes
         for key in sorted(needs):
             if getattr(self, key) is None:
                 raise ValueError(f"{key}: required for a {self.type} follower")
@@ -96,7 +91,8 @@ class FollowerSpec(Model):
 
     @property
     def oscillating(self) -> bool:
-        return self.type.startswith("oscillating")
+        """True for an arm's swing (lifts in degrees)."""
+        return FOLLOWERS[self.type].oscillating
 
     @property
     def contact_radius(self) -> float:
@@ -104,7 +100,7 @@ class FollowerSpec(Model):
         return self.roller_radius or 0.0
 
 
-class SegmentSpec(Model):
+class SegmentTable(Model):
     """One segment of the motion program; law parameters sit beside the law name."""
 
     type: Literal["rise", "dwell", "return"] = Field(description="segment type")
@@ -124,7 +120,7 @@ class SegmentSpec(Model):
     ends: Literal["dwell", "natural"] | None = Field(None, description="spline: end conditions")
 
     @model_validator(mode="after")
-    def _fits_type(self) -> "SegmentSpec":
+    def _fits_type(self) -> "SegmentTable":
         params = {k for k in LAW_PARAMS_ALL if getattr(self, k) is not None}
         if self.type == "dwell":
             extra = sorted(({"lift", "law"} | params) & self.model_fields_set)
@@ -150,7 +146,7 @@ class SegmentSpec(Model):
         return {k: getattr(self, k) for k in LAW_PARAMS.get(self.law or "", ()) if getattr(self, k) is not None}
 
 
-class HubSpec(Model):
+class HubTable(Model):
     """Hub features: a keyed bore, a boss with a set screw (printed part only), bolt-circle holes, engraving."""
 
     keyway: bool = Field(False, description="cut a DIN 6885-1 keyway for the bore")
@@ -166,7 +162,7 @@ class HubSpec(Model):
     engrave: bool = Field(False, description="add an ENGRAVE layer: name, rotation arrow, theta = 0 mark")
 
     @model_validator(mode="after")
-    def _consistent(self) -> "HubSpec":
+    def _consistent(self) -> "HubTable":
         if (self.boss_diameter > 0) != (self.boss_height > 0):
             raise ValueError("boss_height: give both boss_diameter and boss_height (mm), or neither")
         if self.set_screw > 0 and not (self.boss_height > 0 and self.set_screw < self.boss_height):
@@ -176,35 +172,31 @@ class HubSpec(Model):
         return self
 
 
-class OutputSpec(Model):
-    """What to write and how accurately."""
+class OutputTable(CoreOutputTable):
+    """What to write and how accurately: the shared keys (formats, DXF flavour and version) and the outline's
+    tolerance and curves, the laser's kerf and the printer's clearance."""
 
     tolerance: float = Field(0.01, ge=1e-6, le=1.0, description="max distance of the exported outline from the "
                              "exact cam surface", json_schema_extra=unit("mm"))
-    formats: tuple[Literal[FORMATS], ...] = Field(FORMATS, min_length=1,  # type: ignore[valid-type]
-                                                  description="files to write")
     curves: Literal["polylines", "biarcs"] = Field("polylines", description="how curved stretches are written")
-    dxf: Literal["polyline-bulge", "lines-arcs", "segments"] = Field(
-        "polyline-bulge", description="DXF flavour: bulged polylines, LINE/ARC entities, or chords only")
-    dxf_version: Literal["R2010", "R12"] = Field("R2010", description="DXF version (R12 for old controllers)")
     kerf: float = Field(0.0, ge=0, le=5, description="laser kerf: cut files grow outlines and shrink holes by half",
                         json_schema_extra=unit("mm"))
     clearance: float = Field(0.0, ge=0, le=5, description="printing clearance: printed holes grow by this in "
                              "diameter", json_schema_extra=unit("mm"))
 
 
-class CamTemplate(Model):
-    """A whole cam template."""
+class CamSpec(Model):
+    """A whole cam template, validated: the spec of one cam."""
 
-    name: str = Field(pattern=NAME_PATTERN, description="part name, used for file names")
-    cam: CamSpec
-    follower: FollowerSpec
-    motion: list[SegmentSpec] = Field(min_length=1, description="segments in order from theta = 0")
-    hub: HubSpec = HubSpec()
-    output: OutputSpec = OutputSpec()
+    name: str = name_field("part")
+    cam: CamTable
+    follower: FollowerTable
+    motion: list[SegmentTable] = Field(min_length=1, description="segments in order from theta = 0")
+    hub: HubTable = HubTable()
+    output: OutputTable = OutputTable()
 
     @model_validator(mode="after")
-    def _whole(self) -> "CamTemplate":
+    def _whole(self) -> "CamSpec":
         total = sum(seg.angle for seg in self.motion)
         if abs(total - 360.0) > 1e-9:
             raise ValueError(f"motion: segment angles add up to {total:.6g} degrees; they must add up to 360")
@@ -212,16 +204,7 @@ class CamTemplate(Model):
         if not abs(self.follower.offset) < prime:
             raise ValueError(f"follower.offset: |offset| must be < the prime radius {prime:.6g} mm "
                              f"(base_radius + roller_radius; got {self.follower.offset:.6g} mm)")
-        if self.cam.kind == "plate":
-            if self.cam.travel is None:
-                raise ValueError("cam.travel: required for a plate cam (mm)")
-            if self.follower.type not in ("translating-roller", "knife-edge"):
-                raise ValueError(f"follower.type: a plate cam takes a translating-roller or knife-edge follower "
-                                 f"(got {self.follower.type!r})")
-            if self.follower.offset != 0 or self.cam.bore != 0:
-                raise ValueError(f"cam.{'bore' if self.cam.bore else 'offset'}: not used by a plate cam")
-        elif self.cam.travel is not None:
-            raise ValueError("cam.travel: only for a plate cam (cam.kind = \"plate\")")
+        CAM_KINDS[self.cam.kind].check(self)
         hub = self.hub
         if hub.keyway and not 6 < self.cam.bore <= 110:
             raise ValueError(f"hub.keyway: DIN 6885-1 keys need a bore over 6 up to 110 mm (cam.bore is "
@@ -241,18 +224,18 @@ class CamTemplate(Model):
         return (rb if isinstance(rb, float) else math.inf) + self.follower.contact_radius
 
 
-def validate_template(raw: Mapping[str, Any]) -> CamTemplate:
-    """A :class:`CamTemplate` from a raw mapping, or a one-line :class:`~camgen.core.errors.SpecError`."""
-    return validate(CamTemplate, raw)
+def validate_spec(raw: Mapping[str, Any]) -> CamSpec:
+    """A :class:`CamSpec` from a raw template mapping, or a one-line :class:`~camgen.core.errors.SpecError`."""
+    return validate(CamSpec, raw)
 
 
-def load_template(path: str | Path, overrides: Iterable[str] = ()) -> CamTemplate:
-    """Read a TOML cam template, merge ``key=value`` overrides, validate."""
-    return validate_template(read_template(path, overrides))
+def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec:
+    """Read a TOML cam template (and its ``base``), merge ``key=value`` overrides, validate."""
+    return validate_spec(read_template(path, overrides))
 
 
-def with_base_radius(template: CamTemplate, base_radius: float) -> CamTemplate:
-    """The same template with ``cam.base_radius`` set, validated afresh."""
-    raw = template.model_dump(exclude_unset=True)        # keys as the user gave them, not every default
+def with_base_radius(spec: CamSpec, base_radius: float) -> CamSpec:
+    """The same spec with ``cam.base_radius`` set, validated afresh."""
+    raw = spec.model_dump(exclude_unset=True)        # keys as the user gave them, not every default
     raw["cam"]["base_radius"] = base_radius
-    return validate_template(raw)
+    return validate_spec(raw)

@@ -47,11 +47,12 @@ def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
     return best
 
 
-def surface_deviation(cam: Cam, points: np.ndarray) -> np.ndarray:
-    """Deviation (mm) of points from the exact cam surface: distance to the pitch curve less the contact radius.
+def surface_deviation(cam: Cam, points: np.ndarray, offset: float = 0.0) -> np.ndarray:
+    """Deviation (mm) of points from the exact cam surface moved out by ``offset`` mm: distance to the pitch
+    curve less the contact radius, plus ``offset``.
 
     For a roller it is signed: negative outside the cam (towards the roller), positive
     into the material. For a knife edge or flat face (contact radius 0) it is the
     plain distance, never negative.
     """
-    return pitch_distance(cam, points) - cam.contact_radius
+    return pitch_distance(cam, points) - (cam.contact_radius - offset)

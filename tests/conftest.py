@@ -30,7 +30,7 @@ def raw() -> dict:
 
 def template(overrides: dict | None = None, **changes):
     """A validated template: rdrd with dotted-key ``overrides`` applied."""
-    from camgen.spec import validate_template
+    from camgen.spec import validate_spec
     from camgen.core.spec import apply_overrides
 
-    return validate_template(apply_overrides(RDRD, list((overrides or {}).items())))
+    return validate_spec(apply_overrides(RDRD, list((overrides or {}).items())))

@@ -37,7 +37,7 @@ def test_a_family_in_ten_lines(tmp_path):
     """The README's scripting guide: a family made in a few lines of Python."""
     rows = []
     for lift in (10, 20, 30):
-        spec = camgen.load_template(ROOT / "templates" / "rdrd.toml", [f"motion.0.lift={lift}", f"motion.2.lift={lift}",
+        spec = camgen.load_spec(ROOT / "templates" / "rdrd.toml", [f"motion.0.lift={lift}", f"motion.2.lift={lift}",
                                                             f"name='cam-{lift}'", "output.formats=['dxf']"])
         design = camgen.design_cam(spec)
         camgen.write_cam(design, tmp_path / spec.name)

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.analysis import analyse, largest_roller
+from camgen.analysis import analyze, largest_roller
 from camgen.cam import build_cam
 from camgen.design import design_cam
 from camgen.core.errors import DesignError
@@ -52,7 +52,7 @@ def test_pressure_angle_textbook_value_and_peak():
     assert math.degrees(phi) == pytest.approx(math.degrees(math.atan(2 * 20 / beta / 60.0)), rel=1e-13)
     dense = np.linspace(0, 2 * math.pi, 720001)
     brute = np.degrees(np.abs(cam.pitch(dense).pressure_angle))
-    a = analyse(cam)
+    a = analyze(cam)
     assert a.pressure_angle_max_deg == pytest.approx(brute.max(), abs=1e-8)
     assert a.pressure_angle_max_deg >= brute.max() - 1e-12
     assert a.pressure_angle_max_at_deg == pytest.approx(float(np.degrees(dense[np.argmax(brute)])), abs=1e-3)
@@ -102,9 +102,9 @@ def _tight(rr: float, prime: float = 30.0):
 
 
 def test_undercut_detected_on_the_right_side_of_rho_equals_roller_radius():
-    rho = analyse(build_cam(_tight(1.0))).pitch_rho_min_mm
+    rho = analyze(build_cam(_tight(1.0))).pitch_rho_min_mm
     assert 5.0 < rho < 20.0
-    below, above = analyse(build_cam(_tight(rho - 1e-9))), analyse(build_cam(_tight(rho + 1e-9)))
+    below, above = analyze(build_cam(_tight(rho - 1e-9))), analyze(build_cam(_tight(rho + 1e-9)))
     assert not below.undercut
     assert above.undercut
     assert below.pitch_rho_min_mm == pytest.approx(rho, abs=1e-11)
@@ -115,7 +115,7 @@ def test_undercut_detected_on_the_right_side_of_rho_equals_roller_radius():
 def test_undercut_is_refused_with_angle_radius_and_largest_roller():
     t = template({"cam.base_radius": 10.0, "follower.offset": 0.0, "cam.bore": 0.0,
                   "motion.0.angle": 40.0, "motion.1.angle": 140.0})
-    a = analyse(build_cam(t))
+    a = analyze(build_cam(t))
     best = largest_roller(t)
     with pytest.raises(DesignError) as err:
         design_cam(t)
@@ -124,8 +124,8 @@ def test_undercut_is_refused_with_angle_radius_and_largest_roller():
     assert f"{a.pitch_rho_min_mm:.4g} mm" in msg
     assert f"largest roller that fits is {best:.4g} mm" in msg
     # the suggested roller really is the limit: just below fits, just above undercuts
-    fits = analyse(build_cam(t, roller_radius=best * (1 - 1e-6)))
-    fails = analyse(build_cam(t, roller_radius=best * (1 + 1e-6)))
+    fits = analyze(build_cam(t, roller_radius=best * (1 - 1e-6)))
+    fails = analyze(build_cam(t, roller_radius=best * (1 + 1e-6)))
     assert not fits.undercut and fails.undercut
 
 
@@ -156,14 +156,14 @@ def test_velocity_jump_makes_a_corner_that_is_refused_or_enveloped():
 def test_concave_corner_is_an_exact_arc_of_the_roller_radius():
     """Uniform start from a dwell, then a polynomial matching its velocity: one concave pitch corner."""
     raw = {"motion.0.law": "uniform", "motion.0.lift": 10.0, "motion.0.angle": 60.0}
-    from camgen.spec import validate_template
+    from camgen.spec import validate_spec
     from camgen.core.spec import apply_overrides
     from tests.conftest import RDRD
 
     data = apply_overrides(RDRD, list(raw.items()))
     data["motion"].insert(1, {"type": "rise", "law": "polynomial", "lift": 10.0, "angle": 60.0,
                               "conditions": [[0, 0, 0], [0, 1, 1], [1, 0, 1], [1, 1, 0], [1, 2, 0]]})
-    t = validate_template(data)
+    t = validate_spec(data)
     cam = build_cam(t)
     assert [turn < 0 for _, turn in cam.corners()] == [True]
     d = design_cam(t)

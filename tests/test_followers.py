@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.analysis import analyse, face_extent, pressure_angle_max, profile_rho_min
+from camgen.analysis import analyze, face_extent, pressure_angle_max, profile_rho_min
 from camgen.cam import build_cam
 from camgen.design import design_cam
 from camgen.core.errors import DesignError, SpecError
@@ -28,7 +28,7 @@ OSC_FLAT = {"follower.type": "oscillating-flat", "follower.offset": None, "follo
 
 def spec(changes: dict):
     """rdrd with changes; a value of None removes the key."""
-    from camgen.spec import validate_template
+    from camgen.spec import validate_spec
     from tests.conftest import RDRD
     import copy
 
@@ -44,7 +44,7 @@ def spec(changes: dict):
             node.pop(last, None)
         else:
             node[int(last) if isinstance(node, list) else last] = value
-    return validate_template(raw)
+    return validate_spec(raw)
 
 
 def numeric_curvature(points: np.ndarray, h: float) -> np.ndarray:
@@ -84,7 +84,7 @@ def test_flat_face_width_from_the_sampled_profile():
     from camgen.report import cam_report
 
     assert cam_report(d)["face_width_mm"] == pytest.approx(hi - lo + 2 * 2.0)
-    assert analyse(d.cam).pressure_angle_max_deg == pytest.approx(0.0, abs=1e-12)
+    assert analyze(d.cam).pressure_angle_max_deg == pytest.approx(0.0, abs=1e-12)
 
 
 def test_flat_face_cusp_is_refused_with_the_smallest_base_radius():
@@ -149,7 +149,7 @@ def test_oscillating_flat_face_touches_its_envelope():
         p = g.point[0] @ n                                             # distance of the face line from the centre
         assert p - 0.01 <= (outline @ n).max() <= p + 1e-9          # within the outline's chord tolerance
     # a face through the pivot is pushed square to itself: pressure angle 0
-    assert analyse(cam).pressure_angle_max_deg == pytest.approx(0.0, abs=1e-9)
+    assert analyze(cam).pressure_angle_max_deg == pytest.approx(0.0, abs=1e-9)
     assert pressure_angle_max(cam) < 1e-9
     assert np.linalg.norm(f.pivot) == pytest.approx(120.0)
 

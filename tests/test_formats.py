@@ -109,7 +109,7 @@ def test_svg_cut_file_is_in_millimetres_with_exact_geometry(tmp_path, cam):
     assert set(groups) == {"OUTLINE", "HOLES"}
     assert groups["OUTLINE"].get("stroke") != groups["HOLES"].get("stroke")
     assert all(float(g.get("stroke-width")) <= 0.0254 and g.get("fill") == "none" for g in groups.values())
-    ring = design.cut[1].outline.flatten(TOL)
+    ring = design.cut.outline.flatten(TOL)
     left, top = ring[:, 0].min() - 2.0, ring[:, 1].max() + 2.0
     pts, radii = _svg_points(groups["OUTLINE"].find("s:path", ns).get("d"), top, left)
     assert np.abs(surface_deviation(cam, pts)).max() < 1e-5            # 6 decimals written

@@ -15,7 +15,7 @@ from tests.conftest import template
 def assert_sound(design):
     """Finite, valid, counter-clockwise and within its measured tolerance."""
     c = design.outline.contour
-    tol = design.template.output.tolerance
+    tol = design.spec.output.tolerance
     assert np.isfinite(c.vertices).all() and np.isfinite(c.bulges).all()
     assert shapely.Polygon(c.flatten(tol)).is_valid and c.area > 0
     assert 0 <= design.outline.max_error_mm <= tol

@@ -11,7 +11,7 @@ from camgen.cli import main
 from camgen.design import design_cam
 from camgen.core.errors import SpecError
 from camgen.surface import surface_deviation
-from camgen.spec import validate_template
+from camgen.spec import validate_spec
 
 PLATE = {
     "name": "plate",
@@ -26,7 +26,7 @@ PLATE = {
 
 
 def test_plate_profile_pressure_angle_and_accuracy():
-    d = design_cam(validate_template(PLATE))
+    d = design_cam(validate_spec(PLATE))
     # textbook: tan(phi) = ds/dx; mid-rise of a cycloidal s' = 2h/beta per radian, dx/dtheta = travel / 2 pi
     beta = math.radians(120)
     mid = d.cam.pitch(np.array([math.radians(90)]))
@@ -61,7 +61,7 @@ def test_plate_files(tmp_path):
     doc = ezdxf.readfile(tmp_path / "out" / "plate.dxf")
     assert not doc.audit().has_errors
     mesh = trimesh.load(tmp_path / "out" / "plate.stl")
-    assert mesh.is_watertight and mesh.volume == pytest.approx(design_cam(validate_template(PLATE)).part.area * 6,
+    assert mesh.is_watertight and mesh.volume == pytest.approx(design_cam(validate_spec(PLATE)).part.area * 6,
                                                                rel=1e-3)
 
 
@@ -79,7 +79,7 @@ def test_plate_errors(change, message):
         else:
             raw["cam"][k] = v
     with pytest.raises(SpecError, match=message):
-        validate_template(raw)
+        validate_spec(raw)
 
 
 def test_plate_refuses_other_followers():
@@ -88,4 +88,4 @@ def test_plate_refuses_other_followers():
     raw = copy.deepcopy(PLATE)
     raw["follower"] = {"type": "translating-flat"}
     with pytest.raises(SpecError, match=r"follower\.type: a plate cam takes a translating-roller or knife-edge"):
-        validate_template(raw)
+        validate_spec(raw)

@@ -59,8 +59,8 @@ def files(tmp_path_factory):
 def _expect(design, chords: bool = False) -> dict:
     """Areas with their allowed differences: 1e-6 relative for exact geometry; for chords within the
     tolerance, up to perimeter x tolerance (the most a chord's sag can take off)."""
-    part = design.cut[1]
-    tol = design.template.output.tolerance
+    part = design.cut
+    tol = design.spec.output.tolerance
     ring = part.outline.flatten(1e-3)
 
     def allowed(shape) -> float:
@@ -194,13 +194,13 @@ def test_openscad_extrudes_our_lines_arcs_dxf_to_our_volume(files, tmp_path):
     """OpenSCAD reads the lines-arcs flavour as drawn: the extruded plate has our volume."""
     out, design = files
     volume = _openscad_plate(tmp_path, out / "lines-arcs" / "rdrd.dxf")
-    assert volume == pytest.approx(design.cut[1].area * 8.0, rel=2e-3)
+    assert volume == pytest.approx(design.cut.area * 8.0, rel=2e-3)
 
 
 def test_openscad_volume_check_fails_on_the_bulge_flavour(files, tmp_path):
     """OpenSCAD drops LWPOLYLINE bulges without a word: the same check on that flavour comes out wrong."""
     out, design = files
-    assert _openscad_plate(tmp_path, out / "rdrd.dxf") != pytest.approx(design.cut[1].area * 8.0, rel=2e-3)
+    assert _openscad_plate(tmp_path, out / "rdrd.dxf") != pytest.approx(design.cut.area * 8.0, rel=2e-3)
 
 
 def test_openscad_rejects_a_mesh_with_a_hole(files, tmp_path):
@@ -237,7 +237,7 @@ def _true_size(dxf: Path, ring: np.ndarray, tmp: Path) -> bool:
 
 def test_librecad_prints_the_drawing_at_its_true_size(files, tmp_path):
     out, design = files
-    assert _true_size(out / "rdrd.dxf", design.cut[1].outline.flatten(1e-3), tmp_path)
+    assert _true_size(out / "rdrd.dxf", design.cut.outline.flatten(1e-3), tmp_path)
 
 
 def test_librecad_size_check_rejects_a_drawing_in_the_wrong_unit(files, tmp_path):
@@ -245,7 +245,7 @@ def test_librecad_size_check_rejects_a_drawing_in_the_wrong_unit(files, tmp_path
     import ezdxf
 
     _, design = files
-    ring = design.cut[1].outline.flatten(1e-3)
+    ring = design.cut.outline.flatten(1e-3)
     doc = ezdxf.new("R2010")
     doc.units = ezdxf.units.MM
     doc.modelspace().add_lwpolyline((ring / 10).tolist(), close=True)

@@ -5,7 +5,7 @@ import re
 
 import pytest
 
-from camgen.spec import CamSpec, FollowerSpec, HubSpec, OutputSpec, SegmentSpec
+from camgen.spec import CamTable, FollowerTable, HubTable, OutputTable, SegmentTable
 from tests.conftest import ROOT
 
 README = (ROOT / "README.md").read_text()
@@ -18,8 +18,8 @@ def test_readme_opens_with_the_two_commands():
     assert "pip install '.[test]' && python -m pytest -q" in (ROOT / ".ci" / "run").read_text()
 
 
-@pytest.mark.parametrize("prefix, model", [("cam", CamSpec), ("follower", FollowerSpec),
-                                           ("motion[i]", SegmentSpec), ("hub", HubSpec), ("output", OutputSpec)])
+@pytest.mark.parametrize("prefix, model", [("cam", CamTable), ("follower", FollowerTable),
+                                           ("motion[i]", SegmentTable), ("hub", HubTable), ("output", OutputTable)])
 def test_every_template_key_is_documented(prefix, model):
     for key in model.model_fields:
         assert f"| `{prefix}.{key}` |" in README, f"{prefix}.{key} is not in the README's key table"

@@ -1,1 +1,16 @@
-"""Followers: each turns a motion program into a pitch curve and its contact geometry (see ``base``)."""
+"""Followers: one module a follower type, registered here, the one place a type is looked up.
+
+Every follower gives the cam its pitch curve and contact geometry (see :mod:`camgen.followers.base`
+for the frames and sign conventions); its module's ``FOLLOWER`` (a :class:`FollowerType`) says
+which template keys it takes and how to build it.
+"""
+from __future__ import annotations
+
+from camgen.followers import knife_edge, oscillating_flat, oscillating_roller, translating_flat, translating_roller
+from camgen.followers.base import FollowerType
+
+#: every follower type by its template name, in the order the README lists them
+FOLLOWERS: dict[str, FollowerType] = {m.FOLLOWER.name: m.FOLLOWER for m in (
+    translating_roller, knife_edge, translating_flat, oscillating_roller, oscillating_flat)}
+
+__all__ = ["FOLLOWERS", "FollowerType"]

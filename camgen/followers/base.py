@@ -21,10 +21,14 @@ line, given by its distance p from the cam centre and its normal angle alpha).
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
+
+from camgen.core.errors import SpecError
 
 
 @dataclass(frozen=True)
@@ -114,3 +118,36 @@ def from_support(theta: np.ndarray, p: np.ndarray, alpha: np.ndarray, derivs: np
     pressure = signed_pressure_angle(travel(rotate(point, back)), rotate(n, back), sense)
     return PitchGeometry(theta=theta, point=point, d1=d1, d2=d2, normal=n, kappa=kappa,
                          pressure_angle=pressure, rho=rho)
+
+
+def positive(value: float, field: str) -> None:
+    """Refuse a length that is not finite and > 0 mm, naming ``field``."""
+    if not (value > 0 and math.isfinite(value)):
+        raise SpecError(f"must be a finite length > 0 mm (got {value})", field)
+
+
+@dataclass(frozen=True)
+class FollowerType:
+    """How a follower type enters a design: its template keys, its unit of lift, and the few functions that read
+    its ``[follower]`` table (any object with the table's attributes). One per follower module, registered in
+    :data:`camgen.followers.FOLLOWERS`.
+
+    ``make(table, base radius mm, roller radius mm, sense)`` builds the follower;
+    ``base_radius_range(table, roller radius mm)`` is the (lowest, highest) base radius that assembles, exclusive;
+    ``roller_floor(table, base radius mm)`` the least roller radius that assembles; ``path_length(table, lift)``
+    the roller's travel (mm) for a lift (the drafted modified-uniform law needs it), None where it has no meaning.
+    """
+
+    name: str
+    needs: frozenset[str]
+    takes: frozenset[str]
+    make: Callable[[Any, float, float, int], Any]
+    oscillating: bool = False
+    base_radius_range: Callable[[Any, float], tuple[float, float]] = field(default=lambda t, rr: (0.0, math.inf))
+    roller_floor: Callable[[Any, float], float] = field(default=lambda t, rb: 0.0)
+    path_length: Callable[[Any, float], float] | None = field(default=lambda t, lift: lift)
+
+    @property
+    def lift_unit(self) -> str:
+        """``"deg"`` (an arm's swing) or ``"mm"``."""
+        return "deg" if self.oscillating else "mm"

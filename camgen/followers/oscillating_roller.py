@@ -1,0 +1,96 @@
+"""The oscillating roller follower: an arm on a fixed pivot carrying a roller.
+
+Displacement s is the arm's swing in degrees (radians inside). The pivot lies on the
++X side of the follower's rest position, at ``pivot_distance`` C from the cam centre.
+The arm ``arm_length`` L runs from the pivot to the roller's centre, which rests on
+the prime circle at (0, Rp); the arm's angle at rest psi0 (between the pivot-to-cam
+line and the arm) follows from Rp^2 = C^2 + L^2 - 2 C L cos(psi0). A rise swings
+the arm away from the cam, psi0 growing to psi0 + psi.
+
+The pressure angle comes from the geometry: the angle between the contact normal and
+the direction in which the roller's centre moves (square to the arm), with no
+small-angle approximation.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from camgen.core.errors import SpecError
+from camgen.followers.base import FollowerType, PitchGeometry, from_centre_path, perp, positive, rotate
+
+
+@dataclass(frozen=True)
+class OscillatingRoller:
+    """Roller follower on an arm (see the module docstring); lengths in mm."""
+
+    pivot_distance: float
+    arm_length: float
+    prime_radius: float
+    roller_radius: float
+    sense: int = 1
+
+    flat: ClassVar[bool] = False
+    lift_unit: ClassVar[str] = "deg"
+
+    def __post_init__(self) -> None:
+        positive(self.pivot_distance, "follower.pivot_distance")
+        positive(self.arm_length, "follower.arm_length")
+        c, arm, rp = self.pivot_distance, self.arm_length, self.prime_radius
+        if not abs(c - arm) < rp < c + arm:
+            raise SpecError(f"the arm cannot put the roller on the prime circle: need |pivot_distance - arm_length| "
+                            f"< {rp:.6g} mm (base radius + roller radius) < pivot_distance + arm_length",
+                            "follower.arm_length")
+
+    @property
+    def contact_radius(self) -> float:
+        return self.roller_radius
+
+    @property
+    def pivot(self) -> np.ndarray:
+        """The pivot (mm, fixed frame)."""
+        c, rp = self.pivot_distance, self.prime_radius
+        py = (c**2 + rp**2 - self.arm_length**2) / (2 * rp)
+        return np.array([math.sqrt(max(c**2 - py**2, 0.0)), py])
+
+    @property
+    def rest_angle(self) -> float:
+        """psi0 (rad): the angle at the pivot between the cam centre and the roller at rest."""
+        c, arm, rp = self.pivot_distance, self.arm_length, self.prime_radius
+        return math.acos((c**2 + arm**2 - rp**2) / (2 * c * arm))
+
+    @property
+    def _swing_sign(self) -> float:
+        """+1 if a counter-clockwise turn of the arm takes the roller away from the cam centre."""
+        rest = np.array([0.0, self.prime_radius])
+        u0 = rest - self.pivot
+        return 1.0 if rest @ np.array([-u0[1], u0[0]]) >= 0 else -1.0
+
+    def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
+        """Pitch geometry for arm swing ``motion`` = psi, psi', psi'', psi''' in degrees per rad^k."""
+        psi, psi1, psi2 = np.radians(motion[0]), np.radians(motion[1]), np.radians(motion[2])
+        k = self._swing_sign
+        p = self.pivot
+        rest = np.array([0.0, self.prime_radius]) - p
+        w = rotate(np.tile(rest, (len(psi), 1)), k * psi)               # pivot -> roller centre
+        q1 = k * psi1[:, None] * perp(w)
+        q2 = k * psi2[:, None] * perp(w) - (psi1**2)[:, None] * w
+        return from_centre_path(theta, p + w, q1, q2, k * perp(w) / self.arm_length, self.sense)
+
+
+def _arm_floor(table: Any, base_radius: float) -> float:
+    """The least roller radius (mm) whose centre the arm can put on the prime circle."""
+    return max(0.0, abs(table.pivot_distance - table.arm_length) - base_radius)
+
+
+FOLLOWER = FollowerType(
+    "oscillating-roller", needs=frozenset({"roller_radius", "pivot_distance", "arm_length"}), takes=frozenset(),
+    oscillating=True,
+    make=lambda t, rb, rr, sense: OscillatingRoller(t.pivot_distance, t.arm_length, rb + rr, rr, sense),
+    base_radius_range=lambda t, rr: (max(0.0, abs(t.pivot_distance - t.arm_length) - rr),
+                                     t.pivot_distance + t.arm_length - rr),
+    roller_floor=_arm_floor,
+    path_length=lambda t, lift: t.arm_length * math.radians(lift))

@@ -1,0 +1,68 @@
+"""The translating roller follower, centred or offset (the knife edge is the same with a radius of 0).
+
+The follower moves along the line x = ``offset`` parallel to +Y in the fixed frame;
+a positive offset puts that line to the right of the cam centre (+X) when the
+follower is seen on top. Displacement s is in mm.
+
+Its centre is at (e, d0 + s), d0 = sqrt(Rp^2 - e^2), Rp = base radius + roller
+radius (the prime radius); the pressure angle is phi = atan((s' - sense * e) / (d0 + s)).
+With a counter-clockwise cam (sense = +1) a positive offset lowers the pressure angle
+on rises and raises it on returns.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from camgen.core.errors import SpecError
+from camgen.followers.base import FollowerType, PitchGeometry, from_centre_path
+
+
+@dataclass(frozen=True)
+class TranslatingRoller:
+    """Roller of ``roller_radius`` mm (0 for a knife edge) on a prime circle of ``prime_radius`` mm, offset mm (+X)."""
+
+    prime_radius: float
+    roller_radius: float
+    offset: float = 0.0
+    sense: int = 1
+
+    flat: ClassVar[bool] = False
+    lift_unit: ClassVar[str] = "mm"
+
+    def __post_init__(self) -> None:
+        if not abs(self.offset) < self.prime_radius:
+            raise SpecError(f"|offset| must be smaller than the prime radius {self.prime_radius:.6g} mm "
+                            f"(base radius + roller radius; got {self.offset:.6g} mm)", "follower.offset")
+
+    @property
+    def contact_radius(self) -> float:
+        return self.roller_radius
+
+    @property
+    def d0(self) -> float:
+        """Height of the roller centre above the cam centre at s = 0 (mm)."""
+        return math.sqrt((self.prime_radius - self.offset) * (self.prime_radius + self.offset))
+
+    def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
+        """Pitch geometry at cam angles ``theta`` (rad) for ``motion`` = s, s', s'', s''' (mm per rad^k)."""
+        s, s1, s2 = motion[0], motion[1], motion[2]
+        zero = np.zeros_like(s)
+        q = np.column_stack([np.full_like(s, self.offset), self.d0 + s])
+        up = np.column_stack([zero, np.ones_like(s)])
+        return from_centre_path(theta, q, np.column_stack([zero, s1]), np.column_stack([zero, s2]), up, self.sense)
+
+
+def _offset_floor(table: Any, base_radius: float) -> float:
+    """The least roller radius (mm) that puts an offset follower's centre on the prime circle."""
+    return max(0.0, abs(table.offset) - base_radius)
+
+
+FOLLOWER = FollowerType(
+    "translating-roller", needs=frozenset({"roller_radius"}), takes=frozenset({"offset"}),
+    make=lambda t, rb, rr, sense: TranslatingRoller(rb + rr, rr, t.offset, sense),
+    base_radius_range=lambda t, rr: (max(0.0, abs(t.offset) - rr), math.inf),
+    roller_floor=_offset_floor)

@@ -1,0 +1,20 @@
+"""Cam kinds: one module a kind, registered here, the one place a kind is looked up.
+
+A kind says which followers it drives, how its ``[cam]`` table is checked, how a follower
+sits on it, and which functions design it and turn its design into a bundle of files
+(named as ``"module:function"`` and imported when first used, so this registry stays
+light). Disc and plate cams share one design (a flat plate cut to a profile).
+"""
+from __future__ import annotations
+
+from camgen.core.options import choose
+from camgen.kinds import disc, plate
+from camgen.kinds.base import CamKind
+
+#: every cam kind by its template name (``cam.kind``)
+CAM_KINDS: dict[str, CamKind] = {m.KIND.name: m.KIND for m in (disc, plate)}
+
+
+def kind_of(kind: str) -> CamKind:
+    """The registered kind ``kind`` (``cam.kind``), or a one-line error listing them."""
+    return CAM_KINDS[choose(kind, CAM_KINDS, "cam.kind")]

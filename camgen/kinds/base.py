@@ -1,0 +1,37 @@
+"""What every cam kind declares (see :mod:`camgen.kinds`)."""
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+
+@dataclass(frozen=True)
+class CamKind:
+    """How a cam kind enters a design.
+
+    ``followers``: the follower types it drives. ``check(spec)`` raises ``ValueError("field: why")`` for a
+    spec this kind cannot take. ``follower(spec, base radius mm, roller radius mm)`` is the follower on it.
+    ``design`` (spec -> design) and ``bundle`` (design -> (bundle, report)) are ``"module:function"`` names.
+    """
+
+    name: str
+    followers: tuple[str, ...]
+    check: Callable[[Any], None]
+    follower: Callable[[Any, float, float], Any]
+    design: str
+    bundle: str
+
+    def designer(self) -> Callable[[Any], Any]:
+        """The function designing this kind (spec -> design)."""
+        return _resolve(self.design)
+
+    def bundler(self) -> Callable[[Any], Any]:
+        """The function turning a design of this kind into (bundle, report)."""
+        return _resolve(self.bundle)
+
+
+def _resolve(name: str) -> Callable[[Any], Any]:
+    module, _, attr = name.partition(":")
+    return getattr(importlib.import_module(module), attr)

@@ -1,0 +1,30 @@
+"""The plate (linear) cam: a plate sliding under a translating roller or knife edge, cut to a profile.
+
+The program's 360 degrees spread over ``cam.travel`` mm of plate; ``base_radius`` is the
+plate's height under the profile (see :mod:`camgen.followers.plate`).
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from camgen.followers.plate import PlateRoller
+from camgen.kinds.base import CamKind
+
+FOLLOWERS = ("translating-roller", "knife-edge")
+
+
+def _check(spec: Any) -> None:
+    if spec.cam.travel is None:
+        raise ValueError("cam.travel: required for a plate cam (mm)")
+    if spec.follower.type not in FOLLOWERS:
+        raise ValueError(f"follower.type: a plate cam takes a translating-roller or knife-edge follower "
+                         f"(got {spec.follower.type!r})")
+    if spec.follower.offset != 0 or spec.cam.bore != 0:
+        raise ValueError(f"cam.{'bore' if spec.cam.bore else 'offset'}: not used by a plate cam")
+
+
+def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
+    return PlateRoller(base_radius, roller_radius, spec.cam.travel)
+
+
+KIND = CamKind("plate", FOLLOWERS, _check, _follower, "camgen.design:design_profile", "camgen.outputs:cam_bundle")
