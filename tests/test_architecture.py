@@ -1,0 +1,97 @@
+"""The architecture as code: the import-linter contracts in pyproject.toml hold, each is shown to catch a
+forbidden import once, the module lists they name are complete, and only command-line modules print or exit."""
+from __future__ import annotations
+
+import ast
+import os
+import shutil
+import subprocess
+import sys
+import tomllib
+
+import pytest
+
+from tests.conftest import ROOT
+
+CONFIG = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["importlinter"]
+CONTRACTS = {c["id"]: c for c in CONFIG["contracts"]}
+CLI_MODULES = {"camgen/cli.py", "camgen/core/cli.py", "linkgen/cli.py"}
+
+
+def _lint(root, *contracts: str) -> subprocess.CompletedProcess:
+    """lint-imports on the packages under ``root`` (their own copy, found first on the path), no cache."""
+    code = ("import sys; from importlinter.cli import lint_imports; "
+            f"sys.exit(lint_imports(config_filename='pyproject.toml', limit_to_contracts={tuple(contracts)!r}, "
+            "no_cache=True, no_logo=True))")
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    return subprocess.run([sys.executable, "-c", code], cwd=root, env=env, capture_output=True, text=True)
+
+
+def test_the_contracts_hold():
+    result = _lint(ROOT, *CONTRACTS)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert f"{len(CONTRACTS)} kept, 0 broken" in result.stdout
+
+
+#: for each contract, one import that breaks it: (file, line to add)
+BREAKS = {
+    "core": ("camgen/core/errors.py", "import linkgen.cli"),
+    "linkgen": ("linkgen/__init__.py", "import camgen.design"),
+    "kinematics": ("camgen/numeric.py", "import pydantic"),
+    "cli": ("camgen/design.py", "import click"),
+    "flow": ("camgen/cam.py", "import camgen.outputs"),
+}
+
+
+@pytest.mark.parametrize("contract", sorted(BREAKS))
+def test_each_contract_catches_a_forbidden_import(contract, tmp_path):
+    assert set(BREAKS) == set(CONTRACTS)
+    for package in ("camgen", "linkgen"):
+        shutil.copytree(ROOT / package, tmp_path / package, ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    path, line = BREAKS[contract]
+    target = tmp_path / path
+    target.write_text(target.read_text() + f"\n{line}  # noqa\n")
+    result = _lint(tmp_path, contract)
+    assert result.returncode != 0 and "1 broken" in result.stdout, result.stdout + result.stderr
+
+
+def _top_level(package: str) -> set[str]:
+    """Every module and sub-package directly under ``package`` (dotted names)."""
+    names = set()
+    for path in (ROOT / package).iterdir():
+        if path.name.startswith("_"):
+            continue
+        if path.suffix == ".py" or (path / "__init__.py").exists():
+            names.add(f"{package}.{path.stem}")
+    return names
+
+
+def test_the_contracts_name_every_module():
+    """A new camgen module is covered by the shared-layer rules as soon as it exists."""
+    others = _top_level("camgen") - {"camgen.core"}
+    assert set(CONTRACTS["core"]["forbidden_modules"]) == others | {"linkgen"}
+    assert set(CONTRACTS["linkgen"]["forbidden_modules"]) == others
+    flow = {m.strip() for layer in CONTRACTS["flow"]["layers"] for m in layer.split("|")}
+    assert flow == others | {"camgen.core"}
+
+
+def _calls(path) -> list[str]:
+    """Names of the print and exit calls in a source file."""
+    found = []
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Call):
+            f = node.func
+            name = f.id if isinstance(f, ast.Name) else f"{getattr(f.value, 'id', '?')}.{f.attr}" \
+                if isinstance(f, ast.Attribute) else ""
+            if name in ("print", "exit", "quit", "sys.exit", "os._exit"):
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno} {name}")
+    return found
+
+
+def test_only_command_line_modules_print_or_exit():
+    library = [p for pkg in ("camgen", "linkgen") for p in (ROOT / pkg).rglob("*.py")
+               if p.relative_to(ROOT).as_posix() not in CLI_MODULES]
+    assert len(library) > 40
+    assert [c for p in library for c in _calls(p)] == []
+    assert _calls(ROOT / "camgen" / "core" / "cli.py")          # the check sees a real exit
