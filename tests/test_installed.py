@@ -39,7 +39,8 @@ def test_installed_camgen_build(outside):
     _run(outside, _script("camgen"), "build", str(ROOT / "templates" / "rdrd.toml"))
     report = json.loads((outside / "out" / "rdrd" / "rdrd.json").read_text())
     assert report["outline_max_error_mm"] <= report["tolerance_mm"] and report["mesh"]["watertight"]
-    assert {"rdrd.dxf", "rdrd.stl", "rdrd.3mf", "rdrd-cut.svg"} <= {p.name for p in (outside / "out" / "rdrd").iterdir()}
+    written = {p.name for p in (outside / "out" / "rdrd").iterdir()}
+    assert {"rdrd.dxf", "rdrd.stl", "rdrd.3mf", "rdrd-cut.svg"} <= written
 
 
 def test_installed_linkgen_build(outside):
