@@ -15,34 +15,36 @@ from typing import Any
 
 from camgen.core import VERSION as __version__
 
-_EXPORTS = {
-    # motion laws and programs
-    "make_law": "camgen.laws", "from_conditions": "camgen.laws", "LAW_NAMES": "camgen.laws",
-    "build_program": "camgen.program", "Program": "camgen.program", "Segment": "camgen.program",
-    # followers
-    "TranslatingRoller": "camgen.followers.translating_roller", "TranslatingFlat": "camgen.followers.translating_flat",
-    "OscillatingRoller": "camgen.followers.oscillating_roller", "OscillatingFlat": "camgen.followers.oscillating_flat",
-    "FOLLOWERS": "camgen.followers", "CAM_KINDS": "camgen.kinds",
-    "PlateRoller": "camgen.followers.plate",
-    # templates, cams, designs
-    "load_spec": "camgen.spec", "validate_spec": "camgen.spec", "CamSpec": "camgen.spec",
-    "build_cam": "camgen.cam", "Cam": "camgen.cam", "analyze": "camgen.analysis",
-    "design_cam": "camgen.design", "CamDesign": "camgen.design", "size_cam": "camgen.sizing",
-    "convergence": "camgen.convergence",
-    # parts and exporters
-    "Contour": "camgen.core.shapes", "Circle": "camgen.core.shapes", "Part": "camgen.core.parts",
-    "Drawing": "camgen.core.parts", "Allowances": "camgen.core.parts",
-    "write_dxf": "camgen.core.writers.dxf", "svg_document": "camgen.core.writers.svg",
-    "extrude": "camgen.core.solids", "stl_bytes": "camgen.core.writers.stl",
-    "threemf_bytes": "camgen.core.writers.threemf",
-    "Bundle": "camgen.core.bundle", "write_bundle": "camgen.core.bundle", "cam_bundle": "camgen.outputs",
-    "write_cam": "camgen.outputs",
-    # families
-    "read_family": "camgen.core.family", "members": "camgen.core.family", "run_family": "camgen.core.family",
-    # errors
-    "CamgenError": "camgen.core.errors", "SpecError": "camgen.core.errors", "DesignError": "camgen.core.errors",
-    "SolverError": "camgen.core.errors", "ExportError": "camgen.core.errors",
+#: the public names, by the module that holds them
+_MODULES = {
+    "camgen.laws": ("make_law", "from_conditions", "LAW_NAMES"),
+    "camgen.program": ("build_program", "Program", "Segment"),
+    "camgen.followers": ("FOLLOWERS",),
+    "camgen.followers.translating_roller": ("TranslatingRoller",),
+    "camgen.followers.translating_flat": ("TranslatingFlat",),
+    "camgen.followers.oscillating_roller": ("OscillatingRoller",),
+    "camgen.followers.oscillating_flat": ("OscillatingFlat",),
+    "camgen.followers.plate": ("PlateRoller",),
+    "camgen.kinds": ("CAM_KINDS",),
+    "camgen.spec": ("load_spec", "validate_spec", "CamSpec"),
+    "camgen.cam": ("build_cam", "Cam"),
+    "camgen.analysis": ("analyze",),
+    "camgen.design": ("design_cam", "CamDesign"),
+    "camgen.sizing": ("size_cam",),
+    "camgen.convergence": ("convergence",),
+    "camgen.outputs": ("cam_bundle", "write_cam"),
+    "camgen.core.shapes": ("Contour", "Circle"),
+    "camgen.core.parts": ("Part", "Drawing", "Allowances"),
+    "camgen.core.writers.dxf": ("write_dxf",),
+    "camgen.core.writers.svg": ("svg_document",),
+    "camgen.core.solids": ("extrude",),
+    "camgen.core.writers.stl": ("stl_bytes",),
+    "camgen.core.writers.threemf": ("threemf_bytes",),
+    "camgen.core.bundle": ("Bundle", "write_bundle"),
+    "camgen.core.family": ("read_family", "members", "run_family"),
+    "camgen.core.errors": ("CamgenError", "SpecError", "DesignError", "SolverError", "ExportError"),
 }
+_EXPORTS = {name: module for module, names in _MODULES.items() for name in names}
 
 __all__ = ["__version__", *_EXPORTS]
 

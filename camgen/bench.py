@@ -5,22 +5,21 @@ Results go to ``RESULTS.md`` (tables a user can read), ``results.json`` and plot
 """
 from __future__ import annotations
 
-import json
 import math
-import resource
 import subprocess
 import sys
 import tempfile
 import time
 import tomllib
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from camgen.cam import build_cam
-from camgen.core.timing import timed
+from camgen.core import bench as core_bench
+from camgen.core.bench import timed
 from camgen.convergence import contour_error, convergence
 from camgen.spec import validate_spec
 from camgen.core.spec import apply_overrides
@@ -31,30 +30,10 @@ STANDARD = {"cycloidal": "cycloidal", "harmonic": "harmonic", "polynomial": "pol
 #: the reference cam as a template (the bundled templates/rdrd.toml with cycloidal laws); the bench writes it
 #: out to time ``camgen build`` as a whole process, so it needs no checkout
 BASE_TOML = """name = "bench"
-[cam]
-base_radius = 40.0
-thickness = 8.0
-bore = 10.0
-[follower]
-type = "translating-roller"
-roller_radius = 10.0
-offset = 5.0
-[[motion]]
-type = "rise"
-law = "cycloidal"
-lift = 20.0
-angle = 120.0
-[[motion]]
-type = "dwell"
-angle = 60.0
-[[motion]]
-type = "return"
-law = "cycloidal"
-lift = 20.0
-angle = 120.0
-[[motion]]
-type = "dwell"
-angle = 60.0
+cam = {base_radius = 40.0, thickness = 8.0, bore = 10.0}
+follower = {type = "translating-roller", roller_radius = 10.0, offset = 5.0}
+motion = [{type = "rise", law = "cycloidal", lift = 20.0, angle = 120.0}, {type = "dwell", angle = 60.0},
+          {type = "return", law = "cycloidal", lift = 20.0, angle = 120.0}, {type = "dwell", angle = 60.0}]
 """
 BASE = tomllib.loads(BASE_TOML)
 
@@ -160,19 +139,14 @@ def throughput(count: int, out: Path) -> list[dict]:
 
 def hard_cases() -> list[dict]:
     """Each hard case with what happened: a sound value, or a clean refusal (never NaN or garbage)."""
+    return core_bench.hard_cases(_cases())
+
+
+def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
     import shapely
 
     from camgen.design import design_cam
-    from camgen.core.errors import CamgenError
     from camgen.laws import from_conditions
-
-    rows = []
-
-    def record(name: str, func: Callable[[], str]) -> None:
-        try:
-            rows.append({"case": name, "outcome": func()})
-        except CamgenError as exc:
-            rows.append({"case": name, "outcome": f"refused: {exc}"})
 
     def cam(changes: dict) -> str:
         d = design_cam(validate_spec(apply_overrides(BASE, list(changes.items()))))
@@ -183,14 +157,14 @@ def hard_cases() -> list[dict]:
 
     rho = design_cam(validate_spec(apply_overrides(BASE, [("follower.offset", 0.0)]))).analysis.pitch_rho_min_mm
     for side, sign in (("below", -1), ("above", 1)):
-        record(f"roller radius 1e-9 {side} the smallest convex radius",
+        yield (f"roller radius 1e-9 {side} the smallest convex radius",
                lambda s=sign: cam({"follower.offset": 0.0, "follower.roller_radius": rho + s * 1e-9,
                                    "cam.base_radius": 50.0 - rho - s * 1e-9, "cam.bore": 0.0}))
-    record("rise over 1 degree", lambda: cam({"motion.0.angle": 1.0, "motion.1.angle": 179.0}))
-    record("rise over 358.9999 degrees", lambda: cam({"motion.0.angle": 358.9999, "motion.1.angle": 0.5,
-                                                       "motion.2.angle": 0.5, "motion.3.angle": 0.0001}))
-    record("lift 10 x the base radius", lambda: cam({"motion.0.lift": 400.0, "motion.2.lift": 400.0}))
-    record("offset 1e-9 inside the prime radius", lambda: cam({"follower.offset": 50 - 1e-9}))
+    yield "rise over 1 degree", lambda: cam({"motion.0.angle": 1.0, "motion.1.angle": 179.0})
+    yield "rise over 358.9999 degrees", lambda: cam({"motion.0.angle": 358.9999, "motion.1.angle": 0.5,
+                                                     "motion.2.angle": 0.5, "motion.3.angle": 0.0001})
+    yield "lift 10 x the base radius", lambda: cam({"motion.0.lift": 400.0, "motion.2.lift": 400.0})
+    yield "offset 1e-9 inside the prime radius", lambda: cam({"follower.offset": 50 - 1e-9})
     for degree in (7, 11, 15, 19):
         m = (degree - 1) // 2
 
@@ -201,8 +175,7 @@ def hard_cases() -> list[dict]:
             err = float(np.abs(from_conditions(conds).derivatives(u)[0] - exact).max())
             return f"{'ok' if err < 1e-10 else 'WRONG'}: max deviation {err:.1e} from the closed form"
 
-        record(f"polynomial law of degree {degree}", poly)
-    return rows
+        yield f"polynomial law of degree {degree}", poly
 
 
 def _plot(rows: list[dict], path: Path) -> None:
@@ -241,17 +214,12 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
     peer = mechanism_peer(repeats)
     with tempfile.TemporaryDirectory() as tmp:
         flow = throughput(10 if quick else 200, Path(tmp))
-    results = {"quick": quick, "python": sys.version.split()[0], "outlines": outlines, "mechanism": peer,
-               "throughput": flow,
-               "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
-               "hard_cases": hard_cases()}
     _plot(outlines, out / "speed-vs-error.png")
-    (out / "results.json").write_text(json.dumps(results, indent=2, default=str) + "\n")
-    (out / "RESULTS.md").write_text(_markdown(results))
-    return results
+    return core_bench.finish(out, {"quick": quick, "outlines": outlines, "mechanism": peer, "throughput": flow,
+                                   "hard_cases": hard_cases()}, _markdown)
 
 
-def _markdown(r: dict) -> str:
+def _markdown(r: dict) -> list[str]:
     lines = ["# camgen bench", "", f"Python {r['python']}; {'quick run' if r['quick'] else 'full run'}; "
              "median of repeats; errors measured against the exact cam surface.", "",
              "## Cam outlines: speed against error", "",
@@ -269,7 +237,4 @@ def _markdown(r: dict) -> str:
     for row in r["throughput"]:
         cps = "-" if row["cams_per_second"] is None else f"{row['cams_per_second']:.1f}"
         lines.append(f"| {row['what']} | {row['seconds']:.2f} | {cps} |")
-    lines += ["", f"Peak resident memory: {r['peak_memory_mb']:.0f} MB.", "", "## Hard cases", "",
-              "| case | outcome |", "|---|---|"]
-    lines += [f"| {row['case']} | {row['outcome']} |" for row in r["hard_cases"]]
-    return "\n".join(lines) + "\n"
+    return lines

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from camgen.core.cli import family_options, report_family, user_errors
+from camgen.core.cli import add_bench, family_options, report_family, set_option, template_options, user_errors
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -16,11 +16,7 @@ def main() -> None:
 
 
 @main.command()
-@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Output folder (default: out/<name>/).")
-@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
-              help="Override a template field before validation, e.g. --set motion.0.lift=25 (repeatable).")
+@template_options("motion.0.lift=25")
 @user_errors
 def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
     """Build the cam described by TEMPLATE (a TOML file)."""
@@ -48,7 +44,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 @click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path), required=False)
 @click.option("--factors", is_flag=True, help="Print the cam-factor table instead (no template needed).")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
-@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a template field.")
+@set_option("cam.max_pressure_angle=25")
 @user_errors
 def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[str, ...]) -> None:
     """Smallest base radius for TEMPLATE, or (--factors) the cam factors f with Rp = f h / beta."""
@@ -92,20 +88,14 @@ def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> No
     report_family(build_family(template, output, validate_spec, build_member, jobs, scheduler), output)
 
 
-@main.command()
-@click.option("--quick", is_flag=True, help="Fewer tolerances, sizes and repeats (a minute, not ten).")
-@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=Path("out/bench"),
-              show_default=True, help="Folder for RESULTS.md, results.json and the plots.")
-@user_errors
-def bench(quick: bool, output: Path) -> None:
-    """Measure speed against error, peers, throughput, memory and the hard cases on this machine."""
+def _run_bench(output: Path, quick: bool) -> dict:
     from camgen.bench import run_bench
 
-    results = run_bench(output, quick)
-    wrong = [c for c in results["hard_cases"] if c["outcome"].startswith("WRONG")]
-    click.echo(f"wrote {output / 'RESULTS.md'}, {output / 'results.json'}, {output / 'speed-vs-error.png'}")
-    click.echo(f"{len(results['outlines'])} outline rows; {len(results['hard_cases'])} hard cases, "
-               f"{len(wrong)} wrong")
+    return run_bench(output, quick)
+
+
+add_bench(main, _run_bench, Path("out/bench"),
+          "Measure speed against error, peers, throughput, memory and the hard cases on this machine.")
 
 
 @main.command()

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import CamgenError
-from camgen.core.timing import timed
+from camgen.core.bench import timed
 from linkgen.fourbar import FourBar
 from linkgen.slidercrank import SliderCrank
 

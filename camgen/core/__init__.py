@@ -16,7 +16,7 @@ It imports nothing else of camgen and nothing of linkgen (an import-linter contr
 * :mod:`~camgen.core.bundle`: a result's files, written all-or-nothing;
 * :mod:`~camgen.core.family`: sweeps, jobs, Dask, resume, summaries;
 * :mod:`~camgen.core.cli`: the command-line plumbing both commands share;
-* :mod:`~camgen.core.timing`: the benches' timing helpers.
+* :mod:`~camgen.core.bench`: what both benches share (timing, hard cases, results files).
 """
 from __future__ import annotations
 

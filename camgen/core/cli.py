@@ -28,10 +28,36 @@ def user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
     return wrapper
 
 
+def _apply(func: Callable[..., Any], decorators: tuple) -> Callable[..., Any]:
+    for decorator in reversed(decorators):
+        func = decorator(func)
+    return func
+
+
+def template_argument() -> Any:
+    """The TEMPLATE argument: an existing TOML file."""
+    return click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+
+
+def set_option(example: str) -> Any:
+    """``--set KEY=VALUE``, repeatable, merged into the template before validation."""
+    return click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+                        help=f"Override a template field before validation, e.g. --set {example} (repeatable).")
+
+
+def template_options(example: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """TEMPLATE, ``-o/--output`` (default out/<name>/) and ``--set`` (``example`` shows one)."""
+    return lambda func: _apply(func, (
+        template_argument(),
+        click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
+                     help="Output folder (default: out/<name>/)."),
+        set_option(example)))
+
+
 def family_options(func: Callable[..., Any]) -> Callable[..., Any]:
     """The options every ``family`` command takes."""
-    for option in reversed((
-        click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path)),
+    return _apply(func, (
+        template_argument(),
         click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
                      help="Folder of the family: one sub-folder a member, summary.csv, summary.json, "
                           "overview.png."),
@@ -39,10 +65,22 @@ def family_options(func: Callable[..., Any]) -> Callable[..., Any]:
                      help="Processes to build with."),
         click.option("--scheduler", metavar="ADDRESS", default=None,
                      help="Build on the Dask cluster at ADDRESS (e.g. tcp://host:8786) instead of local "
-                          "processes."),
-    )):
-        func = option(func)
-    return func
+                          "processes.")))
+
+
+def add_bench(group: click.Group, run: Callable[[Path, bool], dict], default: Path, what: str) -> None:
+    """Give ``group`` a ``bench [--quick] [-o DIR]`` command running ``run(folder, quick)``; ``what`` is its help."""
+    @group.command(name="bench", help=what)
+    @click.option("--quick", is_flag=True, help="Fewer tolerances, sizes and repeats.")
+    @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=default,
+                  show_default=True, help="Folder for RESULTS.md, results.json and any plots.")
+    @user_errors
+    def bench(quick: bool, output: Path) -> None:
+        results = run(output, quick)
+        wrong = [c for c in results["hard_cases"] if c["outcome"].startswith("WRONG")]
+        for name in sorted(p.name for p in output.iterdir()):
+            click.echo(f"wrote {output / name}")
+        click.echo(f"{len(results['hard_cases'])} hard cases, {len(wrong)} wrong")
 
 
 def report_family(rows: list[dict], output: Path) -> None:

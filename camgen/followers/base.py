@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -151,3 +151,12 @@ class FollowerType:
     def lift_unit(self) -> str:
         """``"deg"`` (an arm's swing) or ``"mm"``."""
         return "deg" if self.oscillating else "mm"
+
+
+class FlatFace:
+    """What every flat-faced follower shares: its profile is the envelope of the face's lines, touched at a point
+    (no roller: contact radius 0), and the report measures the contact along the face from ``face_origin``."""
+
+    flat: ClassVar[bool] = True
+    contact_radius: ClassVar[float] = 0.0
+    face_origin: ClassVar[str]

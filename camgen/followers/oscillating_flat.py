@@ -16,21 +16,18 @@ from typing import ClassVar
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.followers.base import FollowerType, PitchGeometry, from_support, perp, positive, rotate
+from camgen.followers.base import FlatFace, FollowerType, PitchGeometry, from_support, perp, positive, rotate
 
 
 @dataclass(frozen=True)
-class OscillatingFlat:
+class OscillatingFlat(FlatFace):
     """Flat-faced arm pivoted ``pivot_distance`` mm from the cam centre, on a cam of ``base_radius`` mm."""
 
     pivot_distance: float
     base_radius: float
     sense: int = 1
 
-    flat: ClassVar[bool] = True
     lift_unit: ClassVar[str] = "deg"
-    contact_radius: ClassVar[float] = 0.0
-    #: where the report's face positions are measured from
     face_origin: ClassVar[str] = "the pivot, along the face"
     #: a rise turns the face clockwise about a pivot on +X
     _swing: ClassVar[float] = -1.0

@@ -13,20 +13,17 @@ from typing import ClassVar
 
 import numpy as np
 
-from camgen.followers.base import FollowerType, PitchGeometry, from_support, rotate
+from camgen.followers.base import FlatFace, FollowerType, PitchGeometry, from_support, rotate
 
 
 @dataclass(frozen=True)
-class TranslatingFlat:
+class TranslatingFlat(FlatFace):
     """Flat face perpendicular to the motion, on a cam of ``base_radius`` mm (see the module docstring)."""
 
     base_radius: float
     sense: int = 1
 
-    flat: ClassVar[bool] = True
     lift_unit: ClassVar[str] = "mm"
-    contact_radius: ClassVar[float] = 0.0
-    #: where the report's face positions are measured from
     face_origin: ClassVar[str] = "the follower's axis (+X)"
 
     def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
