@@ -6,10 +6,11 @@ from pathlib import Path
 
 import click
 
-from camgen.core.cli import add_bench, family_options, report_family, set_option, template_options, user_errors
+from camgen.core.cli import (Commands, add_bench, family_options, report_family, set_option, template_options,
+                             user_errors)
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="camgen")
 def main() -> None:
     """camgen: disc cams from motion requirements to DXF, STL, plots and a report."""

@@ -33,7 +33,12 @@ class Staging:
         final = self.directory / name
         temp = self.directory / f".{name}.{os.getpid()}.tmp"
         self.pending.append((temp, final))
-        write(temp)
+        try:
+            write(temp)
+        except ExportError:
+            raise
+        except OSError as exc:
+            raise ExportError(f"cannot write {final}: {exc.strerror or exc}") from None
         if not temp.exists():
             raise ExportError(f"{name}: the writer produced no file")
         return final
@@ -42,28 +47,51 @@ class Staging:
         return self.write(name, lambda p: p.write_bytes(data))
 
 
+def _missing(directory: Path) -> list[Path]:
+    """``directory`` and those of its parents that do not exist yet, deepest first."""
+    out = []
+    for folder in (directory, *directory.parents):
+        if folder.exists():
+            break
+        out.append(folder)
+    return out
+
+
 @contextmanager
 def staged(directory: str | Path) -> Iterator[Staging]:
-    """Stage files in ``directory`` (created if missing); rename them all into place on success."""
+    """Stage files in ``directory`` (created if missing); rename them all into place on success.
+
+    On failure every temporary file is removed, and so are the folders this call created: a failed
+    run leaves the disk as it found it.
+    """
     directory = Path(directory)
+    created = _missing(directory)
     try:
         directory.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
+        _remove(created)
         raise ExportError(f"cannot create output folder {directory}: {exc.strerror}") from None
     stage = Staging(directory)
     try:
         yield stage
-    except BaseException:
-        for temp, _ in stage.pending:
-            temp.unlink(missing_ok=True)
-        raise
-    try:
         for temp, final in stage.pending:
             os.replace(temp, final)
-    except OSError as exc:
+    except BaseException as exc:
         for temp, _ in stage.pending:
             temp.unlink(missing_ok=True)
-        raise ExportError(f"cannot write to {directory}: {exc.strerror}") from None
+        _remove(created)
+        if isinstance(exc, OSError) and not isinstance(exc, ExportError):
+            raise ExportError(f"cannot write to {directory}: {exc.strerror}") from None
+        raise
+
+
+def _remove(folders: list[Path]) -> None:
+    """Remove the (empty) ``folders``, deepest first; leave any that is not empty."""
+    for folder in folders:
+        try:
+            folder.rmdir()
+        except OSError:
+            return
 
 
 @dataclass(frozen=True)

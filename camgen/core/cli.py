@@ -16,16 +16,42 @@ import click
 from camgen.core.errors import CamgenError
 
 
+def fail(message: str) -> None:
+    """Print ``error: <message>`` on one line to stderr and exit with code 2."""
+    click.echo("error: " + " ".join(str(message).split()), err=True)
+    sys.exit(2)
+
+
 def user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
-    """Turn the project's errors into ``error: <one line>`` and exit code 2."""
+    """Turn the project's errors, and the operating system's (a folder that cannot be written), into
+    ``error: <one line>`` and exit code 2."""
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
             return func(*args, **kwargs)
         except CamgenError as exc:
-            click.echo(f"error: {exc}", err=True)
-            sys.exit(2)
+            fail(str(exc))
+        except OSError as exc:
+            where = f"{exc.filename}: " if exc.filename else ""
+            fail(f"{where}{exc.strerror or exc}")
     return wrapper
+
+
+class Commands(click.Group):
+    """The top-level command group of both products: a usage error (a missing argument, an option's bad
+    value, an unknown command) is one line naming the option, with exit code 2, like every other error."""
+
+    def main(self, *args: Any, **kwargs: Any) -> Any:
+        kwargs["standalone_mode"] = False
+        try:
+            result = super().main(*args, **kwargs)
+        except click.exceptions.Exit as exc:          # --help, --version
+            sys.exit(exc.exit_code)
+        except click.ClickException as exc:
+            fail(exc.format_message())
+        except click.exceptions.Abort:
+            fail("aborted")
+        sys.exit(result if isinstance(result, int) else 0)
 
 
 def _apply(func: Callable[..., Any], decorators: tuple) -> Callable[..., Any]:

@@ -72,6 +72,10 @@ def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:
             value = tomllib.loads(f"v = {text.strip()}")["v"]
         except tomllib.TOMLDecodeError:
             value = text.strip()
+        except RecursionError:
+            value = None
+        if value is None or _depth(value) > MAX_DEPTH:
+            raise SpecError(f"the value nests arrays or tables more than {MAX_DEPTH} deep", f"--set {key.strip()}")
         out.append((key.strip(), value))
     return out
 
@@ -119,20 +123,67 @@ def read_template(path: str | Path, overrides: Iterable[str] = ()) -> dict[str, 
     return apply_overrides(_with_base(Path(path), set()), parse_overrides(overrides))
 
 
+#: the largest template file read (bytes); a template is a few kB, so more is a mistake (or /dev/zero)
+MAX_TEMPLATE_BYTES = 1_000_000
+#: how many templates a chain of ``base`` includes may hold
+MAX_BASES = 16
+#: how deeply tables and arrays may nest in a template (the deepest a template needs is about 4)
+MAX_DEPTH = 32
+
+
+def _depth(value: Any) -> int:
+    """How deeply ``value``'s tables and arrays nest (0 for a plain value), without recursion."""
+    deepest, stack = 0, [(value, 0)]
+    while stack:
+        node, depth = stack.pop()
+        children = node.values() if isinstance(node, dict) else node if isinstance(node, list) else None
+        if children is not None:
+            deepest = max(deepest, depth + 1)
+            stack.extend((child, depth + 1) for child in children)
+    return deepest
+
+
+def _read_toml(path: Path, field: str) -> dict[str, Any]:
+    """One TOML file as a mapping (a UTF-8 byte-order mark allowed), or a one-line error naming ``field``."""
+    try:
+        with path.open("rb") as stream:
+            data = stream.read(MAX_TEMPLATE_BYTES + 1)
+    except FileNotFoundError:
+        raise SpecError(f"no such file: {path}", field) from None
+    except IsADirectoryError:
+        raise SpecError(f"{path} is a folder, not a template file", field) from None
+    except OSError as exc:
+        raise SpecError(f"cannot read {path}: {exc.strerror}", field) from None
+    if len(data) > MAX_TEMPLATE_BYTES:
+        raise SpecError(f"{path} is larger than {MAX_TEMPLATE_BYTES // 1000} kB; a template is a small TOML file",
+                        field)
+    try:
+        raw = tomllib.loads(data.decode("utf-8-sig"))
+    except UnicodeDecodeError:
+        raise SpecError(f"{path} is not a text file (not UTF-8)", field) from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SpecError(f"{path} is not valid TOML: {exc}", field) from None
+    except RecursionError:
+        raw = None
+    if raw is None or _depth(raw) > MAX_DEPTH:
+        raise SpecError(f"{path} nests arrays or tables more than {MAX_DEPTH} deep; a template needs a few levels",
+                        field)
+    return raw
+
+
 def _with_base(path: Path, seen: set) -> dict:
     if path.resolve() in seen:
         raise SpecError(f"{path.name} includes itself", "base")
+    if len(seen) >= MAX_BASES:
+        raise SpecError(f"more than {MAX_BASES} templates in a chain of includes", "base")
     field = "base" if seen else "template"             # the first file read is the template itself
     seen.add(path.resolve())
-    try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise SpecError(f"no such file: {path}", field) from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise SpecError(f"{path} is not valid TOML: {exc}", "template") from None
+    raw = _read_toml(path, field)
     base = raw.pop("base", None)
     if base is None:
         return raw
+    if not isinstance(base, str) or not base.strip():
+        raise SpecError(f"must be the file name of a template, relative to {path.name} (got {base!r})", "base")
     return merge(_with_base(path.parent / base, seen), raw)
 
 
