@@ -108,7 +108,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
     if spec.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and wall > 0):
         raise DesignError(f"cam.bore: {spec.cam.bore:.4g} mm leaves no material; the outline comes within "
                           f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
-    _check_holes(spec, body)
+    _check_holes(spec, body, tol)
     marks = _engraving(spec, cam, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, a.undercut, marks, outline)
     allowances = Allowances(spec.output.kerf, spec.output.clearance)
@@ -175,12 +175,12 @@ def _holes(spec: CamSpec, grow: float) -> tuple:
     return tuple(out)
 
 
-def _check_holes(spec: CamSpec, body: Any) -> None:
-    """Every hole must lie inside the cam with material round it."""
+def _check_holes(spec: CamSpec, body: Any, tolerance: float) -> None:
+    """Every hole must lie inside the cam with material round it (holes as chords within ``tolerance`` mm)."""
     import shapely
 
     for hole in _holes(spec, 0.0):
-        ring = shapely.Polygon(hole.flatten(spec.output.tolerance))
+        ring = shapely.Polygon(hole.flatten(tolerance))
         if not body.contains(ring) or body.exterior.distance(ring) <= 0:
             field = "hub.bolt_circle" if isinstance(hole, Circle) and hole.centre != (0.0, 0.0) else "cam.bore"
             raise DesignError(f"{field}: a hole reaches the cam's outline (it comes within "

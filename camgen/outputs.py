@@ -18,6 +18,9 @@ from camgen.design import CamDesign
 from camgen.kinds import kind_of
 from camgen.report import cam_report
 
+#: chord tolerance (mm) of the outline drawn in a family's overview: a thumbnail an inch wide
+THUMBNAIL_TOLERANCE_MM = 0.2
+
 
 def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     """The files of ``design`` and its report (without the ``files`` map, which the bundle adds)."""
@@ -64,7 +67,7 @@ def build_member(raw: dict, folder: Path) -> dict[str, Any]:
 
     design = design_cam(validate_spec(raw))
     report = write_cam(design, folder)
-    ring = design.outline.contour.flatten(max(design.tolerance, 0.2))
+    ring = design.outline.contour.flatten(max(design.tolerance, THUMBNAIL_TOLERANCE_MM))
     return {"pressure_angle_max_deg": report["pressure_angle_max_deg"],
             "profile_rho_min_mm": report["profile_rho_min_mm"], "undercut": report["undercut"],
             "outline_vertices": report["outline_vertices"], "outline_max_error_mm": report["outline_max_error_mm"],

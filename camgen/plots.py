@@ -82,7 +82,7 @@ def cam_figure(design: CamDesign) -> Any:
     cam, a, t = design.cam, design.analysis, design.spec
     fig = figure(10, 5) if cam.is_plate else figure(8, 9)
     ax = fig.add_subplot()
-    ring = design.outline.contour.flatten(t.output.tolerance)
+    ring = design.outline.contour.flatten(design.tolerance)
     ax.fill(ring[:, 0], ring[:, 1], color="0.88", zorder=0)
     ax.plot(*np.vstack([ring, ring[:1]]).T, color="k", lw=1.2, label="cam outline")
     pitch = cam.pitch(np.linspace(0, 2 * math.pi, 721)).point

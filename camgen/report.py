@@ -61,7 +61,7 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, An
         "outline_note": "the DXF's outline as written" + (
             f", measured against the cam surface moved out by half the kerf ({t.output.kerf / 2:g} mm)"
             if t.output.kerf else ""),
-        "tolerance_mm": t.output.tolerance,
+        "tolerance_mm": design.tolerance,
         "kerf_mm": t.output.kerf,
         "clearance_mm": t.output.clearance,
         "bore_cut_mm": t.cam.bore - t.output.kerf if t.cam.bore else None,
