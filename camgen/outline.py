@@ -28,6 +28,8 @@ _PROBES = 8
 _AIM = 0.9
 #: fraction of the tolerance a biarc's probed error must stay under
 _BIARC_AIM = 0.95
+#: the most vertices one segment's outline may take: a bound on work and memory (a cam needs hundreds)
+MAX_SEGMENT_VERTICES = 200_000
 
 
 @dataclass(frozen=True)
@@ -70,7 +72,12 @@ def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float) -
     # chord ~ sqrt(8 tol rho_c) along a surface of speed |P'| |1 - Rr k|: samples per radian
     density = np.linalg.norm(g.d1, axis=1) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(aux))])
-    n = max(1, math.ceil(cum[-1] * factor))
+    wanted = cum[-1] * factor
+    if not wanted <= MAX_SEGMENT_VERTICES:              # also NaN or infinite (a curvature without bound)
+        raise DesignError(f"output.tolerance: the outline of motion[{index}] would need {wanted:.3g} vertices to "
+                          f"stay within {tolerance:g} mm (at most {MAX_SEGMENT_VERTICES}); loosen the tolerance or "
+                          "smooth the motion")
+    n = max(1, math.ceil(wanted))
     if cum[-1] <= 0:
         return np.linspace(seg.start, seg.end, n + 1)
     return np.interp(np.linspace(0.0, cum[-1], n + 1), cum, aux)

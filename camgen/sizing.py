@@ -16,6 +16,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+import numpy as np
+
 from camgen.analysis import pressure_angle_max, profile_rho_min
 from camgen.cam import Cam, build_cam
 from camgen.core.errors import CamgenError, DesignError
@@ -73,15 +75,16 @@ def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
 
     def holds(rb: float) -> bool:
         try:
-            return ok(build_cam(spec, base_radius=rb))
-        except CamgenError:
+            with np.errstate(divide="raise", over="raise", invalid="raise"):
+                return ok(build_cam(spec, base_radius=rb))
+        except (CamgenError, ArithmeticError):         # a radius so small its geometry degenerates fails too
             return False
 
     hi = max(spec.cam.base_radius if isinstance(spec.cam.base_radius, float) else 0.0, lo + lift, 1.0)
     while not holds(hi):
         nxt = hi * 2 if math.isinf(top) else 0.5 * (hi + top)
         if nxt > 1e7 or nxt - hi < 1e-9 * max(hi, 1.0):
-            raise DesignError(f"no base radius meets the {what} (searched up to {hi:.6g} mm)")
+            raise DesignError(f"{what}: no base radius meets it (searched up to {hi:.6g} mm)")
         hi = nxt
     return boundary(holds, hi, lo)
 
@@ -95,7 +98,7 @@ def size_cam(spec: CamSpec) -> Sizing:
         raise DesignError("the follower velocity jumps (a convex pitch corner): no base radius gives the roller a "
                           "path it can follow; use a law with continuous velocity")
     pressure = _smallest(spec, lambda cam: pressure_angle_max(cam) <= limit,
-                         f"pressure-angle limit of {limit:g} degrees")
+                         f"cam.max_pressure_angle: the pressure-angle limit of {limit:g} degrees")
     curvature = smallest_for_curvature(spec, margin)
     decided = "pressure angle" if pressure >= curvature else "curvature"
     return Sizing(max(pressure, curvature), decided, pressure, curvature, limit, margin)
@@ -109,4 +112,5 @@ def _probe(spec: CamSpec) -> float:
 
 def smallest_for_curvature(spec: CamSpec, margin: float = 0.0) -> float:
     """Smallest base radius (mm) whose cam surface keeps every convex radius above ``margin`` mm."""
-    return _smallest(spec, lambda cam: profile_rho_min(cam) > margin, f"curvature margin of {margin:g} mm")
+    return _smallest(spec, lambda cam: profile_rho_min(cam) > margin,
+                     f"cam.min_rho_margin: the curvature margin of {margin:g} mm")

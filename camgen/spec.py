@@ -16,7 +16,7 @@ from typing import Any, Literal
 from pydantic import Field, field_validator, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
-from camgen.core.spec import Model, name_field, read_template, unit, validate
+from camgen.core.spec import MAX_LENGTH_MM, Model, length, name_field, read_template, unit, validate
 from camgen.core.spec import OutputTable as CoreOutputTable
 from camgen.followers import FOLLOWERS
 from camgen.kinds import CAM_KINDS
@@ -30,20 +30,18 @@ class CamTable(Model):
     """The cam body: a disc, or a plate (linear cam) whose ``base_radius`` is its height under the profile."""
 
     kind: Literal[tuple(CAM_KINDS)] = Field("disc", description="cam kind")  # type: ignore[valid-type]
-    travel: float | None = Field(None, gt=0, description="plate cam: length the program's 360 degrees spread over",
-                                 json_schema_extra=unit("mm"))
+    travel: float | None = length("plate cam: length the program's 360 degrees spread over", None)
     base_radius: float | Literal["auto"] = Field(description="base circle radius, or \"auto\" for the smallest "
                                                  "that meets the limits", json_schema_extra=unit("mm"))
-    thickness: float = Field(gt=0, description="plate thickness (STL extrusion)", json_schema_extra=unit("mm"))
-    bore: float = Field(0.0, ge=0, description="bore diameter, 0 for none", json_schema_extra=unit("mm"))
+    thickness: float = length("plate thickness (STL extrusion)", le=1000.0)
+    bore: float = length("bore diameter, 0 for none", 0.0, zero=True)
     rotation: Literal["ccw", "cw"] = Field("ccw", description="sense of rotation seen from +Z")
     allow_undercut: bool = Field(False, description="export the cutter's envelope instead of refusing an undercut")
-    max_pressure_angle: float | None = Field(None, gt=0, lt=90, description="pressure-angle limit for sizing "
+    max_pressure_angle: float | None = Field(None, ge=1, lt=90, description="pressure-angle limit for sizing "
                                              "(default 30, oscillating 40)", json_schema_extra=unit("degrees"))
-    min_rho_margin: float = Field(0.0, ge=0, description="sizing: least convex radius of the cam surface",
-                                  json_schema_extra=unit("mm"))
-    rpm: float | None = Field(None, gt=0, description="cam speed for velocities, accelerations and contact",
-                              json_schema_extra=unit("rpm"))
+    min_rho_margin: float = length("sizing: least convex radius of the cam surface", 0.0, zero=True)
+    rpm: float | None = Field(None, gt=0, le=100_000, description="cam speed for velocities, accelerations and "
+                              "contact", json_schema_extra=unit("rpm"))
 
     @field_validator("base_radius", mode="before")
     @classmethod
@@ -52,8 +50,8 @@ class CamTable(Model):
             return value
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise ValueError(f'must be a number of mm or "auto" (got {value!r})')
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f'must be > 0 mm, or "auto" (got {value!r})')
+        if not (math.isfinite(value) and 0 < value <= MAX_LENGTH_MM):
+            raise ValueError(f'must be > 0 and <= {MAX_LENGTH_MM:g} mm, or "auto" (got {value!r})')
         return float(value)
 
 
@@ -66,17 +64,19 @@ class FollowerTable(Model):
     """The follower; which keys a type needs and takes its :class:`~camgen.followers.FollowerType` says."""
 
     type: Literal[FOLLOWER_TYPES] = Field(description="follower type")  # type: ignore[valid-type]
-    roller_radius: float | None = Field(None, gt=0, description="roller radius", json_schema_extra=unit("mm"))
-    offset: float = Field(0.0, description="follower axis offset, + to the right (+X)", json_schema_extra=unit("mm"))
-    pivot_distance: float | None = Field(None, gt=0, description="oscillating: cam centre to arm pivot",
-                                         json_schema_extra=unit("mm"))
-    arm_length: float | None = Field(None, gt=0, description="oscillating roller: pivot to roller centre",
-                                     json_schema_extra=unit("mm"))
-    face_margin: float = Field(2.0, ge=0, description="flat face: extra face beyond the contact's travel, each side",
-                               json_schema_extra=unit("mm"))
-    mass: float | None = Field(None, gt=0, description="moving mass of the follower", json_schema_extra=unit("kg"))
-    spring_rate: float | None = Field(None, ge=0, description="return spring rate", json_schema_extra=unit("N/mm"))
-    preload: float | None = Field(None, ge=0, description="return spring force at s = 0", json_schema_extra=unit("N"))
+    roller_radius: float | None = length("roller radius", None, le=1000.0)
+    offset: float = Field(0.0, ge=-MAX_LENGTH_MM, le=MAX_LENGTH_MM, description="follower axis offset, + to the right "
+                          "(+X)", json_schema_extra=unit("mm"))
+    pivot_distance: float | None = length("oscillating: cam centre to arm pivot", None)
+    arm_length: float | None = length("oscillating roller: pivot to roller centre", None)
+    face_margin: float = length("flat face: extra face beyond the contact's travel, each side", 2.0, zero=True,
+                                le=1000.0)
+    mass: float | None = Field(None, gt=0, le=1000, description="moving mass of the follower",
+                               json_schema_extra=unit("kg"))
+    spring_rate: float | None = Field(None, ge=0, le=1e6, description="return spring rate",
+                                      json_schema_extra=unit("N/mm"))
+    preload: float | None = Field(None, ge=0, le=1e6, description="return spring force at s = 0",
+                                  json_schema_extra=unit("N"))
 
     @model_validator(mode="after")
     def _keys_fit_type(self) -> "FollowerTable":
@@ -105,18 +105,18 @@ class SegmentTable(Model):
 
     type: Literal["rise", "dwell", "return"] = Field(description="segment type")
     angle: float = Field(gt=0, le=360, description="cam angle of the segment", json_schema_extra=unit("degrees"))
-    lift: float | None = Field(None, gt=0, description="follower travel (rise and return)",
+    lift: float | None = Field(None, gt=0, le=MAX_LENGTH_MM, description="follower travel (rise and return)",
                                json_schema_extra=unit("mm, or degrees of arm swing for an oscillating follower"))
     law: LawName | None = Field(None, description="motion law (rise and return)")  # type: ignore[valid-type]
-    ratio: float | None = Field(None, gt=0, description="parabolic: acceleration ratio a1/a2")
+    ratio: float | None = Field(None, ge=0.01, le=100, description="parabolic: acceleration ratio a1/a2")
     form: Literal["blended", "drafted"] | None = Field(None, description="modified-uniform: form")
     blend: float | None = Field(None, gt=0, le=0.5, description="modified-uniform blended: blend fraction of the angle")
     blend_law: Literal["cycloidal", "parabolic"] | None = Field(None, description="modified-uniform blended: blends")
     conditions: list[tuple[float, int, float]] | None = Field(
-        None, description="polynomial: [u, derivative order, value] in normalised units")
-    degree: int | None = Field(None, ge=1, description="polynomial: degree (default: conditions - 1)")
+        None, max_length=26, description="polynomial: [u, derivative order, value] in normalised units")
+    degree: int | None = Field(None, ge=1, le=25, description="polynomial: degree (default: conditions - 1)")
     points: list[tuple[float, float]] | None = Field(
-        None, description="spline: [u, f] points in normalised units from [0, 0] to [1, 1]")
+        None, max_length=1000, description="spline: [u, f] points in normalised units from [0, 0] to [1, 1]")
     ends: Literal["dwell", "natural"] | None = Field(None, description="spline: end conditions")
 
     @model_validator(mode="after")
@@ -150,15 +150,12 @@ class HubTable(Model):
     """Hub features: a keyed bore, a boss with a set screw (printed part only), bolt-circle holes, engraving."""
 
     keyway: bool = Field(False, description="cut a DIN 6885-1 keyway for the bore")
-    boss_diameter: float = Field(0.0, ge=0, description="printed hub boss diameter, 0 for none",
-                                 json_schema_extra=unit("mm"))
-    boss_height: float = Field(0.0, ge=0, description="printed hub boss height above the cam",
-                               json_schema_extra=unit("mm"))
-    set_screw: float = Field(0.0, ge=0, description="radial set-screw hole diameter through the boss, 0 for none",
-                             json_schema_extra=unit("mm"))
-    bolt_circle: float = Field(0.0, ge=0, description="mounting-hole circle diameter", json_schema_extra=unit("mm"))
+    boss_diameter: float = length("printed hub boss diameter, 0 for none", 0.0, zero=True)
+    boss_height: float = length("printed hub boss height above the cam", 0.0, zero=True, le=1000.0)
+    set_screw: float = length("radial set-screw hole diameter through the boss, 0 for none", 0.0, zero=True)
+    bolt_circle: float = length("mounting-hole circle diameter", 0.0, zero=True)
     bolt_holes: int = Field(0, ge=0, le=36, description="number of mounting holes")
-    bolt_hole_diameter: float = Field(0.0, ge=0, description="mounting-hole diameter", json_schema_extra=unit("mm"))
+    bolt_hole_diameter: float = length("mounting-hole diameter", 0.0, zero=True)
     engrave: bool = Field(False, description="add an ENGRAVE layer: name, rotation arrow, theta = 0 mark")
 
     @model_validator(mode="after")

@@ -98,12 +98,12 @@ def test_set_overrides_a_field(tmp_path):
 
 
 @pytest.mark.parametrize("sets, field", [
-    (["cam.base_radius=0"], 'cam.base_radius: must be > 0 mm, or "auto" (got 0)'),
-    (["cam.base_radius=-5"], "cam.base_radius: must be > 0 mm"),
+    (["cam.base_radius=0"], 'cam.base_radius: must be > 0 and <= 10000 mm, or "auto" (got 0)'),
+    (["cam.base_radius=-5"], "cam.base_radius: must be > 0 and <= 10000 mm"),
     (["cam.base_radius='big'"], 'cam.base_radius: must be a number of mm or "auto"'),
     (["follower.roller_radius=nan"], "follower.roller_radius: must be a finite number"),
     (["cam.thickness=inf"], "cam.thickness: must be a finite number"),
-    (["motion.0.lift=-1"], "motion[0].lift: must be > 0 mm"),
+    (["motion.0.lift=-1"], "motion[0].lift: must be > 0 and <= 10000 mm"),
     (["motion.0.angle=0"], "motion[0].angle: must be > 0 and <= 360 degrees"),
     (["motion.1.angle=50"], "motion: segment angles add up to 350 degrees"),
     (["motion.0.law='cycloid'"], "motion[0].law: must be one of"),

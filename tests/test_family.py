@@ -50,7 +50,7 @@ def test_base_includes_merge_tables_and_replace_lists(tmp_path):
 
 @pytest.mark.parametrize("body, words", [
     ('[sweep]\n"motion.0.lif" = [1, 2]\n', "member fam-lif1: motion[0].lif: unknown key"),
-    ('[sweep]\n"cam.base_radius" = [-1, 40]\n', "member fam-base_radius-1: cam.base_radius: must be > 0 mm"),
+    ('[sweep]\n"cam.base_radius" = [-1, 40]\n', "member fam-base_radius-1: cam.base_radius: must be > 0 and <= 10000 mm"),
     ('[sweep]\n"cam.bore" = {start = 5, stop = 1, step = 1}\n', "sweep.cam.bore: a range needs"),
     ('[sweep.zip]\n"motion.0.lift" = [1, 2]\n"motion.2.lift" = [1]\n', "zipped lists must have equal lengths"),
     ('[sweep]\n"cam.bore" = []\n', "sweep.cam.bore: needs at least one value"),

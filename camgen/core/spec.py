@@ -15,7 +15,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, Literal, TypeVar
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, FORMATS, WriteOptions
@@ -27,9 +27,44 @@ NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9._-]{0,99}$"
 
 
 class Model(BaseModel):
-    """Base of every template model: frozen, no unknown keys, no NaN or infinity."""
+    """Base of every template model: frozen, no unknown keys, no NaN or infinity, and no true/false where a
+    number is asked for (pydantic would read ``lift = true`` as 1 mm)."""
 
     model_config = ConfigDict(frozen=True, extra="forbid", allow_inf_nan=False, strict=False)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _no_booleans_for_numbers(cls, data: Any) -> Any:
+        if isinstance(data, Mapping):
+            for name, value in data.items():
+                info = cls.model_fields.get(name) if isinstance(name, str) else None
+                if info is not None and not _mentions_bool(info.annotation) and _holds_bool(value):
+                    raise ValueError(f"{name}: must be a number, not true or false")
+        return data
+
+
+def _mentions_bool(annotation: Any) -> bool:
+    """Whether a type annotation accepts booleans anywhere (bool itself, or a union or container of it)."""
+    return annotation is bool or any(_mentions_bool(a) for a in getattr(annotation, "__args__", ()))
+
+
+def _holds_bool(value: Any) -> bool:
+    """Whether ``value`` is a boolean or a list of values holding one (not looking into tables: their own
+    model checks them)."""
+    if isinstance(value, bool):
+        return True
+    return isinstance(value, (list, tuple)) and any(_holds_bool(v) for v in value)
+
+
+#: the largest length a template may give (mm): ten metres, past any laser bed or printer, and small enough that
+#: every coordinate keeps its digits in the files' single-precision numbers
+MAX_LENGTH_MM = 10_000.0
+
+
+def length(description: str, default: Any = ..., *, zero: bool = False, le: float = MAX_LENGTH_MM) -> Any:
+    """A length field in mm: > 0 (>= 0 with ``zero``) and at most ``le``; required unless a default is given."""
+    bound = {"ge": 0} if zero else {"gt": 0}
+    return Field(default, **bound, le=le, description=description, json_schema_extra=unit("mm"))
 
 
 def unit(name: str) -> dict[str, str]:
@@ -243,7 +278,7 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
     if kind in _WORDS:
         bound = ctx[{"greater_than": "gt", "greater_than_equal": "ge", "less_than": "lt",
                      "less_than_equal": "le"}[kind]]
-        bounds = [f"{_WORDS[k]} {getattr(m, a)}" for k, a in (("greater_than", "gt"), ("greater_than_equal", "ge"),
+        bounds = [f"{_WORDS[k]} {getattr(m, a):g}" for k, a in (("greater_than", "gt"), ("greater_than_equal", "ge"),
                                                                ("less_than", "lt"), ("less_than_equal", "le"))
                   for m in (info.metadata if info is not None else []) if getattr(m, a, None) is not None]
         rule = " and ".join(bounds) if bounds else f"{_WORDS[kind]} {bound}"
