@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import shutil
+from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
@@ -50,10 +51,17 @@ def test_base_includes_merge_tables_and_replace_lists(tmp_path):
 
 @pytest.mark.parametrize("body, words", [
     ('[sweep]\n"motion.0.lif" = [1, 2]\n', "member fam-lif1: motion[0].lif: unknown key"),
-    ('[sweep]\n"cam.base_radius" = [-1, 40]\n', "member fam-base_radius-1: cam.base_radius: must be > 0 and <= 10000 mm"),
+    ('[sweep]\n"cam.base_radius" = [-1, 40]\n',
+     "member fam-base_radius-1: cam.base_radius: must be > 0 and <= 10000 mm"),
     ('[sweep]\n"cam.bore" = {start = 5, stop = 1, step = 1}\n', "sweep.cam.bore: a range needs"),
     ('[sweep.zip]\n"motion.0.lift" = [1, 2]\n"motion.2.lift" = [1]\n', "zipped lists must have equal lengths"),
     ('[sweep]\n"cam.bore" = []\n', "sweep.cam.bore: needs at least one value"),
+    ('[sweep]\n"cam.bore" = {start = 0, stop = 1, step = 1e-320}\n', "sweep.cam.bore: a range of"),
+    ('[sweep]\n"cam.bore" = {start = -1e308, stop = 1e308, step = 1}\n', "sweep.cam.bore: a range of"),
+    ('[sweep]\n"cam.bore" = {start = 0, stop = true, step = 1}\n', "sweep.cam.bore: a range needs numbers"),
+    ('[sweep]\n"cam.bore" = {start = 0, stop = 999, step = 1}\n"cam.thickness" = {start = 1, stop = 999, step = 1}\n',
+     "sweep: the sweep makes 999000 members, more than 10000"),
+    ('[sweep]\n"motion.0.lift" = [true, 20]\n', "motion[0].lift: must be a number, not true or false"),
 ])
 def test_bad_sweeps_are_clear_errors_before_any_work(tmp_path, body, words):
     out = tmp_path / "out"
@@ -139,3 +147,90 @@ def test_a_dask_cluster_builds_the_same_bytes(tmp_path):
     local, remote = _files(tmp_path / "local"), _files(tmp_path / "dask")
     assert local.keys() == remote.keys() and all(local[k] == remote[k] for k in local)
     assert len(json.loads(remote["summary.json"])) == 50
+
+
+def test_resume_rebuilds_a_member_whose_file_is_missing_or_damaged(tmp_path):
+    path = family_file(tmp_path, '[output]\nformats = ["dxf", "json"]\n[sweep]\n"follower.offset" = [0.0, 3.0, 6.0]\n')
+    out = tmp_path / "out"
+    assert CliRunner().invoke(main, ["family", str(path), "-o", str(out)]).exit_code == 0
+    clean = _files(out)
+    first, second, third = sorted(p for p in out.iterdir() if p.is_dir())
+    (first / f"{first.name}.dxf").unlink()                     # a deleted file
+    (second / "row.json").write_text("{not json")               # a damaged row
+    (third / f".{third.name}.dxf.4242.tmp").write_text("half")  # a killed run's temporary file
+    result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert result.exit_code == 0 and "(1 already there)" in result.output, result.output
+    assert _files(out) == clean                                  # byte for byte what a clean run makes
+
+
+def test_an_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path):
+    pytest.importorskip("dask.distributed")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["family", str(family_file(tmp_path, '[sweep]\n"cam.bore" = [8, 10]\n')),
+                                       "-o", str(out), "--scheduler", "tcp://127.0.0.1:1"])
+    assert result.exit_code == 2 and result.stderr.startswith("error: --scheduler: cannot reach")
+    assert len(result.stderr.strip().splitlines()) == 1 and not out.exists()
+
+
+def test_a_failure_of_any_kind_is_recorded_and_the_family_goes_on(tmp_path):
+    from camgen.core.family import members as expand
+    from camgen.core.family import run_family
+
+    def builder(raw, folder):
+        if raw["follower"]["offset"] == 3.0:
+            raise PermissionError(13, "Permission denied", str(folder / "x.dxf"))
+        if raw["follower"]["offset"] == 6.0:
+            raise ZeroDivisionError("division by zero")
+        return {}
+
+    raw, sweep = read_family(family_file(tmp_path, '[sweep]\n"follower.offset" = [0.0, 3.0, 6.0]\n'))
+    rows = run_family(expand(raw, sweep), tmp_path / "out", builder)
+    assert [r["status"] for r in rows] == ["ok", "failed", "failed"]
+    assert rows[1]["error"].startswith("cannot write") and "Permission denied" in rows[1]["error"]
+    assert rows[2]["error"] == "ZeroDivisionError: division by zero"
+
+
+def _children(pid: int) -> list[str]:
+    """The processes whose parent is ``pid`` (read from /proc)."""
+    out = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if fields[1] == str(pid):
+            out.append(stat.parent.name)
+    return out
+
+
+def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path):
+    """SIGKILL of the command mid-run: its workers end, the re-run clears the temporary files and gives the
+    same bytes as an undisturbed run."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    body = ('[output]\nformats = ["dxf", "stl", "json"]\n[sweep]\n"follower.offset" = [0.0, 2.0, 4.0, 6.0]\n'
+            '[sweep.zip]\n"motion.0.lift" = {start = 5, stop = 25, step = 5}\n'
+            '"motion.2.lift" = {start = 5, stop = 25, step = 5}\n')
+    path = family_file(tmp_path, body)
+    out, clean = tmp_path / "out", tmp_path / "clean"
+    cmd = [sys.executable, "-m", "camgen", "family", str(path), "--jobs", "2", "-o"]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    proc = subprocess.Popen([*cmd, str(out)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and len(list(out.glob("*/.inputs"))) < 3:
+        time.sleep(0.05)
+    children = _children(proc.pid)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    time.sleep(1.5)
+    alive = [pid for pid in children if os.path.exists(f"/proc/{pid}")]
+    assert children and alive == []                                  # the workers ended with their parent
+    assert len(list(out.glob("*/.inputs"))) < 20                      # it was stopped part of the way
+    assert subprocess.run([*cmd, str(out)], env=env).returncode == 0
+    assert subprocess.run([*cmd, str(clean)], env=env).returncode == 0
+    assert list(out.rglob(".*.tmp")) == []
+    assert _files(out) == _files(clean)

@@ -16,7 +16,8 @@ stable, and safe as a file name. Every member is validated before any work start
 so a bad key or value is one clear error. A member that fails while building (an
 undercut, a linkage that cannot be assembled) is recorded with its one-line reason
 and the others go on. Each member's folder ends with ``.inputs`` holding the hash of
-its inputs, written last: a re-run skips members whose hash matches.
+its inputs and of each of its files, written last: a re-run skips a member only when
+its inputs and all its files are as that run left them.
 """
 from __future__ import annotations
 
@@ -26,8 +27,12 @@ import io
 import itertools
 import json
 import math
+import os
 import re
+import signal
 import sys
+import threading
+import time
 from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
@@ -66,20 +71,29 @@ def read_family(path: str | Path) -> tuple[dict, dict]:
     return raw, dict(sweep)
 
 
+#: the most members a family may have, and values a range may give: a bound on work, checked before any is made
+MAX_MEMBERS = 10_000
+
+
+def _number(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
 def _values(key: str, spec: Any) -> list:
     if isinstance(spec, list):
         if not spec:
             raise SpecError("needs at least one value", f"sweep.{key}")
+        if len(spec) > MAX_MEMBERS:
+            raise SpecError(f"a list of {len(spec)} values is more than {MAX_MEMBERS}", f"sweep.{key}")
         return spec
     if isinstance(spec, Mapping) and set(spec) == {"start", "stop", "step"}:
         start, stop, step = (spec[k] for k in ("start", "stop", "step"))
-        if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in (start, stop, step)) or step <= 0 \
-                or stop < start:
-            raise SpecError(f"a range needs finite start <= stop and step > 0 (got {dict(spec)})", f"sweep.{key}")
-        n = math.floor((stop - start) / step + 1e-9) + 1
-        if n > 100_000:
-            raise SpecError(f"a range of {n} values is more than 100000", f"sweep.{key}")
-        return [round(start + i * step, 12) for i in range(n)]
+        if not all(_number(v) for v in (start, stop, step)) or step <= 0 or stop < start:
+            raise SpecError(f"a range needs numbers start <= stop and step > 0 (got {dict(spec)})", f"sweep.{key}")
+        count = (stop - start) / step + 1e-9                # may overflow to inf for a tiny step: refused below
+        if not count < MAX_MEMBERS:
+            raise SpecError(f"a range of {count + 1:.3g} values is more than {MAX_MEMBERS}", f"sweep.{key}")
+        return [round(start + i * step, 12) for i in range(math.floor(count) + 1)]
     raise SpecError("must be a list of values or {start, stop, step}", f"sweep.{key}")
 
 
@@ -97,6 +111,9 @@ def factors(sweep: Mapping[str, Any]) -> list[list[tuple[tuple[str, Any], ...]]]
             out.append([tuple(zip(columns, row, strict=True)) for row in zip(*columns.values(), strict=True)])
         else:
             out.append([((key, value),) for value in _values(key, spec)])
+    total = math.prod(len(f) for f in out)
+    if total > MAX_MEMBERS:
+        raise SpecError(f"the sweep makes {total} members, more than {MAX_MEMBERS}; sweep fewer values", "sweep")
     return out
 
 
@@ -145,24 +162,64 @@ def check_all(items: list[Member], validate: Callable[[dict], Any]) -> None:
 Builder = Callable[[dict, Path], dict]
 
 
+def _sha256(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def _done(member: Member, folder: Path) -> dict | None:
+    """The row of a member an earlier run finished, if its marker, row and every file it lists are intact."""
+    try:
+        marker = json.loads((folder / MARKER).read_text())
+        if marker["inputs"] != member.inputs_hash:
+            return None
+        if any(_sha256(folder / name) != digest for name, digest in marker["files"].items()):
+            return None
+        return json.loads((folder / "row.json").read_text())
+    except (OSError, ValueError, KeyError, TypeError):        # missing, damaged or from an older version
+        return None
+
+
+def _clear_temporaries(folder: Path) -> None:
+    """Remove the temporary files an interrupted run left (``.<name>.<pid>.tmp``)."""
+    for temp in folder.glob(".*.tmp"):
+        temp.unlink(missing_ok=True)
+
+
+def _failure(exc: BaseException) -> str:
+    """A member's failure in one line: the project's message, or the kind of failure and what it said."""
+    if isinstance(exc, CamgenError):
+        return str(exc)
+    if isinstance(exc, OSError):
+        return f"cannot write {exc.filename or 'a file'}: {exc.strerror or exc}"
+    return f"{type(exc).__name__}: {exc}"
+
+
 def _run_one(builder: Builder, member: Member, root: Path) -> dict:
-    """Build one member into ``root/<name>`` unless its inputs hash says it is already there."""
+    """Build one member into ``root/<name>`` unless a finished earlier build is there, intact.
+
+    A failure of any kind is recorded in the member's row; the marker, written last, records the hash
+    of the inputs and of every file, so a deleted or changed file makes the next run build it again.
+    """
     folder = root / member.name
-    row = {"name": member.name, **{k: v for k, v in member.values}}
-    marker = folder / MARKER
-    if marker.exists() and marker.read_text().strip() == member.inputs_hash:
-        previous = json.loads((folder / "row.json").read_text())
+    if folder.is_dir():
+        _clear_temporaries(folder)
+    previous = _done(member, folder)
+    if previous is not None:
         return {**previous, "reused": True}
+    row = {"name": member.name, **{k: v for k, v in member.values}}
     try:
         figures = builder(member.raw, folder)
         row.update({"status": "ok", "error": "", **figures})
-    except CamgenError as exc:
-        row.update({"status": "failed", "error": str(exc)})
+    except Exception as exc:                              # recorded, and the family goes on
+        row.update({"status": "failed", "error": " ".join(_failure(exc).split())})
     folder.mkdir(parents=True, exist_ok=True)
     with staged(folder) as stage:
         stage.write("row.json", lambda p: p.write_text(json.dumps(row, sort_keys=True, default=str)))
+    files = {p.name: _sha256(p) for p in sorted(folder.iterdir()) if p.is_file() and p.name != MARKER
+             and not p.name.startswith(".")} | {"row.json": _sha256(folder / "row.json")}
+    marker = {"inputs": member.inputs_hash, "files": dict(sorted(files.items()))}
     with staged(folder) as stage:                      # written last: the member is complete
-        stage.write(MARKER, lambda p: p.write_text(member.inputs_hash + "\n"))
+        stage.write(MARKER, lambda p: p.write_text(json.dumps(marker, indent=1) + "\n"))
     return {**row, "reused": False}
 
 
@@ -170,23 +227,48 @@ def _run_one_packed(args: tuple) -> dict:
     return _run_one(*args)
 
 
+def _end_with_parent() -> None:
+    """In a worker process: end it as soon as the process that started it is gone, however that ended."""
+    parent = os.getppid()
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.2)
+        os.kill(os.getpid(), signal.SIGKILL)
+
+    threading.Thread(target=watch, daemon=True).start()
+
+
+def _client(address: str) -> Any:
+    """A Dask client of the scheduler at ``address``, or a one-line error naming ``--scheduler``."""
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise SpecError("needs dask.distributed: pip install 'camgen[dask]'", "--scheduler") from None
+    try:
+        return Client(address, timeout=10)
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise SpecError(f"cannot reach a Dask scheduler at {address}: {exc}", "--scheduler") from None
+
+
 def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: int = 1,
                progress: bool | None = None, scheduler: str | None = None) -> list[dict]:
     """Build every member (``jobs`` local processes, or the Dask cluster at ``scheduler``), resuming where a
-    previous run stopped; rows sorted by name. Workers write into ``root``, which they must share."""
+    previous run stopped; rows sorted by name. Workers write into ``root``, which they must share; local
+    workers end when this process ends, however it ends."""
     from tqdm import tqdm
 
     root = Path(root)
+    client = _client(scheduler) if scheduler is not None else None
     root.mkdir(parents=True, exist_ok=True)
+    _clear_temporaries(root)
     bar = tqdm(total=len(items), unit="part", disable=not sys.stderr.isatty() if progress is None else not progress)
     rows = []
     work = [(builder, m, root) for m in items]
-    if scheduler is not None:
-        try:
-            from dask.distributed import Client, as_completed
-        except ImportError:
-            raise SpecError("needs dask.distributed: pip install 'camgen[dask]'", "--scheduler") from None
-        with Client(scheduler) as client:
+    if client is not None:
+        from dask.distributed import as_completed
+
+        with client:
             for future in as_completed(client.map(_run_one_packed, work, pure=False)):
                 rows.append(future.result())
                 bar.update()
@@ -195,7 +277,7 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
             rows.append(_run_one_packed(args))
             bar.update()
     else:
-        with ProcessPoolExecutor(max_workers=jobs) as pool:
+        with ProcessPoolExecutor(max_workers=jobs, initializer=_end_with_parent) as pool:
             for row in pool.map(_run_one_packed, work, chunksize=max(1, len(work) // (8 * jobs))):
                 rows.append(row)
                 bar.update()
