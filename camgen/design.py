@@ -1,6 +1,7 @@
 """A cam design from a spec: the cam, its checks, its outline and its part. No I/O."""
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -111,7 +112,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
     _check_holes(spec, body, tol)
     marks = _engraving(spec, cam, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, a.undercut, marks, outline)
-    allowances = Allowances(spec.output.kerf, spec.output.clearance)
+    allowances = Allowances(spec.output.kerf, spec.output.clearance, "output.kerf")
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
     speed = _speed(spec, cam)
@@ -176,15 +177,25 @@ def _holes(spec: CamSpec, grow: float) -> tuple:
 
 
 def _check_holes(spec: CamSpec, body: Any, tolerance: float) -> None:
-    """Every hole must lie inside the cam with material round it (holes as chords within ``tolerance`` mm)."""
+    """Every hole must lie inside the cam with material round it, and no two holes may meet (holes as chords
+    within ``tolerance`` mm)."""
     import shapely
 
-    for hole in _holes(spec, 0.0):
-        ring = shapely.Polygon(hole.flatten(tolerance))
+    holes = _holes(spec, 0.0)
+    rings = [shapely.Polygon(hole.flatten(tolerance)) for hole in holes]
+    fields = ["hub.bolt_circle" if isinstance(h, Circle) and h.centre != (0.0, 0.0) else "cam.bore" for h in holes]
+    for ring, field in zip(rings, fields, strict=True):
         if not body.contains(ring) or body.exterior.distance(ring) <= 0:
-            field = "hub.bolt_circle" if isinstance(hole, Circle) and hole.centre != (0.0, 0.0) else "cam.bore"
             raise DesignError(f"{field}: a hole reaches the cam's outline (it comes within "
                               f"{body.exterior.distance(ring):.3g} mm); make it smaller or move it in")
+    for i, j in itertools.combinations(range(len(rings)), 2):
+        gap = rings[i].distance(rings[j])
+        if gap <= 0:
+            what = "two bolt holes overlap" if fields[i] == fields[j] else "a bolt hole cuts into the bore"
+            hub = spec.hub
+            raise DesignError(f"hub.bolt_circle: {what} ({hub.bolt_holes} holes of {hub.bolt_hole_diameter:g} mm on a "
+                              f"{hub.bolt_circle:g} mm circle, bore {spec.cam.bore:g} mm); use fewer or smaller "
+                              "holes, or another circle")
 
 
 def _engraving(spec: CamSpec, cam: Cam, reach: float) -> tuple:

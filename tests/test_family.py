@@ -203,6 +203,14 @@ def _children(pid: int) -> list[str]:
     return out
 
 
+def _running(pid: str) -> bool:
+    """Whether process ``pid`` still runs (an ended one waiting to be reaped, a zombie, does not)."""
+    try:
+        return (Path("/proc") / pid / "stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
 def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path):
     """SIGKILL of the command mid-run: its workers end, the re-run clears the temporary files and gives the
     same bytes as an undisturbed run."""
@@ -226,8 +234,10 @@ def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path):
     children = _children(proc.pid)
     proc.send_signal(signal.SIGKILL)
     proc.wait()
-    time.sleep(1.5)
-    alive = [pid for pid in children if os.path.exists(f"/proc/{pid}")]
+    deadline = time.monotonic() + 30                                  # each worker notices within 0.2 s when idle
+    while time.monotonic() < deadline and any(_running(pid) for pid in children):
+        time.sleep(0.1)
+    alive = [pid for pid in children if _running(pid)]
     assert children and alive == []                                  # the workers ended with their parent
     assert len(list(out.glob("*/.inputs"))) < 20                      # it was stopped part of the way
     assert subprocess.run([*cmd, str(out)], env=env).returncode == 0

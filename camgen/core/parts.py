@@ -10,7 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol
 
-from camgen.core.shapes import Contour, Polyline, Shape, Text
+from camgen.core.errors import DesignError
+from camgen.core.shapes import Circle, Contour, Polyline, Shape, Text
 
 
 @dataclass(frozen=True)
@@ -45,6 +46,16 @@ class Part:
 LAYER_OUTLINE = "OUTLINE"
 LAYER_HOLES = "HOLES"
 LAYER_ENGRAVE = "ENGRAVE"
+
+#: each layer's colour, the same in every format, as (AutoCAD colour index, RGB): laser programs that assign
+#: operations by colour see red outlines, blue holes (cut first) and green marks to score; other layers black
+LAYER_COLOURS = {LAYER_OUTLINE: (1, "#ff0000"), LAYER_HOLES: (5, "#0000ff"), LAYER_ENGRAVE: (3, "#00ff00")}
+OTHER_LAYER_COLOUR = (7, "#000000")
+
+
+def layer_colour(layer: str) -> tuple[int, str]:
+    """(AutoCAD colour index, RGB hex) of ``layer``."""
+    return LAYER_COLOURS.get(layer, OTHER_LAYER_COLOUR)
 
 
 @dataclass(frozen=True)
@@ -90,10 +101,18 @@ class Allowances:
 
     kerf: float = 0.0
     clearance: float = 0.0
+    #: the template field that sets the kerf, named when it is too wide for a hole
+    kerf_field: str = "kerf"
 
     def cut(self, maker: PartMaker) -> Part:
-        """The part as the cut files carry it."""
-        return maker.part(self.kerf / 2, -self.kerf / 2)
+        """The part as the cut files carry it; refused when the kerf would close a hole."""
+        part = maker.part(self.kerf / 2, -self.kerf / 2)
+        for hole in part.holes:
+            if (hole.radius if isinstance(hole, Circle) else hole.area) <= 0:
+                raise DesignError(f"{self.kerf_field}: a kerf of {self.kerf:g} mm closes a hole of {part.name} "
+                                  "(the laser would burn away more than the hole); the kerf must be smaller than the "
+                                  "narrowest hole")
+        return part
 
     def printed(self, maker: PartMaker) -> Part:
         """The part as the printed files carry it."""

@@ -18,10 +18,12 @@ from camgen.core.shapes import Circle, arc_steps
 
 @dataclass(frozen=True)
 class Mesh:
-    """A triangle mesh in mm: ``vertices`` (n, 3) and ``faces`` (m, 3), outward (counter-clockwise) faces."""
+    """A triangle mesh in mm: ``vertices`` (n, 3) and ``faces`` (m, 3), outward (counter-clockwise) faces, and the
+    name of the part it is (3MF files carry it, so a slicer lists the part by name)."""
 
     vertices: np.ndarray
     faces: np.ndarray
+    name: str = "part"
 
 
 def _ccw(points: np.ndarray, ccw: bool) -> np.ndarray:
@@ -56,8 +58,7 @@ def extrude(part: Part) -> Mesh:
             solid = solid - screw
     if solid.status() != manifold3d.Error.NoError or solid.is_empty():
         raise ExportError(f"{part.name}: could not build a solid ({solid.status()})")
-    mesh = solid.to_mesh()
-    return Mesh(np.asarray(mesh.vert_properties)[:, :3].astype(float), np.asarray(mesh.tri_verts, dtype=np.int64))
+    return _mesh(solid, part.name)
 
 
 def pin(diameter: float, length: float, tolerance: float) -> Mesh:
@@ -67,22 +68,31 @@ def pin(diameter: float, length: float, tolerance: float) -> Mesh:
     r, head = diameter / 2, 0.9 * diameter
     shank = manifold3d.Manifold.cylinder(length, r, r, arc_steps(r, 2 * np.pi, tolerance))
     cap = manifold3d.Manifold.cylinder(diameter / 2, head, head, arc_steps(head, 2 * np.pi, tolerance))
-    mesh = (shank + cap.translate((0.0, 0.0, length))).to_mesh()
-    return Mesh(np.asarray(mesh.vert_properties)[:, :3].astype(float), np.asarray(mesh.tri_verts, dtype=np.int64))
+    return _mesh(shank + cap.translate((0.0, 0.0, length)), "pin")
+
+
+def _mesh(solid: Any, name: str) -> Mesh:
+    """A manifold3d solid as a :class:`Mesh` named ``name``."""
+    mesh = solid.to_mesh()
+    return Mesh(np.asarray(mesh.vert_properties)[:, :3].astype(float), np.asarray(mesh.tri_verts, dtype=np.int64),
+                name)
 
 
 @dataclass(frozen=True)
 class MeshCheck:
-    """What trimesh says of a mesh: closed, consistently wound, outward, and its volume (mm^3)."""
+    """What trimesh says of a mesh (closed, consistently wound, outward, its volume in mm^3), and whether its vertices
+    stay apart in the files' single precision."""
 
     watertight: bool
     winding_consistent: bool
     volume_mm3: float
     triangles: int
+    #: no two vertices fall on one point once rounded to the single precision STL and 3MF readers load
+    distinct_in_float32: bool = True
 
     @property
     def ok(self) -> bool:
-        return self.watertight and self.winding_consistent and self.volume_mm3 > 0
+        return self.watertight and self.winding_consistent and self.volume_mm3 > 0 and self.distinct_in_float32
 
 
 def trimesh_of(mesh: Mesh) -> Any:
@@ -95,4 +105,6 @@ def trimesh_of(mesh: Mesh) -> Any:
 def check_mesh(mesh: Mesh) -> MeshCheck:
     """Check ``mesh`` with trimesh (positive volume means outward normals)."""
     tm = trimesh_of(mesh)
-    return MeshCheck(bool(tm.is_watertight), bool(tm.is_winding_consistent), float(tm.volume), len(tm.faces))
+    distinct = len(np.unique(mesh.vertices.astype(np.float32), axis=0)) == len(mesh.vertices)
+    return MeshCheck(bool(tm.is_watertight), bool(tm.is_winding_consistent), float(tm.volume), len(tm.faces),
+                     distinct)

@@ -26,12 +26,12 @@ from camgen.core.errors import ExportError
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, WriteOptions
 
+from camgen.core.parts import layer_colour
+
 if TYPE_CHECKING:
     from camgen.core.parts import Drawing
 from camgen.core.parts import Drawing
 
-#: ACI colour of each layer a laser job usually maps to an operation
-LAYER_COLOURS = {"OUTLINE": 7, "HOLES": 1, "ENGRAVE": 5}
 
 
 def _pieces(msp: Any, contour: Contour, attribs: dict, closed: bool = True) -> None:
@@ -83,7 +83,7 @@ def dxf_document(drawing: Drawing, version: str = "R2010", flavour: str = "polyl
     msp = doc.modelspace()
     for layer, shape in drawing.items:
         if layer not in doc.layers:
-            doc.layers.add(layer, color=LAYER_COLOURS.get(layer, 7))
+            doc.layers.add(layer, color=layer_colour(layer)[0])
         attribs = {"layer": layer}
         if isinstance(shape, Text):
             msp.add_text(shape.text, height=shape.height, rotation=shape.angle,

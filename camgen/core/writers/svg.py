@@ -19,10 +19,11 @@ import numpy as np
 
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 
+from camgen.core.parts import layer_colour
+
 if TYPE_CHECKING:
     from camgen.core.parts import Drawing
 
-LAYER_RGB = {"OUTLINE": "#ff0000", "HOLES": "#0000ff", "ENGRAVE": "#000000"}
 HAIRLINE_MM = 0.01
 MARGIN_MM = 2.0
 #: chord tolerance (mm) of the points that size the page; the 2 mm margin absorbs far more
@@ -70,7 +71,7 @@ def svg_document(drawing: Drawing, stroke_width: float = HAIRLINE_MM) -> str:
         groups.setdefault(layer, []).append(f'<path d="{_path(shape, pt)}"/>')
     body = []
     for layer, items in groups.items():
-        colour = LAYER_RGB.get(layer, "#000000")
+        colour = layer_colour(layer)[1]
         body.append(f'<g id="{layer}" fill="none" stroke="{colour}" color="{colour}" '
                     f'stroke-width="{stroke_width}">')
         body.extend(f"  {item}" for item in items)

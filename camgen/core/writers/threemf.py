@@ -13,11 +13,16 @@ from camgen.core.solids import Mesh, trimesh_of
 
 
 def threemf_bytes(mesh: Mesh) -> bytes:
-    """``mesh`` as a 3MF package, repacked with fixed entry dates so the same mesh gives the same bytes."""
+    """``mesh`` as a 3MF package whose object bears the mesh's name, repacked with fixed entry dates and UUIDs made
+    from the mesh, so the same mesh gives the same bytes."""
     import io
     import zipfile
 
-    raw = zipfile.ZipFile(io.BytesIO(trimesh_of(mesh).export(file_type="3mf")))
+    import trimesh
+
+    scene = trimesh.Scene()
+    scene.add_geometry(trimesh_of(mesh), geom_name=mesh.name, node_name=mesh.name)
+    raw = zipfile.ZipFile(io.BytesIO(scene.export(file_type="3mf")))
     digest = hashlib.sha256(mesh.vertices.tobytes() + mesh.faces.tobytes()).hexdigest()
     count = itertools.count()
 

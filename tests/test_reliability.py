@@ -1,0 +1,140 @@
+"""Every bad input refused in one line, every result right or refused (issue 19's regressions, one a case)."""
+from __future__ import annotations
+
+import json
+import re
+import zipfile
+import xml.etree.ElementTree as ET
+
+import pytest
+from click.testing import CliRunner
+
+from camgen.cli import main as camgen
+from tests.conftest import ROOT
+
+RDRD = ROOT / "templates" / "rdrd.toml"
+PLATE = ROOT / "templates" / "plate.toml"
+
+
+def refused(args: list[str], out, words: str, program=camgen) -> None:
+    """The command exits 2 with one line naming ``words`` and writes nothing at ``out``."""
+    result = CliRunner().invoke(program, args)
+    assert result.exit_code == 2, (result.exit_code, result.output, result.exception)
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), result.stderr
+    assert words in lines[0], lines[0]
+    assert out is None or not out.exists()
+
+
+@pytest.mark.parametrize("sets, words", [
+    (["cam.bore=3", "output.kerf=5"], "output.kerf: a kerf of 5 mm closes a hole"),
+    (["hub.bolt_holes=36", "hub.bolt_circle=30", "hub.bolt_hole_diameter=5"],
+     "hub.bolt_circle: two bolt holes overlap"),
+    (["hub.bolt_holes=4", "hub.bolt_circle=14", "hub.bolt_hole_diameter=5"],
+     "hub.bolt_circle: a bolt hole cuts into the bore"),
+    (["motion.0.lift=true"], "motion[0].lift: must be a number, not true or false"),
+    (["cam.thickness=true"], "cam.thickness: must be a number, not true or false"),
+    (["motion.0.law='parabolic'", "motion.0.ratio=1e10"], "motion[0].ratio: must be >= 0.01 and <= 100"),
+    (["motion.0.law='parabolic'", "motion.0.ratio=1e-17"], "motion[0].ratio: must be >= 0.01 and <= 100"),
+    (["cam.base_radius=1e9"], "cam.base_radius: must be > 0 and <= 10000 mm"),
+    (["cam.base_radius=1e300"], "cam.base_radius: must be > 0 and <= 10000 mm"),
+    (["cam.rpm=1e300"], "cam.rpm: must be > 0 and <= 100000 rpm"),
+    (["motion.0.lift=1e300", "motion.2.lift=1e300"], "motion[0].lift: must be > 0 and <= 10000"),
+    (["cam.thickness=1e300"], "cam.thickness: must be > 0 and <= 1000 mm"),
+    (["cam.max_pressure_angle=1e-9"], "cam.max_pressure_angle: must be >= 1 and < 90 degrees"),
+    (["motion.0.conditions=" + "[" * 60 + "]" * 60], "--set motion.0.conditions: the value nests"),
+])
+def test_bad_values_are_refused_before_anything_is_written(tmp_path, sets, words):
+    out = tmp_path / "out" / "deeper"
+    args = ["build", str(RDRD), "-o", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    refused(args, tmp_path / "out", words)
+
+
+def test_a_plate_cam_travel_is_bounded(tmp_path):
+    refused(["build", str(PLATE), "-o", str(tmp_path / "o"), "--set", "cam.travel=1e9"], tmp_path / "o",
+            "cam.travel: must be > 0 and <= 10000 mm")
+
+
+@pytest.mark.parametrize("text, words", [
+    (None, "is larger than 1000 kB"),                                  # /dev/zero
+    (b"\xff\xfe\x00\x01binary", "is not a text file"),
+    ("a = " + "[" * 5000 + "]" * 5000, "nests arrays or tables more than 32 deep"),
+    ('base = 5\nname = "x"', "base: must be the file name of a template"),
+    ('base = ["rdrd.toml"]\nname = "x"', "base: must be the file name of a template"),
+    ('base = "."\nname = "x"', "is a folder, not a template file"),
+    ('base = "missing.toml"\nname = "x"', "base: no such file"),
+])
+def test_bad_template_files_are_one_line(tmp_path, text, words):
+    if text is None:
+        path = "/dev/zero"
+    else:
+        path = tmp_path / "t.toml"
+        path.write_bytes(text if isinstance(text, bytes) else text.encode())
+    refused(["build", str(path), "-o", str(tmp_path / "o")], tmp_path / "o", words)
+
+
+def test_a_byte_order_mark_is_read_as_utf8(tmp_path):
+    path = tmp_path / "bom.toml"
+    path.write_bytes(b"\xef\xbb\xbf" + RDRD.read_bytes())
+    result = CliRunner().invoke(camgen, ["build", str(path), "-o", str(tmp_path / "o"), "--set",
+                                         "output.formats=['json']"])
+    assert result.exit_code == 0, result.output
+
+
+@pytest.mark.parametrize("args, words", [
+    (["build"], "Missing argument 'TEMPLATE'"),
+    (["build", "/no/such.toml"], "'TEMPLATE': File '/no/such.toml' does not exist"),
+    (["family", str(RDRD), "-o", "x", "--jobs", "0"], "'--jobs': 0 is not in the range"),
+    (["frobnicate"], "No such command 'frobnicate'"),
+])
+def test_usage_errors_are_one_line(args, words):
+    refused(args, None, words)
+
+
+def test_an_output_folder_that_cannot_be_made_is_one_line(tmp_path):
+    afile = tmp_path / "afile"
+    afile.write_text("")
+    refused(["build", str(RDRD), "-o", str(afile / "sub")], afile / "sub", "cannot create output folder")
+    refused(["family", str(ROOT / "templates" / "automaton-cams.toml"), "-o", str(afile / "sub")], afile / "sub",
+            "Not a directory")
+
+
+def test_a_centred_knife_edge_sizes_itself(tmp_path):
+    path = tmp_path / "knife.toml"
+    path.write_text(RDRD.read_text().replace('type = "translating-roller"', 'type = "knife-edge"')
+                    .replace("roller_radius = 10.0", "").replace("offset = 5.0", "")
+                    .replace("base_radius = 40.0", 'base_radius = "auto"').replace("bore = 10.0", ""))
+    result = CliRunner().invoke(camgen, ["build", str(path), "-o", str(tmp_path / "o"), "--set",
+                                         "output.formats=['json']"])
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "o" / "rdrd.json").read_text())
+    assert report["sizing"]["decided_by"] == "pressure angle"
+    assert report["pressure_angle_max_deg"] == pytest.approx(30.0, abs=1e-6)
+    assert result.stderr == ""                                          # no numpy warnings either
+
+
+def test_the_readme_set_example_builds(tmp_path):
+    readme = (ROOT / "README.md").read_text()
+    example = re.search(r"list items by index: `(--set [^`]+)`", readme).group(1).split()
+    result = CliRunner().invoke(camgen, ["build", str(RDRD), "-o", str(tmp_path), *example])
+    assert result.exit_code == 0, result.output
+
+
+def test_dxf_and_svg_give_every_layer_the_same_colour(tmp_path):
+    import ezdxf
+    from ezdxf.colors import aci2rgb
+
+    result = CliRunner().invoke(camgen, ["build", str(RDRD), "-o", str(tmp_path), "--set", "hub.engrave=true",
+                                         "--set", "output.formats=['dxf','cut-svg','3mf']"])
+    assert result.exit_code == 0, result.output
+    dxf = {layer.dxf.name: "#%02x%02x%02x" % tuple(aci2rgb(layer.color))
+           for layer in ezdxf.readfile(tmp_path / "rdrd.dxf").layers if layer.dxf.name in ("OUTLINE", "HOLES",
+                                                                                          "ENGRAVE")}
+    svg = {g.get("id"): g.get("stroke") for g in ET.parse(tmp_path / "rdrd-cut.svg").getroot()
+           if g.tag.endswith("g")}
+    assert set(dxf) == {"OUTLINE", "HOLES", "ENGRAVE"}
+    assert dxf == {k: svg[k] for k in dxf}
+    model = zipfile.ZipFile(tmp_path / "rdrd.3mf").read("3D/3dmodel.model").decode()
+    assert re.findall(r'<object [^>]*name="([^"]+)"', model) == ["rdrd"]
