@@ -98,8 +98,19 @@ def design_profile(spec: CamSpec) -> CamDesign:
     a = analyze(cam)
     if a.undercut and (cam.follower.flat or not spec.cam.allow_undercut):
         raise DesignError(_undercut_message(spec, cam, a))
+    sharp = [i for i, turn in cam.corners() if turn > 0]
+    if sharp and cam.contact_radius == 0 and not spec.cam.allow_undercut:
+        at = math.degrees(cam.program.segments[sharp[0]].end) % 360.0
+        i, j = sharp[0], (sharp[0] + 1) % len(spec.motion)
+        seg = j if spec.motion[i].type == "dwell" else i
+        raise DesignError(f"motion[{seg}]: the follower velocity jumps at {at:.4g} "
+                          "degrees, a sharp corner in the profile where the knife edge's pressure angle jumps; use a "
+                          "law with continuous velocity (e.g. modified-uniform), or set cam.allow_undercut = true "
+                          "to cut the corner as it is")
     tol = spec.output.tolerance
-    outline = envelope_outline(cam, tol) if a.undercut else exact_outline(cam, tol, spec.output.curves)
+    # a knife edge's corners make corners in every offset too: the noded envelope trims and rounds them exactly
+    envelope = a.undercut or (cam.contact_radius == 0 and bool(cam.corners()))
+    outline = envelope_outline(cam, tol) if envelope else exact_outline(cam, tol, spec.output.curves)
 
     import shapely
 
@@ -111,7 +122,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
                           f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
     _check_holes(spec, body, tol)
     marks = _engraving(spec, cam, reach) if spec.hub.engrave else ()
-    profile = _Profile(spec, cam, a.undercut, marks, outline)
+    profile = _Profile(spec, cam, envelope, marks, outline)
     allowances = Allowances(spec.output.kerf, spec.output.clearance, "output.kerf")
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
@@ -126,15 +137,15 @@ class _Profile:
     """The cam as a part at any offset of its surface (a :class:`~camgen.core.parts.PartMaker`): the outline is
     made afresh from the exact surface moved out by the offset (so kerf stays exact), once per offset."""
 
-    def __init__(self, spec: CamSpec, cam: Cam, undercut: bool, marks: tuple, nominal: Outline) -> None:
-        self.spec, self.cam, self.undercut, self.marks = spec, cam, undercut, marks
+    def __init__(self, spec: CamSpec, cam: Cam, envelope: bool, marks: tuple, nominal: Outline) -> None:
+        self.spec, self.cam, self.envelope, self.marks = spec, cam, envelope, marks
         self._outlines = {0.0: nominal}
 
     def outline(self, offset: float) -> Outline:
         """The outline of the surface moved out of the cam by ``offset`` mm."""
         if offset not in self._outlines:
             t = self.spec
-            self._outlines[offset] = (envelope_outline(self.cam, t.output.tolerance, offset) if self.undercut
+            self._outlines[offset] = (envelope_outline(self.cam, t.output.tolerance, offset) if self.envelope
                                       else exact_outline(self.cam, t.output.tolerance, t.output.curves, offset))
         return self._outlines[offset]
 

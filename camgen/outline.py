@@ -160,8 +160,9 @@ def _corner_arc(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, float, flo
 
 
 def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset: float = 0.0) -> Outline:
-    """The outline of a cam without undercut or convex corners (see the module docstring), moved out of the
-    cam by ``offset`` mm along its normal (half a laser's kerf for a cut file; exact, not a polygon offset).
+    """The outline of a cam without undercut (see the module docstring), moved out of the cam by ``offset`` mm
+    along its normal (half a laser's kerf for a cut file; exact, not a polygon offset). A convex corner of the
+    pitch curve (a velocity jump) stays a sharp vertex for a knife edge and becomes an arc of the offset round it.
 
     ``curves`` is ``"polylines"`` (chords) or ``"biarcs"`` (tangent-continuous arcs,
     far fewer entities for the same tolerance). A plate cam's dwells are straight,
@@ -170,9 +171,12 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     bottom edge on y = 0.
     """
     corners = dict(cam.corners())
-    if any(turn > 0 for turn in corners.values()):
-        raise ValueError("the pitch curve has a convex corner: use envelope_outline")
     rr = cam.contact_radius - offset
+    if rr > 0 and any(turn > 0 for turn in corners.values()):
+        raise DesignError("the pitch curve has a convex corner that a roller cannot follow; its outline is the "
+                          "cutter's envelope (cam.allow_undercut)")
+    if rr == 0:                                   # a knife edge's profile: the corner is a vertex of both sides
+        corners = {}
     verts, bulges, worst = [], [], 0.0
     for i, seg in enumerate(cam.program.segments):
         if seg.kind == "dwell" and cam.is_plate:
@@ -242,9 +246,9 @@ def _envelope(cam: Cam, tolerance: float, factor: float, offset: float) -> Outli
         # the segment's last surface point, then round the pitch point to the next segment's first
         centre = cam.segment_pitch(i, seg.end).point[0]
         start, _, angle = _corner_arc(cam, i, rr)
-        n = arc_steps(rr, angle, tolerance / factor**2)
+        n = arc_steps(abs(rr), angle, tolerance / factor**2)
         a = math.atan2(start[1] - centre[1], start[0] - centre[0]) + angle * np.arange(n) / n
-        pts.append(centre + rr * np.column_stack([np.cos(a), np.sin(a)]))
+        pts.append(centre + abs(rr) * np.column_stack([np.cos(a), np.sin(a)]))
     ring = np.concatenate(pts)
     line = shapely.LineString(np.vstack([ring, ring[:1]]))
     faces = list(shapely.polygonize(shapely.get_parts(shapely.union_all(line))).geoms)

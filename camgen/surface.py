@@ -48,11 +48,12 @@ def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
 
 
 def surface_deviation(cam: Cam, points: np.ndarray, offset: float = 0.0) -> np.ndarray:
-    """Deviation (mm) of points from the exact cam surface moved out by ``offset`` mm: distance to the pitch
-    curve less the contact radius, plus ``offset``.
+    """Deviation (mm) of points from the exact cam surface moved out by ``offset`` mm: their distance to the pitch
+    curve less the surface's, |contact radius - offset|.
 
-    For a roller it is signed: negative outside the cam (towards the roller), positive
-    into the material. For a knife edge or flat face (contact radius 0) it is the
-    plain distance, never negative.
+    Where the surface lies inside the pitch curve (a roller, less half a kerf) it is signed:
+    negative outside the cam (towards the roller), positive into the material. Where it lies
+    outside (a knife edge or flat face moved out by half a kerf) the sign is the other way
+    round, and with no offset it is the plain distance, never negative.
     """
-    return pitch_distance(cam, points) - (cam.contact_radius - offset)
+    return pitch_distance(cam, points) - abs(cam.contact_radius - offset)

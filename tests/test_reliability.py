@@ -138,3 +138,38 @@ def test_dxf_and_svg_give_every_layer_the_same_colour(tmp_path):
     assert dxf == {k: svg[k] for k in dxf}
     model = zipfile.ZipFile(tmp_path / "rdrd.3mf").read("3D/3dmodel.model").decode()
     assert re.findall(r'<object [^>]*name="([^"]+)"', model) == ["rdrd"]
+
+
+def _knife_uniform(tmp_path):
+    path = tmp_path / "knife.toml"
+    path.write_text(RDRD.read_text().replace('type = "translating-roller"', 'type = "knife-edge"')
+                    .replace("roller_radius = 10.0", "").replace('law = "cycloidal"', 'law = "uniform"'))
+    return path
+
+
+def test_a_knife_edge_at_a_velocity_jump_is_refused_by_name(tmp_path):
+    refused(["build", str(_knife_uniform(tmp_path)), "-o", str(tmp_path / "o")], tmp_path / "o",
+            "motion[0]: the follower velocity jumps at 120 degrees, a sharp corner")
+
+
+@pytest.mark.parametrize("kerf", [0.0, 0.3])
+def test_a_knife_edge_corner_allowed_is_cut_as_its_exact_envelope(tmp_path, kerf):
+    """The knife's profile keeps its corners; half a kerf outside it, the offset rounds the convex corner and
+    trims the concave one. Checked against the exact surface and for self-intersection."""
+    import shapely
+
+    from camgen.design import design_cam
+    from camgen.spec import load_spec
+    from camgen.surface import surface_deviation
+
+    d = design_cam(load_spec(_knife_uniform(tmp_path), ["cam.allow_undercut=true", f"output.kerf={kerf}"]))
+    pts = d.cut_outline.contour.flatten(1e-4)
+    assert shapely.Polygon(pts).is_valid
+    assert abs(surface_deviation(d.cam, pts, kerf / 2)).max() <= d.tolerance
+    assert d.cut_outline.max_error_mm <= d.tolerance
+    assert "envelope" in " ".join(d.warnings) or d.cut_outline.envelope
+
+
+def test_a_plate_cam_takes_no_sense_of_rotation(tmp_path):
+    refused(["build", str(PLATE), "-o", str(tmp_path / "o"), "--set", "cam.rotation='cw'"], tmp_path / "o",
+            "cam.rotation: not used by a plate cam")

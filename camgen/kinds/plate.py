@@ -21,6 +21,8 @@ def _check(spec: Any) -> None:
                          f"(got {spec.follower.type!r})")
     if spec.follower.offset != 0 or spec.cam.bore != 0:
         raise ValueError(f"cam.{'bore' if spec.cam.bore else 'offset'}: not used by a plate cam")
+    if spec.cam.rotation != "ccw":
+        raise ValueError("cam.rotation: not used by a plate cam (the plate slides along +X as the program runs)")
 
 
 def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
