@@ -61,7 +61,7 @@ def pressure_angle_max(cam: Cam) -> float:
 def profile_rho_min(cam: Cam) -> float:
     """Smallest convex radius of the cam surface (mm); for a flat face the profile's smallest radius."""
     if cam.follower.flat:
-        return -_peak(cam, lambda g: -g.rho)[0]
+        return -math.inf if any(step < 0 for _, step in cam.steps()) else -_peak(cam, lambda g: -g.rho)[0]
     return 1.0 / convex_curvature_max(cam)[0] - cam.contact_radius
 
 
@@ -69,11 +69,15 @@ def analyze(cam: Cam) -> CamAnalysis:
     """Pressure angle, curvature and undercut of ``cam``, each located to ~1e-9 degrees.
 
     For a flat face the profile itself is analysed: its radius of curvature must
-    stay positive, and ``undercut`` means it does not (the profile folds into a cusp).
+    stay positive, and ``undercut`` means it does not (the profile folds into a cusp; where
+    the velocity drops at a segment end it folds at once, a radius of -infinity).
     """
     pa, pa_at = _peak(cam, lambda g: np.abs(g.pressure_angle))
     if cam.follower.flat:
         neg, at = _peak(cam, lambda g: -g.rho)
+        folds = [i for i, step in cam.steps() if step < 0]
+        if folds:  # the velocity drops at a segment end: the profile folds back, a radius of curvature of -infinity
+            neg, at = math.inf, math.degrees(cam.program.segments[folds[0]].end) % 360.0
         return CamAnalysis(
             pressure_angle_max_deg=math.degrees(pa), pressure_angle_max_at_deg=pa_at,
             pitch_rho_min_mm=-neg, pitch_rho_min_at_deg=at, profile_rho_min_mm=-neg,

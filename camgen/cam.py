@@ -73,6 +73,28 @@ class Cam:
                 out.append((i, -self.follower.sense * turn))
         return out
 
+    def steps(self) -> list[tuple[int, float]]:
+        """Where a flat face's contact point jumps at a segment end (a velocity jump): ``(segment index, step)``.
+
+        ``step`` (mm) is signed along the way the profile runs: positive where the profile has a straight
+        flat there (the velocity rises; the face lies along it), negative where it folds back into a cusp
+        (the velocity drops; no face can follow it). Roller and knife-edge pitch curves never jump.
+        """
+        if not self.follower.flat:
+            return []
+        out = []
+        segments = self.program.segments
+        for i, seg in enumerate(segments):
+            j = (i + 1) % len(segments)
+            left, right = self.segment_pitch(i, seg.end), self.segment_pitch(j, segments[j].start)
+            gap = right.point[0] - left.point[0]
+            if np.linalg.norm(gap) <= 1e-9 * max(1.0, self.base_radius):
+                continue
+            side = left if abs(left.rho[0]) >= abs(right.rho[0]) else right
+            ahead = side.d1[0] / side.rho[0]                 # the way a sound profile runs there
+            out.append((i, float(gap @ ahead / np.linalg.norm(ahead))))
+        return out
+
 
 def _drafted_ratio(spec: CamSpec, angle: float, lift: float, prime: float, index: int) -> float:
     """k = Rp beta / h of the drafted modified-uniform law; h is the rise along the follower's path (mm)."""

@@ -57,6 +57,10 @@ class CamDesign:
 
 
 def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
+    if cam.follower.flat and math.isinf(a.profile_rho_min_mm):
+        return (f"cusp at {a.pitch_rho_min_at_deg:.4g} degrees: the follower velocity drops there, so the profile "
+                "folds back on itself and no flat face can follow it; use a law with continuous velocity (e.g. "
+                "modified-uniform or cycloidal)")
     if cam.follower.flat:
         smallest = smallest_for_curvature(spec)
         return (f"cusp at {a.pitch_rho_min_at_deg:.2f} degrees: the profile's radius of curvature falls to "

@@ -177,6 +177,7 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
                           "cutter's envelope (cam.allow_undercut)")
     if rr == 0:                                   # a knife edge's profile: the corner is a vertex of both sides
         corners = {}
+    flats = {i for i, step in cam.steps() if step > 0}
     verts, bulges, worst = [], [], 0.0
     for i, seg in enumerate(cam.program.segments):
         if seg.kind == "dwell" and cam.is_plate:
@@ -195,6 +196,9 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
             start, bulge, _ = _corner_arc(cam, i, rr)
             verts.append(start[None, :])
             bulges.append(np.array([bulge]))
+        if i in flats:                                  # a flat face's flat: straight on from the segment's end
+            verts.append(_surface(cam.segment_pitch(i, seg.end), rr))
+            bulges.append(np.zeros(1))
     if cam.is_plate:
         verts, bulges = _close_plate(cam, verts, bulges, offset)
     contour = Contour(np.concatenate(verts), np.concatenate(bulges))

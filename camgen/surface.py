@@ -21,7 +21,8 @@ def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
     """Distance (mm) from each of ``points`` (n, 2) to the exact pitch curve.
 
     For each segment: the nearest of a coarse sample every 0.25 mm along the curve, then Newton's method on
-    (P(theta) - X) . P'(theta) = 0 within the segment; the smallest over segments.
+    (P(theta) - X) . P'(theta) = 0 within the segment; the smallest over segments, and over the straight
+    flats where a flat face's contact jumps (see :meth:`Cam.steps`).
     """
     points = np.asarray(points, dtype=float).reshape(-1, 2)
     best = np.full(len(points), np.inf)
@@ -44,6 +45,14 @@ def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
             theta = np.clip(theta - step, seg.start, seg.end)
         dist = np.linalg.norm(cam.segment_pitch(i, theta).point - points, axis=1)
         best = np.minimum(best, dist)
+    segments = cam.program.segments
+    for i, step in cam.steps():                        # a flat face's flats: the face line between two contacts
+        if step > 0:
+            j = (i + 1) % len(segments)
+            a = cam.segment_pitch(i, segments[i].end).point[0]
+            b = cam.segment_pitch(j, segments[j].start).point[0]
+            t = np.clip((points - a) @ (b - a) / float((b - a) @ (b - a)), 0.0, 1.0)
+            best = np.minimum(best, np.linalg.norm(a + t[:, None] * (b - a) - points, axis=1))
     return best
 
 

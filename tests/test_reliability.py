@@ -173,3 +173,36 @@ def test_a_knife_edge_corner_allowed_is_cut_as_its_exact_envelope(tmp_path, kerf
 def test_a_plate_cam_takes_no_sense_of_rotation(tmp_path):
     refused(["build", str(PLATE), "-o", str(tmp_path / "o"), "--set", "cam.rotation='cw'"], tmp_path / "o",
             "cam.rotation: not used by a plate cam")
+
+
+FLAT = ROOT / "templates" / "flat-face.toml"
+
+
+@pytest.mark.parametrize("follower", [[], ["follower.type='oscillating-flat'", "follower.pivot_distance=150",
+                                           "motion.0.lift=8", "motion.2.lift=8"]])
+def test_a_flat_face_where_the_velocity_drops_is_refused_as_a_cusp(tmp_path, follower):
+    args = ["build", str(FLAT), "-o", str(tmp_path / "o"), "--set", "cam.base_radius=60",
+            "--set", "motion.0.law='uniform'"]
+    for s in follower:
+        args += ["--set", s]
+    refused(args, tmp_path / "o", "cusp at 150 degrees: the follower velocity drops there")
+
+
+def test_a_flat_face_where_the_velocity_rises_gets_its_straight_flat(tmp_path):
+    """A rise leaving a dwell at speed: the face lies along the profile from one contact to the next. The outline
+    is measured against the exact envelope (contact curve and flats) by the independent measure."""
+    from camgen.convergence import contour_error
+    from camgen.design import design_cam
+    from camgen.spec import validate_spec
+
+    raw = {"name": "flatspot", "cam": {"base_radius": 60.0, "thickness": 6.0},
+           "follower": {"type": "translating-flat"},
+           "motion": [{"type": "dwell", "angle": 60.0},
+                      {"type": "rise", "law": "polynomial", "lift": 12.0, "angle": 150.0,
+                       "conditions": [[0, 0, 0], [0, 1, 0.6], [1, 0, 1], [1, 1, 0], [1, 2, 0]]},
+                      {"type": "return", "law": "cycloidal", "lift": 12.0, "angle": 150.0}]}
+    d = design_cam(validate_spec(raw))
+    (index, step), = d.cam.steps()
+    # the contact jumps along the face by s' = 0.6 h / beta (mm per radian), here 2.75 mm
+    assert index == 0 and step == pytest.approx(0.6 * 12.0 / (150 * 3.141592653589793 / 180), rel=1e-9)
+    assert contour_error(d.cam, d.outline.contour, d.tolerance) <= d.tolerance
