@@ -47,6 +47,14 @@ class CamDesign:
     sizing: Sizing | None = None
 
     @property
+    def written_error_mm(self) -> float:
+        """A bound (mm) on the distance of the cut file's outline from the exact surface, as written: the
+        outline's measured bound, or where the DXF flavour writes chords only (its outline then has no biarcs,
+        just exact arcs) the larger of that and the chords' distance from those arcs."""
+        chords = self.cut_outline.contour.flatten_error(self.tolerance) if self.spec.output.dxf == "segments" else 0
+        return max(self.cut_outline.max_error_mm, chords)
+
+    @property
     def tolerance(self) -> float:
         """The chord tolerance (mm) every curve of this design was made to."""
         return self.spec.output.tolerance
@@ -114,7 +122,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
     tol = spec.output.tolerance
     # a knife edge's corners make corners in every offset too: the noded envelope trims and rounds them exactly
     envelope = a.undercut or (cam.contact_radius == 0 and bool(cam.corners()))
-    outline = envelope_outline(cam, tol) if envelope else exact_outline(cam, tol, spec.output.curves)
+    outline = envelope_outline(cam, tol) if envelope else exact_outline(cam, tol, _curves(spec))
 
     import shapely
 
@@ -137,6 +145,12 @@ def design_profile(spec: CamSpec) -> CamDesign:
                      allowances, wall, warnings, pressure_limit(spec), extent, speed, sizing)
 
 
+def _curves(spec: CamSpec) -> str:
+    """How the outline's curved stretches are made: biarcs only where the DXF keeps arcs (the segments flavour
+    writes every arc as chords, so it gets chords measured against the surface instead)."""
+    return "polylines" if spec.output.dxf == "segments" else spec.output.curves
+
+
 class _Profile:
     """The cam as a part at any offset of its surface (a :class:`~camgen.core.parts.PartMaker`): the outline is
     made afresh from the exact surface moved out by the offset (so kerf stays exact), once per offset."""
@@ -150,7 +164,7 @@ class _Profile:
         if offset not in self._outlines:
             t = self.spec
             self._outlines[offset] = (envelope_outline(self.cam, t.output.tolerance, offset) if self.envelope
-                                      else exact_outline(self.cam, t.output.tolerance, t.output.curves, offset))
+                                      else exact_outline(self.cam, t.output.tolerance, _curves(t), offset))
         return self._outlines[offset]
 
     def part(self, outline_grow: float, hole_grow: float) -> Part:

@@ -49,18 +49,51 @@ def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
     return g.point - rr * g.normal
 
 
-def _chord_error(cam: Cam, index: int, theta: np.ndarray, rr: float) -> float:
-    """Largest distance of the exact surface (``rr`` mm inside the pitch curve) from the chords between
-    consecutive ``theta`` (mm)."""
-    ends = _surface(cam.segment_pitch(index, theta), rr)
-    frac = np.arange(1, _PROBES + 1) / (_PROBES + 1)
+def _probes(cam: Cam, index: int, theta: np.ndarray, rr: float,
+            count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``count`` points of the exact surface (``rr`` mm inside the pitch curve) inside each span of ``theta``
+    (spans, count, 2); and per span the largest gap between neighbouring points (the span's ends included, mm)
+    and the smallest and largest signed curvature of the surface there (1/mm), which bound what the probes can miss:
+    a curve parts from a line or an arc between two probes by at most gap^2 |curvature difference| / 8."""
+    frac = np.arange(1, count + 1) / (count + 1)
     inner = (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
-    x = _surface(cam.segment_pitch(index, inner), rr).reshape(len(theta) - 1, _PROBES, 2)
+    g = cam.segment_pitch(index, inner)
+    x = _surface(g, rr).reshape(len(theta) - 1, count, 2)
+    ends = _surface(cam.segment_pitch(index, theta), rr)
+    chain = np.concatenate([ends[:-1, None, :], x, ends[1:, None, :]], axis=1)
+    gap = np.linalg.norm(np.diff(chain, axis=1), axis=2).max(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(len(theta) - 1, count)
+    bend = np.where(np.isfinite(bend), bend, np.inf)
+    return x, gap, bend.min(axis=1), bend.max(axis=1)
+
+
+def _arc_curvature(start: np.ndarray, end: np.ndarray, bulge: np.ndarray) -> np.ndarray:
+    """|curvature| (1/mm) of arcs from ``start`` to ``end`` with ``bulge`` = tan(angle / 4): 2 sin(angle/2) / chord."""
+    chord = np.maximum(np.linalg.norm(end - start, axis=1), 1e-300)
+    return 4 * np.abs(bulge) / ((1 + bulge**2) * chord)
+
+
+def _apart(low: np.ndarray, high: np.ndarray, arc: np.ndarray) -> np.ndarray:
+    """The most a surface's curvature (between ``low`` and ``high``, signed) and an arc's (``arc``, unsigned, on
+    the same side as the surface) can differ (1/mm); a span where the surface turns both ways, the sum."""
+    same = (low >= 0) | (high <= 0)
+    near, far = np.minimum(np.abs(low), np.abs(high)), np.maximum(np.abs(low), np.abs(high))
+    return np.where(same, np.maximum(np.abs(far - arc), np.abs(near - arc)), far + arc)
+
+
+def _chord_error(cam: Cam, index: int, theta: np.ndarray, rr: float) -> float:
+    """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from the chords between
+    consecutive ``theta``: the largest measured at the probes, plus what the surface's curvature lets it stray
+    between two probes."""
+    x, gap, low, high = _probes(cam, index, theta, rr, _PROBES)
+    bend = np.maximum(np.abs(low), np.abs(high))
+    ends = _surface(cam.segment_pitch(index, theta), rr)
     a, b = ends[:-1, None, :], ends[1:, None, :]
     ab = b - a
     length2 = (ab**2).sum(axis=2)
     t = np.clip(((x - a) * ab).sum(axis=2) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
-    return float(np.linalg.norm(a + t[..., None] * ab - x, axis=2).max())
+    return float((np.linalg.norm(a + t[..., None] * ab - x, axis=2).max(axis=1) + gap**2 * bend / 8).max())
 
 
 def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float) -> np.ndarray:
@@ -104,17 +137,18 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float) -> tuple[np.ndarr
     equal parts, since a biarc's error falls as the cube of its span; until none strays.
     """
     theta = _spacing(cam, index, max(tolerance, 1.0), 1.0, rr)
-    frac = np.arange(1, 2 * _PROBES + 1) / (2 * _PROBES + 1)
     for _ in range(40):
         g = cam.segment_pitch(index, theta)
         pts = _surface(g, rr)
         tan = g.d1 / np.linalg.norm(g.d1, axis=1)[:, None]
         p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
-        inner = (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
-        x = _surface(cam.segment_pitch(index, inner), rr).reshape(len(theta) - 1, len(frac), 2)
+        x, gap, low, high = _probes(cam, index, theta, rr, 2 * _PROBES)
+        apart = np.max([_apart(low, high, k) for k in (_arc_curvature(p0, junction, b1),
+                                                       _arc_curvature(junction, p1, b2))], axis=0)
         err = np.minimum(arc_distance(x, p0, junction, b1), arc_distance(x, junction, p1, b2)).max(axis=1)
-        bad = err > _BIARC_AIM * tolerance      # a margin for the maximum falling between the probes
+        err = err + gap**2 * apart / 8                  # a bound: what the curve and the arcs can part between probes
+        bad = err > _BIARC_AIM * tolerance
         if not bad.any():
             verts = np.empty((2 * len(p0), 2))
             verts[0::2], verts[1::2] = p0, junction

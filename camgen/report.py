@@ -57,7 +57,7 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, An
         "outline_vertices": len(design.cut_outline.contour.vertices),
         "outline_arcs": design.cut_outline.contour.n_arcs,
         "outline_lines": design.cut_outline.contour.n_lines,
-        "outline_max_error_mm": float(design.cut_outline.max_error_mm),
+        "outline_max_error_mm": float(design.written_error_mm),
         "outline_note": "the DXF's outline as written" + (
             f", measured against the cam surface moved out by half the kerf ({t.output.kerf / 2:g} mm)"
             if t.output.kerf else ""),

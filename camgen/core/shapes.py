@@ -123,6 +123,12 @@ class Contour:
                 out.append(centre[i] + radius * np.column_stack([np.cos(a), np.sin(a)]))
         return np.concatenate(out)
 
+    def flatten_error(self, tolerance: float) -> float:
+        """The largest distance (mm) between this contour's arcs and the chords :meth:`flatten` puts for them."""
+        idx, _, radius, angle = self.arcs()
+        steps = np.array([arc_steps(r, a, tolerance) for r, a in zip(radius, angle, strict=True)])
+        return float((radius * (1.0 - np.cos(np.abs(angle) / (2 * steps)))).max()) if len(idx) else 0.0
+
 
 @dataclass(frozen=True)
 class Circle:
