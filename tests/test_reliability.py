@@ -252,3 +252,33 @@ def test_the_reported_outline_error_bounds_the_true_one(curves):
         d = design_cam(spec)
         true = contour_error(d.cam, d.outline.contour, tol)
         assert true <= d.outline.max_error_mm * (1 + 1e-9) <= tol
+
+
+@pytest.mark.parametrize("m, p", [(20, 5), (2, 18), (20, 6), (13, 13), (1, 25)])
+def test_two_point_conditions_always_fix_their_polynomial(m, p):
+    """Orders 0..m-1 at u = 0 and 0..p-1 at u = 1 have exactly one polynomial of degree m + p - 1: with f = 0 and
+    its derivatives zero at 0, f = 1 and the rest zero at 1 it is u^m sum_k C(m - 1 + k, k) (1 - u)^k."""
+    import math
+
+    import numpy as np
+
+    from camgen.laws import from_conditions
+
+    conds = [(0, k, 0) for k in range(m)] + [(1, 0, 1)] + [(1, k, 0) for k in range(1, p)]
+    law = from_conditions(conds)
+    u = np.linspace(0, 1, 2001)
+    exact = u**m * sum(math.comb(m - 1 + k, k) * (1 - u) ** k for k in range(p))
+    assert law.degree == m + p - 1
+    assert np.abs(law.derivatives(u)[0] - exact).max() < 1e-12
+
+
+def test_two_point_conditions_with_slopes_are_met():
+    import numpy as np
+
+    from camgen.laws import from_conditions
+
+    conds = [(0, 0, 0), (0, 1, 0.6), (0, 2, -1.5), (1, 0, 1), (1, 1, 0.25), (1, 2, 0), (1, 3, 2)]
+    law = from_conditions(conds)
+    d = law.derivatives(np.array([0.0, 1.0]))
+    for u, k, v in conds:
+        assert d[k][int(u)] == pytest.approx(v, abs=1e-11)

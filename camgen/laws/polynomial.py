@@ -6,6 +6,7 @@ would scale the system by beta^n and lose every digit by degree ~12).
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import ClassVar
@@ -18,7 +19,7 @@ from camgen.core.errors import SpecError
 from camgen.laws.base import Law, as_array
 
 #: most derivative orders a boundary condition may name
-MAX_ORDER = 20
+MAX_ORDER = 25
 #: highest degree the general law accepts
 MAX_DEGREE = 25
 
@@ -68,6 +69,39 @@ def _rank(a: np.ndarray) -> int:
     return int(np.sum(sv > sv[0] * 1e-12)) if sv.size and sv[0] > 0 else 0
 
 
+def _two_point(conds: list[tuple], n: int) -> PolynomialLaw | None:
+    """The law meeting conditions at u = 0 and u = 1 only, of consecutive orders from 0 at each end (a two-point
+    Hermite problem: always exactly one polynomial of degree n = their number - 1); None for any other set.
+
+    Solved in the Bernstein basis, where the k-th derivative at u = 0 involves only the first k + 1
+    coefficients and at u = 1 only the last k + 1 (forward differences), so both ends are triangular
+    solves; the result is sampled at Chebyshev points by de Casteljau and interpolated in the Chebyshev basis.
+    """
+    ends: dict[float, dict[int, float]] = {0.0: {}, 1.0: {}}
+    for u, k, v in conds:
+        if u not in ends or int(k) in ends[u]:
+            return None
+        ends[u][int(k)] = float(v)
+    m, p = len(ends[0.0]), len(ends[1.0])
+    if sorted(ends[0.0]) != list(range(m)) or sorted(ends[1.0]) != list(range(p)) or m + p != n + 1:
+        return None
+    c = np.zeros(n + 1)
+    for k in range(m):                      # f^(k)(0) = n!/(n-k)! sum_i (-1)^(k-i) C(k, i) c_i
+        scaled = ends[0.0][k] * math.factorial(n - k) / math.factorial(n)
+        c[k] = scaled - sum((-1) ** (k - i) * math.comb(k, i) * c[i] for i in range(k))
+    for k in range(p):                      # f^(k)(1) = n!/(n-k)! sum_i (-1)^i C(k, i) c_(n-i)
+        scaled = ends[1.0][k] * math.factorial(n - k) / math.factorial(n)
+        c[n - k] = (-1) ** k * (scaled - sum((-1) ** i * math.comb(k, i) * c[n - i] for i in range(k)))
+
+    def bernstein(u: np.ndarray) -> np.ndarray:
+        b = np.tile(c, (len(u), 1))
+        for _ in range(n):                   # de Casteljau
+            b = (1 - u)[:, None] * b[:, :-1] + u[:, None] * b[:, 1:]
+        return b[:, 0]
+
+    return PolynomialLaw(Chebyshev.interpolate(bernstein, n, domain=[0, 1]))
+
+
 def from_conditions(conditions: Sequence[Sequence[float]], degree: int | None = None) -> PolynomialLaw:
     """The polynomial rise law meeting boundary conditions in normalised units.
 
@@ -76,7 +110,8 @@ def from_conditions(conditions: Sequence[Sequence[float]], degree: int | None = 
     s' mm/rad is given as s' * beta / h). The degree defaults to the number of
     conditions minus one. The conditions must include f(0) = 0 and f(1) = 1, and
     must determine the polynomial exactly: too few independent conditions, or
-    contradictory ones, raise :class:`SpecError` naming ``conditions``.
+    contradictory ones, raise :class:`SpecError` naming ``conditions``. Conditions at the two ends only, of
+    consecutive orders from 0 at each, always do (see :func:`_two_point`), at any degree up to 25.
     """
     conds = [tuple(c) for c in conditions]
     for i, c in enumerate(conds):
@@ -92,6 +127,9 @@ def from_conditions(conditions: Sequence[Sequence[float]], degree: int | None = 
     n_coef = (degree if degree is not None else len(conds) - 1) + 1
     if not 2 <= n_coef <= MAX_DEGREE + 1:
         raise SpecError(f"degree must be 1 to {MAX_DEGREE} (got {n_coef - 1})", "degree")
+    law = _two_point(conds, n_coef - 1)
+    if law is not None:
+        return _starts_and_ends(law)
     a = np.array([_condition_row(u, int(k), n_coef) for u, k, _ in conds])
     b = np.array([v for _, _, v in conds], dtype=float)
     rows = np.abs(a).max(axis=1)
@@ -110,7 +148,11 @@ def from_conditions(conditions: Sequence[Sequence[float]], degree: int | None = 
     # LU on the square system keeps ~1e-14 at degree 25; an SVD least-squares solve loses digits from degree 9
     coef = np.linalg.solve(a, b) if a.shape[0] == n_coef else np.linalg.lstsq(a, b, rcond=None)[0]
     coef = coef / cols
-    law = PolynomialLaw(Chebyshev(coef, domain=[0, 1]))
+    return _starts_and_ends(PolynomialLaw(Chebyshev(coef, domain=[0, 1])))
+
+
+def _starts_and_ends(law: PolynomialLaw) -> PolynomialLaw:
+    """``law``, if it rises from f(0) = 0 to f(1) = 1; otherwise an error naming ``conditions``."""
     ends = law.derivatives(np.array([0.0, 1.0]))[0]
     if abs(ends[0]) > 1e-9 or abs(ends[1] - 1.0) > 1e-9:
         raise SpecError(f"a rise law must go from f(0) = 0 to f(1) = 1 (these give {ends[0]:.6g} and {ends[1]:.6g}); "
