@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, family_options, report_family, set_option, template_options,
+from camgen.core.cli import (Commands, add_bench, add_family, set_option, template_options,
                              user_errors)
 
 
@@ -77,25 +77,12 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
                f"convex radius > {s.min_rho_margin_mm:g} mm needs {s.curvature_radius_mm:.4f} mm)")
 
 
-@main.command()
-@family_options
-@user_errors
-def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
-    """Build every member of the family a TEMPLATE's [sweep] table describes; re-running resumes."""
-    from camgen.core.family import build_family
-    from camgen.outputs import build_member
-    from camgen.spec import validate_spec
-
-    report_family(build_family(template, output, validate_spec, build_member, jobs, scheduler), output)
+add_family(main, "camgen.spec:validate_spec", "camgen.outputs:build_member",
+           "Build every member of the family a TEMPLATE's [sweep] table describes; "
+           "re-running resumes.")
 
 
-def _run_bench(output: Path, quick: bool) -> dict:
-    from camgen.bench import run_bench
-
-    return run_bench(output, quick)
-
-
-add_bench(main, _run_bench, Path("out/bench"),
+add_bench(main, "camgen.bench:run_bench", Path("out/bench"),
           "Measure speed against error, peers, throughput, memory and the hard cases on this machine.")
 
 

@@ -133,7 +133,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
         raise DesignError(f"cam.bore: {spec.cam.bore:.4g} mm leaves no material; the outline comes within "
                           f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
     _check_holes(spec, body, tol)
-    marks = _engraving(spec, cam, reach) if spec.hub.engrave else ()
+    marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, envelope, marks, outline)
     allowances = Allowances(spec.output.kerf, spec.output.clearance, "output.kerf")
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
@@ -227,29 +227,76 @@ def _check_holes(spec: CamSpec, body: Any, tolerance: float) -> None:
                               "holes, or another circle")
 
 
-def _engraving(spec: CamSpec, cam: Cam, reach: float) -> tuple:
-    """ENGRAVE marks, in the band between the outermost hole and the outline: the part's name, an arrow
-    in the sense of rotation and a tick towards the follower at theta = 0."""
+def _engraving(spec: CamSpec, cam: Cam, body: Any, reach: float) -> tuple:
+    """ENGRAVE marks, each clear of the others, of the holes and of the outline (checked): the part's name, an
+    arrow in the sense of motion and a tick at theta = 0. A disc carries them in the band between its outermost
+    hole and its outline (the name at the bottom, the arrow upper left, the tick towards the follower); a plate
+    in the strip under its profile (the arrow shows the way the plate moves under the follower)."""
+    marks = _plate_marks(spec, cam) if cam.is_plate else _disc_marks(spec, cam, reach)
+    _check_marks(spec, body, marks)
+    return tuple((LAYER_ENGRAVE, mark) for mark in marks)
+
+
+def _arrow(tail: np.ndarray, tip: np.ndarray, bulge: float, width: float, back: np.ndarray) -> tuple:
+    """A shaft from ``tail`` to ``tip`` (an arc of ``bulge``) and a head ``width`` mm wide, pointing along ``back``
+    reversed (a unit vector from the tip back along the shaft)."""
+    side = np.array([-back[1], back[0]]) * width / 2
+    base = tip + back * width
+    return (Polyline(np.array([tail, tip]), np.array([bulge])),
+            Polyline(np.array([base + side, tip, base - side]), np.zeros(2)))
+
+
+def _disc_marks(spec: CamSpec, cam: Cam, reach: float) -> tuple:
     hub = spec.hub
     inner = spec.cam.bore / 2 + (key_for(spec.cam.bore)[1] if hub.keyway else 0.0)
     if hub.bolt_holes:
         inner = max(inner, hub.bolt_circle / 2 + hub.bolt_hole_diameter / 2)
     mid = inner + 0.5 * (reach - inner)
-    height = max(1.0, min(5.0, 0.3 * (reach - inner)))
+    height = max(1.0, min(5.0, 0.3 * (reach - inner), 1.2 * mid / max(1, len(spec.name))))
     name = Text(spec.name, (-0.3 * height * len(spec.name), -mid - 0.5 * height), height)
     sense = 1 if spec.cam.rotation == "ccw" else -1
 
     def at(radius: float, degrees: float) -> np.ndarray:
         return radius * np.array([math.cos(math.radians(degrees)), math.sin(math.radians(degrees))])
 
-    start, end = 200.0, 200.0 + sense * 60.0
-    shaft = Polyline(np.array([at(mid, start), at(mid, end)]), np.array([math.tan(sense * math.radians(60) / 4)]))
-    back = end - sense * 8.0
-    head = Polyline(np.array([at(mid + height / 2, back), at(mid, end), at(mid - height / 2, back)]), np.zeros(2))
+    start, end = (135.0, 195.0) if sense > 0 else (195.0, 135.0)
+    back = at(1.0, end - sense * 90.0)                   # from the tip back along the arc's tangent
+    shaft, head = _arrow(at(mid, start), at(mid, end), math.tan(sense * math.radians(60) / 4), height, back)
     contact = cam.pitch(np.array([0.0])).point[0]
     direction = contact / np.linalg.norm(contact)
     tick = Polyline(np.array([direction * (reach - 2 * height), direction * (reach - height)]), np.zeros(1))
-    return tuple((LAYER_ENGRAVE, mark) for mark in (name, shaft, head, tick))
+    return name, shaft, head, tick
+
+
+def _plate_marks(spec: CamSpec, cam: Cam) -> tuple:
+    strip = cam.base_radius                              # the plate under its profile, from y = 0
+    height = max(1.0, min(5.0, 0.3 * strip))
+    y = 0.5 * strip
+    name = Text(spec.name, (0.1 * spec.cam.travel, y - 0.5 * height), height)
+    tip_x = 0.6 * spec.cam.travel
+    shaft, head = _arrow(np.array([tip_x + 4 * height, y]), np.array([tip_x, y]), 0.0, height, np.array([1.0, 0.0]))
+    tick = Polyline(np.array([[0.0, strip - 2 * height], [0.0, strip - height]]), np.zeros(1))
+    return name, shaft, head, tick
+
+
+def _check_marks(spec: CamSpec, body: Any, marks: tuple) -> None:
+    """Every mark (name, arrow, tick) lies on the part, off its holes, and clear of the other marks."""
+    import shapely
+
+    def footprint(mark: Any) -> Any:
+        if isinstance(mark, Text):
+            x, y = mark.position
+            return shapely.box(x, y, x + 0.6 * mark.height * len(mark.text), y + mark.height)
+        return shapely.LineString(mark.flatten(0.05)).buffer(0.2)
+
+    solid = body
+    for hole in _holes(spec, 0.0):
+        solid = solid.difference(shapely.Polygon(hole.flatten(0.05)))
+    name, shaft, head, tick = (footprint(m) for m in marks)
+    groups = [name, shaft.union(head), tick]
+    if not all(solid.contains(g) for g in groups) or any(a.intersects(b) for a, b in itertools.combinations(groups, 2)):
+        raise DesignError("hub.engrave: the name, the arrow and the theta = 0 tick do not fit on the part clear of "
+                          "each other and of the holes; shorten the name, or leave hub.engrave off")
 
 
 def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,

@@ -6,6 +6,10 @@ Importable objects (loaded on first use)::
     fb = linkgen.FourBar(ground=180, crank=80, coupler=200, rocker=150)
     fb.grashof.inversion                      # 'crank-rocker'
     fb.positions([0.5], "open").theta4        # rocker angle, rad
+
+    spec = linkgen.load_spec("templates/crank-rocker.toml")
+    design = linkgen.design_linkage(spec, angle=30, parts=True)   # kinematics, report, parts; no I/O
+    linkgen.write_linkage(design, "out/crank-rocker")            # report, figures, sheet, assembly, meshes
 """
 from __future__ import annotations
 
@@ -13,12 +17,15 @@ import importlib
 from typing import Any
 
 _EXPORTS = {
-    "FourBar": "linkgen.fourbar", "classify": "linkgen.grashof", "classify_chain": "linkgen.grashof",
-    "SliderCrank": "linkgen.slidercrank", "ScotchYoke": "linkgen.slidercrank",
-    "CrankShaper": "linkgen.quickreturn", "Whitworth": "linkgen.quickreturn",
-    "straight_line": "linkgen.straightline",
-    "load_linkage": "linkgen.spec", "validate_linkage": "linkgen.spec",
-    "analyze": "linkgen.analyze", "build_parts": "linkgen.build", "write_analysis": "linkgen.outputs",
+    "FourBar": "linkgen.kinematics.fourbar", "classify": "linkgen.kinematics.grashof",
+    "classify_chain": "linkgen.kinematics.grashof",
+    "SliderCrank": "linkgen.kinematics.slidercrank", "ScotchYoke": "linkgen.kinematics.slidercrank",
+    "CrankShaper": "linkgen.kinematics.quickreturn", "Whitworth": "linkgen.kinematics.quickreturn",
+    "straight_line": "linkgen.kinematics.straightline",
+    "Mechanism": "linkgen.mechanisms", "MECHANISMS": "linkgen.mechanisms",
+    "LinkageSpec": "linkgen.spec", "load_spec": "linkgen.spec", "validate_spec": "linkgen.spec",
+    "LinkageDesign": "linkgen.design", "design_linkage": "linkgen.design", "analyze": "linkgen.design",
+    "linkage_bundle": "linkgen.outputs", "write_linkage": "linkgen.outputs",
 }
 
 __all__ = list(_EXPORTS)

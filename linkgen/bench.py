@@ -6,21 +6,18 @@ Results go to ``RESULTS.md`` and ``results.json``.
 """
 from __future__ import annotations
 
-import json
 import math
-import resource
-import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from camgen.core.errors import CamgenError
+from camgen.core import bench as core_bench
 from camgen.core.bench import timed
-from linkgen.fourbar import FourBar
-from linkgen.slidercrank import SliderCrank
+from linkgen.kinematics.fourbar import FourBar
+from linkgen.kinematics.slidercrank import SliderCrank
 
 
 def linkage_speed(repeats: int) -> list[dict]:
@@ -81,14 +78,10 @@ def _pylinkage(n: int, exact: np.ndarray, repeats: int) -> list[dict]:
 
 def hard_cases() -> list[dict]:
     """Each hard case with what happened: a sound value, or a clean refusal (never NaN or garbage)."""
-    rows = []
+    return core_bench.hard_cases(_cases())
 
-    def record(name: str, func: Callable[[], str]) -> None:
-        try:
-            rows.append({"case": name, "outcome": func()})
-        except CamgenError as exc:
-            rows.append({"case": name, "outcome": f"refused: {exc}"})
 
+def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
     fb = FourBar(100, 70, 60, 80)
     _, hi = fb.input_ranges()[0]
     for offset in (0.0, 1e-12):
@@ -98,31 +91,24 @@ def hard_cases() -> list[dict]:
             return f"{'ok' if closes and np.isfinite(p.theta4).all() else 'WRONG'}: transmission " \
                    f"{math.degrees(p.gamma[0]):.6f} deg"
 
-        record(f"four-bar {offset:g} rad inside its toggle", toggle)
-    record("four-bar 1e-6 rad beyond its toggle", lambda: str(fb.positions([hi + 1e-6]).theta3))
+        yield f"four-bar {offset:g} rad inside its toggle", toggle
+    yield "four-bar 1e-6 rad beyond its toggle", lambda: str(fb.positions([hi + 1e-6]).theta3)
     par = FourBar(100, 40, 100, 40)
-    record("parallelogram through its change points", lambda: "ok" if np.abs(np.sin(par.sweep(
-        np.radians(np.linspace(10, 730, 1441)), "open").theta3)).max() < 1e-12 else "WRONG")
+    yield "parallelogram through its change points", lambda: "ok" if np.abs(np.sin(par.sweep(
+        np.radians(np.linspace(10, 730, 1441)), "open").theta3)).max() < 1e-12 else "WRONG"
     sc = SliderCrank(50.0, 50.0 + 1e-9)
-    record("slider-crank with rod = crank + 1e-9", lambda: "ok" if np.isfinite(sc.motion(
-        np.linspace(0, 2 * math.pi, 721), 1.0).a).all() else "WRONG")
-    return rows
+    yield "slider-crank with rod = crank + 1e-9", lambda: "ok" if np.isfinite(sc.motion(
+        np.linspace(0, 2 * math.pi, 721), 1.0).a).all() else "WRONG"
 
 
 def run_bench(out: str | Path, quick: bool = False) -> dict:
     """Run everything; write RESULTS.md and results.json into ``out``; return the results."""
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     repeats = 1 if quick else 5
-    results = {"quick": quick, "python": sys.version.split()[0], "linkages": linkage_speed(repeats),
-               "peak_memory_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
-               "hard_cases": hard_cases()}
-    (out / "results.json").write_text(json.dumps(results, indent=2, default=str) + "\n")
-    (out / "RESULTS.md").write_text(_markdown(results))
-    return results
+    return core_bench.finish(Path(out), {"quick": quick, "linkages": linkage_speed(repeats),
+                                         "hard_cases": hard_cases()}, _markdown)
 
 
-def _markdown(r: dict) -> str:
+def _markdown(r: dict) -> list[str]:
     lines = ["# linkgen bench", "", f"Python {r['python']}; {'quick run' if r['quick'] else 'full run'}; "
              "median of repeats.", "",
              "## Linkage positions (rocker pin of the reference crank-rocker)", "",
@@ -132,11 +118,7 @@ def _markdown(r: dict) -> str:
         err = "-" if row.get("max_error_mm") is None else f"{row['max_error_mm']:.1e}"
         status = row.get("status", "measured")
         lines.append(f"| {row['method']} | {row.get('angles') or '-'} | {sec} | {err} | {status} |")
-    lines += ["", "Errors of linkage positions are against linkgen's closed form (which the tests check against "
-              "50-digit references); pylinkage's first call includes its compilation: "
-              + "; ".join(f"{row['method']} at {row['angles']}: {row['first_call_seconds']:.3f} s"
-                          for row in r["linkages"] if "first_call_seconds" in row) + ".",
-              "", f"Peak resident memory: {r['peak_memory_mb']:.0f} MB.", "", "## Hard cases", "",
-              "| case | outcome |", "|---|---|"]
-    lines += [f"| {row['case']} | {row['outcome']} |" for row in r["hard_cases"]]
-    return "\n".join(lines) + "\n"
+    return [*lines, "", "Errors of linkage positions are against linkgen's closed form (which the tests check "
+                    "against 50-digit references); pylinkage's first call includes its compilation: "
+                    + "; ".join(f"{row['method']} at {row['angles']}: {row['first_call_seconds']:.3f} s"
+                                for row in r["linkages"] if "first_call_seconds" in row) + "."]

@@ -1,4 +1,4 @@
-"""The ``linkgen`` command: load -> validate -> analyse -> print and write. Errors: one line, exit code 2."""
+"""The ``linkgen`` command: load the spec -> design -> bundle -> write, and print. Errors: one line, exit code 2."""
 from __future__ import annotations
 
 import json
@@ -7,17 +7,18 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import family_options, report_family, user_errors
+from camgen.core.cli import (Commands, add_bench, add_family, set_option, template_argument,
+                             template_options, user_errors)
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="camgen")
 def main() -> None:
     """linkgen: four-bars, slider-cranks and friends, right up to the dead centres."""
 
 
 @main.command()
-@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@template_argument()
 @click.option("--angle", type=float, default=None,
               help="Input angle in degrees (the rocker's when linkage.input = 'rocker'): adds the positions there.")
 @click.option("--method", type=click.Choice(["closed", "newton"]), default="closed", show_default=True,
@@ -25,79 +26,56 @@ def main() -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print the report as JSON.")
 @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
               help="Folder for the report and plots (default: out/<name>/).")
-@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
-              help="Override a template field before validation, e.g. --set linkage.crank=60 (repeatable).")
+@set_option("linkage.crank=60")
 @user_errors
 def analyze(template: Path, angle: float | None, method: str, as_json: bool, output: Path | None,
             overrides: tuple[str, ...]) -> None:
-    """Analyse the linkage described by TEMPLATE (a TOML file)."""
+    """Analyze the linkage described by TEMPLATE (a TOML file)."""
     from camgen.core.errors import SpecError
-    from linkgen.analyze import analyze as run
-    from linkgen.outputs import write_analysis
-    from linkgen.spec import load_linkage
+    from linkgen.design import design_linkage
+    from linkgen.outputs import write_linkage
+    from linkgen.spec import load_spec
 
-    spec = load_linkage(template, overrides)
+    spec = load_spec(template, overrides)
     if method == "newton" and angle is None:
         raise SpecError("the Newton-Raphson table needs an input angle: add --angle DEG", "--method")
-    report = run(spec, angle, method)
+    design = design_linkage(spec, angle, method)
     directory = output if output is not None else Path("out") / spec.name
-    files = write_analysis(spec, report, directory)
+    files = write_linkage(design, directory)
     if as_json:
-        click.echo(json.dumps({**report, "files": files}, indent=2))
+        click.echo(json.dumps({**design.report, "files": files}, indent=2))
         return
-    _print_text(report)
+    _print_text(design.report)
     for name in files.values():
         click.echo(f"wrote {directory / name}")
 
 
 @main.command()
-@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Output folder (default: out/<name>/).")
-@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE", help="Override a template field.")
+@template_options("parts.kerf=0.2")
 @user_errors
 def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
     """Make the parts of the linkage in TEMPLATE: cut sheet, assembly drawing, meshes and the report."""
-    from linkgen.analyze import analyze as run
-    from linkgen.build import build_parts
-    from linkgen.outputs import write_analysis
-    from linkgen.spec import load_linkage
+    from linkgen.design import design_linkage
+    from linkgen.outputs import write_linkage
+    from linkgen.spec import load_spec
 
-    spec = load_linkage(template, overrides)
-    built = build_parts(spec)
+    spec = load_spec(template, overrides)
+    design = design_linkage(spec, parts=True)
     directory = output if output is not None else Path("out") / spec.name
-    files = write_analysis(spec, run(spec), directory, built)
-    order = sorted(built.layers, key=lambda k: built.layers[k])
-    click.echo(f"{spec.name}: {len(built.parts)} parts; layers from the bottom: {', '.join(order)}")
+    files = write_linkage(design, directory)
+    built = design.build
+    click.echo(f"{spec.name}: {len(built.parts)} parts; layers from the bottom: {', '.join(built.layer_names)}")
     for name in files.values():
         click.echo(f"wrote {directory / name}")
 
 
-@main.command()
-@family_options
-@user_errors
-def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
-    """Analyse (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes."""
-    from camgen.core.family import build_family
-    from linkgen.outputs import build_member
-    from linkgen.spec import validate_linkage
-
-    report_family(build_family(template, output, validate_linkage, build_member, jobs, scheduler), output)
+add_family(main, "linkgen.spec:validate_spec", "linkgen.outputs:build_member",
+           "Analyze (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes; "
+           "re-running resumes.")
 
 
-@main.command()
-@click.option("--quick", is_flag=True, help="Fewer repeats.")
-@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=Path("out/linkgen-bench"),
-              show_default=True, help="Folder for RESULTS.md and results.json.")
-@user_errors
-def bench(quick: bool, output: Path) -> None:
-    """Measure linkage positions against a plain closed form and pylinkage, and rerun the hard cases."""
-    from linkgen.bench import run_bench
-
-    results = run_bench(output, quick)
-    wrong = [c for c in results["hard_cases"] if c["outcome"].startswith("WRONG")]
-    click.echo(f"wrote {output / 'RESULTS.md'}, {output / 'results.json'}")
-    click.echo(f"{len(results['linkages'])} position rows; {len(results['hard_cases'])} hard cases, {len(wrong)} wrong")
+add_bench(main, "linkgen.bench:run_bench", Path("out/linkgen-bench"),
+          "Measure linkage positions against a plain closed form and pylinkage, and rerun the hard cases.")
 
 
 def _print_text(r: dict[str, Any]) -> None:

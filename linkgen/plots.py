@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.figures import figure
-from linkgen.fourbar import FourBar, Poses
+from linkgen.kinematics.fourbar import FourBar, Poses
 
 
 def _input_grid(fb: FourBar, n: int = 721) -> list[np.ndarray]:

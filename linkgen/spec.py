@@ -1,100 +1,37 @@
-"""Linkage templates: one validated, frozen model per linkage type.
+"""Linkage specs: a template (the TOML a user writes) validated into a frozen :class:`LinkageSpec`.
 
-The ``[linkage]`` table's ``type`` picks the model; every other key is checked by
-it, with the same one-line errors as camgen's (``linkage.crank: must be > 0 mm
-(got -5)``).
+The ``[linkage]`` table's ``type`` picks the mechanism (:data:`linkgen.mechanisms.MECHANISMS`),
+whose table model checks every other key, with the same one-line errors as camgen's
+(``linkage.crank: must be > 0 mm (got -5)``). ``[parts]`` is a :class:`PartsTable` and
+``[output]`` the shared :class:`camgen.core.spec.OutputTable`.
 """
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, ClassVar
 
-from pydantic import Field
+from pydantic import Field, create_model, model_validator
 
 from camgen.core.errors import SpecError
-from camgen.core.spec import NAME_PATTERN, Model, read_template, unit, validate
-
-LINKAGE_TYPES = ("four-bar", "slider-crank", "scotch-yoke", "whitworth", "crank-shaper",
-                 "chebyshev", "hoekens", "roberts", "watt")
-FORMATS = ("json", "png", "svg", "cut-svg", "dxf", "stl", "3mf")
-
-
-def _length(description: str) -> Any:
-    return Field(gt=0, description=description, json_schema_extra=unit("mm"))
-
-
-def _rpm() -> Any:
-    return Field(60.0, gt=0, description="input speed", json_schema_extra=unit("rpm"))
-
-
-class FourBarSpec(Model):
-    type: Literal["four-bar"]
-    ground: float = _length("ground link: input pivot to output pivot")
-    crank: float = _length("input link")
-    coupler: float = _length("coupler")
-    rocker: float = _length("output link")
-    point_distance: float = Field(0.0, ge=0, description="coupler point: distance from the crank pin",
-                                  json_schema_extra=unit("mm"))
-    point_angle: float = Field(0.0, description="coupler point: angle from the coupler line, counter-clockwise",
-                               json_schema_extra=unit("degrees"))
-    assembly: Literal["open", "crossed"] = Field("open", description="assembly branch")
-    input: Literal["crank", "rocker"] = Field("crank", description="driven link")
-    rpm: float = _rpm()
-
-
-class SliderCrankSpec(Model):
-    type: Literal["slider-crank"]
-    crank: float = _length("crank")
-    rod: float = _length("connecting rod")
-    offset: float = Field(0.0, description="slider line above the crank pivot", json_schema_extra=unit("mm"))
-    rpm: float = _rpm()
-
-
-class ScotchYokeSpec(Model):
-    type: Literal["scotch-yoke"]
-    crank: float = _length("crank")
-    rpm: float = _rpm()
-
-
-class WhitworthSpec(Model):
-    type: Literal["whitworth"]
-    crank: float = _length("driving crank")
-    ground: float = _length("crank pivot to slotted-link pivot (< crank)")
-    arm: float = _length("ram-driving arm on the slotted link")
-    rod: float = _length("connecting rod from the arm to the ram")
-    rpm: float = _rpm()
-
-
-class CrankShaperSpec(Model):
-    type: Literal["crank-shaper"]
-    crank: float = _length("driving crank")
-    ground: float = _length("crank pivot to lever pivot (> crank)")
-    lever: float = _length("lever pivot to the ram line")
-    rpm: float = _rpm()
-
-
-class StraightLineSpec(Model):
-    type: Literal["chebyshev", "hoekens", "roberts", "watt"]
-    size: float = _length("scale: the length that is 1 in the canonical proportions")
-    rpm: float = _rpm()
-
-
-class LinkOutputSpec(Model):
-    formats: tuple[Literal[FORMATS], ...] = Field(FORMATS, min_length=1,  # type: ignore[valid-type]
-                                                  description="files to write")
+from camgen.core.options import choose
+from camgen.core.spec import Model, OutputTable, name_field, read_template, unit, validate
+from linkgen.mechanisms import MECHANISMS, Mechanism
+from linkgen.mechanisms.common import length
 
 
 class LinkOverride(Model):
     width: float = Field(gt=0, description="this link's width", json_schema_extra=unit("mm"))
 
 
-class PartsTableSpec(Model):
-    """Parts to cut and print (``linkgen build``)."""
+class PartsTable(Model):
+    """Parts to cut and print (``linkgen build``); lengths in mm. Holes are pin + clearance in diameter (printed),
+    less the kerf (cut); a link's own table (``[parts.crank]``) overrides the width of that link."""
 
-    width: float = _length("bar width")
-    thickness: float = _length("plate thickness")
-    pin_diameter: float = _length("pin diameter")
+    width: float = length("bar width")
+    thickness: float = length("plate thickness")
+    pin_diameter: float = length("pin diameter")
     clearance: float = Field(0.2, ge=0, description="pin clearance: holes are pin + clearance",
                              json_schema_extra=unit("mm"))
     kerf: float = Field(0.0, ge=0, description="laser kerf: cut holes shrink by it, outlines grow by half",
@@ -113,39 +50,53 @@ class PartsTableSpec(Model):
     rod: LinkOverride | None = None
     slider: LinkOverride | None = None
 
+    @model_validator(mode="after")
+    def _holes_leave_material(self) -> PartsTable:
+        hole = self.pin_diameter + self.clearance - self.kerf
+        if hole >= self.width:
+            raise ValueError(f"pin_diameter: holes of {hole:g} mm leave no material in bars {self.width:g} mm wide")
+        return self
 
-def _template(spec: type[Model]) -> type[Model]:
-    class Template(Model):
-        name: str = Field(pattern=NAME_PATTERN, description="linkage name, used for file names")
-        linkage: spec  # type: ignore[valid-type]
-        parts: PartsTableSpec | None = None
-        output: LinkOutputSpec = LinkOutputSpec()
-
-    Template.__name__ = f"{spec.__name__}Template"
-    return Template
-
-
-SPECS: Mapping[str, type[Model]] = {
-    "four-bar": FourBarSpec, "slider-crank": SliderCrankSpec, "scotch-yoke": ScotchYokeSpec,
-    "whitworth": WhitworthSpec, "crank-shaper": CrankShaperSpec,
-    **{name: StraightLineSpec for name in ("chebyshev", "hoekens", "roberts", "watt")},
-}
-TEMPLATES: Mapping[type[Model], type[Model]] = {spec: _template(spec) for spec in set(SPECS.values())}
+    def width_of(self, link: str) -> float:
+        """The width (mm) of the part named ``link``: its own table's, else ``width``."""
+        override = getattr(self, link, None)
+        return override.width if isinstance(override, LinkOverride) else self.width
 
 
-def validate_linkage(raw: Mapping[str, Any]) -> Any:
-    """The template model for ``raw['linkage']['type']``, validated; a one-line :class:`SpecError` otherwise."""
+class LinkageSpec(Model):
+    """A validated linkage template. Each mechanism has its own subclass (:func:`spec_model`), whose ``linkage``
+    is that mechanism's table and whose :attr:`mechanism` is the mechanism."""
+
+    name: str = name_field("linkage")
+    linkage: Model
+    parts: PartsTable | None = None
+    output: OutputTable = OutputTable()
+
+    #: the mechanism registered for ``linkage.type``
+    mechanism: ClassVar[Any] = None
+
+
+@functools.cache
+def spec_model(mechanism: Mechanism) -> type[LinkageSpec]:
+    """The :class:`LinkageSpec` of templates of ``mechanism`` (made once a mechanism)."""
+    model = create_model(f"{mechanism.table.__name__}Spec", __base__=LinkageSpec, linkage=(mechanism.table, ...))
+    model.mechanism = mechanism
+    return model
+
+
+def validate_spec(raw: Mapping[str, Any], mechanisms: Mapping[str, Mechanism] = MECHANISMS) -> LinkageSpec:
+    """The spec of a raw template, its ``[linkage]`` validated by the mechanism ``mechanisms`` registers for its
+    type; a one-line :class:`SpecError` otherwise."""
     linkage = raw.get("linkage")
     if not isinstance(linkage, Mapping):
         raise SpecError("missing: give a [linkage] table with its type and lengths", "linkage")
     kind = linkage.get("type")
     if kind is None:
-        raise SpecError(f"missing: one of {', '.join(LINKAGE_TYPES)}", "linkage.type")
-    if kind not in SPECS:
-        raise SpecError(f"must be one of {', '.join(LINKAGE_TYPES)} (got {kind!r})", "linkage.type")
-    return validate(TEMPLATES[SPECS[kind]], raw)
+        raise SpecError(f"missing: one of {', '.join(mechanisms)}", "linkage.type")
+    return validate(spec_model(mechanisms[choose(kind, mechanisms, "linkage.type")]), raw)
 
 
-def load_linkage(path: str | Path, overrides: Iterable[str] = ()) -> Any:
+def load_spec(path: str | Path, overrides: Iterable[str] = (),
+              mechanisms: Mapping[str, Mechanism] = MECHANISMS) -> LinkageSpec:
     """Read a TOML linkage template, merge ``key=value`` overrides, validate."""
-    return validate_linkage(read_template(path, overrides))
+    return validate_spec(read_template(path, overrides), mechanisms)

@@ -26,8 +26,10 @@ def test_import_stays_light():
 
 def test_objects_render_themselves_as_svg():
     design = camgen.design_cam(template())
-    for obj in (design, design.part, camgen.Drawing.of_part(design.part), linkgen.FourBar(180, 80, 200, 150, 100, 0.5),
-                linkgen.FourBar(100, 70, 60, 80)):
+    linkages = [linkgen.design_linkage(linkgen.validate_spec({"name": "fb", "linkage": {"type": "four-bar", **table}}))
+                for table in ({"ground": 180, "crank": 80, "coupler": 200, "rocker": 150, "point_distance": 100,
+                               "point_angle": 28.6479}, {"ground": 100, "crank": 70, "coupler": 60, "rocker": 80})]
+    for obj in (design, design.part, camgen.Drawing.of_part(design.part), *linkages):
         root = ET.fromstring(obj._repr_svg_())
         assert root.tag.endswith("svg") and root.get("width").endswith("mm")
         assert root.findall(".//{http://www.w3.org/2000/svg}path")

@@ -40,6 +40,8 @@ BREAKS = {
     "kinematics": ("camgen/numeric.py", "import pydantic"),
     "cli": ("camgen/design.py", "import click"),
     "flow": ("camgen/cam.py", "import camgen.outputs"),
+    "linkgen-kinematics": ("linkgen/kinematics/fourbar.py", "import pydantic"),
+    "linkgen-flow": ("linkgen/parts.py", "import linkgen.design"),
 }
 
 
@@ -74,6 +76,9 @@ def test_the_contracts_name_every_module():
     assert set(CONTRACTS["linkgen"]["forbidden_modules"]) == others
     flow = {m.strip() for layer in CONTRACTS["flow"]["layers"] for m in layer.split("|")}
     assert flow == others | {"camgen.core"}
+    linkgen = _top_level("linkgen")
+    assert {m.strip() for layer in CONTRACTS["linkgen-flow"]["layers"] for m in layer.split("|")} == linkgen
+    assert set(CONTRACTS["linkgen-kinematics"]["forbidden_modules"]) >= linkgen - {"linkgen.kinematics"}
 
 
 def _calls(path) -> list[str]:

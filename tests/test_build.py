@@ -176,7 +176,7 @@ def test_installed_command_runs_as_a_process(tmp_path):
     assert (tmp_path / "out" / "rdrd" / "rdrd.json").exists()
     bad = subprocess.run([sys.executable, "-m", "camgen", "build", str(TEMPLATE), "--set", "cam.bore=-1"],
                          cwd=tmp_path, capture_output=True, text=True)
-    assert bad.returncode == 2 and bad.stderr.startswith("error: cam.bore: must be >= 0 mm")
+    assert bad.returncode == 2 and bad.stderr.startswith("error: cam.bore: must be >= 0 and <= 10000 mm")
     assert "Traceback" not in bad.stderr
 
 

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from camgen.core.errors import SolverError, SpecError
-from linkgen.fourbar import FourBar
+from linkgen.kinematics.fourbar import FourBar
 
 CRANK_ROCKER = FourBar(180, 80, 200, 150)
 CASES = [CRANK_ROCKER, FourBar(6, 2, 7, 9), FourBar(50, 150, 200, 180), FourBar(100, 70, 60, 80),

@@ -6,7 +6,7 @@ import itertools
 import pytest
 
 from camgen.core.errors import SpecError
-from linkgen.grashof import classify, classify_chain
+from linkgen.kinematics.grashof import classify, classify_chain
 
 # A Grashof chain in loop order with the shortest link at index 0 (2 + 6 < 4 + 5).
 CHAIN = (2.0, 5.0, 6.0, 4.0)
@@ -61,7 +61,7 @@ def test_near_change_points(nudge, cls):
     ((1.0, 2.0, 30.0, 4.0), "linkage.coupler"),
 ])
 def test_degenerate_lengths_are_refused(lengths, field):
-    from linkgen.fourbar import FourBar
+    from linkgen.kinematics.fourbar import FourBar
 
     with pytest.raises(SpecError) as err:
         FourBar(*lengths)

@@ -10,9 +10,9 @@ import pytest
 import shapely
 from click.testing import CliRunner
 
-from linkgen.build import build_parts
 from linkgen.cli import main
-from linkgen.spec import load_linkage
+from linkgen.design import design_linkage
+from linkgen.spec import load_spec
 from tests.conftest import ROOT
 
 TEMPLATE = ROOT / "templates" / "crank-rocker.toml"
@@ -85,7 +85,7 @@ def test_stl_per_part_watertight_with_printing_clearance(built):
 def test_dead_centre_drawings_sit_where_the_kinematics_puts_them(built):
     import ezdxf
 
-    from linkgen.fourbar import FourBar
+    from linkgen.kinematics.fourbar import FourBar
 
     out, report = built
     fb = FourBar(180, 80, 200, 150, 120, math.radians(30))
@@ -106,13 +106,13 @@ def test_dead_centre_drawings_sit_where_the_kinematics_puts_them(built):
 
 
 def test_parts_on_one_layer_never_meet_over_a_full_sweep():
-    t = load_linkage(TEMPLATE)
-    b = build_parts(t)
-    from linkgen.bars import fourbar_placement
-    from linkgen.fourbar import FourBar
+    t = load_spec(TEMPLATE)
+    b = design_linkage(t, parts=True).build
+    from linkgen.kinematics.fourbar import FourBar
+    from linkgen.mechanisms.fourbar import placement
 
     fb = FourBar(180, 80, 200, 150)
-    place = fourbar_placement(fb, np.linspace(0, 2 * math.pi, 721), "open")
+    place = placement(fb, np.linspace(0, 2 * math.pi, 721), "open")
     moving = [p for p in b.parts if p.moving]
     for p, q in itertools.combinations(moving, 2):
         if b.layers[p.name] != b.layers[q.name]:

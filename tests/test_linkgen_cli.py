@@ -97,7 +97,9 @@ def test_rocker_input_reports_dead_points(tmp_path):
     (["linkage.crank=-5"], "linkage.crank: must be > 0 mm (got -5)"),
     (["linkage.crank=nan"], "linkage.crank: must be a finite number"),
     (["linkage.rocker=1000"], "linkage.rocker: 1000 mm is not shorter than the other three links together"),
-    (["linkage.type='five-bar'"], "linkage.type: must be one of four-bar"),
+    (["linkage.type='five-bar'"], "linkage.type: unknown value 'five-bar' (did you mean 'four-bar'?); one of "
+                                  "four-bar, slider-crank, scotch-yoke, whitworth, crank-shaper, chebyshev, hoekens, "
+                                  "roberts, watt"),
     (["linkage.colour=1"], "linkage.colour: unknown key"),
     (["linkage.coupler=60", "linkage.crank=70", "linkage.ground=100", "linkage.rocker=80"],
      "angle: crank angle 200 degrees is out of reach; this linkage reaches crank angles [-109.616, 109.616]"),

@@ -26,17 +26,17 @@ def test_every_template_key_is_documented(prefix, model):
 
 
 def test_every_linkage_key_is_documented():
-    from linkgen.spec import SPECS
+    from linkgen.mechanisms import MECHANISMS
 
-    for spec in set(SPECS.values()):
-        for key in spec.model_fields:
+    for table in {m.table for m in MECHANISMS.values()}:
+        for key in table.model_fields:
             assert f"| `linkage.{key}` |" in README, f"linkage.{key} is not in the README's linkgen key table"
 
 
 def test_every_parts_key_is_documented():
-    from linkgen.spec import PartsTableSpec
+    from linkgen.spec import PartsTable
 
-    for key in PartsTableSpec.model_fields:
+    for key in PartsTable.model_fields:
         assert f"`parts.{key}`" in README, f"parts.{key} is not in the README"
 
 

@@ -282,3 +282,33 @@ def test_two_point_conditions_with_slopes_are_met():
     d = law.derivatives(np.array([0.0, 1.0]))
     for u, k, v in conds:
         assert d[k][int(u)] == pytest.approx(v, abs=1e-11)
+
+
+@pytest.mark.parametrize("template, sets", [(RDRD, []), (RDRD, ["cam.rotation='cw'"]), (PLATE, []),
+                                            (RDRD, ["hub.bolt_holes=4", "hub.bolt_circle=30",
+                                                    "hub.bolt_hole_diameter=4", "name='a-much-longer-cam-name'"])])
+def test_engraved_marks_lie_on_the_part_clear_of_each_other(template, sets):
+    """Read from the design as a laser would get them: the name's box, the arrow and the tick lie inside the
+    part, off the holes, and apart."""
+    import shapely
+
+    from camgen.core.spec import read_template
+    from camgen.design import design_cam
+    from camgen.spec import validate_spec
+
+    d = design_cam(validate_spec(read_template(template, ["hub.engrave=true", *sets])))
+    part = shapely.Polygon(d.cut.outline.flatten(0.01), [h.flatten(0.01) for h in d.cut.holes])
+    marks = [m for _, m in d.cut.marks]
+    name = marks[0]
+    box = shapely.box(name.position[0], name.position[1], name.position[0] + 0.6 * name.height * len(name.text),
+                      name.position[1] + name.height)
+    arrow = shapely.MultiLineString([m.flatten(0.01) for m in marks[1:3]])
+    tick = shapely.LineString(marks[3].flatten(0.01))
+    assert all(part.contains(g) for g in (box, arrow, tick))
+    assert not box.intersects(arrow) and not box.intersects(tick) and not arrow.intersects(tick)
+    assert min(shapely.LineString(m.flatten(0.01)).length for m in marks[1:]) > 1.0    # no dot fired in one place
+
+
+def test_marks_that_cannot_fit_are_refused(tmp_path):
+    refused(["build", str(RDRD), "-o", str(tmp_path / "o"), "--set", "hub.engrave=true", "--set", "cam.bore=57",
+             "--set", "cam.base_radius=30"], tmp_path / "o", "hub.engrave: the name, the arrow and the theta = 0 tick")

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from camgen.core.errors import SpecError
-from linkgen.quickreturn import CrankShaper, Whitworth
-from linkgen.slidercrank import ScotchYoke, SliderCrank
-from linkgen.straightline import straight_line
+from linkgen.kinematics.quickreturn import CrankShaper, Whitworth
+from linkgen.kinematics.slidercrank import ScotchYoke, SliderCrank
+from linkgen.kinematics.straightline import straight_line
 
 T = np.linspace(0, 2 * math.pi, 721)
 

@@ -6,6 +6,7 @@ turns the project's errors into one line on stderr and exit code 2.
 from __future__ import annotations
 
 import functools
+import importlib
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -94,15 +95,35 @@ def family_options(func: Callable[..., Any]) -> Callable[..., Any]:
                           "processes.")))
 
 
-def add_bench(group: click.Group, run: Callable[[Path, bool], dict], default: Path, what: str) -> None:
-    """Give ``group`` a ``bench [--quick] [-o DIR]`` command running ``run(folder, quick)``; ``what`` is its help."""
+def _named(name: str) -> Any:
+    """The object a ``"module:attribute"`` name points to (imported when a command first needs it)."""
+    module, _, attr = name.partition(":")
+    return getattr(importlib.import_module(module), attr)
+
+
+def add_family(group: click.Group, validate: str, build_member: str, what: str) -> None:
+    """Give ``group`` a ``family TEMPLATE -o DIR [--jobs N] [--scheduler ADDRESS]`` command; ``validate`` (raw
+    template -> spec) and ``build_member`` (raw template, folder -> summary row) are ``"module:function"``."""
+    @group.command(name="family", help=what)
+    @family_options
+    @user_errors
+    def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
+        from camgen.core.family import build_family
+
+        report_family(build_family(template, output, _named(validate), _named(build_member), jobs, scheduler),
+                      output)
+
+
+def add_bench(group: click.Group, run: str, default: Path, what: str) -> None:
+    """Give ``group`` a ``bench [--quick] [-o DIR]`` command running ``run(folder, quick)`` (a ``"module:function"``
+    name); ``what`` is its help."""
     @group.command(name="bench", help=what)
     @click.option("--quick", is_flag=True, help="Fewer tolerances, sizes and repeats.")
     @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=default,
                   show_default=True, help="Folder for RESULTS.md, results.json and any plots.")
     @user_errors
     def bench(quick: bool, output: Path) -> None:
-        results = run(output, quick)
+        results = _named(run)(output, quick)
         wrong = [c for c in results["hard_cases"] if c["outcome"].startswith("WRONG")]
         for name in sorted(p.name for p in output.iterdir()):
             click.echo(f"wrote {output / name}")

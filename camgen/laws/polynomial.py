@@ -25,11 +25,38 @@ MAX_DEGREE = 25
 
 
 @dataclass(frozen=True)
+class Bernstein:
+    """A polynomial on u in [0, 1] in the Bernstein basis: sum_i coef[i] C(n, i) u^i (1 - u)^(n - i).
+
+    Evaluated by de Casteljau's algorithm (stable at any degree); its derivative is the
+    Bernstein polynomial of n times the coefficients' differences.
+    """
+
+    coef: np.ndarray
+
+    def degree(self) -> int:
+        return len(self.coef) - 1
+
+    def deriv(self, order: int = 1) -> "Bernstein":
+        c = np.asarray(self.coef, dtype=float)
+        for _ in range(order):
+            c = (len(c) - 1) * np.diff(c) if len(c) > 1 else np.zeros(1)
+        return Bernstein(c)
+
+    def __call__(self, u: ArrayLike) -> np.ndarray:
+        u = np.atleast_1d(np.asarray(u, dtype=float))
+        b = np.tile(np.asarray(self.coef, dtype=float), (len(u), 1))
+        for _ in range(len(self.coef) - 1):
+            b = (1 - u)[:, None] * b[:, :-1] + u[:, None] * b[:, 1:]
+        return b[:, 0]
+
+
+@dataclass(frozen=True)
 class PolynomialLaw(Law):
     """A polynomial rise law f(u) held as a numpy series on the window u in [0, 1]."""
 
     name: ClassVar[str] = "polynomial"
-    series: Chebyshev | Polynomial
+    series: Chebyshev | Polynomial | Bernstein
     _derivs: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -75,7 +102,7 @@ def _two_point(conds: list[tuple], n: int) -> PolynomialLaw | None:
 
     Solved in the Bernstein basis, where the k-th derivative at u = 0 involves only the first k + 1
     coefficients and at u = 1 only the last k + 1 (forward differences), so both ends are triangular
-    solves; the result is sampled at Chebyshev points by de Casteljau and interpolated in the Chebyshev basis.
+    solves; the law stays in that basis (its derivatives at the ends are the conditions, to rounding).
     """
     ends: dict[float, dict[int, float]] = {0.0: {}, 1.0: {}}
     for u, k, v in conds:
@@ -93,13 +120,7 @@ def _two_point(conds: list[tuple], n: int) -> PolynomialLaw | None:
         scaled = ends[1.0][k] * math.factorial(n - k) / math.factorial(n)
         c[n - k] = (-1) ** k * (scaled - sum((-1) ** i * math.comb(k, i) * c[n - i] for i in range(k)))
 
-    def bernstein(u: np.ndarray) -> np.ndarray:
-        b = np.tile(c, (len(u), 1))
-        for _ in range(n):                   # de Casteljau
-            b = (1 - u)[:, None] * b[:, :-1] + u[:, None] * b[:, 1:]
-        return b[:, 0]
-
-    return PolynomialLaw(Chebyshev.interpolate(bernstein, n, domain=[0, 1]))
+    return PolynomialLaw(Bernstein(c))
 
 
 def from_conditions(conditions: Sequence[Sequence[float]], degree: int | None = None) -> PolynomialLaw:

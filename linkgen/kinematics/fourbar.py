@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SolverError, SpecError
-from linkgen.grashof import CHANGE_POINT_TOL, Grashof, check_lengths, classify
+from linkgen.kinematics.grashof import CHANGE_POINT_TOL, Grashof, check_lengths, classify
 
 Assembly = Literal["open", "crossed"]
 ASSEMBLIES: tuple[str, ...] = ("open", "crossed")
@@ -133,21 +133,6 @@ class FourBar:
         if not (math.isfinite(self.point_distance) and self.point_distance >= 0):
             raise SpecError(f"must be a finite distance >= 0 mm (got {self.point_distance})", "linkage.point_distance")
 
-    def _repr_svg_(self) -> str:
-        """Jupyter shows the linkage at its first reachable crank angle, with the coupler point's path."""
-        from camgen.core.parts import Drawing
-        from camgen.core.shapes import Polyline
-        from camgen.core.writers.svg import svg_document
-
-        ranges = self.input_ranges()
-        lo, hi = (0.0, TWO_PI) if ranges is None else ranges[0]
-        start = lo + 0.1 * (hi - lo) if ranges else math.radians(30)
-        p = self.positions([start])
-        links = np.array([[0.0, 0.0], p.a[0], p.b[0], [self.ground, 0.0], [0.0, 0.0]])
-        path = self.sweep(np.linspace(lo, hi, 181)).point
-        items = [("LINKS", Polyline(links, np.zeros(4))), ("PATH", Polyline(path, np.zeros(len(path) - 1)))]
-        return svg_document(Drawing(tuple(items), 0.01), stroke_width=0.5)
-
     # ------------------------------------------------------------------ classification
 
     @property
@@ -156,7 +141,7 @@ class FourBar:
 
     @property
     def grashof(self) -> Grashof:
-        """Class and inversion with the crank as input (see :mod:`linkgen.grashof`)."""
+        """Class and inversion with the crank as input (see :mod:`linkgen.kinematics.grashof`)."""
         return classify(self.ground, self.crank, self.coupler, self.rocker)
 
     # ------------------------------------------------------------------ reach

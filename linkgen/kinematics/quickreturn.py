@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from linkgen.slidercrank import SliderCrank, SliderMotion
+from linkgen.kinematics.slidercrank import SliderCrank, SliderMotion
 
 
 def _positive(**lengths: float) -> None:

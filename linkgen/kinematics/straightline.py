@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from camgen.core.errors import SpecError
-from linkgen.fourbar import FourBar
+from linkgen.kinematics.fourbar import FourBar
 
 #: (ground, crank, coupler, rocker, point distance, point angle rad, assembly, stroke), in units of size
 CANONICAL = {

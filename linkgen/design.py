@@ -1,0 +1,77 @@
+"""A linkage design from a spec: its kinematics, its report and, when asked, its parts. No I/O.
+
+The report (what ``linkgen analyze`` prints) is in mm and degrees: the common keys here,
+then the mechanism's own section (:meth:`linkgen.mechanisms.Mechanism.report`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from camgen.core.errors import SpecError
+from linkgen.mechanisms import Mechanism
+from linkgen.mechanisms.common import Figure
+from linkgen.parts import LinkageBuild, build_parts
+from linkgen.spec import LinkageSpec
+
+CONVENTIONS = ("input pivot at the origin, output pivot on +X; angles counter-clockwise from the ground line (+X) "
+               "in degrees; lengths in mm; speeds per second at the template's rpm")
+
+
+@dataclass(frozen=True)
+class LinkageDesign:
+    """Everything known about one linkage before anything is written: its spec, its mechanism, the kinematics object
+    the mechanism built, the report, and with parts asked for their build."""
+
+    spec: LinkageSpec
+    mechanism: Mechanism
+    kinematics: Any
+    report: dict[str, Any]
+    build: LinkageBuild | None = None
+
+    def figures(self) -> tuple[Figure, ...]:
+        """The mechanism's figures of this linkage, each drawn only when called."""
+        return self.mechanism.figures(self.spec.name, self.spec.linkage, self.kinematics)
+
+    def family_row(self) -> dict[str, Any]:
+        """What a family's summary adds for this linkage: the mechanism's columns and thumbnail."""
+        return self.mechanism.family_row(self.spec.linkage, self.kinematics, self.report)
+
+    def _repr_svg_(self) -> str | None:
+        """Jupyter shows the linkage at one pose with its path (strokes 0.5 mm wide), where the mechanism draws it."""
+        drawing = self.mechanism.sketch(self.spec.linkage, self.kinematics)
+        if drawing is None:
+            return None
+        from camgen.core.writers.svg import svg_document
+
+        return svg_document(drawing, stroke_width=0.5)
+
+
+def lengths(table: Any) -> dict[str, float]:
+    """The table's lengths: every field in mm, in the table's order."""
+    return {k: v for k, v in table.model_dump().items()
+            if (type(table).model_fields[k].json_schema_extra or {}).get("unit") == "mm"}
+
+
+def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = "closed",
+                   parts: bool = False) -> LinkageDesign:
+    """The design of a validated linkage spec: ``angle`` (the input's, degrees) adds the positions there to the
+    report, ``method`` (``closed`` or ``newton``) how they are solved; ``parts`` makes the parts of its ``[parts]``
+    table."""
+    if angle is not None and not math.isfinite(angle):
+        raise SpecError(f"must be a finite number of degrees (got {angle})", "--angle")
+    if parts and spec.parts is None:
+        raise SpecError("missing: give a [parts] table (width, thickness, pin_diameter, ...)", "parts")
+    mechanism, table = spec.mechanism, spec.linkage
+    kinematics = mechanism.build(table)
+    report: dict[str, Any] = {"name": spec.name, "type": table.type, "conventions": CONVENTIONS,
+                              "lengths_mm": lengths(table), "rpm": table.rpm,
+                              **mechanism.report(table, kinematics, angle, method)}
+    build = build_parts(mechanism.layout(table, kinematics, spec.parts), spec.parts) if parts else None
+    return LinkageDesign(spec, mechanism, kinematics, report, build)
+
+
+def analyze(spec: LinkageSpec, angle: float | None = None, method: str = "closed") -> dict[str, Any]:
+    """The report of a validated linkage spec; ``angle`` (degrees) adds the positions there."""
+    return design_linkage(spec, angle, method).report

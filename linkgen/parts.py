@@ -1,0 +1,241 @@
+"""Linkage parts for any mechanism: bars, plates and blocks with pin holes, their layers, a cut sheet and the
+assembly drawn at the dead centres. No I/O.
+
+Every part is the rounded hull of its hole centres: straight edges offset by the
+half-width and exact arcs round each centre, so a two-hole bar has its holes exactly
+one link length apart. Parts are defined in their own frame (first hole at the origin,
+second on +X) and placed by a rigid motion (turned counter-clockwise by an angle in
+radians about their first hole, which then moves to its position in mm), which keeps
+arcs exact.
+
+A mechanism gives its parts and their motion as a :class:`Layout`; :func:`build_parts`
+does the rest. Allowances (:class:`camgen.core.parts.Allowances`, applied there only): a
+part's nominal hole is pin + clearance in diameter; a cut hole is that less the kerf and
+a cut outline grows by kerf / 2; a printed hole is the nominal one.
+"""
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from camgen.core.errors import DesignError
+from camgen.core.parts import LAYER_HOLES, LAYER_OUTLINE, Allowances, Drawing, Part
+from camgen.core.shapes import Circle, Contour, Polyline, rounded_hull
+
+if TYPE_CHECKING:
+    from linkgen.spec import PartsTable
+
+#: chord tolerance (mm) of the outlines checked for collisions between moving parts
+COLLISION_TOLERANCE_MM = 0.05
+#: poses over the motion at which collisions are checked
+SWEEP = 181
+
+
+@dataclass(frozen=True)
+class Stock:
+    """What every part of one linkage shares (mm): the nominal hole diameter (pin + clearance), the plate
+    thickness and the chord tolerance of meshes and sheets."""
+
+    hole: float
+    thickness: float
+    tolerance: float
+
+    @classmethod
+    def of(cls, table: PartsTable) -> Stock:
+        """The stock a ``[parts]`` table asks for."""
+        return cls(table.pin_diameter + table.clearance, table.thickness, table.tolerance)
+
+
+@dataclass(frozen=True)
+class LinkPart:
+    """A part in its own frame: hole centres (k, 2) mm, outline half-width (mm), its stock, an optional guide slot
+    (its two end centres), whether it moves, and the points its outline rounds if not the hole centres.
+
+    A :class:`camgen.core.parts.PartMaker`: :meth:`part` makes it with any allowance.
+    """
+
+    name: str
+    centres: np.ndarray
+    half_width: float
+    stock: Stock
+    slot: tuple[np.ndarray, np.ndarray] | None = None
+    moving: bool = True
+    body: np.ndarray | None = None
+
+    def outline(self, grow: float = 0.0) -> Contour:
+        """The nominal outline moved outwards by ``grow`` mm."""
+        return rounded_hull(self.centres if self.body is None else self.body, self.half_width + grow)
+
+    def part(self, outline_grow: float, hole_grow: float) -> Part:
+        """The part with its outline moved out by ``outline_grow`` and its holes' edges by ``hole_grow`` (mm)."""
+        hole = (self.stock.hole + 2 * hole_grow) / 2
+        holes: list = [Circle(tuple(c), hole) for c in self.centres]
+        if self.slot is not None:
+            holes.append(rounded_hull(np.array(self.slot), hole))
+        return Part(self.name, self.outline(outline_grow), tuple(holes), self.stock.thickness, self.stock.tolerance)
+
+
+@dataclass(frozen=True)
+class Placement:
+    """Where each part sits at each pose: angle (rad, counter-clockwise) and the position of its first hole (mm),
+    and each joint: the two parts it joins and its positions (n, 2) mm."""
+
+    angles: dict[str, np.ndarray]
+    origins: dict[str, np.ndarray]
+    joints: dict[str, tuple[tuple[str, str], np.ndarray]]
+
+
+@dataclass(frozen=True)
+class Layout:
+    """What a mechanism gives to make its parts.
+
+    ``parts``: the parts, the ground first; ``sweep``: their placement over the motion (collisions
+    are checked there); ``positions``: the dead centres drawn in the assembly, (kind, input angle
+    rad); ``poses``: the placement at each of them (one pose each); ``path``: the points (n, 2) mm
+    of the path drawn with them (a coupler point's, a slider's).
+    """
+
+    parts: tuple[LinkPart, ...]
+    sweep: Placement
+    positions: tuple[tuple[str, float], ...]
+    poses: tuple[Placement, ...]
+    path: np.ndarray
+
+
+def layer_order(parts: tuple[LinkPart, ...], placement: Placement, pin_radius: float) -> dict[str, int]:
+    """Layers (0 = the ground plate and any other fixed part, then upwards) so that no two moving parts on one
+    layer ever overlap, parts joined by a pin are on different layers, and no part crosses a pin passing through
+    its layer.
+
+    Tries every assignment of the moving parts to layers 1..n, fewest layers first, over all poses.
+    """
+    import shapely
+
+    moving = [p for p in parts if p.moving]
+    fixed = {p.name: 0 for p in parts if not p.moving}
+    n = len(next(iter(placement.angles.values())))
+    shapes = {p.name: [shapely.Polygon(p.outline().moved(placement.angles[p.name][k], placement.origins[p.name][k])
+                                       .flatten(COLLISION_TOLERANCE_MM)) for k in range(n)]
+              for p in moving}
+    joined = {frozenset(names) for names, _ in placement.joints.values()}
+    clash = {}
+    for a, b in itertools.combinations(moving, 2):
+        clash[frozenset((a.name, b.name))] = frozenset((a.name, b.name)) in joined or any(
+            shapes[a.name][k].intersects(shapes[b.name][k]) for k in range(n))
+    for top in range(1, len(moving) + 1):
+        for layers in itertools.product(range(1, top + 1), repeat=len(moving)):
+            order = {**fixed, **{p.name: layer for p, layer in zip(moving, layers, strict=True)}}
+            if any(order[a] == order[b] and clash[frozenset((a, b))] for a, b in
+                   itertools.combinations([p.name for p in moving], 2)):
+                continue
+            if _pins_clear(order, shapes, placement, pin_radius):
+                return order
+    raise DesignError("no layer order keeps the moving parts and pins clear of each other; narrow the parts")
+
+
+def _pins_clear(order: dict[str, int], shapes: dict, placement: Placement, pin_radius: float) -> bool:
+    """No part crosses a pin that passes through its layer (a pin spans the layers of the parts it joins)."""
+    import shapely
+
+    for (first, second), where in placement.joints.values():
+        low, high = sorted((order[first], order[second]))
+        for name, poses in shapes.items():
+            if name in (first, second) or not low < order[name] < high:
+                continue
+            if any(poses[k].intersects(shapely.Point(where[k]).buffer(pin_radius)) for k in range(len(where))):
+                return False
+    return True
+
+
+def _place(part: Part, angle: float, shift: np.ndarray) -> tuple[Contour, list]:
+    """The part's outline and holes turned by ``angle`` (rad) and moved by ``shift`` (mm)."""
+    return part.outline.moved(angle, shift), [hole.moved(angle, shift) for hole in part.holes]
+
+
+def sheet(cut: tuple[Part, ...], size: tuple[float, float], gap: float, tolerance: float) -> Drawing:
+    """The parts laid on a sheet of ``size`` (width, height; mm) by shelf packing, left to right in rows from the
+    origin, each part shifted so its box starts at the cursor, ``gap`` mm apart."""
+    width, height = size
+    x = y = row = 0.0
+    items: list = []
+    for part in sorted(cut, key=lambda p: p.outline.bounds()[1] - p.outline.bounds()[3]):
+        x0, y0, x1, y1 = part.outline.bounds()
+        lo, span = np.array([x0, y0]), np.array([x1 - x0, y1 - y0])
+        if x > 0 and x + span[0] > width:
+            x, y, row = 0.0, y + row + gap, 0.0
+        if x + span[0] > width or y + span[1] > height:
+            raise DesignError(f"parts.sheet: the parts do not fit a {width:g} x {height:g} mm sheet with gaps of "
+                              f"{gap:g} mm; give a larger sheet")
+        outline, holes = _place(part, 0.0, np.array([x, y]) - lo)
+        items += [(LAYER_OUTLINE, outline), *((LAYER_HOLES, h) for h in holes)]
+        x, row = x + span[0] + gap, max(row, span[1])
+    return Drawing(tuple(items), tolerance)
+
+
+def assembly(printed: tuple[Part, ...], layout: Layout, tolerance: float) -> Drawing:
+    """The printed parts at each dead centre, each pose on its own layer (``DC1-extended``, ...), and the path on
+    ``PATH``."""
+    items: list = []
+    for i, ((kind, _), place) in enumerate(zip(layout.positions, layout.poses, strict=True)):
+        layer = f"DC{i + 1}-{kind}"
+        for part in printed:
+            outline, holes = _place(part, float(place.angles[part.name][0]), place.origins[part.name][0])
+            items += [(layer, outline), *((layer, h) for h in holes)]
+    items.append(("PATH", Polyline(layout.path, np.zeros(len(layout.path) - 1))))
+    return Drawing(tuple(items), tolerance)
+
+
+@dataclass(frozen=True)
+class LinkageBuild:
+    """A linkage's parts: nominal, as cut and as printed, their layers (0 = the ground, then upwards), the cut sheet,
+    the assembly drawing and the dead centres it shows ((kind, input angle rad))."""
+
+    parts: tuple[LinkPart, ...]
+    table: Any
+    allowances: Allowances
+    layers: dict[str, int]
+    cut: tuple[Part, ...]
+    printed: tuple[Part, ...]
+    sheet: Drawing
+    assembly: Drawing
+    positions: tuple[tuple[str, float], ...]
+
+    @property
+    def layer_names(self) -> list[str]:
+        """The parts' names from the bottom layer up."""
+        return sorted(self.layers, key=lambda k: self.layers[k])
+
+    @property
+    def report(self) -> dict[str, Any]:
+        """The report's parts section: each part's holes, width and layer, the layer order, the allowances."""
+        table, allow = self.table, self.allowances
+        entries = []
+        for link in self.parts:
+            holes = [{"x_mm": round(c[0], 9), "y_mm": round(c[1], 9)} for c in link.centres]
+            entry = {"name": link.name, "layer": self.layers[link.name], "holes": holes,
+                     "width_mm": 2 * link.half_width, "thickness_mm": link.stock.thickness,
+                     "cut_hole_diameter_mm": allow.cut_diameter(link.stock.hole),
+                     "printed_hole_diameter_mm": allow.printed_diameter(link.stock.hole)}
+            if len(link.centres) >= 2:
+                entry["hole_distance_mm"] = float(np.linalg.norm(link.centres[1] - link.centres[0]))
+            entries.append(entry)
+        return {"parts": entries, "layer_order": self.layer_names, "layers": dict(self.layers),
+                "allowances": {"kerf_mm": table.kerf, "clearance_mm": table.clearance,
+                               "cut_holes": "pin + clearance - kerf", "cut_outlines": "grown by kerf / 2",
+                               "printed_holes": "pin + clearance"},
+                "assembly_layers": [f"DC{i + 1}-{k}" for i, (k, _) in enumerate(self.positions)]}
+
+
+def build_parts(layout: Layout, table: PartsTable) -> LinkageBuild:
+    """Layers, cut and printed parts, cut sheet and assembly drawing of a mechanism's ``layout``, for its
+    ``[parts]`` table."""
+    allowances = Allowances(kerf=table.kerf, clearance=0.0, kerf_field="parts.kerf")
+    layers = layer_order(layout.parts, layout.sweep, table.pin_diameter / 2)
+    cut = tuple(allowances.cut(p) for p in layout.parts)
+    printed = tuple(allowances.printed(p) for p in layout.parts)
+    drawn = sheet(cut, table.sheet, table.kerf + table.margin, table.tolerance)
+    return LinkageBuild(layout.parts, table, allowances, layers, cut, printed, drawn,
+                        assembly(printed, layout, table.tolerance), layout.positions)
