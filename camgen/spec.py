@@ -16,7 +16,7 @@ from typing import Any, Literal
 from pydantic import Field, field_validator, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
-from camgen.core.spec import MAX_LENGTH_MM, Model, length, name_field, read_template, unit, validate
+from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
 from camgen.core.spec import OutputTable as CoreOutputTable
 from camgen.followers import FOLLOWERS
 from camgen.kinds import CAM_KINDS
@@ -228,7 +228,9 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec:
 
 def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec:
     """Read a TOML cam template (and its ``base``), merge ``key=value`` overrides, validate."""
-    return validate_spec(read_template(path, overrides))
+    raw = read_template(path, overrides)
+    check_kind(raw, "camgen")
+    return validate_spec(raw)
 
 
 def with_base_radius(spec: CamSpec, base_radius: float) -> CamSpec:

@@ -16,7 +16,7 @@ from pydantic import Field, create_model, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.options import choose
-from camgen.core.spec import Model, OutputTable, name_field, read_template, unit, validate
+from camgen.core.spec import Model, OutputTable, check_kind, name_field, read_template, unit, validate
 from linkgen.mechanisms import MECHANISMS, Mechanism
 from linkgen.mechanisms.common import length
 
@@ -99,4 +99,6 @@ def validate_spec(raw: Mapping[str, Any], mechanisms: Mapping[str, Mechanism] = 
 def load_spec(path: str | Path, overrides: Iterable[str] = (),
               mechanisms: Mapping[str, Mechanism] = MECHANISMS) -> LinkageSpec:
     """Read a TOML linkage template, merge ``key=value`` overrides, validate."""
-    return validate_spec(read_template(path, overrides), mechanisms)
+    raw = read_template(path, overrides)
+    check_kind(raw, "linkgen")
+    return validate_spec(raw, mechanisms)

@@ -312,3 +312,29 @@ def test_engraved_marks_lie_on_the_part_clear_of_each_other(template, sets):
 def test_marks_that_cannot_fit_are_refused(tmp_path):
     refused(["build", str(RDRD), "-o", str(tmp_path / "o"), "--set", "hub.engrave=true", "--set", "cam.bore=57",
              "--set", "cam.base_radius=30"], tmp_path / "o", "hub.engrave: the name, the arrow and the theta = 0 tick")
+
+
+@pytest.mark.parametrize("program, command, template, words", [
+    ("camgen", "build", "automaton-cams.toml", "template: this is a family template (it has a [sweep] table): "
+                                               "build it with `camgen family`"),
+    ("camgen", "build", "crank-rocker.toml", "template: this is a linkgen template"),
+    ("linkgen", "analyze", "rdrd.toml", "template: this is a camgen template: use `camgen build`"),
+    ("linkgen", "build", "crank-rockers.toml", "build it with `linkgen family`"),
+])
+def test_a_template_for_another_command_says_which(tmp_path, program, command, template, words):
+    from linkgen.cli import main as linkgen
+
+    refused([command, str(ROOT / "templates" / template), "-o", str(tmp_path / "o")], tmp_path / "o", words,
+            {"camgen": camgen, "linkgen": linkgen}[program])
+
+
+def test_a_misspelt_required_key_is_named_with_its_likely_spelling(tmp_path):
+    path = tmp_path / "typo.toml"
+    path.write_text(RDRD.read_text().replace("base_radius", "base_radus"))
+    refused(["build", str(path), "-o", str(tmp_path / "o")], tmp_path / "o",
+            "cam.base_radus: unknown key (did you mean 'base_radius'?)")
+
+
+def test_a_list_given_as_a_word_says_list(tmp_path):
+    refused(["build", str(RDRD), "-o", str(tmp_path / "o"), "--set", "output.formats=dxf"], tmp_path / "o",
+            "output.formats: must be a list")

@@ -10,6 +10,7 @@ with the field's unit (from ``json_schema_extra={"unit": ...}``), e.g.
 from __future__ import annotations
 
 import copy
+import difflib
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
@@ -152,6 +153,18 @@ def validate(model: type[M], raw: Mapping[str, Any]) -> M:
         raise _first_error(exc, model) from None
 
 
+def check_kind(raw: Mapping[str, Any], product: str) -> None:
+    """Refuse, naming the command that takes it, a template meant for the other product or a family template
+    given to a command that builds one design (``product`` is ``"camgen"`` or ``"linkgen"``)."""
+    if "sweep" in raw:
+        raise SpecError(f"this is a family template (it has a [sweep] table): build it with `{product} family`",
+                        "template")
+    other = "linkgen" if "linkage" in raw else "camgen" if {"cam", "follower", "motion"} & set(raw) else product
+    if other != product:
+        raise SpecError(f"this is a {other} template: use `{other} build`" + (
+            " or `linkgen analyze`" if other == "linkgen" else ""), "template")
+
+
 def read_template(path: str | Path, overrides: Iterable[str] = ()) -> dict[str, Any]:
     """A TOML template as a raw mapping: its ``base`` (a template it starts from, path relative to it)
     merged under it, then ``key=value`` overrides merged in, all before any validation."""
@@ -269,7 +282,9 @@ def _field(root: type[BaseModel], loc: tuple) -> Any:
 
 
 def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
-    err = exc.errors(include_url=False)[0]
+    errors = exc.errors(include_url=False)
+    # an unknown key first: a misspelt required key is also reported missing, and the spelling is the news
+    err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
     loc, kind, ctx = tuple(err["loc"]), err["type"], err.get("ctx", {})
     given = err.get("input")
     info = _field(root, loc)
@@ -291,12 +306,16 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
     elif kind == "extra_forbidden":
         parent = _field(root, loc[:-1])
         model = _unwrap(parent.annotation) if parent is not None else root
-        keys = ", ".join(getattr(model, "model_fields", {}))
-        msg = f"unknown key; known keys here: {keys}"
+        known = list(getattr(model, "model_fields", {}))
+        close = difflib.get_close_matches(str(loc[-1]), known, n=1)
+        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        msg = f"unknown key{hint}; known keys here: {', '.join(known)}"
     elif kind == "literal_error":
         msg = f"must be one of {ctx.get('expected')}{got}"
     elif kind in ("float_type", "float_parsing", "int_type", "int_parsing", "int_from_float"):
         msg = f"must be a {'whole ' if kind.startswith('int') else ''}number{' of ' + unit if unit else ''}{got}"
+    elif kind in ("tuple_type", "list_type"):
+        msg = f"must be a list, e.g. [...]{got}"
     elif kind == "too_short":
         msg = f"needs at least {ctx.get('min_length')} item(s)"
     elif kind == "string_pattern_mismatch":
