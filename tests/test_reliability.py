@@ -338,3 +338,45 @@ def test_a_misspelt_required_key_is_named_with_its_likely_spelling(tmp_path):
 def test_a_list_given_as_a_word_says_list(tmp_path):
     refused(["build", str(RDRD), "-o", str(tmp_path / "o"), "--set", "output.formats=dxf"], tmp_path / "o",
             "output.formats: must be a list")
+
+
+def _closed_shapes(path):
+    """Every closed cut entity of a DXF (outlines and holes) as a shapely polygon, read back with ezdxf."""
+    import ezdxf
+    import numpy as np
+    import shapely
+    from ezdxf import path as dxfpath
+
+    shapes = []
+    for e in ezdxf.readfile(path).modelspace():
+        if e.dxf.layer in ("OUTLINE", "HOLES") and e.dxftype() in ("LWPOLYLINE", "CIRCLE", "POLYLINE"):
+            pts = np.array([(v.x, v.y) for v in dxfpath.make_path(e).flattening(0.001)])
+            shapes.append((e.dxftype(), shapely.Polygon(pts)))
+    return shapes
+
+
+@pytest.mark.parametrize("template, program, sets", [
+    ("rdrd.toml", "camgen", ["hub.bolt_holes=4", "hub.bolt_circle=30", "hub.bolt_hole_diameter=4"]),
+    ("oscillating.toml", "camgen", []), ("flat-face.toml", "camgen", []), ("plate.toml", "camgen", []),
+    ("crank-rocker.toml", "linkgen", []),
+    ("slider-crank.toml", "linkgen", ["parts.width=12", "parts.thickness=4", "parts.pin_diameter=4"]),
+    ("hoekens.toml", "linkgen", ["parts.width=10", "parts.thickness=3", "parts.pin_diameter=3"]),
+])
+def test_cut_files_hold_no_duplicate_or_crossing_entities(tmp_path, template, program, sets):
+    """Read back as a laser program would: no two cut contours touch or cross, so nothing is cut twice (the
+    slider-crank's slot used to come with a hole at each end, cut over its caps)."""
+    from linkgen.cli import main as linkgen
+
+    args = ["build", str(ROOT / "templates" / template), "-o", str(tmp_path), "--set", "output.formats=['dxf']"]
+    for s in sets:
+        args += ["--set", s]
+    result = CliRunner().invoke({"camgen": camgen, "linkgen": linkgen}[program], args)
+    assert result.exit_code == 0, result.output
+    dxfs = [p for p in tmp_path.glob("*.dxf") if "assembly" not in p.name]
+    assert dxfs
+    for dxf in dxfs:
+        shapes = _closed_shapes(dxf)
+        assert shapes and all(s.is_valid and s.area > 0 for _, s in shapes)
+        for i, (_, a) in enumerate(shapes):
+            for _, b in shapes[i + 1:]:
+                assert not a.boundary.intersects(b.boundary), dxf.name

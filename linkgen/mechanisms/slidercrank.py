@@ -115,7 +115,10 @@ def slidercrank_parts(sc: SliderCrank, table: PartsTable) -> tuple[LinkPart, ...
     x_top, x_bottom = dead[0][2], dead[1][2]
     w = table.width_of("crank") / 2
     ends = (np.array([x_bottom, sc.offset]), np.array([x_top, sc.offset]))
-    base = LinkPart("ground", np.array([[0.0, 0.0], ends[0], ends[1]]), 2 * w, stock, slot=ends, moving=False)
+    # one pivot hole and the slot; the plate rounds the pivot and both ends of the slot (the slot is not a pair of
+    # holes too: its ends would be cut twice)
+    base = LinkPart("ground", np.array([[0.0, 0.0]]), 2 * w, stock, slot=ends, moving=False,
+                    body=np.array([[0.0, 0.0], ends[0], ends[1]]))
     block = table.width_of("slider")
     return (base, LinkPart("crank", np.array([[0.0, 0.0], [sc.crank, 0.0]]), w, stock),
             LinkPart("rod", np.array([[0.0, 0.0], [sc.rod, 0.0]]), table.width_of("rod") / 2, stock),
