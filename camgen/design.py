@@ -110,7 +110,8 @@ def design_profile(spec: CamSpec) -> CamDesign:
     a = analyze(cam)
     if a.undercut and (cam.follower.flat or not spec.cam.allow_undercut):
         raise DesignError(_undercut_message(spec, cam, a))
-    sharp = [i for i, turn in cam.corners() if turn > 0]
+    corners = cam.corners()
+    sharp = [i for i, turn in corners if turn > 0]
     if sharp and cam.contact_radius == 0 and not spec.cam.allow_undercut:
         at = math.degrees(cam.program.segments[sharp[0]].end) % 360.0
         i, j = sharp[0], (sharp[0] + 1) % len(spec.motion)
@@ -121,7 +122,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
                           "to cut the corner as it is")
     tol = spec.output.tolerance
     # a knife edge's corners make corners in every offset too: the noded envelope trims and rounds them exactly
-    envelope = a.undercut or (cam.contact_radius == 0 and bool(cam.corners()))
+    envelope = a.undercut or (cam.contact_radius == 0 and bool(corners))
     outline = envelope_outline(cam, tol) if envelope else exact_outline(cam, tol, _curves(spec))
 
     import shapely
@@ -176,11 +177,11 @@ class _Profile:
 
 def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
     """Peak rates and the contact check at ``cam.rpm`` (None without a speed)."""
-    t = spec
-    if t.cam.rpm is None:
+    if spec.cam.rpm is None:
         return None
-    parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(t.motion) if seg.law == "parabolic"]
-    return speed_report(cam, t.cam.rpm, t.follower.mass, t.follower.spring_rate, t.follower.preload, parabolic)
+    parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(spec.motion) if seg.law == "parabolic"]
+    f = spec.follower
+    return speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic)
 
 
 def _contact_warnings(speed: dict[str, Any] | None) -> tuple[str, ...]:
