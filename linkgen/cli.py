@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Any
 
@@ -78,6 +79,29 @@ add_bench(main, "linkgen.bench:run_bench", Path("out/linkgen-bench"),
           "Measure linkage positions against a plain closed form and pylinkage, and rerun the hard cases.")
 
 
+def _print_general(r: dict[str, Any]) -> None:
+    """The general linkage's part of the text report: mobility, solve order, toggles, dyads, outputs."""
+    out = click.echo
+    unit = "deg" if "input_range_deg" in r else "mm"
+    order = ", ".join(s["step"] if s["step"] == "input" else f"{s['step']}({'+'.join(s.get('links', []))} at "
+                      f"{s.get('joint')})" for s in r["solve_order"])
+    out(f"mobility {r['mobility']}; solved as: {order}")
+    if unit == "mm":
+        out(f"input reaches {r['input_range_mm']} mm")
+    for t in r["toggles"]:
+        out(f"  {t['kind']:<13} at input {t[f'input_{unit}']:.6f} {unit}: {'-'.join(t['links'])} in line at "
+            f"{t['joint']}")
+    for d in r["dyads"]:
+        out(f"  dyad {d['kind']} {'-'.join(d['links'])} at {d['joint']}: transmission {d['transmission_min_deg']:.3f} "
+            f"to {d['transmission_max_deg']:.3f} deg")
+    for name, o in r["outputs"].items():
+        if "swing_deg" in o:
+            ratio = "" if o.get("time_ratio") is None else f", time ratio {o['time_ratio']:.6g}"
+            out(f"  {name}: swings {o['swing_deg']:.6g} deg{ratio}")
+        elif "stroke_mm" in o:
+            out(f"  {name}: stroke {o['stroke_mm']:.6g} mm")
+
+
 def _print_text(r: dict[str, Any]) -> None:
     out = click.echo
     out(f"{r['name']}: {r['type']}, lengths {r['lengths_mm']}")
@@ -101,8 +125,14 @@ def _print_text(r: dict[str, Any]) -> None:
         s = r["straightness"]
         out(f"straight stroke {s['stroke_mm']:.6g} mm within {s['error_mm']:.4g} mm "
             f"({100 * s['error_ratio']:.3f} %), input {s['input_from_deg']:.2f} to {s['input_to_deg']:.2f} deg")
+    if "solve_order" in r:
+        _print_general(r)
     positions = r.get("positions")
-    if positions:
+    if positions and "joints" in positions:
+        for joint, p in positions["joints"].items():
+            out(f"  {joint:>6}: x {p['x_mm']:12.6f} mm  y {p['y_mm']:12.6f} mm  "
+                f"|v| {math.hypot(*p['v_mm_s']):.6g} mm/s  |a| {math.hypot(*p['a_mm_s2']):.6g} mm/s^2")
+    elif positions:
         if "slider_mm" in positions:
             out(f"at crank {positions['crank_deg']:.4f} deg: slider {positions['slider_mm']:.6f} mm, "
                 f"v {positions['velocity_mm_s']:.6g} mm/s, a {positions['acceleration_mm_s2']:.6g} mm/s^2")

@@ -48,10 +48,13 @@ class LinkageDesign:
         return svg_document(drawing, stroke_width=0.5)
 
 
-def lengths(table: Any) -> dict[str, float]:
-    """The table's lengths: every field in mm, in the table's order."""
+def lengths(table: Any) -> dict[str, Any]:
+    """The table's lengths: every number field in mm, in the table's order (a table that draws its links gives
+    them itself: ``lengths_mm()``)."""
+    if hasattr(table, "lengths_mm"):
+        return table.lengths_mm()
     return {k: v for k, v in table.model_dump().items()
-            if (type(table).model_fields[k].json_schema_extra or {}).get("unit") == "mm"}
+            if (type(table).model_fields[k].json_schema_extra or {}).get("unit") == "mm" and isinstance(v, float)}
 
 
 def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = "closed",

@@ -51,8 +51,8 @@ class Stock:
 
 @dataclass(frozen=True)
 class LinkPart:
-    """A part in its own frame: hole centres (k, 2) mm, outline half-width (mm), its stock, an optional guide slot
-    (its two end centres), whether it moves, and the points its outline rounds if not the hole centres.
+    """A part in its own frame: hole centres (k, 2) mm, outline half-width (mm), its stock, its guide slots (each
+    its two end centres), whether it moves, and the points its outline rounds if not the hole centres.
 
     A :class:`camgen.core.parts.PartMaker`: :meth:`part` makes it with any allowance.
     """
@@ -61,7 +61,7 @@ class LinkPart:
     centres: np.ndarray
     half_width: float
     stock: Stock
-    slot: tuple[np.ndarray, np.ndarray] | None = None
+    slots: tuple[tuple[np.ndarray, np.ndarray], ...] = ()
     moving: bool = True
     body: np.ndarray | None = None
 
@@ -73,8 +73,7 @@ class LinkPart:
         """The part with its outline moved out by ``outline_grow`` and its holes' edges by ``hole_grow`` (mm)."""
         hole = (self.stock.hole + 2 * hole_grow) / 2
         holes: list = [Circle(tuple(c), hole) for c in self.centres]
-        if self.slot is not None:
-            holes.append(rounded_hull(np.array(self.slot), hole))
+        holes += [rounded_hull(np.array(slot), hole) for slot in self.slots]
         return Part(self.name, self.outline(outline_grow), tuple(holes), self.stock.thickness, self.stock.tolerance)
 
 
@@ -94,15 +93,19 @@ class Layout:
 
     ``parts``: the parts, the ground first; ``sweep``: their placement over the motion (collisions
     are checked there); ``positions``: the dead centres drawn in the assembly, (kind, input angle
-    rad); ``poses``: the placement at each of them (one pose each); ``path``: the points (n, 2) mm
-    of the path drawn with them (a coupler point's, a slider's).
+    rad); ``poses``: the placement at each of them (one pose each); ``paths``: the points (n, 2) mm
+    of each path drawn with them (a coupler point's, a slider's).
     """
 
     parts: tuple[LinkPart, ...]
     sweep: Placement
     positions: tuple[tuple[str, float], ...]
     poses: tuple[Placement, ...]
-    path: np.ndarray
+    paths: tuple[np.ndarray, ...]
+
+
+#: partial layer assignments the layer search may try before it gives up
+LAYER_SEARCH_BUDGET = 200_000
 
 
 def layer_order(parts: tuple[LinkPart, ...], placement: Placement, pin_radius: float) -> dict[str, int]:
@@ -110,44 +113,71 @@ def layer_order(parts: tuple[LinkPart, ...], placement: Placement, pin_radius: f
     layer ever overlap, parts joined by a pin are on different layers, and no part crosses a pin passing through
     its layer.
 
-    Tries every assignment of the moving parts to layers 1..n, fewest layers first, over all poses.
+    A graph colouring: the parts that clash (joined, or overlapping at some pose) are the graph's edges; the
+    search assigns the moving parts in order, the lowest layer first, with the fewest layers first, pruning as
+    soon as a clash or a crossed pin appears, so the first order it finds is the lexicographically first of the
+    fewest layers. Collisions and pin crossings are found once over all poses (vectorised).
     """
     import shapely
 
-    moving = [p for p in parts if p.moving]
+    moving = [p.name for p in parts if p.moving]
     fixed = {p.name: 0 for p in parts if not p.moving}
     n = len(next(iter(placement.angles.values())))
-    shapes = {p.name: [shapely.Polygon(p.outline().moved(placement.angles[p.name][k], placement.origins[p.name][k])
-                                       .flatten(COLLISION_TOLERANCE_MM)) for k in range(n)]
-              for p in moving}
+    shapes = {p.name: np.array([shapely.Polygon(p.outline().moved(placement.angles[p.name][k],
+                                                                  placement.origins[p.name][k])
+                                                .flatten(COLLISION_TOLERANCE_MM)) for k in range(n)])
+              for p in parts if p.moving}
     joined = {frozenset(names) for names, _ in placement.joints.values()}
-    clash = {}
-    for a, b in itertools.combinations(moving, 2):
-        clash[frozenset((a.name, b.name))] = frozenset((a.name, b.name)) in joined or any(
-            shapes[a.name][k].intersects(shapes[b.name][k]) for k in range(n))
-    for top in range(1, len(moving) + 1):
-        for layers in itertools.product(range(1, top + 1), repeat=len(moving)):
-            order = {**fixed, **{p.name: layer for p, layer in zip(moving, layers, strict=True)}}
-            if any(order[a] == order[b] and clash[frozenset((a, b))] for a, b in
-                   itertools.combinations([p.name for p in moving], 2)):
-                continue
-            if _pins_clear(order, shapes, placement, pin_radius):
-                return order
-    raise DesignError("no layer order keeps the moving parts and pins clear of each other; narrow the parts")
-
-
-def _pins_clear(order: dict[str, int], shapes: dict, placement: Placement, pin_radius: float) -> bool:
-    """No part crosses a pin that passes through its layer (a pin spans the layers of the parts it joins)."""
-    import shapely
-
+    clash = {frozenset((a, b)): frozenset((a, b)) in joined or bool(shapely.intersects(shapes[a], shapes[b]).any())
+             for a, b in itertools.combinations(moving, 2)}
+    # (low part, high part, a part the pin would cross if it lay between them)
+    crossings = []
     for (first, second), where in placement.joints.values():
-        low, high = sorted((order[first], order[second]))
-        for name, poses in shapes.items():
-            if name in (first, second) or not low < order[name] < high:
-                continue
-            if any(poses[k].intersects(shapely.Point(where[k]).buffer(pin_radius)) for k in range(len(where))):
-                return False
-    return True
+        pins = shapely.buffer(shapely.points(where), pin_radius)
+        crossings += [(first, second, name) for name in moving
+                      if name not in (first, second) and shapely.intersects(shapes[name], pins).any()]
+    for top in range(1, len(moving) + 1):
+        order = _colour(moving, fixed, top, clash, crossings)
+        if order is not None:
+            return order
+    raise DesignError("parts.width: no layer order keeps the moving parts and pins clear of each other; narrow the "
+                      "parts (parts.width) or use fewer links")
+
+
+def _colour(moving: list[str], fixed: dict[str, int], top: int, clash: dict, crossings: list) -> dict[str, int] | None:
+    """The first assignment of layers 1..top to ``moving`` (in order, depth first) with no clash on a layer and no
+    part between the layers of a pin it crosses; None if there is none; a DesignError past the search budget."""
+    order = dict(fixed)
+    tried = 0
+
+    def fits(name: str) -> bool:
+        layer = order[name]
+        if any(order.get(other) == layer and clash[frozenset((name, other))] for other in moving
+               if other != name and other in order):
+            return False
+        for first, second, crossed in crossings:
+            if name in (first, second, crossed) and all(x in order for x in (first, second, crossed)):
+                low, high = sorted((order[first], order[second]))
+                if low < order[crossed] < high:
+                    return False
+        return True
+
+    def place(i: int) -> bool:
+        nonlocal tried
+        if i == len(moving):
+            return True
+        for layer in range(1, top + 1):
+            tried += 1
+            if tried > LAYER_SEARCH_BUDGET:
+                raise DesignError(f"parts.width: no layer order found within {LAYER_SEARCH_BUDGET} tries; narrow the "
+                                  "parts (parts.width) so fewer of them overlap")
+            order[moving[i]] = layer
+            if fits(moving[i]) and place(i + 1):
+                return True
+            del order[moving[i]]
+        return False
+
+    return order if place(0) else None
 
 
 def _place(part: Part, angle: float, shift: np.ndarray) -> tuple[Contour, list]:
@@ -184,7 +214,7 @@ def assembly(printed: tuple[Part, ...], layout: Layout, tolerance: float) -> Dra
         for part in printed:
             outline, holes = _place(part, float(place.angles[part.name][0]), place.origins[part.name][0])
             items += [(layer, outline), *((layer, h) for h in holes)]
-    items.append(("PATH", Polyline(layout.path, np.zeros(len(layout.path) - 1))))
+    items += [("PATH", Polyline(path, np.zeros(len(path) - 1))) for path in layout.paths]
     return Drawing(tuple(items), tolerance)
 
 

@@ -90,3 +90,65 @@ def slider_figure(name: str, mech: Any, omega: float) -> Any:
     axes[-1].set_xlabel("crank angle (degrees); dashed: dead centres")
     axes[0].set_title(f"{name}: slider motion at {omega * 60 / (2 * math.pi):g} rpm")
     return fig
+
+
+def _input_axis(a: Any) -> tuple[np.ndarray, str]:
+    """The analysed input values in the report's unit and the axis label."""
+    x = a.sweep.inputs[0]
+    return (np.degrees(x), "input angle (degrees)") if a.crank else (x, "input travel (mm)")
+
+
+def linkage_motion_figure(name: str, a: Any) -> Any:
+    """A general linkage as drawn (links as lines and plates), a few poses over its motion in grey, and the paths
+    of its tracers (of every moving joint when there are none)."""
+    s = a.linkage.structure
+    sol = a.sweep
+    fig = figure(8, 6.5)
+    ax = fig.add_subplot()
+    traced = a.table.tracers or tuple(p for p in s.points if p not in s.bodies["ground"])
+    for k, point in enumerate(traced):
+        path = sol.points[point]
+        ax.plot(path[:, 0], path[:, 1], ":" if not a.table.tracers else "-", lw=1 if not a.table.tracers else 1.6,
+                color=f"C{k % 10}", label=f"path of {point}" if a.table.tracers else None)
+    n = sol.inputs.shape[1]
+    for idx, alpha in [(i, 0.25) for i in np.linspace(0, n - 1, 7).astype(int)[1:-1]] + [(None, 1.0)]:
+        where = {p: (np.asarray(xy) if idx is None else sol.points[p][idx]) for p, xy in s.points.items()}
+        for body, pts in s.bodies.items():
+            xy = np.array([where[p] for p in pts])
+            colour = "0.3" if body == "ground" else ("C0" if idx is None else "0.6")
+            if body == "ground":
+                ax.plot(xy[:, 0], xy[:, 1], "^", color=colour, ms=9)
+            elif len(pts) > 2:
+                ax.fill(xy[:, 0], xy[:, 1], color=colour, alpha=0.2 * alpha, lw=0)
+                ring = np.vstack([xy, xy[:1]])
+                ax.plot(ring[:, 0], ring[:, 1], "-", color=colour, lw=1.5, alpha=alpha)
+            else:
+                ax.plot(xy[:, 0], xy[:, 1], "-o", color=colour, lw=2, ms=3, alpha=alpha)
+    for p, xy in s.points.items():
+        ax.annotate(p, xy, textcoords="offset points", xytext=(4, 4), fontsize=8)
+    ax.set_aspect("equal")
+    ax.grid(alpha=0.3)
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    if a.table.tracers:
+        ax.legend(fontsize=8)
+    ax.set_title(f"{name}: as drawn (blue), poses over the motion (grey) and paths")
+    return fig
+
+
+def linkage_transmission_figure(name: str, a: Any) -> Any:
+    """Each dyad's transmission angle against the input, the 40-140 degree band shaded, toggles marked."""
+    fig = figure(8, 4.5)
+    ax = fig.add_subplot()
+    ax.axhspan(40, 140, color="C2", alpha=0.12, label="40-140°")
+    x, label = _input_axis(a)
+    for k, d in enumerate(a.sweep.dyads):
+        ax.plot(x, np.degrees(d.transmission), color=f"C{k % 10}", lw=1.3,
+                label=f"{d.kind} {'-'.join(d.bodies)} at {d.joint}")
+    ax.set_xlabel(label)
+    ax.set_ylabel("transmission angle (degrees)")
+    ax.set_ylim(0, 180)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(f"{name}: transmission angle of each dyad")
+    return fig

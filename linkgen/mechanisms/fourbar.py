@@ -191,7 +191,7 @@ def fourbar_layout(fb: FourBar, assembly: str, table: PartsTable) -> Layout:
     poses = tuple(placement(fb, np.array([angle]), assembly) for _, angle in dead)
     theta = sweep.angles["crank"]
     path = fb.sweep(theta, assembly).point if fb.point_distance > 0 else sweep.joints["B"][1]
-    return Layout(fourbar_parts(fb, table), sweep, dead, poses, path)
+    return Layout(fourbar_parts(fb, table), sweep, dead, poses, (path,))
 
 
 def fourbar_thumbnail(fb: FourBar, assembly: str) -> dict[str, Any]:

@@ -117,7 +117,7 @@ def slidercrank_parts(sc: SliderCrank, table: PartsTable) -> tuple[LinkPart, ...
     ends = (np.array([x_bottom, sc.offset]), np.array([x_top, sc.offset]))
     # one pivot hole and the slot; the plate rounds the pivot and both ends of the slot (the slot is not a pair of
     # holes too: its ends would be cut twice)
-    base = LinkPart("ground", np.array([[0.0, 0.0]]), 2 * w, stock, slot=ends, moving=False,
+    base = LinkPart("ground", np.array([[0.0, 0.0]]), 2 * w, stock, slots=(ends,), moving=False,
                     body=np.array([[0.0, 0.0], ends[0], ends[1]]))
     block = table.width_of("slider")
     return (base, LinkPart("crank", np.array([[0.0, 0.0], [sc.crank, 0.0]]), w, stock),
@@ -177,7 +177,7 @@ class SliderCrankMechanism(SliderMechanism):
         dead = tuple((k, t) for k, t, _ in kinematics.dead_centres())
         sweep = placement(kinematics, np.linspace(0, 2 * math.pi, SWEEP))
         poses = tuple(placement(kinematics, np.array([t])) for _, t in dead)
-        return Layout(links, sweep, dead, poses, sweep.origins["slider"])
+        return Layout(links, sweep, dead, poses, (sweep.origins["slider"],))
 
 
 REGISTER = (

@@ -1,0 +1,247 @@
+"""The motion of a general linkage over its input: change points, reachable ranges, toggles and limit positions.
+
+Searched on the motion that starts at the drawing: a crank's revolution theta0 .. theta0 + 2 pi,
+or a slide's travel of up to ``SLIDE_REACH`` times the drawing's size either way. Every
+search samples :data:`GRID` poses in one vectorised solve and then refines each event to
+rounding: golden sections for the change points (where a dyad's margin touches 0 and comes
+back), bisection for the ends of the reachable ranges (where it goes below 0), Newton's
+method on the angular velocity for the limit positions of the rockers and sliders (where
+their speed is 0). Only single-input linkages are searched; with more inputs the drawing's
+branches are kept and the ranges are the caller's.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, NoReturn
+
+import numpy as np
+
+from camgen.core.errors import SpecError
+from linkgen.kinematics.structure import GROUND, DyadStep, Pin
+
+if TYPE_CHECKING:
+    from linkgen.kinematics.linkage import Linkage
+
+#: poses sampled over the revolution or the travel
+GRID = 4096
+#: a dyad whose smallest margin (a sine) comes within this of 0 and returns passes a change point
+CHANGE_TOL = 1e-7
+#: a slide input is searched this many times the drawing's size either way
+SLIDE_REACH = 4.0
+TWO_PI = 2.0 * math.pi
+BRANCHED = ("RRR", "RRP", "PRR", "RPR")
+
+
+def span(linkage: Linkage) -> tuple[float, float]:
+    """The input values searched: the crank's revolution from the drawing, or the slide's travel."""
+    x0 = float(linkage.drawn_inputs[0])
+    if linkage.is_crank():
+        return x0, x0 + TWO_PI
+    reach = SLIDE_REACH * linkage.structure.scale
+    return -reach, reach
+
+
+def _margins(linkage: Linkage, x: np.ndarray, upto: int | None, signs: list[np.ndarray] | None) -> np.ndarray:
+    """Each dyad's margin (rows) at input values x (one input), the branches given by ``signs``."""
+    sol = linkage.solve(x[None, :], strict=False, derivatives=False, upto=upto, signs=signs)
+    return np.array([d.margin for d in sol.dyads]).reshape(len(sol.dyads), len(x))
+
+
+def find_flips(linkage: Linkage) -> tuple[np.ndarray, ...]:
+    """Per step, the input values where its branch swaps at a change point (sorted), found dyad by dyad over the
+    searched span with the earlier dyads' swaps applied."""
+    steps = linkage.plan.steps
+    if len(linkage.structure.inputs) != 1:
+        return ()
+    lo, hi = span(linkage)
+    grid = np.linspace(lo, hi, GRID + 1)
+    flips: list[np.ndarray] = [np.empty(0) for _ in steps]
+    dyad_index = -1
+    for index, step in enumerate(steps):
+        if not isinstance(step, DyadStep):
+            continue
+        dyad_index += 1
+        if step.kind not in BRANCHED:
+            continue
+        current = type(linkage)(linkage.structure, linkage.plan, tuple(flips))
+
+        def at(x: np.ndarray, current: Linkage = current, index: int = index, d: int = dyad_index) -> object:
+            return current.solve(x[None, :], strict=False, upto=index + 1).dyads[d]
+
+        m = at(grid).margin
+        k = np.flatnonzero((m[1:-1] <= m[:-2]) & (m[1:-1] <= m[2:]) & (m[:-2] > 0) & (m[2:] > 0)
+                           & (m[1:-1] < 1e-2)) + 1
+        if len(k) == 0:
+            continue
+        # the outer joints stop moving apart (or together) at the change point: a simple zero of their spread rate
+        found = _root(lambda x, at=at: at(x).spread, grid[k - 1], grid[k + 1])
+        keep = (at(found).margin <= CHANGE_TOL) & (found > lo) & (found < hi)
+        flips[index] = np.unique(found[keep])
+    return tuple(flips)
+
+
+def _root(f, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """A zero of f in each [a, b] (vectorised bisection to rounding), or the end where |f| is smaller when f keeps
+    its sign there."""
+    fa, fb = f(a), f(b)
+    keeps = np.sign(fa) == np.sign(fb)
+    for _ in range(64):
+        mid = 0.5 * (a + b)
+        fm = f(mid)
+        left = np.sign(fm) == np.sign(fa)
+        a, fa = np.where(left, mid, a), np.where(left, fm, fa)
+        b = np.where(left, b, mid)
+    return np.where(keeps, np.where(np.abs(fa) <= np.abs(fb), a, b), 0.5 * (a + b))
+
+
+@dataclass(frozen=True)
+class Toggle:
+    """A dyad in line: ``kind`` 'limit' (the input stops there: an end of a reachable range) or 'change point'
+    (the branches meet and the motion goes on); the input value, the dyad's bodies and middle joint."""
+
+    kind: str
+    value: float
+    bodies: tuple[str, str]
+    joint: str
+
+
+def _feasible(linkage: Linkage, x: np.ndarray) -> np.ndarray:
+    m = _margins(linkage, x, None, None)
+    return np.all(m >= -1e-10, axis=0) if len(m) else np.ones(len(x), dtype=bool)
+
+
+def input_ranges(linkage: Linkage) -> tuple[tuple[float, float], ...] | None:
+    """The input values (rad or mm) over which the linkage assembles on the drawing's branches: None when a crank
+    turns fully; else closed intervals, the one holding the drawing first."""
+    if len(linkage.structure.inputs) != 1:
+        return None
+    lo, hi = span(linkage)
+    grid = np.linspace(lo, hi, GRID + 1)
+    ok = _feasible(linkage, grid)
+    if ok.all() and linkage.is_crank():
+        return None
+    edges = np.flatnonzero(np.diff(ok.astype(int)))
+    ends = _bisect(linkage, grid[edges], grid[edges + 1], ok[edges])
+    runs: list[list[float]] = []
+    start = lo if ok[0] else None
+    for e, rising in zip(ends, ~ok[edges], strict=True):
+        if rising:
+            start = e
+        elif start is not None:
+            runs.append([start, e])
+            start = None
+    if start is not None:
+        runs.append([start, hi])
+    if linkage.is_crank() and len(runs) > 1 and runs[0][0] == lo and runs[-1][1] == hi:
+        runs[0][0] = runs.pop()[0] - TWO_PI
+    x0 = float(linkage.drawn_inputs[0])
+    runs.sort(key=lambda r: (not (r[0] <= x0 <= r[1] or r[0] <= x0 - TWO_PI <= r[1]), r[0]))
+    return tuple((float(a), float(b)) for a, b in runs)
+
+
+def _bisect(linkage: Linkage, a: np.ndarray, b: np.ndarray, a_ok: np.ndarray) -> np.ndarray:
+    """The boundary between feasible and not in each [a, b] (``a_ok``: which side is feasible), to rounding; the
+    feasible side's end."""
+    good, bad = np.where(a_ok, a, b), np.where(a_ok, b, a)
+    for _ in range(64):
+        mid = 0.5 * (good + bad)
+        if not len(mid):
+            break
+        ok = _feasible(linkage, mid)
+        good, bad = np.where(ok, mid, good), np.where(ok, bad, mid)
+    return good
+
+
+def toggles(linkage: Linkage) -> tuple[Toggle, ...]:
+    """The ends of the reachable ranges (which dyad stops the input there) and the change points, by input
+    value."""
+    dyads = [s for s in linkage.plan.steps if isinstance(s, DyadStep)]
+    out = []
+    for index, step in enumerate(linkage.plan.steps):
+        if isinstance(step, DyadStep):
+            out += [Toggle("change point", float(v), step.bodies, step.joint) for v in linkage.flips[index]] \
+                if linkage.flips else []
+    for rng in input_ranges(linkage) or ():
+        for end in rng:
+            if linkage.is_crank() and rng[1] - rng[0] >= TWO_PI - 1e-12:
+                continue
+            lo, hi = span(linkage)
+            if not linkage.is_crank() and end in (lo, hi):
+                continue
+            m = _margins(linkage, np.array([end]), None, None)[:, 0]
+            d = int(np.argmin(np.abs(m)))
+            out.append(Toggle("limit", end, dyads[d].bodies, dyads[d].joint))
+    return tuple(sorted(out, key=lambda t: t.value))
+
+
+@dataclass(frozen=True)
+class Extreme:
+    """A limit position of an output: its body (or slider), the input value there and the output's value (rad
+    from the drawing for a rocker, mm along its guide for a slider)."""
+
+    output: str
+    value: float
+    position: float
+
+
+def rockers(linkage: Linkage) -> list[str]:
+    """The bodies turning about a ground pivot that no input drives (the outputs whose swing is reported)."""
+    s = linkage.structure
+    driven = {inp.link for inp in s.inputs if inp.kind == "crank"}
+    out = []
+    for step in linkage.plan.steps:
+        if isinstance(step, DyadStep):
+            for body, att in zip(step.bodies, step.attachments, strict=True):
+                if isinstance(att, Pin) and att.body == GROUND and body not in driven:
+                    out.append(body)
+    return out
+
+
+def limit_positions(linkage: Linkage, body: str) -> tuple[Extreme, ...]:
+    """Where ``body`` (a rocker) stops and turns back over the reachable input: its angular velocity's zeros,
+    refined by Newton's method with its angular acceleration."""
+    lo, hi = span(linkage)
+    ranges = input_ranges(linkage)
+    spans = [(lo, hi)] if ranges is None else list(ranges)
+    out = []
+    for a, b in spans:
+        grid = np.linspace(a, b, GRID + 1)
+        sol = linkage.solve(grid[None, :], strict=False)
+        w = sol.omegas[body]
+        k = np.flatnonzero(np.sign(w[:-1]) * np.sign(w[1:]) < 0)
+        if not len(k):
+            continue
+        x, xa, xb = 0.5 * (grid[k] + grid[k + 1]), grid[k], grid[k + 1]
+        for _ in range(30):
+            s = linkage.solve(x[None, :], strict=False)
+            step = s.omegas[body] / np.where(s.alphas[body] != 0, s.alphas[body], np.inf)
+            nxt = x - step
+            inside = (nxt >= xa) & (nxt <= xb) & np.isfinite(nxt)
+            x = np.where(inside, nxt, 0.5 * (xa + xb))
+            if np.all(np.abs(step) <= 1e-15 * np.maximum(1.0, np.abs(x))):
+                break
+        final = linkage.solve(x[None, :], strict=False)
+        out += [Extreme(body, float(v), float(p)) for v, p in zip(x, final.angles[body], strict=True)]
+    return tuple(out)
+
+
+def time_ratio(linkage: Linkage, extremes: tuple[Extreme, ...]) -> float | None:
+    """Slower stroke over faster (>= 1) for a crank turning fully and an output with two limit positions."""
+    if not linkage.is_crank() or input_ranges(linkage) is not None or len(extremes) != 2:
+        return None
+    travel = (extremes[1].value - extremes[0].value) % TWO_PI
+    return max(travel, TWO_PI - travel) / min(travel, TWO_PI - travel)
+
+
+def out_of_reach(linkage: Linkage, values: np.ndarray) -> NoReturn:
+    """Refuse input values the linkage does not reach, naming its reachable ranges."""
+    crank = linkage.structure.inputs[0].kind == "crank"
+    unit = "degrees" if crank else "mm"
+    value = math.degrees(float(values[0])) if crank else float(values[0])
+    if len(linkage.structure.inputs) != 1:
+        raise SpecError(f"the inputs {[round(float(v), 9) for v in values]} do not assemble the linkage", "input")
+    ranges = input_ranges(linkage) or ()
+    shown = [(math.degrees(a), math.degrees(b)) if crank else (a, b) for a, b in ranges]
+    text = " or ".join(f"[{a:.9g}, {b:.9g}]" for a, b in shown)
+    raise SpecError(f"input {value:.9g} {unit} is out of reach; the linkage reaches {text} {unit}", "input")

@@ -1,0 +1,436 @@
+"""Any planar linkage as joints, links and sliders: its mobility and its solve order (dyad by dyad).
+
+The user draws the linkage once (the *drawing*): every point has coordinates in mm there.
+Links are rigid sets of points (a bar has two, a plate three or more); a point that two or
+more bodies share is a revolute joint. ``ground`` is the fixed link. A slider is a prismatic
+joint: its ``point`` moves along a straight guide fixed in the ``guide`` link, through the
+point's drawn position at ``angle`` (degrees counter-clockwise from +X in the drawing); the
+sliding body is ``link`` if given (it keeps its angle to the guide), else a block named
+after the slider that pivots on ``point``. Inputs turn a link about one of its points
+(:class:`Input` ``crank``) or move a slider (``slide``).
+
+Every body's pose is a rotation phi and a translation T from the drawing:
+``world(x) = R(phi) x + T`` for any drawn point x, so the drawing is the pose phi = 0, T = 0.
+
+Mobility (Gruebler-Kutzbach): M = 3 (n - 1) - 2 j, n bodies with the ground and the blocks,
+j revolute pairs (a point shared by k bodies is k - 1 of them) plus prismatic joints.
+:func:`plan` finds the solve order: inputs first, then dyads, each of two bodies that have one
+unknown each (turning about a known point, or sliding along a known guide) and meet at a
+joint of their own. Where none is left and bodies remain, it says why: too few inputs
+(under-constrained), too many constraints (over-constrained), or a group of a higher class
+than dyads (named with its joints).
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Literal
+
+from camgen.core.errors import SpecError
+
+GROUND = "ground"
+#: two drawn points closer than this (relative to the drawing's size) are one point
+COINCIDENT = 1e-9
+
+
+@dataclass(frozen=True)
+class Slider:
+    """A prismatic joint: ``point`` slides along a line of ``guide`` drawn at ``angle`` (rad) through the point's
+    drawn position; the sliding body is ``link``, or a block called ``name`` when link is None."""
+
+    name: str
+    point: str
+    guide: str
+    angle: float
+    link: str | None = None
+
+    @property
+    def body(self) -> str:
+        """The sliding body's name."""
+        return self.link or self.name
+
+
+@dataclass(frozen=True)
+class Input:
+    """An input: ``crank`` turns ``link`` about its point ``pivot`` relative to ``relative_to``; the input's value
+    is the direction (rad, counter-clockwise) of the line from the pivot to the link's first other point,
+    measured from +X for the ground, else from the same line of ``relative_to``. ``slide`` moves ``slider``; its
+    value is the point's displacement (mm) along the guide from the drawing."""
+
+    kind: Literal["crank", "slide"]
+    link: str = ""
+    pivot: str = ""
+    relative_to: str = GROUND
+    slider: str = ""
+
+
+@dataclass(frozen=True)
+class Pin:
+    """A body turning about ``point``, which a known ``body`` holds."""
+
+    point: str
+    body: str
+
+
+@dataclass(frozen=True)
+class Slide:
+    """A body sliding along slider ``slider`` on a known ``body``; ``moving`` when it is the slider's sliding body
+    (else it carries the guide)."""
+
+    slider: str
+    body: str
+    moving: bool
+
+
+Attachment = Pin | Slide
+
+
+@dataclass(frozen=True)
+class InputStep:
+    """Place body ``body`` by input number ``index``."""
+
+    index: int
+    body: str
+
+
+@dataclass(frozen=True)
+class DyadStep:
+    """Place two bodies, each with one attachment to known bodies, that meet at ``joint``: a point both hold
+    (revolute, ``prismatic`` False) or a slider between them (``prismatic`` True)."""
+
+    bodies: tuple[str, str]
+    attachments: tuple[Attachment, Attachment]
+    joint: str
+    prismatic: bool
+
+    @property
+    def kind(self) -> str:
+        """The Assur name: R for a revolute, P for a prismatic joint, outer - inner - outer."""
+        outer = ["R" if isinstance(a, Pin) else "P" for a in self.attachments]
+        return outer[0] + ("P" if self.prismatic else "R") + outer[1]
+
+
+@dataclass(frozen=True)
+class FixedStep:
+    """Place a body held by two attachments at once (two pins, or a pin and a slide): one constraint more than it
+    needs, which :class:`Plan` lists as redundant."""
+
+    body: str
+    attachments: tuple[Attachment, Attachment]
+
+
+@dataclass(frozen=True)
+class Redundant:
+    """A constraint no step used: the bodies ``bodies`` meeting at point ``name`` (``slider`` False), or slider
+    ``name``. Checked over the motion: a paradoxical linkage when it always holds, else an over-constrained one."""
+
+    name: str
+    bodies: tuple[str, ...]
+    slider: bool
+
+
+Step = InputStep | DyadStep | FixedStep
+
+
+@dataclass(frozen=True)
+class Structure:
+    """A linkage as bodies: ``points`` (drawn, mm), ``bodies`` (name -> its points; the ground first, then the
+    links in the user's order, then the blocks), ``sliders`` and ``inputs``."""
+
+    points: Mapping[str, tuple[float, float]]
+    bodies: Mapping[str, tuple[str, ...]]
+    sliders: tuple[Slider, ...]
+    inputs: tuple[Input, ...]
+    scale: float = field(default=1.0)
+
+    @property
+    def slider_by_name(self) -> dict[str, Slider]:
+        return {s.name: s for s in self.sliders}
+
+    def holders(self, point: str) -> tuple[str, ...]:
+        """The bodies holding ``point``, in body order."""
+        return tuple(b for b, pts in self.bodies.items() if point in pts)
+
+    @property
+    def revolutes(self) -> dict[str, tuple[str, ...]]:
+        """Each point held by two or more bodies -> those bodies."""
+        return {p: h for p in self.points if len(h := self.holders(p)) >= 2}
+
+    @property
+    def mobility(self) -> int:
+        """Gruebler-Kutzbach: 3 (n - 1) - 2 j for n bodies and j pairs."""
+        pairs = sum(len(h) - 1 for h in self.revolutes.values()) + len(self.sliders)
+        return 3 * (len(self.bodies) - 1) - 2 * pairs
+
+
+def make_structure(points: Mapping[str, tuple[float, float]], links: Mapping[str, tuple[str, ...]],
+                   ground: tuple[str, ...], sliders: tuple[Slider, ...], inputs: tuple[Input, ...]) -> Structure:
+    """Check the names and the drawing and gather the bodies; a :class:`SpecError` naming the field otherwise."""
+    if not points:
+        raise SpecError("missing: give each joint's drawn position, e.g. A = [0, 0]", "linkage.joints")
+    for name, xy in points.items():
+        if not all(math.isfinite(v) for v in xy):
+            raise SpecError(f"must be finite coordinates in mm (got {list(xy)})", f"linkage.joints.{name}")
+    scale = max(1.0, max(abs(v) for xy in points.values() for v in xy))
+    if GROUND in links:
+        raise SpecError("'ground' is the fixed link: list its joints in linkage.ground", f"linkage.links.{GROUND}")
+    bodies: dict[str, tuple[str, ...]] = {GROUND: tuple(ground)}
+    for name, pts in links.items():
+        bodies[name] = tuple(pts)
+    for slider in sliders:
+        if slider.link is None:
+            if slider.name in bodies:
+                raise SpecError(f"the slider's block would be called {slider.name!r}, which names a link already; "
+                                "rename the slider or give link = the sliding link", f"linkage.sliders.{slider.name}")
+            bodies[slider.name] = (slider.point,)
+    for body, pts in bodies.items():
+        where = "linkage.ground" if body == GROUND else f"linkage.links.{body}"
+        if body != GROUND and not pts:
+            raise SpecError("a link needs at least one joint", where)
+        for p in pts:
+            if p not in points:
+                raise SpecError(f"no joint {p!r}: give its position in [linkage.joints] "
+                                f"(joints: {', '.join(points)})", where)
+        if len(set(pts)) != len(pts):
+            raise SpecError("a joint is listed twice", where)
+        for i, a in enumerate(pts):
+            for b in pts[i + 1:]:
+                if math.dist(points[a], points[b]) <= COINCIDENT * scale:
+                    raise SpecError(f"joints {a} and {b} are drawn at the same place: the link between them has no "
+                                    "length", where)
+    for slider in sliders:
+        where = f"linkage.sliders.{slider.name}"
+        if slider.guide not in bodies:
+            raise SpecError(f"no link {slider.guide!r} to guide it (links: {', '.join(bodies)})", f"{where}.guide")
+        if slider.link is not None and slider.link not in bodies:
+            raise SpecError(f"no link {slider.link!r} (links: {', '.join(bodies)})", f"{where}.link")
+        if slider.point not in bodies[slider.body]:
+            raise SpecError(f"the sliding link {slider.body!r} does not hold {slider.point!r}", f"{where}.point")
+        if slider.body == slider.guide:
+            raise SpecError("a link cannot slide on itself", f"{where}.guide")
+        if not math.isfinite(slider.angle):
+            raise SpecError("must be a finite angle in degrees", f"{where}.angle")
+    structure = Structure(points, bodies, tuple(sliders), tuple(inputs), scale)
+    _check_inputs(structure)
+    _check_connected(structure)
+    return structure
+
+
+def _check_inputs(s: Structure) -> None:
+    if not s.inputs:
+        raise SpecError("missing: give the input, e.g. input = {link = \"crank\", pivot = \"O\"}", "linkage.input")
+    sliders = s.slider_by_name
+    for i, inp in enumerate(s.inputs):
+        where = "linkage.input" if len(s.inputs) == 1 else f"linkage.input[{i}]"
+        if inp.kind == "slide":
+            if inp.slider not in sliders:
+                raise SpecError(f"no slider {inp.slider!r} (sliders: {', '.join(sliders) or 'none'})",
+                                f"{where}.slider")
+            continue
+        if inp.link not in s.bodies or inp.link == GROUND:
+            raise SpecError(f"no moving link {inp.link!r} (links: {', '.join(list(s.bodies)[1:])})", f"{where}.link")
+        if inp.pivot not in s.bodies[inp.link]:
+            raise SpecError(f"link {inp.link!r} does not hold {inp.pivot!r}", f"{where}.pivot")
+        if len(s.bodies[inp.link]) < 2:
+            raise SpecError(f"link {inp.link!r} needs a second joint to show its angle", f"{where}.link")
+        if inp.relative_to not in s.bodies or inp.pivot not in s.bodies[inp.relative_to]:
+            raise SpecError(f"must name a link that holds the pivot {inp.pivot!r} too", f"{where}.relative_to")
+        if inp.relative_to != GROUND and len(s.bodies[inp.relative_to]) < 2:
+            raise SpecError(f"link {inp.relative_to!r} needs a second joint to measure the angle from",
+                            f"{where}.relative_to")
+    driven = [inp.link if inp.kind == "crank" else sliders[inp.slider].body for inp in s.inputs]
+    for body in driven:
+        if driven.count(body) > 1:
+            raise SpecError(f"link {body!r} is driven by two inputs", "linkage.input")
+
+
+def _check_connected(s: Structure) -> None:
+    """Every body reaches the ground through joints and sliders."""
+    reached, frontier = {GROUND}, [GROUND]
+    neighbours: dict[str, set[str]] = {b: set() for b in s.bodies}
+    for holders in s.revolutes.values():
+        for b in holders:
+            neighbours[b].update(holders)
+    for slider in s.sliders:
+        neighbours[slider.body].add(slider.guide)
+        neighbours[slider.guide].add(slider.body)
+    while frontier:
+        for n in neighbours[frontier.pop()] - reached:
+            reached.add(n)
+            frontier.append(n)
+    loose = [b for b in s.bodies if b not in reached]
+    if loose:
+        raise SpecError(f"link{'s' if len(loose) > 1 else ''} {', '.join(loose)} "
+                        f"{'are' if len(loose) > 1 else 'is'} not joined to the rest: share a joint with another "
+                        "link", "linkage.links")
+
+
+@dataclass(frozen=True)
+class Plan:
+    """The solve order (input, dyad and fixed steps), the redundant constraints to check, and the mobility."""
+
+    steps: tuple[Step, ...]
+    redundant: tuple[Redundant, ...]
+    mobility: int
+
+
+def _attachments(s: Structure, body: str, known: set[str]) -> list[Attachment]:
+    """How ``body`` is held by known bodies: a pin at each point it shares with one, a slide on each slider to
+    one."""
+    out: list[Attachment] = []
+    for p in s.bodies[body]:
+        holder = next((b for b in s.holders(p) if b in known and b != body), None)
+        if holder is not None:
+            out.append(Pin(p, holder))
+    for slider in s.sliders:
+        if slider.body == body and slider.guide in known:
+            out.append(Slide(slider.name, slider.guide, True))
+        elif slider.guide == body and slider.body in known:
+            out.append(Slide(slider.name, slider.body, False))
+    return out
+
+
+def _joints_between(s: Structure, a: str, b: str, used: set[str]) -> list[tuple[str, bool]]:
+    """Joints between bodies a and b, (name, prismatic), not among ``used`` points (the attachments')."""
+    out = [(p, False) for p in s.bodies[a] if p in s.bodies[b] and p not in used]
+    out += [(sl.name, True) for sl in s.sliders if {sl.body, sl.guide} == {a, b}]
+    return out
+
+
+def plan(s: Structure) -> Plan:
+    """The order in which the bodies are placed, or a :class:`SpecError` saying why they cannot be."""
+    known = {GROUND}
+    steps: list[Step] = []
+    pending = list(enumerate(s.inputs))
+    while True:
+        ready = next(((k, i, inp) for k, (i, inp) in enumerate(pending) if _reference(s, inp) in known), None)
+        if ready is not None:
+            k, index, inp = ready
+            steps.append(InputStep(index, _driven(s, inp)))
+            known.add(_driven(s, inp))
+            del pending[k]
+            continue
+        driven = {_driven(s, inp) for _, inp in pending}
+        unknown = [b for b in s.bodies if b not in known and b not in driven]
+        held = {b: _attachments(s, b, known) for b in unknown}
+        step: Step | None = _find_dyad(s, unknown, held)
+        if step is None:
+            fixed = next((b for b in unknown if len(held[b]) >= 2
+                          and not all(isinstance(a, Slide) for a in held[b][:2])), None)
+            if fixed is None:
+                break
+            step = FixedStep(fixed, (held[fixed][0], held[fixed][1]))
+            known.add(fixed)
+        else:
+            known.update(step.bodies)
+        steps.append(step)
+    unknown = [b for b in s.bodies if b not in known]
+    if unknown or pending:
+        _diagnose(s, unknown, [inp for _, inp in pending])
+    mobility = s.mobility
+    if mobility > len(s.inputs):
+        raise SpecError(f"mobility {mobility} (Gruebler) but {len(s.inputs)} input(s): the linkage would move "
+                        "freely; add an input or a link", "linkage.input")
+    return Plan(tuple(steps), _redundant(s, steps), mobility)
+
+
+def _reference(s: Structure, inp: Input) -> str:
+    """The body an input is measured from."""
+    return inp.relative_to if inp.kind == "crank" else s.slider_by_name[inp.slider].guide
+
+
+def _driven(s: Structure, inp: Input) -> str:
+    """The body an input moves."""
+    return inp.link if inp.kind == "crank" else s.slider_by_name[inp.slider].body
+
+
+def _redundant(s: Structure, steps: list[Step]) -> tuple[Redundant, ...]:
+    """The constraints no step used: at each shared point, the holders the used pins leave unconnected; each
+    slider no step used."""
+    used: dict[str, list[tuple[str, str]]] = {p: [] for p in s.revolutes}
+    used_sliders: set[str] = set()
+
+    def use(body: str, attachment: Attachment) -> None:
+        if isinstance(attachment, Pin):
+            used[attachment.point].append((body, attachment.body))
+        else:
+            used_sliders.add(attachment.slider)
+
+    for step in steps:
+        if isinstance(step, InputStep):
+            inp = s.inputs[step.index]
+            if inp.kind == "crank":
+                used[inp.pivot].append((inp.link, inp.relative_to))
+            else:
+                used_sliders.add(inp.slider)
+        elif isinstance(step, DyadStep):
+            for body, attachment in zip(step.bodies, step.attachments, strict=True):
+                use(body, attachment)
+            if step.prismatic:
+                used_sliders.add(step.joint)
+            else:
+                used[step.joint].append(step.bodies)
+        else:
+            for attachment in step.attachments:
+                use(step.body, attachment)
+    out = []
+    for point, holders in s.revolutes.items():
+        group = {h: h for h in holders}
+
+        def root(x: str, group: dict = group) -> str:
+            while group[x] != x:
+                x = group[x]
+            return x
+
+        for a, b in used[point]:
+            group[root(a)] = root(b)
+        for h in holders[1:]:
+            if root(h) != root(holders[0]):
+                out.append(Redundant(point, (holders[0], h), False))
+                group[root(h)] = root(holders[0])
+    out += [Redundant(sl.name, (sl.body, sl.guide), True) for sl in s.sliders if sl.name not in used_sliders]
+    return tuple(out)
+
+
+def _find_dyad(s: Structure, unknown: list[str], held: dict[str, list[Attachment]]) -> DyadStep | None:
+    """The first pair of bodies, each held once, that meet at a joint of their own."""
+    single = [b for b in unknown if len(held[b]) == 1]
+    for i, a in enumerate(single):
+        for b in single[i + 1:]:
+            att_a, att_b = held[a][0], held[b][0]
+            used = {x.point for x in (att_a, att_b) if isinstance(x, Pin)}
+            for joint, prismatic in _joints_between(s, a, b, used):
+                if not prismatic or not (isinstance(att_a, Slide) and isinstance(att_b, Slide)):
+                    return DyadStep((a, b), (att_a, att_b), joint, prismatic)
+    return None
+
+
+def _diagnose(s: Structure, unknown: list[str], pending: list[Input]) -> None:
+    """Why the bodies ``unknown`` cannot be placed: the count of freedoms among them (the known ones as one)."""
+    if pending:
+        inp = pending[0]
+        what = f"link {inp.link!r}" if inp.kind == "crank" else f"slider {inp.slider!r}"
+        ref = inp.relative_to if inp.kind == "crank" else s.slider_by_name[inp.slider].guide
+        raise SpecError(f"the input drives {what} relative to {ref!r}, which the other inputs and links do not "
+                        "place; drive a link from the ground", "linkage.input")
+    merged = {b: (b if b in unknown else GROUND) for b in s.bodies}
+    pairs = 0
+    for holders in s.revolutes.values():
+        ends = {merged[b] for b in holders}
+        if any(b in unknown for b in holders):
+            pairs += len(ends) - 1
+    pairs += sum(1 for sl in s.sliders if merged[sl.body] != merged[sl.guide])
+    freedom = 3 * len(unknown) - 2 * pairs
+    names = ", ".join(unknown)
+    if freedom > 0:
+        raise SpecError(f"links {names} are not fixed by the inputs (mobility {s.mobility}, {len(s.inputs)} "
+                        f"input(s)): they can move {freedom} way(s) freely; add an input or a link", "linkage")
+    if freedom < 0:
+        raise SpecError(f"links {names} are over-constrained (mobility {s.mobility}): remove a link or a joint",
+                        "linkage")
+    joints = sorted({p for b in unknown for p in s.bodies[b] if len(s.holders(p)) >= 2}
+                    | {sl.name for sl in s.sliders if sl.body in unknown or sl.guide in unknown})
+    raise SpecError(f"links {names} form a group of a higher class than dyads (joints {', '.join(joints)}): "
+                    "linkgen solves dyads (RRR, RRP, RPR, PRP, RPP) in closed form only; drive the linkage from "
+                    "another link", "linkage")
