@@ -189,10 +189,7 @@ class FourBar:
             first = math.degrees(float(np.asarray(theta2)[bad][0]))
             raise SpecError(f"crank angle {first:.6g} degrees is out of reach; this linkage reaches crank angles "
                             f"{text} degrees", "angle")
-        if np.any(z <= tol):
-            first = math.degrees(float(np.asarray(theta2)[z <= tol][0]))
-            raise SpecError(f"at crank angle {first:.6g} degrees the crank pin sits on the rocker pivot, so the "
-                            "coupler's position is undetermined (a deltoid change point)", "angle")
+        _refuse_coincident(theta2, z <= tol, "coupler's position is")
         return dx, dy, z
 
     # ------------------------------------------------------------------ positions
@@ -205,11 +202,18 @@ class FourBar:
             z = np.hypot(dx, dy)
         else:
             dx, dy, z = reach
-        area4 = _area4(l3, l4, z)
         # A -> B is the unit vector A -> O4 turned by the triangle's angle at A (its cosine by the law of
         # cosines, its sine from the stable area): no angle needs computing to place B
         two_l3z = 2.0 * l3 * z
-        cos_a = (l3**2 + z**2 - l4**2) / two_l3z
+        if any(self.folds()):
+            # near a fold z has lost the digits the area needs: it is the product of the roots instead; and
+            # L3^2 - L4^2 goes first, exact for a deltoid's L3 = L4 where z -> 0
+            m, p = self._roots(theta2)
+            area4 = np.abs(m.value * p.value)
+            cos_a = ((l3 - l4) * (l3 + l4) + z**2) / two_l3z
+        else:
+            area4 = _area4(l3, l4, z)
+            cos_a = (l3**2 + z**2 - l4**2) / two_l3z
         sin_a = sign * area4 / two_l3z
         ux, uy = dx / z, dy / z
         ex, ey = cos_a * ux - sin_a * uy, cos_a * uy + sin_a * ux
@@ -275,9 +279,10 @@ class FourBar:
         """
         t = np.atleast_1d(np.asarray(theta2, dtype=float))
         reach = self._check_reach(t)
+        half = _half_turns(t)
         flips = np.zeros(t.shape, dtype=int)
         for cp in self.change_points():
-            turn = np.floor((t - cp) / TWO_PI)
+            turn = np.floor((half - round(cp / math.pi)) / 2)     # change points at or below each angle
             flips[1:] += np.cumsum(np.abs(np.diff(turn))).astype(int)
         sign = _sign(assembly) * np.where(flips % 2 == 0, 1, -1)
         return self._poses(t, sign, reach)
@@ -324,36 +329,70 @@ class FourBar:
 
     # ------------------------------------------------------------------ derivatives
 
+    def folds(self) -> tuple[bool, bool]:
+        """Whether the lengths fold flat at theta2 = 0 ((L1 - L2)^2 = (L3 - L4)^2) and at theta2 = pi
+        (L1 + L2 = L3 + L4) exactly, to rounding. Lengths nearer a change point than
+        :data:`CHANGE_POINT_TOL` but not this near are solved exactly as given: their two assemblies
+        pass each other without touching (or stop short), and their rates are those of what they are."""
+        close = 4.0 * np.finfo(float).eps * self.longest
+        return (abs(abs(self.ground - self.crank) - abs(self.coupler - self.rocker)) <= close,
+                abs((self.ground + self.crank) - (self.coupler + self.rocker)) <= close)
+
+    def _roots(self, theta2: np.ndarray) -> tuple[_Root, _Root]:
+        """The two roots m = sqrt(z^2 - (L3 - L4)^2) and p = sqrt((L3 + L4)^2 - z^2) whose product is four
+        times the area of the triangle A-B-O4 (mm), from z^2 = (L1 - L2)^2 + 4 L1 L2 sin^2(theta2 / 2)
+        = (L1 + L2)^2 - 4 L1 L2 cos^2(theta2 / 2): at a fold one of them is 2 sqrt(L1 L2) times a half-angle
+        sine or cosine, computed without cancellation, and signed so as to stay smooth along a branch."""
+        l1, l2, l3, l4 = self.ground, self.crank, self.coupler, self.rocker
+        fold0, fold_pi = self.folds()
+        k = l1 * l2
+        s, c = _half_angle(theta2)
+        half1, half2 = 2.0 * k * s * c, k * np.cos(theta2)      # half of d(z^2)/d theta2 and its derivative
+        return (_root(fold0, (abs(l1 - l2), abs(l3 - l4)), math.sqrt(k), s, c, half1, half2),
+                _root(fold_pi, (l3 + l4, l1 + l2), math.sqrt(k), c, -s, -half1, -half2))
+
+    def rates(self, poses: Poses) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """d theta3 / d theta2, d theta4 / d theta2 (dimensionless) and their derivatives (1/rad) along the
+        branch the poses lie on (see :func:`_branch_rates`).
+
+        Finite and accurate to rounding at and near change points: there the limit along the branch,
+        which the label names at the fold itself (the branch beyond, as :meth:`sweep` counts it).
+        +-inf (never NaN) at a toggle of coupler and rocker, where the crank input stops.
+        """
+        theta2 = np.asarray(poses.theta2, dtype=float)
+        _refuse_coincident(theta2, np.hypot(*self._z(theta2)) <= FEASIBILITY_TOL * self.longest,
+                           "rates per unit crank speed are")
+        m, p = self._roots(theta2)
+        return _branch_rates((self.ground, self.crank, self.coupler, self.rocker), theta2, m, p,
+                             self._label(poses))
+
+    def _label(self, poses: Poses) -> np.ndarray:
+        """Each pose's assembly as its geometry shows it (+1: B left of A -> O4), its label where B lies on
+        that line to rounding (at a change point both assemblies meet there, and the label names the branch)."""
+        ax, ay = poses.a[:, 0], poses.a[:, 1]
+        cross = (self.ground - ax) * (poses.b[:, 1] - ay) + ay * (poses.b[:, 0] - ax)
+        clear = np.abs(cross) > 64 * np.finfo(float).eps * self.longest**2
+        return np.where(clear, np.sign(cross), np.asarray(poses.assembly, dtype=float))
+
     def velocities(self, poses: Poses, omega2: float) -> tuple[np.ndarray, np.ndarray]:
         """Angular velocities (omega3, omega4) in rad/s for crank speed ``omega2`` rad/s.
 
-        Unbounded (+-inf, never NaN) at a toggle, where coupler and rocker are collinear.
+        Along the branch the poses lie on, also at and near change points (see :meth:`rates`);
+        unbounded (+-inf, never NaN) at a toggle, where coupler and rocker are collinear.
         """
-        t2, t3, t4 = poses.theta2, poses.theta3, poses.theta4
-        l2, l3, l4 = self.crank, self.coupler, self.rocker
-        det = l3 * l4 * np.sin(t3 - t4)
-        n3 = l2 * l4 * omega2 * np.sin(t4 - t2)
-        n4 = l2 * l3 * omega2 * np.sin(t3 - t2)
-        return _ratio(n3, det), _ratio(n4, det)
+        d3, d4, _, _ = self.rates(poses)
+        return _times(d3, omega2), _times(d4, omega2)
 
     def accelerations(self, poses: Poses, omega2: float, alpha2: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-        """Angular accelerations (alpha3, alpha4) in rad/s^2 for crank speed ``omega2`` and acceleration ``alpha2``."""
-        t2, t3, t4 = poses.theta2, poses.theta3, poses.theta4
-        l2, l3, l4 = self.crank, self.coupler, self.rocker
-        w3, w4 = self.velocities(poses, omega2)
-        r1 = l2 * (np.cos(t2) * omega2**2 + np.sin(t2) * alpha2) + l3 * np.cos(t3) * w3**2 - l4 * np.cos(t4) * w4**2
-        r2 = l2 * (np.sin(t2) * omega2**2 - np.cos(t2) * alpha2) + l3 * np.sin(t3) * w3**2 - l4 * np.sin(t4) * w4**2
-        # [[-L3 s3, L4 s4], [L3 c3, -L4 c4]] [a3, a4] = [r1, r2]
-        det = l3 * l4 * np.sin(t3 - t4)
-        a3 = (-l4 * np.cos(t4) * r1 - l4 * np.sin(t4) * r2)
-        a4 = (-l3 * np.sin(t3) * r2 - l3 * np.cos(t3) * r1)
-        return _ratio(a3, det), _ratio(a4, det)
+        """Angular accelerations (alpha3, alpha4) in rad/s^2 for crank speed ``omega2`` and acceleration ``alpha2``
+        (rad/s, rad/s^2): alpha = theta'' omega2^2 + theta' alpha2, primes along the branch (see :meth:`rates`)."""
+        d3, d4, dd3, dd4 = self.rates(poses)
+        return (_times(dd3, omega2**2) + _times(d3, alpha2), _times(dd4, omega2**2) + _times(d4, alpha2))
 
     def mechanical_advantage(self, poses: Poses) -> np.ndarray:
-        """Output torque over input torque, |omega2 / omega4| (lossless): infinite at the rocker's dead centres."""
-        num = self.rocker * np.abs(np.sin(poses.theta4 - poses.theta3))
-        den = self.crank * np.abs(np.sin(poses.theta2 - poses.theta3))
-        return _ratio(num, den)
+        """Output torque over input torque, |omega2 / omega4| (lossless): infinite at the rocker's dead centres,
+        0 at a toggle, and the branch's limit at a change point."""
+        return _ratio(np.ones(len(poses.theta2)), np.abs(self.rates(poses)[1]))
 
     # ------------------------------------------------------------------ special positions
 
@@ -413,6 +452,111 @@ class FourBar:
         poses = self._poses(candidates, np.ones_like(candidates))
         i, j = int(np.argmin(poses.gamma)), int(np.argmax(poses.gamma))
         return (float(poses.gamma[i]), float(candidates[i])), (float(poses.gamma[j]), float(candidates[j]))
+
+
+def _refuse_coincident(theta2: np.ndarray, coincident: np.ndarray, what: str) -> None:
+    """Refuse crank angles where the crank pin sits on the rocker pivot (a deltoid's change point): there the
+    crank angle does not determine ``what``."""
+    if np.any(coincident):
+        first = math.degrees(float(np.asarray(theta2)[coincident][0]))
+        raise SpecError(f"at crank angle {first:.6g} degrees the crank pin sits on the rocker pivot, so the "
+                        f"{what} undetermined (a deltoid change point)", "angle")
+
+
+def _half_turns(theta2: np.ndarray) -> np.ndarray:
+    """floor(theta2 / pi): the half-turn each crank angle lies in.
+
+    :meth:`FourBar.sweep` counts change-point crossings with it and :func:`_branch_rates` names the side of
+    a change point with it, so the two agree to the last bit: an angle that rounds onto a change point
+    counts as just past it (its label names the branch beyond).
+    """
+    return np.floor(theta2 / math.pi)
+
+
+def _half_angle(theta2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """sin(theta2 / 2) and cos(theta2 / 2), their signs read from :func:`_half_turns` (the quadrant of theta2 / 2)."""
+    quadrant = np.mod(_half_turns(theta2), 4.0)
+    s = np.abs(np.sin(theta2 / 2.0)) * np.where(quadrant < 2, 1.0, -1.0)
+    c = np.abs(np.cos(theta2 / 2.0)) * np.where((quadrant == 0) | (quadrant == 3), 1.0, -1.0)
+    return s, c
+
+
+@dataclass(frozen=True)
+class _Root:
+    """A root of the triangle A-B-O4's area along the crank angles: its value (mm^2 / mm = mm), first and
+    second derivatives with respect to theta2 (mm/rad, mm/rad^2), its sign (+-1) and where it is 0 at a
+    toggle (where the derivatives, unbounded, are to be ignored)."""
+
+    value: np.ndarray
+    d1: np.ndarray
+    d2: np.ndarray
+    sign: np.ndarray
+    toggle: np.ndarray
+
+
+def _root(fold: bool, pair: tuple[float, float], r: float, u: np.ndarray, v: np.ndarray, h1: np.ndarray,
+          h2: np.ndarray) -> _Root:
+    """sqrt(x^2 - y^2 + 4 r^2 u^2) with (x, y) = ``pair``, u = sin or cos of theta2 / 2 and v = 2 du / d(theta2);
+    h1, h2: half the radicand's first and second derivatives.
+
+    At a change point (``fold``, x = y) the root is 2 r u, taken with its sign so that it stays smooth
+    through the fold (u = 0 there exactly, with no cancellation); otherwise the positive root, 0 at a
+    toggle (to rounding).
+    """
+    if fold:
+        return _Root(2.0 * r * u, r * v, -0.5 * r * u, np.where(u >= 0, 1.0, -1.0), np.zeros(u.shape, dtype=bool))
+    x, y = pair
+    value = (x - y) * (x + y) + 4.0 * r * r * u * u
+    zero = value <= 8.0 * np.finfo(float).eps * (x * x + y * y + 4.0 * r * r * u * u)
+    root = np.sqrt(np.where(zero, 1.0, value))
+    root1 = h1 / root
+    return _Root(np.where(zero, 0.0, root), root1, (h2 - root1**2) / root, np.ones(u.shape), zero)
+
+
+def _branch_rates(lengths: tuple[float, float, float, float], theta2: np.ndarray, m: _Root, p: _Root,
+                  label: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """theta3', theta4', theta3'', theta4'' (derivatives with respect to theta2) of the closed-form placement.
+
+    theta3 = delta + alpha and theta4 = delta + pi - beta: delta is the direction of A -> O4, alpha and
+    beta the angles at A and O4 of the triangle A-B-O4 (sides L3, L4 and z = |A O4|). With its area's
+    roots m = sqrt(z^2 - (L3 - L4)^2) and p = sqrt((L3 + L4)^2 - z^2) (see :meth:`FourBar._roots`),
+    tan alpha = b p m / (2 L3 (L3 - L4) + m^2) and tan beta = b p m / (2 L4 (L4 - L3) + m^2), where
+    b = +-1 names the branch: differentiated in this form nothing is divided by a vanishing quantity,
+    at a change point nor where z -> 0 at a deltoid's (z^2 = m^2 + (L3 - L4)^2). Through a change point
+    the branch keeps b while its label (the sign of b p m) changes, so the rates there are the branch's,
+    accurate to rounding at and near the fold. Where a root is 0 (a toggle) the rates are the limits
+    from inside the reach: +-inf.
+    """
+    l1, l2, l3, l4 = lengths
+    s, c = _half_angle(theta2)
+    sin_t = 2.0 * s * c
+    z2 = ((l1 - l2) + 2.0 * l2 * s**2) ** 2 + (l2 * sin_t) ** 2
+    d_delta = l2 * ((l2 - l1) + 2.0 * l1 * s**2) / z2
+    dd_delta = l1 * l2 * (l1 * l1 - l2 * l2) * sin_t / z2**2
+    branch = label * m.sign * p.sign
+    d2 = (l3 - l4) ** 2
+    zm = m.value**2 + d2                                  # z^2 from m: 0 only with m at a deltoid's fold
+    toggle = m.toggle | p.toggle
+    out = []
+    for lk, e, sense in ((l3, 2.0 * l3 * (l3 - l4), 1.0), (l4, 2.0 * l4 * (l4 - l3), -1.0)):
+        f, g = (e + m.value**2) / zm, (e - m.value**2) / zm
+        f1 = 2.0 * m.value * m.d1 * (d2 - e) / zm**2
+        g1 = -2.0 * m.value * m.d1 * (d2 + e) / zm**2
+        rate = (p.d1 * m.value * f + p.value * m.d1 * g) / (4.0 * lk * lk)
+        accel = ((p.d2 * m.value + p.d1 * m.d1) * f + p.d1 * m.value * f1 + (p.d1 * m.d1 + p.value * m.d2) * g
+                 + p.value * m.d1 * g1) / (4.0 * lk * lk)
+        # at a toggle a root is 0 and its derivatives unbounded (like 1/root, 1/root^3): the limits
+        toward = np.where(e + m.value**2 >= 0, 1.0, -1.0)
+        up = np.where(sin_t >= 0, 1.0, -1.0) * toward * np.where(m.toggle, 1.0, -1.0)
+        rate = np.where(toggle, up * np.inf, rate)
+        accel = np.where(toggle, -toward * np.inf, accel)
+        out.append((d_delta + sense * branch * rate, dd_delta + sense * branch * accel))
+    return out[0][0], out[1][0], out[0][1], out[1][1]
+
+
+def _times(x: np.ndarray, factor: float) -> np.ndarray:
+    """x * factor, 0 where the factor is 0 (an unbounded rate times a zero speed adds nothing, never NaN)."""
+    return np.zeros_like(x) if factor == 0 else x * factor
 
 
 def _ratio(num: np.ndarray, den: np.ndarray) -> np.ndarray:
