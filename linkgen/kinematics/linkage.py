@@ -121,8 +121,12 @@ class Linkage:
         """The linkage of a structure, with its change points found over the motion that starts at the drawing."""
         from linkgen.kinematics.motion import find_flips
 
+        from linkgen.kinematics.motion import check_redundant
+
         bare = cls(structure, plan(structure))
-        return cls(structure, bare.plan, find_flips(bare))
+        linkage = cls(structure, bare.plan, find_flips(bare))
+        check_redundant(linkage)
+        return linkage
 
     # ------------------------------------------------------------------ inputs
 
@@ -172,7 +176,17 @@ class Linkage:
         x = np.vstack([self.unwrap(x[0])] + list(x[1:])) if self.is_crank() else x
         if signs is None:
             signs = self._signs(x)
-        return _solve(self, x, r, signs, strict, derivatives, upto)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            return _solve(self, x, r, signs, strict, derivatives, upto)
+
+
+def body_point(s: Structure, sol: Solution, body: str, point: str) -> np.ndarray:
+    """Where ``body`` puts drawn ``point`` at each pose of ``sol`` (n, 2) mm (a redundant joint's holders may
+    disagree)."""
+    first = s.bodies[body][0]
+    d = _pt(s, point) - _pt(s, first)
+    c, sn = np.cos(sol.angles[body]), np.sin(sol.angles[body])
+    return sol.points[first] + np.stack([c * d[0] - sn * d[1], sn * d[0] + c * d[1]], axis=-1)
 
 
 def input_angle(s: Structure, inp: Input) -> float:
@@ -543,6 +557,11 @@ def _place_fixed(s: Structure, step: FixedStep, bodies: dict[str, Body], derivat
     bodies[step.body] = body
 
 
+def _unbounded(x: np.ndarray) -> np.ndarray:
+    """Rates past a toggle (where a dyad's 2x2 solve is singular) are unbounded: +inf, never NaN."""
+    return np.where(np.isnan(x), np.inf, x)
+
+
 def _gather(s: Structure, x: np.ndarray, bodies: dict[str, Body], results: tuple[DyadResult, ...], ok: np.ndarray,
             derivatives: bool) -> Solution:
     """Each point from the first body placed that holds it."""
@@ -555,8 +574,8 @@ def _gather(s: Structure, x: np.ndarray, bodies: dict[str, Body], results: tuple
         xw = body.at(_pt(s, name))
         points[name] = xw
         if derivatives:
-            vels[name], accs[name] = body.vel(xw), body.acc(xw)
+            vels[name], accs[name] = _unbounded(body.vel(xw)), _unbounded(body.acc(xw))
     angles = {b: body.phi for b, body in bodies.items()}
-    omegas: dict[str, Any] = {b: body.w for b, body in bodies.items()} if derivatives else {}
-    alphas: dict[str, Any] = {b: body.al for b, body in bodies.items()} if derivatives else {}
+    omegas: dict[str, Any] = {b: _unbounded(body.w) for b, body in bodies.items()} if derivatives else {}
+    alphas: dict[str, Any] = {b: _unbounded(body.al) for b, body in bodies.items()} if derivatives else {}
     return Solution(x, points, vels, accs, angles, omegas, alphas, results, ok)

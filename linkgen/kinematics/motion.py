@@ -234,6 +234,32 @@ def time_ratio(linkage: Linkage, extremes: tuple[Extreme, ...]) -> float | None:
     return max(travel, TWO_PI - travel) / min(travel, TWO_PI - travel)
 
 
+#: how closely (relative to the drawing's size) a redundant joint must hold over the motion for the linkage to
+#: count as paradoxical (it moves although Gruebler says it cannot)
+PARADOX_TOL = 1e-9
+
+
+def check_redundant(linkage: Linkage) -> None:
+    """Refuse a linkage whose redundant joints come apart over the motion from the drawing (an over-constrained
+    one); one whose redundant joints hold everywhere is paradoxical and kept (its plan lists them)."""
+    from linkgen.kinematics.linkage import body_point
+
+    joints = [r for r in linkage.plan.redundant if not r.slider]
+    if not joints or len(linkage.structure.inputs) != 1:
+        return
+    lo, hi = span(linkage)
+    x = np.linspace(lo, hi, 721)
+    sol = linkage.solve(x[None, :], strict=False, derivatives=False)
+    for r in joints:
+        b1, b2 = r.bodies
+        p1 = body_point(linkage.structure, sol, b1, r.name)[sol.ok]
+        p2 = body_point(linkage.structure, sol, b2, r.name)[sol.ok]
+        gap = float(np.max(np.hypot(*(p1 - p2).T))) if len(p1) else 0.0
+        if gap > PARADOX_TOL * linkage.structure.scale:
+            raise SpecError(f"over-constrained (mobility {linkage.plan.mobility}): links {b1} and {b2} cannot both "
+                            f"hold joint {r.name} as the input moves; remove a link or a joint", "linkage")
+
+
 def out_of_reach(linkage: Linkage, values: np.ndarray) -> NoReturn:
     """Refuse input values the linkage does not reach, naming its reachable ranges."""
     crank = linkage.structure.inputs[0].kind == "crank"

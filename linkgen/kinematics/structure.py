@@ -372,8 +372,7 @@ def _redundant(s: Structure, steps: list[Step]) -> tuple[Redundant, ...]:
             else:
                 used[step.joint].append(step.bodies)
         else:
-            for attachment in step.attachments:
-                use(step.body, attachment)
+            use(step.body, step.attachments[0])     # the second attachment is the one too many: checked
     out = []
     for point, holders in s.revolutes.items():
         group = {h: h for h in holders}
