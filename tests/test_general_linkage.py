@@ -150,8 +150,8 @@ def test_slider_crank_scotch_yoke_and_quick_returns_through_the_general_solver()
     lk = Linkage.of(equivalents.scotch_yoke(sy, 0.3))
     sol, m = lk.solve(ANGLES), sy.motion(lk.unwrap(ANGLES), 1.0)
     assert [s.kind for s in lk.plan.steps[1:]] == ["PPR"]
-    # the yoke's point sits at the crank pin's x plus the crank: 2R - x of the dedicated form, x = R (1 - cos t)
-    assert np.abs(sol.points["Y"][:, 0] - (60 - m.x)).max() < 1e-9
+    # the yoke's point sits at the crank pin's x plus three cranks: 4R - x of the dedicated form, x = R (1 - cos t)
+    assert np.abs(sol.points["Y"][:, 0] - (120 - m.x)).max() < 1e-9
     assert np.abs(sol.accelerations["Y"][:, 0] + m.a).max() < 1e-9
     cs = CrankShaper(40, 100, 160)
     lk = Linkage.of(equivalents.crank_shaper(cs, 0.3))

@@ -58,5 +58,6 @@ def num(x: float) -> float | None:
 
 def no_parts(kind: str) -> NoReturn:
     """Refuse ``[parts]`` for a mechanism of type ``kind`` that has none."""
-    raise SpecError(f"parts are made for four-bars, straight-line linkages and slider-cranks, not {kind}",
-                    "linkage.type")
+    reason = {"whitworth": ": its crank sweeps over the slotted link's pivot, which one base plate under every link "
+                            "cannot hold"}.get(kind, "")
+    raise SpecError(f"no parts are made for {kind}{reason}", "linkage.type")

@@ -39,7 +39,8 @@ from camgen.core.spec import MAX_LENGTH_MM, Model, unit
 from linkgen import plots
 from linkgen.kinematics import motion
 from linkgen.kinematics.linkage import Linkage, Solution
-from linkgen.kinematics.structure import GROUND, DyadStep, FixedStep, InputStep, Input, Slider, make_structure
+from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, Input, InputStep, Slider, Structure,
+                                          make_structure)
 from linkgen.mechanisms.common import Figure, num, omega, rpm
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
 
@@ -145,6 +146,24 @@ def _name(name: str, where: str) -> None:
 
     if not re.match(NAME, name):
         raise ValueError(f"{name!r}: a name is a letter then letters, digits or _ (at most 32)")
+
+
+def table_of(s: Structure, tracers: tuple[str, ...] = ()) -> LinkageTable:
+    """The ``[linkage]`` table that draws structure ``s`` (for mechanisms cut through the general parts layer)."""
+    blocks = {sl.name for sl in s.sliders if sl.link is None}
+    links = {b: pts for b, pts in s.bodies.items() if b != GROUND and b not in blocks}
+    sliders = {sl.name: {"point": sl.point, "guide": sl.guide, "angle": math.degrees(sl.angle),
+                         **({"link": sl.link} if sl.link else {})} for sl in s.sliders}
+    inputs = [{"slider": i.slider} if i.kind == "slide" else
+              {"link": i.link, "pivot": i.pivot, "relative_to": i.relative_to} for i in s.inputs]
+    return LinkageTable.model_validate({"type": "linkage", "joints": dict(s.points), "links": links,
+                                        "ground": s.bodies[GROUND], "sliders": sliders,
+                                        "input": inputs[0] if len(inputs) == 1 else inputs, "tracers": tracers})
+
+
+def analysis_of(s: Structure, tracers: tuple[str, ...] = ()) -> Analysis:
+    """The analysis of a structure drawn by another mechanism."""
+    return Analysis(table_of(s, tracers), Linkage.of(s))
 
 
 def structure_of(table: LinkageTable) -> Any:
@@ -396,9 +415,8 @@ def general_parts(a: Analysis, table: PartsTable) -> tuple[LinkPart, ...]:
         p0, beta = _frame(a, body)
         local = _local(where, p0, beta)
         half = table.width_of(body) / 2
-        outline = np.vstack([local] + [np.array(e) for e in slots[body]]) if slots[body] else None
-        if len(pts) == 1:
-            outline = np.array([[-2 * half, 0.0], [2 * half, 0.0]])
+        rounded = [np.array([[-2 * half, 0.0], [2 * half, 0.0]])] if len(pts) == 1 else [local]
+        outline = np.vstack(rounded + [np.array(e) for e in slots[body]]) if slots[body] or len(pts) == 1 else None
         parts.append(LinkPart(body, local, half, stock, slots=tuple(slots[body]), body=outline))
     return tuple(parts)
 

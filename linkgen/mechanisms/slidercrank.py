@@ -18,6 +18,7 @@ from pydantic import Field
 from camgen.core.errors import SpecError
 from camgen.core.spec import Model, unit
 from linkgen import plots
+from linkgen.kinematics import equivalents
 from linkgen.kinematics.slidercrank import ScotchYoke, SliderCrank, SliderMotion
 from linkgen.mechanisms.common import Figure, deg, length, lengths_table, no_parts, num, omega, rpm, types_of
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
@@ -140,6 +141,10 @@ class SliderMechanism:
     make: Callable[[Any], Any]
     extra: Callable[[Any], dict[str, Any]] | None = None
     at: Callable[[Any, SliderMotion, float], dict[str, Any]] | None = None
+    #: the mechanism drawn as a general linkage (kinematics -> structure), whose parts are cut for it; and the
+    #: point whose path the assembly shows
+    drawn: Callable[[Any], Any] | None = None
+    traced: str = ""
 
     @property
     def types(self) -> tuple[str, ...]:
@@ -158,7 +163,12 @@ class SliderMechanism:
         return (("motion", lambda: plots.slider_figure(name, kinematics, omega(table.rpm))),)
 
     def layout(self, table: Any, kinematics: Any, parts: PartsTable) -> Layout:
-        no_parts(table.type)
+        """Its parts cut as those of the general linkage it draws (crank, links, blocks, the guides' slots)."""
+        if self.drawn is None:
+            no_parts(table.type)
+        from linkgen.mechanisms.general import analysis_of, general_layout
+
+        return general_layout(analysis_of(self.drawn(kinematics), (self.traced,)), parts)
 
     def family_row(self, table: Any, kinematics: Any, report: dict[str, Any]) -> dict[str, Any]:
         return {}
@@ -183,5 +193,6 @@ class SliderCrankMechanism(SliderMechanism):
 REGISTER = (
     SliderCrankMechanism(SliderCrankTable, lambda t: SliderCrank(t.crank, t.rod, t.offset), _approximation_error,
                          _rod_and_approximation),
-    SliderMechanism(ScotchYokeTable, lambda t: ScotchYoke(t.crank)),
+    SliderMechanism(ScotchYokeTable, lambda t: ScotchYoke(t.crank), drawn=lambda k: equivalents.scotch_yoke(k, 0.0),
+                    traced="Y"),
 )
