@@ -3,14 +3,18 @@ finite differences."""
 from __future__ import annotations
 
 import itertools
+import json
 import math
 
 import mpmath
 import numpy as np
 import pytest
+from click.testing import CliRunner
 
 from camgen.core.errors import SolverError, SpecError
+from linkgen.cli import main
 from linkgen.kinematics.fourbar import FourBar
+from tests.conftest import ROOT
 
 CRANK_ROCKER = FourBar(180, 80, 200, 150)
 CASES = [CRANK_ROCKER, FourBar(6, 2, 7, 9), FourBar(50, 150, 200, 180), FourBar(100, 70, 60, 80),
@@ -142,7 +146,7 @@ def test_non_grashof_range_and_out_of_range_error():
     limit = math.acos((100**2 + 70**2 - 140**2) / (2 * 100 * 70))
     assert fb.input_ranges() == ((pytest.approx(-limit), pytest.approx(limit)),)
     with pytest.raises(SpecError, match=r"out of reach; this linkage reaches crank angles \[-109.616, 109.616\]"):
-        fb.positions([limit + 1e-6])
+        fb.positions([limit + 1e-3])
     kinds = {d.kind for d in fb.dead_centres()}
     assert "toggle-extended" in kinds
 
@@ -222,3 +226,80 @@ def test_vectorised_positions_are_fast_and_never_nan():
     t2 = np.linspace(0, 2 * math.pi, 100_000)
     p = CRANK_ROCKER.positions(t2, "crossed")
     assert np.isfinite(p.theta3).all() and np.isfinite(p.gamma).all()
+
+
+@pytest.mark.parametrize("beyond, angle, limit", [
+    (1e-6, "109.61604", "109.61598"), (1e-9, "109.6159792", "109.6159791"), (1e-3, "109.673", "109.616")])
+def test_an_angle_just_out_of_reach_does_not_read_as_its_limit(beyond, angle, limit):
+    """The issue: "149.703 is out of reach of [.., 149.703]". As many digits (6 to 17) as tell the two apart."""
+    fb = FourBar(100, 70, 60, 80)
+    end = math.acos((100**2 + 70**2 - 140**2) / (2 * 100 * 70))
+    with pytest.raises(SpecError) as err:
+        fb.positions([end + beyond])
+    assert str(err.value) == (f"angle: crank angle {angle} degrees is out of reach; this linkage reaches crank angles "
+                              f"[-{limit}, {limit}] degrees")
+
+
+def test_an_unreachable_rocker_angle_is_named_as_the_rockers():
+    """Driven by the rocker, the message speaks of rocker angles and their range, not the mirror image's crank."""
+    fb = FourBar(100, 70, 60, 80)
+    mirror_end = math.degrees(math.acos((100**2 + 80**2 - 130**2) / (2 * 100 * 80)))     # Z = L3 + L4 = 130
+    with pytest.raises(SpecError, match=r"^angle: rocker angle 10 degrees is out of reach; this linkage reaches "
+                                        r"rocker angles \[88.2092, 271.791\] degrees$"):
+        fb.rocker_positions([math.radians(10)])
+    assert 180 - mirror_end == pytest.approx(88.2092, abs=1e-4)
+
+
+def test_newton_converges_at_a_reachable_toggle():
+    """The issue's case: crank 120, coupler 140 (ground 180, rocker 150; S + L > P + Q, a triple rocker) at
+    149.703449697 degrees, 6e-12 rad past the toggle where Z = L3 + L4 (accepted, and placed on the toggle, by the
+    closed form). The Jacobian is singular at the double root and there is no exact root: Newton used to oscillate
+    at a residual of 1e-9 mm for 50 iterations. Now each step is halved until it lowers the residual, and it stops at
+    the least-squares pose, the toggle's: 1.1e-7 degrees from the closed form (measured), the residual 2.3e-10 mm,
+    the loop's own gap there."""
+    fb = FourBar(180, 120, 140, 150)
+    theta2 = math.radians(149.703449697)
+    assert theta2 > fb.input_ranges()[0][1]
+    exact = fb.positions([theta2])
+    assert math.degrees(exact.gamma[0]) == pytest.approx(180.0, abs=1e-12)        # the extended toggle
+    gap = math.hypot(*fb._z(np.array(theta2))) - (fb.coupler + fb.rocker)
+    r = fb.newton(theta2, (exact.theta3[0] + math.radians(10), exact.theta4[0] - math.radians(10)))
+    assert r.least_squares and len(r.steps) <= 40
+    assert r.steps[-1].residual == pytest.approx(gap, rel=1e-3)
+    assert abs(math.degrees(wrap(r.theta3 - exact.theta3[0]))) < 1e-6
+    assert abs(math.degrees(wrap(r.theta4 - exact.theta4[0]))) < 1e-6
+    # linear convergence on the way in: the residual falls by about 4 a step (the angles' error halves)
+    res = [s.residual for s in r.steps]
+    assert all(3 < before / after < 5 for before, after in itertools.pairwise(res[2:14]))
+
+
+@pytest.mark.parametrize("fb", [FourBar(100, 70, 60, 80), FourBar(100, 60, 40, 90), FourBar(180, 120, 140, 150)],
+                         ids=["triple-rocker", "double-rocker", "issue"])
+@pytest.mark.parametrize("past", [0.0, 1e-13, 5e-12, -1e-12, -1e-9])
+def test_newton_at_and_near_every_toggle_agrees_with_the_closed_form(fb, past):
+    """At each end of the reach, on it, a hair past it (within the closed form's tolerance) or just inside: Newton
+    from 10 degrees off ends on the closed form's pose (to 1e-7 rad: a double root's angles are known to about the
+    square root of the residual's rounding), or, just inside where the two assemblies are 1e-4 rad apart, on one
+    of the two."""
+    for lo, hi in fb.input_ranges():
+        for theta2 in (lo - past, hi + past):
+            both = [fb.positions([theta2], a) for a in ("open", "crossed")]
+            p = both[0]
+            r = fb.newton(theta2, (p.theta3[0] + math.radians(10), p.theta4[0] - math.radians(10)))
+            assert min(max(abs(wrap(r.theta3 - q.theta3[0])), abs(wrap(r.theta4 - q.theta4[0])))
+                       for q in both) < 1e-7
+            assert r.steps[-1].residual <= (1e-12 + 1e-10) * fb.longest
+
+
+def test_newton_report_at_the_issues_toggle(tmp_path):
+    """``linkgen analyze templates/crank-rocker.toml --set linkage.crank=120 --set linkage.coupler=140
+    --angle 149.703449697 --method newton``: the table converges to the closed form and says where it stopped."""
+    result = CliRunner().invoke(main, ["analyze", str(ROOT / "templates" / "crank-rocker.toml"), "--set",
+                                       "linkage.crank=120", "--set", "linkage.coupler=140", "--angle", "149.703449697",
+                                       "--method", "newton", "--json", "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    newton = json.loads(result.output)["newton"]
+    assert newton["agrees_with_closed_form_deg"] < 1e-6
+    assert newton["stopped"].startswith("at a toggle's least-squares pose")
+    rows = newton["iterations"]
+    assert rows[0]["residual_mm"] > 1 and rows[-1]["residual_mm"] < 3e-10

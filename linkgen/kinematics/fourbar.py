@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from collections.abc import Callable
 from typing import Literal
 
 import numpy as np
@@ -55,10 +56,6 @@ def _area4(a: float, b: float, c: np.ndarray) -> np.ndarray:
     y = np.where(c > p, p, np.where(c < q, q, c))
     prod = (x + (y + z)) * (z - (x - y)) * (z + (x - y)) * (x + (y - z))
     return np.sqrt(np.maximum(prod, 0.0))
-
-
-def _degrees_range(lo: float, hi: float) -> tuple[float, float]:
-    return (math.degrees(lo), math.degrees(hi))
 
 
 @dataclass(frozen=True)
@@ -107,9 +104,14 @@ class NewtonStep:
 
 @dataclass(frozen=True)
 class NewtonResult:
+    """Newton-Raphson's answer (radians) and its table; ``least_squares`` when it stopped at a toggle's
+    least-squares pose (the residual as low as rounding lets it go, within the closed form's reach
+    tolerance) rather than below the tolerance."""
+
     theta3: float
     theta4: float
     steps: tuple[NewtonStep, ...]
+    least_squares: bool = False
 
 
 @dataclass(frozen=True)
@@ -177,19 +179,25 @@ class FourBar:
             return ((a_lo, TWO_PI - a_lo),)
         return ((a_lo, a_hi), (TWO_PI - a_hi, TWO_PI - a_lo))
 
-    def _check_reach(self, theta2: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The vector A -> O4 and its length at each crank angle, or a clear error if one is out of reach."""
+    def _check_reach(self, theta2: np.ndarray, mirrored: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The vector A -> O4 and its length at each crank angle, or a clear error if one is out of reach.
+
+        ``mirrored``: this is the mirror image of a rocker-driven linkage (see :meth:`rocker_positions`), and
+        the errors speak of the rocker's angles, 180 degrees minus the mirror's crank angles.
+        """
         dx, dy = self._z(theta2)
         z = np.hypot(dx, dy)
         tol = FEASIBILITY_TOL * self.longest
         bad = (z > self.coupler + self.rocker + tol) | (z < abs(self.coupler - self.rocker) - tol)
         if np.any(bad):
-            ranges = self.input_ranges() or ()
-            text = " or ".join(f"[{lo:.6g}, {hi:.6g}]" for lo, hi in (_degrees_range(*r) for r in ranges))
-            first = math.degrees(float(np.asarray(theta2)[bad][0]))
-            raise SpecError(f"crank angle {first:.6g} degrees is out of reach; this linkage reaches crank angles "
-                            f"{text} degrees", "angle")
-        _refuse_coincident(theta2, z <= tol, "coupler's position is")
+            link, angle = _input_angle(float(np.asarray(theta2)[bad][0]), mirrored)
+            ranges = [_input_angle(x, mirrored)[1] for r in self.input_ranges() or () for x in r]
+            ranges = sorted(ranges)                 # the mirror's ranges turn round: (180 - hi, 180 - lo)
+            digits = _digits_apart(angle, ranges)
+            text = " or ".join(f"[{lo:.{digits}g}, {hi:.{digits}g}]" for lo, hi in zip(ranges[::2], ranges[1::2]))
+            raise SpecError(f"{link} angle {angle:.{digits}g} degrees is out of reach; this linkage reaches {link} "
+                            f"angles {text} degrees", "angle")
+        _refuse_coincident(theta2, z <= tol, "coupler's position is", mirrored)
         return dx, dy, z
 
     # ------------------------------------------------------------------ positions
@@ -238,8 +246,11 @@ class FourBar:
         :class:`SpecError` naming that range (never NaN). Labels swap at change
         points; use :meth:`sweep` to follow one branch through them.
         """
+        return self._placed(theta2, assembly)
+
+    def _placed(self, theta2: ArrayLike, assembly: Assembly, mirrored: bool = False) -> Poses:
         t = np.atleast_1d(np.asarray(theta2, dtype=float))
-        return self._poses(t, np.full(t.shape, _sign(assembly)), self._check_reach(t))
+        return self._poses(t, np.full(t.shape, _sign(assembly)), self._check_reach(t, mirrored))
 
     def rocker_positions(self, theta4: ArrayLike, assembly: Assembly = "open") -> Poses:
         """Poses when the rocker drives, at rocker angles ``theta4`` (rad).
@@ -249,7 +260,7 @@ class FourBar:
         names the two solutions as the rocker sees them, i.e. the mirror's labels.
         """
         t4 = np.atleast_1d(np.asarray(theta4, dtype=float))
-        m = FourBar(self.ground, self.rocker, self.coupler, self.crank).positions(math.pi - t4, assembly)
+        m = FourBar(self.ground, self.rocker, self.coupler, self.crank)._placed(math.pi - t4, assembly, mirrored=True)
         a = np.column_stack([self.ground - m.b[:, 0], m.b[:, 1]])
         b = np.column_stack([self.ground - m.a[:, 0], m.a[:, 1]])
         theta2 = np.arctan2(a[:, 1], a[:, 0])
@@ -300,32 +311,50 @@ class FourBar:
                max_iter: int = 50) -> NewtonResult:
         """Newton-Raphson on the loop closure for (theta3, theta4), radians, from ``guess``.
 
-        Stops when the residual is below ``tol`` times the longest link. Raises
-        :class:`SolverError` at a singular Jacobian (coupler and rocker collinear, a
-        toggle) or after ``max_iter`` steps. The result carries the iteration table.
+        Converged when the residual is below ``tol`` times the longest link and the next step (the
+        iteration's own error estimate) below ``1000 tol`` rad. Each step is halved until it lowers the
+        residual. At a toggle (coupler and rocker collinear) the root is double: the Jacobian is singular
+        there and the convergence only linear; an input past the toggle by less than the closed form
+        accepts (``FEASIBILITY_TOL``) has no exact root at all. So the iteration also stops where the
+        Jacobian is singular or no step lowers the residual any more (at rounding) while the loop closes
+        to within ``tol`` plus that tolerance: the least-squares pose, the toggle's, as the closed form
+        has it. Raises :class:`SolverError` at a singular Jacobian far from a root (a guess with coupler
+        and rocker collinear), when no step helps far from a root, or after ``max_iter`` steps. The
+        result carries the iteration table.
         """
         t3, t4 = float(guess[0]), float(guess[1])
+        f1, f2 = self.residual(theta2, t3, t4)
         steps: list[NewtonStep] = []
         scale = self.longest
+        closes = (tol + FEASIBILITY_TOL) * scale        # the loop closes as nearly as the closed form asks
+        where = f"at crank angle {math.degrees(theta2):.6g} degrees"
         for k in range(max_iter + 1):
-            f1, f2 = self.residual(theta2, t3, t4)
             steps.append(NewtonStep(k, t3, t4, f1, f2))
-            if math.hypot(f1, f2) <= tol * scale:
-                return NewtonResult(t3, t4, tuple(steps))
-            if k == max_iter:
-                break
+            res = math.hypot(f1, f2)
             # J = d(f1, f2)/d(t3, t4) = [[-L3 sin t3, L4 sin t4], [L3 cos t3, -L4 cos t4]]
             j11, j12 = -self.coupler * math.sin(t3), self.rocker * math.sin(t4)
             j21, j22 = self.coupler * math.cos(t3), -self.rocker * math.cos(t4)
             det = j11 * j22 - j12 * j21
             if abs(det) <= 1e-12 * self.coupler * self.rocker:
-                raise SolverError(f"Newton-Raphson: singular Jacobian at iteration {k} (crank angle "
-                                  f"{math.degrees(theta2):.6g} degrees): coupler and rocker are collinear, a toggle "
-                                  "position; start from another guess or use the closed form")
-            t3 -= (j22 * f1 - j12 * f2) / det
-            t4 -= (-j21 * f1 + j11 * f2) / det
-        raise SolverError(f"Newton-Raphson did not converge in {max_iter} iterations at crank angle "
-                          f"{math.degrees(theta2):.6g} degrees (residual {math.hypot(f1, f2):.3g} mm)")
+                if res <= closes:
+                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > tol * scale)
+                raise SolverError(f"Newton-Raphson: singular Jacobian at iteration {k} ({where}): coupler and "
+                                  "rocker are collinear, a toggle position; start from another guess or use the "
+                                  "closed form")
+            d3, d4 = (j22 * f1 - j12 * f2) / det, (-j21 * f1 + j11 * f2) / det
+            if res <= tol * scale and max(abs(d3), abs(d4)) <= 1e3 * tol:
+                return NewtonResult(t3, t4, tuple(steps))
+            if k == max_iter:
+                break
+            found = _descent(lambda a, b: self.residual(theta2, a, b), (t3, t4), (d3, d4), res)
+            if found is None:                           # no step lowers the residual: rounding level
+                if res <= closes:
+                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > tol * scale)
+                raise SolverError(f"Newton-Raphson stalled at iteration {k} ({where}): no step lowers the "
+                                  f"residual {res:.3g} mm; start from another guess or use the closed form")
+            t3, t4, f1, f2 = found
+        raise SolverError(f"Newton-Raphson did not converge in {max_iter} iterations {where} "
+                          f"(residual {math.hypot(f1, f2):.3g} mm)")
 
     # ------------------------------------------------------------------ derivatives
 
@@ -454,13 +483,26 @@ class FourBar:
         return (float(poses.gamma[i]), float(candidates[i])), (float(poses.gamma[j]), float(candidates[j]))
 
 
-def _refuse_coincident(theta2: np.ndarray, coincident: np.ndarray, what: str) -> None:
+def _input_angle(theta2: float, mirrored: bool) -> tuple[str, float]:
+    """The driven link's name and its angle (degrees) at crank angle ``theta2`` (rad): the crank's own, or on a
+    rocker-driven linkage's mirror image (see :meth:`FourBar.rocker_positions`) the rocker's, 180 minus it."""
+    return ("rocker", 180.0 - math.degrees(theta2)) if mirrored else ("crank", math.degrees(theta2))
+
+
+def _digits_apart(angle: float, limits: list[float]) -> int:
+    """The fewest significant digits, 6 to 17, with which ``angle`` prints differently from each of ``limits``
+    (17 tell any two doubles apart): an angle just out of reach must not read as its limit."""
+    return next((n for n in range(6, 17) if all(f"{angle:.{n}g}" != f"{x:.{n}g}" for x in limits)), 17)
+
+
+def _refuse_coincident(theta2: np.ndarray, coincident: np.ndarray, what: str, mirrored: bool = False) -> None:
     """Refuse crank angles where the crank pin sits on the rocker pivot (a deltoid's change point): there the
-    crank angle does not determine ``what``."""
+    crank angle does not determine ``what``. ``mirrored``: said of a rocker-driven linkage's mirror image."""
     if np.any(coincident):
-        first = math.degrees(float(np.asarray(theta2)[coincident][0]))
-        raise SpecError(f"at crank angle {first:.6g} degrees the crank pin sits on the rocker pivot, so the "
-                        f"{what} undetermined (a deltoid change point)", "angle")
+        link, angle = _input_angle(float(np.asarray(theta2)[coincident][0]), mirrored)
+        pins = "the rocker pin sits on the crank pivot" if mirrored else "the crank pin sits on the rocker pivot"
+        raise SpecError(f"at {link} angle {angle:.6g} degrees {pins}, so the {what} undetermined (a deltoid "
+                        "change point)", "angle")
 
 
 def _half_turns(theta2: np.ndarray) -> np.ndarray:
@@ -552,6 +594,20 @@ def _branch_rates(lengths: tuple[float, float, float, float], theta2: np.ndarray
         accel = np.where(toggle, -toward * np.inf, accel)
         out.append((d_delta + sense * branch * rate, dd_delta + sense * branch * accel))
     return out[0][0], out[1][0], out[0][1], out[1][1]
+
+
+def _descent(residual: Callable[[float, float], tuple[float, float]], at: tuple[float, float],
+             step: tuple[float, float], res: float) -> tuple[float, float, float, float] | None:
+    """The Newton step from ``at`` (``at - step``), halved until the residual falls below ``res``: the new point
+    and its residuals, or None when even 2^-30 of the step does not lower it (the residual is at rounding)."""
+    fraction = 1.0
+    while fraction >= 2.0**-30:
+        a, b = at[0] - fraction * step[0], at[1] - fraction * step[1]
+        f1, f2 = residual(a, b)
+        if math.hypot(f1, f2) < res:
+            return a, b, f1, f2
+        fraction /= 2.0
+    return None
 
 
 def _times(x: np.ndarray, factor: float) -> np.ndarray:

@@ -82,6 +82,9 @@ def _newton(fb: FourBar, theta: float, exact: Poses) -> dict[str, Any]:
     return {
         "start": "closed-form answer moved by +10 degrees (coupler) and -10 degrees (rocker)",
         "tolerance_mm": 1e-12 * fb.longest,
+        "stopped": ("at a toggle's least-squares pose: no step lowers the residual, which is within the tolerance "
+                    "the closed form reaches past a toggle with" if result.least_squares
+                    else "residual below the tolerance"),
         "iterations": [{"iteration": s.iteration, "coupler_deg": math.degrees(s.theta3),
                         "rocker_deg": math.degrees(s.theta4), "f1_mm": s.f1, "f2_mm": s.f2,
                         "residual_mm": s.residual} for s in result.steps],
