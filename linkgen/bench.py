@@ -16,8 +16,20 @@ import numpy as np
 
 from camgen.core import bench as core_bench
 from camgen.core.bench import timed
+from linkgen.kinematics import dyads, equivalents
 from linkgen.kinematics.fourbar import FourBar
+from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.slidercrank import SliderCrank
+from linkgen.kinematics.structure import Input, Structure, make_structure
+
+#: Jansen's "holy numbers" (mm): a, l the crank centre to the fixed pivot B (left and down), m the crank, the rest
+#: the legs' bars and triangles (strandbeest.com)
+HOLY = {"a": 38.0, "b": 41.5, "c": 39.3, "d": 40.1, "e": 55.8, "f": 39.4, "g": 36.7, "h": 65.7, "i": 49.0,
+        "j": 50.0, "k": 61.9, "l": 7.8, "m": 15.0}
+#: Jansen's joints in solve order: (joint, first known joint, its distance, second, its distance, pick), ``pick``
+#: choosing the intersection: the upper ('y+'), lower ('y-') or left ('x-') one
+JANSEN_DYADS = (("C", "A", "j", "B", "b", "y+"), ("D", "A", "k", "B", "c", "y-"), ("E", "B", "d", "C", "e", "x-"),
+                ("F", "E", "f", "D", "g", "x-"), ("G", "D", "h", "F", "i", "y-"))
 
 
 def linkage_speed(repeats: int) -> list[dict]:
@@ -76,6 +88,117 @@ def _pylinkage(n: int, exact: np.ndarray, repeats: int) -> list[dict]:
     return rows
 
 
+def _pick(candidates: list, how: str) -> Any:
+    axis, sign = (1 if how[0] == "y" else 0), (1 if how[1] == "+" else -1)
+    return max(candidates, key=lambda p: sign * p[axis])
+
+
+def jansen_points(theta: float) -> dict[str, tuple[float, float]]:
+    """Jansen's leg drawn at crank angle ``theta`` (rad): crank centre O at the origin, fixed pivot B at (-a, -l),
+    crank pin A, and the joints C to G (G the foot) by circle intersections, each on its usual side."""
+    pts = {"O": (0.0, 0.0), "B": (-HOLY["a"], -HOLY["l"]),
+           "A": (HOLY["m"] * math.cos(theta), HOLY["m"] * math.sin(theta))}
+    for joint, p, rp, q, rq, how in JANSEN_DYADS:
+        both = [dyads.circle_circle(np.array([pts[p]]), HOLY[rp], np.array([pts[q]]), HOLY[rq], sign)[0][0]
+                for sign in (1.0, -1.0)]
+        pts[joint] = tuple(float(v) for v in _pick(both, how))
+    return pts
+
+
+def jansen(theta: float = 0.0) -> Structure:
+    """Jansen's leg as a general linkage drawn at ``theta``: crank O-A, bars A-C, A-D, B-D, E-F, the triangle
+    B-C-E and the foot triangle D-F-G."""
+    links = {"crank": ("O", "A"), "upper": ("A", "C"), "lower": ("A", "D"), "back": ("B", "D"),
+             "top": ("B", "C", "E"), "thigh": ("E", "F"), "foot": ("D", "F", "G")}
+    return make_structure(jansen_points(theta), links, ("O", "B"), (), (Input("crank", "crank", "O"),))
+
+
+def jansen_reference(thetas: np.ndarray, signs: dict[str, int]) -> np.ndarray:
+    """The foot G at crank angles ``thetas`` to 50 digits (mpmath), each joint on the side ``signs`` gives (+1:
+    left of the line from its first known joint to its second)."""
+    import mpmath
+
+    mpmath.mp.dps = 50
+    out = []
+    for theta in thetas:
+        t = mpmath.mpf(float(theta))
+        pts = {"B": (-mpmath.mpf(HOLY["a"]), -mpmath.mpf(HOLY["l"])),
+               "A": (HOLY["m"] * mpmath.cos(t), HOLY["m"] * mpmath.sin(t))}
+        for joint, p, rp, q, rq, _ in JANSEN_DYADS:
+            (x1, y1), (x2, y2) = pts[p], pts[q]
+            r1, r2 = mpmath.mpf(HOLY[rp]), mpmath.mpf(HOLY[rq])
+            d = mpmath.sqrt((x2 - x1) ** 2 + (y2 - y1) ** 2)
+            along = (d * d + r1 * r1 - r2 * r2) / (2 * d)
+            h = signs[joint] * mpmath.sqrt(r1 * r1 - along * along)
+            ex, ey = (x2 - x1) / d, (y2 - y1) / d
+            pts[joint] = (x1 + along * ex - h * ey, y1 + along * ey + h * ex)
+        out.append([float(pts["G"][0]), float(pts["G"][1])])
+    return np.array(out)
+
+
+def general_speed(repeats: int, n: int = 100_000) -> list[dict]:
+    """The general solver against the dedicated four-bar closed form, and Jansen's leg against pylinkage, at ``n``
+    crank angles, with the accuracy of each against a 50-digit reference (Jansen) or the closed form (four-bar)."""
+    t = 2 * math.pi / n * np.arange(1, n + 1)
+    fb = FourBar(180, 80, 200, 150)
+    general = Linkage.of(equivalents.fourbar(fb, 0.0))
+    exact, dedicated = timed(lambda: fb.positions(t).b, repeats)
+    ours, seconds = timed(lambda: general.solve(t, derivatives=False).points["B"], repeats)
+    rows = [{"linkage": "four-bar", "method": "linkgen dedicated closed form", "angles": n, "seconds": dedicated,
+             "max_error_mm": 0.0},
+            {"linkage": "four-bar", "method": "linkgen general solver (positions)", "angles": n, "seconds": seconds,
+             "max_error_mm": float(np.abs(ours - exact).max())}]
+    leg = Linkage.of(jansen(0.0))
+    pts = leg.structure.points
+    signs = {j: int(np.sign(dyads.cross(np.subtract(pts[q], pts[p]), np.subtract(pts[j], pts[p]))))
+             for j, p, _, q, _, _ in JANSEN_DYADS}
+    probe = np.arange(0, n, max(1, n // 100))
+    reference = jansen_reference(t[probe], signs)
+    foot, seconds = timed(lambda: leg.solve(t, derivatives=False).points["G"], repeats)
+    _, with_rates = timed(lambda: leg.solve(t), repeats)
+    rows += [{"linkage": "jansen", "method": "linkgen general solver (positions)", "angles": n, "seconds": seconds,
+              "max_error_mm": float(np.abs(foot[probe] - reference).max())},
+             {"linkage": "jansen", "method": "linkgen general solver (positions, velocities, accelerations)",
+              "angles": n, "seconds": with_rates, "max_error_mm": None}]
+    rows += _pylinkage_jansen(t, probe, reference, repeats)
+    return rows
+
+
+def _pylinkage_jansen(t: np.ndarray, probe: np.ndarray, reference: np.ndarray, repeats: int) -> list[dict]:
+    """pylinkage's fastest path (its numba-compiled steps) on the same leg, drawn at the same first angle."""
+    row = {"linkage": "jansen", "angles": len(t)}
+    try:
+        import pylinkage as pl
+    except ImportError:
+        return [{**row, "method": "pylinkage", "seconds": None, "status": "not installed (pip install '.[bench]')"}]
+    start = jansen_points(float(t[0]))
+
+    def linkage() -> Any:
+        o, b = pl.Ground(0, 0, name="O"), pl.Ground(*start["B"], name="B")
+        # its first pose is one step after the start: start a step early so that its poses are ours
+        step = float(t[1] - t[0])
+        crank = pl.Crank(o, HOLY["m"], angular_velocity=step, initial_angle=float(t[0]) - step, name="A")
+        joints = {"O": o, "B": b, "A": crank}
+        for joint, p, rp, q, rq, _ in JANSEN_DYADS:
+            joints[joint] = pl.RRRDyad(joints[p], joints[q], HOLY[rp], HOLY[rq], x=start[joint][0],
+                                       y=start[joint][1], name=joint)
+        return pl.Linkage(list(joints.values())), list(joints).index("G")
+
+    mech, foot = linkage()
+
+    def run() -> np.ndarray:
+        return np.asarray(mech.step_fast(iterations=len(t))[:, foot, :], dtype=float)
+
+    begin = time.perf_counter()
+    run()
+    first_seconds = time.perf_counter() - begin
+    mech, foot = linkage()
+    result, seconds = timed(run, repeats)
+    err = float(np.abs(result[probe] - reference).max())
+    return [{**row, "method": "pylinkage step_fast (numba)", "seconds": seconds, "first_call_seconds": first_seconds,
+             "max_error_mm": err}]
+
+
 def hard_cases() -> list[dict]:
     """Each hard case with what happened: a sound value, or a clean refusal (never NaN or garbage)."""
     return core_bench.hard_cases(_cases())
@@ -105,6 +228,7 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
     """Run everything; write RESULTS.md and results.json into ``out``; return the results."""
     repeats = 1 if quick else 5
     return core_bench.finish(Path(out), {"quick": quick, "linkages": linkage_speed(repeats),
+                                         "general": general_speed(repeats, 10_000 if quick else 100_000),
                                          "hard_cases": hard_cases()}, _markdown)
 
 
@@ -118,6 +242,15 @@ def _markdown(r: dict) -> list[str]:
         err = "-" if row.get("max_error_mm") is None else f"{row['max_error_mm']:.1e}"
         status = row.get("status", "measured")
         lines.append(f"| {row['method']} | {row.get('angles') or '-'} | {sec} | {err} | {status} |")
+    lines += ["", "## Any linkage: the general solver", "",
+              "| linkage | method | angles | seconds | max error (mm) | status |", "|---|---|---|---|---|---|"]
+    for row in r.get("general", []):
+        sec = "-" if row.get("seconds") is None else f"{row['seconds']:.5f}"
+        err = "-" if row.get("max_error_mm") is None else f"{row['max_error_mm']:.1e}"
+        lines.append(f"| {row['linkage']} | {row['method']} | {row['angles']} | {sec} | {err} | "
+                     f"{row.get('status', 'measured')} |")
+    lines += ["", "Jansen's leg (the holy numbers): errors of the foot against a 50-digit (mpmath) solution at 100 of "
+              "the angles; the four-bar's against linkgen's dedicated closed form."]
     return [*lines, "", "Errors of linkage positions are against linkgen's closed form (which the tests check "
                     "against 50-digit references); pylinkage's first call includes its compilation: "
                     + "; ".join(f"{row['method']} at {row['angles']}: {row['first_call_seconds']:.3f} s"

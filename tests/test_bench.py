@@ -38,3 +38,9 @@ def test_quick_linkgen_bench(tmp_path):
     assert all(row.get("status") for row in r["linkages"] if row["seconds"] is None)   # never skipped silently
     assert all(row["max_error_mm"] < 1e-6 for row in r["linkages"] if row.get("max_error_mm") is not None)
     assert r["hard_cases"] and not [c for c in r["hard_cases"] if c["outcome"].startswith("WRONG")]
+    general = {(row["linkage"], row["method"]): row for row in r["general"]}
+    # the general solver against the four-bar's closed form and Jansen's leg against 50 digits
+    assert general[("four-bar", "linkgen general solver (positions)")]["max_error_mm"] < 1e-9
+    assert general[("jansen", "linkgen general solver (positions)")]["max_error_mm"] < 1e-9
+    peer = [row for (name, _), row in general.items() if name == "jansen" and "pylinkage" in row["method"]]
+    assert peer and (peer[0].get("status") or peer[0]["max_error_mm"] < 1e-6)

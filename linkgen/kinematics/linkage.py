@@ -66,10 +66,6 @@ class Body:
         r = xw - self.T
         return self.aT + self.al[:, None] * perp(r) - (self.w**2)[:, None] * r
 
-    @property
-    def phi(self) -> np.ndarray:
-        return np.arctan2(self.s, self.c)
-
 
 def _pinned(c: np.ndarray, s: np.ndarray, pw: np.ndarray, pd: np.ndarray) -> Body:
     """A body turned by (c, s) whose drawn point pd is at world pw."""
@@ -100,11 +96,16 @@ class Solution:
     points: dict[str, np.ndarray]
     velocities: dict[str, np.ndarray]
     accelerations: dict[str, np.ndarray]
-    angles: dict[str, np.ndarray]
+    rotations: dict[str, tuple[np.ndarray, np.ndarray]]
     omegas: dict[str, np.ndarray]
     alphas: dict[str, np.ndarray]
     dyads: tuple[DyadResult, ...]
     ok: np.ndarray
+
+    @property
+    def angles(self) -> dict[str, np.ndarray]:
+        """Each body's turn from the drawing (rad, in (-pi, pi]), computed when asked."""
+        return {b: np.arctan2(sn, c) for b, (c, sn) in self.rotations.items()}
 
 
 @dataclass(frozen=True)
@@ -150,7 +151,7 @@ class Linkage:
         """Each step's branch sign at each pose: the drawing's, swapped at every change point passed on the way
         there from the drawing."""
         drawn = _drawn_signs(self.structure, self.plan)
-        if not self.flips or len(self.structure.inputs) != 1:
+        if not any(len(f) for f in self.flips) or len(self.structure.inputs) != 1:
             return [np.full(inputs.shape[1], s) for s in drawn]
         x = self.unwrap(inputs[0])
         x0 = self.drawn_inputs[0]
@@ -575,7 +576,7 @@ def _gather(s: Structure, x: np.ndarray, bodies: dict[str, Body], results: tuple
         points[name] = xw
         if derivatives:
             vels[name], accs[name] = _unbounded(body.vel(xw)), _unbounded(body.acc(xw))
-    angles = {b: body.phi for b, body in bodies.items()}
+    rotations = {b: (body.c, body.s) for b, body in bodies.items()}
     omegas: dict[str, Any] = {b: _unbounded(body.w) for b, body in bodies.items()} if derivatives else {}
     alphas: dict[str, Any] = {b: _unbounded(body.al) for b, body in bodies.items()} if derivatives else {}
-    return Solution(x, points, vels, accs, angles, omegas, alphas, results, ok)
+    return Solution(x, points, vels, accs, rotations, omegas, alphas, results, ok)
