@@ -46,6 +46,13 @@ def convex_curvature_max(cam: Cam) -> tuple[float, float]:
     return _peak(cam, lambda g: g.kappa)
 
 
+def convex_radius_min(cam: Cam) -> tuple[float, float]:
+    """Smallest convex radius of curvature of the pitch curve (mm) and where (degrees): infinite where the curve
+    is nowhere convex (a plate cam of straight ramps and dwells)."""
+    kmax, at = convex_curvature_max(cam)
+    return (1.0 / kmax if kmax > 0 else math.inf), at
+
+
 def face_extent(cam: Cam) -> tuple[float, float]:
     """Nearest and farthest contact positions along a flat face (mm; see the follower's ``face_position``)."""
     hi = _peak(cam, lambda g: cam.follower.face_position(g))[0]
@@ -62,7 +69,7 @@ def profile_rho_min(cam: Cam) -> float:
     """Smallest convex radius of the cam surface (mm); for a flat face the profile's smallest radius."""
     if cam.follower.flat:
         return -math.inf if any(step < 0 for _, step in cam.steps()) else -_peak(cam, lambda g: -g.rho)[0]
-    return 1.0 / convex_curvature_max(cam)[0] - cam.contact_radius
+    return convex_radius_min(cam)[0] - cam.contact_radius
 
 
 def analyze(cam: Cam) -> CamAnalysis:
@@ -82,10 +89,9 @@ def analyze(cam: Cam) -> CamAnalysis:
             pressure_angle_max_deg=math.degrees(pa), pressure_angle_max_at_deg=pa_at,
             pitch_rho_min_mm=-neg, pitch_rho_min_at_deg=at, profile_rho_min_mm=-neg,
             pitch_concave_rho_min_mm=None, profile_concave_rho_min_mm=None, concave_at_deg=None, undercut=-neg <= 0)
-    kmax, kmax_at = convex_curvature_max(cam)
+    rho, kmax_at = convex_radius_min(cam)
     kmin, kmin_at = _peak(cam, lambda g: -g.kappa)
     rr = cam.contact_radius
-    rho = 1.0 / kmax
     convex_corners = [i for i, turn in cam.corners() if turn > 0]
     if convex_corners:  # a convex corner of the pitch curve is a zero radius of curvature
         rho, kmax_at = 0.0, math.degrees(cam.program.segments[convex_corners[0]].end) % 360.0
@@ -108,7 +114,7 @@ def largest_roller(spec: CamSpec) -> float | None:
     if spec.follower.roller_radius is None:
         return None
     def margin(rr: float) -> float:
-        return 1.0 / convex_curvature_max(build_cam(spec, roller_radius=rr))[0] - rr
+        return convex_radius_min(build_cam(spec, roller_radius=rr))[0] - rr
 
     if any(turn > 0 for _, turn in build_cam(spec).corners()):
         return None

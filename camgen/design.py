@@ -66,9 +66,10 @@ class CamDesign:
 
 def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
     if cam.follower.flat and math.isinf(a.profile_rho_min_mm):
-        return (f"cusp at {a.pitch_rho_min_at_deg:.4g} degrees: the follower velocity drops there, so the profile "
-                "folds back on itself and no flat face can follow it; use a law with continuous velocity (e.g. "
-                "modified-uniform or cycloidal)")
+        fold = next(i for i, step in cam.steps() if step < 0)
+        return (f"motion[{spec.moving_segment(fold)}]: cusp at {a.pitch_rho_min_at_deg:.4g} degrees: the follower "
+                "velocity drops there, so the profile folds back on itself and no flat face can follow it; use a law "
+                "with continuous velocity (e.g. modified-uniform or cycloidal)")
     if cam.follower.flat:
         smallest = smallest_for_curvature(spec)
         return (f"cusp at {a.pitch_rho_min_at_deg:.2f} degrees: the profile's radius of curvature falls to "
@@ -78,7 +79,8 @@ def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
     corner = a.pitch_rho_min_mm == 0.0
     where = f"undercut at {a.pitch_rho_min_at_deg:.2f} degrees: "
     if corner:
-        return (where + "the follower velocity jumps there, so the pitch curve has a convex corner that no roller "
+        jump = next(i for i, turn in cam.corners() if turn > 0)
+        return (f"motion[{spec.moving_segment(jump)}]: " + where + "the follower velocity jumps there, so the pitch curve has a convex corner that no roller "
                 "can follow; use a law with continuous velocity (e.g. modified-uniform) or set "
                 "cam.allow_undercut = true")
     best = largest_roller(spec)
@@ -114,9 +116,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
     sharp = [i for i, turn in corners if turn > 0]
     if sharp and cam.contact_radius == 0 and not spec.cam.allow_undercut:
         at = math.degrees(cam.program.segments[sharp[0]].end) % 360.0
-        i, j = sharp[0], (sharp[0] + 1) % len(spec.motion)
-        seg = j if spec.motion[i].type == "dwell" else i
-        raise DesignError(f"motion[{seg}]: the follower velocity jumps at {at:.4g} "
+        raise DesignError(f"motion[{spec.moving_segment(sharp[0])}]: the follower velocity jumps at {at:.4g} "
                           "degrees, a sharp corner in the profile where the knife edge's pressure angle jumps; use a "
                           "law with continuous velocity (e.g. modified-uniform), or set cam.allow_undercut = true "
                           "to cut the corner as it is")

@@ -14,7 +14,8 @@ from camgen.design import CamDesign
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:
-    return None if x is None else round(float(x), digits)
+    """``x`` rounded for the report; None where there is no value or it is unbounded (an infinite radius)."""
+    return None if x is None or not math.isfinite(x) else round(float(x), digits)
 
 
 def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, Any]:

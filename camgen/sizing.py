@@ -93,10 +93,11 @@ def size_cam(spec: CamSpec) -> Sizing:
     """The smallest base radius meeting the pressure-angle limit and the curvature margin."""
     limit = pressure_limit(spec)
     margin = spec.cam.min_rho_margin
-    if any(turn > 0 for _, turn in build_cam(spec, base_radius=_probe(spec)).corners()) \
-            and spec.follower.contact_radius > 0:
-        raise DesignError("the follower velocity jumps (a convex pitch corner): no base radius gives the roller a "
-                          "path it can follow; use a law with continuous velocity")
+    jumps = [i for i, turn in build_cam(spec, base_radius=_probe(spec)).corners() if turn > 0]
+    if jumps and spec.follower.contact_radius > 0:
+        raise DesignError(f"motion[{spec.moving_segment(jumps[0])}]: the follower velocity jumps (a convex pitch "
+                          "corner): no base radius gives the roller a path it can follow; use a law with continuous "
+                          "velocity")
     pressure = _smallest(spec, lambda cam: pressure_angle_max(cam) <= limit,
                          f"cam.max_pressure_angle: the pressure-angle limit of {limit:g} degrees")
     curvature = smallest_for_curvature(spec, margin)

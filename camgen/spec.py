@@ -214,6 +214,11 @@ class CamSpec(Model):
                     raise ValueError(f"motion[{i}].lift: an arm swing must be < 90 degrees (got {seg.lift:.6g})")
         return self
 
+    def moving_segment(self, end_of: int) -> int:
+        """The segment to name for a jump of the follower's velocity where segment ``end_of`` ends: that segment,
+        or the next one when it is a dwell (the jump is the moving segment's start)."""
+        return (end_of + 1) % len(self.motion) if self.motion[end_of].type == "dwell" else end_of
+
     @property
     def prime_radius(self) -> float:
         """Base radius plus the roller's (mm): the circle the roller's centre rides at rest (inf while "auto")."""

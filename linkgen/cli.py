@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, set_option, template_argument,
+from camgen.core.cli import (Commands, add_bench, add_family, output_option, set_option, template_argument,
                              template_options, user_errors)
 
 
@@ -25,8 +25,7 @@ def main() -> None:
 @click.option("--method", type=click.Choice(["closed", "newton"]), default="closed", show_default=True,
               help="newton also prints the Newton-Raphson iteration table (needs --angle).")
 @click.option("--json", "as_json", is_flag=True, help="Print the report as JSON.")
-@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Folder for the report and plots (default: out/<name>/).")
+@output_option("Folder for the report and plots (default: out/<name>/).", default=None)
 @set_option("linkage.crank=60")
 @user_errors
 def analyze(template: Path, angle: float | None, method: str, as_json: bool, output: Path | None,
@@ -40,7 +39,12 @@ def analyze(template: Path, angle: float | None, method: str, as_json: bool, out
     spec = load_spec(template, overrides)
     if method == "newton" and angle is None:
         raise SpecError("the Newton-Raphson table needs an input angle: add --angle DEG", "--method")
-    design = design_linkage(spec, angle, method)
+    try:
+        design = design_linkage(spec, angle, method)
+    except SpecError as exc:
+        if exc.field == "angle":                        # the kinematics' name for what --angle gave
+            raise SpecError(exc.detail, "--angle") from None
+        raise
     directory = output if output is not None else Path("out") / spec.name
     files = write_linkage(design, directory)
     if as_json:

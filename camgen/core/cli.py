@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import functools
 import importlib
+import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -72,12 +73,33 @@ def set_option(example: str) -> Any:
                         help=f"Override a template field before validation, e.g. --set {example} (repeatable).")
 
 
+def _output_folder(ctx: click.Context, param: click.Parameter, value: Path | None) -> Path | None:
+    """Check ``-o`` before any work: a folder, or one that can be made (no file where a folder must be)."""
+    if value is None:
+        return value
+    for folder in (value, *value.parents):
+        if folder.exists() or folder.is_symlink():
+            if not folder.is_dir():
+                raise click.BadParameter(f"cannot create output folder {value}: Not a directory ({folder} is a file)",
+                                         ctx, param)
+            if not os.access(folder, os.W_OK | os.X_OK):
+                raise click.BadParameter(f"cannot create output folder {value}: {folder} is not writable", ctx,
+                                         param)
+            break
+    return value
+
+
+def output_option(help: str, **kwargs: Any) -> Any:
+    """``-o/--output``: a folder, checked before any work (see :func:`_output_folder`)."""
+    return click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), callback=_output_folder,
+                        help=help, **kwargs)
+
+
 def template_options(example: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
     """TEMPLATE, ``-o/--output`` (default out/<name>/) and ``--set`` (``example`` shows one)."""
     return lambda func: _apply(func, (
         template_argument(),
-        click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=None,
-                     help="Output folder (default: out/<name>/)."),
+        output_option("Output folder (default: out/<name>/).", default=None),
         set_option(example)))
 
 
@@ -85,9 +107,8 @@ def family_options(func: Callable[..., Any]) -> Callable[..., Any]:
     """The options every ``family`` command takes."""
     return _apply(func, (
         template_argument(),
-        click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), required=True,
-                     help="Folder of the family: one sub-folder a member, summary.csv, summary.json, "
-                          "overview.png."),
+        output_option("Folder of the family: one sub-folder a member, summary.csv, summary.json, overview.png.",
+                      required=True),
         click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True,
                      help="Processes to build with."),
         click.option("--scheduler", metavar="ADDRESS", default=None,
@@ -119,8 +140,7 @@ def add_bench(group: click.Group, run: str, default: Path, what: str) -> None:
     name); ``what`` is its help."""
     @group.command(name="bench", help=what)
     @click.option("--quick", is_flag=True, help="Fewer tolerances, sizes and repeats.")
-    @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path), default=default,
-                  show_default=True, help="Folder for RESULTS.md, results.json and any plots.")
+    @output_option("Folder for RESULTS.md, results.json and any plots.", default=default, show_default=True)
     @user_errors
     def bench(quick: bool, output: Path) -> None:
         results = _named(run)(output, quick)

@@ -104,6 +104,9 @@ def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:
         key, sep, text = pair.partition("=")
         if not sep or not key.strip():
             raise SpecError(f"expected key=value, e.g. motion.0.lift=25 (got {pair!r})", "--set")
+        if not all(part.strip() for part in key.split(".")):
+            raise SpecError("a key is names joined by single dots, e.g. motion.0.lift (this one has an empty name)",
+                            f"--set {key.strip()}")
         try:
             value = tomllib.loads(f"v = {text.strip()}")["v"]
         except tomllib.TOMLDecodeError:

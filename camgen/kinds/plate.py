@@ -20,7 +20,7 @@ def _check(spec: Any) -> None:
         raise ValueError(f"follower.type: a plate cam takes a translating-roller or knife-edge follower "
                          f"(got {spec.follower.type!r})")
     if spec.follower.offset != 0 or spec.cam.bore != 0:
-        raise ValueError(f"cam.{'bore' if spec.cam.bore else 'offset'}: not used by a plate cam")
+        raise ValueError(f"{'cam.bore' if spec.cam.bore else 'follower.offset'}: not used by a plate cam")
     if spec.cam.rotation != "ccw":
         raise ValueError("cam.rotation: not used by a plate cam (the plate slides along +X as the program runs)")
 
