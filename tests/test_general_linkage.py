@@ -353,3 +353,31 @@ def test_a_prp_dyad_puts_the_joint_where_the_lines_cross():
     assert np.allclose(sol.points["J"][:, 0], 40 / np.tan(t), atol=1e-10)
     assert np.allclose(sol.velocities["J"][:, 0], -40 / np.sin(t) ** 2, atol=1e-9)
     assert np.allclose(sol.accelerations["J"][:, 0], 80 * np.cos(t) / np.sin(t) ** 3, atol=1e-8)
+
+
+@pytest.mark.parametrize("offset", [1e-12, 1e-10, 1e-8, 1e-6, 1e-4, 1e-3])
+def test_rates_at_and_near_change_points_are_the_branchs(offset):
+    """A parallelogram's rocker turns with the crank (omega 1, alpha 0) through its fold; a kite's rates equal the
+    dedicated four-bar's (themselves checked against 50 digits), where the 2x2 solve alone is 0/0."""
+    par = Linkage.of(equivalents.fourbar(FourBar(128, 10, 128, 10), 0.7))
+    t = np.array([math.pi - offset, math.pi, math.pi + offset, 2 * math.pi - offset])
+    sol = par.solve(t)
+    assert np.allclose(sol.omegas["rocker"], 1.0, atol=1e-10)
+    assert np.allclose(sol.alphas["rocker"], 0.0, atol=1e-8)
+    kite_fb = FourBar(114, 114, 178, 178)
+    kite = Linkage.of(equivalents.fourbar(kite_fb, 1.0))
+    fold = next(f for f in kite.flips if len(f))[0]
+    t = fold + np.array([-offset, offset]) * 1e3 if offset < 1e-6 else fold + np.array([-offset, offset])
+    sol = kite.solve(t)
+    ref = kite_fb.sweep(kite.unwrap(t), "open")
+    w3, w4 = kite_fb.velocities(ref, 1.0)
+    a3, a4 = kite_fb.accelerations(ref, 1.0)
+    assert np.allclose(sol.omegas["coupler"], w3, atol=1e-9) and np.allclose(sol.omegas["rocker"], w4, atol=1e-9)
+    assert np.allclose(sol.alphas["coupler"], a3, atol=1e-8) and np.allclose(sol.alphas["rocker"], a4, atol=1e-8)
+
+
+def test_a_kite_at_its_fold_is_refused_by_name():
+    kite = Linkage.of(equivalents.fourbar(FourBar(114, 114, 178, 178), 1.0))
+    with pytest.raises(SpecError, match=r"input: at input 360 degrees the joints A and O4 meet, so joint B could be "
+                                        r"anywhere on its circle"):
+        kite.solve([2 * math.pi])

@@ -34,6 +34,9 @@ from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, Input, In
 
 #: a dyad whose margin is above minus this (dimensionless: a sine) is taken to close, at its toggle
 FEASIBILITY_TOL = 1e-10
+#: within this of a change point (rad or mm of input) the rates are the branch's limit, interpolated from rates
+#: one and two of it away
+CHANGE_REACH = 1e-2
 TWO_PI = 2.0 * math.pi
 
 
@@ -178,7 +181,36 @@ class Linkage:
         if signs is None:
             signs = self._signs(x)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            return _solve(self, x, r, signs, strict, derivatives, upto)
+            sol = _solve(self, x, r, signs, strict, derivatives, upto)
+            if derivatives and upto is None and len(x) == 1 and any(len(f) for f in self.flips):
+                self._rates_at_change_points(sol, r)
+            return sol
+
+    def _rates_at_change_points(self, sol: Solution, rates: np.ndarray) -> None:
+        """Rates within ``CHANGE_REACH`` of a change point, where a dyad's 2x2 solve is 0/0: the branch's limit,
+        the quintic through the analytic rates at 1, 2 and 3 ``CHANGE_REACH`` either side (the branch is smooth;
+        there its rates are conditioned well enough for about 7 digits)."""
+        x = sol.inputs[0]
+        flips = np.unique(np.concatenate([f for f in self.flips if len(f)]))
+        nearest = flips[np.argmin(np.abs(x[:, None] - flips[None, :]), axis=1)]
+        near = np.abs(x - nearest) < CHANGE_REACH
+        if not near.any():
+            return
+        centre = nearest[near]
+        nodes = np.array([-3.0, -2.0, -1.0, 1.0, 2.0, 3.0])
+        stencil = [_solve(self, (centre + h * CHANGE_REACH)[None, :], rates,
+                          self._signs((centre + h * CHANGE_REACH)[None, :]), False, True, None) for h in nodes]
+        u = (x[near] - centre) / CHANGE_REACH
+        weights = [np.prod([(u - nodes[m]) / (nodes[k] - nodes[m]) for m in range(len(nodes)) if m != k], axis=0)
+                   for k in range(len(nodes))]
+        for field in ("velocities", "accelerations", "omegas", "alphas"):
+            table = getattr(sol, field)
+            for name, values in table.items():
+                mixed = sum(w.reshape(w.shape + (1,) * (values.ndim - 1)) * getattr(st, field)[name]
+                            for w, st in zip(weights, stencil, strict=True))
+                values = values.copy()
+                values[near] = mixed
+                table[name] = values
 
 
 def body_point(s: Structure, sol: Solution, body: str, point: str) -> np.ndarray:
@@ -464,6 +496,8 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
         else:
             u1, u2 = (_Unknown.of(s, b, a, bodies) for b, a in zip(step.bodies, step.attachments, strict=True))
             margin, gamma = _place_dyad(step, s, u1, u2, signs[index], bodies)
+            if u1.pinned and u2.pinned:
+                _check_apart(linkage, step, u1, u2, x, strict, ok)
             spread = _spread(u1, u2) if derivatives else None
             results.append(DyadResult(step.kind, step.bodies, step.joint, margin, gamma, spread))
             ok &= margin >= -FEASIBILITY_TOL
@@ -480,6 +514,23 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
 
         out_of_reach(linkage, x[:, ~ok][:, 0])
     return _gather(s, x, bodies, tuple(results), ok, derivatives)
+
+
+def _check_apart(linkage: Linkage, step: DyadStep, u1: _Unknown, u2: _Unknown, x: np.ndarray, strict: bool,
+                 ok: np.ndarray) -> None:
+    """Refuse (or, not strict, mark) poses where a dyad's two pins meet: its joint could be anywhere on a circle
+    (a deltoid's change point)."""
+    met = np.hypot(*(u2.pin - u1.pin).T) <= 1e-12 * linkage.structure.scale
+    if not met.any():
+        return
+    if strict:
+        value = float(x[0, np.flatnonzero(met)[0]])
+        crank = linkage.structure.inputs[0].kind == "crank"
+        shown = f"{math.degrees(value):.9g} degrees" if crank else f"{value:.9g} mm"
+        raise SpecError(f"at input {shown} the joints {u1.attachment.point} and {u2.attachment.point} meet, so "
+                        f"joint {step.joint} could be anywhere on its circle (a deltoid's change point); step off it",
+                        "input")
+    ok &= ~met
 
 
 def _spread(u1: _Unknown, u2: _Unknown) -> np.ndarray | None:
