@@ -29,10 +29,23 @@ class LinkageDesign:
     kinematics: Any
     report: dict[str, Any]
     build: LinkageBuild | None = None
+    #: the input angle (degrees; mm for a slide input) the report's positions are at, and the pose figure shows
+    angle: float | None = None
 
     def figures(self) -> tuple[Figure, ...]:
-        """The mechanism's figures of this linkage, each drawn only when called."""
-        return self.mechanism.figures(self.spec.name, self.spec.linkage, self.kinematics)
+        """The mechanism's figures of this linkage, each drawn only when called; with an angle, the pose there (for
+        the mechanisms linkgen can draw as a general linkage)."""
+        figures = self.mechanism.figures(self.spec.name, self.spec.linkage, self.kinematics)
+        posed = None if self.angle is None else pose_of(self.kinematics, self.spec.linkage, self.angle)
+        if posed is None:
+            return figures
+
+        def draw() -> Any:
+            from linkgen import plots
+
+            return plots.linkage_pose_figure(self.spec.name, *posed)
+
+        return (*figures, ("pose", draw))
 
     def family_row(self) -> dict[str, Any]:
         """What a family's summary adds for this linkage: the mechanism's columns and thumbnail."""
@@ -72,7 +85,38 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
                               "lengths_mm": lengths(table), "rpm": table.rpm,
                               **mechanism.report(table, kinematics, angle, method)}
     build = build_parts(mechanism.layout(table, kinematics, spec.parts), spec.parts) if parts else None
-    return LinkageDesign(spec, mechanism, kinematics, report, build)
+    return LinkageDesign(spec, mechanism, kinematics, report, build, angle)
+
+
+def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | None:
+    """The general-linkage analysis and input value (rad, or mm for a slide) that show the linkage at input
+    ``angle`` (degrees, or mm): the dedicated mechanisms drawn there as general linkages
+    (:mod:`linkgen.kinematics.equivalents`); None for a kind it cannot draw (a rocker-driven four-bar, a
+    mechanism registered from outside)."""
+    from linkgen.kinematics import equivalents
+    from linkgen.kinematics.fourbar import FourBar
+    from linkgen.kinematics.quickreturn import CrankShaper, Whitworth
+    from linkgen.kinematics.slidercrank import ScotchYoke, SliderCrank
+    from linkgen.kinematics.straightline import StraightLine
+    from linkgen.mechanisms.general import Analysis, analysis_of
+
+    if isinstance(kinematics, Analysis):
+        return kinematics, (math.radians(angle) if kinematics.crank else angle)
+    theta = math.radians(angle)
+    if isinstance(kinematics, StraightLine):
+        drawn, traced = equivalents.fourbar(kinematics.linkage, theta, kinematics.assembly), ("P",)
+    elif isinstance(kinematics, FourBar) and getattr(table, "input", "crank") == "crank":
+        drawn = equivalents.fourbar(kinematics, theta, table.assembly)
+        traced = ("P",) if kinematics.point_distance > 0 else ("B",)
+    else:
+        make = {SliderCrank: (equivalents.slider_crank, "B"), ScotchYoke: (equivalents.scotch_yoke, "Y"),
+                CrankShaper: (equivalents.crank_shaper, "R"), Whitworth: (equivalents.whitworth, "D")}
+        if type(kinematics) not in make:
+            return None
+        draw, point = make[type(kinematics)]
+        drawn, traced = draw(kinematics, theta), (point,)
+    analysis = analysis_of(drawn, traced)
+    return analysis, float(analysis.linkage.drawn_inputs[0])
 
 
 def analyze(spec: LinkageSpec, angle: float | None = None, method: str = "closed") -> dict[str, Any]:

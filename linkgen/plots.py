@@ -152,3 +152,37 @@ def linkage_transmission_figure(name: str, a: Any) -> Any:
     ax.legend(fontsize=8)
     ax.set_title(f"{name}: transmission angle of each dyad")
     return fig
+
+
+def linkage_pose_figure(name: str, a: Any, value: float) -> Any:
+    """The linkage at input ``value`` (rad for a crank, mm for a slide), every joint labelled, the paths of its
+    tracers (of every moving joint when there are none) over the motion analysed in grey."""
+    s = a.linkage.structure
+    pose = a.linkage.solve(np.array([value])).points
+    fig = figure(8, 6.5)
+    ax = fig.add_subplot()
+    for point in s.points:
+        if point not in s.bodies["ground"]:
+            path = a.sweep.points[point]
+            strong = point in a.table.tracers
+            ax.plot(path[:, 0], path[:, 1], "-", color="0.45" if strong else "0.8", lw=1.4 if strong else 0.8)
+    for k, (body, pts) in enumerate(s.bodies.items()):
+        xy = np.array([pose[p][0] for p in pts])
+        if body == "ground":
+            ax.plot(xy[:, 0], xy[:, 1], "^", color="0.3", ms=9)
+            continue
+        colour = f"C{k % 10}"
+        ring = np.vstack([xy, xy[:1]]) if len(pts) > 2 else xy
+        if len(pts) > 2:
+            ax.fill(xy[:, 0], xy[:, 1], color=colour, alpha=0.2, lw=0)
+        ax.plot(ring[:, 0], ring[:, 1], "-o", color=colour, lw=2, ms=4, label=body)
+    for p, xy in pose.items():
+        ax.annotate(p, xy[0], textcoords="offset points", xytext=(4, 4), fontsize=8)
+    shown = f"{np.degrees(value) % 360:.2f}°" if a.crank else f"{value:.3f} mm"
+    ax.set_aspect("equal")
+    ax.grid(alpha=0.3)
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.legend(fontsize=8, loc="best")
+    ax.set_title(f"{name}: the linkage at input {shown}; grey: the joints' paths (darker: tracers)")
+    return fig

@@ -37,7 +37,8 @@ def test_crank_rocker_report(tmp_path):
     assert r["positions"]["open"]["transmission_deg"] == pytest.approx(r["positions"]["crossed"]["transmission_deg"])
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([
         "crank-rocker.json", "crank-rocker-transmission.png", "crank-rocker-transmission.svg",
-        "crank-rocker-dead-centres.png", "crank-rocker-dead-centres.svg"])
+        "crank-rocker-dead-centres.png", "crank-rocker-dead-centres.svg",
+        "crank-rocker-pose.png", "crank-rocker-pose.svg"])                # --angle draws the pose there too
     assert r["warnings"] and "outside the usual 40-140" in r["warnings"][0]
 
 
