@@ -17,6 +17,7 @@ line; the straightness error is the largest distance of the path from that chord
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -46,6 +47,19 @@ class Straightness:
     end: tuple[float, float]
 
 
+#: crank-angle samples over a reachable range (or a turn) that find the neighbourhoods of the straightest stretches
+COARSE = 721
+#: neighbourhoods (the coarse deviation's lowest local minima) searched to convergence
+CANDIDATES = 4
+#: starts tried per round of that search, which narrows each neighbourhood 16-fold a round
+TRIES = 33
+#: samples of the path across a stretch, whose highest local maxima are then refined
+ACROSS = 65
+#: of them refined
+PEAKS = 4
+GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+
 @dataclass(frozen=True)
 class StraightLine:
     """A straight-line linkage: its four-bar (with the tracing point), assembly and nominal stroke (mm)."""
@@ -55,41 +69,148 @@ class StraightLine:
     assembly: str
     stroke: float
 
-    def straightness(self, samples: int = 2001) -> Straightness:
-        """The straightest stretch of the tracing point's path with a chord of ``stroke`` mm."""
+    def trace(self, theta2: np.ndarray) -> np.ndarray:
+        """The tracing point (mm, shape (n, 2)) at crank angles ``theta2`` (rad, any shape flattened). The canonical
+        linkages have no change point, so every angle's pose lies on the one branch of the assembly."""
+        return self.linkage.positions(np.ravel(theta2), self.assembly).point
+
+    def straightness(self) -> Straightness:
+        """The straightest stretch of the tracing point's path with a chord of ``stroke`` mm, converged.
+
+        A coarse pass (:data:`COARSE` crank angles) finds the starts whose stretches deviate least
+        from their chords; around each of the best few the start is narrowed 16-fold a round until it
+        is fixed to rounding (the deviation, a maximum of two or more peaks, is least where they are
+        equal: a kink, which a narrowing search finds where derivatives would not), each stretch's end
+        found by bisection to where the chord is ``stroke`` long and its largest deviation by
+        golden-section search on each of its highest peaks. The deviation so found is converged to
+        about 1e-12 relative (the 2001-angle grid it replaces read 0.3 to 1.7 % high). Of stretches
+        equally straight (a symmetric path has two) the one starting first.
+        """
         ranges = self.linkage.input_ranges()
-        intervals = [(0.0, 2 * math.pi)] if ranges is None else list(ranges)
-        best: tuple[float, Straightness] | None = None
-        for lo, hi in intervals:
-            t = np.linspace(lo, hi, samples)
-            pts = self.linkage.sweep(t, self.assembly).point
-            cyclic = ranges is None
-            if cyclic:
-                t, pts = np.concatenate([t, t[1:] + 2 * math.pi]), np.vstack([pts, pts[1:]])
-            found = _straightest(pts, self.stroke, samples)
-            if found is not None and (best is None or found[0] < best[0]):
-                dev, i, j = found
-                best = (dev, Straightness(self.stroke, dev, float(t[i]), float(t[j]),
-                                          tuple(pts[i]), tuple(pts[j])))
+        best: Straightness | None = None
+        for lo, hi in [(0.0, 2 * math.pi)] if ranges is None else ranges:
+            found = self._straightest(lo, hi, cyclic=ranges is None)
+            if found is not None and (best is None or not _least(np.array([best.error_mm, found.error_mm]))[0]):
+                best = found
         if best is None:
             raise SpecError(f"the tracing point never travels {self.stroke:.6g} mm", "linkage.size")
-        return best[1]
+        return best
+
+    def _straightest(self, lo: float, hi: float, cyclic: bool) -> Straightness | None:
+        """The straightest stretch starting in [lo, hi] (rad) and, unless ``cyclic`` (the crank turns, and a stretch
+        may run on past hi = lo + 2 pi), ending there."""
+        t = np.linspace(lo, hi, COARSE)
+        starts = len(t)
+        if cyclic:
+            t = np.concatenate([t, t[1:] + 2 * math.pi])
+        ends, dev = _coarse(self.trace(t), self.stroke, starts)
+        picks = _candidates(dev)
+        if len(picks) == 0:
+            return None
+        # brackets: the start within a coarse step of the candidate's; the end between the neighbours' coarse ends
+        nb = np.clip(picks[:, None] + np.array([-1, 0, 1]), 0, starts - 1)
+        valid = np.where(ends[nb] >= 0, ends[nb], ends[picks][:, None])
+        a_lo, a_hi = t[nb[:, 0]], t[nb[:, 2]]
+        b_lo, b_hi = t[np.maximum(valid.min(axis=1) - 1, 0)], t[valid.max(axis=1)]
+        for _ in range(64):                             # 16-fold a round: some 12 rounds to rounding
+            if np.all(a_hi - a_lo <= 4 * np.finfo(float).eps * (abs(hi) + 2 * math.pi)):
+                break
+            a = a_lo[:, None] + (a_hi - a_lo)[:, None] * np.linspace(0.0, 1.0, TRIES)
+            d, _ = self._deviation(a.ravel(), np.repeat(b_lo, TRIES), np.repeat(b_hi, TRIES))
+            k = np.argmin(d.reshape(a.shape), axis=1)
+            rows = np.arange(len(a))
+            a_lo, a_hi = a[rows, np.maximum(k - 1, 0)], a[rows, np.minimum(k + 1, TRIES - 1)]
+        a = (a_lo + a_hi) / 2
+        d, b = self._deviation(a, b_lo, b_hi)
+        if not np.isfinite(d).any():
+            return None
+        i = int(np.flatnonzero(_least(d))[np.argmin(a[_least(d)])])      # of equals, the earliest
+        p, q = self.trace(np.array([a[i], b[i]]))
+        return Straightness(self.stroke, float(d[i]), float(a[i]), float(b[i]), tuple(p), tuple(q))
+
+    def _deviation(self, a: np.ndarray, b_lo: np.ndarray, b_hi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """For stretches starting at crank angles ``a`` (rad): their largest distance (mm) from their chords, and
+        their ends (rad), where the chord is ``stroke`` long, looked for between ``b_lo`` and ``b_hi``
+        (inf, and nan, where it is not there)."""
+        pa = self.trace(a)
+
+        def reach(t: np.ndarray) -> np.ndarray:          # chord from each start to t, less the stroke (mm)
+            return np.hypot(*(self.trace(t) - pa).T) - self.stroke
+
+        there = (reach(b_lo) < 0) & (reach(b_hi) >= 0)
+        b = _bisect(reach, b_lo, b_hi)
+        chord = self.trace(b) - pa
+        u = chord / np.hypot(*chord.T)[:, None]
+
+        def off(t: np.ndarray) -> np.ndarray:             # |distance| of the path at t (n, m) from each chord
+            d = self.trace(t).reshape(*t.shape, 2) - pa[:, None, :]
+            return np.abs(d[..., 0] * u[:, None, 1] - d[..., 1] * u[:, None, 0])
+
+        s = a[:, None] + (b - a)[:, None] * np.linspace(0.0, 1.0, ACROSS)
+        h = off(s)
+        peak = np.zeros(h.shape, dtype=bool)
+        peak[:, 1:-1] = (h[:, 1:-1] >= h[:, :-2]) & (h[:, 1:-1] >= h[:, 2:])
+        top = np.argsort(np.where(peak, h, -1.0), axis=1)[:, -PEAKS:]      # the highest local maxima
+        rows = np.arange(len(a))[:, None]
+        lo, hi = s[rows, np.maximum(top - 1, 0)], s[rows, np.minimum(top + 1, ACROSS - 1)]
+        dev = _golden_max(off, lo, hi).max(axis=1)
+        return np.where(there, dev, np.inf), np.where(there, b, np.nan)
 
 
-def _straightest(pts: np.ndarray, chord: float, starts: int) -> tuple[float, int, int] | None:
-    """(deviation, i, j): the window pts[i..j] with |pts[j] - pts[i]| >= chord deviating least from its chord."""
-    best = None
-    for i in range(min(starts, len(pts))):
-        d = np.linalg.norm(pts[i:] - pts[i], axis=1)
-        k = int(np.argmax(d >= chord))
-        if d[k] < chord:
-            continue
-        seg = pts[i:i + k + 1]
-        u = (pts[i + k] - pts[i]) / d[k]
-        dev = float(np.abs((seg[:, 0] - pts[i, 0]) * u[1] - (seg[:, 1] - pts[i, 1]) * u[0]).max())
-        if best is None or dev < best[0]:
-            best = (dev, i, i + k)
-    return best
+def _coarse(pts: np.ndarray, chord: float, starts: int) -> tuple[np.ndarray, np.ndarray]:
+    """For each of the first ``starts`` points: the index of the first later point at least ``chord`` away (-1 if
+    none) and the largest distance of the points between from the line through the two (inf if none)."""
+    d = pts[None, :, :] - pts[:starts, None, :]                       # (starts, n, 2): from each start
+    dist = np.hypot(d[..., 0], d[..., 1])
+    later = np.arange(len(pts))[None, :] > np.arange(starts)[:, None]
+    far = later & (dist >= chord)
+    ends = np.where(far.any(axis=1), np.argmax(far, axis=1), -1)
+    rows = np.arange(starts)
+    u = d[rows, ends] / np.where(ends >= 0, dist[rows, ends], 1.0)[:, None]
+    inside = later & (np.arange(len(pts))[None, :] <= ends[:, None])
+    off = np.abs(d[..., 0] * u[:, None, 1] - d[..., 1] * u[:, None, 0])
+    dev = np.where(ends >= 0, np.where(inside, off, 0.0).max(axis=1), np.inf)
+    return ends, dev
+
+
+def _candidates(dev: np.ndarray) -> np.ndarray:
+    """Indices of the :data:`CANDIDATES` lowest local minima of the coarse deviations (finite ones only)."""
+    padded = np.concatenate([[np.inf], dev, [np.inf]])
+    low = np.isfinite(dev) & (dev <= padded[:-2]) & (dev <= padded[2:])
+    picks = np.flatnonzero(low)
+    return picks[np.argsort(dev[picks])][:CANDIDATES]
+
+
+def _least(d: np.ndarray) -> np.ndarray:
+    """Which of the deviations ``d`` are the least, to rounding (1e-9 relative): a symmetric path has two equal
+    stretches, and which of them is picked must not follow the last bit."""
+    return d <= np.min(d) * (1.0 + 1e-9)
+
+
+def _bisect(f: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """Where f (negative at ``lo``, not at ``hi``) changes sign, by bisection to rounding, elementwise."""
+    lo, hi = lo.copy(), hi.copy()
+    for _ in range(52):                                 # 2^-52 of the bracket
+        mid = (lo + hi) / 2
+        neg = f(mid) < 0
+        lo, hi = np.where(neg, mid, lo), np.where(neg, hi, mid)
+    return (lo + hi) / 2
+
+
+def _golden_max(f: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """The maxima of f over the brackets [lo, hi] (arrays of one shape; f unimodal in each), by golden-section
+    search to rounding."""
+    x1, x2 = hi - GOLDEN * (hi - lo), lo + GOLDEN * (hi - lo)
+    f1, f2 = f(x1), f(x2)
+    for _ in range(40):                                 # 0.618^40 = 4e-9 of the bracket: the peak to rounding
+        left = f1 >= f2                                 # the maximum lies in [lo, x2]: x1 goes on as its x2
+        lo, hi = np.where(left, lo, x1), np.where(left, x2, hi)
+        kept_x, kept_f = np.where(left, x1, x2), np.where(left, f1, f2)
+        new = np.where(left, hi - GOLDEN * (hi - lo), lo + GOLDEN * (hi - lo))
+        f_new = f(new)
+        x1, x2 = np.where(left, new, kept_x), np.where(left, kept_x, new)
+        f1, f2 = np.where(left, f_new, kept_f), np.where(left, kept_f, f_new)
+    return np.maximum(f1, f2)
 
 
 def straight_line(kind: str, size: float) -> StraightLine:
