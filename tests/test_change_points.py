@@ -100,7 +100,7 @@ def test_rates_at_a_change_point_are_the_branch_limit(fb):
     """At the fold itself the label names the branch beyond it (as FourBar.sweep counts it)."""
     for fold in fb.change_points():
         if math.hypot(*fb._z(np.array(fold))) <= 1e-10 * fb.longest:
-            with pytest.raises(SpecError, match="angle: .*undetermined"):
+            with pytest.raises(SpecError, match=r"angle: .*undetermined"):
                 fb.positions([fold])
             continue
         for label, assembly in ((1, "open"), (-1, "crossed")):

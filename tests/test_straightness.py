@@ -3,8 +3,9 @@ tracing point by the classical circle intersection, scipy's golden-section searc
 end, the path's peaks from 4001 samples refined by Brent) and with 2e6 samples of the stretch it reports.
 
 Measured: the independent search agrees to 1e-12 relative or better in the deviation and 6e-15 rad in the start
-and end (asserted 1e-10 and 1e-10 rad); the 2e6 samples to 1e-12 (asserted 1e-9). Converged ratios of error to stroke: Chebyshev 0.168425 %, Hoekens 0.186026 %, Roberts
-0.110731 %, Watt 0.0281407 % (a grid of 2001 crank angles read 0.17068 %, 0.18780 %, 0.11105 %, 0.028615 %).
+and end (asserted 1e-10, and 1e-10 rad); the 2e6 samples to 1e-12 (asserted 1e-9). Converged ratios of error to
+stroke: Chebyshev 0.168425 %, Hoekens 0.186026 %, Roberts 0.110731 %, Watt 0.0281407 % (a grid of 2001 crank
+angles read 0.17068 %, 0.18780 %, 0.11105 %, 0.028615 %).
 """
 from __future__ import annotations
 

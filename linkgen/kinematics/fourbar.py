@@ -16,13 +16,16 @@ Frame and signs:
 
 Angles of the triangle A-B-O4 are computed from its area with Kahan's stable form of
 Heron's formula, so poses stay accurate to rounding right up to the toggles (an
-arccosine near +-1 would lose half the digits there).
+arccosine near +-1 would lose half the digits there). Near a change point z = |A O4|
+itself has lost those digits; there the area is the product of two roots that are
+half-angle sines or cosines (:meth:`FourBar._roots`), and the rates differentiate that
+placement in a form with no 0/0, so they are the branch's, to rounding, through the fold.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
@@ -194,7 +197,8 @@ class FourBar:
             ranges = [_input_angle(x, mirrored)[1] for r in self.input_ranges() or () for x in r]
             ranges = sorted(ranges)                 # the mirror's ranges turn round: (180 - hi, 180 - lo)
             digits = _digits_apart(angle, ranges)
-            text = " or ".join(f"[{lo:.{digits}g}, {hi:.{digits}g}]" for lo, hi in zip(ranges[::2], ranges[1::2]))
+            pairs = zip(ranges[::2], ranges[1::2], strict=True)
+            text = " or ".join(f"[{lo:.{digits}g}, {hi:.{digits}g}]" for lo, hi in pairs)
             raise SpecError(f"{link} angle {angle:.{digits}g} degrees is out of reach; this linkage reaches {link} "
                             f"angles {text} degrees", "angle")
         _refuse_coincident(theta2, z <= tol, "coupler's position is", mirrored)
