@@ -381,3 +381,56 @@ def test_a_kite_at_its_fold_is_refused_by_name():
     with pytest.raises(SpecError, match=r"input: at input 360 degrees the joints A and O4 meet, so joint B could be "
                                         r"anywhere on its circle"):
         kite.solve([2 * math.pi])
+
+
+def test_linkgen_analyze_and_family_take_a_drawn_linkage(tmp_path):
+    """The four-bar drawn as joints and links: `linkgen analyze --json` reports what the closed form says, and a
+    family sweeps a joint of the drawing."""
+    import json
+
+    from click.testing import CliRunner
+
+    from linkgen.cli import main as linkgen
+
+    fb = FourBar(180, 80, 200, 150)
+    p = fb.positions([0.5])
+    template = tmp_path / "drawn.toml"
+    template.write_text(f"""name = "drawn"
+[linkage]
+type = "linkage"
+ground = ["O2", "O4"]
+input = {{ link = "crank", pivot = "O2" }}
+tracers = ["B"]
+[linkage.joints]
+O2 = [0, 0]
+O4 = [180, 0]
+A = [{float(p.a[0, 0])!r}, {float(p.a[0, 1])!r}]
+B = [{float(p.b[0, 0])!r}, {float(p.b[0, 1])!r}]
+[linkage.links]
+crank = ["O2", "A"]
+coupler = ["A", "B"]
+rocker = ["O4", "B"]
+[linkage.lengths]
+"A-B" = 200
+""")
+    result = CliRunner().invoke(linkgen, ["analyze", str(template), "--json", "--angle", "30", "-o",
+                                          str(tmp_path / "o")])
+    assert result.exit_code == 0, result.output
+    r = json.loads(result.output)
+    assert r["mobility"] == 1 and [s["step"] for s in r["solve_order"]] == ["input", "RRR"]
+    assert r["input_range_deg"] is None and r["toggles"] == []
+    assert r["outputs"]["rocker"]["time_ratio"] == pytest.approx(fb.time_ratio(), rel=1e-12)
+    (gmin, _), (gmax, _) = fb.transmission_extremes()
+    assert r["dyads"][0]["transmission_min_deg"] == pytest.approx(math.degrees(gmin), abs=1e-3)
+    pose = fb.positions([math.radians(30)])
+    assert [r["positions"]["joints"]["B"]["x_mm"], r["positions"]["joints"]["B"]["y_mm"]] == pytest.approx(
+        pose.b[0], abs=1e-9)
+    assert (tmp_path / "o" / "drawn-pose.png").exists()
+    bad = CliRunner().invoke(linkgen, ["analyze", str(template), "--set", "linkage.lengths.A-B=201"])
+    assert bad.exit_code == 2 and "linkage.lengths.A-B: the drawing puts A and B 200.000000 mm apart" in bad.stderr
+    family = tmp_path / "family.toml"
+    family.write_text('base = "drawn.toml"\nname = "fam"\n[sweep]\n"linkage.joints.O4" = [[180, 0], [170, 10]]\n')
+    result = CliRunner().invoke(linkgen, ["family", str(family), "-o", str(tmp_path / "fam"), "--jobs", "1"])
+    assert result.exit_code == 0, result.output
+    rows = json.loads((tmp_path / "fam" / "summary.json").read_text())
+    assert [row["status"] for row in rows] == ["ok", "ok"]

@@ -95,6 +95,43 @@ def _root(f, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.where(keeps, np.where(np.abs(fa) <= np.abs(fb), a, b), 0.5 * (a + b))
 
 
+def transmission_extremes(linkage: Linkage, lo: float, hi: float) -> list[tuple[float, float, float, float]]:
+    """Each dyad's smallest and largest transmission angle (rad) over the inputs lo..hi, and where: (min, at,
+    max, at), found on :data:`GRID` poses and refined by golden sections."""
+    grid = np.linspace(lo, hi, GRID + 1)
+    sol = linkage.solve(grid[None, :], strict=False, derivatives=False)
+    out = []
+    for d, dyad in enumerate(sol.dyads):
+        gamma = np.where(sol.ok, dyad.transmission, np.nan)
+        found = []
+        for sign in (1.0, -1.0):
+            k = int(np.nanargmin(sign * gamma))
+            a, b = grid[max(k - 1, 0)], grid[min(k + 1, GRID)]
+
+            def f(x: np.ndarray, d: int = d, sign: float = sign) -> np.ndarray:
+                s = linkage.solve(x[None, :], strict=False, derivatives=False)
+                return np.where(s.ok, sign * s.dyads[d].transmission, np.inf)
+
+            x, value = _golden(f, np.array([a]), np.array([b]))
+            refined = value[0] < sign * gamma[k]            # golden sections keep the grid's best if they lose it
+            found += [float(sign * value[0]), float(x[0])] if refined else [float(gamma[k]), float(grid[k])]
+        out.append(tuple(found))
+    return out
+
+
+def _golden(f, a: np.ndarray, b: np.ndarray, iterations: int = 80) -> tuple[np.ndarray, np.ndarray]:
+    """Minimisers of f on the brackets [a, b] (vectorised golden sections) and f there."""
+    g = (math.sqrt(5.0) - 1.0) / 2.0
+    c, d = b - g * (b - a), a + g * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(iterations):
+        left = fc < fd
+        b, a = np.where(left, d, b), np.where(left, a, c)
+        c, d = b - g * (b - a), a + g * (b - a)
+        fc, fd = f(c), f(d)
+    return np.where(fc < fd, c, d), np.minimum(fc, fd)
+
+
 @dataclass(frozen=True)
 class Toggle:
     """A dyad in line: ``kind`` 'limit' (the input stops there: an end of a reachable range) or 'change point'

@@ -290,12 +290,16 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                      "joint": t.joint} for t in a.toggles],
     }
     dyads = []
-    for d in sweep.dyads:
-        g = np.degrees(d.transmission)
-        i, j = int(np.argmin(g)), int(np.argmax(g))
+    if len(table.inputs) == 1:
+        extremes = motion.transmission_extremes(a.linkage, float(a.span[0, 0]), float(a.span[0, -1]))
+    else:
+        extremes = [(float(np.min(d.transmission)), float(sweep.inputs[0, np.argmin(d.transmission)]),
+                     float(np.max(d.transmission)), float(sweep.inputs[0, np.argmax(d.transmission)]))
+                    for d in sweep.dyads]
+    for d, (gmin, at_min, gmax, at_max) in zip(sweep.dyads, extremes, strict=True):
         dyads.append({"kind": d.kind, "links": list(d.bodies), "joint": d.joint,
-                      "transmission_min_deg": num(g[i]), f"transmission_min_at_{unit_name}": a.shown(sweep.inputs[0, i]),
-                      "transmission_max_deg": num(g[j]), f"transmission_max_at_{unit_name}": a.shown(sweep.inputs[0, j])})
+                      "transmission_min_deg": num(math.degrees(gmin)), f"transmission_min_at_{unit_name}": a.shown(at_min),
+                      "transmission_max_deg": num(math.degrees(gmax)), f"transmission_max_at_{unit_name}": a.shown(at_max)})
     report["dyads"] = dyads
     outputs = {}
     for body, ext in a.extremes.items():
