@@ -49,17 +49,25 @@ class PartsTable(Model):
     rocker: LinkOverride | None = None
     rod: LinkOverride | None = None
     slider: LinkOverride | None = None
+    links: dict[str, LinkOverride] = Field(default_factory=dict,
+                                           description="per-link overrides by any link's name (general linkages): "
+                                                       "[parts.links.foot] width = 12")
 
     @model_validator(mode="after")
     def _holes_leave_material(self) -> PartsTable:
         hole = self.pin_diameter + self.clearance - self.kerf
         if hole >= self.width:
             raise ValueError(f"pin_diameter: holes of {hole:g} mm leave no material in bars {self.width:g} mm wide")
+        named = {k: getattr(self, k) for k in ("ground", "crank", "coupler", "rocker", "rod", "slider")}
+        for name, override in {**named, **{f"links.{k}": v for k, v in self.links.items()}}.items():
+            if override is not None and hole >= override.width:
+                raise ValueError(f"{name}.width: holes of {hole:g} mm leave no material in a bar {override.width:g} "
+                                 "mm wide")
         return self
 
     def width_of(self, link: str) -> float:
-        """The width (mm) of the part named ``link``: its own table's, else ``width``."""
-        override = getattr(self, link, None)
+        """The width (mm) of the part named ``link``: its own table's (under ``links`` or by name), else ``width``."""
+        override = self.links.get(link) or getattr(self, link, None)
         return override.width if isinstance(override, LinkOverride) else self.width
 
 

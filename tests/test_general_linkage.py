@@ -434,3 +434,26 @@ rocker = ["O4", "B"]
     assert result.exit_code == 0, result.output
     rows = json.loads((tmp_path / "fam" / "summary.json").read_text())
     assert [row["status"] for row in rows] == ["ok", "ok"]
+
+
+def test_per_link_widths_by_name(tmp_path):
+    from linkgen.design import design_linkage
+    from linkgen.spec import validate_spec
+
+    fb = FourBar(180, 80, 200, 150)
+    p = fb.positions([0.5])
+    raw = {"name": "w", "linkage": {"type": "linkage", "ground": ["O2", "O4"], "input": {"link": "crank",
+                                                                                          "pivot": "O2"},
+                                    "joints": {"O2": [0, 0], "O4": [180, 0], "A": p.a[0].tolist(),
+                                               "B": p.b[0].tolist()},
+                                    "links": {"crank": ["O2", "A"], "coupler": ["A", "B"], "rocker": ["O4", "B"]}},
+           "parts": {"width": 10, "thickness": 3, "pin_diameter": 3, "links": {"coupler": {"width": 16}}}}
+    build = design_linkage(validate_spec(raw), parts=True).build
+    assert {part.name: 2 * part.half_width for part in build.parts} == {"ground": 20, "crank": 10, "coupler": 16,
+                                                                        "rocker": 10}
+    raw["parts"]["links"] = {"thigh": {"width": 16}}
+    with pytest.raises(SpecError, match=r"parts.links.thigh: no link 'thigh' in this linkage"):
+        design_linkage(validate_spec(raw), parts=True)
+    raw["parts"]["links"] = {"coupler": {"width": 3}}
+    with pytest.raises(SpecError, match=r"links.coupler.width: holes of 3.2 mm leave no material in a bar 3 mm"):
+        validate_spec(raw)

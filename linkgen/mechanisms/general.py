@@ -390,6 +390,9 @@ def general_parts(a: Analysis, table: PartsTable) -> tuple[LinkPart, ...]:
     """Every body as a part: the ground plate (pivots and guide slots), bars and plates (rounded hulls of their
     joints), sliding links, and blocks (a bar along the guide round their pin)."""
     s = a.linkage.structure
+    for name in table.links:
+        if name not in s.bodies:
+            raise SpecError(f"no link {name!r} in this linkage (links: {', '.join(s.bodies)})", f"parts.links.{name}")
     stock = Stock.of(table)
     sweep = a.sweep
     slots: dict[str, list[tuple[np.ndarray, np.ndarray]]] = {b: [] for b in s.bodies}
