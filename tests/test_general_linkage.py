@@ -457,3 +457,16 @@ def test_per_link_widths_by_name(tmp_path):
     raw["parts"]["links"] = {"coupler": {"width": 3}}
     with pytest.raises(SpecError, match=r"links.coupler.width: holes of 3.2 mm leave no material in a bar 3 mm"):
         validate_spec(raw)
+
+
+def test_an_input_a_rounding_past_a_toggle_snaps_onto_it_and_the_refusal_reads_apart():
+    """The general solver takes what the four-bar's closed form takes (within 1e-10 of the links past a toggle);
+    a value just out of reach prints with enough digits to differ from the limit, in (-180, 180]."""
+    fb = FourBar(180, 120, 140, 150)
+    lo, hi = fb.input_ranges()[0]
+    lk = Linkage.of(equivalents.fourbar(fb, 0.0))
+    sol = lk.solve([hi + 1e-13, math.radians(149.703449697)])
+    assert np.isfinite(sol.points["B"]).all()
+    with pytest.raises(SpecError, match=r"input: input 149\.7035 degrees is out of reach; the linkage reaches "
+                                        r"\[-149\.7034, 149\.7034\] degrees"):
+        lk.solve([math.radians(149.7035)])

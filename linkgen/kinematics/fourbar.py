@@ -196,7 +196,7 @@ class FourBar:
             link, angle = _input_angle(float(np.asarray(theta2)[bad][0]), mirrored)
             ranges = [_input_angle(x, mirrored)[1] for r in self.input_ranges() or () for x in r]
             ranges = sorted(ranges)                 # the mirror's ranges turn round: (180 - hi, 180 - lo)
-            digits = _digits_apart(angle, ranges)
+            digits = digits_apart(angle, ranges)
             pairs = zip(ranges[::2], ranges[1::2], strict=True)
             text = " or ".join(f"[{lo:.{digits}g}, {hi:.{digits}g}]" for lo, hi in pairs)
             raise SpecError(f"{link} angle {angle:.{digits}g} degrees is out of reach; this linkage reaches {link} "
@@ -493,7 +493,7 @@ def _input_angle(theta2: float, mirrored: bool) -> tuple[str, float]:
     return ("rocker", 180.0 - math.degrees(theta2)) if mirrored else ("crank", math.degrees(theta2))
 
 
-def _digits_apart(angle: float, limits: list[float]) -> int:
+def digits_apart(angle: float, limits: list[float]) -> int:
     """The fewest significant digits, 6 to 17, with which ``angle`` prints differently from each of ``limits``
     (17 tell any two doubles apart): an angle just out of reach must not read as its limit."""
     return next((n for n in range(6, 17) if all(f"{angle:.{n}g}" != f"{x:.{n}g}" for x in limits)), 17)

@@ -32,8 +32,10 @@ from linkgen.kinematics.dyads import cross, dot, perp
 from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, Input, InputStep, Pin, Plan, Slide, Structure,
                                           plan)
 
-#: a dyad whose margin is above minus this (dimensionless: a sine) is taken to close, at its toggle
-FEASIBILITY_TOL = 1e-10
+#: a dyad whose margin (a sine) is above minus this is taken to close, at its toggle: the margin grows like the
+#: square root of the distance past the toggle, so this snaps inputs within about 1e-10 (relative to the links)
+#: beyond it, as the four-bar's closed form does
+FEASIBILITY_TOL = 1e-5
 #: within this of a change point (rad or mm of input) the rates are the branch's limit, interpolated from rates
 #: one and two of it away
 CHANGE_REACH = 1e-2

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, NoReturn
 import numpy as np
 
 from camgen.core.errors import SpecError
+from linkgen.kinematics.fourbar import digits_apart
 from linkgen.kinematics.structure import GROUND, DyadStep, Pin
 
 if TYPE_CHECKING:
@@ -144,8 +145,9 @@ class Toggle:
 
 
 def _feasible(linkage: Linkage, x: np.ndarray) -> np.ndarray:
+    """Where every dyad closes (margins >= 0: the ranges' ends are the exact toggles)."""
     m = _margins(linkage, x, None, None)
-    return np.all(m >= -1e-10, axis=0) if len(m) else np.ones(len(x), dtype=bool)
+    return np.all(m >= 0.0, axis=0) if len(m) else np.ones(len(x), dtype=bool)
 
 
 def input_ranges(linkage: Linkage) -> tuple[tuple[float, float], ...] | None:
@@ -305,6 +307,13 @@ def out_of_reach(linkage: Linkage, values: np.ndarray) -> NoReturn:
     if len(linkage.structure.inputs) != 1:
         raise SpecError(f"the inputs {[round(float(v), 9) for v in values]} do not assemble the linkage", "input")
     ranges = input_ranges(linkage) or ()
-    shown = [(math.degrees(a), math.degrees(b)) if crank else (a, b) for a, b in ranges]
-    text = " or ".join(f"[{a:.9g}, {b:.9g}]" for a, b in shown)
-    raise SpecError(f"input {value:.9g} {unit} is out of reach; the linkage reaches {text} {unit}", "input")
+    if crank:
+        # each range turned by whole turns so that its middle lies in (-180, 180] and the value beside it
+        shown = [(math.degrees(a) - k, math.degrees(b) - k) for a, b in ranges
+                 for k in [360.0 * round((math.degrees(a) + math.degrees(b)) / 720.0)]]
+        value = math.remainder(value, 360.0)
+    else:
+        shown = list(ranges)
+    n = digits_apart(value, [x for r in shown for x in r])
+    text = " or ".join(f"[{a:.{n}g}, {b:.{n}g}]" for a, b in shown)
+    raise SpecError(f"input {value:.{n}g} {unit} is out of reach; the linkage reaches {text} {unit}", "input")
