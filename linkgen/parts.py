@@ -16,7 +16,7 @@ a cut outline grows by kerf / 2; a printed hole is the nominal one.
 from __future__ import annotations
 
 import itertools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -108,10 +108,12 @@ class Layout:
 LAYER_SEARCH_BUDGET = 200_000
 
 
-def layer_order(parts: tuple[LinkPart, ...], placement: Placement, pin_radius: float) -> dict[str, int]:
+def layer_order(parts: tuple[LinkPart, ...], placement: Placement,
+                pin_radius: float) -> tuple[dict[str, int], tuple[str, ...]]:
     """Layers (0 = the ground plate and any other fixed part, then upwards) so that no two moving parts on one
     layer ever overlap, parts joined by a pin are on different layers, and no part crosses a pin passing through
-    its layer.
+    its layer; and the ground pivots that must come down from a top plate instead (none unless no order works
+    with the one base plate: a crank sweeping over another ground pivot).
 
     A graph colouring: the parts that clash (joined, or overlapping at some pose) are the graph's edges; the
     search assigns the moving parts in order, the lowest layer first, with the fewest layers first, pruning as
@@ -130,37 +132,64 @@ def layer_order(parts: tuple[LinkPart, ...], placement: Placement, pin_radius: f
     joined = {frozenset(names) for names, _ in placement.joints.values()}
     clash = {frozenset((a, b)): frozenset((a, b)) in joined or bool(shapely.intersects(shapes[a], shapes[b]).any())
              for a, b in itertools.combinations(moving, 2)}
-    # (low part, high part, a part the pin would cross if it lay between them)
-    crossings = []
-    for (first, second), where in placement.joints.values():
-        pins = shapely.buffer(shapely.points(where), pin_radius)
-        crossings += [(first, second, name) for name in moving
-                      if name not in (first, second) and shapely.intersects(shapes[name], pins).any()]
-    for top in range(1, len(moving) + 1):
-        order = _colour(moving, fixed, top, clash, crossings)
-        if order is not None:
-            return order
+    # each pin: its two parts and the parts it would cross if it passed through their layers
+    # (a part that holds the pin's point itself, or guides it in a slot, is crossed by design: the pin goes
+    # through its hole)
+    pins = {}
+    for joint, ((first, second), where) in placement.joints.items():
+        circles = shapely.buffer(shapely.points(where), pin_radius)
+        through = {name for (a, b), other in placement.joints.values() if {a, b} & {first, second}
+                   and other.shape == where.shape and np.allclose(other, where, rtol=0, atol=1e-9) for name in (a, b)}
+        pins[joint] = (first, second, tuple(name for name in moving if name not in (first, second)
+                                            and name not in through
+                                            and shapely.intersects(shapes[name], circles).any()))
+    for from_above in (False, True):
+        for top in range(1, len(moving) + 1):
+            order = _colour(moving, fixed, top, clash, pins, from_above)
+            if order is not None:
+                return order, _top_pins(order, pins, fixed) if from_above else ()
     raise DesignError("parts.width: no layer order keeps the moving parts and pins clear of each other; narrow the "
                       "parts (parts.width) or use fewer links")
 
 
-def _colour(moving: list[str], fixed: dict[str, int], top: int, clash: dict, crossings: list) -> dict[str, int] | None:
+def _between(order: dict[str, int], low: int, high: int, parts: tuple[str, ...]) -> bool:
+    """Whether any of ``parts`` lies strictly between layers low and high."""
+    low, high = sorted((low, high))
+    return any(low < order[p] < high for p in parts)
+
+
+def _top_pins(order: dict[str, int], pins: dict, fixed: dict[str, int]) -> tuple[str, ...]:
+    """The ground pins a part crosses on their way up from the base plate: they come down from a top plate."""
+    return tuple(joint for joint, (first, second, crossers) in pins.items()
+                 if (first in fixed) != (second in fixed)
+                 and _between(order, 0, order[second if first in fixed else first], crossers))
+
+
+def _colour(moving: list[str], fixed: dict[str, int], top: int, clash: dict, pins: dict,
+            from_above: bool) -> dict[str, int] | None:
     """The first assignment of layers 1..top to ``moving`` (in order, depth first) with no clash on a layer and no
-    part between the layers of a pin it crosses; None if there is none; a DesignError past the search budget."""
+    part between the layers of a pin it crosses (with ``from_above``, a ground pin may instead come down from a
+    plate above layer ``top``); None if there is none; a DesignError past the search budget."""
     order = dict(fixed)
     tried = 0
+
+    def pin_clear(first: str, second: str, crossers: tuple[str, ...], name: str) -> bool:
+        grounded = (first in fixed) != (second in fixed)
+        if not (from_above and grounded):
+            return not any(name in (first, second, c) and all(x in order for x in (first, second, c))
+                           and _between(order, order[first], order[second], (c,)) for c in crossers)
+        if not all(x in order for x in (first, second, *crossers)):
+            return True
+        part = order[second if first in fixed else first]
+        return not _between(order, 0, part, crossers) or not _between(order, part, top + 1, crossers)
 
     def fits(name: str) -> bool:
         layer = order[name]
         if any(order.get(other) == layer and clash[frozenset((name, other))] for other in moving
                if other != name and other in order):
             return False
-        for first, second, crossed in crossings:
-            if name in (first, second, crossed) and all(x in order for x in (first, second, crossed)):
-                low, high = sorted((order[first], order[second]))
-                if low < order[crossed] < high:
-                    return False
-        return True
+        return all(pin_clear(first, second, crossers, name) for first, second, crossers in pins.values()
+                   if name in (first, second, *crossers))
 
     def place(i: int) -> bool:
         nonlocal tried
@@ -178,6 +207,31 @@ def _colour(moving: list[str], fixed: dict[str, int], top: int, clash: dict, cro
         return False
 
     return order if place(0) else None
+
+
+def with_top_plate(layout: Layout, order: dict[str, int], top_pins: tuple[str, ...],
+                   half_width: float) -> tuple[Layout, dict[str, int]]:
+    """The layout and layers with a top plate (``ground-top``, above every moving part) holding the pivots
+    ``top_pins``, which come down to their parts from above; the layout as it is when there are none."""
+    if not top_pins:
+        return layout, order
+    ground = next(p for p in layout.parts if not p.moving)
+    centres = np.array([layout.sweep.joints[j][1][0] for j in top_pins])
+    plate = LinkPart("ground-top", centres, half_width, ground.stock, moving=False)
+    # the base plate keeps its shape but not the holes of the pivots that now come from above
+    below = np.array([c for c in ground.centres if not any(np.allclose(c, t, atol=1e-9) for t in centres)])
+    base = replace(ground, centres=below if len(below) else ground.centres,
+                   body=ground.centres if ground.body is None else ground.body)
+
+    def fixed_too(place: Placement) -> Placement:
+        n = len(next(iter(place.angles.values())))
+        return Placement({**place.angles, plate.name: np.zeros(n)},
+                         {**place.origins, plate.name: np.zeros((n, 2))}, place.joints)
+
+    parts = tuple(base if p is ground else p for p in layout.parts)
+    layout = Layout((*parts, plate), fixed_too(layout.sweep), layout.positions,
+                    tuple(fixed_too(p) for p in layout.poses), layout.paths)
+    return layout, {**order, plate.name: max(order.values()) + 1}
 
 
 def _place(part: Part, angle: float, shift: np.ndarray) -> tuple[Contour, list]:
@@ -263,7 +317,8 @@ def build_parts(layout: Layout, table: PartsTable) -> LinkageBuild:
     """Layers, cut and printed parts, cut sheet and assembly drawing of a mechanism's ``layout``, for its
     ``[parts]`` table."""
     allowances = Allowances(kerf=table.kerf, clearance=0.0, kerf_field="parts.kerf")
-    layers = layer_order(layout.parts, layout.sweep, table.pin_diameter / 2)
+    layers, top_pins = layer_order(layout.parts, layout.sweep, table.pin_diameter / 2)
+    layout, layers = with_top_plate(layout, layers, top_pins, table.width_of("ground"))
     cut = tuple(allowances.cut(p) for p in layout.parts)
     printed = tuple(allowances.printed(p) for p in layout.parts)
     drawn = sheet(cut, table.sheet, table.kerf + table.margin, table.tolerance)

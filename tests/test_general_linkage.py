@@ -470,3 +470,22 @@ def test_an_input_a_rounding_past_a_toggle_snaps_onto_it_and_the_refusal_reads_a
     with pytest.raises(SpecError, match=r"input: input 149\.7035 degrees is out of reach; the linkage reaches "
                                         r"\[-149\.7034, 149\.7034\] degrees"):
         lk.solve([math.radians(149.7035)])
+
+
+def test_a_crank_sweeping_over_another_ground_pivot_gets_a_top_plate():
+    """A drag link (the ground the shortest link): the crank passes over the rocker's pivot, so that pivot comes
+    down from a plate above every moving part, and the base plate keeps only the crank's pivot hole."""
+    from linkgen.mechanisms.general import analysis_of, general_layout
+    from linkgen.parts import build_parts
+    from linkgen.spec import PartsTable
+
+    fb = FourBar(40, 100, 90, 120)
+    table = PartsTable(width=10, thickness=3, pin_diameter=3, sheet=(1000, 1000))
+    build = build_parts(general_layout(analysis_of(equivalents.fourbar(fb, 0.5), ("B",)), table), table)
+    fixed = {p.name: p.centres.tolist() for p in build.parts if not p.moving}
+    assert fixed == {"ground": [[0.0, 0.0]], "ground-top": [[40.0, 0.0]]}
+    assert build.layers["ground-top"] == max(build.layers.values()) > build.layers["rocker"]
+    assert build.layer_names[0] == "ground" and build.layer_names[-1] == "ground-top"
+    plain = FourBar(180, 80, 200, 150)                       # a crank-rocker needs none
+    build = build_parts(general_layout(analysis_of(equivalents.fourbar(plain, 0.5), ("B",)), table), table)
+    assert "ground-top" not in build.layers

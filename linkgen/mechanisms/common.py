@@ -58,6 +58,6 @@ def num(x: float) -> float | None:
 
 def no_parts(kind: str) -> NoReturn:
     """Refuse ``[parts]`` for a mechanism of type ``kind`` that has none."""
-    reason = {"whitworth": ": its crank sweeps over the slotted link's pivot, which one base plate under every link "
-                            "cannot hold"}.get(kind, "")
+    reason = {"whitworth": ": its crank sweeps over the slotted link's pivot and its rod over the crank pin's slot, "
+                            "which no stack of plates keeps clear"}.get(kind, "")
     raise SpecError(f"no parts are made for {kind}{reason}", "linkage.type")

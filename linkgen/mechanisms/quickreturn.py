@@ -1,7 +1,7 @@
 """The quick-return mechanisms, Whitworth and the crank-shaper: their ``[linkage]`` tables and reports (their ram is
 a slider: see :mod:`linkgen.mechanisms.slidercrank`). Their parts are those of the general linkage each draws
 (:mod:`linkgen.kinematics.equivalents`), the crank-shaper's; Whitworth's crank sweeps over the slotted link's
-pivot, which one base plate under every link cannot hold: no parts for it yet.
+pivot and its rod over the crank pin's slot, which no stack of plates keeps clear: no parts for it.
 
 Frame (see :mod:`linkgen.kinematics.quickreturn`): the driving crank's pivot at the
 origin, the slotted link's pivot at (ground, 0); crank angle counter-clockwise from +X.
@@ -37,8 +37,8 @@ def _swing(shaper: CrankShaper) -> dict[str, Any]:
 
 
 REGISTER = (
-    # no parts for Whitworth: its crank (longer than the ground) sweeps over the slotted link's pivot, so the one
-    # base plate the parts layer stacks every link on cannot hold both pivots
+    # no parts for Whitworth: its crank sweeps over the slotted link's pivot and its rod over the crank pin's
+    # slot, so no stack of plates (even with a top plate for the pivot) keeps every pin clear
     SliderMechanism(WhitworthTable, lambda t: Whitworth(t.crank, t.ground, t.arm, t.rod), at=_link),
     SliderMechanism(CrankShaperTable, lambda t: CrankShaper(t.crank, t.ground, t.lever),
                     extra=_swing, at=_link, drawn=lambda k: equivalents.crank_shaper(k, 0.0), traced="R"),
