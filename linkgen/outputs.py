@@ -58,12 +58,15 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
 
     items.append(item(assembly_figure, [("png", "assembly_png", f"{name}-assembly.png")], formats))
     if {"stl", "3mf"} & set(formats):
-        from camgen.core.solids import check_mesh, extrude, pin
+        from camgen.core.solids import check_mesh, extrude, pin, spacer
 
         meshes = [(part.name, extrude(part)) for part in build.printed]
         if table.pins:
             top = max(build.layers.values()) + 1
             meshes.append(("pin", pin(table.pin_diameter, top * table.thickness + 1.0, table.tolerance)))
+            inner, outer = build.spacer_diameters
+            for run in sorted({run for _, _, run in build.spacers}):
+                meshes.append((f"spacer-{run}", spacer(inner, outer, run * table.thickness, table.tolerance)))
         for part_name, mesh in meshes:
             if not check_mesh(mesh).ok:
                 raise ExportError(f"{name}-{part_name}: the mesh is not a closed outward solid")

@@ -225,8 +225,10 @@ def with_top_plate(layout: Layout, order: dict[str, int], top_pins: tuple[str, .
 
     def fixed_too(place: Placement) -> Placement:
         n = len(next(iter(place.angles.values())))
+        joints = {j: (tuple(plate.name if j in top_pins and p == ground.name else p for p in parts), where)
+                  for j, (parts, where) in place.joints.items()}
         return Placement({**place.angles, plate.name: np.zeros(n)},
-                         {**place.origins, plate.name: np.zeros((n, 2))}, place.joints)
+                         {**place.origins, plate.name: np.zeros((n, 2))}, joints)
 
     parts = tuple(base if p is ground else p for p in layout.parts)
     layout = Layout((*parts, plate), fixed_too(layout.sweep), layout.positions,
@@ -286,6 +288,16 @@ class LinkageBuild:
     sheet: Drawing
     assembly: Drawing
     positions: tuple[tuple[str, float], ...]
+    #: (joint, the two parts, how many layers it fills) for each run of empty layers a pin crosses between the two
+    #: parts it joins: a spacer fills it
+    spacers: tuple[tuple[str, tuple[str, str], int], ...] = ()
+
+    @property
+    def spacer_diameters(self) -> tuple[float, float]:
+        """A spacer's inner (the printed hole) and outer diameter (twice the pin, at most the narrowest part), mm."""
+        table = self.table
+        narrowest = min(2 * p.half_width for p in self.parts)
+        return table.pin_diameter + table.clearance, min(2 * table.pin_diameter, narrowest)
 
     @property
     def layer_names(self) -> list[str]:
@@ -310,7 +322,33 @@ class LinkageBuild:
                 "allowances": {"kerf_mm": table.kerf, "clearance_mm": table.clearance,
                                "cut_holes": "pin + clearance - kerf", "cut_outlines": "grown by kerf / 2",
                                "printed_holes": "pin + clearance"},
-                "assembly_layers": [f"DC{i + 1}-{k}" for i, (k, _) in enumerate(self.positions)]}
+                "assembly_layers": [f"DC{i + 1}-{k}" for i, (k, _) in enumerate(self.positions)],
+                **({"spacers": self._spacer_report()} if self.spacers else {})}
+
+    def _spacer_report(self) -> list[dict[str, Any]]:
+        inner, outer = self.spacer_diameters
+        return [{"joint": joint, "between": list(parts), "height_mm": run * self.table.thickness,
+                 "inner_diameter_mm": inner, "outer_diameter_mm": outer} for joint, parts, run in self.spacers]
+
+
+def spacers_of(placement: Placement, layers: dict[str, int]) -> tuple[tuple[str, tuple[str, str], int], ...]:
+    """For every pin, each run of empty layers between the two parts it joins (a layer is not empty where a part
+    holds or guides the same point: the pin goes through it): (joint, the two parts, the run's layers)."""
+    out = []
+    for joint, (parts, where) in placement.joints.items():
+        low, high = sorted(layers[p] for p in parts)
+        through = {layers[name] for (a, b), other in placement.joints.values() if {a, b} & set(parts)
+                   and other.shape == where.shape and np.allclose(other, where, rtol=0, atol=1e-9)
+                   for name in (a, b)}
+        run = 0
+        for layer in range(low + 1, high + 1):
+            if layer in through or layer == high:
+                if run:
+                    out.append((joint, parts, run))
+                run = 0
+            else:
+                run += 1
+    return tuple(out)
 
 
 def build_parts(layout: Layout, table: PartsTable) -> LinkageBuild:
@@ -322,5 +360,6 @@ def build_parts(layout: Layout, table: PartsTable) -> LinkageBuild:
     cut = tuple(allowances.cut(p) for p in layout.parts)
     printed = tuple(allowances.printed(p) for p in layout.parts)
     drawn = sheet(cut, table.sheet, table.kerf + table.margin, table.tolerance)
+    spacers = spacers_of(layout.sweep, layers)
     return LinkageBuild(layout.parts, table, allowances, layers, cut, printed, drawn,
-                        assembly(printed, layout, table.tolerance), layout.positions)
+                        assembly(printed, layout, table.tolerance), layout.positions, spacers)

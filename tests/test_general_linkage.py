@@ -489,3 +489,36 @@ def test_a_crank_sweeping_over_another_ground_pivot_gets_a_top_plate():
     plain = FourBar(180, 80, 200, 150)                       # a crank-rocker needs none
     build = build_parts(general_layout(analysis_of(equivalents.fourbar(plain, 0.5), ("B",)), table), table)
     assert "ground-top" not in build.layers
+
+
+def test_spacers_fill_the_empty_layers_a_pin_crosses(tmp_path):
+    """The crank-shaper: the lever's pivot O4 rises from the base plate (0) to the lever (2) through an empty layer,
+    so it takes a spacer one plate high; the crank pin goes through the lever's slot to its block, so none there;
+    with pins asked for, the spacer is written as a tube with the printed hole and twice the pin outside."""
+    import trimesh
+
+    from linkgen.design import design_linkage
+    from linkgen.outputs import write_linkage
+    from linkgen.spec import validate_spec
+
+    spec = validate_spec({"name": "qs", "linkage": {"type": "crank-shaper", "crank": 50.0, "ground": 150.0,
+                                                    "lever": 300.0},
+                          "parts": {"width": 10.0, "thickness": 3.0, "pin_diameter": 3.0, "sheet": [1000.0, 1000.0],
+                                    "pins": True}, "output": {"formats": ["json", "stl"]}})
+    design = design_linkage(spec, parts=True)
+    layers = design.build.layers
+    assert layers["lever"] - layers["ground"] == 2 and layers["block"] - layers["crank"] == 2
+    assert design.build.report["spacers"] == [{"joint": "O4", "between": ["ground", "lever"], "height_mm": 3.0,
+                                               "inner_diameter_mm": 3.2, "outer_diameter_mm": 6.0}]
+    files = write_linkage(design, tmp_path)
+    from camgen.core.shapes import arc_steps
+
+    tube = trimesh.load(tmp_path / files["spacer-1_stl"])
+    assert tube.is_watertight
+
+    def polygon(r: float) -> float:                       # the inscribed regular polygon the tolerance allows
+        n = arc_steps(r, 2 * math.pi, 0.01)
+        return n / 2 * r * r * math.sin(2 * math.pi / n)
+
+    assert tube.volume == pytest.approx((polygon(3.0) - polygon(1.6)) * 3.0, rel=1e-6)
+    assert abs(tube.volume - math.pi / 4 * (6.0**2 - 3.2**2) * 3.0) < math.pi * (6.0 + 3.2) * 0.01 * 3.0

@@ -71,6 +71,18 @@ def pin(diameter: float, length: float, tolerance: float) -> Mesh:
     return _mesh(shank + cap.translate((0.0, 0.0, length)), "pin")
 
 
+def spacer(inner: float, outer: float, height: float, tolerance: float) -> Mesh:
+    """A spacer: a tube of ``inner`` and ``outer`` diameter and ``height`` (mm), to fill the layers a pin crosses
+    between the two parts it joins."""
+    import manifold3d
+
+    ro, ri = outer / 2, inner / 2
+    tube = manifold3d.Manifold.cylinder(height, ro, ro, arc_steps(ro, 2 * np.pi, tolerance))
+    bore = manifold3d.Manifold.cylinder(height + 2.0, ri, ri, arc_steps(ri, 2 * np.pi, tolerance)).translate(
+        (0.0, 0.0, -1.0))
+    return _mesh(tube - bore, "spacer")
+
+
 def _mesh(solid: Any, name: str) -> Mesh:
     """A manifold3d solid as a :class:`Mesh` named ``name``."""
     mesh = solid.to_mesh()
