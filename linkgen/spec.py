@@ -10,19 +10,24 @@ from __future__ import annotations
 import functools
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Annotated, Any, ClassVar
 
 from pydantic import Field, create_model, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.options import choose
-from camgen.core.spec import Model, OutputTable, check_kind, name_field, read_template, unit, validate
+from camgen.core.spec import (MAX_LENGTH_MM, Model, OutputTable, check_kind, length, name_field, read_template, unit,
+                              validate)
 from linkgen.mechanisms import MECHANISMS, Mechanism
-from linkgen.mechanisms.common import length
+
+#: the largest kerf and clearance (mm), as camgen's ``output.kerf`` and ``output.clearance``
+MAX_ALLOWANCE_MM = 5.0
+#: a side of the sheet (mm)
+SheetSide = Annotated[float, Field(gt=0, le=MAX_LENGTH_MM)]
 
 
 class LinkOverride(Model):
-    width: float = Field(gt=0, description="this link's width", json_schema_extra=unit("mm"))
+    width: float = length("this link's width")
 
 
 class PartsTable(Model):
@@ -30,16 +35,15 @@ class PartsTable(Model):
     less the kerf (cut); a link's own table (``[parts.crank]``) overrides the width of that link."""
 
     width: float = length("bar width")
-    thickness: float = length("plate thickness")
+    thickness: float = length("plate thickness", le=1000.0)
     pin_diameter: float = length("pin diameter")
-    clearance: float = Field(0.2, ge=0, description="pin clearance: holes are pin + clearance",
+    clearance: float = Field(0.2, ge=0, le=MAX_ALLOWANCE_MM, description="pin clearance: holes are pin + clearance",
                              json_schema_extra=unit("mm"))
-    kerf: float = Field(0.0, ge=0, description="laser kerf: cut holes shrink by it, outlines grow by half",
-                        json_schema_extra=unit("mm"))
-    margin: float = Field(3.0, ge=0, description="sheet: gap between parts beyond the kerf",
-                          json_schema_extra=unit("mm"))
-    sheet: tuple[float, float] = Field((600.0, 400.0), description="sheet width and height",
-                                       json_schema_extra=unit("mm"))
+    kerf: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="laser kerf: cut holes shrink by it, outlines "
+                        "grow by half", json_schema_extra=unit("mm"))
+    margin: float = length("sheet: gap between parts beyond the kerf", 3.0, zero=True, le=1000.0)
+    sheet: tuple[SheetSide, SheetSide] = Field((600.0, 400.0), description="sheet width and height",
+                                               json_schema_extra=unit("mm"))
     pins: bool = Field(False, description="also write a printable pin (cylinder with a head)")
     tolerance: float = Field(0.01, ge=1e-6, le=1, description="chord tolerance of meshes and sheets",
                              json_schema_extra=unit("mm"))
@@ -55,9 +59,20 @@ class PartsTable(Model):
 
     @model_validator(mode="after")
     def _holes_leave_material(self) -> PartsTable:
-        hole = self.pin_diameter + self.clearance - self.kerf
+        """Holes of pin + clearance (printed, and cut: the kerf takes as much off the hole as it adds to the
+        outline) leave material in every bar, and the kerf leaves the cut holes open; each refusal names the field
+        that is too large, with the range it must keep to."""
+        pin, hole = self.pin_diameter, self.pin_diameter + self.clearance
+        if pin >= self.width:
+            raise ValueError(f"pin_diameter: holes of {hole:g} mm leave no material in bars {self.width:g} mm wide; "
+                             f"must be > 0 and < the bar width (got {pin:g})")
         if hole >= self.width:
-            raise ValueError(f"pin_diameter: holes of {hole:g} mm leave no material in bars {self.width:g} mm wide")
+            raise ValueError(f"clearance: must be >= 0 and < {self.width - pin:g} mm (width - pin_diameter), so "
+                             f"that holes of pin_diameter + clearance leave material in bars {self.width:g} mm wide "
+                             f"(got {self.clearance:g})")
+        if self.kerf >= hole:
+            raise ValueError(f"kerf: must be >= 0 and < {hole:g} mm (pin_diameter + clearance), or it closes the "
+                             f"cut holes (got {self.kerf:g})")
         named = {k: getattr(self, k) for k in ("ground", "crank", "coupler", "rocker", "rod", "slider")}
         for name, override in {**named, **{f"links.{k}": v for k, v in self.links.items()}}.items():
             if override is not None and hole >= override.width:

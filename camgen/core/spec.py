@@ -105,8 +105,8 @@ def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:
         if not sep or not key.strip():
             raise SpecError(f"expected key=value, e.g. motion.0.lift=25 (got {pair!r})", "--set")
         if not all(part.strip() for part in key.split(".")):
-            raise SpecError("a key is names joined by single dots, e.g. motion.0.lift (this one has an empty name)",
-                            f"--set {key.strip()}")
+            raise SpecError("a key is field names joined by single dots, e.g. motion.0.lift (this one has an empty "
+                            "name)", f"--set {key.strip()}")
         try:
             value = tomllib.loads(f"v = {text.strip()}")["v"]
         except tomllib.TOMLDecodeError:
@@ -299,7 +299,7 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
         bounds = [f"{_WORDS[k]} {getattr(m, a):g}" for k, a in (("greater_than", "gt"), ("greater_than_equal", "ge"),
                                                                ("less_than", "lt"), ("less_than_equal", "le"))
                   for m in (info.metadata if info is not None else []) if getattr(m, a, None) is not None]
-        rule = " and ".join(bounds) if bounds else f"{_WORDS[kind]} {bound}"
+        rule = " and ".join(bounds) if bounds else f"{_WORDS[kind]} {bound:g}"
         msg = f"must be {rule}{' ' + unit if unit else ''}{got}"
     elif kind == "finite_number":
         msg = f"must be a finite number{' of ' + unit if unit else ''}{got}"
