@@ -274,19 +274,32 @@ def envelope_outline(cam: Cam, tolerance: float, offset: float = 0.0) -> Outline
 
 
 def _envelope(cam: Cam, tolerance: float, factor: float, offset: float) -> Outline:
+    """One try at the envelope, its sampling densified by ``factor``. A plate's profile runs from one end of the
+    travel to the other and is closed by the plate as in :func:`exact_outline`; only the profile is measured."""
     import shapely
 
     rr = cam.contact_radius - offset
     pts = []
-    for i, seg in enumerate(cam.program.segments):
+    segments = cam.program.segments
+    for i, seg in enumerate(segments):
         theta = _spacing(cam, i, tolerance, factor, rr)
         pts.append(_surface(cam.segment_pitch(i, theta[:-1]), rr))
+        if cam.is_plate and i == len(segments) - 1:
+            break                                      # the plate's end: closed below, no turn back to the start
         # the segment's last surface point, then round the pitch point to the next segment's first
         centre = cam.segment_pitch(i, seg.end).point[0]
         start, _, angle = _corner_arc(cam, i, rr)
         n = arc_steps(abs(rr), angle, tolerance / factor**2)
+        if n > MAX_SEGMENT_VERTICES:
+            raise DesignError(f"output.tolerance: the undercut envelope round the end of motion[{i}] would need "
+                              f"{n:.3g} vertices to stay within {tolerance:g} mm (at most {MAX_SEGMENT_VERTICES}); "
+                              "loosen the tolerance")
         a = math.atan2(start[1] - centre[1], start[0] - centre[0]) + angle * np.arange(n) / n
         pts.append(centre + abs(rr) * np.column_stack([np.cos(a), np.sin(a)]))
+    plate = np.empty((0, 2))
+    if cam.is_plate:
+        pts, _ = _close_plate(cam, pts, [np.zeros(len(p)) for p in pts], offset)
+        plate = pts[-1][1:]                            # the flat ends and the bottom edge: no part of the surface
     ring = np.concatenate(pts)
     line = shapely.LineString(np.vstack([ring, ring[:1]]))
     faces = list(shapely.polygonize(shapely.get_parts(shapely.union_all(line))).geoms)
@@ -298,6 +311,8 @@ def _envelope(cam: Cam, tolerance: float, factor: float, offset: float) -> Outli
     v = v[keep]
     frac = np.arange(_PROBES + 1) / (_PROBES + 1)
     w = np.roll(v, -1, axis=0)
-    probes = (v[:, None, :] + (w - v)[:, None, :] * frac[None, :, None]).reshape(-1, 2)
+    on_plate = (np.abs(v[:, None, :] - plate[None, :, :]).max(axis=2) < 1e-9).any(axis=1)
+    surface = ~(on_plate | np.roll(on_plate, -1))      # edges of the profile (a plate's own edges are not measured)
+    probes = (v[surface, None, :] + (w - v)[surface, None, :] * frac[None, :, None]).reshape(-1, 2)
     err = float(np.abs(surface_deviation(cam, probes, offset)).max())
     return Outline(Contour(v), err, envelope=True)

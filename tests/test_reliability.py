@@ -380,3 +380,108 @@ def test_cut_files_hold_no_duplicate_or_crossing_entities(tmp_path, template, pr
         for i, (_, a) in enumerate(shapes):
             for _, b in shapes[i + 1:]:
                 assert not a.boundary.intersects(b.boundary), dxf.name
+
+
+# Found by the property-based suite (tests/test_properties.py), one regression a case.
+
+def test_a_plate_cam_of_straight_ramps_is_refused_by_segment_not_by_a_traceback(tmp_path):
+    """Uniform ramps on a plate: nowhere convex (no radius of curvature to invert); the roller's corner is named."""
+    refused(["build", str(PLATE), "-o", str(tmp_path / "o"), "--set", "motion.1.law='uniform'"], tmp_path / "o",
+            "motion[1]: undercut at 150.00 degrees: the follower velocity jumps there")
+
+
+def test_a_plate_cam_that_is_nowhere_convex_reports_no_radius(tmp_path):
+    result = CliRunner().invoke(camgen, ["build", str(PLATE), "-o", str(tmp_path), "--set", "motion=[{type='dwell', "
+                                         "angle=360}]", "--set", "output.formats=['json']"])
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "plate.json").read_text())        # strict JSON: no Infinity
+    assert report["pitch_rho_min_mm"] is None and report["profile_rho_min_mm"] is None
+
+
+@pytest.mark.parametrize("template, sets, words", [
+    (RDRD, ["motion.2.law='uniform'"], "motion[2]: undercut at 180.00 degrees: the follower velocity jumps there"),
+    (RDRD, ["motion.2.law='uniform'", "cam.base_radius='auto'"], "motion[2]: the follower velocity jumps (a convex"),
+    (ROOT / "templates" / "flat-face.toml", ["motion.2.law='uniform'", "cam.base_radius=60"],
+     "motion[2]: cusp at 180 degrees: the follower velocity drops there"),
+])
+def test_a_velocity_jump_names_its_segment(tmp_path, template, sets, words):
+    args = ["build", str(template), "-o", str(tmp_path / "o")]
+    for s in sets:
+        args += ["--set", s]
+    refused(args, tmp_path / "o", words)
+
+
+def test_a_plate_cam_offset_is_named_as_the_followers(tmp_path):
+    refused(["build", str(PLATE), "-o", str(tmp_path / "o"), "--set", "follower.offset=2"], tmp_path / "o",
+            "follower.offset: not used by a plate cam")
+
+
+def test_a_set_key_with_an_empty_name_is_refused_as_the_override(tmp_path):
+    refused(["build", str(RDRD), "-o", str(tmp_path / "o"), "--set", "cam..bore=3"], tmp_path / "o",
+            "--set cam..bore: a key is field names joined by single dots")
+
+
+@pytest.mark.parametrize("program, args", [
+    ("camgen", ["build", str(RDRD)]), ("camgen", ["family", str(ROOT / "templates" / "automaton-cams.toml")]),
+    ("camgen", ["bench", "--quick"]), ("linkgen", ["analyze", str(ROOT / "templates" / "crank-rocker.toml")]),
+    ("linkgen", ["build", str(ROOT / "templates" / "crank-rocker.toml")]),
+])
+def test_an_output_folder_under_a_file_is_refused_as_the_option_before_any_work(tmp_path, program, args):
+    from linkgen.cli import main as linkgen
+
+    afile = tmp_path / "afile"
+    afile.write_text("")
+    refused([*args, "-o", str(afile / "sub")], afile / "sub", "Invalid value for '-o' / '--output': cannot create "
+            "output folder", {"camgen": camgen, "linkgen": linkgen}[program])
+    assert afile.read_text() == ""
+
+
+def test_an_angle_out_of_reach_names_the_option(tmp_path):
+    from linkgen.cli import main as linkgen
+
+    refused(["analyze", str(ROOT / "templates" / "crank-rocker.toml"), "-o", str(tmp_path / "o"), "--angle", "0",
+             "--set", "linkage.crank=150"], tmp_path / "o", "--angle: crank angle 0 degrees is out of reach", linkgen)
+
+
+@pytest.mark.parametrize("sets", [["motion.1.law='uniform'"], ["follower.roller_radius=20", "motion.1.angle=40",
+                                                               "motion.2.angle=140", "output.kerf=0.3"],
+                                  ["follower={type='knife-edge'}", "motion.1.law='uniform'", "output.kerf=0.2"]])
+def test_a_plate_cams_undercut_envelope_is_closed_by_the_plate(sets):
+    """allow_undercut on a plate used to measure the plate's own edges against the surface and densify without
+    end (minutes, gigabytes); the profile alone is measured now, and it is within the tolerance."""
+    import time
+
+    import numpy as np
+    import shapely
+
+    from camgen.design import design_cam
+    from camgen.spec import load_spec
+    from camgen.surface import surface_deviation
+
+    start = time.perf_counter()
+    d = design_cam(load_spec(PLATE, ["cam.allow_undercut=true", *sets]))
+    assert time.perf_counter() - start < 10
+    assert d.outline.envelope
+    for outline, offset in ((d.outline, 0.0), (d.cut_outline, d.spec.output.kerf / 2)):
+        pts = outline.contour.flatten(1e-4)
+        assert shapely.Polygon(pts).is_valid
+        profile = pts[(pts[:, 1] > 1e-6 - offset) & (pts[:, 0] >= 0) & (pts[:, 0] <= 200)]
+        assert np.abs(surface_deviation(d.cam, profile, offset)).max() <= d.tolerance
+
+
+@pytest.mark.parametrize("sets, words", [
+    (["parts.clearance=12"], "parts.clearance: must be >= 0 and <= 5 mm (got 12)"),
+    (["parts.width=5", "parts.clearance=1.5"], "parts.clearance: must be >= 0 and < 1 mm (width - pin_diameter)"),
+    (["parts.kerf=100"], "parts.kerf: must be >= 0 and <= 5 mm (got 100)"),
+    (["parts.kerf=4.3"], "parts.kerf: must be >= 0 and < 4.2 mm (pin_diameter + clearance)"),
+    (["parts.sheet=[-1, 400]"], "parts.sheet[0]: must be > 0 mm (got -1)"),
+    (["parts.margin=1e9"], "parts.margin: must be >= 0 and <= 1000 mm"),
+])
+def test_linkage_allowances_name_the_field_that_is_too_large(tmp_path, sets, words):
+    """A huge clearance was blamed on parts.pin_diameter and a huge kerf came out as a sheet too small."""
+    from linkgen.cli import main as linkgen
+
+    args = ["build", str(ROOT / "templates" / "crank-rocker.toml"), "-o", str(tmp_path / "o")]
+    for s in sets:
+        args += ["--set", s]
+    refused(args, tmp_path / "o", words, linkgen)
