@@ -211,9 +211,10 @@ def _running(pid: str) -> bool:
         return False
 
 
-def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path):
-    """SIGKILL of the command mid-run: its workers end, the re-run clears the temporary files and gives the
-    same bytes as an undisturbed run."""
+@pytest.mark.parametrize("signame", ["SIGKILL", "SIGTERM"])
+def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path, signame):
+    """SIGKILL (or SIGTERM, what a scheduler or `kill` sends) of the command mid-run: its workers end, the re-run
+    clears the temporary files and gives the same bytes as an undisturbed run."""
     import os
     import signal
     import subprocess
@@ -232,7 +233,7 @@ def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path):
     while time.monotonic() < deadline and len(list(out.glob("*/.inputs"))) < 3:
         time.sleep(0.05)
     children = _children(proc.pid)
-    proc.send_signal(signal.SIGKILL)
+    proc.send_signal(getattr(signal, signame))
     proc.wait()
     deadline = time.monotonic() + 30                                  # each worker notices within 0.2 s when idle
     while time.monotonic() < deadline and any(_running(pid) for pid in children):
