@@ -50,7 +50,7 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
           for kind in ("svaj", "cam")),
         item(Report(report), [("json", "json", f"{name}.json")], formats),
     ]
-    return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf)), report
+    return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text)), report
 
 
 def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:

@@ -75,6 +75,14 @@ class Drawing:
 
         return svg_document(self, stroke_width=0.3)
 
+    def with_outlined_text(self) -> "Drawing":
+        """The same drawing with every text as its glyphs' outlines, on the text's layer."""
+        items: list = []
+        for layer, shape in self.items:
+            items += [(layer, line) for line in shape.outlines(self.tolerance)] if isinstance(shape, Text) else [
+                (layer, shape)]
+        return Drawing(tuple(items), self.tolerance)
+
     @classmethod
     def of_part(cls, part: Part) -> "Drawing":
         """A part's outline on ``OUTLINE``, its holes on ``HOLES`` and its marks on their own layers."""

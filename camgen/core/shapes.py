@@ -181,6 +181,37 @@ class Text:
         """Its anchor point only (for bounds)."""
         return np.array([self.position])
 
+    @property
+    def box_width(self) -> float:
+        """The width (mm) the text is laid out in: 0.6 of its height a character."""
+        return 0.6 * self.height * len(self.text)
+
+    def outlines(self, tolerance: float) -> tuple[Polyline, ...]:
+        """The glyphs' outlines (closed polylines, mm; curves flattened by matplotlib at 100 units a text height,
+        finer than ``tolerance`` for engraving sizes) in DejaVu Sans, scaled to fit the text's box (``box_width`` by ``height`` from ``position``) and turned by its angle about
+        ``position``."""
+        from matplotlib.font_manager import FontProperties
+        from matplotlib.textpath import TextPath
+
+        # drawn 100 units high, where matplotlib's flattening of the glyphs' curves is fine, then scaled down
+        path = TextPath((0.0, 0.0), self.text, size=100.0, prop=FontProperties(family="DejaVu Sans"))
+        rings = [np.asarray(r, dtype=float) for r in path.to_polygons(closed_only=True) if len(r) >= 3]
+        if not rings:
+            return ()
+        allp = np.vstack(rings)
+        lo, hi = allp.min(axis=0), allp.max(axis=0)
+        scale = min(self.box_width / max(hi[0] - lo[0], 1e-12), self.height / max(hi[1] - lo[1], 1e-12))
+        c, s = np.cos(np.radians(self.angle)), np.sin(np.radians(self.angle))
+        turn = np.array([[c, -s], [s, c]])
+        out = []
+        for ring in rings:
+            local = (ring - lo) * scale
+            if np.allclose(local[0], local[-1]):
+                local = local[:-1]
+            closed = np.vstack([local, local[:1]]) @ turn.T + np.asarray(self.position)
+            out.append(Polyline(closed, np.zeros(len(closed) - 1)))
+        return tuple(out)
+
 
 Shape = Contour | Circle
 

@@ -19,7 +19,7 @@ from typing import Any, Literal, TypeVar
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from camgen.core.errors import SpecError
-from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, FORMATS, WriteOptions
+from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, FORMATS, TEXT_MODES, WriteOptions
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -90,11 +90,13 @@ class OutputTable(Model):
         "polyline-bulge", description="DXF flavour: bulged polylines, LINE/ARC entities, or chords only")
     dxf_version: Literal[DXF_VERSIONS] = Field("R2010",  # type: ignore[valid-type]
                                                description="DXF version (R12 for old controllers)")
+    text: Literal[TEXT_MODES] = Field(  # type: ignore[valid-type]
+        "text", description="engraved text as text, or as the glyphs' outlines (for laser software that drops text)")
 
     @property
     def write_options(self) -> WriteOptions:
         """The writers' options these keys ask for."""
-        return WriteOptions(self.dxf_version, self.dxf)
+        return WriteOptions(self.dxf_version, self.dxf, self.text)
 
 
 def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:

@@ -29,6 +29,8 @@ from typing import Any, Literal
 FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg")
 DXF_FLAVOURS = ("polyline-bulge", "lines-arcs", "segments")
 DXF_VERSIONS = ("R2010", "R12")
+#: how engraved text is written: TEXT entities (SVG <text>), or the glyphs' outlines for laser software that drops text
+TEXT_MODES = ("text", "outline")
 
 _MODULES = {"dxf": "dxf", "cut-svg": "svg", "stl": "stl", "3mf": "threemf", "json": "report", "png": "figure",
             "svg": "figure"}
@@ -41,6 +43,7 @@ class WriteOptions:
 
     dxf_version: Literal["R2010", "R12"] = "R2010"
     dxf_flavour: Literal["polyline-bulge", "lines-arcs", "segments"] = "polyline-bulge"
+    text: Literal["text", "outline"] = "text"
 
 
 Writer = Callable[[Any, Path, WriteOptions], None]

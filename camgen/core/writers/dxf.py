@@ -128,7 +128,7 @@ def _sorted_classes(text: str) -> str:
 
 def write_dxf(drawing: Drawing, path: Path, options: WriteOptions | None = None) -> None:
     """Write ``drawing`` to ``path`` as DXF, in the flavour and version ``options`` ask for (default: R2010 with
-    bulged polylines)."""
+    bulged polylines), its text as TEXT entities or, with ``options.text = "outline"``, as the glyphs' outlines."""
     options = options or WriteOptions()
     import logging
 
@@ -140,7 +140,8 @@ def write_dxf(drawing: Drawing, path: Path, options: WriteOptions | None = None)
     # fixed dates and GUIDs: the same drawing always gives the same bytes (reproducible builds and families)
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
-        doc = dxf_document(drawing, options.dxf_version, options.dxf_flavour)
+        shown = drawing.with_outlined_text() if options.text == "outline" else drawing
+        doc = dxf_document(shown, options.dxf_version, options.dxf_flavour)
         stream = io.StringIO()
         doc.write(stream)
         path.write_text(_sorted_classes(stream.getvalue()), encoding=doc.output_encoding, errors="replace")

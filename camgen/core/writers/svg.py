@@ -102,7 +102,10 @@ def _path(contour: Contour, pt: Callable[[np.ndarray], str], closed: bool = True
 
 
 def write_svg(drawing: Drawing, path: Path, options: Any = None) -> None:
-    """Write ``drawing`` to ``path`` as a cut SVG (hairline strokes)."""
+    """Write ``drawing`` to ``path`` as a cut SVG (hairline strokes), its text as ``<text>`` or, with
+    ``options.text = "outline"``, as the glyphs' outlines."""
+    if options is not None and options.text == "outline":
+        drawing = drawing.with_outlined_text()
     path.write_text(svg_document(drawing), encoding="utf-8")
 
 
