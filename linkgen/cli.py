@@ -74,6 +74,46 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
         click.echo(f"wrote {directory / name}")
 
 
+@main.command()
+@template_argument()
+@output_option("Folder for the candidates' templates, reports and figures, summary.json and summary.csv "
+               "(default: out/<name>/).", default=None)
+@click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True,
+              help="Local processes a path search spreads its independent searches over.")
+@click.option("--scheduler", metavar="ADDRESS", default=None,
+              help="Run a path search's independent searches on the Dask cluster at ADDRESS (e.g. tcp://host:8786).")
+@set_option("task.seed=2")
+@user_errors
+def synthesize(template: Path, output: Path | None, jobs: int, scheduler: str | None,
+               overrides: tuple[str, ...]) -> None:
+    """Find linkages that do what TEMPLATE's [task] asks, best first, each written as a template with its report."""
+    from linkgen.synthesis import load_task, write_synthesis
+    from linkgen.synthesis import synthesize as find
+
+    spec = load_task(template, overrides)
+    result = find(spec, jobs, scheduler)
+    directory = output if output is not None else Path("out") / spec.name
+    names = write_synthesis(result, directory)
+    _print_synthesis(result.summary())
+    click.echo(f"wrote {len(names)} files to {directory} (summary.json, summary.csv; a template, report and figure a "
+               "candidate)")
+
+
+def _print_synthesis(summary: dict[str, Any]) -> None:
+    """One line a candidate: its template, its error and its lengths; then how the search went."""
+    search = summary["search"]
+    click.echo(f"{summary['name']}: {summary['kind']}, {len(summary['candidates'])} candidates in "
+               f"{search['seconds']:.3g} s on {search['ran_on']}")
+    for row in summary["candidates"]:
+        figures = [f"{label} {row[key]:.6g}" for key, label in (
+            ("error_mm2", "error mm^2"), ("structural_error_percent", "structural error %"),
+            ("transmission_min_deg", "transmission from deg"), ("transmission_worst_deg", "transmission worst deg"))
+            if key in row]
+        lengths = ", ".join(f"{k} {row[k]:.6g}" for k in ("ground", "crank", "coupler", "rocker", "rod", "offset")
+                            if k in row)
+        click.echo(f"  {row['rank']}. {row['template']}: {'; '.join(figures)}; {lengths} mm")
+
+
 add_family(main, "linkgen.spec:validate_spec", "linkgen.outputs:build_member",
            "Analyze (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes; "
            "re-running resumes.")

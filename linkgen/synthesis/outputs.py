@@ -1,0 +1,72 @@
+"""A synthesis as files, all or nothing: each candidate's template, report and figure, and the summary.
+
+``DIR/summary.json`` (``{"candidates": [...]}``, best first, with the task and the search),
+``DIR/summary.csv`` (one row a candidate), and per candidate ``<name>-<rank>.toml`` (a template
+``linkgen analyze`` and ``linkgen build`` take as it is), ``<name>-<rank>.json`` (the report of
+``linkgen analyze`` on it, with the synthesis' row) and ``<name>-<rank>-curve.png|svg``.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+from typing import Any
+
+from camgen.core.bundle import staged
+from camgen.core.writers.figure import save
+from camgen.core.writers.report import report_json
+from linkgen.synthesis.candidates import Offered, toml_text
+from linkgen.synthesis.run import Synthesis
+
+
+def summary_csv(rows: list[dict[str, Any]]) -> str:
+    """The candidates' rows as CSV: every key any row has, in the order first seen; lists and tables as JSON."""
+    columns: list[str] = []
+    for row in rows:
+        columns += [k for k in row if k not in columns]
+    text = io.StringIO()
+    writer = csv.DictWriter(text, fieldnames=columns)
+    writer.writeheader()
+    for row in rows:
+        writer.writerow({k: json.dumps(v) if isinstance(v, (list, dict)) else v for k, v in row.items()})
+    return text.getvalue()
+
+
+def _comment(c: Offered, result: Synthesis) -> str:
+    angle = c.row.get("input_directions", c.row.get("input_angles", [None]))[0]
+    at = "" if angle is None else f" --angle {angle:.6f}"
+    return (f"{c.name}: candidate {c.row['rank']} of `linkgen synthesize` for {result.spec.name} "
+            f"({result.spec.task.kind})\nanalyse: linkgen analyze {c.name}.toml{at}    parts: linkgen build "
+            f"{c.name}.toml")
+
+
+def write_synthesis(result: Synthesis, directory: str | Path) -> list[str]:
+    """Write every file of ``result`` into ``directory`` (created if missing), all or nothing; their names."""
+    from linkgen.synthesis.plots import candidate_figure
+
+    summary = result.summary()
+    names = []
+    with staged(directory) as stage:
+        for c in result.candidates:
+            names.append(stage.write(f"{c.name}.toml", lambda p, c=c: p.write_text(
+                toml_text(c.template, _comment(c, result)), encoding="utf-8")).name)
+            report = {**c.report, "synthesis": {"task": summary["task"], **c.row}}
+            names.append(stage.write(f"{c.name}.json", lambda p, r=report: p.write_text(report_json(r),
+                                                                                      encoding="utf-8")).name)
+            fig = candidate_figure(f"{c.name}: {_figure_title(c.row)}", c.sketch)
+            for fmt in ("png", "svg"):
+                names.append(stage.write(f"{c.name}-curve.{fmt}", lambda p, f=fmt, g=fig: save(g, p, f)).name)
+        names.append(stage.write("summary.json", lambda p: p.write_text(report_json(summary), encoding="utf-8")).name)
+        names.append(stage.write("summary.csv", lambda p: p.write_text(summary_csv(summary["candidates"]),
+                                                                       encoding="utf-8")).name)
+    return names
+
+
+def _figure_title(row: dict[str, Any]) -> str:
+    """The candidate's key figure for its figure's title."""
+    for key, label in (("error_mm2", "error {:.4g} mm²"), ("structural_error_percent", "structural error {:.4g} %"),
+                       ("transmission_min_deg", "transmission from {:.2f}°")):
+        if key in row:
+            return label.format(row[key])
+    return ""

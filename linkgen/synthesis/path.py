@@ -1,0 +1,336 @@
+"""Path generation: a four-bar whose coupler point passes N target points, with or without the crank angles there.
+
+The unknowns (see :mod:`linkgen.synthesis.geometry`) are the crank pivot (x0, y0), the ground
+line's direction theta0, the four lengths, the coupler point (cx, cy) and the branch; without
+timing also the crank angle at each target, as a start angle, a sense of turning and a partition
+of one turn (so the targets are always met in order, within one turn). The error is the sum of
+squared distances from the targets (mm^2).
+
+For given theta0, lengths, branch and crank angles, the coupler point is linear in (x0, y0, cx,
+cy): P_k = O2 + A_k + cx e_k + cy e_k', e_k the coupler's direction. So the search runs over the
+others and solves for those four by least squares in closed form (variable projection), for the
+whole population at once. Each search is scipy's differential evolution with the population
+evaluated in one vectorised call (``vectorized=True``): a design breaking a hard constraint ranks
+behind every feasible one (BIG (1 + violation)); one outside the box of the linear unknowns or
+the ground region pays a penalty growing with the distance. Its best few distinct designs are
+then polished over all the unknowns: least squares on the distances, or where that breaks a
+constraint, SLSQP with the constraints as inequalities first.
+
+Constraints: a Grashof crank (the crank the shortest link, S + L < P + Q) when asked; the crank
+meeting the targets in order within one turn; one branch (the crank reaching every target, and
+the motion between them, without a toggle); the lengths within ``link_range`` and their ratio
+within ``link_ratio``; the coupler point within ``coupler_range`` of the crank pin (each of cx,
+cy); both ground pivots within ``ground_region``; the transmission angle within [mu, 180 - mu].
+``starts`` independent searches, each seeded from ``seed``, run here, on local processes or on a
+Dask cluster, with the same results.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from camgen.core.errors import DesignError
+from linkgen.kinematics.grashof import classify
+from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row
+from linkgen.synthesis.defects import defects
+from linkgen.synthesis.geometry import place
+from linkgen.synthesis.parallel import run_all, where
+
+BASE = ("x0", "y0", "theta0", "r1", "r2", "r3", "r4", "cx", "cy")
+#: what differential evolution searches over (then, without timing, the start angle, sense and partition)
+SEARCHED = ("theta0", "r1", "r2", "r3", "r4", "branch")
+#: the objective of a design breaking a hard constraint: BIG * (1 + its violation), behind every feasible one
+BIG = 1e12
+#: the penalty of a design outside the box or region: SOFT scale^2 (v + v^2), v its relative distance outside
+SOFT = 10.0
+#: S + L must stay this far (relative to the scale) below P + Q: clear of change points
+GRASHOF_MARGIN = 1e-4
+#: the fractions of each step between targets where a crank that does not turn fully is checked for reach
+STEPS = np.array([0.25, 0.5, 0.75])
+#: distinct designs of each search's final population polished
+POLISHED = 3
+TWO_PI = 2.0 * math.pi
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A path task in numbers: targets (n, 2) mm, the crank angles there (rad from the ground line, or None), the
+    searched unknowns' bounds, the box of all nine design numbers (:data:`BASE`), the ground region, the other
+    constraints, the search's budget and the lengths' scale (mm)."""
+
+    targets: np.ndarray
+    timing: np.ndarray | None
+    crank: bool
+    bounds: tuple[tuple[float, float], ...]
+    box: tuple[tuple[float, float], ...]
+    region: tuple[float, float, float, float]
+    link_ratio: float | None
+    cos_transmission: float | None
+    generations: int
+    population: int
+    scale: float
+
+    @property
+    def n(self) -> int:
+        return len(self.targets)
+
+
+def problem_of(task: Any) -> Problem:
+    """The numbers of a validated :class:`~linkgen.synthesis.task.PathTask`; defaults: lengths from 1/20 to 4
+    times the targets' spread, the coupler point within the longest length, the ground pivots within the
+    targets' box grown by the longest length."""
+    targets = np.array(task.points, dtype=float)
+    spread = float(np.max(np.ptp(targets, axis=0)))
+    lo, hi = task.link_range if task.link_range is not None else (spread / 20, 4 * spread)
+    reach = task.coupler_range if task.coupler_range is not None else hi
+    if task.ground_region is not None:
+        (x_min, y_min), (x_max, y_max) = task.ground_region
+    else:
+        (x_min, y_min), (x_max, y_max) = targets.min(axis=0) - hi, targets.max(axis=0) + hi
+    box = ((x_min, x_max), (y_min, y_max), (-math.pi, math.pi), *[(lo, hi)] * 4, (-reach, reach), (-reach, reach))
+    bounds = [box[2], *box[3:7], (-1.0, 1.0)]
+    timing = None if task.input_angles is None else np.radians(task.input_angles)
+    if timing is None:
+        bounds += [(0.0, TWO_PI), (-1.0, 1.0)] + [(0.05, 1.0)] * len(targets)
+    mu = task.min_transmission
+    return Problem(targets, timing, task.crank, tuple(bounds), box, (x_min, y_min, x_max, y_max), task.link_ratio,
+                   None if mu is None else math.cos(math.radians(mu)), task.generations, task.population, hi)
+
+
+def angles(x: np.ndarray, p: Problem) -> np.ndarray:
+    """The crank angles (N, n) at the targets of a population ``x`` (D, N): the timing, or the start angle plus
+    the sense times the partition of a turn."""
+    if p.timing is not None:
+        return np.broadcast_to(p.timing, (x.shape[1], p.n))
+    start, turn, w = x[6], np.where(x[7] >= 0, 1.0, -1.0), x[8:8 + p.n]
+    cum = np.vstack([np.zeros(x.shape[1]), np.cumsum(w[:-1], axis=0)]) / w.sum(axis=0)
+    return (start + turn * TWO_PI * cum).T
+
+
+def project(x: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
+    """The nine design numbers (9, N) of a population ``x`` (D, N) meeting the targets at ``th`` (N, n): (x0, y0,
+    cx, cy) by least squares. With S = sum of e_k (a scaled rotation [[Sx, -Sy], [Sy, Sx]]), the normal equations
+    [[n I, S], [S^T, n I]] (o, c) = (h1, h2) give c = (n h2 - S^T h1) / (n^2 - |S|^2) and o = (h1 - S c) / n;
+    NaN where the coupler does not turn between the targets (|S| = n)."""
+    t0, r1, r2, r3, r4, branch = (v[:, None] for v in x[:6])
+    at = place(0.0, 0.0, t0, r1, r2, r3, r4, 1.0, 0.0, branch, th)     # the coupler point 1 along A -> B
+    ex, ey = at.px - at.ax, at.py - at.ay
+    rx, ry = p.targets[:, 0] - at.ax, p.targets[:, 1] - at.ay
+    n = p.n
+    sx, sy = ex.sum(axis=1), ey.sum(axis=1)
+    h1x, h1y = rx.sum(axis=1), ry.sum(axis=1)
+    h2x, h2y = (rx * ex + ry * ey).sum(axis=1), (ry * ex - rx * ey).sum(axis=1)
+    den = n * n - (sx * sx + sy * sy)
+    den = np.where(den > 1e-9 * n * n, den, np.nan)
+    cx = (n * h2x - (sx * h1x + sy * h1y)) / den
+    cy = (n * h2y - (sx * h1y - sy * h1x)) / den
+    x0 = (h1x - (sx * cx - sy * cy)) / n
+    y0 = (h1y - (sy * cx + sx * cy)) / n
+    return np.vstack([x0, y0, x[0], x[1], x[2], x[3], x[4], cx, cy])
+
+
+def _hard(base: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
+    """The hard constraints as rows g >= 0 (m, N), dimensionless, for designs ``base`` (9, N) meeting the targets
+    at crank angles ``th`` (N, n): reach (or a Grashof crank), link ratio, transmission angle."""
+    r1, r2, r3, r4 = base[3:7]
+    s = p.scale
+    rows = []
+    checked = th if p.crank else np.hstack([th, (th[:, :-1, None] + STEPS * np.diff(th, axis=1)[:, :, None])
+                                            .reshape(len(r1), -1)])
+    if not p.crank:                                 # a Grashof crank reaches every angle: nothing to check
+        z2 = (r1**2 + r2**2)[:, None] - 2.0 * (r1 * r2)[:, None] * np.cos(checked)
+        rows += [(((r3 + r4) ** 2)[:, None] - z2).T / s**2, (z2 - ((r3 - r4) ** 2)[:, None]).T / s**2]
+    else:
+        total = r1 + r2 + r3 + r4
+        rows += [np.array([(r - r2) / s for r in (r1, r3, r4)]),
+                 np.array([(total - 2 * r2 - 2 * r) / s - GRASHOF_MARGIN for r in (r1, r3, r4)])]
+    if p.link_ratio is not None:
+        links = (r1, r2, r3, r4)
+        rows.append(np.array([(p.link_ratio * links[i] - links[j]) / s for i in range(4) for j in range(4)
+                              if i != j]))
+    if p.cos_transmission is not None:
+        at = np.array([0.0, math.pi]) if p.crank else checked
+        z2t = (r1**2 + r2**2)[:, None] - 2.0 * (r1 * r2)[:, None] * np.cos(at)
+        cos_g = ((r3**2 + r4**2)[:, None] - z2t) / (2.0 * (r3 * r4)[:, None])
+        rows.append((p.cos_transmission**2 - cos_g**2).T)
+    return np.vstack([np.atleast_2d(r) for r in rows])
+
+
+def _soft(base: np.ndarray, p: Problem) -> np.ndarray:
+    """The box of (x0, y0, cx, cy) and the ground region of O4 as rows g >= 0 (m, N), relative to the scale."""
+    x0, y0, t0, r1 = base[:4]
+    ox, oy = x0 + r1 * np.cos(t0), y0 + r1 * np.sin(t0)
+    x_min, y_min, x_max, y_max = p.region
+    rows = [ox - x_min, x_max - ox, oy - y_min, y_max - oy]
+    for k in (0, 1, 7, 8):
+        rows += [base[k] - p.box[k][0], p.box[k][1] - base[k]]
+    return np.array(rows) / p.scale
+
+
+def _errors(base: np.ndarray, branch: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
+    """Squared distances (N, n) of the coupler point from each target."""
+    q = [v[:, None] for v in base] + [branch[:, None]]
+    at = place(*q, th)
+    return (at.px - p.targets[:, 0]) ** 2 + (at.py - p.targets[:, 1]) ** 2
+
+
+def objective(x: np.ndarray, p: Problem) -> np.ndarray:
+    """The error (mm^2) of each design of a population ``x`` (D, N), with the penalty of any soft constraint, or
+    BIG (1 + violation) where a hard one is broken: one vectorised evaluation of the whole population."""
+    th = angles(x, p)
+    base = project(x, th, p)
+    err = _errors(base, x[5], th, p).sum(axis=1)
+    hard = np.sum(np.maximum(0.0, -_hard(base, th, p)), axis=0)
+    soft = np.sum(np.maximum(0.0, -_soft(base, p)), axis=0)
+    out = err + SOFT * p.scale**2 * (soft + soft**2)
+    return np.where((hard > 0) | ~np.isfinite(out), BIG * (1.0 + np.nan_to_num(hard, nan=1.0)), out)
+
+
+def _central(f: Any, v: np.ndarray) -> np.ndarray:
+    """The Jacobian (q, m) of ``f`` (designs (k, m) -> values (k, q)) at ``v`` by central differences, all the
+    shifted designs in one vectorised call."""
+    h = np.finfo(float).eps ** (1 / 3) * np.maximum(1.0, np.abs(v))
+    shifts = np.diag(h)
+    values = f(np.vstack([v + shifts, v - shifts]))
+    return ((values[: len(v)] - values[len(v):]) / (2.0 * h)[:, None]).T
+
+
+def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float, np.ndarray, float]:
+    """Design ``x`` (a DE vector) polished over all its numbers: least squares on the distances, and where that
+    breaks a constraint SLSQP with the constraints as inequalities first (derivatives by central differences, the
+    shifted designs evaluated together). Returns (base, branch, angles, error): the polished design if it keeps
+    every constraint and is no worse, else ``x``'s own (error inf if that breaks one)."""
+    from scipy.optimize import least_squares, minimize
+
+    th0 = angles(x[:, None], p)
+    base0 = project(x[:, None], th0, p)[:, 0]
+    branch = 1.0 if x[5] >= 0 else -1.0
+    turn = 1.0 if p.timing is not None or x[7] >= 0 else -1.0
+
+    def split(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Designs (k, m) as their base (9, k) and crank angles (k, n)."""
+        return v[:, :9].T, np.broadcast_to(th0[0], (len(v), p.n)) if p.timing is not None else v[:, 9:]
+
+    def residuals(v: np.ndarray) -> np.ndarray:
+        base, th = split(v)
+        at = place(*[b[:, None] for b in base], branch, th)
+        return np.hstack([at.px - p.targets[:, 0], at.py - p.targets[:, 1]])
+
+    def squared(v: np.ndarray) -> np.ndarray:
+        return np.sum(residuals(v) ** 2, axis=1, keepdims=True)
+
+    def constraints(v: np.ndarray) -> np.ndarray:
+        base, th = split(v)
+        g = np.vstack([_hard(base, th, p), _soft(base, p)])
+        if p.timing is not None:
+            return g.T
+        step = turn * np.diff(th, axis=1).T
+        return np.vstack([g, step - 1e-4, TWO_PI - 1e-4 - step.sum(axis=0)]).T
+
+    def err(v: np.ndarray) -> float:
+        return float(squared(v[None])[0, 0])
+
+    def cons(v: np.ndarray) -> np.ndarray:
+        return constraints(v[None])[0]
+
+    def better(v: np.ndarray) -> bool:
+        return bool(np.all(np.isfinite(v)) and np.all(cons(v) >= 0) and err(v) <= found)
+
+    start = base0 if p.timing is not None else np.concatenate([base0, th0[0]])
+    bounds = list(p.box) + ([] if p.timing is not None else [(None, None)] * p.n)
+    lo, hi = (np.array([b[k] if b[k] is not None else (-1) ** (k + 1) * np.inf for b in bounds]) for k in (0, 1))
+    found = err(start) if np.all(np.isfinite(start)) and np.all(cons(start) >= 0) else math.inf
+
+    def squares(v: np.ndarray) -> np.ndarray:
+        """Least squares on the distances themselves (exact to rounding where no constraint is met on the way)."""
+        return least_squares(lambda u: residuals(u[None])[0], np.clip(v, lo, hi),
+                             jac=lambda u: _central(residuals, u), bounds=(lo, hi), xtol=1e-15, ftol=1e-15,
+                             gtol=1e-15, max_nfev=50 * len(v)).x
+
+    if np.all(np.isfinite(start)):
+        try:
+            v = squares(start)
+            if not better(v):           # a constraint is in the way: SLSQP keeps them, least squares finishes
+                v = minimize(err, np.clip(start, lo, hi), jac=lambda u: _central(squared, u)[0], method="SLSQP",
+                             bounds=bounds, constraints=[{"type": "ineq", "fun": cons,
+                                                          "jac": lambda u: _central(constraints, u)}],
+                             options={"maxiter": 200, "ftol": 1e-18}).x
+                if better(v):
+                    start, found = v, err(v)
+                v = squares(v)
+            if better(v):
+                start, found = v, err(v)
+        except (ValueError, ArithmeticError):
+            pass
+    base, th = split(start[None])
+    return base[:, 0], branch, th[0], found
+
+
+def search(args: tuple[Problem, int]) -> dict[str, Any]:
+    """One seeded search: differential evolution, then its best few distinct designs polished. Returns the
+    polished designs that keep every constraint (base, branch, angles, error) and the number of vectorised
+    evaluations (each of the whole population)."""
+    from scipy.optimize import differential_evolution
+
+    p, seed = args
+    r = differential_evolution(objective, p.bounds, args=(p,), vectorized=True, updating="deferred", seed=seed,
+                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False)
+    lo, hi = np.array(p.bounds).T
+    unit = (r.population - lo) / (hi - lo)
+    picked: list[int] = []
+    for i in np.argsort(r.population_energies, kind="stable"):
+        if r.population_energies[i] >= BIG:
+            break
+        # in the unit box of the bounds, two designs within 1e-3 of each other are copies
+        if all(np.max(np.abs(unit[i][:6] - unit[j][:6])) > 1e-3 for j in picked):
+            picked.append(int(i))
+        if len(picked) == POLISHED:
+            break
+    found = [_polish(r.population[i], p) for i in picked]
+    return {"found": [(b.tolist(), br, th.tolist(), e) for b, br, th, e in found if math.isfinite(e)],
+            "evaluations": int(r.nfev), "generations": int(r.nit), "population": len(r.population)}
+
+
+def _candidate(base: list[float], branch: float, th: list[float], p: Problem, crank: bool) -> Candidate | None:
+    """A polished design as a candidate (None if it has a defect): its row, signature and figure."""
+    d = dict(zip(BASE, base, strict=True)) | {"branch": branch}
+    lengths = (d["r1"], d["r2"], d["r3"], d["r4"])
+    if defects(lengths, th, [branch] * p.n, crank):
+        return None
+    sq = _errors(np.array(base)[:, None], np.array([branch]), np.array([th]), p)[0]
+    row = {"error_mm2": float(sq.sum()), **fourbar_row(d, th), "errors_mm": np.sqrt(sq).tolist(),
+           "inversion": classify(*lengths).inversion, "defects": []}
+    sweep = np.linspace(0.0, TWO_PI, 721)
+    sketch = coupler_sketch(d, th, p.targets, sweep)
+    signature = (d["x0"], d["y0"], *lengths, d["cx"], d["cy"], d["theta0"] * p.scale)
+    return Candidate(drawn_table(d, th[0]), row, float(sq.sum()), signature, sketch)
+
+
+def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[Candidate], dict[str, Any]]:
+    """Path generation for a validated path task: the candidates (unranked) and how the search went."""
+    p = problem_of(task)
+    seeds = [int(s.generate_state(1)[0]) for s in np.random.SeedSequence(task.seed).spawn(task.starts)]
+    clock = time.perf_counter()
+    runs = run_all(search, [(p, s) for s in seeds], jobs, scheduler)
+    seconds = time.perf_counter() - clock
+    out = []
+    for run in runs:
+        for base, branch, th, _ in run["found"]:
+            c = _candidate(base, branch, th, p, task.crank)
+            if c is not None:
+                out.append(c)
+    if not out:
+        raise DesignError("no linkage found that keeps every constraint: widen link_range or ground_region, drop "
+                          "link_ratio or min_transmission, or give more generations")
+    info = {"method": "differential evolution (scipy, the whole population per call) over the ground line, lengths, "
+                      "branch and crank angles, the pivot and coupler point by least squares; polished by least "
+                      "squares (SLSQP where a constraint is in the way)",
+            "seed": task.seed, "starts": task.starts, "generations": task.generations,
+            "population": runs[0]["population"], "vectorised_calls": sum(r["evaluations"] for r in runs),
+            "designs_evaluated": sum(r["evaluations"] * r["population"] for r in runs),
+            "seconds": round(seconds, 3), "ran_on": where(jobs, scheduler)}
+    return out, info

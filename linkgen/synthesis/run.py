@@ -1,0 +1,55 @@
+"""``synthesize``: a validated task to its ranked candidates, each re-analysed as the template written. No I/O."""
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from linkgen.synthesis import crank_rocker, function, motion, path, slider_crank
+from linkgen.synthesis.candidates import Candidate, Offered, offer, ranked
+from linkgen.synthesis.parallel import where
+from linkgen.synthesis.task import SynthesisSpec
+
+#: the analytic methods by task kind (path generation, a search, is called with the jobs and scheduler)
+METHODS: dict[str, Callable[[Any], tuple[list[Candidate], dict[str, Any]]]] = {
+    "crank-rocker": crank_rocker.solve, "slider-crank": slider_crank.solve, "function": function.solve,
+    "motion": motion.solve}
+#: how close (relative) two candidates' numbers may be before the worse is left out as a copy: a search's polished
+#: designs differ by far less than an analytic family's neighbours
+COPIES = {"path": 1e-3}
+LENGTH_KEYS = ("ground", "crank", "coupler", "rocker", "rod")
+
+
+@dataclass(frozen=True)
+class Synthesis:
+    """A task's outcome: the spec, the candidates offered (best first) and how they were found."""
+
+    spec: SynthesisSpec
+    candidates: tuple[Offered, ...]
+    search: dict[str, Any]
+
+    def summary(self) -> dict[str, Any]:
+        """What ``summary.json`` holds: the task, how the search went and one row a candidate, best first."""
+        task = self.spec.task
+        return {"name": self.spec.name, "kind": task.kind, "task": task.model_dump(mode="json"),
+                "search": self.search, "candidates": [c.row for c in self.candidates]}
+
+
+def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None) -> Synthesis:
+    """The candidates of a validated synthesis spec, best first: path searches run on ``jobs`` local processes or
+    the Dask cluster at ``scheduler``; the analytic methods run here."""
+    task = spec.task
+    clock = time.perf_counter()
+    if task.kind == "path":
+        found, info = path.solve(task, jobs, scheduler)
+    else:
+        found, info = METHODS[task.kind](task)
+        info["ran_on"] = "this process" + (" (an analytic method: --jobs and --scheduler serve path searches)"
+                                           if jobs > 1 or scheduler else "")
+    best = ranked(found, getattr(task, "candidates", 1), COPIES.get(task.kind, 0.02))
+    parts = None if spec.parts is None else spec.parts.model_dump(mode="json", exclude_none=True)
+    offered = offer(spec.name, best, parts, lambda c: [c.row[k] for k in LENGTH_KEYS if k in c.row])
+    info = {**info, "seconds": round(time.perf_counter() - clock, 3), "ran_on": info.get("ran_on",
+                                                                                        where(jobs, scheduler))}
+    return Synthesis(spec, offered, info)

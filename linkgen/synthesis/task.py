@@ -1,0 +1,278 @@
+"""The ``[task]`` of a synthesis template, validated into a frozen spec with one-line errors naming the field.
+
+A synthesis template states what the linkage must do; ``task.kind`` picks the model::
+
+    name = "line6"
+    [task]
+    kind = "path"                          # crank-rocker, slider-crank, function, motion, path
+    points = [[20, 20], [20, 25], [20, 30]]
+    input_angles = [30, 45, 60]            # optional: prescribed timing (degrees from the ground line)
+    crank = true
+    link_range = [5, 60]
+
+Units: mm and degrees; every angle counter-clockwise. An optional ``[parts]`` table (as for
+``linkgen build``) is copied into every candidate's template.
+"""
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable, Iterable, Mapping
+from pathlib import Path
+from typing import Any, Literal
+
+from pydantic import Field, create_model, model_validator
+
+from camgen.core.errors import SpecError
+from camgen.core.options import choose
+from camgen.core.spec import MAX_LENGTH_MM, Model, name_field, read_template, unit, validate
+from linkgen.spec import PartsTable
+
+Point = tuple[float, float]
+
+
+def _mm(description: str, default: Any = ...) -> Any:
+    return Field(default, description=description, json_schema_extra=unit("mm"))
+
+
+def _deg(description: str, default: Any = ...) -> Any:
+    return Field(default, description=description, json_schema_extra=unit("degrees"))
+
+
+def _count(description: str, default: int, lo: int, hi: int) -> Any:
+    return Field(default, ge=lo, le=hi, description=description)
+
+
+def _check_range(name: str, pair: tuple[float, float] | None, positive: bool = True) -> None:
+    """Refuse a [from, to] pair that is not increasing (or, for lengths, not positive)."""
+    if pair is None:
+        return
+    lo, hi = pair
+    if positive and lo <= 0:
+        raise ValueError(f"{name}: the shortest length must be > 0 mm (got {lo:g})")
+    if not lo < hi:
+        raise ValueError(f"{name}: give [shortest, longest] with shortest < longest (got [{lo:g}, {hi:g}])")
+    if hi > MAX_LENGTH_MM:
+        raise ValueError(f"{name}: lengths must be <= {MAX_LENGTH_MM:g} mm (got {hi:g})")
+
+
+def _distinct(name: str, values: Iterable[Any], what: str, gap: Callable[[Any, Any], float] | None = None) -> None:
+    """Refuse two equal items (``gap(a, b)`` below 1e-9; by default |a - b|), naming both."""
+    values = list(values)
+    for i, a in enumerate(values):
+        for j in range(i + 1, len(values)):
+            if (abs(a - values[j]) if gap is None else gap(a, values[j])) < 1e-9:
+                raise ValueError(f"{name}: items {i} and {j} give the same {what}; each must differ")
+
+
+def _turn(a: float, b: float) -> float:
+    """The smallest turn between two angles (degrees)."""
+    return abs(math.remainder(a - b, 360.0))
+
+
+class SearchOptions(Model):
+    """What every optimising task shares: how many candidates to offer and the limits of the lengths."""
+
+    link_range: tuple[float, float] | None = _mm("every link length and the ground length: [shortest, longest]",
+                                                 None)
+    candidates: int = _count("how many candidates to offer, best first", 5, 1, 50)
+
+    @model_validator(mode="after")
+    def _ranges(self) -> SearchOptions:
+        _check_range("link_range", self.link_range)
+        return self
+
+
+class CrankRockerTask(SearchOptions):
+    """A Grashof crank-rocker whose rocker swings ``swing`` degrees with time ratio ``time_ratio``."""
+
+    kind: Literal["crank-rocker"]
+    swing: float = Field(gt=0, lt=180, description="rocker swing", json_schema_extra=unit("degrees"))
+    time_ratio: float = Field(1.0, ge=1, le=10, description="slower stroke's time over the faster's")
+    rocker: float = _mm("rocker length (pivot to pin)")
+    ground: float | None = _mm("ground length, when fixed (else the free choice is swept)", None)
+    samples: int = _count("positions of the free choice (the crank pivot on its circle) tried", 361, 3, 100_000)
+
+    @model_validator(mode="after")
+    def _lengths(self) -> CrankRockerTask:
+        for key in ("rocker", "ground"):
+            value = getattr(self, key)
+            if value is not None and not 0 < value <= MAX_LENGTH_MM:
+                raise ValueError(f"{key}: must be > 0 and <= {MAX_LENGTH_MM:g} mm (got {value:g})")
+        return self
+
+
+class SliderCrankTask(SearchOptions):
+    """A slider-crank (offset when the time ratio asks) whose slider travels ``stroke`` mm."""
+
+    kind: Literal["slider-crank"]
+    stroke: float = Field(gt=0, le=MAX_LENGTH_MM, description="slider stroke", json_schema_extra=unit("mm"))
+    time_ratio: float = Field(1.0, ge=1, le=10, description="slower stroke's time over the faster's")
+    offset: float | None = _mm("slider line above the crank pivot, when fixed", None)
+    samples: int = _count("values of the free choice tried", 361, 3, 100_000)
+
+    @model_validator(mode="after")
+    def _offset(self) -> SliderCrankTask:
+        if self.offset is not None and self.time_ratio == 1 and self.offset != 0:
+            raise ValueError(f"offset: a time ratio of 1 needs a centred slider, offset 0 (got {self.offset:g} mm)")
+        if self.offset is not None and self.time_ratio > 1 and self.offset == 0:
+            raise ValueError(f"offset: a centred slider-crank has time ratio 1; a time ratio of {self.time_ratio:g} "
+                             "needs an offset (or leave offset out to sweep it)")
+        return self
+
+
+class FunctionTask(Model):
+    """A four-bar whose rocker angle follows y = f(x) while its crank angle follows x (Freudenstein)."""
+
+    kind: Literal["function"]
+    function: str | None = Field(None, description="y as a formula of x, e.g. 'log10(x)'", max_length=200)
+    table: tuple[Point, ...] | None = Field(None, description="y against x as [[x, y], ...], x increasing")
+    x_range: tuple[float, float] | None = Field(None, description="x from, to (a table's ends by default)")
+    input_angles: tuple[float, float] = _deg("crank angles (from the ground line) at x from and x to")
+    output_angles: tuple[float, float] = _deg("rocker angles (from the ground line) at y(from) and y(to)")
+    precision_points: int = _count("points at Chebyshev spacing: 3 are met exactly, more by least squares", 3, 3,
+                                   1000)
+    ground: float = Field(100.0, gt=0, le=MAX_LENGTH_MM, description="ground length (the scale)",
+                          json_schema_extra=unit("mm"))
+
+    @model_validator(mode="after")
+    def _function(self) -> FunctionTask:
+        if (self.function is None) == (self.table is None):
+            raise ValueError("function: give a formula (function = 'log10(x)') or a table, one of them")
+        if self.table is not None:
+            if len(self.table) < 3:
+                raise ValueError(f"table: needs at least 3 points [x, y] (got {len(self.table)})")
+            xs = [x for x, _ in self.table]
+            if any(b <= a for a, b in zip(xs, xs[1:], strict=False)):
+                raise ValueError("table: x must increase from row to row")
+        elif self.x_range is None:
+            raise ValueError("x_range: missing: give x from, to for the formula")
+        if self.x_range is not None and not self.x_range[0] < self.x_range[1]:
+            raise ValueError(f"x_range: give [from, to] with from < to (got {list(self.x_range)})")
+        for key in ("input_angles", "output_angles"):
+            a, b = getattr(self, key)
+            if a == b:
+                raise ValueError(f"{key}: the two angles are the same ({a:g}); the link must turn between them")
+            if abs(b - a) >= 360:
+                raise ValueError(f"{key}: the link turns {abs(b - a):g} degrees, more than a full turn")
+        return self
+
+
+class MotionTask(SearchOptions):
+    """Two or three positions of a coupler line (a point and the line's direction)."""
+
+    kind: Literal["motion"]
+    positions: tuple[tuple[float, float, float], ...] = Field(
+        description="the coupler's poses as [x mm, y mm, angle degrees]", max_length=3)
+    moving_pivots: tuple[Point, Point] | None = _mm("the two pivots on the coupler, drawn at the first position",
+                                                    None)
+    fixed_pivots: tuple[Point, Point] | None = _mm("the two ground pivots", None)
+    crank: bool = Field(True, description="the input must turn fully (a Grashof crank)")
+    samples: int = _count("values of each free choice tried", 24, 4, 720)
+
+    @model_validator(mode="after")
+    def _positions(self) -> MotionTask:
+        n = len(self.positions)
+        if n < 2:
+            raise ValueError(f"positions: needs 2 or 3 positions [x, y, angle] (got {n})")
+        _distinct("positions", self.positions, "pose", lambda p, q: max(abs(p[0] - q[0]), abs(p[1] - q[1]),
+                                                                        _turn(p[2], q[2])))
+        if self.moving_pivots is not None and self.fixed_pivots is not None:
+            raise ValueError("fixed_pivots: give the moving pivots or the fixed pivots, not both")
+        if n == 2 and self.moving_pivots is None and self.fixed_pivots is None:
+            raise ValueError("moving_pivots: two positions leave the pivots free: give moving_pivots (the fixed "
+                             "pivots are then swept along their bisectors) or fixed_pivots")
+        same = [k for k in ("moving_pivots", "fixed_pivots")
+                if getattr(self, k) is not None and math.dist(*getattr(self, k)) < 1e-9]
+        if same:
+            raise ValueError(f"{same[0]}: the two pivots are at the same place")
+        return self
+
+
+class PathTask(SearchOptions):
+    """N target points for a four-bar's coupler point, with or without the crank angles at them."""
+
+    kind: Literal["path"]
+    points: tuple[Point, ...] = _mm("the targets [x, y], in the order the coupler point meets them")
+    input_angles: tuple[float, ...] | None = _deg("crank angles at the targets, from the ground line (timing)",
+                                                  None)
+    closed: bool = Field(False, description="the targets lie on a closed curve (the crank must turn fully)")
+    crank: bool = Field(True, description="the input must turn fully (a Grashof crank)")
+    coupler_range: float | None = _mm("largest |x| and |y| of the coupler point from the crank pin, in the "
+                                      "coupler's frame (default: the longest link)", None)
+    ground_region: tuple[Point, Point] | None = _mm("both ground pivots inside [[x_min, y_min], [x_max, y_max]]",
+                                                    None)
+    link_ratio: float | None = Field(None, gt=1, description="largest longest-to-shortest link ratio")
+    min_transmission: float | None = Field(None, gt=0, lt=90, description="smallest transmission angle",
+                                           json_schema_extra=unit("degrees"))
+    seed: int = Field(1, ge=0, description="seed of the search: the same seed gives the same candidates")
+    starts: int = _count("independent searches (spread over --jobs or the cluster)", 4, 1, 1000)
+    generations: int = _count("differential evolution's generations a search", 1500, 1, 100_000)
+    population: int = _count("differential evolution's population, per unknown", 15, 5, 200)
+
+    @model_validator(mode="after")
+    def _targets(self) -> PathTask:
+        if not 3 <= len(self.points) <= 200:
+            raise ValueError(f"points: a path needs 3 to 200 target points (got {len(self.points)})")
+        n = len(self.points)
+        _distinct("points", (x + 1j * y for x, y in self.points), "point")
+        if self.input_angles is not None:
+            a = self.input_angles
+            if len(a) != n:
+                raise ValueError(f"input_angles: give one angle a point ({n} points, got {len(a)} angles)")
+            _distinct("input_angles", a, "crank angle for two different points", _turn)
+            steps = [b - x for x, b in zip(a, a[1:], strict=False)]
+            if not (all(s > 0 for s in steps) or all(s < 0 for s in steps)):
+                raise ValueError("input_angles: the crank must meet the points in order, turning one way: the angles "
+                                 "must all increase or all decrease")
+            if abs(a[-1] - a[0]) >= 360:
+                raise ValueError(f"input_angles: they span {abs(a[-1] - a[0]):g} degrees; the points must lie "
+                                 "within one turn of the crank")
+        if self.closed and not self.crank:
+            raise ValueError("crank: a closed path needs a crank that turns fully (crank = true)")
+        if self.coupler_range is not None and self.coupler_range <= 0:
+            raise ValueError(f"coupler_range: must be > 0 mm (got {self.coupler_range:g})")
+        if self.ground_region is not None:
+            (x0, y0), (x1, y1) = self.ground_region
+            if not (x0 < x1 and y0 < y1):
+                raise ValueError("ground_region: give [[x_min, y_min], [x_max, y_max]] with min < max")
+        return self
+
+
+#: ``task.kind`` -> its model
+TASKS: dict[str, type[Model]] = {"crank-rocker": CrankRockerTask, "slider-crank": SliderCrankTask,
+                                 "function": FunctionTask, "motion": MotionTask, "path": PathTask}
+
+
+class SynthesisSpec(Model):
+    """A validated synthesis template: its name, the task, and the ``[parts]`` every candidate's template gets."""
+
+    name: str = name_field("synthesis")
+    task: Model
+    parts: PartsTable | None = None
+
+
+@functools.cache
+def spec_model(kind: str) -> type[SynthesisSpec]:
+    """The :class:`SynthesisSpec` of tasks of ``kind`` (made once a kind)."""
+    return create_model(f"{TASKS[kind].__name__}Spec", __base__=SynthesisSpec, task=(TASKS[kind], ...))
+
+
+def validate_task(raw: Mapping[str, Any]) -> SynthesisSpec:
+    """The spec of a raw synthesis template, or a one-line :class:`SpecError` naming the field."""
+    if "linkage" in raw:
+        raise SpecError("this is a linkage template, not a task: use `linkgen analyze` or `linkgen build`",
+                        "template")
+    if "sweep" in raw:
+        raise SpecError("a synthesis template has no [sweep] table", "sweep")
+    task = raw.get("task")
+    kind = task.get("kind") if isinstance(task, Mapping) else None
+    if kind is None:
+        where = "task.kind" if isinstance(task, Mapping) else "task"
+        raise SpecError(f"missing: give the task's kind, one of {', '.join(TASKS)}", where)
+    return validate(spec_model(choose(kind, TASKS, "task.kind")), raw)
+
+
+def load_task(path: str | Path, overrides: Iterable[str] = ()) -> SynthesisSpec:
+    """Read a TOML synthesis template, merge ``key=value`` overrides, validate."""
+    return validate_task(read_template(path, overrides))
