@@ -102,13 +102,13 @@ def synthesize(template: Path, output: Path | None, jobs: int, scheduler: str | 
 def _print_synthesis(summary: dict[str, Any]) -> None:
     """One line a candidate: its template, its error and its lengths; then how the search went."""
     search = summary["search"]
-    click.echo(f"{summary['name']}: {summary['kind']}, {len(summary['candidates'])} candidates in "
+    count = len(summary["candidates"])
+    click.echo(f"{summary['name']}: {summary['kind']}, {count} candidate{'s' if count != 1 else ''} in "
                f"{search['seconds']:.3g} s on {search['ran_on']}")
     for row in summary["candidates"]:
         figures = [f"{label} {row[key]:.6g}" for key, label in (
             ("error_mm2", "error mm^2"), ("structural_error_percent", "structural error %"),
-            ("transmission_min_deg", "transmission from deg"), ("transmission_worst_deg", "transmission worst deg"))
-            if key in row]
+            ("transmission_worst_deg", "worst transmission angle deg")) if key in row]
         lengths = ", ".join(f"{k} {row[k]:.6g}" for k in ("ground", "crank", "coupler", "rocker", "rod", "offset")
                             if k in row)
         click.echo(f"  {row['rank']}. {row['template']}: {'; '.join(figures)}; {lengths} mm")

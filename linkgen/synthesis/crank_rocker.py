@@ -69,7 +69,8 @@ def _checked(ground: float, crank: float, coupler: float, rocker: float, task: A
            "rocker": rocker, "coupler_point": [0.0, 0.0], "input_angles": [deg(c) for c in cranks],
            "swing_deg": math.degrees(swing), "time_ratio": ratio, "swing_error_deg": abs(math.degrees(swing)
                                                                                           - task.swing),
-           "transmission_min_deg": least, "transmission_max_deg": largest, "inversion": g.inversion,
+           "transmission_worst_deg": worst, "transmission_min_deg": least, "transmission_max_deg": largest,
+           "inversion": g.inversion,
            # the free choice: where the crank pivot sits, seen from the rocker pivot, counter-clockwise from the
            # rocker's mid-swing line
            "free_choice": {"crank_pivot_bearing_deg": math.degrees(math.remainder(cmath.phase(o2) - math.pi / 2,

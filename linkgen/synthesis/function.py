@@ -95,8 +95,8 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
                         "task.output_angles") from None
     ends = np.concatenate([[s2], t2, [e2]]) + turn2
     if defects(lengths, ends, np.ones(len(ends)), crank=False):
-        reach = "; ".join(f"{math.degrees(lo - turn2):.4g} to {math.degrees(hi - turn2):.4g}"
-                          for lo, hi in fb.input_ranges() or ())
+        starts = [(math.degrees(lo - turn2) % 360.0, math.degrees(hi - lo)) for lo, hi in fb.input_ranges() or ()]
+        reach = "; ".join(f"{start:.4g} to {start + span:.4g}" for start, span in starts)
         raise SpecError(f"the linkage through the precision points meets a toggle inside the input range: its crank "
                         f"reaches {reach} degrees only: choose other input_angles or output_angles",
                         "task.input_angles")

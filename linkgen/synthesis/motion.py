@@ -36,6 +36,8 @@ from linkgen.synthesis.geometry import frame_of, place
 TWO_PI = 2.0 * math.pi
 #: the best pairs (by transmission) given the full defect check, at most
 CHECKED = 400
+#: defect-free candidates gathered, best first, for each one asked (the ranking leaves out near-copies)
+ENOUGH = 8
 
 
 def circumcentre(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
@@ -156,6 +158,7 @@ def _candidate(p: np.ndarray, alpha: np.ndarray, o2: complex, a: complex, o4: co
     row = {"error_mm2": float(np.sum(np.abs(got - p) ** 2)), **fourbar_row(d, theta),
            "errors_mm": np.abs(got - p).tolist(),
            "angle_errors_deg": np.degrees(np.abs(np.remainder(line + math.pi, TWO_PI) - math.pi)).tolist(),
+           "moving_pivots": [[a.real, a.imag], [b.real, b.imag]],
            "transmission_worst_deg": math.degrees(worst), "free_choice": choice, "defects": []}
     turn = sense(theta)
     sweep = np.linspace(0.0, TWO_PI, 721) if task.crank else np.linspace(theta[0], theta[0] + turn * np.mod(
@@ -192,6 +195,8 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
         ok, worst = _screen(p, alpha, left[0][i], left[1][i], right[0][j], right[1][j], task)
         best = np.flatnonzero(ok)[np.argsort(-worst[ok], kind="stable")][:CHECKED]
         for k in best:
+            if len(out) >= ENOUGH * task.candidates:
+                break
             c = _candidate(p, alpha, left[0][i[k]], left[1][i[k]], right[0][j[k]], right[1][j[k]], task,
                            _choices(mode, left[2][i[k]], right[2][j[k]]), float(worst[k]))
             if c is not None:

@@ -66,7 +66,7 @@ def write_synthesis(result: Synthesis, directory: str | Path) -> list[str]:
 def _figure_title(row: dict[str, Any]) -> str:
     """The candidate's key figure for its figure's title."""
     for key, label in (("error_mm2", "error {:.4g} mm²"), ("structural_error_percent", "structural error {:.4g} %"),
-                       ("transmission_min_deg", "transmission from {:.2f}°")):
+                       ("transmission_worst_deg", "worst transmission angle {:.2f}°")):
         if key in row:
             return label.format(row[key])
     return ""

@@ -15,9 +15,9 @@ from linkgen.synthesis.task import SynthesisSpec
 METHODS: dict[str, Callable[[Any], tuple[list[Candidate], dict[str, Any]]]] = {
     "crank-rocker": crank_rocker.solve, "slider-crank": slider_crank.solve, "function": function.solve,
     "motion": motion.solve}
-#: how close (relative) two candidates' numbers may be before the worse is left out as a copy: a search's polished
-#: designs differ by far less than an analytic family's neighbours
-COPIES = {"path": 1e-3}
+#: how close (relative to the largest) two candidates' numbers may be before the worse is left out as a copy: a
+#: search's polished designs are copies within 1e-3; an analytic family's neighbours are offered 10 % apart
+COPIES = {"path": 1e-3, "motion": 0.05, "crank-rocker": 0.1, "slider-crank": 0.1}
 LENGTH_KEYS = ("ground", "crank", "coupler", "rocker", "rod")
 
 
@@ -47,7 +47,7 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
         found, info = METHODS[task.kind](task)
         info["ran_on"] = "this process" + (" (an analytic method: --jobs and --scheduler serve path searches)"
                                            if jobs > 1 or scheduler else "")
-    best = ranked(found, getattr(task, "candidates", 1), COPIES.get(task.kind, 0.02))
+    best = ranked(found, getattr(task, "candidates", 1), COPIES.get(task.kind, 0.1))
     parts = None if spec.parts is None else spec.parts.model_dump(mode="json", exclude_none=True)
     offered = offer(spec.name, best, parts, lambda c: [c.row[k] for k in LENGTH_KEYS if k in c.row])
     info = {**info, "seconds": round(time.perf_counter() - clock, 3), "ran_on": info.get("ran_on",

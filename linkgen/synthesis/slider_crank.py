@@ -39,7 +39,7 @@ def _checked(crank: float, rod: float, offset: float, task: Any) -> Candidate | 
     dead = sc.dead_centres()
     row = {"ground_pivots": [[0.0, 0.0]], "crank": crank, "rod": rod, "offset": offset,
            "input_angles": [deg(t) for _, t, _ in dead], "stroke_mm": stroke, "time_ratio": ratio,
-           "stroke_error_mm": abs(stroke - task.stroke), "transmission_min_deg": transmission}
+           "stroke_error_mm": abs(stroke - task.stroke), "transmission_worst_deg": transmission}
     table = {"type": "slider-crank", "crank": crank, "rod": rod, "offset": offset}
     return Candidate(table, row, -transmission, (crank, rod, offset), _sketch(sc))
 

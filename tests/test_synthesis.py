@@ -1,0 +1,353 @@
+"""linkgen synthesize: each method against a textbook case computed independently here, every candidate re-analysed
+as written, the defect checks, the path search recovering a known linkage, seeds, and bad tasks refused in one line."""
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from camgen.core.errors import SpecError
+from linkgen.design import design_linkage
+from linkgen.kinematics.fourbar import FourBar
+from linkgen.kinematics.slidercrank import SliderCrank
+from linkgen.spec import validate_spec
+from linkgen.synthesis import synthesize, validate_task, write_synthesis
+from linkgen.synthesis.defects import defects, sense
+from tests.conftest import ROOT
+
+LINE6 = ROOT / "templates" / "synth-line6.toml"
+#: a crank-rocker and coupler point the path and motion tests generate their targets from
+KNOWN = FourBar(40.0, 12.0, 35.0, 30.0, 20.0, math.radians(30.0))
+#: where the known linkage sits in the task's frame: crank pivot and ground line direction
+PLACED = (np.array([10.0, 5.0]), math.radians(25.0))
+
+
+def run(raw: dict, **kwargs):
+    return synthesize(validate_task(raw), **kwargs)
+
+
+def task(kind: str, **keys) -> dict:
+    return {"name": f"t-{kind}", "task": {"kind": kind, **keys}}
+
+
+def placed(points: np.ndarray) -> np.ndarray:
+    """Points of the known linkage's frame in the task's frame."""
+    o2, turn = PLACED
+    c, s = math.cos(turn), math.sin(turn)
+    return points @ np.array([[c, s], [-s, c]]) + o2
+
+
+def reanalysed(candidate, angles_deg) -> np.ndarray:
+    """The traced point (mm) of a candidate's template, analysed as `linkgen analyze --angle` does, at each input."""
+    spec = validate_spec(tomllib.loads(tomllib_text(candidate.template)))
+    out = []
+    for angle in angles_deg:
+        joints = design_linkage(spec, angle).report["positions"]["joints"]
+        point = joints[spec.linkage.tracers[0]]
+        out.append([point["x_mm"], point["y_mm"]])
+    return np.array(out)
+
+
+def tomllib_text(raw: dict) -> str:
+    from linkgen.synthesis.candidates import toml_text
+
+    return toml_text(raw, "test")
+
+
+# ---------------------------------------------------------------------- crank-rocker and slider-crank
+
+
+def test_crank_rocker_equal_times_is_norton_example_3_1():
+    """Norton, Design of Machinery, example 3-1: 45 degrees of rocker swing, equal times forward and back. The crank
+    is half the chord between the rocker pin's limit positions, whatever the free choice."""
+    result = run(task("crank-rocker", swing=45.0, rocker=50.0))
+    assert len(result.candidates) == 5
+    half_chord = 50.0 * math.sin(math.radians(22.5))
+    for c in result.candidates:
+        fb = FourBar(c.row["ground"], c.row["crank"], c.row["coupler"], c.row["rocker"])
+        assert c.row["crank"] == pytest.approx(half_chord, rel=1e-12)
+        assert fb.grashof.inversion == "crank-rocker"
+        assert fb.time_ratio() == pytest.approx(1.0, abs=1e-9)
+        assert c.report["rocker_swing_deg"] == pytest.approx(45.0, abs=1e-6)
+    worst = [c.row["transmission_worst_deg"] for c in result.candidates]
+    assert worst == sorted(worst, reverse=True)
+
+
+def test_quick_return_crank_rocker_is_norton_example_3_9():
+    """Norton example 3-9: 45 degrees of swing with a time ratio of 1.25; the crank pivot sees the rocker pin's limit
+    positions 180 (Q - 1) / (Q + 1) = 20 degrees apart, read here from each linkage's own dead centres."""
+    result = run(task("crank-rocker", swing=45.0, time_ratio=1.25, rocker=50.0))
+    for c in result.candidates:
+        fb = FourBar(c.row["ground"], c.row["crank"], c.row["coupler"], c.row["rocker"])
+        ends = {d.kind: d.crank for d in fb.dead_centres("open") if d.kind in ("extended", "folded")}
+        b1, b2 = fb.positions(np.array([ends["extended"], ends["folded"]]), "open").b
+        seen = math.degrees(abs(math.remainder(math.atan2(*b1[::-1]) - math.atan2(*b2[::-1]), 2 * math.pi)))
+        assert seen == pytest.approx(20.0, abs=1e-9)
+        assert fb.time_ratio() == pytest.approx(1.25, rel=1e-9)
+        assert c.report["time_ratio"] == pytest.approx(1.25, rel=1e-9)
+
+
+def test_crank_rocker_with_its_ground_given_meets_it():
+    result = run(task("crank-rocker", swing=60.0, time_ratio=1.3, rocker=40.0, ground=70.0))
+    for c in result.candidates:
+        assert c.row["ground"] == pytest.approx(70.0, rel=1e-12)
+        assert c.report["rocker_swing_deg"] == pytest.approx(60.0, abs=1e-6)
+
+
+def test_slider_crank_stroke_and_time_ratio():
+    """The stroke and time ratio of each candidate, from the slider-crank's own dead centres; a time ratio of 1 is a
+    centred slider with the crank half the stroke."""
+    for c in run(task("slider-crank", stroke=100.0, time_ratio=1.4)).candidates:
+        sc = SliderCrank(c.row["crank"], c.row["rod"], c.row["offset"])
+        assert sc.stroke == pytest.approx(100.0, rel=1e-9) and sc.time_ratio == pytest.approx(1.4, rel=1e-9)
+        assert c.report["stroke_mm"] == pytest.approx(100.0, rel=1e-9)
+    for c in run(task("slider-crank", stroke=80.0)).candidates:
+        assert c.row["offset"] == 0 and c.row["crank"] == pytest.approx(40.0, rel=1e-12)
+
+
+# ---------------------------------------------------------------------- function generation
+
+
+def test_freudenstein_log10_three_chebyshev_points():
+    """y = log10(x), 1 <= x <= 10, crank 30 to 120 degrees, rocker 90 to 180: the K's solved here from the three
+    Chebyshev points; the linkage meets log10 exactly there and its reported structural error is the one measured
+    here over the range."""
+    result = run(task("function", function="log10(x)", x_range=[1, 10], input_angles=[30, 120],
+                      output_angles=[90, 180]))
+    row = result.candidates[0].row
+    x = 5.5 - 4.5 * np.cos(np.array([1, 3, 5]) * math.pi / 6)
+    t2, t4 = np.radians(30 + (x - 1) / 9 * 90), np.radians(90 + np.log10(x) * 90)
+    k = np.linalg.solve(np.column_stack([np.cos(t4), -np.cos(t2), np.ones(3)]), np.cos(t2 - t4))
+    a, c = 100 / k[0], 100 / k[1]
+    b = math.sqrt(a * a + c * c + 100**2 - 2 * a * c * k[2])
+    assert (row["crank"], row["coupler"], row["rocker"]) == pytest.approx((abs(a), b, abs(c)), rel=1e-12)
+    fb = FourBar(100.0, row["crank"], row["coupler"], row["rocker"])
+    got = np.degrees(fb.positions(t2, row["assembly"]).theta4)
+    assert got == pytest.approx(np.degrees(t4), abs=1e-9)
+    fine = np.linspace(1, 10, 20001)
+    theta4 = fb.sweep(np.radians(30 + (fine - 1) / 9 * 90), row["assembly"]).theta4
+    y = np.remainder(np.degrees(theta4) - 90 + 180, 360) / 90 - 2        # the rocker's turn from 90 degrees, / 90
+    assert row["structural_error_max"] == pytest.approx(np.max(np.abs(y - np.log10(fine))), rel=1e-3)
+    assert row["structural_error_percent"] == pytest.approx(100 * row["structural_error_max"], rel=1e-12)
+
+
+def test_freudenstein_least_squares_meets_the_normal_equations():
+    row = run(task("function", function="log10(x)", x_range=[1, 10], input_angles=[30, 120], output_angles=[90, 180],
+                   precision_points=9)).candidates[0].row
+    x = np.array(row["precision_x"])
+    t2, t4 = np.radians(30 + (x - 1) / 9 * 90), np.radians(90 + np.log10(x) * 90)
+    m = np.column_stack([np.cos(t4), -np.cos(t2), np.ones(9)])
+    assert np.abs(m.T @ (m @ np.array(row["freudenstein_k"]) - np.cos(t2 - t4))).max() < 1e-12
+
+
+def test_function_from_a_table():
+    x = np.linspace(0, 1, 11)
+    row = run(task("function", table=np.column_stack([x, x**2]).tolist(), input_angles=[0, 60],
+                   output_angles=[60, 120])).candidates[0].row
+    assert row["precision_y"] == pytest.approx(np.interp(row["precision_x"], x, x**2), rel=1e-12)
+
+
+# ---------------------------------------------------------------------- motion generation and defects
+
+
+def _poses(theta_deg, assemblies=("open",) * 3):
+    """The known linkage's coupler poses [x, y, angle] in the task's frame, its pins at the first."""
+    out, pins = [], None
+    for t, asm in zip(theta_deg, assemblies, strict=True):
+        p = KNOWN.positions([math.radians(t)], asm)
+        xy = placed(p.point)[0]
+        out.append([float(xy[0]), float(xy[1]), math.degrees(p.theta3[0] + PLACED[1])])
+        pins = pins or [placed(p.a)[0].tolist(), placed(p.b)[0].tolist()]
+    return out, pins
+
+
+def _meets(c, positions):
+    """The candidate's four-bar, re-solved at its crank angles, carries the coupler through every pose."""
+    theta = np.radians(c.row["input_directions"])
+    got = reanalysed(c, np.degrees(theta))
+    assert got == pytest.approx(np.array([p[:2] for p in positions]), abs=1e-8)
+    assert max(c.row["angle_errors_deg"]) < 1e-8
+
+
+def test_two_positions_norton_example_3_3():
+    """Norton example 3-3: move the coupler line CD from C1D1 to C2D2; each fixed pivot lies on the perpendicular
+    bisector of its moving pivot's two positions (checked here by distances)."""
+    positions = [[0.0, 0.0, 0.0], [30.0, 25.0, 40.0]]
+    moving = [[-10.0, -20.0], [25.0, -15.0]]
+    result = run(task("motion", positions=positions, moving_pivots=moving, crank=False))
+    assert result.candidates
+    for c in result.candidates:
+        assert sorted(map(tuple, c.row["moving_pivots"])) == sorted(map(tuple, moving))
+        for pivot, m in zip(c.row["ground_pivots"], c.row["moving_pivots"], strict=True):
+            turned = complex(*positions[1][:2]) + (complex(*m) - complex(*positions[0][:2])) * np.exp(
+                1j * math.radians(40))
+            assert abs(complex(*pivot) - complex(*m)) == pytest.approx(abs(complex(*pivot) - turned), rel=1e-9)
+        _meets(c, positions)
+
+
+def test_three_positions_recover_the_known_fixed_pivots():
+    positions, pins = _poses([20, 100, 200])
+    for given in ({"moving_pivots": pins}, {"fixed_pivots": [placed(np.zeros((1, 2)))[0].tolist(),
+                                                            placed(np.array([[40.0, 0.0]]))[0].tolist()]}):
+        best = run(task("motion", positions=positions, **given)).candidates[0]
+        assert np.array(best.row["ground_pivots"]) == pytest.approx(placed(np.array([[0.0, 0.0], [40.0, 0.0]])),
+                                                                   abs=1e-9)
+        assert (best.row["crank"], best.row["coupler"], best.row["rocker"]) == pytest.approx((12, 35, 30), rel=1e-9)
+        _meets(best, positions)
+
+
+def test_three_positions_free_choices_are_exposed_and_met():
+    positions, _ = _poses([20, 100, 200])
+    result = run(task("motion", positions=positions, link_range=[5, 150]))
+    for c in result.candidates:
+        assert len(c.row["free_choice"]["crank_turns_deg"]) == 2 and not c.row["defects"]
+        assert FourBar(c.row["ground"], c.row["crank"], c.row["coupler"], c.row["rocker"]).grashof.input_turns_fully
+        _meets(c, positions)
+
+
+def test_a_branch_defect_is_refused():
+    """Two poses of the open assembly and one of the crossed: the linkage through them (the known one) is found
+    from its moving pivots, and refused for the branch defect; the check itself names it."""
+    positions, pins = _poses([20, 100, 200], ("open", "open", "crossed"))
+    with pytest.raises(SpecError, match="no defect-free four-bar"):
+        run(task("motion", positions=positions, moving_pivots=pins))
+    theta = np.radians([20, 100, 200])
+    signs = [1, 1, -1]
+    lengths = (KNOWN.ground, KNOWN.crank, KNOWN.coupler, KNOWN.rocker)
+    assert defects(lengths, theta, signs, crank=True) == ["branch"]
+    assert defects(lengths, theta, [1, 1, 1], crank=True) == []
+    assert defects((40.0, 30.0, 35.0, 12.0), theta, [1, 1, 1], crank=True)[0] == "grashof"
+    assert sense(np.radians([10, 50, 120])) == 1 and sense(np.radians([10, 300, 200])) == -1
+    assert sense(np.radians([10, 120, 50, 200])) == 0                   # neither way meets them in order
+
+
+# ---------------------------------------------------------------------- path generation
+
+
+def _known_path(angles_deg):
+    return placed(KNOWN.positions(np.radians(angles_deg), "open").point)
+
+
+def test_path_search_recovers_a_known_linkage_and_every_candidate_reanalyses():
+    angles = [20, 60, 100, 140, 180, 220]
+    targets = _known_path(angles)
+    result = run(task("path", points=targets.tolist(), input_angles=angles, link_range=[5, 80], starts=1,
+                      generations=300, seed=3))
+    # six timed points can have more than one exact four-bar: with this seed it finds 0.5803 times the known one
+    # with coupler and rocker exchanged, through the same points at the same crank angles
+    assert result.candidates[0].row["error_mm2"] < 1e-6
+    for c in result.candidates:
+        got = reanalysed(c, c.row["input_directions"])
+        distances = np.hypot(*(got - targets).T)
+        assert np.all(distances <= np.array(c.row["errors_mm"]) + 1e-6)
+        assert np.sum(distances**2) <= c.row["error_mm2"] + 1e-6
+        assert c.row["input_angles"] == pytest.approx(angles, abs=1e-9)
+
+
+def test_path_without_timing_recovers_a_closed_curve():
+    targets = _known_path(range(0, 360, 45))
+    result = run(task("path", points=targets.tolist(), closed=True, link_range=[5, 80], starts=1, generations=700,
+                      seed=2))
+    assert result.candidates[0].row["error_mm2"] < 1e-6
+
+
+def test_a_seed_gives_identical_candidates_on_one_or_two_processes():
+    raw = task("path", points=[[0, 0], [10, 2], [20, 8], [28, 18], [32, 30]], link_range=[4, 60], starts=2,
+               generations=60, seed=11, candidates=2)
+    once = run(raw).summary()["candidates"]
+    again = run(raw, jobs=2).summary()["candidates"]
+    assert json.dumps(once) == json.dumps(again)
+    raw["task"]["seed"] = 12
+    assert json.dumps(run(raw).summary()["candidates"]) != json.dumps(once)
+
+
+def test_line6_contract_through_the_command(tmp_path):
+    """The issue's task as written: summary.json best first with the fields a user draws the linkage from; each
+    template analyses as written (`linkgen analyze --angle` at the crank's direction) through its targets, and
+    `linkgen build` takes it."""
+    from linkgen.cli import main
+
+    out = tmp_path / "line6"
+    result = CliRunner().invoke(main, ["synthesize", str(LINE6), "-o", str(out), "--set", "task.starts=1",
+                                       "--set", "task.generations=200", "--set", "task.candidates=2"])
+    assert result.exit_code == 0, result.output
+    summary = json.loads((out / "summary.json").read_text())
+    rows = summary["candidates"]
+    assert rows and [r["error_mm2"] for r in rows] == sorted(r["error_mm2"] for r in rows)
+    targets = np.array(tomllib.loads(LINE6.read_text())["task"]["points"], dtype=float)
+    for row in rows:
+        assert {"template", "error_mm2", "ground_pivots", "crank", "coupler", "rocker", "coupler_point",
+                "input_angles"} <= set(row)
+        assert row["input_angles"] == pytest.approx([30, 45, 60, 75, 90, 105], abs=1e-9)
+        (x2, y2), (x4, y4) = row["ground_pivots"]
+        assert math.hypot(x4 - x2, y4 - y2) == pytest.approx(row["ground"], rel=1e-12)
+        assert all(5 - 1e-9 <= row[k] <= 60 + 1e-9 for k in ("ground", "crank", "coupler", "rocker"))
+        # the coupler point from the drawing: A, B, P at the first target, by hand
+        turn = math.atan2(y4 - y2, x4 - x2) + math.radians(row["input_angles"][0])
+        a = np.array([x2, y2]) + row["crank"] * np.array([math.cos(turn), math.sin(turn)])
+        got = []
+        for k, angle in enumerate(row["input_directions"]):
+            report = json.loads(CliRunner().invoke(main, [
+                "analyze", str(out / row["template"]), "--angle", repr(angle), "--json", "-o", str(tmp_path / "a"),
+                "--set", "output.formats=['json']"]).stdout)
+            p = report["positions"]["joints"]["P"]
+            got.append([p["x_mm"], p["y_mm"]])
+            if k == 0:
+                assert [report["positions"]["joints"]["A"][key] for key in ("x_mm", "y_mm")] == pytest.approx(a)
+        assert np.sum((np.array(got) - targets) ** 2) == pytest.approx(row["error_mm2"], rel=1e-6, abs=1e-9)
+    built = CliRunner().invoke(main, ["build", str(out / rows[0]["template"]), "-o", str(tmp_path / "b"),
+                                      "--set", "output.formats=['json', 'dxf']"])
+    assert built.exit_code == 0, built.output
+    assert (tmp_path / "b" / rows[0]["template"].replace(".toml", "-sheet.dxf")).exists()
+
+
+def test_python_api_writes_what_the_command_writes(tmp_path):
+    result = run(task("crank-rocker", swing=30.0, rocker=40.0, candidates=2))
+    names = write_synthesis(result, tmp_path)
+    assert sorted(names) == sorted(["summary.json", "summary.csv"] + [
+        f"t-crank-rocker-{k}{end}" for k in (1, 2) for end in (".toml", ".json", "-curve.png", "-curve.svg")])
+    report = json.loads((tmp_path / "t-crank-rocker-1.json").read_text())
+    assert report["synthesis"]["rank"] == 1 and report["inversion"] == "crank-rocker"
+
+
+# ---------------------------------------------------------------------- bad tasks
+
+
+@pytest.mark.parametrize("keys, message", [
+    ({"kind": "path", "points": [[0, 0], [10, 0]]}, "task.points: a path needs 3 to 200 target points (got 2)"),
+    ({"kind": "path", "points": [[0, 0], [10, 0], [20, 5]], "input_angles": [30, 30, 60]},
+     "task.input_angles: items 0 and 1 give the same crank angle for two different points"),
+    ({"kind": "path", "points": [[0, 0], [10, 0], [20, 5]], "input_angles": [30, 390, 60]},
+     "task.input_angles: items 0 and 1 give the same crank angle"),
+    ({"kind": "path", "points": [[0, 0], [10, 0], [20, 5]], "input_angles": [30, 60]},
+     "task.input_angles: give one angle a point (3 points, got 2 angles)"),
+    ({"kind": "path", "points": [[0, 0], [10, 0], [20, 5]], "input_angles": [30, 90, 60]},
+     "task.input_angles: the crank must meet the points in order"),
+    ({"kind": "crank-rocker", "swing": 40, "rocker": 50, "time_ratio": 0.5}, "task.time_ratio: must be >= 1"),
+    ({"kind": "crank-rocker", "swing": 40, "rocker": 50, "time_ratio": 1.3, "ground": 2},
+     "task.ground: no Grashof crank-rocker swings its rocker 40 degrees with time ratio 1.3 on a ground of 2 mm"),
+    ({"kind": "slider-crank", "stroke": 50, "time_ratio": 1.5, "offset": 0}, "task.offset: a centred slider-crank"),
+    ({"kind": "function", "function": "log10(x)", "x_range": [1, 10], "input_angles": [30, 30],
+      "output_angles": [90, 180]}, "task.input_angles: the two angles are the same (30)"),
+    ({"kind": "function", "function": "import os", "x_range": [1, 10], "input_angles": [30, 120],
+      "output_angles": [90, 180]}, "task.function: cannot read"),
+    ({"kind": "motion", "positions": [[0, 0, 0]]}, "task.positions: needs 2 or 3 positions"),
+    ({"kind": "motion", "positions": [[0, 0, 0], [0, 0, 360]], "moving_pivots": [[1, 1], [5, 1]]},
+     "task.positions: items 0 and 1 give the same pose"),
+    ({"kind": "spiral"}, "task.kind: unknown value 'spiral'"),
+])
+def test_bad_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, keys, message):
+    from linkgen.cli import main
+
+    template = tmp_path / "bad.toml"
+    template.write_text(tomllib_text({"name": "bad", "task": keys}))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["synthesize", str(template), "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: ") and message in lines[0], lines
+    assert not out.exists()
