@@ -351,3 +351,16 @@ def test_bad_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, keys, messa
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ") and message in lines[0], lines
     assert not out.exists()
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "templates").glob("synth-*.toml")), ids=lambda p: p.name)
+def test_every_bundled_synthesis_template_gives_candidates(path):
+    """Each bundled task as written (a path search on a small budget) gives candidates whose reports are their own."""
+    from linkgen.synthesis import load_task
+
+    searched = tomllib.loads(path.read_text())["task"]["kind"] == "path"
+    spec = load_task(path, ["task.starts=1", "task.generations=100"] if searched else [])
+    result = synthesize(spec)
+    assert result.candidates
+    for c in result.candidates:
+        assert c.report["name"] == c.name and c.row["template"] == f"{c.name}.toml"

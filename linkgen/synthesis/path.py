@@ -133,7 +133,7 @@ def project(x: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
     return np.vstack([x0, y0, x[0], x[1], x[2], x[3], x[4], cx, cy])
 
 
-def _hard(base: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
+def hard_constraints(base: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
     """The hard constraints as rows g >= 0 (m, N), dimensionless, for designs ``base`` (9, N) meeting the targets
     at crank angles ``th`` (N, n): reach (or a Grashof crank), link ratio, transmission angle."""
     r1, r2, r3, r4 = base[3:7]
@@ -160,7 +160,7 @@ def _hard(base: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
     return np.vstack([np.atleast_2d(r) for r in rows])
 
 
-def _soft(base: np.ndarray, p: Problem) -> np.ndarray:
+def soft_constraints(base: np.ndarray, p: Problem) -> np.ndarray:
     """The box of (x0, y0, cx, cy) and the ground region of O4 as rows g >= 0 (m, N), relative to the scale."""
     x0, y0, t0, r1 = base[:4]
     ox, oy = x0 + r1 * np.cos(t0), y0 + r1 * np.sin(t0)
@@ -171,7 +171,7 @@ def _soft(base: np.ndarray, p: Problem) -> np.ndarray:
     return np.array(rows) / p.scale
 
 
-def _errors(base: np.ndarray, branch: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
+def squared_errors(base: np.ndarray, branch: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
     """Squared distances (N, n) of the coupler point from each target."""
     q = [v[:, None] for v in base] + [branch[:, None]]
     at = place(*q, th)
@@ -183,9 +183,9 @@ def objective(x: np.ndarray, p: Problem) -> np.ndarray:
     BIG (1 + violation) where a hard one is broken: one vectorised evaluation of the whole population."""
     th = angles(x, p)
     base = project(x, th, p)
-    err = _errors(base, x[5], th, p).sum(axis=1)
-    hard = np.sum(np.maximum(0.0, -_hard(base, th, p)), axis=0)
-    soft = np.sum(np.maximum(0.0, -_soft(base, p)), axis=0)
+    err = squared_errors(base, x[5], th, p).sum(axis=1)
+    hard = np.sum(np.maximum(0.0, -hard_constraints(base, th, p)), axis=0)
+    soft = np.sum(np.maximum(0.0, -soft_constraints(base, p)), axis=0)
     out = err + SOFT * p.scale**2 * (soft + soft**2)
     return np.where((hard > 0) | ~np.isfinite(out), BIG * (1.0 + np.nan_to_num(hard, nan=1.0)), out)
 
@@ -225,7 +225,7 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float, np.ndarray, f
 
     def constraints(v: np.ndarray) -> np.ndarray:
         base, th = split(v)
-        g = np.vstack([_hard(base, th, p), _soft(base, p)])
+        g = np.vstack([hard_constraints(base, th, p), soft_constraints(base, p)])
         if p.timing is not None:
             return g.T
         step = turn * np.diff(th, axis=1).T
@@ -301,7 +301,7 @@ def _candidate(base: list[float], branch: float, th: list[float], p: Problem, cr
     lengths = (d["r1"], d["r2"], d["r3"], d["r4"])
     if defects(lengths, th, [branch] * p.n, crank):
         return None
-    sq = _errors(np.array(base)[:, None], np.array([branch]), np.array([th]), p)[0]
+    sq = squared_errors(np.array(base)[:, None], np.array([branch]), np.array([th]), p)[0]
     row = {"error_mm2": float(sq.sum()), **fourbar_row(d, th), "errors_mm": np.sqrt(sq).tolist(),
            "inversion": classify(*lengths).inversion, "defects": []}
     sweep = np.linspace(0.0, TWO_PI, 721)

@@ -1,0 +1,104 @@
+"""The synthesis rows of ``linkgen bench``: published test problems, solved here, timed here, beside a plain
+differential evolution given the same budget in the same run.
+
+* six points on a straight line, (20, 20) to (20, 45), at crank angles 30 to 105 degrees (the
+  issue's ``line6``: links 5 to 60 mm, a Grashof crank);
+* eighteen points on a closed curve without timing (the curve of Kunjur and Krishnamurty, 1997);
+* y = log10(x) over 1..10 by Freudenstein's equation at three Chebyshev points, and by least squares at nine.
+
+The baseline searches all ten unknowns of a path (pivot, ground line, lengths, coupler point,
+branch; and without timing the crank angles) with the same constraints as a penalty and no
+polish, for as many designs as ours evaluated. Published errors are not quoted: no reference was
+checked in this run, and formulations (bounds, the constraints kept) differ from paper to paper.
+Nothing here is asserted about time.
+"""
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+
+from linkgen.synthesis import path
+from linkgen.synthesis.run import synthesize
+from linkgen.synthesis.task import validate_task
+
+LINE6 = {"kind": "path", "points": [[20, 20], [20, 25], [20, 30], [20, 35], [20, 40], [20, 45]],
+         "input_angles": [30, 45, 60, 75, 90, 105], "crank": True, "link_range": [5, 60]}
+#: Kunjur, A. and Krishnamurty, S. (1997), "Genetic algorithms in mechanism synthesis", Journal of Applied
+#: Mechanisms and Robotics 4(2), 18-24: eighteen points of a closed curve, no timing
+CURVE18 = {"kind": "path", "closed": True, "link_range": [0.05, 5.0],
+           "points": [[0.5, 1.1], [0.4, 1.1], [0.3, 1.1], [0.2, 1.0], [0.1, 0.9], [0.005, 0.75], [0.02, 0.6],
+                      [0.0, 0.5], [0.0, 0.4], [0.03, 0.3], [0.1, 0.25], [0.15, 0.2], [0.2, 0.3], [0.3, 0.4],
+                      [0.4, 0.5], [0.5, 0.7], [0.6, 0.9], [0.6, 1.0]]}
+LOG10 = {"kind": "function", "function": "log10(x)", "x_range": [1, 10], "input_angles": [30, 120],
+         "output_angles": [90, 180]}
+
+
+def plain_objective(x: np.ndarray, p: path.Problem) -> np.ndarray:
+    """The baseline's objective over all the unknowns (x0, y0, theta0, r1..r4, cx, cy, branch, [angles]): the same
+    error and constraints, as one penalty, evaluated for the whole population at once."""
+    searched = np.vstack([x[2:7], x[9:]])             # the projected search's layout: theta0, lengths, branch, ...
+    th = path.angles(searched, p)
+    err = path.squared_errors(x[:9], x[9], th, p).sum(axis=1)
+    broken = (np.sum(np.maximum(0.0, -path.hard_constraints(x[:9], th, p)), axis=0)
+              + np.sum(np.maximum(0.0, -path.soft_constraints(x[:9], p)), axis=0))
+    return np.where(broken > 0, path.BIG * (1.0 + broken), err)
+
+
+def plain_search(p: path.Problem, designs: int, seed: int) -> tuple[float, float]:
+    """Plain differential evolution (scipy's defaults, vectorised) for about ``designs`` designs: (best error
+    mm^2, seconds)."""
+    from scipy.optimize import differential_evolution
+
+    bounds = [*p.box, (-1.0, 1.0), *p.bounds[6:]]
+    population = 15 * len(bounds)
+    clock = time.perf_counter()
+    r = differential_evolution(plain_objective, bounds, args=(p,), vectorized=True, updating="deferred", seed=seed,
+                               maxiter=max(1, designs // population - 1), popsize=15, tol=0, polish=False)
+    return float(r.fun), time.perf_counter() - clock
+
+
+def _path_row(name: str, keys: dict[str, Any], starts: int, generations: int) -> dict[str, Any]:
+    raw = {"name": "bench", "task": {**keys, "starts": starts, "generations": generations, "candidates": 1}}
+    spec = validate_task(raw)
+    clock = time.perf_counter()
+    result = synthesize(spec)
+    seconds = time.perf_counter() - clock
+    best = result.candidates[0].row
+    baseline, plain_seconds = plain_search(path.problem_of(spec.task), result.search["designs_evaluated"], seed=1)
+    return {"problem": name, "ours_error": best["error_mm2"], "ours_seconds": seconds,
+            "designs": result.search["designs_evaluated"], "baseline_error": baseline,
+            "baseline_seconds": plain_seconds, "published_error": None, "unit": "mm^2 (sum of squared distances)"}
+
+
+def _function_row(points: int) -> dict[str, Any]:
+    clock = time.perf_counter()
+    result = synthesize(validate_task({"name": "log10", "task": {**LOG10, "precision_points": points}}))
+    row = result.candidates[0].row
+    return {"problem": f"log10(x), 1..10, {points} Chebyshev points" + (" (exact)" if points == 3 else
+                                                                         " (least squares)"),
+            "ours_error": row["structural_error_max"], "ours_seconds": time.perf_counter() - clock,
+            "structural_error_percent": row["structural_error_percent"], "baseline_error": None,
+            "published_error": None, "unit": "largest |y - log10 x| over the range"}
+
+
+def synthesis_rows(quick: bool) -> list[dict[str, Any]]:
+    """The bench's synthesis rows (quick: one search of a few hundred generations each)."""
+    starts, line6, curve = (1, 300, 600) if quick else (4, 1500, 3000)
+    return [_path_row("six points on a line, timed (line6)", LINE6, starts, line6),
+            _path_row("eighteen points on a closed curve, untimed (Kunjur and Krishnamurty 1997)", CURVE18,
+                      starts, curve),
+            _function_row(3), _function_row(9)]
+
+
+def markdown(rows: list[dict[str, Any]]) -> list[str]:
+    """The rows as a Markdown table."""
+    lines = ["| problem | ours | time (s) | plain DE, same designs | its time (s) | unit |", "|---|---|---|---|---|---|"]
+    for r in rows:
+        base = "-" if r["baseline_error"] is None else f"{r['baseline_error']:.4g}"
+        spent = "-" if r.get("baseline_seconds") is None else f"{r['baseline_seconds']:.2f}"
+        lines.append(f"| {r['problem']} | {r['ours_error']:.4g} | {r['ours_seconds']:.2f} | {base} | {spent} | "
+                     f"{r['unit']} |")
+    return lines
+
