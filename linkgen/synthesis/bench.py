@@ -94,7 +94,8 @@ def synthesis_rows(quick: bool) -> list[dict[str, Any]]:
 
 def markdown(rows: list[dict[str, Any]]) -> list[str]:
     """The rows as a Markdown table."""
-    lines = ["| problem | ours | time (s) | plain DE, same designs | its time (s) | unit |", "|---|---|---|---|---|---|"]
+    lines = ["| problem | ours | time (s) | plain DE, same designs | its time (s) | unit |",
+             "|---|---|---|---|---|---|"]
     for r in rows:
         base = "-" if r["baseline_error"] is None else f"{r['baseline_error']:.4g}"
         spent = "-" if r.get("baseline_seconds") is None else f"{r['baseline_seconds']:.2f}"
