@@ -26,6 +26,8 @@ _EXPORTS = {
     "LinkageSpec": "linkgen.spec", "load_spec": "linkgen.spec", "validate_spec": "linkgen.spec",
     "LinkageDesign": "linkgen.design", "design_linkage": "linkgen.design", "analyze": "linkgen.design",
     "linkage_bundle": "linkgen.outputs", "write_linkage": "linkgen.outputs",
+    "Linkage": "linkgen.kinematics.linkage", "load_task": "linkgen.synthesis", "synthesize": "linkgen.synthesis",
+    "write_synthesis": "linkgen.synthesis",
 }
 
 __all__ = list(_EXPORTS)

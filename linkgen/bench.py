@@ -230,8 +230,11 @@ def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
 def run_bench(out: str | Path, quick: bool = False) -> dict:
     """Run everything; write RESULTS.md and results.json into ``out``; return the results."""
     repeats = 1 if quick else 5
+    from linkgen.synthesis.bench import synthesis_rows
+
     return core_bench.finish(Path(out), {"quick": quick, "linkages": linkage_speed(repeats),
                                          "general": general_speed(repeats, 10_000 if quick else 100_000),
+                                         "synthesis": synthesis_rows(quick),
                                          "hard_cases": hard_cases()}, _markdown)
 
 
@@ -254,6 +257,9 @@ def _markdown(r: dict) -> list[str]:
                      f"{row.get('status', 'measured')} |")
     lines += ["", "Jansen's leg (the holy numbers): errors of the foot against a 50-digit (mpmath) solution at 100 of "
               "the angles; the four-bar's against linkgen's dedicated closed form."]
+    from linkgen.synthesis.bench import markdown as synthesis_markdown
+
+    lines += ["", "## Synthesis (`linkgen synthesize`)", "", *synthesis_markdown(r.get("synthesis", []))]
     return [*lines, "", "Errors of linkage positions are against linkgen's closed form (which the tests check "
                     "against 50-digit references); pylinkage's first call includes its compilation: "
                     + "; ".join(f"{row['method']} at {row['angles']}: {row['first_call_seconds']:.3f} s"

@@ -164,6 +164,9 @@ def check_kind(raw: Mapping[str, Any], product: str) -> None:
     if "sweep" in raw:
         raise SpecError(f"this is a family template (it has a [sweep] table): build it with `{product} family`",
                         "template")
+    if "task" in raw:
+        raise SpecError("this is a synthesis task (it has a [task] table): run it with `linkgen synthesize`",
+                        "template")
     other = "linkgen" if "linkage" in raw else "camgen" if {"cam", "follower", "motion"} & set(raw) else product
     if other != product:
         raise SpecError(f"this is a {other} template: use `{other} build`" + (

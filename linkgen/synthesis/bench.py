@@ -84,8 +84,8 @@ def _function_row(points: int) -> dict[str, Any]:
 
 
 def synthesis_rows(quick: bool) -> list[dict[str, Any]]:
-    """The bench's synthesis rows (quick: one search of a few hundred generations each)."""
-    starts, line6, curve = (1, 300, 600) if quick else (4, 1500, 3000)
+    """The bench's synthesis rows (quick: one search of 200 generations each)."""
+    starts, line6, curve = (1, 200, 200) if quick else (4, 1500, 3000)
     return [_path_row("six points on a line, timed (line6)", LINE6, starts, line6),
             _path_row("eighteen points on a closed curve, untimed (Kunjur and Krishnamurty 1997)", CURVE18,
                       starts, curve),
