@@ -36,6 +36,8 @@ def _raw(path: Path) -> dict:
 def runs(path: Path) -> list[tuple[str, list[str]]]:
     """(program, arguments without -o) for each command a bundled template is meant for."""
     raw = _raw(path)
+    if "task" in raw:
+        return []                     # synthesis tasks: searches, run by tests/test_synthesis.py
     linkage = "linkage" in raw
     program = "linkgen" if linkage else "camgen"
     if "sweep" in raw:
