@@ -118,9 +118,14 @@ def largest_roller(spec: CamSpec) -> float | None:
 
     if any(turn > 0 for _, turn in build_cam(spec).corners()):
         return None
+    return largest_fitting(spec, margin)
 
+
+def largest_fitting(spec: CamSpec, margin: Callable[[float], float]) -> float | None:
+    """The largest roller radius (mm), up to the spec's, for which ``margin(roller radius)`` >= 0, by bisection
+    from the least roller that assembles; None when even that one fails."""
     lo = FOLLOWERS[spec.follower.type].roller_floor(spec.follower, spec.cam.base_radius) + 1e-9
-    hi = spec.follower.roller_radius
+    hi = spec.follower.contact_radius
     if margin(lo) <= 0:
         return None
     if margin(hi) >= 0:

@@ -35,6 +35,10 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
                f"{a.pitch_rho_min_mm:.3f} mm (pitch) at {a.pitch_rho_min_at_deg:.2f} deg")
     click.echo(f"outline: {report['outline_vertices']} vertices ({report['outline_arcs']} exact arcs), "
                f"max error {report['outline_max_error_mm']:.2e} mm (tolerance {report['tolerance_mm']:g} mm)")
+    if "flanks" in report:
+        from camgen.grooved.outputs import groove_summary
+
+        click.echo(groove_summary(report))
     for warning in report["warnings"]:
         click.echo(f"warning: {warning}")
     for name in report["files"].values():

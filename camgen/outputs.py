@@ -7,12 +7,13 @@ Names: ``<name>.dxf``, ``<name>-cut.svg`` (cut files, kerf applied), ``<name>.st
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from camgen.core.bundle import Bundle, Report, item, write_bundle
 from camgen.core.errors import ExportError
-from camgen.core.parts import Drawing
+from camgen.core.parts import Drawing, Part
 from camgen.core.writers import WriteOptions
 from camgen.design import CamDesign
 from camgen.kinds import kind_of
@@ -24,16 +25,7 @@ THUMBNAIL_TOLERANCE_MM = 0.2
 
 def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     """The files of ``design`` and its report (without the ``files`` map, which the bundle adds)."""
-    out = design.spec.output
-    formats, name = out.formats, design.spec.name
-    mesh = mesh_check = None
-    if {"stl", "3mf"} & set(formats):
-        from camgen.core.solids import check_mesh, extrude
-
-        mesh = extrude(design.printed)
-        mesh_check = check_mesh(mesh)
-        if not mesh_check.ok:
-            raise ExportError(f"{name}: the mesh is not a closed outward solid ({mesh_check})")
+    mesh, mesh_check = printed_mesh(design.spec, design.printed)
     report = cam_report(design, mesh_check)
 
     def plot(kind: str) -> Any:
@@ -41,16 +33,38 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
 
         return {"svaj": plots.svaj_figure, "cam": plots.cam_figure}[kind](design)
 
+    return cam_files(design.spec, design.cut, mesh, plot, report), report
+
+
+def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
+    """The printed part as a checked solid, and trimesh's check of it; (None, None) when ``spec.output.formats``
+    asks for no STL or 3MF. Raises :class:`ExportError` for a solid that is not closed and outward."""
+    if not {"stl", "3mf"} & set(spec.output.formats):
+        return None, None
+    from camgen.core.solids import check_mesh, extrude
+
+    mesh = extrude(printed)
+    check = check_mesh(mesh)
+    if not check.ok:
+        raise ExportError(f"{spec.name}: the mesh is not a closed outward solid ({check})")
+    return mesh, check
+
+
+def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], report: dict[str, Any]) -> Bundle:
+    """The files of any cam kind, named as this module says: ``cut`` drawn as the cut files, ``mesh`` (or None)
+    as the printed ones, ``plot("svaj")`` and ``plot("cam")`` (made only if written), ``report``; only the formats
+    ``spec.output.formats`` asks for."""
+    out, name = spec.output, spec.name
+    formats = out.formats
     items = [
-        item(Drawing.of_part(design.cut), [("dxf", "dxf", f"{name}.dxf"),
-                                              ("cut-svg", "cut_svg", f"{name}-cut.svg")], formats),
+        item(Drawing.of_part(cut), [("dxf", "dxf", f"{name}.dxf"), ("cut-svg", "cut_svg", f"{name}-cut.svg")], formats),
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
         *(item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
                                               ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
           for kind in ("svaj", "cam")),
         item(Report(report), [("json", "json", f"{name}.json")], formats),
     ]
-    return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text)), report
+    return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text))
 
 
 def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:

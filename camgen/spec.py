@@ -27,7 +27,8 @@ LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
 
 class CamTable(Model):
-    """The cam body: a disc, or a plate (linear cam) whose ``base_radius`` is its height under the profile."""
+    """The cam body: a disc, a plate (linear cam) whose ``base_radius`` is its height under the profile, or a
+    grooved disc (a face cam whose groove drives the roller both ways)."""
 
     kind: Literal[tuple(CAM_KINDS)] = Field("disc", description="cam kind")  # type: ignore[valid-type]
     travel: float | None = length("plate cam: length the program's 360 degrees spread over", None)
@@ -42,6 +43,10 @@ class CamTable(Model):
     min_rho_margin: float = length("sizing: least convex radius of the cam surface", 0.0, zero=True)
     rpm: float | None = Field(None, gt=0, le=100_000, description="cam speed for velocities, accelerations and "
                               "contact", json_schema_extra=unit("rpm"))
+    groove_depth: float | None = length("grooved cam: depth of the groove the roller runs in (< thickness)", None)
+    running_clearance: float = length("grooved cam: the groove's width less the roller's diameter", 0.2, zero=True,
+                                      le=100.0)
+    rim: float = length("grooved cam: wall outside the groove's outer flank", 5.0)
 
     @field_validator("base_radius", mode="before")
     @classmethod

@@ -21,7 +21,8 @@ class Part:
     ``tolerance`` is the chord tolerance used wherever exact arcs must become
     polygons (meshes, plots). ``marks`` are (layer, shape) pairs drawn but not cut
     (engraving). A hub ``boss`` (diameter, height; mm) stands on the top face round
-    the first hole, with a radial ``set_screw`` hole (diameter, mm) through it.
+    the first hole, with a radial ``set_screw`` hole (diameter, mm) through it. ``pockets`` are recesses into
+    the top face (a grooved cam's groove).
     """
 
     name: str
@@ -32,6 +33,7 @@ class Part:
     marks: tuple[tuple[str, Polyline | Text], ...] = ()
     boss: tuple[float, float] | None = None
     set_screw: float = 0.0
+    pockets: tuple[Pocket, ...] = ()
 
     @property
     def area(self) -> float:
@@ -46,16 +48,41 @@ class Part:
 LAYER_OUTLINE = "OUTLINE"
 LAYER_HOLES = "HOLES"
 LAYER_ENGRAVE = "ENGRAVE"
+LAYER_GROOVE = "GROOVE"
 
 #: each layer's colour, the same in every format, as (AutoCAD colour index, RGB): laser programs that assign
-#: operations by colour see red outlines, blue holes (cut first) and green marks to score; other layers black
-LAYER_COLOURS = {LAYER_OUTLINE: (1, "#ff0000"), LAYER_HOLES: (5, "#0000ff"), LAYER_ENGRAVE: (3, "#00ff00")}
+#: operations by colour see red outlines, blue holes (cut first), green marks to score and magenta pockets to engrave
+#: to a depth; other layers black
+LAYER_COLOURS = {LAYER_OUTLINE: (1, "#ff0000"), LAYER_HOLES: (5, "#0000ff"), LAYER_ENGRAVE: (3, "#00ff00"),
+                 LAYER_GROOVE: (6, "#ff00ff")}
 OTHER_LAYER_COLOUR = (7, "#000000")
 
 
 def layer_colour(layer: str) -> tuple[int, str]:
     """(AutoCAD colour index, RGB hex) of ``layer``."""
     return LAYER_COLOURS.get(layer, OTHER_LAYER_COLOUR)
+
+
+@dataclass(frozen=True)
+class Pocket:
+    """A recess into a part's top face, ``depth`` mm deep (less than the part's thickness): the region inside
+    ``outer`` and outside ``inner`` (both counter-clockwise; ``inner`` None for a plain pocket), drawn on
+    ``layer`` (a groove's two flanks: a laser engraves or pockets that layer, it does not cut it)."""
+
+    outer: Contour
+    inner: Contour | None
+    depth: float
+    layer: str = LAYER_GROOVE
+
+    @property
+    def contours(self) -> tuple[Contour, ...]:
+        """Its boundary: ``outer``, then ``inner`` if any."""
+        return (self.outer,) if self.inner is None else (self.outer, self.inner)
+
+    @property
+    def area(self) -> float:
+        """Plan area in mm^2, exact for the arcs."""
+        return self.outer.area - (self.inner.area if self.inner is not None else 0.0)
 
 
 @dataclass(frozen=True)
@@ -85,8 +112,10 @@ class Drawing:
 
     @classmethod
     def of_part(cls, part: Part) -> "Drawing":
-        """A part's outline on ``OUTLINE``, its holes on ``HOLES`` and its marks on their own layers."""
-        return cls(((LAYER_OUTLINE, part.outline), *((LAYER_HOLES, h) for h in part.holes), *part.marks),
+        """A part's outline on ``OUTLINE``, its holes on ``HOLES``, its pockets' boundaries and its marks on their
+        own layers."""
+        pockets = ((p.layer, c) for p in part.pockets for c in p.contours)
+        return cls(((LAYER_OUTLINE, part.outline), *((LAYER_HOLES, h) for h in part.holes), *pockets, *part.marks),
                    part.tolerance)
 
 

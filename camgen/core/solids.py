@@ -37,7 +37,7 @@ def extrude(part: Part) -> Mesh:
 
     A hub boss stands on the top face round the first hole (the bore), to
     z = thickness + boss height, and a radial set-screw hole runs from the bore
-    through the boss along +Y at the boss's mid-height.
+    through the boss along +Y at the boss's mid-height. Each pocket is cut ``depth`` mm down from the top face.
     """
     import manifold3d
 
@@ -56,6 +56,11 @@ def extrude(part: Part) -> Mesh:
             screw = manifold3d.Manifold.cylinder(diameter, r, r, arc_steps(r, 2 * np.pi, tol))
             screw = screw.rotate((-90.0, 0.0, 0.0)).translate((0.0, 0.0, part.thickness + height / 2))
             solid = solid - screw
+    for pocket in part.pockets:                   # cut from the pocket's floor to 1 mm above the top face
+        rings = [_ccw(c.flatten(tol), k == 0) for k, c in enumerate(pocket.contours)]
+        cutter = manifold3d.Manifold.extrude(manifold3d.CrossSection(rings, manifold3d.FillRule.Positive),
+                                             pocket.depth + 1.0)
+        solid = solid - cutter.translate((0.0, 0.0, part.thickness - pocket.depth))
     if solid.status() != manifold3d.Error.NoError or solid.is_empty():
         raise ExportError(f"{part.name}: could not build a solid ({solid.status()})")
     return _mesh(solid, part.name)

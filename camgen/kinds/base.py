@@ -35,3 +35,17 @@ class CamKind:
 def _resolve(name: str) -> Callable[[Any], Any]:
     module, _, attr = name.partition(":")
     return getattr(importlib.import_module(module), attr)
+
+
+#: the ``[cam]`` keys only a grooved cam takes
+GROOVE_KEYS = ("groove_depth", "running_clearance", "rim")
+#: how a message names the grooved kind
+GROOVED = 'a grooved cam (cam.kind = "grooved")'
+
+
+def refuse_keys(spec: Any, keys: tuple[str, ...], owner: str) -> None:
+    """Raise ``ValueError("cam.<key>: ...")`` for the first of ``keys`` the template gives in ``[cam]``: keys only
+    ``owner`` (a kind, described for the message) takes."""
+    for key in keys:
+        if key in spec.cam.model_fields_set:
+            raise ValueError(f"cam.{key}: only for {owner}")

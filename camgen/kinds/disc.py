@@ -4,12 +4,13 @@ from __future__ import annotations
 from typing import Any
 
 from camgen.followers import FOLLOWERS
-from camgen.kinds.base import CamKind
+from camgen.kinds.base import GROOVE_KEYS, GROOVED, CamKind, refuse_keys
 
 
 def _check(spec: Any) -> None:
     if spec.cam.travel is not None:
         raise ValueError("cam.travel: only for a plate cam (cam.kind = \"plate\")")
+    refuse_keys(spec, GROOVE_KEYS, GROOVED)
 
 
 def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:

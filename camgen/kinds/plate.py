@@ -8,7 +8,7 @@ from __future__ import annotations
 from typing import Any
 
 from camgen.followers.plate import PlateRoller
-from camgen.kinds.base import CamKind
+from camgen.kinds.base import GROOVE_KEYS, GROOVED, CamKind, refuse_keys
 
 FOLLOWERS = ("translating-roller", "knife-edge")
 
@@ -23,6 +23,7 @@ def _check(spec: Any) -> None:
         raise ValueError(f"{'cam.bore' if spec.cam.bore else 'follower.offset'}: not used by a plate cam")
     if spec.cam.rotation != "ccw":
         raise ValueError("cam.rotation: not used by a plate cam (the plate slides along +X as the program runs)")
+    refuse_keys(spec, GROOVE_KEYS, GROOVED)
 
 
 def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:

@@ -1,0 +1,249 @@
+"""A grooved face cam from a spec: its two flanks checked and outlined, the plate with its groove. No I/O.
+
+The pitch curve is the disc cam's (prime radius = base radius + roller radius). The inner
+flank is the pitch curve offset inwards by d = Rr + c/2 (the surface a disc cam with a
+roller of radius d would have: the *island* inside the groove, designed by
+:func:`camgen.design.design_profile`, bore, holes and engraving included); the outer
+flank is the pitch curve offset outwards by d. Radii of curvature follow the project's
+signs (convex > 0, like the base circle): the inner flank bends with the pitch curve's
+convex stretches, radius rho - d, and undercuts (folds into a loop) where the convex pitch
+radius rho < d; the outer flank bends the other way where the pitch curve is concave,
+radius |rho| - d, and undercuts where the concave pitch radius |rho| < d. A velocity jump
+is a corner of the pitch curve: a convex corner undercuts the inner flank, a concave one
+the outer.
+
+The plate is a circle ``cam.rim`` mm outside the outer flank's farthest point; the groove
+is a pocket ``cam.groove_depth`` mm deep from its top face. The cut files carry the
+flanks as a laser cutting the island and the ring round it as two plates needs them: each
+flank moved into the groove by half the kerf. The printed groove is the nominal one
+(``cam.running_clearance`` is its clearance; ``output.clearance`` opens the holes only).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from camgen.analysis import CamAnalysis, analyze, largest_fitting
+from camgen.cam import Cam, build_cam
+from camgen.core.errors import DesignError
+from camgen.core.parts import Part, Pocket
+from camgen.core.shapes import Contour
+from camgen.design import CamDesign, design_profile
+from camgen.kinds.base import GROOVE_KEYS
+from camgen.outline import Outline, envelope_outline, exact_outline
+from camgen.sizing import Sizing, size_cam
+from camgen.spec import CamSpec, validate_spec, with_base_radius
+
+
+@dataclass(frozen=True)
+class Flank:
+    """The undercut check of one flank of the groove.
+
+    ``side`` is ``"inner"`` or ``"outer"``. ``pitch_rho_min_mm``: the pitch curve's smallest radius of curvature
+    in the sense that bends this flank (convex for the inner flank, concave for the outer; unsigned, mm; infinite
+    where the pitch curve never bends that way, 0 at a corner), at cam angle ``at_deg`` (degrees, None where
+    infinite). ``offset_mm`` is d = Rr + c/2, the flank's distance from the pitch curve.
+    """
+
+    side: str
+    pitch_rho_min_mm: float
+    at_deg: float | None
+    offset_mm: float
+
+    @property
+    def rho_min_mm(self) -> float:
+        """The flank's own smallest convex radius of curvature (mm): the pitch radius less d; negative: undercut."""
+        return self.pitch_rho_min_mm - self.offset_mm
+
+    @property
+    def undercut(self) -> bool:
+        """True where the pitch radius is below d: the offset folds into a loop, the roller cannot follow."""
+        return self.pitch_rho_min_mm < self.offset_mm
+
+
+def flank_checks(cam: Cam, offset: float) -> tuple[Flank, Flank]:
+    """The inner and outer flank checks of a groove ``offset`` mm (Rr + c/2) either side of ``cam``'s pitch curve."""
+    a = analyze(cam)
+    convex_at = a.pitch_rho_min_at_deg if math.isfinite(a.pitch_rho_min_mm) else None
+    inner = Flank("inner", a.pitch_rho_min_mm, convex_at, offset)
+    concave_corners = [i for i, turn in cam.corners() if turn < 0]
+    if concave_corners:
+        at = math.degrees(cam.program.segments[concave_corners[0]].end) % 360.0
+        outer = Flank("outer", 0.0, at, offset)
+    elif a.pitch_concave_rho_min_mm is None:
+        outer = Flank("outer", math.inf, None, offset)
+    else:
+        outer = Flank("outer", a.pitch_concave_rho_min_mm, a.concave_at_deg, offset)
+    return inner, outer
+
+
+def largest_roller(spec: CamSpec) -> float | None:
+    """The largest roller radius (mm) neither of whose flanks undercuts, at the spec's base radius and running
+    clearance (the pitch curve grows with the roller: prime radius = base + roller), by bisection; None when even
+    a vanishing roller undercuts (a velocity jump's corner)."""
+    half = spec.cam.running_clearance / 2
+
+    def margin(rr: float) -> float:
+        inner, outer = flank_checks(build_cam(spec, roller_radius=rr), rr + half)
+        return min(inner.rho_min_mm, outer.rho_min_mm)
+
+    return largest_fitting(spec, margin)
+
+
+def _undercut_message(spec: CamSpec, cam: Cam, flank: Flank) -> str:
+    where = f"undercut of the {flank.side} flank at {flank.at_deg:.2f} degrees: "
+    if flank.pitch_rho_min_mm == 0.0:
+        sense = 1 if flank.side == "inner" else -1
+        jump = next(i for i, turn in cam.corners() if sense * turn > 0)
+        corner = "convex" if flank.side == "inner" else "concave"
+        return (f"motion[{spec.moving_segment(jump)}]: " + where + f"the follower velocity jumps there, so the pitch "
+                f"curve has a {corner} corner that the {flank.side} flank cannot follow; use a law with continuous "
+                "velocity (e.g. modified-uniform) or set cam.allow_undercut = true")
+    best = largest_roller(spec)
+    fits = (f"the largest roller that fits is {best:.4g} mm" if best is not None
+            else "no roller fits this base radius")
+    sense = "convex" if flank.side == "inner" else "concave"
+    return (where + f"the pitch curve's {sense} radius of curvature is {flank.pitch_rho_min_mm:.4g} mm, smaller than "
+            f"follower.roller_radius + cam.running_clearance / 2 = {flank.offset_mm:.4g} mm; {fits} (or enlarge "
+            "cam.base_radius, or set cam.allow_undercut = true)")
+
+
+def island_spec(spec: CamSpec) -> CamSpec:
+    """The disc cam the inner flank bounds: the same pitch curve (the same prime radius) with a roller of radius
+    Rr + c/2, so its surface is the inner flank; the template's hub, motion and output as they are."""
+    half = spec.cam.running_clearance / 2
+    raw = spec.model_dump(exclude_unset=True)
+    for key in GROOVE_KEYS:
+        raw["cam"].pop(key, None)
+    raw["cam"]["kind"] = "disc"
+    if spec.cam.base_radius != "auto":
+        if not spec.cam.base_radius > half:
+            raise DesignError(f"cam.base_radius: must be larger than cam.running_clearance / 2 = {half:g} mm, so the "
+                              "inner flank has a base circle")
+        raw["cam"]["base_radius"] = spec.cam.base_radius - half
+    raw["follower"]["roller_radius"] = spec.follower.contact_radius + half
+    return validate_spec(raw)
+
+
+@dataclass(frozen=True)
+class GroovedDesign:
+    """Everything known about a grooved cam before anything is written (mm, degrees).
+
+    ``spec`` is the template's (its base radius sized when it was ``"auto"``); ``profile`` the island: the disc cam
+    whose surface is the inner flank (pitch curve, analysis, inner outline, holes, marks, warnings); ``outer``
+    and ``cut_outer`` the outer flank as designed and as the cut files carry it; ``part``, ``cut`` and ``printed``
+    the plate with its groove as a :class:`~camgen.core.parts.Pocket`.
+    """
+
+    spec: CamSpec
+    profile: CamDesign
+    inner: Flank
+    outer: Flank
+    outer_outline: Outline
+    cut_outer: Outline
+    plate_radius_mm: float
+    part: Part
+    cut: Part
+    printed: Part
+    warnings: tuple[str, ...]
+
+    @property
+    def cam(self) -> Cam:
+        return self.profile.cam
+
+    @property
+    def analysis(self) -> CamAnalysis:
+        """The island's analysis: the pressure angle, and the pitch curve's radii (its profile is the inner flank)."""
+        return self.profile.analysis
+
+    @property
+    def outline(self) -> Outline:
+        """The inner flank (the island's outline)."""
+        return self.profile.outline
+
+    @property
+    def tolerance(self) -> float:
+        return self.spec.output.tolerance
+
+    @property
+    def offset_mm(self) -> float:
+        """d = Rr + c/2: each flank's distance from the pitch curve (mm)."""
+        return self.inner.offset_mm
+
+    @property
+    def written_error_mm(self) -> float:
+        """A bound (mm) on the distance of both flanks, as the cut files carry them, from the exact flanks."""
+        chords = self.cut_outer.contour.flatten_error(self.tolerance) if self.spec.output.dxf == "segments" else 0
+        return max(self.profile.written_error_mm, self.cut_outer.max_error_mm, chords)
+
+    def _repr_svg_(self) -> str:
+        return self.cut._repr_svg_()
+
+
+def _circle(radius: float) -> Contour:
+    """A counter-clockwise circle about the origin as two exact half arcs."""
+    return Contour(np.array([[radius, 0.0], [-radius, 0.0]]), np.array([1.0, 1.0]))
+
+
+def _plate(spec: CamSpec, island: Part, outer: Outline, radius: float) -> Part:
+    """The plate of ``radius`` mm with the island's holes and marks, and the groove between its outline and
+    ``outer`` as a pocket."""
+    groove = Pocket(outer.contour, island.outline, spec.cam.groove_depth)
+    return Part(spec.name, _circle(radius), island.holes, spec.cam.thickness, spec.output.tolerance, island.marks,
+                pockets=(groove,))
+
+
+def _sized(spec: CamSpec, island: CamSpec) -> tuple[CamSpec, CamSpec, Sizing | None]:
+    """With ``base_radius = "auto"``: both specs at the smallest base radius that meets the limits for the inner
+    flank (pressure angle, and ``cam.min_rho_margin`` for its convex radius), and that sizing in the grooved cam's
+    terms (its base radius c/2 more than the island's)."""
+    if spec.cam.base_radius != "auto":
+        return spec, island, None
+    found = size_cam(island)
+    half = spec.cam.running_clearance / 2
+    sizing = dataclasses.replace(found, base_radius_mm=found.base_radius_mm + half,
+                                 pressure_radius_mm=found.pressure_radius_mm + half,
+                                 curvature_radius_mm=found.curvature_radius_mm + half)
+    return (with_base_radius(spec, sizing.base_radius_mm), with_base_radius(island, found.base_radius_mm), sizing)
+
+
+def design_grooved(spec: CamSpec) -> GroovedDesign:
+    """Build, check and outline the grooved cam ``spec`` describes.
+
+    Raises :class:`DesignError` naming the flank, the angle and the radii for an undercut of either flank
+    (unless ``cam.allow_undercut``: that flank is then the envelope a cutter of the roller's size leaves), and
+    for a bore or holes that leave no material inside the inner flank.
+    """
+    spec, island, sizing = _sized(spec, island_spec(spec))
+    cam = build_cam(island)
+    d = cam.contact_radius
+    inner, outer = flank_checks(cam, d)
+    for flank in (inner, outer):
+        if flank.undercut and not spec.cam.allow_undercut:
+            raise DesignError(_undercut_message(spec, cam, flank))
+    out = spec.output
+    if out.kerf >= 2 * d:
+        raise DesignError(f"output.kerf: a kerf of {out.kerf:g} mm closes the groove ({2 * d:g} mm wide); the kerf "
+                          "must be narrower than the groove")
+    profile = dataclasses.replace(design_profile(island), sizing=sizing)
+    curves = "polylines" if out.dxf == "segments" else out.curves
+
+    def outer_flank(grow: float) -> Outline:      # the outer flank with its material grown by ``grow`` mm
+        offset = 2 * d - grow                     # the island's surface lies d inside the pitch curve: 2 d out
+        return (envelope_outline(cam, out.tolerance, offset) if outer.undercut
+                else exact_outline(cam, out.tolerance, curves, offset))
+
+    nominal, cut_outer = outer_flank(0.0), outer_flank(out.kerf / 2)
+    reach = cam.program.peak(lambda i, t: np.linalg.norm(cam.segment_pitch(i, t).point, axis=1))[0]
+    radius = reach + d + spec.cam.rim
+    warnings = profile.warnings
+    if outer.undercut:
+        warnings += (f"undercut allowed: the outer flank is the cutter's envelope, and near {outer.at_deg:.2f} degrees "
+                     "the follower does not follow the motion law",)
+    return GroovedDesign(spec, profile, inner, outer, nominal, cut_outer, radius,
+                         _plate(spec, profile.part, nominal, radius),
+                         _plate(spec, profile.cut, cut_outer, radius + out.kerf / 2),
+                         _plate(spec, profile.printed, nominal, radius), warnings)
