@@ -148,8 +148,11 @@ def layer_order(parts: tuple[LinkPart, ...], placement: Placement,
             order = _colour(moving, fixed, top, clash, pins, from_above)
             if order is not None:
                 return order, _top_pins(order, pins, fixed) if from_above else ()
-    raise DesignError("parts.width: no layer order keeps the moving parts and pins clear of each other; narrow the "
-                      "parts (parts.width) or use fewer links")
+    crossed = [f"{joint} ({first}-{second}) by {', '.join(crossers)}" for joint, (first, second, crossers)
+               in pins.items() if crossers]
+    raise DesignError("parts.width: no layer order keeps the moving parts and pins clear of each other"
+                      + (f"; pins other parts sweep over: {'; '.join(crossed[:4])}" if crossed else "")
+                      + "; narrow the parts (parts.width) where they only overlap, or move those joints apart")
 
 
 def _between(order: dict[str, int], low: int, high: int, parts: tuple[str, ...]) -> bool:

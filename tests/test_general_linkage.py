@@ -114,7 +114,7 @@ def test_a_non_grashof_four_bar_reaches_the_same_range_and_toggles():
 def test_time_ratio_and_swing_of_a_crank_rocker_equal_the_closed_form():
     fb = FourBar(180, 80, 200, 150)
     lk = Linkage.of(equivalents.fourbar(fb, 0.5))
-    ext = motion.limit_positions(lk, "rocker")
+    ext = motion.limit_positions(lk, "rocker", *motion.span(lk))
     assert motion.time_ratio(lk, ext) == pytest.approx(fb.time_ratio(), rel=1e-12)
     dead = {d.kind: d for d in fb.dead_centres()}
     assert sorted(e.value % (2 * math.pi) for e in ext) == pytest.approx(
@@ -522,3 +522,14 @@ def test_spacers_fill_the_empty_layers_a_pin_crosses(tmp_path):
 
     assert tube.volume == pytest.approx((polygon(3.0) - polygon(1.6)) * 3.0, rel=1e-6)
     assert abs(tube.volume - math.pi / 4 * (6.0**2 - 3.2**2) * 3.0) < math.pi * (6.0 + 3.2) * 0.01 * 3.0
+
+
+def test_a_ground_sliders_stroke_and_time_ratio_are_refined():
+    """The offset slider-crank's stroke and time ratio from its limit positions, against the closed form:
+    stroke = sqrt((L + R)^2 - e^2) - sqrt((L - R)^2 - e^2), crank angles at the dead centres."""
+    sc = SliderCrank(50, 140, 12)
+    lk = Linkage.of(equivalents.slider_crank(sc, 0.3))
+    ext = motion.limit_positions(lk, "slider", *motion.span(lk))
+    stroke = math.sqrt(190**2 - 144) - math.sqrt(90**2 - 144)
+    assert abs(ext[0].position - ext[1].position) == pytest.approx(stroke, abs=1e-9)
+    assert motion.time_ratio(lk, ext) == pytest.approx(sc.time_ratio, rel=1e-9)

@@ -237,32 +237,52 @@ def rockers(linkage: Linkage) -> list[str]:
     return out
 
 
-def limit_positions(linkage: Linkage, body: str) -> tuple[Extreme, ...]:
-    """Where ``body`` (a rocker) stops and turns back over the reachable input: its angular velocity's zeros,
-    refined by Newton's method with its angular acceleration."""
-    lo, hi = span(linkage)
-    ranges = input_ranges(linkage)
-    spans = [(lo, hi)] if ranges is None else list(ranges)
-    out = []
-    for a, b in spans:
-        grid = np.linspace(a, b, GRID + 1)
-        sol = linkage.solve(grid[None, :], strict=False)
-        w = sol.omegas[body]
-        k = np.flatnonzero(np.sign(w[:-1]) * np.sign(w[1:]) < 0)
-        if not len(k):
-            continue
-        x, xa, xb = 0.5 * (grid[k] + grid[k + 1]), grid[k], grid[k + 1]
-        for _ in range(30):
-            s = linkage.solve(x[None, :], strict=False)
-            step = s.omegas[body] / np.where(s.alphas[body] != 0, s.alphas[body], np.inf)
-            nxt = x - step
-            inside = (nxt >= xa) & (nxt <= xb) & np.isfinite(nxt)
-            x = np.where(inside, nxt, 0.5 * (xa + xb))
-            if np.all(np.abs(step) <= 1e-15 * np.maximum(1.0, np.abs(x))):
-                break
-        final = linkage.solve(x[None, :], strict=False)
-        out += [Extreme(body, float(v), float(p)) for v, p in zip(x, final.angles[body], strict=True)]
-    return tuple(out)
+def ground_sliders(linkage: Linkage) -> list[str]:
+    """The sliders on a ground guide that no input moves (the outputs whose stroke is reported)."""
+    s = linkage.structure
+    moved = {inp.slider for inp in s.inputs if inp.kind == "slide"}
+    return [sl.name for sl in s.sliders if sl.guide == GROUND and sl.name not in moved]
+
+
+def _output(linkage: Linkage, name: str, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """An output's value, rate and acceleration per unit input at inputs x: a rocker's angle from the drawing
+    (rad), a ground slider's travel from the drawing along its guide (mm)."""
+    sol = linkage.solve(x[None, :], strict=False)
+    sliders = linkage.structure.slider_by_name
+    if name not in sliders:
+        return sol.angles[name], sol.omegas[name], sol.alphas[name]
+    sl = sliders[name]
+    u = np.array([math.cos(sl.angle), math.sin(sl.angle)])
+    p = sol.points[sl.point] - np.asarray(linkage.structure.points[sl.point])
+    return p @ u, sol.velocities[sl.point] @ u, sol.accelerations[sl.point] @ u
+
+
+def limit_positions(linkage: Linkage, output: str, lo: float, hi: float) -> tuple[Extreme, ...]:
+    """Where ``output`` (a rocker, or a slider on a ground guide) stops and turns back over the inputs lo..hi: its
+    rate's zeros on :data:`GRID` poses, refined by Newton's method with its acceleration (bisection where a step
+    would leave its bracket)."""
+    grid = np.linspace(lo, hi, GRID + 1)
+    _, rate, _ = _output(linkage, output, grid)
+    k = np.flatnonzero(np.sign(rate[:-1]) * np.sign(rate[1:]) < 0)
+    if not len(k):
+        return ()
+    xa, xb = grid[k], grid[k + 1]
+    fa = rate[k]
+    x = 0.5 * (xa + xb)
+    for _ in range(60):
+        _, w, al = _output(linkage, output, x)
+        left = np.sign(w) == np.sign(fa)
+        xa, xb = np.where(left, x, xa), np.where(left, xb, x)
+        fa = np.where(left, w, fa)
+        step = w / np.where(al != 0, al, np.inf)
+        nxt = x - step
+        done = np.abs(step) <= 1e-15 * np.maximum(1.0, np.abs(x))
+        inside = (nxt >= xa) & (nxt <= xb) & np.isfinite(nxt)
+        x = np.where(done, x, np.where(inside, nxt, 0.5 * (xa + xb)))
+        if done.all():
+            break
+    value, _, _ = _output(linkage, output, x)
+    return tuple(Extreme(output, float(v), float(p)) for v, p in zip(x, value, strict=True))
 
 
 def time_ratio(linkage: Linkage, extremes: tuple[Extreme, ...]) -> float | None:

@@ -229,9 +229,12 @@ class Analysis:
 
     @cached_property
     def extremes(self) -> dict[str, tuple[motion.Extreme, ...]]:
+        """The limit positions of each rocker and ground slider over the motion analysed."""
         if len(self.table.inputs) != 1:
             return {}
-        return {body: motion.limit_positions(self.linkage, body) for body in motion.rockers(self.linkage)}
+        lo, hi = float(self.span[0, 0]), float(self.span[0, -1])
+        return {name: motion.limit_positions(self.linkage, name, lo, hi)
+                for name in motion.rockers(self.linkage) + motion.ground_sliders(self.linkage)}
 
     def shown(self, value: float) -> float:
         """An input value in the report's unit (degrees in [0, 360) or mm)."""
@@ -302,22 +305,25 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                       "transmission_max_deg": num(math.degrees(gmax)), f"transmission_max_at_{unit_name}": a.shown(at_max)})
     report["dyads"] = dyads
     outputs = {}
-    for body, ext in a.extremes.items():
-        entry: dict[str, Any] = {"limit_positions": [{f"input_{unit_name}": a.shown(e.value),
-                                                      "angle_from_drawing_deg": num(math.degrees(e.position))}
-                                                     for e in ext]}
-        if len(ext) == 2:
+    sliders = a.linkage.structure.slider_by_name
+    for name, ext in a.extremes.items():
+        rocker = name not in sliders
+        at = [{f"input_{unit_name}": a.shown(e.value),
+               **({"angle_from_drawing_deg": num(math.degrees(e.position))} if rocker
+                  else {"travel_mm": num(e.position)})} for e in ext]
+        entry: dict[str, Any] = {"limit_positions": at}
+        if rocker and len(ext) == 2:
             entry["swing_deg"] = num(abs(math.degrees(math.remainder(ext[1].position - ext[0].position, TWO_PI))))
         ratio = motion.time_ratio(a.linkage, ext)
         entry["time_ratio"] = None if ratio is None else round(ratio, 12)
-        outputs[body] = entry
-    for name, sl in a.linkage.structure.slider_by_name.items():
+        outputs[name] = entry
+    for name, sl in sliders.items():
         if sl.guide == GROUND:
-            p = sweep.points[sl.point]
-            u = np.array([math.cos(sl.angle), math.sin(sl.angle)])
-            travel = (p - np.asarray(a.linkage.structure.points[sl.point])) @ u
-            outputs[name] = {"travel_mm": [num(travel.min()), num(travel.max())],
-                             "stroke_mm": num(travel.max() - travel.min())}
+            # the travel's ends: the refined limit positions, or the ends of the motion analysed
+            travel = _travel(a, sl)
+            ends = [e.position for e in a.extremes.get(name, ())] + [float(travel[0]), float(travel[-1])]
+            outputs.setdefault(name, {}).update({"travel_mm": [num(min(ends)), num(max(ends))],
+                                                 "stroke_mm": num(max(ends) - min(ends))})
     report["outputs"] = outputs
     report["tracers"] = {t: {"x_mm": [num(sweep.points[t][:, 0].min()), num(sweep.points[t][:, 0].max())],
                              "y_mm": [num(sweep.points[t][:, 1].min()), num(sweep.points[t][:, 1].max())]}
@@ -338,6 +344,12 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
     if angle is not None:
         report["positions"] = positions(table, a, angle)
     return report
+
+
+def _travel(a: Analysis, sl: Slider) -> np.ndarray:
+    """A ground slider's travel from the drawing along its guide (mm) over the sweep."""
+    u = np.array([math.cos(sl.angle), math.sin(sl.angle)])
+    return (a.sweep.points[sl.point] - np.asarray(a.linkage.structure.points[sl.point])) @ u
 
 
 def _input_report(i: InputTable) -> dict[str, Any]:
