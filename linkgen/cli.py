@@ -143,7 +143,12 @@ def _print_general(r: dict[str, Any]) -> None:
             ratio = "" if o.get("time_ratio") is None else f", time ratio {o['time_ratio']:.6g}"
             out(f"  {name}: swings {o['swing_deg']:.6g} deg{ratio}")
         elif "stroke_mm" in o:
-            out(f"  {name}: stroke {o['stroke_mm']:.6g} mm")
+            ratio = "" if o.get("time_ratio") is None else f", time ratio {o['time_ratio']:.6g}"
+            out(f"  {name}: stroke {o['stroke_mm']:.6g} mm{ratio}")
+    for name, t in r.get("tracers", {}).items():
+        (x0, x1), (y0, y1) = t["x_mm"], t["y_mm"]
+        out(f"  tracer {name}: x {x0:.3f} to {x1:.3f} mm ({x1 - x0:.3f} wide), y {y0:.3f} to {y1:.3f} mm "
+            f"({y1 - y0:.3f} high)")
 
 
 def _print_text(r: dict[str, Any]) -> None:

@@ -244,11 +244,15 @@ def ground_sliders(linkage: Linkage) -> list[str]:
     return [sl.name for sl in s.sliders if sl.guide == GROUND and sl.name not in moved]
 
 
-def _output(linkage: Linkage, name: str, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _output(linkage: Linkage, name: str | tuple[str, int], x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """An output's value, rate and acceleration per unit input at inputs x: a rocker's angle from the drawing
-    (rad), a ground slider's travel from the drawing along its guide (mm)."""
+    (rad), a ground slider's travel from the drawing along its guide (mm), a point's x or y (``(point, 0 or 1)``,
+    mm)."""
     sol = linkage.solve(x[None, :], strict=False)
     sliders = linkage.structure.slider_by_name
+    if isinstance(name, tuple):                      # (point, axis): a coordinate of a point (mm)
+        point, axis = name
+        return sol.points[point][:, axis], sol.velocities[point][:, axis], sol.accelerations[point][:, axis]
     if name not in sliders:
         return sol.angles[name], sol.omegas[name], sol.alphas[name]
     sl = sliders[name]
@@ -257,8 +261,9 @@ def _output(linkage: Linkage, name: str, x: np.ndarray) -> tuple[np.ndarray, np.
     return p @ u, sol.velocities[sl.point] @ u, sol.accelerations[sl.point] @ u
 
 
-def limit_positions(linkage: Linkage, output: str, lo: float, hi: float) -> tuple[Extreme, ...]:
-    """Where ``output`` (a rocker, or a slider on a ground guide) stops and turns back over the inputs lo..hi: its
+def limit_positions(linkage: Linkage, output: str | tuple[str, int], lo: float, hi: float) -> tuple[Extreme, ...]:
+    """Where ``output`` (a rocker, a slider on a ground guide, a point's coordinate) stops and turns back over the
+    inputs lo..hi: its
     rate's zeros on :data:`GRID` poses, refined by Newton's method with its acceleration (bisection where a step
     would leave its bracket)."""
     grid = np.linspace(lo, hi, GRID + 1)
@@ -282,7 +287,18 @@ def limit_positions(linkage: Linkage, output: str, lo: float, hi: float) -> tupl
         if done.all():
             break
     value, _, _ = _output(linkage, output, x)
-    return tuple(Extreme(output, float(v), float(p)) for v, p in zip(x, value, strict=True))
+    return tuple(Extreme(str(output), float(v), float(p)) for v, p in zip(x, value, strict=True))
+
+
+def extent(linkage: Linkage, point: str, lo: float, hi: float) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The smallest and largest x and y (mm) of ``point`` over the inputs lo..hi: the coordinates' limit positions
+    refined, and the ends of the motion."""
+    out = []
+    for axis in (0, 1):
+        ends, _, _ = _output(linkage, (point, axis), np.array([lo, hi]))
+        values = [e.position for e in limit_positions(linkage, (point, axis), lo, hi)] + list(ends)
+        out.append((float(min(values)), float(max(values))))
+    return out[0], out[1]
 
 
 def time_ratio(linkage: Linkage, extremes: tuple[Extreme, ...]) -> float | None:

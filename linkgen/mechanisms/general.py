@@ -325,9 +325,8 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
             outputs.setdefault(name, {}).update({"travel_mm": [num(min(ends)), num(max(ends))],
                                                  "stroke_mm": num(max(ends) - min(ends))})
     report["outputs"] = outputs
-    report["tracers"] = {t: {"x_mm": [num(sweep.points[t][:, 0].min()), num(sweep.points[t][:, 0].max())],
-                             "y_mm": [num(sweep.points[t][:, 1].min()), num(sweep.points[t][:, 1].max())]}
-                         for t in table.tracers}
+    report["tracers"] = {t: dict(zip(("x_mm", "y_mm"), ([num(v) for v in axis] for axis in _extent(a, t)),
+                                     strict=True)) for t in table.tracers}
     warnings = list(notes)
     for d in report["dyads"]:
         lo_t, hi_t = d["transmission_min_deg"], d["transmission_max_deg"]
@@ -344,6 +343,14 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
     if angle is not None:
         report["positions"] = positions(table, a, angle)
     return report
+
+
+def _extent(a: Analysis, point: str) -> tuple[tuple[float, float], tuple[float, float]]:
+    """A tracer's x and y ranges (mm): refined over the motion analysed with one input, sampled with more."""
+    if len(a.table.inputs) == 1:
+        return motion.extent(a.linkage, point, float(a.span[0, 0]), float(a.span[0, -1]))
+    p = a.sweep.points[point]
+    return (float(p[:, 0].min()), float(p[:, 0].max())), (float(p[:, 1].min()), float(p[:, 1].max()))
 
 
 def _travel(a: Analysis, sl: Slider) -> np.ndarray:
