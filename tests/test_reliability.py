@@ -485,3 +485,22 @@ def test_linkage_allowances_name_the_field_that_is_too_large(tmp_path, sets, wor
     for s in sets:
         args += ["--set", s]
     refused(args, tmp_path / "o", words, linkgen)
+
+
+@pytest.mark.parametrize("template, sets, words", [
+    ("crank-rocker.toml", ["linkage.rpm=1e300"], "linkage.rpm: must be > 0 and <= 100000 rpm"),
+    ("crank-rocker.toml", ["linkage.crank=1e300", "linkage.coupler=1e300", "linkage.rocker=1e300",
+                           "linkage.ground=1e300"], "linkage.ground: must be >= 0.001 and <= 10000 mm"),
+    ("crank-rocker.toml", ["linkage.crank=1e-300"], "linkage.crank: must be >= 0.001 and <= 10000 mm"),
+    ("crank-rocker.toml", ["linkage.point_distance=1e300"], "linkage.point_distance: must be at most 10000 mm"),
+    ("slider-crank.toml", ["linkage.offset=-1e5"], "linkage.offset: must be at most 10000 mm in size"),
+])
+def test_linkage_lengths_and_speeds_are_bounded(tmp_path, template, sets, words):
+    """Huge speeds and lengths overflowed in the kinematics (a traceback), a vanishing one was blamed on a field of
+    another linkage type (linkage.links.crank)."""
+    from linkgen.cli import main as linkgen
+
+    args = ["analyze", str(ROOT / "templates" / template), "-o", str(tmp_path / "o"), "--angle", "30"]
+    for s in sets:
+        args += ["--set", s]
+    refused(args, tmp_path / "o", words, linkgen)
