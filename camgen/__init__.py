@@ -1,4 +1,4 @@
-"""camgen: disc and plate cams from motion requirements to files you can cut and print.
+"""camgen: disc, plate and grooved cams from motion requirements, and Geneva drives, to files you can cut and print.
 
 The objects a script composes are importable from here; heavy modules load only when
 a name is first used (``import camgen`` stays fast)::
@@ -32,6 +32,10 @@ _MODULES = {
     "camgen.design": ("design_cam", "CamDesign"),
     "camgen.sizing": ("size_cam",),
     "camgen.convergence": ("convergence",),
+    "camgen.grooved.design": ("design_grooved", "GroovedDesign"),
+    "camgen.geneva.kinematics": ("GenevaLaw",),
+    "camgen.geneva.spec": ("GenevaSpec",),
+    "camgen.geneva.design": ("design_geneva", "GenevaDesign"),
     "camgen.outputs": ("cam_bundle", "write_cam"),
     "camgen.core.shapes": ("Contour", "Circle"),
     "camgen.core.parts": ("Part", "Drawing", "Allowances"),

@@ -13,7 +13,8 @@ from camgen.core.cli import (Commands, add_bench, add_family, set_option, templa
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="camgen")
 def main() -> None:
-    """camgen: disc cams from motion requirements to DXF, STL, plots and a report."""
+    """camgen: disc, plate and grooved cams from motion requirements, and Geneva drives, to DXF, STL, plots and a
+    report."""
 
 
 @main.command()
@@ -29,6 +30,14 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
     design = design_cam(spec)
     directory = output if output is not None else Path("out") / spec.name
     report = write_cam(design, directory)
+    if "geneva" in report:
+        from camgen.geneva.report import summary_lines
+
+        for line in [*summary_lines(report), *(f"warning: {w}" for w in report["warnings"])]:
+            click.echo(line)
+        for name in report["files"].values():
+            click.echo(f"wrote {directory / name}")
+        return
     a = design.analysis
     click.echo(f"{spec.name}: pressure angle max {a.pressure_angle_max_deg:.2f} deg at "
                f"{a.pressure_angle_max_at_deg:.2f} deg; min convex radius {a.profile_rho_min_mm:.3f} mm (cam), "
@@ -54,6 +63,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[str, ...]) -> None:
     """Smallest base radius for TEMPLATE, or (--factors) the cam factors f with Rp = f h / beta."""
     from camgen.core.errors import SpecError
+    from camgen.geneva.spec import GenevaSpec
     from camgen.sizing import FACTOR_ANGLES, factor_table, size_cam
     from camgen.spec import load_spec
 
@@ -69,7 +79,15 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
         return
     if template is None:
         raise SpecError("give a TEMPLATE, or --factors for the cam-factor table", "size")
-    s = size_cam(load_spec(template, overrides))
+    spec = load_spec(template, overrides)
+    if isinstance(spec, GenevaSpec):
+        raise SpecError("a Geneva drive has no base radius to size; `camgen build` it", "template")
+    if spec.cam.kind == "grooved":
+        from camgen.grooved.design import size_grooved
+
+        s = size_grooved(spec)
+    else:
+        s = size_cam(spec)
     result = {"base_radius_mm": s.base_radius_mm, "decided_by": s.decided_by,
               "pressure_radius_mm": s.pressure_radius_mm, "curvature_radius_mm": s.curvature_radius_mm,
               "max_pressure_angle_deg": s.max_pressure_angle_deg, "min_rho_margin_mm": s.min_rho_margin_mm}

@@ -16,6 +16,8 @@ from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
+from camgen.geneva.design import design_geneva
+from camgen.geneva.spec import GenevaSpec
 from camgen.kinds import kind_of
 from camgen.program import Jump
 from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
@@ -91,8 +93,11 @@ def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
             "cam.allow_undercut = true)")
 
 
-def design_cam(spec: CamSpec) -> Any:
-    """The design of the cam ``spec`` describes, by its kind's designer (see :mod:`camgen.kinds`)."""
+def design_cam(spec: CamSpec | GenevaSpec) -> Any:
+    """The design of the cam ``spec`` describes, by its kind's designer (see :mod:`camgen.kinds`), or of the Geneva
+    drive (see :mod:`camgen.geneva`)."""
+    if isinstance(spec, GenevaSpec):
+        return design_geneva(spec)
     return kind_of(spec.cam.kind).designer()(spec)
 
 

@@ -16,6 +16,8 @@ from camgen.core.errors import ExportError
 from camgen.core.parts import Drawing, Part
 from camgen.core.writers import WriteOptions
 from camgen.design import CamDesign
+from camgen.geneva.design import GenevaDesign
+from camgen.geneva.outputs import geneva_bundle, geneva_row
 from camgen.kinds import kind_of
 from camgen.report import cam_report
 
@@ -70,7 +72,10 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
 def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:
     """Write the files of ``design`` (of any cam kind) into ``directory``, all or nothing; return the report with
     its ``files``."""
-    bundle, report = kind_of(design.spec.cam.kind).bundler()(design)
+    if isinstance(design, GenevaDesign):
+        bundle, report = geneva_bundle(design)
+    else:
+        bundle, report = kind_of(design.spec.cam.kind).bundler()(design)
     return {**report, "files": write_bundle(bundle, directory)}
 
 
@@ -81,6 +86,8 @@ def build_member(raw: dict, folder: Path) -> dict[str, Any]:
 
     design = design_cam(validate_spec(raw))
     report = write_cam(design, folder)
+    if isinstance(design, GenevaDesign):
+        return geneva_row(design, report)
     ring = design.outline.contour.flatten(max(design.tolerance, THUMBNAIL_TOLERANCE_MM))
     return {"pressure_angle_max_deg": report["pressure_angle_max_deg"],
             "profile_rho_min_mm": report["profile_rho_min_mm"], "undercut": report["undercut"],

@@ -17,8 +17,9 @@ from pydantic import Field, field_validator, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
-from camgen.core.spec import OutputTable as CoreOutputTable
+from camgen.core.spec import CutOutputTable
 from camgen.followers import FOLLOWERS
+from camgen.geneva.spec import GenevaSpec, validate_geneva
 from camgen.kinds import CAM_KINDS
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
@@ -174,17 +175,11 @@ class HubTable(Model):
         return self
 
 
-class OutputTable(CoreOutputTable):
-    """What to write and how accurately: the shared keys (formats, DXF flavour and version) and the outline's
-    tolerance and curves, the laser's kerf and the printer's clearance."""
+class OutputTable(CutOutputTable):
+    """What to write and how accurately: the shared keys (formats, DXF flavour and version), the outline's
+    tolerance, the laser's kerf and the printer's clearance, and how the outline's curves are written."""
 
-    tolerance: float = Field(0.01, ge=1e-6, le=1.0, description="max distance of the exported outline from the "
-                             "exact cam surface", json_schema_extra=unit("mm"))
     curves: Literal["polylines", "biarcs"] = Field("polylines", description="how curved stretches are written")
-    kerf: float = Field(0.0, ge=0, le=5, description="laser kerf: cut files grow outlines and shrink holes by half",
-                        json_schema_extra=unit("mm"))
-    clearance: float = Field(0.0, ge=0, le=5, description="printing clearance: printed holes grow by this in "
-                             "diameter", json_schema_extra=unit("mm"))
 
 
 class CamSpec(Model):
@@ -231,13 +226,16 @@ class CamSpec(Model):
         return (rb if isinstance(rb, float) else math.inf) + self.follower.contact_radius
 
 
-def validate_spec(raw: Mapping[str, Any]) -> CamSpec:
-    """A :class:`CamSpec` from a raw template mapping, or a one-line :class:`~camgen.core.errors.SpecError`."""
+def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
+    """A :class:`CamSpec` from a raw template mapping, or a one-line :class:`~camgen.core.errors.SpecError`; a
+    Geneva drive's template (a ``[geneva]`` table) gives a :class:`~camgen.geneva.spec.GenevaSpec`."""
+    if "geneva" in raw:
+        return validate_geneva(raw)
     return validate(CamSpec, raw)
 
 
-def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec:
-    """Read a TOML cam template (and its ``base``), merge ``key=value`` overrides, validate."""
+def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:
+    """Read a TOML cam (or Geneva) template (and its ``base``), merge ``key=value`` overrides, validate."""
     raw = read_template(path, overrides)
     check_kind(raw, "camgen")
     return validate_spec(raw)

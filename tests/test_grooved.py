@@ -306,3 +306,13 @@ def test_grooved_family_builds(tmp_path):
     assert result.exit_code == 0, result.output
     rows = json.loads((tmp_path / "f" / "summary.json").read_text())
     assert [r["status"] for r in rows] == ["ok", "ok"]
+
+
+def test_size_sizes_the_inner_flank():
+    """``camgen size`` of a grooved template: the island's smallest base radius plus c/2, the one ``"auto"`` builds."""
+    result = CliRunner().invoke(main, ["size", str(TEMPLATE), "--json"])
+    assert result.exit_code == 0, result.output
+    sized = json.loads(result.output)
+    design = design_cam(validate_spec(_raw(base_radius="auto")))
+    assert sized["base_radius_mm"] == pytest.approx(design.spec.cam.base_radius, rel=1e-8)   # bisection to 1e-9
+    assert design.analysis.pressure_angle_max_deg == pytest.approx(30.0, abs=1e-6)

@@ -6,6 +6,7 @@ consistently oriented (outward) two-manifold.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -33,7 +34,46 @@ def _ccw(points: np.ndarray, ccw: bool) -> np.ndarray:
 
 
 def extrude(part: Part) -> Mesh:
-    """The part as a solid from z = 0 to z = thickness, holes cut through.
+    """The part as a solid from z = 0 to z = thickness, holes cut through (see :func:`_solid`)."""
+    return _mesh(_solid(part), part.name)
+
+
+def stack(parts: Sequence[Part], name: str) -> Mesh:
+    """The parts as one solid named ``name``: each extruded (see :func:`extrude`) and set on the one before it,
+    the first from z = 0 (a Geneva driver: the crank with the locking disc on top)."""
+    solid, z = None, 0.0
+    for part in parts:
+        piece = _solid(part).translate((0.0, 0.0, z))
+        solid, z = piece if solid is None else solid + piece, z + part.thickness
+    return _mesh(solid, name)
+
+
+def volume_check(parts: Sequence[Part], volume_mm3: float) -> dict[str, float]:
+    """A solid's volume (mm^3) against its parts' exact one, each part's area x thickness less its pockets' area x
+    depth (exact for the arcs; no boss), and the bound the chords allow: a chord within the tolerance t of its arc
+    moves a section's area by less than t a unit of the arc's length, so the volume by less than t x (each
+    contour's length x its height). Raises :class:`ExportError` when the solid is further off than that."""
+    expected = bound = 0.0
+    for part in parts:
+        tol = part.tolerance
+        expected += part.area * part.thickness - sum(p.area * p.depth for p in part.pockets)
+        bound += tol * sum(_length(c, tol) for c in (part.outline, *part.holes)) * part.thickness
+        bound += tol * sum(_length(c, tol) * p.depth for p in part.pockets for c in p.contours)
+    if not abs(volume_mm3 - expected) <= bound:
+        raise ExportError(f"{parts[0].name}: the solid's volume {volume_mm3:.6g} mm^3 differs from the exact "
+                          f"{expected:.6g} mm^3 by more than the tolerance allows ({bound:.3g} mm^3)")
+    return {"volume_expected_mm3": round(expected, 6), "volume_error_mm3": round(volume_mm3 - expected, 9),
+            "volume_bound_mm3": round(bound, 9)}
+
+
+def _length(shape: Any, tolerance: float) -> float:
+    """The length (mm) of a closed shape's chords within ``tolerance``."""
+    ring = shape.flatten(tolerance)
+    return float(np.linalg.norm(ring - np.roll(ring, 1, axis=0), axis=1).sum())
+
+
+def _solid(part: Part) -> Any:
+    """The part as a manifold3d solid from z = 0 to z = thickness, holes cut through.
 
     A hub boss stands on the top face round the first hole (the bore), to
     z = thickness + boss height, and a radial set-screw hole runs from the bore
@@ -63,7 +103,7 @@ def extrude(part: Part) -> Mesh:
         solid = solid - cutter.translate((0.0, 0.0, part.thickness - pocket.depth))
     if solid.status() != manifold3d.Error.NoError or solid.is_empty():
         raise ExportError(f"{part.name}: could not build a solid ({solid.status()})")
-    return _mesh(solid, part.name)
+    return solid
 
 
 def pin(diameter: float, length: float, tolerance: float) -> Mesh:

@@ -99,6 +99,18 @@ class OutputTable(Model):
         return WriteOptions(self.dxf_version, self.dxf, self.text)
 
 
+class CutOutputTable(OutputTable):
+    """The ``[output]`` keys of products made as cut and printed parts: the tolerance of curves made into chords,
+    the laser's kerf and the printer's clearance (camgen's cams and Geneva drives)."""
+
+    tolerance: float = Field(0.01, ge=1e-6, le=1.0, description="max distance of the exported curves from the "
+                             "exact ones", json_schema_extra=unit("mm"))
+    kerf: float = Field(0.0, ge=0, le=5, description="laser kerf: cut files grow outlines and shrink holes by half",
+                        json_schema_extra=unit("mm"))
+    clearance: float = Field(0.0, ge=0, le=5, description="printing clearance: printed holes grow by this in "
+                             "diameter", json_schema_extra=unit("mm"))
+
+
 def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:
     """``key=value`` strings as (dotted key, value); values are read as TOML values, else kept as text."""
     out = []

@@ -196,18 +196,25 @@ def _plate(spec: CamSpec, island: Part, outer: Outline, radius: float) -> Part:
                 pockets=(groove,))
 
 
+def size_grooved(spec: CamSpec) -> Sizing:
+    """The smallest base radius meeting the pressure-angle limit and ``cam.min_rho_margin`` for the inner flank's
+    convex radius (:func:`camgen.sizing.size_cam` of the island), in the grooved cam's terms: its base radius is
+    c/2 more than the island's."""
+    found = size_cam(island_spec(spec))
+    half = spec.cam.running_clearance / 2
+    return dataclasses.replace(found, base_radius_mm=found.base_radius_mm + half,
+                               pressure_radius_mm=found.pressure_radius_mm + half,
+                               curvature_radius_mm=found.curvature_radius_mm + half)
+
+
 def _sized(spec: CamSpec, island: CamSpec) -> tuple[CamSpec, CamSpec, Sizing | None]:
-    """With ``base_radius = "auto"``: both specs at the smallest base radius that meets the limits for the inner
-    flank (pressure angle, and ``cam.min_rho_margin`` for its convex radius), and that sizing in the grooved cam's
-    terms (its base radius c/2 more than the island's)."""
+    """With ``base_radius = "auto"``: both specs at the size :func:`size_grooved` finds, and that sizing."""
     if spec.cam.base_radius != "auto":
         return spec, island, None
-    found = size_cam(island)
+    sizing = size_grooved(spec)
     half = spec.cam.running_clearance / 2
-    sizing = dataclasses.replace(found, base_radius_mm=found.base_radius_mm + half,
-                                 pressure_radius_mm=found.pressure_radius_mm + half,
-                                 curvature_radius_mm=found.curvature_radius_mm + half)
-    return (with_base_radius(spec, sizing.base_radius_mm), with_base_radius(island, found.base_radius_mm), sizing)
+    return (with_base_radius(spec, sizing.base_radius_mm), with_base_radius(island, sizing.base_radius_mm - half),
+            sizing)
 
 
 def design_grooved(spec: CamSpec) -> GroovedDesign:

@@ -13,34 +13,11 @@ from typing import Any
 import numpy as np
 
 from camgen.core.bundle import Bundle
-from camgen.core.errors import ExportError
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
-from camgen.core.parts import Part
+from camgen.core.solids import volume_check
 from camgen.grooved.design import Flank, GroovedDesign
 from camgen.outputs import cam_files, printed_mesh
 from camgen.report import cam_report
-
-
-def _perimeter(contour: Any, tolerance: float) -> float:
-    ring = contour.flatten(tolerance)
-    return float(np.linalg.norm(ring - np.roll(ring, 1, axis=0), axis=1).sum())
-
-
-def volume_check(part: Part, volume_mm3: float) -> dict[str, float]:
-    """The solid's volume against the exact one, area x thickness less each pocket's area x depth (mm^3, the
-    areas exact for the arcs), and the bound the chords allow: a chord within the tolerance t of its arc moves
-    the section's area by less than t a unit length, so the volume by less than t x (each contour's length x
-    its height). Raises :class:`ExportError` when the solid is further off than that."""
-    tol = part.tolerance
-    expected = part.area * part.thickness - sum(p.area * p.depth for p in part.pockets)
-    walls = sum(_perimeter(c, tol) for c in (part.outline, *part.holes)) * part.thickness
-    walls += sum(_perimeter(c, tol) * p.depth for p in part.pockets for c in p.contours)
-    bound = tol * walls
-    if not abs(volume_mm3 - expected) <= bound:
-        raise ExportError(f"{part.name}: the solid's volume {volume_mm3:.6g} mm^3 differs from the exact "
-                          f"{expected:.6g} mm^3 by more than the tolerance allows ({bound:.3g} mm^3)")
-    return {"volume_expected_mm3": round(expected, 6), "volume_error_mm3": round(volume_mm3 - expected, 9),
-            "volume_bound_mm3": round(bound, 9)}
 
 
 def _flank(flank: Flank, outline: Any) -> dict[str, Any]:
@@ -148,7 +125,7 @@ def grooved_figure(design: GroovedDesign) -> Any:
 def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
     """The files of a grooved cam and its report (without the ``files`` map, which the bundle adds)."""
     mesh, mesh_check = printed_mesh(design.spec, design.printed)
-    volume = volume_check(design.printed, mesh_check.volume_mm3) if mesh_check is not None else None
+    volume = volume_check([design.printed], mesh_check.volume_mm3) if mesh_check is not None else None
     report = grooved_report(design, mesh_check, volume)
 
     def plot(kind: str) -> Any:

@@ -1,0 +1,71 @@
+"""A Geneva drive as files: each part's cut drawing, the printed wheel and driver, the report and the plots.
+
+Names: ``<name>-wheel.dxf``, ``<name>-lock.dxf``, ``<name>-crank.dxf`` and their ``-cut.svg`` (cut files, kerf
+applied); ``<name>-wheel.stl|3mf`` and ``<name>-driver.stl|3mf`` (the crank with the locking disc on top,
+one solid; clearance applied); ``<name>.json``; ``<name>-motion.png|svg`` and ``<name>-assembly.png|svg``.
+Only the formats ``output.formats`` asks for are made; nothing is written if any file fails.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from camgen.core.bundle import Bundle, Report, item
+from camgen.core.errors import ExportError
+from camgen.core.parts import Drawing
+from camgen.geneva.design import PARTS, GenevaDesign
+from camgen.geneva.report import geneva_report
+
+
+def _solids(design: GenevaDesign) -> dict[str, Any]:
+    """The printed wheel and driver as checked meshes: {name: (mesh, its checks)}."""
+    from camgen.core.solids import check_mesh, extrude, stack, volume_check
+
+    printed = design.printed
+    pieces = {"wheel": [printed["wheel"]], "driver": [printed["crank"], printed["lock"]]}
+    out = {}
+    for name, parts in pieces.items():
+        mesh = extrude(parts[0]) if len(parts) == 1 else stack(parts, f"{design.spec.name}-driver")
+        check = check_mesh(mesh)
+        if not check.ok:
+            raise ExportError(f"{mesh.name}: the mesh is not a closed outward solid ({check})")
+        out[name] = (mesh, {"watertight": check.watertight, "winding_consistent": check.winding_consistent,
+                            "volume_mm3": check.volume_mm3, "triangles": check.triangles,
+                            **volume_check(parts, check.volume_mm3)})
+    return out
+
+
+def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
+    """The files of a Geneva drive and its report (without the ``files`` map, which the bundle adds)."""
+    out = design.spec.output
+    formats, name = out.formats, design.spec.name
+    solids = _solids(design) if {"stl", "3mf"} & set(formats) else {}
+    report = geneva_report(design, {k: v[1] for k, v in solids.items()})
+
+    def plot(kind: str) -> Any:
+        from camgen.geneva import plots
+
+        return plots.motion_figure(design) if kind == "motion" else plots.assembly_figure(design)
+
+    items = [item(Drawing.of_part(design.cut[part]), [("dxf", f"{part}_dxf", f"{name}-{part}.dxf"),
+                                                        ("cut-svg", f"{part}_cut_svg", f"{name}-{part}-cut.svg")],
+                  formats) for part in PARTS]
+    items += [item(mesh, [("stl", f"{solid}_stl", f"{name}-{solid}.stl"), ("3mf", f"{solid}_3mf", f"{name}-{solid}.3mf")],
+                   formats) for solid, (mesh, _) in solids.items()]
+    items += [item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
+                                                  ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
+              for kind in ("motion", "assembly")]
+    items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
+    return Bundle.of(items, out.write_options), report
+
+
+#: chord tolerance (mm) of the wheel drawn in a family's overview: a thumbnail an inch wide
+THUMBNAIL_TOLERANCE_MM = 0.2
+
+
+def geneva_row(design: GenevaDesign, report: dict[str, Any]) -> dict[str, Any]:
+    """A family member's summary row: the key figures, its files and the wheel as a thumbnail."""
+    m, a = report["motion"], report["assembly"]
+    ring = design.parts["wheel"].outline.flatten(max(design.tolerance, THUMBNAIL_TOLERANCE_MM))
+    return {"velocity_ratio_max": m["velocity_ratio_max"], "acceleration_ratio_max": m["acceleration_ratio_max"],
+            "lock_clearance_min_mm": a["lock_clearance_min_mm"], "pin_clearance_min_mm": a["pin_clearance_min_mm"],
+            "files": " ".join(sorted(report["files"].values())), "thumbnail": ring.round(3).tolist()}
