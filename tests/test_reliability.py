@@ -492,6 +492,7 @@ def test_linkage_allowances_name_the_field_that_is_too_large(tmp_path, sets, wor
     ("crank-rocker.toml", ["linkage.crank=1e300", "linkage.coupler=1e300", "linkage.rocker=1e300",
                            "linkage.ground=1e300"], "linkage.ground: must be >= 0.001 and <= 10000 mm"),
     ("crank-rocker.toml", ["linkage.crank=1e-300"], "linkage.crank: must be >= 0.001 and <= 10000 mm"),
+    ("hoekens.toml", ["linkage.size=1e-300"], "linkage.size: must be >= 0.001 and <= 10000 mm"),
     ("crank-rocker.toml", ["linkage.point_distance=1e300"], "linkage.point_distance: must be at most 10000 mm"),
     ("slider-crank.toml", ["linkage.offset=-1e5"], "linkage.offset: must be at most 10000 mm in size"),
 ])
