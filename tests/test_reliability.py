@@ -505,3 +505,23 @@ def test_linkage_lengths_and_speeds_are_bounded(tmp_path, template, sets, words)
     for s in sets:
         args += ["--set", s]
     refused(args, tmp_path / "o", words, linkgen)
+
+
+@pytest.mark.parametrize("program, template, sets, words", [
+    ("linkgen", "jansen.toml", ["linkage.input=5"], "linkage.input: must be a table of keys, e.g. {...} (got 5)"),
+    ("linkgen", "jansen.toml", ["linkage.input={link='crank', pivot='O', range=[0, 'a']}"],
+     "linkage.input.range[1]: must be a number (got 'a')"),
+    ("linkgen", "jansen.toml", ["linkage.input=true"], "linkage.input: must be a table of keys"),
+    ("camgen", "rdrd.toml", ["cam=5"], "cam: must be a table of keys, e.g. {...} (got 5)"),
+    ("camgen", "rdrd.toml", ["name=true"], "name: input should be a valid string (got True)"),
+])
+def test_an_error_inside_a_union_names_the_key_not_the_union_member(tmp_path, program, template, sets, words):
+    """pydantic puts the union member it tried into the error's location (linkage.input.function-after[_one_kind(),
+    InputTable]: ...); the path is the template's keys only, and true where no number is asked is not called one."""
+    from linkgen.cli import main as linkgen
+
+    args = ["analyze" if program == "linkgen" else "build", str(ROOT / "templates" / template),
+            "-o", str(tmp_path / "o")]
+    for s in sets:
+        args += ["--set", s]
+    refused(args, tmp_path / "o", words, {"camgen": camgen, "linkgen": linkgen}[program])

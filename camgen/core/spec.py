@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import copy
 import difflib
+import re
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
@@ -39,14 +40,15 @@ class Model(BaseModel):
         if isinstance(data, Mapping):
             for name, value in data.items():
                 info = cls.model_fields.get(name) if isinstance(name, str) else None
-                if info is not None and not _mentions_bool(info.annotation) and _holds_bool(value):
+                if info is not None and _mentions(info.annotation, (int, float)) and \
+                        not _mentions(info.annotation, (bool,)) and _holds_bool(value):
                     raise ValueError(f"{name}: must be a number, not true or false")
         return data
 
 
-def _mentions_bool(annotation: Any) -> bool:
-    """Whether a type annotation accepts booleans anywhere (bool itself, or a union or container of it)."""
-    return annotation is bool or any(_mentions_bool(a) for a in getattr(annotation, "__args__", ()))
+def _mentions(annotation: Any, kinds: tuple[type, ...]) -> bool:
+    """Whether a type annotation accepts one of ``kinds`` anywhere (itself, or a union or container of it)."""
+    return annotation in kinds or any(_mentions(a, kinds) for a in getattr(annotation, "__args__", ()))
 
 
 def _holds_bool(value: Any) -> bool:
@@ -301,11 +303,32 @@ def _field(root: type[BaseModel], loc: tuple) -> Any:
     return info
 
 
+def _models_below(root: Any) -> set[str]:
+    """The class names of every model a field of ``root`` may hold (through unions, lists and dicts)."""
+    names, stack = set(), [root]
+    while stack:
+        annotation = stack.pop()
+        if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+            if annotation.__name__ in names:
+                continue
+            names.add(annotation.__name__)
+            stack.extend(f.annotation for f in annotation.model_fields.values())
+        stack.extend(getattr(annotation, "__args__", ()))
+    return names
+
+
+def _union_tag(part: Any, root: type[BaseModel]) -> bool:
+    """Whether a pydantic error location's ``part`` names a member of a union (``function-after[...]``,
+    ``tuple[...]``, a model's class name) rather than a key of the template."""
+    return isinstance(part, str) and (re.fullmatch(r"[\w-]+\[.*\]", part) is not None or part in _models_below(root))
+
+
 def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
     errors = exc.errors(include_url=False)
     # an unknown key first: a misspelt required key is also reported missing, and the spelling is the news
     err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
-    loc, kind, ctx = tuple(err["loc"]), err["type"], err.get("ctx", {})
+    loc = tuple(part for part in err["loc"] if not _union_tag(part, root))
+    kind, ctx = err["type"], err.get("ctx", {})
     given = err.get("input")
     info = _field(root, loc)
     unit = ((info.json_schema_extra or {}) if info is not None else {}).get("unit", "")
@@ -336,6 +359,8 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
         msg = f"must be a {'whole ' if kind.startswith('int') else ''}number{' of ' + unit if unit else ''}{got}"
     elif kind in ("tuple_type", "list_type"):
         msg = f"must be a list, e.g. [...]{got}"
+    elif kind in ("model_type", "model_attributes_type", "dict_type"):
+        msg = f"must be a table of keys, e.g. {{...}}{got}"
     elif kind == "too_short":
         msg = f"needs at least {ctx.get('min_length')} item(s)"
     elif kind == "string_pattern_mismatch":
