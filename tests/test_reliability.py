@@ -449,8 +449,6 @@ def test_an_angle_out_of_reach_names_the_option(tmp_path):
 def test_a_plate_cams_undercut_envelope_is_closed_by_the_plate(sets):
     """allow_undercut on a plate used to measure the plate's own edges against the surface and densify without
     end (minutes, gigabytes); the profile alone is measured now, and it is within the tolerance."""
-    import time
-
     import numpy as np
     import shapely
 
@@ -458,9 +456,9 @@ def test_a_plate_cams_undercut_envelope_is_closed_by_the_plate(sets):
     from camgen.spec import load_spec
     from camgen.surface import surface_deviation
 
-    start = time.perf_counter()
     d = design_cam(load_spec(PLATE, ["cam.allow_undercut=true", *sets]))
-    assert time.perf_counter() - start < 10
+    # bounded work, not wall time: the outline keeps a few dozen vertices (it densified without end before)
+    assert max(len(o.contour.vertices) for o in (d.outline, d.cut_outline)) < 500
     assert d.outline.envelope
     for outline, offset in ((d.outline, 0.0), (d.cut_outline, d.spec.output.kerf / 2)):
         pts = outline.contour.flatten(1e-4)
