@@ -108,7 +108,7 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
     """The :class:`Cam` a spec describes; ``roller_radius``, ``base_radius`` (mm) override the spec's."""
     rr = spec.follower.contact_radius if roller_radius is None else roller_radius
     rb = spec.cam.base_radius if base_radius is None else base_radius
-    prime = rb + rr
+    prime = rb + rr if rb is not None else spec.cam.pitch_radius     # a barrel's: its pitch cylinder
     steps = []
     for i, seg in enumerate(spec.motion):
         law = None

@@ -30,10 +30,9 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
     design = design_cam(spec)
     directory = output if output is not None else Path("out") / spec.name
     report = write_cam(design, directory)
-    if "geneva" in report:
-        from camgen.geneva.report import summary_lines
-
-        for line in [*summary_lines(report), *(f"warning: {w}" for w in report["warnings"])]:
+    lines = _summary(report)
+    if lines is not None:
+        for line in [*lines, *(f"warning: {w}" for w in report["warnings"])]:
             click.echo(line)
         for name in report["files"].values():
             click.echo(f"wrote {directory / name}")
@@ -52,6 +51,19 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
         click.echo(f"warning: {warning}")
     for name in report["files"].values():
         click.echo(f"wrote {directory / name}")
+
+
+def _summary(report: dict) -> list[str] | None:
+    """The key figures of a Geneva drive's or a barrel cam's report to print; None for the other cams."""
+    if "geneva" in report:
+        from camgen.geneva.report import summary_lines
+
+        return summary_lines(report)
+    if report["cam"].get("kind") == "barrel":
+        from camgen.barrel.outputs import summary_lines as barrel_lines
+
+        return barrel_lines(report)
+    return None
 
 
 @main.command()
@@ -82,6 +94,9 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
     spec = load_spec(template, overrides)
     if isinstance(spec, GenevaSpec):
         raise SpecError("a Geneva drive has no base radius to size; `camgen build` it", "template")
+    if spec.cam.kind == "barrel":
+        raise SpecError("a barrel cam has no base radius to size: its pitch_radius is the designer's choice (the "
+                        "report gives the pressure angle at it)", "template")
     if spec.cam.kind == "grooved":
         from camgen.grooved.design import size_grooved
 

@@ -88,8 +88,10 @@ def build_member(raw: dict, folder: Path) -> dict[str, Any]:
     report = write_cam(design, folder)
     if isinstance(design, GenevaDesign):
         return geneva_row(design, report)
-    ring = design.outline.contour.flatten(max(design.tolerance, THUMBNAIL_TOLERANCE_MM))
+    tol = max(design.tolerance, THUMBNAIL_TOLERANCE_MM)
+    # a design that is no plate (a barrel) draws its own thumbnail
+    ring = design.thumbnail(tol) if hasattr(design, "thumbnail") else design.outline.contour.flatten(tol)
     return {"pressure_angle_max_deg": report["pressure_angle_max_deg"],
-            "profile_rho_min_mm": report["profile_rho_min_mm"], "undercut": report["undercut"],
-            "outline_vertices": report["outline_vertices"], "outline_max_error_mm": report["outline_max_error_mm"],
+            "profile_rho_min_mm": report.get("profile_rho_min_mm"), "undercut": report["undercut"],
+            "outline_vertices": report.get("outline_vertices"), "outline_max_error_mm": report["outline_max_error_mm"],
             "files": " ".join(sorted(report["files"].values())), "thumbnail": ring.round(3).tolist()}

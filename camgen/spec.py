@@ -28,14 +28,15 @@ LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
 
 class CamTable(Model):
-    """The cam body: a disc, a plate (linear cam) whose ``base_radius`` is its height under the profile, or a
-    grooved disc (a face cam whose groove drives the roller both ways)."""
+    """The cam body: a disc, a plate (linear cam) whose ``base_radius`` is its height under the profile, a grooved
+    disc (a face cam whose groove drives the roller both ways), or a barrel (a cylinder with a groove round it,
+    sized by ``pitch_radius`` and ``length`` instead of ``base_radius`` and ``thickness``)."""
 
     kind: Literal[tuple(CAM_KINDS)] = Field("disc", description="cam kind")  # type: ignore[valid-type]
     travel: float | None = length("plate cam: length the program's 360 degrees spread over", None)
-    base_radius: float | Literal["auto"] = Field(description="base circle radius, or \"auto\" for the smallest "
-                                                 "that meets the limits", json_schema_extra=unit("mm"))
-    thickness: float = length("plate thickness (STL extrusion)", le=1000.0)
+    base_radius: float | Literal["auto"] | None = Field(None, description="base circle radius, or \"auto\" for the "
+                                                        "smallest that meets the limits", json_schema_extra=unit("mm"))
+    thickness: float | None = length("plate thickness (STL extrusion)", None, le=1000.0)
     bore: float = length("bore diameter, 0 for none", 0.0, zero=True)
     rotation: Literal["ccw", "cw"] = Field("ccw", description="sense of rotation seen from +Z")
     allow_undercut: bool = Field(False, description="export the cutter's envelope instead of refusing an undercut")
@@ -48,6 +49,8 @@ class CamTable(Model):
     running_clearance: float = length("grooved cam: the groove's width less the roller's diameter", 0.2, zero=True,
                                       le=100.0)
     rim: float = length("grooved cam: wall outside the groove's outer flank", 5.0)
+    pitch_radius: float | None = length("barrel cam: radius of the pitch cylinder, the groove's mid-depth", None)
+    length: float | None = length("barrel cam: the cylinder's axial length", None)
 
     @field_validator("base_radius", mode="before")
     @classmethod

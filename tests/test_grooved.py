@@ -18,6 +18,7 @@ from camgen.grooved.design import flank_checks, largest_roller
 from camgen.spec import validate_spec
 from camgen.surface import pitch_distance
 from tests.conftest import ROOT
+from tests.refusals import assert_refused
 
 TEMPLATE = ROOT / "templates" / "grooved.toml"
 RAW = tomllib.loads(TEMPLATE.read_text())
@@ -262,13 +263,7 @@ def test_an_oscillating_roller_in_a_groove():
     ({"output.kerf": 5.0, "follower.roller_radius": 2.0}, "output.kerf: a kerf of 5 mm closes the groove (4.2 mm wide)"),
 ])
 def test_bad_values_are_one_line_exit_2_nothing_written(change, message, tmp_path):
-    args = ["build", str(TEMPLATE), "-o", str(tmp_path / "out")]
-    for key, value in change.items():
-        args += ["--set", f"{key}={json.dumps(value)}"]
-    result = CliRunner().invoke(main, args)
-    assert result.exit_code == 2, result.output
-    assert result.output.startswith(f"error: {message}") and result.output.count("\n") == 1, result.output
-    assert not (tmp_path / "out").exists()
+    assert_refused(TEMPLATE, change, message, tmp_path)
 
 
 def test_groove_depth_is_required_and_refused_on_a_plate():

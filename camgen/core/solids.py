@@ -48,6 +48,23 @@ def stack(parts: Sequence[Part], name: str) -> Mesh:
     return _mesh(solid, name)
 
 
+def carve(part: Part, vertices: np.ndarray, faces: np.ndarray, name: str) -> Mesh:
+    """The part extruded (see :func:`extrude`) less a closed cutter: ``vertices`` (n, 3) mm and ``faces`` (m, 3),
+    a two-manifold triangle mesh (a barrel cam's groove). Raises :class:`ExportError` when the cutter is not a
+    closed solid or the result is empty."""
+    import manifold3d
+
+    verts = np.asarray(vertices, dtype=np.float32)
+    tris = np.asarray(faces, dtype=np.uint32)
+    cutter = manifold3d.Manifold(manifold3d.Mesh(vert_properties=verts, tri_verts=tris))
+    if cutter.status() != manifold3d.Error.NoError:
+        raise ExportError(f"{name}: the cutter is not a closed solid ({cutter.status()})")
+    solid = _solid(part) - cutter
+    if solid.status() != manifold3d.Error.NoError or solid.is_empty():
+        raise ExportError(f"{name}: could not build a solid ({solid.status()})")
+    return _mesh(solid, name)
+
+
 def volume_check(parts: Sequence[Part], volume_mm3: float) -> dict[str, float]:
     """A solid's volume (mm^3) against its parts' exact one, each part's area x thickness less its pockets' area x
     depth (exact for the arcs; no boss), and the bound the chords allow: a chord within the tolerance t of its arc

@@ -41,6 +41,21 @@ def _resolve(name: str) -> Callable[[Any], Any]:
 GROOVE_KEYS = ("groove_depth", "running_clearance", "rim")
 #: how a message names the grooved kind
 GROOVED = 'a grooved cam (cam.kind = "grooved")'
+#: the ``[cam]`` keys only a barrel cam takes, and how a message names it
+BARREL_KEYS = ("pitch_radius", "length")
+BARREL = 'a barrel cam (cam.kind = "barrel")'
+#: the ``[cam]`` keys every flat cam (disc, plate, grooved) needs
+FLAT_KEYS = ("base_radius", "thickness")
+
+
+def flat_body(spec: Any) -> None:
+    """The checks every flat cam (disc, plate, grooved) shares: ``base_radius`` and ``thickness`` given (the
+    message pydantic gives a missing key), and no barrel's keys."""
+    for key in FLAT_KEYS:
+        if getattr(spec.cam, key) is None:
+            info = type(spec.cam).model_fields[key]
+            raise ValueError(f"cam.{key}: missing: give {info.description} in {info.json_schema_extra['unit']}")
+    refuse_keys(spec, BARREL_KEYS, BARREL)
 
 
 def refuse_keys(spec: Any, keys: tuple[str, ...], owner: str) -> None:

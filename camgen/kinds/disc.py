@@ -4,10 +4,11 @@ from __future__ import annotations
 from typing import Any
 
 from camgen.followers import FOLLOWERS
-from camgen.kinds.base import GROOVE_KEYS, GROOVED, CamKind, refuse_keys
+from camgen.kinds.base import GROOVE_KEYS, GROOVED, CamKind, flat_body, refuse_keys
 
 
 def _check(spec: Any) -> None:
+    flat_body(spec)
     if spec.cam.travel is not None:
         raise ValueError("cam.travel: only for a plate cam (cam.kind = \"plate\")")
     refuse_keys(spec, GROOVE_KEYS, GROOVED)

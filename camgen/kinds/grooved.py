@@ -11,12 +11,13 @@ from __future__ import annotations
 from typing import Any
 
 from camgen.kinds import disc
-from camgen.kinds.base import CamKind
+from camgen.kinds.base import CamKind, flat_body
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
 
 
 def _check(spec: Any) -> None:
+    flat_body(spec)
     cam, follower = spec.cam, spec.follower
     if cam.travel is not None:
         raise ValueError("cam.travel: only for a plate cam (cam.kind = \"plate\")")

@@ -8,12 +8,13 @@ from __future__ import annotations
 from typing import Any
 
 from camgen.followers.plate import PlateRoller
-from camgen.kinds.base import GROOVE_KEYS, GROOVED, CamKind, refuse_keys
+from camgen.kinds.base import GROOVE_KEYS, GROOVED, CamKind, flat_body, refuse_keys
 
 FOLLOWERS = ("translating-roller", "knife-edge")
 
 
 def _check(spec: Any) -> None:
+    flat_body(spec)
     if spec.cam.travel is None:
         raise ValueError("cam.travel: required for a plate cam (mm)")
     if spec.follower.type not in FOLLOWERS:

@@ -1,0 +1,219 @@
+"""A barrel cam from a spec: its checks, its developed drawing and its solid. No I/O.
+
+Checks. The developed pitch curve (x = Rm theta, z = z0 + s) is a plate cam's, so the pressure angle is
+atan(s' / Rm) (reported too at the floor's and the rim's radii, where the roller's contact also runs:
+atan(s' / r)). The walls are the pitch curve's offsets by Rw = Rr + c/2 only at Rm; at radius r the
+developed curve is (r theta, zc), steeper and more sharply bent for smaller r, so each wall is checked for
+undercut (as a grooved cam's flanks: the lower wall where the curve bulges up, the upper where it bulges down)
+on the cylinders from the floor to the rim, and refused, naming the wall, the angle and the radius, where its
+radius of curvature falls below Rw. The solid's walls are the exact envelope of the roller (see
+:mod:`camgen.barrel.walls`), measured within the tolerance (:mod:`camgen.barrel.solid`).
+
+The developed drawing (for checking, and to wrap round a turned cylinder as a paper template): the pitch
+cylinder unrolled, 2 pi Rm by the length on ``OUTLINE``, the exact walls at Rm on ``GROOVE`` and the pitch
+curve on ``PITCH``, as chords within the tolerance; x runs with the program (the way the roller travels over
+the cam), from the roller's place at theta = 0.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from camgen.analysis import CamAnalysis, analyze
+from camgen.barrel.solid import Tube, groove_tube
+from camgen.barrel.walls import GrooveWalls
+from camgen.cam import Cam, build_cam
+from camgen.core.errors import DesignError
+from camgen.core.features import keyed_bore
+from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
+from camgen.core.shapes import Circle, Contour, Polyline
+from camgen.dynamics import speed_report
+from camgen.followers.plate import PlateRoller
+from camgen.grooved.design import Flank, flank_checks
+from camgen.kinds.barrel import rest_height
+from camgen.program import Jump
+from camgen.sizing import pressure_limit
+from camgen.spec import CamSpec
+
+#: the layer of the developed pitch curve
+LAYER_PITCH = "PITCH"
+#: how many cylinders from the floor to the rim the walls are checked on
+CHECK_RADII = 9
+
+
+@dataclass(frozen=True)
+class WallCheck:
+    """A wall's undercut check: the smallest radius of curvature of the developed curve bending that wall, over
+    the cylinders from the floor to the rim, as a :class:`~camgen.grooved.design.Flank` (its ``side`` the wall's
+    name), and the cylinder's radius ``at_radius_mm`` where it is smallest."""
+
+    flank: Flank
+    at_radius_mm: float
+
+
+@dataclass(frozen=True)
+class BarrelDesign:
+    """Everything known about a barrel cam before anything is written (mm, degrees)."""
+
+    spec: CamSpec
+    cam: Cam                       # the developed pitch curve at Rm (a plate cam of travel 2 pi Rm)
+    analysis: CamAnalysis          # its pressure angle (atan(s'/Rm)) and radii
+    jumps: tuple[Jump, ...]
+    walls: GrooveWalls
+    radii: tuple[float, float, float]          # the floor's, the pitch cylinder's and the rim's
+    checks: tuple[WallCheck, WallCheck]        # lower, upper
+    pressure_deg: dict[str, float]             # the largest pressure angle at the floor, the pitch and the rim
+    drawing: Drawing
+    drawing_error_mm: float
+    blank: Part                    # the cylinder with its bore (as printed: the clearance applied), before the groove
+    tube: Tube | None              # the groove's cutter (None until a solid is asked for)
+    speed: dict[str, Any] | None
+    warnings: tuple[str, ...]
+
+    @property
+    def tolerance(self) -> float:
+        return self.spec.output.tolerance
+
+    @property
+    def cutter(self) -> float:
+        """Rw = Rr + c/2 (mm): the radius the groove is cut with."""
+        return self.walls.cutter
+
+    def with_solid(self) -> "BarrelDesign":
+        """The same design with the groove's cutter made (:func:`camgen.barrel.solid.groove_tube`)."""
+        inner, _, outer = self.radii
+        return dataclasses.replace(self, tube=groove_tube(self.walls, inner, outer, self.tolerance))
+
+    def thumbnail(self, tolerance: float) -> np.ndarray:
+        """The developed groove as a closed ring (mm, points within about ``tolerance``), for a family's overview:
+        the lower wall along, the upper wall back."""
+        walls = [shape.vertices for layer, shape in self.drawing.items if layer == LAYER_GROOVE]
+        step = max(1, int(len(walls[0]) * tolerance / (2 * math.pi * self.radii[1])))
+        return np.vstack([walls[0][::step], walls[1][::-step]])
+
+    def _repr_svg_(self) -> str:
+        return self.drawing._repr_svg_()
+
+
+def _developed_cam(cam: Cam, radius: float, cutter: float, z0: float) -> Cam:
+    """The program developed on the cylinder of ``radius``: a plate cam of travel 2 pi radius, roller ``cutter``."""
+    return dataclasses.replace(cam, follower=PlateRoller(z0 - cutter, cutter, 2 * math.pi * radius))
+
+
+def _wall_checks(cam: Cam, radii: np.ndarray, cutter: float, z0: float) -> tuple[WallCheck, WallCheck]:
+    """Both walls' checks over ``radii``: the worst (smallest radius of curvature) of each."""
+    worst: list = [None, None]
+    for r in radii:
+        for k, flank in enumerate(flank_checks(_developed_cam(cam, r, cutter, z0), cutter)):
+            if worst[k] is None or flank.pitch_rho_min_mm < worst[k].flank.pitch_rho_min_mm:
+                worst[k] = WallCheck(dataclasses.replace(flank, side=("lower wall", "upper wall")[k]), float(r))
+    return worst[0], worst[1]
+
+
+def _undercut_message(check: WallCheck) -> str:
+    f = check.flank
+    where = (f"undercut of the groove's {f.side} at {f.at_deg:.2f} degrees, on the cylinder of radius "
+             f"{check.at_radius_mm:.4g} mm: ")
+    if f.pitch_rho_min_mm == 0.0:
+        return (where + "the follower velocity jumps there, a corner the wall cannot follow; use a law with "
+                "continuous velocity")
+    bend = "up" if f.side == "lower wall" else "down"
+    return (where + f"the developed pitch curve bends {bend} there with a radius of {f.pitch_rho_min_mm:.4g} mm, "
+            f"smaller than follower.roller_radius + cam.running_clearance / 2 = {f.offset_mm:.4g} mm; use a smaller "
+            "roller, a shallower groove (cam.groove_depth), a larger cam.pitch_radius or a longer segment")
+
+
+def _polyline_error(exact: Any, theta: np.ndarray, points: np.ndarray) -> float:
+    """The largest distance (mm) of the exact curve ``exact(theta) -> (n, 2)`` from the chords between ``points``
+    (the curve at ``theta``), at 8 probes a chord."""
+    frac = np.arange(1, 9) / 9
+    probes = exact((theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()).reshape(-1, 8, 2)
+    a, b = points[:-1, None, :], points[1:, None, :]
+    ab = b - a
+    t = np.clip(((probes - a) * ab).sum(-1) / np.maximum((ab**2).sum(-1), 1e-300), 0, 1)
+    return float(np.linalg.norm(a + t[..., None] * ab - probes, axis=-1).max())
+
+
+def _clipped(points: np.ndarray, width: float) -> np.ndarray:
+    """A polyline cut to 0 <= x <= ``width`` (its ends found on the edges by straight interpolation)."""
+    x = points[:, 0]
+    keep = (x >= 0) & (x <= width)
+    first, last = np.flatnonzero(keep)[[0, -1]]
+    out = [points[first:last + 1]]
+    for edge, i, j in ((0.0, first - 1, first), (width, last, last + 1)):
+        if 0 <= i and j < len(points) and (x[i] - edge) * (x[j] - edge) < 0:
+            t = (edge - x[i]) / (x[j] - x[i])
+            end = (points[i] + t * (points[j] - points[i]))[None, :]
+            out = [end, *out] if edge == 0.0 else [*out, end]
+    return np.concatenate(out)
+
+
+def _drawing(spec: CamSpec, walls: GrooveWalls, tolerance: float) -> tuple[Drawing, float]:
+    """The developed drawing at Rm and the largest distance (mm) of its chords from the exact curves."""
+    rm, length = spec.cam.pitch_radius, spec.cam.length
+    width = 2 * math.pi * rm
+
+    def curve(side: int):
+        def exact(theta: np.ndarray) -> np.ndarray:
+            if side == 0:
+                return np.column_stack([rm * theta, walls.centre(np.mod(theta, 2 * math.pi))[0]])
+            phi, z = walls.developed(np.mod(theta, 2 * math.pi), rm, side)
+            return np.column_stack([rm * (phi + theta - np.mod(theta, 2 * math.pi)), z])
+        return exact
+
+    n, margin = max(64, math.ceil(width / math.sqrt(8 * tolerance * walls.cutter))), 2 * walls.cutter / rm
+    for _ in range(30):
+        theta = np.linspace(-margin, 2 * math.pi + margin, n + 1)
+        lines = {side: curve(side)(theta) for side in (-1, 0, 1)}
+        error = max(_polyline_error(curve(side), theta, pts) for side, pts in lines.items())
+        if error <= tolerance:
+            break
+        n = math.ceil(n * max(1.2, math.sqrt(error / tolerance)))
+    else:
+        raise DesignError(f"output.tolerance: the developed drawing cannot be brought within {tolerance:g} mm")
+    frame = Contour(np.array([[0.0, 0.0], [width, 0.0], [width, length], [0.0, length]]))
+    items = [(LAYER_OUTLINE, frame)]
+    for side, layer in ((-1, LAYER_GROOVE), (1, LAYER_GROOVE), (0, LAYER_PITCH)):
+        pts = _clipped(lines[side], width)
+        items.append((layer, Polyline(pts, np.zeros(len(pts) - 1))))
+    return Drawing(tuple(items), tolerance), error
+
+
+def design_barrel(spec: CamSpec) -> BarrelDesign:
+    """Build and check the barrel cam ``spec`` describes: refused where a wall undercuts (see the module
+    docstring). Its solid's cutter is made by :meth:`BarrelDesign.with_solid`."""
+    cam = build_cam(spec)
+    rm, depth, tol = spec.cam.pitch_radius, spec.cam.groove_depth, spec.output.tolerance
+    radii = (rm - depth / 2, rm, rm + depth / 2)
+    cutter = spec.follower.roller_radius + spec.cam.running_clearance / 2
+    z0 = rest_height(spec)
+    checks = _wall_checks(cam, np.linspace(radii[0], radii[2], CHECK_RADII), cutter, z0)
+    for check in checks:
+        if check.flank.undercut:
+            raise DesignError(_undercut_message(check))
+    a = analyze(cam)
+    pressure = {name: analyze(_developed_cam(cam, r, cutter, z0)).pressure_angle_max_deg
+                for name, r in zip(("floor", "pitch", "rim"), radii, strict=True)}
+    walls = GrooveWalls(cam.program, z0, cutter, 1 if spec.cam.rotation == "ccw" else -1)
+    drawing, error = _drawing(spec, walls, tol)
+    bore = spec.cam.bore
+    grow = spec.output.clearance / 2
+    holes = (() if bore == 0 else
+             (keyed_bore(bore, grow) if spec.hub.keyway else Circle((0.0, 0.0), bore / 2 + grow),))
+    rim = radii[2]
+    blank = Part(spec.name, Contour(np.array([[rim, 0.0], [-rim, 0.0]]), np.array([1.0, 1.0])), holes,
+                 spec.cam.length, tol)
+    jumps = tuple(cam.program.jumps())
+    speed = None if spec.cam.rpm is None else speed_report(cam, spec.cam.rpm, None, None, None, [])
+    warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
+    limit = pressure_limit(spec)
+    if pressure["floor"] > limit:
+        warnings.append(f"pressure angle peaks at {pressure['floor']:.2f} degrees at the groove's floor "
+                        f"({a.pressure_angle_max_deg:.2f} at the pitch cylinder), above the {limit:g} degree limit: "
+                        "a larger cam.pitch_radius or a longer segment lowers it")
+    return BarrelDesign(spec, cam, a, jumps, walls, radii, checks, pressure, drawing, error, blank, None, speed,
+                        tuple(warnings))

@@ -1,0 +1,135 @@
+"""A barrel cam as files: the developed drawing, the printed solid with its groove, the report and the plots.
+
+Names: ``<name>-developed.dxf`` and ``<name>-developed.svg`` (the pitch cylinder unrolled: a template to check
+or to wrap round a turned cylinder), ``<name>.stl`` and ``<name>.3mf`` (the cylinder with its bore and groove),
+``<name>.json``, ``<name>-svaj.png|svg`` and ``<name>-cam.png|svg`` (the developed drawing).
+"""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from camgen.barrel.design import BarrelDesign
+from camgen.core import VERSION
+from camgen.core.bundle import Bundle, Report, item
+from camgen.core.errors import ExportError
+
+
+def _r(x: float | None, digits: int = 9) -> float | None:
+    return None if x is None or not math.isfinite(x) else round(float(x), digits)
+
+
+def _wall(check: Any) -> dict[str, Any]:
+    f = check.flank
+    return {"pitch_rho_min_mm": _r(f.pitch_rho_min_mm), "at_deg": _r(f.at_deg), "at_radius_mm": _r(check.at_radius_mm),
+            "wall_rho_min_mm": _r(f.rho_min_mm), "undercut": f.undercut}
+
+
+def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
+    """The report of a barrel cam as a JSON-ready dict (keys carry their units)."""
+    t, a = design.spec, design.analysis
+    inner, rm, outer = design.radii
+    tube = design.tube
+    report: dict[str, Any] = {
+        "name": t.name,
+        "generator": f"camgen {VERSION}",
+        "conventions": {
+            "units": "mm and degrees; derivatives of s per radian of cam angle",
+            "frame": "cam axis +Z, the cylinder from z = 0 to its length; the roller's axis radial, on +X at "
+                     "theta = 0; in the cam's frame the roller stands at the polar angle -theta (ccw cams)",
+            "developed": "x = pitch_radius theta (the way the roller travels over the cam), z along the axis",
+            "pressure_angle": "atan(s' / r) on the cylinder of radius r",
+        },
+        "cam": {"kind": "barrel", "pitch_radius_mm": rm, "floor_radius_mm": inner, "rim_radius_mm": outer,
+                "length_mm": t.cam.length, "groove_depth_mm": t.cam.groove_depth,
+                "groove_width_mm": round(2 * design.cutter, 12), "running_clearance_mm": t.cam.running_clearance,
+                "rest_height_mm": _r(design.walls.z0), "bore_mm": t.cam.bore, "rotation": t.cam.rotation},
+        "follower": {"type": t.follower.type, "roller_radius_mm": t.follower.roller_radius},
+        "segments": [{"index": i, "type": seg.type, "law": seg.law, **seg.law_params(), "angle_deg": seg.angle,
+                      "lift_mm": seg.lift} for i, seg in enumerate(t.motion)],
+        "lift_max_mm": _r(design.cam.program.max_lift),
+        "pressure_angle_max_deg": _r(a.pressure_angle_max_deg),
+        "pressure_angle_max_at_deg": _r(a.pressure_angle_max_at_deg),
+        "pressure_angle_floor_deg": _r(design.pressure_deg["floor"]),
+        "pressure_angle_rim_deg": _r(design.pressure_deg["rim"]),
+        "walls": {"cutter_radius_mm": round(design.cutter, 12), "lower": _wall(design.checks[0]),
+                  "upper": _wall(design.checks[1]),
+                  "plane_offset_gap_mm": _r(design.walls.plane_offset_gap(rm)),
+                  "plane_offset_gap_floor_mm": _r(design.walls.plane_offset_gap(inner))},
+        "undercut": False,
+        "developed_max_error_mm": _r(design.drawing_error_mm, 12),
+        "wall_max_error_mm": None if tube is None else _r(tube.wall_error_mm, 12),
+        "floor_max_error_mm": None if tube is None else _r(tube.floor_error_mm, 12),
+        "outline_max_error_mm": max(design.drawing_error_mm, tube.wall_error_mm if tube else 0.0),
+        "outline_note": "the larger of the developed drawing's chords' and the solid's walls' distance from the exact "
+                        "curves and walls",
+        "tolerance_mm": design.tolerance,
+        "clearance_mm": t.output.clearance,
+        "continuity": [j.as_dict() for j in design.jumps],
+        "warnings": list(design.warnings),
+    }
+    if design.speed is not None:
+        report["speed"] = design.speed
+    if mesh is not None:
+        report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
+                          "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles,
+                          "loops": tube.loops, "radii": tube.radii + 1}
+    return report
+
+
+def summary_lines(report: dict[str, Any]) -> list[str]:
+    """The key figures of a barrel cam's report, a few lines for the command to print."""
+    cam, walls = report["cam"], report["walls"]
+
+    def wall(side: str) -> str:
+        w = walls[side]
+        return (f"{side} {w['wall_rho_min_mm']:.3f} mm at {w['at_deg']:.2f} deg (r {w['at_radius_mm']:g} mm)"
+                if w["wall_rho_min_mm"] is not None else f"{side} never bent that way")
+
+    lines = [f"{report['name']}: pressure angle max {report['pressure_angle_max_deg']:.2f} deg at "
+             f"{report['pressure_angle_max_at_deg']:.2f} deg on the pitch cylinder (r {cam['pitch_radius_mm']:g} mm), "
+             f"{report['pressure_angle_floor_deg']:.2f} deg at the groove's floor (r {cam['floor_radius_mm']:g} mm)",
+             f"groove: {cam['groove_width_mm']:g} mm wide, {cam['groove_depth_mm']:g} mm deep; smallest radius of the "
+             f"walls: {wall('lower')}, {wall('upper')}",
+             f"developed drawing within {report['developed_max_error_mm']:.2e} mm of the exact curves (tolerance "
+             f"{report['tolerance_mm']:g} mm)"]
+    if report["wall_max_error_mm"] is not None:
+        lines.append(f"solid: walls within {report['wall_max_error_mm']:.2e} mm of the exact walls, floor within "
+                     f"{report['floor_max_error_mm']:.2e} mm ({report['mesh']['triangles']} triangles)")
+    return lines
+
+
+def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
+    """The files of a barrel cam and its report (without the ``files`` map, which the bundle adds)."""
+    out = design.spec.output
+    formats, name = out.formats, design.spec.name
+    mesh = check = None
+    if {"stl", "3mf"} & set(formats):
+        from camgen.core.solids import carve, check_mesh
+
+        design = design.with_solid()
+        mesh = carve(design.blank, design.tube.vertices, design.tube.faces, name)
+        check = check_mesh(mesh)
+        if not check.ok:
+            raise ExportError(f"{name}: the mesh is not a closed outward solid ({check})")
+    report = barrel_report(design, check)
+
+    def plot(kind: str) -> Any:
+        from camgen import plots
+        from camgen.core.figures import drawing_figure
+
+        if kind == "svaj":
+            return plots.svaj_figure(design)
+        return drawing_figure(design.drawing, f"{name}: the pitch cylinder (radius {design.radii[1]:g} mm) unrolled, "
+                                              "the groove's walls and the pitch curve")
+
+    items = [
+        item(design.drawing, [("dxf", "dxf", f"{name}-developed.dxf"), ("cut-svg", "cut_svg", f"{name}-developed.svg")],
+             formats),
+        item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
+        *(item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
+                                              ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
+          for kind in ("svaj", "cam")),
+        item(Report(report), [("json", "json", f"{name}.json")], formats),
+    ]
+    return Bundle.of(items, out.write_options), report
