@@ -22,9 +22,6 @@ from linkgen.mechanisms import MECHANISMS, Mechanism
 
 #: the largest kerf and clearance (mm), as camgen's ``output.kerf`` and ``output.clearance``
 MAX_ALLOWANCE_MM = 5.0
-#: the shortest link (mm): a micrometre, below what a laser or a printer resolves, and far enough from zero that
-#: every pose keeps its digits; the longest is camgen's :data:`~camgen.core.spec.MAX_LENGTH_MM` (ten metres)
-MIN_LINK_MM = 1e-3
 #: the fastest input (rpm), as camgen's ``cam.rpm``
 MAX_RPM = 100_000.0
 #: a side of the sheet (mm)
@@ -105,18 +102,15 @@ class LinkageSpec(Model):
 
     @model_validator(mode="after")
     def _bounded(self) -> LinkageSpec:
-        """Every length of the ``[linkage]`` table (mm) and its speed (rpm) within bounds that keep the kinematics'
-        numbers finite: a link at least :data:`MIN_LINK_MM`, any length at most ten metres, at most
-        :data:`MAX_RPM`."""
+        """Every length of the ``[linkage]`` table (mm) at most ten metres in size and its speed (rpm) at most
+        :data:`MAX_RPM`, so that the kinematics' numbers stay finite (the least length is every template's,
+        :data:`~camgen.core.spec.MIN_LENGTH_MM`)."""
         for key, info in type(self.linkage).model_fields.items():
             value, extra = getattr(self.linkage, key), info.json_schema_extra
             unit_name = extra.get("unit") if isinstance(extra, dict) else None
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 continue
-            link = any(getattr(m, "gt", None) is not None for m in info.metadata)
-            if unit_name == "mm" and link and not MIN_LINK_MM <= value <= MAX_LENGTH_MM:
-                rule = f">= {MIN_LINK_MM:g} and <= {MAX_LENGTH_MM:g} mm"
-            elif unit_name == "mm" and not abs(value) <= MAX_LENGTH_MM:
+            if unit_name == "mm" and not abs(value) <= MAX_LENGTH_MM:
                 rule = f"at most {MAX_LENGTH_MM:g} mm in size"
             elif unit_name == "rpm" and not value <= MAX_RPM:
                 rule = f"> 0 and <= {MAX_RPM:g} rpm"

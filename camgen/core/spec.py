@@ -29,21 +29,37 @@ NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9._-]{0,99}$"
 
 
 class Model(BaseModel):
-    """Base of every template model: frozen, no unknown keys, no NaN or infinity, and no true/false where a
-    number is asked for (pydantic would read ``lift = true`` as 1 mm)."""
+    """Base of every template model: frozen, no unknown keys, no NaN or infinity, no true/false where a
+    number is asked for (pydantic would read ``lift = true`` as 1 mm), and no length (mm) other than 0 below
+    :data:`MIN_LENGTH_MM`."""
 
     model_config = ConfigDict(frozen=True, extra="forbid", allow_inf_nan=False, strict=False)
 
     @model_validator(mode="before")
     @classmethod
-    def _no_booleans_for_numbers(cls, data: Any) -> Any:
+    def _plain_numbers(cls, data: Any) -> Any:
         if isinstance(data, Mapping):
             for name, value in data.items():
                 info = cls.model_fields.get(name) if isinstance(name, str) else None
-                if info is not None and _mentions(info.annotation, (int, float)) and \
-                        not _mentions(info.annotation, (bool,)) and _holds_bool(value):
+                if info is None:
+                    continue
+                if _mentions(info.annotation, (int, float)) and not _mentions(info.annotation, (bool,)) and \
+                        _holds_bool(value):
                     raise ValueError(f"{name}: must be a number, not true or false")
+                if _tiny_length(info, value):
+                    raise ValueError(f"{name}: a length other than 0 must be at least {MIN_LENGTH_MM:g} mm in size "
+                                     f"(got {value!r})")
         return data
+
+
+def _tiny_length(info: Any, value: Any) -> bool:
+    """Whether ``value`` is a length (the field's unit is mm) nearer 0 than :data:`MIN_LENGTH_MM` but not 0, in a
+    field that sets no least value of its own (as a tolerance does)."""
+    extra = info.json_schema_extra
+    if not isinstance(extra, dict) or extra.get("unit") != "mm" or isinstance(value, bool) or \
+            not isinstance(value, (int, float)) or not 0 < abs(value) < MIN_LENGTH_MM:
+        return False
+    return not any((getattr(m, "gt", None) or 0) > 0 or (getattr(m, "ge", None) or 0) > 0 for m in info.metadata)
 
 
 def _mentions(annotation: Any, kinds: tuple[type, ...]) -> bool:
@@ -62,6 +78,10 @@ def _holds_bool(value: Any) -> bool:
 #: the largest length a template may give (mm): ten metres, past any laser bed or printer, and small enough that
 #: every coordinate keeps its digits in the files' single-precision numbers
 MAX_LENGTH_MM = 10_000.0
+#: the least length other than 0 a template may give (mm): a nanometre, far below what a laser or a printer
+#: resolves (a vanishing roller is still a roller), and far enough from 0 that every slope and curvature computed
+#: from it stays finite
+MIN_LENGTH_MM = 1e-6
 
 
 def length(description: str, default: Any = ..., *, zero: bool = False, le: float = MAX_LENGTH_MM) -> Any:

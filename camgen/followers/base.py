@@ -112,7 +112,7 @@ def from_support(theta: np.ndarray, p: np.ndarray, alpha: np.ndarray, derivs: np
     point = p[:, None] * n + pa[:, None] * t
     d1 = (rho * a1)[:, None] * t
     d2 = (rho1 * a1 + rho * a2)[:, None] * t - (rho * a1**2)[:, None] * n
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):        # a vanishing radius is an infinite curvature
         kappa = np.where(rho != 0, 1.0 / rho, np.inf)
     back = sense * theta                     # the fixed frame is the cam frame turned back by the cam's rotation
     pressure = signed_pressure_angle(travel(rotate(point, back)), rotate(n, back), sense)
