@@ -53,6 +53,7 @@ from pydantic import BaseModel
 
 from camgen.cli import main as camgen
 from camgen.followers import FOLLOWERS
+from camgen.geneva.spec import GenevaSpec
 from camgen.laws import LAW_NAMES
 from camgen.spec import CamSpec
 from linkgen.cli import main as linkgen
@@ -188,17 +189,23 @@ def _model_of(annotation: Any) -> Any:
 def root_model(program: str, raw: dict) -> Any:
     """The model a raw template is validated with (for linkgen, its mechanism's), or None when it has none."""
     if program == "camgen":
-        return CamSpec
+        return GenevaSpec if "geneva" in raw else CamSpec
     kind = raw.get("linkage", {}).get("type") if isinstance(raw.get("linkage"), dict) else None
     return spec_model(MECHANISMS[kind]) if isinstance(kind, str) and kind in MECHANISMS else None
 
 
 def lookup(model: Any, path: Path_) -> tuple[str, Any]:
-    """What ``path`` is below ``model``: ("field", FieldInfo), ("extra", None) for a key no model knows, or
-    ("?", None) where it cannot be said."""
-    info = None
+    """What ``path`` is below ``model``: ("field", FieldInfo), ("key", FieldInfo of the table) for the user's own
+    key in a table of them (``linkage.joints.A``), ("extra", None) for a key no model knows, or ("?", None) where
+    it cannot be said."""
+    info, key = None, False
     for i, part in enumerate(path):
         if isinstance(part, int):
+            continue
+        if key:
+            key = False
+            if i == len(path) - 1:
+                return "key", info
             continue
         fields = getattr(model, "model_fields", None)
         if fields is None:
@@ -206,8 +213,13 @@ def lookup(model: Any, path: Path_) -> tuple[str, Any]:
         if part not in fields:
             return ("extra", None) if i == len(path) - 1 else ("?", None)
         info = fields[part]
-        model = _model_of(info.annotation)
+        model, key = _model_of(info.annotation), _keyed(info.annotation)
     return ("field", info) if info is not None else ("?", None)
+
+
+def _keyed(annotation: Any) -> bool:
+    """Whether a field is a table of the user's own keys (a ``dict``)."""
+    return any(get_origin(a) is dict for a in (annotation, *_args(annotation)))
 
 
 def _bounds(info: Any) -> dict[str, float]:
@@ -251,27 +263,23 @@ def refused_alone(info: Any, value: Any) -> bool:
     return False
 
 
-def _paths(model: Any, prefix: str = "") -> set[str]:
-    out = set()
-    for name, info in model.model_fields.items():
-        path = f"{prefix}.{name}" if prefix else name
-        out.add(path)
-        sub = _model_of(info.annotation)
-        if sub is not None and sub is not BaseModel and "linkage" != name:
-            out |= _paths(sub, path)
-    return out
-
-
-#: every field a template may name (indices dropped), and what the commands' options are called
-VOCABULARY = (_paths(CamSpec) | _paths(spec_model(MECHANISMS["four-bar"]))
-              | {f"linkage.{k}" for m in MECHANISMS.values() for k in m.table.model_fields}
-              | {"template", "base", "sweep", "linkage", "--set", "--jobs", "--angle", "--method", "--scheduler",
-                 "--output", "-o", "TEMPLATE", "--quick", "--json", "--factors"})
+#: every model a template is validated with
+ROOTS = (CamSpec, GenevaSpec, *{spec_model(m) for m in MECHANISMS.values()})
+#: the names an error may give that are not a template's fields: the template itself, its include, a family's
+#: sweep, the commands' options
+OPTIONS = {"template", "base", "sweep", "--set", "--jobs", "--angle", "--method", "--scheduler", "--output", "-o",
+           "TEMPLATE", "--quick", "--json", "--factors"}
 _TOKEN = re.compile(r"(?<![\w.\[\]-])(--?[A-Za-z][\w-]*|[A-Za-z_][\w-]*(?:\[\d+\])*(?:\.[\w-]+(?:\[\d+\])*)*)")
 
 
 def _normal(token: str) -> str:
     return re.sub(r"\[\d+\]", "", re.sub(r"\.\d+(?=\.|$)", "", token))
+
+
+def is_field(token: str) -> bool:
+    """Whether ``token`` (``motion[0].lift``, ``linkage.sliders.ram.angle``) is a field of some template."""
+    path = tuple(int(p) if p.isdigit() else p for p in token.replace("[", ".").replace("]", "").split("."))
+    return any(lookup(root, path)[0] in ("field", "key") for root in ROOTS)
 
 
 def named_field(line: str, extra: set[str] = frozenset()) -> str | None:
@@ -287,15 +295,15 @@ def named_field(line: str, extra: set[str] = frozenset()) -> str | None:
         return quoted.group(1)
     if body.startswith(("No such command ", "Got unexpected extra argument")):
         return body                                      # names the word given where none was expected
-    known = VOCABULARY | {_normal(e) for e in extra}
-    if _normal(lead) in known or lead.startswith("sweep."):
+    made_up = {_normal(e) for e in extra}
+    if is_field(lead) or lead in OPTIONS or _normal(lead) in made_up or lead.startswith("sweep."):
         return lead
     parent = lead.rpartition(".")[0]
-    if body.startswith(f"{lead}: unknown key") and (not parent or _normal(parent) in known):
+    if body.startswith(f"{lead}: unknown key") and (not parent or is_field(parent) or _normal(parent) in made_up):
         return lead                                      # the key as the user spelt it, in a table that exists
     for token in _TOKEN.findall(body):
-        norm = _normal(token)
-        if norm in known and (token.startswith("-") or "." in token or "[" in token or token in extra):
+        if (token.startswith("-") and token in OPTIONS) or _normal(token) in made_up or \
+                (("." in token or "[" in token) and is_field(token)):
             return token
     return None
 
@@ -554,7 +562,8 @@ def known_paths(program: str, raw: dict) -> list[Path_]:
     model = root_model(program, raw)
     for table in [p for p in paths if isinstance(_get(raw, p), dict)] + [()]:
         kind, info = lookup(model, table) if table else ("field", None)
-        sub = model if not table else (_model_of(info.annotation) if kind == "field" else None)
+        sub = model if not table else _model_of(info.annotation) if kind == "key" or (
+            kind == "field" and not _keyed(info.annotation)) else None
         if table == ("linkage",) and model is not None:
             sub = model.model_fields["linkage"].annotation
         for name in getattr(sub, "model_fields", {}):
@@ -670,6 +679,8 @@ def blame_of(program: str, raw: dict, change: Change) -> Path_ | None:
     kind, info = lookup(root_model(program, raw), change.path)
     if kind == "extra" and change.value is not MISSING:
         return change.path
+    if kind == "key":
+        return None                                     # the user's own key: what it does depends on the rest
     if kind == "field" and refused_alone(info, change.value):
         return change.path
     return None

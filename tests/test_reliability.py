@@ -533,3 +533,16 @@ def test_a_vanishing_length_is_refused_by_name(tmp_path, template, sets, words):
     stderr and an error blaming output.tolerance."""
     refused(["build", str(ROOT / "templates" / template), "-o", str(tmp_path / "o"), *set_options(sets)],
             tmp_path / "o", words)
+
+
+@pytest.mark.parametrize("sets, words", [
+    (["linkage.sliders.ram={point='C', guide='ground'}"],
+     "linkage.sliders.ram.angle: missing: give the guide's direction in the drawing"),
+    (["linkage.sliders.ram.bogus=1"], "linkage.sliders.ram.bogus: unknown key; known keys here: point, guide, angle"),
+])
+def test_a_field_under_the_users_own_key_is_described(tmp_path, sets, words):
+    """A table of the user's own keys (sliders by name) hid its fields' descriptions: 'missing: give a value'."""
+    from linkgen.cli import main as linkgen
+
+    refused(["analyze", str(ROOT / "templates" / "shaper.toml"), "-o", str(tmp_path / "o"), *set_options(sets)],
+            tmp_path / "o", words, linkgen)

@@ -15,7 +15,7 @@ import re
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, Literal, TypeVar
+from typing import Any, Literal, TypeVar, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
@@ -299,27 +299,37 @@ def _path(loc: tuple) -> str:
 
 
 def _unwrap(annotation: Any) -> Any:
-    """The model inside ``Optional[...]`` and ``list[...]`` annotations (or the annotation itself)."""
-    for _ in range(3):
-        args = [a for a in getattr(annotation, "__args__", ()) if a is not type(None)]
-        if hasattr(annotation, "model_fields") or not args:
-            break
-        annotation = args[0]
+    """The model a field holds, inside ``Optional``, lists, tuples and tables (``dict`` values), or the annotation
+    itself when it holds none."""
+    queue = [annotation]
+    while queue:
+        inner = queue.pop(0)
+        if isinstance(inner, type) and issubclass(inner, BaseModel):
+            return inner
+        queue.extend(getattr(inner, "__args__", ()))
     return annotation
 
 
+def _keyed(annotation: Any) -> bool:
+    """Whether a field is a table of the user's own keys (a ``dict``, maybe ``Optional``)."""
+    return get_origin(annotation) is dict or any(get_origin(a) is dict for a in getattr(annotation, "__args__", ()))
+
+
 def _field(root: type[BaseModel], loc: tuple) -> Any:
-    """The pydantic FieldInfo at ``loc`` below the ``root`` model, or None."""
+    """The pydantic FieldInfo at ``loc`` below the ``root`` model, or None (list indices and the user's own keys of
+    a table of tables are passed over)."""
     model: Any = root
     info = None
+    key = False
     for part in loc:
-        if isinstance(part, int):
+        if isinstance(part, int) or key:
+            key = False
             continue
         fields = getattr(model, "model_fields", None)
         if not fields or part not in fields:
             return None
         info = fields[part]
-        model = _unwrap(info.annotation)
+        model, key = _unwrap(info.annotation), _keyed(info.annotation)
     return info
 
 
