@@ -151,6 +151,20 @@ def _print_general(r: dict[str, Any]) -> None:
             f"({y1 - y0:.3f} high)")
 
 
+def _print_statics(st: dict[str, Any]) -> None:
+    """The effort holding the loads: its extremes, RMS, peak power and least mechanical advantage."""
+    unit, label = ("N_m", "N*m") if "max_N_m" in st else ("N", "N")
+    where = "input_deg" if "max_at_input_deg" in st else "input_mm"
+    if f"max_{unit}" not in st:
+        return
+    click.echo(f"input effort to hold the loads: {st[f'min_{unit}']:.4g} to {st[f'max_{unit}']:.4g} {label} "
+               f"(at {st[f'min_at_{where}']:.4g} and {st[f'max_at_{where}']:.4g} {where[6:]}), RMS {st[f'rms_{unit}']:.4g} {label}"
+               + (f", peak power {st['peak_power_W']:.4g} W" if "peak_power_W" in st else ""))
+    if "mechanical_advantage_min" in st:
+        click.echo(f"least mechanical advantage {st['mechanical_advantage_min']:.4g} (lever {st['lever_mm']:.4g} mm) "
+                   f"at {st[f'mechanical_advantage_min_at_{where}']:.4g} {where[6:]}")
+
+
 def _print_text(r: dict[str, Any]) -> None:
     out = click.echo
     out(f"{r['name']}: {r['type']}, lengths {r['lengths_mm']}")
@@ -189,7 +203,9 @@ def _print_text(r: dict[str, Any]) -> None:
             for assembly, p in positions.items():
                 out(f"{assembly:>8}: coupler {p['coupler_deg']:.6f} deg, rocker {p['rocker_deg']:.6f} deg, "
                     f"transmission {p['transmission_deg']:.6f} deg")
-    for warning in r.get("warnings", []):
+    if "statics" in r:
+        _print_statics(r["statics"])
+    for warning in r.get("warnings", []) + r.get("statics", {}).get("warnings", []):
         out(f"warning: {warning}")
     if "newton" in r:
         out("Newton-Raphson (" + r["newton"]["start"] + "):")

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from camgen.core.errors import SpecError
+from linkgen.effort import Statics, statics_of, statics_report
 from linkgen.mechanisms import Mechanism
 from linkgen.mechanisms.common import Figure
 from linkgen.parts import LinkageBuild, build_parts
@@ -31,11 +32,22 @@ class LinkageDesign:
     build: LinkageBuild | None = None
     #: the input angle (degrees; mm for a slide input) the report's positions are at, and the pose figure shows
     angle: float | None = None
+    #: the effort holding the template's loads (``[[loads]]``), when it has any
+    statics: Statics | None = None
 
     def figures(self) -> tuple[Figure, ...]:
         """The mechanism's figures of this linkage, each drawn only when called; with an angle, the pose there (for
         the mechanisms linkgen can draw as a general linkage)."""
         figures = self.mechanism.figures(self.spec.name, self.spec.linkage, self.kinematics)
+        if self.statics is not None:
+            statics = self.statics
+
+            def effort() -> Any:
+                from linkgen import plots
+
+                return plots.effort_figure(self.spec.name, statics)
+
+            figures = (*figures, ("effort", effort))
         posed = None if self.angle is None else pose_of(self.kinematics, self.spec.linkage, self.angle)
         if posed is None:
             return figures
@@ -50,6 +62,23 @@ class LinkageDesign:
     def family_row(self) -> dict[str, Any]:
         """What a family's summary adds for this linkage: the mechanism's columns and thumbnail."""
         return self.mechanism.family_row(self.spec.linkage, self.kinematics, self.report)
+
+    def page(self, report: dict[str, Any] | None = None) -> Any:
+        """The linkage's interactive page (:func:`linkgen.page.linkage_page`) showing the figures of ``report`` (the
+        design's own by default); None for a kind linkgen cannot draw as a general linkage (see :func:`pose_of`)."""
+        posed = pose_of(self.kinematics, self.spec.linkage, 0.0)
+        if posed is None:
+            return None
+        from linkgen.page import linkage_page
+
+        return linkage_page(self.spec.name, posed[0], self.report if report is None else report)
+
+    def _repr_html_(self) -> str | None:
+        """Jupyter shows the linkage's interactive page inline, as its html file holds it (without the files)."""
+        from camgen.core.page import page_frame
+
+        page = self.page()
+        return None if page is None else page_frame(page)
 
     def _repr_svg_(self) -> str | None:
         """Jupyter shows the linkage at one pose with its path (strokes 0.5 mm wide), where the mechanism draws it."""
@@ -84,8 +113,15 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     report: dict[str, Any] = {"name": spec.name, "type": table.type, "conventions": CONVENTIONS,
                               "lengths_mm": lengths(table), "rpm": table.rpm,
                               **mechanism.report(table, kinematics, angle, method)}
+    statics = None
+    if spec.loads:
+        posed = pose_of(kinematics, table, 0.0)
+        if posed is None:
+            raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
+        statics = statics_of(spec.loads, posed[0])
+        report["statics"] = statics_report(statics, table.rpm)
     build = build_parts(mechanism.layout(table, kinematics, spec.parts), spec.parts) if parts else None
-    return LinkageDesign(spec, mechanism, kinematics, report, build, angle)
+    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics)
 
 
 def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | None:

@@ -93,8 +93,9 @@ def slider_figure(name: str, mech: Any, omega: float) -> Any:
 
 
 def _input_axis(a: Any) -> tuple[np.ndarray, str]:
-    """The analysed input values in the report's unit and the axis label."""
-    x = a.sweep.inputs[0]
+    """The analysed input values in the report's unit and the axis label (the span, not the solution's inputs, which
+    a crank's full turn wraps back to its start)."""
+    x = a.span[0]
     return (np.degrees(x), "input angle (degrees)") if a.crank else (x, "input travel (mm)")
 
 
@@ -151,6 +152,24 @@ def linkage_transmission_figure(name: str, a: Any) -> Any:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title(f"{name}: transmission angle of each dyad")
+    return fig
+
+
+def effort_figure(name: str, st: Any) -> Any:
+    """The input's effort holding the loads (N*m or N) against the input, and the mechanical advantage for a single
+    force on a second (logarithmic) axis."""
+    x, label = _input_axis(st.analysis)
+    fig = figure(8, 4.5)
+    ax = fig.add_subplot(title=f"{name}: effort that holds the loads", xlabel=label,
+                         ylabel="input torque (N·m)" if st.crank else "input force (N)")
+    ax.plot(x, st.effort, color="C0", lw=1.6)
+    ax.axhline(0.0, color="0.5", lw=0.8)
+    advantage = st.advantage(st.effort)
+    if advantage is not None:
+        ax2 = ax.twinx()
+        ax2.plot(x, np.where(np.isfinite(advantage), advantage, np.nan), color="C1", lw=1, ls="--")
+        ax2.set(ylabel="mechanical advantage", yscale="log")
+    ax.grid(alpha=0.3)
     return fig
 
 

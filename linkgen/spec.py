@@ -88,6 +88,31 @@ class PartsTable(Model):
         return override.width if isinstance(override, LinkOverride) else self.width
 
 
+#: the largest load (N, or N*m for a torque)
+MAX_LOAD = 1e7
+
+
+class LoadTable(Model):
+    """A load the linkage holds (``[[loads]]``): a force (N, x and y in the drawing's frame) at a joint, or a
+    torque (N*m, counter-clockwise) on a link. The report gives the input's effort that holds them
+    (:mod:`linkgen.kinematics.statics`)."""
+
+    point: str | None = Field(None, description="the joint the force acts at")
+    force: tuple[float, float] | None = Field(None, description="the force: x, y", json_schema_extra=unit("N"))
+    link: str | None = Field(None, description="the link the torque acts on")
+    torque: float | None = Field(None, description="the torque, counter-clockwise", json_schema_extra=unit("N*m"))
+
+    @model_validator(mode="after")
+    def _one_kind(self) -> LoadTable:
+        if (self.point is None) != (self.force is None) or (self.link is None) != (self.torque is None) or \
+                (self.point is None) == (self.link is None):
+            raise ValueError("give point and force (a force at a joint), or link and torque (a torque on a link)")
+        for key, value in (("force", self.force or ()), ("torque", () if self.torque is None else (self.torque,))):
+            if not all(abs(v) <= MAX_LOAD for v in value):
+                raise ValueError(f"{key}: must be at most {MAX_LOAD:g} in size (got {', '.join(f'{v:g}' for v in value)})")
+        return self
+
+
 class LinkageSpec(Model):
     """A validated linkage template. Each mechanism has its own subclass (:func:`spec_model`), whose ``linkage``
     is that mechanism's table and whose :attr:`mechanism` is the mechanism."""
@@ -95,6 +120,7 @@ class LinkageSpec(Model):
     name: str = name_field("linkage")
     linkage: Model
     parts: PartsTable | None = None
+    loads: tuple[LoadTable, ...] = Field((), max_length=100, description="loads the linkage holds")
     output: OutputTable = OutputTable()
 
     #: the mechanism registered for ``linkage.type``

@@ -1,6 +1,7 @@
 """Golden files: every bundled template built through the commands users run, each file's SHA-256 recorded.
 
-``python -m tests.golden`` writes ``tests/data/golden.json`` (run it when a change of the
+``python -m tests.golden [TEMPLATE.toml ...]`` writes ``tests/data/golden.json`` (all, or those
+templates' entries only; run it when a change of the
 output is intended, and say so in the commit); ``tests/test_golden.py`` rebuilds every
 template and compares. Cam templates run ``camgen build``; linkage templates run
 ``linkgen analyze`` and, with a ``[parts]`` table, ``linkgen build``; families run
@@ -57,14 +58,16 @@ def is_figure(path: Path) -> bool:
     return path.suffix == ".svg" and b"Matplotlib v" in path.read_bytes()[:1000]
 
 
-def build_all(root: Path) -> dict[str, dict[str, str]]:
-    """Build every bundled template under ``root``; {run id: {relative file: sha256}}."""
+def build_all(root: Path, names: tuple[str, ...] = ()) -> dict[str, dict[str, str]]:
+    """Build every bundled template (or those of file ``names``) under ``root``; {run id: {relative file: sha256}}."""
     from camgen.cli import main as camgen
     from linkgen.cli import main as linkgen
 
     programs = {"camgen": camgen, "linkgen": linkgen}
     out: dict[str, dict[str, str]] = {}
     for path in sorted((ROOT / "templates").glob("*.toml")):
+        if names and path.name not in names:
+            continue
         for program, args in runs(path):
             run_id = f"{program} {args[0]} {path.name}"
             folder = root / run_id.replace(" ", "_")
@@ -77,15 +80,20 @@ def build_all(root: Path) -> dict[str, dict[str, str]]:
     return out
 
 
-def main() -> None:
+def main(names: tuple[str, ...] = ()) -> None:
+    """Record every template's files, or with ``names`` (``toggle-press.toml ...``) re-record those only and keep
+    the other entries as they are."""
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp:
-        hashes = build_all(Path(tmp))
+        hashes = build_all(Path(tmp), names)
+    if names:
+        kept = {k: v for k, v in json.loads(GOLDEN.read_text()).items() if k.rsplit(" ", 1)[-1] not in names}
+        hashes = {**kept, **hashes}
     GOLDEN.parent.mkdir(parents=True, exist_ok=True)
     GOLDEN.write_text(json.dumps(hashes, indent=1, sort_keys=True) + "\n")
     print(f"wrote {GOLDEN}: {sum(len(v) for v in hashes.values())} files from {len(hashes)} runs", file=sys.stderr)
 
 
 if __name__ == "__main__":
-    main()
+    main(tuple(sys.argv[1:]))
