@@ -10,8 +10,9 @@ import numpy as np
 
 from camgen.analysis import CamAnalysis, analyze, face_extent, largest_roller
 from camgen.cam import Cam, build_cam
-from camgen.dynamics import speed_report
-from camgen.core.errors import DesignError
+from camgen.dynamics import loading, speed_report
+from camgen.forces import Contact, forces_report
+from camgen.core.errors import DesignError, SpecError
 from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Polyline, Text
@@ -186,7 +187,16 @@ def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
         return None
     parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(spec.motion) if seg.law == "parabolic"]
     f = spec.follower
-    return speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic)
+    out = speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic, f.load, f.orientation,
+                       f.contact_margin)
+    if f.mass is not None and not f.oscillating:
+        if f.roller_width is not None and not f.contact_radius:
+            raise SpecError("only for a roller follower", "follower.roller_width")
+        contact = None if spec.cam.material is None else Contact(
+            spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
+        ld = loading(f.mass, f.spring_rate, f.preload, f.load, f.orientation, f.contact_margin)
+        out["forces"] = forces_report(cam, ld, spec.cam.rpm, contact)
+    return out
 
 
 def _contact_warnings(speed: dict[str, Any] | None) -> tuple[str, ...]:

@@ -95,3 +95,43 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, An
         report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
                           "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles}
     return report
+
+
+def speed_lines(report: dict[str, Any]) -> list[str]:
+    """The figures of a report's ``speed`` a designer decides on, as lines for the console (none without a speed):
+    the peak rates, the contact check with its lift-off speed, the camshaft torque and power, the contact
+    pressure; a base radius sized by ``auto`` first."""
+    lines = []
+    if "sizing" in report:
+        s = report["sizing"]
+        lines.append(f"base radius {s['base_radius_mm']:.4g} mm (auto, decided by the {s['decided_by']})")
+    speed = report.get("speed")
+    if not speed:
+        return lines
+    unit = "deg" if "velocity_max_deg_s" in speed else "mm"
+    v, a = speed[f"velocity_max_{unit}_s"], speed[f"acceleration_max_{unit}_s2"]
+    j = speed[f"jerk_max_{unit}_s3"]
+    rates = (f"velocity max {v:.4g} deg/s, acceleration {a:.4g} deg/s^2, jerk {j:.4g} deg/s^3" if unit == "deg"
+             else f"velocity max {v / 1000:.4g} m/s, acceleration {a / 1000:.4g} m/s^2, jerk {j / 1000:.4g} m/s^3")
+    lines.append(f"at {speed['rpm']:g} rpm: {rates}")
+    contact = speed.get("contact")
+    if contact and contact.get("mode") == "gravity" and "force_min_n" not in contact:
+        off = contact["liftoff_rpm"]
+        lines.append("contact: gravity holds the follower at any speed" if off is None else
+                     f"contact: gravity holds the follower up to {off:.4g} rpm")
+    elif contact and contact.get("mode"):
+        off = contact["liftoff_rpm"]
+        lines.append(f"contact: least force {contact['force_min_n']:.4g} N at {contact['force_min_at_deg']:.4g} deg; "
+                     + ("held at any speed" if off is None else f"lets go above {off:.4g} rpm")
+                     + f"; preload for a {contact['margin_n']:g} N margin {contact['preload_needed_n']:.4g} N")
+    forces = speed.get("forces")
+    if forces:
+        lines.append(f"camshaft torque {forces['torque_min_N_m']:.4g} to {forces['torque_max_N_m']:.4g} N*m (RMS "
+                     f"{forces['torque_rms_N_m']:.4g}), peak power {forces['power_max_W']:.4g} W, contact force "
+                     f"max {forces['contact_force_max_N']:.4g} N")
+        stress = forces.get("stress", {})
+        if "pressure_max_MPa" in stress:
+            lines.append(f"contact pressure max {stress['pressure_max_MPa']:.4g} MPa at "
+                         f"{stress['pressure_max_at_deg']:.4g} deg ({stress['cam_material']} cam, "
+                         f"{stress['follower_material']} follower; allowable {stress['allowable_MPa']:g} MPa)")
+    return lines

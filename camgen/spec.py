@@ -18,11 +18,13 @@ from pydantic import Field, field_validator, model_validator
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
 from camgen.core.spec import CutOutputTable
+from camgen.contact_stress import MATERIALS
 from camgen.followers import FOLLOWERS
 from camgen.geneva.spec import GenevaSpec, validate_geneva
 from camgen.kinds import CAM_KINDS
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
+Material = Literal[tuple(MATERIALS)]  # type: ignore[valid-type]
 #: every law parameter key a segment may carry
 LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
@@ -45,6 +47,7 @@ class CamTable(Model):
     min_rho_margin: float = length("sizing: least convex radius of the cam surface", 0.0, zero=True)
     rpm: float | None = Field(None, gt=0, le=100_000, description="cam speed for velocities, accelerations and "
                               "contact", json_schema_extra=unit("rpm"))
+    material: Material | None = Field(None, description="the cam's material, for the contact pressure")
     groove_depth: float | None = length("grooved cam: depth of the groove the roller runs in (< thickness)", None)
     running_clearance: float = length("grooved cam: the groove's width less the roller's diameter", 0.2, zero=True,
                                       le=100.0)
@@ -65,8 +68,8 @@ class CamTable(Model):
 
 
 FOLLOWER_TYPES = tuple(FOLLOWERS)
-#: keys every follower takes: its mass and its return spring
-DYNAMIC_KEYS = {"mass", "spring_rate", "preload"}
+#: keys every follower takes: its mass, its return spring, what else loads it, and what it is made of
+DYNAMIC_KEYS = {"mass", "spring_rate", "preload", "load", "orientation", "contact_margin", "material", "roller_width"}
 
 
 class FollowerTable(Model):
@@ -86,6 +89,15 @@ class FollowerTable(Model):
                                       json_schema_extra=unit("N/mm"))
     preload: float | None = Field(None, ge=0, le=1e6, description="return spring force at s = 0",
                                   json_schema_extra=unit("N"))
+    load: float | None = Field(None, ge=-1e6, le=1e6, description="external force pressing the follower onto the "
+                               "cam (negative pulls it off)", json_schema_extra=unit("N"))
+    orientation: float | None = Field(None, ge=-180, le=180, description="the rise's direction from straight up: "
+                                      "the weight counts by its cosine", json_schema_extra=unit("degrees"))
+    contact_margin: float | None = Field(None, ge=0, le=1e6, description="least contact force the spring sizing "
+                                         "keeps", json_schema_extra=unit("N"))
+    material: Material = Field("steel", description="the roller's (or face's) material, for the contact pressure")
+    roller_width: float | None = length("the roller's width along its axis (default: the cam's thickness)", None,
+                                        le=1000.0)
 
     @model_validator(mode="after")
     def _keys_fit_type(self) -> "FollowerTable":
