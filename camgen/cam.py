@@ -116,6 +116,8 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
             params = seg.law_params()
             if seg.law == "modified-uniform" and params.get("form") == "drafted":
                 params["k"] = _drafted_ratio(spec, seg.angle, seg.lift, prime, i)
+            if seg.law == "table":                      # its rows are in degrees and the lift's unit
+                params.update(beta_deg=seg.angle, lift=seg.lift, falling=seg.type == "return")
             try:
                 law = make_law(seg.law, **params)
             except SpecError as exc:

@@ -24,7 +24,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
     """Build the cam described by TEMPLATE (a TOML file)."""
     from camgen.design import design_cam
     from camgen.outputs import write_cam
-    from camgen.report import speed_lines
+    from camgen.report import design_lines
     from camgen.spec import load_spec
 
     spec = load_spec(template, overrides)
@@ -44,7 +44,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
                f"{a.pitch_rho_min_mm:.3f} mm (pitch) at {a.pitch_rho_min_at_deg:.2f} deg")
     click.echo(f"outline: {report['outline_vertices']} vertices ({report['outline_arcs']} exact arcs), "
                f"max error {report['outline_max_error_mm']:.2e} mm (tolerance {report['tolerance_mm']:g} mm)")
-    for line in speed_lines(report):
+    for line in design_lines(report):
         click.echo(line)
     if "flanks" in report:
         from camgen.grooved.outputs import groove_summary

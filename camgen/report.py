@@ -18,12 +18,24 @@ def _r(x: float | None, digits: int = 9) -> float | None:
     return None if x is None or not math.isfinite(x) else round(float(x), digits)
 
 
+def _fit(spec: Any, seg: Any) -> dict[str, Any]:
+    """A table law's fit: its rows, continuity, knots and largest residual (in the lift's unit) and where."""
+    law = seg.law
+    if not hasattr(law, "residual"):
+        return {}
+    u = law.residual_at
+    at = seg.start + seg.beta * (1.0 - u if seg.kind == "return" else u)
+    return {"fit": {"file": spec.file, "rows": len(law.samples), "continuity": f"C{law.continuity}", "knots": len(law.knots),
+                    "residual_max": _r(law.residual * spec.lift), "residual_max_at_deg": _r(math.degrees(at)),
+                    "fit_tolerance": law.tolerance * spec.lift}}
+
+
 def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, Any]:
     """The report as a JSON-ready dict (keys carry their units)."""
     t, cam, a, outline = design.spec, design.cam, design.analysis, design.outline
     segments = [{
-        "index": i, "type": spec.type, "law": spec.law, **spec.law_params(),
-        "start_deg": _r(math.degrees(seg.start)), "angle_deg": spec.angle, "lift_mm": spec.lift,
+        "index": i, "type": spec.type, "law": spec.law, **{k: v for k, v in spec.law_params().items() if k != "data"},
+        "start_deg": _r(math.degrees(seg.start)), "angle_deg": spec.angle, "lift_mm": spec.lift, **_fit(spec, seg),
     } for i, (spec, seg) in enumerate(zip(t.motion, cam.program.segments, strict=True))]
     report: dict[str, Any] = {
         "name": t.name,
@@ -97,11 +109,17 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, An
     return report
 
 
-def speed_lines(report: dict[str, Any]) -> list[str]:
-    """The figures of a report's ``speed`` a designer decides on, as lines for the console (none without a speed):
-    the peak rates, the contact check with its lift-off speed, the camshaft torque and power, the contact
-    pressure; a base radius sized by ``auto`` first."""
-    lines = []
+def design_lines(report: dict[str, Any]) -> list[str]:
+    """The figures a designer decides on, as lines for the console: a base radius sized by ``auto``, each table
+    law's fit and, at a speed, the peak rates, the contact check with its lift-off speed, the camshaft torque and
+    power, the contact pressure."""
+    lines, lift = [], "deg" if "lift_max_deg" in report else "mm"
+    for seg in report.get("segments", []):
+        if "fit" in seg:
+            f = seg["fit"]
+            lines.append(f"motion[{seg['index']}]: {f['rows']} rows fitted by a {f['continuity']} spline of "
+                         f"{f['knots']} knots, within {f['residual_max']:.3g} {lift} (largest at {f['residual_max_at_deg']:.4g}"
+                         " deg)")
     if "sizing" in report:
         s = report["sizing"]
         lines.append(f"base radius {s['base_radius_mm']:.4g} mm (auto, decided by the {s['decided_by']})")

@@ -9,6 +9,7 @@ the field, what is allowed and what was given, e.g.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, Literal
@@ -25,6 +26,49 @@ from camgen.kinds import CAM_KINDS
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
 Material = Literal[tuple(MATERIALS)]  # type: ignore[valid-type]
+#: the most rows a table law reads, and the largest CSV file (bytes)
+MAX_TABLE_ROWS = 10_000
+MAX_TABLE_BYTES = 2_000_000
+
+
+def read_table(path: Path) -> list[tuple[float, float]]:
+    """The (angle, value) rows of a CSV file: two numbers a line, separated by a comma (or a semicolon, a tab or
+    spaces); a first line of names, blank lines and lines starting with # are passed over. A ValueError naming
+    ``file`` (and the line) otherwise."""
+    try:
+        with path.open("rb") as stream:
+            raw = stream.read(MAX_TABLE_BYTES + 1)
+    except OSError as exc:
+        raise ValueError(f"file: cannot read {str(path)!r} ({exc.strerror or exc})") from None
+    if len(raw) > MAX_TABLE_BYTES:
+        raise ValueError(f"file: {str(path)!r} is larger than {MAX_TABLE_BYTES // 1_000_000} MB")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise ValueError(f"file: {str(path)!r} is not UTF-8 text") from None
+    rows, names = [], False
+    for number, line in enumerate(text.splitlines(), 1):
+        fields = [f for f in re.split(r"[,;\t ]+", line.strip()) if f]
+        if not fields or fields[0].startswith("#"):
+            continue
+        try:
+            values = [float(f) for f in fields]
+        except ValueError:
+            if not rows and not names:
+                names = True                             # a first line of column names
+                continue
+            raise ValueError(f"file: line {number}: expected two numbers, angle and value (got {line.strip()[:40]!r})"
+                             ) from None
+        if len(values) != 2 or not all(math.isfinite(v) for v in values):
+            raise ValueError(f"file: line {number}: expected two finite numbers, angle and value")
+        rows.append((values[0], values[1]))
+        if len(rows) > MAX_TABLE_ROWS:
+            raise ValueError(f"file: more than {MAX_TABLE_ROWS} rows")
+    if len(rows) < 4:
+        raise ValueError(f"file: {str(path)!r} holds {len(rows)} rows of angle, value; a table needs at least 4")
+    return rows
+
+
 #: every law parameter key a segment may carry
 LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
@@ -138,7 +182,24 @@ class SegmentTable(Model):
     degree: int | None = Field(None, ge=1, le=25, description="polynomial: degree (default: conditions - 1)")
     points: list[tuple[float, float]] | None = Field(
         None, max_length=1000, description="spline: [u, f] points in normalised units from [0, 0] to [1, 1]")
-    ends: Literal["dwell", "natural"] | None = Field(None, description="spline: end conditions")
+    ends: Literal["dwell", "natural"] | None = Field(None, description="spline, table: end conditions")
+    file: str | None = Field(None, max_length=1000, description="table: a CSV of angle (degrees from the segment's "
+                             "start), displacement above the segment's low end")
+    data: list[tuple[float, float]] | None = Field(
+        None, min_length=4, max_length=MAX_TABLE_ROWS, description="table: [angle, value] rows (degrees, lift's unit)")
+    continuity: int | None = Field(None, ge=2, le=4, description="table: the fitted spline's continuity inside the "
+                                                                 "segment (2: acceleration, 3: jerk, 4)")
+    fit_tolerance: float | None = Field(None, gt=0, le=MAX_LENGTH_MM, description="table: how far a row may lie from "
+                                        "the fitted spline", json_schema_extra=unit("mm, or degrees of arm swing"))
+
+    @model_validator(mode="before")
+    @classmethod
+    def _read_file(cls, data: Any) -> Any:
+        """A table law's ``file`` read into its ``data`` (a path relative to the current folder; :func:`load_spec`
+        makes a template's relative to the template)."""
+        if isinstance(data, Mapping) and isinstance(data.get("file"), str) and data.get("data") is None:
+            return {**data, "data": read_table(Path(data["file"]))}
+        return data
 
     @model_validator(mode="after")
     def _fits_type(self) -> "SegmentTable":
@@ -152,6 +213,8 @@ class SegmentTable(Model):
             raise ValueError(f"lift: required for a {self.type} (mm, > 0)")
         if self.law is None:
             raise ValueError(f"law: required for a {self.type}; one of {', '.join(LAW_NAMES)}")
+        if self.file is not None and self.law != "table":
+            raise ValueError(f"file: only for law 'table' (got law '{self.law}')")
         allowed = set(LAW_PARAMS[self.law])
         for key in sorted(params - allowed):
             takes = ", ".join(LAW_PARAMS[self.law]) or "none"
@@ -160,6 +223,8 @@ class SegmentTable(Model):
             raise ValueError("conditions: required for law 'polynomial' ([[u, order, value], ...])")
         if self.law == "spline" and self.points is None:
             raise ValueError("points: required for law 'spline' ([[u, f], ...] from [0, 0] to [1, 1])")
+        if self.law == "table" and self.data is None:
+            raise ValueError("file: required for law 'table' (a CSV of angle, value rows), or give data")
         return self
 
     def law_params(self) -> dict[str, Any]:
@@ -253,7 +318,18 @@ def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | Gene
     """Read a TOML cam (or Geneva) template (and its ``base``), merge ``key=value`` overrides, validate."""
     raw = read_template(path, overrides)
     check_kind(raw, "camgen")
-    return validate_spec(raw)
+    return validate_spec(_tables_beside(raw, Path(path).parent))
+
+
+def _tables_beside(raw: dict[str, Any], folder: Path) -> dict[str, Any]:
+    """``raw`` with each table law's relative ``file`` made relative to ``folder`` (the template's)."""
+    motion = raw.get("motion")
+    if not isinstance(motion, list):
+        return raw
+    segments = [{**seg, "file": str(folder / seg["file"])}
+                if isinstance(seg, dict) and isinstance(seg.get("file"), str) and not Path(seg["file"]).is_absolute()
+                else seg for seg in motion]
+    return {**raw, "motion": segments}
 
 
 def with_base_radius(spec: CamSpec, base_radius: float) -> CamSpec:

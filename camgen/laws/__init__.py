@@ -12,6 +12,7 @@ from typing import Any
 from camgen.core.errors import SpecError
 from camgen.laws.accel import AccelerationLaw, modified_sine, modified_trapezoid
 from camgen.laws.base import Law
+from camgen.laws.fitted import FittedLaw, table_law
 from camgen.laws.piecewise import BlendedUniform, DraftedUniform, Parabolic, Uniform
 from camgen.laws.polynomial import PolynomialLaw, from_conditions, poly345, poly4567
 from camgen.laws.spline import SplineLaw, spline_law
@@ -44,12 +45,13 @@ REGISTRY: Mapping[str, tuple[Callable[..., Law], tuple[str, ...]]] = {
     "double-harmonic": (DoubleHarmonic, ()),
     "polynomial": (from_conditions, ("conditions", "degree")),
     "spline": (spline_law, ("points", "ends")),
+    "table": (table_law, ("data", "continuity", "fit_tolerance", "ends")),
 }
 
 LAW_NAMES: tuple[str, ...] = tuple(REGISTRY)
 LAW_PARAMS: Mapping[str, tuple[str, ...]] = {name: keys for name, (_, keys) in REGISTRY.items()}
-#: the laws of the standard comparison table (the general polynomial and the spline need data)
-TABLE_LAWS: tuple[str, ...] = tuple(n for n in LAW_NAMES if n not in ("polynomial", "spline"))
+#: the laws of the standard comparison table (the general polynomial, the spline and the table need data)
+TABLE_LAWS: tuple[str, ...] = tuple(n for n in LAW_NAMES if n not in ("polynomial", "spline", "table"))
 
 
 def make_law(name: str, **params: Any) -> Law:
@@ -62,6 +64,6 @@ def make_law(name: str, **params: Any) -> Law:
 
 
 __all__ = ["LAW_NAMES", "LAW_PARAMS", "TABLE_LAWS", "AccelerationLaw", "BlendedUniform", "Cycloidal",
-           "DoubleHarmonic", "DraftedUniform", "Harmonic", "Law", "Parabolic", "PolynomialLaw", "SplineLaw",
+           "DoubleHarmonic", "DraftedUniform", "FittedLaw", "Harmonic", "Law", "Parabolic", "PolynomialLaw", "SplineLaw",
            "Uniform", "from_conditions", "make_law", "modified_sine", "modified_trapezoid", "poly345", "poly4567",
-           "spline_law"]
+           "spline_law", "table_law"]

@@ -15,6 +15,7 @@ from typing import ClassVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from camgen.core.errors import SpecError
 from camgen.numeric import left_of, maximise
 
 @dataclass(frozen=True)
@@ -88,3 +89,14 @@ class Law(ABC):
 def as_array(u: ArrayLike) -> np.ndarray:
     """``u`` as a float array (a 0-d array for a scalar)."""
     return np.asarray(u, dtype=float)
+
+
+def pairs(values: ArrayLike, least: int, field: str, what: str) -> np.ndarray:
+    """``values`` as an (n, 2) float array of at least ``least`` finite rows, or a :class:`SpecError` naming
+    ``field`` that asks for ``what``."""
+    pts = np.array(values, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < least:
+        raise SpecError(f"give at least {what}", field)
+    if not np.isfinite(pts).all():
+        raise SpecError("must hold finite numbers", field)
+    return pts

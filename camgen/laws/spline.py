@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.laws.base import Law, as_array
+from camgen.laws.base import Law, as_array, pairs
 
 ENDS = {"dwell": ([(1, 0.0), (2, 0.0)], [(1, 0.0), (2, 0.0)]),
         "natural": ([(3, 0.0), (4, 0.0)], [(3, 0.0), (4, 0.0)])}
@@ -36,11 +36,7 @@ class SplineLaw(Law):
     def __post_init__(self) -> None:
         from scipy.interpolate import make_interp_spline
 
-        pts = np.array(self.points, dtype=float)
-        if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2:
-            raise SpecError("give at least two [u, f] pairs, from [0, 0] to [1, 1]", "points")
-        if not np.isfinite(pts).all():
-            raise SpecError("must hold finite numbers", "points")
+        pts = pairs(self.points, 2, "points", "two [u, f] pairs, from [0, 0] to [1, 1]")
         u, f = pts[:, 0], pts[:, 1]
         if u[0] != 0.0 or u[-1] != 1.0 or f[0] != 0.0 or f[-1] != 1.0:
             raise SpecError(f"must start at [0, 0] and end at [1, 1] (got {pts[0].tolist()} ... "
