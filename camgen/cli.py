@@ -13,8 +13,8 @@ from camgen.core.cli import (Commands, add_bench, add_family, set_option, templa
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="camgen")
 def main() -> None:
-    """camgen: disc, plate and grooved cams from motion requirements, and Geneva drives, to DXF, STL, plots and a
-    report."""
+    """camgen: disc, plate, grooved, barrel and conjugate cams from motion requirements, and Geneva drives, to DXF,
+    STL, plots and a report."""
 
 
 @main.command()
@@ -57,11 +57,16 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 
 
 def _summary(report: dict) -> list[str] | None:
-    """The key figures of a Geneva drive's or a barrel cam's report to print; None for the other cams."""
+    """The key figures of a Geneva drive's, a barrel cam's or a conjugate pair's report to print; None for the other
+    cams."""
     if "geneva" in report:
         from camgen.geneva.report import summary_lines
 
         return summary_lines(report)
+    if report["cam"].get("kind") == "conjugate":
+        from camgen.conjugate.outputs import summary_lines as pair_lines
+
+        return pair_lines(report)
     if report["cam"].get("kind") == "barrel":
         from camgen.barrel.outputs import summary_lines as barrel_lines
 
@@ -100,21 +105,32 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
     if spec.cam.kind == "barrel":
         raise SpecError("a barrel cam has no base radius to size: its pitch_radius is the designer's choice (the "
                         "report gives the pressure angle at it)", "template")
+    alone = None
     if spec.cam.kind == "grooved":
         from camgen.grooved.design import size_grooved
 
         s = size_grooved(spec)
+    elif spec.cam.kind == "conjugate":
+        from camgen.conjugate.design import size_conjugate
+
+        alone = size_conjugate(spec)
+        s = max(alone, key=lambda one: one.base_radius_mm)
     else:
         s = size_cam(spec)
     result = {"base_radius_mm": s.base_radius_mm, "decided_by": s.decided_by,
               "pressure_radius_mm": s.pressure_radius_mm, "curvature_radius_mm": s.curvature_radius_mm,
               "max_pressure_angle_deg": s.max_pressure_angle_deg, "min_rho_margin_mm": s.min_rho_margin_mm}
+    if alone is not None:
+        result["each_cam_base_radius_mm"] = [one.base_radius_mm for one in alone]
     if as_json:
         click.echo(json.dumps(result, indent=2))
         return
     click.echo(f"smallest base radius {s.base_radius_mm:.4f} mm, decided by the {s.decided_by} "
                f"(pressure angle <= {s.max_pressure_angle_deg:g} deg needs {s.pressure_radius_mm:.4f} mm; "
                f"convex radius > {s.min_rho_margin_mm:g} mm needs {s.curvature_radius_mm:.4f} mm)")
+    if alone is not None:
+        click.echo(f"each cam alone: cam 1 needs {alone[0].base_radius_mm:.4f} mm (cam.base_radius), cam 2 "
+                   f"{alone[1].base_radius_mm:.4f} mm (cam.second_base_radius); a pair of equal cams, the larger")
 
 
 add_family(main, "camgen.spec:validate_spec", "camgen.outputs:build_member",

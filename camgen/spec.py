@@ -23,6 +23,7 @@ from camgen.contact_stress import MATERIALS
 from camgen.followers import FOLLOWERS
 from camgen.geneva.spec import GenevaSpec, validate_geneva
 from camgen.kinds import CAM_KINDS
+from camgen.kinds.base import CONJUGATE_KEYS
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
 Material = Literal[tuple(MATERIALS)]  # type: ignore[valid-type]
@@ -75,8 +76,9 @@ LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
 class CamTable(Model):
     """The cam body: a disc, a plate (linear cam) whose ``base_radius`` is its height under the profile, a grooved
-    disc (a face cam whose groove drives the roller both ways), or a barrel (a cylinder with a groove round it,
-    sized by ``pitch_radius`` and ``length`` instead of ``base_radius`` and ``thickness``)."""
+    disc (a face cam whose groove drives the roller both ways), a barrel (a cylinder with a groove round it,
+    sized by ``pitch_radius`` and ``length`` instead of ``base_radius`` and ``thickness``), or a conjugate pair (two
+    discs on one shaft, each driving one of the follower's two rollers)."""
 
     kind: Literal[tuple(CAM_KINDS)] = Field("disc", description="cam kind")  # type: ignore[valid-type]
     travel: float | None = length("plate cam: length the program's 360 degrees spread over", None)
@@ -96,10 +98,27 @@ class CamTable(Model):
     running_clearance: float = length("grooved cam: the groove's width less the roller's diameter", 0.2, zero=True,
                                       le=100.0)
     rim: float = length("grooved cam: wall outside the groove's outer flank", 5.0)
+    second_base_radius: float | Literal["auto"] | None = Field(
+        None, description="conjugate cam: the second cam's base circle radius (default: base_radius), or \"auto\"",
+        json_schema_extra=unit("mm"))
+    yoke_span: float | None = length("conjugate cam, translating yoke: distance between the two rollers' centres", None)
+    arm_angle: float | None = Field(None, gt=0, lt=360, description="conjugate cam, oscillating arm: angle at the pivot "
+                                    "from the first arm to the second, turning towards the cam",
+                                    json_schema_extra=unit("degrees"))
+    second_arm_length: float | None = length("conjugate cam, oscillating arm: pivot to the second roller's centre",
+                                             None)
     pitch_radius: float | None = length("barrel cam: radius of the pitch cylinder, the groove's mid-depth", None)
     length: float | None = length("barrel cam: the cylinder's axial length", None)
 
-    @field_validator("base_radius", mode="before")
+    @model_validator(mode="after")
+    def _conjugate_keys(self) -> "CamTable":
+        if self.kind != "conjugate":
+            for key in CONJUGATE_KEYS:
+                if key in self.model_fields_set:
+                    raise ValueError(f"{key}: only for a conjugate cam (cam.kind = \"conjugate\")")
+        return self
+
+    @field_validator("base_radius", "second_base_radius", mode="before")
     @classmethod
     def _radius(cls, value: Any) -> Any:
         if value == "auto":

@@ -44,13 +44,15 @@ GROOVED = 'a grooved cam (cam.kind = "grooved")'
 #: the ``[cam]`` keys only a barrel cam takes, and how a message names it
 BARREL_KEYS = ("pitch_radius", "length")
 BARREL = 'a barrel cam (cam.kind = "barrel")'
-#: the ``[cam]`` keys every flat cam (disc, plate, grooved) needs
+#: the ``[cam]`` keys only a conjugate cam takes (refused for the other kinds by :class:`camgen.spec.CamTable`)
+CONJUGATE_KEYS = ("second_base_radius", "yoke_span", "arm_angle", "second_arm_length")
+#: the ``[cam]`` keys every flat cam (disc, plate, grooved, conjugate) needs
 FLAT_KEYS = ("base_radius", "thickness")
 
 
 def flat_body(spec: Any) -> None:
-    """The checks every flat cam (disc, plate, grooved) shares: ``base_radius`` and ``thickness`` given (the
-    message pydantic gives a missing key), and no barrel's keys."""
+    """The checks every flat cam (disc, plate, grooved, conjugate) shares: ``base_radius`` and ``thickness``
+    given (the message pydantic gives a missing key), and no barrel's keys."""
     for key in FLAT_KEYS:
         if getattr(spec.cam, key) is None:
             info = type(spec.cam).model_fields[key]

@@ -1,0 +1,57 @@
+"""The conjugate (dual) cam: two discs on one shaft, each driving one of two rollers of one follower.
+
+Positive drive without a spring: the first cam drives the follower's own roller (the disc cam's: its pitch curve
+has the prime radius base radius + roller radius at rest), the second cam a second roller on the same follower,
+so each cam holds the follower against the other. A translating follower is a yoke carrying the second roller
+``cam.yoke_span`` mm from the first along its line of travel, on the far side of the shaft; an oscillating
+follower is a bell crank carrying the second roller on an arm ``cam.second_arm_length`` long at
+``cam.arm_angle`` degrees from the first, on the same pivot. Either is set by the second cam's base circle
+(``cam.second_base_radius``, by default ``cam.base_radius``) instead. Both rollers are ``follower.roller_radius``.
+See :mod:`camgen.conjugate`.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from camgen.kinds import disc
+from camgen.kinds.base import GROOVE_KEYS, CamKind, flat_body
+
+FOLLOWERS = ("translating-roller", "oscillating-roller")
+#: the key that places the second roller instead of ``cam.second_base_radius``, by follower type
+PLACES = {"translating-roller": "yoke_span", "oscillating-roller": "arm_angle"}
+#: the follower type each of the second roller's own keys is for
+OWNERS = {"yoke_span": "a translating-roller", "arm_angle": "an oscillating-roller",
+          "second_arm_length": "an oscillating-roller"}
+
+
+def _check(spec: Any) -> None:
+    flat_body(spec)
+    cam, follower = spec.cam, spec.follower
+    for key in ("travel", *GROOVE_KEYS):
+        if key in cam.model_fields_set:
+            raise ValueError(f"cam.{key}: not used by a conjugate cam (two discs, each cut to its own profile)")
+    if follower.type not in FOLLOWERS:
+        raise ValueError(f"follower.type: a conjugate cam takes a translating-roller (a yoke with two rollers) or "
+                         f"oscillating-roller follower (an arm with two rollers) (got {follower.type!r})")
+    for key in ("spring_rate", "preload", "mass"):
+        if getattr(follower, key) is not None:
+            raise ValueError(f"follower.{key}: a conjugate pair drives the follower both ways (positive drive): no "
+                             "return spring and no contact check")
+    if cam.allow_undercut:
+        raise ValueError("cam.allow_undercut: both contacts of a conjugate pair must hold over the whole turn, so an "
+                         "undercut is refused, never cut as an envelope")
+    for key, owner in OWNERS.items():
+        if not owner.endswith(follower.type) and key in cam.model_fields_set:
+            raise ValueError(f"cam.{key}: only for a conjugate cam with {owner} follower")
+    place = PLACES[follower.type]
+    if place in cam.model_fields_set and "second_base_radius" in cam.model_fields_set:
+        raise ValueError(f"cam.{place}: give cam.{place} or cam.second_base_radius (either places the second roller), "
+                         "not both")
+    if place in cam.model_fields_set and cam.base_radius == "auto":
+        raise ValueError(f"cam.base_radius: \"auto\" sizes each cam by its base circle; with cam.{place} fixed the "
+                         "second cam changes with the first, so give cam.second_base_radius (or \"auto\") instead of "
+                         f"cam.{place}, or a base radius")
+
+
+KIND = CamKind("conjugate", FOLLOWERS, _check, disc.KIND.follower, "camgen.conjugate.design:design_conjugate",
+               "camgen.conjugate.outputs:conjugate_bundle")
