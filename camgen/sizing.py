@@ -69,7 +69,10 @@ def _domain(spec: CamSpec) -> tuple[float, float]:
 
 
 def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
-    """Smallest base radius (to 1e-9 relative) at which ``ok(cam)`` holds, by bisection."""
+    """Smallest base radius (to 1e-9 relative) at which ``ok(cam)`` holds, by bisection from the first radius found
+    to hold: doubling where the follower assembles on any base circle, else stepping up through the range it
+    assembles on by 1/64 of it (an arm's pressure angle grows again towards the top of that range, where the arm
+    turns radial, so halving towards the top can step over every radius that holds)."""
     lo, top = _domain(spec)
     lift = max(seg.lift or 0.0 for seg in spec.motion)
 
@@ -82,8 +85,8 @@ def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
 
     hi = max(spec.cam.base_radius if isinstance(spec.cam.base_radius, float) else 0.0, lo + lift, 1.0)
     while not holds(hi):
-        nxt = hi * 2 if math.isinf(top) else 0.5 * (hi + top)
-        if nxt > 1e7 or nxt - hi < 1e-9 * max(hi, 1.0):
+        nxt = hi * 2 if math.isinf(top) else hi + (top - lo) / 64
+        if nxt > 1e7 or nxt >= top:
             raise DesignError(f"{what}: no base radius meets it (searched up to {hi:.6g} mm)")
         hi = nxt
     return boundary(holds, hi, lo)

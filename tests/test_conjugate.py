@@ -410,3 +410,24 @@ def test_a_follower_without_rollers_is_refused(tmp_path):
 def test_other_kinds_refuse_the_pairs_keys(tmp_path):
     assert_refused(ROOT / "templates" / "rdrd.toml", {"cam.yoke_span": 100.0},
                    'cam.yoke_span: only for a conjugate cam (cam.kind = "conjugate")', tmp_path)
+
+
+def test_auto_sizes_an_arm_whose_pressure_angle_grows_again_towards_the_top_of_its_range(tmp_path):
+    """An arm's pressure angle falls and then grows again as the base circle grows (the arm turns radial towards the
+    top of the range it assembles on): the search for a radius that holds steps up through that range rather than
+    halving towards its top, where none holds. A disc cam on such an arm (refused before: 'no base radius meets it')
+    and the bell-crank pair both size to the limit, and 1e-6 of the radius smaller is over it."""
+    from camgen.analysis import pressure_angle_max
+    from camgen.cam import build_cam
+
+    disc = {**RAW[ARM], "cam": {k: v for k, v in RAW[ARM]["cam"].items() if k != "kind"},
+            "follower": {**RAW[ARM]["follower"], "pivot_distance": 150.0, "arm_length": 120.0}}
+    disc["cam"]["base_radius"] = "auto"
+    design = design_cam(validate_spec(disc))
+    radius = design.cam.base_radius
+    assert design.analysis.pressure_angle_max_deg == pytest.approx(40.0, abs=1e-6)
+    assert pressure_angle_max(build_cam(validate_spec(disc), base_radius=radius * (1 - 1e-6))) > 40.0
+    report, _ = _build(tmp_path, ARM, 'cam.base_radius="auto"', "output.formats=['json']")
+    for cam in report["cams"].values():
+        assert cam["base_radius_mm"] == pytest.approx(32.479024, abs=1e-6)
+        assert cam["pressure_angle_max_deg"] == pytest.approx(40.0, abs=1e-6)

@@ -94,7 +94,7 @@ def placement_range(spec: CamSpec, first: Cam, second_base: float | None) -> tup
         return "second_base_radius", yoke_prime(f, top, least) - rr, math.inf, second_base
     arm, swing = spec.cam.second_arm_length or spec.follower.arm_length, math.radians(top)
     c = f.pivot_distance
-    near = math.acos(min(1.0, (c * c + arm * arm - rr * rr) / (2 * c * arm))) if rr > abs(c - arm) else 0.0
+    near = math.acos(max(-1.0, min(1.0, (c * c + arm * arm - rr * rr) / (2 * c * arm)))) if rr > abs(c - arm) else 0.0
     if spec.cam.arm_angle is not None:
         return ("arm_angle", math.degrees(f.rest_angle + swing + near), math.degrees(f.rest_angle + math.pi),
                 spec.cam.arm_angle)
