@@ -66,6 +66,13 @@ class CamDesign:
         """Jupyter shows the cam as it will be cut."""
         return self.cut._repr_svg_()
 
+    def _repr_html_(self) -> str | None:
+        """Jupyter shows the design's interactive page inline, as its html file holds it (without links to files);
+        none when ``output.formats`` leaves out html."""
+        from camgen.core.page import bundle_frame
+
+        return bundle_frame(kind_of(self.spec.cam.kind).bundler()(self)[0])
+
 
 def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
     if cam.follower.flat and math.isinf(a.profile_rho_min_mm):

@@ -2,7 +2,8 @@
 
 Names: ``<name>.dxf``, ``<name>-cut.svg`` (cut files, kerf applied), ``<name>.stl``,
 ``<name>.3mf`` (printed files, clearance applied), ``<name>.json``,
-``<name>-svaj.png|svg``, ``<name>-cam.png|svg`` (plots). Only the formats the spec's
+``<name>-svaj.png|svg``, ``<name>-cam.png|svg`` (plots), ``<name>.html`` (the interactive page,
+:mod:`camgen.page`). Only the formats the spec's
 ``output.formats`` asks for are made; nothing is written if any file fails.
 """
 from __future__ import annotations
@@ -19,6 +20,7 @@ from camgen.design import CamDesign
 from camgen.geneva.design import GenevaDesign
 from camgen.geneva.outputs import geneva_bundle, geneva_row
 from camgen.kinds import kind_of
+from camgen.page import cam_page
 from camgen.report import cam_report
 
 #: chord tolerance (mm) of the outline drawn in a family's overview: a thumbnail an inch wide
@@ -35,7 +37,7 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
 
         return {"svaj": plots.svaj_figure, "cam": plots.cam_figure}[kind](design)
 
-    return cam_files(design.spec, design.cut, mesh, plot, report), report
+    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report)), report
 
 
 def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
@@ -52,10 +54,11 @@ def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
     return mesh, check
 
 
-def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], report: dict[str, Any]) -> Bundle:
+def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], report: dict[str, Any],
+              page: Callable[[], Any] | None = None) -> Bundle:
     """The files of any cam kind, named as this module says: ``cut`` drawn as the cut files, ``mesh`` (or None)
-    as the printed ones, ``plot("svaj")`` and ``plot("cam")`` (made only if written), ``report``; only the formats
-    ``spec.output.formats`` asks for."""
+    as the printed ones, ``plot("svaj")`` and ``plot("cam")`` (made only if written), ``report``, ``page()`` (the
+    interactive page, made only if written; none without it); only the formats ``spec.output.formats`` asks for."""
     out, name = spec.output, spec.name
     formats = out.formats
     items = [
@@ -65,6 +68,7 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
                                               ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
           for kind in ("svaj", "cam")),
         item(Report(report), [("json", "json", f"{name}.json")], formats),
+        item(page, [("html", "html", f"{name}.html")], formats) if page is not None else None,
     ]
     return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text))
 

@@ -65,8 +65,15 @@ class LinkageDesign:
 
     def page(self, report: dict[str, Any] | None = None) -> Any:
         """The linkage's interactive page (:func:`linkgen.page.linkage_page`) showing the figures of ``report`` (the
-        design's own by default); None for a kind linkgen cannot draw as a general linkage (see :func:`pose_of`)."""
-        posed = pose_of(self.kinematics, self.spec.linkage, 0.0)
+        design's own by default); None for a kind linkgen cannot draw as a general linkage (see :func:`pose_of`).
+        It is drawn from the design's angle, else 0, else the middle of a range the input reaches."""
+        posed = None
+        for angle in _drawable(self.kinematics, self.angle):
+            try:
+                posed = pose_of(self.kinematics, self.spec.linkage, angle)
+                break
+            except SpecError:                  # out of reach there: try the next
+                continue
         if posed is None:
             return None
         from linkgen.page import linkage_page
@@ -88,6 +95,14 @@ class LinkageDesign:
         from camgen.core.writers.svg import svg_document
 
         return svg_document(drawing, stroke_width=0.5)
+
+
+def _drawable(kinematics: Any, angle: float | None) -> list[float]:
+    """Input angles (degrees) to draw a linkage at: ``angle`` (when given), 0, and the middle of each range of crank
+    angles its four-bar reaches (one that does not turn fully)."""
+    fourbar = getattr(kinematics, "linkage", kinematics)
+    ranges = fourbar.input_ranges() if hasattr(fourbar, "input_ranges") else None
+    return [a for a in (angle, 0.0) if a is not None] + [math.degrees((lo + hi) / 2) for lo, hi in ranges or ()]
 
 
 def lengths(table: Any) -> dict[str, Any]:

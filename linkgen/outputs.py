@@ -3,7 +3,8 @@
 Names: ``<name>.json`` (the report, with the parts section when there are parts),
 ``<name>-<kind>.png|svg`` (the mechanism's figures), and with parts ``<name>-sheet.dxf|svg``
 and ``<name>-assembly.dxf|svg|png`` (cut files, kerf applied; the SVGs are the ``cut-svg``
-format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf`` (printed). Only the formats the
+format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf`` (printed), ``<name>.html`` (the interactive page, for
+every linkage linkgen can draw as a general one). Only the formats the
 spec's ``output.formats`` asks for are made; nothing is written if any file fails. Everything
 written is computed by the design; meshes are made here from its printed parts.
 """
@@ -36,6 +37,8 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     items += [item(draw, [("png", f"{kind}_png", f"{name}-{kind}.png"), ("svg", f"{kind}_svg", f"{name}-{kind}.svg")],
                    formats) for kind, draw in design.figures()]
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
+    page = design.page(report) if "html" in formats else None
+    items.append(item(page, [("html", "html", f"{name}.html")], formats) if page is not None else None)
     return Bundle.of(items, spec.output.write_options)
 
 

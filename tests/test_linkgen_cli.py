@@ -38,7 +38,7 @@ def test_crank_rocker_report(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([
         "crank-rocker.json", "crank-rocker-transmission.png", "crank-rocker-transmission.svg",
         "crank-rocker-dead-centres.png", "crank-rocker-dead-centres.svg",
-        "crank-rocker-pose.png", "crank-rocker-pose.svg"])                # --angle draws the pose there too
+        "crank-rocker-pose.png", "crank-rocker-pose.svg", "crank-rocker.html"])   # --angle draws the pose too
     assert r["warnings"] and "outside the usual 40-140" in r["warnings"][0]
 
 

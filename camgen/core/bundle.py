@@ -1,7 +1,7 @@
 """A result's files: what is written, under which names, and writing them all-or-nothing.
 
 A :class:`Bundle` lists :class:`Item` s, each a finished payload (a drawing, a mesh, a
-report, a figure or a function that makes it) and the files it becomes, one
+report, a figure, a page or a function that makes it) and the files it becomes, one
 :class:`Entry` a format. :func:`write_bundle` hands each payload to the writer of each
 of its formats (:mod:`camgen.core.writers`) and nothing more. Every file is first
 written to a hidden temporary name beside its target; only when all of them are
@@ -110,6 +110,10 @@ class Report:
 
     data: dict[str, Any]
 
+    def with_files(self, files: dict[str, str]) -> dict[str, Any]:
+        """The report as written: its data with the bundle's ``files`` map at the end."""
+        return {**self.data, "files": dict(files)}
+
 
 @dataclass(frozen=True)
 class Item:
@@ -152,8 +156,8 @@ def write_bundle(bundle: Bundle, directory: str | Path) -> dict[str, str]:
     with staged(directory) as stage:
         for it in bundle.items:
             payload = it.payload() if callable(it.payload) else it.payload
-            if isinstance(payload, Report):
-                payload = {**payload.data, "files": dict(files)}
+            if hasattr(payload, "with_files"):       # a report, a page: they name the bundle's files
+                payload = payload.with_files(files)
             for entry in it.entries:
                 write = writer(entry.format)
                 stage.write(entry.name, lambda p, w=write, x=payload: w(x, p, bundle.options))

@@ -285,8 +285,10 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
     return sorted(rows, key=lambda r: r["name"])
 
 
-def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview: Any = None) -> list[str]:
-    """summary.csv and summary.json (one row per member), and the overview figure as PNG, all-or-nothing."""
+def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview: Any = None,
+                  page: str | None = None) -> list[str]:
+    """summary.csv and summary.json (one row per member), the overview figure as PNG and the family's page
+    (``overview.html``, see :func:`family_page`), all-or-nothing."""
     columns = ["name", *keys, "status", "error"]
     extra = sorted({k for r in rows for k in r} - set(columns) - {"reused", "thumbnail", "thumbnail_kind"})
     columns += extra
@@ -303,7 +305,32 @@ def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview:
             json.dumps(clean, indent=2, default=str) + "\n")).name)
         if overview is not None:
             written.append(stage.write("overview.png", lambda p: save(overview, p, "png")).name)
+        if page is not None:
+            written.append(stage.write("overview.html", lambda p: p.write_text(page, encoding="utf-8")).name)
     return written
+
+
+#: a row's keys that are no figure of the member (the family's page leaves them out of its table)
+_NOT_FIGURES = {"name", "status", "error", "files", "thumbnail", "thumbnail_kind", "reused"}
+
+
+def family_page(title: str, rows: list[dict], root: str | Path, keys: list[str]) -> str | None:
+    """The family's page (:func:`camgen.core.page.family_html`) from the members' own pages in ``root``, their
+    swept ``keys`` and their rows; None when no member wrote a page (``output.formats`` without html)."""
+    from camgen.core.page import Member, family_html
+
+    root = Path(root)
+    members = []
+    for r in rows:
+        own = f"{r['name']}.html"
+        path = root / r["name"] / own
+        written = r.get("status") == "ok" and own in str(r.get("files", "")).split() and path.is_file()
+        members.append(Member(r["name"], f"{r['name']}/{own}" if written else None, {k: r.get(k) for k in keys}, r,
+                              path.read_text(encoding="utf-8") if written else None))
+    if not any(m.page for m in members):
+        return None
+    figures = sorted({k for r in rows for k in r} - _NOT_FIGURES - set(keys))
+    return family_html(title, members, [*keys, "status", *figures])
 
 
 def build_family(template: str | Path, root: str | Path, validate: Callable[[dict], Any], builder: Builder,
@@ -315,6 +342,7 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
     items = members(raw, sweep)
     check_all(items, validate)
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
-    write_summary(rows, root, [k for k, _ in items[0].values],
-                  overview_figure(rows, f"{raw.get('name')}: {len(rows)} members"))
+    keys = [k for k, _ in items[0].values]
+    title = f"{raw.get('name')}: {len(rows)} members"
+    write_summary(rows, root, keys, overview_figure(rows, title), family_page(title, rows, root, keys))
     return rows

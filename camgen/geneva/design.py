@@ -86,6 +86,13 @@ class GenevaDesign:
     def _repr_svg_(self) -> str:
         return self.cut["wheel"]._repr_svg_()
 
+    def _repr_html_(self) -> str | None:
+        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        from camgen.core.page import bundle_frame
+        from camgen.geneva.outputs import geneva_bundle
+
+        return bundle_frame(geneva_bundle(self)[0])
+
 
 def motion_figures(law: GenevaLaw) -> dict[str, Any]:
     """The Geneva law's figures per radian of driver angle (beta' per omega, beta'' per omega^2), angles in

@@ -2,7 +2,8 @@
 
 Names: ``<name>-wheel.dxf``, ``<name>-lock.dxf``, ``<name>-crank.dxf`` and their ``-cut.svg`` (cut files, kerf
 applied); ``<name>-wheel.stl|3mf`` and ``<name>-driver.stl|3mf`` (the crank with the locking disc on top,
-one solid; clearance applied); ``<name>.json``; ``<name>-motion.png|svg`` and ``<name>-assembly.png|svg``.
+one solid; clearance applied); ``<name>.json``; ``<name>-motion.png|svg`` and ``<name>-assembly.png|svg``;
+``<name>.html`` (the interactive page).
 Only the formats ``output.formats`` asks for are made; nothing is written if any file fails.
 """
 from __future__ import annotations
@@ -13,6 +14,7 @@ from camgen.core.bundle import Bundle, Report, item
 from camgen.core.errors import ExportError
 from camgen.core.parts import Drawing
 from camgen.geneva.design import PARTS, GenevaDesign
+from camgen.geneva.page import geneva_page
 from camgen.geneva.report import geneva_report
 
 
@@ -55,6 +57,7 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
                                                   ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
               for kind in ("motion", "assembly")]
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
+    items.append(item(lambda: geneva_page(design, report), [("html", "html", f"{name}.html")], formats))
     return Bundle.of(items, out.write_options), report
 
 

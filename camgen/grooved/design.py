@@ -182,6 +182,13 @@ class GroovedDesign:
     def _repr_svg_(self) -> str:
         return self.cut._repr_svg_()
 
+    def _repr_html_(self) -> str | None:
+        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        from camgen.core.page import bundle_frame
+        from camgen.grooved.outputs import grooved_bundle
+
+        return bundle_frame(grooved_bundle(self)[0])
+
 
 def _circle(radius: float) -> Contour:
     """A counter-clockwise circle about the origin as two exact half arcs."""

@@ -3,7 +3,7 @@
 Names as for every cam (:mod:`camgen.outputs`): ``<name>.dxf`` and ``<name>-cut.svg`` (the plate on
 ``OUTLINE``, holes on ``HOLES``, both flanks on ``GROOVE``), ``<name>.stl`` and ``<name>.3mf`` (the plate
 with the groove as a pocket), ``<name>.json``, ``<name>-svaj.png|svg`` and ``<name>-cam.png|svg`` (the
-plate, the groove, the pitch curve, the roller and where each flank's check peaks).
+plate, the groove, the pitch curve, the roller and where each flank's check peaks), ``<name>.html`` (the page).
 """
 from __future__ import annotations
 
@@ -17,6 +17,7 @@ from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.solids import volume_check
 from camgen.grooved.design import Flank, GroovedDesign
 from camgen.outputs import cam_files, printed_mesh
+from camgen.page import cam_page
 from camgen.report import cam_report
 
 
@@ -133,4 +134,4 @@ def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
 
         return plots.svaj_figure(design.profile) if kind == "svaj" else grooved_figure(design)
 
-    return cam_files(design.spec, design.cut, mesh, plot, report), report
+    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report)), report

@@ -12,6 +12,7 @@ stl        binary STL                                          :class:`~camgen.c
 3mf        3MF package (millimetres)                           :class:`~camgen.core.solids.Mesh`
 json       the report, ``indent=2``, no NaN                    ``dict``
 png, svg   a figure (matplotlib)                               ``matplotlib.figure.Figure``
+html       the design's interactive page, self-contained       :class:`~camgen.core.page.Page`
 =========  ==================================================  ===========================
 
 Writers are imported only when a file of their format is written, so a JSON-only
@@ -26,14 +27,14 @@ from pathlib import Path
 from typing import Any, Literal
 
 #: every format a bundle can write, in the order their files are listed by default
-FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg")
+FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html")
 DXF_FLAVOURS = ("polyline-bulge", "lines-arcs", "segments")
 DXF_VERSIONS = ("R2010", "R12")
 #: how engraved text is written: TEXT entities (SVG <text>), or the glyphs' outlines for laser software that drops text
 TEXT_MODES = ("text", "outline")
 
 _MODULES = {"dxf": "dxf", "cut-svg": "svg", "stl": "stl", "3mf": "threemf", "json": "report", "png": "figure",
-            "svg": "figure"}
+            "svg": "figure", "html": "html"}
 
 
 @dataclass(frozen=True)
