@@ -32,9 +32,10 @@ from camgen.core.features import keyed_bore
 from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
 from camgen.core.shapes import Circle, Contour, Polyline
 from camgen.dynamics import speed_report
+from camgen.followers.barrel import Arm, DevelopedRoller
 from camgen.followers.plate import PlateRoller
 from camgen.grooved.design import Flank, flank_checks
-from camgen.kinds.barrel import rest_height
+from camgen.kinds import barrel as barrel_kind
 from camgen.program import Jump
 from camgen.sizing import pressure_limit
 from camgen.spec import CamSpec
@@ -98,24 +99,21 @@ class BarrelDesign:
     def _repr_svg_(self) -> str:
         return self.drawing._repr_svg_()
 
-    def _repr_html_(self) -> str | None:
-        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
-        from camgen.barrel.outputs import barrel_bundle
-        from camgen.core.page import bundle_frame
 
-        return bundle_frame(barrel_bundle(self)[0])
-
-
-def _developed_cam(cam: Cam, radius: float, cutter: float, z0: float) -> Cam:
-    """The program developed on the cylinder of ``radius``: a plate cam of travel 2 pi radius, roller ``cutter``."""
+def _developed_cam(cam: Cam, radius: float, cutter: float, z0: float, arm: Arm | None) -> Cam:
+    """The program developed on the cylinder of ``radius``: a plate cam of travel 2 pi radius, roller ``cutter``;
+    for an ``arm``, the curve its roller's axis pierces there (:class:`~camgen.followers.barrel.DevelopedRoller`)."""
+    if arm is not None:
+        return dataclasses.replace(cam, follower=DevelopedRoller(arm, radius, cutter))
     return dataclasses.replace(cam, follower=PlateRoller(z0 - cutter, cutter, 2 * math.pi * radius))
 
 
-def _wall_checks(cam: Cam, radii: np.ndarray, cutter: float, z0: float) -> tuple[WallCheck, WallCheck]:
+def _wall_checks(cam: Cam, radii: np.ndarray, cutter: float, z0: float,
+                 arm: Arm | None) -> tuple[WallCheck, WallCheck]:
     """Both walls' checks over ``radii``: the worst (smallest radius of curvature) of each."""
     worst: list = [None, None]
     for r in radii:
-        for k, flank in enumerate(flank_checks(_developed_cam(cam, r, cutter, z0), cutter)):
+        for k, flank in enumerate(flank_checks(_developed_cam(cam, r, cutter, z0, arm), cutter)):
             if worst[k] is None or flank.pitch_rho_min_mm < worst[k].flank.pitch_rho_min_mm:
                 worst[k] = WallCheck(dataclasses.replace(flank, side=("lower wall", "upper wall")[k]), float(r))
     return worst[0], worst[1]
@@ -166,8 +164,9 @@ def _drawing(spec: CamSpec, walls: GrooveWalls, tolerance: float) -> tuple[Drawi
 
     def curve(side: int):
         def exact(theta: np.ndarray) -> np.ndarray:
-            if side == 0:
-                return np.column_stack([rm * theta, walls.centre(np.mod(theta, 2 * math.pi))[0]])
+            if side == 0:                        # where the roller's axis pierces the pitch cylinder
+                pose = walls.pose(np.mod(theta, 2 * math.pi))
+                return np.column_stack([rm * (theta + np.arcsin(pose[3] / rm)), pose[0]])
             phi, z = walls.developed(np.mod(theta, 2 * math.pi), rm, side)
             return np.column_stack([rm * (phi + theta - np.mod(theta, 2 * math.pi)), z])
         return exact
@@ -196,16 +195,15 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
     cam = build_cam(spec)
     rm, depth, tol = spec.cam.pitch_radius, spec.cam.groove_depth, spec.output.tolerance
     radii = (rm - depth / 2, rm, rm + depth / 2)
-    cutter = spec.follower.roller_radius + spec.cam.running_clearance / 2
-    z0 = rest_height(spec)
-    checks = _wall_checks(cam, np.linspace(radii[0], radii[2], CHECK_RADII), cutter, z0)
-    for check in checks:
+    cutter, z0, arm = barrel_kind.cutter(spec), barrel_kind.rest_height(spec), barrel_kind.arm(spec)
+    checks = _wall_checks(cam, np.linspace(radii[0], radii[2], CHECK_RADII), cutter, z0, arm)
+    for check in sorted(checks, key=lambda c: c.flank.rho_min_mm):      # the worse wall first (stable: ties, lower)
         if check.flank.undercut:
             raise DesignError(_undercut_message(check))
     a = analyze(cam)
-    pressure = {name: analyze(_developed_cam(cam, r, cutter, z0)).pressure_angle_max_deg
+    pressure = {name: analyze(_developed_cam(cam, r, cutter, z0, arm)).pressure_angle_max_deg
                 for name, r in zip(("floor", "pitch", "rim"), radii, strict=True)}
-    walls = GrooveWalls(cam.program, z0, cutter, 1 if spec.cam.rotation == "ccw" else -1)
+    walls = GrooveWalls(cam.program, z0, cutter, 1 if spec.cam.rotation == "ccw" else -1, arm)
     drawing, error = _drawing(spec, walls, tol)
     bore = spec.cam.bore
     grow = spec.output.clearance / 2

@@ -2,8 +2,7 @@
 
 Names: ``<name>-developed.dxf`` and ``<name>-developed.svg`` (the pitch cylinder unrolled: a template to check
 or to wrap round a turned cylinder), ``<name>.stl`` and ``<name>.3mf`` (the cylinder with its bore and groove),
-``<name>.json``, ``<name>-svaj.png|svg`` and ``<name>-cam.png|svg`` (the developed drawing), ``<name>.html`` (the
-interactive page: the developed drawing running under the roller).
+``<name>.json``, ``<name>-svaj.png|svg`` and ``<name>-cam.png|svg`` (the developed drawing).
 """
 from __future__ import annotations
 
@@ -14,7 +13,6 @@ from camgen.barrel.design import BarrelDesign
 from camgen.core import VERSION
 from camgen.core.bundle import Bundle, Report, item
 from camgen.core.errors import ExportError
-from camgen.page import cam_page
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:
@@ -27,11 +25,27 @@ def _wall(check: Any) -> dict[str, Any]:
             "wall_rho_min_mm": _r(f.rho_min_mm), "undercut": f.undercut}
 
 
+def _arm(design: BarrelDesign) -> dict[str, Any]:
+    """An arm's figures: its swing, its axial stroke against the arc, and its chordal error."""
+    arm, rm = design.walls.arm, design.radii[1]
+    turn = 2 * arm.mid
+    half = math.radians(arm.mid)
+    chordal = arm.chordal_error(turn)
+    return {"arm_length_mm": arm.length, "pivot_distance_mm": arm.pivot_distance, "pivot_height_mm": _r(arm.height),
+            "swing_deg": _r(turn), "rest_angle_deg": _r(-arm.mid),
+            "axial_stroke_mm": _r(2 * arm.length * math.sin(half)), "arc_length_mm": _r(arm.length * 2 * half),
+            "chordal_error_mm": _r(chordal),
+            "pitch_cylinder_departure_mm": _r(math.hypot(rm, chordal) - rm),
+            "chordal_error_least_mm": _r(arm.length * (1 - math.cos(half)) / 2),
+            "pivot_distance_least_mm": _r(arm.length * (1 + math.cos(half)) / 2)}
+
+
 def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
     """The report of a barrel cam as a JSON-ready dict (keys carry their units)."""
     t, a = design.spec, design.analysis
     inner, rm, outer = design.radii
     tube = design.tube
+    arm = design.walls.arm
     report: dict[str, Any] = {
         "name": t.name,
         "generator": f"camgen {VERSION}",
@@ -40,13 +54,17 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
             "frame": "cam axis +Z, the cylinder from z = 0 to its length; the roller's axis radial, on +X at "
                      "theta = 0; in the cam's frame the roller stands at the polar angle -theta (ccw cams)",
             "developed": "x = pitch_radius theta (the way the roller travels over the cam), z along the axis",
-            "pressure_angle": "atan(s' / r) on the cylinder of radius r",
+            "pressure_angle": "atan(s' / r) on the cylinder of radius r" if arm is None else
+                              "the angle between the normal at the roller's contact on the cylinder of radius r and "
+                              "the path of the roller's centre, in 3D (the larger of the two walls')",
         },
         "cam": {"kind": "barrel", "pitch_radius_mm": rm, "floor_radius_mm": inner, "rim_radius_mm": outer,
                 "length_mm": t.cam.length, "groove_depth_mm": t.cam.groove_depth,
                 "groove_width_mm": round(2 * design.cutter, 12), "running_clearance_mm": t.cam.running_clearance,
-                "rest_height_mm": _r(design.walls.z0), "bore_mm": t.cam.bore, "rotation": t.cam.rotation},
-        "follower": {"type": t.follower.type, "roller_radius_mm": t.follower.roller_radius},
+                "rest_height_mm": _r(design.walls.z0 if arm is None else float(design.walls.centre(0.0)[0, 0])),
+                "bore_mm": t.cam.bore, "rotation": t.cam.rotation},
+        "follower": {"type": t.follower.type, "roller_radius_mm": t.follower.roller_radius,
+                     **({} if arm is None else _arm(design))},
         "segments": [{"index": i, "type": seg.type, "law": seg.law, **seg.law_params(), "angle_deg": seg.angle,
                       "lift_mm": seg.lift} for i, seg in enumerate(t.motion)],
         "lift_max_mm": _r(design.cam.program.max_lift),
@@ -88,11 +106,17 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
         return (f"{side} {w['wall_rho_min_mm']:.3f} mm at {w['at_deg']:.2f} deg (r {w['at_radius_mm']:g} mm)"
                 if w["wall_rho_min_mm"] is not None else f"{side} never bent that way")
 
+    follower = report["follower"]
+    arm = ([] if "chordal_error_mm" not in follower else
+           [f"arm: swing {follower['swing_deg']:g} deg, axial stroke {follower['axial_stroke_mm']:.4f} mm (arc "
+            f"{follower['arc_length_mm']:.4f}), chordal error {follower['chordal_error_mm']:.4f} mm (least "
+            f"{follower['chordal_error_least_mm']:.4f} at pivot_distance {follower['pivot_distance_least_mm']:.4f})"])
     lines = [f"{report['name']}: pressure angle max {report['pressure_angle_max_deg']:.2f} deg at "
              f"{report['pressure_angle_max_at_deg']:.2f} deg on the pitch cylinder (r {cam['pitch_radius_mm']:g} mm), "
              f"{report['pressure_angle_floor_deg']:.2f} deg at the groove's floor (r {cam['floor_radius_mm']:g} mm)",
              f"groove: {cam['groove_width_mm']:g} mm wide, {cam['groove_depth_mm']:g} mm deep; smallest radius of the "
              f"walls: {wall('lower')}, {wall('upper')}",
+             *arm,
              f"developed drawing within {report['developed_max_error_mm']:.2e} mm of the exact curves (tolerance "
              f"{report['tolerance_mm']:g} mm)"]
     if report["wall_max_error_mm"] is not None:
@@ -133,6 +157,5 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
                                               ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
           for kind in ("svaj", "cam")),
         item(Report(report), [("json", "json", f"{name}.json")], formats),
-        item(lambda: cam_page(design, report), [("html", "html", f"{name}.html")], formats),
     ]
     return Bundle.of(items, out.write_options), report

@@ -29,6 +29,8 @@ from typing import Any
 
 import numpy as np
 
+from camgen.followers.barrel import Arm, contact, translating_pose
+
 #: Newton steps of the distance from a point to the walls, and the largest step (rad)
 _NEWTON, _STEP = 30, 0.05
 
@@ -42,11 +44,24 @@ class GrooveWalls:
     z0: float
     cutter: float
     sense: int = 1
+    arm: Arm | None = None
+    taper: float = 0.0
+    pitch_radius: float = 0.0
+
+    @property
+    def r0(self) -> float:
+        """The cutter's radius (mm) where its axis passes nearest the cam's axis: R(a) = r0 + taper a."""
+        return self.cutter - self.taper * self.pitch_radius
+
+    def pose(self, theta: np.ndarray) -> np.ndarray:
+        """zc, zc', zc'', e, e', e'' (mm, per rad^k) at cam angles ``theta`` (rad): the roller axis's height and its
+        tangential offset from the cam's axis in theta-space (see :mod:`camgen.followers.barrel`), and their rates."""
+        m = self.program.evaluate(np.asarray(theta, dtype=float))
+        return translating_pose(m, self.z0) if self.arm is None else self.arm.pose(m)
 
     def centre(self, theta: np.ndarray) -> np.ndarray:
         """zc, zc', zc'' (mm, per rad^k) at cam angles ``theta`` (rad): the roller centre's height and its rates."""
-        m = self.program.evaluate(np.asarray(theta, dtype=float))
-        return np.array([self.z0 + m[0], m[1], m[2]])
+        return self.pose(theta)[:3]
 
     def wall(self, theta: np.ndarray, radius: np.ndarray, side: int) -> tuple[np.ndarray, np.ndarray]:
         """The wall point the roller at cam angle ``theta`` touches on the cylinder of ``radius`` (broadcast):
@@ -57,6 +72,11 @@ class GrooveWalls:
     def developed(self, theta: np.ndarray, radius: np.ndarray, side: int) -> tuple[np.ndarray, np.ndarray]:
         """As :meth:`wall`, the angle in theta-space (the developed drawing's x is the radius times it)."""
         theta, radius = np.broadcast_arrays(np.asarray(theta, dtype=float), np.asarray(radius, dtype=float))
+        if self.arm is not None or self.taper:
+            pose = self.pose(theta.ravel())
+            w, v, _, _ = contact(radius.ravel(), pose, self.r0, self.taper, side)
+            phi = theta.ravel() + np.arcsin((w + pose[3]) / radius.ravel())
+            return phi.reshape(theta.shape), (pose[0] + v).reshape(theta.shape)
         zc, slope, _ = self.centre(theta.ravel())
         zc, slope = zc.reshape(theta.shape), slope.reshape(theta.shape)
         r2, rw = radius**2, self.cutter
@@ -76,14 +96,32 @@ class GrooveWalls:
         z = points[:, 2]
         theta = phi.copy()
         for _ in range(_NEWTON):
-            zc, z1, z2 = self.centre(np.mod(theta, 2 * math.pi))
+            zc, z1, z2, e, e1, e2 = self.pose(np.mod(theta, 2 * math.pi))
             u = phi - theta
-            h1 = -r**2 * np.sin(2 * u) - 2 * (z - zc) * z1
-            h2 = 2 * r**2 * np.cos(2 * u) + 2 * z1**2 - 2 * (z - zc) * z2
+            if self.taper:
+                h1, h2 = self._cone_rates(r, u, z - zc, z1, z2, e, e1, e2)
+            else:
+                h1 = -r**2 * np.sin(2 * u) - 2 * (z - zc) * z1 + 2 * (e * r * np.cos(u) + e * e1 - e1 * r * np.sin(u))
+                h2 = 2 * r**2 * np.cos(2 * u) + 2 * z1**2 - 2 * (z - zc) * z2 + 2 * (
+                    2 * r * np.cos(u) * e1 + e1**2 - r * np.sin(u) * e2 + e * r * np.sin(u) + e * e2)
             step = np.where(h2 > 0, h1 / np.where(h2 > 0, h2, 1.0), -np.sign(h1) * _STEP)
             theta = theta - np.clip(step, -_STEP, _STEP)
-        zc = self.centre(np.mod(theta, 2 * math.pi))[0]
-        return np.sqrt((r * np.sin(phi - theta)) ** 2 + (z - zc) ** 2) - self.cutter
+        zc, _, _, e, _, _ = self.pose(np.mod(theta, 2 * math.pi))
+        rho = np.sqrt((r * np.sin(phi - theta) - e) ** 2 + (z - zc) ** 2)
+        if self.taper:
+            return (rho - self.r0 - self.taper * r * np.cos(phi - theta)) / math.hypot(1.0, self.taper)
+        return rho - self.cutter
+
+    def _cone_rates(self, r: np.ndarray, u: np.ndarray, v: np.ndarray, z1: np.ndarray, z2: np.ndarray,
+                    e: np.ndarray, e1: np.ndarray, e2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The first and second rates with theta of g = rho - taper a (its distance from the cone, times
+        sqrt(1 + taper^2), less r0) at the point (r, u = phi - theta, v = z - zc): what Newton's method minimises."""
+        w, w1, w2 = r * np.sin(u) - e, -r * np.cos(u) - e1, -r * np.sin(u) - e2
+        rho = np.sqrt(w**2 + v**2)
+        h1 = 2 * (w * w1 - v * z1)
+        h2 = 2 * (w1**2 + w * w2 + z1**2 - v * z2)
+        return (h1 / (2 * rho) - self.taper * r * np.sin(u),
+                h2 / (2 * rho) - h1**2 / (4 * rho**3) + self.taper * r * np.cos(u))
 
     def plane_offset_gap(self, radius: float, samples: int = 2048) -> float:
         """The largest distance (mm) of the exact walls on the cylinder of ``radius`` from the plane offsets by Rw
@@ -95,11 +133,14 @@ class GrooveWalls:
             phi, z = self.developed(theta, radius, side)
             t = phi.copy()
             for _ in range(_NEWTON):
-                zc, z1, z2 = self.centre(np.mod(t, 2 * math.pi))
-                h1 = -2 * radius * (radius * (phi - t)) - 2 * (z - zc) * z1
-                h2 = 2 * radius**2 + 2 * z1**2 - 2 * (z - zc) * z2
+                zc, z1, z2, e, e1, e2 = self.pose(np.mod(t, 2 * math.pi))
+                root = np.sqrt(radius**2 - e**2)
+                k1, k2 = e1 / root, e2 / root + e * e1**2 / root**3
+                dx = radius * (phi - t - np.arcsin(e / radius))
+                h1 = -2 * radius * (1 + k1) * dx - 2 * (z - zc) * z1
+                h2 = 2 * radius**2 * (1 + k1) ** 2 + 2 * z1**2 - 2 * (z - zc) * z2 - 2 * radius * dx * k2
                 t = t - np.clip(h1 / h2, -_STEP, _STEP)
-            zc = self.centre(np.mod(t, 2 * math.pi))[0]
-            gap = np.hypot(radius * (phi - t), z - zc) - self.cutter
+            zc, _, _, e, _, _ = self.pose(np.mod(t, 2 * math.pi))
+            gap = np.hypot(radius * (phi - t - np.arcsin(e / radius)), z - zc) - (self.r0 + self.taper * radius)
             worst = max(worst, float(np.abs(gap).max()))
         return worst

@@ -11,19 +11,74 @@ import itertools
 import math
 from typing import Any
 
+from camgen.followers.barrel import Arm, DevelopedRoller
 from camgen.followers.plate import PlateRoller
 from camgen.kinds.base import BARREL_KEYS, CamKind
 
-FOLLOWERS = ("translating-roller",)
+FOLLOWERS = ("translating-roller", "oscillating-roller")
 #: ``[cam]`` keys a barrel does not use, with what it takes instead
 _NOT_USED = {"base_radius": "pitch_radius", "thickness": "length", "travel": "length", "rim": "length"}
+#: ``[follower]`` keys a barrel does not use: an offset, and the loads and contact of a spring-loaded follower
+_FOLLOWER_NOT_USED = ("offset", "spring_rate", "preload", "mass", "load", "orientation", "contact_margin", "material",
+                      "roller_width")
+
+
+def _levels(spec: Any) -> list[float]:
+    """The program's levels at the segments' ends (mm, or degrees of swing), from 0."""
+    steps = [seg.lift if seg.type == "rise" else -seg.lift if seg.type == "return" else 0.0 for seg in spec.motion]
+    return [0.0, *itertools.accumulate(steps)]
+
+
+def swing(spec: Any) -> float:
+    """The follower's whole travel (mm), or an arm's whole swing (degrees)."""
+    levels = _levels(spec)
+    return max(levels) - min(levels)
 
 
 def rest_height(spec: Any) -> float:
-    """z0 (mm): the roller centre's height at s = 0, putting the program's travel mid-length."""
-    steps = [seg.lift if seg.type == "rise" else -seg.lift if seg.type == "return" else 0.0 for seg in spec.motion]
-    heights = [0.0, *itertools.accumulate(steps)]
+    """z0 (mm): the roller centre's height at s = 0, putting the program's travel mid-length; for an arm, its
+    pivot's height, mid-length (the arm square to the cam's axis at mid-swing puts the stroke there)."""
+    if spec.follower.oscillating:
+        return spec.cam.length / 2
+    heights = _levels(spec)
     return (spec.cam.length - max(heights) - min(heights)) / 2
+
+
+def cutter(spec: Any) -> float:
+    """Rw = Rr + c/2 (mm): the radius the groove is cut with on the pitch cylinder."""
+    return spec.follower.roller_radius + spec.cam.running_clearance / 2
+
+
+def arm(spec: Any) -> Arm | None:
+    """The arm of an oscillating roller (None for a translating one)."""
+    if not spec.follower.oscillating:
+        return None
+    f = spec.follower
+    return Arm(f.arm_length, f.pivot_distance, swing(spec) / 2, rest_height(spec),
+               1 if spec.cam.rotation == "ccw" else -1)
+
+
+def _check_arm(spec: Any, floor: float, rw: float) -> None:
+    """An arm's swing, stroke and chordal error fit the cylinder and the groove."""
+    f, turn = spec.follower, swing(spec)
+    if not turn < 180:
+        raise ValueError(f"motion: an arm on a barrel cam swings less than 180 degrees in all (got {turn:.6g})")
+    stroke = 2 * f.arm_length * math.sin(math.radians(turn / 2))
+    if not spec.cam.length > stroke + 2 * rw:
+        raise ValueError(f"cam.length: must be > {stroke + 2 * rw:.6g} mm, the roller's axial stroke 2 arm_length "
+                         f"sin(swing / 2) and the groove's width (got {spec.cam.length:g})")
+    room = floor - rw                         # how far the roller's axis may pass from the cam's axis
+    low, high = f.arm_length - room, f.arm_length * math.cos(math.radians(turn / 2)) + room
+    if not low < high:
+        most = 2 * room / (1 - math.cos(math.radians(turn / 2)))
+        raise ValueError(f"follower.arm_length: must be < {most:.6g} mm, so the arm's chordal error (half of "
+                         f"arm_length (1 - cos(swing / 2)) at best) leaves the roller in the groove (got "
+                         f"{f.arm_length:g})")
+    if not low < f.pivot_distance < high:
+        best = f.arm_length * (1 + math.cos(math.radians(turn / 2))) / 2
+        raise ValueError(f"follower.pivot_distance: must be over {low:.6g} and under {high:.6g} mm, so the roller's "
+                         "axis passes the cam's axis (the arm's chordal error) by less than the groove's floor radius "
+                         f"less the roller's; the error is least at {best:.6g} mm (got {f.pivot_distance:g})")
 
 
 def _check(spec: Any) -> None:
@@ -36,32 +91,39 @@ def _check(spec: Any) -> None:
         if getattr(cam, key) is None:
             raise ValueError(f"cam.{key}: required for a barrel cam (mm, > 0)")
     if follower.type not in FOLLOWERS:
-        raise ValueError(f"follower.type: a barrel cam takes a translating-roller follower, moving along the cam's "
-                         f"axis (got {follower.type!r})")
-    for key in ("offset", "spring_rate", "preload", "mass"):
+        raise ValueError(f"follower.type: a barrel cam takes a translating-roller follower (moving along the cam's "
+                         f"axis) or an oscillating-roller (on an arm swinging along it; got {follower.type!r})")
+    for key in _FOLLOWER_NOT_USED:
         if key in follower.model_fields_set:
-            raise ValueError(f"follower.{key}: not used by a barrel cam (the roller's axis is radial and the groove "
-                             "drives it both ways)")
+            raise ValueError(f"follower.{key}: not used by a barrel cam (the groove drives the roller both ways; its "
+                             "report gives no forces)")
     for key in ("allow_undercut", "min_rho_margin"):
         if key in cam.model_fields_set:
             raise ValueError(f"cam.{key}: not used by a barrel cam: its groove's walls are refused where they undercut")
+    if "material" in cam.model_fields_set:
+        raise ValueError("cam.material: not used by a barrel cam (its report gives no contact pressure)")
     for key in sorted(spec.hub.model_fields_set - {"keyway"}):
         raise ValueError(f"hub.{key}: not used by a barrel cam (it takes cam.bore and hub.keyway)")
     if spec.output.kerf:
         raise ValueError("output.kerf: a barrel cam is printed; its drawing is a developed template, not a cut file")
-    rw = follower.roller_radius + cam.running_clearance / 2
+    rw = cutter(spec)
     floor = cam.pitch_radius - cam.groove_depth / 2
     if not floor > max(cam.bore / 2, rw):
         raise ValueError(f"cam.groove_depth: must be < {2 * (cam.pitch_radius - max(cam.bore / 2, rw)):.6g} mm, so the "
                          f"groove's floor stays outside the bore and wider than the roller (got {cam.groove_depth:g})")
-    if not rest_height(spec) > rw:
+    if follower.oscillating:
+        _check_arm(spec, floor, rw)
+    elif not rest_height(spec) > rw:
         travel = cam.length - 2 * rest_height(spec)
         raise ValueError(f"cam.length: must be > {travel + 2 * rw:.6g} mm, the follower's travel and the groove's "
                          f"width (got {cam.length:g})")
 
 
-def _follower(spec: Any, base_radius: Any, roller_radius: float) -> PlateRoller:
-    """The developed pitch curve: a plate cam of travel 2 pi Rm whose roller centre runs at z0 + s."""
+def _follower(spec: Any, base_radius: Any, roller_radius: float) -> PlateRoller | DevelopedRoller:
+    """The developed pitch curve on the pitch cylinder: a plate cam of travel 2 pi Rm whose roller centre runs at
+    z0 + s, or where an arm's roller's axis pierces the pitch cylinder."""
+    if spec.follower.oscillating:
+        return DevelopedRoller(arm(spec), spec.cam.pitch_radius, cutter(spec))
     return PlateRoller(rest_height(spec) - roller_radius, roller_radius, 2 * math.pi * spec.cam.pitch_radius)
 
 

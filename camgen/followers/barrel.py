@@ -1,0 +1,159 @@
+"""The roller on a barrel cam: its pose over the cycle, its contact with the groove's walls on any cylinder, and
+the groove developed on a cylinder as a plane pitch curve. numpy only.
+
+Frames. The cam's axis is +Z. At theta = 0 the roller stands on +X in the fixed frame; its axis is square to
+the cam's axis. Everything here is worked in "theta-space": the cam's frame, reflected for a counter-clockwise
+cam (``sense`` +1) so that the roller at cam angle theta stands at the polar angle +theta (see
+:mod:`camgen.barrel.walls`); turned by theta, the roller's axis runs along x at the height zc and the
+tangential offset e from the cam's axis: the line (t, e, zc).
+
+Two followers move the roller. A translating one (``arm`` None) slides it along the cam's axis, zc = z0 + s,
+e = 0: its axis is radial. An oscillating one swings it on an arm of length L about a pivot whose axis is
+parallel to the roller's, square to the cam's axis, a distance C (``pivot_distance``) from it, at the height
+z0: with the arm's angle psi measured from square to the cam's axis, the roller's centre is at the height
+zc = z0 + L sin(psi) and the fixed frame's y = C - L cos(psi) (e = -sense y), so its axis passes y from the cam's
+axis: the arm's chordal error. The program gives the swing s (degrees); psi = s - mid puts the arm square to
+the cam's axis at mid-swing (``mid`` half the swing), which halves the axial stroke's departure from the arc.
+
+The cutter. The groove is swept by a surface of revolution about the roller's axis whose radius grows along
+it, R(a) = r0 + taper a (a measured along the axis from its point nearest the cam's axis): a cylinder (taper
+0, r0 = Rr + c/2) or a cone (a conical roller with its apex there, taper = Rr / Rm, grown by c/2 normal to its
+surface). Its contact with the wall on the cylinder of radius r at angle theta: with w = r sin(phi - theta) - e
+and v = z - zc, rho = sqrt(w^2 + v^2) = R(a) and the envelope condition
+
+    w (a + e') + v zc' + taper rho (w + e) = 0,   a = sqrt(r^2 - (w + e)^2),
+
+solved by Newton's method for (beta, rho), w = rho sin(beta), v = side rho cos(beta) (side -1 the lower wall,
++1 the upper). The pressure angle is the angle between the cutter's normal there and the roller's path (0, e',
+zc'), in 3D.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from camgen.core.errors import DesignError
+from camgen.followers.base import PitchGeometry, perp
+
+#: Newton steps of the contact, and the residual (relative to the radius) that counts as solved
+_STEPS, _SOLVED = 40, 1e-12
+
+
+@dataclass(frozen=True)
+class Arm:
+    """An oscillating arm on a barrel (see the module docstring): ``length`` L and ``pivot_distance`` C (mm), the
+    swing ``mid`` (degrees of s) where it is square to the cam's axis, the pivot's ``height`` z0 (mm) and the
+    cam's ``sense`` of rotation."""
+
+    length: float
+    pivot_distance: float
+    mid: float
+    height: float
+    sense: int = 1
+
+    def pose(self, motion: np.ndarray) -> np.ndarray:
+        """zc, zc', zc'', e, e', e'' (mm per rad^k) from s, s', s'' (degrees per rad^k of cam angle)."""
+        psi, p1, p2 = np.radians(motion[0] - self.mid), np.radians(motion[1]), np.radians(motion[2])
+        c, s, arm = np.cos(psi), np.sin(psi), self.length
+        y = (self.pivot_distance - arm * c, arm * s * p1, arm * (s * p2 + c * p1**2))
+        return np.array([self.height + arm * s, arm * c * p1, arm * (c * p2 - s * p1**2),
+                         *(-self.sense * k for k in y)])
+
+    def chordal_error(self, swing: float) -> float:
+        """The largest distance (mm) of the roller's axis from the cam's axis over a ``swing`` (degrees, s from 0
+        to swing, psi from -swing/2 to +swing/2 when ``mid`` is half of it): |C - L cos(psi)| largest at psi = 0
+        or at an end."""
+        psi = np.radians(np.array([0.0, swing, self.mid]) - self.mid)
+        return float(np.abs(self.pivot_distance - self.length * np.cos(psi)).max())
+
+
+def translating_pose(motion: np.ndarray, z0: float) -> np.ndarray:
+    """zc, zc', zc'', e, e', e'' of a roller sliding along the cam's axis, its centre at z0 + s: e = 0."""
+    zero = np.zeros_like(motion[0])
+    return np.array([z0 + motion[0], motion[1], motion[2], zero, zero, zero])
+
+
+def contact(radius: np.ndarray, pose: np.ndarray, r0: float, taper: float, side: int) -> tuple:
+    """The cutter's contact with the wall ``side`` on the cylinder of ``radius`` (broadcast with the pose's rows):
+    (w, v, rho, a) in mm, see the module docstring. Refused (DesignError) where Newton's method does not settle,
+    which a spec's checks leave for degenerate groove shapes only."""
+    _, z1, _, e, e1, _ = pose
+    radius = np.broadcast_to(radius, z1.shape).astype(float)
+    a0 = np.sqrt(np.maximum(radius**2 - e**2, 0.0))
+    beta = np.arctan2(-side * z1, a0 + e1)
+    rho = r0 + taper * a0
+    for _ in range(_STEPS):
+        s, c = np.sin(beta), np.cos(beta)
+        q = rho * s + e
+        a = np.sqrt(np.maximum(radius**2 - q**2, 1e-300))
+        a_beta, a_rho = -q * rho * c / a, -q * s / a
+        f1 = rho - r0 - taper * a
+        f2 = s * (a + e1 + taper * rho) + side * c * z1 + taper * e
+        j11, j12 = -taper * a_beta, 1.0 - taper * a_rho
+        j21, j22 = c * (a + e1 + taper * rho) + s * a_beta - side * s * z1, s * (a_rho + taper)
+        det = j11 * j22 - j12 * j21
+        d_beta = (f1 * j22 - f2 * j12) / det
+        d_rho = (j11 * f2 - j21 * f1) / det
+        beta = np.clip(beta - d_beta, -0.5 * math.pi + 1e-9, 0.5 * math.pi - 1e-9)
+        rho = rho - d_rho
+        if float(np.abs(d_beta).max(initial=0.0)) < 1e-15 and float(np.abs(d_rho).max(initial=0.0)) < 1e-13:
+            break
+    s, c = np.sin(beta), np.cos(beta)
+    q = rho * s + e
+    a = np.sqrt(np.maximum(radius**2 - q**2, 0.0))
+    residual = np.abs(s * (a + e1 + taper * rho) + side * c * z1 + taper * e) + np.abs(rho - r0 - taper * a)
+    if not np.all(residual <= _SOLVED * np.maximum(radius, 1.0)) or not np.all(np.abs(q) < radius):
+        raise DesignError("the roller's contact with the groove's wall was not found (the groove is too steep or "
+                          "the roller too large for the cylinder): use a smaller roller or a larger cam.pitch_radius")
+    return rho * s, side * rho * c, rho, a
+
+
+def pressure_angle(pose: np.ndarray, w: np.ndarray, v: np.ndarray, rho: np.ndarray, taper: float) -> np.ndarray:
+    """The angle (rad, 0 to pi/2) between the cutter's normal at the contact (w, v) and the roller's path
+    (0, e', zc'), in 3D: 0 where the roller stands still."""
+    z1, e1 = pose[1], pose[4]
+    nw, nv = w / rho, v / rho                                  # the normal (-taper, nw, nv), unnormalised
+    dot = nw * e1 + nv * z1
+    cross = np.sqrt((nw * z1 - nv * e1) ** 2 + (taper * z1) ** 2 + (taper * e1) ** 2)
+    return np.arctan2(cross, np.abs(dot))
+
+
+@dataclass(frozen=True)
+class DevelopedRoller:
+    """The groove's pitch curve developed on the cylinder of ``radius``: where the roller's axis pierces it,
+    (radius (theta + asin(e / radius)), zc), a plane curve the walls there are offset from by about the cutter's
+    radius r0 + taper radius (the checks of undercut take it so); its pressure angle is the 3D one at the contact
+    on that cylinder (the larger of the two walls'), signed as the swing's rate. Lifts in degrees of swing."""
+
+    arm: Arm
+    radius: float
+    r0: float
+    taper: float = 0.0
+
+    flat: ClassVar[bool] = False
+    lift_unit: ClassVar[str] = "deg"
+    sense: ClassVar[int] = 1          # the developed curve runs left to right, as a plate cam's
+
+    @property
+    def contact_radius(self) -> float:
+        """The cutter's radius on this cylinder (mm)."""
+        return self.r0 + self.taper * self.radius
+
+    def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
+        pose = self.arm.pose(motion)
+        zc, z1, z2, e, e1, e2 = pose
+        r = self.radius
+        root = np.sqrt(r**2 - e**2)
+        k1 = e1 / root
+        point = np.column_stack([r * (theta + np.arcsin(e / r)), zc])
+        d1 = np.column_stack([r * (1 + k1), z1])
+        d2 = np.column_stack([r * (e2 / root + e * e1**2 / root**3), z2])
+        speed = np.linalg.norm(d1, axis=1)
+        kappa = -(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / speed**3
+        angles = [pressure_angle(pose, *contact(r, pose, self.r0, self.taper, side)[:3], self.taper)
+                  for side in (-1, 1)]
+        return PitchGeometry(theta=theta, point=point, d1=d1, d2=d2, normal=perp(d1) / speed[:, None], kappa=kappa,
+                             pressure_angle=np.sign(motion[1]) * np.maximum(*angles))
