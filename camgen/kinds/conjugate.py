@@ -33,7 +33,7 @@ def _check(spec: Any) -> None:
     if follower.type not in FOLLOWERS:
         raise ValueError(f"follower.type: a conjugate cam takes a translating-roller (a yoke with two rollers) or "
                          f"oscillating-roller follower (an arm with two rollers) (got {follower.type!r})")
-    for key in ("spring_rate", "preload", "mass"):
+    for key in ("spring_rate", "preload", "mass", "load", "orientation", "contact_margin"):
         if getattr(follower, key) is not None:
             raise ValueError(f"follower.{key}: a conjugate pair drives the follower both ways (positive drive): no "
                              "return spring and no contact check")
