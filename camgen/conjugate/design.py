@@ -339,10 +339,11 @@ class _Shared:
 
 
 def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: _Shared) -> CamDesign:
-    """One cam of the pair as a complete design: its part named ``<name>-<1|2>``, engraved with the theta = 0 tick
-    towards the first roller, at the same angle on both."""
-    own = spec.model_copy(update={"name": cam.name,
-                                  "cam": spec.cam.model_copy(update={"base_radius": cam.base_radius})})
+    """One cam of the pair as a complete disc cam's design (its spec the template's as a disc, so whatever takes a
+    disc cam's design takes it): its part named ``<name>-<1|2>``, engraved with the theta = 0 tick towards the first
+    roller, at the same angle on both."""
+    own = spec.model_copy(update={"name": cam.name, "cam": spec.cam.model_copy(
+        update={"kind": "disc", "base_radius": cam.base_radius})})         # a disc cam's design, as far as it goes
     outline, body, wall = _outline_body(own, cam, which)
     _check_holes(own, body, own.output.tolerance)
     engrave = own.hub.engrave or "engrave" not in own.hub.model_fields_set
