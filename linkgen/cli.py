@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, output_option, set_option, template_argument,
+from camgen.core.cli import (Commands, add_bench, add_family, fixed, output_option, set_option, template_argument,
                              template_options, user_errors)
 
 
@@ -147,8 +147,8 @@ def _print_general(r: dict[str, Any]) -> None:
             out(f"  {name}: stroke {o['stroke_mm']:.6g} mm{ratio}")
     for name, t in r.get("tracers", {}).items():
         (x0, x1), (y0, y1) = t["x_mm"], t["y_mm"]
-        out(f"  tracer {name}: x {x0:.3f} to {x1:.3f} mm ({x1 - x0:.3f} wide), y {y0:.3f} to {y1:.3f} mm "
-            f"({y1 - y0:.3f} high)")
+        out(f"  tracer {name}: x {fixed(x0)} to {fixed(x1)} mm ({fixed(x1 - x0)} wide), y {fixed(y0)} to {fixed(y1)} "
+            f"mm ({fixed(y1 - y0)} high)")
 
 
 def _print_statics(st: dict[str, Any]) -> None:

@@ -18,6 +18,12 @@ import click
 from camgen.core.errors import CamgenError
 
 
+def fixed(value: float, digits: int = 3) -> str:
+    """``value`` with ``digits`` decimals for the console, never "-0.000" for a value that rounds to nothing."""
+    text = f"{value:.{digits}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0 else text
+
+
 def fail(message: str) -> None:
     """Print ``error: <message>`` on one line to stderr and exit with code 2."""
     click.echo("error: " + " ".join(str(message).split()), err=True)
