@@ -433,3 +433,21 @@ def test_auto_sizes_an_arm_whose_pressure_angle_grows_again_towards_the_top_of_i
     for cam in report["cams"].values():
         assert cam["base_radius_mm"] == pytest.approx(32.479024, abs=1e-6)
         assert cam["pressure_angle_max_deg"] == pytest.approx(40.0, abs=1e-6)
+
+
+def test_a_cam_reaching_past_the_cranks_pivot_is_warned_of(tmp_path):
+    """Arms 150 degrees apart put the second roller far out: its cam reaches past the pivot, whose shaft would cross
+    its plane (a warning, as the pair can still be built with the crank on the other side); the bundled crank's
+    cams stay inside it."""
+    report, _ = _build(tmp_path, ARM, "cam.arm_angle=150", "output.formats=['json']")
+    import shapely
+
+    design = design_cam(validate_spec(_raw(ARM, arm_angle=150.0)))
+    reach = shapely.Polygon(design.cams[1].outline.contour.flatten(1e-4)).exterior.hausdorff_distance(
+        shapely.Point(0, 0))
+    assert reach > 110
+    assert [w for w in report["warnings"] if "pivot" in w] == [
+        f"cam 2 reaches {reach:.4g} mm from the shaft, past the crank's pivot (110 mm away): the pivot's shaft cannot "
+        "pass its plane"]
+    report, _ = _build(tmp_path / "b", ARM, "output.formats=['json']")
+    assert not [w for w in report["warnings"] if "pivot" in w]

@@ -365,6 +365,10 @@ def _warnings(spec: CamSpec, designs: tuple[CamDesign, CamDesign], limit: float)
                        "or lengthen the segment")
         if spec.cam.bore > 0 and d.wall_mm < THIN_WALL:
             out.append(f"cam {which + 1}: only {d.wall_mm:.3g} mm of material between the bore and the outline")
+        reach = float(np.linalg.norm(d.outline.contour.vertices, axis=1).max())
+        if spec.follower.pivot_distance is not None and reach >= spec.follower.pivot_distance:
+            out.append(f"cam {which + 1} reaches {reach:.4g} mm from the shaft, past the crank's pivot "
+                       f"({spec.follower.pivot_distance:g} mm away): the pivot's shaft cannot pass its plane")
         concave = a.profile_concave_rho_min_mm
         if concave is not None and concave < 1.0:
             out.append(f"cam {which + 1}: concave radius of {concave:.3g} mm at {a.concave_at_deg:.2f} degrees: the "
