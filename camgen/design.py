@@ -196,12 +196,15 @@ def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
     f = spec.follower
     out = speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic, f.load, f.orientation,
                        f.contact_margin)
-    if f.mass is not None and not f.oscillating:
+    if f.mass is not None and out["contact"] and out["contact"].get("mode"):
         if f.roller_width is not None and not f.contact_radius:
             raise SpecError("only for a roller follower", "follower.roller_width")
+        if f.orientation is not None and f.oscillating:
+            raise SpecError("only for a translating follower (an arm's weight is not modelled)", "follower.orientation")
         contact = None if spec.cam.material is None else Contact(
             spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
-        ld = loading(f.mass, f.spring_rate, f.preload, f.load, f.orientation, f.contact_margin)
+        ld = loading(f.mass, f.spring_rate, f.preload, f.load, f.orientation, f.contact_margin,
+                     f.arm_length if f.oscillating else None)
         out["forces"] = forces_report(cam, ld, spec.cam.rpm, contact)
     return out
 

@@ -51,32 +51,38 @@ class Loading:
     load: float = 0.0
     weight: float = 0.0
     margin: float = 0.0
+    #: mm of the contact's path per unit of s: 1 for a translating follower, L pi / 180 for an arm of length L
+    #: (whose s is its swing in degrees: the forces then act at the roller's centre along its path)
+    scale: float = 1.0
 
     def still(self, m: np.ndarray) -> np.ndarray:
         """The force (N) at rest: everything but the inertia."""
-        return self.preload + self.rate * m[0] + self.load + self.weight
+        return self.preload + self.rate * self.scale * m[0] + self.load + self.weight
 
     def force(self, m: np.ndarray, omega: float) -> np.ndarray:
         """The force (N) pressing the follower onto the cam at ``omega`` rad/s."""
-        return self.still(m) + self.mass * omega ** 2 * m[2] / 1000.0
+        return self.still(m) + self.mass * omega ** 2 * self.scale * m[2] / 1000.0
 
 
 def loading(mass: float, spring_rate: float | None, preload: float | None, load: float | None = None,
-            orientation: float | None = None, margin: float | None = None) -> Loading:
+            orientation: float | None = None, margin: float | None = None, arm: float | None = None) -> Loading:
     """The loading of a follower table's keys: with no spring (no rate, no preload) gravity holds the follower, its
     rise pointing straight up unless ``orientation`` (degrees from straight up) says otherwise; with a spring its
-    weight counts only when ``orientation`` is given."""
-    gravity = spring_rate is None and preload is None
+    weight counts only when ``orientation`` is given. For an ``arm`` (its length, mm) the mass sits at the roller's
+    centre and the spring and load act there along its path; no weight."""
+    gravity = spring_rate is None and preload is None and arm is None
     tilt = 0.0 if orientation is None and gravity else orientation
     weight = 0.0 if tilt is None else mass * G_MM / 1000.0 * math.cos(math.radians(tilt))
-    return Loading(mass, spring_rate or 0.0, preload or 0.0, load or 0.0, weight, margin or 0.0)
+    scale = 1.0 if arm is None else arm * math.pi / 180.0
+    return Loading(mass, spring_rate or 0.0, preload or 0.0, load or 0.0, weight, margin or 0.0, scale)
 
 
 def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | None,
                  preload: float | None, parabolic: list[tuple[int, float]], load: float | None = None,
                  orientation: float | None = None, margin: float | None = None) -> dict[str, Any]:
     """Peak velocity, acceleration and jerk at ``rpm``; contact with ``mass`` kg, an optional spring (N/mm, N), an
-    external ``load`` (N), the follower's ``orientation`` (degrees from straight up) and a contact ``margin`` (N)."""
+    external ``load`` (N), the follower's ``orientation`` (degrees from straight up) and a contact ``margin`` (N).
+    An oscillating roller's arm carries its mass, spring and load at the roller's centre, along its path."""
     omega = rpm * 2 * math.pi / 60
     unit = cam.follower.lift_unit
     v, a, j = (peak_of(cam, lambda m, k=k: np.abs(m[k])) for k in (1, 2, 3))
@@ -90,12 +96,13 @@ def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | 
     if mass is None:
         out["contact"] = None
         return out
-    if unit != "mm":
-        out["contact"] = {"mode": None, "note": "contact is analysed for translating followers; an oscillating "
-                                                 "arm needs its moment of inertia"}
+    arm = getattr(cam.follower, "arm_length", None) if unit != "mm" else None
+    if unit != "mm" and (arm is None or (spring_rate is None and preload is None and not load)):
+        out["contact"] = {"mode": None, "note": "contact is analysed for translating followers and for an "
+                                                 "oscillating roller's arm held by a spring or a load"}
         return out
-    ld = loading(mass, spring_rate, preload, load, orientation, margin)
-    if spring_rate is None and preload is None and not load and orientation is None and not margin:
+    ld = loading(mass, spring_rate, preload, load, orientation, margin, arm)
+    if arm is None and spring_rate is None and preload is None and not load and orientation is None and not margin:
         decel = peak_of(cam, lambda m: -m[2])                      # largest -s'' (mm/rad^2)
         limit = math.inf if decel.value <= 0 else math.sqrt(G_MM / decel.value) * 60 / (2 * math.pi)
         out["contact"] = {"mode": "gravity", "liftoff_rpm": None if math.isinf(limit) else limit,
@@ -115,16 +122,16 @@ def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> dict[str, Any]:
     big = 1e30
 
     def demand(m: np.ndarray) -> np.ndarray:
-        short = ld.margin - (ld.force(m, omega) - ld.rate * m[0])
+        short = ld.margin - (ld.force(m, omega) - ld.rate * ld.scale * m[0])
         lifted = m[0] > 1e-9 * max(cam.program.max_lift, 1e-300)
-        return np.where(lifted, short / np.where(lifted, m[0], 1.0), np.where(short > 0, big, -big))
+        return np.where(lifted, short / np.where(lifted, ld.scale * m[0], 1.0), np.where(short > 0, big, -big))
 
     worst = peak_of(cam, demand).value
     need_rate = None if worst >= big else max(0.0, worst)
     # lift-off: the force is still(s) + mass omega^2 s'' / 1000, so omega^2 <= 1000 still / (mass * -s'') wherever
     # s'' < 0; the least of that over the cycle (0 if the follower leaves at rest)
     rest = -peak_of(cam, lambda m: -ld.still(m)).value
-    slowest = -peak_of(cam, lambda m: np.where(m[2] < 0, -1000.0 * ld.still(m) / (ld.mass * np.where(
+    slowest = -peak_of(cam, lambda m: np.where(m[2] < 0, -1000.0 * ld.still(m) / (ld.mass * ld.scale * np.where(
         m[2] < 0, -m[2], 1.0)), -big)).value
     liftoff = 0.0 if rest <= 0 else (None if slowest >= big else math.sqrt(max(slowest, 0.0)) * 60 / (2 * math.pi))
     return {"mode": mode, "spring_rate_n_mm": ld.rate, "preload_n": ld.preload, "load_n": ld.load,

@@ -82,8 +82,8 @@ def normal_force(ld: Loading, omega: float, geometry: Any, m: np.ndarray) -> np.
 
 
 def torque(ld: Loading, omega: float, m: np.ndarray) -> np.ndarray:
-    """The torque (N*m) the shaft supplies: F s' / 1000."""
-    return ld.force(m, omega) * m[1] / 1000.0
+    """The torque (N*m) the shaft supplies: F s' / 1000 (s' the contact's path, mm per radian of cam angle)."""
+    return ld.force(m, omega) * ld.scale * m[1] / 1000.0
 
 
 def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) -> dict[str, Any]:

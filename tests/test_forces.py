@@ -25,16 +25,22 @@ def _design(template: Path = RDRD, sets: tuple[str, ...] = LOADED):
     return design_cam(load_spec(template, sets))
 
 
-def test_torque_is_the_moment_of_the_contact_force_about_the_axis():
-    """T = F s' / 1000 (power balance) against the moment of the normal contact force N = F / cos(phi) acting
-    along the profile's normal through the pitch point: T = sense N (p x n) / 1000, both clockwise and not."""
+OSCILLATING = ROOT / "templates" / "oscillating.toml"
+
+
+@pytest.mark.parametrize("template, sets", [(RDRD, LOADED), (OSCILLATING, ("cam.rpm=300", "follower.load=3"))])
+def test_torque_is_the_moment_of_the_contact_force_about_the_axis(template, sets):
+    """T = F s' / 1000 (power balance; an arm's s the roller centre's path, L psi) against the moment of the normal
+    contact force N = F / cos(phi) acting along the profile's normal through the pitch point: T = sense N (p x n) /
+    1000, both clockwise and not, for a translating roller and an oscillating one."""
     for rotation in ("ccw", "cw"):
-        design = _design(sets=(*LOADED, f'cam.rotation="{rotation}"'))
+        design = _design(template, (*sets, f'cam.rotation="{rotation}"'))
         cam, f = design.cam, design.spec.follower
-        ld = loading(f.mass, f.spring_rate, f.preload, f.load)
+        ld = loading(f.mass, f.spring_rate, f.preload, f.load, arm=f.arm_length if f.oscillating else None)
         theta = np.linspace(0.0, 2 * math.pi, 721)[:-1]
         m, g = cam.program.evaluate(theta), cam.pitch(theta)
         omega = 300 * 2 * math.pi / 60
+        assert design.speed["forces"]["torque_max_N_m"] == pytest.approx(torque(ld, omega, m).max(), rel=1e-3)
         moment = normal_force(ld, omega, g, m) * (g.point[:, 0] * g.normal[:, 1] - g.point[:, 1] * g.normal[:, 0])
         by_energy = torque(ld, omega, m)
         assert np.max(np.abs(cam.follower.sense * moment / 1000.0 - by_energy)) < 1e-9 * np.max(np.abs(by_energy))
@@ -140,3 +146,11 @@ def test_a_flat_face_presses_on_the_profiles_radius_alone():
 ])
 def test_bad_values_are_refused_by_name(tmp_path, change, message):
     assert_refused(RDRD, change, message, tmp_path)
+
+
+def test_an_arms_weight_is_refused_and_its_spring_sized_at_the_roller(tmp_path):
+    assert_refused(OSCILLATING, {"follower.orientation": 0}, "follower.orientation: only for a translating", tmp_path)
+    base = ("follower.contact_margin=1",)
+    need = _design(OSCILLATING, base).speed["contact"]["preload_needed_n"]
+    held = _design(OSCILLATING, (*base, f"follower.preload={need!r}")).speed["contact"]
+    assert held["force_min_n"] == pytest.approx(1.0, abs=1e-9)
