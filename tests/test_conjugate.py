@@ -451,3 +451,21 @@ def test_a_cam_reaching_past_the_cranks_pivot_is_warned_of(tmp_path):
         "pass its plane"]
     report, _ = _build(tmp_path / "b", ARM, "output.formats=['json']")
     assert not [w for w in report["warnings"] if "pivot" in w]
+
+
+def test_kerf_moves_both_outlines_out_by_half_of_it(tmp_path):
+    """With a laser's kerf both cut outlines stand half the kerf proud of their exact cams, so each roller, placed
+    by the kinematics, overlaps its cut outline by kerf/2 (within the tolerance) all the way round, and the common
+    bore shrinks by the kerf in both files."""
+    import shapely
+
+    report, out = _build(tmp_path, YOKE, "output.kerf=0.3", "output.formats=['dxf','json']")
+    raw, tol = RAW[YOKE], report["tolerance_mm"]
+    theta = np.radians(np.arange(720) / 2)
+    s = design_cam(validate_spec(raw)).cam.program.evaluate(theta)[0]
+    for which, centre in enumerate(_rollers(raw, s, _place(raw, report))):
+        ring, = _layer(out / f"conjugate-{which + 1}.dxf", "OUTLINE")
+        gap = shapely.distance(shapely.LinearRing(ring), shapely.points(_turn(centre, -theta))) - 8.0
+        assert np.abs(gap + 0.15).max() <= tol, (gap.min(), gap.max())
+        hole, = _layer(out / f"conjugate-{which + 1}.dxf", "HOLES")
+        assert np.hypot(*hole.T).min() == pytest.approx(6.0 - 0.15, abs=1e-9)
