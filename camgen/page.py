@@ -70,8 +70,8 @@ def _svaj(cam: Any, theta: np.ndarray) -> tuple[Plot, ...]:
     return tuple(Plot(title, unit, ((title, motion[k]),)) for k, (title, unit) in enumerate(names))
 
 
-def _checks(cam: Any, theta: np.ndarray, limit: float | None, contact: float) -> tuple[tuple[Plot, ...],
-                                                                                                tuple[str, ...]]:
+def _checks(cam: Any, theta: np.ndarray, limit: float | None,
+            contact: float) -> tuple[tuple[Plot, ...], tuple[str, ...]]:
     """Pressure angle (with its limit) and curvature (with the undercut limit 1/``contact``) against the cam angle;
     a flat face's profile radius instead, with a note."""
     g = cam.pitch(theta)
@@ -85,6 +85,7 @@ def _checks(cam: Any, theta: np.ndarray, limit: float | None, contact: float) ->
 
 
 def _ring(points: np.ndarray) -> np.ndarray:
+    """A flattened outline (n, 2) as floats."""
     return np.asarray(points, dtype=float)
 
 
@@ -191,8 +192,9 @@ def cam_page(design: Any, report: dict[str, Any]) -> Page:
 
 
 def _barrel_page(design: Any, report: dict[str, Any]) -> Page:
-    """A barrel cam's page: its developed drawing (the pitch cylinder unrolled) sliding under the roller, which stands
-    at x = 0 and rides at z = z0 + s; three copies of the drawing keep the groove in view over the turn."""
+    """A barrel cam's page: its developed drawing (the pitch cylinder unrolled, x = Rm theta) sliding under the
+    roller, which stands at x = 0 (an arm's roller where its axis pierces the pitch cylinder, Rm asin(e / Rm)) and
+    rides at its height zc (z0 + s for a translating roller); three copies of the drawing keep the groove in view."""
     spec, cam = design.spec, design.cam
     theta = _theta()
     rm = design.radii[1]
@@ -208,11 +210,10 @@ def _barrel_page(design: Any, report: dict[str, Any]) -> Page:
         for k in (-1, 0, 1):
             outlines.append(Outline(ring + [k * length, 0.0], styles.get(layer, "path"), closed))
     x = rm * theta
-    sense = cam.follower.sense if hasattr(cam.follower, "sense") else 1
-    shift = np.column_stack([-sense * x, np.zeros_like(x)])
+    shift = np.column_stack([-x, np.zeros_like(x)])
     body = Body("developed cylinder", tuple(outlines), pose_motion(np.zeros_like(x), shift))
-    z = design.walls.z0 + cam.program.evaluate(theta)[0]
-    centre = np.column_stack([np.zeros_like(z), z])
+    pose = design.walls.pose(theta)              # the roller axis's height zc and tangential offset e (an arm's)
+    centre = np.column_stack([rm * np.arcsin(np.clip(pose[3] / rm, -1.0, 1.0)), pose[0]])
     roller = float(spec.follower.roller_radius)
     movers = (Mover("roller", centre[:, None, :], "roller", roller),)
     top = float(spec.cam.length)
