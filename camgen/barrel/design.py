@@ -99,6 +99,13 @@ class BarrelDesign:
     def _repr_svg_(self) -> str:
         return self.drawing._repr_svg_()
 
+    def _repr_html_(self) -> str | None:
+        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        from camgen.barrel.outputs import barrel_bundle
+        from camgen.core.page import bundle_frame
+
+        return bundle_frame(barrel_bundle(self)[0])
+
 
 def _developed_cam(cam: Cam, radius: float, cutter: float, z0: float, arm: Arm | None) -> Cam:
     """The program developed on the cylinder of ``radius``: a plate cam of travel 2 pi radius, roller ``cutter``;

@@ -2,7 +2,8 @@
 
 Names: ``<name>-developed.dxf`` and ``<name>-developed.svg`` (the pitch cylinder unrolled: a template to check
 or to wrap round a turned cylinder), ``<name>.stl`` and ``<name>.3mf`` (the cylinder with its bore and groove),
-``<name>.json``, ``<name>-svaj.png|svg`` and ``<name>-cam.png|svg`` (the developed drawing).
+``<name>.json``, ``<name>-svaj.png|svg`` and ``<name>-cam.png|svg`` (the developed drawing), ``<name>.html`` (the
+interactive page: the developed drawing running under the roller).
 """
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from camgen.barrel.design import BarrelDesign
 from camgen.core import VERSION
 from camgen.core.bundle import Bundle, Report, item
 from camgen.core.errors import ExportError
+from camgen.page import cam_page
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:
@@ -157,5 +159,6 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
                                               ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
           for kind in ("svaj", "cam")),
         item(Report(report), [("json", "json", f"{name}.json")], formats),
+        item(lambda: cam_page(design, report), [("html", "html", f"{name}.html")], formats),
     ]
     return Bundle.of(items, out.write_options), report
