@@ -525,7 +525,7 @@ svg.scene{width:100%;height:auto;max-height:70vh;display:block;background:#fff}
 svg.scene path,svg.scene polyline,svg.scene polygon,svg.scene circle{vector-effect:non-scaling-stroke;
 stroke-width:1.5px;stroke-linejoin:round;fill:none}
 .part{fill:#d9e6f2!important;stroke:#1f4e79}.hole{fill:#fff!important;stroke:#1f4e79}
-.groove{fill:#f3c6f3!important;stroke:#a020a0}.wall{stroke:#a020a0}.island{fill:#d9e6f2!important;stroke:#1f4e79}
+.groove{fill:#f3c6f3!important;stroke:#a020a0}.second{fill:rgba(253,208,162,.6)!important;stroke:#e6550d}.wall{stroke:#a020a0}.island{fill:#d9e6f2!important;stroke:#1f4e79}
 .pitch{stroke:#888;stroke-dasharray:4 3}.path{stroke:#999}.tracer{stroke:#d62728!important;stroke-width:1px!important}
 .ground{fill:#ccc!important;stroke:#444}.guide{stroke:#444;stroke-dasharray:6 3}.wheel{fill:#cfe3f7!important;
 stroke:#1f77b4}.lock{fill:#fde0c2!important;stroke:#e6550d}.crank{stroke:#666;stroke-dasharray:3 2}
