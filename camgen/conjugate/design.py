@@ -261,6 +261,13 @@ class ConjugateDesign:
     def second(self) -> Cam:
         return self.cams[1].cam
 
+    def _repr_html_(self) -> str | None:
+        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        from camgen.conjugate.outputs import conjugate_bundle
+        from camgen.core.page import bundle_frame
+
+        return bundle_frame(conjugate_bundle(self)[0])
+
     @property
     def analysis(self) -> CamAnalysis:
         return self.cams[0].analysis

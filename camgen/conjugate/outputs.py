@@ -5,7 +5,8 @@ Names: ``<name>-1.dxf``, ``<name>-2.dxf`` and their ``-cut.svg`` (each cam on ``
 keyway on ``HOLES``, its name, the sense of rotation and the theta = 0 tick on ``ENGRAVE``; kerf applied),
 ``<name>-1.stl|3mf`` and ``<name>-2.stl|3mf`` (clearance applied), ``<name>.json``, ``<name>-svaj.png|svg`` (the
 follower's motion, which both cams share) and ``<name>-assembly.png|svg`` (both cams, both rollers and the
-follower at theta = 0, and both pressure angles over the turn). Only the formats ``output.formats`` asks for are
+follower at theta = 0, and both pressure angles over the turn), ``<name>.html`` (the interactive page: both cams
+turning under their rollers). Only the formats ``output.formats`` asks for are
 made; nothing is written if any file fails.
 """
 from __future__ import annotations
@@ -21,6 +22,7 @@ from camgen.core.bundle import Bundle, Report, item
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.parts import Drawing
 from camgen.outputs import printed_mesh
+from camgen.page import cam_page
 from camgen.report import cam_report
 
 #: the keys of a disc cam's report that each cam of the pair has of its own (the rest they share)
@@ -226,4 +228,5 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
                                                   ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
               for kind in ("svaj", "assembly")]
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
+    items.append(item(lambda: cam_page(design, report), [("html", "html", f"{name}.html")], formats))
     return Bundle.of(items, out.write_options), report
