@@ -19,7 +19,9 @@ TEMPLATES = ROOT / "templates"
 #: (program, command, template) of each kind of page
 KINDS = [("camgen", "build", "rdrd"), ("camgen", "build", "oscillating"), ("camgen", "build", "flat-face"),
          ("camgen", "build", "plate"), ("camgen", "build", "grooved"), ("camgen", "build", "barrel"),
-         ("camgen", "build", "geneva4"), ("linkgen", "analyze", "crank-rocker"), ("linkgen", "analyze", "slider-crank"),
+         ("camgen", "build", "geneva4"), ("camgen", "build", "conjugate"), ("camgen", "build", "conjugate-arm"),
+         ("camgen", "build", "barrel-oscillating"),
+         ("linkgen", "analyze", "crank-rocker"), ("linkgen", "analyze", "slider-crank"),
          ("linkgen", "analyze", "jansen"), ("linkgen", "analyze", "hoekens")]
 PROGRAMS = {"camgen": camgen_main, "linkgen": linkgen_main}
 
@@ -103,6 +105,17 @@ def test_an_oscillating_followers_arm_keeps_its_length(tmp_path):
     length = np.linalg.norm(arm[:, 1] - arm[:, 0], axis=1)
     assert length == pytest.approx(report["follower"]["arm_length_mm"], abs=2e-3)
     assert arm[:, 0] == pytest.approx(np.broadcast_to(report["follower"]["pivot_mm"], (360, 2)), abs=1e-3)
+
+
+def test_a_conjugate_pairs_rollers_keep_the_yoke_span(tmp_path):
+    """conjugate.toml: both rollers on the follower's line, yoke_span_mm apart at every frame, on the cams' pitch
+    curves (each cam turning with the shaft)."""
+    text, report = build(tmp_path, "camgen", "build", "conjugate", 'output.formats=["json", "html"]')
+    movers = page_data(text)["scenes"][0]["movers"]
+    one, two = (np.array(m["d"], dtype=float).reshape(360, 2) for m in movers if m["r"])
+    span = report["follower"]["second_roller"]["yoke_span_mm"]
+    assert np.linalg.norm(one - two, axis=1) == pytest.approx(span, abs=2e-3)
+    assert one[:, 0] == pytest.approx(report["follower"]["offset_mm"], abs=1e-3)     # on the follower's axis
 
 
 @pytest.mark.parametrize("name", ["crank-rocker", "jansen"])

@@ -25,7 +25,8 @@ SHOTS = ROOT / "out" / "pages"
 #: (program, command, template, degrees the slider is moved by): every kind of page
 PAGES = [("camgen", "build", "rdrd", 90), ("camgen", "build", "oscillating", 90), ("camgen", "build", "flat-face", 90),
          ("camgen", "build", "plate", 90), ("camgen", "build", "grooved", 90), ("camgen", "build", "barrel", 90),
-         ("camgen", "build", "geneva4", 180), ("linkgen", "analyze", "crank-rocker", 90),
+         ("camgen", "build", "geneva4", 180), ("camgen", "build", "conjugate-arm", 90),
+         ("linkgen", "analyze", "crank-rocker", 90),
          ("linkgen", "analyze", "slider-crank", 90), ("linkgen", "analyze", "jansen", 90)]
 
 
