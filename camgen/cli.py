@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, set_option, template_options,
+from camgen.core.cli import (Commands, add_bench, add_family, add_new, set_option, template_options,
                              user_errors)
 
 
@@ -136,6 +136,9 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
 add_family(main, "camgen.spec:validate_spec", "camgen.outputs:build_member",
            "Build every member of the family a TEMPLATE's [sweep] table describes; "
            "re-running resumes.")
+
+
+add_new(main, "camgen.starters:starter", "camgen.starters:STARTERS", "camgen")
 
 
 add_bench(main, "camgen.bench:run_bench", Path("out/bench"),

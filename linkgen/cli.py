@@ -8,8 +8,8 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, fixed, output_option, set_option, template_argument,
-                             template_options, user_errors)
+from camgen.core.cli import (Commands, add_bench, add_family, add_new, fixed, output_option, set_option,
+                             template_argument, template_options, user_errors)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -117,6 +117,9 @@ def _print_synthesis(summary: dict[str, Any]) -> None:
 add_family(main, "linkgen.spec:validate_spec", "linkgen.outputs:build_member",
            "Analyze (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes; "
            "re-running resumes.")
+
+
+add_new(main, "linkgen.starters:starter", "linkgen.starters:STARTERS", "linkgen")
 
 
 add_bench(main, "linkgen.bench:run_bench", Path("out/linkgen-bench"),

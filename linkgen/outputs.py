@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
-from camgen.core.errors import ExportError
+from camgen.core.errors import ExportError, SpecError
 from linkgen.design import LinkageDesign, design_linkage
 from linkgen.parts import LinkageBuild
 from linkgen.spec import validate_spec
@@ -70,6 +70,10 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
             inner, outer = build.spacer_diameters
             for run in sorted({run for _, _, run in build.spacers}):
                 meshes.append((f"spacer-{run}", spacer(inner, outer, run * table.thickness, table.tolerance)))
+        names = [part_name for part_name, _ in meshes]
+        for part_name in {n for n in names if names.count(n) > 1}:
+            raise SpecError(f"a part named {part_name!r} would share its files with the printable {part_name}; "
+                            "rename its link or slider", "parts.pins")
         for part_name, mesh in meshes:
             if not check_mesh(mesh).ok:
                 raise ExportError(f"{name}-{part_name}: the mesh is not a closed outward solid")

@@ -156,6 +156,45 @@ def add_bench(group: click.Group, run: str, default: Path, what: str) -> None:
         click.echo(f"{len(results['hard_cases'])} hard cases, {len(wrong)} wrong")
 
 
+def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
+    """Give ``group`` a ``new [KIND] [-o FILE]`` command writing the starter template ``starter(kind, name)`` (a
+    ``"module:function"`` name; ``kinds`` names the mapping of kinds to (what, tables)); without KIND it lists
+    them. An existing file is never overwritten."""
+    @group.command(name="new", help=f"Write a commented starter template of KIND that `{program} build` takes as it "
+                                    "is (without KIND: list the kinds).")
+    @click.argument("kind", required=False)
+    @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=None,
+                  help="The template to write (default: KIND.toml here); its name is the file's.")
+    @user_errors
+    def new(kind: str | None, output: Path | None) -> None:
+        import re
+
+        from camgen.core.errors import SpecError
+        from camgen.core.spec import NAME_PATTERN
+
+        if kind is None:
+            for name, (what, _) in _named(kinds).items():
+                click.echo(f"{name:<20} {what.splitlines()[0]}")
+            return
+        path = output if output is not None else Path(f"{kind}.toml")
+        if not re.match(NAME_PATTERN, path.stem):
+            raise SpecError(f"{path.stem!r} cannot name a template: letters, digits, '.', '_' and '-'", "--output")
+        text = _named(starter)(kind, path.stem)
+        if path.exists():
+            raise SpecError(f"{path} exists; give another file", "--output")
+        if not path.parent.is_dir():
+            raise SpecError(f"no folder {path.parent}", "--output")
+        temp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+        temp.write_text(text, encoding="utf-8")
+        try:
+            os.link(temp, path)                          # fails if the file appeared meanwhile: never overwrites
+        except FileExistsError:
+            raise SpecError(f"{path} exists; give another file", "--output") from None
+        finally:
+            temp.unlink()
+        click.echo(f"wrote {path}")
+
+
 def report_family(rows: list[dict], output: Path) -> None:
     """Print a family run's outcome: counts, where the summary is, and each failure with its reason."""
     ok = sum(r["status"] == "ok" for r in rows)

@@ -1,0 +1,61 @@
+"""Starter templates (``camgen new``, ``linkgen new``): a template as TOML text, each key commented with what its
+field means and its unit, read from the template's own models (so the comments say what validation says).
+
+A starter is a header (comment lines) and tables in order: ``("", {...})`` for top-level keys,
+``("cam", {...})`` for ``[cam]``, ``("[motion]", {...})`` for one ``[[motion]]`` entry,
+``("linkage.joints", {...})`` for a nested table. ``models`` maps a table's name (without
+brackets) to the pydantic model whose fields describe its keys.
+"""
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+#: the column comments start at
+COMMENT_COLUMN = 28
+
+
+def toml_value(value: Any) -> str:
+    """``value`` (bool, int, float, str, list, or a mapping for an inline table) as TOML."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, str):
+        return json.dumps(value)
+    if isinstance(value, Mapping):
+        return "{ " + ", ".join(f"{k} = {toml_value(v)}" for k, v in value.items()) + " }"
+    return "[" + ", ".join(toml_value(v) for v in value) + "]"
+
+
+def field_comment(model: Any, key: str) -> str | None:
+    """What field ``key`` of ``model`` means, with its unit (``mm: base circle radius``); None if it has none."""
+    fields = getattr(model, "model_fields", {})
+    info = fields.get(key)
+    if info is None or not info.description:
+        return None
+    extra = info.json_schema_extra if isinstance(info.json_schema_extra, dict) else {}
+    unit = extra.get("unit")
+    return f"{unit}: {info.description}" if unit else info.description
+
+
+def render(header: str, tables: Sequence[tuple[str, Mapping[str, Any]]], models: Mapping[str, Any],
+           notes: Mapping[str, str] | None = None) -> str:
+    """The template's TOML text: ``header`` as comment lines, then each table with its keys commented from
+    ``models`` (``notes`` gives a comment of its own for a ``table.key``, and one under a table's heading)."""
+    notes = notes or {}
+    lines = [f"# {line}".rstrip() for line in header.strip().splitlines()]
+    for name, keys in tables:
+        table = name.strip("[]")
+        if name:
+            lines += ["", f"[{name}]"]                   # "[motion]" makes [[motion]], an entry of a list
+            if table in notes:
+                lines.append(f"# {notes[table]}")
+        for key, value in keys.items():
+            text = f"{key} = {toml_value(value)}"
+            comment = notes.get(f"{table}.{key}" if table else key) or field_comment(models.get(table), key)
+            lines.append(f"{text.ljust(COMMENT_COLUMN - 1)} # {comment}" if comment else text)
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,59 @@
+"""Starter templates for ``linkgen new KIND``: one for each mechanism type, with its parts (Whitworth's only
+analysed: its parts cannot be stacked), every key commented from the template's models
+(:mod:`camgen.core.starter`); each analyses and builds as it is."""
+from __future__ import annotations
+
+from typing import Any
+
+from camgen.core.options import choose
+from camgen.core.starter import render
+from linkgen.mechanisms import MECHANISMS
+from linkgen.spec import PartsTable
+
+PARTS = ("parts", {"width": 12.0, "thickness": 4.0, "pin_diameter": 4.0, "clearance": 0.2, "kerf": 0.15,
+                   "sheet": [600.0, 400.0], "pins": True})
+NOTES = {"linkage.type": "the mechanism; `linkgen new` lists them all",
+         "linkage.joints": "each joint's place in the drawing [x, y], mm",
+         "linkage.links": "each moving link and the joints it holds (three or more: a plate)"}
+
+#: kind -> (what it is, its tables)
+STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
+    "four-bar": ("A crank-rocker four-bar with a coupler point tracing a loop.", [
+        ("linkage", {"type": "four-bar", "ground": 150.0, "crank": 45.0, "coupler": 135.0, "rocker": 105.0,
+                     "point_distance": 60.0, "point_angle": 30.0, "rpm": 60.0}), PARTS]),
+    "slider-crank": ("A slider-crank: a crank drives a slider through a connecting rod.", [
+        ("linkage", {"type": "slider-crank", "crank": 50.0, "rod": 200.0, "offset": 20.0, "rpm": 120.0}), PARTS]),
+    "scotch-yoke": ("A scotch yoke: a pin on the crank slides in a yoke, which moves in pure harmonic motion.", [
+        ("linkage", {"type": "scotch-yoke", "crank": 40.0, "rpm": 60.0}), PARTS]),
+    "whitworth": ("Whitworth's quick return: a slotted link turning fully drives a ram (analysed; no parts).", [
+        ("linkage", {"type": "whitworth", "crank": 60.0, "ground": 30.0, "arm": 50.0, "rod": 150.0, "rpm": 30.0})]),
+    "crank-shaper": ("The crank-shaper quick return: a crank swings a slotted lever that drives a ram.", [
+        ("linkage", {"type": "crank-shaper", "crank": 50.0, "ground": 150.0, "lever": 250.0, "rpm": 30.0}), PARTS]),
+    "chebyshev": ("Chebyshev's straight-line linkage in its canonical proportions.", [
+        ("linkage", {"type": "chebyshev", "size": 40.0}), PARTS]),
+    "hoekens": ("Hoekens' straight-line linkage in its canonical proportions.", [
+        ("linkage", {"type": "hoekens", "size": 40.0}), PARTS]),
+    "roberts": ("Roberts' straight-line linkage in its canonical proportions.", [
+        ("linkage", {"type": "roberts", "size": 40.0}), PARTS]),
+    "watt": ("Watt's straight-line linkage in its canonical proportions.", [
+        ("linkage", {"type": "watt", "size": 60.0}), PARTS]),
+    "linkage": ("Any planar linkage, drawn: here a crank-rocker whose coupler is a plate carrying the point P.\n"
+                "Add joints and links (a dyad at a time) to make six-bars, legs and presses.", [
+        ("linkage", {"type": "linkage", "ground": ["O", "Q"], "input": {"link": "crank", "pivot": "O"},
+                     "tracers": ["P"], "rpm": 60.0}),
+        ("linkage.joints", {"O": [0.0, 0.0], "Q": [150.0, 0.0], "A": [0.0, 45.0], "B": [122.664, 101.379],
+                            "P": [34.685, 93.959]}),
+        ("linkage.links", {"crank": ["O", "A"], "coupler": ["A", "B", "P"], "rocker": ["Q", "B"]}),
+        PARTS]),
+}
+
+
+def starter(kind: str, name: str) -> str:
+    """The starter template of ``kind`` (a mechanism type) named ``name``, as TOML text; a one-line
+    :class:`~camgen.core.errors.SpecError` naming ``KIND`` for another."""
+    what, tables = STARTERS[choose(kind, STARTERS, "KIND")]
+    build = "" if kind == "whitworth" else f"\nCut and print its parts with:  linkgen build {name}.toml"
+    header = (f"{what}\nAnalyse it with:  linkgen analyze {name}.toml   (files land in out/{name}/){build}\n"
+              "Every key is explained in the README's key tables; --set KEY=VALUE changes one for a run.")
+    models = {"linkage": MECHANISMS[kind].table, "parts": PartsTable}
+    return render(header, [("", {"name": name}), *tables], models, NOTES)
