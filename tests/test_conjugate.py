@@ -469,3 +469,14 @@ def test_kerf_moves_both_outlines_out_by_half_of_it(tmp_path):
         assert np.abs(gap + 0.15).max() <= tol, (gap.min(), gap.max())
         hole, = _layer(out / f"conjugate-{which + 1}.dxf", "HOLES")
         assert np.hypot(*hole.T).min() == pytest.approx(6.0 - 0.15, abs=1e-9)
+
+
+@pytest.mark.parametrize("template, setting, remedy", [
+    (YOKE, "cam.yoke_span=100", "lengthen cam.yoke_span"), (YOKE, "cam.second_base_radius=19", "enlarge "
+                                                                      "cam.second_base_radius"),
+    (ARM, "cam.arm_angle=60", "widen cam.arm_angle")])
+def test_a_steep_second_cam_is_warned_of_in_the_templates_terms(template, setting, remedy, tmp_path):
+    """A second cam over the pressure-angle limit is a warning naming the key that sizes it in the template."""
+    report, _ = _build(tmp_path, template, setting, "output.formats=['json']")
+    (warning,) = [w for w in report["warnings"] if w.startswith("cam 2: pressure angle")]
+    assert warning.endswith(f"limit: {remedy} or lengthen the segment")

@@ -302,9 +302,20 @@ def _undercut_message(spec: CamSpec, cams: tuple[Cam, Cam], which: int, a: CamAn
     best = largest_pair_roller(spec, second_base)
     fits = (f"the largest roller that fits both cams is {best:.4g} mm" if best is not None
             else "no roller fits these base circles")
-    larger = "cam.base_radius" if which == 0 else "cam.second_base_radius"
+    larger = _enlarge(spec, which)
     return (where + f"its pitch curve's radius of curvature is {a.pitch_rho_min_mm:.4g} mm, smaller than "
-            f"follower.roller_radius {cam.contact_radius:.4g} mm; {fits} (or enlarge {larger})")
+            f"follower.roller_radius {cam.contact_radius:.4g} mm; {fits} (or {larger})")
+
+
+def _enlarge(spec: CamSpec, which: int) -> str:
+    """How to enlarge cam ``which``'s base circle, in the template's terms."""
+    if which == 0:
+        return "enlarge cam.base_radius"
+    if spec.cam.yoke_span is not None:
+        return "lengthen cam.yoke_span"
+    if spec.cam.arm_angle is not None:
+        return "widen cam.arm_angle"
+    return "enlarge cam.second_base_radius"
 
 
 def _drives_back(spec: CamSpec, first: Cam, a: CamAnalysis) -> None:
@@ -365,10 +376,10 @@ def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: 
 def _warnings(spec: CamSpec, designs: tuple[CamDesign, CamDesign], limit: float) -> tuple[str, ...]:
     out = []
     for which, d in enumerate(designs):
-        a, key = d.analysis, ("cam.base_radius", "cam.second_base_radius")[which]
+        a, key = d.analysis, _enlarge(spec, which)
         if a.pressure_angle_max_deg > limit:
             out.append(f"cam {which + 1}: pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
-                       f"{a.pressure_angle_max_at_deg:.2f} degrees), above the {limit:g} degree limit: enlarge {key} "
+                       f"{a.pressure_angle_max_at_deg:.2f} degrees), above the {limit:g} degree limit: {key} "
                        "or lengthen the segment")
         if spec.cam.bore > 0 and d.wall_mm < THIN_WALL:
             out.append(f"cam {which + 1}: only {d.wall_mm:.3g} mm of material between the bore and the outline")
