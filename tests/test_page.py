@@ -26,14 +26,23 @@ KINDS = [("camgen", "build", "rdrd"), ("camgen", "build", "oscillating"), ("camg
 PROGRAMS = {"camgen": camgen_main, "linkgen": linkgen_main}
 
 
+#: builds already made in this process: (program, command, name, sets) -> (page, report)
+_BUILT: dict[tuple, tuple[str, dict]] = {}
+
+
 def build(tmp_path, program: str, command: str, name: str, *sets: str) -> tuple[str, dict]:
-    """Run the command on a bundled template into ``tmp_path``; the page's text and the JSON report."""
-    args = [command, str(TEMPLATES / f"{name}.toml"), "-o", str(tmp_path)]
-    for s in sets:
-        args += ["--set", s]
-    result = CliRunner().invoke(PROGRAMS[program], args)
-    assert result.exit_code == 0, result.output
-    return (tmp_path / f"{name}.html").read_text(encoding="utf-8"), json.loads((tmp_path / f"{name}.json").read_text())
+    """Run the command on a bundled template into ``tmp_path`` (once a process for the same arguments); the page's
+    text and the JSON report."""
+    key = (program, command, name, sets)
+    if key not in _BUILT:
+        args = [command, str(TEMPLATES / f"{name}.toml"), "-o", str(tmp_path)]
+        for s in sets:
+            args += ["--set", s]
+        result = CliRunner().invoke(PROGRAMS[program], args)
+        assert result.exit_code == 0, result.output
+        _BUILT[key] = ((tmp_path / f"{name}.html").read_text(encoding="utf-8"),
+                       json.loads((tmp_path / f"{name}.json").read_text()))
+    return _BUILT[key]
 
 
 def page_data(text: str) -> dict:

@@ -64,8 +64,9 @@ def test_the_page_runs_in_chromium(browser, tmp_path, program, command, name, tu
     from selenium.webdriver.common.by import By
     from selenium.webdriver.common.keys import Keys
 
-    build(tmp_path, program, command, name, 'output.formats=["json", "html"]')
-    browser.get((tmp_path / f"{name}.html").as_uri())
+    page = tmp_path / f"{name}.html"
+    page.write_text(build(tmp_path, program, command, name, 'output.formats=["json", "html"]')[0], encoding="utf-8")
+    browser.get(page.as_uri())
     assert browser.execute_script("return window.camgenPage && window.camgenPage.frames") == 360
     errors = [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "WARNING")]
     assert errors == []
@@ -97,8 +98,9 @@ def test_play_runs_the_mechanism(browser, tmp_path):
     from selenium.webdriver.common.by import By
     from selenium.webdriver.support.ui import WebDriverWait
 
-    build(tmp_path, "camgen", "build", "rdrd", 'output.formats=["json", "html"]')
-    browser.get((tmp_path / "rdrd.html").as_uri())
+    page = tmp_path / "rdrd.html"
+    page.write_text(build(tmp_path, "camgen", "build", "rdrd", 'output.formats=["json", "html"]')[0], encoding="utf-8")
+    browser.get(page.as_uri())
     play = browser.find_element(By.ID, "play")
     slider = browser.find_element(By.ID, "frame")
     play.click()
