@@ -161,6 +161,9 @@ class FollowerTable(Model):
     material: Material = Field("steel", description="the roller's (or face's) material, for the contact pressure")
     roller_width: float | None = length("the roller's width along its axis (default: the cam's thickness)", None,
                                         le=1000.0)
+    roller_shape: Literal["cylindrical", "conical"] = Field(
+        "cylindrical", description="barrel cam: the roller's shape, a cylinder or a cone with its apex on the cam's "
+        "axis")
 
     @model_validator(mode="after")
     def _keys_fit_type(self) -> "FollowerTable":
@@ -168,7 +171,8 @@ class FollowerTable(Model):
         for key in sorted(needs):
             if getattr(self, key) is None:
                 raise ValueError(f"{key}: required for a {self.type} follower")
-        for key in sorted(self.model_fields_set - needs - takes - DYNAMIC_KEYS - {"type"}):
+        rolls = {"roller_shape"} if "roller_radius" in needs else set()         # refused by the flat kinds
+        for key in sorted(self.model_fields_set - needs - takes - DYNAMIC_KEYS - rolls - {"type"}):
             allowed = ", ".join(sorted(needs | takes)) or "none"
             raise ValueError(f"{key}: not used by a {self.type} follower (its keys: {allowed})")
         return self

@@ -166,7 +166,7 @@ def test_pressure_angle_in_3d_against_finite_differences():
         fd = np.maximum(*angles)
         from camgen.barrel.design import _developed_cam
 
-        developed = _developed_cam(design.cam, r, design.cutter, design.walls.z0, design.walls.arm)
+        developed = _developed_cam(design.cam, r, design.walls)
         exact = np.abs(developed.pitch(theta).pressure_angle)
         moving = np.abs(design.cam.program.evaluate(theta)[1]) > 1e-2       # finite differences of a path
         assert np.abs(exact - fd)[moving].max() < 1e-6, (name, np.abs(exact - fd)[moving].max())  # starting to move

@@ -9,6 +9,11 @@ on the cylinders from the floor to the rim, and refused, naming the wall, the an
 radius of curvature falls below Rw. The solid's walls are the exact envelope of the roller (see
 :mod:`camgen.barrel.walls`), measured within the tolerance (:mod:`camgen.barrel.solid`).
 
+An oscillating roller's developed curve on each cylinder is where its axis pierces it, and its pressure angle the
+3D one (:class:`~camgen.followers.barrel.DevelopedRoller`); a conical roller's cutter there has the cone's radius
+(grown by c/2). The roller's rolling slip at the floor and the rim is reported for either shape
+(:func:`rolling_slips`).
+
 The developed drawing (for checking, and to wrap round a turned cylinder as a paper template): the pitch
 cylinder unrolled, 2 pi Rm by the length on ``OUTLINE``, the exact walls at Rm on ``GROOVE`` and the pitch
 curve on ``PITCH``, as chords within the tolerance; x runs with the program (the way the roller travels over
@@ -32,7 +37,7 @@ from camgen.core.features import keyed_bore
 from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
 from camgen.core.shapes import Circle, Contour, Polyline
 from camgen.dynamics import speed_report
-from camgen.followers.barrel import Arm, DevelopedRoller
+from camgen.followers.barrel import DevelopedRoller, rolling_slip, translating_pose
 from camgen.followers.plate import PlateRoller
 from camgen.grooved.design import Flank, flank_checks
 from camgen.kinds import barrel as barrel_kind
@@ -74,6 +79,7 @@ class BarrelDesign:
     tube: Tube | None              # the groove's cutter (None until a solid is asked for)
     speed: dict[str, Any] | None
     warnings: tuple[str, ...]
+    slip: dict[str, float] | None = None       # the roller's largest rolling slip (percent) at the floor and the rim
 
     @property
     def tolerance(self) -> float:
@@ -84,10 +90,11 @@ class BarrelDesign:
         """Rw = Rr + c/2 (mm): the radius the groove is cut with."""
         return self.walls.cutter
 
-    def with_solid(self) -> "BarrelDesign":
-        """The same design with the groove's cutter made (:func:`camgen.barrel.solid.groove_tube`)."""
+    def with_solid(self, phase: float = 0.0) -> "BarrelDesign":
+        """The same design with the groove's cutter made (:func:`camgen.barrel.solid.groove_tube`, its loops
+        ``phase`` of a step round)."""
         inner, _, outer = self.radii
-        return dataclasses.replace(self, tube=groove_tube(self.walls, inner, outer, self.tolerance))
+        return dataclasses.replace(self, tube=groove_tube(self.walls, inner, outer, self.tolerance, phase))
 
     def thumbnail(self, tolerance: float) -> np.ndarray:
         """The developed groove as a closed ring (mm, points within about ``tolerance``), for a family's overview:
@@ -107,23 +114,43 @@ class BarrelDesign:
         return bundle_frame(barrel_bundle(self)[0])
 
 
-def _developed_cam(cam: Cam, radius: float, cutter: float, z0: float, arm: Arm | None) -> Cam:
-    """The program developed on the cylinder of ``radius``: a plate cam of travel 2 pi radius, roller ``cutter``;
-    for an ``arm``, the curve its roller's axis pierces there (:class:`~camgen.followers.barrel.DevelopedRoller`)."""
-    if arm is not None:
-        return dataclasses.replace(cam, follower=DevelopedRoller(arm, radius, cutter))
-    return dataclasses.replace(cam, follower=PlateRoller(z0 - cutter, cutter, 2 * math.pi * radius))
+def _developed_cam(cam: Cam, radius: float, walls: GrooveWalls) -> Cam:
+    """The program developed on the cylinder of ``radius``: a plate cam of travel 2 pi radius whose roller is the
+    cutter there; for an arm, the curve its roller's axis pierces there
+    (:class:`~camgen.followers.barrel.DevelopedRoller`)."""
+    if walls.arm is not None:
+        return dataclasses.replace(cam, follower=DevelopedRoller(walls.arm, radius, walls.r0, walls.taper))
+    cutter = walls.r0 + walls.taper * radius
+    return dataclasses.replace(cam, follower=PlateRoller(walls.z0 - cutter, cutter, 2 * math.pi * radius))
 
 
-def _wall_checks(cam: Cam, radii: np.ndarray, cutter: float, z0: float,
-                 arm: Arm | None) -> tuple[WallCheck, WallCheck]:
+def _wall_checks(cam: Cam, radii: np.ndarray, walls: GrooveWalls) -> tuple[WallCheck, WallCheck]:
     """Both walls' checks over ``radii``: the worst (smallest radius of curvature) of each."""
     worst: list = [None, None]
-    for r in radii:
-        for k, flank in enumerate(flank_checks(_developed_cam(cam, r, cutter, z0, arm), cutter)):
+    for r in map(float, radii):
+        developed = _developed_cam(cam, r, walls)
+        for k, flank in enumerate(flank_checks(developed, developed.contact_radius)):
             if worst[k] is None or flank.pitch_rho_min_mm < worst[k].flank.pitch_rho_min_mm:
-                worst[k] = WallCheck(dataclasses.replace(flank, side=("lower wall", "upper wall")[k]), float(r))
+                worst[k] = WallCheck(dataclasses.replace(flank, side=("lower wall", "upper wall")[k]), r)
     return worst[0], worst[1]
+
+
+def rolling_slips(walls: GrooveWalls, roller: float, radii: tuple[float, float, float]) -> dict[str, float]:
+    """The roller's largest slip (percent of the cam's surface speed) along the way it rolls, at the floor and at the
+    rim, over the cycle and both walls, rolling without slip on the pitch cylinder (see
+    :func:`camgen.followers.barrel.rolling_slip`); ``roller`` is Rr."""
+    r0 = roller - walls.taper * radii[1]            # the roller itself: Rr on the pitch cylinder, no clearance
+    program = walls.program
+
+    def worst(radius: float) -> float:
+        def slip(i: int, t: np.ndarray) -> np.ndarray:
+            m = program.segments[i].evaluate(t)
+            pose = translating_pose(m, walls.z0) if walls.arm is None else walls.arm.pose(m)
+            return np.maximum(*(np.abs(rolling_slip(pose, radius, radii[1], r0, walls.taper, side))
+                                for side in (-1, 1)))
+        return 100 * program.peak(slip)[0]
+
+    return {"floor": worst(radii[0]), "rim": worst(radii[2])}
 
 
 def _undercut_message(check: WallCheck) -> str:
@@ -202,15 +229,15 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
     cam = build_cam(spec)
     rm, depth, tol = spec.cam.pitch_radius, spec.cam.groove_depth, spec.output.tolerance
     radii = (rm - depth / 2, rm, rm + depth / 2)
-    cutter, z0, arm = barrel_kind.cutter(spec), barrel_kind.rest_height(spec), barrel_kind.arm(spec)
-    checks = _wall_checks(cam, np.linspace(radii[0], radii[2], CHECK_RADII), cutter, z0, arm)
+    walls = GrooveWalls(cam.program, barrel_kind.rest_height(spec), barrel_kind.cutter(spec),
+                        1 if spec.cam.rotation == "ccw" else -1, barrel_kind.arm(spec), barrel_kind.taper(spec), rm)
+    checks = _wall_checks(cam, np.linspace(radii[0], radii[2], CHECK_RADII), walls)
     for check in sorted(checks, key=lambda c: c.flank.rho_min_mm):      # the worse wall first (stable: ties, lower)
         if check.flank.undercut:
             raise DesignError(_undercut_message(check))
     a = analyze(cam)
-    pressure = {name: analyze(_developed_cam(cam, r, cutter, z0, arm)).pressure_angle_max_deg
+    pressure = {name: analyze(_developed_cam(cam, r, walls)).pressure_angle_max_deg
                 for name, r in zip(("floor", "pitch", "rim"), radii, strict=True)}
-    walls = GrooveWalls(cam.program, z0, cutter, 1 if spec.cam.rotation == "ccw" else -1, arm)
     drawing, error = _drawing(spec, walls, tol)
     bore = spec.cam.bore
     grow = spec.output.clearance / 2
@@ -228,4 +255,4 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
                         f"({a.pressure_angle_max_deg:.2f} at the pitch cylinder), above the {limit:g} degree limit: "
                         "a larger cam.pitch_radius or a longer segment lowers it")
     return BarrelDesign(spec, cam, a, jumps, walls, radii, checks, pressure, drawing, error, blank, None, speed,
-                        tuple(warnings))
+                        tuple(warnings), rolling_slips(walls, spec.follower.roller_radius, radii))

@@ -17,6 +17,10 @@ from camgen.core.errors import ExportError
 from camgen.page import cam_page
 
 
+#: where the cutter's loops start, in steps round from theta = 0, tried in turn
+SOLID_PHASES = (0.0, 0.5, 0.25)
+
+
 def _r(x: float | None, digits: int = 9) -> float | None:
     return None if x is None or not math.isfinite(x) else round(float(x), digits)
 
@@ -40,6 +44,17 @@ def _arm(design: BarrelDesign) -> dict[str, Any]:
             "pitch_cylinder_departure_mm": _r(math.hypot(rm, chordal) - rm),
             "chordal_error_least_mm": _r(arm.length * (1 - math.cos(half)) / 2),
             "pivot_distance_least_mm": _r(arm.length * (1 + math.cos(half)) / 2)}
+
+
+def _cone(design: BarrelDesign) -> dict[str, Any]:
+    """A conical roller's half-angle and the groove's width at the floor and at the rim."""
+    walls = design.walls
+    if not walls.taper:
+        return {}
+    inner, _, outer = design.radii
+    return {"cone_half_angle_deg": _r(math.degrees(math.atan(walls.taper))),
+            "groove_width_floor_mm": _r(2 * (walls.r0 + walls.taper * inner)),
+            "groove_width_rim_mm": _r(2 * (walls.r0 + walls.taper * outer))}
 
 
 def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
@@ -66,7 +81,7 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
                 "rest_height_mm": _r(design.walls.z0 if arm is None else float(design.walls.centre(0.0)[0, 0])),
                 "bore_mm": t.cam.bore, "rotation": t.cam.rotation},
         "follower": {"type": t.follower.type, "roller_radius_mm": t.follower.roller_radius,
-                     **({} if arm is None else _arm(design))},
+                     "roller_shape": t.follower.roller_shape, **_cone(design), **({} if arm is None else _arm(design))},
         "segments": [{"index": i, "type": seg.type, "law": seg.law, **seg.law_params(), "angle_deg": seg.angle,
                       "lift_mm": seg.lift} for i, seg in enumerate(t.motion)],
         "lift_max_mm": _r(design.cam.program.max_lift),
@@ -79,6 +94,10 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
                   "plane_offset_gap_mm": _r(design.walls.plane_offset_gap(rm)),
                   "plane_offset_gap_floor_mm": _r(design.walls.plane_offset_gap(inner))},
         "undercut": False,
+        "rolling_slip": {"floor_percent": _r(design.slip["floor"]), "rim_percent": _r(design.slip["rim"]),
+                         "note": "the largest slip of the roller along the way it rolls, over the cycle and both walls, "
+                                 "in percent of the cam's surface speed there, the roller rolling without slip on the "
+                                 "pitch cylinder"},
         "developed_max_error_mm": _r(design.drawing_error_mm, 12),
         "wall_max_error_mm": None if tube is None else _r(tube.wall_error_mm, 12),
         "floor_max_error_mm": None if tube is None else _r(tube.floor_error_mm, 12),
@@ -119,6 +138,8 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
              f"groove: {cam['groove_width_mm']:g} mm wide, {cam['groove_depth_mm']:g} mm deep; smallest radius of the "
              f"walls: {wall('lower')}, {wall('upper')}",
              *arm,
+             f"rolling slip ({follower['roller_shape']} roller): {report['rolling_slip']['floor_percent']:.2f} % at "
+             f"the floor, {report['rolling_slip']['rim_percent']:.2f} % at the rim",
              f"developed drawing within {report['developed_max_error_mm']:.2e} mm of the exact curves (tolerance "
              f"{report['tolerance_mm']:g} mm)"]
     if report["wall_max_error_mm"] is not None:
@@ -135,9 +156,13 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
     if {"stl", "3mf"} & set(formats):
         from camgen.core.solids import carve, check_mesh
 
-        design = design.with_solid()
-        mesh = carve(design.blank, design.tube.vertices, design.tube.faces, name)
-        check = check_mesh(mesh)
+        plain = design
+        for phase in SOLID_PHASES:            # the first whose subtraction leaves no two vertices on one point
+            design = plain.with_solid(phase)
+            mesh = carve(design.blank, design.tube.vertices, design.tube.faces, name)
+            check = check_mesh(mesh)
+            if check.ok:
+                break
         if not check.ok:
             raise ExportError(f"{name}: the mesh is not a closed outward solid ({check})")
     report = barrel_report(design, check)

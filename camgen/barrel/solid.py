@@ -79,12 +79,13 @@ def _errors(walls: GrooveWalls, theta: np.ndarray, inner: float, outer: float, m
     return wall_error, floor_error
 
 
-def groove_tube(walls: GrooveWalls, inner: float, outer: float, tolerance: float) -> Tube:
+def groove_tube(walls: GrooveWalls, inner: float, outer: float, tolerance: float, phase: float = 0.0) -> Tube:
     """The groove's cutter between the floor's radius ``inner`` and the rim's ``outer`` (mm), its walls and floor
-    within ``tolerance`` mm of the exact ones (see the module docstring)."""
+    within ``tolerance`` mm of the exact ones (see the module docstring); its loops ``phase`` of a step round from
+    theta = 0 (another phase moves every vertex, should the subtraction leave two on one point)."""
     n, m, floor = max(64, math.ceil(2 * math.pi * outer / math.sqrt(8 * tolerance * walls.cutter))), 2, 4
     for _ in range(40):
-        theta = 2 * math.pi * np.arange(n) / n
+        theta = 2 * math.pi * (np.arange(n) + phase) / n
         wall_error, floor_error = _errors(walls, theta, inner, outer, m, floor)
         if wall_error <= tolerance and floor_error <= tolerance:
             pts = _loops(walls, theta, inner, outer, m, floor)

@@ -111,14 +111,32 @@ def contact(radius: np.ndarray, pose: np.ndarray, r0: float, taper: float, side:
     return rho * s, side * rho * c, rho, a
 
 
-def pressure_angle(pose: np.ndarray, w: np.ndarray, v: np.ndarray, rho: np.ndarray, taper: float) -> np.ndarray:
-    """The angle (rad, 0 to pi/2) between the cutter's normal at the contact (w, v) and the roller's path
-    (0, e', zc'), in 3D: 0 where the roller stands still."""
+def pressure_angle(pose: np.ndarray, w: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """The angle (rad, 0 to pi/2) between the contact normal (0, w, v) square to the roller's axis and the roller's
+    path (0, e', zc'), in 3D: 0 where the roller stands still. (A cone's normal also leans along its axis by its
+    half-angle: a thrust its bearing takes, not a pressure angle.)"""
     z1, e1 = pose[1], pose[4]
-    nw, nv = w / rho, v / rho                                  # the normal (-taper, nw, nv), unnormalised
-    dot = nw * e1 + nv * z1
-    cross = np.sqrt((nw * z1 - nv * e1) ** 2 + (taper * z1) ** 2 + (taper * e1) ** 2)
-    return np.arctan2(cross, np.abs(dot))
+    return np.arctan2(np.abs(w * z1 - v * e1), np.abs(w * e1 + v * z1))
+
+
+def rolling_slip(pose: np.ndarray, radius: float, pitch: float, r0: float, taper: float, side: int) -> np.ndarray:
+    """The roller's slip along the way it rolls at its contact with the wall ``side`` on the cylinder of ``radius``,
+    as a fraction of the cam's surface speed there, the roller spinning so that it rolls without slip on the
+    cylinder of ``pitch`` (the roller itself: no clearance, R(a) = r0 + taper a).
+
+    In the roller's frame turning with it (its axis along x, theta-space) the roller's point (a, w + e, zc + v) moves
+    over the cam at (-(w + e), a, 0) + (0, e', zc') + Omega (0, -v, w); along the way it rolls, (0, -v, w) / rho,
+    that is (zc' w - (a + e') v) / rho + Omega rho, the spin Omega making it 0 on the ``pitch`` cylinder; a is about
+    the cam's surface speed. A cylinder slips by |a - a_pitch| / a in a dwell; a cone with its apex where the axis
+    passes the cam's axis rolls there without slip, and nearly so while the roller moves."""
+    def along(r: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        w, v, rho, a = contact(np.full_like(pose[1], r), pose, r0, taper, side)
+        return (pose[1] * w - (a + pose[4]) * v) / rho, rho, a
+
+    drift, rho, _ = along(pitch)
+    spin = -drift / rho
+    drift, rho, a = along(radius)
+    return (drift + spin * rho) / a
 
 
 @dataclass(frozen=True)
@@ -153,7 +171,6 @@ class DevelopedRoller:
         d2 = np.column_stack([r * (e2 / root + e * e1**2 / root**3), z2])
         speed = np.linalg.norm(d1, axis=1)
         kappa = -(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / speed**3
-        angles = [pressure_angle(pose, *contact(r, pose, self.r0, self.taper, side)[:3], self.taper)
-                  for side in (-1, 1)]
+        angles = [pressure_angle(pose, *contact(r, pose, self.r0, self.taper, side)[:2]) for side in (-1, 1)]
         return PitchGeometry(theta=theta, point=point, d1=d1, d2=d2, normal=perp(d1) / speed[:, None], kappa=kappa,
                              pressure_angle=np.sign(motion[1]) * np.maximum(*angles))

@@ -44,9 +44,24 @@ def rest_height(spec: Any) -> float:
     return (spec.cam.length - max(heights) - min(heights)) / 2
 
 
+def taper(spec: Any) -> float:
+    """How fast the roller's radius grows along its axis: Rr / Rm for a conical roller (its apex where its axis
+    passes nearest the cam's axis, its radius Rr on the pitch cylinder), 0 for a cylindrical one."""
+    return spec.follower.roller_radius / spec.cam.pitch_radius if spec.follower.roller_shape == "conical" else 0.0
+
+
 def cutter(spec: Any) -> float:
-    """Rw = Rr + c/2 (mm): the radius the groove is cut with on the pitch cylinder."""
+    """The radius (mm) the groove is cut with on the pitch cylinder: Rw = Rr + c/2 for a cylindrical roller, for a
+    conical one Rr + c/2 / cos(half-angle) (the cone grown by c/2 square to its surface)."""
+    if spec.follower.roller_shape == "conical":
+        return spec.follower.roller_radius + spec.cam.running_clearance / 2 * math.hypot(1.0, taper(spec))
     return spec.follower.roller_radius + spec.cam.running_clearance / 2
+
+
+def cutter_at(spec: Any, radius: float) -> float:
+    """The cutter's radius (mm) where its axis is ``radius`` from the cam's axis (about: the axis passes the cam's
+    by the chordal error at most): the same at every radius for a cylindrical roller."""
+    return cutter(spec) + taper(spec) * (radius - spec.cam.pitch_radius)
 
 
 def arm(spec: Any) -> Arm | None:
@@ -58,8 +73,9 @@ def arm(spec: Any) -> Arm | None:
                1 if spec.cam.rotation == "ccw" else -1)
 
 
-def _check_arm(spec: Any, floor: float, rw: float) -> None:
-    """An arm's swing, stroke and chordal error fit the cylinder and the groove."""
+def _check_arm(spec: Any, room: float, rw: float) -> None:
+    """An arm's swing, stroke and chordal error fit the cylinder and the groove: ``room`` (mm) is how far the roller's
+    axis may pass the cam's axis (the floor's radius less the cutter's there), ``rw`` the groove's half-width."""
     f, turn = spec.follower, swing(spec)
     if not turn < 180:
         raise ValueError(f"motion: an arm on a barrel cam swings less than 180 degrees in all (got {turn:.6g})")
@@ -67,7 +83,6 @@ def _check_arm(spec: Any, floor: float, rw: float) -> None:
     if not spec.cam.length > stroke + 2 * rw:
         raise ValueError(f"cam.length: must be > {stroke + 2 * rw:.6g} mm, the roller's axial stroke 2 arm_length "
                          f"sin(swing / 2) and the groove's width (got {spec.cam.length:g})")
-    room = floor - rw                         # how far the roller's axis may pass from the cam's axis
     low, high = f.arm_length - room, f.arm_length * math.cos(math.radians(turn / 2)) + room
     if not low < high:
         most = 2 * room / (1 - math.cos(math.radians(turn / 2)))
@@ -108,14 +123,20 @@ def _check(spec: Any) -> None:
         raise ValueError("output.kerf: a barrel cam is printed; its drawing is a developed template, not a cut file")
     rw = cutter(spec)
     floor = cam.pitch_radius - cam.groove_depth / 2
-    if not floor > max(cam.bore / 2, rw):
-        raise ValueError(f"cam.groove_depth: must be < {2 * (cam.pitch_radius - max(cam.bore / 2, rw)):.6g} mm, so the "
-                         f"groove's floor stays outside the bore and wider than the roller (got {cam.groove_depth:g})")
+    if follower.roller_shape == "conical" and not follower.roller_radius < cam.pitch_radius:
+        raise ValueError(f"follower.roller_radius: a conical roller's must be < cam.pitch_radius = "
+                         f"{cam.pitch_radius:g} mm, its apex on the cam's axis (got {follower.roller_radius:g})")
+    least = rw if not taper(spec) else (rw - taper(spec) * cam.pitch_radius) / (1 - taper(spec))
+    if not floor > max(cam.bore / 2, least):
+        raise ValueError(f"cam.groove_depth: must be < {2 * (cam.pitch_radius - max(cam.bore / 2, least)):.6g} mm, so "
+                         f"the groove's floor stays outside the bore and wider than the roller (got "
+                         f"{cam.groove_depth:g})")
+    widest = cutter_at(spec, cam.pitch_radius + cam.groove_depth / 2)          # the groove's half-width at the rim
     if follower.oscillating:
-        _check_arm(spec, floor, rw)
-    elif not rest_height(spec) > rw:
+        _check_arm(spec, floor - cutter_at(spec, floor), widest)
+    elif not rest_height(spec) > widest:
         travel = cam.length - 2 * rest_height(spec)
-        raise ValueError(f"cam.length: must be > {travel + 2 * rw:.6g} mm, the follower's travel and the groove's "
+        raise ValueError(f"cam.length: must be > {travel + 2 * widest:.6g} mm, the follower's travel and the groove's "
                          f"width (got {cam.length:g})")
 
 
@@ -123,7 +144,8 @@ def _follower(spec: Any, base_radius: Any, roller_radius: float) -> PlateRoller 
     """The developed pitch curve on the pitch cylinder: a plate cam of travel 2 pi Rm whose roller centre runs at
     z0 + s, or where an arm's roller's axis pierces the pitch cylinder."""
     if spec.follower.oscillating:
-        return DevelopedRoller(arm(spec), spec.cam.pitch_radius, cutter(spec))
+        return DevelopedRoller(arm(spec), spec.cam.pitch_radius, cutter(spec) - taper(spec) * spec.cam.pitch_radius,
+                               taper(spec))
     return PlateRoller(rest_height(spec) - roller_radius, roller_radius, 2 * math.pi * spec.cam.pitch_radius)
 
 

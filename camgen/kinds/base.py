@@ -58,6 +58,8 @@ def flat_body(spec: Any) -> None:
             info = type(spec.cam).model_fields[key]
             raise ValueError(f"cam.{key}: missing: give {info.description} in {info.json_schema_extra['unit']}")
     refuse_keys(spec, BARREL_KEYS, BARREL)
+    if "roller_shape" in spec.follower.model_fields_set:
+        raise ValueError(f"follower.roller_shape: only for {BARREL}")
 
 
 def refuse_keys(spec: Any, keys: tuple[str, ...], owner: str) -> None:
