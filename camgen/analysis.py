@@ -36,52 +36,82 @@ class CamAnalysis:
     undercut: bool
 
 
+def _peaks(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -> list[tuple[float, float]]:
+    """Largest value over the cycle of each pitch-geometry quantity, and where: (value, cam angle in degrees) each,
+    all from one evaluation of the pitch curve (see :meth:`camgen.program.Program.maxima`); of equal peaks (within
+    1e-12 of the quantity's magnitude, an angle's at least 1 radian) the first."""
+    def values(theta: np.ndarray, motion: np.ndarray, index: np.ndarray) -> np.ndarray:
+        g = cam.follower.pitch(theta, motion)
+        return np.stack([q(g) for q in quantities])
+
+    return cam.program.maxima(values, [1.0 if q is _pressure else 0.0 for q in quantities])
+
+
 def _peak(cam: Cam, quantity: Callable[[PitchGeometry], np.ndarray]) -> tuple[float, float]:
     """Largest value of a pitch-geometry ``quantity`` over the cycle: (value, cam angle in degrees)."""
-    return cam.program.peak(lambda i, t: quantity(cam.segment_pitch(i, t)))
+    return _peaks(cam, quantity)[0]
+
+
+def _pressure(g: PitchGeometry) -> np.ndarray:
+    return np.abs(g.pressure_angle)
+
+
+def _kappa(g: PitchGeometry) -> np.ndarray:
+    return g.kappa
+
+
+def _concave(g: PitchGeometry) -> np.ndarray:
+    return -g.kappa
+
+
+def _cusp(g: PitchGeometry) -> np.ndarray:
+    return -g.rho
 
 
 def convex_curvature_max(cam: Cam) -> tuple[float, float]:
     """Largest convex curvature of the pitch curve (1/mm) and where (degrees)."""
-    return _peak(cam, lambda g: g.kappa)
+    return _peak(cam, _kappa)
 
 
 def convex_radius_min(cam: Cam) -> tuple[float, float]:
     """Smallest convex radius of curvature of the pitch curve (mm) and where (degrees): infinite where the curve
     is nowhere convex (a plate cam of straight ramps and dwells)."""
-    kmax, at = convex_curvature_max(cam)
+    return _radius(*convex_curvature_max(cam))
+
+
+def _radius(kmax: float, at: float) -> tuple[float, float]:
     return (1.0 / kmax if kmax > 0 else math.inf), at
 
 
 def face_extent(cam: Cam) -> tuple[float, float]:
     """Nearest and farthest contact positions along a flat face (mm; see the follower's ``face_position``)."""
-    hi = _peak(cam, lambda g: cam.follower.face_position(g))[0]
-    lo = -_peak(cam, lambda g: -cam.follower.face_position(g))[0]
-    return lo, hi
+    position = cam.follower.face_position
+    (hi, _), (neg, _) = _peaks(cam, position, lambda g: -position(g))
+    return -neg, hi
 
 
 def pressure_angle_max(cam: Cam) -> float:
     """Peak |pressure angle| over the cycle (degrees)."""
-    return math.degrees(_peak(cam, lambda g: np.abs(g.pressure_angle))[0])
+    return math.degrees(_peak(cam, _pressure)[0])
 
 
 def profile_rho_min(cam: Cam) -> float:
     """Smallest convex radius of the cam surface (mm); for a flat face the profile's smallest radius."""
     if cam.follower.flat:
-        return -math.inf if any(step < 0 for _, step in cam.steps()) else -_peak(cam, lambda g: -g.rho)[0]
+        return -math.inf if any(step < 0 for _, step in cam.steps()) else -_peak(cam, _cusp)[0]
     return convex_radius_min(cam)[0] - cam.contact_radius
 
 
 def analyze(cam: Cam) -> CamAnalysis:
-    """Pressure angle, curvature and undercut of ``cam``, each located to ~1e-9 degrees.
+    """Pressure angle, curvature and undercut of ``cam``, each located to ~1e-9 degrees, all from one evaluation
+    of the pitch curve on every smooth piece of the motion and one refinement round.
 
     For a flat face the profile itself is analysed: its radius of curvature must
     stay positive, and ``undercut`` means it does not (the profile folds into a cusp; where
     the velocity drops at a segment end it folds at once, a radius of -infinity).
     """
-    pa, pa_at = _peak(cam, lambda g: np.abs(g.pressure_angle))
     if cam.follower.flat:
-        neg, at = _peak(cam, lambda g: -g.rho)
+        (pa, pa_at), (neg, at) = _peaks(cam, _pressure, _cusp)
         folds = [i for i, step in cam.steps() if step < 0]
         if folds:  # the velocity drops at a segment end: the profile folds back, a radius of curvature of -infinity
             neg, at = math.inf, math.degrees(cam.program.segments[folds[0]].end) % 360.0
@@ -89,8 +119,8 @@ def analyze(cam: Cam) -> CamAnalysis:
             pressure_angle_max_deg=math.degrees(pa), pressure_angle_max_at_deg=pa_at,
             pitch_rho_min_mm=-neg, pitch_rho_min_at_deg=at, profile_rho_min_mm=-neg,
             pitch_concave_rho_min_mm=None, profile_concave_rho_min_mm=None, concave_at_deg=None, undercut=-neg <= 0)
-    rho, kmax_at = convex_radius_min(cam)
-    kmin, kmin_at = _peak(cam, lambda g: -g.kappa)
+    (pa, pa_at), convex, (kmin, kmin_at) = _peaks(cam, _pressure, _kappa, _concave)
+    rho, kmax_at = _radius(*convex)
     rr = cam.contact_radius
     convex_corners = [i for i, turn in cam.corners() if turn > 0]
     if convex_corners:  # a convex corner of the pitch curve is a zero radius of curvature

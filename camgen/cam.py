@@ -1,6 +1,7 @@
 """A disc cam built from a validated spec: kinematics and exact geometry, no I/O."""
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -54,6 +55,20 @@ class Cam:
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         return self.follower.pitch(theta, self.program.segments[index].evaluate(theta))
 
+    @functools.cached_property
+    def _boundaries(self) -> tuple[PitchGeometry, PitchGeometry]:
+        """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start."""
+        segments = self.program.segments
+        nxt = segments[1:] + segments[:1]
+        theta = np.array([seg.end for seg in segments] + [seg.start for seg in nxt])
+        motion = np.concatenate([[seg.evaluate(np.array([seg.end]))[:, 0] for seg in segments],
+                                 [seg.evaluate(np.array([seg.start]))[:, 0] for seg in nxt]]).T
+        g = self.follower.pitch(theta, motion)
+        n = len(segments)
+        halves = [{k: None if v is None else v[part] for k, v in vars(g).items()}
+                  for part in (slice(0, n), slice(n, 2 * n))]
+        return PitchGeometry(**halves[0]), PitchGeometry(**halves[1])
+
     def corners(self) -> list[tuple[int, float]]:
         """Corners of the pitch curve at segment ends, where the follower velocity jumps.
 
@@ -63,11 +78,9 @@ class Cam:
         concave one (the roller rolls round it on an arc of its own radius).
         """
         out = []
-        segments = self.program.segments
-        for i, seg in enumerate(segments):
-            j = (i + 1) % len(segments)
-            left = self.segment_pitch(i, seg.end).d1[0]
-            right = self.segment_pitch(j, segments[j].start).d1[0]
+        ends, starts = self._boundaries
+        for i in range(len(self.program.segments)):
+            left, right = ends.d1[i], starts.d1[i]
             turn = math.atan2(left[0] * right[1] - left[1] * right[0], float(left @ right))
             if abs(turn) > 1e-9:
                 out.append((i, -self.follower.sense * turn))
@@ -83,15 +96,13 @@ class Cam:
         if not self.follower.flat:
             return []
         out = []
-        segments = self.program.segments
-        for i, seg in enumerate(segments):
-            j = (i + 1) % len(segments)
-            left, right = self.segment_pitch(i, seg.end), self.segment_pitch(j, segments[j].start)
-            gap = right.point[0] - left.point[0]
+        ends, starts = self._boundaries
+        for i in range(len(self.program.segments)):
+            gap = starts.point[i] - ends.point[i]
             if np.linalg.norm(gap) <= 1e-9 * max(1.0, self.base_radius):
                 continue
-            side = left if abs(left.rho[0]) >= abs(right.rho[0]) else right
-            ahead = side.d1[0] / side.rho[0]                 # the way a sound profile runs there
+            side = ends if abs(ends.rho[i]) >= abs(starts.rho[i]) else starts
+            ahead = side.d1[i] / side.rho[i]                 # the way a sound profile runs there
             out.append((i, float(gap @ ahead / np.linalg.norm(ahead))))
         return out
 

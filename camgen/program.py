@@ -7,6 +7,7 @@ the start of the first segment, in the cam's sense of rotation.
 """
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -17,7 +18,7 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from camgen.laws import Law
-from camgen.numeric import left_of, maximise
+from camgen.numeric import TIE, left_of, piecewise_maxima, present
 
 Kind = Literal["rise", "dwell", "return"]
 TWO_PI = 2.0 * math.pi
@@ -77,6 +78,27 @@ class Segment:
         else:
             out[0] += self.level
         return out
+
+    def at_law(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Cam angles (radians) and s, s', s'', s''' (shape ``(4, n)``) where the law's own variable is ``v`` (u for
+        a rise, 1 - u for a return; a dwell's u), the law's pieces taken exactly as the law evaluates them."""
+        if self.kind == "dwell" or self.law is None:
+            out = np.zeros((4, v.size))
+            out[0] = self.level
+            return self.angle(v), out
+        return self.angle(v), self._from_law(self.law.derivatives(v))
+
+    def angle(self, v: ArrayLike) -> np.ndarray:
+        """The cam angle (radians) where the law's own variable is ``v`` (see :meth:`at_law`)."""
+        v = np.asarray(v, dtype=float)
+        return self.start + self.beta * (1.0 - v if self.kind == "return" and self.law is not None else v)
+
+    def pieces(self) -> list[tuple[float, float]]:
+        """Closed intervals of the law's own variable (see :meth:`at_law`) on which s is smooth, with left limits
+        at their right ends."""
+        if self.kind == "dwell" or self.law is None:
+            return [(0.0, 1.0)]
+        return self.law.smooth_intervals()
 
     def inner_limits(self) -> list[tuple[float, np.ndarray, np.ndarray]]:
         """``(theta, left, right)``: s, s', s'', s''' on each side of every breakpoint of the law.
@@ -171,18 +193,55 @@ class Program:
             out[:, mask] = self.segments[i].evaluate(t[mask])
         return out
 
-    def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
-        """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)).
+    def maxima(self, func: Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray],
+               scale: ArrayLike = 0.0) -> list[tuple[float, float]]:
+        """Largest value over the cycle of each row of ``func(theta, motion, index)`` -> (k, n), and where (degrees
+        in [0, 360)): ``theta`` (n,) cam angles in radians, ``motion`` (4, n) s, s', s'', s''' there and ``index``
+        (n,) the segment each lies in.
 
-        Each segment is searched on its own closed interval (one-sided values at its
-        ends), to ~1e-12 of its angle (see :func:`camgen.numeric.maximise`).
+        Every smooth piece of every segment is searched at once on its closed interval, with one-sided values at
+        its ends (a segment's ends, and where its law changes piece), the maximiser located to ~1e-13 of the
+        piece's angle (see :func:`camgen.numeric.piecewise_maxima`). Values within ``TIE`` (1e-12) of a row's
+        magnitude (the larger of ``scale``, (k,) or a number, and its largest |value| seen) are equal: of equal
+        peaks the one at the smallest angle is taken, so that rounding does not choose between them.
         """
-        best = (-math.inf, 0.0)
-        for i, seg in enumerate(self.segments):
-            theta, value = maximise(lambda t, i=i: func(i, t), seg.start, seg.end)
-            if value > best[0]:
-                best = (value, math.degrees(theta) % 360.0)
-        return best
+        owner, lo, hi = self._pieces
+
+        def values(v: np.ndarray, piece: np.ndarray) -> np.ndarray:
+            index = owner[piece]
+            theta, motion = np.empty(v.size), np.empty((4, v.size))
+            for i in present(index):
+                mask = index == i
+                theta[mask], motion[:, mask] = self.segments[i].at_law(v[mask])
+            return func(theta, motion, index)
+
+        backwards = np.array([seg.kind == "return" and seg.law is not None for seg in self.segments])[owner]
+        at, value, magnitude = piecewise_maxima(values, lo, hi, scale=scale, reverse=backwards)
+        out = []
+        for row_at, row_value, size in zip(at, value, magnitude, strict=True):
+            degrees = np.degrees([self.segments[i].angle(v) for i, v in zip(owner, row_at, strict=True)]) % 360.0
+            equal = np.flatnonzero(row_value >= row_value.max() - TIE * size)
+            best = equal[np.argmin(degrees[equal])]
+            out.append((float(row_value[best]), float(degrees[best])))
+        return out
+
+    @functools.cached_property
+    def _pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every segment's smooth pieces (see :meth:`Segment.pieces`): owning segment, start and end."""
+        rows = [(i, a, b) for i, seg in enumerate(self.segments) for a, b in seg.pieces()]
+        return np.array([r[0] for r in rows]), np.array([r[1] for r in rows]), np.array([r[2] for r in rows])
+
+    def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
+        """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)),
+        by :meth:`maxima` (``func`` called once a segment with that segment's angles)."""
+        def values(theta: np.ndarray, motion: np.ndarray, index: np.ndarray) -> np.ndarray:
+            out = np.empty(theta.size)
+            for i in present(index):
+                mask = index == i
+                out[mask] = func(int(i), theta[mask])
+            return out[None]
+
+        return self.maxima(values)[0]
 
     def jumps(self) -> list[Jump]:
         """Every jump of s', s'', s''' at segment boundaries (360 wrapping to 0) and inside laws.

@@ -52,14 +52,25 @@ class PitchGeometry:
 
 def rotate(vectors: np.ndarray, angle: np.ndarray) -> np.ndarray:
     """Rotate (n, 2) ``vectors`` counter-clockwise by ``angle`` (n,) radians."""
-    c, s = np.cos(angle), np.sin(angle)
+    return _turned(np.cos(angle), np.sin(angle), vectors)
+
+
+def _turned(c: np.ndarray, s: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+    """(n, 2) ``vectors`` turned by the angles whose cosines and sines are ``c``, ``s`` (n,)."""
     x, y = vectors[:, 0], vectors[:, 1]
-    return np.column_stack([c * x - s * y, s * x + c * y])
+    first = c * x - s * y
+    out = np.empty((*first.shape, 2))
+    out[:, 0] = first
+    out[:, 1] = s * x + c * y
+    return out
+
+
+_PERP = np.array([-1.0, 1.0])
 
 
 def perp(v: np.ndarray) -> np.ndarray:
     """(n, 2) vectors turned a quarter counter-clockwise: J v."""
-    return np.column_stack([-v[:, 1], v[:, 0]])
+    return v[:, ::-1] * _PERP
 
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -82,12 +93,13 @@ def from_centre_path(theta: np.ndarray, q: np.ndarray, q1: np.ndarray, q2: np.nd
     """
     t = q1 - sense * perp(q)
     a = q2 - 2 * sense * perp(q1) - q
-    speed = np.linalg.norm(t, axis=1)
+    speed = np.sqrt(t[:, 0] * t[:, 0] + t[:, 1] * t[:, 1])
     kappa = -sense * _cross(t, a) / speed**3
     normal = sense * perp(t) / speed[:, None]
     turn = -sense * theta
-    return PitchGeometry(theta=theta, point=rotate(q, turn), d1=rotate(t, turn), d2=rotate(a, turn),
-                         normal=rotate(normal, turn), kappa=kappa,
+    c, s = np.cos(turn), np.sin(turn)
+    return PitchGeometry(theta=theta, point=_turned(c, s, q), d1=_turned(c, s, t), d2=_turned(c, s, a),
+                         normal=_turned(c, s, normal), kappa=kappa,
                          pressure_angle=signed_pressure_angle(direction, normal, sense))
 
 

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.numeric import left_of, maximise
+from camgen.numeric import left_of, piecewise_maxima
 
 @dataclass(frozen=True)
 class Law(ABC):
@@ -45,12 +45,9 @@ class Law(ABC):
 
     def peaks(self) -> np.ndarray:
         """Peak magnitudes of f', f'', f''' over [0, 1]: the (Cv, Ca, Cj) coefficients for h = beta = 1."""
-        out = np.zeros(3)
-        for a, b in self.smooth_intervals():
-            for k in (1, 2, 3):
-                _, value = maximise(lambda u, k=k: np.abs(self.derivatives(u)[k]), a, b)
-                out[k - 1] = max(out[k - 1], value)
-        return out
+        lo, hi = zip(*self.smooth_intervals(), strict=True)
+        _, value, _ = piecewise_maxima(lambda u, piece: np.abs(self.derivatives(u)[1:]), lo, hi)
+        return value.max(axis=1)
 
     def jumps(self) -> list[tuple[float, int, float]]:
         """Jumps of f', f'', f''' inside the law and at its ends against dwells.

@@ -1,0 +1,170 @@
+"""The vectorised analysis (every peak from one dense evaluation of all segments and one refinement round) against a
+brute force: a million points over the cycle, then the best one refined locally on ever finer grids; for every law,
+every follower and a plate cam, both senses of rotation. No test here asserts a time."""
+from __future__ import annotations
+
+import copy
+import math
+
+import numpy as np
+import pytest
+
+from camgen.analysis import analyze, face_extent
+from camgen.cam import build_cam
+from camgen.core.spec import apply_overrides
+from camgen.numeric import piecewise_maxima
+from camgen.spec import validate_spec
+from tests.conftest import RDRD
+
+#: points of the brute force's first grid over the whole cycle (spread over the smooth pieces by their angle)
+POINTS = 1_000_000
+LAWS = {
+    "uniform": {}, "modified-uniform": {}, "modified-uniform/parabolic": {"blend": 0.1, "blend_law": "parabolic"},
+    "modified-uniform/drafted": {"form": "drafted"}, "parabolic": {}, "parabolic/2.5": {"ratio": 2.5},
+    "harmonic": {}, "cycloidal": {}, "polynomial-345": {}, "polynomial-4567": {}, "modified-trapezoid": {},
+    "modified-sine": {}, "double-harmonic": {},
+    "polynomial": {"conditions": [[0, 0, 0], [0, 1, 0], [0, 2, 0], [1, 0, 1], [1, 1, 0], [1, 2, 0], [0.5, 0, 0.4]]},
+    "spline": {"points": [[0, 0], [0.3, 0.2], [0.6, 0.7], [1, 1]]},
+}
+FOLLOWERS = {
+    "translating-roller": {"type": "translating-roller", "roller_radius": 10.0, "offset": 5.0},
+    "knife-edge": {"type": "knife-edge", "offset": -3.0},
+    "translating-flat": {"type": "translating-flat", "face_margin": 2.0},
+    "oscillating-roller": {"type": "oscillating-roller", "roller_radius": 8.0, "pivot_distance": 110.0,
+                           "arm_length": 90.0},
+    "oscillating-flat": {"type": "oscillating-flat", "pivot_distance": 120.0},
+    "plate": {"type": "translating-roller", "roller_radius": 8.0},
+}
+
+
+def _spec(law: str, follower: str, rotation: str):
+    raw = copy.deepcopy(RDRD)
+    raw["follower"] = dict(FOLLOWERS[follower])
+    raw["cam"].update(rotation=rotation, allow_undercut=True)
+    if "flat" in follower:
+        raw["cam"]["base_radius"] = 60.0
+    if follower == "plate":
+        raw["cam"] = {"kind": "plate", "travel": 200.0, "base_radius": 20.0, "thickness": 6.0, "bore": 0.0}
+    lift = 15.0 if follower.startswith("oscillating") else 20.0
+    name, _, _ = law.partition("/")
+    for i, angle in ((0, 120.0), (2, 100.0)):
+        raw["motion"][i] = {"type": raw["motion"][i]["type"], "law": name, "lift": lift, "angle": angle,
+                            **copy.deepcopy(LAWS[law])}
+    raw["motion"][3]["angle"] = 80.0
+    return validate_spec(apply_overrides(raw, []))
+
+
+def _brute(cam, *quantities) -> list[tuple[float, float]]:
+    """Largest value of each ``quantity(pitch geometry)`` and where (degrees): ~POINTS points spread over every
+    smooth piece of every segment (ends included, as one-sided limits), then the best refined on grids of 2001 points
+    over its two neighbouring cells, four times (each 1000 times finer)."""
+    pieces = [(seg, a, b) for seg in cam.program.segments for a, b in seg.pieces()]
+    total = sum((b - a) * seg.beta for seg, a, b in pieces)
+
+    def values(seg, v):
+        theta, motion = seg.at_law(v)
+        g = cam.follower.pitch(theta, motion)
+        return np.stack([q(g) for q in quantities])
+
+    best = [(-math.inf, None, None)] * len(quantities)
+    for seg, a, b in pieces:
+        v = np.linspace(a, b, max(3, int(POINTS * (b - a) * seg.beta / total)))
+        for k, y in enumerate(values(seg, v)):
+            i = int(np.argmax(y))
+            if y[i] > best[k][0]:
+                best[k] = (float(y[i]), seg, (v[max(i - 1, 0)], v[min(i + 1, len(v) - 1)], float(v[i])))
+    out = []
+    for k, (value, seg, (lo, hi, at)) in enumerate(best):
+        for _ in range(4):
+            v = np.linspace(lo, hi, 2001)
+            y = values(seg, v)[k]
+            i = int(np.argmax(y))
+            if y[i] >= value:
+                value, at = float(y[i]), float(v[i])
+            lo, hi = v[max(i - 1, 0)], v[min(i + 1, len(v) - 1)]
+        out.append((value, math.degrees(float(seg.angle(at))) % 360.0))
+    return out
+
+
+def _close(ours: float, brute: float, scale: float, rel: float = 1e-9) -> bool:
+    return abs(ours - brute) <= rel * max(abs(brute), scale)
+
+
+def _at_value(cam, quantity, at_deg: float) -> float:
+    """``quantity`` at ``at_deg``: the largest of its values on the segments meeting there, there and 1e-12 radians
+    either side (its one-sided limits where it jumps)."""
+    out = -math.inf
+    for i, seg in enumerate(cam.program.segments):
+        for turn in (0.0, 2 * math.pi, -2 * math.pi):
+            theta = math.radians(at_deg) + turn + np.array([-1e-12, 0.0, 1e-12])
+            theta = np.clip(theta[(theta >= seg.start - 1e-12) & (theta <= seg.end + 1e-12)], seg.start, seg.end)
+            if theta.size:
+                out = max(out, float(quantity(cam.segment_pitch(i, theta)).max()))
+    return out
+
+
+#: every law with the offset roller in both senses; every follower (and a plate cam) with a smooth law, one whose
+#: acceleration jumps inside it and one whose velocity jumps at its ends
+CASES = sorted({(law, "translating-roller", rotation) for law in LAWS for rotation in ("ccw", "cw")}
+               | {(law, follower, rotation) for law in ("cycloidal", "modified-uniform/parabolic", "uniform")
+                  for follower in FOLLOWERS for rotation in ("ccw", "cw") if not (follower == "plate" and rotation == "cw")})
+
+
+def _pressure(g):
+    return np.abs(g.pressure_angle)
+
+
+@pytest.mark.parametrize(("law", "follower", "rotation"), CASES)
+def test_peaks_against_a_brute_force(law, follower, rotation):
+    """Every peak of the analysis within 1e-9 (relative) of the brute force's, and located where the quantity
+    takes that value (a peak's place is only as sharp as the peak: its value is checked there)."""
+    cam = build_cam(_spec(law, follower, rotation))
+    a = analyze(cam)
+    if cam.follower.flat:
+        position = cam.follower.face_position
+        cusp, far = (lambda g: -g.rho), (lambda g: -position(g))
+        (pressure, _), (neg, _), (hi, _), (lo, _) = _brute(cam, _pressure, cusp, position, far)
+        if not math.isinf(a.pitch_rho_min_mm):                         # no fold at a segment end
+            assert _close(-a.pitch_rho_min_mm, neg, cam.base_radius)
+            assert _close(_at_value(cam, cusp, a.pitch_rho_min_at_deg), neg, cam.base_radius)
+        extent = face_extent(cam)
+        assert _close(extent[1], hi, cam.base_radius) and _close(-extent[0], lo, cam.base_radius)
+    else:
+        convex, concave = (lambda g: g.kappa), (lambda g: -g.kappa)
+        (pressure, _), (kmax, _), (kmin, _) = _brute(cam, _pressure, convex, concave)
+        scale = 1.0 / cam.base_radius
+        if a.pitch_rho_min_mm > 0:                                      # no convex corner
+            assert _close(1.0 / a.pitch_rho_min_mm, kmax, scale)
+            assert _close(_at_value(cam, convex, a.pitch_rho_min_at_deg), kmax, scale)
+        if a.pitch_concave_rho_min_mm is None:
+            assert kmin <= 1e-12 * scale
+        else:
+            assert _close(1.0 / a.pitch_concave_rho_min_mm, kmin, scale)
+            assert _close(_at_value(cam, concave, a.concave_at_deg), kmin, scale)
+    assert _close(math.radians(a.pressure_angle_max_deg), pressure, 1.0)
+    assert _close(_at_value(cam, _pressure, a.pressure_angle_max_at_deg), pressure, 1.0)
+
+
+def test_piecewise_maxima_on_known_functions():
+    """Interior peaks, peaks at either end, a peak narrower than the grid, and equal peaks (the first taken)."""
+    lo, hi = np.array([0.0, 0.0, 1.0, -1.0]), np.array([1.0, 2.0, 3.0, 1.0])
+
+    def func(x, piece):
+        return np.stack([np.where(piece == 0, np.sin(3 * x + 0.1), np.where(piece == 1, x**2, -np.cos(np.pi * x))),
+                         np.exp(-((x - 0.3137) / 0.02) ** 2) * (piece == 3) + (piece == 0) * x * (1 - x)])
+
+    at, value, _ = piecewise_maxima(func, lo, hi)
+    assert at[0, 0] == pytest.approx((math.pi / 2 - 0.1) / 3, abs=1e-13) and value[0, 0] == pytest.approx(1.0)
+    assert at[0, 1] == 2.0 and value[0, 1] == 4.0
+    assert at[0, 2] == 1.0 and value[0, 2] == 1.0                      # equal peaks at both ends: the first
+    # a peak 50 times narrower than the piece: its value exact, its place as sharp as the stencil's width allows
+    assert at[1, 3] == pytest.approx(0.3137, abs=1e-7) and value[1, 3] == pytest.approx(1.0, rel=1e-15)
+    assert at[1, 0] == pytest.approx(0.5, abs=1e-13) and value[1, 0] == 0.25
+
+
+@pytest.mark.parametrize("reverse", [False, True])
+def test_equal_peaks_inside_a_piece(reverse):
+    """Two equal peaks on one piece: the first from the low end, or from the high end where the piece runs
+    backwards (a return's law runs against the cam angle)."""
+    at, value, _ = piecewise_maxima(lambda x, piece: np.sin(4 * np.pi * x)[None], [0.0], [1.0], reverse=reverse)
+    assert at[0, 0] == pytest.approx(0.625 if reverse else 0.125, abs=1e-12) and value[0, 0] == pytest.approx(1.0)
