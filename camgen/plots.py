@@ -1,7 +1,8 @@
 """Plots of a cam: the S-V-A-J diagram and the cam drawing with its checks marked.
 
-Uses matplotlib's object API (no pyplot state) with the Agg canvas; imported only
-when a plot is asked for (0.6 s).
+Uses matplotlib's object API (no pyplot state) with the Agg canvas; imported only when a plot is asked for (about
+0.35 s of CPU). The figures are laid out with fixed margins: matplotlib's constrained layout re-measures every label
+each time a figure is written, and took 0.4 s of the 0.9 s these two figures cost as PNG and SVG.
 """
 from __future__ import annotations
 
@@ -33,15 +34,16 @@ def svaj_figure(design: CamDesign) -> Any:
     """Displacement, velocity, acceleration and jerk against cam angle (per radian of cam angle)."""
     theta, motion = sample_cycle(design.cam)
     deg = np.degrees(theta)
-    fig = figure(8, 9)
+    fig = figure(8, 9, layout=None)
+    fig.subplots_adjust(left=0.12, right=0.97, bottom=0.06, top=0.95, hspace=0.1)
     axes = fig.subplots(4, 1, sharex=True)
     u = design.cam.follower.lift_unit
     labels = [f"s ({u})", f"s' ({u}/rad)", f"s'' ({u}/rad²)", f"s''' ({u}/rad³)"]
+    starts = [math.degrees(seg.start) for seg in design.cam.program.segments]
     for k, ax in enumerate(axes):
         ax.plot(deg, motion[k], color="C0", lw=1.2)
         ax.axhline(0, color="0.6", lw=0.6)
-        for seg in design.cam.program.segments:
-            ax.axvline(math.degrees(seg.start), color="0.85", lw=0.6, zorder=0)
+        ax.vlines(starts, 0, 1, transform=ax.get_xaxis_transform(), color="0.85", lw=0.6, zorder=0)
         for j in design.jumps:
             if j.order < 3 and j.order + 1 == k:
                 ax.annotate("∞", (j.at_deg, 0), color="C3", ha="center", va="bottom", fontsize=12)
@@ -80,7 +82,11 @@ def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:
 def cam_figure(design: CamDesign) -> Any:
     """The cam at theta = 0: outline, pitch curve, base and prime circles, follower, checks marked."""
     cam, a, t = design.cam, design.analysis, design.spec
-    fig = figure(10, 5) if cam.is_plate else figure(8, 9)
+    fig = figure(10, 5, layout=None) if cam.is_plate else figure(8, 9, layout=None)
+    if cam.is_plate:
+        fig.subplots_adjust(left=0.08, right=0.98, bottom=0.22, top=0.92)
+    else:
+        fig.subplots_adjust(left=0.1, right=0.97, bottom=0.16, top=0.95)
     ax = fig.add_subplot()
     ring = design.outline.contour.flatten(design.tolerance)
     ax.fill(ring[:, 0], ring[:, 1], color="0.88", zorder=0)
@@ -116,7 +122,7 @@ def cam_figure(design: CamDesign) -> Any:
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.grid(alpha=0.3)
-    fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    fig.legend(loc="lower center", ncols=2, fontsize=8)
     what = "plate cam; θ spreads over the travel" if cam.is_plate else f"cam at θ = 0 ({t.cam.rotation})"
     ax.set_title(f"{t.name}: {what}, {t.follower.type} follower")
     return fig

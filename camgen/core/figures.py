@@ -16,12 +16,13 @@ from camgen.core.shapes import Polyline, Text
 PREVIEW_TOLERANCE_MM = 0.05
 
 
-def figure(width: float, height: float) -> Any:
-    """A blank figure ``width`` x ``height`` inches with the Agg canvas and constrained layout (no pyplot state)."""
+def figure(width: float, height: float, layout: str | None = "constrained") -> Any:
+    """A blank figure ``width`` x ``height`` inches with the Agg canvas (no pyplot state) and constrained layout, or
+    ``layout`` (None: the caller sets fixed margins, which cost nothing each time the figure is written)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(width, height), layout="constrained")
+    fig = Figure(figsize=(width, height), layout=layout)
     FigureCanvasAgg(fig)
     return fig
 

@@ -61,7 +61,7 @@ class AccelerationLaw(Law):
         out = np.empty((4, flat.size))
         edges = np.array([p[0] for p in self.pieces[1:]])
         index = np.searchsorted(edges, flat, side="right")
-        for i in np.unique(index):
+        for i in np.flatnonzero(np.bincount(index)):          # the pieces present (np.unique loads numpy.ma)
             mask = index == i
             piece = self.pieces[i]
             v0, f0 = self._starts[i]

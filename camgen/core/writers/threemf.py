@@ -1,41 +1,63 @@
-"""The project's one 3MF writer (via trimesh; millimetres, 3MF's default unit)."""
+"""The project's one 3MF writer (millimetres, 3MF's default unit), written directly (no mesh or XML library loaded
+on a build): a package of the model, its relationship and content types, with fixed entry dates and UUIDs made from
+the mesh, so the same mesh gives the same bytes."""
 from __future__ import annotations
 
 import hashlib
-import itertools
-import re
+import io
 import uuid
-
+import zipfile
 from pathlib import Path
 from typing import Any
 
-from camgen.core.solids import Mesh, trimesh_of
+from camgen.core.solids import Mesh
+
+_CORE = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"
+_NAMESPACES = {"m": "http://schemas.microsoft.com/3dmanufacturing/material/2015/02",
+               "p": "http://schemas.microsoft.com/3dmanufacturing/production/2015/06",
+               "b": "http://schemas.microsoft.com/3dmanufacturing/beamlattice/2017/02",
+               "s": "http://schemas.microsoft.com/3dmanufacturing/slice/2015/07",
+               "sc": "http://schemas.microsoft.com/3dmanufacturing/securecontent/2019/04"}
+_DECLARATION = "<?xml version='1.0' encoding='utf-8'?>\n"
+_RELS = (_DECLARATION + '<Relationships xmlns="http://schemas.openxmlformats.org/package/2006/relationships">'
+         '<Relationship Type="http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel" '
+         'Target="/3D/3dmodel.model" Id="rel0"/></Relationships>')
+_TYPES = (_DECLARATION + '<Types xmlns="http://schemas.openxmlformats.org/package/2006/content-types">' + "".join(
+    f'<Default Extension="{ext}" ContentType="{kind}"/>' for ext, kind in (
+        ("jpeg", "image/jpeg"), ("jpg", "image/jpeg"),
+        ("model", "application/vnd.ms-package.3dmanufacturing-3dmodel+xml"), ("png", "image/png"),
+        ("rels", "application/vnd.openxmlformats-package.relationships+xml"),
+        ("texture", "application/vnd.ms-package.3dmanufacturing-3dmodeltexture"))) + "</Types>")
+
+
+def _attribute(text: str) -> str:
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")
+
+
+def model_xml(mesh: Mesh) -> str:
+    """The 3MF model of ``mesh``: one object named after it, its vertices (as written, at full precision) and
+    triangles, built once in place; its UUIDs derived from the mesh's bytes."""
+    digest = hashlib.sha256(mesh.vertices.tobytes() + mesh.faces.tobytes()).hexdigest()
+    ids = [uuid.uuid5(uuid.NAMESPACE_URL, f"camgen:{digest}:{k}") for k in range(3)]
+    name = _attribute(mesh.name)
+    sorted_ns = "".join(f' xmlns:{k}="{_NAMESPACES[k]}"' for k in sorted(_NAMESPACES))
+    item_ns = "".join(f' xmlns:{k}="{v}"' for k, v in _NAMESPACES.items())
+    vertices = ('<vertex x="{}" y="{}" z="{}" />' * len(mesh.vertices)).format(*mesh.vertices.flatten())
+    triangles = ('<triangle v1="{}" v2="{}" v3="{}" />' * len(mesh.faces)).format(*mesh.faces.flatten())
+    return (f'{_DECLARATION}<model xmlns="{_CORE}"{sorted_ns} unit="millimeter"><resources>'
+            f'<object id="1" name="{name}" type="model" p:UUID="{ids[0]}"><mesh><vertices>{vertices}</vertices>'
+            f'<triangles>{triangles}</triangles></mesh></object></resources><build p:UUID="{ids[1]}">'
+            f'<item xmlns="{_CORE}"{item_ns} objectid="1" transform="1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0" '
+            f'p:UUID="{ids[2]}" partnumber="{name}"/></build></model>')
 
 
 def threemf_bytes(mesh: Mesh) -> bytes:
-    """``mesh`` as a 3MF package whose object bears the mesh's name, repacked with fixed entry dates and UUIDs made
-    from the mesh, so the same mesh gives the same bytes."""
-    import io
-    import zipfile
-
-    import trimesh
-
-    scene = trimesh.Scene()
-    scene.add_geometry(trimesh_of(mesh), geom_name=mesh.name, node_name=mesh.name)
-    raw = zipfile.ZipFile(io.BytesIO(scene.export(file_type="3mf")))
-    digest = hashlib.sha256(mesh.vertices.tobytes() + mesh.faces.tobytes()).hexdigest()
-    count = itertools.count()
-
-    def fixed(_: re.Match) -> str:     # trimesh draws random object UUIDs: derive them from the mesh instead
-        return f'UUID="{uuid.uuid5(uuid.NAMESPACE_URL, f"camgen:{digest}:{next(count)}")}"'
-
+    """``mesh`` as a 3MF package (see the module docstring)."""
     out = io.BytesIO()
+    entries = {"3D/3dmodel.model": model_xml(mesh), "[Content_Types].xml": _TYPES, "_rels/.rels": _RELS}
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as package:
-        for name in sorted(raw.namelist()):
-            data = raw.read(name)
-            if name.endswith(".model"):
-                data = re.sub(r'UUID="[0-9a-fA-F-]+"', fixed, data.decode("utf-8")).encode("utf-8")
-            package.writestr(zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0)), data,
+        for name in sorted(entries):
+            package.writestr(zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0)), entries[name].encode("utf-8"),
                              compress_type=zipfile.ZIP_DEFLATED)
     return out.getvalue()
 

@@ -1,0 +1,163 @@
+"""What a command loads: ``import camgen``, ``camgen laws`` and a DXF-only build load neither matplotlib nor trimesh,
+and no build loads trimesh (the STL and 3MF are written and the mesh checked with numpy; here they are checked
+against trimesh's, byte for byte). Each command runs in a fresh interpreter, whose ``sys.modules`` is read."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from tests.conftest import ROOT
+
+HEAVY = ("matplotlib", "trimesh")
+
+
+def _loaded(code: str) -> set[str]:
+    """The top-level modules loaded once ``code`` has run in a fresh interpreter (in the checkout)."""
+    probe = code + "\nimport sys, json\nprint('loaded:', json.dumps(sorted({m.split('.')[0] for m in sys.modules})))"
+    out = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True, check=True)
+    line = next(line for line in out.stdout.splitlines() if line.startswith("loaded: "))
+    return set(json.loads(line.removeprefix("loaded: ")))
+
+
+def _command(program: str, *args: str) -> str:
+    """Code that runs ``program`` (camgen or linkgen) with ``args`` in the interpreter, as the command would."""
+    return (f"import sys\nfrom {program}.cli import main\nsys.argv = {[program, *args]!r}\n"
+            "try:\n    main()\nexcept SystemExit as exc:\n    assert not exc.code, exc.code")
+
+
+def test_import_camgen_loads_no_heavy_library():
+    assert not _loaded("import camgen, linkgen") & {*HEAVY, "ezdxf", "scipy", "shapely", "pydantic"}
+
+
+def test_camgen_laws_loads_no_heavy_library():
+    assert not _loaded(_command("camgen", "laws")) & {*HEAVY, "ezdxf", "scipy", "shapely", "manifold3d"}
+
+
+def test_a_dxf_only_build_loads_neither_matplotlib_nor_trimesh(tmp_path):
+    loaded = _loaded(_command("camgen", "build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path),
+                              "--set", 'output.formats=["dxf"]'))
+    assert (tmp_path / "rdrd.dxf").is_file() and not (tmp_path / "rdrd.stl").exists()
+    assert "ezdxf" in loaded and not loaded & set(HEAVY)
+
+
+@pytest.mark.parametrize("template", ["rdrd.toml", "geneva4.toml"])
+def test_a_default_build_loads_no_mesh_library(tmp_path, template):
+    """Every default output, STL and 3MF included, without trimesh (nor lxml and networkx, which it wrote 3MF
+    with)."""
+    loaded = _loaded(_command("camgen", "build", str(ROOT / "templates" / template), "-o", str(tmp_path)))
+    assert list(tmp_path.glob("*.stl")) and list(tmp_path.glob("*.3mf"))
+    assert not loaded & {"trimesh", "lxml", "networkx", "scipy"}
+
+
+def test_linkgen_build_loads_no_mesh_library(tmp_path):
+    loaded = _loaded(_command("linkgen", "build", str(ROOT / "templates" / "crank-rocker.toml"), "-o",
+                              str(tmp_path)))
+    assert list(tmp_path.glob("*.stl")) and not loaded & {"trimesh", "lxml", "networkx"}
+
+
+# ---- the mesh files and their check, against trimesh's ----
+
+def _meshes() -> list:
+    import camgen
+    from camgen.core.solids import extrude, stack
+
+    parts = [camgen.design_cam(camgen.load_spec(ROOT / "templates" / f"{name}.toml")).printed
+             for name in ("rdrd", "plate", "grooved", "flat-face", "oscillating")]
+    return [extrude(part) for part in parts] + [stack(parts[:2], "stacked")]
+
+
+@pytest.fixture(scope="module")
+def meshes() -> list:
+    return _meshes()
+
+
+def _trimesh_3mf(mesh) -> bytes:
+    """The 3MF package as the project wrote it with trimesh until it wrote its own: trimesh's export, repacked with
+    fixed dates and UUIDs made from the mesh."""
+    import hashlib
+    import io
+    import itertools
+    import re
+    import uuid
+    import zipfile
+
+    import trimesh
+
+    from camgen.core.solids import trimesh_of
+
+    scene = trimesh.Scene()
+    scene.add_geometry(trimesh_of(mesh), geom_name=mesh.name, node_name=mesh.name)
+    raw = zipfile.ZipFile(io.BytesIO(scene.export(file_type="3mf")))
+    digest = hashlib.sha256(mesh.vertices.tobytes() + mesh.faces.tobytes()).hexdigest()
+    count = itertools.count()
+
+    def fixed(_: re.Match) -> str:
+        return f'UUID="{uuid.uuid5(uuid.NAMESPACE_URL, f"camgen:{digest}:{next(count)}")}"'
+
+    out = io.BytesIO()
+    with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as package:
+        for name in sorted(raw.namelist()):
+            data = raw.read(name)
+            if name.endswith(".model"):
+                data = re.sub(r'UUID="[0-9a-fA-F-]+"', fixed, data.decode("utf-8")).encode("utf-8")
+            package.writestr(zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0)), data,
+                             compress_type=zipfile.ZIP_DEFLATED)
+    return out.getvalue()
+
+
+def test_stl_and_3mf_are_trimesh_s_bytes(meshes):
+    from camgen.core.solids import trimesh_of
+    from camgen.core.writers.stl import stl_bytes
+    from camgen.core.writers.threemf import threemf_bytes
+
+    for mesh in meshes:
+        assert stl_bytes(mesh) == trimesh_of(mesh).export(file_type="stl"), mesh.name
+        assert threemf_bytes(mesh) == _trimesh_3mf(mesh), mesh.name
+
+
+def test_mesh_check_agrees_with_trimesh(meshes):
+    """Closed, consistently wound, the same volume to the last bit, distinct vertices: as trimesh finds them."""
+    from camgen.core.solids import check_mesh, trimesh_of
+
+    for mesh in meshes:
+        ours, tm = check_mesh(mesh), trimesh_of(mesh)
+        assert (ours.watertight, ours.winding_consistent) == (tm.is_watertight, tm.is_winding_consistent) == (True,
+                                                                                                               True)
+        assert ours.volume_mm3 == float(tm.volume) and ours.triangles == len(tm.faces) and ours.ok
+
+
+def test_mesh_check_finds_a_hole_a_flipped_triangle_and_an_inside_out_solid(meshes):
+    from camgen.core.solids import Mesh, check_mesh
+
+    mesh = meshes[0]
+    holed = check_mesh(Mesh(mesh.vertices, mesh.faces[1:], mesh.name))
+    assert not holed.watertight and not holed.ok
+    flipped = mesh.faces.copy()
+    flipped[0] = flipped[0, ::-1]
+    turned = check_mesh(Mesh(mesh.vertices, flipped, mesh.name))
+    assert turned.watertight and not turned.winding_consistent and not turned.ok
+    inside_out = check_mesh(Mesh(mesh.vertices, mesh.faces[:, ::-1], mesh.name))
+    assert inside_out.winding_consistent and inside_out.volume_mm3 < 0 and not inside_out.ok
+    merged = mesh.vertices.copy()
+    merged[1] = merged[0] * (1 + 1e-9)                                  # one point in single precision
+    assert not check_mesh(Mesh(merged, mesh.faces, mesh.name)).distinct_in_float32
+
+
+def test_stl_reads_back(meshes):
+    """The STL's triangles are the mesh's in single precision, with unit normals along their cross products."""
+    from camgen.core.writers.stl import stl_bytes
+
+    mesh = meshes[1]
+    data = stl_bytes(mesh)
+    count = int(np.frombuffer(data[80:84], "<u4")[0])
+    facets = np.frombuffer(data[84:], dtype=[("n", "<f4", (3,)), ("v", "<f4", (3, 3)), ("a", "<u2")])
+    assert count == len(mesh.faces) == len(facets)
+    assert np.array_equal(facets["v"], mesh.vertices[mesh.faces].astype(np.float32))
+    corners = facets["v"].astype(float)
+    cross = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    cross /= np.linalg.norm(cross, axis=1)[:, None]
+    assert np.allclose(facets["n"], cross, atol=1e-5)
