@@ -19,7 +19,7 @@ import numpy as np
 
 from camgen.cam import build_cam
 from camgen.core import bench as core_bench
-from camgen.core.bench import timed
+from camgen.core.bench import call_seconds, process_seconds, ratio_markdown, ratio_row, timed
 from camgen.convergence import contour_error, convergence
 from camgen.spec import validate_spec
 from camgen.core.spec import apply_overrides
@@ -137,6 +137,72 @@ def throughput(count: int, out: Path) -> list[dict]:
     return rows
 
 
+def plain_outline(tolerance: float) -> np.ndarray:
+    """The reference cam's surface as a quick numpy script makes it, the yardstick of :func:`speed_ratios`: the
+    roller's centre in closed form (cycloidal rise and return, offset follower, counter-clockwise cam), moved in by the
+    roller radius along the normal, at equal steps of cam angle (as many as a circle of the largest radius needs),
+    doubled until the surface midway between two vertices lies within ``tolerance`` mm of their chord. Returns the
+    vertices (n, 2)."""
+    rb, rr, e, h, beta = 40.0, 10.0, 5.0, 20.0, math.radians(120.0)
+    d0 = math.sqrt((rb + rr) ** 2 - e**2)
+
+    def surface(theta: np.ndarray) -> np.ndarray:
+        u = np.clip(theta / beta, 0.0, 1.0)                                     # the rise: 0 to 120 degrees
+        w = np.clip((theta - math.pi) / beta, 0.0, 1.0)                         # the return: 180 to 300
+        s = h * (u - np.sin(2 * math.pi * u) / (2 * math.pi)) - h * (w - np.sin(2 * math.pi * w) / (2 * math.pi))
+        ds = h / beta * ((theta < beta) * (1 - np.cos(2 * math.pi * u))
+                         - ((theta > math.pi) & (theta < math.pi + beta)) * (1 - np.cos(2 * math.pi * w)))
+        y = d0 + s                                                              # the centre (e, y), fixed frame
+        tx, ty = y, ds - e                                                      # its velocity in the cam's frame
+        speed = np.hypot(tx, ty)
+        px, py = e + rr * ty / speed, y - rr * tx / speed                       # the surface point, fixed frame
+        c, sn = np.cos(theta), np.sin(theta)
+        return np.column_stack([px * c + py * sn, py * c - px * sn])            # turned back by theta
+
+    n = math.ceil(2 * math.pi * math.sqrt((rb + h) / (8 * tolerance)))   # chords of a circle that big
+    while True:
+        theta = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+        points = surface(theta)
+        middle = surface(theta + math.pi / n)
+        chord = (points + np.roll(points, -1, axis=0)) / 2
+        if np.abs(np.linalg.norm(middle - chord, axis=1)).max() <= tolerance:
+            return points
+        n *= 2
+
+
+def speed_ratios(repeats: int, out: Path) -> list[dict]:
+    """Each of the issue's figures next to its yardstick measured alternately in this run (see
+    :func:`camgen.core.bench.ratio_row`): a cam designed in-process against :func:`plain_outline` at the same
+    tolerance; ``camgen build`` and ``camgen laws`` as whole processes (CPU seconds) against a process that only
+    imports numpy and ezdxf."""
+    from camgen.analysis import analyze
+    from camgen.design import design_cam
+
+    spec = _template("cycloidal")
+    tol = spec.output.tolerance
+    plain = ("a plain numpy outline of the same cam at the same tolerance "
+             f"({len(plain_outline(tol))} vertices)")
+    cam = build_cam(spec)
+    rows = [ratio_row("design_cam: checks and outline (in-process)", plain, lambda: call_seconds(
+        lambda: design_cam(spec), 5), lambda: call_seconds(lambda: plain_outline(tol), 5), repeats * 6,
+        goal="<= 3x, <= 1 ms"),
+            ratio_row("of which the analysis (pressure angle, curvature peaks)", plain, lambda: call_seconds(
+                lambda: analyze(cam), 5), lambda: call_seconds(lambda: plain_outline(tol), 5), repeats * 6)]
+    template = out / "bench.toml"
+    template.write_text(BASE_TOML, encoding="utf-8")
+    python = sys.executable
+    reference = [python, "-c", "import numpy, ezdxf"]
+    label = "python -c 'import numpy, ezdxf'"
+    commands = [("camgen build, every default output", ["build", str(template), "-o", str(out / "all")], "<= 3x"),
+                ("camgen build, dxf stl json", ["build", str(template), "-o", str(out / "some"), "--set",
+                                                'output.formats=["dxf","stl","json"]'], "<= 1.5x"),
+                ("camgen laws", ["laws"], "<= 0.25 s")]
+    for what, args, goal in commands:
+        rows.append(ratio_row(what, label, lambda args=args: process_seconds([python, "-m", "camgen", *args]),
+                              lambda: process_seconds(reference), repeats, unit="cpu s", goal=goal))
+    return rows
+
+
 def hard_cases() -> list[dict]:
     """Each hard case with what happened: a sound value, or a clean refusal (never NaN or garbage)."""
     return core_bench.hard_cases(_cases())
@@ -214,14 +280,19 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
     peer = mechanism_peer(repeats)
     with tempfile.TemporaryDirectory() as tmp:
         flow = throughput(10 if quick else 200, Path(tmp))
+        ratios = speed_ratios(1 if quick else 5, Path(tmp))
     _plot(outlines, out / "speed-vs-error.png")
-    return core_bench.finish(out, {"quick": quick, "outlines": outlines, "mechanism": peer, "throughput": flow,
-                                   "hard_cases": hard_cases()}, _markdown)
+    return core_bench.finish(out, {"quick": quick, "speed": ratios, "outlines": outlines, "mechanism": peer,
+                                   "throughput": flow, "hard_cases": hard_cases()}, _markdown)
 
 
 def _markdown(r: dict) -> list[str]:
     lines = ["# camgen bench", "", f"Python {r['python']}; {'quick run' if r['quick'] else 'full run'}; "
              "median of repeats; errors measured against the exact cam surface.", "",
+             "## Speed against yardsticks measured in the same run", "",
+             "Each row alternates with its reference; the ratio is the median of the pairs' ratios, with the least "
+             "and the largest. Whole processes are timed in CPU seconds (user + system), which a busy machine moves "
+             "far less than wall time.", "", *ratio_markdown(r.get("speed", [])), "",
              "## Cam outlines: speed against error", "",
              "| cam | method | tolerance (mm) | entities | measured max error (mm) | seconds |",
              "|---|---|---|---|---|---|"]

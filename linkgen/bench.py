@@ -7,6 +7,8 @@ Results go to ``RESULTS.md`` and ``results.json``.
 from __future__ import annotations
 
 import math
+import sys
+import tempfile
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -15,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core import bench as core_bench
-from camgen.core.bench import timed
+from camgen.core.bench import call_seconds, process_seconds, ratio_markdown, ratio_row, timed
 from linkgen.kinematics import dyads, equivalents
 from linkgen.kinematics.fourbar import FourBar
 from linkgen.kinematics.linkage import Linkage
@@ -40,21 +42,65 @@ def linkage_speed(repeats: int) -> list[dict]:
     for n in (360, 100_000):
         t = 2 * math.pi / n * np.arange(1, n + 1)
         exact, ours = timed(lambda t=t: fb.positions(t).b, repeats)
-
-        def plain(t: np.ndarray = t) -> np.ndarray:
-            ax, ay = 80 * np.cos(t), 80 * np.sin(t)
-            dx, dy = 180 - ax, -ay
-            z = np.hypot(dx, dy)
-            alpha = np.arccos(np.clip((200**2 + z**2 - 150**2) / (2 * 200 * z), -1, 1))
-            th3 = np.arctan2(dy, dx) + alpha
-            return np.column_stack([ax + 200 * np.cos(th3), ay + 200 * np.sin(th3)])
-
-        naive, seconds = timed(plain, repeats)
+        naive, seconds = timed(lambda t=t: plain_positions(t), repeats)
         rows += [{"method": "linkgen closed form (stable at toggles)", "angles": n, "seconds": ours,
                   "max_error_mm": 0.0},
                  {"method": "plain numpy closed form (arccos)", "angles": n, "seconds": seconds,
                   "max_error_mm": float(np.abs(naive - exact).max())}]
         rows += _pylinkage(n, exact, repeats)
+    return rows
+
+
+#: the bundled crank-rocker (templates/crank-rocker.toml), written out by the bench to time the commands
+CRANK_ROCKER = """name = "crank-rocker"
+[linkage]
+type = "four-bar"
+ground = 180.0
+crank = 80.0
+coupler = 200.0
+rocker = 150.0
+[parts]
+width = 14.0
+thickness = 4.0
+pin_diameter = 4.0
+clearance = 0.2
+kerf = 0.15
+sheet = [600.0, 400.0]
+pins = true
+"""
+
+
+def plain_positions(t: np.ndarray) -> np.ndarray:
+    """The reference crank-rocker's rocker pin at crank angles ``t`` by the plain numpy closed form (arccos, one
+    branch, no care at toggles): the yardstick of :func:`speed_ratios`."""
+    ax, ay = 80 * np.cos(t), 80 * np.sin(t)
+    dx, dy = 180 - ax, -ay
+    z = np.hypot(dx, dy)
+    alpha = np.arccos(np.clip((200**2 + z**2 - 150**2) / (2 * 200 * z), -1, 1))
+    th3 = np.arctan2(dy, dx) + alpha
+    return np.column_stack([ax + 200 * np.cos(th3), ay + 200 * np.sin(th3)])
+
+
+def speed_ratios(repeats: int) -> list[dict]:
+    """Each of the issue's figures next to its yardstick measured alternately in this run (see
+    :func:`camgen.core.bench.ratio_row`): four-bar positions at 100 000 crank angles against :func:`plain_positions`;
+    ``linkgen analyze`` and ``linkgen build`` of the crank-rocker as whole processes (CPU seconds) against a process
+    that only imports numpy and ezdxf."""
+    fb = FourBar(180, 80, 200, 150)
+    t = 2 * math.pi / 100_000 * np.arange(1, 100_001)
+    rows = [ratio_row("four-bar positions, 100 000 crank angles", "plain numpy closed form (arccos)",
+                      lambda: call_seconds(lambda: fb.positions(t).b, 3),
+                      lambda: call_seconds(lambda: plain_positions(t), 3), repeats * 4, goal="<= 1.0x")]
+    python = sys.executable
+    reference = [python, "-c", "import numpy, ezdxf"]
+    with tempfile.TemporaryDirectory() as tmp:
+        template = Path(tmp) / "crank-rocker.toml"
+        template.write_text(CRANK_ROCKER, encoding="utf-8")
+        for command, goal in (("analyze", "<= 3x"), ("build", "<= 3x")):
+            args = [python, "-m", "linkgen", command, str(template), "-o", str(Path(tmp) / command)]
+            rows.append(ratio_row(f"linkgen {command} crank-rocker, every default output",
+                                  "python -c 'import numpy, ezdxf'", lambda args=args: process_seconds(args),
+                                  lambda: process_seconds(reference), repeats, unit="cpu s", goal=goal))
     return rows
 
 
@@ -232,7 +278,8 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
     repeats = 1 if quick else 5
     from linkgen.synthesis.bench import synthesis_rows
 
-    return core_bench.finish(Path(out), {"quick": quick, "linkages": linkage_speed(repeats),
+    return core_bench.finish(Path(out), {"quick": quick, "speed": speed_ratios(1 if quick else 5),
+                                         "linkages": linkage_speed(repeats),
                                          "general": general_speed(repeats, 10_000 if quick else 100_000),
                                          "synthesis": synthesis_rows(quick),
                                          "hard_cases": hard_cases()}, _markdown)
@@ -241,6 +288,10 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
 def _markdown(r: dict) -> list[str]:
     lines = ["# linkgen bench", "", f"Python {r['python']}; {'quick run' if r['quick'] else 'full run'}; "
              "median of repeats.", "",
+             "## Speed against yardsticks measured in the same run", "",
+             "Each row alternates with its reference; the ratio is the median of the pairs' ratios, with the least "
+             "and the largest. Whole processes are timed in CPU seconds (user + system).", "",
+             *ratio_markdown(r.get("speed", [])), "",
              "## Linkage positions (rocker pin of the reference crank-rocker)", "",
              "| method | angles | seconds | max error (mm) | status |", "|---|---|---|---|---|"]
     for row in r["linkages"]:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from click.testing import CliRunner
 
 from camgen.cli import main
@@ -26,6 +27,20 @@ def test_quick_bench_produces_every_figure(tmp_path):
     assert r["hard_cases"] and not [c for c in r["hard_cases"] if c["outcome"].startswith("WRONG")]
     text = (tmp_path / "RESULTS.md").read_text()
     assert "## Hard cases" in text and "## Throughput" in text
+    _speed_rows(r, text, {"design_cam: checks and outline (in-process)", "camgen build, every default output",
+                          "camgen build, dxf stl json", "camgen laws"})
+
+
+def _speed_rows(r: dict, text: str, whats: set[str]) -> None:
+    """Each speed row next to its reference measured in the same run, as a ratio with its spread (no time is
+    asserted: only that each was measured)."""
+    rows = {row["what"]: row for row in r["speed"]}
+    assert whats <= set(rows)
+    for row in rows.values():
+        assert row["reference"] and row["runs"] >= 1 and row["seconds"] > 0 and row["reference_seconds"] > 0
+        assert 0 < row["ratio_min"] <= row["ratio"] <= row["ratio_max"]
+        assert row["ratio"] == pytest.approx(row["seconds"] / row["reference_seconds"], rel=1.0)
+    assert "## Speed against yardsticks measured in the same run" in text and "x (" in text
 
 
 def test_quick_linkgen_bench(tmp_path):
@@ -46,3 +61,6 @@ def test_quick_linkgen_bench(tmp_path):
     assert peer and (peer[0].get("status") or peer[0]["max_error_mm"] < 1e-6)
     # synthesis: each published problem solved, our error not worse than plain differential evolution's
     assert len(r["synthesis"]) == 4 and "## Synthesis" in (tmp_path / "RESULTS.md").read_text()
+    _speed_rows(r, (tmp_path / "RESULTS.md").read_text(), {"four-bar positions, 100 000 crank angles",
+                                                             "linkgen analyze crank-rocker, every default output",
+                                                             "linkgen build crank-rocker, every default output"})

@@ -50,3 +50,51 @@ def finish(out: Path, results: dict[str, Any], markdown: Callable[[dict[str, Any
     (out / "results.json").write_text(json.dumps(results, indent=2, default=str) + "\n")
     (out / "RESULTS.md").write_text("\n".join(lines) + "\n")
     return results
+
+
+def process_seconds(command: list[str], cwd: Path | None = None) -> float:
+    """CPU seconds (user + system) a child process running ``command`` takes, start-up included: on a shared
+    machine a process's own CPU time moves far less than its wall time. Raises CalledProcessError if it fails."""
+    import subprocess
+
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run(command, cwd=cwd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+
+
+def call_seconds(func: Callable[[], Any], inner: int = 1) -> float:
+    """The least of ``inner`` wall times of ``func()`` (seconds)."""
+    best = float("inf")
+    for _ in range(max(1, inner)):
+        start = time.perf_counter()
+        func()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def ratio_row(what: str, reference: str, measure: Callable[[], float], measure_reference: Callable[[], float],
+              repeats: int, unit: str = "s", **extra: Any) -> dict[str, Any]:
+    """``what`` against ``reference``, measured alternately ``repeats`` times in this run (so that both see the
+    same machine): each one's median (in ``unit``: "s" wall seconds in this process, "cpu s" a process's CPU
+    seconds), and the ratio's median and spread (its least and largest over the pairs)."""
+    ours, theirs = [], []
+    for _ in range(max(1, repeats)):
+        ours.append(measure())
+        theirs.append(measure_reference())
+    ratios = sorted(a / b for a, b in zip(ours, theirs, strict=True))
+    return {"what": what, "reference": reference, "unit": unit, "runs": len(ratios),
+            "seconds": statistics.median(ours), "reference_seconds": statistics.median(theirs),
+            "ratio": statistics.median(ratios), "ratio_min": ratios[0], "ratio_max": ratios[-1], **extra}
+
+
+def ratio_markdown(rows: list[dict[str, Any]]) -> list[str]:
+    """The ratio rows as a Markdown table."""
+    lines = ["| what | reference (same run) | time | reference | ratio: median (least - largest) | runs | goal |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        scale, unit = (1e3, "ms") if r["seconds"] < 0.1 else (1.0, r["unit"])
+        lines.append(f"| {r['what']} | {r['reference']} | {r['seconds'] * scale:.3g} {unit} | "
+                     f"{r['reference_seconds'] * scale:.3g} {unit} | {r['ratio']:.2f}x ({r['ratio_min']:.2f} - "
+                     f"{r['ratio_max']:.2f}) | {r['runs']} | {r.get('goal', '-')} |")
+    return lines
