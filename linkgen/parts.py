@@ -22,8 +22,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from camgen.core.errors import DesignError
-from camgen.core.parts import LAYER_HOLES, LAYER_OUTLINE, Allowances, Drawing, Part
-from camgen.core.shapes import Circle, Contour, Polyline, rounded_hull
+from camgen.core.parts import LAYER_HOLES, LAYER_LABELS, LAYER_OUTLINE, Allowances, Drawing, Part
+from camgen.core.shapes import Circle, Contour, Polyline, Text, rounded_hull
 
 if TYPE_CHECKING:
     from linkgen.spec import PartsTable
@@ -246,7 +246,8 @@ def _place(part: Part, angle: float, shift: np.ndarray) -> tuple[Contour, list]:
 
 def sheet(cut: tuple[Part, ...], size: tuple[float, float], gap: float, tolerance: float) -> Drawing:
     """The parts laid on a sheet of ``size`` (width, height; mm) by shelf packing, left to right in rows from the
-    origin, each part shifted so its box starts at the cursor, ``gap`` mm apart."""
+    origin, each part shifted so its box starts at the cursor, ``gap`` mm apart, its name engraved on
+    ``LABELS`` (score it, do not cut it)."""
     width, height = size
     x = y = row = 0.0
     items: list = []
@@ -259,9 +260,19 @@ def sheet(cut: tuple[Part, ...], size: tuple[float, float], gap: float, toleranc
             raise DesignError(f"parts.sheet: the parts do not fit a {width:g} x {height:g} mm sheet with gaps of "
                               f"{gap:g} mm; give a larger sheet")
         outline, holes = _place(part, 0.0, np.array([x, y]) - lo)
-        items += [(LAYER_OUTLINE, outline), *((LAYER_HOLES, h) for h in holes)]
+        items += [(LAYER_OUTLINE, outline), *((LAYER_HOLES, h) for h in holes), *_label(part.name, x, y, span)]
         x, row = x + span[0] + gap, max(row, span[1])
     return Drawing(tuple(items), tolerance)
+
+
+def _label(name: str, x: float, y: float, span: np.ndarray) -> list[tuple[str, Text]]:
+    """The part's name to engrave on ``LAYER_LABELS``, centred in its box at (x, y) of size ``span`` (mm): at most
+    5 mm high, and narrow enough to fit the box; none where it would be under 1 mm high."""
+    height = min(5.0, 0.35 * float(span[1]), 0.8 * float(span[0]) / (0.6 * len(name)))
+    if height < 1.0:
+        return []
+    width = 0.6 * height * len(name)
+    return [(LAYER_LABELS, Text(name, (x + (span[0] - width) / 2, y + (span[1] - height) / 2), height))]
 
 
 def assembly(printed: tuple[Part, ...], layout: Layout, tolerance: float) -> Drawing:
@@ -274,7 +285,9 @@ def assembly(printed: tuple[Part, ...], layout: Layout, tolerance: float) -> Dra
             outline, holes = _place(part, float(place.angles[part.name][0]), place.origins[part.name][0])
             items += [(layer, outline), *((layer, h) for h in holes)]
     items += [("PATH", Polyline(path, np.zeros(len(path) - 1))) for path in layout.paths]
-    return Drawing(tuple(items), tolerance)
+    boxes = np.array([shape.bounds() for _, shape in items if isinstance(shape, Contour)])
+    extent = float(max(np.ptp(boxes[:, [0, 2]]), np.ptp(boxes[:, [1, 3]]))) if len(boxes) else 100.0
+    return Drawing(tuple(items), tolerance, stroke=round(max(0.2, extent / 500.0), 2))
 
 
 @dataclass(frozen=True)

@@ -52,13 +52,15 @@ def _draw(ax: Any, fb: FourBar, pose: Poses, colour: str, label: str) -> None:
 
 
 def dead_centre_figure(name: str, fb: FourBar, assembly: str) -> Any:
-    """The linkage drawn at each dead-centre and toggle position, with the coupler-point path."""
+    """The linkage drawn at each dead-centre and toggle position, with the rocker pin's arc and, with a coupler
+    point, its path."""
     fig = figure(8, 6.5)
     ax = fig.add_subplot()
     ax.plot([0, fb.ground], [0, 0], color="0.3", lw=3, solid_capstyle="round", label="ground")
     for t in _input_grid(fb):
         p = fb.sweep(t, assembly)
-        ax.plot(p.point[:, 0], p.point[:, 1], ":", color="0.4", lw=1)
+        if fb.point_distance > 0:
+            ax.plot(p.point[:, 0], p.point[:, 1], ":", color="0.4", lw=1)
         ax.plot(p.b[:, 0], p.b[:, 1], "--", color="0.75", lw=0.8)
     for k, d in enumerate(fb.dead_centres(assembly)):
         pose = fb.positions(np.array([d.crank]), assembly)
@@ -69,7 +71,8 @@ def dead_centre_figure(name: str, fb: FourBar, assembly: str) -> Any:
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     fig.legend(loc="outside lower center", ncols=2, fontsize=8)
-    ax.set_title(f"{name}: dead-centre positions ({assembly}); dotted: coupler-point path")
+    paths = "dotted: coupler-point path; dashed: rocker pin" if fb.point_distance > 0 else "dashed: rocker pin's arc"
+    ax.set_title(f"{name}: dead-centre positions ({assembly}); {paths}")
     return fig
 
 

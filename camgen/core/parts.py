@@ -49,17 +49,23 @@ LAYER_OUTLINE = "OUTLINE"
 LAYER_HOLES = "HOLES"
 LAYER_ENGRAVE = "ENGRAVE"
 LAYER_GROOVE = "GROOVE"
+#: part names on a cut sheet: scored, not cut
+LAYER_LABELS = "LABELS"
 
 #: each layer's colour, the same in every format, as (AutoCAD colour index, RGB): laser programs that assign
 #: operations by colour see red outlines, blue holes (cut first), green marks to score and magenta pockets to engrave
-#: to a depth; other layers black
+#: to a depth, orange labels; an assembly's poses (layers ``DC1-...``, ``DC2-...``) each their own colour from
+#: :data:`POSE_COLOURS`; other layers black
 LAYER_COLOURS = {LAYER_OUTLINE: (1, "#ff0000"), LAYER_HOLES: (5, "#0000ff"), LAYER_ENGRAVE: (3, "#00ff00"),
-                 LAYER_GROOVE: (6, "#ff00ff")}
+                 LAYER_GROOVE: (6, "#ff00ff"), LAYER_LABELS: (30, "#ff8000")}
+POSE_COLOURS = ((5, "#0000ff"), (1, "#ff0000"), (94, "#008000"), (6, "#ff00ff"), (30, "#ff8000"), (4, "#00c0c0"))
 OTHER_LAYER_COLOUR = (7, "#000000")
 
 
 def layer_colour(layer: str) -> tuple[int, str]:
     """(AutoCAD colour index, RGB hex) of ``layer``."""
+    if layer.startswith("DC") and layer[2:].partition("-")[0].isdigit():
+        return POSE_COLOURS[(int(layer[2:].partition("-")[0]) - 1) % len(POSE_COLOURS)]
     return LAYER_COLOURS.get(layer, OTHER_LAYER_COLOUR)
 
 
@@ -90,11 +96,13 @@ class Drawing:
     """Shapes on named layers, in mm, ready for any 2-D writer.
 
     ``tolerance`` (mm) is the chord tolerance wherever a writer must turn arcs into
-    lines (the DXF ``segments`` flavour, previews).
+    lines (the DXF ``segments`` flavour, previews). ``stroke`` (mm) is the SVG's line width for a
+    drawing made to be looked at (an assembly); None keeps the hairline a laser cuts along.
     """
 
     items: tuple[tuple[str, Shape | Polyline | Text], ...]
     tolerance: float
+    stroke: float | None = None
 
     def _repr_svg_(self) -> str:
         """Jupyter shows the drawing (strokes 0.3 mm wide, so they show on screen)."""
@@ -108,7 +116,7 @@ class Drawing:
         for layer, shape in self.items:
             items += [(layer, line) for line in shape.outlines(self.tolerance)] if isinstance(shape, Text) else [
                 (layer, shape)]
-        return Drawing(tuple(items), self.tolerance)
+        return Drawing(tuple(items), self.tolerance, self.stroke)
 
     @classmethod
     def of_part(cls, part: Part) -> "Drawing":

@@ -102,11 +102,12 @@ def _path(contour: Contour, pt: Callable[[np.ndarray], str], closed: bool = True
 
 
 def write_svg(drawing: Drawing, path: Path, options: Any = None) -> None:
-    """Write ``drawing`` to ``path`` as a cut SVG (hairline strokes), its text as ``<text>`` or, with
-    ``options.text = "outline"``, as the glyphs' outlines."""
+    """Write ``drawing`` to ``path`` as an SVG: hairline strokes for cutting, or the drawing's own ``stroke`` for
+    one made to be looked at; its text as ``<text>`` or, with ``options.text = "outline"``, as the glyphs'
+    outlines."""
     if options is not None and options.text == "outline":
         drawing = drawing.with_outlined_text()
-    path.write_text(svg_document(drawing), encoding="utf-8")
+    path.write_text(svg_document(drawing, drawing.stroke or HAIRLINE_MM), encoding="utf-8")
 
 
 WRITERS = {"cut-svg": write_svg}
