@@ -213,9 +213,13 @@ def _contact_warnings(speed: dict[str, Any] | None) -> tuple[str, ...]:
     contact = speed and speed["contact"]
     if not contact or contact.get("holds") is not False:
         return ()
-    if contact["mode"] == "gravity":
+    if contact["mode"] == "gravity" and "liftoff_at_deg" in contact:
         return (f"the follower leaves the cam near {contact['liftoff_at_deg']:.1f} degrees: "
                 f"gravity holds it only up to {contact['liftoff_rpm']:.4g} rpm",)
+    if contact["mode"] == "gravity":
+        return (f"the follower loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
+                f"{contact['force_min_n']:.3g} N): a spring with a preload of {contact['preload_needed_n']:.4g} N "
+                "would hold it",)
     return (f"the spring loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
             f"{contact['force_min_n']:.3g} N): a preload of {contact['preload_needed_n']:.4g} N would hold it",)
 

@@ -18,6 +18,7 @@ from pydantic import Field, field_validator, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
+from camgen.core.errors import SpecError
 from camgen.core.spec import CutOutputTable
 from camgen.contact_stress import MATERIALS
 from camgen.followers import FOLLOWERS
@@ -345,13 +346,19 @@ def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | Gene
 
 
 def _tables_beside(raw: dict[str, Any], folder: Path) -> dict[str, Any]:
-    """``raw`` with each table law's relative ``file`` made relative to ``folder`` (the template's)."""
+    """``raw`` with each table law's relative ``file`` read from ``folder`` (the template's) into its ``data``;
+    ``file`` stays as the user wrote it (the report names it so, wherever the template lies)."""
     motion = raw.get("motion")
     if not isinstance(motion, list):
         return raw
-    segments = [{**seg, "file": str(folder / seg["file"])}
-                if isinstance(seg, dict) and isinstance(seg.get("file"), str) and not Path(seg["file"]).is_absolute()
-                else seg for seg in motion]
+    segments = []
+    for i, seg in enumerate(motion):
+        if isinstance(seg, dict) and isinstance(seg.get("file"), str) and seg.get("data") is None:
+            try:
+                seg = {**seg, "data": read_table(folder / seg["file"])}
+            except ValueError as exc:
+                raise SpecError(str(exc).removeprefix("file: "), f"motion[{i}].file") from None
+        segments.append(seg)
     return {**raw, "motion": segments}
 
 

@@ -154,3 +154,11 @@ def test_an_arms_weight_is_refused_and_its_spring_sized_at_the_roller(tmp_path):
     need = _design(OSCILLATING, base).speed["contact"]["preload_needed_n"]
     held = _design(OSCILLATING, (*base, f"follower.preload={need!r}")).speed["contact"]
     assert held["force_min_n"] == pytest.approx(1.0, abs=1e-9)
+
+
+def test_gravity_with_a_margin_warns_in_words():
+    """A flat face held by gravity with a contact margin is checked as a loading: losing contact is a warning (it
+    was a KeyError: the gravity warning read a lift-off angle that only gravity alone gives)."""
+    design = _design(ROOT / "templates" / "flat-face.toml", ("follower.contact_margin=5", "cam.rpm=400"))
+    assert design.speed["contact"]["holds"] is False
+    assert any(w.startswith("the follower loses contact near") for w in design.warnings)
