@@ -119,11 +119,9 @@ add_family(main, "linkgen.spec:validate_spec", "linkgen.outputs:build_member",
            "re-running resumes.")
 
 
-add_new(main, "linkgen.starters:starter", "linkgen.starters:STARTERS", "linkgen")
-
-
 add_bench(main, "linkgen.bench:run_bench", Path("out/linkgen-bench"),
           "Measure linkage positions against a plain closed form and pylinkage, and rerun the hard cases.")
+add_new(main, "linkgen.starters:starter", "linkgen.starters:STARTERS", "linkgen")
 
 
 def _print_general(r: dict[str, Any]) -> None:
