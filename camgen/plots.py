@@ -31,14 +31,14 @@ def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarr
 
 
 def svaj_figure(design: CamDesign) -> Any:
-    """Displacement, velocity, acceleration and jerk against cam angle (per radian of cam angle)."""
+    """Displacement, velocity, acceleration and jerk against cam angle: in time at ``cam.rpm`` (mm, m/s, m/s^2,
+    m/s^3; an arm's swing in degrees and rad/s^n), else per radian of cam angle."""
     theta, motion = sample_cycle(design.cam)
+    motion, labels = _machine_units(design, motion)
     deg = np.degrees(theta)
     fig = figure(8, 9, layout=None)
     fig.subplots_adjust(left=0.12, right=0.97, bottom=0.06, top=0.95, hspace=0.1)
     axes = fig.subplots(4, 1, sharex=True)
-    u = design.cam.follower.lift_unit
-    labels = [f"s ({u})", f"s' ({u}/rad)", f"s'' ({u}/rad²)", f"s''' ({u}/rad³)"]
     starts = [math.degrees(seg.start) for seg in design.cam.program.segments]
     for k, ax in enumerate(axes):
         ax.plot(deg, motion[k], color="C0", lw=1.2)
@@ -52,8 +52,23 @@ def svaj_figure(design: CamDesign) -> Any:
     axes[-1].set_xlabel("cam angle θ (degrees)")
     axes[-1].set_xlim(0, 360)
     axes[-1].set_xticks(range(0, 361, 30))
-    axes[0].set_title(f"{design.spec.name}: S-V-A-J (∞ marks infinite acceleration or jerk)")
+    speed = getattr(design.spec.cam, "rpm", None)
+    at = f" at {speed:g} rpm" if speed else " (per radian of cam angle)"
+    axes[0].set_title(f"{design.spec.name}: S-V-A-J{at} (∞ marks infinite acceleration or jerk)")
     return fig
+
+
+def _machine_units(design: CamDesign, motion: np.ndarray) -> tuple[np.ndarray, list[str]]:
+    """The rows s, s', s'', s''' and their axis labels: per radian of cam angle without a speed, in time at
+    ``cam.rpm`` (v = omega s', a = omega^2 s'', j = omega^3 s''', in m/s^n, or rad/s^n for an arm)."""
+    u = design.cam.follower.lift_unit
+    rpm = getattr(design.spec.cam, "rpm", None)
+    if rpm is None:
+        return motion, [f"s ({u})", f"s' ({u}/rad)", f"s'' ({u}/rad²)", f"s''' ({u}/rad³)"]
+    omega = rpm * 2 * math.pi / 60
+    unit, scale = ("rad", math.pi / 180) if u == "deg" else ("m", 1e-3)
+    rates = np.array([omega ** k * scale for k in (1, 2, 3)])[:, None] * motion[1:]
+    return np.vstack([motion[:1], rates]), [f"s ({u})", f"v ({unit}/s)", f"a ({unit}/s²)", f"j ({unit}/s³)"]
 
 
 def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:

@@ -162,3 +162,18 @@ def test_gravity_with_a_margin_warns_in_words():
     design = _design(ROOT / "templates" / "flat-face.toml", ("follower.contact_margin=5", "cam.rpm=400"))
     assert design.speed["contact"]["holds"] is False
     assert any(w.startswith("the follower loses contact near") for w in design.warnings)
+
+
+@pytest.mark.parametrize("template, sets, key, scale, unit", [
+    (RDRD, ("cam.rpm=300",), "velocity_max_mm_s", 1e-3, "v (m/s)"),
+    (OSCILLATING, (), "velocity_max_deg_s", math.pi / 180, "v (rad/s)"),
+])
+def test_svaj_plots_in_the_machines_units(template, sets, key, scale, unit):
+    """At a speed the S-V-A-J figure is in time: its velocity peak is the report's, in m/s (or rad/s for an arm)."""
+    from camgen.plots import svaj_figure
+
+    design = _design(template, sets)
+    axes = svaj_figure(design).axes
+    assert axes[1].get_ylabel() == unit
+    peak = float(np.max(np.abs(axes[1].get_lines()[0].get_ydata())))
+    assert peak == pytest.approx(design.speed[key] * scale, rel=1e-6)
