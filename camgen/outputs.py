@@ -35,9 +35,10 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     def plot(kind: str) -> Any:
         from camgen import plots
 
-        return {"svaj": plots.svaj_figure, "cam": plots.cam_figure}[kind](design)
+        return {"svaj": plots.svaj_figure, "cam": plots.cam_figure, "checks": plots.checks_figure}[kind](design)
 
-    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report)), report
+    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
+                     ("svaj", "cam", "checks")), report
 
 
 def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
@@ -55,9 +56,9 @@ def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
 
 
 def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], report: dict[str, Any],
-              page: Callable[[], Any] | None = None) -> Bundle:
+              page: Callable[[], Any] | None = None, figures: tuple[str, ...] = ("svaj", "cam")) -> Bundle:
     """The files of any cam kind, named as this module says: ``cut`` drawn as the cut files, ``mesh`` (or None)
-    as the printed ones, ``plot("svaj")`` and ``plot("cam")`` (made only if written), ``report``, ``page()`` (the
+    as the printed ones, ``plot(kind)`` for each of ``figures`` (made only if written), ``report``, ``page()`` (the
     interactive page, made only if written; none without it); only the formats ``spec.output.formats`` asks for."""
     out, name = spec.output, spec.name
     formats = out.formats
@@ -66,7 +67,7 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
         *(item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
                                               ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
-          for kind in ("svaj", "cam")),
+          for kind in figures),
         item(Report(report), [("json", "json", f"{name}.json")], formats),
         item(page, [("html", "html", f"{name}.html")], formats) if page is not None else None,
     ]

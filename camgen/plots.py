@@ -58,6 +58,84 @@ def svaj_figure(design: CamDesign) -> Any:
     return fig
 
 
+def checks_figure(design: CamDesign) -> Any:
+    """What the design is checked against, over the turn: the pressure angle with its limit (a translating flat
+    face's is 0 by definition, so the profile's radius stands alone), the radius of curvature of the cam's surface
+    with the roller's (the undercut limit) and, at a speed with a mass, the contact force and camshaft torque, and
+    with materials the Hertz pressure against its allowable."""
+    from camgen.dynamics import loading
+    from camgen.forces import Contact, contact_pressure, normal_force, torque
+
+    cam, spec = design.cam, design.spec
+    theta, motion = sample_cycle(cam)
+    g = _pitch_by_segment(cam)
+    deg = np.degrees(theta)
+    f = spec.follower
+    forces = (design.speed or {}).get("forces")
+    panels = ["pressure", "radius"] + (["force"] if forces else []) + (["stress"] if forces and
+                                                                        "pressure_max_MPa" in forces.get("stress", {})
+                                                                        else [])
+    fig = figure(8, 2.4 * len(panels) + 1.2, layout=None)
+    fig.subplots_adjust(left=0.12, right=0.88, bottom=0.08, top=0.94, hspace=0.15)
+    axes = np.atleast_1d(fig.subplots(len(panels), 1, sharex=True))
+    ax = axes[0]
+    flat = cam.follower.flat and not f.oscillating
+    if flat:
+        ax.text(0.5, 0.5, "pressure angle 0 by definition: a translating flat face is pushed square to its face",
+                transform=ax.transAxes, ha="center", va="center", fontsize=9)
+    else:
+        ax.plot(deg, np.degrees(g.pressure_angle), color="C0", lw=1.2)
+        for sign in (1, -1):
+            ax.axhline(sign * design.pressure_limit_deg, color="C3", lw=0.8, ls="--")
+    ax.set_ylabel("pressure angle (deg)")
+    rr = cam.contact_radius
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rho = g.rho if g.rho is not None else 1.0 / g.kappa - rr
+    limit = 4.0 * max(float(np.nanmedian(np.abs(rho[np.isfinite(rho)]))) if np.isfinite(rho).any() else 1.0, 1.0)
+    axes[1].plot(deg, np.clip(np.where(np.isfinite(rho), rho, np.sign(rho) * limit), -limit, limit), color="C0",
+                 lw=1.2, label="cam surface")
+    axes[1].axhline(0.0, color="C3", lw=0.8, ls="--", label="undercut below 0")
+    axes[1].set_ylabel("radius of curvature (mm)")
+    axes[1].legend(fontsize=7, loc="lower right")
+    if forces:
+        ld = loading(f.mass, f.spring_rate, f.preload, f.load, f.orientation, f.contact_margin,
+                     f.arm_length if f.oscillating else None)
+        omega = spec.cam.rpm * 2 * math.pi / 60
+        push = normal_force(ld, omega, g, motion)
+        axes[2].plot(deg, push, color="C0", lw=1.2, label="contact force (N)")
+        axes[2].axhline(0.0, color="C3", lw=0.8, ls="--")
+        axes[2].set_ylabel("contact force (N)")
+        twin = axes[2].twinx()
+        twin.plot(deg, torque(ld, omega, motion), color="C1", lw=1.0, ls="-.")
+        twin.set_ylabel("shaft torque (N·m)", color="C1")
+        if "stress" in panels:
+            st = forces["stress"]
+            contact = Contact(st["cam_material"], st["follower_material"], st["length_mm"])
+            axes[3].plot(deg, contact_pressure(cam, contact, g, push)[0], color="C0", lw=1.2)
+            axes[3].axhline(st["allowable_MPa"], color="C3", lw=0.8, ls="--")
+            axes[3].set_ylabel("Hertz pressure (MPa)")
+    for a in axes:
+        a.grid(alpha=0.3)
+    axes[-1].set_xlabel("cam angle θ (degrees)")
+    axes[-1].set_xlim(0, 360)
+    axes[-1].set_xticks(range(0, 361, 30))
+    at = f" at {spec.cam.rpm:g} rpm" if forces else ""
+    axes[0].set_title(f"{spec.name}: checks over the turn{at} (dashed: limits)")
+    return fig
+
+
+def _pitch_by_segment(cam: Cam, per_segment: int = 181) -> Any:
+    """Pitch geometry at :func:`sample_cycle`'s angles, each segment's own (a boundary appears once a side, as
+    the motion does)."""
+    from dataclasses import fields, replace
+
+    parts = [cam.segment_pitch(i, np.linspace(seg.start, seg.end, per_segment if seg.kind != "dwell" else 2))
+             for i, seg in enumerate(cam.program.segments)]
+    joined = {f.name: np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(parts[0])
+              if getattr(parts[0], f.name) is not None}
+    return replace(parts[0], **joined)
+
+
 def _machine_units(design: CamDesign, motion: np.ndarray) -> tuple[np.ndarray, list[str]]:
     """The rows s, s', s'', s''' and their axis labels: per radian of cam angle without a speed, in time at
     ``cam.rpm`` (v = omega s', a = omega^2 s'', j = omega^3 s''', in m/s^n, or rad/s^n for an arm)."""

@@ -177,3 +177,20 @@ def test_svaj_plots_in_the_machines_units(template, sets, key, scale, unit):
     assert axes[1].get_ylabel() == unit
     peak = float(np.max(np.abs(axes[1].get_lines()[0].get_ydata())))
     assert peak == pytest.approx(design.speed[key] * scale, rel=1e-6)
+
+
+def test_the_checks_figure_draws_the_reported_figures():
+    """The checks figure: its pressure angle peaks at the report's, its torque at the forces' extremes, its Hertz
+    pressure at the stress's peak (the dense plot within 0.5 % of the refined peaks)."""
+    from camgen.plots import checks_figure
+
+    design = _design()
+    axes = checks_figure(design).axes
+    pressure = np.max(np.abs(axes[0].get_lines()[0].get_ydata()))
+    assert pressure == pytest.approx(design.analysis.pressure_angle_max_deg, rel=5e-3)
+    torque_line = next(a for a in axes if a.get_ylabel().startswith("shaft torque")).get_lines()[0].get_ydata()
+    assert np.max(torque_line) == pytest.approx(design.speed["forces"]["torque_max_N_m"], rel=5e-3)
+    hertz = next(a for a in axes if a.get_ylabel().startswith("Hertz")).get_lines()[0].get_ydata()
+    assert np.max(hertz) == pytest.approx(design.speed["forces"]["stress"]["pressure_max_MPa"], rel=5e-3)
+    flat = checks_figure(_design(ROOT / "templates" / "flat-face.toml", ())).axes[0]
+    assert not flat.get_lines() and "0 by definition" in flat.texts[0].get_text()
