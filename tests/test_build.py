@@ -30,7 +30,8 @@ def test_all_files_are_written_and_no_temporaries_left(built):
     out, _ = built
     names = sorted(p.name for p in out.iterdir())
     assert names == sorted(["rdrd.dxf", "rdrd-cut.svg", "rdrd.stl", "rdrd.3mf", "rdrd.json", "rdrd-svaj.png",
-                            "rdrd-svaj.svg", "rdrd-cam.png", "rdrd-cam.svg", "rdrd.html"])
+                            "rdrd-svaj.svg", "rdrd-cam.png", "rdrd-cam.svg", "rdrd-checks.png", "rdrd-checks.svg",
+                            "rdrd.html"])
 
 
 def test_dxf_audit_units_layers_and_accuracy(built):

@@ -158,7 +158,7 @@ def test_every_file_is_reproducible_across_processes(tmp_path):
                        env=env, check=True, capture_output=True, timeout=300)
         outs.append(out)
     names = sorted(p.name for p in outs[0].iterdir())
-    assert names == sorted(p.name for p in outs[1].iterdir()) and len(names) == 10
+    assert names == sorted(p.name for p in outs[1].iterdir()) and len(names) == 12
     for name in names:
         assert (outs[0] / name).read_bytes() == (outs[1] / name).read_bytes(), name
 
