@@ -13,6 +13,7 @@ from camgen.cam import Cam, build_cam
 from camgen.dynamics import loading, speed_report
 from camgen.forces import Contact, forces_report
 from camgen.core.errors import DesignError, SpecError
+from camgen.flat_envelope import FaceLeaves, FlatEnvelope, flat_envelope
 from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Polyline, Text
@@ -48,6 +49,8 @@ class CamDesign:
     face_extent: tuple[float, float] | None       # flat faces: nearest and farthest contact along the face (mm)
     speed: dict[str, Any] | None                  # with cam.rpm: peak rates and the contact check
     sizing: Sizing | None = None
+    #: a flat face with its folds cut off (cam.allow_undercut): where the law's face leaves the cut cam
+    face_leaves: tuple[FaceLeaves, ...] | None = None
 
     @property
     def written_error_mm(self) -> float:
@@ -79,20 +82,22 @@ def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
         fold = next(i for i, step in cam.steps() if step < 0)
         return (f"motion[{spec.moving_segment(fold)}]: cusp at {a.pitch_rho_min_at_deg:.4g} degrees: the follower "
                 "velocity drops there, so the profile folds back on itself and no flat face can follow it; use a law "
-                "with continuous velocity (e.g. modified-uniform or cycloidal)")
+                "with continuous velocity (e.g. modified-uniform or cycloidal), or set cam.allow_undercut = true to "
+                "cut the fold off (the follower then leaves the law there)")
     if cam.follower.flat:
         smallest = smallest_for_curvature(spec)
         return (f"cusp at {a.pitch_rho_min_at_deg:.2f} degrees: the profile's radius of curvature falls to "
                 f"{a.profile_rho_min_mm:.4g} mm, so the flat face cannot follow the law there; the smallest "
-                f"cam.base_radius that works is {smallest:.4g} mm")
+                f"cam.base_radius that works is {smallest:.4g} mm (or set cam.allow_undercut = true to cut the fold "
+                "off: the follower then leaves the law there)")
     rr = cam.contact_radius
     corner = a.pitch_rho_min_mm == 0.0
     where = f"undercut at {a.pitch_rho_min_at_deg:.2f} degrees: "
     if corner:
         jump = next(i for i, turn in cam.corners() if turn > 0)
-        return (f"motion[{spec.moving_segment(jump)}]: " + where + "the follower velocity jumps there, so the pitch curve has a convex corner that no roller "
-                "can follow; use a law with continuous velocity (e.g. modified-uniform) or set "
-                "cam.allow_undercut = true")
+        return (f"motion[{spec.moving_segment(jump)}]: " + where + "the follower velocity jumps there, so the pitch "
+                "curve has a convex corner that no roller can follow; use a law with continuous velocity (e.g. "
+                "modified-uniform) or set cam.allow_undercut = true")
     best = largest_roller(spec)
     fits = (f"the largest roller that fits is {best:.4g} mm" if best is not None
             else "no roller fits this base radius")
@@ -112,8 +117,9 @@ def design_cam(spec: CamSpec | GenevaSpec) -> Any:
 def design_profile(spec: CamSpec) -> CamDesign:
     """Build, check and outline a cam cut to a profile (a disc or a plate) as ``spec`` describes.
 
-    Raises :class:`DesignError` for an undercut (unless ``cam.allow_undercut``; never
-    for a flat face's cusp) and for a bore that leaves no material. ``base_radius =
+    Raises :class:`DesignError` for an undercut (unless ``cam.allow_undercut``: a roller's
+    cam is then the cutter's envelope, a flat face's the envelope of its lines with the folds cut
+    off, see :mod:`camgen.flat_envelope`) and for a bore that leaves no material. ``base_radius =
     "auto"`` is first replaced by the smallest that meets the limits (see
     :mod:`camgen.sizing`).
     """
@@ -123,7 +129,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
         spec = with_base_radius(spec, sizing.base_radius_mm)
     cam = build_cam(spec)
     a = analyze(cam)
-    if a.undercut and (cam.follower.flat or not spec.cam.allow_undercut):
+    if a.undercut and not spec.cam.allow_undercut:
         raise DesignError(_undercut_message(spec, cam, a))
     corners = cam.corners()
     sharp = [i for i, turn in corners if turn > 0]
@@ -136,7 +142,11 @@ def design_profile(spec: CamSpec) -> CamDesign:
     tol = spec.output.tolerance
     # a knife edge's corners make corners in every offset too: the noded envelope trims and rounds them exactly
     envelope = a.undercut or (cam.contact_radius == 0 and bool(corners))
-    outline = envelope_outline(cam, tol) if envelope else exact_outline(cam, tol, _curves(spec))
+    cut_off = flat_envelope(cam, tol, _curves(spec)) if cam.follower.flat and a.undercut else None
+    if cut_off is not None:
+        outline = cut_off.outline(0.0)
+    else:
+        outline = envelope_outline(cam, tol) if envelope else exact_outline(cam, tol, _curves(spec))
 
     import shapely
 
@@ -148,15 +158,16 @@ def design_profile(spec: CamSpec) -> CamDesign:
                           f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
     _check_holes(spec, body, tol)
     marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
-    profile = _Profile(spec, cam, envelope, marks, outline)
+    profile = _Profile(spec, cam, envelope, marks, outline, cut_off)
     allowances = Allowances(spec.output.kerf, spec.output.clearance, "output.kerf")
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
     speed = _speed(spec, cam)
-    warnings = _warnings(spec, a, jumps, wall, cam.program.segments) + _contact_warnings(speed)
-    extent = face_extent(cam) if cam.follower.flat else None
+    warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off) + _contact_warnings(speed)
+    extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
     return CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
-                     allowances, wall, warnings, pressure_limit(spec), extent, speed, sizing)
+                     allowances, wall, warnings, pressure_limit(spec), extent, speed, sizing,
+                     cut_off.leaves if cut_off is not None else None)
 
 
 def _curves(spec: CamSpec) -> str:
@@ -169,16 +180,22 @@ class _Profile:
     """The cam as a part at any offset of its surface (a :class:`~camgen.core.parts.PartMaker`): the outline is
     made afresh from the exact surface moved out by the offset (so kerf stays exact), once per offset."""
 
-    def __init__(self, spec: CamSpec, cam: Cam, envelope: bool, marks: tuple, nominal: Outline) -> None:
-        self.spec, self.cam, self.envelope, self.marks = spec, cam, envelope, marks
+    def __init__(self, spec: CamSpec, cam: Cam, envelope: bool, marks: tuple, nominal: Outline,
+                 cut_off: FlatEnvelope | None = None) -> None:
+        self.spec, self.cam, self.envelope, self.marks, self.cut_off = spec, cam, envelope, marks, cut_off
         self._outlines = {0.0: nominal}
 
     def outline(self, offset: float) -> Outline:
         """The outline of the surface moved out of the cam by ``offset`` mm."""
         if offset not in self._outlines:
             t = self.spec
-            self._outlines[offset] = (envelope_outline(self.cam, t.output.tolerance, offset) if self.envelope
-                                      else exact_outline(self.cam, t.output.tolerance, _curves(t), offset))
+            if self.cut_off is not None:                # a flat face's folds cut off: its corners become arcs
+                made = self.cut_off.outline(offset)
+            elif self.envelope:
+                made = envelope_outline(self.cam, t.output.tolerance, offset)
+            else:
+                made = exact_outline(self.cam, t.output.tolerance, _curves(t), offset)
+            self._outlines[offset] = made
         return self._outlines[offset]
 
     def part(self, outline_grow: float, hole_grow: float) -> Part:
@@ -329,8 +346,21 @@ def _check_marks(spec: CamSpec, body: Any, marks: tuple) -> None:
                           "each other and of the holes; shorten the name, or leave hub.engrave off")
 
 
+def _fold_warnings(cut_off: FlatEnvelope) -> list[str]:
+    """Where a flat face's folds were cut off: where the law's face leaves the cam and how far the motion departs."""
+    if not cut_off.leaves:
+        return [f"undercut allowed: the profile's fold is too small to cut off (it strays {cut_off.uncut:.3g} mm at "
+                "most); the follower follows the motion law"]
+    unit = cut_off.cam.follower.lift_unit
+    unit = "degrees" if unit == "deg" else unit
+    return [f"undercut allowed: from {f.start_deg:.2f} to {f.end_deg:.2f} degrees the face leaves the law's profile "
+            f"(its fold is cut off) and rides on the cam's corner at ({f.corner_mm[0]:.4g}, {f.corner_mm[1]:.4g}) mm, "
+            f"the law's face standing up to {f.gap_mm:.4g} mm off the cam (at {f.gap_at_deg:.2f} degrees): there the "
+            f"follower's motion falls short of the law by up to {f.deviation:.4g} {unit}" for f in cut_off.leaves]
+
+
 def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,
-              segments: tuple) -> tuple[str, ...]:
+              segments: tuple, cut_off: FlatEnvelope | None = None) -> tuple[str, ...]:
     out = []
     limit = pressure_limit(spec)
     if a.pressure_angle_max_deg > limit:
@@ -340,7 +370,9 @@ def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: floa
     for j in jumps:
         if j.order < 3:
             out.append(f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}")
-    if a.undercut:
+    if a.undercut and cut_off is not None:
+        out.extend(_fold_warnings(cut_off))
+    elif a.undercut:
         out.append(f"undercut allowed: the outline is the cutter's envelope, and near {a.pitch_rho_min_at_deg:.2f} "
                    "degrees the follower does not follow the motion law")
     if spec.cam.bore > 0 and wall < THIN_WALL:

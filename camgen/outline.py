@@ -96,10 +96,13 @@ def _chord_error(cam: Cam, index: int, theta: np.ndarray, rr: float) -> float:
     return float((np.linalg.norm(a + t[..., None] * ab - x, axis=2).max(axis=1) + gap**2 * bend / 8).max())
 
 
-def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float) -> np.ndarray:
-    """Cam angles for chords within ~``tolerance`` mm of the surface, from its curvature (``factor`` >= 1 densifies)."""
+def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float,
+             span: tuple[float, float] | None = None) -> np.ndarray:
+    """Cam angles for chords within ~``tolerance`` mm of the surface, from its curvature (``factor`` >= 1 densifies),
+    over the segment or the ``span`` (start, end, radians) of it."""
     seg = cam.program.segments[index]
-    aux = np.linspace(seg.start, seg.end, 257)
+    start, end = (seg.start, seg.end) if span is None else span
+    aux = np.linspace(start, end, 257)
     g = cam.segment_pitch(index, aux)
     k = g.kappa
     # chord ~ sqrt(8 tol rho_c) along a surface of speed |P'| |1 - Rr k|: samples per radian
@@ -112,15 +115,16 @@ def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float) -
                           "smooth the motion")
     n = max(1, math.ceil(wanted))
     if cum[-1] <= 0:
-        return np.linspace(seg.start, seg.end, n + 1)
+        return np.linspace(start, end, n + 1)
     return np.interp(np.linspace(0.0, cum[-1], n + 1), cum, aux)
 
 
-def _sampled(cam: Cam, index: int, tolerance: float, rr: float) -> tuple[np.ndarray, float]:
-    """Angles of the vertices of one moving segment, and their measured chord error."""
+def _sampled(cam: Cam, index: int, tolerance: float, rr: float,
+             span: tuple[float, float] | None = None) -> tuple[np.ndarray, float]:
+    """Angles of the vertices of one moving segment (or the ``span`` of it), and their measured chord error."""
     factor = 1.0
     for _ in range(40):
-        theta = _spacing(cam, index, tolerance, factor, rr)
+        theta = _spacing(cam, index, tolerance, factor, rr, span)
         err = _chord_error(cam, index, theta, rr)
         if err <= tolerance:
             return theta, err
@@ -129,14 +133,16 @@ def _sampled(cam: Cam, index: int, tolerance: float, rr: float) -> tuple[np.ndar
                       f"(reached {err:.3g} mm); loosen the tolerance")
 
 
-def _biarcs(cam: Cam, index: int, tolerance: float, rr: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """Vertices and bulges of one moving segment as biarcs, two arcs a span; and their measured error.
+def _biarcs(cam: Cam, index: int, tolerance: float, rr: float,
+            span: tuple[float, float] | None = None) -> tuple[np.ndarray, np.ndarray, float]:
+    """Vertices and bulges of one moving segment (or the ``span`` of it) as biarcs, two arcs between neighbouring
+    vertices; and their measured error.
 
     Spans start coarse (the chord spacing for 1 mm); a span whose exact surface strays
     an error e > ``tolerance`` from its biarc is cut into ceil(1.2 (e / tolerance)^(1/3))
     equal parts, since a biarc's error falls as the cube of its span; until none strays.
     """
-    theta = _spacing(cam, index, max(tolerance, 1.0), 1.0, rr)
+    theta = _spacing(cam, index, max(tolerance, 1.0), 1.0, rr, span)
     for _ in range(40):
         g = cam.segment_pitch(index, theta)
         pts = _surface(g, rr)
@@ -163,18 +169,34 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float) -> tuple[np.ndarr
                       "loosen the tolerance")
 
 
-def _dwell(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, np.ndarray, float]:
-    """Vertices and bulges of a dwell's exact arc about the cam centre (up to 90 degrees an arc)."""
+def _dwell(cam: Cam, index: int, rr: float,
+           span: tuple[float, float] | None = None) -> tuple[np.ndarray, np.ndarray, float]:
+    """Vertices and bulges of a dwell's exact arc about the cam centre (up to 90 degrees an arc), over the whole
+    dwell or the ``span`` of it."""
     seg = cam.program.segments[index]
-    n = max(1, math.ceil(seg.beta / (math.pi / 2) - 1e-12))
-    theta = seg.start + seg.beta * np.arange(n + 1) / n
+    start, beta = (seg.start, seg.beta) if span is None else (span[0], span[1] - span[0])
+    n = max(1, math.ceil(beta / (math.pi / 2) - 1e-12))
+    theta = start + beta * np.arange(n + 1) / n
     pts = _surface(cam.segment_pitch(index, theta), rr)
     radius = float(np.linalg.norm(pts[0]))
-    probe = seg.start + seg.beta * (np.arange(1, 8 * n) / (8 * n))
+    probe = start + beta * (np.arange(1, 8 * n) / (8 * n))
     err = float(np.abs(np.linalg.norm(_surface(cam.segment_pitch(index, probe), rr), axis=1)
                        - radius).max())
-    bulge = math.tan(-cam.follower.sense * seg.beta / n / 4.0)
+    bulge = math.tan(-cam.follower.sense * beta / n / 4.0)
     return pts[:-1], np.full(n, bulge), err
+
+
+def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
+            span: tuple[float, float] | None = None) -> tuple[np.ndarray, np.ndarray, float]:
+    """The surface ``rr`` mm inside the pitch curve along segment ``index`` of a disc cam (or the ``span``, start and
+    end in radians, of it): its vertices and bulges, the end's vertex left to what follows, and the measured error
+    (mm). A dwell is exact arcs about the cam centre; a rise or return is biarcs or chords as ``curves`` says."""
+    if cam.program.segments[index].kind == "dwell":
+        return _dwell(cam, index, rr, span)
+    if curves == "biarcs":
+        return _biarcs(cam, index, tolerance, rr, span)
+    theta, err = _sampled(cam, index, tolerance, rr, span)
+    return _surface(cam.segment_pitch(index, theta[:-1]), rr), np.zeros(len(theta) - 1), err
 
 
 def _corner_arc(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, float, float]:
@@ -216,13 +238,8 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     for i, seg in enumerate(cam.program.segments):
         if seg.kind == "dwell" and cam.is_plate:
             v, b, err = _surface(cam.segment_pitch(i, seg.start), rr), np.zeros(1), 0.0
-        elif seg.kind == "dwell":
-            v, b, err = _dwell(cam, i, rr)
-        elif curves == "biarcs":
-            v, b, err = _biarcs(cam, i, tolerance, rr)
         else:
-            theta, err = _sampled(cam, i, tolerance, rr)
-            v, b = _surface(cam.segment_pitch(i, theta[:-1]), rr), np.zeros(len(theta) - 1)
+            v, b, err = stretch(cam, i, tolerance, rr, curves)
         verts.append(v)
         bulges.append(b)
         worst = max(worst, err)

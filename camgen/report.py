@@ -90,6 +90,8 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, An
         report["face_position_min_mm"], report["face_position_max_mm"] = _r(lo), _r(hi)
         report["face_width_mm"] = _r(hi - lo + 2 * t.follower.face_margin)
         report["face_measured_from"] = f.face_origin
+    if design.face_leaves is not None:          # a flat face's folds cut off (cam.allow_undercut)
+        report["face_leaves_cam"] = [leaves.as_dict() for leaves in design.face_leaves]
     if hasattr(f, "pivot"):
         report["follower"]["pivot_mm"] = [_r(x) for x in f.pivot]
     if hasattr(f, "rest_angle"):
