@@ -11,7 +11,9 @@ about the corner: both are exported as exact arcs.
 from __future__ import annotations
 
 import math
+from collections.abc import Generator
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -49,21 +51,64 @@ def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
     return g.point - rr * g.normal
 
 
-def _probes(cam: Cam, index: int, theta: np.ndarray, rr: float,
-            count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """``count`` points of the exact surface (``rr`` mm inside the pitch curve) inside each span of ``theta``
-    (spans, count, 2); and per span the largest gap between neighbouring points (the span's ends included, mm)
-    and the smallest and largest signed curvature of the surface there (1/mm), which bound what the probes can miss:
-    a curve parts from a line or an arc between two probes by at most gap^2 |curvature difference| / 8."""
+#: a request of a stretch's maker: cam angles (radians) on one segment each, (segment index, angles) pairs
+Asks = list[tuple[int, np.ndarray]]
+#: what makes one stretch: it yields the angles it needs, receives their pitch geometry, and returns its result
+Maker = Generator[Asks, list[PitchGeometry], Any]
+
+
+def _pitch_of(cam: Cam, asks: Asks) -> list[PitchGeometry]:
+    """Pitch geometry at every (segment index, angles) pair, each on its own segment (one-sided limits at its ends),
+    all from one evaluation of the follower: its cost is mostly per call, not per point."""
+    theta = np.concatenate([t for _, t in asks])
+    motion = np.concatenate([cam.program.segments[i].evaluate(t) for i, t in asks], axis=1)
+    g = cam.follower.pitch(theta, motion)
+    cuts = np.cumsum([0] + [t.size for _, t in asks])
+    fields = vars(g).items()
+    return [PitchGeometry(**{k: None if v is None else v[a:b] for k, v in fields})
+            for a, b in zip(cuts[:-1], cuts[1:], strict=True)]
+
+
+def _run(cam: Cam, makers: list[Maker]) -> list[Any]:
+    """Drive every maker at once: each round evaluates what all of them ask in one call (see :func:`_pitch_of`);
+    returns their results in order. A design's outline takes two rounds where the first spacing holds."""
+    results: list[Any] = [None] * len(makers)
+    asks = {k: next(m) for k, m in enumerate(makers)}
+    while asks:
+        keys = list(asks)
+        answers = _pitch_of(cam, [a for k in keys for a in asks[k]])
+        nxt, at = {}, 0
+        for k in keys:
+            count = len(asks[k])
+            try:
+                nxt[k] = makers[k].send(answers[at:at + count])
+            except StopIteration as done:
+                results[k] = done.value
+            at += count
+        asks = nxt
+    return results
+
+
+def _inner(theta: np.ndarray, count: int) -> np.ndarray:
+    """``count`` equally spaced cam angles inside each span of ``theta``, span by span (radians)."""
     frac = np.arange(1, count + 1) / (count + 1)
-    inner = (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
-    g = cam.segment_pitch(index, inner)
-    x = _surface(g, rr).reshape(len(theta) - 1, count, 2)
-    ends = _surface(cam.segment_pitch(index, theta), rr)
-    chain = np.concatenate([ends[:-1, None, :], x, ends[1:, None, :]], axis=1)
+    return (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
+
+
+def _probed(ends: PitchGeometry, g: PitchGeometry, rr: float,
+            count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The exact surface (``rr`` mm inside the pitch curve) at ``count`` probes inside each span between the vertices
+    ``ends`` (``g``, at :func:`_inner`'s angles): the probes (spans, count, 2); and per span the largest gap between
+    neighbouring points (the span's ends included, mm) and the smallest and largest signed curvature of the surface
+    there (1/mm), which bound what the probes can miss: a curve parts from a line or an arc between two probes by at
+    most gap^2 |curvature difference| / 8."""
+    spans = len(ends.theta) - 1
+    x = _surface(g, rr).reshape(spans, count, 2)
+    at = _surface(ends, rr)
+    chain = np.concatenate([at[:-1, None, :], x, at[1:, None, :]], axis=1)
     gap = np.linalg.norm(np.diff(chain, axis=1), axis=2).max(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(len(theta) - 1, count)
+        bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(spans, count)
     bend = np.where(np.isfinite(bend), bend, np.inf)
     return x, gap, bend.min(axis=1), bend.max(axis=1)
 
@@ -82,28 +127,37 @@ def _apart(low: np.ndarray, high: np.ndarray, arc: np.ndarray) -> np.ndarray:
     return np.where(same, np.maximum(np.abs(far - arc), np.abs(near - arc)), far + arc)
 
 
-def _chord_error(cam: Cam, index: int, theta: np.ndarray, rr: float) -> float:
+def _chord_error(ends: PitchGeometry, g: PitchGeometry, rr: float) -> float:
     """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from the chords between
-    consecutive ``theta``: the largest measured at the probes, plus what the surface's curvature lets it stray
-    between two probes."""
-    x, gap, low, high = _probes(cam, index, theta, rr, _PROBES)
+    the vertices ``ends``: the largest measured at the probes ``g`` (at :func:`_inner`'s angles), plus what the
+    surface's curvature lets it stray between two probes."""
+    x, gap, low, high = _probed(ends, g, rr, _PROBES)
     bend = np.maximum(np.abs(low), np.abs(high))
-    ends = _surface(cam.segment_pitch(index, theta), rr)
-    a, b = ends[:-1, None, :], ends[1:, None, :]
+    at = _surface(ends, rr)
+    a, b = at[:-1, None, :], at[1:, None, :]
     ab = b - a
     length2 = (ab**2).sum(axis=2)
     t = np.clip(((x - a) * ab).sum(axis=2) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
     return float((np.linalg.norm(a + t[..., None] * ab - x, axis=2).max(axis=1) + gap**2 * bend / 8).max())
 
 
+def _aux(cam: Cam, index: int, span: tuple[float, float] | None) -> np.ndarray:
+    """The grid (radians) on which the segment ``index`` (or the ``span`` of it) is measured for its spacing."""
+    seg = cam.program.segments[index]
+    start, end = (seg.start, seg.end) if span is None else span
+    return np.linspace(start, end, 257)
+
+
 def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float,
              span: tuple[float, float] | None = None) -> np.ndarray:
     """Cam angles for chords within ~``tolerance`` mm of the surface, from its curvature (``factor`` >= 1 densifies),
     over the segment or the ``span`` (start, end, radians) of it."""
-    seg = cam.program.segments[index]
-    start, end = (seg.start, seg.end) if span is None else span
-    aux = np.linspace(start, end, 257)
-    g = cam.segment_pitch(index, aux)
+    aux = _aux(cam, index, span)
+    return _spaced(index, aux, cam.segment_pitch(index, aux), tolerance, factor, rr)
+
+
+def _spaced(index: int, aux: np.ndarray, g: PitchGeometry, tolerance: float, factor: float, rr: float) -> np.ndarray:
+    """:func:`_spacing` from the pitch geometry ``g`` on its grid ``aux``."""
     k = g.kappa
     # chord ~ sqrt(8 tol rho_c) along a surface of speed |P'| |1 - Rr k|: samples per radian
     density = np.linalg.norm(g.d1, axis=1) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
@@ -115,41 +169,46 @@ def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float,
                           "smooth the motion")
     n = max(1, math.ceil(wanted))
     if cum[-1] <= 0:
-        return np.linspace(start, end, n + 1)
+        return np.linspace(aux[0], aux[-1], n + 1)
     return np.interp(np.linspace(0.0, cum[-1], n + 1), cum, aux)
 
 
-def _sampled(cam: Cam, index: int, tolerance: float, rr: float,
-             span: tuple[float, float] | None = None) -> tuple[np.ndarray, float]:
-    """Angles of the vertices of one moving segment (or the ``span`` of it), and their measured chord error."""
+def _chords(cam: Cam, index: int, tolerance: float, rr: float, span: tuple[float, float] | None) -> Maker:
+    """Makes one moving segment's (or its ``span``'s) chords: vertices spaced from the surface's curvature, then
+    densified until their measured error is within ``tolerance``; returns the vertices (the end's left to what
+    follows), zero bulges and the error."""
+    aux = _aux(cam, index, span)
+    (g,) = yield [(index, aux)]
     factor = 1.0
     for _ in range(40):
-        theta = _spacing(cam, index, tolerance, factor, rr, span)
-        err = _chord_error(cam, index, theta, rr)
+        theta = _spaced(index, aux, g, tolerance, factor, rr)
+        ends, inner = yield [(index, theta), (index, _inner(theta, _PROBES))]
+        err = _chord_error(ends, inner, rr)
         if err <= tolerance:
-            return theta, err
+            return _surface(ends, rr)[:-1], np.zeros(len(theta) - 1), err
         factor *= max(1.1, math.sqrt(err / tolerance))
     raise DesignError(f"output.tolerance: the outline of motion[{index}] cannot be brought within {tolerance} mm "
                       f"(reached {err:.3g} mm); loosen the tolerance")
 
 
-def _biarcs(cam: Cam, index: int, tolerance: float, rr: float,
-            span: tuple[float, float] | None = None) -> tuple[np.ndarray, np.ndarray, float]:
-    """Vertices and bulges of one moving segment (or the ``span`` of it) as biarcs, two arcs between neighbouring
-    vertices; and their measured error.
+def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: tuple[float, float] | None) -> Maker:
+    """Makes one moving segment's (or its ``span``'s) biarcs, two arcs between neighbouring vertices: returns
+    their vertices and bulges and their measured error.
 
     Spans start coarse (the chord spacing for 1 mm); a span whose exact surface strays
     an error e > ``tolerance`` from its biarc is cut into ceil(1.2 (e / tolerance)^(1/3))
     equal parts, since a biarc's error falls as the cube of its span; until none strays.
     """
-    theta = _spacing(cam, index, max(tolerance, 1.0), 1.0, rr, span)
+    aux = _aux(cam, index, span)
+    (g,) = yield [(index, aux)]
+    theta = _spaced(index, aux, g, max(tolerance, 1.0), 1.0, rr)
     for _ in range(40):
-        g = cam.segment_pitch(index, theta)
+        g, inner = yield [(index, theta), (index, _inner(theta, 2 * _PROBES))]
         pts = _surface(g, rr)
         tan = g.d1 / np.linalg.norm(g.d1, axis=1)[:, None]
         p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
-        x, gap, low, high = _probes(cam, index, theta, rr, 2 * _PROBES)
+        x, gap, low, high = _probed(g, inner, rr, 2 * _PROBES)
         apart = np.max([_apart(low, high, k) for k in (_arc_curvature(p0, junction, b1),
                                                        _arc_curvature(junction, p1, b2))], axis=0)
         err = np.minimum(arc_distance(x, p0, junction, b1), arc_distance(x, junction, p1, b2)).max(axis=1)
@@ -169,21 +228,30 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float,
                       "loosen the tolerance")
 
 
-def _dwell(cam: Cam, index: int, rr: float,
-           span: tuple[float, float] | None = None) -> tuple[np.ndarray, np.ndarray, float]:
-    """Vertices and bulges of a dwell's exact arc about the cam centre (up to 90 degrees an arc), over the whole
-    dwell or the ``span`` of it."""
+def _dwell(cam: Cam, index: int, rr: float, span: tuple[float, float] | None) -> Maker:
+    """Makes a dwell's exact arc about the cam centre (up to 90 degrees an arc), over the whole dwell or the
+    ``span`` of it: its vertices and bulges and their measured error."""
     seg = cam.program.segments[index]
     start, beta = (seg.start, seg.beta) if span is None else (span[0], span[1] - span[0])
     n = max(1, math.ceil(beta / (math.pi / 2) - 1e-12))
     theta = start + beta * np.arange(n + 1) / n
-    pts = _surface(cam.segment_pitch(index, theta), rr)
-    radius = float(np.linalg.norm(pts[0]))
     probe = start + beta * (np.arange(1, 8 * n) / (8 * n))
-    err = float(np.abs(np.linalg.norm(_surface(cam.segment_pitch(index, probe), rr), axis=1)
-                       - radius).max())
+    ends, inner = yield [(index, theta), (index, probe)]
+    pts = _surface(ends, rr)
+    radius = float(np.linalg.norm(pts[0]))
+    err = float(np.abs(np.linalg.norm(_surface(inner, rr), axis=1) - radius).max())
     bulge = math.tan(-cam.follower.sense * beta / n / 4.0)
     return pts[:-1], np.full(n, bulge), err
+
+
+def _maker(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
+           span: tuple[float, float] | None = None) -> Maker:
+    """What makes the stretch of :func:`stretch`."""
+    if cam.program.segments[index].kind == "dwell":
+        return _dwell(cam, index, rr, span)
+    if curves == "biarcs":
+        return _biarcs(cam, index, tolerance, rr, span)
+    return _chords(cam, index, tolerance, rr, span)
 
 
 def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
@@ -191,12 +259,23 @@ def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
     """The surface ``rr`` mm inside the pitch curve along segment ``index`` of a disc cam (or the ``span``, start and
     end in radians, of it): its vertices and bulges, the end's vertex left to what follows, and the measured error
     (mm). A dwell is exact arcs about the cam centre; a rise or return is biarcs or chords as ``curves`` says."""
-    if cam.program.segments[index].kind == "dwell":
-        return _dwell(cam, index, rr, span)
-    if curves == "biarcs":
-        return _biarcs(cam, index, tolerance, rr, span)
-    theta, err = _sampled(cam, index, tolerance, rr, span)
-    return _surface(cam.segment_pitch(index, theta[:-1]), rr), np.zeros(len(theta) - 1), err
+    return _run(cam, [_maker(cam, index, tolerance, rr, curves, span)])[0]
+
+
+def _point(cam: Cam, index: int, theta: float, rr: float) -> Maker:
+    """Makes the one surface point at ``theta`` on segment ``index`` as a vertex with a zero bulge (error 0)."""
+    (g,) = yield [(index, np.array([theta]))]
+    return _surface(g, rr), np.zeros(1), 0.0
+
+
+def _corner(cam: Cam, index: int, rr: float) -> Maker:
+    """Makes the arc of radius ``rr`` round a concave pitch corner at the end of segment ``index``
+    (see :func:`_corner_arc`) as a vertex and its bulge (error 0)."""
+    segments = cam.program.segments
+    j = (index + 1) % len(segments)
+    before, after = yield [(index, np.array([segments[index].end])), (j, np.array([segments[j].start]))]
+    start, bulge, _ = _arc_round(before, after, rr)
+    return start[None, :], np.array([bulge]), 0.0
 
 
 def _corner_arc(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, float, float]:
@@ -206,8 +285,12 @@ def _corner_arc(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, float, flo
     """
     segments = cam.program.segments
     j = (index + 1) % len(segments)
-    before = cam.segment_pitch(index, segments[index].end)
-    after = cam.segment_pitch(j, segments[j].start)
+    return _arc_round(cam.segment_pitch(index, segments[index].end), cam.segment_pitch(j, segments[j].start), rr)
+
+
+def _arc_round(before: PitchGeometry, after: PitchGeometry, rr: float) -> tuple[np.ndarray, float, float]:
+    """The arc of radius ``rr`` round the pitch point where ``before`` ends and ``after`` starts (one point each):
+    its start vertex, its bulge and its signed included angle (rad)."""
     centre = before.point[0]
     a = _surface(before, rr)[0] - centre
     b = _surface(after, rr)[0] - centre
@@ -224,7 +307,7 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     far fewer entities for the same tolerance). A plate cam's dwells are straight,
     and its profile is closed by the plate: flat
     ends one roller radius beyond the travel (where the roller can still sit) and the
-    bottom edge on y = 0.
+    bottom edge on y = 0. Every stretch is made at once (see :func:`_run`).
     """
     corners = dict(cam.corners())
     rr = cam.contact_radius - offset
@@ -234,26 +317,22 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     if rr == 0:                                   # a knife edge's profile: the corner is a vertex of both sides
         corners = {}
     flats = {i for i, step in cam.steps() if step > 0}
-    verts, bulges, worst = [], [], 0.0
+    makers: list[Maker] = []
     for i, seg in enumerate(cam.program.segments):
         if seg.kind == "dwell" and cam.is_plate:
-            v, b, err = _surface(cam.segment_pitch(i, seg.start), rr), np.zeros(1), 0.0
+            makers.append(_point(cam, i, seg.start, rr))
         else:
-            v, b, err = stretch(cam, i, tolerance, rr, curves)
-        verts.append(v)
-        bulges.append(b)
-        worst = max(worst, err)
+            makers.append(_maker(cam, i, tolerance, rr, curves))
         if i in corners:
-            start, bulge, _ = _corner_arc(cam, i, rr)
-            verts.append(start[None, :])
-            bulges.append(np.array([bulge]))
+            makers.append(_corner(cam, i, rr))
         if i in flats:                                  # a flat face's flat: straight on from the segment's end
-            verts.append(_surface(cam.segment_pitch(i, seg.end), rr))
-            bulges.append(np.zeros(1))
+            makers.append(_point(cam, i, seg.end, rr))
+    verts, bulges, errors = zip(*_run(cam, makers), strict=True)
+    verts, bulges = list(verts), list(bulges)
     if cam.is_plate:
         verts, bulges = _close_plate(cam, verts, bulges, offset)
     contour = Contour(np.concatenate(verts), np.concatenate(bulges))
-    return Outline(contour if contour.area > 0 else contour.reversed(), worst, envelope=False)
+    return Outline(contour if contour.area > 0 else contour.reversed(), max(0.0, *errors), envelope=False)
 
 
 def _close_plate(cam: Cam, verts: list, bulges: list, offset: float) -> tuple[list, list]:
