@@ -10,7 +10,7 @@ import numpy as np
 
 from camgen.analysis import CamAnalysis, analyze, face_extent, largest_roller
 from camgen.cam import Cam, build_cam
-from camgen.dynamics import loading, speed_report
+from camgen.dynamics import spec_loading, speed_report
 from camgen.forces import Contact, forces_report
 from camgen.core.errors import DesignError, SpecError
 from camgen.flat_envelope import FaceLeaves, FlatEnvelope, flat_envelope
@@ -211,17 +211,14 @@ def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
         return None
     parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(spec.motion) if seg.law == "parabolic"]
     f = spec.follower
+    ld = None if f.mass is None else spec_loading(f, cam.follower)
     out = speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic, f.load, f.orientation,
-                       f.contact_margin)
-    if f.mass is not None and out["contact"] and out["contact"].get("mode"):
+                       f.contact_margin, ld)
+    if ld is not None and out["contact"] and out["contact"].get("mode"):
         if f.roller_width is not None and not f.contact_radius:
             raise SpecError("only for a roller follower", "follower.roller_width")
-        if f.orientation is not None and f.oscillating:
-            raise SpecError("only for a translating follower (an arm's weight is not modelled)", "follower.orientation")
         contact = None if spec.cam.material is None else Contact(
             spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
-        ld = loading(f.mass, f.spring_rate, f.preload, f.load, f.orientation, f.contact_margin,
-                     f.arm_length if f.oscillating else None)
         out["forces"] = forces_report(cam, ld, spec.cam.rpm, contact)
     return out
 

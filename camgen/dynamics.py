@@ -34,16 +34,43 @@ class Peak:
 
 def peak_of(cam: Cam, func: Callable[[np.ndarray], np.ndarray]) -> Peak:
     """Largest value over the cycle of ``func`` of the motion (its four rows: s and three derivatives)."""
+    return peak_at(cam, lambda t, m: func(m))
+
+
+def peak_at(cam: Cam, func: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> Peak:
+    """Largest value over the cycle of ``func(theta, motion rows)`` (theta the cam angle, radians)."""
     segments = cam.program.segments
-    return Peak(*cam.program.peak(lambda i, t: func(segments[i].evaluate(t))))
+    return Peak(*cam.program.peak(lambda i, t: func(t, segments[i].evaluate(t))))
+
+
+@dataclass(frozen=True)
+class LoadTable:
+    """An external load (N, pressing the follower onto the cam) against cam angle: ``angles`` (radians, strictly
+    increasing in [0, 2 pi)) and ``loads`` (N), interpolated linearly between rows and from the last row round to
+    the first (the table is periodic: a row at 360 degrees must repeat the one at 0 and is dropped)."""
+
+    angles: tuple[float, ...]
+    loads: tuple[float, ...]
+
+    def __call__(self, theta: np.ndarray) -> np.ndarray:
+        return np.interp(np.asarray(theta, dtype=float), self.angles, self.loads, period=2 * math.pi)
+
+
+def load_table(rows: list[tuple[float, float]] | tuple[tuple[float, float], ...]) -> LoadTable:
+    """A :class:`LoadTable` from checked (cam angle in degrees, load in N) rows (:func:`camgen.spec.load_rows`)."""
+    return LoadTable(tuple(math.radians(a) for a, _ in rows), tuple(float(v) for _, v in rows))
 
 
 @dataclass(frozen=True)
 class Loading:
-    """What presses a translating follower onto its cam along its axis, in N: ``preload + rate s + load + weight +
-    mass a`` (s in mm, a = omega^2 s'' in m/s^2). ``mass`` kg, ``rate`` N/mm; ``load`` an external force pressing
-    the follower onto the cam (negative pulls it off); ``weight`` the part of its weight that does; ``margin`` the
-    least contact force wanted (N)."""
+    """What presses a follower onto its cam along its path, in N: ``preload + rate s + load + table(theta) +
+    weight cos(tilt + turn s) + mass a`` (s in mm, a = omega^2 s'' in m/s^2). ``mass`` kg (for an arm the roller's
+    mass plus the arm's moment of inertia over L^2), ``rate`` N/mm; ``load`` an external force pressing the
+    follower onto the cam (negative pulls it off), ``table`` a load against cam angle added to it; ``weight`` the
+    weights' pull (N) along the path where it points straight down the path, ``tilt`` (rad) the angle of the path's
+    rising direction from straight up at s = 0 and ``turn`` (rad per unit of s) how fast that direction turns with
+    s (0 for a translating follower; an arm's swing turns it by its own angle); ``margin`` the least contact force
+    wanted (N)."""
 
     mass: float
     rate: float = 0.0
@@ -54,34 +81,104 @@ class Loading:
     #: mm of the contact's path per unit of s: 1 for a translating follower, L pi / 180 for an arm of length L
     #: (whose s is its swing in degrees: the forces then act at the roller's centre along its path)
     scale: float = 1.0
+    tilt: float = 0.0
+    turn: float = 0.0
+    table: LoadTable | None = None
 
-    def still(self, m: np.ndarray) -> np.ndarray:
+    @property
+    def weight_at_rest(self) -> float:
+        """The weights' pull (N) along the path at s = 0."""
+        return self.weight * math.cos(self.tilt)
+
+    def external(self, theta: np.ndarray | None) -> np.ndarray | float:
+        """The external load (N) at cam angles ``theta`` (radians): the constant and the table's."""
+        return self.load if self.table is None or theta is None else self.load + self.table(theta)
+
+    def still(self, m: np.ndarray, theta: np.ndarray | None = None) -> np.ndarray:
         """The force (N) at rest: everything but the inertia."""
-        return self.preload + self.rate * self.scale * m[0] + self.load + self.weight
+        weight = self.weight_at_rest if self.turn == 0 else self.weight * np.cos(self.tilt + self.turn * m[0])
+        return self.preload + self.rate * self.scale * m[0] + self.external(theta) + weight
 
-    def force(self, m: np.ndarray, omega: float) -> np.ndarray:
-        """The force (N) pressing the follower onto the cam at ``omega`` rad/s."""
-        return self.still(m) + self.mass * omega ** 2 * self.scale * m[2] / 1000.0
+    def force(self, m: np.ndarray, omega: float, theta: np.ndarray | None = None) -> np.ndarray:
+        """The force (N) pressing the follower onto the cam at ``omega`` rad/s (``theta`` for a load table)."""
+        return self.still(m, theta) + self.mass * omega ** 2 * self.scale * m[2] / 1000.0
 
 
 def loading(mass: float, spring_rate: float | None, preload: float | None, load: float | None = None,
-            orientation: float | None = None, margin: float | None = None, arm: float | None = None) -> Loading:
+            orientation: float | None = None, margin: float | None = None, arm: float | None = None,
+            table: LoadTable | None = None, arm_weight: Any = None) -> Loading:
     """The loading of a follower table's keys: with no spring (no rate, no preload) gravity holds the follower, its
     rise pointing straight up unless ``orientation`` (degrees from straight up) says otherwise; with a spring its
     weight counts only when ``orientation`` is given. For an ``arm`` (its length, mm) the mass sits at the roller's
-    centre and the spring and load act there along its path; no weight."""
+    centre and the spring and load act there along its path; its weight (and the arm's) only through
+    ``arm_weight``, an :class:`ArmWeight`."""
     gravity = spring_rate is None and preload is None and arm is None
     tilt = 0.0 if orientation is None and gravity else orientation
-    weight = 0.0 if tilt is None else mass * G_MM / 1000.0 * math.cos(math.radians(tilt))
     scale = 1.0 if arm is None else arm * math.pi / 180.0
-    return Loading(mass, spring_rate or 0.0, preload or 0.0, load or 0.0, weight, margin or 0.0, scale)
+    if arm is not None:
+        inertia = 0.0 if arm_weight is None else arm_weight.inertia / arm ** 2
+        weight, tilt_rad, turn = (0.0, 0.0, 0.0) if arm_weight is None or arm_weight.tilt is None else (
+            arm_weight.weight(mass, arm), arm_weight.tilt, arm_weight.turn)
+        return Loading(mass + inertia, spring_rate or 0.0, preload or 0.0, load or 0.0, weight, margin or 0.0,
+                       scale, tilt_rad, turn, table)
+    weight = 0.0 if tilt is None else mass * G_MM / 1000.0
+    return Loading(mass, spring_rate or 0.0, preload or 0.0, load or 0.0, weight, margin or 0.0, scale,
+                   0.0 if tilt is None else math.radians(tilt), 0.0, table)
+
+
+@dataclass(frozen=True)
+class ArmWeight:
+    """An oscillating roller's arm: its moment of inertia about the pivot ``inertia`` (kg*mm^2), its own mass
+    ``mass`` (kg) with its centre of mass ``com`` mm from the pivot on the line to the roller's centre, and how it
+    hangs: ``tilt`` (rad) the angle of the roller's rising direction at rest from straight up (None: weights
+    neglected) and ``turn`` (rad per degree of swing, +-pi/180) how the swing turns it, counter-clockwise positive
+    as drawn."""
+
+    inertia: float = 0.0
+    mass: float = 0.0
+    com: float = 0.0
+    tilt: float | None = None
+    turn: float = 0.0
+
+    def weight(self, roller_mass: float, arm: float) -> float:
+        """The pull (N) along the roller's path of the roller's weight and the arm's: their moment about the pivot
+        over the arm's length L (mm) where the path points straight down."""
+        return (roller_mass * arm + self.mass * self.com) / arm * G_MM / 1000.0
+
+
+def arm_weight(follower: Any, inertia: float | None, arm_mass: float | None, arm_com: float | None,
+               orientation: float | None) -> ArmWeight:
+    """The :class:`ArmWeight` of an oscillating roller follower (its pivot, rest position and arm length), the
+    drawing's +Y (cam centre to the follower at theta = 0) turned ``orientation`` degrees counter-clockwise from
+    straight up (None: weights neglected)."""
+    if orientation is None:
+        return ArmWeight(inertia or 0.0, arm_mass or 0.0, arm_com or 0.0)
+    arm = np.array([0.0, follower.prime_radius]) - follower.pivot             # pivot -> roller centre at rest
+    across = np.array([-arm[1], arm[0]])
+    sign = 1.0 if np.array([0.0, follower.prime_radius]) @ across >= 0 else -1.0  # the swing away from the cam
+    rising = sign * across                                                  # the rising direction at rest
+    tilt = math.radians(orientation) + math.atan2(-rising[0], rising[1])    # from +Y, then +Y from up
+    return ArmWeight(inertia or 0.0, arm_mass or 0.0, arm_com or 0.0, tilt, sign * math.pi / 180.0)
+
+
+def spec_loading(table: Any, follower: Any) -> Loading:
+    """The :class:`Loading` of a ``[follower]`` table (:class:`camgen.spec.FollowerTable`) on its built
+    ``follower``: the spring, loads and load table, and for an oscillating roller its arm's inertia and weights."""
+    arm = table.arm_length if table.oscillating else None
+    rows = table.load_table_rows
+    weights = None if arm is None else arm_weight(follower, table.inertia, table.arm_mass, table.arm_com,
+                                                  table.orientation)
+    return loading(table.mass, table.spring_rate, table.preload, table.load, table.orientation,
+                   table.contact_margin, arm, None if rows is None else load_table(rows), weights)
 
 
 def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | None,
                  preload: float | None, parabolic: list[tuple[int, float]], load: float | None = None,
-                 orientation: float | None = None, margin: float | None = None) -> dict[str, Any]:
+                 orientation: float | None = None, margin: float | None = None,
+                 ld: Loading | None = None) -> dict[str, Any]:
     """Peak velocity, acceleration and jerk at ``rpm``; contact with ``mass`` kg, an optional spring (N/mm, N), an
-    external ``load`` (N), the follower's ``orientation`` (degrees from straight up) and a contact ``margin`` (N).
+    external ``load`` (N), the follower's ``orientation`` (degrees from straight up) and a contact ``margin`` (N),
+    or with the :class:`Loading` ``ld`` built from them (with a load table, an arm's inertia and weights).
     An oscillating roller's arm carries its mass, spring and load at the roller's centre, along its path."""
     omega = rpm * 2 * math.pi / 60
     unit = cam.follower.lift_unit
@@ -97,12 +194,14 @@ def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | 
         out["contact"] = None
         return out
     arm = getattr(cam.follower, "arm_length", None) if unit != "mm" else None
-    if unit != "mm" and (arm is None or (spring_rate is None and preload is None and not load)):
+    ld = ld or loading(mass, spring_rate, preload, load, orientation, margin, arm)
+    held = spring_rate is not None or preload is not None or bool(load) or ld.table is not None or ld.weight != 0
+    if unit != "mm" and (arm is None or not held):
         out["contact"] = {"mode": None, "note": "contact is analysed for translating followers and for an "
-                                                 "oscillating roller's arm held by a spring or a load"}
+                                                 "oscillating roller's arm held by a spring, a load or its weight"}
         return out
-    ld = loading(mass, spring_rate, preload, load, orientation, margin, arm)
-    if arm is None and spring_rate is None and preload is None and not load and orientation is None and not margin:
+    if arm is None and spring_rate is None and preload is None and not load and orientation is None and not margin \
+            and ld.table is None:
         decel = peak_of(cam, lambda m: -m[2])                      # largest -s'' (mm/rad^2)
         limit = math.inf if decel.value <= 0 else math.sqrt(G_MM / decel.value) * 60 / (2 * math.pi)
         out["contact"] = {"mode": "gravity", "liftoff_rpm": None if math.isinf(limit) else limit,
@@ -115,26 +214,30 @@ def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | 
 def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> dict[str, Any]:
     """The contact force's least value and where, the preload and the rate that keep it at the margin at this
     speed, and the speed at which this loading lets the follower go."""
-    low = peak_of(cam, lambda m: -ld.force(m, omega))
-    need_preload = peak_of(cam, lambda m: ld.margin - (ld.force(m, omega) - ld.preload)).value
+    low = peak_at(cam, lambda t, m: -ld.force(m, omega, t))
+    need_preload = peak_at(cam, lambda t, m: ld.margin - (ld.force(m, omega, t) - ld.preload)).value
     # the rate that would do with this preload: max of (margin - rest) / s where s > 0; where s = 0 only the
     # preload can help (sentinel +BIG), and where the force is enough there is no demand (sentinel -BIG)
     big = 1e30
 
-    def demand(m: np.ndarray) -> np.ndarray:
-        short = ld.margin - (ld.force(m, omega) - ld.rate * ld.scale * m[0])
+    def demand(t: np.ndarray, m: np.ndarray) -> np.ndarray:
+        short = ld.margin - (ld.force(m, omega, t) - ld.rate * ld.scale * m[0])
         lifted = m[0] > 1e-9 * max(cam.program.max_lift, 1e-300)
         return np.where(lifted, short / np.where(lifted, ld.scale * m[0], 1.0), np.where(short > 0, big, -big))
 
-    worst = peak_of(cam, demand).value
+    worst = peak_at(cam, demand).value
     need_rate = None if worst >= big else max(0.0, worst)
     # lift-off: the force is still(s) + mass omega^2 s'' / 1000, so omega^2 <= 1000 still / (mass * -s'') wherever
     # s'' < 0; the least of that over the cycle (0 if the follower leaves at rest)
-    rest = -peak_of(cam, lambda m: -ld.still(m)).value
-    slowest = -peak_of(cam, lambda m: np.where(m[2] < 0, -1000.0 * ld.still(m) / (ld.mass * ld.scale * np.where(
+    rest = -peak_at(cam, lambda t, m: -ld.still(m, t)).value
+    slowest = -peak_at(cam, lambda t, m: np.where(m[2] < 0, -1000.0 * ld.still(m, t) / (ld.mass * ld.scale * np.where(
         m[2] < 0, -m[2], 1.0)), -big)).value
     liftoff = 0.0 if rest <= 0 else (None if slowest >= big else math.sqrt(max(slowest, 0.0)) * 60 / (2 * math.pi))
-    return {"mode": mode, "spring_rate_n_mm": ld.rate, "preload_n": ld.preload, "load_n": ld.load,
-            "weight_n": ld.weight, "margin_n": ld.margin,
-            "force_min_n": -low.value, "force_min_at_deg": low.at_deg, "holds": -low.value > ld.margin,
-            "preload_needed_n": max(0.0, need_preload), "rate_needed_n_mm": need_rate, "liftoff_rpm": liftoff}
+    out = {"mode": mode, "spring_rate_n_mm": ld.rate, "preload_n": ld.preload, "load_n": ld.load,
+           "weight_n": ld.weight_at_rest, "margin_n": ld.margin,
+           "force_min_n": -low.value, "force_min_at_deg": low.at_deg, "holds": -low.value > ld.margin,
+           "preload_needed_n": max(0.0, need_preload), "rate_needed_n_mm": need_rate, "liftoff_rpm": liftoff}
+    if ld.table is not None:
+        out["load_table_n"] = {"min": float(min(ld.table.loads)), "max": float(max(ld.table.loads)),
+                               "rows": len(ld.table.loads), "interpolation": "linear, periodic over the turn"}
+    return out

@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.cam import Cam
 from camgen.contact_stress import MATERIALS, effective_modulus, line_contact, relative_curvature
-from camgen.dynamics import Loading, Peak, peak_of
+from camgen.dynamics import Loading, Peak, peak_at
 
 #: Gauss-Legendre nodes a segment for the means over the cycle (each law is smooth inside its segment)
 NODES = 64
@@ -42,21 +42,30 @@ class Contact:
         return min(MATERIALS[self.cam].allowable, MATERIALS[self.follower].allowable)
 
 
-def cycle_mean(cam: Cam, quantity: Any) -> float:
-    """The mean over a turn of ``quantity(motion rows)``, segment by segment by Gauss-Legendre quadrature (exact to
-    rounding for the laws' smooth pieces; a jump at a segment's end costs nothing)."""
+def cycle_mean(cam: Cam, quantity: Any, breaks: tuple[float, ...] = ()) -> float:
+    """The mean over a turn of ``quantity(theta, motion rows)``, segment by segment by Gauss-Legendre quadrature (exact
+    to rounding for the laws' smooth pieces; a jump at a segment's end costs nothing), a segment split at the cam
+    angles ``breaks`` (radians: a load table's rows, where the load has a kink) inside it."""
     x, w = np.polynomial.legendre.leggauss(NODES)
     total = 0.0
     for seg in cam.program.segments:
-        half = (seg.end - seg.start) / 2
-        total += half * float(w @ quantity(seg.evaluate(seg.start + half * (x + 1))))
+        cuts = [seg.start, *sorted(b for b in breaks if seg.start < b < seg.end), seg.end]
+        for lo, hi in zip(cuts[:-1], cuts[1:]):
+            half = (hi - lo) / 2
+            theta = lo + half * (x + 1)
+            total += half * float(w @ quantity(theta, seg.evaluate(theta)))
     return total / (2 * math.pi)
 
 
 def _peak_over(cam: Cam, quantity: Any) -> Peak:
     """Largest value of ``quantity(pitch geometry, motion rows)`` over the cycle."""
     segments = cam.program.segments
-    return Peak(*cam.program.peak(lambda i, t: quantity(cam.segment_pitch(i, t), segments[i].evaluate(t))))
+
+    def value(i: int, t: np.ndarray) -> np.ndarray:
+        m = segments[i].evaluate(np.atleast_1d(t))
+        return quantity(cam.follower.pitch(np.atleast_1d(t), m), m)
+
+    return Peak(*cam.program.peak(value))
 
 
 def profile_curvature(cam: Cam, geometry: Any) -> np.ndarray:
@@ -78,25 +87,27 @@ def contact_pressure(cam: Cam, contact: Contact, geometry: Any, normal_force: np
 
 def normal_force(ld: Loading, omega: float, geometry: Any, m: np.ndarray) -> np.ndarray:
     """The contact force along the normal (N): the axial force over cos(pressure angle)."""
-    return ld.force(m, omega) / np.cos(geometry.pressure_angle)
+    return ld.force(m, omega, geometry.theta) / np.cos(geometry.pressure_angle)
 
 
-def torque(ld: Loading, omega: float, m: np.ndarray) -> np.ndarray:
-    """The torque (N*m) the shaft supplies: F s' / 1000 (s' the contact's path, mm per radian of cam angle)."""
-    return ld.force(m, omega) * ld.scale * m[1] / 1000.0
+def torque(ld: Loading, omega: float, m: np.ndarray, theta: np.ndarray | None = None) -> np.ndarray:
+    """The torque (N*m) the shaft supplies: F s' / 1000 (s' the contact's path, mm per radian of cam angle; the cam
+    angles ``theta`` in radians for a load table)."""
+    return ld.force(m, omega, theta) * ld.scale * m[1] / 1000.0
 
 
 def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) -> dict[str, Any]:
     """The report's ``forces``: the torque's extremes and RMS, the peak power, the largest normal contact force
     and, with materials, the largest contact pressure and where."""
     omega = rpm * 2 * math.pi / 60
-    hi = peak_of(cam, lambda m: torque(ld, omega, m))
-    lo = peak_of(cam, lambda m: -torque(ld, omega, m))
+    hi = peak_at(cam, lambda t, m: torque(ld, omega, m, t))
+    lo = peak_at(cam, lambda t, m: -torque(ld, omega, m, t))
     push = _peak_over(cam, lambda g, m: normal_force(ld, omega, g, m))
     out: dict[str, Any] = {
         "torque_max_N_m": hi.value, "torque_max_at_deg": hi.at_deg,
         "torque_min_N_m": -lo.value, "torque_min_at_deg": lo.at_deg,
-        "torque_rms_N_m": math.sqrt(cycle_mean(cam, lambda m: torque(ld, omega, m) ** 2)),
+        "torque_rms_N_m": math.sqrt(cycle_mean(cam, lambda t, m: torque(ld, omega, m, t) ** 2,
+                                                ld.table.angles if ld.table else ())),
         "power_max_W": max(hi.value, lo.value) * omega,
         "contact_force_max_N": push.value, "contact_force_max_at_deg": push.at_deg,
     }

@@ -63,7 +63,7 @@ def checks_figure(design: CamDesign) -> Any:
     face's is 0 by definition, so the profile's radius stands alone), the radius of curvature of the cam's surface
     with the roller's (the undercut limit) and, at a speed with a mass, the contact force and camshaft torque, and
     with materials the Hertz pressure against its allowable."""
-    from camgen.dynamics import loading
+    from camgen.dynamics import spec_loading
     from camgen.forces import Contact, contact_pressure, normal_force, torque
 
     cam, spec = design.cam, design.spec
@@ -98,15 +98,14 @@ def checks_figure(design: CamDesign) -> Any:
     axes[1].set_ylabel("radius of curvature (mm)")
     axes[1].legend(fontsize=7, loc="lower right")
     if forces:
-        ld = loading(f.mass, f.spring_rate, f.preload, f.load, f.orientation, f.contact_margin,
-                     f.arm_length if f.oscillating else None)
+        ld = spec_loading(f, cam.follower)
         omega = spec.cam.rpm * 2 * math.pi / 60
         push = normal_force(ld, omega, g, motion)
         axes[2].plot(deg, push, color="C0", lw=1.2, label="contact force (N)")
         axes[2].axhline(0.0, color="C3", lw=0.8, ls="--")
         axes[2].set_ylabel("contact force (N)")
         twin = axes[2].twinx()
-        twin.plot(deg, torque(ld, omega, motion), color="C1", lw=1.0, ls="-.")
+        twin.plot(deg, torque(ld, omega, motion, theta), color="C1", lw=1.0, ls="-.")
         twin.set_ylabel("shaft torque (N·m)", color="C1")
         if "stress" in panels:
             st = forces["stress"]

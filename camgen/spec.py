@@ -71,6 +71,29 @@ def read_table(path: Path) -> list[tuple[float, float]]:
     return rows
 
 
+def load_rows(rows: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """A load table's (cam angle in degrees, load in N) rows checked: angles strictly increasing from >= 0 to <= 360,
+    a row at 360 only if one at 0 gives the same load (it is then dropped: the table is periodic over a turn), loads
+    within 1e6 N; a ValueError saying what is wrong otherwise."""
+    angles = [a for a, _ in rows]
+    loads = [v for _, v in rows]
+    if angles[0] < 0 or angles[-1] > 360:
+        raise ValueError(f"cam angles must lie in 0 to 360 degrees (got {min(angles):g} to {max(angles):g})")
+    bad = next((i for i in range(1, len(angles)) if not angles[i] > angles[i - 1]), None)
+    if bad is not None:
+        raise ValueError(f"cam angles must increase row by row (row {bad + 1}: {angles[bad]:g} after "
+                         f"{angles[bad - 1]:g} degrees)")
+    if any(not abs(v) <= 1e6 for v in loads):
+        raise ValueError("loads must lie in -1e6 to 1e6 N")
+    if angles[-1] == 360:
+        if angles[0] != 0 or abs(loads[-1] - loads[0]) > 1e-9 * max(1.0, max(abs(v) for v in loads)):
+            raise ValueError(f"the row at 360 degrees ({loads[-1]:g} N) must repeat the one at 0 degrees"
+                             + (f" ({loads[0]:g} N)" if angles[0] == 0 else " (there is none)")
+                             + ": the load is periodic over a turn")
+        rows = list(rows[:-1])
+    return list(rows)
+
+
 #: every law parameter key a segment may carry
 LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
 
@@ -133,7 +156,10 @@ class CamTable(Model):
 
 FOLLOWER_TYPES = tuple(FOLLOWERS)
 #: keys every follower takes: its mass, its return spring, what else loads it, and what it is made of
-DYNAMIC_KEYS = {"mass", "spring_rate", "preload", "load", "orientation", "contact_margin", "material", "roller_width"}
+DYNAMIC_KEYS = {"mass", "spring_rate", "preload", "load", "orientation", "contact_margin", "material", "roller_width",
+                "load_table"}
+#: keys of an oscillating roller's arm: its moment of inertia and its own weight
+ARM_KEYS = ("inertia", "arm_mass", "arm_com")
 
 
 class FollowerTable(Model):
@@ -162,9 +188,55 @@ class FollowerTable(Model):
     material: Material = Field("steel", description="the roller's (or face's) material, for the contact pressure")
     roller_width: float | None = length("the roller's width along its axis (default: the cam's thickness)", None,
                                         le=1000.0)
+    load_table: str | list[tuple[float, float]] | None = Field(
+        None, description="a CSV of cam angle (degrees), load (N) rows (or the rows themselves): an external load "
+        "against cam angle, added to follower.load, interpolated linearly and periodic over the turn")
+    inertia: float | None = Field(None, ge=0, le=1e9, description="oscillating roller: the arm's moment of inertia "
+                                  "about the pivot, entering as a mass I / L^2 at the roller",
+                                  json_schema_extra=unit("kg*mm^2"))
+    arm_mass: float | None = Field(None, ge=0, le=1000, description="oscillating roller: the arm's own mass, for its "
+                                   "weight (with follower.orientation)", json_schema_extra=unit("kg"))
+    arm_com: float | None = Field(None, ge=0, le=MAX_LENGTH_MM, description="oscillating roller: pivot to the arm's "
+                                  "centre of mass, on the line to the roller's centre", json_schema_extra=unit("mm"))
     roller_shape: Literal["cylindrical", "conical"] = Field(
         "cylindrical", description="barrel cam: the roller's shape, a cylinder or a cone with its apex on the cam's "
         "axis")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _read_load_table(cls, data: Any) -> Any:
+        """A ``load_table`` file read into its rows (a path relative to the current folder; :func:`load_spec` makes a
+        template's relative to the template)."""
+        if isinstance(data, Mapping) and isinstance(data.get("load_table"), str):
+            try:
+                return {**data, "load_table": read_table(Path(data["load_table"]))}
+            except ValueError as exc:
+                raise ValueError(f"load_table: {str(exc).removeprefix('file: ')}") from None
+        return data
+
+    @model_validator(mode="after")
+    def _arm_and_table(self) -> "FollowerTable":
+        given = [k for k in ARM_KEYS if k in self.model_fields_set]
+        if given and self.type != "oscillating-roller":
+            raise ValueError(f"{given[0]}: only for an oscillating-roller follower")
+        if (self.arm_mass is None) != (self.arm_com is None):
+            raise ValueError("arm_com: give both arm_mass (kg) and arm_com (mm from the pivot), or neither")
+        if self.arm_mass and self.orientation is None:
+            raise ValueError("arm_mass: its weight needs follower.orientation (degrees of the drawing's +Y from "
+                             "straight up)")
+        if isinstance(self.load_table, list):
+            if len(self.load_table) < 2:
+                raise ValueError("load_table: give at least 2 rows of cam angle (degrees), load (N)")
+            try:
+                load_rows(self.load_table)
+            except ValueError as exc:
+                raise ValueError(f"load_table: {exc}") from None
+        return self
+
+    @property
+    def load_table_rows(self) -> list[tuple[float, float]] | None:
+        """The load table's (cam angle in degrees, load in N) rows, a row at 360 dropped, or None."""
+        return None if not isinstance(self.load_table, list) else load_rows(self.load_table)
 
     @model_validator(mode="after")
     def _keys_fit_type(self) -> "FollowerTable":
@@ -173,7 +245,8 @@ class FollowerTable(Model):
             if getattr(self, key) is None:
                 raise ValueError(f"{key}: required for a {self.type} follower")
         rolls = {"roller_shape"} if "roller_radius" in needs else set()         # refused by the flat kinds
-        for key in sorted(self.model_fields_set - needs - takes - DYNAMIC_KEYS - rolls - {"type"}):
+        arm = set(ARM_KEYS) if self.type == "oscillating-roller" else set()
+        for key in sorted(self.model_fields_set - needs - takes - DYNAMIC_KEYS - rolls - arm - {"type"}):
             allowed = ", ".join(sorted(needs | takes)) or "none"
             raise ValueError(f"{key}: not used by a {self.type} follower (its keys: {allowed})")
         return self
@@ -348,6 +421,12 @@ def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | Gene
 def _tables_beside(raw: dict[str, Any], folder: Path) -> dict[str, Any]:
     """``raw`` with each table law's relative ``file`` read from ``folder`` (the template's) into its ``data``;
     ``file`` stays as the user wrote it (the report names it so, wherever the template lies)."""
+    follower = raw.get("follower")
+    if isinstance(follower, dict) and isinstance(follower.get("load_table"), str):
+        try:
+            raw = {**raw, "follower": {**follower, "load_table": read_table(folder / follower["load_table"])}}
+        except ValueError as exc:
+            raise SpecError(str(exc).removeprefix("file: "), "follower.load_table") from None
     motion = raw.get("motion")
     if not isinstance(motion, list):
         return raw

@@ -10,7 +10,7 @@ import pytest
 
 from camgen.contact_stress import MATERIALS, Material, effective_modulus, line_contact
 from camgen.design import design_cam
-from camgen.dynamics import G_MM, loading
+from camgen.dynamics import G_MM, loading, spec_loading
 from camgen.forces import Contact, contact_pressure, normal_force, torque
 from camgen.spec import load_spec
 from tests.refusals import assert_refused
@@ -148,12 +148,148 @@ def test_bad_values_are_refused_by_name(tmp_path, change, message):
     assert_refused(RDRD, change, message, tmp_path)
 
 
-def test_an_arms_weight_is_refused_and_its_spring_sized_at_the_roller(tmp_path):
-    assert_refused(OSCILLATING, {"follower.orientation": 0}, "follower.orientation: only for a translating", tmp_path)
-    base = ("follower.contact_margin=1",)
+def test_an_arms_spring_is_sized_at_the_roller_with_its_weights():
+    base = ("follower.contact_margin=12", "follower.inertia=1500", "follower.arm_mass=0.1", "follower.arm_com=40",
+            "follower.orientation=30")
     need = _design(OSCILLATING, base).speed["contact"]["preload_needed_n"]
+    assert need > 5
     held = _design(OSCILLATING, (*base, f"follower.preload={need!r}")).speed["contact"]
-    assert held["force_min_n"] == pytest.approx(1.0, abs=1e-9)
+    assert held["force_min_n"] == pytest.approx(12.0, abs=1e-9)
+
+
+ARM = ("cam.rpm=300", "follower.inertia=1500", "follower.arm_mass=0.1", "follower.arm_com=40", "follower.load=3")
+
+
+def _arm_energy(design, theta: np.ndarray, omega: float, orientation: float | None) -> np.ndarray:
+    """The arm's energy (J) at cam angles ``theta``, from its positions alone: kinetic 1/2 (m L^2 + I) psi_dot^2,
+    the roller's and the arm's weights m g h (h the height along straight up, the drawing's +Y turned
+    ``orientation`` degrees counter-clockwise from it), the spring's preload x + k x^2 / 2 and the load's work
+    load x on the roller's path x = L psi."""
+    f, fol = design.spec.follower, design.cam.follower
+    m = design.cam.program.evaluate(theta)
+    psi, length = np.radians(m[0]), f.arm_length
+    kinetic = 0.5 * (f.mass * length ** 2 + f.inertia) * (omega * np.radians(m[1])) ** 2 * 1e-6
+    pivot = fol.pivot
+    w0 = np.array([0.0, fol.prime_radius]) - pivot
+    k = 1.0 if np.hypot(*(pivot + w0 @ np.array([[1, 1e-6], [-1e-6, 1]]))) > fol.prime_radius else -1.0  # away
+    w = np.column_stack([np.cos(k * psi) * w0[0] - np.sin(k * psi) * w0[1],
+                         np.sin(k * psi) * w0[0] + np.cos(k * psi) * w0[1]])
+    potential = 0.0
+    if orientation is not None:
+        up = np.array([math.sin(math.radians(orientation)), math.cos(math.radians(orientation))])
+        heights = f.mass * (pivot + w) @ up + f.arm_mass * (pivot + f.arm_com / length * w) @ up
+        potential = heights * 9.80665e-3
+    x = length * psi
+    spring = (f.preload * x + 0.5 * f.spring_rate * x ** 2 + f.load * x) * 1e-3
+    return kinetic + potential + spring
+
+
+@pytest.mark.parametrize("orientation", [None, 0.0, 30.0, -135.0])
+@pytest.mark.parametrize("rotation", ["ccw", "cw"])
+def test_an_arms_torque_is_the_rate_of_its_energy(orientation, rotation):
+    """Lagrange by energy: the shaft's power T omega is the rate of the arm's kinetic and potential energy, so
+    T = dE/dtheta; E from the arm's positions (five-point differences, h = 1e-3 rad, inside each segment) against
+    the forces' torque with the arm's inertia I / L^2 at the roller and the weights by the arm's angle (1e-8)."""
+    sets = (*ARM, f'cam.rotation="{rotation}"') + (() if orientation is None else (
+        f"follower.orientation={orientation}",))
+    if orientation is None:
+        sets = tuple(s for s in sets if not s.startswith("follower.arm_"))
+    design = _design(OSCILLATING, sets)
+    omega, h = 300 * 2 * math.pi / 60, 1e-3
+    theta = np.concatenate([np.linspace(seg.start + 4 * h, seg.end - 4 * h, 97)
+                            for seg in design.cam.program.segments])
+    energy = lambda t: _arm_energy(design, t, omega, orientation)  # noqa: E731
+    by_energy = (-energy(theta + 2 * h) + 8 * energy(theta + h) - 8 * energy(theta - h) + energy(theta - 2 * h)
+                 ) / (12 * h)
+    ld = spec_loading(design.spec.follower, design.cam.follower)
+    assert ld.mass == pytest.approx(0.2 + 1500 / 90 ** 2, rel=1e-15)
+    by_force = torque(ld, omega, design.cam.program.evaluate(theta), theta)
+    assert np.max(np.abs(by_force - by_energy)) < 1e-8 * np.max(np.abs(by_force))
+    forces = design.speed["forces"]
+    assert forces["torque_max_N_m"] >= by_force.max() - 1e-12
+    assert forces["torque_max_N_m"] == pytest.approx(by_force.max(), rel=1e-3)
+    if orientation is not None:          # the weights' pull at rest: (m L + m_arm c) g / L along the rising path
+        contact = design.speed["contact"]
+        assert abs(contact["weight_n"]) <= (0.2 * 90 + 0.1 * 40) / 90 * G_MM / 1000 + 1e-12
+
+
+def test_an_arms_weight_turns_with_it():
+    """Hanging straight down from its pivot the arm's weight has no pull along the path at rest; the drawing turned
+    half a turn reverses the pull."""
+    design = _design(OSCILLATING, (*ARM, "follower.orientation=0"))
+    fol = design.cam.follower
+    w0 = np.array([0.0, fol.prime_radius]) - fol.pivot
+    hang = math.degrees(math.atan2(-w0[0], -w0[1]))    # up = (sin o, cos o) in the drawing: the arm along -up
+    down = _design(OSCILLATING, (*ARM, f"follower.orientation={hang!r}")).speed["contact"]["weight_n"]
+    assert abs(down) < 1e-12
+    turned = [_design(OSCILLATING, (*ARM, f"follower.orientation={o}")).speed["contact"]["weight_n"]
+              for o in (20.0, -160.0)]
+    assert turned[0] == pytest.approx(-turned[1], rel=1e-12) and abs(turned[0]) > 0.1
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"follower.inertia": 10.0}, "follower.inertia: only for an oscillating-roller follower"),
+    ({"follower.arm_mass": 0.1}, "follower.arm_com: give both arm_mass (kg) and arm_com"),
+    ({"follower.inertia": -1.0}, "follower.inertia: must be >= 0"),
+])
+def test_arm_keys_are_refused_where_they_mean_nothing(tmp_path, change, message):
+    template = RDRD if "inertia" in str(change) and change["follower.inertia"] > 0 else OSCILLATING
+    assert_refused(template, change, message, tmp_path)
+
+
+def test_an_arms_weight_needs_its_orientation(tmp_path):
+    assert_refused(OSCILLATING, {"follower.arm_mass": 0.1, "follower.arm_com": 30.0},
+                   "follower.arm_mass: its weight needs follower.orientation", tmp_path)
+
+
+TABLE = (*LOADED, "follower.load_table=[[0, 0], [120, 12], [240, 12]]")
+
+
+def test_a_load_table_by_hand():
+    """The table 0 N at 0 degrees, 12 N at 120 and 240, back to 0 at 360 (linear, periodic): 6 N at 60 and at 300.
+    At 60 degrees (mid-rise of the cycloid, s = 10 mm, s' = 2 h / beta = 60 / pi mm/rad, s'' = 0) the torque is
+    (preload 5 + rate 0.5 * 10 + load 3 + table 6) * 60 / pi / 1000 N*m. Over a turn the spring, the load and the
+    inertia do no net work, the table does: on the rise 12 * 20 - (18 / pi) * (20 pi / 3) = 120 N*mm, on the return
+    -12 * 20 + (18 / pi) * 10 beta (1/2 - 1/pi) = -180 - 120 / pi, so the mean torque is their sum / 2 pi."""
+    from camgen.forces import cycle_mean
+
+    design = _design(sets=TABLE)
+    ld = spec_loading(design.spec.follower, design.cam.follower)
+    at = np.radians([60.0, 300.0, 180.0, 0.0, 360.0])
+    assert ld.table(at) == pytest.approx([6.0, 6.0, 12.0, 0.0, 0.0], abs=1e-12)
+    omega = 300 * 2 * math.pi / 60
+    t60 = torque(ld, omega, design.cam.program.evaluate(at[:1]), at[:1])[0]
+    assert t60 == pytest.approx((5 + 0.5 * 10 + 3 + 6) * 60 / math.pi / 1000, rel=1e-12)
+    mean = cycle_mean(design.cam, lambda t, m: torque(ld, omega, m, t), ld.table.angles)
+    assert mean == pytest.approx((120 - 180 - 120 / math.pi) / (2 * math.pi) / 1000, rel=1e-9)
+    theta = np.linspace(0.0, 2 * math.pi, 400001)
+    m = design.cam.program.evaluate(theta)
+    forces, contact = design.speed["forces"], design.speed["contact"]
+    t = torque(ld, omega, m, theta)
+    assert forces["torque_max_N_m"] == pytest.approx(t.max(), rel=1e-9)
+    assert forces["torque_rms_N_m"] == pytest.approx(math.sqrt(np.mean(t[:-1] ** 2)), rel=1e-7)
+    assert contact["force_min_n"] == pytest.approx(ld.force(m, omega, theta).min(), abs=1e-6)
+    assert contact["load_table_n"] == {"min": 0.0, "max": 12.0, "rows": 3, "interpolation": "linear, periodic over "
+                                                                                            "the turn"}
+
+
+def test_a_load_table_from_a_csv_beside_the_template(tmp_path):
+    (tmp_path / "loads.csv").write_text("angle,load\n0,0\n120,12\n240,12\n360,0\n")
+    (tmp_path / "t.toml").write_text(RDRD.read_text().replace('offset = 5.0', 'offset = 5.0\nload_table = '
+                                                                               '"loads.csv"'))
+    from_file = _design(tmp_path / "t.toml", LOADED).speed["forces"]
+    assert from_file == _design(sets=TABLE).speed["forces"]
+
+
+@pytest.mark.parametrize("table, message", [
+    ([[0, 5], [180, 1], [360, 4]], "follower.load_table: the row at 360 degrees (4 N) must repeat the one at 0"),
+    ([[0, 5], [180, 1], [90, 4]], "follower.load_table: cam angles must increase row by row (row 3: 90 after 180"),
+    ([[-10, 5], [180, 1]], "follower.load_table: cam angles must lie in 0 to 360 degrees (got -10 to 180)"),
+    ("missing.csv", "follower.load_table: cannot read"),
+])
+def test_bad_load_tables_are_refused(tmp_path, table, message):
+    loaded = {"cam.rpm": 300, "follower.mass": 0.2, "follower.spring_rate": 0.5, "follower.load_table": table}
+    assert_refused(RDRD, loaded, message, tmp_path)
 
 
 def test_gravity_with_a_margin_warns_in_words():
