@@ -1,7 +1,8 @@
 """A linkage design as files: its report and figures, and with parts the cut sheet, assembly and meshes (a bundle).
 
 Names: ``<name>.json`` (the report, with the parts section when there are parts),
-``<name>-<kind>.png|svg`` (the mechanism's figures), and with parts ``<name>-sheet.dxf|svg``
+``<name>-<kind>.png|svg`` (the mechanism's figures), and with parts ``<name>-sheet.dxf|svg`` (the cut parts
+nested on one sheet; ``<name>-sheet-1.dxf|svg``, ``-sheet-2``, ... when they need several)
 and ``<name>-assembly.dxf|svg|png`` (cut files, kerf applied; the SVGs are the ``cut-svg``
 format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf`` (printed), ``<name>.html`` (the interactive page, for
 every linkage linkgen can draw as a general one). Only the formats the
@@ -15,6 +16,7 @@ from typing import Any
 
 from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
 from camgen.core.errors import ExportError, SpecError
+from camgen.core.nesting import sheet_kinds
 from linkgen.design import LinkageDesign, design_linkage
 from linkgen.parts import LinkageBuild
 from linkgen.spec import validate_spec
@@ -52,7 +54,7 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
     table = build.table
     items = [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"),
                             ("cut-svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
-             for kind, drawing in (("sheet", build.sheet), ("assembly", build.assembly))]
+             for kind, drawing in (*sheet_kinds(build.sheets), ("assembly", build.assembly))]
 
     def assembly_figure() -> Any:
         from camgen.core.figures import drawing_figure

@@ -9,7 +9,7 @@ radians about their first hole, which then moves to its position in mm), which k
 arcs exact.
 
 A mechanism gives its parts and their motion as a :class:`Layout`; :func:`build_parts`
-does the rest. Allowances (:class:`camgen.core.parts.Allowances`, applied there only): a
+does the rest; the cut sheets are nested by :mod:`camgen.core.nesting`. Allowances (:class:`camgen.core.parts.Allowances`, applied there only): a
 part's nominal hole is pin + clearance in diameter; a cut hole is that less the kerf and
 a cut outline grows by kerf / 2; a printed hole is the nominal one.
 """
@@ -22,8 +22,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from camgen.core.errors import DesignError
-from camgen.core.parts import LAYER_HOLES, LAYER_LABELS, LAYER_OUTLINE, Allowances, Drawing, Part
-from camgen.core.shapes import Circle, Contour, Polyline, Text, rounded_hull
+from camgen.core.nesting import Nest, SheetRules, nest, rotations_of
+from camgen.core.parts import Allowances, Drawing, Part
+from camgen.core.shapes import Circle, Contour, Polyline, rounded_hull
 
 if TYPE_CHECKING:
     from linkgen.spec import PartsTable
@@ -244,37 +245,6 @@ def _place(part: Part, angle: float, shift: np.ndarray) -> tuple[Contour, list]:
     return part.outline.moved(angle, shift), [hole.moved(angle, shift) for hole in part.holes]
 
 
-def sheet(cut: tuple[Part, ...], size: tuple[float, float], gap: float, tolerance: float) -> Drawing:
-    """The parts laid on a sheet of ``size`` (width, height; mm) by shelf packing, left to right in rows from the
-    origin, each part shifted so its box starts at the cursor, ``gap`` mm apart, its name engraved on
-    ``LABELS`` (score it, do not cut it)."""
-    width, height = size
-    x = y = row = 0.0
-    items: list = []
-    for part in sorted(cut, key=lambda p: p.outline.bounds()[1] - p.outline.bounds()[3]):
-        x0, y0, x1, y1 = part.outline.bounds()
-        lo, span = np.array([x0, y0]), np.array([x1 - x0, y1 - y0])
-        if x > 0 and x + span[0] > width:
-            x, y, row = 0.0, y + row + gap, 0.0
-        if x + span[0] > width or y + span[1] > height:
-            raise DesignError(f"parts.sheet: the parts do not fit a {width:g} x {height:g} mm sheet with gaps of "
-                              f"{gap:g} mm; give a larger sheet")
-        outline, holes = _place(part, 0.0, np.array([x, y]) - lo)
-        items += [(LAYER_OUTLINE, outline), *((LAYER_HOLES, h) for h in holes), *_label(part.name, x, y, span)]
-        x, row = x + span[0] + gap, max(row, span[1])
-    return Drawing(tuple(items), tolerance)
-
-
-def _label(name: str, x: float, y: float, span: np.ndarray) -> list[tuple[str, Text]]:
-    """The part's name to engrave on ``LAYER_LABELS``, centred in its box at (x, y) of size ``span`` (mm): at most
-    5 mm high, and narrow enough to fit the box; none where it would be under 1 mm high."""
-    height = min(5.0, 0.35 * float(span[1]), 0.8 * float(span[0]) / (0.6 * len(name)))
-    if height < 1.0:
-        return []
-    width = 0.6 * height * len(name)
-    return [(LAYER_LABELS, Text(name, (x + (span[0] - width) / 2, y + (span[1] - height) / 2), height))]
-
-
 def assembly(printed: tuple[Part, ...], layout: Layout, tolerance: float) -> Drawing:
     """The printed parts at each dead centre, each pose on its own layer (``DC1-extended``, ...), and the path on
     ``PATH``."""
@@ -292,8 +262,9 @@ def assembly(printed: tuple[Part, ...], layout: Layout, tolerance: float) -> Dra
 
 @dataclass(frozen=True)
 class LinkageBuild:
-    """A linkage's parts: nominal, as cut and as printed, their layers (0 = the ground, then upwards), the cut sheet,
-    the assembly drawing and the dead centres it shows ((kind, input angle rad))."""
+    """A linkage's parts: nominal, as cut and as printed, their layers (0 = the ground, then upwards), the cut sheets
+    (one drawing a sheet, nested by :func:`camgen.core.nesting.nest`), the assembly drawing and the dead centres it
+    shows ((kind, input angle rad)), and the nesting's figures."""
 
     parts: tuple[LinkPart, ...]
     table: Any
@@ -301,12 +272,13 @@ class LinkageBuild:
     layers: dict[str, int]
     cut: tuple[Part, ...]
     printed: tuple[Part, ...]
-    sheet: Drawing
+    sheets: tuple[Drawing, ...]
     assembly: Drawing
     positions: tuple[tuple[str, float], ...]
     #: (joint, the two parts, how many layers it fills) for each run of empty layers a pin crosses between the two
     #: parts it joins: a spacer fills it
     spacers: tuple[tuple[str, tuple[str, str], int], ...] = ()
+    nesting: Nest | None = None
 
     @property
     def spacer_diameters(self) -> tuple[float, float]:
@@ -339,7 +311,8 @@ class LinkageBuild:
                                "cut_holes": "pin + clearance - kerf", "cut_outlines": "grown by kerf / 2",
                                "printed_holes": "pin + clearance"},
                 "assembly_layers": [f"DC{i + 1}-{k}" for i, (k, _) in enumerate(self.positions)],
-                **({"spacers": self._spacer_report()} if self.spacers else {})}
+                **({"spacers": self._spacer_report()} if self.spacers else {}),
+                **({"sheet": self.nesting.report} if self.nesting is not None else {})}
 
     def _spacer_report(self) -> list[dict[str, Any]]:
         inner, outer = self.spacer_diameters
@@ -375,7 +348,8 @@ def build_parts(layout: Layout, table: PartsTable) -> LinkageBuild:
     layout, layers = with_top_plate(layout, layers, top_pins, table.width_of("ground"))
     cut = tuple(allowances.cut(p) for p in layout.parts)
     printed = tuple(allowances.printed(p) for p in layout.parts)
-    drawn = sheet(cut, table.sheet, table.kerf + table.margin, table.tolerance)
+    nested = nest(cut, SheetRules(tuple(table.sheet), table.kerf + table.margin,
+                                  rotations_of(table.sheet_rotations, table.grain), "parts.sheet"))
     spacers = spacers_of(layout.sweep, layers)
-    return LinkageBuild(layout.parts, table, allowances, layers, cut, printed, drawn,
-                        assembly(printed, layout, table.tolerance), layout.positions, spacers)
+    return LinkageBuild(layout.parts, table, allowances, layers, cut, printed, nested.drawings(table.tolerance),
+                        assembly(printed, layout, table.tolerance), layout.positions, spacers, nested)

@@ -46,6 +46,10 @@ class PartsTable(Model):
     margin: float = length("sheet: gap between parts beyond the kerf", 3.0, zero=True, le=1000.0)
     sheet: tuple[SheetSide, SheetSide] = Field((600.0, 400.0), description="sheet width and height",
                                                json_schema_extra=unit("mm"))
+    sheet_rotations: float = Field(90.0, ge=0, le=360, description="parts on the sheet turn in steps of this "
+                                   "(0: as drawn only); a divisor of 360", json_schema_extra=unit("degrees"))
+    grain: bool = Field(False, description="keep the parts along the sheet's grain (its width): turned by 0 or 180 "
+                        "degrees only")
     pins: bool = Field(False, description="also write a printable pin (cylinder with a head)")
     tolerance: float = Field(0.01, ge=1e-6, le=1, description="chord tolerance of meshes and sheets",
                              json_schema_extra=unit("mm"))
@@ -72,6 +76,9 @@ class PartsTable(Model):
             raise ValueError(f"clearance: must be >= 0 and < {self.width - pin:g} mm (width - pin_diameter), so "
                              f"that holes of pin_diameter + clearance leave material in bars {self.width:g} mm wide "
                              f"(got {self.clearance:g})")
+        if self.sheet_rotations > 0 and abs(360.0 / self.sheet_rotations - round(360.0 / self.sheet_rotations)) > 1e-9:
+            raise ValueError(f"sheet_rotations: must be 0 or divide 360 degrees (e.g. 90, 45, 15) (got "
+                             f"{self.sheet_rotations:g})")
         if self.kerf >= hole:
             raise ValueError(f"kerf: must be >= 0 and < {hole:g} mm (pin_diameter + clearance), or it closes the "
                              f"cut holes (got {self.kerf:g})")

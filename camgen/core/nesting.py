@@ -1,0 +1,458 @@
+"""Cut sheets: any parts laid on sheets by their true outlines, with a gap between them and to the sheet's edge.
+
+:func:`nest` places any tuple of :class:`camgen.core.parts.Part` (cams, linkage bars, a kit's frames and spacers)
+on as many sheets as they need: each part turned by one of the allowed rotations (degrees, counter-clockwise,
+about its own origin; arcs stay exact arcs) and moved, so that no two outlines come closer than ``gap`` (kerf +
+margin, mm) and no outline comes closer than ``gap`` to a sheet's edge. Holes are not filled with small parts (a
+part in another's hole would need the cutter to cut it first).
+
+The method (ours, on shapely and numpy; see the README's nesting section for the libraries compared):
+
+1. **Raster bottom-left fill.** The sheet is a grid of square cells; each part's footprint (its outline as
+   chords, grown by gap / 2 and by the chords' largest distance from the arcs) covers the cells it touches, for
+   each allowed rotation. One FFT correlation of the sheet's occupied cells with a footprint gives the overlap at
+   every grid position at once; the part goes to the free position that keeps the layout narrowest (the least
+   right-hand extent, then the lowest), among all its rotations, on the first sheet where it fits. Cells that a
+   footprint only touches count as covered, so footprints on free cells never overlap: the gap holds exactly.
+2. **Exact compaction.** The part then slides left and down by the exact clearance shapely measures between
+   its outline and the others' and the sheet's edges, less the gap, so the grid's rounding is given back.
+3. **A few orders, the best kept.** The parts are placed largest first; a fixed number of orders (by area, by
+   length, by height) are tried and the layout with the fewest sheets, then the least used area, kept.
+
+Everything is deterministic: no random numbers and no clock; the work is bounded by the number of orders and
+rotations, not by time, so the same parts always give the same sheets (the golden hashes rely on it).
+
+The shelf packing of bounding rectangles (:func:`shelf_extent`) is kept as the reference: the report gives
+both utilisations, each the parts' area over the area of the sheet rectangle the layout uses from the
+sheet's corner.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from camgen.core.errors import DesignError
+from camgen.core.parts import LAYER_HOLES, LAYER_LABELS, LAYER_OUTLINE, Drawing, Part
+from camgen.core.shapes import Contour, Polyline, Text, _moved
+
+#: rotations (degrees) a part may take when nothing else is said: quarter turns
+QUARTER_TURNS = (0.0, 90.0, 180.0, 270.0)
+#: rotations with the grain: the part keeps its direction along the sheet (upside down allowed)
+WITH_GRAIN = (0.0, 180.0)
+#: the most grid cells a sheet is divided into (the grid's cell is the larger of this bound's and MIN_CELL_MM)
+MAX_CELLS = 250_000
+#: the finest grid cell (mm)
+MIN_CELL_MM = 0.25
+#: chord tolerance (mm) of the outlines the nesting works on (the drawing keeps the exact arcs)
+NEST_TOLERANCE_MM = 0.05
+#: slides of the exact compaction after each placement (each a move left then down)
+COMPACTION_PASSES = 4
+#: orders of the parts tried; the best layout is kept
+ORDERS = ("area", "length", "height")
+#: engraved labels: the tallest and the smallest worth engraving (mm)
+LABEL_MAX_MM = 5.0
+LABEL_MIN_MM = 1.0
+
+
+@dataclass(frozen=True)
+class SheetRules:
+    """How parts go on a sheet: its ``size`` (width along +X, height along +Y; mm), the ``gap`` (mm) kept between
+    parts and to the sheet's edges (kerf + margin), the allowed ``rotations`` (degrees, counter-clockwise) and the
+    template field named when a part is too large (``field``)."""
+
+    size: tuple[float, float]
+    gap: float
+    rotations: tuple[float, ...] = QUARTER_TURNS
+    field: str = "sheet"
+
+    def __post_init__(self) -> None:
+        if not (self.size[0] > 0 and self.size[1] > 0 and self.gap >= 0 and self.rotations):
+            raise ValueError("a sheet needs a positive size, a gap >= 0 and at least one rotation")
+
+
+@dataclass(frozen=True)
+class Placed:
+    """A part on a sheet: the part (in its own frame), the sheet (0-based), its rotation (degrees, counter-clockwise
+    about its own origin) and then its shift (mm)."""
+
+    part: Part
+    sheet: int
+    rotation: float
+    shift: tuple[float, float]
+
+    @property
+    def angle(self) -> float:
+        """The rotation in radians."""
+        return math.radians(self.rotation)
+
+    def outline(self) -> Contour:
+        """Its outline where it lies on the sheet (exact arcs)."""
+        return self.part.outline.moved(self.angle, np.array(self.shift))
+
+
+@dataclass(frozen=True)
+class Nest:
+    """Parts laid on ``sheets`` sheets by :func:`nest`, and the figures of the layout.
+
+    ``utilisation``: the parts' area (outlines less holes, mm^2) over the area the layout uses (on each sheet,
+    the rectangle from the sheet's corner to the parts' farthest right and top extents, gap included on the
+    lower and left edges; a full sheet counts as its rectangle too); ``shelf_utilisation``: the same figure for
+    the shelf packing of the same parts on the same sheets (:func:`shelf_extent`), None where the shelves do not
+    fit the sheets.
+    """
+
+    placed: tuple[Placed, ...]
+    sheets: int
+    rules: SheetRules
+    utilisation: float
+    shelf_utilisation: float | None
+    order: str = field(default="area")
+
+    def drawings(self, tolerance: float) -> tuple[Drawing, ...]:
+        """One drawing a sheet: each part's outline on ``OUTLINE``, its holes on ``HOLES``, its pockets and marks on
+        their own layers, its name to score on ``LABELS``; ``tolerance`` (mm) is the drawings' chord tolerance."""
+        items: list[list] = [[] for _ in range(self.sheets)]
+        for p in self.placed:
+            items[p.sheet] += _placed_items(p)
+        return tuple(Drawing(tuple(i), tolerance) for i in items)
+
+    @property
+    def report(self) -> dict:
+        """The layout as the JSON report gives it."""
+        w, h = self.rules.size
+        return {"sheets": self.sheets, "sheet_mm": [w, h], "gap_mm": self.rules.gap,
+                "rotations_deg": list(self.rules.rotations), "method": "raster bottom-left fill, exact compaction",
+                "order": self.order, "utilisation": round(self.utilisation, 4),
+                "shelf_utilisation": None if self.shelf_utilisation is None else round(self.shelf_utilisation, 4),
+                "parts": [{"name": p.part.name, "sheet": p.sheet + 1, "rotation_deg": p.rotation,
+                           "x_mm": round(p.shift[0], 6), "y_mm": round(p.shift[1], 6)} for p in self.placed]}
+
+
+def sheet_kinds(drawings: tuple[Drawing, ...]) -> tuple[tuple[str, Drawing], ...]:
+    """Each sheet's drawing with the name its files take: ``sheet`` when there is one, else ``sheet-1``,
+    ``sheet-2``, ..."""
+    if len(drawings) == 1:
+        return (("sheet", drawings[0]),)
+    return tuple((f"sheet-{i + 1}", d) for i, d in enumerate(drawings))
+
+
+def rotations_of(steps: float | None, grain: bool) -> tuple[float, ...]:
+    """The rotations (degrees) allowed by a rotation step (degrees; None or 0 for none: 0 only) and the grain
+    (with the grain a part keeps its direction: 0 and 180 only, of those the step allows)."""
+    turns = (0.0,) if not steps else tuple(float(a) for a in np.arange(0.0, 360.0 - 1e-9, float(steps)))
+    return tuple(a for a in turns if a in WITH_GRAIN) if grain else turns
+
+
+def nest(parts: tuple[Part, ...], rules: SheetRules) -> Nest:
+    """``parts`` laid on sheets of ``rules.size`` (as many as they need), by their true outlines: see the module.
+
+    Raises :class:`DesignError` naming ``rules.field`` and the part's size when a part fits no sheet in any
+    allowed rotation.
+    """
+    flats = [_Flat.of(p, rules) for p in parts]
+    best: Nest | None = None
+    for order in ORDERS:
+        placed, sheets = _fill(sorted(range(len(parts)), key=lambda i, o=order: _order_key(flats[i], o)), flats, rules)
+        used = _used_area(placed, rules)
+        nested = Nest(tuple(sorted(placed, key=lambda p: (p.sheet, p.shift[0], p.shift[1]))), sheets, rules,
+                      _area(parts) / used if used > 0 else 1.0, _shelf_utilisation(parts, rules, sheets), order)
+        if best is None or (nested.sheets, -nested.utilisation) < (best.sheets, -best.utilisation):
+            best = nested
+    assert best is not None
+    return best
+
+
+@dataclass(frozen=True)
+class _Flat:
+    """A part as the nesting sees it: for each rotation, its outline as a polygon (mm, own frame turned), and how
+    much to grow it for the footprint (gap / 2 and the chords' distance from the arcs)."""
+
+    part: Part
+    polygons: tuple            # shapely Polygons, one a rotation
+    boxes: tuple               # the exact outline's (xmin, ymin, xmax, ymax) at each rotation, mm
+    grow: float
+    chord: float
+
+    @classmethod
+    def of(cls, part: Part, rules: SheetRules) -> _Flat:
+        import shapely
+
+        ring = part.outline.flatten(NEST_TOLERANCE_MM)
+        chord = part.outline.flatten_error(NEST_TOLERANCE_MM)
+        polys = tuple(shapely.Polygon(_moved(ring, math.radians(a), np.zeros(2))) for a in rules.rotations)
+        boxes = tuple(part.outline.moved(math.radians(a), np.zeros(2)).bounds() for a in rules.rotations)
+        flat = cls(part, polys, boxes, rules.gap / 2 + chord + 1e-9, chord)
+        flat._check_fits(rules)
+        return flat
+
+    def _check_fits(self, rules: SheetRules) -> None:
+        """Refused, naming the sheet field and the part's size, when no rotation fits an empty sheet."""
+        w, h = rules.size
+        need = 2 * rules.gap
+        spans = [self.span(k) for k in range(len(self.polygons))]
+        if not any(sw + need <= w + 1e-9 and sh + need <= h + 1e-9 for sw, sh in spans):
+            sw, sh = min(spans, key=lambda s: max(s[0] - w, s[1] - h))
+            raise DesignError(f"{rules.field}: the parts do not fit a {w:g} x {h:g} mm sheet: {self.part.name} is "
+                              f"{sw:.4g} x {sh:.4g} mm and needs gaps of {rules.gap:g} mm to the edges (rotations "
+                              f"{', '.join(f'{a:g}' for a in rules.rotations)} degrees); give a larger sheet")
+
+    def span(self, k: int) -> tuple[float, float]:
+        """Width and height (mm) of the outline's exact box at rotation k."""
+        x0, y0, x1, y1 = self.boxes[k]
+        return x1 - x0, y1 - y0
+
+
+def _order_key(flat: _Flat, order: str) -> tuple:
+    span = flat.span(0)
+    main = {"area": -flat.part.outline.area, "length": -max(span), "height": -min(span)}[order]
+    return (main, flat.part.name)
+
+
+class _Grid:
+    """A sheet's occupied cells (rows along +Y, columns along +X), ``cell`` mm square from the sheet's corner."""
+
+    def __init__(self, rules: SheetRules, cell: float) -> None:
+        import shapely
+
+        w, h = rules.size
+        self.cell = cell
+        self.shape = (math.ceil(h / cell), math.ceil(w / cell))
+        ys, xs = (np.arange(n) * cell for n in self.shape)
+        # a cell is blocked where any of it lies outside the region a footprint may cover (gap / 2 from the edges)
+        lo, hi_x, hi_y = rules.gap / 2, w - rules.gap / 2, h - rules.gap / 2
+        free_x = (xs >= lo) & (xs + cell <= hi_x)
+        free_y = (ys >= lo) & (ys + cell <= hi_y)
+        self.occupied = ~(free_y[:, None] & free_x[None, :])
+        self.outlines: list = []                         # the placed polygons (sheet frame, not grown)
+        self._shapely = shapely
+
+    def cover(self, polygon, grow: float, origin: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+        """The cells (a boolean array ``shape`` from cell ``origin`` (x, y) mm) that the polygon grown by ``grow``
+        touches: every cell whose centre is within ``grow`` + half the cell's diagonal."""
+        shapely = self._shapely
+        # shapely's round joins are chords with their ends on the arc: divided by cos(half a chord's angle), every
+        # chord lies at least the distance asked from the polygon
+        reach = shapely.buffer(polygon, (grow + self.cell * math.sqrt(0.5)) * (1 + 1e-9) / math.cos(math.pi / 32),
+                               quad_segs=8)
+        ys = origin[1] + (np.arange(shape[0]) + 0.5) * self.cell
+        xs = origin[0] + (np.arange(shape[1]) + 0.5) * self.cell
+        gx, gy = np.meshgrid(xs, ys)
+        shapely.prepare(reach)
+        return shapely.contains_xy(reach, gx, gy)
+
+
+def _fill(order: list[int], flats: list[_Flat], rules: SheetRules) -> tuple[list[Placed], int]:
+    """Place the parts in ``order`` (first fit over the sheets, a new sheet when none has room)."""
+    w, h = rules.size
+    cell = max(MIN_CELL_MM, math.sqrt(w * h / MAX_CELLS))
+    grids: list[_Grid] = []
+    placed: list[Placed] = []
+    slack = 2 * max(f.chord for f in flats) + 1e-9 if flats else 0.0
+    for i in order:
+        flat = flats[i]
+        for s in range(len(grids) + 1):
+            if s == len(grids):
+                grids.append(_Grid(rules, cell))
+            spot = _best_spot(grids[s], flat, rules)
+            if spot is None and not grids[s].outlines:
+                spot = _corner_spot(flat, rules)
+            if spot is not None:
+                k, shift = spot
+                shift = _compact(grids[s], flat.polygons[k], flat.boxes[k], shift, slack, rules)
+                polygon = _shift(flat.polygons[k], shift)
+                _occupy(grids[s], polygon, flat.grow)
+                placed.append(Placed(flat.part, s, rules.rotations[k], (float(shift[0]), float(shift[1]))))
+                break
+            if not grids[s].outlines:                       # an empty sheet has no room: checked before, but safe
+                raise DesignError(f"{rules.field}: {flat.part.name} does not fit an empty {w:g} x {h:g} mm sheet "
+                                  f"with gaps of {rules.gap:g} mm; give a larger sheet")
+    return placed, len(grids)
+
+
+def _corner_spot(flat: _Flat, rules: SheetRules) -> tuple[int, np.ndarray] | None:
+    """On an empty sheet the grid may have no room for a part that fits only just: the first rotation whose exact
+    box fits, in the sheet's lower-left corner, ``gap`` from both edges."""
+    w, h = rules.size
+    for k in range(len(flat.polygons)):
+        sw, sh = flat.span(k)
+        if sw + 2 * rules.gap <= w + 1e-9 and sh + 2 * rules.gap <= h + 1e-9:
+            x0, y0, _, _ = flat.boxes[k]
+            return k, np.array([rules.gap - x0, rules.gap - y0])
+    return None
+
+
+def _shift(polygon, shift: np.ndarray):
+    import shapely
+
+    return shapely.transform(polygon, lambda p: p + shift)
+
+
+def _best_spot(grid: _Grid, flat: _Flat, rules: SheetRules) -> tuple[int, np.ndarray] | None:
+    """The rotation and shift (mm) of the free grid position that keeps the layout narrowest, then lowest."""
+    from scipy import fft
+
+    size = tuple(fft.next_fast_len(n, real=True) for n in grid.shape)
+    occupied = fft.rfft2(grid.occupied.astype(float), s=size)
+    best = None
+    for k, polygon in enumerate(flat.polygons):
+        x0, y0, x1, y1 = polygon.bounds
+        lo = np.array([x0 - flat.grow, y0 - flat.grow])
+        rows = math.ceil((y1 - y0 + 2 * flat.grow) / grid.cell) + 1
+        cols = math.ceil((x1 - x0 + 2 * flat.grow) / grid.cell) + 1
+        if rows > grid.shape[0] or cols > grid.shape[1]:
+            continue
+        # the footprint's cells with its box's lower-left corner at the origin; the overlap at every position
+        # (rows, columns) where it lies wholly on the sheet: a correlation, by FFT (no wrap-around there)
+        mask = grid.cover(_shift(polygon, -lo), flat.grow, np.zeros(2), (rows, cols))
+        overlap = fft.irfft2(occupied * np.conj(fft.rfft2(mask.astype(float), s=size)), s=size)
+        free = np.argwhere(overlap[:grid.shape[0] - rows + 1, :grid.shape[1] - cols + 1] < 0.5)
+        if not len(free):
+            continue
+        right = free[:, 1] * grid.cell + (x1 - x0)
+        top = free[:, 0] * grid.cell + (y1 - y0)
+        j = int(np.lexsort((top, right))[0])
+        key = (round(float(right[j]), 9), round(float(top[j]), 9), k)
+        if best is None or key < best[0]:
+            best = (key, k, np.array([free[j, 1] * grid.cell, free[j, 0] * grid.cell]) - lo)
+    return None if best is None else (best[1], best[2])
+
+
+def _compact(grid: _Grid, polygon, box: tuple, shift: np.ndarray, slack: float, rules: SheetRules) -> np.ndarray:
+    """The shift slid left, then down, by the exact clearance left to the placed parts and the sheet's edges less
+    the gap: to the edges from the outline's exact ``box`` (unshifted), to the others from the polygons, which are
+    chords, so it keeps ``slack`` (mm: the most two outlines' chords are from their arcs) as well."""
+    import shapely
+
+    others = shapely.union_all(grid.outlines) if grid.outlines else None
+    for _ in range(COMPACTION_PASSES):
+        moved = False
+        for axis in (0, 1):
+            here = _shift(polygon, shift)
+            room = box[axis] + shift[axis] - rules.gap
+            if others is not None:
+                room = min(room, float(shapely.distance(here, others)) - rules.gap - slack)
+            if room > 1e-7:
+                shift = shift.copy()
+                shift[axis] -= room - 1e-9
+                moved = True
+        if not moved:
+            break
+    return shift
+
+
+def _occupy(grid: _Grid, polygon, grow: float) -> None:
+    """Mark the cells the placed footprint touches."""
+    x0, y0, x1, y1 = polygon.bounds
+    c0 = max(0, math.floor((x0 - grow) / grid.cell) - 1)
+    r0 = max(0, math.floor((y0 - grow) / grid.cell) - 1)
+    c1 = min(grid.shape[1], math.ceil((x1 + grow) / grid.cell) + 1)
+    r1 = min(grid.shape[0], math.ceil((y1 + grow) / grid.cell) + 1)
+    grid.occupied[r0:r1, c0:c1] |= grid.cover(polygon, grow, np.array([c0, r0]) * grid.cell, (r1 - r0, c1 - c0))
+    grid.outlines.append(polygon)
+
+
+def _area(parts: tuple[Part, ...]) -> float:
+    return float(sum(p.area for p in parts))
+
+
+def _used_area(placed: list[Placed], rules: SheetRules) -> float:
+    """The area of each sheet's rectangle from its corner to its parts' farthest extents (mm^2), summed."""
+    ends: dict[int, np.ndarray] = {}
+    for p in placed:
+        x0, y0, x1, y1 = p.outline().bounds()
+        ends[p.sheet] = np.maximum(ends.get(p.sheet, np.zeros(2)), (x1, y1))
+    return float(sum(e[0] * e[1] for e in ends.values()))
+
+
+def shelf_extent(parts: tuple[Part, ...], size: tuple[float, float], gap: float) -> list[np.ndarray] | None:
+    """The reference: the parts' boxes in shelves (rows left to right from the sheet's corner, tallest first, ``gap``
+    mm apart), a new sheet when a sheet is full; each sheet's farthest extents (x, y; mm), or None if a part does
+    not fit a sheet."""
+    width, height = size
+    x = y = row = 0.0
+    ends = [np.zeros(2)]
+    for part in sorted(parts, key=lambda p: p.outline.bounds()[1] - p.outline.bounds()[3]):
+        x0, y0, x1, y1 = part.outline.bounds()
+        span = np.array([x1 - x0, y1 - y0])
+        if x > 0 and x + span[0] > width:
+            x, y, row = 0.0, y + row + gap, 0.0
+        if y + span[1] > height and y > 0:
+            x, y, row = 0.0, 0.0, 0.0
+            ends.append(np.zeros(2))
+        if x + span[0] > width or y + span[1] > height:
+            return None
+        ends[-1] = np.maximum(ends[-1], (x + span[0], y + span[1]))
+        x, row = x + span[0] + gap, max(row, span[1])
+    return ends
+
+
+def _shelf_utilisation(parts: tuple[Part, ...], rules: SheetRules, sheets: int) -> float | None:
+    ends = shelf_extent(parts, rules.size, rules.gap)
+    return None if ends is None else _area(parts) / float(sum(e[0] * e[1] for e in ends))
+
+
+def _placed_items(p: Placed) -> list:
+    """A placed part's drawing items in the sheet's frame, with its label."""
+    angle, shift = p.angle, np.array(p.shift)
+    part = p.part
+    items: list = [(LAYER_OUTLINE, p.outline()), *((LAYER_HOLES, h.moved(angle, shift)) for h in part.holes)]
+    items += [(pocket.layer, c.moved(angle, shift)) for pocket in part.pockets for c in pocket.contours]
+    items += [(layer, _move_mark(mark, angle, shift)) for layer, mark in part.marks]
+    return items + _label(p)
+
+
+def _move_mark(mark: Polyline | Text, angle: float, shift: np.ndarray) -> Polyline | Text:
+    if isinstance(mark, Text):
+        (x, y), = _moved(np.array([mark.position]), angle, shift)
+        return Text(mark.text, (float(x), float(y)), mark.height, mark.angle + math.degrees(angle))
+    return Polyline(_moved(mark.vertices, angle, shift), mark.bulges)
+
+
+def _label(p: Placed) -> list[tuple[str, Text]]:
+    """The part's name to score on ``LABELS``: centred on the point of the part farthest from its edges and holes,
+    along the sheet's X or Y (whichever allows the taller text), at most LABEL_MAX_MM high and fitting inside the
+    material; none where it would be under LABEL_MIN_MM high."""
+    import shapely
+
+    part, angle, shift = p.part, p.angle, np.array(p.shift)
+    body = shapely.Polygon(part.outline.moved(angle, shift).flatten(NEST_TOLERANCE_MM))
+    holes = [shapely.Polygon(h.moved(angle, shift).flatten(NEST_TOLERANCE_MM)) for h in part.holes]
+    body = body.difference(shapely.union_all(holes)) if holes else body
+    if body.is_empty:
+        return []
+    from shapely.ops import polylabel
+
+    centre = polylabel(body if body.geom_type == "Polygon" else max(body.geoms, key=lambda g: g.area), 0.05)
+    c = np.array([centre.x, centre.y])
+    n = len(part.name)
+    best: tuple[float, float] = (0.0, 0.0)
+    for text_angle in (0.0, 90.0):
+        lo, hi = 0.0, LABEL_MAX_MM
+        for _ in range(20):                                  # the tallest text whose box lies in the material
+            mid = (lo + hi) / 2
+            if body.contains(_text_box(c, mid, n, text_angle)):
+                lo = mid
+            else:
+                hi = mid
+        if lo > best[0] + 1e-9:
+            best = (lo, text_angle)
+    height, text_angle = math.floor(best[0] * 100) / 100, best[1]
+    if height < LABEL_MIN_MM:
+        return []
+    half = np.array([0.3 * height * n, height / 2])
+    (x, y), = _moved(-half[None, :], math.radians(text_angle), c)
+    return [(LAYER_LABELS, Text(part.name, (round(float(x), 6), round(float(y), 6)), height, text_angle))]
+
+
+def _text_box(centre: np.ndarray, height: float, n: int, angle: float):
+    import shapely
+
+    w, h = 0.3 * height * n, height / 2
+    box = np.array([[-w, -h], [w, -h], [w, h], [-w, h]])
+    return shapely.Polygon(_moved(box, math.radians(angle), centre))
+
+
+__all__ = ["QUARTER_TURNS", "WITH_GRAIN", "Nest", "Placed", "SheetRules", "nest", "rotations_of", "sheet_kinds",
+           "shelf_extent"]

@@ -1,0 +1,222 @@
+"""Nesting by true outlines (camgen.core.nesting): the written sheets read back with ezdxf and rebuilt as shapely
+polygons; no two parts overlap, every gap between parts and to the sheet's edge is at least kerf + margin, every
+part is there once, congruent to the part as cut, turned only by an allowed rotation; utilisation is reported and
+beats the shelf packing on the bundled jansen parts; parts that overflow a sheet go on more; a part larger than the
+sheet is refused with one line naming the sheet field and the part's size, and nothing is written."""
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+
+from camgen.core.errors import DesignError
+from camgen.core.nesting import SheetRules, nest, rotations_of, shelf_extent
+from camgen.core.parts import Part
+from camgen.core.shapes import Circle, Contour, rounded_hull
+from linkgen.cli import main as linkgen
+
+ROOT = Path(__file__).resolve().parent.parent
+JANSEN = ROOT / "templates" / "jansen.toml"
+FORMATS = 'output.formats=["dxf","json"]'
+
+
+def _build(tmp_path: Path, *sets: str, template: Path = JANSEN) -> tuple[Path, CliRunner]:
+    out = tmp_path / "out"
+    args = ["build", str(template), "-o", str(out), "--set", FORMATS]
+    for s in sets:
+        args += ["--set", s]
+    result = CliRunner().invoke(linkgen, args)
+    return out, result
+
+
+def _read_sheet(path: Path) -> list[tuple[Contour, list]]:
+    """Each part on a written sheet: its outline (exact, from the LWPOLYLINE's bulges) and its holes."""
+    msp = ezdxf.readfile(path).modelspace()
+    outlines = []
+    for pl in msp.query('LWPOLYLINE[layer=="OUTLINE"]'):
+        pts = np.array([(x, y, b) for x, y, _, _, b in pl.get_points("xyseb")])
+        outlines.append(Contour(pts[:, :2], pts[:, 2]))
+    holes = [shapely.Point(np.array(c.dxf.center)[:2]).buffer(c.dxf.radius, quad_segs=64)
+             for c in msp.query('CIRCLE[layer=="HOLES"]')]
+    return [(o, [h for h in holes if shapely.Polygon(o.flatten(1e-3)).contains(h)]) for o in outlines]
+
+
+def _check_sheet(parts: list[tuple[Contour, list]], size: tuple[float, float], gap: float) -> None:
+    """No overlap, gaps >= gap - 1e-6 between outlines (the chords' distance from the arcs taken off) and to the
+    edges (exact boxes)."""
+    tol = 1e-3
+    polys = [(shapely.Polygon(c.flatten(tol)), c.flatten_error(tol)) for c, _ in parts]
+    for i, (a, ea) in enumerate(polys):
+        assert a.is_valid
+        x0, y0, x1, y1 = parts[i][0].bounds()
+        assert min(x0, y0, size[0] - x1, size[1] - y1) >= gap - 1e-6
+        for b, eb in polys[i + 1:]:
+            assert not a.intersects(b)
+            assert a.distance(b) - ea - eb >= gap - 1e-6
+
+
+@pytest.fixture(scope="module")
+def jansen(tmp_path_factory):
+    from camgen.core.spec import read_template
+    from linkgen.design import design_linkage
+    from linkgen.spec import validate_spec
+
+    out, result = _build(tmp_path_factory.mktemp("jansen"))
+    assert result.exit_code == 0, result.output
+    design = design_linkage(validate_spec(read_template(JANSEN)), parts=True)
+    return out, json.loads((out / "jansen.json").read_text()), design.build
+
+
+def test_jansen_sheet_read_back_no_overlap_gaps_every_part_once_congruent(jansen):
+    out, report, build = jansen
+    sheet = report["sheet"]
+    table = build.table
+    gap = table.kerf + table.margin
+    assert sheet["sheets"] == 1 and sheet["gap_mm"] == gap
+    parts = _read_sheet(out / "jansen-sheet.dxf")
+    _check_sheet(parts, tuple(table.sheet), gap)
+    cut = {p.name: p for p in build.cut}
+    placed = sheet["parts"]
+    assert sorted(p["name"] for p in placed) == sorted(cut)                 # every part, once
+    assert len(parts) == len(cut)
+    for (outline, holes), where in zip(parts, placed, strict=True):
+        part = cut[where["name"]]
+        assert where["rotation_deg"] in (0.0, 90.0, 180.0, 270.0)
+        assert outline.area == pytest.approx(part.outline.area, rel=1e-9)   # area preserved
+        # congruent: the part as cut, turned and moved as the report says, is the outline read back
+        moved = part.outline.moved(math.radians(where["rotation_deg"]), np.array([where["x_mm"], where["y_mm"]]))
+        assert np.abs(moved.vertices - outline.vertices).max() < 1e-5
+        assert np.array_equal(moved.bulges, outline.bulges) or np.abs(moved.bulges - outline.bulges).max() < 1e-9
+        assert len(holes) == len(part.holes)
+        assert sum(h.area for h in holes) == pytest.approx(sum(abs(h.area) for h in part.holes), rel=1e-3)
+
+
+def test_utilisation_reported_and_at_least_the_shelf_figure(jansen):
+    _, report, build = jansen
+    sheet = report["sheet"]
+    area = sum(p.area for p in build.cut)
+    assert 0 < sheet["shelf_utilisation"] <= sheet["utilisation"] <= 1
+    # the figure is the parts' area over the rectangle the layout uses from the sheet's corner
+    ends = np.max([p.outline.moved(math.radians(w["rotation_deg"]), np.array([w["x_mm"], w["y_mm"]])).bounds()[2:]
+                   for w in sheet["parts"] for p in build.cut if p.name == w["name"]], axis=0)
+    assert sheet["utilisation"] == pytest.approx(area / (ends[0] * ends[1]), abs=1e-4)
+    shelf = shelf_extent(build.cut, tuple(build.table.sheet), sheet["gap_mm"])
+    assert sheet["shelf_utilisation"] == pytest.approx(area / sum(e[0] * e[1] for e in shelf), abs=1e-4)
+
+
+def test_grain_and_rotation_steps_keep_to_the_allowed_set(tmp_path):
+    out, result = _build(tmp_path, "parts.grain=true", "parts.kerf=0.2")
+    assert result.exit_code == 0, result.output
+    report = json.loads((out / "jansen.json").read_text())["sheet"]
+    assert {p["rotation_deg"] for p in report["parts"]} <= {0.0, 180.0} and report["rotations_deg"] == [0.0, 180.0]
+    _check_sheet(_read_sheet(out / "jansen-sheet.dxf"), (600.0, 400.0), 3.2)
+    assert rotations_of(45, False) == (0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0)
+    assert rotations_of(0, True) == (0.0,) and rotations_of(120, True) == (0.0,) and rotations_of(90, True) == (
+        0.0, 180.0)
+
+
+def test_several_sheets_when_one_is_full(tmp_path):
+    out, result = _build(tmp_path, "parts.sheet=[100.0, 90.0]")
+    assert result.exit_code == 0, result.output
+    report = json.loads((out / "jansen.json").read_text())["sheet"]
+    assert report["sheets"] >= 2
+    assert not (out / "jansen-sheet.dxf").exists()
+    seen = []
+    for i in range(report["sheets"]):
+        parts = _read_sheet(out / f"jansen-sheet-{i + 1}.dxf")
+        assert parts
+        _check_sheet(parts, (100.0, 90.0), 3.0)
+        seen += [p["name"] for p in report["parts"] if p["sheet"] == i + 1]
+        assert len(parts) == sum(p["sheet"] == i + 1 for p in report["parts"])
+    assert sorted(seen) == sorted({p["name"] for p in report["parts"]}) and len(seen) == len(set(seen))
+
+
+def test_a_part_larger_than_the_sheet_is_refused_in_one_line_and_nothing_written(tmp_path):
+    out, result = _build(tmp_path, "parts.sheet=[100.0, 50.0]")
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: parts.sheet: the parts do not fit a 100 x 50 mm sheet")
+    assert " x " in lines[0].split(":")[-1] and "mm" in lines[0] and "Traceback" not in result.output
+    assert not out.exists() or not any(out.iterdir())
+
+
+# ---- the library on any parts ------------------------------------------------------------------------------------
+
+def _plate(name: str, w: float, h: float, hole: float = 0.0) -> Part:
+    outline = Contour(np.array([[0.0, 0.0], [w, 0.0], [w, h], [0.0, h]]))
+    return Part(name, outline, (Circle((w / 2, h / 2), hole),) if hole else (), 3.0, 0.01)
+
+
+def _ell(name: str) -> Part:
+    """A concave part with arcs: an L whose outer corner is rounded and whose inner corner is a concave arc."""
+    verts = np.array([[0.0, 0.0], [60.0, 0.0], [60.0, 15.0], [25.0, 15.0], [15.0, 25.0], [15.0, 60.0], [0.0, 60.0]])
+    bulges = np.array([0.0, 0.0, 0.0, -math.tan(math.radians(90) / 4), 0.0, 0.0, 0.0])
+    return Part(name, Contour(verts, bulges), (Circle((7.0, 7.0), 3.0),), 3.0, 0.01)
+
+
+def _written(nested, tmp_path: Path) -> list[list[tuple[Contour, list]]]:
+    from camgen.core.writers.dxf import write_dxf
+
+    sheets = []
+    for i, drawing in enumerate(nested.drawings(0.01)):
+        path = tmp_path / f"s{i}.dxf"
+        write_dxf(drawing, path)
+        sheets.append(_read_sheet(path))
+    return sheets
+
+
+def test_any_parts_concave_and_round_exact_gaps_and_deterministic(tmp_path):
+    parts = (*(_ell(f"ell{i}") for i in range(4)), *(_plate(f"plate{i}", 40 + 5 * i, 20, 6) for i in range(4)),
+             Part("disc", rounded_hull(np.zeros((1, 2)), 25.0), (Circle((0.0, 0.0), 4.0),), 3.0, 0.01),
+             Part("bar", rounded_hull(np.array([[0.0, 0.0], [90.0, 0.0]]), 6.0), (), 3.0, 0.01))
+    rules = SheetRules((200.0, 150.0), 2.5, rotations_of(45, False), "sheet")
+    nested = nest(parts, rules)
+    assert nest(parts, rules) == nested                                   # no randomness, no clock
+    sheets = _written(nested, tmp_path)
+    assert sum(len(s) for s in sheets) == len(parts)
+    for s in sheets:
+        _check_sheet(s, rules.size, rules.gap)
+    assert {p.rotation for p in nested.placed} <= set(rules.rotations)
+    assert sorted(p.part.name for p in nested.placed) == sorted(p.name for p in parts)
+    shelf = nested.shelf_utilisation
+    assert shelf is not None and nested.utilisation >= shelf
+
+
+def test_several_sheets_first_fit_and_labels_inside_parts(tmp_path):
+    parts = tuple(_plate(f"p{i}", 50.0, 30.0) for i in range(9))
+    rules = SheetRules((110.0, 70.0), 3.0, (0.0, 90.0), "sheet")
+    nested = nest(parts, rules)
+    # 2 x 2 plates of 50 x 30 fit a 110 x 70 sheet with 3 mm gaps (3 + 50 + 3 + 50 + 3 = 109, 3 + 30 + 3 + 30 + 3 =
+    # 69): nine plates take three sheets
+    assert nested.sheets == 3
+    for s in _written(nested, tmp_path):
+        _check_sheet(s, rules.size, rules.gap)
+    for drawing in nested.drawings(0.01):
+        bodies = [shapely.Polygon(s.flatten(1e-3)) for layer, s in drawing.items if layer == "OUTLINE"]
+        labels = [s for layer, s in drawing.items if layer == "LABELS"]
+        assert len(labels) == len(bodies)
+        for text in labels:
+            assert any(b.contains(shapely.Point(text.position)) for b in bodies)
+
+
+@pytest.mark.parametrize("short", [0.0, 1e-12])
+def test_a_part_that_fits_only_just(short):
+    size = (50.0 + 6.0 - short, 30.0 + 6.0 - short)
+    nested = nest((_plate("only", 50.0, 30.0),), SheetRules(size, 3.0, (0.0,), "parts.sheet"))
+    (placed,) = nested.placed
+    x0, y0, x1, y1 = placed.outline().bounds()
+    assert min(x0, y0, size[0] - x1, size[1] - y1) >= 3.0 - 1e-6
+
+
+def test_a_part_1e_6_too_large_is_refused_naming_field_and_size():
+    with pytest.raises(DesignError) as err:
+        nest((_plate("only", 50.0, 30.0),), SheetRules((56.0 - 1e-6, 36.0), 3.0, (0.0,), "parts.sheet"))
+    message = str(err.value)
+    assert message.startswith("parts.sheet: the parts do not fit") and "only is 50 x 30 mm" in message
+    assert "\n" not in message
