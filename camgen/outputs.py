@@ -1,7 +1,8 @@
 """A cam design as files: the bundle of its cut drawing, printed solid, report and plots.
 
 Names: ``<name>.dxf``, ``<name>-cut.svg`` (cut files, kerf applied), ``<name>.stl``,
-``<name>.3mf`` (printed files, clearance applied), ``<name>.json``,
+``<name>.3mf`` (printed files, clearance applied), ``<name>.step`` (the printed part as an exact solid, only when
+asked), ``<name>.json``,
 ``<name>-svaj.png|svg``, ``<name>-cam.png|svg`` (plots), ``<name>.html`` (the interactive page,
 :mod:`camgen.page`). Only the formats the spec's
 ``output.formats`` asks for are made; nothing is written if any file fails.
@@ -13,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from camgen.core.bundle import Bundle, Report, item, write_bundle
-from camgen.core.errors import ExportError
+from camgen.core.errors import ExportError, SpecError
 from camgen.core.parts import Drawing, Part
 from camgen.core.writers import WriteOptions
 from camgen.design import CamDesign
@@ -38,7 +39,7 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
         return {"svaj": plots.svaj_figure, "cam": plots.cam_figure, "checks": plots.checks_figure}[kind](design)
 
     return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
-                     ("svaj", "cam", "checks")), report
+                     ("svaj", "cam", "checks"), design.printed), report
 
 
 def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
@@ -56,15 +57,18 @@ def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
 
 
 def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], report: dict[str, Any],
-              page: Callable[[], Any] | None = None, figures: tuple[str, ...] = ("svaj", "cam")) -> Bundle:
+              page: Callable[[], Any] | None = None, figures: tuple[str, ...] = ("svaj", "cam"),
+              printed: Part | None = None) -> Bundle:
     """The files of any cam kind, named as this module says: ``cut`` drawn as the cut files, ``mesh`` (or None)
     as the printed ones, ``plot(kind)`` for each of ``figures`` (made only if written), ``report``, ``page()`` (the
-    interactive page, made only if written; none without it); only the formats ``spec.output.formats`` asks for."""
+    interactive page, made only if written; none without it), ``printed`` (the printed part, or None) as the exact
+    STEP solid; only the formats ``spec.output.formats`` asks for."""
     out, name = spec.output, spec.name
     formats = out.formats
     items = [
         item(Drawing.of_part(cut), [("dxf", "dxf", f"{name}.dxf"), ("cut-svg", "cut_svg", f"{name}-cut.svg")], formats),
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
+        item(((name, (printed,)),), [("step", "step", f"{name}.step")], formats) if printed is not None else None,
         *(item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
                                               ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
           for kind in figures),
@@ -81,6 +85,9 @@ def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:
         bundle, report = geneva_bundle(design)
     else:
         bundle, report = kind_of(design.spec.cam.kind).bundler()(design)
+    if "step" in design.spec.output.formats and not any(e.format == "step" for i in bundle.items for e in i.entries):
+        raise SpecError(f"a {design.spec.cam.kind} cam has no flat part to write as an exact STEP solid (its groove is "
+                        "cut round a cylinder); leave 'step' out and use 'stl' or '3mf'", "output.formats")
     return {**report, "files": write_bundle(bundle, directory)}
 
 

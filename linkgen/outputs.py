@@ -4,7 +4,8 @@ Names: ``<name>.json`` (the report, with the parts section when there are parts)
 ``<name>-<kind>.png|svg`` (the mechanism's figures), and with parts ``<name>-sheet.dxf|svg`` (the cut parts
 nested on one sheet; ``<name>-sheet-1.dxf|svg``, ``-sheet-2``, ... when they need several)
 and ``<name>-assembly.dxf|svg|png`` (cut files, kerf applied; the SVGs are the ``cut-svg``
-format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf`` (printed), ``<name>.html`` (the interactive page, for
+format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf`` (printed), ``<name>.step`` (every printed part as an
+exact solid named after it, only when asked), ``<name>.html`` (the interactive page, for
 every linkage linkgen can draw as a general one). Only the formats the
 spec's ``output.formats`` asks for are made; nothing is written if any file fails. Everything
 written is computed by the design; meshes are made here from its printed parts.
@@ -33,6 +34,9 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     formats, name = spec.output.formats, spec.name
     report = design.report
     items: list[Item | None] = []
+    if design.build is None and "step" in formats:
+        raise SpecError("'step' writes the linkage's parts: add a [parts] table, or leave 'step' out",
+                        "output.formats")
     if design.build is not None:
         items += _parts_items(name, design.build, formats)
         report = {**report, **design.build.report}
@@ -62,6 +66,8 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
         return drawing_figure(build.assembly, f"{name}: assembly at the dead centres, with the path")
 
     items.append(item(assembly_figure, [("png", "assembly_png", f"{name}-assembly.png")], formats))
+    items.append(item(tuple((part.name, (part,)) for part in build.printed), [("step", "step", f"{name}.step")],
+                      formats))
     if {"stl", "3mf"} & set(formats):
         from camgen.core.solids import check_mesh, extrude, pin, spacer
 

@@ -224,6 +224,8 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
                                                 ("cut-svg", f"cam{which + 1}_cut_svg", f"{part}-cut.svg")], formats),
                   item(mesh, [("stl", f"cam{which + 1}_stl", f"{part}.stl"),
                               ("3mf", f"cam{which + 1}_3mf", f"{part}.3mf")], formats)]
+    items.append(item(tuple((f"{name}-{which + 1}", (d.printed,)) for which, d in enumerate(design.cams)),
+                      [("step", "step", f"{name}.step")], formats))
     items += [item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
                                                   ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
               for kind in ("svaj", "assembly")]

@@ -17,10 +17,11 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, Literal, TypeVar, get_origin
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from camgen.core.errors import SpecError
-from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, FORMATS, TEXT_MODES, WriteOptions
+from camgen.core.writers import (
+    DXF_FLAVOURS, DXF_VERSIONS, FORMATS, OPTIONAL_FORMATS, TEXT_MODES, WriteOptions, missing_extra)
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -106,14 +107,23 @@ class OutputTable(Model):
     Products extend it with their own keys (camgen: the outline's tolerance and curves, kerf, clearance).
     """
 
-    formats: tuple[Literal[FORMATS], ...] = Field(FORMATS, min_length=1,  # type: ignore[valid-type]
-                                                  description="files to write")
+    formats: tuple[Literal[FORMATS + OPTIONAL_FORMATS], ...] = Field(  # type: ignore[valid-type]
+        FORMATS, min_length=1, description="files to write (step only when asked, with the step extra installed)")
     dxf: Literal[DXF_FLAVOURS] = Field(  # type: ignore[valid-type]
         "polyline-bulge", description="DXF flavour: bulged polylines, LINE/ARC entities, or chords only")
     dxf_version: Literal[DXF_VERSIONS] = Field("R2010",  # type: ignore[valid-type]
                                                description="DXF version (R12 for old controllers)")
     text: Literal[TEXT_MODES] = Field(  # type: ignore[valid-type]
         "text", description="engraved text as text, or as the glyphs' outlines (for laser software that drops text)")
+
+    @field_validator("formats")
+    @classmethod
+    def _extras_installed(cls, formats: tuple[str, ...]) -> tuple[str, ...]:
+        """Refuse a format whose optional extra is not installed, naming the install command."""
+        why = missing_extra(formats)
+        if why is not None:
+            raise ValueError(why)
+        return formats
 
     @property
     def write_options(self) -> WriteOptions:

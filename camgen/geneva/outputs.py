@@ -53,6 +53,9 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
                   formats) for part in PARTS]
     items += [item(mesh, [("stl", f"{solid}_stl", f"{name}-{solid}.stl"), ("3mf", f"{solid}_3mf", f"{name}-{solid}.3mf")],
                    formats) for solid, (mesh, _) in solids.items()]
+    printed = design.printed
+    items.append(item(((f"{name}-wheel", (printed["wheel"],)), (f"{name}-driver", (printed["crank"], printed["lock"]))),
+                      [("step", "step", f"{name}.step")], formats))
     items += [item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
                                                   ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
               for kind in ("motion", "assembly")]

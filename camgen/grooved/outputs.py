@@ -134,4 +134,5 @@ def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
 
         return plots.svaj_figure(design.profile) if kind == "svaj" else grooved_figure(design)
 
-    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report)), report
+    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
+                     printed=design.printed), report

@@ -13,15 +13,18 @@ stl        binary STL                                          :class:`~camgen.c
 json       the report, ``indent=2``, no NaN                    ``dict``
 png, svg   a figure (matplotlib)                               ``matplotlib.figure.Figure``
 html       the design's interactive page, self-contained       :class:`~camgen.core.page.Page`
+step       STEP AP214 (mm), exact solids, each part named      ``(name, parts)`` pairs (see
+                                                               :mod:`~camgen.core.writers.step`)
 =========  ==================================================  ===========================
 
 Writers are imported only when a file of their format is written, so a JSON-only
-build never loads ezdxf, trimesh or matplotlib.
+build never loads ezdxf, trimesh or matplotlib. ``step`` is an optional format: it needs the ``step`` extra
+(Open CASCADE through OCP) and is never written unless ``output.formats`` names it.
 """
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
@@ -33,8 +36,13 @@ DXF_VERSIONS = ("R2010", "R12")
 #: how engraved text is written: TEXT entities (SVG <text>), or the glyphs' outlines for laser software that drops text
 TEXT_MODES = ("text", "outline")
 
+#: formats a bundle writes only when asked and only with an optional extra installed: {format: (the module it
+#: needs, what that module is, the install command)}
+EXTRAS = {"step": ("OCP", "Open CASCADE through OCP", "pip install 'camgen[step]'")}
+OPTIONAL_FORMATS = tuple(EXTRAS)
+
 _MODULES = {"dxf": "dxf", "cut-svg": "svg", "stl": "stl", "3mf": "threemf", "json": "report", "png": "figure",
-            "svg": "figure", "html": "html"}
+            "svg": "figure", "html": "html", "step": "step"}
 
 
 @dataclass(frozen=True)
@@ -48,6 +56,20 @@ class WriteOptions:
 
 
 Writer = Callable[[Any, Path, WriteOptions], None]
+
+
+def missing_extra(formats: Iterable[str]) -> str | None:
+    """Why one of ``formats`` cannot be written here (its extra is not installed), in one line; None when all
+    can. Imports the extra's module (once) to find out."""
+    for fmt in formats:
+        if fmt in EXTRAS:
+            module, what, command = EXTRAS[fmt]
+            try:
+                importlib.import_module(module)
+            except ImportError:
+                return (f"{fmt!r} needs the optional {fmt} extra ({what}), which is not installed: {command} "
+                        f"(from a checkout: pip install '.[{fmt}]')")
+    return None
 
 
 def writer(fmt: str) -> Writer:

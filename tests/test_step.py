@@ -1,0 +1,359 @@
+"""The STEP writer (``output.formats`` "step", the ``step`` extra): every file re-read, with Open CASCADE (OCP) and
+with FreeCAD, as valid solids of the parts' exact volume (area x thickness, arcs exact) and bounding box, one face a
+piece of outline and hole plus the two flat faces, the arcs as circular edges; refusals are one line, exit 2."""
+from __future__ import annotations
+
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from camgen.cli import main
+from camgen.core.parts import Part
+from camgen.core.shapes import Circle, Contour
+from camgen.core.writers import FORMATS
+from camgen.core.writers.step import _quiet, write_step
+from camgen.design import design_cam
+from camgen.spec import load_spec
+from tests.conftest import ROOT, template
+
+PROGRAMS = ROOT / "tests" / "programs"
+HOLES = {"cam.bore": 20.0, "hub.keyway": True, "hub.bolt_circle": 50.0, "hub.bolt_holes": 4,
+         "hub.bolt_hole_diameter": 4.0}
+ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
+
+
+def read_step(path) -> list[tuple[str, object]]:
+    """The file's top-level shapes with their product names, read by Open CASCADE's XDE reader."""
+    from OCP.STEPCAFControl import STEPCAFControl_Reader
+    from OCP.TCollection import TCollection_ExtendedString
+    from OCP.TDataStd import TDataStd_Name
+    try:
+        from OCP.TDF import TDF_LabelSequence
+    except ImportError:                          # OCP 8 wraps it as a collection
+        from OCP.OCP.collections import Sequence_TDF_Label as TDF_LabelSequence
+    from OCP.TDocStd import TDocStd_Document
+    from OCP.XCAFDoc import XCAFDoc_DocumentTool
+
+    doc = TDocStd_Document(TCollection_ExtendedString("MDTV-XCAF"))
+    reader = STEPCAFControl_Reader()
+    reader.SetNameMode(True)
+    with _quiet():
+        assert reader.ReadFile(str(path)) == 1 and reader.Transfer(doc)
+    tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    labels = TDF_LabelSequence()
+    tool.GetFreeShapes(labels)
+    out = []
+    for k in range(1, labels.Length() + 1):
+        label, name = labels.Value(k), TDataStd_Name()
+        assert label.FindAttribute(TDataStd_Name.GetID_s(), name)
+        out.append((name.Get().ToExtString(), tool.GetShape_s(label)))
+    return out
+
+
+def measure(shape) -> dict:
+    """What Open CASCADE finds in a shape: solids, validity, volume (mm^3), exact box (mm), faces, and edges by
+    their curve's type."""
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.BRepBndLib import BRepBndLib
+    from OCP.BRepCheck import BRepCheck_Analyzer
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GeomAbs import GeomAbs_Circle, GeomAbs_Line
+    from OCP.GProp import GProp_GProps
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_SOLID
+    from OCP.TopExp import TopExp
+    from OCP.TopoDS import TopoDS
+    try:
+        from OCP.TopTools import TopTools_IndexedMapOfShape
+    except ImportError:                          # OCP 8 wraps it as a collection
+        from OCP.OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as TopTools_IndexedMapOfShape
+
+    def unique(kind):
+        found = TopTools_IndexedMapOfShape()
+        TopExp.MapShapes_s(shape, kind, found)
+        return [found.FindKey(i) for i in range(1, found.Extent() + 1)]
+
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props, 1e-10)      # adaptive, to 1e-10 relative (the default is coarser)
+    box = Bnd_Box()
+    BRepBndLib.AddOptimal_s(shape, box, False, False)
+    as_edge = getattr(TopoDS, "Edge", None) or TopoDS.Edge_s            # OCP 8 dropped the _s
+    types = [BRepAdaptor_Curve(as_edge(e)).GetType() for e in unique(TopAbs_EDGE)]
+    return {"solids": len(unique(TopAbs_SOLID)), "valid": BRepCheck_Analyzer(shape).IsValid(),
+            "volume": props.Mass(), "box": np.array([c.Coord(k) for c in (box.CornerMin(), box.CornerMax()) for k in (1, 2, 3)]), "faces": len(unique(TopAbs_FACE)),
+            "circles": types.count(GeomAbs_Circle), "lines": types.count(GeomAbs_Line), "edges": len(types)}
+
+
+def _pieces(shape) -> tuple[int, int]:
+    """A plan shape's pieces (a circle is one) and its arcs (a circle is one)."""
+    return (1, 1) if isinstance(shape, Circle) else (len(shape.bulges), shape.n_arcs)
+
+
+def expect_plate(part: Part, z: float = 0.0) -> dict:
+    """A plain extruded part, exactly: its volume, box, faces (a side face a piece of outline and holes, top and
+    bottom) and circular edges (each arc and circle at the top and at the bottom)."""
+    pieces = [_pieces(s) for s in (part.outline, *part.holes)]
+    x0, y0, x1, y1 = part.outline.bounds()
+    return {"solids": 1, "valid": True, "volume": part.area * part.thickness,
+            "box": np.array([x0, y0, z, x1, y1, z + part.thickness]), "faces": sum(p for p, _ in pieces) + 2,
+            "circles": 2 * sum(a for _, a in pieces)}
+
+
+def assert_plate(found: dict, part: Part) -> None:
+    want = expect_plate(part)
+    assert found["solids"] == 1 and found["valid"]
+    assert found["volume"] == pytest.approx(want["volume"], rel=1e-6)
+    assert np.abs(found["box"] - want["box"]).max() <= 1e-6
+    assert (found["faces"], found["circles"]) == (want["faces"], want["circles"])
+    # every other edge a line: the outline's lines at the top and bottom, and one vertical edge a vertex (a seam for
+    # a circle)
+    assert found["lines"] == found["edges"] - found["circles"]
+
+
+@pytest.fixture(scope="module")
+def rdrd_cli(tmp_path_factory):
+    """``camgen build templates/rdrd.toml`` with step, stl and json, run as a process from a folder outside the
+    checkout."""
+    cwd = tmp_path_factory.mktemp("outside")
+    done = subprocess.run([sys.executable, "-m", "camgen", "build", str(ROOT / "templates" / "rdrd.toml"), "--set",
+                           'output.formats=["step","stl","json"]'], cwd=cwd, env=ENV, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    return cwd / "out" / "rdrd", done
+
+
+def test_rdrd_step_beside_the_stl_one_exact_solid(rdrd_cli):
+    out, done = rdrd_cli
+    assert sorted(p.name for p in out.iterdir()) == ["rdrd.json", "rdrd.step", "rdrd.stl"]
+    assert json.loads((out / "rdrd.json").read_text())["files"]["step"] == "rdrd.step"
+    assert "wrote out/rdrd/rdrd.step" in done.stdout.splitlines()
+    part = design_cam(template()).printed
+    [(name, shape)] = read_step(out / "rdrd.step")
+    found = measure(shape)
+    assert name == "rdrd"
+    assert_plate(found, part)
+    assert found["faces"] == 114 + 1 + 2 and found["circles"] == 2 * (2 + 1)   # 114 pieces, 2 of them arcs; a bore
+
+
+@pytest.mark.parametrize("case", [
+    {"output.curves": "biarcs"},                                  # an outline of arcs: every one a circular edge
+    {**HOLES, "output.curves": "biarcs"},                         # a keyway (a contour hole) and bolt holes
+    {"output.curves": "biarcs", "output.clearance": 5.0},         # the largest clearance: the printed part's bore
+    {"cam.bore": 0.0},                                            # no hole at all
+    {"cam.bore": 10.0 + 1e-12},                                   # 1e-12 mm from a round size
+], ids=["biarcs", "keyway-bolts", "clearance-5", "no-bore", "bore-1e-12"])
+def test_exact_plate_volume_box_faces_and_arcs(case, tmp_path):
+    part = design_cam(template({**case, "output.formats": ["json"]})).printed
+    write_step([(part.name, (part,))], tmp_path / "x.step")
+    [(name, shape)] = read_step(tmp_path / "x.step")
+    found = measure(shape)
+    assert name == part.name
+    assert_plate(found, part)
+    if case.get("output.curves") == "biarcs":
+        assert part.outline.n_arcs > 20 and found["circles"] >= 2 * part.outline.n_arcs
+
+
+def test_the_step_solid_is_the_exact_part_not_its_chords(tmp_path):
+    """A disc of two half-circle arcs: the volume is pi r^2 t to 1e-9 relative, where chords within 0.01 mm would
+    lose 1e-4 of it; and a circle's radius read back from its edge."""
+    r, t = 25.0, 6.0
+    disc = Contour(np.array([[r, 0.0], [-r, 0.0]]), np.array([1.0, 1.0]))
+    part = Part("disc", disc, (Circle((3.0, 4.0), 2.5),), t, 0.01)
+    write_step([("disc", (part,))], tmp_path / "disc.step")
+    [(_, shape)] = read_step(tmp_path / "disc.step")
+    found = measure(shape)
+    assert found["volume"] == pytest.approx((math.pi * r**2 - math.pi * 2.5**2) * t, rel=1e-9)
+    assert found["faces"] == 2 + 1 + 2 and found["circles"] == 2 * 2 + 2
+
+
+def test_boss_stands_on_the_bore(tmp_path):
+    """A hub boss without a set screw: the plate plus the boss's ring (its circle less the bore) x its height."""
+    part = design_cam(template({"cam.bore": 20.0, "hub.boss_diameter": 34.0, "hub.boss_height": 10.0,
+                                "output.formats": ["json"]})).printed
+    write_step([(part.name, (part,))], tmp_path / "boss.step")
+    [(_, shape)] = read_step(tmp_path / "boss.step")
+    found = measure(shape)
+    ring = math.pi * (17.0**2 - 10.0**2)
+    assert found["solids"] == 1 and found["valid"]
+    assert found["volume"] == pytest.approx(part.area * part.thickness + ring * 10.0, rel=1e-6)
+    assert found["box"][5] == pytest.approx(part.thickness + 10.0, abs=1e-6)
+
+
+def test_set_screw_hole_through_the_boss(tmp_path):
+    """With a set screw: the boss less the screw's hole, which takes from the ring between the bore (r = 10 mm) and
+    the boss (r = 17 mm) the integral over the hole's section (r = 2 mm) of the wall it crosses; and the mesh's
+    volume within its chords."""
+    from scipy.integrate import quad
+
+    from camgen.core.solids import check_mesh, extrude
+
+    part = design_cam(template({"cam.bore": 20.0, "hub.boss_diameter": 34.0, "hub.boss_height": 10.0,
+                                "hub.set_screw": 4.0, "output.formats": ["json"]})).printed
+    write_step([(part.name, (part,))], tmp_path / "screw.step")
+    [(_, shape)] = read_step(tmp_path / "screw.step")
+    found = measure(shape)
+    plain = part.area * part.thickness + math.pi * (17.0**2 - 10.0**2) * 10.0
+    hole, _ = quad(lambda x: 2 * math.sqrt(4.0 - x * x) * (math.sqrt(17.0**2 - x * x) - math.sqrt(10.0**2 - x * x)),
+                   -2.0, 2.0, epsabs=1e-12, epsrel=1e-12)
+    assert found["solids"] == 1 and found["valid"]
+    assert found["volume"] == pytest.approx(plain - hole, rel=1e-6)
+    assert found["volume"] == pytest.approx(check_mesh(extrude(part)).volume_mm3, rel=1e-3)   # chords of 0.01 mm
+
+
+def _design(name: str):
+    """The design of a bundled template, made in this process."""
+    return design_cam(load_spec(ROOT / "templates" / f"{name}.toml", ['output.formats=["json"]']))
+
+
+def test_grooved_cam_pocket(tmp_path):
+    result = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "grooved.toml"), "-o", str(tmp_path),
+                                       "--set", 'output.formats=["step"]'])
+    assert result.exit_code == 0, result.output
+    part = _design("grooved").printed
+    [(name, shape)] = read_step(tmp_path / "grooved.step")
+    found = measure(shape)
+    [pocket] = part.pockets
+    assert name == "grooved" and found["solids"] == 1 and found["valid"]
+    assert found["volume"] == pytest.approx(part.area * part.thickness - pocket.area * pocket.depth, rel=1e-6)
+    # the plate's faces, the groove's walls (one a piece of its two flanks) and floor, and the top face the groove
+    # cuts in two (the rim and the island)
+    walls = len(pocket.outer.bulges) + len(pocket.inner.bulges)
+    assert found["faces"] == expect_plate(part)["faces"] + walls + 2
+
+
+def test_geneva_wheel_and_driver_named_and_stacked(tmp_path):
+    result = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "geneva4.toml"), "-o", str(tmp_path),
+                                       "--set", 'output.formats=["step","json"]'])
+    assert result.exit_code == 0, result.output
+    printed = _design("geneva4").printed
+    solids = dict(read_step(tmp_path / "geneva4.step"))
+    assert list(solids) == ["geneva4-wheel", "geneva4-driver"]
+    assert_plate(measure(solids["geneva4-wheel"]), printed["wheel"])
+    driver = measure(solids["geneva4-driver"])
+    crank, lock = printed["crank"], printed["lock"]
+    assert driver["solids"] == 1 and driver["valid"]
+    assert driver["volume"] == pytest.approx(crank.area * crank.thickness + lock.area * lock.thickness, rel=1e-6)
+    assert driver["box"][5] == pytest.approx(crank.thickness + lock.thickness, abs=1e-6)
+
+
+def test_conjugate_pair_two_named_cams(tmp_path):
+    result = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "conjugate.toml"), "-o", str(tmp_path),
+                                       "--set", 'output.formats=["step"]'])
+    assert result.exit_code == 0, result.output
+    names = [name for name, _ in read_step(tmp_path / "conjugate.step")]
+    assert names == ["conjugate-1", "conjugate-2"]
+    for _, shape in read_step(tmp_path / "conjugate.step"):
+        found = measure(shape)
+        assert found["solids"] == 1 and found["valid"] and found["volume"] > 0
+
+
+def test_linkage_every_part_a_named_solid(tmp_path):
+    from linkgen.cli import main as linkgen_main
+    from linkgen.design import design_linkage
+    from linkgen.spec import load_spec
+
+    template_path = ROOT / "templates" / "crank-rocker.toml"
+    done = subprocess.run([sys.executable, "-m", "linkgen", "build", str(template_path), "--set",
+                           'output.formats=["step","stl","json"]'], cwd=tmp_path, env=ENV, capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    out = tmp_path / "out" / "crank-rocker"
+    assert (out / "crank-rocker.step").exists() and (out / "crank-rocker-crank.stl").exists()
+    build = design_linkage(load_spec(template_path), parts=True).build
+    solids = read_step(out / "crank-rocker.step")
+    assert [n for n, _ in solids] == [p.name for p in build.printed]
+    for (_, shape), part in zip(solids, build.printed, strict=True):
+        assert_plate(measure(shape), part)
+    assert CliRunner().invoke(linkgen_main, ["build", str(template_path), "-o", str(tmp_path / "again"), "--set",
+                                             'output.formats=["step"]']).exit_code == 0
+
+
+def test_family_members_write_step(tmp_path):
+    """A family passes its formats to every member: each writes its own STEP file."""
+    text = (ROOT / "templates" / "valve-cams.toml").read_text()
+    family = tmp_path / "valves.toml"
+    family.write_text(text.replace('formats = ["dxf", "stl", "json"]', 'formats = ["step", "json"]'))
+    result = CliRunner().invoke(main, ["family", str(family), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    steps = sorted(tmp_path.rglob("*.step"))
+    assert len(steps) == 3 and all(len(read_step(p)) == 1 for p in steps)
+
+
+def test_same_parts_same_bytes(tmp_path):
+    part = design_cam(template({"output.formats": ["json"]})).printed
+    write_step([(part.name, (part,))], tmp_path / "a.step")
+    write_step([(part.name, (part,))], tmp_path / "b.step")
+    assert (tmp_path / "a.step").read_bytes() == (tmp_path / "b.step").read_bytes()
+
+
+def test_step_is_never_written_unless_asked():
+    assert "step" not in FORMATS
+    assert "step" not in template().output.formats
+
+
+def _refused(args: list[str], cwd, prelude: str = "") -> subprocess.CompletedProcess:
+    code = f"import sys; {prelude}sys.argv = ['camgen', *{args!r}]; from camgen.cli import main; main()"
+    return subprocess.run([sys.executable, "-c", code], cwd=cwd, env=ENV, capture_output=True, text=True)
+
+
+def test_without_the_extra_one_line_naming_the_install(tmp_path):
+    """OCP made unimportable: asking for step is refused before anything is designed or written."""
+    done = _refused(["build", str(ROOT / "templates" / "rdrd.toml"), "--set", 'output.formats=["step","stl"]'],
+                    tmp_path, "sys.modules['OCP'] = None; ")
+    assert done.returncode == 2 and "Traceback" not in done.stderr
+    assert done.stderr.count("\n") == 1 and done.stderr.startswith("error: output.formats: 'step' needs")
+    assert "pip install 'camgen[step]'" in done.stderr and "pip install '.[step]'" in done.stderr
+    assert not (tmp_path / "out").exists()
+    plain = _refused(["build", str(ROOT / "templates" / "rdrd.toml"), "--set", 'output.formats=["json"]'],
+                     tmp_path, "sys.modules['OCP'] = None; ")
+    assert plain.returncode == 0, plain.stderr
+
+
+def test_barrel_cam_refused_in_one_line(tmp_path):
+    done = _refused(["build", str(ROOT / "templates" / "barrel.toml"), "--set", 'output.formats=["step","stl"]'],
+                    tmp_path)
+    assert done.returncode == 2 and done.stderr.count("\n") == 1
+    assert done.stderr.startswith("error: output.formats: a barrel cam has no flat part")
+    assert not (tmp_path / "out").exists()
+
+
+def _freecad(path, expect: list[dict]) -> subprocess.CompletedProcess:
+    import shutil
+
+    program = shutil.which("freecadcmd")
+    if program is None:
+        pytest.skip("freecadcmd is not installed (Debian package freecad; .ci/run installs it)")
+    env = {**os.environ, "CAMGEN_STEP": str(path), "CAMGEN_EXPECT": json.dumps(expect)}
+    return subprocess.run([program, str(PROGRAMS / "freecad_step_check.py")], env=env, capture_output=True,
+                          text=True, timeout=300)
+
+
+def _fc(want: dict) -> dict:
+    return {"volume": want["volume"], "box": want["box"].tolist(), "faces": want["faces"]}
+
+
+def test_freecad_reads_one_valid_solid(rdrd_cli):
+    out, _ = rdrd_cli
+    part = design_cam(template()).printed
+    done = _freecad(out / "rdrd.step", [_fc(expect_plate(part))])
+    assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
+
+
+def test_freecad_reads_a_keyway_and_bolt_holes(tmp_path):
+    part = design_cam(template({**HOLES, "output.curves": "biarcs", "output.formats": ["json"]})).printed
+    write_step([(part.name, (part,))], tmp_path / "hub.step")
+    done = _freecad(tmp_path / "hub.step", [_fc(expect_plate(part))])
+    assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
+
+
+def test_freecad_check_rejects_a_wrong_volume(rdrd_cli):
+    out, _ = rdrd_cli
+    want = _fc(expect_plate(design_cam(template()).printed))
+    done = _freecad(out / "rdrd.step", [{**want, "volume": want["volume"] * (1 + 1e-5)}])
+    assert done.returncode == 1
+    assert json.loads(done.stdout.strip().splitlines()[-1])["solids"][0]["valid"]
