@@ -16,11 +16,13 @@ from typing import Any
 from camgen.core.bundle import Bundle, Report, item, write_bundle
 from camgen.core.errors import ExportError, SpecError
 from camgen.core.parts import Drawing, Part
+from camgen.core.kit import kit_items
 from camgen.core.writers import WriteOptions
 from camgen.design import CamDesign
 from camgen.geneva.design import GenevaDesign
 from camgen.geneva.outputs import geneva_bundle, geneva_row
 from camgen.kinds import kind_of
+from camgen.kit import cam_kit
 from camgen.page import cam_page
 from camgen.report import cam_report
 
@@ -38,8 +40,17 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
 
         return {"svaj": plots.svaj_figure, "cam": plots.cam_figure, "checks": plots.checks_figure}[kind](design)
 
-    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
-                     ("svaj", "cam", "checks"), design.printed), report
+    kit = cam_kit(design) if design.spec.kit is not None else None
+    if kit is not None:
+        report["kit"] = kit.report
+    bundle = cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
+                       ("svaj", "cam", "checks"), design.printed)
+    if kit is None:
+        return bundle, report
+    name = design.spec.name
+    items = kit_items(name, kit.made, kit.drawing, kit.meshes, design.spec.output.formats,
+                      f"{name}: the kit assembled at theta = 0")
+    return Bundle.of((*bundle.items, *items), bundle.options), report
 
 
 def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:

@@ -20,6 +20,7 @@ from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
 from camgen.core.errors import SpecError
 from camgen.core.spec import CutOutputTable
+from camgen.core.kit import CamKitTable, check_cam_kit
 from camgen.contact_stress import MATERIALS
 from camgen.followers import FOLLOWERS
 from camgen.geneva.spec import GenevaSpec, validate_geneva
@@ -368,6 +369,7 @@ class CamSpec(Model):
     motion: list[SegmentTable] = Field(min_length=1, description="segments in order from theta = 0")
     hub: HubTable = HubTable()
     output: OutputTable = OutputTable()
+    kit: CamKitTable | None = None
 
     @model_validator(mode="after")
     def _whole(self) -> "CamSpec":
@@ -389,6 +391,8 @@ class CamSpec(Model):
             for i, seg in enumerate(self.motion):
                 if seg.lift is not None and seg.lift >= 90:
                     raise ValueError(f"motion[{i}].lift: an arm swing must be < 90 degrees (got {seg.lift:.6g})")
+        if self.kit is not None:
+            check_cam_kit(self.kit, self.cam.kind, self.follower.type, self.cam.bore)
         return self
 
     def moving_segment(self, end_of: int) -> int:

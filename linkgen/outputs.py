@@ -18,7 +18,9 @@ from typing import Any
 from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
 from camgen.core.errors import ExportError, SpecError
 from camgen.core.nesting import sheet_kinds
+from camgen.core.kit import placed_meshes
 from linkgen.design import LinkageDesign, design_linkage
+from linkgen.kit import linkage_kit, placed_solids
 from linkgen.parts import LinkageBuild
 from linkgen.spec import validate_spec
 
@@ -37,7 +39,13 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     if design.build is None and "step" in formats:
         raise SpecError("'step' writes the linkage's parts: add a [parts] table, or leave 'step' out",
                         "output.formats")
-    if design.build is not None:
+    if design.build is not None and spec.kit is not None:
+        kit = linkage_kit(design)
+        items += _parts_items(name, kit.build, formats)
+        report = {**report, **kit.build.report, "kit": kit.report}
+        items.append(item(lambda: placed_meshes(placed_solids(kit, kit.pose), 0),
+                          [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats))
+    elif design.build is not None:
         items += _parts_items(name, design.build, formats)
         report = {**report, **design.build.report}
     items += [item(draw, [("png", f"{kind}_png", f"{name}-{kind}.png"), ("svg", f"{kind}_svg", f"{name}-{kind}.svg")],

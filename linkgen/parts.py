@@ -65,6 +65,8 @@ class LinkPart:
     slots: tuple[tuple[np.ndarray, np.ndarray], ...] = ()
     moving: bool = True
     body: np.ndarray | None = None
+    #: holes of their own size ((x, y), nominal diameter; mm): a kit's base plate's mounting holes
+    mounts: tuple[tuple[tuple[float, float], float], ...] = ()
 
     def outline(self, grow: float = 0.0) -> Contour:
         """The nominal outline moved outwards by ``grow`` mm."""
@@ -75,6 +77,7 @@ class LinkPart:
         hole = (self.stock.hole + 2 * hole_grow) / 2
         holes: list = [Circle(tuple(c), hole) for c in self.centres]
         holes += [rounded_hull(np.array(slot), hole) for slot in self.slots]
+        holes += [Circle(centre, diameter / 2 + hole_grow) for centre, diameter in self.mounts]
         return Part(self.name, self.outline(outline_grow), tuple(holes), self.stock.thickness, self.stock.tolerance)
 
 

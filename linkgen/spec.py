@@ -15,6 +15,8 @@ from typing import Annotated, Any, ClassVar
 from pydantic import Field, create_model, model_validator
 
 from camgen.core.errors import SpecError
+from camgen.core.hardware import BOLTS
+from camgen.core.kit import KitTable
 from camgen.core.options import choose
 from camgen.core.spec import (MAX_LENGTH_MM, Model, OutputTable, check_kind, length, name_field, read_template, unit,
                               validate)
@@ -129,6 +131,7 @@ class LinkageSpec(Model):
     parts: PartsTable | None = None
     loads: tuple[LoadTable, ...] = Field((), max_length=100, description="loads the linkage holds")
     output: OutputTable = OutputTable()
+    kit: KitTable | None = None
 
     #: the mechanism registered for ``linkage.type``
     mechanism: ClassVar[Any] = None
@@ -150,6 +153,14 @@ class LinkageSpec(Model):
             else:
                 continue
             raise ValueError(f"linkage.{key}: must be {rule} (got {value!r})")
+        if self.kit is not None:
+            bolt = self.kit.hardware
+            if self.parts is None:
+                raise ValueError("kit: a kit mounts the linkage's parts: add a [parts] table")
+            if self.parts.pin_diameter != bolt.diameter:
+                sizes = ", ".join(f"{b.name} for {b.diameter:g} mm" for b in BOLTS.values())
+                raise ValueError(f"kit.bolt: the pins are {bolt.name} bolts, so parts.pin_diameter must be "
+                                 f"{bolt.diameter:g} mm (got {self.parts.pin_diameter:g}); bolts: {sizes}")
         return self
 
 

@@ -51,10 +51,30 @@ def model_xml(mesh: Mesh) -> str:
             f'p:UUID="{ids[2]}" partnumber="{name}"/></build></model>')
 
 
-def threemf_bytes(mesh: Mesh) -> bytes:
-    """``mesh`` as a 3MF package (see the module docstring)."""
+def assembly_xml(meshes: tuple[Mesh, ...]) -> str:
+    """The 3MF model of several meshes (an assembly, each in its place): one object and one build item each, named
+    after its mesh; UUIDs derived from the meshes' bytes."""
+    digest = hashlib.sha256(b"".join(m.vertices.tobytes() + m.faces.tobytes() for m in meshes)).hexdigest()
+    ids = iter(uuid.uuid5(uuid.NAMESPACE_URL, f"camgen:{digest}:{k}") for k in range(2 * len(meshes) + 1))
+    sorted_ns = "".join(f' xmlns:{k}="{_NAMESPACES[k]}"' for k in sorted(_NAMESPACES))
+    objects, items = [], []
+    for number, mesh in enumerate(meshes, 1):
+        name = _attribute(mesh.name)
+        vertices = ('<vertex x="{}" y="{}" z="{}" />' * len(mesh.vertices)).format(*mesh.vertices.flatten())
+        triangles = ('<triangle v1="{}" v2="{}" v3="{}" />' * len(mesh.faces)).format(*mesh.faces.flatten())
+        objects.append(f'<object id="{number}" name="{name}" type="model" p:UUID="{next(ids)}"><mesh><vertices>'
+                       f'{vertices}</vertices><triangles>{triangles}</triangles></mesh></object>')
+        items.append(f'<item objectid="{number}" transform="1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0" '
+                     f'p:UUID="{next(ids)}" partnumber="{name}"/>')
+    return (f'{_DECLARATION}<model xmlns="{_CORE}"{sorted_ns} unit="millimeter"><resources>{"".join(objects)}'
+            f'</resources><build p:UUID="{next(ids)}">{"".join(items)}</build></model>')
+
+
+def threemf_bytes(mesh: Mesh | tuple[Mesh, ...]) -> bytes:
+    """``mesh`` as a 3MF package (see the module docstring); a tuple of meshes as one package of them all."""
     out = io.BytesIO()
-    entries = {"3D/3dmodel.model": model_xml(mesh), "[Content_Types].xml": _TYPES, "_rels/.rels": _RELS}
+    model = assembly_xml(mesh) if isinstance(mesh, tuple) else model_xml(mesh)
+    entries = {"3D/3dmodel.model": model, "[Content_Types].xml": _TYPES, "_rels/.rels": _RELS}
     with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as package:
         for name in sorted(entries):
             package.writestr(zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0)), entries[name].encode("utf-8"),
@@ -62,7 +82,7 @@ def threemf_bytes(mesh: Mesh) -> bytes:
     return out.getvalue()
 
 
-def write_3mf(mesh: Mesh, path: Path, options: Any = None) -> None:
+def write_3mf(mesh: Mesh | tuple[Mesh, ...], path: Path, options: Any = None) -> None:
     path.write_bytes(threemf_bytes(mesh))
 
 

@@ -1,0 +1,303 @@
+"""Kits: the parts and the hardware that mount a mechanism, shared by cams and linkages. No I/O.
+
+A kit is a stack of flat solids (:class:`Solid`): a part as made (its process allowance applied) standing on its
+bottom face at a height z (mm, up from the frame's or base plate's bottom face), placed at each pose of the motion by
+a turn (rad, counter-clockwise seen from +Z) about its own origin and a shift (mm). Two solids whose heights overlap
+must never overlap in plan (:func:`interferences`). The bill of materials lists what is made and what is bought
+(:class:`BomLine`, sizes from :mod:`camgen.core.hardware`). The ``[kit]`` tables (:class:`KitTable`,
+:class:`CamKitTable`) choose the hardware and the process.
+"""
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, replace
+from typing import Any, Literal
+
+import numpy as np
+from pydantic import Field, field_validator, model_validator
+
+from camgen.core.errors import DesignError
+from camgen.core.hardware import BEARINGS, BOLTS, SHAFTS, Bearing, Bolt
+from camgen.core.parts import Allowances, Drawing, Part, PartMaker
+from camgen.core.shapes import Circle, Contour, rounded_hull
+from camgen.core.spec import Model, length, unit
+
+#: the bearings a ``[kit]`` may name, and ``"none"`` for a plain hole the shaft runs in
+BEARING_CHOICES = (*BEARINGS, "none")
+#: a kit's moving parts clear the fixed ones by at least this much in plan (mm)
+RUNNING_GAP = 1.0
+
+
+class KitTable(Model):
+    """A ``[kit]`` table: the hardware a mechanism is mounted with (linkages: bolts as pins and mounting bolts)."""
+
+    bolt: Literal[tuple(BOLTS)] = Field("M4", description="bolt size: pins, guides and mounting holes")  # type: ignore[valid-type]
+    wall: float = length("material left round every hole of a kit part", 4.0, le=100.0)
+
+    @property
+    def hardware(self) -> Bolt:
+        """The bolt the table names."""
+        return BOLTS[self.bolt]
+
+
+class CamKitTable(KitTable):
+    """A cam's ``[kit]`` table: the camshaft, its bearing, the bolts, the process the frame and follower are made
+    by and its allowance, their thickness."""
+
+    shaft: float = Field(8.0, description="camshaft diameter", json_schema_extra=unit("mm"))
+    bearing: Literal[BEARING_CHOICES] = Field("none", description="bearing seated in the frame, or a plain "  # type: ignore[valid-type]
+                                              "hole")
+    process: Literal["laser", "fdm"] = Field("laser", description="how the frame, follower and roller are made")
+    thickness: float = length("frame and follower plate thickness", 5.0, le=100.0)
+    kerf: float = Field(0.15, ge=0, le=5, description="laser kerf (process laser)", json_schema_extra=unit("mm"))
+    clearance: float = Field(0.3, ge=0, le=5, description="printing clearance on holes (process fdm)",
+                             json_schema_extra=unit("mm"))
+
+    @field_validator("bearing", mode="before")
+    @classmethod
+    def _bearing_name(cls, value: Any) -> Any:
+        return str(value) if isinstance(value, int) and not isinstance(value, bool) else value
+
+    @field_validator("shaft")
+    @classmethod
+    def _standard_shaft(cls, value: float) -> float:
+        if value not in SHAFTS:
+            raise ValueError(f"must be one of {', '.join(f'{s:g}' for s in SHAFTS)} mm (got {value:g})")
+        return value
+
+    @model_validator(mode="after")
+    def _bearing_fits_shaft(self) -> CamKitTable:
+        if self.bearing != "none" and BEARINGS[self.bearing].bore != self.shaft:
+            fits = [b.name for b in BEARINGS.values() if b.bore == self.shaft] + ["none"]
+            raise ValueError(f"bearing: a {self.bearing} has a {BEARINGS[self.bearing].bore:g} mm bore, not the "
+                             f"kit.shaft of {self.shaft:g} mm; for that shaft: {', '.join(fits)}")
+        return self
+
+    @property
+    def seat(self) -> Bearing | None:
+        """The bearing seated in the frame (None: a plain hole)."""
+        return None if self.bearing == "none" else BEARINGS[self.bearing]
+
+    @property
+    def allowances(self) -> Allowances:
+        """The process's allowances: a laser's kerf, or a printer's clearance."""
+        laser = self.process == "laser"
+        return Allowances(self.kerf if laser else 0.0, 0.0 if laser else self.clearance, "kit.kerf")
+
+    def made(self, maker: PartMaker) -> Part:
+        """The part as the process makes it (cut, or printed)."""
+        return self.allowances.cut(maker) if self.process == "laser" else self.allowances.printed(maker)
+
+
+#: the followers a cam's kit mounts
+KIT_FOLLOWERS = ("translating-roller", "oscillating-roller")
+
+
+def check_cam_kit(kit: CamKitTable, kind: str, follower: str, bore: float) -> None:
+    """A ValueError naming the field when a cam's ``[kit]`` cannot mount it: a kit is for a disc cam with a roller
+    follower, and the shaft must pass through the cam's bore."""
+    if kind != "disc" or follower not in KIT_FOLLOWERS:
+        raise ValueError(f"kit: a kit mounts a disc cam (cam.kind = \"disc\") with a {' or '.join(KIT_FOLLOWERS)} "
+                         f"follower (got a {kind} cam with a {follower} follower)")
+    if kit.shaft > bore:
+        fits = [f"{s:g}" for s in SHAFTS if s <= bore]
+        raise ValueError(f"kit.shaft: a {kit.shaft:g} mm shaft does not pass through the cam's bore of {bore:.15g} mm "
+                         f"(cam.bore); allowed: {', '.join(fits) + ' mm' if fits else 'none (enlarge cam.bore)'}")
+
+
+@dataclass(frozen=True)
+class Plate:
+    """A kit part (a :class:`~camgen.core.parts.PartMaker`): an outline, round holes ((x, y), nominal diameter)
+    and slots ((two end centres), width), all mm in its own frame, and a thickness."""
+
+    name: str
+    outline: Contour
+    holes: tuple[tuple[tuple[float, float], float], ...]
+    thickness: float
+    tolerance: float
+    slots: tuple[tuple[tuple[tuple[float, float], tuple[float, float]], float], ...] = ()
+
+    def part(self, outline_grow: float, hole_grow: float) -> Part:
+        """The part with its outline moved out by ``outline_grow`` and its holes' edges by ``hole_grow`` (mm)."""
+        outline = self.outline if outline_grow == 0 else _grown(self.outline, outline_grow)
+        holes: list = [Circle(c, d / 2 + hole_grow) for c, d in self.holes]
+        holes += [rounded_hull(np.array(ends), w / 2 + hole_grow) for ends, w in self.slots]
+        return Part(self.name, outline, tuple(holes), self.thickness, self.tolerance)
+
+
+def _grown(outline: Contour, grow: float) -> Contour:
+    """A rounded hull or a circle moved outwards by ``grow`` mm: its arcs' centres kept, their radii grown."""
+    _, centres, radii, _ = outline.arcs()
+    return rounded_hull(np.asarray(centres), float(radii[0]) + grow)
+
+
+def disc(name: str, diameter: float, hole: float, thickness: float, tolerance: float) -> Plate:
+    """A round part (a roller, a spacer, a standoff) of ``diameter`` with a central hole (mm; 0 for none)."""
+    return Plate(name, rounded_hull(np.zeros((1, 2)), diameter / 2), ((((0.0, 0.0)), hole),) if hole else (),
+                 thickness, tolerance)
+
+
+@dataclass(frozen=True)
+class Solid:
+    """A part standing at height ``z`` (mm) and placed at each pose: ``angles`` (n,) rad counter-clockwise about its
+    own origin, then ``origins`` (n, 2) mm (one pose for a fixed part). ``made`` says whether the kit makes it
+    (its files are written) or it is hardware (drawn and checked only)."""
+
+    part: Part
+    z: float
+    angles: np.ndarray
+    origins: np.ndarray
+    made: bool = True
+
+    @property
+    def name(self) -> str:
+        return self.part.name
+
+    @property
+    def top(self) -> float:
+        return self.z + self.part.thickness
+
+    def pose(self, k: int) -> tuple[float, np.ndarray]:
+        """(angle rad, shift mm) at pose ``k`` (a fixed part has one)."""
+        k = k if len(self.angles) > 1 else 0
+        return float(self.angles[k]), np.asarray(self.origins[k], dtype=float)
+
+
+def fixed(part: Part, z: float, at: tuple[float, float] = (0.0, 0.0), made: bool = True) -> Solid:
+    """A part that does not move, its origin at ``at`` (mm), standing at ``z``."""
+    return Solid(part, z, np.zeros(1), np.array([at], dtype=float), made)
+
+
+def footprint(part: Part, angle: float, shift: np.ndarray, tolerance: float) -> Any:
+    """The part's plan (outline less holes) as a shapely polygon, turned by ``angle`` and moved by ``shift``."""
+    import shapely
+
+    outer = shapely.Polygon(part.outline.moved(angle, shift).flatten(tolerance))
+    holes = [shapely.Polygon(h.moved(angle, shift).flatten(tolerance)) for h in part.holes]
+    return outer.difference(shapely.union_all(holes)) if holes else outer
+
+
+def interferences(solids: tuple[Solid, ...], poses: int, tolerance: float,
+                  allowed: frozenset[frozenset[str]] = frozenset()) -> list[dict[str, Any]]:
+    """Every pair of solids sharing some height (more than 1e-9 mm) whose plans overlap at some pose, less the
+    pairs ``allowed`` (a roller on its cam): (names, largest overlap mm^2, the pose it is at). Outlines as chords
+    within ``tolerance`` mm; overlaps below tolerance x the shorter perimeter are the chords', not the parts'."""
+    import shapely
+
+    plans = {s.name: np.array([footprint(s.part, *s.pose(k), tolerance) for k in range(poses if len(s.angles) > 1
+                                                                                       else 1)]) for s in solids}
+    out = []
+    for a, b in itertools.combinations(solids, 2):
+        if frozenset((a.name, b.name)) in allowed or min(a.top, b.top) - max(a.z, b.z) <= 1e-9:
+            continue
+        area = shapely.area(shapely.intersection(plans[a.name], plans[b.name]))
+        limit = tolerance * min(shapely.length(plans[a.name]).min(), shapely.length(plans[b.name]).min())
+        if area.max() > limit:
+            out.append({"parts": [a.name, b.name], "overlap_mm2": float(area.max()), "pose": int(area.argmax())})
+    return out
+
+
+def check_clear(solids: tuple[Solid, ...], poses: int, tolerance: float, allowed: frozenset[frozenset[str]],
+                field: str) -> None:
+    """A :class:`DesignError` naming ``field`` when two solids meet (see :func:`interferences`)."""
+    hits = interferences(solids, poses, tolerance, allowed)
+    if hits:
+        first = hits[0]
+        raise DesignError(f"{field}: the kit's {first['parts'][0]} and {first['parts'][1]} meet "
+                          f"({first['overlap_mm2']:.3g} mm^2 overlap at pose {first['pose']}); change that size or "
+                          "the design's distances")
+
+
+def assembly_drawing(solids: tuple[Solid, ...], k: int, tolerance: float) -> Drawing:
+    """The solids at pose ``k`` in plan, lowest first, each on its own layer ``KIT-<name>``."""
+    items: list = []
+    for solid in sorted(solids, key=lambda s: s.z):
+        angle, shift = solid.pose(k)
+        layer = f"KIT-{solid.name}"
+        items += [(layer, solid.part.outline.moved(angle, shift)), *((layer, h.moved(angle, shift))
+                                                                    for h in solid.part.holes)]
+    boxes = np.array([shape.bounds() for _, shape in items if isinstance(shape, Contour)])
+    extent = float(max(np.ptp(boxes[:, [0, 2]]), np.ptp(boxes[:, [1, 3]])))
+    return Drawing(tuple(items), tolerance, stroke=round(max(0.2, extent / 500.0), 2))
+
+
+def placed_meshes(solids: tuple[Solid, ...], k: int) -> tuple[Any, ...]:
+    """Each solid as a mesh in its assembled place at pose ``k`` (the kit's 3MF), named after it."""
+    from camgen.core.solids import extrude
+
+    out = []
+    for solid in solids:
+        mesh = extrude(solid.part)
+        angle, shift = solid.pose(k)
+        c, s = np.cos(angle), np.sin(angle)
+        xy = mesh.vertices[:, :2] @ np.array([[c, s], [-s, c]]) + shift
+        out.append(replace(mesh, vertices=np.column_stack([xy, mesh.vertices[:, 2] + solid.z])))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class BomLine:
+    """A line of the bill of materials: what, how many, its size in words, and how it is got (``laser``, ``fdm``
+    or ``buy``)."""
+
+    item: str
+    quantity: int
+    size: str
+    source: str
+
+    def row(self) -> dict[str, Any]:
+        return {"item": self.item, "quantity": self.quantity, "size": self.size, "source": self.source}
+
+
+def bolt_line(bolt: Bolt, length: float, quantity: int, use: str) -> BomLine:
+    """Bolts of ``length`` (mm) with a washer and a nut each, for ``use``."""
+    return BomLine(f"{bolt.name} x {length:g} socket head cap screw, ISO 7089 washer, ISO 4032 nut", quantity,
+                   use, "buy")
+
+
+def part_entry(solid: Solid, allowances: Allowances, catalogue: dict[str, float]) -> dict[str, Any]:
+    """A made part's report entry: its name, height in the stack, thickness, and each hole's centre and diameter
+    as drawn in its file (``catalogue``: the nominal size each hole comes from, by hole index, for the reader)."""
+    holes = []
+    for i, hole in enumerate(solid.part.holes):
+        if isinstance(hole, Circle):
+            holes.append({"x_mm": round(hole.centre[0], 9), "y_mm": round(hole.centre[1], 9),
+                          "diameter_mm": round(2 * hole.radius, 9),
+                          **({"nominal_mm": catalogue[str(i)]} if str(i) in catalogue else {})})
+    return {"name": solid.name, "z_mm": round(solid.z, 9), "thickness_mm": solid.part.thickness, "holes": holes,
+            "allowances": {"kerf_mm": allowances.kerf, "clearance_mm": allowances.clearance}}
+
+
+def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, meshes: Any, formats: Any,
+              title: str) -> list[Any]:
+    """The kit's files: each part as its process makes it (a laser's as ``<name>-<part>.dxf`` and
+    ``<name>-<part>-cut.svg``, a printer's as ``<name>-<part>.stl`` and ``.3mf``), the assembly drawing
+    (``<name>-kit-assembly.dxf|svg|png``) and every part in its assembled place (``<name>-kit.3mf``; ``meshes()``
+    makes them, only if written)."""
+    from camgen.core.bundle import item
+    from camgen.core.errors import ExportError
+    from camgen.core.solids import check_mesh, extrude
+
+    items = []
+    for part, source in made:
+        if source == "laser":
+            items.append(item(Drawing.of_part(part), [("dxf", f"{part.name}_dxf", f"{name}-{part.name}.dxf"),
+                                                      ("cut-svg", f"{part.name}_svg", f"{name}-{part.name}-cut.svg")],
+                              formats))
+            continue
+        mesh = extrude(part) if {"stl", "3mf"} & set(formats) else None
+        if mesh is not None and not check_mesh(mesh).ok:
+            raise ExportError(f"{name}-{part.name}: the mesh is not a closed outward solid")
+        items.append(item(mesh, [("stl", f"{part.name}_stl", f"{name}-{part.name}.stl"),
+                                 ("3mf", f"{part.name}_3mf", f"{name}-{part.name}.3mf")], formats))
+
+    def figure() -> Any:
+        from camgen.core.figures import drawing_figure
+
+        return drawing_figure(drawing, title)
+
+    items += [item(drawing, [("dxf", "kit_assembly_dxf", f"{name}-kit-assembly.dxf"),
+                             ("cut-svg", "kit_assembly_svg", f"{name}-kit-assembly.svg")], formats),
+              item(figure, [("png", "kit_assembly_png", f"{name}-kit-assembly.png")], formats),
+              item(meshes, [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats)]
+    return items

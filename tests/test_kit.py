@@ -1,0 +1,361 @@
+"""Mechanism kits (issue 18, item 3): the parts round a cam or a linkage, read back from the files written, placed by
+the design's own kinematics, measured against the catalogue and the design's distances."""
+from __future__ import annotations
+
+import itertools
+import json
+import math
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+import trimesh
+from click.testing import CliRunner
+
+from camgen.cli import main as camgen
+from camgen.core.hardware import BEARINGS, BOLTS
+from camgen.core.kit import CamKitTable, KitTable
+from camgen.core.shapes import Contour
+from camgen.design import design_cam
+from camgen.spec import load_spec
+from linkgen.cli import main as linkgen
+from tests.conftest import ROOT
+
+TEMPLATES = ROOT / "templates"
+POSES = 720
+
+
+def _build(main, template, out, *sets):
+    args = ["build", str(template), "-o", str(out)]
+    for s in sets:
+        args += ["--set", s]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    return json.loads((out / f"{out.name}.json").read_text()) if (out / f"{out.name}.json").exists() else None
+
+
+@pytest.fixture(scope="module")
+def rdrd(tmp_path_factory):
+    out = tmp_path_factory.mktemp("kit-rdrd")
+    _build(camgen, TEMPLATES / "kit-rdrd.toml", out)
+    spec = load_spec(TEMPLATES / "kit-rdrd.toml")
+    return out, json.loads((out / "kit-rdrd.json").read_text()), design_cam(spec)
+
+
+@pytest.fixture(scope="module")
+def oscillating(tmp_path_factory):
+    out = tmp_path_factory.mktemp("kit-oscillating")
+    _build(camgen, TEMPLATES / "kit-oscillating.toml", out)
+    spec = load_spec(TEMPLATES / "kit-oscillating.toml")
+    return out, json.loads((out / "kit-oscillating.json").read_text()), design_cam(spec)
+
+
+def _read(path):
+    """A DXF part read back: its plan (outline less holes, arcs as chords within 1e-4 mm) and its round holes
+    (centre, diameter)."""
+    msp = ezdxf.readfile(path).modelspace()
+    rings = []
+    for pl in msp.query("LWPOLYLINE"):
+        pts = np.array([(x, y, b) for x, y, _, _, b in pl.get_points("xyseb")])
+        rings.append((pl.dxf.layer, shapely.Polygon(Contour(pts[:, :2], pts[:, 2]).flatten(1e-4))))
+    circles = [(np.array(c.dxf.center)[:2], 2 * c.dxf.radius) for c in msp.query("CIRCLE")]
+    outline = next(poly for layer, poly in rings if layer == "OUTLINE")
+    holes = [poly for layer, poly in rings if layer == "HOLES"]
+    holes += [shapely.Point(c).buffer(d / 2, quad_segs=256) for c, d in circles]
+    return outline.difference(shapely.union_all(holes)), circles
+
+
+def _nominal(plan, kerf):
+    """A cut part's plan as the laser leaves it: its drawn path moved in by half the kerf (holes open by it)."""
+    return plan.buffer(-kerf / 2, quad_segs=64) if kerf else plan
+
+
+def _stack(report):
+    return {s["name"]: (s["z_mm"], s["top_mm"]) for s in report["kit"]["stack"]}
+
+
+def _centres(design, theta):
+    """The roller's centre in the fixed frame: the pitch point (cam frame) turned by the cam's angle."""
+    cam = design.cam
+    p = cam.pitch(theta).point
+    turn = cam.follower.sense * theta
+    return np.column_stack([np.cos(turn) * p[:, 0] - np.sin(turn) * p[:, 1],
+                            np.sin(turn) * p[:, 0] + np.cos(turn) * p[:, 1]])
+
+
+def _standoff_diameter(out, name):
+    bounds = trimesh.load(out / f"{name}-standoff.stl").bounds
+    return float(bounds[1, 0] - bounds[0, 0])
+
+
+def _turned(plans, turn):
+    return np.array([shapely.affinity.rotate(plans, t, origin=(0.0, 0.0), use_radians=True) for t in turn])
+
+
+def test_translating_kit_runs_a_full_turn_touching_the_cam_only_at_the_roller(rdrd):
+    out, report, design = rdrd
+    spec = design.spec
+    kerf, cam_kerf = spec.kit.kerf, spec.output.kerf
+    theta = 2 * np.pi * np.arange(POSES) / POSES
+    centres = _centres(design, theta)
+    # the design's kinematics in closed form: the roller rides the follower's axis at d0 + s
+    rp, e = spec.cam.base_radius + spec.follower.roller_radius, spec.follower.offset
+    s = design.cam.program.evaluate(theta)[0]
+    assert np.allclose(centres, np.column_stack([np.full(POSES, e), math.sqrt(rp**2 - e**2) + s]), atol=1e-9)
+    cam = _nominal(_read(out / "kit-rdrd.dxf")[0], cam_kerf)
+    roller = _nominal(_read(out / "kit-rdrd-roller.dxf")[0], kerf)
+    follower = _nominal(_read(out / "kit-rdrd-follower.dxf")[0], kerf)
+    _, frame_holes = _read(out / "kit-rdrd-frame.dxf")
+    cams = _turned(cam, theta)
+    rollers = np.array([shapely.affinity.translate(roller, *c) for c in centres])
+    followers = np.array([shapely.affinity.translate(follower, *c) for c in centres])
+    # the roller touches the cam all round the turn: its centre stays its radius off the cam's outline
+    gap = shapely.distance(shapely.points(centres), shapely.boundary(cams)) - spec.follower.roller_radius
+    assert np.abs(gap).max() <= 2 * spec.output.tolerance
+    assert shapely.area(shapely.intersection(cams, rollers)).max() <= 0.05
+    # the parts stand at heights where only the cam and the roller share a plane
+    stack = _stack(report)
+    for a, b in itertools.combinations(["frame", "kit-rdrd", "follower"], 2):
+        assert min(stack[a][1], stack[b][1]) <= max(stack[a][0], stack[b][0]) + 1e-9
+    assert stack["roller"] == stack["kit-rdrd"]
+    # the guide bolts stand in the frame's guide holes and run in the follower's slot over the whole lift
+    guides = [c for c, d in frame_holes if abs(c[0] - e) < 1e-6]
+    assert len(guides) == 2
+    bolt = BOLTS[spec.kit.bolt]
+    for c in guides:
+        shank = shapely.Point(c).buffer(bolt.diameter / 2, quad_segs=64)
+        assert shapely.area(shapely.intersection(followers, shank)).max() == 0.0
+        assert shapely.contains(shapely.convex_hull(followers), shank).all()
+        # their standoffs share the cam's plane: clear of the cam and the roller all the way round
+        post = shapely.Point(c).buffer(_standoff_diameter(out, "kit-rdrd") / 2, quad_segs=64)
+        assert shapely.distance(cams, post).min() > 0 and shapely.distance(rollers, post).min() > 0
+    assert stack["standoff-1"][0] == stack["frame"][1] and stack["standoff-1"][1] == stack["follower"][0]
+
+
+def test_oscillating_kit_arm_follows_the_design_and_clears_the_cam(oscillating):
+    out, report, design = oscillating
+    spec = design.spec
+    theta = 2 * np.pi * np.arange(POSES) / POSES
+    centres = _centres(design, theta)
+    pivot = design.cam.follower.pivot
+    assert np.linalg.norm(pivot) == pytest.approx(spec.follower.pivot_distance, abs=1e-9)
+    assert np.allclose(np.linalg.norm(centres - pivot, axis=1), spec.follower.arm_length, atol=1e-9)
+    # the arm as printed: its two holes the arm length apart (STL section); the frame's pivot hole at the design's
+    # pivot, checked in the report's as-made holes
+    frame = report["kit"]["parts"][0]
+    seat, post = frame["holes"][0], frame["holes"][1]
+    assert (seat["x_mm"], seat["y_mm"]) == (0.0, 0.0)
+    assert math.hypot(post["x_mm"], post["y_mm"]) == pytest.approx(spec.follower.pivot_distance, abs=1e-9)
+    arm = _section(out / "kit-oscillating-follower.stl")
+    holes = [np.array(ring.centroid.coords[0]) for ring in arm.interiors_polygons]
+    assert float(np.linalg.norm(holes[0] - holes[1])) == pytest.approx(spec.follower.arm_length, abs=1e-6)
+    cam = _read(out / "kit-oscillating.dxf")[0]
+    cams = _turned(cam, theta)
+    gap = shapely.distance(shapely.points(centres), shapely.boundary(cams)) - spec.follower.roller_radius
+    assert np.abs(gap).max() <= 2 * spec.output.tolerance
+    standoff = shapely.Point(pivot).buffer(_standoff_diameter(out, "kit-oscillating") / 2, quad_segs=64)
+    assert shapely.distance(cams, standoff).min() > 0
+
+
+class _Section:
+    """A printed part's section at mid-height (read from its STL): its outline and its holes as polygons."""
+
+    def __init__(self, loops):
+        loops = sorted(loops, key=lambda p: -p.area)
+        self.poly, self.interiors_polygons = loops[0], loops[1:]
+
+
+def _section(path):
+    mesh = trimesh.load(path)
+    mid = (mesh.bounds[0, 2] + mesh.bounds[1, 2]) / 2
+    cut = mesh.section(plane_origin=[0, 0, mid], plane_normal=[0, 0, 1])
+    return _Section([shapely.Polygon(loop[:, :2]) for loop in cut.discrete])
+
+
+def test_frame_holes_at_the_design_distances_and_catalogue_sizes(rdrd):
+    out, report, design = rdrd
+    spec = design.spec
+    kit = spec.kit
+    _, holes = _read(out / "kit-rdrd-frame.dxf")
+    seat = [d for c, d in holes if np.all(c == 0.0)]
+    assert seat == [pytest.approx(BEARINGS[kit.bearing].outside - kit.kerf, abs=1e-9)]
+    guides = [c for c, _ in holes if c[0] == spec.follower.offset]
+    assert len(guides) == 2 and all(abs(c[0] - spec.follower.offset) <= 1e-9 for c in guides)
+    bolt = BOLTS[kit.bolt]
+    assert sorted({round(d, 9) for c, d in holes if not np.all(c == 0.0)}) == [round(bolt.clearance_hole - kit.kerf, 9)]
+    assert report["kit"]["seat"] == {"nominal_diameter_mm": 22.0, "as_made_diameter_mm": 21.85}
+    _, roller_holes = _read(out / "kit-rdrd-roller.dxf")
+    assert [round(d, 9) for _, d in roller_holes] == [round(bolt.clearance_hole - kit.kerf, 9)]
+
+
+def test_printed_seat_is_the_catalogue_bearing_plus_the_clearance(oscillating):
+    out, _, design = oscillating
+    kit = design.spec.kit
+    frame = _section(out / "kit-oscillating-frame.stl")
+    seat = next(h for h in frame.interiors_polygons if h.contains(shapely.Point(0.0, 0.0)))
+    diameter = 2 * math.sqrt(seat.area / math.pi)
+    expected = BEARINGS[kit.bearing].outside + kit.clearance
+    assert diameter == pytest.approx(expected, abs=2 * design.spec.output.tolerance)
+
+
+def test_kit_3mf_has_every_part_in_place_without_overlaps(rdrd):
+    import manifold3d
+
+    out, report, _ = rdrd
+    scene = trimesh.load(out / "kit-rdrd-kit.3mf")
+    stack = _stack(report)
+    assert set(scene.geometry) == set(stack)
+    solids = {}
+    for name, mesh in scene.geometry.items():
+        assert mesh.is_watertight
+        assert mesh.bounds[:, 2] == pytest.approx(stack[name], abs=1e-4)
+        solids[name] = manifold3d.Manifold(manifold3d.Mesh(vert_properties=np.asarray(mesh.vertices, np.float32),
+                                                           tri_verts=np.asarray(mesh.faces, np.uint32)))
+    for a, b in itertools.combinations(solids, 2):
+        common = (solids[a] ^ solids[b]).volume()
+        assert common <= 1e-3 * min(solids[a].volume(), solids[b].volume()), (a, b, common)
+
+
+def test_bill_of_materials_names_the_hardware(rdrd):
+    _, report, _ = rdrd
+    bom = {line["item"]: line for line in report["kit"]["bom"]}
+    assert bom["bearing 608"]["quantity"] == 1 and bom["bearing 608"]["size"] == "8 x 22 x 7 mm"
+    bolts = [line for line in report["kit"]["bom"] if line["item"].startswith("M4 x ")]
+    assert sum(line["quantity"] for line in bolts) == 5                      # 2 guides, the axle, 2 mounting
+    assert bom["standoff"]["quantity"] == 2 and bom["frame"]["source"] == "laser"
+
+
+@pytest.mark.parametrize("sets, field, words", [
+    (["kit.bearing=609"], "kit.bearing", "'623', '624', '625', '608' or 'none'"),
+    (["kit.bearing=625"], "kit.bearing", "for that shaft: 608, none"),
+    (["kit.shaft=6"], "kit.shaft", "must be one of 3, 4, 5, 8 mm"),
+    (["kit.shaft=8", "cam.bore=7.999999999999"], "kit.shaft", "bore of 7.999999999999 mm (cam.bore); allowed: 3, 4, 5"),
+    (["kit.bolt=M6"], "kit.bolt", "'M3', 'M4' or 'M5'"),
+    (["kit.process=cnc"], "kit.process", "'laser' or 'fdm'"),
+    (["kit.thickness=-1"], "kit.thickness", "must be > 0"),
+    (["kit.wall=0"], "kit.wall", "must be > 0"),
+])
+def test_bad_kit_values_give_one_line_and_write_nothing(tmp_path, sets, field, words):
+    args = ["build", str(TEMPLATES / "kit-rdrd.toml"), "-o", str(tmp_path / "o")]
+    for s in sets:
+        args += ["--set", s]
+    result = CliRunner().invoke(camgen, args)
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"error: {field}: ") and words in lines[0], lines
+    assert not (tmp_path / "o").exists()
+
+
+def test_shaft_equal_to_the_bore_fits(tmp_path):
+    _build(camgen, TEMPLATES / "kit-rdrd.toml", tmp_path / "kit-rdrd", "kit.shaft=8", "cam.bore=8")
+
+
+@pytest.mark.parametrize("template, sets, field", [
+    ("flat-face.toml", ["kit.shaft=3"], "kit"),
+    ("kit-crank-rocker.toml", ["kit.bolt=M3"], "kit.bolt"),
+    ("crank-rocker.toml", ["kit.bolt=M4", "parts.pin_diameter=5"], "kit.bolt"),
+])
+def test_kits_refused_where_they_cannot_mount(tmp_path, template, sets, field):
+    main = linkgen if "crank" in template else camgen
+    args = ["build", str(TEMPLATES / template), "-o", str(tmp_path / "o")]
+    for s in sets:
+        args += ["--set", s]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 2 and result.stderr.startswith(f"error: {field}: ")
+    assert len(result.stderr.strip().splitlines()) == 1 and not (tmp_path / "o").exists()
+
+
+def test_pivot_too_close_for_its_standoff_is_refused(tmp_path):
+    result = CliRunner().invoke(camgen, ["build", str(TEMPLATES / "kit-oscillating.toml"), "-o", str(tmp_path / "o"),
+                                         "--set", "follower.pivot_distance=60", "--set", "follower.arm_length=50"])
+    assert result.exit_code == 2 and result.stderr.startswith("error: follower.pivot_distance: ")
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.fixture(scope="module")
+def crank_rocker(tmp_path_factory):
+    out = tmp_path_factory.mktemp("kit-crank-rocker")
+    _build(linkgen, TEMPLATES / "kit-crank-rocker.toml", out)
+    return out, json.loads((out / "kit-crank-rocker.json").read_text())
+
+
+def test_linkage_base_plate_pivots_and_mounting_holes(crank_rocker):
+    out, report = crank_rocker
+    msp = ezdxf.readfile(out / "kit-crank-rocker-sheet.dxf").modelspace()
+    outlines = []
+    for pl in msp.query('LWPOLYLINE[layer=="OUTLINE"]'):
+        pts = np.array([(x, y, b) for x, y, _, _, b in pl.get_points("xyseb")])
+        outlines.append(shapely.Polygon(Contour(pts[:, :2], pts[:, 2]).flatten(1e-3)))
+    circles = [(np.array(c.dxf.center)[:2], 2 * c.dxf.radius) for c in msp.query('CIRCLE[layer=="HOLES"]')]
+    base = max(outlines, key=lambda p: p.area)
+    inside = [(c, d) for c, d in circles if base.contains(shapely.Point(c))]
+    kerf, hole = 0.15, 4.0 + 0.2
+    pivots = [c for c, d in inside if abs(d - (hole - kerf)) < 1e-9]
+    mounts = [c for c, d in inside if abs(d - (BOLTS["M4"].clearance_hole - kerf)) < 1e-9]
+    assert len(pivots) == 2 and len(mounts) == 4
+    assert float(np.linalg.norm(pivots[0] - pivots[1])) == pytest.approx(180.0, abs=1e-9)
+    # the corners make a rectangle about the pivots' box, square to the ground line
+    pivots, mounts = np.array(pivots), np.array(mounts)
+    assert np.ptp(mounts[:, 0]) - np.ptp(pivots[:, 0]) == pytest.approx(np.ptp(mounts[:, 1]) - np.ptp(pivots[:, 1]),
+                                                                         abs=1e-9)
+    kit = report["kit"]
+    assert len(kit["pins"]) == 4 and all(p["bolt_length_mm"] == 16.0 for p in kit["pins"])
+    assert [h["cut_diameter_mm"] for h in kit["mounting_holes"]] == [pytest.approx(4.35, abs=1e-12)] * 4
+
+
+def test_linkage_mounting_heads_clear_the_moving_parts_over_the_turn(crank_rocker):
+    """The bolt heads on the base plate's corners never meet the crank, coupler or rocker (placed from the report's
+    joints over the turn by the four-bar's closed form)."""
+    _, report = crank_rocker
+    from linkgen.design import design_linkage
+    from linkgen.spec import load_spec as load_linkage
+
+    spec = load_linkage(TEMPLATES / "kit-crank-rocker.toml")
+    fb = design_linkage(spec).kinematics
+    theta = np.radians(np.arange(0.0, 360.0, 0.5))
+    a = np.column_stack([fb.crank * np.cos(theta), fb.crank * np.sin(theta)])
+    o4 = np.array([fb.ground, 0.0])
+    d = np.linalg.norm(a - o4, axis=1)
+    # B: on the circle of the coupler about A and the rocker about O4 (closed form, the template's branch)
+    along = (fb.coupler**2 - fb.rocker**2 + d**2) / (2 * d)
+    up = np.sqrt(fb.coupler**2 - along**2)
+    u = (o4 - a) / d[:, None]
+    b = a + along[:, None] * u + up[:, None] * np.column_stack([-u[:, 1], u[:, 0]])
+    half = 7.0
+    bars = shapely.union_all([shapely.LineString([p, q]).buffer(half) for p, q in itertools.chain(
+        zip(np.zeros_like(a), a, strict=True), zip(a, b, strict=True),
+        zip(b, np.tile(o4, (len(b), 1)), strict=True))])
+    heads = [shapely.Point(h["x_mm"], h["y_mm"]).buffer(BOLTS["M4"].head_diameter / 2) for h in
+             report["kit"]["mounting_holes"]]
+    assert all(bars.distance(h) > 0 for h in heads)
+
+
+def test_linkage_kit_3mf_has_every_part(crank_rocker):
+    out, report = crank_rocker
+    scene = trimesh.load(out / "kit-crank-rocker-kit.3mf")
+    assert set(scene.geometry) == {p["name"] for p in report["parts"]}
+    layers = report["layers"]
+    for name, mesh in scene.geometry.items():
+        assert mesh.bounds[0, 2] == pytest.approx(layers[name] * 4.0, abs=1e-4)
+
+
+def test_jansen_kit_one_pin_a_pivot_point(tmp_path):
+    out = tmp_path / "jansen"
+    _build(linkgen, TEMPLATES / "jansen.toml", out, "kit.bolt=M3", 'output.formats=["json", "3mf"]')
+    report = json.loads((out / "jansen.json").read_text())
+    pins = report["kit"]["pins"]
+    assert len(pins) == 7                                         # O, A, B, C, D, E, F
+    assert len({(p["x_mm"], p["y_mm"]) for p in pins}) == 7
+    assert set(trimesh.load(out / "jansen-kit.3mf").geometry) == {p["name"] for p in report["parts"]}
+
+
+def test_every_kit_key_is_documented():
+    readme = (ROOT / "README.md").read_text()
+    for key in set(CamKitTable.model_fields) | set(KitTable.model_fields):
+        assert f"| `kit.{key}` |" in readme, f"kit.{key} is not in the README's key tables"
+
+
+def test_default_builds_carry_no_kit(tmp_path):
+    _build(camgen, TEMPLATES / "rdrd.toml", tmp_path / "rdrd", 'output.formats=["json"]')
+    assert "kit" not in json.loads((tmp_path / "rdrd" / "rdrd.json").read_text())
