@@ -37,8 +37,8 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     report = design.report
     items: list[Item | None] = []
     if design.build is None and "step" in formats:
-        raise SpecError("'step' writes the linkage's parts: add a [parts] table, or leave 'step' out",
-                        "output.formats")
+        raise SpecError("'step' writes the linkage's parts, which `linkgen build` makes from the [parts] table; "
+                        "leave 'step' out here", "output.formats")
     if design.build is not None and spec.kit is not None:
         kit = linkage_kit(design)
         items += _parts_items(name, kit.build, formats)

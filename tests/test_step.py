@@ -252,25 +252,48 @@ def test_conjugate_pair_two_named_cams(tmp_path):
         assert found["solids"] == 1 and found["valid"] and found["volume"] > 0
 
 
-def test_linkage_every_part_a_named_solid(tmp_path):
-    from linkgen.cli import main as linkgen_main
+@pytest.fixture(scope="module")
+def crank_rocker(tmp_path_factory):
+    """``linkgen build templates/crank-rocker.toml`` with step, stl and json, run from a folder outside the
+    checkout; the folder and the printed parts."""
     from linkgen.design import design_linkage
-    from linkgen.spec import load_spec
+    from linkgen.spec import load_spec as load_linkage
 
+    cwd = tmp_path_factory.mktemp("outside-linkage")
     template_path = ROOT / "templates" / "crank-rocker.toml"
     done = subprocess.run([sys.executable, "-m", "linkgen", "build", str(template_path), "--set",
-                           'output.formats=["step","stl","json"]'], cwd=tmp_path, env=ENV, capture_output=True,
-                          text=True)
+                           'output.formats=["step","stl","json"]'], cwd=cwd, env=ENV, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
-    out = tmp_path / "out" / "crank-rocker"
+    return cwd / "out" / "crank-rocker", design_linkage(load_linkage(template_path), parts=True).build.printed
+
+
+def test_linkage_every_part_a_named_solid(crank_rocker):
+    out, printed = crank_rocker
     assert (out / "crank-rocker.step").exists() and (out / "crank-rocker-crank.stl").exists()
-    build = design_linkage(load_spec(template_path), parts=True).build
     solids = read_step(out / "crank-rocker.step")
-    assert [n for n, _ in solids] == [p.name for p in build.printed]
-    for (_, shape), part in zip(solids, build.printed, strict=True):
+    assert [n for n, _ in solids] == [p.name for p in printed] == ["ground", "crank", "coupler", "rocker"]
+    for (_, shape), part in zip(solids, printed, strict=True):
         assert_plate(measure(shape), part)
-    assert CliRunner().invoke(linkgen_main, ["build", str(template_path), "-o", str(tmp_path / "again"), "--set",
-                                             'output.formats=["step"]']).exit_code == 0
+
+
+def test_linkgen_analyze_refuses_step(tmp_path):
+    """``linkgen analyze`` makes no parts: asking it for step is one line saying which command does."""
+    from linkgen.cli import main as linkgen_main
+
+    result = CliRunner().invoke(linkgen_main, ["analyze", str(ROOT / "templates" / "crank-rocker.toml"), "-o",
+                                               str(tmp_path / "out"), "--set", 'output.formats=["step","json"]'])
+    assert result.exit_code == 2 and "output.formats: 'step' writes the linkage's parts" in result.output
+    assert "linkgen build" in result.output and not (tmp_path / "out").exists()
+
+
+def test_a_build_without_step_never_imports_ocp(tmp_path):
+    code = ("import sys; from camgen.design import design_cam; from camgen.outputs import write_cam; "
+            "from camgen.spec import load_spec; "
+            f"write_cam(design_cam(load_spec({str(ROOT / 'templates' / 'rdrd.toml')!r}, "
+            "['output.formats=[\"stl\",\"json\"]'])), 'out'); print('OCP' in sys.modules)")
+    done = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=ENV, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "False" and (tmp_path / "out" / "rdrd.stl").exists()
 
 
 def test_family_members_write_step(tmp_path):
@@ -349,6 +372,13 @@ def test_freecad_reads_a_keyway_and_bolt_holes(tmp_path):
     write_step([(part.name, (part,))], tmp_path / "hub.step")
     done = _freecad(tmp_path / "hub.step", [_fc(expect_plate(part))])
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
+
+
+def test_freecad_reads_every_part_of_a_linkage(crank_rocker):
+    out, printed = crank_rocker
+    done = _freecad(out / "crank-rocker.step", [_fc(expect_plate(part)) for part in printed])
+    assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
+    assert len(json.loads(done.stdout.strip().splitlines()[-1])["solids"]) == 4
 
 
 def test_freecad_check_rejects_a_wrong_volume(rdrd_cli):

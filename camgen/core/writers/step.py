@@ -41,31 +41,36 @@ def _point(x: float, y: float, z: float) -> Any:
 def _wire(shape: Circle | Contour, z: float, ccw: bool) -> Any:
     """A closed wire at height ``z`` (mm): a circle's one circular edge, or a contour's line and arc edges sharing
     their vertices, run counter-clockwise (seen from +Z) when ``ccw``, else clockwise."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeVertex, BRepBuilderAPI_MakeWire
+    from OCP.BRep import BRep_Builder
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeVertex
     from OCP.GC import GC_MakeArcOfCircle, GC_MakeSegment
     from OCP.gp import gp_Ax2, gp_Circ, gp_Dir
+    from OCP.TopoDS import TopoDS_Wire
 
-    wire = BRepBuilderAPI_MakeWire()
+    builder, wire = BRep_Builder(), TopoDS_Wire()
+    builder.MakeWire(wire)
     if isinstance(shape, Circle):
         axis = gp_Ax2(_point(*shape.centre, z), gp_Dir(0.0, 0.0, 1.0 if ccw else -1.0))
-        wire.Add(BRepBuilderAPI_MakeEdge(gp_Circ(axis, float(shape.radius))).Edge())
-        return wire.Wire()
-    contour = shape if (shape.area > 0) == ccw else shape.reversed()
-    v, b = contour.vertices, contour.bulges
-    corners = [BRepBuilderAPI_MakeVertex(_point(x, y, z)).Vertex() for x, y in v]
-    for i in range(len(v)):
-        j = (i + 1) % len(v)
-        p, q = _point(*v[i], z), _point(*v[j], z)
-        if b[i] == 0:
-            curve = GC_MakeSegment(p, q).Value()
-        else:          # the arc's midpoint: the chord's midpoint moved out by the sagitta, bulge x chord / 2
-            dx, dy = v[j] - v[i]
-            mid = (v[i] + v[j]) / 2 + b[i] / 2 * np.array([dy, -dx])
-            curve = GC_MakeArcOfCircle(p, _point(*mid, z), q).Value()
-        wire.Add(BRepBuilderAPI_MakeEdge(curve, corners[i], corners[j]).Edge())
-    if not wire.IsDone():
-        raise ExportError("a contour does not close into one wire")
-    return wire.Wire()
+        edges = [BRepBuilderAPI_MakeEdge(gp_Circ(axis, float(shape.radius))).Edge()]
+    else:
+        contour = shape if (shape.area > 0) == ccw else shape.reversed()
+        v, b = contour.vertices, contour.bulges
+        points = [_point(x, y, z) for x, y in v]
+        corners = [BRepBuilderAPI_MakeVertex(p).Vertex() for p in points]
+        edges = []
+        for i in range(len(v)):          # piece i runs from vertex i to the next, sharing both (a connected wire)
+            j = (i + 1) % len(v)
+            if b[i] == 0:
+                curve = GC_MakeSegment(points[i], points[j]).Value()
+            else:      # the arc's midpoint: the chord's midpoint moved out by the sagitta, bulge x chord / 2
+                dx, dy = v[j] - v[i]
+                mid = (v[i] + v[j]) / 2 + b[i] / 2 * np.array([dy, -dx])
+                curve = GC_MakeArcOfCircle(points[i], _point(*mid, z), points[j]).Value()
+            edges.append(BRepBuilderAPI_MakeEdge(curve, corners[i], corners[j]).Edge())
+    for edge in edges:
+        builder.Add(wire, edge)
+    wire.Closed(True)
+    return wire
 
 
 def _prism(outer: Circle | Contour, holes: Sequence[Circle | Contour], z: float, height: float) -> Any:
