@@ -85,8 +85,9 @@ def measure(shape) -> dict:
     BRepBndLib.AddOptimal_s(shape, box, False, False)
     as_edge = getattr(TopoDS, "Edge", None) or TopoDS.Edge_s            # OCP 8 dropped the _s
     types = [BRepAdaptor_Curve(as_edge(e)).GetType() for e in unique(TopAbs_EDGE)]
+    corners = np.array([c.Coord(k) for c in (box.CornerMin(), box.CornerMax()) for k in (1, 2, 3)])
     return {"solids": len(unique(TopAbs_SOLID)), "valid": BRepCheck_Analyzer(shape).IsValid(),
-            "volume": props.Mass(), "box": np.array([c.Coord(k) for c in (box.CornerMin(), box.CornerMax()) for k in (1, 2, 3)]), "faces": len(unique(TopAbs_FACE)),
+            "volume": props.Mass(), "box": corners, "faces": len(unique(TopAbs_FACE)),
             "circles": types.count(GeomAbs_Circle), "lines": types.count(GeomAbs_Line), "edges": len(types)}
 
 

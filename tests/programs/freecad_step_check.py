@@ -26,8 +26,8 @@ def main():
                       s.BoundBox.ZMax]} for s in shape.Solids]
     ok = len(found) == len(expect) and all(
         f["valid"] and abs(f["volume"] - e["volume"]) <= 1e-6 * e["volume"] and f["faces"] == e["faces"]
-        and all(abs(a - b) <= 1e-6 for a, b in zip(f["box"], e["box"]))
-        for f, e in zip(found, expect))
+        and all(abs(a - b) <= 1e-6 for a, b in zip(f["box"], e["box"], strict=True))
+        for f, e in zip(found, expect, strict=True))
     print(json.dumps({"solids": found}))
     return 0 if ok else 1
 
