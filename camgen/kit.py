@@ -9,8 +9,9 @@ The stack, from the frame's bottom face (z = 0, mm) up:
 * a gap as high as the roller's axle nut and washer (plus :data:`~camgen.core.kit.RUNNING_GAP`), filled round the
   shaft by a spacer, and the standoffs round the guide or pivot bolts;
 * the cam and its roller, in one plane;
-* a washer's height over the cam, the follower: a bar with the roller's axle hole and a slot the two guide bolts
-  run in (translating), or an arm with the pivot's hole and the roller's at ``follower.arm_length`` (oscillating).
+* a washer's height over the cam (over its hub boss, if it has one), the follower: a bar with the roller's axle
+  hole and a slot the two guide bolts run in (translating), or an arm with the pivot's hole and the roller's at
+  ``follower.arm_length`` (oscillating).
 
 Every solid is placed at :data:`POSES` cam angles by the design's own kinematics (the roller's centre in the fixed
 frame is the pitch point turned by the cam's angle, sense as ``cam.rotation``); two solids that share some height
@@ -93,7 +94,9 @@ def cam_kit(design: Any) -> CamKit:
     gap = max(bolt.washer_thickness + bolt.nut_height + RUNNING_GAP, width - t + RUNNING_GAP)
     z_cam = t + gap
     roller_width = spec.follower.roller_width or spec.cam.thickness
-    z_follower = z_cam + max(spec.cam.thickness, roller_width) + bolt.washer_thickness
+    # the cam's top face, or its hub boss's (the shaft runs up through it)
+    cam_top = z_cam + spec.cam.thickness + (design.part.boss[1] if design.part.boss else 0.0)
+    z_follower = max(cam_top, z_cam + roller_width) + bolt.washer_thickness
     mount = seat_hole / 2 + 2 * wall + hole
     mounts = ((-mount, -mount), (mount, -mount))
     frame = Plate("frame", rounded_hull(np.array([(0.0, 0.0), *posts, *mounts]), max(seat_hole, hole) / 2 + wall),
@@ -103,7 +106,7 @@ def cam_kit(design: Any) -> CamKit:
     standoff = disc("standoff", bolt.washer_outside, hole, z_follower - t, tol)
     roller = disc("roller", 2 * rr, hole, roller_width, tol)
     nut = disc("axle-nut", bolt.nut_across_corners, 0.0, bolt.nut_height, tol).part(0.0, 0.0)
-    shaft = disc("shaft", table.shaft, 0.0, SHAFT_STUB + z_cam + spec.cam.thickness, tol).part(0.0, 0.0)
+    shaft = disc("shaft", table.shaft, 0.0, SHAFT_STUB + cam_top, tol).part(0.0, 0.0)
     turn = design.cam.follower.sense * theta
     solids = [fixed(frame.part(0.0, 0.0), 0.0), fixed(spacer.part(0.0, 0.0), max(t, width)),
               *(fixed(_named(standoff.part(0.0, 0.0), f"standoff-{i + 1}"), t, p) for i, p in enumerate(posts)),
@@ -124,8 +127,10 @@ def cam_kit(design: Any) -> CamKit:
     printed = Allowances(0.0, table.clearance, "kit.clearance")
     made = ((table.made(frame), table.process), (table.made(follower), table.process),
             (table.made(roller), table.process), (printed.printed(spacer), "fdm"), (printed.printed(standoff), "fdm"))
-    grips = {"guide": t + (z_follower - t) + t, "axle": t + 2 * bolt.washer_thickness + roller_width, "mount": t}
-    bom = _bom(spec, table, made, grips, len(posts), z_cam + spec.cam.thickness + SHAFT_STUB, oscillating)
+    # the axle runs down from its head on the follower through the roller to a washer and the nut under it
+    grips = {"guide": t + (z_follower - t) + t, "axle": t + (z_follower - z_cam) + bolt.washer_thickness,
+             "mount": t}
+    bom = _bom(spec, table, made, grips, len(posts), SHAFT_STUB + cam_top, oscillating)
     report = _report(spec, table, solids_t, made, bom, gaps, posts, frame.holes[0][1])
     return CamKit(table, solids_t, made, bom, report, tol)
 

@@ -199,12 +199,12 @@ def test_printed_seat_is_the_catalogue_bearing_plus_the_clearance(oscillating):
     assert diameter == pytest.approx(expected, abs=2 * design.spec.output.tolerance)
 
 
-def test_kit_3mf_has_every_part_in_place_without_overlaps(rdrd):
+def _no_overlaps(path, stack):
+    """Every object of a kit 3MF is a closed solid standing at its stack height, and no two of them overlap
+    (manifold3d's intersection of each pair: at most 1e-3 of the smaller one's volume, the chords' slack)."""
     import manifold3d
 
-    out, report, _ = rdrd
-    scene = trimesh.load(out / "kit-rdrd-kit.3mf")
-    stack = _stack(report)
+    scene = trimesh.load(path)
     assert set(scene.geometry) == set(stack)
     solids = {}
     for name, mesh in scene.geometry.items():
@@ -215,6 +215,23 @@ def test_kit_3mf_has_every_part_in_place_without_overlaps(rdrd):
     for a, b in itertools.combinations(solids, 2):
         common = (solids[a] ^ solids[b]).volume()
         assert common <= 1e-3 * min(solids[a].volume(), solids[b].volume()), (a, b, common)
+
+
+def test_kit_3mf_has_every_part_in_place_without_overlaps(rdrd):
+    out, report, _ = rdrd
+    _no_overlaps(out / "kit-rdrd-kit.3mf", _stack(report))
+
+
+def test_a_hub_boss_lifts_the_follower_clear(tmp_path):
+    out = tmp_path / "kit-rdrd"
+    _build(camgen, TEMPLATES / "kit-rdrd.toml", out, "hub.boss_diameter=20", "hub.boss_height=6",
+           'output.formats=["json", "3mf"]')
+    report = json.loads((out / "kit-rdrd.json").read_text())
+    stack = _stack(report)
+    assert stack["kit-rdrd"][1] == pytest.approx(stack["kit-rdrd"][0] + 8.0 + 6.0)          # the boss on the cam
+    assert stack["follower"][0] == pytest.approx(stack["kit-rdrd"][1] + BOLTS["M4"].washer_thickness)
+    assert stack["shaft"][1] == pytest.approx(stack["kit-rdrd"][1])
+    _no_overlaps(out / "kit-rdrd-kit.3mf", stack)
 
 
 def test_bill_of_materials_names_the_hardware(rdrd):
@@ -359,3 +376,19 @@ def test_every_kit_key_is_documented():
 def test_default_builds_carry_no_kit(tmp_path):
     _build(camgen, TEMPLATES / "rdrd.toml", tmp_path / "rdrd", 'output.formats=["json"]')
     assert "kit" not in json.loads((tmp_path / "rdrd" / "rdrd.json").read_text())
+
+
+def test_kit_step_holds_every_kit_part_exactly(tmp_path):
+    """With "step" asked for, <name>-kit.step holds each kit part as one exact solid named after it (re-read with
+    Open CASCADE: volume, box, faces and circular edges of the part as made)."""
+    pytest.importorskip("OCP")
+    from camgen.kit import cam_kit
+    from tests.test_step import assert_plate, measure, read_step
+
+    out = tmp_path / "kit-rdrd"
+    _build(camgen, TEMPLATES / "kit-rdrd.toml", out, 'output.formats=["step", "json"]')
+    made = [part for part, _ in cam_kit(design_cam(load_spec(TEMPLATES / "kit-rdrd.toml"))).made]
+    solids = read_step(out / "kit-rdrd-kit.step")
+    assert [n for n, _ in solids] == [p.name for p in made] == ["frame", "follower", "roller", "spacer", "standoff"]
+    for (_, shape), part in zip(solids, made, strict=True):
+        assert_plate(measure(shape), part)

@@ -155,7 +155,8 @@ class Solid:
 
     @property
     def top(self) -> float:
-        return self.z + self.part.thickness
+        """Its top (mm): its top face, or its hub boss's."""
+        return self.z + self.part.thickness + (self.part.boss[1] if self.part.boss else 0.0)
 
     def pose(self, k: int) -> tuple[float, np.ndarray]:
         """(angle rad, shift mm) at pose ``k`` (a fixed part has one)."""
@@ -272,8 +273,9 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
               title: str) -> list[Any]:
     """The kit's files: each part as its process makes it (a laser's as ``<name>-<part>.dxf`` and
     ``<name>-<part>-cut.svg``, a printer's as ``<name>-<part>.stl`` and ``.3mf``), the assembly drawing
-    (``<name>-kit-assembly.dxf|svg|png``) and every part in its assembled place (``<name>-kit.3mf``; ``meshes()``
-    makes them, only if written)."""
+    (``<name>-kit-assembly.dxf|svg|png``), every part in its assembled place (``<name>-kit.3mf``; ``meshes()``
+    makes them, only if written) and, when asked, the kit's parts as exact solids in their own frames
+    (``<name>-kit.step``, one named product a part)."""
     from camgen.core.bundle import item
     from camgen.core.errors import ExportError
     from camgen.core.solids import check_mesh, extrude
@@ -299,5 +301,7 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
     items += [item(drawing, [("dxf", "kit_assembly_dxf", f"{name}-kit-assembly.dxf"),
                              ("cut-svg", "kit_assembly_svg", f"{name}-kit-assembly.svg")], formats),
               item(figure, [("png", "kit_assembly_png", f"{name}-kit-assembly.png")], formats),
-              item(meshes, [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats)]
+              item(meshes, [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats),
+              item(tuple((part.name, (part,)) for part, _ in made), [("step", "kit_step", f"{name}-kit.step")],
+                   formats)]
     return items
