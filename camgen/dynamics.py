@@ -161,13 +161,17 @@ def arm_weight(follower: Any, inertia: float | None, arm_mass: float | None, arm
     return ArmWeight(inertia or 0.0, arm_mass or 0.0, arm_com or 0.0, tilt, sign * math.pi / 180.0)
 
 
-def spec_loading(table: Any, follower: Any) -> Loading:
+def spec_loading(table: Any, follower: Any, positive: bool = False) -> Loading:
     """The :class:`Loading` of a ``[follower]`` table (:class:`camgen.spec.FollowerTable`) on its built
-    ``follower``: the spring, loads and load table, and for an oscillating roller its arm's inertia and weights."""
+    ``follower``: the spring, loads and load table, and for an oscillating roller its arm's inertia and weights.
+    A ``positive`` drive (a groove: no spring) counts the weight only with ``orientation``."""
     arm = table.arm_length if table.oscillating else None
     rows = table.load_table_rows
     weights = None if arm is None else arm_weight(follower, table.inertia, table.arm_mass, table.arm_com,
                                                   table.orientation)
+    if positive and table.orientation is None:
+        return loading(table.mass, None, 0.0, table.load, None, None, arm, None if rows is None else load_table(rows),
+                       weights)
     return loading(table.mass, table.spring_rate, table.preload, table.load, table.orientation,
                    table.contact_margin, arm, None if rows is None else load_table(rows), weights)
 

@@ -96,21 +96,27 @@ def torque(ld: Loading, omega: float, m: np.ndarray, theta: np.ndarray | None = 
     return ld.force(m, omega, theta) * ld.scale * m[1] / 1000.0
 
 
-def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) -> dict[str, Any]:
-    """The report's ``forces``: the torque's extremes and RMS, the peak power, the largest normal contact force
-    and, with materials, the largest contact pressure and where."""
-    omega = rpm * 2 * math.pi / 60
+def _torque_figures(cam: Cam, ld: Loading, omega: float, push: Any) -> dict[str, Any]:
+    """The torque's extremes and RMS, the peak power and the largest of ``push(geometry, motion)``, the normal
+    contact force (N)."""
     hi = peak_at(cam, lambda t, m: torque(ld, omega, m, t))
     lo = peak_at(cam, lambda t, m: -torque(ld, omega, m, t))
-    push = _peak_over(cam, lambda g, m: normal_force(ld, omega, g, m))
-    out: dict[str, Any] = {
+    most = _peak_over(cam, push)
+    return {
         "torque_max_N_m": hi.value, "torque_max_at_deg": hi.at_deg,
         "torque_min_N_m": -lo.value, "torque_min_at_deg": lo.at_deg,
         "torque_rms_N_m": math.sqrt(cycle_mean(cam, lambda t, m: torque(ld, omega, m, t) ** 2,
                                                 ld.table.angles if ld.table else ())),
         "power_max_W": max(hi.value, lo.value) * omega,
-        "contact_force_max_N": push.value, "contact_force_max_at_deg": push.at_deg,
+        "contact_force_max_N": most.value, "contact_force_max_at_deg": most.at_deg,
     }
+
+
+def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) -> dict[str, Any]:
+    """The report's ``forces``: the torque's extremes and RMS, the peak power, the largest normal contact force
+    and, with materials, the largest contact pressure and where."""
+    omega = rpm * 2 * math.pi / 60
+    out = _torque_figures(cam, ld, omega, lambda g, m: normal_force(ld, omega, g, m))
     if contact is not None:
         if cam.contact_radius == 0 and not cam.follower.flat:
             out["stress"] = {"note": "a knife edge touches the cam on a line of no width: no Hertz pressure"}
@@ -123,4 +129,68 @@ def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) ->
                          "length_mm": contact.length, "e_star_MPa": contact.e_star,
                          "pressure_max_MPa": p.value, "pressure_max_at_deg": p.at_deg, "half_width_mm": half,
                          "allowable_MPa": contact.allowable, "holds": p.value <= contact.allowable}
+    return out
+
+
+def flank_changes(cam: Cam, force: Any, sides: tuple[str, str]) -> list[dict[str, Any]]:
+    """Where the force ``force(theta, motion)`` (N) changes sign over the turn and which side carries it from there
+    (``sides[0]`` while it is positive, ``sides[1]`` while negative): each segment sampled every half degree, a
+    change inside one found by bisection to 1e-12 rad, one across a segment's end placed there. Stretches where
+    the force is 0 (a dwell with nothing on the follower: no side carries anything) keep the side before them."""
+    changes, last, first = [], 0.0, None
+    for seg in cam.program.segments:
+        t = np.linspace(seg.start, seg.end, max(3, int(math.degrees(seg.end - seg.start) * 2) + 1))
+        v = force(t, seg.evaluate(t))
+        scale = max(float(np.max(np.abs(v))), 1e-300)
+        for k, value in enumerate(v):
+            if abs(value) <= 1e-12 * scale or value * last > 0:
+                continue
+            at = float(t[k])
+            if last and k > 0:                              # a sign change inside the segment: bisect
+                lo, hi = float(t[k - 1]), at
+                while hi - lo > 1e-12:
+                    mid = (lo + hi) / 2
+                    if float(force(np.array([mid]), seg.evaluate(np.array([mid])))[0]) * last > 0:
+                        lo = mid
+                    else:
+                        hi = mid
+                at = hi
+            if last:
+                changes.append({"at_deg": math.degrees(at) % 360.0, "to": sides[0 if value > 0 else 1]})
+            else:
+                first = (math.degrees(at) % 360.0, sides[0 if value > 0 else 1])
+            last = float(np.sign(value))
+    if first is not None and sides[0 if last > 0 else 1] != first[1]:   # the turn wraps to the other side
+        changes.insert(0, {"at_deg": first[0], "to": first[1]})
+    return changes
+
+
+def drive_report(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str]) -> dict[str, Any]:
+    """The ``forces`` of a positive drive (a groove or a conjugate pair: no spring, contact both ways): the force F
+    on the follower along its path (:class:`~camgen.dynamics.Loading`, its inertia, loads and weights) is carried by
+    ``sides[0]`` where F > 0 (it presses the follower against its rise) and by ``sides[1]`` where F < 0; the torque
+    T = F s' / 1000 either way (the power balance), the largest normal contact force |F| / cos(phi), and where the
+    contact changes side."""
+    omega = rpm * 2 * math.pi / 60
+    out = _torque_figures(cam, ld, omega, lambda g, m: np.abs(normal_force(ld, omega, g, m)))
+    out["carried_by"] = {"force_positive": sides[0], "force_negative": sides[1]}
+    out["side_changes"] = flank_changes(cam, lambda t, m: ld.force(m, omega, t), sides)
+    return out
+
+
+def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float) -> dict[str, Any]:
+    """The ``forces`` of a conjugate pair: :func:`drive_report` on the first cam (the torque T = F s' / 1000 is the
+    follower's power over the cam's speed whichever cam drives), the first cam carrying F > 0 (pressing the follower
+    against its rise) and the second F < 0: a rigid follower with no preload between its rollers, so one contact
+    carries the force while the other runs unloaded. Each cam's largest normal force: N1 = F / cos(phi1), N2 =
+    -F (L1 / L2) / cos(phi2) (phi2 the second cam's pressure angle from the return's direction, L1 / L2 the arms'
+    ratio of a bell crank, 1 for a yoke); the torque is then the sum of both contacts' moments about the axis."""
+    first, second = pair
+    omega = rpm * 2 * math.pi / 60
+    out = drive_report(first, ld, rpm, ("cam 1", "cam 2"))
+    ratio = getattr(first.follower, "arm_length", 1.0) / getattr(second.follower, "arm_length", 1.0)
+    for which, (cam, sign) in enumerate(((first, 1.0), (second, -ratio))):
+        most = _peak_over(cam, lambda g, m, sign=sign: np.maximum(sign * normal_force(ld, omega, g, m), 0.0))
+        out[f"cam_{which + 1}_contact_force_max_N"] = most.value
+        out[f"cam_{which + 1}_contact_force_max_at_deg"] = most.at_deg
     return out

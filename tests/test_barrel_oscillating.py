@@ -184,8 +184,9 @@ def test_pressure_angle_in_3d_against_finite_differences():
      "at best) leaves the roller in the groove (got 5000)"),
     ({"cam.length": 30.0}, "cam.length: must be > 37.9837 mm, the roller's axial stroke"),
     ({"follower.offset": 2.0}, "follower.offset: not used by a oscillating-roller follower"),
-    ({"follower.mass": 2.0}, "follower.mass: not used by a barrel cam (the groove drives the roller both ways; its "
-                             "report gives no forces)"),
+    ({"follower.mass": 2.0, "follower.orientation": 0.0}, "follower.orientation: not modelled for a barrel's arm"),
+    ({"follower.spring_rate": 2.0}, "follower.spring_rate: not used by a barrel cam (the groove drives the roller "
+                                    "both ways; its forces need only follower.mass)"),
     ({"follower.roller_width": 8.0}, "follower.roller_width: not used by a barrel cam"),
     ({"cam.material": "steel"}, "cam.material: not used by a barrel cam (its report gives no contact pressure)"),
     ({"follower.face_margin": 2.0}, "follower.face_margin: not used by a oscillating-roller follower"),

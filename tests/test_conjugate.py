@@ -381,7 +381,7 @@ def test_a_conjugate_family(tmp_path):
 
 @pytest.mark.parametrize("template, change, message", [
     (YOKE, {"follower.spring_rate": 2.0}, "follower.spring_rate: a conjugate pair drives the follower both ways"),
-    (YOKE, {"follower.load": 10.0}, "follower.load: a conjugate pair drives the follower both ways"),
+    (YOKE, {"follower.preload": 10.0}, "follower.preload: a conjugate pair drives the follower both ways"),
     (ARM, {"follower.contact_margin": 1.0}, "follower.contact_margin: a conjugate pair drives the follower both ways"),
     (YOKE, {"cam.allow_undercut": True}, "cam.allow_undercut: both contacts of a conjugate pair must hold"),
     (YOKE, {"cam.groove_depth": 3.0}, "cam.groove_depth: not used by a conjugate cam"),

@@ -12,6 +12,8 @@ from camgen.contact_stress import MATERIALS, Material, effective_modulus, line_c
 from camgen.design import design_cam
 from camgen.dynamics import G_MM, loading, spec_loading
 from camgen.forces import Contact, contact_pressure, normal_force, torque
+from camgen.barrel.design import design_barrel
+from camgen.grooved.design import design_grooved
 from camgen.spec import load_spec
 from tests.refusals import assert_refused
 
@@ -330,3 +332,128 @@ def test_the_checks_figure_draws_the_reported_figures():
     assert np.max(hertz) == pytest.approx(design.speed["forces"]["stress"]["pressure_max_MPa"], rel=5e-3)
     flat = checks_figure(_design(ROOT / "templates" / "flat-face.toml", ())).axes[0]
     assert not flat.get_lines() and "0 by definition" in flat.texts[0].get_text()
+
+
+GROOVED = ROOT / "templates" / "grooved.toml"
+BARREL = ROOT / "templates" / "barrel.toml"
+
+
+def _sides_hold(design, ld, omega, forces) -> None:
+    """Between the reported changes of side the force has the sign of the side reported to carry it."""
+    changes = forces["side_changes"]
+    assert len(changes) >= 2 and all(a["to"] != b["to"] for a, b in zip(changes, changes[1:] + changes[:1]))
+    positive = forces["carried_by"]["force_positive"]
+    for a, b in zip(changes, changes[1:] + changes[:1]):
+        span = (b["at_deg"] - a["at_deg"]) % 360.0
+        theta = np.radians(a["at_deg"] + span * np.linspace(0.02, 0.98, 200))
+        f = ld.force(design.cam.program.evaluate(theta), omega, theta)
+        carried = f[np.abs(f) > 1e-9] * (1 if a["to"] == positive else -1)
+        assert (carried > 0).all()
+        edge = math.radians(a["at_deg"])               # the force changes sign there (or jumps across a segment end)
+        near = ld.force(design.cam.program.evaluate(np.array([edge - 1e-7, edge + 1e-7])), omega,
+                        np.array([edge - 1e-7, edge + 1e-7]))
+        assert near[0] * near[1] <= 0 or abs(near).min() < 1e-5
+
+
+@pytest.mark.parametrize("sets", [("follower.load=-2",), ("follower.load_table=[[0, 3], [180, -3]]",
+                                                          "follower.orientation=90")])
+@pytest.mark.parametrize("rotation", ["ccw", "cw"])
+def test_a_grooved_cams_torque_is_the_moment_of_the_flank_force(sets, rotation):
+    """Positive drive: the force F on the follower (inertia, load, weight) is carried by the inner flank where it
+    presses the follower towards the cam and by the outer where it pulls it away; either way the normal force
+    N = F / cos(phi) acts along the pitch curve's normal, and the shaft's torque F s' / 1000 is its moment about
+    the axis, sense N (p x n) / 1000 (1e-9), both turning senses."""
+    design = design_grooved(load_spec(GROOVED, ("cam.rpm=200", "follower.mass=0.3", f'cam.rotation="{rotation}"',
+                                                *sets)))
+    cam, forces = design.profile.cam, design.profile.speed["forces"]
+    ld = spec_loading(design.spec.follower, cam.follower, positive=True)
+    omega = 200 * 2 * math.pi / 60
+    theta = np.linspace(0.0, 2 * math.pi, 1441)[:-1]
+    m, g = cam.program.evaluate(theta), cam.pitch(theta)
+    n = normal_force(ld, omega, g, m)
+    moment = cam.follower.sense * n * (g.point[:, 0] * g.normal[:, 1] - g.point[:, 1] * g.normal[:, 0]) / 1000.0
+    by_power = torque(ld, omega, m, theta)
+    assert np.max(np.abs(moment - by_power)) < 1e-9 * np.max(np.abs(by_power))
+    assert forces["torque_max_N_m"] == pytest.approx(by_power.max(), rel=1e-3)
+    assert forces["contact_force_max_N"] == pytest.approx(np.abs(n).max(), rel=1e-3)
+    assert forces["carried_by"] == {"force_positive": "inner flank", "force_negative": "outer flank"}
+    _sides_hold(design.profile, ld, omega, forces)
+
+
+def test_a_barrels_torque_is_the_moment_of_the_wall_force_at_the_pitch_radius():
+    """A barrel: the roller pushes the groove's wall along the developed pitch curve's normal n = (-s', Rm) / |.|
+    (x = Rm theta round the cylinder, z along the axis); the tangential part -N n_x at the pitch radius Rm is the
+    shaft's torque, T = -N n_x Rm / 1000 = F s' / 1000 (1e-9); the lower wall carries F > 0 (pressing the roller
+    towards z = 0), the upper F < 0. With a load table as well."""
+    design = design_barrel(load_spec(BARREL, ("cam.rpm=120", "follower.mass=0.5", "follower.load=4",
+                                              "follower.load_table=[[0, 0], [90, -30], [270, 10]]")))
+    cam, forces = design.cam, design.speed["forces"]
+    ld = spec_loading(design.spec.follower, cam.follower, positive=True)
+    omega = 120 * 2 * math.pi / 60
+    theta = np.linspace(0.0, 2 * math.pi, 1441)[:-1]
+    m, g = cam.program.evaluate(theta), cam.pitch(theta)
+    n = normal_force(ld, omega, g, m)
+    assert np.allclose(np.tan(g.pressure_angle), m[1] / 30.0, rtol=1e-12, atol=1e-15)     # atan(s' / Rm)
+    moment = -n * g.normal[:, 0] * 30.0 / 1000.0
+    by_power = torque(ld, omega, m, theta)
+    assert np.max(np.abs(moment - by_power)) < 1e-9 * np.max(np.abs(by_power))
+    assert forces["torque_min_N_m"] == pytest.approx(by_power.min(), rel=1e-3)
+    assert forces["carried_by"]["force_positive"] == "lower wall"
+    _sides_hold(design, ld, omega, forces)
+
+
+def test_a_barrel_arms_torque_is_the_rate_of_its_energy():
+    """An arm on a barrel, its inertia alone: T = dE/dtheta with E = (m L^2 + I) psi_dot^2 / 2 (1e-8)."""
+    template = ROOT / "templates" / "barrel-oscillating.toml"
+    design = design_barrel(load_spec(template, ("cam.rpm=90", "follower.mass=0.2", "follower.inertia=3000")))
+    f, omega, h = design.spec.follower, 90 * 2 * math.pi / 60, 1e-3
+    ld = spec_loading(f, design.cam.follower, positive=True)
+
+    def energy(t):
+        return 0.5 * (0.2 * f.arm_length ** 2 + 3000) * (omega * np.radians(design.cam.program.evaluate(t)[1])) ** 2 \
+            * 1e-6
+
+    theta = np.concatenate([np.linspace(seg.start + 4 * h, seg.end - 4 * h, 97)
+                            for seg in design.cam.program.segments])
+    by_energy = (-energy(theta + 2 * h) + 8 * energy(theta + h) - 8 * energy(theta - h) + energy(theta - 2 * h)
+                 ) / (12 * h)
+    by_force = torque(ld, omega, design.cam.program.evaluate(theta), theta)
+    assert np.max(np.abs(by_force - by_energy)) < 1e-8 * np.max(np.abs(by_force))
+    assert design.speed["forces"]["torque_max_N_m"] == pytest.approx(by_force.max(), rel=1e-3)
+
+
+@pytest.mark.parametrize("template, sets", [
+    ("conjugate.toml", ("follower.load=-3",)),
+    ("conjugate-arm.toml", ("follower.inertia=2000", "follower.load_table=[[0, 5], [200, -5]]")),
+])
+@pytest.mark.parametrize("rotation", ["ccw", "cw"])
+def test_a_conjugate_pairs_torque_is_the_sum_of_both_contacts_moments(template, sets, rotation):
+    """A conjugate pair: cam 1 pushes the follower where F > 0, cam 2 where F < 0 with N2 = -F (L1 / L2) / cos(phi2)
+    along its own pitch normal at the second roller; the sum of both contacts' moments about the shaft, sense N (p x
+    n) / 1000 each, is the shaft's torque F s' / 1000 (1e-9), for a yoke and a bell crank, both turning senses."""
+    from camgen.conjugate.design import design_conjugate
+
+    design = design_conjugate(load_spec(ROOT / "templates" / template,
+                                        ("cam.rpm=150", "follower.mass=0.25", f'cam.rotation="{rotation}"', *sets)))
+    pair = tuple(d.cam for d in design.cams)
+    forces = design.cams[0].speed["forces"]
+    ld = spec_loading(design.spec.follower, pair[0].follower, positive=True)
+    omega = 150 * 2 * math.pi / 60
+    theta = np.linspace(0.0, 2 * math.pi, 1441)[:-1]
+    m = pair[0].program.evaluate(theta)
+    f = ld.force(m, omega, theta)
+    ratio = getattr(pair[0].follower, "arm_length", 1.0) / getattr(pair[1].follower, "arm_length", 1.0)
+    total = np.zeros_like(theta)
+    for cam, push in zip(pair, (np.maximum(f, 0.0), ratio * np.maximum(-f, 0.0)), strict=True):
+        g = cam.pitch(theta)
+        n = push / np.cos(g.pressure_angle)
+        assert (np.cos(g.pressure_angle) > 0).all()
+        total += cam.follower.sense * n * (g.point[:, 0] * g.normal[:, 1] - g.point[:, 1] * g.normal[:, 0]) / 1000
+    by_power = torque(ld, omega, m, theta)
+    assert np.max(np.abs(total - by_power)) < 1e-9 * np.max(np.abs(by_power))
+    assert forces["torque_max_N_m"] == pytest.approx(by_power.max(), rel=1e-3)
+    g2 = pair[1].pitch(theta)
+    assert forces["cam_2_contact_force_max_N"] == pytest.approx(
+        np.max(ratio * np.maximum(-f, 0.0) / np.cos(g2.pressure_angle)), rel=1e-3)
+    assert forces["carried_by"] == {"force_positive": "cam 1", "force_negative": "cam 2"}
+    _sides_hold(design.cams[0], ld, omega, forces)

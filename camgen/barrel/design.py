@@ -36,7 +36,8 @@ from camgen.core.errors import DesignError
 from camgen.core.features import keyed_bore
 from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
 from camgen.core.shapes import Circle, Contour, Polyline
-from camgen.dynamics import speed_report
+from camgen.dynamics import spec_loading, speed_report
+from camgen.forces import drive_report
 from camgen.followers.barrel import DevelopedRoller, rolling_slip, translating_pose
 from camgen.followers.plate import PlateRoller
 from camgen.grooved.design import Flank, flank_checks
@@ -248,6 +249,9 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
                  spec.cam.length, tol)
     jumps = tuple(cam.program.jumps())
     speed = None if spec.cam.rpm is None else speed_report(cam, spec.cam.rpm, None, None, None, [])
+    if speed is not None and spec.follower.mass is not None:  # the roller's centre along the axis (an arm's arc)
+        speed["forces"] = drive_report(cam, spec_loading(spec.follower, cam.follower, positive=True), spec.cam.rpm,
+                                       ("lower wall", "upper wall"))
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
     limit = pressure_limit(spec)
     if pressure["floor"] > limit:

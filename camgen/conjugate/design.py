@@ -33,6 +33,8 @@ from camgen.conjugate.followers import ArmRoller, YokeRoller, arm_prime, arm_tur
 from camgen.core.errors import CamgenError, DesignError
 from camgen.core.parts import Allowances
 from camgen.design import CamDesign, _check_holes, _curves, _engraving, _Profile, _speed
+from camgen.dynamics import spec_loading
+from camgen.forces import pair_report
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
 from camgen.outline import exact_outline
@@ -402,6 +404,17 @@ def _warnings(spec: CamSpec, designs: tuple[CamDesign, CamDesign], limit: float)
     return tuple(out)
 
 
+def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
+    """The follower's rates at ``cam.rpm`` and, with a mass, the pair's forces (:func:`camgen.forces.pair_report`):
+    no spring, so no contact check."""
+    free = spec.model_copy(update={"follower": spec.follower.model_copy(update={"mass": None})})
+    speed = _speed(free, pair[0])
+    if speed is not None and spec.follower.mass is not None:
+        ld = spec_loading(spec.follower, pair[0].follower, positive=True)
+        speed = {**speed, "forces": pair_report(pair, ld, spec.cam.rpm)}
+    return speed
+
+
 def design_conjugate(spec: CamSpec) -> ConjugateDesign:
     """Build, check and outline the conjugate pair ``spec`` describes.
 
@@ -419,7 +432,7 @@ def design_conjugate(spec: CamSpec) -> ConjugateDesign:
     for which, a in enumerate(analyses):
         if a.undercut:
             raise DesignError(_undercut_message(spec, pair, which, a, second_base))
-    shared = _Shared(tuple(first.program.jumps()), _speed(spec, first), pressure_limit(spec), pair[0], sizing)
+    shared = _Shared(tuple(first.program.jumps()), _pair_speed(spec, pair), pressure_limit(spec), pair[0], sizing)
     designs = tuple(_member(spec, cam, a, which, shared)
                     for which, (cam, a) in enumerate(zip(pair, analyses, strict=True)))
     designs = tuple(dataclasses.replace(d, warnings=_warnings(spec, designs, shared.limit)) for d in designs)

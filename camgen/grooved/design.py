@@ -32,6 +32,8 @@ from camgen.core.errors import DesignError
 from camgen.core.parts import Part, Pocket
 from camgen.core.shapes import Contour
 from camgen.design import CamDesign, design_profile
+from camgen.dynamics import spec_loading
+from camgen.forces import drive_report
 from camgen.kinds.base import GROOVE_KEYS
 from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.sizing import Sizing, size_cam
@@ -111,6 +113,10 @@ def _undercut_message(spec: CamSpec, cam: Cam, flank: Flank) -> str:
             "cam.base_radius, or set cam.allow_undercut = true)")
 
 
+#: the follower's keys of a positive drive's forces (a disc cam's contact check does not apply to them)
+DRIVE_KEYS = ("mass", "load", "load_table", "orientation", "inertia", "arm_mass", "arm_com")
+
+
 def island_spec(spec: CamSpec) -> CamSpec:
     """The disc cam the inner flank bounds: the same pitch curve (the same prime radius) with a roller of radius
     Rr + c/2, so its surface is the inner flank; the template's hub, motion and output as they are."""
@@ -125,6 +131,8 @@ def island_spec(spec: CamSpec) -> CamSpec:
                               "inner flank has a base circle")
         raw["cam"]["base_radius"] = spec.cam.base_radius - half
     raw["follower"]["roller_radius"] = spec.follower.contact_radius + half
+    for key in DRIVE_KEYS:                       # the groove's forces are the grooved design's, not a disc's
+        raw["follower"].pop(key, None)
     return validate_spec(raw)
 
 
@@ -243,6 +251,10 @@ def design_grooved(spec: CamSpec) -> GroovedDesign:
         raise DesignError(f"output.kerf: a kerf of {out.kerf:g} mm closes the groove ({2 * d:g} mm wide); the kerf "
                           "must be narrower than the groove")
     profile = dataclasses.replace(design_profile(island), sizing=sizing)
+    if profile.speed is not None and spec.follower.mass is not None:
+        ld = spec_loading(spec.follower, cam.follower, positive=True)   # the island's: the same pitch curve, arm
+        profile = dataclasses.replace(profile, speed={**profile.speed, "forces": drive_report(
+            cam, ld, spec.cam.rpm, ("inner flank", "outer flank"))})
     curves = "polylines" if out.dxf == "segments" else out.curves
 
     def outer_flank(grow: float) -> Outline:      # the outer flank with its material grown by ``grow`` mm

@@ -18,9 +18,8 @@ from camgen.kinds.base import BARREL_KEYS, CamKind
 FOLLOWERS = ("translating-roller", "oscillating-roller")
 #: ``[cam]`` keys a barrel does not use, with what it takes instead
 _NOT_USED = {"base_radius": "pitch_radius", "thickness": "length", "travel": "length", "rim": "length"}
-#: ``[follower]`` keys a barrel does not use: an offset, and the loads and contact of a spring-loaded follower
-_FOLLOWER_NOT_USED = ("offset", "spring_rate", "preload", "mass", "load", "orientation", "contact_margin", "material",
-                      "roller_width")
+#: ``[follower]`` keys a barrel does not use: an offset, and the spring and contact of a spring-loaded follower
+_FOLLOWER_NOT_USED = ("offset", "spring_rate", "preload", "contact_margin", "material", "roller_width")
 
 
 def _levels(spec: Any) -> list[float]:
@@ -111,7 +110,10 @@ def _check(spec: Any) -> None:
     for key in _FOLLOWER_NOT_USED:
         if key in follower.model_fields_set:
             raise ValueError(f"follower.{key}: not used by a barrel cam (the groove drives the roller both ways; its "
-                             "report gives no forces)")
+                             "forces need only follower.mass)")
+    if follower.oscillating and follower.orientation is not None:
+        raise ValueError("follower.orientation: not modelled for a barrel's arm (it swings in a plane through the "
+                         "cam's axis): give the weights as follower.load, or leave them out")
     for key in ("allow_undercut", "min_rho_margin"):
         if key in cam.model_fields_set:
             raise ValueError(f"cam.{key}: not used by a barrel cam: its groove's walls are refused where they undercut")

@@ -33,10 +33,10 @@ def _check(spec: Any) -> None:
     if follower.type not in FOLLOWERS:
         raise ValueError(f"follower.type: a conjugate cam takes a translating-roller (a yoke with two rollers) or "
                          f"oscillating-roller follower (an arm with two rollers) (got {follower.type!r})")
-    for key in ("spring_rate", "preload", "mass", "load", "orientation", "contact_margin"):
+    for key in ("spring_rate", "preload", "contact_margin"):
         if getattr(follower, key) is not None:
             raise ValueError(f"follower.{key}: a conjugate pair drives the follower both ways (positive drive): no "
-                             "return spring and no contact check")
+                             "return spring and no contact check (its forces need only follower.mass)")
     if cam.allow_undercut:
         raise ValueError("cam.allow_undercut: both contacts of a conjugate pair must hold over the whole turn, so an "
                          "undercut is refused, never cut as an envelope")

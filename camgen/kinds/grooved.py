@@ -3,7 +3,8 @@
 The groove's two flanks are the exact offsets of the pitch curve by +/-(Rr + c/2), Rr the
 roller's radius and c ``cam.running_clearance``; the groove is a pocket ``cam.groove_depth``
 mm deep in the face (see :mod:`camgen.grooved`). Positive drive holds the follower without a
-spring, so rollers only, and no spring, preload or mass for a contact check. The pitch curve
+spring, so rollers only, and no spring or preload; at ``cam.rpm`` with a mass the report gives the forces, the
+flank that carries them and the torque (:func:`camgen.forces.drive_report`). The pitch curve
 is the disc cam's (prime radius = base radius + roller radius).
 """
 from __future__ import annotations
@@ -28,10 +29,10 @@ def _check(spec: Any) -> None:
         raise ValueError("cam.groove_depth: required for a grooved cam (mm, > 0 and < cam.thickness)")
     if not cam.groove_depth < cam.thickness:
         raise ValueError(f"cam.groove_depth: must be < cam.thickness {cam.thickness:g} mm (got {cam.groove_depth:g})")
-    for key in ("spring_rate", "preload", "mass"):
+    for key in ("spring_rate", "preload", "contact_margin"):
         if getattr(follower, key) is not None:
             raise ValueError(f"follower.{key}: a grooved cam drives the follower both ways (positive drive): no "
-                             "return spring and no contact check")
+                             "return spring and no contact check (its forces need only follower.mass)")
     if spec.hub.boss_diameter:
         raise ValueError("hub.boss_diameter: a boss would stand on the grooved face, where the follower runs; mount "
                          "a grooved cam by its bore (hub.keyway) or hub.bolt_circle holes")
