@@ -149,6 +149,12 @@ def design_lines(report: dict[str, Any]) -> list[str]:
         lines.append(f"camshaft torque {forces['torque_min_N_m']:.4g} to {forces['torque_max_N_m']:.4g} N*m (RMS "
                      f"{forces['torque_rms_N_m']:.4g}), peak power {forces['power_max_W']:.4g} W, contact force "
                      f"max {forces['contact_force_max_N']:.4g} N")
+        if "side_changes" in forces:
+            sides, changes = forces["carried_by"], forces["side_changes"]
+            lines.append(f"positive drive: {sides['force_positive']} carries the force where it presses the "
+                         f"follower against its rise, {sides['force_negative']} where it pulls; "
+                         + ("the contact changes side at " + ", ".join(f"{c['at_deg']:.4g}" for c in changes) + " deg"
+                            if changes else "the contact never changes side"))
         stress = forces.get("stress", {})
         if "pressure_max_MPa" in stress:
             lines.append(f"contact pressure max {stress['pressure_max_MPa']:.4g} MPa at "

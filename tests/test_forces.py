@@ -2,6 +2,7 @@
 computation, the spring sizing and lift-off speed at their limits, the weight by orientation, bad values refused."""
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -457,3 +458,21 @@ def test_a_conjugate_pairs_torque_is_the_sum_of_both_contacts_moments(template, 
         np.max(ratio * np.maximum(-f, 0.0) / np.cos(g2.pressure_angle)), rel=1e-3)
     assert forces["carried_by"] == {"force_positive": "cam 1", "force_negative": "cam 2"}
     _sides_hold(design.cams[0], ld, omega, forces)
+
+
+def test_the_console_says_which_side_carries_the_force(tmp_path):
+    """``camgen build`` of a barrel at a speed with a mass prints the torque and where the contact changes wall."""
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+
+    result = CliRunner().invoke(main, ["build", str(BARREL), "-o", str(tmp_path / "out"), "--set", "cam.rpm=200",
+                                       "--set", "follower.mass=0.3", "--set", "follower.load=-1"])
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "out" / "barrel.json").read_text())
+    changes = report["speed"]["forces"]["side_changes"]
+    assert [c["to"] for c in changes] == ["lower wall", "upper wall", "lower wall", "upper wall"]
+    assert ("positive drive: lower wall carries the force where it presses the follower against its rise, upper "
+            "wall where it pulls; the contact changes side at " + ", ".join(f"{c['at_deg']:.4g}" for c in changes)
+            ) in result.output
+    assert "camshaft torque" in result.output

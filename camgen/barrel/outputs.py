@@ -15,6 +15,7 @@ from camgen.core import VERSION
 from camgen.core.bundle import Bundle, Report, item
 from camgen.core.errors import ExportError
 from camgen.page import cam_page
+from camgen.report import design_lines
 
 
 #: where the cutter's loops start, in steps round from theta = 0, tried in turn
@@ -145,6 +146,8 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
     if report["wall_max_error_mm"] is not None:
         lines.append(f"solid: walls within {report['wall_max_error_mm']:.2e} mm of the exact walls, floor within "
                      f"{report['floor_max_error_mm']:.2e} mm ({report['mesh']['triangles']} triangles)")
+    if (report.get("speed") or {}).get("forces"):        # the forces of its positive drive at cam.rpm
+        lines += design_lines({"speed": report["speed"]})
     return lines
 
 

@@ -23,7 +23,7 @@ from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.parts import Drawing
 from camgen.outputs import printed_mesh
 from camgen.page import cam_page
-from camgen.report import cam_report
+from camgen.report import cam_report, design_lines
 
 #: the keys of a disc cam's report that each cam of the pair has of its own (the rest they share)
 OWN_KEYS = ("pressure_angle_max_deg", "pressure_angle_max_at_deg", "pitch_rho_min_mm", "pitch_rho_min_at_deg",
@@ -151,6 +151,8 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
                  f"{report['outline_max_error_mm']:.2e} mm (tolerance {report['tolerance_mm']:g} mm)")
     lines.append(f"contact: both rollers within {contact['worst_mm']:.2e} mm of their cams over {contact['angles']} "
                  "angles")
+    if (report.get("speed") or {}).get("forces"):        # the forces of its positive drive at cam.rpm
+        lines += design_lines({"speed": report["speed"]})
     return lines
 
 
