@@ -4,8 +4,8 @@ Names: ``<name>.json`` (the report, with the parts section when there are parts)
 ``<name>-<kind>.png|svg`` (the mechanism's figures), and with parts ``<name>-sheet.dxf|svg`` (the cut parts
 nested on one sheet; ``<name>-sheet-1.dxf|svg``, ``-sheet-2``, ... when they need several)
 and ``<name>-assembly.dxf|svg|png`` (cut files, kerf applied; the SVGs are the ``cut-svg``
-format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf`` (printed), ``<name>.step`` (every printed part as an
-exact solid named after it, only when asked), ``<name>.html`` (the interactive page, for
+format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf`` (printed), ``<name>.step`` (every printed part, the
+pin and the spacers as exact solids named after them, only when asked), ``<name>.html`` (the interactive page, for
 every linkage linkgen can draw as a general one). Only the formats the
 spec's ``output.formats`` asks for are made; nothing is written if any file fails. Everything
 written is computed by the design; meshes are made here from its printed parts.
@@ -18,6 +18,7 @@ from typing import Any
 from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
 from camgen.core.errors import ExportError, SpecError
 from camgen.core.nesting import sheet_kinds
+from camgen.core.parts import Part
 from camgen.core.kit import placed_meshes
 from linkgen.design import LinkageDesign, design_linkage
 from linkgen.kit import linkage_kit, placed_solids
@@ -74,8 +75,7 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
         return drawing_figure(build.assembly, f"{name}: assembly at the dead centres, with the path")
 
     items.append(item(assembly_figure, [("png", "assembly_png", f"{name}-assembly.png")], formats))
-    items.append(item(tuple((part.name, (part,)) for part in build.printed), [("step", "step", f"{name}.step")],
-                      formats))
+    items.append(item(_step_solids(build), [("step", "step", f"{name}.step")], formats))
     if {"stl", "3mf"} & set(formats):
         from camgen.core.solids import check_mesh, extrude, pin, spacer
 
@@ -96,6 +96,26 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
             items.append(item(mesh, [("stl", f"{part_name}_stl", f"{name}-{part_name}.stl"),
                                      ("3mf", f"{part_name}_3mf", f"{name}-{part_name}.3mf")], formats))
     return items
+
+
+def _step_solids(build: LinkageBuild) -> tuple[tuple[str, tuple[Part, ...]], ...]:
+    """The STEP file's solids (see :mod:`camgen.core.writers.step`): every printed part, and with pins the pin (its
+    shank, as long as the stack of layers and 1 mm more, under a head 1.8 x as wide and half a diameter high) and a
+    spacer a height, the shapes of their meshes as exact discs and rings."""
+    from camgen.core.kit import disc
+
+    table = build.table
+    solids = [(part.name, (part,)) for part in build.printed]
+    if table.pins:
+        d, tol = table.pin_diameter, table.tolerance
+        length = (max(build.layers.values()) + 1) * table.thickness + 1.0
+        solids.append(("pin", (disc("pin", d, 0.0, length, tol).part(0.0, 0.0),
+                               disc("pin-head", 1.8 * d, 0.0, d / 2, tol).part(0.0, 0.0))))
+        inner, outer = build.spacer_diameters
+        for run in sorted({run for _, _, run in build.spacers}):
+            spacer = disc(f"spacer-{run}", outer, inner, run * table.thickness, tol)
+            solids.append((spacer.name, (spacer.part(0.0, 0.0),)))
+    return tuple(solids)
 
 
 def build_member(raw: dict, folder: Path) -> dict[str, Any]:

@@ -20,6 +20,7 @@ from camgen.core.writers import FORMATS
 from camgen.core.writers.step import _quiet, write_step
 from camgen.design import design_cam
 from camgen.spec import load_spec
+from linkgen.cli import main as linkgen_main
 from tests.conftest import ROOT, template
 
 PROGRAMS = ROOT / "tests" / "programs"
@@ -272,15 +273,37 @@ def test_linkage_every_part_a_named_solid(crank_rocker):
     out, printed = crank_rocker
     assert (out / "crank-rocker.step").exists() and (out / "crank-rocker-crank.stl").exists()
     solids = read_step(out / "crank-rocker.step")
-    assert [n for n, _ in solids] == [p.name for p in printed] == ["ground", "crank", "coupler", "rocker"]
-    for (_, shape), part in zip(solids, printed, strict=True):
+    assert [n for n, _ in solids] == [p.name for p in printed] + ["pin"] == ["ground", "crank", "coupler", "rocker",
+                                                                             "pin"]
+    for (_, shape), part in zip(solids[:-1], printed, strict=True):
         assert_plate(measure(shape), part)
+    # the pin: a 4 mm shank through three 4 mm layers and 1 mm more, under a head 7.2 mm wide and 2 mm high
+    pin = measure(solids[-1][1])
+    assert pin["solids"] == 1 and pin["valid"]
+    assert pin["volume"] == pytest.approx(math.pi * (2.0**2 * 13.0 + 3.6**2 * 2.0), rel=1e-9)
+    assert np.abs(pin["box"] - [-3.6, -3.6, 0.0, 3.6, 3.6, 15.0]).max() <= 1e-6
+
+
+def test_linkage_spacers_are_rings(tmp_path):
+    """stephenson1 with pins: a spacer bridges one empty layer, a ring of the spacer's diameters one layer high."""
+    from linkgen.design import design_linkage
+    from linkgen.spec import load_spec as load_linkage
+
+    template_path = ROOT / "templates" / "stephenson1.toml"
+    sets = ['output.formats=["step"]', "parts.pins=true"]
+    result = CliRunner().invoke(linkgen_main, ["build", str(template_path), "-o", str(tmp_path), *(
+        a for s in sets for a in ("--set", s))])
+    assert result.exit_code == 0, result.output
+    build = design_linkage(load_linkage(template_path, sets), parts=True).build
+    solids = dict(read_step(tmp_path / "stephenson1.step"))
+    inner, outer = build.spacer_diameters
+    ring = measure(solids["spacer-1"])
+    assert list(solids)[-2:] == ["pin", "spacer-1"] and ring["valid"] and ring["faces"] == 2 + 1 + 2
+    assert ring["volume"] == pytest.approx(math.pi * (outer**2 - inner**2) / 4 * build.table.thickness, rel=1e-9)
 
 
 def test_linkgen_analyze_refuses_step(tmp_path):
     """``linkgen analyze`` makes no parts: asking it for step is one line saying which command does."""
-    from linkgen.cli import main as linkgen_main
-
     result = CliRunner().invoke(linkgen_main, ["analyze", str(ROOT / "templates" / "crank-rocker.toml"), "-o",
                                                str(tmp_path / "out"), "--set", 'output.formats=["step","json"]'])
     assert result.exit_code == 2 and "output.formats: 'step' writes the linkage's parts" in result.output
@@ -377,9 +400,10 @@ def test_freecad_reads_a_keyway_and_bolt_holes(tmp_path):
 
 def test_freecad_reads_every_part_of_a_linkage(crank_rocker):
     out, printed = crank_rocker
-    done = _freecad(out / "crank-rocker.step", [_fc(expect_plate(part)) for part in printed])
+    pin = {"volume": math.pi * (2.0**2 * 13.0 + 3.6**2 * 2.0), "box": [-3.6, -3.6, 0.0, 3.6, 3.6, 15.0], "faces": 7}
+    done = _freecad(out / "crank-rocker.step", [*(_fc(expect_plate(part)) for part in printed), pin])
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
-    assert len(json.loads(done.stdout.strip().splitlines()[-1])["solids"]) == 4
+    assert len(json.loads(done.stdout.strip().splitlines()[-1])["solids"]) == 5
 
 
 def test_freecad_check_rejects_a_wrong_volume(rdrd_cli):
