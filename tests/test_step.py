@@ -148,7 +148,9 @@ def test_rdrd_step_beside_the_stl_one_exact_solid(rdrd_cli):
     {"output.curves": "biarcs", "output.clearance": 5.0},         # the largest clearance: the printed part's bore
     {"cam.bore": 0.0},                                            # no hole at all
     {"cam.bore": 10.0 + 1e-12},                                   # 1e-12 mm from a round size
-], ids=["biarcs", "keyway-bolts", "clearance-5", "no-bore", "bore-1e-12"])
+    {"output.curves": "biarcs", "output.tolerance": 1e-6},        # the least tolerance: 548 arcs
+    {"output.kerf": 0.3},                                         # the kerf is the cut files', not the solid's
+], ids=["biarcs", "keyway-bolts", "clearance-5", "no-bore", "bore-1e-12", "tolerance-1e-6", "kerf"])
 def test_exact_plate_volume_box_faces_and_arcs(case, tmp_path):
     part = design_cam(template({**case, "output.formats": ["json"]})).printed
     write_step([(part.name, (part,))], tmp_path / "x.step")
