@@ -327,6 +327,7 @@ def test_family_members_write_step(tmp_path):
     text = (ROOT / "templates" / "valve-cams.toml").read_text()
     family = tmp_path / "valves.toml"
     family.write_text(text.replace('formats = ["dxf", "stl", "json"]', 'formats = ["step", "json"]'))
+    assert 'formats = ["step", "json"]' in family.read_text()
     result = CliRunner().invoke(main, ["family", str(family), "-o", str(tmp_path / "out")])
     assert result.exit_code == 0, result.output
     steps = sorted(tmp_path.rglob("*.step"))
