@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import DesignError
-from camgen.core.hardware import bolt_length
-from camgen.core.kit import BomLine, KitTable, Solid, bolt_line
+from camgen.core.hardware import Bolt, bolt_length
+from camgen.core.kit import BomLine, KitTable, Solid, bolt_line, check_clear, disc, fixed
 from linkgen.parts import COLLISION_TOLERANCE_MM, Layout, LinkageBuild, build_parts
 
 #: how many times the corner holes may step outwards (each a hole's width) to clear the moving parts
@@ -39,6 +39,8 @@ class LinkageKit:
     report: dict[str, Any]
     #: the placement of the first pose the assembly drawing shows (the kit's 3MF shows the parts there)
     pose: Any = None
+    #: the bolt the pins and the mounting holes are sized for
+    bolt: Bolt | None = None
 
 
 def base_plate(layout: Layout, kit: KitTable) -> tuple[Layout, tuple[tuple[float, float], ...]]:
@@ -99,7 +101,9 @@ def pins_of(build: LinkageBuild, layout: Layout) -> tuple[dict[str, Any], ...]:
 
 def linkage_kit(design: Any) -> LinkageKit:
     """The kit of a linkage ``design`` built with its parts, for its spec's ``[kit]``: the build made again from
-    the mechanism's layout with the base plate (same layers: the ground is layer 0 whatever its shape)."""
+    the mechanism's layout with the base plate (same layers: the ground is layer 0 whatever its shape). The parts,
+    pins, spacers and mounting heads are placed over the motion's sweep, and two that share some height and meet
+    in plan at any pose are refused (:class:`DesignError` naming ``parts.width``)."""
     spec, kit = design.spec, design.spec.kit
     table = spec.parts
     layout = design.mechanism.layout(spec.linkage, design.kinematics, table)
@@ -132,18 +136,43 @@ def linkage_kit(design: Any) -> LinkageKit:
                                   "cut_diameter_mm": build.allowances.cut_diameter(bolt.clearance_hole)}
                                  for x, y in mounts],
               "pins": list(pins), "bom": [line.row() for line in bom]}
-    return LinkageKit(build, mounts, pins, tuple(bom), report, layout.poses[0])
+    made = LinkageKit(build, mounts, pins, tuple(bom), report, layout.poses[0], bolt)
+    sweep = layout.sweep
+    check_clear(placed_solids(made, sweep), len(next(iter(sweep.angles.values()))), COLLISION_TOLERANCE_MM,
+                frozenset(), "parts.width")
+    report["stack"] = [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made}
+                       for s in placed_solids(made, made.pose)]
+    return made
 
 
-def placed_solids(kit: LinkageKit, pose: Any) -> tuple[Solid, ...]:
-    """Each printed part in its place at a pose of the assembly (a :class:`~linkgen.parts.Placement`; a part it
-    does not move, a top plate, stays where it is drawn), standing at its layer times the plate thickness."""
-    build = kit.build
-    thickness = build.table.thickness
+def placed_solids(kit: LinkageKit, placement: Any) -> tuple[Solid, ...]:
+    """The kit placed at every pose of ``placement`` (a :class:`~linkgen.parts.Placement`): each printed part (one
+    the placement does not move, a top plate, stays where it is drawn) standing at its layer times the plate
+    thickness; each pin (``pin-<joint>``, the bolt's shank) from its lowest part's bottom to its highest part's top;
+    a spacer (``spacer-<joint>-<layer>``) on each layer a pin crosses that no part it passes is on; the mounting
+    bolts' heads (``mount-head-<k>``) on the base plate."""
+    build, bolt = kit.build, kit.bolt
+    table = build.table
+    t = table.thickness
+    n = len(next(iter(placement.angles.values())))
     out = []
     for part in build.printed:
-        angle = pose.angles.get(part.name, np.zeros(1))[:1]
-        origin = pose.origins.get(part.name, np.zeros((1, 2)))[:1]
-        out.append(Solid(part, build.layers[part.name] * thickness, np.asarray(angle, dtype=float),
-                         np.asarray(origin, dtype=float)))
+        angles = placement.angles.get(part.name, np.zeros(n))
+        origins = placement.origins.get(part.name, np.zeros((n, 2)))
+        out.append(Solid(part, build.layers[part.name] * t, np.asarray(angles, dtype=float),
+                         np.asarray(origins, dtype=float)))
+    inner, outer = build.spacer_diameters
+    for pin in kit.pins:
+        joint = pin["joints"][0]
+        where = np.asarray(placement.joints[joint][1], dtype=float)
+        low, high = pin["low_layer"], pin["high_layer"]
+        shank = disc(f"pin-{joint}", bolt.diameter, 0.0, (high - low + 1) * t, table.tolerance).part(0.0, 0.0)
+        out.append(Solid(shank, low * t, np.zeros(n), where, made=False))
+        held = {build.layers[name] for name in pin["parts"]}
+        for layer in sorted(set(range(low + 1, high)) - held):
+            ring = disc(f"spacer-{joint}-{layer}", outer, inner, t, table.tolerance).part(0.0, 0.0)
+            out.append(Solid(ring, layer * t, np.zeros(n), where))
+    for k, at in enumerate(kit.mounts):
+        head = disc(f"mount-head-{k + 1}", bolt.head_diameter, 0.0, bolt.head_height, table.tolerance)
+        out.append(fixed(head.part(0.0, 0.0), t, at, made=False))
     return tuple(out)

@@ -350,11 +350,28 @@ def test_linkage_mounting_heads_clear_the_moving_parts_over_the_turn(crank_rocke
 
 def test_linkage_kit_3mf_has_every_part(crank_rocker):
     out, report = crank_rocker
-    scene = trimesh.load(out / "kit-crank-rocker-kit.3mf")
-    assert set(scene.geometry) == {p["name"] for p in report["parts"]}
-    layers = report["layers"]
-    for name, mesh in scene.geometry.items():
-        assert mesh.bounds[0, 2] == pytest.approx(layers[name] * 4.0, abs=1e-4)
+    stack = _stack(report)
+    parts = {p["name"] for p in report["parts"]}
+    assert parts <= set(stack) and set(stack) - parts == {"pin-O2", "pin-A", "pin-B", "pin-O4", *(
+        f"mount-head-{k}" for k in range(1, 5))}
+    for name in parts:
+        assert stack[name][0] == pytest.approx(report["layers"][name] * 4.0, abs=1e-12)
+    _no_overlaps(out / "kit-crank-rocker-kit.3mf", stack)
+
+
+def test_spacers_fill_the_layers_a_pin_crosses_and_nothing_meets(tmp_path):
+    """single-dwell (a six-bar) needs spacers: one a layer a pin crosses between its parts, in the kit 3MF at the
+    first dead centre with no two solids overlapping (manifold3d)."""
+    out = tmp_path / "single-dwell"
+    _build(linkgen, TEMPLATES / "single-dwell.toml", out, "kit.bolt=M4", "parts.pin_diameter=4.0",
+           'output.formats=["json", "3mf"]')
+    report = json.loads((out / "single-dwell.json").read_text())
+    stack = _stack(report)
+    t = report["parts"][0]["thickness_mm"]
+    spacers = [name for name in stack if name.startswith("spacer-")]
+    assert len(spacers) == round(sum(s["height_mm"] for s in report["spacers"]) / t) == 4
+    assert all(stack[name][1] - stack[name][0] == pytest.approx(t) for name in spacers)
+    _no_overlaps(out / "single-dwell-kit.3mf", stack)
 
 
 def test_jansen_kit_one_pin_a_pivot_point(tmp_path):
@@ -364,7 +381,8 @@ def test_jansen_kit_one_pin_a_pivot_point(tmp_path):
     pins = report["kit"]["pins"]
     assert len(pins) == 7                                         # O, A, B, C, D, E, F
     assert len({(p["x_mm"], p["y_mm"]) for p in pins}) == 7
-    assert set(trimesh.load(out / "jansen-kit.3mf").geometry) == {p["name"] for p in report["parts"]}
+    assert set(trimesh.load(out / "jansen-kit.3mf").geometry) == set(_stack(report))
+    assert {p["name"] for p in report["parts"]} <= set(_stack(report))
 
 
 def test_every_kit_key_is_documented():
