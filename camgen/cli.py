@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, add_new, set_option, template_options,
+from camgen.core.cli import (Commands, add_bench, add_family, add_new, output_option, set_option, template_options,
                              user_errors)
 
 
@@ -131,6 +131,27 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
     if alone is not None:
         click.echo(f"each cam alone: cam 1 needs {alone[0].base_radius_mm:.4f} mm (cam.base_radius), cam 2 "
                    f"{alone[1].base_radius_mm:.4f} mm (cam.second_base_radius); a pair of equal cams, the larger")
+
+
+@main.command()
+@output_option("Output folder (default: out/<name>/, out/coupon/).", default=None)
+@set_option("coupon.diameter=8")
+@user_errors
+def coupon(output: Path | None, overrides: tuple[str, ...]) -> None:
+    """Write a fit-test coupon: holes at a range of clearances round one pin, labelled, and the pin."""
+    from camgen.core.coupon import coupon_spec, design_coupon, write_coupon
+
+    spec = coupon_spec(None, overrides)
+    directory = output if output is not None else Path("out") / spec.name
+    report = write_coupon(design_coupon(spec), directory)
+    holes, allow = report["holes"], report["allowances"]
+    click.echo(f"{spec.name}: {len(holes)} holes for a {report['nominal_mm']:g} mm pin, clearances {holes[0]['label']} "
+               f"to {holes[-1]['label']} mm; cut holes drawn at nominal + clearance - kerf {allow['kerf_mm']:g} mm, "
+               f"printed at nominal + clearance + {allow['clearance_mm']:g} mm")
+    for warning in report["warnings"]:
+        click.echo(f"warning: {warning}")
+    for name in report["files"].values():
+        click.echo(f"wrote {directory / name}")
 
 
 add_family(main, "camgen.spec:validate_spec", "camgen.outputs:build_member",

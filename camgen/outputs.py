@@ -16,6 +16,7 @@ from typing import Any
 from camgen.core.bundle import Bundle, Report, item, write_bundle
 from camgen.core.errors import ExportError, SpecError
 from camgen.core.parts import Drawing, Part
+from camgen.core.routing import add_routing
 from camgen.core.kit import kit_items
 from camgen.core.writers import WriteOptions
 from camgen.design import CamDesign
@@ -73,9 +74,11 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
     """The files of any cam kind, named as this module says: ``cut`` drawn as the cut files, ``mesh`` (or None)
     as the printed ones, ``plot(kind)`` for each of ``figures`` (made only if written), ``report``, ``page()`` (the
     interactive page, made only if written; none without it), ``printed`` (the printed part, or None) as the exact
-    STEP solid; only the formats ``spec.output.formats`` asks for."""
+    STEP solid; only the formats ``spec.output.formats`` asks for. With
+    ``output.tool_radius`` the report gains the cut part's ``routing`` check (:mod:`camgen.core.routing`)."""
     out, name = spec.output, spec.name
     formats = out.formats
+    add_routing(report, [cut], out.tool_radius)
     items = [
         item(Drawing.of_part(cut), [("dxf", "dxf", f"{name}.dxf"), ("cut-svg", "cut_svg", f"{name}-cut.svg")], formats),
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),

@@ -70,6 +70,12 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
     files = write_linkage(design, directory)
     built = design.build
     click.echo(f"{spec.name}: {len(built.parts)} parts; layers from the bottom: {', '.join(built.layer_names)}")
+    if "routing" in design.report:
+        from camgen.core.routing import tool_warning
+
+        warning = tool_warning(design.report["routing"])
+        if warning is not None:
+            click.echo(f"warning: {warning}")
     for name in files.values():
         click.echo(f"wrote {directory / name}")
 

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from camgen.core.errors import SpecError
+from camgen.core.routing import add_routing
 from linkgen.effort import Statics, statics_of, statics_report
 from linkgen.mechanisms import Mechanism
 from linkgen.mechanisms.common import Figure
@@ -135,7 +136,10 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
             raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
         statics = statics_of(spec.loads, posed[0])
         report["statics"] = statics_report(statics, table.rpm)
-    build = build_parts(mechanism.layout(table, kinematics, spec.parts), spec.parts) if parts else None
+    build = build_parts(mechanism.layout(table, kinematics, spec.parts), spec.parts,
+                        spec.output.elephant_foot) if parts else None
+    if build is not None:
+        add_routing(report, build.cut, spec.output.tool_radius)
     return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics)
 
 

@@ -82,10 +82,12 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
         meshes = [(part.name, extrude(part)) for part in build.printed]
         if table.pins:
             top = max(build.layers.values()) + 1
-            meshes.append(("pin", pin(table.pin_diameter, top * table.thickness + 1.0, table.tolerance)))
+            foot = build.allowances.elephant_foot
+            meshes.append(("pin", pin(table.pin_diameter, top * table.thickness + 1.0, table.tolerance, foot)))
             inner, outer = build.spacer_diameters
             for run in sorted({run for _, _, run in build.spacers}):
-                meshes.append((f"spacer-{run}", spacer(inner, outer, run * table.thickness, table.tolerance)))
+                meshes.append((f"spacer-{run}",
+                               spacer(inner, outer, run * table.thickness, table.tolerance, foot)))
         names = [part_name for part_name, _ in meshes]
         for part_name in {n for n in names if names.count(n) > 1}:
             raise SpecError(f"a part named {part_name!r} would share its files with the printable {part_name}; "

@@ -343,10 +343,10 @@ def spacers_of(placement: Placement, layers: dict[str, int]) -> tuple[tuple[str,
     return tuple(out)
 
 
-def build_parts(layout: Layout, table: PartsTable) -> LinkageBuild:
+def build_parts(layout: Layout, table: PartsTable, elephant_foot: float = 0.0) -> LinkageBuild:
     """Layers, cut and printed parts, cut sheet and assembly drawing of a mechanism's ``layout``, for its
-    ``[parts]`` table."""
-    allowances = Allowances(kerf=table.kerf, clearance=0.0, kerf_field="parts.kerf")
+    ``[parts]`` table; the printed parts' bed faces chamfered by ``elephant_foot`` mm (``output.elephant_foot``)."""
+    allowances = Allowances(kerf=table.kerf, clearance=0.0, kerf_field="parts.kerf", elephant_foot=elephant_foot)
     layers, top_pins = layer_order(layout.parts, layout.sweep, table.pin_diameter / 2)
     layout, layers = with_top_plate(layout, layers, top_pins, table.width_of("ground"))
     cut = tuple(allowances.cut(p) for p in layout.parts)

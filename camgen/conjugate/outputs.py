@@ -21,6 +21,7 @@ from camgen.conjugate.followers import ArmRoller
 from camgen.core.bundle import Bundle, Report, item
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.parts import Drawing
+from camgen.core.routing import add_routing
 from camgen.outputs import printed_mesh
 from camgen.page import cam_page
 from camgen.report import cam_report, design_lines
@@ -213,6 +214,7 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     formats, name = out.formats, design.spec.name
     meshes = [printed_mesh(d.spec, d.printed) for d in design.cams]
     report = conjugate_report(design, (meshes[0][1], meshes[1][1]))
+    add_routing(report, [d.cut for d in design.cams], out.tool_radius)
 
     def plot(kind: str) -> Any:
         from camgen import plots

@@ -7,7 +7,7 @@ and as printed (clearance), for every product alike. Lengths in mm.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Protocol
 
 from camgen.core.errors import DesignError
@@ -22,7 +22,9 @@ class Part:
     polygons (meshes, plots). ``marks`` are (layer, shape) pairs drawn but not cut
     (engraving). A hub ``boss`` (diameter, height; mm) stands on the top face round
     the first hole, with a radial ``set_screw`` hole (diameter, mm) through it. ``pockets`` are recesses into
-    the top face (a grooved cam's groove).
+    the top face (a grooved cam's groove). ``elephant_foot`` (mm, 0 for none) is the 45-degree chamfer a printed
+    solid gets round its bed face (z = 0), against the first layer's squashed outline (see
+    :func:`camgen.core.solids.extrude`).
     """
 
     name: str
@@ -34,6 +36,7 @@ class Part:
     boss: tuple[float, float] | None = None
     set_screw: float = 0.0
     pockets: tuple[Pocket, ...] = ()
+    elephant_foot: float = 0.0
 
     @property
     def area(self) -> float:
@@ -142,12 +145,15 @@ class Allowances:
     ``kerf``: the laser burns kerf/2 either side of its path, so a cut part's outline
     is moved out by kerf/2 and its holes in by kerf/2 (a hole's diameter less the kerf).
     ``clearance``: a printed hole is opened by this in diameter (clearance/2 a side).
+    ``elephant_foot``: a printed part's bed face is chamfered by this at 45 degrees (its outline inset, its holes
+    opened by it), against the first layer's squashed, widened outline.
     """
 
     kerf: float = 0.0
     clearance: float = 0.0
     #: the template field that sets the kerf, named when it is too wide for a hole
     kerf_field: str = "kerf"
+    elephant_foot: float = 0.0
 
     def cut(self, maker: PartMaker) -> Part:
         """The part as the cut files carry it; refused when the kerf would close a hole."""
@@ -161,7 +167,8 @@ class Allowances:
 
     def printed(self, maker: PartMaker) -> Part:
         """The part as the printed files carry it."""
-        return maker.part(0.0, self.clearance / 2)
+        part = maker.part(0.0, self.clearance / 2)
+        return replace(part, elephant_foot=self.elephant_foot) if self.elephant_foot else part
 
     def cut_diameter(self, diameter: float) -> float:
         """A hole of ``diameter`` mm as drawn in a cut file."""

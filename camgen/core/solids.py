@@ -6,13 +6,14 @@ consistently oriented (outward) two-manifold.
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
-from camgen.core.errors import ExportError
+from camgen.core.errors import DesignError, ExportError
 from camgen.core.parts import Part
 from camgen.core.shapes import Circle, arc_steps
 
@@ -34,16 +35,18 @@ def _ccw(points: np.ndarray, ccw: bool) -> np.ndarray:
 
 
 def extrude(part: Part) -> Mesh:
-    """The part as a solid from z = 0 to z = thickness, holes cut through (see :func:`_solid`)."""
+    """The part as a solid from z = 0 to z = thickness, holes cut through (see :func:`_solid`), its bed face
+    chamfered by ``part.elephant_foot`` (see :func:`elephant_foot`)."""
     return _mesh(_solid(part), part.name)
 
 
 def stack(parts: Sequence[Part], name: str) -> Mesh:
     """The parts as one solid named ``name``: each extruded (see :func:`extrude`) and set on the one before it,
-    the first from z = 0 (a Geneva driver: the crank with the locking disc on top)."""
+    the first from z = 0 (a Geneva driver: the crank with the locking disc on top); only the first, on the bed,
+    gets its elephant-foot chamfer."""
     solid, z = None, 0.0
-    for part in parts:
-        piece = _solid(part).translate((0.0, 0.0, z))
+    for k, part in enumerate(parts):
+        piece = _solid(part if k == 0 else replace(part, elephant_foot=0.0)).translate((0.0, 0.0, z))
         solid, z = piece if solid is None else solid + piece, z + part.thickness
     return _mesh(solid, name)
 
@@ -69,11 +72,12 @@ def volume_check(parts: Sequence[Part], volume_mm3: float) -> dict[str, float]:
     """A solid's volume (mm^3) against its parts' exact one, each part's area x thickness less its pockets' area x
     depth (exact for the arcs; no boss), and the bound the chords allow: a chord within the tolerance t of its arc
     moves a section's area by less than t a unit of the arc's length, so the volume by less than t x (each
-    contour's length x its height). Raises :class:`ExportError` when the solid is further off than that."""
+    contour's length x its height); an elephant-foot chamfer takes :func:`foot_volume` of each contour's chords. Raises :class:`ExportError` when the solid is further off than that."""
     expected = bound = 0.0
     for part in parts:
         tol = part.tolerance
         expected += part.area * part.thickness - sum(p.area * p.depth for p in part.pockets)
+        expected -= sum(foot_volume(ring, part.elephant_foot) for ring in _rings(part)) if part.elephant_foot else 0.0
         bound += tol * sum(_length(c, tol) for c in (part.outline, *part.holes)) * part.thickness
         bound += tol * sum(_length(c, tol) * p.depth for p in part.pockets for c in p.contours)
     if not abs(volume_mm3 - expected) <= bound:
@@ -95,13 +99,20 @@ def _solid(part: Part) -> Any:
     A hub boss stands on the top face round the first hole (the bore), to
     z = thickness + boss height, and a radial set-screw hole runs from the bore
     through the boss along +Y at the boss's mid-height. Each pocket is cut ``depth`` mm down from the top face.
+    The bed face (z = 0) is chamfered by ``part.elephant_foot`` (see :func:`elephant_foot`).
     """
     import manifold3d
 
     tol = part.tolerance
-    polygons = [_ccw(part.outline.flatten(tol), True)] + [_ccw(h.flatten(tol), False) for h in part.holes]
-    section = manifold3d.CrossSection(polygons, manifold3d.FillRule.Positive)
-    solid = manifold3d.Manifold.extrude(section, part.thickness)
+    polygons = _rings(part)
+    if part.elephant_foot > 0:
+        if part.elephant_foot >= part.thickness:
+            raise DesignError(f"output.elephant_foot: must be < the thickness of {part.name}, {part.thickness:g} mm "
+                              f"(got {part.elephant_foot:g})")
+        solid = elephant_foot(polygons, part.thickness, part.elephant_foot, tol, part.name)
+    else:
+        section = manifold3d.CrossSection(polygons, manifold3d.FillRule.Positive)
+        solid = manifold3d.Manifold.extrude(section, part.thickness)
     if part.boss is not None:
         diameter, height = part.boss
         ring = [_ccw(Circle((0.0, 0.0), diameter / 2).flatten(tol), True)]
@@ -123,26 +134,170 @@ def _solid(part: Part) -> Any:
     return solid
 
 
-def pin(diameter: float, length: float, tolerance: float) -> Mesh:
-    """A pin: a shank of ``diameter`` and ``length`` (mm) under a head 1.8 x as wide and half a diameter high."""
+def pin(diameter: float, length: float, tolerance: float, foot: float = 0.0) -> Mesh:
+    """A pin: a shank of ``diameter`` and ``length`` (mm) under a head 1.8 x as wide and half a diameter high; the
+    shank's end on the bed (z = 0) chamfered by ``foot`` mm (see :func:`elephant_foot`)."""
     import manifold3d
 
     r, head = diameter / 2, 0.9 * diameter
-    shank = manifold3d.Manifold.cylinder(length, r, r, arc_steps(r, 2 * np.pi, tolerance))
+    if foot > 0:
+        shank = elephant_foot([_ccw(Circle((0.0, 0.0), r).flatten(tolerance), True)], length, foot, tolerance, "pin")
+    else:
+        shank = manifold3d.Manifold.cylinder(length, r, r, arc_steps(r, 2 * np.pi, tolerance))
     cap = manifold3d.Manifold.cylinder(diameter / 2, head, head, arc_steps(head, 2 * np.pi, tolerance))
     return _mesh(shank + cap.translate((0.0, 0.0, length)), "pin")
 
 
-def spacer(inner: float, outer: float, height: float, tolerance: float) -> Mesh:
+def spacer(inner: float, outer: float, height: float, tolerance: float, foot: float = 0.0) -> Mesh:
     """A spacer: a tube of ``inner`` and ``outer`` diameter and ``height`` (mm), to fill the layers a pin crosses
-    between the two parts it joins."""
+    between the two parts it joins; its end on the bed (z = 0) chamfered by ``foot`` mm (see
+    :func:`elephant_foot`)."""
     import manifold3d
 
     ro, ri = outer / 2, inner / 2
+    if foot > 0:
+        rings = [_ccw(Circle((0.0, 0.0), ro).flatten(tolerance), True),
+                 _ccw(Circle((0.0, 0.0), ri).flatten(tolerance), False)]
+        return _mesh(elephant_foot(rings, height, foot, tolerance, "spacer"), "spacer")
     tube = manifold3d.Manifold.cylinder(height, ro, ro, arc_steps(ro, 2 * np.pi, tolerance))
     bore = manifold3d.Manifold.cylinder(height + 2.0, ri, ri, arc_steps(ri, 2 * np.pi, tolerance)).translate(
         (0.0, 0.0, -1.0))
     return _mesh(tube - bore, "spacer")
+
+
+def _rings(part: Part) -> list[np.ndarray]:
+    """The part's section as chords within its tolerance: the outline counter-clockwise, the holes clockwise (the
+    material on the left of every ring)."""
+    tol = part.tolerance
+    return [_ccw(part.outline.flatten(tol), True)] + [_ccw(h.flatten(tol), False) for h in part.holes]
+
+
+def _turns(ring: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Each edge's length (mm) and the signed turn (rad) at each vertex of a closed ``ring`` (m, 2): positive where
+    it turns left, towards the material on its left (a convex corner), negative at a concave (reflex) one."""
+    edges = np.roll(ring, -1, axis=0) - ring
+    before = np.roll(edges, 1, axis=0)
+    turn = np.arctan2(before[:, 0] * edges[:, 1] - before[:, 1] * edges[:, 0], np.einsum("ij,ij->i", before, edges))
+    return np.linalg.norm(edges, axis=1), turn
+
+
+def _merged(points: np.ndarray, apart: float) -> tuple[np.ndarray, np.ndarray]:
+    """The points of a closed ring (m, 2) nearer than ``apart`` (mm) to the one kept before them merged into it:
+    each point's index among the kept ones, and the kept points' indices."""
+    where = np.zeros(len(points), dtype=np.int64)
+    kept = [0]
+    for k in range(1, len(points)):
+        if np.hypot(*(points[k] - points[kept[-1]])) >= apart:
+            kept.append(k)
+        where[k] = len(kept) - 1
+    if len(kept) > 1 and np.hypot(*(points[kept[-1]] - points[0])) < apart:   # the ring closes on its first point
+        where[where == len(kept) - 1] = 0
+        kept.pop()
+    return where, np.array(kept)
+
+
+def foot_volume(ring: np.ndarray, size: float) -> float:
+    """The volume (mm^3) a 45-degree chamfer of ``size`` mm takes off a prism's bed face along one closed ``ring``
+    (m, 2) of its section (the material on the ring's left), while the inset stays free of events (``size`` below
+    half the narrowest width and the edges' lengths): the section at height z is the bed section eroded by
+    d = size - z, whose area is A - L d + K d^2 (L the ring's length, K the sum of tan(turn / 2) over its convex
+    corners, where the inset edges meet in a point, less turn / 2 over its concave ones, where they are joined by
+    an arc of radius d), so the volume is L size^2 / 2 - K size^3 / 3 (a disc of radius R: pi size^2 (R - size /
+    3); a hole of radius r: pi size^2 (r + size / 3))."""
+    lengths, turn = _turns(np.asarray(ring, dtype=float))
+    k = float(np.sum(np.where(turn > 0, np.tan(turn / 2), turn / 2)))
+    return float(lengths.sum()) * size**2 / 2 - k * size**3 / 3
+
+
+def elephant_foot(rings: Sequence[np.ndarray], height: float, size: float, tolerance: float, name: str) -> Any:
+    """A prism from z = 0 to ``height`` (mm) on the section bounded by ``rings`` (closed polygons (m, 2), the
+    material on their left: the outline counter-clockwise, holes clockwise), with its bed face chamfered at 45
+    degrees by ``size`` mm, as a manifold3d solid. At height z < size its section is the section eroded by
+    size - z: each edge moves into the material along a plane at 45 degrees; at a convex corner the two planes meet
+    (the inset's corner, as the erosion has it), at a concave one a cone of slope 1 joins them (its arc on the bed
+    in chords within ``tolerance``). So the bed face is the section inset by ``size``, holes opened by it
+    (shapely's ``buffer(-size)``, to the arcs' chords), and the section from z = size up is untouched. The solid is
+    built as one mesh, every vertex where it belongs (a boolean cut would meet each wall's corner twice, a hair
+    apart). Raises :class:`DesignError` naming ``output.elephant_foot`` where the inset would close up (a
+    feature narrower than twice ``size``, or a corner's chords shorter than the chamfer)."""
+    import manifold3d
+    import shapely
+
+    # the rings as manifold3d's own sections hold them (Clipper's rounding), so that this solid's top face meets a
+    # boss or a plate stacked on it, made from the same rings, at the very same points
+    rings = manifold3d.CrossSection([np.asarray(r, dtype=float) for r in rings], manifold3d.FillRule.Positive
+                                    ).to_polygons()
+    # bed points nearer each other than single precision tells apart at this size are one (a tiny chamfer's arcs)
+    apart = 8 * float(np.spacing(np.float32(max(float(np.abs(np.vstack(rings)).max()), 1.0))))
+    blocks: list[np.ndarray] = []
+    faces: list[np.ndarray] = []
+    bottoms: list[np.ndarray] = []
+    tops: list[np.ndarray] = []
+    count = 0
+    for ring in rings:
+        ring = np.asarray(ring, dtype=float)
+        n = len(ring)
+        unit = np.roll(ring, -1, axis=0) - ring
+        unit /= np.linalg.norm(unit, axis=1)[:, None]
+        inward = np.column_stack([-unit[:, 1], unit[:, 0]])
+        before = np.roll(inward, 1, axis=0)
+        _, turn = _turns(ring)
+        groups = []
+        for i in range(n):
+            if turn[i] >= 0:                      # convex: where the two inset edges meet
+                groups.append(ring[i] + size * (before[i] + inward[i]) / (1.0 + before[i] @ inward[i]))
+            else:                                 # concave: an arc of radius size round the corner
+                steps = arc_steps(size, -turn[i], tolerance)
+                start = math.atan2(before[i][1], before[i][0])
+                angle = start + turn[i] * np.arange(steps + 1) / steps
+                groups.append(ring[i] + size * np.column_stack([np.cos(angle), np.sin(angle)]))
+        sizes = np.array([len(np.atleast_2d(g)) for g in groups])
+        bed = np.vstack([np.atleast_2d(g) for g in groups])
+        first = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        last = first + sizes - 1
+        ahead = np.roll(first, -1)
+        if np.any(np.einsum("ij,ij->i", bed[ahead] - bed[last], unit) < -apart):
+            raise DesignError(f"output.elephant_foot: a chamfer of {size:g} mm closes up the bed face of {name} (a "
+                              "corner's chords shorter than the chamfer, or a feature narrower than twice it); make "
+                              "it smaller")
+        where, kept = _merged(bed, apart)
+        if len(kept) < 3:
+            raise DesignError(f"output.elephant_foot: a chamfer of {size:g} mm closes up the bed face of {name}; "
+                              "make it smaller")
+        mid, top, low = count, count + n, count + 2 * n
+        blocks += [np.column_stack([ring, np.full(n, size)]), np.column_stack([ring, np.full(n, height)]),
+                   np.column_stack([bed[kept], np.zeros(len(kept))])]
+        count += 2 * n + len(kept)
+        i = np.arange(n)
+        j = (i + 1) % n
+        faces += [np.column_stack([mid + i, mid + j, top + j]), np.column_stack([mid + i, top + j, top + i]),
+                  np.column_stack([low + where[last], low + where[ahead], mid + j]),
+                  np.column_stack([low + where[last], mid + j, mid + i])]
+        for k in np.flatnonzero(sizes > 1):       # the cone's fan at a concave corner
+            fan = low + where[first[k] + np.arange(sizes[k])]
+            faces.append(np.column_stack([np.full(sizes[k] - 1, mid + k), fan[:-1], fan[1:]]))
+        bottoms.append(bed[kept])
+        tops.append(ring)
+    polygon = shapely.Polygon(bottoms[0], bottoms[1:])
+    if not polygon.is_valid:
+        raise DesignError(f"output.elephant_foot: a chamfer of {size:g} mm closes up the bed face of {name} (a "
+                          "feature narrower than twice the chamfer); make it smaller")
+    offsets = np.cumsum([0] + [2 * len(r) + len(b) for r, b in zip(tops, bottoms, strict=True)])[:-1]
+    under = manifold3d.triangulate(bottoms)
+    over = manifold3d.triangulate(tops)
+    low_index = np.concatenate([off + 2 * len(r) + np.arange(len(b))
+                                for off, r, b in zip(offsets, tops, bottoms, strict=True)])
+    top_index = np.concatenate([off + len(r) + np.arange(len(r)) for off, r in zip(offsets, tops, strict=True)])
+    faces += [low_index[np.asarray(under)][:, ::-1], top_index[np.asarray(over)]]
+    tris = np.vstack(faces)
+    tris = tris[(tris[:, 0] != tris[:, 1]) & (tris[:, 1] != tris[:, 2]) & (tris[:, 2] != tris[:, 0])]
+    mesh = manifold3d.Mesh64(vert_properties=np.ascontiguousarray(np.vstack(blocks)),
+                             tri_verts=np.ascontiguousarray(tris, dtype=np.uint64))
+    solid = manifold3d.Manifold(mesh)
+    if solid.status() != manifold3d.Error.NoError or solid.is_empty():
+        raise DesignError(f"output.elephant_foot: a chamfer of {size:g} mm leaves no valid solid of {name} "
+                          f"({solid.status()}); make it smaller")
+    return solid
 
 
 def _mesh(solid: Any, name: str) -> Mesh:

@@ -101,6 +101,10 @@ def name_field(what: str) -> Any:
     return Field(pattern=NAME_PATTERN, description=f"{what} name, used for file names")
 
 
+#: the largest process allowance (kerf, clearance, elephant foot; mm)
+MAX_ALLOWANCE_MM = 5.0
+
+
 class OutputTable(Model):
     """The ``[output]`` table every product takes: which files to write, and the DXF's flavour and version.
 
@@ -115,6 +119,12 @@ class OutputTable(Model):
                                                description="DXF version (R12 for old controllers)")
     text: Literal[TEXT_MODES] = Field(  # type: ignore[valid-type]
         "text", description="engraved text as text, or as the glyphs' outlines (for laser software that drops text)")
+    elephant_foot: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="printed solids: 45-degree chamfer "
+                                 "round the bed face (its outline inset, holes opened), 0 for none",
+                                 json_schema_extra=unit("mm"))
+    tool_radius: float = Field(0.0, ge=0, le=1000.0, description="CNC routing: report every place an outline's "
+                               "concave radius is smaller than this tool radius, 0 for no check",
+                               json_schema_extra=unit("mm"))
 
     @field_validator("formats")
     @classmethod

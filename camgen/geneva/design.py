@@ -154,7 +154,7 @@ def design_geneva(spec: GenevaSpec) -> GenevaDesign:
     if kerf / 2 >= g.half_width:
         raise DesignError(f"output.kerf: a kerf of {kerf:g} mm closes the wheel's slots ({2 * g.half_width:g} mm "
                           "wide); the kerf must be narrower")
-    allowances = Allowances(kerf, spec.output.clearance, "output.kerf")
+    allowances = Allowances(kerf, spec.output.clearance, "output.kerf", spec.output.elephant_foot)
     makers = {name: _Maker(spec, name) for name in PARTS}
     check = check_assembly(g)
     if check.lock_clearance_min_mm <= 0 or check.pin_clearance_min_mm <= 0:

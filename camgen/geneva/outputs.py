@@ -13,6 +13,7 @@ from typing import Any
 from camgen.core.bundle import Bundle, Report, item
 from camgen.core.errors import ExportError
 from camgen.core.parts import Drawing
+from camgen.core.routing import add_routing
 from camgen.geneva.design import PARTS, GenevaDesign
 from camgen.geneva.page import geneva_page
 from camgen.geneva.report import geneva_report
@@ -42,6 +43,7 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
     formats, name = out.formats, design.spec.name
     solids = _solids(design) if {"stl", "3mf"} & set(formats) else {}
     report = geneva_report(design, {k: v[1] for k, v in solids.items()})
+    add_routing(report, [design.cut[part] for part in PARTS], out.tool_radius)
 
     def plot(kind: str) -> Any:
         from camgen.geneva import plots
