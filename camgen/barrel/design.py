@@ -246,7 +246,7 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
              (keyed_bore(bore, grow) if spec.hub.keyway else Circle((0.0, 0.0), bore / 2 + grow),))
     rim = radii[2]
     blank = Part(spec.name, Contour(np.array([[rim, 0.0], [-rim, 0.0]]), np.array([1.0, 1.0])), holes,
-                 spec.cam.length, tol)
+                 spec.cam.length, tol, elephant_foot=spec.output.elephant_foot)
     jumps = tuple(cam.program.jumps())
     speed = None if spec.cam.rpm is None else speed_report(cam, spec.cam.rpm, None, None, None, [])
     if speed is not None and spec.follower.mass is not None:  # the roller's centre along the axis (an arm's arc)
