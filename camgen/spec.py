@@ -132,6 +132,10 @@ class CamTable(Model):
                                     json_schema_extra=unit("degrees"))
     second_arm_length: float | None = length("conjugate cam, oscillating arm: pivot to the second roller's centre",
                                              None)
+    barrel_form: Literal["groove", "rib"] = Field("groove", description="barrel cam: a groove the roller runs in, "
+                                                  "or a rib (a ridge) between two rollers")
+    rib_width: float | None = length("barrel rib: the rib's axial width where the track runs level (the rollers' "
+                                     "centres are rib_width + 2 roller_radius + running_clearance apart)", None)
     pitch_radius: float | None = length("barrel cam: radius of the pitch cylinder, the groove's mid-depth", None)
     length: float | None = length("barrel cam: the cylinder's axial length", None)
 

@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from camgen.analysis import CamAnalysis, analyze
-from camgen.barrel.solid import Tube, groove_tube
+from camgen.barrel.solid import Tube, groove_tube, rib_tube
 from camgen.barrel.walls import GrooveWalls
 from camgen.cam import Cam, build_cam
 from camgen.core.errors import DesignError
@@ -81,6 +81,10 @@ class BarrelDesign:
     speed: dict[str, Any] | None
     warnings: tuple[str, ...]
     slip: dict[str, float] | None = None       # the roller's largest rolling slip (percent) at the floor and the rim
+    #: a rib's two rollers, below it and above it (their walls shifted by -g and +g), and the rib's thinnest
+    #: normal width (mm) with the cam angle there (degrees); None for a groove
+    rib: tuple[GrooveWalls, GrooveWalls] | None = None
+    rib_thinnest: tuple[float, float] | None = None
 
     @property
     def tolerance(self) -> float:
@@ -95,6 +99,9 @@ class BarrelDesign:
         """The same design with the groove's cutter made (:func:`camgen.barrel.solid.groove_tube`, its loops
         ``phase`` of a step round)."""
         inner, _, outer = self.radii
+        if self.rib is not None:
+            return dataclasses.replace(self, tube=rib_tube(*self.rib, inner, outer, self.spec.cam.length,
+                                                           self.tolerance, phase))
         return dataclasses.replace(self, tube=groove_tube(self.walls, inner, outer, self.tolerance, phase))
 
     def thumbnail(self, tolerance: float) -> np.ndarray:
@@ -156,12 +163,13 @@ def rolling_slips(walls: GrooveWalls, roller: float, radii: tuple[float, float, 
 
 def _undercut_message(check: WallCheck) -> str:
     f = check.flank
-    where = (f"undercut of the groove's {f.side} at {f.at_deg:.2f} degrees, on the cylinder of radius "
+    wall = f.side if f.side.startswith("rib") else f"groove's {f.side}"
+    where = (f"undercut of the {wall} at {f.at_deg:.2f} degrees, on the cylinder of radius "
              f"{check.at_radius_mm:.4g} mm: ")
     if f.pitch_rho_min_mm == 0.0:
         return (where + "the follower velocity jumps there, a corner the wall cannot follow; use a law with "
                 "continuous velocity")
-    bend = "up" if f.side == "lower wall" else "down"
+    bend = "up" if f.side in ("lower wall", "rib's upper wall") else "down"
     return (where + f"the developed pitch curve bends {bend} there with a radius of {f.pitch_rho_min_mm:.4g} mm, "
             f"smaller than follower.roller_radius + cam.running_clearance / 2 = {f.offset_mm:.4g} mm; use a smaller "
             "roller, a shallower groove (cam.groove_depth), a larger cam.pitch_radius or a longer segment")
@@ -192,12 +200,15 @@ def _clipped(points: np.ndarray, width: float) -> np.ndarray:
     return np.concatenate(out)
 
 
-def _drawing(spec: CamSpec, walls: GrooveWalls, tolerance: float) -> tuple[Drawing, float]:
-    """The developed drawing at Rm and the largest distance (mm) of its chords from the exact curves."""
+def _drawing(spec: CamSpec, lines: tuple[tuple[GrooveWalls, int, str], ...], tolerance: float
+             ) -> tuple[Drawing, float]:
+    """The developed drawing at Rm and the largest distance (mm) of its chords from the exact curves: each of
+    ``lines`` a roller's walls and a side (-1 its lower wall, +1 its upper, 0 where its axis pierces the pitch
+    cylinder) on a layer."""
     rm, length = spec.cam.pitch_radius, spec.cam.length
     width = 2 * math.pi * rm
 
-    def curve(side: int):
+    def curve(walls: GrooveWalls, side: int):
         def exact(theta: np.ndarray) -> np.ndarray:
             if side == 0:                        # where the roller's axis pierces the pitch cylinder
                 pose = walls.pose(np.mod(theta, 2 * math.pi))
@@ -206,11 +217,13 @@ def _drawing(spec: CamSpec, walls: GrooveWalls, tolerance: float) -> tuple[Drawi
             return np.column_stack([rm * (phi + theta - np.mod(theta, 2 * math.pi)), z])
         return exact
 
-    n, margin = max(64, math.ceil(width / math.sqrt(8 * tolerance * walls.cutter))), 2 * walls.cutter / rm
+    cutter = lines[0][0].cutter
+    n, margin = max(64, math.ceil(width / math.sqrt(8 * tolerance * cutter))), 2 * cutter / rm
     for _ in range(30):
         theta = np.linspace(-margin, 2 * math.pi + margin, n + 1)
-        lines = {side: curve(side)(theta) for side in (-1, 0, 1)}
-        error = max(_polyline_error(curve(side), theta, pts) for side, pts in lines.items())
+        points = [curve(walls, side)(theta) for walls, side, _ in lines]
+        error = max(_polyline_error(curve(walls, side), theta, pts)
+                    for (walls, side, _), pts in zip(lines, points, strict=True))
         if error <= tolerance:
             break
         n = math.ceil(n * max(1.2, math.sqrt(error / tolerance)))
@@ -218,10 +231,36 @@ def _drawing(spec: CamSpec, walls: GrooveWalls, tolerance: float) -> tuple[Drawi
         raise DesignError(f"output.tolerance: the developed drawing cannot be brought within {tolerance:g} mm")
     frame = Contour(np.array([[0.0, 0.0], [width, 0.0], [width, length], [0.0, length]]))
     items = [(LAYER_OUTLINE, frame)]
-    for side, layer in ((-1, LAYER_GROOVE), (1, LAYER_GROOVE), (0, LAYER_PITCH)):
-        pts = _clipped(lines[side], width)
+    for (_, _, layer), pts in zip(lines, points, strict=True):
+        pts = _clipped(pts, width)
         items.append((layer, Polyline(pts, np.zeros(len(pts) - 1))))
     return Drawing(tuple(items), tolerance), error
+
+
+def _rib_thinnest(cam: Cam, span: float, cutter: float, core: float) -> tuple[float, float]:
+    """A rib's thinnest normal width (mm) and where (degrees): the rollers' axes, the same track shifted 2 g along
+    the cam's axis, lie 2 g cos(alpha) apart square to it where it slopes at alpha, steepest on the core's cylinder
+    (tan alpha = s' / r there), and the rib between them is that less 2 Rw."""
+    steep = cam.program.peak(lambda i, t: np.abs(cam.program.segments[i].evaluate(t)[1]))
+    return 2 * span * math.cos(math.atan(steep[0] / core)) - 2 * cutter, steep[1]
+
+
+def _rib(spec: CamSpec, cam: Cam, walls: GrooveWalls, core: float
+         ) -> tuple[tuple[GrooveWalls, GrooveWalls], tuple[float, float]] | tuple[None, None]:
+    """A rib's two rollers' walls (below it, above it) and its thinnest width, refused where the rollers leave it
+    no width; (None, None) for a groove."""
+    span = barrel_kind.rib_span(spec)
+    if span is None:
+        return None, None
+    thinnest = _rib_thinnest(cam, span, walls.cutter, core)
+    if not thinnest[0] > 0:
+        slope = math.acos(min(1.0, (thinnest[0] + 2 * walls.cutter) / (2 * span)))
+        need = 2 * walls.cutter / math.cos(slope) - 2 * walls.cutter
+        raise DesignError(f"cam.rib_width: the rollers leave the rib no width near {thinnest[1]:.2f} degrees, where "
+                          f"the track slopes at {math.degrees(slope):.2f} degrees on the core (radius {core:g} mm); "
+                          f"must be > {need:.6g} mm (got {spec.cam.rib_width:g})")
+    rollers = (dataclasses.replace(walls, z0=walls.z0 - span), dataclasses.replace(walls, z0=walls.z0 + span))
+    return rollers, thinnest
 
 
 def design_barrel(spec: CamSpec) -> BarrelDesign:
@@ -233,13 +272,20 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
     walls = GrooveWalls(cam.program, barrel_kind.rest_height(spec), barrel_kind.cutter(spec),
                         1 if spec.cam.rotation == "ccw" else -1, barrel_kind.arm(spec), barrel_kind.taper(spec), rm)
     checks = _wall_checks(cam, np.linspace(radii[0], radii[2], CHECK_RADII), walls)
+    rib, thinnest = _rib(spec, cam, walls, radii[0])
+    if rib is not None:       # the rib's lower wall is the lower roller's upper side, bent as a groove's upper wall
+        checks = tuple(WallCheck(dataclasses.replace(c.flank, side=name), c.at_radius_mm)
+                       for c, name in ((checks[1], "rib's lower wall"), (checks[0], "rib's upper wall")))
     for check in sorted(checks, key=lambda c: c.flank.rho_min_mm):      # the worse wall first (stable: ties, lower)
         if check.flank.undercut:
             raise DesignError(_undercut_message(check))
     a = analyze(cam)
     pressure = {name: analyze(_developed_cam(cam, r, walls)).pressure_angle_max_deg
                 for name, r in zip(("floor", "pitch", "rim"), radii, strict=True)}
-    drawing, error = _drawing(spec, walls, tol)
+    lines = (((walls, -1, LAYER_GROOVE), (walls, 1, LAYER_GROOVE), (walls, 0, LAYER_PITCH)) if rib is None else
+             ((rib[0], 1, LAYER_GROOVE), (rib[1], -1, LAYER_GROOVE), (rib[0], 0, LAYER_PITCH),
+              (rib[1], 0, LAYER_PITCH)))
+    drawing, error = _drawing(spec, lines, tol)
     bore = spec.cam.bore
     grow = spec.output.clearance / 2
     holes = (() if bore == 0 else
@@ -251,7 +297,8 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
     speed = None if spec.cam.rpm is None else speed_report(cam, spec.cam.rpm, None, None, None, [])
     if speed is not None and spec.follower.mass is not None:  # the roller's centre along the axis (an arm's arc)
         speed["forces"] = drive_report(cam, spec_loading(spec.follower, cam.follower, positive=True), spec.cam.rpm,
-                                       ("lower wall", "upper wall"))
+                                       ("lower wall", "upper wall") if rib is None else
+                                       ("rib's upper wall", "rib's lower wall"))
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
     limit = pressure_limit(spec)
     if pressure["floor"] > limit:
@@ -259,4 +306,4 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
                         f"({a.pressure_angle_max_deg:.2f} at the pitch cylinder), above the {limit:g} degree limit: "
                         "a larger cam.pitch_radius or a longer segment lowers it")
     return BarrelDesign(spec, cam, a, jumps, walls, radii, checks, pressure, drawing, error, blank, None, speed,
-                        tuple(warnings), rolling_slips(walls, spec.follower.roller_radius, radii))
+                        tuple(warnings), rolling_slips(walls, spec.follower.roller_radius, radii), rib, thinnest)

@@ -58,6 +58,17 @@ def _cone(design: BarrelDesign) -> dict[str, Any]:
             "groove_width_rim_mm": _r(2 * (walls.r0 + walls.taper * outer))}
 
 
+def _rib(design: BarrelDesign) -> dict[str, Any]:
+    """A rib's figures: its width where level and at its thinnest (square to the track, on the core), the rollers'
+    centres' distance (mm); nothing for a groove (whose width is groove_width_mm)."""
+    if design.rib is None:
+        return {}
+    below, above = design.rib
+    return {"form": "rib", "rib_width_mm": design.spec.cam.rib_width, "rib_height_mm": design.spec.cam.groove_depth,
+            "roller_centres_apart_mm": _r(above.z0 - below.z0), "rib_thinnest_mm": _r(design.rib_thinnest[0]),
+            "rib_thinnest_at_deg": _r(design.rib_thinnest[1])}
+
+
 def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
     """The report of a barrel cam as a JSON-ready dict (keys carry their units)."""
     t, a = design.spec, design.analysis
@@ -80,7 +91,7 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
                 "length_mm": t.cam.length, "groove_depth_mm": t.cam.groove_depth,
                 "groove_width_mm": round(2 * design.cutter, 12), "running_clearance_mm": t.cam.running_clearance,
                 "rest_height_mm": _r(design.walls.z0 if arm is None else float(design.walls.centre(0.0)[0, 0])),
-                "bore_mm": t.cam.bore, "rotation": t.cam.rotation},
+                "bore_mm": t.cam.bore, "rotation": t.cam.rotation, **_rib(design)},
         "follower": {"type": t.follower.type, "roller_radius_mm": t.follower.roller_radius,
                      "roller_shape": t.follower.roller_shape, **_cone(design), **({} if arm is None else _arm(design))},
         "segments": [{"index": i, "type": seg.type, "law": seg.law, **seg.law_params(), "angle_deg": seg.angle,
@@ -122,6 +133,7 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
 def summary_lines(report: dict[str, Any]) -> list[str]:
     """The key figures of a barrel cam's report, a few lines for the command to print."""
     cam, walls = report["cam"], report["walls"]
+    foot = "rib's foot" if "form" in cam else "groove's floor"
 
     def wall(side: str) -> str:
         w = walls[side]
@@ -135,9 +147,12 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
             f"{follower['chordal_error_least_mm']:.4f} at pivot_distance {follower['pivot_distance_least_mm']:.4f})"])
     lines = [f"{report['name']}: pressure angle max {report['pressure_angle_max_deg']:.2f} deg at "
              f"{report['pressure_angle_max_at_deg']:.2f} deg on the pitch cylinder (r {cam['pitch_radius_mm']:g} mm), "
-             f"{report['pressure_angle_floor_deg']:.2f} deg at the groove's floor (r {cam['floor_radius_mm']:g} mm)",
-             f"groove: {cam['groove_width_mm']:g} mm wide, {cam['groove_depth_mm']:g} mm deep; smallest radius of the "
-             f"walls: {wall('lower')}, {wall('upper')}",
+             f"{report['pressure_angle_floor_deg']:.2f} deg at the {foot} (r {cam['floor_radius_mm']:g} mm)",
+             (f"groove: {cam['groove_width_mm']:g} mm wide, {cam['groove_depth_mm']:g} mm deep" if "form" not in cam
+              else f"rib: {cam['rib_width_mm']:g} mm wide where level, {cam['rib_thinnest_mm']:.4g} mm at its thinnest "
+                   f"({cam['rib_thinnest_at_deg']:.2f} deg), {cam['rib_height_mm']:g} mm high, between rollers "
+                   f"{cam['roller_centres_apart_mm']:.4g} mm apart") + f"; smallest radius of the walls: {wall('lower')}, "
+             f"{wall('upper')}",
              *arm,
              f"rolling slip ({follower['roller_shape']} roller): {report['rolling_slip']['floor_percent']:.2f} % at "
              f"the floor, {report['rolling_slip']['rim_percent']:.2f} % at the rim",
@@ -176,8 +191,9 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
 
         if kind == "svaj":
             return plots.svaj_figure(design)
+        what = "the groove's walls and the pitch curve" if design.rib is None else "the rib's walls and the rollers' paths"
         return drawing_figure(design.drawing, f"{name}: the pitch cylinder (radius {design.radii[1]:g} mm) unrolled, "
-                                              "the groove's walls and the pitch curve")
+                                              + what)
 
     items = [
         item(design.drawing, [("dxf", "dxf", f"{name}-developed.dxf"), ("cut-svg", "cut_svg", f"{name}-developed.svg")],

@@ -134,12 +134,43 @@ def _check(spec: Any) -> None:
                          f"the groove's floor stays outside the bore and wider than the roller (got "
                          f"{cam.groove_depth:g})")
     widest = cutter_at(spec, cam.pitch_radius + cam.groove_depth / 2)          # the groove's half-width at the rim
+    if _rib(spec, widest):
+        return
     if follower.oscillating:
         _check_arm(spec, floor - cutter_at(spec, floor), widest)
     elif not rest_height(spec) > widest:
         travel = cam.length - 2 * rest_height(spec)
         raise ValueError(f"cam.length: must be > {travel + 2 * widest:.6g} mm, the follower's travel and the groove's "
                          f"width (got {cam.length:g})")
+
+
+def rib_span(spec: Any) -> float | None:
+    """A rib's rollers' centres' half-distance g (mm): half the rib's width, the roller's radius and half the
+    running clearance (the rib's walls are the rollers' envelopes at Rw = Rr + c/2 from their axes); None for a
+    groove."""
+    return None if spec.cam.barrel_form != "rib" else spec.cam.rib_width / 2 + cutter(spec)
+
+
+def _rib(spec: Any, rw: float) -> bool:
+    """A rib's keys checked (True), or False for a groove: its width given, a translating cylindrical roller, and
+    the length holding the rib and both rollers (``rw`` the rollers' reach beyond their axes)."""
+    cam, follower = spec.cam, spec.follower
+    if cam.barrel_form != "rib":
+        if cam.rib_width is not None:
+            raise ValueError('cam.rib_width: only for a barrel rib (cam.barrel_form = "rib")')
+        return False
+    if cam.rib_width is None:
+        raise ValueError("cam.rib_width: required for a barrel rib (mm, > 0): the rib's axial width where the track "
+                         "runs level")
+    if follower.oscillating or follower.roller_shape != "cylindrical":
+        raise ValueError("cam.barrel_form: a rib takes a translating-roller follower with cylindrical rollers (got "
+                         f"{follower.type}, {follower.roller_shape})")
+    travel = cam.length - 2 * rest_height(spec)
+    need = travel + 2 * (rib_span(spec) + rw)
+    if not cam.length > need:
+        raise ValueError(f"cam.length: must be > {need:.6g} mm, the follower's travel, the rib and both rollers "
+                         f"(got {cam.length:g})")
+    return True
 
 
 def _follower(spec: Any, base_radius: Any, roller_radius: float) -> PlateRoller | DevelopedRoller:

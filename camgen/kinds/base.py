@@ -44,6 +44,8 @@ GROOVED = 'a grooved cam (cam.kind = "grooved")'
 #: the ``[cam]`` keys only a barrel cam takes, and how a message names it
 BARREL_KEYS = ("pitch_radius", "length")
 BARREL = 'a barrel cam (cam.kind = "barrel")'
+#: the ``[cam]`` keys of a barrel's rib (refused for the other kinds)
+RIB_KEYS = ("barrel_form", "rib_width")
 #: the ``[cam]`` keys only a conjugate cam takes (refused for the other kinds by :class:`camgen.spec.CamTable`)
 CONJUGATE_KEYS = ("second_base_radius", "yoke_span", "arm_angle", "second_arm_length")
 #: the ``[cam]`` keys every flat cam (disc, plate, grooved, conjugate) needs
@@ -57,7 +59,7 @@ def flat_body(spec: Any) -> None:
         if getattr(spec.cam, key) is None:
             info = type(spec.cam).model_fields[key]
             raise ValueError(f"cam.{key}: missing: give {info.description} in {info.json_schema_extra['unit']}")
-    refuse_keys(spec, BARREL_KEYS, BARREL)
+    refuse_keys(spec, (*BARREL_KEYS, *RIB_KEYS), BARREL)
     if "roller_shape" in spec.follower.model_fields_set:
         raise ValueError(f"follower.roller_shape: only for {BARREL}")
 
