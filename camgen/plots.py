@@ -13,7 +13,7 @@ import numpy as np
 
 from camgen.cam import Cam
 from camgen.analysis import face_extent
-from camgen.core.figures import figure
+from camgen.core.figures import figure, fit_equal
 from camgen.design import CamDesign
 
 
@@ -174,11 +174,7 @@ def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:
 def cam_figure(design: CamDesign) -> Any:
     """The cam at theta = 0: outline, pitch curve, base and prime circles, follower, checks marked."""
     cam, a, t = design.cam, design.analysis, design.spec
-    fig = figure(10, 5, layout=None) if cam.is_plate else figure(8, 9, layout=None)
-    if cam.is_plate:
-        fig.subplots_adjust(left=0.08, right=0.98, bottom=0.22, top=0.92)
-    else:
-        fig.subplots_adjust(left=0.1, right=0.97, bottom=0.16, top=0.95)
+    fig = figure(8, 9, layout=None)
     ax = fig.add_subplot()
     ring = design.outline.contour.flatten(design.tolerance)
     ax.fill(ring[:, 0], ring[:, 1], color="0.88", zorder=0)
@@ -210,10 +206,12 @@ def cam_figure(design: CamDesign) -> Any:
         ax.annotate("", xy=(0.25 * cam.base_radius * arrow, -0.2 * cam.base_radius),
                     xytext=(-0.25 * cam.base_radius * arrow, -0.2 * cam.base_radius),
                     arrowprops={"arrowstyle": "->", "connectionstyle": f"arc3,rad={0.5 * arrow}", "color": "0.3"})
-    ax.set_aspect("equal")
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.grid(alpha=0.3)
+    # sized to the drawing: a plate cam is long and low, a disc with its arm's pivot wide (no empty bands)
+    fit_equal(fig, [ax], width=10.0 if cam.is_plate else 8.0,
+              legend_rows=math.ceil(len(ax.get_legend_handles_labels()[1]) / 2), max_height=9.5, top=0.1)
     fig.legend(loc="lower center", ncols=2, fontsize=8)
     what = "plate cam; θ spreads over the travel" if cam.is_plate else f"cam at θ = 0 ({t.cam.rotation})"
     ax.set_title(f"{t.name}: {what}, {t.follower.type} follower")

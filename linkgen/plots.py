@@ -1,6 +1,7 @@
 """Plots of a linkage: transmission angle over the cycle, the linkage at its dead centres, slider motion.
 
-matplotlib's object API through :func:`camgen.core.figures.figure`; imported only when a plot is asked for.
+matplotlib's object API through :func:`camgen.core.figures.figure`; imported only when a plot is asked for. Fixed
+margins (charts) and figures sized to their drawings (:func:`camgen.core.figures.fit_equal`), no constrained layout.
 """
 from __future__ import annotations
 
@@ -9,8 +10,16 @@ from typing import Any
 
 import numpy as np
 
-from camgen.core.figures import figure
+from camgen.core.figures import figure, fit_equal
 from linkgen.kinematics.fourbar import FourBar, Poses
+
+
+def _chart(width: float, height: float) -> tuple[Any, Any]:
+    """A figure of one chart with fixed margins: a constrained layout re-measures every label each time a figure is
+    written (PNG and SVG), and took most of what linkgen's figures cost."""
+    fig = figure(width, height, layout=None)
+    fig.subplots_adjust(left=0.09, right=0.97, bottom=0.12, top=0.92)
+    return fig, fig.add_subplot()
 
 
 def _input_grid(fb: FourBar, n: int = 721) -> list[np.ndarray]:
@@ -22,8 +31,7 @@ def _input_grid(fb: FourBar, n: int = 721) -> list[np.ndarray]:
 
 def transmission_figure(name: str, fb: FourBar, assembly: str) -> Any:
     """Transmission angle against crank angle, the 40-140 degree band shaded, extremes marked."""
-    fig = figure(8, 4.5)
-    ax = fig.add_subplot()
+    fig, ax = _chart(8, 4.5)
     ax.axhspan(40, 140, color="C2", alpha=0.12, label="40-140° (good force transmission)")
     for t in _input_grid(fb):
         p = fb.sweep(t, assembly)
@@ -54,7 +62,7 @@ def _draw(ax: Any, fb: FourBar, pose: Poses, colour: str, label: str) -> None:
 def dead_centre_figure(name: str, fb: FourBar, assembly: str) -> Any:
     """The linkage drawn at each dead-centre and toggle position, with the rocker pin's arc and, with a coupler
     point, its path."""
-    fig = figure(8, 6.5)
+    fig = figure(8, 6.5, layout=None)
     ax = fig.add_subplot()
     ax.plot([0, fb.ground], [0, 0], color="0.3", lw=3, solid_capstyle="round", label="ground")
     for t in _input_grid(fb):
@@ -66,11 +74,11 @@ def dead_centre_figure(name: str, fb: FourBar, assembly: str) -> Any:
         pose = fb.positions(np.array([d.crank]), assembly)
         _draw(ax, fb, pose, f"C{k % 10}", f"{d.kind}: crank {math.degrees(d.crank) % 360:.1f}°, "
                                           f"rocker {math.degrees(d.rocker) % 360:.1f}°")
-    ax.set_aspect("equal")
     ax.grid(alpha=0.3)
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
-    fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    fit_equal(fig, [ax], width=8.0, legend_rows=math.ceil(len(ax.get_legend_handles_labels()[1]) / 2), top=0.1)
+    fig.legend(loc="lower center", ncols=2, fontsize=8)
     paths = "dotted: coupler-point path; dashed: rocker pin" if fb.point_distance > 0 else "dashed: rocker pin's arc"
     ax.set_title(f"{name}: dead-centre positions ({assembly}); {paths}")
     return fig
@@ -81,7 +89,8 @@ def slider_figure(name: str, mech: Any, omega: float) -> Any:
     rng = getattr(mech, "input_range", lambda: None)()
     t = np.linspace(*(rng if rng else (0.0, 2 * math.pi)), 721)
     m = mech.motion(t, omega)
-    fig = figure(8, 7)
+    fig = figure(8, 7, layout=None)
+    fig.subplots_adjust(left=0.12, right=0.97, bottom=0.08, top=0.95, hspace=0.12)
     axes = fig.subplots(3, 1, sharex=True)
     for ax, y, label in zip(axes, (m.x, m.v, m.a), ("position (mm)", "velocity (mm/s)", "acceleration (mm/s²)"),
                             strict=True):
@@ -107,7 +116,7 @@ def linkage_motion_figure(name: str, a: Any) -> Any:
     of its tracers (of every moving joint when there are none)."""
     s = a.linkage.structure
     sol = a.sweep
-    fig = figure(8, 6.5)
+    fig = figure(8, 6.5, layout=None)
     ax = fig.add_subplot()
     traced = a.table.tracers or tuple(p for p in s.points if p not in s.bodies["ground"])
     for k, point in enumerate(traced):
@@ -130,10 +139,10 @@ def linkage_motion_figure(name: str, a: Any) -> Any:
                 ax.plot(xy[:, 0], xy[:, 1], "-o", color=colour, lw=2, ms=3, alpha=alpha)
     for p, xy in s.points.items():
         ax.annotate(p, xy, textcoords="offset points", xytext=(4, 4), fontsize=8)
-    ax.set_aspect("equal")
     ax.grid(alpha=0.3)
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
+    fit_equal(fig, [ax], width=8.0, top=0.1)
     if a.table.tracers:
         ax.legend(fontsize=8)
     ax.set_title(f"{name}: as drawn (blue), poses over the motion (grey) and paths")
@@ -142,8 +151,7 @@ def linkage_motion_figure(name: str, a: Any) -> Any:
 
 def linkage_transmission_figure(name: str, a: Any) -> Any:
     """Each dyad's transmission angle against the input, the 40-140 degree band shaded, toggles marked."""
-    fig = figure(8, 4.5)
-    ax = fig.add_subplot()
+    fig, ax = _chart(8, 4.5)
     ax.axhspan(40, 140, color="C2", alpha=0.12, label="40-140°")
     x, label = _input_axis(a)
     for k, d in enumerate(a.sweep.dyads):
@@ -162,7 +170,8 @@ def effort_figure(name: str, st: Any) -> Any:
     """The input's effort holding the loads (N*m or N) against the input, and the mechanical advantage for a single
     force on a second (logarithmic) axis."""
     x, label = _input_axis(st.analysis)
-    fig = figure(8, 4.5)
+    fig = figure(8, 4.5, layout=None)
+    fig.subplots_adjust(left=0.1, right=0.88, bottom=0.12, top=0.92)
     ax = fig.add_subplot(title=f"{name}: effort that holds the loads", xlabel=label,
                          ylabel="input torque (N·m)" if st.crank else "input force (N)")
     ax.plot(x, st.effort, color="C0", lw=1.6)
@@ -181,7 +190,7 @@ def linkage_pose_figure(name: str, a: Any, value: float) -> Any:
     tracers (of every moving joint when there are none) over the motion analysed in grey."""
     s = a.linkage.structure
     pose = a.linkage.solve(np.array([value])).points
-    fig = figure(8, 6.5)
+    fig = figure(8, 6.5, layout=None)
     ax = fig.add_subplot()
     for point in s.points:
         if point not in s.bodies["ground"]:
@@ -201,10 +210,10 @@ def linkage_pose_figure(name: str, a: Any, value: float) -> Any:
     for p, xy in pose.items():
         ax.annotate(p, xy[0], textcoords="offset points", xytext=(4, 4), fontsize=8)
     shown = f"{np.degrees(value) % 360:.2f}°" if a.crank else f"{value:.3f} mm"
-    ax.set_aspect("equal")
     ax.grid(alpha=0.3)
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
+    fit_equal(fig, [ax], width=8.0, top=0.1)
     ax.legend(fontsize=8, loc="best")
     ax.set_title(f"{name}: the linkage at input {shown}; grey: the joints' paths (darker: tracers)")
     return fig

@@ -344,5 +344,17 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
     keys = [k for k, _ in items[0].values]
     title = f"{raw.get('name')}: {len(rows)} members"
-    write_summary(rows, root, keys, overview_figure(rows, title), family_page(title, rows, root, keys))
+    bores = {m.name: _bore(m.raw) for m in items}
+    shown = [{**r, "thumbnail_bore": bores.get(r["name"], 0.0)} for r in rows]     # the overview's, not the files'
+    write_summary(rows, root, keys, overview_figure(shown, title), family_page(title, rows, root, keys))
     return rows
+
+
+def _bore(raw: dict) -> float:
+    """The bore (mm) a member's thumbnail shows about its centre: a cam's ``cam.bore`` (0 for a barrel, drawn
+    unrolled, and for what is no cam)."""
+    cam = raw.get("cam")
+    if not isinstance(cam, dict) or cam.get("kind") == "barrel":
+        return 0.0
+    bore = cam.get("bore", 0.0)
+    return float(bore) if isinstance(bore, (int, float)) and not isinstance(bore, bool) else 0.0
