@@ -24,6 +24,8 @@ from tests.conftest import ROOT
 
 TEMPLATES = ROOT / "templates"
 POSES = 720
+#: the files the checks read (no figures or pages: they cost time and are checked elsewhere)
+FILES = 'output.formats=["dxf", "stl", "3mf", "json"]'
 
 
 def _build(main, template, out, *sets):
@@ -35,18 +37,19 @@ def _build(main, template, out, *sets):
     return json.loads((out / f"{out.name}.json").read_text()) if (out / f"{out.name}.json").exists() else None
 
 
-@pytest.fixture(scope="module")
-def rdrd(tmp_path_factory):
-    out = tmp_path_factory.mktemp("kit-rdrd")
-    _build(camgen, TEMPLATES / "kit-rdrd.toml", out)
-    spec = load_spec(TEMPLATES / "kit-rdrd.toml")
+@pytest.fixture(scope="module", params=[(), ("cam.rotation=cw", "follower.offset=-5")], ids=["ccw", "cw"])
+def rdrd(tmp_path_factory, request):
+    """kit-rdrd built as bundled, and turning clockwise with the follower offset to the left."""
+    out = tmp_path_factory.mktemp("kit-rdrd") / "kit-rdrd"
+    _build(camgen, TEMPLATES / "kit-rdrd.toml", out, FILES, *request.param)
+    spec = load_spec(TEMPLATES / "kit-rdrd.toml", request.param)
     return out, json.loads((out / "kit-rdrd.json").read_text()), design_cam(spec)
 
 
 @pytest.fixture(scope="module")
 def oscillating(tmp_path_factory):
     out = tmp_path_factory.mktemp("kit-oscillating")
-    _build(camgen, TEMPLATES / "kit-oscillating.toml", out)
+    _build(camgen, TEMPLATES / "kit-oscillating.toml", out, FILES)
     spec = load_spec(TEMPLATES / "kit-oscillating.toml")
     return out, json.loads((out / "kit-oscillating.json").read_text()), design_cam(spec)
 
@@ -107,7 +110,7 @@ def test_translating_kit_runs_a_full_turn_touching_the_cam_only_at_the_roller(rd
     roller = _nominal(_read(out / "kit-rdrd-roller.dxf")[0], kerf)
     follower = _nominal(_read(out / "kit-rdrd-follower.dxf")[0], kerf)
     _, frame_holes = _read(out / "kit-rdrd-frame.dxf")
-    cams = _turned(cam, theta)
+    cams = _turned(cam, design.cam.follower.sense * theta)
     rollers = np.array([shapely.affinity.translate(roller, *c) for c in centres])
     followers = np.array([shapely.affinity.translate(follower, *c) for c in centres])
     # the roller touches the cam all round the turn: its centre stays its radius off the cam's outline
@@ -151,7 +154,7 @@ def test_oscillating_kit_arm_follows_the_design_and_clears_the_cam(oscillating):
     holes = [np.array(ring.centroid.coords[0]) for ring in arm.interiors_polygons]
     assert float(np.linalg.norm(holes[0] - holes[1])) == pytest.approx(spec.follower.arm_length, abs=1e-6)
     cam = _read(out / "kit-oscillating.dxf")[0]
-    cams = _turned(cam, theta)
+    cams = _turned(cam, design.cam.follower.sense * theta)
     gap = shapely.distance(shapely.points(centres), shapely.boundary(cams)) - spec.follower.roller_radius
     assert np.abs(gap).max() <= 2 * spec.output.tolerance
     standoff = shapely.Point(pivot).buffer(_standoff_diameter(out, "kit-oscillating") / 2, quad_segs=64)
@@ -265,7 +268,8 @@ def test_bad_kit_values_give_one_line_and_write_nothing(tmp_path, sets, field, w
 
 
 def test_shaft_equal_to_the_bore_fits(tmp_path):
-    _build(camgen, TEMPLATES / "kit-rdrd.toml", tmp_path / "kit-rdrd", "kit.shaft=8", "cam.bore=8")
+    _build(camgen, TEMPLATES / "kit-rdrd.toml", tmp_path / "kit-rdrd", "kit.shaft=8", "cam.bore=8",
+           'output.formats=["json"]')
 
 
 @pytest.mark.parametrize("template, sets, field", [
@@ -293,7 +297,7 @@ def test_pivot_too_close_for_its_standoff_is_refused(tmp_path):
 @pytest.fixture(scope="module")
 def crank_rocker(tmp_path_factory):
     out = tmp_path_factory.mktemp("kit-crank-rocker")
-    _build(linkgen, TEMPLATES / "kit-crank-rocker.toml", out)
+    _build(linkgen, TEMPLATES / "kit-crank-rocker.toml", out, FILES)
     return out, json.loads((out / "kit-crank-rocker.json").read_text())
 
 
