@@ -3,10 +3,12 @@ labels plus the stated allowance; the labels parse to the clearances; bad values
 from __future__ import annotations
 
 import json
+import math
 
 import ezdxf
 import numpy as np
 import pytest
+import shapely
 import trimesh
 from click.testing import CliRunner
 
@@ -75,6 +77,23 @@ def test_the_dxf_holes_are_their_labels_less_the_kerf(built):
     assert len(pins) == 1
     assert np.ptp(pins[0][:, 0]) == pytest.approx(5.0 + KERF, abs=1e-9)
     assert report["pin"]["cut_diameter_mm"] == pytest.approx(5.0 + KERF, abs=1e-12)
+    # the plate's outline is the nominal one (its top-left corner cut off, at the smallest clearance's end) moved out
+    # by half the kerf, exactly: each of its five corners an arc of radius kerf / 2, turning 2 pi in all
+    plates = [p for p in msp.query('LWPOLYLINE[layer=="OUTLINE"]') if len(p) > 2]
+    assert len(plates) == 1
+    points = np.array(plates[0].get_points("xyb"))
+    ahead = np.roll(points, -1, axis=0)
+    arcs = np.flatnonzero(points[:, 2])
+    turn = 4 * np.arctan(points[arcs, 2])
+    chord = np.linalg.norm(ahead[arcs, :2] - points[arcs, :2], axis=1)
+    assert len(points) == 10 and len(arcs) == 5 and turn.sum() == pytest.approx(2 * math.pi, abs=1e-12)
+    assert chord / (2 * np.sin(turn / 2)) == pytest.approx(np.full(5, KERF / 2), abs=1e-12)
+    width, height = report["plate_mm"]
+    nominal = shapely.Polygon([(0, 0), (width, 0), (width, height), (3.0, height), (0, height - 3.0)])
+    lines = [shapely.LineString([p[:2], q[:2]]) for p, q, b in zip(points, ahead, points[:, 2], strict=True) if not b]
+    assert all(nominal.exterior.distance(shapely.Point(c)) == pytest.approx(KERF / 2, abs=1e-9)
+               for line in lines for c in line.coords)
+    assert min(report["holes"], key=lambda h: h["x_mm"])["label"] == "-0.20"
 
 
 def test_the_stl_holes_are_their_labels_plus_the_print_clearance(built):

@@ -5,7 +5,8 @@ Cut it on the laser or print it, try the pin in each hole, and read off the clea
 should be drawn at on this machine (``parts.clearance``, ``output.clearance``). Hole k is drawn for a
 clearance c_k = ``clearance_min`` + k ``clearance_step`` up to ``clearance_max``, with its label (c_k in mm, signed,
 ``+0.05``) engraved below it on the ``LABELS`` layer; the holes run from the smallest clearance on the left (-X)
-to the largest on the right.
+to the largest on the right, and the plate's top-left corner is cut off (a printed plate has no labels: the cut
+corner marks the smallest clearance's end, whichever face is up).
 
 The process allowances are applied as for every part (:class:`~camgen.core.parts.Allowances`): the cut plate's
 holes are drawn at d + c_k - kerf and the cut pin (a disc, stack several for a longer pin) at d + kerf, so that once
@@ -27,7 +28,7 @@ from pydantic import Field, model_validator
 from camgen.core.bundle import Bundle, Report, item, write_bundle
 from camgen.core.parts import LAYER_LABELS, LAYER_OUTLINE, Allowances, Drawing, Part
 from camgen.core.routing import add_routing
-from camgen.core.shapes import Circle, Contour, Text
+from camgen.core.shapes import Circle, Contour, Text, rounded_hull
 from camgen.core.spec import CutOutputTable, Model, apply_overrides, length, name_field, parse_overrides, unit, validate
 
 #: the most holes a coupon may have
@@ -111,7 +112,9 @@ def _decimals(values: np.ndarray) -> int:
 @dataclass(frozen=True)
 class Plate:
     """The coupon plate (a :class:`~camgen.core.parts.PartMaker`): a ``width`` by ``height`` rectangle from the
-    origin, round holes of ``diameters`` at ``centres`` (mm), and its ``labels``."""
+    origin with its top-left corner cut off at 45 degrees by ``corner_cut`` (mm; it marks the end of the smallest
+    clearance on a printed plate, which has no labels, whichever face is up), round holes of ``diameters`` at
+    ``centres`` (mm), and its ``labels``."""
 
     name: str
     width: float
@@ -121,18 +124,15 @@ class Plate:
     labels: tuple[Text, ...]
     thickness: float
     tolerance: float
+    corner_cut: float
 
     def part(self, outline_grow: float, hole_grow: float) -> Part:
-        """The plate with its outline moved out by ``outline_grow`` (corners become arcs of that radius, exactly)
-        and its holes' radii grown by ``hole_grow`` (mm)."""
-        corners = np.array([[0.0, 0.0], [self.width, 0.0], [self.width, self.height], [0.0, self.height]])
-        if outline_grow > 0:
-            out = np.array([[0.0, -1.0], [1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]]) * outline_grow
-            vertices = np.concatenate([[c + out[k - 1], c + out[k]] for k, c in enumerate(corners)])
-            bulges = np.tile([math.tan(math.pi / 8), 0.0], 4)
-            outline = Contour(vertices, bulges)
-        else:
-            outline = Contour(corners)
+        """The plate with its outline moved out by ``outline_grow`` (corners become arcs of that radius, exactly:
+        :func:`~camgen.core.shapes.rounded_hull`) and its holes' radii grown by ``hole_grow`` (mm)."""
+        cut = self.corner_cut
+        corners = np.array([[0.0, 0.0], [self.width, 0.0], [self.width, self.height], [cut, self.height],
+                            [0.0, self.height - cut]])
+        outline = rounded_hull(corners, outline_grow) if outline_grow > 0 else Contour(corners)
         holes = tuple(Circle((float(x), float(y)), d / 2 + hole_grow)
                       for (x, y), d in zip(self.centres, self.diameters, strict=True))
         return Part(self.name, outline, holes, self.thickness, self.tolerance,
@@ -194,7 +194,7 @@ def design_coupon(spec: CouponSpec) -> CouponDesign:
     title = f"pin {c.diameter:g} mm, kerf {out.kerf:g}, print {out.clearance:g}"
     texts.append(Text(title, (c.web, height - c.web / 2 - c.label_height), c.label_height))
     plate = Plate(spec.name, width, height, np.column_stack([x, np.full(n, y_hole)]), c.diameter + clearances,
-                  tuple(texts), c.thickness, out.tolerance)
+                  tuple(texts), c.thickness, out.tolerance, c.web)
     pin = Pin(f"{spec.name}-pin", (width + c.web + c.diameter / 2 + out.kerf, height / 2), c.diameter,
               c.pin_length, out.tolerance)
     allowances = Allowances(out.kerf, out.clearance, "output.kerf", out.elephant_foot)
