@@ -82,6 +82,10 @@ def cam_kit(design: Any) -> CamKit:
     reach = float(np.linalg.norm(design.outline.contour.flatten(tol), axis=1).max())
     standoff_r = bolt.washer_outside / 2
     hole = bolt.clearance_hole
+    if rr - hole / 2 < RUNNING_GAP:
+        raise DesignError(f"kit.bolt: the roller's {bolt.name} axle hole ({hole:g} mm) leaves less than "
+                          f"{RUNNING_GAP:g} mm of material in a roller of follower.roller_radius {rr:g} mm; use a "
+                          f"smaller bolt or a roller of at least {hole / 2 + RUNNING_GAP:g} mm radius")
     oscillating = spec.follower.type == "oscillating-roller"
     if oscillating:
         follower, posts, angles, origins = _arm(design, centres, hole, wall, reach, standoff_r)

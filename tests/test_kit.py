@@ -287,6 +287,19 @@ def test_kits_refused_where_they_cannot_mount(tmp_path, template, sets, field):
     assert len(result.stderr.strip().splitlines()) == 1 and not (tmp_path / "o").exists()
 
 
+def test_a_roller_too_small_for_its_axle_is_refused(tmp_path):
+    result = CliRunner().invoke(camgen, ["build", str(TEMPLATES / "kit-rdrd.toml"), "-o", str(tmp_path / "o"),
+                                         "--set", "follower.roller_radius=3.7", "--set", "kit.bolt=M5"])
+    assert result.exit_code == 2
+    assert result.stderr.strip() == ("error: kit.bolt: the roller's M5 axle hole (5.5 mm) leaves less than 1 mm of "
+                                     "material in a roller of follower.roller_radius 3.7 mm; use a smaller bolt or a "
+                                     "roller of at least 3.75 mm radius")
+    assert not (tmp_path / "o").exists()
+    # at the limit it builds
+    _build(camgen, TEMPLATES / "kit-rdrd.toml", tmp_path / "kit-rdrd", "follower.roller_radius=3.75", "kit.bolt=M5",
+           'output.formats=["json"]')
+
+
 def test_pivot_too_close_for_its_standoff_is_refused(tmp_path):
     result = CliRunner().invoke(camgen, ["build", str(TEMPLATES / "kit-oscillating.toml"), "-o", str(tmp_path / "o"),
                                          "--set", "follower.pivot_distance=60", "--set", "follower.arm_length=50"])
