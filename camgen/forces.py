@@ -10,6 +10,7 @@ radius: kappa_p = kappa / (1 - Rr kappa).
 """
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -50,7 +51,7 @@ def cycle_mean(cam: Cam, quantity: Any, breaks: tuple[float, ...] = ()) -> float
     total = 0.0
     for seg in cam.program.segments:
         cuts = [seg.start, *sorted(b for b in breaks if seg.start < b < seg.end), seg.end]
-        for lo, hi in zip(cuts[:-1], cuts[1:]):
+        for lo, hi in itertools.pairwise(cuts):
             half = (hi - lo) / 2
             theta = lo + half * (x + 1)
             total += half * float(w @ quantity(theta, seg.evaluate(theta)))

@@ -13,7 +13,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from camgen.core.bundle import Bundle, Report, item, write_bundle
+from camgen.core.bundle import Bundle, item, tail, write_bundle
 from camgen.core.errors import ExportError, SpecError
 from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
@@ -83,11 +83,7 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
         item(Drawing.of_part(cut), [("dxf", "dxf", f"{name}.dxf"), ("cut-svg", "cut_svg", f"{name}-cut.svg")], formats),
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
         item(((name, (printed,)),), [("step", "step", f"{name}.step")], formats) if printed is not None else None,
-        *(item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
-                                              ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
-          for kind in figures),
-        item(Report(report), [("json", "json", f"{name}.json")], formats),
-        item(page, [("html", "html", f"{name}.html")], formats) if page is not None else None,
+        *tail(name, plot, figures, report, page, formats),
     ]
     return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text))
 

@@ -342,9 +342,10 @@ BARREL = ROOT / "templates" / "barrel.toml"
 def _sides_hold(design, ld, omega, forces) -> None:
     """Between the reported changes of side the force has the sign of the side reported to carry it."""
     changes = forces["side_changes"]
-    assert len(changes) >= 2 and all(a["to"] != b["to"] for a, b in zip(changes, changes[1:] + changes[:1]))
+    pairs = list(zip(changes, changes[1:] + changes[:1], strict=True))
+    assert len(changes) >= 2 and all(a["to"] != b["to"] for a, b in pairs)
     positive = forces["carried_by"]["force_positive"]
-    for a, b in zip(changes, changes[1:] + changes[:1]):
+    for a, b in pairs:
         span = (b["at_deg"] - a["at_deg"]) % 360.0
         theta = np.radians(a["at_deg"] + span * np.linspace(0.02, 0.98, 200))
         f = ld.force(design.cam.program.evaluate(theta), omega, theta)

@@ -12,7 +12,7 @@ from typing import Any
 
 from camgen.barrel.design import BarrelDesign
 from camgen.core import VERSION
-from camgen.core.bundle import Bundle, Report, item
+from camgen.core.bundle import Bundle, item, tail
 from camgen.core.errors import ExportError
 from camgen.page import cam_page
 from camgen.report import design_lines
@@ -151,8 +151,8 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
              (f"groove: {cam['groove_width_mm']:g} mm wide, {cam['groove_depth_mm']:g} mm deep" if "form" not in cam
               else f"rib: {cam['rib_width_mm']:g} mm wide where level, {cam['rib_thinnest_mm']:.4g} mm at its thinnest "
                    f"({cam['rib_thinnest_at_deg']:.2f} deg), {cam['rib_height_mm']:g} mm high, between rollers "
-                   f"{cam['roller_centres_apart_mm']:.4g} mm apart") + f"; smallest radius of the walls: {wall('lower')}, "
-             f"{wall('upper')}",
+                   f"{cam['roller_centres_apart_mm']:.4g} mm apart")
+             + f"; smallest radius of the walls: {wall('lower')}, {wall('upper')}",
              *arm,
              f"rolling slip ({follower['roller_shape']} roller): {report['rolling_slip']['floor_percent']:.2f} % at "
              f"the floor, {report['rolling_slip']['rim_percent']:.2f} % at the rim",
@@ -191,7 +191,8 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
 
         if kind == "svaj":
             return plots.svaj_figure(design)
-        what = "the groove's walls and the pitch curve" if design.rib is None else "the rib's walls and the rollers' paths"
+        what = ("the groove's walls and the pitch curve" if design.rib is None
+                else "the rib's walls and the rollers' paths")
         return drawing_figure(design.drawing, f"{name}: the pitch cylinder (radius {design.radii[1]:g} mm) unrolled, "
                                               + what)
 
@@ -199,10 +200,6 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
         item(design.drawing, [("dxf", "dxf", f"{name}-developed.dxf"), ("cut-svg", "cut_svg", f"{name}-developed.svg")],
              formats),
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
-        *(item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
-                                              ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
-          for kind in ("svaj", "cam")),
-        item(Report(report), [("json", "json", f"{name}.json")], formats),
-        item(lambda: cam_page(design, report), [("html", "html", f"{name}.html")], formats),
+        *tail(name, plot, ("svaj", "cam"), report, lambda: cam_page(design, report), formats),
     ]
     return Bundle.of(items, out.write_options), report

@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.conjugate.design import ConjugateDesign, roller_centres
 from camgen.conjugate.followers import ArmRoller
-from camgen.core.bundle import Bundle, Report, item
+from camgen.core.bundle import Bundle, item, tail
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.parts import Drawing
 from camgen.core.routing import add_routing
@@ -230,9 +230,5 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
                               ("3mf", f"cam{which + 1}_3mf", f"{part}.3mf")], formats)]
     items.append(item(tuple((f"{name}-{which + 1}", (d.printed,)) for which, d in enumerate(design.cams)),
                       [("step", "step", f"{name}.step")], formats))
-    items += [item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
-                                                  ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
-              for kind in ("svaj", "assembly")]
-    items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
-    items.append(item(lambda: cam_page(design, report), [("html", "html", f"{name}.html")], formats))
+    items += tail(name, plot, ("svaj", "assembly"), report, lambda: cam_page(design, report), formats)
     return Bundle.of(items, out.write_options), report

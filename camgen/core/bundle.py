@@ -132,6 +132,19 @@ def item(payload: Any, entries: Iterable[tuple[str, str, str]], formats: Iterabl
     return Item(payload, kept) if kept else None
 
 
+def tail(name: str, plot: Any, kinds: Iterable[str], report: dict[str, Any], page: Any,
+         formats: Iterable[str]) -> list[Item | None]:
+    """What every bundle ends with, in this order: the figures ``plot(kind)`` for each of ``kinds`` (made only if
+    written) as ``<name>-<kind>.png`` and ``.svg``, the ``report`` as ``<name>.json`` and the interactive page
+    ``page()`` (none when None) as ``<name>.html``."""
+    formats = tuple(formats)
+    return [*(item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
+                                                  ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
+              for kind in kinds),
+            item(Report(report), [("json", "json", f"{name}.json")], formats),
+            item(page, [("html", "html", f"{name}.html")], formats) if page is not None else None]
+
+
 @dataclass(frozen=True)
 class Bundle:
     """The files a result is written as, in order, and the writers' options."""

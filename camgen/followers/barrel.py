@@ -36,7 +36,7 @@ from typing import ClassVar
 import numpy as np
 
 from camgen.core.errors import DesignError
-from camgen.followers.base import PitchGeometry, perp
+from camgen.followers.base import PitchGeometry, Swing, perp
 
 #: Newton steps of the contact, and the residual (relative to the radius) that counts as solved
 _STEPS, _SOLVED = 40, 1e-12
@@ -140,7 +140,7 @@ def rolling_slip(pose: np.ndarray, radius: float, pitch: float, r0: float, taper
 
 
 @dataclass(frozen=True)
-class DevelopedRoller:
+class DevelopedRoller(Swing):
     """The groove's pitch curve developed on the cylinder of ``radius``: where the roller's axis pierces it,
     (radius (theta + asin(e / radius)), zc), a plane curve the walls there are offset from by about the cutter's
     radius r0 + taper radius (the checks of undercut take it so); its pressure angle is the 3D one at the contact
@@ -151,8 +151,6 @@ class DevelopedRoller:
     r0: float
     taper: float = 0.0
 
-    flat: ClassVar[bool] = False
-    lift_unit: ClassVar[str] = "deg"
     sense: ClassVar[int] = 1          # the developed curve runs left to right, as a plate cam's
 
     @property

@@ -165,6 +165,14 @@ class FollowerType:
         return "deg" if self.oscillating else "mm"
 
 
+class Swing:
+    """What every roller on a swinging arm declares: a roller, not a flat face; its lift is the arm's swing in
+    degrees."""
+
+    flat: ClassVar[bool] = False
+    lift_unit: ClassVar[str] = "deg"
+
+
 class FlatFace:
     """What every flat-faced follower shares: its profile is the envelope of the face's lines, touched at a point
     (no roller: contact radius 0), and the report measures the contact along the face from ``face_origin``."""

@@ -15,16 +15,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.followers.base import FollowerType, PitchGeometry, from_centre_path, perp, positive, rotate
+from camgen.followers.base import FollowerType, PitchGeometry, Swing, from_centre_path, perp, positive, rotate
 
 
 @dataclass(frozen=True)
-class OscillatingRoller:
+class OscillatingRoller(Swing):
     """Roller follower on an arm (see the module docstring); lengths in mm."""
 
     pivot_distance: float
@@ -32,9 +32,6 @@ class OscillatingRoller:
     prime_radius: float
     roller_radius: float
     sense: int = 1
-
-    flat: ClassVar[bool] = False
-    lift_unit: ClassVar[str] = "deg"
 
     def __post_init__(self) -> None:
         positive(self.pivot_distance, "follower.pivot_distance")

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from camgen.core.bundle import Bundle, Report, item
+from camgen.core.bundle import Bundle, item, tail
 from camgen.core.errors import ExportError
 from camgen.core.parts import Drawing
 from camgen.core.routing import add_routing
@@ -58,11 +58,7 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
     printed = design.printed
     items.append(item(((f"{name}-wheel", (printed["wheel"],)), (f"{name}-driver", (printed["crank"], printed["lock"]))),
                       [("step", "step", f"{name}.step")], formats))
-    items += [item(lambda kind=kind: plot(kind), [("png", f"{kind}_png", f"{name}-{kind}.png"),
-                                                  ("svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
-              for kind in ("motion", "assembly")]
-    items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
-    items.append(item(lambda: geneva_page(design, report), [("html", "html", f"{name}.html")], formats))
+    items += tail(name, plot, ("motion", "assembly"), report, lambda: geneva_page(design, report), formats)
     return Bundle.of(items, out.write_options), report
 
 
