@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import ezdxf
@@ -220,3 +221,49 @@ def test_a_part_1e_6_too_large_is_refused_naming_field_and_size():
     message = str(err.value)
     assert message.startswith("parts.sheet: the parts do not fit") and "only is 50 x 30 mm" in message
     assert "\n" not in message
+
+
+# ---- a camgen family's sheet -------------------------------------------------------------------------------------
+
+def _family(tmp_path: Path, sheet: str) -> tuple[Path, object]:
+    from camgen.cli import main as camgen
+
+    (tmp_path / "rdrd.toml").write_text((ROOT / "templates" / "rdrd.toml").read_text())
+    (tmp_path / "fam.toml").write_text(f'base = "rdrd.toml"\nname = "fam"\n[output]\nformats = ["dxf", "json"]\n'
+                                       f'kerf = 0.2\n[sheet]\n{sheet}\n[sweep.zip]\n"motion.0.lift" = [10, 20, 30]\n'
+                                       '"motion.2.lift" = [10, 20, 30]\n')
+    out = tmp_path / "out"
+    return out, CliRunner().invoke(camgen, ["family", str(tmp_path / "fam.toml"), "-o", str(out)])
+
+
+def test_a_family_of_cams_on_one_sheet_read_back(tmp_path):
+    from camgen.core.family import read_cut_part
+
+    out, result = _family(tmp_path, "size = [300.0, 200.0]\nmargin = 2.0")
+    assert result.exit_code == 0, result.output
+    report = json.loads((out / "fam-sheet.json").read_text())
+    assert report["sheets"] == 1 and report["gap_mm"] == pytest.approx(2.2)
+    parts = _read_sheet(out / "fam-sheet.dxf")
+    _check_sheet(parts, (300.0, 200.0), 2.2)
+    assert sorted(p["name"] for p in report["parts"]) == sorted(d.name for d in out.iterdir() if d.is_dir())
+    for (outline, holes), where in zip(parts, report["parts"], strict=True):
+        own = read_cut_part(out / where["name"] / f"{where['name']}.dxf", where["name"])   # the member's cut file
+        moved = own.outline.moved(math.radians(where["rotation_deg"]), np.array([where["x_mm"], where["y_mm"]]))
+        assert np.abs(moved.vertices - outline.vertices).max() < 1e-5 and outline.area == pytest.approx(
+            own.outline.area, rel=1e-9)
+        assert len(holes) == len(own.holes)
+    assert report["utilisation"] >= report["shelf_utilisation"]
+
+
+@pytest.mark.parametrize("sheet, words", [
+    ("size = [100.0, 100.0]", r"sheet\.size: the parts do not fit a 100 x 100 mm sheet: fam-0lift\d+-2lift\d+ is "
+                              r"[\d.]+ x [\d.]+ mm and needs gaps of 3\.2 mm"),
+    ("rotations = 70", r"sheet\.rotations: must be 0 or divide 360 degrees"),
+    ("colour = 1", r"sheet\.colour: unknown key"),
+])
+def test_a_family_sheet_refused_in_one_line(tmp_path, sheet, words):
+    out, result = _family(tmp_path, sheet)
+    assert result.exit_code == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and re.match(f"error: {words}", lines[0]), lines
+    assert not list(out.glob("fam-sheet*")) if out.exists() else True

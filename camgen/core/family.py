@@ -63,8 +63,10 @@ class Member:
 
 
 def read_family(path: str | Path) -> tuple[dict, dict]:
-    """The raw template (its ``base`` merged in) and its sweep table."""
+    """The raw template (its ``base`` merged in) and its sweep table (the family's ``[sheet]`` table, which is no
+    member's, left out: :func:`sheet_table`)."""
     raw = read_template(path)
+    raw.pop(SHEET, None)
     sweep = raw.pop("sweep", {})
     if not isinstance(sweep, Mapping):
         raise SpecError("must be a table of key = values", "sweep")
@@ -335,10 +337,12 @@ def family_page(title: str, rows: list[dict], root: str | Path, keys: list[str])
 
 def build_family(template: str | Path, root: str | Path, validate: Callable[[dict], Any], builder: Builder,
                  jobs: int = 1, scheduler: str | None = None) -> list[dict]:
-    """Everything ``family`` does: expand, validate every member, build (or resume), write the summary."""
+    """Everything ``family`` does: expand, validate every member, build (or resume), write the summary, and with a
+    ``[sheet]`` table the members' cut parts nested on sheets (:func:`write_family_sheet`)."""
     from camgen.core.figures import overview_figure
 
     raw, sweep = read_family(template)
+    table = sheet_table(read_template(template))
     items = members(raw, sweep)
     check_all(items, validate)
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
@@ -347,7 +351,118 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
     bores = {m.name: _bore(m.raw) for m in items}
     shown = [{**r, "thumbnail_bore": bores.get(r["name"], 0.0)} for r in rows]     # the overview's, not the files'
     write_summary(rows, root, keys, overview_figure(shown, title), family_page(title, rows, root, keys))
+    if table is not None:
+        write_family_sheet(str(raw.get("name", "family")), items, rows, root, table)
     return rows
+
+
+#: the family template's table of its cut sheet
+SHEET = "sheet"
+#: its keys and defaults: sheet width and height (mm), gap beyond the kerf (mm), rotation step (degrees), grain
+SHEET_DEFAULTS = {"size": [600.0, 400.0], "margin": 3.0, "rotations": 90.0, "grain": False}
+
+
+def sheet_table(raw: dict) -> dict | None:
+    """The family's ``[sheet]`` table checked and completed with the defaults; None without one. Each refusal is a
+    :class:`SpecError` naming the key and its range."""
+    table = raw.get(SHEET)
+    if table is None:
+        return None
+    if not isinstance(table, Mapping):
+        raise SpecError("must be a table: size = [width, height], margin, rotations, grain", SHEET)
+    unknown = sorted(set(table) - set(SHEET_DEFAULTS))
+    if unknown:
+        raise SpecError(f"unknown key; known keys here: {', '.join(SHEET_DEFAULTS)}", f"{SHEET}.{unknown[0]}")
+    out = {**SHEET_DEFAULTS, **table}
+    size = out["size"]
+    if not (isinstance(size, list) and len(size) == 2 and all(_number(v) and 0 < v <= 10_000 for v in size)):
+        raise SpecError(f"must be [width, height] in mm, each > 0 and <= 10000 (got {size!r})", f"{SHEET}.size")
+    if not (_number(out["margin"]) and 0 <= out["margin"] <= 1000):
+        raise SpecError(f"must be >= 0 and <= 1000 mm (got {out['margin']!r})", f"{SHEET}.margin")
+    step = out["rotations"]
+    if not (_number(step) and (step == 0 or 0 < step <= 360 and abs(360 / step - round(360 / step)) < 1e-9)):
+        raise SpecError(f"must be 0 or divide 360 degrees (e.g. 90, 45, 15) (got {step!r})", f"{SHEET}.rotations")
+    if not isinstance(out["grain"], bool):
+        raise SpecError(f"must be true or false (got {out['grain']!r})", f"{SHEET}.grain")
+    return out
+
+
+def write_family_sheet(name: str, items: list[Member], rows: list[dict], root: str | Path,
+                       table: dict) -> list[str]:
+    """The cut parts of every member built (each member's ``<member>.dxf``, read back) nested on sheets of the
+    ``[sheet]`` table (:mod:`camgen.core.nesting`, gap: the largest member's ``output.kerf`` + ``margin``), written
+    as ``<name>-sheet.dxf`` (``-sheet-1``, ``-sheet-2``, ... for several) with ``<name>-sheet.json`` (the layout and
+    its utilisation against shelf packing); all or nothing. Raises :class:`SpecError` (``sheet.size``) for a part
+    no sheet holds, before any sheet is written."""
+    from camgen.core.nesting import SheetRules, nest, rotations_of, sheet_kinds
+    from camgen.core.writers.dxf import write_dxf
+
+    root = Path(root)
+    ok = {r["name"] for r in rows if r.get("status") == "ok"}
+    parts = tuple(part for m in items if m.name in ok and (root / m.name / f"{m.name}.dxf").is_file()
+                  for part in [read_cut_part(root / m.name / f"{m.name}.dxf", m.name)])
+    if not parts:
+        raise SpecError("the members wrote no cut file to nest: add \"dxf\" to output.formats", SHEET)
+    kerf = max(float((m.raw.get("output") or {}).get("kerf", 0.0)) for m in items)
+    rules = SheetRules(tuple(table["size"]), kerf + table["margin"], rotations_of(table["rotations"], table["grain"]),
+                       f"{SHEET}.size")
+    nested = nest(parts, rules)
+    tolerance = min(p.tolerance for p in parts)
+    written = []
+    with staged(root) as stage:
+        for kind, drawing in sheet_kinds(nested.drawings(tolerance)):
+            written.append(stage.write(f"{name}-{kind}.dxf", lambda p, d=drawing: write_dxf(d, p)).name)
+        written.append(stage.write(f"{name}-sheet.json", lambda p: p.write_text(
+            json.dumps(nested.report, indent=1) + "\n")).name)
+    return written
+
+
+#: chord tolerance (mm) for reading back outlines written as lines and arcs or as chords (``output.dxf``)
+READ_TOLERANCE_MM = 0.001
+
+
+def read_cut_part(path: Path, name: str) -> Any:
+    """A member's cut file read back as a :class:`camgen.core.parts.Part` named ``name``: its ``OUTLINE`` and
+    ``HOLES`` (bulged polylines and circles exactly; outlines written as lines and arcs, or chords, as a polygon
+    within READ_TOLERANCE_MM) and its ``ENGRAVE`` marks and texts; thickness 0 (a sheet is flat)."""
+    import ezdxf
+    import numpy as np
+    import shapely
+    from ezdxf import path as dxfpath
+
+    from camgen.core.parts import LAYER_ENGRAVE, LAYER_HOLES, LAYER_OUTLINE, Part
+    from camgen.core.shapes import Circle, Contour, Polyline, Text
+
+    msp = ezdxf.readfile(path).modelspace()
+    contours: dict[str, list] = {LAYER_OUTLINE: [], LAYER_HOLES: []}
+    pieces: dict[str, list] = {LAYER_OUTLINE: [], LAYER_HOLES: []}
+    marks: list = []
+    for e in msp:
+        layer, kind = e.dxf.layer, e.dxftype()
+        if layer == LAYER_ENGRAVE and kind == "TEXT":
+            marks.append((layer, Text(e.dxf.text, tuple(e.dxf.insert)[:2], e.dxf.height, e.dxf.rotation)))
+        elif kind == "LWPOLYLINE":
+            pts = np.array([(x, y, b) for x, y, _, _, b in e.get_points("xyseb")])
+            if layer in contours and e.closed:
+                contours[layer].append(Contour(pts[:, :2], pts[:, 2]))
+            elif layer == LAYER_ENGRAVE:
+                pts = np.vstack([pts, pts[:1]]) if e.closed else pts
+                marks.append((layer, Polyline(pts[:, :2], pts[:-1, 2])))
+        elif kind == "CIRCLE" and layer == LAYER_HOLES:
+            contours[layer].append(Circle(tuple(e.dxf.center)[:2], e.dxf.radius))
+        elif layer in pieces and kind in ("LINE", "ARC", "POLYLINE"):
+            pieces[layer].append(shapely.LineString(
+                [v[:2] for v in dxfpath.make_path(e).flattening(READ_TOLERANCE_MM)]))
+    for layer, lines in pieces.items():
+        for poly in shapely.polygonize(lines).geoms if lines else ():
+            ring = np.array(shapely.orient_polygons(poly).exterior.coords)[:-1]
+            contours[layer].append(Contour(ring))
+    if len(contours[LAYER_OUTLINE]) != 1:
+        raise SpecError(f"{path.name} holds {len(contours[LAYER_OUTLINE])} outlines, not one part", SHEET)
+    outline = contours[LAYER_OUTLINE][0]
+    if outline.area < 0:
+        outline = outline.reversed()
+    return Part(name, outline, tuple(contours[LAYER_HOLES]), 0.0, READ_TOLERANCE_MM, tuple(marks))
 
 
 def _bore(raw: dict) -> float:

@@ -11,8 +11,9 @@ The method (ours, on shapely and numpy; see the README's nesting section for the
 1. **Raster bottom-left fill.** The sheet is a grid of square cells; each part's footprint (its outline as
    chords, grown by gap / 2 and by the chords' largest distance from the arcs) covers the cells it touches, for
    each allowed rotation. One FFT correlation of the sheet's occupied cells with a footprint gives the overlap at
-   every grid position at once; the part goes to the free position that keeps the layout narrowest (the least
-   right-hand extent, then the lowest), among all its rotations, on the first sheet where it fits. Cells that a
+   every grid position at once; the part goes to the free position that keeps the layout's rectangle from the
+   sheet's corner least (then the least right-hand extent, then the lowest), among all its rotations, on the
+   first sheet where it fits. Cells that a
    footprint only touches count as covered, so footprints on free cells never overlap: the gap holds exactly.
 2. **Exact compaction.** The part then slides left and down by the exact clearance shapely measures between
    its outline and the others' and the sheet's edges, less the gap, so the grid's rounding is given back.
@@ -23,8 +24,7 @@ Everything is deterministic: no random numbers and no clock; the work is bounded
 rotations, not by time, so the same parts always give the same sheets (the golden hashes rely on it).
 
 The shelf packing of bounding rectangles (:func:`shelf_extent`) is kept as the reference: the report gives
-both utilisations, each the parts' area over the area of the sheet rectangle the layout uses from the
-sheet's corner.
+both utilisations, each the parts' area over the sheet area the layout uses (:func:`used_area`).
 """
 from __future__ import annotations
 
@@ -49,8 +49,10 @@ MIN_CELL_MM = 0.25
 NEST_TOLERANCE_MM = 0.05
 #: slides of the exact compaction after each placement (each a move left then down)
 COMPACTION_PASSES = 4
-#: orders of the parts tried; the best layout is kept
-ORDERS = ("area", "length", "height")
+#: the layouts tried, the best kept: the parts' order (largest area, length or height first) and where a placement
+#: leans among positions that keep the same rectangle ("left": the least right-hand extent first, "down": the
+#: lowest first)
+TRIES = (("area", "left"), ("area", "down"), ("length", "left"), ("height", "down"))
 #: engraved labels: the tallest and the smallest worth engraving (mm)
 LABEL_MAX_MM = 5.0
 LABEL_MIN_MM = 1.0
@@ -96,9 +98,10 @@ class Placed:
 class Nest:
     """Parts laid on ``sheets`` sheets by :func:`nest`, and the figures of the layout.
 
-    ``utilisation``: the parts' area (outlines less holes, mm^2) over the area the layout uses (on each sheet,
-    the rectangle from the sheet's corner to the parts' farthest right and top extents, gap included on the
-    lower and left edges; a full sheet counts as its rectangle too); ``shelf_utilisation``: the same figure for
+    ``utilisation``: the parts' area (outlines less holes, mm^2) over the sheet area the layout uses
+    (:func:`used_area`: every sheet but the last whole, and on the last the rectangle from the sheet's corner to
+    the parts' farthest right and top extents, the gap to the lower and left edges included);
+    ``shelf_utilisation``: the same figure for
     the shelf packing of the same parts on the same sheets (:func:`shelf_extent`), None where the shelves do not
     fit the sheets.
     """
@@ -153,11 +156,13 @@ def nest(parts: tuple[Part, ...], rules: SheetRules) -> Nest:
     """
     flats = [_Flat.of(p, rules) for p in parts]
     best: Nest | None = None
-    for order in ORDERS:
-        placed, sheets = _fill(sorted(range(len(parts)), key=lambda i, o=order: _order_key(flats[i], o)), flats, rules)
+    for order, lean in TRIES:
+        placed, sheets = _fill(sorted(range(len(parts)), key=lambda i, o=order: _order_key(flats[i], o)), flats, rules,
+                               lean)
         used = _used_area(placed, rules)
         nested = Nest(tuple(sorted(placed, key=lambda p: (p.sheet, p.shift[0], p.shift[1]))), sheets, rules,
-                      _area(parts) / used if used > 0 else 1.0, _shelf_utilisation(parts, rules, sheets), order)
+                      _area(parts) / used if used > 0 else 1.0, _shelf_utilisation(parts, rules, sheets),
+                      f"{order}, {lean}")
         if best is None or (nested.sheets, -nested.utilisation) < (best.sheets, -best.utilisation):
             best = nested
     assert best is not None
@@ -226,6 +231,7 @@ class _Grid:
         free_y = (ys >= lo) & (ys + cell <= hi_y)
         self.occupied = ~(free_y[:, None] & free_x[None, :])
         self.outlines: list = []                         # the placed polygons (sheet frame, not grown)
+        self.ends = np.zeros(2)                          # their farthest right and top extents (mm)
         self._shapely = shapely
 
     def cover(self, polygon, grow: float, origin: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
@@ -243,7 +249,7 @@ class _Grid:
         return shapely.contains_xy(reach, gx, gy)
 
 
-def _fill(order: list[int], flats: list[_Flat], rules: SheetRules) -> tuple[list[Placed], int]:
+def _fill(order: list[int], flats: list[_Flat], rules: SheetRules, lean: str) -> tuple[list[Placed], int]:
     """Place the parts in ``order`` (first fit over the sheets, a new sheet when none has room)."""
     w, h = rules.size
     cell = max(MIN_CELL_MM, math.sqrt(w * h / MAX_CELLS))
@@ -255,7 +261,7 @@ def _fill(order: list[int], flats: list[_Flat], rules: SheetRules) -> tuple[list
         for s in range(len(grids) + 1):
             if s == len(grids):
                 grids.append(_Grid(rules, cell))
-            spot = _best_spot(grids[s], flat, rules)
+            spot = _best_spot(grids[s], flat, lean)
             if spot is None and not grids[s].outlines:
                 spot = _corner_spot(flat, rules)
             if spot is not None:
@@ -289,31 +295,42 @@ def _shift(polygon, shift: np.ndarray):
     return shapely.transform(polygon, lambda p: p + shift)
 
 
-def _best_spot(grid: _Grid, flat: _Flat, rules: SheetRules) -> tuple[int, np.ndarray] | None:
-    """The rotation and shift (mm) of the free grid position that keeps the layout narrowest, then lowest."""
+def _best_spot(grid: _Grid, flat: _Flat, lean: str) -> tuple[int, np.ndarray] | None:
+    """The rotation and shift (mm) of the free grid position that keeps the layout's rectangle from the sheet's
+    corner least, then the part's upper right corner nearest the sheet's corner, then (``lean``) the least
+    right-hand extent or the lowest.
+
+    Every key grows with the position's right and top, and the sheet is empty past the layout's extents, so the
+    best position lies within the layout's extents plus the part's size: only that window is searched."""
     from scipy import fft
 
-    size = tuple(fft.next_fast_len(n, real=True) for n in grid.shape)
-    occupied = fft.rfft2(grid.occupied.astype(float), s=size)
+    reach = max(max(b[2] - b[0], b[3] - b[1]) for b in flat.boxes) + 2 * flat.grow
+    window = (min(grid.shape[0], math.ceil((grid.ends[1] + reach) / grid.cell) + 3),
+              min(grid.shape[1], math.ceil((grid.ends[0] + reach) / grid.cell) + 3))
+    size = tuple(fft.next_fast_len(n, real=True) for n in window)
+    occupied = fft.rfft2(grid.occupied[:window[0], :window[1]].astype(float), s=size)
     best = None
     for k, polygon in enumerate(flat.polygons):
         x0, y0, x1, y1 = polygon.bounds
         lo = np.array([x0 - flat.grow, y0 - flat.grow])
         rows = math.ceil((y1 - y0 + 2 * flat.grow) / grid.cell) + 1
         cols = math.ceil((x1 - x0 + 2 * flat.grow) / grid.cell) + 1
-        if rows > grid.shape[0] or cols > grid.shape[1]:
+        if rows > window[0] or cols > window[1]:
             continue
         # the footprint's cells with its box's lower-left corner at the origin; the overlap at every position
-        # (rows, columns) where it lies wholly on the sheet: a correlation, by FFT (no wrap-around there)
+        # (rows, columns) where it lies wholly in the window: a correlation, by FFT (no wrap-around there)
         mask = grid.cover(_shift(polygon, -lo), flat.grow, np.zeros(2), (rows, cols))
         overlap = fft.irfft2(occupied * np.conj(fft.rfft2(mask.astype(float), s=size)), s=size)
-        free = np.argwhere(overlap[:grid.shape[0] - rows + 1, :grid.shape[1] - cols + 1] < 0.5)
+        free = np.argwhere(overlap[:window[0] - rows + 1, :window[1] - cols + 1] < 0.5)
         if not len(free):
             continue
         right = free[:, 1] * grid.cell + (x1 - x0)
         top = free[:, 0] * grid.cell + (y1 - y0)
-        j = int(np.lexsort((top, right))[0])
-        key = (round(float(right[j]), 9), round(float(top[j]), 9), k)
+        used = np.round(np.maximum(right, grid.ends[0]) * np.maximum(top, grid.ends[1]), 6)
+        first, second = (right, top) if lean == "left" else (top, right)
+        corner = np.round(right + top, 6)
+        j = int(np.lexsort((second, first, corner, used))[0])
+        key = (float(used[j]), float(corner[j]), round(float(first[j]), 9), round(float(second[j]), 9), k)
         if best is None or key < best[0]:
             best = (key, k, np.array([free[j, 1] * grid.cell, free[j, 0] * grid.cell]) - lo)
     return None if best is None else (best[1], best[2])
@@ -351,6 +368,7 @@ def _occupy(grid: _Grid, polygon, grow: float) -> None:
     r1 = min(grid.shape[0], math.ceil((y1 + grow) / grid.cell) + 1)
     grid.occupied[r0:r1, c0:c1] |= grid.cover(polygon, grow, np.array([c0, r0]) * grid.cell, (r1 - r0, c1 - c0))
     grid.outlines.append(polygon)
+    grid.ends = np.maximum(grid.ends, (x1, y1))
 
 
 def _area(parts: tuple[Part, ...]) -> float:
@@ -358,12 +376,18 @@ def _area(parts: tuple[Part, ...]) -> float:
 
 
 def _used_area(placed: list[Placed], rules: SheetRules) -> float:
-    """The area of each sheet's rectangle from its corner to its parts' farthest extents (mm^2), summed."""
+    """The sheet area the layout uses (mm^2): see :func:`used_area`."""
     ends: dict[int, np.ndarray] = {}
     for p in placed:
         x0, y0, x1, y1 = p.outline().bounds()
         ends[p.sheet] = np.maximum(ends.get(p.sheet, np.zeros(2)), (x1, y1))
-    return float(sum(e[0] * e[1] for e in ends.values()))
+    return used_area([ends[s] for s in sorted(ends)], rules.size)
+
+
+def used_area(ends: list[np.ndarray], size: tuple[float, float]) -> float:
+    """The sheet area (mm^2) a layout uses, given each sheet's farthest right and top extents (mm): every sheet
+    but the last whole, and the last's rectangle from its corner to those extents."""
+    return float((len(ends) - 1) * size[0] * size[1] + ends[-1][0] * ends[-1][1]) if ends else 0.0
 
 
 def shelf_extent(parts: tuple[Part, ...], size: tuple[float, float], gap: float) -> list[np.ndarray] | None:
@@ -390,7 +414,7 @@ def shelf_extent(parts: tuple[Part, ...], size: tuple[float, float], gap: float)
 
 def _shelf_utilisation(parts: tuple[Part, ...], rules: SheetRules, sheets: int) -> float | None:
     ends = shelf_extent(parts, rules.size, rules.gap)
-    return None if ends is None else _area(parts) / float(sum(e[0] * e[1] for e in ends))
+    return None if ends is None else _area(parts) / used_area(ends, rules.size)
 
 
 def _placed_items(p: Placed) -> list:
@@ -455,4 +479,4 @@ def _text_box(centre: np.ndarray, height: float, n: int, angle: float):
 
 
 __all__ = ["QUARTER_TURNS", "WITH_GRAIN", "Nest", "Placed", "SheetRules", "nest", "rotations_of", "sheet_kinds",
-           "shelf_extent"]
+           "shelf_extent", "used_area"]
