@@ -132,6 +132,8 @@ class CamTable(Model):
                                     json_schema_extra=unit("degrees"))
     second_arm_length: float | None = length("conjugate cam, oscillating arm: pivot to the second roller's centre",
                                              None)
+    second_roller_radius: float | None = length("conjugate cam: the second roller's radius (default: "
+                                                "follower.roller_radius)", None, le=1000.0)
     barrel_form: Literal["groove", "rib"] = Field("groove", description="barrel cam: a groove the roller runs in, "
                                                   "or a rib (a ridge) between two rollers")
     rib_width: float | None = length("barrel rib: the rib's axial width where the track runs level (the rollers' "

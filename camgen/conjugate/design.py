@@ -55,19 +55,24 @@ def swing_top(cam: Cam) -> float:
     return cam.program.peak(lambda i, t: segments[i].evaluate(t)[0])[0]
 
 
+def second_roller(spec: CamSpec, first: Cam) -> float:
+    """The second roller's radius (mm): ``cam.second_roller_radius``, else the first's."""
+    return spec.cam.second_roller_radius or first.contact_radius
+
+
 def second_cam(spec: CamSpec, first: Cam, second_base: float | None) -> Cam:
     """The second cam of the pair whose first cam is ``first``: its roller placed by ``cam.yoke_span`` or
     ``cam.arm_angle`` where the template gives them, else so that its base circle is ``second_base`` mm."""
-    rr, top = first.contact_radius, swing_top(first)
+    rr, top = second_roller(spec, first), swing_top(first)
     if spec.follower.type == "translating-roller":
         span = spec.cam.yoke_span or yoke_span(first.follower, top, second_base + rr)
-        follower: Any = YokeRoller(first.follower, span)
+        follower: Any = YokeRoller(first.follower, span, radius=spec.cam.second_roller_radius)
         prime = yoke_prime(first.follower, top, span)
     else:
         arm = spec.cam.second_arm_length or spec.follower.arm_length
         turn = (math.radians(spec.cam.arm_angle) if spec.cam.arm_angle is not None
                 else arm_turn(first.follower, math.radians(top), arm, second_base + rr))
-        follower = ArmRoller(first.follower, turn, arm)
+        follower = ArmRoller(first.follower, turn, arm, radius=spec.cam.second_roller_radius)
         prime = arm_prime(first.follower, math.radians(top), arm, turn)
     return Cam(f"{spec.name}-2", first.program, follower, prime - rr, spec.cam.thickness, spec.cam.bore)
 
@@ -88,7 +93,7 @@ def placement_range(spec: CamSpec, first: Cam, second_base: float | None) -> tup
     d0 + s_max + sqrt(Rr^2 - e^2). An arm's second roller must stay on its side of the line from the pivot to the
     cam centre over the whole swing (there it nears the cam as the follower rises) and its cam keep a base circle.
     """
-    rr, top, f = first.contact_radius, swing_top(first), first.follower
+    rr, top, f = second_roller(spec, first), swing_top(first), first.follower
     if spec.follower.type == "translating-roller":
         least = f.d0 + top + math.sqrt(max(rr * rr - f.offset**2, 0.0))
         if spec.cam.yoke_span is not None:
@@ -190,9 +195,29 @@ def largest_pair_roller(spec: CamSpec, second_base: float | None) -> float | Non
             cams = build_pair(spec, spec.cam.base_radius, second_base, rr)
         except (CamgenError, ValueError, ArithmeticError):
             return -math.inf
-        return min(analyze(cam).pitch_rho_min_mm - rr for cam in cams)
+        return min(analyze(cam).pitch_rho_min_mm - cam.contact_radius for cam in cams)
 
     return largest_fitting(spec, margin)
+
+
+def largest_second_roller(spec: CamSpec, second_base: float | None) -> float | None:
+    """The largest own radius (mm), up to the template's ``cam.second_roller_radius``, with which the second cam
+    does not undercut, the first cam and the base circles as the template sets them; None when even a vanishing
+    one undercuts."""
+    first = build_cam(spec)
+
+    def fits(radius: float) -> bool:
+        own = spec.model_copy(update={"cam": spec.cam.model_copy(update={"second_roller_radius": radius})})
+        try:
+            cam = second_cam(own, first, second_base)
+        except (CamgenError, ValueError, ArithmeticError):
+            return False
+        return analyze(cam).pitch_rho_min_mm - radius >= 0
+
+    top = spec.cam.second_roller_radius
+    if not fits(1e-6 * top):
+        return None
+    return top if fits(top) else boundary(fits, 1e-6 * top, top)
 
 
 @dataclass(frozen=True)
@@ -301,12 +326,15 @@ def _undercut_message(spec: CamSpec, cams: tuple[Cam, Cam], which: int, a: CamAn
         return (f"motion[{spec.moving_segment(jump)}]: " + where + "the follower velocity jumps there, a convex corner "
                 f"of its pitch curve that no roller can follow (the same jump is a concave corner on cam {other}); "
                 "a conjugate pair needs a law with continuous velocity (e.g. modified-uniform)")
-    best = largest_pair_roller(spec, second_base)
-    fits = (f"the largest roller that fits both cams is {best:.4g} mm" if best is not None
+    own = which == 1 and spec.cam.second_roller_radius is not None
+    best = largest_second_roller(spec, second_base) if own else largest_pair_roller(spec, second_base)
+    fits = ((f"the largest second roller that fits cam 2 is {best:.4g} mm" if own else
+             f"the largest roller that fits both cams is {best:.4g} mm") if best is not None
             else "no roller fits these base circles")
     larger = _enlarge(spec, which)
+    key = "cam.second_roller_radius" if own else "follower.roller_radius"
     return (where + f"its pitch curve's radius of curvature is {a.pitch_rho_min_mm:.4g} mm, smaller than "
-            f"follower.roller_radius {cam.contact_radius:.4g} mm; {fits} (or {larger})")
+            f"{key} {cam.contact_radius:.4g} mm; {fits} (or {larger})")
 
 
 def _enlarge(spec: CamSpec, which: int) -> str:

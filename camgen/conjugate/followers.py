@@ -21,7 +21,7 @@ follower back.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
@@ -33,16 +33,17 @@ from camgen.followers.translating_roller import TranslatingRoller
 
 @dataclass(frozen=True)
 class SecondRoller:
-    """What the second roller shares with the first: its radius, the cam's sense of rotation, the unit of the
-    follower's displacement (``first`` is the follower's own roller)."""
+    """What the second roller shares with the first: the cam's sense of rotation, the unit of the follower's
+    displacement, and its radius unless ``radius`` (mm) gives its own (``first`` is the follower's own roller)."""
 
     first: Any
+    radius: float | None = field(default=None, kw_only=True)
 
     flat: ClassVar[bool] = False
 
     @property
     def contact_radius(self) -> float:
-        return self.first.roller_radius
+        return self.first.roller_radius if self.radius is None else self.radius
 
     @property
     def sense(self) -> int:

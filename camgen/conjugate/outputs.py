@@ -87,7 +87,9 @@ def conjugate_report(design: ConjugateDesign, meshes: tuple[Any, Any] = (None, N
                      "second_base_radius_mm": _r(design.second.base_radius),
                      "thickness_mm": t.cam.thickness, "bore_mm": t.cam.bore, "keyway": t.hub.keyway,
                      "rotation": t.cam.rotation}
-    report["follower"] = {**first["follower"], "second_roller": _follower(design)}
+    radius = design.second.follower.radius            # the second roller's own radius, where it has one
+    report["follower"] = {**first["follower"], "second_roller": {
+        **_follower(design), **({} if radius is None else {"roller_radius_mm": radius})}}
     report["segments"] = first["segments"]
     lift = next(k for k in first if k.startswith("lift_max_"))
     report.update({
@@ -175,8 +177,8 @@ def assembly_figure(design: ConjugateDesign) -> Any:
         ax.fill(ring[:, 0], ring[:, 1], color="white", ec="k", lw=0.8, zorder=2)
     pair = (design.cam, design.second)
     centres = [c[0] for c in roller_centres(pair, np.zeros(1))]
-    rr = design.cam.contact_radius
-    for which, centre in enumerate(centres):
+    radii = [cam.contact_radius for cam in pair]
+    for which, (centre, rr) in enumerate(zip(centres, radii, strict=True)):
         ax.plot(centre[0] + rr * np.cos(circle), centre[1] + rr * np.sin(circle), color="C2", lw=1.5,
                 label="rollers at θ = 0" if which == 0 else None)
     follower = design.second.follower
@@ -186,7 +188,7 @@ def assembly_figure(design: ConjugateDesign) -> Any:
         for centre in centres:
             ax.plot([pivot[0], centre[0]], [pivot[1], centre[1]], color="C2", lw=2)
     else:
-        ax.plot([centres[0][0], centres[1][0]], [centres[0][1] + rr, centres[1][1] - rr], color="C2", lw=2,
+        ax.plot([centres[0][0], centres[1][0]], [centres[0][1] + radii[0], centres[1][1] - radii[1]], color="C2", lw=2,
                 label="yoke")
     for which, d in enumerate(design.cams):
         a = d.analysis

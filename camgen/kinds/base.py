@@ -47,7 +47,7 @@ BARREL = 'a barrel cam (cam.kind = "barrel")'
 #: the ``[cam]`` keys of a barrel's rib (refused for the other kinds)
 RIB_KEYS = ("barrel_form", "rib_width")
 #: the ``[cam]`` keys only a conjugate cam takes (refused for the other kinds by :class:`camgen.spec.CamTable`)
-CONJUGATE_KEYS = ("second_base_radius", "yoke_span", "arm_angle", "second_arm_length")
+CONJUGATE_KEYS = ("second_base_radius", "yoke_span", "arm_angle", "second_arm_length", "second_roller_radius")
 #: the ``[cam]`` keys every flat cam (disc, plate, grooved, conjugate) needs
 FLAT_KEYS = ("base_radius", "thickness")
 
