@@ -1,0 +1,98 @@
+"""The outline made at once (issue 16): every stretch of a cam asks for the angles it needs and one evaluation of the
+follower a round serves them all. Its result is each stretch's own, to the last bit, and the number of evaluations is
+what the design says (a count, not a time)."""
+from __future__ import annotations
+
+import copy
+import dataclasses
+from typing import Any
+
+import numpy as np
+import pytest
+
+from camgen.cam import build_cam
+from camgen.outline import exact_outline, stretch
+from camgen.spec import validate_spec
+from tests.conftest import RDRD
+
+FOLLOWERS = {
+    "offset roller": {},
+    "knife edge": {"follower.type": "knife-edge", "follower.roller_radius": None, "motion.2.law": "cycloidal"},
+    "flat face": {"follower.type": "translating-flat", "follower.roller_radius": None, "follower.offset": None,
+                  "cam.base_radius": 60.0},
+    "oscillating roller": {"follower.type": "oscillating-roller", "follower.offset": None,
+                           "follower.pivot_distance": 110.0, "follower.arm_length": 90.0, "follower.roller_radius": 8.0,
+                           "motion.0.lift": 15.0, "motion.2.lift": 15.0},
+    "clockwise": {"cam.rotation": "cw"},
+}
+
+
+class _Counting:
+    """A follower that counts its evaluations and is otherwise the one it wraps."""
+
+    def __init__(self, inner: Any) -> None:
+        self.inner, self.calls = inner, []
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.inner, name)
+
+    def pitch(self, theta: np.ndarray, motion: np.ndarray) -> Any:
+        self.calls.append(theta.size)
+        return self.inner.pitch(theta, motion)
+
+
+def _cam(changes: dict):
+    """rdrd with dotted keys set (None: removed)."""
+    raw = copy.deepcopy(RDRD)
+    for key, value in changes.items():
+        *path, last = key.split(".")
+        table = raw
+        for part in path:
+            table = table[int(part)] if part.isdigit() else table[part]
+        if value is None:
+            table.pop(last, None)
+        else:
+            table[last] = value
+    return build_cam(validate_spec(raw))
+
+
+def _contains(whole: np.ndarray, block: np.ndarray, start: int) -> int:
+    """Where ``block`` (rows) next appears in ``whole`` from row ``start`` on, exactly; -1 if it does not."""
+    for at in range(start, len(whole) - len(block) + 1):
+        if np.array_equal(whole[at:at + len(block)], block):
+            return at
+    return -1
+
+
+@pytest.mark.parametrize("curves", ["polylines", "biarcs"])
+@pytest.mark.parametrize("follower", list(FOLLOWERS))
+def test_the_outline_is_each_stretch_made_alone(follower, curves):
+    cam = _cam(FOLLOWERS[follower])
+    outline = exact_outline(cam, 0.01, curves)
+    verts = outline.contour.vertices
+    if outline.contour.area < 0 or not np.array_equal(verts, exact_outline(cam, 0.01, curves).contour.vertices):
+        pytest.fail("the outline is not reproducible")
+    at, worst = 0, 0.0
+    for i, _ in enumerate(cam.program.segments):
+        v, b, err = stretch(cam, i, 0.01, cam.contact_radius, curves)
+        found = _contains(verts, v, at)
+        if found < 0:                                   # the contour may have been turned round to run ccw
+            verts = verts[::-1]
+            found = _contains(verts, v, 0)
+        assert found >= 0, f"motion[{i}]'s stretch is not in the outline as made alone"
+        at, worst = found + len(v), max(worst, err)
+    assert outline.max_error_mm == worst <= 0.01
+
+
+def test_a_cam_takes_two_evaluations_of_its_follower():
+    cam = _cam({})
+    counting = _Counting(cam.follower)
+    counted = dataclasses.replace(cam, follower=counting)
+    outline = exact_outline(counted, 0.01)
+    # one for the segment ends (the corners), then one round for every spacing grid, dwell and corner arc, and one
+    # for every rise's and return's vertices and probes together
+    assert len(counting.calls) == 3
+    assert np.array_equal(outline.contour.vertices, exact_outline(cam, 0.01).contour.vertices)
+    counting.calls.clear()
+    exact_outline(counted, 0.01, "biarcs")
+    assert len(counting.calls) == 3          # the ends known: the grids and dwells, then both stretches' biarcs twice
