@@ -76,7 +76,8 @@ def checks_figure(design: CamDesign) -> Any:
                                                                         "pressure_max_MPa" in forces.get("stress", {})
                                                                         else [])
     fig = figure(8, 2.4 * len(panels) + 1.2, layout=None)
-    fig.subplots_adjust(left=0.12, right=0.88, bottom=0.08, top=0.94, hspace=0.15)
+    # room on the right only for the force panel's torque axis (no empty band without one)
+    fig.subplots_adjust(left=0.12, right=0.88 if forces else 0.97, bottom=0.08, top=0.94, hspace=0.15)
     axes = np.atleast_1d(fig.subplots(len(panels), 1, sharex=True))
     ax = axes[0]
     flat = cam.follower.flat and not f.oscillating
