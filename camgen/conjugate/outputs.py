@@ -20,6 +20,7 @@ from camgen.conjugate.design import ConjugateDesign, roller_centres
 from camgen.conjugate.followers import ArmRoller
 from camgen.core.bundle import Bundle, item, tail
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
+from camgen.core.nesting import SheetRules, nest, sheet_kinds
 from camgen.core.parts import Drawing
 from camgen.core.routing import add_routing
 from camgen.outputs import printed_mesh
@@ -217,6 +218,8 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     meshes = [printed_mesh(d.spec, d.printed) for d in design.cams]
     report = conjugate_report(design, (meshes[0][1], meshes[1][1]))
     add_routing(report, [d.cut for d in design.cams], out.tool_radius)
+    nested = nest(tuple(d.cut for d in design.cams), SheetRules.of(out, out.kerf, "output.sheet"))
+    report["sheet"] = nested.report
 
     def plot(kind: str) -> Any:
         from camgen import plots
@@ -230,6 +233,9 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
                                                 ("cut-svg", f"cam{which + 1}_cut_svg", f"{part}-cut.svg")], formats),
                   item(mesh, [("stl", f"cam{which + 1}_stl", f"{part}.stl"),
                               ("3mf", f"cam{which + 1}_3mf", f"{part}.3mf")], formats)]
+    items += [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"), ("cut-svg", f"{kind}_svg",
+                                                                          f"{name}-{kind}.svg")], formats)
+              for kind, drawing in sheet_kinds(nested.drawings(out.tolerance))]
     items.append(item(tuple((f"{name}-{which + 1}", (d.printed,)) for which, d in enumerate(design.cams)),
                       [("step", "step", f"{name}.step")], formats))
     items += tail(name, plot, ("svaj", "assembly"), report, lambda: cam_page(design, report), formats)

@@ -18,18 +18,21 @@ The method (ours, on shapely and numpy; see the README's nesting section for the
 2. **Exact compaction.** The part then slides left and down by the exact clearance shapely measures between
    its outline and the others' and the sheet's edges, less the gap, so the grid's rounding is given back.
 3. **A few orders, the best kept.** The parts are placed largest first; a fixed number of orders (by area, by
-   length, by height) are tried and the layout with the fewest sheets, then the least used area, kept.
+   length, by height) are tried, and the shelf layout too, and the layout with the fewest sheets, then the least
+   used area, kept: never worse than the shelves.
 
 Everything is deterministic: no random numbers and no clock; the work is bounded by the number of orders and
 rotations, not by time, so the same parts always give the same sheets (the golden hashes rely on it).
 
-The shelf packing of bounding rectangles (:func:`shelf_extent`) is kept as the reference: the report gives
+The shelf packing of bounding rectangles (:func:`shelf`, now with the gap to the edges too) is kept as the
+reference: the report gives
 both utilisations, each the parts' area over the sheet area the layout uses (:func:`used_area`).
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -72,6 +75,12 @@ class SheetRules:
     def __post_init__(self) -> None:
         if not (self.size[0] > 0 and self.size[1] > 0 and self.gap >= 0 and self.rotations):
             raise ValueError("a sheet needs a positive size, a gap >= 0 and at least one rotation")
+
+    @classmethod
+    def of(cls, table: Any, kerf: float, field: str) -> SheetRules:
+        """The rules a template's table gives by its keys ``sheet`` (mm), ``margin`` (mm, beyond ``kerf``),
+        ``sheet_rotations`` (degrees) and ``grain``; ``field`` names the sheet in refusals."""
+        return cls(tuple(table.sheet), kerf + table.margin, rotations_of(table.sheet_rotations, table.grain), field)
 
 
 @dataclass(frozen=True)
@@ -155,14 +164,17 @@ def nest(parts: tuple[Part, ...], rules: SheetRules) -> Nest:
     allowed rotation.
     """
     flats = [_Flat.of(p, rules) for p in parts]
+    reference = shelf(parts, rules.size, rules.gap)
+    shelf_figure = None if reference is None else _area(parts) / _used_area(reference, rules)
+    layouts = [(_fill(sorted(range(len(parts)), key=lambda i, o=order: _order_key(flats[i], o)), flats, rules, lean),
+                f"{order}, {lean}") for order, lean in TRIES]
+    if reference is not None and 0.0 in rules.rotations:           # the shelves themselves, should they be best
+        layouts.append(((reference, max((p.sheet for p in reference), default=0) + 1), "shelves"))
     best: Nest | None = None
-    for order, lean in TRIES:
-        placed, sheets = _fill(sorted(range(len(parts)), key=lambda i, o=order: _order_key(flats[i], o)), flats, rules,
-                               lean)
+    for (placed, sheets), how in layouts:
         used = _used_area(placed, rules)
         nested = Nest(tuple(sorted(placed, key=lambda p: (p.sheet, p.shift[0], p.shift[1]))), sheets, rules,
-                      _area(parts) / used if used > 0 else 1.0, _shelf_utilisation(parts, rules, sheets),
-                      f"{order}, {lean}")
+                      _area(parts) / used if used > 0 else 1.0, shelf_figure, how)
         if best is None or (nested.sheets, -nested.utilisation) < (best.sheets, -best.utilisation):
             best = nested
     assert best is not None
@@ -390,31 +402,37 @@ def used_area(ends: list[np.ndarray], size: tuple[float, float]) -> float:
     return float((len(ends) - 1) * size[0] * size[1] + ends[-1][0] * ends[-1][1]) if ends else 0.0
 
 
-def shelf_extent(parts: tuple[Part, ...], size: tuple[float, float], gap: float) -> list[np.ndarray] | None:
-    """The reference: the parts' boxes in shelves (rows left to right from the sheet's corner, tallest first, ``gap``
-    mm apart), a new sheet when a sheet is full; each sheet's farthest extents (x, y; mm), or None if a part does
-    not fit a sheet."""
+def shelf(parts: tuple[Part, ...], size: tuple[float, float], gap: float) -> list[Placed] | None:
+    """The reference: the parts as drawn (not turned), their exact boxes in shelves (rows left to right from the
+    sheet's corner, tallest first, ``gap`` mm apart and from the edges), a new sheet when a sheet is full; None if
+    a part does not fit a sheet."""
     width, height = size
     x = y = row = 0.0
-    ends = [np.zeros(2)]
-    for part in sorted(parts, key=lambda p: p.outline.bounds()[1] - p.outline.bounds()[3]):
+    sheet = 0
+    out = []
+    for part in sorted(parts, key=lambda p: (p.outline.bounds()[1] - p.outline.bounds()[3], p.name)):
         x0, y0, x1, y1 = part.outline.bounds()
         span = np.array([x1 - x0, y1 - y0])
-        if x > 0 and x + span[0] > width:
+        if x > 0 and x + span[0] + 2 * gap > width:
             x, y, row = 0.0, y + row + gap, 0.0
-        if y + span[1] > height and y > 0:
-            x, y, row = 0.0, 0.0, 0.0
-            ends.append(np.zeros(2))
-        if x + span[0] > width or y + span[1] > height:
+        if y > 0 and y + span[1] + 2 * gap > height:
+            x, y, row, sheet = 0.0, 0.0, 0.0, sheet + 1
+        if x + span[0] + 2 * gap > width or y + span[1] + 2 * gap > height:
             return None
-        ends[-1] = np.maximum(ends[-1], (x + span[0], y + span[1]))
+        out.append(Placed(part, sheet, 0.0, (float(x + gap - x0), float(y + gap - y0))))
         x, row = x + span[0] + gap, max(row, span[1])
+    return out
+
+
+def shelf_extent(parts: tuple[Part, ...], size: tuple[float, float], gap: float) -> list[np.ndarray] | None:
+    """Each sheet's farthest right and top extents (mm) in the :func:`shelf` layout; None where it does not fit."""
+    placed = shelf(parts, size, gap)
+    if placed is None:
+        return None
+    ends = [np.zeros(2) for _ in range(max(p.sheet for p in placed) + 1)] if placed else [np.zeros(2)]
+    for p in placed:
+        ends[p.sheet] = np.maximum(ends[p.sheet], p.outline().bounds()[2:])
     return ends
-
-
-def _shelf_utilisation(parts: tuple[Part, ...], rules: SheetRules, sheets: int) -> float | None:
-    ends = shelf_extent(parts, rules.size, rules.gap)
-    return None if ends is None else _area(parts) / used_area(ends, rules.size)
 
 
 def _placed_items(p: Placed) -> list:
@@ -479,4 +497,4 @@ def _text_box(centre: np.ndarray, height: float, n: int, angle: float):
 
 
 __all__ = ["QUARTER_TURNS", "WITH_GRAIN", "Nest", "Placed", "SheetRules", "nest", "rotations_of", "sheet_kinds",
-           "shelf_extent", "used_area"]
+           "shelf", "shelf_extent", "used_area"]

@@ -15,7 +15,7 @@ import re
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, Literal, TypeVar, get_origin
+from typing import Annotated, Any, Literal, TypeVar, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
@@ -141,9 +141,14 @@ class OutputTable(Model):
         return WriteOptions(self.dxf_version, self.dxf, self.text)
 
 
+#: a side of a cut sheet (mm)
+SheetSide = Annotated[float, Field(gt=0, le=MAX_LENGTH_MM)]
+
+
 class CutOutputTable(OutputTable):
     """The ``[output]`` keys of products made as cut and printed parts: the tolerance of curves made into chords,
-    the laser's kerf and the printer's clearance (camgen's cams and Geneva drives)."""
+    the laser's kerf and the printer's clearance (camgen's cams and Geneva drives), and the cut sheet that a
+    product of several parts nests them on (:mod:`camgen.core.nesting`)."""
 
     tolerance: float = Field(0.01, ge=1e-6, le=1.0, description="max distance of the exported curves from the "
                              "exact ones", json_schema_extra=unit("mm"))
@@ -151,6 +156,23 @@ class CutOutputTable(OutputTable):
                         json_schema_extra=unit("mm"))
     clearance: float = Field(0.0, ge=0, le=5, description="printing clearance: printed holes grow by this in "
                              "diameter", json_schema_extra=unit("mm"))
+    sheet: tuple[SheetSide, SheetSide] = Field((600.0, 400.0), description="cut sheet of a product of several "
+                                               "parts (Geneva drive, conjugate pair): width and height",
+                                               json_schema_extra=unit("mm"))
+    margin: float = Field(3.0, ge=0, le=1000, description="cut sheet: gap between parts and to the edges beyond the "
+                          "kerf", json_schema_extra=unit("mm"))
+    sheet_rotations: float = Field(90.0, ge=0, le=360, description="cut sheet: parts turn in steps of this (0: as "
+                                   "drawn only); a divisor of 360", json_schema_extra=unit("degrees"))
+    grain: bool = Field(False, description="cut sheet: parts keep along the sheet's width, turned by 0 or 180 "
+                        "degrees only")
+
+    @field_validator("sheet_rotations")
+    @classmethod
+    def _divides_a_turn(cls, step: float) -> float:
+        """A rotation step is 0 or divides 360 degrees."""
+        if step > 0 and abs(360.0 / step - round(360.0 / step)) > 1e-9:
+            raise ValueError(f"must be 0 or divide 360 degrees (e.g. 90, 45, 15) (got {step:g})")
+        return step
 
 
 def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:

@@ -12,6 +12,7 @@ from typing import Any
 
 from camgen.core.bundle import Bundle, item, tail
 from camgen.core.errors import ExportError
+from camgen.core.nesting import SheetRules, nest, sheet_kinds
 from camgen.core.parts import Drawing
 from camgen.core.routing import add_routing
 from camgen.geneva.design import PARTS, GenevaDesign
@@ -44,6 +45,8 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
     solids = _solids(design) if {"stl", "3mf"} & set(formats) else {}
     report = geneva_report(design, {k: v[1] for k, v in solids.items()})
     add_routing(report, [design.cut[part] for part in PARTS], out.tool_radius)
+    nested = nest(tuple(design.cut[part] for part in PARTS), SheetRules.of(out, out.kerf, "output.sheet"))
+    report["sheet"] = nested.report
 
     def plot(kind: str) -> Any:
         from camgen.geneva import plots
@@ -53,6 +56,9 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
     items = [item(Drawing.of_part(design.cut[part]), [("dxf", f"{part}_dxf", f"{name}-{part}.dxf"),
                                                         ("cut-svg", f"{part}_cut_svg", f"{name}-{part}-cut.svg")],
                   formats) for part in PARTS]
+    items += [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"), ("cut-svg", f"{kind}_svg",
+                                                                          f"{name}-{kind}.svg")], formats)
+              for kind, drawing in sheet_kinds(nested.drawings(out.tolerance))]
     items += [item(mesh, [("stl", f"{solid}_stl", f"{name}-{solid}.stl"), ("3mf", f"{solid}_3mf", f"{name}-{solid}.3mf")],
                    formats) for solid, (mesh, _) in solids.items()]
     printed = design.printed
