@@ -38,10 +38,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
         for name in report["files"].values():
             click.echo(f"wrote {directory / name}")
         return
-    a = design.analysis
-    click.echo(f"{spec.name}: pressure angle max {a.pressure_angle_max_deg:.2f} deg at "
-               f"{a.pressure_angle_max_at_deg:.2f} deg; min convex radius {a.profile_rho_min_mm:.3f} mm (cam), "
-               f"{a.pitch_rho_min_mm:.3f} mm (pitch) at {a.pitch_rho_min_at_deg:.2f} deg")
+    click.echo(_checks_line(design))
     click.echo(f"outline: {report['outline_vertices']} vertices ({report['outline_arcs']} exact arcs), "
                f"max error {report['outline_max_error_mm']:.2e} mm (tolerance {report['tolerance_mm']:g} mm)")
     for line in design_lines(report):
@@ -54,6 +51,21 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
         click.echo(f"warning: {warning}")
     for name in report["files"].values():
         click.echo(f"wrote {directory / name}")
+
+
+def _checks_line(design: object) -> str:
+    """The console's first line: the peak pressure angle and the smallest convex radius (deg, mm). A flat face has
+    no pitch curve apart from its profile, so only the cam's radius is given; a translating flat face is pushed
+    square to its face, so its pressure angle is said to be 0 by definition rather than printed as a peak."""
+    a, name = design.analysis, design.spec.name
+    flat = design.cam.follower.flat
+    where = f"at {a.pitch_rho_min_at_deg:.2f} deg"
+    radius = (f"min convex radius {a.profile_rho_min_mm:.3f} mm (cam) {where}" if flat else
+              f"min convex radius {a.profile_rho_min_mm:.3f} mm (cam), {a.pitch_rho_min_mm:.3f} mm (pitch) {where}")
+    if flat and not design.spec.follower.oscillating:
+        return f"{name}: pressure angle 0 by definition (the flat face is pushed square to its face); {radius}"
+    return (f"{name}: pressure angle max {a.pressure_angle_max_deg:.2f} deg at {a.pressure_angle_max_at_deg:.2f} deg; "
+            f"{radius}")
 
 
 def _summary(report: dict) -> list[str] | None:

@@ -206,3 +206,17 @@ def test_kerf_and_clearance_move_the_edges_by_the_stated_amount(tmp_path):
     assert (report["kerf_mm"], report["clearance_mm"], report["bore_cut_mm"], report["bore_printed_mm"]) == \
         (0.2, 0.3, pytest.approx(9.8), pytest.approx(10.3))
     assert report["outline_max_error_mm"] <= 0.01
+
+
+def test_a_flat_face_console_states_its_pressure_angle_and_no_pitch_radius(tmp_path):
+    """A translating flat face is pushed square to its face: the console says its pressure angle is 0 by
+    definition instead of printing a 'max 0.00 deg' peak, and gives the cam's radius only (a flat face's pitch curve
+    is its profile); the radius printed is the report's."""
+    flat = TEMPLATE.parent / "flat-face.toml"
+    result = CliRunner().invoke(main, ["build", str(flat), "-o", str(tmp_path), "--set", "output.formats=['json']"])
+    assert result.exit_code == 0, result.output
+    first = result.output.splitlines()[0]
+    report = json.loads((tmp_path / "flat-face.json").read_text())
+    assert "pressure angle 0 by definition" in first and "pressure angle max" not in first
+    assert "(pitch)" not in first
+    assert f"min convex radius {report['profile_rho_min_mm']:.3f} mm (cam)" in first
