@@ -211,7 +211,7 @@ def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
         return None
     parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(spec.motion) if seg.law == "parabolic"]
     f = spec.follower
-    ld = None if f.mass is None else spec_loading(f, cam.follower)
+    ld = None if f.mass is None else spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
     out = speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic, f.load, f.orientation,
                        f.contact_margin, ld)
     if ld is not None and out["contact"] and out["contact"].get("mode"):

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -56,6 +56,31 @@ class LoadTable:
         return np.interp(np.asarray(theta, dtype=float), self.angles, self.loads, period=2 * math.pi)
 
 
+@dataclass(frozen=True)
+class SegmentLoads:
+    """A load (N, pressing the follower onto the cam) constant over each motion segment (``motion[i].load``):
+    ``starts`` the segments' first cam angles (radians, increasing from 0), ``loads`` theirs. A boundary belongs
+    to the segment it starts (:meth:`camgen.program.Program.segment_index`); the means over the turn never see it
+    (their nodes lie inside the segments)."""
+
+    starts: tuple[float, ...]
+    loads: tuple[float, ...]
+
+    def __call__(self, theta: np.ndarray) -> np.ndarray:
+        t = np.mod(np.asarray(theta, dtype=float), 2 * math.pi)
+        index = np.clip(np.searchsorted(self.starts, t, side="right") - 1, 0, len(self.starts) - 1)
+        return np.asarray(self.loads)[index]
+
+
+def segment_loads(program: Any, motion: Any) -> SegmentLoads | None:
+    """The :class:`SegmentLoads` of a spec's ``motion`` tables (their ``load``, N; a segment without one 0) on its
+    built ``program``, or None when no segment has a load."""
+    if program is None or all(getattr(seg, "load", None) is None for seg in motion):
+        return None
+    return SegmentLoads(tuple(float(seg.start) for seg in program.segments),
+                        tuple(float(m.load or 0.0) for m in motion))
+
+
 def load_table(rows: list[tuple[float, float]] | tuple[tuple[float, float], ...]) -> LoadTable:
     """A :class:`LoadTable` from checked (cam angle in degrees, load in N) rows (:func:`camgen.spec.load_rows`)."""
     return LoadTable(tuple(math.radians(a) for a, _ in rows), tuple(float(v) for _, v in rows))
@@ -84,6 +109,7 @@ class Loading:
     tilt: float = 0.0
     turn: float = 0.0
     table: LoadTable | None = None
+    segments: SegmentLoads | None = None
 
     @property
     def weight_at_rest(self) -> float:
@@ -92,7 +118,15 @@ class Loading:
 
     def external(self, theta: np.ndarray | None) -> np.ndarray | float:
         """The external load (N) at cam angles ``theta`` (radians): the constant and the table's."""
-        return self.load if self.table is None or theta is None else self.load + self.table(theta)
+        if theta is None:
+            return self.load
+        table = 0.0 if self.table is None else self.table(theta)
+        return self.load + table + (0.0 if self.segments is None else self.segments(theta))
+
+    @property
+    def varies(self) -> bool:
+        """Whether the external load changes with cam angle (a load table or loads per segment)."""
+        return self.table is not None or self.segments is not None
 
     def still(self, m: np.ndarray, theta: np.ndarray | None = None) -> np.ndarray:
         """The force (N) at rest: everything but the inertia."""
@@ -161,10 +195,15 @@ def arm_weight(follower: Any, inertia: float | None, arm_mass: float | None, arm
     return ArmWeight(inertia or 0.0, arm_mass or 0.0, arm_com or 0.0, tilt, sign * math.pi / 180.0)
 
 
-def spec_loading(table: Any, follower: Any, positive: bool = False) -> Loading:
+def spec_loading(table: Any, follower: Any, positive: bool = False, motion: Any = (), program: Any = None
+                 ) -> Loading:
     """The :class:`Loading` of a ``[follower]`` table (:class:`camgen.spec.FollowerTable`) on its built
-    ``follower``: the spring, loads and load table, and for an oscillating roller its arm's inertia and weights.
-    A ``positive`` drive (a groove: no spring) counts the weight only with ``orientation``."""
+    ``follower``: the spring, loads and load table (or the ``motion`` tables' loads per segment on the built
+    ``program``), and for an oscillating roller its arm's inertia and weights. A ``positive`` drive (a groove: no
+    spring) counts the weight only with ``orientation``."""
+    per_segment = segment_loads(program, motion)
+    if per_segment is not None:
+        return replace(spec_loading(table, follower, positive), segments=per_segment)
     arm = table.arm_length if table.oscillating else None
     rows = table.load_table_rows
     weights = None if arm is None else arm_weight(follower, table.inertia, table.arm_mass, table.arm_com,
@@ -199,13 +238,13 @@ def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | 
         return out
     arm = getattr(cam.follower, "arm_length", None) if unit != "mm" else None
     ld = ld or loading(mass, spring_rate, preload, load, orientation, margin, arm)
-    held = spring_rate is not None or preload is not None or bool(load) or ld.table is not None or ld.weight != 0
+    held = spring_rate is not None or preload is not None or bool(load) or ld.varies or ld.weight != 0
     if unit != "mm" and (arm is None or not held):
         out["contact"] = {"mode": None, "note": "contact is analysed for translating followers and for an "
                                                  "oscillating roller's arm held by a spring, a load or its weight"}
         return out
     if arm is None and spring_rate is None and preload is None and not load and orientation is None and not margin \
-            and ld.table is None:
+            and not ld.varies:
         decel = peak_of(cam, lambda m: -m[2])                      # largest -s'' (mm/rad^2)
         limit = math.inf if decel.value <= 0 else math.sqrt(G_MM / decel.value) * 60 / (2 * math.pi)
         out["contact"] = {"mode": "gravity", "liftoff_rpm": None if math.isinf(limit) else limit,
@@ -244,4 +283,6 @@ def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> dict[str, Any]:
     if ld.table is not None:
         out["load_table_n"] = {"min": float(min(ld.table.loads)), "max": float(max(ld.table.loads)),
                                "rows": len(ld.table.loads), "interpolation": "linear, periodic over the turn"}
+    if ld.segments is not None:
+        out["segment_loads_n"] = [{"segment": i, "load_n": v} for i, v in enumerate(ld.segments.loads)]
     return out

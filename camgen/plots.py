@@ -99,7 +99,7 @@ def checks_figure(design: CamDesign) -> Any:
     axes[1].set_ylabel("radius of curvature (mm)")
     axes[1].legend(fontsize=7, loc="lower right")
     if forces:
-        ld = spec_loading(f, cam.follower)
+        ld = spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
         omega = spec.cam.rpm * 2 * math.pi / 60
         push = normal_force(ld, omega, g, motion)
         axes[2].plot(deg, push, color="C0", lw=1.2, label="contact force (N)")

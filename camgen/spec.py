@@ -295,6 +295,9 @@ class SegmentTable(Model):
                                                                  "segment (2: acceleration, 3: jerk, 4)")
     fit_tolerance: float | None = Field(None, gt=0, le=MAX_LENGTH_MM, description="table: how far a row may lie from "
                                         "the fitted spline", json_schema_extra=unit("mm, or degrees of arm swing"))
+    load: float | None = Field(None, ge=-1e6, le=1e6, description="an external force pressing the follower onto the "
+                               "cam over this segment, constant (added to follower.load; the alternative to "
+                               "follower.load_table)", json_schema_extra=unit("N"))
 
     @model_validator(mode="before")
     @classmethod
@@ -397,6 +400,9 @@ class CamSpec(Model):
             for i, seg in enumerate(self.motion):
                 if seg.lift is not None and seg.lift >= 90:
                     raise ValueError(f"motion[{i}].lift: an arm swing must be < 90 degrees (got {seg.lift:.6g})")
+        loaded = [i for i, seg in enumerate(self.motion) if seg.load is not None]
+        if loaded and self.follower.load_table is not None:
+            raise ValueError(f"motion[{loaded[0]}].load: give loads per segment or follower.load_table, not both")
         if self.kit is not None:
             check_cam_kit(self.kit, self.cam.kind, self.follower.type, self.cam.bore)
         return self

@@ -296,7 +296,8 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
     jumps = tuple(cam.program.jumps())
     speed = None if spec.cam.rpm is None else speed_report(cam, spec.cam.rpm, None, None, None, [])
     if speed is not None and spec.follower.mass is not None:  # the roller's centre along the axis (an arm's arc)
-        speed["forces"] = drive_report(cam, spec_loading(spec.follower, cam.follower, positive=True), spec.cam.rpm,
+        ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
+        speed["forces"] = drive_report(cam, ld, spec.cam.rpm,
                                        ("lower wall", "upper wall") if rib is None else
                                        ("rib's upper wall", "rib's lower wall"))
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]

@@ -438,7 +438,7 @@ def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
     free = spec.model_copy(update={"follower": spec.follower.model_copy(update={"mass": None})})
     speed = _speed(free, pair[0])
     if speed is not None and spec.follower.mass is not None:
-        ld = spec_loading(spec.follower, pair[0].follower, positive=True)
+        ld = spec_loading(spec.follower, pair[0].follower, True, spec.motion, pair[0].program)
         speed = {**speed, "forces": pair_report(pair, ld, spec.cam.rpm)}
     return speed
 

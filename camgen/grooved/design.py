@@ -252,7 +252,8 @@ def design_grooved(spec: CamSpec) -> GroovedDesign:
                           "must be narrower than the groove")
     profile = dataclasses.replace(design_profile(island), sizing=sizing)
     if profile.speed is not None and spec.follower.mass is not None:
-        ld = spec_loading(spec.follower, cam.follower, positive=True)   # the island's: the same pitch curve, arm
+        # the island's: the same pitch curve, arm
+        ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
         profile = dataclasses.replace(profile, speed={**profile.speed, "forces": drive_report(
             cam, ld, spec.cam.rpm, ("inner flank", "outer flank"))})
     curves = "polylines" if out.dxf == "segments" else out.curves
