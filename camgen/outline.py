@@ -61,9 +61,9 @@ def _pitch_of(cam: Cam, asks: Asks) -> list[PitchGeometry]:
     """Pitch geometry at every (segment index, angles) pair, each on its own segment (one-sided limits at its ends),
     all from one evaluation of the follower: its cost is mostly per call, not per point."""
     theta = np.concatenate([t for _, t in asks])
-    motion = np.concatenate([cam.program.segments[i].evaluate(t) for i, t in asks], axis=1)
-    g = cam.follower.pitch(theta, motion)
-    cuts = np.cumsum([0] + [t.size for _, t in asks])
+    sizes = [t.size for _, t in asks]
+    g = cam.follower.pitch(theta, cam.program.evaluate_on(np.repeat([i for i, _ in asks], sizes), theta))
+    cuts = np.cumsum([0, *sizes])
     fields = vars(g).items()
     return [PitchGeometry(**{k: None if v is None else v[a:b] for k, v in fields})
             for a, b in zip(cuts[:-1], cuts[1:], strict=True)]

@@ -65,19 +65,25 @@ class Segment:
             out = np.zeros((4, flat.size))
             out[0] = self.level
         else:
-            u = np.clip((flat - self.start) / self.beta, 0.0, 1.0)
+            u = np.minimum(np.maximum((flat - self.start) / self.beta, 0.0), 1.0)      # np.clip's result
             out = self._from_law(self.law.derivatives(u if self.kind == "rise" else 1.0 - u))
         return out.reshape((4, *theta.shape))
 
     def _from_law(self, f: np.ndarray) -> np.ndarray:
         """s, s', s'', s''' from the law's f, f', f'', f''' (shape (4, n)) at the law's own argument."""
-        out = f * self.scale()[:, None]
-        if self.kind == "return":
-            out *= np.array([1.0, -1.0, 1.0, -1.0])[:, None]
-            out[0] += self.level - self.lift
-        else:
-            out[0] += self.level
+        factor, level = self._factors
+        out = f * factor
+        out[0] += level
         return out
+
+    @functools.cached_property
+    def _factors(self) -> tuple[np.ndarray, float]:
+        """What turns the law's derivatives into the segment's: each row's factor (4, 1), the natural scale with a
+        return's odd rows negated (a sign: exact), and the level added to s (mm). Made once a segment."""
+        factor = self.scale()[:, None]
+        if self.kind == "return":
+            return factor * np.array([1.0, -1.0, 1.0, -1.0])[:, None], self.level - self.lift
+        return factor, self.level
 
     def at_law(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Cam angles (radians) and s, s', s'', s''' (shape ``(4, n)``) where the law's own variable is ``v`` (u for
@@ -206,24 +212,30 @@ class Program:
         peaks the one at the smallest angle is taken, so that rounding does not choose between them.
         """
         owner, lo, hi = self._pieces
+        table = self._table
 
         def values(v: np.ndarray, piece: np.ndarray) -> np.ndarray:
             index = owner[piece]
-            theta, motion = np.empty(v.size), np.empty((4, v.size))
-            for i in present(index):
-                mask = index == i
-                theta[mask], motion[:, mask] = self.segments[i].at_law(v[mask])
-            return func(theta, motion, index)
+            return func(table.angle(index, v), table.at_law(index, v), index)
 
-        backwards = np.array([seg.kind == "return" and seg.law is not None for seg in self.segments])[owner]
-        at, value, magnitude = piecewise_maxima(values, lo, hi, scale=scale, reverse=backwards)
+        at, value, magnitude = piecewise_maxima(values, lo, hi, scale=scale, reverse=table.backwards[owner])
         out = []
-        for row_at, row_value, size in zip(at, value, magnitude, strict=True):
-            degrees = np.degrees([self.segments[i].angle(v) for i, v in zip(owner, row_at, strict=True)]) % 360.0
+        every = np.degrees(table.angle(np.broadcast_to(owner, at.shape).ravel(), at.ravel())).reshape(at.shape) % 360.0
+        for row_value, size, degrees in zip(value, magnitude, every, strict=True):
             equal = np.flatnonzero(row_value >= row_value.max() - TIE * size)
             best = equal[np.argmin(degrees[equal])]
             out.append((float(row_value[best]), float(degrees[best])))
         return out
+
+    @functools.cached_property
+    def _table(self) -> _Table:
+        """The segments as arrays, to evaluate any of them at once (see :class:`_Table`)."""
+        return _Table(self.segments)
+
+    def evaluate_on(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """s, s', s'', s''' (shape ``(4, n)``) at cam angles ``theta`` (n,) (radians) each on the segment ``index``
+        (n,) gives, as :meth:`Segment.evaluate` makes them (one-sided at the segment's ends), all at once."""
+        return self._table.evaluate(index, theta)
 
     @functools.cached_property
     def _pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -260,6 +272,58 @@ class Program:
             for t, lo, hi in seg.inner_limits():
                 found += _compare(t, lo, hi, seg.scale(), inside=True)
         return sorted(found, key=lambda j: (j.at_deg, j.order))
+
+
+class _Table:
+    """A program's segments as arrays (start, beta, the factors of :meth:`Segment._from_law`, level), so that points
+    on any of them are evaluated in one pass: one call of each law for all its segments' points, the same
+    operations on the same numbers as each segment's own evaluation (so the same values to the last bit)."""
+
+    def __init__(self, segments: tuple[Segment, ...]) -> None:
+        moving = [seg.kind != "dwell" and seg.law is not None for seg in segments]
+        self.start = np.array([seg.start for seg in segments])
+        self.beta = np.array([seg.beta for seg in segments])
+        self.backwards = np.array([seg.kind == "return" and m for seg, m in zip(segments, moving, strict=True)])
+        self.factor = np.array([seg._factors[0][:, 0] if m else np.zeros(4)
+                                for seg, m in zip(segments, moving, strict=True)]).T
+        self.level = np.array([seg._factors[1] if m else seg.level for seg, m in zip(segments, moving, strict=True)])
+        laws: list[Law | None] = []
+        group = []
+        for seg, m in zip(segments, moving, strict=True):
+            law = seg.law if m else None
+            found = next((g for g, known in enumerate(laws) if known is law), None)
+            if found is None:
+                laws.append(law)
+                found = len(laws) - 1
+            group.append(found)
+        self.laws, self.group = laws, np.array(group)
+
+    def angle(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """:meth:`Segment.angle` of each law variable ``v`` (n,) on its segment ``index`` (n,) (radians)."""
+        return self.start[index] + self.beta[index] * np.where(self.backwards[index], 1.0 - v, v)
+
+    def evaluate(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """:meth:`Segment.evaluate` of each angle ``theta`` (n,) on its segment ``index`` (n,): (4, n)."""
+        u = np.minimum(np.maximum((theta - self.start[index]) / self.beta[index], 0.0), 1.0)
+        return self.at_law(index, np.where(self.backwards[index], 1.0 - u, u))
+
+    def at_law(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """:meth:`Segment.at_law`'s motion at each law variable ``v`` (n,) on its segment ``index`` (n,): (4, n);
+        one call of each law for every point on its segments."""
+        group = self.group[index]
+        out = np.empty((4, v.size))
+        for g in present(group):
+            law = self.laws[g]
+            sel = np.flatnonzero(group == g) if len(self.laws) > 1 else slice(None)
+            at = index[sel]
+            if law is None:
+                out[:, sel] = 0.0
+                out[0, sel] = self.level[at]
+            else:
+                made = law.derivatives(v[sel]) * self.factor[:, at]
+                made[0] += self.level[at]
+                out[:, sel] = made
+        return out
 
 
 def _compare(theta: float, left: np.ndarray, right: np.ndarray, scale: np.ndarray, inside: bool) -> list[Jump]:

@@ -91,16 +91,38 @@ def from_centre_path(theta: np.ndarray, q: np.ndarray, q1: np.ndarray, q2: np.nd
     moves as the follower rises. In the cam frame P = R(-sense theta) q, so
     P' = R(...)(q' - sense J q) and P'' = R(...)(q'' - 2 sense J q' - q).
     """
-    t = q1 - sense * perp(q)
-    a = q2 - 2 * sense * perp(q1) - q
-    speed = np.sqrt(t[:, 0] * t[:, 0] + t[:, 1] * t[:, 1])
-    kappa = -sense * _cross(t, a) / speed**3
-    normal = sense * perp(t) / speed[:, None]
+    return centre_path(theta, (q[:, 0], q[:, 1]), (q1[:, 0], q1[:, 1]), (q2[:, 0], q2[:, 1]),
+                       (direction[:, 0], direction[:, 1]), sense)
+
+
+Pair = tuple[Any, Any]
+
+
+def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair, sense: int) -> PitchGeometry:
+    """:func:`from_centre_path` from the x and y components of ``q``, ``q1``, ``q2`` and ``direction``, each an
+    array (n,) or a number that holds for every angle (a translating follower's fixed x, its zero x-velocity): the
+    same operations on the same numbers, without making the (n, 2) arrays of the constant ones."""
+    (qx, qy), (q1x, q1y), (q2x, q2y), (dx, dy) = q, q1, q2, direction
+    tx, ty = q1x + sense * qy, q1y - sense * qx                        # q' - sense J q
+    twice = 2 * sense
+    ax, ay = q2x + twice * q1y - qx, q2y - twice * q1x - qy            # q'' - 2 sense J q' - q
+    speed = np.sqrt(tx * tx + ty * ty)
+    kappa = -sense * (tx * ay - ty * ax) / speed**3
+    nx, ny = -sense * ty / speed, sense * tx / speed                   # sense J t / |t|
     turn = -sense * theta
     c, s = np.cos(turn), np.sin(turn)
-    return PitchGeometry(theta=theta, point=_turned(c, s, q), d1=_turned(c, s, t), d2=_turned(c, s, a),
-                         normal=_turned(c, s, normal), kappa=kappa,
-                         pressure_angle=signed_pressure_angle(direction, normal, sense))
+    pressure = sense * np.arctan2(dx * ny - dy * nx, dx * nx + dy * ny)
+    return PitchGeometry(theta=theta, point=_turned_xy(c, s, qx, qy), d1=_turned_xy(c, s, tx, ty),
+                         d2=_turned_xy(c, s, ax, ay), normal=_turned_xy(c, s, nx, ny), kappa=kappa,
+                         pressure_angle=pressure)
+
+
+def _turned_xy(c: np.ndarray, s: np.ndarray, x: Any, y: Any) -> np.ndarray:
+    """The vectors (``x``, ``y``) turned by the angles whose cosines and sines are ``c``, ``s`` (n,): (n, 2)."""
+    out = np.empty((c.shape[0], 2))
+    out[:, 0] = c * x - s * y
+    out[:, 1] = s * x + c * y
+    return out
 
 
 def from_support(theta: np.ndarray, p: np.ndarray, alpha: np.ndarray, derivs: np.ndarray, sense: int,

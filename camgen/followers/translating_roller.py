@@ -18,7 +18,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.followers.base import FollowerType, PitchGeometry, from_centre_path
+from camgen.followers.base import FollowerType, PitchGeometry, centre_path
 
 
 @dataclass(frozen=True)
@@ -50,10 +50,7 @@ class TranslatingRoller:
     def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
         """Pitch geometry at cam angles ``theta`` (rad) for ``motion`` = s, s', s'', s''' (mm per rad^k)."""
         s, s1, s2 = motion[0], motion[1], motion[2]
-        zero = np.zeros_like(s)
-        q = np.column_stack([np.full_like(s, self.offset), self.d0 + s])
-        up = np.column_stack([zero, np.ones_like(s)])
-        return from_centre_path(theta, q, np.column_stack([zero, s1]), np.column_stack([zero, s2]), up, self.sense)
+        return centre_path(theta, (self.offset, self.d0 + s), (0.0, s1), (0.0, s2), (0.0, 1.0), self.sense)
 
 
 def _offset_floor(table: Any, base_radius: float) -> float:

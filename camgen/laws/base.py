@@ -88,6 +88,16 @@ def as_array(u: ArrayLike) -> np.ndarray:
     return np.asarray(u, dtype=float)
 
 
+def rows(*values: np.ndarray) -> np.ndarray:
+    """``values`` (arrays of one shape) as the rows of one array, shape ``(len(values), *shape)``: np.stack's result
+    without its checks (a law's derivatives are made on every evaluation)."""
+    first = values[0]
+    out = np.empty((len(values), *first.shape))
+    for i, v in enumerate(values):
+        out[i] = v
+    return out
+
+
 def pairs(values: ArrayLike, least: int, field: str, what: str) -> np.ndarray:
     """``values`` as an (n, 2) float array of at least ``least`` finite rows, or a :class:`SpecError` naming
     ``field`` that asks for ``what``."""

@@ -16,7 +16,7 @@ from numpy.polynomial import Chebyshev, Polynomial
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.laws.base import Law, as_array
+from camgen.laws.base import Law, as_array, rows
 
 #: most derivative orders a boundary condition may name
 MAX_ORDER = 25
@@ -70,7 +70,7 @@ class PolynomialLaw(Law):
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         u = as_array(u)
-        return np.stack([d(u) for d in self._derivs])
+        return rows(*(d(u) for d in self._derivs))
 
 
 def poly345() -> PolynomialLaw:

@@ -6,7 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from camgen.laws.base import Law, as_array
+from camgen.laws.base import Law, as_array, rows as _rows
 
 
 @dataclass(frozen=True)
@@ -18,7 +18,7 @@ class Harmonic(Law):
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         x = np.pi * as_array(u)
         c, s = np.cos(x), np.sin(x)
-        return np.stack([(1 - c) / 2, np.pi / 2 * s, np.pi**2 / 2 * c, -(np.pi**3) / 2 * s])
+        return _rows((1 - c) / 2, np.pi / 2 * s, np.pi**2 / 2 * c, -(np.pi**3) / 2 * s)
 
 
 @dataclass(frozen=True)
@@ -31,7 +31,7 @@ class Cycloidal(Law):
         u = as_array(u)
         x = 2 * np.pi * u
         c, s = np.cos(x), np.sin(x)
-        return np.stack([u - s / (2 * np.pi), 1 - c, 2 * np.pi * s, 4 * np.pi**2 * c])
+        return _rows(u - s / (2 * np.pi), 1 - c, 2 * np.pi * s, 4 * np.pi**2 * c)
 
 
 @dataclass(frozen=True)
@@ -48,5 +48,5 @@ class DoubleHarmonic(Law):
         x = np.pi * as_array(u)
         c1, s1, c2, s2 = np.cos(x), np.sin(x), np.cos(2 * x), np.sin(2 * x)
         pi = np.pi
-        return np.stack([((1 - c1) - (1 - c2) / 4) / 2, (pi * s1 - pi / 2 * s2) / 2,
-                         (pi**2 * c1 - pi**2 * c2) / 2, (-(pi**3) * s1 + 2 * pi**3 * s2) / 2])
+        return _rows(((1 - c1) - (1 - c2) / 4) / 2, (pi * s1 - pi / 2 * s2) / 2,
+                     (pi**2 * c1 - pi**2 * c2) / 2, (-(pi**3) * s1 + 2 * pi**3 * s2) / 2)
