@@ -1,6 +1,7 @@
 """A cam design from a spec: the cam, its checks, its outline and its part. No I/O."""
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
@@ -168,6 +169,21 @@ def design_profile(spec: CamSpec) -> CamDesign:
     return CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
                      allowances, wall, warnings, pressure_limit(spec), extent, speed, sizing,
                      cut_off.leaves if cut_off is not None else None)
+
+
+def step_part(design: CamDesign) -> tuple[Part, Outline]:
+    """The printed part as the STEP file carries it, and the outline it has: the outline made of biarcs (exact arcs
+    within ``output.tolerance`` mm of the exact surface, measured), whatever ``output.curves`` and ``output.dxf``
+    say, so a CAD program gets a few dozen smooth faces instead of hundreds of flat facets. An envelope of an
+    allowed undercut that is not a flat face's (a roller's loops cut away, a knife edge's corners) has no biarc
+    maker and keeps its chords. Holes, clearance and elephant foot are the printed part's."""
+    spec, outline = design.spec, design.outline
+    if _curves(spec) == "biarcs" or (outline.envelope and design.face_leaves is None):
+        return design.printed, outline
+    tol = spec.output.tolerance
+    smooth = (flat_envelope(design.cam, tol, "biarcs").outline(0.0) if design.face_leaves is not None
+              else exact_outline(design.cam, tol, "biarcs"))
+    return dataclasses.replace(design.printed, outline=smooth.contour), smooth
 
 
 def _curves(spec: CamSpec) -> str:

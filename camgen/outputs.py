@@ -19,7 +19,7 @@ from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
 from camgen.core.kit import kit_items
 from camgen.core.writers import WriteOptions
-from camgen.design import CamDesign
+from camgen.design import CamDesign, step_part
 from camgen.geneva.design import GenevaDesign
 from camgen.geneva.outputs import geneva_bundle, geneva_row
 from camgen.kinds import kind_of
@@ -44,14 +44,25 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     kit = cam_kit(design) if design.spec.kit is not None else None
     if kit is not None:
         report["kit"] = kit.report
+    solid = step_solid(design, report) if "step" in design.spec.output.formats else design.printed
     bundle = cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
-                       ("svaj", "cam", "checks"), design.printed)
+                       ("svaj", "cam", "checks"), solid)
     if kit is None:
         return bundle, report
     name = design.spec.name
     items = kit_items(name, kit.made, kit.drawing, kit.meshes, design.spec.output.formats,
                       f"{name}: the kit assembled at theta = 0")
     return Bundle.of((*bundle.items, *items), bundle.options), report
+
+
+def step_solid(design: CamDesign, report: dict[str, Any]) -> Part:
+    """The part the STEP file carries (its outline biarcs, see :func:`camgen.design.step_part`); the report gains
+    ``step_outline``: how it is made, its pieces and arcs, and its measured max error (mm) from the exact profile."""
+    part, outline = step_part(design)
+    contour = outline.contour
+    report["step_outline"] = {"curves": "chords" if outline.envelope and design.face_leaves is None else "biarcs", "pieces": len(contour.bulges),
+                              "arcs": int(contour.n_arcs), "max_error_mm": float(outline.max_error_mm)}
+    return part
 
 
 def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:

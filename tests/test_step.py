@@ -18,7 +18,7 @@ from camgen.core.parts import Part
 from camgen.core.shapes import Circle, Contour
 from camgen.core.writers import FORMATS
 from camgen.core.writers.step import _quiet, write_step
-from camgen.design import design_cam
+from camgen.design import design_cam, step_part
 from camgen.spec import load_spec
 from linkgen.cli import main as linkgen_main
 from tests.conftest import ROOT, template
@@ -130,16 +130,23 @@ def rdrd_cli(tmp_path_factory):
 
 
 def test_rdrd_step_beside_the_stl_one_exact_solid(rdrd_cli):
+    """The default outline (polylines, 114 pieces) is written as biarcs: 30 arcs, each a cylindrical face."""
     out, done = rdrd_cli
     assert sorted(p.name for p in out.iterdir()) == ["rdrd.json", "rdrd.step", "rdrd.stl"]
-    assert json.loads((out / "rdrd.json").read_text())["files"]["step"] == "rdrd.step"
+    report = json.loads((out / "rdrd.json").read_text())
+    assert report["files"]["step"] == "rdrd.step"
     assert "wrote out/rdrd/rdrd.step" in done.stdout.splitlines()
-    part = design_cam(template()).printed
+    design = design_cam(template())
+    part, outline = step_part(design)
+    assert len(design.printed.outline.bulges) == 114 and part.holes == design.printed.holes
     [(name, shape)] = read_step(out / "rdrd.step")
     found = measure(shape)
     assert name == "rdrd"
     assert_plate(found, part)
-    assert found["faces"] == 114 + 1 + 2 and found["circles"] == 2 * (2 + 1)   # 114 pieces, 2 of them arcs; a bore
+    assert found["faces"] == 30 + 1 + 2 and found["circles"] == 2 * (30 + 1)   # 30 pieces, all arcs; a bore
+    assert report["step_outline"] == {"curves": "biarcs", "pieces": 30, "arcs": 30,
+                                      "max_error_mm": outline.max_error_mm}
+    assert 0 < outline.max_error_mm <= 0.01
 
 
 @pytest.mark.parametrize("case", [
@@ -173,6 +180,147 @@ def test_the_step_solid_is_the_exact_part_not_its_chords(tmp_path):
     found = measure(shape)
     assert found["volume"] == pytest.approx((math.pi * r**2 - math.pi * 2.5**2) * t, rel=1e-9)
     assert found["faces"] == 2 + 1 + 2 and found["circles"] == 2 * 2 + 2
+
+
+def _lateral(shape) -> tuple[dict, object]:
+    """The solid's faces counted by their surface's type, and the outer wire of its bottom face (z = 0)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.BRepTools import BRepTools
+    from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cylinder, GeomAbs_Plane
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    as_face = getattr(TopoDS, "Face", None) or TopoDS.Face_s
+    names = {GeomAbs_Plane: "planes", GeomAbs_Cylinder: "cylinders", GeomAbs_BSplineSurface: "bsplines"}
+    counts, bottom, explorer = {"planes": 0, "cylinders": 0, "bsplines": 0, "other": 0}, None, TopExp_Explorer(
+        shape, TopAbs_FACE)
+    while explorer.More():
+        face = as_face(explorer.Current())
+        surface = BRepAdaptor_Surface(face)
+        kind = names.get(surface.GetType(), "other")
+        counts[kind] += 1
+        if kind == "planes" and abs(surface.Plane().Location().Z()) < 1e-12:
+            bottom = BRepTools.OuterWire_s(face)
+        explorer.Next()
+    return counts, bottom
+
+
+def _exact_surface(cam, n: int) -> np.ndarray:
+    """The exact cam surface at ``n`` cam angles over a turn, from the design's kinematics: the pitch point moved in
+    by the contact radius along the normal (mm)."""
+    g = cam.pitch(np.linspace(0.0, 2 * math.pi, n, endpoint=False))
+    return g.point - cam.contact_radius * g.normal
+
+
+def _wire_points(wire, per_edge: int) -> np.ndarray:
+    """``per_edge`` points on each edge of ``wire``, equally spaced in its parameter (mm, x and y)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    as_edge = getattr(TopoDS, "Edge", None) or TopoDS.Edge_s
+    out, explorer = [], TopExp_Explorer(wire, TopAbs_EDGE)
+    while explorer.More():
+        curve = BRepAdaptor_Curve(as_edge(explorer.Current()))
+        for u in np.linspace(curve.FirstParameter(), curve.LastParameter(), per_edge):
+            p = curve.Value(float(u))
+            out.append((p.X(), p.Y()))
+        explorer.Next()
+    return np.array(out)
+
+
+@pytest.mark.parametrize("name, sets", [
+    ("rdrd", []),                                                         # polylines asked for: biarcs written
+    ("rdrd", ['output.tolerance=0.001']),
+    ("rdrd", ['output.dxf="segments"']),                                  # the DXF's chords: the STEP's arcs
+    ("flat-face", []),
+    ("oscillating", []),
+    ("rdrd", ['output.curves="biarcs"', 'output.tolerance=1e-6']),       # the least tolerance
+], ids=["rdrd", "tolerance-0.001", "dxf-segments", "flat-face", "oscillating", "tolerance-1e-6"])
+def test_smooth_outline_within_the_tolerance_of_the_exact_profile(name, sets, tmp_path):
+    """Whatever output.curves says, the STEP solid's side is arcs (cylinders), not hundreds of planes; the exact
+    profile, sampled from the design's kinematics at 3600 angles, lies within the tolerance of the solid's side
+    (Open CASCADE's distance to the bottom face's outer wire, the side being its extrusion), and so does every
+    point of that wire (the exact surface's distance to it, measured from the pitch curve); the volume is the exact
+    profile's area x thickness within the tolerance x perimeter x thickness."""
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeVertex
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+
+    from camgen.surface import surface_deviation
+
+    design = design_cam(load_spec(ROOT / "templates" / f"{name}.toml", ['output.formats=["json"]', *sets]))
+    part, outline = step_part(design)
+    tol = design.tolerance
+    write_step([(part.name, (part,))], tmp_path / "x.step")
+    [(_, shape)] = read_step(tmp_path / "x.step")
+    counts, wire = _lateral(shape)
+    holes = len(part.holes)
+    assert counts == {"planes": 2, "cylinders": part.outline.n_arcs + holes, "bsplines": 0, "other": 0}
+    assert part.outline.n_arcs == len(part.outline.bulges) and outline.max_error_mm <= tol
+    exact = _exact_surface(design.cam, 3600)
+    far = 0.0
+    for x, y in exact[::5] if tol < 1e-3 else exact:          # 720 points at the least tolerance (its 548 arcs)
+        dist = BRepExtrema_DistShapeShape(BRepBuilderAPI_MakeVertex(_point(x, y)).Vertex(), wire)
+        far = max(far, dist.Value())
+    assert far <= tol
+    assert np.abs(surface_deviation(design.cam, _wire_points(wire, 40))).max() <= tol
+    dense = _exact_surface(design.cam, 200_000)                 # chords within 1e-8 mm of the profile
+    x, y = dense.T
+    shoelace = abs(float(x @ np.roll(y, -1) - y @ np.roll(x, -1))) / 2     # the cam turns either way
+    perimeter = np.linalg.norm(dense - np.roll(dense, -1, axis=0), axis=1).sum()
+    area = shoelace - sum(math.pi * h.radius**2 for h in part.holes)
+    assert abs(measure(shape)["volume"] - area * part.thickness) <= tol * perimeter * part.thickness
+
+
+def _point(x: float, y: float):
+    from OCP.gp import gp_Pnt
+
+    return gp_Pnt(float(x), float(y), 0.0)
+
+
+def test_elephant_foot_chamfer_by_hand(tmp_path):
+    """A disc (r = 25 mm) with a hole (r = 2.5 mm), chamfered 0.5 mm: each ring's chamfer is a triangle of legs e
+    turned round the axis, pi e^2 (R - e/3) off the disc and pi e^2 (r + e/3) round the hole, exactly; the box keeps
+    the full outline (the chamfer is below it)."""
+    r, h, t, e = 25.0, 2.5, 6.0, 0.5
+    disc = Contour(np.array([[r, 0.0], [-r, 0.0]]), np.array([1.0, 1.0]))
+    part = Part("disc", disc, (Circle((3.0, 4.0), h),), t, 0.01, elephant_foot=e)
+    write_step([("disc", (part,))], tmp_path / "foot.step")
+    [(_, shape)] = read_step(tmp_path / "foot.step")
+    found = measure(shape)
+    plain = (math.pi * r**2 - math.pi * h**2) * t
+    assert found["solids"] == 1 and found["valid"] and found["faces"] == 2 + 1 + 2 + 3     # a chamfer an edge of the bed
+    assert found["volume"] == pytest.approx(plain - math.pi * e**2 * (r - e / 3) - math.pi * e**2 * (h + e / 3),
+                                            rel=1e-12)
+    assert np.abs(found["box"] - [-r, -r, 0.0, r, r, t]).max() <= 1e-6
+
+
+def _arc_length(contour: Contour) -> float:
+    """The contour's exact length (mm): each line its chord, each arc its radius x its angle (4 atan bulge)."""
+    chords = np.linalg.norm(np.roll(contour.vertices, -1, axis=0) - contour.vertices, axis=1)
+    angle = 4 * np.arctan(np.abs(contour.bulges))
+    return float(np.sum(np.where(angle > 0, chords * angle / (2 * np.sin(angle / 2) + (angle == 0)), chords)))
+
+
+def test_elephant_foot_on_the_cam(tmp_path):
+    """rdrd printed with a 0.3 mm foot: its biarc outline's chamfer takes L e^2/2 - pi e^3/3 (the section eroded by d
+    has area A - L d + pi d^2 for a tangent-continuous outline, while d stays below its least radius) and the bore's
+    pi e^2 (r + e/3); only the bed face's edges are chamfered."""
+    e = 0.3
+    design = design_cam(template({"output.elephant_foot": e, "output.formats": ["json"]}))
+    part, _ = step_part(design)
+    assert part.elephant_foot == e
+    write_step([(part.name, (part,))], tmp_path / "foot.step")
+    [(_, shape)] = read_step(tmp_path / "foot.step")
+    found = measure(shape)
+    [bore] = part.holes
+    length = _arc_length(part.outline)
+    cut = length * e**2 / 2 - math.pi * e**3 / 3 + math.pi * e**2 * (bore.radius + e / 3)
+    assert found["solids"] == 1 and found["valid"]
+    assert found["volume"] == pytest.approx(part.area * part.thickness - cut, rel=1e-9)
+    assert found["faces"] == expect_plate(part)["faces"] + len(part.outline.bulges) + 1
 
 
 def test_boss_stands_on_the_bore(tmp_path):
@@ -389,7 +537,7 @@ def _fc(want: dict) -> dict:
 
 def test_freecad_reads_one_valid_solid(rdrd_cli):
     out, _ = rdrd_cli
-    part = design_cam(template()).printed
+    part, _ = step_part(design_cam(template()))
     done = _freecad(out / "rdrd.step", [_fc(expect_plate(part))])
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
 
@@ -411,7 +559,7 @@ def test_freecad_reads_every_part_of_a_linkage(crank_rocker):
 
 def test_freecad_check_rejects_a_wrong_volume(rdrd_cli):
     out, _ = rdrd_cli
-    want = _fc(expect_plate(design_cam(template()).printed))
+    want = _fc(expect_plate(step_part(design_cam(template()))[0]))
     done = _freecad(out / "rdrd.step", [{**want, "volume": want["volume"] * (1 + 1e-5)}])
     assert done.returncode == 1
     assert json.loads(done.stdout.strip().splitlines()[-1])["solids"][0]["valid"]

@@ -6,7 +6,8 @@ disc on top), fused into one solid that the file names ``name``. Every line of a
 every arc a circular edge through its two ends and its exact midpoint (never chords); a full-circle hole is one
 circular edge. Each part is its outline's face with the holes cut out, extruded by its thickness (+Z); a hub boss
 stands on the top face round the first hole, a radial set-screw hole runs along +Y at the boss's mid-height,
-and pockets are cut down from the top face, as :mod:`camgen.core.solids` makes the meshes. The geometry is the
+and pockets are cut down from the top face, as :mod:`camgen.core.solids` makes the meshes; the first part's bed
+face is chamfered by its ``elephant_foot`` (45 degrees, every edge of the bed face). The geometry is the
 part's own, so the solid's volume is the part's exact area x thickness; no tolerance is involved.
 
 OCP (the ``step`` extra, ``cadquery-ocp-novtk``) is imported only when a STEP file is written. The file's
@@ -17,6 +18,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -96,6 +98,35 @@ def _boolean(kind: str, a: Any, b: Any) -> Any:
     return op.Shape()
 
 
+def _chamfered(prism: Any, z: float, size: float) -> Any:
+    """``prism`` with every edge of its bed face (at height ``z``, mm) chamfered by ``size`` mm at 45 degrees: the
+    outline inset and the holes opened by ``size`` on the bed, the section at and above ``z + size`` untouched (as
+    :func:`camgen.core.solids.elephant_foot` makes the meshes, exactly)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.BRepFilletAPI import BRepFilletAPI_MakeChamfer
+    from OCP.GeomAbs import GeomAbs_Plane
+    from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    as_face = getattr(TopoDS, "Face", None) or TopoDS.Face_s           # OCP 8 dropped the _s
+    as_edge = getattr(TopoDS, "Edge", None) or TopoDS.Edge_s
+    chamfer, faces = BRepFilletAPI_MakeChamfer(prism), TopExp_Explorer(prism, TopAbs_FACE)
+    while faces.More():
+        face = as_face(faces.Current())
+        surface = BRepAdaptor_Surface(face)
+        if surface.GetType() == GeomAbs_Plane and abs(surface.Plane().Location().Z() - z) < 1e-9:
+            edges = TopExp_Explorer(face, TopAbs_EDGE)
+            while edges.More():
+                chamfer.Add(float(size), as_edge(edges.Current()))
+                edges.Next()
+        faces.Next()
+    chamfer.Build()
+    if not chamfer.IsDone():
+        raise ExportError(f"the elephant-foot chamfer of {size:g} mm cannot be cut round the bed face")
+    return chamfer.Shape()
+
+
 def part_solid(part: Part, z: float = 0.0) -> Any:
     """``part`` as an exact solid (a TopoDS_Shape) from ``z`` to ``z`` + thickness (mm), with its holes, boss,
     set-screw hole and pockets (see the module docstring)."""
@@ -103,6 +134,8 @@ def part_solid(part: Part, z: float = 0.0) -> Any:
     from OCP.gp import gp_Ax2, gp_Dir
 
     solid = _prism(part.outline, part.holes, z, part.thickness)
+    if part.elephant_foot > 0:
+        solid = _chamfered(solid, z, part.elephant_foot)
     top = z + part.thickness
     if part.boss is not None:
         diameter, height = part.boss
@@ -121,8 +154,8 @@ def part_solid(part: Part, z: float = 0.0) -> Any:
 def stacked_solid(parts: Sequence[Part]) -> Any:
     """``parts`` stacked from z = 0, each on the one before, as one exact solid."""
     solid, z = None, 0.0
-    for part in parts:
-        piece = part_solid(part, z)
+    for k, part in enumerate(parts):
+        piece = part_solid(part if k == 0 else replace(part, elephant_foot=0.0), z)    # only the bed's part
         solid, z = piece if solid is None else _boolean("fuse", solid, piece), z + part.thickness
     return _checked(solid)
 
