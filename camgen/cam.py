@@ -59,11 +59,7 @@ class Cam:
     def _boundaries(self) -> tuple[PitchGeometry, PitchGeometry]:
         """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start."""
         segments = self.program.segments
-        nxt = segments[1:] + segments[:1]
-        theta = np.array([seg.end for seg in segments] + [seg.start for seg in nxt])
-        motion = np.concatenate([[seg.evaluate(np.array([seg.end]))[:, 0] for seg in segments],
-                                 [seg.evaluate(np.array([seg.start]))[:, 0] for seg in nxt]]).T
-        g = self.follower.pitch(theta, motion)
+        g = self.follower.pitch(*self.program.boundaries)
         n = len(segments)
         halves = [{k: None if v is None else v[part] for k, v in vars(g).items()}
                   for part in (slice(0, n), slice(n, 2 * n))]

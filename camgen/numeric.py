@@ -63,6 +63,7 @@ ROUNDS = 8
 #: does not choose between a symmetric cam's equal peaks, or where a function is constant
 TIE = 1e-12
 _OFFSETS = np.arange(-2.0, 3.0)
+_UNIT = np.linspace(0.0, 1.0, GRID)
 
 
 #: the quartic through five values at t = -2..2: its coefficients of t, t^2, t^3, t^4 (columns)
@@ -106,7 +107,7 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
     lo, hi = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
     p = lo.size
     width = hi - lo
-    x = lo[:, None] + width[:, None] * np.linspace(0.0, 1.0, n)
+    x = lo[:, None] + width[:, None] * (_UNIT if n == GRID else np.linspace(0.0, 1.0, n))
     x[:, -1] = hi
     y = func(x.ravel(), np.repeat(np.arange(p), n))
     k = y.shape[0]
@@ -115,7 +116,7 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
         raise FloatingPointError("function is not finite on the search grid")
     magnitude = np.maximum(np.asarray(scale, dtype=float), np.abs(y).reshape(k, -1).max(axis=1))
     tie = np.repeat(TIE * magnitude, p)
-    owner = np.tile(np.arange(p), k)
+    owner = np.arange(k * p) % p                              # the piece of each row
     # candidates: interior local maxima within what a peak can rise above its grid points (a second difference)
     inner = y[:, 1:-1]
     bend = np.abs(y[:, :-2] - 2 * inner + y[:, 2:])
@@ -126,14 +127,14 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
     piece = owner[row]
     left, right, size = lo[piece], hi[piece], width[piece]
     step = size / (n - 1)
-    c = np.clip(j, 2, n - 3)
+    c = np.minimum(np.maximum(j, 2), n - 3)                 # np.clip's result, without its dispatch
     value, at = y[row, j], x[piece, j]
     shift = (j - c).astype(float)
     t, ok, _, a2, a4 = _vertex(y[row[:, None], c[:, None] + np.arange(-2, 3)], shift - 1.0, shift + 1.0)
-    centre = np.clip(x[piece, c] + np.where(ok, t, shift) * step, left, right)
+    centre = np.minimum(np.maximum(x[piece, c] + np.where(ok, t, shift) * step, left), right)
     # the peak's breadth: a bell of breadth b has a2 / a4 = 2 b^2 / h^2 on a grid of step h (between 2 h and the piece)
     with np.errstate(divide="ignore", invalid="ignore"):
-        breadth = np.clip(step * np.sqrt(np.abs(a2 / a4) / 2), 2 * step, size)
+        breadth = np.minimum(np.maximum(step * np.sqrt(np.abs(a2 / a4) / 2), 2 * step), size)
     breadth = np.where(np.isnan(breadth), size, breadth)
     active = np.arange(row.size)
     for _ in range(ROUNDS):
@@ -165,9 +166,15 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
     largest = np.full(k * p, -np.inf)
     np.maximum.at(largest, cand_row, cand_v)
     equal = np.flatnonzero(cand_v >= largest[cand_row] - tie[cand_row])
-    ahead = np.where(np.broadcast_to(np.asarray(reverse, dtype=bool), (p,))[owner[cand_row[equal]]], -1.0, 1.0)
+    backwards = np.asarray(reverse, dtype=bool)
+    backwards = np.full(p, backwards) if backwards.ndim == 0 else backwards
+    ahead = np.where(backwards[owner[cand_row[equal]]], -1.0, 1.0)
     order = equal[np.lexsort((ahead * cand_x[equal], cand_row[equal]))]
-    first = order[np.flatnonzero(np.diff(cand_row[order], prepend=-1))]
+    sorted_rows = cand_row[order]
+    starts = np.empty(sorted_rows.size, dtype=bool)           # where a row's candidates begin: its first
+    starts[:1] = True
+    np.not_equal(sorted_rows[1:], sorted_rows[:-1], out=starts[1:])
+    first = order[starts]
     return cand_x[first].reshape(k, p), cand_v[first].reshape(k, p), magnitude
 
 

@@ -10,6 +10,7 @@ about the corner: both are exported as exact arcs.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Generator
 from dataclasses import dataclass
@@ -63,10 +64,13 @@ def _pitch_of(cam: Cam, asks: Asks) -> list[PitchGeometry]:
     theta = np.concatenate([t for _, t in asks])
     sizes = [t.size for _, t in asks]
     g = cam.follower.pitch(theta, cam.program.evaluate_on(np.repeat([i for i, _ in asks], sizes), theta))
-    cuts = np.cumsum([0, *sizes])
-    fields = vars(g).items()
-    return [PitchGeometry(**{k: None if v is None else v[a:b] for k, v in fields})
-            for a, b in zip(cuts[:-1], cuts[1:], strict=True)]
+    fields = [getattr(g, f.name) for f in dataclasses.fields(PitchGeometry)]
+    out, a = [], 0
+    for size in sizes:                                  # PitchGeometry's fields in order, each cut to its ask's angles
+        b = a + size
+        out.append(PitchGeometry(*[None if v is None else v[a:b] for v in fields]))
+        a = b
+    return out
 
 
 def _run(cam: Cam, makers: list[Maker]) -> list[Any]:
@@ -137,7 +141,7 @@ def _chord_error(ends: PitchGeometry, g: PitchGeometry, rr: float) -> float:
     a, b = at[:-1, None, :], at[1:, None, :]
     ab = b - a
     length2 = (ab**2).sum(axis=2)
-    t = np.clip(((x - a) * ab).sum(axis=2) / np.where(length2 > 0, length2, 1.0), 0.0, 1.0)
+    t = np.minimum(np.maximum(((x - a) * ab).sum(axis=2) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
     return float((np.linalg.norm(a + t[..., None] * ab - x, axis=2).max(axis=1) + gap**2 * bend / 8).max())
 
 

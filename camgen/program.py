@@ -238,6 +238,17 @@ class Program:
         return self._table.evaluate(index, theta)
 
     @functools.cached_property
+    def boundaries(self) -> tuple[np.ndarray, np.ndarray]:
+        """Cam angles (2n,) (radians) and s, s', s'', s''' there (4, 2n): every segment's end (its left-hand limit),
+        then the next segment's start (its right-hand limit; the last segment's next is the first), from one
+        evaluation (as :meth:`Segment.evaluate` makes them)."""
+        n = len(self.segments)
+        nxt = self.segments[1:] + self.segments[:1]
+        theta = np.array([seg.end for seg in self.segments] + [seg.start for seg in nxt])
+        index = np.concatenate([np.arange(n), np.roll(np.arange(n), -1)])
+        return theta, self.evaluate_on(index, theta)
+
+    @functools.cached_property
     def _pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`): owning segment, start and end."""
         rows = [(i, a, b) for i, seg in enumerate(self.segments) for a, b in seg.pieces()]
@@ -263,10 +274,10 @@ class Program:
         """
         found: list[Jump] = []
         n = len(self.segments)
+        _, motion = self.boundaries
         for i, seg in enumerate(self.segments):
             nxt = self.segments[(i + 1) % n]
-            left = seg.evaluate(np.array(seg.end))
-            right = nxt.evaluate(np.array(nxt.start))
+            left, right = motion[:, i], motion[:, n + i]
             scale = np.maximum(seg.scale(), nxt.scale())
             found += _compare(seg.end, left, right, scale, inside=False)
             for t, lo, hi in seg.inner_limits():

@@ -103,26 +103,23 @@ def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair,
     array (n,) or a number that holds for every angle (a translating follower's fixed x, its zero x-velocity): the
     same operations on the same numbers, without making the (n, 2) arrays of the constant ones."""
     (qx, qy), (q1x, q1y), (q2x, q2y), (dx, dy) = q, q1, q2, direction
-    tx, ty = q1x + sense * qy, q1y - sense * qx                        # q' - sense J q
-    twice = 2 * sense
-    ax, ay = q2x + twice * q1y - qx, q2y - twice * q1x - qy            # q'' - 2 sense J q' - q
-    speed = np.sqrt(tx * tx + ty * ty)
-    kappa = -sense * (tx * ay - ty * ax) / speed**3
-    nx, ny = -sense * ty / speed, sense * tx / speed                   # sense J t / |t|
     turn = -sense * theta
     c, s = np.cos(turn), np.sin(turn)
+    x, y = np.empty((4, c.shape[0])), np.empty((4, c.shape[0]))      # rows: q, t, a, normal (fixed frame)
+    x[0], y[0] = qx, qy
+    tx, ty = np.add(q1x, sense * qy, out=x[1]), np.subtract(q1y, sense * qx, out=y[1])     # q' - sense J q
+    twice = 2 * sense
+    ax = np.subtract(q2x + twice * q1y, qx, out=x[2])                   # q'' - 2 sense J q' - q
+    ay = np.subtract(q2y - twice * q1x, qy, out=y[2])
+    speed = np.sqrt(tx * tx + ty * ty)
+    kappa = -sense * (tx * ay - ty * ax) / speed**3
+    nx, ny = np.divide(-sense * ty, speed, out=x[3]), np.divide(sense * tx, speed, out=y[3])  # sense J t / |t|
     pressure = sense * np.arctan2(dx * ny - dy * nx, dx * nx + dy * ny)
-    return PitchGeometry(theta=theta, point=_turned_xy(c, s, qx, qy), d1=_turned_xy(c, s, tx, ty),
-                         d2=_turned_xy(c, s, ax, ay), normal=_turned_xy(c, s, nx, ny), kappa=kappa,
+    turned = np.empty((4, c.shape[0], 2))                               # all four turned into the cam's frame at once
+    np.subtract(c * x, s * y, out=turned[:, :, 0])
+    np.add(s * x, c * y, out=turned[:, :, 1])
+    return PitchGeometry(theta=theta, point=turned[0], d1=turned[1], d2=turned[2], normal=turned[3], kappa=kappa,
                          pressure_angle=pressure)
-
-
-def _turned_xy(c: np.ndarray, s: np.ndarray, x: Any, y: Any) -> np.ndarray:
-    """The vectors (``x``, ``y``) turned by the angles whose cosines and sines are ``c``, ``s`` (n,): (n, 2)."""
-    out = np.empty((c.shape[0], 2))
-    out[:, 0] = c * x - s * y
-    out[:, 1] = s * x + c * y
-    return out
 
 
 def from_support(theta: np.ndarray, p: np.ndarray, alpha: np.ndarray, derivs: np.ndarray, sense: int,
