@@ -52,6 +52,13 @@ def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
     return g.point - rr * g.normal
 
 
+def _length(v: np.ndarray) -> np.ndarray:
+    """The lengths of the 2-vectors along the last axis of ``v`` (mm): np.linalg.norm's sum of squares and root over
+    that axis (the same numbers), without its dispatch."""
+    x, y = v[..., 0], v[..., 1]
+    return np.sqrt(x * x + y * y)
+
+
 #: a request of a stretch's maker: cam angles (radians) on one segment each, (segment index, angles) pairs
 Asks = list[tuple[int, np.ndarray]]
 #: what makes one stretch: it yields the angles it needs, receives their pitch geometry, and returns its result
@@ -110,7 +117,7 @@ def _probed(ends: PitchGeometry, g: PitchGeometry, rr: float,
     x = _surface(g, rr).reshape(spans, count, 2)
     at = _surface(ends, rr)
     chain = np.concatenate([at[:-1, None, :], x, at[1:, None, :]], axis=1)
-    gap = np.linalg.norm(np.diff(chain, axis=1), axis=2).max(axis=1)
+    gap = _length(np.diff(chain, axis=1)).max(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(spans, count)
     bend = np.where(np.isfinite(bend), bend, np.inf)
@@ -119,7 +126,7 @@ def _probed(ends: PitchGeometry, g: PitchGeometry, rr: float,
 
 def _arc_curvature(start: np.ndarray, end: np.ndarray, bulge: np.ndarray) -> np.ndarray:
     """|curvature| (1/mm) of arcs from ``start`` to ``end`` with ``bulge`` = tan(angle / 4): 2 sin(angle/2) / chord."""
-    chord = np.maximum(np.linalg.norm(end - start, axis=1), 1e-300)
+    chord = np.maximum(_length(end - start), 1e-300)
     return 4 * np.abs(bulge) / ((1 + bulge**2) * chord)
 
 
@@ -142,7 +149,7 @@ def _chord_error(ends: PitchGeometry, g: PitchGeometry, rr: float) -> float:
     ab = b - a
     length2 = (ab**2).sum(axis=2)
     t = np.minimum(np.maximum(((x - a) * ab).sum(axis=2) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
-    return float((np.linalg.norm(a + t[..., None] * ab - x, axis=2).max(axis=1) + gap**2 * bend / 8).max())
+    return float((_length(a + t[..., None] * ab - x).max(axis=1) + gap**2 * bend / 8).max())
 
 
 def _aux(cam: Cam, index: int, span: tuple[float, float] | None) -> np.ndarray:
@@ -164,7 +171,7 @@ def _spaced(index: int, aux: np.ndarray, g: PitchGeometry, tolerance: float, fac
     """:func:`_spacing` from the pitch geometry ``g`` on its grid ``aux``."""
     k = g.kappa
     # chord ~ sqrt(8 tol rho_c) along a surface of speed |P'| |1 - Rr k|: samples per radian
-    density = np.linalg.norm(g.d1, axis=1) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
+    density = _length(g.d1) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
     cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(aux))])
     wanted = cum[-1] * factor
     if not wanted <= MAX_SEGMENT_VERTICES:              # also NaN or infinite (a curvature without bound)
@@ -209,7 +216,7 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: tuple[float
     for _ in range(40):
         g, inner = yield [(index, theta), (index, _inner(theta, 2 * _PROBES))]
         pts = _surface(g, rr)
-        tan = g.d1 / np.linalg.norm(g.d1, axis=1)[:, None]
+        tan = g.d1 / _length(g.d1)[:, None]
         p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
         x, gap, low, high = _probed(g, inner, rr, 2 * _PROBES)
@@ -243,7 +250,7 @@ def _dwell(cam: Cam, index: int, rr: float, span: tuple[float, float] | None) ->
     ends, inner = yield [(index, theta), (index, probe)]
     pts = _surface(ends, rr)
     radius = float(np.linalg.norm(pts[0]))
-    err = float(np.abs(np.linalg.norm(_surface(inner, rr), axis=1) - radius).max())
+    err = float(np.abs(_length(_surface(inner, rr)) - radius).max())
     bulge = math.tan(-cam.follower.sense * beta / n / 4.0)
     return pts[:-1], np.full(n, bulge), err
 
