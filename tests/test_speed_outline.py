@@ -1,6 +1,7 @@
 """The outline made at once (issue 16): every stretch of a cam asks for the angles it needs and one evaluation of the
 follower a round serves them all. Its result is each stretch's own, to the last bit, and the number of evaluations is
-what the design says (a count, not a time)."""
+what the design says (a count, not a time). So are the cuts in numpy calls under it: a program evaluating points on
+all its segments at once, and a translating roller's pitch geometry from numbers instead of constant arrays."""
 from __future__ import annotations
 
 import copy
@@ -11,6 +12,8 @@ import numpy as np
 import pytest
 
 from camgen.cam import build_cam
+from camgen.followers.base import from_centre_path
+from camgen.laws import TABLE_LAWS
 from camgen.outline import exact_outline, stretch
 from camgen.spec import validate_spec
 from tests.conftest import RDRD
@@ -96,3 +99,50 @@ def test_a_cam_takes_two_evaluations_of_its_follower():
     counting.calls.clear()
     exact_outline(counted, 0.01, "biarcs")
     assert len(counting.calls) == 3          # the ends known: the grids and dwells, then both stretches' biarcs twice
+
+
+def _same(a: Any, b: Any) -> bool:
+    """Equal to the last bit, signs of zero included (None only to None)."""
+    if a is None or b is None:
+        return a is b
+    return bool(np.array_equal(a, b) and np.array_equal(np.signbit(a), np.signbit(b)))
+
+
+@pytest.mark.parametrize("law", TABLE_LAWS)
+def test_a_program_evaluates_all_its_segments_at_once_as_each_alone(law):
+    program = _cam({"motion.0.law": law, "motion.2.law": law}).program
+    rng = np.random.default_rng(16)
+    index, theta, alone = [], [], []
+    for i, seg in enumerate(program.segments):      # the ends, the float below the end, and inside
+        inside = seg.start + seg.beta * rng.random(40)
+        t = np.concatenate([[seg.start, seg.end, np.nextafter(seg.end, -np.inf)], inside])
+        index.append(np.full(t.size, i))
+        theta.append(t)
+        alone.append(seg.evaluate(t))
+    index, theta, want = np.concatenate(index), np.concatenate(theta), np.concatenate(alone, axis=1)
+    assert _same(program.evaluate_on(index, theta), want)
+    mixed = rng.permutation(theta.size)                  # the segments' points interleaved
+    assert _same(program.evaluate_on(index[mixed], theta[mixed]), want[:, mixed])
+    angles, motion = program.boundaries
+    n = len(program.segments)
+    for i, seg in enumerate(program.segments):
+        nxt = program.segments[(i + 1) % n]
+        assert angles[i] == seg.end and angles[n + i] == nxt.start
+        assert _same(motion[:, i], seg.evaluate(np.array(seg.end)))
+        assert _same(motion[:, n + i], nxt.evaluate(np.array(nxt.start)))
+
+
+@pytest.mark.parametrize("rotation", ["ccw", "cw"])
+def test_a_translating_rollers_pitch_from_numbers_is_that_from_full_arrays(rotation):
+    cam = _cam({"cam.rotation": rotation})
+    f = cam.follower
+    theta = np.linspace(0.0, 2 * np.pi, 721)
+    motion = cam.program.evaluate(theta)
+    s, s1, s2 = motion[:3]
+    zero = np.zeros_like(s)
+    full = from_centre_path(theta, np.column_stack([np.full_like(s, f.offset), f.d0 + s]),
+                            np.column_stack([zero, s1]), np.column_stack([zero, s2]),
+                            np.column_stack([zero, np.ones_like(s)]), f.sense)
+    made = f.pitch(theta, motion)
+    for field in dataclasses.fields(made):
+        assert _same(getattr(made, field.name), getattr(full, field.name)), field.name
