@@ -27,13 +27,15 @@ import numpy as np
 
 from camgen.core.errors import DesignError
 from camgen.core.hardware import RUNNING_PLAY, bolt_length
-from camgen.core.kit import (RUNNING_GAP, BomLine, CamKitTable, Plate, Solid, assembly_drawing, bolt_line,
+from camgen.core.kit import (RUNNING_GAP, BomLine, CamKitTable, Plate, Solid, assembly_panels, bolt_line,
                              check_clear, disc, fixed, footprint, part_entry, placed_meshes)
 from camgen.core.parts import Allowances, Drawing, Part
 from camgen.core.shapes import rounded_hull
 
 #: cam angles over the turn at which the kit is placed and checked
 POSES = 720
+#: the cam angles (degrees) the assembly drawing shows, one panel each
+DRAWN_DEG = (0, 90, 180, 270)
 #: the shaft stands this far below the frame, to take a coupling or a pulley (mm)
 SHAFT_STUB = 10.0
 
@@ -52,8 +54,9 @@ class CamKit:
 
     @property
     def drawing(self) -> Drawing:
-        """The assembly at theta = 0, seen from +Z."""
-        return assembly_drawing(self.solids, 0, self.tolerance)
+        """The assembly seen from +Z at each of :data:`DRAWN_DEG` cam angles, a panel each from left to right
+        (layers ``KIT-<degrees>-<part>``, see :func:`~camgen.core.kit.assembly_panels`)."""
+        return assembly_panels(self.solids, tuple((POSES * d // 360, f"{d}") for d in DRAWN_DEG), self.tolerance)
 
     def meshes(self) -> tuple[Any, ...]:
         """Every solid in its assembled place at theta = 0 (the kit's 3MF)."""
@@ -206,13 +209,13 @@ def _bom(spec: Any, table: CamKitTable, made: tuple, grips: dict[str, float], po
                 "roller": "roller", "spacer": "shaft spacer", "standoff": "standoff"}[part.name]
         lines.append(BomLine(part.name, count, f"{what}, {part.thickness:g} mm", source))
     lines.append(BomLine("shaft", 1, f"{table.shaft:g} mm ground rod (h6), {math.ceil(shaft_length):g} mm long",
-                         "buy"))
+                         "buy", "ISO 286 h6"))
     lines.append(BomLine("shaft collar", 2, f"for the {table.shaft:g} mm shaft, under the frame and over the cam "
-                         "(or the cam's hub set screw)", "buy"))
+                         "(or the cam's hub set screw)", "buy", "DIN 705"))
     if table.seat:
         seat = table.seat
         lines.append(BomLine(f"bearing {seat.name}", 1, f"{seat.bore:g} x {seat.outside:g} x {seat.width:g} mm",
-                             "buy"))
+                             "buy", "ISO 15 (deep groove ball bearing)"))
     use = "pivot bolt through frame, standoff and arm" if oscillating else "guide bolts through frame, standoff " \
                                                                            "and the slider's slot"
     lines.append(bolt_line(bolt, bolt_length(bolt, grips["guide"]), posts, use))

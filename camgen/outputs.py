@@ -51,7 +51,7 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
         return bundle, report
     name = design.spec.name
     items = kit_items(name, kit.made, kit.drawing, kit.meshes, design.spec.output.formats,
-                      f"{name}: the kit assembled at theta = 0")
+                      f"{name}: the kit assembled at theta = 0, 90, 180 and 270 deg", kit.bom)
     return Bundle.of((*bundle.items, *items), bundle.options), report
 
 

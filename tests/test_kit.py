@@ -246,6 +246,79 @@ def test_bill_of_materials_names_the_hardware(rdrd):
     assert bom["standoff"]["quantity"] == 2 and bom["frame"]["source"] == "laser"
 
 
+def test_bill_of_materials_csv_is_the_reports(rdrd):
+    """<name>-kit.csv beside the JSON: the report's kit bom line for line, its columns part, quantity, standard, size
+    and process; the bought items name their standards."""
+    import csv
+
+    out, report, _ = rdrd
+    assert report["files"]["kit_csv"] == "kit-rdrd-kit.csv"
+    with (out / "kit-rdrd-kit.csv").open(encoding="utf-8", newline="") as stream:
+        rows = list(csv.DictReader(stream))
+    assert list(rows[0]) == ["part", "quantity", "standard", "size", "process"]
+    want = [{"part": line["item"], "quantity": str(line["quantity"]), "standard": line["standard"],
+             "size": line["size"], "process": line["source"]} for line in report["kit"]["bom"]]
+    assert rows == want
+    bought = [line for line in report["kit"]["bom"] if line["source"] == "buy"]
+    assert bought and all(line["standard"] for line in bought)
+    assert {line["standard"] for line in report["kit"]["bom"] if line["source"] != "buy"} == {""}
+    assert "ISO 4762; ISO 7089; ISO 4032" in {line["standard"] for line in bought}
+
+
+def _panels(path, degrees):
+    """The assembly drawing read back, a panel a cam angle: {degrees: {part: (circles [(centre, diameter)],
+    outlines [polygons])}} from layers KIT-<degrees>-<part>, each moved so that its frame's seat (the largest hole
+    of the frame, round the shaft) is at the origin."""
+    msp = ezdxf.readfile(path).modelspace()
+    out = {}
+    for deg in degrees:
+        prefix = f"KIT-{deg}-"
+        parts: dict = {}
+        for c in msp.query("CIRCLE"):
+            if c.dxf.layer.startswith(prefix):
+                parts.setdefault(c.dxf.layer[len(prefix):], ([], []))[0].append((np.array(c.dxf.center)[:2],
+                                                                                  2 * c.dxf.radius))
+        for pl in msp.query("LWPOLYLINE"):
+            if pl.dxf.layer.startswith(prefix):
+                pts = np.array([(x, y, b) for x, y, _, _, b in pl.get_points("xyseb")])
+                parts.setdefault(pl.dxf.layer[len(prefix):], ([], []))[1].append(
+                    shapely.Polygon(Contour(pts[:, :2], pts[:, 2]).flatten(1e-4)))
+        origin = max(parts["frame"][0], key=lambda cd: cd[1])[0]
+        out[deg] = {name: ([(c - origin, d) for c, d in circles], [shapely.affinity.translate(p, *-origin)
+                                                                   for p in polys])
+                    for name, (circles, polys) in parts.items()}
+    return out
+
+
+def test_assembly_drawing_a_panel_at_each_quarter_turn(rdrd):
+    """kit-rdrd-kit-assembly.dxf holds the kit at 0, 90, 180 and 270 degrees, a panel each: in each, the roller's
+    axle hole and the follower's are at the design's roller centre for that cam angle (the follower's axis at the
+    offset, d0 + s(theta) up it: the design's lift), the roller touches the cam's outline drawn turned by that angle,
+    and the fixed parts stand where they do at 0 degrees."""
+    out, report, design = rdrd
+    spec = design.spec
+    hole = BOLTS[spec.kit.bolt].clearance_hole
+    degrees = (0, 90, 180, 270)
+    panels = _panels(out / "kit-rdrd-kit-assembly.dxf", degrees)
+    rp, e = spec.cam.base_radius + spec.follower.roller_radius, spec.follower.offset
+    theta = np.radians(np.array(degrees, dtype=float))
+    lift = design.cam.program.evaluate(theta)[0]
+    assert np.ptp(lift) > 10.0                                     # the panels show the follower at different lifts
+    for deg, t, s in zip(degrees, theta, lift, strict=True):
+        panel = panels[deg]
+        [centre] = _centres(design, np.array([t]))
+        assert np.abs(centre - [e, math.sqrt(rp**2 - e**2) + s]).max() <= 1e-9
+        for name in ("roller", "follower"):
+            axle = [c for c, d in panel[name][0] if abs(d - hole) < 1e-9]
+            assert len(axle) == 1 and np.abs(axle[0] - centre).max() <= 1e-6, (deg, name)
+        [cam] = [p for p in panel["kit-rdrd"][1]]
+        gap = cam.exterior.distance(shapely.Point(centre)) - spec.follower.roller_radius
+        assert abs(gap) <= 2 * spec.output.tolerance, (deg, gap)
+        assert [np.round(c, 6).tolist() for c, _ in panel["frame"][0]] == \
+            [np.round(c, 6).tolist() for c, _ in panels[0]["frame"][0]]
+    assert "KIT-LABELS" in {e.dxf.layer for e in ezdxf.readfile(out / "kit-rdrd-kit-assembly.dxf").modelspace()}
+
+
 @pytest.mark.parametrize("sets, field, words", [
     (["kit.bearing=609"], "kit.bearing", "'623', '624', '625', '608' or 'none'"),
     (["kit.bearing=625"], "kit.bearing", "for that shaft: 608, none"),

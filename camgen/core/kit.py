@@ -209,17 +209,51 @@ def check_clear(solids: tuple[Solid, ...], poses: int, tolerance: float, allowed
                           "the design's distances")
 
 
-def assembly_drawing(solids: tuple[Solid, ...], k: int, tolerance: float) -> Drawing:
-    """The solids at pose ``k`` in plan, lowest first, each on its own layer ``KIT-<name>``."""
+def _placed(solids: tuple[Solid, ...], k: int, prefix: str, at: np.ndarray) -> list:
+    """The solids at pose ``k`` in plan moved by ``at`` (mm), lowest first, each on its layer ``<prefix><name>``."""
     items: list = []
     for solid in sorted(solids, key=lambda s: s.z):
         angle, shift = solid.pose(k)
-        layer = f"KIT-{solid.name}"
+        layer, shift = f"{prefix}{solid.name}", shift + at
         items += [(layer, solid.part.outline.moved(angle, shift)), *((layer, h.moved(angle, shift))
                                                                     for h in solid.part.holes)]
+    return items
+
+
+def _stroke(items: list) -> float:
+    """A line width (mm) for a drawing of ``items``: 1/500 of its larger extent, at least 0.2."""
     boxes = np.array([shape.bounds() for _, shape in items if isinstance(shape, Contour)])
     extent = float(max(np.ptp(boxes[:, [0, 2]]), np.ptp(boxes[:, [1, 3]])))
-    return Drawing(tuple(items), tolerance, stroke=round(max(0.2, extent / 500.0), 2))
+    return round(max(0.2, extent / 500.0), 2)
+
+
+def assembly_drawing(solids: tuple[Solid, ...], k: int, tolerance: float) -> Drawing:
+    """The solids at pose ``k`` in plan, lowest first, each on its own layer ``KIT-<name>``."""
+    items = _placed(solids, k, "KIT-", np.zeros(2))
+    return Drawing(tuple(items), tolerance, stroke=_stroke(items))
+
+
+#: the gap between two panels of :func:`assembly_panels`, and the labels' height, as fractions of a panel's width
+PANEL_GAP, LABEL_HEIGHT = 0.15, 0.05
+
+
+def assembly_panels(solids: tuple[Solid, ...], poses: tuple[tuple[int, str], ...], tolerance: float) -> Drawing:
+    """The solids in plan at each of ``poses`` ((pose index, label) pairs), one panel a pose from left to right:
+    panel ``i``'s origin (the shaft, or the base plate's origin) at x = ``i`` x (the widest panel's width x (1 +
+    :data:`PANEL_GAP`)), y = 0; each solid on layer ``KIT-<label>-<name>``, and the label under its panel on
+    ``KIT-LABELS``."""
+    from camgen.core.shapes import Text
+
+    panels = [_placed(solids, k, "", np.zeros(2)) for k, _ in poses]
+    boxes = [np.array([shape.bounds() for _, shape in panel if isinstance(shape, Contour)]) for panel in panels]
+    lo = np.array([min(b[:, 0].min() for b in boxes), min(b[:, 1].min() for b in boxes)])
+    width = max(float(b[:, 2].max() - b[:, 0].min()) for b in boxes)
+    step, height = width * (1 + PANEL_GAP), width * LABEL_HEIGHT
+    items: list = []
+    for i, (k, label) in enumerate(poses):
+        items += _placed(solids, k, f"KIT-{label}-", np.array([i * step, 0.0]))
+        items.append(("KIT-LABELS", Text(f"{label} deg", (i * step + lo[0], lo[1] - 2 * height), height)))
+    return Drawing(tuple(items), tolerance, stroke=_stroke(items))
 
 
 def placed_meshes(solids: tuple[Solid, ...], k: int) -> tuple[Any, ...]:
@@ -238,22 +272,34 @@ def placed_meshes(solids: tuple[Solid, ...], k: int) -> tuple[Any, ...]:
 
 @dataclass(frozen=True)
 class BomLine:
-    """A line of the bill of materials: what, how many, its size in words, and how it is got (``laser``, ``fdm``
-    or ``buy``)."""
+    """A line of the bill of materials: what, how many, its size in words, how it is got (``laser``, ``fdm``
+    or ``buy``) and the standards a bought item is ordered by ("" for a made part)."""
 
     item: str
     quantity: int
     size: str
     source: str
+    standard: str = ""
 
     def row(self) -> dict[str, Any]:
-        return {"item": self.item, "quantity": self.quantity, "size": self.size, "source": self.source}
+        """The report's line."""
+        return {"item": self.item, "quantity": self.quantity, "standard": self.standard, "size": self.size,
+                "source": self.source}
+
+    def csv_row(self) -> dict[str, Any]:
+        """The line of ``<name>-kit.csv``: the report's, its columns named part, quantity, standard, size, process."""
+        return {"part": self.item, "quantity": self.quantity, "standard": self.standard, "size": self.size,
+                "process": self.source}
+
+
+#: the standards a bolt line is ordered by: the screw, its washer, its nut
+BOLT_STANDARDS = "ISO 4762; ISO 7089; ISO 4032"
 
 
 def bolt_line(bolt: Bolt, length: float, quantity: int, use: str) -> BomLine:
     """Bolts of ``length`` (mm) with a washer and a nut each, for ``use``."""
     return BomLine(f"{bolt.name} x {length:g} socket head cap screw, ISO 7089 washer, ISO 4032 nut", quantity,
-                   use, "buy")
+                   use, "buy", BOLT_STANDARDS)
 
 
 def part_entry(solid: Solid, allowances: Allowances, catalogue: dict[str, float]) -> dict[str, Any]:
@@ -270,12 +316,13 @@ def part_entry(solid: Solid, allowances: Allowances, catalogue: dict[str, float]
 
 
 def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, meshes: Any, formats: Any,
-              title: str) -> list[Any]:
+              title: str, bom: tuple[BomLine, ...] = ()) -> list[Any]:
     """The kit's files: each part as its process makes it (a laser's as ``<name>-<part>.dxf`` and
     ``<name>-<part>-cut.svg``, a printer's as ``<name>-<part>.stl`` and ``.3mf``), the assembly drawing
     (``<name>-kit-assembly.dxf|svg|png``), every part in its assembled place (``<name>-kit.3mf``; ``meshes()``
     makes them, only if written) and, when asked, the kit's parts as exact solids in their own frames
-    (``<name>-kit.step``, one named product a part)."""
+    (``<name>-kit.step``, one named product a part); with the report (``json``), the bill of materials ``bom`` as
+    ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), when it has lines."""
     from camgen.core.bundle import item
     from camgen.core.errors import ExportError
     from camgen.core.solids import check_mesh, extrude
@@ -303,5 +350,7 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
               item(figure, [("png", "kit_assembly_png", f"{name}-kit-assembly.png")], formats),
               item(meshes, [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats),
               item(tuple((part.name, (part,)) for part, _ in made), [("step", "kit_step", f"{name}-kit.step")],
-                   formats)]
+                   formats),
+              item(tuple(line.csv_row() for line in bom), [("csv", "kit_csv", f"{name}-kit.csv")],
+                   ["csv"] if bom and "json" in formats else [])]
     return items

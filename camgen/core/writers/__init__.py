@@ -42,7 +42,7 @@ EXTRAS = {"step": ("OCP", "Open CASCADE through OCP", "pip install 'camgen[step]
 OPTIONAL_FORMATS = tuple(EXTRAS)
 
 _MODULES = {"dxf": "dxf", "cut-svg": "svg", "stl": "stl", "3mf": "threemf", "json": "report", "png": "figure",
-            "svg": "figure", "html": "html", "step": "step"}
+            "svg": "figure", "html": "html", "step": "step", "csv": "report"}
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,5 @@
-"""The JSON writer: a report (a JSON-ready dict, keys carrying their units) as indented JSON."""
+"""The JSON writer: a report (a JSON-ready dict, keys carrying their units) as indented JSON; and tables the report
+holds (a kit's bill of materials) as CSV beside it."""
 from __future__ import annotations
 
 import json
@@ -27,4 +28,15 @@ def write_json(report: dict[str, Any], path: Path, options: Any = None) -> None:
     path.write_text(report_json(report), encoding="utf-8")
 
 
-WRITERS = {"json": write_json}
+def write_csv(rows: Any, path: Path, options: Any = None) -> None:
+    """A table (a sequence of dicts with the same keys, the first's keys the header) as CSV: comma-separated,
+    quoted where needed, ``\\n`` line ends, UTF-8."""
+    import csv
+
+    with path.open("w", encoding="utf-8", newline="") as stream:
+        table = csv.DictWriter(stream, fieldnames=list(rows[0]), lineterminator="\n")
+        table.writeheader()
+        table.writerows(rows)
+
+
+WRITERS = {"json": write_json, "csv": write_csv}
