@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -245,7 +245,7 @@ class Program:
         n = len(self.segments)
         nxt = self.segments[1:] + self.segments[:1]
         theta = np.array([seg.end for seg in self.segments] + [seg.start for seg in nxt])
-        index = np.concatenate([np.arange(n), np.roll(np.arange(n), -1)])
+        index = np.array([*range(n), *range(1, n), 0])
         return theta, self.evaluate_on(index, theta)
 
     @functools.cached_property
@@ -274,14 +274,13 @@ class Program:
         """
         found: list[Jump] = []
         n = len(self.segments)
-        _, motion = self.boundaries
+        motion = self.boundaries[1].T.tolist()              # as Python floats: the same numbers, cheaper one by one
+        scales = [seg.scale().tolist() for seg in self.segments]
         for i, seg in enumerate(self.segments):
-            nxt = self.segments[(i + 1) % n]
-            left, right = motion[:, i], motion[:, n + i]
-            scale = np.maximum(seg.scale(), nxt.scale())
-            found += _compare(seg.end, left, right, scale, inside=False)
+            scale = [max(a, b) for a, b in zip(scales[i], scales[(i + 1) % n], strict=True)]
+            found += _compare(seg.end, motion[i], motion[n + i], scale, inside=False)
             for t, lo, hi in seg.inner_limits():
-                found += _compare(t, lo, hi, seg.scale(), inside=True)
+                found += _compare(t, lo, hi, scales[i], inside=True)
         return sorted(found, key=lambda j: (j.at_deg, j.order))
 
 
@@ -337,7 +336,8 @@ class _Table:
         return out
 
 
-def _compare(theta: float, left: np.ndarray, right: np.ndarray, scale: np.ndarray, inside: bool) -> list[Jump]:
+def _compare(theta: float, left: Sequence[float], right: Sequence[float], scale: Sequence[float],
+             inside: bool) -> list[Jump]:
     at_deg = round(math.degrees(theta), 9) % 360.0
     return [Jump(at_deg, k, float(right[k] - left[k]), inside) for k in (1, 2, 3)
             if abs(right[k] - left[k]) > JUMP_TOL * max(scale[k], 1e-300)]
