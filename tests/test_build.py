@@ -220,3 +220,13 @@ def test_a_flat_face_console_states_its_pressure_angle_and_no_pitch_radius(tmp_p
     assert "pressure angle 0 by definition" in first and "pressure angle max" not in first
     assert "(pitch)" not in first
     assert f"min convex radius {report['profile_rho_min_mm']:.3f} mm (cam)" in first
+
+
+def test_a_union_field_is_named_without_pydantics_member_tag(tmp_path):
+    """``follower.load_table`` takes a file name or rows: a number there is refused naming the field itself, not
+    pydantic's ``follower.load_table.str``."""
+    result = CliRunner().invoke(main, ["build", str(TEMPLATE), "-o", str(tmp_path / "out"), "--set",
+                                       "follower.load_table=0"])
+    assert result.exit_code == 2
+    assert result.output.startswith("error: follower.load_table: ") and ".str" not in result.output
+    assert not (tmp_path / "out").exists()

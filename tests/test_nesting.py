@@ -309,3 +309,13 @@ def test_a_geneva_drive_larger_than_its_sheet_is_refused(tmp_path):
     bad = CliRunner().invoke(camgen, ["build", str(ROOT / "templates" / "geneva4.toml"), "-o", str(out),
                                       "--set", "output.sheet_rotations=70"])
     assert bad.exit_code == 2 and "output.sheet_rotations: must be 0 or divide 360 degrees" in bad.stderr
+
+
+def test_the_fft_lengths_are_scipys_without_importing_it():
+    """The nesting's FFT lengths are the least 5-smooth lengths, as scipy's ``next_fast_len(n, real=True)`` (numpy's
+    FFT does the work, so a build never imports scipy for it)."""
+    from scipy.fft import next_fast_len
+
+    from camgen.core.nesting import _fast_length
+
+    assert [_fast_length(n) for n in range(1, 3000)] == [next_fast_len(n, real=True) for n in range(1, 3000)]

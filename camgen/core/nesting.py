@@ -307,6 +307,23 @@ def _shift(polygon, shift: np.ndarray):
     return shapely.transform(polygon, lambda p: p + shift)
 
 
+def _fast_length(n: int) -> int:
+    """The least length >= ``n`` whose only prime factors are 2, 3 and 5 (an FFT of it is fast; numpy's FFT, so a
+    build does not import scipy for it)."""
+    best = 2 * n
+    p5 = 1
+    while p5 < best:
+        p35 = p5
+        while p35 < best:
+            length = p35
+            while length < n:
+                length *= 2
+            best = min(best, length)
+            p35 *= 3
+        p5 *= 5
+    return best
+
+
 def _best_spot(grid: _Grid, flat: _Flat, lean: str) -> tuple[int, np.ndarray] | None:
     """The rotation and shift (mm) of the free grid position that keeps the layout's rectangle from the sheet's
     corner least, then the part's upper right corner nearest the sheet's corner, then (``lean``) the least
@@ -314,12 +331,12 @@ def _best_spot(grid: _Grid, flat: _Flat, lean: str) -> tuple[int, np.ndarray] | 
 
     Every key grows with the position's right and top, and the sheet is empty past the layout's extents, so the
     best position lies within the layout's extents plus the part's size: only that window is searched."""
-    from scipy import fft
+    from numpy import fft
 
     reach = max(max(b[2] - b[0], b[3] - b[1]) for b in flat.boxes) + 2 * flat.grow
     window = (min(grid.shape[0], math.ceil((grid.ends[1] + reach) / grid.cell) + 3),
               min(grid.shape[1], math.ceil((grid.ends[0] + reach) / grid.cell) + 3))
-    size = tuple(fft.next_fast_len(n, real=True) for n in window)
+    size = tuple(_fast_length(n) for n in window)
     occupied = fft.rfft2(grid.occupied[:window[0], :window[1]].astype(float), s=size)
     best = None
     for k, polygon in enumerate(flat.polygons):

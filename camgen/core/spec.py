@@ -389,10 +389,16 @@ def _models_below(root: Any) -> set[str]:
     return names
 
 
+#: the tags pydantic gives a union's plain members in an error's location (``str | list[...]``); no template key is
+#: named so
+_PLAIN_TAGS = frozenset({"str", "int", "float", "bool", "none", "list", "dict"})
+
+
 def _union_tag(part: Any, root: type[BaseModel]) -> bool:
     """Whether a pydantic error location's ``part`` names a member of a union (``function-after[...]``,
     ``tuple[...]``, a model's class name) rather than a key of the template."""
-    return isinstance(part, str) and (re.fullmatch(r"[\w-]+\[.*\]", part) is not None or part in _models_below(root))
+    return isinstance(part, str) and (re.fullmatch(r"[\w-]+\[.*\]", part) is not None or part in _PLAIN_TAGS
+                                      or part in _models_below(root))
 
 
 def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
