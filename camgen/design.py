@@ -12,7 +12,7 @@ import numpy as np
 from camgen.analysis import CamAnalysis, analyze, face_extent, largest_roller
 from camgen.cam import Cam, build_cam
 from camgen.dynamics import spec_loading, speed_report
-from camgen.forces import Contact, forces_report
+from camgen.forces import Contact, forces_report, speeds_report
 from camgen.core.errors import DesignError, SpecError
 from camgen.flat_envelope import FaceLeaves, FlatEnvelope, flat_envelope
 from camgen.outline import Outline, envelope_outline, exact_outline
@@ -236,6 +236,13 @@ def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
         contact = None if spec.cam.material is None else Contact(
             spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
         out["forces"] = forces_report(cam, ld, spec.cam.rpm, contact)
+        if spec.cam.rpm_range is not None:
+            stressed = "pressure_max_MPa" in out["forces"].get("stress", {})
+            out["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
+                                          contact if stressed else None, out["contact"]["liftoff_rpm"])
+    elif spec.cam.rpm_range is not None:
+        raise SpecError("needs a follower whose contact is analysed: an oscillating roller's arm held by a spring, a "
+                        "load or its weight (follower.orientation)", "cam.rpm_range")
     return out
 
 

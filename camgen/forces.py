@@ -133,6 +133,52 @@ def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) ->
     return out
 
 
+def speed_row(cam: Cam, ld: Loading, rpm: float, contact: Contact | None, positive: bool = False
+              ) -> dict[str, Any]:
+    """One row of the ``speeds`` table at ``rpm``: the torque's extremes and RMS, the peak power, the largest normal
+    contact force, and for a follower held on (not ``positive``) the least axial contact force, where, and whether
+    it stays above ``ld.margin``; with materials the largest Hertz pressure (MPa)."""
+    omega = rpm * 2 * math.pi / 60
+    push = (lambda g, m: np.abs(normal_force(ld, omega, g, m))) if positive else \
+        (lambda g, m: normal_force(ld, omega, g, m))
+    figures = _torque_figures(cam, ld, omega, push)
+    row = {"rpm": rpm, **{k: figures[k] for k in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m",
+                                                    "power_max_W", "contact_force_max_N")}}
+    if not positive:
+        low = peak_at(cam, lambda t, m: -ld.force(m, omega, t))
+        row.update(contact_force_min_N=-low.value, contact_force_min_at_deg=low.at_deg, holds=-low.value > ld.margin)
+    if contact is not None:
+        row["pressure_max_MPa"] = _peak_over(
+            cam, lambda g, m: contact_pressure(cam, contact, g, push(g, m))[0]).value
+    return row
+
+
+def speed_list(rpm_range: tuple[float, float], steps: int, liftoff: float | None) -> list[float]:
+    """The speeds (rpm) of the ``speeds`` table: ``steps`` evenly spaced over ``rpm_range`` (both ends), and the
+    lift-off speed among them where it lies inside the range."""
+    lo, hi = rpm_range
+    speeds = [float(v) for v in np.linspace(lo, hi, steps)]
+    if liftoff is not None and lo < liftoff < hi and all(abs(v - liftoff) > 1e-12 * hi for v in speeds):
+        speeds = sorted([*speeds, liftoff])
+    return speeds
+
+
+def speeds_report(cam: Cam, ld: Loading, rpm_range: tuple[float, float], steps: int, contact: Contact | None,
+                  liftoff: float | None = None, positive: bool = False) -> dict[str, Any]:
+    """The report's ``speeds``: :func:`speed_row` at each of :func:`speed_list`'s speeds, the lift-off speed
+    (``liftoff``, rpm; None: held at any speed) and the limits the figure draws (the contact margin, N, and with
+    materials the allowable pressure, MPa). Every inertia term scales with rpm^2: at each cam angle the torque is
+    T_static + (rpm / rpm0)^2 T_inertia, the contact force likewise."""
+    out: dict[str, Any] = {"rpm_range": list(rpm_range), "liftoff_rpm": liftoff,
+                           "rows": [speed_row(cam, ld, v, contact, positive)
+                                    for v in speed_list(rpm_range, steps, liftoff)]}
+    if not positive:
+        out["margin_N"] = ld.margin
+    if contact is not None:
+        out["allowable_MPa"] = contact.allowable
+    return out
+
+
 def flank_changes(cam: Cam, force: Any, sides: tuple[str, str]) -> list[dict[str, Any]]:
     """Where the force ``force(theta, motion)`` (N) changes sign over the turn and which side carries it from there
     (``sides[0]`` while it is positive, ``sides[1]`` while negative): each segment sampled every half degree, a

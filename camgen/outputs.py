@@ -39,14 +39,15 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     def plot(kind: str) -> Any:
         from camgen import plots
 
-        return {"svaj": plots.svaj_figure, "cam": plots.cam_figure, "checks": plots.checks_figure}[kind](design)
+        return {"svaj": plots.svaj_figure, "cam": plots.cam_figure, "checks": plots.checks_figure,
+                "speeds": plots.speeds_figure}[kind](design)
 
     kit = cam_kit(design) if design.spec.kit is not None else None
     if kit is not None:
         report["kit"] = kit.report
     solid = step_solid(design, report) if "step" in design.spec.output.formats else design.printed
     bundle = cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
-                       ("svaj", "cam", "checks"), solid)
+                       ("svaj", "cam", "checks", *(("speeds",) if "speeds" in (design.speed or {}) else ())), solid)
     if kit is None:
         return bundle, report
     name = design.spec.name

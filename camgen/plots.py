@@ -124,6 +124,53 @@ def checks_figure(design: CamDesign) -> Any:
     return fig
 
 
+def speeds_figure(design: Any) -> Any:
+    """The report's ``speeds`` table drawn against cam speed: :func:`speeds_plot` of ``design.speed``."""
+    return speeds_plot(design.spec.name, design.speed["speeds"])
+
+
+def speeds_plot(name: str, speeds: dict[str, Any]) -> Any:
+    """The ``speeds`` table (:func:`camgen.forces.speeds_report`) against rpm: the camshaft torque's extremes and
+    RMS with the peak power, the contact force's largest and (for a follower held on) least values with the margin
+    (dashed) and the lift-off speed (dotted, every panel), and with materials the Hertz pressure against its
+    allowable (dashed)."""
+    rows = speeds["rows"]
+    rpm = np.array([r["rpm"] for r in rows])
+    column = lambda key: np.array([r[key] for r in rows])   # noqa: E731
+    stress = "pressure_max_MPa" in rows[0]
+    fig = figure(8, 2.4 * (3 if stress else 2) + 1.2, layout=None)
+    fig.subplots_adjust(left=0.12, right=0.88, bottom=0.08, top=0.94, hspace=0.15)
+    axes = np.atleast_1d(fig.subplots(3 if stress else 2, 1, sharex=True))
+    for key, label, style in (("torque_max_N_m", "torque max", "-"), ("torque_min_N_m", "torque min", "--"),
+                              ("torque_rms_N_m", "torque RMS", ":")):
+        axes[0].plot(rpm, column(key), color="C0", lw=1.2, ls=style, label=label)
+    axes[0].set_ylabel("shaft torque (N·m)")
+    axes[0].legend(fontsize=7, loc="upper left")
+    twin = axes[0].twinx()
+    twin.plot(rpm, column("power_max_W"), color="C1", lw=1.0, ls="-.")
+    twin.set_ylabel("peak power (W)", color="C1")
+    axes[1].plot(rpm, column("contact_force_max_N"), color="C0", lw=1.2, label="largest normal force")
+    if "contact_force_min_N" in rows[0]:
+        axes[1].plot(rpm, column("contact_force_min_N"), color="C2", lw=1.2, label="least contact force")
+        axes[1].axhline(speeds["margin_N"], color="C3", lw=0.8, ls="--", label="margin")
+    axes[1].set_ylabel("contact force (N)")
+    axes[1].legend(fontsize=7, loc="upper left")
+    if stress:
+        axes[2].plot(rpm, column("pressure_max_MPa"), color="C0", lw=1.2)
+        axes[2].axhline(speeds["allowable_MPa"], color="C3", lw=0.8, ls="--")
+        axes[2].set_ylabel("Hertz pressure max (MPa)")
+    off = speeds.get("liftoff_rpm")
+    for a in axes:
+        a.grid(alpha=0.3)
+        if off is not None and rpm[0] <= off <= rpm[-1]:
+            a.axvline(off, color="C3", lw=0.8, ls=":")
+    axes[-1].set_xlabel("cam speed (rpm)")
+    axes[-1].set_xlim(rpm[0], rpm[-1])
+    lift = "" if off is None else f", lift-off at {off:.4g} rpm"
+    axes[0].set_title(f"{name}: over {rpm[0]:g} to {rpm[-1]:g} rpm (dashed: limits{lift})")
+    return fig
+
+
 def _pitch_by_segment(cam: Cam, per_segment: int = 181) -> Any:
     """Pitch geometry at :func:`sample_cycle`'s angles, each segment's own (a boundary appears once a side, as
     the motion does)."""

@@ -160,4 +160,28 @@ def design_lines(report: dict[str, Any]) -> list[str]:
             lines.append(f"contact pressure max {stress['pressure_max_MPa']:.4g} MPa at "
                          f"{stress['pressure_max_at_deg']:.4g} deg ({stress['cam_material']} cam, "
                          f"{stress['follower_material']} follower; allowable {stress['allowable_MPa']:g} MPa)")
+    if "speeds" in speed:
+        lines.append(speeds_line(speed["speeds"]))
     return lines
+
+
+def speeds_line(speeds: dict[str, Any]) -> str:
+    """The console's line of the ``speeds`` table: its range, the largest torque and pressure over it, where the
+    contact is lost (the first speed that loses it, and the lift-off speed) and where the pressure passes its
+    allowable."""
+    rows = speeds["rows"]
+    top = max(rows, key=lambda r: max(abs(r["torque_max_N_m"]), abs(r["torque_min_N_m"])))
+    peak = max(abs(top["torque_max_N_m"]), abs(top["torque_min_N_m"]))
+    text = (f"over {rows[0]['rpm']:g} to {rows[-1]['rpm']:g} rpm ({len(rows)} speeds): torque up to {peak:.4g} N*m "
+            f"(at {top['rpm']:.4g} rpm), peak power up to {max(r['power_max_W'] for r in rows):.4g} W")
+    if "holds" in rows[0]:
+        lost = [r["rpm"] for r in rows if not r["holds"]]
+        off = speeds.get("liftoff_rpm")
+        text += ("; contact held at every speed" if not lost else f"; contact lost from {lost[0]:.4g} rpm") + (
+            "" if off is None else f" (lift-off {off:.4g} rpm)")
+    if "pressure_max_MPa" in rows[0]:
+        over = [r["rpm"] for r in rows if r["pressure_max_MPa"] > speeds["allowable_MPa"]]
+        text += (f"; contact pressure up to {max(r['pressure_max_MPa'] for r in rows):.4g} MPa"
+                 + (f", over the allowable {speeds['allowable_MPa']:g} MPa from {over[0]:.4g} rpm" if over else
+                    f", within the allowable {speeds['allowable_MPa']:g} MPa"))
+    return text

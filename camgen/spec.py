@@ -119,6 +119,10 @@ class CamTable(Model):
     rpm: float | None = Field(None, gt=0, le=100_000, description="cam speed for velocities, accelerations and "
                               "contact", json_schema_extra=unit("rpm"))
     material: Material | None = Field(None, description="the cam's material, for the contact pressure")
+    rpm_range: tuple[float, float] | None = Field(None, description="[lowest, highest] cam speed of the report's "
+                                                  "speeds table and figure", json_schema_extra=unit("rpm"))
+    rpm_steps: int = Field(21, ge=2, le=201, description="speeds evenly spaced over cam.rpm_range (both ends; the "
+                           "lift-off speed is added where it lies inside)")
     groove_depth: float | None = length("grooved cam: depth of the groove the roller runs in (< thickness)", None)
     running_clearance: float = length("grooved cam: the groove's width less the roller's diameter", 0.2, zero=True,
                                       le=100.0)
@@ -400,6 +404,15 @@ class CamSpec(Model):
             for i, seg in enumerate(self.motion):
                 if seg.lift is not None and seg.lift >= 90:
                     raise ValueError(f"motion[{i}].lift: an arm swing must be < 90 degrees (got {seg.lift:.6g})")
+        if self.cam.rpm_range is not None:
+            lo, hi = self.cam.rpm_range
+            if not 0 < lo < hi <= 100_000:
+                raise ValueError(f"cam.rpm_range: give [lowest, highest] with 0 < lowest < highest <= 100000 rpm "
+                                 f"(got [{lo:g}, {hi:g}])")
+            for key, value in (("cam.rpm", self.cam.rpm), ("follower.mass", self.follower.mass)):
+                if value is None:
+                    raise ValueError(f"cam.rpm_range: needs {key} (the report's forces are at cam.rpm, with the "
+                                     "follower's mass)")
         loaded = [i for i, seg in enumerate(self.motion) if seg.load is not None]
         if loaded and self.follower.load_table is not None:
             raise ValueError(f"motion[{loaded[0]}].load: give loads per segment or follower.load_table, not both")
