@@ -69,3 +69,108 @@ def test_a_segments_load_at_its_bounds_and_with_a_table_refused(tmp_path):
     assert_refused(_with_loads(tmp_path, {0: 1e6 * (1 + 1e-12)}), {}, "motion[0].load: must be", tmp_path)
     assert_refused(_with_loads(tmp_path, {1: 2.0}), {"follower.load_table": [[0, 1], [180, 2]]},
                    "motion[1].load: give loads per segment or follower.load_table, not both", tmp_path)
+
+
+RANGE = (*LOADED, "cam.rpm_range=[100, 1500]", "cam.rpm_steps=8")
+
+
+def test_each_speed_is_a_single_speed_build():
+    """Every row of the speeds table is what a build at that one cam.rpm reports, to 1e-9."""
+    rows = _design(sets=RANGE).speed["speeds"]["rows"]
+    assert [r["rpm"] for r in rows[:2]] == [100.0, 300.0] and rows[-1]["rpm"] == 1500.0
+    for row in (rows[0], rows[3], rows[-1]):
+        single = _design(sets=(*LOADED, f"cam.rpm={row['rpm']!r}")).speed
+        forces, contact = single["forces"], single["contact"]
+        for key in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m", "power_max_W", "contact_force_max_N"):
+            assert row[key] == pytest.approx(forces[key], rel=1e-9, abs=1e-12)
+        assert row["contact_force_min_N"] == pytest.approx(contact["force_min_n"], rel=1e-9, abs=1e-12)
+        assert row["holds"] is contact["holds"]
+        assert row["pressure_max_MPa"] == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=1e-9)
+
+
+def test_the_inertia_scales_with_the_speed_squared():
+    """At every cam angle the torque is T_static + (rpm / rpm0)^2 T_inertia (T_static at rest, T_inertia at rpm0
+    less it), so the mean of T^2 is a quadratic in k = (rpm / rpm0)^2: the RMS of three rows of the table give the
+    rest's to 1e-9."""
+    design = _design(sets=RANGE)
+    ld = spec_loading(design.spec.follower, design.cam.follower)
+    theta = np.linspace(0.0, 2 * math.pi, 3601)
+    m = design.cam.program.evaluate(theta)
+    still = torque(ld, 0.0, m, theta)
+    inertia = torque(ld, 300 * math.pi / 30, m, theta) - still
+    for rpm in (100.0, 471.3, 1500.0):
+        t = torque(ld, rpm * math.pi / 30, m, theta)
+        assert t == pytest.approx(still + (rpm / 300) ** 2 * inertia, rel=1e-9, abs=1e-12)
+    rows = design.speed["speeds"]["rows"]
+    k = np.array([(r["rpm"] / 300) ** 2 for r in rows])
+    ms = np.array([r["torque_rms_N_m"] ** 2 for r in rows])
+    quadratic = np.polyfit(k[[0, 3, -1]], ms[[0, 3, -1]], 2)
+    assert np.polyval(quadratic, k) == pytest.approx(ms, rel=1e-9)
+
+
+def test_the_least_contact_force_crosses_zero_at_the_liftoff_speed():
+    """The lift-off speed is a row of the table where the least contact force is 0 (to 1e-9 of the spring's
+    force): positive at every slower row, negative at every faster one, and 1e-9 either side of it the same."""
+    design = _design(sets=RANGE)
+    speeds = design.speed["speeds"]
+    off = speeds["liftoff_rpm"]
+    assert off == design.speed["contact"]["liftoff_rpm"] and 100 < off < 1500
+    rows = speeds["rows"]
+    assert len(rows) == 9 and sorted(r["rpm"] for r in rows) == [r["rpm"] for r in rows]
+    at = next(r for r in rows if r["rpm"] == off)
+    assert at["contact_force_min_N"] == pytest.approx(0.0, abs=1e-9 * 15)
+    assert all(r["contact_force_min_N"] > 0 and r["holds"] for r in rows if r["rpm"] < off)
+    assert all(r["contact_force_min_N"] < 0 and not r["holds"] for r in rows if r["rpm"] > off)
+    ld = spec_loading(design.spec.follower, design.cam.follower)
+    from camgen.dynamics import peak_at
+
+    for rpm, sign in ((off * (1 - 1e-9), 1), (off * (1 + 1e-9), -1)):
+        omega = rpm * math.pi / 30
+        assert sign * -peak_at(design.cam, lambda t, mm: -ld.force(mm, omega, t)).value > 0
+
+
+def test_the_speeds_figure_and_console_draw_the_table(tmp_path):
+    """A build with cam.rpm_range writes <name>-speeds.png/.svg (two files more) whose curves are the table's
+    columns, and its console line names the range, the lift-off speed and the allowable."""
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+    from camgen.plots import speeds_figure
+
+    design = _design(sets=RANGE)
+    rows = design.speed["speeds"]["rows"]
+    axes = speeds_figure(design).axes
+    assert list(axes[0].get_lines()[0].get_ydata()) == [r["torque_max_N_m"] for r in rows]
+    assert list(axes[1].get_lines()[1].get_ydata()) == [r["contact_force_min_N"] for r in rows]
+    pressure = [a for a in axes if a.get_ylabel().startswith("Hertz")][0]
+    assert list(pressure.get_lines()[0].get_ydata()) == [r["pressure_max_MPa"] for r in rows]
+    args = ["build", str(RDRD), "-o", str(tmp_path / "out")]
+    for s in RANGE:
+        args += ["--set", s]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "out" / "rdrd-speeds.png").exists() and (tmp_path / "out" / "rdrd-speeds.svg").exists()
+    plain = CliRunner().invoke(main, ["build", str(RDRD), "-o", str(tmp_path / "plain")])
+    assert len(list((tmp_path / "out").iterdir())) == len(list((tmp_path / "plain").iterdir())) + 2
+    off = design.speed["speeds"]["liftoff_rpm"]
+    assert ("over 100 to 1500 rpm (9 speeds)" in result.output and f"(lift-off {off:.4g} rpm)" in result.output
+            and "over the allowable 30 MPa from" in result.output), result.output
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"cam.rpm_range": [1500, 100]}, "cam.rpm_range: give [lowest, highest] with 0 < lowest < highest <= 100000"),
+    ({"cam.rpm_range": [0, 100]}, "cam.rpm_range: give [lowest, highest]"),
+    ({"cam.rpm_range": [100, 100_000 * (1 + 1e-12)]}, "cam.rpm_range: give [lowest, highest]"),
+    ({"cam.rpm_range": [100, 200], "follower.mass": 0.2}, "cam.rpm_range: needs cam.rpm"),
+    ({"cam.rpm_range": [100, 200], "cam.rpm": 300}, "cam.rpm_range: needs follower.mass"),
+    ({"cam.rpm_range": [100, 200], "cam.rpm_steps": 1}, "cam.rpm_steps: must be"),
+])
+def test_bad_speed_ranges_are_refused(tmp_path, change, message):
+    assert_refused(RDRD, change, message, tmp_path)
+
+
+def test_the_range_at_its_bounds():
+    """The widest range, 1e-12 rpm up to 100 000 rpm, in two speeds: both ends are rows, nothing NaN."""
+    rows = _design(sets=(*LOADED, "cam.rpm_range=[1e-12, 100000]", "cam.rpm_steps=2")).speed["speeds"]["rows"]
+    assert [r["rpm"] for r in rows][::len(rows) - 1] == [1e-12, 100000.0]
+    assert all(math.isfinite(v) for r in rows for v in r.values() if isinstance(v, float))
