@@ -19,7 +19,7 @@ from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
 from camgen.core.errors import ExportError, SpecError
 from camgen.core.nesting import sheet_kinds
 from camgen.core.parts import Part
-from camgen.core.kit import placed_meshes
+from camgen.core.kit import bom_item, placed_meshes
 from linkgen.design import LinkageDesign, design_linkage
 from linkgen.kit import linkage_kit, placed_solids
 from linkgen.parts import LinkageBuild
@@ -46,6 +46,7 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
         report = {**report, **kit.build.report, "kit": kit.report}
         items.append(item(lambda: placed_meshes(placed_solids(kit, kit.pose), 0),
                           [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats))
+        items.append(bom_item(name, kit.bom, formats))
     elif design.build is not None:
         items += _parts_items(name, design.build, formats)
         report = {**report, **design.build.report}

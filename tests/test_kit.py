@@ -246,19 +246,26 @@ def test_bill_of_materials_names_the_hardware(rdrd):
     assert bom["standoff"]["quantity"] == 2 and bom["frame"]["source"] == "laser"
 
 
-def test_bill_of_materials_csv_is_the_reports(rdrd):
-    """<name>-kit.csv beside the JSON: the report's kit bom line for line, its columns part, quantity, standard, size
-    and process; the bought items name their standards."""
+def _bom_csv(out, report, name):
+    """The kit's CSV read back, checked to be the report's bom line for line (its item and source as part and
+    process, the columns part, quantity, standard, size, process); its rows."""
     import csv
 
-    out, report, _ = rdrd
-    assert report["files"]["kit_csv"] == "kit-rdrd-kit.csv"
-    with (out / "kit-rdrd-kit.csv").open(encoding="utf-8", newline="") as stream:
+    assert report["files"]["kit_csv"] == f"{name}-kit.csv"
+    with (out / f"{name}-kit.csv").open(encoding="utf-8", newline="") as stream:
         rows = list(csv.DictReader(stream))
     assert list(rows[0]) == ["part", "quantity", "standard", "size", "process"]
     want = [{"part": line["item"], "quantity": str(line["quantity"]), "standard": line["standard"],
              "size": line["size"], "process": line["source"]} for line in report["kit"]["bom"]]
     assert rows == want
+    return rows
+
+
+def test_bill_of_materials_csv_is_the_reports(rdrd):
+    """<name>-kit.csv beside the JSON: the report's kit bom line for line, its columns part, quantity, standard, size
+    and process; the bought items name their standards."""
+    out, report, _ = rdrd
+    _bom_csv(out, report, "kit-rdrd")
     bought = [line for line in report["kit"]["bom"] if line["source"] == "buy"]
     assert bought and all(line["standard"] for line in bought)
     assert {line["standard"] for line in report["kit"]["bom"] if line["source"] != "buy"} == {""}
@@ -385,6 +392,14 @@ def crank_rocker(tmp_path_factory):
     out = tmp_path_factory.mktemp("kit-crank-rocker")
     _build(linkgen, TEMPLATES / "kit-crank-rocker.toml", out, FILES)
     return out, json.loads((out / "kit-crank-rocker.json").read_text())
+
+
+def test_linkage_bill_of_materials_csv(crank_rocker):
+    """A linkage kit's CSV is its report's bom too: the pins and mounting bolts with their standards."""
+    out, report = crank_rocker
+    rows = _bom_csv(out, report, "kit-crank-rocker")
+    bolts = [r for r in rows if r["process"] == "buy" and " x " in r["part"]]
+    assert bolts and all(r["standard"] == "ISO 4762; ISO 7089; ISO 4032" for r in bolts)
 
 
 def test_linkage_base_plate_pivots_and_mounting_holes(crank_rocker):

@@ -351,6 +351,14 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
               item(meshes, [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats),
               item(tuple((part.name, (part,)) for part, _ in made), [("step", "kit_step", f"{name}-kit.step")],
                    formats),
-              item(tuple(line.csv_row() for line in bom), [("csv", "kit_csv", f"{name}-kit.csv")],
-                   ["csv"] if bom and "json" in formats else [])]
+              bom_item(name, bom, formats)]
     return items
+
+
+def bom_item(name: str, bom: tuple[BomLine, ...], formats: Any) -> Any:
+    """The bill of materials ``bom`` as ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns) when ``formats`` asks
+    for the report (``json``) and there are lines; else None."""
+    from camgen.core.bundle import item
+
+    return item(tuple(line.csv_row() for line in bom), [("csv", "kit_csv", f"{name}-kit.csv")],
+                ["csv"] if bom and "json" in formats else [])
