@@ -122,15 +122,33 @@ def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) ->
         if cam.contact_radius == 0 and not cam.follower.flat:
             out["stress"] = {"note": "a knife edge touches the cam on a line of no width: no Hertz pressure"}
             return out
-        p = _peak_over(cam, lambda g, m: contact_pressure(cam, contact, g, normal_force(ld, omega, g, m))[0])
-        g = cam.pitch(np.array([math.radians(p.at_deg)]))
-        m = cam.program.evaluate(np.array([math.radians(p.at_deg)]))
-        half = float(contact_pressure(cam, contact, g, normal_force(ld, omega, g, m))[1][0])
-        out["stress"] = {"cam_material": contact.cam, "follower_material": contact.follower,
-                         "length_mm": contact.length, "e_star_MPa": contact.e_star,
-                         "pressure_max_MPa": p.value, "pressure_max_at_deg": p.at_deg, "half_width_mm": half,
-                         "allowable_MPa": contact.allowable, "holds": p.value <= contact.allowable}
+        out["stress"] = _stress(cam, contact, lambda g, m: contact_pressure(cam, contact, g,
+                                                                            normal_force(ld, omega, g, m)))[0]
     return out
+
+
+def _stress(cam: Cam, contact: Contact, pressure: Any) -> tuple[dict[str, Any], Any, np.ndarray]:
+    """The report's ``stress`` of ``pressure(geometry, motion)`` -> (pressure MPa, half-width mm): its peak over the
+    turn, where, the strip's half-width there, the materials and the allowable; and the geometry and motion there."""
+    p = _peak_over(cam, lambda g, m: pressure(g, m)[0])
+    at = np.array([math.radians(p.at_deg)])
+    g, m = cam.pitch(at), cam.program.evaluate(at)
+    return ({"cam_material": contact.cam, "follower_material": contact.follower, "length_mm": contact.length,
+             "e_star_MPa": contact.e_star, "pressure_max_MPa": p.value, "pressure_max_at_deg": p.at_deg,
+             "half_width_mm": float(pressure(g, m)[1][0]), "allowable_MPa": contact.allowable,
+             "holds": p.value <= contact.allowable}, g, m)
+
+
+def flank_pressure(contact: Contact, geometry: Any, force: np.ndarray, offset: float, roller: float
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Hertz pressure (MPa) and half-width (mm) where a roller of radius ``roller`` (mm) runs between two walls
+    ``offset`` mm either side of the pitch curve (a groove): the pitch curve's curvature kappa (1/mm) is convex
+    towards the wall that carries a force ``force`` > 0 (N, normal), that wall's curvature kappa / (1 - offset kappa)
+    (the disc cam's profile), the other's -kappa / (1 + offset kappa) (concave round the roller) carries |force|
+    where it is negative."""
+    k = geometry.kappa
+    wall = np.where(force > 0, k / (1.0 - offset * k), -k / (1.0 + offset * k))
+    return line_contact(np.abs(force), relative_curvature(wall, 1.0 / roller), contact.length, contact.e_star)
 
 
 def speed_row(cam: Cam, ld: Loading, rpm: float, contact: Contact | None, positive: bool = False
@@ -212,20 +230,28 @@ def flank_changes(cam: Cam, force: Any, sides: tuple[str, str]) -> list[dict[str
     return changes
 
 
-def drive_report(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str]) -> dict[str, Any]:
+def drive_report(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str],
+                 walls: tuple[Contact, float, float] | None = None) -> dict[str, Any]:
     """The ``forces`` of a positive drive (a groove or a conjugate pair: no spring, contact both ways): the force F
     on the follower along its path (:class:`~camgen.dynamics.Loading`, its inertia, loads and weights) is carried by
     ``sides[0]`` where F > 0 (it presses the follower against its rise) and by ``sides[1]`` where F < 0; the torque
     T = F s' / 1000 either way (the power balance), the largest normal contact force |F| / cos(phi), and where the
-    contact changes side."""
+    contact changes side. With ``walls`` (the :class:`Contact`, the walls' offset from the pitch curve and the
+    roller's radius, mm) the ``stress``: :func:`flank_pressure`'s peak and the side carrying it there."""
     omega = rpm * 2 * math.pi / 60
     out = _torque_figures(cam, ld, omega, lambda g, m: np.abs(normal_force(ld, omega, g, m)))
     out["carried_by"] = {"force_positive": sides[0], "force_negative": sides[1]}
     out["side_changes"] = flank_changes(cam, lambda t, m: ld.force(m, omega, t), sides)
+    if walls is not None:
+        contact, offset, roller = walls
+        stress, g, m = _stress(cam, contact, lambda g, m: flank_pressure(contact, g, normal_force(ld, omega, g, m),
+                                                                         offset, roller))
+        out["stress"] = {**stress, "on": sides[0] if float(ld.force(m, omega, g.theta)[0]) > 0 else sides[1]}
     return out
 
 
-def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float) -> dict[str, Any]:
+def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float, contact: Contact | None = None
+                ) -> dict[str, Any]:
     """The ``forces`` of a conjugate pair: :func:`drive_report` on the first cam (the torque T = F s' / 1000 is the
     follower's power over the cam's speed whichever cam drives), the first cam carrying F > 0 (pressing the follower
     against its rise) and the second F < 0: a rigid follower with no preload between its rollers, so one contact
@@ -240,4 +266,9 @@ def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float) -> dict[str, Any
         most = _peak_over(cam, lambda g, m, sign=sign: np.maximum(sign * normal_force(ld, omega, g, m), 0.0))
         out[f"cam_{which + 1}_contact_force_max_N"] = most.value
         out[f"cam_{which + 1}_contact_force_max_at_deg"] = most.at_deg
+    if contact is not None:          # each roller on its cam, as a disc cam's (its own roller's radius)
+        cams = [{**_stress(cam, contact, lambda g, m, cam=cam, sign=sign: contact_pressure(
+            cam, contact, g, np.maximum(sign * normal_force(ld, omega, g, m), 0.0)))[0], "on": f"cam {k + 1}"}
+            for k, (cam, sign) in enumerate(((first, 1.0), (second, -ratio)))]
+        out["stress"] = {**max(cams, key=lambda c: c["pressure_max_MPa"]), "cams": cams}
     return out

@@ -157,8 +157,9 @@ def design_lines(report: dict[str, Any]) -> list[str]:
                             if changes else "the contact never changes side"))
         stress = forces.get("stress", {})
         if "pressure_max_MPa" in stress:
+            on = f", {stress['on']}" if "on" in stress else ""
             lines.append(f"contact pressure max {stress['pressure_max_MPa']:.4g} MPa at "
-                         f"{stress['pressure_max_at_deg']:.4g} deg ({stress['cam_material']} cam, "
+                         f"{stress['pressure_max_at_deg']:.4g} deg{on} ({stress['cam_material']} cam, "
                          f"{stress['follower_material']} follower; allowable {stress['allowable_MPa']:g} MPa)")
     if "speeds" in speed:
         lines.append(speeds_line(speed["speeds"]))

@@ -477,3 +477,63 @@ def test_the_console_says_which_side_carries_the_force(tmp_path):
             "wall where it pulls; the contact changes side at " + ", ".join(f"{c['at_deg']:.4g}" for c in changes)
             ) in result.output
     assert "camshaft torque" in result.output
+
+
+def test_a_grooved_cams_flank_pressure_by_hand():
+    """grooved.toml (base 40, roller 5, running clearance 0.2, groove 5 deep; PLA on steel, E* = 1 / ((1 - 0.36^2)
+    / 3500 + (1 - 0.3^2) / 210 000) = 3952.27 MPa) on its top dwell (130 degrees: the pitch circle 40 + 5 + 20 = 65
+    mm, the flanks 5.1 mm either side). A load of 10 N presses the roller on the inner flank, convex of radius 59.9:
+    p = sqrt(10 E* (1/5 + 1/59.9) / (pi 5)) = 23.350 MPa, b = 0.054528 mm; -10 N on the outer, concave of radius
+    70.1: p = sqrt(10 E* (1/5 - 1/70.1) / (pi 5)) = 21.618 MPa, b = 0.058898 mm. The report's peak is the largest
+    over the turn (dense sampling of the same function), on the side carrying the force there."""
+    from camgen.forces import flank_pressure
+
+    for load, side, (p, b) in ((10, "inner flank", (23.35003, 0.0545284)), (-10, "outer flank", (21.61772, 0.0588980))):
+        design = design_grooved(load_spec(GROOVED, ("cam.rpm=300", "follower.mass=0.2", f"follower.load={load}",
+                                                    'cam.material="pla"')))
+        stress = design.profile.speed["forces"]["stress"]
+        contact = Contact("pla", "steel", 5.0)
+        assert stress["length_mm"] == 5.0 and stress["e_star_MPa"] == pytest.approx(3952.2716, rel=1e-8)
+        cam = design.cam
+        at = np.radians([130.0])
+        g = cam.pitch(at)
+        assert float(np.hypot(*g.point[0])) == pytest.approx(65.0, rel=1e-12)
+        ld = spec_loading(design.spec.follower, cam.follower, positive=True)
+        got = flank_pressure(contact, g, normal_force(ld, 10 * math.pi, g, cam.program.evaluate(at)), 5.1, 5.0)
+        assert (got[0][0], got[1][0]) == pytest.approx((p, b), rel=2e-6)
+        theta = np.linspace(0, 2 * math.pi, 72001)
+        gg = cam.pitch(theta)
+        dense = flank_pressure(contact, gg, normal_force(ld, 10 * math.pi, gg, cam.program.evaluate(theta)), 5.1, 5.0)
+        assert stress["pressure_max_MPa"] == pytest.approx(dense[0].max(), rel=1e-5)
+        assert stress["pressure_max_MPa"] >= dense[0].max() * (1 - 1e-12)
+        peak = np.radians([stress["pressure_max_at_deg"]])
+        pressing = float(ld.force(cam.program.evaluate(peak), 10 * math.pi, peak)[0]) > 0
+        assert stress["on"] == ("inner flank" if pressing else "outer flank")
+        assert design.profile.speed["forces"]["carried_by"]["force_positive" if load > 0 else "force_negative"] == side
+
+
+CONJUGATE = ROOT / "templates" / "conjugate.toml"
+
+
+def test_a_conjugate_pairs_pressure_by_hand():
+    """conjugate.toml (yoke of span 121, rollers 8, PLA on steel) on its top dwell (135 degrees: cam 1's pitch circle
+    40 + 8 + 25 = 73 mm, its profile 65; cam 2's 121 - 73 = 48, its profile 40). +10 N on cam 1: p = sqrt(10 E*
+    (1/8 + 1/65) / (pi 8)) = 14.858 MPa, b = 0.053558 mm; -10 N on cam 2: sqrt(10 E* (1/8 + 1/40) / (pi 8)) =
+    15.359 MPa, b = 0.051813 mm. Each cam's peak is the largest over the turn of its own roller's pressure."""
+    from camgen.conjugate.design import design_conjugate
+
+    for load, which, (p, b) in ((10, 0, (14.85810, 0.0535583)), (-10, 1, (15.35851, 0.0518133))):
+        design = design_conjugate(load_spec(CONJUGATE, ("cam.rpm=300", "follower.mass=0.2", f"follower.load={load}",
+                                                        'cam.material="pla"')))
+        stress = design.cams[0].speed["forces"]["stress"]
+        cam = design.cams[which].cam
+        at = np.radians([135.0])
+        g = cam.pitch(at)
+        assert float(np.hypot(*g.point[0])) == pytest.approx((73.0, 48.0)[which], rel=1e-12)
+        ld = spec_loading(design.spec.follower, design.cams[0].cam.follower, positive=True)
+        push = abs(normal_force(ld, 10 * math.pi, g, cam.program.evaluate(at)))
+        got = contact_pressure(cam, Contact("pla", "steel", 8.0), g, push)
+        assert (got[0][0], got[1][0]) == pytest.approx((p, b), rel=2e-6)
+        own = stress["cams"][which]
+        assert own["on"] == f"cam {which + 1}" and own["pressure_max_MPa"] >= p * (1 - 1e-12)
+        assert stress["pressure_max_MPa"] == max(c["pressure_max_MPa"] for c in stress["cams"])

@@ -34,7 +34,7 @@ from camgen.core.errors import CamgenError, DesignError
 from camgen.core.parts import Allowances
 from camgen.design import CamDesign, _check_holes, _curves, _engraving, _Profile, _speed
 from camgen.dynamics import spec_loading
-from camgen.forces import pair_report
+from camgen.forces import Contact, pair_report
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
 from camgen.outline import exact_outline
@@ -439,7 +439,10 @@ def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
     speed = _speed(free, pair[0])
     if speed is not None and spec.follower.mass is not None:
         ld = spec_loading(spec.follower, pair[0].follower, True, spec.motion, pair[0].program)
-        speed = {**speed, "forces": pair_report(pair, ld, spec.cam.rpm)}
+        f = spec.follower
+        contact = None if spec.cam.material is None else Contact(
+            spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
+        speed = {**speed, "forces": pair_report(pair, ld, spec.cam.rpm, contact)}
     return speed
 
 

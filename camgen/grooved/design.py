@@ -33,7 +33,7 @@ from camgen.core.parts import Part, Pocket
 from camgen.core.shapes import Contour
 from camgen.design import CamDesign, design_profile
 from camgen.dynamics import spec_loading
-from camgen.forces import drive_report
+from camgen.forces import Contact, drive_report
 from camgen.kinds.base import GROOVE_KEYS
 from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.sizing import Sizing, size_cam
@@ -254,8 +254,12 @@ def design_grooved(spec: CamSpec) -> GroovedDesign:
     if profile.speed is not None and spec.follower.mass is not None:
         # the island's: the same pitch curve, arm
         ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
+        f, depth = spec.follower, spec.cam.groove_depth
+        walls = None if spec.cam.material is None else (      # the flanks roller + clearance / 2 off the pitch curve
+            Contact(spec.cam.material, f.material, min(depth, f.roller_width or depth)), inner.offset_mm,
+            f.roller_radius)
         profile = dataclasses.replace(profile, speed={**profile.speed, "forces": drive_report(
-            cam, ld, spec.cam.rpm, ("inner flank", "outer flank"))})
+            cam, ld, spec.cam.rpm, ("inner flank", "outer flank"), walls)})
     curves = "polylines" if out.dxf == "segments" else out.curves
 
     def outer_flank(grow: float) -> Outline:      # the outer flank with its material grown by ``grow`` mm
