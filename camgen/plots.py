@@ -171,6 +171,111 @@ def speeds_plot(name: str, speeds: dict[str, Any]) -> Any:
     return fig
 
 
+def drive_checks_plot(title: str, limit_deg: float, contacts: list[tuple[str, Cam, Any, Any, Any]],
+                      torque_of: Any, allowable: float | None) -> Any:
+    """The checks figure of a positive drive (a groove, a pair) at a speed with a mass: over the turn the pressure
+    angle with its limit, and for each contact ``(label, cam, radius(geometry), force(geometry, motion),
+    pressure(geometry, motion) or None)``: the radius of curvature of its surface (mm, concave negative), the
+    normal force it carries (N, 0 while the other contact carries it) and with materials its Hertz pressure (MPa)
+    against ``allowable``; the shaft torque ``torque_of(theta, motion)`` (N*m) on the force panel's right axis."""
+    stress = allowable is not None
+    fig = figure(8, 2.4 * (4 if stress else 3) + 1.2, layout=None)
+    fig.subplots_adjust(left=0.12, right=0.88, bottom=0.08, top=0.94, hspace=0.15)
+    axes = np.atleast_1d(fig.subplots(4 if stress else 3, 1, sharex=True))
+    drawn: list[int] = []
+    for k, (label, cam, radius, force, pressure) in enumerate(contacts):
+        theta, motion = sample_cycle(cam)
+        g = _pitch_by_segment(cam)
+        deg = np.degrees(theta)
+        if id(cam) not in drawn:
+            axes[0].plot(deg, np.degrees(g.pressure_angle), color=f"C{k}", lw=1.2)
+            drawn.append(id(cam))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rho = radius(g)
+        axes[1].plot(deg, np.clip(np.nan_to_num(rho, posinf=1e3, neginf=-1e3), -1e3, 1e3), color=f"C{k}", lw=1.2,
+                     label=label)
+        axes[2].plot(deg, force(g, motion), color=f"C{k}", lw=1.2, label=label)
+        if stress:
+            axes[3].plot(deg, pressure(g, motion), color=f"C{k}", lw=1.2, label=label)
+    for sign in (1, -1):
+        axes[0].axhline(sign * limit_deg, color="C3", lw=0.8, ls="--")
+    axes[0].set_ylabel("pressure angle (deg)")
+    axes[1].axhline(0.0, color="C3", lw=0.8, ls="--")
+    axes[1].set_ylabel("radius of curvature (mm)")
+    axes[2].set_ylabel("normal force (N)")
+    twin = axes[2].twinx()
+    theta, motion = sample_cycle(contacts[0][1])
+    twin.plot(np.degrees(theta), torque_of(theta, motion), color="C7", lw=1.0, ls="-.")
+    twin.set_ylabel("shaft torque (N·m)", color="C7")
+    if stress:
+        axes[3].axhline(allowable, color="C3", lw=0.8, ls="--")
+        axes[3].set_ylabel("Hertz pressure (MPa)")
+    for a in axes:
+        a.grid(alpha=0.3)
+    for a in axes[1:]:
+        a.legend(fontsize=7, loc="upper right")
+    axes[-1].set_xlabel("cam angle θ (degrees)")
+    axes[-1].set_xlim(0, 360)
+    axes[-1].set_xticks(range(0, 361, 30))
+    axes[0].set_title(f"{title}: checks over the turn (dashed: limits)")
+    return fig
+
+
+def grooved_checks_figure(design: Any) -> Any:
+    """:func:`drive_checks_plot` of a grooved cam: its inner flank (convex, carrying F > 0) and outer flank (concave
+    round the roller, carrying F < 0), d = roller + running clearance / 2 either side of the pitch curve."""
+    from camgen.dynamics import spec_loading
+    from camgen.forces import Contact, flank_pressure, normal_force, torque
+
+    spec, cam = design.spec, design.cam
+    forces = design.profile.speed["forces"]
+    ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
+    omega = spec.cam.rpm * 2 * math.pi / 60
+    d, rr = cam.contact_radius, spec.follower.roller_radius
+    st = forces.get("stress")
+    contact = None if st is None else Contact(st["cam_material"], st["follower_material"], st["length_mm"])
+
+    def contact_of(sign: float) -> tuple[Any, Any]:
+        def force(g: Any, m: np.ndarray) -> np.ndarray:
+            return np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
+
+        def pressure(g: Any, m: np.ndarray) -> np.ndarray:
+            return flank_pressure(contact, g, sign * force(g, m), d, rr)[0]
+        return force, pressure
+
+    inner, outer = contact_of(1.0), contact_of(-1.0)
+    return drive_checks_plot(spec.name, design.profile.pressure_limit_deg, [
+        ("inner flank", cam, lambda g: 1.0 / g.kappa - d, *inner),
+        ("outer flank", cam, lambda g: -(1.0 / g.kappa + d), *outer)],
+        lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"])
+
+
+def pair_checks_figure(design: Any) -> Any:
+    """:func:`drive_checks_plot` of a conjugate pair: each roller on its cam, cam 1 carrying F > 0 (N1 = F /
+    cos(phi1)), cam 2 F < 0 (N2 = -F (L1 / L2) / cos(phi2)), each profile's radius its pitch curve's less its own
+    roller's."""
+    from camgen.dynamics import spec_loading
+    from camgen.forces import Contact, contact_pressure, normal_force, torque
+
+    spec, (first, second) = design.spec, (d.cam for d in design.cams)
+    forces = design.cams[0].speed["forces"]
+    ld = spec_loading(spec.follower, first.follower, True, spec.motion, first.program)
+    omega = spec.cam.rpm * 2 * math.pi / 60
+    st = forces.get("stress")
+    contact = None if st is None else Contact(st["cam_material"], st["follower_material"], st["length_mm"])
+    ratio = getattr(first.follower, "arm_length", 1.0) / getattr(second.follower, "arm_length", 1.0)
+    contacts = []
+    for k, (cam, sign) in enumerate(((first, 1.0), (second, -ratio))):
+        def force(g: Any, m: np.ndarray, sign: float = sign) -> np.ndarray:
+            return np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
+
+        def pressure(g: Any, m: np.ndarray, cam: Cam = cam, force: Any = force) -> np.ndarray:
+            return contact_pressure(cam, contact, g, force(g, m))[0]
+        contacts.append((f"cam {k + 1}", cam, lambda g, cam=cam: 1.0 / g.kappa - cam.contact_radius, force, pressure))
+    return drive_checks_plot(spec.name, design.cams[0].pressure_limit_deg, contacts,
+                             lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"])
+
+
 def _pitch_by_segment(cam: Cam, per_segment: int = 181) -> Any:
     """Pitch geometry at :func:`sample_cycle`'s angles, each segment's own (a boundary appears once a side, as
     the motion does)."""

@@ -537,3 +537,36 @@ def test_a_conjugate_pairs_pressure_by_hand():
         own = stress["cams"][which]
         assert own["on"] == f"cam {which + 1}" and own["pressure_max_MPa"] >= p * (1 - 1e-12)
         assert stress["pressure_max_MPa"] == max(c["pressure_max_MPa"] for c in stress["cams"])
+
+
+@pytest.mark.parametrize("template, figure", [(GROOVED, "grooved_checks_figure"), (CONJUGATE, "pair_checks_figure")])
+def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, figure, tmp_path):
+    """A grooved cam's and a pair's checks figure at a speed with a mass: its normal forces peak at the report's
+    largest, its Hertz pressures at the stress's peak, its torque at the extremes (the dense plot within 0.5 % of
+    the refined peaks); a build writes <name>-checks.png/.svg only then."""
+    from click.testing import CliRunner
+
+    from camgen import plots
+    from camgen.cli import main
+    from camgen.conjugate.design import design_conjugate
+
+    sets = ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5", 'cam.material="pla"')
+    spec = load_spec(template, sets)
+    design = design_grooved(spec) if template == GROOVED else design_conjugate(spec)
+    forces = (design.profile if template == GROOVED else design.cams[0]).speed["forces"]
+    axes = getattr(plots, figure)(design).axes
+    peak = lambda ax: max(float(np.max(line.get_ydata())) for line in ax.get_lines()[:2])   # noqa: E731
+    largest = forces["contact_force_max_N"] if template == GROOVED else max(
+        forces["cam_1_contact_force_max_N"], forces["cam_2_contact_force_max_N"])   # each on its own cam's normal
+    assert peak(axes[2]) == pytest.approx(largest, rel=5e-3)
+    assert peak(axes[3]) == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=5e-3)
+    torque_line = axes[-1].get_lines()[0].get_ydata()
+    assert float(np.max(torque_line)) == pytest.approx(forces["torque_max_N_m"], rel=5e-3)
+    name = spec.name
+    for extra, expected in (((), False), (sets, True)):
+        args = ["build", str(template), "-o", str(tmp_path / str(expected))]
+        for s in extra:
+            args += ["--set", s]
+        assert CliRunner().invoke(main, args).exit_code == 0
+        assert (tmp_path / str(expected) / f"{name}-checks.png").exists() is expected
+        assert (tmp_path / str(expected) / f"{name}-checks.svg").exists() is expected

@@ -224,7 +224,8 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     def plot(kind: str) -> Any:
         from camgen import plots
 
-        return plots.svaj_figure(design.cams[0]) if kind == "svaj" else assembly_figure(design)
+        return {"svaj": lambda: plots.svaj_figure(design.cams[0]), "checks": lambda: plots.pair_checks_figure(
+            design)}.get(kind, lambda: assembly_figure(design))()
 
     items = []
     for which, (d, (mesh, _)) in enumerate(zip(design.cams, meshes, strict=True)):
@@ -238,5 +239,6 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
               for kind, drawing in sheet_kinds(nested.drawings(out.tolerance))]
     items.append(item(tuple((f"{name}-{which + 1}", (d.printed,)) for which, d in enumerate(design.cams)),
                       [("step", "step", f"{name}.step")], formats))
-    items += tail(name, plot, ("svaj", "assembly"), report, lambda: cam_page(design, report), formats)
+    checks = ("checks",) if (design.cams[0].speed or {}).get("forces") else ()   # at a speed with a mass
+    items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: cam_page(design, report), formats)
     return Bundle.of(items, out.write_options), report

@@ -132,7 +132,9 @@ def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
     def plot(kind: str) -> Any:
         from camgen import plots
 
-        return plots.svaj_figure(design.profile) if kind == "svaj" else grooved_figure(design)
+        return {"svaj": lambda: plots.svaj_figure(design.profile), "checks": lambda: plots.grooved_checks_figure(
+            design)}.get(kind, lambda: grooved_figure(design))()
 
+    checks = ("checks",) if (design.profile.speed or {}).get("forces") else ()   # at a speed with a mass
     return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
-                     printed=design.printed), report
+                     ("svaj", "cam", *checks), printed=design.printed), report
