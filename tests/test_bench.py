@@ -28,6 +28,7 @@ def test_quick_bench_produces_every_figure(tmp_path):
     text = (tmp_path / "RESULTS.md").read_text()
     assert "## Hard cases" in text and "## Throughput" in text
     _speed_rows(r, text, {"design_cam: checks and outline (in-process)", "camgen build, every default output",
+                          "camgen build, the default outputs without figures (no png, svg)",
                           "camgen build, dxf stl json", "camgen laws"})
 
 
