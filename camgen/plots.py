@@ -222,16 +222,23 @@ def drive_checks_plot(title: str, limit_deg: float, contacts: list[tuple[str, Ca
 
 
 def grooved_checks_figure(design: Any) -> Any:
-    """:func:`drive_checks_plot` of a grooved cam: its inner flank (convex, carrying F > 0) and outer flank (concave
-    round the roller, carrying F < 0), d = roller + running clearance / 2 either side of the pitch curve."""
+    """:func:`groove_checks_plot` of a grooved cam: its inner flank (convex, carrying F > 0) and outer flank
+    (concave round the roller, carrying F < 0), d = roller + running clearance / 2 either side of the pitch curve."""
+    return groove_checks_plot(design.spec, design.cam, design.profile.speed["forces"],
+                              design.profile.pressure_limit_deg, design.cam.contact_radius,
+                              design.spec.follower.roller_radius, ("inner flank", "outer flank"))
+
+
+def groove_checks_plot(spec: Any, cam: Cam, forces: dict[str, Any], limit_deg: float, d: float, rr: float,
+                       labels: tuple[str, str]) -> Any:
+    """:func:`drive_checks_plot` of a roller in a groove whose walls lie ``d`` mm either side of ``cam``'s pitch
+    curve (a grooved cam's flanks, a barrel's developed walls): ``labels[0]`` the wall carrying F > 0 (curvature
+    kappa / (1 - d kappa)), ``labels[1]`` the other (-kappa / (1 + d kappa)), the roller of radius ``rr`` mm."""
     from camgen.dynamics import spec_loading
     from camgen.forces import Contact, flank_pressure, normal_force, torque
 
-    spec, cam = design.spec, design.cam
-    forces = design.profile.speed["forces"]
     ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
     omega = spec.cam.rpm * 2 * math.pi / 60
-    d, rr = cam.contact_radius, spec.follower.roller_radius
     st = forces.get("stress")
     contact = None if st is None else Contact(st["cam_material"], st["follower_material"], st["length_mm"])
 
@@ -243,10 +250,9 @@ def grooved_checks_figure(design: Any) -> Any:
             return flank_pressure(contact, g, sign * force(g, m), d, rr)[0]
         return force, pressure
 
-    inner, outer = contact_of(1.0), contact_of(-1.0)
-    return drive_checks_plot(spec.name, design.profile.pressure_limit_deg, [
-        ("inner flank", cam, lambda g: 1.0 / g.kappa - d, *inner),
-        ("outer flank", cam, lambda g: -(1.0 / g.kappa + d), *outer)],
+    return drive_checks_plot(spec.name, limit_deg, [
+        (labels[0], cam, lambda g: 1.0 / g.kappa - d, *contact_of(1.0)),
+        (labels[1], cam, lambda g: -(1.0 / g.kappa + d), *contact_of(-1.0))],
         lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"])
 
 

@@ -188,7 +188,7 @@ def test_pressure_angle_in_3d_against_finite_differences():
     ({"follower.spring_rate": 2.0}, "follower.spring_rate: not used by a barrel cam (the groove drives the roller "
                                     "both ways; its forces need only follower.mass)"),
     ({"follower.roller_width": 8.0}, "follower.roller_width: not used by a barrel cam"),
-    ({"cam.material": "steel"}, "cam.material: not used by a barrel cam (its report gives no contact pressure)"),
+    ({"cam.material": "steel"}, "cam.material: a barrel cam's contact pressure is at cam.rpm with follower.mass"),
     ({"follower.face_margin": 2.0}, "follower.face_margin: not used by a oscillating-roller follower"),
 ])
 def test_bad_values_are_one_line_exit_2_nothing_written(tmp_path, change, message):

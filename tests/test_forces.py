@@ -539,9 +539,19 @@ def test_a_conjugate_pairs_pressure_by_hand():
         assert stress["pressure_max_MPa"] == max(c["pressure_max_MPa"] for c in stress["cams"])
 
 
-@pytest.mark.parametrize("template, figure", [(GROOVED, "grooved_checks_figure"), (CONJUGATE, "pair_checks_figure")])
+def _barrel_checks(design):
+    from camgen import plots
+    from camgen.sizing import pressure_limit
+
+    w = design.walls
+    return plots.groove_checks_plot(design.spec, design.cam, design.speed["forces"], pressure_limit(design.spec),
+                                    w.r0 + w.taper * design.radii[1], 5.0, ("lower wall", "upper wall"))
+
+
+@pytest.mark.parametrize("template, figure", [(GROOVED, "grooved_checks_figure"), (CONJUGATE, "pair_checks_figure"),
+                                              (BARREL, None)])
 def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, figure, tmp_path):
-    """A grooved cam's and a pair's checks figure at a speed with a mass: its normal forces peak at the report's
+    """A grooved cam's, a pair's and a barrel's checks figure at a speed with a mass: its normal forces peak at the report's
     largest, its Hertz pressures at the stress's peak, its torque at the extremes (the dense plot within 0.5 % of
     the refined peaks); a build writes <name>-checks.png/.svg only then."""
     from click.testing import CliRunner
@@ -552,11 +562,12 @@ def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, fi
 
     sets = ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5", 'cam.material="pla"')
     spec = load_spec(template, sets)
-    design = design_grooved(spec) if template == GROOVED else design_conjugate(spec)
-    forces = (design.profile if template == GROOVED else design.cams[0]).speed["forces"]
-    axes = getattr(plots, figure)(design).axes
+    design = {GROOVED: design_grooved, CONJUGATE: design_conjugate, BARREL: design_barrel}[template](spec)
+    forces = {GROOVED: lambda: design.profile.speed, CONJUGATE: lambda: design.cams[0].speed,
+              BARREL: lambda: design.speed}[template]()["forces"]
+    axes = (getattr(plots, figure)(design) if figure else _barrel_checks(design)).axes
     peak = lambda ax: max(float(np.max(line.get_ydata())) for line in ax.get_lines()[:2])   # noqa: E731
-    largest = forces["contact_force_max_N"] if template == GROOVED else max(
+    largest = forces["contact_force_max_N"] if template != CONJUGATE else max(
         forces["cam_1_contact_force_max_N"], forces["cam_2_contact_force_max_N"])   # each on its own cam's normal
     assert peak(axes[2]) == pytest.approx(largest, rel=5e-3)
     assert peak(axes[3]) == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=5e-3)
@@ -570,3 +581,41 @@ def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, fi
         assert CliRunner().invoke(main, args).exit_code == 0
         assert (tmp_path / str(expected) / f"{name}-checks.png").exists() is expected
         assert (tmp_path / str(expected) / f"{name}-checks.svg").exists() is expected
+
+
+def test_a_barrels_wall_pressure_by_hand():
+    """barrel.toml (pitch radius 30, roller 5, groove 6 deep; PLA on steel) on its top dwell (165 degrees): the
+    developed walls are straight there, so a line contact of the roller on a flat wall along the groove's depth:
+    10 N, p = sqrt(10 E* (1/5) / (pi 6)) = 20.478 MPa, b = 0.051813 mm, on the lower wall for +10 N and the upper
+    for -10 N. Where the developed pitch curve bends (curvature kappa at Rm, convex towards the lower wall
+    positive) the lower wall's is kappa / (1 - d kappa), the upper's -kappa / (1 + d kappa), d the cutter's radius
+    at Rm (roller + clearance / 2): checked at 20 degrees against that formula written out."""
+    from camgen.forces import flank_pressure
+
+    for load, side in ((10, "lower wall"), (-10, "upper wall")):
+        design = design_barrel(load_spec(BARREL, ("cam.rpm=300", "follower.mass=0.2", f"follower.load={load}",
+                                                  'cam.material="pla"')))
+        stress = design.speed["forces"]["stress"]
+        assert stress["length_mm"] == 6.0
+        cam = design.cam
+        ld = spec_loading(design.spec.follower, cam.follower, positive=True)
+        contact = Contact("pla", "steel", 6.0)
+        at = np.radians([165.0, 20.0])
+        g, m = cam.pitch(at), cam.program.evaluate(at)
+        force = normal_force(ld, 10 * math.pi, g, m)
+        p, b = flank_pressure(contact, g, force, 5.1, 5.0)
+        assert (p[0], b[0]) == pytest.approx((20.47801, 0.0518133), rel=2e-6)
+        k = g.kappa[1]
+        wall = k / (1 - 5.1 * k) if force[1] > 0 else -k / (1 + 5.1 * k)
+        assert p[1] == pytest.approx(math.sqrt(abs(force[1]) * contact.e_star * (0.2 + wall) / (math.pi * 6)),
+                                     rel=1e-12)
+        assert stress["pressure_max_MPa"] >= p.max() * (1 - 1e-12)
+        assert design.speed["forces"]["carried_by"]["force_positive" if load > 0 else "force_negative"] == side
+
+
+def test_a_barrels_material_needs_its_forces_and_no_rib(tmp_path):
+    assert_refused(BARREL, {"cam.material": "pla"}, "cam.material: a barrel cam's contact pressure is at cam.rpm "
+                   "with follower.mass; give both", tmp_path)
+    assert_refused(ROOT / "templates" / "barrel-rib.toml", {"cam.material": "pla", "cam.rpm": 300,
+                                                            "follower.mass": 0.2},
+                   "cam.material: a rib's contact pressure is not made yet", tmp_path)

@@ -16,6 +16,7 @@ from camgen.core.bundle import Bundle, item, tail
 from camgen.core.errors import ExportError
 from camgen.page import cam_page
 from camgen.report import design_lines
+from camgen.sizing import pressure_limit
 
 
 #: where the cutter's loops start, in steps round from theta = 0, tried in turn
@@ -191,15 +192,21 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
 
         if kind == "svaj":
             return plots.svaj_figure(design)
+        if kind == "checks":           # the developed walls at Rm, the cutter's radius there off the pitch curve
+            w = design.walls
+            return plots.groove_checks_plot(design.spec, design.cam, design.speed["forces"],
+                                            pressure_limit(design.spec), w.r0 + w.taper * design.radii[1],
+                                            design.spec.follower.roller_radius, ("lower wall", "upper wall"))
         what = ("the groove's walls and the pitch curve" if design.rib is None
                 else "the rib's walls and the rollers' paths")
         return drawing_figure(design.drawing, f"{name}: the pitch cylinder (radius {design.radii[1]:g} mm) unrolled, "
                                               + what)
 
+    checks = ("checks",) if (design.speed or {}).get("forces") and design.rib is None else ()   # with a mass
     items = [
         item(design.drawing, [("dxf", "dxf", f"{name}-developed.dxf"), ("cut-svg", "cut_svg", f"{name}-developed.svg")],
              formats),
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
-        *tail(name, plot, ("svaj", "cam"), report, lambda: cam_page(design, report), formats),
+        *tail(name, plot, ("svaj", "cam", *checks), report, lambda: cam_page(design, report), formats),
     ]
     return Bundle.of(items, out.write_options), report

@@ -19,7 +19,7 @@ FOLLOWERS = ("translating-roller", "oscillating-roller")
 #: ``[cam]`` keys a barrel does not use, with what it takes instead
 _NOT_USED = {"base_radius": "pitch_radius", "thickness": "length", "travel": "length", "rim": "length"}
 #: ``[follower]`` keys a barrel does not use: an offset, and the spring and contact of a spring-loaded follower
-_FOLLOWER_NOT_USED = ("offset", "spring_rate", "preload", "contact_margin", "material", "roller_width")
+_FOLLOWER_NOT_USED = ("offset", "spring_rate", "preload", "contact_margin", "roller_width")
 
 
 def _levels(spec: Any) -> list[float]:
@@ -117,8 +117,8 @@ def _check(spec: Any) -> None:
     for key in ("allow_undercut", "min_rho_margin"):
         if key in cam.model_fields_set:
             raise ValueError(f"cam.{key}: not used by a barrel cam: its groove's walls are refused where they undercut")
-    if "material" in cam.model_fields_set:
-        raise ValueError("cam.material: not used by a barrel cam (its report gives no contact pressure)")
+    if "material" in cam.model_fields_set and (cam.rpm is None or follower.mass is None):
+        raise ValueError("cam.material: a barrel cam's contact pressure is at cam.rpm with follower.mass; give both")
     for key in sorted(spec.hub.model_fields_set - {"keyway"}):
         raise ValueError(f"hub.{key}: not used by a barrel cam (it takes cam.bore and hub.keyway)")
     if spec.output.kerf:
