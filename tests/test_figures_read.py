@@ -106,3 +106,27 @@ def test_cam_figure_fills_its_height(template):
     assert box.height * height / (box.width * width) == pytest.approx((y1 - y0) / (x1 - x0), rel=0.02)
     # what is not the drawing is its title, tick labels, x label and legend: under 2.2 inches
     assert height - box.height * height < 2.2
+
+
+def test_a_kits_panels_list_each_part_once_in_one_colour_and_write_their_labels():
+    """A kit's assembly at several cam angles (layers ``KIT-<degrees>-<part>``): the legend lists each part once,
+    every panel draws a part in the same colour, parts beyond matplotlib's ten colours still differ, and the panels'
+    labels (``KIT-LABELS``) are written as words, not listed."""
+    from camgen.core.shapes import Text
+
+    names = [f"part{i}" for i in range(12)]
+    items = [(f"KIT-{deg}-{name}", Circle((100.0 * j, 10.0 * i), 3.0 + i))
+             for j, deg in enumerate((0, 90, 180)) for i, name in enumerate(names)]
+    items += [("KIT-LABELS", Text(f"{deg} deg", (100.0 * j, -20.0), 4.0)) for j, deg in enumerate((0, 90, 180))]
+    fig = drawing_figure(Drawing(tuple(items), 0.01), "kit")
+    legend = fig.legends[0]
+    assert [t.get_text() for t in legend.get_texts()] == names
+    lines = [line for ax in fig.axes for line in ax.lines]
+    by_part: dict[float, set] = {}
+    for line in lines:                                      # a part's circles have its radius (3 + i)
+        radius = float(np.ptp(line.get_xdata())) / 2
+        by_part.setdefault(round(radius), set()).add(line.get_color())
+    assert all(len(colours) == 1 for colours in by_part.values()) and len(by_part) == 12
+    assert len({next(iter(c)) for c in by_part.values()}) == 12
+    words = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert words == ["0 deg", "90 deg", "180 deg"]

@@ -79,6 +79,19 @@ def _pose(layer: str) -> bool:
     return layer.startswith("DC") and layer[2:].partition("-")[0].isdigit()
 
 
+#: a layer's colour in a drawing's figure: matplotlib's ten, then ten more dark ones, so a kit's parts differ
+_PALETTE = (*(f"C{i}" for i in range(10)), "black", "darkgoldenrod", "teal", "indigo", "olive", "maroon", "navy",
+            "darkslategray", "saddlebrown", "darkviolet")
+
+
+def _legend_key(layer: str) -> str:
+    """What a layer is listed as in a figure's legend: a kit's part at a pose (``KIT-<degrees>-<part>``) by the
+    part's name alone, so each part has one colour and one entry over all the panels; any other layer by its name."""
+    head, _, rest = layer.partition("-")
+    pose, _, part = rest.partition("-")
+    return part if head == "KIT" and part and pose.lstrip("-").replace(".", "").isdigit() else layer
+
+
 def drawing_figure(drawing: Any, title: str) -> Any:
     """Any drawing, one colour per layer (a pose's as in the cut files, paths dashed), equal axes in mm, the figure
     sized to the drawing. An
@@ -96,13 +109,17 @@ def drawing_figure(drawing: Any, title: str) -> Any:
         for layer, shape in drawing.items:
             if group != [None] and _pose(layer) and layer not in group:
                 continue
-            colour = colours.setdefault(layer, layer_colour(layer)[1] if _pose(layer) else f"C{len(colours) % 10}")
+            if isinstance(shape, Text):                   # engraved words as words, not in the legend
+                ax.text(*shape.position, shape.text, rotation=shape.angle, fontsize=8, va="bottom")
+                continue
+            key = _legend_key(layer)
+            colour = colours.setdefault(key, layer_colour(layer)[1] if _pose(layer) else _PALETTE[len(colours) % len(_PALETTE)])
             pts = shape.flatten(PREVIEW_TOLERANCE_MM)
             if not isinstance(shape, (Text, Polyline)):
                 pts = np.vstack([pts, pts[:1]])            # close contours and circles
             ax.plot(pts[:, 0], pts[:, 1], "--" if layer == "PATH" else "-", color=colour, lw=1,
-                    label=None if layer in labelled else layer)
-            labelled.add(layer)                            # label each layer once in the legend
+                    label=None if key in labelled else key)
+            labelled.add(key)                              # label each part or layer once in the legend
         ax.grid(alpha=0.3)
         if group != [None]:
             ax.set_title(group[0], fontsize=9)
