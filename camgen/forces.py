@@ -151,11 +151,13 @@ def flank_pressure(contact: Contact, geometry: Any, force: np.ndarray, offset: f
     return line_contact(np.abs(force), relative_curvature(wall, 1.0 / roller), contact.length, contact.e_star)
 
 
-def speed_row(cam: Cam, ld: Loading, rpm: float, contact: Contact | None, positive: bool = False
-              ) -> dict[str, Any]:
+def speed_row(cam: Cam, ld: Loading, rpm: float, contact: Contact | None, positive: bool = False,
+              walls: tuple[float, float] | None = None) -> dict[str, Any]:
     """One row of the ``speeds`` table at ``rpm``: the torque's extremes and RMS, the peak power, the largest normal
     contact force, and for a follower held on (not ``positive``) the least axial contact force, where, and whether
-    it stays above ``ld.margin``; with materials the largest Hertz pressure (MPa)."""
+    it stays above ``ld.margin``; with materials the largest Hertz pressure (MPa), for a roller in a groove on the
+    wall carrying the force (``walls``: their offset from the pitch curve and the roller's radius, mm;
+    :func:`flank_pressure`)."""
     omega = rpm * 2 * math.pi / 60
     push = (lambda g, m: np.abs(normal_force(ld, omega, g, m))) if positive else \
         (lambda g, m: normal_force(ld, omega, g, m))
@@ -166,8 +168,9 @@ def speed_row(cam: Cam, ld: Loading, rpm: float, contact: Contact | None, positi
         low = peak_at(cam, lambda t, m: -ld.force(m, omega, t))
         row.update(contact_force_min_N=-low.value, contact_force_min_at_deg=low.at_deg, holds=-low.value > ld.margin)
     if contact is not None:
-        row["pressure_max_MPa"] = _peak_over(
-            cam, lambda g, m: contact_pressure(cam, contact, g, push(g, m))[0]).value
+        row["pressure_max_MPa"] = _peak_over(cam, (lambda g, m: contact_pressure(cam, contact, g, push(g, m))[0])
+                                             if walls is None else (lambda g, m: flank_pressure(
+                                                 contact, g, normal_force(ld, omega, g, m), *walls)[0])).value
     return row
 
 
@@ -182,13 +185,15 @@ def speed_list(rpm_range: tuple[float, float], steps: int, liftoff: float | None
 
 
 def speeds_report(cam: Cam, ld: Loading, rpm_range: tuple[float, float], steps: int, contact: Contact | None,
-                  liftoff: float | None = None, positive: bool = False) -> dict[str, Any]:
+                  liftoff: float | None = None, positive: bool = False,
+                  walls: tuple[float, float] | None = None) -> dict[str, Any]:
     """The report's ``speeds``: :func:`speed_row` at each of :func:`speed_list`'s speeds, the lift-off speed
     (``liftoff``, rpm; None: held at any speed) and the limits the figure draws (the contact margin, N, and with
     materials the allowable pressure, MPa). Every inertia term scales with rpm^2: at each cam angle the torque is
-    T_static + (rpm / rpm0)^2 T_inertia, the contact force likewise."""
+    T_static + (rpm / rpm0)^2 T_inertia, the contact force likewise. A ``positive`` drive (a groove) has no
+    lift-off nor margin; ``walls`` as :func:`speed_row`'s."""
     out: dict[str, Any] = {"rpm_range": list(rpm_range), "liftoff_rpm": liftoff,
-                           "rows": [speed_row(cam, ld, v, contact, positive)
+                           "rows": [speed_row(cam, ld, v, contact, positive, walls)
                                     for v in speed_list(rpm_range, steps, liftoff)]}
     if not positive:
         out["margin_N"] = ld.margin

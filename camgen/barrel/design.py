@@ -37,7 +37,7 @@ from camgen.core.features import keyed_bore
 from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
 from camgen.core.shapes import Circle, Contour, Polyline
 from camgen.dynamics import spec_loading, speed_report
-from camgen.forces import Contact, drive_report
+from camgen.forces import Contact, drive_report, speeds_report
 from camgen.followers.barrel import DevelopedRoller, rolling_slip, translating_pose
 from camgen.followers.plate import PlateRoller
 from camgen.grooved.design import Flank, flank_checks
@@ -305,6 +305,10 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
         speed["forces"] = drive_report(cam, ld, spec.cam.rpm,
                                        ("lower wall", "upper wall") if rib is None else
                                        ("rib's upper wall", "rib's lower wall"), stressed)
+        if spec.cam.rpm_range is not None:
+            speed["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
+                                            None if stressed is None else stressed[0], positive=True,
+                                            walls=None if stressed is None else stressed[1:])
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
     limit = pressure_limit(spec)
     if pressure["floor"] > limit:

@@ -192,6 +192,8 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
 
         if kind == "svaj":
             return plots.svaj_figure(design)
+        if kind == "speeds":
+            return plots.speeds_plot(name, design.speed["speeds"])
         if kind == "checks":           # the developed walls at Rm, the cutter's radius there off the pitch curve
             w = design.walls
             return plots.groove_checks_plot(design.spec, design.cam, design.speed["forces"],
@@ -203,6 +205,7 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
                                               + what)
 
     checks = ("checks",) if (design.speed or {}).get("forces") and design.rib is None else ()   # with a mass
+    checks += ("speeds",) if "speeds" in (design.speed or {}) else ()
     items = [
         item(design.drawing, [("dxf", "dxf", f"{name}-developed.dxf"), ("cut-svg", "cut_svg", f"{name}-developed.svg")],
              formats),

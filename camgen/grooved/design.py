@@ -33,7 +33,7 @@ from camgen.core.parts import Part, Pocket
 from camgen.core.shapes import Contour
 from camgen.design import CamDesign, design_profile
 from camgen.dynamics import spec_loading
-from camgen.forces import Contact, drive_report
+from camgen.forces import Contact, drive_report, speeds_report
 from camgen.kinds.base import GROOVE_KEYS
 from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.sizing import Sizing, size_cam
@@ -133,6 +133,8 @@ def island_spec(spec: CamSpec) -> CamSpec:
     raw["follower"]["roller_radius"] = spec.follower.contact_radius + half
     for key in DRIVE_KEYS:                       # the groove's forces are the grooved design's, not a disc's
         raw["follower"].pop(key, None)
+    for key in ("rpm_range", "rpm_steps"):        # and so is its speeds table
+        raw["cam"].pop(key, None)
     return validate_spec(raw)
 
 
@@ -258,8 +260,12 @@ def design_grooved(spec: CamSpec) -> GroovedDesign:
         walls = None if spec.cam.material is None else (      # the flanks roller + clearance / 2 off the pitch curve
             Contact(spec.cam.material, f.material, min(depth, f.roller_width or depth)), inner.offset_mm,
             f.roller_radius)
-        profile = dataclasses.replace(profile, speed={**profile.speed, "forces": drive_report(
-            cam, ld, spec.cam.rpm, ("inner flank", "outer flank"), walls)})
+        speed = {**profile.speed, "forces": drive_report(cam, ld, spec.cam.rpm, ("inner flank", "outer flank"), walls)}
+        if spec.cam.rpm_range is not None:
+            speed["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
+                                            None if walls is None else walls[0], positive=True,
+                                            walls=None if walls is None else walls[1:])
+        profile = dataclasses.replace(profile, speed=speed)
     curves = "polylines" if out.dxf == "segments" else out.curves
 
     def outer_flank(grow: float) -> Outline:      # the outer flank with its material grown by ``grow`` mm

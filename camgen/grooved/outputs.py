@@ -133,8 +133,10 @@ def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
         from camgen import plots
 
         return {"svaj": lambda: plots.svaj_figure(design.profile), "checks": lambda: plots.grooved_checks_figure(
-            design)}.get(kind, lambda: grooved_figure(design))()
+            design), "speeds": lambda: plots.speeds_plot(design.spec.name, design.profile.speed["speeds"])}.get(
+            kind, lambda: grooved_figure(design))()
 
-    checks = ("checks",) if (design.profile.speed or {}).get("forces") else ()   # at a speed with a mass
+    speed = design.profile.speed or {}
+    checks = (("checks",) if speed.get("forces") else ()) + (("speeds",) if "speeds" in speed else ())
     return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
                      ("svaj", "cam", *checks), printed=design.printed), report
