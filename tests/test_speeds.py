@@ -174,3 +174,42 @@ def test_the_range_at_its_bounds():
     rows = _design(sets=(*LOADED, "cam.rpm_range=[1e-12, 100000]", "cam.rpm_steps=2")).speed["speeds"]["rows"]
     assert [r["rpm"] for r in rows][::len(rows) - 1] == [1e-12, 100000.0]
     assert all(math.isfinite(v) for r in rows for v in r.values() if isinstance(v, float))
+
+
+@pytest.mark.parametrize("template", ["grooved.toml", "barrel.toml"])
+def test_a_grooves_speeds_are_single_speed_builds(template, tmp_path):
+    """A grooved and a barrel cam over a range: each row is what a build at that one cam.rpm reports (torque, RMS,
+    power, the largest normal force, the Hertz pressure on the wall carrying the force) to 1e-9; no lift-off (the
+    groove drives both ways); <name>-speeds.png/.svg written."""
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+
+    path = ROOT / "templates" / template
+    sets = ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5", 'cam.material="pla"')
+
+    def speed(extra: tuple[str, ...]) -> dict:
+        design = design_cam(load_spec(path, (*sets, *extra)))
+        return getattr(design, "profile", design).speed
+
+    speeds = speed(("cam.rpm_range=[100, 1000]", "cam.rpm_steps=4"))["speeds"]
+    assert speeds["liftoff_rpm"] is None and [r["rpm"] for r in speeds["rows"]] == [100.0, 400.0, 700.0, 1000.0]
+    for row in speeds["rows"][::3]:
+        forces = speed((f"cam.rpm={row['rpm']!r}",))["forces"]
+        for key in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m", "power_max_W", "contact_force_max_N"):
+            assert row[key] == pytest.approx(forces[key], rel=1e-9, abs=1e-12)
+        assert row["pressure_max_MPa"] == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=1e-9)
+        assert "holds" not in row
+    args = ["build", str(path), "-o", str(tmp_path / "out")]
+    for s in (*sets, "cam.rpm_range=[100, 1000]", "cam.rpm_steps=4"):
+        args += ["--set", s]
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    name = path.stem
+    assert (tmp_path / "out" / f"{name}-speeds.png").exists() and (tmp_path / "out" / f"{name}-speeds.svg").exists()
+
+
+def test_a_conjugate_pairs_range_is_refused(tmp_path):
+    assert_refused(ROOT / "templates" / "conjugate.toml", {"cam.rpm_range": [100, 200], "cam.rpm": 300,
+                                                           "follower.mass": 0.2},
+                   "cam.rpm_range: not for a conjugate pair yet", tmp_path)
