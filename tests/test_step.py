@@ -399,9 +399,20 @@ def test_conjugate_pair_two_named_cams(tmp_path):
     assert result.exit_code == 0, result.output
     names = [name for name, _ in read_step(tmp_path / "conjugate.step")]
     assert names == ["conjugate-1", "conjugate-2"]
-    for _, shape in read_step(tmp_path / "conjugate.step"):
+    from camgen.conjugate.design import design_conjugate
+    from camgen.surface import surface_deviation
+
+    pair = design_conjugate(load_spec(ROOT / "templates" / "conjugate.toml", ['output.formats=["json"]']))
+    for (_, shape), member in zip(read_step(tmp_path / "conjugate.step"), pair.cams, strict=True):
         found = measure(shape)
         assert found["solids"] == 1 and found["valid"] and found["volume"] > 0
+        # each cam's side is its biarc outline's arcs (cylinders), as a disc cam's, within the tolerance of its
+        # exact profile (its roller's pitch curve less the roller, from the pair's kinematics)
+        part, outline = step_part(member)
+        counts, wire = _lateral(shape)
+        assert counts["cylinders"] == part.outline.n_arcs + len(part.holes) >= 20 and counts["bsplines"] == 0
+        assert outline.max_error_mm <= member.tolerance
+        assert np.abs(surface_deviation(member.cam, _wire_points(wire, 40))).max() <= member.tolerance
 
 
 @pytest.fixture(scope="module")

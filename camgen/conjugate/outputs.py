@@ -23,6 +23,7 @@ from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.nesting import SheetRules, nest, sheet_kinds
 from camgen.core.parts import Drawing
 from camgen.core.routing import add_routing
+from camgen.design import step_part
 from camgen.outputs import printed_mesh
 from camgen.page import cam_page
 from camgen.report import cam_report, design_lines
@@ -237,7 +238,8 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     items += [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"), ("cut-svg", f"{kind}_svg",
                                                                           f"{name}-{kind}.svg")], formats)
               for kind, drawing in sheet_kinds(nested.drawings(out.tolerance))]
-    items.append(item(tuple((f"{name}-{which + 1}", (d.printed,)) for which, d in enumerate(design.cams)),
+    items.append(item(tuple((f"{name}-{which + 1}", (step_part(d)[0],)) for which, d in enumerate(design.cams))
+                      if "step" in formats else None,
                       [("step", "step", f"{name}.step")], formats))
     checks = ("checks",) if (design.cams[0].speed or {}).get("forces") else ()   # at a speed with a mass
     items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: cam_page(design, report), formats)
