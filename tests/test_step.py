@@ -366,7 +366,11 @@ def test_grooved_cam_pocket(tmp_path):
     result = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "grooved.toml"), "-o", str(tmp_path),
                                        "--set", 'output.formats=["step"]'])
     assert result.exit_code == 0, result.output
-    part = _design("grooved").printed
+    from camgen.grooved.design import step_plate
+    from camgen.surface import surface_deviation
+
+    design = _design("grooved")
+    part = step_plate(design)
     [(name, shape)] = read_step(tmp_path / "grooved.step")
     found = measure(shape)
     [pocket] = part.pockets
@@ -376,6 +380,14 @@ def test_grooved_cam_pocket(tmp_path):
     # cuts in two (the rim and the island)
     walls = len(pocket.outer.bulges) + len(pocket.inner.bulges)
     assert found["faces"] == expect_plate(part)["faces"] + walls + 2
+    # both flanks are biarcs (cylindrical walls, not hundreds of planes), each within the tolerance of its exact
+    # flank: the island's surface, and the outer flank 2 d out from it (d = roller + clearance / 2)
+    counts, _ = _lateral(shape)
+    assert counts["cylinders"] == pocket.outer.n_arcs + pocket.inner.n_arcs + part.outline.n_arcs + len(part.holes)
+    assert pocket.inner.n_arcs == len(pocket.inner.bulges) and pocket.outer.n_arcs == len(pocket.outer.bulges)
+    cam, tol = design.profile.cam, design.spec.output.tolerance
+    assert np.abs(surface_deviation(cam, pocket.inner.flatten(tol / 100))).max() <= tol
+    assert np.abs(surface_deviation(cam, pocket.outer.flatten(tol / 100), 2 * cam.contact_radius)).max() <= tol
 
 
 def test_geneva_wheel_and_driver_named_and_stacked(tmp_path):

@@ -31,7 +31,7 @@ from camgen.cam import Cam, build_cam
 from camgen.core.errors import DesignError
 from camgen.core.parts import Part, Pocket
 from camgen.core.shapes import Contour
-from camgen.design import CamDesign, design_profile
+from camgen.design import CamDesign, design_profile, step_part
 from camgen.dynamics import spec_loading
 from camgen.forces import Contact, drive_report, speeds_report
 from camgen.kinds.base import GROOVE_KEYS
@@ -211,6 +211,17 @@ def _plate(spec: CamSpec, island: Part, outer: Outline, radius: float) -> Part:
     groove = Pocket(outer.contour, island.outline, spec.cam.groove_depth)
     return Part(spec.name, _circle(radius), island.holes, spec.cam.thickness, spec.output.tolerance, island.marks,
                 pockets=(groove,))
+
+
+def step_plate(design: GroovedDesign) -> Part:
+    """The printed plate as the STEP file carries it: both flanks made of biarcs (exact arcs within
+    ``output.tolerance`` mm of the exact flanks, measured), whatever ``output.curves`` says, as a disc cam's
+    (:func:`camgen.design.step_part`); an undercut outer flank's envelope keeps its chords."""
+    island, _ = step_part(design.profile)
+    cam = design.profile.cam
+    outer = (design.outer_outline if design.outer.undercut
+             else exact_outline(cam, design.spec.output.tolerance, "biarcs", 2 * cam.contact_radius))
+    return _plate(design.spec, island, outer, design.plate_radius_mm)
 
 
 def size_grooved(spec: CamSpec) -> Sizing:
