@@ -277,3 +277,23 @@ def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float, contact: Contact
             for k, (cam, sign) in enumerate(((first, 1.0), (second, -ratio)))]
         out["stress"] = {**max(cams, key=lambda c: c["pressure_max_MPa"]), "cams": cams}
     return out
+
+
+def pair_speeds(pair: tuple[Cam, Cam], ld: Loading, rpm_range: tuple[float, float], steps: int,
+                contact: Contact | None) -> dict[str, Any]:
+    """The ``speeds`` table of a conjugate pair: at each of :func:`speed_list`'s speeds :func:`pair_report`'s
+    torque figures, the larger of both cams' normal forces and with materials both cams' larger Hertz pressure (no
+    lift-off: the pair drives both ways)."""
+    rows = []
+    for rpm in speed_list(rpm_range, steps, None):
+        got = pair_report(pair, ld, rpm, contact)
+        row = {"rpm": rpm, **{k: got[k] for k in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m",
+                                                  "power_max_W")},
+               "contact_force_max_N": max(got["cam_1_contact_force_max_N"], got["cam_2_contact_force_max_N"])}
+        if contact is not None:
+            row["pressure_max_MPa"] = got["stress"]["pressure_max_MPa"]
+        rows.append(row)
+    out: dict[str, Any] = {"rpm_range": list(rpm_range), "liftoff_rpm": None, "rows": rows}
+    if contact is not None:
+        out["allowable_MPa"] = contact.allowable
+    return out

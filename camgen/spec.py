@@ -409,8 +409,6 @@ class CamSpec(Model):
             if not 0 < lo < hi <= 100_000:
                 raise ValueError(f"cam.rpm_range: give [lowest, highest] with 0 < lowest < highest <= 100000 rpm "
                                  f"(got [{lo:g}, {hi:g}])")
-            if self.cam.kind == "conjugate":
-                raise ValueError("cam.rpm_range: not for a conjugate pair yet (disc, plate, grooved and barrel cams)")
             for key, value in (("cam.rpm", self.cam.rpm), ("follower.mass", self.follower.mass)):
                 if value is None:
                     raise ValueError(f"cam.rpm_range: needs {key} (the report's forces are at cam.rpm, with the "

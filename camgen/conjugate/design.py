@@ -34,7 +34,7 @@ from camgen.core.errors import CamgenError, DesignError
 from camgen.core.parts import Allowances
 from camgen.design import CamDesign, _check_holes, _curves, _engraving, _Profile, _speed
 from camgen.dynamics import spec_loading
-from camgen.forces import Contact, pair_report
+from camgen.forces import Contact, pair_report, pair_speeds
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
 from camgen.outline import exact_outline
@@ -435,7 +435,8 @@ def _warnings(spec: CamSpec, designs: tuple[CamDesign, CamDesign], limit: float)
 def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
     """The follower's rates at ``cam.rpm`` and, with a mass, the pair's forces (:func:`camgen.forces.pair_report`):
     no spring, so no contact check."""
-    free = spec.model_copy(update={"follower": spec.follower.model_copy(update={"mass": None})})
+    free = spec.model_copy(update={"follower": spec.follower.model_copy(update={"mass": None}),
+                                   "cam": spec.cam.model_copy(update={"rpm_range": None})})
     speed = _speed(free, pair[0])
     if speed is not None and spec.follower.mass is not None:
         ld = spec_loading(spec.follower, pair[0].follower, True, spec.motion, pair[0].program)
@@ -443,6 +444,8 @@ def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
         contact = None if spec.cam.material is None else Contact(
             spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
         speed = {**speed, "forces": pair_report(pair, ld, spec.cam.rpm, contact)}
+        if spec.cam.rpm_range is not None:
+            speed["speeds"] = pair_speeds(pair, ld, spec.cam.rpm_range, spec.cam.rpm_steps, contact)
     return speed
 
 

@@ -226,7 +226,8 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
         from camgen import plots
 
         return {"svaj": lambda: plots.svaj_figure(design.cams[0]), "checks": lambda: plots.pair_checks_figure(
-            design)}.get(kind, lambda: assembly_figure(design))()
+            design), "speeds": lambda: plots.speeds_plot(name, design.cams[0].speed["speeds"])}.get(
+            kind, lambda: assembly_figure(design))()
 
     items = []
     for which, (d, (mesh, _)) in enumerate(zip(design.cams, meshes, strict=True)):
@@ -242,5 +243,6 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
                       if "step" in formats else None,
                       [("step", "step", f"{name}.step")], formats))
     checks = ("checks",) if (design.cams[0].speed or {}).get("forces") else ()   # at a speed with a mass
+    checks += ("speeds",) if "speeds" in (design.cams[0].speed or {}) else ()
     items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: cam_page(design, report), formats)
     return Bundle.of(items, out.write_options), report
