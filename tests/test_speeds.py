@@ -209,7 +209,20 @@ def test_a_grooves_speeds_are_single_speed_builds(template, tmp_path):
     assert (tmp_path / "out" / f"{name}-speeds.png").exists() and (tmp_path / "out" / f"{name}-speeds.svg").exists()
 
 
-def test_a_conjugate_pairs_range_is_refused(tmp_path):
-    assert_refused(ROOT / "templates" / "conjugate.toml", {"cam.rpm_range": [100, 200], "cam.rpm": 300,
-                                                           "follower.mass": 0.2},
-                   "cam.rpm_range: not for a conjugate pair yet", tmp_path)
+def test_a_conjugate_pairs_speeds_are_single_speed_builds():
+    """A pair over a range: each row is a build at that one cam.rpm (torque figures, the larger of both cams' normal
+    forces, both cams' larger Hertz pressure) to 1e-9; no lift-off."""
+    from camgen.conjugate.design import design_conjugate
+
+    path = ROOT / "templates" / "conjugate.toml"
+    sets = ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5", 'cam.material="pla"')
+    speeds = design_conjugate(load_spec(path, (*sets, "cam.rpm_range=[100, 1000]", "cam.rpm_steps=3"))
+                              ).cams[0].speed["speeds"]
+    assert speeds["liftoff_rpm"] is None and [r["rpm"] for r in speeds["rows"]] == [100.0, 550.0, 1000.0]
+    for row in speeds["rows"][::2]:
+        forces = design_conjugate(load_spec(path, (*sets, f"cam.rpm={row['rpm']!r}"))).cams[0].speed["forces"]
+        for key in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m", "power_max_W"):
+            assert row[key] == pytest.approx(forces[key], rel=1e-9, abs=1e-12)
+        assert row["contact_force_max_N"] == pytest.approx(max(forces["cam_1_contact_force_max_N"],
+                                                               forces["cam_2_contact_force_max_N"]), rel=1e-9)
+        assert row["pressure_max_MPa"] == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=1e-9)
