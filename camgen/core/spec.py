@@ -180,6 +180,7 @@ def parse_overrides(pairs: Iterable[str]) -> list[tuple[str, Any]]:
     out = []
     for pair in pairs:
         key, sep, text = pair.partition("=")
+        key = re.sub(r"\[\s*(\d+)\s*\]", r".\1", key)   # motion[0].lift, as errors name it, is motion.0.lift
         if not sep or not key.strip():
             raise SpecError(f"expected key=value, e.g. motion.0.lift=25 (got {pair!r})", "--set")
         if not all(part.strip() for part in key.split(".")):
@@ -405,7 +406,8 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
     errors = exc.errors(include_url=False)
     # an unknown key first: a misspelt required key is also reported missing, and the spelling is the news
     err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
-    loc = tuple(part for part in err["loc"] if not _union_tag(part, root))
+    # the first part is always a key of the template (a user's key may look like a tag: motion[0])
+    loc = tuple(part for i, part in enumerate(err["loc"]) if i == 0 or not _union_tag(part, root))
     kind, ctx = err["type"], err.get("ctx", {})
     given = err.get("input")
     info = _field(root, loc)
