@@ -17,9 +17,9 @@ from typing import Any
 
 from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
 from camgen.core.errors import ExportError, SpecError
+from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
 from camgen.core.parts import Part
-from camgen.core.kit import bom_item, placed_meshes
 from linkgen.design import LinkageDesign, design_linkage
 from linkgen.kit import linkage_kit, placed_solids
 from linkgen.parts import LinkageBuild
