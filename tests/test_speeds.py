@@ -13,15 +13,7 @@ from camgen.dynamics import spec_loading
 from camgen.forces import cycle_mean, torque
 from camgen.spec import load_spec
 from tests.refusals import assert_refused
-
-ROOT = Path(__file__).resolve().parent.parent
-RDRD = ROOT / "templates" / "rdrd.toml"
-LOADED = ("cam.rpm=300", "follower.mass=0.2", "follower.spring_rate=0.5", "follower.preload=5",
-          "follower.load=3", 'cam.material="pla"')
-
-
-def _design(template: Path = RDRD, sets: tuple[str, ...] = LOADED):
-    return design_cam(load_spec(template, sets))
+from tests.test_forces import LOADED, RDRD, ROOT, _design  # the loaded rdrd of the forces tests
 
 
 def _with_loads(folder: Path, loads: dict[int, float]) -> Path:
@@ -142,7 +134,7 @@ def test_the_speeds_figure_and_console_draw_the_table(tmp_path):
     axes = speeds_figure(design).axes
     assert list(axes[0].get_lines()[0].get_ydata()) == [r["torque_max_N_m"] for r in rows]
     assert list(axes[1].get_lines()[1].get_ydata()) == [r["contact_force_min_N"] for r in rows]
-    pressure = [a for a in axes if a.get_ylabel().startswith("Hertz")][0]
+    pressure = next(a for a in axes if a.get_ylabel().startswith("Hertz"))
     assert list(pressure.get_lines()[0].get_ydata()) == [r["pressure_max_MPa"] for r in rows]
     args = ["build", str(RDRD), "-o", str(tmp_path / "out")]
     for s in RANGE:
@@ -150,7 +142,11 @@ def test_the_speeds_figure_and_console_draw_the_table(tmp_path):
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     assert (tmp_path / "out" / "rdrd-speeds.png").exists() and (tmp_path / "out" / "rdrd-speeds.svg").exists()
+    speeds = design.speed["speeds"]
+    line = next(x for x in result.output.splitlines() if x.startswith("over 100 to 1500 rpm"))
+    assert f"lift-off {speeds['liftoff_rpm']:.4g} rpm" in line and "allowable" in line
     plain = CliRunner().invoke(main, ["build", str(RDRD), "-o", str(tmp_path / "plain")])
+    assert plain.exit_code == 0, plain.output
     assert len(list((tmp_path / "out").iterdir())) == len(list((tmp_path / "plain").iterdir())) + 2
     off = design.speed["speeds"]["liftoff_rpm"]
     assert ("over 100 to 1500 rpm (9 speeds)" in result.output and f"(lift-off {off:.4g} rpm)" in result.output
