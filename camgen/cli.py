@@ -6,8 +6,8 @@ from pathlib import Path
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, add_new, output_option, set_option, template_options,
-                             user_errors)
+from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, output_option, set_option,
+                             template_options, user_errors)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -33,10 +33,9 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
     report = write_cam(design, directory)
     lines = _summary(report)
     if lines is not None:
-        for line in [*lines, *(f"warning: {w}" for w in report["warnings"])]:
+        for line in lines:
             click.echo(line)
-        for name in report["files"].values():
-            click.echo(f"wrote {directory / name}")
+        echo_written(report["files"], directory, report["warnings"])
         return
     click.echo(_checks_line(design))
     click.echo(f"outline: {report['outline_vertices']} vertices ({report['outline_arcs']} exact arcs), "
@@ -47,10 +46,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
         from camgen.grooved.outputs import groove_summary
 
         click.echo(groove_summary(report))
-    for warning in report["warnings"]:
-        click.echo(f"warning: {warning}")
-    for name in report["files"].values():
-        click.echo(f"wrote {directory / name}")
+    echo_written(report["files"], directory, report["warnings"])
 
 
 def _checks_line(design: object) -> str:
@@ -160,10 +156,7 @@ def coupon(output: Path | None, overrides: tuple[str, ...]) -> None:
     click.echo(f"{spec.name}: {len(holes)} holes for a {report['nominal_mm']:g} mm pin, clearances {holes[0]['label']} "
                f"to {holes[-1]['label']} mm; cut holes drawn at nominal + clearance - kerf {allow['kerf_mm']:g} mm, "
                f"printed at nominal + clearance + {allow['clearance_mm']:g} mm")
-    for warning in report["warnings"]:
-        click.echo(f"warning: {warning}")
-    for name in report["files"].values():
-        click.echo(f"wrote {directory / name}")
+    echo_written(report["files"], directory, report["warnings"])
 
 
 add_family(main, "camgen.spec:validate_spec", "camgen.outputs:build_member",

@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, add_new, fixed, output_option, set_option,
+from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, fixed, output_option, set_option,
                              template_argument, template_options, user_errors)
 
 
@@ -51,8 +51,7 @@ def analyze(template: Path, angle: float | None, method: str, as_json: bool, out
         click.echo(json.dumps({**design.report, "files": files}, indent=2))
         return
     _print_text(design.report)
-    for name in files.values():
-        click.echo(f"wrote {directory / name}")
+    echo_written(files, directory)
 
 
 @main.command()
@@ -76,8 +75,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
         warning = tool_warning(design.report["routing"])
         if warning is not None:
             click.echo(f"warning: {warning}")
-    for name in files.values():
-        click.echo(f"wrote {directory / name}")
+    echo_written(files, directory)
 
 
 @main.command()

@@ -9,7 +9,7 @@ import functools
 import importlib
 import os
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +28,15 @@ def fail(message: str) -> None:
     """Print ``error: <message>`` on one line to stderr and exit with code 2."""
     click.echo("error: " + " ".join(str(message).split()), err=True)
     sys.exit(2)
+
+
+def echo_written(files: Mapping[str, str], directory: Path, warnings: Iterable[str] = ()) -> None:
+    """A command's last lines: each of ``warnings`` as ``warning: ...``, then ``wrote <path>`` for each file
+    written (``files``: the bundle's map of file names in ``directory``)."""
+    for warning in warnings:
+        click.echo(f"warning: {warning}")
+    for name in files.values():
+        click.echo(f"wrote {directory / name}")
 
 
 def user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
