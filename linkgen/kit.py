@@ -108,7 +108,7 @@ def linkage_kit(design: Any) -> LinkageKit:
     table = spec.parts
     layout = design.mechanism.layout(spec.linkage, design.kinematics, table)
     layout, mounts = base_plate(layout, kit)
-    build = build_parts(layout, table)
+    build = build_parts(layout, table, spec.output.elephant_foot)
     pins = pins_of(build, layout)
     bolt = kit.hardware
     bom = [BomLine(p.name, 1, f"{'base plate' if not p.moving else 'link'}, {table.thickness:g} mm",

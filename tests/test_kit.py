@@ -515,3 +515,27 @@ def test_kit_step_holds_every_kit_part_exactly(tmp_path):
     assert [n for n, _ in solids] == [p.name for p in made] == ["frame", "follower", "roller", "spacer", "standoff"]
     for (_, shape), part in zip(solids, made, strict=True):
         assert_plate(measure(shape), part)
+
+
+def test_a_linkage_kits_printed_parts_keep_the_elephant_foot():
+    """The kit's build of a linkage (made again with the base plate) chamfers its printed parts' bed faces by
+    output.elephant_foot as the plain build does: the moving links' meshes are the plain build's, vertex for vertex,
+    and their bed faces are inset (the lowest vertices' ring is smaller than the next one up)."""
+    from camgen.core.solids import extrude
+    from linkgen.design import design_linkage
+    from linkgen.kit import linkage_kit
+    from linkgen.spec import load_spec as load_linkage
+
+    design = design_linkage(load_linkage(ROOT / "templates" / "kit-crank-rocker.toml",
+                                         ["output.elephant_foot=0.3"]), parts=True)
+    kit = linkage_kit(design)
+    assert kit.build.allowances.elephant_foot == 0.3 == design.build.allowances.elephant_foot
+    plain = {p.name: p for p in design.build.printed}
+    for part in kit.build.printed:
+        if part.name == "ground":                 # the base plate: the ground grown to carry the mounting holes
+            continue
+        mesh, reference = extrude(part), extrude(plain[part.name])
+        assert np.array_equal(mesh.vertices, reference.vertices)
+        bed = mesh.vertices[:, 2] == 0.0
+        assert np.ptp(mesh.vertices[bed, 0]) == pytest.approx(np.ptp(mesh.vertices[~bed, 0]) - 0.6,
+                                                            abs=design.spec.parts.tolerance)
