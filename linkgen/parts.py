@@ -22,8 +22,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from camgen.core.errors import DesignError
-from camgen.core.nesting import Nest, SheetRules, nest, rotations_of
-from camgen.core.parts import Allowances, Drawing, Part
+from camgen.core.nesting import Nest, SheetRules, nest
+from camgen.core.parts import Allowances, Drawing, Part, preview_stroke
 from camgen.core.shapes import Circle, Contour, Polyline, rounded_hull
 
 if TYPE_CHECKING:
@@ -258,9 +258,7 @@ def assembly(printed: tuple[Part, ...], layout: Layout, tolerance: float) -> Dra
             outline, holes = _place(part, float(place.angles[part.name][0]), place.origins[part.name][0])
             items += [(layer, outline), *((layer, h) for h in holes)]
     items += [("PATH", Polyline(path, np.zeros(len(path) - 1))) for path in layout.paths]
-    boxes = np.array([shape.bounds() for _, shape in items if isinstance(shape, Contour)])
-    extent = float(max(np.ptp(boxes[:, [0, 2]]), np.ptp(boxes[:, [1, 3]]))) if len(boxes) else 100.0
-    return Drawing(tuple(items), tolerance, stroke=round(max(0.2, extent / 500.0), 2))
+    return Drawing(tuple(items), tolerance, stroke=preview_stroke(items))
 
 
 @dataclass(frozen=True)
@@ -351,8 +349,7 @@ def build_parts(layout: Layout, table: PartsTable, elephant_foot: float = 0.0) -
     layout, layers = with_top_plate(layout, layers, top_pins, table.width_of("ground"))
     cut = tuple(allowances.cut(p) for p in layout.parts)
     printed = tuple(allowances.printed(p) for p in layout.parts)
-    nested = nest(cut, SheetRules(tuple(table.sheet), table.kerf + table.margin,
-                                  rotations_of(table.sheet_rotations, table.grain), "parts.sheet"))
+    nested = nest(cut, SheetRules.of(table, table.kerf, "parts.sheet"))
     spacers = spacers_of(layout.sweep, layers)
     return LinkageBuild(layout.parts, table, allowances, layers, cut, printed, nested.drawings(table.tolerance),
                         assembly(printed, layout, table.tolerance), layout.positions, spacers, nested)

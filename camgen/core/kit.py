@@ -18,7 +18,7 @@ from pydantic import Field, field_validator, model_validator
 
 from camgen.core.errors import DesignError
 from camgen.core.hardware import BEARINGS, BOLTS, SHAFTS, Bearing, Bolt
-from camgen.core.parts import Allowances, Drawing, Part, PartMaker
+from camgen.core.parts import Allowances, Drawing, Part, PartMaker, preview_stroke
 from camgen.core.shapes import Circle, Contour, rounded_hull
 from camgen.core.spec import Model, length, unit
 
@@ -220,17 +220,10 @@ def _placed(solids: tuple[Solid, ...], k: int, prefix: str, at: np.ndarray) -> l
     return items
 
 
-def _stroke(items: list) -> float:
-    """A line width (mm) for a drawing of ``items``: 1/500 of its larger extent, at least 0.2."""
-    boxes = np.array([shape.bounds() for _, shape in items if isinstance(shape, Contour)])
-    extent = float(max(np.ptp(boxes[:, [0, 2]]), np.ptp(boxes[:, [1, 3]])))
-    return round(max(0.2, extent / 500.0), 2)
-
-
 def assembly_drawing(solids: tuple[Solid, ...], k: int, tolerance: float) -> Drawing:
     """The solids at pose ``k`` in plan, lowest first, each on its own layer ``KIT-<name>``."""
     items = _placed(solids, k, "KIT-", np.zeros(2))
-    return Drawing(tuple(items), tolerance, stroke=_stroke(items))
+    return Drawing(tuple(items), tolerance, stroke=preview_stroke(items))
 
 
 #: the gap between two panels of :func:`assembly_panels`, and the labels' height, as fractions of a panel's width
@@ -253,7 +246,7 @@ def assembly_panels(solids: tuple[Solid, ...], poses: tuple[tuple[int, str], ...
     for i, (k, label) in enumerate(poses):
         items += _placed(solids, k, f"KIT-{label}-", np.array([i * step, 0.0]))
         items.append(("KIT-LABELS", Text(f"{label} deg", (i * step + lo[0], lo[1] - 2 * height), height)))
-    return Drawing(tuple(items), tolerance, stroke=_stroke(items))
+    return Drawing(tuple(items), tolerance, stroke=preview_stroke(items))
 
 
 def placed_meshes(solids: tuple[Solid, ...], k: int) -> tuple[Any, ...]:

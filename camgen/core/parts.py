@@ -94,6 +94,16 @@ class Pocket:
         return self.outer.area - (self.inner.area if self.inner is not None else 0.0)
 
 
+def preview_stroke(items: tuple | list) -> float:
+    """A line width (mm) for a preview drawing of ``items`` ((layer, shape) pairs): 1/500 of its contours' larger
+    extent, at least 0.2 (0.2 with no contour)."""
+    boxes = [shape.bounds() for _, shape in items if isinstance(shape, Contour)]
+    if not boxes:
+        return 0.2
+    x0, y0, x1, y1 = (f(b[i] for b in boxes) for i, f in enumerate((min, min, max, max)))
+    return round(max(0.2, max(x1 - x0, y1 - y0) / 500.0), 2)
+
+
 @dataclass(frozen=True)
 class Drawing:
     """Shapes on named layers, in mm, ready for any 2-D writer.
