@@ -12,6 +12,7 @@ from typing import Any
 from camgen.core.errors import SpecError
 from camgen.core.routing import add_routing
 from linkgen.effort import Statics, statics_of, statics_report
+from linkgen.kit import LinkageKit, base_plate, linkage_kit
 from linkgen.mechanisms import Mechanism
 from linkgen.mechanisms.common import Figure
 from linkgen.parts import LinkageBuild, build_parts
@@ -35,6 +36,8 @@ class LinkageDesign:
     angle: float | None = None
     #: the effort holding the template's loads (``[[loads]]``), when it has any
     statics: Statics | None = None
+    #: the kit of a ``[kit]`` table, when parts are made (its build is :attr:`build`: the base plate is the ground)
+    kit: LinkageKit | None = None
 
     def figures(self) -> tuple[Figure, ...]:
         """The mechanism's figures of this linkage, each drawn only when called; with an angle, the pose there (for
@@ -119,7 +122,8 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
                    parts: bool = False) -> LinkageDesign:
     """The design of a validated linkage spec: ``angle`` (the input's, degrees) adds the positions there to the
     report, ``method`` (``closed`` or ``newton``) how they are solved; ``parts`` makes the parts of its ``[parts]``
-    table."""
+    table, once: with a ``[kit]`` table the ground is made the base plate first (:func:`linkgen.kit.base_plate`), so
+    the build, the report's ``routing`` block and the kit are all of the parts as made."""
     if angle is not None and not math.isfinite(angle):
         raise SpecError(f"must be a finite number of degrees (got {angle})", "--angle")
     if parts and spec.parts is None:
@@ -136,11 +140,15 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
             raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
         statics = statics_of(spec.loads, posed[0])
         report["statics"] = statics_report(statics, table.rpm)
-    build = build_parts(mechanism.layout(table, kinematics, spec.parts), spec.parts,
-                        spec.output.elephant_foot) if parts else None
-    if build is not None:
-        add_routing(report, build.cut, spec.output.tool_radius)
-    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics)
+    if not parts:
+        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics)
+    layout, mounts = mechanism.layout(table, kinematics, spec.parts), ()
+    if spec.kit is not None:
+        layout, mounts = base_plate(layout, spec.kit)
+    build = build_parts(layout, spec.parts, spec.output.elephant_foot)
+    kit = None if spec.kit is None else linkage_kit(spec, layout, mounts, build)
+    add_routing(report, build.cut, spec.output.tool_radius)
+    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit)
 
 
 def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | None:

@@ -20,7 +20,7 @@ import numpy as np
 from camgen.core.errors import DesignError
 from camgen.core.hardware import Bolt, bolt_length
 from camgen.core.kit import BomLine, KitTable, Solid, bolt_line, check_clear, disc, fixed
-from linkgen.parts import COLLISION_TOLERANCE_MM, Layout, LinkageBuild, build_parts
+from linkgen.parts import COLLISION_TOLERANCE_MM, Layout, LinkageBuild
 
 #: how many times the corner holes may step outwards (each a hole's width) to clear the moving parts
 CORNER_STEPS = 200
@@ -99,16 +99,13 @@ def pins_of(build: LinkageBuild, layout: Layout) -> tuple[dict[str, Any], ...]:
     return tuple(out)
 
 
-def linkage_kit(design: Any) -> LinkageKit:
-    """The kit of a linkage ``design`` built with its parts, for its spec's ``[kit]``: the build made again from
-    the mechanism's layout with the base plate (same layers: the ground is layer 0 whatever its shape). The parts,
-    pins, spacers and mounting heads are placed over the motion's sweep, and two that share some height and meet
-    in plan at any pose are refused (:class:`DesignError` naming ``parts.width``)."""
-    spec, kit = design.spec, design.spec.kit
-    table = spec.parts
-    layout = design.mechanism.layout(spec.linkage, design.kinematics, table)
-    layout, mounts = base_plate(layout, kit)
-    build = build_parts(layout, table, spec.output.elephant_foot)
+def linkage_kit(spec: Any, layout: Layout, mounts: tuple[tuple[float, float], ...],
+                build: LinkageBuild) -> LinkageKit:
+    """The kit of a linkage ``spec`` (its ``[kit]`` table) from the ``layout`` whose ground :func:`base_plate` made
+    the base plate with ``mounts``, and the ``build`` of that layout (:func:`linkgen.design.design_linkage` makes
+    both, once). The parts, pins, spacers and mounting heads are placed over the motion's sweep, and two that share
+    some height and meet in plan at any pose are refused (:class:`DesignError` naming ``parts.width``)."""
+    kit, table = spec.kit, spec.parts
     pins = pins_of(build, layout)
     bolt = kit.hardware
     bom = [BomLine(p.name, 1, f"{'base plate' if not p.moving else 'link'}, {table.thickness:g} mm",

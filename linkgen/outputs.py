@@ -21,7 +21,7 @@ from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
 from camgen.core.parts import Part
 from linkgen.design import LinkageDesign, design_linkage
-from linkgen.kit import linkage_kit, placed_solids
+from linkgen.kit import placed_solids
 from linkgen.parts import LinkageBuild
 from linkgen.spec import validate_spec
 
@@ -40,8 +40,8 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     if design.build is None and "step" in formats:
         raise SpecError("'step' writes the linkage's parts, which `linkgen build` makes from the [parts] table; "
                         "leave 'step' out here", "output.formats")
-    if design.build is not None and spec.kit is not None:
-        kit = linkage_kit(design)
+    if design.kit is not None:
+        kit = design.kit
         items += _parts_items(name, kit.build, formats)
         report = {**report, **kit.build.report, "kit": kit.report}
         items.append(item(lambda: placed_meshes(placed_solids(kit, kit.pose), 0),

@@ -518,19 +518,22 @@ def test_kit_step_holds_every_kit_part_exactly(tmp_path):
 
 
 def test_a_linkage_kits_printed_parts_keep_the_elephant_foot():
-    """The kit's build of a linkage (made again with the base plate) chamfers its printed parts' bed faces by
-    output.elephant_foot as the plain build does: the moving links' meshes are the plain build's, vertex for vertex,
-    and their bed faces are inset (the lowest vertices' ring is smaller than the next one up)."""
+    """The kit's build of a linkage (its ground made the base plate) chamfers its printed parts' bed faces by
+    output.elephant_foot as the plain build does: the moving links' meshes are those of the mechanism's layout built
+    without the base plate, vertex for vertex, and their bed faces are inset (the lowest vertices' ring is smaller
+    than the next one up)."""
     from camgen.core.solids import extrude
     from linkgen.design import design_linkage
-    from linkgen.kit import linkage_kit
+    from linkgen.parts import build_parts
     from linkgen.spec import load_spec as load_linkage
 
     design = design_linkage(load_linkage(ROOT / "templates" / "kit-crank-rocker.toml",
                                          ["output.elephant_foot=0.3"]), parts=True)
-    kit = linkage_kit(design)
-    assert kit.build.allowances.elephant_foot == 0.3 == design.build.allowances.elephant_foot
-    plain = {p.name: p for p in design.build.printed}
+    spec = design.spec
+    kit = design.kit
+    assert kit.build is design.build and kit.build.allowances.elephant_foot == 0.3
+    layout = design.mechanism.layout(spec.linkage, design.kinematics, spec.parts)
+    plain = {p.name: p for p in build_parts(layout, spec.parts, 0.3).printed}
     for part in kit.build.printed:
         if part.name == "ground":                 # the base plate: the ground grown to carry the mounting holes
             continue
@@ -538,4 +541,41 @@ def test_a_linkage_kits_printed_parts_keep_the_elephant_foot():
         assert np.array_equal(mesh.vertices, reference.vertices)
         bed = mesh.vertices[:, 2] == 0.0
         assert np.ptp(mesh.vertices[bed, 0]) == pytest.approx(np.ptp(mesh.vertices[~bed, 0]) - 0.6,
-                                                            abs=design.spec.parts.tolerance)
+                                                            abs=spec.parts.tolerance)
+
+
+def test_a_linkage_kit_is_built_once_and_routed_with_its_mounting_holes(tmp_path, monkeypatch):
+    """kit-crank-rocker with a 2.2 mm router: the parts are laid out, nested and built once for the whole command
+    (layout, nest and build_parts each called once), and the report's routing block is of the parts as made: the
+    base plate's four mounting holes (ISO 273 medium, 4.5 mm less the 0.15 mm kerf: radius 2.175 mm) fail beside its
+    two pivot holes (4.2 - 0.15 mm: radius 2.025 mm), at the report's mounting-hole centres."""
+    from linkgen import design as linkage_design
+    from linkgen import parts as linkage_parts
+    from linkgen.mechanisms.fourbar import FourBarMechanism
+
+    calls: dict[str, int] = {}
+
+    def counted(owner, name):
+        real = getattr(owner, name)
+
+        def call(*args, **kwargs):
+            calls[name] = calls.get(name, 0) + 1
+            return real(*args, **kwargs)
+
+        monkeypatch.setattr(owner, name, call)
+
+    counted(linkage_design, "build_parts")
+    counted(linkage_parts, "nest")
+    counted(FourBarMechanism, "layout")
+    out = tmp_path / "kit-crank-rocker"
+    report = _build(linkgen, TEMPLATES / "kit-crank-rocker.toml", out, 'output.formats=["json", "3mf"]',
+                    "output.tool_radius=2.2")
+    assert calls == {"build_parts": 1, "nest": 1, "layout": 1}
+    routing = report["routing"]
+    assert routing["smallest_concave_radius_mm"]["ground"] == pytest.approx((4.2 - 0.15) / 2, abs=1e-9)
+    holes = [(f["x_mm"], f["y_mm"], f["radius_mm"]) for f in routing["fails"]
+             if f["part"] == "ground" and f["what"] == "hole"]
+    mounts = [(m["x_mm"], m["y_mm"]) for m in report["kit"]["mounting_holes"]]
+    assert len(mounts) == 4
+    expected = [(0.0, 0.0, 2.025), (180.0, 0.0, 2.025)] + [(x, y, 2.175) for x, y in mounts]
+    assert np.array(sorted(holes)) == pytest.approx(np.array(sorted(expected)), abs=1e-6)    # report: 6 decimals
