@@ -34,13 +34,31 @@ class Peak:
 
 def peak_of(cam: Cam, func: Callable[[np.ndarray], np.ndarray]) -> Peak:
     """Largest value over the cycle of ``func`` of the motion (its four rows: s and three derivatives)."""
-    return peak_at(cam, lambda t, m: func(m))
+    return peaks_at(cam, lambda t, m: func(m))[0]
 
 
 def peak_at(cam: Cam, func: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> Peak:
     """Largest value over the cycle of ``func(theta, motion rows)`` (theta the cam angle, radians)."""
-    segments = cam.program.segments
-    return Peak(*cam.program.peak(lambda i, t: func(t, segments[i].evaluate(t))))
+    return peaks_at(cam, func)[0]
+
+
+def peaks_at(cam: Cam, *funcs: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> list[Peak]:
+    """Largest value over the cycle of each ``func(theta, motion rows)`` (theta the cam angle, radians), all from
+    one search (see :func:`stacked_peaks`)."""
+    return stacked_peaks(cam, lambda t, m: np.stack([np.broadcast_to(f(t, m), t.shape) for f in funcs]))
+
+
+def stacked_peaks(cam: Cam, values: Callable[[np.ndarray, np.ndarray], np.ndarray]) -> list[Peak]:
+    """Largest value over the cycle of each row of ``values(theta, motion rows)`` -> (k, n), and where: one search
+    (:meth:`camgen.program.Program.maxima`) for the k of them, each row's peak found as if it were searched alone.
+
+    The motion is the segments' own evaluation at ``theta`` (:meth:`camgen.program.Program.evaluate_on`, as
+    :meth:`camgen.program.Segment.evaluate` makes it), not the one the search hands over (made from the laws'
+    parameter, it differs from it in the last bits, which would move the reports' peaks by as much)."""
+    def rows(theta: np.ndarray, _: np.ndarray, index: np.ndarray) -> np.ndarray:
+        return values(theta, cam.program.evaluate_on(index, theta))
+
+    return [Peak(*found) for found in cam.program.maxima(rows)]
 
 
 @dataclass(frozen=True)
@@ -225,7 +243,7 @@ def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | 
     An oscillating roller's arm carries its mass, spring and load at the roller's centre, along its path."""
     omega = rpm * 2 * math.pi / 60
     unit = cam.follower.lift_unit
-    v, a, j = (peak_of(cam, lambda m, k=k: np.abs(m[k])) for k in (1, 2, 3))
+    v, a, j = peaks_at(cam, *(lambda t, m, k=k: np.abs(m[k]) for k in (1, 2, 3)))
     out: dict[str, Any] = {
         "rpm": rpm, "omega_rad_s": omega,
         f"velocity_max_{unit}_s": v.value * omega, "velocity_max_at_deg": v.at_deg,
@@ -257,8 +275,6 @@ def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | 
 def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> dict[str, Any]:
     """The contact force's least value and where, the preload and the rate that keep it at the margin at this
     speed, and the speed at which this loading lets the follower go."""
-    low = peak_at(cam, lambda t, m: -ld.force(m, omega, t))
-    need_preload = peak_at(cam, lambda t, m: ld.margin - (ld.force(m, omega, t) - ld.preload)).value
     # the rate that would do with this preload: max of (margin - rest) / s where s > 0; where s = 0 only the
     # preload can help (sentinel +BIG), and where the force is enough there is no demand (sentinel -BIG)
     big = 1e30
@@ -268,18 +284,23 @@ def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> dict[str, Any]:
         lifted = m[0] > 1e-9 * max(cam.program.max_lift, 1e-300)
         return np.where(lifted, short / np.where(lifted, ld.scale * m[0], 1.0), np.where(short > 0, big, -big))
 
-    worst = peak_at(cam, demand).value
-    need_rate = None if worst >= big else max(0.0, worst)
-    # lift-off: the force is still(s) + mass omega^2 s'' / 1000, so omega^2 <= 1000 still / (mass * -s'') wherever
-    # s'' < 0; the least of that over the cycle (0 if the follower leaves at rest)
-    rest = -peak_at(cam, lambda t, m: -ld.still(m, t)).value
-    slowest = -peak_at(cam, lambda t, m: np.where(m[2] < 0, -1000.0 * ld.still(m, t) / (ld.mass * ld.scale * np.where(
-        m[2] < 0, -m[2], 1.0)), -big)).value
-    liftoff = 0.0 if rest <= 0 else (None if slowest >= big else math.sqrt(max(slowest, 0.0)) * 60 / (2 * math.pi))
+    def leaves(t: np.ndarray, m: np.ndarray) -> np.ndarray:
+        # lift-off: the force is still(s) + mass omega^2 s'' / 1000, so omega^2 <= 1000 still / (mass * -s'')
+        # wherever s'' < 0 (sentinel -BIG elsewhere); the least of that over the cycle, as a largest of its negative
+        falling = m[2] < 0
+        return np.where(falling, -1000.0 * ld.still(m, t) / (ld.mass * ld.scale * np.where(falling, -m[2], 1.0)), -big)
+
+    low, need, worst, rest, slowest = peaks_at(
+        cam, lambda t, m: -ld.force(m, omega, t), lambda t, m: ld.margin - (ld.force(m, omega, t) - ld.preload),
+        demand, lambda t, m: -ld.still(m, t), leaves)
+    need_rate = None if worst.value >= big else max(0.0, worst.value)
+    # 0 if the follower leaves at rest (the least force still at rest not above 0)
+    liftoff = 0.0 if -rest.value <= 0 else (None if -slowest.value >= big
+                                            else math.sqrt(max(-slowest.value, 0.0)) * 60 / (2 * math.pi))
     out = {"mode": mode, "spring_rate_n_mm": ld.rate, "preload_n": ld.preload, "load_n": ld.load,
            "weight_n": ld.weight_at_rest, "margin_n": ld.margin,
            "force_min_n": -low.value, "force_min_at_deg": low.at_deg, "holds": -low.value > ld.margin,
-           "preload_needed_n": max(0.0, need_preload), "rate_needed_n_mm": need_rate, "liftoff_rpm": liftoff}
+           "preload_needed_n": max(0.0, need.value), "rate_needed_n_mm": need_rate, "liftoff_rpm": liftoff}
     if ld.table is not None:
         out["load_table_n"] = {"min": float(min(ld.table.loads)), "max": float(max(ld.table.loads)),
                                "rows": len(ld.table.loads), "interpolation": "linear, periodic over the turn"}

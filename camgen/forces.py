@@ -19,7 +19,7 @@ import numpy as np
 
 from camgen.cam import Cam
 from camgen.contact_stress import MATERIALS, effective_modulus, line_contact, relative_curvature
-from camgen.dynamics import Loading, Peak, peak_at
+from camgen.dynamics import Loading, Peak, stacked_peaks
 
 #: Gauss-Legendre nodes a segment for the means over the cycle (each law is smooth inside its segment)
 NODES = 64
@@ -47,26 +47,55 @@ def cycle_mean(cam: Cam, quantity: Any, breaks: tuple[float, ...] = ()) -> float
     """The mean over a turn of ``quantity(theta, motion rows)``, segment by segment by Gauss-Legendre quadrature (exact
     to rounding for the laws' smooth pieces; a jump at a segment's end costs nothing), a segment split at the cam
     angles ``breaks`` (radians: a load table's rows, where the load has a kink) inside it."""
-    x, w = np.polynomial.legendre.leggauss(NODES)
-    total = 0.0
+    return _mean(_nodes(cam, breaks), quantity)
+
+
+#: Gauss-Legendre nodes over a turn: each stretch's half-width (rad), its cam angles (rad) and the motion there
+Nodes = list[tuple[float, np.ndarray, np.ndarray]]
+
+
+def _nodes(cam: Cam, breaks: tuple[float, ...] = ()) -> Nodes:
+    """The nodes of :func:`cycle_mean` (the motion evaluated once for any number of quantities)."""
+    x, _ = np.polynomial.legendre.leggauss(NODES)
+    out = []
     for seg in cam.program.segments:
         cuts = [seg.start, *sorted(b for b in breaks if seg.start < b < seg.end), seg.end]
         for lo, hi in itertools.pairwise(cuts):
             half = (hi - lo) / 2
             theta = lo + half * (x + 1)
-            total += half * float(w @ quantity(theta, seg.evaluate(theta)))
+            out.append((half, theta, seg.evaluate(theta)))
+    return out
+
+
+def _mean(nodes: Nodes, quantity: Any) -> float:
+    """The mean over the turn of ``quantity(theta, motion rows)`` on the ``nodes`` (:func:`_nodes`)."""
+    _, w = np.polynomial.legendre.leggauss(NODES)
+    total = 0.0
+    for half, theta, m in nodes:
+        total += half * float(w @ quantity(theta, m))
     return total / (2 * math.pi)
 
 
-def _peak_over(cam: Cam, quantity: Any) -> Peak:
-    """Largest value of ``quantity(pitch geometry, motion rows)`` over the cycle."""
-    segments = cam.program.segments
+def _load_nodes(cam: Cam, ld: Loading) -> Nodes:
+    """The nodes of the means of a loading ``ld``: its load table's rows (kinks of the load) split the segments."""
+    return _nodes(cam, ld.table.angles if ld.table else ())
 
-    def value(i: int, t: np.ndarray) -> np.ndarray:
-        m = segments[i].evaluate(np.atleast_1d(t))
-        return quantity(cam.follower.pitch(np.atleast_1d(t), m), m)
 
-    return Peak(*cam.program.peak(value))
+def _peaks_over(cam: Cam, *quantities: Any) -> list[Peak]:
+    """Largest value over the cycle of each ``quantity(pitch geometry, motion rows)``, all from one search (the
+    motion and the pitch geometry evaluated once for them all: :func:`camgen.dynamics.stacked_peaks`)."""
+    def values(theta: np.ndarray, m: np.ndarray) -> np.ndarray:
+        g = cam.follower.pitch(theta, m)
+        return np.stack([np.broadcast_to(q(g, m), theta.shape) for q in quantities])
+
+    return stacked_peaks(cam, values)
+
+
+def _peaks_each(cam: Cam, *quantities: Any) -> list[Peak]:
+    """:func:`_peaks_over`, one search a quantity: the figures at ``cam.rpm`` are found so, to the bit as they
+    always were (a stacked search solves its refinement quartics in one matrix product, whose rounding follows how
+    many rows it has: a peak's last bits would move with the quantities searched beside it, ~1e-14)."""
+    return [peak for q in quantities for peak in _peaks_over(cam, q)]
 
 
 def profile_curvature(cam: Cam, geometry: Any) -> np.ndarray:
@@ -97,46 +126,60 @@ def torque(ld: Loading, omega: float, m: np.ndarray, theta: np.ndarray | None = 
     return ld.force(m, omega, theta) * ld.scale * m[1] / 1000.0
 
 
-def _torque_figures(cam: Cam, ld: Loading, omega: float, push: Any) -> dict[str, Any]:
-    """The torque's extremes and RMS, the peak power and the largest of ``push(geometry, motion)``, the normal
-    contact force (N)."""
-    hi = peak_at(cam, lambda t, m: torque(ld, omega, m, t))
-    lo = peak_at(cam, lambda t, m: -torque(ld, omega, m, t))
-    most = _peak_over(cam, push)
+def _torques(ld: Loading, omega: float, push: Any) -> tuple[Any, Any, Any]:
+    """The quantities (of pitch geometry and motion) whose peaks :func:`_torque_figures` takes: the torque, its
+    negative and ``push(geometry, motion)``, the normal contact force (N)."""
+    return (lambda g, m: torque(ld, omega, m, g.theta), lambda g, m: -torque(ld, omega, m, g.theta), push)
+
+
+def _torque_figures(ld: Loading, omega: float, peaks: list[Peak], nodes: Nodes) -> dict[str, Any]:
+    """The torque's extremes and RMS, the peak power and the largest normal contact force (N), from the ``peaks`` of
+    :func:`_torques`'s quantities and the loading's ``nodes`` (:func:`_load_nodes`) for the RMS."""
+    hi, lo, most = peaks
     return {
         "torque_max_N_m": hi.value, "torque_max_at_deg": hi.at_deg,
         "torque_min_N_m": -lo.value, "torque_min_at_deg": lo.at_deg,
-        "torque_rms_N_m": math.sqrt(cycle_mean(cam, lambda t, m: torque(ld, omega, m, t) ** 2,
-                                                ld.table.angles if ld.table else ())),
+        "torque_rms_N_m": math.sqrt(_mean(nodes, lambda t, m: torque(ld, omega, m, t) ** 2)),
         "power_max_W": max(hi.value, lo.value) * omega,
         "contact_force_max_N": most.value, "contact_force_max_at_deg": most.at_deg,
     }
 
 
+def _omega(rpm: float) -> float:
+    """The cam's speed (rad/s) at ``rpm``."""
+    return rpm * 2 * math.pi / 60
+
+
 def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) -> dict[str, Any]:
     """The report's ``forces``: the torque's extremes and RMS, the peak power, the largest normal contact force
     and, with materials, the largest contact pressure and where."""
-    omega = rpm * 2 * math.pi / 60
-    out = _torque_figures(cam, ld, omega, lambda g, m: normal_force(ld, omega, g, m))
-    if contact is not None:
-        if cam.contact_radius == 0 and not cam.follower.flat:
-            out["stress"] = {"note": "a knife edge touches the cam on a line of no width: no Hertz pressure"}
-            return out
-        out["stress"] = _stress(cam, contact, lambda g, m: contact_pressure(cam, contact, g,
-                                                                            normal_force(ld, omega, g, m)))[0]
+    omega = _omega(rpm)
+    quantities = _torques(ld, omega, lambda g, m: normal_force(ld, omega, g, m))
+    knife = cam.contact_radius == 0 and not cam.follower.flat
+
+    def pressure(g: Any, m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return contact_pressure(cam, contact, g, normal_force(ld, omega, g, m))
+
+    stressed = contact is not None and not knife
+    peaks = _peaks_each(cam, *quantities, *((lambda g, m: pressure(g, m)[0]),) * stressed)
+    out = _torque_figures(ld, omega, peaks[:3], _load_nodes(cam, ld))
+    if contact is not None and knife:
+        out["stress"] = {"note": "a knife edge touches the cam on a line of no width: no Hertz pressure"}
+    elif stressed:
+        out["stress"] = _stress(cam, contact, pressure, peaks[3])[0]
     return out
 
 
-def _stress(cam: Cam, contact: Contact, pressure: Any) -> tuple[dict[str, Any], Any, np.ndarray]:
-    """The report's ``stress`` of ``pressure(geometry, motion)`` -> (pressure MPa, half-width mm): its peak over the
-    turn, where, the strip's half-width there, the materials and the allowable; and the geometry and motion there."""
-    p = _peak_over(cam, lambda g, m: pressure(g, m)[0])
-    at = np.array([math.radians(p.at_deg)])
+def _stress(cam: Cam, contact: Contact, pressure: Any, peak: Peak) -> tuple[dict[str, Any], Any, np.ndarray]:
+    """The report's ``stress`` of ``pressure(geometry, motion)`` -> (pressure MPa, half-width mm) whose ``peak`` over
+    the turn is given: where, the strip's half-width there, the materials and the allowable; and the geometry and
+    motion there."""
+    at = np.array([math.radians(peak.at_deg)])
     g, m = cam.pitch(at), cam.program.evaluate(at)
     return ({"cam_material": contact.cam, "follower_material": contact.follower, "length_mm": contact.length,
-             "e_star_MPa": contact.e_star, "pressure_max_MPa": p.value, "pressure_max_at_deg": p.at_deg,
+             "e_star_MPa": contact.e_star, "pressure_max_MPa": peak.value, "pressure_max_at_deg": peak.at_deg,
              "half_width_mm": float(pressure(g, m)[1][0]), "allowable_MPa": contact.allowable,
-             "holds": p.value <= contact.allowable}, g, m)
+             "holds": peak.value <= contact.allowable}, g, m)
 
 
 def flank_pressure(contact: Contact, geometry: Any, force: np.ndarray, offset: float, roller: float
@@ -151,26 +194,36 @@ def flank_pressure(contact: Contact, geometry: Any, force: np.ndarray, offset: f
     return line_contact(np.abs(force), relative_curvature(wall, 1.0 / roller), contact.length, contact.e_star)
 
 
-def speed_row(cam: Cam, ld: Loading, rpm: float, contact: Contact | None, positive: bool = False,
-              walls: tuple[float, float] | None = None) -> dict[str, Any]:
-    """One row of the ``speeds`` table at ``rpm``: the torque's extremes and RMS, the peak power, the largest normal
-    contact force, and for a follower held on (not ``positive``) the least axial contact force, where, and whether
-    it stays above ``ld.margin``; with materials the largest Hertz pressure (MPa), for a roller in a groove on the
-    wall carrying the force (``walls``: their offset from the pitch curve and the roller's radius, mm;
-    :func:`flank_pressure`)."""
-    omega = rpm * 2 * math.pi / 60
+def _row_quantities(cam: Cam, ld: Loading, rpm: float, contact: Contact | None, positive: bool,
+                    walls: tuple[float, float] | None) -> tuple[Any, ...]:
+    """The quantities whose peaks make a row of the ``speeds`` table at ``rpm`` (see :func:`_row`)."""
+    omega = _omega(rpm)
     push = (lambda g, m: np.abs(normal_force(ld, omega, g, m))) if positive else \
         (lambda g, m: normal_force(ld, omega, g, m))
-    figures = _torque_figures(cam, ld, omega, push)
+    out = _torques(ld, omega, push)
+    if not positive:
+        out += (lambda g, m: -ld.force(m, omega, g.theta),)
+    if contact is not None:
+        out += ((lambda g, m: contact_pressure(cam, contact, g, push(g, m))[0]) if walls is None else
+                (lambda g, m: flank_pressure(contact, g, normal_force(ld, omega, g, m), *walls)[0]),)
+    return out
+
+
+def _row(ld: Loading, rpm: float, peaks: list[Peak], nodes: Nodes, contact: Contact | None,
+         positive: bool) -> dict[str, Any]:
+    """One row of the ``speeds`` table at ``rpm`` from the ``peaks`` of :func:`_row_quantities`'s quantities: the
+    torque's extremes and RMS, the peak power, the largest normal contact force, and for a follower held on (not
+    ``positive``) the least axial contact force, where, and whether it stays above ``ld.margin``; with materials
+    the largest Hertz pressure (MPa)."""
+    figures = _torque_figures(ld, _omega(rpm), peaks[:3], nodes)
     row = {"rpm": rpm, **{k: figures[k] for k in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m",
                                                     "power_max_W", "contact_force_max_N")}}
+    rest = peaks[3:]
     if not positive:
-        low = peak_at(cam, lambda t, m: -ld.force(m, omega, t))
+        low, *rest = rest
         row.update(contact_force_min_N=-low.value, contact_force_min_at_deg=low.at_deg, holds=-low.value > ld.margin)
     if contact is not None:
-        row["pressure_max_MPa"] = _peak_over(cam, (lambda g, m: contact_pressure(cam, contact, g, push(g, m))[0])
-                                             if walls is None else (lambda g, m: flank_pressure(
-                                                 contact, g, normal_force(ld, omega, g, m), *walls)[0])).value
+        row["pressure_max_MPa"] = rest[0].value
     return row
 
 
@@ -184,17 +237,31 @@ def speed_list(rpm_range: tuple[float, float], steps: int, liftoff: float | None
     return speeds
 
 
+def _split(peaks: list[Peak], sizes: list[int]) -> list[list[Peak]]:
+    """``peaks`` cut into consecutive runs of ``sizes``."""
+    ends = list(itertools.accumulate(sizes))
+    return [peaks[end - size:end] for size, end in zip(sizes, ends, strict=True)]
+
+
 def speeds_report(cam: Cam, ld: Loading, rpm_range: tuple[float, float], steps: int, contact: Contact | None,
                   liftoff: float | None = None, positive: bool = False,
                   walls: tuple[float, float] | None = None) -> dict[str, Any]:
-    """The report's ``speeds``: :func:`speed_row` at each of :func:`speed_list`'s speeds, the lift-off speed
-    (``liftoff``, rpm; None: held at any speed) and the limits the figure draws (the contact margin, N, and with
-    materials the allowable pressure, MPa). Every inertia term scales with rpm^2: at each cam angle the torque is
-    T_static + (rpm / rpm0)^2 T_inertia, the contact force likewise. A ``positive`` drive (a groove) has no
-    lift-off nor margin; ``walls`` as :func:`speed_row`'s."""
+    """The report's ``speeds``: at each of :func:`speed_list`'s speeds, the torque's extremes and RMS, the peak
+    power, the largest normal contact force, and for a follower held on (not ``positive``) the least axial contact
+    force, where, and whether it stays above ``ld.margin``; with materials the largest Hertz pressure (MPa), for a
+    roller in a groove on the wall carrying the force (``walls``: their offset from the pitch curve and the roller's
+    radius, mm; :func:`flank_pressure`). Also the lift-off speed (``liftoff``, rpm; None: held at any speed) and
+    the limits the figure draws (the contact margin, N, and with materials the allowable pressure, MPa). Every
+    inertia term scales with rpm^2: at each cam angle the torque is T_static + (rpm / rpm0)^2 T_inertia, the contact
+    force likewise. A ``positive`` drive (a groove) has no lift-off nor margin. Every row's peaks come from one
+    search over the turn, and their means from one evaluation of the motion."""
+    speeds = speed_list(rpm_range, steps, liftoff)
+    wanted = [_row_quantities(cam, ld, rpm, contact, positive, walls) for rpm in speeds]
+    found = _split(_peaks_over(cam, *itertools.chain(*wanted)), [len(q) for q in wanted])
+    nodes = _load_nodes(cam, ld)
     out: dict[str, Any] = {"rpm_range": list(rpm_range), "liftoff_rpm": liftoff,
-                           "rows": [speed_row(cam, ld, v, contact, positive, walls)
-                                    for v in speed_list(rpm_range, steps, liftoff)]}
+                           "rows": [_row(ld, rpm, peaks, nodes, contact, positive)
+                                    for rpm, peaks in zip(speeds, found, strict=True)]}
     if not positive:
         out["margin_N"] = ld.margin
     if contact is not None:
@@ -243,16 +310,39 @@ def drive_report(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str],
     T = F s' / 1000 either way (the power balance), the largest normal contact force |F| / cos(phi), and where the
     contact changes side. With ``walls`` (the :class:`Contact`, the walls' offset from the pitch curve and the
     roller's radius, mm) the ``stress``: :func:`flank_pressure`'s peak and the side carrying it there."""
-    omega = rpm * 2 * math.pi / 60
-    out = _torque_figures(cam, ld, omega, lambda g, m: np.abs(normal_force(ld, omega, g, m)))
+    return _drive(cam, ld, rpm, sides, walls)[0]
+
+
+def _drive(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str], walls: tuple[Contact, float, float] | None,
+           extra: tuple[Any, ...] = ()) -> tuple[dict[str, Any], list[Peak]]:
+    """:func:`drive_report`, and the peaks of the ``extra`` quantities (of pitch geometry and motion) found in the
+    same search."""
+    omega = _omega(rpm)
+    quantities = _torques(ld, omega, lambda g, m: np.abs(normal_force(ld, omega, g, m)))
+    if walls is not None:
+        contact, offset, roller = walls
+
+        def pressure(g: Any, m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            return flank_pressure(contact, g, normal_force(ld, omega, g, m), offset, roller)
+
+        quantities += (lambda g, m: pressure(g, m)[0],)
+    peaks = _peaks_each(cam, *quantities, *extra)
+    out = _torque_figures(ld, omega, peaks[:3], _load_nodes(cam, ld))
     out["carried_by"] = {"force_positive": sides[0], "force_negative": sides[1]}
     out["side_changes"] = flank_changes(cam, lambda t, m: ld.force(m, omega, t), sides)
     if walls is not None:
-        contact, offset, roller = walls
-        stress, g, m = _stress(cam, contact, lambda g, m: flank_pressure(contact, g, normal_force(ld, omega, g, m),
-                                                                         offset, roller))
+        stress, g, m = _stress(cam, contact, pressure, peaks[3])
         out["stress"] = {**stress, "on": sides[0] if float(ld.force(m, omega, g.theta)[0]) > 0 else sides[1]}
-    return out
+    return out, peaks[len(quantities):]
+
+
+def _pair_forces(pair: tuple[Cam, Cam], ld: Loading, omega: float) -> tuple[Any, Any]:
+    """Each cam's normal contact force (N) as a quantity of its pitch geometry and motion (0 where it runs
+    unloaded): N1 = F / cos(phi1) where F > 0, N2 = -F (L1 / L2) / cos(phi2) where F < 0 (see :func:`pair_report`)."""
+    first, second = pair
+    ratio = getattr(first.follower, "arm_length", 1.0) / getattr(second.follower, "arm_length", 1.0)
+    return tuple(lambda g, m, sign=sign: np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
+                 for sign in (1.0, -ratio))
 
 
 def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float, contact: Contact | None = None
@@ -263,35 +353,58 @@ def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float, contact: Contact
     carries the force while the other runs unloaded. Each cam's largest normal force: N1 = F / cos(phi1), N2 =
     -F (L1 / L2) / cos(phi2) (phi2 the second cam's pressure angle from the return's direction, L1 / L2 the arms'
     ratio of a bell crank, 1 for a yoke); the torque is then the sum of both contacts' moments about the axis."""
-    first, second = pair
-    omega = rpm * 2 * math.pi / 60
-    out = drive_report(first, ld, rpm, ("cam 1", "cam 2"))
-    ratio = getattr(first.follower, "arm_length", 1.0) / getattr(second.follower, "arm_length", 1.0)
-    for which, (cam, sign) in enumerate(((first, 1.0), (second, -ratio))):
-        most = _peak_over(cam, lambda g, m, sign=sign: np.maximum(sign * normal_force(ld, omega, g, m), 0.0))
+    omega = _omega(rpm)
+    forces = _pair_forces(pair, ld, omega)
+    pressures = _pair_pressures(pair, contact, forces)
+    out, found = _drive(pair[0], ld, rpm, ("cam 1", "cam 2"), None, (forces[0], *pressures[:1]))
+    peaks = [found, _peaks_each(pair[1], forces[1], *pressures[1:])]
+    for which, (most, *_) in enumerate(peaks):
         out[f"cam_{which + 1}_contact_force_max_N"] = most.value
         out[f"cam_{which + 1}_contact_force_max_at_deg"] = most.at_deg
     if contact is not None:          # each roller on its cam, as a disc cam's (its own roller's radius)
-        cams = [{**_stress(cam, contact, lambda g, m, cam=cam, sign=sign: contact_pressure(
-            cam, contact, g, np.maximum(sign * normal_force(ld, omega, g, m), 0.0)))[0], "on": f"cam {k + 1}"}
-            for k, (cam, sign) in enumerate(((first, 1.0), (second, -ratio)))]
+        cams = [{**_stress(cam, contact, lambda g, m, cam=cam, force=force: contact_pressure(
+            cam, contact, g, force(g, m)), peak)[0], "on": f"cam {k + 1}"}
+            for k, (cam, force, (_, peak)) in enumerate(zip(pair, forces, peaks, strict=True))]
         out["stress"] = {**max(cams, key=lambda c: c["pressure_max_MPa"]), "cams": cams}
     return out
+
+
+def _pair_pressures(pair: tuple[Cam, Cam], contact: Contact | None, forces: tuple[Any, Any]) -> tuple[Any, ...]:
+    """Each cam's Hertz pressure (MPa) under its normal force ``forces`` (quantities of pitch geometry and motion),
+    as a disc cam's (its own roller's radius); none without materials."""
+    if contact is None:
+        return ()
+    return tuple(lambda g, m, cam=cam, force=force: contact_pressure(cam, contact, g, force(g, m))[0]
+                 for cam, force in zip(pair, forces, strict=True))
 
 
 def pair_speeds(pair: tuple[Cam, Cam], ld: Loading, rpm_range: tuple[float, float], steps: int,
                 contact: Contact | None) -> dict[str, Any]:
     """The ``speeds`` table of a conjugate pair: at each of :func:`speed_list`'s speeds :func:`pair_report`'s
     torque figures, the larger of both cams' normal forces and with materials both cams' larger Hertz pressure (no
-    lift-off: the pair drives both ways)."""
+    lift-off: the pair drives both ways). One search over the turn a cam for every row's peaks."""
+    first, second = pair
+    speeds = speed_list(rpm_range, steps, None)
+    per_speed = []
+    for rpm in speeds:
+        omega = _omega(rpm)
+        forces = _pair_forces(pair, ld, omega)
+        per_speed.append((forces, _pair_pressures(pair, contact, forces)))
+    wanted = [(*_torques(ld, _omega(rpm), forces[0]), *pressures[:1])
+              for rpm, (forces, pressures) in zip(speeds, per_speed, strict=True)]
+    firsts = _split(_peaks_over(first, *itertools.chain(*wanted)), [len(q) for q in wanted])
+    seconds = _split(_peaks_over(second, *itertools.chain(*((forces[1], *pressures[1:])
+                                                            for forces, pressures in per_speed))),
+                     [1 + (contact is not None)] * len(speeds))
+    nodes = _load_nodes(first, ld)
     rows = []
-    for rpm in speed_list(rpm_range, steps, None):
-        got = pair_report(pair, ld, rpm, contact)
+    for rpm, one, two in zip(speeds, firsts, seconds, strict=True):
+        got = _torque_figures(ld, _omega(rpm), one[:3], nodes)
         row = {"rpm": rpm, **{k: got[k] for k in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m",
                                                   "power_max_W")},
-               "contact_force_max_N": max(got["cam_1_contact_force_max_N"], got["cam_2_contact_force_max_N"])}
+               "contact_force_max_N": max(one[2].value, two[0].value)}
         if contact is not None:
-            row["pressure_max_MPa"] = got["stress"]["pressure_max_MPa"]
+            row["pressure_max_MPa"] = max(one[3].value, two[1].value)
         rows.append(row)
     out: dict[str, Any] = {"rpm_range": list(rpm_range), "liftoff_rpm": None, "rows": rows}
     if contact is not None:
