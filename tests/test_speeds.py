@@ -222,3 +222,27 @@ def test_a_conjugate_pairs_speeds_are_single_speed_builds():
         assert row["contact_force_max_N"] == pytest.approx(max(forces["cam_1_contact_force_max_N"],
                                                                forces["cam_2_contact_force_max_N"]), rel=1e-9)
         assert row["pressure_max_MPa"] == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=1e-9)
+
+
+def test_a_stacked_search_finds_each_peak_as_a_search_alone():
+    """The speeds table's one search over the turn (camgen.dynamics.peaks_at / stacked_peaks) finds every row's
+    peaks as a search of that quantity alone does, to 1e-12 of the value and 1e-9 degrees: the torque, its least,
+    the contact force's least and -s'' at five speeds of the loaded rdrd, and against a dense brute force."""
+    from camgen.dynamics import peak_at, peaks_at
+
+    design = _design(RDRD, LOADED)
+    cam = design.cam
+    ld = spec_loading(design.spec.follower, cam.follower, motion=design.spec.motion, program=cam.program)
+    funcs = []
+    for rpm in (100.0, 400.0, 700.0, 1000.0, 1500.0):
+        omega = rpm * 2 * math.pi / 60
+        funcs += [lambda t, m, w=omega: torque(ld, w, m, t), lambda t, m, w=omega: -torque(ld, w, m, t),
+                  lambda t, m, w=omega: -ld.force(m, w, t)]
+    funcs.append(lambda t, m: -m[2])
+    theta = np.linspace(0.0, 2 * math.pi, 200001)
+    dense = cam.program.evaluate(theta)
+    for stacked, func in zip(peaks_at(cam, *funcs), funcs, strict=True):
+        alone = peak_at(cam, func)
+        assert stacked.value == pytest.approx(alone.value, rel=1e-12, abs=1e-12)
+        assert abs((stacked.at_deg - alone.at_deg + 180.0) % 360.0 - 180.0) < 1e-9
+        assert stacked.value >= float(np.max(func(theta, dense))) - 1e-12 * max(abs(stacked.value), 1.0)
