@@ -2,12 +2,12 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Generator
 from dataclasses import dataclass
 
 import numpy as np
 
-from camgen.cam import Cam, build_cam
+from camgen.cam import Ask, Cam, Maker, build_cam
 from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
 from camgen.numeric import boundary
@@ -40,11 +40,22 @@ def _peaks(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -> list
     """Largest value over the cycle of each pitch-geometry quantity, and where: (value, cam angle in degrees) each,
     all from one evaluation of the pitch curve (see :meth:`camgen.program.Program.maxima`); of equal peaks (within
     1e-12 of the quantity's magnitude, an angle's at least 1 radian) the first."""
-    def values(theta: np.ndarray, motion: np.ndarray, index: np.ndarray) -> np.ndarray:
-        g = cam.follower.pitch(theta, motion)
+    return cam.serve([_peaks_steps(cam, *quantities)])[0]
+
+
+def _peaks_steps(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -> Maker:
+    """:func:`_peaks` as a maker of :meth:`Cam.serve` (its asks are the law's own variable on each segment)."""
+    def values(g: PitchGeometry) -> np.ndarray:
         return np.stack([q(g) for q in quantities])
 
-    return cam.program.maxima(values, [1.0 if q is _pressure else 0.0 for q in quantities])
+    steps = cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities])
+    index, v = next(steps)
+    while True:
+        (g,) = yield [(index, v, True)]
+        try:
+            index, v = steps.send(g)
+        except StopIteration as done:
+            return done.value
 
 
 def _peak(cam: Cam, quantity: Callable[[PitchGeometry], np.ndarray]) -> tuple[float, float]:
@@ -103,6 +114,11 @@ def profile_rho_min(cam: Cam) -> float:
 
 
 def analyze(cam: Cam) -> CamAnalysis:
+    """:func:`analysis_maker` run on its own."""
+    return cam.serve([analysis_maker(cam)])[0]
+
+
+def analysis_maker(cam: Cam) -> Generator[list[Ask], list[PitchGeometry], CamAnalysis]:
     """Pressure angle, curvature and undercut of ``cam``, each located to ~1e-9 degrees, all from one evaluation
     of the pitch curve on every smooth piece of the motion and one refinement round.
 
@@ -111,7 +127,7 @@ def analyze(cam: Cam) -> CamAnalysis:
     the velocity drops at a segment end it folds at once, a radius of -infinity).
     """
     if cam.follower.flat:
-        (pa, pa_at), (neg, at) = _peaks(cam, _pressure, _cusp)
+        (pa, pa_at), (neg, at) = yield from _peaks_steps(cam, _pressure, _cusp)
         folds = [i for i, step in cam.steps() if step < 0]
         if folds:  # the velocity drops at a segment end: the profile folds back, a radius of curvature of -infinity
             neg, at = math.inf, math.degrees(cam.program.segments[folds[0]].end) % 360.0
@@ -119,7 +135,7 @@ def analyze(cam: Cam) -> CamAnalysis:
             pressure_angle_max_deg=math.degrees(pa), pressure_angle_max_at_deg=pa_at,
             pitch_rho_min_mm=-neg, pitch_rho_min_at_deg=at, profile_rho_min_mm=-neg,
             pitch_concave_rho_min_mm=None, profile_concave_rho_min_mm=None, concave_at_deg=None, undercut=-neg <= 0)
-    (pa, pa_at), convex, (kmin, kmin_at) = _peaks(cam, _pressure, _kappa, _concave)
+    (pa, pa_at), convex, (kmin, kmin_at) = yield from _peaks_steps(cam, _pressure, _kappa, _concave)
     rho, kmax_at = _radius(*convex)
     rr = cam.contact_radius
     convex_corners = [i for i, turn in cam.corners() if turn > 0]

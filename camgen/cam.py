@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -14,8 +15,17 @@ from camgen.followers.base import PitchGeometry
 from camgen.followers.plate import PlateRoller
 from camgen.kinds import kind_of
 from camgen.laws import make_law
+from camgen.numeric import drive
 from camgen.program import Program, build_program
 from camgen.spec import CamSpec
+
+#: a request for pitch geometry: (the segment of every point, an index or an array (n,); the points (n,); False when
+#: they are cam angles in radians, evaluated one-sided on their segment as :meth:`Program.evaluate_on` does, True when
+#: they are the law's own variable, see :meth:`Segment.at_law`)
+Ask = tuple[int | np.ndarray, np.ndarray, bool]
+#: what :meth:`Cam.serve` drives: a generator that yields a list of asks, is sent their pitch geometry (a list, one
+#: for each ask) and returns its result
+Maker = Generator[list[Ask], list[PitchGeometry], Any]
 
 
 @dataclass(frozen=True)
@@ -58,12 +68,66 @@ class Cam:
     @functools.cached_property
     def _boundaries(self) -> tuple[PitchGeometry, PitchGeometry]:
         """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start."""
-        segments = self.program.segments
-        g = self.follower.pitch(*self.program.boundaries)
-        n = len(segments)
-        halves = [{k: None if v is None else v[part] for k, v in vars(g).items()}
-                  for part in (slice(0, n), slice(n, 2 * n))]
-        return PitchGeometry(**halves[0]), PitchGeometry(**halves[1])
+        return self._halves(self.follower.pitch(*self.program.boundaries))
+
+    def boundary_geometry(self) -> tuple[PitchGeometry, PitchGeometry]:
+        """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start (n each)."""
+        return self._boundaries
+
+    def _halves(self, g: PitchGeometry) -> tuple[PitchGeometry, PitchGeometry]:
+        n = len(self.program.segments)
+        return g.part(0, n), g.part(n, 2 * n)
+
+    def serve(self, makers: Sequence[Maker]) -> list[Any]:
+        """Drive every maker at once (see :func:`together`) and return their results in order: each round evaluates
+        what all of them ask in one call of the program and one of the follower (see :meth:`pitch_of`), whose cost
+        is mostly per call, not per point. The first round also evaluates the segment boundaries unless they are
+        known (:meth:`corners`, :meth:`steps` and the program's jumps need them), so that a maker that looks at them
+        after its first ask finds them made."""
+        fresh = ["_boundaries" not in self.__dict__]
+
+        def answer(asks: list[Ask]) -> list[PitchGeometry]:
+            out = self.pitch_of(asks, boundaries=fresh[0])
+            fresh[0] = False
+            return out
+
+        return drive(together(makers), answer)
+
+    def pitch_of(self, asks: Sequence[Ask], boundaries: bool = False) -> list[PitchGeometry]:
+        """Pitch geometry at the points of every ask (see :data:`Ask`), each on its own segment (one-sided limits
+        at its ends), all from one evaluation; with ``boundaries`` the segment boundaries' too (kept for
+        :meth:`corners` and :meth:`Program.jumps`, the same numbers as their own evaluation)."""
+        program = self.program
+        table = program._table
+        sizes = [a[1].size for a in asks]
+        index = [np.full(size, a[0]) if isinstance(a[0], int) else a[0] for a, size in zip(asks, sizes, strict=True)]
+        x = [a[1] for a in asks]
+        law = [a[2] for a in asks]
+        if boundaries:
+            theta, ends = program.boundary_points
+            index.append(ends)
+            x.append(theta)
+            law.append(False)
+            sizes.append(theta.size)
+        index, x = np.concatenate(index), np.concatenate(x)
+        if all(law):
+            theta, v = table.angle(index, x), x
+        elif not any(law):
+            theta, v = x, table.variable(index, x)
+        else:
+            mask = np.repeat(law, sizes)
+            theta, v = np.where(mask, table.angle(index, x), x), np.where(mask, x, table.variable(index, x))
+        motion = table.at_law(index, v)
+        g = self.follower.pitch(theta, motion)
+        out, a = [], 0
+        for size in sizes:
+            out.append(g.part(a, a + size))
+            a += size
+        if boundaries:
+            b = a - sizes[-1]
+            program.known_boundaries(motion[:, b:])
+            self.__dict__["_boundaries"] = self._halves(out.pop())
+        return out
 
     def corners(self) -> list[tuple[int, float]]:
         """Corners of the pitch curve at segment ends, where the follower velocity jumps.
@@ -73,6 +137,11 @@ class Cam:
         roller cannot follow it: the cam would need a zero radius) and negative for a
         concave one (the roller rolls round it on an arc of its own radius).
         """
+        return list(self._corners)
+
+    @functools.cached_property
+    def _corners(self) -> tuple[tuple[int, float], ...]:
+        """:meth:`corners`, found once a cam (a design asks several times)."""
         out = []
         ends, starts = self._boundaries
         for i in range(len(self.program.segments)):
@@ -80,7 +149,7 @@ class Cam:
             turn = math.atan2(left[0] * right[1] - left[1] * right[0], float(left @ right))
             if abs(turn) > 1e-9:
                 out.append((i, -self.follower.sense * turn))
-        return out
+        return tuple(out)
 
     def steps(self) -> list[tuple[int, float]]:
         """Where a flat face's contact point jumps at a segment end (a velocity jump): ``(segment index, step)``.
@@ -101,6 +170,30 @@ class Cam:
             ahead = side.d1[i] / side.rho[i]                 # the way a sound profile runs there
             out.append((i, float(gap @ ahead / np.linalg.norm(ahead))))
         return out
+
+
+def together(makers: Sequence[Maker], first: Callable[[], None] | None = None) -> Maker:
+    """The ``makers`` as one: each round it asks what all of them ask (one list) and sends each its own answers;
+    it returns their results in order. ``first``, if given, is called when the first answers come, before any
+    maker sees them (:meth:`Cam.serve` has made the segment boundaries by then)."""
+    results: list[Any] = [None] * len(makers)
+    asks = {k: next(m) for k, m in enumerate(makers)}
+    while asks:
+        keys = list(asks)
+        answers = yield [a for k in keys for a in asks[k]]
+        if first is not None:
+            first()
+            first = None
+        nxt, at = {}, 0
+        for k in keys:
+            count = len(asks[k])
+            try:
+                nxt[k] = makers[k].send(answers[at:at + count])
+            except StopIteration as done:
+                results[k] = done.value
+            at += count
+        asks = nxt
+    return results
 
 
 def _drafted_ratio(spec: CamSpec, angle: float, lift: float, prime: float, index: int) -> float:

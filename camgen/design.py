@@ -9,13 +9,13 @@ from typing import Any
 
 import numpy as np
 
-from camgen.analysis import CamAnalysis, analyze, face_extent, largest_roller
-from camgen.cam import Cam, build_cam
+from camgen.analysis import CamAnalysis, analysis_maker, face_extent, largest_roller
+from camgen.cam import Cam, Maker, build_cam
 from camgen.dynamics import spec_loading, speed_report
 from camgen.forces import Contact, forces_report, speeds_report
 from camgen.core.errors import DesignError, SpecError
 from camgen.flat_envelope import FaceLeaves, FlatEnvelope, flat_envelope
-from camgen.outline import Outline, envelope_outline, exact_outline
+from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
@@ -129,7 +129,10 @@ def design_profile(spec: CamSpec) -> CamDesign:
         sizing = size_cam(spec)
         spec = with_base_radius(spec, sizing.base_radius_mm)
     cam = build_cam(spec)
-    a = analyze(cam)
+    tol = spec.output.tolerance
+    # the analysis and the exact outline from the same evaluations (one a round); the outline is kept only where
+    # it is the one the cam needs (no undercut, no corner of a knife edge), and so are its errors
+    a, exact = cam.serve([analysis_maker(cam), _tentative(outline_maker(cam, tol, _curves(spec)))])
     if a.undercut and not spec.cam.allow_undercut:
         raise DesignError(_undercut_message(spec, cam, a))
     corners = cam.corners()
@@ -140,14 +143,15 @@ def design_profile(spec: CamSpec) -> CamDesign:
                           "degrees, a sharp corner in the profile where the knife edge's pressure angle jumps; use a "
                           "law with continuous velocity (e.g. modified-uniform), or set cam.allow_undercut = true "
                           "to cut the corner as it is")
-    tol = spec.output.tolerance
     # a knife edge's corners make corners in every offset too: the noded envelope trims and rounds them exactly
     envelope = a.undercut or (cam.contact_radius == 0 and bool(corners))
     cut_off = flat_envelope(cam, tol, _curves(spec)) if cam.follower.flat and a.undercut else None
     if cut_off is not None:
         outline = cut_off.outline(0.0)
     else:
-        outline = envelope_outline(cam, tol) if envelope else exact_outline(cam, tol, _curves(spec))
+        outline = envelope_outline(cam, tol) if envelope else exact
+        if isinstance(outline, Exception):
+            raise outline
 
     import shapely
 
@@ -169,6 +173,23 @@ def design_profile(spec: CamSpec) -> CamDesign:
     return CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
                      allowances, wall, warnings, pressure_limit(spec), extent, speed, sizing,
                      cut_off.leaves if cut_off is not None else None)
+
+
+def _tentative(maker: Maker) -> Maker:
+    """``maker`` run on the chance that its result is needed: an error it raises is returned instead, for the caller
+    to raise where it uses the result; numpy's floating-point warnings are silenced in its steps (a cam with an
+    undercut, whose exact outline is not used, may divide by zero in it)."""
+    try:
+        with np.errstate(all="ignore"):
+            ask = next(maker)
+        while True:
+            got = yield ask
+            with np.errstate(all="ignore"):
+                ask = maker.send(got)
+    except StopIteration as done:
+        return done.value
+    except Exception as error:          # noqa: BLE001 - raised by the caller where the outline is used
+        return error
 
 
 def step_part(design: CamDesign) -> tuple[Part, Outline]:

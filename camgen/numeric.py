@@ -1,7 +1,8 @@
 """Small numerical helpers shared by the analyses (no geometry, no I/O)."""
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Generator
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -84,15 +85,39 @@ def _vertex(y: np.ndarray, lo: float | np.ndarray, hi: float | np.ndarray) -> tu
     return t, ok, y[:, 2] + t * (a1 + t * (a2 + t * (a3 + t * a4))), a2, a4
 
 
+#: what :func:`maxima_steps` asks for, abscissae (m,) and their pieces (m,); it is sent the values (k, m)
+Steps = Generator[tuple[np.ndarray, np.ndarray], np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray]]
+
+
+def drive(steps: Generator[Any, Any, Any], answer: Callable[[Any], Any]) -> Any:
+    """Run the generator ``steps`` to its end, sending it ``answer(ask)`` for each ``ask`` it yields; its result."""
+    ask = next(steps)
+    while True:
+        try:
+            ask = steps.send(answer(ask))
+        except StopIteration as done:
+            return done.value
+
+
 def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: ArrayLike, hi: ArrayLike, *,
                      scale: ArrayLike = 0.0, reverse: ArrayLike = False,
                      n: int = GRID) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Global maxima of k smooth functions on each of p closed intervals, all at once.
+    """Global maxima of k smooth functions on each of p closed intervals, all at once: :func:`maxima_steps` with
+    its values from ``func(x, piece)``."""
+    return drive(maxima_steps(lo, hi, scale=scale, reverse=reverse, n=n), lambda ask: func(*ask))
 
-    ``func(x, piece)`` maps abscissae ``x`` (m,) on the pieces ``piece`` (m,) (indices into ``lo``, ``hi``) to the
-    k functions' values there, shape (k, m); each must be smooth (analytic) on each closed piece, whose ends it
-    evaluates as given (pass a left limit's abscissa as ``hi``). Returns ``(x, value, magnitude)``: x and value
-    (k, p), and each function's magnitude (k,), the larger of ``scale`` (k,) and its largest |value| on the grid.
+
+def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
+                 n: int = GRID) -> Steps:
+    """Global maxima of k smooth functions on each of p closed intervals, all at once, as a generator: it yields
+    ``(x, piece)`` and is sent the functions' values there (see below), so that a caller can evaluate what it asks
+    together with other work (one evaluation serving several searches).
+
+    The values sent for an ask ``(x, piece)``, abscissae ``x`` (m,) on the pieces ``piece`` (m,) (indices into
+    ``lo``, ``hi``), are the k functions' values there, shape (k, m); each must be smooth (analytic) on each
+    closed piece, whose ends it evaluates as given (pass a left limit's abscissa as ``hi``). Returns
+    ``(x, value, magnitude)``: x and value (k, p), and each function's magnitude (k,), the larger of ``scale`` (k,)
+    and its largest |value| on the grid.
 
     One dense evaluation (``n`` points a piece) finds each function's interior local maxima on each piece that may
     be its largest (none on a piece where it is constant, within ``TIE``); the quartic through the five grid
@@ -109,7 +134,7 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
     width = hi - lo
     x = lo[:, None] + width[:, None] * (_UNIT if n == GRID else np.linspace(0.0, 1.0, n))
     x[:, -1] = hi
-    y = func(x.ravel(), np.repeat(np.arange(p), n))
+    y = yield x.ravel(), np.repeat(np.arange(p), n)
     k = y.shape[0]
     y = y.reshape(k * p, n)                                   # a row for each function on each piece
     if not np.isfinite(y).all():
@@ -145,7 +170,7 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
         if not active.size:
             break
         px = c[:, None] + d[:, None] * _OFFSETS
-        ys = func(px.ravel(), np.repeat(piece[active], 5))
+        ys = yield px.ravel(), np.repeat(piece[active], 5)
         ys = ys[np.repeat(row[active] // p, 5), np.arange(5 * active.size)].reshape(-1, 5)   # each its own function
         if not np.isfinite(ys).all():
             raise FloatingPointError("function is not finite near a peak")

@@ -10,16 +10,14 @@ about the corner: both are exported as exact arcs.
 """
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Generator
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from camgen.biarcs import arc_distance, biarcs
-from camgen.cam import Cam
+from camgen.cam import Cam, Maker, together
 from camgen.core.errors import DesignError
 from camgen.followers.base import PitchGeometry
 from camgen.core.shapes import Contour, arc_steps
@@ -59,64 +57,28 @@ def _length(v: np.ndarray) -> np.ndarray:
     return np.sqrt(x * x + y * y)
 
 
-#: a request of a stretch's maker: cam angles (radians) on one segment each, (segment index, angles) pairs
-Asks = list[tuple[int, np.ndarray]]
-#: what makes one stretch: it yields the angles it needs, receives their pitch geometry, and returns its result
-Maker = Generator[Asks, list[PitchGeometry], Any]
-
-
-def _pitch_of(cam: Cam, asks: Asks) -> list[PitchGeometry]:
-    """Pitch geometry at every (segment index, angles) pair, each on its own segment (one-sided limits at its ends),
-    all from one evaluation of the follower: its cost is mostly per call, not per point."""
-    theta = np.concatenate([t for _, t in asks])
-    sizes = [t.size for _, t in asks]
-    g = cam.follower.pitch(theta, cam.program.evaluate_on(np.repeat([i for i, _ in asks], sizes), theta))
-    fields = [getattr(g, f.name) for f in dataclasses.fields(PitchGeometry)]
-    out, a = [], 0
-    for size in sizes:                                  # PitchGeometry's fields in order, each cut to its ask's angles
-        b = a + size
-        out.append(PitchGeometry(*[None if v is None else v[a:b] for v in fields]))
-        a = b
-    return out
-
-
-def _run(cam: Cam, makers: list[Maker]) -> list[Any]:
-    """Drive every maker at once: each round evaluates what all of them ask in one call (see :func:`_pitch_of`);
-    returns their results in order. A design's outline takes two rounds where the first spacing holds."""
-    results: list[Any] = [None] * len(makers)
-    asks = {k: next(m) for k, m in enumerate(makers)}
-    while asks:
-        keys = list(asks)
-        answers = _pitch_of(cam, [a for k in keys for a in asks[k]])
-        nxt, at = {}, 0
-        for k in keys:
-            count = len(asks[k])
-            try:
-                nxt[k] = makers[k].send(answers[at:at + count])
-            except StopIteration as done:
-                results[k] = done.value
-            at += count
-        asks = nxt
-    return results
-
-
 def _inner(theta: np.ndarray, count: int) -> np.ndarray:
     """``count`` equally spaced cam angles inside each span of ``theta``, span by span (radians)."""
+    return _between(theta[:-1], theta[1:], count)
+
+
+def _between(start: np.ndarray, end: np.ndarray, count: int) -> np.ndarray:
+    """``count`` equally spaced cam angles inside each span from ``start`` (k,) to ``end`` (k,), span by span
+    (radians): the start plus the span's width times i / (count + 1)."""
     frac = np.arange(1, count + 1) / (count + 1)
-    return (theta[:-1, None] + np.diff(theta)[:, None] * frac[None, :]).ravel()
+    return (start[:, None] + (end - start)[:, None] * frac[None, :]).ravel()
 
 
-def _probed(ends: PitchGeometry, g: PitchGeometry, rr: float,
+def _probed(a: np.ndarray, b: np.ndarray, g: PitchGeometry, rr: float,
             count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The exact surface (``rr`` mm inside the pitch curve) at ``count`` probes inside each span between the vertices
-    ``ends`` (``g``, at :func:`_inner`'s angles): the probes (spans, count, 2); and per span the largest gap between
-    neighbouring points (the span's ends included, mm) and the smallest and largest signed curvature of the surface
-    there (1/mm), which bound what the probes can miss: a curve parts from a line or an arc between two probes by at
-    most gap^2 |curvature difference| / 8."""
-    spans = len(ends.theta) - 1
+    """The exact surface (``rr`` mm inside the pitch curve) at ``count`` probes inside each span from the vertex
+    ``a`` (spans, 2) to the vertex ``b`` (mm; ``g`` at :func:`_between`'s angles): the probes (spans, count, 2);
+    and per span the largest gap between neighbouring points (the span's ends included, mm) and the smallest and
+    largest signed curvature of the surface there (1/mm), which bound what the probes can miss: a curve parts from
+    a line or an arc between two probes by at most gap^2 |curvature difference| / 8."""
+    spans = len(a)
     x = _surface(g, rr).reshape(spans, count, 2)
-    at = _surface(ends, rr)
-    chain = np.concatenate([at[:-1, None, :], x, at[1:, None, :]], axis=1)
+    chain = np.concatenate([a[:, None, :], x, b[:, None, :]], axis=1)
     gap = _length(np.diff(chain, axis=1)).max(axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(spans, count)
@@ -138,25 +100,40 @@ def _apart(low: np.ndarray, high: np.ndarray, arc: np.ndarray) -> np.ndarray:
     return np.where(same, np.maximum(np.abs(far - arc), np.abs(near - arc)), far + arc)
 
 
-def _chord_error(ends: PitchGeometry, g: PitchGeometry, rr: float) -> float:
-    """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from the chords between
-    the vertices ``ends``: the largest measured at the probes ``g`` (at :func:`_inner`'s angles), plus what the
-    surface's curvature lets it stray between two probes."""
-    x, gap, low, high = _probed(ends, g, rr, _PROBES)
+def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: float) -> np.ndarray:
+    """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from each chord from
+    ``start`` (spans, 2) to ``end`` (spans, 2): the largest measured at its probes ``g`` (at :func:`_between`'s
+    angles), plus what the surface's curvature lets it stray between two probes."""
+    x, gap, low, high = _probed(start, end, g, rr, _PROBES)
     bend = np.maximum(np.abs(low), np.abs(high))
-    at = _surface(ends, rr)
-    a, b = at[:-1, None, :], at[1:, None, :]
+    a, b = start[:, None, :], end[:, None, :]
     ab = b - a
     length2 = (ab**2).sum(axis=2)
     t = np.minimum(np.maximum(((x - a) * ab).sum(axis=2) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
-    return float((_length(a + t[..., None] * ab - x).max(axis=1) + gap**2 * bend / 8).max())
+    return _length(a + t[..., None] * ab - x).max(axis=1) + gap**2 * bend / 8
+
+
+#: the points of the grid on which a stretch is measured for its spacing
+_AUX = 257
 
 
 def _aux(cam: Cam, index: int, span: tuple[float, float] | None) -> np.ndarray:
     """The grid (radians) on which the segment ``index`` (or the ``span`` of it) is measured for its spacing."""
     seg = cam.program.segments[index]
     start, end = (seg.start, seg.end) if span is None else span
-    return np.linspace(start, end, 257)
+    return np.linspace(start, end, _AUX)
+
+
+def _grids(start: np.ndarray, end: np.ndarray) -> np.ndarray:
+    """:func:`_aux`'s grids from each ``start`` (m,) to its ``end`` (m,) (radians), (m, _AUX): np.linspace's numbers
+    (k times the step, plus the start; the last the end) without its checks."""
+    step = (end - start) / (_AUX - 1)
+    if not step.all():                                  # a step below the least float: linspace's own way
+        return np.linspace(start, end, _AUX, axis=1)
+    out = np.arange(_AUX, dtype=float)[None, :] * step[:, None]
+    out += start[:, None]
+    out[:, -1] = end
+    return out
 
 
 def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float,
@@ -164,15 +141,24 @@ def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float,
     """Cam angles for chords within ~``tolerance`` mm of the surface, from its curvature (``factor`` >= 1 densifies),
     over the segment or the ``span`` (start, end, radians) of it."""
     aux = _aux(cam, index, span)
-    return _spaced(index, aux, cam.segment_pitch(index, aux), tolerance, factor, rr)
+    g = cam.segment_pitch(index, aux)
+    return _spaced(index, aux, _density(aux[None, :], g.d1, g.kappa, tolerance, rr)[0], tolerance, factor)
 
 
-def _spaced(index: int, aux: np.ndarray, g: PitchGeometry, tolerance: float, factor: float, rr: float) -> np.ndarray:
-    """:func:`_spacing` from the pitch geometry ``g`` on its grid ``aux``."""
-    k = g.kappa
-    # chord ~ sqrt(8 tol rho_c) along a surface of speed |P'| |1 - Rr k|: samples per radian
-    density = _length(g.d1) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
-    cum = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(aux))])
+def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: float, rr: float) -> np.ndarray:
+    """The number of chords the surface needs (``factor`` 1 of :func:`_spaced`) from the start of each grid of
+    ``aux`` (m, k) (radians) to each of its points (m, k), from the pitch curve's derivative ``d1`` (m k, 2) and
+    curvature ``kappa`` (m k,) there: the integral of chord ~ sqrt(8 tol rho_c) along a surface of speed
+    |P'| |1 - Rr k| (samples per radian), by the trapezoid rule, grid by grid."""
+    k = kappa.reshape(aux.shape)
+    density = _length(d1).reshape(aux.shape) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
+    cum = np.zeros(aux.shape)
+    np.cumsum(0.5 * (density[:, 1:] + density[:, :-1]) * np.diff(aux, axis=1), axis=1, out=cum[:, 1:])
+    return cum
+
+
+def _spaced(index: int, aux: np.ndarray, cum: np.ndarray, tolerance: float, factor: float) -> np.ndarray:
+    """:func:`_spacing` on the grid ``aux`` from its count of chords ``cum`` (see :func:`_density`)."""
     wanted = cum[-1] * factor
     if not wanted <= MAX_SEGMENT_VERTICES:              # also NaN or infinite (a curvature without bound)
         raise DesignError(f"output.tolerance: the outline of motion[{index}] would need {wanted:.3g} vertices to "
@@ -181,28 +167,69 @@ def _spaced(index: int, aux: np.ndarray, g: PitchGeometry, tolerance: float, fac
     n = max(1, math.ceil(wanted))
     if cum[-1] <= 0:
         return np.linspace(aux[0], aux[-1], n + 1)
-    return np.interp(np.linspace(0.0, cum[-1], n + 1), cum, aux)
+    return np.interp(_spread(cum[-1], n), cum, aux)
 
 
-def _chords(cam: Cam, index: int, tolerance: float, rr: float, span: tuple[float, float] | None) -> Maker:
-    """Makes one moving segment's (or its ``span``'s) chords: vertices spaced from the surface's curvature, then
-    densified until their measured error is within ``tolerance``; returns the vertices (the end's left to what
-    follows), zero bulges and the error."""
-    aux = _aux(cam, index, span)
-    (g,) = yield [(index, aux)]
-    factor = 1.0
+def _spread(total: float, n: int) -> np.ndarray:
+    """np.linspace(0, ``total``, n + 1) for ``total`` > 0, the same numbers (k total / n, the last ``total``)
+    without its checks."""
+    step = total / n
+    if step == 0:                                       # a step below the least float: linspace's own way
+        return np.linspace(0.0, total, n + 1)
+    out = np.arange(n + 1, dtype=float)
+    out *= step
+    out += 0.0
+    out[-1] = total
+    return out
+
+
+Span = tuple[float, float] | None
+
+
+def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float) -> Maker:
+    """Makes the chords of the moving segments (or their spans) ``stretches``, (segment index, span or None) each,
+    all at once: vertices spaced from the surface's curvature, then densified until their measured error is within
+    ``tolerance``; returns each stretch's vertices (its end's left to what follows), zero bulges and error."""
+    index = [i for i, _ in stretches]
+    segments = cam.program.segments
+    ranges = [(segments[i].start, segments[i].end) if span is None else span for i, span in stretches]
+    aux = _grids(np.array([a for a, _ in ranges]), np.array([b for _, b in ranges]))
+    (g,) = yield [(np.repeat(index, _AUX), aux.ravel(), False)]
+    cum = _density(aux, g.d1, g.kappa, tolerance, rr)
+    factor = [1.0] * len(stretches)
+    results: list[Any] = [None] * len(stretches)
+    live = list(range(len(stretches)))
+    err = [math.inf] * len(stretches)
     for _ in range(40):
-        theta = _spaced(index, aux, g, tolerance, factor, rr)
-        ends, inner = yield [(index, theta), (index, _inner(theta, _PROBES))]
-        err = _chord_error(ends, inner, rr)
-        if err <= tolerance:
-            return _surface(ends, rr)[:-1], np.zeros(len(theta) - 1), err
-        factor *= max(1.1, math.sqrt(err / tolerance))
-    raise DesignError(f"output.tolerance: the outline of motion[{index}] cannot be brought within {tolerance} mm "
-                      f"(reached {err:.3g} mm); loosen the tolerance")
+        theta = [_spaced(index[j], aux[j], cum[j], tolerance, factor[j]) for j in live]
+        sizes = [t.size for t in theta]
+        theta, on = np.concatenate(theta), np.repeat([index[j] for j in live], sizes)
+        last = np.cumsum(sizes) - 1                     # each stretch's end: no span starts there
+        starts = np.ones(theta.size, dtype=bool)
+        starts[last] = False
+        first = np.flatnonzero(starts)
+        ends, inner = yield [(on, theta, False), (np.repeat(on[first], _PROBES), _between(theta[first],
+                                                                                          theta[first + 1], _PROBES),
+                                                  False)]
+        at = _surface(ends, rr)
+        spans = _chord_errors(at[first], at[first + 1], inner, rr)
+        worst = np.maximum.reduceat(spans, np.concatenate([[0], np.cumsum(np.array(sizes[:-1], dtype=int) - 1)]))
+        still = []
+        for j, e, stop, size in zip(live, worst.tolist(), last.tolist(), sizes, strict=True):
+            err[j] = e
+            if e <= tolerance:
+                results[j] = (at[stop + 1 - size:stop], np.zeros(size - 1), e)
+            else:
+                factor[j] *= max(1.1, math.sqrt(e / tolerance))
+                still.append(j)
+        live = still
+        if not live:
+            return results
+    raise DesignError(f"output.tolerance: the outline of motion[{index[live[0]]}] cannot be brought within "
+                      f"{tolerance} mm (reached {err[live[0]]:.3g} mm); loosen the tolerance")
 
 
-def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: tuple[float, float] | None) -> Maker:
+def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Maker:
     """Makes one moving segment's (or its ``span``'s) biarcs, two arcs between neighbouring vertices: returns
     their vertices and bulges and their measured error.
 
@@ -211,15 +238,16 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: tuple[float
     equal parts, since a biarc's error falls as the cube of its span; until none strays.
     """
     aux = _aux(cam, index, span)
-    (g,) = yield [(index, aux)]
-    theta = _spaced(index, aux, g, max(tolerance, 1.0), 1.0, rr)
+    (g,) = yield [(index, aux, False)]
+    theta = _spaced(index, aux, _density(aux[None, :], g.d1, g.kappa, max(tolerance, 1.0), rr)[0],
+                    max(tolerance, 1.0), 1.0)
     for _ in range(40):
-        g, inner = yield [(index, theta), (index, _inner(theta, 2 * _PROBES))]
+        g, inner = yield [(index, theta, False), (index, _inner(theta, 2 * _PROBES), False)]
         pts = _surface(g, rr)
         tan = g.d1 / _length(g.d1)[:, None]
         p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
-        x, gap, low, high = _probed(g, inner, rr, 2 * _PROBES)
+        x, gap, low, high = _probed(p0, p1, inner, rr, 2 * _PROBES)
         apart = np.max([_apart(low, high, k) for k in (_arc_curvature(p0, junction, b1),
                                                        _arc_curvature(junction, p1, b2))], axis=0)
         err = np.minimum(arc_distance(x, p0, junction, b1), arc_distance(x, junction, p1, b2)).max(axis=1)
@@ -239,7 +267,7 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: tuple[float
                       "loosen the tolerance")
 
 
-def _dwell(cam: Cam, index: int, rr: float, span: tuple[float, float] | None) -> Maker:
+def _dwell(cam: Cam, index: int, rr: float, span: Span) -> Maker:
     """Makes a dwell's exact arc about the cam centre (up to 90 degrees an arc), over the whole dwell or the
     ``span`` of it: its vertices and bulges and their measured error."""
     seg = cam.program.segments[index]
@@ -247,7 +275,7 @@ def _dwell(cam: Cam, index: int, rr: float, span: tuple[float, float] | None) ->
     n = max(1, math.ceil(beta / (math.pi / 2) - 1e-12))
     theta = start + beta * np.arange(n + 1) / n
     probe = start + beta * (np.arange(1, 8 * n) / (8 * n))
-    ends, inner = yield [(index, theta), (index, probe)]
+    ends, inner = yield [(index, theta, False), (index, probe, False)]
     pts = _surface(ends, rr)
     radius = float(np.linalg.norm(pts[0]))
     err = float(np.abs(_length(_surface(inner, rr)) - radius).max())
@@ -255,14 +283,30 @@ def _dwell(cam: Cam, index: int, rr: float, span: tuple[float, float] | None) ->
     return pts[:-1], np.full(n, bulge), err
 
 
-def _maker(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
-           span: tuple[float, float] | None = None) -> Maker:
-    """What makes the stretch of :func:`stretch`."""
-    if cam.program.segments[index].kind == "dwell":
-        return _dwell(cam, index, rr, span)
-    if curves == "biarcs":
-        return _biarcs(cam, index, tolerance, rr, span)
-    return _chords(cam, index, tolerance, rr, span)
+def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float, curves: str) -> list[Maker]:
+    """What makes each of the ``stretches`` (segment index, span or None): a dwell's arcs, a moving segment's
+    biarcs, or, in one maker for all of them, the moving segments' chords (its result a list, last)."""
+    segments = cam.program.segments
+    makers: list[Maker] = []
+    chords = []
+    for i, span in stretches:
+        if segments[i].kind == "dwell":
+            makers.append(_dwell(cam, i, rr, span))
+        elif curves == "biarcs":
+            makers.append(_biarcs(cam, i, tolerance, rr, span))
+        else:
+            chords.append((i, span))
+    return [*makers, _chords(cam, chords, tolerance, rr)] if chords else makers
+
+
+def _made(cam: Cam, stretches: list[tuple[int, Span]], curves: str, results: list[Any]) -> list[Any]:
+    """The results of :func:`_makers`' makers in the order of the ``stretches``."""
+    segments = cam.program.segments
+    chords = iter(results[-1]) if any(segments[i].kind != "dwell" for i, _ in stretches) and curves != "biarcs" \
+        else iter(())
+    others = iter(results)
+    return [next(chords) if segments[i].kind != "dwell" and curves != "biarcs" else next(others)
+            for i, _ in stretches]
 
 
 def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
@@ -270,23 +314,8 @@ def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
     """The surface ``rr`` mm inside the pitch curve along segment ``index`` of a disc cam (or the ``span``, start and
     end in radians, of it): its vertices and bulges, the end's vertex left to what follows, and the measured error
     (mm). A dwell is exact arcs about the cam centre; a rise or return is biarcs or chords as ``curves`` says."""
-    return _run(cam, [_maker(cam, index, tolerance, rr, curves, span)])[0]
-
-
-def _point(cam: Cam, index: int, theta: float, rr: float) -> Maker:
-    """Makes the one surface point at ``theta`` on segment ``index`` as a vertex with a zero bulge (error 0)."""
-    (g,) = yield [(index, np.array([theta]))]
-    return _surface(g, rr), np.zeros(1), 0.0
-
-
-def _corner(cam: Cam, index: int, rr: float) -> Maker:
-    """Makes the arc of radius ``rr`` round a concave pitch corner at the end of segment ``index``
-    (see :func:`_corner_arc`) as a vertex and its bulge (error 0)."""
-    segments = cam.program.segments
-    j = (index + 1) % len(segments)
-    before, after = yield [(index, np.array([segments[index].end])), (j, np.array([segments[j].start]))]
-    start, bulge, _ = _arc_round(before, after, rr)
-    return start[None, :], np.array([bulge]), 0.0
+    stretches = [(index, span)]
+    return _made(cam, stretches, curves, cam.serve(_makers(cam, stretches, tolerance, rr, curves)))[0]
 
 
 def _corner_arc(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, float, float]:
@@ -318,28 +347,47 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     far fewer entities for the same tolerance). A plate cam's dwells are straight,
     and its profile is closed by the plate: flat
     ends one roller radius beyond the travel (where the roller can still sit) and the
-    bottom edge on y = 0. Every stretch is made at once (see :func:`_run`).
+    bottom edge on y = 0. Every stretch is made at once (see :func:`outline_maker`).
     """
-    corners = dict(cam.corners())
+    return cam.serve([outline_maker(cam, tolerance, curves, offset)])[0]
+
+
+def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset: float = 0.0) -> Maker:
+    """:func:`exact_outline` as a maker of :meth:`Cam.serve`, so that a design evaluates it with its analysis:
+    every stretch's maker runs at once (the chords of all moving segments in one), two rounds of evaluation for
+    the whole cam where the first spacing holds. Corners, a flat face's flats and a plate's dwells are made from
+    the segment boundaries, which the first round evaluates."""
     rr = cam.contact_radius - offset
-    if rr > 0 and any(turn > 0 for turn in corners.values()):
-        raise DesignError("the pitch curve has a convex corner that a roller cannot follow; its outline is the "
-                          "cutter's envelope (cam.allow_undercut)")
-    if rr == 0:                                   # a knife edge's profile: the corner is a vertex of both sides
-        corners = {}
+    segments = cam.program.segments
+    stretches = [(i, None) for i, seg in enumerate(segments) if not (seg.kind == "dwell" and cam.is_plate)]
+
+    def convex() -> None:
+        if rr > 0 and any(turn > 0 for _, turn in cam.corners()):
+            raise DesignError("the pitch curve has a convex corner that a roller cannot follow; its outline is the "
+                              "cutter's envelope (cam.allow_undercut)")
+
+    made = iter(_made(cam, stretches, curves,
+                      (yield from together(_makers(cam, stretches, tolerance, rr, curves), convex))))
+    corners = {} if rr == 0 else dict(cam.corners())  # a knife edge's profile: the corner is a vertex of both sides
     flats = {i for i, step in cam.steps() if step > 0}
-    makers: list[Maker] = []
-    for i, seg in enumerate(cam.program.segments):
-        if seg.kind == "dwell" and cam.is_plate:
-            makers.append(_point(cam, i, seg.start, rr))
+    ends, starts = cam.boundary_geometry()
+    n = len(segments)
+    verts, bulges, errors = [], [], []
+    for i, seg in enumerate(segments):
+        if seg.kind == "dwell" and cam.is_plate:       # the point where it starts
+            v, b, e = _surface(starts.part((i - 1) % n, (i - 1) % n + 1), rr), np.zeros(1), 0.0
         else:
-            makers.append(_maker(cam, i, tolerance, rr, curves))
+            v, b, e = next(made)
+        verts.append(v)
+        bulges.append(b)
+        errors.append(e)
         if i in corners:
-            makers.append(_corner(cam, i, rr))
+            start, bulge, _ = _arc_round(ends.part(i, i + 1), starts.part(i, i + 1), rr)
+            verts.append(start[None, :])
+            bulges.append(np.array([bulge]))
         if i in flats:                                  # a flat face's flat: straight on from the segment's end
-            makers.append(_point(cam, i, seg.end, rr))
-    verts, bulges, errors = zip(*_run(cam, makers), strict=True)
-    verts, bulges = list(verts), list(bulges)
+            verts.append(_surface(ends.part(i, i + 1), rr))
+            bulges.append(np.zeros(1))
     if cam.is_plate:
         verts, bulges = _close_plate(cam, verts, bulges, offset)
     contour = Contour(np.concatenate(verts), np.concatenate(bulges))

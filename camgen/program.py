@@ -9,16 +9,16 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from camgen.laws import Law
-from camgen.numeric import TIE, left_of, piecewise_maxima, present
+from camgen.numeric import TIE, drive, left_of, maxima_steps, present
 
 Kind = Literal["rise", "dwell", "return"]
 TWO_PI = 2.0 * math.pi
@@ -203,22 +203,39 @@ class Program:
                scale: ArrayLike = 0.0) -> list[tuple[float, float]]:
         """Largest value over the cycle of each row of ``func(theta, motion, index)`` -> (k, n), and where (degrees
         in [0, 360)): ``theta`` (n,) cam angles in radians, ``motion`` (4, n) s, s', s'', s''' there and ``index``
-        (n,) the segment each lies in.
+        (n,) the segment each lies in. :meth:`maxima_steps` with the values from ``func``."""
+        table = self._table
+
+        def answer(ask: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+            index, v = ask
+            return func(table.angle(index, v), table.at_law(index, v), index)
+
+        return drive(self.maxima_steps(lambda values: values, scale), answer)
+
+    def maxima_steps(self, values: Callable[[Any], np.ndarray], scale: ArrayLike = 0.0
+                     ) -> Generator[tuple[np.ndarray, np.ndarray], Any, list[tuple[float, float]]]:
+        """:meth:`maxima` as a generator: it yields ``(index, v)``, points given by their segment (n,) and their law
+        variable (n,) (see :meth:`Segment.at_law`), and is sent what the caller evaluated there, which ``values``
+        turns into the rows (k, n) to maximise; it returns each row's (largest value, where in degrees).
 
         Every smooth piece of every segment is searched at once on its closed interval, with one-sided values at
         its ends (a segment's ends, and where its law changes piece), the maximiser located to ~1e-13 of the
-        piece's angle (see :func:`camgen.numeric.piecewise_maxima`). Values within ``TIE`` (1e-12) of a row's
+        piece's angle (see :func:`camgen.numeric.maxima_steps`). Values within ``TIE`` (1e-12) of a row's
         magnitude (the larger of ``scale``, (k,) or a number, and its largest |value| seen) are equal: of equal
         peaks the one at the smallest angle is taken, so that rounding does not choose between them.
         """
         owner, lo, hi = self._pieces
         table = self._table
-
-        def values(v: np.ndarray, piece: np.ndarray) -> np.ndarray:
-            index = owner[piece]
-            return func(table.angle(index, v), table.at_law(index, v), index)
-
-        at, value, magnitude = piecewise_maxima(values, lo, hi, scale=scale, reverse=table.backwards[owner])
+        steps = maxima_steps(lo, hi, scale=scale, reverse=table.backwards[owner])
+        ask = next(steps)
+        while True:
+            x, piece = ask
+            got = yield owner[piece], x
+            try:
+                ask = steps.send(values(got))
+            except StopIteration as done:
+                at, value, magnitude = done.value
+                break
         out = []
         every = np.degrees(table.angle(np.broadcast_to(owner, at.shape).ravel(), at.ravel())).reshape(at.shape) % 360.0
         for row_value, size, degrees in zip(value, magnitude, every, strict=True):
@@ -242,11 +259,21 @@ class Program:
         """Cam angles (2n,) (radians) and s, s', s'', s''' there (4, 2n): every segment's end (its left-hand limit),
         then the next segment's start (its right-hand limit; the last segment's next is the first), from one
         evaluation (as :meth:`Segment.evaluate` makes them)."""
+        theta, index = self.boundary_points
+        return theta, self.evaluate_on(index, theta)
+
+    @functools.cached_property
+    def boundary_points(self) -> tuple[np.ndarray, np.ndarray]:
+        """The angles (2n,) of :attr:`boundaries` (radians) and the segment each is evaluated on (2n,)."""
         n = len(self.segments)
         nxt = self.segments[1:] + self.segments[:1]
         theta = np.array([seg.end for seg in self.segments] + [seg.start for seg in nxt])
-        index = np.array([*range(n), *range(1, n), 0])
-        return theta, self.evaluate_on(index, theta)
+        return theta, np.array([*range(n), *range(1, n), 0])
+
+    def known_boundaries(self, motion: np.ndarray) -> None:
+        """Keep ``motion`` (4, 2n), evaluated elsewhere at :attr:`boundary_points`, as :attr:`boundaries`' motion
+        (a cache: the same numbers its own evaluation makes)."""
+        self.__dict__["boundaries"] = (self.boundary_points[0], motion)
 
     @functools.cached_property
     def _pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -314,8 +341,13 @@ class _Table:
 
     def evaluate(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """:meth:`Segment.evaluate` of each angle ``theta`` (n,) on its segment ``index`` (n,): (4, n)."""
+        return self.at_law(index, self.variable(index, theta))
+
+    def variable(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """The law variable (see :meth:`Segment.at_law`) at each angle ``theta`` (n,) (radians) on its segment
+        ``index`` (n,), u taken into [0, 1] as :meth:`Segment.evaluate` takes it (one-sided at the segment's ends)."""
         u = np.minimum(np.maximum((theta - self.start[index]) / self.beta[index], 0.0), 1.0)
-        return self.at_law(index, np.where(self.backwards[index], 1.0 - u, u))
+        return np.where(self.backwards[index], 1.0 - u, u)
 
     def at_law(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
         """:meth:`Segment.at_law`'s motion at each law variable ``v`` (n,) on its segment ``index`` (n,): (4, n);

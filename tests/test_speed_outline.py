@@ -92,9 +92,9 @@ def test_a_cam_takes_two_evaluations_of_its_follower():
     counting = _Counting(cam.follower)
     counted = dataclasses.replace(cam, follower=counting)
     outline = exact_outline(counted, 0.01)
-    # one for the segment ends (the corners), then one round for every spacing grid, dwell and corner arc, and one
-    # for every rise's and return's vertices and probes together
-    assert len(counting.calls) == 3
+    # one round for every spacing grid, dwell and the segment ends (the corners, made from them), and one for every
+    # rise's and return's vertices and probes together
+    assert len(counting.calls) == 2
     assert np.array_equal(outline.contour.vertices, exact_outline(cam, 0.01).contour.vertices)
     counting.calls.clear()
     exact_outline(counted, 0.01, "biarcs")
@@ -146,3 +146,29 @@ def test_a_translating_rollers_pitch_from_numbers_is_that_from_full_arrays(rotat
     made = f.pitch(theta, motion)
     for field in dataclasses.fields(made):
         assert _same(getattr(made, field.name), getattr(full, field.name)), field.name
+
+
+def test_a_design_takes_two_evaluations_of_its_follower(monkeypatch):
+    from camgen.analysis import analyze
+    from camgen.design import design_cam
+    from camgen.followers.translating_roller import TranslatingRoller
+
+    spec = validate_spec(copy.deepcopy(RDRD))
+    calls = []
+    pitch = TranslatingRoller.pitch
+
+    def counted(self: Any, theta: np.ndarray, motion: np.ndarray) -> Any:
+        calls.append(theta.size)
+        return pitch(self, theta, motion)
+
+    monkeypatch.setattr(TranslatingRoller, "pitch", counted)
+    design = design_cam(spec)
+    # the analysis's grid, the segment ends, the spacing grids and the dwells in one; the peaks' refinement and the
+    # rise's and return's vertices and probes in the other
+    assert len(calls) == 2
+    monkeypatch.undo()
+    cam = build_cam(spec)                               # each made alone: the same to the last bit
+    assert design.analysis == analyze(cam)
+    alone = exact_outline(cam, spec.output.tolerance).contour
+    assert _same(design.outline.contour.vertices, alone.vertices) and _same(design.outline.contour.bulges, alone.bulges)
+    assert design.jumps == tuple(build_cam(spec).program.jumps())

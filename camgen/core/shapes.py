@@ -5,6 +5,7 @@ mm, angles in radians; counter-clockwise is positive (seen from +Z).
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -69,6 +70,22 @@ class Contour:
         centre = (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
         return p, q, chord, angle, centre
 
+    @functools.cached_property
+    def _arc_pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`_arcs` of the arc pieces only (the same operations on the same numbers): their indices, starts,
+        chord lengths, signed included angles and centres; made once a contour (its area and its flattening both
+        need them, and a cam's outline has hundreds of chords and a few arcs)."""
+        idx = np.flatnonzero(self.bulges)
+        p = self.vertices[idx]
+        q = self.vertices[(idx + 1) % len(self.vertices)]
+        chord = np.linalg.norm(q - p, axis=1)
+        angle = 4.0 * np.arctan(self.bulges[idx])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            h = chord / (2.0 * np.tan(angle / 2.0))
+            d = (q - p) / np.where(chord > 0, chord, 1.0)[:, None]
+        centre = (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
+        return idx, p, chord, angle, centre
+
     def arcs(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The arc pieces: their indices, centres (k, 2), radii (k,) and signed included angles (k,) in rad."""
         _, _, chord, angle, centre = self._arcs()
@@ -93,11 +110,15 @@ class Contour:
     @property
     def area(self) -> float:
         """Signed area (mm^2, counter-clockwise positive), exact for the arcs."""
-        p, q, chord, angle, _ = self._arcs()
+        p = self.vertices
+        q = np.concatenate([p[1:], p[:1]])                              # np.roll's result
         polygon = 0.5 * float(np.sum(p[:, 0] * q[:, 1] - q[:, 0] * p[:, 1]))
+        idx, _, chord, angle, _ = self._arc_pieces
+        segments = np.zeros(len(p))                                     # a line's segment is 0 (summed as such)
         with np.errstate(divide="ignore", invalid="ignore"):
-            radius = np.where(self.bulges != 0, chord / (2.0 * np.abs(np.sin(angle / 2.0))), 0.0)
-        return polygon + float(np.sum(0.5 * radius**2 * (angle - np.sin(angle))))
+            radius = chord / (2.0 * np.abs(np.sin(angle / 2.0)))
+        segments[idx] = 0.5 * radius**2 * (angle - np.sin(angle))
+        return polygon + float(np.sum(segments))
 
     def reversed(self) -> "Contour":
         """The same contour traversed the other way."""
@@ -111,16 +132,14 @@ class Contour:
 
     def flatten(self, tolerance: float) -> np.ndarray:
         """Polygon vertices (m, 2), first not repeated, with every arc split into chords within ``tolerance`` mm."""
-        p, _, chord, angle, centre = self._arcs()
-        out = []
-        for i in range(len(p)):
-            out.append(p[i][None, :])
-            if self.bulges[i] != 0:
-                radius = chord[i] / (2.0 * abs(math.sin(angle[i] / 2.0)))
-                n = arc_steps(radius, angle[i], tolerance)
-                start = math.atan2(p[i, 1] - centre[i, 1], p[i, 0] - centre[i, 0])
-                a = start + angle[i] * np.arange(1, n) / n
-                out.append(centre[i] + radius * np.column_stack([np.cos(a), np.sin(a)]))
+        idx, p, chord, angle, centre = self._arc_pieces
+        out = np.split(self.vertices, idx + 1)                         # the vertices up to each arc's start
+        for k in range(len(idx)):
+            radius = chord[k] / (2.0 * abs(math.sin(angle[k] / 2.0)))
+            n = arc_steps(radius, angle[k], tolerance)
+            start = math.atan2(p[k, 1] - centre[k, 1], p[k, 0] - centre[k, 0])
+            a = start + angle[k] * np.arange(1, n) / n
+            out.insert(2 * k + 1, centre[k] + radius * np.column_stack([np.cos(a), np.sin(a)]))
         return np.concatenate(out)
 
     def flatten_error(self, tolerance: float) -> float:

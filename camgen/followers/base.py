@@ -49,6 +49,19 @@ class PitchGeometry:
     pressure_angle: np.ndarray  # (n,) rad, signed (see the module docstring)
     rho: np.ndarray | None = None  # (n,) radius of curvature of a flat face's profile, mm
 
+    def part(self, start: int, stop: int) -> "PitchGeometry":
+        """The samples ``start`` to ``stop`` (a slice, views of the same arrays), made without the frozen
+        dataclass's checked ``__init__`` (it is on the hot path of every design, many times a design)."""
+        out = object.__new__(PitchGeometry)
+        mine, theirs = self.__dict__, out.__dict__
+        for name in _FIELDS:
+            value = mine[name]
+            theirs[name] = None if value is None else value[start:stop]
+        return out
+
+
+_FIELDS = tuple(PitchGeometry.__dataclass_fields__)
+
 
 def rotate(vectors: np.ndarray, angle: np.ndarray) -> np.ndarray:
     """Rotate (n, 2) ``vectors`` counter-clockwise by ``angle`` (n,) radians."""
