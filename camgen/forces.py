@@ -19,7 +19,8 @@ import numpy as np
 
 from camgen.cam import Cam
 from camgen.contact_stress import MATERIALS, effective_modulus, line_contact, relative_curvature
-from camgen.dynamics import Loading, Peak, stacked_peaks
+from camgen.dynamics import Loading, Peak, spec_loading, stacked_peaks
+from camgen.numeric import boundary
 
 #: Gauss-Legendre nodes a segment for the means over the cycle (each law is smooth inside its segment)
 NODES = 64
@@ -272,7 +273,8 @@ def speeds_report(cam: Cam, ld: Loading, rpm_range: tuple[float, float], steps: 
 def flank_changes(cam: Cam, force: Any, sides: tuple[str, str]) -> list[dict[str, Any]]:
     """Where the force ``force(theta, motion)`` (N) changes sign over the turn and which side carries it from there
     (``sides[0]`` while it is positive, ``sides[1]`` while negative): each segment sampled every half degree, a
-    change inside one found by bisection to 1e-12 rad, one across a segment's end placed there. Stretches where
+    change inside one found by bisection (:func:`camgen.numeric.boundary`) to ~1e-12 rad, the last angle where the
+    force keeps its sign before it, one across a segment's end placed there. Stretches where
     the force is 0 (a dwell with nothing on the follower: no side carries anything) keep the side before them."""
     changes, last, first = [], 0.0, None
     for seg in cam.program.segments:
@@ -285,13 +287,11 @@ def flank_changes(cam: Cam, force: Any, sides: tuple[str, str]) -> list[dict[str
             at = float(t[k])
             if last and k > 0:                              # a sign change inside the segment: bisect
                 lo, hi = float(t[k - 1]), at
-                while hi - lo > 1e-12:
-                    mid = (lo + hi) / 2
-                    if float(force(np.array([mid]), seg.evaluate(np.array([mid])))[0]) * last > 0:
-                        lo = mid
-                    else:
-                        hi = mid
-                at = hi
+
+                def same(x: float, seg: Any = seg, sign: float = last) -> bool:
+                    return float(force(np.array([x]), seg.evaluate(np.array([x])))[0]) * sign > 0
+
+                at = boundary(same, lo, hi, 1e-12 / max(abs(lo), abs(hi)))
             if last:
                 changes.append({"at_deg": math.degrees(at) % 360.0, "to": sides[0 if value > 0 else 1]})
             else:
@@ -336,9 +336,10 @@ def _drive(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str], walls: tup
     return out, peaks[len(quantities):]
 
 
-def _pair_forces(pair: tuple[Cam, Cam], ld: Loading, omega: float) -> tuple[Any, Any]:
-    """Each cam's normal contact force (N) as a quantity of its pitch geometry and motion (0 where it runs
-    unloaded): N1 = F / cos(phi1) where F > 0, N2 = -F (L1 / L2) / cos(phi2) where F < 0 (see :func:`pair_report`)."""
+def pair_forces(pair: tuple[Cam, Cam], ld: Loading, omega: float) -> tuple[Any, Any]:
+    """Each cam's normal contact force (N) at ``omega`` rad/s as a function of its pitch geometry and motion rows (0
+    where it runs unloaded): N1 = F / cos(phi1) where F > 0, N2 = -F (L1 / L2) / cos(phi2) where F < 0, L1 / L2
+    the arms' ratio of a bell crank (1 for a yoke; see :func:`pair_report`)."""
     first, second = pair
     ratio = getattr(first.follower, "arm_length", 1.0) / getattr(second.follower, "arm_length", 1.0)
     return tuple(lambda g, m, sign=sign: np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
@@ -354,7 +355,7 @@ def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float, contact: Contact
     -F (L1 / L2) / cos(phi2) (phi2 the second cam's pressure angle from the return's direction, L1 / L2 the arms'
     ratio of a bell crank, 1 for a yoke); the torque is then the sum of both contacts' moments about the axis."""
     omega = _omega(rpm)
-    forces = _pair_forces(pair, ld, omega)
+    forces = pair_forces(pair, ld, omega)
     pressures = _pair_pressures(pair, contact, forces)
     out, found = _drive(pair[0], ld, rpm, ("cam 1", "cam 2"), None, (forces[0], *pressures[:1]))
     peaks = [found, _peaks_each(pair[1], forces[1], *pressures[1:])]
@@ -388,7 +389,7 @@ def pair_speeds(pair: tuple[Cam, Cam], ld: Loading, rpm_range: tuple[float, floa
     per_speed = []
     for rpm in speeds:
         omega = _omega(rpm)
-        forces = _pair_forces(pair, ld, omega)
+        forces = pair_forces(pair, ld, omega)
         per_speed.append((forces, _pair_pressures(pair, contact, forces)))
     wanted = [(*_torques(ld, _omega(rpm), forces[0]), *pressures[:1])
               for rpm, (forces, pressures) in zip(speeds, per_speed, strict=True)]
@@ -409,4 +410,26 @@ def pair_speeds(pair: tuple[Cam, Cam], ld: Loading, rpm_range: tuple[float, floa
     out: dict[str, Any] = {"rpm_range": list(rpm_range), "liftoff_rpm": None, "rows": rows}
     if contact is not None:
         out["allowable_MPa"] = contact.allowable
+    return out
+
+
+def drive_speed(spec: Any, cam: Cam, sides: tuple[str, str] = ("cam 1", "cam 2"),
+                walls: tuple[Contact, float, float] | None = None, pair: tuple[Cam, Cam] | None = None,
+                contact: Contact | None = None) -> dict[str, Any]:
+    """The ``forces`` and, with ``cam.rpm_range``, the ``speeds`` of a positive drive's ``spec`` (no spring: its
+    ``[follower]``'s mass, loads and weights pressing the follower either way, :func:`~camgen.dynamics.spec_loading`
+    of a positive drive) on its built ``cam``: a groove's or a barrel's (:func:`drive_report` with ``sides`` and
+    ``walls``, :func:`speeds_report` with no lift-off), or a conjugate ``pair``'s whose first cam ``cam`` is
+    (:func:`pair_report`, :func:`pair_speeds`, each roller on its cam with ``contact``)."""
+    ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
+    table = spec.cam
+    if pair is not None:
+        out = {"forces": pair_report(pair, ld, table.rpm, contact)}
+        if table.rpm_range is not None:
+            out["speeds"] = pair_speeds(pair, ld, table.rpm_range, table.rpm_steps, contact)
+        return out
+    out = {"forces": drive_report(cam, ld, table.rpm, sides, walls)}
+    if table.rpm_range is not None:
+        out["speeds"] = speeds_report(cam, ld, table.rpm_range, table.rpm_steps, None if walls is None else walls[0],
+                                      positive=True, walls=None if walls is None else walls[1:])
     return out

@@ -68,7 +68,7 @@ def checks_figure(design: CamDesign) -> Any:
 
     cam, spec = design.cam, design.spec
     theta, motion = sample_cycle(cam)
-    g = _pitch_by_segment(cam)
+    g = cam.follower.pitch(theta, motion)             # each segment's own, as the motion is
     deg = np.degrees(theta)
     f = spec.follower
     forces = (design.speed or {}).get("forces")
@@ -185,7 +185,7 @@ def drive_checks_plot(title: str, limit_deg: float, contacts: list[tuple[str, Ca
     drawn: list[int] = []
     for k, (label, cam, radius, force, pressure) in enumerate(contacts):
         theta, motion = sample_cycle(cam)
-        g = _pitch_by_segment(cam)
+        g = cam.follower.pitch(theta, motion)
         deg = np.degrees(theta)
         if id(cam) not in drawn:
             axes[0].plot(deg, np.degrees(g.pressure_angle), color=f"C{k}", lw=1.2)
@@ -261,37 +261,21 @@ def pair_checks_figure(design: Any) -> Any:
     cos(phi1)), cam 2 F < 0 (N2 = -F (L1 / L2) / cos(phi2)), each profile's radius its pitch curve's less its own
     roller's."""
     from camgen.dynamics import spec_loading
-    from camgen.forces import Contact, contact_pressure, normal_force, torque
+    from camgen.forces import Contact, contact_pressure, pair_forces, torque
 
-    spec, (first, second) = design.spec, (d.cam for d in design.cams)
+    spec, pair = design.spec, tuple(d.cam for d in design.cams)
     forces = design.cams[0].speed["forces"]
-    ld = spec_loading(spec.follower, first.follower, True, spec.motion, first.program)
+    ld = spec_loading(spec.follower, pair[0].follower, True, spec.motion, pair[0].program)
     omega = spec.cam.rpm * 2 * math.pi / 60
     st = forces.get("stress")
     contact = None if st is None else Contact(st["cam_material"], st["follower_material"], st["length_mm"])
-    ratio = getattr(first.follower, "arm_length", 1.0) / getattr(second.follower, "arm_length", 1.0)
     contacts = []
-    for k, (cam, sign) in enumerate(((first, 1.0), (second, -ratio))):
-        def force(g: Any, m: np.ndarray, sign: float = sign) -> np.ndarray:
-            return np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
-
+    for k, (cam, force) in enumerate(zip(pair, pair_forces(pair, ld, omega), strict=True)):
         def pressure(g: Any, m: np.ndarray, cam: Cam = cam, force: Any = force) -> np.ndarray:
             return contact_pressure(cam, contact, g, force(g, m))[0]
         contacts.append((f"cam {k + 1}", cam, lambda g, cam=cam: 1.0 / g.kappa - cam.contact_radius, force, pressure))
     return drive_checks_plot(spec.name, design.cams[0].pressure_limit_deg, contacts,
                              lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"])
-
-
-def _pitch_by_segment(cam: Cam, per_segment: int = 181) -> Any:
-    """Pitch geometry at :func:`sample_cycle`'s angles, each segment's own (a boundary appears once a side, as
-    the motion does)."""
-    from dataclasses import fields, replace
-
-    parts = [cam.segment_pitch(i, np.linspace(seg.start, seg.end, per_segment if seg.kind != "dwell" else 2))
-             for i, seg in enumerate(cam.program.segments)]
-    joined = {f.name: np.concatenate([getattr(p, f.name) for p in parts]) for f in fields(parts[0])
-              if getattr(parts[0], f.name) is not None}
-    return replace(parts[0], **joined)
 
 
 def _machine_units(design: CamDesign, motion: np.ndarray) -> tuple[np.ndarray, list[str]]:

@@ -36,8 +36,8 @@ from camgen.core.errors import DesignError, SpecError
 from camgen.core.features import keyed_bore
 from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
 from camgen.core.shapes import Circle, Contour, Polyline
-from camgen.dynamics import spec_loading, speed_report
-from camgen.forces import Contact, drive_report, speeds_report
+from camgen.dynamics import speed_report
+from camgen.forces import Contact, drive_speed
 from camgen.followers.barrel import DevelopedRoller, rolling_slip, translating_pose
 from camgen.followers.plate import PlateRoller
 from camgen.grooved.design import Flank, flank_checks
@@ -296,19 +296,13 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
     jumps = tuple(cam.program.jumps())
     speed = None if spec.cam.rpm is None else speed_report(cam, spec.cam.rpm, None, None, None, [])
     if speed is not None and spec.follower.mass is not None:  # the roller's centre along the axis (an arm's arc)
-        ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
         if spec.cam.material is not None and rib is not None:
             raise SpecError("a rib's contact pressure is not made yet; leave it out", "cam.material")
         stressed = None if spec.cam.material is None else (   # line contact along the depth, the walls at Rm
             Contact(spec.cam.material, spec.follower.material, depth), walls.r0 + walls.taper * rm,
             spec.follower.roller_radius)
-        speed["forces"] = drive_report(cam, ld, spec.cam.rpm,
-                                       ("lower wall", "upper wall") if rib is None else
-                                       ("rib's upper wall", "rib's lower wall"), stressed)
-        if spec.cam.rpm_range is not None:
-            speed["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
-                                            None if stressed is None else stressed[0], positive=True,
-                                            walls=None if stressed is None else stressed[1:])
+        speed.update(drive_speed(spec, cam, ("lower wall", "upper wall") if rib is None else
+                                 ("rib's upper wall", "rib's lower wall"), stressed))
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
     limit = pressure_limit(spec)
     if pressure["floor"] > limit:

@@ -33,8 +33,7 @@ from camgen.conjugate.followers import ArmRoller, YokeRoller, arm_prime, arm_tur
 from camgen.core.errors import CamgenError, DesignError
 from camgen.core.parts import Allowances
 from camgen.design import CamDesign, _check_holes, _curves, _engraving, _Profile, _speed
-from camgen.dynamics import spec_loading
-from camgen.forces import Contact, pair_report, pair_speeds
+from camgen.forces import Contact, drive_speed
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
 from camgen.outline import exact_outline
@@ -439,13 +438,10 @@ def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
                                    "cam": spec.cam.model_copy(update={"rpm_range": None})})
     speed = _speed(free, pair[0])
     if speed is not None and spec.follower.mass is not None:
-        ld = spec_loading(spec.follower, pair[0].follower, True, spec.motion, pair[0].program)
         f = spec.follower
         contact = None if spec.cam.material is None else Contact(
             spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
-        speed = {**speed, "forces": pair_report(pair, ld, spec.cam.rpm, contact)}
-        if spec.cam.rpm_range is not None:
-            speed["speeds"] = pair_speeds(pair, ld, spec.cam.rpm_range, spec.cam.rpm_steps, contact)
+        speed = {**speed, **drive_speed(spec, pair[0], pair=pair, contact=contact)}
     return speed
 
 

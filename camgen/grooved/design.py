@@ -32,8 +32,7 @@ from camgen.core.errors import DesignError
 from camgen.core.parts import Part, Pocket
 from camgen.core.shapes import Contour
 from camgen.design import CamDesign, design_profile, step_part
-from camgen.dynamics import spec_loading
-from camgen.forces import Contact, drive_report, speeds_report
+from camgen.forces import Contact, drive_speed
 from camgen.kinds.base import GROOVE_KEYS
 from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.sizing import Sizing, size_cam
@@ -265,17 +264,12 @@ def design_grooved(spec: CamSpec) -> GroovedDesign:
                           "must be narrower than the groove")
     profile = dataclasses.replace(design_profile(island), sizing=sizing)
     if profile.speed is not None and spec.follower.mass is not None:
-        # the island's: the same pitch curve, arm
-        ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
         f, depth = spec.follower, spec.cam.groove_depth
         walls = None if spec.cam.material is None else (      # the flanks roller + clearance / 2 off the pitch curve
             Contact(spec.cam.material, f.material, min(depth, f.roller_width or depth)), inner.offset_mm,
             f.roller_radius)
-        speed = {**profile.speed, "forces": drive_report(cam, ld, spec.cam.rpm, ("inner flank", "outer flank"), walls)}
-        if spec.cam.rpm_range is not None:
-            speed["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
-                                            None if walls is None else walls[0], positive=True,
-                                            walls=None if walls is None else walls[1:])
+        # the island's cam: the same pitch curve, arm
+        speed = {**profile.speed, **drive_speed(spec, cam, ("inner flank", "outer flank"), walls)}
         profile = dataclasses.replace(profile, speed=speed)
     curves = "polylines" if out.dxf == "segments" else out.curves
 
