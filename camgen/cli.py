@@ -6,8 +6,8 @@ from pathlib import Path
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, output_option, set_option,
-                             template_options, user_errors)
+from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, one_design, output_option,
+                             set_option, template_options)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -19,7 +19,7 @@ def main() -> None:
 
 @main.command()
 @template_options("motion.0.lift=25")
-@user_errors
+@one_design
 def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
     """Build the cam described by TEMPLATE (a TOML file)."""
     from camgen.design import design_cam
@@ -87,7 +87,7 @@ def _summary(report: dict) -> list[str] | None:
 @click.option("--factors", is_flag=True, help="Print the cam-factor table instead (no template needed).")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 @set_option("cam.max_pressure_angle=25")
-@user_errors
+@one_design
 def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[str, ...]) -> None:
     """Smallest base radius for TEMPLATE, or (--factors) the cam factors f with Rp = f h / beta."""
     from camgen.core.errors import SpecError
@@ -144,7 +144,7 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
 @main.command()
 @output_option("Output folder (default: out/<name>/, out/coupon/).", default=None)
 @set_option("coupon.diameter=8")
-@user_errors
+@one_design
 def coupon(output: Path | None, overrides: tuple[str, ...]) -> None:
     """Write a fit-test coupon: holes at a range of clearances round one pin, labelled, and the pin."""
     from camgen.core.coupon import coupon_spec, design_coupon, write_coupon
@@ -173,6 +173,7 @@ add_bench(main, "camgen.bench:run_bench", Path("out/bench"),
 
 @main.command()
 @click.option("--json", "as_json", is_flag=True, help="Print the table as JSON.")
+@one_design
 def laws(as_json: bool) -> None:
     """Compare the motion laws for lift h = 1 over beta = 1 rad: peak velocity, acceleration, jerk."""
     from camgen.laws.table import law_table

@@ -8,8 +8,8 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, fixed, output_option, set_option,
-                             template_argument, template_options, user_errors)
+from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, fixed, one_design,
+                             output_option, set_option, template_argument, template_options, user_errors)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -27,7 +27,7 @@ def main() -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print the report as JSON.")
 @output_option("Folder for the report and plots (default: out/<name>/).", default=None)
 @set_option("linkage.crank=60")
-@user_errors
+@one_design
 def analyze(template: Path, angle: float | None, method: str, as_json: bool, output: Path | None,
             overrides: tuple[str, ...]) -> None:
     """Analyze the linkage described by TEMPLATE (a TOML file)."""
@@ -56,7 +56,7 @@ def analyze(template: Path, angle: float | None, method: str, as_json: bool, out
 
 @main.command()
 @template_options("parts.kerf=0.2")
-@user_errors
+@one_design
 def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
     """Make the parts of the linkage in TEMPLATE: cut sheet, assembly drawing, meshes and the report."""
     from linkgen.design import design_linkage
