@@ -8,8 +8,8 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, fixed, one_design,
-                             output_option, set_option, template_argument, template_options, user_errors)
+from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, figures_option, fixed,
+                             one_design, output_option, set_option, template_argument, template_options, user_errors)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -27,6 +27,7 @@ def main() -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print the report as JSON.")
 @output_option("Folder for the report and plots (default: out/<name>/).", default=None)
 @set_option("linkage.crank=60")
+@figures_option
 @one_design
 def analyze(template: Path, angle: float | None, method: str, as_json: bool, output: Path | None,
             overrides: tuple[str, ...]) -> None:

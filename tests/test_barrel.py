@@ -63,8 +63,7 @@ def _build(tmp_path, *overrides: str, text: str = CONTRACT) -> tuple[dict, objec
 def test_the_contract_template_builds_as_written(tmp_path):
     report, out = _build(tmp_path)
     assert sorted(p.name for p in out.iterdir()) == sorted(
-        ["barrel-developed.dxf", "barrel-developed.svg", "barrel.stl", "barrel.3mf", "barrel.json", "barrel-svaj.png",
-         "barrel-svaj.svg", "barrel-cam.png", "barrel-cam.svg", "barrel.html"])
+        ["barrel-developed.dxf", "barrel-developed.svg", "barrel.stl", "barrel.3mf", "barrel.json", "barrel.html"])
     assert report["cam"]["floor_radius_mm"] == 27.0 and report["cam"]["rim_radius_mm"] == 33.0
     assert report["cam"]["rest_height_mm"] == 15.0                  # the 20 mm travel in the middle of 50
     assert report["mesh"]["watertight"] and report["outline_max_error_mm"] <= report["tolerance_mm"]

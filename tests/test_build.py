@@ -26,12 +26,37 @@ def built(tmp_path_factory):
     return out, result
 
 
+#: what a default build writes: every format but the figures
+DEFAULT_FILES = ["rdrd.dxf", "rdrd-cut.svg", "rdrd.stl", "rdrd.3mf", "rdrd.json", "rdrd.html"]
+#: what ``--figures`` (``output.figures = true``) adds
+FIGURE_FILES = ["rdrd-svaj.png", "rdrd-svaj.svg", "rdrd-cam.png", "rdrd-cam.svg", "rdrd-checks.png",
+                "rdrd-checks.svg"]
+
+
 def test_all_files_are_written_and_no_temporaries_left(built):
     out, _ = built
-    names = sorted(p.name for p in out.iterdir())
-    assert names == sorted(["rdrd.dxf", "rdrd-cut.svg", "rdrd.stl", "rdrd.3mf", "rdrd.json", "rdrd-svaj.png",
-                            "rdrd-svaj.svg", "rdrd-cam.png", "rdrd-cam.svg", "rdrd-checks.png", "rdrd-checks.svg",
-                            "rdrd.html"])
+    assert sorted(p.name for p in out.iterdir()) == sorted(DEFAULT_FILES)
+
+
+@pytest.mark.parametrize("how", [["--figures"], ["--set", "output.figures=true"],
+                                 ["--set", 'output.formats=["dxf","cut-svg","stl","3mf","json","html","png","svg"]'],
+                                 ["--figures", "--set", 'output.formats=["json","png"]']])
+def test_figures_are_written_when_asked(how, built, tmp_path):
+    """The figures are on request, three ways alike: ``--figures``, ``output.figures = true``, or named in
+    ``output.formats``; ``figures`` adds both figure formats to the formats given. The other files keep their bytes,
+    but the report, which lists the files written."""
+    result = CliRunner().invoke(main, ["build", str(TEMPLATE), "-o", str(tmp_path), *how])
+    assert result.exit_code == 0, result.output
+    names = sorted(p.name for p in tmp_path.iterdir())
+    formats = json.loads((tmp_path / "rdrd.json").read_text())["files"]
+    if "json" in how[-1] and "--figures" in how:
+        assert names == sorted(["rdrd.json", *FIGURE_FILES])
+    else:
+        assert names == sorted(DEFAULT_FILES + FIGURE_FILES)
+    assert sorted(formats.values()) == names
+    default, _ = built
+    for name in set(names) & set(DEFAULT_FILES) - {"rdrd.json", "rdrd.html"}:
+        assert (tmp_path / name).read_bytes() == (default / name).read_bytes(), name
 
 
 def test_dxf_audit_units_layers_and_accuracy(built):

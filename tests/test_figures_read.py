@@ -130,3 +130,23 @@ def test_a_kits_panels_list_each_part_once_in_one_colour_and_write_their_labels(
     assert len({next(iter(c)) for c in by_part.values()}) == 12
     words = [t.get_text() for ax in fig.axes for t in ax.texts]
     assert words == ["0 deg", "90 deg", "180 deg"]
+
+
+@pytest.mark.parametrize("output, overview", [("", False), ("[output]\nfigures = true\n", True),
+                                              ('[output]\nformats = ["json", "png"]\n', True)])
+def test_a_familys_overview_figure_comes_with_its_members_figures(output, overview, tmp_path):
+    """Figures are on request (``output.figures`` or ``"png"`` in ``output.formats``): a family draws its overview
+    figure only when its members draw theirs; its page and summaries come either way."""
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+
+    family = tmp_path / "fam.toml"
+    family.write_text(f'base = "{(ROOT / "templates" / "rdrd.toml").as_posix()}"\nname = "fam"\n'
+                      f'[sweep]\n"cam.base_radius" = [40, 50]\n{output}')
+    result = CliRunner().invoke(main, ["family", str(family), "-o", str(tmp_path / "out"), "--jobs", "1"])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "out" / "overview.png").exists() is overview
+    assert (tmp_path / "out" / "summary.csv").exists()
+    members = sorted((tmp_path / "out").glob("*/*.png"))
+    assert len(members) == (6 if overview else 0)                    # three figures a member, as PNG

@@ -575,7 +575,7 @@ def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, fi
     assert float(np.max(torque_line)) == pytest.approx(forces["torque_max_N_m"], rel=5e-3)
     name = spec.name
     for extra, expected in (((), False), (sets, True)):
-        args = ["build", str(template), "-o", str(tmp_path / str(expected))]
+        args = ["build", str(template), "-o", str(tmp_path / str(expected)), "--figures"]
         for s in extra:
             args += ["--set", s]
         assert CliRunner().invoke(main, args).exit_code == 0

@@ -154,8 +154,8 @@ def test_every_file_is_reproducible_across_processes(tmp_path):
     for seed in ("1", "2"):
         out = tmp_path / seed
         env = {**os.environ, "PYTHONHASHSEED": seed}
-        subprocess.run([sys.executable, "-m", "camgen", "build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(out)],
-                       env=env, check=True, capture_output=True, timeout=300)
+        subprocess.run([sys.executable, "-m", "camgen", "build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(out),
+                        "--figures"], env=env, check=True, capture_output=True, timeout=300)
         outs.append(out)
     names = sorted(p.name for p in outs[0].iterdir())
     assert names == sorted(p.name for p in outs[1].iterdir()) and len(names) == 12

@@ -414,7 +414,7 @@ rocker = ["O4", "B"]
 "A-B" = 200
 """)
     result = CliRunner().invoke(linkgen, ["analyze", str(template), "--json", "--angle", "30", "-o",
-                                          str(tmp_path / "o")])
+                                          str(tmp_path / "o"), "--figures"])
     assert result.exit_code == 0, result.output
     r = json.loads(result.output)
     assert r["mobility"] == 1 and [s["step"] for s in r["solve_order"]] == ["input", "RRR"]

@@ -111,7 +111,7 @@ def test_the_template_analyses_builds_and_its_parts_hold_the_drawn_distances(nam
     assert result.exit_code == 0, result.output
     report = json.loads((tmp_path / "a" / f"{name}.json").read_text())
     assert report["type"] == "linkage" and report["mobility"] == 1
-    result = CliRunner().invoke(main, ["build", str(_path(name)), "-o", str(tmp_path / "b")])
+    result = CliRunner().invoke(main, ["build", str(_path(name)), "-o", str(tmp_path / "b"), "--figures"])
     assert result.exit_code == 0, result.output
     for figure in ("assembly", "motion"):
         assert (tmp_path / "b" / f"{name}-{figure}.png").stat().st_size > 0

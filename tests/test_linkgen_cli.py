@@ -21,7 +21,7 @@ def run(*args, tmp):
 
 
 def test_crank_rocker_report(tmp_path):
-    result = run(CRANK_ROCKER, "--angle", "30", "--json", tmp=tmp_path)
+    result = run(CRANK_ROCKER, "--angle", "30", "--json", "--figures", tmp=tmp_path)
     assert result.exit_code == 0, result.output
     r = json.loads(result.output)
     assert (r["grashof_class"], r["inversion"], r["input_range_deg"]) == ("I", "crank-rocker", None)
@@ -72,7 +72,7 @@ def test_every_linkage_type(tmp_path, table, keys):
     path = tmp_path / "t.toml"
     path.write_text(f'name = "t"\n[linkage]\n{body}\n')
     angle = {"rocker": "100"}.get(table.get("input"), "60")     # inside every input range here
-    result = run(path, "--angle", angle, "--json", tmp=tmp_path / "out")
+    result = run(path, "--angle", angle, "--json", "--figures", tmp=tmp_path / "out")
     assert result.exit_code == 0, result.output
     r = json.loads(result.output)
     assert keys <= set(r) and "positions" in r

@@ -136,7 +136,7 @@ def test_the_speeds_figure_and_console_draw_the_table(tmp_path):
     assert list(axes[1].get_lines()[1].get_ydata()) == [r["contact_force_min_N"] for r in rows]
     pressure = next(a for a in axes if a.get_ylabel().startswith("Hertz"))
     assert list(pressure.get_lines()[0].get_ydata()) == [r["pressure_max_MPa"] for r in rows]
-    args = ["build", str(RDRD), "-o", str(tmp_path / "out")]
+    args = ["build", str(RDRD), "-o", str(tmp_path / "out"), "--figures"]
     for s in RANGE:
         args += ["--set", s]
     result = CliRunner().invoke(main, args)
@@ -145,7 +145,7 @@ def test_the_speeds_figure_and_console_draw_the_table(tmp_path):
     speeds = design.speed["speeds"]
     line = next(x for x in result.output.splitlines() if x.startswith("over 100 to 1500 rpm"))
     assert f"lift-off {speeds['liftoff_rpm']:.4g} rpm" in line and "allowable" in line
-    plain = CliRunner().invoke(main, ["build", str(RDRD), "-o", str(tmp_path / "plain")])
+    plain = CliRunner().invoke(main, ["build", str(RDRD), "-o", str(tmp_path / "plain"), "--figures"])
     assert plain.exit_code == 0, plain.output
     assert len(list((tmp_path / "out").iterdir())) == len(list((tmp_path / "plain").iterdir())) + 2
     off = design.speed["speeds"]["liftoff_rpm"]
@@ -196,7 +196,7 @@ def test_a_grooves_speeds_are_single_speed_builds(template, tmp_path):
             assert row[key] == pytest.approx(forces[key], rel=1e-9, abs=1e-12)
         assert row["pressure_max_MPa"] == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=1e-9)
         assert "holds" not in row
-    args = ["build", str(path), "-o", str(tmp_path / "out")]
+    args = ["build", str(path), "-o", str(tmp_path / "out"), "--figures"]
     for s in (*sets, "cam.rpm_range=[100, 1000]", "cam.rpm_steps=4"):
         args += ["--set", s]
     result = CliRunner().invoke(main, args)

@@ -126,6 +126,22 @@ def set_option(example: str) -> Any:
                         help=f"Override a template field before validation, e.g. --set {example} (repeatable).")
 
 
+#: the override ``--figures`` stands for
+FIGURES_OVERRIDE = "output.figures=true"
+
+
+def figures_option(func: Callable[..., Any]) -> Callable[..., Any]:
+    """``--figures``: also write the PNG and SVG figures (``--set output.figures=true``); the command's function
+    receives it as one more of its ``overrides``."""
+    @functools.wraps(func)
+    def wrapper(*args: Any, figures: bool = False, **kwargs: Any) -> Any:
+        if figures:
+            kwargs["overrides"] = (*kwargs.get("overrides", ()), FIGURES_OVERRIDE)
+        return func(*args, **kwargs)
+    return click.option("--figures", is_flag=True, help="Also write the figures as PNG and SVG (off by default: the "
+                        "page plots the same curves; same as --set output.figures=true).")(wrapper)
+
+
 def _output_folder(ctx: click.Context, param: click.Parameter, value: Path | None) -> Path | None:
     """Check ``-o`` before any work: a folder, or one that can be made (no file where a folder must be)."""
     if value is None:
@@ -149,11 +165,12 @@ def output_option(help: str, **kwargs: Any) -> Any:
 
 
 def template_options(example: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
-    """TEMPLATE, ``-o/--output`` (default out/<name>/) and ``--set`` (``example`` shows one)."""
+    """TEMPLATE, ``-o/--output`` (default out/<name>/), ``--set`` (``example`` shows one) and ``--figures``."""
     return lambda func: _apply(func, (
         template_argument(),
         output_option("Output folder (default: out/<name>/).", default=None),
-        set_option(example)))
+        set_option(example),
+        figures_option))
 
 
 def family_options(func: Callable[..., Any]) -> Callable[..., Any]:

@@ -152,13 +152,22 @@ def members(raw: dict, sweep: Mapping[str, Any]) -> list[Member]:
     return out
 
 
-def check_all(items: list[Member], validate: Callable[[dict], Any]) -> None:
-    """Validate every member before any work: the first problem is one clear error naming the member."""
+def check_all(items: list[Member], validate: Callable[[dict], Any]) -> list[Any]:
+    """Validate every member before any work: the first problem is one clear error naming the member; the
+    members' specs."""
+    specs = []
     for m in items:
         try:
-            validate(m.raw)
+            specs.append(validate(m.raw))
         except SpecError as exc:
             raise SpecError(f"member {m.name}: {exc}", "sweep") from None
+    return specs
+
+
+def _figures_asked(specs: list[Any]) -> bool:
+    """Whether any member writes figures (``"png"`` in its ``output.formats``): the family's overview figure
+    is written with them."""
+    return any("png" in getattr(getattr(s, "output", None), "formats", ()) for s in specs)
 
 
 Builder = Callable[[dict, Path], dict]
@@ -339,18 +348,21 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
                  jobs: int = 1, scheduler: str | None = None) -> list[dict]:
     """Everything ``family`` does: expand, validate every member, build (or resume), write the summary, and with a
     ``[sheet]`` table the members' cut parts nested on sheets (:func:`write_family_sheet`)."""
-    from camgen.core.figures import overview_figure
-
     raw, sweep = read_family(template)
     table = sheet_table(read_template(template))
     items = members(raw, sweep)
-    check_all(items, validate)
+    figures = _figures_asked(check_all(items, validate))
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
     keys = [k for k, _ in items[0].values]
     title = f"{raw.get('name')}: {len(rows)} members"
     bores = {m.name: _bore(m.raw) for m in items}
     shown = [{**r, "thumbnail_bore": bores.get(r["name"], 0.0)} for r in rows]     # the overview's, not the files'
-    write_summary(rows, root, keys, overview_figure(shown, title), family_page(title, rows, root, keys))
+    overview = None
+    if figures:
+        from camgen.core.figures import overview_figure
+
+        overview = overview_figure(shown, title)
+    write_summary(rows, root, keys, overview, family_page(title, rows, root, keys))
     if table is not None:
         write_family_sheet(str(raw.get("name", "family")), items, rows, root, table)
     return rows

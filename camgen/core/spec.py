@@ -21,7 +21,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from camgen.core.errors import SpecError
 from camgen.core.writers import (
-    DXF_FLAVOURS, DXF_VERSIONS, FORMATS, OPTIONAL_FORMATS, TEXT_MODES, WriteOptions, missing_extra)
+    DEFAULT_FORMATS, DXF_FLAVOURS, DXF_VERSIONS, FIGURE_FORMATS, FORMATS, OPTIONAL_FORMATS, TEXT_MODES, WriteOptions,
+    missing_extra)
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -112,7 +113,10 @@ class OutputTable(Model):
     """
 
     formats: tuple[Literal[FORMATS + OPTIONAL_FORMATS], ...] = Field(  # type: ignore[valid-type]
-        FORMATS, min_length=1, description="files to write (step only when asked, with the step extra installed)")
+        DEFAULT_FORMATS, min_length=1, description="files to write (png and svg figures, and step with the step "
+        "extra installed, only when asked)")
+    figures: bool = Field(False, description="also write the figures as PNG and SVG (the same as adding \"png\" "
+                          "and \"svg\" to formats; `--figures` on the command line)")
     dxf: Literal[DXF_FLAVOURS] = Field(  # type: ignore[valid-type]
         "polyline-bulge", description="DXF flavour: bulged polylines, LINE/ARC entities, or chords only")
     dxf_version: Literal[DXF_VERSIONS] = Field("R2010",  # type: ignore[valid-type]
@@ -125,6 +129,18 @@ class OutputTable(Model):
     tool_radius: float = Field(0.0, ge=0, le=1000.0, description="CNC routing: report every place an outline's "
                                "concave radius is smaller than this tool radius, 0 for no check",
                                json_schema_extra=unit("mm"))
+
+    @model_validator(mode="before")
+    @classmethod
+    def _figures_as_formats(cls, data: Any) -> Any:
+        """``figures = true`` adds the figures' formats to ``formats`` (given or default), so that ``formats``
+        always names every file written."""
+        if not isinstance(data, Mapping) or data.get("figures") is not True:
+            return data
+        formats = data.get("formats", DEFAULT_FORMATS)
+        if not isinstance(formats, (list, tuple)):
+            return data                                 # not a list: the field's own check names it
+        return {**data, "formats": [*formats, *(f for f in FIGURE_FORMATS if f not in formats)]}
 
     @field_validator("formats")
     @classmethod

@@ -29,8 +29,13 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
-#: every format a bundle can write, in the order their files are listed by default
+#: every format a bundle can write, in the order their files are listed
 FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html")
+#: the figures drawn by matplotlib: written on request (``output.figures``, ``--figures``, or named in
+#: ``output.formats``), since drawing them costs more than the rest of a build; the page plots the same curves
+FIGURE_FORMATS = ("png", "svg")
+#: what a build writes unless ``output.formats`` says otherwise: every format but the figures
+DEFAULT_FORMATS = tuple(f for f in FORMATS if f not in FIGURE_FORMATS)
 DXF_FLAVOURS = ("polyline-bulge", "lines-arcs", "segments")
 DXF_VERSIONS = ("R2010", "R12")
 #: how engraved text is written: TEXT entities (SVG <text>), or the glyphs' outlines for laser software that drops text
