@@ -111,7 +111,7 @@ class Nest:
     (:func:`used_area`: every sheet but the last whole, and on the last the rectangle from the sheet's corner to
     the parts' farthest right and top extents, the gap to the lower and left edges included);
     ``shelf_utilisation``: the same figure for
-    the shelf packing of the same parts on the same sheets (:func:`shelf_extent`), None where the shelves do not
+    the shelf packing of the same parts on the same sheets (:func:`shelf`), None where the shelves do not
     fit the sheets.
     """
 
@@ -191,6 +191,9 @@ class _Flat:
     boxes: tuple               # the exact outline's (xmin, ymin, xmax, ymax) at each rotation, mm
     grow: float
     chord: float
+    #: each rotation's footprint on a grid of a cell size, made once for every layout tried: {(rotation, cell):
+    #: (its box's lower-left corner grown (mm), the cells it covers from there)}
+    footprints: dict = field(default_factory=dict, compare=False, repr=False)
 
     @classmethod
     def of(cls, part: Part, rules: SheetRules) -> _Flat:
@@ -220,6 +223,19 @@ class _Flat:
         x0, y0, x1, y1 = self.boxes[k]
         return x1 - x0, y1 - y0
 
+    def footprint(self, k: int, grid: _Grid) -> tuple[np.ndarray, np.ndarray]:
+        """Rotation k's footprint on ``grid``'s cells: the lower-left corner (mm) of its polygon's box grown by
+        ``grow``, and the cells (rows along +Y) the grown polygon touches with that corner at the origin."""
+        key = (k, grid.cell)
+        if key not in self.footprints:
+            polygon = self.polygons[k]
+            x0, y0, x1, y1 = polygon.bounds
+            lo = np.array([x0 - self.grow, y0 - self.grow])
+            rows = math.ceil((y1 - y0 + 2 * self.grow) / grid.cell) + 1
+            cols = math.ceil((x1 - x0 + 2 * self.grow) / grid.cell) + 1
+            self.footprints[key] = lo, grid.cover(_shift(polygon, -lo), self.grow, np.zeros(2), (rows, cols))
+        return self.footprints[key]
+
 
 def _order_key(flat: _Flat, order: str) -> tuple:
     span = flat.span(0)
@@ -242,6 +258,7 @@ class _Grid:
         free_x = (xs >= lo) & (xs + cell <= hi_x)
         free_y = (ys >= lo) & (ys + cell <= hi_y)
         self.occupied = ~(free_y[:, None] & free_x[None, :])
+        self.inside = free_y, free_x                     # the rows and columns free on an empty sheet
         self.outlines: list = []                         # the placed polygons (sheet frame, not grown)
         self.ends = np.zeros(2)                          # their farthest right and top extents (mm)
         self._shapely = shapely
@@ -331,26 +348,17 @@ def _best_spot(grid: _Grid, flat: _Flat, lean: str) -> tuple[int, np.ndarray] | 
 
     Every key grows with the position's right and top, and the sheet is empty past the layout's extents, so the
     best position lies within the layout's extents plus the part's size: only that window is searched."""
-    from numpy import fft
-
     reach = max(max(b[2] - b[0], b[3] - b[1]) for b in flat.boxes) + 2 * flat.grow
     window = (min(grid.shape[0], math.ceil((grid.ends[1] + reach) / grid.cell) + 3),
               min(grid.shape[1], math.ceil((grid.ends[0] + reach) / grid.cell) + 3))
-    size = tuple(_fast_length(n) for n in window)
-    occupied = fft.rfft2(grid.occupied[:window[0], :window[1]].astype(float), s=size)
+    overlap = _Overlap(grid, window)
     best = None
     for k, polygon in enumerate(flat.polygons):
         x0, y0, x1, y1 = polygon.bounds
-        lo = np.array([x0 - flat.grow, y0 - flat.grow])
-        rows = math.ceil((y1 - y0 + 2 * flat.grow) / grid.cell) + 1
-        cols = math.ceil((x1 - x0 + 2 * flat.grow) / grid.cell) + 1
-        if rows > window[0] or cols > window[1]:
+        lo, mask = flat.footprint(k, grid)
+        if mask.shape[0] > window[0] or mask.shape[1] > window[1]:
             continue
-        # the footprint's cells with its box's lower-left corner at the origin; the overlap at every position
-        # (rows, columns) where it lies wholly in the window: a correlation, by FFT (no wrap-around there)
-        mask = grid.cover(_shift(polygon, -lo), flat.grow, np.zeros(2), (rows, cols))
-        overlap = fft.irfft2(occupied * np.conj(fft.rfft2(mask.astype(float), s=size)), s=size)
-        free = np.argwhere(overlap[:window[0] - rows + 1, :window[1] - cols + 1] < 0.5)
+        free = _first_free(overlap.free(mask))
         if not len(free):
             continue
         right = free[:, 1] * grid.cell + (x1 - x0)
@@ -363,6 +371,67 @@ def _best_spot(grid: _Grid, flat: _Flat, lean: str) -> tuple[int, np.ndarray] | 
         if best is None or key < best[0]:
             best = (key, k, np.array([free[j, 1] * grid.cell, free[j, 0] * grid.cell]) - lo)
     return None if best is None else (best[1], best[2])
+
+
+class _Overlap:
+    """Where a footprint may lie in a window (rows, columns from the sheet's corner) of a grid: the positions of
+    its lower-left cell at which it covers no occupied cell, and lies wholly in the window.
+
+    The count of occupied cells under the footprint at every position is a correlation, made by FFT (numpy's:
+    a build imports no scipy for it) once for the window and once for each footprint, with no wrap-around where
+    it is read; a count is a whole number, so "free" is a count under 0.5 whatever the transform's rounding (about
+    1e-10 here). On an empty sheet the occupied cells are the border only, and a footprint is free where its
+    covered cells' extent lies within the free rectangle: no transform is needed."""
+
+    def __init__(self, grid: _Grid, window: tuple[int, int]) -> None:
+        from numpy import fft
+
+        self.window = window
+        self.empty = not grid.outlines
+        self.inside = grid.inside
+        if not self.empty:
+            self.size = tuple(_fast_length(n) for n in window)
+            self.occupied = fft.rfft2(grid.occupied[:window[0], :window[1]].astype(float), s=self.size)
+
+    def free(self, mask: np.ndarray) -> np.ndarray:
+        """A boolean array (rows, columns) of the positions, each the footprint ``mask``'s lower-left cell, at
+        which it lies wholly in the window and covers no occupied cell."""
+        from numpy import fft
+
+        rows, cols = self.window[0] - mask.shape[0] + 1, self.window[1] - mask.shape[1] + 1
+        if self.empty:
+            return _within(mask.any(axis=1), self.inside[0][:self.window[0]], rows)[:, None] & \
+                _within(mask.any(axis=0), self.inside[1][:self.window[1]], cols)[None, :]
+        # the footprint's transform: its rows along +X first (the rest of the padded rows are zeros), then along
+        # +Y; the inverse transform's rows only as far as positions are read
+        spectrum = fft.fft(fft.rfft(mask.astype(float), n=self.size[1], axis=1), n=self.size[0], axis=0)
+        counts = fft.irfft(fft.ifft(self.occupied * np.conj(spectrum), axis=0)[:rows], n=self.size[1], axis=1)
+        return counts[:, :cols] < 0.5
+
+
+def _within(covered: np.ndarray, inside: np.ndarray, positions: int) -> np.ndarray:
+    """Along one axis of an empty sheet: at which of ``positions`` a footprint whose ``covered`` cells (a
+    boolean per cell from its first) all fall on ``inside`` cells (a run of free cells between the blocked
+    borders)."""
+    cells = np.flatnonzero(covered)
+    free = np.flatnonzero(inside)
+    at = np.arange(positions)
+    if not len(cells):
+        return np.ones(positions, dtype=bool)
+    if not len(free):
+        return np.zeros(positions, dtype=bool)
+    return (at + cells[0] >= free[0]) & (at + cells[-1] <= free[-1])
+
+
+def _first_free(free: np.ndarray) -> np.ndarray:
+    """The (row, column) of each row's first free position, rows in order (a row with none left out).
+
+    Every key :func:`_best_spot` orders positions by (the layout's rectangle, the part's upper right corner, its
+    right-hand extent, its top) grows with the column and the corner's strictly (columns are a cell, >= 0.25 mm,
+    apart), so along a row the first free position comes before every other: the best of all free positions is
+    the best of these, and the same one, since they keep their row-major order."""
+    rows = np.flatnonzero(free.any(axis=1))
+    return np.column_stack([rows, free[rows].argmax(axis=1)])
 
 
 def _compact(grid: _Grid, polygon, box: tuple, shift: np.ndarray, slack: float, rules: SheetRules) -> np.ndarray:
@@ -408,7 +477,7 @@ def _used_area(placed: list[Placed], rules: SheetRules) -> float:
     """The sheet area the layout uses (mm^2): see :func:`used_area`."""
     ends: dict[int, np.ndarray] = {}
     for p in placed:
-        x0, y0, x1, y1 = p.outline().bounds()
+        _, _, x1, y1 = p.outline().bounds()
         ends[p.sheet] = np.maximum(ends.get(p.sheet, np.zeros(2)), (x1, y1))
     return used_area([ends[s] for s in sorted(ends)], rules.size)
 
@@ -441,17 +510,6 @@ def shelf(parts: tuple[Part, ...], size: tuple[float, float], gap: float) -> lis
     return out
 
 
-def shelf_extent(parts: tuple[Part, ...], size: tuple[float, float], gap: float) -> list[np.ndarray] | None:
-    """Each sheet's farthest right and top extents (mm) in the :func:`shelf` layout; None where it does not fit."""
-    placed = shelf(parts, size, gap)
-    if placed is None:
-        return None
-    ends = [np.zeros(2) for _ in range(max(p.sheet for p in placed) + 1)] if placed else [np.zeros(2)]
-    for p in placed:
-        ends[p.sheet] = np.maximum(ends[p.sheet], p.outline().bounds()[2:])
-    return ends
-
-
 def _placed_items(p: Placed) -> list:
     """A placed part's drawing items in the sheet's frame, with its label."""
     angle, shift = p.angle, np.array(p.shift)
@@ -473,12 +531,10 @@ def _label(p: Placed) -> list[tuple[str, Text]]:
     """The part's name to score on ``LABELS``: centred on the point of the part farthest from its edges and holes,
     along the sheet's X or Y (whichever allows the taller text), at most LABEL_MAX_MM high and fitting inside the
     material; none where it would be under LABEL_MIN_MM high."""
-    import shapely
+    from camgen.core.kit import footprint
 
-    part, angle, shift = p.part, p.angle, np.array(p.shift)
-    body = shapely.Polygon(part.outline.moved(angle, shift).flatten(NEST_TOLERANCE_MM))
-    holes = [shapely.Polygon(h.moved(angle, shift).flatten(NEST_TOLERANCE_MM)) for h in part.holes]
-    body = body.difference(shapely.union_all(holes)) if holes else body
+    part = p.part
+    body = footprint(part, p.angle, np.array(p.shift), NEST_TOLERANCE_MM)
     if body.is_empty:
         return []
     from shapely.ops import polylabel
@@ -514,4 +570,4 @@ def _text_box(centre: np.ndarray, height: float, n: int, angle: float):
 
 
 __all__ = ["QUARTER_TURNS", "WITH_GRAIN", "Nest", "Placed", "SheetRules", "nest", "rotations_of", "sheet_kinds",
-           "shelf", "shelf_extent", "used_area"]
+           "shelf", "used_area"]
