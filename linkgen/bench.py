@@ -81,16 +81,23 @@ def plain_positions(t: np.ndarray) -> np.ndarray:
     return np.column_stack([ax + 200 * np.cos(th3), ay + 200 * np.sin(th3)])
 
 
+def positions_ratio(repeats: int) -> dict:
+    """The four-bar positions row of :func:`speed_ratios` alone (``repeats`` alternated pairs): the bundled
+    crank-rocker's poses at 100 000 crank angles against :func:`plain_positions`, e.g.
+    ``python -c "from linkgen.bench import positions_ratio; print(positions_ratio(20))"``."""
+    fb = FourBar(180, 80, 200, 150)
+    t = 2 * math.pi / 100_000 * np.arange(1, 100_001)
+    return ratio_row("four-bar positions, 100 000 crank angles", "plain numpy closed form (arccos)",
+                     lambda: call_seconds(lambda: fb.positions(t).b, 3),
+                     lambda: call_seconds(lambda: plain_positions(t), 3), repeats, goal="<= 1.0x")
+
+
 def speed_ratios(repeats: int) -> list[dict]:
     """Each of the issue's figures next to its yardstick measured alternately in this run (see
     :func:`camgen.core.bench.ratio_row`): four-bar positions at 100 000 crank angles against :func:`plain_positions`;
     ``linkgen analyze`` and ``linkgen build`` of the crank-rocker as whole processes (CPU seconds) against a process
     that only imports numpy and ezdxf."""
-    fb = FourBar(180, 80, 200, 150)
-    t = 2 * math.pi / 100_000 * np.arange(1, 100_001)
-    rows = [ratio_row("four-bar positions, 100 000 crank angles", "plain numpy closed form (arccos)",
-                      lambda: call_seconds(lambda: fb.positions(t).b, 3),
-                      lambda: call_seconds(lambda: plain_positions(t), 3), repeats * 4, goal="<= 1.0x")]
+    rows = [positions_ratio(repeats * 4)]
     python = sys.executable
     reference = [python, "-c", "import numpy, ezdxf"]
     with tempfile.TemporaryDirectory() as tmp:

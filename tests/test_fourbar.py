@@ -299,3 +299,36 @@ def test_newton_report_at_the_issues_toggle():
     assert newton["stopped"].startswith("at a toggle's least-squares pose")
     rows = newton["iterations"]
     assert rows[0]["residual_mm"] > 1 and rows[-1]["residual_mm"] < 3e-10
+
+
+@pytest.mark.parametrize("fb", [*CASES, FourBar(100, 40, 100, 40), FourBar(100, 70, 60, 80),
+                                FourBar(180, 80, 200, 150, point_distance=120.0, point_angle=0.5)],
+                         ids=lambda fb: f"{fb.ground:g}-{fb.crank:g}-{fb.coupler:g}-{fb.rocker:g}")
+def test_poses_in_chunks_are_those_of_one_pass_to_the_last_bit(monkeypatch, fb):
+    """The angles are placed a chunk at a time (fourbar.CHUNK); each angle's pose does not depend on the chunk it
+    is in: chunks of 7 and of 1 000 agree with one chunk of all, bit for bit, toggles (range ends) included, for
+    positions, sweeps and rocker-driven poses; an angle out of reach in a later chunk is the same error."""
+    from linkgen.kinematics import fourbar
+
+    ranges = fb.input_ranges()
+    t = np.linspace(*(ranges[0] if ranges else (-1.0, 8.0)), 2_501)
+    mirrored = FourBar(fb.ground, fb.rocker, fb.coupler, fb.crank).input_ranges()    # the rocker as the input
+    t4 = math.pi - np.linspace(*(mirrored[0] if mirrored else (-1.0, 8.0)), 2_501)
+    runs = {}
+    for chunk in (7, 1_000, 10**9):
+        monkeypatch.setattr(fourbar, "CHUNK", chunk)
+        runs[chunk] = [fb.positions(t, "open"), fb.positions(t, "crossed"), fb.sweep(t, "open"),
+                       fb.rocker_positions(t4, "crossed")]
+    for chunk in (7, 1_000):
+        for ours, one in zip(runs[chunk], runs[10**9], strict=True):
+            for field in ("theta3", "theta4", "gamma", "a", "b", "point", "assembly"):
+                assert np.array_equal(getattr(ours, field), getattr(one, field)), field
+                assert getattr(ours, field).tobytes() == getattr(one, field).tobytes(), field  # -0.0 too
+    if ranges:
+        monkeypatch.setattr(fourbar, "CHUNK", 7)
+        with pytest.raises(SpecError, match="out of reach") as small:
+            fb.positions(np.append(t, ranges[0][1] + 1e-3))
+        monkeypatch.setattr(fourbar, "CHUNK", 10**9)
+        with pytest.raises(SpecError, match="out of reach") as one:
+            fb.positions(np.append(t, ranges[0][1] + 1e-3))
+        assert str(small.value) == str(one.value)

@@ -39,6 +39,9 @@ ASSEMBLIES: tuple[str, ...] = ("open", "crossed")
 #: inputs this far (relative to the longest link) beyond a toggle are snapped onto it
 FEASIBILITY_TOL = 1e-10
 TWO_PI = 2.0 * math.pi
+#: crank angles placed at a time (:meth:`FourBar._poses`): each of the 12 intermediates 128 kB, together within a
+#: core's caches; of 4 096 to 32 768 at 100 000 angles, 4 096 and 8 192 measured slower (README, "Four-bar positions")
+CHUNK = 16384
 
 
 def _sign(assembly: str) -> int:
@@ -47,27 +50,42 @@ def _sign(assembly: str) -> int:
     return 1 if assembly == "open" else -1
 
 
-def _area4(a: float, b: float, c: np.ndarray) -> np.ndarray:
+def _area4(a: float, b: float, c: np.ndarray, out: np.ndarray | None = None,
+           work: np.ndarray | None = None) -> np.ndarray:
     """Four times the area of triangles with sides a, b (numbers) and c (array), by Kahan's stable form of
-    Heron's formula with the sides sorted x >= y >= z; 0 where they only just close.
+    Heron's formula with the sides sorted x >= y >= z; 0 where they only just close. Written into ``out`` with
+    ``work`` (5 rows as long as c) for the intermediates when given.
 
-    With two sides fixed, the order is chosen by comparisons alone (no arithmetic), so it is exact. Each
-    intermediate is worked in place: over many triangles the cost is memory traffic, not arithmetic.
+    With two sides fixed, the order is chosen by comparisons alone (no arithmetic), so it is exact; where every
+    c is on one side of a and b the sorted sides are c and two numbers, and the numbers' sums are made once
+    (the same sums: the same bits). Each intermediate is worked in place: over many triangles the cost is
+    memory traffic, not arithmetic.
     """
+    rows = iter(np.empty((5, *np.shape(c))) if work is None else work)
+    first = np.empty(np.shape(c)) if out is None else out
     p, q = max(a, b), min(a, b)
-    x = np.maximum(c, p)
-    z = np.minimum(c, q)
-    y = np.clip(c, q, p)                         # the middle side: c between q and p, else the nearer of them
-    x_y = x - y
-    first = np.add(y, z)
-    first += x                                   # x + (y + z)
-    second = np.subtract(z, x_y)                 # z - (x - y)
-    first *= second
-    np.add(z, x_y, out=second)                   # z + (x - y)
-    first *= second
-    np.subtract(y, z, out=second)
-    second += x                                  # x + (y - z)
-    first *= second
+    low, high = (np.fmin.reduce(c), np.fmax.reduce(c)) if np.size(c) else (p, p)
+    x: np.ndarray | float
+    y: np.ndarray | float
+    z: np.ndarray | float
+    if low >= p:
+        x, y, z = c, p, q
+    elif low >= q and high <= p:
+        x, y, z = p, c, q
+    elif high <= q:
+        x, y, z = p, q, c
+    else:
+        x, z, y = np.maximum(c, p, out=next(rows)), np.minimum(c, q, out=next(rows)), np.maximum(c, q, out=next(rows))
+        np.minimum(y, p, out=y)                  # the middle side: c between q and p, else the nearer of them
+
+    def op(ufunc: np.ufunc, u: np.ndarray | float, v: np.ndarray | float, into: np.ndarray) -> np.ndarray | float:
+        return ufunc(u, v) if np.isscalar(u) and np.isscalar(v) else ufunc(u, v, out=into)
+
+    x_y, second = op(np.subtract, x, y, next(rows)), next(rows)
+    np.add(op(np.add, y, z, first), x, out=first)                    # x + (y + z)
+    first *= op(np.subtract, z, x_y, second)                         # z - (x - y)
+    first *= op(np.add, z, x_y, second)                              # z + (x - y)
+    first *= op(np.add, op(np.subtract, y, z, second), x, second)    # x + (y - z)
     np.maximum(first, 0.0, out=first)
     return np.sqrt(first, out=first)
 
@@ -199,8 +217,8 @@ class FourBar:
             return ((a_lo, TWO_PI - a_lo),)
         return ((a_lo, a_hi), (TWO_PI - a_hi, TWO_PI - a_lo))
 
-    def _check_reach(self, theta2: np.ndarray, mirrored: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The vector A -> O4 and its length at each crank angle, or a clear error if one is out of reach.
+    def _check_reach(self, theta2: np.ndarray, mirrored: bool = False) -> None:
+        """A clear error if a crank angle is out of reach (or puts the crank pin on the rocker pivot).
 
         ``mirrored``: this is the mirror image of a rocker-driven linkage (see :meth:`rocker_positions`), and
         the errors speak of the rocker's angles, 180 degrees minus the mirror's crank angles.
@@ -220,71 +238,95 @@ class FourBar:
             raise SpecError(f"{link} angle {angle:.{digits}g} degrees is out of reach; this linkage reaches {link} "
                             f"angles {text} degrees", "angle")
         _refuse_coincident(theta2, z <= tol, "coupler's position is", mirrored)
-        return dx, dy, z
 
     # ------------------------------------------------------------------ positions
 
-    def _poses(self, theta2: np.ndarray, sign: np.ndarray,
-               reach: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None) -> Poses:
-        """Poses at crank angles ``theta2`` with assembly ``sign`` (+-1 each), from ``reach`` (A -> O4 and its
-        length, :meth:`_check_reach`) when given.
+    def _poses(self, theta2: np.ndarray, sign: np.ndarray, check: bool = False, mirrored: bool = False) -> Poses:
+        """Poses at crank angles ``theta2`` (1-D) with assembly ``sign`` (+-1 each); with ``check``, every angle's
+        reach is checked first as :meth:`_check_reach` does (``mirrored`` as there), with its errors.
 
-        Intermediates are worked in place where the same operations in the same order allow it (the numbers are
-        the same to the last bit): over 100 000 angles each fresh array is 800 kB that the allocator takes from
-        the system page by page, and those page faults cost more than the arithmetic (4 450 a call before,
-        3 484 now; the plain arccos form 2 116). The angles go into buffers the placement is done with."""
-        l1, l3, l4 = self.ground, self.coupler, self.rocker
-        if reach is None:
-            dx, dy = self._z(theta2)
-            z = np.hypot(dx, dy)
-        else:
-            dx, dy, z = reach
+        The angles are placed :data:`CHUNK` at a time into the result arrays made once: over 100 000 angles each
+        intermediate of the whole would be 800 kB that the allocator takes from the system page by page, and
+        those page faults cost more than the arithmetic; a chunk's intermediates stay in the cache and in the
+        allocator's own memory. Each angle sees the same operations in the same order as unchunked, so the
+        poses are the same to the last bit."""
+        n = theta2.size
+        # the results in one block: from 4 MB numpy asks the kernel for huge pages, a few faults instead of 1 400
+        block = np.empty((9 if self.point_distance else 7) * n)
+        theta3, theta4, gamma = block[:n], block[n:2 * n], block[2 * n:3 * n]
+        a, b = block[3 * n:5 * n].reshape(n, 2), block[5 * n:7 * n].reshape(n, 2)
+        point = block[7 * n:].reshape(n, 2) if self.point_distance else a
+        work = np.empty((12, min(n, CHUNK)))             # each chunk's intermediates, rows reused
+        for i in range(0, n, CHUNK):
+            j = min(i + CHUNK, n)
+            self._place(theta2, sign[i:j], slice(i, j), check, mirrored, work[:, :j - i],
+                        (theta3[i:j], theta4[i:j], gamma[i:j], a[i:j], b[i:j], point[i:j]))
+        return Poses(theta2, theta3, theta4, gamma, a, b, point, sign)
+
+    def _place(self, theta2: np.ndarray, sign: np.ndarray, part: slice, check: bool, mirrored: bool,
+               work: np.ndarray, out: tuple[np.ndarray, ...]) -> None:
+        """Place the angles ``theta2[part]`` into ``out`` (theta3, theta4, gamma, A, B and the coupler point's
+        rows of :meth:`_poses`'s results); ``work``: 12 rows as long as the part for the intermediates."""
+        l1, l2, l3, l4 = self.ground, self.crank, self.coupler, self.rocker
+        t = theta2[part]
+        dx, dy, z, two_l3z, z2, area4, cos_a, sin_a, ux, uy, ex, turned = work
+        # A -> O4 without cancellation, as _z: (L1 - L2) + 2 L2 sin^2(theta2 / 2), -L2 sin theta2
+        np.divide(t, 2.0, out=dx)
+        np.sin(dx, out=dx)
+        np.square(dx, out=dx)
+        np.multiply(2.0 * l2, dx, out=dx)
+        np.add(l1 - l2, dx, out=dx)
+        np.sin(t, out=dy)
+        np.multiply(-l2, dy, out=dy)
+        np.hypot(dx, dy, out=z)
+        if check and z.size:
+            tol, low, high = FEASIBILITY_TOL * self.longest, np.fmin.reduce(z), np.fmax.reduce(z)   # NaN ignored
+            if high > l3 + l4 + tol or low < abs(l3 - l4) - tol or low <= tol:
+                self._check_reach(theta2, mirrored)            # the error, said of all the angles as asked
         # A -> B is the unit vector A -> O4 turned by the triangle's angle at A (its cosine by the law of
         # cosines, its sine from the stable area): no angle needs computing to place B
-        two_l3z = 2.0 * l3 * z
-        z2 = z**2
+        np.multiply(2.0 * l3, z, out=two_l3z)
+        np.square(z, out=z2)
         if any(self.folds()):
             # near a fold z has lost the digits the area needs: it is the product of the roots instead; and
             # L3^2 - L4^2 goes first, exact for a deltoid's L3 = L4 where z -> 0
-            m, p = self._roots(theta2)
-            area4 = np.abs(m.value * p.value)
-            cos_a = ((l3 - l4) * (l3 + l4) + z2) / two_l3z
+            m, p = self._roots(t)
+            np.abs(m.value * p.value, out=area4)
+            np.divide((l3 - l4) * (l3 + l4) + z2, two_l3z, out=cos_a)
         else:
-            area4 = _area4(l3, l4, z)
-            cos_a = np.add(l3**2, z2)
+            _area4(l3, l4, z, area4, work[6:11])
+            np.add(l3**2, z2, out=cos_a)
             cos_a -= l4**2
             cos_a /= two_l3z
-        sin_a = sign * area4
+        np.multiply(sign, area4, out=sin_a)
         sin_a /= two_l3z
-        ux, uy = dx / z, dy / z
-        ex = cos_a * ux
-        turned = sin_a * uy
+        np.divide(dx, z, out=ux)
+        np.divide(dy, z, out=uy)
+        np.multiply(cos_a, ux, out=ex)
+        np.multiply(sin_a, uy, out=turned)
         ex -= turned
-        ey = cos_a * uy
+        ey = two_l3z                                            # done with: B's direction goes there
+        np.multiply(cos_a, uy, out=ey)
         np.multiply(sin_a, ux, out=turned)
         ey += turned
-        # the crank pin: dy is -L2 sin theta2 (see _z), so A's y is -dy to the last bit, with no second sine
-        a = np.empty((theta2.size, 2))
-        np.cos(theta2, out=a[:, 0])
-        a[:, 0] *= self.crank
+        theta3, theta4, gamma, a, b, point = out
+        # the crank pin: dy is -L2 sin theta2, so A's y is -dy to the last bit, with no second sine
+        np.cos(t, out=a[:, 0])
+        a[:, 0] *= l2
         np.negative(dy, out=a[:, 1])
-        b = np.empty_like(a)
         np.multiply(l3, ex, out=b[:, 0])
         b[:, 0] += a[:, 0]
         np.multiply(l3, ey, out=b[:, 1])
         b[:, 1] += a[:, 1]
-        # the angles into buffers that are done with (cos_a, ux, uy, sin_a): fresh arrays of their own
-        theta3 = np.arctan2(ey, ex, out=cos_a)
+        np.arctan2(ey, ex, out=theta3)
         np.subtract(b[:, 0], l1, out=ux)
-        theta4 = np.arctan2(b[:, 1], ux, out=uy)
+        np.copyto(uy, b[:, 1])                                  # arctan2 reads a contiguous copy twice as fast
+        np.arctan2(uy, ux, out=theta4)
         np.subtract(l3**2 + l4**2, z2, out=z2)
-        gamma = np.arctan2(area4, z2, out=sin_a)                   # angle at B: the transmission angle
+        np.arctan2(area4, z2, out=gamma)                        # angle at B: the transmission angle
         if self.point_distance:
             ang = theta3 + self.point_angle
-            point = a + self.point_distance * np.column_stack([np.cos(ang), np.sin(ang)])
-        else:
-            point = a
-        return Poses(theta2, theta3, theta4, gamma, a, b, point, sign)
+            point[:] = a + self.point_distance * np.column_stack([np.cos(ang), np.sin(ang)])
 
     def positions(self, theta2: ArrayLike, assembly: Assembly = "open") -> Poses:
         """Closed-form poses at crank angles ``theta2`` (radians) for one assembly label.
@@ -297,7 +339,7 @@ class FourBar:
 
     def _placed(self, theta2: ArrayLike, assembly: Assembly, mirrored: bool = False) -> Poses:
         t = np.atleast_1d(np.asarray(theta2, dtype=float))
-        return self._poses(t, np.full(t.shape, _sign(assembly)), self._check_reach(t, mirrored))
+        return self._poses(t, np.full(t.shape, _sign(assembly)), check=True, mirrored=mirrored)
 
     def rocker_positions(self, theta4: ArrayLike, assembly: Assembly = "open") -> Poses:
         """Poses when the rocker drives, at rocker angles ``theta4`` (rad).
@@ -336,14 +378,13 @@ class FourBar:
         the smooth branch, so a parallelogram stays a parallelogram.
         """
         t = np.atleast_1d(np.asarray(theta2, dtype=float))
-        reach = self._check_reach(t)
         half = _half_turns(t)
         flips = np.zeros(t.shape, dtype=int)
         for cp in self.change_points():
             turn = np.floor((half - round(cp / math.pi)) / 2)     # change points at or below each angle
             flips[1:] += np.cumsum(np.abs(np.diff(turn))).astype(int)
         sign = _sign(assembly) * np.where(flips % 2 == 0, 1, -1)
-        return self._poses(t, sign, reach)
+        return self._poses(t, sign, check=True)
 
     # ------------------------------------------------------------------ Newton-Raphson
 
