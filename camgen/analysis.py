@@ -48,7 +48,8 @@ def _peaks_steps(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -
     def values(g: PitchGeometry) -> np.ndarray:
         return np.stack([q(g) for q in quantities])
 
-    steps = cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities])
+    steps = cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities],
+                                     getattr(cam.follower, "steady", False))
     index, v = next(steps)
     while True:
         (g,) = yield [(index, v, True)]

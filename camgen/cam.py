@@ -96,37 +96,39 @@ class Cam:
     def pitch_of(self, asks: Sequence[Ask], boundaries: bool = False) -> list[PitchGeometry]:
         """Pitch geometry at the points of every ask (see :data:`Ask`), each on its own segment (one-sided limits
         at its ends), all from one evaluation; with ``boundaries`` the segment boundaries' too (kept for
-        :meth:`corners` and :meth:`Program.jumps`, the same numbers as their own evaluation)."""
+        :meth:`corners` and :meth:`Program.jumps`, the same numbers as their own evaluation). The asks in the law's
+        variable are evaluated first, then those in cam angles (each point's numbers are its own either way)."""
         program = self.program
         table = program._table
-        sizes = [a[1].size for a in asks]
-        index = [np.full(size, a[0]) if isinstance(a[0], int) else a[0] for a, size in zip(asks, sizes, strict=True)]
-        x = [a[1] for a in asks]
-        law = [a[2] for a in asks]
+        order = [k for k, a in enumerate(asks) if a[2]]
+        split = len(order)
+        order += [k for k, a in enumerate(asks) if not a[2]]
+        index = [a[0] if isinstance(a[0], np.ndarray) else np.full(a[1].size, a[0]) for a in (asks[k] for k in order)]
+        x = [asks[k][1] for k in order]
         if boundaries:
             theta, ends = program.boundary_points
             index.append(ends)
             x.append(theta)
-            law.append(False)
-            sizes.append(theta.size)
+        sizes = [part.size for part in x]
+        cut = sum(sizes[:split])                        # the law's variable before, cam angles after
         index, x = np.concatenate(index), np.concatenate(x)
-        if all(law):
-            theta, v = table.angle(index, x), x
-        elif not any(law):
+        if cut == 0:
             theta, v = x, table.variable(index, x)
+        elif cut == x.size:
+            theta, v = table.angle(index, x), x
         else:
-            mask = np.repeat(law, sizes)
-            theta, v = np.where(mask, table.angle(index, x), x), np.where(mask, x, table.variable(index, x))
+            theta = np.concatenate([table.angle(index[:cut], x[:cut]), x[cut:]])
+            v = np.concatenate([x[:cut], table.variable(index[cut:], x[cut:])])
         motion = table.at_law(index, v)
         g = self.follower.pitch(theta, motion)
-        out, a = [], 0
-        for size in sizes:
-            out.append(g.part(a, a + size))
+        out: list[Any] = [None] * len(asks)
+        a = 0
+        for k, size in zip(order, sizes, strict=False):
+            out[k] = g.part(a, a + size)
             a += size
         if boundaries:
-            b = a - sizes[-1]
-            program.known_boundaries(motion[:, b:])
-            self.__dict__["_boundaries"] = self._halves(out.pop())
+            program.known_boundaries(motion[:, a:])
+            self.__dict__["_boundaries"] = self._halves(g.part(a, x.size))
         return out
 
     def corners(self) -> list[tuple[int, float]]:

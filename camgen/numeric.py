@@ -76,11 +76,12 @@ def _vertex(y: np.ndarray, lo: float | np.ndarray, hi: float | np.ndarray) -> tu
     the parabola's vertex: t (m,), zero where ``ok`` (m,) is False (no maximum within [lo, hi]); the quartic's value
     there; and its coefficients a2 and a4 (of t^2, t^4)."""
     a1, a2, a3, a4 = (y @ _QUARTIC).T
+    twice, thrice, six = 2 * a2, 3 * a3, 6 * a3               # the same numbers each step: made once
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        t = -a1 / (2 * a2)
+        t = -a1 / twice
         for _ in range(3):
-            t = t - (a1 + t * (2 * a2 + t * (3 * a3 + t * 4 * a4))) / (2 * a2 + t * (6 * a3 + t * 12 * a4))
-        ok = (2 * a2 + t * (6 * a3 + t * 12 * a4) < 0) & (t >= lo) & (t <= hi)     # False where t is NaN
+            t = t - (a1 + t * (twice + t * (thrice + t * 4 * a4))) / (twice + t * (six + t * 12 * a4))
+        ok = (twice + t * (six + t * 12 * a4) < 0) & (t >= lo) & (t <= hi)     # False where t is NaN
     t = np.where(ok, t, 0.0)
     return t, ok, y[:, 2] + t * (a1 + t * (a2 + t * (a3 + t * a4))), a2, a4
 
@@ -108,7 +109,7 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
-                 n: int = GRID) -> Steps:
+                 steady: ArrayLike = False, n: int = GRID) -> Steps:
     """Global maxima of k smooth functions on each of p closed intervals, all at once, as a generator: it yields
     ``(x, piece)`` and is sent the functions' values there (see below), so that a caller can evaluate what it asks
     together with other work (one evaluation serving several searches).
@@ -126,7 +127,9 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     the maximiser within ~1e-12 of the breadth and the maximum to the rounding of the values (a peak the estimate
     missed by more than the stencil gets further rounds, at most ``ROUNDS``). A piece's maximum is the first of its
     ends and peaks within ``TIE`` of each function's magnitude of the largest, from its low end (from its high end
-    where ``reverse``, (p,) or one for all, is True).
+    where ``reverse``, (p,) or one for all, is True). A piece where ``steady`` ((p,) or one for all) is True is one
+    on which the caller knows every function to be constant to the last bit: its grid is asked for its first point
+    only, whose values stand for the rest (the same search as if all were asked).
     Raises FloatingPointError where a value is not finite on the grid or near a peak.
     """
     lo, hi = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
@@ -134,8 +137,19 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     width = hi - lo
     x = lo[:, None] + width[:, None] * (_UNIT if n == GRID else np.linspace(0.0, 1.0, n))
     x[:, -1] = hi
-    y = yield x.ravel(), np.repeat(np.arange(p), n)
-    k = y.shape[0]
+    steady = np.broadcast_to(np.asarray(steady, dtype=bool), (p,))
+    if steady.any():                                          # such a piece's grid: its first point's values
+        moving = np.flatnonzero(~steady)
+        still = np.flatnonzero(steady)
+        got = yield (np.concatenate([x[moving].ravel(), x[still, 0]]),
+                     np.concatenate([np.repeat(moving, n), still]))
+        k = got.shape[0]
+        y = np.empty((k, p, n))
+        y[:, moving] = got[:, :moving.size * n].reshape(k, moving.size, n)
+        y[:, still] = got[:, moving.size * n:, None]
+    else:
+        y = yield x.ravel(), np.repeat(np.arange(p), n)
+        k = y.shape[0]
     y = y.reshape(k * p, n)                                   # a row for each function on each piece
     if not np.isfinite(y).all():
         raise FloatingPointError("function is not finite on the search grid")

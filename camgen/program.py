@@ -7,6 +7,7 @@ the start of the first segment, in the cam's sense of rotation.
 """
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from collections.abc import Callable, Generator, Sequence
@@ -56,6 +57,11 @@ class Segment:
         """Natural magnitudes h/beta^k of s, s', s'', s''' in this segment (k = 0..3)."""
         h = self.lift if self.kind != "dwell" else 0.0
         return h / self.beta ** np.arange(4)
+
+    @functools.cached_property
+    def scales(self) -> list[float]:
+        """:meth:`scale` as Python floats, made once a segment."""
+        return self.scale().tolist()
 
     def evaluate(self, theta: ArrayLike) -> np.ndarray:
         """s, s', s'', s''' (shape ``(4, *theta.shape)``) at cam angles inside this segment (radians)."""
@@ -212,7 +218,7 @@ class Program:
 
         return drive(self.maxima_steps(lambda values: values, scale), answer)
 
-    def maxima_steps(self, values: Callable[[Any], np.ndarray], scale: ArrayLike = 0.0
+    def maxima_steps(self, values: Callable[[Any], np.ndarray], scale: ArrayLike = 0.0, steady: bool = False
                      ) -> Generator[tuple[np.ndarray, np.ndarray], Any, list[tuple[float, float]]]:
         """:meth:`maxima` as a generator: it yields ``(index, v)``, points given by their segment (n,) and their law
         variable (n,) (see :meth:`Segment.at_law`), and is sent what the caller evaluated there, which ``values``
@@ -222,11 +228,15 @@ class Program:
         its ends (a segment's ends, and where its law changes piece), the maximiser located to ~1e-13 of the
         piece's angle (see :func:`camgen.numeric.maxima_steps`). Values within ``TIE`` (1e-12) of a row's
         magnitude (the larger of ``scale``, (k,) or a number, and its largest |value| seen) are equal: of equal
-        peaks the one at the smallest angle is taken, so that rounding does not choose between them.
+        peaks the one at the smallest angle is taken, so that rounding does not choose between them. ``steady``
+        says that the values depend on the motion only, not on the cam angle, so that a dwell's are constant: its
+        grid is then one point (see :func:`camgen.numeric.maxima_steps`).
         """
         owner, lo, hi = self._pieces
         table = self._table
-        steps = maxima_steps(lo, hi, scale=scale, reverse=table.backwards[owner])
+        still = steady and np.array([self.segments[i].kind == "dwell" or self.segments[i].law is None
+                                     for i in owner.tolist()])
+        steps = maxima_steps(lo, hi, scale=scale, reverse=table.backwards[owner], steady=still)
         ask = next(steps)
         while True:
             x, piece = ask
@@ -302,7 +312,7 @@ class Program:
         found: list[Jump] = []
         n = len(self.segments)
         motion = self.boundaries[1].T.tolist()              # as Python floats: the same numbers, cheaper one by one
-        scales = [seg.scale().tolist() for seg in self.segments]
+        scales = [seg.scales for seg in self.segments]
         for i, seg in enumerate(self.segments):
             scale = [max(a, b) for a, b in zip(scales[i], scales[(i + 1) % n], strict=True)]
             found += _compare(seg.end, motion[i], motion[n + i], scale, inside=False)
@@ -328,7 +338,7 @@ class _Table:
         group = []
         for seg, m in zip(segments, moving, strict=True):
             law = seg.law if m else None
-            found = next((g for g, known in enumerate(laws) if known is law), None)
+            found = next((g for g, known in enumerate(laws) if known is law or _alike(known, law)), None)
             if found is None:
                 laws.append(law)
                 found = len(laws) - 1
@@ -366,6 +376,12 @@ class _Table:
                 made[0] += self.level[at]
                 out[:, sel] = made
         return out
+
+
+def _alike(a: Law | None, b: Law | None) -> bool:
+    """True when the laws ``a`` and ``b`` are one function: of one class without parameters (a cycloidal rise and a
+    cycloidal return), so that one call evaluates both segments' points (each point's numbers are its own)."""
+    return a is not None and type(a) is type(b) and not dataclasses.fields(a)
 
 
 def _compare(theta: float, left: Sequence[float], right: Sequence[float], scale: Sequence[float],

@@ -172,3 +172,20 @@ def test_a_design_takes_two_evaluations_of_its_follower(monkeypatch):
     alone = exact_outline(cam, spec.output.tolerance).contour
     assert _same(design.outline.contour.vertices, alone.vertices) and _same(design.outline.contour.bulges, alone.bulges)
     assert design.jumps == tuple(build_cam(spec).program.jumps())
+
+
+@pytest.mark.parametrize("law", TABLE_LAWS)
+@pytest.mark.parametrize("follower", ["offset roller", "knife edge", "oscillating roller", "clockwise"])
+def test_a_dwell_searched_at_one_point_is_the_search_of_its_grid(follower, law, monkeypatch):
+    from camgen.analysis import analyze
+
+    changes = {**FOLLOWERS[follower], "motion.0.law": law}
+    cam = _cam(changes)
+    assert cam.follower.steady
+    dwell = next(i for i, seg in enumerate(cam.program.segments) if seg.kind == "dwell")
+    seg = cam.program.segments[dwell]
+    g = cam.segment_pitch(dwell, np.linspace(seg.start, seg.end, 129))     # constant to the last bit on a dwell
+    assert (g.kappa == g.kappa[0]).all() and (g.pressure_angle == g.pressure_angle[0]).all()
+    steady = analyze(cam)
+    monkeypatch.setattr(type(cam.follower), "steady", False)
+    assert analyze(_cam(changes)) == steady

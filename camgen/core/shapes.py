@@ -133,7 +133,8 @@ class Contour:
     def flatten(self, tolerance: float) -> np.ndarray:
         """Polygon vertices (m, 2), first not repeated, with every arc split into chords within ``tolerance`` mm."""
         idx, p, chord, angle, centre = self._arc_pieces
-        out = np.split(self.vertices, idx + 1)                         # the vertices up to each arc's start
+        cuts = [0, *(idx + 1).tolist(), len(self.vertices)]
+        out = [self.vertices[a:b] for a, b in zip(cuts[:-1], cuts[1:], strict=True)]   # up to each arc's start
         for k in range(len(idx)):
             radius = chord[k] / (2.0 * abs(math.sin(angle[k] / 2.0)))
             n = arc_steps(radius, angle[k], tolerance)

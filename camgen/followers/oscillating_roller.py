@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -26,6 +26,10 @@ from camgen.followers.base import FollowerType, PitchGeometry, Swing, from_centr
 @dataclass(frozen=True)
 class OscillatingRoller(Swing):
     """Roller follower on an arm (see the module docstring); lengths in mm."""
+
+    #: its curvature and pressure angle are made from the arm's swing in the fixed frame, not from the cam angle:
+    #: constant on a dwell to the last bit (the analysis then searches a dwell at one point, see Program.maxima_steps)
+    steady: ClassVar[bool] = True
 
     pivot_distance: float
     arm_length: float

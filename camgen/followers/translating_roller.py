@@ -32,6 +32,9 @@ class TranslatingRoller:
 
     flat: ClassVar[bool] = False
     lift_unit: ClassVar[str] = "mm"
+    #: its curvature and pressure angle are made from the motion in the fixed frame, not from the cam angle: constant
+    #: on a dwell to the last bit (the analysis then searches a dwell at one point, see Program.maxima_steps)
+    steady: ClassVar[bool] = True
 
     def __post_init__(self) -> None:
         if not abs(self.offset) < self.prime_radius:
