@@ -199,12 +199,18 @@ def step_part(design: CamDesign) -> tuple[Part, Outline]:
     allowed undercut that is not a flat face's (a roller's loops cut away, a knife edge's corners) has no biarc
     maker and keeps its chords. Holes, clearance and elephant foot are the printed part's."""
     spec, outline = design.spec, design.outline
-    if _curves(spec) == "biarcs" or (outline.envelope and design.face_leaves is None):
+    if _curves(spec) == "biarcs" or step_chords(design):
         return design.printed, outline
     tol = spec.output.tolerance
     smooth = (flat_envelope(design.cam, tol, "biarcs").outline(0.0) if design.face_leaves is not None
               else exact_outline(design.cam, tol, "biarcs"))
     return dataclasses.replace(design.printed, outline=smooth.contour), smooth
+
+
+def step_chords(design: CamDesign) -> bool:
+    """Whether the STEP file keeps the outline's chords (see :func:`step_part`): an envelope of an allowed undercut
+    that is not a flat face's has no biarc maker."""
+    return design.outline.envelope and design.face_leaves is None
 
 
 def _curves(spec: CamSpec) -> str:

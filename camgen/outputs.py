@@ -9,6 +9,7 @@ asked), ``<name>.json``,
 """
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -17,14 +18,9 @@ from camgen.core.bundle import Bundle, item, tail, write_bundle
 from camgen.core.errors import ExportError, SpecError
 from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
-from camgen.core.kit import kit_items
 from camgen.core.writers import WriteOptions
-from camgen.design import CamDesign, step_part
-from camgen.geneva.design import GenevaDesign
-from camgen.geneva.outputs import geneva_bundle, geneva_row
+from camgen.design import CamDesign, step_chords, step_part
 from camgen.kinds import kind_of
-from camgen.kit import cam_kit
-from camgen.page import cam_page
 from camgen.report import cam_report
 
 #: chord tolerance (mm) of the outline drawn in a family's overview: a thumbnail an inch wide
@@ -42,14 +38,24 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
         return {"svaj": plots.svaj_figure, "cam": plots.cam_figure, "checks": plots.checks_figure,
                 "speeds": plots.speeds_figure}[kind](design)
 
-    kit = cam_kit(design) if design.spec.kit is not None else None
-    if kit is not None:
+    def page() -> Any:
+        from camgen.page import cam_page
+
+        return cam_page(design, report)
+
+    kit = None
+    if design.spec.kit is not None:
+        from camgen.kit import cam_kit
+
+        kit = cam_kit(design)
         report["kit"] = kit.report
     solid = step_solid(design, report) if "step" in design.spec.output.formats else design.printed
-    bundle = cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
+    bundle = cam_files(design.spec, design.cut, mesh, plot, report, page,
                        ("svaj", "cam", "checks", *(("speeds",) if "speeds" in (design.speed or {}) else ())), solid)
     if kit is None:
         return bundle, report
+    from camgen.core.kit import kit_items
+
     name = design.spec.name
     items = kit_items(name, kit.made, kit.drawing, kit.meshes, design.spec.output.formats,
                       f"{name}: the kit assembled at theta = 0, 90, 180 and 270 deg", kit.bom)
@@ -61,7 +67,7 @@ def step_solid(design: CamDesign, report: dict[str, Any]) -> Part:
     ``step_outline``: how it is made, its pieces and arcs, and its measured max error (mm) from the exact profile."""
     part, outline = step_part(design)
     contour = outline.contour
-    report["step_outline"] = {"curves": "chords" if outline.envelope and design.face_leaves is None else "biarcs", "pieces": len(contour.bulges),
+    report["step_outline"] = {"curves": "chords" if step_chords(design) else "biarcs", "pieces": len(contour.bulges),
                               "arcs": int(contour.n_arcs), "max_error_mm": float(outline.max_error_mm)}
     return part
 
@@ -71,13 +77,9 @@ def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
     asks for no STL or 3MF. Raises :class:`ExportError` for a solid that is not closed and outward."""
     if not {"stl", "3mf"} & set(spec.output.formats):
         return None, None
-    from camgen.core.solids import check_mesh, extrude
+    from camgen.core.solids import checked_mesh
 
-    mesh = extrude(printed)
-    check = check_mesh(mesh)
-    if not check.ok:
-        raise ExportError(f"{spec.name}: the mesh is not a closed outward solid ({check})")
-    return mesh, check
+    return checked_mesh(printed, spec.name)
 
 
 def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], report: dict[str, Any],
@@ -103,7 +105,9 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
 def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:
     """Write the files of ``design`` (of any cam kind) into ``directory``, all or nothing; return the report with
     its ``files``."""
-    if isinstance(design, GenevaDesign):
+    if _geneva(design):
+        from camgen.geneva.outputs import geneva_bundle
+
         bundle, report = geneva_bundle(design)
     else:
         bundle, report = kind_of(design.spec.cam.kind).bundler()(design)
@@ -113,6 +117,13 @@ def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:
     return {**report, "files": write_bundle(bundle, directory)}
 
 
+def _geneva(design: Any) -> bool:
+    """Whether ``design`` is a Geneva drive's. Its module is imported only when a drive is designed, so that a cam's
+    build never loads it (nor its nesting and page)."""
+    module = sys.modules.get("camgen.geneva.design")
+    return module is not None and isinstance(design, module.GenevaDesign)
+
+
 def build_member(raw: dict, folder: Path) -> dict[str, Any]:
     """Build one family member from its raw spec into ``folder``; its summary figures and a thumbnail."""
     from camgen.design import design_cam
@@ -120,7 +131,9 @@ def build_member(raw: dict, folder: Path) -> dict[str, Any]:
 
     design = design_cam(validate_spec(raw))
     report = write_cam(design, folder)
-    if isinstance(design, GenevaDesign):
+    if _geneva(design):
+        from camgen.geneva.outputs import geneva_row
+
         return geneva_row(design, report)
     tol = max(design.tolerance, THUMBNAIL_TOLERANCE_MM)
     # a design that is no plate (a barrel) draws its own thumbnail

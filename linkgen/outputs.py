@@ -78,7 +78,7 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
     items.append(item(assembly_figure, [("png", "assembly_png", f"{name}-assembly.png")], formats))
     items.append(item(_step_solids(build), [("step", "step", f"{name}.step")], formats))
     if {"stl", "3mf"} & set(formats):
-        from camgen.core.solids import check_mesh, extrude, pin, spacer
+        from camgen.core.solids import closed, extrude, pin, spacer
 
         meshes = [(part.name, extrude(part)) for part in build.printed]
         if table.pins:
@@ -94,8 +94,7 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
             raise SpecError(f"a part named {part_name!r} would share its files with the printable {part_name}; "
                             "rename its link or slider", "parts.pins")
         for part_name, mesh in meshes:
-            if not check_mesh(mesh).ok:
-                raise ExportError(f"{name}-{part_name}: the mesh is not a closed outward solid")
+            closed(mesh, f"{name}-{part_name}")
             items.append(item(mesh, [("stl", f"{part_name}_stl", f"{name}-{part_name}.stl"),
                                      ("3mf", f"{part_name}_3mf", f"{name}-{part_name}.3mf")], formats))
     return items

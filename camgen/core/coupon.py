@@ -245,16 +245,11 @@ def coupon_bundle(design: CouponDesign) -> tuple[Bundle, dict[str, Any]]:
     items = [item(coupon_drawing(design), [("dxf", "dxf", f"{name}.dxf"), ("cut-svg", "cut_svg", f"{name}-cut.svg")],
                   formats)]
     if {"stl", "3mf"} & set(formats):
-        from camgen.core.solids import check_mesh, extrude, volume_check
+        from camgen.core.solids import checked_mesh, volume_check
 
         checks = {}
         for key, part in zip(("plate", "pin"), design.printed, strict=True):
-            mesh = extrude(part)
-            check = check_mesh(mesh)
-            if not check.ok:
-                from camgen.core.errors import ExportError
-
-                raise ExportError(f"{part.name}: the mesh is not a closed outward solid ({check})")
+            mesh, check = checked_mesh(part)
             checks[key] = {"watertight": check.watertight, "volume_mm3": round(check.volume_mm3, 6),
                            "triangles": check.triangles, **volume_check([part], check.volume_mm3)}
             stem = name if key == "plate" else f"{name}-pin"

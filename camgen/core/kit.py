@@ -317,8 +317,7 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
     (``<name>-kit.step``, one named product a part); with the report (``json``), the bill of materials ``bom`` as
     ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), when it has lines."""
     from camgen.core.bundle import item
-    from camgen.core.errors import ExportError
-    from camgen.core.solids import check_mesh, extrude
+    from camgen.core.solids import checked_mesh
 
     items = []
     for part, source in made:
@@ -327,9 +326,7 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
                                                       ("cut-svg", f"{part.name}_svg", f"{name}-{part.name}-cut.svg")],
                               formats))
             continue
-        mesh = extrude(part) if {"stl", "3mf"} & set(formats) else None
-        if mesh is not None and not check_mesh(mesh).ok:
-            raise ExportError(f"{name}-{part.name}: the mesh is not a closed outward solid")
+        mesh = checked_mesh(part, f"{name}-{part.name}")[0] if {"stl", "3mf"} & set(formats) else None
         items.append(item(mesh, [("stl", f"{part.name}_stl", f"{name}-{part.name}.stl"),
                                  ("3mf", f"{part.name}_3mf", f"{name}-{part.name}.3mf")], formats))
 

@@ -139,11 +139,9 @@ def pin(diameter: float, length: float, tolerance: float, foot: float = 0.0) -> 
     shank's end on the bed (z = 0) chamfered by ``foot`` mm (see :func:`elephant_foot`)."""
     import manifold3d
 
-    r, head = diameter / 2, 0.9 * diameter
-    if foot > 0:
-        shank = elephant_foot([_ccw(Circle((0.0, 0.0), r).flatten(tolerance), True)], length, foot, tolerance, "pin")
-    else:
-        shank = manifold3d.Manifold.cylinder(length, r, r, arc_steps(r, 2 * np.pi, tolerance))
+    head = 0.9 * diameter
+    # the shank made first: manifold3d orders the union's vertices by the order its solids were made
+    shank = _round(diameter, 0.0, length, tolerance, foot, "pin")
     cap = manifold3d.Manifold.cylinder(diameter / 2, head, head, arc_steps(head, 2 * np.pi, tolerance))
     return _mesh(shank + cap.translate((0.0, 0.0, length)), "pin")
 
@@ -152,17 +150,25 @@ def spacer(inner: float, outer: float, height: float, tolerance: float, foot: fl
     """A spacer: a tube of ``inner`` and ``outer`` diameter and ``height`` (mm), to fill the layers a pin crosses
     between the two parts it joins; its end on the bed (z = 0) chamfered by ``foot`` mm (see
     :func:`elephant_foot`)."""
+    return _mesh(_round(outer, inner, height, tolerance, foot, "spacer"), "spacer")
+
+
+def _round(outer: float, inner: float, height: float, tolerance: float, foot: float, name: str) -> Any:
+    """A round bar (``inner`` 0) or tube of ``outer`` and ``inner`` diameter and ``height`` (mm) standing on z = 0,
+    as a manifold3d solid: its bed end chamfered by ``foot`` mm (:func:`elephant_foot`, on the circles' chords within
+    ``tolerance``), else manifold3d's own cylinders (a tube's bore cut 1 mm past either end)."""
     import manifold3d
 
     ro, ri = outer / 2, inner / 2
     if foot > 0:
-        rings = [_ccw(Circle((0.0, 0.0), ro).flatten(tolerance), True),
-                 _ccw(Circle((0.0, 0.0), ri).flatten(tolerance), False)]
-        return _mesh(elephant_foot(rings, height, foot, tolerance, "spacer"), "spacer")
-    tube = manifold3d.Manifold.cylinder(height, ro, ro, arc_steps(ro, 2 * np.pi, tolerance))
-    bore = manifold3d.Manifold.cylinder(height + 2.0, ri, ri, arc_steps(ri, 2 * np.pi, tolerance)).translate(
-        (0.0, 0.0, -1.0))
-    return _mesh(tube - bore, "spacer")
+        rings = [_ccw(Circle((0.0, 0.0), ro).flatten(tolerance), True)]
+        rings += [_ccw(Circle((0.0, 0.0), ri).flatten(tolerance), False)] if ri > 0 else []
+        return elephant_foot(rings, height, foot, tolerance, name)
+    solid = manifold3d.Manifold.cylinder(height, ro, ro, arc_steps(ro, 2 * np.pi, tolerance))
+    if ri > 0:
+        solid = solid - manifold3d.Manifold.cylinder(height + 2.0, ri, ri, arc_steps(ri, 2 * np.pi, tolerance)
+                                                     ).translate((0.0, 0.0, -1.0))
+    return solid
 
 
 def _rings(part: Part) -> list[np.ndarray]:
@@ -322,6 +328,22 @@ class MeshCheck:
     @property
     def ok(self) -> bool:
         return self.watertight and self.winding_consistent and self.volume_mm3 > 0 and self.distinct_in_float32
+
+
+def checked_mesh(part: Part, name: str | None = None) -> tuple[Mesh, MeshCheck]:
+    """The part extruded (:func:`extrude`) and its :func:`closed` check, ``name`` (the file's stem) the part's name
+    by default."""
+    mesh = extrude(part)
+    return mesh, closed(mesh, part.name if name is None else name)
+
+
+def closed(mesh: Mesh, name: str) -> MeshCheck:
+    """:func:`check_mesh` of a mesh about to be written; :class:`ExportError` naming ``name`` (the file's stem) when
+    it is not a closed outward solid."""
+    check = check_mesh(mesh)
+    if not check.ok:
+        raise ExportError(f"{name}: the mesh is not a closed outward solid ({check})")
+    return check
 
 
 def trimesh_of(mesh: Mesh) -> Any:

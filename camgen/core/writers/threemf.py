@@ -37,37 +37,47 @@ def _attribute(text: str) -> str:
 def model_xml(mesh: Mesh) -> str:
     """The 3MF model of ``mesh``: one object named after it, its vertices (as written, at full precision) and
     triangles, built once in place; its UUIDs derived from the mesh's bytes."""
-    digest = hashlib.sha256(mesh.vertices.tobytes() + mesh.faces.tobytes()).hexdigest()
-    ids = [uuid.uuid5(uuid.NAMESPACE_URL, f"camgen:{digest}:{k}") for k in range(3)]
-    name = _attribute(mesh.name)
-    sorted_ns = "".join(f' xmlns:{k}="{_NAMESPACES[k]}"' for k in sorted(_NAMESPACES))
-    item_ns = "".join(f' xmlns:{k}="{v}"' for k, v in _NAMESPACES.items())
-    vertices = ('<vertex x="{}" y="{}" z="{}" />' * len(mesh.vertices)).format(*mesh.vertices.flatten())
-    triangles = ('<triangle v1="{}" v2="{}" v3="{}" />' * len(mesh.faces)).format(*mesh.faces.flatten())
-    return (f'{_DECLARATION}<model xmlns="{_CORE}"{sorted_ns} unit="millimeter"><resources>'
-            f'<object id="1" name="{name}" type="model" p:UUID="{ids[0]}"><mesh><vertices>{vertices}</vertices>'
-            f'<triangles>{triangles}</triangles></mesh></object></resources><build p:UUID="{ids[1]}">'
-            f'<item xmlns="{_CORE}"{item_ns} objectid="1" transform="1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0" '
-            f'p:UUID="{ids[2]}" partnumber="{name}"/></build></model>')
+    ids = _ids((mesh,), 3)
+    namespaces = f' xmlns="{_CORE}"' + "".join(f' xmlns:{k}="{v}"' for k, v in _NAMESPACES.items())
+    return _model(_object(1, mesh, ids[0]), ids[1], _item(1, mesh, ids[2], namespaces))
 
 
 def assembly_xml(meshes: tuple[Mesh, ...]) -> str:
     """The 3MF model of several meshes (an assembly, each in its place): one object and one build item each, named
     after its mesh; UUIDs derived from the meshes' bytes."""
-    digest = hashlib.sha256(b"".join(m.vertices.tobytes() + m.faces.tobytes() for m in meshes)).hexdigest()
-    ids = iter(uuid.uuid5(uuid.NAMESPACE_URL, f"camgen:{digest}:{k}") for k in range(2 * len(meshes) + 1))
-    sorted_ns = "".join(f' xmlns:{k}="{_NAMESPACES[k]}"' for k in sorted(_NAMESPACES))
+    ids = iter(_ids(meshes, 2 * len(meshes) + 1))
     objects, items = [], []
     for number, mesh in enumerate(meshes, 1):
-        name = _attribute(mesh.name)
-        vertices = ('<vertex x="{}" y="{}" z="{}" />' * len(mesh.vertices)).format(*mesh.vertices.flatten())
-        triangles = ('<triangle v1="{}" v2="{}" v3="{}" />' * len(mesh.faces)).format(*mesh.faces.flatten())
-        objects.append(f'<object id="{number}" name="{name}" type="model" p:UUID="{next(ids)}"><mesh><vertices>'
-                       f'{vertices}</vertices><triangles>{triangles}</triangles></mesh></object>')
-        items.append(f'<item objectid="{number}" transform="1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0" '
-                     f'p:UUID="{next(ids)}" partnumber="{name}"/>')
-    return (f'{_DECLARATION}<model xmlns="{_CORE}"{sorted_ns} unit="millimeter"><resources>{"".join(objects)}'
-            f'</resources><build p:UUID="{next(ids)}">{"".join(items)}</build></model>')
+        objects.append(_object(number, mesh, next(ids)))
+        items.append(_item(number, mesh, next(ids)))
+    return _model("".join(objects), next(ids), "".join(items))
+
+
+def _ids(meshes: tuple[Mesh, ...], count: int) -> list[uuid.UUID]:
+    """``count`` UUIDs derived from the meshes' bytes (the same meshes, the same UUIDs)."""
+    digest = hashlib.sha256(b"".join(m.vertices.tobytes() + m.faces.tobytes() for m in meshes)).hexdigest()
+    return [uuid.uuid5(uuid.NAMESPACE_URL, f"camgen:{digest}:{k}") for k in range(count)]
+
+
+def _object(number: int, mesh: Mesh, object_id: uuid.UUID) -> str:
+    """The object ``number`` of a model: ``mesh``'s vertices (at full precision) and triangles, named after it."""
+    vertices = ('<vertex x="{}" y="{}" z="{}" />' * len(mesh.vertices)).format(*mesh.vertices.flatten())
+    triangles = ('<triangle v1="{}" v2="{}" v3="{}" />' * len(mesh.faces)).format(*mesh.faces.flatten())
+    return (f'<object id="{number}" name="{_attribute(mesh.name)}" type="model" p:UUID="{object_id}"><mesh><vertices>'
+            f'{vertices}</vertices><triangles>{triangles}</triangles></mesh></object>')
+
+
+def _item(number: int, mesh: Mesh, item_id: uuid.UUID, namespaces: str = "") -> str:
+    """The build item placing object ``number`` (``mesh``'s) where it is drawn (the identity transform)."""
+    return (f'<item{namespaces} objectid="{number}" transform="1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0" '
+            f'p:UUID="{item_id}" partnumber="{_attribute(mesh.name)}"/>')
+
+
+def _model(objects: str, build_id: uuid.UUID, items: str) -> str:
+    """The model document of the ``objects`` and the build of the ``items``."""
+    namespaces = "".join(f' xmlns:{k}="{_NAMESPACES[k]}"' for k in sorted(_NAMESPACES))
+    return (f'{_DECLARATION}<model xmlns="{_CORE}"{namespaces} unit="millimeter"><resources>{objects}</resources>'
+            f'<build p:UUID="{build_id}">{items}</build></model>')
 
 
 def threemf_bytes(mesh: Mesh | tuple[Mesh, ...]) -> bytes:
