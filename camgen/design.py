@@ -5,7 +5,7 @@ import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -19,12 +19,13 @@ from camgen.outline import Outline, envelope_outline, exact_outline, outline_mak
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
-from camgen.geneva.design import design_geneva
-from camgen.geneva.spec import GenevaSpec
 from camgen.kinds import kind_of
 from camgen.program import Jump
 from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
 from camgen.spec import CamSpec, with_base_radius
+
+if TYPE_CHECKING:
+    from camgen.geneva.spec import GenevaSpec
 
 #: thinnest wall between the bore and the outline before a warning (mm)
 THIN_WALL = 2.0
@@ -110,7 +111,9 @@ def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
 def design_cam(spec: CamSpec | GenevaSpec) -> Any:
     """The design of the cam ``spec`` describes, by its kind's designer (see :mod:`camgen.kinds`), or of the Geneva
     drive (see :mod:`camgen.geneva`)."""
-    if isinstance(spec, GenevaSpec):
+    if not isinstance(spec, CamSpec):
+        from camgen.geneva.design import design_geneva      # a cam's build imports nothing of the Geneva drive
+
         return design_geneva(spec)
     return kind_of(spec.cam.kind).designer()(spec)
 

@@ -12,7 +12,7 @@ import math
 import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from pydantic import Field, field_validator, model_validator
 
@@ -23,9 +23,11 @@ from camgen.core.spec import CutOutputTable
 from camgen.core.kit import CamKitTable, check_cam_kit
 from camgen.contact_stress import MATERIALS
 from camgen.followers import FOLLOWERS
-from camgen.geneva.spec import GenevaSpec, validate_geneva
 from camgen.kinds import CAM_KINDS
 from camgen.kinds.base import CONJUGATE_KEYS
+
+if TYPE_CHECKING:
+    from camgen.geneva.spec import GenevaSpec
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
 Material = Literal[tuple(MATERIALS)]  # type: ignore[valid-type]
@@ -131,8 +133,8 @@ class CamTable(Model):
         None, description="conjugate cam: the second cam's base circle radius (default: base_radius), or \"auto\"",
         json_schema_extra=unit("mm"))
     yoke_span: float | None = length("conjugate cam, translating yoke: distance between the two rollers' centres", None)
-    arm_angle: float | None = Field(None, gt=0, lt=360, description="conjugate cam, oscillating arm: angle at the pivot "
-                                    "from the first arm to the second, turning towards the cam",
+    arm_angle: float | None = Field(None, gt=0, lt=360, description="conjugate cam, oscillating arm: angle at the "
+                                    "pivot from the first arm to the second, turning towards the cam",
                                     json_schema_extra=unit("degrees"))
     second_arm_length: float | None = length("conjugate cam, oscillating arm: pivot to the second roller's centre",
                                              None)
@@ -436,6 +438,8 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
     """A :class:`CamSpec` from a raw template mapping, or a one-line :class:`~camgen.core.errors.SpecError`; a
     Geneva drive's template (a ``[geneva]`` table) gives a :class:`~camgen.geneva.spec.GenevaSpec`."""
     if "geneva" in raw:
+        from camgen.geneva.spec import validate_geneva      # a cam's build makes no Geneva models
+
         return validate_geneva(raw)
     return validate(CamSpec, raw)
 

@@ -15,12 +15,17 @@ from tests.conftest import ROOT
 HEAVY = ("matplotlib", "trimesh")
 
 
-def _loaded(code: str) -> set[str]:
-    """The top-level modules loaded once ``code`` has run in a fresh interpreter (in the checkout)."""
-    probe = code + "\nimport sys, json\nprint('loaded:', json.dumps(sorted({m.split('.')[0] for m in sys.modules})))"
+def _modules(code: str) -> set[str]:
+    """The modules loaded once ``code`` has run in a fresh interpreter (in the checkout)."""
+    probe = code + "\nimport sys, json\nprint('loaded:', json.dumps(sorted(sys.modules)))"
     out = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True, check=True)
     line = next(line for line in out.stdout.splitlines() if line.startswith("loaded: "))
     return set(json.loads(line.removeprefix("loaded: ")))
+
+
+def _loaded(code: str) -> set[str]:
+    """The top-level modules loaded once ``code`` has run in a fresh interpreter (in the checkout)."""
+    return {m.split(".")[0] for m in _modules(code)}
 
 
 def _command(program: str, *args: str) -> str:
@@ -42,6 +47,54 @@ def test_a_dxf_only_build_loads_neither_matplotlib_nor_trimesh(tmp_path):
                               "--set", 'output.formats=["dxf"]'))
     assert (tmp_path / "rdrd.dxf").is_file() and not (tmp_path / "rdrd.stl").exists()
     assert "ezdxf" in loaded and not loaded & set(HEAVY)
+
+
+#: what a cam's build of DXF, STL and JSON does not use: the Geneva drive (its models included), cut sheets, pages,
+#: kits, figures, the second mesh library (each package with everything below it)
+NOT_FOR_A_CAM = ("camgen.geneva", "camgen.core.nesting", "camgen.core.page", "camgen.page", "camgen.kit",
+                 "camgen.plots", "camgen.core.figures", "matplotlib", "trimesh", "scipy")
+
+
+def test_a_cam_s_dxf_stl_json_build_loads_only_what_those_files_need(tmp_path):
+    modules = _modules(_command("camgen", "build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path),
+                                "--set", 'output.formats=["dxf","stl","json"]'))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rdrd.dxf", "rdrd.json", "rdrd.stl"]
+    assert not {m for m in modules for name in NOT_FOR_A_CAM if m == name or m.startswith(name + ".")}
+    assert {"camgen.design", "camgen.core.writers.dxf", "camgen.core.writers.stl", "ezdxf"} <= modules
+
+
+def test_a_geneva_drive_still_builds_with_its_modules_loaded_on_demand(tmp_path):
+    """The Geneva drive's spec, design and files load only for a ``[geneva]`` template: its build, and a family
+    member's row, still find them."""
+    modules = _modules(_command("camgen", "build", str(ROOT / "templates" / "geneva4.toml"), "-o", str(tmp_path),
+                                "--set", 'output.formats=["dxf","json"]'))
+    report = json.loads((tmp_path / "geneva4.json").read_text())
+    assert "geneva" in report and (tmp_path / "geneva4-sheet.dxf").is_file()
+    assert {"camgen.geneva.spec", "camgen.geneva.design", "camgen.core.nesting"} <= modules
+
+
+def test_a_one_design_command_pauses_the_collector_and_restores_it(tmp_path):
+    """In the running interpreter (as tests call the commands): the collector is back on afterwards, also after a
+    refusal. In a command's own interpreter, what is alive at its exit is frozen (out of the shutdown's
+    collections) before the exit handlers registered earlier run."""
+    import gc
+
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+
+    assert gc.isenabled()
+    ok = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path), "--set",
+                                   'output.formats=["json"]'])
+    assert ok.exit_code == 0 and gc.isenabled()
+    refused = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path),
+                                        "--set", "motion.0.angle=-30"])
+    assert refused.exit_code == 2 and refused.output.startswith("error: motion[0].angle") and gc.isenabled()
+    probe = ("import atexit, gc\natexit.register(lambda: print('frozen at exit:', gc.get_freeze_count()))\n"
+             + _command("camgen", "laws"))
+    out = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True, check=True)
+    frozen = int(out.stdout.splitlines()[-1].removeprefix("frozen at exit: "))
+    assert frozen > 10_000
 
 
 @pytest.mark.parametrize("template", ["rdrd.toml", "geneva4.toml"])
