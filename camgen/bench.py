@@ -113,20 +113,36 @@ def mechanism_peer(repeats: int) -> dict:
             "max_error_mm": best, "seconds": seconds}
 
 
-def throughput(count: int, out: Path) -> list[dict]:
+def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2)) -> list[dict]:
+    """A family of ``count`` reference cams (lifts 5 to 30 mm), DXF and STL, built into ``out`` on each number of
+    ``jobs``: wall seconds, cams per second and CPU seconds (this process and its workers: on a shared machine
+    the wall time follows the other sessions' load and the disk, the CPU time far less). Alone:
+    ``python -c "from pathlib import Path; from camgen.bench import family_rows; print(family_rows(200, Path('f')))"``."""
+    import resource
+
     from camgen.core.family import members, run_family
     from camgen.outputs import build_member
+
+    def cpu() -> float:
+        return sum(u.ru_utime + u.ru_stime for u in (resource.getrusage(resource.RUSAGE_SELF),
+                                                   resource.getrusage(resource.RUSAGE_CHILDREN)))
 
     raw = apply_overrides(BASE, [("output.formats", ["dxf", "stl"])])
     lifts = list(np.round(np.linspace(5, 30, count), 6))
     items = members(raw, {"zip": {"motion.0.lift": lifts, "motion.2.lift": lifts}})
     rows = []
-    for jobs in (1, 2):
-        start = time.perf_counter()
-        run_family(items, out / f"family-{jobs}", build_member, jobs, progress=False)
+    for n in jobs:
+        start, used = time.perf_counter(), cpu()
+        run_family(items, out / f"family-{n}", build_member, n, progress=False)
         seconds = time.perf_counter() - start
-        rows.append({"what": f"family of {count} cams, DXF + STL, {jobs} job(s)", "seconds": seconds,
-                     "cams_per_second": count / seconds})
+        rows.append({"what": f"family of {count} cams, DXF + STL, {n} job(s)", "seconds": seconds,
+                     "cams_per_second": count / seconds, "cpu_seconds": cpu() - used})
+    return rows
+
+
+def throughput(count: int, out: Path) -> list[dict]:
+    """:func:`family_rows` on one and two jobs, then ``camgen build`` of the reference cam as a whole process."""
+    rows = family_rows(count, out)
     template = out / "bench.toml"
     template.write_text(BASE_TOML, encoding="utf-8")
     start = time.perf_counter()
@@ -307,8 +323,10 @@ def _markdown(r: dict) -> list[str]:
     lines += ["", "## Peer: the mechanism package", "",
               (f"cycloidal cam, knife edge: {m['entities']} points, max error {m['max_error_mm']:.2e} mm, "
                f"{m['seconds']:.4f} s" if m.get("status") == "measured" else f"mechanism: {m['status']}"), "",
-              "## Throughput", "", "| what | seconds | cams per second |", "|---|---|---|"]
+              "## Throughput", "", "| what | seconds | cams per second | CPU seconds (workers included) |",
+              "|---|---|---|---|"]
     for row in r["throughput"]:
         cps = "-" if row["cams_per_second"] is None else f"{row['cams_per_second']:.1f}"
-        lines.append(f"| {row['what']} | {row['seconds']:.2f} | {cps} |")
+        cpu = f"{row['cpu_seconds']:.2f}" if row.get("cpu_seconds") is not None else "-"
+        lines.append(f"| {row['what']} | {row['seconds']:.2f} | {cps} | {cpu} |")
     return lines

@@ -22,11 +22,11 @@ def test_quick_bench_produces_every_figure(tmp_path):
     naive = [row for row in r["outlines"] if row["method"].startswith("naive")]
     assert len(naive) == 2 and all(row["max_error_mm"] > 0 for row in naive)
     assert r["mechanism"]["status"] == "measured" or r["mechanism"]["status"].startswith("not installed")
-    assert [row["cams_per_second"] > 0 for row in r["throughput"][:2]] == [True, True]
+    assert [row["cams_per_second"] > 0 and row["cpu_seconds"] > 0 for row in r["throughput"][:2]] == [True, True]
     assert r["peak_memory_mb"] > 0
     assert r["hard_cases"] and not [c for c in r["hard_cases"] if c["outcome"].startswith("WRONG")]
     text = (tmp_path / "RESULTS.md").read_text()
-    assert "## Hard cases" in text and "## Throughput" in text
+    assert "## Hard cases" in text and "## Throughput" in text and "CPU seconds (workers included)" in text
     _speed_rows(r, text, {"design_cam: checks and outline (in-process)", "camgen build, every default output",
                           "camgen build, the default outputs without figures (no png, svg)",
                           "camgen build, dxf stl json", "camgen laws"})
