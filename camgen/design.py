@@ -118,8 +118,9 @@ def design_cam(spec: CamSpec | GenevaSpec) -> Any:
     return kind_of(spec.cam.kind).designer()(spec)
 
 
-def design_profile(spec: CamSpec) -> CamDesign:
-    """Build, check and outline a cam cut to a profile (a disc or a plate) as ``spec`` describes.
+def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
+    """Build, check and outline a cam cut to a profile (a disc or a plate) as ``spec`` describes; ``rates_only``
+    leaves the follower's contact and forces out of its speed (a grooved cam's island: the groove's are its own).
 
     Raises :class:`DesignError` for an undercut (unless ``cam.allow_undercut``: a roller's
     cam is then the cutter's envelope, a flat face's the envelope of its lines with the folds cut
@@ -170,7 +171,7 @@ def design_profile(spec: CamSpec) -> CamDesign:
     allowances = Allowances(spec.output.kerf, spec.output.clearance, "output.kerf", spec.output.elephant_foot)
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
-    speed = _speed(spec, cam)
+    speed = _speed(spec, cam, rates_only)
     warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
     return CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
@@ -251,14 +252,16 @@ class _Profile:
                     t.output.tolerance, self.marks, boss, hub.set_screw)
 
 
-def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
-    """Peak rates and the contact check at ``cam.rpm`` (None without a speed)."""
+def _speed(spec: CamSpec, cam: Cam, rates_only: bool = False) -> dict[str, Any] | None:
+    """Peak rates and the contact check at ``cam.rpm`` (None without a speed); with ``rates_only`` the rates alone
+    (no contact, forces nor speeds table: a positive drive has its own, :func:`camgen.forces.drive_speed`)."""
     if spec.cam.rpm is None:
         return None
     parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(spec.motion) if seg.law == "parabolic"]
     f = spec.follower
-    ld = None if f.mass is None else spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
-    out = speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic, f.load, f.orientation,
+    mass = None if rates_only else f.mass
+    ld = None if mass is None else spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
+    out = speed_report(cam, spec.cam.rpm, mass, f.spring_rate, f.preload, parabolic, f.load, f.orientation,
                        f.contact_margin, ld)
     if ld is not None and out["contact"] and out["contact"].get("mode"):
         if f.roller_width is not None and not f.contact_radius:
@@ -270,7 +273,7 @@ def _speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
             stressed = "pressure_max_MPa" in out["forces"].get("stress", {})
             out["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
                                           contact if stressed else None, out["contact"]["liftoff_rpm"])
-    elif spec.cam.rpm_range is not None:
+    elif spec.cam.rpm_range is not None and not rates_only:
         raise SpecError("needs a follower whose contact is analysed: an oscillating roller's arm held by a spring, a "
                         "load or its weight (follower.orientation)", "cam.rpm_range")
     return out

@@ -311,3 +311,26 @@ def test_size_sizes_the_inner_flank():
     design = design_cam(validate_spec(_raw(base_radius="auto")))
     assert sized["base_radius_mm"] == pytest.approx(design.spec.cam.base_radius, rel=1e-8)   # bisection to 1e-9
     assert design.analysis.pressure_angle_max_deg == pytest.approx(30.0, abs=1e-6)
+
+
+def test_the_island_keeps_the_follower_and_takes_the_rates_alone():
+    """The island (the disc whose surface is the inner flank) is the template's follower as it is (its mass, load,
+    speed range kept), its design takes the rates alone (design_profile(rates_only=True): no disc's contact check,
+    lift-off or spring); the forces and speeds table are the groove's, a positive drive's (no lift-off, no margin),
+    the same as camgen.forces.drive_speed gives on the island's cam."""
+    from camgen.forces import drive_speed
+    from camgen.grooved.design import island_spec
+    from camgen.spec import load_spec
+
+    spec = load_spec(ROOT / "templates" / "grooved.toml", ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5",
+                                                          "cam.rpm_range=[100, 1000]", "cam.rpm_steps=4"))
+    island = island_spec(spec)
+    assert (island.follower.mass, island.follower.load, island.cam.rpm_range) == (0.2, -5.0, spec.cam.rpm_range)
+    design = design_cam(spec)
+    speed = design.profile.speed
+    assert speed["contact"] is None
+    assert speed["forces"]["carried_by"] == {"force_positive": "inner flank", "force_negative": "outer flank"}
+    assert speed["speeds"]["liftoff_rpm"] is None and "margin_N" not in speed["speeds"]
+    assert all("holds" not in row for row in speed["speeds"]["rows"])
+    same = drive_speed(spec, design.profile.cam, ("inner flank", "outer flank"))
+    assert same == {k: speed[k] for k in ("forces", "speeds")}

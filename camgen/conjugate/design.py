@@ -434,9 +434,7 @@ def _warnings(spec: CamSpec, designs: tuple[CamDesign, CamDesign], limit: float)
 def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
     """The follower's rates at ``cam.rpm`` and, with a mass, the pair's forces (:func:`camgen.forces.pair_report`):
     no spring, so no contact check."""
-    free = spec.model_copy(update={"follower": spec.follower.model_copy(update={"mass": None}),
-                                   "cam": spec.cam.model_copy(update={"rpm_range": None})})
-    speed = _speed(free, pair[0])
+    speed = _speed(spec, pair[0], rates_only=True)
     if speed is not None and spec.follower.mass is not None:
         f = spec.follower
         contact = None if spec.cam.material is None else Contact(

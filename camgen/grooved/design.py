@@ -112,13 +112,10 @@ def _undercut_message(spec: CamSpec, cam: Cam, flank: Flank) -> str:
             "cam.base_radius, or set cam.allow_undercut = true)")
 
 
-#: the follower's keys of a positive drive's forces (a disc cam's contact check does not apply to them)
-DRIVE_KEYS = ("mass", "load", "load_table", "orientation", "inertia", "arm_mass", "arm_com")
-
-
 def island_spec(spec: CamSpec) -> CamSpec:
     """The disc cam the inner flank bounds: the same pitch curve (the same prime radius) with a roller of radius
-    Rr + c/2, so its surface is the inner flank; the template's hub, motion and output as they are."""
+    Rr + c/2, so its surface is the inner flank; the template's hub, motion, follower and output as they are (its
+    design takes the rates alone: the forces are the groove's, :func:`design_grooved`)."""
     half = spec.cam.running_clearance / 2
     raw = spec.model_dump(exclude_unset=True)
     for key in GROOVE_KEYS:
@@ -130,10 +127,6 @@ def island_spec(spec: CamSpec) -> CamSpec:
                               "inner flank has a base circle")
         raw["cam"]["base_radius"] = spec.cam.base_radius - half
     raw["follower"]["roller_radius"] = spec.follower.contact_radius + half
-    for key in DRIVE_KEYS:                       # the groove's forces are the grooved design's, not a disc's
-        raw["follower"].pop(key, None)
-    for key in ("rpm_range", "rpm_steps"):        # and so is its speeds table
-        raw["cam"].pop(key, None)
     return validate_spec(raw)
 
 
@@ -262,7 +255,7 @@ def design_grooved(spec: CamSpec) -> GroovedDesign:
     if out.kerf >= 2 * d:
         raise DesignError(f"output.kerf: a kerf of {out.kerf:g} mm closes the groove ({2 * d:g} mm wide); the kerf "
                           "must be narrower than the groove")
-    profile = dataclasses.replace(design_profile(island), sizing=sizing)
+    profile = dataclasses.replace(design_profile(island, rates_only=True), sizing=sizing)  # forces: the groove's
     if profile.speed is not None and spec.follower.mass is not None:
         f, depth = spec.follower, spec.cam.groove_depth
         walls = None if spec.cam.material is None else (      # the flanks roller + clearance / 2 off the pitch curve
