@@ -179,7 +179,12 @@ def together(makers: Sequence[Maker], first: Callable[[], None] | None = None) -
     it returns their results in order. ``first``, if given, is called when the first answers come, before any
     maker sees them (:meth:`Cam.serve` has made the segment boundaries by then)."""
     results: list[Any] = [None] * len(makers)
-    asks = {k: next(m) for k, m in enumerate(makers)}
+    asks = {}
+    for k, maker in enumerate(makers):
+        try:
+            asks[k] = next(maker)
+        except StopIteration as done:                   # done before asking anything (a tentative maker's error)
+            results[k] = done.value
     while asks:
         keys = list(asks)
         answers = yield [a for k in keys for a in asks[k]]

@@ -92,12 +92,12 @@ Steps = Generator[tuple[np.ndarray, np.ndarray], np.ndarray, tuple[np.ndarray, n
 
 def drive(steps: Generator[Any, Any, Any], answer: Callable[[Any], Any]) -> Any:
     """Run the generator ``steps`` to its end, sending it ``answer(ask)`` for each ``ask`` it yields; its result."""
-    ask = next(steps)
-    while True:
-        try:
+    try:
+        ask = next(steps)
+        while True:
             ask = steps.send(answer(ask))
-        except StopIteration as done:
-            return done.value
+    except StopIteration as done:
+        return done.value
 
 
 def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: ArrayLike, hi: ArrayLike, *,

@@ -189,3 +189,35 @@ def test_a_dwell_searched_at_one_point_is_the_search_of_its_grid(follower, law, 
     steady = analyze(cam)
     monkeypatch.setattr(type(cam.follower), "steady", False)
     assert analyze(_cam(changes)) == steady
+
+
+
+def test_a_designs_tentative_outline_raises_only_where_it_is_used(monkeypatch):
+    import camgen.outline
+    from camgen.core.errors import DesignError
+    from camgen.design import design_cam
+
+    spec = validate_spec(copy.deepcopy(RDRD))
+    small = copy.deepcopy(RDRD)
+    for i, angle in enumerate((1.0, 179.0, 120.0, 60.0)):   # a rise over 1 degree: an undercut
+        small["motion"][i]["angle"] = angle
+    allowed = copy.deepcopy(small)
+    allowed["cam"]["allow_undercut"] = True
+    envelope = design_cam(validate_spec(allowed))
+    monkeypatch.setattr(camgen.outline, "MAX_SEGMENT_VERTICES", 10)    # the exact outline fails at its spacing
+    with pytest.raises(DesignError, match=r"^output.tolerance: the outline of motion\[0\] would need .*at most 10"):
+        design_cam(spec)
+    with pytest.raises(DesignError, match=r"undercut at .* degrees"):  # the undercut's own error, not the outline's
+        design_cam(validate_spec(small))
+
+    def broken(*args: Any) -> Any:                      # fails, warning first, where a tentative outline runs
+        np.float64(1.0) / np.float64(0.0)
+        raise ValueError("the exact outline was made")
+        yield
+
+    monkeypatch.undo()
+    monkeypatch.setattr(camgen.outline, "_chords", broken)
+    with pytest.raises(ValueError, match="the exact outline was made"):
+        design_cam(spec)
+    again = design_cam(validate_spec(allowed))          # the envelope's design: the failed outline unseen
+    assert _same(again.outline.contour.vertices, envelope.outline.contour.vertices)
