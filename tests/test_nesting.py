@@ -329,3 +329,50 @@ def test_the_fft_lengths_are_scipys_without_importing_it():
     from camgen.core.nesting import _fast_length
 
     assert [_fast_length(n) for n in range(1, 3000)] == [next_fast_len(n, real=True) for n in range(1, 3000)]
+
+
+def test_free_positions_are_those_a_cell_by_cell_check_finds():
+    """Where a footprint may lie (camgen.core.nesting._Overlap: an FFT correlation, or on an empty sheet the free
+    rectangle) is exactly where it covers no occupied cell, tried position by position: random sheets, empty
+    sheets (their borders only), footprints from one cell to the whole window, some with no cell."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    from camgen.core.nesting import _Grid, _Overlap
+
+    rng = np.random.default_rng(16)
+    for trial in range(60):
+        grid = _Grid(SheetRules((60.0, 40.0), float(rng.choice([0.0, 3.0, 7.5]))), float(rng.choice([0.5, 1.0])))
+        if trial % 4:
+            grid.occupied |= rng.random(grid.shape) < rng.uniform(0.0, 0.3)
+            grid.outlines.append(shapely.box(0, 0, 1, 1))           # a part is there: not an empty sheet
+        window = (int(rng.integers(1, grid.shape[0] + 1)), int(rng.integers(1, grid.shape[1] + 1)))
+        mask = rng.random((int(rng.integers(1, window[0] + 1)), int(rng.integers(1, window[1] + 1)))) < \
+            rng.choice([0.0, 0.3, 1.0])
+        free = _Overlap(grid, window).free(mask)
+        under = sliding_window_view(grid.occupied[:window[0], :window[1]], mask.shape)
+        assert np.array_equal(free, ~(under & mask).any(axis=(2, 3))), trial
+
+
+@pytest.mark.parametrize("lean", ["left", "down"])
+def test_each_row_s_first_free_position_is_the_best_of_all(lean):
+    """The best position by the nesting's order (the layout's rectangle, the corner, then the lean's extents, then
+    the first in row-major order) among every free position, as the order was applied before, is among each row's
+    first free ones (camgen.core.nesting._first_free), and chosen the same from them."""
+    from camgen.core.nesting import _first_free
+
+    def best(free: np.ndarray, cell: float, size: tuple[float, float], ends: np.ndarray) -> tuple[int, int]:
+        right = free[:, 1] * cell + size[0]
+        top = free[:, 0] * cell + size[1]
+        used = np.round(np.maximum(right, ends[0]) * np.maximum(top, ends[1]), 6)
+        first, second = (right, top) if lean == "left" else (top, right)
+        j = int(np.lexsort((second, first, np.round(right + top, 6), used))[0])
+        return int(free[j, 0]), int(free[j, 1])
+
+    rng = np.random.default_rng(6)
+    for _ in range(200):
+        grid = rng.random((int(rng.integers(1, 60)), int(rng.integers(1, 60)))) < rng.uniform(0.05, 1.0)
+        if not grid.any():
+            continue
+        cell, size = float(rng.choice([0.25, 0.98, 2.0])), tuple(rng.uniform(1, 80, 2))
+        ends = rng.choice([0.0, 20.0, 150.0], 2) * rng.random(2)
+        assert best(_first_free(grid), cell, size, ends) == best(np.argwhere(grid), cell, size, ends)
