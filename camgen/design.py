@@ -314,7 +314,7 @@ def _check_holes(spec: CamSpec, body: Any, tolerance: float) -> None:
     rings = [shapely.Polygon(hole.flatten(tolerance)) for hole in holes]
     fields = ["hub.bolt_circle" if isinstance(h, Circle) and h.centre != (0.0, 0.0) else "cam.bore" for h in holes]
     for ring, field in zip(rings, fields, strict=True):
-        if not body.contains(ring) or body.exterior.distance(ring) <= 0:
+        if not body.contains_properly(ring):           # inside, its edge clear of the outline (GEOS's predicate)
             raise DesignError(f"{field}: a hole reaches the cam's outline (it comes within "
                               f"{body.exterior.distance(ring):.3g} mm); make it smaller or move it in")
     for i, j in itertools.combinations(range(len(rings)), 2):

@@ -267,46 +267,66 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
                       "loosen the tolerance")
 
 
-def _dwell(cam: Cam, index: int, rr: float, span: Span) -> Maker:
-    """Makes a dwell's exact arc about the cam centre (up to 90 degrees an arc), over the whole dwell or the
-    ``span`` of it: its vertices and bulges and their measured error."""
-    seg = cam.program.segments[index]
-    start, beta = (seg.start, seg.beta) if span is None else (span[0], span[1] - span[0])
-    n = max(1, math.ceil(beta / (math.pi / 2) - 1e-12))
-    theta = start + beta * np.arange(n + 1) / n
-    probe = start + beta * (np.arange(1, 8 * n) / (8 * n))
-    ends, inner = yield [(index, theta, False), (index, probe, False)]
+def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
+    """Makes the exact arcs about the cam centre (up to 90 degrees an arc) of the dwells (or their spans)
+    ``stretches``, (segment index, span or None) each, all at once: each one's vertices and bulges and their
+    measured error (a list)."""
+    segments = cam.program.segments
+    ranges = [(segments[i].start, segments[i].beta) if span is None else (span[0], span[1] - span[0])
+              for i, span in stretches]
+    arcs = [max(1, math.ceil(beta / (math.pi / 2) - 1e-12)) for _, beta in ranges]
+    start = np.repeat([s for s, _ in ranges], [n + 1 for n in arcs])
+    beta = np.repeat([b for _, b in ranges], [n + 1 for n in arcs])
+    count = np.repeat(arcs, [n + 1 for n in arcs])
+    theta = start + beta * np.concatenate([np.arange(n + 1) for n in arcs]) / count
+    probes = [8 * n - 1 for n in arcs]
+    start = np.repeat([s for s, _ in ranges], probes)
+    beta = np.repeat([b for _, b in ranges], probes)
+    probe = start + beta * (np.concatenate([np.arange(1, 8 * n) for n in arcs]) / np.repeat([8 * n for n in arcs],
+                                                                                                probes))
+    index = [i for i, _ in stretches]
+    ends, inner = yield [(np.repeat(index, [n + 1 for n in arcs]), theta, False), (np.repeat(index, probes), probe,
+                                                                                   False)]
     pts = _surface(ends, rr)
-    radius = float(np.linalg.norm(pts[0]))
-    err = float(np.abs(_length(_surface(inner, rr)) - radius).max())
-    bulge = math.tan(-cam.follower.sense * beta / n / 4.0)
-    return pts[:-1], np.full(n, bulge), err
+    first = np.cumsum([0] + [n + 1 for n in arcs])
+    radius = [float(np.linalg.norm(pts[a])) for a in first[:-1].tolist()]
+    err = np.maximum.reduceat(np.abs(_length(_surface(inner, rr)) - np.repeat(radius, probes)),
+                              np.cumsum([0, *probes[:-1]]))
+    sense = cam.follower.sense
+    return [(pts[a:b - 1], np.full(n, math.tan(-sense * beta / n / 4.0)), e)
+            for a, b, n, (_, beta), e in zip(first[:-1].tolist(), first[1:].tolist(), arcs, ranges, err.tolist(),
+                                           strict=True)]
 
 
-def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float, curves: str) -> list[Maker]:
-    """What makes each of the ``stretches`` (segment index, span or None): a dwell's arcs, a moving segment's
-    biarcs, or, in one maker for all of them, the moving segments' chords (its result a list, last)."""
+def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float,
+            curves: str) -> tuple[list[Maker], list[tuple[int, int | None]]]:
+    """What makes the ``stretches`` (segment index, span or None each): one maker for all the dwells' arcs, one
+    for all the moving segments' chords, or one a moving segment for biarcs; and where each stretch's result is
+    among theirs, (maker, item of its list or None) each (see :func:`_made`)."""
     segments = cam.program.segments
-    makers: list[Maker] = []
-    chords = []
-    for i, span in stretches:
+    dwells = [(i, span) for i, span in stretches if segments[i].kind == "dwell"]
+    moving = [(i, span) for i, span in stretches if segments[i].kind != "dwell"]
+    makers: list[Maker] = [_dwells(cam, dwells, rr)] if dwells else []
+    chords = len(makers)
+    if curves == "biarcs":
+        makers += [_biarcs(cam, i, tolerance, rr, span) for i, span in moving]
+    elif moving:
+        makers.append(_chords(cam, moving, tolerance, rr))
+    plan: list[tuple[int, int | None]] = []
+    dwell = move = 0
+    for i, _ in stretches:
         if segments[i].kind == "dwell":
-            makers.append(_dwell(cam, i, rr, span))
-        elif curves == "biarcs":
-            makers.append(_biarcs(cam, i, tolerance, rr, span))
+            plan.append((0, dwell))
+            dwell += 1
         else:
-            chords.append((i, span))
-    return [*makers, _chords(cam, chords, tolerance, rr)] if chords else makers
+            plan.append((chords + move, None) if curves == "biarcs" else (chords, move))
+            move += 1
+    return makers, plan
 
 
-def _made(cam: Cam, stretches: list[tuple[int, Span]], curves: str, results: list[Any]) -> list[Any]:
-    """The results of :func:`_makers`' makers in the order of the ``stretches``."""
-    segments = cam.program.segments
-    chords = iter(results[-1]) if any(segments[i].kind != "dwell" for i, _ in stretches) and curves != "biarcs" \
-        else iter(())
-    others = iter(results)
-    return [next(chords) if segments[i].kind != "dwell" and curves != "biarcs" else next(others)
-            for i, _ in stretches]
+def _made(plan: list[tuple[int, int | None]], results: list[Any]) -> list[Any]:
+    """The results of :func:`_makers`' makers in the order of their stretches, as its ``plan`` says."""
+    return [results[k] if item is None else results[k][item] for k, item in plan]
 
 
 def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
@@ -314,8 +334,8 @@ def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
     """The surface ``rr`` mm inside the pitch curve along segment ``index`` of a disc cam (or the ``span``, start and
     end in radians, of it): its vertices and bulges, the end's vertex left to what follows, and the measured error
     (mm). A dwell is exact arcs about the cam centre; a rise or return is biarcs or chords as ``curves`` says."""
-    stretches = [(index, span)]
-    return _made(cam, stretches, curves, cam.serve(_makers(cam, stretches, tolerance, rr, curves)))[0]
+    makers, plan = _makers(cam, [(index, span)], tolerance, rr, curves)
+    return _made(plan, cam.serve(makers))[0]
 
 
 def _corner_arc(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, float, float]:
@@ -366,8 +386,10 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
             raise DesignError("the pitch curve has a convex corner that a roller cannot follow; its outline is the "
                               "cutter's envelope (cam.allow_undercut)")
 
-    made = iter(_made(cam, stretches, curves,
-                      (yield from together(_makers(cam, stretches, tolerance, rr, curves), convex))))
+    makers, plan = _makers(cam, stretches, tolerance, rr, curves)
+    made = iter(_made(plan, (yield from together(makers, convex))))
+    if not makers:                                      # nothing asked (a plate of dwells): checked all the same
+        convex()
     corners = {} if rr == 0 else dict(cam.corners())  # a knife edge's profile: the corner is a vertex of both sides
     flats = {i for i, step in cam.steps() if step > 0}
     ends, starts = cam.boundary_geometry()

@@ -221,3 +221,23 @@ def test_a_designs_tentative_outline_raises_only_where_it_is_used(monkeypatch):
         design_cam(spec)
     again = design_cam(validate_spec(allowed))          # the envelope's design: the failed outline unseen
     assert _same(again.outline.contour.vertices, envelope.outline.contour.vertices)
+
+
+def test_a_hole_is_refused_where_it_touches_or_leaves_the_outline_as_measured_by_distance():
+    import shapely
+
+    from camgen.core.shapes import Circle
+    from camgen.design import design_cam
+
+    design = design_cam(validate_spec(copy.deepcopy(RDRD)))
+    outline = design.outline.contour.flatten(0.01)
+    body = shapely.Polygon(outline)
+    rng = np.random.default_rng(16)
+    rings = []
+    for vertex in outline[rng.choice(len(outline), 60)]:   # holes about the edge: in, touching, across, out
+        for reach in (-3.0, -1e-9, 0.0, 1e-9, 3.0):
+            centre = vertex * (1 - (2.0 + reach) / np.linalg.norm(vertex))
+            rings.append(shapely.Polygon(Circle((float(centre[0]), float(centre[1])), 2.0).flatten(0.01)))
+    rings.append(shapely.Polygon([outline[0], outline[0] * 0.9, outline[1] * 0.9]))    # a corner on the outline
+    for ring in rings:
+        assert body.contains_properly(ring) == (body.contains(ring) and body.exterior.distance(ring) > 0)
