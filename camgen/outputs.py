@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from camgen.core.bundle import Bundle, item, tail, write_bundle
-from camgen.core.errors import ExportError, SpecError
+from camgen.core.errors import SpecError
 from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
 from camgen.core.writers import WriteOptions

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
-from camgen.core.errors import ExportError, SpecError
+from camgen.core.errors import SpecError
 from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
 from camgen.core.parts import Part
