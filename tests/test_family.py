@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import re
 import shutil
 from pathlib import Path
 
@@ -245,3 +246,20 @@ def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path, sig
     assert subprocess.run([*cmd, str(clean)], env=env).returncode == 0
     assert list(out.rglob(".*.tmp")) == []
     assert _files(out) == _files(clean)
+
+
+def test_the_sheet_table_is_a_model_and_every_key_documented():
+    """The family's [sheet] table is validated by its model (camgen.core.family.SheetTable): errors name
+    sheet.<key>, defaults fill what is not given, and the README's table lists every key."""
+    from camgen.core.family import SheetTable, split_family
+
+    readme = (ROOT / "README.md").read_text()
+    assert all(f"| `sheet.{key}` |" in readme for key in SheetTable.model_fields)
+    _, sweep, table = split_family({"name": "f", "sheet": {"rotations": 45}, "sweep": {"cam.bore": [8, 10]}})
+    assert sweep == {"cam.bore": [8, 10]} and table == SheetTable(size=(600.0, 400.0), margin=3.0, rotations=45.0)
+    assert split_family({"name": "f", "sweep": {}})[2] is None
+    for sheet, words in (({"size": [100.0, 0.0]}, "sheet.size[1]: must be > 0"), ({"margin": 1e4}, "sheet.margin"),
+                         ({"rotations": 1e-12}, "sheet.rotations: must be 0 or divide 360"),
+                         ({"grain": "yes please"}, "sheet.grain")):
+        with pytest.raises(SpecError, match=re.escape(words)):
+            split_family({"name": "f", "sheet": sheet, "sweep": {}})

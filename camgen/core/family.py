@@ -37,13 +37,15 @@ from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
+
+from pydantic import Field, field_validator
 
 from camgen.core import VERSION as __version__
 from camgen.core.errors import CamgenError, SpecError
 from camgen.core.bundle import staged
 from camgen.core.writers.figure import save
-from camgen.core.spec import apply_overrides, read_template
+from camgen.core.spec import MAX_LENGTH_MM, Model, apply_overrides, read_template, unit, validate
 
 MARKER = ".inputs"
 
@@ -64,13 +66,20 @@ class Member:
 
 def read_family(path: str | Path) -> tuple[dict, dict]:
     """The raw template (its ``base`` merged in) and its sweep table (the family's ``[sheet]`` table, which is no
-    member's, left out: :func:`sheet_table`)."""
-    raw = read_template(path)
-    raw.pop(SHEET, None)
+    member's, left out: :func:`split_family`)."""
+    raw, sweep, _ = split_family(read_template(path))
+    return raw, sweep
+
+
+def split_family(template: Mapping[str, Any]) -> tuple[dict, dict, Any]:
+    """A family template read (:func:`camgen.core.spec.read_template`) as the members' raw template, its sweep
+    table and its ``[sheet]`` table validated (:class:`SheetTable`; None without one)."""
+    raw = dict(template)
+    sheet = raw.pop(SHEET, None)
     sweep = raw.pop("sweep", {})
     if not isinstance(sweep, Mapping):
         raise SpecError("must be a table of key = values", "sweep")
-    return raw, dict(sweep)
+    return raw, dict(sweep), None if sheet is None else validate(_SheetTemplate, {SHEET: sheet}).sheet
 
 
 #: the most members a family may have, and values a range may give: a bound on work, checked before any is made
@@ -348,8 +357,7 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
                  jobs: int = 1, scheduler: str | None = None) -> list[dict]:
     """Everything ``family`` does: expand, validate every member, build (or resume), write the summary, and with a
     ``[sheet]`` table the members' cut parts nested on sheets (:func:`write_family_sheet`)."""
-    raw, sweep = read_family(template)
-    table = sheet_table(read_template(template))
+    raw, sweep, table = split_family(read_template(template))
     items = members(raw, sweep)
     figures = _figures_asked(check_all(items, validate))
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
@@ -370,37 +378,37 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
 
 #: the family template's table of its cut sheet
 SHEET = "sheet"
-#: its keys and defaults: sheet width and height (mm), gap beyond the kerf (mm), rotation step (degrees), grain
-SHEET_DEFAULTS = {"size": [600.0, 400.0], "margin": 3.0, "rotations": 90.0, "grain": False}
 
 
-def sheet_table(raw: dict) -> dict | None:
-    """The family's ``[sheet]`` table checked and completed with the defaults; None without one. Each refusal is a
-    :class:`SpecError` naming the key and its range."""
-    table = raw.get(SHEET)
-    if table is None:
-        return None
-    if not isinstance(table, Mapping):
-        raise SpecError("must be a table: size = [width, height], margin, rotations, grain", SHEET)
-    unknown = sorted(set(table) - set(SHEET_DEFAULTS))
-    if unknown:
-        raise SpecError(f"unknown key; known keys here: {', '.join(SHEET_DEFAULTS)}", f"{SHEET}.{unknown[0]}")
-    out = {**SHEET_DEFAULTS, **table}
-    size = out["size"]
-    if not (isinstance(size, list) and len(size) == 2 and all(_number(v) and 0 < v <= 10_000 for v in size)):
-        raise SpecError(f"must be [width, height] in mm, each > 0 and <= 10000 (got {size!r})", f"{SHEET}.size")
-    if not (_number(out["margin"]) and 0 <= out["margin"] <= 1000):
-        raise SpecError(f"must be >= 0 and <= 1000 mm (got {out['margin']!r})", f"{SHEET}.margin")
-    step = out["rotations"]
-    if not (_number(step) and (step == 0 or 0 < step <= 360 and abs(360 / step - round(360 / step)) < 1e-9)):
-        raise SpecError(f"must be 0 or divide 360 degrees (e.g. 90, 45, 15) (got {step!r})", f"{SHEET}.rotations")
-    if not isinstance(out["grain"], bool):
-        raise SpecError(f"must be true or false (got {out['grain']!r})", f"{SHEET}.grain")
-    return out
+class SheetTable(Model):
+    """A family template's ``[sheet]`` table: the sheet the members' cut parts are nested on."""
+
+    size: tuple[Annotated[float, Field(gt=0, le=MAX_LENGTH_MM)], Annotated[float, Field(gt=0, le=MAX_LENGTH_MM)]] = \
+        Field((600.0, 400.0), description="sheet width and height", json_schema_extra=unit("mm"))
+    margin: float = Field(3.0, ge=0, le=1000.0, description="gap between parts beyond the largest member's kerf",
+                          json_schema_extra=unit("mm"))
+    rotations: float = Field(90.0, ge=0, le=360.0, description="rotation step, 0 (as drawn only) or a divisor "
+                             "of 360 of at least 1", json_schema_extra=unit("degrees"))
+    grain: bool = Field(False, description="keep the grain: parts turn by 0 or 180 degrees only")
+
+    @field_validator("rotations")
+    @classmethod
+    def _divides_a_turn(cls, step: float) -> float:
+        # at least 1 degree: each rotation is a layout tried (1e-12 divides 360 to rounding: 3.6e14 of them)
+        if step != 0 and (step < 1.0 or abs(360 / step - round(360 / step)) >= 1e-9):
+            raise ValueError(f"must be 0 or divide 360 degrees in steps of at least 1 (e.g. 90, 45, 15) "
+                             f"(got {step!r})")
+        return step
+
+
+class _SheetTemplate(Model):
+    """What validates the ``[sheet]`` table, so that its errors name ``sheet.<key>``."""
+
+    sheet: SheetTable
 
 
 def write_family_sheet(name: str, items: list[Member], rows: list[dict], root: str | Path,
-                       table: dict) -> list[str]:
+                       table: SheetTable) -> list[str]:
     """The cut parts of every member built (each member's ``<member>.dxf``, read back) nested on sheets of the
     ``[sheet]`` table (:mod:`camgen.core.nesting`, gap: the largest member's ``output.kerf`` + ``margin``), written
     as ``<name>-sheet.dxf`` (``-sheet-1``, ``-sheet-2``, ... for several) with ``<name>-sheet.json`` (the layout and
@@ -416,8 +424,7 @@ def write_family_sheet(name: str, items: list[Member], rows: list[dict], root: s
     if not parts:
         raise SpecError("the members wrote no cut file to nest: add \"dxf\" to output.formats", SHEET)
     kerf = max(float((m.raw.get("output") or {}).get("kerf", 0.0)) for m in items)
-    rules = SheetRules(tuple(table["size"]), kerf + table["margin"], rotations_of(table["rotations"], table["grain"]),
-                       f"{SHEET}.size")
+    rules = SheetRules(table.size, kerf + table.margin, rotations_of(table.rotations, table.grain), f"{SHEET}.size")
     nested = nest(parts, rules)
     tolerance = min(p.tolerance for p in parts)
     written = []
