@@ -28,7 +28,7 @@ def test_quick_bench_produces_every_figure(tmp_path):
     text = (tmp_path / "RESULTS.md").read_text()
     assert "## Hard cases" in text and "## Throughput" in text and "CPU seconds (workers included)" in text
     _speed_rows(r, text, {"design_cam: checks and outline (in-process)", "camgen build, every default output",
-                          "camgen build, the default outputs without figures (no png, svg)",
+                          "camgen build --figures (the defaults and the PNG and SVG figures)",
                           "camgen build, dxf stl json", "camgen laws"})
 
 
@@ -64,4 +64,5 @@ def test_quick_linkgen_bench(tmp_path):
     assert len(r["synthesis"]) == 4 and "## Synthesis" in (tmp_path / "RESULTS.md").read_text()
     _speed_rows(r, (tmp_path / "RESULTS.md").read_text(), {"four-bar positions, 100 000 crank angles",
                                                              "linkgen analyze crank-rocker, every default output",
-                                                             "linkgen build crank-rocker, every default output"})
+                                                             "linkgen build crank-rocker, every default output",
+                                                             "linkgen build crank-rocker, with its figures (--figures)"})
