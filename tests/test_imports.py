@@ -1,6 +1,8 @@
 """What a command loads: ``import camgen``, ``camgen laws`` and a DXF-only build load neither matplotlib nor trimesh,
-and no build loads trimesh (the STL and 3MF are written and the mesh checked with numpy; here they are checked
-against trimesh's, byte for byte). Each command runs in a fresh interpreter, whose ``sys.modules`` is read."""
+a cam's DXF, STL and JSON build nothing of the Geneva drive, the cut sheets, the pages or the kits, and no build
+loads trimesh (the STL and 3MF are written and the mesh checked with numpy; here they are checked against
+trimesh's, byte for byte). Each command runs in a fresh interpreter, whose ``sys.modules`` is read. And how a
+command that makes one design treats the garbage collector (paused while it runs, frozen at the exit)."""
 from __future__ import annotations
 
 import json
