@@ -50,6 +50,12 @@ def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
     return g.point - rr * g.normal
 
 
+def _pairs(v: np.ndarray) -> np.ndarray:
+    """The sums over the last axis of ``v`` (..., 2) as ``v.sum(axis=-1)`` makes them (from 0.0, so that two -0.0
+    sum to 0.0; the same numbers, signed zeros included), without its reduction machinery."""
+    return (0.0 + v[..., 0]) + v[..., 1]
+
+
 def _length(v: np.ndarray) -> np.ndarray:
     """The lengths of the 2-vectors along the last axis of ``v`` (mm): np.linalg.norm's sum of squares and root over
     that axis (the same numbers), without its dispatch."""
@@ -108,8 +114,8 @@ def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: floa
     bend = np.maximum(np.abs(low), np.abs(high))
     a, b = start[:, None, :], end[:, None, :]
     ab = b - a
-    length2 = (ab**2).sum(axis=2)
-    t = np.minimum(np.maximum(((x - a) * ab).sum(axis=2) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
+    length2 = _pairs(ab**2)
+    t = np.minimum(np.maximum(_pairs((x - a) * ab) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
     return _length(a + t[..., None] * ab - x).max(axis=1) + gap**2 * bend / 8
 
 

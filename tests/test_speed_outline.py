@@ -241,3 +241,18 @@ def test_a_hole_is_refused_where_it_touches_or_leaves_the_outline_as_measured_by
     rings.append(shapely.Polygon([outline[0], outline[0] * 0.9, outline[1] * 0.9]))    # a corner on the outline
     for ring in rings:
         assert body.contains_properly(ring) == (body.contains(ring) and body.exterior.distance(ring) > 0)
+
+
+def test_pairs_sum_as_numpy_sums_the_last_axis():
+    from camgen.outline import _pairs
+
+    rng = np.random.default_rng(16)
+    for _ in range(200):
+        shape = (int(rng.integers(1, 50)), int(rng.integers(1, 10)), 2)
+        v = rng.normal(size=shape) * rng.choice([1.0, 1e-300, 1e300])
+        odd = rng.random(shape) < 0.2
+        v[odd] = rng.choice([0.0, -0.0, np.inf, -np.inf, np.nan], size=int(odd.sum()))
+        with np.errstate(invalid="ignore", over="ignore"):
+            want, got = v.sum(axis=-1), _pairs(v)
+        assert np.array_equal(np.isnan(want), np.isnan(got))
+        assert _same(np.where(np.isnan(want), 0.0, want), np.where(np.isnan(got), 0.0, got))
