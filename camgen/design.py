@@ -11,10 +11,7 @@ import numpy as np
 
 from camgen.analysis import CamAnalysis, analysis_maker, face_extent, largest_roller
 from camgen.cam import Cam, Maker, build_cam
-from camgen.dynamics import spec_loading, speed_report
-from camgen.forces import Contact, forces_report, speeds_report
 from camgen.core.errors import DesignError, SpecError
-from camgen.flat_envelope import FaceLeaves, FlatEnvelope, flat_envelope
 from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Polyline, Text
@@ -25,6 +22,7 @@ from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvatu
 from camgen.spec import CamSpec, with_base_radius
 
 if TYPE_CHECKING:
+    from camgen.flat_envelope import FaceLeaves, FlatEnvelope
     from camgen.geneva.spec import GenevaSpec
 
 #: thinnest wall between the bore and the outline before a warning (mm)
@@ -149,7 +147,7 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
                           "to cut the corner as it is")
     # a knife edge's corners make corners in every offset too: the noded envelope trims and rounds them exactly
     envelope = a.undercut or (cam.contact_radius == 0 and bool(corners))
-    cut_off = flat_envelope(cam, tol, _curves(spec)) if cam.follower.flat and a.undercut else None
+    cut_off = _flat_envelope(cam, tol, _curves(spec)) if cam.follower.flat and a.undercut else None
     if cut_off is not None:
         outline = cut_off.outline(0.0)
     else:
@@ -206,9 +204,16 @@ def step_part(design: CamDesign) -> tuple[Part, Outline]:
     if _curves(spec) == "biarcs" or step_chords(design):
         return design.printed, outline
     tol = spec.output.tolerance
-    smooth = (flat_envelope(design.cam, tol, "biarcs").outline(0.0) if design.face_leaves is not None
+    smooth = (_flat_envelope(design.cam, tol, "biarcs").outline(0.0) if design.face_leaves is not None
               else exact_outline(design.cam, tol, "biarcs"))
     return dataclasses.replace(design.printed, outline=smooth.contour), smooth
+
+
+def _flat_envelope(cam: Cam, tolerance: float, curves: str) -> FlatEnvelope:
+    """:func:`camgen.flat_envelope.flat_envelope`, loaded only when a flat face's undercut is cut off."""
+    from camgen.flat_envelope import flat_envelope
+
+    return flat_envelope(cam, tolerance, curves)
 
 
 def step_chords(design: CamDesign) -> bool:
@@ -257,6 +262,9 @@ def _speed(spec: CamSpec, cam: Cam, rates_only: bool = False) -> dict[str, Any] 
     (no contact, forces nor speeds table: a positive drive has its own, :func:`camgen.forces.drive_speed`)."""
     if spec.cam.rpm is None:
         return None
+    from camgen.dynamics import spec_loading, speed_report         # only with a speed: a plain build loads neither
+    from camgen.forces import Contact, forces_report, speeds_report
+
     parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(spec.motion) if seg.law == "parabolic"]
     f = spec.follower
     mass = None if rates_only else f.mass

@@ -52,9 +52,11 @@ def test_a_dxf_only_build_loads_neither_matplotlib_nor_trimesh(tmp_path):
 
 
 #: what a cam's build of DXF, STL and JSON does not use: the Geneva drive (its models included), cut sheets, pages,
-#: kits, figures, the second mesh library (each package with everything below it)
+#: kits, figures, the speed's dynamics and forces (no cam.rpm), a flat face's envelope, the second mesh library
+#: (each package with everything below it)
 NOT_FOR_A_CAM = ("camgen.geneva", "camgen.core.nesting", "camgen.core.page", "camgen.page", "camgen.kit",
-                 "camgen.plots", "camgen.core.figures", "matplotlib", "trimesh", "scipy")
+                 "camgen.plots", "camgen.core.figures", "camgen.dynamics", "camgen.forces", "camgen.flat_envelope",
+                 "matplotlib", "trimesh", "scipy")
 
 
 def test_a_cam_s_dxf_stl_json_build_loads_only_what_those_files_need(tmp_path):
