@@ -44,8 +44,8 @@ class _Counting:
         return self.inner.pitch(theta, motion)
 
 
-def _cam(changes: dict):
-    """rdrd with dotted keys set (None: removed)."""
+def _raw(changes: dict) -> dict:
+    """The rdrd mapping with dotted keys set (None: removed)."""
     raw = copy.deepcopy(RDRD)
     for key, value in changes.items():
         *path, last = key.split(".")
@@ -56,7 +56,12 @@ def _cam(changes: dict):
             table.pop(last, None)
         else:
             table[last] = value
-    return build_cam(validate_spec(raw))
+    return raw
+
+
+def _cam(changes: dict):
+    """rdrd with dotted keys set (None: removed), built."""
+    return build_cam(validate_spec(_raw(changes)))
 
 
 def _contains(whole: np.ndarray, block: np.ndarray, start: int) -> int:
@@ -241,6 +246,86 @@ def test_a_hole_is_refused_where_it_touches_or_leaves_the_outline_as_measured_by
     rings.append(shapely.Polygon([outline[0], outline[0] * 0.9, outline[1] * 0.9]))    # a corner on the outline
     for ring in rings:
         assert body.contains_properly(ring) == (body.contains(ring) and body.exterior.distance(ring) > 0)
+
+
+def _segment_distance(points: np.ndarray, ring: np.ndarray) -> float:
+    """The least distance (mm) from ``points`` (m, 2) to the closed polygon ``ring`` (n, 2), in numpy."""
+    a, b = ring, np.roll(ring, -1, axis=0)
+    ab, ap = b - a, points[:, None, :] - a
+    t = np.clip((ap * ab).sum(-1) / (ab * ab).sum(-1), 0.0, 1.0)
+    return float(np.sqrt(((ap - t[..., None] * ab) ** 2).sum(-1)).min())
+
+
+def _inside(points: np.ndarray, ring: np.ndarray) -> np.ndarray:
+    """Whether each point lies inside the closed polygon ``ring`` (crossings of a ray along +x), in numpy."""
+    a, b = ring, np.roll(ring, -1, axis=0)
+    x, y = points[:, None, 0], points[:, None, 1]
+    spans = (a[:, 1] > y) != (b[:, 1] > y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cross = a[:, 0] + (y - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+    return (spans & (x < cross)).sum(axis=1) % 2 == 1
+
+
+def _hole_gap(outline: np.ndarray, circle: float, count: int, diameter: float, tolerance: float) -> float:
+    """The signed clearance (mm) between the bolt holes (as chords within ``tolerance``) and the cam's outline:
+    the least distance between their edges, negative if a hole's vertex is outside the outline."""
+    from camgen.core.features import bolt_holes
+
+    gaps = []
+    for hole in bolt_holes(circle, count, diameter):
+        ring = hole.flatten(tolerance)
+        gap = min(_segment_distance(ring, outline), _segment_distance(outline, ring))
+        gaps.append(gap if _inside(ring, outline).all() else -gap)
+    return min(gaps)
+
+
+def _threshold(accepted: Any, low: float, high: float) -> float:
+    """The least float in (low, high] that ``accepted`` refuses, by bisection (``low`` accepted, ``high`` not)."""
+    assert accepted(low) and not accepted(high)
+    while np.nextafter(low, high) < high:
+        mid = low + (high - low) / 2
+        low, high = (mid, high) if accepted(mid) else (low, mid)
+    return high
+
+
+@pytest.mark.parametrize("follower", ["offset roller", "oscillating roller"])
+def test_a_bolt_hole_touching_the_outline_is_refused_and_one_1e9_mm_inside_is_made(follower):
+    from camgen.core.errors import DesignError
+    from camgen.core.features import bolt_holes
+    from camgen.design import design_cam
+
+    raw = _raw(FOLLOWERS[follower])
+    count, diameter = 3, 6.0
+    tolerance = raw["output"]["tolerance"]
+
+    def spec(circle: float) -> Any:
+        raw["hub"] = {"bolt_circle": circle, "bolt_holes": count, "bolt_hole_diameter": diameter}
+        return validate_spec(copy.deepcopy(raw))
+
+    def made(circle: float) -> bool:
+        try:
+            design_cam(spec(circle))
+        except DesignError as error:
+            assert str(error).startswith("hub.bolt_circle: a hole reaches the cam's outline (it comes within ")
+            return False
+        return True
+
+    outline = design_cam(spec(20.0)).outline.contour.flatten(tolerance)
+    limit = _threshold(made, 20.0, 200.0)                 # the least bolt circle (mm) the design refuses
+    measured = _threshold(lambda c: _hole_gap(outline, c, count, diameter, tolerance) > 0, 20.0, 200.0)
+    assert abs(limit - measured) <= 1e-12                 # refused where a hole's edge meets the outline, not sooner
+    # at the limit the hole's edge meets the outline: no float puts a hole's vertex exactly on these chords, so
+    # "touching" is the first float GEOS's exact predicate finds not strictly inside, within 1e-12 mm of contact
+    assert abs(_hole_gap(outline, limit, count, diameter, tolerance)) <= 1e-12
+    # the hole's centre moves out by half the circle's change: 1e-9 mm either side of touching
+    inside, outside = limit - 2e-9, limit + 2e-9
+    assert 0 < _hole_gap(outline, inside, count, diameter, tolerance) <= 1.01e-9
+    assert _hole_gap(outline, outside, count, diameter, tolerance) < 0
+    design = design_cam(spec(inside))
+    assert [hole.centre for hole in design.part.holes[1:]] == [h.centre for h in bolt_holes(inside, count, diameter)]
+    for circle in (limit, outside):
+        with pytest.raises(DesignError, match=r"^hub\.bolt_circle: a hole reaches the cam's outline"):
+            design_cam(spec(circle))
 
 
 def test_pairs_sum_as_numpy_sums_the_last_axis():
