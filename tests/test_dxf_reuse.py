@@ -1,6 +1,6 @@
 """The DXF writer reuses one document per DXF version and writes the fixed sections once (camgen.core.writers.dxf):
 every file is byte for byte what a new ezdxf document holding the same drawing writes, in every version, flavour
-and text mode, file after file in one process, and after a refused drawing; what is written passes ezdxf's audit."""
+and text mode, file after file in one process, after a refused drawing and after one ezdxf fails part-way; what is written passes ezdxf's audit."""
 from __future__ import annotations
 
 import io
@@ -76,8 +76,44 @@ def test_a_non_finite_drawing_is_refused_and_the_next_file_is_right(tmp_path, dr
     assert path.read_bytes() == _reference(drawings[1], WriteOptions())
 
 
+@pytest.mark.parametrize("version", ["R2010", "R12"])
+def test_a_drawing_failing_part_way_leaves_the_document_as_new(tmp_path, drawings, version):
+    """A layer name ezdxf refuses (``<`` is not allowed in DXF table names) passes our check and fails in ezdxf
+    after the drawing's other layers and entities were added: the writer's cleanup takes them out again."""
+    from ezdxf.lldxf.const import DXFValueError
+
+    from camgen.core.writers import dxf
+
+    options = WriteOptions(version)
+    path = tmp_path / "ok.dxf"
+    write_dxf(drawings[1], path, options)                  # the version's reused document exists
+    plate = dxf._PLATES[version]
+    added = []
+    real = plate.doc.layers.add
+
+    def spy(name: str, *args: object, **kwargs: object) -> object:
+        added.append((name, len(plate.doc.modelspace())))
+        return real(name, *args, **kwargs)
+
+    plate.doc.layers.add = spy
+    broken = Drawing((*drawings[1].items, ("bad<name>", Circle((1.0, 1.0), 1.0))), 0.01)
+    try:
+        with pytest.raises(DXFValueError):
+            write_dxf(broken, tmp_path / "bad.dxf", options)
+    finally:
+        del plate.doc.layers.add
+    assert added[-1] == ("bad<name>", len(drawings[1].items))  # refused after every other entity was added
+    assert not (tmp_path / "bad.dxf").exists()
+    assert dxf._PLATES[version] is plate and len(plate.doc.modelspace()) == 0   # cleaned up, not thrown away
+    for drawing in drawings:
+        write_dxf(drawing, path, options)
+        assert path.read_bytes() == _reference(drawing, options)
+    assert dxf._PLATES[version] is plate
+
+
 def test_threads_each_write_their_own_files(tmp_path, drawings):
-    """A Dask worker runs members in threads: each thread has its own document."""
+    """A Dask worker runs members in threads: they share each version's one document, one file at a time behind
+    the writer's lock, and each gets the bytes a new document writes."""
     expected = [_reference(d, WriteOptions()) for d in drawings]
     got: dict[int, list[bytes]] = {}
 
