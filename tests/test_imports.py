@@ -77,23 +77,36 @@ def test_a_geneva_drive_still_builds_with_its_modules_loaded_on_demand(tmp_path)
     assert {"camgen.geneva.spec", "camgen.geneva.design", "camgen.core.nesting"} <= modules
 
 
-def test_a_one_design_command_pauses_the_collector_and_restores_it(tmp_path):
-    """In the running interpreter (as tests call the commands): the collector is back on afterwards, also after a
-    refusal. In a command's own interpreter, what is alive at its exit is frozen (out of the shutdown's
-    collections) before the exit handlers registered earlier run."""
+def test_a_one_design_command_pauses_the_collector_and_restores_it(tmp_path, monkeypatch):
+    """In the running interpreter (as tests call the commands): the collector is off while the design is made
+    and back on afterwards, also after a refusal. In a command's own interpreter, what is alive at its exit is
+    frozen (out of the shutdown's collections) before the exit handlers registered earlier run."""
     import gc
 
     from click.testing import CliRunner
 
+    import camgen.design
     from camgen.cli import main
+    from camgen.core.errors import DesignError
 
+    real, seen = camgen.design.design_cam, []
+
+    def recording(spec, *args, **kwargs):              # what the collector was doing while the design was made
+        seen.append(gc.isenabled())
+        if spec.cam.thickness == 7.0:
+            raise DesignError("cam.thickness: refused by the test")
+        return real(spec, *args, **kwargs)
+
+    monkeypatch.setattr(camgen.design, "design_cam", recording)
+    build = ["build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path), "--set"]
     assert gc.isenabled()
-    ok = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path), "--set",
-                                   'output.formats=["json"]'])
-    assert ok.exit_code == 0 and gc.isenabled()
-    refused = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path),
-                                        "--set", "motion.0.angle=-30"])
+    ok = CliRunner().invoke(main, [*build, 'output.formats=["json"]'])
+    assert ok.exit_code == 0 and seen == [False] and gc.isenabled()
+    refused = CliRunner().invoke(main, [*build, "motion.0.angle=-30"])
     assert refused.exit_code == 2 and refused.output.startswith("error: motion[0].angle") and gc.isenabled()
+    failed = CliRunner().invoke(main, [*build, "cam.thickness=7"])
+    assert failed.exit_code == 2 and failed.output.startswith("error: cam.thickness: refused by the test")
+    assert seen == [False, False] and gc.isenabled()
     probe = ("import atexit, gc\natexit.register(lambda: print('frozen at exit:', gc.get_freeze_count()))\n"
              + _command("camgen", "laws"))
     out = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True, check=True)
