@@ -132,9 +132,10 @@ def test_a_kits_panels_list_each_part_once_in_one_colour_and_write_their_labels(
     assert words == ["0 deg", "90 deg", "180 deg"]
 
 
-@pytest.mark.parametrize("output, overview", [("", False), ("[output]\nfigures = true\n", True),
-                                              ('[output]\nformats = ["json", "png"]\n', True)])
-def test_a_familys_overview_figure_comes_with_its_members_figures(output, overview, tmp_path):
+@pytest.mark.parametrize("output, figures", [("", 0), ("[output]\nfigures = true\n", 12),
+                                             ('[output]\nformats = ["json", "png"]\n', 6),
+                                             ('[output]\nformats = ["json", "svg"]\n', 6)])
+def test_a_familys_overview_figure_comes_with_its_members_figures(output, figures, tmp_path):
     """Figures are on request (``output.figures`` or ``"png"`` in ``output.formats``): a family draws its overview
     figure only when its members draw theirs; its page and summaries come either way."""
     from click.testing import CliRunner
@@ -146,7 +147,7 @@ def test_a_familys_overview_figure_comes_with_its_members_figures(output, overvi
                       f'[sweep]\n"cam.base_radius" = [40, 50]\n{output}')
     result = CliRunner().invoke(main, ["family", str(family), "-o", str(tmp_path / "out"), "--jobs", "1"])
     assert result.exit_code == 0, result.output
-    assert (tmp_path / "out" / "overview.png").exists() is overview
+    assert (tmp_path / "out" / "overview.png").exists() is bool(figures)
     assert (tmp_path / "out" / "summary.csv").exists()
-    members = sorted((tmp_path / "out").glob("*/*.png"))
-    assert len(members) == (6 if overview else 0)                    # three figures a member, as PNG
+    drawn = [p for p in (tmp_path / "out").glob("*/*") if p.suffix in (".png", ".svg") and "-cut" not in p.name]
+    assert len(drawn) == figures                          # three figures a member, in each figure format asked

@@ -34,6 +34,9 @@ def refused(args: list[str], out, words: str, program=camgen) -> None:
      "hub.bolt_circle: a bolt hole cuts into the bore"),
     (["motion.0.lift=true"], "motion[0].lift: must be a number, not true or false"),
     (["cam.thickness=true"], "cam.thickness: must be a number, not true or false"),
+    (["hub.keyway=1"], "hub.keyway: must be true or false (got 1)"),            # pydantic would read 1 as true
+    (["output.figures='yes'"], "output.figures: must be true or false (got 'yes')"),
+    (["output.figures=0"], "output.figures: must be true or false (got 0)"),
     (["motion.0.law='parabolic'", "motion.0.ratio=1e10"], "motion[0].ratio: must be >= 0.01 and <= 100"),
     (["motion.0.law='parabolic'", "motion.0.ratio=1e-17"], "motion[0].ratio: must be >= 0.01 and <= 100"),
     (["cam.base_radius=1e9"], "cam.base_radius: must be > 0 and <= 10000 mm"),

@@ -44,6 +44,7 @@ from pydantic import Field, field_validator
 from camgen.core import VERSION as __version__
 from camgen.core.errors import CamgenError, SpecError
 from camgen.core.bundle import staged
+from camgen.core.writers import FIGURE_FORMATS
 from camgen.core.writers.figure import save
 from camgen.core.spec import MAX_LENGTH_MM, Model, apply_overrides, read_template, unit, validate
 
@@ -174,9 +175,9 @@ def check_all(items: list[Member], validate: Callable[[dict], Any]) -> list[Any]
 
 
 def _figures_asked(specs: list[Any]) -> bool:
-    """Whether any member writes figures (``"png"`` in its ``output.formats``): the family's overview figure
-    is written with them."""
-    return any("png" in getattr(getattr(s, "output", None), "formats", ()) for s in specs)
+    """Whether any member draws figures (``"png"`` or ``"svg"`` in its ``output.formats``, as ``output.figures``
+    puts them): the family's overview figure (PNG) is drawn with them."""
+    return any(set(FIGURE_FORMATS) & set(getattr(getattr(s, "output", None), "formats", ())) for s in specs)
 
 
 Builder = Callable[[dict, Path], dict]

@@ -32,7 +32,8 @@ NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9._-]{0,99}$"
 
 class Model(BaseModel):
     """Base of every template model: frozen, no unknown keys, no NaN or infinity, no true/false where a
-    number is asked for (pydantic would read ``lift = true`` as 1 mm), and no length (mm) other than 0 below
+    number is asked for (pydantic would read ``lift = true`` as 1 mm) and nothing but true/false where a switch is
+    (it would read ``keyway = 1`` or ``"yes"`` as true), and no length (mm) other than 0 below
     :data:`MIN_LENGTH_MM`."""
 
     model_config = ConfigDict(frozen=True, extra="forbid", allow_inf_nan=False, strict=False)
@@ -48,6 +49,8 @@ class Model(BaseModel):
                 if _mentions(info.annotation, (int, float)) and not _mentions(info.annotation, (bool,)) and \
                         _holds_bool(value):
                     raise ValueError(f"{name}: must be a number, not true or false")
+                if _only_bool(info.annotation) and value is not None and not isinstance(value, bool):
+                    raise ValueError(f"{name}: must be true or false (got {value!r})")
                 if _tiny_length(info, value):
                     raise ValueError(f"{name}: a length other than 0 must be at least {MIN_LENGTH_MM:g} mm in size "
                                      f"(got {value!r})")
@@ -67,6 +70,12 @@ def _tiny_length(info: Any, value: Any) -> bool:
 def _mentions(annotation: Any, kinds: tuple[type, ...]) -> bool:
     """Whether a type annotation accepts one of ``kinds`` anywhere (itself, or a union or container of it)."""
     return annotation in kinds or any(_mentions(a, kinds) for a in getattr(annotation, "__args__", ()))
+
+
+def _only_bool(annotation: Any) -> bool:
+    """Whether a field takes true or false and nothing else (``bool``, or ``bool | None``): pydantic's lax mode
+    would read 1, "yes" or "on" as true."""
+    return annotation is bool or set(getattr(annotation, "__args__", ())) == {bool, type(None)}
 
 
 def _holds_bool(value: Any) -> bool:
