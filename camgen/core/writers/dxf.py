@@ -19,20 +19,14 @@ import math
 import threading
 from itertools import pairwise
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import ExportError
+from camgen.core.parts import Drawing, layer_colour
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, WriteOptions
-
-from camgen.core.parts import layer_colour
-
-if TYPE_CHECKING:
-    from camgen.core.parts import Drawing
-from camgen.core.parts import Drawing
-
 
 
 def _pieces(msp: Any, contour: Contour, attribs: dict, closed: bool = True) -> None:
