@@ -7,7 +7,6 @@ the start of the first segment, in the cam's sense of rotation.
 """
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 from collections.abc import Callable, Generator, Sequence
@@ -379,9 +378,10 @@ class _Table:
 
 
 def _alike(a: Law | None, b: Law | None) -> bool:
-    """True when the laws ``a`` and ``b`` are one function: of one class without parameters (a cycloidal rise and a
-    cycloidal return), so that one call evaluates both segments' points (each point's numbers are its own)."""
-    return a is not None and type(a) is type(b) and not dataclasses.fields(a)
+    """True when the laws ``a`` and ``b`` are one function: of one class that declares itself without parameters
+    (:attr:`Law.PARAMETERLESS`: a cycloidal rise and a cycloidal return), so that one call evaluates both segments'
+    points (each point's numbers are its own)."""
+    return a is not None and type(a) is type(b) and type(a).PARAMETERLESS
 
 
 def _compare(theta: float, left: Sequence[float], right: Sequence[float], scale: Sequence[float],

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from camgen.core.errors import SpecError
-from camgen.laws import make_law
+from camgen.laws import Law, make_law
 from camgen.program import build_program
 
 H = 20.0
@@ -72,3 +72,59 @@ def test_evaluate_wraps_and_boundaries_take_the_later_segment():
     p = rdrd()
     assert p.evaluate([2 * math.pi])[0, 0] == pytest.approx(0.0)
     assert p.segment_index(np.radians([0, 120, 180, 300, 359.9])).tolist() == [0, 1, 2, 3, 3]
+
+
+def _law_classes(cls: type) -> list[type]:
+    """Every subclass of ``cls``, at any depth."""
+    return [sub for direct in cls.__subclasses__() for sub in (direct, *_law_classes(direct))]
+
+
+def test_only_laws_without_parameters_say_so_and_a_subclass_does_not_inherit_it():
+    import dataclasses
+
+    flagged = {cls.name for cls in _law_classes(Law) if cls.PARAMETERLESS}
+    assert flagged == {"uniform", "harmonic", "cycloidal", "double-harmonic"}
+    for cls in _law_classes(Law):
+        if cls.PARAMETERLESS:
+            assert not [f for f in dataclasses.fields(cls) if f.init]
+            assert cls() == cls() and hash(cls()) == hash(cls())
+
+    @dataclasses.dataclass(frozen=True)
+    class Steeper(type(make_law("cycloidal"))):       # a parameter on a law without any
+        k: float = 1.0
+
+    assert not Steeper.PARAMETERLESS
+
+
+class _Scaled(Law):
+    """A law that is no dataclass of its own, its parameter kept outside the dataclass fields: f = u + k u (1 - u)
+    (f(0) = 0, f(1) = 1)."""
+
+    name = "scaled"
+
+    def __init__(self, k: float) -> None:
+        object.__setattr__(self, "k", k)
+
+    def derivatives(self, u):
+        u, k = np.asarray(u, dtype=float), self.k
+        return np.stack([u + k * u * (1 - u), 1 + k * (1 - 2 * u), np.full_like(u, -2 * k), np.zeros_like(u)])
+
+
+@pytest.mark.parametrize("make", [lambda k: _Scaled(k), lambda k: make_law("parabolic", ratio=1.0 + k)],
+                         ids=["outside dataclass fields", "a dataclass field"])
+def test_laws_with_parameters_are_never_evaluated_as_one(make):
+    """Two segments of one law class with other parameters keep their own numbers in the one-pass evaluation (a
+    class without fields of its own, or not a dataclass, is not thereby without parameters)."""
+    p = build_program([("rise", 120, H, make(0.5)), ("dwell", 60, 0, None), ("return", 120, H, make(0.25)),
+                       ("dwell", 60, 0, None)])
+    theta = np.radians(np.linspace(0.0, 359.0, 719))
+    index = p.segment_index(theta)
+    assert len(p._table.laws) == 3                      # the dwells', and each law its own
+    assert np.array_equal(p.evaluate_on(index, theta), p.evaluate(theta))
+
+
+def test_a_cycloidal_rise_and_return_are_evaluated_as_one_law():
+    p = build_program([("rise", 120, H, make_law("cycloidal")), ("dwell", 60, 0, None),
+                       ("return", 90, H, make_law("cycloidal")), ("dwell", 90, 0, None)])
+    theta = np.radians(np.linspace(0.0, 359.0, 719))
+    assert len(p._table.laws) == 2 and np.array_equal(p.evaluate_on(p.segment_index(theta), theta), p.evaluate(theta))

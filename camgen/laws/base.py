@@ -24,6 +24,17 @@ class Law(ABC):
 
     #: registry name, e.g. ``"cycloidal"``
     name: ClassVar[str]
+    #: True for a law with no parameters at all, every instance one and the same function (a cycloidal rise and a
+    #: cycloidal return), which :mod:`camgen.program` evaluates once for all the segments using it. Each class
+    #: states its own: a subclass that does not say so is False (see :meth:`__init_subclass__`)
+    PARAMETERLESS: ClassVar[bool] = False
+
+    def __init_subclass__(cls, **kwargs: object) -> None:
+        """A subclass does not inherit :attr:`PARAMETERLESS` (a law with parameters deriving from one without
+        them would otherwise share its segments' evaluations with other instances)."""
+        super().__init_subclass__(**kwargs)
+        if "PARAMETERLESS" not in cls.__dict__:
+            cls.PARAMETERLESS = False
 
     @abstractmethod
     def derivatives(self, u: ArrayLike) -> np.ndarray:

@@ -18,6 +18,7 @@ class Uniform(Law):
     """Uniform (constant velocity): f = u. Acceleration is infinite at both ends."""
 
     name = "uniform"
+    PARAMETERLESS = True
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         u = as_array(u)

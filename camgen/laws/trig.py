@@ -14,6 +14,7 @@ class Harmonic(Law):
     """Simple harmonic: f = (1 - cos(pi u)) / 2. Jerk is infinite at both ends (acceleration jumps)."""
 
     name = "harmonic"
+    PARAMETERLESS = True
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         x = np.pi * as_array(u)
@@ -26,6 +27,7 @@ class Cycloidal(Law):
     """Cycloidal: f = u - sin(2 pi u) / (2 pi). Acceleration is zero at both ends."""
 
     name = "cycloidal"
+    PARAMETERLESS = True
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         u = as_array(u)
@@ -43,6 +45,7 @@ class DoubleHarmonic(Law):
     """
 
     name = "double-harmonic"
+    PARAMETERLESS = True
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         x = np.pi * as_array(u)
