@@ -117,7 +117,8 @@ def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2)) -> list[d
     """A family of ``count`` reference cams (lifts 5 to 30 mm), DXF and STL, built into ``out`` on each number of
     ``jobs``: wall seconds, cams per second and CPU seconds (this process and its workers: on a shared machine
     the wall time follows the other sessions' load and the disk, the CPU time far less). Alone:
-    ``python -c "from pathlib import Path; from camgen.bench import family_rows; print(family_rows(200, Path('f')))"``."""
+    ``python -c "from pathlib import Path; from camgen.bench import family_rows; print(family_rows(200, Path('f')))"``.
+    """
     import resource
 
     from camgen.core.family import members, run_family

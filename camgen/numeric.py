@@ -68,7 +68,8 @@ _UNIT = np.linspace(0.0, 1.0, GRID)
 
 
 #: the quartic through five values at t = -2..2: its coefficients of t, t^2, t^3, t^4 (columns)
-_QUARTIC = np.array([[1, -1, -1, 1], [-8, 16, 2, -4], [0, -30, 0, 6], [8, 16, -2, -4], [-1, -1, 1, 1]]) / [12, 24, 12, 24]
+_QUARTIC = (np.array([[1, -1, -1, 1], [-8, 16, 2, -4], [0, -30, 0, 6], [8, 16, -2, -4], [-1, -1, 1, 1]])
+            / [12, 24, 12, 24])
 
 
 def _vertex(y: np.ndarray, lo: float | np.ndarray, hi: float | np.ndarray) -> tuple[np.ndarray, ...]:

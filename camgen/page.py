@@ -143,8 +143,8 @@ def _title(spec: Any, what: str) -> tuple[str, str]:
 
 
 def cam_page(design: Any, report: dict[str, Any]) -> Page:
-    """The page of any cam design (disc, plate, grooved, barrel or a conjugate pair) whose report is ``report`` (the JSON report's
-    dict, its figures shown as they are there)."""
+    """The page of any cam design (disc, plate, grooved, barrel or a conjugate pair) whose report is ``report`` (the
+    JSON report's dict, its figures shown as they are there)."""
     if hasattr(design, "walls") and hasattr(design, "drawing"):
         return _barrel_page(design, report)
     if hasattr(design, "cams"):
@@ -171,7 +171,7 @@ def cam_page(design: Any, report: dict[str, Any]) -> Page:
         body = Body("plate", outlines, pose_motion(np.zeros_like(theta), shift))
         g = cam.pitch(theta)
         centre = np.column_stack([np.zeros_like(theta), g.point[:, 1]])
-        stem = np.stack([centre, centre + [0.0, 0.3 * reach]], axis=1)
+        stem = np.stack([centre, centre + np.array([0.0, 0.3 * reach])], axis=1)
         movers: tuple[Mover, ...] = (Mover("stem", stem, "follower"),)
         if roller > 0:
             movers += (Mover("roller", centre[:, None, :], "roller", roller),)
@@ -257,7 +257,7 @@ def _barrel_page(design: Any, report: dict[str, Any]) -> Page:
         ring = _ring(shape.flatten(tol))
         closed = layer == "OUTLINE"
         for k in (-1, 0, 1):
-            outlines.append(Outline(ring + [k * length, 0.0], styles.get(layer, "path"), closed))
+            outlines.append(Outline(ring + np.array([k * length, 0.0]), styles.get(layer, "path"), closed))
     x = rm * theta
     shift = np.column_stack([-x, np.zeros_like(x)])
     body = Body("developed cylinder", tuple(outlines), pose_motion(np.zeros_like(x), shift))

@@ -25,9 +25,9 @@ def _fit(spec: Any, seg: Any) -> dict[str, Any]:
         return {}
     u = law.residual_at
     at = seg.start + seg.beta * (1.0 - u if seg.kind == "return" else u)
-    return {"fit": {"file": spec.file, "rows": len(law.samples), "continuity": f"C{law.continuity}", "knots": len(law.knots),
-                    "residual_max": _r(law.residual * spec.lift), "residual_max_at_deg": _r(math.degrees(at)),
-                    "fit_tolerance": law.tolerance * spec.lift}}
+    return {"fit": {"file": spec.file, "rows": len(law.samples), "continuity": f"C{law.continuity}",
+                    "knots": len(law.knots), "residual_max": _r(law.residual * spec.lift),
+                    "residual_max_at_deg": _r(math.degrees(at)), "fit_tolerance": law.tolerance * spec.lift}}
 
 
 def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, Any]:
@@ -120,8 +120,8 @@ def design_lines(report: dict[str, Any]) -> list[str]:
         if "fit" in seg:
             f = seg["fit"]
             lines.append(f"motion[{seg['index']}]: {f['rows']} rows fitted by a {f['continuity']} spline of "
-                         f"{f['knots']} knots, within {f['residual_max']:.3g} {lift} (largest at {f['residual_max_at_deg']:.4g}"
-                         " deg)")
+                         f"{f['knots']} knots, within {f['residual_max']:.3g} {lift} "
+                         f"(largest at {f['residual_max_at_deg']:.4g} deg)")
     if "sizing" in report:
         s = report["sizing"]
         lines.append(f"base radius {s['base_radius_mm']:.4g} mm (auto, decided by the {s['decided_by']})")

@@ -40,7 +40,7 @@ COUPON_FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json")
 def hole_count(low: float, high: float, step: float) -> int:
     """How many holes from clearance ``low`` to ``high`` by ``step`` (mm): the last at most ``high`` (to 1e-9 of a
     step)."""
-    return int(math.floor((high - low) / step + 1e-9)) + 1
+    return math.floor((high - low) / step + 1e-9) + 1
 
 
 class CouponTable(Model):

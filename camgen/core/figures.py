@@ -113,7 +113,8 @@ def drawing_figure(drawing: Any, title: str) -> Any:
                 ax.text(*shape.position, shape.text, rotation=shape.angle, fontsize=8, va="bottom")
                 continue
             key = _legend_key(layer)
-            colour = colours.setdefault(key, layer_colour(layer)[1] if _pose(layer) else _PALETTE[len(colours) % len(_PALETTE)])
+            colour = colours.setdefault(key, layer_colour(layer)[1] if _pose(layer)
+                                        else _PALETTE[len(colours) % len(_PALETTE)])
             pts = shape.flatten(PREVIEW_TOLERANCE_MM)
             if not isinstance(shape, (Text, Polyline)):
                 pts = np.vstack([pts, pts[:1]])            # close contours and circles
@@ -147,7 +148,7 @@ def natural_key(name: str) -> list:
 def _short_names(names: list[str], width: int = 24) -> list[str]:
     """The members' names without what they all begin with (the family's name) and wrapped at their dashes into
     lines of about ``width`` characters, so that titles in a row of thumbnails do not run into each other."""
-    common = os.path.commonprefix(names) if len(names) > 1 else ""
+    common = os.path.commonprefix(names) if len(names) > 1 else ""   # noqa: RUF071 - names, not paths: by character
     common = common[:common.rfind("-") + 1]               # whole words only
     out = []
     for name in names:

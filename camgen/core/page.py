@@ -177,7 +177,7 @@ def _extent(points: np.ndarray) -> tuple[float, float, float, float]:
 
 def _num(x: float, step: float) -> str:
     """``x`` rounded to a multiple of ``step`` (a power of ten), written short."""
-    digits = max(0, -int(math.floor(math.log10(step))))
+    digits = max(0, -math.floor(math.log10(step)))
     text = f"{round(x, digits):.{digits}f}"
     if "." in text:
         text = text.rstrip("0").rstrip(".")
@@ -191,7 +191,7 @@ def _grid(scale: float) -> float:
 
 def _compact(values: np.ndarray, step: float) -> list[float | None]:
     """``values`` rounded to multiples of ``step`` for the page's JSON; NaN and infinities become null."""
-    digits = max(0, -int(math.floor(math.log10(step))))
+    digits = max(0, -math.floor(math.log10(step)))
     flat = np.asarray(values, dtype=float).ravel()
     out: list[float | None] = []
     for v in np.round(flat, digits).tolist():

@@ -6,6 +6,7 @@ mm, angles in radians; counter-clockwise is positive (seen from +Z).
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -134,7 +135,7 @@ class Contour:
         """Polygon vertices (m, 2), first not repeated, with every arc split into chords within ``tolerance`` mm."""
         idx, p, chord, angle, centre = self._arc_pieces
         cuts = [0, *(idx + 1).tolist(), len(self.vertices)]
-        out = [self.vertices[a:b] for a, b in zip(cuts[:-1], cuts[1:], strict=True)]   # up to each arc's start
+        out = [self.vertices[a:b] for a, b in itertools.pairwise(cuts)]   # up to each arc's start
         for k in range(len(idx)):
             radius = chord[k] / (2.0 * abs(math.sin(angle[k] / 2.0)))
             n = arc_steps(radius, angle[k], tolerance)
@@ -208,8 +209,8 @@ class Text:
 
     def outlines(self, tolerance: float) -> tuple[Polyline, ...]:
         """The glyphs' outlines (closed polylines, mm; curves flattened by matplotlib at 100 units a text height,
-        finer than ``tolerance`` for engraving sizes) in DejaVu Sans, scaled to fit the text's box (``box_width`` by ``height`` from ``position``) and turned by its angle about
-        ``position``."""
+        finer than ``tolerance`` for engraving sizes) in DejaVu Sans, scaled to fit the text's box (``box_width`` by
+        ``height`` from ``position``) and turned by its angle about ``position``."""
         from matplotlib.font_manager import FontProperties
         from matplotlib.textpath import TextPath
 

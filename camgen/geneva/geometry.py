@@ -154,7 +154,8 @@ class GenevaGeometry:
         low, high = self.lock_radius_range
         if not low < self.lock_radius < high:
             raise ValueError(f"geneva.lock_radius: must be > {low:.6g} and < {high:.6g} mm, so the disc reaches inside "
-                             f"the wheel's rim and its arcs meet the rim clear of the slots (got {self.lock_radius:.6g})")
+                             "the wheel's rim and its arcs meet the rim clear of the slots "
+                             f"(got {self.lock_radius:.6g})")
         if not self.wheel_bore / 2 < self.bottom - h:
             raise ValueError(f"geneva.wheel_bore: must be < {2 * (self.bottom - h):.6g} mm, inside the slots' bottoms "
                              f"(got {self.wheel_bore:g})")

@@ -59,8 +59,9 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
     items += [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"), ("cut-svg", f"{kind}_svg",
                                                                           f"{name}-{kind}.svg")], formats)
               for kind, drawing in sheet_kinds(nested.drawings(out.tolerance))]
-    items += [item(mesh, [("stl", f"{solid}_stl", f"{name}-{solid}.stl"), ("3mf", f"{solid}_3mf", f"{name}-{solid}.3mf")],
-                   formats) for solid, (mesh, _) in solids.items()]
+    items += [item(mesh, [("stl", f"{solid}_stl", f"{name}-{solid}.stl"),
+                          ("3mf", f"{solid}_3mf", f"{name}-{solid}.3mf")], formats)
+              for solid, (mesh, _) in solids.items()]
     printed = design.printed
     items.append(item(((f"{name}-wheel", (printed["wheel"],)), (f"{name}-driver", (printed["crank"], printed["lock"]))),
                       [("step", "step", f"{name}.step")], formats))
