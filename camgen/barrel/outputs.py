@@ -19,7 +19,9 @@ from camgen.report import design_lines
 from camgen.sizing import pressure_limit
 
 
-#: where the cutter's loops start, in steps round from theta = 0, tried in turn
+#: where the cutter's loops start, in steps round from theta = 0, tried in turn: should the subtraction leave two
+#: vertices on one point that no edge joins (edges shorter than single precision are collapsed by
+#: :func:`camgen.core.solids.welded`), another phase moves every vertex of the cut
 SOLID_PHASES = (0.0, 0.5, 0.25)
 
 
@@ -176,7 +178,7 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
         from camgen.core.solids import carve, check_mesh
 
         plain = design
-        for phase in SOLID_PHASES:            # the first whose subtraction leaves no two vertices on one point
+        for phase in SOLID_PHASES:            # the first whose cut is a closed solid in single precision
             design = plain.with_solid(phase)
             mesh = carve(design.blank, design.tube.vertices, design.tube.faces, name)
             check = check_mesh(mesh)

@@ -53,8 +53,9 @@ def stack(parts: Sequence[Part], name: str) -> Mesh:
 
 def carve(part: Part, vertices: np.ndarray, faces: np.ndarray, name: str) -> Mesh:
     """The part extruded (see :func:`extrude`) less a closed cutter: ``vertices`` (n, 3) mm and ``faces`` (m, 3),
-    a two-manifold triangle mesh (a barrel cam's groove). Raises :class:`ExportError` when the cutter is not a
-    closed solid or the result is empty."""
+    a two-manifold triangle mesh (a barrel cam's groove), its edges shorter than single precision resolves
+    collapsed (:func:`welded`). Raises :class:`ExportError` when the cutter is not a closed solid or the result is
+    empty."""
     import manifold3d
 
     verts = np.asarray(vertices, dtype=np.float32)
@@ -65,7 +66,30 @@ def carve(part: Part, vertices: np.ndarray, faces: np.ndarray, name: str) -> Mes
     solid = _solid(part) - cutter
     if solid.status() != manifold3d.Error.NoError or solid.is_empty():
         raise ExportError(f"{name}: could not build a solid ({solid.status()})")
-    return _mesh(solid, name)
+    return welded(_mesh(solid, name))
+
+
+def welded(mesh: Mesh) -> Mesh:
+    """``mesh`` with each edge whose two ends fall on one point in single precision collapsed: the later vertex
+    merged into the earlier and the triangles on that edge (of no area in the files) dropped, as a reader of the
+    STL or 3MF sees it. manifold3d works in double precision and keeps vertices down to its own epsilon apart (a
+    subtraction's new vertices where a cutter's edge crosses the blank's a hair from one of its edges, some 1e-6
+    mm, while single precision's step is 3.8e-6 mm from 32 to 64 mm), so a finely sampled cut leaves a few such
+    edges. The mesh itself when nothing falls together, or when the points that do are not joined by an edge (no
+    collapse mends that; :func:`check_mesh` finds them)."""
+    single = np.asarray(mesh.vertices, dtype=np.float32)
+    _, first, inverse = np.unique(single, axis=0, return_index=True, return_inverse=True)
+    keep = first[inverse.ravel()]                 # each vertex's first one on its single-precision point
+    gone = np.flatnonzero(keep != np.arange(len(keep)))
+    if not gone.size:
+        return mesh
+    faces = keep[mesh.faces]
+    flat = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
+    if not np.all(np.isin(gone, mesh.faces[flat])):
+        return mesh
+    used = np.ones(len(keep), dtype=bool)
+    used[gone] = False
+    return Mesh(mesh.vertices[used], (np.cumsum(used) - 1)[faces[~flat]], mesh.name)
 
 
 def volume_check(parts: Sequence[Part], volume_mm3: float) -> dict[str, float]:
