@@ -332,3 +332,63 @@ def test_poses_in_chunks_are_those_of_one_pass_to_the_last_bit(monkeypatch, fb):
         with pytest.raises(SpecError, match="out of reach") as one:
             fb.positions(np.append(t, ranges[0][1] + 1e-3))
         assert str(small.value) == str(one.value)
+
+
+NON_FINITE = [float("nan"), float("inf"), -float("inf")]
+
+
+def _refused(call, angles, field: str, said: str) -> None:
+    """``call(angles)`` refuses with ``field: said ... is not a finite number``, and warns of nothing on the way."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(SpecError, match=rf"^{field}: {said} is not a finite number \(any finite number of "):
+            call(np.array(angles))
+
+
+@pytest.mark.parametrize("bad", NON_FINITE, ids=["nan", "inf", "-inf"])
+@pytest.mark.parametrize("fb", [CRANK_ROCKER, FourBar(100, 70, 60, 80), FourBar(180, 80, 200, 150, 90, 0.6)])
+def test_a_four_bar_refuses_a_crank_or_rocker_angle_that_is_not_a_number(fb, bad):
+    shown = {"nan": "nan", "inf": "inf", "-inf": "-inf"}[str(bad)]
+    lo, hi = fb.input_ranges()[0] if fb.input_ranges() else (0.0, 2 * math.pi)
+    ok = [lo + 0.25 * (hi - lo), lo + 0.5 * (hi - lo)]          # reachable angles before and after it
+    for call in (fb.positions, fb.sweep, lambda t: fb.sweep(t, "crossed")):
+        _refused(call, [bad], "angle", f"crank angle {shown} degrees")
+        _refused(call, [*ok, bad, ok[0]], "angle", f"crank angle {shown} degrees")
+    # the rocker drives the mirror image: its angle theta4 is said as given (180 - (180 - theta4) degrees)
+    _refused(fb.rocker_positions, [1.0, bad], "angle", f"rocker angle {shown} degrees")
+    assert np.isfinite(fb.positions(np.array(ok)).b).all()
+
+
+@pytest.mark.parametrize("bad", NON_FINITE, ids=["nan", "inf", "-inf"])
+def test_every_mechanism_refuses_an_input_that_is_not_a_number(bad):
+    import linkgen
+    from linkgen.kinematics import equivalents
+    from linkgen.kinematics.linkage import Linkage
+    from linkgen.kinematics.quickreturn import CrankShaper, Whitworth
+    from linkgen.kinematics.slidercrank import ScotchYoke, SliderCrank
+    from linkgen.kinematics.straightline import straight_line
+
+    shown = {"nan": "nan", "inf": "inf", "-inf": "-inf"}[str(bad)]
+    crank = f"crank angle {shown} degrees"
+    slider = SliderCrank(40.0, 120.0, 10.0)
+    for call in (slider.position, slider.derivatives, lambda t: slider.motion(t, 10.0),
+                 lambda t: ScotchYoke(40.0).motion(t, 10.0), lambda t: CrankShaper(40.0, 100.0, 200.0).motion(t, 10.0),
+                 lambda t: Whitworth(100.0, 40.0, 50.0, 150.0).motion(t, 10.0), straight_line("watt", 20.0).trace):
+        _refused(call, [0.5, bad], "angle", crank)
+    general = Linkage.of(equivalents.fourbar(CRANK_ROCKER, 0.3))
+    _refused(general.solve, [0.1, bad], "input", f"input {shown} degrees")
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert general.solve(np.array([0.1, bad]), strict=False).ok.tolist() == [True, False]   # marked, unsaid
+    pump = linkgen.design_linkage(linkgen.load_spec(ROOT / "templates" / "pendulum-pump.toml")).kinematics.linkage
+    _refused(pump.solve, [bad], "input", f"input {shown} mm")
+
+
+def test_the_largest_finite_angles_are_not_refused_as_non_finite():
+    huge = np.array([np.finfo(float).max, -np.finfo(float).max, 1e-300, -0.0])
+    poses = FourBar(40, 100, 90, 120).positions(huge)                    # a drag link turns fully: every angle
+    assert np.isfinite(poses.b).all() and np.isfinite(poses.theta4).all()

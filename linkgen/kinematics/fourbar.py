@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SolverError, SpecError
-from linkgen.kinematics.grashof import CHANGE_POINT_TOL, Grashof, check_lengths, classify
+from linkgen.kinematics.grashof import CHANGE_POINT_TOL, Grashof, check_finite, check_lengths, classify
 
 Assembly = Literal["open", "crossed"]
 ASSEMBLIES: tuple[str, ...] = ("open", "crossed")
@@ -242,14 +242,18 @@ class FourBar:
     # ------------------------------------------------------------------ positions
 
     def _poses(self, theta2: np.ndarray, sign: np.ndarray, check: bool = False, mirrored: bool = False) -> Poses:
-        """Poses at crank angles ``theta2`` (1-D) with assembly ``sign`` (+-1 each); with ``check``, every angle's
-        reach is checked first as :meth:`_check_reach` does (``mirrored`` as there), with its errors.
+        """Poses at crank angles ``theta2`` (1-D) with assembly ``sign`` (+-1 each); with ``check``, every angle must
+        be a finite number and its reach is checked first as :meth:`_check_reach` does (``mirrored`` as there),
+        with its errors.
 
         The angles are placed :data:`CHUNK` at a time into the result arrays made once: over 100 000 angles each
         intermediate of the whole would be 800 kB that the allocator takes from the system page by page, and
         those page faults cost more than the arithmetic; a chunk's intermediates stay in the cache and in the
         allocator's own memory. Each angle sees the same operations in the same order as unchunked, so the
         poses are the same to the last bit."""
+        if check:
+            check_finite(theta2, "rocker angle" if mirrored else "crank angle",
+                         said=lambda t: _input_angle(t, mirrored)[1])
         n = theta2.size
         # the results in one block: from 4 MB numpy asks the kernel for huge pages, a few faults instead of 1 400
         block = np.empty((9 if self.point_distance else 7) * n)
@@ -332,7 +336,8 @@ class FourBar:
         """Closed-form poses at crank angles ``theta2`` (radians) for one assembly label.
 
         Every angle must be reachable: an angle outside the reachable range is a
-        :class:`SpecError` naming that range (never NaN). Labels swap at change
+        :class:`SpecError` naming that range (never NaN), and so is one that is not a finite number (NaN, +-inf),
+        said in degrees. Labels swap at change
         points; use :meth:`sweep` to follow one branch through them.
         """
         return self._placed(theta2, assembly)

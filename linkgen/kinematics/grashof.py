@@ -12,7 +12,12 @@ to are named, and solved, as change points.
 """
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 
@@ -49,6 +54,17 @@ def check_lengths(lengths: dict[str, float]) -> None:
     if lengths[longest] >= others * (1 - CHANGE_POINT_TOL):
         raise SpecError(f"{lengths[longest]:.6g} mm is not shorter than the other three links together "
                         f"({others:.6g} mm): the chain cannot close except flat", longest)
+
+
+def check_finite(values: ArrayLike, what: str, field: str = "angle", unit: str = "degrees",
+                 said: Callable[[float], float] = math.degrees) -> None:
+    """Refuse input values that are not finite numbers (NaN, +-inf), where every pose would be NaN: a
+    :class:`SpecError` on ``field`` naming ``what`` (e.g. ``"crank angle"``) and the first such value as the user
+    means it, ``said(value)`` in ``unit`` (radians said in degrees by default)."""
+    v = np.asarray(values, dtype=float)
+    if not np.isfinite(v).all():
+        bad = said(float(v[~np.isfinite(v)].flat[0]))
+        raise SpecError(f"{what} {bad:g} {unit} is not a finite number (any finite number of {unit})", field)
 
 
 def classify(ground: float, driven: float, coupler: float, output: float) -> Grashof:

@@ -29,6 +29,7 @@ from numpy.typing import ArrayLike
 from camgen.core.errors import SpecError
 from linkgen.kinematics import dyads
 from linkgen.kinematics.dyads import cross, dot, perp
+from linkgen.kinematics.grashof import check_finite
 from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, Input, InputStep, Pin, Plan, Slide, Structure,
                                           plan)
 
@@ -172,17 +173,22 @@ class Linkage:
               derivatives: bool = True, upto: int | None = None, signs: list[np.ndarray] | None = None) -> Solution:
         """Every body at each input value: ``inputs`` (n,) for one input, (k, n) for k; ``rates`` the inputs'
         speeds (1 each unless given) for the velocities and accelerations. With ``strict`` a value the linkage does
-        not reach is a :class:`SpecError` naming the input's reachable range; else those poses are marked in
-        ``ok``. ``upto`` stops after that many steps (for the searches of :mod:`linkgen.kinematics.motion`)."""
+        not reach is a :class:`SpecError` naming the input's reachable range, and one that is not a finite number
+        (NaN, +-inf) one naming it (degrees or mm); else those poses are marked in ``ok``. ``upto`` stops after
+        that many steps (for the searches of :mod:`linkgen.kinematics.motion`)."""
         x = np.atleast_2d(np.asarray(inputs, dtype=float))
         k = len(self.structure.inputs)
         if x.shape[0] != k:
             raise SpecError(f"the linkage has {k} input(s); give {k} row(s) of values", "input")
+        if strict:
+            for given, row in zip(self.structure.inputs, x, strict=True):
+                crank = given.kind == "crank"
+                check_finite(row, "input", "input", "degrees" if crank else "mm", math.degrees if crank else float)
         r = np.ones(k) if rates is None else np.asarray(rates, dtype=float).reshape(k)
-        x = np.vstack([self.unwrap(x[0])] + list(x[1:])) if self.is_crank() else x
-        if signs is None:
-            signs = self._signs(x)
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):   # not strict: +-inf marked, unsaid
+            x = np.vstack([self.unwrap(x[0])] + list(x[1:])) if self.is_crank() else x
+            if signs is None:
+                signs = self._signs(x)
             sol = _solve(self, x, r, signs, strict, derivatives, upto)
             if derivatives and upto is None and len(x) == 1 and any(len(f) for f in self.flips):
                 self._rates_at_change_points(sol, r)

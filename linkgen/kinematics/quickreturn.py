@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
+from linkgen.kinematics.grashof import check_finite
 from linkgen.kinematics.slidercrank import SliderCrank, SliderMotion
 
 
@@ -38,8 +39,10 @@ def _positive(**lengths: float) -> None:
 def _slot(crank: float, ground: float, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Angle of O4 -> A (rad, from +X) and its first and second derivatives with respect to theta.
 
-    rate = N / D with N = r^2 - r d cos theta and D = |O4 A|^2 = r^2 + d^2 - 2 r d cos theta.
+    rate = N / D with N = r^2 - r d cos theta and D = |O4 A|^2 = r^2 + d^2 - 2 r d cos theta. A crank angle that
+    is not a finite number is a :class:`SpecError`.
     """
+    check_finite(theta, "crank angle")
     r, d = crank, ground
     c, s = np.cos(theta), np.sin(theta)
     num, den = r**2 - r * d * c, r**2 + d**2 - 2 * r * d * c

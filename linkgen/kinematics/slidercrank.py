@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
+from linkgen.kinematics.grashof import check_finite
 
 TWO_PI = 2.0 * math.pi
 
@@ -75,13 +76,16 @@ class SliderCrank:
         return np.sqrt(np.maximum(inside, 0.0))
 
     def position(self, theta: ArrayLike) -> np.ndarray:
-        """Exact slider position x = r cos theta + sqrt(L^2 - (r sin theta - e)^2), mm."""
+        """Exact slider position x = r cos theta + sqrt(L^2 - (r sin theta - e)^2), mm, at crank angles ``theta``
+        (rad; one that is not a finite number is a :class:`SpecError`)."""
         t = np.asarray(theta, dtype=float)
+        check_finite(t, "crank angle")
         return self.crank * np.cos(t) + self._root(t)
 
     def derivatives(self, theta: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """x, dx/dtheta (mm/rad) and d2x/dtheta2 (mm/rad^2), exact."""
+        """x, dx/dtheta (mm/rad) and d2x/dtheta2 (mm/rad^2), exact, at crank angles ``theta`` (rad, finite)."""
         t = np.asarray(theta, dtype=float)
+        check_finite(t, "crank angle")
         r = self.crank
         h = r * np.sin(t) - self.offset
         q = self._root(t)
@@ -152,7 +156,9 @@ class ScotchYoke:
             raise SpecError(f"must be a finite length > 0 mm (got {self.crank})", "linkage.crank")
 
     def motion(self, theta: ArrayLike, omega: float) -> SliderMotion:
+        """Slider motion at crank angles ``theta`` (rad, finite) for a constant crank speed ``omega`` rad/s."""
         t = np.atleast_1d(np.asarray(theta, dtype=float))
+        check_finite(t, "crank angle")
         r = self.crank
         return SliderMotion(t, r * (1 - np.cos(t)), r * omega * np.sin(t), r * omega**2 * np.cos(t),
                             np.full(t.shape, math.pi / 2))
