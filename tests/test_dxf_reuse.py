@@ -1,6 +1,7 @@
 """The DXF writer reuses one document per DXF version and writes the fixed sections once (camgen.core.writers.dxf):
 every file is byte for byte what a new ezdxf document holding the same drawing writes, in every version, flavour
-and text mode, file after file in one process, after a refused drawing and after one ezdxf fails part-way; what is written passes ezdxf's audit."""
+and text mode, file after file in one process, after a refused drawing and after one ezdxf fails part-way; what is
+written passes ezdxf's audit."""
 from __future__ import annotations
 
 import io
