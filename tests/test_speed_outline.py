@@ -82,7 +82,7 @@ def test_the_outline_is_each_stretch_made_alone(follower, curves):
         pytest.fail("the outline is not reproducible")
     at, worst = 0, 0.0
     for i, _ in enumerate(cam.program.segments):
-        v, b, err = stretch(cam, i, 0.01, cam.contact_radius, curves)
+        v, _, err = stretch(cam, i, 0.01, cam.contact_radius, curves)
         found = _contains(verts, v, at)
         if found < 0:                                   # the contour may have been turned round to run ccw
             verts = verts[::-1]
@@ -316,6 +316,7 @@ def test_a_bolt_hole_touching_the_outline_is_refused_and_one_1e9_mm_inside_is_ma
     assert abs(limit - measured) <= 1e-12                 # refused where a hole's edge meets the outline, not sooner
     # at the limit the hole's edge meets the outline: no float puts a hole's vertex exactly on these chords, so
     # "touching" is the first float GEOS's exact predicate finds not strictly inside, within 1e-12 mm of contact
+    # (a touch to the last bit, on a square cam: the next test)
     assert abs(_hole_gap(outline, limit, count, diameter, tolerance)) <= 1e-12
     # the hole's centre moves out by half the circle's change: 1e-9 mm either side of touching
     inside, outside = limit - 2e-9, limit + 2e-9
@@ -326,6 +327,30 @@ def test_a_bolt_hole_touching_the_outline_is_refused_and_one_1e9_mm_inside_is_ma
     for circle in (limit, outside):
         with pytest.raises(DesignError, match=r"^hub\.bolt_circle: a hole reaches the cam's outline"):
             design_cam(spec(circle))
+
+
+@pytest.mark.parametrize("count", [1, 3, 4])
+def test_a_hole_touching_the_outline_exactly_is_refused_and_one_1e9_mm_inside_is_not(count):
+    """The check design_cam runs, on a square cam of half-width w: bolt hole 0's vertex on +X lies at R + r
+    exactly, so w = R + r puts it on the outline to the last bit (the bore's likewise at w = its radius)."""
+    import shapely
+
+    from camgen.core.errors import DesignError
+    from camgen.design import _check_holes
+
+    raw = copy.deepcopy(RDRD)
+    raw["hub"] = {"bolt_circle": 40.0, "bolt_holes": count, "bolt_hole_diameter": 6.0}
+    spec = validate_spec(raw)
+    for w, field in ((20.0 + 3.0, "hub.bolt_circle"), (5.0, "cam.bore")):
+        if field == "cam.bore":
+            spec = validate_spec({**raw, "hub": {}})
+        for half, made in ((w, False), (w + 1e-9, True), (w - 1e-9, False)):
+            body = shapely.box(-half, -half, half, half)
+            if made:
+                _check_holes(spec, body, 0.01)
+                continue
+            with pytest.raises(DesignError, match=rf"^{field}: a hole reaches the cam's outline \(it comes within "):
+                _check_holes(spec, body, 0.01)
 
 
 def test_pairs_sum_as_numpy_sums_the_last_axis():
