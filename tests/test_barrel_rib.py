@@ -17,6 +17,7 @@ from camgen.design import design_cam
 from camgen.spec import load_spec
 from tests.conftest import ROOT
 from tests.test_barrel_oscillating import _wall_samples
+from tests.test_barrel_tolerances import exact_volume
 from tests.refusals import assert_refused
 
 RIB = ROOT / "templates" / "barrel-rib.toml"
@@ -81,28 +82,15 @@ def test_both_rollers_run_on_the_exported_rib(tmp_path, rotation):
 
 
 def test_the_solids_volume_is_the_core_and_the_exact_rib(tmp_path):
-    """The exported solid's volume against the core pi (Ri^2 - rb^2) L and the rib from its exact walls: on each
-    cylinder of radius r the rib's developed area, the loop integral of z dphi of the upper wall less the lower's
-    (phi the wall's polar angle, 20000 points), integrated over r by Gauss-Legendre; within the tolerance times the
-    walls' area."""
+    """The exported solid's volume against the core pi (Ri^2 - rb^2) L and the rib from its exact walls
+    (:func:`tests.test_barrel_tolerances.exact_volume`: on each cylinder of radius r the rib's developed area, the
+    loop integral of z dphi of the upper wall less the lower's, integrated over r by Gauss-Legendre); within the
+    tolerance times the walls' area."""
     report, _ = _build(tmp_path, "output.formats=['stl','json']")
-    below, above = design_cam(load_spec(RIB)).rib
-    inner, outer = 27.0, 33.0
-    theta = np.linspace(0.0, 2 * math.pi, 20001)
-
-    def area(r: float) -> float:
-        total = 0.0
-        for walls, side, sign in ((above, -1, 1.0), (below, 1, -1.0)):
-            phi, z = walls.developed(theta, r, side)
-            total += sign * float(np.sum((z[1:] + z[:-1]) / 2 * np.diff(phi)))
-        return total
-
-    x, w = np.polynomial.legendre.leggauss(12)
-    radii = inner + (outer - inner) * (x + 1) / 2
-    rib = (outer - inner) / 2 * sum(wk * area(r) * r for wk, r in zip(w, radii, strict=True))
-    core = math.pi * (inner ** 2 - 5.0 ** 2) * 70.0
-    walls_area = 2 * (outer - inner) * 2 * math.pi * 30.0 * 1.3        # both walls, sloped
-    assert report["mesh"]["volume_mm3"] == pytest.approx(core + rib, abs=report["tolerance_mm"] * walls_area)
+    expected = exact_volume(design_cam(load_spec(RIB)))[0]
+    rib = expected - math.pi * (27.0 ** 2 - 5.0 ** 2) * 70.0
+    walls_area = 2 * (33.0 - 27.0) * 2 * math.pi * 30.0 * 1.3        # both walls, sloped
+    assert report["mesh"]["volume_mm3"] == pytest.approx(expected, abs=report["tolerance_mm"] * walls_area)
     assert rib == pytest.approx(8.0 * 6.0 * 2 * math.pi * 30.0, rel=0.05)   # about width x height x circumference
 
 

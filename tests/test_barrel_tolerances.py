@@ -123,8 +123,8 @@ def test_welded_collapses_an_edge_single_precision_does_not_resolve():
     kept = _split_edge(1e-4)
     assert welded(kept) is kept and check_mesh(kept).ok
     tetra = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])       # the second stands on the first's apex
-    apart = Mesh(np.vstack([mesh.vertices[:4], mesh.vertices[:4] + [0.0, 0.0, 1.0]]), np.vstack([tetra, tetra + 4]),
-                 "two")
+    up = mesh.vertices[:4] + np.array([0.0, 0.0, 1.0])
+    apart = Mesh(np.vstack([mesh.vertices[:4], up]), np.vstack([tetra, tetra + 4]), "two")
     assert check_mesh(apart).watertight and not check_mesh(apart).distinct_in_float32
     assert welded(apart) is apart
 

@@ -108,9 +108,9 @@ class BarrelDesign:
         step = float(np.spacing(np.float32(size)))
         if self.tolerance < SINGLE_STEPS * step:
             raise DesignError(f"output.tolerance: the solid's files (STL, 3MF) hold its points in single precision, "
-                              f"{step:.3g} mm apart at its size of {size:g} mm; must be >= {SINGLE_STEPS * step:.3g} mm "
-                              f"({SINGLE_STEPS} of those steps) for the solid, up to 1 mm (got {self.tolerance:g}); "
-                              "or leave stl and 3mf out of output.formats")
+                              f"{step:.3g} mm apart at its size of {size:g} mm; must be >= "
+                              f"{SINGLE_STEPS * step:.3g} mm ({SINGLE_STEPS} of those steps) for the solid, up to 1 mm "
+                              f"(got {self.tolerance:g}); or leave stl and 3mf out of output.formats")
         if self.rib is not None:
             return dataclasses.replace(self, tube=rib_tube(*self.rib, inner, outer, self.spec.cam.length,
                                                            self.tolerance, phase))
