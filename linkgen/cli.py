@@ -164,7 +164,8 @@ def _print_statics(st: dict[str, Any]) -> None:
     if f"max_{unit}" not in st:
         return
     click.echo(f"input effort to hold the loads: {st[f'min_{unit}']:.4g} to {st[f'max_{unit}']:.4g} {label} "
-               f"(at {st[f'min_at_{where}']:.4g} and {st[f'max_at_{where}']:.4g} {where[6:]}), RMS {st[f'rms_{unit}']:.4g} {label}"
+               f"(at {st[f'min_at_{where}']:.4g} and {st[f'max_at_{where}']:.4g} {where[6:]}), "
+               f"RMS {st[f'rms_{unit}']:.4g} {label}"
                + (f", peak power {st['peak_power_W']:.4g} W" if "peak_power_W" in st else ""))
     if "mechanical_advantage_min" in st:
         click.echo(f"least mechanical advantage {st['mechanical_advantage_min']:.4g} (lever {st['lever_mm']:.4g} mm) "

@@ -122,4 +122,4 @@ def linkage_page(name: str, a: Any, report: dict[str, Any]) -> Page:
 
 
 def _triangle(at: np.ndarray, size: float) -> np.ndarray:
-    return np.array([at, at + [-size, -1.6 * size], at + [size, -1.6 * size]])
+    return np.array([at, at + np.array([-size, -1.6 * size]), at + np.array([size, -1.6 * size])])

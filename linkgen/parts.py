@@ -9,9 +9,10 @@ radians about their first hole, which then moves to its position in mm), which k
 arcs exact.
 
 A mechanism gives its parts and their motion as a :class:`Layout`; :func:`build_parts`
-does the rest; the cut sheets are nested by :mod:`camgen.core.nesting`. Allowances (:class:`camgen.core.parts.Allowances`, applied there only): a
-part's nominal hole is pin + clearance in diameter; a cut hole is that less the kerf and
-a cut outline grows by kerf / 2; a printed hole is the nominal one.
+does the rest; the cut sheets are nested by :mod:`camgen.core.nesting`. Allowances
+(:class:`camgen.core.parts.Allowances`, applied there only): a part's nominal hole is
+pin + clearance in diameter; a cut hole is that less the kerf and a cut outline grows
+by kerf / 2; a printed hole is the nominal one.
 """
 from __future__ import annotations
 

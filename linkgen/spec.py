@@ -118,7 +118,8 @@ class LoadTable(Model):
             raise ValueError("give point and force (a force at a joint), or link and torque (a torque on a link)")
         for key, value in (("force", self.force or ()), ("torque", () if self.torque is None else (self.torque,))):
             if not all(abs(v) <= MAX_LOAD for v in value):
-                raise ValueError(f"{key}: must be at most {MAX_LOAD:g} in size (got {', '.join(f'{v:g}' for v in value)})")
+                got = ", ".join(f"{v:g}" for v in value)
+                raise ValueError(f"{key}: must be at most {MAX_LOAD:g} in size (got {got})")
         return self
 
 

@@ -178,7 +178,8 @@ def structure_of(table: LinkageTable) -> Any:
             raise SpecError("a check names two joints as 'A-B'", f"linkage.lengths.{key}")
         got = math.dist(s.points[a], s.points[b])
         if abs(got - want) > 1e-6 * max(1.0, want):
-            raise SpecError(f"the drawing puts {a} and {b} {got:.6f} mm apart, not {want:g} mm", f"linkage.lengths.{key}")
+            raise SpecError(f"the drawing puts {a} and {b} {got:.6f} mm apart, not {want:g} mm",
+                            f"linkage.lengths.{key}")
     for t in table.tracers:
         if t not in s.points:
             raise SpecError(f"no joint {t!r}", "linkage.tracers")
@@ -301,8 +302,10 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                     for d in sweep.dyads]
     for d, (gmin, at_min, gmax, at_max) in zip(sweep.dyads, extremes, strict=True):
         dyads.append({"kind": d.kind, "links": list(d.bodies), "joint": d.joint,
-                      "transmission_min_deg": num(math.degrees(gmin)), f"transmission_min_at_{unit_name}": a.shown(at_min),
-                      "transmission_max_deg": num(math.degrees(gmax)), f"transmission_max_at_{unit_name}": a.shown(at_max)})
+                      "transmission_min_deg": num(math.degrees(gmin)),
+                      f"transmission_min_at_{unit_name}": a.shown(at_min),
+                      "transmission_max_deg": num(math.degrees(gmax)),
+                      f"transmission_max_at_{unit_name}": a.shown(at_max)})
     report["dyads"] = dyads
     outputs = {}
     sliders = a.linkage.structure.slider_by_name
@@ -457,7 +460,7 @@ def general_placement(a: Analysis, sol: Solution) -> Placement:
         if body == GROUND:
             angles[body], origins[body] = np.zeros(n), np.zeros((n, 2))
             continue
-        p0, beta = _frame(a, body)
+        _, beta = _frame(a, body)
         angles[body] = sol.angles[body] + beta
         origins[body] = sol.points[pts[0]]
     joints = {}
@@ -501,7 +504,7 @@ def general_sketch(a: Analysis) -> Drawing:
     """The linkage as drawn, each link as a closed polygon of its joints, with the tracers' paths."""
     s = a.linkage.structure
     items = []
-    for body, pts in s.bodies.items():
+    for pts in s.bodies.values():
         if len(pts) >= 2:
             xy = np.array([s.points[p] for p in pts] + ([s.points[pts[0]]] if len(pts) > 2 else []), dtype=float)
             items.append(("LINKS", Polyline(xy, np.zeros(len(xy) - 1))))

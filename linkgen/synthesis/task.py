@@ -16,6 +16,7 @@ Units: mm and degrees; every angle counter-clockwise. An optional ``[parts]`` ta
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
@@ -143,7 +144,7 @@ class FunctionTask(Model):
             if len(self.table) < 3:
                 raise ValueError(f"table: needs at least 3 points [x, y] (got {len(self.table)})")
             xs = [x for x, _ in self.table]
-            if any(b <= a for a, b in zip(xs, xs[1:], strict=False)):
+            if any(b <= a for a, b in itertools.pairwise(xs)):
                 raise ValueError("table: x must increase from row to row")
         elif self.x_range is None:
             raise ValueError("x_range: missing: give x from, to for the formula")
@@ -221,7 +222,7 @@ class PathTask(SearchOptions):
             if len(a) != n:
                 raise ValueError(f"input_angles: give one angle a point ({n} points, got {len(a)} angles)")
             _distinct("input_angles", a, "crank angle for two different points", _turn)
-            steps = [b - x for x, b in zip(a, a[1:], strict=False)]
+            steps = [b - x for x, b in itertools.pairwise(a)]
             if not (all(s > 0 for s in steps) or all(s < 0 for s in steps)):
                 raise ValueError("input_angles: the crank must meet the points in order, turning one way: the angles "
                                  "must all increase or all decrease")
