@@ -1,5 +1,5 @@
 """Barrel cams at fine tolerances: every bundled barrel template builds a closed outward solid at 0.1, 0.01 and
-0.001 mm (1e-4 mm in tests/test_barrel_fine.py), read back from the STL with trimesh and its volume against the
+0.001 mm (1e-4 mm in tests/test_barrel_fine*.py), read back from the STL with trimesh and its volume against the
 exact one from the walls; the collapse of edges single precision does not resolve (camgen.core.solids.welded)."""
 from __future__ import annotations
 
