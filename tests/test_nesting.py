@@ -376,3 +376,77 @@ def test_each_row_s_first_free_position_is_the_best_of_all(lean):
         cell, size = float(rng.choice([0.25, 0.98, 2.0])), tuple(rng.uniform(1, 80, 2))
         ends = rng.choice([0.0, 20.0, 150.0], 2) * rng.random(2)
         assert best(_first_free(grid), cell, size, ends) == best(np.argwhere(grid), cell, size, ends)
+
+
+# ---- the nesting's memory: footprints kept packed, up to a limit ---------------------------------------------------
+
+def _mixed(n: int) -> tuple[Part, ...]:
+    """n parts of three shapes (a concave L with an arc, plates with a hole, round-ended bars), 30-60 mm."""
+    return tuple((_ell(f"ell{i}"), _plate(f"plate{i}", 30.0 + 4 * i, 12.0, 4.0),
+                  Part(f"bar{i}", rounded_hull(np.array([[0.0, 0.0], [40.0 + 3 * i, 0.0]]), 5.0), (), 3.0, 0.01))[i % 3]
+                 for i in range(n))
+
+
+def _kept_bound(parts: tuple[Part, ...], rules: SheetRules) -> int:
+    """What keeping every footprint costs at most (bytes): a bit a cell, ENTRY_BYTES an entry, for every part at
+    every rotation (its cells' count from camgen.core.nesting._Flat.frame)."""
+    from camgen.core import nesting
+
+    cell = max(nesting.MIN_CELL_MM, math.sqrt(rules.size[0] * rules.size[1] / nesting.MAX_CELLS))
+    total = 0
+    for part in parts:
+        flat = nesting._Flat.of(part, rules)
+        shapes = [flat.frame(k, cell)[1] for k in range(len(flat.angles))]
+        total += sum(math.ceil(rows * cols / 8) + nesting.ENTRY_BYTES for rows, cols in shapes)
+    return total
+
+
+def test_nest_memory_is_the_packed_footprints_at_most_linear_in_parts_and_capped(monkeypatch):
+    """tracemalloc's peak of nest() (6 parts, 3-degree steps: 120 rotations each) with the footprints kept for the
+    later layouts exceeds the peak with none kept by at most a bit a footprint cell and ENTRY_BYTES a footprint
+    (the stated per-part constant: under 0.11 MB a part here; a byte a cell, as kept before, is 8 times the cells) and,
+    with the limit lowered, by at most the limit; the layout is the same to the last bit, kept or not."""
+    import tracemalloc
+
+    from camgen.core import nesting
+
+    parts = _mixed(6)
+    rules = SheetRules((600.0, 400.0), 2.0, rotations_of(3, False), "sheet")
+    bound = _kept_bound(parts, rules)
+    default = nesting.FOOTPRINT_CACHE_BYTES
+
+    def peak(limit: int):
+        monkeypatch.setattr(nesting, "FOOTPRINT_CACHE_BYTES", limit)
+        tracemalloc.start()
+        try:
+            nested = nest(parts, rules)
+            return nested, tracemalloc.get_traced_memory()[1]
+        finally:
+            tracemalloc.stop()
+
+    none, bare = peak(0)
+    kept, full = peak(default)
+    capped, low = peak(100_000)
+    assert kept == none and capped == none
+    assert bound < 6 * 0.11e6 and bound < default                 # all kept at the default limit
+    assert full - bare <= bound
+    assert low - bare <= 100_000
+
+
+def test_footprints_kept_are_the_cells_made_and_the_limit_holds_at_one_entry():
+    """A kept footprint (packed bits) unpacks to the cells _Flat.footprint makes, corner and all; a limit of exactly
+    one footprint's bytes keeps that one and no more, 1 byte less keeps none (each is then made anew, the same)."""
+    from camgen.core.nesting import ENTRY_BYTES, _Flat, _Footprints, _Grid
+
+    rules = SheetRules((200.0, 150.0), 2.5, rotations_of(30, False), "sheet")
+    flat = _Flat.of(_ell("ell"), rules)
+    grid = _Grid(rules, 0.5)
+    made = [flat.footprint(k, grid) for k in range(len(flat.angles))]
+    one = int(np.ceil(made[0][1].size / 8)) + ENTRY_BYTES
+    for limit, count in ((10**9, len(made)), (one, 1), (one - 1, 0)):
+        cache = _Footprints(limit)
+        for _ in range(2):                                  # made, then (where kept) unpacked
+            for k, (lo, mask) in enumerate(made):
+                got_lo, got = cache.get(0, flat, k, grid)
+                assert np.array_equal(got_lo, lo) and got.dtype == bool and np.array_equal(got, mask)
+        assert len(cache.kept) == count and cache.used <= limit

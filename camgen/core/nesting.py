@@ -22,7 +22,9 @@ The method (ours, on shapely and numpy; see the README's nesting section for the
    used area, kept: never worse than the shelves.
 
 Everything is deterministic: no random numbers and no clock; the work is bounded by the number of orders and
-rotations, not by time, so the same parts always give the same sheets (the golden hashes rely on it).
+rotations, not by time, so the same parts always give the same sheets (the golden hashes rely on it). The memory
+is bounded too: a part keeps its outline's chords and each rotation's box (a polygon a rotation is made when
+needed), and the footprints kept for the later orders take a bit a cell, FOOTPRINT_CACHE_BYTES in all at most.
 
 The shelf packing of bounding rectangles (:func:`shelf`, now with the gap to the edges too) is kept as the
 reference: the report gives
@@ -56,6 +58,11 @@ COMPACTION_PASSES = 4
 #: leans among positions that keep the same rectangle ("left": the least right-hand extent first, "down": the
 #: lowest first)
 TRIES = (("area", "left"), ("area", "down"), ("length", "left"), ("height", "down"))
+#: the most bytes one :func:`nest` keeps of the footprints it makes for reuse by the later layouts (their cells a bit
+#: each, and ENTRY_BYTES an entry); past it a footprint is made each time it is needed, with the same cells
+FOOTPRINT_CACHE_BYTES = 32 * 2**20
+#: what one kept footprint costs beyond its cells' bits (bytes: the arrays' headers, its corner, the dict's slot)
+ENTRY_BYTES = 512
 #: engraved labels: the tallest and the smallest worth engraving (mm)
 LABEL_MAX_MM = 5.0
 LABEL_MIN_MM = 1.0
@@ -166,8 +173,9 @@ def nest(parts: tuple[Part, ...], rules: SheetRules) -> Nest:
     flats = [_Flat.of(p, rules) for p in parts]
     reference = shelf(parts, rules.size, rules.gap)
     shelf_figure = None if reference is None else _area(parts) / _used_area(reference, rules)
-    layouts = [(_fill(sorted(range(len(parts)), key=lambda i, o=order: _order_key(flats[i], o)), flats, rules, lean),
-                f"{order}, {lean}") for order, lean in TRIES]
+    footprints = _Footprints(FOOTPRINT_CACHE_BYTES)
+    layouts = [(_fill(sorted(range(len(parts)), key=lambda i, o=order: _order_key(flats[i], o)), flats, rules, lean,
+                      footprints), f"{order}, {lean}") for order, lean in TRIES]
     if reference is not None and 0.0 in rules.rotations:           # the shelves themselves, should they be best
         layouts.append(((reference, max((p.sheet for p in reference), default=0) + 1), "shelves"))
     best: Nest | None = None
@@ -183,17 +191,18 @@ def nest(parts: tuple[Part, ...], rules: SheetRules) -> Nest:
 
 @dataclass(frozen=True)
 class _Flat:
-    """A part as the nesting sees it: for each rotation, its outline as a polygon (mm, own frame turned), and how
-    much to grow it for the footprint (gap / 2 and the chords' distance from the arcs)."""
+    """A part as the nesting sees it: its outline as chords (mm, own frame), turned by each rotation into a polygon
+    made when needed (:meth:`polygon`: a part keeps no polygon a rotation, so its memory does not grow with the
+    rotations' count but by a few numbers each), and how much to grow it for the footprint (gap / 2 and the
+    chords' distance from the arcs)."""
 
     part: Part
-    polygons: tuple            # shapely Polygons, one a rotation
+    ring: np.ndarray           # the outline's chords' ends (mm, own frame, not turned)
+    angles: tuple              # the rotations (radians, counter-clockwise)
+    bounds: np.ndarray         # each turned polygon's (xmin, ymin, xmax, ymax), mm: one row a rotation
     boxes: tuple               # the exact outline's (xmin, ymin, xmax, ymax) at each rotation, mm
     grow: float
     chord: float
-    #: each rotation's footprint on a grid of a cell size, made once for every layout tried: {(rotation, cell):
-    #: (its box's lower-left corner grown (mm), the cells it covers from there)}
-    footprints: dict = field(default_factory=dict, compare=False, repr=False)
 
     @classmethod
     def of(cls, part: Part, rules: SheetRules) -> _Flat:
@@ -201,17 +210,22 @@ class _Flat:
 
         ring = part.outline.flatten(NEST_TOLERANCE_MM)
         chord = part.outline.flatten_error(NEST_TOLERANCE_MM)
-        polys = tuple(shapely.Polygon(_moved(ring, math.radians(a), np.zeros(2))) for a in rules.rotations)
-        boxes = tuple(part.outline.moved(math.radians(a), np.zeros(2)).bounds() for a in rules.rotations)
-        flat = cls(part, polys, boxes, rules.gap / 2 + chord + 1e-9, chord)
+        angles = tuple(math.radians(a) for a in rules.rotations)
+        bounds = np.array([shapely.bounds(_turned(ring, a)) for a in angles]).reshape(len(angles), 4)
+        boxes = tuple(part.outline.moved(a, np.zeros(2)).bounds() for a in angles)
+        flat = cls(part, ring, angles, bounds, boxes, rules.gap / 2 + chord + 1e-9, chord)
         flat._check_fits(rules)
         return flat
+
+    def polygon(self, k: int):
+        """Rotation k's polygon (a shapely Polygon, mm, own frame turned), the same at every call."""
+        return _turned(self.ring, self.angles[k])
 
     def _check_fits(self, rules: SheetRules) -> None:
         """Refused, naming the sheet field and the part's size, when no rotation fits an empty sheet."""
         w, h = rules.size
         need = 2 * rules.gap
-        spans = [self.span(k) for k in range(len(self.polygons))]
+        spans = [self.span(k) for k in range(len(self.angles))]
         if not any(sw + need <= w + 1e-9 and sh + need <= h + 1e-9 for sw, sh in spans):
             sw, sh = min(spans, key=lambda s: max(s[0] - w, s[1] - h))
             raise DesignError(f"{rules.field}: the parts do not fit a {w:g} x {h:g} mm sheet: {self.part.name} is "
@@ -223,18 +237,57 @@ class _Flat:
         x0, y0, x1, y1 = self.boxes[k]
         return x1 - x0, y1 - y0
 
+    def frame(self, k: int, cell: float) -> tuple[np.ndarray, tuple[int, int]]:
+        """Rotation k's footprint's frame on a grid of ``cell`` mm: the lower-left corner (mm) of its polygon's box
+        grown by ``grow``, and its cells' count (rows along +Y, columns along +X) from that corner."""
+        x0, y0, x1, y1 = self.bounds[k].tolist()
+        lo = np.array([x0 - self.grow, y0 - self.grow])
+        rows = math.ceil((y1 - y0 + 2 * self.grow) / cell) + 1
+        cols = math.ceil((x1 - x0 + 2 * self.grow) / cell) + 1
+        return lo, (rows, cols)
+
     def footprint(self, k: int, grid: _Grid) -> tuple[np.ndarray, np.ndarray]:
         """Rotation k's footprint on ``grid``'s cells: the lower-left corner (mm) of its polygon's box grown by
         ``grow``, and the cells (rows along +Y) the grown polygon touches with that corner at the origin."""
-        key = (k, grid.cell)
-        if key not in self.footprints:
-            polygon = self.polygons[k]
-            x0, y0, x1, y1 = polygon.bounds
-            lo = np.array([x0 - self.grow, y0 - self.grow])
-            rows = math.ceil((y1 - y0 + 2 * self.grow) / grid.cell) + 1
-            cols = math.ceil((x1 - x0 + 2 * self.grow) / grid.cell) + 1
-            self.footprints[key] = lo, grid.cover(_shift(polygon, -lo), self.grow, np.zeros(2), (rows, cols))
-        return self.footprints[key]
+        lo, shape = self.frame(k, grid.cell)
+        return lo, grid.cover(_shift(self.polygon(k), -lo), self.grow, np.zeros(2), shape)
+
+
+def _turned(ring: np.ndarray, angle: float):
+    """The polygon of ``ring`` (mm) turned by ``angle`` (radians, counter-clockwise) about the origin."""
+    import shapely
+
+    return shapely.Polygon(_moved(ring, angle, np.zeros(2)))
+
+
+class _Footprints:
+    """Each part's footprint at each rotation (:meth:`_Flat.footprint`), made once for every layout one
+    :func:`nest` tries and kept with its cells packed a bit each (np.packbits), up to ``limit`` bytes in all
+    (``ENTRY_BYTES`` an entry besides its bits); past the limit a footprint is made each time it is needed. An
+    entry is the bits alone (its corner and shape come again from :meth:`_Flat.frame`); every grid of one
+    :func:`nest` has the same cell.
+
+    The first ones made stay: every layout visits every part in turn, so a cache that dropped the least recently
+    used when full would drop each footprint before its next use and keep none for reuse."""
+
+    def __init__(self, limit: int) -> None:
+        self.limit = limit
+        self.used = 0                                   # bytes kept (the bits, and ENTRY_BYTES an entry)
+        self.kept: dict[tuple[int, int], np.ndarray] = {}             # {(part, rotation): the cells' bits}
+
+    def get(self, i: int, flat: _Flat, k: int, grid: _Grid) -> tuple[np.ndarray, np.ndarray]:
+        """Part i's (``flat``'s) footprint at rotation k on ``grid``'s cells, as :meth:`_Flat.footprint` gives
+        it."""
+        bits = self.kept.get((i, k))
+        if bits is not None:
+            lo, shape = flat.frame(k, grid.cell)
+            return lo, np.unpackbits(bits, count=shape[0] * shape[1]).reshape(shape).view(bool)
+        lo, mask = flat.footprint(k, grid)
+        bits = np.packbits(mask)
+        if self.used + bits.nbytes + ENTRY_BYTES <= self.limit:
+            self.kept[i, k] = bits
+            self.used += bits.nbytes + ENTRY_BYTES
+        return lo, mask
 
 
 def _order_key(flat: _Flat, order: str) -> tuple:
@@ -278,8 +331,10 @@ class _Grid:
         return shapely.contains_xy(reach, gx, gy)
 
 
-def _fill(order: list[int], flats: list[_Flat], rules: SheetRules, lean: str) -> tuple[list[Placed], int]:
-    """Place the parts in ``order`` (first fit over the sheets, a new sheet when none has room)."""
+def _fill(order: list[int], flats: list[_Flat], rules: SheetRules, lean: str,
+          footprints: _Footprints) -> tuple[list[Placed], int]:
+    """Place the parts in ``order`` (first fit over the sheets, a new sheet when none has room), their footprints
+    from ``footprints``."""
     w, h = rules.size
     cell = max(MIN_CELL_MM, math.sqrt(w * h / MAX_CELLS))
     grids: list[_Grid] = []
@@ -290,13 +345,14 @@ def _fill(order: list[int], flats: list[_Flat], rules: SheetRules, lean: str) ->
         for s in range(len(grids) + 1):
             if s == len(grids):
                 grids.append(_Grid(rules, cell))
-            spot = _best_spot(grids[s], flat, lean)
+            spot = _best_spot(grids[s], flat, lean, footprints, i)
             if spot is None and not grids[s].outlines:
                 spot = _corner_spot(flat, rules)
             if spot is not None:
                 k, shift = spot
-                shift = _compact(grids[s], flat.polygons[k], flat.boxes[k], shift, slack, rules)
-                polygon = _shift(flat.polygons[k], shift)
+                polygon = flat.polygon(k)
+                shift = _compact(grids[s], polygon, flat.boxes[k], shift, slack, rules)
+                polygon = _shift(polygon, shift)
                 _occupy(grids[s], polygon, flat.grow)
                 placed.append(Placed(flat.part, s, rules.rotations[k], (float(shift[0]), float(shift[1]))))
                 break
@@ -310,7 +366,7 @@ def _corner_spot(flat: _Flat, rules: SheetRules) -> tuple[int, np.ndarray] | Non
     """On an empty sheet the grid may have no room for a part that fits only just: the first rotation whose exact
     box fits, in the sheet's lower-left corner, ``gap`` from both edges."""
     w, h = rules.size
-    for k in range(len(flat.polygons)):
+    for k in range(len(flat.angles)):
         sw, sh = flat.span(k)
         if sw + 2 * rules.gap <= w + 1e-9 and sh + 2 * rules.gap <= h + 1e-9:
             x0, y0, _, _ = flat.boxes[k]
@@ -341,10 +397,10 @@ def _fast_length(n: int) -> int:
     return best
 
 
-def _best_spot(grid: _Grid, flat: _Flat, lean: str) -> tuple[int, np.ndarray] | None:
+def _best_spot(grid: _Grid, flat: _Flat, lean: str, footprints: _Footprints, i: int) -> tuple[int, np.ndarray] | None:
     """The rotation and shift (mm) of the free grid position that keeps the layout's rectangle from the sheet's
     corner least, then the part's upper right corner nearest the sheet's corner, then (``lean``) the least
-    right-hand extent or the lowest.
+    right-hand extent or the lowest; ``flat`` is part i, its footprints from ``footprints``.
 
     Every key grows with the position's right and top, and the sheet is empty past the layout's extents, so the
     best position lies within the layout's extents plus the part's size: only that window is searched."""
@@ -353,9 +409,8 @@ def _best_spot(grid: _Grid, flat: _Flat, lean: str) -> tuple[int, np.ndarray] | 
               min(grid.shape[1], math.ceil((grid.ends[0] + reach) / grid.cell) + 3))
     overlap = _Overlap(grid, window)
     best = None
-    for k, polygon in enumerate(flat.polygons):
-        x0, y0, x1, y1 = polygon.bounds
-        lo, mask = flat.footprint(k, grid)
+    for k, (x0, y0, x1, y1) in enumerate(flat.bounds.tolist()):
+        lo, mask = footprints.get(i, flat, k, grid)
         if mask.shape[0] > window[0] or mask.shape[1] > window[1]:
             continue
         free = _first_free(overlap.free(mask))
