@@ -91,6 +91,7 @@ def test_four_bars_through_the_general_solver_agree_with_the_closed_form(fb, the
     assert np.abs(sol.points["A"] - ref.a).max() < 1e-9
     w3, w4 = fb.velocities(ref, 1.0)
     a3, a4 = fb.accelerations(ref, 1.0)
+    assert np.allclose(sol.omegas["coupler"], w3, rtol=0, atol=1e-10)
     assert np.allclose(sol.omegas["rocker"], w4, rtol=0, atol=1e-10)
     assert np.allclose(sol.alphas["coupler"], a3, rtol=0, atol=1e-10)
     assert np.allclose(sol.alphas["rocker"], a4, rtol=0, atol=1e-10)
@@ -213,7 +214,7 @@ def test_velocities_and_accelerations_equal_high_order_differences_of_positions(
 
 def test_a_structure_is_refused_with_its_mobility():
     pts = {"O": (0.0, 0.0), "Q": (100.0, 0.0), "A": (50.0, 60.0)}
-    with pytest.raises(SpecError, match="over-constrained|mobility 0"):
+    with pytest.raises(SpecError, match=r"over-constrained|mobility 0"):
         Linkage.of(make_structure(pts, {"crank": ("O", "A"), "bar": ("A", "Q")}, ("O", "Q"), (), CRANK))
 
 
@@ -297,6 +298,7 @@ def test_poses_at_and_within_1e12_of_a_toggle_are_finite_and_close():
     lo, hi = fb.input_ranges()[0]
     lk = Linkage.of(equivalents.fourbar(fb, 0.0))
     r_lo, r_hi = motion.input_ranges(lk)[0]
+    assert (r_lo, r_hi) == pytest.approx((lo, hi), abs=1e-12)      # the general range is the closed form's
     sol = lk.solve([r_hi, r_hi - 1e-12, r_lo + 1e-12])
     assert np.isfinite(sol.points["B"]).all()
     assert np.allclose(np.hypot(*(sol.points["B"] - sol.points["A"]).T), 60, atol=1e-9)
@@ -422,6 +424,7 @@ rocker = ["O4", "B"]
     assert r["outputs"]["rocker"]["time_ratio"] == pytest.approx(fb.time_ratio(), rel=1e-12)
     (gmin, _), (gmax, _) = fb.transmission_extremes()
     assert r["dyads"][0]["transmission_min_deg"] == pytest.approx(math.degrees(gmin), abs=1e-3)
+    assert r["dyads"][0]["transmission_max_deg"] == pytest.approx(math.degrees(gmax), abs=1e-3)
     pose = fb.positions([math.radians(30)])
     assert [r["positions"]["joints"]["B"]["x_mm"], r["positions"]["joints"]["B"]["y_mm"]] == pytest.approx(
         pose.b[0], abs=1e-9)
@@ -463,7 +466,7 @@ def test_an_input_a_rounding_past_a_toggle_snaps_onto_it_and_the_refusal_reads_a
     """The general solver takes what the four-bar's closed form takes (within 1e-10 of the links past a toggle);
     a value just out of reach prints with enough digits to differ from the limit, in (-180, 180]."""
     fb = FourBar(180, 120, 140, 150)
-    lo, hi = fb.input_ranges()[0]
+    _, hi = fb.input_ranges()[0]
     lk = Linkage.of(equivalents.fourbar(fb, 0.0))
     sol = lk.solve([hi + 1e-13, math.radians(149.703449697)])
     assert np.isfinite(sol.points["B"]).all()

@@ -181,7 +181,8 @@ def test_every_pose_keeps_each_links_lengths_and_each_slider_on_its_guide(name):
 def _jansen_reference(theta: np.ndarray, drawn: dict) -> dict[str, np.ndarray]:
     """Jansen's leg from the holy numbers, one circle intersection after another, each on the branch the drawing
     shows (crank m about O at the origin, B at (-a, -l))."""
-    a, b, c, d, e, f, g, h, i, j, k, l, m = 38, 41.5, 39.3, 40.1, 55.8, 39.4, 36.7, 65.7, 49, 50, 61.9, 7.8, 15
+    # Jansen's own letters, l among them
+    a, b, c, d, e, f, g, h, i, j, k, l, m = 38, 41.5, 39.3, 40.1, 55.8, 39.4, 36.7, 65.7, 49, 50, 61.9, 7.8, 15  # noqa: E741
     s = {q: _side(*(drawn[x] for x in key), drawn[q]) for q, key in
          {"C": "AB", "D": "AB", "E": "CB", "F": "ED", "G": "FD"}.items()}
     A = _on_circle((0, 0), m, theta)
@@ -240,7 +241,7 @@ def test_klanns_foot_follows_the_patent_proportions():
 
 def test_the_pantographs_pen_doubles_the_tracers_path_about_its_pivot():
     joints = _table("pantograph")["joints"]
-    P, O = np.array(joints["P"]), np.array(joints["O"])
+    P, O = np.array(joints["P"]), np.array(joints["O"])          # noqa: E741 - the joints' names
     sol = _solve("pantograph", TURN)
     T, Q = sol.points["T"], sol.points["Q"]
     assert np.max(np.abs(np.hypot(*(T - O).T) - 25.0)) < 1e-9          # the crank drives T round its circle
@@ -300,7 +301,7 @@ def test_the_single_dwell_output_stands_still_over_80_degrees_of_crank():
     assert np.max(np.hypot(*(sol.points["D"] - D).T)) < 1e-8
     turned = np.unwrap(sol.angles["output"])
     assert np.max(np.abs((turned - turned[0]) - (psi - psi[0]))) < 1e-9
-    dwell = (TURN >= math.radians(148)) & (TURN <= math.radians(228))
+    dwell = (math.radians(148) <= TURN) & (math.radians(228) >= TURN)
     assert math.degrees(np.ptp(psi[dwell])) < 0.15                     # stands still (0.125 degrees)
     assert math.degrees(np.ptp(psi)) > 50.0                            # and swings 51.5 degrees elsewhere
 
@@ -315,7 +316,7 @@ def test_the_pendulum_pump_strokes_twice_the_crank_and_the_pendulum_swings_asin_
     import linkgen
 
     lengths = _table("pendulum-pump")["lengths"]
-    r, l = lengths["O-A"], lengths["B-A"]
+    r, l = lengths["O-A"], lengths["B-A"]                               # noqa: E741 - the docstring's l
     s0 = _table("pendulum-pump")["joints"]["O"][1]
     analysis = linkgen.design_linkage(linkgen.load_spec(_path("pendulum-pump"))).kinematics
     lo, hi = analysis.ranges[0]

@@ -36,7 +36,7 @@ def free_body_torque(theta: np.ndarray) -> np.ndarray:
     p = fb.positions(theta, "open")
     o2, o4 = np.zeros(2), np.array([100.0, 0.0])
     out = []
-    for a, b, pt in zip(p.a, p.b, p.point):
+    for a, b, pt in zip(p.a, p.b, p.point, strict=True):
         f = np.array(FORCE)
         rows = np.zeros((5, 5))
         rhs = np.zeros(5)
@@ -125,16 +125,16 @@ def test_a_slider_force_on_a_slider_crank():
     raw = {"name": "sc", "linkage": {"type": "slider-crank", "crank": 25.0, "rod": 80.0}}
     st = _design([{"point": "B", "force": [-100.0, 0.0]}], raw).statics
     theta = np.linspace(0.0, 2 * math.pi, 91)
-    r, l = 25.0, 80.0
-    x = r * np.cos(theta) + np.sqrt(l ** 2 - (r * np.sin(theta)) ** 2)
-    dx = -r * np.sin(theta) - r ** 2 * np.sin(theta) * np.cos(theta) / np.sqrt(l ** 2 - (r * np.sin(theta)) ** 2)
+    r, rod = 25.0, 80.0
+    x = r * np.cos(theta) + np.sqrt(rod ** 2 - (r * np.sin(theta)) ** 2)
+    dx = -r * np.sin(theta) - r ** 2 * np.sin(theta) * np.cos(theta) / np.sqrt(rod ** 2 - (r * np.sin(theta)) ** 2)
     assert x[0] == pytest.approx(105.0)
     assert np.max(np.abs(st.effort_at(theta) - 100.0 * dx / 1000.0)) < 1e-12
 
 
 def test_a_general_linkage_takes_loads_by_its_joints_names(tmp_path):
     result = CliRunner().invoke(linkgen, ["analyze", "templates/jansen.toml", "-o", str(tmp_path / "o"), "--json",
-                                          "--set", 'loads=[{point="G", force=[0, 100]}]'])
+                                          "--figures", "--set", 'loads=[{point="G", force=[0, 100]}]'])
     assert result.exit_code == 0, result.output
     r = json.loads(result.output)["statics"]
     assert r["max_N_m"] > 0 > r["min_N_m"] and r["mechanical_advantage_min"] > 0
