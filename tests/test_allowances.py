@@ -105,7 +105,8 @@ def test_every_printed_cam_gets_the_foot_and_default_files_stay_the_same(tmp_pat
         assert result.exit_code == 0, result.output
         return tmp_path / folder / "rdrd.stl"
 
-    plain, zero, foot = build("plain"), build("zero", "output.elephant_foot=0"), build("foot", "output.elephant_foot=0.4")
+    plain, zero = build("plain"), build("zero", "output.elephant_foot=0")
+    foot = build("foot", "output.elephant_foot=0.4")
     assert plain.read_bytes() == zero.read_bytes()
     import trimesh
 
@@ -176,7 +177,8 @@ def test_hard_cases_of_the_foot():
 def test_a_foot_too_thick_is_one_line_exit_2_and_nothing_written(tmp_path):
     for sets, message in ((["cam.thickness=4", "output.elephant_foot=4"],
                            "error: output.elephant_foot: must be < the thickness of rdrd, 4 mm (got 4)\n"),
-                          (["output.elephant_foot=5.5"], "error: output.elephant_foot: must be >= 0 and <= 5 mm (got 5.5)\n"),
+                          (["output.elephant_foot=5.5"],
+                           "error: output.elephant_foot: must be >= 0 and <= 5 mm (got 5.5)\n"),
                           (["output.elephant_foot=-0.1"],
                            "error: output.elephant_foot: must be >= 0 and <= 5 mm (got -0.1)\n")):
         args = ["build", str(RDRD), "-o", str(tmp_path / "o")]
@@ -254,7 +256,7 @@ def test_chords_of_a_concave_curve_read_as_its_radius_and_a_sharp_turn_as_a_corn
 def test_the_build_reports_and_warns_where_the_tool_fails(tmp_path):
     args = ["build", str(RDRD), "-o", str(tmp_path / "k"), "--set", "hub.keyway=true", "--set",
             'output.formats=["json"]']
-    result = CliRunner().invoke(camgen, args + ["--set", "output.tool_radius=1"])
+    result = CliRunner().invoke(camgen, [*args, "--set", "output.tool_radius=1"])
     assert result.exit_code == 0, result.output
     report = json.loads((tmp_path / "k" / "rdrd.json").read_text())
     routing = report["routing"]

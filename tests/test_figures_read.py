@@ -39,10 +39,10 @@ def test_overview_one_scale_numeric_order_and_bores():
     drawn = [ax for ax in axes if ax.patches]
     limits = {(ax.get_xlim(), ax.get_ylim()) for ax in drawn}
     assert len(limits) == 1                                  # one region, so one scale: 70 mm looks larger than 45
-    (x0, x1), (y0, y1) = limits.pop()
+    (x0, x1), _ = limits.pop()
     assert x1 == pytest.approx(-x0) and x1 == pytest.approx(70 * 1.05, rel=1e-3)   # about the centre
     for ax in drawn:
-        outline, bore = ax.patches                           # the cam, then its bore in white
+        _outline, bore = ax.patches                          # the cam, then its bore in white
         radii = np.hypot(*bore.get_xy().T)
         assert radii == pytest.approx(5.0, abs=1e-9) and bore.get_facecolor()[:3] == (1.0, 1.0, 1.0)
     assert "147 mm across" in fig._suptitle.get_text()       # the scale said: 2 x 70 mm x 1.05
@@ -66,7 +66,7 @@ def test_overview_paths_share_their_frame_and_titles_wrap():
 def _strip(poses: int) -> Drawing:
     """A long, low assembly (300 x 40 mm) at ``poses`` poses that lie on one another, and a path."""
     bar = np.array([[0.0, 0.0], [300.0, 0.0], [300.0, 40.0], [0.0, 40.0]])
-    items = [(f"DC{i + 1}-pose", Polyline(bar + [0.0, 0.0], np.zeros(3))) for i in range(poses)]
+    items = [(f"DC{i + 1}-pose", Polyline(bar.copy(), np.zeros(3))) for i in range(poses)]
     items += [(f"DC{i + 1}-pose", Circle((10.0 * i, 20.0), 5.0)) for i in range(poses)]
     return Drawing(tuple([*items, ("PATH", Polyline(np.array([[0.0, 20.0], [300.0, 20.0]]), np.zeros(1)))]), 0.01)
 

@@ -551,9 +551,9 @@ def _barrel_checks(design):
 @pytest.mark.parametrize("template, figure", [(GROOVED, "grooved_checks_figure"), (CONJUGATE, "pair_checks_figure"),
                                               (BARREL, None)])
 def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, figure, tmp_path):
-    """A grooved cam's, a pair's and a barrel's checks figure at a speed with a mass: its normal forces peak at the report's
-    largest, its Hertz pressures at the stress's peak, its torque at the extremes (the dense plot within 0.5 % of
-    the refined peaks); a build writes <name>-checks.png/.svg only then."""
+    """A grooved cam's, a pair's and a barrel's checks figure at a speed with a mass: its normal forces peak at the
+    report's largest, its Hertz pressures at the stress's peak, its torque at the extremes (the dense plot within
+    0.5 % of the refined peaks); a build writes <name>-checks.png/.svg only then."""
     from click.testing import CliRunner
 
     from camgen import plots

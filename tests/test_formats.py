@@ -177,7 +177,8 @@ def test_no_negative_zero_in_reports_or_on_the_console(tmp_path):
     assert report_json({"a": [-0.0, (1.5, -0.0)], "b": {"c": -0.0, "d": -2.0}}) == report_json(
         {"a": [0.0, [1.5, 0.0]], "b": {"c": 0.0, "d": -2.0}})
     assert (fixed(-1e-13), fixed(-0.0004), fixed(-0.0006), fixed(2.5, 1)) == ("0.000", "0.000", "-0.001", "2.5")
-    result = CliRunner().invoke(linkgen, ["analyze", str(Path(__file__).resolve().parent.parent / "templates" / "toggle-press.toml"), "-o", str(tmp_path)])
+    template = Path(__file__).resolve().parent.parent / "templates" / "toggle-press.toml"
+    result = CliRunner().invoke(linkgen, ["analyze", str(template), "-o", str(tmp_path)])
     assert result.exit_code == 0 and "tracer R: x 0.000 to 0.000 mm (0.000 wide)" in result.output
     assert "-0.0," not in (tmp_path / "toggle-press.json").read_text() and "-0.0\n" not in (
         tmp_path / "toggle-press.json").read_text()

@@ -260,7 +260,8 @@ def test_an_oscillating_roller_in_a_groove():
     ({"follower.spring_rate": 2.0}, "follower.spring_rate: a grooved cam drives the follower both ways"),
     ({"hub.boss_diameter": 20.0, "hub.boss_height": 5.0}, "hub.boss_diameter: a boss would stand on the grooved face"),
     ({"cam.kind": "disc"}, 'cam.groove_depth: only for a grooved cam (cam.kind = "grooved")'),
-    ({"output.kerf": 5.0, "follower.roller_radius": 2.0}, "output.kerf: a kerf of 5 mm closes the groove (4.2 mm wide)"),
+    ({"output.kerf": 5.0, "follower.roller_radius": 2.0},
+     "output.kerf: a kerf of 5 mm closes the groove (4.2 mm wide)"),
 ])
 def test_bad_values_are_one_line_exit_2_nothing_written(change, message, tmp_path):
     assert_refused(TEMPLATE, change, message, tmp_path)
@@ -274,7 +275,8 @@ def test_groove_depth_is_required_and_refused_on_a_plate():
         validate_spec(raw)
     raw = copy.deepcopy(RAW)
     del raw["cam"]["groove_depth"]
-    with pytest.raises(ValueError, match=r"cam\.groove_depth: required for a grooved cam \(mm, > 0 and < cam\.thickness\)"):
+    with pytest.raises(ValueError,
+                       match=r"cam\.groove_depth: required for a grooved cam \(mm, > 0 and < cam\.thickness\)"):
         validate_spec(raw)
     plate = {"name": "p", "cam": {"kind": "plate", "travel": 200.0, "base_radius": 20.0, "thickness": 6.0, "rim": 3.0},
              "follower": {"type": "knife-edge"}, "motion": [{"type": "dwell", "angle": 360.0}]}

@@ -291,7 +291,8 @@ def test_elephant_foot_chamfer_by_hand(tmp_path):
     [(_, shape)] = read_step(tmp_path / "foot.step")
     found = measure(shape)
     plain = (math.pi * r**2 - math.pi * h**2) * t
-    assert found["solids"] == 1 and found["valid"] and found["faces"] == 2 + 1 + 2 + 3     # a chamfer an edge of the bed
+    # a chamfer an edge of the bed
+    assert found["solids"] == 1 and found["valid"] and found["faces"] == 2 + 1 + 2 + 3
     assert found["volume"] == pytest.approx(plain - math.pi * e**2 * (r - e / 3) - math.pi * e**2 * (h + e / 3),
                                             rel=1e-12)
     assert np.abs(found["box"] - [-r, -r, 0.0, r, r, t]).max() <= 1e-6

@@ -125,4 +125,5 @@ def test_noise_beyond_the_tolerance_is_refused_with_its_row():
     assert str(caught.value).startswith("motion[0].data: a spline of continuity C3 with 44 knots comes no closer "
                                         "than"), str(caught.value)
     at = float(str(caught.value).split("to the row at ")[1].split(" degrees")[0])
-    assert abs(at - 42.5) <= 2.5 and "degrees (fit_tolerance 0.01)" in str(caught.value)   # the misread row or one beside it
+    # the misread row or one beside it
+    assert abs(at - 42.5) <= 2.5 and "degrees (fit_tolerance 0.01)" in str(caught.value)
