@@ -179,7 +179,7 @@ def test_the_wheels_motion_from_the_exported_geometry(tmp_path):
     angles over the engagement, and its finite differences: the closed form, beta' and beta''."""
     report, out = _build(tmp_path, G4, "output.dxf='lines-arcs'")
     c = tomllib.loads(G4.read_text())["geneva"]["centre_distance"]
-    a0, a1, b0, b1 = _slots(out / "geneva4-wheel.dxf", 4)[0]
+    a0, a1, _, _ = _slots(out / "geneva4-wheel.dxf", 4)[0]
     axis = (a1 - a0) / np.linalg.norm(a1 - a0)
     own = math.atan2(axis[1], axis[0]) % math.pi                          # the slot's direction in the wheel's file
     circles = [e for e in _entities(out / "geneva4-crank.dxf") if e.dxftype() == "CIRCLE"]
@@ -282,7 +282,7 @@ def test_kerf_grows_every_outline_by_half_exactly(tmp_path):
     rim half the kerf larger, and the bore the kerf smaller; all still exact lines and arcs."""
     report, out = _build(tmp_path, G4, "output.kerf=0.2", "output.dxf='lines-arcs'")
     raw = tomllib.loads(G4.read_text())["geneva"]
-    for a0, a1, b0, b1 in _slots(out / "geneva4-wheel.dxf", 4):
+    for a0, a1, b0, _ in _slots(out / "geneva4-wheel.dxf", 4):
         d = (a1 - a0) / np.linalg.norm(a1 - a0)
         assert abs(float((b0 - a0) @ np.array([-d[1], d[0]]))) == pytest.approx(6.0, abs=1e-9)   # 6.2 - 0.2
     arcs = [e for e in _entities(out / "geneva4-wheel.dxf") if e.dxftype() == "ARC"]

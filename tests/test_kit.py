@@ -302,7 +302,7 @@ def test_assembly_drawing_a_panel_at_each_quarter_turn(rdrd):
     axle hole and the follower's are at the design's roller centre for that cam angle (the follower's axis at the
     offset, d0 + s(theta) up it: the design's lift), the roller touches the cam's outline drawn turned by that angle,
     and the fixed parts stand where they do at 0 degrees."""
-    out, report, design = rdrd
+    out, _, design = rdrd
     spec = design.spec
     hole = BOLTS[spec.kit.bolt].clearance_hole
     degrees = (0, 90, 180, 270)

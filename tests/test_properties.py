@@ -734,7 +734,7 @@ def motion_program(draw: Any, oscillating: bool) -> list[dict]:
     top = 30.0 if oscillating else 40.0
     rises = [draw(_range(1, top / 2)) for k in kinds if k == "rise"]
     lifts = iter(rises)
-    return [draw(segment(k, next(lifts) if k == "rise" else sum(rises), a)) for k, a in zip(kinds, angles)]
+    return [draw(segment(k, next(lifts) if k == "rise" else sum(rises), a)) for k, a in zip(kinds, angles, strict=True)]
 
 
 FOLLOWER_PRESETS = {

@@ -107,7 +107,8 @@ def _at_value(cam, quantity, at_deg: float) -> float:
 #: acceleration jumps inside it and one whose velocity jumps at its ends
 CASES = sorted({(law, "translating-roller", rotation) for law in LAWS for rotation in ("ccw", "cw")}
                | {(law, follower, rotation) for law in ("cycloidal", "modified-uniform/parabolic", "uniform")
-                  for follower in FOLLOWERS for rotation in ("ccw", "cw") if not (follower == "plate" and rotation == "cw")})
+                  for follower in FOLLOWERS for rotation in ("ccw", "cw")
+                  if not (follower == "plate" and rotation == "cw")})
 
 
 def _pressure(g):

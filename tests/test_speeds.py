@@ -118,7 +118,7 @@ def test_the_least_contact_force_crosses_zero_at_the_liftoff_speed():
 
     for rpm, sign in ((off * (1 - 1e-9), 1), (off * (1 + 1e-9), -1)):
         omega = rpm * math.pi / 30
-        assert sign * -peak_at(design.cam, lambda t, mm: -ld.force(mm, omega, t)).value > 0
+        assert sign * -peak_at(design.cam, lambda t, mm, omega=omega: -ld.force(mm, omega, t)).value > 0
 
 
 def test_the_speeds_figure_and_console_draw_the_table(tmp_path):
