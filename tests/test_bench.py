@@ -62,7 +62,6 @@ def test_quick_linkgen_bench(tmp_path):
     assert peer and (peer[0].get("status") or peer[0]["max_error_mm"] < 1e-6)
     # synthesis: each published problem solved, our error not worse than plain differential evolution's
     assert len(r["synthesis"]) == 4 and "## Synthesis" in (tmp_path / "RESULTS.md").read_text()
-    _speed_rows(r, (tmp_path / "RESULTS.md").read_text(), {"four-bar positions, 100 000 crank angles",
-                                                             "linkgen analyze crank-rocker, every default output",
-                                                             "linkgen build crank-rocker, every default output",
-                                                             "linkgen build crank-rocker, with its figures (--figures)"})
+    _speed_rows(r, (tmp_path / "RESULTS.md").read_text(), {
+        "four-bar positions, 100 000 crank angles", "linkgen analyze crank-rocker, every default output",
+        "linkgen build crank-rocker, every default output", "linkgen build crank-rocker, with its figures (--figures)"})
