@@ -435,13 +435,15 @@ def test_nest_memory_is_the_packed_footprints_at_most_linear_in_parts_and_capped
 
 def test_footprints_kept_are_the_cells_made_and_the_limit_holds_at_one_entry():
     """A kept footprint (packed bits) unpacks to the cells _Flat.footprint makes, corner and all; a limit of exactly
-    one footprint's bytes keeps that one and no more, 1 byte less keeps none (each is then made anew, the same)."""
+    one footprint's bytes keeps that one and no more, 1 byte less keeps none (each is then made anew, the same);
+    each rotation's box, from the turned vertices, is shapely's box of that rotation's polygon to the last bit."""
     from camgen.core.nesting import ENTRY_BYTES, _Flat, _Footprints, _Grid
 
     rules = SheetRules((200.0, 150.0), 2.5, rotations_of(30, False), "sheet")
     flat = _Flat.of(_ell("ell"), rules)
     grid = _Grid(rules, 0.5)
     made = [flat.footprint(k, grid) for k in range(len(flat.angles))]
+    assert np.array_equal(flat.bounds, [flat.polygon(k).bounds for k in range(len(flat.angles))])   # to the bit
     one = int(np.ceil(made[0][1].size / 8)) + ENTRY_BYTES
     for limit, count in ((10**9, len(made)), (one, 1), (one - 1, 0)):
         cache = _Footprints(limit)

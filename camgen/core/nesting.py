@@ -206,12 +206,12 @@ class _Flat:
 
     @classmethod
     def of(cls, part: Part, rules: SheetRules) -> _Flat:
-        import shapely
-
         ring = part.outline.flatten(NEST_TOLERANCE_MM)
         chord = part.outline.flatten_error(NEST_TOLERANCE_MM)
         angles = tuple(math.radians(a) for a in rules.rotations)
-        bounds = np.array([shapely.bounds(_turned(ring, a)) for a in angles]).reshape(len(angles), 4)
+        # each turned polygon's box from its vertices: the least and greatest, the very numbers shapely's bounds give
+        bounds = np.array([np.concatenate([t.min(axis=0), t.max(axis=0)])
+                           for t in (_moved(ring, a, np.zeros(2)) for a in angles)]).reshape(len(angles), 4)
         boxes = tuple(part.outline.moved(a, np.zeros(2)).bounds() for a in angles)
         flat = cls(part, ring, angles, bounds, boxes, rules.gap / 2 + chord + 1e-9, chord)
         flat._check_fits(rules)
