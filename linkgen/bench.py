@@ -83,7 +83,8 @@ def plain_positions(t: np.ndarray) -> np.ndarray:
 
 def positions_ratio(repeats: int) -> dict:
     """The four-bar positions row of :func:`speed_ratios` alone (``repeats`` alternated pairs): the bundled
-    crank-rocker's poses at 100 000 crank angles against :func:`plain_positions`, e.g.
+    crank-rocker's rocker pins at 100 000 crank angles (``FourBar.positions(t).b``; the rest of each pose is derived
+    only when read) against :func:`plain_positions`, e.g.
     ``python -c "from linkgen.bench import positions_ratio; print(positions_ratio(20))"``."""
     fb = FourBar(180, 80, 200, 150)
     t = 2 * math.pi / 100_000 * np.arange(1, 100_001)

@@ -25,7 +25,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cached_property, partial
 from typing import Literal
 
 import numpy as np
@@ -39,9 +40,16 @@ ASSEMBLIES: tuple[str, ...] = ("open", "crossed")
 #: inputs this far (relative to the longest link) beyond a toggle are snapped onto it
 FEASIBILITY_TOL = 1e-10
 TWO_PI = 2.0 * math.pi
-#: crank angles placed at a time (:meth:`FourBar._poses`): each of the 12 intermediates 128 kB, together within a
+#: crank angles placed at a time (:meth:`FourBar._poses`): each of the 10 intermediates 128 kB, together within a
 #: core's caches; of 4 096 to 32 768 at 100 000 angles, 4 096 and 8 192 measured slower (README, "Four-bar positions")
 CHUNK = 16384
+#: up to this many angles :meth:`FourBar._poses` places every pin and angle in one pass: below it a second pass's
+#: own cost (some 50 numpy calls) is more than the arithmetic the pins and angles not asked for take
+EAGER = 512
+#: bytes from which numpy asks the kernel for huge pages (numpy/_core/src/multiarray/alloc.c)
+HUGE = 1 << 22
+#: rows of a chunk's workspace (:meth:`FourBar._triangle` and its callers)
+_ROWS = 10
 
 
 def _sign(assembly: str) -> int:
@@ -63,7 +71,7 @@ def _area4(a: float, b: float, c: np.ndarray, out: np.ndarray | None = None,
     """
     rows = iter(np.empty((5, *np.shape(c))) if work is None else work)
     first = np.empty(np.shape(c)) if out is None else out
-    p, q = max(a, b), min(a, b)
+    p, q = float(max(a, b)), float(min(a, b))
     low, high = (np.fmin.reduce(c), np.fmax.reduce(c)) if np.size(c) else (p, p)
     x: np.ndarray | float
     y: np.ndarray | float
@@ -79,7 +87,7 @@ def _area4(a: float, b: float, c: np.ndarray, out: np.ndarray | None = None,
         np.minimum(y, p, out=y)                  # the middle side: c between q and p, else the nearer of them
 
     def op(ufunc: np.ufunc, u: np.ndarray | float, v: np.ndarray | float, into: np.ndarray) -> np.ndarray | float:
-        return ufunc(u, v) if np.isscalar(u) and np.isscalar(v) else ufunc(u, v, out=into)
+        return ufunc(u, v) if isinstance(u, float) and isinstance(v, float) else ufunc(u, v, out=into)
 
     x_y, second = op(np.subtract, x, y, next(rows)), next(rows)
     np.add(op(np.add, y, z, first), x, out=first)                    # x + (y + z)
@@ -92,16 +100,48 @@ def _area4(a: float, b: float, c: np.ndarray, out: np.ndarray | None = None,
 
 @dataclass(frozen=True)
 class Poses:
-    """Positions at each input angle (arrays of the same length; angles in radians, points in mm)."""
+    """Positions at each input angle (arrays of the same length; angles in radians, points in mm).
+
+    ``theta2``, the rocker pin ``b`` and ``assembly`` are computed when the poses are made; the rest (theta3,
+    theta4, the transmission angle gamma, the crank pin A and the coupler point) the first time one of them is
+    read, all together, by ``derive``, and kept: nothing is computed that nobody asked for (the rocker pin alone
+    costs about 40 % of the whole at 100 000 angles).
+    """
 
     theta2: np.ndarray
-    theta3: np.ndarray
-    theta4: np.ndarray
-    gamma: np.ndarray          # transmission angle
-    a: np.ndarray              # (n, 2) crank pin
     b: np.ndarray              # (n, 2) coupler-rocker pin
-    point: np.ndarray          # (n, 2) coupler point (the crank pin A when point_distance is 0)
     assembly: np.ndarray       # +1 open, -1 crossed, per pose
+    #: theta3, theta4, gamma, A and the coupler point, computed when first asked for
+    derive: Callable[[], tuple[np.ndarray, ...]] = field(repr=False, compare=False)
+
+    @cached_property
+    def _derived(self) -> tuple[np.ndarray, ...]:
+        return self.derive()
+
+    @property
+    def theta3(self) -> np.ndarray:
+        """Coupler angle, A -> B (rad)."""
+        return self._derived[0]
+
+    @property
+    def theta4(self) -> np.ndarray:
+        """Rocker angle, O4 -> B (rad)."""
+        return self._derived[1]
+
+    @property
+    def gamma(self) -> np.ndarray:
+        """Transmission angle: the angle at B between coupler and rocker, in [0, pi] (rad)."""
+        return self._derived[2]
+
+    @property
+    def a(self) -> np.ndarray:
+        """(n, 2) crank pin (mm)."""
+        return self._derived[3]
+
+    @property
+    def point(self) -> np.ndarray:
+        """(n, 2) coupler point (mm; the crank pin A when point_distance is 0)."""
+        return self._derived[4]
 
 
 @dataclass(frozen=True)
@@ -241,41 +281,55 @@ class FourBar:
 
     # ------------------------------------------------------------------ positions
 
-    def _poses(self, theta2: np.ndarray, sign: np.ndarray, check: bool = False, mirrored: bool = False) -> Poses:
-        """Poses at crank angles ``theta2`` (1-D) with assembly ``sign`` (+-1 each); with ``check``, every angle must
-        be a finite number and its reach is checked first as :meth:`_check_reach` does (``mirrored`` as there),
-        with its errors.
+    def _poses(self, theta2: np.ndarray, sign: int | np.ndarray, check: bool = False, mirrored: bool = False,
+               from_o4: bool = False) -> Poses:
+        """Poses at crank angles ``theta2`` (1-D, not to be changed afterwards: the rest is derived from it when
+        first read) with assembly ``sign`` (+-1, for all or each); with ``check``, every angle must be a finite
+        number and its reach is checked first as :meth:`_check_reach` does (``mirrored`` as there), with its
+        errors. ``from_o4``: the poses' ``b`` is the vector O4 -> B instead (for :meth:`rocker_positions`, whose
+        crank pin it is, as exact as B - O4 is not when the ground is long).
 
-        The angles are placed :data:`CHUNK` at a time into the result arrays made once: over 100 000 angles each
-        intermediate of the whole would be 800 kB that the allocator takes from the system page by page, and
-        those page faults cost more than the arithmetic; a chunk's intermediates stay in the cache and in the
-        allocator's own memory. Each angle sees the same operations in the same order as unchunked, so the
-        poses are the same to the last bit."""
+        Only the rocker pin B is placed here; theta3, theta4, gamma, A and the coupler point when one of them is
+        first read (:meth:`_rest`), but with at most :data:`EAGER` angles all at once, in this pass. The angles
+        are placed :data:`CHUNK` at a time into results made once: over 100 000 angles each intermediate of the
+        whole would be 800 kB that the allocator takes from the system page by page, and those page faults cost
+        more than the arithmetic; a chunk's intermediates stay in the cache and in the allocator's own memory.
+        Each angle sees the same operations in the same order whatever its chunk and whenever its rest is
+        derived, so the poses are the same to the last bit."""
         if check:
             check_finite(theta2, "rocker angle" if mirrored else "crank angle",
                          said=lambda t: _input_angle(t, mirrored)[1])
         n = theta2.size
-        # the results in one block: from 4 MB numpy asks the kernel for huge pages, a few faults instead of 1 400
-        block = np.empty((9 if self.point_distance else 7) * n)
-        theta3, theta4, gamma = block[:n], block[n:2 * n], block[2 * n:3 * n]
-        a, b = block[3 * n:5 * n].reshape(n, 2), block[5 * n:7 * n].reshape(n, 2)
-        point = block[7 * n:].reshape(n, 2) if self.point_distance else a
-        work = np.empty((12, min(n, CHUNK)))             # each chunk's intermediates, rows reused
+        b, work = _block((n, 2), (_ROWS, min(n, CHUNK)))     # B, and each chunk's intermediates (rows reused)
+        rest = self._rest_arrays(n)[:5] if n <= EAGER else None
+        fold = any(self.folds())
         for i in range(0, n, CHUNK):
             j = min(i + CHUNK, n)
-            self._place(theta2, sign[i:j], slice(i, j), check, mirrored, work[:, :j - i],
-                        (theta3[i:j], theta4[i:j], gamma[i:j], a[i:j], b[i:j], point[i:j]))
-        return Poses(theta2, theta3, theta4, gamma, a, b, point, sign)
+            part = slice(i, j)
+            triangle = self._triangle(theta2[part], _part(sign, part), work[:, :j - i], fold,
+                                      theta2 if check else None, mirrored)
+            self._place_b(triangle, work[:, :j - i], b[part], from_o4)
+            if rest is not None:
+                self._place_rest(theta2[part], triangle, work[:, :j - i], rest, part)
+        assembly = np.full(n, sign) if isinstance(sign, int) else sign
+        derive = partial(self._finish, rest) if rest is not None else partial(self._rest, theta2, sign)
+        return Poses(theta2, b, assembly, derive)
 
-    def _place(self, theta2: np.ndarray, sign: np.ndarray, part: slice, check: bool, mirrored: bool,
-               work: np.ndarray, out: tuple[np.ndarray, ...]) -> None:
-        """Place the angles ``theta2[part]`` into ``out`` (theta3, theta4, gamma, A, B and the coupler point's
-        rows of :meth:`_poses`'s results); ``work``: 12 rows as long as the part for the intermediates."""
+    def _triangle(self, t: np.ndarray, sign: int | np.ndarray, work: np.ndarray, fold: bool,
+                  reach: np.ndarray | None = None, mirrored: bool = False) -> tuple[np.ndarray, ...]:
+        """The triangle A-B-O4 at crank angles ``t`` (a chunk) with assembly ``sign`` (+-1, for all or each), in
+        rows of ``work`` (:data:`_ROWS` rows as long as ``t``): dx, dy (the vector D = A -> O4, mm), r = 1 / (2 z^2)
+        (1/mm^2, z = |D|), z^2 (mm^2), 4 times the triangle's area (mm^2, >= 0) and q = sign area4 r (1).
+
+        B is then A + p D + q perp(D) = O4 + (p - 1) D + q perp(D), p = (L3^2 - L4^2 + z^2) r, with perp(D) D
+        turned 90 degrees counter-clockwise: the intersection of the circles about A and O4, with no angle
+        computed. The area comes from Kahan's stable form of Heron's formula (:func:`_area4`) on z, or at a
+        linkage that folds (``fold``, :meth:`folds`) from the roots (:meth:`_roots`), so it stays exact up to the
+        toggles. ``reach``: all the angles, checked as :meth:`_poses` says when this chunk has one out of reach."""
         l1, l2, l3, l4 = self.ground, self.crank, self.coupler, self.rocker
-        t = theta2[part]
-        dx, dy, z, two_l3z, z2, area4, cos_a, sin_a, ux, uy, ex, turned = work
+        dx, dy, z, z2, area4 = work[:5]
         # A -> O4 without cancellation, as _z: (L1 - L2) + 2 L2 sin^2(theta2 / 2), -L2 sin theta2
-        np.divide(t, 2.0, out=dx)
+        np.multiply(t, 0.5, out=dx)
         np.sin(dx, out=dx)
         np.square(dx, out=dx)
         np.multiply(2.0 * l2, dx, out=dx)
@@ -283,54 +337,93 @@ class FourBar:
         np.sin(t, out=dy)
         np.multiply(-l2, dy, out=dy)
         np.hypot(dx, dy, out=z)
-        if check and z.size:
+        if reach is not None and z.size:
             tol, low, high = FEASIBILITY_TOL * self.longest, np.fmin.reduce(z), np.fmax.reduce(z)   # NaN ignored
             if high > l3 + l4 + tol or low < abs(l3 - l4) - tol or low <= tol:
-                self._check_reach(theta2, mirrored)            # the error, said of all the angles as asked
-        # A -> B is the unit vector A -> O4 turned by the triangle's angle at A (its cosine by the law of
-        # cosines, its sine from the stable area): no angle needs computing to place B
-        np.multiply(2.0 * l3, z, out=two_l3z)
+                self._check_reach(reach, mirrored)            # the error, said of all the angles as asked
         np.square(z, out=z2)
-        if any(self.folds()):
-            # near a fold z has lost the digits the area needs: it is the product of the roots instead; and
-            # L3^2 - L4^2 goes first, exact for a deltoid's L3 = L4 where z -> 0
+        if fold:
+            # near a fold z has lost the digits the area needs: it is the product of the roots instead
             m, p = self._roots(t)
             np.abs(m.value * p.value, out=area4)
-            np.divide((l3 - l4) * (l3 + l4) + z2, two_l3z, out=cos_a)
         else:
-            _area4(l3, l4, z, area4, work[6:11])
-            np.add(l3**2, z2, out=cos_a)
-            cos_a -= l4**2
-            cos_a /= two_l3z
-        np.multiply(sign, area4, out=sin_a)
-        sin_a /= two_l3z
-        np.divide(dx, z, out=ux)
-        np.divide(dy, z, out=uy)
-        np.multiply(cos_a, ux, out=ex)
-        np.multiply(sin_a, uy, out=turned)
-        ex -= turned
-        ey = two_l3z                                            # done with: B's direction goes there
-        np.multiply(cos_a, uy, out=ey)
-        np.multiply(sin_a, ux, out=turned)
-        ey += turned
-        theta3, theta4, gamma, a, b, point = out
+            _area4(l3, l4, z, area4, work[5:10])
+        r, q = z, work[5]                                       # z is done with
+        np.divide(0.5, z2, out=r)
+        np.multiply(area4, r, out=q)
+        if not (isinstance(sign, int) and sign == 1):
+            q *= sign
+        return dx, dy, r, z2, area4, q
+
+    def _place_b(self, triangle: tuple[np.ndarray, ...], work: np.ndarray, b: np.ndarray, from_o4: bool) -> None:
+        """The rocker pin B (rows of ``b``, mm) of a chunk's ``triangle`` (:meth:`_triangle`): O4 + (p - 1) D +
+        q perp(D), p - 1 = (L3^2 - L4^2 - z^2) r; ``from_o4``: O4 -> B. Rows 6, 7 and 9 of ``work`` for the
+        intermediates."""
+        dx, dy, r, z2, _, q = triangle
+        along, x, tmp = work[6], work[7], work[9]
+        np.subtract((self.coupler - self.rocker) * (self.coupler + self.rocker), z2, out=along)
+        along *= r
+        _turn(along, q, dx, dy, x, b[:, 1], tmp)
+        np.add(x, 0.0 if from_o4 else self.ground, out=b[:, 0])
+
+    def _rest_arrays(self, n: int) -> tuple[np.ndarray, ...]:
+        """Room for n poses' theta3, theta4, gamma, A, A -> B (for the coupler point, if any) and a workspace for
+        the chunks (:data:`_ROWS` rows), in one block."""
+        return _block((n,), (n,), (n,), (n, 2), (2, n if self.point_distance else 0), (_ROWS, min(n, CHUNK)))
+
+    def _place_rest(self, t: np.ndarray, triangle: tuple[np.ndarray, ...], work: np.ndarray,
+                    rest: tuple[np.ndarray, ...], part: slice) -> None:
+        """theta3, theta4, gamma (rad), A and A -> B (mm) at crank angles ``t`` (a chunk) into the ``part`` of
+        ``rest`` (:meth:`_rest_arrays`), from their ``triangle`` (:meth:`_triangle`): the directions A -> B =
+        p D + q perp(D) and O4 -> B = (p - 1) D + q perp(D) straight from it, not from the pins' differences (which
+        lose digits when a pin is far from the origin). Rows 6 to 9 of ``work`` for the intermediates."""
+        dx, dy, r, z2, area4, q = triangle
+        theta3, theta4, gamma, a = (x[part] for x in rest[:4])
+        ab = rest[4][:, part]
+        l3, l4 = self.coupler, self.rocker
+        k = (l3 - l4) * (l3 + l4)
+        along, x, y, tmp = work[6:10]
+        abx, aby = (ab[0], ab[1]) if self.point_distance else (x, y)
+        np.add(k, z2, out=along)                 # p: A -> B
+        along *= r
+        _turn(along, q, dx, dy, abx, aby, tmp)
+        np.arctan2(aby, abx, out=theta3)
+        np.subtract(k, z2, out=along)            # p - 1: O4 -> B
+        along *= r
+        _turn(along, q, dx, dy, x, y, tmp)
+        np.arctan2(y, x, out=theta4)
+        np.subtract(l3**2 + l4**2, z2, out=tmp)
+        np.arctan2(area4, tmp, out=gamma)        # angle at B: the transmission angle
         # the crank pin: dy is -L2 sin theta2, so A's y is -dy to the last bit, with no second sine
         np.cos(t, out=a[:, 0])
-        a[:, 0] *= l2
+        a[:, 0] *= self.crank
         np.negative(dy, out=a[:, 1])
-        np.multiply(l3, ex, out=b[:, 0])
-        b[:, 0] += a[:, 0]
-        np.multiply(l3, ey, out=b[:, 1])
-        b[:, 1] += a[:, 1]
-        np.arctan2(ey, ex, out=theta3)
-        np.subtract(b[:, 0], l1, out=ux)
-        np.copyto(uy, b[:, 1])                                  # arctan2 reads a contiguous copy twice as fast
-        np.arctan2(uy, ux, out=theta4)
-        np.subtract(l3**2 + l4**2, z2, out=z2)
-        np.arctan2(area4, z2, out=gamma)                        # angle at B: the transmission angle
-        if self.point_distance:
-            ang = theta3 + self.point_angle
-            point[:] = a + self.point_distance * np.column_stack([np.cos(ang), np.sin(ang)])
+
+    def _rest(self, theta2: np.ndarray, sign: int | np.ndarray) -> tuple[np.ndarray, ...]:
+        """theta3, theta4, gamma (rad), A and the coupler point (mm) of :meth:`_poses`'s poses, derived when first
+        read: a chunk at a time, each chunk's triangle made again as it was for B."""
+        n = theta2.size
+        *rest, work = self._rest_arrays(n)
+        fold = any(self.folds())
+        for i in range(0, n, CHUNK):
+            j = min(i + CHUNK, n)
+            part = slice(i, j)
+            triangle = self._triangle(theta2[part], _part(sign, part), work[:, :j - i], fold)
+            self._place_rest(theta2[part], triangle, work[:, :j - i], rest, part)
+        return self._finish(rest)
+
+    def _finish(self, rest: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
+        """theta3, theta4, gamma, A and the coupler point from :meth:`_rest_arrays`' arrays, filled."""
+        theta3, theta4, gamma, a, ab = rest
+        return theta3, theta4, gamma, a, self._coupler_point(a, ab[0], ab[1])
+
+    def _coupler_point(self, a: np.ndarray, abx: np.ndarray, aby: np.ndarray) -> np.ndarray:
+        """The coupler point (mm) from the crank pin ``a`` and the vector A -> B (mm, length L3): that vector turned
+        by point_angle and scaled to point_distance; ``a`` itself when point_distance is 0."""
+        if not self.point_distance:
+            return a
+        c, s = (self.point_distance / self.coupler * f(self.point_angle) for f in (math.cos, math.sin))
+        return np.column_stack([a[:, 0] + (c * abx - s * aby), a[:, 1] + (s * abx + c * aby)])
 
     def positions(self, theta2: ArrayLike, assembly: Assembly = "open") -> Poses:
         """Closed-form poses at crank angles ``theta2`` (radians) for one assembly label.
@@ -343,8 +436,7 @@ class FourBar:
         return self._placed(theta2, assembly)
 
     def _placed(self, theta2: ArrayLike, assembly: Assembly, mirrored: bool = False) -> Poses:
-        t = np.atleast_1d(np.asarray(theta2, dtype=float))
-        return self._poses(t, np.full(t.shape, _sign(assembly)), check=True, mirrored=mirrored)
+        return self._poses(_angles(theta2), _sign(assembly), check=True, mirrored=mirrored)
 
     def rocker_positions(self, theta4: ArrayLike, assembly: Assembly = "open") -> Poses:
         """Poses when the rocker drives, at rocker angles ``theta4`` (rad).
@@ -353,15 +445,19 @@ class FourBar:
         the ground, the rocker becomes the crank) and reflected back; ``assembly``
         names the two solutions as the rocker sees them, i.e. the mirror's labels.
         """
-        t4 = np.atleast_1d(np.asarray(theta4, dtype=float))
-        m = FourBar(self.ground, self.rocker, self.coupler, self.crank)._placed(math.pi - t4, assembly, mirrored=True)
-        a = np.column_stack([self.ground - m.b[:, 0], m.b[:, 1]])
-        b = np.column_stack([self.ground - m.a[:, 0], m.a[:, 1]])
-        theta2 = np.arctan2(a[:, 1], a[:, 0])
-        theta3 = np.arctan2(b[:, 1] - a[:, 1], b[:, 0] - a[:, 0])
-        ang = theta3 + self.point_angle
-        point = a + self.point_distance * np.column_stack([np.cos(ang), np.sin(ang)])
-        return Poses(theta2, theta3, t4, m.gamma, a, b, point, m.assembly)
+        t4 = _angles(theta4)
+        mirror = FourBar(self.ground, self.rocker, self.coupler, self.crank)
+        m = mirror._poses(math.pi - t4, _sign(assembly), check=True, mirrored=True, from_o4=True)
+        a = np.column_stack([np.negative(m.b[:, 0]), m.b[:, 1]])    # the mirror's O4 -> B, reflected: O2 -> A
+        b = np.column_stack([self.ground + self.rocker * np.cos(t4), self.rocker * np.sin(t4)])
+        return Poses(np.arctan2(a[:, 1], a[:, 0]), b, m.assembly, partial(self._rocker_rest, t4, m, a))
+
+    def _rocker_rest(self, theta4: np.ndarray, mirror: Poses, a: np.ndarray) -> tuple[np.ndarray, ...]:
+        """theta3, theta4, gamma (rad), A and the coupler point (mm) of :meth:`rocker_positions`'s poses from the
+        mirror's: reflected, A -> B is the mirror's A -> B with its y negated, so theta3 is minus the mirror's."""
+        theta3 = np.negative(mirror.theta3)
+        abx, aby = self.coupler * np.cos(theta3), self.coupler * np.sin(theta3)
+        return theta3, theta4, mirror.gamma, a, self._coupler_point(a, abx, aby)
 
     def change_points(self) -> tuple[float, ...]:
         """Crank angles (radians, 0 or pi) where the two assemblies cross: all four links collinear."""
@@ -382,7 +478,7 @@ class FourBar:
         assemblies meet with all links collinear) swaps the open/crossed label of
         the smooth branch, so a parallelogram stays a parallelogram.
         """
-        t = np.atleast_1d(np.asarray(theta2, dtype=float))
+        t = _angles(theta2)
         half = _half_turns(t)
         flips = np.zeros(t.shape, dtype=int)
         for cp in self.change_points():
@@ -538,14 +634,14 @@ class FourBar:
                 pin = reach * np.array([math.cos(phi), math.sin(phi)])
                 crank = phi if kind == "extended" or l2 > l3 else phi + math.pi
                 crank = math.atan2(math.sin(crank), math.cos(crank))
-                pose = self._poses(np.array([crank]), np.array([sign]))
+                pose = self._poses(np.array([crank]), sign)
                 seen = any(d.kind == kind and abs(math.remainder(d.crank - crank, TWO_PI)) < 1e-9 for d in out)
                 undetermined = math.hypot(*self._z(np.array(crank))) <= tol
                 if np.linalg.norm(pose.b[0] - pin) <= 1e-7 * self.longest and not seen and not undetermined:
                     out.append(DeadCentre(kind, crank, float(pose.theta4[0])))
         for lo, hi in self.input_ranges() or ():
             for end in (lo, hi):
-                pose = self._poses(np.array([end]), np.array([sign]))
+                pose = self._poses(np.array([end]), sign)
                 kind = "toggle-extended" if pose.gamma[0] > math.pi / 2 else "toggle-folded"
                 out.append(DeadCentre(kind, end, float(pose.theta4[0])))
         return tuple(sorted(out, key=lambda d: d.crank % TWO_PI))
@@ -571,7 +667,7 @@ class FourBar:
         inside = [x for x in (0.0, math.pi) if ranges is None
                   or any(lo <= y <= hi for lo, hi in ranges for y in (x, x + TWO_PI, x - TWO_PI))]
         candidates = np.array(ends + inside)
-        poses = self._poses(candidates, np.ones_like(candidates))
+        poses = self._poses(candidates, 1)
         i, j = int(np.argmin(poses.gamma)), int(np.argmax(poses.gamma))
         return (float(poses.gamma[i]), float(candidates[i])), (float(poses.gamma[j]), float(candidates[j]))
 
@@ -596,6 +692,41 @@ def _refuse_coincident(theta2: np.ndarray, coincident: np.ndarray, what: str, mi
         pins = "the rocker pin sits on the crank pivot" if mirrored else "the crank pin sits on the rocker pivot"
         raise SpecError(f"at {link} angle {angle:.6g} degrees {pins}, so the {what} undetermined (a deltoid "
                         "change point)", "angle")
+
+
+def _block(*shapes: tuple[int, ...]) -> list[np.ndarray]:
+    """Arrays of floats of the given shapes, views of one block; a block of at least half of :data:`HUGE` bytes
+    made that large: from that size numpy asks the kernel for huge pages, so that it is a few page faults instead
+    of one every 4 kB (at 100 000 angles that was the cost, not the arithmetic; README, "Four-bar positions")."""
+    sizes = [math.prod(shape) for shape in shapes]
+    total = sum(sizes)
+    block = np.empty(max(total, HUGE // 8) if 16 * total >= HUGE else total)
+    ends = np.cumsum([0, *sizes]).tolist()
+    return [block[lo:hi].reshape(shape) for lo, hi, shape in zip(ends[:-1], ends[1:], shapes, strict=True)]
+
+
+def _angles(theta: ArrayLike) -> np.ndarray:
+    """Input angles (rad) as a 1-D array of floats of our own, read-only: the poses derive from it later."""
+    out = np.array(theta, dtype=float, ndmin=1)
+    out.setflags(write=False)
+    return out
+
+
+def _part(sign: int | np.ndarray, part: slice) -> int | np.ndarray:
+    """Assembly signs of the ``part`` of the angles: one for all, or theirs."""
+    return sign if isinstance(sign, int) else sign[part]
+
+
+def _turn(c: np.ndarray, q: np.ndarray, dx: np.ndarray, dy: np.ndarray, x: np.ndarray, y: np.ndarray,
+          tmp: np.ndarray) -> None:
+    """The vector c D + q perp(D) (D = (dx, dy), perp(D) = (-dy, dx): D turned 90 degrees counter-clockwise) into
+    ``x`` and ``y``; ``tmp`` holds the intermediates."""
+    np.multiply(c, dx, out=tmp)
+    np.multiply(q, dy, out=x)
+    np.subtract(tmp, x, out=x)
+    np.multiply(c, dy, out=tmp)
+    np.multiply(q, dx, out=y)
+    np.add(tmp, y, out=y)
 
 
 def _half_turns(theta2: np.ndarray) -> np.ndarray:
