@@ -64,6 +64,6 @@ def make_law(name: str, **params: Any) -> Law:
 
 
 __all__ = ["LAW_NAMES", "LAW_PARAMS", "TABLE_LAWS", "AccelerationLaw", "BlendedUniform", "Cycloidal",
-           "DoubleHarmonic", "DraftedUniform", "FittedLaw", "Harmonic", "Law", "Parabolic", "PolynomialLaw", "SplineLaw",
-           "Uniform", "from_conditions", "make_law", "modified_sine", "modified_trapezoid", "poly345", "poly4567",
-           "spline_law", "table_law"]
+           "DoubleHarmonic", "DraftedUniform", "FittedLaw", "Harmonic", "Law", "Parabolic", "PolynomialLaw",
+           "SplineLaw", "Uniform", "from_conditions", "make_law", "modified_sine", "modified_trapezoid", "poly345",
+           "poly4567", "spline_law", "table_law"]

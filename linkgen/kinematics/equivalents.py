@@ -46,8 +46,8 @@ def slider_crank(sc: SliderCrank, theta0: float) -> Structure:
 
 
 def scotch_yoke(sy: ScotchYoke, theta0: float) -> Structure:
-    """Crank O2-A; a block (named ``block``) at A sliding in the yoke's slot (along +Y); the yoke sliding along +X with its point Y
-    on the axis three cranks to the right of the slot (clear of the crank)."""
+    """Crank O2-A; a block (named ``block``) at A sliding in the yoke's slot (along +Y); the yoke sliding along +X
+    with its point Y on the axis three cranks to the right of the slot (clear of the crank)."""
     a = (sy.crank * math.cos(theta0), sy.crank * math.sin(theta0))
     points = {"O2": (0.0, 0.0), "A": a, "Y": (a[0] + 3 * sy.crank, 0.0)}
     sliders = (Slider("block", "A", "yoke", math.pi / 2), Slider("yoke-guide", "Y", "ground", 0.0, link="yoke"))

@@ -186,7 +186,7 @@ class Linkage:
                 check_finite(row, "input", "input", "degrees" if crank else "mm", math.degrees if crank else float)
         r = np.ones(k) if rates is None else np.asarray(rates, dtype=float).reshape(k)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):   # not strict: +-inf marked, unsaid
-            x = np.vstack([self.unwrap(x[0])] + list(x[1:])) if self.is_crank() else x
+            x = np.vstack([self.unwrap(x[0]), *x[1:]]) if self.is_crank() else x
             if signs is None:
                 signs = self._signs(x)
             sol = _solve(self, x, r, signs, strict, derivatives, upto)
@@ -211,10 +211,10 @@ class Linkage:
         u = (x[near] - centre) / CHANGE_REACH
         weights = [np.prod([(u - nodes[m]) / (nodes[k] - nodes[m]) for m in range(len(nodes)) if m != k], axis=0)
                    for k in range(len(nodes))]
-        for field in ("velocities", "accelerations", "omegas", "alphas"):
-            table = getattr(sol, field)
+        for rate in ("velocities", "accelerations", "omegas", "alphas"):
+            table = getattr(sol, rate)
             for name, values in table.items():
-                mixed = sum(w.reshape(w.shape + (1,) * (values.ndim - 1)) * getattr(st, field)[name]
+                mixed = sum(w.reshape(w.shape + (1,) * (values.ndim - 1)) * getattr(st, rate)[name]
                             for w, st in zip(weights, stencil, strict=True))
                 values = values.copy()
                 values[near] = mixed
