@@ -288,7 +288,7 @@ def test_required_keys():
 def test_a_keyed_bore_and_the_printing_clearance(tmp_path):
     import trimesh
 
-    report, out = _build(tmp_path, "hub.keyway=true", "output.clearance=0.3", "output.formats=['stl','json']")
+    _, out = _build(tmp_path, "hub.keyway=true", "output.clearance=0.3", "output.formats=['stl','json']")
     mesh = trimesh.load(out / "barrel.stl")
     assert mesh.is_watertight
     # the bore's wall: the smallest radius of the mesh's vertices at mid-length is the opened bore's, 5.15 mm

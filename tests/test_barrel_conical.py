@@ -112,7 +112,7 @@ def _slip_by_differences(design, theta: np.ndarray, radius: float, side: int, h:
         psi, z = design.walls.wall(theta, r, side)
         p = np.stack([r * np.cos(psi), r * np.sin(psi), z], axis=1)         # fixed on the cam
 
-        def local(t: np.ndarray) -> np.ndarray:
+        def local(t: np.ndarray, p: np.ndarray = p) -> np.ndarray:
             zc = 15.0 + design.cam.program.evaluate(t)[0]
             c, s = np.cos(-t), np.sin(-t)
             q = p - np.stack([0 * t, 0 * t, zc], axis=1)

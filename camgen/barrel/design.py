@@ -205,7 +205,7 @@ def _clipped(points: np.ndarray, width: float) -> np.ndarray:
     first, last = np.flatnonzero(keep)[[0, -1]]
     out = [points[first:last + 1]]
     for edge, i, j in ((0.0, first - 1, first), (width, last, last + 1)):
-        if 0 <= i and j < len(points) and (x[i] - edge) * (x[j] - edge) < 0:
+        if i >= 0 and j < len(points) and (x[i] - edge) * (x[j] - edge) < 0:
             t = (edge - x[i]) / (x[j] - x[i])
             end = (points[i] + t * (points[j] - points[i]))[None, :]
             out = [end, *out] if edge == 0.0 else [*out, end]

@@ -110,9 +110,9 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
                   "plane_offset_gap_floor_mm": _r(design.walls.plane_offset_gap(inner))},
         "undercut": False,
         "rolling_slip": {"floor_percent": _r(design.slip["floor"]), "rim_percent": _r(design.slip["rim"]),
-                         "note": "the largest slip of the roller along the way it rolls, over the cycle and both walls, "
-                                 "in percent of the cam's surface speed there, the roller rolling without slip on the "
-                                 "pitch cylinder"},
+                         "note": "the largest slip of the roller along the way it rolls, over the cycle and both "
+                                 "walls, in percent of the cam's surface speed there, the roller rolling without "
+                                 "slip on the pitch cylinder"},
         "developed_max_error_mm": _r(design.drawing_error_mm, 12),
         "wall_max_error_mm": None if tube is None else _r(tube.wall_error_mm, 12),
         "floor_max_error_mm": None if tube is None else _r(tube.floor_error_mm, 12),
