@@ -96,7 +96,8 @@ def volume_check(parts: Sequence[Part], volume_mm3: float) -> dict[str, float]:
     """A solid's volume (mm^3) against its parts' exact one, each part's area x thickness less its pockets' area x
     depth (exact for the arcs; no boss), and the bound the chords allow: a chord within the tolerance t of its arc
     moves a section's area by less than t a unit of the arc's length, so the volume by less than t x (each
-    contour's length x its height); an elephant-foot chamfer takes :func:`foot_volume` of each contour's chords. Raises :class:`ExportError` when the solid is further off than that."""
+    contour's length x its height); an elephant-foot chamfer takes :func:`foot_volume` of each contour's chords.
+    Raises :class:`ExportError` when the solid is further off than that."""
     expected = bound = 0.0
     for part in parts:
         tol = part.tolerance
