@@ -24,7 +24,7 @@ placement in a form with no 0/0, so they are the branch's, to rounding, through 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from functools import cached_property, partial
 from typing import Literal
@@ -303,14 +303,13 @@ class FourBar:
         b, work = _block((n, 2), (_ROWS, min(n, CHUNK)))     # B, and each chunk's intermediates (rows reused)
         rest = self._rest_arrays(n)[:5] if n <= EAGER else None
         fold = any(self.folds())
-        for i in range(0, n, CHUNK):
-            j = min(i + CHUNK, n)
-            part = slice(i, j)
-            triangle = self._triangle(theta2[part], _part(sign, part), work[:, :j - i], fold,
-                                      theta2 if check else None, mirrored)
-            self._place_b(triangle, work[:, :j - i], b[part], from_o4)
+        for part in _chunks(n):
+            room = work[:, :part.stop - part.start]
+            triangle = self._triangle(theta2[part], _part(sign, part), room, fold, theta2 if check else None,
+                                      mirrored)
+            self._place_b(triangle, room, b[part], from_o4)
             if rest is not None:
-                self._place_rest(theta2[part], triangle, work[:, :j - i], rest, part)
+                self._place_rest(theta2[part], triangle, room, rest, part)
         assembly = np.full(n, sign) if isinstance(sign, int) else sign
         derive = partial(self._finish, rest) if rest is not None else partial(self._rest, theta2, sign)
         return Poses(theta2, b, assembly, derive)
@@ -405,11 +404,10 @@ class FourBar:
         n = theta2.size
         *rest, work = self._rest_arrays(n)
         fold = any(self.folds())
-        for i in range(0, n, CHUNK):
-            j = min(i + CHUNK, n)
-            part = slice(i, j)
-            triangle = self._triangle(theta2[part], _part(sign, part), work[:, :j - i], fold)
-            self._place_rest(theta2[part], triangle, work[:, :j - i], rest, part)
+        for part in _chunks(n):
+            room = work[:, :part.stop - part.start]
+            self._place_rest(theta2[part], self._triangle(theta2[part], _part(sign, part), room, fold), room,
+                             rest, part)
         return self._finish(rest)
 
     def _finish(self, rest: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
@@ -710,6 +708,11 @@ def _angles(theta: ArrayLike) -> np.ndarray:
     out = np.array(theta, dtype=float, ndmin=1)
     out.setflags(write=False)
     return out
+
+
+def _chunks(n: int) -> Iterator[slice]:
+    """The slices of n angles placed :data:`CHUNK` at a time, in order."""
+    return (slice(i, min(i + CHUNK, n)) for i in range(0, n, CHUNK))
 
 
 def _part(sign: int | np.ndarray, part: slice) -> int | np.ndarray:
