@@ -37,7 +37,7 @@ from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
 from pydantic import Field, field_validator
 
@@ -46,7 +46,7 @@ from camgen.core.errors import CamgenError, SpecError
 from camgen.core.bundle import staged
 from camgen.core.writers import FIGURE_FORMATS
 from camgen.core.writers.figure import save
-from camgen.core.spec import MAX_LENGTH_MM, Model, apply_overrides, read_template, unit, validate
+from camgen.core.spec import Model, SheetSide, apply_overrides, read_template, unit, validate
 
 MARKER = ".inputs"
 
@@ -384,8 +384,8 @@ SHEET = "sheet"
 class SheetTable(Model):
     """A family template's ``[sheet]`` table: the sheet the members' cut parts are nested on."""
 
-    size: tuple[Annotated[float, Field(gt=0, le=MAX_LENGTH_MM)], Annotated[float, Field(gt=0, le=MAX_LENGTH_MM)]] = \
-        Field((600.0, 400.0), description="sheet width and height", json_schema_extra=unit("mm"))
+    size: tuple[SheetSide, SheetSide] = Field((600.0, 400.0), description="sheet width and height",
+                                              json_schema_extra=unit("mm"))
     margin: float = Field(3.0, ge=0, le=1000.0, description="gap between parts beyond the largest member's kerf",
                           json_schema_extra=unit("mm"))
     rotations: float = Field(90.0, ge=0, le=360.0, description="rotation step, 0 (as drawn only) or a divisor "
