@@ -1,6 +1,8 @@
 """Small numerical helpers shared by the analyses (no geometry, no I/O)."""
 from __future__ import annotations
 
+import functools
+import math
 from collections.abc import Callable, Generator
 from typing import Any
 
@@ -63,7 +65,8 @@ ROUNDS = 8
 #: values this close (relative to the function's magnitude) are equal: the first of them is taken, so that rounding
 #: does not choose between a symmetric cam's equal peaks, or where a function is constant
 TIE = 1e-12
-_OFFSETS = np.arange(-2.0, 3.0)
+#: the refinement stencil's five points, in steps of its spacing about the estimate
+_OFFSETS = (-2.0, -1.0, 0.0, 1.0, 2.0)
 _UNIT = np.linspace(0.0, 1.0, GRID)
 
 
@@ -72,23 +75,38 @@ _QUARTIC = (np.array([[1, -1, -1, 1], [-8, 16, 2, -4], [0, -30, 0, 6], [8, 16, -
             / [12, 24, 12, 24])
 
 
-def _vertex(y: np.ndarray, lo: float | np.ndarray, hi: float | np.ndarray) -> tuple[np.ndarray, ...]:
-    """Where the quartic through each row of ``y`` (m, 5) (at t = -2..2) peaks, by Newton's method on its slope from
-    the parabola's vertex: t (m,), zero where ``ok`` (m,) is False (no maximum within [lo, hi]); the quartic's value
-    there; and its coefficients a2 and a4 (of t^2, t^4)."""
-    a1, a2, a3, a4 = (y @ _QUARTIC).T
+def _coefficients(windows: np.ndarray) -> list[list[float]]:
+    """a1, a2, a3, a4 (the coefficients of t, t^2, t^3, t^4) of the quartic through each row of ``windows`` (m, 5)
+    (values at t = -2..2), as floats. One matrix product for all rows: its rounding depends on whether there is one
+    row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place."""
+    return (windows @ _QUARTIC).tolist()
+
+
+def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) -> float | None:
+    """Where the quartic of coefficients a1..a4 (of t..t^4) peaks within [lo, hi], by three Newton steps on its
+    slope from the parabola's vertex; None where it has no maximum there (a step dividing by zero has none)."""
     twice, thrice, six = 2 * a2, 3 * a3, 6 * a3               # the same numbers each step: made once
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+    try:
         t = -a1 / twice
         for _ in range(3):
             t = t - (a1 + t * (twice + t * (thrice + t * 4 * a4))) / (twice + t * (six + t * 12 * a4))
-        ok = (twice + t * (six + t * 12 * a4) < 0) & (t >= lo) & (t <= hi)     # False where t is NaN
-    t = np.where(ok, t, 0.0)
-    return t, ok, y[:, 2] + t * (a1 + t * (a2 + t * (a3 + t * a4))), a2, a4
+    except ZeroDivisionError:                                 # t would be infinite or NaN: no maximum within
+        return None
+    return t if twice + t * (six + t * 12 * a4) < 0 and lo <= t <= hi else None   # False where t is NaN
+
+
+def _breadth(a2: float, a4: float, step: float, size: float) -> float:
+    """A peak's breadth from its grid quartic's a2 and a4: a bell of breadth b has a2 / a4 = 2 b^2 / h^2 on a grid
+    of step h; kept between 2 h and the piece's ``size`` (the piece's where a4 is zero or the ratio NaN)."""
+    try:
+        breadth = min(max(step * math.sqrt(abs(a2 / a4) / 2), 2 * step), size)
+    except ZeroDivisionError:
+        return size
+    return size if breadth != breadth else breadth
 
 
 #: what :func:`maxima_steps` asks for, abscissae (m,) and their pieces (m,); it is sent the values (k, m)
-Steps = Generator[tuple[np.ndarray, np.ndarray], np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray]]
+Steps = Generator[tuple[np.ndarray, np.ndarray], np.ndarray, tuple[list[list[float]], list[list[float]], list[float]]]
 
 
 def drive(steps: Generator[Any, Any, Any], answer: Callable[[Any], Any]) -> Any:
@@ -105,8 +123,148 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
                      scale: ArrayLike = 0.0, reverse: ArrayLike = False,
                      n: int = GRID) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Global maxima of k smooth functions on each of p closed intervals, all at once: :func:`maxima_steps` with
-    its values from ``func(x, piece)``."""
-    return drive(maxima_steps(lo, hi, scale=scale, reverse=reverse, n=n), lambda ask: func(*ask))
+    its values from ``func(x, piece)``, as arrays (x and value (k, p), magnitude (k,))."""
+    at, value, magnitude = drive(maxima_steps(lo, hi, scale=scale, reverse=reverse, n=n), lambda ask: func(*ask))
+    return np.array(at), np.array(value), np.array(magnitude)
+
+
+def _flags(flag: ArrayLike, p: int) -> list[bool]:
+    """``flag``, one for all or one a piece, as p bools."""
+    a = np.asarray(flag, dtype=bool)
+    return [bool(a)] * p if a.ndim == 0 else a.reshape(p).tolist()
+
+
+@functools.lru_cache(maxsize=256)
+def _first_ask(lo: bytes, hi: bytes, steady: tuple[bool, ...], n: int) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`maxima_steps`' first ask, read-only (made once for a set of pieces: a program's are mostly [0, 1]):
+    the grid of ``n`` points on each piece that is not ``steady`` (pieces given by the bytes of their float ``lo``
+    and ``hi``), then each steady piece's first point; and the piece of each."""
+    low, high = np.frombuffer(lo), np.frombuffer(hi)
+    width = high - low
+    moving = [i for i, still in enumerate(steady) if not still]
+    still = [i for i, still in enumerate(steady) if still]
+    x = low[moving, None] + width[moving, None] * _unit(n)[0]
+    x[:, -1] = high[moving]
+    x = np.concatenate([x.ravel(), low[still] + width[still] * _unit(n)[0][0]])
+    piece = np.concatenate([np.repeat(moving, n), still]).astype(np.intp)
+    x.flags.writeable = piece.flags.writeable = False
+    return x, piece
+
+
+@functools.lru_cache(maxsize=16)
+def _unit(n: int) -> tuple[np.ndarray, list[float]]:
+    """``n`` points evenly spread over [0, 1], as an array and as floats."""
+    unit = _UNIT if n == GRID else np.linspace(0.0, 1.0, n)
+    return unit, unit.tolist()
+
+
+def _grid_candidates(y: np.ndarray, tie: list[float]) -> list[tuple[int, int, float]]:
+    """Each row's interior local maxima on the grid ``y`` (rows, n) that may be its largest: within what a peak can
+    rise above its grid points (the row's largest second difference) of the row's highest; none on a row constant
+    within its ``tie``. ``(row, grid index, value)`` each, in order of row and index."""
+    spread = (y.max(axis=1) - y.min(axis=1)).tolist()
+    inner, before, after = y[:, 1:-1], y[:, :-2], y[:, 2:]
+    peak = inner >= before
+    peak &= inner >= after
+    flat = [r for r, s in enumerate(spread) if not s > tie[r]]
+    if flat:
+        peak[flat] = False
+    rows, cols = peak.nonzero()
+    if not rows.size:
+        return []
+    bend = before - 2 * inner
+    bend += after
+    drop = np.abs(bend, out=bend).max(axis=1).tolist()
+    values = inner[rows, cols].tolist()
+    rows = rows.tolist()
+    top = dict.fromkeys(rows, -math.inf)
+    for r, v in zip(rows, values, strict=True):
+        if v > top[r]:
+            top[r] = v
+    return [(r, j + 1, v) for r, j, v in zip(rows, cols.tolist(), values, strict=True) if v >= top[r] - drop[r]]
+
+
+class _Peak:
+    """A peak being located: its function ``f`` and ``piece``, where it is so far (``at``) and the largest value
+    seen (``value``), the next stencil's ``centre`` and the peak's ``breadth`` (all in the piece's abscissa)."""
+
+    __slots__ = ("at", "breadth", "centre", "f", "piece", "value")
+
+    def __init__(self, f: int, piece: int, at: float, value: float, centre: float, breadth: float) -> None:
+        self.f, self.piece, self.at, self.value, self.centre, self.breadth = f, piece, at, value, centre, breadth
+
+
+def _estimates(y: np.ndarray, found: list[tuple[int, int, float]], moving: list[int], lo: list[float],
+               hi: list[float], width: list[float], n: int) -> list[_Peak]:
+    """The peaks ``found`` on the grid rows ``y`` (a row for each function on each piece of ``moving``), each
+    placed by the quartic through the five grid values about it (within a grid step of its grid point) and given its
+    breadth."""
+    count = len(moving)
+    centres = [min(max(j, 2), n - 3) for _, j, _ in found]
+    windows = y.take([r * n + c + o for (r, _, _), c in zip(found, centres, strict=True) for o in range(-2, 3)])
+    unit = _unit(n)[1]
+    out = []
+    for (r, j, value), c, (a1, a2, a3, a4) in zip(found, centres, _coefficients(windows.reshape(-1, 5)),
+                                                  strict=True):
+        piece = moving[r % count]
+        low, size = lo[piece], width[piece]
+        step = size / (n - 1)
+        shift = float(j - c)
+        t = _vertex(a1, a2, a3, a4, shift - 1.0, shift + 1.0)
+        centre = min(max(low + size * unit[c] + (shift if t is None else t) * step, low), hi[piece])
+        out.append(_Peak(r // count, piece, low + size * unit[j], value, centre, _breadth(a2, a4, step, size)))
+    return out
+
+
+def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[float]) -> Generator[
+        tuple[np.ndarray, np.ndarray], np.ndarray, None]:
+    """Locate the ``peaks`` (in place): each round asks five points ``STENCIL`` of a peak's breadth apart about its
+    estimate and takes the quartic through its values there (or the best of them where the quartic has no maximum
+    within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds."""
+    active = peaks
+    for _ in range(ROUNDS):
+        stencils = []
+        for peak in active:
+            c, left, right = peak.centre, lo[peak.piece], hi[peak.piece]
+            d = min(STENCIL * peak.breadth, 0.5 * min(c - left, right - c))
+            if d > 1e-12 * width[peak.piece]:                # at an end already: the grid's point stands
+                stencils.append((peak, c, d))
+        if not stencils:
+            return
+        points = [[c + d * o for o in _OFFSETS] for _, c, d in stencils]
+        got = yield (np.array(points).ravel(), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))
+        values = got.tolist()
+        ys = [values[peak.f][5 * i:5 * i + 5] for i, (peak, _, _) in enumerate(stencils)]   # each its own function
+        if not all(math.isfinite(v) for row in ys for v in row):
+            raise FloatingPointError("function is not finite near a peak")
+        active = []
+        for (peak, c, d), row, xs, (a1, a2, a3, a4) in zip(stencils, ys, points, _coefficients(np.array(ys)),
+                                                           strict=True):
+            t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
+            high = max(row)
+            if t is None:
+                moved = xs[row.index(high)]
+                if high >= peak.value:
+                    peak.at = moved
+                peak.value = max(peak.value, high)
+                active.append(peak)
+            else:
+                moved = peak.at = c + t * d
+                peak.value = max(peak.value, max(row[2] + t * (a1 + t * (a2 + t * (a3 + t * a4))), high))
+                if abs(t) > 0.5:                                 # else the peak is well inside: its quartic's is exact
+                    active.append(peak)
+            peak.centre = moved
+
+
+def _first_largest(candidates: list[tuple[float, float]], tie: float, backwards: bool) -> tuple[float, float]:
+    """Of ``(x, value)`` candidates, the first from the low end of x (the high end where ``backwards``) whose value
+    is within ``tie`` of the largest; the earliest listed of equal x."""
+    limit = max(v for _, v in candidates) - tie
+    best, key = candidates[0], math.inf
+    for x, v in candidates:
+        if v >= limit and (-x if backwards else x) < key:
+            best, key = (x, v), (-x if backwards else x)
+    return best
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
@@ -116,13 +274,13 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     together with other work (one evaluation serving several searches).
 
     The values sent for an ask ``(x, piece)``, abscissae ``x`` (m,) on the pieces ``piece`` (m,) (indices into
-    ``lo``, ``hi``), are the k functions' values there, shape (k, m); each must be smooth (analytic) on each
-    closed piece, whose ends it evaluates as given (pass a left limit's abscissa as ``hi``). Returns
-    ``(x, value, magnitude)``: x and value (k, p), and each function's magnitude (k,), the larger of ``scale`` (k,)
-    and its largest |value| on the grid.
+    ``lo``, ``hi``; both read-only), are the k functions' values there, shape (k, m); each must be smooth (analytic)
+    on each closed piece, whose ends it evaluates as given (pass a left limit's abscissa as ``hi``). Returns
+    ``(x, value, magnitude)`` as floats: x and value (k lists of p), and each function's magnitude (k), the larger
+    of ``scale`` (k,) and its largest |value| on the grid.
 
-    One dense evaluation (``n`` points a piece) finds each function's interior local maxima on each piece that may
-    be its largest (none on a piece where it is constant, within ``TIE``); the quartic through the five grid
+    One dense evaluation (``n`` >= 5 points a piece) finds each function's interior local maxima on each piece that
+    may be its largest (none on a piece where it is constant, within ``TIE``); the quartic through the five grid
     values about each puts its maximiser within ~1e-9 of the piece and tells the peak's breadth; a second
     evaluation, at five points ``STENCIL`` of that breadth apart about the estimate, gives a quartic whose peak is
     the maximiser within ~1e-12 of the breadth and the maximum to the rounding of the values (a peak the estimate
@@ -130,92 +288,50 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     ends and peaks within ``TIE`` of each function's magnitude of the largest, from its low end (from its high end
     where ``reverse``, (p,) or one for all, is True). A piece where ``steady`` ((p,) or one for all) is True is one
     on which the caller knows every function to be constant to the last bit: its grid is asked for its first point
-    only, whose values stand for the rest (the same search as if all were asked).
+    only, whose values stand for the rest (the same search as if all were asked: such a piece has no peak).
     Raises FloatingPointError where a value is not finite on the grid or near a peak.
     """
-    lo, hi = np.atleast_1d(np.asarray(lo, dtype=float)), np.atleast_1d(np.asarray(hi, dtype=float))
-    p = lo.size
-    width = hi - lo
-    x = lo[:, None] + width[:, None] * (_UNIT if n == GRID else np.linspace(0.0, 1.0, n))
-    x[:, -1] = hi
-    steady = np.broadcast_to(np.asarray(steady, dtype=bool), (p,))
-    if steady.any():                                          # such a piece's grid: its first point's values
-        moving = np.flatnonzero(~steady)
-        still = np.flatnonzero(steady)
-        got = yield (np.concatenate([x[moving].ravel(), x[still, 0]]),
-                     np.concatenate([np.repeat(moving, n), still]))
-        k = got.shape[0]
-        y = np.empty((k, p, n))
-        y[:, moving] = got[:, :moving.size * n].reshape(k, moving.size, n)
-        y[:, still] = got[:, moving.size * n:, None]
-    else:
-        y = yield x.ravel(), np.repeat(np.arange(p), n)
-        k = y.shape[0]
-    y = y.reshape(k * p, n)                                   # a row for each function on each piece
-    if not np.isfinite(y).all():
+    if n < 5:
+        raise ValueError(f"a grid of {n} points: the search needs 5 a piece at least")
+    low, high = np.asarray(lo, dtype=float).reshape(-1), np.asarray(hi, dtype=float).reshape(-1)
+    p = low.size
+    still = _flags(steady, p)
+    lo, hi = low.tolist(), high.tolist()
+    width = (high - low).tolist()
+    got = yield _first_ask(low.tobytes(), high.tobytes(), tuple(still), n)
+    k = got.shape[0]
+    largest = np.abs(got).max(axis=1).tolist()                # NaN or infinite where any value is
+    if not all(math.isfinite(v) for v in largest):
         raise FloatingPointError("function is not finite on the search grid")
-    magnitude = np.maximum(np.asarray(scale, dtype=float), np.abs(y).reshape(k, -1).max(axis=1))
-    tie = np.repeat(TIE * magnitude, p)
-    owner = np.arange(k * p) % p                              # the piece of each row
-    # candidates: interior local maxima within what a peak can rise above its grid points (a second difference)
-    inner = y[:, 1:-1]
-    bend = np.abs(y[:, :-2] - 2 * inner + y[:, 2:])
-    peak = (inner >= y[:, :-2]) & (inner >= y[:, 2:]) & (y.max(axis=1) - y.min(axis=1) > tie)[:, None]
-    top = np.where(peak, inner, -np.inf).max(axis=1)
-    row, j = np.nonzero(peak & (inner >= (top - bend.max(axis=1))[:, None]))
-    j = j + 1
-    piece = owner[row]
-    left, right, size = lo[piece], hi[piece], width[piece]
-    step = size / (n - 1)
-    c = np.minimum(np.maximum(j, 2), n - 3)                 # np.clip's result, without its dispatch
-    value, at = y[row, j], x[piece, j]
-    shift = (j - c).astype(float)
-    t, ok, _, a2, a4 = _vertex(y[row[:, None], c[:, None] + np.arange(-2, 3)], shift - 1.0, shift + 1.0)
-    centre = np.minimum(np.maximum(x[piece, c] + np.where(ok, t, shift) * step, left), right)
-    # the peak's breadth: a bell of breadth b has a2 / a4 = 2 b^2 / h^2 on a grid of step h (between 2 h and the piece)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        breadth = np.minimum(np.maximum(step * np.sqrt(np.abs(a2 / a4) / 2), 2 * step), size)
-    breadth = np.where(np.isnan(breadth), size, breadth)
-    active = np.arange(row.size)
-    for _ in range(ROUNDS):
-        c = centre[active]
-        d = np.minimum(STENCIL * breadth[active], 0.5 * np.minimum(c - left[active], right[active] - c))
-        keep = d > 1e-12 * size[active]                      # at an end already: the grid's point stands
-        active, c, d = active[keep], c[keep], d[keep]
-        if not active.size:
-            break
-        px = c[:, None] + d[:, None] * _OFFSETS
-        ys = yield px.ravel(), np.repeat(piece[active], 5)
-        ys = ys[np.repeat(row[active] // p, 5), np.arange(5 * active.size)].reshape(-1, 5)   # each its own function
-        if not np.isfinite(ys).all():
-            raise FloatingPointError("function is not finite near a peak")
-        t, ok, model, _, _ = _vertex(ys, -2.0, 2.0)
-        rows = np.arange(active.size)
-        best = np.argmax(ys, axis=1)
-        high = ys[rows, best]
-        moved = np.where(ok, c + t * d, px[rows, best])
-        at[active] = np.where(ok | (high >= value[active]), moved, at[active])
-        value[active] = np.maximum(value[active], np.where(ok, np.maximum(model, high), high))
-        centre[active] = moved
-        active = active[~ok | (np.abs(t) > 0.5)]            # the peak well inside the stencil: its quartic's is exact
-    # of the ends and the peaks, the first from the low end (the high end where reversed) within TIE of the largest
-    every = np.arange(k * p)
-    cand_row = np.concatenate([every, every, row])
-    cand_x = np.concatenate([lo[owner], hi[owner], at])
-    cand_v = np.concatenate([y[:, 0], y[:, -1], value])
-    largest = np.full(k * p, -np.inf)
-    np.maximum.at(largest, cand_row, cand_v)
-    equal = np.flatnonzero(cand_v >= largest[cand_row] - tie[cand_row])
-    backwards = np.asarray(reverse, dtype=bool)
-    backwards = np.full(p, backwards) if backwards.ndim == 0 else backwards
-    ahead = np.where(backwards[owner[cand_row[equal]]], -1.0, 1.0)
-    order = equal[np.lexsort((ahead * cand_x[equal], cand_row[equal]))]
-    sorted_rows = cand_row[order]
-    starts = np.empty(sorted_rows.size, dtype=bool)           # where a row's candidates begin: its first
-    starts[:1] = True
-    np.not_equal(sorted_rows[1:], sorted_rows[:-1], out=starts[1:])
-    first = order[starts]
-    return cand_x[first].reshape(k, p), cand_v[first].reshape(k, p), magnitude
+    scales = np.asarray(scale, dtype=float)
+    magnitude = [max(s, v) for s, v in zip([float(scales)] * k if scales.ndim == 0 else scales.tolist(), largest,
+                                           strict=True)]
+    moving = [i for i, s in enumerate(still) if not s]
+    count = len(moving)
+    y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
+    ends = [[(v, v) for v in row] for row in got[:, count * n:].tolist()]   # a steady piece's: its first value
+    peaks: list[_Peak] = []
+    if count:
+        moving_ends = y[:, [0, -1]].tolist()
+        for f in range(k):
+            ends[f][0:0] = [tuple(pair) for pair in moving_ends[f * count:(f + 1) * count]]
+        found = _grid_candidates(y, [TIE * magnitude[r // count] for r in range(k * count)])
+        if found:
+            peaks = _estimates(y, found, moving, lo, hi, width, n)
+            yield from _refined(peaks, lo, hi, width)
+    order = moving + [i for i, s in enumerate(still) if s]   # the pieces as ``ends`` lists them
+    backwards = _flags(reverse, p)
+    at: list[list[float]] = [[0.0] * p for _ in range(k)]
+    value: list[list[float]] = [[0.0] * p for _ in range(k)]
+    found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}
+    for peak in peaks:
+        found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
+    for f in range(k):
+        tie = TIE * magnitude[f]
+        for piece, (first, last) in zip(order, ends[f], strict=True):
+            candidates = [(lo[piece], first), (hi[piece], last), *found_on.get((f, piece), ())]
+            at[f][piece], value[f][piece] = _first_largest(candidates, tie, backwards[piece])
+    return at, value, magnitude
 
 
 def present(index: np.ndarray) -> np.ndarray:

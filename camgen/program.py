@@ -231,11 +231,10 @@ class Program:
         says that the values depend on the motion only, not on the cam angle, so that a dwell's are constant: its
         grid is then one point (see :func:`camgen.numeric.maxima_steps`).
         """
-        owner, lo, hi = self._pieces
-        table = self._table
-        still = steady and np.array([self.segments[i].kind == "dwell" or self.segments[i].law is None
-                                     for i in owner.tolist()])
-        steps = maxima_steps(lo, hi, scale=scale, reverse=table.backwards[owner], steady=still)
+        pieces = self._pieces
+        owner = pieces.owner
+        steps = maxima_steps(pieces.lo, pieces.hi, scale=scale, reverse=pieces.backwards,
+                             steady=pieces.still if steady else False)
         ask = next(steps)
         while True:
             x, piece = ask
@@ -245,13 +244,8 @@ class Program:
             except StopIteration as done:
                 at, value, magnitude = done.value
                 break
-        out = []
-        every = np.degrees(table.angle(np.broadcast_to(owner, at.shape).ravel(), at.ravel())).reshape(at.shape) % 360.0
-        for row_value, size, degrees in zip(value, magnitude, every, strict=True):
-            equal = np.flatnonzero(row_value >= row_value.max() - TIE * size)
-            best = equal[np.argmin(degrees[equal])]
-            out.append((float(row_value[best]), float(degrees[best])))
-        return out
+        return [_first_degrees(row_at, row_value, TIE * size, pieces) for row_at, row_value, size
+                in zip(at, value, magnitude, strict=True)]
 
     @functools.cached_property
     def _table(self) -> _Table:
@@ -285,10 +279,9 @@ class Program:
         self.__dict__["boundaries"] = (self.boundary_points[0], motion)
 
     @functools.cached_property
-    def _pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Every segment's smooth pieces (see :meth:`Segment.pieces`): owning segment, start and end."""
-        rows = [(i, a, b) for i, seg in enumerate(self.segments) for a, b in seg.pieces()]
-        return np.array([r[0] for r in rows]), np.array([r[1] for r in rows]), np.array([r[2] for r in rows])
+    def _pieces(self) -> _Pieces:
+        """Every segment's smooth pieces (see :meth:`Segment.pieces`), made once a program."""
+        return _Pieces(self.segments)
 
     def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
         """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)),
@@ -318,6 +311,36 @@ class Program:
             for t, lo, hi in seg.inner_limits():
                 found += _compare(t, lo, hi, scales[i], inside=True)
         return sorted(found, key=lambda j: (j.at_deg, j.order))
+
+
+class _Pieces:
+    """A program's smooth pieces (see :meth:`Segment.pieces`) as :meth:`Program.maxima_steps` searches them: the
+    owning segment of each (an array, to map asks), the law variable's ends (arrays), and as flags and floats
+    whether its segment holds still (a dwell) or runs its law backwards (a return, see :meth:`Segment.angle`), and
+    that segment's start and angle (radians)."""
+
+    def __init__(self, segments: tuple[Segment, ...]) -> None:
+        rows = [(i, a, b) for i, seg in enumerate(segments) for a, b in seg.pieces()]
+        self.owner = np.array([r[0] for r in rows])
+        self.lo, self.hi = np.array([r[1] for r in rows]), np.array([r[2] for r in rows])
+        held = [segments[i] for i, _, _ in rows]
+        self.still = [seg.kind == "dwell" or seg.law is None for seg in held]
+        self.backwards = [seg.kind == "return" and seg.law is not None for seg in held]
+        self.start, self.beta = [seg.start for seg in held], [seg.beta for seg in held]
+
+
+def _first_degrees(at: list[float], value: list[float], tie: float, pieces: _Pieces) -> tuple[float, float]:
+    """Of a row's largest value on each piece, ``value`` at the law variable ``at``, the one at the smallest cam
+    angle of those within ``tie`` of the largest: (value, degrees in [0, 360)), the first piece's of equal angles.
+    The angle is :meth:`Segment.angle`'s, the same operations on the same numbers."""
+    limit = max(value) - tie
+    best = (0.0, math.inf)
+    for v, x, start, beta, backwards in zip(value, at, pieces.start, pieces.beta, pieces.backwards, strict=True):
+        if v >= limit:
+            degrees = math.degrees(start + beta * (1.0 - x if backwards else x)) % 360.0
+            if degrees < best[1]:
+                best = (v, degrees)
+    return best
 
 
 class _Table:
