@@ -46,7 +46,7 @@ def _peaks(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -> list
 def _peaks_steps(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -> Maker:
     """:func:`_peaks` as a maker of :meth:`Cam.serve` (its asks are the law's own variable on each segment)."""
     def values(g: PitchGeometry) -> np.ndarray:
-        return np.stack([q(g) for q in quantities])
+        return np.array([q(g) for q in quantities])              # np.stack's rows, without its checks' cost
 
     steps = cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities],
                                      getattr(cam.follower, "steady", False))

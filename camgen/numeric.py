@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from collections.abc import Callable, Generator
 from typing import Any
@@ -65,9 +66,9 @@ ROUNDS = 8
 #: values this close (relative to the function's magnitude) are equal: the first of them is taken, so that rounding
 #: does not choose between a symmetric cam's equal peaks, or where a function is constant
 TIE = 1e-12
-#: the refinement stencil's five points, in steps of its spacing about the estimate
-_OFFSETS = (-2.0, -1.0, 0.0, 1.0, 2.0)
 _UNIT = np.linspace(0.0, 1.0, GRID)
+#: a quartic's five grid points about its centre
+_AROUND = (-2, -1, 0, 1, 2)
 
 
 #: the quartic through five values at t = -2..2: its coefficients of t, t^2, t^3, t^4 (columns)
@@ -158,30 +159,28 @@ def _unit(n: int) -> tuple[np.ndarray, list[float]]:
     return unit, unit.tolist()
 
 
-def _grid_candidates(y: np.ndarray, tie: list[float]) -> list[tuple[int, int, float]]:
+def _grid_candidates(y: np.ndarray, flat: list[int]) -> list[tuple[int, int, float]]:
     """Each row's interior local maxima on the grid ``y`` (rows, n) that may be its largest: within what a peak can
-    rise above its grid points (the row's largest second difference) of the row's highest; none on a row constant
-    within its ``tie``. ``(row, grid index, value)`` each, in order of row and index."""
-    spread = (y.max(axis=1) - y.min(axis=1)).tolist()
+    rise above its grid points (the row's largest second difference) of the row's highest; none on the rows
+    ``flat`` (constant within the tie). ``(row, grid index, value)`` each, in order of row and index."""
     inner, before, after = y[:, 1:-1], y[:, :-2], y[:, 2:]
     peak = inner >= before
     peak &= inner >= after
-    flat = [r for r, s in enumerate(spread) if not s > tie[r]]
     if flat:
         peak[flat] = False
     rows, cols = peak.nonzero()
-    if not rows.size:
-        return []
+    values = inner[rows, cols].tolist()
+    rows, cols = rows.tolist(), cols.tolist()
+    if len(set(rows)) == len(rows):                          # one a row: its highest
+        return [(r, j + 1, v) for r, j, v in zip(rows, cols, values, strict=True)]
     bend = before - 2 * inner
     bend += after
     drop = np.abs(bend, out=bend).max(axis=1).tolist()
-    values = inner[rows, cols].tolist()
-    rows = rows.tolist()
     top = dict.fromkeys(rows, -math.inf)
     for r, v in zip(rows, values, strict=True):
         if v > top[r]:
             top[r] = v
-    return [(r, j + 1, v) for r, j, v in zip(rows, cols.tolist(), values, strict=True) if v >= top[r] - drop[r]]
+    return [(r, j + 1, v) for r, j, v in zip(rows, cols, values, strict=True) if v >= top[r] - drop[r]]
 
 
 class _Peak:
@@ -201,7 +200,7 @@ def _estimates(y: np.ndarray, found: list[tuple[int, int, float]], moving: list[
     breadth."""
     count = len(moving)
     centres = [min(max(j, 2), n - 3) for _, j, _ in found]
-    windows = y.take([r * n + c + o for (r, _, _), c in zip(found, centres, strict=True) for o in range(-2, 3)])
+    windows = y.take([r * n + c + o for (r, _, _), c in zip(found, centres, strict=True) for o in _AROUND])
     unit = _unit(n)[1]
     out = []
     for (r, j, value), c, (a1, a2, a3, a4) in zip(found, centres, _coefficients(windows.reshape(-1, 5)),
@@ -231,11 +230,11 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
                 stencils.append((peak, c, d))
         if not stencils:
             return
-        points = [[c + d * o for o in _OFFSETS] for _, c, d in stencils]
+        points = [(c + d * -2.0, c + d * -1.0, c + d * 0.0, c + d * 1.0, c + d * 2.0) for _, c, d in stencils]
         got = yield (np.array(points).ravel(), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))
         values = got.tolist()
         ys = [values[peak.f][5 * i:5 * i + 5] for i, (peak, _, _) in enumerate(stencils)]   # each its own function
-        if not all(math.isfinite(v) for row in ys for v in row):
+        if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
             raise FloatingPointError("function is not finite near a peak")
         active = []
         for (peak, c, d), row, xs, (a1, a2, a3, a4) in zip(stencils, ys, points, _coefficients(np.array(ys)),
@@ -257,14 +256,23 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
 
 
 def _first_largest(candidates: list[tuple[float, float]], tie: float, backwards: bool) -> tuple[float, float]:
-    """Of ``(x, value)`` candidates, the first from the low end of x (the high end where ``backwards``) whose value
-    is within ``tie`` of the largest; the earliest listed of equal x."""
-    limit = max(v for _, v in candidates) - tie
+    """Of a piece's ``candidates`` (abscissa, value), its ends and peaks, the first from the low end (the high end
+    where ``backwards``) whose value is within ``tie`` of the largest; of equal abscissae the earliest listed."""
+    limit = max([v for _, v in candidates]) - tie
+    sign = -1.0 if backwards else 1.0
     best, key = candidates[0], math.inf
     for x, v in candidates:
-        if v >= limit and (-x if backwards else x) < key:
-            best, key = (x, v), (-x if backwards else x)
+        if v >= limit and sign * x < key:
+            best, key = (x, v), sign * x
     return best
+
+
+def _end_of(lo: float, first: float, hi: float, last: float, tie: float, backwards: bool) -> tuple[float, float]:
+    """:func:`_first_largest` of a piece with no peak, ``[(lo, first), (hi, last)]``, in a few comparisons."""
+    limit = (last if last > first else first) - tie
+    if last >= limit and (first < limit or (hi > lo if backwards else hi < lo)):
+        return hi, last
+    return lo, first
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
@@ -300,37 +308,39 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     width = (high - low).tolist()
     got = yield _first_ask(low.tobytes(), high.tobytes(), tuple(still), n)
     k = got.shape[0]
-    largest = np.abs(got).max(axis=1).tolist()                # NaN or infinite where any value is
-    if not all(math.isfinite(v) for v in largest):
-        raise FloatingPointError("function is not finite on the search grid")
-    scales = np.asarray(scale, dtype=float)
-    magnitude = [max(s, v) for s, v in zip([float(scales)] * k if scales.ndim == 0 else scales.tolist(), largest,
-                                           strict=True)]
     moving = [i for i, s in enumerate(still) if not s]
     count = len(moving)
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
-    ends = [[(v, v) for v in row] for row in got[:, count * n:].tolist()]   # a steady piece's: its first value
-    peaks: list[_Peak] = []
-    if count:
-        moving_ends = y[:, [0, -1]].tolist()
-        for f in range(k):
-            ends[f][0:0] = [tuple(pair) for pair in moving_ends[f * count:(f + 1) * count]]
-        found = _grid_candidates(y, [TIE * magnitude[r // count] for r in range(k * count)])
-        if found:
-            peaks = _estimates(y, found, moving, lo, hi, width, n)
-            yield from _refined(peaks, lo, hi, width)
-    order = moving + [i for i, s in enumerate(still) if s]   # the pieces as ``ends`` lists them
-    backwards = _flags(reverse, p)
-    at: list[list[float]] = [[0.0] * p for _ in range(k)]
-    value: list[list[float]] = [[0.0] * p for _ in range(k)]
+    top, bottom = y.max(axis=1).tolist(), y.min(axis=1).tolist()    # NaN or infinite where any value is
+    held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
+    if not all(map(math.isfinite, [*top, *bottom, *(v for row in held for v in row)])):
+        raise FloatingPointError("function is not finite on the search grid")
+    scales = np.asarray(scale, dtype=float)
+    magnitude = []
+    for f, s in enumerate([float(scales)] * k if scales.ndim == 0 else scales.tolist()):
+        rows = range(f * count, (f + 1) * count)
+        magnitude.append(max(s, max([abs(top[r]) for r in rows] + [abs(bottom[r]) for r in rows]
+                                    + [abs(v) for v in held[f]])))
+    flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
+    peaks = _estimates(y, _grid_candidates(y, flat), moving, lo, hi, width, n) if count else []
+    if peaks:
+        yield from _refined(peaks, lo, hi, width)
     found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}
     for peak in peaks:
         found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
+    ends = y[:, [0, -1]].tolist()
+    backwards = _flags(reverse, p)
+    order = moving + [i for i, s in enumerate(still) if s]   # the pieces in the order of each function's ends
+    at: list[list[float]] = [[0.0] * p for _ in range(k)]
+    value: list[list[float]] = [[0.0] * p for _ in range(k)]
     for f in range(k):
         tie = TIE * magnitude[f]
-        for piece, (first, last) in zip(order, ends[f], strict=True):
-            candidates = [(lo[piece], first), (hi[piece], last), *found_on.get((f, piece), ())]
-            at[f][piece], value[f][piece] = _first_largest(candidates, tie, backwards[piece])
+        pairs = [*ends[f * count:(f + 1) * count], *([v, v] for v in held[f])]   # a steady piece's: its first value
+        for piece, (first, last) in zip(order, pairs, strict=True):
+            here = found_on.get((f, piece))
+            at[f][piece], value[f][piece] = (
+                _end_of(lo[piece], first, hi[piece], last, tie, backwards[piece]) if here is None
+                else _first_largest([(lo[piece], first), (hi[piece], last), *here], tie, backwards[piece]))
     return at, value, magnitude
 
 
