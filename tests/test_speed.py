@@ -4,6 +4,7 @@ every follower and a plate cam, both senses of rotation. No test here asserts a 
 from __future__ import annotations
 
 import copy
+import itertools
 import math
 
 import numpy as np
@@ -12,6 +13,7 @@ import pytest
 from camgen.analysis import analyze, face_extent
 from camgen.cam import build_cam
 from camgen.core.spec import apply_overrides
+from camgen import numeric
 from camgen.numeric import piecewise_maxima
 from camgen.spec import validate_spec
 from tests.conftest import RDRD
@@ -169,3 +171,53 @@ def test_equal_peaks_inside_a_piece(reverse):
     backwards (a return's law runs against the cam angle)."""
     at, value, _ = piecewise_maxima(lambda x, piece: np.sin(4 * np.pi * x)[None], [0.0], [1.0], reverse=reverse)
     assert at[0, 0] == pytest.approx(0.625 if reverse else 0.125, abs=1e-12) and value[0, 0] == pytest.approx(1.0)
+
+
+def test_a_piece_without_peaks_is_chosen_as_every_candidate_is():
+    """The ends-only choice (a few comparisons) is the general one on [(lo, first), (hi, last)], to the bit: equal
+    values, values within the tie, signed zeros, a piece of zero width, both senses."""
+    values = [0.0, -0.0, 1.0, 1.0 + 1e-13, 1.0 - 1e-13, 2.0, -1.0]
+    for lo, hi, first, last in itertools.product(values, repeat=4):
+        for tie, backwards in itertools.product((0.0, 1e-12, 1.5), (False, True)):
+            general = numeric._first_largest([(lo, first), (hi, last)], tie, backwards)
+            assert repr(numeric._end_of(lo, first, hi, last, tie, backwards)) == repr(general)
+
+
+def test_the_quartic_vertex_has_no_maximum_where_a_step_divides_by_zero():
+    """A flat window (no parabola) or a Newton step with a zero slope's derivative: no maximum, as the arrays' NaN
+    and infinities gave; a peak inside the window: the quartic's."""
+    assert numeric._vertex(0.0, 0.0, 0.0, 0.0, -2.0, 2.0) is None
+    assert numeric._vertex(1.0, 0.0, 0.0, 1.0, -2.0, 2.0) is None
+    assert numeric._vertex(0.0, -1.0, 0.0, 0.0, -2.0, 2.0) == 0.0
+    t = numeric._vertex(0.3, -1.0, 0.01, -0.02, -2.0, 2.0)
+    assert abs(0.3 - 2.0 * t + 0.03 * t**2 - 0.08 * t**3) < 1e-15 and numeric._vertex(0.3, -1.0, 0.01, -0.02,
+                                                                                       -2.0, 0.1) is None
+    assert numeric._breadth(1.0, 0.0, 0.01, 0.5) == 0.5 and numeric._breadth(-0.0, 0.0, 0.01, 0.5) == 0.5
+
+
+def test_the_first_ask_is_made_once_and_read_only():
+    """A program's pieces are mostly [0, 1]: the grid asked first is made once for a set of pieces and steady
+    flags, and nobody can change it in place."""
+    def first(steady):
+        return next(numeric.maxima_steps([0.0, 0.0, 0.0], [1.0, 1.0, 1.0], steady=steady))
+
+    x, piece = first([False, True, False])
+    again, _ = first([False, True, False])
+    assert again is x and not x.flags.writeable and not piece.flags.writeable
+    assert x.size == 2 * numeric.GRID + 1 and piece.tolist() == [0] * numeric.GRID + [2] * numeric.GRID + [1]
+    assert first(False)[0].size == 3 * numeric.GRID
+    with pytest.raises(ValueError, match="5 a piece"):
+        next(numeric.maxima_steps([0.0], [1.0], n=4))
+
+
+def test_values_not_finite_are_refused():
+    """On the grid, or near a peak (the refinement's points, off the grid's k / 128)."""
+    with pytest.raises(FloatingPointError, match="search grid"), np.errstate(divide="ignore"):
+        piecewise_maxima(lambda x, piece: np.log(x)[None], [0.0], [1.0])
+
+    def func(x, piece):
+        off_grid = (np.abs(x - 0.3) < 0.01) & (x * 128 != np.round(x * 128))
+        return np.where(off_grid, np.nan, np.exp(-((x - 0.3) / 0.05) ** 2))[None]
+
+    with pytest.raises(FloatingPointError, match="near a peak"):
+        piecewise_maxima(func, [0.0], [1.0])
