@@ -135,7 +135,7 @@ def _flags(flag: ArrayLike, p: int) -> list[bool]:
     return [bool(a)] * p if a.ndim == 0 else a.reshape(p).tolist()
 
 
-@functools.lru_cache(maxsize=256)
+@functools.lru_cache(maxsize=32)
 def _first_ask(lo: bytes, hi: bytes, steady: tuple[bool, ...], n: int) -> tuple[np.ndarray, np.ndarray]:
     """:func:`maxima_steps`' first ask, read-only (made once for a set of pieces: a program's are mostly [0, 1]):
     the grid of ``n`` points on each piece that is not ``steady`` (pieces given by the bytes of their float ``lo``

@@ -231,10 +231,8 @@ class Program:
         says that the values depend on the motion only, not on the cam angle, so that a dwell's are constant: its
         grid is then one point (see :func:`camgen.numeric.maxima_steps`).
         """
-        pieces = self._pieces
-        owner = pieces.owner
-        steps = maxima_steps(pieces.lo, pieces.hi, scale=scale, reverse=pieces.backwards,
-                             steady=pieces.still if steady else False)
+        owner, lo, hi, still, backwards, angles = self._pieces
+        steps = maxima_steps(lo, hi, scale=scale, reverse=backwards, steady=still if steady else False)
         ask = next(steps)
         while True:
             x, piece = ask
@@ -244,8 +242,17 @@ class Program:
             except StopIteration as done:
                 at, value, magnitude = done.value
                 break
-        return [_first_degrees(row_at, row_value, TIE * size, pieces) for row_at, row_value, size
-                in zip(at, value, magnitude, strict=True)]
+        out = []
+        for row_at, row_value, size in zip(at, value, magnitude, strict=True):
+            limit = max(row_value) - TIE * size
+            best = (0.0, math.inf)
+            for v, x, (start, beta, back) in zip(row_value, row_at, angles, strict=True):
+                if v >= limit:                  # Segment.angle's, in degrees: the same operations on the same numbers
+                    degrees = math.degrees(start + beta * (1.0 - x if back else x)) % 360.0
+                    if degrees < best[1]:
+                        best = (v, degrees)
+            out.append(best)
+        return out
 
     @functools.cached_property
     def _table(self) -> _Table:
@@ -279,9 +286,18 @@ class Program:
         self.__dict__["boundaries"] = (self.boundary_points[0], motion)
 
     @functools.cached_property
-    def _pieces(self) -> _Pieces:
-        """Every segment's smooth pieces (see :meth:`Segment.pieces`), made once a program."""
-        return _Pieces(self.segments)
+    def _pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[bool], list[bool],
+                               list[tuple[float, float, bool]]]:
+        """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them, made
+        once a program: the owning segment of each (an array, to map asks), the law variable's ends (arrays), whether
+        its segment holds still (a dwell) and whether it runs its law backwards (a return, see
+        :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag."""
+        rows = [(i, a, b) for i, seg in enumerate(self.segments) for a, b in seg.pieces()]
+        held = [self.segments[i] for i, _, _ in rows]
+        backwards = [seg.kind == "return" and seg.law is not None for seg in held]
+        return (np.array([r[0] for r in rows]), np.array([r[1] for r in rows]), np.array([r[2] for r in rows]),
+                [seg.kind == "dwell" or seg.law is None for seg in held], backwards,
+                [(seg.start, seg.beta, back) for seg, back in zip(held, backwards, strict=True)])
 
     def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
         """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)),
@@ -311,36 +327,6 @@ class Program:
             for t, lo, hi in seg.inner_limits():
                 found += _compare(t, lo, hi, scales[i], inside=True)
         return sorted(found, key=lambda j: (j.at_deg, j.order))
-
-
-class _Pieces:
-    """A program's smooth pieces (see :meth:`Segment.pieces`) as :meth:`Program.maxima_steps` searches them: the
-    owning segment of each (an array, to map asks), the law variable's ends (arrays), and as flags and floats
-    whether its segment holds still (a dwell) or runs its law backwards (a return, see :meth:`Segment.angle`), and
-    that segment's start and angle (radians)."""
-
-    def __init__(self, segments: tuple[Segment, ...]) -> None:
-        rows = [(i, a, b) for i, seg in enumerate(segments) for a, b in seg.pieces()]
-        self.owner = np.array([r[0] for r in rows])
-        self.lo, self.hi = np.array([r[1] for r in rows]), np.array([r[2] for r in rows])
-        held = [segments[i] for i, _, _ in rows]
-        self.still = [seg.kind == "dwell" or seg.law is None for seg in held]
-        self.backwards = [seg.kind == "return" and seg.law is not None for seg in held]
-        self.start, self.beta = [seg.start for seg in held], [seg.beta for seg in held]
-
-
-def _first_degrees(at: list[float], value: list[float], tie: float, pieces: _Pieces) -> tuple[float, float]:
-    """Of a row's largest value on each piece, ``value`` at the law variable ``at``, the one at the smallest cam
-    angle of those within ``tie`` of the largest: (value, degrees in [0, 360)), the first piece's of equal angles.
-    The angle is :meth:`Segment.angle`'s, the same operations on the same numbers."""
-    limit = max(value) - tie
-    best = (0.0, math.inf)
-    for v, x, start, beta, backwards in zip(value, at, pieces.start, pieces.beta, pieces.backwards, strict=True):
-        if v >= limit:
-            degrees = math.degrees(start + beta * (1.0 - x if backwards else x)) % 360.0
-            if degrees < best[1]:
-                best = (v, degrees)
-    return best
 
 
 class _Table:
