@@ -175,7 +175,7 @@ def _grid_candidates(y: np.ndarray, flat: list[int]) -> list[tuple[int, int, flo
         return [(r, j + 1, v) for r, j, v in zip(rows, cols, values, strict=True)]
     bend = before - 2 * inner
     bend += after
-    drop = np.abs(bend, out=bend).max(axis=1).tolist()
+    drop = np.maximum.reduce(np.abs(bend, out=bend), axis=1).tolist()
     top = dict.fromkeys(rows, -math.inf)
     for r, v in zip(rows, values, strict=True):
         if v > top[r]:
@@ -311,7 +311,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     moving = [i for i, s in enumerate(still) if not s]
     count = len(moving)
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
-    top, bottom = y.max(axis=1).tolist(), y.min(axis=1).tolist()    # NaN or infinite where any value is
+    top = np.maximum.reduce(y, axis=1).tolist()              # NaN or infinite where any value is (the ufuncs'
+    bottom = np.minimum.reduce(y, axis=1).tolist()           # reduce: ndarray.max's Python wrapper costs more)
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     if not all(map(math.isfinite, [*top, *bottom, *(v for row in held for v in row)])):
         raise FloatingPointError("function is not finite on the search grid")
@@ -328,7 +329,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}
     for peak in peaks:
         found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
-    ends = y[:, [0, -1]].tolist()
+    ends = y[:, ::n - 1].tolist()                            # each row's first and last
     backwards = _flags(reverse, p)
     order = moving + [i for i, s in enumerate(still) if s]   # the pieces in the order of each function's ends
     at: list[list[float]] = [[0.0] * p for _ in range(k)]
