@@ -292,12 +292,18 @@ class Program:
         once a program: the owning segment of each (an array, to map asks), the law variable's ends (arrays), whether
         its segment holds still (a dwell) and whether it runs its law backwards (a return, see
         :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag."""
-        rows = [(i, a, b) for i, seg in enumerate(self.segments) for a, b in seg.pieces()]
-        held = [self.segments[i] for i, _, _ in rows]
-        backwards = [seg.kind == "return" and seg.law is not None for seg in held]
-        return (np.array([r[0] for r in rows]), np.array([r[1] for r in rows]), np.array([r[2] for r in rows]),
-                [seg.kind == "dwell" or seg.law is None for seg in held], backwards,
-                [(seg.start, seg.beta, back) for seg, back in zip(held, backwards, strict=True)])
+        owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
+        for i, seg in enumerate(self.segments):
+            moving = seg.kind != "dwell" and seg.law is not None
+            back = moving and seg.kind == "return"
+            for a, b in seg.pieces():
+                owner.append(i)
+                lo.append(a)
+                hi.append(b)
+                still.append(not moving)
+                backwards.append(back)
+                angles.append((seg.start, seg.beta, back))
+        return np.array(owner), np.array(lo), np.array(hi), still, backwards, angles
 
     def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
         """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)),
