@@ -316,9 +316,11 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     if not all(map(math.isfinite, [*top, *bottom, *(v for row in held for v in row)])):
         raise FloatingPointError("function is not finite on the search grid")
-    scales = np.asarray(scale, dtype=float)
+    scales = np.asarray(scale, dtype=float).reshape(-1).tolist()
+    if len(scales) != k:                                       # one for all, as numpy broadcasts it
+        scales = [*scales] * k if len(scales) == 1 else np.broadcast_to(scales, (k,)).tolist()
     magnitude = []
-    for f, s in enumerate([float(scales)] * k if scales.ndim == 0 else scales.tolist()):
+    for f, s in enumerate(scales):
         rows = range(f * count, (f + 1) * count)
         magnitude.append(max(s, max([abs(top[r]) for r in rows] + [abs(bottom[r]) for r in rows]
                                     + [abs(v) for v in held[f]])))

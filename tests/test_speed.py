@@ -221,3 +221,16 @@ def test_values_not_finite_are_refused():
 
     with pytest.raises(FloatingPointError, match="near a peak"):
         piecewise_maxima(func, [0.0], [1.0])
+
+
+def test_a_scale_for_all_functions_or_one_each():
+    """``scale`` one for all (a number or one element) or one a function; each magnitude is the larger of its scale
+    and the function's largest |value| on the grid."""
+    def func(x, piece):
+        return np.stack([np.sin(x), np.cos(x), x])
+
+    for scale, expected in ((5.0, [5.0] * 3), ([5.0], [5.0] * 3), ([0.5, 1.5, 0.1], [1.0, 1.5, 2.0])):
+        magnitude = piecewise_maxima(func, [0.0, 1.0], [1.0, 2.0], scale=scale)[2]
+        assert magnitude.tolist() == pytest.approx(expected, rel=1e-6)         # sin's largest on the grid: ~1
+    with pytest.raises(ValueError):
+        piecewise_maxima(func, [0.0, 1.0], [1.0, 2.0], scale=[0.5, 1.5])
