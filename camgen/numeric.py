@@ -130,9 +130,9 @@ def piecewise_maxima(func: Callable[[np.ndarray, np.ndarray], np.ndarray], lo: A
 
 
 def _flags(flag: ArrayLike, p: int) -> list[bool]:
-    """``flag``, one for all or one a piece, as p bools."""
-    a = np.asarray(flag, dtype=bool)
-    return [bool(a)] * p if a.ndim == 0 else a.reshape(p).tolist()
+    """``flag``, one for all (a bool or one element) or one a piece, as p bools."""
+    a = np.asarray(flag, dtype=bool).reshape(-1)
+    return a.tolist() * p if a.size == 1 else a.reshape(p).tolist()
 
 
 @functools.lru_cache(maxsize=32)

@@ -234,3 +234,11 @@ def test_a_scale_for_all_functions_or_one_each():
         assert magnitude.tolist() == pytest.approx(expected, rel=1e-6)         # sin's largest on the grid: ~1
     with pytest.raises(ValueError):
         piecewise_maxima(func, [0.0, 1.0], [1.0, 2.0], scale=[0.5, 1.5])
+
+
+def test_flags_for_all_pieces_or_one_each():
+    """``reverse`` and ``steady`` one for all (a bool or one element) or one a piece, as numpy broadcast them."""
+    assert numeric._flags(True, 3) == numeric._flags([True], 3) == [True] * 3
+    assert numeric._flags(np.array([1, 0, 1]), 3) == [True, False, True]
+    with pytest.raises(ValueError):
+        numeric._flags([True, False], 3)
