@@ -311,19 +311,16 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     moving = [i for i, s in enumerate(still) if not s]
     count = len(moving)
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
-    top = np.maximum.reduce(y, axis=1).tolist()              # NaN or infinite where any value is (the ufuncs'
-    bottom = np.minimum.reduce(y, axis=1).tolist()           # reduce: ndarray.max's Python wrapper costs more)
-    held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
-    if not all(map(math.isfinite, [*top, *bottom, *(v for row in held for v in row)])):
+    top = np.maximum.reduce(y, axis=1).tolist()              # each row's largest and least (the ufuncs' reduce:
+    bottom = np.minimum.reduce(y, axis=1).tolist()           # ndarray.max's Python wrapper costs more)
+    largest = np.maximum.reduce(np.abs(got), axis=1).tolist()   # NaN or infinite where any value is
+    if not all(map(math.isfinite, largest)):
         raise FloatingPointError("function is not finite on the search grid")
     scales = np.asarray(scale, dtype=float).reshape(-1).tolist()
     if len(scales) != k:                                       # one for all, as numpy broadcasts it
         scales = [*scales] * k if len(scales) == 1 else np.broadcast_to(scales, (k,)).tolist()
-    magnitude = []
-    for f, s in enumerate(scales):
-        rows = range(f * count, (f + 1) * count)
-        magnitude.append(max(s, max([abs(top[r]) for r in rows] + [abs(bottom[r]) for r in rows]
-                                    + [abs(v) for v in held[f]])))
+    magnitude = [max(s, v) for s, v in zip(scales, largest, strict=True)]
+    held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
     peaks = _estimates(y, _grid_candidates(y, flat), moving, lo, hi, width, n) if count else []
     if peaks:
