@@ -20,7 +20,7 @@ from camgen.biarcs import arc_distance, biarcs
 from camgen.cam import Cam, Maker, together
 from camgen.core.errors import DesignError
 from camgen.followers.base import PitchGeometry
-from camgen.core.shapes import Contour, arc_steps
+from camgen.core.shapes import Contour, arc_steps, reversed_pieces
 from camgen.surface import surface_deviation
 
 #: interior points per chord at which the chord error is measured
@@ -418,8 +418,19 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
             bulges.append(np.zeros(1))
     if cam.is_plate:
         verts, bulges = _close_plate(cam, verts, bulges, offset)
-    contour = Contour(np.concatenate(verts), np.concatenate(bulges))
-    return Outline(contour if contour.area > 0 else contour.reversed(), max(0.0, *errors), envelope=False)
+    return Outline(_counter_clockwise(cam, np.concatenate(verts), np.concatenate(bulges)), max(0.0, *errors),
+                   envelope=False)
+
+
+def _counter_clockwise(cam: Cam, verts: np.ndarray, bulges: np.ndarray) -> Contour:
+    """The contour of a cam's outline ``verts`` (n, 2), ``bulges`` (n,), made in the order of the cam angle, as it
+    runs counter-clockwise. A disc cam's contact point runs round its centre against the cam's turn, clockwise in
+    the cam's frame for a counter-clockwise cam (``sense`` +1), so that outline is turned round and a clockwise
+    cam's kept, without measuring its area; a plate's is measured."""
+    if not cam.is_plate:
+        return Contour(*reversed_pieces(verts, bulges)) if cam.follower.sense > 0 else Contour(verts, bulges)
+    contour = Contour(verts, bulges)
+    return contour if contour.area > 0 else contour.reversed()
 
 
 def _close_plate(cam: Cam, verts: list, bulges: list, offset: float) -> tuple[list, list]:

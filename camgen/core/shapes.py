@@ -32,6 +32,16 @@ def arc_steps(radius: float, angle: float, tolerance: float) -> int:
     return max(1, math.ceil(abs(angle) / max_step))
 
 
+def reversed_pieces(vertices: np.ndarray, bulges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices (n, 2) and bulges (n,) of a contour (see :class:`Contour`) traversed the other way: the
+    vertices from last to first, and piece i's bulge the negated bulge of the piece that ran backwards over it
+    (piece n - 2 - i, the closing piece staying last); a line's 0.0 becomes -0.0, as negating it always has."""
+    b = np.empty(len(bulges))
+    np.negative(bulges[-2::-1], out=b[:-1])
+    b[-1] = -bulges[-1]
+    return vertices[::-1], b
+
+
 @dataclass(frozen=True)
 class Contour:
     """A closed contour in LWPOLYLINE form.
@@ -123,9 +133,7 @@ class Contour:
 
     def reversed(self) -> "Contour":
         """The same contour traversed the other way."""
-        v = self.vertices[::-1]
-        b = -np.roll(self.bulges[::-1], -1)
-        return Contour(v, b)
+        return Contour(*reversed_pieces(self.vertices, self.bulges))
 
     def moved(self, angle: float, shift: np.ndarray) -> "Contour":
         """The contour turned by ``angle`` (rad, ccw) about the origin, then moved by ``shift`` (mm); arcs stay arcs."""
