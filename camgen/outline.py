@@ -10,6 +10,8 @@ about the corner: both are exported as exact arcs.
 """
 from __future__ import annotations
 
+import functools
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -64,32 +66,47 @@ def _length(v: np.ndarray) -> np.ndarray:
 
 
 def _inner(theta: np.ndarray, count: int) -> np.ndarray:
-    """``count`` equally spaced cam angles inside each span of ``theta``, span by span (radians)."""
+    """``count`` equally spaced cam angles inside each span of ``theta``, probe by probe (radians; see
+    :func:`_between`)."""
     return _between(theta[:-1], theta[1:], count)
 
 
+@functools.cache
+def _fractions(count: int) -> np.ndarray:
+    """Where ``count`` equally spaced probes sit along a span, i / (count + 1) for i = 1 .. count, a column
+    (count, 1); made once a count."""
+    frac = (np.arange(1, count + 1) / (count + 1))[:, None]
+    frac.setflags(write=False)
+    return frac
+
+
 def _between(start: np.ndarray, end: np.ndarray, count: int) -> np.ndarray:
-    """``count`` equally spaced cam angles inside each span from ``start`` (k,) to ``end`` (k,), span by span
-    (radians): the start plus the span's width times i / (count + 1)."""
-    frac = np.arange(1, count + 1) / (count + 1)
-    return (start[:, None] + (end - start)[:, None] * frac[None, :]).ravel()
+    """``count`` equally spaced cam angles inside each span from ``start`` (k,) to ``end`` (k,), probe by probe:
+    every span's first, then every span's second, ... (count k,) (radians): the start plus the span's width times
+    i / (count + 1). Probe by probe, a span's largest error is an element-wise maximum over ``count`` contiguous
+    rows, not a reduction along short rows (several times slower in numpy)."""
+    return (start + (end - start) * _fractions(count)).ravel()
 
 
 def _probed(a: np.ndarray, b: np.ndarray, g: PitchGeometry, rr: float,
-            count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+            count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The exact surface (``rr`` mm inside the pitch curve) at ``count`` probes inside each span from the vertex
-    ``a`` (spans, 2) to the vertex ``b`` (mm; ``g`` at :func:`_between`'s angles): the probes (spans, count, 2);
-    and per span the largest gap between neighbouring points (the span's ends included, mm) and the smallest and
-    largest signed curvature of the surface there (1/mm), which bound what the probes can miss: a curve parts from
-    a line or an arc between two probes by at most gap^2 |curvature difference| / 8."""
+    ``a`` (spans, 2) to the vertex ``b`` (mm; ``g`` at :func:`_between`'s angles): the probes (count, spans, 2);
+    per span the largest gap between neighbouring points (the span's ends included, mm); and the signed curvature
+    of the surface at each probe (count, spans; 1/mm, +inf where it has none), whose least and greatest over a
+    span bound what the probes can miss: a curve parts from a line or an arc between two probes by at most
+    gap^2 |curvature difference| / 8."""
     spans = len(a)
-    x = _surface(g, rr).reshape(spans, count, 2)
-    chain = np.concatenate([a[:, None, :], x, b[:, None, :]], axis=1)
-    gap = _length(np.diff(chain, axis=1)).max(axis=1)
+    chain = np.empty((count + 2, spans, 2))             # a, the probes, b
+    chain[0], chain[-1] = a, b
+    x = chain[1:-1]
+    np.subtract(g.point, rr * g.normal, out=x.reshape(count * spans, 2))       # _surface, in place
+    step = chain[1:] - chain[:-1]
+    step *= step
+    gap = np.sqrt((step[..., 0] + step[..., 1]).max(axis=0))      # the root of the largest: the largest root
     with np.errstate(divide="ignore", invalid="ignore"):
-        bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(spans, count)
-    bend = np.where(np.isfinite(bend), bend, np.inf)
-    return x, gap, bend.min(axis=1), bend.max(axis=1)
+        bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(count, spans)
+    return x, gap, np.where(np.isfinite(bend), bend, np.inf)
 
 
 def _arc_curvature(start: np.ndarray, end: np.ndarray, bulge: np.ndarray) -> np.ndarray:
@@ -110,13 +127,13 @@ def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: floa
     """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from each chord from
     ``start`` (spans, 2) to ``end`` (spans, 2): the largest measured at its probes ``g`` (at :func:`_between`'s
     angles), plus what the surface's curvature lets it stray between two probes."""
-    x, gap, low, high = _probed(start, end, g, rr, _PROBES)
-    bend = np.maximum(np.abs(low), np.abs(high))
-    a, b = start[:, None, :], end[:, None, :]
-    ab = b - a
+    x, gap, bend = _probed(start, end, g, rr, _PROBES)
+    ab = end - start
     length2 = _pairs(ab**2)
-    t = np.minimum(np.maximum(_pairs((x - a) * ab) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
-    return _length(a + t[..., None] * ab - x).max(axis=1) + gap**2 * bend / 8
+    t = np.minimum(np.maximum(_pairs((x - start) * ab) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
+    off = start + t[..., None] * ab - x                 # from each probe to its nearest point of the chord
+    off *= off
+    return np.sqrt(_pairs(off).max(axis=0)) + gap**2 * np.abs(bend).max(axis=0) / 8
 
 
 #: the points of the grid on which a stretch is measured for its spacing
@@ -200,7 +217,7 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     segments = cam.program.segments
     ranges = [(segments[i].start, segments[i].end) if span is None else span for i, span in stretches]
     aux = _grids(np.array([a for a, _ in ranges]), np.array([b for _, b in ranges]))
-    (g,) = yield [(np.repeat(index, _AUX), aux.ravel(), False)]
+    (g,) = yield [(np.array(index).repeat(_AUX), aux.ravel(), False)]
     cum = _density(aux, g.d1, g.kappa, tolerance, rr)
     factor = [1.0] * len(stretches)
     results: list[Any] = [None] * len(stretches)
@@ -209,22 +226,24 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     for _ in range(40):
         theta = [_spaced(index[j], aux[j], cum[j], tolerance, factor[j]) for j in live]
         sizes = [t.size for t in theta]
-        theta, on = np.concatenate(theta), np.repeat([index[j] for j in live], sizes)
-        last = np.cumsum(sizes) - 1                     # each stretch's end: no span starts there
-        starts = np.ones(theta.size, dtype=bool)
-        starts[last] = False
-        first = np.flatnonzero(starts)
-        ends, inner = yield [(on, theta, False), (np.repeat(on[first], _PROBES), _between(theta[first],
-                                                                                          theta[first + 1], _PROBES),
-                                                  False)]
+        theta, on = np.concatenate(theta), np.array([index[j] for j in live]).repeat(sizes)
+        # every span between neighbouring vertices is measured, one stretch's last to the next one's first too
+        # (none of theirs, its error left out): its probes sit at its start, a point of its own segment
+        ahead = list(itertools.accumulate(sizes))       # each stretch's end, one past its last vertex
+        across = [k - 1 for k in ahead[:-1]]            # the spans from one stretch to the next
+        end = theta[1:].copy()
+        end[across] = theta[across]
+        ends, inner = yield [(on, theta, False), (on[None, :-1].repeat(_PROBES, axis=0).ravel(),
+                                                  _between(theta[:-1], end, _PROBES), False)]
         at = _surface(ends, rr)
-        spans = _chord_errors(at[first], at[first + 1], inner, rr)
-        worst = np.maximum.reduceat(spans, np.concatenate([[0], np.cumsum(np.array(sizes[:-1], dtype=int) - 1)]))
+        spans = _chord_errors(at[:-1], at[1:], inner, rr)
+        spans[across] = 0.0                             # under any error (errors are >= 0 or NaN)
+        worst = np.maximum.reduceat(spans, [0, *ahead[:-1]])
         still = []
-        for j, e, stop, size in zip(live, worst.tolist(), last.tolist(), sizes, strict=True):
+        for j, e, stop, size in zip(live, worst.tolist(), ahead, sizes, strict=True):
             err[j] = e
             if e <= tolerance:
-                results[j] = (at[stop + 1 - size:stop], np.zeros(size - 1), e)
+                results[j] = (at[stop - size:stop - 1], np.zeros(size - 1), e)
             else:
                 factor[j] *= max(1.1, math.sqrt(e / tolerance))
                 still.append(j)
@@ -253,7 +272,9 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
         tan = g.d1 / _length(g.d1)[:, None]
         p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
-        x, gap, low, high = _probed(p0, p1, inner, rr, 2 * _PROBES)
+        probes, gap, bend = _probed(p0, p1, inner, rr, 2 * _PROBES)
+        low, high = bend.min(axis=0), bend.max(axis=0)
+        x = np.ascontiguousarray(probes.transpose(1, 0, 2))      # span by span (spans, count, 2), as measured
         apart = np.max([_apart(low, high, k) for k in (_arc_curvature(p0, junction, b1),
                                                        _arc_curvature(junction, p1, b2))], axis=0)
         err = np.minimum(arc_distance(x, p0, junction, b1), arc_distance(x, junction, p1, b2)).max(axis=1)
