@@ -297,32 +297,29 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
 def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     """Makes the exact arcs about the cam centre (up to 90 degrees an arc) of the dwells (or their spans)
     ``stretches``, (segment index, span or None) each, all at once: each one's vertices and bulges and their
-    measured error (a list)."""
+    measured error (a list). A dwell's n arcs have n + 1 vertices and 8 n - 1 probes, its angles made as Python
+    floats (a few dozen; the same operations as on arrays, so the same numbers)."""
     segments = cam.program.segments
     ranges = [(segments[i].start, segments[i].beta) if span is None else (span[0], span[1] - span[0])
               for i, span in stretches]
     arcs = [max(1, math.ceil(beta / (math.pi / 2) - 1e-12)) for _, beta in ranges]
-    start = np.repeat([s for s, _ in ranges], [n + 1 for n in arcs])
-    beta = np.repeat([b for _, b in ranges], [n + 1 for n in arcs])
-    count = np.repeat(arcs, [n + 1 for n in arcs])
-    theta = start + beta * np.concatenate([np.arange(n + 1) for n in arcs]) / count
-    probes = [8 * n - 1 for n in arcs]
-    start = np.repeat([s for s, _ in ranges], probes)
-    beta = np.repeat([b for _, b in ranges], probes)
-    probe = start + beta * (np.concatenate([np.arange(1, 8 * n) for n in arcs]) / np.repeat([8 * n for n in arcs],
-                                                                                                probes))
-    index = [i for i, _ in stretches]
-    ends, inner = yield [(np.repeat(index, [n + 1 for n in arcs]), theta, False), (np.repeat(index, probes), probe,
-                                                                                   False)]
+    theta, probe, at, on = [], [], [], []
+    for (i, _), (start, beta), n in zip(stretches, ranges, arcs, strict=True):
+        theta += [start + beta * k / n for k in range(n + 1)]
+        probe += [start + beta * (k / (8 * n)) for k in range(1, 8 * n)]
+        at += [i] * (n + 1)
+        on += [i] * (8 * n - 1)
+    ends, inner = yield [(np.array(at), np.array(theta), False), (np.array(on), np.array(probe), False)]
     pts = _surface(ends, rr)
-    first = np.cumsum([0] + [n + 1 for n in arcs])
-    radius = [float(np.linalg.norm(pts[a])) for a in first[:-1].tolist()]
-    err = np.maximum.reduceat(np.abs(_length(_surface(inner, rr)) - np.repeat(radius, probes)),
-                              np.cumsum([0, *probes[:-1]]))
+    first = [0, *itertools.accumulate(n + 1 for n in arcs)]
+    # each dwell's radius, as np.linalg.norm measures its first vertex
+    radius = [math.sqrt(pts[a].dot(pts[a])) for a in first[:-1]]
+    within = [0, *itertools.accumulate(8 * n - 1 for n in arcs)]
+    off = _length(_surface(inner, rr)) - np.array(radius).repeat([8 * n - 1 for n in arcs])
+    err = np.maximum.reduceat(np.abs(off), within[:-1])
     sense = cam.follower.sense
     return [(pts[a:b - 1], np.full(n, math.tan(-sense * beta / n / 4.0)), e)
-            for a, b, n, (_, beta), e in zip(first[:-1].tolist(), first[1:].tolist(), arcs, ranges, err.tolist(),
-                                           strict=True)]
+            for a, b, n, (_, beta), e in zip(first[:-1], first[1:], arcs, ranges, err.tolist(), strict=True)]
 
 
 def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float,
