@@ -147,15 +147,20 @@ def _aux(cam: Cam, index: int, span: tuple[float, float] | None) -> np.ndarray:
     return np.linspace(start, end, _AUX)
 
 
-def _grids(start: np.ndarray, end: np.ndarray) -> np.ndarray:
-    """:func:`_aux`'s grids from each ``start`` (m,) to its ``end`` (m,) (radians), (m, _AUX): np.linspace's numbers
-    (k times the step, plus the start; the last the end) without its checks."""
-    step = (end - start) / (_AUX - 1)
-    if not step.all():                                  # a step below the least float: linspace's own way
-        return np.linspace(start, end, _AUX, axis=1)
-    out = np.arange(_AUX, dtype=float)[None, :] * step[:, None]
-    out += start[:, None]
-    out[:, -1] = end
+#: k = 0 .. _AUX - 1, the steps of a grid (read only)
+_STEPS = np.arange(_AUX, dtype=float)
+_STEPS.setflags(write=False)
+
+
+def _grids(ranges: list[tuple[float, float]]) -> np.ndarray:
+    """:func:`_aux`'s grids from each start to its end of ``ranges`` (m pairs, radians), (m, _AUX): np.linspace's
+    numbers (k times the step, plus the start; the last the end) without its checks."""
+    step = [(end - start) / (_AUX - 1) for start, end in ranges]
+    if not all(step):                                   # a step below the least float: linspace's own way
+        return np.linspace(*np.array(ranges).T, _AUX, axis=1)
+    out = np.array(step)[:, None] * _STEPS
+    out += np.array([start for start, _ in ranges])[:, None]
+    out[:, -1] = [end for _, end in ranges]
     return out
 
 
@@ -176,7 +181,7 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
     k = kappa.reshape(aux.shape)
     density = _length(d1).reshape(aux.shape) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
     cum = np.zeros(aux.shape)
-    np.cumsum(0.5 * (density[:, 1:] + density[:, :-1]) * np.diff(aux, axis=1), axis=1, out=cum[:, 1:])
+    (0.5 * (density[:, 1:] + density[:, :-1]) * (aux[:, 1:] - aux[:, :-1])).cumsum(axis=1, out=cum[:, 1:])
     return cum
 
 
@@ -216,7 +221,7 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     index = [i for i, _ in stretches]
     segments = cam.program.segments
     ranges = [(segments[i].start, segments[i].end) if span is None else span for i, span in stretches]
-    aux = _grids(np.array([a for a, _ in ranges]), np.array([b for _, b in ranges]))
+    aux = _grids(ranges)
     (g,) = yield [(np.array(index).repeat(_AUX), aux.ravel(), False)]
     cum = _density(aux, g.d1, g.kappa, tolerance, rr)
     factor = [1.0] * len(stretches)
@@ -318,7 +323,7 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     off = _length(_surface(inner, rr)) - np.array(radius).repeat([8 * n - 1 for n in arcs])
     err = np.maximum.reduceat(np.abs(off), within[:-1])
     sense = cam.follower.sense
-    return [(pts[a:b - 1], np.full(n, math.tan(-sense * beta / n / 4.0)), e)
+    return [(pts[a:b - 1], np.array([math.tan(-sense * beta / n / 4.0)] * n), e)
             for a, b, n, (_, beta), e in zip(first[:-1], first[1:], arcs, ranges, err.tolist(), strict=True)]
 
 

@@ -19,6 +19,15 @@ def _frozen(a: np.ndarray) -> np.ndarray:
     return a
 
 
+def _left(d: np.ndarray) -> np.ndarray:
+    """The vectors ``d`` (k, 2) turned a quarter turn counter-clockwise, (-y, x): np.column_stack's numbers
+    without its dispatch."""
+    out = np.empty(d.shape)
+    np.negative(d[:, 1], out=out[:, 0])
+    out[:, 1] = d[:, 0]
+    return out
+
+
 def _moved(points: np.ndarray, angle: float, shift: np.ndarray) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     return points @ np.array([[c, s], [-s, c]]) + shift
@@ -86,16 +95,17 @@ class Contour:
         """:meth:`_arcs` of the arc pieces only (the same operations on the same numbers): their indices, starts,
         chord lengths, signed included angles and centres; made once a contour (its area and its flattening both
         need them, and a cam's outline has hundreds of chords and a few arcs)."""
-        idx = np.flatnonzero(self.bulges)
+        idx = self.bulges.nonzero()[0]
         p = self.vertices[idx]
         q = self.vertices[(idx + 1) % len(self.vertices)]
-        chord = np.linalg.norm(q - p, axis=1)
+        qp = q - p
+        square = qp**2
+        chord = np.sqrt(square[:, 0] + square[:, 1])      # np.linalg.norm's sum of squares and root
         angle = 4.0 * np.arctan(self.bulges[idx])
         with np.errstate(divide="ignore", invalid="ignore"):
             h = chord / (2.0 * np.tan(angle / 2.0))
-            d = (q - p) / np.where(chord > 0, chord, 1.0)[:, None]
-        centre = (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
-        return idx, p, chord, angle, centre
+            d = qp / np.where(chord > 0, chord, 1.0)[:, None]
+        return idx, p, chord, angle, (p + q) / 2.0 + _left(d) * h[:, None]
 
     def arcs(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The arc pieces: their indices, centres (k, 2), radii (k,) and signed included angles (k,) in rad."""
@@ -149,7 +159,9 @@ class Contour:
             n = arc_steps(radius, angle[k], tolerance)
             start = math.atan2(p[k, 1] - centre[k, 1], p[k, 0] - centre[k, 0])
             a = start + angle[k] * np.arange(1, n) / n
-            out.insert(2 * k + 1, centre[k] + radius * np.column_stack([np.cos(a), np.sin(a)]))
+            turn = np.empty((n - 1, 2))
+            turn[:, 0], turn[:, 1] = np.cos(a), np.sin(a)       # each made contiguous, as np.column_stack took them
+            out.insert(2 * k + 1, centre[k] + radius * turn)
         return np.concatenate(out)
 
     def flatten_error(self, tolerance: float) -> float:
