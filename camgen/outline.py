@@ -27,6 +27,10 @@ from camgen.surface import surface_deviation
 
 #: interior points per chord at which the chord error is measured
 _PROBES = 8
+#: interior points per biarc at which its error is measured
+_BIARC_PROBES = 16
+#: points per edge of an undercut envelope at which its deviation from the exact envelope is measured
+_ENVELOPE_PROBES = 8
 #: fraction of the tolerance the first spacing aims at
 _AIM = 0.9
 #: fraction of the tolerance a biarc's probed error must stay under
@@ -272,12 +276,12 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
     theta = _spaced(index, aux, _density(aux[None, :], g.d1, g.kappa, max(tolerance, 1.0), rr)[0],
                     max(tolerance, 1.0), 1.0)
     for _ in range(40):
-        g, inner = yield [(index, theta, False), (index, _inner(theta, 2 * _PROBES), False)]
+        g, inner = yield [(index, theta, False), (index, _inner(theta, _BIARC_PROBES), False)]
         pts = _surface(g, rr)
         tan = g.d1 / _length(g.d1)[:, None]
         p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
-        probes, gap, bend = _probed(p0, p1, inner, rr, 2 * _PROBES)
+        probes, gap, bend = _probed(p0, p1, inner, rr, _BIARC_PROBES)
         low, high = bend.min(axis=0), bend.max(axis=0)
         x = np.ascontiguousarray(probes.transpose(1, 0, 2))      # span by span (spans, count, 2), as measured
         apart = np.max([_apart(low, high, k) for k in (_arc_curvature(p0, junction, b1),
@@ -526,7 +530,7 @@ def _envelope(cam: Cam, tolerance: float, factor: float, offset: float) -> Outli
     v = np.asarray(body.exterior.coords)[:-1]
     keep = np.linalg.norm(v - np.roll(v, 1, axis=0), axis=1) > 1e-12
     v = v[keep]
-    frac = np.arange(_PROBES + 1) / (_PROBES + 1)
+    frac = np.arange(_ENVELOPE_PROBES + 1) / (_ENVELOPE_PROBES + 1)
     w = np.roll(v, -1, axis=0)
     on_plate = (np.abs(v[:, None, :] - plate[None, :, :]).max(axis=2) < 1e-9).any(axis=1)
     surface = ~(on_plate | np.roll(on_plate, -1))      # edges of the profile (a plate's own edges are not measured)
