@@ -25,12 +25,9 @@ from camgen.followers.base import PitchGeometry
 from camgen.core.shapes import Contour, arc_steps, reversed_pieces
 from camgen.surface import surface_deviation
 
-#: interior points per chord at which the chord error is measured
-_PROBES = 8
-#: interior points per biarc at which its error is measured
-_BIARC_PROBES = 16
-#: points per edge of an undercut envelope at which its deviation from the exact envelope is measured
-_ENVELOPE_PROBES = 8
+#: interior points a span at which a chord's and a biarc's error are measured, and points an edge of an undercut
+#: envelope at which its deviation from the exact envelope is
+_PROBES, _BIARC_PROBES, _ENVELOPE_PROBES = 8, 16, 8
 #: fraction of the tolerance the first spacing aims at
 _AIM = 0.9
 #: fraction of the tolerance a biarc's probed error must stay under
