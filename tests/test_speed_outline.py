@@ -366,3 +366,38 @@ def test_pairs_sum_as_numpy_sums_the_last_axis():
             want, got = v.sum(axis=-1), _pairs(v)
         assert np.array_equal(np.isnan(want), np.isnan(got))
         assert _same(np.where(np.isnan(want), 0.0, want), np.where(np.isnan(got), 0.0, got))
+
+
+def _chord_errors_span_by_span(start, end, surface, kappa, rr, count):
+    """The chord errors as measured before they were made probe by probe (issue 16): probes (spans, count, 2)
+    span by span, np.linalg.norm's lengths, reductions along each span's row, the root before the maximum."""
+    x = surface.reshape(len(start), count, 2)
+    chain = np.concatenate([start[:, None, :], x, end[:, None, :]], axis=1)
+    gap = np.linalg.norm(np.diff(chain, axis=1), axis=2).max(axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        bend = (kappa / (1.0 - rr * kappa)).reshape(len(start), count)
+    bend = np.where(np.isfinite(bend), bend, np.inf)
+    bend = np.maximum(np.abs(bend.min(axis=1)), np.abs(bend.max(axis=1)))
+    a, b = start[:, None, :], end[:, None, :]
+    ab = b - a
+    length2 = (ab**2).sum(axis=-1)
+    t = np.minimum(np.maximum(((x - a) * ab).sum(axis=-1) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
+    return np.linalg.norm(a + t[..., None] * ab - x, axis=2).max(axis=1) + gap**2 * bend / 8
+
+
+@pytest.mark.parametrize("follower", ["offset roller", "knife edge", "flat face", "oscillating roller"])
+def test_chord_errors_probe_by_probe_are_those_measured_span_by_span(follower):
+    from camgen.outline import _PROBES, _between, _chord_errors, _surface
+
+    cam = _cam(FOLLOWERS[follower])
+    rr = cam.contact_radius
+    seg = cam.program.segments[0]
+    rng = np.random.default_rng(16)
+    theta = np.sort(seg.start + seg.beta * rng.random(60))
+    theta[7] = theta[6]                                     # a span of no length
+    ends = cam.segment_pitch(0, theta)
+    inner = cam.segment_pitch(0, _between(theta[:-1], theta[1:], _PROBES))     # probe by probe
+    at = _surface(ends, rr)
+    order = np.arange(inner.theta.size).reshape(_PROBES, -1).T.ravel()          # the same probes span by span
+    want = _chord_errors_span_by_span(at[:-1], at[1:], _surface(inner, rr)[order], inner.kappa[order], rr, _PROBES)
+    assert _same(_chord_errors(at[:-1], at[1:], inner, rr), want)
