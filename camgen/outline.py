@@ -27,7 +27,7 @@ from camgen.surface import surface_deviation
 
 #: interior points a span at which a chord's and a biarc's error are measured, and points an edge of an undercut
 #: envelope at which its deviation from the exact envelope is
-_PROBES, _BIARC_PROBES, _ENVELOPE_PROBES = 8, 16, 8
+_PROBES, _BIARC_PROBES, _ENVELOPE_PROBES = 4, 16, 8
 #: fraction of the tolerance the first spacing aims at
 _AIM = 0.9
 #: fraction of the tolerance a biarc's probed error must stay under
@@ -138,7 +138,7 @@ def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: floa
 
 
 #: the points of the grid on which a stretch is measured for its spacing
-_AUX = 257
+_AUX = 129
 
 
 def _aux(cam: Cam, index: int, span: tuple[float, float] | None) -> np.ndarray:
