@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import math
 from dataclasses import dataclass
@@ -14,7 +15,7 @@ from camgen.cam import Cam, Maker, build_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
-from camgen.core.shapes import Circle, Polyline, Text
+from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.kinds import kind_of
 from camgen.program import Jump
@@ -43,7 +44,6 @@ class CamDesign:
     cut: Part                  # the part as cut: that outline, holes shrunk by half the kerf
     printed: Part              # the part as printed: holes opened by the clearance
     allowances: Allowances
-    wall_mm: float
     warnings: tuple[str, ...]
     pressure_limit_deg: float
     face_extent: tuple[float, float] | None       # flat faces: nearest and farthest contact along the face (mm)
@@ -51,6 +51,13 @@ class CamDesign:
     sizing: Sizing | None = None
     #: a flat face with its folds cut off (cam.allow_undercut): where the law's face leaves the cut cam
     face_leaves: tuple[FaceLeaves, ...] | None = None
+
+    @functools.cached_property
+    def wall_mm(self) -> float:
+        """The thinnest material (mm) between the bore and the outline (as chords within :attr:`tolerance`): how
+        near the outline comes to the centre less the bore's radius; measured when first read (the design itself
+        only needs to know that it is positive, and whether it is under :data:`THIN_WALL`)."""
+        return _reach(_body(self.outline, self.tolerance)) - self.spec.cam.bore / 2.0
 
     @property
     def written_error_mm(self) -> float:
@@ -155,15 +162,15 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
         if isinstance(outline, Exception):
             raise outline
 
-    import shapely
-
-    body = shapely.Polygon(outline.contour.flatten(tol))
-    reach = float(body.exterior.distance(shapely.Point(0.0, 0.0)))
-    wall = reach - spec.cam.bore / 2.0
-    if spec.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and wall > 0):
-        raise DesignError(f"cam.bore: {spec.cam.bore:.4g} mm leaves no material; the outline comes within "
-                          f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
-    _check_holes(spec, body, tol)
+    # the bore and the holes: where bounds make the checks certain (and no marks are to be fitted), nothing more;
+    # else shapely on the outline's chords (the same checks, the same errors) and the wall measured
+    wall = None                                         # certainly at least THIN_WALL
+    if spec.hub.engrave or not _certainly_clear(spec, outline.contour):
+        body = _body(outline, tol)
+        reach = _reach(body)
+        wall = reach - spec.cam.bore / 2.0
+        _check_bore(spec, body, reach)
+        _check_holes(spec, body, tol)
     marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, envelope, marks, outline, cut_off)
     allowances = Allowances(spec.output.kerf, spec.output.clearance, "output.kerf", spec.output.elephant_foot)
@@ -173,8 +180,34 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
     return CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
-                     allowances, wall, warnings, pressure_limit(spec), extent, speed, sizing,
+                     allowances, warnings, pressure_limit(spec), extent, speed, sizing,
                      cut_off.leaves if cut_off is not None else None)
+
+
+def _body(outline: Outline, tolerance: float) -> Any:
+    """The outline as shapely's polygon of its chords within ``tolerance`` mm: what the bore and hole checks and
+    the wall are measured on."""
+    import shapely
+
+    return shapely.Polygon(outline.contour.flatten(tolerance))
+
+
+def _reach(body: Any) -> float:
+    """How near (mm) the outline ``body`` (:func:`_body`) comes to the centre."""
+    import shapely
+
+    return float(body.exterior.distance(shapely.Point(0.0, 0.0)))
+
+
+def _check_bore(spec: CamSpec, body: Any, reach: float) -> None:
+    """The bore must leave material: the centre inside the outline ``body`` (:func:`_body`), which comes no nearer
+    to it than ``reach`` mm, further than the bore's radius."""
+    import shapely
+
+    bore = spec.cam.bore
+    if bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and reach - bore / 2.0 > 0):
+        raise DesignError(f"cam.bore: {bore:.4g} mm leaves no material; the outline comes within "
+                          f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
 
 
 def _tentative(maker: Maker) -> Maker:
@@ -236,6 +269,7 @@ class _Profile:
                  cut_off: FlatEnvelope | None = None) -> None:
         self.spec, self.cam, self.envelope, self.marks, self.cut_off = spec, cam, envelope, marks, cut_off
         self._outlines = {0.0: nominal}
+        self._parts: dict[tuple[float, float], Part] = {}
 
     def outline(self, offset: float) -> Outline:
         """The outline of the surface moved out of the cam by ``offset`` mm."""
@@ -251,10 +285,16 @@ class _Profile:
         return self._outlines[offset]
 
     def part(self, outline_grow: float, hole_grow: float) -> Part:
-        t, hub = self.spec, self.spec.hub
-        boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
-        return Part(t.name, self.outline(outline_grow).contour, _holes(t, hole_grow), t.cam.thickness,
-                    t.output.tolerance, self.marks, boss, hub.set_screw)
+        """The part with its outline and holes moved out by these distances (mm), made once for each pair: the
+        nominal, cut and printed parts are one where kerf and clearance are 0 (-0.0 the same as 0.0: the outline
+        is the same and the holes only add it to their radii)."""
+        if (outline_grow, hole_grow) not in self._parts:
+            t, hub = self.spec, self.spec.hub
+            boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
+            self._parts[outline_grow, hole_grow] = Part(t.name, self.outline(outline_grow).contour,
+                                                        _holes(t, hole_grow), t.cam.thickness, t.output.tolerance,
+                                                        self.marks, boss, hub.set_screw)
+        return self._parts[outline_grow, hole_grow]
 
 
 def _speed(spec: CamSpec, cam: Cam, rates_only: bool = False) -> dict[str, Any] | None:
@@ -311,6 +351,70 @@ def _holes(spec: CamSpec, grow: float) -> tuple:
     if hub.bolt_holes:
         out.extend(bolt_holes(hub.bolt_circle, hub.bolt_holes, hub.bolt_hole_diameter, grow))
     return tuple(out)
+
+
+#: how far (relative to the sizes involved) a bound must clear what it is checked against to be certain: rounding
+#: in the bounds is a few parts in 1e16, so this leaves only holes within a millionth of a micrometre to the exact test
+_CERTAIN = 1e-9
+
+
+def _certainly_clear(spec: CamSpec, contour: Contour) -> bool:
+    """Whether bounds make the bore and hole checks (:func:`_check_bore`, :func:`_check_holes`) certain to pass with
+    at least :data:`THIN_WALL` mm round the bore: the centre of the bore and of every hole inside the outline (as
+    chords within any tolerance: the polygon those checks test) and further from it than the hole reaches (the bore
+    by THIN_WALL more), every two holes further apart than they reach, each with room to spare for rounding. False
+    where that is not certain: the exact checks then decide, raise their errors and measure the wall."""
+    circles = [_hole_circle(hole) for hole in _holes(spec, 0.0)]      # the bore first, centred on the origin
+    if not circles:
+        return True
+    if any(circle is None for circle in circles):
+        return False
+    for (c, r), (d, q) in itertools.combinations(circles, 2):
+        if not abs(c - d) - r - q > _CERTAIN * (1.0 + abs(c) + abs(d) + r + q):
+            return False
+    reach = [r for _, r in circles]
+    if spec.cam.bore > 0:
+        reach[0] = max(reach[0], spec.cam.bore / 2.0 + THIN_WALL)
+    return _inside_clear(contour, np.array([c for c, _ in circles]), np.array(reach))
+
+
+def _hole_circle(hole: Any) -> tuple[complex, float] | None:
+    """A circle (centre x + iy, radius; mm) holding ``hole`` as flattened: a circle's own, a contour's (a keyed
+    bore) about the origin, through its farthest vertex or arc; None for anything else."""
+    if isinstance(hole, Circle):
+        return complex(*hole.centre), hole.radius * (1.0 + _CERTAIN)
+    if isinstance(hole, Contour):
+        z = hole.vertices.view(np.complex128)[:, 0]
+        arc = hole.bulges.nonzero()[0]
+        b, run = hole.bulges[arc], np.concatenate((z[1:], z[:1]))[arc] - z[arc]
+        # an arc of bulge b running e from its start has its centre e (1/2 + i (1 - b^2) / 4b) on, radius
+        # |e| (1 + b^2) / 4|b|
+        far = np.abs(z[arc] + run * (0.5 + 0.25j * (1.0 - b * b) / b)) + np.abs(run) * (1.0 + b * b) / (4 * np.abs(b))
+        return 0j, float(max(np.abs(z).max(), far.max(initial=0.0))) * (1.0 + _CERTAIN)
+    return None
+
+
+def _inside_clear(contour: Contour, points: np.ndarray, reach: np.ndarray) -> bool:
+    """Whether each of ``points`` (complex x + iy, mm) certainly lies inside the polygon ``contour.flatten`` makes
+    at any tolerance, further than its ``reach`` (mm) from it. Bounds, no flattening: an arc of at most half a turn
+    and the chords made for it lie within its sagitta |e b| / 2 of its chord (e the chord, b the bulge), and a
+    chord is no nearer to a point than sqrt(min(|p|^2, |q|^2) - |e|^2 / 4) (p, q its ends seen from the point:
+    |p + t e|^2 is that minimum less at most t (1 - t) |e|^2); clear of every chord's lens, a point lies inside
+    where the pieces wind once round it counter-clockwise, each chord sweeping the angle it subtends (winding
+    number 1: odd, as GEOS counts crossings). False for an arc of more than half a turn."""
+    bulge = np.abs(contour.bulges)
+    z = contour.vertices.view(np.complex128)[:, 0]
+    ring = np.concatenate((z, z[:1])) - points[:, None]            # the vertices seen from each point
+    half = np.abs(ring[0, 1:] - ring[0, :-1]) * 0.5
+    near = np.abs(ring)
+    low = np.minimum(near[:, :-1], near[:, 1:])
+    gap = low * low - half * half - (reach[:, None] + half * bulge) ** 2
+    turn = ring[:, 1:] * ring[:, :-1].conjugate()
+    winding = np.add.reduce(np.arctan2(turn.imag, turn.real), axis=1) / (2.0 * np.pi)
+    extent = float(np.maximum.reduce(near, axis=None))
+    return (float(np.maximum.reduce(bulge, initial=0.0)) <= 1.0
+            and float(np.minimum.reduce(gap, axis=None)) > _CERTAIN * (1.0 + extent * extent)
+            and all(abs(turns - 1.0) < 1e-3 for turns in winding.tolist()))
 
 
 def _check_holes(spec: CamSpec, body: Any, tolerance: float) -> None:
@@ -420,8 +524,10 @@ def _fold_warnings(cut_off: FlatEnvelope) -> list[str]:
             f"follower's motion falls short of the law by up to {f.deviation:.4g} {unit}" for f in cut_off.leaves]
 
 
-def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float,
+def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float | None,
               segments: tuple, cut_off: FlatEnvelope | None = None) -> tuple[str, ...]:
+    """The design's warnings; ``wall`` is the wall round the bore (mm), None where it is certainly at least
+    :data:`THIN_WALL`."""
     out = []
     limit = pressure_limit(spec)
     if a.pressure_angle_max_deg > limit:
@@ -436,7 +542,7 @@ def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: floa
     elif a.undercut:
         out.append(f"undercut allowed: the outline is the cutter's envelope, and near {a.pitch_rho_min_at_deg:.2f} "
                    "degrees the follower does not follow the motion law")
-    if spec.cam.bore > 0 and wall < THIN_WALL:
+    if spec.cam.bore > 0 and wall is not None and wall < THIN_WALL:
         out.append(f"only {wall:.3g} mm of material between the bore and the outline")
     for i, seg in enumerate(segments):
         over = seg.law.overshoot() if hasattr(seg.law, "overshoot") else 0.0

@@ -398,7 +398,7 @@ def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: 
     maker = _Profile(own, cam, False, _engraving(own, shared.timing, body, near) if engrave else (), outline)
     allow = Allowances(own.output.kerf, own.output.clearance, "output.kerf", own.output.elephant_foot)
     return CamDesign(own, cam, analysis, shared.jumps, outline, maker.part(0.0, 0.0), maker.outline(allow.kerf / 2),
-                     allow.cut(maker), allow.printed(maker), allow, wall, (), shared.limit, None, shared.speed,
+                     allow.cut(maker), allow.printed(maker), allow, (), shared.limit, None, shared.speed,
                      shared.sizing[which])
 
 

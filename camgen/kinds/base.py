@@ -1,6 +1,7 @@
 """What every cam kind declares (see :mod:`camgen.kinds`)."""
 from __future__ import annotations
 
+import functools
 import importlib
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -32,7 +33,9 @@ class CamKind:
         return _resolve(self.bundle)
 
 
+@functools.cache
 def _resolve(name: str) -> Callable[[Any], Any]:
+    """The function ``"module:function"`` names, found once (a design looks its kind's designer up each time)."""
     module, _, attr = name.partition(":")
     return getattr(importlib.import_module(module), attr)
 
