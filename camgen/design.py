@@ -165,7 +165,7 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     # the bore and the holes: where bounds make the checks certain (and no marks are to be fitted), nothing more;
     # else shapely on the outline's chords (the same checks, the same errors) and the wall measured
     wall = None                                         # certainly at least THIN_WALL
-    if spec.hub.engrave or not _certainly_clear(spec, outline.contour):
+    if spec.hub.engrave or not _certainly_clear(spec, outline.contour, tol):
         body = _body(outline, tol)
         reach = _reach(body)
         wall = reach - spec.cam.bore / 2.0
@@ -358,10 +358,10 @@ def _holes(spec: CamSpec, grow: float) -> tuple:
 _CERTAIN = 1e-9
 
 
-def _certainly_clear(spec: CamSpec, contour: Contour) -> bool:
+def _certainly_clear(spec: CamSpec, contour: Contour, tolerance: float) -> bool:
     """Whether bounds make the bore and hole checks (:func:`_check_bore`, :func:`_check_holes`) certain to pass with
     at least :data:`THIN_WALL` mm round the bore: the centre of the bore and of every hole inside the outline (as
-    chords within any tolerance: the polygon those checks test) and further from it than the hole reaches (the bore
+    chords within ``tolerance`` mm: the polygon those checks test) and further from it than the hole reaches (the bore
     by THIN_WALL more), every two holes further apart than they reach, each with room to spare for rounding. False
     where that is not certain: the exact checks then decide, raise their errors and measure the wall."""
     circles = [_hole_circle(hole) for hole in _holes(spec, 0.0)]      # the bore first, centred on the origin
@@ -375,7 +375,7 @@ def _certainly_clear(spec: CamSpec, contour: Contour) -> bool:
     reach = [r for _, r in circles]
     if spec.cam.bore > 0:
         reach[0] = max(reach[0], spec.cam.bore / 2.0 + THIN_WALL)
-    return _inside_clear(contour, np.array([c for c, _ in circles]), np.array(reach))
+    return _inside_clear(contour, tolerance, np.array([c for c, _ in circles]), np.array(reach))
 
 
 def _hole_circle(hole: Any) -> tuple[complex, float] | None:
@@ -386,35 +386,64 @@ def _hole_circle(hole: Any) -> tuple[complex, float] | None:
     if isinstance(hole, Contour):
         z = hole.vertices.view(np.complex128)[:, 0]
         arc = hole.bulges.nonzero()[0]
-        b, run = hole.bulges[arc], np.concatenate((z[1:], z[:1]))[arc] - z[arc]
-        # an arc of bulge b running e from its start has its centre e (1/2 + i (1 - b^2) / 4b) on, radius
-        # |e| (1 + b^2) / 4|b|
-        far = np.abs(z[arc] + run * (0.5 + 0.25j * (1.0 - b * b) / b)) + np.abs(run) * (1.0 + b * b) / (4 * np.abs(b))
-        return 0j, float(max(np.abs(z).max(), far.max(initial=0.0))) * (1.0 + _CERTAIN)
+        centre, radius = _arc_circles(hole.bulges[arc], z[arc], (np.concatenate((z[1:], z[:1])) - z)[arc])
+        return 0j, float(max(np.abs(z).max(), (np.abs(centre) + radius).max(initial=0.0))) * (1.0 + _CERTAIN)
     return None
 
 
-def _inside_clear(contour: Contour, points: np.ndarray, reach: np.ndarray) -> bool:
-    """Whether each of ``points`` (complex x + iy, mm) certainly lies inside the polygon ``contour.flatten`` makes
-    at any tolerance, further than its ``reach`` (mm) from it. Bounds, no flattening: an arc of at most half a turn
-    and the chords made for it lie within its sagitta |e b| / 2 of its chord (e the chord, b the bulge), and a
-    chord is no nearer to a point than sqrt(min(|p|^2, |q|^2) - |e|^2 / 4) (p, q its ends seen from the point:
-    |p + t e|^2 is that minimum less at most t (1 - t) |e|^2); clear of every chord's lens, a point lies inside
-    where the pieces wind once round it counter-clockwise, each chord sweeping the angle it subtends (winding
-    number 1: odd, as GEOS counts crossings). False for an arc of more than half a turn."""
+def _arc_circles(b: np.ndarray, start: np.ndarray, run: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The circles of arcs of bulge ``b`` from ``start`` running ``run`` to their ends (complex x + iy, mm): their
+    centres, e (1/2 + i (1 - b^2) / 4b) on from the start (e the run), and radii |e| (1 + b^2) / 4|b|; no
+    trigonometry."""
+    return start + run * (0.5 + 0.25j * (1.0 - b * b) / b), np.abs(run) * (1.0 + b * b) / (4.0 * np.abs(b))
+
+
+def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach: np.ndarray) -> bool:
+    """Whether each of ``points`` (complex x + iy, mm) certainly lies inside the polygon
+    ``contour.flatten(tolerance)`` makes, further than its ``reach`` (mm) from it. Bounds, no flattening: an arc of
+    at most half a turn and the chords made for it lie within its sagitta |e b| / 2 of its chord (e the chord, b
+    the bulge), and a chord is no nearer to a point than sqrt(min(|p|^2, |q|^2) - |e|^2 / 4) (p, q its ends seen
+    from the point: |p + t e|^2 is that minimum less at most t (1 - t) |e|^2); where that is not enough, an arc's
+    chords lie between its circle and one tolerance inside it (:func:`_arcs_clear`). Clear of every piece, a
+    point lies inside where the pieces wind once round it counter-clockwise, each chord sweeping the angle it
+    subtends (winding number 1: odd, as GEOS counts crossings)."""
     bulge = np.abs(contour.bulges)
     z = contour.vertices.view(np.complex128)[:, 0]
     ring = np.concatenate((z, z[:1])) - points[:, None]            # the vertices seen from each point
-    half = np.abs(ring[0, 1:] - ring[0, :-1]) * 0.5
+    run = ring[0, 1:] - ring[0, :-1]
+    half = np.abs(run) * 0.5
     near = np.abs(ring)
     low = np.minimum(near[:, :-1], near[:, 1:])
     gap = low * low - half * half - (reach[:, None] + half * bulge) ** 2
-    turn = ring[:, 1:] * ring[:, :-1].conjugate()
-    winding = np.add.reduce(np.arctan2(turn.imag, turn.real), axis=1) / (2.0 * np.pi)
     extent = float(np.maximum.reduce(near, axis=None))
-    return (float(np.maximum.reduce(bulge, initial=0.0)) <= 1.0
-            and float(np.minimum.reduce(gap, axis=None)) > _CERTAIN * (1.0 + extent * extent)
-            and all(abs(turns - 1.0) < 1e-3 for turns in winding.tolist()))
+    margin = _CERTAIN * (1.0 + extent * extent)
+    turn = ring[:, 1:] * ring[:, :-1].conjugate()
+    swept = np.arctan2(turn.imag, turn.real)
+    if float(np.maximum.reduce(bulge, initial=0.0)) > 1.0 or float(np.minimum.reduce(gap, axis=None)) <= margin:
+        clear = (gap > margin) & (bulge <= 1.0)
+        if not _arcs_clear(contour, tolerance, ring[:, :-1], run, reach, clear, swept):
+            return False
+    return all(abs(turns - 1.0) < 1e-3 for turns in (np.add.reduce(swept, axis=1) / (2.0 * np.pi)).tolist())
+
+
+def _arcs_clear(contour: Contour, tolerance: float, start: np.ndarray, run: np.ndarray, reach: np.ndarray,
+                clear: np.ndarray, swept: np.ndarray) -> bool:
+    """:func:`_inside_clear` for the pieces a chord's bound leaves unclear (``clear`` False; pieces seen from each
+    point from ``start``, running ``run``): whether each is an arc whose chords, which lie between its circle and
+    one ``tolerance`` inside it, are further than ``reach`` from the point. An arc seen from inside its circle
+    turns the way its bulge says, less than a whole turn: its chord's angle in ``swept`` becomes that angle a turn
+    on where it turns the other way (uncertain where it is nearly 0)."""
+    arc = contour.bulges.nonzero()[0]
+    b = contour.bulges[arc]
+    centre, radius = _arc_circles(b, start[:, arc], run[arc])      # seen from each point
+    off = np.abs(centre)
+    room = np.maximum(off - radius, radius - tolerance - off) - reach[:, None]
+    clear[:, arc] |= room > _CERTAIN * (1.0 + float(np.maximum.reduce(off + radius, axis=None, initial=0.0)))
+    if not clear.all():
+        return False
+    seen, inner = swept[:, arc], off < radius
+    swept[:, arc] = np.where(inner & (seen * b < 0), seen + np.copysign(2.0 * np.pi, b), seen)
+    return not (inner & (np.abs(seen) < 1e-9)).any()
 
 
 def _check_holes(spec: CamSpec, body: Any, tolerance: float) -> None:
