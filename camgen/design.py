@@ -437,9 +437,10 @@ def _arcs_clear(contour: Contour, tolerance: float, start: np.ndarray, run: np.n
     b = contour.bulges[arc]
     centre, radius = _arc_circles(b, start[:, arc], run[arc])      # seen from each point
     off = np.abs(centre)
-    room = np.maximum(off - radius, radius - tolerance - off) - reach[:, None]
-    clear[:, arc] |= room > _CERTAIN * (1.0 + float(np.maximum.reduce(off + radius, axis=None, initial=0.0)))
-    if not clear.all():
+    rounding = _CERTAIN * (1.0 + float(np.maximum.reduce(off + radius, axis=None, initial=0.0)))
+    clear[:, arc] |= np.maximum(off - radius, radius - tolerance - off) - reach[:, None] > rounding
+    # whether a point lies inside an arc's circle decides the angle the arc sweeps: not where rounding could
+    if not clear.all() or (np.abs(off - radius) <= rounding).any():
         return False
     seen, inner = swept[:, arc], off < radius
     swept[:, arc] = np.where(inner & (seen * b < 0), seen + np.copysign(2.0 * np.pi, b), seen)
