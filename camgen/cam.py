@@ -99,9 +99,8 @@ class Cam:
         :meth:`corners` and :meth:`Program.jumps`, the same numbers as their own evaluation). The asks in the law's
         variable are evaluated first, then those in cam angles (each point's numbers are its own either way)."""
         program = self.program
-        table = program._table
         order = [k for k, a in enumerate(asks) if a[2]]
-        split = len(order)
+        cut = sum(asks[k][1].size for k in order)       # the law's variable before, cam angles after
         order += [k for k, a in enumerate(asks) if not a[2]]
         index = [a[0] if isinstance(a[0], np.ndarray) else np.full(a[1].size, a[0]) for a in (asks[k] for k in order)]
         x = [asks[k][1] for k in order]
@@ -109,26 +108,17 @@ class Cam:
             theta, ends = program.boundary_points
             index.append(ends)
             x.append(theta)
-        sizes = [part.size for part in x]
-        cut = sum(sizes[:split])                        # the law's variable before, cam angles after
-        index, x = np.concatenate(index), np.concatenate(x)
-        if cut == 0:
-            theta, v = x, table.variable(index, x)
-        elif cut == x.size:
-            theta, v = table.angle(index, x), x
-        else:
-            theta = np.concatenate([table.angle(index[:cut], x[:cut]), x[cut:]])
-            v = np.concatenate([x[:cut], table.variable(index[cut:], x[cut:])])
-        motion = table.at_law(index, v)
+        theta, motion = program._table.on(np.concatenate(index), np.concatenate(x), cut)
         g = self.follower.pitch(theta, motion)
         out: list[Any] = [None] * len(asks)
         a = 0
-        for k, size in zip(order, sizes, strict=False):
+        for k in order:
+            size = asks[k][1].size
             out[k] = g.part(a, a + size)
             a += size
         if boundaries:
             program.known_boundaries(motion[:, a:])
-            self.__dict__["_boundaries"] = self._halves(g.part(a, x.size))
+            self.__dict__["_boundaries"] = self._halves(g.part(a, theta.size))
         return out
 
     def corners(self) -> list[tuple[int, float]]:

@@ -54,8 +54,7 @@ class Segment:
 
     def scale(self) -> np.ndarray:
         """Natural magnitudes h/beta^k of s, s', s'', s''' in this segment (k = 0..3)."""
-        h = self.lift if self.kind != "dwell" else 0.0
-        return h / self.beta ** np.arange(4)
+        return _natural([self])[0]
 
     @functools.cached_property
     def scales(self) -> list[float]:
@@ -87,7 +86,7 @@ class Segment:
         return's odd rows negated (a sign: exact), and the level added to s (mm). Made once a segment."""
         factor = self.scale()[:, None]
         if self.kind == "return":
-            return factor * np.array([1.0, -1.0, 1.0, -1.0])[:, None], self.level - self.lift
+            return factor * _RETURN[:, None], self.level - self.lift
         return factor, self.level
 
     def at_law(self, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -336,18 +335,31 @@ class Program:
 
 
 class _Table:
-    """A program's segments as arrays (start, beta, the factors of :meth:`Segment._from_law`, level), so that points
-    on any of them are evaluated in one pass: one call of each law for all its segments' points, the same
-    operations on the same numbers as each segment's own evaluation (so the same values to the last bit)."""
+    """A program's segments as arrays, so that points on any of them are evaluated in one pass: one call of each law
+    for all its segments' points, the same operations on the same numbers as each segment's own evaluation (so the
+    same values to the last bit).
+
+    ``rows`` (10, m) holds every number of a segment a point needs (see :data:`_START` and the rest), so that one
+    gather gives each point its own: its start and angle (radians), the sign and offset that turn u into the law's
+    variable (-1 and 1 on a return, whose law runs backwards; 1 and 0 elsewhere), 1 on a dwell (or a segment
+    without a law) and 0 elsewhere, the level added to s (mm) and the four factors of :meth:`Segment._from_law` (0
+    on a dwell)."""
 
     def __init__(self, segments: tuple[Segment, ...]) -> None:
         moving = [seg.kind != "dwell" and seg.law is not None for seg in segments]
-        self.start = np.array([seg.start for seg in segments])
-        self.beta = np.array([seg.beta for seg in segments])
-        self.backwards = np.array([seg.kind == "return" and m for seg, m in zip(segments, moving, strict=True)])
-        self.factor = np.array([seg._factors[0][:, 0] if m else np.zeros(4)
-                                for seg, m in zip(segments, moving, strict=True)]).T
-        self.level = np.array([seg._factors[1] if m else seg.level for seg, m in zip(segments, moving, strict=True)])
+        backwards = [m and seg.kind == "return" for seg, m in zip(segments, moving, strict=True)]
+        natural = _natural(segments)
+        self.scales: list[list[float]] = natural.tolist()      # every segment's Segment.scales, made in one pass
+        rows = np.empty((10, len(segments)))
+        rows[:_FACTORS.start] = [[seg.start for seg in segments], [seg.beta for seg in segments],
+                                 [-1.0 if b else 1.0 for b in backwards], [1.0 if b else 0.0 for b in backwards],
+                                 [0.0 if m else 1.0 for m in moving],
+                                 [seg.level - seg.lift if b else seg.level for seg, b in zip(segments, backwards,
+                                                                                             strict=True)]]
+        signs = [_RETURN if b else _RISE if m else _STILL for m, b in zip(moving, backwards, strict=True)]
+        rows[_FACTORS] = (natural * signs).T                   # a return's odd rows negated, a dwell's 0: exact
+        self.rows = rows
+        self.backwards = np.array(backwards)
         laws: list[Law | None] = []
         group = []
         for seg, m in zip(segments, moving, strict=True):
@@ -357,39 +369,104 @@ class _Table:
                 laws.append(law)
                 found = len(laws) - 1
             group.append(found)
-        self.laws, self.group = laws, np.array(group)
+        self.laws = laws
+        #: each law but a dwell's, with the segments it evaluates (m,) bool
+        self.moving = [(law, np.array([g == k for g in group])) for k, law in enumerate(laws) if law is not None]
 
     def angle(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
         """:meth:`Segment.angle` of each law variable ``v`` (n,) on its segment ``index`` (n,) (radians)."""
-        return self.start[index] + self.beta[index] * np.where(self.backwards[index], 1.0 - v, v)
+        out = np.empty(v.shape)
+        self._angle(v, self.rows[:_STILL_ROW].take(index, axis=1), out)
+        return out
+
+    @staticmethod
+    def _angle(v: np.ndarray, rows: np.ndarray, out: np.ndarray) -> None:
+        """:meth:`angle` into ``out``, the points' ``rows`` gathered: start + beta (1 - v) on a return, start + beta v
+        elsewhere (the offset and sign give 1 + -v = 1 - v and 0 + v = v, or +0.0 for v = -0.0, which makes the
+        same angle: start >= +0.0)."""
+        np.multiply(v, rows[_SIGN], out=out)
+        out += rows[_OFFSET]
+        out *= rows[_BETA]
+        out += rows[_START]
+
+    @staticmethod
+    def _variable(theta: np.ndarray, rows: np.ndarray, out: np.ndarray) -> None:
+        """:meth:`variable` into ``out``, the points' ``rows`` gathered: u into [0, 1] (np.maximum gives +0.0 for
+        -0.0, so that u is never -0.0), then 1 + -u = 1 - u on a return, 0 + u = u elsewhere."""
+        np.subtract(theta, rows[_START], out=out)
+        out /= rows[_BETA]
+        np.maximum(out, _ZERO, out=out)
+        np.minimum(out, _ONE, out=out)                  # np.clip's result
+        out *= rows[_SIGN]
+        out += rows[_OFFSET]
 
     def evaluate(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """:meth:`Segment.evaluate` of each angle ``theta`` (n,) on its segment ``index`` (n,): (4, n)."""
-        return self.at_law(index, self.variable(index, theta))
+        return self.on(index, theta, 0)[1]
 
     def variable(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """The law variable (see :meth:`Segment.at_law`) at each angle ``theta`` (n,) (radians) on its segment
         ``index`` (n,), u taken into [0, 1] as :meth:`Segment.evaluate` takes it (one-sided at the segment's ends)."""
-        u = np.minimum(np.maximum((theta - self.start[index]) / self.beta[index], 0.0), 1.0)
-        return np.where(self.backwards[index], 1.0 - u, u)
+        out = np.empty(theta.shape)
+        self._variable(theta, self.rows[:_STILL_ROW].take(index, axis=1), out)
+        return out
 
     def at_law(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
         """:meth:`Segment.at_law`'s motion at each law variable ``v`` (n,) on its segment ``index`` (n,): (4, n);
         one call of each law for every point on its segments."""
-        group = self.group[index]
-        out = np.empty((4, v.size))
-        for g in present(group):
-            law = self.laws[g]
-            sel = np.flatnonzero(group == g) if len(self.laws) > 1 else slice(None)
-            at = index[sel]
-            if law is None:
-                out[:, sel] = 0.0
-                out[0, sel] = self.level[at]
-            else:
-                made = law.derivatives(v[sel]) * self.factor[:, at]
-                made[0] += self.level[at]
-                out[:, sel] = made
+        return self._motion(index, v, self.rows.take(index, axis=1))
+
+    def on(self, index: np.ndarray, x: np.ndarray, cut: int) -> tuple[np.ndarray, np.ndarray]:
+        """Cam angles (n,) (radians) and s, s', s'', s''' (4, n) at points ``x`` (n,) each on its segment ``index``
+        (n,): the first ``cut`` of them given by the law's variable (see :meth:`Segment.at_law`), the rest by cam
+        angle (one-sided at their segment's ends, as :meth:`Segment.evaluate` takes them)."""
+        rows = self.rows.take(index, axis=1)
+        theta, v = np.empty(x.size), np.empty(x.size)
+        if cut:
+            v[:cut] = x[:cut]
+            self._angle(x[:cut], rows[:, :cut], theta[:cut])
+        if cut < x.size:
+            theta[cut:] = x[cut:]
+            self._variable(x[cut:], rows[:, cut:], v[cut:])
+        return theta, self._motion(index, v, rows)
+
+    def _motion(self, index: np.ndarray, v: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """s, s', s'', s''' (4, n) at law variables ``v`` (n,) on the segments ``index`` (n,), their ``rows``
+        gathered. A program of one law evaluates it at every point: a dwell's factors are 0, so that its s is
+        (+-0) + level, its level to the bit (never -0.0), and its s', s'', s''' +-0, made +0.0. With more laws each
+        evaluates its own points, a dwell's left 0."""
+        if len(self.moving) == 1:
+            out = self.moving[0][0].derivatives(v) * rows[_FACTORS]
+            dwell = rows[_STILL_ROW].nonzero()[0]
+            if dwell.size:
+                out[1:, dwell] = 0.0
+        else:
+            out = np.zeros((4, v.size))
+            for law, member in self.moving:
+                sel = member.take(index).nonzero()[0]
+                if sel.size:
+                    out[:, sel] = law.derivatives(v.take(sel)) * rows[_FACTORS].take(sel, axis=1)
+        out[0] += rows[_LEVEL]
         return out
+
+
+#: the rows of :attr:`_Table.rows`
+_START, _BETA, _SIGN, _OFFSET, _STILL_ROW, _LEVEL, _FACTORS = 0, 1, 2, 3, 4, 5, slice(6, 10)
+#: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign), a
+#: rise's and a dwell's (no motion)
+_RETURN, _RISE, _STILL = np.array([1.0, -1.0, 1.0, -1.0]), np.ones(4), np.zeros(4)
+#: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
+_ZERO, _ONE = np.array(0.0), np.array(1.0)
+
+
+def _natural(segments: Sequence[Segment]) -> np.ndarray:
+    """Natural magnitudes h/beta^k (k = 0..3) of s, s', s'', s''' of every segment (m, 4): see :meth:`Segment.scale`
+    (a dwell's h is 0)."""
+    lift = np.array([[seg.lift if seg.kind != "dwell" else 0.0] for seg in segments])
+    return lift / np.array([[seg.beta] for seg in segments]) ** _POWERS
+
+
+_POWERS = np.arange(4)
 
 
 def _alike(a: Law | None, b: Law | None) -> bool:

@@ -114,25 +114,55 @@ Pair = tuple[Any, Any]
 def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair, sense: int) -> PitchGeometry:
     """:func:`from_centre_path` from the x and y components of ``q``, ``q1``, ``q2`` and ``direction``, each an
     array (n,) or a number that holds for every angle (a translating follower's fixed x, its zero x-velocity): the
-    same operations on the same numbers, without making the (n, 2) arrays of the constant ones."""
+    same operations on the same numbers, without making the (n, 2) arrays of the constant ones (and a product by
+    ``sense`` or a unit direction, exact, taken as what it is: see :func:`_times`)."""
     (qx, qy), (q1x, q1y), (q2x, q2y), (dx, dy) = q, q1, q2, direction
-    turn = -sense * theta
+    turn = _times(-sense, theta)
     c, s = np.cos(turn), np.sin(turn)
-    x, y = np.empty((4, c.shape[0])), np.empty((4, c.shape[0]))      # rows: q, t, a, normal (fixed frame)
+    x, y = np.empty((2, 4, c.shape[0]))                                  # rows: q, t, a, normal (fixed frame)
     x[0], y[0] = qx, qy
-    tx, ty = np.add(q1x, sense * qy, out=x[1]), np.subtract(q1y, sense * qx, out=y[1])     # q' - sense J q
+    tx, ty = np.add(q1x, _times(sense, qy), out=x[1]), np.subtract(q1y, _times(sense, qx), out=y[1])  # q' - sense J q
     twice = 2 * sense
     ax = np.subtract(q2x + twice * q1y, qx, out=x[2])                   # q'' - 2 sense J q' - q
-    ay = np.subtract(q2y - twice * q1x, qy, out=y[2])
+    ay = np.subtract(_less(q2y, twice * q1x), qy, out=y[2])
     speed = np.sqrt(tx * tx + ty * ty)
-    kappa = -sense * (tx * ay - ty * ax) / speed**3
-    nx, ny = np.divide(-sense * ty, speed, out=x[3]), np.divide(sense * tx, speed, out=y[3])  # sense J t / |t|
-    pressure = sense * np.arctan2(dx * ny - dy * nx, dx * nx + dy * ny)
+    kappa = _times(-sense, tx * ay - ty * ax) / speed**3
+    nx = np.divide(_times(-sense, ty), speed, out=x[3])                # sense J t / |t|
+    ny = np.divide(_times(sense, tx), speed, out=y[3])
+    pressure = _times(sense, np.arctan2(dx * ny - _times(dy, nx), dx * nx + _times(dy, ny)))
     turned = np.empty((4, c.shape[0], 2))                               # all four turned into the cam's frame at once
     np.subtract(c * x, s * y, out=turned[:, :, 0])
     np.add(s * x, c * y, out=turned[:, :, 1])
-    return PitchGeometry(theta=theta, point=turned[0], d1=turned[1], d2=turned[2], normal=turned[3], kappa=kappa,
-                         pressure_angle=pressure)
+    return pitch_geometry(theta, turned[0], turned[1], turned[2], turned[3], kappa, pressure)
+
+
+def _times(k: Any, a: Any) -> Any:
+    """``k * a`` for arrays or numbers ``k`` and ``a``: a number of exactly 1 or -1 (a sense, a unit
+    direction's component) gives ``a`` itself or its negation, the product's own bits without its array operation
+    (a new array only where the product made one)."""
+    if isinstance(k, (int, float)):
+        if k == 1:
+            return a
+        if k == -1:
+            return -a
+    return k * a
+
+
+def _less(a: Any, b: Any) -> Any:
+    """``a - b``: ``a`` itself when ``b`` is the number +0.0 (x - (+0.0) is x to the bit, -0.0 and NaN included)."""
+    if isinstance(b, float) and b == 0.0 and math.copysign(1.0, b) > 0:
+        return a
+    return a - b
+
+
+def pitch_geometry(theta: np.ndarray, point: np.ndarray, d1: np.ndarray, d2: np.ndarray, normal: np.ndarray,
+                   kappa: np.ndarray, pressure_angle: np.ndarray, rho: np.ndarray | None = None) -> PitchGeometry:
+    """A :class:`PitchGeometry` made without the frozen dataclass's ``__init__`` (a set attribute at a time): every
+    evaluation of a follower makes one."""
+    out = object.__new__(PitchGeometry)
+    out.__dict__.update(theta=theta, point=point, d1=d1, d2=d2, normal=normal, kappa=kappa,
+                        pressure_angle=pressure_angle, rho=rho)
+    return out
 
 
 def from_support(theta: np.ndarray, p: np.ndarray, alpha: np.ndarray, derivs: np.ndarray, sense: int,
