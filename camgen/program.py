@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Generator, Sequence
+from collections.abc import Callable, Generator
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -21,6 +21,7 @@ from camgen.laws import Law
 from camgen.numeric import TIE, drive, left_of, maxima_steps, present
 
 Kind = Literal["rise", "dwell", "return"]
+_T = TypeVar("_T")
 TWO_PI = 2.0 * math.pi
 #: relative size of a derivative jump that counts as a discontinuity
 JUMP_TOL = 1e-9
@@ -50,11 +51,12 @@ class Segment:
 
     @property
     def end_level(self) -> float:
-        return self.level + {"rise": self.lift, "return": -self.lift, "dwell": 0.0}[self.kind]
+        kind = self.kind
+        return self.level + (self.lift if kind == "rise" else -self.lift if kind == "return" else 0.0)
 
     def scale(self) -> np.ndarray:
         """Natural magnitudes h/beta^k of s, s', s'', s''' in this segment (k = 0..3)."""
-        return _natural([self])[0]
+        return _natural(np.array([self.lift if self.kind != "dwell" else 0.0]), np.array([self.beta]))[0]
 
     @functools.cached_property
     def scales(self) -> list[float]:
@@ -119,7 +121,8 @@ class Segment:
         if self.law is None or self.kind == "dwell":
             return []
         out = []
-        for b in sorted(set(self.law.breakpoints)):
+        breakpoints = self.law.breakpoints
+        for b in sorted(set(breakpoints)) if breakpoints else ():
             lo = self._from_law(self.law.derivatives(np.array([left_of(b)])))[:, 0]
             hi = self._from_law(self.law.derivatives(np.array([b])))[:, 0]
             if self.kind == "rise":
@@ -164,19 +167,21 @@ class Program:
     segments: tuple[Segment, ...]
 
     def __post_init__(self) -> None:
-        if not self.segments:
+        segments = self.segments
+        if not segments:
             raise SpecError("needs at least one segment", "motion")
-        total = sum(seg.beta for seg in self.segments)
+        total = sum(seg.beta for seg in segments)
         if abs(total - TWO_PI) > 1e-9:
             raise SpecError(f"segment angles add up to {math.degrees(total):.6g} degrees; they must add up to 360",
                             "motion")
-        first, last = self.segments[0], self.segments[-1]
-        if abs(last.end_level - first.level) > 1e-9 * max(1.0, self.max_lift):
-            raise SpecError(f"the follower ends the turn at s = {last.end_level:.6g} mm but starts at "
-                            f"s = {first.level:.6g} mm; rises and returns must balance over 360 degrees", "motion")
-        low = min(min(seg.level, seg.end_level) for seg in self.segments)
+        levels = [(seg.level, seg.end_level) for seg in segments]          # each segment's start and end
+        first, last = levels[0][0], levels[-1][1]
+        if abs(last - first) > 1e-9 * max(1.0, max(max(a, b) for a, b in levels)):      # max(1, max_lift)
+            raise SpecError(f"the follower ends the turn at s = {last:.6g} mm but starts at "
+                            f"s = {first:.6g} mm; rises and returns must balance over 360 degrees", "motion")
+        low = min(min(a, b) for a, b in levels)
         if low < -1e-9:
-            i = next(i for i, seg in enumerate(self.segments) if min(seg.level, seg.end_level) == low)
+            i = next(i for i, (a, b) in enumerate(levels) if min(a, b) == low)
             raise SpecError(f"takes the follower to s = {low:.6g} mm, below its lowest position (s = 0); "
                             "start the program with a rise or dwell", f"motion[{i}]")
 
@@ -325,13 +330,14 @@ class Program:
         found: list[Jump] = []
         n = len(self.segments)
         motion = self.boundaries[1].T.tolist()              # as Python floats: the same numbers, cheaper one by one
-        scales = [seg.scales for seg in self.segments]
+        scales = self._table.scales
         for i, seg in enumerate(self.segments):
-            scale = [max(a, b) for a, b in zip(scales[i], scales[(i + 1) % n], strict=True)]
-            found += _compare(seg.end, motion[i], motion[n + i], scale, inside=False)
+            scale = [b if b > a else a for a, b in zip(scales[i], scales[i + 1 - n], strict=True)]     # max(a, b)
+            _compare(found, seg.end, motion[i], motion[n + i], scale, inside=False)
             for t, lo, hi in seg.inner_limits():
-                found += _compare(t, lo, hi, scales[i], inside=True)
-        return sorted(found, key=lambda j: (j.at_deg, j.order))
+                _compare(found, t, lo.tolist(), hi.tolist(), scales[i], inside=True)
+        found.sort(key=lambda j: (j.at_deg, j.order))
+        return found
 
 
 class _Table:
@@ -346,32 +352,30 @@ class _Table:
     on a dwell)."""
 
     def __init__(self, segments: tuple[Segment, ...]) -> None:
-        moving = [seg.kind != "dwell" and seg.law is not None for seg in segments]
-        backwards = [m and seg.kind == "return" for seg, m in zip(segments, moving, strict=True)]
-        natural = _natural(segments)
-        self.scales: list[list[float]] = natural.tolist()      # every segment's Segment.scales, made in one pass
-        rows = np.empty((10, len(segments)))
-        rows[:_FACTORS.start] = [[seg.start for seg in segments], [seg.beta for seg in segments],
-                                 [-1.0 if b else 1.0 for b in backwards], [1.0 if b else 0.0 for b in backwards],
-                                 [0.0 if m else 1.0 for m in moving],
-                                 [seg.level - seg.lift if b else seg.level for seg, b in zip(segments, backwards,
-                                                                                             strict=True)]]
-        signs = [_RETURN if b else _RISE if m else _STILL for m, b in zip(moving, backwards, strict=True)]
-        rows[_FACTORS] = (natural * signs).T                   # a return's odd rows negated, a dwell's 0: exact
-        self.rows = rows
-        self.backwards = np.array(backwards)
+        values: list[float] = []
         laws: list[Law | None] = []
         group = []
-        for seg, m in zip(segments, moving, strict=True):
-            law = seg.law if m else None
-            found = next((g for g, known in enumerate(laws) if known is law or _alike(known, law)), None)
-            if found is None:
-                laws.append(law)
-                found = len(laws) - 1
-            group.append(found)
+        for seg in segments:
+            moving = seg.kind != "dwell" and seg.law is not None
+            back = moving and seg.kind == "return"
+            sign = -1.0 if back else 1.0
+            values += (seg.start, seg.beta, sign, 1.0 if back else 0.0, 0.0 if moving else 1.0,
+                       seg.level - seg.lift if back else seg.level, seg.lift if seg.kind != "dwell" else 0.0,
+                       1.0 if moving else 0.0, sign if moving else 0.0)
+            group.append(_group(laws, seg.law if moving else None))
+        made = np.array(values).reshape(len(segments), -1).T
+        natural = _natural(made[_H], made[_BETA])
+        self.scales: list[list[float]] = natural.tolist()      # every segment's Segment.scales, made in one pass
+        rows = np.empty((10, len(segments)))
+        rows[:_FACTORS.start] = made[:_FACTORS.start]
+        # the factors: natural scales times 1 (a rise), +-1 (a return's even and odd orders) or 0 (a dwell): exact
+        np.multiply(natural.T, made.take(_EVEN_ODD, axis=0), out=rows[_FACTORS])
+        self.rows = rows
+        self.backwards = rows[_SIGN] < 0
         self.laws = laws
-        #: each law but a dwell's, with the segments it evaluates (m,) bool
-        self.moving = [(law, np.array([g == k for g in group])) for k, law in enumerate(laws) if law is not None]
+        #: each law but a dwell's, with the segments it evaluates (m,) bool when there are more (one evaluates all)
+        moving = [(law, k) for k, law in enumerate(laws) if law is not None]
+        self.moving = [(law, np.array(group) == k if len(moving) > 1 else None) for law, k in moving]
 
     def angle(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
         """:meth:`Segment.angle` of each law variable ``v`` (n,) on its segment ``index`` (n,) (radians)."""
@@ -452,21 +456,32 @@ class _Table:
 
 #: the rows of :attr:`_Table.rows`
 _START, _BETA, _SIGN, _OFFSET, _STILL_ROW, _LEVEL, _FACTORS = 0, 1, 2, 3, 4, 5, slice(6, 10)
-#: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign), a
-#: rise's and a dwell's (no motion)
-_RETURN, _RISE, _STILL = np.array([1.0, -1.0, 1.0, -1.0]), np.ones(4), np.zeros(4)
+#: the rows :class:`_Table` makes them from after its first six: each segment's h (the lift, 0 on a dwell), and the
+#: factors' signs at even and odd orders (1 and 1 on a rise, 1 and -1 on a return, 0 on a dwell), as 4 rows
+_H, _EVEN_ODD = 6, np.array([7, 8, 7, 8])
+#: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign)
+_RETURN = np.array([1.0, -1.0, 1.0, -1.0])
 #: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
 _ZERO, _ONE = np.array(0.0), np.array(1.0)
 
 
-def _natural(segments: Sequence[Segment]) -> np.ndarray:
-    """Natural magnitudes h/beta^k (k = 0..3) of s, s', s'', s''' of every segment (m, 4): see :meth:`Segment.scale`
-    (a dwell's h is 0)."""
-    lift = np.array([[seg.lift if seg.kind != "dwell" else 0.0] for seg in segments])
-    return lift / np.array([[seg.beta] for seg in segments]) ** _POWERS
+def _natural(h: np.ndarray, beta: np.ndarray) -> np.ndarray:
+    """Natural magnitudes h/beta^k (k = 0..3) of s, s', s'', s''' of segments of lifts ``h`` (m,) (mm, 0 on a
+    dwell) and angles ``beta`` (m,) (radians): (m, 4), see :meth:`Segment.scale`."""
+    return h[:, None] / beta[:, None] ** _POWERS
 
 
-_POWERS = np.arange(4)
+_POWERS = np.arange(4.0)
+
+
+def _group(laws: list[Law | None], law: Law | None) -> int:
+    """Where ``law`` (None for a dwell) stands in ``laws``, the laws evaluated so far, each once: the first it is
+    or is :func:`_alike`; added at the end when none is."""
+    for g, known in enumerate(laws):
+        if known is law or _alike(known, law):
+            return g
+    laws.append(law)
+    return len(laws) - 1
 
 
 def _alike(a: Law | None, b: Law | None) -> bool:
@@ -476,11 +491,16 @@ def _alike(a: Law | None, b: Law | None) -> bool:
     return a is not None and type(a) is type(b) and type(a).PARAMETERLESS
 
 
-def _compare(theta: float, left: Sequence[float], right: Sequence[float], scale: Sequence[float],
-             inside: bool) -> list[Jump]:
-    at_deg = round(math.degrees(theta), 9) % 360.0
-    return [Jump(at_deg, k, float(right[k] - left[k]), inside) for k in (1, 2, 3)
-            if abs(right[k] - left[k]) > JUMP_TOL * max(scale[k], 1e-300)]
+def _compare(found: list[Jump], theta: float, left: list[float], right: list[float], scale: list[float],
+             inside: bool) -> None:
+    """Add to ``found`` every jump of s', s'', s''' from ``left`` to ``right`` (s, s', s'', s''') at cam angle
+    ``theta`` (radians) larger than :data:`JUMP_TOL` of its ``scale`` (h/beta^k, k = 0..3)."""
+    for k in (1, 2, 3):
+        step = right[k] - left[k]
+        least = scale[k]
+        if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
+            found.append(_frozen(Jump, at_deg=round(math.degrees(theta), 9) % 360.0, order=k, jump=step,
+                                 inside=inside))
 
 
 def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program:
@@ -488,7 +508,17 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
     segments, start, level = [], 0.0, 0.0
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)
-        seg = Segment(kind, start, beta, lift if kind != "dwell" else 0.0, level, law if kind != "dwell" else None)
+        dwell = kind == "dwell"
+        seg = _frozen(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
+                      law=None if dwell else law)
         segments.append(seg)
         start, level = start + beta, seg.end_level
     return Program(tuple(segments))
+
+
+def _frozen(cls: type[_T], **fields: Any) -> _T:
+    """An instance of the frozen dataclass ``cls`` (without ``__post_init__``) holding ``fields``, every one of them,
+    made without its generated ``__init__`` (one checked attribute set at a time): a design makes many small ones."""
+    out = object.__new__(cls)
+    out.__dict__.update(fields)
+    return out

@@ -113,39 +113,50 @@ Pair = tuple[Any, Any]
 
 def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair, sense: int) -> PitchGeometry:
     """:func:`from_centre_path` from the x and y components of ``q``, ``q1``, ``q2`` and ``direction``, each an
-    array (n,) or a number that holds for every angle (a translating follower's fixed x, its zero x-velocity): the
-    same operations on the same numbers, without making the (n, 2) arrays of the constant ones (and a product by
-    ``sense`` or a unit direction, exact, taken as what it is: see :func:`_times`)."""
+    array (n,) or a constant for every angle (a translating follower's fixed x, its zero x-velocity: best a 0-d
+    array, which numpy takes faster than a Python number, or a number where only its value matters, see
+    :func:`_times`): the same operations on the same numbers, without making the (n, 2) arrays of the constant ones.
+    """
     (qx, qy), (q1x, q1y), (q2x, q2y), (dx, dy) = q, q1, q2, direction
     turn = _times(-sense, theta)
     c, s = np.cos(turn), np.sin(turn)
-    x, y = np.empty((2, 4, c.shape[0]))                                  # rows: q, t, a, normal (fixed frame)
+    xy = np.empty((2, 4, c.shape[0]))                                   # rows: q, t, a, normal (fixed frame)
+    x, y = xy[0], xy[1]
     x[0], y[0] = qx, qy
     tx, ty = np.add(q1x, _times(sense, qy), out=x[1]), np.subtract(q1y, _times(sense, qx), out=y[1])  # q' - sense J q
-    twice = 2 * sense
-    ax = np.subtract(q2x + twice * q1y, qx, out=x[2])                   # q'' - 2 sense J q' - q
-    ay = np.subtract(_less(q2y, twice * q1x), qy, out=y[2])
+    ax = np.subtract(q2x + _times(2 * sense, q1y), qx, out=x[2])       # q'' - 2 sense J q' - q
+    ay = np.subtract(_less(q2y, _times(2 * sense, q1x)), qy, out=y[2])
     speed = np.sqrt(tx * tx + ty * ty)
-    kappa = _times(-sense, tx * ay - ty * ax) / speed**3
+    kappa = _times(-sense, tx * ay - ty * ax) / speed**_THREE
     nx = np.divide(_times(-sense, ty), speed, out=x[3])                # sense J t / |t|
     ny = np.divide(_times(sense, tx), speed, out=y[3])
     pressure = _times(sense, np.arctan2(dx * ny - _times(dy, nx), dx * nx + _times(dy, ny)))
     turned = np.empty((4, c.shape[0], 2))                               # all four turned into the cam's frame at once
-    np.subtract(c * x, s * y, out=turned[:, :, 0])
-    np.add(s * x, c * y, out=turned[:, :, 1])
+    across = c * x
+    across -= s * y
+    turned[:, :, 0] = across
+    up = s * x
+    up += c * y
+    turned[:, :, 1] = up
     return pitch_geometry(theta, turned[0], turned[1], turned[2], turned[3], kappa, pressure)
 
 
 def _times(k: Any, a: Any) -> Any:
-    """``k * a`` for arrays or numbers ``k`` and ``a``: a number of exactly 1 or -1 (a sense, a unit
-    direction's component) gives ``a`` itself or its negation, the product's own bits without its array operation
-    (a new array only where the product made one)."""
+    """``k * a`` for arrays or numbers ``k`` and ``a``: the number 1 gives ``a`` itself (x * 1.0 is x to the bit, a
+    new array only where the product made one), -1, 2 and -2 multiply by a 0-d array (the same product, without
+    numpy's conversion of a Python number)."""
     if isinstance(k, (int, float)):
         if k == 1:
             return a
-        if k == -1:
-            return -a
+        if k in _FACTOR:
+            return a * _FACTOR[k]
     return k * a
+
+
+#: the factors :func:`_times` takes as 0-d arrays
+_FACTOR = {-1: np.array(-1.0), 2: np.array(2.0), -2: np.array(-2.0)}
+#: the power of the speed in the curvature, a 0-d array (numpy's power of a float64 by 3: the same numbers)
+_THREE = np.array(3.0)
 
 
 def _less(a: Any, b: Any) -> Any:

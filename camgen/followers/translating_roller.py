@@ -11,6 +11,7 @@ on rises and raises it on returns.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any, ClassVar
@@ -50,10 +51,20 @@ class TranslatingRoller:
         """Height of the roller centre above the cam centre at s = 0 (mm)."""
         return math.sqrt((self.prime_radius - self.offset) * (self.prime_radius + self.offset))
 
+    @functools.cached_property
+    def _constants(self) -> tuple[np.ndarray, np.ndarray]:
+        """The offset and :attr:`d0` as 0-d arrays (mm), made once: numpy takes them faster than Python numbers."""
+        return np.array(self.offset), np.array(self.d0)
+
     def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
         """Pitch geometry at cam angles ``theta`` (rad) for ``motion`` = s, s', s'', s''' (mm per rad^k)."""
         s, s1, s2 = motion[0], motion[1], motion[2]
-        return centre_path(theta, (self.offset, self.d0 + s), (0.0, s1), (0.0, s2), (0.0, 1.0), self.sense)
+        offset, d0 = self._constants
+        return centre_path(theta, (offset, d0 + s), (_ZERO, s1), (_ZERO, s2), (_ZERO, 1.0), self.sense)
+
+
+#: the centre's x-velocity and x-acceleration and its direction's x (0-d: numpy takes it faster than a number)
+_ZERO = np.array(0.0)
 
 
 def _offset_floor(table: Any, base_radius: float) -> float:

@@ -109,6 +109,13 @@ def rows(*values: np.ndarray) -> np.ndarray:
     return out
 
 
+def blank(u: np.ndarray) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """An empty array ``(4, *u.shape)`` for a law's f and its first three derivatives, and its four rows as views
+    to fill in place (0-d for a scalar ``u``)."""
+    out = np.empty((4, *u.shape))
+    return out, (out[0, ...], out[1, ...], out[2, ...], out[3, ...])
+
+
 def pairs(values: ArrayLike, least: int, field: str, what: str) -> np.ndarray:
     """``values`` as an (n, 2) float array of at least ``least`` finite rows, or a :class:`SpecError` naming
     ``field`` that asks for ``what``."""

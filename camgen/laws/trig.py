@@ -1,39 +1,64 @@
-"""Trigonometric laws: simple harmonic and cycloidal."""
+"""Trigonometric laws: simple harmonic and cycloidal.
+
+Each fills its rows in place (a law is evaluated on every evaluation of a cam, where each numpy call costs more than
+its arithmetic): the same operations on the same numbers as the formulas in the docstrings, term by term."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from camgen.laws.base import Law, as_array, rows as _rows
+from camgen.laws.base import Law, as_array, blank, rows as _rows
+
+TWO_PI = 2 * np.pi
+
+
+def _sin_cos(u: ArrayLike, k: float, sin_row: int, cos_row: int) -> tuple[np.ndarray, np.ndarray, tuple, Any, Any]:
+    """``u`` as an array, an empty array for f and its derivatives (4, *u.shape) and its rows (see :func:`blank`),
+    and sin(k u) and cos(k u) made in the rows ``sin_row`` and ``cos_row``."""
+    u = as_array(u)
+    out, rows = blank(u)
+    x = k * u
+    return u, out, rows, np.sin(x, out=rows[sin_row]), np.cos(x, out=rows[cos_row])
 
 
 @dataclass(frozen=True)
 class Harmonic(Law):
-    """Simple harmonic: f = (1 - cos(pi u)) / 2. Jerk is infinite at both ends (acceleration jumps)."""
+    """Simple harmonic: f = (1 - cos(pi u)) / 2. Jerk is infinite at both ends (acceleration jumps).
+
+    f' = pi/2 sin(pi u), f'' = pi^2/2 cos(pi u), f''' = -pi^3/2 sin(pi u)."""
 
     name = "harmonic"
     PARAMETERLESS = True
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
-        x = np.pi * as_array(u)
-        c, s = np.cos(x), np.sin(x)
-        return _rows((1 - c) / 2, np.pi / 2 * s, np.pi**2 / 2 * c, -(np.pi**3) / 2 * s)
+        u, out, (f, _, _, f3), s, c = _sin_cos(u, np.pi, 1, 2)
+        np.multiply(-(np.pi**3) / 2, s, out=f3)
+        np.subtract(1, c, out=f)
+        f /= 2
+        s *= np.pi / 2
+        c *= np.pi**2 / 2
+        return out
 
 
 @dataclass(frozen=True)
 class Cycloidal(Law):
-    """Cycloidal: f = u - sin(2 pi u) / (2 pi). Acceleration is zero at both ends."""
+    """Cycloidal: f = u - sin(2 pi u) / (2 pi). Acceleration is zero at both ends.
+
+    f' = 1 - cos(2 pi u), f'' = 2 pi sin(2 pi u), f''' = 4 pi^2 cos(2 pi u)."""
 
     name = "cycloidal"
     PARAMETERLESS = True
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
-        u = as_array(u)
-        x = 2 * np.pi * u
-        c, s = np.cos(x), np.sin(x)
-        return _rows(u - s / (2 * np.pi), 1 - c, 2 * np.pi * s, 4 * np.pi**2 * c)
+        u, out, (f, f1, _, _), s, c = _sin_cos(u, TWO_PI, 2, 3)
+        np.subtract(u, s / TWO_PI, out=f)
+        np.subtract(1, c, out=f1)
+        s *= TWO_PI
+        c *= 4 * np.pi**2
+        return out
 
 
 @dataclass(frozen=True)
