@@ -99,26 +99,28 @@ class Cam:
         :meth:`corners` and :meth:`Program.jumps`, the same numbers as their own evaluation). The asks in the law's
         variable are evaluated first, then those in cam angles (each point's numbers are its own either way)."""
         program = self.program
-        order = [k for k, a in enumerate(asks) if a[2]]
-        cut = sum(asks[k][1].size for k in order)       # the law's variable before, cam angles after
-        order += [k for k, a in enumerate(asks) if not a[2]]
+        first, later = [], []                           # the law's variable before, cam angles after
+        for k, a in enumerate(asks):
+            (first if a[2] else later).append(k)
+        order = first + later
         index = [a[0] if isinstance(a[0], np.ndarray) else np.full(a[1].size, a[0]) for a in (asks[k] for k in order)]
         x = [asks[k][1] for k in order]
         if boundaries:
             theta, ends = program.boundary_points
             index.append(ends)
             x.append(theta)
+        cut = sum(asks[k][1].size for k in first)
         theta, motion = program._table.on(np.concatenate(index), np.concatenate(x), cut)
         g = self.follower.pitch(theta, motion)
         out: list[Any] = [None] * len(asks)
         a = 0
-        for k in order:
-            size = asks[k][1].size
-            out[k] = g.part(a, a + size)
-            a += size
+        for k, part in zip(order, x, strict=False):
+            out[k] = g.part(a, a + part.size)
+            a += part.size
         if boundaries:
             program.known_boundaries(motion[:, a:])
-            self.__dict__["_boundaries"] = self._halves(g.part(a, theta.size))
+            n = len(program.segments)
+            self.__dict__["_boundaries"] = g.part(a, a + n), g.part(a + n, a + 2 * n)
         return out
 
     def corners(self) -> list[tuple[int, float]]:
@@ -136,9 +138,11 @@ class Cam:
         """:meth:`corners`, found once a cam (a design asks several times)."""
         out = []
         ends, starts = self._boundaries
-        for i in range(len(self.program.segments)):
-            left, right = ends.d1[i], starts.d1[i]
-            turn = math.atan2(left[0] * right[1] - left[1] * right[0], float(left @ right))
+        left, right = ends.d1, starts.d1
+        for i, ((lx, ly), (rx, ry)) in enumerate(zip(left.tolist(), right.tolist(), strict=True)):
+            # the cross product in Python floats (the same products and difference); the dot product stays numpy's
+            # (its BLAS dot's own rounding)
+            turn = math.atan2(lx * ry - ly * rx, float(left[i] @ right[i]))
             if abs(turn) > 1e-9:
                 out.append((i, -self.follower.sense * turn))
         return tuple(out)

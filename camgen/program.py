@@ -266,7 +266,7 @@ class Program:
     def evaluate_on(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """s, s', s'', s''' (shape ``(4, n)``) at cam angles ``theta`` (n,) (radians) each on the segment ``index``
         (n,) gives, as :meth:`Segment.evaluate` makes them (one-sided at the segment's ends), all at once."""
-        return self._table.evaluate(index, theta)
+        return self._table.evaluate(index, np.asarray(theta, dtype=float))
 
     @functools.cached_property
     def boundaries(self) -> tuple[np.ndarray, np.ndarray]:
