@@ -427,12 +427,10 @@ class _Table:
         (n,): the first ``cut`` of them given by the law's variable (see :meth:`Segment.at_law`), the rest by cam
         angle (one-sided at their segment's ends, as :meth:`Segment.evaluate` takes them)."""
         rows = self.rows.take(index, axis=1)
-        theta, v = np.empty(x.size), np.empty(x.size)
+        theta, v = x.copy(), x.copy()                   # each then made where it is not given
         if cut:
-            v[:cut] = x[:cut]
             self._angle(x[:cut], rows[:, :cut], theta[:cut])
         if cut < x.size:
-            theta[cut:] = x[cut:]
             self._variable(x[cut:], rows[:, cut:], v[cut:])
         return theta, self._motion(index, v, rows)
 
