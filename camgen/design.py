@@ -179,9 +179,17 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     speed = _speed(spec, cam, rates_only)
     warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
-    return CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
-                     allowances, warnings, pressure_limit(spec), extent, speed, sizing,
-                     cut_off.leaves if cut_off is not None else None)
+    design = CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
+                       allowances, warnings, pressure_limit(spec), extent, speed, sizing,
+                       cut_off.leaves if cut_off is not None else None)
+    return design if wall is None else known_wall(design, wall)
+
+
+def known_wall(design: CamDesign, wall: float) -> CamDesign:
+    """``design`` with its :attr:`CamDesign.wall_mm` set to ``wall`` (mm), measured already as the property measures
+    it (the same number), so that a report reading it does not flatten and measure the outline again."""
+    design.__dict__["wall_mm"] = wall                   # a cached property's slot: the frozen dataclass allows it
+    return design
 
 
 def _body(outline: Outline, tolerance: float) -> Any:
@@ -353,8 +361,9 @@ def _holes(spec: CamSpec, grow: float) -> tuple:
     return tuple(out)
 
 
-#: how far (relative to the sizes involved) a bound must clear what it is checked against to be certain: rounding
-#: in the bounds is a few parts in 1e16, so this leaves only holes within a millionth of a micrometre to the exact test
+#: how far, relative to the sizes involved, a bound must clear what it is checked against to be certain: rounding
+#: in the bounds is a few parts in 1e16, so this leaves to the exact test only holes within about 1e-9 of the cam's
+#: size of the limit (some 1e-7 mm for a 50 mm cam; the squared bounds of :func:`_inside_clear` in squared units)
 _CERTAIN = 1e-9
 
 

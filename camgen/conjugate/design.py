@@ -32,7 +32,7 @@ from camgen.cam import Cam, build_cam
 from camgen.conjugate.followers import ArmRoller, YokeRoller, arm_prime, arm_turn, yoke_prime, yoke_span
 from camgen.core.errors import CamgenError, DesignError
 from camgen.core.parts import Allowances
-from camgen.design import CamDesign, _check_holes, _curves, _engraving, _Profile, _speed
+from camgen.design import CamDesign, _body, _check_holes, _curves, _engraving, _Profile, _reach, _speed, known_wall
 from camgen.forces import Contact, drive_speed
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
@@ -365,8 +365,8 @@ def _outline_body(spec: CamSpec, cam: Cam, which: int) -> tuple[Any, Any, float]
 
     tol = spec.output.tolerance
     outline = exact_outline(cam, tol, _curves(spec))
-    body = shapely.Polygon(outline.contour.flatten(tol))
-    near = float(body.exterior.distance(shapely.Point(0.0, 0.0)))
+    body = _body(outline, tol)
+    near = _reach(body)
     if spec.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and near > spec.cam.bore / 2):
         raise DesignError(f"cam.bore: {spec.cam.bore:.4g} mm leaves no material in cam {which + 1}; its outline comes "
                           f"within {near:.4g} mm of the centre, so the bore must be < {2 * near:.4g} mm")
@@ -397,9 +397,9 @@ def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: 
     near = wall + own.cam.bore / 2
     maker = _Profile(own, cam, False, _engraving(own, shared.timing, body, near) if engrave else (), outline)
     allow = Allowances(own.output.kerf, own.output.clearance, "output.kerf", own.output.elephant_foot)
-    return CamDesign(own, cam, analysis, shared.jumps, outline, maker.part(0.0, 0.0), maker.outline(allow.kerf / 2),
-                     allow.cut(maker), allow.printed(maker), allow, (), shared.limit, None, shared.speed,
-                     shared.sizing[which])
+    return known_wall(CamDesign(own, cam, analysis, shared.jumps, outline, maker.part(0.0, 0.0),
+                                maker.outline(allow.kerf / 2), allow.cut(maker), allow.printed(maker), allow, (),
+                                shared.limit, None, shared.speed, shared.sizing[which]), wall)
 
 
 def _warnings(spec: CamSpec, designs: tuple[CamDesign, CamDesign], limit: float) -> tuple[str, ...]:
@@ -463,6 +463,7 @@ def design_conjugate(spec: CamSpec) -> ConjugateDesign:
     shared = _Shared(tuple(first.program.jumps()), _pair_speed(spec, pair), pressure_limit(spec), pair[0], sizing)
     designs = tuple(_member(spec, cam, a, which, shared)
                     for which, (cam, a) in enumerate(zip(pair, analyses, strict=True)))
-    designs = tuple(dataclasses.replace(d, warnings=_warnings(spec, designs, shared.limit)) for d in designs)
+    designs = tuple(known_wall(dataclasses.replace(d, warnings=_warnings(spec, designs, shared.limit)), d.wall_mm)
+                    for d in designs)
     contact = contact_check(pair, (designs[0].outline, designs[1].outline), spec.output.tolerance)
     return ConjugateDesign(spec, designs, contact, sizing, designs[0].warnings)
