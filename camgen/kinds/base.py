@@ -1,8 +1,8 @@
 """What every cam kind declares (see :mod:`camgen.kinds`)."""
 from __future__ import annotations
 
-import functools
 import importlib
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -33,11 +33,11 @@ class CamKind:
         return _resolve(self.bundle)
 
 
-@functools.cache
 def _resolve(name: str) -> Callable[[Any], Any]:
-    """The function ``"module:function"`` names, found once (a design looks its kind's designer up each time)."""
+    """The function ``"module:function"`` names, looked up each time (a function patched or reloaded in its module is
+    the one used); a loaded module is taken from ``sys.modules`` without importlib's machinery."""
     module, _, attr = name.partition(":")
-    return getattr(importlib.import_module(module), attr)
+    return getattr(sys.modules.get(module) or importlib.import_module(module), attr)
 
 
 #: the ``[cam]`` keys only a grooved cam takes
