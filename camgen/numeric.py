@@ -36,6 +36,14 @@ def maximise(func: ArrayFunc, a: float, b: float, *, n: int = 1025, rounds: int 
     return best_x, best_y
 
 
+def constant(value: float) -> np.ndarray:
+    """``value`` as a read-only 0-d float array: numpy takes one in arithmetic faster than a Python number (no
+    conversion), and a module's shared constant cannot be written into by a stray ``out=``."""
+    out = np.array(value, dtype=float)
+    out.setflags(write=False)
+    return out
+
+
 def left_of(x: float) -> float:
     """The float just below ``x``: evaluates a piecewise function's left-hand limit."""
     return float(np.nextafter(x, -np.inf))

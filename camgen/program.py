@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from camgen.laws import Law
-from camgen.numeric import TIE, drive, left_of, maxima_steps, present
+from camgen.numeric import TIE, constant, drive, left_of, maxima_steps, present
 
 Kind = Literal["rise", "dwell", "return"]
 _T = TypeVar("_T")
@@ -462,7 +462,7 @@ _H, _EVEN_ODD = 6, np.array([7, 8, 7, 8])
 #: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign)
 _RETURN = np.array([1.0, -1.0, 1.0, -1.0])
 #: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
-_ZERO, _ONE = np.array(0.0), np.array(1.0)
+_ZERO, _ONE = constant(0.0), constant(1.0)
 
 
 def _natural(h: np.ndarray, beta: np.ndarray) -> np.ndarray:
@@ -499,7 +499,7 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
         step = right[k] - left[k]
         least = scale[k]
         if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
-            found.append(_frozen(Jump, at_deg=round(math.degrees(theta), 9) % 360.0, order=k, jump=step,
+            found.append(_unchecked(Jump, at_deg=round(math.degrees(theta), 9) % 360.0, order=k, jump=step,
                                  inside=inside))
 
 
@@ -509,14 +509,14 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)
         dwell = kind == "dwell"
-        seg = _frozen(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
+        seg = _unchecked(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
                       law=None if dwell else law)
         segments.append(seg)
         start, level = start + beta, seg.end_level
     return Program(tuple(segments))
 
 
-def _frozen(cls: type[_T], **fields: Any) -> _T:
+def _unchecked(cls: type[_T], **fields: Any) -> _T:
     """An instance of the frozen dataclass ``cls`` (without ``__post_init__``) holding ``fields``, every one of them,
     made without its generated ``__init__`` (one checked attribute set at a time): a design makes many small ones."""
     out = object.__new__(cls)

@@ -29,6 +29,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from camgen.core.errors import SpecError
+from camgen.numeric import constant
 
 
 @dataclass(frozen=True)
@@ -154,13 +155,14 @@ def _times(k: Any, a: Any) -> Any:
 
 
 #: the factors :func:`_times` takes as 0-d arrays
-_FACTOR = {-1: np.array(-1.0), 2: np.array(2.0), -2: np.array(-2.0)}
+_FACTOR = {-1: constant(-1.0), 2: constant(2.0), -2: constant(-2.0)}
 #: the power of the speed in the curvature, a 0-d array (numpy's power of a float64 by 3: the same numbers)
-_THREE = np.array(3.0)
+_THREE = constant(3.0)
 
 
 def _less(a: Any, b: Any) -> Any:
-    """``a - b``: ``a`` itself when ``b`` is the number +0.0 (x - (+0.0) is x to the bit, -0.0 and NaN included)."""
+    """``a - b``: ``a`` itself when ``b`` is the number +0.0 (x - (+0.0) is x to the bit, -0.0 and NaN included).
+    ``b`` is such a number also where it is a product of 0-d arrays (numpy returns an ``np.float64``, a float)."""
     if isinstance(b, float) and b == 0.0 and math.copysign(1.0, b) > 0:
         return a
     return a - b

@@ -20,6 +20,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.followers.base import FollowerType, PitchGeometry, centre_path
+from camgen.numeric import constant
 
 
 @dataclass(frozen=True)
@@ -54,7 +55,7 @@ class TranslatingRoller:
     @functools.cached_property
     def _constants(self) -> tuple[np.ndarray, np.ndarray]:
         """The offset and :attr:`d0` as 0-d arrays (mm), made once: numpy takes them faster than Python numbers."""
-        return np.array(self.offset), np.array(self.d0)
+        return constant(self.offset), constant(self.d0)
 
     def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
         """Pitch geometry at cam angles ``theta`` (rad) for ``motion`` = s, s', s'', s''' (mm per rad^k)."""
@@ -64,7 +65,7 @@ class TranslatingRoller:
 
 
 #: the centre's x-velocity and x-acceleration and its direction's x (0-d: numpy takes it faster than a number)
-_ZERO = np.array(0.0)
+_ZERO = constant(0.0)
 
 
 def _offset_floor(table: Any, base_radius: float) -> float:
