@@ -92,3 +92,34 @@ def test_a_bore_as_wide_as_the_outline_is_refused_by_the_exact_check():
     for bore in (2 * reach, 2 * reach + 1e-9, 100.0):
         with pytest.raises(DesignError, match=r"^cam\.bore: .* leaves no material; the outline comes within "):
             design_cam(template({"cam.bore": bore}))
+
+
+def _outcome(overrides: dict) -> tuple:
+    """What a design of rdrd with ``overrides`` comes to: its error message, or its wall warnings and wall (mm)."""
+    try:
+        design = design_cam(template(overrides))
+    except DesignError as error:
+        return ("refused", str(error))
+    return ("made", tuple(w for w in design.warnings if "material" in w), design.wall_mm)
+
+
+@pytest.mark.parametrize("rotation", ["ccw", "cw"])
+@pytest.mark.parametrize("keyway", [False, True])
+def test_the_bounds_decide_as_the_exact_check_for_holes_touching_the_outline(monkeypatch, rotation, keyway):
+    """Bolt holes whose edge lies within 1e-3 to 1e-8 mm of the outline's nearest approach (its flattened dwell), on
+    it, or past the dwell's arc, with and without a keyed bore, in both senses: the design with its bounds and the
+    design forced to the exact check (shapely on the flattened outline) make the same cam, warnings and wall or
+    refuse it with the same message; and some are refused."""
+    reach = design_cam(template()).wall_mm + 5.0             # how near the outline comes to the centre (mm)
+    outcomes = []
+    for diameter in (2.0, 6.0):
+        for eps in (-1e-3, -1e-8, 0.0, 1e-8, 1e-3, 0.02):       # 0.02: past the dwell's arc, not only its chords
+            overrides = {"cam.rotation": rotation, "hub.keyway": keyway, "cam.bore": 10.0,
+                         "hub.bolt_circle": 2 * (reach - diameter / 2 + eps), "hub.bolt_holes": 12,
+                         "hub.bolt_hole_diameter": diameter}
+            bounded = _outcome(overrides)
+            with monkeypatch.context() as m:
+                m.setattr(camgen.design, "_certainly_clear", lambda *args: False)
+                assert _outcome(overrides) == bounded, overrides
+            outcomes.append(bounded[0])
+    assert "refused" in outcomes and "made" in outcomes
