@@ -139,10 +139,12 @@ class Cam:
         out = []
         ends, starts = self._boundaries
         left, right = ends.d1, starts.d1
+        # the cross product in Python floats (the same products and difference); the dot product stays numpy's: a
+        # stack of (1, 2) @ (2, 1) products runs, row by row, the dot left[i] @ right[i] runs (its own rounding, not
+        # a*b + c*d), in one call
+        dots = (left[:, None, :] @ right[:, :, None]).ravel().tolist()
         for i, ((lx, ly), (rx, ry)) in enumerate(zip(left.tolist(), right.tolist(), strict=True)):
-            # the cross product in Python floats (the same products and difference); the dot product stays numpy's
-            # (its BLAS dot's own rounding)
-            turn = math.atan2(lx * ry - ly * rx, float(left[i] @ right[i]))
+            turn = math.atan2(lx * ry - ly * rx, dots[i])
             if abs(turn) > 1e-9:
                 out.append((i, -self.follower.sense * turn))
         return tuple(out)

@@ -131,7 +131,10 @@ def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair,
     kappa = _times(-sense, tx * ay - ty * ax) / speed**_THREE
     nx = np.divide(_times(-sense, ty), speed, out=x[3])                # sense J t / |t|
     ny = np.divide(_times(sense, tx), speed, out=y[3])
-    pressure = _times(sense, np.arctan2(dx * ny - _times(dy, nx), dx * nx + _times(dy, ny)))
+    # atan2's x where dx is the constant ZERO (a translating follower): dy ny itself; 0 nx + dy ny differs from it only
+    # in a zero's sign, which atan2 reads only where its y is zero too, never for a unit normal
+    along = _times(dy, ny) if dx is ZERO else dx * nx + _times(dy, ny)
+    pressure = _times(sense, np.arctan2(dx * ny - _times(dy, nx), along))
     turned = np.empty((4, c.shape[0], 2))                               # all four turned into the cam's frame at once
     across = c * x
     across -= s * y
@@ -156,6 +159,9 @@ def _times(k: Any, a: Any) -> Any:
 
 #: the factors :func:`_times` takes as 0-d arrays
 _FACTOR = {-1: constant(-1.0), 2: constant(2.0), -2: constant(-2.0)}
+#: a constant component 0 (a translating follower's fixed x-velocity and direction x), a 0-d array: numpy takes
+#: it faster than a number, and :func:`centre_path` knows it by identity
+ZERO = constant(0.0)
 #: the power of the speed in the curvature, a 0-d array (numpy's power of a float64 by 3: the same numbers)
 _THREE = constant(3.0)
 

@@ -19,7 +19,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.followers.base import FollowerType, PitchGeometry, centre_path
+from camgen.followers.base import ZERO, FollowerType, PitchGeometry, centre_path
 from camgen.numeric import constant
 
 
@@ -61,11 +61,7 @@ class TranslatingRoller:
         """Pitch geometry at cam angles ``theta`` (rad) for ``motion`` = s, s', s'', s''' (mm per rad^k)."""
         s, s1, s2 = motion[0], motion[1], motion[2]
         offset, d0 = self._constants
-        return centre_path(theta, (offset, d0 + s), (_ZERO, s1), (_ZERO, s2), (_ZERO, 1.0), self.sense)
-
-
-#: the centre's x-velocity and x-acceleration and its direction's x (0-d: numpy takes it faster than a number)
-_ZERO = constant(0.0)
+        return centre_path(theta, (offset, d0 + s), (ZERO, s1), (ZERO, s2), (ZERO, 1.0), self.sense)
 
 
 def _offset_floor(table: Any, base_radius: float) -> float:
