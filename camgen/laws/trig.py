@@ -11,11 +11,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.laws.base import Law, as_array, blank, rows as _rows
+from camgen.numeric import constant
 
 TWO_PI = 2 * np.pi
+#: the laws' factors as read-only 0-d arrays, which numpy takes faster than Python numbers (the same float64 values)
+_ONE, _TWO, _PI, _TWO_PI = constant(1.0), constant(2.0), constant(np.pi), constant(TWO_PI)
+_HALF_PI, _HALF_PI2, _HALF_PI3 = constant(np.pi / 2), constant(np.pi**2 / 2), constant(-(np.pi**3) / 2)
+_FOUR_PI2 = constant(4 * np.pi**2)
 
 
-def _sin_cos(u: ArrayLike, k: float, sin_row: int, cos_row: int) -> tuple[np.ndarray, np.ndarray, tuple, Any, Any]:
+def _sin_cos(u: ArrayLike, k: Any, sin_row: int, cos_row: int) -> tuple[np.ndarray, np.ndarray, tuple, Any, Any]:
     """``u`` as an array, an empty array for f and its derivatives (4, *u.shape) and its rows (see :func:`blank`),
     and sin(k u) and cos(k u) made in the rows ``sin_row`` and ``cos_row``."""
     u = as_array(u)
@@ -34,12 +39,12 @@ class Harmonic(Law):
     PARAMETERLESS = True
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
-        u, out, (f, _, _, f3), s, c = _sin_cos(u, np.pi, 1, 2)
-        np.multiply(-(np.pi**3) / 2, s, out=f3)
-        np.subtract(1, c, out=f)
-        f /= 2
-        s *= np.pi / 2
-        c *= np.pi**2 / 2
+        u, out, (f, _, _, f3), s, c = _sin_cos(u, _PI, 1, 2)
+        np.multiply(_HALF_PI3, s, out=f3)
+        np.subtract(_ONE, c, out=f)                 # before c is scaled
+        s *= _HALF_PI
+        c *= _HALF_PI2
+        f /= _TWO
         return out
 
 
@@ -53,11 +58,11 @@ class Cycloidal(Law):
     PARAMETERLESS = True
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
-        u, out, (f, f1, _, _), s, c = _sin_cos(u, TWO_PI, 2, 3)
-        np.subtract(u, s / TWO_PI, out=f)
-        np.subtract(1, c, out=f1)
-        s *= TWO_PI
-        c *= 4 * np.pi**2
+        u, out, (f, f1, _, _), s, c = _sin_cos(u, _TWO_PI, 2, 3)
+        np.subtract(u, s / _TWO_PI, out=f)
+        np.subtract(_ONE, c, out=f1)
+        s *= _TWO_PI
+        c *= _FOUR_PI2
         return out
 
 
