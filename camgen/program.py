@@ -495,12 +495,14 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
              inside: bool) -> None:
     """Add to ``found`` every jump of s', s'', s''' from ``left`` to ``right`` (s, s', s'', s''') at cam angle
     ``theta`` (radians) larger than :data:`JUMP_TOL` of its ``scale`` (h/beta^k, k = 0..3)."""
+    at = None                                       # the angle in degrees, made at the first jump found here
     for k in (1, 2, 3):
         step = right[k] - left[k]
         least = scale[k]
         if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
-            found.append(_unchecked(Jump, at_deg=round(math.degrees(theta), 9) % 360.0, order=k, jump=step,
-                                 inside=inside))
+            if at is None:
+                at = round(math.degrees(theta), 9) % 360.0
+            found.append(_unchecked(Jump, at_deg=at, order=k, jump=step, inside=inside))
 
 
 def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program:
