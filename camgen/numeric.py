@@ -94,11 +94,12 @@ def _coefficients(windows: np.ndarray) -> list[list[float]]:
 def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) -> float | None:
     """Where the quartic of coefficients a1..a4 (of t..t^4) peaks within [lo, hi], by three Newton steps on its
     slope from the parabola's vertex; None where it has no maximum there (a step dividing by zero has none)."""
-    twice, thrice, six = 2 * a2, 3 * a3, 6 * a3               # the same numbers each step: made once
+    twice, thrice, six = 2 * a2, 3 * a3, 6 * a3               # the same numbers each step: made once; t * 4 * a4
+    four = 4 * a4                                             # is t * four to the bit (4 scales exactly)
     try:
         t = -a1 / twice
-        for _ in range(3):
-            t = t - (a1 + t * (twice + t * (thrice + t * 4 * a4))) / (twice + t * (six + t * 12 * a4))
+        for _ in (0, 1, 2):
+            t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
     except ZeroDivisionError:                                 # t would be infinite or NaN: no maximum within
         return None
     return t if twice + t * (six + t * 12 * a4) < 0 and lo <= t <= hi else None   # False where t is NaN
