@@ -53,12 +53,6 @@ def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
     return g.point - rr * g.normal
 
 
-def _pairs(v: np.ndarray) -> np.ndarray:
-    """The sums over the last axis of ``v`` (..., 2) as ``v.sum(axis=-1)`` makes them (from 0.0, so that two -0.0
-    sum to 0.0; the same numbers, signed zeros included), without its reduction machinery."""
-    return (0.0 + v[..., 0]) + v[..., 1]
-
-
 def _length(v: np.ndarray) -> np.ndarray:
     """The lengths of the 2-vectors along the last axis of ``v`` (mm): np.linalg.norm's sum of squares and root over
     that axis (the same numbers), without its dispatch."""
@@ -92,19 +86,21 @@ def _between(start: np.ndarray, end: np.ndarray, count: int) -> np.ndarray:
 def _probed(a: np.ndarray, b: np.ndarray, g: PitchGeometry, rr: float,
             count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The exact surface (``rr`` mm inside the pitch curve) at ``count`` probes inside each span from the vertex
-    ``a`` (spans, 2) to the vertex ``b`` (mm; ``g`` at :func:`_between`'s angles): the probes (count, spans, 2);
-    per span the largest gap between neighbouring points (the span's ends included, mm); and the signed curvature
-    of the surface at each probe (count, spans; 1/mm, +inf where it has none), whose least and greatest over a
-    span bound what the probes can miss: a curve parts from a line or an arc between two probes by at most
-    gap^2 |curvature difference| / 8."""
+    ``a`` (spans, 2) to the vertex ``b`` (mm; ``g`` at :func:`_between`'s angles): the probes as x and y planes
+    (2, count, spans); per span the largest gap between neighbouring points (the span's ends included, mm); and the
+    signed curvature of the surface at each probe (count, spans; 1/mm, +inf where it has none), whose least and
+    greatest over a span bound what the probes can miss: a curve parts from a line or an arc between two probes by
+    at most gap^2 |curvature difference| / 8. Planes, not (..., 2) points: numpy loops over (2,) rows slowly, and an
+    x and a y op are one call."""
     spans = len(a)
-    chain = np.empty((count + 2, spans, 2))             # a, the probes, b
-    chain[0], chain[-1] = a, b
-    x = chain[1:-1]
-    np.subtract(g.point, rr * g.normal, out=x.reshape(count * spans, 2))       # _surface, in place
-    step = chain[1:] - chain[:-1]
+    chain = np.empty((2, count + 2, spans))             # x then y: a, the probes, b
+    chain[:, 0], chain[:, -1] = a.T, b.T
+    x = chain[:, 1:-1]
+    np.multiply(g.normal.T.reshape(2, count, spans), rr, out=x)
+    np.subtract(g.point.T.reshape(2, count, spans), x, out=x)                 # _surface, in place
+    step = chain[:, 1:] - chain[:, :-1]
     step *= step
-    gap = np.sqrt((step[..., 0] + step[..., 1]).max(axis=0))      # the root of the largest: the largest root
+    gap = np.sqrt((step[0] + step[1]).max(axis=0))      # the root of the largest: the largest root
     with np.errstate(divide="ignore", invalid="ignore"):
         bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(count, spans)
     return x, gap, np.where(np.isfinite(bend), bend, np.inf)
@@ -127,14 +123,19 @@ def _apart(low: np.ndarray, high: np.ndarray, arc: np.ndarray) -> np.ndarray:
 def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: float) -> np.ndarray:
     """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from each chord from
     ``start`` (spans, 2) to ``end`` (spans, 2): the largest measured at its probes ``g`` (at :func:`_between`'s
-    angles), plus what the surface's curvature lets it stray between two probes."""
+    angles), plus what the surface's curvature lets it stray between two probes. Worked in x and y planes (see
+    :func:`_probed`); a sum of squares as numpy's sum along the last axis makes it (no -0.0 to start from)."""
     x, gap, bend = _probed(start, end, g, rr, _PROBES)
-    ab = end - start
-    length2 = _pairs(ab**2)
-    t = np.minimum(np.maximum(_pairs((x - start) * ab) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
-    off = start + t[..., None] * ab - x                 # from each probe to its nearest point of the chord
+    a = start.T[:, None]                                # (2, 1, spans)
+    ab = end.T[:, None] - a
+    square = ab * ab
+    length2 = square[0] + square[1]
+    along = x - a
+    along *= ab
+    t = np.minimum(np.maximum((along[0] + along[1]) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
+    off = a + t * ab - x                                # from each probe to its nearest point of the chord
     off *= off
-    return np.sqrt(_pairs(off).max(axis=0)) + gap**2 * np.abs(bend).max(axis=0) / 8
+    return np.sqrt((off[0] + off[1]).max(axis=0)) + gap**2 * np.abs(bend).max(axis=0) / 8
 
 
 #: the points of the grid on which a stretch is measured for its spacing
@@ -280,7 +281,7 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
         probes, gap, bend = _probed(p0, p1, inner, rr, _BIARC_PROBES)
         low, high = bend.min(axis=0), bend.max(axis=0)
-        x = np.ascontiguousarray(probes.transpose(1, 0, 2))      # span by span (spans, count, 2), as measured
+        x = np.ascontiguousarray(probes.transpose(2, 1, 0))      # span by span (spans, count, 2), as measured
         apart = np.max([_apart(low, high, k) for k in (_arc_curvature(p0, junction, b1),
                                                        _arc_curvature(junction, p1, b2))], axis=0)
         err = np.minimum(arc_distance(x, p0, junction, b1), arc_distance(x, junction, p1, b2)).max(axis=1)

@@ -353,21 +353,6 @@ def test_a_hole_touching_the_outline_exactly_is_refused_and_one_1e9_mm_inside_is
                 _check_holes(spec, body, 0.01)
 
 
-def test_pairs_sum_as_numpy_sums_the_last_axis():
-    from camgen.outline import _pairs
-
-    rng = np.random.default_rng(16)
-    for _ in range(200):
-        shape = (int(rng.integers(1, 50)), int(rng.integers(1, 10)), 2)
-        v = rng.normal(size=shape) * rng.choice([1.0, 1e-300, 1e300])
-        odd = rng.random(shape) < 0.2
-        v[odd] = rng.choice([0.0, -0.0, np.inf, -np.inf, np.nan], size=int(odd.sum()))
-        with np.errstate(invalid="ignore", over="ignore"):
-            want, got = v.sum(axis=-1), _pairs(v)
-        assert np.array_equal(np.isnan(want), np.isnan(got))
-        assert _same(np.where(np.isnan(want), 0.0, want), np.where(np.isnan(got), 0.0, got))
-
-
 def _chord_errors_span_by_span(start, end, surface, kappa, rr, count):
     """The chord errors as measured before they were made probe by probe (issue 16): probes (spans, count, 2)
     span by span, np.linalg.norm's lengths, reductions along each span's row, the root before the maximum."""
