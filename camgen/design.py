@@ -1,6 +1,7 @@
 """A cam design from a spec: the cam, its checks, its outline and its part. No I/O."""
 from __future__ import annotations
 
+import contextvars
 import dataclasses
 import functools
 import itertools
@@ -221,14 +222,15 @@ def _check_bore(spec: CamSpec, body: Any, reach: float) -> None:
 def _tentative(maker: Maker) -> Maker:
     """``maker`` run on the chance that its result is needed: an error it raises is returned instead, for the caller
     to raise where it uses the result; numpy's floating-point warnings are silenced in its steps (a cam with an
-    undercut, whose exact outline is not used, may divide by zero in it)."""
+    undercut, whose exact outline is not used, may divide by zero in it). Its steps run in a copy of the caller's
+    context in which the warnings are silenced once (np.errstate sets a context variable), not each step."""
+    quiet = contextvars.copy_context()
+    quiet.run(np.errstate(all="ignore").__enter__)      # left so: the context is this maker's own
     try:
-        with np.errstate(all="ignore"):
-            ask = next(maker)
+        ask = quiet.run(next, maker)
         while True:
             got = yield ask
-            with np.errstate(all="ignore"):
-                ask = maker.send(got)
+            ask = quiet.run(maker.send, got)
     except StopIteration as done:
         return done.value
     except Exception as error:          # any: raised by the caller where the outline is used

@@ -22,6 +22,7 @@ from camgen.biarcs import arc_distance, biarcs
 from camgen.cam import Cam, Maker, together
 from camgen.core.errors import DesignError
 from camgen.followers.base import PitchGeometry
+from camgen.numeric import constant
 from camgen.core.shapes import Contour, arc_steps, reversed_pieces
 from camgen.surface import surface_deviation
 
@@ -88,10 +89,10 @@ def _probed(a: np.ndarray, b: np.ndarray, g: PitchGeometry, rr: float,
     """The exact surface (``rr`` mm inside the pitch curve) at ``count`` probes inside each span from the vertex
     ``a`` (spans, 2) to the vertex ``b`` (mm; ``g`` at :func:`_between`'s angles): the probes as x and y planes
     (2, count, spans); per span the largest gap between neighbouring points (the span's ends included, mm); and the
-    signed curvature of the surface at each probe (count, spans; 1/mm, +inf where it has none), whose least and
-    greatest over a span bound what the probes can miss: a curve parts from a line or an arc between two probes by
-    at most gap^2 |curvature difference| / 8. Planes, not (..., 2) points: numpy loops over (2,) rows slowly, and an
-    x and a y op are one call."""
+    signed curvature of the surface at each probe (count, spans; 1/mm, infinite or NaN where it has none), whose
+    least and greatest over a span bound what the probes can miss: a curve parts from a line or an arc between two
+    probes by at most gap^2 |curvature difference| / 8. Planes, not (..., 2) points: an x and a y step are one
+    numpy call."""
     spans = len(a)
     chain = np.empty((2, count + 2, spans))             # x then y: a, the probes, b
     chain[:, 0], chain[:, -1] = a.T, b.T
@@ -102,8 +103,7 @@ def _probed(a: np.ndarray, b: np.ndarray, g: PitchGeometry, rr: float,
     step *= step
     gap = np.sqrt((step[0] + step[1]).max(axis=0))      # the root of the largest: the largest root
     with np.errstate(divide="ignore", invalid="ignore"):
-        bend = (g.kappa / (1.0 - rr * g.kappa)).reshape(count, spans)
-    return x, gap, np.where(np.isfinite(bend), bend, np.inf)
+        return x, gap, (g.kappa / (1.0 - rr * g.kappa)).reshape(count, spans)
 
 
 def _arc_curvature(start: np.ndarray, end: np.ndarray, bulge: np.ndarray) -> np.ndarray:
@@ -123,8 +123,9 @@ def _apart(low: np.ndarray, high: np.ndarray, arc: np.ndarray) -> np.ndarray:
 def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: float) -> np.ndarray:
     """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from each chord from
     ``start`` (spans, 2) to ``end`` (spans, 2): the largest measured at its probes ``g`` (at :func:`_between`'s
-    angles), plus what the surface's curvature lets it stray between two probes. Worked in x and y planes (see
-    :func:`_probed`); a sum of squares as numpy's sum along the last axis makes it (no -0.0 to start from)."""
+    angles), plus what the surface's curvature lets it stray between two probes (infinite where it has none).
+    Worked in x and y planes (see :func:`_probed`); a sum of squares as numpy's sum along the last axis makes it
+    (a square is never -0.0: no 0.0 to start from)."""
     x, gap, bend = _probed(start, end, g, rr, _PROBES)
     a = start.T[:, None]                                # (2, 1, spans)
     ab = end.T[:, None] - a
@@ -132,10 +133,16 @@ def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: floa
     length2 = square[0] + square[1]
     along = x - a
     along *= ab
-    t = np.minimum(np.maximum((along[0] + along[1]) / np.where(length2 > 0, length2, 1.0), 0.0), 1.0)
+    # a span of no length divides by 1 (its probes measured from its start): length2 + (length2 == 0)
+    t = np.minimum(np.maximum((along[0] + along[1]) / (length2 + (length2 == 0)), _ZERO), _ONE)
     off = a + t * ab - x                                # from each probe to its nearest point of the chord
     off *= off
-    return np.sqrt((off[0] + off[1]).max(axis=0)) + gap**2 * np.abs(bend).max(axis=0) / 8
+    # np.fmin takes the number where the other is NaN: a NaN curvature's bound is infinite
+    return np.sqrt((off[0] + off[1]).max(axis=0)) + gap**2 * np.fmin(np.abs(bend).max(axis=0), _INF) / _EIGHT
+
+
+#: 0-d constants (numpy takes them without converting a Python number)
+_ZERO, _ONE, _EIGHT, _INF = constant(0.0), constant(1.0), constant(8.0), constant(math.inf)
 
 
 #: the points of the grid on which a stretch is measured for its spacing
@@ -280,6 +287,7 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
         p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
         probes, gap, bend = _probed(p0, p1, inner, rr, _BIARC_PROBES)
+        bend = np.where(np.isfinite(bend), bend, np.inf)
         low, high = bend.min(axis=0), bend.max(axis=0)
         x = np.ascontiguousarray(probes.transpose(2, 1, 0))      # span by span (spans, count, 2), as measured
         apart = np.max([_apart(low, high, k) for k in (_arc_curvature(p0, junction, b1),

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import copy
 import dataclasses
+import warnings
 from typing import Any
 
 import numpy as np
@@ -222,8 +223,11 @@ def test_a_designs_tentative_outline_raises_only_where_it_is_used(monkeypatch):
 
     monkeypatch.undo()
     monkeypatch.setattr(camgen.outline, "_chords", broken)
-    with pytest.raises(ValueError, match="the exact outline was made"):
+    before = np.geterr()
+    with warnings.catch_warnings(), pytest.raises(ValueError, match="the exact outline was made"):
+        warnings.simplefilter("error")                  # its warning silenced in its own steps
         design_cam(spec)
+    assert np.geterr() == before                        # and the caller's state as it was
     again = design_cam(validate_spec(allowed))          # the envelope's design: the failed outline unseen
     assert _same(again.outline.contour.vertices, envelope.outline.contour.vertices)
 
@@ -386,3 +390,28 @@ def test_chord_errors_probe_by_probe_are_those_measured_span_by_span(follower):
     order = np.arange(inner.theta.size).reshape(_PROBES, -1).T.ravel()          # the same probes span by span
     want = _chord_errors_span_by_span(at[:-1], at[1:], _surface(inner, rr)[order], inner.kappa[order], rr, _PROBES)
     assert _same(_chord_errors(at[:-1], at[1:], inner, rr), want)
+
+
+def test_chord_errors_where_the_surface_has_no_curvature_are_those_measured_span_by_span():
+    from camgen.outline import _PROBES, _between, _chord_errors, _surface
+
+    cam = _cam(FOLLOWERS["offset roller"])
+    rr = cam.contact_radius
+    seg = cam.program.segments[0]
+    theta = np.linspace(seg.start, seg.end, 40)
+    theta[5] = theta[4]                                     # a span of no length
+    ends = cam.segment_pitch(0, theta)
+    inner = cam.segment_pitch(0, _between(theta[:-1], theta[1:], _PROBES))
+    kappa = inner.kappa.copy()
+    spans = len(theta) - 1
+    for probe, span, value in ((0, 3, np.nan), (2, 6, np.nan), (1, 7, np.inf), (3, 9, -np.inf), (0, 11, 1.0 / rr),
+                               (1, 11, np.nan), (2, 13, 0.0), (3, 13, -0.0)):
+        kappa[probe * spans + span] = value                 # no curvature, infinite, the roller's own (1 - rr k = 0)
+    odd = dataclasses.replace(inner, kappa=kappa)
+    at = _surface(ends, rr)
+    order = np.arange(inner.theta.size).reshape(_PROBES, -1).T.ravel()
+    with np.errstate(invalid="ignore"):
+        want = _chord_errors_span_by_span(at[:-1], at[1:], _surface(odd, rr)[order], kappa[order], rr, _PROBES)
+        got = _chord_errors(at[:-1], at[1:], odd, rr)
+    assert np.isinf(want[[3, 6, 7, 9, 11]]).all()
+    assert _same(got, want)
