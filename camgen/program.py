@@ -349,8 +349,7 @@ class _Table:
     gather gives each point its own: its start and angle (radians), the sign and offset that turn u into the law's
     variable (-1 and 1 on a return, whose law runs backwards; 1 and 0 elsewhere), 1 on a dwell (or a segment
     without a law) and 0 elsewhere, the level added to s (mm) and the four factors of :meth:`Segment._from_law` (0
-    on a dwell). ``start``, ``beta``, ``level`` (m,) and ``factor`` (4, m) are its rows by name, ``backwards`` (m,)
-    where the law runs backwards, ``scales`` every segment's :attr:`Segment.scales`."""
+    on a dwell); ``scales`` is every segment's :attr:`Segment.scales`."""
 
     def __init__(self, segments: tuple[Segment, ...]) -> None:
         values: list[float] = []
@@ -372,8 +371,6 @@ class _Table:
         # the factors: natural scales times 1 (a rise), +-1 (a return's even and odd orders) or 0 (a dwell): exact
         np.multiply(natural.T, made.take(_EVEN_ODD, axis=0), out=rows[_FACTORS])
         self.rows = rows
-        self.start, self.beta, self.level, self.factor = rows[_START], rows[_BETA], rows[_LEVEL], rows[_FACTORS]
-        self.backwards = rows[_SIGN] < 0
         self.laws = laws
         #: each law but a dwell's, with the segments it evaluates (m,) bool when there are more (one evaluates all)
         moving = [(law, k) for k, law in enumerate(laws) if law is not None]
