@@ -202,18 +202,23 @@ class _Peak:
         self.f, self.piece, self.at, self.value, self.centre, self.breadth = f, piece, at, value, centre, breadth
 
 
-def _estimates(y: np.ndarray, found: list[tuple[int, int, float]], moving: list[int], lo: list[float],
-               hi: list[float], width: list[float], n: int) -> list[_Peak]:
-    """The peaks ``found`` on the grid rows ``y`` (a row for each function on each piece of ``moving``), each
-    placed by the quartic through the five grid values about it (within a grid step of its grid point) and given its
-    breadth."""
-    count = len(moving)
+def _windows(y: np.ndarray, found: list[tuple[int, int, float]], n: int) -> tuple[list[int], np.ndarray]:
+    """The grid index about which each peak ``found`` on the grid rows ``y`` is placed (its own, kept two points from
+    the row's ends) and the five grid values there (m, 5)."""
     centres = [min(max(j, 2), n - 3) for _, j, _ in found]
     windows = y.take([r * n + c + o for (r, _, _), c in zip(found, centres, strict=True) for o in _AROUND])
+    return centres, windows.reshape(-1, 5)
+
+
+def _estimates(candidates: list[tuple[tuple[int, int, float], int, list[float]]], moving: list[int], lo: list[float],
+               hi: list[float], width: list[float], n: int) -> list[_Peak]:
+    """The ``candidates`` (a peak found on the grid rows, a row for each function on each piece of ``moving``; the
+    grid index of its window's centre; the coefficients of the quartic through the window's five values, see
+    :func:`_windows`), each placed by its quartic (within a grid step of its grid point) and given its breadth."""
+    count = len(moving)
     unit = _unit(n)[1]
     out = []
-    for (r, j, value), c, (a1, a2, a3, a4) in zip(found, centres, _coefficients(windows.reshape(-1, 5)),
-                                                  strict=True):
+    for (r, j, value), c, (a1, a2, a3, a4) in candidates:
         piece = moving[r % count]
         low, size = lo[piece], width[piece]
         step = size / (n - 1)
@@ -224,21 +229,54 @@ def _estimates(y: np.ndarray, found: list[tuple[int, int, float]], moving: list[
     return out
 
 
-def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[float]) -> Generator[
-        tuple[np.ndarray, np.ndarray], np.ndarray, None]:
+def _hopeless(found: list[tuple[int, int, float]], lows: list[float], top: list[float], held: list[list[float]],
+              ties: list[float]) -> set[int]:
+    """The grid rows (a function on a moving piece; ``top`` their largest grid values, ``held`` each function's values
+    on the steady pieces) whose largest cannot come within ``3 tie`` (each function's ``ties``) of their function's
+    largest over all pieces, so that no search of them can change which piece has it; only rows with peaks
+    ``found`` (a row without has its ends, a few comparisons). A row reaches no higher than its largest grid value
+    and its peaks, and a peak rises above its grid value less than the grid falls within two steps of it (``lows``,
+    the least of its five grid values about it: for a parabola sampled at step h, a rise of at most a h^2 / 4
+    against a fall of at least 9 a h^2 / 4); a function's largest is at least its largest grid value less a tie (a
+    row constant within the tie has no peak). The slack of 3 ties: a piece's maximum is the first of its values
+    within a tie of its largest, and a row's maximum over the pieces the first within a tie of theirs."""
+    count = len(top) // len(ties)
+    floors = [max(top[f * count:(f + 1) * count] + held[f]) - 3 * tie for f, tie in enumerate(ties)]
+    below, above = set(), set()
+    for (r, _, v), low in zip(found, lows, strict=True):
+        (below if max(top[r], v + (v - low)) < floors[r // count] else above).add(r)
+    return below - above
+
+
+def _stencil(peak: _Peak, lo: list[float], hi: list[float], width: list[float]) -> float:
+    """The spacing of ``peak``'s next stencil: ``STENCIL`` of its breadth, within half its distance to its piece's
+    nearer end; 0.0 where it is at an end already (within 1e-12 of its piece: the grid's point stands)."""
+    c, left, right = peak.centre, lo[peak.piece], hi[peak.piece]
+    d = min(STENCIL * peak.breadth, 0.5 * min(c - left, right - c))
+    return d if d > 1e-12 * width[peak.piece] else 0.0
+
+
+def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[float],
+             spare: Callable[[], list[_Peak]] | None = None) -> Generator[
+        tuple[np.ndarray, np.ndarray], np.ndarray, bool]:
     """Locate the ``peaks`` (in place): each round asks five points ``STENCIL`` of a peak's breadth apart about its
     estimate and takes the quartic through its values there (or the best of them where the quartic has no maximum
-    within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds."""
+    within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds. True when done.
+
+    ``spare`` gives the estimates of the peaks left out (see :func:`_hopeless`), located with them in the full
+    search: a round's quartics are one matrix product, whose rounding differs between one row and several, so a
+    round of one stencil rounds as several where the full search's round had theirs too. That is known in the first
+    round (from their estimates); in a later one it is not, and the search gives up (False) to be run in full."""
     active = peaks
-    for _ in range(ROUNDS):
-        stencils = []
-        for peak in active:
-            c, left, right = peak.centre, lo[peak.piece], hi[peak.piece]
-            d = min(STENCIL * peak.breadth, 0.5 * min(c - left, right - c))
-            if d > 1e-12 * width[peak.piece]:                # at an end already: the grid's point stands
-                stencils.append((peak, c, d))
+    for first in (True, *[False] * (ROUNDS - 1)):
+        stencils = [(peak, peak.centre, d) for peak in active if (d := _stencil(peak, lo, hi, width))]
         if not stencils:
-            return
+            return True
+        several = False
+        if len(stencils) == 1 and spare is not None:
+            if not first:
+                return False
+            several = any(_stencil(peak, lo, hi, width) for peak in spare())
         points = [(c + d * -2.0, c + d * -1.0, c + d * 0.0, c + d * 1.0, c + d * 2.0) for _, c, d in stencils]
         got = yield (np.array(points).ravel(), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))
         values = got.tolist()
@@ -246,8 +284,8 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
         if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
             raise FloatingPointError("function is not finite near a peak")
         active = []
-        for (peak, c, d), row, xs, (a1, a2, a3, a4) in zip(stencils, ys, points, _coefficients(np.array(ys)),
-                                                           strict=True):
+        coefficients = _coefficients(np.array(ys * 2 if several else ys))[:len(ys)]
+        for (peak, c, d), row, xs, (a1, a2, a3, a4) in zip(stencils, ys, points, coefficients, strict=True):
             t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
             high = max(row)
             if t is None:
@@ -262,6 +300,7 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
                 if abs(t) > 0.5:                                 # else the peak is well inside: its quartic's is exact
                     active.append(peak)
             peak.centre = moved
+    return True
 
 
 def _first_largest(candidates: list[tuple[float, float]], tie: float, backwards: bool) -> tuple[float, float]:
@@ -285,7 +324,7 @@ def _end_of(lo: float, first: float, hi: float, last: float, tie: float, backwar
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
-                 steady: ArrayLike = False, n: int = GRID) -> Steps:
+                 steady: ArrayLike = False, n: int = GRID, overall: bool = False) -> Steps:
     """Global maxima of k smooth functions on each of p closed intervals, all at once, as a generator: it yields
     ``(x, piece)`` and is sent the functions' values there (see below), so that a caller can evaluate what it asks
     together with other work (one evaluation serving several searches).
@@ -306,6 +345,9 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     where ``reverse``, (p,) or one for all, is True). A piece where ``steady`` ((p,) or one for all) is True is one
     on which the caller knows every function to be constant to the last bit: its grid is asked for its first point
     only, whose values stand for the rest (the same search as if all were asked: such a piece has no peak).
+    With ``overall`` only each function's largest over all pieces is wanted (the pieces within ``TIE`` of it):
+    a moving piece that cannot come within 3 ties of it on its grid values (see :func:`_hopeless`) is not refined,
+    its x NaN and its value -inf; the other pieces' results are the full search's to the bit.
     Raises FloatingPointError where a value is not finite on the grid or near a peak.
     """
     if n < 5:
@@ -331,13 +373,28 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     magnitude = [max(s, v) for s, v in zip(scales, largest, strict=True)]
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
-    peaks = _estimates(y, _grid_candidates(y, flat), moving, lo, hi, width, n) if count else []
-    if peaks:
-        yield from _refined(peaks, lo, hi, width)
-    found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}
+    ends = y[:, ::n - 1].tolist()                            # each row's first and last
+    found = _grid_candidates(y, flat) if count else []
+    found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks, [] unsearched
+    peaks = []
+    if found:
+        centres, windows = _windows(y, found, n)
+        candidates = list(zip(found, centres, _coefficients(windows), strict=True))   # the full search's batch
+        hopeless = _hopeless(found, np.minimum.reduce(windows, axis=1).tolist(), top, held,
+                             [TIE * m for m in magnitude]) if overall else ()
+        kept = [one for one in candidates if one[0][0] not in hopeless] if hopeless else candidates
+        peaks = _estimates(kept, moving, lo, hi, width, n)
+        if hopeless:
+            spare = [one for one in candidates if one[0][0] in hopeless]
+            if (yield from _refined(peaks, lo, hi, width, lambda: _estimates(spare, moving, lo, hi, width, n))):
+                found_on.update(((r // count, moving[r % count]), []) for r in hopeless)
+            else:                                            # the full search, from its estimates
+                peaks = _estimates(candidates, moving, lo, hi, width, n)
+                yield from _refined(peaks, lo, hi, width)
+        else:
+            yield from _refined(peaks, lo, hi, width)
     for peak in peaks:
         found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
-    ends = y[:, ::n - 1].tolist()                            # each row's first and last
     backwards = _flags(reverse, p)
     order = moving + [i for i, s in enumerate(still) if s]   # the pieces in the order of each function's ends
     at: list[list[float]] = [[0.0] * p for _ in range(k)]
@@ -349,7 +406,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
             here = found_on.get((f, piece))
             at[f][piece], value[f][piece] = (
                 _end_of(lo[piece], first, hi[piece], last, tie, backwards[piece]) if here is None
-                else _first_largest([(lo[piece], first), (hi[piece], last), *here], tie, backwards[piece]))
+                else _first_largest([(lo[piece], first), (hi[piece], last), *here], tie, backwards[piece]) if here
+                else (math.nan, -math.inf))
     return at, value, magnitude
 
 

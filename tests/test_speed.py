@@ -223,6 +223,57 @@ def test_values_not_finite_are_refused():
         piecewise_maxima(func, [0.0], [1.0])
 
 
+def _winners(found: tuple[list[list[float]], list[list[float]], list[float]]) -> list[list[str]]:
+    """Each function's pieces within the tie of its largest (as Program.maxima_steps takes them), their place and
+    value to the bit."""
+    at, value, magnitude = found
+    out = []
+    for xs, vs, size in zip(at, value, magnitude, strict=True):
+        limit = max(vs) - numeric.TIE * size
+        out.append([repr((i, x, v)) for i, (x, v) in enumerate(zip(xs, vs, strict=True)) if v >= limit])
+    return out
+
+
+def _bell(x, centre, breadth):
+    return np.exp(-((x - centre) / breadth) ** 2)
+
+
+@pytest.mark.parametrize(("func", "pieces", "path"), [
+    # broad peaks, one piece far above: its one stencil rounded as the full search's several (padding)
+    (lambda x, p: (np.sin(3 * x + p) * (1 + 0.3 * (p == 1)))[None], 3, "padded"),
+    # a narrow peak refined in a second round alone while the full search's batch is unknown: run in full
+    (lambda x, p: np.stack([np.sin(5 * x + p), np.cos(4 * x) * (p + 1) + _bell(x, 0.77, 0.003)]), 4, "full"),
+    # equal peaks on every piece: none left out; a steady piece; a piece running backwards
+    (lambda x, p: np.stack([np.sin(np.pi * x) + 0 * p, np.where(p == 2, 0.7, np.sin(2 * x + p))]), 4, "none"),
+])
+def test_an_overall_search_finds_what_the_full_one_does(monkeypatch, func, pieces, path):
+    """Program.maxima_steps wants each function's largest over all pieces only: the search leaves out the pieces
+    that cannot come within the tie of it (overall=True), and finds the same pieces within the tie, places and values
+    to the bit as the full search, the left-out pieces' values -inf; also where a round of the kept peaks has one
+    stencil (a matrix product of one row rounds apart from several)."""
+    taken = []
+    refined = numeric._refined
+
+    def watched(peaks, lo, hi, width, spare=None):
+        if spare is None:
+            return (yield from refined(peaks, lo, hi, width))
+        done = yield from refined(peaks, lo, hi, width, lambda: taken.append("padded") or spare())
+        taken.append("kept" if done else "full")
+        return done
+
+    monkeypatch.setattr(numeric, "_refined", watched)
+    lo, hi = [0.0] * pieces, [1.0] * pieces
+    steady, reverse = [p == 2 for p in range(pieces)], [p == 0 for p in range(pieces)]
+    full, overall = (numeric.drive(numeric.maxima_steps(lo, hi, steady=steady, reverse=reverse, overall=whole),
+                                   lambda ask: func(*ask)) for whole in (False, True))
+    assert _winners(overall) == _winners(full) and overall[2] == full[2]
+    for f, size in enumerate(full[2]):
+        limit = max(full[1][f]) - numeric.TIE * size
+        for place, value, place0, value0 in zip(overall[0][f], overall[1][f], full[0][f], full[1][f], strict=True):
+            assert (value == -math.inf and value0 < limit) or repr((place, value)) == repr((place0, value0))
+    assert (path in taken) if path != "none" else not taken
+
+
 def test_a_scale_for_all_functions_or_one_each():
     """``scale`` one for all (a number or one element) or one a function; each magnitude is the larger of its scale
     and the function's largest |value| on the grid."""
