@@ -5,7 +5,7 @@ import functools
 import itertools
 import math
 from collections.abc import Callable, Generator
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -144,21 +144,43 @@ def _flags(flag: ArrayLike, p: int) -> list[bool]:
     return a.tolist() * p if a.size == 1 else a.reshape(p).tolist()
 
 
+def _key(flag: ArrayLike) -> tuple[Any, ...]:
+    """``flag`` (a bool, or a sequence or array of them) as a tuple, to look a :func:`_plan` up by."""
+    if isinstance(flag, bool):
+        return (flag,)
+    return tuple(flag) if isinstance(flag, list | tuple) else tuple(np.asarray(flag, dtype=bool).reshape(-1).tolist())
+
+
+class _Plan(NamedTuple):
+    """What :func:`maxima_steps` knows of a set of pieces before it asks anything (see :func:`_plan`)."""
+
+    lo: list[float]
+    hi: list[float]
+    width: list[float]
+    moving: list[int]                  #: the pieces that are not steady, in order
+    order: list[int]                   #: the moving pieces, then the steady ones: the order of the first ask's
+    backwards: list[bool]
+    ask: tuple[np.ndarray, np.ndarray]
+
+
 @functools.lru_cache(maxsize=32)
-def _first_ask(lo: bytes, hi: bytes, steady: tuple[bool, ...], n: int) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`maxima_steps`' first ask, read-only (made once for a set of pieces: a program's are mostly [0, 1]):
-    the grid of ``n`` points on each piece that is not ``steady`` (pieces given by the bytes of their float ``lo``
-    and ``hi``), then each steady piece's first point; and the piece of each."""
+def _plan(lo: bytes, hi: bytes, steady: tuple[Any, ...], reverse: tuple[Any, ...], n: int) -> _Plan:
+    """:func:`maxima_steps`' pieces (given by the bytes of their float ``lo`` and ``hi``) and flags (see
+    :func:`_key`) as floats and bools, made once for a set of pieces (a program's are mostly [0, 1]); and its first
+    ask, read-only: the grid of ``n`` points on each piece that is not ``steady``, then each steady piece's first
+    point; and the piece of each."""
     low, high = np.frombuffer(lo), np.frombuffer(hi)
     width = high - low
-    moving = [i for i, still in enumerate(steady) if not still]
-    still = [i for i, still in enumerate(steady) if still]
+    p = low.size
+    still = _flags(steady, p)
+    moving = [i for i, s in enumerate(still) if not s]
+    kept = [i for i, s in enumerate(still) if s]
     x = low[moving, None] + width[moving, None] * _unit(n)[0]
     x[:, -1] = high[moving]
-    x = np.concatenate([x.ravel(), low[still] + width[still] * _unit(n)[0][0]])
-    piece = np.concatenate([np.repeat(moving, n), still]).astype(np.intp)
+    x = np.concatenate([x.ravel(), low[kept] + width[kept] * _unit(n)[0][0]])
+    piece = np.concatenate([np.repeat(moving, n), kept]).astype(np.intp)
     x.flags.writeable = piece.flags.writeable = False
-    return x, piece
+    return _Plan(low.tolist(), high.tolist(), width.tolist(), moving, moving + kept, _flags(reverse, p), (x, piece))
 
 
 @functools.lru_cache(maxsize=16)
@@ -353,13 +375,10 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     if n < 5:
         raise ValueError(f"a grid of {n} points: the search needs 5 a piece at least")
     low, high = np.asarray(lo, dtype=float).reshape(-1), np.asarray(hi, dtype=float).reshape(-1)
-    p = low.size
-    still = _flags(steady, p)
-    lo, hi = low.tolist(), high.tolist()
-    width = (high - low).tolist()
-    got = yield _first_ask(low.tobytes(), high.tobytes(), tuple(still), n)
+    lo, hi, width, moving, order, backwards, ask = _plan(low.tobytes(), high.tobytes(), _key(steady), _key(reverse), n)
+    p = len(lo)
+    got = yield ask
     k = got.shape[0]
-    moving = [i for i, s in enumerate(still) if not s]
     count = len(moving)
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
     top = np.maximum.reduce(y, axis=1).tolist()              # each row's largest and least (the ufuncs' reduce:
@@ -395,8 +414,6 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
             yield from _refined(peaks, lo, hi, width)
     for peak in peaks:
         found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
-    backwards = _flags(reverse, p)
-    order = moving + [i for i, s in enumerate(still) if s]   # the pieces in the order of each function's ends
     at: list[list[float]] = [[0.0] * p for _ in range(k)]
     value: list[list[float]] = [[0.0] * p for _ in range(k)]
     for f in range(k):
