@@ -158,7 +158,9 @@ class _Plan(NamedTuple):
     hi: list[float]
     width: list[float]
     moving: list[int]                  #: the pieces that are not steady, in order
-    order: list[int]                   #: the moving pieces, then the steady ones: the order of the first ask's
+    #: each steady piece and where its maximum is: its values are all its first, the end :func:`_end_of` takes
+    #: for any finite tie
+    resting: list[tuple[int, float]]
     backwards: list[bool]
     ask: tuple[np.ndarray, np.ndarray]
 
@@ -180,7 +182,9 @@ def _plan(lo: bytes, hi: bytes, steady: tuple[Any, ...], reverse: tuple[Any, ...
     x = np.concatenate([x.ravel(), low[kept] + width[kept] * _unit(n)[0][0]])
     piece = np.concatenate([np.repeat(moving, n), kept]).astype(np.intp)
     x.flags.writeable = piece.flags.writeable = False
-    return _Plan(low.tolist(), high.tolist(), width.tolist(), moving, moving + kept, _flags(reverse, p), (x, piece))
+    lo, hi, backwards = low.tolist(), high.tolist(), _flags(reverse, p)
+    resting = [(i, _end_of(lo[i], 0.0, hi[i], 0.0, 0.0, backwards[i])[0]) for i in kept]
+    return _Plan(lo, hi, width.tolist(), moving, resting, backwards, (x, piece))
 
 
 @functools.lru_cache(maxsize=16)
@@ -375,7 +379,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     if n < 5:
         raise ValueError(f"a grid of {n} points: the search needs 5 a piece at least")
     low, high = np.asarray(lo, dtype=float).reshape(-1), np.asarray(hi, dtype=float).reshape(-1)
-    lo, hi, width, moving, order, backwards, ask = _plan(low.tobytes(), high.tobytes(), _key(steady), _key(reverse), n)
+    plan = _plan(low.tobytes(), high.tobytes(), _key(steady), _key(reverse), n)
+    lo, hi, width, moving, resting, backwards, ask = plan
     p = len(lo)
     got = yield ask
     k = got.shape[0]
@@ -386,7 +391,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     largest = np.maximum.reduce(np.abs(got), axis=1).tolist()   # NaN or infinite where any value is
     if not all(map(math.isfinite, largest)):
         raise FloatingPointError("function is not finite on the search grid")
-    scales = np.asarray(scale, dtype=float).reshape(-1).tolist()
+    scales = (scale if type(scale) is list and all(type(s) is float for s in scale)   # as a Python list: as given
+              else np.asarray(scale, dtype=float).reshape(-1).tolist())
     if len(scales) != k:                                       # one for all, as numpy broadcasts it
         scales = [*scales] * k if len(scales) == 1 else np.broadcast_to(scales, (k,)).tolist()
     magnitude = [max(s, v) for s, v in zip(scales, largest, strict=True)]
@@ -418,13 +424,15 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     value: list[list[float]] = [[0.0] * p for _ in range(k)]
     for f in range(k):
         tie = TIE * magnitude[f]
-        pairs = [*ends[f * count:(f + 1) * count], *([v, v] for v in held[f])]   # a steady piece's: its first value
-        for piece, (first, last) in zip(order, pairs, strict=True):
+        row_at, row_value = at[f], value[f]
+        for piece, (first, last) in zip(moving, ends[f * count:(f + 1) * count], strict=True):
             here = found_on.get((f, piece))
-            at[f][piece], value[f][piece] = (
+            row_at[piece], row_value[piece] = (
                 _end_of(lo[piece], first, hi[piece], last, tie, backwards[piece]) if here is None
                 else _first_largest([(lo[piece], first), (hi[piece], last), *here], tie, backwards[piece]) if here
                 else (math.nan, -math.inf))
+        for (piece, where), v in zip(resting, held[f], strict=True):
+            row_at[piece], row_value[piece] = where, v
     return at, value, magnitude
 
 

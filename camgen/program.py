@@ -242,7 +242,7 @@ class Program:
         ask = next(steps)
         while True:
             x, piece = ask
-            got = yield owner[piece], x
+            got = yield (piece if owner is None else owner[piece]), x
             try:
                 ask = steps.send(values(got))
             except StopIteration as done:
@@ -292,10 +292,11 @@ class Program:
         self.__dict__["boundaries"] = (self.boundary_points[0], motion)
 
     @functools.cached_property
-    def _pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[bool], list[bool],
+    def _pieces(self) -> tuple[np.ndarray | None, np.ndarray, np.ndarray, list[bool], list[bool],
                                list[tuple[float, float, bool]]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them, made
-        once a program: the owning segment of each (an array, to map asks), the law variable's ends (arrays), whether
+        once a program: the owning segment of each (an array, to map asks; None where each segment is one piece,
+        its own), the law variable's ends (arrays), whether
         its segment holds still (a dwell) and whether it runs its law backwards (a return, see
         :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag."""
         owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
@@ -309,7 +310,9 @@ class Program:
                 still.append(not moving)
                 backwards.append(back)
                 angles.append((seg.start, seg.beta, back))
-        return np.array(owner), np.array(lo), np.array(hi), still, backwards, angles
+        # a segment of one piece each: a piece is its segment (no mapping of the asks)
+        mapping = None if owner == list(range(len(self.segments))) else np.array(owner)
+        return mapping, np.array(lo), np.array(hi), still, backwards, angles
 
     def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
         """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)),
