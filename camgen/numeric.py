@@ -194,28 +194,26 @@ def _unit(n: int) -> tuple[np.ndarray, list[float]]:
     return unit, unit.tolist()
 
 
-def _grid_candidates(y: np.ndarray, flat: list[int]) -> list[tuple[int, int, float]]:
-    """Each row's interior local maxima on the grid ``y`` (rows, n) that may be its largest: within what a peak can
-    rise above its grid points (the row's largest second difference) of the row's highest; none on the rows
-    ``flat`` (constant within the tie). ``(row, grid index, value)`` each, in order of row and index."""
+def _grid_candidates(y: np.ndarray, flat: list[int]) -> list[tuple[int, int]]:
+    """Each row's interior local maxima on the grid ``y`` (rows, n; finite) that may be its largest: within what a
+    peak can rise above its grid points (the row's largest second difference) of the row's highest; none on the rows
+    ``flat`` (constant within the tie). ``(row, grid index)`` each, in order of row and index."""
     inner, before, after = y[:, 1:-1], y[:, :-2], y[:, 2:]
-    peak = inner >= before
-    peak &= inner >= after
+    peak = inner >= np.maximum(before, after)                # as inner >= before and inner >= after (no NaN)
     if flat:
         peak[flat] = False
     rows, cols = peak.nonzero()
+    if len(set(found := rows.tolist())) == len(found):      # one a row: its highest
+        return [(r, j + 1) for r, j in zip(found, cols.tolist(), strict=True)]
     values = inner[rows, cols].tolist()
-    rows, cols = rows.tolist(), cols.tolist()
-    if len(set(rows)) == len(rows):                          # one a row: its highest
-        return [(r, j + 1, v) for r, j, v in zip(rows, cols, values, strict=True)]
     bend = before - 2 * inner
     bend += after
     drop = np.maximum.reduce(np.abs(bend, out=bend), axis=1).tolist()
-    top = dict.fromkeys(rows, -math.inf)
-    for r, v in zip(rows, values, strict=True):
+    top = dict.fromkeys(found, -math.inf)
+    for r, v in zip(found, values, strict=True):
         if v > top[r]:
             top[r] = v
-    return [(r, j + 1, v) for r, j, v in zip(rows, cols, values, strict=True) if v >= top[r] - drop[r]]
+    return [(r, j + 1) for r, j, v in zip(found, cols.tolist(), values, strict=True) if v >= top[r] - drop[r]]
 
 
 class _Peak:
@@ -228,11 +226,11 @@ class _Peak:
         self.f, self.piece, self.at, self.value, self.centre, self.breadth = f, piece, at, value, centre, breadth
 
 
-def _windows(y: np.ndarray, found: list[tuple[int, int, float]], n: int) -> tuple[list[int], np.ndarray]:
-    """The grid index about which each peak ``found`` on the grid rows ``y`` is placed (its own, kept two points from
-    the row's ends) and the five grid values there (m, 5)."""
-    centres = [min(max(j, 2), n - 3) for _, j, _ in found]
-    windows = y.take([r * n + c + o for (r, _, _), c in zip(found, centres, strict=True) for o in _AROUND])
+def _windows(y: np.ndarray, found: list[tuple[int, int]], n: int) -> tuple[list[int], np.ndarray]:
+    """The grid index about which each peak ``found`` (row, grid index) on the grid rows ``y`` is placed (its own,
+    kept two points from the row's ends) and the five grid values there (m, 5)."""
+    centres = [min(max(j, 2), n - 3) for _, j in found]
+    windows = y.take([r * n + c + o for (r, _), c in zip(found, centres, strict=True) for o in _AROUND])
     return centres, windows.reshape(-1, 5)
 
 
@@ -255,22 +253,22 @@ def _estimates(candidates: list[tuple[tuple[int, int, float], int, list[float]]]
     return out
 
 
-def _hopeless(found: list[tuple[int, int, float]], lows: list[float], top: list[float], held: list[list[float]],
-              ties: list[float]) -> set[int]:
+def _hopeless(found: list[tuple[int, int, float]], windows: list[list[float]], top: list[float],
+              held: list[list[float]], ties: list[float]) -> set[int]:
     """The grid rows (a function on a moving piece; ``top`` their largest grid values, ``held`` each function's values
     on the steady pieces) whose largest cannot come within ``3 tie`` (each function's ``ties``) of their function's
     largest over all pieces, so that no search of them can change which piece has it; only rows with peaks
     ``found`` (a row without has its ends, a few comparisons). A row reaches no higher than its largest grid value
-    and its peaks, and a peak rises above its grid value less than the grid falls within two steps of it (``lows``,
-    the least of its five grid values about it: for a parabola sampled at step h, a rise of at most a h^2 / 4
+    and its peaks, and a peak rises above its grid value less than the grid falls within two steps of it (the least
+    of its ``windows``, its five grid values about it: for a parabola sampled at step h, a rise of at most a h^2 / 4
     against a fall of at least 9 a h^2 / 4); a function's largest is at least its largest grid value less a tie (a
     row constant within the tie has no peak). The slack of 3 ties: a piece's maximum is the first of its values
     within a tie of its largest, and a row's maximum over the pieces the first within a tie of theirs."""
     count = len(top) // len(ties)
     floors = [max(top[f * count:(f + 1) * count] + held[f]) - 3 * tie for f, tie in enumerate(ties)]
     below, above = set(), set()
-    for (r, _, v), low in zip(found, lows, strict=True):
-        (below if max(top[r], v + (v - low)) < floors[r // count] else above).add(r)
+    for (r, _, v), window in zip(found, windows, strict=True):
+        (below if max(top[r], v + (v - min(window))) < floors[r // count] else above).add(r)
     return below - above
 
 
@@ -399,14 +397,15 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
     ends = y[:, ::n - 1].tolist()                            # each row's first and last
-    found = _grid_candidates(y, flat) if count else []
+    grid = _grid_candidates(y, flat) if count else []
     found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks, [] unsearched
     peaks = []
-    if found:
-        centres, windows = _windows(y, found, n)
+    if grid:
+        centres, windows = _windows(y, grid, n)
+        near = windows.tolist()
+        found = [(r, j, w[j - c + 2]) for (r, j), c, w in zip(grid, centres, near, strict=True)]   # and its value
         candidates = list(zip(found, centres, _coefficients(windows), strict=True))   # the full search's batch
-        hopeless = _hopeless(found, np.minimum.reduce(windows, axis=1).tolist(), top, held,
-                             [TIE * m for m in magnitude]) if overall else ()
+        hopeless = _hopeless(found, near, top, held, [TIE * m for m in magnitude]) if overall else ()
         kept = [one for one in candidates if one[0][0] not in hopeless] if hopeless else candidates
         peaks = _estimates(kept, moving, lo, hi, width, n)
         if hopeless:
