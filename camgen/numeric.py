@@ -75,8 +75,8 @@ ROUNDS = 8
 #: does not choose between a symmetric cam's equal peaks, or where a function is constant
 TIE = 1e-12
 _UNIT = np.linspace(0.0, 1.0, GRID)
-#: a quartic's five grid points about its centre
-_AROUND = (-2, -1, 0, 1, 2)
+#: a quartic's five grid points from its first
+_FIVE = np.arange(5)
 
 
 #: the quartic through five values at t = -2..2: its coefficients of t, t^2, t^3, t^4 (columns)
@@ -230,8 +230,7 @@ def _windows(y: np.ndarray, found: list[tuple[int, int]], n: int) -> tuple[list[
     """The grid index about which each peak ``found`` (row, grid index) on the grid rows ``y`` is placed (its own,
     kept two points from the row's ends) and the five grid values there (m, 5)."""
     centres = [min(max(j, 2), n - 3) for _, j in found]
-    windows = y.take([r * n + c + o for (r, _), c in zip(found, centres, strict=True) for o in _AROUND])
-    return centres, windows.reshape(-1, 5)
+    return centres, y.take(np.add.outer([r * n + c - 2 for (r, _), c in zip(found, centres, strict=True)], _FIVE))
 
 
 def _estimates(candidates: list[tuple[tuple[int, int, float], int, list[float]]], moving: list[int], lo: list[float],
@@ -268,7 +267,8 @@ def _hopeless(found: list[tuple[int, int, float]], windows: list[list[float]], t
     floors = [max(top[f * count:(f + 1) * count] + held[f]) - 3 * tie for f, tie in enumerate(ties)]
     below, above = set(), set()
     for (r, _, v), window in zip(found, windows, strict=True):
-        (below if max(top[r], v + (v - min(window))) < floors[r // count] else above).add(r)
+        floor = floors[r // count]
+        (above if top[r] >= floor or v + (v - min(window)) >= floor else below).add(r)
     return below - above
 
 
