@@ -176,14 +176,14 @@ def _plan(lo: bytes, hi: bytes, steady: tuple[Any, ...], reverse: tuple[Any, ...
     p = low.size
     still = _flags(steady, p)
     moving = [i for i, s in enumerate(still) if not s]
-    kept = [i for i, s in enumerate(still) if s]
+    steady_pieces = [i for i, s in enumerate(still) if s]
     x = low[moving, None] + width[moving, None] * _unit(n)[0]
     x[:, -1] = high[moving]
-    x = np.concatenate([x.ravel(), low[kept] + width[kept] * _unit(n)[0][0]])
-    piece = np.concatenate([np.repeat(moving, n), kept]).astype(np.intp)
+    x = np.concatenate([x.ravel(), low[steady_pieces] + width[steady_pieces] * _unit(n)[0][0]])
+    piece = np.concatenate([np.repeat(moving, n), steady_pieces]).astype(np.intp)
     x.flags.writeable = piece.flags.writeable = False
     lo, hi, backwards = low.tolist(), high.tolist(), _flags(reverse, p)
-    resting = [(i, _end_of(lo[i], 0.0, hi[i], 0.0, 0.0, backwards[i])[0]) for i in kept]
+    resting = [(i, _end_of(lo[i], 0.0, hi[i], 0.0, 0.0, backwards[i])[0]) for i in steady_pieces]
     return _Plan(lo, hi, width.tolist(), moving, resting, backwards, (x, piece))
 
 
