@@ -252,23 +252,33 @@ def _estimates(candidates: list[tuple[tuple[int, int, float], int, list[float]]]
     return out
 
 
-def _hopeless(found: list[tuple[int, int, float]], windows: list[list[float]], top: list[float],
-              held: list[list[float]], ties: list[float]) -> set[int]:
+#: a peak's breadth, in grid steps, from which the grid resolves it (see :func:`_hopeless`)
+RESOLVED = 3.0
+
+
+def _hopeless(candidates: list[tuple[tuple[int, int, float], int, list[float]]], windows: list[list[float]],
+              top: list[float], held: list[list[float]], ties: list[float]) -> set[int]:
     """The grid rows (a function on a moving piece; ``top`` their largest grid values, ``held`` each function's values
     on the steady pieces) whose largest cannot come within ``3 tie`` (each function's ``ties``) of their function's
-    largest over all pieces, so that no search of them can change which piece has it; only rows with peaks
-    ``found`` (a row without has its ends, a few comparisons). A row reaches no higher than its largest grid value
-    and its peaks, and a peak rises above its grid value less than the grid falls within two steps of it (the least
-    of its ``windows``, its five grid values about it: for a parabola sampled at step h, a rise of at most a h^2 / 4
-    against a fall of at least 9 a h^2 / 4); a function's largest is at least its largest grid value less a tie (a
-    row constant within the tie has no peak). The slack of 3 ties: a piece's maximum is the first of its values
-    within a tie of its largest, and a row's maximum over the pieces the first within a tie of theirs."""
+    largest over all pieces, so that no search of them can change which piece has it; only rows with peaks found
+    (``candidates``, see :func:`_estimates`; a row without has its ends, a few comparisons).
+
+    A row reaches no higher than its largest grid value and its peaks, and a peak the grid resolves rises above its
+    grid value less than the grid falls within two steps of it (the least of its ``windows``, its five grid values
+    about it: for a parabola sampled at step h, a rise of at most a h^2 / 4 against a fall of at least 9 a h^2 / 4;
+    for a bell of breadth 3 h, 0.027 of its height against 0.22). The grid resolves a peak whose quartic bends down
+    with a breadth of ``RESOLVED`` steps at least (its a2 / a4 as :func:`_breadth` reads it) and leans less than it
+    bends (|a3| <= -a2); a row with a peak it does not resolve (narrower than the grid: the refinement may find it
+    far higher) is searched. A function's largest is at least its largest grid value less a tie (a row constant
+    within the tie has no peak). The slack of 3 ties: a piece's maximum is the first of its values within a tie of
+    its largest, and a row's maximum over the pieces the first within a tie of theirs."""
     count = len(top) // len(ties)
     floors = [max(top[f * count:(f + 1) * count] + held[f]) - 3 * tie for f, tie in enumerate(ties)]
     below, above = set(), set()
-    for (r, _, v), window in zip(found, windows, strict=True):
+    for ((r, _, v), _, (_, a2, a3, a4)), window in zip(candidates, windows, strict=True):
         floor = floors[r // count]
-        (above if top[r] >= floor or v + (v - min(window)) >= floor else below).add(r)
+        resolved = a2 < 0 and 2 * RESOLVED**2 * abs(a4) <= -a2 and abs(a3) <= -a2
+        (above if top[r] >= floor or not resolved or v + (v - min(window)) >= floor else below).add(r)
     return below - above
 
 
@@ -405,7 +415,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         near = windows.tolist()
         found = [(r, j, w[j - c + 2]) for (r, j), c, w in zip(grid, centres, near, strict=True)]   # and its value
         candidates = list(zip(found, centres, _coefficients(windows), strict=True))   # the full search's batch
-        hopeless = _hopeless(found, near, top, held, [TIE * m for m in magnitude]) if overall else ()
+        hopeless = _hopeless(candidates, near, top, held, [TIE * m for m in magnitude]) if overall else ()
         kept = [one for one in candidates if one[0][0] not in hopeless] if hopeless else candidates
         peaks = _estimates(kept, moving, lo, hi, width, n)
         if hopeless:

@@ -234,23 +234,9 @@ def _winners(found: tuple[list[list[float]], list[list[float]], list[float]]) ->
     return out
 
 
-def _bell(x, centre, breadth):
-    return np.exp(-((x - centre) / breadth) ** 2)
-
-
-@pytest.mark.parametrize(("func", "pieces", "path"), [
-    # broad peaks, one piece far above: its one stencil rounded as the full search's several (padding)
-    (lambda x, p: (np.sin(3 * x + p) * (1 + 0.3 * (p == 1)))[None], 3, "padded"),
-    # a narrow peak refined in a second round alone while the full search's batch is unknown: run in full
-    (lambda x, p: np.stack([np.sin(5 * x + p), np.cos(4 * x) * (p + 1) + _bell(x, 0.77, 0.003)]), 4, "full"),
-    # equal peaks on every piece: none left out; a steady piece; a piece running backwards
-    (lambda x, p: np.stack([np.sin(np.pi * x) + 0 * p, np.where(p == 2, 0.7, np.sin(2 * x + p))]), 4, "none"),
-])
-def test_an_overall_search_finds_what_the_full_one_does(monkeypatch, func, pieces, path):
-    """Program.maxima_steps wants each function's largest over all pieces only: the search leaves out the pieces
-    that cannot come within the tie of it (overall=True), and finds the same pieces within the tie, places and values
-    to the bit as the full search, the left-out pieces' values -inf; also where a round of the kept peaks has one
-    stencil (a matrix product of one row rounds apart from several)."""
+def _watch(monkeypatch) -> list[str]:
+    """The ways the overall searches' refinements end, as they run: "padded" (a round of one kept stencil rounded as
+    several), "kept" (done with the kept peaks) or "full" (run in full)."""
     taken = []
     refined = numeric._refined
 
@@ -262,6 +248,21 @@ def test_an_overall_search_finds_what_the_full_one_does(monkeypatch, func, piece
         return done
 
     monkeypatch.setattr(numeric, "_refined", watched)
+    return taken
+
+
+@pytest.mark.parametrize(("func", "pieces", "path"), [
+    # broad peaks, one piece far above: its one stencil rounded as the full search's several (padding)
+    (lambda x, p: (np.sin(3 * x + p) * (1 + 0.3 * (p == 1)))[None], 3, "padded"),
+    # equal peaks on every piece: none left out; a steady piece; a piece running backwards
+    (lambda x, p: np.stack([np.sin(np.pi * x) + 0 * p, np.where(p == 2, 0.7, np.sin(2 * x + p))]), 4, "none"),
+])
+def test_an_overall_search_finds_what_the_full_one_does(monkeypatch, func, pieces, path):
+    """Program.maxima_steps wants each function's largest over all pieces only: the search leaves out the pieces
+    that cannot come within the tie of it (overall=True), and finds the same pieces within the tie, places and values
+    to the bit as the full search, the left-out pieces' values -inf; also where a round of the kept peaks has one
+    stencil (a matrix product of one row rounds apart from several)."""
+    taken = _watch(monkeypatch)
     lo, hi = [0.0] * pieces, [1.0] * pieces
     steady, reverse = [p == 2 for p in range(pieces)], [p == 0 for p in range(pieces)]
     full, overall = (numeric.drive(numeric.maxima_steps(lo, hi, steady=steady, reverse=reverse, overall=whole),
@@ -272,6 +273,35 @@ def test_an_overall_search_finds_what_the_full_one_does(monkeypatch, func, piece
         for place, value, place0, value0 in zip(overall[0][f], overall[1][f], full[0][f], full[1][f], strict=True):
             assert (value == -math.inf and value0 < limit) or repr((place, value)) == repr((place0, value0))
     assert (path in taken) if path != "none" else not taken
+
+
+def test_an_overall_search_agrees_with_the_full_one_near_ties(monkeypatch):
+    """Random searches whose pieces' maxima differ by 0 to a few ties (the same bell on each, shifted) and by far
+    more, bells as broad as the piece and narrower than the grid (which no grid bound holds: such a piece is
+    searched): the overall search's pieces within the tie, places and values are the full search's to the bit;
+    among them searches padded and run in full."""
+    taken = _watch(monkeypatch)
+    rng = np.random.default_rng(0)
+    for _ in range(96):
+        p, k = int(rng.integers(2, 6)), int(rng.integers(1, 4))
+        shift = rng.choice([0.0, 0.5e-12, 1e-12, 2e-12, 3e-12, 4e-12, 1e-9, 1e-3], size=(k, p))
+        centre, breadth = rng.uniform(0.1, 0.9, (k, p)), rng.choice([0.3, 0.05, 0.004], size=(k, p))
+        if rng.uniform() < 0.7:                      # the same bell on every piece: maxima apart by their shifts
+            centre, breadth = centre[:, :1].repeat(p, axis=1), breadth[:, :1].repeat(p, axis=1)
+        steady = rng.uniform(size=p) < 0.2
+        lo = rng.uniform(-1.0, 0.0, p)
+        hi = lo + rng.uniform(0.5, 2.0, p)
+
+        def func(x, piece, shift=shift, centre=centre, breadth=breadth, steady=steady, lo=lo, hi=hi):
+            u = (x - lo[piece]) / (hi[piece] - lo[piece])
+            bells = np.exp(-((u - centre[:, piece]) / breadth[:, piece]) ** 2) + shift[:, piece]
+            return np.where(steady[piece], shift[:, piece], bells + 0.2 * np.sin(7 * u))
+
+        reverse = rng.uniform(size=p) < 0.5
+        full, overall = (numeric.drive(numeric.maxima_steps(lo, hi, steady=steady, reverse=reverse, overall=whole),
+                                       lambda ask: func(*ask)) for whole in (False, True))
+        assert _winners(overall) == _winners(full)
+    assert {"padded", "kept", "full"} <= set(taken)
 
 
 def test_a_scale_for_all_functions_or_one_each():
