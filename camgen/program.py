@@ -8,6 +8,7 @@ the start of the first segment, in the cam's sense of rotation.
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
@@ -357,25 +358,28 @@ class _Table:
     on a dwell); ``scales`` is every segment's :attr:`Segment.scales`."""
 
     def __init__(self, segments: tuple[Segment, ...]) -> None:
-        values: list[float] = []
+        columns: list[tuple[float, ...]] = []
         laws: list[Law | None] = []
         group = []
         for seg in segments:
             moving = seg.kind != "dwell" and seg.law is not None
             back = moving and seg.kind == "return"
             sign = -1.0 if back else 1.0
-            values += (seg.start, seg.beta, sign, 1.0 if back else 0.0, 0.0 if moving else 1.0,
-                       seg.level - seg.lift if back else seg.level, seg.lift if seg.kind != "dwell" else 0.0,
-                       1.0 if moving else 0.0, sign if moving else 0.0)
+            even, odd = (1.0, sign) if moving else (0.0, 0.0)
+            columns.append((seg.start, seg.beta, sign, 1.0 if back else 0.0, 0.0 if moving else 1.0,
+                            seg.level - seg.lift if back else seg.level, even, odd, even, odd,
+                            seg.lift if seg.kind != "dwell" else 0.0))
             group.append(_group(laws, seg.law if moving else None))
-        made = np.array(values).reshape(len(segments), -1).T
-        natural = _natural(made[_H], made[_BETA])
-        self.scales: list[list[float]] = natural.tolist()      # every segment's Segment.scales, made in one pass
-        rows = np.empty((10, len(segments)))
-        rows[:_FACTORS.start] = made[:_FACTORS.start]
-        # the factors: natural scales times 1 (a rise), +-1 (a return's even and odd orders) or 0 (a dwell): exact
-        np.multiply(natural.T, made.take(_EVEN_ODD, axis=0), out=rows[_FACTORS])
-        self.rows = rows
+        # (11, m): the rows of `rows`, then each segment's h (np.fromiter of the numbers row by row: np.array of
+        # nested sequences costs twice as much)
+        made = np.fromiter(itertools.chain.from_iterable(zip(*columns, strict=True)), float, _H1 * len(columns))
+        made = made.reshape(_H1, -1)
+        # the natural scales h/beta^k, k = 0..3, (4, m); the factors: these times 1 (a rise), +-1 (a return's even and
+        # odd orders) or 0 (a dwell): exact
+        natural = made[_H] / made[_BETA] ** _POWER_ROWS
+        self.scales: list[list[float]] = natural.T.tolist()    # every segment's Segment.scales, made in one pass
+        np.multiply(natural, made[_FACTORS], out=made[_FACTORS])
+        self.rows = made[:_H]
         self.laws = laws
         #: each law but a dwell's, with the segments it evaluates (m,) bool when there are more (one evaluates all)
         moving = [(law, k) for k, law in enumerate(laws) if law is not None]
@@ -458,9 +462,10 @@ class _Table:
 
 #: the rows of :attr:`_Table.rows`
 _START, _BETA, _SIGN, _OFFSET, _STILL_ROW, _LEVEL, _FACTORS = 0, 1, 2, 3, 4, 5, slice(6, 10)
-#: the rows :class:`_Table` makes them from after its first six: each segment's h (the lift, 0 on a dwell), and the
-#: factors' signs at even and odd orders (1 and 1 on a rise, 1 and -1 on a return, 0 on a dwell), as 4 rows
-_H, _EVEN_ODD = 6, np.array([7, 8, 7, 8])
+#: the row after them where :class:`_Table` keeps each segment's h (the lift, 0 on a dwell) while it makes the factors
+#: from the signs first held in their rows (1, 1, 1, 1 on a rise; 1, -1, 1, -1 on a return; 0 on a dwell)
+_H = 10
+_H1 = _H + 1
 #: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign)
 _RETURN = np.array([1.0, -1.0, 1.0, -1.0])
 #: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
@@ -474,6 +479,7 @@ def _natural(h: np.ndarray, beta: np.ndarray) -> np.ndarray:
 
 
 _POWERS = np.arange(4.0)
+_POWER_ROWS = _POWERS[:, None]
 
 
 def _group(laws: list[Law | None], law: Law | None) -> int:
