@@ -8,7 +8,6 @@ the start of the first segment, in the cam's sense of rotation.
 from __future__ import annotations
 
 import functools
-import itertools
 import math
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
@@ -351,14 +350,15 @@ class _Table:
     for all its segments' points, the same operations on the same numbers as each segment's own evaluation (so the
     same values to the last bit).
 
-    ``rows`` (10, m) holds every number of a segment a point needs (see :data:`_START` and the rest), so that one
-    gather gives each point its own: its start and angle (radians), the sign and offset that turn u into the law's
-    variable (-1 and 1 on a return, whose law runs backwards; 1 and 0 elsewhere), 1 on a dwell (or a segment
-    without a law) and 0 elsewhere, the level added to s (mm) and the four factors of :meth:`Segment._from_law` (0
-    on a dwell); ``scales`` is every segment's :attr:`Segment.scales`."""
+    ``columns`` (m, 11) holds, a segment a row, every number of it a point needs (see :data:`_START` and the rest),
+    so that one gather gives each point its own (see :meth:`_gather`): its start and angle (radians), the sign and
+    offset that turn u into the law's variable (-1 and 1 on a return, whose law runs backwards; 1 and 0 elsewhere), 1
+    on a dwell (or a segment without a law) and 0 elsewhere, the level added to s (mm), the four factors of
+    :meth:`Segment._from_law` (0 on a dwell) and its h (the lift, 0 on a dwell); ``scales`` is every segment's
+    :attr:`Segment.scales`."""
 
     def __init__(self, segments: tuple[Segment, ...]) -> None:
-        columns: list[tuple[float, ...]] = []
+        values: list[float] = []
         laws: list[Law | None] = []
         group = []
         for seg in segments:
@@ -366,20 +366,17 @@ class _Table:
             back = moving and seg.kind == "return"
             sign = -1.0 if back else 1.0
             even, odd = (1.0, sign) if moving else (0.0, 0.0)
-            columns.append((seg.start, seg.beta, sign, 1.0 if back else 0.0, 0.0 if moving else 1.0,
-                            seg.level - seg.lift if back else seg.level, even, odd, even, odd,
-                            seg.lift if seg.kind != "dwell" else 0.0))
+            values += (seg.start, seg.beta, sign, 1.0 if back else 0.0, 0.0 if moving else 1.0,
+                       seg.level - seg.lift if back else seg.level, even, odd, even, odd,
+                       seg.lift if seg.kind != "dwell" else 0.0)
             group.append(_group(laws, seg.law if moving else None))
-        # (11, m): the rows of `rows`, then each segment's h (np.fromiter of the numbers row by row: np.array of
-        # nested sequences costs twice as much)
-        made = np.fromiter(itertools.chain.from_iterable(zip(*columns, strict=True)), float, _H1 * len(columns))
-        made = made.reshape(_H1, -1)
-        # the natural scales h/beta^k, k = 0..3, (4, m); the factors: these times 1 (a rise), +-1 (a return's even and
-        # odd orders) or 0 (a dwell): exact
-        natural = made[_H] / made[_BETA] ** _POWER_ROWS
-        self.scales: list[list[float]] = natural.T.tolist()    # every segment's Segment.scales, made in one pass
-        np.multiply(natural, made[_FACTORS], out=made[_FACTORS])
-        self.rows = made[:_H]
+        made = np.fromiter(values, float, len(values)).reshape(len(segments), _WIDTH)
+        natural = _natural(made[:, _H], made[:, _BETA])
+        self.scales: list[list[float]] = natural.tolist()      # every segment's Segment.scales, made in one pass
+        # the factors: natural scales times the signs in their place, 1 (a rise), +-1 (a return's even and odd orders)
+        # or 0 (a dwell): exact
+        np.multiply(natural, made[:, _FACTORS], out=made[:, _FACTORS])
+        self.columns = made
         self.laws = laws
         #: each law but a dwell's, with the segments it evaluates (m,) bool when there are more (one evaluates all)
         moving = [(law, k) for k, law in enumerate(laws) if law is not None]
@@ -388,8 +385,15 @@ class _Table:
     def angle(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
         """:meth:`Segment.angle` of each law variable ``v`` (n,) on its segment ``index`` (n,) (radians)."""
         out = np.empty(v.shape)
-        self._angle(v, self.rows[:_STILL_ROW].take(index, axis=1), out)
+        self._angle(v, self._gather(index), out)
         return out
+
+    def _gather(self, index: np.ndarray) -> np.ndarray:
+        """The rows (11, n) of the points on the segments ``index`` (n,), each point's numbers in its column
+        (C-ordered; rows :data:`_START` and the rest): its segment's row of :attr:`columns` gathered (a take along the
+        first axis copies a whole row of numbers at once), then laid out by rows (a take along the second axis of a
+        transposed table copies number by number: twice the instructions)."""
+        return self.columns.take(index, axis=0).T.copy()
 
     @staticmethod
     def _angle(v: np.ndarray, rows: np.ndarray, out: np.ndarray) -> None:
@@ -420,19 +424,19 @@ class _Table:
         """The law variable (see :meth:`Segment.at_law`) at each angle ``theta`` (n,) (radians) on its segment
         ``index`` (n,), u taken into [0, 1] as :meth:`Segment.evaluate` takes it (one-sided at the segment's ends)."""
         out = np.empty(theta.shape)
-        self._variable(theta, self.rows[:_STILL_ROW].take(index, axis=1), out)
+        self._variable(theta, self._gather(index), out)
         return out
 
     def at_law(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
         """:meth:`Segment.at_law`'s motion at each law variable ``v`` (n,) on its segment ``index`` (n,): (4, n);
         one call of each law for every point on its segments."""
-        return self._motion(index, v, self.rows.take(index, axis=1))
+        return self._motion(index, v, self._gather(index))
 
     def on(self, index: np.ndarray, x: np.ndarray, cut: int) -> tuple[np.ndarray, np.ndarray]:
         """Cam angles (n,) (radians) and s, s', s'', s''' (4, n) at points ``x`` (n,) each on its segment ``index``
         (n,): the first ``cut`` of them given by the law's variable (see :meth:`Segment.at_law`), the rest by cam
         angle (one-sided at their segment's ends, as :meth:`Segment.evaluate` takes them)."""
-        rows = self.rows.take(index, axis=1)
+        rows = self._gather(index)
         theta, v = x.copy(), x.copy()                   # each then made where it is not given
         if cut:
             self._angle(x[:cut], rows[:, :cut], theta[:cut])
@@ -460,12 +464,10 @@ class _Table:
         return out
 
 
-#: the rows of :attr:`_Table.rows`
+#: the columns of :attr:`_Table.columns`, the rows of what :meth:`_Table._gather` gives
 _START, _BETA, _SIGN, _OFFSET, _STILL_ROW, _LEVEL, _FACTORS = 0, 1, 2, 3, 4, 5, slice(6, 10)
-#: the row after them where :class:`_Table` keeps each segment's h (the lift, 0 on a dwell) while it makes the factors
-#: from the signs first held in their rows (1, 1, 1, 1 on a rise; 1, -1, 1, -1 on a return; 0 on a dwell)
-_H = 10
-_H1 = _H + 1
+#: the column of :attr:`_Table.columns` after them: each segment's h (the lift, 0 on a dwell); and their count
+_H, _WIDTH = 10, 11
 #: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign)
 _RETURN = np.array([1.0, -1.0, 1.0, -1.0])
 #: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
@@ -479,7 +481,6 @@ def _natural(h: np.ndarray, beta: np.ndarray) -> np.ndarray:
 
 
 _POWERS = np.arange(4.0)
-_POWER_ROWS = _POWERS[:, None]
 
 
 def _group(laws: list[Law | None], law: Law | None) -> int:
