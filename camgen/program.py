@@ -174,14 +174,14 @@ class Program:
         if abs(total - TWO_PI) > 1e-9:
             raise SpecError(f"segment angles add up to {math.degrees(total):.6g} degrees; they must add up to 360",
                             "motion")
-        levels = [(seg.level, seg.end_level) for seg in segments]          # each segment's start and end
-        first, last = levels[0][0], levels[-1][1]
-        if abs(last - first) > 1e-9 * max(1.0, max(max(a, b) for a, b in levels)):      # max(1, max_lift)
+        levels = [v for seg in segments for v in (seg.level, seg.end_level)]    # each segment's start and end
+        first, last = levels[0], levels[-1]
+        if abs(last - first) > 1e-9 * max(1.0, max(levels)):      # max(1, max_lift)
             raise SpecError(f"the follower ends the turn at s = {last:.6g} mm but starts at "
                             f"s = {first:.6g} mm; rises and returns must balance over 360 degrees", "motion")
-        low = min(min(a, b) for a, b in levels)
+        low = min(levels)
         if low < -1e-9:
-            i = next(i for i, (a, b) in enumerate(levels) if min(a, b) == low)
+            i = levels.index(low) // 2
             raise SpecError(f"takes the follower to s = {low:.6g} mm, below its lowest position (s = 0); "
                             "start the program with a rise or dwell", f"motion[{i}]")
 
@@ -281,10 +281,10 @@ class Program:
     @functools.cached_property
     def boundary_points(self) -> tuple[np.ndarray, np.ndarray]:
         """The angles (2n,) of :attr:`boundaries` (radians) and the segment each is evaluated on (2n,)."""
-        n = len(self.segments)
-        nxt = self.segments[1:] + self.segments[:1]
-        theta = np.array([seg.end for seg in self.segments] + [seg.start for seg in nxt])
-        return theta, np.array([*range(n), *range(1, n), 0])
+        segments = self.segments
+        theta = np.array([seg.start + seg.beta for seg in segments] + [seg.start for seg in segments[1:]]
+                         + [segments[0].start])            # Segment.end's sums, then the next segments' starts
+        return theta, _boundary_segments(len(segments))
 
     def known_boundaries(self, motion: np.ndarray) -> None:
         """Keep ``motion`` (4, 2n), evaluated elsewhere at :attr:`boundary_points`, as :attr:`boundaries`' motion
@@ -472,6 +472,15 @@ _H, _WIDTH = 10, 11
 _RETURN = np.array([1.0, -1.0, 1.0, -1.0])
 #: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
 _ZERO, _ONE = constant(0.0), constant(1.0)
+
+
+@functools.cache
+def _boundary_segments(n: int) -> np.ndarray:
+    """The segments (2n,) :attr:`Program.boundary_points` are evaluated on, read-only: each of the n segments (its
+    end), then the next (its start; the last's next is the first)."""
+    out = np.array([*range(n), *range(1, n), 0])
+    out.setflags(write=False)
+    return out
 
 
 def _natural(h: np.ndarray, beta: np.ndarray) -> np.ndarray:
