@@ -155,3 +155,32 @@ def test_the_objects_made_without_their_init_hold_every_field():
     for m in made:
         cached = {k for k, v in vars(type(m)).items() if isinstance(v, functools.cached_property)}
         assert set(vars(m)) - cached == {f.name for f in dataclasses.fields(m)}, type(m).__name__
+
+
+def test_a_part_cuts_each_field_when_first_read():
+    """PitchGeometry.part keeps its whole and the slice, and cuts a field when first read: the same view as slicing
+    at once (the same bits, sharing the whole's memory), a part of a part likewise, a field never read never cut;
+    dataclasses.replace makes a geometry holding every field."""
+    import dataclasses
+
+    from camgen.cam import build_cam
+    from camgen.followers.base import PitchGeometry
+    from tests.conftest import template
+
+    cam = build_cam(template({}))
+    whole = cam.pitch(np.linspace(0.0, 2 * math.pi, 50))
+    part = whole.part(7, 31)
+    assert set(vars(part)) == {"_of"} and isinstance(part, PitchGeometry)
+    inner = part.part(3, 9)
+    for f in dataclasses.fields(PitchGeometry):
+        value, expected = getattr(part, f.name), getattr(whole, f.name)
+        if expected is None:
+            assert value is None
+            continue
+        assert same(value, expected[7:31]) and np.shares_memory(value, expected), f.name
+        assert same(getattr(inner, f.name), expected[10:16]), f.name
+    assert set(vars(part)) == {"_of"} | {f.name for f in dataclasses.fields(PitchGeometry)}
+    lone = whole.part(0, 5)
+    assert same(lone.kappa, whole.kappa[:5]) and set(vars(lone)) == {"_of", "kappa"}
+    moved = dataclasses.replace(whole.part(2, 4), point=np.zeros((2, 2)))
+    assert same(moved.point, np.zeros((2, 2))) and same(moved.d1, whole.d1[2:4])

@@ -83,10 +83,11 @@ class _Part(PitchGeometry):
     fields nobody reads (numpy's views cost more than Python's reads)."""
 
 
-for _name in _FIELDS:
+for _name in _FIELDS:                               # every field, so that one added to PitchGeometry is cut too
     _field = _Cut()
     _field.__set_name__(_Part, _name)
     setattr(_Part, _name, _field)
+del _name, _field
 
 
 def rotate(vectors: np.ndarray, angle: np.ndarray) -> np.ndarray:
