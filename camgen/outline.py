@@ -81,29 +81,45 @@ def _between(start: np.ndarray, end: np.ndarray, count: int) -> np.ndarray:
     every span's first, then every span's second, ... (count k,) (radians): the start plus the span's width times
     i / (count + 1). Probe by probe, a span's largest error is an element-wise maximum over ``count`` contiguous
     rows, not a reduction along short rows (several times slower in numpy)."""
-    return (start + (end - start) * _fractions(count)).ravel()
+    return _across(start, end - start, count, np.empty((count, len(start)))).ravel()
 
 
-def _probed(a: np.ndarray, b: np.ndarray, g: PitchGeometry, rr: float,
-            count: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The exact surface (``rr`` mm inside the pitch curve) at ``count`` probes inside each span from the vertex
-    ``a`` (spans, 2) to the vertex ``b`` (mm; ``g`` at :func:`_between`'s angles): the probes as x and y planes
-    (2, count, spans); per span the largest gap between neighbouring points (the span's ends included, mm); and the
-    signed curvature of the surface at each probe (count, spans; 1/mm, infinite or NaN where it has none), whose
-    least and greatest over a span bound what the probes can miss: a curve parts from a line or an arc between two
-    probes by at most gap^2 |curvature difference| / 8. Planes, not (..., 2) points: an x and a y step are one
-    numpy call."""
-    spans = len(a)
-    chain = np.empty((2, count + 2, spans))             # x then y: a, the probes, b
-    chain[:, 0], chain[:, -1] = a.T, b.T
-    x = chain[:, 1:-1]
-    np.multiply(g.normal.T.reshape(2, count, spans), rr, out=x)
-    np.subtract(g.point.T.reshape(2, count, spans), x, out=x)                 # _surface, in place
-    step = chain[:, 1:] - chain[:, :-1]
+def _across(start: np.ndarray, width: np.ndarray, count: int, out: np.ndarray) -> np.ndarray:
+    """:func:`_between`'s angles, from each span's ``start`` (k,) and ``width`` (k,), made in ``out`` (count, k):
+    the width times the fraction, plus the start (a sum is the same either way round)."""
+    np.multiply(width, _fractions(count), out=out)
+    out += start
+    return out
+
+
+def _planes(g: PitchGeometry, rr: float) -> np.ndarray:
+    """The exact surface, ``rr`` mm inside the pitch curve, at the points of ``g`` as x and y planes (2, n) (mm):
+    :func:`_surface`'s numbers, one numpy call for both components."""
+    out = np.empty((2, len(g.normal)))                 # in rows (numpy would lay out a product as its operand)
+    np.multiply(g.normal.T, rr, out=out)
+    np.subtract(g.point.T, out, out=out)
+    return out
+
+
+def _gaps(a: np.ndarray, x: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Per span the largest gap (mm) between neighbouring points of the chain from the vertex ``a`` (2, spans)
+    through its probes ``x`` (2, count, spans) to the vertex ``b`` (2, spans), all as x and y planes; the root
+    of the largest square (the root is monotonic and correctly rounded: the largest root)."""
+    count = x.shape[1]
+    step = np.empty((2, count + 1, x.shape[2]))
+    np.subtract(x[:, 0], a, out=step[:, 0])
+    np.subtract(x[:, 1:], x[:, :-1], out=step[:, 1:-1])
+    np.subtract(b, x[:, -1], out=step[:, -1])
     step *= step
-    gap = np.sqrt((step[0] + step[1]).max(axis=0))      # the root of the largest: the largest root
+    return np.sqrt((step[0] + step[1]).max(axis=0))
+
+
+def _bend(kappa: np.ndarray, rr: float) -> np.ndarray:
+    """The signed curvature (1/mm) of the surface ``rr`` mm inside a pitch curve of curvature ``kappa``: infinite
+    or NaN where it has none. Its least and greatest over a span bound what probes can miss: a curve parts from a
+    line or an arc between two probes by at most gap^2 |curvature difference| / 8."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        return x, gap, (g.kappa / (1.0 - rr * g.kappa)).reshape(count, spans)
+        return kappa / (1.0 - rr * kappa)
 
 
 def _arc_curvature(start: np.ndarray, end: np.ndarray, bulge: np.ndarray) -> np.ndarray:
@@ -120,15 +136,16 @@ def _apart(low: np.ndarray, high: np.ndarray, arc: np.ndarray) -> np.ndarray:
     return np.where(same, np.maximum(np.abs(far - arc), np.abs(near - arc)), far + arc)
 
 
-def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: float) -> np.ndarray:
-    """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from each chord from
-    ``start`` (spans, 2) to ``end`` (spans, 2): the largest measured at its probes ``g`` (at :func:`_between`'s
-    angles), plus what the surface's curvature lets it stray between two probes (infinite where it has none).
-    Worked in x and y planes (see :func:`_probed`); a sum of squares as numpy's sum along the last axis makes it
+def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: float) -> np.ndarray:
+    """A bound (mm) on the distance of the exact surface (``rr`` mm inside the pitch curve) from each chord
+    between neighbouring vertices ``vertex`` (2, spans + 1): the largest measured at its probes ``x`` (2, count,
+    spans; at :func:`_between`'s angles, where the pitch curve's curvature is ``kappa``, count spans), plus what
+    the surface's curvature lets it stray between two probes (infinite where it has none). Worked in x and y
+    planes: an x and a y step are one numpy call; a sum of squares as numpy's sum along the last axis makes it
     (a square is never -0.0: no 0.0 to start from)."""
-    x, gap, bend = _probed(start, end, g, rr, _PROBES)
-    a = start.T[:, None]                                # (2, 1, spans)
-    ab = end.T[:, None] - a
+    a = vertex[:, None, :-1]                            # (2, 1, spans)
+    ab = vertex[:, None, 1:] - a
+    gap = _gaps(a[:, 0], x, vertex[:, 1:])
     square = ab * ab
     length2 = square[0] + square[1]
     along = x - a
@@ -137,8 +154,9 @@ def _chord_errors(start: np.ndarray, end: np.ndarray, g: PitchGeometry, rr: floa
     t = np.minimum(np.maximum((along[0] + along[1]) / (length2 + (length2 == 0)), _ZERO), _ONE)
     off = a + t * ab - x                                # from each probe to its nearest point of the chord
     off *= off
+    bend = np.abs(_bend(kappa, rr).reshape(x.shape[1:])).max(axis=0)
     # np.fmin takes the number where the other is NaN: a NaN curvature's bound is infinite
-    return np.sqrt((off[0] + off[1]).max(axis=0)) + gap**2 * np.fmin(np.abs(bend).max(axis=0), _INF) / _EIGHT
+    return np.sqrt((off[0] + off[1]).max(axis=0)) + gap**2 * np.fmin(bend, _INF) / _EIGHT
 
 
 #: 0-d constants (numpy takes them without converting a Python number)
@@ -240,24 +258,30 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     for _ in range(40):
         theta = [_spaced(index[j], aux[j], cum[j], tolerance, factor[j]) for j in live]
         sizes = [t.size for t in theta]
-        theta, on = np.concatenate(theta), np.array([index[j] for j in live]).repeat(sizes)
-        # every span between neighbouring vertices is measured, one stretch's last to the next one's first too
-        # (none of theirs, its error left out): its probes sit at its start, a point of its own segment
+        n = sum(sizes)
+        # one ask: the vertices, then the probes of every span between neighbouring vertices (probe by probe), one
+        # stretch's last to the next one's first too (none of theirs, its error left out): its probes sit at its
+        # start (a width of 0.0, as x - x is), a point of its own segment
+        angles = np.empty(n + _PROBES * (n - 1))
+        vertex = np.concatenate(theta, out=angles[:n])
         ahead = list(itertools.accumulate(sizes))       # each stretch's end, one past its last vertex
         across = [k - 1 for k in ahead[:-1]]            # the spans from one stretch to the next
-        end = theta[1:].copy()
-        end[across] = theta[across]
-        ends, inner = yield [(on, theta, False), (on[None, :-1].repeat(_PROBES, axis=0).ravel(),
-                                                  _between(theta[:-1], end, _PROBES), False)]
-        at = _surface(ends, rr)
-        spans = _chord_errors(at[:-1], at[1:], inner, rr)
+        width = vertex[1:] - vertex[:-1]
+        width[across] = 0.0
+        _across(vertex[:-1], width, _PROBES, angles[n:].reshape(_PROBES, n - 1))
+        # each span's probes on its first vertex's segment: every stretch's but the last's last
+        (g,) = yield [(np.array([index[j] for j in live] * (1 + _PROBES)).repeat(
+            sizes + [*sizes[:-1], sizes[-1] - 1] * _PROBES), angles, False)]
+        at = _planes(g, rr)
+        spans = _chord_errors(at[:, :n], at[:, n:].reshape(2, _PROBES, n - 1), g.kappa[n:], rr)
         spans[across] = 0.0                             # under any error (errors are >= 0 or NaN)
         worst = np.maximum.reduceat(spans, [0, *ahead[:-1]])
+        points = at[:, :n].T.copy()                     # the vertices (n, 2), in rows as a contour holds them
         still = []
         for j, e, stop, size in zip(live, worst.tolist(), ahead, sizes, strict=True):
             err[j] = e
             if e <= tolerance:
-                results[j] = (at[stop - size:stop - 1], np.zeros(size - 1), e)
+                results[j] = (points[stop - size:stop - 1], np.zeros(size - 1), e)
             else:
                 factor[j] *= max(1.1, math.sqrt(e / tolerance))
                 still.append(j)
@@ -286,7 +310,9 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
         tan = g.d1 / _length(g.d1)[:, None]
         p0, p1, t0, t1 = pts[:-1], pts[1:], tan[:-1], tan[1:]
         junction, b1, b2 = biarcs(p0, t0, p1, t1)
-        probes, gap, bend = _probed(p0, p1, inner, rr, _BIARC_PROBES)
+        probes = _planes(inner, rr).reshape(2, _BIARC_PROBES, len(p0))
+        gap = _gaps(p0.T, probes, p1.T)
+        bend = _bend(inner.kappa, rr).reshape(_BIARC_PROBES, len(p0))
         bend = np.where(np.isfinite(bend), bend, np.inf)
         low, high = bend.min(axis=0), bend.max(axis=0)
         x = np.ascontiguousarray(probes.transpose(2, 1, 0))      # span by span (spans, count, 2), as measured

@@ -376,7 +376,7 @@ def _chord_errors_span_by_span(start, end, surface, kappa, rr, count):
 
 @pytest.mark.parametrize("follower", ["offset roller", "knife edge", "flat face", "oscillating roller"])
 def test_chord_errors_probe_by_probe_are_those_measured_span_by_span(follower):
-    from camgen.outline import _PROBES, _between, _chord_errors, _surface
+    from camgen.outline import _PROBES, _between, _chord_errors, _planes, _surface
 
     cam = _cam(FOLLOWERS[follower])
     rr = cam.contact_radius
@@ -389,11 +389,12 @@ def test_chord_errors_probe_by_probe_are_those_measured_span_by_span(follower):
     at = _surface(ends, rr)
     order = np.arange(inner.theta.size).reshape(_PROBES, -1).T.ravel()          # the same probes span by span
     want = _chord_errors_span_by_span(at[:-1], at[1:], _surface(inner, rr)[order], inner.kappa[order], rr, _PROBES)
-    assert _same(_chord_errors(at[:-1], at[1:], inner, rr), want)
+    probes = _planes(inner, rr).reshape(2, _PROBES, -1)
+    assert _same(_chord_errors(_planes(ends, rr), probes, inner.kappa, rr), want)
 
 
 def test_chord_errors_where_the_surface_has_no_curvature_are_those_measured_span_by_span():
-    from camgen.outline import _PROBES, _between, _chord_errors, _surface
+    from camgen.outline import _PROBES, _between, _chord_errors, _planes, _surface
 
     cam = _cam(FOLLOWERS["offset roller"])
     rr = cam.contact_radius
@@ -412,6 +413,6 @@ def test_chord_errors_where_the_surface_has_no_curvature_are_those_measured_span
     order = np.arange(inner.theta.size).reshape(_PROBES, -1).T.ravel()
     with np.errstate(invalid="ignore"):
         want = _chord_errors_span_by_span(at[:-1], at[1:], _surface(odd, rr)[order], kappa[order], rr, _PROBES)
-        got = _chord_errors(at[:-1], at[1:], odd, rr)
+        got = _chord_errors(_planes(ends, rr), _planes(odd, rr).reshape(2, _PROBES, -1), kappa, rr)
     assert np.isinf(want[[3, 6, 7, 9, 11]]).all()
     assert _same(got, want)
