@@ -338,8 +338,9 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
 def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     """Makes the exact arcs about the cam centre (up to 90 degrees an arc) of the dwells (or their spans)
     ``stretches``, (segment index, span or None) each, all at once: each one's vertices and bulges and their
-    measured error (a list). A dwell's n arcs have n + 1 vertices and 8 n - 1 probes, its angles made as Python
-    floats (a few dozen; the same operations as on arrays, so the same numbers)."""
+    measured error (a list). A dwell's n arcs have n + 1 vertices and 8 n - 1 probes, asked in one ask (every
+    dwell's vertices, then every dwell's probes), its angles made as Python floats (a few dozen; the same
+    operations as on arrays, so the same numbers)."""
     segments = cam.program.segments
     ranges = [(segments[i].start, segments[i].beta) if span is None else (span[0], span[1] - span[0])
               for i, span in stretches]
@@ -350,14 +351,17 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
         probe += [start + beta * (k / (8 * n)) for k in range(1, 8 * n)]
         at += [i] * (n + 1)
         on += [i] * (8 * n - 1)
-    ends, inner = yield [(np.array(at), np.array(theta), False), (np.array(on), np.array(probe), False)]
-    pts = _surface(ends, rr)
+    (g,) = yield [(np.array(at + on), np.array(theta + probe), False)]
+    surface = _planes(g, rr)
+    vertex, x = surface[:, :len(theta)], surface[:, len(theta):]
     first = [0, *itertools.accumulate(n + 1 for n in arcs)]
-    # each dwell's radius, as np.linalg.norm measures its first vertex
-    radius = [math.sqrt(pts[a].dot(pts[a])) for a in first[:-1]]
+    # each dwell's radius, as np.linalg.norm measures its first vertex (its dot product with itself)
+    radius = [math.sqrt(vertex[:, a].dot(vertex[:, a])) for a in first[:-1]]
     within = [0, *itertools.accumulate(8 * n - 1 for n in arcs)]
-    off = _length(_surface(inner, rr)) - np.array(radius).repeat([8 * n - 1 for n in arcs])
+    off = np.sqrt(x[0] * x[0] + x[1] * x[1])          # the probes' distances from the centre, as _length makes them
+    off -= np.array(radius).repeat([8 * n - 1 for n in arcs])
     err = np.maximum.reduceat(np.abs(off), within[:-1])
+    pts = vertex.T.copy()                               # in rows, as a contour holds them
     sense = cam.follower.sense
     return [(pts[a:b - 1], np.array([math.tan(-sense * beta / n / 4.0)] * n), e)
             for a, b, n, (_, beta), e in zip(first[:-1], first[1:], arcs, ranges, err.tolist(), strict=True)]
