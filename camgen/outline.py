@@ -214,26 +214,27 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
 
 def _spaced(index: int, aux: np.ndarray, cum: np.ndarray, tolerance: float, factor: float) -> np.ndarray:
     """:func:`_spacing` on the grid ``aux`` from its count of chords ``cum`` (see :func:`_density`)."""
-    wanted = cum[-1] * factor
+    total = float(cum[-1])                              # a Python float: the same number, cheaper arithmetic
+    wanted = total * factor
     if not wanted <= MAX_SEGMENT_VERTICES:              # also NaN or infinite (a curvature without bound)
         raise DesignError(f"output.tolerance: the outline of motion[{index}] would need {wanted:.3g} vertices to "
                           f"stay within {tolerance:g} mm (at most {MAX_SEGMENT_VERTICES}); loosen the tolerance or "
                           "smooth the motion")
     n = max(1, math.ceil(wanted))
-    if cum[-1] <= 0:
+    if total <= 0:
         return np.linspace(aux[0], aux[-1], n + 1)
-    return np.interp(_spread(cum[-1], n), cum, aux)
+    return np.interp(_spread(total, n), cum, aux)
 
 
 def _spread(total: float, n: int) -> np.ndarray:
-    """np.linspace(0, ``total``, n + 1) for ``total`` > 0, the same numbers (k total / n, the last ``total``)
-    without its checks."""
+    """np.linspace(0, ``total``, n + 1) for finite ``total`` > 0, the same numbers (k total / n, the last
+    ``total``) without its checks; linspace's added start, 0.0, left out: k times a positive step is never -0.0,
+    the one number to which adding 0.0 does anything."""
     step = total / n
     if step == 0:                                       # a step below the least float: linspace's own way
         return np.linspace(0.0, total, n + 1)
     out = np.arange(n + 1, dtype=float)
     out *= step
-    out += 0.0
     out[-1] = total
     return out
 
@@ -267,14 +268,16 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
         ahead = list(itertools.accumulate(sizes))       # each stretch's end, one past its last vertex
         across = [k - 1 for k in ahead[:-1]]            # the spans from one stretch to the next
         width = vertex[1:] - vertex[:-1]
-        width[across] = 0.0
+        for k in across:                                # a few: one by one, not a fancy index
+            width[k] = 0.0
         _across(vertex[:-1], width, _PROBES, angles[n:].reshape(_PROBES, n - 1))
         # each span's probes on its first vertex's segment: every stretch's but the last's last
         (g,) = yield [(np.array([index[j] for j in live] * (1 + _PROBES)).repeat(
             sizes + [*sizes[:-1], sizes[-1] - 1] * _PROBES), angles, False)]
         at = _planes(g, rr)
         spans = _chord_errors(at[:, :n], at[:, n:].reshape(2, _PROBES, n - 1), g.kappa[n:], rr)
-        spans[across] = 0.0                             # under any error (errors are >= 0 or NaN)
+        for k in across:                                # under any error (errors are >= 0 or NaN)
+            spans[k] = 0.0
         worst = np.maximum.reduceat(spans, [0, *ahead[:-1]])
         points = at[:, :n].T.copy()                     # the vertices (n, 2), in rows as a contour holds them
         still = []
