@@ -119,7 +119,7 @@ def _bend(kappa: np.ndarray, rr: float) -> np.ndarray:
     or NaN where it has none. Its least and greatest over a span bound what probes can miss: a curve parts from a
     line or an arc between two probes by at most gap^2 |curvature difference| / 8."""
     with np.errstate(divide="ignore", invalid="ignore"):
-        return kappa / (1.0 - rr * kappa)
+        return kappa / (_ONE - rr * kappa)
 
 
 def _arc_curvature(start: np.ndarray, end: np.ndarray, bulge: np.ndarray) -> np.ndarray:
@@ -151,16 +151,17 @@ def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: floa
     along = x - a
     along *= ab
     # a span of no length divides by 1 (its probes measured from its start): length2 + (length2 == 0)
-    t = np.minimum(np.maximum((along[0] + along[1]) / (length2 + (length2 == 0)), _ZERO), _ONE)
+    t = np.minimum(np.maximum((along[0] + along[1]) / (length2 + (length2 == _ZERO)), _ZERO), _ONE)
     off = a + t * ab - x                                # from each probe to its nearest point of the chord
     off *= off
     bend = np.abs(_bend(kappa, rr).reshape(x.shape[1:])).max(axis=0)
     # np.fmin takes the number where the other is NaN: a NaN curvature's bound is infinite
-    return np.sqrt((off[0] + off[1]).max(axis=0)) + gap**2 * np.fmin(bend, _INF) / _EIGHT
+    # gap * gap: numpy's gap**2 (its square), without the power's dispatch
+    return np.sqrt((off[0] + off[1]).max(axis=0)) + gap * gap * np.fmin(bend, _INF) / _EIGHT
 
 
 #: 0-d constants (numpy takes them without converting a Python number)
-_ZERO, _ONE, _EIGHT, _INF = constant(0.0), constant(1.0), constant(8.0), constant(math.inf)
+_ZERO, _HALF, _ONE, _EIGHT, _INF = constant(0.0), constant(0.5), constant(1.0), constant(8.0), constant(math.inf)
 
 
 #: the points of the grid on which a stretch is measured for its spacing
@@ -206,9 +207,9 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
     curvature ``kappa`` (m k,) there: the integral of chord ~ sqrt(8 tol rho_c) along a surface of speed
     |P'| |1 - Rr k| (samples per radian), by the trapezoid rule, grid by grid."""
     k = kappa.reshape(aux.shape)
-    density = _length(d1).reshape(aux.shape) * np.sqrt(np.abs(k * (1.0 - rr * k)) / (8.0 * _AIM * tolerance))
+    density = _length(d1).reshape(aux.shape) * np.sqrt(np.abs(k * (_ONE - rr * k)) / (8.0 * _AIM * tolerance))
     cum = np.zeros(aux.shape)
-    (0.5 * (density[:, 1:] + density[:, :-1]) * (aux[:, 1:] - aux[:, :-1])).cumsum(axis=1, out=cum[:, 1:])
+    (_HALF * (density[:, 1:] + density[:, :-1]) * (aux[:, 1:] - aux[:, :-1])).cumsum(axis=1, out=cum[:, 1:])
     return cum
 
 
@@ -246,6 +247,7 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     """Makes the chords of the moving segments (or their spans) ``stretches``, (segment index, span or None) each,
     all at once: vertices spaced from the surface's curvature, then densified until their measured error is within
     ``tolerance``; returns each stretch's vertices (its end's left to what follows), zero bulges and error."""
+    rr = constant(rr)                                   # a 0-d array: taken by each numpy call without converting
     index = [i for i, _ in stretches]
     segments = cam.program.segments
     ranges = [(segments[i].start, segments[i].end) if span is None else span for i, span in stretches]
