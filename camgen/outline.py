@@ -453,7 +453,8 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     the segment boundaries, which the first round evaluates."""
     rr = cam.contact_radius - offset
     segments = cam.program.segments
-    stretches = [(i, None) for i, seg in enumerate(segments) if not (seg.kind == "dwell" and cam.is_plate)]
+    plate = cam.is_plate
+    stretches = [(i, None) for i, seg in enumerate(segments) if not (plate and seg.kind == "dwell")]
 
     def convex() -> None:
         if rr > 0 and any(turn > 0 for _, turn in cam.corners()):
@@ -470,7 +471,7 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     n = len(segments)
     verts, bulges, errors = [], [], []
     for i, seg in enumerate(segments):
-        if seg.kind == "dwell" and cam.is_plate:       # the point where it starts
+        if plate and seg.kind == "dwell":              # the point where it starts
             v, b, e = _surface(starts.part((i - 1) % n, (i - 1) % n + 1), rr), np.zeros(1), 0.0
         else:
             v, b, e = next(made)
@@ -484,7 +485,7 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
         if i in flats:                                  # a flat face's flat: straight on from the segment's end
             verts.append(_surface(ends.part(i, i + 1), rr))
             bulges.append(np.zeros(1))
-    if cam.is_plate:
+    if plate:
         verts, bulges = _close_plate(cam, verts, bulges, offset)
     return Outline(_counter_clockwise(cam, np.concatenate(verts), np.concatenate(bulges)), max(0.0, *errors),
                    envelope=False)
