@@ -151,8 +151,12 @@ def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: floa
     along = x - a
     along *= ab
     # a span of no length divides by 1 (its probes measured from its start): length2 + (length2 == 0)
-    t = np.minimum(np.maximum((along[0] + along[1]) / (length2 + (length2 == _ZERO)), _ZERO), _ONE)
-    off = a + t * ab - x                                # from each probe to its nearest point of the chord
+    t = along[0] + along[1]
+    t /= length2 + (length2 == _ZERO)
+    np.minimum(np.maximum(t, _ZERO, out=t), _ONE, out=t)
+    off = t * ab                                        # from each probe to its nearest point of the chord:
+    off += a                                            # a + t ab - x, made in place
+    off -= x
     off *= off
     bend = np.abs(_bend(kappa, rr).reshape(x.shape[1:])).max(axis=0)
     # np.fmin takes the number where the other is NaN: a NaN curvature's bound is infinite
@@ -207,9 +211,17 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
     curvature ``kappa`` (m k,) there: the integral of chord ~ sqrt(8 tol rho_c) along a surface of speed
     |P'| |1 - Rr k| (samples per radian), by the trapezoid rule, grid by grid."""
     k = kappa.reshape(aux.shape)
-    density = _length(d1).reshape(aux.shape) * np.sqrt(np.abs(k * (_ONE - rr * k)) / (8.0 * _AIM * tolerance))
+    root = rr * k                                       # sqrt(|k (1 - rr k)| / (8 aim tol)), made in place
+    np.subtract(_ONE, root, out=root)
+    root *= k
+    np.sqrt(np.abs(root, out=root) / (8.0 * _AIM * tolerance), out=root)
+    density = _length(d1).reshape(aux.shape)
+    density *= root
+    step = density[:, 1:] + density[:, :-1]            # the trapezoids: 0.5 (sum of the ends) (width), in place
+    step *= _HALF
+    step *= aux[:, 1:] - aux[:, :-1]
     cum = np.zeros(aux.shape)
-    (_HALF * (density[:, 1:] + density[:, :-1]) * (aux[:, 1:] - aux[:, :-1])).cumsum(axis=1, out=cum[:, 1:])
+    step.cumsum(axis=1, out=cum[:, 1:])
     return cum
 
 
