@@ -158,10 +158,16 @@ def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: floa
     off += a                                            # a + t ab - x, made in place
     off -= x
     off *= off
-    bend = np.abs(_bend(kappa, rr).reshape(x.shape[1:])).max(axis=0)
+    bend = _bend(kappa, rr).reshape(x.shape[1:])
+    bend = np.abs(bend, out=bend).max(axis=0)
     # np.fmin takes the number where the other is NaN: a NaN curvature's bound is infinite
-    # gap * gap: numpy's gap**2 (its square), without the power's dispatch
-    return np.sqrt((off[0] + off[1]).max(axis=0)) + gap * gap * np.fmin(bend, _INF) / _EIGHT
+    # gap * gap: numpy's gap**2 (its square), without the power's dispatch; the bound's two terms made in place
+    gap *= gap
+    gap *= np.fmin(bend, _INF, out=bend)
+    gap /= _EIGHT
+    far = (off[0] + off[1]).max(axis=0)
+    gap += np.sqrt(far, out=far)
+    return gap
 
 
 #: 0-d constants (numpy takes them without converting a Python number)
@@ -377,7 +383,7 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     within = [0, *itertools.accumulate(8 * n - 1 for n in arcs)]
     off = np.sqrt(x[0] * x[0] + x[1] * x[1])          # the probes' distances from the centre, as _length makes them
     off -= np.array(radius).repeat([8 * n - 1 for n in arcs])
-    err = np.maximum.reduceat(np.abs(off), within[:-1])
+    err = np.maximum.reduceat(np.abs(off, out=off), within[:-1])
     pts = vertex.T.copy()                               # in rows, as a contour holds them
     sense = cam.follower.sense
     return [(pts[a:b - 1], np.array([math.tan(-sense * beta / n / 4.0)] * n), e)
