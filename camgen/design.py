@@ -1,7 +1,6 @@
 """A cam design from a spec: the cam, its checks, its outline and its part. No I/O."""
 from __future__ import annotations
 
-import contextvars
 import dataclasses
 import functools
 import itertools
@@ -14,7 +13,7 @@ import numpy as np
 from camgen.analysis import CamAnalysis, analysis_maker, face_extent, largest_roller
 from camgen.cam import Cam, Maker, build_cam
 from camgen.core.errors import DesignError, SpecError
-from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker
+from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker, quietly
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
@@ -222,17 +221,10 @@ def _check_bore(spec: CamSpec, body: Any, reach: float) -> None:
 def _tentative(maker: Maker) -> Maker:
     """``maker`` run on the chance that its result is needed: an error it raises is returned instead, for the caller
     to raise where it uses the result; numpy's floating-point warnings are silenced in its steps (a cam with an
-    undercut, whose exact outline is not used, may divide by zero in it). Its steps run in a copy of the caller's
-    context in which the warnings are silenced once (np.errstate sets a context variable), not each step."""
-    quiet = contextvars.copy_context()
-    quiet.run(np.errstate(all="ignore").__enter__)      # left so: the context is this maker's own
+    undercut, whose exact outline is not used, may divide by zero in it), set once in a copy of the caller's
+    context (see :func:`camgen.outline.quietly`)."""
     try:
-        ask = quiet.run(next, maker)
-        while True:
-            got = yield ask
-            ask = quiet.run(maker.send, got)
-    except StopIteration as done:
-        return done.value
+        return (yield from quietly(maker, all="ignore"))
     except Exception as error:          # any: raised by the caller where the outline is used
         return error
 

@@ -10,6 +10,7 @@ about the corner: both are exported as exact arcs.
 """
 from __future__ import annotations
 
+import contextvars
 import functools
 import itertools
 import math
@@ -116,10 +117,10 @@ def _gaps(a: np.ndarray, x: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def _bend(kappa: np.ndarray, rr: float) -> np.ndarray:
     """The signed curvature (1/mm) of the surface ``rr`` mm inside a pitch curve of curvature ``kappa``: infinite
-    or NaN where it has none. Its least and greatest over a span bound what probes can miss: a curve parts from a
-    line or an arc between two probes by at most gap^2 |curvature difference| / 8."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return kappa / (_ONE - rr * kappa)
+    or NaN where it has none (a division by zero, silenced where the makers run: see :func:`quietly`). Its least
+    and greatest over a span bound what probes can miss: a curve parts from a line or an arc between two probes by
+    at most gap^2 |curvature difference| / 8."""
+    return kappa / (_ONE - rr * kappa)
 
 
 def _arc_curvature(start: np.ndarray, end: np.ndarray, bulge: np.ndarray) -> np.ndarray:
@@ -427,7 +428,23 @@ def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
     end in radians, of it): its vertices and bulges, the end's vertex left to what follows, and the measured error
     (mm). A dwell is exact arcs about the cam centre; a rise or return is biarcs or chords as ``curves`` says."""
     makers, plan = _makers(cam, [(index, span)], tolerance, rr, curves)
-    return _made(plan, cam.serve(makers))[0]
+    return _made(plan, cam.serve([quietly(together(makers))])[0])[0]
+
+
+def quietly(maker: Maker, **errstate: str) -> Maker:
+    """``maker`` with its steps run in a copy of the caller's context in which numpy's floating-point errors are
+    treated as ``errstate`` says (np.errstate's keywords; by default a division by zero and an invalid operation
+    are silenced: a surface's curvature where it has none, see :func:`_bend`), set once for all its steps rather
+    than a np.errstate a step (np.errstate sets a context variable)."""
+    quiet = contextvars.copy_context()
+    quiet.run(np.errstate(**(errstate or {"divide": "ignore", "invalid": "ignore"})).__enter__)   # the copy's own
+    try:
+        ask = quiet.run(next, maker)
+        while True:
+            got = yield ask
+            ask = quiet.run(maker.send, got)
+    except StopIteration as done:
+        return done.value
 
 
 def _corner_arc(cam: Cam, index: int, rr: float) -> tuple[np.ndarray, float, float]:
@@ -461,7 +478,7 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     ends one roller radius beyond the travel (where the roller can still sit) and the
     bottom edge on y = 0. Every stretch is made at once (see :func:`outline_maker`).
     """
-    return cam.serve([outline_maker(cam, tolerance, curves, offset)])[0]
+    return cam.serve([quietly(outline_maker(cam, tolerance, curves, offset))])[0]
 
 
 def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset: float = 0.0) -> Maker:

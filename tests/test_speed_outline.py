@@ -411,8 +411,24 @@ def test_chord_errors_where_the_surface_has_no_curvature_are_those_measured_span
     odd = dataclasses.replace(inner, kappa=kappa)
     at = _surface(ends, rr)
     order = np.arange(inner.theta.size).reshape(_PROBES, -1).T.ravel()
-    with np.errstate(invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):   # as the outline's makers run (outline.quietly)
         want = _chord_errors_span_by_span(at[:-1], at[1:], _surface(odd, rr)[order], kappa[order], rr, _PROBES)
         got = _chord_errors(_planes(ends, rr), _planes(odd, rr).reshape(2, _PROBES, -1), kappa, rr)
     assert np.isinf(want[[3, 6, 7, 9, 11]]).all()
     assert _same(got, want)
+
+
+def test_an_outline_maker_runs_quietly_and_leaves_the_callers_errstate():
+    from camgen.numeric import drive
+    from camgen.outline import quietly
+
+    def maker():
+        got = yield [1.0]
+        got = yield [np.array([1.0]) / np.array([got[0]])]      # a division by zero each step, silenced
+        return np.array([-1.0]) / np.array([got[0]])
+
+    with np.errstate(all="raise"):
+        out = drive(quietly(maker()), lambda ask: [0.0])
+        assert np.isneginf(out[0]) and np.geterr()["divide"] == "raise"
+        with pytest.raises(FloatingPointError):
+            drive(quietly(maker(), all="raise"), lambda ask: [0.0])
