@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import functools
 import math
+import operator
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
 from typing import Any, Literal, TypeVar
@@ -337,11 +338,10 @@ class Program:
         motion = self.boundaries[1].T.tolist()              # as Python floats: the same numbers, cheaper one by one
         scales = self._table.scales
         for i, seg in enumerate(self.segments):
-            scale = [b if b > a else a for a, b in zip(scales[i], scales[i + 1 - n], strict=True)]     # max(a, b)
-            _compare(found, seg.end, motion[i], motion[n + i], scale, inside=False)
+            _compare(found, seg.end, motion[i], motion[n + i], _larger(scales[i], scales[i + 1 - n]), inside=False)
             for t, lo, hi in seg.inner_limits():
                 _compare(found, t, lo.tolist(), hi.tolist(), scales[i], inside=True)
-        found.sort(key=lambda j: (j.at_deg, j.order))
+        found.sort(key=_AT_ORDER)
         return found
 
 
@@ -520,6 +520,16 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
             if at is None:
                 at = round(math.degrees(theta), 9) % 360.0
             found.append(_unchecked(Jump, at_deg=at, order=k, jump=step, inside=inside))
+
+
+def _larger(a: list[float], b: list[float]) -> list[float]:
+    """The larger of the scales ``a`` and ``b`` (h/beta^k, k = 0..3) order by order: max(a, b) without its call."""
+    return [b[0] if b[0] > a[0] else a[0], b[1] if b[1] > a[1] else a[1], b[2] if b[2] > a[2] else a[2],
+            b[3] if b[3] > a[3] else a[3]]
+
+
+#: the order of :meth:`Program.jumps`: by angle, then by order
+_AT_ORDER = operator.attrgetter("at_deg", "order")
 
 
 def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program:
