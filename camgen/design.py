@@ -18,7 +18,7 @@ from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.kinds import kind_of
-from camgen.program import Jump
+from camgen.program import Jump, _unchecked
 from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
 from camgen.spec import CamSpec, with_base_radius
 
@@ -179,9 +179,11 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     speed = _speed(spec, cam, rates_only)
     warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
-    design = CamDesign(spec, cam, a, jumps, outline, part, profile.outline(allowances.kerf / 2), cut, printed,
-                       allowances, warnings, pressure_limit(spec), extent, speed, sizing,
-                       cut_off.leaves if cut_off is not None else None)
+    design = _unchecked(CamDesign, spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
+                        cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
+                        allowances=allowances, warnings=warnings, pressure_limit_deg=pressure_limit(spec),
+                        face_extent=extent, speed=speed, sizing=sizing,
+                        face_leaves=cut_off.leaves if cut_off is not None else None)
     return design if wall is None else known_wall(design, wall)
 
 
@@ -293,9 +295,10 @@ class _Profile:
         if (outline_grow, hole_grow) not in self._parts:
             t, hub = self.spec, self.spec.hub
             boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
-            self._parts[outline_grow, hole_grow] = Part(t.name, self.outline(outline_grow).contour,
-                                                        _holes(t, hole_grow), t.cam.thickness, t.output.tolerance,
-                                                        self.marks, boss, hub.set_screw)
+            self._parts[outline_grow, hole_grow] = _unchecked(
+                Part, name=t.name, outline=self.outline(outline_grow).contour, holes=_holes(t, hole_grow),
+                thickness=t.cam.thickness, tolerance=t.output.tolerance, marks=self.marks, boss=boss,
+                set_screw=hub.set_screw, pockets=(), elephant_foot=0.0)
         return self._parts[outline_grow, hole_grow]
 
 
