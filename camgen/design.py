@@ -418,14 +418,15 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
     z = contour.vertices.view(np.complex128)[:, 0]
     ring = np.concatenate((z, z[:1])) - points[:, None]            # the vertices seen from each point
     run = ring[0, 1:] - ring[0, :-1]
-    half = np.abs(run) * 0.5
+    length = np.abs(run)
     near = np.abs(ring)
     extent = float(np.maximum.reduce(near, axis=None))
     margin = _CERTAIN * (1.0 + extent * extent)
     turn = ring[:, 1:] * ring[:, :-1].conjugate()
     swept = np.arctan2(turn.imag, turn.real)
     widest = float(np.maximum.reduce(bulge, initial=0.0))
-    if widest > 1.0 or not _far_from_all(near, half, widest, reach, margin):
+    if widest > 1.0 or not _far_from_all(near, length, widest, reach, margin):
+        half = length * 0.5
         low = np.minimum(near[:, :-1], near[:, 1:])
         gap = low * low - half * half - (reach[:, None] + half * bulge) ** 2
         if widest > 1.0 or float(np.minimum.reduce(gap, axis=None)) <= margin:
@@ -435,13 +436,13 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
     return all(abs(turns / (2.0 * np.pi) - 1.0) < 1e-3 for turns in np.add.reduce(swept, axis=1).tolist())
 
 
-def _far_from_all(near: np.ndarray, half: np.ndarray, widest: float, reach: np.ndarray, margin: float) -> bool:
+def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: np.ndarray, margin: float) -> bool:
     """:func:`_inside_clear`'s bound of each piece taken for all at once: a point whose vertices are all at least
-    m from it (``near``, (k, n + 1) mm), pieces' chords at most 2 H long (``half`` their halves, mm) and bulges at
-    most ``widest`` (<= 1) is further from every piece than sqrt(m^2 - H^2) - H widest, each piece's own bound being
-    no less; so whether m^2 - H^2 - (reach + H widest)^2 exceeds ``margin`` for every point (``reach`` (k,) mm, the
+    m from it (``near``, (k, n + 1) mm), pieces' chords at most 2 H long (``length``, mm) and bulges at most
+    ``widest`` (<= 1) is further from every piece than sqrt(m^2 - H^2) - H widest, each piece's own bound being no
+    less; so whether m^2 - H^2 - (reach + H widest)^2 exceeds ``margin`` for every point (``reach`` (k,) mm, the
     squared bounds' room for rounding). Enough where no long chord comes near (a cam's bore), in Python floats."""
-    most = float(np.maximum.reduce(half, initial=0.0))
+    most = float(np.maximum.reduce(length, initial=0.0)) * 0.5       # the longest half chord: halving is exact
     return all(m * m - most * most - (r + most * widest) ** 2 > margin
                for m, r in zip(np.minimum.reduce(near, axis=1).tolist(), reach.tolist(), strict=True))
 
