@@ -173,7 +173,9 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
         _check_holes(spec, body, tol)
     marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, envelope, marks, outline, cut_off)
-    allowances = Allowances(spec.output.kerf, spec.output.clearance, "output.kerf", spec.output.elephant_foot)
+    out = spec.output
+    allowances = _unchecked(Allowances, kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
+                            elephant_foot=out.elephant_foot)
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
     speed = _speed(spec, cam, rates_only)

@@ -338,9 +338,9 @@ class Program:
         motion = self.boundaries[1].T.tolist()              # as Python floats: the same numbers, cheaper one by one
         scales = self._table.scales
         for i, seg in enumerate(self.segments):
-            _compare(found, seg.end, motion[i], motion[n + i], _larger(scales[i], scales[i + 1 - n]), inside=False)
+            _compare(found, seg.end, motion[i], motion[n + i], scales[i], scales[i + 1 - n], inside=False)
             for t, lo, hi in seg.inner_limits():
-                _compare(found, t, lo.tolist(), hi.tolist(), scales[i], inside=True)
+                _compare(found, t, lo.tolist(), hi.tolist(), scales[i], scales[i], inside=True)
         found.sort(key=_AT_ORDER)
         return found
 
@@ -508,14 +508,17 @@ def _alike(a: Law | None, b: Law | None) -> bool:
     return a is not None and type(a) is type(b) and type(a).PARAMETERLESS
 
 
-def _compare(found: list[Jump], theta: float, left: list[float], right: list[float], scale: list[float],
-             inside: bool) -> None:
+def _compare(found: list[Jump], theta: float, left: list[float], right: list[float], own: list[float],
+             other: list[float], inside: bool) -> None:
     """Add to ``found`` every jump of s', s'', s''' from ``left`` to ``right`` (s, s', s'', s''') at cam angle
-    ``theta`` (radians) larger than :data:`JUMP_TOL` of its ``scale`` (h/beta^k, k = 0..3)."""
+    ``theta`` (radians) larger than :data:`JUMP_TOL` of the larger of its scales ``own`` and ``other`` (h/beta^k,
+    k = 0..3: the segments' on either side of a boundary, the segment's own twice inside it)."""
     at = None                                       # the angle in degrees, made at the first jump found here
     for k in (1, 2, 3):
         step = right[k] - left[k]
-        least = scale[k]
+        least, more = own[k], other[k]
+        if more > least:                            # max(own, other)
+            least = more
         if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
             if at is None:
                 at = _degrees(theta)
@@ -528,12 +531,6 @@ def _degrees(theta: float) -> float:
     breakpoints' own rounding gone), 360 wrapping to 0; kept for the angles seen last (Python's round to digits
     goes through a decimal string, ~2 000 instructions: a design asks for the same few boundaries each time)."""
     return round(math.degrees(theta), 9) % 360.0
-
-
-def _larger(a: list[float], b: list[float]) -> list[float]:
-    """The larger of the scales ``a`` and ``b`` (h/beta^k, k = 0..3) order by order: max(a, b) without its call."""
-    return [b[0] if b[0] > a[0] else a[0], b[1] if b[1] > a[1] else a[1], b[2] if b[2] > a[2] else a[2],
-            b[3] if b[3] > a[3] else a[3]]
 
 
 #: the order of :meth:`Program.jumps`: by angle, then by order
