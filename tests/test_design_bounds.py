@@ -60,6 +60,35 @@ def test_several_points_pass_together_only_where_each_passes_alone():
         assert _inside_clear(contour, 0.01, points, reach) == all(alone)
 
 
+def test_the_bound_for_all_pieces_at_once_passes_only_where_each_piece_s_own_does():
+    """_far_from_all (nearest vertex, longest chord, widest bulge) is the pieces' own bounds taken at their worst:
+    where it passes, each piece's own passes too; it passes the rdrd template's bore, so that path is taken."""
+    rng = np.random.default_rng(7)
+    passed = 0
+    for trial in range(600):
+        contour = _random_contour(rng, trial)
+        bulge = np.abs(contour.bulges)
+        if bulge.max() > 1.0:
+            continue
+        points = np.concatenate([[0j], rng.normal(0, 5, 2) + 1j * rng.normal(0, 5, 2)])
+        reach = rng.uniform(0, 8, len(points))
+        z = contour.vertices.view(np.complex128)[:, 0]
+        ring = np.concatenate((z, z[:1])) - points[:, None]
+        near, length = np.abs(ring), np.abs(np.diff(ring[0]))
+        margin = camgen.design._CERTAIN * (1.0 + near.max() ** 2)
+        if camgen.design._far_from_all(near, length, float(bulge.max()), reach, margin):
+            passed += 1
+            low, half = np.minimum(near[:, :-1], near[:, 1:]), length / 2
+            assert (low * low - half * half - (reach[:, None] + half * bulge) ** 2 > margin).all(), trial
+    assert passed > 20
+    design = design_cam(template())
+    z = design.outline.contour.vertices.view(np.complex128)[:, 0]
+    ring = np.concatenate((z, z[:1]))[None, :]
+    bore = np.array([design.spec.cam.bore / 2 + THIN_WALL])
+    assert camgen.design._far_from_all(np.abs(ring), np.abs(np.diff(ring[0])),
+                                       float(np.abs(design.outline.contour.bulges).max()), bore, 1e-6)
+
+
 def _exact_wall(design) -> float:
     """The wall round the bore as shapely measures it on the nominal outline's chords."""
     body = shapely.Polygon(design.outline.contour.flatten(design.tolerance))
