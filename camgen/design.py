@@ -165,14 +165,15 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     # the bore and the holes: where bounds make the checks certain (and no marks are to be fitted), nothing more;
     # else shapely on the outline's chords (the same checks, the same errors) and the wall measured
     wall = None                                         # certainly at least THIN_WALL
-    if spec.hub.engrave or not _certainly_clear(spec, outline.contour, tol):
+    holes = _holes(spec, 0.0)
+    if spec.hub.engrave or not _certainly_clear(spec, holes, outline.contour, tol):
         body = _body(outline, tol)
         reach = _reach(body)
         wall = reach - spec.cam.bore / 2.0
         _check_bore(spec, body, reach)
         _check_holes(spec, body, tol)
     marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
-    profile = _Profile(spec, cam, envelope, marks, outline, cut_off)
+    profile = _Profile(spec, cam, envelope, marks, outline, cut_off, holes)
     out = spec.output
     allowances = _unchecked(Allowances, kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
                             elephant_foot=out.elephant_foot)
@@ -272,8 +273,10 @@ class _Profile:
     made afresh from the exact surface moved out by the offset (so kerf stays exact), once per offset."""
 
     def __init__(self, spec: CamSpec, cam: Cam, envelope: bool, marks: tuple, nominal: Outline,
-                 cut_off: FlatEnvelope | None = None) -> None:
+                 cut_off: FlatEnvelope | None = None, holes: tuple | None = None) -> None:
         self.spec, self.cam, self.envelope, self.marks, self.cut_off = spec, cam, envelope, marks, cut_off
+        #: the holes as drawn (:func:`_holes` grown by 0), where the caller made them already
+        self.holes = holes
         self._outlines = {0.0: nominal}
         self._parts: dict[tuple[float, float], Part] = {}
 
@@ -298,10 +301,16 @@ class _Profile:
             t, hub = self.spec, self.spec.hub
             boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
             self._parts[outline_grow, hole_grow] = _unchecked(
-                Part, name=t.name, outline=self.outline(outline_grow).contour, holes=_holes(t, hole_grow),
+                Part, name=t.name, outline=self.outline(outline_grow).contour, holes=self._holes(hole_grow),
                 thickness=t.cam.thickness, tolerance=t.output.tolerance, marks=self.marks, boss=boss,
                 set_screw=hub.set_screw, pockets=(), elephant_foot=0.0)
         return self._parts[outline_grow, hole_grow]
+
+
+    def _holes(self, grow: float) -> tuple:
+        """:func:`_holes` grown by ``grow`` mm: those made already where it is 0 (a hole adds it to its radius, so
+        -0.0 too)."""
+        return self.holes if grow == 0.0 and self.holes is not None else _holes(self.spec, grow)
 
 
 def _speed(spec: CamSpec, cam: Cam, rates_only: bool = False) -> dict[str, Any] | None:
@@ -366,13 +375,14 @@ def _holes(spec: CamSpec, grow: float) -> tuple:
 _CERTAIN = 1e-9
 
 
-def _certainly_clear(spec: CamSpec, contour: Contour, tolerance: float) -> bool:
+def _certainly_clear(spec: CamSpec, holes: tuple, contour: Contour, tolerance: float) -> bool:
     """Whether bounds make the bore and hole checks (:func:`_check_bore`, :func:`_check_holes`) certain to pass with
     at least :data:`THIN_WALL` mm round the bore: the centre of the bore and of every hole inside the outline (as
     chords within ``tolerance`` mm: the polygon those checks test) and further from it than the hole reaches (the bore
     by THIN_WALL more), every two holes further apart than they reach, each with room to spare for rounding. False
-    where that is not certain: the exact checks then decide, raise their errors and measure the wall."""
-    circles = [_hole_circle(hole) for hole in _holes(spec, 0.0)]      # the bore first, centred on the origin
+    where that is not certain: the exact checks then decide, raise their errors and measure the wall. ``holes``:
+    the spec's holes as drawn (:func:`_holes` grown by 0)."""
+    circles = [_hole_circle(hole) for hole in holes]    # the bore first, centred on the origin
     if not circles:
         return True
     if any(circle is None for circle in circles):
