@@ -521,16 +521,10 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
             least = more
         if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
             if at is None:
-                at = _degrees(theta)
+                at = round(math.degrees(theta), 9) % 360.0
             found.append(_unchecked(Jump, at_deg=at, order=k, jump=step, inside=inside))
 
 
-@functools.lru_cache(maxsize=1024)
-def _degrees(theta: float) -> float:
-    """A jump's cam angle ``theta`` (radians) in degrees as a jump reports it: rounded to 1e-9 degrees (the
-    breakpoints' own rounding gone), 360 wrapping to 0; kept for the angles seen last (Python's round to digits
-    goes through a decimal string, ~2 000 instructions: a design asks for the same few boundaries each time)."""
-    return round(math.degrees(theta), 9) % 360.0
 
 
 #: the order of :meth:`Program.jumps`: by angle, then by order
