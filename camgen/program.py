@@ -525,8 +525,6 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
             found.append(_unchecked(Jump, at_deg=at, order=k, jump=step, inside=inside))
 
 
-
-
 #: the order of :meth:`Program.jumps`: by angle, then by order
 _AT_ORDER = operator.attrgetter("at_deg", "order")
 
