@@ -15,10 +15,11 @@ from camgen.cam import Cam, Maker, build_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker, quietly
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
+from camgen.core.records import unchecked
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.kinds import kind_of
-from camgen.program import Jump, _unchecked
+from camgen.program import Jump
 from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
 from camgen.spec import CamSpec, with_base_radius
 
@@ -175,14 +176,14 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, envelope, marks, outline, cut_off, holes)
     out = spec.output
-    allowances = _unchecked(Allowances, kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
+    allowances = unchecked(Allowances, kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
                             elephant_foot=out.elephant_foot)
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
     speed = _speed(spec, cam, rates_only)
     warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
-    design = _unchecked(CamDesign, spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
+    design = unchecked(CamDesign, spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
                         cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
                         allowances=allowances, warnings=warnings, pressure_limit_deg=pressure_limit(spec),
                         face_extent=extent, speed=speed, sizing=sizing,
@@ -300,10 +301,10 @@ class _Profile:
         if (outline_grow, hole_grow) not in self._parts:
             t, hub = self.spec, self.spec.hub
             boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
-            self._parts[outline_grow, hole_grow] = _unchecked(
+            self._parts[outline_grow, hole_grow] = unchecked(
                 Part, name=t.name, outline=self.outline(outline_grow).contour, holes=self._holes(hole_grow),
                 thickness=t.cam.thickness, tolerance=t.output.tolerance, marks=self.marks, boss=boss,
-                set_screw=hub.set_screw, pockets=(), elephant_foot=0.0)
+                set_screw=hub.set_screw)
         return self._parts[outline_grow, hole_grow]
 
 

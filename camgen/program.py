@@ -12,17 +12,17 @@ import math
 import operator
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
-from typing import Any, Literal, TypeVar
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
+from camgen.core.records import unchecked
 from camgen.laws import Law
 from camgen.numeric import TIE, constant, drive, left_of, maxima_steps, present
 
 Kind = Literal["rise", "dwell", "return"]
-_T = TypeVar("_T")
 TWO_PI = 2.0 * math.pi
 #: relative size of a derivative jump that counts as a discontinuity
 JUMP_TOL = 1e-9
@@ -522,7 +522,7 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
         if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
             if at is None:
                 at = round(math.degrees(theta), 9) % 360.0
-            found.append(_unchecked(Jump, at_deg=at, order=k, jump=step, inside=inside))
+            found.append(unchecked(Jump, at_deg=at, order=k, jump=step, inside=inside))
 
 
 #: the order of :meth:`Program.jumps`: by angle, then by order
@@ -535,16 +535,8 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)
         dwell = kind == "dwell"
-        seg = _unchecked(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
-                      law=None if dwell else law)
+        seg = unchecked(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
+                       law=None if dwell else law)
         segments.append(seg)
         start, level = start + beta, seg.end_level
     return Program(tuple(segments))
-
-
-def _unchecked(cls: type[_T], **fields: Any) -> _T:
-    """An instance of the frozen dataclass ``cls`` (without ``__post_init__``) holding ``fields``, every one of them,
-    made without its generated ``__init__`` (one checked attribute set at a time): a design makes many small ones."""
-    out = object.__new__(cls)
-    out.__dict__.update(fields)
-    return out
