@@ -184,3 +184,25 @@ def test_a_part_cuts_each_field_when_first_read():
     assert same(lone.kappa, whole.kappa[:5]) and set(vars(lone)) == {"_of", "kappa"}
     moved = dataclasses.replace(whole.part(2, 4), point=np.zeros((2, 2)))
     assert same(moved.point, np.zeros((2, 2))) and same(moved.d1, whole.d1[2:4])
+
+
+def test_a_part_pickles_as_its_own_samples_not_its_whole():
+    """A pickled (or deep-copied) part holds its own samples only: a design's cached boundary parts would otherwise
+    carry a whole round of evaluation each. It comes back as a plain geometry of the same bits."""
+    import copy
+    import dataclasses
+    import pickle
+
+    from camgen.cam import build_cam
+    from camgen.followers.base import PitchGeometry
+    from tests.conftest import template
+
+    whole = build_cam(template({})).pitch(np.linspace(0.0, 2 * math.pi, 2000))
+    part = whole.part(10, 14)
+    for back in (pickle.loads(pickle.dumps(part)), copy.deepcopy(part)):
+        assert type(back) is PitchGeometry
+        for f in dataclasses.fields(PitchGeometry):
+            expected = getattr(whole, f.name)
+            assert (getattr(back, f.name) is None) if expected is None else same(getattr(back, f.name),
+                                                                                   expected[10:14]), f.name
+    assert len(pickle.dumps(part)) < len(pickle.dumps(whole)) / 50

@@ -40,3 +40,17 @@ def test_a_design_holds_exactly_the_fields_its_classes_declare(law):
         assert [getattr(again, n) is getattr(obj, n) for n in names] == [True] * len(names), type(obj)
     assert isinstance(design, CamDesign) and isinstance(design.analysis, CamAnalysis)
     assert isinstance(design.part, Part) and all(isinstance(s, Segment) for s in design.cam.program.segments)
+
+
+def test_class_variables_are_no_fields():
+    from dataclasses import dataclass
+    from typing import ClassVar
+
+    @dataclass(frozen=True)
+    class Held:
+        KIND: ClassVar[str] = "held"
+        value: float
+        unit: str = "mm"
+
+    made = unchecked(Held, value=2.5)
+    assert made == Held(2.5) and made.KIND == "held"

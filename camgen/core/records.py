@@ -15,9 +15,9 @@ def unchecked(cls: type[_T], **fields: Any) -> _T:
     default, or a name that is no field, raises TypeError, as ``cls(...)`` would."""
     out = object.__new__(cls)
     own = out.__dict__
-    own.update(_defaults(cls))
+    defaults, names = _layout(cls)
+    own.update(defaults)
     own.update(fields)
-    names = cls.__dataclass_fields__.keys()           # type: ignore[attr-defined]
     if own.keys() != names:
         raise TypeError(f"{cls.__name__}: fields without a value {sorted(names - own.keys())}, "
                         f"not fields {sorted(own.keys() - names)}")
@@ -25,6 +25,9 @@ def unchecked(cls: type[_T], **fields: Any) -> _T:
 
 
 @functools.cache
-def _defaults(cls: type) -> dict[str, Any]:
-    """The plain defaults of the dataclass ``cls``'s fields (those with a default factory are left to be given)."""
-    return {f.name: f.default for f in dataclasses.fields(cls) if f.default is not dataclasses.MISSING}
+def _layout(cls: type) -> tuple[dict[str, Any], frozenset[str]]:
+    """The dataclass ``cls``'s fields' plain defaults (those with a default factory are left to be given) and every
+    field's name (not its class variables')."""
+    fields = dataclasses.fields(cls)
+    return ({f.name: f.default for f in fields if f.default is not dataclasses.MISSING},
+            frozenset(f.name for f in fields))

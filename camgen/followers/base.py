@@ -82,6 +82,10 @@ class _Part(PitchGeometry):
     fields are cut from the whole's when first read: the same views as cut at once, without the slices of the
     fields nobody reads (numpy's views cost more than Python's reads)."""
 
+    def __reduce__(self) -> tuple:
+        """Pickled (and deep-copied) as a plain geometry of its own samples, every field cut: not its whole's."""
+        return pitch_geometry, tuple(getattr(self, name) for name in _FIELDS)
+
 
 for _name in _FIELDS:                               # every field, so that one added to PitchGeometry is cut too
     _field = _Cut()
