@@ -252,36 +252,6 @@ def _estimates(candidates: list[tuple[tuple[int, int, float], int, list[float]]]
     return out
 
 
-#: a peak's breadth, in grid steps, from which the grid resolves it (see :func:`_hopeless`)
-RESOLVED = 3.0
-
-
-def _hopeless(candidates: list[tuple[tuple[int, int, float], int, list[float]]], windows: list[list[float]],
-              top: list[float], held: list[list[float]], ties: list[float]) -> set[int]:
-    """The grid rows (a function on a moving piece; ``top`` their largest grid values, ``held`` each function's values
-    on the steady pieces) whose largest cannot come within ``3 tie`` (each function's ``ties``) of their function's
-    largest over all pieces, so that no search of them can change which piece has it; only rows with peaks found
-    (``candidates``, see :func:`_estimates`; a row without has its ends, a few comparisons).
-
-    A row reaches no higher than its largest grid value and its peaks, and a peak the grid resolves rises above its
-    grid value less than the grid falls within two steps of it (the least of its ``windows``, its five grid values
-    about it: for a parabola sampled at step h, a rise of at most a h^2 / 4 against a fall of at least 9 a h^2 / 4;
-    for a bell of breadth 3 h, 0.027 of its height against 0.22). The grid resolves a peak whose quartic bends down
-    with a breadth of ``RESOLVED`` steps at least (its a2 / a4 as :func:`_breadth` reads it) and leans less than it
-    bends (|a3| <= -a2); a row with a peak it does not resolve (narrower than the grid: the refinement may find it
-    far higher) is searched. A function's largest is at least its largest grid value less a tie (a row constant
-    within the tie has no peak). The slack of 3 ties: a piece's maximum is the first of its values within a tie of
-    its largest, and a row's maximum over the pieces the first within a tie of theirs."""
-    count = len(top) // len(ties)
-    floors = [max(top[f * count:(f + 1) * count] + held[f]) - 3 * tie for f, tie in enumerate(ties)]
-    below, above = set(), set()
-    for ((r, _, v), _, (_, a2, a3, a4)), window in zip(candidates, windows, strict=True):
-        floor = floors[r // count]
-        resolved = a2 < 0 and 2 * RESOLVED**2 * abs(a4) <= -a2 and abs(a3) <= -a2
-        (above if top[r] >= floor or not resolved or v + (v - min(window)) >= floor else below).add(r)
-    return below - above
-
-
 def _stencil(peak: _Peak, lo: list[float], hi: list[float], width: list[float]) -> float:
     """The spacing of ``peak``'s next stencil: ``STENCIL`` of its breadth, within half its distance to its piece's
     nearer end; 0.0 where it is at an end already (within 1e-12 of its piece: the grid's point stands)."""
@@ -290,27 +260,16 @@ def _stencil(peak: _Peak, lo: list[float], hi: list[float], width: list[float]) 
     return d if d > 1e-12 * width[peak.piece] else 0.0
 
 
-def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[float],
-             spare: Callable[[], list[_Peak]] | None = None) -> Generator[
-        tuple[np.ndarray, np.ndarray], np.ndarray, bool]:
+def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[float]) -> Generator[
+        tuple[np.ndarray, np.ndarray], np.ndarray, None]:
     """Locate the ``peaks`` (in place): each round asks five points ``STENCIL`` of a peak's breadth apart about its
     estimate and takes the quartic through its values there (or the best of them where the quartic has no maximum
-    within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds. True when done.
-
-    ``spare`` gives the estimates of the peaks left out (see :func:`_hopeless`), located with them in the full
-    search: a round's quartics are one matrix product, whose rounding differs between one row and several, so a
-    round of one stencil rounds as several where the full search's round had theirs too. That is known in the first
-    round (from their estimates); in a later one it is not, and the search gives up (False) to be run in full."""
+    within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds."""
     active = peaks
-    for first in (True, *[False] * (ROUNDS - 1)):
+    for _ in range(ROUNDS):
         stencils = [(peak, peak.centre, d) for peak in active if (d := _stencil(peak, lo, hi, width))]
         if not stencils:
-            return True
-        several = False
-        if len(stencils) == 1 and spare is not None:
-            if not first:
-                return False
-            several = any(_stencil(peak, lo, hi, width) for peak in spare())
+            return
         points = [(c + d * -2.0, c + d * -1.0, c + d * 0.0, c + d * 1.0, c + d * 2.0) for _, c, d in stencils]
         got = yield (np.array(points).ravel(), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))
         values = got.tolist()
@@ -318,7 +277,7 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
         if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
             raise FloatingPointError("function is not finite near a peak")
         active = []
-        coefficients = _coefficients(np.array(ys * 2 if several else ys))[:len(ys)]
+        coefficients = _coefficients(np.array(ys))
         for (peak, c, d), row, xs, (a1, a2, a3, a4) in zip(stencils, ys, points, coefficients, strict=True):
             t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
             high = max(row)
@@ -334,7 +293,6 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
                 if abs(t) > 0.5:                                 # else the peak is well inside: its quartic's is exact
                     active.append(peak)
             peak.centre = moved
-    return True
 
 
 def _first_largest(candidates: list[tuple[float, float]], tie: float, backwards: bool) -> tuple[float, float]:
@@ -358,7 +316,7 @@ def _end_of(lo: float, first: float, hi: float, last: float, tie: float, backwar
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
-                 steady: ArrayLike = False, n: int = GRID, overall: bool = False) -> Steps:
+                 steady: ArrayLike = False, n: int = GRID) -> Steps:
     """Global maxima of k smooth functions on each of p closed intervals, all at once, as a generator: it yields
     ``(x, piece)`` and is sent the functions' values there (see below), so that a caller can evaluate what it asks
     together with other work (one evaluation serving several searches).
@@ -379,9 +337,6 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     where ``reverse``, (p,) or one for all, is True). A piece where ``steady`` ((p,) or one for all) is True is one
     on which the caller knows every function to be constant to the last bit: its grid is asked for its first point
     only, whose values stand for the rest (the same search as if all were asked: such a piece has no peak).
-    With ``overall`` only each function's largest over all pieces is wanted (the pieces within ``TIE`` of it):
-    a moving piece that cannot come within 3 ties of it on its grid values (see :func:`_hopeless`) is not refined,
-    its x NaN and its value -inf; the other pieces' results are the full search's to the bit.
     Raises FloatingPointError where a value is not finite on the grid or near a peak.
     """
     if n < 5:
@@ -408,27 +363,15 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
     ends = y[:, ::n - 1].tolist()                            # each row's first and last
     grid = _grid_candidates(y, flat) if count else []
-    found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks, [] unsearched
-    peaks = []
+    found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks
     if grid:
         centres, windows = _windows(y, grid, n)
         near = windows.tolist()
         found = [(r, j, w[j - c + 2]) for (r, j), c, w in zip(grid, centres, near, strict=True)]   # and its value
-        candidates = list(zip(found, centres, _coefficients(windows), strict=True))   # the full search's batch
-        hopeless = _hopeless(candidates, near, top, held, [TIE * m for m in magnitude]) if overall else ()
-        kept = [one for one in candidates if one[0][0] not in hopeless] if hopeless else candidates
-        peaks = _estimates(kept, moving, lo, hi, width, n)
-        if hopeless:
-            spare = [one for one in candidates if one[0][0] in hopeless]
-            if (yield from _refined(peaks, lo, hi, width, lambda: _estimates(spare, moving, lo, hi, width, n))):
-                found_on.update(((r // count, moving[r % count]), []) for r in hopeless)
-            else:                                            # the full search, from its estimates
-                peaks = _estimates(candidates, moving, lo, hi, width, n)
-                yield from _refined(peaks, lo, hi, width)
-        else:
-            yield from _refined(peaks, lo, hi, width)
-    for peak in peaks:
-        found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
+        peaks = _estimates(list(zip(found, centres, _coefficients(windows), strict=True)), moving, lo, hi, width, n)
+        yield from _refined(peaks, lo, hi, width)
+        for peak in peaks:
+            found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
     at: list[list[float]] = [[0.0] * p for _ in range(k)]
     value: list[list[float]] = [[0.0] * p for _ in range(k)]
     for f in range(k):
@@ -438,8 +381,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
             here = found_on.get((f, piece))
             row_at[piece], row_value[piece] = (
                 _end_of(lo[piece], first, hi[piece], last, tie, backwards[piece]) if here is None
-                else _first_largest([(lo[piece], first), (hi[piece], last), *here], tie, backwards[piece]) if here
-                else (math.nan, -math.inf))
+                else _first_largest([(lo[piece], first), (hi[piece], last), *here], tie, backwards[piece]))
         for (piece, where), v in zip(resting, held[f], strict=True):
             row_at[piece], row_value[piece] = where, v
     return at, value, magnitude

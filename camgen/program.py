@@ -234,12 +234,10 @@ class Program:
         magnitude (the larger of ``scale``, (k,) or a number, and its largest |value| seen) are equal: of equal
         peaks the one at the smallest angle is taken, so that rounding does not choose between them. ``steady``
         says that the values depend on the motion only, not on the cam angle, so that a dwell's are constant: its
-        grid is then one point (see :func:`camgen.numeric.maxima_steps`). Only each row's largest is wanted: the
-        pieces that cannot come near it are not refined (``overall``).
+        grid is then one point (see :func:`camgen.numeric.maxima_steps`).
         """
         owner, lo, hi, still, backwards, angles = self._pieces
-        steps = maxima_steps(lo, hi, scale=scale, reverse=backwards, steady=still if steady else False,
-                             overall=True)
+        steps = maxima_steps(lo, hi, scale=scale, reverse=backwards, steady=still if steady else False)
         ask = next(steps)
         while True:
             x, piece = ask
