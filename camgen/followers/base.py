@@ -51,47 +51,17 @@ class PitchGeometry:
     rho: np.ndarray | None = None  # (n,) radius of curvature of a flat face's profile, mm
 
     def part(self, start: int, stop: int) -> "PitchGeometry":
-        """The samples ``start`` to ``stop``: each field a slice of this one's (a view of the same array), cut when
-        first read (see :class:`_Part`; a design makes many parts, each read for a few fields)."""
-        out = object.__new__(_Part)
-        out.__dict__["_of"] = (self, slice(start, stop))
+        """The samples ``start`` to ``stop`` (a slice, views of the same arrays), made without the frozen
+        dataclass's checked ``__init__`` (it is on the hot path of every design, many times a design)."""
+        out = object.__new__(PitchGeometry)
+        mine, theirs = self.__dict__, out.__dict__
+        for name in _FIELDS:
+            value = mine[name]
+            theirs[name] = None if value is None else value[start:stop]
         return out
 
 
 _FIELDS = tuple(PitchGeometry.__dataclass_fields__)
-
-
-class _Cut:
-    """A field of a :class:`_Part`: its whole's field sliced when first read, then kept in the part (a non-data
-    descriptor: the instance's own value is read once it holds one)."""
-
-    def __set_name__(self, owner: type, name: str) -> None:
-        self.name = name
-
-    def __get__(self, part: "_Part | None", owner: type | None = None) -> Any:
-        if part is None:
-            return self
-        whole, cut = part.__dict__["_of"]
-        value = getattr(whole, self.name)
-        value = part.__dict__[self.name] = None if value is None else value[cut]
-        return value
-
-
-class _Part(PitchGeometry):
-    """Samples ``cut`` of a geometry ``whole`` (its ``_of``: ``(whole, cut)``, see :meth:`PitchGeometry.part`) whose
-    fields are cut from the whole's when first read: the same views as cut at once, without the slices of the
-    fields nobody reads (numpy's views cost more than Python's reads)."""
-
-    def __reduce__(self) -> tuple:
-        """Pickled (and deep-copied) as a plain geometry of its own samples, every field cut: not its whole's."""
-        return pitch_geometry, tuple(getattr(self, name) for name in _FIELDS)
-
-
-for _name in _FIELDS:                               # every field, so that one added to PitchGeometry is cut too
-    _field = _Cut()
-    _field.__set_name__(_Part, _name)
-    setattr(_Part, _name, _field)
-del _name, _field
 
 
 def rotate(vectors: np.ndarray, angle: np.ndarray) -> np.ndarray:
