@@ -302,13 +302,12 @@ class _Profile:
             t, hub = self.spec, self.spec.hub
             boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
             self._parts[outline_grow, hole_grow] = unchecked(
-                Part, name=t.name, outline=self.outline(outline_grow).contour, holes=self._holes(hole_grow),
+                Part, name=t.name, outline=self.outline(outline_grow).contour, holes=self._grown_holes(hole_grow),
                 thickness=t.cam.thickness, tolerance=t.output.tolerance, marks=self.marks, boss=boss,
                 set_screw=hub.set_screw)
         return self._parts[outline_grow, hole_grow]
 
-
-    def _holes(self, grow: float) -> tuple:
+    def _grown_holes(self, grow: float) -> tuple:
         """:func:`_holes` grown by ``grow`` mm: those made already where it is 0 (a hole adds it to its radius, so
         -0.0 too)."""
         return self.holes if grow == 0.0 and self.holes is not None else _holes(self.spec, grow)
