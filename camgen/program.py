@@ -59,11 +59,6 @@ class Segment:
         """Natural magnitudes h/beta^k of s, s', s'', s''' in this segment (k = 0..3)."""
         return _natural(np.array([self.lift if self.kind != "dwell" else 0.0]), np.array([self.beta]))[0]
 
-    @functools.cached_property
-    def scales(self) -> list[float]:
-        """:meth:`scale` as Python floats, made once a segment."""
-        return self.scale().tolist()
-
     def evaluate(self, theta: ArrayLike) -> np.ndarray:
         """s, s', s'', s''' (shape ``(4, *theta.shape)``) at cam angles inside this segment (radians)."""
         theta = np.asarray(theta, dtype=float)
@@ -295,9 +290,9 @@ class Program:
                                list[tuple[float, float, bool]]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them, made
         once a program: the owning segment of each (an array, to map asks; None where each segment is one piece,
-        its own), the law variable's ends (arrays), whether
-        its segment holds still (a dwell) and whether it runs its law backwards (a return, see
-        :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag."""
+        its own), the law variable's ends (arrays), whether its segment holds still (a dwell) and whether it runs
+        its law backwards (a return, see :meth:`Segment.angle`), and that segment's start, angle (radians) and
+        backwards flag."""
         owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
         for i, seg in enumerate(self.segments):
             moving = seg.kind != "dwell" and seg.law is not None
@@ -353,7 +348,7 @@ class _Table:
     offset that turn u into the law's variable (-1 and 1 on a return, whose law runs backwards; 1 and 0 elsewhere), 1
     on a dwell (or a segment without a law) and 0 elsewhere, the level added to s (mm), the four factors of
     :meth:`Segment._from_law` (0 on a dwell) and its h (the lift, 0 on a dwell); ``scales`` is every segment's
-    :attr:`Segment.scales`."""
+    :meth:`Segment.scale`, as floats."""
 
     def __init__(self, segments: tuple[Segment, ...]) -> None:
         values: list[float] = []
@@ -370,7 +365,7 @@ class _Table:
             group.append(_group(laws, seg.law if moving else None))
         made = np.fromiter(values, float, len(values)).reshape(len(segments), _WIDTH)
         natural = _natural(made[:, _H], made[:, _BETA])
-        self.scales: list[list[float]] = natural.tolist()      # every segment's Segment.scales, made in one pass
+        self.scales: list[list[float]] = natural.tolist()      # every segment's Segment.scale, made in one pass
         # the factors: natural scales times the signs in their place, 1 (a rise), +-1 (a return's even and odd orders)
         # or 0 (a dwell): exact
         np.multiply(natural, made[:, _FACTORS], out=made[:, _FACTORS])

@@ -134,8 +134,8 @@ def test_laws_filled_in_place_keep_their_formulas(law):
 
 
 def test_jumps_keep_their_numbers_with_the_scales_made_at_once(program):
-    """The program's jumps compare against every segment's scales made in one pass: Segment.scales' numbers."""
-    assert program._table.scales == [seg.scales for seg in program.segments]
+    """The program's jumps compare against every segment's scales made in one pass: Segment.scale's numbers."""
+    assert program._table.scales == [seg.scale().tolist() for seg in program.segments]
     for jump in program.jumps():
         assert type(jump.jump) is float and type(jump.at_deg) is float and jump.order in (1, 2, 3)
 
