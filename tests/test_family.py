@@ -215,14 +215,15 @@ def _running(pid: str) -> bool:
 @pytest.mark.parametrize("signame", ["SIGKILL", "SIGTERM"])
 def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path, signame):
     """SIGKILL (or SIGTERM, what a scheduler or `kill` sends) of the command mid-run: its workers end, the re-run
-    clears the temporary files and gives the same bytes as an undisturbed run."""
+    clears the temporary files and gives the same bytes as an undisturbed run. 40 variants: enough that the signal,
+    sent once 3 have started, lands before the last (20 were once all done first)."""
     import os
     import signal
     import subprocess
     import sys
     import time
 
-    body = ('[output]\nformats = ["dxf", "stl", "json"]\n[sweep]\n"follower.offset" = [0.0, 2.0, 4.0, 6.0]\n'
+    body = ('[output]\nformats = ["dxf", "stl", "json"]\n[sweep]\n"follower.offset" = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]\n'
             '[sweep.zip]\n"motion.0.lift" = {start = 5, stop = 25, step = 5}\n'
             '"motion.2.lift" = {start = 5, stop = 25, step = 5}\n')
     path = family_file(tmp_path, body)
@@ -241,7 +242,7 @@ def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path, sig
         time.sleep(0.1)
     alive = [pid for pid in children if _running(pid)]
     assert children and alive == []                                  # the workers ended with their parent
-    assert len(list(out.glob("*/.inputs"))) < 20                      # it was stopped part of the way
+    assert len(list(out.glob("*/.inputs"))) < 40                      # it was stopped part of the way
     assert subprocess.run([*cmd, str(out)], env=env).returncode == 0
     assert subprocess.run([*cmd, str(clean)], env=env).returncode == 0
     assert list(out.rglob(".*.tmp")) == []
