@@ -223,7 +223,8 @@ def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path, sig
     import sys
     import time
 
-    body = ('[output]\nformats = ["dxf", "stl", "json"]\n[sweep]\n"follower.offset" = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]\n'
+    body = ('[output]\nformats = ["dxf", "stl", "json"]\n[sweep]\n'
+            '"follower.offset" = [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]\n'
             '[sweep.zip]\n"motion.0.lift" = {start = 5, stop = 25, step = 5}\n'
             '"motion.2.lift" = {start = 5, stop = 25, step = 5}\n')
     path = family_file(tmp_path, body)
