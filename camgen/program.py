@@ -328,10 +328,12 @@ class Program:
         """
         found: list[Jump] = []
         n = len(self.segments)
-        motion = self.boundaries[1].T.tolist()              # as Python floats: the same numbers, cheaper one by one
+        theta, motion = self.boundaries
+        ends = theta.tolist()                               # every Segment.end first (its sums: the same numbers)
+        motion = motion.T.tolist()                          # as Python floats: the same numbers, cheaper one by one
         scales = self._table.scales
         for i, seg in enumerate(self.segments):
-            _compare(found, seg.end, motion[i], motion[n + i], scales[i], scales[i + 1 - n], inside=False)
+            _compare(found, ends[i], motion[i], motion[n + i], scales[i], scales[i + 1 - n], inside=False)
             for t, lo, hi in seg.inner_limits():
                 _compare(found, t, lo.tolist(), hi.tolist(), scales[i], scales[i], inside=True)
         found.sort(key=_AT_ORDER)
@@ -528,8 +530,8 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)
         dwell = kind == "dwell"
-        seg = unchecked(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
-                       law=None if dwell else law)
-        segments.append(seg)
-        start, level = start + beta, seg.end_level
+        segments.append(unchecked(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift,
+                                  level=level, law=None if dwell else law))
+        # Segment.end_level's sum, its lift known here (0.0 on a dwell)
+        start, level = start + beta, level + (lift if kind == "rise" else -lift if kind == "return" else 0.0)
     return Program(tuple(segments))

@@ -20,4 +20,7 @@ CAM_KINDS: dict[str, CamKind] = {m.KIND.name: m.KIND for m in (disc, plate, groo
 
 def kind_of(kind: str) -> CamKind:
     """The registered kind ``kind`` (``cam.kind``), or a one-line error listing them."""
-    return CAM_KINDS[choose(kind, CAM_KINDS, "cam.kind")]
+    try:
+        return CAM_KINDS[kind]          # a registered name (a design asks twice): no list of the names made
+    except (KeyError, TypeError):       # not one, or not a name at all: the error says which are
+        return CAM_KINDS[choose(kind, CAM_KINDS, "cam.kind")]

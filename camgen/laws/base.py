@@ -51,7 +51,10 @@ class Law(ABC):
 
     def smooth_intervals(self) -> list[tuple[float, float]]:
         """Closed sub-intervals of [0, 1] on which the law is smooth, with left limits at their right ends."""
-        edges = [0.0, *sorted(set(self.breakpoints)), 1.0]
+        breakpoints = self.breakpoints
+        if not breakpoints:             # one piece (what the general case makes of none, without its sorting)
+            return [(0.0, 1.0)]
+        edges = [0.0, *sorted(set(breakpoints)), 1.0]
         return [(a, left_of(b) if b < 1.0 else 1.0) for a, b in pairwise(edges) if b > a]
 
     def peaks(self) -> np.ndarray:
