@@ -181,11 +181,12 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
     speed = _speed(spec, cam, rates_only)
-    warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off) + _contact_warnings(speed)
+    limit = pressure_limit(spec)
+    warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off, limit) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
     design = unchecked(CamDesign, spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
                         cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
-                        allowances=allowances, warnings=warnings, pressure_limit_deg=pressure_limit(spec),
+                        allowances=allowances, warnings=warnings, pressure_limit_deg=limit,
                         face_extent=extent, speed=speed, sizing=sizing,
                         face_leaves=cut_off.leaves if cut_off is not None else None)
     return design if wall is None else known_wall(design, wall)
@@ -385,7 +386,7 @@ def _certainly_clear(spec: CamSpec, holes: tuple, contour: Contour, tolerance: f
     circles = [_hole_circle(hole) for hole in holes]    # the bore first, centred on the origin
     if not circles:
         return True
-    if any(circle is None for circle in circles):
+    if None in circles:
         return False
     for (c, r), (d, q) in itertools.combinations(circles, 2):
         if not abs(c - d) - r - q > _CERTAIN * (1.0 + abs(c) + abs(d) + r + q):
@@ -494,8 +495,10 @@ def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: np
     less; so whether m^2 - H^2 - (reach + H widest)^2 exceeds ``margin`` for every point (``reach`` (k,) mm, the
     squared bounds' room for rounding). Enough where no long chord comes near (a cam's bore), in Python floats."""
     most = float(np.maximum.reduce(length, initial=0.0)) * 0.5       # the longest half chord: halving is exact
-    return all(m * m - most * most - (r + most * widest) ** 2 > margin
-               for m, r in zip(np.minimum.reduce(near, axis=1).tolist(), reach.tolist(), strict=True))
+    for m, r in zip(np.minimum.reduce(near, axis=1).tolist(), reach.tolist(), strict=True):
+        if not m * m - most * most - (r + most * widest) ** 2 > margin:
+            return False
+    return True
 
 
 def _arcs_clear(contour: Contour, tolerance: float, start: np.ndarray, run: np.ndarray, reach: np.ndarray,
@@ -627,11 +630,13 @@ def _fold_warnings(cut_off: FlatEnvelope) -> list[str]:
 
 
 def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float | None,
-              segments: tuple, cut_off: FlatEnvelope | None = None) -> tuple[str, ...]:
+              segments: tuple, cut_off: FlatEnvelope | None = None, limit: float | None = None
+              ) -> tuple[str, ...]:
     """The design's warnings; ``wall`` is the wall round the bore (mm), None where it is certainly at least
-    :data:`THIN_WALL`."""
+    :data:`THIN_WALL`; ``limit`` the spec's :func:`~camgen.sizing.pressure_limit` (degrees) where the caller has
+    it."""
     out = []
-    limit = pressure_limit(spec)
+    limit = pressure_limit(spec) if limit is None else limit
     if a.pressure_angle_max_deg > limit:
         out.append(f"pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
                    f"{a.pressure_angle_max_at_deg:.2f} degrees), above the {limit:g} degree limit: enlarge the "
