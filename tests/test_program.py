@@ -128,3 +128,18 @@ def test_a_cycloidal_rise_and_return_are_evaluated_as_one_law():
                        ("return", 90, H, make_law("cycloidal")), ("dwell", 90, 0, None)])
     theta = np.radians(np.linspace(0.0, 359.0, 719))
     assert len(p._table.laws) == 2 and np.array_equal(p.evaluate_on(p.segment_index(theta), theta), p.evaluate(theta))
+
+
+def test_a_jumps_angle_is_its_boundary_rounded_to_9_places_in_degrees():
+    """A jump's at_deg is round(degrees(theta), 9) % 360 of its boundary theta, to the bit, whether the boundary
+    lies at a whole number of degrees (taken as it is: its own rounding) or not (119.99999999999999 -> 120.0)."""
+    for angles in ((120, 60, 120, 60), (100.5, 79.25, 120.125, 60.125), (33.3, 90, 200.7, 36), (90, 90, 90, 90)):
+        steps = [("rise", angles[0], H, make_law("cycloidal")), ("dwell", angles[1], 0, None),
+                 ("return", angles[2], H, make_law("harmonic")), ("dwell", angles[3], 0, None)]
+        p = build_program(steps)
+        ends = [seg.start + seg.beta for seg in p.segments]
+        expected = {round(math.degrees(t), 9) % 360.0 for t in ends}
+        found = {j.at_deg for j in p.jumps()}
+        assert found == expected and len(found) == 4, angles
+        assert all(math.copysign(1.0, a) > 0 for a in found)
+    assert math.degrees(math.radians(120)) != 120.0      # a boundary that is not a whole number, rounded to one
