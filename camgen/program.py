@@ -166,20 +166,11 @@ class Program:
         segments = self.segments
         if not segments:
             raise SpecError("needs at least one segment", "motion")
-        total = sum(seg.beta for seg in segments)
-        if abs(total - TWO_PI) > 1e-9:
-            raise SpecError(f"segment angles add up to {math.degrees(total):.6g} degrees; they must add up to 360",
-                            "motion")
-        levels = [v for seg in segments for v in (seg.level, seg.end_level)]    # each segment's start and end
-        first, last = levels[0], levels[-1]
-        if abs(last - first) > 1e-9 * max(1.0, max(levels)):      # max(1, max_lift)
-            raise SpecError(f"the follower ends the turn at s = {last:.6g} mm but starts at "
-                            f"s = {first:.6g} mm; rises and returns must balance over 360 degrees", "motion")
-        low = min(levels)
-        if low < -1e-9:
-            i = levels.index(low) // 2
-            raise SpecError(f"takes the follower to s = {low:.6g} mm, below its lowest position (s = 0); "
-                            "start the program with a rise or dwell", f"motion[{i}]")
+        total, levels = 0.0, []
+        for seg in segments:                            # the angles' running sum, each segment's start and end
+            total += seg.beta
+            levels += (seg.level, seg.end_level)
+        _check_turn(total, levels)
 
     @property
     def max_lift(self) -> float:
@@ -525,14 +516,37 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
 _AT_ORDER = operator.attrgetter("at_deg", "order")
 
 
+def _check_turn(total: float, levels: list[float]) -> None:
+    """:class:`Program`'s checks of its segments' angles adding up to ``total`` (radians) and their start and end
+    levels ``levels`` (2 a segment, mm, in order): one turn, back to the start, never below s = 0."""
+    if abs(total - TWO_PI) > 1e-9:
+        raise SpecError(f"segment angles add up to {math.degrees(total):.6g} degrees; they must add up to 360",
+                        "motion")
+    first, last = levels[0], levels[-1]
+    if abs(last - first) > 1e-9 * max(1.0, max(levels)):      # max(1, max_lift)
+        raise SpecError(f"the follower ends the turn at s = {last:.6g} mm but starts at "
+                        f"s = {first:.6g} mm; rises and returns must balance over 360 degrees", "motion")
+    low = min(levels)
+    if low < -1e-9:
+        i = levels.index(low) // 2
+        raise SpecError(f"takes the follower to s = {low:.6g} mm, below its lowest position (s = 0); "
+                        "start the program with a rise or dwell", f"motion[{i}]")
+
+
 def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program:
-    """A program from ``(kind, angle in degrees, lift in mm, law)`` steps, laid end to end from theta = 0."""
-    segments, start, level = [], 0.0, 0.0
+    """A program from ``(kind, angle in degrees, lift in mm, law)`` steps, laid end to end from theta = 0; checked
+    as :class:`Program` checks itself, from the angles and levels known here (no second pass over its segments)."""
+    segments, levels, start, level = [], [], 0.0, 0.0
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)
         dwell = kind == "dwell"
         segments.append(unchecked(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift,
                                   level=level, law=None if dwell else law))
         # Segment.end_level's sum, its lift known here (0.0 on a dwell)
-        start, level = start + beta, level + (lift if kind == "rise" else -lift if kind == "return" else 0.0)
-    return Program(tuple(segments))
+        end = level + (lift if kind == "rise" else -lift if kind == "return" else 0.0)
+        levels += (level, end)
+        start, level = start + beta, end
+    if not segments:
+        return Program(())                              # refused, as Program refuses it
+    _check_turn(start, levels)                          # start: the angles' running sum, as Program adds them
+    return unchecked(Program, segments=tuple(segments))

@@ -143,3 +143,39 @@ def test_a_jumps_angle_is_its_boundary_rounded_to_9_places_in_degrees():
         assert found == expected and len(found) == 4, angles
         assert all(math.copysign(1.0, a) > 0 for a in found)
     assert math.degrees(math.radians(120)) != 120.0      # a boundary that is not a whole number, rounded to one
+
+
+def _segments(steps):
+    """The segments build_program lays end to end, made by Segment's own constructor."""
+    from camgen.program import Segment
+
+    out, start, level = [], 0.0, 0.0
+    for kind, angle, lift, law in steps:
+        seg = Segment(kind, start, math.radians(angle), 0.0 if kind == "dwell" else lift, level,
+                      None if kind == "dwell" else law)
+        out.append(seg)
+        start, level = seg.end, seg.end_level
+    return tuple(out)
+
+
+@pytest.mark.parametrize("steps", [
+    [("rise", 120, H, make_law("cycloidal")), ("dwell", 60, 0, None), ("return", 180, H, make_law("harmonic"))],
+    [("rise", 120, H, make_law("cycloidal")), ("return", 120, H, make_law("cycloidal"))],
+    [("rise", 180, H, make_law("cycloidal")), ("return", 180, H / 2, make_law("cycloidal"))],
+    [("return", 180, H, make_law("cycloidal")), ("rise", 180, H, make_law("cycloidal"))],
+    [("dwell", 360, 0, None)],
+    [],
+])
+def test_build_program_checks_as_program_checks_itself(steps):
+    """build_program's checks (from the angles and levels it lays out) accept and refuse what Program's own do,
+    with the same message and field."""
+    from camgen.program import Program
+
+    try:
+        made = build_program(steps)
+    except SpecError as error:
+        with pytest.raises(SpecError) as own:
+            Program(_segments(steps))
+        assert (str(own.value), own.value.field) == (str(error), error.field)
+    else:
+        assert made == Program(_segments(steps))
