@@ -175,8 +175,10 @@ def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: floa
 _ZERO, _HALF, _ONE, _EIGHT, _INF = constant(0.0), constant(0.5), constant(1.0), constant(8.0), constant(math.inf)
 
 
-#: the points of the grid on which a stretch is measured for its spacing
-_AUX = 129
+#: the points of the grid on which a stretch is measured for its spacing: its trapezoids only integrate the vertex
+#: density (the measured error decides the rest); 65 give every bundled outline as many vertices as 129 did (600
+#: random cams: 0.15 % more, 104 third rounds for 95; 33: 1.5 % more, 145 third rounds)
+_AUX = 65
 
 
 def _aux(cam: Cam, index: int, span: tuple[float, float] | None) -> np.ndarray:
