@@ -87,8 +87,9 @@ _QUARTIC = (np.array([[1, -1, -1, 1], [-8, 16, 2, -4], [0, -30, 0, 6], [8, 16, -
 def _coefficients(windows: np.ndarray) -> list[list[float]]:
     """a1, a2, a3, a4 (the coefficients of t, t^2, t^3, t^4) of the quartic through each row of ``windows`` (m, 5)
     (values at t = -2..2), as floats. One matrix product for all rows: its rounding depends on whether there is one
-    row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place."""
-    return (windows @ _QUARTIC).tolist()
+    row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place. ndarray.dot
+    calls the same BLAS kernel as the @ operator (the same bits) with less of numpy's dispatch before it."""
+    return windows.dot(_QUARTIC).tolist()
 
 
 def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) -> float | None:
@@ -97,9 +98,10 @@ def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) ->
     twice, thrice, six = 2 * a2, 3 * a3, 6 * a3               # the same numbers each step: made once; t * 4 * a4
     four = 4 * a4                                             # is t * four to the bit (4 scales exactly)
     try:
-        t = -a1 / twice
-        for _ in (0, 1, 2):
-            t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
+        t = -a1 / twice                                       # three steps written out: no loop to run
+        t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
+        t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
+        t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
     except ZeroDivisionError:                                 # t would be infinite or NaN: no maximum within
         return None
     return t if twice + t * (six + t * 12 * a4) < 0 and lo <= t <= hi else None   # False where t is NaN
