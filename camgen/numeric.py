@@ -77,6 +77,8 @@ TIE = 1e-12
 _UNIT = np.linspace(0.0, 1.0, GRID)
 #: a quartic's five grid points from its first
 _FIVE = np.arange(5)
+#: a refinement stencil's five points about its centre, in its spacings
+_OFFSETS = (-2.0, -1.0, 0.0, 1.0, 2.0)
 
 
 #: the quartic through five values at t = -2..2: its coefficients of t, t^2, t^3, t^4 (columns)
@@ -272,19 +274,19 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
         stencils = [(peak, peak.centre, d) for peak in active if (d := _stencil(peak, lo, hi, width))]
         if not stencils:
             return
-        points = [(c + d * -2.0, c + d * -1.0, c + d * 0.0, c + d * 1.0, c + d * 2.0) for _, c, d in stencils]
-        got = yield (np.array(points).ravel(), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))
+        points = [c + d * s for _, c, d in stencils for s in _OFFSETS]     # five a stencil, one flat list
+        got = yield (np.array(points), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))
         values = got.tolist()
         ys = [values[peak.f][5 * i:5 * i + 5] for i, (peak, _, _) in enumerate(stencils)]   # each its own function
         if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
             raise FloatingPointError("function is not finite near a peak")
         active = []
         coefficients = _coefficients(np.array(ys))
-        for (peak, c, d), row, xs, (a1, a2, a3, a4) in zip(stencils, ys, points, coefficients, strict=True):
+        for (peak, c, d), row, (a1, a2, a3, a4) in zip(stencils, ys, coefficients, strict=True):
             t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
             high = max(row)
             if t is None:
-                moved = xs[row.index(high)]
+                moved = c + d * _OFFSETS[row.index(high)]          # that stencil point, made again
                 if high >= peak.value:
                     peak.at = moved
                 peak.value = max(peak.value, high)
