@@ -206,10 +206,11 @@ def _grid_candidates(y: np.ndarray, flat: list[int]) -> list[tuple[int, int]]:
     peak = inner >= np.maximum(before, after)                # as inner >= before and inner >= after (no NaN)
     if flat:
         peak[flat] = False
-    rows, cols = peak.nonzero()
-    if len(set(found := rows.tolist())) == len(found):      # one a row: its highest
-        return [(r, j + 1) for r, j in zip(found, cols.tolist(), strict=True)]
-    values = inner[rows, cols].tolist()
+    n = y.shape[1]            # (row, grid index) from the flat indices of a 1-D nonzero: a 2-D one costs ~1 us more
+    cells = [(i // (n - 2), i % (n - 2) + 1) for i in peak.ravel().nonzero()[0].tolist()]
+    if len(set(found := [r for r, _ in cells])) == len(found):   # one a row: its highest
+        return cells
+    values = y.take([r * n + j for r, j in cells]).tolist()
     bend = before - 2 * inner
     bend += after
     drop = np.maximum.reduce(np.abs(bend, out=bend), axis=1).tolist()
@@ -217,7 +218,7 @@ def _grid_candidates(y: np.ndarray, flat: list[int]) -> list[tuple[int, int]]:
     for r, v in zip(found, values, strict=True):
         if v > top[r]:
             top[r] = v
-    return [(r, j + 1) for r, j, v in zip(found, cols.tolist(), values, strict=True) if v >= top[r] - drop[r]]
+    return [(r, j) for (r, j), v in zip(cells, values, strict=True) if v >= top[r] - drop[r]]
 
 
 class _Peak:
