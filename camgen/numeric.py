@@ -4,7 +4,7 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from collections.abc import Callable, Generator
+from collections.abc import Callable, Generator, Iterable
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -238,15 +238,17 @@ def _windows(y: np.ndarray, found: list[tuple[int, int]], n: int) -> tuple[list[
     return centres, y.take(np.add.outer([r * n + c - 2 for (r, _), c in zip(found, centres, strict=True)], _FIVE))
 
 
-def _estimates(candidates: list[tuple[tuple[int, int, float], int, list[float]]], moving: list[int], lo: list[float],
-               hi: list[float], width: list[float], n: int) -> list[_Peak]:
-    """The ``candidates`` (a peak found on the grid rows, a row for each function on each piece of ``moving``; the
-    grid index of its window's centre; the coefficients of the quartic through the window's five values, see
-    :func:`_windows`), each placed by its quartic (within a grid step of its grid point) and given its breadth."""
+def _estimates(candidates: Iterable[tuple[tuple[int, int], int, list[float], list[float]]], moving: list[int],
+               lo: list[float], hi: list[float], width: list[float], n: int) -> list[_Peak]:
+    """The ``candidates`` (a peak found on the grid rows, (row, grid index), a row for each function on each piece
+    of ``moving``; the grid index of its window's centre; the window's five values and the coefficients of the
+    quartic through them, see :func:`_windows`), each placed by its quartic (within a grid step of its grid point)
+    and given its breadth and its grid value."""
     count = len(moving)
     unit = _unit(n)[1]
     out = []
-    for (r, j, value), c, (a1, a2, a3, a4) in candidates:
+    for (r, j), c, near, (a1, a2, a3, a4) in candidates:
+        value = near[j - c + 2]
         piece = moving[r % count]
         low, size = lo[piece], width[piece]
         step = size / (n - 1)
@@ -371,9 +373,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks
     if grid:
         centres, windows = _windows(y, grid, n)
-        near = windows.tolist()
-        found = [(r, j, w[j - c + 2]) for (r, j), c, w in zip(grid, centres, near, strict=True)]   # and its value
-        peaks = _estimates(list(zip(found, centres, _coefficients(windows), strict=True)), moving, lo, hi, width, n)
+        peaks = _estimates(zip(grid, centres, windows.tolist(), _coefficients(windows), strict=True), moving, lo, hi,
+                           width, n)
         yield from _refined(peaks, lo, hi, width)
         for peak in peaks:
             found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
