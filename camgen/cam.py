@@ -176,27 +176,26 @@ def together(makers: Sequence[Maker], first: Callable[[], None] | None = None) -
     it returns their results in order. ``first``, if given, is called when the first answers come, before any
     maker sees them (:meth:`Cam.serve` has made the segment boundaries by then)."""
     results: list[Any] = [None] * len(makers)
-    asks = {}
+    live = []                                           # (place, maker, its asks) of each maker still asking
     for k, maker in enumerate(makers):
         try:
-            asks[k] = next(maker)
+            live.append((k, maker, next(maker)))
         except StopIteration as done:                   # done before asking anything (a tentative maker's error)
             results[k] = done.value
-    while asks:
-        keys = list(asks)
-        answers = yield [a for k in keys for a in asks[k]]
+    while live:
+        answers = yield [a for _, _, asks in live for a in asks]
         if first is not None:
             first()
             first = None
-        nxt, at = {}, 0
-        for k in keys:
-            count = len(asks[k])
+        asking, at = [], 0
+        for k, maker, asks in live:
+            count = len(asks)
             try:
-                nxt[k] = makers[k].send(answers[at:at + count])
+                asking.append((k, maker, maker.send(answers[at:at + count])))
             except StopIteration as done:
                 results[k] = done.value
             at += count
-        asks = nxt
+        live = asking
     return results
 
 
