@@ -4,6 +4,7 @@ from __future__ import annotations
 import functools
 import itertools
 import math
+import operator
 from collections.abc import Callable, Generator, Iterable
 from typing import Any, NamedTuple
 
@@ -302,15 +303,19 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
             peak.centre = moved
 
 
+_VALUE = operator.itemgetter(1)
+
+
 def _first_largest(candidates: list[tuple[float, float]], tie: float, backwards: bool) -> tuple[float, float]:
     """Of a piece's ``candidates`` (abscissa, value), its ends and peaks, the first from the low end (the high end
     where ``backwards``) whose value is within ``tie`` of the largest; of equal abscissae the earliest listed."""
-    limit = max([v for _, v in candidates]) - tie
+    limit = max(candidates, key=_VALUE)[1] - tie
     sign = -1.0 if backwards else 1.0
     best, key = candidates[0], math.inf
-    for x, v in candidates:
+    for candidate in candidates:
+        x, v = candidate
         if v >= limit and sign * x < key:
-            best, key = (x, v), sign * x
+            best, key = candidate, sign * x
     return best
 
 
