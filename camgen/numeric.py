@@ -199,16 +199,23 @@ def _unit(n: int) -> tuple[np.ndarray, list[float]]:
     return unit, unit.tolist()
 
 
-def _grid_candidates(y: np.ndarray, flat: list[int]) -> list[tuple[int, int]]:
-    """Each row's interior local maxima on the grid ``y`` (rows, n; finite) that may be its largest: within what a
-    peak can rise above its grid points (the row's largest second difference) of the row's highest; none on the rows
-    ``flat`` (constant within the tie). ``(row, grid index)`` each, in order of row and index."""
+def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], magnitude: list[float],
+                     count: int) -> list[tuple[int, int]]:
+    """Each row's local maxima on the grid ``y`` (rows, n; finite) that may be its largest: within what a peak can
+    rise above its grid points (the row's largest second difference) of the row's highest; none on the rows ``flat``
+    (constant within the tie). ``(row, grid index)`` each, in order of row and index. The interior points no lower
+    than their neighbours, and an end (see :func:`_inward_peaks`; ``edges``, each row's first three and last three
+    values, ``magnitude`` each function's, ``count`` rows a function) where a peak lies within the grid's first or
+    last step, which no interior point shows."""
     inner, before, after = y[:, 1:-1], y[:, :-2], y[:, 2:]
     peak = inner >= np.maximum(before, after)                # as inner >= before and inner >= after (no NaN)
     if flat:
         peak[flat] = False
     n = y.shape[1]            # (row, grid index) from the flat indices of a 1-D nonzero: a 2-D one costs ~1 us more
     cells = [(i // (n - 2), i % (n - 2) + 1) for i in peak.ravel().nonzero()[0].tolist()]
+    near_ends = _inward_peaks(edges, flat, magnitude, count, n)
+    if near_ends:
+        cells = sorted(cells + near_ends)
     if len(set(found := [r for r, _ in cells])) == len(found):   # one a row: its highest
         return cells
     values = y.take([r * n + j for r, j in cells]).tolist()
@@ -220,6 +227,29 @@ def _grid_candidates(y: np.ndarray, flat: list[int]) -> list[tuple[int, int]]:
         if v > top[r]:
             top[r] = v
     return [(r, j) for (r, j), v in zip(cells, values, strict=True) if v >= top[r] - drop[r]]
+
+
+def _inward_peaks(edges: list[list[float]], flat: list[int], magnitude: list[float], count: int,
+                  n: int) -> list[tuple[int, int]]:
+    """The ends of the grid rows (``edges``: each row's first three and last three values, of a grid of ``n``) near
+    which a peak lies inside the grid's first or last step: where the end is no lower than its neighbour and the
+    parabola through it and the next two points rises inwards from it, peaking higher than the end by more than the
+    tie (``TIE`` of the row's function's ``magnitude``, ``count`` rows a function; none on the rows ``flat``). A
+    parabola of end value a and next values b, c has the slope s / 2 = (4 b - c - 3 a) / 2 a step there and the
+    second difference D = a - 2 b + c, and peaks s^2 / (8 |D|) above a (s > 0 and a >= b make D < 0). ``(row, grid
+    index)`` each: 0 for the first end, n - 1 for the last."""
+    out = []
+    for r, (a, b, c, x, w, z) in enumerate(edges):
+        tie = 8.0 * TIE * magnitude[r // count]
+        if a >= b and (s := 4.0 * b - c - 3.0 * a) > 0.0 and s * s > tie * (2.0 * b - a - c) and r not in flat:
+            out.append((r, 0))
+        if z >= w and (s := 4.0 * w - x - 3.0 * z) > 0.0 and s * s > tie * (2.0 * w - x - z) and r not in flat:
+            out.append((r, n - 1))
+    return out
+
+
+#: the grid indices of a row's first three and last three points (see :func:`_inward_peaks`)
+_EDGES = np.array([0, 1, 2, -3, -2, -1])
 
 
 class _Peak:
@@ -256,7 +286,8 @@ def _estimates(candidates: Iterable[tuple[tuple[int, int], int, list[float], lis
         shift = float(j - c)
         t = _vertex(a1, a2, a3, a4, shift - 1.0, shift + 1.0)
         centre = min(max(low + size * unit[c] + (shift if t is None else t) * step, low), hi[piece])
-        out.append(_Peak(r // count, piece, low + size * unit[j], value, centre, _breadth(a2, a4, step, size)))
+        at = hi[piece] if j == n - 1 else low + size * unit[j]           # the grid's own point: its last the end
+        out.append(_Peak(r // count, piece, at, value, centre, _breadth(a2, a4, step, size)))
     return out
 
 
@@ -340,7 +371,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     of ``scale`` (k,) and its largest |value| on the grid.
 
     One dense evaluation (``n`` >= 5 points a piece) finds each function's interior local maxima on each piece that
-    may be its largest (none on a piece where it is constant, within ``TIE``); the quartic through the five grid
+    may be its largest, and a peak within the grid's first or last step (see :func:`_inward_peaks`; none on a piece
+    where it is constant, within ``TIE``); the quartic through the five grid
     values about each puts its maximiser within ~1e-9 of the piece and tells the peak's breadth; a second
     evaluation, at five points ``STENCIL`` of that breadth apart about the estimate, gives a quartic whose peak is
     the maximiser within ~1e-12 of the breadth and the maximum to the rounding of the values (a peak the estimate
@@ -373,8 +405,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     magnitude = [max(s, v) for s, v in zip(scales, largest, strict=True)]
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
-    ends = y[:, ::n - 1].tolist()                            # each row's first and last
-    grid = _grid_candidates(y, flat) if count else []
+    edges = y[:, _EDGES].tolist()                            # each row's first three and last three
+    grid = _grid_candidates(y, flat, edges, magnitude, count) if count else []
     found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks
     if grid:
         centres, windows = _windows(y, grid, n)
@@ -388,7 +420,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     for f in range(k):
         tie = TIE * magnitude[f]
         row_at, row_value = at[f], value[f]
-        for piece, (first, last) in zip(moving, ends[f * count:(f + 1) * count], strict=True):
+        for piece, edge in zip(moving, edges[f * count:(f + 1) * count], strict=True):
+            first, last = edge[0], edge[5]
             here = found_on.get((f, piece))
             row_at[piece], row_value[piece] = (
                 _end_of(lo[piece], first, hi[piece], last, tie, backwards[piece]) if here is None

@@ -166,6 +166,44 @@ def test_piecewise_maxima_on_known_functions():
 
 
 @pytest.mark.parametrize("reverse", [False, True])
+def test_a_peak_within_the_grids_first_or_last_step(reverse):
+    """A peak inside a piece's first or last grid step lifts no interior grid point above its neighbours (the end
+    is the grid's highest there): the end is a candidate where the parabola through it and the next two grid points
+    rises inwards, so the peak itself is found (the end's value falls 2e-4 short of it in the nearest case here). An
+    end at which the function is highest, or levels off, stays the answer, at the end's own abscissa."""
+    step = 1.0 / (numeric.GRID - 1)
+    for peak in (0.2 * step, 0.7 * step, 1.0 - 0.5 * step, 1.0 - 0.05 * step):
+        at, value, _ = piecewise_maxima(lambda x, piece, p=peak: (1.0 - 50.0 * (x - p) ** 2)[None], [0.0], [1.0],
+                                        reverse=reverse)
+        assert value[0, 0] == pytest.approx(1.0, abs=1e-14) and at[0, 0] == pytest.approx(peak, abs=1e-9)
+    # rising to the end (no peak inside), and levelling off at it (its slope zero there: the end is the peak)
+    for func, end in ((lambda x, piece: (x * x)[None], 1.0), (lambda x, piece: (-((x - 2.0) ** 2))[None], 2.0),
+                      (lambda x, piece: (-((x - 0.5) ** 2))[None], 0.5)):
+        at, value, _ = piecewise_maxima(func, [0.5], [2.0], reverse=reverse)
+        assert at[0, 0] == (2.0 if end == 1.0 else end) and value[0, 0] == func(np.array([at[0, 0]]), None)[0, 0]
+
+
+def test_a_curvature_peak_just_inside_a_piece_against_the_brute_force():
+    """A cam whose pitch curve is most sharply curved 0.11 degrees into the middle piece of its modified-sine
+    return, within that piece's first grid step (its piece is 58.5 degrees wide): found to 1e-9 of the brute
+    force's (an end's value, its piece's start, fell 7e-6 short of it)."""
+    raw = copy.deepcopy(RDRD)
+    raw["follower"] = {"type": "translating-roller", "roller_radius": 10.0, "offset": 5.0}
+    raw["cam"].update(base_radius=60.0, rotation="ccw")
+    raw["motion"] = [{"type": "rise", "law": "harmonic", "lift": 28.0, "angle": 107.0},
+                     {"type": "dwell", "angle": 115.0},
+                     {"type": "return", "law": "modified-sine", "lift": 28.0, "angle": 78.0},
+                     {"type": "dwell", "angle": 60.0}]
+    cam = build_cam(validate_spec(apply_overrides(raw, [])))
+    a = analyze(cam)
+    ((kmax, at),) = _brute(cam, lambda g: g.kappa)
+    start = 222.0 + 78.0 / 8                                            # the piece's start: 231.75 degrees
+    assert 0.0 < at - start < 78.0 * 0.75 / (numeric.GRID - 1)
+    assert _close(1.0 / a.pitch_rho_min_mm, kmax, 1.0 / cam.base_radius)
+    assert a.pitch_rho_min_at_deg == pytest.approx(at, abs=1e-5)
+
+
+@pytest.mark.parametrize("reverse", [False, True])
 def test_equal_peaks_inside_a_piece(reverse):
     """Two equal peaks on one piece: the first from the low end, or from the high end where the piece runs
     backwards (a return's law runs against the cam angle)."""
