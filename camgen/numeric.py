@@ -95,6 +95,18 @@ def _coefficients(windows: np.ndarray) -> list[list[float]]:
     return windows.dot(_QUARTIC).tolist()
 
 
+def _coefficients_apart(windows: list[list[float]], from_end: list[bool]) -> list[list[float]]:
+    """:func:`_coefficients` of ``windows`` (m lists of five values), those of the peaks found from an end
+    (``from_end``, see :func:`_inward_peaks`) in a product of their own: so their number never changes which BLAS
+    kernel (one row or more) rounds the others', and a peak found inside gets the same bits whether or not an end
+    was a candidate beside it."""
+    if True not in from_end:
+        return _coefficients(np.array(windows))
+    made = {flag: iter(_coefficients(np.array([w for w, f in zip(windows, from_end, strict=True) if f is flag])))
+            for flag in set(from_end)}
+    return [next(made[flag]) for flag in from_end]
+
+
 def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) -> float | None:
     """Where the quartic of coefficients a1..a4 (of t..t^4) peaks within [lo, hi], by three Newton steps on its
     slope from the parabola's vertex; None where it has no maximum there (a step dividing by zero has none)."""
@@ -204,7 +216,7 @@ def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], m
     """Each row's local maxima on the grid ``y`` (rows, n; finite) that may be its largest: within what a peak can
     rise above its grid points (the row's largest second difference) of the row's highest; none on the rows ``flat``
     (constant within the tie). ``(row, grid index)`` each, in order of row and index. The interior points no lower
-    than their neighbours, and an end (see :func:`_inward_peaks`; ``edges``, each row's first three and last three
+    than their neighbours, and an end (see :func:`_inward_peaks`; ``edges``, each row's first four and last four
     values, ``magnitude`` each function's, ``count`` rows a function) where a peak lies within the grid's first or
     last step, which no interior point shows."""
     inner, before, after = y[:, 1:-1], y[:, :-2], y[:, 2:]
@@ -231,35 +243,51 @@ def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], m
 
 def _inward_peaks(edges: list[list[float]], flat: list[int], magnitude: list[float], count: int,
                   n: int) -> list[tuple[int, int]]:
-    """The ends of the grid rows (``edges``: each row's first three and last three values, of a grid of ``n``) near
-    which a peak lies inside the grid's first or last step: where the end is no lower than its neighbour and the
-    parabola through it and the next two points rises inwards from it, peaking higher than the end by more than the
-    tie (``TIE`` of the row's function's ``magnitude``, ``count`` rows a function; none on the rows ``flat``). A
-    parabola of end value a and next values b, c has the slope s / 2 = (4 b - c - 3 a) / 2 a step there and the
-    second difference D = a - 2 b + c, and peaks s^2 / (8 |D|) above a (s > 0 and a >= b make D < 0). ``(row, grid
-    index)`` each: 0 for the first end, n - 1 for the last."""
+    """The ends of the grid rows (``edges``: each row's first four and last four values, of a grid of ``n``) near
+    which a peak may lie inside the grid's first or last step: where the end is no lower than its neighbour and the
+    cubic through it and the next three points rises inwards from it and bends down, so that the parabola of its
+    slope and curvature there peaks above the end by more than the tie (``TIE`` of the row's function's
+    ``magnitude``, ``count`` rows a function; none on the rows ``flat``). From the end's value a and the next
+    ones b, c, d a step apart, the cubic's slope is S / 6 = (-11 a + 18 b - 9 c + 2 d) / 6 a step, its second
+    difference D = 2 a - 5 b + 4 c - d, and that parabola rises S^2 / (72 |D|) above a. A cubic, not a parabola:
+    where the function levels off at the end (a rise ending in a dwell, s = h - k (1 - u)^3) a parabola's slope
+    there is off by the cubic term and would flag the end; a cubic's is not. A candidate is kept only where its
+    refined peak beats the end by more than the tie (see :func:`maxima_steps`). ``(row, grid index)`` each: 0 for
+    the first end, n - 1 for the last."""
     out = []
-    for r, (a, b, c, x, w, z) in enumerate(edges):
-        tie = 8.0 * TIE * magnitude[r // count]
-        if a >= b and (s := 4.0 * b - c - 3.0 * a) > 0.0 and s * s > tie * (2.0 * b - a - c) and r not in flat:
+    for r, (a, b, c, d, z3, z2, z1, z0) in enumerate(edges):
+        tie = 72.0 * TIE * magnitude[r // count]
+        if _rises_inwards(a, b, c, d, tie) and r not in flat:
             out.append((r, 0))
-        if z >= w and (s := 4.0 * w - x - 3.0 * z) > 0.0 and s * s > tie * (2.0 * w - x - z) and r not in flat:
+        if _rises_inwards(z0, z1, z2, z3, tie) and r not in flat:
             out.append((r, n - 1))
     return out
 
 
-#: the grid indices of a row's first three and last three points (see :func:`_inward_peaks`)
-_EDGES = np.array([0, 1, 2, -3, -2, -1])
+def _rises_inwards(a: float, b: float, c: float, d: float, tie: float) -> bool:
+    """Whether from an end's value ``a`` (its next ``b``, ``c``, ``d`` a step apart) the cubic through them rises
+    and bends down, its parabola there rising S^2 / (72 |D|) above ``a`` by more than ``tie`` / 72 (see
+    :func:`_inward_peaks`)."""
+    slope = 18.0 * b - 11.0 * a - 9.0 * c + 2.0 * d               # S: 6 steps' worth of the slope
+    bend = 5.0 * b - 2.0 * a - 4.0 * c + d                        # -D
+    return a >= b and slope > 0.0 and bend > 0.0 and slope * slope > tie * bend
+
+
+#: the grid indices of a row's first four and last four points (see :func:`_inward_peaks`)
+_EDGES = np.array([0, 1, 2, 3, -4, -3, -2, -1])
 
 
 class _Peak:
     """A peak being located: its function ``f`` and ``piece``, where it is so far (``at``) and the largest value
-    seen (``value``), the next stencil's ``centre`` and the peak's ``breadth`` (all in the piece's abscissa)."""
+    seen (``value``), the next stencil's ``centre`` and the peak's ``breadth`` (all in the piece's abscissa); the
+    value of the end it was found from (``end``, see :func:`_inward_peaks`), None for a peak found inside."""
 
-    __slots__ = ("at", "breadth", "centre", "f", "piece", "value")
+    __slots__ = ("at", "breadth", "centre", "end", "f", "piece", "value")
 
-    def __init__(self, f: int, piece: int, at: float, value: float, centre: float, breadth: float) -> None:
+    def __init__(self, f: int, piece: int, at: float, value: float, centre: float, breadth: float,
+                 end: float | None) -> None:
         self.f, self.piece, self.at, self.value, self.centre, self.breadth = f, piece, at, value, centre, breadth
+        self.end = end
 
 
 def _windows(y: np.ndarray, found: list[tuple[int, int]], n: int) -> tuple[list[int], np.ndarray]:
@@ -287,7 +315,8 @@ def _estimates(candidates: Iterable[tuple[tuple[int, int], int, list[float], lis
         t = _vertex(a1, a2, a3, a4, shift - 1.0, shift + 1.0)
         centre = min(max(low + size * unit[c] + (shift if t is None else t) * step, low), hi[piece])
         at = hi[piece] if j == n - 1 else low + size * unit[j]           # the grid's own point: its last the end
-        out.append(_Peak(r // count, piece, at, value, centre, _breadth(a2, a4, step, size)))
+        out.append(_Peak(r // count, piece, at, value, centre, _breadth(a2, a4, step, size),
+                         value if j == 0 or j == n - 1 else None))
     return out
 
 
@@ -316,7 +345,7 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
         if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
             raise FloatingPointError("function is not finite near a peak")
         active = []
-        coefficients = _coefficients(np.array(ys))
+        coefficients = _coefficients_apart(ys, [peak.end is not None for peak, _, _ in stencils])
         for (peak, c, d), row, (a1, a2, a3, a4) in zip(stencils, ys, coefficients, strict=True):
             t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
             high = max(row)
@@ -405,23 +434,26 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     magnitude = [max(s, v) for s, v in zip(scales, largest, strict=True)]
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
-    edges = y[:, _EDGES].tolist()                            # each row's first three and last three
+    edges = y[:, _EDGES].tolist()                            # each row's first four and last four
     grid = _grid_candidates(y, flat, edges, magnitude, count) if count else []
     found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks
     if grid:
         centres, windows = _windows(y, grid, n)
-        peaks = _estimates(zip(grid, centres, windows.tolist(), _coefficients(windows), strict=True), moving, lo, hi,
-                           width, n)
+        near = windows.tolist()
+        from_end = [j == 0 or j == n - 1 for _, j in grid]
+        fits = _coefficients_apart(near, from_end) if True in from_end else _coefficients(windows)
+        peaks = _estimates(zip(grid, centres, near, fits, strict=True), moving, lo, hi, width, n)
         yield from _refined(peaks, lo, hi, width)
-        for peak in peaks:
-            found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
+        for peak in peaks:                  # a peak found from an end only where it beats that end by the tie
+            if peak.end is None or peak.value - peak.end > TIE * magnitude[peak.f]:
+                found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
     at: list[list[float]] = [[0.0] * p for _ in range(k)]
     value: list[list[float]] = [[0.0] * p for _ in range(k)]
     for f in range(k):
         tie = TIE * magnitude[f]
         row_at, row_value = at[f], value[f]
         for piece, edge in zip(moving, edges[f * count:(f + 1) * count], strict=True):
-            first, last = edge[0], edge[5]
+            first, last = edge[0], edge[7]
             here = found_on.get((f, piece))
             row_at[piece], row_value[piece] = (
                 _end_of(lo[piece], first, hi[piece], last, tie, backwards[piece]) if here is None
