@@ -630,13 +630,10 @@ def _fold_warnings(cut_off: FlatEnvelope) -> list[str]:
 
 
 def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float | None,
-              segments: tuple, cut_off: FlatEnvelope | None = None, limit: float | None = None
-              ) -> tuple[str, ...]:
+              segments: tuple, cut_off: FlatEnvelope | None, limit: float) -> tuple[str, ...]:
     """The design's warnings; ``wall`` is the wall round the bore (mm), None where it is certainly at least
-    :data:`THIN_WALL`; ``limit`` the spec's :func:`~camgen.sizing.pressure_limit` (degrees) where the caller has
-    it."""
+    :data:`THIN_WALL`; ``limit`` the spec's :func:`~camgen.sizing.pressure_limit` (degrees)."""
     out = []
-    limit = pressure_limit(spec) if limit is None else limit
     if a.pressure_angle_max_deg > limit:
         out.append(f"pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
                    f"{a.pressure_angle_max_at_deg:.2f} degrees), above the {limit:g} degree limit: enlarge the "

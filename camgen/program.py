@@ -52,8 +52,7 @@ class Segment:
 
     @property
     def end_level(self) -> float:
-        kind = self.kind
-        return self.level + (self.lift if kind == "rise" else -self.lift if kind == "return" else 0.0)
+        return _end_level(self.kind, self.level, self.lift)
 
     def scale(self) -> np.ndarray:
         """Natural magnitudes h/beta^k of s, s', s'', s''' in this segment (k = 0..3)."""
@@ -533,6 +532,12 @@ def _check_turn(total: float, levels: list[float]) -> None:
                         "start the program with a rise or dwell", f"motion[{i}]")
 
 
+def _end_level(kind: str, level: float, lift: float) -> float:
+    """The follower's level (mm) at the end of a segment of ``kind`` starting at ``level``: up by ``lift`` on a
+    rise, down on a return, where it was on a dwell (whatever its ``lift``)."""
+    return level + (lift if kind == "rise" else -lift if kind == "return" else 0.0)
+
+
 def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program:
     """A program from ``(kind, angle in degrees, lift in mm, law)`` steps, laid end to end from theta = 0; checked
     as :class:`Program` checks itself, from the angles and levels known here (no second pass over its segments)."""
@@ -542,8 +547,7 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
         dwell = kind == "dwell"
         segments.append(unchecked(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift,
                                   level=level, law=None if dwell else law))
-        # Segment.end_level's sum, its lift known here (0.0 on a dwell)
-        end = level + (lift if kind == "rise" else -lift if kind == "return" else 0.0)
+        end = _end_level(kind, level, lift)             # Segment.end_level's, its lift known here
         levels += (level, end)
         start, level = start + beta, end
     if not segments:

@@ -169,7 +169,9 @@ def test_crossings_count_the_winding_number_the_chords_angles_add_up_to():
             angles = rng.uniform(0, 2 * np.pi, n)         # anywhere: self-crossing
         z = rng.uniform(5, 50, n) * np.exp(1j * angles)
         if trial % 7 == 0:
-            z[::3] = z[::3].real + (0.0 if trial % 2 else -0.0) * 1j      # vertices on the line y = 0
+            z[::3] = z[::3].real + 0j                     # vertices on the line y = 0, +0.0 and -0.0 below
+            if trial % 2:
+                z[::6] = [complex(x, -0.0) for x in z[::6].real]
         points = np.concatenate([[0j], rng.normal(0, 30, 3) + 1j * rng.normal(0, 30, 3), [z[0].real + 0j]])
         ring = np.concatenate((z, z[:1])) - points[:, None]
         swept = camgen.design._swept(ring)

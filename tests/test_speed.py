@@ -14,7 +14,9 @@ from camgen.analysis import analyze, face_extent
 from camgen.cam import build_cam
 from camgen.core.spec import apply_overrides
 from camgen import numeric
+from camgen.laws import make_law
 from camgen.numeric import piecewise_maxima
+from camgen.program import build_program
 from camgen.spec import validate_spec
 from tests.conftest import RDRD
 
@@ -176,11 +178,29 @@ def test_a_peak_within_the_grids_first_or_last_step(reverse):
         at, value, _ = piecewise_maxima(lambda x, piece, p=peak: (1.0 - 50.0 * (x - p) ** 2)[None], [0.0], [1.0],
                                         reverse=reverse)
         assert value[0, 0] == pytest.approx(1.0, abs=1e-14) and at[0, 0] == pytest.approx(peak, abs=1e-9)
-    # rising to the end (no peak inside), and levelling off at it (its slope zero there: the end is the peak)
-    for func, end in ((lambda x, piece: (x * x)[None], 1.0), (lambda x, piece: (-((x - 2.0) ** 2))[None], 2.0),
-                      (lambda x, piece: (-((x - 0.5) ** 2))[None], 0.5)):
+    # rising to the end (no peak inside), and levelling off at it (its slope zero there: the end is the peak), as a
+    # parabola, a cubic (a rise ending in a dwell), a quartic and a cosine: the end's own abscissa, never a point
+    # inside the piece whose value ties with it
+    for func, end in ((lambda x, piece: (x * x)[None], 2.0), (lambda x, piece: (-((x - 2.0) ** 2))[None], 2.0),
+                      (lambda x, piece: (-((x - 0.5) ** 2))[None], 0.5),
+                      (lambda x, piece: (5.0 - (x - 0.5) ** 3)[None], 0.5),
+                      (lambda x, piece: (5.0 - (2.0 - x) ** 3)[None], 2.0),
+                      (lambda x, piece: (np.cos(3.0 * (x - 0.5)) - 2.0 * (x - 0.5) ** 3)[None], 0.5),
+                      (lambda x, piece: (np.cos(3.0 * (2.0 - x)) - 0.2 * (2.0 - x) ** 4)[None], 2.0)):
         at, value, _ = piecewise_maxima(func, [0.5], [2.0], reverse=reverse)
-        assert at[0, 0] == (2.0 if end == 1.0 else end) and value[0, 0] == func(np.array([at[0, 0]]), None)[0, 0]
+        assert at[0, 0] == end and value[0, 0] == func(np.array([end]), None)[0, 0]
+
+
+def test_a_rise_into_a_dwell_peaks_at_its_end():
+    """A rise's lift is highest at its end, where it levels off into the dwell (s = h - k (1 - u)^3 for the
+    modified sine): the search reports the end itself, 120 degrees, for every law, not a point 1e-4 degrees before
+    it whose lift ties with it."""
+    for law in ("cycloidal", "modified-sine", "polynomial-345", "polynomial-4567"):
+        program = build_program([("rise", 120.0, 20.0, make_law(law)), ("dwell", 60.0, 0.0, None),
+                                 ("return", 120.0, 20.0, make_law(law)), ("dwell", 60.0, 0.0, None)])
+        (lift, at), (square, square_at) = program.maxima(lambda theta, motion, index: np.stack([motion[0],
+                                                                                               motion[0] ** 2]))
+        assert (lift, square) == (20.0, 400.0) and at == square_at == pytest.approx(120.0, abs=1e-12)
 
 
 def test_a_curvature_peak_just_inside_a_piece_against_the_brute_force():
