@@ -216,7 +216,7 @@ def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], m
     """Each row's local maxima on the grid ``y`` (rows, n; finite) that may be its largest: within what a peak can
     rise above its grid points (the row's largest second difference) of the row's highest; none on the rows ``flat``
     (constant within the tie). ``(row, grid index)`` each, in order of row and index. The interior points no lower
-    than their neighbours, and an end (see :func:`_inward_peaks`; ``edges``, each row's first four and last four
+    than their neighbours, and an end (see :func:`_inward_peaks`; ``edges``, each row's first five and last five
     values, ``magnitude`` each function's, ``count`` rows a function) where a peak lies within the grid's first or
     last step, which no interior point shows."""
     inner, before, after = y[:, 1:-1], y[:, :-2], y[:, 2:]
@@ -243,38 +243,36 @@ def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], m
 
 def _inward_peaks(edges: list[list[float]], flat: list[int], magnitude: list[float], count: int,
                   n: int) -> list[tuple[int, int]]:
-    """The ends of the grid rows (``edges``: each row's first four and last four values, of a grid of ``n``) near
+    """The ends of the grid rows (``edges``: each row's first five and last five values, of a grid of ``n``) near
     which a peak may lie inside the grid's first or last step: where the end is no lower than its neighbour and the
-    cubic through it and the next three points rises inwards from it and bends down, so that the parabola of its
+    quartic through it and the next four points rises inwards from it and bends down, so that the parabola of its
     slope and curvature there peaks above the end by more than the tie (``TIE`` of the row's function's
-    ``magnitude``, ``count`` rows a function; none on the rows ``flat``). From the end's value a and the next
-    ones b, c, d a step apart, the cubic's slope is S / 6 = (-11 a + 18 b - 9 c + 2 d) / 6 a step, its second
-    difference D = 2 a - 5 b + 4 c - d, and that parabola rises S^2 / (72 |D|) above a. A cubic, not a parabola:
-    where the function levels off at the end (a rise ending in a dwell, s = h - k (1 - u)^3) a parabola's slope
-    there is off by the cubic term and would flag the end; a cubic's is not. A candidate is kept only where its
-    refined peak beats the end by more than the tie (see :func:`maxima_steps`). ``(row, grid index)`` each: 0 for
-    the first end, n - 1 for the last."""
+    ``magnitude``, ``count`` rows a function; none on the rows ``flat``). A quartic, not a parabola through three
+    points: where the function levels off at the end (a rise ending in a dwell, s = h - k (1 - u)^3, or a cosine's
+    top) a parabola's slope there is off by the cubic and quartic terms and would flag the end; the quartic's is
+    off by the fifth-order term only. A candidate is kept only where its refined peak beats the end by more than
+    the tie (see :func:`maxima_steps`). ``(row, grid index)`` each: 0 for the first end, n - 1 for the last."""
     out = []
-    for r, (a, b, c, d, z3, z2, z1, z0) in enumerate(edges):
-        tie = 72.0 * TIE * magnitude[r // count]
-        if _rises_inwards(a, b, c, d, tie) and r not in flat:
+    for r, (a, b, c, d, e, z4, z3, z2, z1, z0) in enumerate(edges):
+        tie = 24.0 * TIE * magnitude[r // count]
+        if a >= b and _rises_inwards(a, b, c, d, e, tie) and r not in flat:
             out.append((r, 0))
-        if _rises_inwards(z0, z1, z2, z3, tie) and r not in flat:
+        if z0 >= z1 and _rises_inwards(z0, z1, z2, z3, z4, tie) and r not in flat:
             out.append((r, n - 1))
     return out
 
 
-def _rises_inwards(a: float, b: float, c: float, d: float, tie: float) -> bool:
-    """Whether from an end's value ``a`` (its next ``b``, ``c``, ``d`` a step apart) the cubic through them rises
-    and bends down, its parabola there rising S^2 / (72 |D|) above ``a`` by more than ``tie`` / 72 (see
-    :func:`_inward_peaks`)."""
-    slope = 18.0 * b - 11.0 * a - 9.0 * c + 2.0 * d               # S: 6 steps' worth of the slope
-    bend = 5.0 * b - 2.0 * a - 4.0 * c + d                        # -D
-    return a >= b and slope > 0.0 and bend > 0.0 and slope * slope > tie * bend
+def _rises_inwards(a: float, b: float, c: float, d: float, e: float, tie: float) -> bool:
+    """Whether from an end's value ``a`` (no lower than its next, ``b``; then ``c``, ``d``, ``e``, a step apart) the
+    quartic through them rises and bends down: its slope there is S / 12 a step and its curvature -B / 12 a step
+    squared, whose parabola rises S^2 / (24 B) above ``a``, by more than ``tie`` / 24 (see :func:`_inward_peaks`)."""
+    slope = 48.0 * b - 25.0 * a - 36.0 * c + 16.0 * d - 3.0 * e
+    bend = 104.0 * b - 35.0 * a - 114.0 * c + 56.0 * d - 11.0 * e
+    return slope > 0.0 and bend > 0.0 and slope * slope > tie * bend
 
 
-#: the grid indices of a row's first four and last four points (see :func:`_inward_peaks`)
-_EDGES = np.array([0, 1, 2, 3, -4, -3, -2, -1])
+#: the grid indices of a row's first five and last five points (see :func:`_inward_peaks`)
+_EDGES = np.array([0, 1, 2, 3, 4, -5, -4, -3, -2, -1])
 
 
 class _Peak:
@@ -434,7 +432,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     magnitude = [max(s, v) for s, v in zip(scales, largest, strict=True)]
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
-    edges = y[:, _EDGES].tolist()                            # each row's first four and last four
+    edges = y[:, _EDGES].tolist()                            # each row's first five and last five
     grid = _grid_candidates(y, flat, edges, magnitude, count) if count else []
     found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks
     if grid:
@@ -453,7 +451,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         tie = TIE * magnitude[f]
         row_at, row_value = at[f], value[f]
         for piece, edge in zip(moving, edges[f * count:(f + 1) * count], strict=True):
-            first, last = edge[0], edge[7]
+            first, last = edge[0], edge[9]
             here = found_on.get((f, piece))
             row_at[piece], row_value[piece] = (
                 _end_of(lo[piece], first, hi[piece], last, tie, backwards[piece]) if here is None
