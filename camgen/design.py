@@ -424,10 +424,9 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
     the bulge), and a chord is no nearer to a point than sqrt(min(|p|^2, |q|^2) - |e|^2 / 4) (p, q its ends seen
     from the point: |p + t e|^2 is that minimum less at most t (1 - t) |e|^2); where that is not enough, an arc's
     chords lie between its circle and one tolerance inside it (:func:`_arcs_clear`). Clear of every piece, a
-    point lies inside where the pieces wind once round it counter-clockwise (winding number 1: odd, as GEOS counts
-    crossings): the chords' crossings of the ray from it along +x counted (:func:`_crossings`), or where an arc's
-    own angle replaces its chord's, each chord sweeping the angle it subtends. The pieces are first bounded all at
-    once (:func:`_far_from_all`), a few numpy calls fewer, then where that is not enough each alone."""
+    point lies inside where the pieces wind once round it counter-clockwise, each chord sweeping the angle it
+    subtends (winding number 1: odd, as GEOS counts crossings). The pieces are first bounded all at once
+    (:func:`_far_from_all`), a few numpy calls fewer, then where that is not enough each alone."""
     bulge = np.abs(contour.bulges)
     z = contour.vertices.view(np.complex128)[:, 0]
     ring = np.concatenate((z, z[:1])) - points[:, None]            # the vertices seen from each point
@@ -437,55 +436,17 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
     extent = float(np.maximum.reduce(near, axis=None))
     margin = _CERTAIN * (1.0 + extent * extent)
     widest = float(np.maximum.reduce(bulge, initial=0.0))
+    turn = ring[:, 1:] * ring[:, :-1].conjugate()
+    swept = np.arctan2(turn.imag, turn.real)
     if widest > 1.0 or not _far_from_all(near, length, widest, reach, margin):
         half = length * 0.5
         low = np.minimum(near[:, :-1], near[:, 1:])
         gap = low * low - half * half - (reach[:, None] + half * bulge) ** 2
         if widest > 1.0 or float(np.minimum.reduce(gap, axis=None)) <= margin:
             clear = (gap > margin) & (bulge <= 1.0)
-            swept = _swept(ring)
             if not _arcs_clear(contour, tolerance, ring[:, :-1], run, reach, clear, swept):
                 return False
-            return _once(swept)
-    winding = _crossings(ring, margin)
-    return _once(_swept(ring)) if winding is None else all(w == 1 for w in winding)
-
-
-def _swept(ring: np.ndarray) -> np.ndarray:
-    """The angle (radians, counter-clockwise positive, within half a turn) each chord of the closed polygons
-    ``ring`` (k, n + 1) (complex, mm; each row's vertices seen from its point, the first again at the end) subtends
-    at its point: (k, n)."""
-    turn = ring[:, 1:] * ring[:, :-1].conjugate()
-    return np.arctan2(turn.imag, turn.real)
-
-
-def _once(swept: np.ndarray) -> bool:
-    """Whether the angles ``swept`` (k, n) (radians) of each row add up to one turn counter-clockwise (within
-    rounding: a closed polygon's are a whole number of turns)."""
     return all(abs(turns / (2.0 * np.pi) - 1.0) < 1e-3 for turns in np.add.reduce(swept, axis=1).tolist())
-
-
-def _crossings(ring: np.ndarray, margin: float) -> list[int] | None:
-    """The winding numbers (counter-clockwise positive) of the closed polygons ``ring`` (k, n + 1) (complex, mm;
-    each row's vertices seen from its point, the first again at the end, every chord known to pass clear of the
-    point) round their points, by the chords crossing the ray along +x: +1 going up, -1 going down. A vertex is
-    above or below by its y's sign bit (-0.0 below: any fixed choice for a vertex on the line counts each crossing
-    once), and a chord that changes side crosses the ray, not the line's other half, where its cross product p x q
-    (p, q its ends; the crossing's x times the chord's rise) has the sign of its rise. No arctangent: one comparison
-    of every vertex finds the chords that change side (two for a star-shaped outline), looked at in Python floats.
-    None where a cross product lies within ``margin`` (mm^2) of 0, so that rounding could decide its sign."""
-    below = np.signbit(ring.imag)
-    rows, cols = (below[:, 1:] != below[:, :-1]).nonzero()
-    winding = [0] * len(ring)
-    for row, col in zip(rows.tolist(), cols.tolist(), strict=True):
-        p, q = ring.item(row, col), ring.item(row, col + 1)
-        cross = p.real * q.imag - p.imag * q.real
-        if abs(cross) <= margin:
-            return None
-        rising = below.item(row, col)
-        if (cross > 0.0) == rising:
-            winding[row] += 1 if rising else -1
-    return winding
 
 
 def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: np.ndarray, margin: float) -> bool:

@@ -95,15 +95,15 @@ def _coefficients(windows: np.ndarray) -> list[list[float]]:
     return windows.dot(_QUARTIC).tolist()
 
 
-def _coefficients_apart(windows: list[list[float]], from_end: list[bool]) -> list[list[float]]:
-    """:func:`_coefficients` of ``windows`` (m lists of five values), those of the peaks found from an end
-    (``from_end``, see :func:`_inward_peaks`) in a product of their own: so their number never changes which BLAS
-    kernel (one row or more) rounds the others', and a peak found inside gets the same bits whether or not an end
-    was a candidate beside it."""
+def _coefficients_apart(windows: np.ndarray, from_end: list[bool]) -> list[list[float]]:
+    """:func:`_coefficients` of ``windows`` (m, 5), those of the peaks found from an end (``from_end``, see
+    :func:`_inward_peaks`) in a product of their own: so their number never changes which BLAS kernel (one row or
+    more) rounds the others', and a peak found inside gets the same bits whether or not an end was a candidate
+    beside it."""
     if True not in from_end:
-        return _coefficients(np.array(windows))
-    made = {flag: iter(_coefficients(np.array([w for w, f in zip(windows, from_end, strict=True) if f is flag])))
-            for flag in set(from_end)}
+        return _coefficients(windows)
+    mask = np.array(from_end)
+    made = {flag: iter(_coefficients(windows[mask == flag])) for flag in set(from_end)}
     return [next(made[flag]) for flag in from_end]
 
 
@@ -113,10 +113,9 @@ def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) ->
     twice, thrice, six = 2 * a2, 3 * a3, 6 * a3               # the same numbers each step: made once; t * 4 * a4
     four = 4 * a4                                             # is t * four to the bit (4 scales exactly)
     try:
-        t = -a1 / twice                                       # three steps written out: no loop to run
-        t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
-        t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
-        t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
+        t = -a1 / twice
+        for _ in (0, 1, 2):
+            t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
     except ZeroDivisionError:                                 # t would be infinite or NaN: no maximum within
         return None
     return t if twice + t * (six + t * 12 * a4) < 0 and lo <= t <= hi else None   # False where t is NaN
@@ -343,7 +342,7 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
         if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
             raise FloatingPointError("function is not finite near a peak")
         active = []
-        coefficients = _coefficients_apart(ys, [peak.end is not None for peak, _, _ in stencils])
+        coefficients = _coefficients_apart(np.array(ys), [peak.end is not None for peak, _, _ in stencils])
         for (peak, c, d), row, (a1, a2, a3, a4) in zip(stencils, ys, coefficients, strict=True):
             t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
             high = max(row)
@@ -439,7 +438,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         centres, windows = _windows(y, grid, n)
         near = windows.tolist()
         from_end = [j == 0 or j == n - 1 for _, j in grid]
-        fits = _coefficients_apart(near, from_end) if True in from_end else _coefficients(windows)
+        fits = _coefficients_apart(windows, from_end)
         peaks = _estimates(zip(grid, centres, near, fits, strict=True), moving, lo, hi, width, n)
         yield from _refined(peaks, lo, hi, width)
         for peak in peaks:                  # a peak found from an end only where it beats that end by the tie

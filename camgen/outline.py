@@ -384,7 +384,7 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     # each dwell's radius, as np.linalg.norm measures its first vertex (its dot product with itself)
     radius = [math.sqrt(vertex[:, a].dot(vertex[:, a])) for a in first[:-1]]
     within = [0, *itertools.accumulate(8 * n - 1 for n in arcs)]
-    off = np.sqrt(x[0] * x[0] + x[1] * x[1])          # the probes' distances from the centre, as _length makes them
+    off = _length(x.T)                                  # the probes' distances from the centre
     off -= np.array(radius).repeat([8 * n - 1 for n in arcs])
     err = np.maximum.reduceat(np.abs(off, out=off), within[:-1])
     pts = vertex.T.copy()                               # in rows, as a contour holds them

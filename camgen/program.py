@@ -539,18 +539,12 @@ def _end_level(kind: str, level: float, lift: float) -> float:
 
 
 def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program:
-    """A program from ``(kind, angle in degrees, lift in mm, law)`` steps, laid end to end from theta = 0; checked
-    as :class:`Program` checks itself, from the angles and levels known here (no second pass over its segments)."""
-    segments, levels, start, level = [], [], 0.0, 0.0
+    """A program from ``(kind, angle in degrees, lift in mm, law)`` steps, laid end to end from theta = 0."""
+    segments, start, level = [], 0.0, 0.0
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)
         dwell = kind == "dwell"
         segments.append(unchecked(Segment, kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift,
                                   level=level, law=None if dwell else law))
-        end = _end_level(kind, level, lift)             # Segment.end_level's, its lift known here
-        levels += (level, end)
-        start, level = start + beta, end
-    if not segments:
-        return Program(())                              # refused, as Program refuses it
-    _check_turn(start, levels)                          # start: the angles' running sum, as Program adds them
-    return unchecked(Program, segments=tuple(segments))
+        start, level = start + beta, _end_level(kind, level, lift)      # Segment.end_level's, its lift known here
+    return Program(tuple(segments))
