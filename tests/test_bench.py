@@ -65,3 +65,14 @@ def test_quick_linkgen_bench(tmp_path):
     _speed_rows(r, (tmp_path / "RESULTS.md").read_text(), {
         "four-bar positions, 100 000 crank angles", "linkgen analyze crank-rocker, every default output",
         "linkgen build crank-rocker, every default output", "linkgen build crank-rocker, with its figures (--figures)"})
+
+
+def test_ratio_row_leaves_its_warm_pairs_out():
+    """``warm`` pairs run first, untimed: the row's figures are the later pairs' alone (median, spread, count)."""
+    from camgen.core.bench import ratio_row
+
+    ours, theirs = iter([9.0, 9.0, 2.0, 4.0, 6.0]), iter([1.0, 1.0, 1.0, 2.0, 1.0])
+    row = ratio_row("a", "b", lambda: next(ours), lambda: next(theirs), 3, warm=2)
+    assert (row["runs"], row["seconds"], row["reference_seconds"]) == (3, 4.0, 1.0)
+    assert (row["ratio_min"], row["ratio"], row["ratio_max"]) == (2.0, 2.0, 6.0)
+    assert next(ours, None) is None and next(theirs, None) is None      # every measure called once, no more

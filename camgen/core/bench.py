@@ -101,10 +101,14 @@ def call_seconds(func: Callable[[], Any], inner: int = 1) -> float:
 
 
 def ratio_row(what: str, reference: str, measure: Callable[[], float], measure_reference: Callable[[], float],
-              repeats: int, unit: str = "s", **extra: Any) -> dict[str, Any]:
+              repeats: int, unit: str = "s", warm: int = 0, **extra: Any) -> dict[str, Any]:
     """``what`` against ``reference``, measured alternately ``repeats`` times in this run (so that both see the
-    same machine): each one's median (in ``unit``: "s" wall seconds in this process, "cpu s" a process's CPU
+    same machine), after ``warm`` untimed pairs (an in-process call's first runs load modules and fill the
+    processor's caches); each one's median (in ``unit``: "s" wall seconds in this process, "cpu s" a process's CPU
     seconds), and the ratio's median and spread (its least and largest over the pairs)."""
+    for _ in range(warm):
+        measure()
+        measure_reference()
     ours, theirs = [], []
     for _ in range(max(1, repeats)):
         ours.append(measure())
