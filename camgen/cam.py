@@ -1,7 +1,6 @@
 """A disc cam built from a validated spec: kinematics and exact geometry, no I/O."""
 from __future__ import annotations
 
-import functools
 import math
 from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
@@ -10,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.core.records import unchecked
+from camgen.core.records import once, unchecked
 from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
 from camgen.followers.plate import PlateRoller
@@ -66,7 +65,7 @@ class Cam:
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         return self.follower.pitch(theta, self.program.segments[index].evaluate(theta))
 
-    @functools.cached_property
+    @once
     def _boundaries(self) -> tuple[PitchGeometry, PitchGeometry]:
         """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start."""
         return self._halves(self.follower.pitch(*self.program.boundaries))
@@ -134,7 +133,7 @@ class Cam:
         """
         return list(self._corners)
 
-    @functools.cached_property
+    @once
     def _corners(self) -> tuple[tuple[int, float], ...]:
         """:meth:`corners`, found once a cam (a design asks several times)."""
         out = []

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.core.records import unchecked
+from camgen.core.records import once, unchecked
 from camgen.laws import Law
 from camgen.numeric import TIE, constant, drive, left_of, maxima_steps, present
 
@@ -244,7 +244,7 @@ class Program:
             out.append(best)
         return out
 
-    @functools.cached_property
+    @once
     def _table(self) -> _Table:
         """The segments as arrays, to evaluate any of them at once (see :class:`_Table`)."""
         return _Table(self.segments)
@@ -254,7 +254,7 @@ class Program:
         (n,) gives, as :meth:`Segment.evaluate` makes them (one-sided at the segment's ends), all at once."""
         return self._table.evaluate(index, np.asarray(theta, dtype=float))
 
-    @functools.cached_property
+    @once
     def boundaries(self) -> tuple[np.ndarray, np.ndarray]:
         """Cam angles (2n,) (radians) and s, s', s'', s''' there (4, 2n): every segment's end (its left-hand limit),
         then the next segment's start (its right-hand limit; the last segment's next is the first), from one
@@ -262,7 +262,7 @@ class Program:
         theta, index = self.boundary_points
         return theta, self.evaluate_on(index, theta)
 
-    @functools.cached_property
+    @once
     def boundary_points(self) -> tuple[np.ndarray, np.ndarray]:
         """The angles (2n,) of :attr:`boundaries` (radians) and the segment each is evaluated on (2n,)."""
         segments = self.segments
@@ -275,7 +275,7 @@ class Program:
         (a cache: the same numbers its own evaluation makes)."""
         self.__dict__["boundaries"] = (self.boundary_points[0], motion)
 
-    @functools.cached_property
+    @once
     def _pieces(self) -> tuple[np.ndarray | None, np.ndarray, np.ndarray, list[bool], list[bool],
                                list[tuple[float, float, bool]]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them, made
