@@ -6,6 +6,7 @@ import functools
 import itertools
 import math
 from dataclasses import dataclass
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -394,7 +395,7 @@ def _certainly_clear(spec: CamSpec, holes: tuple, contour: Contour, tolerance: f
     reach = [r for _, r in circles]
     if spec.cam.bore > 0:
         reach[0] = max(reach[0], spec.cam.bore / 2.0 + THIN_WALL)
-    return _inside_clear(contour, tolerance, np.array([c for c, _ in circles]), np.array(reach))
+    return _inside_clear(contour, tolerance, np.array([c for c, _ in circles]), reach)
 
 
 def _hole_circle(hole: Any) -> tuple[complex, float] | None:
@@ -417,9 +418,10 @@ def _arc_circles(b: np.ndarray, start: np.ndarray, run: np.ndarray) -> tuple[np.
     return start + run * (0.5 + 0.25j * (1.0 - b * b) / b), np.abs(run) * (1.0 + b * b) / (4.0 * np.abs(b))
 
 
-def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach: np.ndarray) -> bool:
+def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach: Sequence[float]) -> bool:
     """Whether each of ``points`` (complex x + iy, mm) certainly lies inside the polygon
-    ``contour.flatten(tolerance)`` makes, further than its ``reach`` (mm) from it. Bounds, no flattening: an arc of
+    ``contour.flatten(tolerance)`` makes, further than its ``reach`` (mm, one a point: Python floats or an array)
+    from it. Bounds, no flattening: an arc of
     at most half a turn and the chords made for it lie within its sagitta |e b| / 2 of its chord (e the chord, b
     the bulge), and a chord is no nearer to a point than sqrt(min(|p|^2, |q|^2) - |e|^2 / 4) (p, q its ends seen
     from the point: |p + t e|^2 is that minimum less at most t (1 - t) |e|^2); where that is not enough, an arc's
@@ -433,7 +435,7 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
     run = ring[0, 1:] - ring[0, :-1]
     length = np.abs(run)
     near = np.abs(ring)
-    extent = float(np.maximum.reduce(near, axis=None))
+    extent = float(np.maximum.reduce(near, None))               # axis None: numpy parses it faster unnamed
     margin = _CERTAIN * (1.0 + extent * extent)
     widest = float(np.maximum.reduce(bulge, initial=0.0))
     turn = ring[:, 1:] * ring[:, :-1].conjugate()
@@ -441,22 +443,23 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
     if widest > 1.0 or not _far_from_all(near, length, widest, reach, margin):
         half = length * 0.5
         low = np.minimum(near[:, :-1], near[:, 1:])
-        gap = low * low - half * half - (reach[:, None] + half * bulge) ** 2
+        far = np.array(reach)
+        gap = low * low - half * half - (far[:, None] + half * bulge) ** 2
         if widest > 1.0 or float(np.minimum.reduce(gap, axis=None)) <= margin:
             clear = (gap > margin) & (bulge <= 1.0)
-            if not _arcs_clear(contour, tolerance, ring[:, :-1], run, reach, clear, swept):
+            if not _arcs_clear(contour, tolerance, ring[:, :-1], run, far, clear, swept):
                 return False
-    return all(abs(turns / (2.0 * np.pi) - 1.0) < 1e-3 for turns in np.add.reduce(swept, axis=1).tolist())
+    return all(abs(turns / (2.0 * np.pi) - 1.0) < 1e-3 for turns in np.add.reduce(swept, 1).tolist())
 
 
-def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: np.ndarray, margin: float) -> bool:
+def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: Sequence[float], margin: float) -> bool:
     """:func:`_inside_clear`'s bound of each piece taken for all at once: a point whose vertices are all at least
     m from it (``near``, (k, n + 1) mm), pieces' chords at most 2 H long (``length``, mm) and bulges at most
     ``widest`` (<= 1) is further from every piece than sqrt(m^2 - H^2) - H widest, each piece's own bound being no
-    less; so whether m^2 - H^2 - (reach + H widest)^2 exceeds ``margin`` for every point (``reach`` (k,) mm, the
+    less; so whether m^2 - H^2 - (reach + H widest)^2 exceeds ``margin`` for every point (``reach``, k of them, mm, the
     squared bounds' room for rounding). Enough where no long chord comes near (a cam's bore), in Python floats."""
     most = float(np.maximum.reduce(length, initial=0.0)) * 0.5       # the longest half chord: halving is exact
-    for m, r in zip(np.minimum.reduce(near, axis=1).tolist(), reach.tolist(), strict=True):
+    for m, r in zip(np.minimum.reduce(near, 1).tolist(), reach, strict=True):
         if not m * m - most * most - (r + most * widest) ** 2 > margin:
             return False
     return True

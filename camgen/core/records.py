@@ -13,16 +13,20 @@ def unchecked(cls: type[_T], **fields: Any) -> _T:
     """An instance of the frozen dataclass ``cls`` holding ``fields`` and the defaults of the fields not given, made
     without its generated ``__init__`` (one checked attribute set at a time) and without ``__post_init__``: for
     classes without one, on hot paths where the values are known sound. A field with neither a value nor a plain
-    default, or a name that is no field, raises TypeError, as ``cls(...)`` would."""
-    out = object.__new__(cls)
-    own = out.__dict__
+    default, or a name that is no field, raises TypeError, as ``cls(...)`` would. The instance's ``__dict__`` is the
+    dict of its fields made here (the defaults first, as before), set at once: no dict filled key by key."""
+    out = _new(cls)
     defaults, names = _layout(cls)
-    own.update(defaults)
-    own.update(fields)
+    own = defaults | fields if defaults else fields     # a call's keyword arguments are a fresh dict: its own
     if own.keys() != names:
         raise TypeError(f"{cls.__name__}: fields without a value {sorted(names - own.keys())}, "
                         f"not fields {sorted(own.keys() - names)}")
+    _set(out, "__dict__", own)
     return out
+
+
+#: object's own constructor and attribute setter (a frozen dataclass's refuses to set)
+_new, _set = object.__new__, object.__setattr__
 
 
 @functools.cache
