@@ -132,8 +132,11 @@ def test_a_cycloidal_rise_and_return_are_evaluated_as_one_law():
 
 def test_a_jumps_angle_is_its_boundary_rounded_to_9_places_in_degrees():
     """A jump's at_deg is round(degrees(theta), 9) % 360 of its boundary theta, to the bit, whether the boundary
-    lies at a whole number of degrees (taken as it is: its own rounding) or not (119.99999999999999 -> 120.0)."""
-    for angles in ((120, 60, 120, 60), (100.5, 79.25, 120.125, 60.125), (33.3, 90, 200.7, 36), (90, 90, 90, 90)):
+    lies at a whole number of degrees or within 1e-10 of one (taken as that number: its own rounding) or not
+    (119.99999999999999 -> 120.0, 120.00000000004 -> 120.0 within 1e-10, 120.0000000006 -> 120.000000001)."""
+    for angles in ((120, 60, 120, 60), (100.5, 79.25, 120.125, 60.125), (33.3, 90, 200.7, 36), (90, 90, 90, 90),
+                   (120.00000000004, 59.99999999996, 120, 60), (120.0000000006, 59.9999999994, 120, 60),
+                   (119.99999999996, 60.0000000004, 119.99999999994, 60.00000000000)):
         steps = [("rise", angles[0], H, make_law("cycloidal")), ("dwell", angles[1], 0, None),
                  ("return", angles[2], H, make_law("harmonic")), ("dwell", angles[3], 0, None)]
         p = build_program(steps)
