@@ -7,7 +7,7 @@ import pytest
 from camgen.analysis import CamAnalysis
 from camgen.bench import _template
 from camgen.core.parts import Allowances, Part
-from camgen.core.records import once, unchecked
+from camgen.core.records import once, record_maker, unchecked
 from camgen.design import CamDesign, design_cam
 from camgen.program import Jump, Segment
 
@@ -77,3 +77,27 @@ def test_once_computes_a_value_when_first_read_and_keeps_it():
     assert b.area == 0.25 and calls == [3.0, 0.5]
     assert isinstance(Box.area, once) and Box.area.__doc__ == "The square of the side."
     assert a == Box(3.0) and dataclasses.replace(a, side=2.0).area == 4.0 and calls == [3.0, 0.5, 2.0]
+
+
+def test_a_record_maker_binds_the_fields_by_keyword_and_checks_nothing_else():
+    """record_maker(cls) takes every field by keyword (those with a plain default optional, a default factory's
+    field required), refuses a missing or unknown one by Python's own binding, names it, and sets the instance's
+    __dict__ to the fields in their order, whatever the fields are called (its own names are prefixed)."""
+    @dataclasses.dataclass(frozen=True)
+    class Odd:
+        out: float
+        cls: str = "c"
+        scope: tuple = dataclasses.field(default_factory=tuple)
+        last: int = 7
+
+    make = record_maker(Odd)
+    assert record_maker(Odd) is make and make.__name__ == "Odd"
+    made = make(scope=(1,), out=2.5)
+    assert made == Odd(2.5, "c", (1,), 7) and list(vars(made)) == ["out", "cls", "scope", "last"]
+    assert make(out=1.0, cls="k", scope=(), last=3) == Odd(1.0, "k", (), 3)
+    with pytest.raises(TypeError, match="scope"):
+        make(out=1.0)
+    with pytest.raises(TypeError, match="colour"):
+        make(out=1.0, scope=(), colour="red")
+    with pytest.raises(TypeError):
+        make(1.0, scope=())                         # by keyword only

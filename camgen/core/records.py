@@ -13,29 +13,34 @@ def unchecked(cls: type[_T], **fields: Any) -> _T:
     """An instance of the frozen dataclass ``cls`` holding ``fields`` and the defaults of the fields not given, made
     without its generated ``__init__`` (one checked attribute set at a time) and without ``__post_init__``: for
     classes without one, on hot paths where the values are known sound. A field with neither a value nor a plain
-    default, or a name that is no field, raises TypeError, as ``cls(...)`` would. The instance's ``__dict__`` is the
-    dict of its fields made here (the defaults first, as before), set at once: no dict filled key by key."""
-    out = _new(cls)
-    defaults, names = _layout(cls)
-    own = defaults | fields if defaults else fields     # a call's keyword arguments are a fresh dict: its own
-    if own.keys() != names:
-        raise TypeError(f"{cls.__name__}: fields without a value {sorted(names - own.keys())}, "
-                        f"not fields {sorted(own.keys() - names)}")
-    _set(out, "__dict__", own)
-    return out
-
-
-#: object's own constructor and attribute setter (a frozen dataclass's refuses to set)
-_new, _set = object.__new__, object.__setattr__
+    default, or a name that is no field, raises TypeError, as ``cls(...)`` would. Made by the class's
+    :func:`record_maker`."""
+    return record_maker(cls)(**fields)
 
 
 @functools.cache
-def _layout(cls: type) -> tuple[dict[str, Any], frozenset[str]]:
-    """The dataclass ``cls``'s fields' plain defaults (those with a default factory are left to be given) and every
-    field's name (not its class variables')."""
+def record_maker(cls: type[_T]) -> Callable[..., _T]:
+    """:func:`unchecked` for the frozen dataclass ``cls``, made once a class (hot paths call it themselves: one call,
+    not two): a function taking the class's fields by keyword, each with a plain default optional, which makes an
+    instance and sets its ``__dict__`` at once to the dict of its fields in their order. Python's own binding of the
+    keywords refuses a field without a value or a name that is no field (a TypeError naming it), so the function
+    checks nothing itself; its source is written out and run as dataclasses does a class's ``__init__`` (the names
+    it uses besides the fields' prefixed, so that no field shadows them)."""
     fields = dataclasses.fields(cls)
-    return ({f.name: f.default for f in fields if f.default is not dataclasses.MISSING},
-            frozenset(f.name for f in fields))
+    scope: dict[str, Any] = {"_records_new": object.__new__, "_records_set": object.__setattr__, "_records_cls": cls}
+    params = []
+    for f in fields:
+        if f.default is dataclasses.MISSING:       # no default, or a default factory: to be given
+            params.append(f.name)
+        else:
+            scope[f"_records_default_{f.name}"] = f.default
+            params.append(f"{f.name}=_records_default_{f.name}")
+    own = ", ".join(f"{f.name!r}: {f.name}" for f in fields)
+    exec(f"def {cls.__name__}(*, {', '.join(params)}):\n"          # our own source, from the fields
+         f"    _records_out = _records_new(_records_cls)\n"
+         f"    _records_set(_records_out, '__dict__', {{{own}}})\n"
+         f"    return _records_out\n", scope)
+    return scope[cls.__name__]
 
 
 class once(Generic[_T]):
