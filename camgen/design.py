@@ -5,8 +5,8 @@ import dataclasses
 import functools
 import itertools
 import math
-from dataclasses import dataclass
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -425,14 +425,14 @@ def _arc_circles(b: np.ndarray, start: np.ndarray, run: np.ndarray) -> tuple[np.
 def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach: Sequence[float]) -> bool:
     """Whether each of ``points`` (complex x + iy, mm) certainly lies inside the polygon
     ``contour.flatten(tolerance)`` makes, further than its ``reach`` (mm, one a point: Python floats or an array)
-    from it. Bounds, no flattening: an arc of
-    at most half a turn and the chords made for it lie within its sagitta |e b| / 2 of its chord (e the chord, b
-    the bulge), and a chord is no nearer to a point than sqrt(min(|p|^2, |q|^2) - |e|^2 / 4) (p, q its ends seen
-    from the point: |p + t e|^2 is that minimum less at most t (1 - t) |e|^2); where that is not enough, an arc's
-    chords lie between its circle and one tolerance inside it (:func:`_arcs_clear`). Clear of every piece, a
-    point lies inside where the pieces wind once round it counter-clockwise, each chord sweeping the angle it
-    subtends (winding number 1: odd, as GEOS counts crossings). The pieces are first bounded all at once
-    (:func:`_far_from_all`), a few numpy calls fewer, then where that is not enough each alone."""
+    from it. Bounds, no flattening: an arc of at most half a turn and the chords made for it lie within its sagitta
+    |e b| / 2 of its chord (e the chord, b the bulge), and a chord is no nearer to a point than
+    sqrt(min(|p|^2, |q|^2) - |e|^2 / 4) (p, q its ends seen from the point: |p + t e|^2 is that minimum less at most
+    t (1 - t) |e|^2); where that is not enough, an arc's chords lie between its circle and one tolerance inside it
+    (:func:`_arcs_clear`). Clear of every piece, a point lies inside where the pieces wind once round it
+    counter-clockwise, each chord sweeping the angle it subtends (winding number 1: odd, as GEOS counts crossings).
+    The pieces are first bounded all at once (:func:`_far_from_all`), a few numpy calls fewer, then where that is not
+    enough each alone."""
     bulge = np.abs(contour.bulges)
     z = contour.vertices.view(np.complex128)[:, 0]
     ring = np.concatenate((z, z[:1])) - points[:, None]            # the vertices seen from each point

@@ -505,9 +505,9 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
         if more > least:                            # max(own, other)
             least = more
         if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
-            if at is None:                          # the angle rounded to 9 places, round(degrees, 9), goes through a
-                degrees = math.degrees(theta)       # decimal string; within 1e-10 of a whole number (most boundaries,
-                whole = round(degrees)              # their sums of radians a few ulps off) it is that number exactly
+            if at is None:                          # round(degrees, 9) goes through a decimal string; within 1e-10
+                degrees = math.degrees(theta)       # of a whole number (most boundaries, sums of radians a few ulps
+                whole = round(degrees)              # off one; finite, a checked program's) it is that number exactly
                 at = (whole if abs(degrees - whole) < 1e-10 else round(degrees, 9)) % 360.0
             found.append(_make_jump(at_deg=at, order=k, jump=step, inside=inside))
 
