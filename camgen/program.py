@@ -335,12 +335,12 @@ class _Table:
     for all its segments' points, the same operations on the same numbers as each segment's own evaluation (so the
     same values to the last bit).
 
-    ``rows`` (11, m) holds, a segment a column, every number of it a point needs (see :data:`_START` and the rest),
+    ``rows`` (12, m) holds, a segment a column, every number of it a point needs (see :data:`_START` and the rest),
     so that one gather gives each point its own (see :meth:`_gather`): its start and angle (radians), the sign and
-    offset that turn u into the law's variable (-1 and 1 on a return, whose law runs backwards; 1 and 0 elsewhere), 1
-    on a dwell (or a segment without a law) and 0 elsewhere, the level added to s (mm), the four factors of
-    :meth:`Segment._from_law` (0 on a dwell) and its h (the lift, 0 on a dwell); ``scales`` is every segment's
-    :meth:`Segment.scale`, as floats."""
+    offset that turn u into the law's variable (-1 and 1 on a return, whose law runs backwards; 1 and 0 elsewhere),
+    what is added to s, s', s'' and s''' (its level, mm, then three zeros: +0.0 on a dwell or a segment without a
+    law, which makes a -0.0 +0.0, and -0.0 elsewhere, which leaves every number as it is) and the four factors of
+    :meth:`Segment._from_law` (0 on a dwell); ``scales`` is every segment's :meth:`Segment.scale`, as floats."""
 
     def __init__(self, segments: tuple[Segment, ...]) -> None:
         values: list[float] = []
@@ -351,9 +351,9 @@ class _Table:
             back = moving and seg.kind == "return"
             sign = -1.0 if back else 1.0
             even, odd = (1.0, sign) if moving else (0.0, 0.0)
-            values += (seg.start, seg.beta, sign, 1.0 if back else 0.0, 0.0 if moving else 1.0,
-                       seg.level - seg.lift if back else seg.level, even, odd, even, odd,
-                       seg.lift if seg.kind != "dwell" else 0.0)
+            zero = -0.0 if moving else 0.0
+            values += (seg.start, seg.beta, sign, 1.0 if back else 0.0, seg.level - seg.lift if back else seg.level,
+                       zero, zero, zero, even, odd, even, odd, seg.lift if seg.kind != "dwell" else 0.0)
             group.append(_group(laws, seg.law if moving else None))
         made = np.fromiter(values, float, len(values)).reshape(len(segments), _WIDTH)
         natural = _natural(made[:, _H], made[:, _BETA])
@@ -361,7 +361,7 @@ class _Table:
         # the factors: natural scales times the signs in their place, 1 (a rise), +-1 (a return's even and odd orders)
         # or 0 (a dwell): exact
         np.multiply(natural, made[:, _FACTORS], out=made[:, _FACTORS])
-        self.rows = np.ascontiguousarray(made.T)         # (11, m): gathered along its rows (see _gather)
+        self.rows = np.ascontiguousarray(made[:, :_H].T)     # (12, m): gathered along its rows (see _gather)
         self.laws = laws
         #: each law but a dwell's, with the segments it evaluates (m,) bool when there are more (one evaluates all)
         moving = [(law, k) for k, law in enumerate(laws) if law is not None]
@@ -374,7 +374,7 @@ class _Table:
         return out
 
     def _gather(self, index: np.ndarray) -> np.ndarray:
-        """The rows (11, n) of the points on the segments ``index`` (n,), each point's numbers in its column (rows
+        """The rows (12, n) of the points on the segments ``index`` (n,), each point's numbers in its column (rows
         :data:`_START` and the rest): a take along the second axis of :attr:`rows`, C-ordered (4 us for 600 points;
         a take of whole segment rows from a (m, 11) table is 1.7 us, but its transposed copy 4.6 us more)."""
         return self.rows.take(index, axis=1)
@@ -431,27 +431,27 @@ class _Table:
     def _motion(self, index: np.ndarray, v: np.ndarray, rows: np.ndarray) -> np.ndarray:
         """s, s', s'', s''' (4, n) at law variables ``v`` (n,) on the segments ``index`` (n,), their ``rows``
         gathered. A program of one law evaluates it at every point: a dwell's factors are 0, so that its s is
-        (+-0) + level, its level to the bit (never -0.0), and its s', s'', s''' +-0, made +0.0. With more laws each
-        evaluates its own points, a dwell's left 0."""
+        (+-0) + level, its level to the bit (never -0.0), and its s', s'', s''' +-0, made +0.0 by adding +0.0. With
+        more laws each evaluates its own points, a dwell's left 0. The levels and zeros are added in one call (see
+        :class:`_Table`: -0.0 elsewhere, which changes no number)."""
         if len(self.moving) == 1:
             out = self.moving[0][0].derivatives(v) * rows[_FACTORS]
-            dwell = rows[_STILL_ROW].nonzero()[0]
-            if dwell.size:
-                out[1:, dwell] = 0.0
         else:
             out = np.zeros((4, v.size))
             for law, member in self.moving:
                 sel = member.take(index).nonzero()[0]
                 if sel.size:
                     out[:, sel] = law.derivatives(v.take(sel)) * rows[_FACTORS].take(sel, axis=1)
-        out[0] += rows[_LEVEL]
+        out += rows[_ADDED]
         return out
 
 
-#: the rows of :attr:`_Table.rows` and of what :meth:`_Table._gather` gives (the columns of the table it is made from)
-_START, _BETA, _SIGN, _OFFSET, _STILL_ROW, _LEVEL, _FACTORS = 0, 1, 2, 3, 4, 5, slice(6, 10)
-#: the row of :attr:`_Table.rows` after them: each segment's h (the lift, 0 on a dwell); and their count
-_H, _WIDTH = 10, 11
+#: the rows of :attr:`_Table.rows` and of what :meth:`_Table._gather` gives (the columns of the table it is made from):
+#: start, angle, sign, offset, the level and three zeros added to s, s', s'', s''', and the four factors
+_START, _BETA, _SIGN, _OFFSET, _ADDED, _FACTORS = 0, 1, 2, 3, slice(4, 8), slice(8, 12)
+#: the column of the table after them (not in :attr:`_Table.rows`): each segment's h (the lift, 0 on a dwell); and
+#: the columns' count
+_H, _WIDTH = 12, 13
 #: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign)
 _RETURN = np.array([1.0, -1.0, 1.0, -1.0])
 #: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
