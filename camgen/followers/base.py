@@ -127,8 +127,13 @@ def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair,
     tx, ty = np.add(q1x, _times(sense, qy), out=x[1]), np.subtract(q1y, _times(sense, qx), out=y[1])  # q' - sense J q
     ax = np.subtract(q2x + _times(2 * sense, q1y), qx, out=x[2])       # q'' - 2 sense J q' - q
     ay = np.subtract(_less(q2y, _times(2 * sense, q1x)), qy, out=y[2])
-    speed = np.sqrt(tx * tx + ty * ty)
-    kappa = _times(-sense, tx * ay - ty * ax) / speed**_THREE
+    square = tx * tx
+    square += ty * ty
+    speed = np.sqrt(square, out=square)
+    cross = tx * ay
+    cross -= ty * ax
+    kappa = _times(-sense, cross)
+    kappa /= speed**_THREE                                              # in place: the cross products or their negation
     nx = np.divide(_times(-sense, ty), speed, out=x[3])                # sense J t / |t|
     ny = np.divide(_times(sense, tx), speed, out=y[3])
     # atan2's x where dx is the constant ZERO (a translating follower): dy ny itself; 0 nx + dy ny differs from it only
@@ -148,10 +153,13 @@ def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair,
 def _times(k: Any, a: Any) -> Any:
     """``k * a`` for arrays or numbers ``k`` and ``a``: the number 1 gives ``a`` itself (x * 1.0 is x to the bit, a
     new array only where the product made one), -1, 2 and -2 multiply by a 0-d array (the same product, without
-    numpy's conversion of a Python number)."""
+    numpy's conversion of a Python number); a number times :data:`ZERO` is a Python float (the same signed zero, without
+    a 0-d product)."""
     if isinstance(k, (int, float)):
         if k == 1:
             return a
+        if a is ZERO:                                   # a Python float: k * +0.0 is the same signed zero
+            return k * 0.0
         if k in _FACTOR:
             return a * _FACTOR[k]
     return k * a
