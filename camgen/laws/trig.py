@@ -22,10 +22,10 @@ _FOUR_PI2 = constant(4 * np.pi**2)
 
 def _sin_cos(u: ArrayLike, k: Any, sin_row: int, cos_row: int) -> tuple[np.ndarray, np.ndarray, tuple, Any, Any]:
     """``u`` as an array, an empty array for f and its derivatives (4, *u.shape) and its rows (see :func:`blank`),
-    and sin(k u) and cos(k u) made in the rows ``sin_row`` and ``cos_row``."""
+    and sin(k u) and cos(k u) made in the rows ``sin_row`` and ``cos_row`` (k u made in f's row, filled after)."""
     u = as_array(u)
     out, rows = blank(u)
-    x = k * u
+    x = np.multiply(k, u, out=rows[0])
     return u, out, rows, np.sin(x, out=rows[sin_row]), np.cos(x, out=rows[cos_row])
 
 
@@ -59,7 +59,7 @@ class Cycloidal(Law):
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         u, out, (f, f1, _, _), s, c = _sin_cos(u, _TWO_PI, 2, 3)
-        np.subtract(u, s / _TWO_PI, out=f)
+        np.subtract(u, np.divide(s, _TWO_PI, out=f), out=f)
         np.subtract(_ONE, c, out=f1)
         s *= _TWO_PI
         c *= _FOUR_PI2
