@@ -378,7 +378,7 @@ class _Table:
     def _gather(self, index: np.ndarray) -> np.ndarray:
         """The rows (12, n) of the points on the segments ``index`` (n,), each point's numbers in its column (rows
         :data:`_START` and the rest): a take along the second axis of :attr:`rows`, C-ordered (4 us for 600 points;
-        a take of whole segment rows from a (m, 11) table is 1.7 us, but its transposed copy 4.6 us more)."""
+        a take of whole segment rows from a (m, 12) table is 1.7 us, but its transposed copy 4.6 us more)."""
         return self.rows.take(index, axis=1)
 
     @staticmethod
