@@ -364,33 +364,33 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
 def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     """Makes the exact arcs about the cam centre (up to 90 degrees an arc) of the dwells (or their spans)
     ``stretches``, (segment index, span or None) each, all at once: each one's vertices and bulges and their
-    measured error (a list). A dwell's n arcs have n + 1 vertices and 8 n - 1 probes, asked in one ask (every
-    dwell's vertices, then every dwell's probes), its angles made as Python floats (a few dozen; the same
-    operations as on arrays, so the same numbers)."""
+    measured error (a list). A dwell's n arcs need n vertices (its end's left to what follows, as every stretch's)
+    and 8 n - 1 probes, asked in one ask (every dwell's vertices, then every dwell's probes), its angles made as
+    Python floats (a few dozen; the same operations as on arrays, so the same numbers)."""
     segments = cam.program.segments
-    ranges = [(segments[i].start, segments[i].beta) if span is None else (span[0], span[1] - span[0])
-              for i, span in stretches]
-    arcs = [max(1, math.ceil(beta / (math.pi / 2) - 1e-12)) for _, beta in ranges]
-    theta, probe, at, on = [], [], [], []
-    for (i, _), (start, beta), n in zip(stretches, ranges, arcs, strict=True):
-        theta += [start + beta * k / n for k in range(n + 1)]
+    turn = -cam.follower.sense
+    theta, probe, at, on, first, within, bulges = [], [], [], [], [], [], []
+    for i, span in stretches:
+        start, beta = (segments[i].start, segments[i].beta) if span is None else (span[0], span[1] - span[0])
+        n = max(1, math.ceil(beta / (math.pi / 2) - 1e-12))
+        first.append(len(theta))
+        within.append(len(probe))
+        theta += [start + beta * k / n for k in range(n)]
         probe += [start + beta * (k / (8 * n)) for k in range(1, 8 * n)]
-        at += [i] * (n + 1)
+        at += [i] * n
         on += [i] * (8 * n - 1)
+        bulges += [math.tan(turn * beta / n / 4.0)] * n
     (g,) = yield [(np.array(at + on), np.array(theta + probe), False)]
-    surface = _planes(g, rr)
-    vertex, x = surface[:, :len(theta)], surface[:, len(theta):]
-    first = [0, *itertools.accumulate(n + 1 for n in arcs)]
+    surface = _surface(g, rr)                           # in rows, as a contour holds them
+    vertices = len(theta)
     # each dwell's radius, as np.linalg.norm measures its first vertex (its dot product with itself)
-    radius = [math.sqrt(vertex[:, a].dot(vertex[:, a])) for a in first[:-1]]
-    within = [0, *itertools.accumulate(8 * n - 1 for n in arcs)]
-    off = _length(x.T)                                  # the probes' distances from the centre
-    off -= np.array(radius).repeat([8 * n - 1 for n in arcs])
-    err = np.maximum.reduceat(np.abs(off, out=off), within[:-1])
-    pts = vertex.T.copy()                               # in rows, as a contour holds them
-    sense = cam.follower.sense
-    return [(pts[a:b - 1], np.array([math.tan(-sense * beta / n / 4.0)] * n), e)
-            for a, b, n, (_, beta), e in zip(first[:-1], first[1:], arcs, ranges, err.tolist(), strict=True)]
+    radius = [math.sqrt(surface[a].dot(surface[a])) for a in first]
+    off = _length(surface[vertices:])                   # the probes' distances from the centre
+    off -= np.array(radius).repeat([b - a for a, b in zip(within, [*within[1:], len(probe)], strict=True)])
+    err = np.maximum.reduceat(np.abs(off, out=off), within)
+    bulge = np.array(bulges)
+    return [(surface[a:b], bulge[a:b], e)
+            for a, b, e in zip(first, [*first[1:], vertices], err.tolist(), strict=True)]
 
 
 def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float,
