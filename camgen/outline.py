@@ -533,8 +533,11 @@ def _counter_clockwise(cam: Cam, verts: np.ndarray, bulges: np.ndarray) -> Conto
     runs counter-clockwise. A disc cam's contact point runs round its centre against the cam's turn, clockwise in
     the cam's frame for a counter-clockwise cam (``sense`` +1), so that outline is turned round and a clockwise
     cam's kept, without measuring its area; a plate's is measured."""
-    if not cam.is_plate:
-        return Contour(*reversed_pieces(verts, bulges)) if cam.follower.sense > 0 else Contour(verts, bulges)
+    if not cam.is_plate:                                # both fresh arrays of the outline's own (see Contour.owned)
+        if cam.follower.sense > 0:
+            verts, bulges = reversed_pieces(verts, bulges)
+            verts = verts.copy()                            # C-ordered, as the constructor would copy it
+        return Contour.owned(verts, bulges)
     contour = Contour(verts, bulges)
     return contour if contour.area > 0 else contour.reversed()
 

@@ -107,3 +107,28 @@ def test_biarcs_read_back_from_the_dxf_are_tangent_continuous(tmp_path):
     cam = design.cam
     assert sorted(np.round(radii[at_centre], 9)) == pytest.approx(
         [math.hypot(5.0, cam.follower.d0) - 10.0, math.hypot(5.0, cam.follower.d0 + 20.0) - 10.0], abs=1e-9)
+
+
+@pytest.mark.parametrize("sense", ["ccw", "cw"])
+def test_outline_contour_holds_what_the_constructor_would_make(sense):
+    """exact_outline's contour is made by Contour.owned (no copies, no checks): it holds what Contour() makes of the
+    same vertices and bulges, read-only float64, C-ordered, n >= 2, bit for bit."""
+    from camgen.core.shapes import Contour
+
+    contour = exact_outline(build_cam(template({"cam.rotation": sense})), 0.01).contour
+    again = Contour(contour.vertices, contour.bulges)
+    for got, want in ((contour.vertices, again.vertices), (contour.bulges, again.bulges)):
+        assert got.dtype == np.float64 and got.flags.c_contiguous and not got.flags.writeable
+        assert got.shape == want.shape and got.tobytes() == want.tobytes()
+    assert len(contour.vertices) == 114 and np.count_nonzero(contour.bulges) == 2
+
+
+def test_contour_owned_holds_its_arrays_read_only():
+    from camgen.core.shapes import Contour
+
+    vertices, bulges = np.array([[1.0, 0.0], [-1.0, 0.0]]), np.array([1.0, 1.0])
+    contour = Contour.owned(vertices, bulges)
+    assert contour.vertices is vertices and contour.bulges is bulges
+    assert not vertices.flags.writeable and not bulges.flags.writeable
+    assert contour.area == pytest.approx(math.pi) and contour.n_arcs == 2
+    assert contour.reversed().area == pytest.approx(-math.pi)
