@@ -218,19 +218,22 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
     """The number of chords the surface needs (``factor`` 1 of :func:`_spaced`) from the start of each grid of
     ``aux`` (m, k) (radians) to each of its points (m, k), from the pitch curve's derivative ``d1`` (m k, 2) and
     curvature ``kappa`` (m k,) there: the integral of chord ~ sqrt(8 tol rho_c) along a surface of speed
-    |P'| |1 - Rr k| (samples per radian), by the trapezoid rule, grid by grid."""
-    k = kappa.reshape(aux.shape)
-    root = rr * k                                       # sqrt(|k (1 - rr k)| / (8 aim tol)), made in place
+    |P'| |1 - Rr k| (samples per radian), by the trapezoid rule, grid by grid. Worked on the grids one after
+    another (contiguous, one-dimensional: numpy's quicker loops), with one trapezoid too many from each grid's end
+    to the next one's start, left out of the sums."""
+    root = rr * kappa                                   # sqrt(|k (1 - rr k)| / (8 aim tol)), made in place
     np.subtract(_ONE, root, out=root)
-    root *= k
-    np.sqrt(np.abs(root, out=root) / (8.0 * _AIM * tolerance), out=root)
-    density = _length(d1).reshape(aux.shape)
+    root *= kappa
+    np.sqrt(np.divide(np.abs(root, out=root), 8.0 * _AIM * tolerance, out=root), out=root)
+    density = _length(d1)
     density *= root
-    step = density[:, 1:] + density[:, :-1]            # the trapezoids: 0.5 (sum of the ends) (width), in place
-    step *= _HALF
-    step *= aux[:, 1:] - aux[:, :-1]
+    grid = aux.ravel()
+    step = np.empty(grid.size)                          # the trapezoids: 0.5 (sum of the ends) (width), in place
+    trapezoid = np.add(density[1:], density[:-1], step[:-1])
+    trapezoid *= _HALF
+    trapezoid *= grid[1:] - grid[:-1]
     cum = np.zeros(aux.shape)
-    step.cumsum(axis=1, out=cum[:, 1:])
+    step.reshape(aux.shape)[:, :-1].cumsum(axis=1, out=cum[:, 1:])
     return cum
 
 
@@ -303,11 +306,12 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
             spans[k] = 0.0
         worst = np.maximum.reduceat(spans, [0, *ahead[:-1]])
         points = at[:, :n].T.copy()                     # the vertices (n, 2), in rows as a contour holds them
+        zeros = np.zeros(n)                             # every stretch's bulges, sliced
         still = []
         for j, e, stop, size in zip(live, worst.tolist(), ahead, sizes, strict=True):
             err[j] = e
             if e <= tolerance:
-                results[j] = (points[stop - size:stop - 1], np.zeros(size - 1), e)
+                results[j] = (points[stop - size:stop - 1], zeros[stop - size:stop - 1], e)
             else:
                 factor[j] *= max(1.1, math.sqrt(e / tolerance))
                 still.append(j)
@@ -383,14 +387,24 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     (g,) = yield [(np.array(at + on), np.array(theta + probe), False)]
     surface = _surface(g, rr)                           # in rows, as a contour holds them
     vertices = len(theta)
+    probes = surface[vertices:].tolist()                # a few dozen: Python floats
     # each dwell's radius, as np.linalg.norm measures its first vertex (its dot product with itself)
-    radius = [math.sqrt(surface[a].dot(surface[a])) for a in first]
-    off = _length(surface[vertices:])                   # the probes' distances from the centre
-    off -= np.array(radius).repeat([b - a for a, b in zip(within, [*within[1:], len(probe)], strict=True)])
-    err = np.maximum.reduceat(np.abs(off, out=off), within)
+    err = [_off_circle(probes[a:b], math.sqrt(surface[v].dot(surface[v])))
+           for v, a, b in zip(first, within, [*within[1:], len(probe)], strict=True)]
     bulge = np.array(bulges)
-    return [(surface[a:b], bulge[a:b], e)
-            for a, b, e in zip(first, [*first[1:], vertices], err.tolist(), strict=True)]
+    return [(surface[a:b], bulge[a:b], e) for a, b, e in zip(first, [*first[1:], vertices], err, strict=True)]
+
+
+def _off_circle(points: list[list[float]], radius: float) -> float:
+    """The most the ``points`` (x, y each, mm) lie off the circle of ``radius`` (mm) about the origin, as numpy's
+    sqrt(x x + y y), difference, abs and maximum over them make it (the same correctly rounded operations; a NaN
+    kept, as np.maximum keeps it)."""
+    worst = 0.0
+    for x, y in points:
+        off = abs(math.sqrt(x * x + y * y) - radius)
+        if off > worst or off != off:
+            worst = off
+    return worst
 
 
 def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float,
@@ -399,24 +413,22 @@ def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     for all the moving segments' chords, or one a moving segment for biarcs; and where each stretch's result is
     among theirs, (maker, item of its list or None) each (see :func:`_made`)."""
     segments = cam.program.segments
-    dwells = [(i, span) for i, span in stretches if segments[i].kind == "dwell"]
-    moving = [(i, span) for i, span in stretches if segments[i].kind != "dwell"]
+    dwells, moving, places = [], [], []                 # each stretch's place among the dwells' or the moving ones'
+    for stretch in stretches:
+        if segments[stretch[0]].kind == "dwell":
+            places.append((True, len(dwells)))
+            dwells.append(stretch)
+        else:
+            places.append((False, len(moving)))
+            moving.append(stretch)
     makers: list[Maker] = [_dwells(cam, dwells, rr)] if dwells else []
     chords = len(makers)
     if curves == "biarcs":
         makers += [_biarcs(cam, i, tolerance, rr, span) for i, span in moving]
-    elif moving:
+        return makers, [(0, k) if dwell else (chords + k, None) for dwell, k in places]
+    if moving:
         makers.append(_chords(cam, moving, tolerance, rr))
-    plan: list[tuple[int, int | None]] = []
-    dwell = move = 0
-    for i, _ in stretches:
-        if segments[i].kind == "dwell":
-            plan.append((0, dwell))
-            dwell += 1
-        else:
-            plan.append((chords + move, None) if curves == "biarcs" else (chords, move))
-            move += 1
-    return makers, plan
+    return makers, [(0, k) if dwell else (chords, k) for dwell, k in places]
 
 
 def _made(plan: list[tuple[int, int | None]], results: list[Any]) -> list[Any]:
