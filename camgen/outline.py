@@ -151,9 +151,12 @@ def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: floa
     length2 = square[0] + square[1]
     along = x - a
     along *= ab
-    # a span of no length divides by 1 (its probes measured from its start): length2 + (length2 == 0)
+    # a span of no length divides by the least float instead of by 1 (fmax: every other square length is no less,
+    # a NaN's quotient NaN either way): its probes' products with it are 0, so t is 0 either way, each probe
+    # measured from its start (a span under 1e-162 mm, whose square underflows to 0, has t clamped to 0 or 1
+    # instead of near 0: a + t ab is a all the same, but within 1e-146 mm of the centre)
     t = along[0] + along[1]
-    t /= length2 + (length2 == _ZERO)
+    t /= np.fmax(length2, _LEAST, out=length2)
     np.minimum(np.maximum(t, _ZERO, out=t), _ONE, out=t)
     off = t * ab                                        # from each probe to its nearest point of the chord:
     off += a                                            # a + t ab - x, made in place
@@ -173,6 +176,8 @@ def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: floa
 
 #: 0-d constants (numpy takes them without converting a Python number)
 _ZERO, _HALF, _ONE, _EIGHT, _INF = constant(0.0), constant(0.5), constant(1.0), constant(8.0), constant(math.inf)
+#: the least positive float (a subnormal), 0-d
+_LEAST = constant(5e-324)
 
 
 #: the points of the grid on which a stretch is measured for its spacing: its trapezoids only integrate the vertex
