@@ -45,19 +45,20 @@ def _peaks(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -> list
 
 
 def _peaks_steps(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -> Maker:
-    """:func:`_peaks` as a maker of :meth:`Cam.serve` (its asks are the law's own variable on each segment)."""
-    def values(g: PitchGeometry) -> np.ndarray:
+    """:func:`_peaks` as a maker of :meth:`Cam.serve` (its asks are the law's own variable on each segment):
+    the program's search itself, asking as the cam's evaluation takes it."""
+    def values(answers: list[PitchGeometry]) -> np.ndarray:
+        (g,) = answers
         return np.array([q(g) for q in quantities])              # np.stack's rows, without its checks' cost
 
-    steps = cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities],
-                                     getattr(cam.follower, "steady", False))
-    index, v = next(steps)
-    while True:
-        (g,) = yield [(index, v, True)]
-        try:
-            index, v = steps.send(g)
-        except StopIteration as done:
-            return done.value
+    return cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities],
+                                    getattr(cam.follower, "steady", False), _ask)
+
+
+def _ask(index: np.ndarray, v: np.ndarray) -> list[Ask]:
+    """The search's points as :meth:`Cam.serve` takes them: one ask, its points given by segment and by the law's own
+    variable (see :data:`camgen.cam.Ask`)."""
+    return [(index, v, True)]
 
 
 def _peak(cam: Cam, quantity: Callable[[PitchGeometry], np.ndarray]) -> tuple[float, float]:

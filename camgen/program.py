@@ -155,6 +155,11 @@ class Jump:
                 "consequence": self.consequence, "where": "inside segment" if self.inside else "segment boundary"}
 
 
+def _pair(index: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:meth:`Program.maxima_steps`' ask as it is: the points' segments and law variables."""
+    return index, v
+
+
 @dataclass(frozen=True)
 class Program:
     """Ordered segments covering exactly one turn; s is continuous and returns to its start."""
@@ -207,11 +212,15 @@ class Program:
 
         return drive(self.maxima_steps(lambda values: values, scale), answer)
 
-    def maxima_steps(self, values: Callable[[Any], np.ndarray], scale: ArrayLike = 0.0, steady: bool = False
-                     ) -> Generator[tuple[np.ndarray, np.ndarray], Any, list[tuple[float, float]]]:
-        """:meth:`maxima` as a generator: it yields ``(index, v)``, points given by their segment (n,) and their law
-        variable (n,) (see :meth:`Segment.at_law`), and is sent what the caller evaluated there, which ``values``
-        turns into the rows (k, n) to maximise; it returns each row's (largest value, where in degrees).
+    def maxima_steps(self, values: Callable[[Any], np.ndarray], scale: ArrayLike = 0.0, steady: bool = False,
+                     ask: Callable[[np.ndarray, np.ndarray], Any] = _pair
+                     ) -> Generator[Any, Any, list[tuple[float, float]]]:
+        """:meth:`maxima` as a generator: it yields ``ask(index, v)`` (``(index, v)`` unless told), points given by
+        their segment (n,) and their law variable (n,) (see :meth:`Segment.at_law`), and is sent what the caller
+        evaluated there, which ``values`` turns into the rows (k, n) to maximise; it returns each row's (largest
+        value, where in degrees). ``ask`` puts the points in the form the caller's evaluator takes, so that a maker
+        of :meth:`camgen.cam.Cam.serve` is this generator itself (no generator of its own around it to pass each
+        ask and answer on).
 
         Every smooth piece of every segment is searched at once on its closed interval, with one-sided values at
         its ends (a segment's ends, and where its law changes piece), the maximiser located to ~1e-13 of the
@@ -221,14 +230,13 @@ class Program:
         says that the values depend on the motion only, not on the cam angle, so that a dwell's are constant: its
         grid is then one point (see :func:`camgen.numeric.maxima_steps`).
         """
-        owner, lo, hi, still, backwards, angles = self._pieces
+        owner, lo, hi, still, backwards, angles = self._pieces()
         steps = maxima_steps(lo, hi, scale=scale, reverse=backwards, steady=still if steady else False)
-        ask = next(steps)
+        x, piece = next(steps)
         while True:
-            x, piece = ask
-            got = yield (piece if owner is None else owner[piece]), x
+            got = yield ask(piece if owner is None else owner[piece], x)
             try:
-                ask = steps.send(values(got))
+                x, piece = steps.send(values(got))
             except StopIteration as done:
                 at, value, magnitude = done.value
                 break
@@ -275,14 +283,14 @@ class Program:
         (a cache: the same numbers its own evaluation makes)."""
         self.__dict__["boundaries"] = (self.boundary_points[0], motion)
 
-    @once
     def _pieces(self) -> tuple[np.ndarray | None, np.ndarray, np.ndarray, list[bool], list[bool],
                                list[tuple[float, float, bool]]]:
-        """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them, made
-        once a program: the owning segment of each (an array, to map asks; None where each segment is one piece,
-        its own), the law variable's ends (arrays), whether its segment holds still (a dwell) and whether it runs
-        its law backwards (a return, see :meth:`Segment.angle`), and that segment's start, angle (radians) and
-        backwards flag."""
+        """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them: the
+        owning segment of each (an array, to map asks; None where each segment is one piece, its own), the law
+        variable's ends (arrays), whether its segment holds still (a dwell) and whether it runs its law backwards
+        (a return, see :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag. Made
+        each search, not cached: a design searches its program once, and a cached_property's first read (its lock
+        on Python 3.11) costs as much again as making them (~2.5 us)."""
         owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
         for i, seg in enumerate(self.segments):
             moving = seg.kind != "dwell" and seg.law is not None
