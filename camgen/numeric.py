@@ -210,6 +210,20 @@ def _unit(n: int) -> tuple[np.ndarray, list[float]]:
     return unit, unit.tolist()
 
 
+def _flat_rows(y: np.ndarray, edges: list[list[float]], magnitude: list[float], count: int) -> list[int]:
+    """The rows of the grid ``y`` (rows, n; finite) that are constant within the tie: whose largest and least value
+    differ by no more than ``TIE`` of their function's ``magnitude`` (``count`` rows a function). A row whose ends
+    (``edges``, each row's first five and last five values) differ by more is not one, without its largest and
+    least: they are no closer than its ends, and rounding is monotonic, so their difference rounds to no less."""
+    unsure = [r for r, e in enumerate(edges) if not abs(e[0] - e[9]) > TIE * magnitude[r // count]]
+    if not unsure:
+        return unsure
+    rows = y[unsure]
+    top = np.maximum.reduce(rows, axis=1).tolist()
+    bottom = np.minimum.reduce(rows, axis=1).tolist()
+    return [r for r, t, b in zip(unsure, top, bottom, strict=True) if not t - b > TIE * magnitude[r // count]]
+
+
 def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], magnitude: list[float],
                      count: int) -> list[tuple[int, int]]:
     """Each row's local maxima on the grid ``y`` (rows, n; finite) that may be its largest: within what a peak can
@@ -419,9 +433,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     k = got.shape[0]
     count = len(moving)
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
-    top = np.maximum.reduce(y, axis=1).tolist()              # each row's largest and least (the ufuncs' reduce:
-    bottom = np.minimum.reduce(y, axis=1).tolist()           # ndarray.max's Python wrapper costs more)
-    largest = np.maximum.reduce(np.abs(got), axis=1).tolist()   # NaN or infinite where any value is
+    largest = np.maximum.reduce(np.abs(got), axis=1).tolist()   # NaN or infinite where any value is (the ufunc's
+    #                                                             reduce: ndarray.max's Python wrapper costs more)
     if not all(map(math.isfinite, largest)):
         raise FloatingPointError("function is not finite on the search grid")
     scales = (scale if type(scale) is list and all(type(s) is float for s in scale)   # as a Python list: as given
@@ -430,8 +443,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         scales = [*scales] * k if len(scales) == 1 else np.broadcast_to(scales, (k,)).tolist()
     magnitude = [max(s, v) for s, v in zip(scales, largest, strict=True)]
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
-    flat = [r for r in range(k * count) if not top[r] - bottom[r] > TIE * magnitude[r // count]]
-    edges = y[:, _EDGES].tolist()                            # each row's first five and last five
+    edges = y.take(_EDGES, axis=1).tolist()       # each row's first five and last five (take: less than [:, _EDGES])
+    flat = _flat_rows(y, edges, magnitude, count)
     grid = _grid_candidates(y, flat, edges, magnitude, count) if count else []
     found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks
     if grid:

@@ -241,6 +241,31 @@ def test_a_piece_without_peaks_is_chosen_as_every_candidate_is():
             assert repr(numeric._end_of(lo, first, hi, last, tie, backwards)) == repr(general)
 
 
+def test_flat_rows_are_those_whose_range_is_within_the_tie():
+    """The rows constant within the tie, found from their ends where those differ by more (no reduction), are the
+    rows whose largest and least differ by no more than the tie: constant rows, rows varying by less or by just
+    more than the tie (their ends equal or not), rows whose ends are equal and whose middle is not, two functions
+    of different magnitudes, signed zeros."""
+    rng = np.random.default_rng(16)
+    n, tie = 129, numeric.TIE
+    rows = [np.zeros(n), np.full(n, -0.0), np.full(n, 3.0), 3.0 + np.sin(np.linspace(0.0, np.pi, n)),
+            3.0 + 1e-3 * np.sin(np.linspace(0.0, 2 * np.pi, n))]
+    for scale in (0.5, 1.0, 2.0, 3.0):                 # a spread about the tie (the magnitude is 3 or more)
+        rows.append(3.0 + scale * 3.0 * tie * rng.uniform(-0.5, 0.5, n))
+        middle = np.full(n, 3.0)
+        middle[n // 2] += scale * 3.0 * tie
+        rows.append(middle)                           # ends equal: the middle decides
+    rows += [3.0 * rng.uniform(-1.0, 1.0, n) for _ in range(4)]
+    y = np.array(rows + [row * 1e-3 for row in rows])  # a second function, of another magnitude
+    count = len(rows)
+    magnitude = [max(np.abs(y[:count]).max(), 3.0), np.abs(y[count:]).max()]
+    edges = y[:, [0, 1, 2, 3, 4, -5, -4, -3, -2, -1]].tolist()
+    expected = [r for r in range(len(y)) if not y[r].max() - y[r].min() > tie * magnitude[r // count]]
+    assert numeric._flat_rows(y, edges, magnitude, count) == expected
+    assert {0, 1, 2, count, count + 1, count + 2} <= set(expected) and 3 not in expected and 4 not in expected
+    assert expected != list(range(len(y)))
+
+
 def test_the_quartic_vertex_has_no_maximum_where_a_step_divides_by_zero():
     """A flat window (no parabola) or a Newton step with a zero slope's derivative: no maximum, as the arrays' NaN
     and infinities gave; a peak inside the window: the quartic's."""
