@@ -5,6 +5,7 @@ import functools
 import itertools
 import math
 import operator
+import struct
 from collections.abc import Callable, Generator, Iterable
 from typing import Any, NamedTuple
 
@@ -158,6 +159,17 @@ def _flags(flag: ArrayLike, p: int) -> list[bool]:
     """``flag``, one for all (a bool or one element) or one a piece, as p bools."""
     a = np.asarray(flag, dtype=bool).reshape(-1)
     return a.tolist() * p if a.size == 1 else a.reshape(p).tolist()
+
+
+def _exact(values: ArrayLike) -> bytes:
+    """``values`` as the bytes of their float64s, to look a :func:`_plan` up by (exact: -0.0 is not 0.0). A list or
+    tuple of numbers is packed as it is (struct's doubles are numpy's float64s, byte for byte), without an array."""
+    if type(values) is list or type(values) is tuple:
+        try:
+            return struct.pack(f"{len(values)}d", *values)
+        except (TypeError, struct.error):                # not numbers struct takes: as numpy reads them
+            pass
+    return np.asarray(values, dtype=float).reshape(-1).tobytes()
 
 
 def _key(flag: ArrayLike) -> tuple[Any, ...]:
@@ -425,8 +437,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     """
     if n < 5:
         raise ValueError(f"a grid of {n} points: the search needs 5 a piece at least")
-    low, high = np.asarray(lo, dtype=float).reshape(-1), np.asarray(hi, dtype=float).reshape(-1)
-    plan = _plan(low.tobytes(), high.tobytes(), _key(steady), _key(reverse), n)
+    plan = _plan(_exact(lo), _exact(hi), _key(steady), _key(reverse), n)
     lo, hi, width, moving, resting, backwards, ask = plan
     p = len(lo)
     got = yield ask

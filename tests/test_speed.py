@@ -306,6 +306,21 @@ def test_the_first_ask_is_made_once_and_read_only():
         next(numeric.maxima_steps([0.0], [1.0], n=4))
 
 
+def test_pieces_given_as_numbers_find_the_plan_an_array_finds():
+    """Pieces' ends given as a list or tuple (packed as they are) look up the plan that the same numbers as an array
+    find, -0.0 apart from 0.0; a list of what struct does not take is read as numpy reads it."""
+    for ends in [(0.0, 0.25, 1.0), (-0.0, 0.5), (1, np.float64(0.1), 2.5), (float("inf"), float("nan")), ()]:
+        assert numeric._exact(ends) == np.asarray(ends, dtype=float).tobytes() == numeric._exact(list(ends))
+        assert numeric._exact(np.array(ends, dtype=float)) == numeric._exact(ends)
+    assert numeric._exact(("0.5", "1")) == numeric._exact([[0.5], [1]]) == np.array([0.5, 1.0]).tobytes()
+    assert numeric._exact((-0.0,)) != numeric._exact((0.0,))
+    x, _ = next(numeric.maxima_steps((0.0, -0.0), (1.0, 1.0)))
+    assert x is next(numeric.maxima_steps(np.array([0.0, -0.0]), [1.0, 1.0]))[0]
+    steps = numeric.maxima_steps((0.0, -0.0), (1.0, 1.0))
+    at, _, _ = numeric.drive(steps, lambda ask: np.full((1, ask[0].size), 2.0))      # constant: the low ends
+    assert [math.copysign(1.0, a) for a in at[0]] == [1.0, -1.0]
+
+
 def test_values_not_finite_are_refused():
     """On the grid, or near a peak (the refinement's points, off the grid's k / 128)."""
     with pytest.raises(FloatingPointError, match="search grid"), np.errstate(divide="ignore"):
