@@ -301,16 +301,17 @@ _EDGES = np.array([0, 1, 2, 3, 4, -5, -4, -3, -2, -1])
 
 
 class _Peak:
-    """A peak being located: its function ``f`` and ``piece``, where it is so far (``at``) and the largest value
-    seen (``value``), the next stencil's ``centre`` and the peak's ``breadth`` (all in the piece's abscissa); the
-    value of the end it was found from (``end``, see :func:`_inward_peaks`), None for a peak found inside."""
+    """A peak being located: its grid ``row``, function ``f`` and ``piece``, where it is so far (``at``) and the
+    largest value seen (``value``), the next stencil's ``centre`` and the peak's ``breadth`` (all in the piece's
+    abscissa); the value of the end it was found from (``end``, see :func:`_inward_peaks`), None for a peak found
+    inside."""
 
-    __slots__ = ("at", "breadth", "centre", "end", "f", "piece", "value")
+    __slots__ = ("at", "breadth", "centre", "end", "f", "piece", "row", "value")
 
-    def __init__(self, f: int, piece: int, at: float, value: float, centre: float, breadth: float,
+    def __init__(self, row: int, f: int, piece: int, at: float, value: float, centre: float, breadth: float,
                  end: float | None) -> None:
         self.f, self.piece, self.at, self.value, self.centre, self.breadth = f, piece, at, value, centre, breadth
-        self.end = end
+        self.row, self.end = row, end
 
 
 def _windows(y: np.ndarray, found: list[tuple[int, int]], n: int) -> tuple[list[int], np.ndarray]:
@@ -338,7 +339,7 @@ def _estimates(candidates: Iterable[tuple[tuple[int, int], int, list[float], lis
         t = _vertex(a1, a2, a3, a4, shift - 1.0, shift + 1.0)
         centre = min(max(low + size * unit[c] + (shift if t is None else t) * step, low), hi[piece])
         at = hi[piece] if j == n - 1 else low + size * unit[j]           # the grid's own point: its last the end
-        out.append(_Peak(r // count, piece, at, value, centre, _breadth(a2, a4, step, size),
+        out.append(_Peak(r, r // count, piece, at, value, centre, _breadth(a2, a4, step, size),
                          value if j == 0 or j == n - 1 else None))
     return out
 
@@ -457,7 +458,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     edges = y.take(_EDGES, axis=1).tolist()       # each row's first five and last five (take: less than [:, _EDGES])
     flat = _flat_rows(y, edges, magnitude, count)
     grid = _grid_candidates(y, flat, edges, magnitude, count) if count else []
-    found_on: dict[tuple[int, int], list[tuple[float, float]]] = {}   # (function, piece): its peaks
+    found: list[list[tuple[float, float]]] = [[] for _ in edges]   # each grid row's peaks
     if grid:
         centres, windows = _windows(y, grid, n)
         near = windows.tolist()
@@ -467,18 +468,18 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         yield from _refined(peaks, lo, hi, width)
         for peak in peaks:                  # a peak found from an end only where it beats that end by the tie
             if peak.end is None or peak.value - peak.end > TIE * magnitude[peak.f]:
-                found_on.setdefault((peak.f, peak.piece), []).append((peak.at, peak.value))
+                found[peak.row].append((peak.at, peak.value))
     at: list[list[float]] = [[0.0] * p for _ in range(k)]
     value: list[list[float]] = [[0.0] * p for _ in range(k)]
+    rows = zip(edges, found, strict=True)
     for f in range(k):
         tie = TIE * magnitude[f]
         row_at, row_value = at[f], value[f]
-        for piece, edge in zip(moving, edges[f * count:(f + 1) * count], strict=True):
-            first, last = edge[0], edge[9]
-            here = found_on.get((f, piece))
+        for piece, (edge, here) in zip(moving, rows, strict=False):   # this function's rows (moving first: zip
+            #                                                           then takes no row past its last piece)
             row_at[piece], row_value[piece] = (
-                _end_of(lo[piece], first, hi[piece], last, tie, backwards[piece]) if here is None
-                else _first_largest([(lo[piece], first), (hi[piece], last), *here], tie, backwards[piece]))
+                _first_largest([(lo[piece], edge[0]), (hi[piece], edge[9]), *here], tie, backwards[piece]) if here
+                else _end_of(lo[piece], edge[0], hi[piece], edge[9], tie, backwards[piece]))
         for (piece, where), v in zip(resting, held[f], strict=True):
             row_at[piece], row_value[piece] = where, v
     return at, value, magnitude
