@@ -1,11 +1,11 @@
 """Small numerical helpers shared by the analyses (no geometry, no I/O)."""
 from __future__ import annotations
 
+import array
 import functools
 import itertools
 import math
 import operator
-import struct
 from collections.abc import Callable, Generator, Iterable
 from typing import Any, NamedTuple
 
@@ -163,11 +163,12 @@ def _flags(flag: ArrayLike, p: int) -> list[bool]:
 
 def _exact(values: ArrayLike) -> bytes:
     """``values`` as the bytes of their float64s, to look a :func:`_plan` up by (exact: -0.0 is not 0.0). A list or
-    tuple of numbers is packed as it is (struct's doubles are numpy's float64s, byte for byte), without an array."""
+    tuple of numbers is packed as it is (an array.array of doubles: numpy's float64s, byte for byte), without a numpy
+    array."""
     if type(values) is list or type(values) is tuple:
         try:
-            return struct.pack(f"{len(values)}d", *values)
-        except (TypeError, struct.error):                # not numbers struct takes: as numpy reads them
+            return array.array("d", values).tobytes()
+        except TypeError:                                # not numbers (nested, or text): as numpy reads them
             pass
     return np.asarray(values, dtype=float).reshape(-1).tobytes()
 
@@ -449,11 +450,11 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     #                                                             reduce: ndarray.max's Python wrapper costs more)
     if not all(map(math.isfinite, largest)):
         raise FloatingPointError("function is not finite on the search grid")
-    scales = (scale if type(scale) is list and all(type(s) is float for s in scale)   # as a Python list: as given
+    scales = (scale if type(scale) is list and {*map(type, scale)} <= {float}   # Python floats (or none): as given
               else np.asarray(scale, dtype=float).reshape(-1).tolist())
     if len(scales) != k:                                       # one for all, as numpy broadcasts it
         scales = [*scales] * k if len(scales) == 1 else np.broadcast_to(scales, (k,)).tolist()
-    magnitude = [max(s, v) for s, v in zip(scales, largest, strict=True)]
+    magnitude = list(map(max, scales, largest))                # as many of each (the lengths made equal above)
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
     edges = y.take(_EDGES, axis=1).tolist()       # each row's first five and last five (take: less than [:, _EDGES])
     flat = _flat_rows(y, edges, magnitude, count)
