@@ -55,7 +55,7 @@ def _peaks_steps(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -
                                     getattr(cam.follower, "steady", False), _ask)
 
 
-def _ask(index: np.ndarray, v: np.ndarray) -> list[Ask]:
+def _ask(v: np.ndarray, index: np.ndarray) -> list[Ask]:
     """The search's points as :meth:`Cam.serve` takes them: one ask, its points given by segment and by the law's own
     variable (see :data:`camgen.cam.Ask`)."""
     return [(index, v, True)]

@@ -132,8 +132,19 @@ def _breadth(a2: float, a4: float, step: float, size: float) -> float:
     return size if breadth != breadth else breadth
 
 
-#: what :func:`maxima_steps` asks for, abscissae (m,) and their pieces (m,); it is sent the values (k, m)
-Steps = Generator[tuple[np.ndarray, np.ndarray], np.ndarray, tuple[list[list[float]], list[list[float]], list[float]]]
+#: what :func:`maxima_steps` asks for, abscissae (m,) and their pieces (m,) (as its ``ask`` puts them); it is sent
+#: the values (k, m) (as its ``answer`` makes them)
+Steps = Generator[Any, Any, tuple[list[list[float]], list[list[float]], list[float]]]
+
+
+def _points(x: np.ndarray, piece: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`maxima_steps`' ask unless told: its points as they are, ``(x, piece)``."""
+    return x, piece
+
+
+def _values(got: np.ndarray) -> np.ndarray:
+    """:func:`maxima_steps`' answer unless told: the values as they are sent."""
+    return got
 
 
 def drive(steps: Generator[Any, Any, Any], answer: Callable[[Any], Any]) -> Any:
@@ -353,18 +364,20 @@ def _stencil(peak: _Peak, lo: list[float], hi: list[float], width: list[float]) 
     return d if d > 1e-12 * width[peak.piece] else 0.0
 
 
-def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[float]) -> Generator[
-        tuple[np.ndarray, np.ndarray], np.ndarray, None]:
+def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[float],
+             ask: Callable[[np.ndarray, np.ndarray], Any], answer: Callable[[Any], np.ndarray]) -> Generator[
+        Any, Any, None]:
     """Locate the ``peaks`` (in place): each round asks five points ``STENCIL`` of a peak's breadth apart about its
     estimate and takes the quartic through its values there (or the best of them where the quartic has no maximum
-    within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds."""
+    within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds. Its asks and answers are put and
+    read by ``ask`` and ``answer`` (see :func:`maxima_steps`)."""
     active = peaks
     for _ in range(ROUNDS):
         stencils = [(peak, peak.centre, d) for peak in active if (d := _stencil(peak, lo, hi, width))]
         if not stencils:
             return
         points = [c + d * s for _, c, d in stencils for s in _OFFSETS]     # five a stencil, one flat list
-        got = yield (np.array(points), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))
+        got = answer((yield ask(np.array(points), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))))
         values = got.tolist()
         ys = [values[peak.f][5 * i:5 * i + 5] for i, (peak, _, _) in enumerate(stencils)]   # each its own function
         if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
@@ -413,10 +426,13 @@ def _end_of(lo: float, first: float, hi: float, last: float, tie: float, backwar
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
-                 steady: ArrayLike = False, n: int = GRID) -> Steps:
+                 steady: ArrayLike = False, n: int = GRID, ask: Callable[[np.ndarray, np.ndarray], Any] = _points,
+                 answer: Callable[[Any], np.ndarray] = _values) -> Steps:
     """Global maxima of k smooth functions on each of p closed intervals, all at once, as a generator: it yields
-    ``(x, piece)`` and is sent the functions' values there (see below), so that a caller can evaluate what it asks
-    together with other work (one evaluation serving several searches).
+    ``ask(x, piece)`` (``(x, piece)`` unless told) and is sent what ``answer`` turns into the functions' values
+    there (see below; as sent unless told), so that a caller can evaluate what it asks together with other work
+    (one evaluation serving several searches); a caller whose evaluator takes its points or gives its answers in
+    another form says how, and delegates to this generator (yield from) rather than wrapping it.
 
     The values sent for an ask ``(x, piece)``, abscissae ``x`` (m,) on the pieces ``piece`` (m,) (indices into
     ``lo``, ``hi``; both read-only), are the k functions' values there, shape (k, m); each must be smooth (analytic)
@@ -440,9 +456,9 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     if n < 5:
         raise ValueError(f"a grid of {n} points: the search needs 5 a piece at least")
     plan = _plan(_exact(lo), _exact(hi), _key(steady), _key(reverse), n)
-    lo, hi, width, moving, resting, backwards, ask = plan
+    lo, hi, width, moving, resting, backwards, first = plan
     p = len(lo)
-    got = yield ask
+    got = answer((yield ask(*first)))
     k = got.shape[0]
     count = len(moving)
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
@@ -466,7 +482,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         from_end = [j == 0 or j == n - 1 for _, j in grid]
         fits = _coefficients_apart(windows, from_end)
         peaks = _estimates(zip(grid, centres, near, fits, strict=True), moving, lo, hi, width, n)
-        yield from _refined(peaks, lo, hi, width)
+        yield from _refined(peaks, lo, hi, width, ask, answer)
         for peak in peaks:                  # a peak found from an end only where it beats that end by the tie
             if peak.end is None or peak.value - peak.end > TIE * magnitude[peak.f]:
                 found[peak.row].append((peak.at, peak.value))

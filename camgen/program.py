@@ -155,8 +155,8 @@ class Jump:
                 "consequence": self.consequence, "where": "inside segment" if self.inside else "segment boundary"}
 
 
-def _pair(index: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:meth:`Program.maxima_steps`' ask as it is: the points' segments and law variables."""
+def _pair(v: np.ndarray, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:meth:`Program.maxima_steps`' ask unless told: the points' segments and law variables, ``(index, v)``."""
     return index, v
 
 
@@ -215,12 +215,12 @@ class Program:
     def maxima_steps(self, values: Callable[[Any], np.ndarray], scale: ArrayLike = 0.0, steady: bool = False,
                      ask: Callable[[np.ndarray, np.ndarray], Any] = _pair
                      ) -> Generator[Any, Any, list[tuple[float, float]]]:
-        """:meth:`maxima` as a generator: it yields ``ask(index, v)`` (``(index, v)`` unless told), points given by
-        their segment (n,) and their law variable (n,) (see :meth:`Segment.at_law`), and is sent what the caller
+        """:meth:`maxima` as a generator: it yields ``ask(v, index)`` (``(index, v)`` unless told), points given by
+        their law variable (n,) (see :meth:`Segment.at_law`) and their segment (n,), and is sent what the caller
         evaluated there, which ``values`` turns into the rows (k, n) to maximise; it returns each row's (largest
         value, where in degrees). ``ask`` puts the points in the form the caller's evaluator takes, so that a maker
-        of :meth:`camgen.cam.Cam.serve` is this generator itself (no generator of its own around it to pass each
-        ask and answer on).
+        of :meth:`camgen.cam.Cam.serve` is this generator itself; this one delegates to the search's own (see
+        :func:`camgen.numeric.maxima_steps`), whose asks and answers pass no generator of its own.
 
         Every smooth piece of every segment is searched at once on its closed interval, with one-sided values at
         its ends (a segment's ends, and where its law changes piece), the maximiser located to ~1e-13 of the
@@ -231,15 +231,9 @@ class Program:
         grid is then one point (see :func:`camgen.numeric.maxima_steps`).
         """
         owner, lo, hi, still, backwards, angles = self._pieces()
-        steps = maxima_steps(lo, hi, scale=scale, reverse=backwards, steady=still if steady else False)
-        x, piece = next(steps)
-        while True:
-            got = yield ask(piece if owner is None else owner[piece], x)
-            try:
-                x, piece = steps.send(values(got))
-            except StopIteration as done:
-                at, value, magnitude = done.value
-                break
+        at, value, magnitude = yield from maxima_steps(
+            lo, hi, scale=scale, reverse=backwards, steady=still if steady else False, answer=values,
+            ask=ask if owner is None else lambda v, piece: ask(v, owner[piece]))     # a piece's segment
         out = []
         for row_at, row_value, size in zip(at, value, magnitude, strict=True):
             limit = max(row_value) - TIE * size

@@ -321,6 +321,20 @@ def test_pieces_given_as_numbers_find_the_plan_an_array_finds():
     assert [math.copysign(1.0, a) for a in at[0]] == [1.0, -1.0]
 
 
+def test_a_search_asks_and_reads_answers_in_its_callers_form():
+    """A search told how its caller takes points and gives answers asks in that form and reads the answers so,
+    finding what it finds asked plainly, to the bit (two pieces, two functions, a narrow peak refined twice)."""
+    def f(x, piece):
+        return np.array([np.sin(3 * x + piece), np.exp(-((x - 0.3) / 0.02) ** 2) + 0.1 * piece])
+
+    plain = numeric.drive(numeric.maxima_steps([0.0, 0.5], [1.0, 2.0]), lambda ask: f(*ask))
+    asks = []
+    steps = numeric.maxima_steps([0.0, 0.5], [1.0, 2.0], ask=lambda x, piece: {"x": x, "piece": piece},
+                                 answer=lambda sent: sent["rows"])
+    told = numeric.drive(steps, lambda ask: asks.append(ask) or {"rows": f(ask["x"], ask["piece"])})
+    assert repr(told) == repr(plain) and len(asks) == 3 and all(set(ask) == {"x", "piece"} for ask in asks)
+
+
 def test_values_not_finite_are_refused():
     """On the grid, or near a peak (the refinement's points, off the grid's k / 128)."""
     with pytest.raises(FloatingPointError, match="search grid"), np.errstate(divide="ignore"):
