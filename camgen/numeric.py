@@ -373,11 +373,15 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
     read by ``ask`` and ``answer`` (see :func:`maxima_steps`)."""
     active = peaks
     for _ in range(ROUNDS):
-        stencils = [(peak, peak.centre, d) for peak in active if (d := _stencil(peak, lo, hi, width))]
+        stencils, pieces = [], []                             # each peak's (peak, centre, spacing) and piece
+        for peak in active:
+            if d := _stencil(peak, lo, hi, width):
+                stencils.append((peak, peak.centre, d))
+                pieces.append(peak.piece)
         if not stencils:
             return
         points = [c + d * s for _, c, d in stencils for s in _OFFSETS]     # five a stencil, one flat list
-        got = answer((yield ask(np.array(points), np.array([peak.piece for peak, _, _ in stencils]).repeat(5))))
+        got = answer((yield ask(np.array(points), np.array(pieces).repeat(5))))
         values = got.tolist()
         ys = [values[peak.f][5 * i:5 * i + 5] for i, (peak, _, _) in enumerate(stencils)]   # each its own function
         if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
