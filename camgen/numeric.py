@@ -373,11 +373,12 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
     read by ``ask`` and ``answer`` (see :func:`maxima_steps`)."""
     active = peaks
     for _ in range(ROUNDS):
-        stencils, pieces = [], []                             # each peak's (peak, centre, spacing) and piece
-        for peak in active:
+        stencils, pieces, from_end = [], [], []          # each peak's (peak, centre, spacing), piece, whether
+        for peak in active:                              # it was found from an end
             if d := _stencil(peak, lo, hi, width):
                 stencils.append((peak, peak.centre, d))
                 pieces.append(peak.piece)
+                from_end.append(peak.end is not None)
         if not stencils:
             return
         points = [c + d * s for _, c, d in stencils for s in _OFFSETS]     # five a stencil, one flat list
@@ -387,7 +388,7 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
         if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
             raise FloatingPointError("function is not finite near a peak")
         active = []
-        coefficients = _coefficients_apart(np.array(ys), [peak.end is not None for peak, _, _ in stencils])
+        coefficients = _coefficients_apart(np.array(ys), from_end)
         for (peak, c, d), row, (a1, a2, a3, a4) in zip(stencils, ys, coefficients, strict=True):
             t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
             high = max(row)
