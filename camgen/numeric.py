@@ -329,8 +329,12 @@ class _Peak:
 def _windows(y: np.ndarray, found: list[tuple[int, int]], n: int) -> tuple[list[int], np.ndarray]:
     """The grid index about which each peak ``found`` (row, grid index) on the grid rows ``y`` is placed (its own,
     kept two points from the row's ends) and the five grid values there (m, 5)."""
-    centres = [min(max(j, 2), n - 3) for _, j in found]
-    return centres, y.take(np.add.outer([r * n + c - 2 for (r, _), c in zip(found, centres, strict=True)], _FIVE))
+    centres, firsts = [], []                             # each window's centre and first point in y's flat order
+    for r, j in found:
+        c = min(max(j, 2), n - 3)
+        centres.append(c)
+        firsts.append(r * n + c - 2)
+    return centres, y.take(np.add.outer(firsts, _FIVE))
 
 
 def _estimates(candidates: Iterable[tuple[tuple[int, int], int, list[float], list[float]]], moving: list[int],
