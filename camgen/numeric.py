@@ -495,12 +495,14 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         for peak in peaks:                  # a peak found from an end only where it beats that end by the tie
             if peak.end is None or peak.value - peak.end > TIE * magnitude[peak.f]:
                 found[peak.row].append((peak.at, peak.value))
-    at: list[list[float]] = [[0.0] * p for _ in range(k)]
-    value: list[list[float]] = [[0.0] * p for _ in range(k)]
+    at: list[list[float]] = []
+    value: list[list[float]] = []
     rows = zip(edges, found, strict=True)
     for f in range(k):
         tie = TIE * magnitude[f]
-        row_at, row_value = at[f], value[f]
+        row_at, row_value = [0.0] * p, [0.0] * p
+        at.append(row_at)
+        value.append(row_value)
         for piece, (edge, here) in zip(moving, rows, strict=False):   # this function's rows (moving first: zip
             #                                                           then takes no row past its last piece)
             row_at[piece], row_value[piece] = (
