@@ -111,22 +111,22 @@ def _coefficients_apart(windows: np.ndarray, from_end: list[bool]) -> list[list[
 def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) -> float | None:
     """Where the quartic of coefficients a1..a4 (of t..t^4) peaks within [lo, hi], by three Newton steps on its
     slope from the parabola's vertex; None where it has no maximum there (a step dividing by zero has none)."""
-    twice, thrice, six = 2 * a2, 3 * a3, 6 * a3               # the same numbers each step: made once; t * 4 * a4
-    four = 4 * a4                                             # is t * four to the bit (4 scales exactly)
-    try:
-        t = -a1 / twice
+    twice, thrice, six = 2.0 * a2, 3.0 * a3, 6.0 * a3         # the same numbers each step: made once; t * 4 * a4
+    four = 4.0 * a4                                           # is t * four to the bit (4 scales exactly); float
+    try:                                                      # constants: the interpreter's float-only arithmetic
+        t = -a1 / twice                                       # (an int operand takes its slower general path)
         for _ in (0, 1, 2):
-            t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12 * a4))
+            t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12.0 * a4))
     except ZeroDivisionError:                                 # t would be infinite or NaN: no maximum within
         return None
-    return t if twice + t * (six + t * 12 * a4) < 0 and lo <= t <= hi else None   # False where t is NaN
+    return t if twice + t * (six + t * 12.0 * a4) < 0.0 and lo <= t <= hi else None   # False where t is NaN
 
 
 def _breadth(a2: float, a4: float, step: float, size: float) -> float:
     """A peak's breadth from its grid quartic's a2 and a4: a bell of breadth b has a2 / a4 = 2 b^2 / h^2 on a grid
     of step h; kept between 2 h and the piece's ``size`` (the piece's where a4 is zero or the ratio NaN)."""
     try:
-        breadth = min(max(step * math.sqrt(abs(a2 / a4) / 2), 2 * step), size)
+        breadth = min(max(step * math.sqrt(abs(a2 / a4) / 2.0), 2.0 * step), size)
     except ZeroDivisionError:
         return size
     return size if breadth != breadth else breadth
