@@ -41,8 +41,8 @@ def maximise(func: ArrayFunc, a: float, b: float, *, n: int = 1025, rounds: int 
 def constant(value: float) -> np.ndarray:
     """``value`` as a read-only 0-d float array: numpy takes one in arithmetic faster than a Python number (no
     conversion), and a module's shared constant cannot be written into by a stray ``out=``."""
-    out = np.array(value, dtype=float)
-    out.setflags(write=False)
+    out = np.array(float(value))                         # a Python float's array is float64 without asking for it
+    out.setflags(False)                                  # (write): by position, cheaper than by keyword
     return out
 
 

@@ -335,6 +335,16 @@ def test_a_search_asks_and_reads_answers_in_its_callers_form():
     assert repr(told) == repr(plain) and len(asks) == 3 and all(set(ask) == {"x", "piece"} for ask in asks)
 
 
+def test_a_constant_is_a_read_only_0d_float64_of_its_value():
+    """numeric.constant of a float, an int, a numpy float and a signed zero: a 0-d float64 array holding the value's
+    bits, which nothing can write into."""
+    for value in (0.5, 3, np.float64(-2.25), -0.0, 1e308):
+        c = numeric.constant(value)
+        assert c.shape == () and c.dtype == np.float64 and c.tobytes() == np.array(value, dtype=float).tobytes()
+        with pytest.raises(ValueError, match="read-only"):
+            np.add(c, 1.0, out=c)
+
+
 def test_values_not_finite_are_refused():
     """On the grid, or near a peak (the refinement's points, off the grid's k / 128)."""
     with pytest.raises(FloatingPointError, match="search grid"), np.errstate(divide="ignore"):
