@@ -39,8 +39,9 @@ def maximise(func: ArrayFunc, a: float, b: float, *, n: int = 1025, rounds: int 
 
 
 def constant(value: float) -> np.ndarray:
-    """``value`` as a read-only 0-d float array: numpy takes one in arithmetic faster than a Python number (no
-    conversion), and a module's shared constant cannot be written into by a stray ``out=``."""
+    """The number ``value`` (anything ``float()`` takes) as a read-only 0-d float64 array: numpy takes one in
+    arithmetic faster than a Python number (no conversion), and a module's shared constant cannot be written into
+    by a stray ``out=``. Raises TypeError for what is not one number (None, a list, an array of more than one)."""
     out = np.array(float(value))                         # a Python float's array is float64 without asking for it
     out.setflags(False)                                  # (write): by position, cheaper than by keyword
     return out

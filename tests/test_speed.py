@@ -256,14 +256,30 @@ def test_flat_rows_are_those_whose_range_is_within_the_tie():
         middle[n // 2] += scale * 3.0 * tie
         rows.append(middle)                           # ends equal: the middle decides
     rows += [3.0 * rng.uniform(-1.0, 1.0, n) for _ in range(4)]
+    # the shortcut's own boundary: ends apart by 0.7 to 2 ties and by the floats next to the tie, the middle
+    # constant, so that the ends alone decide (a shortcut at another fraction of the tie misjudges some of them)
+    magnitude_first = max(np.abs(np.array(rows)).max(), 3.0)
+    at_tie = 3.0 + tie * magnitude_first
+    ends = [3.0 + f * tie * magnitude_first for f in (0.7, 0.9, 0.999, 1.001, 1.5, 2.0)]
+    ends += [np.nextafter(at_tie, 0.0), at_tie, np.nextafter(at_tie, np.inf)]
+    for high in ends:
+        for first, last in ((3.0, high), (high, 3.0)):
+            row = np.full(n, 3.0)
+            row[0], row[-1] = first, last
+            rows.append(row)
     y = np.array(rows + [row * 1e-3 for row in rows])  # a second function, of another magnitude
     count = len(rows)
-    magnitude = [max(np.abs(y[:count]).max(), 3.0), np.abs(y[count:]).max()]
+    magnitude = [np.abs(y[:count]).max(), np.abs(y[count:]).max()]
+    assert magnitude[0] == magnitude_first
     edges = y[:, [0, 1, 2, 3, 4, -5, -4, -3, -2, -1]].tolist()
     expected = [r for r in range(len(y)) if not y[r].max() - y[r].min() > tie * magnitude[r // count]]
     assert numeric._flat_rows(y, edges, magnitude, count) == expected
     assert {0, 1, 2, count, count + 1, count + 2} <= set(expected) and 3 not in expected and 4 not in expected
     assert expected != list(range(len(y)))
+    # the boundary rows: flat exactly where their ends (exact differences near 3) are within the tie, both kinds
+    boundary = range(count - 2 * len(ends), count)
+    within = [r for r in boundary if abs(y[r, 0] - y[r, -1]) <= tie * magnitude[0]]
+    assert [r for r in boundary if r in expected] == within and 6 <= len(within) < len(boundary) - 4
 
 
 def test_the_quartic_vertex_has_no_maximum_where_a_step_divides_by_zero():
