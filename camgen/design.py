@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import dataclasses
-import functools
 import itertools
 import math
 from collections.abc import Sequence
@@ -16,7 +15,7 @@ from camgen.cam import Cam, Maker, build_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker, quietly
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
-from camgen.core.records import record_maker
+from camgen.core.records import once, record_maker
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.kinds import kind_of
@@ -54,7 +53,7 @@ class CamDesign:
     #: a flat face with its folds cut off (cam.allow_undercut): where the law's face leaves the cut cam
     face_leaves: tuple[FaceLeaves, ...] | None = None
 
-    @functools.cached_property
+    @once
     def wall_mm(self) -> float:
         """The thinnest material (mm) between the bore and the outline (as chords within :attr:`tolerance`): how
         near the outline comes to the centre less the bore's radius; measured when first read (the design itself

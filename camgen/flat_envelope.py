@@ -32,7 +32,6 @@ in the outline's measured error.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import itertools
 import math
 from dataclasses import dataclass
@@ -42,6 +41,7 @@ import numpy as np
 
 from camgen.cam import Cam
 from camgen.core.errors import DesignError
+from camgen.core.records import once
 from camgen.core.shapes import Contour
 from camgen.numeric import maximise
 from camgen.outline import Outline, stretch
@@ -577,7 +577,7 @@ class FlatEnvelope:
 
     # -- what the follower does ----------------------------------------------------------------------------------
 
-    @functools.cached_property
+    @once
     def leaves(self) -> tuple[FaceLeaves, ...]:
         """Where the face placed by the law leaves the cut cam, one entry a fold cut off, in order round the cycle."""
         return tuple(self._leaving(c) for c in self.corners)
@@ -624,7 +624,7 @@ class FlatEnvelope:
             low, high = np.where(cut, mid, low), np.where(cut, high, mid)
         return law - 0.5 * (low + high)
 
-    @functools.cached_property
+    @once
     def face_extent(self) -> tuple[float, float]:
         """Nearest and farthest contact along the face (mm, from the follower's ``face_origin``) of a follower held
         on the cut cam: the kept stretches, their flats' ends and the corners it rides on."""

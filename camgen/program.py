@@ -77,7 +77,7 @@ class Segment:
         out[0] += level
         return out
 
-    @functools.cached_property
+    @once
     def _factors(self) -> tuple[np.ndarray, float]:
         """What turns the law's derivatives into the segment's: each row's factor (4, 1), the natural scale with a
         return's odd rows negated (a sign: exact), and the level added to s (mm). Made once a segment."""
@@ -359,13 +359,14 @@ class _Table:
                        zero, zero, zero, even, odd, even, odd, seg.lift if seg.kind != "dwell" else 0.0)
             group.append(_group(laws, seg.law if moving else None))
         table = np.ascontiguousarray(np.fromiter(values, float, len(values)).reshape(len(segments), _WIDTH).T)
-        # every segment's Segment.scale (see _natural), made in one pass with an order a row (4, m): h / beta^k, the
-        # same power and quotient of each number; numpy takes contiguous rows faster than a (m, 13) table's columns
-        natural = table[_H] / table[_BETA] ** _ORDERS
-        self.scales: list[list[float]] = natural.T.tolist()
+        # every segment's Segment.scale, made in one pass from the table's contiguous h and beta rows: in _natural's
+        # (m, 4) layout, whose power gives Segment.scale's bits at any m (an order a row, (4, m), differs in the last
+        # bits of some from about 2 700 segments on)
+        natural = _natural(table[_H], table[_BETA])
+        self.scales: list[list[float]] = natural.tolist()
         # the factors: natural scales times the signs in their place, 1 (a rise), +-1 (a return's even and odd orders)
         # or 0 (a dwell): exact
-        table[_FACTORS] *= natural
+        table[_FACTORS] *= natural.T
         self.rows = table[:_H]                                  # (12, m), C-ordered: gathered along its rows
         self.laws = laws
         #: each law but a dwell's, with the segments it evaluates (m,) bool when there are more (one evaluates all)
@@ -436,9 +437,10 @@ class _Table:
     def _motion(self, index: np.ndarray, v: np.ndarray, rows: np.ndarray) -> np.ndarray:
         """s, s', s'', s''' (4, n) at law variables ``v`` (n,) on the segments ``index`` (n,), their ``rows``
         gathered. A program of one law evaluates it at every point: a dwell's factors are 0, so that its s is
-        (+-0) + level, its level to the bit (never -0.0), and its s', s'', s''' +-0, made +0.0 by adding +0.0. With
-        more laws each evaluates its own points, a dwell's left 0. The levels and zeros are added in one call (see
-        :class:`_Table`: -0.0 elsewhere, which changes no number)."""
+        (+-0) + level, its level to the bit (never -0.0), and its s', s'', s''' +-0, made +0.0 by adding +0.0 (a NaN
+        ``v`` stays NaN there, as in s: no finite angle makes one). With more laws each evaluates its own points, a
+        dwell's left 0. The levels and zeros are added in one call (see :class:`_Table`: -0.0 elsewhere, which changes
+        no number)."""
         if len(self.moving) == 1:
             out = self.moving[0][0].derivatives(v) * rows[_FACTORS]
         else:
@@ -479,8 +481,6 @@ def _natural(h: np.ndarray, beta: np.ndarray) -> np.ndarray:
 
 
 _POWERS = np.arange(4.0)
-#: the orders k as a column (4, 1), for _Table's scales made an order a row
-_ORDERS = _POWERS[:, None]
 
 
 def _group(laws: list[Law | None], law: Law | None) -> int:
@@ -528,7 +528,7 @@ _AT_ORDER = operator.attrgetter("at_deg", "order")
 def _check_turn(total: float, levels: list[float]) -> None:
     """:class:`Program`'s checks of its segments' angles adding up to ``total`` (radians) and their start and end
     levels ``levels`` (2 a segment, mm, in order): one turn, back to the start, never below s = 0."""
-    if abs(total - TWO_PI) > 1e-9:
+    if not abs(total - TWO_PI) <= 1e-9:                 # NaN too (a NaN angle, which no spec lets through)
         raise SpecError(f"segment angles add up to {math.degrees(total):.6g} degrees; they must add up to 360",
                         "motion")
     first, last = levels[0], levels[-1]

@@ -110,13 +110,18 @@ def test_biarcs_read_back_from_the_dxf_are_tangent_continuous(tmp_path):
 
 
 @pytest.mark.parametrize("sense", ["ccw", "cw"])
-def test_outline_contour_holds_what_the_constructor_would_make(sense):
+def test_outline_contour_holds_what_the_constructor_would_make(sense, monkeypatch):
     """exact_outline's contour is made by Contour.owned (no copies, no checks): it holds what Contour() makes of the
-    same vertices and bulges, read-only float64, C-ordered, n >= 2, bit for bit."""
+    same vertices and bulges (the outline made again with owned standing in for the constructor), read-only
+    float64, C-ordered, bit for bit."""
     from camgen.core.shapes import Contour
 
-    contour = exact_outline(build_cam(template({"cam.rotation": sense})), 0.01).contour
-    again = Contour(contour.vertices, contour.bulges)
+    cam = build_cam(template({"cam.rotation": sense}))
+    contour = exact_outline(cam, 0.01).contour
+    made = []
+    monkeypatch.setattr(Contour, "owned", classmethod(lambda cls, v, b: made.append(1) or Contour(v, b)))
+    again = exact_outline(build_cam(template({"cam.rotation": sense})), 0.01).contour
+    assert made == [1]                                  # the constructor stood in where owned was called
     for got, want in ((contour.vertices, again.vertices), (contour.bulges, again.bulges)):
         assert got.dtype == np.float64 and got.flags.c_contiguous and not got.flags.writeable
         assert got.shape == want.shape and got.tobytes() == want.tobytes()

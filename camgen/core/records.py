@@ -49,7 +49,8 @@ class once(Generic[_T]):
     3.11's takes on every first computation (about 0.6 us each, several a design; Python 3.12 dropped it too). For
     the values of objects built and read by one thread, each a pure function of its instance (were two threads to
     race, each would compute the same value and one would be kept). A frozen dataclass's instance takes it: the
-    value goes into its ``__dict__``, not through its ``__setattr__``."""
+    value goes into its ``__dict__``, not through its ``__setattr__``; so does a template model's (see
+    :class:`camgen.core.spec.Model`). The project's one cached property."""
 
     def __init__(self, func: Callable[[Any], _T]) -> None:
         self.func = func

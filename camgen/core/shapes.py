@@ -5,12 +5,13 @@ mm, angles in radians; counter-clockwise is positive (seen from +Z).
 """
 from __future__ import annotations
 
-import functools
 import itertools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from camgen.core.records import once
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:
@@ -75,8 +76,8 @@ class Contour:
     def owned(cls, vertices: np.ndarray, bulges: np.ndarray) -> "Contour":
         """A contour holding ``vertices`` and ``bulges`` themselves, made read-only, without the constructor's copies
         and checks: for makers that guarantee what the constructor would make of them, float64 arrays (n, 2) and
-        (n,), n >= 2, C-contiguous, of their own making (nobody else holds or writes them). A cam's outline is made
-        this way (:func:`camgen.outline.outline_maker`)."""
+        (n,), n >= 2, C-contiguous, of their own making (nobody else holds or writes them). A disc cam's outline is
+        made this way (:func:`camgen.outline.outline_maker`; a plate's through the constructor)."""
         vertices.setflags(write=False)
         bulges.setflags(write=False)
         out = object.__new__(cls)
@@ -102,7 +103,7 @@ class Contour:
         centre = (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
         return p, q, chord, angle, centre
 
-    @functools.cached_property
+    @once
     def _arc_pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """:meth:`_arcs` of the arc pieces only (the same operations on the same numbers): their indices, starts,
         chord lengths, signed included angles and centres; made once a contour (its area and its flattening both

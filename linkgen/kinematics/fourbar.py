@@ -26,13 +26,14 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from functools import cached_property, partial
+from functools import partial
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SolverError, SpecError
+from camgen.core.records import once
 from linkgen.kinematics.grashof import CHANGE_POINT_TOL, Grashof, check_finite, check_lengths, classify
 
 Assembly = Literal["open", "crossed"]
@@ -114,7 +115,7 @@ class Poses:
     #: theta3, theta4, gamma, A and the coupler point, computed when first asked for
     derive: Callable[[], tuple[np.ndarray, ...]] = field(repr=False, compare=False)
 
-    @cached_property
+    @once
     def _derived(self) -> tuple[np.ndarray, ...]:
         return self.derive()
 

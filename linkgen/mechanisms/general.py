@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
@@ -34,6 +33,7 @@ from pydantic import Field, field_validator, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.parts import Drawing
+from camgen.core.records import once
 from camgen.core.shapes import Polyline
 from camgen.core.spec import MAX_LENGTH_MM, Model, unit
 from linkgen import plots
@@ -198,11 +198,11 @@ class Analysis:
     def crank(self) -> bool:
         return self.linkage.structure.inputs[0].kind == "crank"
 
-    @cached_property
+    @once
     def ranges(self) -> tuple[tuple[float, float], ...] | None:
         return motion.input_ranges(self.linkage)
 
-    @cached_property
+    @once
     def span(self) -> np.ndarray:
         """The input values analysed (k, SWEEP): the table's range, else the reachable range holding the drawing,
         else a full turn from the drawing."""
@@ -220,15 +220,15 @@ class Analysis:
             rows.append(np.linspace(lo, hi, SWEEP))
         return np.array(rows)
 
-    @cached_property
+    @once
     def sweep(self) -> Solution:
         return self.linkage.solve(self.span)
 
-    @cached_property
+    @once
     def toggles(self) -> tuple[motion.Toggle, ...]:
         return motion.toggles(self.linkage) if len(self.table.inputs) == 1 else ()
 
-    @cached_property
+    @once
     def extremes(self) -> dict[str, tuple[motion.Extreme, ...]]:
         """The limit positions of each rocker and ground slider over the motion analysed."""
         if len(self.table.inputs) != 1:
