@@ -144,16 +144,16 @@ def test_the_objects_made_without_their_init_hold_every_field():
     """Segments, jumps and pitch geometry are made without their dataclass's __init__ (a design makes many): each
     holds exactly its class's fields, so a field added to the class and not to the maker fails here."""
     import dataclasses
-    import functools
 
     from camgen.cam import build_cam
+    from camgen.core.records import once
     from tests.conftest import template
 
     cam = build_cam(template({"motion.0.law": "harmonic"}))     # a velocity jump: the program has jumps
     made = [*cam.program.segments, *cam.program.jumps(), cam.pitch(np.array([0.1, 2.0]))]
     assert any(type(m).__name__ == "Jump" for m in made)
     for m in made:
-        cached = {k for k, v in vars(type(m)).items() if isinstance(v, functools.cached_property)}
+        cached = {k for k, v in vars(type(m)).items() if isinstance(v, once)}
         assert set(vars(m)) - cached == {f.name for f in dataclasses.fields(m)}, type(m).__name__
 
 
