@@ -1,4 +1,4 @@
-"""camgen.core.records.unchecked: the frozen dataclasses a design makes without their __init__ hold what
+"""camgen.core.records.record_maker: the frozen dataclasses a design makes without their __init__ hold what
 their own constructor gives them; camgen.core.records.once: a value computed once and kept."""
 import dataclasses
 
@@ -7,24 +7,24 @@ import pytest
 from camgen.analysis import CamAnalysis
 from camgen.bench import _template
 from camgen.core.parts import Allowances, Part
-from camgen.core.records import once, record_maker, unchecked
+from camgen.core.records import once, record_maker
 from camgen.design import CamDesign, design_cam
 from camgen.program import Jump, Segment
 
 
 def test_defaults_filled_and_equal_to_the_constructor():
-    made = unchecked(Allowances, kerf=0.2, clearance=0.3)
+    made = record_maker(Allowances)(kerf=0.2, clearance=0.3)
     assert made == Allowances(0.2, 0.3)
     assert made.kerf_field == "kerf" and made.elephant_foot == 0.0
-    jump = unchecked(Jump, at_deg=120.0, order=3, jump=-85.9, inside=False)
+    jump = record_maker(Jump)(at_deg=120.0, order=3, jump=-85.9, inside=False)
     assert jump == Jump(at_deg=120.0, order=3, jump=-85.9, inside=False)
 
 
 def test_missing_and_unknown_fields_refused():
     with pytest.raises(TypeError, match="at_deg"):
-        unchecked(Jump, order=3, jump=1.0, inside=False)
+        record_maker(Jump)(order=3, jump=1.0, inside=False)
     with pytest.raises(TypeError, match="atdeg"):
-        unchecked(Jump, atdeg=1.0, order=3, jump=1.0, inside=False)
+        record_maker(Jump)(atdeg=1.0, order=3, jump=1.0, inside=False)
 
 
 @pytest.mark.parametrize("law", ["cycloidal", "harmonic", "modified-trapezoid"])
@@ -52,7 +52,7 @@ def test_class_variables_are_no_fields():
         value: float
         unit: str = "mm"
 
-    made = unchecked(Held, value=2.5)
+    made = record_maker(Held)(value=2.5)
     assert made == Held(2.5) and made.KIND == "held"
 
 

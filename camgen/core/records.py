@@ -9,23 +9,16 @@ from typing import Any, Generic, TypeVar, overload
 _T = TypeVar("_T")
 
 
-def unchecked(cls: type[_T], **fields: Any) -> _T:
-    """An instance of the frozen dataclass ``cls`` holding ``fields`` and the defaults of the fields not given, made
-    without its generated ``__init__`` (one checked attribute set at a time) and without ``__post_init__``: for
-    classes without one, on hot paths where the values are known sound. A field with neither a value nor a plain
-    default, or a name that is no field, raises TypeError, as ``cls(...)`` would. Made by the class's
-    :func:`record_maker`."""
-    return record_maker(cls)(**fields)
-
-
 @functools.cache
 def record_maker(cls: type[_T]) -> Callable[..., _T]:
-    """:func:`unchecked` for the frozen dataclass ``cls``, made once a class (hot paths call it themselves: one call,
-    not two): a function taking the class's fields by keyword, each with a plain default optional, which makes an
-    instance and sets its ``__dict__`` at once to the dict of its fields in their order. Python's own binding of the
-    keywords refuses a field without a value or a name that is no field (a TypeError naming it), so the function
-    checks nothing itself; its source is written out and run as dataclasses does a class's ``__init__`` (the names
-    it uses besides the fields' prefixed, so that no field shadows them)."""
+    """A maker of the frozen dataclass ``cls``'s instances without its generated ``__init__`` (one checked attribute
+    set at a time) and without ``__post_init__``, made once a class: for classes without one, on hot paths where the
+    values are known sound. A function taking the class's fields by keyword, each with a plain default optional
+    (a field with a default factory is to be given), which makes an instance and sets its ``__dict__`` at once to
+    the dict of its fields in their order. Python's own binding of the keywords refuses a field without a value or a
+    name that is no field (a TypeError naming it), so the function checks nothing itself; its source is written out
+    and run as dataclasses does a class's ``__init__`` (the names it uses besides the fields' prefixed, so that no
+    field shadows them)."""
     fields = dataclasses.fields(cls)
     scope: dict[str, Any] = {"_records_new": object.__new__, "_records_set": object.__setattr__, "_records_cls": cls}
     params = []
