@@ -401,6 +401,7 @@ def _kept_bound(parts: tuple[Part, ...], rules: SheetRules) -> int:
     return total
 
 
+@pytest.mark.slow
 def test_nest_memory_is_the_packed_footprints_at_most_linear_in_parts_and_capped(monkeypatch):
     """tracemalloc's peak of nest() (6 parts, 3-degree steps: 120 rotations each) with the footprints kept for the
     later layouts exceeds the peak with none kept by at most a bit a footprint cell and ENTRY_BYTES a footprint
