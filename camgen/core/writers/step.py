@@ -63,12 +63,17 @@ def _wire(shape: Circle | Contour, z: float, ccw: bool) -> Any:
         for i in range(len(v)):          # piece i runs from vertex i to the next, sharing both (a connected wire)
             j = (i + 1) % len(v)
             if b[i] == 0:
-                curve = GC_MakeSegment(points[i], points[j]).Value()
+                made = GC_MakeSegment(points[i], points[j])
             else:      # the arc's midpoint: the chord's midpoint moved out by the sagitta, bulge x chord / 2
                 dx, dy = v[j] - v[i]
                 mid = (v[i] + v[j]) / 2 + b[i] / 2 * np.array([dy, -dx])
-                curve = GC_MakeArcOfCircle(points[i], _point(*mid, z), points[j]).Value()
-            edges.append(BRepBuilderAPI_MakeEdge(curve, corners[i], corners[j]).Edge())
+                made = GC_MakeArcOfCircle(points[i], _point(*mid, z), points[j])
+            edge = BRepBuilderAPI_MakeEdge(made.Value(), corners[i], corners[j]) if made.IsDone() else None
+            if edge is None or not edge.IsDone():
+                raise ExportError(f"an outline's {'line' if b[i] == 0 else 'arc'} from ({v[i][0]:.9g}, "
+                                  f"{v[i][1]:.9g}) mm is too short for an exact edge "
+                                  f"({float(np.linalg.norm(v[j] - v[i])):.3g} mm)")
+            edges.append(edge.Edge())
     for edge in edges:
         builder.Add(wire, edge)
     wire.Closed(True)
