@@ -137,7 +137,7 @@ def cam_kit(design: Any) -> CamKit:
     # the axle runs down from its head on the follower through the roller to a washer and the nut under it
     grips = {"guide": t + (z_follower - t) + t, "axle": t + (z_follower - z_cam) + bolt.washer_thickness,
              "mount": t}
-    bom = _bom(spec, table, made, grips, len(posts), SHAFT_STUB + cam_top, oscillating)
+    bom = _bom(spec, table, made, grips, len(posts), SHAFT_STUB + cam_top, oscillating, design.cam.program.max_lift)
     report = _report(spec, table, solids_t, made, bom, gaps, posts, frame.holes[0][1])
     return CamKit(table, solids_t, made, bom, report, tol)
 
@@ -200,7 +200,7 @@ def _roller_gaps(design: Any, solids: tuple[Solid, ...], centres: np.ndarray, rr
 
 
 def _bom(spec: Any, table: CamKitTable, made: tuple, grips: dict[str, float], posts: int, shaft_length: float,
-         oscillating: bool) -> tuple[BomLine, ...]:
+         oscillating: bool, lift: float) -> tuple[BomLine, ...]:
     bolt = table.hardware
     lines = [BomLine(spec.name, 1, f"the cam, {spec.cam.thickness:g} mm (its own files)", "laser or fdm")]
     for part, source in made:
@@ -222,7 +222,39 @@ def _bom(spec: Any, table: CamKitTable, made: tuple, grips: dict[str, float], po
     lines.append(bolt_line(bolt, bolt_length(bolt, grips["axle"]), 1, "roller axle through follower and roller"))
     lines.append(bolt_line(bolt, bolt_length(bolt, grips["mount"]), 2, "mounting the frame (add your base's "
                                                                        "thickness to the length)"))
-    return tuple(lines)
+    spring = spring_line(spec.follower, lift, oscillating)
+    return tuple(lines) + ((spring,) if spring is not None else ())
+
+
+#: the standards a return spring is ordered by: cylindrical helical compression and torsion springs of round wire
+SPRING_STANDARDS = {False: "EN 13906-1", True: "EN 13906-3"}
+
+
+def spring_line(follower: Any, lift: float, oscillating: bool) -> BomLine | None:
+    """The return spring the ``[follower]`` table has (``spring_rate`` k in N/mm, ``preload`` F0 in N at s = 0,
+    either alone meaning the other 0), sized as the design's loading takes it, for the program's largest ``lift`` (mm,
+    or degrees of an arm's swing); None without one.
+
+    A translating follower's is a compression spring on its axis: k, F0 at s = 0 and F0 + k h at the full lift h
+    (mm); its free length is its installed length at s = 0 plus F0 / k. An oscillating arm's acts along the roller's
+    path, so it is a torsion spring at the pivot of k L^2 per radian (L the arm, mm), F0 L N*mm at psi = 0 and
+    F0 L + k L^2 psi_h at the full swing psi_h; its free position is F0 / (k L) radians back from psi = 0. A rate of
+    0 is a constant-force spring (no free length)."""
+    if follower.spring_rate is None and follower.preload is None:
+        return None
+    k, f0 = follower.spring_rate or 0.0, follower.preload or 0.0
+    if not oscillating:
+        size = (f"compression spring, rate {k:.4g} N/mm, {f0:.4g} N at s = 0 and {f0 + k * lift:.4g} N at the full "
+                f"lift of {lift:.4g} mm; " + (f"free length: its length at s = 0 plus {f0 / k:.4g} mm" if k > 0
+                                               else "constant force (rate 0)"))
+        return BomLine("return spring", 1, size, "buy", SPRING_STANDARDS[False])
+    arm = follower.arm_length
+    rate = k * arm**2 * math.pi / 180.0                       # N*mm a degree
+    size = (f"torsion spring at the arm's pivot, rate {rate:.4g} N*mm/degree ({k:.4g} N/mm at the roller, {arm:.4g} "
+            f"mm out), {f0 * arm:.4g} N*mm at psi = 0 and {f0 * arm + rate * lift:.4g} N*mm at the full swing of "
+            f"{lift:.4g} degrees; " + (f"free position {math.degrees(f0 / (k * arm)):.4g} degrees back from psi = 0"
+                                       if k > 0 else "constant torque (rate 0)"))
+    return BomLine("return spring", 1, size, "buy", SPRING_STANDARDS[True])
 
 
 def _report(spec: Any, table: CamKitTable, solids: tuple[Solid, ...], made: tuple, bom: tuple[BomLine, ...],

@@ -246,6 +246,37 @@ def test_bill_of_materials_names_the_hardware(rdrd):
     assert bom["standoff"]["quantity"] == 2 and bom["frame"]["source"] == "laser"
 
 
+def _spring(line: dict) -> list[float]:
+    """The numbers of a spring's BOM size, in order."""
+    import re
+
+    return [float(x) for x in re.findall(r"-?\d+(?:\.\d+)?(?:e-?\d+)?", line["size"])]
+
+
+def test_bill_of_materials_lists_the_return_spring(oscillating, tmp_path):
+    """A spring-loaded follower's spring is bought: kit-oscillating's (k = 0.5 N/mm, F0 = 5 N at the roller, arm
+    L = 90 mm, swing 20 degrees) as a torsion spring at the pivot of k L^2 pi / 180 = 70.69 N*mm a degree, F0 L = 450
+    N*mm at psi = 0, F0 L + k L^2 (20 pi / 180) = 1864 N*mm at the full swing, free 180 F0 / (pi k L) = 6.366 degrees
+    back; kit-rdrd given k = 2 N/mm and F0 = 10 N as a compression spring of 10 N at s = 0 and F0 + k h = 50 N at
+    the full lift of 20 mm, free length 5 mm more than at s = 0; the CSV has the same line; no spring, no line."""
+    out, report, _ = oscillating
+    [line] = [row for row in report["kit"]["bom"] if row["item"] == "return spring"]
+    k, f0, arm, swing = 0.5, 5.0, 90.0, 20.0
+    expected = [k * arm**2 * math.pi / 180, k, arm, f0 * arm, 0.0, f0 * arm + k * arm**2 * math.radians(swing), swing,
+                math.degrees(f0 / (k * arm)), 0.0]
+    assert line["source"] == "buy" and line["standard"] == "EN 13906-3" and line["quantity"] == 1
+    assert "torsion spring" in line["size"]
+    assert _spring(line) == pytest.approx(expected, rel=5e-4)              # 4 significant digits
+    assert any(row["part"] == "return spring" for row in _bom_csv(out, report, "kit-oscillating"))
+    rdrd = _build(camgen, TEMPLATES / "kit-rdrd.toml", tmp_path / "kit-rdrd", 'output.formats=["json"]',
+                  "follower.spring_rate=2", "follower.preload=10")
+    [line] = [row for row in rdrd["kit"]["bom"] if row["item"] == "return spring"]
+    assert line["standard"] == "EN 13906-1" and "compression spring" in line["size"]
+    assert _spring(line) == pytest.approx([2.0, 10.0, 0.0, 10.0 + 2.0 * 20.0, 20.0, 0.0, 10.0 / 2.0])
+    plain = _build(camgen, TEMPLATES / "kit-rdrd.toml", tmp_path / "plain" / "kit-rdrd", 'output.formats=["json"]')
+    assert not [row for row in plain["kit"]["bom"] if "spring" in row["item"]]
+
+
 def _bom_csv(out, report, name):
     """The kit's CSV read back, checked to be the report's bom line for line (its item and source as part and
     process, the columns part, quantity, standard, size, process); its rows."""
