@@ -27,7 +27,7 @@ import numpy as np
 
 from camgen.core.errors import DesignError
 from camgen.core.hardware import RUNNING_PLAY, bolt_length
-from camgen.core.kit import (RUNNING_GAP, BomLine, CamKitTable, Plate, Solid, assembly_panels, bolt_line,
+from camgen.core.kit import (RUNNING_GAP, BomLine, CamKitTable, Plate, Solid, assembly_panels, bolt_line, bought,
                              check_clear, disc, fixed, footprint, part_entry, placed_meshes)
 from camgen.core.parts import Allowances, Drawing, Part
 from camgen.core.shapes import rounded_hull
@@ -59,7 +59,8 @@ class CamKit:
         return assembly_panels(self.solids, tuple((POSES * d // 360, f"{d}") for d in DRAWN_DEG), self.tolerance)
 
     def meshes(self) -> tuple[Any, ...]:
-        """Every solid in its assembled place at theta = 0 (the kit's 3MF)."""
+        """Every solid made (none bought: :func:`~camgen.core.kit.placed_meshes`) in its assembled place at theta = 0
+        (the kit's 3MF)."""
         return placed_meshes(self.solids, 0)
 
 
@@ -120,12 +121,12 @@ def cam_kit(design: Any) -> CamKit:
               Solid(design.part, z_cam, turn, np.zeros((POSES, 2)), made=False),
               Solid(roller.part(0.0, 0.0), z_cam, np.zeros(POSES), centres),
               Solid(follower.part(0.0, 0.0), z_follower, angles, origins),
-              Solid(nut, z_cam - bolt.washer_thickness - bolt.nut_height, np.zeros(POSES), centres, made=False),
-              *(fixed(_named(nut, f"mount-nut-{i + 1}"), t, m, made=False) for i, m in enumerate(mounts)),
-              fixed(shaft, -SHAFT_STUB, made=False)]
+              bought(nut, z_cam - bolt.washer_thickness - bolt.nut_height, np.zeros(POSES), centres),
+              *(fixed(_named(nut, f"mount-nut-{i + 1}"), t, m, made=False, bought=True) for i, m in enumerate(mounts)),
+              fixed(shaft, -SHAFT_STUB, made=False, bought=True)]
     if seat:
         ring = disc("bearing", seat.outside, seat.bore, seat.width, tol).part(0.0, 0.0)
-        solids.append(fixed(ring, 0.0, made=False))
+        solids.append(fixed(ring, 0.0, made=False, bought=True))
     solids_t = tuple(solids)
     fields = {"translating-roller": "follower.offset", "oscillating-roller": "follower.pivot_distance"}
     check_clear(solids_t, POSES, tol, frozenset({frozenset((design.part.name, "roller"))}),
@@ -276,6 +277,6 @@ def _report(spec: Any, table: CamKitTable, solids: tuple[Solid, ...], made: tupl
                      "as_made_diameter_mm": frame["holes"][0]["diameter_mm"]},
             ("pivot" if spec.follower.type == "oscillating-roller" else "guides"): fixed_points,
             "poses_checked": POSES, **{k: round(v, 9) for k, v in gaps.items()},
-            "stack": [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made}
-                      for s in solids],
+            "stack": [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made,
+                       "bought": s.bought} for s in solids],
             "parts": parts, "bom": [line.row() for line in bom]}

@@ -19,7 +19,7 @@ import numpy as np
 
 from camgen.core.errors import DesignError
 from camgen.core.hardware import Bolt, bolt_length
-from camgen.core.kit import BomLine, KitTable, Solid, bolt_line, check_clear, disc, fixed
+from camgen.core.kit import BomLine, KitTable, Solid, bolt_line, bought, check_clear, disc, fixed
 from linkgen.parts import COLLISION_TOLERANCE_MM, Layout, LinkageBuild
 
 #: how many times the corner holes may step outwards (each a hole's width) to clear the moving parts
@@ -137,8 +137,8 @@ def linkage_kit(spec: Any, layout: Layout, mounts: tuple[tuple[float, float], ..
     sweep = layout.sweep
     check_clear(placed_solids(made, sweep), len(next(iter(sweep.angles.values()))), COLLISION_TOLERANCE_MM,
                 frozenset(), "parts.width")
-    report["stack"] = [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made}
-                       for s in placed_solids(made, made.pose)]
+    report["stack"] = [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made,
+                        "bought": s.bought} for s in placed_solids(made, made.pose)]
     return made
 
 
@@ -164,12 +164,12 @@ def placed_solids(kit: LinkageKit, placement: Any) -> tuple[Solid, ...]:
         where = np.asarray(placement.joints[joint][1], dtype=float)
         low, high = pin["low_layer"], pin["high_layer"]
         shank = disc(f"pin-{joint}", bolt.diameter, 0.0, (high - low + 1) * t, table.tolerance).part(0.0, 0.0)
-        out.append(Solid(shank, low * t, np.zeros(n), where, made=False))
+        out.append(bought(shank, low * t, np.zeros(n), where))
         held = {build.layers[name] for name in pin["parts"]}
         for layer in sorted(set(range(low + 1, high)) - held):
             ring = disc(f"spacer-{joint}-{layer}", outer, inner, t, table.tolerance).part(0.0, 0.0)
             out.append(Solid(ring, layer * t, np.zeros(n), where))
     for k, at in enumerate(kit.mounts):
         head = disc(f"mount-head-{k + 1}", bolt.head_diameter, 0.0, bolt.head_height, table.tolerance)
-        out.append(fixed(head.part(0.0, 0.0), t, at, made=False))
+        out.append(fixed(head.part(0.0, 0.0), t, at, made=False, bought=True))
     return tuple(out)

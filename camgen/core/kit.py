@@ -140,14 +140,16 @@ def disc(name: str, diameter: float, hole: float, thickness: float, tolerance: f
 @dataclass(frozen=True)
 class Solid:
     """A part standing at height ``z`` (mm) and placed at each pose: ``angles`` (n,) rad counter-clockwise about its
-    own origin, then ``origins`` (n, 2) mm (one pose for a fixed part). ``made`` says whether the kit makes it
-    (its files are written) or it is hardware (drawn and checked only)."""
+    own origin, then ``origins`` (n, 2) mm (one pose for a fixed part). ``made`` says whether the kit writes its
+    files; ``bought`` that it is hardware (a bolt, a nut, the shaft, a bearing: drawn, checked and listed in the bill
+    of materials, never in a file to print). A cam in its own kit is neither: its own build writes its files."""
 
     part: Part
     z: float
     angles: np.ndarray
     origins: np.ndarray
     made: bool = True
+    bought: bool = False
 
     @property
     def name(self) -> str:
@@ -164,9 +166,15 @@ class Solid:
         return float(self.angles[k]), np.asarray(self.origins[k], dtype=float)
 
 
-def fixed(part: Part, z: float, at: tuple[float, float] = (0.0, 0.0), made: bool = True) -> Solid:
+def fixed(part: Part, z: float, at: tuple[float, float] = (0.0, 0.0), made: bool = True,
+          bought: bool = False) -> Solid:
     """A part that does not move, its origin at ``at`` (mm), standing at ``z``."""
-    return Solid(part, z, np.zeros(1), np.array([at], dtype=float), made)
+    return Solid(part, z, np.zeros(1), np.array([at], dtype=float), made, bought)
+
+
+def bought(part: Part, z: float, angles: np.ndarray, origins: np.ndarray) -> Solid:
+    """A piece of hardware placed at each pose (see :class:`Solid`): neither made nor printed."""
+    return Solid(part, z, angles, origins, made=False, bought=True)
 
 
 def footprint(part: Part, angle: float, shift: np.ndarray, tolerance: float) -> Any:
@@ -250,11 +258,15 @@ def assembly_panels(solids: tuple[Solid, ...], poses: tuple[tuple[int, str], ...
 
 
 def placed_meshes(solids: tuple[Solid, ...], k: int) -> tuple[Any, ...]:
-    """Each solid as a mesh in its assembled place at pose ``k`` (the kit's 3MF), named after it."""
+    """Each solid the user makes (cut, printed, or a cam with its own files) as a mesh in its assembled place at pose
+    ``k``, named after it: the kit's 3MF. The bought ones are left out: a slicer puts every object of a 3MF on its
+    plate to be printed (PrusaSlicer refuses a whole file whose build holds an object of 3MF's non-printing type
+    "other"), so hardware there would be printed or deleted by hand; the bill of materials lists it and the assembly
+    drawing shows it in place."""
     from camgen.core.solids import extrude
 
     out = []
-    for solid in solids:
+    for solid in (s for s in solids if not s.bought):
         mesh = extrude(solid.part)
         angle, shift = solid.pose(k)
         c, s = np.cos(angle), np.sin(angle)
