@@ -29,7 +29,7 @@ from camgen.core.errors import DesignError
 from camgen.core.hardware import RUNNING_PLAY, bolt_length
 from camgen.core.kit import (RUNNING_GAP, BomLine, CamKitTable, Plate, Solid, assembly_panels, bolt_line, bought,
                              check_clear, disc, fixed, footprint, part_entry, placed_meshes)
-from camgen.core.parts import Allowances, Drawing, Part
+from camgen.core.parts import Allowances, Drawing, Part, Placed
 from camgen.core.shapes import rounded_hull
 
 #: cam angles over the turn at which the kit is placed and checked
@@ -57,6 +57,22 @@ class CamKit:
         """The assembly seen from +Z at each of :data:`DRAWN_DEG` cam angles, a panel each from left to right
         (layers ``KIT-<degrees>-<part>``, see :func:`~camgen.core.kit.assembly_panels`)."""
         return assembly_panels(self.solids, tuple((POSES * d // 360, f"{d}") for d in DRAWN_DEG), self.tolerance)
+
+    def placed(self, cam: Part | None = None) -> tuple[Placed, ...]:
+        """The kit's STEP solids as assembled at theta = 0: each part as the process makes it (:attr:`made`; the
+        standoffs one a post, ``standoff-1``, ...) turned and moved as the kit places it, at its height, and with
+        ``cam`` (the cam's own STEP part) the cam on its shaft; nothing bought."""
+        made = {part.name: part for part, _ in self.made}
+        out = []
+        for solid in self.solids:
+            stem = solid.name.rpartition("-")[0] if solid.name.rpartition("-")[2].isdigit() else solid.name
+            part = made.get(solid.name) or made.get(stem)
+            if solid.bought or (part is None and (cam is None or solid.made)):
+                continue
+            part = cam if part is None else _named(part, solid.name)
+            angle, (x, y) = solid.pose(0)
+            out.append(Placed(solid.name, (part,), angle, (float(x), float(y), solid.z)))
+        return tuple(out)
 
     def meshes(self) -> tuple[Any, ...]:
         """Every solid made (none bought: :func:`~camgen.core.kit.placed_meshes`) in its assembled place at theta = 0

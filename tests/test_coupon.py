@@ -176,9 +176,9 @@ def test_step_holds_the_plate_and_the_pin_as_on_the_sheet(tmp_path):
     FreeCAD: each its exact area x thickness (the holes nominal + c_k + output.clearance, the pin pi d^2 / 4 x
     pin_length), the plate's box from the origin, the pin's round its centre beside the plate on the cut sheet."""
     pytest.importorskip("OCP")
-    from tests.test_step import _fc, _freecad, assert_plate, expect_plate, measure, read_step
+    from tests.test_step import _fc, _freecad, assert_apart, assert_plate, expect_plate, measure, read_step
 
-    report = coupon(tmp_path, None, [f"output.clearance={PRINT}", 'output.formats=["step","json"]'])
+    report = coupon(tmp_path, None, [f"output.clearance={PRINT}", 'output.formats=["step","json","dxf"]'])
     assert report["files"]["step"] == "coupon.step"
     design = design_coupon(coupon_spec(None, [f"output.clearance={PRINT}"]))
     plate, pin = design.printed
@@ -194,6 +194,14 @@ def test_step_holds_the_plate_and_the_pin_as_on_the_sheet(tmp_path):
     assert measure(solids[1][1])["volume"] == pytest.approx(math.pi * 2.5**2 * 10.0, rel=1e-9)
     assert measure(solids[1][1])["box"] == pytest.approx([x - 2.5, y - 2.5, 0.0, x + 2.5, y + 2.5, 10.0], abs=1e-6)
     assert x - 2.5 > width                                  # beside the plate, not on it
+    # where the cut sheet has the pin's disc (a closed polyline of two half-turn arcs), and the plate's outline
+    discs = [np.array(pl.get_points("xy")) for pl in ezdxf.readfile(tmp_path / "coupon.dxf").modelspace().query(
+        'LWPOLYLINE[layer=="OUTLINE"]')]
+    [disc] = [d for d in discs if len(d) == 2]
+    assert disc.mean(axis=0) == pytest.approx([x, y], abs=1e-9)
+    box = measure(solids[0][1])["box"]
+    assert box == pytest.approx([0.0, 0.0, 0.0, width, height, 3.0], abs=1e-6)
+    assert_apart([box, measure(solids[1][1])["box"]])
     done = _freecad(tmp_path / "coupon.step", [_fc(expect_plate(p)) for p in (plate, pin)])
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
 

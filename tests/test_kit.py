@@ -559,19 +559,37 @@ def test_default_builds_carry_no_kit(tmp_path):
 
 
 def test_kit_step_holds_every_kit_part_exactly(tmp_path):
-    """With "step" asked for, <name>-kit.step holds each kit part as one exact solid named after it (re-read with
-    Open CASCADE: volume, box, faces and circular edges of the part as made)."""
+    """With "step" asked for, <name>-kit.step holds each kit part as made and the cam (its biarc STEP part) as exact
+    solids named after them, as assembled at theta = 0 (re-read with Open CASCADE): each its volume, faces and
+    circular edges, its box its outline moved where the kit places it, at the report's stack height; the frame's seat
+    round the shaft (0, 0), the roller's and the follower's axle holes at the roller's centre by the closed form
+    (e, d0 + s(0)) = (5, sqrt(50^2 - 5^2)) mm; no two boxes coincide, and nothing bought is there."""
     pytest.importorskip("OCP")
+    from camgen.design import step_part
     from camgen.kit import cam_kit
-    from tests.test_step import assert_plate, measure, read_step
+    from tests.test_step import assert_apart, assert_placed, holes_at, measure, read_step
 
     out = tmp_path / "kit-rdrd"
-    _build(camgen, TEMPLATES / "kit-rdrd.toml", out, 'output.formats=["step", "json"]')
-    made = [part for part, _ in cam_kit(design_cam(load_spec(TEMPLATES / "kit-rdrd.toml"))).made]
+    report = _build(camgen, TEMPLATES / "kit-rdrd.toml", out, 'output.formats=["step", "json"]')
+    design = design_cam(load_spec(TEMPLATES / "kit-rdrd.toml"))
+    kit = cam_kit(design)
+    made = {part.name: part for part, _ in kit.made}
     solids = read_step(out / "kit-rdrd-kit.step")
-    assert [n for n, _ in solids] == [p.name for p in made] == ["frame", "follower", "roller", "spacer", "standoff"]
-    for (_, shape), part in zip(solids, made, strict=True):
-        assert_plate(measure(shape), part)
+    assert [n for n, _ in solids] == ["frame", "spacer", "standoff-1", "standoff-2", "kit-rdrd", "roller", "follower"]
+    stack = _stack(report)
+    for name, shape in solids:
+        part = step_part(design)[0] if name == "kit-rdrd" else made[name.partition("-")[0]]
+        solid = next(s for s in kit.solids if s.name == name)
+        angle, (x, y) = solid.pose(0)
+        assert_placed(measure(shape), part, angle, (x, y, stack[name][0]))
+    shapes = dict(solids)
+    axle = made["roller"].holes[0].radius
+    centre = np.array([[5.0, math.sqrt(50.0**2 - 5.0**2)]])
+    assert holes_at(shapes["roller"], axle) == pytest.approx(centre, abs=1e-9)
+    # the follower's axle hole there (its slot's two ends are arcs of that radius too)
+    assert np.abs(holes_at(shapes["follower"], made["follower"].holes[0].radius) - centre).max(axis=1).min() <= 1e-9
+    assert holes_at(shapes["frame"], made["frame"].holes[0].radius) == pytest.approx(np.zeros((1, 2)), abs=1e-9)
+    assert_apart(measure(shape)["box"] for _, shape in solids)
 
 
 def test_a_linkage_kits_printed_parts_keep_the_elephant_foot():

@@ -321,13 +321,14 @@ def part_entry(solid: Solid, allowances: Allowances, catalogue: dict[str, float]
 
 
 def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, meshes: Any, formats: Any,
-              title: str, bom: tuple[BomLine, ...] = ()) -> list[Any]:
+              title: str, bom: tuple[BomLine, ...] = (), placed: Any = None) -> list[Any]:
     """The kit's files: each part as its process makes it (a laser's as ``<name>-<part>.dxf`` and
     ``<name>-<part>-cut.svg``, a printer's as ``<name>-<part>.stl`` and ``.3mf``), the assembly drawing
-    (``<name>-kit-assembly.dxf|svg|png``), every part in its assembled place (``<name>-kit.3mf``; ``meshes()``
-    makes them, only if written) and, when asked, the kit's parts as exact solids in their own frames
-    (``<name>-kit.step``, one named product a part); with the report (``json``), the bill of materials ``bom`` as
-    ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), when it has lines."""
+    (``<name>-kit-assembly.dxf|svg|png``), every made part in its assembled place (``<name>-kit.3mf``; ``meshes()``
+    makes them, only if written) and, when asked, the kit's parts as exact solids (``<name>-kit.step``, one named
+    product a part: ``placed``, :class:`~camgen.core.parts.Placed` solids or a function making them, as
+    assembled; without it each part in its own frame); with the report (``json``), the bill of materials ``bom``
+    as ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), when it has lines."""
     from camgen.core.bundle import item
     from camgen.core.solids import checked_mesh
 
@@ -351,8 +352,8 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
                              ("cut-svg", "kit_assembly_svg", f"{name}-kit-assembly.svg")], formats),
               item(figure, [("png", "kit_assembly_png", f"{name}-kit-assembly.png")], formats),
               item(meshes, [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats),
-              item(tuple((part.name, (part,)) for part, _ in made), [("step", "kit_step", f"{name}-kit.step")],
-                   formats),
+              item(placed if placed is not None else tuple((part.name, (part,)) for part, _ in made),
+                   [("step", "kit_step", f"{name}-kit.step")], formats),
               bom_item(name, bom, formats)]
     return items
 

@@ -7,8 +7,9 @@ and as printed (clearance), for every product alike. Lengths in mm.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from typing import Protocol
+from typing import NamedTuple, Protocol
 
 from camgen.core.errors import DesignError
 from camgen.core.shapes import Circle, Contour, Polyline, Shape, Text
@@ -45,6 +46,17 @@ class Part:
 
     def _repr_svg_(self) -> str:
         return Drawing.of_part(self)._repr_svg_()
+
+
+class Placed(NamedTuple):
+    """One solid of a file of several (a STEP file): its ``name``, its ``parts`` stacked from its own z = 0, each on
+    the one before, and where it goes: turned by ``angle`` (rad, counter-clockwise seen from +Z) about its own
+    origin, then moved by ``shift`` (x, y, z; mm). A plain ``(name, parts)`` pair is one at its own place."""
+
+    name: str
+    parts: Sequence[Part]
+    angle: float = 0.0
+    shift: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
 #: layer names used in every drawing
