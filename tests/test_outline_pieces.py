@@ -155,3 +155,25 @@ def test_freecad_check_sees_a_zero_length_arc(tmp_path):
     write_dxf(drawing, tmp_path / "bar.dxf")
     done = _freecad(tmp_path / "bar.dxf", _expect(drawing))
     assert done.returncode == 1
+
+
+@pytest.mark.parametrize("name", ["watt1", "watt2"])
+def test_watt_step_builds_every_part(name, tmp_path):
+    """`linkgen build` with step, which raised on the output link's zero-length arc: one valid solid a part, each of
+    its exact volume (area x 3 mm), the output link's the bar's."""
+    pytest.importorskip("OCP")
+    from click.testing import CliRunner
+
+    from linkgen.cli import main
+    from tests.test_step import measure, read_step
+
+    result = CliRunner().invoke(main, ["build", str(ROOT / "templates" / f"{name}.toml"), "-o", str(tmp_path),
+                                       "--set", 'output.formats=["step"]'])
+    assert result.exit_code == 0, result.output
+    build = design_linkage(validate_spec(dict(LINKAGES)[name]), parts=True).build
+    solids = dict(read_step(tmp_path / f"{name}.step"))
+    assert list(solids) == [p.name for p in build.printed]
+    for part in build.printed:
+        found = measure(solids[part.name])
+        assert found["solids"] == 1 and found["valid"]
+        assert found["volume"] == pytest.approx(part.area * 3.0, rel=1e-9)
