@@ -59,7 +59,8 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
 
     name = design.spec.name
     items = kit_items(name, kit.made, kit.drawing, kit.meshes, design.spec.output.formats,
-                      f"{name}: the kit assembled at theta = 0, 90, 180 and 270 deg", kit.bom)
+                      f"{name}: the kit assembled at theta = 0, 90, 180 and 270 deg", kit.bom,
+                      lambda: kit.placed(solid))
     return Bundle.of((*bundle.items, *items), bundle.options), report
 
 
