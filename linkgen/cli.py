@@ -191,6 +191,8 @@ def _print_text(r: dict[str, Any]) -> None:
                        ("stroke_mm", "stroke (mm)"), ("approximation_error_max_mm", "approximation error (mm)")):
         if r.get(key) is not None:
             out(f"{label}: {r[key]:.6g}")
+    if "circuits" in r:
+        _print_circuits(r)
     if "straightness" in r:
         s = r["straightness"]
         out(f"straight stroke {s['stroke_mm']:.6g} mm within {s['error_mm']:.4g} mm "
@@ -219,3 +221,27 @@ def _print_text(r: dict[str, Any]) -> None:
         out(f"{'it':>3} {'coupler deg':>16} {'rocker deg':>16} {'residual mm':>12}")
         for s in r["newton"]["iterations"]:
             out(f"{s['iteration']:>3} {s['coupler_deg']:>16.10f} {s['rocker_deg']:>16.10f} {s['residual_mm']:>12.3e}")
+
+
+def _print_circuits(r: dict[str, Any]) -> None:
+    """The four-bar's circuits: the input angles each holds, and how each link moves on it, with its limits."""
+    out = click.echo
+    m = r["motion"]
+    out(f"motion on the drawn circuit: crank: {m['crank']}; coupler: {m['coupler']}; rocker: {m['rocker']}")
+    count = len(r["circuits"])
+    for k, c in enumerate(r["circuits"], 1):
+        span = c["input_range_deg"]
+        holds = (f"{r['input']} {span[0]:.4f} to {span[1]:.4f} deg" if span is not None
+                 else f"{r['input']} turns fully" + (f" (repeats after {c['input_turns']} turns)"
+                                                     if c["input_turns"] == 2 else ""))
+        out(f"circuit {k} of {count}{' (drawn)' if c['drawn'] else ''}: {holds}, "
+            f"{' and '.join(c['assemblies'])} assembl{'ies' if len(c['assemblies']) > 1 else 'y'}")
+        for link in ("crank", "coupler", "rocker"):
+            s = c[link]
+            line = f"  {link + ':':<9}{s['description']}"
+            if s.get("limits"):
+                limits = ", ".join(f"{x['kind']} at crank {x['crank_deg']:.4f} deg ({x['assembly']})"
+                                   for x in s["limits"])
+                line += (f"; {s['swing_deg']:.4f} deg counter-clockwise from {s['from_deg']:.4f} to "
+                         f"{s['to_deg']:.4f} deg; limits: {limits}")
+            out(line)

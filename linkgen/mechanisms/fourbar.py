@@ -20,6 +20,7 @@ from camgen.core.shapes import Polyline
 from camgen.core.spec import Model, unit
 from linkgen import plots
 from linkgen.kinematics.fourbar import ASSEMBLIES, FourBar, Poses
+from linkgen.mechanisms.circuits import circuits_report, split_warning
 from linkgen.mechanisms.common import Figure, deg, length, num, omega, rpm, types_of
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
 
@@ -124,10 +125,7 @@ def fourbar_report(table: FourBarTable, fb: FourBar, angle: float | None, method
     if rocker_in:
         mr = mirror.input_ranges()
         ranges = None if mr is None else tuple((math.pi - hi, math.pi - lo) for lo, hi in mr)
-    swing = None
-    limits = [d for d in fb.dead_centres(table.assembly) if d.kind in ("extended", "folded")]
-    if len(limits) == 2 and not rocker_in:
-        swing = abs(math.degrees(math.remainder(limits[0].rocker - limits[1].rocker, TWO_PI)))
+    by_circuit = circuits_report(fb, table.assembly, rocker_in)
     ratio = None if rocker_in else fb.time_ratio(table.assembly)
     report: dict[str, Any] = {
         "grashof_class": g.grashof_class, "inversion": g.inversion, "form": g.form,
@@ -136,10 +134,14 @@ def fourbar_report(table: FourBarTable, fb: FourBar, angle: float | None, method
         "transmission_min_deg": round(math.degrees(gmin), 9), "transmission_min_at_crank_deg": deg(gmin_at),
         "transmission_max_deg": round(math.degrees(gmax), 9), "transmission_max_at_crank_deg": deg(gmax_at),
         "dead_centres": dead, "time_ratio": None if ratio is None else round(ratio, 12),
-        "rocker_swing_deg": None if swing is None else round(swing, 9),
+        "rocker_swing_deg": by_circuit["rocker_swing_deg"],
         "change_points_crank_deg": [deg(c) for c in fb.change_points()],
+        "motion": by_circuit["motion"], "circuits": by_circuit["circuits"],
     }
     report["warnings"] = _warnings(report, g.grashof_class)
+    split = split_warning(report, table.input)
+    if split is not None:
+        report["warnings"].append(split)
     if angle is not None:
         t = np.array([math.radians(angle)])
         solve = fb.rocker_positions if rocker_in else fb.positions
