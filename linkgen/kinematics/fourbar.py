@@ -506,48 +506,55 @@ class FourBar:
         return f1, f2
 
     def newton(self, theta2: float, guess: tuple[float, float], tol: float = 1e-12,
-               max_iter: int = 50) -> NewtonResult:
+               max_iter: int = 50, tolerance_mm: float | None = None) -> NewtonResult:
         """Newton-Raphson on the loop closure for (theta3, theta4), radians, from ``guess``.
 
         Converged when the residual is below ``tol`` times the longest link and the next step (the
-        iteration's own error estimate) below ``1000 tol`` rad. Each step is halved until it lowers the
-        residual. At a toggle (coupler and rocker collinear) the root is double: the Jacobian is singular
-        there and the convergence only linear; an input past the toggle by less than the closed form
-        accepts (``FEASIBILITY_TOL``) has no exact root at all. So the iteration also stops where the
-        Jacobian is singular or no step lowers the residual any more (at rounding) while the loop closes
-        to within ``tol`` plus that tolerance: the least-squares pose, the toggle's, as the closed form
-        has it. Raises :class:`SolverError` at a singular Jacobian far from a root (a guess with coupler
-        and rocker collinear), when no step helps far from a root, or after ``max_iter`` steps. The
-        result carries the iteration table.
+        iteration's own error estimate) below ``1000 tol`` rad; with ``tolerance_mm`` (mm, > 0) instead
+        at the first estimate whose residual norm |(f1, f2)| is at most that (the course's test). Each step
+        is the full Newton step, halved until it lowers the residual where it does not. At a toggle
+        (coupler and rocker collinear) the root is double: the Jacobian is singular there and the
+        convergence only linear; an input past the toggle by less than the closed form accepts
+        (``FEASIBILITY_TOL``) has no exact root at all. So the iteration also stops where the Jacobian is
+        singular or no step lowers the residual any more (at rounding) while the loop closes to within the
+        tolerance plus that one: the least-squares pose, the toggle's, as the closed form has it. Raises
+        :class:`SolverError` at a singular Jacobian far from a root (a guess with coupler and rocker
+        collinear), when no step helps far from a root, or after ``max_iter`` steps. The result carries
+        the iteration table.
         """
+        if tolerance_mm is not None and not (math.isfinite(tolerance_mm) and tolerance_mm > 0):
+            raise SpecError(f"must be a finite number of mm > 0 (got {tolerance_mm})", "tolerance")
         t3, t4 = float(guess[0]), float(guess[1])
         f1, f2 = self.residual(theta2, t3, t4)
         steps: list[NewtonStep] = []
         scale = self.longest
-        closes = (tol + FEASIBILITY_TOL) * scale        # the loop closes as nearly as the closed form asks
+        target = tol * scale if tolerance_mm is None else tolerance_mm
+        closes = target + FEASIBILITY_TOL * scale       # the loop closes as nearly as the closed form asks
         where = f"at crank angle {math.degrees(theta2):.6g} degrees"
         for k in range(max_iter + 1):
             steps.append(NewtonStep(k, t3, t4, f1, f2))
             res = math.hypot(f1, f2)
+            if tolerance_mm is not None and res <= tolerance_mm:
+                return NewtonResult(t3, t4, tuple(steps))
             # J = d(f1, f2)/d(t3, t4) = [[-L3 sin t3, L4 sin t4], [L3 cos t3, -L4 cos t4]]
             j11, j12 = -self.coupler * math.sin(t3), self.rocker * math.sin(t4)
             j21, j22 = self.coupler * math.cos(t3), -self.rocker * math.cos(t4)
             det = j11 * j22 - j12 * j21
             if abs(det) <= 1e-12 * self.coupler * self.rocker:
                 if res <= closes:
-                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > tol * scale)
+                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > target)
                 raise SolverError(f"Newton-Raphson: singular Jacobian at iteration {k} ({where}): coupler and "
                                   "rocker are collinear, a toggle position; start from another guess or use the "
                                   "closed form")
             d3, d4 = (j22 * f1 - j12 * f2) / det, (-j21 * f1 + j11 * f2) / det
-            if res <= tol * scale and max(abs(d3), abs(d4)) <= 1e3 * tol:
+            if tolerance_mm is None and res <= target and max(abs(d3), abs(d4)) <= 1e3 * tol:
                 return NewtonResult(t3, t4, tuple(steps))
             if k == max_iter:
                 break
             found = _descent(lambda a, b: self.residual(theta2, a, b), (t3, t4), (d3, d4), res)
             if found is None:                           # no step lowers the residual: rounding level
                 if res <= closes:
-                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > tol * scale)
+                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > target)
                 raise SolverError(f"Newton-Raphson stalled at iteration {k} ({where}): no step lowers the "
                                   f"residual {res:.3g} mm; start from another guess or use the closed form")
             t3, t4, f1, f2 = found

@@ -76,22 +76,46 @@ def _ranges_deg(ranges: tuple[tuple[float, float], ...] | None) -> Any:
     return out[0] if len(out) == 1 else out
 
 
-def _newton(fb: FourBar, theta: float, exact: Poses) -> dict[str, Any]:
-    """The Newton-Raphson table at crank angle ``theta`` (rad), started 10 degrees off the closed-form ``exact``."""
-    guess = (float(exact.theta3[0]) + math.radians(10), float(exact.theta4[0]) - math.radians(10))
-    result = fb.newton(theta, guess)
+def newton_table(fb: FourBar, angle: float, assembly: str, start: tuple[float, float] | None = None,
+                 tolerance: float | None = None) -> dict[str, Any]:
+    """The Newton-Raphson table at crank angle ``angle`` (degrees): started from ``start`` (theta3, theta4 in
+    degrees) or 10 degrees off the closed-form answer of ``assembly``, and stopped where the residual norm is at
+    most ``tolerance`` mm (the course's test) or, without one, below 1e-12 of the longest link with a step as
+    small. Says which assembly the answer is and how near the closed form's it is (degrees). Raises
+    :class:`SolverError` where the iteration fails (a singular Jacobian, a stall, no convergence)."""
+    least = 1e-12 * fb.longest
+    if tolerance is not None and not tolerance >= least:
+        raise SpecError(f"must be at least {least:.3g} mm here, 1e-12 of the longest link: the loop closes no "
+                        f"nearer than rounding lets it (got {tolerance:g})", "tolerance")
+    theta = math.radians(angle)
+    exact = {a: fb.positions([theta], a) for a in ASSEMBLIES}
+    if start is None:
+        closed = exact[assembly]
+        guess = (float(closed.theta3[0]) + math.radians(10), float(closed.theta4[0]) - math.radians(10))
+        said = "closed-form answer moved by +10 degrees (coupler) and -10 degrees (rocker)"
+    else:
+        guess = (math.radians(start[0]), math.radians(start[1]))
+        said = f"given: coupler {start[0]:g} degrees, rocker {start[1]:g} degrees"
+    result = fb.newton(theta, guess, tolerance_mm=tolerance)
+
+    def off(a: str) -> float:
+        return max(abs(math.degrees(math.remainder(result.theta3 - exact[a].theta3[0], TWO_PI))),
+                   abs(math.degrees(math.remainder(result.theta4 - exact[a].theta4[0], TWO_PI))))
+
+    found = assembly if start is None else min(ASSEMBLIES, key=off)
     return {
-        "start": "closed-form answer moved by +10 degrees (coupler) and -10 degrees (rocker)",
-        "tolerance_mm": 1e-12 * fb.longest,
+        "start": said, "start_deg": [math.degrees(g) for g in guess] if start is None else list(start),
+        "tolerance_mm": 1e-12 * fb.longest if tolerance is None else tolerance,
+        "test": ("residual norm at most the tolerance (the course's test)" if tolerance is not None
+                 else "residual below the tolerance and the next step below 1e-9 rad"),
         "stopped": ("at a toggle's least-squares pose: no step lowers the residual, which is within the tolerance "
                     "the closed form reaches past a toggle with" if result.least_squares
                     else "residual below the tolerance"),
         "iterations": [{"iteration": s.iteration, "coupler_deg": math.degrees(s.theta3),
                         "rocker_deg": math.degrees(s.theta4), "f1_mm": s.f1, "f2_mm": s.f2,
                         "residual_mm": s.residual} for s in result.steps],
-        "agrees_with_closed_form_deg": max(
-            abs(math.degrees(math.remainder(result.theta3 - exact.theta3[0], TWO_PI))),
-            abs(math.degrees(math.remainder(result.theta4 - exact.theta4[0], TWO_PI))))}
+        "coupler_deg": deg(result.theta3), "rocker_deg": deg(result.theta4), "assembly": found,
+        "agrees_with_closed_form_deg": off(found)}
 
 
 def _warnings(report: dict[str, Any], grashof_class: str) -> list[str]:
@@ -150,7 +174,7 @@ def fourbar_report(table: FourBarTable, fb: FourBar, angle: float | None, method
         if method == "newton":
             if rocker_in:
                 raise SpecError("the Newton-Raphson table is for crank input", "--method")
-            report["newton"] = _newton(fb, float(t[0]), poses[table.assembly])
+            report["newton"] = newton_table(fb, angle, table.assembly)
     return report
 
 
