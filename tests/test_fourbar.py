@@ -527,3 +527,25 @@ def test_the_issues_linkages_analyze_with_warnings_as_errors(tmp_path, lengths, 
     else:
         assert run.returncode == 2 and run.stderr.count("\n") == 1
         assert run.stderr.startswith("error: --angle: ") and "out of reach" in run.stderr
+
+
+def test_a_rhombus_builds_its_parts_with_warnings_as_errors(tmp_path):
+    """Its crank pin meets the rocker pivot at crank angle 0, where no pose is determined: the parts' layout, the
+    sketch and the thumbnail sweep a full turn half a step off it (they were refused there, 'angle: ... undetermined',
+    naming an angle nobody gave)."""
+    import subprocess
+    import sys
+
+    from linkgen.mechanisms.fourbar import input_grid
+
+    grid = input_grid(FourBar(20, 20, 20, 20), 8)
+    assert grid == pytest.approx(np.radians(22.5 + 45 * np.arange(8)), abs=1e-15)
+    assert input_grid(CRANK_ROCKER, 5) == pytest.approx(np.linspace(0, 2 * math.pi, 5), abs=0)
+    path = tmp_path / "t.toml"
+    path.write_text('name = "t"\n[linkage]\ntype = "four-bar"\nground = 20.0\ncrank = 20.0\ncoupler = 20.0\n'
+                    'rocker = 20.0\n[parts]\nwidth = 6.0\nthickness = 3.0\npin_diameter = 3.0\n')
+    run = subprocess.run([sys.executable, "-W", "error", "-m", "linkgen", "build", str(path), "-o",
+                          str(tmp_path / "out"), "--set", "output.formats=['dxf', 'json']"],
+                         capture_output=True, text=True, cwd=ROOT)
+    assert run.returncode == 0 and run.stderr == "", run.stderr
+    assert (tmp_path / "out" / "t.json").exists()

@@ -19,7 +19,7 @@ from camgen.core.parts import Drawing
 from camgen.core.shapes import Polyline
 from camgen.core.spec import Model, unit
 from linkgen import plots
-from linkgen.kinematics.fourbar import ASSEMBLIES, FourBar, Poses
+from linkgen.kinematics.fourbar import ASSEMBLIES, FEASIBILITY_TOL, FourBar, Poses
 from linkgen.mechanisms.circuits import circuits_report, split_warning
 from linkgen.mechanisms.common import Figure, deg, length, num, omega, rpm, types_of
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
@@ -53,6 +53,16 @@ def input_span(fb: FourBar) -> tuple[float, float]:
     """The crank angles (rad) the drawings sweep: a full turn, or the first reachable range."""
     ranges = fb.input_ranges()
     return (0.0, TWO_PI) if ranges is None else ranges[0]
+
+
+def input_grid(fb: FourBar, n: int) -> np.ndarray:
+    """``n`` crank angles (rad) over :func:`input_span`, ends included; for a deltoid whose crank pin meets the
+    rocker pivot at crank angle 0 (ground = crank: no pose is determined there) a full turn's ``n`` angles sit
+    half a step off its ends instead, so that the drawings pass the fold as a sweep does."""
+    lo, hi = input_span(fb)
+    if fb.input_ranges() is None and math.hypot(*fb._z(np.array(0.0))) <= FEASIBILITY_TOL * fb.longest:
+        return lo + (np.arange(n) + 0.5) * ((hi - lo) / n)
+    return np.linspace(lo, hi, n)
 
 
 def position(fb: FourBar, pose: Poses, speed: float) -> dict[str, Any]:
@@ -214,7 +224,7 @@ def fourbar_layout(fb: FourBar, assembly: str, table: PartsTable) -> Layout:
     (the coupler-rocker pin's without one)."""
     ranges = fb.input_ranges()
     lo, hi = input_span(fb)
-    sweep = placement(fb, np.linspace(lo, hi, SWEEP), assembly)
+    sweep = placement(fb, input_grid(fb, SWEEP), assembly)
     dead = tuple((d.kind, d.crank) for d in fb.dead_centres(assembly)
                  if ranges is None or lo <= d.crank <= hi or lo <= d.crank + TWO_PI <= hi)
     poses = tuple(placement(fb, np.array([angle]), assembly) for _, angle in dead)
@@ -225,7 +235,7 @@ def fourbar_layout(fb: FourBar, assembly: str, table: PartsTable) -> Layout:
 
 def fourbar_thumbnail(fb: FourBar, assembly: str) -> dict[str, Any]:
     """The path the coupler point (or the rocker pin) traces, for a family's overview picture."""
-    poses = fb.sweep(np.linspace(*input_span(fb), 121), assembly)
+    poses = fb.sweep(input_grid(fb, 121), assembly)
     path = poses.point if fb.point_distance > 0 else poses.b
     return {"thumbnail": path.round(3).tolist(), "thumbnail_kind": "path"}
 
@@ -237,7 +247,7 @@ def fourbar_sketch(fb: FourBar, assembly: str) -> Drawing:
     start = lo + 0.1 * (hi - lo) if fb.input_ranges() else math.radians(30)
     p = fb.positions([start], assembly)
     links = np.array([[0.0, 0.0], p.a[0], p.b[0], [fb.ground, 0.0], [0.0, 0.0]])
-    path = fb.sweep(np.linspace(lo, hi, 181), assembly).point
+    path = fb.sweep(input_grid(fb, 181), assembly).point
     items = [("LINKS", Polyline(links, np.zeros(4))), ("PATH", Polyline(path, np.zeros(len(path) - 1)))]
     return Drawing(tuple(items), 0.01)
 
