@@ -231,3 +231,25 @@ def test_every_pose_of_a_circuit_lies_in_its_swings_and_the_swings_are_reached(f
                 assert abs(math.hypot(fb.crank * math.cos(limit.crank) - fb.ground - fb.rocker * math.cos(limit.rocker),
                                       fb.crank * math.sin(limit.crank) - fb.rocker * math.sin(limit.rocker))
                            - fb.coupler) < 1e-9 * fb.longest
+
+
+def test_at_change_points_the_circuit_is_the_branch_through_the_fold():
+    """Grashof class III. The parallelogram (128, 10, 128, 10): on its parallelogram branch (open just after 0,
+    crossed past 180) the rocker turns with the crank and the coupler translates; on the other, the
+    anti-parallelogram, the rocker turns too. The general change point (100, 40, 90, 50) folds at 180 only, so
+    its branch comes back after two turns holding both assemblies: crank and coupler extend (|O2 B| = 130) with
+    the rocker at 180 -+ 116.10 (cos = (100^2 + 50^2 - 130^2) / (2 100 50) = -0.44); they fold only at the fold
+    itself (50 + 50 = 100: all four links in line, B at (50, 0)), which the rocker passes at 180 degrees, so it
+    swings 232.21 degrees through 180. The rhombus's second branch keeps B on O2: the rocker does not move."""
+    parallelogram, anti = circuits(FourBar(128, 10, 128, 10))
+    assert parallelogram.rocker.turns and parallelogram.coupler == "translates"
+    assert anti.rocker.turns and anti.coupler == "oscillates"
+    (branch,) = circuits(FourBar(100, 40, 90, 50))
+    assert branch.turns == 2 and branch.assemblies == (1, -1) and branch.folds == (math.pi,)
+    psi = math.acos(-0.44)
+    assert [x.kind for x in branch.rocker.limits] == ["extended", "extended"]
+    assert branch.rocker.start == pytest.approx(math.pi - psi, abs=1e-12)
+    assert branch.rocker.arc == pytest.approx(2 * psi, abs=1e-12) and branch.rocker.through() == (math.pi,)
+    kite_mode = circuits(FourBar(20, 20, 20, 20))[1]
+    assert kite_mode.rocker.still and math.degrees(kite_mode.rocker.start) == pytest.approx(180, abs=1e-7)
+    assert np.abs(FourBar(20, 20, 20, 20).positions(np.radians([30, 100, 170]), "crossed").b).max() < 1e-12

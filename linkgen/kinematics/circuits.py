@@ -101,9 +101,9 @@ class Circuit:
     coupler: str
 
     def holds(self, theta: float, label: int) -> bool:
-        """Whether the pose at input angle ``theta`` (rad) with assembly ``label`` (+-1) is on this circuit
-        (for a full turn taken as :meth:`FourBar.sweep` counts, from just after 0 with the first label; a
-        pose at a change point is on both branches)."""
+        """Whether the pose at input angle ``theta`` (rad) with assembly ``label`` (+-1, or 0 for a pose both
+        assemblies place alike) is on this circuit (for a full turn taken as :meth:`FourBar.sweep` counts, from
+        just after 0 with the first label)."""
         if self.input_range is not None:
             return _inside(theta, self.input_range)
         return self.turns == 2 or label in (0, self.label(theta))
@@ -152,7 +152,8 @@ def mirrored(circuit: Circuit) -> Circuit:
     every angle theta becomes pi - theta (the input's range and folds are then the rocker's angles) and each
     arc runs the other way. Its :meth:`Circuit.holds` is then of no use: ask the mirror's."""
     def limit(m: Limit) -> Limit:
-        kind = m.kind[len("toggle-"):] if m.kind.startswith("toggle-") else f"toggle-{m.kind}"
+        kind = {"extended": "toggle-extended", "folded": "toggle-folded", "toggle-extended": "extended",
+                "toggle-folded": "folded"}.get(m.kind, m.kind)          # a fold is all four links in line
         return Limit(kind, math.pi - m.rocker, math.pi - m.crank, m.assembly)
 
     def swing(m: Swing) -> Swing:
@@ -191,7 +192,7 @@ def _rocker_limits(fb: FourBar) -> list[Limit]:
         if not (abs(l1 - l4) - tol <= reach <= l1 + l4 + tol) or reach <= tol:
             continue
         phi = math.acos(max(-1.0, min(1.0, (l1**2 + reach**2 - l4**2) / (2 * l1 * reach))))
-        for side in ((1.0, -1.0) if phi > 0 else (1.0,)):
+        for side in ((1.0, -1.0) if 0.0 < phi < math.pi else (1.0,)):       # one pose on the ground line
             pin = reach * np.array([math.cos(side * phi), math.sin(side * phi)])
             crank = _principal(side * phi + (0.0 if kind == "extended" or l2 > l3 else math.pi))
             if math.hypot(*fb._z(np.array(crank))) <= tol:         # the crank pin on the rocker pivot
