@@ -86,8 +86,8 @@ def test_rocker_88_triple_rocker_sweeps_both_links_through_the_ground_line(tmp_p
     assert c["rocker"]["swing_deg"] == pytest.approx(360 - 2 * psi, abs=1e-9)
     assert arc(c["rocker"]["from_deg"], c["rocker"]["to_deg"]) == pytest.approx(360 - 2 * psi, abs=1e-9)
     assert c["rocker"]["through_ground_line_deg"] == [0.0] and r["rocker_swing_deg"] == c["rocker"]["swing_deg"]
-    words = "a rocker, oscillating through the ground line (at 0 degrees)"
-    assert r["motion"] == {"crank": words, "coupler": "oscillating, never a full turn", "rocker": words}
+    words = "a rocker that oscillates through the ground line (at 0 degrees)"
+    assert r["motion"] == {"crank": words, "coupler": "oscillates, never a full turn", "rocker": words}
 
 
 def test_rocker_125_double_rocker_has_two_circuits_and_swings_on_the_drawn_one(tmp_path):
@@ -116,8 +116,8 @@ def test_rocker_125_double_rocker_has_two_circuits_and_swings_on_the_drawn_one(t
     # the other circuit is this one's mirror image in the ground line
     mirror = sorted(((-c) % 360, (-x) % 360) for c, x in limits_of(rocker))
     assert limits_of(second["rocker"]) == [pytest.approx(m, abs=1e-9) for m in mirror]
-    assert r["motion"] == {"crank": "a rocker, oscillating", "coupler": "turning fully",
-                           "rocker": "a rocker, oscillating"}
+    assert r["motion"] == {"crank": "a rocker that oscillates", "coupler": "turns fully",
+                           "rocker": "a rocker that oscillates"}
     assert any("split into 2 separate circuits" in w and "never passes from one to the other" in w
                for w in r["warnings"])
 
@@ -138,14 +138,14 @@ def test_rocker_163_triple_rocker_sweeps_through_180(tmp_path):
     assert c["rocker"]["swing_deg"] == pytest.approx(2 * psi, abs=1e-9)
     assert (c["rocker"]["from_deg"], c["rocker"]["to_deg"]) == (pytest.approx(180 - psi, abs=1e-9),
                                                                 pytest.approx(180 + psi, abs=1e-9))
-    words = "a rocker, oscillating through the ground line (at 180 degrees)"
+    words = "a rocker that oscillates through the ground line (at 180 degrees)"
     assert r["motion"]["crank"] == r["motion"]["rocker"] == words
 
 
 @pytest.mark.parametrize("l4", [88.0, 125.0, 163.0])
 def test_the_console_summary_says_each_links_motion_and_limits(tmp_path, l4):
     text = analyze(tmp_path, l4)["text"]
-    assert "motion on the drawn circuit: crank: a rocker, oscillating" in text
+    assert "motion on the drawn circuit: crank: a rocker that oscillates" in text
     assert ("circuit 1 of 2 (drawn)" if l4 == 125 else "circuit 1 of 1 (drawn)") in text
     assert "counter-clockwise from" in text and "limits: toggle-" in text
     assert ("through the ground line" in text) == (l4 != 125)

@@ -27,23 +27,23 @@ LABELS = {1: "open", -1: "crossed", 0: "both"}
 
 
 def motion(swing: Swing) -> str:
-    """How a link pivoted on the ground moves on a circuit, in the course's words: ``a crank, turning fully``,
-    ``a rocker, oscillating`` or ``a rocker, oscillating through the ground line (at 0 degrees)`` (or 180)."""
+    """How a link pivoted on the ground moves on a circuit, in the course's words: ``a crank that turns fully``,
+    ``a rocker that oscillates`` or ``a rocker that oscillates through the ground line (at 0 degrees)`` (or 180)."""
     if swing.turns:
-        return "a crank, turning fully"
+        return "a crank that turns fully"
     if swing.still:
         return f"does not move (stays at {deg(swing.start):g} degrees)"
     through = swing.through()
     if not through:
-        return "a rocker, oscillating"
+        return "a rocker that oscillates"
     at = " and ".join(f"{math.degrees(x):g}" for x in through)
-    return f"a rocker, oscillating through the ground line (at {at} degrees)"
+    return f"a rocker that oscillates through the ground line (at {at} degrees)"
 
 
 def coupler_motion(circuit: Circuit) -> str:
     """The coupler's motion relative to the ground on a circuit."""
-    return {"turns": "turning fully", "oscillates": "oscillating, never a full turn",
-            "translates": "translating, never turning (it stays parallel to itself)"}[circuit.coupler]
+    return {"turns": "turns fully", "oscillates": "oscillates, never a full turn",
+            "translates": "translates, never turning (it stays parallel to itself)"}[circuit.coupler]
 
 
 def _limit(limit: Limit) -> dict[str, Any]:
