@@ -43,6 +43,16 @@ def test_the_table_is_newtons_from_the_given_start_to_the_given_tolerance(tmp_pa
         (s.iteration, math.degrees(s.theta3), math.degrees(s.theta4), s.residual) for s in ref.steps]
     rows = n["iterations"]
     assert (rows[0]["coupler_deg"], rows[0]["rocker_deg"]) == (pytest.approx(30, abs=1e-13), pytest.approx(100))
+    # the course's iteration, written here: x <- x - J^-1 f on the loop closure (no step needed halving here)
+    l1, l2, l3, l4 = EXERCISE
+    x = np.radians([30.0, 100.0])
+    for s in rows:
+        assert (s["coupler_deg"], s["rocker_deg"]) == (pytest.approx(math.degrees(x[0]), abs=1e-11),
+                                                        pytest.approx(math.degrees(x[1]), abs=1e-11))
+        f = [l2 * math.cos(theta2) + l3 * math.cos(x[0]) - l4 * math.cos(x[1]) - l1,
+             l2 * math.sin(theta2) + l3 * math.sin(x[0]) - l4 * math.sin(x[1])]
+        jac = [[-l3 * math.sin(x[0]), l4 * math.sin(x[1])], [l3 * math.cos(x[0]), -l4 * math.cos(x[1])]]
+        x = x - np.linalg.solve(jac, f)
     # the course's test: it stops at the first estimate whose residual norm is at most the tolerance
     assert rows[-1]["residual_mm"] <= 1e-5 < rows[-2]["residual_mm"]
     for s in rows:                                    # each row's residual is the loop closure's at its angles
