@@ -401,12 +401,7 @@ def run_case(case: Case, files: Callable[[Path], None] | None = None, process: b
 #: linkgen/mechanisms, linkgen/design.py, which others are changing): a pattern of the failure and the issue it is,
 #: with a reproduction. A test that meets one still runs all its examples (any other failure fails it) and then
 #: ends as xfail naming the issue; nothing is tolerated silently.
-KNOWN: dict[str, str] = {
-    r"linkgen/kinematics/fourbar\.py:\d+: RuntimeWarning": (
-        "numpy RuntimeWarnings on stderr from linkgen/kinematics/fourbar.py where the crank pin passes over the "
-        "rocker pivot; reproduce: linkgen analyze of name = 'rhombus', [linkage] type = 'four-bar', ground = crank "
-        "= coupler = rocker = 20 prints 'invalid value encountered in divide' three times (fourbar.py:225-230)"),
-}
+KNOWN: dict[str, str] = {}
 #: the known issues the running test has met
 MET: set[str] = set()
 
