@@ -19,6 +19,7 @@ from pydantic import Field, field_validator, model_validator
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
 from camgen.core.errors import SpecError
+from camgen.core.reading import read_regular
 from camgen.core.spec import CutOutputTable
 from camgen.core.kit import CamKitTable, check_cam_kit
 from camgen.contact_stress import MATERIALS
@@ -41,8 +42,7 @@ def read_table(path: Path) -> list[tuple[float, float]]:
     spaces); a first line of names, blank lines and lines starting with # are passed over. A ValueError naming
     ``file`` (and the line) otherwise."""
     try:
-        with path.open("rb") as stream:
-            raw = stream.read(MAX_TABLE_BYTES + 1)
+        raw = read_regular(path, MAX_TABLE_BYTES)       # a FIFO or a device is refused, never waited on
     except OSError as exc:
         raise ValueError(f"file: cannot read {str(path)!r} ({exc.strerror or exc})") from None
     if len(raw) > MAX_TABLE_BYTES:

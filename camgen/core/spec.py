@@ -20,6 +20,7 @@ from typing import Annotated, Any, Literal, TypeVar, get_origin
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from camgen.core.errors import SpecError
+from camgen.core.reading import NotRegularFile, read_regular
 from camgen.core.records import once
 from camgen.core.writers import (
     DEFAULT_FORMATS, DXF_FLAVOURS, DXF_VERSIONS, FIGURE_FORMATS, FORMATS, OPTIONAL_FORMATS, TEXT_MODES, WriteOptions,
@@ -306,14 +307,15 @@ def _depth(value: Any) -> int:
 def _read_toml(path: Path, field: str) -> dict[str, Any]:
     """One TOML file as a mapping (a UTF-8 byte-order mark allowed), or a one-line error naming ``field``."""
     try:
-        with path.open("rb") as stream:
-            data = stream.read(MAX_TEMPLATE_BYTES + 1)
+        data = read_regular(path, MAX_TEMPLATE_BYTES)
     except FileNotFoundError:
         raise SpecError(f"no such file: {path}", field) from None
     except IsADirectoryError:
         raise SpecError(f"{path} is a folder, not a template file", field) from None
+    except NotRegularFile as exc:
+        raise SpecError(f"{path} is {exc.strerror}; a template is a TOML file", field) from None
     except OSError as exc:
-        raise SpecError(f"cannot read {path}: {exc.strerror}", field) from None
+        raise SpecError(f"cannot read {path}: {exc.strerror or exc}", field) from None
     if len(data) > MAX_TEMPLATE_BYTES:
         raise SpecError(f"{path} is larger than {MAX_TEMPLATE_BYTES // 1000} kB; a template is a small TOML file",
                         field)
