@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from camgen.core.errors import SpecError
+from camgen.core.errors import DesignError, SpecError
 from camgen.core.shapes import Circle, Contour
 
 #: (over d, up to d, key width b, hub keyseat depth t2), mm; DIN 6885-1
@@ -35,10 +35,14 @@ def key_for(bore: float) -> tuple[float, float]:
 
 
 def keyed_bore(bore: float, grow: float = 0.0) -> Contour:
-    """The bore with its keyway as one counter-clockwise contour (lines and one arc), edges moved by ``grow``."""
+    """The bore with its keyway as one counter-clockwise contour (lines and one arc), edges moved by ``grow``.
+    Raises :class:`DesignError` where edges moved in (a negative ``grow``: half a kerf) close the keyway."""
     b, t2 = key_for(bore)
     r = bore / 2 + grow
     half = b / 2 + grow
+    if not half > 0:
+        raise DesignError(f"output.kerf: a kerf of {-2 * grow:g} mm closes the {b:g} mm keyway of a {bore:g} mm bore "
+                          f"(the laser would burn it away); the kerf must be < {b:g} mm")
     top = bore / 2 + t2 + grow
     y = math.sqrt(r * r - half * half)
     verts = np.array([[half, y], [half, top], [-half, top], [-half, y]])
