@@ -137,12 +137,53 @@ def figures_option(func: Callable[..., Any]) -> Callable[..., Any]:
                         "page plots the same curves; same as --set output.figures=true).")(wrapper)
 
 
+#: room (bytes) a path given for an output folder must leave for the names of the files written in it (a name of
+#: up to 100 characters, a suffix such as ``-kit-assembly.dxf`` and a temporary's ``.<name>.<pid>.tmp``)
+FILE_NAME_ROOM = 160
+
+
+def too_long(path: Path) -> str | None:
+    """Why the file system cannot hold ``path`` (a name in it longer than the file system's limit, or the whole path
+    longer than its limit less :data:`FILE_NAME_ROOM`), or None; the limits are those of the nearest folder of the
+    path that exists (255 and 4096 bytes where the system does not say)."""
+    base = next((p for p in (path.absolute(), *path.absolute().parents) if _exists(p)), Path(path.anchor or "."))
+    name_max, path_max = (_limit(base, key, default) for key, default in (("PC_NAME_MAX", 255), ("PC_PATH_MAX", 4096)))
+    for part in path.parts:
+        if len(os.fsencode(part)) > name_max:
+            return (f"a name of {len(os.fsencode(part))} bytes ({part[:24]}...) is longer than the file system allows "
+                    f"({name_max})")
+    size = len(os.fsencode(str(path.absolute())))
+    if size > path_max - FILE_NAME_ROOM:
+        return (f"the path is {size} bytes long: the file system allows {path_max}, less {FILE_NAME_ROOM} for the "
+                "names of the files in it")
+    return None
+
+
+def _exists(path: Path) -> bool:
+    """Whether ``path`` exists; False for a path the system cannot even look up (a name too long)."""
+    try:
+        return path.exists() or path.is_symlink()
+    except OSError:
+        return False
+
+
+def _limit(folder: Path, key: str, default: int) -> int:
+    try:
+        return int(os.pathconf(folder, key))
+    except (OSError, ValueError, AttributeError):       # no such limit here, or no pathconf (Windows)
+        return default
+
+
 def _output_folder(ctx: click.Context, param: click.Parameter, value: Path | None) -> Path | None:
-    """Check ``-o`` before any work: a folder, or one that can be made (no file where a folder must be)."""
+    """Check ``-o`` before any work: a folder, or one that can be made (no file where a folder must be, no name
+    longer than the file system allows)."""
     if value is None:
         return value
+    why = too_long(value)
+    if why is not None:
+        raise click.BadParameter(f"cannot create output folder: {why}", ctx, param)
     for folder in (value, *value.parents):
-        if folder.exists() or folder.is_symlink():
+        if _exists(folder):
             if not folder.is_dir():
                 raise click.BadParameter(f"cannot create output folder {value}: Not a directory ({folder} is a file)",
                                          ctx, param)
@@ -236,6 +277,9 @@ def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
                 click.echo(f"{name:<20} {what.splitlines()[0]}")
             return
         path = output if output is not None else Path(f"{kind}.toml")
+        why = too_long(path)
+        if why is not None:
+            raise SpecError(f"cannot write {path.name[:24]}: {why}", "--output")
         if not re.match(NAME_PATTERN, path.stem):
             raise SpecError(f"{path.stem!r} cannot name a template: letters, digits, '.', '_' and '-'", "--output")
         text = _named(starter)(kind, path.stem)
