@@ -41,15 +41,53 @@ def echo_written(files: Mapping[str, str], directory: Path, warnings: Iterable[s
         click.echo(f"wrote {directory / name}")
 
 
+#: the exit status of a command whose output's reader went away (``camgen ... | head``): 128 + SIGPIPE, what the
+#: shell reports for a tool that signal ends
+CLOSED_PIPE_STATUS = 141
+
+
+def _stdout_to_devnull() -> None:
+    """Point the standard output at the null device, so that the interpreter's last flush of what is left in its
+    buffer finds no closed pipe (Python's advice: the signal module's "Note on SIGPIPE")."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):        # no descriptor (a test runner's stream): nothing to flush
+        pass
+
+
+def closed_pipe() -> None:
+    """The reader of the standard output went away: end quietly, as a Unix tool does, with
+    :data:`CLOSED_PIPE_STATUS` and no message."""
+    _stdout_to_devnull()
+    sys.exit(CLOSED_PIPE_STATUS)
+
+
+def _flushed() -> bool:
+    """Flush the standard output; False (and it pointed at the null device) where its reader went away."""
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _stdout_to_devnull()
+        return False
+    return True
+
+
 def user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
     """Turn the project's errors, and the operating system's (a folder that cannot be written), into
-    ``error: <one line>`` and exit code 2."""
+    ``error: <one line>`` and exit code 2; a closed standard output (``| head``) ends the command quietly
+    (:func:`closed_pipe`)."""
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
             return func(*args, **kwargs)
         except CamgenError as exc:
             fail(str(exc))
+        except BrokenPipeError as exc:
+            if exc.filename is not None:                 # a file's, not the standard output's
+                fail(f"{exc.filename}: {exc.strerror or exc}")
+            closed_pipe()
         except OSError as exc:
             where = f"{exc.filename}: " if exc.filename else ""
             fail(f"{where}{exc.strerror or exc}")
@@ -94,14 +132,25 @@ class Commands(click.Group):
         _freeze_at_exit()
         kwargs["standalone_mode"] = False
         try:
-            result = super().main(*args, **kwargs)
-        except click.exceptions.Exit as exc:          # --help, --version
-            sys.exit(exc.exit_code)
-        except click.ClickException as exc:
-            fail(exc.format_message())
-        except click.exceptions.Abort:
-            fail("aborted")
-        sys.exit(result if isinstance(result, int) else 0)
+            try:
+                result = super().main(*args, **kwargs)
+                code = result if isinstance(result, int) else 0
+            except click.exceptions.Exit as exc:          # --help, --version
+                code = exc.exit_code
+            except click.ClickException as exc:
+                fail(exc.format_message())
+            except click.exceptions.Abort:
+                fail("aborted")
+        except SystemExit:
+            if isinstance(sys.stdout, click.utils.PacifyFlushWrapper):   # click met the closed pipe (printing help)
+                closed_pipe()
+            _flushed()                                    # an error's exit: its status stands, whatever the pipe
+            raise
+        except BrokenPipeError:                           # the error's own line met a closed pipe (2>&1 | head)
+            closed_pipe()
+        if not _flushed():                                # what is printed is written here at the latest
+            closed_pipe()
+        sys.exit(code)
 
 
 def _apply(func: Callable[..., Any], decorators: tuple) -> Callable[..., Any]:
