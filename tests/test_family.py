@@ -113,12 +113,14 @@ def test_an_interrupted_run_resumes_without_rebuilding_finished_members(tmp_path
     stamps = {p: (p / f"{p.name}.dxf").stat().st_mtime_ns for p in done}
     (done[1] / ".inputs").unlink()                    # as if the run was stopped before this member finished
     result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
-    assert result.exit_code == 0 and "(2 already there)" in result.output
+    assert result.exit_code == 0 and "3 members: 1 built, 0 failed, 2 already there;" in result.output, result.output
     assert (done[0] / f"{done[0].name}.dxf").stat().st_mtime_ns == stamps[done[0]]
     assert (done[2] / f"{done[2].name}.dxf").stat().st_mtime_ns == stamps[done[2]]
     assert (done[1] / ".inputs").exists()
     leftovers = [p for p in out.rglob(".*.tmp")]
     assert leftovers == []                            # no half-written file anywhere
+    again = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert again.exit_code == 0 and "3 members: 0 built, 3 already there;" in again.output, again.output
 
 
 def test_changed_inputs_rebuild(tmp_path):
@@ -127,7 +129,7 @@ def test_changed_inputs_rebuild(tmp_path):
     CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
     path.write_text(path.read_text().replace('formats = ["json"]', 'formats = ["json"]\ntolerance = 0.005'))
     result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
-    assert "(0 already there)" in result.output
+    assert "2 members: 2 built, 0 failed; summary" in result.output, result.output
 
 
 def test_member_names_errors_for_collisions():
@@ -160,7 +162,7 @@ def test_resume_rebuilds_a_member_whose_file_is_missing_or_damaged(tmp_path):
     (second / "row.json").write_text("{not json")               # a damaged row
     (third / f".{third.name}.dxf.4242.tmp").write_text("half")  # a killed run's temporary file
     result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
-    assert result.exit_code == 0 and "(1 already there)" in result.output, result.output
+    assert result.exit_code == 0 and "3 members: 2 built, 0 failed, 1 already there;" in result.output, result.output
     assert _files(out) == clean                                  # byte for byte what a clean run makes
 
 

@@ -349,10 +349,14 @@ def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
 
 def report_family(rows: list[dict], output: Path) -> None:
     """Print a family run's outcome: counts, where the summary is, and each failure with its reason."""
-    ok = sum(r["status"] == "ok" for r in rows)
-    reused = sum(bool(r.get("reused")) for r in rows)
-    click.echo(f"{len(rows)} members: {ok} built, {len(rows) - ok} failed ({reused} already there); "
-               f"summary in {output / 'summary.csv'}")
+    fresh = [r for r in rows if not r.get("reused")]
+    built = sum(r["status"] == "ok" for r in fresh)
+    reused = len(rows) - len(fresh)
+    before = sum(r["status"] != "ok" for r in rows if r.get("reused"))
+    counts = [f"{built} built"] + ([f"{len(fresh) - built} failed"] if fresh else [])
+    if reused:
+        counts.append(f"{reused} already there" + (f" ({before} of them failed)" if before else ""))
+    click.echo(f"{len(rows)} members: {', '.join(counts)}; summary in {output / 'summary.csv'}")
     for r in rows:
         if r["status"] != "ok":
             click.echo(f"failed {r['name']}: {r['error']}")
