@@ -448,6 +448,24 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
     return validate(CamSpec, raw)
 
 
+#: what a family's ``[sheet]`` nests, for messages
+_NESTED = "a family's [sheet] nests disc, plate and grooved cams"
+
+
+def sheet_refusal(spec: CamSpec | GenevaSpec) -> str | None:
+    """Why a family's ``[sheet]`` cannot nest this member's cut part, or None where the member writes one
+    (``<name>.dxf``: a disc, plate or grooved cam with "dxf" in its formats)."""
+    if not isinstance(spec, CamSpec):
+        return f"a Geneva drive's wheel, lock and crank are nested on its own <name>-sheet.dxf; {_NESTED}"
+    if spec.cam.kind == "conjugate":
+        return f"a conjugate pair's two cams are nested on its own <name>-sheet.dxf; {_NESTED}"
+    if spec.cam.kind == "barrel":
+        return f"a barrel cam is printed: its DXF is a developed template, not a part to cut; {_NESTED}"
+    if "dxf" not in spec.output.formats:
+        return 'it writes no cut file to nest: add "dxf" to output.formats'
+    return None
+
+
 def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:
     """Read a TOML cam (or Geneva) template (and its ``base``), merge ``key=value`` overrides, validate."""
     raw = read_template(path, overrides)

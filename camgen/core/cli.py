@@ -277,17 +277,19 @@ def _named(name: str) -> Any:
     return getattr(importlib.import_module(module), attr)
 
 
-def add_family(group: click.Group, validate: str, build_member: str, what: str) -> None:
+def add_family(group: click.Group, validate: str, build_member: str, what: str, nestable: str | None = None) -> None:
     """Give ``group`` a ``family TEMPLATE -o DIR [--jobs N] [--scheduler ADDRESS]`` command; ``validate`` (raw
-    template -> spec) and ``build_member`` (raw template, folder -> summary row) are ``"module:function"``."""
+    template -> spec), ``build_member`` (raw template, folder -> summary row) and ``nestable`` (spec -> why a
+    family's ``[sheet]`` cannot nest the member's cut part, or None; no name: the product's families take no
+    ``[sheet]``) are ``"module:function"``."""
     @group.command(name="family", help=what)
     @family_options
     @user_errors
     def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
         from camgen.core.family import build_family
 
-        report_family(build_family(template, output, _named(validate), _named(build_member), jobs, scheduler),
-                      output)
+        report_family(build_family(template, output, _named(validate), _named(build_member), jobs, scheduler,
+                                   _named(nestable) if nestable is not None else None), output)
 
 
 def add_bench(group: click.Group, run: str, default: Path, what: str) -> None:

@@ -362,12 +362,18 @@ def family_page(title: str, rows: list[dict], root: str | Path, keys: list[str])
 
 
 def build_family(template: str | Path, root: str | Path, validate: Callable[[dict], Any], builder: Builder,
-                 jobs: int = 1, scheduler: str | None = None) -> list[dict]:
+                 jobs: int = 1, scheduler: str | None = None,
+                 nestable: Callable[[Any], str | None] | None = None) -> list[dict]:
     """Everything ``family`` does: expand, validate every member, build (or resume), write the summary, and with a
-    ``[sheet]`` table the members' cut parts nested on sheets (:func:`write_family_sheet`)."""
+    ``[sheet]`` table the members' cut parts nested on sheets (:func:`write_family_sheet`). ``nestable`` (a member's
+    spec -> why the sheet cannot nest its cut part, None where it can) is checked for every member before any is
+    built (see :func:`check_sheet`)."""
     raw, sweep, table = split_family(read_template(template))
     items = members(raw, sweep)
-    figures = _figures_asked(check_all(items, validate))
+    specs = check_all(items, validate)
+    if table is not None:
+        check_sheet(items, specs, nestable)
+    figures = _figures_asked(specs)
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
     keys = [k for k, _ in items[0].values]
     title = f"{raw.get('name')}: {len(rows)} members"
@@ -386,6 +392,19 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
 
 #: the family template's table of its cut sheet
 SHEET = "sheet"
+
+
+def check_sheet(items: list[Member], specs: list[Any], nestable: Callable[[Any], str | None] | None) -> None:
+    """Before any member is built: refuse, naming ``sheet``, a ``[sheet]`` table whose members do not each write one
+    cut part ``<member>.dxf`` to nest (``nestable``: a spec -> why not, None where it does; None for a product whose
+    members nest their parts on sheets of their own)."""
+    if nestable is None:
+        raise SpecError("these members nest their parts on sheets of their own (parts.sheet); a family's [sheet] "
+                        "table nests camgen's cams", SHEET)
+    for member, spec in zip(items, specs, strict=True):
+        why = nestable(spec)
+        if why is not None:
+            raise SpecError(f"member {member.name}: {why}", SHEET)
 
 
 class SheetTable(Model):
