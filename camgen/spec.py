@@ -19,7 +19,7 @@ from pydantic import Field, field_validator, model_validator
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
 from camgen.core.errors import SpecError
-from camgen.core.features import key_for
+from camgen.core.features import key_for, web_refusal
 from camgen.core.reading import read_regular
 from camgen.core.spec import CutOutputTable
 from camgen.core.kit import CamKitTable, check_cam_kit
@@ -404,6 +404,9 @@ class CamSpec(Model):
         if hub.keyway and self.output.kerf >= (key := key_for(self.cam.bore)[0]):
             raise ValueError(f"output.kerf: must be < {key:g} mm with hub.keyway, the width of the keyway of a "
                              f"{self.cam.bore:g} mm bore, which a wider kerf burns away (got {self.output.kerf:g})")
+        if hub.bolt_holes and (why := web_refusal(self.cam.bore, hub.keyway, hub.bolt_circle, hub.bolt_holes,
+                                                  hub.bolt_hole_diameter, self.output.clearance)) is not None:
+            raise why
         if hub.boss_diameter and hub.boss_diameter <= self.cam.bore:
             raise ValueError(f"hub.boss_diameter: must be larger than the bore ({self.cam.bore:g} mm)")
         if self.follower.oscillating:
