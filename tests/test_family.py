@@ -132,6 +132,19 @@ def test_changed_inputs_rebuild(tmp_path):
     assert "2 members: 2 built, 0 failed; summary" in result.output, result.output
 
 
+def test_a_rerun_counts_the_failures_it_found_done_apart_from_its_own(tmp_path):
+    """The undercut member fails on the first run and is found done (failed) on the second: nothing is built."""
+    path = family_file(tmp_path, '[output]\nformats = ["json"]\n[sweep]\n"cam.base_radius" = [6.0]\n'
+                                 '[sweep.zip]\n"motion.0.angle" = [40, 120]\n"motion.1.angle" = [140, 60]\n')
+    out = tmp_path / "out"
+    first = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert first.exit_code == 0 and "2 members: 1 built, 1 failed; summary" in first.output, first.output
+    again = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert again.exit_code == 0, again.output
+    assert "2 members: 0 built, 2 already there (1 of them failed); summary" in again.output, again.output
+    assert re.search(r"^failed fam-base_radius6-0angle40-1angle140: ", again.output, re.M), again.output
+
+
 def test_member_names_errors_for_collisions():
     with pytest.raises(SpecError, match="share a name"):
         members({"name": "x"}, {"a.b": ["1", 1]})
