@@ -171,7 +171,7 @@ def coupon(output: Path | None, overrides: tuple[str, ...]) -> None:
 
 add_family(main, "camgen.spec:validate_spec", "camgen.outputs:build_member",
            "Build every member of the family a TEMPLATE's [sweep] table describes; "
-           "re-running resumes.")
+           "re-running resumes.", nestable="camgen.spec:sheet_refusal")
 
 
 add_new(main, "camgen.starters:starter", "camgen.starters:STARTERS", "camgen")

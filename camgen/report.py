@@ -107,7 +107,8 @@ def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, An
                             "min_rho_margin_mm": s.min_rho_margin_mm}
     if mesh is not None:
         report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
-                          "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles}
+                          "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles,
+                          "bodies": mesh.bodies}
     return report
 
 

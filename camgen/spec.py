@@ -19,6 +19,8 @@ from pydantic import Field, field_validator, model_validator
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
 from camgen.core.errors import SpecError
+from camgen.core.features import key_for, web_refusal
+from camgen.core.reading import read_regular
 from camgen.core.spec import CutOutputTable
 from camgen.core.kit import CamKitTable, check_cam_kit
 from camgen.contact_stress import MATERIALS
@@ -41,8 +43,7 @@ def read_table(path: Path) -> list[tuple[float, float]]:
     spaces); a first line of names, blank lines and lines starting with # are passed over. A ValueError naming
     ``file`` (and the line) otherwise."""
     try:
-        with path.open("rb") as stream:
-            raw = stream.read(MAX_TABLE_BYTES + 1)
+        raw = read_regular(path, MAX_TABLE_BYTES)       # a FIFO or a device is refused, never waited on
     except OSError as exc:
         raise ValueError(f"file: cannot read {str(path)!r} ({exc.strerror or exc})") from None
     if len(raw) > MAX_TABLE_BYTES:
@@ -400,6 +401,12 @@ class CamSpec(Model):
         if hub.keyway and not 6 < self.cam.bore <= 110:
             raise ValueError(f"hub.keyway: DIN 6885-1 keys need a bore over 6 up to 110 mm (cam.bore is "
                              f"{self.cam.bore:g} mm)")
+        if hub.keyway and self.output.kerf >= (key := key_for(self.cam.bore)[0]):
+            raise ValueError(f"output.kerf: must be < {key:g} mm with hub.keyway, the width of the keyway of a "
+                             f"{self.cam.bore:g} mm bore, which a wider kerf burns away (got {self.output.kerf:g})")
+        if hub.bolt_holes and (why := web_refusal(self.cam.bore, hub.keyway, hub.bolt_circle, hub.bolt_holes,
+                                                  hub.bolt_hole_diameter, self.output.clearance)) is not None:
+            raise why
         if hub.boss_diameter and hub.boss_diameter <= self.cam.bore:
             raise ValueError(f"hub.boss_diameter: must be larger than the bore ({self.cam.bore:g} mm)")
         if self.follower.oscillating:
@@ -442,6 +449,24 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
 
         return validate_geneva(raw)
     return validate(CamSpec, raw)
+
+
+#: what a family's ``[sheet]`` nests, for messages
+_NESTED = "a family's [sheet] nests disc, plate and grooved cams"
+
+
+def sheet_refusal(spec: CamSpec | GenevaSpec) -> str | None:
+    """Why a family's ``[sheet]`` cannot nest this member's cut part, or None where the member writes one
+    (``<name>.dxf``: a disc, plate or grooved cam with "dxf" in its formats)."""
+    if not isinstance(spec, CamSpec):
+        return f"a Geneva drive's wheel, lock and crank are nested on its own <name>-sheet.dxf; {_NESTED}"
+    if spec.cam.kind == "conjugate":
+        return f"a conjugate pair's two cams are nested on its own <name>-sheet.dxf; {_NESTED}"
+    if spec.cam.kind == "barrel":
+        return f"a barrel cam is printed: its DXF is a developed template, not a part to cut; {_NESTED}"
+    if "dxf" not in spec.output.formats:
+        return 'it writes no cut file to nest: add "dxf" to output.formats'
+    return None
 
 
 def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:

@@ -132,7 +132,7 @@ def test_set_overrides_a_field(tmp_path):
     (["motion.0.lift=-1"], "motion[0].lift: must be > 0 and <= 10000 mm"),
     (["motion.0.angle=0"], "motion[0].angle: must be > 0 and <= 360 degrees"),
     (["motion.1.angle=50"], "motion: segment angles add up to 350 degrees"),
-    (["motion.0.law='cycloid'"], "motion[0].law: must be one of"),
+    (["motion.0.law='cycloid'"], "motion[0].law: unknown value 'cycloid' (did you mean 'cycloidal'?); one of uniform"),
     (["follower.offset=50"], "follower.offset: |offset| must be < the prime radius 50 mm"),
     (["cam.colour='red'"], "cam.colour: unknown key"),
     (["motion.0.ratio=2"], "motion[0].ratio: not a parameter of law 'cycloidal'"),

@@ -113,12 +113,14 @@ def test_an_interrupted_run_resumes_without_rebuilding_finished_members(tmp_path
     stamps = {p: (p / f"{p.name}.dxf").stat().st_mtime_ns for p in done}
     (done[1] / ".inputs").unlink()                    # as if the run was stopped before this member finished
     result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
-    assert result.exit_code == 0 and "(2 already there)" in result.output
+    assert result.exit_code == 0 and "3 members: 1 built, 0 failed, 2 already there;" in result.output, result.output
     assert (done[0] / f"{done[0].name}.dxf").stat().st_mtime_ns == stamps[done[0]]
     assert (done[2] / f"{done[2].name}.dxf").stat().st_mtime_ns == stamps[done[2]]
     assert (done[1] / ".inputs").exists()
     leftovers = [p for p in out.rglob(".*.tmp")]
     assert leftovers == []                            # no half-written file anywhere
+    again = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert again.exit_code == 0 and "3 members: 0 built, 3 already there;" in again.output, again.output
 
 
 def test_changed_inputs_rebuild(tmp_path):
@@ -127,7 +129,20 @@ def test_changed_inputs_rebuild(tmp_path):
     CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
     path.write_text(path.read_text().replace('formats = ["json"]', 'formats = ["json"]\ntolerance = 0.005'))
     result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
-    assert "(0 already there)" in result.output
+    assert "2 members: 2 built, 0 failed; summary" in result.output, result.output
+
+
+def test_a_rerun_counts_the_failures_it_found_done_apart_from_its_own(tmp_path):
+    """The undercut member fails on the first run and is found done (failed) on the second: nothing is built."""
+    path = family_file(tmp_path, '[output]\nformats = ["json"]\n[sweep]\n"cam.base_radius" = [6.0]\n'
+                                 '[sweep.zip]\n"motion.0.angle" = [40, 120]\n"motion.1.angle" = [140, 60]\n')
+    out = tmp_path / "out"
+    first = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert first.exit_code == 0 and "2 members: 1 built, 1 failed; summary" in first.output, first.output
+    again = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
+    assert again.exit_code == 0, again.output
+    assert "2 members: 0 built, 2 already there (1 of them failed); summary" in again.output, again.output
+    assert re.search(r"^failed fam-base_radius6-0angle40-1angle140: ", again.output, re.M), again.output
 
 
 def test_member_names_errors_for_collisions():
@@ -160,7 +175,7 @@ def test_resume_rebuilds_a_member_whose_file_is_missing_or_damaged(tmp_path):
     (second / "row.json").write_text("{not json")               # a damaged row
     (third / f".{third.name}.dxf.4242.tmp").write_text("half")  # a killed run's temporary file
     result = CliRunner().invoke(main, ["family", str(path), "-o", str(out)])
-    assert result.exit_code == 0 and "(1 already there)" in result.output, result.output
+    assert result.exit_code == 0 and "3 members: 2 built, 0 failed, 1 already there;" in result.output, result.output
     assert _files(out) == clean                                  # byte for byte what a clean run makes
 
 

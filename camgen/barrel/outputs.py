@@ -129,7 +129,7 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
     if mesh is not None:
         report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
                           "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles,
-                          "loops": tube.loops, "radii": tube.radii + 1}
+                          "bodies": mesh.bodies, "loops": tube.loops, "radii": tube.radii + 1}
     return report
 
 

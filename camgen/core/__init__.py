@@ -5,6 +5,7 @@ It imports nothing else of camgen and nothing of linkgen (an import-linter contr
 
 * :mod:`~camgen.core.errors`: the error contract (one base class, one subclass a kind of failure);
 * :mod:`~camgen.core.options`: option strings checked against their allowed values;
+* :mod:`~camgen.core.reading`: a user's file read only when it is a regular file;
 * :mod:`~camgen.core.spec`: the pydantic base of every spec, TOML reading, ``base`` includes,
   ``--set`` overrides, one-line messages with field paths;
 * :mod:`~camgen.core.shapes`: plane geometry with exact arcs (contours, circles, open lines, text);

@@ -41,15 +41,53 @@ def echo_written(files: Mapping[str, str], directory: Path, warnings: Iterable[s
         click.echo(f"wrote {directory / name}")
 
 
+#: the exit status of a command whose output's reader went away (``camgen ... | head``): 128 + SIGPIPE, what the
+#: shell reports for a tool that signal ends
+CLOSED_PIPE_STATUS = 141
+
+
+def _stdout_to_devnull() -> None:
+    """Point the standard output at the null device, so that the interpreter's last flush of what is left in its
+    buffer finds no closed pipe (Python's advice: the signal module's "Note on SIGPIPE")."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):        # no descriptor (a test runner's stream): nothing to flush
+        pass
+
+
+def closed_pipe() -> None:
+    """The reader of the standard output went away: end quietly, as a Unix tool does, with
+    :data:`CLOSED_PIPE_STATUS` and no message."""
+    _stdout_to_devnull()
+    sys.exit(CLOSED_PIPE_STATUS)
+
+
+def _flushed() -> bool:
+    """Flush the standard output; False (and it pointed at the null device) where its reader went away."""
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:
+        _stdout_to_devnull()
+        return False
+    return True
+
+
 def user_errors(func: Callable[..., Any]) -> Callable[..., Any]:
     """Turn the project's errors, and the operating system's (a folder that cannot be written), into
-    ``error: <one line>`` and exit code 2."""
+    ``error: <one line>`` and exit code 2; a closed standard output (``| head``) ends the command quietly
+    (:func:`closed_pipe`)."""
     @functools.wraps(func)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
             return func(*args, **kwargs)
         except CamgenError as exc:
             fail(str(exc))
+        except BrokenPipeError as exc:
+            if exc.filename is not None:                 # a file's, not the standard output's
+                fail(f"{exc.filename}: {exc.strerror or exc}")
+            closed_pipe()
         except OSError as exc:
             where = f"{exc.filename}: " if exc.filename else ""
             fail(f"{where}{exc.strerror or exc}")
@@ -94,14 +132,25 @@ class Commands(click.Group):
         _freeze_at_exit()
         kwargs["standalone_mode"] = False
         try:
-            result = super().main(*args, **kwargs)
-        except click.exceptions.Exit as exc:          # --help, --version
-            sys.exit(exc.exit_code)
-        except click.ClickException as exc:
-            fail(exc.format_message())
-        except click.exceptions.Abort:
-            fail("aborted")
-        sys.exit(result if isinstance(result, int) else 0)
+            try:
+                result = super().main(*args, **kwargs)
+                code = result if isinstance(result, int) else 0
+            except click.exceptions.Exit as exc:          # --help, --version
+                code = exc.exit_code
+            except click.ClickException as exc:
+                fail(exc.format_message())
+            except click.exceptions.Abort:
+                fail("aborted")
+        except SystemExit:
+            if isinstance(sys.stdout, click.utils.PacifyFlushWrapper):   # click met the closed pipe (printing help)
+                closed_pipe()
+            _flushed()                                    # an error's exit: its status stands, whatever the pipe
+            raise
+        except BrokenPipeError:                           # the error's own line met a closed pipe (2>&1 | head)
+            closed_pipe()
+        if not _flushed():                                # what is printed is written here at the latest
+            closed_pipe()
+        sys.exit(code)
 
 
 def _apply(func: Callable[..., Any], decorators: tuple) -> Callable[..., Any]:
@@ -137,12 +186,53 @@ def figures_option(func: Callable[..., Any]) -> Callable[..., Any]:
                         "page plots the same curves; same as --set output.figures=true).")(wrapper)
 
 
+#: room (bytes) a path given for an output folder must leave for the names of the files written in it (a name of
+#: up to 100 characters, a suffix such as ``-kit-assembly.dxf`` and a temporary's ``.<name>.<pid>.tmp``)
+FILE_NAME_ROOM = 160
+
+
+def too_long(path: Path) -> str | None:
+    """Why the file system cannot hold ``path`` (a name in it longer than the file system's limit, or the whole path
+    longer than its limit less :data:`FILE_NAME_ROOM`), or None; the limits are those of the nearest folder of the
+    path that exists (255 and 4096 bytes where the system does not say)."""
+    base = next((p for p in (path.absolute(), *path.absolute().parents) if _exists(p)), Path(path.anchor or "."))
+    name_max, path_max = (_limit(base, key, default) for key, default in (("PC_NAME_MAX", 255), ("PC_PATH_MAX", 4096)))
+    for part in path.parts:
+        if len(os.fsencode(part)) > name_max:
+            return (f"a name of {len(os.fsencode(part))} bytes ({part[:24]}...) is longer than the file system allows "
+                    f"({name_max})")
+    size = len(os.fsencode(str(path.absolute())))
+    if size > path_max - FILE_NAME_ROOM:
+        return (f"the path is {size} bytes long: the file system allows {path_max}, less {FILE_NAME_ROOM} for the "
+                "names of the files in it")
+    return None
+
+
+def _exists(path: Path) -> bool:
+    """Whether ``path`` exists; False for a path the system cannot even look up (a name too long)."""
+    try:
+        return path.exists() or path.is_symlink()
+    except OSError:
+        return False
+
+
+def _limit(folder: Path, key: str, default: int) -> int:
+    try:
+        return int(os.pathconf(folder, key))
+    except (OSError, ValueError, AttributeError):       # no such limit here, or no pathconf (Windows)
+        return default
+
+
 def _output_folder(ctx: click.Context, param: click.Parameter, value: Path | None) -> Path | None:
-    """Check ``-o`` before any work: a folder, or one that can be made (no file where a folder must be)."""
+    """Check ``-o`` before any work: a folder, or one that can be made (no file where a folder must be, no name
+    longer than the file system allows)."""
     if value is None:
         return value
+    why = too_long(value)
+    if why is not None:
+        raise click.BadParameter(f"cannot create output folder: {why}", ctx, param)
     for folder in (value, *value.parents):
-        if folder.exists() or folder.is_symlink():
+        if _exists(folder):
             if not folder.is_dir():
                 raise click.BadParameter(f"cannot create output folder {value}: Not a directory ({folder} is a file)",
                                          ctx, param)
@@ -187,17 +277,19 @@ def _named(name: str) -> Any:
     return getattr(importlib.import_module(module), attr)
 
 
-def add_family(group: click.Group, validate: str, build_member: str, what: str) -> None:
+def add_family(group: click.Group, validate: str, build_member: str, what: str, nestable: str | None = None) -> None:
     """Give ``group`` a ``family TEMPLATE -o DIR [--jobs N] [--scheduler ADDRESS]`` command; ``validate`` (raw
-    template -> spec) and ``build_member`` (raw template, folder -> summary row) are ``"module:function"``."""
+    template -> spec), ``build_member`` (raw template, folder -> summary row) and ``nestable`` (spec -> why a
+    family's ``[sheet]`` cannot nest the member's cut part, or None; no name: the product's families take no
+    ``[sheet]``) are ``"module:function"``."""
     @group.command(name="family", help=what)
     @family_options
     @user_errors
     def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
         from camgen.core.family import build_family
 
-        report_family(build_family(template, output, _named(validate), _named(build_member), jobs, scheduler),
-                      output)
+        report_family(build_family(template, output, _named(validate), _named(build_member), jobs, scheduler,
+                                   _named(nestable) if nestable is not None else None), output)
 
 
 def add_bench(group: click.Group, run: str, default: Path, what: str) -> None:
@@ -236,6 +328,9 @@ def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
                 click.echo(f"{name:<20} {what.splitlines()[0]}")
             return
         path = output if output is not None else Path(f"{kind}.toml")
+        why = too_long(path)
+        if why is not None:
+            raise SpecError(f"cannot write {path.name[:24]}: {why}", "--output")
         if not re.match(NAME_PATTERN, path.stem):
             raise SpecError(f"{path.stem!r} cannot name a template: letters, digits, '.', '_' and '-'", "--output")
         text = _named(starter)(kind, path.stem)
@@ -256,10 +351,14 @@ def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
 
 def report_family(rows: list[dict], output: Path) -> None:
     """Print a family run's outcome: counts, where the summary is, and each failure with its reason."""
-    ok = sum(r["status"] == "ok" for r in rows)
-    reused = sum(bool(r.get("reused")) for r in rows)
-    click.echo(f"{len(rows)} members: {ok} built, {len(rows) - ok} failed ({reused} already there); "
-               f"summary in {output / 'summary.csv'}")
+    fresh = [r for r in rows if not r.get("reused")]
+    built = sum(r["status"] == "ok" for r in fresh)
+    reused = len(rows) - len(fresh)
+    before = sum(r["status"] != "ok" for r in rows if r.get("reused"))
+    counts = [f"{built} built"] + ([f"{len(fresh) - built} failed"] if fresh else [])
+    if reused:
+        counts.append(f"{reused} already there" + (f" ({before} of them failed)" if before else ""))
+    click.echo(f"{len(rows)} members: {', '.join(counts)}; summary in {output / 'summary.csv'}")
     for r in rows:
         if r["status"] != "ok":
             click.echo(f"failed {r['name']}: {r['error']}")

@@ -272,6 +272,12 @@ def _client(address: str) -> Any:
         raise SpecError(f"cannot reach a Dask scheduler at {address}: {exc}", "--scheduler") from None
 
 
+#: the most members a local worker is handed at once: the progress bar moves each time a batch is done (a batch of
+#: a family's eighth a worker, as before, held it still for minutes in a family of thousands), and a batch of 8
+#: keeps the cost of handing out work (under a millisecond a batch) small beside building its members
+PROGRESS_CHUNK = 8
+
+
 def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: int = 1,
                progress: bool | None = None, scheduler: str | None = None) -> list[dict]:
     """Build every member (``jobs`` local processes, or the Dask cluster at ``scheduler``), resuming where a
@@ -298,8 +304,9 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
             rows.append(_run_one_packed(args))
             bar.update()
     else:
+        chunk = max(1, min(len(work) // (8 * jobs), PROGRESS_CHUNK))
         with ProcessPoolExecutor(max_workers=jobs, initializer=_end_with_parent) as pool:
-            for row in pool.map(_run_one_packed, work, chunksize=max(1, len(work) // (8 * jobs))):
+            for row in pool.map(_run_one_packed, work, chunksize=chunk):
                 rows.append(row)
                 bar.update()
     bar.close()
@@ -355,12 +362,18 @@ def family_page(title: str, rows: list[dict], root: str | Path, keys: list[str])
 
 
 def build_family(template: str | Path, root: str | Path, validate: Callable[[dict], Any], builder: Builder,
-                 jobs: int = 1, scheduler: str | None = None) -> list[dict]:
+                 jobs: int = 1, scheduler: str | None = None,
+                 nestable: Callable[[Any], str | None] | None = None) -> list[dict]:
     """Everything ``family`` does: expand, validate every member, build (or resume), write the summary, and with a
-    ``[sheet]`` table the members' cut parts nested on sheets (:func:`write_family_sheet`)."""
+    ``[sheet]`` table the members' cut parts nested on sheets (:func:`write_family_sheet`). ``nestable`` (a member's
+    spec -> why the sheet cannot nest its cut part, None where it can) is checked for every member before any is
+    built (see :func:`check_sheet`)."""
     raw, sweep, table = split_family(read_template(template))
     items = members(raw, sweep)
-    figures = _figures_asked(check_all(items, validate))
+    specs = check_all(items, validate)
+    if table is not None:
+        check_sheet(items, specs, nestable)
+    figures = _figures_asked(specs)
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
     keys = [k for k, _ in items[0].values]
     title = f"{raw.get('name')}: {len(rows)} members"
@@ -379,6 +392,19 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
 
 #: the family template's table of its cut sheet
 SHEET = "sheet"
+
+
+def check_sheet(items: list[Member], specs: list[Any], nestable: Callable[[Any], str | None] | None) -> None:
+    """Before any member is built: refuse, naming ``sheet``, a ``[sheet]`` table whose members do not each write one
+    cut part ``<member>.dxf`` to nest (``nestable``: a spec -> why not, None where it does; None for a product whose
+    members nest their parts on sheets of their own)."""
+    if nestable is None:
+        raise SpecError("these members nest their parts on sheets of their own (parts.sheet); a family's [sheet] "
+                        "table nests camgen's cams", SHEET)
+    for member, spec in zip(items, specs, strict=True):
+        why = nestable(spec)
+        if why is not None:
+            raise SpecError(f"member {member.name}: {why}", SHEET)
 
 
 class SheetTable(Model):

@@ -21,9 +21,17 @@ def choose(value: object, options: Iterable[str], field: str) -> str:
     allowed = tuple(options)
     if isinstance(value, str) and value in allowed:
         return value
+    raise SpecError(not_one_of(value, allowed), field)
+
+
+def not_one_of(value: object, options: Iterable[str]) -> str:
+    """What to say of ``value``, which is none of ``options``: the closest of them for a string (a typo), and all of
+    them. The one message of every enumerated value, whether a registry checks it (:func:`choose`) or a template
+    model does (:func:`camgen.core.spec.validate`)."""
+    allowed = tuple(options)
     listed = ", ".join(allowed)
     if not isinstance(value, str):
-        raise SpecError(f"must be one of {listed} (got {value!r})", field)
+        return f"must be one of {listed} (got {value!r})"
     close = difflib.get_close_matches(value, allowed, n=1)
     hint = f" (did you mean {close[0]!r}?)" if close else ""
-    raise SpecError(f"unknown value {value!r}{hint}; one of {listed}", field)
+    return f"unknown value {value!r}{hint}; one of {listed}"

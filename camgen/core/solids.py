@@ -349,10 +349,14 @@ class MeshCheck:
     triangles: int
     #: no two vertices fall on one point once rounded to the single precision STL and 3MF readers load
     distinct_in_float32: bool = True
+    #: how many separate bodies the mesh holds (triangles joined through shared vertices): a part is one; two are a
+    #: part that fell apart (a ring of holes that meet cuts its hub out)
+    bodies: int = 1
 
     @property
     def ok(self) -> bool:
-        return self.watertight and self.winding_consistent and self.volume_mm3 > 0 and self.distinct_in_float32
+        return (self.watertight and self.winding_consistent and self.volume_mm3 > 0 and self.distinct_in_float32
+                and self.bodies == 1)
 
 
 def checked_mesh(part: Part, name: str | None = None) -> tuple[Mesh, MeshCheck]:
@@ -413,4 +417,28 @@ def check_mesh(mesh: Mesh) -> MeshCheck:
     single = mesh.vertices.astype(np.float32)
     ordered = single[np.lexsort(single.T[::-1])]
     distinct = not bool(np.any(np.all(ordered[1:] == ordered[:-1], axis=1)))
-    return MeshCheck(watertight, consistent, volume, len(f), distinct)
+    return MeshCheck(watertight, consistent, volume, len(f), distinct, bodies(f, len(mesh.vertices)))
+
+
+def bodies(faces: np.ndarray, count: int) -> int:
+    """How many separate bodies the triangles ``faces`` (indices into ``count`` vertices) make: sets of triangles
+    joined through shared vertices (unused vertices are no body). Vectorised union-find: each round hooks every
+    edge's larger root under its smaller, then halves every path by pointer jumping, so the rounds grow with the
+    logarithm of the mesh's size, not with its diameter."""
+    f = np.asarray(faces, dtype=np.int64)
+    if not len(f):
+        return 0
+    a, b = f.ravel(), f[:, [1, 2, 0]].ravel()
+    parent = np.arange(count)
+    while True:
+        pa, pb = parent[a], parent[b]
+        apart = pa != pb
+        if not apart.any():
+            break
+        np.minimum.at(parent, np.maximum(pa[apart], pb[apart]), np.minimum(pa[apart], pb[apart]))
+        while True:                                     # every vertex straight under its root
+            grand = parent[parent]
+            if np.array_equal(grand, parent):
+                break
+            parent = grand
+    return len(np.unique(parent[np.unique(f)]))

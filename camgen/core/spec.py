@@ -11,15 +11,18 @@ from __future__ import annotations
 
 import copy
 import difflib
+import json
 import re
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Annotated, Any, Literal, TypeVar, get_origin
+from typing import Annotated, Any, Literal, TypeVar, get_args, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from camgen.core.errors import SpecError
+from camgen.core.options import not_one_of
+from camgen.core.reading import NotRegularFile, read_regular
 from camgen.core.records import once
 from camgen.core.writers import (
     DEFAULT_FORMATS, DXF_FLAVOURS, DXF_VERSIONS, FIGURE_FORMATS, FORMATS, OPTIONAL_FORMATS, TEXT_MODES, WriteOptions,
@@ -318,14 +321,15 @@ def _depth(value: Any) -> int:
 def _read_toml(path: Path, field: str) -> dict[str, Any]:
     """One TOML file as a mapping (a UTF-8 byte-order mark allowed), or a one-line error naming ``field``."""
     try:
-        with path.open("rb") as stream:
-            data = stream.read(MAX_TEMPLATE_BYTES + 1)
+        data = read_regular(path, MAX_TEMPLATE_BYTES)
     except FileNotFoundError:
         raise SpecError(f"no such file: {path}", field) from None
     except IsADirectoryError:
         raise SpecError(f"{path} is a folder, not a template file", field) from None
+    except NotRegularFile as exc:
+        raise SpecError(f"{path} is {exc.strerror}; a template is a TOML file", field) from None
     except OSError as exc:
-        raise SpecError(f"cannot read {path}: {exc.strerror}", field) from None
+        raise SpecError(f"cannot read {path}: {exc.strerror or exc}", field) from None
     if len(data) > MAX_TEMPLATE_BYTES:
         raise SpecError(f"{path} is larger than {MAX_TEMPLATE_BYTES // 1000} kB; a template is a small TOML file",
                         field)
@@ -390,6 +394,73 @@ def _unwrap(annotation: Any) -> Any:
             return inner
         queue.extend(getattr(inner, "__args__", ()))
     return annotation
+
+
+def _literals(annotation: Any) -> tuple[str, ...]:
+    """The strings a field's ``Literal`` allows (inside ``Optional``, lists and tuples), in their order."""
+    out: list[str] = []
+    queue = [annotation]
+    while queue:
+        inner = queue.pop(0)
+        if get_origin(inner) is Literal:
+            out += [a for a in get_args(inner) if isinstance(a, str) and a not in out]
+        else:
+            queue.extend(getattr(inner, "__args__", ()))
+    return tuple(out)
+
+
+def _list_spelling(loc: tuple, info: Any, given: Any) -> str:
+    """How a list-valued field at ``loc`` is written, in a template and with ``--set`` (whose shell needs the quotes),
+    for a user who gave ``given``: the value itself in brackets where the list takes it as an item, else the field's
+    default, else ``[...]``; just ``[...]`` for a list inside a list."""
+    shape = _list_shape(info.annotation) if info is not None else None
+    if shape is None or not loc or not isinstance(loc[-1], str):
+        return "[...]"
+    variable, items = shape
+    default = info.default if isinstance(info.default, (list, tuple)) and info.default else None
+    fits = _plain(given) and items is not None and (items == () or given in items)
+    if variable and fits:
+        example = _toml([given])
+    elif default is not None:
+        example = _toml(default)
+    elif fits:
+        example = f"[{_toml(given)}, ...]"
+    else:
+        example = "[...]"
+    return f"{loc[-1]} = {example} in the template, --set '{_path(loc)}={example}' on the command line"
+
+
+def _list_shape(annotation: Any) -> tuple[bool, tuple[str, ...] | None] | None:
+    """For the first list or tuple a field's annotation holds (inside ``Optional``): whether it takes any number of
+    items, and what its items may be: the strings of a ``Literal``, () for any plain value (a number, a string, true
+    or false), None for lists or tables; None for no list at all."""
+    queue = [annotation]
+    while queue:
+        inner = queue.pop(0)
+        origin, args = get_origin(inner), get_args(inner)
+        if origin in (list, tuple):
+            variable = origin is list or (len(args) == 2 and args[1] is Ellipsis)
+            item = args[0] if args else Any
+            nested = get_origin(item) in (list, tuple, dict) or (isinstance(item, type) and issubclass(item, BaseModel))
+            return variable, None if nested else _literals(item)
+        queue.extend(args)
+    return None
+
+
+def _plain(value: Any) -> bool:
+    """Whether ``value`` is one plain TOML value (a finite number, a string, true or false)."""
+    return isinstance(value, (str, bool, int)) or (isinstance(value, float) and value == value and abs(value) < 1e308)
+
+
+def _toml(value: Any) -> str:
+    """``value`` (plain values and lists of them) as TOML text."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml(v) for v in value) + "]"
+    if isinstance(value, float):
+        return f"{value:g}" if value == int(value) and abs(value) < 1e15 else repr(value)
+    return json.dumps(value) if isinstance(value, str) else str(value)
 
 
 def _keyed(annotation: Any) -> bool:
@@ -473,11 +544,12 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
         hint = f" (did you mean {close[0]!r}?)" if close else ""
         msg = f"unknown key{hint}; known keys here: {', '.join(known)}"
     elif kind == "literal_error":
-        msg = f"must be one of {ctx.get('expected')}{got}"
+        allowed = _literals(info.annotation) if info is not None else ()
+        msg = not_one_of(given, allowed) if allowed else f"must be one of {ctx.get('expected')}{got}"
     elif kind in ("float_type", "float_parsing", "int_type", "int_parsing", "int_from_float"):
         msg = f"must be a {'whole ' if kind.startswith('int') else ''}number{' of ' + unit if unit else ''}{got}"
     elif kind in ("tuple_type", "list_type"):
-        msg = f"must be a list, e.g. [...]{got}"
+        msg = f"must be a list, e.g. {_list_spelling(loc, info, given)}{got}"
     elif kind in ("model_type", "model_attributes_type", "dict_type"):
         msg = f"must be a table of keys, e.g. {{...}}{got}"
     elif kind == "too_short":

@@ -36,7 +36,7 @@ def _solids(design: GenevaDesign) -> dict[str, Any]:
         if not check.ok:
             raise ExportError(f"{mesh.name}: the mesh is not a closed outward solid ({check})")
         out[name] = (mesh, {"watertight": check.watertight, "winding_consistent": check.winding_consistent,
-                            "volume_mm3": check.volume_mm3, "triangles": check.triangles,
+                            "volume_mm3": check.volume_mm3, "triangles": check.triangles, "bodies": check.bodies,
                             **volume_check(parts, check.volume_mm3)})
     return out
 

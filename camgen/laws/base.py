@@ -44,6 +44,12 @@ class Law(ABC):
         right is returned; evaluate just below a breakpoint for the left limit.
         """
 
+    def magnitude_bounds(self) -> np.ndarray | None:
+        """Upper bounds on the magnitudes of f and its first three derivatives over [0, 1] that the law's
+        coefficients give at once (a B-spline's lie within its coefficients' range), or None for a law that has none
+        (:func:`bounded` then samples it)."""
+        return None
+
     @property
     def breakpoints(self) -> tuple[float, ...]:
         """Interior values of u where the law changes piece (and a derivative may jump)."""
@@ -95,6 +101,39 @@ class Law(ABC):
         if 2 in orders:
             return ["j"]
         return []
+
+
+#: the largest magnitude (normalised: a lift and an angle of 1) a law made from a user's numbers (a polynomial's
+#: conditions, a spline's points) may reach in f or any of its first three derivatives anywhere on [0, 1]. A rise
+#: from 0 to 1 needs a few units (cycloidal: 1, 2, 2 pi, 4 pi^2; a degree-24 polynomial with twelve derivatives
+#: fixed at each end: 1, 4, 24, 364); far below this bound a cam can no longer be drawn (its outline would need
+#: more vertices than a file may hold), and near 1e150 the squares in its geometry overflow
+MAX_NORMALISED = 1e12
+#: the names of f and its first three derivatives in messages
+ORDER_NAMES = ("displacement", "velocity", "acceleration", "jerk")
+#: grid points on [0, 1] the bound is checked at (with each law's own points of interest)
+_BOUND_GRID = np.linspace(0.0, 1.0, 4097)
+
+
+def bounded(law: Law, field: str, hint: str, at: ArrayLike = ()) -> Law:
+    """``law``, if f and its first three derivatives stay within :data:`MAX_NORMALISED` over [0, 1]: certainly, by
+    the law's :meth:`~Law.magnitude_bounds`, or else as sampled on a grid of 4097 points, at ``at`` (the points a
+    law made from data passes through, where it bends most) and just below each breakpoint; otherwise a
+    :class:`SpecError` naming ``field``, ending with ``hint`` (what to change)."""
+    bounds = law.magnitude_bounds()
+    if bounds is not None and bool(np.all(np.asarray(bounds) <= MAX_NORMALISED)):
+        return law                                      # certain, and without evaluating the law
+    u = np.concatenate([_BOUND_GRID, np.asarray(at, dtype=float).ravel(), [left_of(b) for b in law.breakpoints]])
+    with np.errstate(all="ignore"):                     # an overflow is what is looked for, not to be warned of
+        d = np.asarray(law.derivatives(np.clip(u, 0.0, 1.0)), dtype=float)
+        size = np.where(np.isfinite(d), np.abs(d), np.inf).max(axis=1)
+    over = np.flatnonzero(size > MAX_NORMALISED)
+    if not over.size:
+        return law
+    order = int(over[0])
+    reach = "overflows" if not np.isfinite(size[order]) else f"reaches {size[order]:.3g}"
+    raise SpecError(f"the law's {ORDER_NAMES[order]} {reach}; it must stay within {MAX_NORMALISED:g} in normalised "
+                    f"units (for a lift and an angle of 1): {hint}", field)
 
 
 def as_array(u: ArrayLike) -> np.ndarray:

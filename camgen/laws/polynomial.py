@@ -16,7 +16,7 @@ from numpy.polynomial import Chebyshev, Polynomial
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.laws.base import Law, as_array, rows
+from camgen.laws.base import Law, as_array, bounded, rows
 
 #: most derivative orders a boundary condition may name
 MAX_ORDER = 25
@@ -67,6 +67,14 @@ class PolynomialLaw(Law):
     @property
     def degree(self) -> int:
         return self.series.degree()
+
+    def magnitude_bounds(self) -> np.ndarray:
+        """Bounds on the magnitudes of f and its first three derivatives over [0, 1] from their coefficients: the
+        largest in the Bernstein basis (its functions are positive and add up to 1), the sum of their magnitudes in
+        the Chebyshev basis (each function within [-1, 1] on its window) and in powers of u (u in [0, 1])."""
+        with np.errstate(all="ignore"):
+            return np.array([np.abs(d.coef).max() if isinstance(d, Bernstein) else np.abs(d.coef).sum()
+                             for d in self._derivs])
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         u = as_array(u)
@@ -173,7 +181,9 @@ def from_conditions(conditions: Sequence[Sequence[float]], degree: int | None = 
 
 
 def _starts_and_ends(law: PolynomialLaw) -> PolynomialLaw:
-    """``law``, if it rises from f(0) = 0 to f(1) = 1; otherwise an error naming ``conditions``."""
+    """``law``, if its values stay bounded (:func:`~camgen.laws.base.bounded`) and it rises from f(0) = 0 to
+    f(1) = 1; otherwise an error naming ``conditions``."""
+    bounded(law, "conditions", "give values of the size a rise from 0 to 1 has")
     ends = law.derivatives(np.array([0.0, 1.0]))[0]
     if abs(ends[0]) > 1e-9 or abs(ends[1] - 1.0) > 1e-9:
         raise SpecError(f"a rise law must go from f(0) = 0 to f(1) = 1 (these give {ends[0]:.6g} and {ends[1]:.6g}); "

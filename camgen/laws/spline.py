@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.laws.base import Law, as_array, pairs
+from camgen.laws.base import Law, as_array, bounded, pairs
 
 ENDS = {"dwell": ([(1, 0.0), (2, 0.0)], [(1, 0.0), (2, 0.0)]),
         "natural": ([(3, 0.0), (4, 0.0)], [(3, 0.0), (4, 0.0)])}
@@ -46,8 +46,21 @@ class SplineLaw(Law):
             raise SpecError(f"u must increase strictly (entry {i}: {u[i]} after {u[i - 1]})", "points")
         if self.ends not in ENDS:
             raise SpecError(f"must be 'dwell' or 'natural' (got {self.ends!r})", "ends")
-        spline = make_interp_spline(u, f, k=5, bc_type=ENDS[self.ends])
+        try:
+            with np.errstate(all="ignore"):
+                spline = make_interp_spline(u, f, k=5, bc_type=ENDS[self.ends])
+        except (ValueError, np.linalg.LinAlgError):     # points so close that the fit's system overflows
+            raise SpecError(f"no spline through these points: the closest lie {float(np.diff(u).min()):.3g} apart "
+                            "in u; keep them further apart", "points") from None
         object.__setattr__(self, "_spline", tuple(spline.derivative(k) if k else spline for k in range(4)))
+        bounded(self, "points", "keep the points' f near 0 to 1 and their u further apart",
+                np.concatenate([u, (u[1:] + u[:-1]) / 2]))
+
+    def magnitude_bounds(self) -> np.ndarray:
+        """The largest coefficient of the spline and of each of its first three derivatives: a B-spline lies within
+        its coefficients' range (the convex hull property), so each bounds the magnitude over [0, 1]."""
+        with np.errstate(all="ignore"):
+            return np.array([np.abs(d.c).max() for d in self._spline])
 
     def derivatives(self, u: ArrayLike) -> np.ndarray:
         u = as_array(u)
