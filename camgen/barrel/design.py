@@ -101,8 +101,10 @@ class BarrelDesign:
 
     def with_solid(self, phase: float = 0.0) -> "BarrelDesign":
         """The same design with the groove's cutter made (:func:`camgen.barrel.solid.groove_tube`, its loops
-        ``phase`` of a step round). Refused (:class:`DesignError` naming output.tolerance) below ``SINGLE_STEPS``
-        steps of single precision at the cam's size (the larger of the rim's radius and the length, mm)."""
+        ``phase`` of a step round), its errors those of the files: within the tolerance once rounded to single
+        precision (a point moves by up to sqrt(3)/2 of a step). Refused (:class:`DesignError` naming
+        output.tolerance) below ``SINGLE_STEPS`` steps of single precision at the cam's size (the larger of the
+        rim's radius and the length, mm)."""
         inner, _, outer = self.radii
         size = max(outer, self.spec.cam.length)
         step = float(np.spacing(np.float32(size)))
@@ -111,10 +113,11 @@ class BarrelDesign:
                               f"{step:.3g} mm apart at its size of {size:g} mm; must be >= "
                               f"{SINGLE_STEPS * step:.3g} mm ({SINGLE_STEPS} of those steps) for the solid, up to 1 mm "
                               f"(got {self.tolerance:g}); or leave stl and 3mf out of output.formats")
+        rounding = math.sqrt(3) / 2 * step            # how far the files' single precision may move a point
         if self.rib is not None:
             return dataclasses.replace(self, tube=rib_tube(*self.rib, inner, outer, self.spec.cam.length,
-                                                           self.tolerance, phase))
-        return dataclasses.replace(self, tube=groove_tube(self.walls, inner, outer, self.tolerance, phase))
+                                                           self.tolerance, phase, rounding))
+        return dataclasses.replace(self, tube=groove_tube(self.walls, inner, outer, self.tolerance, phase, rounding))
 
     def thumbnail(self, tolerance: float) -> np.ndarray:
         """The developed groove as a closed ring (mm, points within about ``tolerance``), for a family's overview:
