@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from camgen.analysis import CamAnalysis, analyze
+from camgen.barrel.mesh import SHORTEST_STEPS
 from camgen.barrel.solid import Tube, groove_tube, rib_tube
 from camgen.barrel.walls import GrooveWalls
 from camgen.cam import Cam, build_cam
@@ -99,21 +100,29 @@ class BarrelDesign:
         """Rw = Rr + c/2 (mm): the radius the groove is cut with."""
         return self.walls.cutter
 
+    @property
+    def single_step(self) -> float:
+        """The step (mm) of single precision, which the solid's files hold, at the cam's size: the larger of the
+        rim's radius and the length."""
+        return float(np.spacing(np.float32(max(self.radii[2], self.spec.cam.length))))
+
     def with_solid(self, phase: float = 0.0) -> "BarrelDesign":
         """The same design with the groove's cutter made (:func:`camgen.barrel.solid.groove_tube`, its loops
         ``phase`` of a step round), its errors those of the files: within the tolerance once rounded to single
-        precision (a point moves by up to sqrt(3)/2 of a step). Refused (:class:`DesignError` naming
+        precision (a point moves by up to sqrt(3)/2 of a step) and its short edges collapsed (by up to
+        ``SHORTEST_STEPS`` steps, :func:`camgen.barrel.mesh.without_short_edges`). Refused (:class:`DesignError` naming
         output.tolerance) below ``SINGLE_STEPS`` steps of single precision at the cam's size (the larger of the
         rim's radius and the length, mm)."""
         inner, _, outer = self.radii
-        size = max(outer, self.spec.cam.length)
-        step = float(np.spacing(np.float32(size)))
+        size, step = max(outer, self.spec.cam.length), self.single_step
         if self.tolerance < SINGLE_STEPS * step:
             raise DesignError(f"output.tolerance: the solid's files (STL, 3MF) hold its points in single precision, "
                               f"{step:.3g} mm apart at its size of {size:g} mm; must be >= "
                               f"{SINGLE_STEPS * step:.3g} mm ({SINGLE_STEPS} of those steps) for the solid, up to 1 mm "
                               f"(got {self.tolerance:g}); or leave stl and 3mf out of output.formats")
-        rounding = math.sqrt(3) / 2 * step            # how far the files' single precision may move a point
+        # how far a point may move in the files: single precision's rounding, and the collapse of an edge shorter than
+        # SHORTEST_STEPS of its steps (camgen.barrel.mesh)
+        rounding = (math.sqrt(3) / 2 + SHORTEST_STEPS) * step
         if self.rib is not None:
             return dataclasses.replace(self, tube=rib_tube(*self.rib, inner, outer, self.spec.cam.length,
                                                            self.tolerance, phase, rounding))
