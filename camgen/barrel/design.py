@@ -49,6 +49,9 @@ from camgen.spec import CamSpec
 
 #: the layer of the developed pitch curve
 LAYER_PITCH = "PITCH"
+#: thinnest wall (mm) between the bore (as printed, with its keyway) and the groove's floor before a warning, as for
+#: a disc cam
+THIN_WALL = 2.0
 #: how many cylinders from the floor to the rim the walls are checked on
 CHECK_RADII = 9
 #: the finest tolerance of the solid, in steps of single precision (what STL and 3MF hold) at the cam's size: a
@@ -328,6 +331,10 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
         speed.update(drive_speed(spec, cam, ("lower wall", "upper wall") if rib is None else
                                  ("rib's upper wall", "rib's lower wall"), stressed))
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
+    wall = radii[0] - barrel_kind.bore_reach(spec, bore)
+    if bore and wall < THIN_WALL:
+        warnings.append(f"only {wall:.3g} mm of material between the bore and "
+                        f"{'the rib' if rib else 'the groove'}'s {'core' if rib else 'floor'}")
     limit = pressure_limit(spec)
     if pressure["floor"] > limit:
         warnings.append(f"pressure angle peaks at {pressure['floor']:.2f} degrees at the groove's floor "
