@@ -24,8 +24,10 @@ _ROUNDS = 4
 
 def _edges(faces: np.ndarray) -> np.ndarray:
     """The mesh's edges (k, 2), each once, its lower vertex first."""
-    pairs = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    return np.unique(np.sort(pairs, axis=1), axis=0)
+    pairs = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    count = int(faces.max(initial=0)) + 1
+    key = np.unique(pairs[:, 0].astype(np.int64) * count + pairs[:, 1])
+    return np.stack([key // count, key % count], axis=1)
 
 
 def _rounded(vertices: np.ndarray) -> np.ndarray:
