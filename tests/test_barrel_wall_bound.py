@@ -270,3 +270,45 @@ def test_the_intersection_check_finds_a_crossing_and_a_fold():
     assert len(self_intersections(corner, np.array([[0, 1, 2], [1, 3, 4]]))) == 1
     corner[4] = (2.0, 0.0, 0.0)
     assert len(self_intersections(corner, np.array([[0, 1, 2], [1, 3, 4]]))) == 0
+
+
+def test_the_quadratic_peak_over_a_triangle():
+    """quadratic_peak of random quadratics (seeded; their values at the corners and the edges' midpoints) against
+    the largest magnitude on a barycentric grid of 201 steps a side: never below it, and above it by no more than
+    the grid's step can hide (a quadratic's peak moves its value by at most its second rates times a step squared)."""
+    from camgen.barrel.solid import quadratic_peak
+
+    rng = np.random.default_rng(7)
+    c = rng.normal(size=(200, 6))
+    q = lambda s, t: (c[:, 0] + c[:, 1] * s + c[:, 2] * t + c[:, 3] * s * s + c[:, 4] * s * t  # noqa: E731
+                      + c[:, 5] * t * t)
+    corners = np.stack([q(0.0, 0.0), q(1.0, 0.0), q(0.0, 1.0)], axis=-1)
+    middles = np.stack([q(0.5, 0.0), q(0.5, 0.5), q(0.0, 0.5)], axis=-1)
+    peak = quadratic_peak(corners, middles)
+    i, j = np.meshgrid(np.arange(201), np.arange(201), indexing="ij")
+    keep = i + j <= 200
+    s, t = i[keep] / 200, j[keep] / 200
+    grid = np.abs(q(s[:, None], t[:, None])).max(axis=0)
+    assert np.all(peak >= grid - 1e-12)
+    assert np.all(peak - grid <= 2 * np.abs(c[:, 3:]).sum(axis=1) / 200**2 + 1e-12)
+
+
+def test_the_floor_error_is_the_floor_triangles_own():
+    """barrel.toml's cutter at 0.01 mm: its floor's triangles (every corner on the floor's cylinder, 27 mm),
+    sampled on a barycentric grid of 30 steps a side, lie inside the cylinder by at most the reported floor error
+    (less the files' rounding and the collapse allowance, which the fit adds), and by nearly as much."""
+    from camgen.barrel.mesh import SHORTEST_STEPS
+    from camgen.design import design_cam
+    from camgen.spec import load_spec
+
+    design = design_cam(load_spec(ROOT / "templates" / "barrel.toml"))
+    tube = design.with_solid().tube
+    tri = tube.vertices[tube.faces]
+    on_floor = np.all(np.abs(np.hypot(tri[..., 0], tri[..., 1]) - 27.0) < 1e-9, axis=1)
+    i, j = np.meshgrid(np.arange(31), np.arange(31), indexing="ij")
+    keep = i + j <= 30
+    bary = np.stack([i[keep], j[keep], 30 - i[keep] - j[keep]], axis=1) / 30
+    points = np.einsum("bk,tkc->tbc", bary, tri[on_floor])
+    sunk = float((27.0 - np.hypot(points[..., 0], points[..., 1])).max())
+    own = tube.floor_error_mm - (math.sqrt(3) / 2 + SHORTEST_STEPS) * design.single_step
+    assert sunk <= own + 1e-12 and sunk >= 0.98 * own, (sunk, own)
