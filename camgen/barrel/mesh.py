@@ -26,7 +26,8 @@ def _edges(faces: np.ndarray) -> np.ndarray:
     """The mesh's edges (k, 2), each once, its lower vertex first."""
     pairs = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
     count = int(faces.max(initial=0)) + 1
-    key = np.unique(pairs[:, 0].astype(np.int64) * count + pairs[:, 1])
+    key = np.sort(pairs[:, 0].astype(np.int64) * count + pairs[:, 1])
+    key = key[np.r_[True, key[1:] != key[:-1]]]                    # (numpy's unique hashes: slower here)
     return np.stack([key // count, key % count], axis=1)
 
 
@@ -48,6 +49,13 @@ def _normals(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     return np.cross(b - a, c - a)
 
 
+def _root(into: dict[int, int], vertex: int) -> int:
+    """Where ``vertex`` ends up, following ``into`` (each collapsed vertex to the one it went into)."""
+    while vertex in into:
+        vertex = into[vertex]
+    return vertex
+
+
 def without_short_edges(mesh: Mesh, shortest: float) -> Mesh | None:
     """``mesh`` with every edge shorter than ``shortest`` (mm, as single precision rounds it) collapsed into its
     earlier end and the triangles on it dropped (the mesh itself when there is none), checked: a closed, outward
@@ -57,15 +65,19 @@ def without_short_edges(mesh: Mesh, shortest: float) -> Mesh | None:
     vertices, faces = np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces)
     held = _rounded(vertices)
     before = _normals(vertices, faces)
-    keep = np.arange(len(vertices))                  # each vertex's vertex once the collapses are done
+    keep = np.arange(len(vertices))                  # the vertex each one's faces hold once collapsed
     for _ in range(_ROUNDS):
         edges = _edges(faces)
         short = edges[np.linalg.norm(held[edges[:, 0]] - held[edges[:, 1]], axis=1) < shortest]
         if not short.size:
             break
-        for low, high in short:                     # the later end (and what went into it) into the earlier
-            first, later = sorted((int(keep[low]), int(keep[high])))
-            keep[keep == later] = first
+        into: dict[int, int] = {}                   # the later end (and what went into it) into the earlier
+        for low, high in short.tolist():
+            first, later = sorted((_root(into, low), _root(into, high)))
+            if first != later:
+                into[later] = first
+        moved = np.array(sorted(into), dtype=np.int64)
+        keep[moved] = [_root(into, v) for v in moved.tolist()]
         faces = keep[faces]
         flat = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
         faces, before = faces[~flat], before[~flat]

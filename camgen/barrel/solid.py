@@ -213,14 +213,11 @@ def _fitted(loops: Any, chains: Any, deviation: Any, inner: float, cutter: float
             return Tube(verts, faces, wall[0] + rounding, floor_error + rounding, n, m)
         grow_n = grow_m = 1.0
         if wall[0] > allowed:
-            grow = 1.05 * math.sqrt(wall[0] / allowed)
-            balance = (max(wall[2], 1e-300) / max(wall[1], 1e-300)) ** 0.25   # > 1: the chords along are worse
-            balance = min(max(balance, 1 / grow), grow)
-            grow_n, grow_m = grow * balance, grow / balance
+            grow_n, grow_m = _growth(*wall, allowed)
         if floor_error > allowed and (floor == 1 or floor_along > allowed / 2):
             grow_n = max(grow_n, 1.05 * math.sqrt(floor_along / (allowed / 2)), 1.2)
-        elif floor_error > allowed and wall[0] <= allowed:
-            floor *= 2
+        elif floor_error > allowed and wall[0] <= allowed:     # the chords across the floor: as their square
+            floor = max(2 * floor, math.ceil(1.05 * floor * math.sqrt(floor_error / allowed)))
         reached = max(wall[0], floor_error) + rounding
         if grow_n > 1.0 or grow_m > 1.0:
             n, m, wall = math.ceil(n * max(grow_n, 1.0)), math.ceil(m * max(grow_m, 1.0)), None
@@ -228,6 +225,29 @@ def _fitted(loops: Any, chains: Any, deviation: Any, inner: float, cutter: float
             break
     raise DesignError(f"output.tolerance: {what} cannot be brought within {tolerance:g} mm (reached "
                       f"{reached:.3g} mm); loosen the tolerance")
+
+
+def _growth(error: float, radial: float, along: float, allowed: float) -> tuple[float, float]:
+    """By how much to multiply the loops (n) and the rings (m) to bring a wall ``error`` (mm) within ``allowed``:
+    the error taken as radial / gm^2 + along / gn^2 + twist / (gm gn) (the sagittas between rings and between loops,
+    and the rest, a quad's twist), the fewest triangles (the least gn gm) that make it ``allowed`` / 1.05 where
+    both grow (the sagittas alike, as scaled by the twist's share), else the one that must grow alone."""
+    target = allowed / 1.05
+    a, c = max(radial, 1e-6 * error), max(along, 1e-6 * error)
+    b = max(error - radial - along, 0.0)
+    u = math.sqrt(target / (2 + b / math.sqrt(a * c)))           # gm = sqrt(a) / u, gn = sqrt(c) / u
+    gm, gn = math.sqrt(a) / u, math.sqrt(c) / u
+
+    def alone(first: float, cross: float, second: float) -> float:
+        """The growth g of one step that brings first / g^2 + cross / g + second within the target."""
+        room = target - second
+        return max(1.0, 2 * first / (-cross + math.sqrt(cross * cross + 4 * first * room))) if room > 0 else 2.0
+
+    if gn < 1.0:
+        return 1.0, alone(a, b, c)
+    if gm < 1.0:
+        return alone(c, b, a), 1.0
+    return gn, gm
 
 
 def _side_loops(walls: GrooveWalls, theta: np.ndarray, inner: float, outer: float, m: int, side: int,
