@@ -55,8 +55,8 @@ THIN_WALL = 2.0
 #: how many cylinders from the floor to the rim the walls are checked on
 CHECK_RADII = 9
 #: the finest tolerance of the solid, in steps of single precision (what STL and 3MF hold) at the cam's size: a
-#: point's rounding, up to 0.87 of a step, stays under a tenth of the tolerance (and the solid's fit within some
-#: 100 s and 1.6 GB: 2.8 million triangles for barrel.toml at 3e-5 mm)
+#: point's rounding, up to 0.87 of a step, stays under a tenth of the tolerance (and the solid within some 18 s of
+#: CPU and 1.4 GB: 2.0 million triangles for barrel.toml at that limit, 3.8e-5 mm)
 SINGLE_STEPS = 10
 
 
