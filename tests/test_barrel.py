@@ -303,6 +303,18 @@ def test_bad_values_are_one_line_exit_2_nothing_written(tmp_path, change, messag
     ({"cam.pitch_radius": 6.0}, "cam.groove_depth: must be < 1.8 mm, so the groove's floor (cam.pitch_radius - "
                                 "groove_depth / 2 from the axis) stays wider than the roller there, 5.1 mm (got 6); or "
                                 "cam.pitch_radius > 8.1 mm\n"),
+    # no depth and no roller will do (the floor at 0.05 mm): the pitch radius, 9.9 / 2 + 5.1 mm at least
+    ({"cam.pitch_radius": 5.0, "cam.groove_depth": 9.9, "cam.bore": 0.0},
+     "cam.pitch_radius: must be > 10.05 mm, so the groove's floor (cam.pitch_radius - groove_depth / 2 from the axis) "
+     "holds the roller, 5.1 mm there (got 5)\n"),
+    # the floor at 3.9 mm: the smallest keyed bore, over 6 mm with a 1 mm seat, reaches past it; a plain one < 7.8
+    ({"cam.bore": 7.0, "hub.keyway": True, "cam.groove_depth": 52.2, "follower.roller_radius": 1.0},
+     "hub.keyway: no keyed bore (DIN 6885-1: over 6 mm) fits inside the groove's floor, cam.pitch_radius - "
+     "groove_depth / 2 = 3.9 mm from the axis; leave the keyway out (a plain bore must be < 7.8 mm)\n"),
+    # the floor at 2.5 mm: a clearance of 5 mm alone opens the bore past it
+    ({"cam.bore": 1.0, "output.clearance": 5.0, "cam.groove_depth": 55.0, "follower.roller_radius": 0.5},
+     "output.clearance: must be < 4 mm, so the bore as printed (its diameter grown by the clearance) stays inside "
+     "the groove's floor, cam.pitch_radius - groove_depth / 2 = 2.5 mm from the axis (got 5)\n"),
 ])
 def test_each_size_relation_names_the_field_that_alone_is_wrong(tmp_path, change, message):
     """Each refusal names a field whose allowed range, given the others, is not empty (so the one a single change put

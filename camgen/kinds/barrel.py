@@ -163,30 +163,33 @@ def _changed(spec: Any, table: str, **values: float) -> Any:
 
 
 def _check_floor(spec: Any, floor: float) -> None:
-    """The groove's floor (a rib's core) wider than the cutter there: refused naming cam.groove_depth (with the
-    pitch radius that would do), or where no depth will do (the roller as wide as the pitch cylinder),
-    follower.roller_radius."""
+    """The groove's floor (a rib's core) wider than the cutter there. Refused naming cam.groove_depth (with the pitch
+    radius that would do); where no depth will do (the roller as wide as the pitch cylinder), follower.roller_radius;
+    where no roller will do either, cam.pitch_radius."""
     cam, follower = spec.cam, spec.follower
     least = _floor_room(spec)
     if floor > least:
         return
     what = "the rib's core" if cam.barrel_form == "rib" else "the groove's floor"
+
     def fits_pitch(radius: float) -> bool:
         return radius - cam.groove_depth / 2 > _floor_room(_changed(spec, "cam", pitch_radius=radius))
-
-    if cam.pitch_radius > least:
-        pitch = _limit(fits_pitch, 2 * cam.pitch_radius + cam.groove_depth + 4 * least, cam.pitch_radius)
-        raise ValueError(f"cam.groove_depth: must be < {2 * (cam.pitch_radius - least):.6g} mm, so {what} "
-                         f"(cam.pitch_radius - groove_depth / 2 from the axis) stays wider than the roller there, "
-                         f"{least:.6g} mm (got {cam.groove_depth:g}); or cam.pitch_radius > {pitch:.6g} mm")
 
     def fits_roller(radius: float) -> bool:
         return floor > _floor_room(_changed(spec, "follower", roller_radius=radius))
 
-    most = _limit(fits_roller, 0.0, follower.roller_radius) if floor > cam.running_clearance / 2 else 0.0
-    raise ValueError(f"follower.roller_radius: must be < {most:.6g} mm, so the roller fits on {what}, "
-                     f"cam.pitch_radius - groove_depth / 2 = {floor:.6g} mm from the axis (got "
-                     f"{follower.roller_radius:g})")
+    pitch = _limit(fits_pitch, 2 * cam.pitch_radius + cam.groove_depth + 4 * least, cam.pitch_radius)
+    if cam.pitch_radius > least:
+        raise ValueError(f"cam.groove_depth: must be < {2 * (cam.pitch_radius - least):.6g} mm, so {what} "
+                         f"(cam.pitch_radius - groove_depth / 2 from the axis) stays wider than the roller there, "
+                         f"{least:.6g} mm (got {cam.groove_depth:g}); or cam.pitch_radius > {pitch:.6g} mm")
+    if fits_roller(1e-9 * follower.roller_radius):
+        most = _limit(fits_roller, 1e-9 * follower.roller_radius, follower.roller_radius)
+        raise ValueError(f"follower.roller_radius: must be < {most:.6g} mm, so the roller fits on {what}, "
+                         f"cam.pitch_radius - groove_depth / 2 = {floor:.6g} mm from the axis (got "
+                         f"{follower.roller_radius:g})")
+    raise ValueError(f"cam.pitch_radius: must be > {pitch:.6g} mm, so {what} (cam.pitch_radius - groove_depth / 2 "
+                     f"from the axis) holds the roller, {least:.6g} mm there (got {cam.pitch_radius:g})")
 
 
 def bore_reach(spec: Any, bore: float) -> float:
@@ -217,22 +220,30 @@ def _largest_bore(spec: Any, floor: float) -> tuple[float, bool]:
 
 def _check_bore(spec: Any, floor: float) -> None:
     """The bore as printed (grown by output.clearance / 2, with its keyway's seat where hub.keyway is set) inside
-    the groove's floor (a rib's core): refused naming cam.bore with the largest bore that leaves material there,
-    and the depth of groove that would. A thin wall is the design's warning."""
+    the groove's floor (a rib's core). Refused naming cam.bore with the largest bore that leaves material there, and
+    the depth of groove that would; where no bore will do, hub.keyway (no keyed bore fits) or output.clearance (the
+    clearance alone reaches the floor). A thin wall is the design's warning."""
     cam = spec.cam
     reach = bore_reach(spec, cam.bore)
     if reach < floor:
         return
     what = "the rib's core" if cam.barrel_form == "rib" else "the groove's floor"
+    where = f"{what}, cam.pitch_radius - groove_depth / 2 = {floor:.6g} mm from the axis"
     most, inclusive = _largest_bore(spec, floor)
+    plain = 2 * (floor - spec.output.clearance / 2)
+    if plain <= 0:
+        raise ValueError(f"output.clearance: must be < {2 * floor - cam.bore:.6g} mm, so the bore as printed (its "
+                         f"diameter grown by the clearance) stays inside {where} (got {spec.output.clearance:g})")
+    if spec.hub.keyway and most <= KEYS[0][0]:
+        raise ValueError(f"hub.keyway: no keyed bore (DIN 6885-1: over {KEYS[0][0]} mm) fits inside {where}; leave "
+                         f"the keyway out (a plain bore must be < {plain:.6g} mm)")
     deeper = 2 * (cam.pitch_radius - reach)
     also = (f"; or cam.groove_depth < {deeper:.6g} mm" if deeper > 0 and cam.pitch_radius - deeper / 2 >
             _floor_room(spec) else "")
     seat = ", and its keyway's seat" if spec.hub.keyway else ""
     limit = f"at most {most:.6g}" if inclusive else f"< {most:.6g}"
     raise ValueError(f"cam.bore: must be {limit} mm, so the bore (its radius grown by output.clearance / 2{seat}: "
-                     f"{reach:.6g} mm from the axis) stays inside {what}, cam.pitch_radius - groove_depth / 2 = "
-                     f"{floor:.6g} mm from the axis (got {cam.bore:g}){also}")
+                     f"{reach:.6g} mm from the axis) stays inside {where} (got {cam.bore:g}){also}")
 
 
 def rib_span(spec: Any) -> float | None:
