@@ -312,3 +312,25 @@ def test_the_floor_error_is_the_floor_triangles_own():
     sunk = float((27.0 - np.hypot(points[..., 0], points[..., 1])).max())
     own = tube.floor_error_mm - (math.sqrt(3) / 2 + SHORTEST_STEPS) * design.single_step
     assert sunk <= own + 1e-12 and sunk >= 0.98 * own, (sunk, own)
+
+
+def test_a_short_edge_is_collapsed_and_a_long_one_kept():
+    """A tetrahedron at 30 mm whose edge from vertex 0 to 1 carries a vertex ``gap`` from vertex 0: at 5e-6 mm
+    (2.6 single-precision steps, under the 4 asked for) that vertex goes into vertex 0 and the two triangles on
+    the short edge go, leaving the closed tetrahedron of 1/6 mm^3; at 1e-4 mm the mesh is kept as it is; a
+    collapse that would leave no closed solid (the short edge is a tetrahedron's own, and the bound its size)
+    is refused (None)."""
+    from camgen.barrel.mesh import shortest_edge, without_short_edges
+    from camgen.core.solids import check_mesh
+    from tests.test_barrel_tolerances import _split_edge
+
+    step = float(np.spacing(np.float32(30.0)))
+    mesh = _split_edge(5e-6)
+    assert shortest_edge(mesh) == pytest.approx(5e-6, abs=step)
+    fixed = without_short_edges(mesh, 4 * step)
+    assert fixed is not None and len(fixed.vertices) == 4 and len(fixed.faces) == 4
+    assert check_mesh(fixed).ok and check_mesh(fixed).volume_mm3 == pytest.approx(1 / 6, rel=1e-9)
+    assert shortest_edge(fixed) == pytest.approx(1.0, abs=1e-6)
+    kept = _split_edge(1e-4)
+    assert without_short_edges(kept, 4 * step) is kept
+    assert without_short_edges(fixed, 1.5) is None

@@ -81,6 +81,8 @@ def without_short_edges(mesh: Mesh, shortest: float) -> Mesh | None:
         faces = keep[faces]
         flat = (faces[:, 0] == faces[:, 1]) | (faces[:, 1] == faces[:, 2]) | (faces[:, 2] == faces[:, 0])
         faces, before = faces[~flat], before[~flat]
+        if not len(faces):
+            return None
     else:
         return None
     exact = _normals(vertices, faces)
