@@ -254,8 +254,9 @@ def test_undercut_at_the_floor_at_and_within_1e_12_of_the_limit():
 @pytest.mark.parametrize("change, message", [
     ({"cam.base_radius": 20.0}, "cam.base_radius: not used by a barrel cam (its size is cam.pitch_radius, "
                                 "cam.length and cam.groove_depth; see cam.pitch_radius)"),
-    ({"cam.groove_depth": 50.0}, "cam.groove_depth: must be < 49.8 mm, so the groove's floor stays outside the bore "
-                                 "and wider than the roller (got 50)"),
+    ({"cam.groove_depth": 50.0}, "cam.groove_depth: must be < 49.8 mm, so the groove's floor (cam.pitch_radius - "
+                                 "groove_depth / 2 from the axis) stays wider than the roller there, 5.1 mm (got 50); "
+                                 "or cam.pitch_radius > 30.1 mm"),
     ({"cam.length": 28.0}, "cam.length: must be > 30.2 mm, the follower's travel and the groove's width (got 28)"),
     ({"cam.allow_undercut": True}, "cam.allow_undercut: not used by a barrel cam"),
     ({"follower.offset": 2.0}, "follower.offset: not used by a barrel cam"),
@@ -268,6 +269,75 @@ def test_bad_values_are_one_line_exit_2_nothing_written(tmp_path, change, messag
     path = tmp_path / "barrel.toml"
     path.write_text(CONTRACT)
     assert_refused(path, change, message, tmp_path)
+
+
+#: the floor's radius 30 - 6/2 = 27 mm; the cutter's radius Rw = 5 + 0.2/2 = 5.1 mm; no printing clearance by default
+@pytest.mark.parametrize("change, message", [
+    # the bore alone past the floor: named, with the largest bore (2 x 27), not the groove's depth (< 0 mm)
+    ({"cam.bore": 60.0}, "cam.bore: must be < 54 mm, so the bore (its radius grown by output.clearance / 2: 30 mm from "
+                         "the axis) stays inside the groove's floor, cam.pitch_radius - groove_depth / 2 = 27 mm from "
+                         "the axis (got 60)\n"),
+    ({"cam.bore": 54.0}, "cam.bore: must be < 54 mm, so the bore (its radius grown by output.clearance / 2: 27 mm from "
+                         "the axis) stays inside the groove's floor, cam.pitch_radius - groove_depth / 2 = 27 mm from "
+                         "the axis (got 54); or cam.groove_depth < 6 mm\n"),
+    # as printed: 53 + 3 = 56 mm across, so 54 - 3 = 51 mm; a shallower groove, floor > 28 mm: depth < 4 mm
+    ({"cam.bore": 53.0, "output.clearance": 3.0}, "cam.bore: must be < 51 mm, so the bore (its radius grown by "
+                                                  "output.clearance / 2: 28 mm from the axis) stays inside the "
+                                                  "groove's floor, cam.pitch_radius - groove_depth / 2 = 27 mm from "
+                                                  "the axis (got 53); or cam.groove_depth < 4 mm\n"),
+    # a 50 mm bore's key (44 < d <= 50: b 14, t2 3.8) reaches 25 + 3.8 = 28.8 mm; 2 (27 - 3.8) = 46.4 mm
+    ({"cam.bore": 50.0, "hub.keyway": True}, "cam.bore: must be < 46.4 mm, so the bore (its radius grown by "
+                                             "output.clearance / 2, and its keyway's seat: 28.8 mm from the axis) "
+                                             "stays inside the groove's floor"),
+    # the floor at 25.5 mm: a 44 mm bore's key (38 < d <= 44: t2 3.3) reaches 25.3, any larger one's 22 + 3.8 > 25.5
+    ({"cam.bore": 45.0, "hub.keyway": True, "cam.groove_depth": 9.0}, "cam.bore: must be at most 44 mm, so the bore "
+                                                                      "(its radius grown by output.clearance / 2, and "
+                                                                      "its keyway's seat: 26.3 mm from the axis)"),
+    # the roller wider than the pitch cylinder: no depth will do, the roller is named (27 - 0.1)
+    ({"follower.roller_radius": 30.0}, "follower.roller_radius: must be < 26.9 mm, so the roller fits on the groove's "
+                                       "floor, cam.pitch_radius - groove_depth / 2 = 27 mm from the axis (got 30)\n"),
+    ({"cam.groove_depth": 60.0}, "cam.groove_depth: must be < 49.8 mm, so the groove's floor (cam.pitch_radius - "
+                                 "groove_depth / 2 from the axis) stays wider than the roller there, 5.1 mm (got 60); "
+                                 "or cam.pitch_radius > 35.1 mm\n"),
+    # the pitch radius made too small: the depth (the more specific size) is named, the pitch radius offered
+    ({"cam.pitch_radius": 6.0}, "cam.groove_depth: must be < 1.8 mm, so the groove's floor (cam.pitch_radius - "
+                                "groove_depth / 2 from the axis) stays wider than the roller there, 5.1 mm (got 6); or "
+                                "cam.pitch_radius > 8.1 mm\n"),
+    # no depth and no roller will do (the floor at 0.05 mm): the pitch radius, 9.9 / 2 + 5.1 mm at least
+    ({"cam.pitch_radius": 5.0, "cam.groove_depth": 9.9, "cam.bore": 0.0},
+     "cam.pitch_radius: must be > 10.05 mm, so the groove's floor (cam.pitch_radius - groove_depth / 2 from the axis) "
+     "holds the roller, 5.1 mm there (got 5)\n"),
+    # the floor at 3.9 mm: the smallest keyed bore, over 6 mm with a 1 mm seat, reaches past it; a plain one < 7.8
+    ({"cam.bore": 7.0, "hub.keyway": True, "cam.groove_depth": 52.2, "follower.roller_radius": 1.0},
+     "hub.keyway: no keyed bore (DIN 6885-1: over 6 mm) fits inside the groove's floor, cam.pitch_radius - "
+     "groove_depth / 2 = 3.9 mm from the axis; leave the keyway out (a plain bore must be < 7.8 mm)\n"),
+    # the floor at 2.5 mm: a clearance of 5 mm alone opens the bore past it
+    ({"cam.bore": 1.0, "output.clearance": 5.0, "cam.groove_depth": 55.0, "follower.roller_radius": 0.5},
+     "output.clearance: must be < 4 mm, so the bore as printed (its diameter grown by the clearance) stays inside "
+     "the groove's floor, cam.pitch_radius - groove_depth / 2 = 2.5 mm from the axis (got 5)\n"),
+])
+def test_each_size_relation_names_the_field_that_alone_is_wrong(tmp_path, change, message):
+    """Each refusal names a field whose allowed range, given the others, is not empty (so the one a single change put
+    wrong is among those it could name) and states that range in mm; a trailing newline in ``message`` means the
+    whole line."""
+    path = tmp_path / "barrel.toml"
+    path.write_text(CONTRACT)
+    assert_refused(path, change, message.rstrip("\n"), tmp_path)
+    if message.endswith("\n"):
+        args = ["build", str(path), "-o", str(tmp_path / "out")]
+        for key, value in change.items():
+            args += ["--set", f"{key}={json.dumps(value)}"]
+        assert CliRunner().invoke(main, args).output == f"error: {message.rstrip(chr(10))}\n"
+
+
+def test_a_bore_that_leaves_a_thin_wall_is_built_with_a_warning(tmp_path):
+    """A 44 mm keyed bore (seat 3.3 mm) under a floor at 25.5 mm leaves 25.5 - 22 - 3.3 = 0.2 mm: built, warned."""
+    report, _ = _build(tmp_path, "cam.bore=44", "hub.keyway=true", "cam.groove_depth=9",
+                       "output.formats=['json']")
+    assert "only 0.2 mm of material between the bore and the groove's floor" in report["warnings"]
+    (tmp_path / "plain").mkdir()
+    plain, _ = _build(tmp_path / "plain", "output.formats=['json']")
+    assert not any("material between the bore" in w for w in plain["warnings"])
 
 
 def test_required_keys():

@@ -136,6 +136,9 @@ def test_the_thinnest_rib_and_its_limit():
     ({"follower.roller_shape": "conical"}, "cam.barrel_form: a rib takes a translating-roller follower with "
                                            "cylindrical rollers"),
     ({"cam.barrel_form": "ridge"}, "cam.barrel_form: "),
+    ({"cam.bore": 56.0}, "cam.bore: must be < 54 mm, so the bore (its radius grown by output.clearance / 2: 28 mm from "
+                         "the axis) stays inside the rib's core, cam.pitch_radius - groove_depth / 2 = 27 mm from the "
+                         "axis (got 56); or cam.groove_depth < 4 mm"),
 ])
 def test_bad_rib_values_are_refused_by_name(tmp_path, change, message):
     if change.get("cam.rib_width", 0) is None:

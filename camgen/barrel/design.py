@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from camgen.analysis import CamAnalysis, analyze
+from camgen.barrel.mesh import SHORTEST_STEPS
 from camgen.barrel.solid import Tube, groove_tube, rib_tube
 from camgen.barrel.walls import GrooveWalls
 from camgen.cam import Cam, build_cam
@@ -48,11 +49,14 @@ from camgen.spec import CamSpec
 
 #: the layer of the developed pitch curve
 LAYER_PITCH = "PITCH"
+#: thinnest wall (mm) between the bore (as printed, with its keyway) and the groove's floor before a warning, as for
+#: a disc cam
+THIN_WALL = 2.0
 #: how many cylinders from the floor to the rim the walls are checked on
 CHECK_RADII = 9
 #: the finest tolerance of the solid, in steps of single precision (what STL and 3MF hold) at the cam's size: a
-#: point's rounding, up to 0.87 of a step, stays under a tenth of the tolerance (and the solid's fit within some
-#: 100 s and 1.6 GB: 2.8 million triangles for barrel.toml at 3e-5 mm)
+#: point's rounding, up to 0.87 of a step, stays under a tenth of the tolerance (and the solid within some 18 s of
+#: CPU and 1.4 GB: 2.0 million triangles for barrel.toml at that limit, 3.8e-5 mm)
 SINGLE_STEPS = 10
 
 
@@ -99,22 +103,33 @@ class BarrelDesign:
         """Rw = Rr + c/2 (mm): the radius the groove is cut with."""
         return self.walls.cutter
 
+    @property
+    def single_step(self) -> float:
+        """The step (mm) of single precision, which the solid's files hold, at the cam's size: the larger of the
+        rim's radius and the length."""
+        return float(np.spacing(np.float32(max(self.radii[2], self.spec.cam.length))))
+
     def with_solid(self, phase: float = 0.0) -> "BarrelDesign":
         """The same design with the groove's cutter made (:func:`camgen.barrel.solid.groove_tube`, its loops
-        ``phase`` of a step round). Refused (:class:`DesignError` naming output.tolerance) below ``SINGLE_STEPS``
-        steps of single precision at the cam's size (the larger of the rim's radius and the length, mm)."""
+        ``phase`` of a step round), its errors those of the files: within the tolerance once rounded to single
+        precision (a point moves by up to sqrt(3)/2 of a step) and its short edges collapsed (by up to
+        ``SHORTEST_STEPS`` steps, :func:`camgen.barrel.mesh.without_short_edges`). Refused (:class:`DesignError` naming
+        output.tolerance) below ``SINGLE_STEPS`` steps of single precision at the cam's size (the larger of the
+        rim's radius and the length, mm)."""
         inner, _, outer = self.radii
-        size = max(outer, self.spec.cam.length)
-        step = float(np.spacing(np.float32(size)))
+        size, step = max(outer, self.spec.cam.length), self.single_step
         if self.tolerance < SINGLE_STEPS * step:
             raise DesignError(f"output.tolerance: the solid's files (STL, 3MF) hold its points in single precision, "
                               f"{step:.3g} mm apart at its size of {size:g} mm; must be >= "
                               f"{SINGLE_STEPS * step:.3g} mm ({SINGLE_STEPS} of those steps) for the solid, up to 1 mm "
                               f"(got {self.tolerance:g}); or leave stl and 3mf out of output.formats")
+        # how far a point may move in the files: single precision's rounding, and the collapse of an edge shorter than
+        # SHORTEST_STEPS of its steps (camgen.barrel.mesh)
+        rounding = (math.sqrt(3) / 2 + SHORTEST_STEPS) * step
         if self.rib is not None:
             return dataclasses.replace(self, tube=rib_tube(*self.rib, inner, outer, self.spec.cam.length,
-                                                           self.tolerance, phase))
-        return dataclasses.replace(self, tube=groove_tube(self.walls, inner, outer, self.tolerance, phase))
+                                                           self.tolerance, phase, rounding))
+        return dataclasses.replace(self, tube=groove_tube(self.walls, inner, outer, self.tolerance, phase, rounding))
 
     def thumbnail(self, tolerance: float) -> np.ndarray:
         """The developed groove as a closed ring (mm, points within about ``tolerance``), for a family's overview:
@@ -316,6 +331,10 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
         speed.update(drive_speed(spec, cam, ("lower wall", "upper wall") if rib is None else
                                  ("rib's upper wall", "rib's lower wall"), stressed))
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
+    wall = radii[0] - barrel_kind.bore_reach(spec, bore)
+    if bore and wall < THIN_WALL:
+        warnings.append(f"only {wall:.3g} mm of material between the bore and "
+                        f"{'the rib' if rib else 'the groove'}'s {'core' if rib else 'floor'}")
     limit = pressure_limit(spec)
     if pressure["floor"] > limit:
         warnings.append(f"pressure angle peaks at {pressure['floor']:.2f} degrees at the groove's floor "

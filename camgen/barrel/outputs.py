@@ -19,10 +19,10 @@ from camgen.report import design_lines
 from camgen.sizing import pressure_limit
 
 
-#: where the cutter's loops start, in steps round from theta = 0, tried in turn: should the subtraction leave two
-#: vertices on one point that no edge joins (edges shorter than single precision are collapsed by
-#: :func:`camgen.core.solids.welded`), another phase moves every vertex of the cut
-SOLID_PHASES = (0.0, 0.5, 0.25)
+#: where the cutter's loops start, in steps round from theta = 0, tried in turn: should the cut leave two vertices
+#: on one point that no edge joins, or a short edge that cannot be collapsed safely
+#: (:func:`camgen.barrel.mesh.without_short_edges`), another phase moves every vertex of the cut
+SOLID_PHASES = (0.0, 0.5, 0.25, 0.75)
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:
@@ -175,17 +175,20 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
     formats, name = out.formats, design.spec.name
     mesh = check = None
     if {"stl", "3mf"} & set(formats):
+        from camgen.barrel.mesh import SHORTEST_STEPS, without_short_edges
         from camgen.core.solids import carve, check_mesh
 
-        plain = design
+        plain, shortest = design, SHORTEST_STEPS * design.single_step
         for phase in SOLID_PHASES:            # the first whose cut is a closed solid in single precision
             design = plain.with_solid(phase)
-            mesh = carve(design.blank, design.tube.vertices, design.tube.faces, name)
-            check = check_mesh(mesh)
-            if check.ok:
+            carved = carve(design.blank, design.tube.vertices, design.tube.faces, name)
+            mesh = without_short_edges(carved, shortest)
+            check = check_mesh(carved if mesh is None else mesh)
+            if mesh is not None and check.ok:
                 break
-        if not check.ok:
-            raise ExportError(f"{name}: the mesh is not a closed outward solid ({check})")
+        else:
+            raise ExportError(f"{name}: the mesh is not a closed outward solid in single precision with no edge "
+                              f"shorter than {shortest:.3g} mm ({check}); try another output.tolerance")
     report = barrel_report(design, check)
 
     def plot(kind: str) -> Any:

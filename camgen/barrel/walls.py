@@ -31,8 +31,9 @@ import numpy as np
 
 from camgen.followers.barrel import Arm, contact, translating_pose
 
-#: Newton steps of the distance from a point to the walls, and the largest step (rad)
-_NEWTON, _STEP = 30, 0.05
+#: Newton steps of the distance from a point to the walls, the largest step, and the step (rad) at which every
+#: point has settled (the distance then off by about the step squared times the cutter's radius: 1e-24 mm)
+_NEWTON, _STEP, _SETTLED = 30, 0.05, 1e-12
 
 
 @dataclass(frozen=True)
@@ -89,7 +90,7 @@ class GrooveWalls:
         """Signed distance (mm) of ``points`` (n, 3) from the groove's surface: the distance to the nearest roller
         axis less Rw (negative inside the groove). The nearest axis by Newton's method on the squared distance
         h(theta) = (r sin(phi - theta))^2 + (z - zc(theta))^2, started at the point's own angle (the roller
-        nearest a wall point stands within a few degrees of it)."""
+        nearest a wall point stands within a few degrees of it) and stopped once every point has settled."""
         points = np.asarray(points, dtype=float)
         r = np.hypot(points[:, 0], points[:, 1])
         phi = -self.sense * np.arctan2(points[:, 1], points[:, 0])
@@ -104,8 +105,10 @@ class GrooveWalls:
                 h1 = -r**2 * np.sin(2 * u) - 2 * (z - zc) * z1 + 2 * (e * r * np.cos(u) + e * e1 - e1 * r * np.sin(u))
                 h2 = 2 * r**2 * np.cos(2 * u) + 2 * z1**2 - 2 * (z - zc) * z2 + 2 * (
                     2 * r * np.cos(u) * e1 + e1**2 - r * np.sin(u) * e2 + e * r * np.sin(u) + e * e2)
-            step = np.where(h2 > 0, h1 / np.where(h2 > 0, h2, 1.0), -np.sign(h1) * _STEP)
-            theta = theta - np.clip(step, -_STEP, _STEP)
+            step = np.clip(np.where(h2 > 0, h1 / np.where(h2 > 0, h2, 1.0), -np.sign(h1) * _STEP), -_STEP, _STEP)
+            theta = theta - step
+            if float(np.abs(step).max(initial=0.0)) < _SETTLED:
+                break
         zc, _, _, e, _, _ = self.pose(np.mod(theta, 2 * math.pi))
         rho = np.sqrt((r * np.sin(phi - theta) - e) ** 2 + (z - zc) ** 2)
         if self.taper:

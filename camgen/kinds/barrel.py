@@ -11,6 +11,7 @@ import itertools
 import math
 from typing import Any
 
+from camgen.core.features import KEYS
 from camgen.followers.barrel import Arm, DevelopedRoller
 from camgen.followers.plate import PlateRoller
 from camgen.kinds.base import BARREL_KEYS, CamKind
@@ -123,16 +124,12 @@ def _check(spec: Any) -> None:
         raise ValueError(f"hub.{key}: not used by a barrel cam (it takes cam.bore and hub.keyway)")
     if spec.output.kerf:
         raise ValueError("output.kerf: a barrel cam is printed; its drawing is a developed template, not a cut file")
-    rw = cutter(spec)
     floor = cam.pitch_radius - cam.groove_depth / 2
     if follower.roller_shape == "conical" and not follower.roller_radius < cam.pitch_radius:
         raise ValueError(f"follower.roller_radius: a conical roller's must be < cam.pitch_radius = "
                          f"{cam.pitch_radius:g} mm, its apex on the cam's axis (got {follower.roller_radius:g})")
-    least = rw if not taper(spec) else (rw - taper(spec) * cam.pitch_radius) / (1 - taper(spec))
-    if not floor > max(cam.bore / 2, least):
-        raise ValueError(f"cam.groove_depth: must be < {2 * (cam.pitch_radius - max(cam.bore / 2, least)):.6g} mm, so "
-                         f"the groove's floor stays outside the bore and wider than the roller (got "
-                         f"{cam.groove_depth:g})")
+    _check_floor(spec, floor)
+    _check_bore(spec, floor)
     widest = cutter_at(spec, cam.pitch_radius + cam.groove_depth / 2)          # the groove's half-width at the rim
     if _rib(spec, widest):
         return
@@ -142,6 +139,111 @@ def _check(spec: Any) -> None:
         travel = cam.length - 2 * rest_height(spec)
         raise ValueError(f"cam.length: must be > {travel + 2 * widest:.6g} mm, the follower's travel and the groove's "
                          f"width (got {cam.length:g})")
+
+
+def _floor_room(spec: Any) -> float:
+    """The least radius (mm) of the groove's floor (a rib's core) that holds the cutter: its radius there, r0 +
+    taper r, below r: Rw for a cylindrical roller, r0 / (1 - taper) for a cone."""
+    rw, t = cutter(spec), taper(spec)
+    return rw if not t else (rw - t * spec.cam.pitch_radius) / (1 - t)
+
+
+def _limit(fits: Any, good: float, bad: float) -> float:
+    """Where ``fits`` (true at ``good``, false at ``bad``, changing once between) stops holding, to 1e-12 or so of
+    the span: the last value found on the good side."""
+    for _ in range(80):
+        mid = (good + bad) / 2
+        good, bad = (mid, bad) if fits(mid) else (good, mid)
+    return good
+
+
+def _changed(spec: Any, table: str, **values: float) -> Any:
+    """The spec with ``values`` in its ``table`` (unchecked: only to measure what they would do)."""
+    return spec.model_copy(update={table: getattr(spec, table).model_copy(update=values)})
+
+
+def _check_floor(spec: Any, floor: float) -> None:
+    """The groove's floor (a rib's core) wider than the cutter there. Refused naming cam.groove_depth (with the pitch
+    radius that would do); where no depth will do (the roller as wide as the pitch cylinder), follower.roller_radius;
+    where no roller will do either, cam.pitch_radius."""
+    cam, follower = spec.cam, spec.follower
+    least = _floor_room(spec)
+    if floor > least:
+        return
+    what = "the rib's core" if cam.barrel_form == "rib" else "the groove's floor"
+
+    def fits_pitch(radius: float) -> bool:
+        return radius - cam.groove_depth / 2 > _floor_room(_changed(spec, "cam", pitch_radius=radius))
+
+    def fits_roller(radius: float) -> bool:
+        return floor > _floor_room(_changed(spec, "follower", roller_radius=radius))
+
+    pitch = _limit(fits_pitch, 2 * cam.pitch_radius + cam.groove_depth + 4 * least, cam.pitch_radius)
+    if cam.pitch_radius > least:
+        raise ValueError(f"cam.groove_depth: must be < {2 * (cam.pitch_radius - least):.6g} mm, so {what} "
+                         f"(cam.pitch_radius - groove_depth / 2 from the axis) stays wider than the roller there, "
+                         f"{least:.6g} mm (got {cam.groove_depth:g}); or cam.pitch_radius > {pitch:.6g} mm")
+    if fits_roller(1e-9 * follower.roller_radius):
+        most = _limit(fits_roller, 1e-9 * follower.roller_radius, follower.roller_radius)
+        raise ValueError(f"follower.roller_radius: must be < {most:.6g} mm, so the roller fits on {what}, "
+                         f"cam.pitch_radius - groove_depth / 2 = {floor:.6g} mm from the axis (got "
+                         f"{follower.roller_radius:g})")
+    raise ValueError(f"cam.pitch_radius: must be > {pitch:.6g} mm, so {what} (cam.pitch_radius - groove_depth / 2 "
+                     f"from the axis) holds the roller, {least:.6g} mm there (got {cam.pitch_radius:g})")
+
+
+def bore_reach(spec: Any, bore: float) -> float:
+    """How far (mm) from the axis a bore of diameter ``bore`` reaches as printed: its radius grown by
+    output.clearance / 2, and with hub.keyway its key's seat t2 (DIN 6885-1) further; 0 for no bore."""
+    if not bore:
+        return 0.0
+    seat = 0.0
+    if spec.hub.keyway:
+        seat = next((t2 for _, high, _, t2 in KEYS if bore <= high), KEYS[-1][3])
+    return bore / 2 + spec.output.clearance / 2 + seat
+
+
+def _largest_bore(spec: Any, floor: float) -> tuple[float, bool]:
+    """The largest bore (mm) that reaches less far than ``floor`` as printed, and whether that value itself is
+    allowed (a keyed bore at the top of a key's range) or only those below it."""
+    room = floor - spec.output.clearance / 2
+    if not spec.hub.keyway:
+        return 2 * room, False
+    best = (0.0, False)
+    for low, high, _, t2 in KEYS:
+        if 2 * (room - t2) > high:
+            best = (float(high), True)
+        elif 2 * (room - t2) > low:
+            best = (2 * (room - t2), False)
+    return best
+
+
+def _check_bore(spec: Any, floor: float) -> None:
+    """The bore as printed (grown by output.clearance / 2, with its keyway's seat where hub.keyway is set) inside
+    the groove's floor (a rib's core). Refused naming cam.bore with the largest bore that leaves material there, and
+    the depth of groove that would; where no bore will do, hub.keyway (no keyed bore fits) or output.clearance (the
+    clearance alone reaches the floor). A thin wall is the design's warning."""
+    cam = spec.cam
+    reach = bore_reach(spec, cam.bore)
+    if reach < floor:
+        return
+    what = "the rib's core" if cam.barrel_form == "rib" else "the groove's floor"
+    where = f"{what}, cam.pitch_radius - groove_depth / 2 = {floor:.6g} mm from the axis"
+    most, inclusive = _largest_bore(spec, floor)
+    plain = 2 * (floor - spec.output.clearance / 2)
+    if plain <= 0:
+        raise ValueError(f"output.clearance: must be < {2 * floor - cam.bore:.6g} mm, so the bore as printed (its "
+                         f"diameter grown by the clearance) stays inside {where} (got {spec.output.clearance:g})")
+    if spec.hub.keyway and most <= KEYS[0][0]:
+        raise ValueError(f"hub.keyway: no keyed bore (DIN 6885-1: over {KEYS[0][0]} mm) fits inside {where}; leave "
+                         f"the keyway out (a plain bore must be < {plain:.6g} mm)")
+    deeper = 2 * (cam.pitch_radius - reach)
+    also = (f"; or cam.groove_depth < {deeper:.6g} mm" if deeper > 0 and cam.pitch_radius - deeper / 2 >
+            _floor_room(spec) else "")
+    seat = ", and its keyway's seat" if spec.hub.keyway else ""
+    limit = f"at most {most:.6g}" if inclusive else f"< {most:.6g}"
+    raise ValueError(f"cam.bore: must be {limit} mm, so the bore (its radius grown by output.clearance / 2{seat}: "
+                     f"{reach:.6g} mm from the axis) stays inside {where} (got {cam.bore:g}){also}")
 
 
 def rib_span(spec: Any) -> float | None:
