@@ -281,8 +281,8 @@ class LinkageBuild:
     #: crosses between the two parts it joins: a spacer fills it
     spacers: tuple[tuple[str, tuple[str, str], int, int], ...] = ()
     nesting: Nest | None = None
-    #: the placement of the first dead centre the assembly drawing shows (its layers ``DC1-...``): the parts as
-    #: assembled
+    #: the placement of the first dead centre the assembly drawing shows (its layers ``DC1-...``), or of the
+    #: motion's first pose where it shows none (a rhombus): the parts as assembled (its first pose is the one used)
     pose: Placement | None = None
     #: the pivot points: the joints that share one (over the whole motion), each one pin through all their parts
     pivots: tuple[Pivot, ...] = ()
@@ -387,4 +387,4 @@ def build_parts(layout: Layout, table: PartsTable, elephant_foot: float = 0.0) -
     spacers = spacers_of(layout.sweep, layers)
     return LinkageBuild(layout.parts, table, allowances, layers, cut, printed, nested.drawings(table.tolerance),
                         assembly(printed, layout, table.tolerance), layout.positions, spacers, nested,
-                        layout.poses[0] if layout.poses else None, pivots_of(layout.sweep, layers))
+                        layout.poses[0] if layout.poses else layout.sweep, pivots_of(layout.sweep, layers))
