@@ -168,7 +168,7 @@ def copy_text(example: Example, target: Path) -> str:
     and its comments name the copy instead of ``templates/<name>.toml`` and its files' folder ``out/<stem>/``."""
     text = example.path.read_text(encoding="utf-8")
     text = re.sub(rf"templates/{re.escape(example.name)}\.toml", target.name, text)
-    text = text.replace(f"out/{example.name}/", f"out/{target.stem}/")
+    text = re.sub(rf"out/{re.escape(example.name)}(?![\w.-])", f"out/{target.stem}", text)
     return re.sub(r'(?m)\A((?:[^\[\n][^\n]*\n|\n)*?)name = "[^"\n]*"', rf'\g<1>name = "{target.stem}"', text, count=1)
 
 
