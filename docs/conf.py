@@ -36,6 +36,7 @@ root_doc = "index"
 
 myst_enable_extensions = ["colon_fence", "deflist"]
 myst_heading_anchors = 3
+smartquotes = False                               # "disc" in a key table is TOML: straight quotes
 
 html_theme = "furo"
 html_title = f"camgen / linkgen {VERSION}"
