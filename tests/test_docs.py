@@ -105,30 +105,31 @@ def test_the_block_reader_finds_files_commands_and_code(tmp_path):
                             ("text", None, "out\n")]
 
 
-class _Rows(HTMLParser):
-    """The rows of the template-key tables of a built page: each a list of its cells' text."""
+class _Tables(HTMLParser):
+    """The template-key tables of a built page: each a list of rows, a row a list of its cells' text."""
 
     def __init__(self) -> None:
         super().__init__()
-        self.rows: list[list[str]] = []
-        self._depth = 0                                  # inside a table.template-keys
+        self.tables: list[list[list[str]]] = []
+        self._inside = False
         self._cell: list[str] | None = None
 
     def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
         classes = (dict(attrs).get("class") or "").split()
         if tag == "table" and "template-keys" in classes:
-            self._depth = 1
-        elif self._depth and tag == "tr" and "template-key" in classes:
-            self.rows.append([])
-        elif self._depth and tag == "td" and self.rows:
+            self._inside = True
+            self.tables.append([])
+        elif self._inside and tag == "tr" and "template-key" in classes:
+            self.tables[-1].append([])
+        elif self._inside and tag == "td" and self.tables[-1]:
             self._cell = []
 
     def handle_endtag(self, tag: str) -> None:
         if tag == "td" and self._cell is not None:
-            self.rows[-1].append(" ".join("".join(self._cell).split()))
+            self.tables[-1][-1].append(" ".join("".join(self._cell).split()))
             self._cell = None
         elif tag == "table":
-            self._depth = 0
+            self._inside = False
 
     def handle_data(self, data: str) -> None:
         if self._cell is not None:
@@ -216,30 +217,50 @@ def test_the_docs_build_with_warnings_as_errors(tmp_path):
 
 
 def template_reference_lists_every_key_with_its_unit_and_range(site: Path) -> None:
-    parser = _Rows()
+    """Every model's keys are one of the page's tables, row for row: type, unit, each bound and allowed value,
+    required or not, and the description, as the model's fields give them."""
+    parser = _Tables()
     parser.feed((site / "reference" / "templates.html").read_text(encoding="utf-8"))
-    rows = parser.rows
-    assert rows and all(len(row) == 6 for row in rows)          # key, type, unit, allowed, default, description
+    tables = parser.tables
+    assert tables and all(len(row) == 6 for table in tables for row in table)   # key, type, unit, allowed, ...
     models = _every_model()
     assert {"CamTable", "FollowerTable", "SegmentTable", "HubTable", "GenevaTable", "CouponTable", "SheetTable",
             "KitTable", "CamKitTable", "FourBarTable", "LinkageTable", "PartsTable", "LoadTable", "PathTask"} <= \
         {m.__name__ for m in models}
-    checked = 0
-    for model in models:
+
+    def problems(model: type, table: list[list[str]]) -> list[str]:
+        rows = {row[0].split(".")[-1]: row for row in table}
+        out = []
         for name, info in model.model_fields.items():
             if _holds_tables(info.annotation):
                 continue
+            row = rows.get(name)
             extra = info.json_schema_extra if isinstance(info.json_schema_extra, dict) else {}
-            matches = [r for r in rows if r[0].split(".")[-1] == name and r[5] == " ".join((info.description or
-                                                                                          "").split())]
-            where = f"{model.__module__}.{model.__qualname__}.{name}"
-            assert matches, f"{where} is not in the template reference"
-            for row in matches:
-                assert row[2] == extra.get("unit", ""), (where, row)
-                for bound in _expected_bounds(info) + _literal_values(info.annotation):
-                    assert bound in row[3], (where, bound, row)
-                assert row[4] == "required" if info.is_required() else row[4] != "required", (where, row)
-            checked += 1
+            if row is None:
+                out.append(f"{name}: no row")
+                continue
+            if row[2] != extra.get("unit", ""):
+                out.append(f"{name}: unit {row[2]!r}")
+            out += [f"{name}: no {b!r}" for b in _expected_bounds(info) + _literal_values(info.annotation)
+                    if b not in row[3]]
+            if (row[4] == "required") != info.is_required():
+                out.append(f"{name}: default {row[4]!r}")
+            if row[5] != " ".join((info.description or "").split()):
+                out.append(f"{name}: description {row[5]!r}")
+        return out
+
+    checked = 0
+    for model in models:
+        keys = {name for name, info in model.model_fields.items() if not _holds_tables(info.annotation)}
+        if not keys:
+            continue                                    # a model of tables only: its tables are checked
+        same = [t for t in tables if {row[0].split(".")[-1] for row in t} == keys]
+        if not same and model.__subclasses__():
+            continue                                    # a base of other tables only: theirs hold its keys
+        findings = [problems(model, t) for t in same]
+        assert any(not f for f in findings), (f"{model.__module__}.{model.__qualname__}: no table of its keys "
+                                               f"{sorted(keys)} in the template reference", findings)
+        checked += len(keys)
     assert checked > 200
 
 
@@ -256,9 +277,10 @@ def cli_reference_lists_every_command_and_option(site: Path) -> None:
             for param in command.params:
                 if isinstance(param, click.Option):
                     for opt in param.opts:
-                        assert f'id="cmdoption-{program}-{name}{opt}"' in page, f"{program} {name} {opt}"
+                        assert f'id="cmdoption-{program}-{name}-{opt.lstrip("-")}"' in page, \
+                            f"{program} {name} {opt}"
                 else:
-                    assert f'id="cmdoption-{program}-{name}-arg-{param.name.upper()}"' in page, \
+                    assert f'id="cmdoption-{program}-{name}-arg-{param.human_readable_name}"' in page, \
                         f"{program} {name} {param.name}"
 
 
