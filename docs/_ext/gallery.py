@@ -58,13 +58,25 @@ def kind_of(path: Path, command: str) -> str:
 def arguments(name: str, path: Path, program: str, command: str, folder: Path) -> list[str]:
     """The command line (after the program) that builds the template for the gallery."""
     if command == "family":
-        return ["family", str(path), "-o", str(folder), "--jobs", "1"]
+        return ["family", str(_family_template(path, program, folder)), "-o", str(folder), "--jobs", "1"]
     if command == "synthesize":
         return ["synthesize", str(path), "-o", str(folder)]
     if program == "camgen":
         return ["build", str(path), "-o", str(folder), "--set", f"output.formats={CAM_FORMATS}"]
     formats = BUILD_FORMATS if command == "build" else ANALYZE_FORMATS
     return [command, str(path), "-o", str(folder), "--set", f"output.formats={formats}"]
+
+
+def _family_template(path: Path, program: str, folder: Path) -> Path:
+    """A template beside the family's folder that is the family with its members' formats those the gallery shows
+    (a family command takes no ``--set``): its ``base`` is the bundled template."""
+    from camgen.core.spec import read_template
+
+    parts = "linkage" not in read_template(path) or "parts" in read_template(path)
+    formats = '["cut-svg","html","json"]' if parts else '["html","json","svg"]'
+    template = folder.parent / f"{folder.name}.gallery.toml"
+    template.write_text(f"base = {str(path.resolve())!r}\n\n[output]\nformats = {formats}\n", encoding="utf-8")
+    return template
 
 
 def build(name: str, path: str, program: str, command: str, folder: str) -> tuple[str, int, str]:
@@ -93,7 +105,7 @@ def shown(name: str, folder: Path) -> dict[str, Path | None]:
     return {
         "figure": _first(folder, (f"{name}-svaj.svg", f"{name}-assembly.svg", f"{name}-motion.svg",
                                   f"{name}-transmission.svg", "*-1-curve.svg", "*-1-motion.svg", "*/*-assembly.svg",
-                                  "*/*-svaj.svg")),
+                                  "*/*-svaj.svg", "*/*.svg", "*.svg")),
         "drawing": _first(folder, (f"{name}-cut.svg", f"{name}-sheet.svg", f"{name}-developed.svg", f"{name}-1-cut.svg",
                                    "*/*-cut.svg", "*/*-sheet.svg")),
         "page": _first(folder, (f"{name}.html", "overview.html", "*/*.html")),
