@@ -155,6 +155,8 @@ class Gallery(SphinxDirective):
             target.parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(example.path.parent / reference, target)
         files = shown(example.name, folder)
+        if files["figure"] == files["drawing"]:
+            files["figure"] = None                                  # a family's member: its one drawing
         box = nodes.container(classes=["gallery-entry"], ids=[nodes.make_id(f"example-{example.name}")])
         box += nodes.rubric(example.name, example.name)
         box += nodes.paragraph(example.summary, example.summary)
