@@ -112,6 +112,18 @@ def shown(name: str, folder: Path) -> dict[str, Path | None]:
     }
 
 
+def on_screen(drawing: Path) -> Path:
+    """A copy of a cut drawing for the screen, beside it (``<name>.screen.svg``): its hairlines (a laser's cut lines,
+    0.01 mm) drawn a pixel and a half wide whatever the scale; the drawing itself is the file as written."""
+    import re
+
+    text = drawing.read_text(encoding="utf-8")
+    style = "<style>* { vector-effect: non-scaling-stroke; stroke-width: 1.5px; }</style>"
+    screen = drawing.with_name(f"{drawing.stem}.screen.svg")
+    screen.write_text(re.sub(r"(<svg\b[^>]*>)", lambda m: m.group(1) + style, text, count=1), encoding="utf-8")
+    return screen
+
+
 class Gallery(SphinxDirective):
     """``{gallery}``: every bundled template, built, grouped by kind."""
 
@@ -157,6 +169,8 @@ class Gallery(SphinxDirective):
         files = shown(example.name, folder)
         if files["figure"] == files["drawing"]:
             files["figure"] = None                                  # a family's member: its one drawing
+        if files["drawing"] is not None:
+            files["drawing"] = on_screen(files["drawing"])
         box = nodes.container(classes=["gallery-entry"], ids=[nodes.make_id(f"example-{example.name}")])
         box += nodes.rubric(example.name, example.name)
         box += nodes.paragraph(example.summary, example.summary)
