@@ -6,8 +6,8 @@ from pathlib import Path
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, one_design, output_option,
-                             set_option, template_options)
+from camgen.core.cli import (Commands, add_bench, add_examples, add_family, add_new, echo_written, one_design,
+                             output_option, set_option, template_options)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -175,6 +175,7 @@ add_family(main, "camgen.spec:validate_spec", "camgen.outputs:build_member",
 
 
 add_new(main, "camgen.starters:starter", "camgen.starters:STARTERS", "camgen")
+add_examples(main, "camgen")
 
 
 add_bench(main, "camgen.bench:run_bench", Path("out/bench"),

@@ -33,7 +33,50 @@ THIN_WALL = 2.0
 
 @dataclass(frozen=True)
 class CamDesign:
-    """Everything known about one cam before anything is written."""
+    """Everything known about one cam before anything is written (made by :func:`design_cam`).
+
+    Lengths in mm, angles in degrees unless a name says otherwise; the cam centre is the origin, the follower on +Y
+    at theta = 0 (see :doc:`/guides/conventions`).
+
+    Attributes
+    ----------
+    spec : CamSpec
+        The validated template: ``design.spec.cam.base_radius`` is the base radius as given (``"auto"`` when
+        sized: the size chosen is ``design.cam.base_radius``).
+    cam : Cam
+        The kinematic cam: its program (``cam.program``), follower (``cam.follower``), ``base_radius``,
+        ``thickness`` and ``bore`` (mm), and the pitch geometry at any cam angles (``cam.pitch(theta)``, radians).
+    analysis : CamAnalysis
+        The checks' extremes over the turn: ``pressure_angle_max_deg`` and where, the least convex radii of the
+        pitch curve and the cam surface (``pitch_rho_min_mm``, ``profile_rho_min_mm``), the concave ones, and
+        ``undercut``.
+    jumps : tuple of Jump
+        Where velocity, acceleration or jerk jump at a segment boundary (each reported as infinite acceleration or
+        jerk).
+    outline : Outline
+        The nominal outline: the exact cam surface as lines and arcs within ``output.tolerance``, with its measured
+        ``max_error_mm``.
+    part : Part
+        The nominal flat part: that outline, the bore and holes, the thickness.
+    cut_outline, cut : Outline, Part
+        The outline and part as the cut files carry them: the surface moved out by half the kerf, holes shrunk.
+    printed : Part
+        The part as printed: holes opened by the printing clearance.
+    allowances : Allowances
+        The kerf and clearance applied (mm).
+    warnings : tuple of str
+        The design's warnings, as the console prints them.
+    pressure_limit_deg : float
+        The pressure-angle limit the checks and sizing used.
+    face_extent : tuple of float, or None
+        Flat faces: the nearest and farthest contact along the face (mm).
+    speed : dict or None
+        With ``cam.rpm``: peak velocity, acceleration and jerk in time, and the contact check.
+    sizing : Sizing or None
+        With ``base_radius = "auto"``: what decided the size, and the size.
+    face_leaves : tuple of FaceLeaves, or None
+        A flat face with its folds cut off (``cam.allow_undercut``): where the law's face leaves the cut cam.
+    """
 
     spec: CamSpec
     cam: Cam
@@ -50,7 +93,6 @@ class CamDesign:
     face_extent: tuple[float, float] | None       # flat faces: nearest and farthest contact along the face (mm)
     speed: dict[str, Any] | None                  # with cam.rpm: peak rates and the contact check
     sizing: Sizing | None = None
-    #: a flat face with its folds cut off (cam.allow_undercut): where the law's face leaves the cut cam
     face_leaves: tuple[FaceLeaves, ...] | None = None
 
     @once
@@ -120,7 +162,25 @@ def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
 
 def design_cam(spec: CamSpec | GenevaSpec) -> Any:
     """The design of the cam ``spec`` describes, by its kind's designer (see :mod:`camgen.kinds`), or of the Geneva
-    drive (see :mod:`camgen.geneva`)."""
+    drive (see :mod:`camgen.geneva`): every check and all the geometry, nothing written.
+
+    Parameters
+    ----------
+    spec : CamSpec or GenevaSpec
+        A validated template (:func:`camgen.spec.load_spec`, :func:`camgen.spec.validate_spec`).
+
+    Returns
+    -------
+    object
+        A disc or plate cam's :class:`CamDesign`; a grooved cam's, a barrel's, a conjugate pair's or a Geneva
+        drive's own design, which :func:`camgen.outputs.write_cam` writes alike.
+
+    Raises
+    ------
+    DesignError
+        The spec is valid but its part cannot be made as asked: an undercut, a cusp, no wall round the bore; the
+        message names the key to change and by how much.
+    """
     if not isinstance(spec, CamSpec):
         from camgen.geneva.design import design_geneva      # a cam's build imports nothing of the Geneva drive
 

@@ -29,7 +29,19 @@ THUMBNAIL_TOLERANCE_MM = 0.2
 
 
 def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
-    """The files of ``design`` and its report (without the ``files`` map, which the bundle adds)."""
+    """The files of a disc or plate cam's ``design`` and its report, made but not written.
+
+    Parameters
+    ----------
+    design : CamDesign
+        A design from :func:`camgen.design.design_cam`.
+
+    Returns
+    -------
+    tuple
+        The files ``output.formats`` asks for, each made when written, and the report without its ``files`` map
+        (which the bundle adds).
+    """
     mesh, mesh_check = printed_mesh(design.spec, design.printed)
     report = cam_report(design, mesh_check)
 
@@ -106,7 +118,30 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
 
 def write_cam(design: Any, directory: str | Path, extra: Iterable[Item] = ()) -> dict[str, Any]:
     """Write the files of ``design`` (of any cam kind) into ``directory``, all or nothing, and the files of the
-    ``extra`` items after them (a figure asked for on the command line); return the report with its ``files``."""
+    ``extra`` items after them (a figure asked for on the command line).
+
+    Parameters
+    ----------
+    design : object
+        A design of any cam kind, or of a Geneva drive, from :func:`camgen.design.design_cam`.
+    directory : str or Path
+        The folder to write into (made if missing). Every file is written under a temporary name and renamed only
+        when all are complete, so a failure leaves nothing behind.
+    extra : iterable of Item
+        More files to write after the design's own.
+
+    Returns
+    -------
+    dict
+        The report, as ``<name>.json`` holds it, with ``files``: each file's name by its key.
+
+    Raises
+    ------
+    SpecError
+        ``output.formats`` asks for a file this kind cannot have (a barrel cam's STEP solid).
+    ExportError
+        A file could not be written.
+    """
     if _geneva(design):
         from camgen.geneva.outputs import geneva_bundle
 

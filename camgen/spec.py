@@ -442,8 +442,25 @@ class CamSpec(Model):
 
 
 def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
-    """A :class:`CamSpec` from a raw template mapping, or a one-line :class:`~camgen.core.errors.SpecError`; a
-    Geneva drive's template (a ``[geneva]`` table) gives a :class:`~camgen.geneva.spec.GenevaSpec`."""
+    """A :class:`CamSpec` from a raw template mapping; a Geneva drive's template (a ``[geneva]`` table) gives a
+    :class:`~camgen.geneva.spec.GenevaSpec`.
+
+    Parameters
+    ----------
+    raw : mapping
+        The template as TOML reads it: ``{"name": ..., "cam": {...}, "follower": {...}, "motion": [...]}``.
+
+    Returns
+    -------
+    CamSpec or GenevaSpec
+        The validated, frozen spec.
+
+    Raises
+    ------
+    SpecError
+        The first problem, in one line naming the key, what is allowed and what was given
+        (``motion[0].lift: must be > 0 and <= 10000 mm (got -1)``).
+    """
     if "geneva" in raw:
         from camgen.geneva.spec import validate_geneva      # a cam's build makes no Geneva models
 
@@ -470,7 +487,26 @@ def sheet_refusal(spec: CamSpec | GenevaSpec) -> str | None:
 
 
 def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:
-    """Read a TOML cam (or Geneva) template (and its ``base``), merge ``key=value`` overrides, validate."""
+    """Read a TOML cam (or Geneva) template (and its ``base``), merge ``key=value`` overrides, validate.
+
+    Parameters
+    ----------
+    path : str or Path
+        The template file. Relative paths inside it (its ``base``, a table law's ``file``) are relative to it.
+    overrides : iterable of str
+        ``"key=value"`` strings, as ``--set`` takes them (``"motion.0.lift=25"``, values read as TOML), merged
+        into the template before validation.
+
+    Returns
+    -------
+    CamSpec or GenevaSpec
+        The validated spec (see :func:`validate_spec`).
+
+    Raises
+    ------
+    SpecError
+        The file cannot be read, is a template of another command, or fails validation (one line naming the key).
+    """
     raw = read_template(path, overrides)
     check_kind(raw, "camgen")
     return validate_spec(_tables_beside(raw, Path(path).parent))

@@ -164,5 +164,6 @@ def starter(kind: str, name: str) -> str:
     kind = choose(kind, STARTERS, "KIND")
     what, tables = STARTERS[kind]
     header = (f"{what}\nBuild it with:  camgen build {name}.toml   (files land in out/{name}/)\n"
-              "Every key is explained in the README's key tables; --set KEY=VALUE changes one for a run.")
+              "Every key is explained in the documentation's template reference; --set KEY=VALUE changes one for a "
+              "run.")
     return render(header, [("", {"name": name}), *tables], {"": None, **MODELS}, {**NOTES, **RULES[kind]})

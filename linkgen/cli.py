@@ -8,8 +8,9 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_family, add_new, echo_written, figures_option, fixed,
-                             one_design, output_option, set_option, template_argument, template_options, user_errors)
+from camgen.core.cli import (Commands, add_bench, add_examples, add_family, add_new, echo_written, figures_option,
+                             fixed, one_design, output_option, set_option, template_argument, template_options,
+                             user_errors)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -197,6 +198,7 @@ add_family(main, "linkgen.spec:validate_spec", "linkgen.outputs:build_member",
 add_bench(main, "linkgen.bench:run_bench", Path("out/linkgen-bench"),
           "Measure linkage positions against a plain closed form and pylinkage, and rerun the hard cases.")
 add_new(main, "linkgen.starters:starter", "linkgen.starters:STARTERS", "linkgen")
+add_examples(main, "linkgen")
 
 
 def _print_general(r: dict[str, Any]) -> None:

@@ -24,19 +24,39 @@ CONVENTIONS = ("input pivot at the origin, output pivot on +X; angles counter-cl
 
 @dataclass(frozen=True)
 class LinkageDesign:
-    """Everything known about one linkage before anything is written: its spec, its mechanism, the kinematics object
-    the mechanism built, the report, and with parts asked for their build."""
+    """Everything known about one linkage before anything is written (made by :func:`design_linkage`): its spec, its
+    mechanism, the kinematics object the mechanism built, the report, and with parts asked for their build.
+
+    Attributes
+    ----------
+    spec : LinkageSpec
+        The validated template (``design.spec.linkage`` is its ``[linkage]`` table).
+    mechanism : Mechanism
+        The mechanism registered for ``linkage.type`` (:data:`linkgen.mechanisms.MECHANISMS`).
+    kinematics : object
+        What the mechanism built: a :class:`~linkgen.kinematics.fourbar.FourBar`, a
+        :class:`~linkgen.kinematics.slidercrank.SliderCrank`, a :class:`~linkgen.kinematics.linkage.Linkage`, ...;
+        its positions at any input angles.
+    report : dict
+        The report, as the JSON file holds it (``report["transmission_min_deg"]``, ``report["dead_centres"]``, ...).
+    build : LinkageBuild or None
+        The parts, the cut sheet and the assembly drawing, when parts were asked for (``linkgen build``).
+    angle : float or None
+        The input angle (degrees; mm for a slide input) the report's positions are at, and the pose figure shows.
+    statics : Statics or None
+        The effort holding the template's loads (``[[loads]]``), when it has any.
+    kit : LinkageKit or None
+        The kit of a ``[kit]`` table, when parts are made (its build is :attr:`build`: the base plate is the
+        ground).
+    """
 
     spec: LinkageSpec
     mechanism: Mechanism
     kinematics: Any
     report: dict[str, Any]
     build: LinkageBuild | None = None
-    #: the input angle (degrees; mm for a slide input) the report's positions are at, and the pose figure shows
     angle: float | None = None
-    #: the effort holding the template's loads (``[[loads]]``), when it has any
     statics: Statics | None = None
-    #: the kit of a ``[kit]`` table, when parts are made (its build is :attr:`build`: the base plate is the ground)
     kit: LinkageKit | None = None
 
     def figures(self) -> tuple[Figure, ...]:
@@ -120,10 +140,35 @@ def lengths(table: Any) -> dict[str, Any]:
 
 def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = "closed",
                    parts: bool = False) -> LinkageDesign:
-    """The design of a validated linkage spec: ``angle`` (the input's, degrees) adds the positions there to the
-    report, ``method`` (``closed`` or ``newton``) how they are solved; ``parts`` makes the parts of its ``[parts]``
-    table, once: with a ``[kit]`` table the ground is made the base plate first (:func:`linkgen.kit.base_plate`), so
-    the build, the report's ``routing`` block and the kit are all of the parts as made."""
+    """The design of a validated linkage spec: kinematics, report and, when asked, parts; nothing written.
+
+    With a ``[kit]`` table the ground is made the base plate first, so the build, the report's ``routing`` block
+    and the kit are all of the parts as made.
+
+    Parameters
+    ----------
+    spec : LinkageSpec
+        A validated template (:func:`linkgen.spec.load_spec`).
+    angle : float, optional
+        The input's angle (degrees; mm for a slide input): adds every position there to the report.
+    method : {"closed", "newton"}
+        How the positions at ``angle`` are solved; ``"newton"`` adds the Newton-Raphson iteration table.
+    parts : bool
+        Also make the parts of the ``[parts]`` table (as ``linkgen build`` does).
+
+    Returns
+    -------
+    LinkageDesign
+        The design; ``design.report`` is the JSON report's content.
+
+    Raises
+    ------
+    SpecError
+        ``angle`` lies outside the input's reachable range (the message gives the range), or ``parts`` is asked
+        for without a ``[parts]`` table.
+    DesignError
+        The parts cannot be made as asked.
+    """
     if angle is not None and not math.isfinite(angle):
         raise SpecError(f"must be a finite number of degrees (got {angle})", "--angle")
     if parts and spec.parts is None:
@@ -183,5 +228,20 @@ def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | No
 
 
 def analyze(spec: LinkageSpec, angle: float | None = None, method: str = "closed") -> dict[str, Any]:
-    """The report of a validated linkage spec; ``angle`` (degrees) adds the positions there."""
+    """The report of a validated linkage spec: :func:`design_linkage` without parts, its ``report``.
+
+    Parameters
+    ----------
+    spec : LinkageSpec
+        A validated template.
+    angle : float, optional
+        The input's angle (degrees): adds the positions there.
+    method : {"closed", "newton"}
+        How those positions are solved.
+
+    Returns
+    -------
+    dict
+        The report, as ``<name>.json`` holds it.
+    """
     return design_linkage(spec, angle, method).report

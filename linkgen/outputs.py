@@ -58,7 +58,27 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
 
 
 def write_linkage(design: LinkageDesign, directory: str | Path) -> dict[str, str]:
-    """Write the files of ``design`` into ``directory``, all or nothing; return their names by key."""
+    """Write the files of ``design`` into ``directory``, all or nothing.
+
+    Parameters
+    ----------
+    design : LinkageDesign
+        A design from :func:`linkgen.design.design_linkage`.
+    directory : str or Path
+        The folder to write into (made if missing).
+
+    Returns
+    -------
+    dict of str
+        The names of the files written, by key (``"json"``, ``"html"``, ``"sheet_dxf"``, ...).
+
+    Raises
+    ------
+    SpecError
+        ``output.formats`` asks for parts' files (``"step"``, ``"stl"``) of a design made without parts.
+    ExportError
+        A file could not be written.
+    """
     return write_bundle(linkage_bundle(design), directory)
 
 

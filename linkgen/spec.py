@@ -187,7 +187,27 @@ def validate_spec(raw: Mapping[str, Any], mechanisms: Mapping[str, Mechanism] = 
 
 def load_spec(path: str | Path, overrides: Iterable[str] = (),
               mechanisms: Mapping[str, Mechanism] = MECHANISMS) -> LinkageSpec:
-    """Read a TOML linkage template, merge ``key=value`` overrides, validate."""
+    """Read a TOML linkage template, merge ``key=value`` overrides, validate.
+
+    Parameters
+    ----------
+    path : str or Path
+        The template file (its ``base``, if any, relative to it).
+    overrides : iterable of str
+        ``"key=value"`` strings as ``--set`` takes them (``"linkage.crank=60"``), merged in before validation.
+    mechanisms : mapping
+        The mechanisms by ``linkage.type`` (:data:`linkgen.mechanisms.MECHANISMS`).
+
+    Returns
+    -------
+    LinkageSpec
+        The validated spec; ``spec.linkage`` is its mechanism's table.
+
+    Raises
+    ------
+    SpecError
+        The file cannot be read, is another command's template, or fails validation (one line naming the key).
+    """
     raw = read_template(path, overrides)
     check_kind(raw, "linkgen")
     return validate_spec(raw, mechanisms)

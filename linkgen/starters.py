@@ -83,6 +83,7 @@ def starter(kind: str, name: str) -> str:
     what, tables = STARTERS[kind]
     build = "" if kind == "whitworth" else f"\nCut and print its parts with:  linkgen build {name}.toml"
     header = (f"{what}\nAnalyse it with:  linkgen analyze {name}.toml   (files land in out/{name}/){build}\n"
-              "Every key is explained in the README's key tables; --set KEY=VALUE changes one for a run.")
+              "Every key is explained in the documentation's template reference; --set KEY=VALUE changes one for a "
+              "run.")
     models = {"linkage": MECHANISMS[kind].table, "parts": PartsTable}
     return render(header, [("", {"name": name}), *tables], models, {**NOTES, **RULES[kind]})

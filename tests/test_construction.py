@@ -193,5 +193,5 @@ def test_the_option_is_documented():
     result = CliRunner().invoke(main, ["build", "--help"])
     assert result.exit_code == 0
     assert "--construction" in result.output and "construction.png" in result.output.replace("\n", "")
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    assert "--construction" in readme
+    reference = (ROOT / "docs" / "reference" / "cli.md").read_text(encoding="utf-8")
+    assert "--construction" in reference and "construction.png" in reference

@@ -119,9 +119,9 @@ def test_a_centred_knife_edge_sizes_itself(tmp_path):
     assert result.stderr == ""                                          # no numpy warnings either
 
 
-def test_the_readme_set_example_builds(tmp_path):
-    readme = (ROOT / "README.md").read_text()
-    example = re.search(r"list items by index: `(--set [^`]+)`", readme).group(1).split()
+def test_the_documented_set_example_builds(tmp_path):
+    reference = (ROOT / "docs" / "reference" / "cli.md").read_text()
+    example = re.search(r"list items by index: `(--set [^`]+)`", reference).group(1).split()
     result = CliRunner().invoke(camgen, ["build", str(RDRD), "-o", str(tmp_path), *example])
     assert result.exit_code == 0, result.output
 

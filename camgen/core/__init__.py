@@ -22,4 +22,4 @@ It imports nothing else of camgen and nothing of linkgen (an import-linter contr
 from __future__ import annotations
 
 #: the project's version (both products share it); written into reports and family markers
-VERSION = "0.1.0"
+VERSION = "0.2.0"

@@ -308,23 +308,29 @@ def add_bench(group: click.Group, run: str, default: Path, what: str) -> None:
 
 
 def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
-    """Give ``group`` a ``new [KIND] [-o FILE]`` command writing the starter template ``starter(kind, name)`` (a
-    ``"module:function"`` name; ``kinds`` names the mapping of kinds to (what, tables)); without KIND it lists
-    them. An existing file is never overwritten."""
-    @group.command(name="new", help=f"Write a commented starter template of KIND that `{program} build` takes as it "
-                                    "is (without KIND: list the kinds).")
-    @click.argument("kind", required=False)
+    """Give ``group`` a ``new [NAME] [-o FILE] [--example]`` command: NAME is a kind, whose starter template
+    ``starter(kind, name)`` it writes (a ``"module:function"`` name; ``kinds`` names the mapping of kinds to (what,
+    tables)), or one of ``program``'s bundled examples (:mod:`camgen.core.examples`), which it copies with the files
+    it reads; ``--example`` picks the example where a kind has the same name. Without NAME it lists the kinds. An
+    existing file is never overwritten."""
+    @group.command(name="new", help=f"Write a commented starter template of the kind NAME, or a copy of the bundled "
+                                    f"example NAME (`{program} examples` lists them), that `{program}` takes as it "
+                                    "is (without NAME: list the kinds).")
+    @click.argument("kind", metavar="NAME", required=False)
     @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=None,
-                  help="The template to write (default: KIND.toml here); its name is the file's.")
+                  help="The template to write (default: NAME.toml here); its name is the file's.")
+    @click.option("--example", is_flag=True,
+                  help="Copy the bundled example NAME, where a kind has the same name (plate, grooved, ...).")
     @one_design
-    def new(kind: str | None, output: Path | None) -> None:
+    def new(kind: str | None, output: Path | None, example: bool) -> None:
         import re
 
         from camgen.core.errors import SpecError
         from camgen.core.spec import NAME_PATTERN
 
+        starters = _named(kinds)
         if kind is None:
-            for name, (what, _) in _named(kinds).items():
+            for name, (what, _) in starters.items():
                 click.echo(f"{name:<20} {what.splitlines()[0]}")
             return
         path = output if output is not None else Path(f"{kind}.toml")
@@ -333,20 +339,96 @@ def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
             raise SpecError(f"cannot write {path.name[:24]}: {why}", "--output")
         if not re.match(NAME_PATTERN, path.stem):
             raise SpecError(f"{path.stem!r} cannot name a template: letters, digits, '.', '_' and '-'", "--output")
-        text = _named(starter)(kind, path.stem)
-        if path.exists():
-            raise SpecError(f"{path} exists; give another file", "--output")
+        if example or kind not in starters:
+            bundled = _example(kind, program, example)
+            if bundled is not None:
+                _write_example(bundled, path)
+                return
+        try:
+            text = _named(starter)(kind, path.stem)
+        except SpecError as exc:
+            raise _not_a_kind(exc, kind, program) from None
         if not path.parent.is_dir():
             raise SpecError(f"no folder {path.parent}", "--output")
-        temp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-        temp.write_text(text, encoding="utf-8")
-        try:
-            os.link(temp, path)                          # fails if the file appeared meanwhile: never overwrites
-        except FileExistsError:
-            raise SpecError(f"{path} exists; give another file", "--output") from None
-        finally:
-            temp.unlink()
+        _write_new(path, text.encode("utf-8"))
         click.echo(f"wrote {path}")
+
+
+def _example(name: str, program: str, asked: bool) -> Any:
+    """The bundled example ``name`` of ``program``; None where there is none and none was ``asked`` for (``name`` may
+    be a kind); a one-line :class:`SpecError` on NAME for an example of the other program, or an unknown one asked
+    for."""
+    from camgen.core.errors import SpecError
+    from camgen.core.examples import examples
+    from camgen.core.options import choose
+
+    bundled = examples()
+    found = bundled.get(name)
+    if found is not None and found.program != program:
+        raise SpecError(f"{name!r} is a {found.program} example: {found.program} new {name}", "NAME")
+    if found is None and asked:
+        choose(name, [e.name for e in bundled.values() if e.program == program], "NAME")
+    return found
+
+
+def _not_a_kind(error: Any, name: str, program: str) -> Any:
+    """``error`` (an unknown kind) told that NAME may also be an example, naming the closest of ``program``'s."""
+    import difflib
+
+    from camgen.core.errors import SpecError
+    from camgen.core.examples import examples
+
+    near = difflib.get_close_matches(name, list(examples(program)), n=1)
+    hint = f" (did you mean the example {near[0]!r}?)" if near else ""
+    return SpecError(f"{error.detail}; or an example{hint}: `{program} examples` lists them", error.field)
+
+
+def _write_example(example: Any, path: Path) -> None:
+    """Copy ``example`` to ``path`` with the files it reads (:func:`camgen.core.examples.copy_plan`), all checked
+    before any is written, and print each file written."""
+    from camgen.core.errors import SpecError
+    from camgen.core.examples import copy_plan
+
+    if not path.parent.is_dir():
+        raise SpecError(f"no folder {path.parent}", "--output")
+    plan = copy_plan(example, path)
+    for destination, _ in plan[1:]:
+        if not destination.parent.is_dir():
+            raise SpecError(f"no folder {destination.parent} for {destination.name}, which {path.name} reads",
+                            "--output")
+    for destination, content in plan:
+        _write_new(destination, content)
+        click.echo(f"wrote {destination}")
+    click.echo(f"run it with:  {example.run_line(str(path))}")
+
+
+def _write_new(path: Path, content: bytes) -> None:
+    """Write ``content`` to the new file ``path`` through a temporary file linked into place, so that a file that
+    appeared meanwhile is never overwritten (a one-line :class:`SpecError` on ``--output`` then)."""
+    from camgen.core.errors import SpecError
+
+    if path.exists():
+        raise SpecError(f"{path} exists; give another file", "--output")
+    temp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    temp.write_bytes(content)
+    try:
+        os.link(temp, path)                              # fails if the file appeared meanwhile: never overwrites
+    except FileExistsError:
+        raise SpecError(f"{path} exists; give another file", "--output") from None
+    finally:
+        temp.unlink()
+
+
+def add_examples(group: click.Group, program: str) -> None:
+    """Give ``group`` an ``examples`` command listing ``program``'s bundled templates, one line each."""
+    @group.command(name="examples", help=f"List the bundled example templates `{program} new NAME` copies, one line "
+                                         "each: the name, the command that runs it, what it is.")
+    @one_design
+    def examples_command() -> None:
+        from camgen.core.examples import examples
+
+        for example in examples(program).values():
+            click.echo(f"{example.name:<20} {example.command:<11} {example.summary}")
 
 
 def report_family(rows: list[dict], output: Path) -> None:

@@ -42,7 +42,20 @@ def _comment(c: Offered, result: Synthesis) -> str:
 
 
 def write_synthesis(result: Synthesis, directory: str | Path) -> list[str]:
-    """Write every file of ``result`` into ``directory`` (created if missing), all or nothing; their names."""
+    """Write every file of ``result`` into ``directory`` (created if missing), all or nothing.
+
+    Parameters
+    ----------
+    result : Synthesis
+        The candidates from :func:`linkgen.synthesis.run.synthesize`.
+    directory : str or Path
+        The folder: a template, a report and a figure a candidate, and ``summary.csv`` and ``summary.json``.
+
+    Returns
+    -------
+    list of str
+        The names of the files written.
+    """
     from linkgen.synthesis.plots import candidate_figure
 
     summary = result.summary()

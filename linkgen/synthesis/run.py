@@ -37,8 +37,24 @@ class Synthesis:
 
 
 def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None) -> Synthesis:
-    """The candidates of a validated synthesis spec, best first: path searches run on ``jobs`` local processes or
-    the Dask cluster at ``scheduler``; the analytic methods run here."""
+    """The candidates of a validated synthesis spec, best first.
+
+    Parameters
+    ----------
+    spec : SynthesisSpec
+        A validated task (:func:`linkgen.synthesis.task.load_task`).
+    jobs : int
+        Local processes a path search runs on.
+    scheduler : str, optional
+        The address of a Dask scheduler (``tcp://host:8786``) a path search runs on instead; the analytic methods
+        (crank-rocker, slider-crank, function and motion generation) always run here.
+
+    Returns
+    -------
+    Synthesis
+        The candidates, each checked for branch, order and Grashof defects, with its template and report;
+        :func:`linkgen.synthesis.outputs.write_synthesis` writes them.
+    """
     task = spec.task
     clock = time.perf_counter()
     if task.kind == "path":

@@ -275,5 +275,24 @@ def validate_task(raw: Mapping[str, Any]) -> SynthesisSpec:
 
 
 def load_task(path: str | Path, overrides: Iterable[str] = ()) -> SynthesisSpec:
-    """Read a TOML synthesis template, merge ``key=value`` overrides, validate."""
+    """Read a TOML synthesis template, merge ``key=value`` overrides, validate.
+
+    Parameters
+    ----------
+    path : str or Path
+        The task's template: a ``[task]`` table whose ``kind`` is ``crank-rocker``, ``slider-crank``,
+        ``function``, ``motion`` or ``path``, and the ``[parts]`` every candidate gets.
+    overrides : iterable of str
+        ``"key=value"`` strings, as ``--set`` takes them.
+
+    Returns
+    -------
+    SynthesisSpec
+        The validated task.
+
+    Raises
+    ------
+    SpecError
+        The file cannot be read, is not a task, or fails validation (one line naming the key).
+    """
     return validate_task(read_template(path, overrides))

@@ -1,0 +1,154 @@
+"""The bundled templates as examples: `camgen examples` and `linkgen examples` list them one line each, `new NAME`
+copies one with the files it reads and never overwrites, and after a plain `pip install .` into a fresh venv every
+one of them is found by name and runs, from a folder outside the checkout."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from camgen.cli import main as camgen
+from camgen.core import examples as bundled
+from camgen.starters import STARTERS as CAM_STARTERS
+from linkgen.cli import main as linkgen
+from linkgen.starters import STARTERS as LINKAGE_STARTERS
+from tests.conftest import ROOT
+
+TEMPLATES = sorted((ROOT / "templates").glob("*.toml"))
+
+
+def _run(program, *args):
+    result = CliRunner().invoke(program, [str(a) for a in args])
+    return result.exit_code, result.output
+
+
+def test_the_examples_are_the_checkouts_templates():
+    found = bundled.examples()
+    assert sorted(found) == sorted(p.stem for p in TEMPLATES)
+    assert all(e.path.parent.resolve() == (ROOT / "templates").resolve() for e in found.values())
+
+
+@pytest.mark.parametrize("program, main", [("camgen", camgen), ("linkgen", linkgen)])
+def test_examples_lists_each_one_on_one_line(program, main):
+    code, output = _run(main, "examples")
+    assert code == 0
+    lines = output.splitlines()
+    mine = bundled.examples(program)
+    assert [line.split()[0] for line in lines] == list(mine)
+    for line, example in zip(lines, mine.values(), strict=True):
+        assert line.split()[1] == example.command
+        assert line.endswith(example.summary) and 0 < len(example.summary) <= bundled.SUMMARY_WIDTH
+
+
+def test_the_command_an_examples_comment_names_is_the_one_it_is_run_with():
+    import re
+
+    for example in bundled.examples().values():
+        header = "".join(line for line in example.path.read_text().splitlines(keepends=True) if line.startswith("#"))
+        for program, command in re.findall(r"\b(camgen|linkgen) (build|analyze|family|synthesize)\b", header):
+            assert program == example.program, example.name
+            if command in ("family", "synthesize") or example.command in ("family", "synthesize"):
+                assert command == example.command, example.name
+
+
+def test_a_summary_is_the_first_sentence_or_its_head():
+    assert bundled.summary("# A cam.\n# More.\nname = 'x'\n") == "A cam."
+    long = "# " + "A Watt I six-bar: " + "x " * 80 + ".\n"
+    assert bundled.summary(long) == "A Watt I six-bar"
+    assert bundled.summary("# A pantograph (k = 2) " + "y " * 70 + ".\n") == "A pantograph"
+    assert bundled.summary("name = 'x'\n") == ""
+
+
+def test_new_copies_an_example_with_the_files_it_reads(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code, output = _run(camgen, "new", "automaton-cams", "-o", "fam.toml")
+    assert code == 0, output
+    assert output.splitlines() == ["wrote fam.toml", "wrote rdrd.toml",
+                                   "run it with:  camgen family fam.toml -o out/fam"]
+    assert (tmp_path / "rdrd.toml").read_bytes() == (ROOT / "templates" / "rdrd.toml").read_bytes()
+    copied = tomllib.loads((tmp_path / "fam.toml").read_text())
+    original = tomllib.loads((ROOT / "templates" / "automaton-cams.toml").read_text())
+    assert copied == {**original, "name": "fam"}                           # its name is the file's
+    code, output = _run(camgen, "new", "table-law")
+    csv = (ROOT / "templates" / "table-law.csv").read_bytes()
+    assert code == 0 and (tmp_path / "table-law.csv").read_bytes() == csv
+    code, output = _run(camgen, "build", "table-law.toml", "-o", "out", "--set", "output.formats=['json']")
+    assert code == 0, output
+    code, output = _run(camgen, "new", "speeds", "-o", "s.toml")             # rdrd.toml is there already, the same
+    assert code == 0 and output.splitlines()[:1] == ["wrote s.toml"] and "rdrd.toml" not in output
+
+
+def test_new_never_overwrites_a_file_an_example_reads(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "rdrd.toml").write_text("mine\n")
+    code, output = _run(camgen, "new", "speeds", "-o", "s.toml")
+    assert code == 2 and output.startswith("error: --output: rdrd.toml exists with other content")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rdrd.toml"] and (tmp_path / "rdrd.toml").read_text() == \
+        "mine\n"
+    assert _run(camgen, "new", "rdrd") == (2, "error: --output: rdrd.toml exists; give another file\n")
+
+
+def test_a_kind_keeps_its_name_and_example_picks_the_example(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    clashes = sorted((set(CAM_STARTERS) | set(LINKAGE_STARTERS)) & set(bundled.examples()))
+    assert clashes == ["barrel", "conjugate", "grooved", "hoekens", "plate", "slider-crank"]
+    _run(camgen, "new", "plate", "-o", "starter.toml")
+    _run(camgen, "new", "plate", "--example", "-o", "example.toml")
+    assert "Every key is explained" in (tmp_path / "starter.toml").read_text()
+    assert (tmp_path / "example.toml").read_text().replace('name = "example"', 'name = "plate"') == \
+        (ROOT / "templates" / "plate.toml").read_text().replace("templates/plate.toml", "example.toml")
+
+
+def test_new_refuses_another_programs_example_and_an_unknown_name_in_one_line(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert _run(camgen, "new", "jansen") == (2, "error: NAME: 'jansen' is a linkgen example: linkgen new jansen\n")
+    assert _run(linkgen, "new", "rdrd") == (2, "error: NAME: 'rdrd' is a camgen example: camgen new rdrd\n")
+    code, output = _run(camgen, "new", "rdrdd")
+    assert code == 2 and output.startswith("error: KIND: unknown value 'rdrdd'; one of translating-roller")
+    assert "(did you mean the example 'rdrd'?): `camgen examples` lists them" in output
+    code, output = _run(linkgen, "new", "nosuch", "--example")
+    assert code == 2 and output.startswith("error: NAME: unknown value 'nosuch'; one of crank-rocker")
+    assert list(tmp_path.iterdir()) == []
+
+
+def _venv_with_camgen(folder: Path) -> Path:
+    """A fresh venv (the machine's packages visible to it, for the dependencies) with camgen installed into it by a
+    plain, non-editable `pip install .` of the checkout; its bin folder."""
+    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(folder)], check=True)
+    python = folder / "bin" / "python"
+    subprocess.run([str(python), "-m", "pip", "install", "-q", str(ROOT)], check=True, capture_output=True,
+                   timeout=900)
+    return folder / "bin"
+
+
+@pytest.mark.slow
+def test_every_example_runs_by_name_after_a_plain_install(tmp_path):
+    bin_folder = _venv_with_camgen(tmp_path / "venv")
+    work = tmp_path / "work"
+    work.mkdir()
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
+    env["PATH"] = f"{bin_folder}{os.pathsep}{env['PATH']}"
+
+    def run(*args: str) -> str:
+        result = subprocess.run(args, cwd=work, env=env, capture_output=True, text=True, timeout=900)
+        assert result.returncode == 0, f"{' '.join(args)}:\n{result.stdout}\n{result.stderr}"
+        return result.stdout
+
+    where = run(str(bin_folder / "python"), "-c", "import camgen, camgen.examples; print(camgen.__file__)")
+    assert Path(where.strip()).is_relative_to(tmp_path / "venv"), where
+    run("linkgen", "new", "jansen", "-o", "j.toml")
+    run("linkgen", "build", "j.toml")
+    assert (work / "out" / "j" / "j-sheet.dxf").is_file()
+    starters = {"camgen": set(CAM_STARTERS), "linkgen": set(LINKAGE_STARTERS)}
+    for example in bundled.examples().values():
+        name = f"x-{example.name}.toml"
+        flag = ["--example"] if example.name in starters[example.program] else []
+        run(example.program, "new", example.name, *flag, "-o", name)
+        run(*example.run_line(name).split())
+    listed = run("camgen", "examples").splitlines() + run("linkgen", "examples").splitlines()
+    assert len(listed) == len(TEMPLATES)
