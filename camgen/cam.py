@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.core.records import once, record_maker
+from camgen.core.records import once
 from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
 from camgen.followers.plate import PlateRoller
@@ -234,10 +234,5 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
             except SpecError as exc:
                 raise exc.under(f"motion[{i}]") from None
         steps.append((seg.type, seg.angle, seg.lift or 0.0, law))
-    return _make_cam(name=spec.name, program=build_program(steps),
-                     follower=kind_of(spec.cam.kind).follower(spec, rb, rr), base_radius=rb,
-                     thickness=spec.cam.thickness, bore=spec.cam.bore)          # a Cam checks nothing itself
-
-
-#: a Cam made from its fields without its checked __init__ (see camgen.core.records.record_maker)
-_make_cam = record_maker(Cam)
+    return Cam(name=spec.name, program=build_program(steps), follower=kind_of(spec.cam.kind).follower(spec, rb, rr),
+               base_radius=rb, thickness=spec.cam.thickness, bore=spec.cam.bore)

@@ -15,7 +15,7 @@ from camgen.cam import Cam, Maker, build_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker, quietly
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
-from camgen.core.records import once, record_maker
+from camgen.core.records import once
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.kinds import kind_of
@@ -83,10 +83,6 @@ class CamDesign:
         from camgen.core.page import bundle_frame
 
         return bundle_frame(kind_of(self.spec.cam.kind).bundler()(self)[0])
-
-
-#: the design's records made from their fields without their checked __init__ (see camgen.core.records.record_maker)
-_make_design, _make_allowances, _make_part = record_maker(CamDesign), record_maker(Allowances), record_maker(Part)
 
 
 def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
@@ -180,19 +176,19 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, envelope, marks, outline, cut_off, holes)
     out = spec.output
-    allowances = _make_allowances(kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
-                                  elephant_foot=out.elephant_foot)
+    allowances = Allowances(kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
+                            elephant_foot=out.elephant_foot)
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
     speed = _speed(spec, cam, rates_only)
     limit = pressure_limit(spec)
     warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off, limit) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
-    design = _make_design(spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
-                          cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
-                          allowances=allowances, warnings=warnings, pressure_limit_deg=limit,
-                          face_extent=extent, speed=speed, sizing=sizing,
-                          face_leaves=cut_off.leaves if cut_off is not None else None)
+    design = CamDesign(spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
+                       cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
+                       allowances=allowances, warnings=warnings, pressure_limit_deg=limit,
+                       face_extent=extent, speed=speed, sizing=sizing,
+                       face_leaves=cut_off.leaves if cut_off is not None else None)
     return design if wall is None else known_wall(design, wall)
 
 
@@ -306,7 +302,7 @@ class _Profile:
         if (outline_grow, hole_grow) not in self._parts:
             t, hub = self.spec, self.spec.hub
             boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
-            self._parts[outline_grow, hole_grow] = _make_part(
+            self._parts[outline_grow, hole_grow] = Part(
                 name=t.name, outline=self.outline(outline_grow).contour, holes=self._grown_holes(hole_grow),
                 thickness=t.cam.thickness, tolerance=t.output.tolerance, marks=self.marks, boss=boss,
                 set_screw=hub.set_screw)

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.core.records import once, record_maker
+from camgen.core.records import once
 from camgen.laws import Law
 from camgen.numeric import TIE, constant, drive, left_of, maxima_steps, present
 
@@ -516,11 +516,9 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
                 degrees = math.degrees(theta)       # of a whole number (most boundaries, sums of radians a few ulps
                 whole = round(degrees)              # off one; finite, a checked program's) it is that number exactly
                 at = (whole if abs(degrees - whole) < 1e-10 else round(degrees, 9)) % 360.0
-            found.append(_make_jump(at_deg=at, order=k, jump=step, inside=inside))
+            found.append(Jump(at_deg=at, order=k, jump=step, inside=inside))
 
 
-#: a Jump and a Segment made from their fields without their checked __init__ (see camgen.core.records.record_maker)
-_make_jump, _make_segment = record_maker(Jump), record_maker(Segment)
 #: the order of :meth:`Program.jumps`: by angle, then by order
 _AT_ORDER = operator.attrgetter("at_deg", "order")
 
@@ -554,7 +552,7 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)
         dwell = kind == "dwell"
-        segments.append(_make_segment(kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
-                                      law=None if dwell else law))
+        segments.append(Segment(kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
+                                law=None if dwell else law))
         start, level = start + beta, _end_level(kind, level, lift)      # Segment.end_level's, its lift known here
     return Program(tuple(segments))
