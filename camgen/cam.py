@@ -4,12 +4,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.core.records import once
 from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
 from camgen.followers.plate import PlateRoller
@@ -65,7 +65,7 @@ class Cam:
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         return self.follower.pitch(theta, self.program.segments[index].evaluate(theta))
 
-    @once
+    @cached_property
     def _boundaries(self) -> tuple[PitchGeometry, PitchGeometry]:
         """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start."""
         return self._halves(self.follower.pitch(*self.program.boundaries))
@@ -133,7 +133,7 @@ class Cam:
         """
         return list(self._corners)
 
-    @once
+    @cached_property
     def _corners(self) -> tuple[tuple[int, float], ...]:
         """:meth:`corners`, found once a cam (a design asks several times). A tangent that turns by less than 1e-10
         radians as Python's floats measure it is no corner, whatever the dot product's rounding: its cross product

@@ -6,6 +6,7 @@ import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -15,7 +16,6 @@ from camgen.cam import Cam, Maker, build_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker, quietly
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
-from camgen.core.records import once
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.kinds import kind_of
@@ -53,7 +53,7 @@ class CamDesign:
     #: a flat face with its folds cut off (cam.allow_undercut): where the law's face leaves the cut cam
     face_leaves: tuple[FaceLeaves, ...] | None = None
 
-    @once
+    @cached_property
     def wall_mm(self) -> float:
         """The thinnest material (mm) between the bore and the outline (as chords within :attr:`tolerance`): how
         near the outline comes to the centre less the bore's radius; measured when first read (the design itself

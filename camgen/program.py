@@ -12,13 +12,13 @@ import math
 import operator
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.core.records import once
 from camgen.laws import Law
 from camgen.numeric import TIE, constant, drive, left_of, maxima_steps, present
 
@@ -77,7 +77,7 @@ class Segment:
         out[0] += level
         return out
 
-    @once
+    @cached_property
     def _factors(self) -> tuple[np.ndarray, float]:
         """What turns the law's derivatives into the segment's: each row's factor (4, 1), the natural scale with a
         return's odd rows negated (a sign: exact), and the level added to s (mm). Made once a segment."""
@@ -246,7 +246,7 @@ class Program:
             out.append(best)
         return out
 
-    @once
+    @cached_property
     def _table(self) -> _Table:
         """The segments as arrays, to evaluate any of them at once (see :class:`_Table`)."""
         return _Table(self.segments)
@@ -256,7 +256,7 @@ class Program:
         (n,) gives, as :meth:`Segment.evaluate` makes them (one-sided at the segment's ends), all at once."""
         return self._table.evaluate(index, np.asarray(theta, dtype=float))
 
-    @once
+    @cached_property
     def boundaries(self) -> tuple[np.ndarray, np.ndarray]:
         """Cam angles (2n,) (radians) and s, s', s'', s''' there (4, 2n): every segment's end (its left-hand limit),
         then the next segment's start (its right-hand limit; the last segment's next is the first), from one
@@ -264,7 +264,7 @@ class Program:
         theta, index = self.boundary_points
         return theta, self.evaluate_on(index, theta)
 
-    @once
+    @cached_property
     def boundary_points(self) -> tuple[np.ndarray, np.ndarray]:
         """The angles (2n,) of :attr:`boundaries` (radians) and the segment each is evaluated on (2n,)."""
         segments = self.segments
@@ -277,7 +277,7 @@ class Program:
         (a cache: the same numbers its own evaluation makes)."""
         self.__dict__["boundaries"] = (self.boundary_points[0], motion)
 
-    @once
+    @cached_property
     def _pieces(self) -> tuple[np.ndarray | None, list[float], list[float], list[bool], list[bool],
                                list[tuple[float, float, bool]]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them: the

@@ -8,10 +8,10 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
-from camgen.core.records import once
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:
@@ -103,7 +103,7 @@ class Contour:
         centre = (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
         return p, q, chord, angle, centre
 
-    @once
+    @cached_property
     def _arc_pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """:meth:`_arcs` of the arc pieces only (the same operations on the same numbers): their indices, starts,
         chord lengths, signed included angles and centres; made once a contour (its area and its flattening both

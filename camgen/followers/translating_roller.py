@@ -13,12 +13,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, ClassVar
 
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.core.records import once
 from camgen.followers.base import ZERO, FollowerType, PitchGeometry, centre_path
 from camgen.numeric import constant
 
@@ -52,7 +52,7 @@ class TranslatingRoller:
         """Height of the roller centre above the cam centre at s = 0 (mm)."""
         return math.sqrt((self.prime_radius - self.offset) * (self.prime_radius + self.offset))
 
-    @once
+    @cached_property
     def _constants(self) -> tuple[np.ndarray, np.ndarray]:
         """The offset and :attr:`d0` as 0-d arrays (mm), made once: numpy takes them faster than Python numbers."""
         return constant(self.offset), constant(self.d0)
