@@ -52,12 +52,17 @@ class CamDesign:
     sizing: Sizing | None = None
     #: a flat face with its folds cut off (cam.allow_undercut): where the law's face leaves the cut cam
     face_leaves: tuple[FaceLeaves, ...] | None = None
+    #: :attr:`wall_mm` where the design's checks measured it already (mm); None: measured when first read
+    measured_wall_mm: float | None = dataclasses.field(default=None, repr=False, compare=False)
 
     @cached_property
     def wall_mm(self) -> float:
         """The thinnest material (mm) between the bore and the outline (as chords within :attr:`tolerance`): how
-        near the outline comes to the centre less the bore's radius; measured when first read (the design itself
-        only needs to know that it is positive, and whether it is under :data:`THIN_WALL`)."""
+        near the outline comes to the centre less the bore's radius; :attr:`measured_wall_mm` where the checks
+        measured it, else measured when first read (the design itself only needs to know that it is positive, and
+        whether it is under :data:`THIN_WALL`, which bounds often tell without measuring)."""
+        if self.measured_wall_mm is not None:
+            return self.measured_wall_mm
         return _reach(_body(self.outline, self.tolerance)) - self.spec.cam.bore / 2.0
 
     @property
@@ -184,19 +189,17 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     limit = pressure_limit(spec)
     warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off, limit) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
-    design = CamDesign(spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
-                       cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
-                       allowances=allowances, warnings=warnings, pressure_limit_deg=limit,
-                       face_extent=extent, speed=speed, sizing=sizing,
-                       face_leaves=cut_off.leaves if cut_off is not None else None)
-    return design if wall is None else known_wall(design, wall)
+    return CamDesign(spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
+                     cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
+                     allowances=allowances, warnings=warnings, pressure_limit_deg=limit,
+                     face_extent=extent, speed=speed, sizing=sizing,
+                     face_leaves=cut_off.leaves if cut_off is not None else None, measured_wall_mm=wall)
 
 
 def known_wall(design: CamDesign, wall: float) -> CamDesign:
-    """``design`` with its :attr:`CamDesign.wall_mm` set to ``wall`` (mm), measured already as the property measures
-    it (the same number), so that a report reading it does not flatten and measure the outline again."""
-    design.__dict__["wall_mm"] = wall                   # a cached property's slot: the frozen dataclass allows it
-    return design
+    """``design`` with its :attr:`CamDesign.wall_mm` known to be ``wall`` (mm), measured already as the property
+    measures it (the same number), so that a report reading it does not flatten and measure the outline again."""
+    return dataclasses.replace(design, measured_wall_mm=wall)
 
 
 def _body(outline: Outline, tolerance: float) -> Any:

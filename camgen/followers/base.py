@@ -50,18 +50,11 @@ class PitchGeometry:
     pressure_angle: np.ndarray  # (n,) rad, signed (see the module docstring)
     rho: np.ndarray | None = None  # (n,) radius of curvature of a flat face's profile, mm
 
-    def part(self, start: int, stop: int) -> "PitchGeometry":
-        """The samples ``start`` to ``stop`` (a slice, views of the same arrays), made without the frozen
-        dataclass's checked ``__init__`` (it is on the hot path of every design, many times a design)."""
-        out = object.__new__(PitchGeometry)
-        mine, theirs = self.__dict__, out.__dict__
-        for name in _FIELDS:
-            value = mine[name]
-            theirs[name] = None if value is None else value[start:stop]
-        return out
-
-
-_FIELDS = tuple(PitchGeometry.__dataclass_fields__)
+    def part(self, start: int, stop: int) -> PitchGeometry:
+        """The samples ``start`` to ``stop`` (a slice, views of the same arrays)."""
+        rho = None if self.rho is None else self.rho[start:stop]
+        return PitchGeometry(self.theta[start:stop], self.point[start:stop], self.d1[start:stop], self.d2[start:stop],
+                             self.normal[start:stop], self.kappa[start:stop], self.pressure_angle[start:stop], rho)
 
 
 def rotate(vectors: np.ndarray, angle: np.ndarray) -> np.ndarray:
@@ -147,7 +140,7 @@ def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair,
     up = s * x
     up += c * y
     turned[:, :, 1] = up
-    return pitch_geometry(theta, turned[0], turned[1], turned[2], turned[3], kappa, pressure)
+    return PitchGeometry(theta, turned[0], turned[1], turned[2], turned[3], kappa, pressure)
 
 
 def _times(k: Any, a: Any) -> Any:
@@ -180,16 +173,6 @@ def _less(a: Any, b: Any) -> Any:
     if isinstance(b, float) and b == 0.0 and math.copysign(1.0, b) > 0:
         return a
     return a - b
-
-
-def pitch_geometry(theta: np.ndarray, point: np.ndarray, d1: np.ndarray, d2: np.ndarray, normal: np.ndarray,
-                   kappa: np.ndarray, pressure_angle: np.ndarray, rho: np.ndarray | None = None) -> PitchGeometry:
-    """A :class:`PitchGeometry` made without the frozen dataclass's ``__init__`` (a set attribute at a time): every
-    evaluation of a follower makes one."""
-    out = object.__new__(PitchGeometry)
-    out.__dict__.update(theta=theta, point=point, d1=d1, d2=d2, normal=normal, kappa=kappa,
-                        pressure_angle=pressure_angle, rho=rho)
-    return out
 
 
 def from_support(theta: np.ndarray, p: np.ndarray, alpha: np.ndarray, derivs: np.ndarray, sense: int,
