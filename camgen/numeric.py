@@ -39,11 +39,11 @@ def maximise(func: ArrayFunc, a: float, b: float, *, n: int = 1025, rounds: int 
 
 
 def constant(value: float) -> np.ndarray:
-    """The number ``value`` (anything ``float()`` takes) as a read-only 0-d float64 array: numpy takes one in
-    arithmetic faster than a Python number (no conversion), and a module's shared constant cannot be written into
-    by a stray ``out=``. Raises TypeError for what is not one number (None, a list, an array of more than one)."""
-    out = np.array(float(value))                         # a Python float's array is float64 without asking for it
-    out.setflags(False)                                  # (write): by position, cheaper than by keyword
+    """The number ``value`` (anything ``float()`` takes) as a read-only 0-d float64 array, so that a module's shared
+    constant cannot be written into by a stray ``out=``. Raises TypeError for what is not one number (None, a list,
+    an array of more than one)."""
+    out = np.array(float(value))
+    out.setflags(write=False)
     return out
 
 
@@ -92,9 +92,8 @@ _QUARTIC = (np.array([[1, -1, -1, 1], [-8, 16, 2, -4], [0, -30, 0, 6], [8, 16, -
 def _coefficients(windows: np.ndarray) -> list[list[float]]:
     """a1, a2, a3, a4 (the coefficients of t, t^2, t^3, t^4) of the quartic through each row of ``windows`` (m, 5)
     (values at t = -2..2), as floats. One matrix product for all rows: its rounding depends on whether there is one
-    row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place. ndarray.dot
-    calls the same BLAS kernel as the @ operator (the same bits) with less of numpy's dispatch before it."""
-    return windows.dot(_QUARTIC).tolist()
+    row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place."""
+    return (windows @ _QUARTIC).tolist()
 
 
 def _coefficients_apart(windows: np.ndarray, from_end: list[bool]) -> list[list[float]]:
@@ -112,25 +111,23 @@ def _coefficients_apart(windows: np.ndarray, from_end: list[bool]) -> list[list[
 def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) -> float | None:
     """Where the quartic of coefficients a1..a4 (of t..t^4) peaks within [lo, hi], by three Newton steps on its
     slope from the parabola's vertex; None where it has no maximum there (a step dividing by zero has none)."""
-    twice, thrice, six = 2.0 * a2, 3.0 * a3, 6.0 * a3         # the same numbers each step: made once; t * 4 * a4
-    four = 4.0 * a4                                           # is t * four to the bit (4 scales exactly); float
-    try:                                                      # constants: the interpreter's float-only arithmetic
-        t = -a1 / twice                                       # (an int operand takes its slower general path)
-        for _ in (0, 1, 2):
-            t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12.0 * a4))
+    try:
+        t = -a1 / (2 * a2)
+        for _ in range(3):
+            t -= (a1 + t * (2 * a2 + t * (3 * a3 + t * 4 * a4))) / (2 * a2 + t * (6 * a3 + t * 12 * a4))
     except ZeroDivisionError:                                 # t would be infinite or NaN: no maximum within
         return None
-    return t if twice + t * (six + t * 12.0 * a4) < 0.0 and lo <= t <= hi else None   # False where t is NaN
+    return t if 2 * a2 + t * (6 * a3 + t * 12 * a4) < 0 and lo <= t <= hi else None   # False where t is NaN
 
 
 def _breadth(a2: float, a4: float, step: float, size: float) -> float:
     """A peak's breadth from its grid quartic's a2 and a4: a bell of breadth b has a2 / a4 = 2 b^2 / h^2 on a grid
     of step h; kept between 2 h and the piece's ``size`` (the piece's where a4 is zero or the ratio NaN)."""
     try:
-        breadth = min(max(step * math.sqrt(abs(a2 / a4) / 2.0), 2.0 * step), size)
+        breadth = min(max(step * math.sqrt(abs(a2 / a4) / 2), 2 * step), size)
     except ZeroDivisionError:
         return size
-    return size if breadth != breadth else breadth
+    return size if math.isnan(breadth) else breadth
 
 
 #: what :func:`maxima_steps` asks for, abscissae (m,) and their pieces (m,) (as its ``ask`` puts them); it is sent
@@ -472,8 +469,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     k = got.shape[0]
     count = len(moving)
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
-    largest = np.maximum.reduce(np.abs(got), axis=1).tolist()   # NaN or infinite where any value is (the ufunc's
-    #                                                             reduce: ndarray.max's Python wrapper costs more)
+    largest = np.abs(got).max(axis=1).tolist()                 # NaN or infinite where any value is
     if not all(map(math.isfinite, largest)):
         raise FloatingPointError("function is not finite on the search grid")
     scales = (scale if type(scale) is list and {*map(type, scale)} <= {float}   # Python floats (or none): as given

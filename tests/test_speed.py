@@ -294,14 +294,12 @@ def test_the_quartic_vertex_has_no_maximum_where_a_step_divides_by_zero():
     assert numeric._breadth(1.0, 0.0, 0.01, 0.5) == 0.5 and numeric._breadth(-0.0, 0.0, 0.01, 0.5) == 0.5
 
 
-def test_the_quartics_coefficients_are_the_matrix_products():
-    """ndarray.dot calls the BLAS kernel that the @ operator calls: the coefficients are its product to the bit, for
-    one window (the vector kernel) and for many, and the quartic through a window's values passes through them."""
+def test_the_quartic_through_a_window_passes_through_its_values():
+    """The coefficients of one window (the vector kernel) and of many give quartics through the windows' values."""
     rng = np.random.default_rng(16)
     for m in (1, 2, 6, 37):
         windows = rng.standard_normal((m, 5)) * 10.0 ** rng.uniform(-6, 6, (m, 1))
         got = np.array(numeric._coefficients(windows))
-        assert np.array_equal(got.view(np.int64), (windows @ numeric._QUARTIC).view(np.int64))
         t = np.arange(-2.0, 3.0)
         fitted = windows[:, 2:3] + sum(got[:, i:i + 1] * t ** (i + 1) for i in range(4))
         assert np.allclose(fitted, windows, rtol=1e-12, atol=1e-12 * np.abs(windows).max())
