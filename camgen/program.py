@@ -282,10 +282,10 @@ class Program:
                                list[tuple[float, float, bool]]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them: the
         owning segment of each (an array, to map asks; None where each segment is one piece, its own), the law
-        variable's ends (floats: the search packs them as they are), whether its segment holds still (a dwell) and
-        whether it runs its law backwards (a return, see :meth:`Segment.angle`), and that segment's start, angle
-        (radians) and backwards flag. Made once a program (read-only for its readers): a roller's design searches its
-        program once, a flat face's or one with a speed up to eight times."""
+        variable's ends (floats), whether its segment holds still (a dwell) and whether it runs its law backwards (a
+        return, see :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag. Made once a
+        program (read-only for its readers): a roller's design searches its program once, a flat face's or one with
+        a speed up to eight times."""
         owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
         for i, seg in enumerate(self.segments):
             moving = seg.kind != "dwell" and seg.law is not None
