@@ -135,28 +135,13 @@ class Cam:
 
     @cached_property
     def _corners(self) -> tuple[tuple[int, float], ...]:
-        """:meth:`corners`, found once a cam (a design asks several times). A tangent that turns by less than 1e-10
-        radians as Python's floats measure it is no corner, whatever the dot product's rounding: its cross product
-        c and dot product d (in Python floats) with |c| < 1e-10 d make the tangents all but parallel, so that d is
-        |left| |right| to a few ulps and numpy's dot product is too, and the turn |atan2(c, dot)| < 1e-9; only a
-        turn not so decided is measured, by numpy's dot product."""
-        out = []
+        """:meth:`corners`, found once a cam (a design asks several times): the turn from each segment's end tangent
+        to the next one's start tangent, atan2 of their cross and dot products, where it exceeds 1e-9 radians."""
         ends, starts = self._boundaries
         left, right = ends.d1, starts.d1
-        dots = None
-        for i, ((lx, ly), (rx, ry)) in enumerate(zip(left.tolist(), right.tolist(), strict=True)):
-            cross = lx * ry - ly * rx
-            if abs(cross) < 1e-10 * (lx * rx + ly * ry):
-                continue
-            # the cross product in Python floats (the same products and difference); the dot product stays numpy's:
-            # a stack of (1, 2) @ (2, 1) products runs, row by row, the dot left[i] @ right[i] runs (its own
-            # rounding, not a*b + c*d), in one call for every boundary
-            if dots is None:
-                dots = (left[:, None, :] @ right[:, :, None]).ravel().tolist()
-            turn = math.atan2(cross, dots[i])
-            if abs(turn) > 1e-9:
-                out.append((i, -self.follower.sense * turn))
-        return tuple(out)
+        cross = left[:, 0] * right[:, 1] - left[:, 1] * right[:, 0]
+        turn = np.arctan2(cross, (left * right).sum(axis=1))
+        return tuple((i, -self.follower.sense * t) for i, t in enumerate(turn.tolist()) if abs(t) > 1e-9)
 
     def steps(self) -> list[tuple[int, float]]:
         """Where a flat face's contact point jumps at a segment end (a velocity jump): ``(segment index, step)``.
