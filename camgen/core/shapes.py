@@ -72,18 +72,6 @@ class Contour:
         object.__setattr__(self, "vertices", v)
         object.__setattr__(self, "bulges", b)
 
-    @classmethod
-    def owned(cls, vertices: np.ndarray, bulges: np.ndarray) -> "Contour":
-        """A contour holding ``vertices`` and ``bulges`` themselves, made read-only, without the constructor's copies
-        and checks: for makers that guarantee what the constructor would make of them, float64 arrays (n, 2) and
-        (n,), n >= 2, C-contiguous, of their own making (nobody else holds or writes them). A disc cam's outline is
-        made this way (:func:`camgen.outline.outline_maker`; a plate's through the constructor)."""
-        vertices.setflags(write=False)
-        bulges.setflags(write=False)
-        out = object.__new__(cls)
-        out.__dict__.update(vertices=vertices, bulges=bulges)
-        return out
-
     @property
     def n_arcs(self) -> int:
         return int(np.count_nonzero(self.bulges))
