@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 
 from camgen.cam import build_cam
-from camgen.followers.base import from_centre_path
 from camgen.laws import TABLE_LAWS
 from camgen.outline import exact_outline, stretch
 from camgen.spec import validate_spec
@@ -136,22 +135,6 @@ def test_a_program_evaluates_all_its_segments_at_once_as_each_alone(law):
         assert angles[i] == seg.end and angles[n + i] == nxt.start
         assert _same(motion[:, i], seg.evaluate(np.array(seg.end)))
         assert _same(motion[:, n + i], nxt.evaluate(np.array(nxt.start)))
-
-
-@pytest.mark.parametrize("rotation", ["ccw", "cw"])
-def test_a_translating_rollers_pitch_from_numbers_is_that_from_full_arrays(rotation):
-    cam = _cam({"cam.rotation": rotation})
-    f = cam.follower
-    theta = np.linspace(0.0, 2 * np.pi, 721)
-    motion = cam.program.evaluate(theta)
-    s, s1, s2 = motion[:3]
-    zero = np.zeros_like(s)
-    full = from_centre_path(theta, np.column_stack([np.full_like(s, f.offset), f.d0 + s]),
-                            np.column_stack([zero, s1]), np.column_stack([zero, s2]),
-                            np.column_stack([zero, np.ones_like(s)]), f.sense)
-    made = f.pitch(theta, motion)
-    for field in dataclasses.fields(made):
-        assert _same(getattr(made, field.name), getattr(full, field.name)), field.name
 
 
 def test_a_design_takes_two_evaluations_of_its_follower(monkeypatch):
