@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from camgen.laws import Law
-from camgen.numeric import TIE, constant, drive, left_of, maxima_steps, present
+from camgen.numeric import TIE, drive, left_of, maxima_steps, present
 
 Kind = Literal["rise", "dwell", "return"]
 TWO_PI = 2.0 * math.pi
@@ -401,8 +401,8 @@ class _Table:
         -0.0, so that u is never -0.0), then 1 + -u = 1 - u on a return, 0 + u = u elsewhere."""
         np.subtract(theta, rows[_START], out=out)
         out /= rows[_BETA]
-        np.maximum(out, _ZERO, out=out)
-        np.minimum(out, _ONE, out=out)                  # np.clip's result
+        np.maximum(out, 0.0, out=out)
+        np.minimum(out, 1.0, out=out)                   # np.clip's result
         out *= rows[_SIGN]
         out += rows[_OFFSET]
 
@@ -461,8 +461,6 @@ _START, _BETA, _SIGN, _OFFSET, _ADDED, _FACTORS = 0, 1, 2, 3, slice(4, 8), slice
 _H, _WIDTH = 12, 13
 #: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign)
 _RETURN = np.array([1.0, -1.0, 1.0, -1.0])
-#: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
-_ZERO, _ONE = constant(0.0), constant(1.0)
 
 
 @functools.cache
@@ -505,17 +503,10 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
     """Add to ``found`` every jump of s', s'', s''' from ``left`` to ``right`` (s, s', s'', s''') at cam angle
     ``theta`` (radians) larger than :data:`JUMP_TOL` of the larger of its scales ``own`` and ``other`` (h/beta^k,
     k = 0..3: the segments' on either side of a boundary, the segment's own twice inside it)."""
-    at = None                                       # the angle in degrees, made at the first jump found here
+    at = round(math.degrees(theta), 9) % 360.0
     for k in (1, 2, 3):
         step = right[k] - left[k]
-        least, more = own[k], other[k]
-        if more > least:                            # max(own, other)
-            least = more
-        if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
-            if at is None:                          # round(degrees, 9) goes through a decimal string; within 1e-10
-                degrees = math.degrees(theta)       # of a whole number (most boundaries, sums of radians a few ulps
-                whole = round(degrees)              # off one; finite, a checked program's) it is that number exactly
-                at = (whole if abs(degrees - whole) < 1e-10 else round(degrees, 9)) % 360.0
+        if abs(step) > JUMP_TOL * max(own[k], other[k], 1e-300):
             found.append(Jump(at_deg=at, order=k, jump=step, inside=inside))
 
 
