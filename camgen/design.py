@@ -437,9 +437,9 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
     run = ring[0, 1:] - ring[0, :-1]
     length = np.abs(run)
     near = np.abs(ring)
-    extent = float(np.maximum.reduce(near, None))               # axis None: numpy parses it faster unnamed
+    extent = float(near.max())
     margin = _CERTAIN * (1.0 + extent * extent)
-    widest = float(np.maximum.reduce(bulge, initial=0.0))
+    widest = float(bulge.max(initial=0.0))
     turn = ring[:, 1:] * ring[:, :-1].conjugate()
     swept = np.arctan2(turn.imag, turn.real)
     if widest > 1.0 or not _far_from_all(near, length, widest, reach, margin):
@@ -447,11 +447,11 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
         low = np.minimum(near[:, :-1], near[:, 1:])
         far = np.array(reach)
         gap = low * low - half * half - (far[:, None] + half * bulge) ** 2
-        if widest > 1.0 or float(np.minimum.reduce(gap, axis=None)) <= margin:
+        if widest > 1.0 or float(gap.min()) <= margin:
             clear = (gap > margin) & (bulge <= 1.0)
             if not _arcs_clear(contour, tolerance, ring[:, :-1], run, far, clear, swept):
                 return False
-    return all(abs(turns / (2.0 * np.pi) - 1.0) < 1e-3 for turns in np.add.reduce(swept, 1).tolist())
+    return all(abs(turns / (2.0 * np.pi) - 1.0) < 1e-3 for turns in swept.sum(axis=1).tolist())
 
 
 def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: Sequence[float], margin: float) -> bool:
@@ -460,8 +460,8 @@ def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: Se
     ``widest`` (<= 1) is further from every piece than sqrt(m^2 - H^2) - H widest, each piece's own bound being no
     less; so whether m^2 - H^2 - (reach + H widest)^2 exceeds ``margin`` for every point (``reach``, k of them, mm, the
     squared bounds' room for rounding). Enough where no long chord comes near (a cam's bore), in Python floats."""
-    most = float(np.maximum.reduce(length, initial=0.0)) * 0.5       # the longest half chord: halving is exact
-    for m, r in zip(np.minimum.reduce(near, 1).tolist(), reach, strict=True):
+    most = float(length.max(initial=0.0)) * 0.5                     # the longest half chord: halving is exact
+    for m, r in zip(near.min(axis=1).tolist(), reach, strict=True):
         if not m * m - most * most - (r + most * widest) ** 2 > margin:
             return False
     return True
@@ -478,7 +478,7 @@ def _arcs_clear(contour: Contour, tolerance: float, start: np.ndarray, run: np.n
     b = contour.bulges[arc]
     centre, radius = _arc_circles(b, start[:, arc], run[arc])      # seen from each point
     off = np.abs(centre)
-    rounding = _CERTAIN * (1.0 + float(np.maximum.reduce(off + radius, axis=None, initial=0.0)))
+    rounding = _CERTAIN * (1.0 + float((off + radius).max(initial=0.0)))
     clear[:, arc] |= np.maximum(off - radius, radius - tolerance - off) - reach[:, None] > rounding
     # whether a point lies inside an arc's circle decides the angle the arc sweeps: not where rounding could
     if not clear.all() or (np.abs(off - radius) <= rounding).any():
