@@ -48,7 +48,7 @@ def _peaks_steps(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -
     the program's search itself, asking as the cam's evaluation takes it."""
     def values(answers: list[PitchGeometry]) -> np.ndarray:
         (g,) = answers
-        return np.array([q(g) for q in quantities])              # np.stack's rows, without its checks' cost
+        return np.array([q(g) for q in quantities])
 
     return cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities],
                                     getattr(cam.follower, "steady", False), _ask)

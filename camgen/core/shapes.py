@@ -20,15 +20,6 @@ def _frozen(a: np.ndarray) -> np.ndarray:
     return a
 
 
-def _left(d: np.ndarray) -> np.ndarray:
-    """The vectors ``d`` (k, 2) turned a quarter turn counter-clockwise, (-y, x): np.column_stack's numbers
-    without its dispatch."""
-    out = np.empty(d.shape)
-    np.negative(d[:, 1], out=out[:, 0])
-    out[:, 1] = d[:, 0]
-    return out
-
-
 def _moved(points: np.ndarray, angle: float, shift: np.ndarray) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     return points @ np.array([[c, s], [-s, c]]) + shift
@@ -106,7 +97,7 @@ class Contour:
         with np.errstate(divide="ignore", invalid="ignore"):
             h = chord / (2.0 * np.tan(angle / 2.0))
             d = qp / np.where(chord > 0, chord, 1.0)[:, None]
-        return idx, p, chord, angle, (p + q) / 2.0 + _left(d) * h[:, None]
+        return idx, p, chord, angle, (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
 
     def arcs(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The arc pieces: their indices, centres (k, 2), radii (k,) and signed included angles (k,) in rad."""
