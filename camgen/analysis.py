@@ -8,7 +8,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from camgen.cam import Ask, Cam, Maker, build_cam
-from camgen.core.records import record_maker
 from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
 from camgen.numeric import boundary
@@ -37,9 +36,6 @@ class CamAnalysis:
     undercut: bool
 
 
-#: a CamAnalysis made from its fields without its checked __init__ (see camgen.core.records.record_maker)
-_make_analysis = record_maker(CamAnalysis)
-
 def _peaks(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -> list[tuple[float, float]]:
     """Largest value over the cycle of each pitch-geometry quantity, and where: (value, cam angle in degrees) each,
     all from one evaluation of the pitch curve (see :meth:`camgen.program.Program.maxima`); of equal peaks (within
@@ -52,7 +48,7 @@ def _peaks_steps(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -
     the program's search itself, asking as the cam's evaluation takes it."""
     def values(answers: list[PitchGeometry]) -> np.ndarray:
         (g,) = answers
-        return np.array([q(g) for q in quantities])              # np.stack's rows, without its checks' cost
+        return np.array([q(g) for q in quantities])
 
     return cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities],
                                     getattr(cam.follower, "steady", False), _ask)
@@ -137,7 +133,7 @@ def analysis_maker(cam: Cam) -> Generator[list[Ask], list[PitchGeometry], CamAna
         folds = [i for i, step in cam.steps() if step < 0]
         if folds:  # the velocity drops at a segment end: the profile folds back, a radius of curvature of -infinity
             neg, at = math.inf, math.degrees(cam.program.segments[folds[0]].end) % 360.0
-        return _make_analysis(
+        return CamAnalysis(
             pressure_angle_max_deg=math.degrees(pa), pressure_angle_max_at_deg=pa_at,
             pitch_rho_min_mm=-neg, pitch_rho_min_at_deg=at, profile_rho_min_mm=-neg,
             pitch_concave_rho_min_mm=None, profile_concave_rho_min_mm=None, concave_at_deg=None, undercut=-neg <= 0)
@@ -148,7 +144,7 @@ def analysis_maker(cam: Cam) -> Generator[list[Ask], list[PitchGeometry], CamAna
     if convex_corners:  # a convex corner of the pitch curve is a zero radius of curvature
         rho, kmax_at = 0.0, math.degrees(cam.program.segments[convex_corners[0]].end) % 360.0
     concave = 1.0 / kmin if kmin > 0 else None
-    return _make_analysis(
+    return CamAnalysis(
         pressure_angle_max_deg=math.degrees(pa), pressure_angle_max_at_deg=pa_at,
         pitch_rho_min_mm=rho, pitch_rho_min_at_deg=kmax_at, profile_rho_min_mm=rho - rr,
         pitch_concave_rho_min_mm=concave, profile_concave_rho_min_mm=None if concave is None else concave + rr,

@@ -4,12 +4,12 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.core.records import once, record_maker
 from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
 from camgen.followers.plate import PlateRoller
@@ -65,7 +65,7 @@ class Cam:
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         return self.follower.pitch(theta, self.program.segments[index].evaluate(theta))
 
-    @once
+    @cached_property
     def _boundaries(self) -> tuple[PitchGeometry, PitchGeometry]:
         """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start."""
         return self._halves(self.follower.pitch(*self.program.boundaries))
@@ -133,30 +133,15 @@ class Cam:
         """
         return list(self._corners)
 
-    @once
+    @cached_property
     def _corners(self) -> tuple[tuple[int, float], ...]:
-        """:meth:`corners`, found once a cam (a design asks several times). A tangent that turns by less than 1e-10
-        radians as Python's floats measure it is no corner, whatever the dot product's rounding: its cross product
-        c and dot product d (in Python floats) with |c| < 1e-10 d make the tangents all but parallel, so that d is
-        |left| |right| to a few ulps and numpy's dot product is too, and the turn |atan2(c, dot)| < 1e-9; only a
-        turn not so decided is measured, by numpy's dot product."""
-        out = []
+        """:meth:`corners`, found once a cam (a design asks several times): the turn from each segment's end tangent
+        to the next one's start tangent, atan2 of their cross and dot products, where it exceeds 1e-9 radians."""
         ends, starts = self._boundaries
         left, right = ends.d1, starts.d1
-        dots = None
-        for i, ((lx, ly), (rx, ry)) in enumerate(zip(left.tolist(), right.tolist(), strict=True)):
-            cross = lx * ry - ly * rx
-            if abs(cross) < 1e-10 * (lx * rx + ly * ry):
-                continue
-            # the cross product in Python floats (the same products and difference); the dot product stays numpy's:
-            # a stack of (1, 2) @ (2, 1) products runs, row by row, the dot left[i] @ right[i] runs (its own
-            # rounding, not a*b + c*d), in one call for every boundary
-            if dots is None:
-                dots = (left[:, None, :] @ right[:, :, None]).ravel().tolist()
-            turn = math.atan2(cross, dots[i])
-            if abs(turn) > 1e-9:
-                out.append((i, -self.follower.sense * turn))
-        return tuple(out)
+        cross = left[:, 0] * right[:, 1] - left[:, 1] * right[:, 0]
+        turn = np.arctan2(cross, (left * right).sum(axis=1))
+        return tuple((i, -self.follower.sense * t) for i, t in enumerate(turn.tolist()) if abs(t) > 1e-9)
 
     def steps(self) -> list[tuple[int, float]]:
         """Where a flat face's contact point jumps at a segment end (a velocity jump): ``(segment index, step)``.
@@ -234,10 +219,5 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
             except SpecError as exc:
                 raise exc.under(f"motion[{i}]") from None
         steps.append((seg.type, seg.angle, seg.lift or 0.0, law))
-    return _make_cam(name=spec.name, program=build_program(steps),
-                     follower=kind_of(spec.cam.kind).follower(spec, rb, rr), base_radius=rb,
-                     thickness=spec.cam.thickness, bore=spec.cam.bore)          # a Cam checks nothing itself
-
-
-#: a Cam made from its fields without its checked __init__ (see camgen.core.records.record_maker)
-_make_cam = record_maker(Cam)
+    return Cam(name=spec.name, program=build_program(steps), follower=kind_of(spec.cam.kind).follower(spec, rb, rr),
+               base_radius=rb, thickness=spec.cam.thickness, bore=spec.cam.bore)

@@ -6,6 +6,7 @@ import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -15,7 +16,6 @@ from camgen.cam import Cam, Maker, build_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker, quietly
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
-from camgen.core.records import once, record_maker
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.kinds import kind_of
@@ -94,12 +94,17 @@ class CamDesign:
     speed: dict[str, Any] | None                  # with cam.rpm: peak rates and the contact check
     sizing: Sizing | None = None
     face_leaves: tuple[FaceLeaves, ...] | None = None
+    #: :attr:`wall_mm` where the design's checks measured it already (mm); None: measured when first read
+    measured_wall_mm: float | None = dataclasses.field(default=None, repr=False, compare=False)
 
-    @once
+    @cached_property
     def wall_mm(self) -> float:
         """The thinnest material (mm) between the bore and the outline (as chords within :attr:`tolerance`): how
-        near the outline comes to the centre less the bore's radius; measured when first read (the design itself
-        only needs to know that it is positive, and whether it is under :data:`THIN_WALL`)."""
+        near the outline comes to the centre less the bore's radius; :attr:`measured_wall_mm` where the checks
+        measured it, else measured when first read (the design itself only needs to know that it is positive, and
+        whether it is under :data:`THIN_WALL`, which bounds often tell without measuring)."""
+        if self.measured_wall_mm is not None:
+            return self.measured_wall_mm
         return _reach(_body(self.outline, self.tolerance)) - self.spec.cam.bore / 2.0
 
     @property
@@ -125,10 +130,6 @@ class CamDesign:
         from camgen.core.page import bundle_frame
 
         return bundle_frame(kind_of(self.spec.cam.kind).bundler()(self)[0])
-
-
-#: the design's records made from their fields without their checked __init__ (see camgen.core.records.record_maker)
-_make_design, _make_allowances, _make_part = record_maker(CamDesign), record_maker(Allowances), record_maker(Part)
 
 
 def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
@@ -242,27 +243,25 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, envelope, marks, outline, cut_off, holes)
     out = spec.output
-    allowances = _make_allowances(kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
-                                  elephant_foot=out.elephant_foot)
+    allowances = Allowances(kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
+                            elephant_foot=out.elephant_foot)
     part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
     jumps = tuple(cam.program.jumps())
     speed = _speed(spec, cam, rates_only)
     limit = pressure_limit(spec)
     warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off, limit) + _contact_warnings(speed)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
-    design = _make_design(spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
-                          cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
-                          allowances=allowances, warnings=warnings, pressure_limit_deg=limit,
-                          face_extent=extent, speed=speed, sizing=sizing,
-                          face_leaves=cut_off.leaves if cut_off is not None else None)
-    return design if wall is None else known_wall(design, wall)
+    return CamDesign(spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
+                     cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
+                     allowances=allowances, warnings=warnings, pressure_limit_deg=limit,
+                     face_extent=extent, speed=speed, sizing=sizing,
+                     face_leaves=cut_off.leaves if cut_off is not None else None, measured_wall_mm=wall)
 
 
 def known_wall(design: CamDesign, wall: float) -> CamDesign:
-    """``design`` with its :attr:`CamDesign.wall_mm` set to ``wall`` (mm), measured already as the property measures
-    it (the same number), so that a report reading it does not flatten and measure the outline again."""
-    design.__dict__["wall_mm"] = wall                   # a cached property's slot: the frozen dataclass allows it
-    return design
+    """``design`` with its :attr:`CamDesign.wall_mm` known to be ``wall`` (mm), measured already as the property
+    measures it (the same number), so that a report reading it does not flatten and measure the outline again."""
+    return dataclasses.replace(design, measured_wall_mm=wall)
 
 
 def _body(outline: Outline, tolerance: float) -> Any:
@@ -368,7 +367,7 @@ class _Profile:
         if (outline_grow, hole_grow) not in self._parts:
             t, hub = self.spec, self.spec.hub
             boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
-            self._parts[outline_grow, hole_grow] = _make_part(
+            self._parts[outline_grow, hole_grow] = Part(
                 name=t.name, outline=self.outline(outline_grow).contour, holes=self._grown_holes(hole_grow),
                 thickness=t.cam.thickness, tolerance=t.output.tolerance, marks=self.marks, boss=boss,
                 set_screw=hub.set_screw)
@@ -500,9 +499,9 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
     run = ring[0, 1:] - ring[0, :-1]
     length = np.abs(run)
     near = np.abs(ring)
-    extent = float(np.maximum.reduce(near, None))               # axis None: numpy parses it faster unnamed
+    extent = float(near.max())
     margin = _CERTAIN * (1.0 + extent * extent)
-    widest = float(np.maximum.reduce(bulge, initial=0.0))
+    widest = float(bulge.max(initial=0.0))
     turn = ring[:, 1:] * ring[:, :-1].conjugate()
     swept = np.arctan2(turn.imag, turn.real)
     if widest > 1.0 or not _far_from_all(near, length, widest, reach, margin):
@@ -510,11 +509,11 @@ def _inside_clear(contour: Contour, tolerance: float, points: np.ndarray, reach:
         low = np.minimum(near[:, :-1], near[:, 1:])
         far = np.array(reach)
         gap = low * low - half * half - (far[:, None] + half * bulge) ** 2
-        if widest > 1.0 or float(np.minimum.reduce(gap, axis=None)) <= margin:
+        if widest > 1.0 or float(gap.min()) <= margin:
             clear = (gap > margin) & (bulge <= 1.0)
             if not _arcs_clear(contour, tolerance, ring[:, :-1], run, far, clear, swept):
                 return False
-    return all(abs(turns / (2.0 * np.pi) - 1.0) < 1e-3 for turns in np.add.reduce(swept, 1).tolist())
+    return all(abs(turns / (2.0 * np.pi) - 1.0) < 1e-3 for turns in swept.sum(axis=1).tolist())
 
 
 def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: Sequence[float], margin: float) -> bool:
@@ -523,8 +522,8 @@ def _far_from_all(near: np.ndarray, length: np.ndarray, widest: float, reach: Se
     ``widest`` (<= 1) is further from every piece than sqrt(m^2 - H^2) - H widest, each piece's own bound being no
     less; so whether m^2 - H^2 - (reach + H widest)^2 exceeds ``margin`` for every point (``reach``, k of them, mm, the
     squared bounds' room for rounding). Enough where no long chord comes near (a cam's bore), in Python floats."""
-    most = float(np.maximum.reduce(length, initial=0.0)) * 0.5       # the longest half chord: halving is exact
-    for m, r in zip(np.minimum.reduce(near, 1).tolist(), reach, strict=True):
+    most = float(length.max(initial=0.0)) * 0.5                     # the longest half chord: halving is exact
+    for m, r in zip(near.min(axis=1).tolist(), reach, strict=True):
         if not m * m - most * most - (r + most * widest) ** 2 > margin:
             return False
     return True
@@ -541,7 +540,7 @@ def _arcs_clear(contour: Contour, tolerance: float, start: np.ndarray, run: np.n
     b = contour.bulges[arc]
     centre, radius = _arc_circles(b, start[:, arc], run[arc])      # seen from each point
     off = np.abs(centre)
-    rounding = _CERTAIN * (1.0 + float(np.maximum.reduce(off + radius, axis=None, initial=0.0)))
+    rounding = _CERTAIN * (1.0 + float((off + radius).max(initial=0.0)))
     clear[:, arc] |= np.maximum(off - radius, radius - tolerance - off) - reach[:, None] > rounding
     # whether a point lies inside an arc's circle decides the angle the arc sweeps: not where rounding could
     if not clear.all() or (np.abs(off - radius) <= rounding).any():

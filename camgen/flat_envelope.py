@@ -35,13 +35,13 @@ import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from camgen.cam import Cam
 from camgen.core.errors import DesignError
-from camgen.core.records import once
 from camgen.core.shapes import Contour
 from camgen.numeric import maximise
 from camgen.outline import Outline, stretch
@@ -577,7 +577,7 @@ class FlatEnvelope:
 
     # -- what the follower does ----------------------------------------------------------------------------------
 
-    @once
+    @cached_property
     def leaves(self) -> tuple[FaceLeaves, ...]:
         """Where the face placed by the law leaves the cut cam, one entry a fold cut off, in order round the cycle."""
         return tuple(self._leaving(c) for c in self.corners)
@@ -624,7 +624,7 @@ class FlatEnvelope:
             low, high = np.where(cut, mid, low), np.where(cut, high, mid)
         return law - 0.5 * (low + high)
 
-    @once
+    @cached_property
     def face_extent(self) -> tuple[float, float]:
         """Nearest and farthest contact along the face (mm, from the follower's ``face_origin``) of a follower held
         on the cut cam: the kept stretches, their flats' ends and the corners it rides on."""

@@ -1,11 +1,9 @@
 """Small numerical helpers shared by the analyses (no geometry, no I/O)."""
 from __future__ import annotations
 
-import array
 import functools
 import itertools
 import math
-import operator
 from collections.abc import Callable, Generator, Iterable
 from typing import Any, NamedTuple
 
@@ -39,11 +37,11 @@ def maximise(func: ArrayFunc, a: float, b: float, *, n: int = 1025, rounds: int 
 
 
 def constant(value: float) -> np.ndarray:
-    """The number ``value`` (anything ``float()`` takes) as a read-only 0-d float64 array: numpy takes one in
-    arithmetic faster than a Python number (no conversion), and a module's shared constant cannot be written into
-    by a stray ``out=``. Raises TypeError for what is not one number (None, a list, an array of more than one)."""
-    out = np.array(float(value))                         # a Python float's array is float64 without asking for it
-    out.setflags(False)                                  # (write): by position, cheaper than by keyword
+    """The number ``value`` (anything ``float()`` takes) as a read-only 0-d float64 array, so that a module's shared
+    constant cannot be written into by a stray ``out=``. Raises TypeError for what is not one number (None, a list,
+    an array of more than one)."""
+    out = np.array(float(value))
+    out.setflags(write=False)
     return out
 
 
@@ -92,9 +90,8 @@ _QUARTIC = (np.array([[1, -1, -1, 1], [-8, 16, 2, -4], [0, -30, 0, 6], [8, 16, -
 def _coefficients(windows: np.ndarray) -> list[list[float]]:
     """a1, a2, a3, a4 (the coefficients of t, t^2, t^3, t^4) of the quartic through each row of ``windows`` (m, 5)
     (values at t = -2..2), as floats. One matrix product for all rows: its rounding depends on whether there is one
-    row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place. ndarray.dot
-    calls the same BLAS kernel as the @ operator (the same bits) with less of numpy's dispatch before it."""
-    return windows.dot(_QUARTIC).tolist()
+    row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place."""
+    return (windows @ _QUARTIC).tolist()
 
 
 def _coefficients_apart(windows: np.ndarray, from_end: list[bool]) -> list[list[float]]:
@@ -112,25 +109,23 @@ def _coefficients_apart(windows: np.ndarray, from_end: list[bool]) -> list[list[
 def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) -> float | None:
     """Where the quartic of coefficients a1..a4 (of t..t^4) peaks within [lo, hi], by three Newton steps on its
     slope from the parabola's vertex; None where it has no maximum there (a step dividing by zero has none)."""
-    twice, thrice, six = 2.0 * a2, 3.0 * a3, 6.0 * a3         # the same numbers each step: made once; t * 4 * a4
-    four = 4.0 * a4                                           # is t * four to the bit (4 scales exactly); float
-    try:                                                      # constants: the interpreter's float-only arithmetic
-        t = -a1 / twice                                       # (an int operand takes its slower general path)
-        for _ in (0, 1, 2):
-            t = t - (a1 + t * (twice + t * (thrice + t * four))) / (twice + t * (six + t * 12.0 * a4))
+    try:
+        t = -a1 / (2 * a2)
+        for _ in range(3):
+            t -= (a1 + t * (2 * a2 + t * (3 * a3 + t * 4 * a4))) / (2 * a2 + t * (6 * a3 + t * 12 * a4))
     except ZeroDivisionError:                                 # t would be infinite or NaN: no maximum within
         return None
-    return t if twice + t * (six + t * 12.0 * a4) < 0.0 and lo <= t <= hi else None   # False where t is NaN
+    return t if 2 * a2 + t * (6 * a3 + t * 12 * a4) < 0 and lo <= t <= hi else None   # False where t is NaN
 
 
 def _breadth(a2: float, a4: float, step: float, size: float) -> float:
     """A peak's breadth from its grid quartic's a2 and a4: a bell of breadth b has a2 / a4 = 2 b^2 / h^2 on a grid
     of step h; kept between 2 h and the piece's ``size`` (the piece's where a4 is zero or the ratio NaN)."""
     try:
-        breadth = min(max(step * math.sqrt(abs(a2 / a4) / 2.0), 2.0 * step), size)
+        breadth = min(max(step * math.sqrt(abs(a2 / a4) / 2), 2 * step), size)
     except ZeroDivisionError:
         return size
-    return size if breadth != breadth else breadth
+    return size if math.isnan(breadth) else breadth
 
 
 #: what :func:`maxima_steps` asks for, abscissae (m,) and their pieces (m,) (as its ``ask`` puts them); it is sent
@@ -174,22 +169,13 @@ def _flags(flag: ArrayLike, p: int) -> list[bool]:
 
 
 def _exact(values: ArrayLike) -> bytes:
-    """``values`` as the bytes of their float64s, to look a :func:`_plan` up by (exact: -0.0 is not 0.0). A list or
-    tuple of numbers is packed as it is (an array.array of doubles: numpy's float64s, byte for byte), without a numpy
-    array."""
-    if type(values) is list or type(values) is tuple:
-        try:
-            return array.array("d", values).tobytes()
-        except TypeError:                                # not numbers (nested, or text): as numpy reads them
-            pass
+    """``values`` as the bytes of their float64s, to look a :func:`_plan` up by (exact: -0.0 is not 0.0)."""
     return np.asarray(values, dtype=float).reshape(-1).tobytes()
 
 
-def _key(flag: ArrayLike) -> tuple[Any, ...]:
-    """``flag`` (a bool, or a sequence or array of them) as a tuple, to look a :func:`_plan` up by."""
-    if isinstance(flag, bool):
-        return (flag,)
-    return tuple(flag) if isinstance(flag, list | tuple) else tuple(np.asarray(flag, dtype=bool).reshape(-1).tolist())
+def _key(flag: ArrayLike) -> tuple[bool, ...]:
+    """``flag`` (a bool, or a sequence or array of them) as a tuple of bools, to look a :func:`_plan` up by."""
+    return tuple(np.asarray(flag, dtype=bool).reshape(-1).tolist())
 
 
 class _Plan(NamedTuple):
@@ -199,7 +185,7 @@ class _Plan(NamedTuple):
     hi: list[float]
     width: list[float]
     moving: list[int]                  #: the pieces that are not steady, in order
-    #: each steady piece and where its maximum is: its values are all its first, the end :func:`_end_of` takes
+    #: each steady piece and where its maximum is: its values are all its first, the end :func:`_first_largest` takes
     #: for any finite tie
     resting: list[tuple[int, float]]
     backwards: list[bool]
@@ -224,7 +210,7 @@ def _plan(lo: bytes, hi: bytes, steady: tuple[Any, ...], reverse: tuple[Any, ...
     piece = np.concatenate([np.repeat(moving, n), steady_pieces]).astype(np.intp)
     x.flags.writeable = piece.flags.writeable = False
     lo, hi, backwards = low.tolist(), high.tolist(), _flags(reverse, p)
-    resting = [(i, _end_of(lo[i], 0.0, hi[i], 0.0, 0.0, backwards[i])[0]) for i in steady_pieces]
+    resting = [(i, _first_largest([(lo[i], 0.0), (hi[i], 0.0)], 0.0, backwards[i])[0]) for i in steady_pieces]
     return _Plan(lo, hi, width.tolist(), moving, resting, backwards, (x, piece))
 
 
@@ -235,18 +221,11 @@ def _unit(n: int) -> tuple[np.ndarray, list[float]]:
     return unit, unit.tolist()
 
 
-def _flat_rows(y: np.ndarray, edges: list[list[float]], magnitude: list[float], count: int) -> list[int]:
+def _flat_rows(y: np.ndarray, magnitude: list[float], count: int) -> list[int]:
     """The rows of the grid ``y`` (rows, n; finite) that are constant within the tie: whose largest and least value
-    differ by no more than ``TIE`` of their function's ``magnitude`` (``count`` rows a function). A row whose ends
-    (``edges``, each row's first five and last five values) differ by more is not one, without its largest and
-    least: they are no closer than its ends, and rounding is monotonic, so their difference rounds to no less."""
-    unsure = [r for r, e in enumerate(edges) if not abs(e[0] - e[9]) > TIE * magnitude[r // count]]
-    if not unsure:
-        return unsure
-    rows = y[unsure]
-    top = np.maximum.reduce(rows, axis=1).tolist()
-    bottom = np.minimum.reduce(rows, axis=1).tolist()
-    return [r for r, t, b in zip(unsure, top, bottom, strict=True) if not t - b > TIE * magnitude[r // count]]
+    differ by no more than ``TIE`` of their function's ``magnitude`` (``count`` rows a function)."""
+    spread = (y.max(axis=1) - y.min(axis=1)).tolist()
+    return [r for r, d in enumerate(spread) if not d > TIE * magnitude[r // count]]
 
 
 def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], magnitude: list[float],
@@ -261,21 +240,16 @@ def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], m
     peak = inner >= np.maximum(before, after)                # as inner >= before and inner >= after (no NaN)
     if flat:
         peak[flat] = False
-    n = y.shape[1]            # (row, grid index) from the flat indices of a 1-D nonzero: a 2-D one costs ~1 us more
-    cells = [(i // (n - 2), i % (n - 2) + 1) for i in peak.ravel().nonzero()[0].tolist()]
-    near_ends = _inward_peaks(edges, flat, magnitude, count, n)
-    if near_ends:
-        cells = sorted(cells + near_ends)
-    if len(set(found := [r for r, _ in cells])) == len(found):   # one a row: its highest
+    rows, inside = peak.nonzero()
+    cells = sorted([*zip(rows.tolist(), (inside + 1).tolist(), strict=True),
+                    *_inward_peaks(edges, flat, magnitude, count, y.shape[1])])
+    if not cells:
         return cells
-    values = y.take([r * n + j for r, j in cells]).tolist()
-    bend = before - 2 * inner
-    bend += after
-    drop = np.maximum.reduce(np.abs(bend, out=bend), axis=1).tolist()
-    top = dict.fromkeys(found, -math.inf)
-    for r, v in zip(found, values, strict=True):
-        if v > top[r]:
-            top[r] = v
+    values = y[[r for r, _ in cells], [j for _, j in cells]].tolist()
+    drop = np.abs(before - 2 * inner + after).max(axis=1).tolist()
+    top: dict[int, float] = {}
+    for (r, _), v in zip(cells, values, strict=True):
+        top[r] = max(top.get(r, -math.inf), v)
     return [(r, j) for (r, j), v in zip(cells, values, strict=True) if v >= top[r] - drop[r]]
 
 
@@ -411,13 +385,10 @@ def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[f
             peak.centre = moved
 
 
-_VALUE = operator.itemgetter(1)
-
-
 def _first_largest(candidates: list[tuple[float, float]], tie: float, backwards: bool) -> tuple[float, float]:
     """Of a piece's ``candidates`` (abscissa, value), its ends and peaks, the first from the low end (the high end
     where ``backwards``) whose value is within ``tie`` of the largest; of equal abscissae the earliest listed."""
-    limit = max(candidates, key=_VALUE)[1] - tie
+    limit = max(v for _, v in candidates) - tie
     sign = -1.0 if backwards else 1.0
     best, key = candidates[0], math.inf
     for candidate in candidates:
@@ -425,14 +396,6 @@ def _first_largest(candidates: list[tuple[float, float]], tie: float, backwards:
         if v >= limit and sign * x < key:
             best, key = candidate, sign * x
     return best
-
-
-def _end_of(lo: float, first: float, hi: float, last: float, tie: float, backwards: bool) -> tuple[float, float]:
-    """:func:`_first_largest` of a piece with no peak, ``[(lo, first), (hi, last)]``, in a few comparisons."""
-    limit = (last if last > first else first) - tie
-    if last >= limit and (first < limit or (hi > lo if backwards else hi < lo)):
-        return hi, last
-    return lo, first
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
@@ -472,18 +435,14 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     k = got.shape[0]
     count = len(moving)
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
-    largest = np.maximum.reduce(np.abs(got), axis=1).tolist()   # NaN or infinite where any value is (the ufunc's
-    #                                                             reduce: ndarray.max's Python wrapper costs more)
+    largest = np.abs(got).max(axis=1).tolist()                 # NaN or infinite where any value is
     if not all(map(math.isfinite, largest)):
         raise FloatingPointError("function is not finite on the search grid")
-    scales = (scale if type(scale) is list and {*map(type, scale)} <= {float}   # Python floats (or none): as given
-              else np.asarray(scale, dtype=float).reshape(-1).tolist())
-    if len(scales) != k:                                       # one for all, as numpy broadcasts it
-        scales = [*scales] * k if len(scales) == 1 else np.broadcast_to(scales, (k,)).tolist()
-    magnitude = list(map(max, scales, largest))                # as many of each (the lengths made equal above)
+    scales = np.broadcast_to(np.asarray(scale, dtype=float).reshape(-1), (k,)).tolist()   # one for all, or one each
+    magnitude = [max(s, m) for s, m in zip(scales, largest, strict=True)]
     held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
-    edges = y.take(_EDGES, axis=1).tolist()       # each row's first five and last five (take: less than [:, _EDGES])
-    flat = _flat_rows(y, edges, magnitude, count)
+    edges = y[:, _EDGES].tolist()                              # each row's first five and last five
+    flat = _flat_rows(y, magnitude, count)
     grid = _grid_candidates(y, flat, edges, magnitude, count) if count else []
     found: list[list[tuple[float, float]]] = [[] for _ in edges]   # each grid row's peaks
     if grid:
@@ -506,9 +465,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         value.append(row_value)
         for piece, (edge, here) in zip(moving, rows, strict=False):   # this function's rows (moving first: zip
             #                                                           then takes no row past its last piece)
-            row_at[piece], row_value[piece] = (
-                _first_largest([(lo[piece], edge[0]), (hi[piece], edge[9]), *here], tie, backwards[piece]) if here
-                else _end_of(lo[piece], edge[0], hi[piece], edge[9], tie, backwards[piece]))
+            row_at[piece], row_value[piece] = _first_largest([(lo[piece], edge[0]), (hi[piece], edge[9]), *here], tie,
+                                                             backwards[piece])
         for (piece, where), v in zip(resting, held[f], strict=True):
             row_at[piece], row_value[piece] = where, v
     return at, value, magnitude

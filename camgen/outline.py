@@ -23,7 +23,6 @@ from camgen.biarcs import arc_distance, biarcs
 from camgen.cam import Cam, Maker, together
 from camgen.core.errors import DesignError
 from camgen.followers.base import PitchGeometry
-from camgen.numeric import constant
 from camgen.core.shapes import Contour, arc_steps, reversed_pieces
 from camgen.surface import surface_deviation
 
@@ -120,7 +119,7 @@ def _bend(kappa: np.ndarray, rr: float) -> np.ndarray:
     or NaN where it has none (a division by zero, silenced where the makers run: see :func:`quietly`). Its least
     and greatest over a span bound what probes can miss: a curve parts from a line or an arc between two probes by
     at most gap^2 |curvature difference| / 8."""
-    return kappa / (_ONE - rr * kappa)
+    return kappa / (1 - rr * kappa)
 
 
 def _arc_curvature(start: np.ndarray, end: np.ndarray, bulge: np.ndarray) -> np.ndarray:
@@ -157,7 +156,7 @@ def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: floa
     # instead of near 0: a + t ab is a all the same, but within 1e-146 mm of the centre)
     t = along[0] + along[1]
     t /= np.fmax(length2, _LEAST, out=length2)
-    np.minimum(np.maximum(t, _ZERO, out=t), _ONE, out=t)
+    np.minimum(np.maximum(t, 0.0, out=t), 1.0, out=t)   # np.clip's result
     off = t * ab                                        # from each probe to its nearest point of the chord:
     off += a                                            # a + t ab - x, made in place
     off -= x
@@ -165,19 +164,16 @@ def _chord_errors(vertex: np.ndarray, x: np.ndarray, kappa: np.ndarray, rr: floa
     bend = _bend(kappa, rr).reshape(x.shape[1:])
     bend = np.abs(bend, out=bend).max(axis=0)
     # np.fmin takes the number where the other is NaN: a NaN curvature's bound is infinite
-    # gap * gap: numpy's gap**2 (its square), without the power's dispatch; the bound's two terms made in place
     gap *= gap
-    gap *= np.fmin(bend, _INF, out=bend)
-    gap /= _EIGHT
+    gap *= np.fmin(bend, math.inf, out=bend)
+    gap /= 8
     far = (off[0] + off[1]).max(axis=0)
     gap += np.sqrt(far, out=far)
     return gap
 
 
-#: 0-d constants (numpy takes them without converting a Python number)
-_ZERO, _HALF, _ONE, _EIGHT, _INF = constant(0.0), constant(0.5), constant(1.0), constant(8.0), constant(math.inf)
-#: the least positive float (a subnormal), 0-d
-_LEAST = constant(5e-324)
+#: the least positive float (a subnormal)
+_LEAST = 5e-324
 
 
 #: the points of the grid on which a stretch is measured for its spacing: its trapezoids only integrate the vertex
@@ -189,25 +185,18 @@ _AUX = 65
 def _aux(cam: Cam, index: int, span: tuple[float, float] | None) -> np.ndarray:
     """The grid (radians) on which the segment ``index`` (or the ``span`` of it) is measured for its spacing."""
     seg = cam.program.segments[index]
-    start, end = (seg.start, seg.end) if span is None else span
-    return np.linspace(start, end, _AUX)
-
-
-#: k = 0 .. _AUX - 1, the steps of a grid (read only)
-_STEPS = np.arange(_AUX, dtype=float)
-_STEPS.setflags(write=False)
+    return _grids([(seg.start, seg.end) if span is None else span])[0]
 
 
 def _grids(ranges: list[tuple[float, float]]) -> np.ndarray:
-    """:func:`_aux`'s grids from each start to its end of ``ranges`` (m pairs, radians), (m, _AUX): np.linspace's
-    numbers (k times the step, plus the start; the last the end) without its checks."""
-    step = [(end - start) / (_AUX - 1) for start, end in ranges]
-    if not all(step):                                   # a step below the least float: linspace's own way
-        return np.linspace(*np.array(ranges).T, _AUX, axis=1)
-    out = np.array(step)[:, None] * _STEPS
-    out += np.array([start for start, _ in ranges])[:, None]
-    out[:, -1] = [end for _, end in ranges]
-    return out
+    """:func:`_aux`'s grids from each start to its end of ``ranges`` (m pairs, radians), (m, _AUX): _AUX points
+    evenly spaced from the start to the end."""
+    start, end = np.array(ranges).T
+    return start[:, None] + (end - start)[:, None] * _UNIT
+
+
+#: _AUX fractions evenly spaced from 0 to 1
+_UNIT = np.linspace(0.0, 1.0, _AUX)
 
 
 def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float,
@@ -227,7 +216,7 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
     another (contiguous, one-dimensional: numpy's quicker loops), with one trapezoid too many from each grid's end
     to the next one's start, left out of the sums."""
     root = rr * kappa                                   # sqrt(|k (1 - rr k)| / (8 aim tol)), made in place
-    np.subtract(_ONE, root, out=root)
+    np.subtract(1.0, root, out=root)
     root *= kappa
     np.sqrt(np.divide(np.abs(root, out=root), 8.0 * _AIM * tolerance, out=root), out=root)
     density = _length(d1)
@@ -235,7 +224,7 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
     grid = aux.ravel()
     step = np.empty(grid.size)                          # the trapezoids: 0.5 (sum of the ends) (width), in place
     trapezoid = np.add(density[1:], density[:-1], step[:-1])
-    trapezoid *= _HALF
+    trapezoid *= 0.5
     trapezoid *= grid[1:] - grid[:-1]
     cum = np.zeros(aux.shape)
     step.reshape(aux.shape)[:, :-1].cumsum(axis=1, out=cum[:, 1:])
@@ -244,7 +233,7 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
 
 def _spaced(index: int, aux: np.ndarray, cum: np.ndarray, tolerance: float, factor: float) -> np.ndarray:
     """:func:`_spacing` on the grid ``aux`` from its count of chords ``cum`` (see :func:`_density`)."""
-    total = float(cum[-1])                              # a Python float: the same number, cheaper arithmetic
+    total = float(cum[-1])
     wanted = total * factor
     if not wanted <= MAX_SEGMENT_VERTICES:              # also NaN or infinite (a curvature without bound)
         raise DesignError(f"output.tolerance: the outline of motion[{index}] would need {wanted:.3g} vertices to "
@@ -253,20 +242,7 @@ def _spaced(index: int, aux: np.ndarray, cum: np.ndarray, tolerance: float, fact
     n = max(1, math.ceil(wanted))
     if total <= 0:
         return np.linspace(aux[0], aux[-1], n + 1)
-    return np.interp(_spread(total, n), cum, aux)
-
-
-def _spread(total: float, n: int) -> np.ndarray:
-    """np.linspace(0, ``total``, n + 1) for finite ``total`` > 0, the same numbers (k total / n, the last
-    ``total``) without its checks; linspace's added start, 0.0, left out: k times a positive step is never -0.0,
-    the one number to which adding 0.0 does anything."""
-    step = total / n
-    if step == 0:                                       # a step below the least float: linspace's own way
-        return np.linspace(0.0, total, n + 1)
-    out = np.arange(n + 1, dtype=float)
-    out *= step
-    out[-1] = total
-    return out
+    return np.interp(np.linspace(0.0, total, n + 1), cum, aux)
 
 
 Span = tuple[float, float] | None
@@ -276,7 +252,6 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     """Makes the chords of the moving segments (or their spans) ``stretches``, (segment index, span or None) each,
     all at once: vertices spaced from the surface's curvature, then densified until their measured error is within
     ``tolerance``; returns each stretch's vertices (its end's left to what follows), zero bulges and error."""
-    rr = constant(rr)                                   # a 0-d array: taken by each numpy call without converting
     index = [i for i, _ in stretches]
     segments = cam.program.segments
     ranges = [(segments[i].start, segments[i].end) if span is None else span for i, span in stretches]
@@ -374,8 +349,7 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     """Makes the exact arcs about the cam centre (up to 90 degrees an arc) of the dwells (or their spans)
     ``stretches``, (segment index, span or None) each, all at once: each one's vertices and bulges and their
     measured error (a list). A dwell's n arcs need n vertices (its end's left to what follows, as every stretch's)
-    and 8 n - 1 probes, asked in one ask (every dwell's vertices, then every dwell's probes), its angles made as
-    Python floats (a few dozen; the same operations as on arrays, so the same numbers)."""
+    and 8 n - 1 probes, asked in one ask (every dwell's vertices, then every dwell's probes)."""
     segments = cam.program.segments
     turn = -cam.follower.sense
     theta, probe, at, on, first, within, bulges = [], [], [], [], [], [], []
@@ -392,24 +366,13 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     (g,) = yield [(np.array(at + on), np.array(theta + probe), False)]
     surface = _surface(g, rr)                           # in rows, as a contour holds them
     vertices = len(theta)
-    probes = surface[vertices:].tolist()                # a few dozen: Python floats
-    # each dwell's radius, as np.linalg.norm measures its first vertex (its dot product with itself)
-    err = [_off_circle(probes[a:b], math.sqrt(surface[v].dot(surface[v])))
-           for v, a, b in zip(first, within, [*within[1:], len(probe)], strict=True)]
+    distance = _length(surface)                         # from the cam centre
+    # each dwell's error: the most its probes lie off the circle through its first vertex
+    probes = [vertices + a for a in [*within, len(probe)]]
+    err = [float(np.abs(distance[a:b] - distance[v]).max())
+           for v, a, b in zip(first, probes[:-1], probes[1:], strict=True)]
     bulge = np.array(bulges)
     return [(surface[a:b], bulge[a:b], e) for a, b, e in zip(first, [*first[1:], vertices], err, strict=True)]
-
-
-def _off_circle(points: list[list[float]], radius: float) -> float:
-    """The most the ``points`` (x, y each, mm) lie off the circle of ``radius`` (mm) about the origin, as numpy's
-    sqrt(x x + y y), difference, abs and maximum over them make it (the same correctly rounded operations; a NaN
-    kept, as np.maximum keeps it)."""
-    worst = 0.0
-    for x, y in points:
-        off = abs(math.sqrt(x * x + y * y) - radius)
-        if off > worst or off != off:
-            worst = off
-    return worst
 
 
 def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float,
@@ -550,13 +513,12 @@ def _counter_clockwise(cam: Cam, verts: np.ndarray, bulges: np.ndarray) -> Conto
     runs counter-clockwise. A disc cam's contact point runs round its centre against the cam's turn, clockwise in
     the cam's frame for a counter-clockwise cam (``sense`` +1), so that outline is turned round and a clockwise
     cam's kept, without measuring its area; a plate's is measured."""
-    if not cam.is_plate:                                # both fresh arrays of the outline's own (see Contour.owned)
-        if cam.follower.sense > 0:
-            verts, bulges = reversed_pieces(verts, bulges)
-            verts = verts.copy()                            # C-ordered, as the constructor would copy it
-        return Contour.owned(verts, bulges)
-    contour = Contour(verts, bulges)
-    return contour if contour.area > 0 else contour.reversed()
+    if cam.is_plate:
+        contour = Contour(verts, bulges)
+        return contour if contour.area > 0 else contour.reversed()
+    if cam.follower.sense > 0:
+        verts, bulges = reversed_pieces(verts, bulges)
+    return Contour(verts, bulges)
 
 
 def _close_plate(cam: Cam, verts: list, bulges: list, offset: float) -> tuple[list, list]:

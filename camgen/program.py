@@ -12,15 +12,15 @@ import math
 import operator
 from collections.abc import Callable, Generator
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
-from camgen.core.records import once, record_maker
 from camgen.laws import Law
-from camgen.numeric import TIE, constant, drive, left_of, maxima_steps, present
+from camgen.numeric import TIE, drive, left_of, maxima_steps, present
 
 Kind = Literal["rise", "dwell", "return"]
 TWO_PI = 2.0 * math.pi
@@ -77,7 +77,7 @@ class Segment:
         out[0] += level
         return out
 
-    @once
+    @cached_property
     def _factors(self) -> tuple[np.ndarray, float]:
         """What turns the law's derivatives into the segment's: each row's factor (4, 1), the natural scale with a
         return's odd rows negated (a sign: exact), and the level added to s (mm). Made once a segment."""
@@ -246,7 +246,7 @@ class Program:
             out.append(best)
         return out
 
-    @once
+    @cached_property
     def _table(self) -> _Table:
         """The segments as arrays, to evaluate any of them at once (see :class:`_Table`)."""
         return _Table(self.segments)
@@ -256,7 +256,7 @@ class Program:
         (n,) gives, as :meth:`Segment.evaluate` makes them (one-sided at the segment's ends), all at once."""
         return self._table.evaluate(index, np.asarray(theta, dtype=float))
 
-    @once
+    @cached_property
     def boundaries(self) -> tuple[np.ndarray, np.ndarray]:
         """Cam angles (2n,) (radians) and s, s', s'', s''' there (4, 2n): every segment's end (its left-hand limit),
         then the next segment's start (its right-hand limit; the last segment's next is the first), from one
@@ -264,7 +264,7 @@ class Program:
         theta, index = self.boundary_points
         return theta, self.evaluate_on(index, theta)
 
-    @once
+    @cached_property
     def boundary_points(self) -> tuple[np.ndarray, np.ndarray]:
         """The angles (2n,) of :attr:`boundaries` (radians) and the segment each is evaluated on (2n,)."""
         segments = self.segments
@@ -277,15 +277,15 @@ class Program:
         (a cache: the same numbers its own evaluation makes)."""
         self.__dict__["boundaries"] = (self.boundary_points[0], motion)
 
-    @once
+    @cached_property
     def _pieces(self) -> tuple[np.ndarray | None, list[float], list[float], list[bool], list[bool],
                                list[tuple[float, float, bool]]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them: the
         owning segment of each (an array, to map asks; None where each segment is one piece, its own), the law
-        variable's ends (floats: the search packs them as they are), whether its segment holds still (a dwell) and
-        whether it runs its law backwards (a return, see :meth:`Segment.angle`), and that segment's start, angle
-        (radians) and backwards flag. Made once a program (read-only for its readers): a roller's design searches its
-        program once, a flat face's or one with a speed up to eight times."""
+        variable's ends (floats), whether its segment holds still (a dwell) and whether it runs its law backwards (a
+        return, see :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag. Made once a
+        program (read-only for its readers): a roller's design searches its program once, a flat face's or one with
+        a speed up to eight times."""
         owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
         for i, seg in enumerate(self.segments):
             moving = seg.kind != "dwell" and seg.law is not None
@@ -401,8 +401,8 @@ class _Table:
         -0.0, so that u is never -0.0), then 1 + -u = 1 - u on a return, 0 + u = u elsewhere."""
         np.subtract(theta, rows[_START], out=out)
         out /= rows[_BETA]
-        np.maximum(out, _ZERO, out=out)
-        np.minimum(out, _ONE, out=out)                  # np.clip's result
+        np.maximum(out, 0.0, out=out)
+        np.minimum(out, 1.0, out=out)                   # np.clip's result
         out *= rows[_SIGN]
         out += rows[_OFFSET]
 
@@ -461,8 +461,6 @@ _START, _BETA, _SIGN, _OFFSET, _ADDED, _FACTORS = 0, 1, 2, 3, slice(4, 8), slice
 _H, _WIDTH = 12, 13
 #: the signs that turn a rise's factors into a return's (the law runs backwards: odd derivatives change sign)
 _RETURN = np.array([1.0, -1.0, 1.0, -1.0])
-#: the bounds of u as arrays (a ufunc takes a 0-d array faster than a Python float; the same numbers)
-_ZERO, _ONE = constant(0.0), constant(1.0)
 
 
 @functools.cache
@@ -505,22 +503,13 @@ def _compare(found: list[Jump], theta: float, left: list[float], right: list[flo
     """Add to ``found`` every jump of s', s'', s''' from ``left`` to ``right`` (s, s', s'', s''') at cam angle
     ``theta`` (radians) larger than :data:`JUMP_TOL` of the larger of its scales ``own`` and ``other`` (h/beta^k,
     k = 0..3: the segments' on either side of a boundary, the segment's own twice inside it)."""
-    at = None                                       # the angle in degrees, made at the first jump found here
+    at = round(math.degrees(theta), 9) % 360.0
     for k in (1, 2, 3):
         step = right[k] - left[k]
-        least, more = own[k], other[k]
-        if more > least:                            # max(own, other)
-            least = more
-        if abs(step) > JUMP_TOL * (1e-300 if least < 1e-300 else least):             # max(least, 1e-300)
-            if at is None:                          # round(degrees, 9) goes through a decimal string; within 1e-10
-                degrees = math.degrees(theta)       # of a whole number (most boundaries, sums of radians a few ulps
-                whole = round(degrees)              # off one; finite, a checked program's) it is that number exactly
-                at = (whole if abs(degrees - whole) < 1e-10 else round(degrees, 9)) % 360.0
-            found.append(_make_jump(at_deg=at, order=k, jump=step, inside=inside))
+        if abs(step) > JUMP_TOL * max(own[k], other[k], 1e-300):
+            found.append(Jump(at_deg=at, order=k, jump=step, inside=inside))
 
 
-#: a Jump and a Segment made from their fields without their checked __init__ (see camgen.core.records.record_maker)
-_make_jump, _make_segment = record_maker(Jump), record_maker(Segment)
 #: the order of :meth:`Program.jumps`: by angle, then by order
 _AT_ORDER = operator.attrgetter("at_deg", "order")
 
@@ -554,7 +543,7 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)
         dwell = kind == "dwell"
-        segments.append(_make_segment(kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
-                                      law=None if dwell else law))
+        segments.append(Segment(kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
+                                law=None if dwell else law))
         start, level = start + beta, _end_level(kind, level, lift)      # Segment.end_level's, its lift known here
     return Program(tuple(segments))

@@ -153,32 +153,32 @@ def test_velocity_jump_makes_a_corner_that_is_refused_or_enveloped():
     assert d.outline.envelope and d.outline.max_error_mm <= 0.01
 
 
-def test_a_corner_is_a_turn_over_1e_9_measured_by_numpy_s_dot_product():
-    """Tangents turning by less than 1e-10 radians (Python's cross and dot products) are no corner without numpy's dot
-    product; the others' turns are atan2 of the cross product and numpy's dot, to the bit, times -sense: 2e-9 a
-    corner, 5e-10 not, opposite tangents a cusp's pi."""
+def test_a_corner_is_a_turn_over_1e_9():
+    """A corner is where the pitch tangent turns by more than 1e-9 radians across a segment end, by that turn times
+    -sense: a uniform rise's two velocity jumps, none on a cycloidal one; tangents turned by 5e-11 and 5e-10 are no
+    corner, by 2e-9 one, opposite tangents a cusp's pi."""
     from types import SimpleNamespace
 
     for law in ("uniform", "cycloidal"):
         cam = build_cam(template({"motion.0.law": law}))
         ends, starts = cam.boundary_geometry()
-        expected = [(i, -cam.follower.sense * math.atan2(a[0] * b[1] - a[1] * b[0], float(a @ b)))
+        expected = [(i, -cam.follower.sense * math.atan2(a[0] * b[1] - a[1] * b[0], a[0] * b[0] + a[1] * b[1]))
                     for i, (a, b) in enumerate(zip(ends.d1, starts.d1, strict=True))]
-        assert cam.corners() == [(i, turn) for i, turn in expected if abs(turn) > 1e-9]
-        assert len(cam.corners()) == (2 if law == "uniform" else 0)
+        found = cam.corners()
+        assert [i for i, _ in found] == [i for i, turn in expected if abs(turn) > 1e-9]
+        assert [t for _, t in found] == pytest.approx([t for _, t in expected if abs(t) > 1e-9], rel=1e-12)
+        assert len(found) == (2 if law == "uniform" else 0)
     left = np.array([[3.0, 4.0], [3.0, 4.0], [3.0, 4.0], [3.0, 4.0], [-2.0, 0.5]])
     turns = np.array([5e-11, 5e-10, 2e-9, 0.0, 0.0])
     c, s = np.cos(turns), np.sin(turns)
     right = np.column_stack([left[:, 0] * c - left[:, 1] * s, left[:, 0] * s + left[:, 1] * c]) * 1.5
     right[3] = -right[3]
-    cam.__dict__.pop("_corners", None)
-    cam.__dict__["_boundaries"] = SimpleNamespace(d1=left), SimpleNamespace(d1=right)
+    cam = build_cam(template({}))
+    cam.__dict__["_boundaries"] = SimpleNamespace(d1=left), SimpleNamespace(d1=right)    # tangents of our own
     found = cam.corners()
     assert [i for i, _ in found] == [2, 3]
-    for i, turn in found:
-        cross = left[i, 0] * right[i, 1] - left[i, 1] * right[i, 0]
-        assert turn == -cam.follower.sense * math.atan2(cross, float(left[i] @ right[i]))
-    assert abs(found[0][1]) == pytest.approx(2e-9, rel=1e-6) and abs(found[1][1]) == pytest.approx(math.pi)
+    assert -cam.follower.sense * found[0][1] == pytest.approx(2e-9, rel=1e-6)
+    assert abs(found[1][1]) == pytest.approx(math.pi)
 
 
 def test_concave_corner_is_an_exact_arc_of_the_roller_radius():

@@ -1,8 +1,7 @@
-"""A program's one-pass evaluation and the follower's pitch geometry give every point its own numbers to the bit.
+"""A program's one-pass evaluation gives every point its own numbers to the bit.
 
 :meth:`camgen.cam.Cam.pitch_of` evaluates many points on many segments in one pass (one gather of each segment's
-numbers, one call of each law, a dwell's rows set after), with fewer numpy calls than the formulas spell: a product by
-exactly 1 skipped, constants as 0-d arrays, rows filled in place. Each point must still get the same bits as its own
+numbers, one call of each law, a dwell's rows set after). Each point must still get the same bits as its own
 segment's evaluation, signed zeros included (compared as integers).
 """
 from __future__ import annotations
@@ -12,7 +11,6 @@ import math
 import numpy as np
 import pytest
 
-from camgen.followers.base import centre_path, from_centre_path
 from camgen.laws import make_law
 from camgen.program import build_program
 
@@ -92,29 +90,6 @@ def test_the_variable_of_a_cam_angle_is_what_a_segment_evaluates_at(program):
         assert not np.signbit(u[mine]).any()
 
 
-@pytest.mark.parametrize("sense", [1, -1])
-@pytest.mark.parametrize("offset", [5.0, 0.0, -3.0])
-def test_constant_components_give_the_bits_of_full_arrays(sense, offset):
-    """A translating follower's constant components as 0-d arrays or numbers give the pitch geometry that (n, 2)
-    arrays of them give (the general construction, every product made)."""
-    p = build_program([(kind, angle, lift, make_law(law) if law else None)
-                       for kind, angle, lift, law in PROGRAMS["two laws"]])
-    theta = np.concatenate([np.linspace(0.0, 2 * math.pi, 721), [-0.0, 0.0]])
-    s, s1, s2 = p.evaluate(theta)[:3]
-    s1[:5] = -0.0                               # signed zeros where the velocity is 0
-    y = 45.0 + s
-    n = theta.size
-    full = from_centre_path(theta, np.column_stack([np.full(n, offset), y]), np.column_stack([np.zeros(n), s1]),
-                            np.column_stack([np.zeros(n), s2]), np.column_stack([np.zeros(n), np.ones(n)]), sense)
-    zero = np.array(0.0)
-    for q, q1, q2, d in [((offset, y), (0.0, s1), (0.0, s2), (0.0, 1.0)),
-                         ((np.array(offset), y), (zero, s1), (zero, s2), (zero, 1.0))]:
-        got = centre_path(theta, q, q1, q2, d, sense)
-        for name in ("point", "d1", "d2", "normal", "kappa", "pressure_angle"):
-            assert same(getattr(got, name), getattr(full, name)), name
-        assert got.rho is None and got.theta is theta
-
-
 @pytest.mark.parametrize("law", ["cycloidal", "harmonic"])
 def test_laws_filled_in_place_keep_their_formulas(law):
     """The trigonometric laws fill their rows in place: the bits of their formulas, term by term; a scalar's rows are
@@ -138,23 +113,6 @@ def test_jumps_keep_their_numbers_with_the_scales_made_at_once(program):
     assert program._table.scales == [seg.scale().tolist() for seg in program.segments]
     for jump in program.jumps():
         assert type(jump.jump) is float and type(jump.at_deg) is float and jump.order in (1, 2, 3)
-
-
-def test_the_objects_made_without_their_init_hold_every_field():
-    """Segments, jumps and pitch geometry are made without their dataclass's __init__ (a design makes many): each
-    holds exactly its class's fields, so a field added to the class and not to the maker fails here."""
-    import dataclasses
-
-    from camgen.cam import build_cam
-    from camgen.core.records import once
-    from tests.conftest import template
-
-    cam = build_cam(template({"motion.0.law": "harmonic"}))     # a velocity jump: the program has jumps
-    made = [*cam.program.segments, *cam.program.jumps(), cam.pitch(np.array([0.1, 2.0]))]
-    assert any(type(m).__name__ == "Jump" for m in made)
-    for m in made:
-        cached = {k for k, v in vars(type(m)).items() if isinstance(v, once)}
-        assert set(vars(m)) - cached == {f.name for f in dataclasses.fields(m)}, type(m).__name__
 
 
 def test_a_part_is_a_view_of_its_whole():

@@ -4,7 +4,6 @@ every follower and a plate cam, both senses of rotation. No test here asserts a 
 from __future__ import annotations
 
 import copy
-import itertools
 import math
 
 import numpy as np
@@ -231,55 +230,21 @@ def test_equal_peaks_inside_a_piece(reverse):
     assert at[0, 0] == pytest.approx(0.625 if reverse else 0.125, abs=1e-12) and value[0, 0] == pytest.approx(1.0)
 
 
-def test_a_piece_without_peaks_is_chosen_as_every_candidate_is():
-    """The ends-only choice (a few comparisons) is the general one on [(lo, first), (hi, last)], to the bit: equal
-    values, values within the tie, signed zeros, a piece of zero width, both senses."""
-    values = [0.0, -0.0, 1.0, 1.0 + 1e-13, 1.0 - 1e-13, 2.0, -1.0]
-    for lo, hi, first, last in itertools.product(values, repeat=4):
-        for tie, backwards in itertools.product((0.0, 1e-12, 1.5), (False, True)):
-            general = numeric._first_largest([(lo, first), (hi, last)], tie, backwards)
-            assert repr(numeric._end_of(lo, first, hi, last, tie, backwards)) == repr(general)
-
-
 def test_flat_rows_are_those_whose_range_is_within_the_tie():
-    """The rows constant within the tie, found from their ends where those differ by more (no reduction), are the
-    rows whose largest and least differ by no more than the tie: constant rows, rows varying by less or by just
-    more than the tie (their ends equal or not), rows whose ends are equal and whose middle is not, two functions
-    of different magnitudes, signed zeros."""
-    rng = np.random.default_rng(16)
+    """The rows constant within the tie of their function's magnitude: constant rows and signed zeros, rows whose
+    spread is half or twice the tie, a row whose ends are equal and whose middle is not, and the same rows as a
+    second function a thousand times smaller (its own magnitude, so the same rows)."""
     n, tie = 129, numeric.TIE
-    rows = [np.zeros(n), np.full(n, -0.0), np.full(n, 3.0), 3.0 + np.sin(np.linspace(0.0, np.pi, n)),
-            3.0 + 1e-3 * np.sin(np.linspace(0.0, 2 * np.pi, n))]
-    for scale in (0.5, 1.0, 2.0, 3.0):                 # a spread about the tie (the magnitude is 3 or more)
-        rows.append(3.0 + scale * 3.0 * tie * rng.uniform(-0.5, 0.5, n))
-        middle = np.full(n, 3.0)
-        middle[n // 2] += scale * 3.0 * tie
-        rows.append(middle)                           # ends equal: the middle decides
-    rows += [3.0 * rng.uniform(-1.0, 1.0, n) for _ in range(4)]
-    # the shortcut's own boundary: ends apart by 0.7 to 2 ties and by the floats next to the tie, the middle
-    # constant, so that the ends alone decide (a shortcut at another fraction of the tie misjudges some of them)
-    magnitude_first = max(np.abs(np.array(rows)).max(), 3.0)
-    at_tie = 3.0 + tie * magnitude_first
-    ends = [3.0 + f * tie * magnitude_first for f in (0.7, 0.9, 0.999, 1.001, 1.5, 2.0)]
-    ends += [np.nextafter(at_tie, 0.0), at_tie, np.nextafter(at_tie, np.inf)]
-    for high in ends:
-        for first, last in ((3.0, high), (high, 3.0)):
-            row = np.full(n, 3.0)
-            row[0], row[-1] = first, last
-            rows.append(row)
-    y = np.array(rows + [row * 1e-3 for row in rows])  # a second function, of another magnitude
+    wave = np.sin(np.linspace(0.0, np.pi, n))
+    bump = np.full(n, 3.0)
+    bump[n // 2] += 6.0 * tie
+    rows = [np.zeros(n), np.full(n, -0.0), np.full(n, 3.0), 3.0 + 0.5 * 3.0 * tie * wave, 3.0 + 2.0 * 3.0 * tie * wave,
+            bump, 3.0 + wave]
+    y = np.array(rows + [row * 1e-3 for row in rows])
     count = len(rows)
-    magnitude = [np.abs(y[:count]).max(), np.abs(y[count:]).max()]
-    assert magnitude[0] == magnitude_first
-    edges = y[:, [0, 1, 2, 3, 4, -5, -4, -3, -2, -1]].tolist()
-    expected = [r for r in range(len(y)) if not y[r].max() - y[r].min() > tie * magnitude[r // count]]
-    assert numeric._flat_rows(y, edges, magnitude, count) == expected
-    assert {0, 1, 2, count, count + 1, count + 2} <= set(expected) and 3 not in expected and 4 not in expected
-    assert expected != list(range(len(y)))
-    # the boundary rows: flat exactly where their ends (exact differences near 3) are within the tie, both kinds
-    boundary = range(count - 2 * len(ends), count)
-    within = [r for r in boundary if abs(y[r, 0] - y[r, -1]) <= tie * magnitude[0]]
-    assert [r for r in boundary if r in expected] == within and 6 <= len(within) < len(boundary) - 4
+    magnitude = [4.0, 4.0e-3]                           # each function's largest |value|: 3 + the sine's 1
+    flat = [0, 1, 2, 3]
+    assert numeric._flat_rows(y, magnitude, count) == flat + [count + r for r in flat]
 
 
 def test_the_quartic_vertex_has_no_maximum_where_a_step_divides_by_zero():
@@ -294,14 +259,12 @@ def test_the_quartic_vertex_has_no_maximum_where_a_step_divides_by_zero():
     assert numeric._breadth(1.0, 0.0, 0.01, 0.5) == 0.5 and numeric._breadth(-0.0, 0.0, 0.01, 0.5) == 0.5
 
 
-def test_the_quartics_coefficients_are_the_matrix_products():
-    """ndarray.dot calls the BLAS kernel that the @ operator calls: the coefficients are its product to the bit, for
-    one window (the vector kernel) and for many, and the quartic through a window's values passes through them."""
+def test_the_quartic_through_a_window_passes_through_its_values():
+    """The coefficients of one window (the vector kernel) and of many give quartics through the windows' values."""
     rng = np.random.default_rng(16)
     for m in (1, 2, 6, 37):
         windows = rng.standard_normal((m, 5)) * 10.0 ** rng.uniform(-6, 6, (m, 1))
         got = np.array(numeric._coefficients(windows))
-        assert np.array_equal(got.view(np.int64), (windows @ numeric._QUARTIC).view(np.int64))
         t = np.arange(-2.0, 3.0)
         fitted = windows[:, 2:3] + sum(got[:, i:i + 1] * t ** (i + 1) for i in range(4))
         assert np.allclose(fitted, windows, rtol=1e-12, atol=1e-12 * np.abs(windows).max())
@@ -323,15 +286,11 @@ def test_the_first_ask_is_made_once_and_read_only():
 
 
 def test_pieces_given_as_numbers_find_the_plan_an_array_finds():
-    """Pieces' ends given as a list or tuple (packed as they are) look up the plan that the same numbers as an array
-    find, -0.0 apart from 0.0; a list of what struct does not take is read as numpy reads it."""
-    for ends in [(0.0, 0.25, 1.0), (-0.0, 0.5), (1, np.float64(0.1), 2.5), (float("inf"), float("nan")), ()]:
-        assert numeric._exact(ends) == np.asarray(ends, dtype=float).tobytes() == numeric._exact(list(ends))
-        assert numeric._exact(np.array(ends, dtype=float)) == numeric._exact(ends)
-    assert numeric._exact(("0.5", "1")) == numeric._exact([[0.5], [1]]) == np.array([0.5, 1.0]).tobytes()
-    assert numeric._exact((-0.0,)) != numeric._exact((0.0,))
+    """Pieces' ends given as a list, a tuple or an array look up one plan, -0.0 apart from 0.0, and a constant
+    function's maxima stand at the low ends with their signs."""
     x, _ = next(numeric.maxima_steps((0.0, -0.0), (1.0, 1.0)))
     assert x is next(numeric.maxima_steps(np.array([0.0, -0.0]), [1.0, 1.0]))[0]
+    assert x is not next(numeric.maxima_steps((0.0, 0.0), (1.0, 1.0)))[0]
     steps = numeric.maxima_steps((0.0, -0.0), (1.0, 1.0))
     at, _, _ = numeric.drive(steps, lambda ask: np.full((1, ask[0].size), 2.0))      # constant: the low ends
     assert [math.copysign(1.0, a) for a in at[0]] == [1.0, -1.0]

@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 
 from camgen.cam import build_cam
-from camgen.followers.base import from_centre_path
 from camgen.laws import TABLE_LAWS
 from camgen.outline import exact_outline, stretch
 from camgen.spec import validate_spec
@@ -136,22 +135,6 @@ def test_a_program_evaluates_all_its_segments_at_once_as_each_alone(law):
         assert angles[i] == seg.end and angles[n + i] == nxt.start
         assert _same(motion[:, i], seg.evaluate(np.array(seg.end)))
         assert _same(motion[:, n + i], nxt.evaluate(np.array(nxt.start)))
-
-
-@pytest.mark.parametrize("rotation", ["ccw", "cw"])
-def test_a_translating_rollers_pitch_from_numbers_is_that_from_full_arrays(rotation):
-    cam = _cam({"cam.rotation": rotation})
-    f = cam.follower
-    theta = np.linspace(0.0, 2 * np.pi, 721)
-    motion = cam.program.evaluate(theta)
-    s, s1, s2 = motion[:3]
-    zero = np.zeros_like(s)
-    full = from_centre_path(theta, np.column_stack([np.full_like(s, f.offset), f.d0 + s]),
-                            np.column_stack([zero, s1]), np.column_stack([zero, s2]),
-                            np.column_stack([zero, np.ones_like(s)]), f.sense)
-    made = f.pitch(theta, motion)
-    for field in dataclasses.fields(made):
-        assert _same(getattr(made, field.name), getattr(full, field.name)), field.name
 
 
 def test_a_design_takes_two_evaluations_of_its_follower(monkeypatch):
@@ -432,27 +415,3 @@ def test_an_outline_maker_runs_quietly_and_leaves_the_callers_errstate():
         assert np.isneginf(out[0]) and np.geterr()["divide"] == "raise"
         with pytest.raises(FloatingPointError):
             drive(quietly(maker(), all="raise"), lambda ask: [0.0])
-
-
-def test_a_dwells_error_in_python_floats_is_numpys():
-    """_off_circle (the dwells' probes, a few dozen: Python floats) is numpy's max |sqrt(x x + y y) - r| to the
-    last bit, for points on, near and far from the circle, and keeps a NaN wherever it stands, as np.maximum does."""
-    import math
-
-    from camgen.outline import _off_circle
-
-    rng = np.random.default_rng(16)
-    for scale in (1e-3, 1.0, 40.0, 1e4):
-        radius = scale * rng.uniform(0.5, 2.0)
-        angle = rng.uniform(0.0, 2 * math.pi, 31)
-        for spread in (0.0, 1e-15, 1e-6, 0.5):
-            r = radius * (1 + spread * rng.standard_normal(31))
-            points = np.column_stack([r * np.cos(angle), r * np.sin(angle)])
-            x, y = points[:, 0], points[:, 1]
-            want = np.maximum.reduce(np.abs(np.sqrt(x * x + y * y) - radius))
-            assert _same(_off_circle(points.tolist(), radius), want)
-    assert _off_circle([[3.0, 4.0], [0.0, 6.0]], 5.0) == 1.0
-    for where in range(3):
-        points = [[3.0, 4.0], [0.0, 6.0], [1.0, 1.0]]
-        points[where] = [math.nan, 0.0]
-        assert math.isnan(_off_circle(points, 5.0))

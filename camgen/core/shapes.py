@@ -8,25 +8,16 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
-from camgen.core.records import once
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:
     a = np.array(a, dtype=float)
     a.setflags(write=False)
     return a
-
-
-def _left(d: np.ndarray) -> np.ndarray:
-    """The vectors ``d`` (k, 2) turned a quarter turn counter-clockwise, (-y, x): np.column_stack's numbers
-    without its dispatch."""
-    out = np.empty(d.shape)
-    np.negative(d[:, 1], out=out[:, 0])
-    out[:, 1] = d[:, 0]
-    return out
 
 
 def _moved(points: np.ndarray, angle: float, shift: np.ndarray) -> np.ndarray:
@@ -72,18 +63,6 @@ class Contour:
         object.__setattr__(self, "vertices", v)
         object.__setattr__(self, "bulges", b)
 
-    @classmethod
-    def owned(cls, vertices: np.ndarray, bulges: np.ndarray) -> "Contour":
-        """A contour holding ``vertices`` and ``bulges`` themselves, made read-only, without the constructor's copies
-        and checks: for makers that guarantee what the constructor would make of them, float64 arrays (n, 2) and
-        (n,), n >= 2, C-contiguous, of their own making (nobody else holds or writes them). A disc cam's outline is
-        made this way (:func:`camgen.outline.outline_maker`; a plate's through the constructor)."""
-        vertices.setflags(write=False)
-        bulges.setflags(write=False)
-        out = object.__new__(cls)
-        out.__dict__.update(vertices=vertices, bulges=bulges)
-        return out
-
     @property
     def n_arcs(self) -> int:
         return int(np.count_nonzero(self.bulges))
@@ -103,7 +82,7 @@ class Contour:
         centre = (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
         return p, q, chord, angle, centre
 
-    @once
+    @cached_property
     def _arc_pieces(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """:meth:`_arcs` of the arc pieces only (the same operations on the same numbers): their indices, starts,
         chord lengths, signed included angles and centres; made once a contour (its area and its flattening both
@@ -118,7 +97,7 @@ class Contour:
         with np.errstate(divide="ignore", invalid="ignore"):
             h = chord / (2.0 * np.tan(angle / 2.0))
             d = qp / np.where(chord > 0, chord, 1.0)[:, None]
-        return idx, p, chord, angle, (p + q) / 2.0 + _left(d) * h[:, None]
+        return idx, p, chord, angle, (p + q) / 2.0 + np.column_stack([-d[:, 1], d[:, 0]]) * h[:, None]
 
     def arcs(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The arc pieces: their indices, centres (k, 2), radii (k,) and signed included angles (k,) in rad."""

@@ -23,7 +23,6 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from camgen.core.errors import SpecError
 from camgen.core.options import not_one_of
 from camgen.core.reading import NotRegularFile, read_regular
-from camgen.core.records import once
 from camgen.core.writers import (
     DEFAULT_FORMATS, DXF_FLAVOURS, DXF_VERSIONS, FIGURE_FORMATS, FORMATS, OPTIONAL_FORMATS, TEXT_MODES, WriteOptions,
     missing_extra)
@@ -38,10 +37,10 @@ class Model(BaseModel):
     """Base of every template model: frozen, no unknown keys, no NaN or infinity, no true/false where a
     number is asked for (pydantic would read ``lift = true`` as 1 mm) and nothing but true/false where a switch is
     (it would read ``keyway = 1`` or ``"yes"`` as true), and no length (mm) other than 0 below
-    :data:`MIN_LENGTH_MM`. A value derived from a model and kept is a :class:`~camgen.core.records.once` property
+    :data:`MIN_LENGTH_MM`. A value derived from a model and kept is a :class:`functools.cached_property`
     (no field: pydantic ignores it)."""
 
-    model_config = ConfigDict(frozen=True, extra="forbid", allow_inf_nan=False, strict=False, ignored_types=(once,))
+    model_config = ConfigDict(frozen=True, extra="forbid", allow_inf_nan=False, strict=False)
 
     @model_validator(mode="before")
     @classmethod

@@ -29,7 +29,6 @@ from typing import Any, ClassVar
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.numeric import constant
 
 
 @dataclass(frozen=True)
@@ -50,18 +49,11 @@ class PitchGeometry:
     pressure_angle: np.ndarray  # (n,) rad, signed (see the module docstring)
     rho: np.ndarray | None = None  # (n,) radius of curvature of a flat face's profile, mm
 
-    def part(self, start: int, stop: int) -> "PitchGeometry":
-        """The samples ``start`` to ``stop`` (a slice, views of the same arrays), made without the frozen
-        dataclass's checked ``__init__`` (it is on the hot path of every design, many times a design)."""
-        out = object.__new__(PitchGeometry)
-        mine, theirs = self.__dict__, out.__dict__
-        for name in _FIELDS:
-            value = mine[name]
-            theirs[name] = None if value is None else value[start:stop]
-        return out
-
-
-_FIELDS = tuple(PitchGeometry.__dataclass_fields__)
+    def part(self, start: int, stop: int) -> PitchGeometry:
+        """The samples ``start`` to ``stop`` (a slice, views of the same arrays)."""
+        rho = None if self.rho is None else self.rho[start:stop]
+        return PitchGeometry(self.theta[start:stop], self.point[start:stop], self.d1[start:stop], self.d2[start:stop],
+                             self.normal[start:stop], self.kappa[start:stop], self.pressure_angle[start:stop], rho)
 
 
 def rotate(vectors: np.ndarray, angle: np.ndarray) -> np.ndarray:
@@ -114,82 +106,27 @@ Pair = tuple[Any, Any]
 
 def centre_path(theta: np.ndarray, q: Pair, q1: Pair, q2: Pair, direction: Pair, sense: int) -> PitchGeometry:
     """:func:`from_centre_path` from the x and y components of ``q``, ``q1``, ``q2`` and ``direction``, each an
-    array (n,) or a constant for every angle (a translating follower's fixed x, its zero x-velocity: best a 0-d
-    array, which numpy takes faster than a Python number, or a number where only its value matters, see
-    :func:`_times`): the same operations on the same numbers, without making the (n, 2) arrays of the constant ones.
-    """
+    array (n,) or a number for every angle (numpy broadcasts it: a translating follower's fixed x, its zero
+    x-velocity). The centre, its two derivatives and the normal are worked in x and y rows of one array and turned
+    into the cam's frame together."""
     (qx, qy), (q1x, q1y), (q2x, q2y), (dx, dy) = q, q1, q2, direction
-    turn = _times(-sense, theta)
-    c, s = np.cos(turn), np.sin(turn)
-    xy = np.empty((2, 4, c.shape[0]))                                   # rows: q, t, a, normal (fixed frame)
-    x, y = xy[0], xy[1]
+    fixed = np.empty((2, 4, theta.shape[0]))           # x and y rows: q, t, a and the normal, in the fixed frame
+    x, y = fixed
     x[0], y[0] = qx, qy
-    tx, ty = np.add(q1x, _times(sense, qy), out=x[1]), np.subtract(q1y, _times(sense, qx), out=y[1])  # q' - sense J q
-    ax = np.subtract(q2x + _times(2 * sense, q1y), qx, out=x[2])       # q'' - 2 sense J q' - q
-    ay = np.subtract(_less(q2y, _times(2 * sense, q1x)), qy, out=y[2])
-    square = tx * tx
-    square += ty * ty
-    speed = np.sqrt(square, out=square)
-    cross = tx * ay
-    cross -= ty * ax
-    kappa = _times(-sense, cross)
-    kappa /= speed**_THREE                                              # in place: the cross products or their negation
-    nx = np.divide(_times(-sense, ty), speed, out=x[3])                # sense J t / |t|
-    ny = np.divide(_times(sense, tx), speed, out=y[3])
-    # atan2's x where dx is the constant ZERO (a translating follower): dy ny itself; 0 nx + dy ny differs from it only
-    # in a zero's sign, which atan2 reads only where its y is zero too, never for a unit normal
-    along = _times(dy, ny) if dx is ZERO else dx * nx + _times(dy, ny)
-    pressure = _times(sense, np.arctan2(dx * ny - _times(dy, nx), along))
-    turned = np.empty((4, c.shape[0], 2))                               # all four turned into the cam's frame at once
-    across = c * x
-    across -= s * y
-    turned[:, :, 0] = across
-    up = s * x
-    up += c * y
-    turned[:, :, 1] = up
-    return pitch_geometry(theta, turned[0], turned[1], turned[2], turned[3], kappa, pressure)
-
-
-def _times(k: Any, a: Any) -> Any:
-    """``k * a`` for arrays or numbers ``k`` and ``a``: the number 1 gives ``a`` itself (x * 1.0 is x to the bit, a
-    new array only where the product made one), -1, 2 and -2 multiply by a 0-d array (the same product, without
-    numpy's conversion of a Python number); a number times :data:`ZERO` is a Python float (the same signed zero, without
-    a 0-d product)."""
-    if isinstance(k, (int, float)):
-        if k == 1:
-            return a
-        if a is ZERO:                                   # a Python float: k * +0.0 is the same signed zero
-            return k * 0.0
-        if k in _FACTOR:
-            return a * _FACTOR[k]
-    return k * a
-
-
-#: the factors :func:`_times` takes as 0-d arrays
-_FACTOR = {-1: constant(-1.0), 2: constant(2.0), -2: constant(-2.0)}
-#: a constant component 0 (a translating follower's fixed x-velocity and direction x), a 0-d array: numpy takes
-#: it faster than a number, and :func:`centre_path` knows it by identity
-ZERO = constant(0.0)
-#: the power of the speed in the curvature, a 0-d array (numpy's power of a float64 by 3: the same numbers)
-_THREE = constant(3.0)
-
-
-def _less(a: Any, b: Any) -> Any:
-    """``a - b``: ``a`` itself when ``b`` is the number +0.0 (x - (+0.0) is x to the bit, -0.0 and NaN included).
-    ``b`` is such a number also where it is a product of 0-d arrays (numpy returns an ``np.float64``, a float)."""
-    if isinstance(b, float) and b == 0.0 and math.copysign(1.0, b) > 0:
-        return a
-    return a - b
-
-
-def pitch_geometry(theta: np.ndarray, point: np.ndarray, d1: np.ndarray, d2: np.ndarray, normal: np.ndarray,
-                   kappa: np.ndarray, pressure_angle: np.ndarray, rho: np.ndarray | None = None) -> PitchGeometry:
-    """A :class:`PitchGeometry` made without the frozen dataclass's ``__init__`` (a set attribute at a time): every
-    evaluation of a follower makes one."""
-    out = object.__new__(PitchGeometry)
-    out.__dict__.update(theta=theta, point=point, d1=d1, d2=d2, normal=normal, kappa=kappa,
-                        pressure_angle=pressure_angle, rho=rho)
-    return out
+    x[1], y[1] = q1x + sense * qy, q1y - sense * qx                          # t = q' - sense J q
+    x[2], y[2] = q2x + 2 * sense * q1y - qx, q2y - 2 * sense * q1x - qy      # a = q'' - 2 sense J q' - q
+    tx, ty, ax, ay = x[1], y[1], x[2], y[2]
+    speed = np.sqrt(tx * tx + ty * ty)
+    kappa = -sense * (tx * ay - ty * ax) / speed**3
+    x[3], y[3] = -sense * ty / speed, sense * tx / speed                      # sense J t / |t|
+    nx, ny = x[3], y[3]
+    pressure = sense * np.arctan2(dx * ny - dy * nx, dx * nx + dy * ny)
+    turn = -sense * theta
+    c, s = np.cos(turn), np.sin(turn)
+    turned = np.empty((4, theta.shape[0], 2))
+    turned[:, :, 0] = c * x - s * y
+    turned[:, :, 1] = s * x + c * y
+    return PitchGeometry(theta, turned[0], turned[1], turned[2], turned[3], kappa, pressure)
 
 
 def from_support(theta: np.ndarray, p: np.ndarray, alpha: np.ndarray, derivs: np.ndarray, sense: int,

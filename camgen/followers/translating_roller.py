@@ -18,9 +18,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.core.records import once
-from camgen.followers.base import ZERO, FollowerType, PitchGeometry, centre_path
-from camgen.numeric import constant
+from camgen.followers.base import FollowerType, PitchGeometry, centre_path
 
 
 @dataclass(frozen=True)
@@ -52,16 +50,10 @@ class TranslatingRoller:
         """Height of the roller centre above the cam centre at s = 0 (mm)."""
         return math.sqrt((self.prime_radius - self.offset) * (self.prime_radius + self.offset))
 
-    @once
-    def _constants(self) -> tuple[np.ndarray, np.ndarray]:
-        """The offset and :attr:`d0` as 0-d arrays (mm), made once: numpy takes them faster than Python numbers."""
-        return constant(self.offset), constant(self.d0)
-
     def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
         """Pitch geometry at cam angles ``theta`` (rad) for ``motion`` = s, s', s'', s''' (mm per rad^k)."""
         s, s1, s2 = motion[0], motion[1], motion[2]
-        offset, d0 = self._constants
-        return centre_path(theta, (offset, d0 + s), (ZERO, s1), (ZERO, s2), (ZERO, 1.0), self.sense)
+        return centre_path(theta, (self.offset, self.d0 + s), (0.0, s1), (0.0, s2), (0.0, 1.0), self.sense)
 
 
 def _offset_floor(table: Any, base_radius: float) -> float:

@@ -27,11 +27,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
 from camgen.core.shapes import Circle, Contour, rounded_hull
-from camgen.core.records import once
 from camgen.geneva.kinematics import GenevaLaw
 from camgen.numeric import maximise
 
@@ -95,7 +95,7 @@ class GenevaGeometry:
         """R_l: the wheel's concave locking arcs, the locking disc's radius plus the lock clearance."""
         return self.lock_radius + self.lock_clearance
 
-    @once
+    @cached_property
     def cutout_radius(self) -> float:
         """The locking disc's cutout (mm), about (C, 0) in the driver's frame: the lock clearance plus the farthest
         from (C, 0) that the wheel comes inside the lock clearance round the disc's circle during an index.

@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from functools import cached_property
 from typing import Any
 
 from pydantic import Field, model_validator
 
 from camgen.core.spec import CutOutputTable, Model, length, name_field, unit, validate
-from camgen.core.records import once
 from camgen.geneva.geometry import GenevaGeometry
 
 #: the most slots a wheel may have
@@ -54,7 +54,7 @@ class GenevaSpec(Model):
         self.geometry.check()
         return self
 
-    @once
+    @cached_property
     def geometry(self) -> GenevaGeometry:
         """The parts' dimensions, defaults filled in."""
         g = self.geneva

@@ -26,14 +26,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from functools import partial
+from functools import cached_property, partial
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SolverError, SpecError
-from camgen.core.records import once
 from linkgen.kinematics.grashof import CHANGE_POINT_TOL, Grashof, check_finite, check_lengths, classify
 
 Assembly = Literal["open", "crossed"]
@@ -115,7 +114,7 @@ class Poses:
     #: theta3, theta4, gamma, A and the coupler point, computed when first asked for
     derive: Callable[[], tuple[np.ndarray, ...]] = field(repr=False, compare=False)
 
-    @once
+    @cached_property
     def _derived(self) -> tuple[np.ndarray, ...]:
         return self.derive()
 

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
@@ -33,7 +34,6 @@ from pydantic import Field, field_validator, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.parts import Drawing
-from camgen.core.records import once
 from camgen.core.shapes import Polyline
 from camgen.core.spec import MAX_LENGTH_MM, Model, unit
 from linkgen import plots
@@ -198,11 +198,11 @@ class Analysis:
     def crank(self) -> bool:
         return self.linkage.structure.inputs[0].kind == "crank"
 
-    @once
+    @cached_property
     def ranges(self) -> tuple[tuple[float, float], ...] | None:
         return motion.input_ranges(self.linkage)
 
-    @once
+    @cached_property
     def span(self) -> np.ndarray:
         """The input values analysed (k, SWEEP): the table's range, else the reachable range holding the drawing,
         else a full turn from the drawing."""
@@ -220,15 +220,15 @@ class Analysis:
             rows.append(np.linspace(lo, hi, SWEEP))
         return np.array(rows)
 
-    @once
+    @cached_property
     def sweep(self) -> Solution:
         return self.linkage.solve(self.span)
 
-    @once
+    @cached_property
     def toggles(self) -> tuple[motion.Toggle, ...]:
         return motion.toggles(self.linkage) if len(self.table.inputs) == 1 else ()
 
-    @once
+    @cached_property
     def extremes(self) -> dict[str, tuple[motion.Extreme, ...]]:
         """The limit positions of each rocker and ground slider over the motion analysed."""
         if len(self.table.inputs) != 1:
