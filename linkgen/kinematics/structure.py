@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from camgen.core.errors import SpecError
+from camgen.core.records import once
 
 GROUND = "ground"
 #: two drawn points closer than this (relative to the drawing's size) are one point
@@ -143,6 +144,13 @@ class Structure:
     sliders: tuple[Slider, ...]
     inputs: tuple[Input, ...]
     scale: float = field(default=1.0)
+
+    @once
+    def size(self) -> float:
+        """The drawing's own size (mm): the largest distance between two of its points (at least 1e-9 mm), the
+        same wherever the drawing sits (``scale``, the largest coordinate, is not)."""
+        xy = list(self.points.values())
+        return max([1e-9] + [math.dist(a, b) for i, a in enumerate(xy) for b in xy[i + 1:]])
 
     @property
     def slider_by_name(self) -> dict[str, Slider]:
