@@ -114,13 +114,27 @@ def _follow(drawn: Linkage, start: Linkage, end: float, lo: float, hi: float) ->
     return pieces, False
 
 
+def _revolutions(linkage: Linkage) -> tuple[Piece, ...]:
+    """A crank that turns fully: its revolution from the drawing, and the next ones while a dyad's branch has
+    swapped an odd number of times (a kite is back on its drawing only after two turns)."""
+    lo, hi = motion.span(linkage)
+    pieces = [Piece(linkage, lo, hi, True, ())]
+    current = linkage
+    for _ in range(MAX_PIECES):
+        end = tuple(_signs_at(current, hi))
+        if end == tuple(linkage.base_signs):
+            break
+        current = current.on(lo, end)
+        pieces.append(Piece(current, lo, hi, True, _other(current, linkage, 0.5 * (lo + hi))))
+    return tuple(pieces)
+
+
 def circuit(linkage: Linkage) -> Circuit:
     """The circuit the drawing lies on (see the module's docstring): the drawing's range on its branches, then
     each piece the toggles lead to, both ways when the circuit is open."""
     ranges = linkage.ranges
     if ranges is None:
-        lo, hi = motion.span(linkage)
-        return Circuit((Piece(linkage, lo, hi, True, ()),), True, True, ())
+        return Circuit(_revolutions(linkage), True, True, ())
     lo, hi = ranges[0]
     first = Piece(linkage, lo, hi, True, ())
     after, closed = _follow(linkage, linkage, hi, lo, hi)

@@ -15,7 +15,7 @@ Branches: each dyad keeps the branch the drawing shows (the side its middle join
 At a change point (a dyad passes through its in-line position and goes on, the two branches
 meeting) the smooth continuation swaps sides; :class:`Linkage` finds those input values on
 the revolution (or the stroke) that starts at the drawing and counts them, so a crank angle
-is read on the revolution that starts at the drawn angle: theta0 <= theta < theta0 + 2 pi.
+is read on the revolution that starts at the drawn angle: theta0 <= theta <= theta0 + 2 pi.
 """
 from __future__ import annotations
 
@@ -196,11 +196,14 @@ class Linkage:
         return float(self.drawn_inputs[0]) if self.origin is None else self.origin
 
     def unwrap(self, values: np.ndarray) -> np.ndarray:
-        """Crank angles on the revolution that starts at :attr:`revolution`: t0 <= theta < t0 + 2 pi."""
+        """Crank angles on the revolution that starts at :attr:`revolution`: t0 <= theta <= t0 + 2 pi, its end
+        kept as the end (where a linkage whose branches swap an odd number of times a turn, a kite, is not back
+        at its start), any other angle turned onto it by whole turns."""
         if not self.is_crank():
             return values
         t0 = self.revolution
-        return t0 + np.mod(values - t0, TWO_PI)
+        values = np.asarray(values, dtype=float)
+        return np.where((values >= t0) & (values <= t0 + TWO_PI), values, t0 + np.mod(values - t0, TWO_PI))
 
     @property
     def base_signs(self) -> tuple[float, ...]:
@@ -557,6 +560,12 @@ def _place_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, sign: 
         nd = perp(_direction(sl.angle))
         offset = float(dot(nd, um.pd - ug.pd))
         rot, margin = dyads.line_through(ug.pin, um.pin, math.atan2(nd[1], nd[0]), offset, sign)
+        if fold is not None:
+            # the pins (nearly) meet on a slot through the pivot: the slot lies along the way they part
+            at, unit = fold
+            along = unit if um is u2 else -unit
+            normal = np.broadcast_to(sign, (len(rot),))[at][:, None] * perp(along)
+            rot[at] = np.column_stack([normal @ nd, nd[0] * normal[:, 1] - nd[1] * normal[:, 0]])
         for u in (um, ug):
             bodies[u.name] = u.turned(rot[:, 0], rot[:, 1])
         d = um.pin - ug.pin
@@ -642,18 +651,25 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
 def _fold(linkage: Linkage, index: int, u1: _Unknown, u2: _Unknown, x: np.ndarray, signs: list[np.ndarray],
           flips: np.ndarray, strict: bool) -> tuple[np.ndarray, np.ndarray] | None:
     """Where a deltoid's two pins (of equal radii) meet or nearly do (within :data:`FOLD_REACH` of the drawing's
-    size): the poses and the unit direction the pins part along there, from their relative velocity v and
-    acceleration a per unit input at the pose, h past the change point: d = v h - a h^2 / 2 to second order
-    (so that the joint is the branch's limit through the fold, as the motion carries it); None elsewhere. With
-    more than one input there is no motion to take the limit along: a pose where the pins meet is refused
-    (strict), else placed as the directions between them say."""
+    size), or the two pins of a slotted link whose slot runs through its pivot: the poses and the unit direction
+    the pins part along there, from their relative velocity v and acceleration a per unit input at the pose, h
+    past the change point: d = v h - a h^2 / 2 to second order (so that the joint is the branch's limit through
+    the fold, as the motion carries it); None elsewhere. With more than one input there is no motion to take the
+    limit along: a pose where the pins meet is refused (strict), else placed as the directions between them
+    say."""
     s = linkage.structure
     step = linkage.plan.steps[index]
-    if step.kind != "RRR":
+    if step.kind == "RRR":
+        jd = _pt(s, step.joint)
+        apart = abs(float(np.linalg.norm(jd - u1.pd)) - float(np.linalg.norm(jd - u2.pd)))
+    elif step.kind == "RPR":
+        sl = s.slider_by_name[step.joint]
+        um, ug = (u1, u2) if step.bodies[0] == sl.body else (u2, u1)
+        apart = abs(float(dot(perp(_direction(sl.angle)), um.pd - ug.pd)))
+    else:
         return None
-    jd = _pt(s, step.joint)
-    if abs(float(np.linalg.norm(jd - u1.pd)) - float(np.linalg.norm(jd - u2.pd))) > FOLD_REACH * s.size:
-        return None                                 # unequal radii: pins that meet leave the dyad open
+    if apart > FOLD_REACH * s.size:
+        return None                   # unequal radii, an offset slot: pins that meet leave the dyad open
     d = np.hypot(*(u2.pin - u1.pin).T)
     near = d <= FOLD_REACH * s.size
     if not near.any():
@@ -666,8 +682,8 @@ def _fold(linkage: Linkage, index: int, u1: _Unknown, u2: _Unknown, x: np.ndarra
             value = float(x[0, np.flatnonzero(met)[0]])
             shown = f"{math.degrees(value):.9g} degrees" if crank else f"{value:.9g} mm"
             raise SpecError(f"at input {shown} the joints {u1.attachment.point} and {u2.attachment.point} meet, so "
-                            f"the joint between them could be anywhere on its circle (a deltoid's change point); "
-                            "give inputs that keep them apart", "input")
+                            f"dyad {step.kind} at {step.joint} could take any angle (a change point); give inputs "
+                            "that keep them apart", "input")
         return None
     # the pins' relative motion per unit input, from a solve of these poses up to this step with its rates
     sub = _solve(linkage, x[:, at], np.ones(len(s.inputs)), [np.broadcast_to(g, x.shape[1:])[at] for g in signs],

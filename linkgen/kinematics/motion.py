@@ -86,7 +86,8 @@ def _events(linkage: Linkage, index: int, grid: np.ndarray, result: DyadResult) 
     refined to the bottom (the zero of its outer joints' spread rate, or golden sections for a dyad of two
     slides), a change point where its slack there is within :data:`CLOSE_TOL` of 0, a gap (a stretch the input
     cannot pass, its bottom given) where it is below."""
-    m = result.margin if result.kind not in RUNAWAY else np.abs(result.margin)
+    # a slotted link's margin is 1 until its pins meet (a slot through the pivot): its dips show in its slack
+    m = {"RPR": result.slack}.get(result.kind, np.abs(result.margin) if result.kind in RUNAWAY else result.margin)
     k = np.flatnonzero((m[1:-1] <= m[:-2]) & (m[1:-1] <= m[2:]) & (m[:-2] > 0) & (m[2:] > 0) & (m[1:-1] < DIP)) + 1
     empty = np.empty(0)
     if not len(k):
@@ -488,7 +489,8 @@ def time_ratio(linkage: Linkage, extremes: tuple[Extreme, ...]) -> float | None:
     if not linkage.is_crank() or linkage.ranges is not None or len(extremes) != 2:
         return None
     travel = (extremes[1].value - extremes[0].value) % TWO_PI
-    return max(travel, TWO_PI - travel) / min(travel, TWO_PI - travel)
+    shorter = min(travel, TWO_PI - travel)
+    return max(travel, TWO_PI - travel) / shorter if shorter > 0 else None
 
 
 #: how closely (relative to the drawing's size) a redundant joint must hold over the motion for the linkage to

@@ -372,6 +372,12 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                             f"{lo_t:.2f} degrees (below 40)")
     if any(t.kind == "change point" for t in a.toggles):
         warnings.append("change point: a dyad folds flat and can switch branch; guide it through")
+    bound = _slide_bound(a)
+    if bound is not None:
+        report["input_bound_mm"] = num(bound)
+        warnings.append(f"no toggle ends the slide's range within {bound:.6g} mm of the drawing "
+                        f"({motion.SLIDE_REACH:g} times the drawing's size, {a.linkage.structure.size:.6g} mm): the "
+                        "motion is analysed to there; give range = [from, to] for another stretch")
     report["warnings"] = warnings
     if angle is not None:
         report["positions"] = positions(table, a, angle)
@@ -387,6 +393,15 @@ def _extents(a: Analysis, points: tuple[str, ...]) -> dict[str, tuple[tuple[floa
         p = a.sweep.points[point]
         out[point] = (float(p[:, 0].min()), float(p[:, 0].max())), (float(p[:, 1].min()), float(p[:, 1].max()))
     return out
+
+
+def _slide_bound(a: Analysis) -> float | None:
+    """The searched bound (mm either way of the drawing) where a slide input's range analysed ends without a toggle;
+    None where toggles end it (or the table gives the range)."""
+    if a.crank or a.circuit is None or a.table.inputs[0].range is not None:
+        return None
+    ends = [v for p in a.circuit.pieces for v in (p.lo, p.hi)]
+    return motion.reach(a.linkage) if any(motion.bounded(a.linkage, v) for v in ends) else None
 
 
 def _branch(circuit: circuits.Circuit, piece: int) -> str:
@@ -428,7 +443,8 @@ def _output_report(a: Analysis, name: str, om: circuits.OutputMotion) -> dict[st
                 out["swing_between_deg"] = [num(math.degrees(om.least[0])), num(math.degrees(om.greatest[0]))]
     else:
         travel = {"travel_mm": [num(om.least[0]), num(om.greatest[0])], "stroke_mm": num(om.travel)}
-    ratio = motion.time_ratio(a.linkage, om.limits) if circuit is not None and circuit.turns else None
+    one_turn = circuit is not None and circuit.turns and len(circuit.pieces) == 1
+    ratio = motion.time_ratio(a.linkage, om.limits) if one_turn else None
     out["time_ratio"] = None if ratio is None else round(ratio, 12)
     return out if rocker else {**out, **travel}
 
