@@ -129,6 +129,11 @@ class Solution:
         """Each body's turn from the drawing (rad, in (-pi, pi]), computed when asked."""
         return {b: np.arctan2(sn, c) for b, (c, sn) in self.rotations.items()}
 
+    def angle(self, body: str) -> np.ndarray:
+        """One body's turn from the drawing (rad, in (-pi, pi])."""
+        c, sn = self.rotations[body]
+        return np.arctan2(sn, c)
+
 
 #: the searches' hook into a solve (see :meth:`Linkage.solve`): a dyad's step index and result -> its change points
 Chooser = Callable[[int, DyadResult], np.ndarray | None]

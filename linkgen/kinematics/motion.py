@@ -353,7 +353,7 @@ def values_of(linkage: Linkage, sol: Solution, name: Output) -> tuple[np.ndarray
         point, axis = name
         return sol.points[point][:, axis], sol.velocities[point][:, axis], sol.accelerations[point][:, axis]
     if name not in sliders:
-        return sol.angles[name], sol.omegas[name], sol.alphas[name]
+        return sol.angle(name), sol.omegas[name], sol.alphas[name]
     sl = sliders[name]
     u = np.array([math.cos(sl.angle), math.sin(sl.angle)])
     p = sol.points[sl.point] - np.asarray(linkage.structure.points[sl.point])

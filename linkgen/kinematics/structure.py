@@ -158,7 +158,15 @@ class Structure:
 
     def holders(self, point: str) -> tuple[str, ...]:
         """The bodies holding ``point``, in body order."""
-        return tuple(b for b, pts in self.bodies.items() if point in pts)
+        return self._holders.get(point, ())
+
+    @once
+    def _holders(self) -> dict[str, tuple[str, ...]]:
+        out: dict[str, list[str]] = {}
+        for body, pts in self.bodies.items():
+            for p in pts:
+                out.setdefault(p, []).append(body)
+        return {p: tuple(b) for p, b in out.items()}
 
     @property
     def revolutes(self) -> dict[str, tuple[str, ...]]:
