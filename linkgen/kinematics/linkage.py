@@ -15,7 +15,8 @@ Branches: each dyad keeps the branch the drawing shows (the side its middle join
 At a change point (a dyad passes through its in-line position and goes on, the two branches
 meeting) the smooth continuation swaps sides; :class:`Linkage` finds those input values on
 the revolution (or the stroke) that starts at the drawing and counts them, so a crank angle
-is read on the revolution that starts at the drawn angle: theta0 <= theta <= theta0 + 2 pi.
+is read on the revolution that starts at the drawn angle: theta0 <= theta < theta0 + 2 pi (its end
+kept as the end where a dyad's branch swaps an odd number of times a turn).
 """
 from __future__ import annotations
 
@@ -201,14 +202,17 @@ class Linkage:
         return float(self.drawn_inputs[0]) if self.origin is None else self.origin
 
     def unwrap(self, values: np.ndarray) -> np.ndarray:
-        """Crank angles on the revolution that starts at :attr:`revolution`: t0 <= theta <= t0 + 2 pi, its end
-        kept as the end (where a linkage whose branches swap an odd number of times a turn, a kite, is not back
-        at its start), any other angle turned onto it by whole turns."""
+        """Crank angles on the revolution that starts at :attr:`revolution`, t0 <= theta < t0 + 2 pi, any angle
+        turned onto it by whole turns; where a dyad's branch swaps an odd number of times a turn (a kite: not back
+        at its start after one), its end t0 + 2 pi is kept as the end."""
         if not self.is_crank():
             return values
         t0 = self.revolution
         values = np.asarray(values, dtype=float)
-        return np.where((values >= t0) & (values <= t0 + TWO_PI), values, t0 + np.mod(values - t0, TWO_PI))
+        wrapped = t0 + np.mod(values - t0, TWO_PI)
+        if all(len(f) % 2 == 0 for f in self.flips):
+            return wrapped                  # back on its branches after a turn: the end is the start, exactly
+        return np.where((values >= t0) & (values <= t0 + TWO_PI), values, wrapped)
 
     @property
     def base_signs(self) -> tuple[float, ...]:
