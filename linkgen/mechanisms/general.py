@@ -274,9 +274,9 @@ def _refuse_runaway(a: Analysis, lo: float, hi: float) -> None:
     step = next(s for i, s in enumerate(a.linkage.plan.steps) if i == motion.dyad_steps(a.linkage)[d])
     unit = "degrees" if a.crank else "mm"
     shown = [a.shown(v) for v in (lo, hi)]
-    raise SpecError(f"at input {a.shown(value):.6g} {unit} the guides of links {step.bodies[0]} and {step.bodies[1]} "
-                    f"turn parallel ({step.kind} dyad at {step.joint}), so {step.joint} runs to infinity; give "
-                    f"range = [from, to] inside [{shown[0]:.6g}, {shown[1]:.6g}] {unit}", "linkage.input")
+    raise SpecError(f"at input {a.shown(value):.6g} {unit} the guides of the {step.kind} dyad of {step.bodies[0]} and "
+                    f"{step.bodies[1]} turn parallel, so {step.joint} runs to infinity; give range = [from, to] "
+                    f"strictly between {shown[0]:.6g} and {shown[1]:.6g} {unit}", "linkage.input")
 
 
 def _paradoxes(a: Analysis) -> list[str]:
