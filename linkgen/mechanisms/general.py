@@ -37,7 +37,7 @@ from camgen.core.records import once
 from camgen.core.shapes import Polyline
 from camgen.core.spec import MAX_LENGTH_MM, Model, unit
 from linkgen import plots
-from linkgen.kinematics import circuits, motion
+from linkgen.kinematics import linkage_circuit, motion
 from linkgen.kinematics.linkage import Linkage, Solution
 from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, Input, InputStep, Slider, Structure,
                                           make_structure)
@@ -232,15 +232,16 @@ class Analysis:
         return motion.toggles(self.linkage) if len(self.table.inputs) == 1 else ()
 
     @once
-    def circuit(self) -> circuits.Circuit | None:
-        """The circuit the motion analysed runs on (one input): the drawing's (see :mod:`linkgen.kinematics.circuits`),
-        or the table's range on the drawing's branches; None with more inputs."""
+    def circuit(self) -> linkage_circuit.Circuit | None:
+        """The circuit the motion analysed runs on (one input): the drawing's (see
+        :mod:`linkgen.kinematics.linkage_circuit`), or the table's range on the drawing's branches; None with more
+        inputs."""
         if len(self.table.inputs) != 1:
             return None
         lo, hi = float(self.span[0, 0]), float(self.span[0, -1])
         if self.table.inputs[0].range is not None:
-            return circuits.Circuit((circuits.Piece(self.linkage, lo, hi, True, ()),), False, False, ())
-        return circuits.circuit(self.linkage)
+            return linkage_circuit.Circuit((linkage_circuit.Piece(self.linkage, lo, hi, True, ()),), False, False, ())
+        return linkage_circuit.circuit(self.linkage)
 
     @once
     def travel(self) -> Solution:
@@ -248,14 +249,15 @@ class Analysis:
         sweep itself where the circuit is that one piece."""
         if self.circuit is None or len(self.circuit.pieces) == 1:
             return self.sweep
-        return circuits.sweep_over(self.circuit, SWEEP)
+        return linkage_circuit.sweep_over(self.circuit, SWEEP)
 
     @once
-    def outputs(self) -> dict[str, circuits.OutputMotion]:
+    def outputs(self) -> dict[str, linkage_circuit.OutputMotion]:
         """The motion of each rocker and ground slider over the circuit (one input; none with more)."""
         if self.circuit is None:
             return {}
-        return circuits.outputs_over(self.circuit, motion.rockers(self.linkage) + motion.ground_sliders(self.linkage))
+        outputs = motion.rockers(self.linkage) + motion.ground_sliders(self.linkage)
+        return linkage_circuit.outputs_over(self.circuit, outputs)
 
     def shown(self, value: float) -> float:
         """An input value in the report's unit (degrees in [0, 360) or mm)."""
@@ -335,7 +337,7 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
         report["circuit"] = _circuit_report(a, circuit)
     dyads = []
     if circuit is not None:
-        extremes = [row[:4] for row in circuits.transmission_over(circuit)]
+        extremes = [row[:4] for row in linkage_circuit.transmission_over(circuit)]
     else:
         extremes = [(float(np.min(d.transmission)), float(sweep.inputs[0, np.argmin(d.transmission)]),
                      float(np.max(d.transmission)), float(sweep.inputs[0, np.argmax(d.transmission)]))
@@ -387,7 +389,7 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
 def _extents(a: Analysis, points: tuple[str, ...]) -> dict[str, tuple[tuple[float, float], tuple[float, float]]]:
     """The tracers' x and y ranges (mm): refined over the circuit with one input, sampled with more."""
     if a.circuit is not None:
-        return circuits.extents_over(a.circuit, points) if points else {}
+        return linkage_circuit.extents_over(a.circuit, points) if points else {}
     out = {}
     for point in points:
         p = a.sweep.points[point]
@@ -404,12 +406,12 @@ def _slide_bound(a: Analysis) -> float | None:
     return motion.reach(a.linkage) if any(motion.bounded(a.linkage, v) for v in ends) else None
 
 
-def _branch(circuit: circuits.Circuit, piece: int) -> str:
+def _branch(circuit: linkage_circuit.Circuit, piece: int) -> str:
     other = circuit.pieces[piece].other
     return "as drawn" if not other else "other branch at " + ", ".join(other)
 
 
-def _circuit_report(a: Analysis, circuit: circuits.Circuit) -> dict[str, Any]:
+def _circuit_report(a: Analysis, circuit: linkage_circuit.Circuit) -> dict[str, Any]:
     """The circuit's pieces (input range and branches), whether it closes, and the ranges of separate circuits."""
     unit = "deg" if a.crank else "mm"
     return {"pieces": [{f"input_{unit}": [a.shown(p.lo), a.shown(p.hi)], "branches": _branch(circuit, k)}
@@ -418,7 +420,7 @@ def _circuit_report(a: Analysis, circuit: circuits.Circuit) -> dict[str, Any]:
             f"separate_{unit}": [[a.shown(lo), a.shown(hi)] for lo, hi in circuit.separate]}
 
 
-def _output_report(a: Analysis, name: str, om: circuits.OutputMotion) -> dict[str, Any]:
+def _output_report(a: Analysis, name: str, om: linkage_circuit.OutputMotion) -> dict[str, Any]:
     """A rocker's limit positions, swing and time ratio; a ground slider's limit positions, travel and stroke:
     over the circuit (the branches named where it has more than one piece)."""
     unit = "deg" if a.crank else "mm"
