@@ -19,8 +19,13 @@ def main() -> None:
 
 @main.command()
 @template_options("motion.0.lift=25")
+@click.option("--construction", is_flag=True,
+              help="Also draw the cam's graphical construction as the course teaches it (a disc cam): "
+                   "<name>-construction.png and .svg, the displacement diagram over the prime circle's perimeter "
+                   "(a flat face's base circle) and the follower inverted at each station (every 15 degrees and "
+                   "each segment's start), numbered.")
 @one_design
-def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
+def build(template: Path, output: Path | None, overrides: tuple[str, ...], construction: bool) -> None:
     """Build the cam described by TEMPLATE (a TOML file)."""
     from camgen.design import design_cam
     from camgen.outputs import write_cam
@@ -30,7 +35,12 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
     spec = load_spec(template, overrides)
     design = design_cam(spec)
     directory = output if output is not None else Path("out") / spec.name
-    report = write_cam(design, directory)
+    extra = ()
+    if construction:
+        from camgen.construction.figure import construction_files
+
+        extra = construction_files(design)
+    report = write_cam(design, directory, extra)
     lines = _summary(report)
     if lines is not None:
         for line in lines:

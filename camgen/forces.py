@@ -51,29 +51,44 @@ def cycle_mean(cam: Cam, quantity: Any, breaks: tuple[float, ...] = ()) -> float
     return _mean(_nodes(cam, breaks), quantity)
 
 
-#: Gauss-Legendre nodes over a turn: each stretch's half-width (rad), its cam angles (rad) and the motion there
-Nodes = list[tuple[float, np.ndarray, np.ndarray]]
+@dataclass(frozen=True)
+class Nodes:
+    """Gauss-Legendre nodes over a turn, every stretch's at once: ``halves`` each stretch's half-width (rad, (k,)),
+    ``theta`` the cam angles (rad, (k * NODES,), stretch by stretch) and ``motion`` the motion rows there (s and
+    its three derivatives, (4, k * NODES)). A stretch is a segment, or the part of one between a load table's
+    rows."""
+
+    halves: np.ndarray
+    theta: np.ndarray
+    motion: np.ndarray
 
 
 def _nodes(cam: Cam, breaks: tuple[float, ...] = ()) -> Nodes:
-    """The nodes of :func:`cycle_mean` (the motion evaluated once for any number of quantities)."""
+    """The nodes of :func:`cycle_mean` (the motion evaluated once for any number of quantities, a segment's
+    stretches in one evaluation: the work grows with the stretches' count, not its square)."""
     x, _ = np.polynomial.legendre.leggauss(NODES)
-    out = []
+    cuts_all = np.sort(np.asarray(breaks, dtype=float))
+    halves, thetas, motions = [], [], []
     for seg in cam.program.segments:
-        cuts = [seg.start, *sorted(b for b in breaks if seg.start < b < seg.end), seg.end]
-        for lo, hi in itertools.pairwise(cuts):
-            half = (hi - lo) / 2
-            theta = lo + half * (x + 1)
-            out.append((half, theta, seg.evaluate(theta)))
-    return out
+        inside = cuts_all[(cuts_all > seg.start) & (cuts_all < seg.end)]
+        cuts = np.concatenate([[seg.start], inside, [seg.end]])
+        lo, hi = cuts[:-1], cuts[1:]
+        half = (hi - lo) / 2
+        theta = (lo[:, None] + half[:, None] * (x + 1)[None, :]).ravel()
+        halves.append(half)
+        thetas.append(theta)
+        motions.append(seg.evaluate(theta))
+    return Nodes(np.concatenate(halves), np.concatenate(thetas), np.concatenate(motions, axis=1))
 
 
 def _mean(nodes: Nodes, quantity: Any) -> float:
-    """The mean over the turn of ``quantity(theta, motion rows)`` on the ``nodes`` (:func:`_nodes`)."""
+    """The mean over the turn of ``quantity(theta, motion rows)`` on the ``nodes`` (:func:`_nodes`): the quantity
+    evaluated once on them all, summed stretch by stretch."""
     _, w = np.polynomial.legendre.leggauss(NODES)
+    values = np.broadcast_to(quantity(nodes.theta, nodes.motion), nodes.theta.shape)
     total = 0.0
-    for half, theta, m in nodes:
-        total += half * float(w @ quantity(theta, m))
+    for half, row in zip(nodes.halves.tolist(), values.reshape(len(nodes.halves), NODES), strict=True):
+        total += half * float(w @ row)
     return total / (2 * math.pi)
 
 

@@ -27,9 +27,9 @@ import numpy as np
 
 from camgen.core.errors import DesignError
 from camgen.core.hardware import RUNNING_PLAY, bolt_length
-from camgen.core.kit import (RUNNING_GAP, BomLine, CamKitTable, Plate, Solid, assembly_panels, bolt_line,
+from camgen.core.kit import (RUNNING_GAP, BomLine, CamKitTable, Plate, Solid, assembly_panels, bolt_line, bought,
                              check_clear, disc, fixed, footprint, part_entry, placed_meshes)
-from camgen.core.parts import Allowances, Drawing, Part
+from camgen.core.parts import Allowances, Drawing, Part, Placed
 from camgen.core.shapes import rounded_hull
 
 #: cam angles over the turn at which the kit is placed and checked
@@ -58,8 +58,25 @@ class CamKit:
         (layers ``KIT-<degrees>-<part>``, see :func:`~camgen.core.kit.assembly_panels`)."""
         return assembly_panels(self.solids, tuple((POSES * d // 360, f"{d}") for d in DRAWN_DEG), self.tolerance)
 
+    def placed(self, cam: Part | None = None) -> tuple[Placed, ...]:
+        """The kit's STEP solids as assembled at theta = 0: each part as the process makes it (:attr:`made`; the
+        standoffs one a post, ``standoff-1``, ...) turned and moved as the kit places it, at its height, and with
+        ``cam`` (the cam's own STEP part) the cam on its shaft; nothing bought."""
+        made = {part.name: part for part, _ in self.made}
+        out = []
+        for solid in self.solids:
+            stem = solid.name.rpartition("-")[0] if solid.name.rpartition("-")[2].isdigit() else solid.name
+            part = made.get(solid.name) or made.get(stem)
+            if solid.bought or (part is None and (cam is None or solid.made)):
+                continue
+            part = cam if part is None else _named(part, solid.name)
+            angle, (x, y) = solid.pose(0)
+            out.append(Placed(solid.name, (part,), angle, (float(x), float(y), solid.z)))
+        return tuple(out)
+
     def meshes(self) -> tuple[Any, ...]:
-        """Every solid in its assembled place at theta = 0 (the kit's 3MF)."""
+        """Every solid made (none bought: :func:`~camgen.core.kit.placed_meshes`) in its assembled place at theta = 0
+        (the kit's 3MF)."""
         return placed_meshes(self.solids, 0)
 
 
@@ -120,12 +137,12 @@ def cam_kit(design: Any) -> CamKit:
               Solid(design.part, z_cam, turn, np.zeros((POSES, 2)), made=False),
               Solid(roller.part(0.0, 0.0), z_cam, np.zeros(POSES), centres),
               Solid(follower.part(0.0, 0.0), z_follower, angles, origins),
-              Solid(nut, z_cam - bolt.washer_thickness - bolt.nut_height, np.zeros(POSES), centres, made=False),
-              *(fixed(_named(nut, f"mount-nut-{i + 1}"), t, m, made=False) for i, m in enumerate(mounts)),
-              fixed(shaft, -SHAFT_STUB, made=False)]
+              bought(nut, z_cam - bolt.washer_thickness - bolt.nut_height, np.zeros(POSES), centres),
+              *(fixed(_named(nut, f"mount-nut-{i + 1}"), t, m, made=False, bought=True) for i, m in enumerate(mounts)),
+              fixed(shaft, -SHAFT_STUB, made=False, bought=True)]
     if seat:
         ring = disc("bearing", seat.outside, seat.bore, seat.width, tol).part(0.0, 0.0)
-        solids.append(fixed(ring, 0.0, made=False))
+        solids.append(fixed(ring, 0.0, made=False, bought=True))
     solids_t = tuple(solids)
     fields = {"translating-roller": "follower.offset", "oscillating-roller": "follower.pivot_distance"}
     check_clear(solids_t, POSES, tol, frozenset({frozenset((design.part.name, "roller"))}),
@@ -137,7 +154,7 @@ def cam_kit(design: Any) -> CamKit:
     # the axle runs down from its head on the follower through the roller to a washer and the nut under it
     grips = {"guide": t + (z_follower - t) + t, "axle": t + (z_follower - z_cam) + bolt.washer_thickness,
              "mount": t}
-    bom = _bom(spec, table, made, grips, len(posts), SHAFT_STUB + cam_top, oscillating)
+    bom = _bom(spec, table, made, grips, len(posts), SHAFT_STUB + cam_top, oscillating, design.cam.program.max_lift)
     report = _report(spec, table, solids_t, made, bom, gaps, posts, frame.holes[0][1])
     return CamKit(table, solids_t, made, bom, report, tol)
 
@@ -200,7 +217,7 @@ def _roller_gaps(design: Any, solids: tuple[Solid, ...], centres: np.ndarray, rr
 
 
 def _bom(spec: Any, table: CamKitTable, made: tuple, grips: dict[str, float], posts: int, shaft_length: float,
-         oscillating: bool) -> tuple[BomLine, ...]:
+         oscillating: bool, lift: float) -> tuple[BomLine, ...]:
     bolt = table.hardware
     lines = [BomLine(spec.name, 1, f"the cam, {spec.cam.thickness:g} mm (its own files)", "laser or fdm")]
     for part, source in made:
@@ -222,7 +239,39 @@ def _bom(spec: Any, table: CamKitTable, made: tuple, grips: dict[str, float], po
     lines.append(bolt_line(bolt, bolt_length(bolt, grips["axle"]), 1, "roller axle through follower and roller"))
     lines.append(bolt_line(bolt, bolt_length(bolt, grips["mount"]), 2, "mounting the frame (add your base's "
                                                                        "thickness to the length)"))
-    return tuple(lines)
+    spring = spring_line(spec.follower, lift, oscillating)
+    return tuple(lines) + ((spring,) if spring is not None else ())
+
+
+#: the standards a return spring is ordered by: cylindrical helical compression and torsion springs of round wire
+SPRING_STANDARDS = {False: "EN 13906-1", True: "EN 13906-3"}
+
+
+def spring_line(follower: Any, lift: float, oscillating: bool) -> BomLine | None:
+    """The return spring the ``[follower]`` table has (``spring_rate`` k in N/mm, ``preload`` F0 in N at s = 0,
+    either alone meaning the other 0), sized as the design's loading takes it, for the program's largest ``lift`` (mm,
+    or degrees of an arm's swing); None without one.
+
+    A translating follower's is a compression spring on its axis: k, F0 at s = 0 and F0 + k h at the full lift h
+    (mm); its free length is its installed length at s = 0 plus F0 / k. An oscillating arm's acts along the roller's
+    path, so it is a torsion spring at the pivot of k L^2 per radian (L the arm, mm), F0 L N*mm at psi = 0 and
+    F0 L + k L^2 psi_h at the full swing psi_h; its free position is F0 / (k L) radians back from psi = 0. A rate of
+    0 is a constant-force spring (no free length)."""
+    if follower.spring_rate is None and follower.preload is None:
+        return None
+    k, f0 = follower.spring_rate or 0.0, follower.preload or 0.0
+    if not oscillating:
+        size = (f"compression spring, rate {k:.4g} N/mm, {f0:.4g} N at s = 0 and {f0 + k * lift:.4g} N at the full "
+                f"lift of {lift:.4g} mm; " + (f"free length: its length at s = 0 plus {f0 / k:.4g} mm" if k > 0
+                                               else "constant force (rate 0)"))
+        return BomLine("return spring", 1, size, "buy", SPRING_STANDARDS[False])
+    arm = follower.arm_length
+    rate = k * arm**2 * math.pi / 180.0                       # N*mm a degree
+    size = (f"torsion spring at the arm's pivot, rate {rate:.4g} N*mm/degree ({k:.4g} N/mm at the roller, {arm:.4g} "
+            f"mm out), {f0 * arm:.4g} N*mm at psi = 0 and {f0 * arm + rate * lift:.4g} N*mm at the full swing of "
+            f"{lift:.4g} degrees; " + (f"free position {math.degrees(f0 / (k * arm)):.4g} degrees back from psi = 0"
+                                       if k > 0 else "constant torque (rate 0)"))
+    return BomLine("return spring", 1, size, "buy", SPRING_STANDARDS[True])
 
 
 def _report(spec: Any, table: CamKitTable, solids: tuple[Solid, ...], made: tuple, bom: tuple[BomLine, ...],
@@ -244,6 +293,6 @@ def _report(spec: Any, table: CamKitTable, solids: tuple[Solid, ...], made: tupl
                      "as_made_diameter_mm": frame["holes"][0]["diameter_mm"]},
             ("pivot" if spec.follower.type == "oscillating-roller" else "guides"): fixed_points,
             "poses_checked": POSES, **{k: round(v, 9) for k, v in gaps.items()},
-            "stack": [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made}
-                      for s in solids],
+            "stack": [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made,
+                       "bought": s.bought} for s in solids],
             "parts": parts, "bom": [line.row() for line in bom]}

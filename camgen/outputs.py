@@ -3,18 +3,19 @@
 Names: ``<name>.dxf``, ``<name>-cut.svg`` (cut files, kerf applied), ``<name>.stl``,
 ``<name>.3mf`` (printed files, clearance applied), ``<name>.step`` (the printed part as an exact solid, only when
 asked), ``<name>.json``,
-``<name>-svaj.png|svg``, ``<name>-cam.png|svg`` (plots), ``<name>.html`` (the interactive page,
+``<name>-svaj.png|svg``, ``<name>-cam.png|svg`` (plots), ``<name>-construction.png|svg`` (the graphical
+construction, with ``camgen build --construction``), ``<name>.html`` (the interactive page,
 :mod:`camgen.page`). Only the formats the spec's
 ``output.formats`` asks for are made; nothing is written if any file fails.
 """
 from __future__ import annotations
 
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
-from camgen.core.bundle import Bundle, item, tail, write_bundle
+from camgen.core.bundle import Bundle, Item, item, tail, write_bundle
 from camgen.core.errors import SpecError
 from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
@@ -58,7 +59,8 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
 
     name = design.spec.name
     items = kit_items(name, kit.made, kit.drawing, kit.meshes, design.spec.output.formats,
-                      f"{name}: the kit assembled at theta = 0, 90, 180 and 270 deg", kit.bom)
+                      f"{name}: the kit assembled at theta = 0, 90, 180 and 270 deg", kit.bom,
+                      lambda: kit.placed(solid))
     return Bundle.of((*bundle.items, *items), bundle.options), report
 
 
@@ -102,9 +104,9 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
     return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text))
 
 
-def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:
-    """Write the files of ``design`` (of any cam kind) into ``directory``, all or nothing; return the report with
-    its ``files``."""
+def write_cam(design: Any, directory: str | Path, extra: Iterable[Item] = ()) -> dict[str, Any]:
+    """Write the files of ``design`` (of any cam kind) into ``directory``, all or nothing, and the files of the
+    ``extra`` items after them (a figure asked for on the command line); return the report with its ``files``."""
     if _geneva(design):
         from camgen.geneva.outputs import geneva_bundle
 
@@ -114,6 +116,7 @@ def write_cam(design: Any, directory: str | Path) -> dict[str, Any]:
     if "step" in design.spec.output.formats and not any(e.format == "step" for i in bundle.items for e in i.entries):
         raise SpecError(f"a {design.spec.cam.kind} cam has no flat part to write as an exact STEP solid (its groove is "
                         "cut round a cylinder); leave 'step' out and use 'stl' or '3mf'", "output.formats")
+    bundle = Bundle.of((*bundle.items, *extra), bundle.options)
     return {**report, "files": write_bundle(bundle, directory)}
 
 

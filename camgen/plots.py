@@ -61,7 +61,8 @@ def svaj_figure(design: CamDesign) -> Any:
 def checks_figure(design: CamDesign) -> Any:
     """What the design is checked against, over the turn: the pressure angle with its limit (a translating flat
     face's is 0 by definition, so the profile's radius stands alone), the radius of curvature of the cam's surface
-    with the roller's (the undercut limit) and, at a speed with a mass, the contact force and camshaft torque, and
+    signed with its undercut limits (:func:`radius_panel`: convex, the roller + ``cam.min_rho_margin``; concave,
+    ``output.tool_radius``) and, at a speed with a mass, the contact force and camshaft torque, and
     with materials the Hertz pressure against its allowable."""
     from camgen.dynamics import spec_loading
     from camgen.forces import Contact, contact_pressure, normal_force, torque
@@ -89,15 +90,10 @@ def checks_figure(design: CamDesign) -> Any:
         for sign in (1, -1):
             ax.axhline(sign * design.pressure_limit_deg, color="C3", lw=0.8, ls="--")
     ax.set_ylabel("pressure angle (deg)")
-    rr = cam.contact_radius
     with np.errstate(divide="ignore", invalid="ignore"):
-        rho = g.rho if g.rho is not None else 1.0 / g.kappa - rr
-    limit = 4.0 * max(float(np.nanmedian(np.abs(rho[np.isfinite(rho)]))) if np.isfinite(rho).any() else 1.0, 1.0)
-    axes[1].plot(deg, np.clip(np.where(np.isfinite(rho), rho, np.sign(rho) * limit), -limit, limit), color="C0",
-                 lw=1.2, label="cam surface")
-    axes[1].axhline(0.0, color="C3", lw=0.8, ls="--", label="undercut below 0")
-    axes[1].set_ylabel("radius of curvature (mm)")
-    axes[1].legend(fontsize=7, loc="lower right")
+        rho = g.rho if g.rho is not None else 1.0 / g.kappa - cam.contact_radius
+    radius_panel(axes[1], [("cam surface", deg, rho, "C0")], _size(cam), cam.contact_radius, spec.cam.min_rho_margin,
+                 spec.output.tool_radius, flat=cam.follower.flat)
     if forces:
         ld = spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
         omega = spec.cam.rpm * 2 * math.pi / 60
@@ -172,17 +168,20 @@ def speeds_plot(name: str, speeds: dict[str, Any]) -> Any:
 
 
 def drive_checks_plot(title: str, limit_deg: float, contacts: list[tuple[str, Cam, Any, Any, Any]],
-                      torque_of: Any, allowable: float | None) -> Any:
+                      torque_of: Any, allowable: float | None, fold: float, tool_radius: float = 0.0) -> Any:
     """The checks figure of a positive drive (a groove, a pair) at a speed with a mass: over the turn the pressure
     angle with its limit, and for each contact ``(label, cam, radius(geometry), force(geometry, motion),
-    pressure(geometry, motion) or None)``: the radius of curvature of its surface (mm, concave negative), the
-    normal force it carries (N, 0 while the other contact carries it) and with materials its Hertz pressure (MPa)
-    against ``allowable``; the shaft torque ``torque_of(theta, motion)`` (N*m) on the force panel's right axis."""
+    pressure(geometry, motion) or None)``: the radius of curvature of its surface (mm, convex positive, concave
+    negative, on :func:`radius_panel`'s scale; ``fold`` mm, the roller's reach from the pitch curve, and a cutter of
+    ``tool_radius`` mm its limits), the normal force it carries (N, 0 while the other contact carries it) and with
+    materials its Hertz pressure (MPa) against ``allowable``; the shaft torque ``torque_of(theta, motion)`` (N*m) on
+    the force panel's right axis."""
     stress = allowable is not None
     fig = figure(8, 2.4 * (4 if stress else 3) + 1.2, layout=None)
     fig.subplots_adjust(left=0.12, right=0.88, bottom=0.08, top=0.94, hspace=0.15)
     axes = np.atleast_1d(fig.subplots(4 if stress else 3, 1, sharex=True))
     drawn: list[int] = []
+    curves: list[tuple[str, np.ndarray, np.ndarray, str]] = []
     for k, (label, cam, radius, force, pressure) in enumerate(contacts):
         theta, motion = sample_cycle(cam)
         g = cam.follower.pitch(theta, motion)
@@ -191,17 +190,14 @@ def drive_checks_plot(title: str, limit_deg: float, contacts: list[tuple[str, Ca
             axes[0].plot(deg, np.degrees(g.pressure_angle), color=f"C{k}", lw=1.2)
             drawn.append(id(cam))
         with np.errstate(divide="ignore", invalid="ignore"):
-            rho = radius(g)
-        axes[1].plot(deg, np.clip(np.nan_to_num(rho, posinf=1e3, neginf=-1e3), -1e3, 1e3), color=f"C{k}", lw=1.2,
-                     label=label)
+            curves.append((label, deg, radius(g), f"C{k}"))
         axes[2].plot(deg, force(g, motion), color=f"C{k}", lw=1.2, label=label)
         if stress:
             axes[3].plot(deg, pressure(g, motion), color=f"C{k}", lw=1.2, label=label)
     for sign in (1, -1):
         axes[0].axhline(sign * limit_deg, color="C3", lw=0.8, ls="--")
     axes[0].set_ylabel("pressure angle (deg)")
-    axes[1].axhline(0.0, color="C3", lw=0.8, ls="--")
-    axes[1].set_ylabel("radius of curvature (mm)")
+    radius_panel(axes[1], curves, _size(contacts[0][1]), fold, 0.0, tool_radius, flat=False)
     axes[2].set_ylabel("normal force (N)")
     twin = axes[2].twinx()
     theta, motion = sample_cycle(contacts[0][1])
@@ -212,7 +208,7 @@ def drive_checks_plot(title: str, limit_deg: float, contacts: list[tuple[str, Ca
         axes[3].set_ylabel("Hertz pressure (MPa)")
     for a in axes:
         a.grid(alpha=0.3)
-    for a in axes[1:]:
+    for a in axes[2:]:                                   # the radius panel has its own (radius_panel)
         a.legend(fontsize=7, loc="upper right")
     axes[-1].set_xlabel("cam angle θ (degrees)")
     axes[-1].set_xlim(0, 360)
@@ -253,7 +249,8 @@ def groove_checks_plot(spec: Any, cam: Cam, forces: dict[str, Any], limit_deg: f
     return drive_checks_plot(spec.name, limit_deg, [
         (labels[0], cam, lambda g: 1.0 / g.kappa - d, *contact_of(1.0)),
         (labels[1], cam, lambda g: -(1.0 / g.kappa + d), *contact_of(-1.0))],
-        lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"])
+        lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"], d,
+        getattr(spec.output, "tool_radius", 0.0))
 
 
 def pair_checks_figure(design: Any) -> Any:
@@ -275,7 +272,93 @@ def pair_checks_figure(design: Any) -> Any:
             return contact_pressure(cam, contact, g, force(g, m))[0]
         contacts.append((f"cam {k + 1}", cam, lambda g, cam=cam: 1.0 / g.kappa - cam.contact_radius, force, pressure))
     return drive_checks_plot(spec.name, design.cams[0].pressure_limit_deg, contacts,
-                             lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"])
+                             lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"],
+                             max(cam.contact_radius for cam in pair), getattr(spec.output, "tool_radius", 0.0))
+
+
+#: the radius panel: the farthest it draws (a multiple of the cam's size, rounded up to a power of ten: a straight
+#: stretch, of infinite radius, is drawn there), and the least half-width of its linear band about 0 (mm)
+_RADIUS_REACH, _LINEAR_MM = 20.0, 1.0
+
+
+def _size(cam: Cam) -> float:
+    """A cam's size for the radius panel's scale (mm): its base radius, its roller's and its lift (in mm)."""
+    lift = cam.program.max_lift if cam.follower.lift_unit == "mm" else 0.0
+    return max((cam.base_radius or 0.0) + cam.contact_radius + lift, 1.0)
+
+
+def plotted_radius(rho: np.ndarray, reach: float) -> np.ndarray:
+    """A signed radius of curvature (mm, convex positive, concave negative) as :func:`radius_panel` draws it: finite,
+    its sign kept, anything beyond ``reach`` mm drawn at +-``reach`` and a straight stretch (an infinite radius, or
+    NaN: no curvature to speak of) at +``reach``."""
+    rho = np.asarray(rho, dtype=float)
+    straight = ~np.isfinite(rho)
+    return np.where(straight, reach, np.clip(np.where(straight, 0.0, rho), -reach, reach))
+
+
+def radius_panel(ax: Any, curves: list[tuple[str, np.ndarray, np.ndarray, str]], size: float, fold: float,
+                 margin: float, tool_radius: float, flat: bool) -> float:
+    """The radius of curvature of a cam's surface against cam angle: each of ``curves`` ``(label, cam angles in
+    degrees, rho mm, colour)``, signed (convex positive, concave negative) on a symmetric log scale that shows
+    both sides (linear within a few mm of 0, straight stretches drawn at the edge, see :func:`plotted_radius`), with
+    where the surface undercuts: below the convex limit ``margin`` mm (the pitch curve's radius less than the
+    roller's radius ``fold`` + margin) down to -``fold`` (a roller's surface there is the fold of a pitch curve
+    bending tighter than the roller; a concave surface lies beyond -``fold``), for a flat face (``flat``)
+    everything below the limit (a cusp; its profile is never concave), and on the concave side a cutter's
+    ``tool_radius`` (mm, none at 0). ``size`` (mm) sets the reach: the return value, the largest radius drawn as
+    itself."""
+    reach = 10.0 ** math.ceil(math.log10(_RADIUS_REACH * size))
+    drawn = [plotted_radius(rho, reach) for _, _, rho, _ in curves]
+    for (label, deg, _, colour), values in zip(curves, drawn, strict=True):
+        ax.plot(deg, values, color=colour, lw=1.2, label=label)
+    bottom = -reach if flat else -fold
+    band = (f"cusp: below {margin:g} mm (a flat face cannot follow it)" if flat else
+            f"undercut: {bottom:g} to {margin:g} mm (the pitch curve bends tighter than roller + margin)" if fold > 0
+            else f"below the margin: 0 to {margin:g} mm")
+    ax.axhspan(bottom, margin, color="C3", alpha=0.12, lw=0, label=band)
+    limit = (f"convex limit: pitch radius = roller {fold:g} + margin {margin:g} mm" if fold > 0 and not flat else
+             f"convex limit: margin {margin:g} mm")
+    ax.axhline(margin, color="C3", lw=0.8, ls="--", label=limit)
+    if tool_radius > 0 and not flat:
+        ax.axhline(-tool_radius, color="C1", lw=0.8, ls="--", label=f"concave limit: tool radius {tool_radius:g} mm")
+    linear = max(_LINEAR_MM, fold, margin, tool_radius)
+    ax.set_yscale("symlog", linthresh=linear, linscale=0.6)
+    every = np.concatenate(drawn)
+    high = 1.6 * max(float(every.max()), linear, margin)  # as far as the curves go: no empty half without a concave
+    low = -1.6 * max(-float(every.min()), fold, tool_radius) if every.min() < 0 else -max(fold, tool_radius, linear)
+    ticks = np.concatenate([-_steps(linear, -low), [0.0], _steps(linear, high)])
+    ax.set_yticks(ticks[(ticks >= low) & (ticks <= high)])
+    ax.yaxis.set_major_formatter(_plain)
+    ax.yaxis.set_minor_locator(_no_ticks())
+    ax.set_ylim(low, high)
+    ax.axhline(0.0, color="0.5", lw=0.6)
+    ax.set_ylabel("radius (mm)\nconvex +, concave −" if not flat else "profile radius (mm)\ncusp −")
+    if np.any(np.abs(every) >= reach):
+        ax.plot([], [], " ", label=f"straight (|ρ| ≥ {reach:g} mm): drawn at ±{reach:g}")
+    ax.legend(fontsize=6.5, loc="center right", framealpha=0.85)
+    return reach
+
+
+def _steps(linear: float, most: float) -> np.ndarray:
+    """The ticks (mm, > 0, ascending) of one side of a symmetric log scale linear to ``linear`` and drawn to ``most``:
+    ``linear`` and 1, 2, 5 x 10^k beyond it, or across more than a decade and a half the powers of ten alone (a tick
+    within a factor 1.5 of ``linear`` is left out, so that no two labels overlap)."""
+    if most < linear:
+        return np.array([])
+    powers = 10.0 ** np.arange(math.floor(math.log10(linear)), math.floor(math.log10(most)) + 1)
+    steps = (powers[:, None] * ([1.0] if most / linear > 10 ** 1.5 else [1.0, 2.0, 5.0])).ravel()
+    return np.concatenate([[linear], steps[(steps >= 1.5 * linear) & (steps <= most)]])
+
+
+def _plain(value: float, _position: Any = None) -> str:
+    """A tick's label as a plain number (1000, not 10^3)."""
+    return f"{value:g}"
+
+
+def _no_ticks() -> Any:
+    from matplotlib.ticker import NullLocator
+
+    return NullLocator()
 
 
 def _machine_units(design: CamDesign, motion: np.ndarray) -> tuple[np.ndarray, list[str]]:

@@ -1,5 +1,7 @@
 """Starter templates for ``camgen new KIND``: one for each follower on a disc cam, each cam kind and the Geneva
-drive, every key commented from the template's models (:mod:`camgen.core.starter`); each builds as it is."""
+drive, every key commented from the template's models (:mod:`camgen.core.starter`), and where a kind has rules of
+its own (what limits its sizes, what it leaves out) by :data:`RULES`, so that a comment names only keys that kind
+takes; each builds as it is."""
 from __future__ import annotations
 
 from typing import Any
@@ -17,9 +19,89 @@ MOTION = ({"type": "rise", "law": "cycloidal", "lift": 20.0, "angle": 120.0}, {"
           {"type": "return", "law": "modified-sine", "lift": 20.0, "angle": 120.0}, {"type": "dwell", "angle": 60.0})
 NOTES = {"motion.type": "rise, dwell or return; the angles add up to 360",
          "motion.law": "see `camgen laws` for the laws and their peak factors",
-         "motion.lift": "mm (degrees of swing for an arm): the follower's travel",
+         "motion.lift": "mm: the follower's travel",
          "cam.rotation": "ccw or cw, seen from the side the follower is drawn on",
          "output.formats": "leave out a format to skip its files"}
+#: an arm's lift, for the oscillating followers
+SWING = {"motion.lift": "degrees: the arm's swing"}
+#: the rules every disc cam under a roller has
+_ROLLER = {"follower.roller_radius": "mm: roller radius; below the pitch curve's least convex radius, else the cam "
+                                    "undercuts (the prime radius is base_radius + roller_radius)"}
+#: a base radius sized by camgen under a flat face
+_FLAT_AUTO = {"cam.base_radius": "\"auto\": the smallest whose profile radius (base_radius + s + s'' for a "
+                                 "translating face) stays above min_rho_margin and meets the pressure-angle limit",
+              "cam.min_rho_margin": "mm: least radius of curvature of the profile; at 0 or below it folds into a "
+                                    "cusp the face cannot follow"}
+
+#: kind -> comments of its own: under a table's heading (``"cam"``) the kind's rule, and for a ``table.key`` what
+#: that key means for this kind; they name only keys the kind takes (tests)
+RULES: dict[str, dict[str, str]] = {
+    "translating-roller": {
+        "cam": "a disc cam under a translating roller: its pressure angle is held to 30 degrees (max_pressure_angle "
+               "sets another limit)",
+        **_ROLLER,
+        "follower.offset": "mm: the axis's offset, + to the right (+X); |offset| < base_radius + roller_radius; on "
+                           "a ccw cam + lowers the rise's pressure angle and raises the return's"},
+    "knife-edge": {
+        "cam": "a disc cam under a point: the profile is the pitch curve itself (prime radius = base_radius)",
+        "follower.offset": "mm: the axis's offset, + to the right (+X); |offset| < base_radius"},
+    "translating-flat": {
+        "follower": "a flat face square to its motion: pressure angle 0; it touches the cam s' mm from its axis",
+        **_FLAT_AUTO,
+        "follower.face_margin": "mm: face beyond the contact's travel (from least to most s'), each side"},
+    "oscillating-roller": {
+        "follower": "the arm puts the roller on the prime circle: |pivot_distance - arm_length| < base_radius + "
+                    "roller_radius < pivot_distance + arm_length; the pressure-angle limit is 40 degrees",
+        **_ROLLER, **SWING,
+        "follower.pivot_distance": "mm: cam centre to the arm's pivot (to the right of the roller at rest)",
+        "follower.arm_length": "mm: pivot to the roller's centre"},
+    "oscillating-flat": {
+        "follower": "a flat face through the pivot, touching the base circle at rest: pivot_distance > "
+                    "base_radius; the pressure-angle limit is 40 degrees",
+        **_FLAT_AUTO, **SWING,
+        "cam.base_radius": "\"auto\": the smallest whose profile radius stays above min_rho_margin and that meets "
+                           "the pressure-angle limit; below pivot_distance",
+        "follower.pivot_distance": "mm: cam centre to the pivot the face turns about; > base_radius",
+        "follower.face_margin": "mm: face beyond the contact's travel along it, each side"},
+    "plate": {
+        "cam": "a plate cam slides along +X as the program runs: it does not turn and has no bore",
+        "cam.travel": "mm: how far the plate slides over the program's 360 degrees: a segment of a degrees "
+                      "takes a / 360 of it",
+        "cam.base_radius": "mm: the plate's height under the profile; the roller's centre runs at base_radius + "
+                           "roller_radius + s",
+        "follower.roller_radius": "mm: roller radius; below the pitch curve's least convex radius, else the plate "
+                                  "undercuts"},
+    "grooved": {
+        "cam": "a grooved face cam: flanks roller_radius + running_clearance / 2 either side of the pitch curve; "
+               "the inner flank undercuts where the pitch curve's convex radius falls below that, the outer where "
+               "its concave radius does",
+        "follower": "positive drive: the groove drives the roller both ways, no return spring",
+        "cam.groove_depth": "mm: depth of the groove's pocket in the face; < thickness (it is no slot)",
+        "cam.thickness": "mm: plate thickness (STL extrusion); > groove_depth",
+        "cam.rim": "mm: wall outside the groove's outer flank"},
+    "barrel": {
+        "cam": "a barrel cam, sized by pitch_radius, length and groove_depth; the pressure angle is "
+               "atan(s' / pitch_radius)",
+        "follower": "a roller moving along the cam's axis, driven both ways by the groove (no return spring)",
+        "cam.pitch_radius": "mm: radius of the pitch cylinder, the groove's mid-depth",
+        "cam.length": "mm: the cylinder's axial length; more than the follower's stroke and the groove's width, "
+                      "2 roller_radius + running_clearance",
+        "cam.groove_depth": "mm: depth of the groove about pitch_radius; its floor, at pitch_radius - "
+                            "groove_depth / 2, must lie outside bore / 2 and outside roller_radius + "
+                            "running_clearance / 2",
+        "cam.bore": "mm: bore diameter, 0 for none; within the groove's floor"},
+    "conjugate": {
+        "cam": "a conjugate pair: a second disc drives a second roller on the far end of the yoke; its base circle "
+               "is cam.second_base_radius (default: base_radius); both cams are checked for pressure angle and "
+               "undercut",
+        "follower": "positive drive: the two cams drive the yoke both ways, no return spring",
+        **_ROLLER},
+    "geneva": {
+        "geneva": "the wheel indexes 360 / slots degrees while the driver turns 180 - 360 / slots, then dwells; the "
+                  "pin runs at centre_distance sin(180 / slots) from the driver's axis (a radial entry)",
+        "geneva.slots": "number of slots in the wheel, 3 to 36",
+        "geneva.pin_diameter": "mm: diameter of the driver's pin; the slots are pin_diameter + slot_clearance wide"},
+}
 
 
 def _cam(kind: str, **keys: Any) -> dict[str, Any]:
@@ -79,7 +161,8 @@ STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
 def starter(kind: str, name: str) -> str:
     """The starter template of ``kind`` (one of :data:`STARTERS`) named ``name``, as TOML text; a one-line
     :class:`~camgen.core.errors.SpecError` naming ``KIND`` for another."""
-    what, tables = STARTERS[choose(kind, STARTERS, "KIND")]
+    kind = choose(kind, STARTERS, "KIND")
+    what, tables = STARTERS[kind]
     header = (f"{what}\nBuild it with:  camgen build {name}.toml   (files land in out/{name}/)\n"
               "Every key is explained in the README's key tables; --set KEY=VALUE changes one for a run.")
-    return render(header, [("", {"name": name}), *tables], {"": None, **MODELS}, NOTES)
+    return render(header, [("", {"name": name}), *tables], {"": None, **MODELS}, {**NOTES, **RULES[kind]})

@@ -24,13 +24,19 @@ def main() -> None:
               help="Input angle in degrees (the rocker's when linkage.input = 'rocker'): adds the positions there.")
 @click.option("--method", type=click.Choice(["closed", "newton"]), default="closed", show_default=True,
               help="newton also prints the Newton-Raphson iteration table (needs --angle).")
+@click.option("--newton", "newton", metavar="THETA3,THETA4", default=None,
+              help="Newton-Raphson from this start: coupler and rocker angles in degrees, e.g. 30,100; prints the "
+                   "iteration table (a four-bar driven by its crank; needs --angle).")
+@click.option("--tolerance", type=float, default=None, metavar="MM",
+              help="Newton-Raphson stops at the first estimate whose residual norm (loop closure) is at most this "
+                   "many mm (with --newton or --method newton; default 1e-12 of the longest link).")
 @click.option("--json", "as_json", is_flag=True, help="Print the report as JSON.")
 @output_option("Folder for the report and plots (default: out/<name>/).", default=None)
 @set_option("linkage.crank=60")
 @figures_option
 @one_design
-def analyze(template: Path, angle: float | None, method: str, as_json: bool, output: Path | None,
-            overrides: tuple[str, ...]) -> None:
+def analyze(template: Path, angle: float | None, method: str, newton: str | None, tolerance: float | None,
+            as_json: bool, output: Path | None, overrides: tuple[str, ...]) -> None:
     """Analyze the linkage described by TEMPLATE (a TOML file)."""
     from camgen.core.errors import SpecError
     from linkgen.design import design_linkage
@@ -40,12 +46,15 @@ def analyze(template: Path, angle: float | None, method: str, as_json: bool, out
     spec = load_spec(template, overrides)
     if method == "newton" and angle is None:
         raise SpecError("the Newton-Raphson table needs an input angle: add --angle DEG", "--method")
+    asked = _newton_asked(newton, tolerance, method, angle, spec.linkage)
     try:
-        design = design_linkage(spec, angle, method)
+        design = design_linkage(spec, angle, "closed" if asked else method)
     except SpecError as exc:
         if exc.field == "angle":                        # the kinematics' name for what --angle gave
             raise SpecError(exc.detail, "--angle") from None
         raise
+    if asked and angle is not None:
+        design = _with_newton(design, angle, _start(newton), tolerance)
     directory = output if output is not None else Path("out") / spec.name
     files = write_linkage(design, directory)
     if as_json:
@@ -53,6 +62,67 @@ def analyze(template: Path, angle: float | None, method: str, as_json: bool, out
         return
     _print_text(design.report)
     echo_written(files, directory)
+
+
+def _newton_asked(newton: str | None, tolerance: float | None, method: str, angle: float | None,
+                  table: Any) -> bool:
+    """Whether --newton or --tolerance asks for a Newton-Raphson table of our own; refuses (one line naming the
+    option) what cannot be one: no --angle, a malformed start, a tolerance that is not a number of mm > 0, a
+    --tolerance with no table asked for, a linkage that is not a crank-driven four-bar."""
+    from camgen.core.errors import SpecError
+
+    option = "--newton" if newton is not None else "--tolerance"
+    if newton is None and tolerance is None:
+        return False
+    if newton is not None:
+        _start(newton)
+    if tolerance is not None and not (math.isfinite(tolerance) and tolerance > 0):
+        raise SpecError(f"must be a finite number of mm > 0 (got {tolerance:g})", "--tolerance")
+    if newton is None and method != "newton":
+        raise SpecError("is the Newton-Raphson table's: add --newton THETA3,THETA4 (or --method newton)", "--tolerance")
+    if angle is None:
+        raise SpecError("the Newton-Raphson table needs an input angle: add --angle DEG", option)
+    if table.type != "four-bar":
+        raise SpecError(f"the Newton-Raphson table is for linkage.type 'four-bar' (this is {table.type!r})", option)
+    if table.input != "crank":
+        raise SpecError("the Newton-Raphson table is for a four-bar driven by its crank (linkage.input = 'crank')",
+                        option)
+    return True
+
+
+def _start(newton: str | None) -> tuple[float, float] | None:
+    """The start THETA3,THETA4 (degrees) of --newton, or None; a malformed pair refused in one line."""
+    from camgen.core.errors import SpecError
+
+    if newton is None:
+        return None
+    parts = newton.split(",")
+    try:
+        values = tuple(float(p) for p in parts)
+    except ValueError:
+        values = ()
+    if len(values) != 2 or not all(math.isfinite(v) for v in values):
+        raise SpecError(f"must be two finite angles in degrees, the coupler's and the rocker's, as THETA3,THETA4 "
+                        f"(e.g. 30,100; got {newton!r})", "--newton")
+    return values[0], values[1]
+
+
+def _with_newton(design: Any, angle: float, start: tuple[float, float] | None, tolerance: float | None) -> Any:
+    """The design with its report's Newton-Raphson table from ``start`` to ``tolerance``: where the iteration
+    fails (a singular Jacobian, a stall, no convergence), one line naming the option."""
+    from dataclasses import replace
+
+    from camgen.core.errors import SolverError, SpecError
+    from linkgen.mechanisms.fourbar import newton_table
+
+    option = "--newton" if start is not None else "--tolerance"
+    try:
+        table = newton_table(design.kinematics, angle, design.spec.linkage.assembly, start, tolerance)
+    except SolverError as exc:
+        raise SpecError(str(exc), option) from None
+    except SpecError as exc:
+        raise SpecError(exc.detail, "--tolerance" if exc.field == "tolerance" else option) from None
+    return replace(design, report={**design.report, "newton": table})
 
 
 @main.command()
@@ -204,6 +274,8 @@ def _print_text(r: dict[str, Any]) -> None:
                        ("stroke_mm", "stroke (mm)"), ("approximation_error_max_mm", "approximation error (mm)")):
         if r.get(key) is not None:
             out(f"{label}: {r[key]:.6g}")
+    if "circuits" in r:
+        _print_circuits(r)
     if "straightness" in r:
         s = r["straightness"]
         out(f"straight stroke {s['stroke_mm']:.6g} mm within {s['error_mm']:.4g} mm "
@@ -228,7 +300,42 @@ def _print_text(r: dict[str, Any]) -> None:
     for warning in r.get("warnings", []) + r.get("statics", {}).get("warnings", []):
         out(f"warning: {warning}")
     if "newton" in r:
-        out("Newton-Raphson (" + r["newton"]["start"] + "):")
-        out(f"{'it':>3} {'coupler deg':>16} {'rocker deg':>16} {'residual mm':>12}")
-        for s in r["newton"]["iterations"]:
-            out(f"{s['iteration']:>3} {s['coupler_deg']:>16.10f} {s['rocker_deg']:>16.10f} {s['residual_mm']:>12.3e}")
+        _print_newton(r["newton"], max(v for v in r["lengths_mm"].values() if isinstance(v, float)))
+
+
+def _print_circuits(r: dict[str, Any]) -> None:
+    """The four-bar's circuits: the input angles each holds, and how each link moves on it, with its limits."""
+    out = click.echo
+    m = r["motion"]
+    out(f"motion on the drawn circuit: crank: {m['crank']}; coupler: {m['coupler']}; rocker: {m['rocker']}")
+    count = len(r["circuits"])
+    for k, c in enumerate(r["circuits"], 1):
+        span = c["input_range_deg"]
+        holds = (f"{r['input']} {span[0]:.4f} to {span[1]:.4f} deg" if span is not None
+                 else f"{r['input']} turns fully" + (f" (repeats after {c['input_turns']} turns)"
+                                                     if c["input_turns"] == 2 else ""))
+        out(f"circuit {k} of {count}{' (drawn)' if c['drawn'] else ''}: {holds}, "
+            f"{' and '.join(c['assemblies'])} assembl{'ies' if len(c['assemblies']) > 1 else 'y'}")
+        for link in ("crank", "coupler", "rocker"):
+            s = c[link]
+            line = f"  {link + ':':<9}{s['description']}"
+            if s.get("limits"):
+                limits = ", ".join(f"{x['kind']} at crank {x['crank_deg']:.4f} deg ({x['assembly']})"
+                                   for x in s["limits"])
+                line += (f"; {s['swing_deg']:.4f} deg counter-clockwise from {s['from_deg']:.4f} to "
+                         f"{s['to_deg']:.4f} deg; limits: {limits}")
+            out(line)
+
+
+def _print_newton(n: dict[str, Any], longest: float) -> None:
+    """The Newton-Raphson table: iteration, theta3 and theta4 (degrees, to the digits the tolerance resolves:
+    the angle that moves the longest link's end by the tolerance, and one more) and the residual norm (mm)."""
+    digits = min(12, max(4, math.ceil(-math.log10(math.degrees(n["tolerance_mm"] / longest))) + 1))
+    width = digits + 6
+    click.echo(f"Newton-Raphson ({n['start']}), stopping at a residual of {n['tolerance_mm']:.3g} mm:")
+    click.echo(f"{'it':>3} {'theta3 (deg)':>{width}} {'theta4 (deg)':>{width}} {'residual (mm)':>13}")
+    for s in n["iterations"]:
+        click.echo(f"{s['iteration']:>3} {s['coupler_deg']:>{width}.{digits}f} {s['rocker_deg']:>{width}.{digits}f} "
+                   f"{s['residual_mm']:>13.3e}")
+    click.echo(f"{n['stopped']}: the {n['assembly']} assembly, {n['agrees_with_closed_form_deg']:.2g} degrees from "
+               "its closed form")

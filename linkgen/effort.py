@@ -18,6 +18,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from linkgen.kinematics.statics import LinkTorque, PointForce, input_effort
+from linkgen.kinematics.structure import GROUND
 from linkgen.mechanisms.general import Analysis
 
 #: how finely the extremes are found: a fraction of the input's range
@@ -46,13 +47,15 @@ class Statics:
         return np.where(sol.ok, input_effort(sol, self.forces, self.torques, self.crank), np.nan)
 
     def advantage(self, effort: np.ndarray) -> np.ndarray | None:
-        """Mechanical advantage for one force: |F| over the input's force at its lever, |Q| / lever (None else)."""
+        """Mechanical advantage for one force: |F| over the input's force at its lever, |Q| / lever (None else);
+        infinite where the input gives no force (a dead centre, a force across its point's path, a zero force),
+        NaN where the effort is."""
         if len(self.forces) != 1 or self.torques:
             return None
         held = math.hypot(*self.forces[0].force)
         given = np.abs(effort) * (1000.0 / self.lever_mm if self.crank else 1.0)
-        with np.errstate(divide="ignore"):
-            return np.where(given > 0, held / given, np.inf)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(np.isnan(given), np.nan, np.where(given > 0, held / given, np.inf))
 
 
 def statics_of(loads: Sequence[Any], analysis: Analysis) -> Statics:
@@ -63,10 +66,15 @@ def statics_of(loads: Sequence[Any], analysis: Analysis) -> Statics:
     if len(s.inputs) != 1:
         raise SpecError("a linkage of one input holds loads (with two, one effort cannot be said)", "loads")
     forces, torques = [], []
+    moving_points = [p for p in s.points if p not in s.bodies[GROUND]]
     for i, load in enumerate(loads):
         if load.point is not None:
             if load.point not in s.points:
                 raise SpecError(f"no joint {load.point!r}; joints: {', '.join(s.points)}", f"loads[{i}].point")
+            if load.point not in moving_points:
+                raise SpecError(f"{load.point} is fixed to the ground, which holds a force there by itself (it asks "
+                                f"nothing of the input); give a moving joint: {', '.join(moving_points)}",
+                                f"loads[{i}].point")
             forces.append(PointForce(load.point, tuple(load.force)))
         else:
             moving = [b for b in s.bodies if b != "ground"]
@@ -126,15 +134,26 @@ def statics_report(st: Statics, rpm: float) -> dict[str, Any]:
     speed = rpm * 2 * math.pi / 60 if st.crank else None
     if speed is not None:
         out["peak_power_W"] = peak * speed
+    warnings = []
     advantage = st.advantage(st.effort)
-    if advantage is not None:
-        i = int(np.nanargmin(np.where(finite, advantage, np.nan)))
+    if advantage is not None and np.isfinite(advantage).any():
+        i = int(np.nanargmin(np.where(np.isfinite(advantage), advantage, np.nan)))
         x, _ = _refine(st.effort_at, st.inputs, i, 1.0 if st.effort[i] >= 0 else -1.0)
-        out["mechanical_advantage_min"] = float(st.advantage(st.effort_at(np.array([x])))[0])
+        refined = float(st.advantage(st.effort_at(np.array([x])))[0])
+        if not math.isfinite(refined):                     # the refinement met a dead centre: keep the sample
+            x, refined = float(st.inputs[i]), float(advantage[i])
+        out["mechanical_advantage_min"] = refined
         out[f"mechanical_advantage_min_at_{key}"] = a.shown(x)
         out["lever_mm"] = st.lever_mm
+    elif advantage is not None:
+        force = st.forces[0]
+        why = "the force is zero" if not any(force.force) else \
+            f"the force at {force.point} lies across its path everywhere, so it asks no effort of the input"
+        warnings.append(f"no mechanical advantage: {why}")
     if not finite.all():
         bad = st.inputs[~finite]
-        out["warnings"] = [f"the input cannot hold the loads near {a.shown(float(bad[0])):.4g} "
-                           f"{'degrees' if st.crank else 'mm'}: a dead centre of the input"]
+        warnings.append(f"the input cannot hold the loads near {a.shown(float(bad[0])):.4g} "
+                        f"{'degrees' if st.crank else 'mm'}: a dead centre of the input")
+    if warnings:
+        out["warnings"] = warnings
     return out

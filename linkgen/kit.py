@@ -19,7 +19,7 @@ import numpy as np
 
 from camgen.core.errors import DesignError
 from camgen.core.hardware import Bolt, bolt_length
-from camgen.core.kit import BomLine, KitTable, Solid, bolt_line, check_clear, disc, fixed
+from camgen.core.kit import BomLine, KitTable, Solid, bolt_line, bought, check_clear, disc, fixed
 from linkgen.parts import COLLISION_TOLERANCE_MM, Layout, LinkageBuild
 
 #: how many times the corner holes may step outwards (each a hole's width) to clear the moving parts
@@ -79,23 +79,13 @@ def base_plate(layout: Layout, kit: KitTable) -> tuple[Layout, tuple[tuple[float
 
 
 def pins_of(build: LinkageBuild, layout: Layout) -> tuple[dict[str, Any], ...]:
-    """Each pivot point at the first pose: where it is (mm), the parts it passes through and the lowest and highest
-    of their layers (one bolt passes them all)."""
-    points: list[dict[str, Any]] = []
-    for joint, (parts, where) in layout.sweep.joints.items():
-        at = where[0]
-        same = next((p for p in points if np.allclose(p["at"], at, rtol=0, atol=1e-9)
-                     and np.allclose(p["track"], where, rtol=0, atol=1e-9)), None)
-        if same is None:
-            same = {"at": at, "track": where, "joints": [], "parts": []}
-            points.append(same)
-        same["joints"].append(joint)
-        same["parts"] += [p for p in parts if p not in same["parts"]]
+    """Each pivot point (:attr:`LinkageBuild.pivots`) at the first pose of the motion: where it is (mm), the parts
+    it passes through and the lowest and highest of their layers (one bolt passes them all)."""
     out = []
-    for p in points:
-        layers = [build.layers[name] for name in p["parts"]]
-        out.append({"joints": p["joints"], "parts": p["parts"], "x_mm": round(float(p["at"][0]), 9),
-                    "y_mm": round(float(p["at"][1]), 9), "low_layer": min(layers), "high_layer": max(layers)})
+    for p in build.pivots:
+        at = layout.sweep.joints[p.joints[0]][1][0]
+        out.append({"joints": list(p.joints), "parts": list(p.parts), "x_mm": round(float(at[0]), 9),
+                    "y_mm": round(float(at[1]), 9), "low_layer": p.low, "high_layer": p.high})
     return tuple(out)
 
 
@@ -122,7 +112,7 @@ def linkage_kit(spec: Any, layout: Layout, mounts: tuple[tuple[float, float], ..
     bom += [bolt_line(bolt, length, count, "pins (one a pivot point)") for length, count in sorted(lengths.items())]
     inner, outer = build.spacer_diameters
     runs: dict[int, int] = {}
-    for _, _, run in build.spacers:
+    for _, _, run, _ in build.spacers:
         runs[run] = runs.get(run, 0) + 1
     bom += [BomLine(f"spacer-{run}", count, f"tube {inner:g} x {outer:g} mm, {run * table.thickness:g} mm high",
                     "fdm") for run, count in sorted(runs.items())]
@@ -137,8 +127,8 @@ def linkage_kit(spec: Any, layout: Layout, mounts: tuple[tuple[float, float], ..
     sweep = layout.sweep
     check_clear(placed_solids(made, sweep), len(next(iter(sweep.angles.values()))), COLLISION_TOLERANCE_MM,
                 frozenset(), "parts.width")
-    report["stack"] = [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made}
-                       for s in placed_solids(made, made.pose)]
+    report["stack"] = [{"name": s.name, "z_mm": round(s.z, 9), "top_mm": round(s.top, 9), "made": s.made,
+                        "bought": s.bought} for s in placed_solids(made, made.pose)]
     return made
 
 
@@ -164,12 +154,12 @@ def placed_solids(kit: LinkageKit, placement: Any) -> tuple[Solid, ...]:
         where = np.asarray(placement.joints[joint][1], dtype=float)
         low, high = pin["low_layer"], pin["high_layer"]
         shank = disc(f"pin-{joint}", bolt.diameter, 0.0, (high - low + 1) * t, table.tolerance).part(0.0, 0.0)
-        out.append(Solid(shank, low * t, np.zeros(n), where, made=False))
+        out.append(bought(shank, low * t, np.zeros(n), where))
         held = {build.layers[name] for name in pin["parts"]}
         for layer in sorted(set(range(low + 1, high)) - held):
             ring = disc(f"spacer-{joint}-{layer}", outer, inner, t, table.tolerance).part(0.0, 0.0)
             out.append(Solid(ring, layer * t, np.zeros(n), where))
     for k, at in enumerate(kit.mounts):
         head = disc(f"mount-head-{k + 1}", bolt.head_diameter, 0.0, bolt.head_height, table.tolerance)
-        out.append(fixed(head.part(0.0, 0.0), t, at, made=False))
+        out.append(fixed(head.part(0.0, 0.0), t, at, made=False, bought=True))
     return tuple(out)

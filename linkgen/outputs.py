@@ -1,14 +1,13 @@
 """A linkage design as files: its report and figures, and with parts the cut sheet, assembly and meshes (a bundle).
 
-Names: ``<name>.json`` (the report, with the parts section when there are parts),
-``<name>-<kind>.png|svg`` (the mechanism's figures), and with parts ``<name>-sheet.dxf|svg`` (the cut parts
-nested on one sheet; ``<name>-sheet-1.dxf|svg``, ``-sheet-2``, ... when they need several)
-and ``<name>-assembly.dxf|svg|png`` (cut files, kerf applied; the SVGs are the ``cut-svg``
-format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf`` (printed), ``<name>.step`` (every printed part, the
-pin and the spacers as exact solids named after them, only when asked), ``<name>.html`` (the interactive page, for
-every linkage linkgen can draw as a general one). Only the formats the
-spec's ``output.formats`` asks for are made; nothing is written if any file fails. Everything
-written is computed by the design; meshes are made here from its printed parts.
+Names: ``<name>.json`` (the report, with the parts section when there are parts), ``<name>-<kind>.png|svg`` (the
+mechanism's figures), and with parts ``<name>-sheet.dxf|svg`` (the cut parts nested on one sheet;
+``<name>-sheet-1.dxf|svg``, ``-sheet-2``, ... when they need several) and ``<name>-assembly.dxf|svg|png`` (cut
+files, kerf applied; the SVGs are the ``cut-svg`` format), ``<name>-<part>.stl|3mf`` and ``<name>-pin.stl|3mf``
+(printed), ``<name>.step`` (every printed part, a pin at each pivot point and the spacers as exact solids named
+after them, as assembled; only when asked), ``<name>.html`` (the interactive page, for every linkage linkgen can
+draw as a general one). Only the formats the spec's ``output.formats`` asks for are made; nothing is written if any
+file fails. Everything written is computed by the design; meshes are made here from its printed parts.
 """
 from __future__ import annotations
 
@@ -19,7 +18,7 @@ from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
 from camgen.core.errors import SpecError
 from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
-from camgen.core.parts import Part
+from camgen.core.parts import Placed
 from linkgen.design import LinkageDesign, design_linkage
 from linkgen.kit import placed_solids
 from linkgen.parts import LinkageBuild
@@ -86,7 +85,7 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
             foot = build.allowances.elephant_foot
             meshes.append(("pin", pin(table.pin_diameter, top * table.thickness + 1.0, table.tolerance, foot)))
             inner, outer = build.spacer_diameters
-            for run in sorted({run for _, _, run in build.spacers}):
+            for run in sorted({run for _, _, run, _ in build.spacers}):
                 meshes.append((f"spacer-{run}",
                                spacer(inner, outer, run * table.thickness, table.tolerance, foot)))
         names = [part_name for part_name, _ in meshes]
@@ -100,23 +99,37 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
     return items
 
 
-def _step_solids(build: LinkageBuild) -> tuple[tuple[str, tuple[Part, ...]], ...]:
-    """The STEP file's solids (see :mod:`camgen.core.writers.step`): every printed part, and with pins the pin (its
-    shank, as long as the stack of layers and 1 mm more, under a head 1.8 x as wide and half a diameter high) and a
-    spacer a height, the shapes of their meshes as exact discs and rings."""
+def _step_solids(build: LinkageBuild) -> tuple[Placed, ...]:
+    """The STEP file's solids (see :mod:`camgen.core.writers.step`), as assembled at the first dead centre the
+    assembly drawing shows (its ``DC1-...`` layer): every printed part turned and moved as drawn there, standing at
+    its layer's height (layer x thickness); with pins, a pin at every pivot point (``pin-<joint>``: its shank, as
+    long as the stack of layers and 1 mm more, under a head 1.8 x as wide and half a diameter high, the head resting
+    on the highest part it joins) and a spacer on each run of empty layers a pin crosses (``spacer-<joint>-<layer>``,
+    from that layer up), the shapes of their meshes as exact discs and rings."""
     from camgen.core.kit import disc
 
-    table = build.table
-    solids = [(part.name, (part,)) for part in build.printed]
+    table, pose = build.table, build.pose
+    t = table.thickness
+
+    def at(joint: str) -> tuple[float, float]:
+        x, y = pose.joints[joint][1][0]
+        return float(x), float(y)
+
+    solids = [Placed(part.name, (part,), float(pose.angles[part.name][0]),
+                     (*(float(v) for v in pose.origins[part.name][0]), build.layers[part.name] * t))
+              for part in build.printed]
     if table.pins:
         d, tol = table.pin_diameter, table.tolerance
-        length = (max(build.layers.values()) + 1) * table.thickness + 1.0
-        solids.append(("pin", (disc("pin", d, 0.0, length, tol).part(0.0, 0.0),
-                               disc("pin-head", 1.8 * d, 0.0, d / 2, tol).part(0.0, 0.0))))
+        length = (max(build.layers.values()) + 1) * t + 1.0
+        pin = (disc("pin", d, 0.0, length, tol).part(0.0, 0.0),
+               disc("pin-head", 1.8 * d, 0.0, d / 2, tol).part(0.0, 0.0))
+        for pivot in build.pivots:
+            joint = pivot.joints[0]
+            solids.append(Placed(f"pin-{joint}", pin, 0.0, (*at(joint), (pivot.high + 1) * t - length)))
         inner, outer = build.spacer_diameters
-        for run in sorted({run for _, _, run in build.spacers}):
-            spacer = disc(f"spacer-{run}", outer, inner, run * table.thickness, tol)
-            solids.append((spacer.name, (spacer.part(0.0, 0.0),)))
+        for joint, _, run, first in build.spacers:
+            ring = disc(f"spacer-{joint}-{first}", outer, inner, run * t, tol).part(0.0, 0.0)
+            solids.append(Placed(ring.name, (ring,), 0.0, (*at(joint), first * t)))
     return tuple(solids)
 
 

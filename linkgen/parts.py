@@ -277,10 +277,15 @@ class LinkageBuild:
     sheets: tuple[Drawing, ...]
     assembly: Drawing
     positions: tuple[tuple[str, float], ...]
-    #: (joint, the two parts, how many layers it fills) for each run of empty layers a pin crosses between the two
-    #: parts it joins: a spacer fills it
-    spacers: tuple[tuple[str, tuple[str, str], int], ...] = ()
+    #: (joint, the two parts, how many layers it fills, the lowest of them) for each run of empty layers a pin
+    #: crosses between the two parts it joins: a spacer fills it
+    spacers: tuple[tuple[str, tuple[str, str], int, int], ...] = ()
     nesting: Nest | None = None
+    #: the placement of the first dead centre the assembly drawing shows (its layers ``DC1-...``): the parts as
+    #: assembled
+    pose: Placement | None = None
+    #: the pivot points: the joints that share one (over the whole motion), each one pin through all their parts
+    pivots: tuple[Pivot, ...] = ()
 
     @property
     def spacer_diameters(self) -> tuple[float, float]:
@@ -319,12 +324,40 @@ class LinkageBuild:
     def _spacer_report(self) -> list[dict[str, Any]]:
         inner, outer = self.spacer_diameters
         return [{"joint": joint, "between": list(parts), "height_mm": run * self.table.thickness,
-                 "inner_diameter_mm": inner, "outer_diameter_mm": outer} for joint, parts, run in self.spacers]
+                 "inner_diameter_mm": inner, "outer_diameter_mm": outer} for joint, parts, run, _ in self.spacers]
 
 
-def spacers_of(placement: Placement, layers: dict[str, int]) -> tuple[tuple[str, tuple[str, str], int], ...]:
+@dataclass(frozen=True)
+class Pivot:
+    """A pivot point: the joints that lie on it at every pose, the parts they join (in the order met) and the lowest
+    and highest of those parts' layers (one pin passes them all)."""
+
+    joints: tuple[str, ...]
+    parts: tuple[str, ...]
+    low: int
+    high: int
+
+
+def pivots_of(placement: Placement, layers: dict[str, int]) -> tuple[Pivot, ...]:
+    """The pivot points of ``placement`` (its joints grouped where they coincide at every pose, to 1e-9 mm), in the
+    order of their first joints."""
+    points: list[tuple[np.ndarray, list[str], list[str]]] = []
+    for joint, (parts, where) in placement.joints.items():
+        same = next((p for p in points if p[0].shape == where.shape and np.allclose(p[0], where, rtol=0, atol=1e-9)),
+                    None)
+        if same is None:
+            same = (where, [], [])
+            points.append(same)
+        same[1].append(joint)
+        same[2].extend(p for p in parts if p not in same[2])
+    return tuple(Pivot(tuple(joints), tuple(parts), min(layers[p] for p in parts), max(layers[p] for p in parts))
+                 for _, joints, parts in points)
+
+
+def spacers_of(placement: Placement, layers: dict[str, int]) -> tuple[tuple[str, tuple[str, str], int, int], ...]:
     """For every pin, each run of empty layers between the two parts it joins (a layer is not empty where a part
-    holds or guides the same point: the pin goes through it): (joint, the two parts, the run's layers)."""
+    holds or guides the same point: the pin goes through it): (joint, the two parts, the run's layers, its lowest
+    layer)."""
     out = []
     for joint, (parts, where) in placement.joints.items():
         low, high = sorted(layers[p] for p in parts)
@@ -335,7 +368,7 @@ def spacers_of(placement: Placement, layers: dict[str, int]) -> tuple[tuple[str,
         for layer in range(low + 1, high + 1):
             if layer in through or layer == high:
                 if run:
-                    out.append((joint, parts, run))
+                    out.append((joint, parts, run, layer - run))
                 run = 0
             else:
                 run += 1
@@ -353,4 +386,5 @@ def build_parts(layout: Layout, table: PartsTable, elephant_foot: float = 0.0) -
     nested = nest(cut, SheetRules.of(table, table.kerf, "parts.sheet"))
     spacers = spacers_of(layout.sweep, layers)
     return LinkageBuild(layout.parts, table, allowances, layers, cut, printed, nested.drawings(table.tolerance),
-                        assembly(printed, layout, table.tolerance), layout.positions, spacers, nested)
+                        assembly(printed, layout, table.tolerance), layout.positions, spacers, nested,
+                        layout.poses[0] if layout.poses else None, pivots_of(layout.sweep, layers))

@@ -177,7 +177,7 @@ def effort_figure(name: str, st: Any) -> Any:
     ax.plot(x, st.effort, color="C0", lw=1.6)
     ax.axhline(0.0, color="0.5", lw=0.8)
     advantage = st.advantage(st.effort)
-    if advantage is not None:
+    if advantage is not None and np.isfinite(advantage).any():        # none for a force that asks no effort
         ax2 = ax.twinx()
         ax2.plot(x, np.where(np.isfinite(advantage), advantage, np.nan), color="C1", lw=1, ls="--")
         ax2.set(ylabel="mechanical advantage", yscale="log")

@@ -1,6 +1,7 @@
 """Starter templates for ``linkgen new KIND``: one for each mechanism type, with its parts (Whitworth's only
 analysed: its parts cannot be stacked), every key commented from the template's models
-(:mod:`camgen.core.starter`); each analyses and builds as it is."""
+(:mod:`camgen.core.starter`) and under its ``[linkage]`` heading the rule that type has (:data:`RULES`: what lets its
+input turn fully, its proportions), naming only keys that type takes; each analyses and builds as it is."""
 from __future__ import annotations
 
 from typing import Any
@@ -15,6 +16,33 @@ PARTS = ("parts", {"width": 12.0, "thickness": 4.0, "pin_diameter": 4.0, "cleara
 NOTES = {"linkage.type": "the mechanism; `linkgen new` lists them all",
          "linkage.joints": "each joint's place in the drawing [x, y], mm",
          "linkage.links": "each moving link and the joints it holds (three or more: a plate)"}
+
+#: the rule of each straight-line linkage: its canonical proportions, in units of size (mm)
+_STRAIGHT = {
+    "chebyshev": "ground 2, crank 2.5, coupler 1, rocker 2.5, crossed; the mid-coupler point runs near-straight for 2",
+    "hoekens": "ground 2, crank 1, coupler 2.5, rocker 2.5; the point 5 along the coupler line runs near-straight "
+               "for 2",
+    "roberts": "pivots 2 apart, rockers and triangle sides 2, triangle base 1; its apex runs near-straight for 2",
+    "watt": "rockers 1, coupler 1, pivots 2 across and 1 up, crossed; the mid-coupler point runs near-straight for "
+            "0.5"}
+#: kind -> comments of its own, as in :data:`camgen.starters.RULES`: under ``[linkage]`` the rule that type has, and
+#: for a ``linkage.key`` what that key means for it; they name only keys the type takes (tests)
+RULES: dict[str, dict[str, str]] = {
+    "four-bar": {"linkage": "Grashof: shortest + longest < the other two lets the shortest link turn fully; the "
+                            "crank shortest, beside the ground, makes a crank-rocker (as here)",
+                 "linkage.crank": "mm: input link; the shortest, for a crank that turns fully"},
+    "slider-crank": {"linkage": "the crank turns fully while rod >= crank + |offset| (its parts need it); the "
+                                "stroke is 2 crank when offset = 0",
+                     "linkage.offset": "mm: the slider's line above the crank pivot; a quick return when not 0"},
+    "scotch-yoke": {"linkage": "the yoke moves crank (1 - cos theta): simple harmonic motion, a stroke of 2 crank"},
+    "whitworth": {"linkage": "ground < crank: the slotted link turns fully, slowly one way and fast the other"},
+    "crank-shaper": {"linkage": "ground > crank: the lever swings 2 asin(crank / ground) and the time ratio is "
+                                "(180 + that) / (180 - that); lever reaches the ram line"},
+    **{kind: {"linkage": f"its canonical proportions in units of size: {rule}"} for kind, rule in _STRAIGHT.items()},
+    "linkage": {"linkage": "any planar linkage of one input: mobility 3 x moving links - 2 x pins = 1 (a pin "
+                           "joining k links counts k - 1), solved a dyad at a time on the assembly the joints draw",
+                "linkage.input": "what drives the linkage: a link turning about a pivot (or a slider)"},
+}
 
 #: kind -> (what it is, its tables)
 STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
@@ -51,9 +79,10 @@ STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
 def starter(kind: str, name: str) -> str:
     """The starter template of ``kind`` (a mechanism type) named ``name``, as TOML text; a one-line
     :class:`~camgen.core.errors.SpecError` naming ``KIND`` for another."""
-    what, tables = STARTERS[choose(kind, STARTERS, "KIND")]
+    kind = choose(kind, STARTERS, "KIND")
+    what, tables = STARTERS[kind]
     build = "" if kind == "whitworth" else f"\nCut and print its parts with:  linkgen build {name}.toml"
     header = (f"{what}\nAnalyse it with:  linkgen analyze {name}.toml   (files land in out/{name}/){build}\n"
               "Every key is explained in the README's key tables; --set KEY=VALUE changes one for a run.")
     models = {"linkage": MECHANISMS[kind].table, "parts": PartsTable}
-    return render(header, [("", {"name": name}), *tables], models, NOTES)
+    return render(header, [("", {"name": name}), *tables], models, {**NOTES, **RULES[kind]})

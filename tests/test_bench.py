@@ -11,6 +11,7 @@ from camgen.cli import main
 from linkgen.cli import main as linkgen
 
 
+@pytest.mark.slow
 def test_quick_bench_produces_every_figure(tmp_path):
     result = CliRunner().invoke(main, ["bench", "--quick", "-o", str(tmp_path)])
     assert result.exit_code == 0, result.output
@@ -44,6 +45,7 @@ def _speed_rows(r: dict, text: str, whats: set[str]) -> None:
     assert "## Speed against yardsticks measured in the same run" in text and "x (" in text
 
 
+@pytest.mark.slow
 def test_quick_linkgen_bench(tmp_path):
     result = CliRunner().invoke(linkgen, ["bench", "--quick", "-o", str(tmp_path)])
     assert result.exit_code == 0, result.output

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 
 import ezdxf
 import numpy as np
@@ -146,9 +147,73 @@ def test_the_files_and_the_python_call(tmp_path):
     assert design_coupon(spec).labels == ("+0.000", "+0.025", "+0.050", "+0.075", "+0.100")
     spec = coupon_spec(None, ["coupon.clearance_min=0", "coupon.clearance_max=0.1", "coupon.clearance_step=0.03"])
     assert design_coupon(spec).labels == ("+0.00", "+0.03", "+0.06", "+0.09")
-    # the writers' formats only: a plot format alone is refused, with the others it is left out
+    # the sheet as a figure when asked
     report = coupon(tmp_path / "some", None, ['output.formats=["dxf","json","png"]'])
-    assert sorted(report["files"].values()) == ["coupon.dxf", "coupon.json"]
+    assert sorted(report["files"].values()) == ["coupon.dxf", "coupon.json", "coupon.png"]
+
+
+def test_the_figures_show_the_sheet(tmp_path):
+    """png and svg: the cut sheet drawn by matplotlib, a colour a layer (the outlines matplotlib's first, C0
+    #1f77b4, the holes its second, C1 #ff7f0e); the PNG reads back as an image with both colours in it, the SVG as
+    an SVG document naming both layers in its legend."""
+    import xml.etree.ElementTree as ET
+
+    import matplotlib.image
+
+    report = coupon(tmp_path, None, ['output.formats=["png","svg"]'])
+    assert sorted(report["files"].values()) == ["coupon.png", "coupon.svg"]
+    pixels = (matplotlib.image.imread(tmp_path / "coupon.png")[:, :, :3] * 255).round().astype(int)
+    seen = {tuple(p) for p in pixels.reshape(-1, 3)}
+    assert len(pixels) > 100 and (31, 119, 180) in seen and (255, 127, 14) in seen
+    root = ET.parse(tmp_path / "coupon.svg").getroot()
+    assert root.tag == "{http://www.w3.org/2000/svg}svg"
+    assert {"OUTLINE", "HOLES"} <= {c.text for c in root.iter("{http://www.w3.org/2000/svg}title")} | set(
+        re.findall(r"<!-- (\w+) -->", (tmp_path / "coupon.svg").read_text()))
+
+
+def test_step_holds_the_plate_and_the_pin_as_on_the_sheet(tmp_path):
+    """step: the printed plate and pin as exact solids, named coupon and coupon-pin, re-read by Open CASCADE and by
+    FreeCAD: each its exact area x thickness (the holes nominal + c_k + output.clearance, the pin pi d^2 / 4 x
+    pin_length), the plate's box from the origin, the pin's round its centre beside the plate on the cut sheet."""
+    pytest.importorskip("OCP")
+    from tests.test_step import _fc, _freecad, assert_apart, assert_plate, expect_plate, measure, read_step
+
+    report = coupon(tmp_path, None, [f"output.clearance={PRINT}", 'output.formats=["step","json","dxf"]'])
+    assert report["files"]["step"] == "coupon.step"
+    design = design_coupon(coupon_spec(None, [f"output.clearance={PRINT}"]))
+    plate, pin = design.printed
+    solids = read_step(tmp_path / "coupon.step")
+    assert [name for name, _ in solids] == ["coupon", "coupon-pin"]
+    for (_, shape), part in zip(solids, design.printed, strict=True):
+        assert_plate(measure(shape), part)
+    width, height = report["plate_mm"]
+    holes = sum(math.pi * (h["printed_diameter_mm"] / 2) ** 2 for h in report["holes"])
+    corner = design.spec.coupon.web ** 2 / 2
+    assert measure(solids[0][1])["volume"] == pytest.approx((width * height - corner - holes) * 3.0, rel=1e-9)
+    x, y = design.pin.centre
+    assert measure(solids[1][1])["volume"] == pytest.approx(math.pi * 2.5**2 * 10.0, rel=1e-9)
+    assert measure(solids[1][1])["box"] == pytest.approx([x - 2.5, y - 2.5, 0.0, x + 2.5, y + 2.5, 10.0], abs=1e-6)
+    assert x - 2.5 > width                                  # beside the plate, not on it
+    # where the cut sheet has the pin's disc (a closed polyline of two half-turn arcs), and the plate's outline
+    discs = [np.array(pl.get_points("xy")) for pl in ezdxf.readfile(tmp_path / "coupon.dxf").modelspace().query(
+        'LWPOLYLINE[layer=="OUTLINE"]')]
+    [disc] = [d for d in discs if len(d) == 2]
+    assert disc.mean(axis=0) == pytest.approx([x, y], abs=1e-9)
+    box = measure(solids[0][1])["box"]
+    assert box == pytest.approx([0.0, 0.0, 0.0, width, height, 3.0], abs=1e-6)
+    assert_apart([box, measure(solids[1][1])["box"]])
+    done = _freecad(tmp_path / "coupon.step", [_fc(expect_plate(p)) for p in (plate, pin)])
+    assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
+
+
+def test_a_page_is_refused_in_one_line(tmp_path):
+    result = run(tmp_path / "o", 'output.formats=["dxf","html"]')
+    assert result.exit_code == 2 and result.stderr.count("\n") == 1
+    assert result.stderr.startswith("error: output.formats: a coupon is written as dxf, cut-svg, stl, 3mf, json, "
+                                    "png, svg, step (html does not apply")
+    assert not (tmp_path / "o").exists()
+    # the default (no output.formats) is the coupon's own, without the page
+    assert run(tmp_path / "d").exit_code == 0 and not list((tmp_path / "d").glob("*.html"))
 
 
 def test_hard_cases_at_the_limits():

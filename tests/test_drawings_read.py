@@ -9,7 +9,7 @@ import ezdxf
 import pytest
 from click.testing import CliRunner
 
-from camgen.core.parts import LAYER_LABELS, POSE_COLOURS, layer_colour
+from camgen.core.parts import ACI_RGB, LAYER_LABELS, POSE_COLOURS, layer_colour
 from linkgen.cli import main as linkgen
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -74,3 +74,50 @@ def test_the_four_bar_figure_names_the_paths_it_draws(distance, words):
     assert ax.get_title().endswith(words)
     dotted = [line for line in ax.get_lines() if line.get_linestyle() == ":"]
     assert bool(dotted) == (distance > 0)                  # no crank circle drawn as a coupler path
+
+
+def _svg_colours(path: Path) -> dict[str, str]:
+    """Each layer group's stroke colour in an SVG written by the project."""
+    import xml.etree.ElementTree as ET
+
+    root = ET.parse(path).getroot()
+    return {g.get("id"): g.get("stroke") for g in root.iter("{http://www.w3.org/2000/svg}g")}
+
+
+def _dxf_colours(path: Path) -> dict[str, str]:
+    """Each layer's colour in a DXF as the RGB a reader shows for its ACI number (ezdxf's standard palette; ACI 7,
+    the foreground colour, as black on paper)."""
+    from ezdxf.colors import aci2rgb
+
+    out = {}
+    for layer in ezdxf.readfile(path).layers:
+        if layer.dxf.name in ("0", "Defpoints"):
+            continue
+        rgb = (0, 0, 0) if layer.color == 7 else tuple(aci2rgb(layer.color))
+        out[layer.dxf.name] = "#{:02x}{:02x}{:02x}".format(*rgb)
+    return out
+
+
+def test_each_layer_is_one_colour_in_dxf_and_svg(jansen, tmp_path):
+    """The labels, outlines, holes and each assembly pose: the SVG's stroke is the RGB of the DXF's colour number in
+    the ACI palette (the labels orange, #ff7f00, ACI 30, in both), for the sheet, the assembly, and a cam's engraved
+    and grooved layers."""
+    from camgen.cli import main as camgen
+
+    sheet_dxf, sheet_svg = _dxf_colours(jansen / "jansen-sheet.dxf"), _svg_colours(jansen / "jansen-sheet.svg")
+    assert sheet_dxf[LAYER_LABELS] == sheet_svg[LAYER_LABELS] == "#ff7f00"
+    assert {"OUTLINE", "HOLES", LAYER_LABELS} <= set(sheet_svg)
+    assert {k: sheet_dxf[k] for k in sheet_svg} == sheet_svg
+    assembly_dxf, assembly_svg = (_dxf_colours(jansen / "jansen-assembly.dxf"),
+                                  _svg_colours(jansen / "jansen-assembly.svg"))
+    assert len([k for k in assembly_svg if k.startswith("DC")]) >= 2
+    assert {k: assembly_dxf[k] for k in assembly_svg} == assembly_svg
+    result = CliRunner().invoke(camgen, ["build", str(ROOT / "templates" / "grooved.toml"), "-o", str(tmp_path),
+                                         "--set", 'output.formats=["dxf","cut-svg"]'])
+    assert result.exit_code == 0, result.output
+    [dxf] = [p for p in tmp_path.glob("*.dxf") if "sheet" not in p.name]
+    cam_dxf, cam_svg = _dxf_colours(dxf), _svg_colours(dxf.with_name(dxf.stem + "-cut.svg"))
+    assert "GROOVE" in cam_svg and {k: cam_dxf[k] for k in cam_svg} == cam_svg
+    from ezdxf.colors import aci2rgb
+
+    assert all(n == 7 or "#{:02x}{:02x}{:02x}".format(*aci2rgb(n)) == rgb for n, rgb in ACI_RGB.items())

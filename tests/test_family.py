@@ -164,6 +164,7 @@ def test_resume_rebuilds_a_member_whose_file_is_missing_or_damaged(tmp_path):
     assert _files(out) == clean                                  # byte for byte what a clean run makes
 
 
+@pytest.mark.slow
 def test_an_unreachable_scheduler_is_one_line_and_writes_nothing(tmp_path):
     pytest.importorskip("dask.distributed")
     out = tmp_path / "out"

@@ -1,5 +1,6 @@
 """Figures that read (issue 17, item 3): a family's overview at one scale, in the order of its numbers, cams with
-their bores; an assembly at several poses a panel each; drawings sized to what they draw, with no empty bands.
+their bores; an assembly at several poses a panel each; drawings sized to what they draw, with no empty bands; the
+checks figure's radius of curvature signed and finite, a concave stretch not drawn as an undercut (issue 30).
 Measured on the figures as drawn (axes limits, positions and patches), not on pixels."""
 from __future__ import annotations
 
@@ -151,3 +152,106 @@ def test_a_familys_overview_figure_comes_with_its_members_figures(output, figure
     assert (tmp_path / "out" / "summary.csv").exists()
     drawn = [p for p in (tmp_path / "out").glob("*/*") if p.suffix in (".png", ".svg") and "-cut" not in p.name]
     assert len(drawn) == figures                          # three figures a member, in each figure format asked
+
+
+#: a centred roller lifted 30 mm in 60 degrees on a 40 mm base circle: its flanks are concave (no undercut), with
+#: a convex margin of 2 mm and a 3 mm router asked for
+CONCAVE = {"name": "concave", "cam": {"base_radius": 40.0, "thickness": 6.0, "bore": 10.0, "min_rho_margin": 2.0},
+           "follower": {"type": "translating-roller", "roller_radius": 5.0},
+           "motion": [{"type": "rise", "law": "cycloidal", "lift": 30.0, "angle": 60.0},
+                      {"type": "dwell", "angle": 60.0},
+                      {"type": "return", "law": "cycloidal", "lift": 30.0, "angle": 60.0},
+                      {"type": "dwell", "angle": 180.0}],
+           "output": {"tolerance": 0.01, "tool_radius": 3.0}}
+
+
+def _radius_panel(fig):
+    (ax,) = [a for a in fig.axes if a.get_ylabel().startswith(("radius", "profile radius"))]
+    return ax
+
+
+def _limits(ax) -> dict[str, float]:
+    """The dashed limit lines of a radius panel by their labels: {label: y (mm)}."""
+    return {line.get_label(): float(line.get_ydata()[0]) for line in ax.get_lines()
+            if line.get_linestyle() == "--"}
+
+
+def test_the_checks_figure_draws_a_concave_stretch_signed_and_finite():
+    """A concave stretch is drawn below 0 as what it is, not clipped into an undercut: the plotted radius of the cam
+    surface is finite everywhere, equals the closed form of the polar pitch curve (rho = (r^2 + r'^2)^(3/2) /
+    (r^2 + 2 r'^2 - r r''), r = Rp + s, less the roller's 5 mm) wherever it is drawn as itself, is below -5 mm (the
+    concave surface lies the roller's radius beyond its pitch curve) exactly where that denominator is negative, and
+    is positive elsewhere; the scale shows both sides; the limits are where the checks put them (convex: the margin,
+    pitch radius = roller + margin; concave: the router's radius; the undercut band from -5 mm to the margin)."""
+    from camgen.plots import checks_figure, sample_cycle
+
+    design = design_cam(validate_spec(CONCAVE))
+    ax = _radius_panel(checks_figure(design))
+    line = ax.get_lines()[0]
+    theta, motion = sample_cycle(design.cam)
+    assert np.asarray(line.get_xdata()) == pytest.approx(np.degrees(theta), abs=1e-12)
+    y = np.asarray(line.get_ydata(), dtype=float)
+    assert np.isfinite(y).all()
+    s, s1, s2 = motion[0], motion[1], motion[2]
+    r = 45.0 + s
+    below = r**2 + 2 * s1**2 - r * s2
+    with np.errstate(divide="ignore"):
+        expected = (r**2 + s1**2) ** 1.5 / below - 5.0
+    drawn = np.abs(expected) < 0.999 * np.abs(y).max()           # inside the reach: drawn as itself
+    assert drawn.mean() > 0.9
+    assert y[drawn] == pytest.approx(expected[drawn], rel=1e-9, abs=1e-9)
+    concave = below < 0
+    assert concave.sum() > 50 and np.all(y[concave] < -5.0) and np.all(y[~concave] > 0.0)
+    assert ax.get_yscale() == "symlog"
+    low, high = ax.get_ylim()
+    assert low < y.min() < 0 < y.max() < high
+    limits = _limits(ax)
+    assert limits == {"convex limit: pitch radius = roller 5 + margin 2 mm": 2.0,
+                      "concave limit: tool radius 3 mm": -3.0}
+    (band,) = ax.patches
+    assert (band.get_y(), band.get_y() + band.get_height()) == pytest.approx((-5.0, 2.0))
+    assert "undercut: -5 to 2 mm" in band.get_label()
+
+
+def test_a_straight_stretch_is_drawn_at_the_top_not_as_an_undercut():
+    """plate.toml: its dwells are straight (no curvature: an infinite radius, whatever the sign of its zero) and its
+    rise starts concave. The straight stretches are drawn at the top of the scale (the reach, said in the legend),
+    the concave ones below 0 and equal to the closed form of the plate's pitch curve y = Rb + Rr + s(x),
+    x = travel theta / 2 pi: rho = -(1 + y_x^2)^(3/2) / y_xx (a hump convex), less the roller's 8 mm."""
+    from camgen.plots import checks_figure, sample_cycle
+
+    spec = validate_spec(tomllib.loads((ROOT / "templates" / "plate.toml").read_text(encoding="utf-8")))
+    design = design_cam(spec)
+    ax = _radius_panel(checks_figure(design))
+    y = np.asarray(ax.get_lines()[0].get_ydata(), dtype=float)
+    _theta, motion = sample_cycle(design.cam)
+    assert np.isfinite(y).all()
+    reach = float(np.abs(y).max())
+    dwell = motion[1] == 0
+    dwell &= motion[2] == 0
+    assert dwell.sum() > 4 and np.all(y[dwell] == reach)
+    k = 2 * math.pi / 200.0                                   # d theta / dx: 360 degrees over 200 mm
+    yx, yxx = motion[1] * k, motion[2] * k**2
+    with np.errstate(divide="ignore"):
+        expected = -(1 + yx**2) ** 1.5 / yxx - 8.0
+    drawn = np.abs(expected) < 0.999 * reach
+    assert y[drawn] == pytest.approx(expected[drawn], rel=1e-9)
+    assert np.any(y[drawn] < -8.0) and np.any(y[drawn] > 0)
+    assert any(f"drawn at ±{reach:g}" in t.get_text() for t in ax.get_legend().get_texts())
+
+
+def test_a_grooves_flanks_are_drawn_signed_and_finite():
+    """grooved-loaded.toml's checks figure: each flank's radius finite and signed (the outer flank concave where the
+    inner one is convex), on the scale that shows both, the undercut band the roller's reach (5 + 0.2 / 2 mm)."""
+    from camgen.grooved.design import design_grooved
+    from camgen.plots import grooved_checks_figure
+    from camgen.spec import load_spec
+
+    design = design_grooved(load_spec(ROOT / "templates" / "grooved-loaded.toml", ()))
+    ax = _radius_panel(grooved_checks_figure(design))
+    inner, outer = (np.asarray(line.get_ydata(), dtype=float) for line in ax.get_lines()[:2])
+    assert np.isfinite(inner).all() and np.isfinite(outer).all()
+    assert np.any(inner > 0) and np.any(outer < 0) and np.all((inner > 0) | (outer > 0))
+    assert ax.get_yscale() == "symlog"
+    (band,) = ax.patches
+    assert band.get_y() == pytest.approx(-design.spec.follower.roller_radius - design.spec.cam.running_clearance / 2)

@@ -142,23 +142,25 @@ def test_3mf_is_a_watertight_solid_of_the_right_volume(tmp_path):
     assert mesh.volume == pytest.approx(design.printed.area * 8.0, rel=1e-3)
 
 
-def test_every_file_is_reproducible_across_processes(tmp_path):
-    """The same template gives the same bytes in two processes with different string-hash seeds
-    (no dates, GUIDs or set orders leak into DXF, SVG, STL, 3MF, PNG or JSON)."""
+@pytest.mark.parametrize("program, template, extra, count", [
+    ("camgen", "rdrd.toml", ["--figures"], 12), ("linkgen", "jansen.toml", [], 22)])
+def test_every_file_is_reproducible_across_processes(tmp_path, program, template, extra, count):
+    """The same template gives the same bytes in two processes with different string-hash seeds and time zones
+    (no dates, GUIDs or set orders leak into DXF, SVG, STL, 3MF, PNG, HTML or JSON)."""
     import os
     import sys
 
     from tests.conftest import ROOT
 
     outs = []
-    for seed in ("1", "2"):
+    for seed, zone in (("1", "UTC"), ("2", "Asia/Kathmandu")):
         out = tmp_path / seed
-        env = {**os.environ, "PYTHONHASHSEED": seed}
-        subprocess.run([sys.executable, "-m", "camgen", "build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(out),
-                        "--figures"], env=env, check=True, capture_output=True, timeout=300)
+        env = {**os.environ, "PYTHONHASHSEED": seed, "TZ": zone}
+        subprocess.run([sys.executable, "-m", program, "build", str(ROOT / "templates" / template), "-o", str(out),
+                        *extra], env=env, check=True, capture_output=True, timeout=300)
         outs.append(out)
     names = sorted(p.name for p in outs[0].iterdir())
-    assert names == sorted(p.name for p in outs[1].iterdir()) and len(names) == 12
+    assert names == sorted(p.name for p in outs[1].iterdir()) and len(names) == count
     for name in names:
         assert (outs[0] / name).read_bytes() == (outs[1] / name).read_bytes(), name
 

@@ -484,3 +484,68 @@ def test_poses_are_exact_to_rounding_against_50_digits(lengths):
                     assert error <= 16 * EPS * unit * (1 + want["condition"]), (driven, t, assembly, field, error)
                 checked += 1
     assert checked > 100
+
+
+@pytest.mark.parametrize("fb, top", [
+    (FourBar(20, 20, 20, 20), math.pi),                        # rhombus: flat and extended at 180 degrees
+    (FourBar(100, 100, 40, 40), math.acos(0.68)),              # kite: toggles where z = L3 + L4 = 80
+    (FourBar(164, 164, 135, 135), math.acos(1 - 270**2 / (2 * 164**2)))])
+def test_a_deltoid_whose_crank_pin_meets_the_rocker_pivot_gives_its_extremes_without_a_warning(fb, top):
+    """At crank angle 0 the crank pin sits on the rocker pivot (ground = crank): no pose is determined there, but
+    coupler and rocker (equal) overlap whatever B is, so the transmission angle is 0; the largest is 180 degrees
+    where z = L3 + L4 (law of cosines in O2-A-O4: cos t = 1 - z^2 / (2 L1^2) with L1 = L2) or at 180 degrees.
+    These were placed with z = 0 (numpy's 'divide by zero' and 'invalid value' warnings, NaN poses)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        (gmin, at_min), (gmax, at_max) = fb.transmission_extremes()
+        dead = fb.dead_centres("open") + fb.dead_centres("crossed")
+    assert (gmin, at_min) == (0.0, 0.0)
+    assert gmax == pytest.approx(math.pi, abs=1e-7) and abs(at_max) == pytest.approx(top, abs=1e-12)
+    assert all(math.isfinite(d.rocker) for d in dead)
+
+
+@pytest.mark.parametrize("lengths, args, ok", [
+    ((20, 20, 20, 20), [], True),                              # a rhombus, as the issue gives it
+    ((100, 100, 40, 40), ["--json"], True),                    # a kite
+    ((100, 125, 75, 88), ["--angle", "180"], False),           # a non-Grashof linkage asked for a full turn's angle
+    ((100, 125, 75, 88), ["--angle", "180", "--set", "linkage.input='rocker'"], False)])
+def test_the_issues_linkages_analyze_with_warnings_as_errors(tmp_path, lengths, args, ok):
+    """Run as a user runs it, with Python's warnings turned into errors: a result, or one line and exit 2."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "t.toml"
+    body = "\n".join(f"{k} = {float(v)}" for k, v in zip(("ground", "crank", "coupler", "rocker"), lengths,
+                                                          strict=True))
+    path.write_text(f'name = "t"\n[linkage]\ntype = "four-bar"\n{body}\n')
+    run = subprocess.run([sys.executable, "-W", "error", "-m", "linkgen", "analyze", str(path), "-o",
+                          str(tmp_path / "out"), *args], capture_output=True, text=True, cwd=ROOT)
+    if ok:
+        assert run.returncode == 0 and run.stderr == "", run.stderr
+    else:
+        assert run.returncode == 2 and run.stderr.count("\n") == 1
+        assert run.stderr.startswith("error: --angle: ") and "out of reach" in run.stderr
+
+
+def test_a_rhombus_builds_its_parts_with_warnings_as_errors(tmp_path):
+    """Its crank pin meets the rocker pivot at crank angle 0, where no pose is determined: the parts' layout, the
+    sketch and the thumbnail sweep a full turn half a step off it (they were refused there, 'angle: ... undetermined',
+    naming an angle nobody gave)."""
+    import subprocess
+    import sys
+
+    from linkgen.mechanisms.fourbar import input_grid
+
+    grid = input_grid(FourBar(20, 20, 20, 20), 8)
+    assert grid == pytest.approx(np.radians(22.5 + 45 * np.arange(8)), abs=1e-15)
+    assert input_grid(CRANK_ROCKER, 5) == pytest.approx(np.linspace(0, 2 * math.pi, 5), abs=0)
+    path = tmp_path / "t.toml"
+    path.write_text('name = "t"\n[linkage]\ntype = "four-bar"\nground = 20.0\ncrank = 20.0\ncoupler = 20.0\n'
+                    'rocker = 20.0\n[parts]\nwidth = 6.0\nthickness = 3.0\npin_diameter = 3.0\n')
+    run = subprocess.run([sys.executable, "-W", "error", "-m", "linkgen", "build", str(path), "-o",
+                          str(tmp_path / "out"), "--set", "output.formats=['dxf', 'json']"],
+                         capture_output=True, text=True, cwd=ROOT)
+    assert run.returncode == 0 and run.stderr == "", run.stderr
+    assert (tmp_path / "out" / "t.json").exists()

@@ -49,6 +49,7 @@ def test_installed_linkgen_build(outside):
     assert report["inversion"] == "crank-rocker" and report["layer_order"][0] == "ground"
 
 
+@pytest.mark.slow
 def test_installed_benches(outside):
     _run(outside, _script("camgen"), "bench", "--quick")
     _run(outside, _script("linkgen"), "bench", "--quick")

@@ -14,8 +14,8 @@ README = (ROOT / "README.md").read_text()
 def test_readme_opens_with_the_two_commands():
     blocks = re.findall(r"```sh\n(.*?)```", README, re.S)
     assert blocks[0].splitlines() == ["pip install . && camgen build templates/rdrd.toml",
-                                      "pip install '.[test]' && python -m pytest -q"]
-    assert "pip install '.[test]' && python -m pytest -q" in (ROOT / ".ci" / "run").read_text()
+                                      "pip install '.[test]' && python -m pytest -q -n auto"]
+    assert "pip install '.[test]' && python -m pytest -q -n auto" in (ROOT / ".ci" / "run").read_text()
 
 
 @pytest.mark.parametrize("prefix, model", [("cam", CamTable), ("follower", FollowerTable),

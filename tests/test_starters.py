@@ -2,12 +2,16 @@
 are the models' own descriptions; an existing file is never overwritten; bad kinds and names are refused."""
 from __future__ import annotations
 
+import math
+import re
+import tomllib
+
 import pytest
 from click.testing import CliRunner
 
 from camgen.cli import main as camgen
 from camgen.starters import STARTERS as CAM_STARTERS
-from camgen.spec import CamTable
+from camgen.spec import CamTable, validate_spec
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
 from linkgen.starters import STARTERS as LINKAGE_STARTERS
@@ -81,3 +85,216 @@ def test_a_part_sharing_the_printable_pins_files_is_refused(tmp_path):
     assert (code, output) == (2, "error: parts.pins: a part named 'pin' would share its files with the printable "
                                  "pin; rename its link or slider\n")
     assert not (tmp_path / "o").exists()
+
+
+# --- per-kind comments (issue 30): every comment names only keys its kind takes, and the rules it states hold ---
+
+#: the tables a comment may name as ``table.key``
+TABLES = ("cam", "follower", "motion", "hub", "output", "geneva", "kit", "linkage", "parts")
+#: a value to try a key with that a starter's comment names but does not set, where the model has no default
+SAMPLES = {"max_pressure_angle": 30.0, "second_base_radius": 40.0, "thickness": 8.0, "base_radius": 40.0,
+           "offset": 2.0, "spring_rate": 0.5, "preload": 5.0, "travel": 200.0}
+
+
+def _comments(text: str) -> list[tuple[str, str | None, str]]:
+    """``(table, key, comment)`` for every comment of a starter: a key's (its continuation lines joined), a table
+    heading's note or the header (key None; the header's table is "")."""
+    out: list[tuple[str, str | None, str]] = []
+    table = ""
+    for line in text.splitlines():
+        stripped = line.strip()
+        if stripped.startswith("[") and not line.startswith(" "):
+            table = stripped.strip("[]")
+        elif line.startswith(" ") and stripped.startswith("#"):
+            t, k, c = out[-1]
+            out[-1] = (t, k, f"{c} {stripped[2:]}")        # a key's comment going on
+        elif stripped.startswith("#"):
+            out.append((table, None, stripped[2:]))
+        elif " # " in line:
+            code, comment = line.split(" # ", 1)
+            out.append((table, code.split("=")[0].strip(), comment))
+    return out
+
+
+def _mentions(text: str, models: dict) -> set[tuple[str, str]]:
+    """The keys a starter's comments name, as ``(table, key)``: written ``table.key``; an identifier with an
+    underscore that is a key of some table (of the comment's own table first); a plain word that is another key of
+    the comment's own table (``< thickness`` in a ``[cam]`` comment)."""
+    owners: dict[str, list[str]] = {}
+    for table, model in models.items():
+        for key in getattr(model, "model_fields", {}):
+            owners.setdefault(key, []).append(table)
+    found = set()
+    for table, key, comment in _comments(text):
+        top = table.split(".")[0]
+        for t, k in re.findall(rf"\b({'|'.join(TABLES)})\.([a-z_]+)\b", comment):
+            found.add((t, k))
+        for word in re.findall(r"\b[a-z][a-z0-9]*(?:_[a-z0-9]+)*\b", comment):
+            if word == key or word not in owners:
+                continue
+            if top in owners[word]:
+                found.add((top, word))
+            elif "_" in word:
+                found.add((owners[word][0], word))
+    return found
+
+
+def _sets(raw: dict, table: str, key: str) -> bool:
+    entries = raw.get(table)
+    return any(key in e for e in entries) if isinstance(entries, list) else key in (entries or {})
+
+
+def _cam_takes(text: str, table: str, key: str) -> bool:
+    """Whether the starter ``text`` takes ``table.key``: it sets it, or it validates with it added (its default, or a
+    sample value)."""
+    from camgen.starters import MODELS
+
+    raw = tomllib.loads(text)
+    if _sets(raw, table, key):
+        return True
+    field = MODELS[table].model_fields.get(key)
+    if field is None:
+        return False
+    value = SAMPLES.get(key, field.default)
+    if value is None or repr(value) == "PydanticUndefined":
+        raise AssertionError(f"give SAMPLES a value to try {table}.{key} with")
+    target = raw.setdefault(table, {})
+    for entry in target if isinstance(target, list) else [target]:
+        entry[key] = value
+    try:
+        validate_spec(raw)
+    except ValueError:
+        return False
+    return True
+
+
+@pytest.mark.parametrize("kind", sorted(CAM_STARTERS))
+def test_a_cam_starters_comments_name_only_keys_its_kind_takes(kind):
+    from camgen.starters import MODELS, starter
+
+    text = starter(kind, "x")
+    mentions = _mentions(text, {"": None, **MODELS})
+    assert mentions, text
+    refused = sorted(f"{t}.{k}" for t, k in mentions if not _cam_takes(text, t, k))
+    assert refused == [], text
+
+
+@pytest.mark.parametrize("kind", sorted(LINKAGE_STARTERS))
+def test_a_linkage_starters_comments_name_only_keys_its_type_takes(kind):
+    from linkgen.spec import PartsTable
+    from linkgen.starters import starter
+
+    text = starter(kind, "x")
+    models = {"linkage": MECHANISMS[kind].table, "parts": PartsTable}
+    raw = tomllib.loads(text)
+    refused = sorted(f"{t}.{k}" for t, k in _mentions(text, models)
+                     if not (_sets(raw, t, k) or k in getattr(models.get(t), "model_fields", {})))
+    assert refused == [], text
+
+
+def test_the_generic_comment_that_named_another_kinds_key_is_gone():
+    """The barrel's groove depth was commented "< thickness", a key a barrel refuses; its comment now says the
+    barrel's own rule, and every kind has rules of its own."""
+    from camgen.starters import RULES, starter
+    from linkgen.starters import RULES as LINKAGE_RULES
+
+    line = next(x for x in starter("barrel", "x").splitlines() if x.startswith("groove_depth"))
+    assert "thickness" not in line and "pitch_radius" in line
+    assert _cam_takes(starter("barrel", "x"), "cam", "thickness") is False        # the test would have caught it
+    assert set(RULES) == set(CAM_STARTERS) and set(LINKAGE_RULES) == set(LINKAGE_STARTERS)
+    lifts = {kind: next(x for x in starter(kind, "x").splitlines() if x.startswith("lift")).split("# ")[1]
+             for kind in ("translating-roller", "oscillating-roller", "oscillating-flat", "barrel")}
+    assert lifts["oscillating-roller"].startswith("degrees") and lifts["oscillating-flat"].startswith("degrees")
+    assert lifts["translating-roller"].startswith("mm") and lifts["barrel"].startswith("mm")
+
+
+def _cam_raw(kind: str, **changes: dict) -> dict:
+    from camgen.starters import starter
+
+    raw = tomllib.loads(starter(kind, "x"))
+    for table, keys in changes.items():
+        raw[table].update(keys)
+    return raw
+
+
+def _refused(raw: dict, field: str) -> bool:
+    """Whether ``raw`` is refused naming ``field``, by validation or when its cam (its follower) is built."""
+    from camgen.cam import build_cam
+    from camgen.core.errors import SpecError
+
+    try:
+        spec = validate_spec(raw)
+        if "geneva" not in raw:
+            build_cam(spec)
+    except SpecError as exc:
+        return str(exc).startswith(field)
+    return False
+
+
+def test_the_rules_the_cam_starters_state_hold():
+    """Each starter's stated rule is where validation draws the line, just inside it and just past it: a barrel's
+    groove floor outside the roller (pitch_radius - groove_depth / 2 > roller_radius + running_clearance / 2, the
+    bore being smaller), an arm that puts the roller on the prime circle (|pivot_distance - arm_length| < base_radius
+    + roller_radius), an oscillating flat face's pivot beyond the base circle, an offset inside the prime circle,
+    a grooved cam's groove shallower than its plate, a Geneva wheel of 3 to 36 slots."""
+    eps = 1e-6
+    # barrel: Rm 30, Rr 5, c 0.2, bore 10: depth < 2 (30 - 5.1) = 49.8 mm (the roller, not the bore, decides)
+    limit = 2 * (30.0 - (5.0 + 0.2 / 2))
+    assert not _refused(_cam_raw("barrel", cam={"groove_depth": limit - eps}), "cam.groove_depth")
+    assert _refused(_cam_raw("barrel", cam={"groove_depth": limit + eps}), "cam.groove_depth")
+    # the bore decides when its radius is larger than the roller's reach: bore 20 -> depth < 2 (30 - 10) = 40
+    assert not _refused(_cam_raw("barrel", cam={"bore": 20.0, "groove_depth": 40.0 - eps}), "cam.groove_depth")
+    assert _refused(_cam_raw("barrel", cam={"bore": 20.0, "groove_depth": 40.0 + eps}), "cam.groove_depth")
+    # oscillating roller: pivot 110, Rb 40, Rr 8: |110 - L| < 48 < 110 + L, so L > 62
+    assert not _refused(_cam_raw("oscillating-roller", follower={"arm_length": 62.0 + eps}), "follower")
+    assert _refused(_cam_raw("oscillating-roller", follower={"arm_length": 62.0 - eps}), "follower.arm_length")
+    # oscillating flat face: pivot_distance > base_radius
+    flat = {"base_radius": 50.0}
+    assert _refused(_cam_raw("oscillating-flat", cam=flat, follower={"pivot_distance": 50.0}),
+                    "follower.pivot_distance")
+    # an offset inside the prime circle (40 + 10) and, for a knife edge, inside the base circle
+    assert _refused(_cam_raw("translating-roller", follower={"offset": 50.0}), "follower.offset")
+    assert not _refused(_cam_raw("translating-roller", follower={"offset": 45.0}), "follower.offset")
+    assert _refused(_cam_raw("knife-edge", follower={"offset": 40.0}), "follower.offset")
+    # a grooved cam's groove is a pocket: shallower than the plate (12 mm)
+    assert _refused(_cam_raw("grooved", cam={"groove_depth": 12.0}), "cam.groove_depth")
+    assert not _refused(_cam_raw("grooved", cam={"groove_depth": 11.0}), "cam.groove_depth")
+    # a Geneva wheel of 3 to 36 slots
+    for slots, refused in ((2, True), (3, False), (36, False), (37, True)):
+        raw = _cam_raw("geneva", geneva={"slots": slots, "centre_distance": 200.0, "driver_bore": 0.0,
+                                         "wheel_bore": 0.0})
+        assert _refused(raw, "geneva.slots") is refused, slots
+
+
+def test_the_rules_the_linkage_starters_state_hold():
+    """The four-bar's Grashof rule (its crank turns fully while shortest + longest < the others: 45 + 150 < 135 +
+    105), the slider-crank's (its parts need rod >= crank + |offset|), the crank-shaper's lever swing
+    2 asin(crank / ground) and time ratio (180 + swing) / (180 - swing), Chebyshev's proportions in units of size:
+    all read back from the analysis."""
+    from linkgen.design import design_linkage
+    from linkgen.spec import validate_spec as validate_linkage
+    from linkgen.starters import starter
+
+    def design(kind: str, **keys):
+        raw = tomllib.loads(starter(kind, "x"))
+        raw["linkage"].update(keys)
+        return design_linkage(validate_linkage(raw))
+
+    assert design("four-bar").report["grashof_class"] == "I"
+    assert design("four-bar", crank=115.0).report["grashof_class"] == "II"    # 115 + 150 > 135 + 105
+    shaper = design("crank-shaper").report
+    swing = 2 * math.degrees(math.asin(50.0 / 150.0))
+    assert shaper["lever_swing_deg"] == pytest.approx(swing, abs=1e-9)
+    assert shaper["time_ratio"] == pytest.approx((180 + swing) / (180 - swing), rel=1e-12)
+    proportions = design("chebyshev", size=10.0).report["proportions"]
+    assert [proportions[k] for k in ("ground", "crank", "coupler", "rocker")] == pytest.approx([20, 25, 10, 25])
+    from camgen.core.errors import SpecError
+
+    raw = tomllib.loads(starter("slider-crank", "x"))
+    raw["linkage"].update(rod=69.9)                            # < crank 50 + |offset| 20
+    spec = validate_linkage(raw)
+    assert design_linkage(spec).report["input_range_deg"] is not None   # the crank stops short of a turn
+    with pytest.raises(SpecError, match=r"rod >= crank \+ \|offset\|"):
+        design_linkage(spec, parts=True)
+    raw["linkage"].update(rod=70.0)
+    assert design_linkage(validate_linkage(raw), parts=True).build is not None

@@ -3,6 +3,7 @@ with FreeCAD, as valid solids of the parts' exact volume (area x thickness, arcs
 piece of outline and hole plus the two flat faces, the arcs as circular edges; refusals are one line, exit 2."""
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import os
@@ -118,6 +119,62 @@ def assert_plate(found: dict, part: Part) -> None:
     assert found["lines"] == found["edges"] - found["circles"]
 
 
+def circles(shape) -> np.ndarray:
+    """Each circular edge of a shape as Open CASCADE reads it: its centre (x, y, z) and radius (mm), (k, 4)."""
+    from OCP.BRepAdaptor import BRepAdaptor_Curve
+    from OCP.GeomAbs import GeomAbs_Circle
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp
+    from OCP.TopoDS import TopoDS
+    try:
+        from OCP.TopTools import TopTools_IndexedMapOfShape
+    except ImportError:                          # OCP 8 wraps it as a collection
+        from OCP.OCP.collections import IndexedMap_TopoDS_Shape_TopTools_ShapeMapHasher as TopTools_IndexedMapOfShape
+
+    as_edge = getattr(TopoDS, "Edge", None) or TopoDS.Edge_s
+    found = TopTools_IndexedMapOfShape()
+    TopExp.MapShapes_s(shape, TopAbs_EDGE, found)
+    out = []
+    for i in range(1, found.Extent() + 1):
+        curve = BRepAdaptor_Curve(as_edge(found.FindKey(i)))
+        if curve.GetType() == GeomAbs_Circle:
+            c = curve.Circle()
+            out.append((c.Location().X(), c.Location().Y(), c.Location().Z(), c.Radius()))
+    return np.array(out).reshape(-1, 4)
+
+
+def holes_at(shape, radius: float) -> np.ndarray:
+    """The centres (x, y) of the shape's circles of ``radius`` (to 1e-9 mm), each once, sorted (mm)."""
+    found = circles(shape)
+    out: list[np.ndarray] = []
+    for centre in found[np.abs(found[:, 3] - radius) <= 1e-9][:, :2]:      # a hole's circle at its top and bottom
+        if not any(np.abs(centre - c).max() <= 1e-7 for c in out):
+            out.append(centre)
+    return np.array(sorted(out, key=tuple)).reshape(-1, 2)
+
+
+def expect_placed(part: Part, angle: float, shift) -> dict:
+    """:func:`expect_plate` of ``part`` turned by ``angle`` (rad) about its origin, then moved by ``shift`` (x, y,
+    z; mm): its box the moved outline's exact bounds (:meth:`Contour.bounds`)."""
+    x0, y0, x1, y1 = part.outline.moved(angle, np.asarray(shift[:2], dtype=float)).bounds()
+    z = shift[2]
+    return {**expect_plate(part), "box": np.array([x0, y0, z, x1, y1, z + part.thickness])}
+
+
+def assert_placed(found: dict, part: Part, angle: float, shift) -> None:
+    want = expect_placed(part, angle, shift)
+    assert found["solids"] == 1 and found["valid"]
+    assert found["volume"] == pytest.approx(want["volume"], rel=1e-6)
+    assert np.abs(found["box"] - want["box"]).max() <= 1e-6
+    assert (found["faces"], found["circles"]) == (want["faces"], want["circles"])
+
+
+def assert_apart(boxes) -> None:
+    """No two solids' bounding boxes coincide (they differ by more than 1e-3 mm somewhere)."""
+    for a, b in itertools.combinations(list(boxes), 2):
+        assert np.abs(np.asarray(a) - np.asarray(b)).max() > 1e-3
+
+
 @pytest.fixture(scope="module")
 def rdrd_cli(tmp_path_factory):
     """``camgen build templates/rdrd.toml`` with step, stl and json, run as a process from a folder outside the
@@ -182,8 +239,8 @@ def test_the_step_solid_is_the_exact_part_not_its_chords(tmp_path):
     assert found["faces"] == 2 + 1 + 2 and found["circles"] == 2 * 2 + 2
 
 
-def _lateral(shape) -> tuple[dict, object]:
-    """The solid's faces counted by their surface's type, and the outer wire of its bottom face (z = 0)."""
+def _lateral(shape, z: float = 0.0) -> tuple[dict, object]:
+    """The solid's faces counted by their surface's type, and the outer wire of its bottom face (at ``z``, mm)."""
     from OCP.BRepAdaptor import BRepAdaptor_Surface
     from OCP.BRepTools import BRepTools
     from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cylinder, GeomAbs_Plane
@@ -200,7 +257,7 @@ def _lateral(shape) -> tuple[dict, object]:
         surface = BRepAdaptor_Surface(face)
         kind = names.get(surface.GetType(), "other")
         counts[kind] += 1
-        if kind == "planes" and abs(surface.Plane().Location().Z()) < 1e-12:
+        if kind == "planes" and abs(surface.Plane().Location().Z() - z) < 1e-12:
             bottom = BRepTools.OuterWire_s(face)
         explorer.Next()
     return counts, bottom
@@ -392,18 +449,34 @@ def test_grooved_cam_pocket(tmp_path):
 
 
 def test_geneva_wheel_and_driver_named_and_stacked(tmp_path):
+    """As assembled in the middle of the dwell (driver angle alpha = 180 degrees): the driver (crank with the locking
+    disc on top) on the origin turned by alpha, its bore round the origin and its pin hole at (-R, 0) (R the crank
+    radius); the wheel on the crank, in the disc's plane, its bore round (C, 0) (C the centre distance) and turned by
+    180 - beta degrees, beta where the pin left it: the law's closed form tan(beta) = lambda sin(a) / (1 - lambda
+    cos(a)) at the exit a = 90 - 180/n degrees (lambda = R/C = sin(180/n)), which is 180/n; each solid's box is its
+    outline moved so, and the two boxes differ."""
     result = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "geneva4.toml"), "-o", str(tmp_path),
                                        "--set", 'output.formats=["step","json"]'])
     assert result.exit_code == 0, result.output
-    printed = _design("geneva4").printed
+    design = _design("geneva4")
+    printed, g = design.printed, design.geometry
     solids = dict(read_step(tmp_path / "geneva4.step"))
     assert list(solids) == ["geneva4-wheel", "geneva4-driver"]
-    assert_plate(measure(solids["geneva4-wheel"]), printed["wheel"])
+    crank, lock, wheel = printed["crank"], printed["lock"], printed["wheel"]
+    lam, exit_ = g.crank_radius / g.centre_distance, math.pi / 2 - math.pi / g.slots
+    beta = math.atan2(lam * math.sin(exit_), 1.0 - lam * math.cos(exit_))
+    assert beta == pytest.approx(math.pi / g.slots, abs=1e-12)
+    found = measure(solids["geneva4-wheel"])
+    assert_placed(found, wheel, math.pi - beta, (g.centre_distance, 0.0, crank.thickness))
+    bore = wheel.holes[0].radius
+    assert holes_at(solids["geneva4-wheel"], bore) == pytest.approx(np.array([[g.centre_distance, 0.0]]), abs=1e-9)
     driver = measure(solids["geneva4-driver"])
-    crank, lock = printed["crank"], printed["lock"]
     assert driver["solids"] == 1 and driver["valid"]
     assert driver["volume"] == pytest.approx(crank.area * crank.thickness + lock.area * lock.thickness, rel=1e-6)
-    assert driver["box"][5] == pytest.approx(crank.thickness + lock.thickness, abs=1e-6)
+    assert driver["box"][[2, 5]] == pytest.approx([0.0, crank.thickness + lock.thickness], abs=1e-6)
+    pin = crank.holes[1].radius
+    assert holes_at(solids["geneva4-driver"], pin) == pytest.approx(np.array([[-g.crank_radius, 0.0]]), abs=1e-9)
+    assert_apart([found["box"], driver["box"]])
 
 
 def test_conjugate_pair_two_named_cams(tmp_path):
@@ -416,50 +489,112 @@ def test_conjugate_pair_two_named_cams(tmp_path):
     from camgen.surface import surface_deviation
 
     pair = design_conjugate(load_spec(ROOT / "templates" / "conjugate.toml", ['output.formats=["json"]']))
-    for (_, shape), member in zip(read_step(tmp_path / "conjugate.step"), pair.cams, strict=True):
+    boxes = []
+    for which, ((_, shape), member) in enumerate(zip(read_step(tmp_path / "conjugate.step"), pair.cams,
+                                                     strict=True)):
         found = measure(shape)
         assert found["solids"] == 1 and found["valid"] and found["volume"] > 0
+        # as assembled: on one shaft, in the pair's cam frame, the second cam on the first
+        assert_placed(found, step_part(member)[0], 0.0, (0.0, 0.0, which * member.spec.cam.thickness))
+        bore = member.printed.holes[0]                             # the bore, with its keyway: its arc's radius
+        radius = bore.radius if isinstance(bore, Circle) else float(bore.arcs()[2].max())
+        assert holes_at(shape, radius) == pytest.approx(np.zeros((1, 2)), abs=1e-9)
+        boxes.append(found["box"])
         # each cam's side is its biarc outline's arcs (cylinders), as a disc cam's, within the tolerance of its
         # exact profile (its roller's pitch curve less the roller, from the pair's kinematics)
         part, outline = step_part(member)
-        counts, wire = _lateral(shape)
+        counts, wire = _lateral(shape, which * member.spec.cam.thickness)
         assert counts["cylinders"] == part.outline.n_arcs + len(part.holes) >= 20 and counts["bsplines"] == 0
         assert outline.max_error_mm <= member.tolerance
         assert np.abs(surface_deviation(member.cam, _wire_points(wire, 40))).max() <= member.tolerance
+    assert_apart(boxes)
 
 
 @pytest.fixture(scope="module")
 def crank_rocker(tmp_path_factory):
-    """``linkgen build templates/crank-rocker.toml`` with step, stl and json, run from a folder outside the
-    checkout; the folder and the printed parts."""
+    """``linkgen build templates/crank-rocker.toml`` with step, dxf, stl and json, run from a folder outside the
+    checkout; the folder and the build."""
     from linkgen.design import design_linkage
     from linkgen.spec import load_spec as load_linkage
 
     cwd = tmp_path_factory.mktemp("outside-linkage")
     template_path = ROOT / "templates" / "crank-rocker.toml"
     done = subprocess.run([sys.executable, "-m", "linkgen", "build", str(template_path), "--set",
-                           'output.formats=["step","stl","json"]'], cwd=cwd, env=ENV, capture_output=True, text=True)
+                           'output.formats=["step","dxf","stl","json"]'], cwd=cwd, env=ENV, capture_output=True,
+                          text=True)
     assert done.returncode == 0, done.stderr
-    return cwd / "out" / "crank-rocker", design_linkage(load_linkage(template_path), parts=True).build.printed
+    return cwd / "out" / "crank-rocker", design_linkage(load_linkage(template_path), parts=True).build
 
 
-def test_linkage_every_part_a_named_solid(crank_rocker):
-    out, printed = crank_rocker
+#: crank-rocker.toml: ground d, crank a, coupler b, rocker c (mm); plate thickness, pin and printed hole diameters
+D, A, B, C, T, PIN, HOLE = 180.0, 80.0, 200.0, 150.0, 4.0, 4.0, 4.2
+
+
+def _first_dead_centre(out, build) -> list:
+    """The printed parts' outlines on the assembly drawing's first pose layer (``DC1-...``), read back from the DXF
+    in the parts' order (each part's outline, then its holes)."""
+    import ezdxf
+
+    layer = f"DC1-{build.positions[0][0]}"
+    msp = ezdxf.readfile(out / "crank-rocker-assembly.dxf").modelspace()
+    outlines = []
+    for pl in msp.query(f'LWPOLYLINE[layer=="{layer}"]'):
+        pts = np.array([(x, y, b) for x, y, _, _, b in pl.get_points("xyseb")])
+        outlines.append(Contour(pts[:, :2], pts[:, 2]))
+    return outlines
+
+
+def _linkage_expected(out, build) -> list[dict]:
+    """What each solid of crank-rocker.step must be, as assembled at the extended dead centre: each part its exact
+    volume and faces, its box the drawn outline's at its layer (layer x 4 mm); each pin (a 4 mm shank 13 mm long under
+    a 7.2 x 2 mm head) round its joint, the head resting on the highest part it joins."""
+    wanted = []
+    for part, drawn in zip(build.printed, _first_dead_centre(out, build), strict=True):
+        x0, y0, x1, y1 = drawn.bounds()
+        z = build.layers[part.name] * T
+        wanted.append({"volume": part.area * T, "box": np.array([x0, y0, z, x1, y1, z + T]),
+                       "faces": expect_plate(part)["faces"]})
+    phi = math.acos(((A + B) ** 2 + D**2 - C**2) / (2 * (A + B) * D))
+    joints = {"O2": (0.0, 0.0, 2), "A": (A * math.cos(phi), A * math.sin(phi), 3),
+              "B": ((A + B) * math.cos(phi), (A + B) * math.sin(phi), 3), "O4": (D, 0.0, 2)}
+    for x, y, top in joints.values():
+        wanted.append({"volume": math.pi * (2.0**2 * 13.0 + 3.6**2 * 2.0), "faces": 7,
+                       "box": np.array([x - 3.6, y - 3.6, top * T - 13.0, x + 3.6, y + 3.6, top * T + 2.0])})
+    return wanted
+
+
+def test_linkage_parts_as_assembled_at_the_first_dead_centre(crank_rocker):
+    """crank-rocker.step: every printed part and a pin at each pivot point, as assembled at the first dead centre
+    the assembly drawing shows (extended: crank and coupler in line, so |O2 B| = a + b and the crank's angle phi
+    from the cosine rule, cos(phi) = ((a + b)^2 + d^2 - c^2) / (2 (a + b) d); drawn above the ground line): each
+    part's box is its outline on the drawing's DC1 layer (read back from the DXF) at its layer's height, its pin
+    holes (4.2 mm) at the closed form's joints, O2 (0, 0), A = a (cos phi, sin phi), B = (a + b) (cos phi, sin phi),
+    O4 (d, 0); each pin's shank (4 mm) round its joint; no two boxes coincide."""
+    out, build = crank_rocker
     assert (out / "crank-rocker.step").exists() and (out / "crank-rocker-crank.stl").exists()
     solids = read_step(out / "crank-rocker.step")
-    assert [n for n, _ in solids] == [p.name for p in printed] + ["pin"] == ["ground", "crank", "coupler", "rocker",
-                                                                             "pin"]
-    for (_, shape), part in zip(solids[:-1], printed, strict=True):
-        assert_plate(measure(shape), part)
-    # the pin: a 4 mm shank through three 4 mm layers and 1 mm more, under a head 7.2 mm wide and 2 mm high
-    pin = measure(solids[-1][1])
-    assert pin["solids"] == 1 and pin["valid"]
-    assert pin["volume"] == pytest.approx(math.pi * (2.0**2 * 13.0 + 3.6**2 * 2.0), rel=1e-9)
-    assert np.abs(pin["box"] - [-3.6, -3.6, 0.0, 3.6, 3.6, 15.0]).max() <= 1e-6
+    assert [n for n, _ in solids] == ["ground", "crank", "coupler", "rocker", "pin-O2", "pin-A", "pin-B", "pin-O4"]
+    assert build.positions[0][0] == "extended"
+    found = [measure(shape) for _, shape in solids]
+    for f, want in zip(found, _linkage_expected(out, build), strict=True):
+        assert f["solids"] == 1 and f["valid"] and f["faces"] == want["faces"]
+        assert f["volume"] == pytest.approx(want["volume"], rel=1e-9)
+        assert np.abs(f["box"] - want["box"]).max() <= 1e-6
+    phi = math.acos(((A + B) ** 2 + D**2 - C**2) / (2 * (A + B) * D))
+    o2, a, b, o4 = (0.0, 0.0), A * np.array([math.cos(phi), math.sin(phi)]), (A + B) * np.array(
+        [math.cos(phi), math.sin(phi)]), (D, 0.0)
+    holes = {name: holes_at(shape, HOLE / 2) for name, shape in solids[:4]}
+    for name, where in (("ground", (o2, o4)), ("crank", (o2, a)), ("coupler", (a, b)), ("rocker", (b, o4))):
+        assert holes[name] == pytest.approx(np.array(sorted(map(tuple, where))), abs=1e-9), name
+    for (name, shape), where in zip(solids[4:], (o2, a, b, o4), strict=True):
+        assert holes_at(shape, PIN / 2) == pytest.approx(np.array([where]), abs=1e-9), name
+    assert_apart(f["box"] for f in found)
 
 
 def test_linkage_spacers_are_rings(tmp_path):
-    """stephenson1 with pins: a spacer bridges one empty layer, a ring of the spacer's diameters one layer high."""
+    """stephenson1 with pins: a spacer bridges one empty layer, a ring of the spacer's diameters one layer high,
+    round its joint at the drawing's first dead centre and on the empty layer between the two parts the joint joins,
+    the pins' heads each on the highest part of their pivot; no two boxes coincide."""
     from linkgen.design import design_linkage
     from linkgen.spec import load_spec as load_linkage
 
@@ -471,9 +606,21 @@ def test_linkage_spacers_are_rings(tmp_path):
     build = design_linkage(load_linkage(template_path, sets), parts=True).build
     solids = dict(read_step(tmp_path / "stephenson1.step"))
     inner, outer = build.spacer_diameters
-    ring = measure(solids["spacer-1"])
-    assert list(solids)[-2:] == ["pin", "spacer-1"] and ring["valid"] and ring["faces"] == 2 + 1 + 2
-    assert ring["volume"] == pytest.approx(math.pi * (outer**2 - inner**2) / 4 * build.table.thickness, rel=1e-9)
+    t = build.table.thickness
+    [(joint, parts, run, first)] = build.spacers
+    assert run == 1 and list(solids)[-1] == f"spacer-{joint}-{first}"
+    ring = measure(solids[f"spacer-{joint}-{first}"])
+    assert ring["valid"] and ring["faces"] == 2 + 1 + 2
+    assert ring["volume"] == pytest.approx(math.pi * (outer**2 - inner**2) / 4 * t, rel=1e-9)
+    low, high = sorted(build.layers[p] for p in parts)
+    assert low < first < high
+    x, y = build.pose.joints[joint][1][0]
+    assert ring["box"] == pytest.approx([x - outer / 2, y - outer / 2, first * t, x + outer / 2, y + outer / 2,
+                                         (first + 1) * t], abs=1e-6)
+    for pivot in build.pivots:
+        pin = measure(solids[f"pin-{pivot.joints[0]}"])
+        assert pin["box"][5] == pytest.approx((pivot.high + 1) * t + build.table.pin_diameter / 2, abs=1e-6)
+    assert_apart(measure(shape)["box"] for shape in solids.values())
 
 
 def test_linkgen_analyze_refuses_step(tmp_path):
@@ -574,11 +721,14 @@ def test_freecad_reads_a_keyway_and_bolt_holes(tmp_path):
 
 
 def test_freecad_reads_every_part_of_a_linkage(crank_rocker):
-    out, printed = crank_rocker
-    pin = {"volume": math.pi * (2.0**2 * 13.0 + 3.6**2 * 2.0), "box": [-3.6, -3.6, 0.0, 3.6, 3.6, 15.0], "faces": 7}
-    done = _freecad(out / "crank-rocker.step", [*(_fc(expect_plate(part)) for part in printed), pin])
+    """FreeCAD reads crank-rocker.step as the eight valid solids of the assembly: each part's and pin's exact volume,
+    faces and box as assembled (see :func:`_linkage_expected`)."""
+    out, build = crank_rocker
+    expected = [{"volume": w["volume"], "box": w["box"].tolist(), "faces": w["faces"]}
+                for w in _linkage_expected(out, build)]
+    done = _freecad(out / "crank-rocker.step", expected)
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
-    assert len(json.loads(done.stdout.strip().splitlines()[-1])["solids"]) == 5
+    assert len(json.loads(done.stdout.strip().splitlines()[-1])["solids"]) == 8
 
 
 def test_freecad_check_rejects_a_wrong_volume(rdrd_cli):

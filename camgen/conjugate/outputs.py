@@ -21,7 +21,7 @@ from camgen.conjugate.followers import ArmRoller
 from camgen.core.bundle import Bundle, item, tail
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.nesting import SheetRules, nest, sheet_kinds
-from camgen.core.parts import Drawing
+from camgen.core.parts import Drawing, Placed
 from camgen.core.routing import add_routing
 from camgen.design import step_part
 from camgen.outputs import printed_mesh
@@ -212,6 +212,18 @@ def assembly_figure(design: ConjugateDesign) -> Any:
     return fig
 
 
+def step_solids(design: ConjugateDesign) -> tuple[Placed, ...]:
+    """The STEP file's cams (``<name>-1``, ``<name>-2``, their biarc outlines: :func:`camgen.design.step_part`) as
+    assembled: on one shaft in the pair's cam frame (both turned alike, so their keyways line up), the second
+    standing on the first's top face (on its hub boss, if it has one)."""
+    out, z = [], 0.0
+    for which, member in enumerate(design.cams):
+        part = step_part(member)[0]
+        out.append(Placed(f"{design.spec.name}-{which + 1}", (part,), 0.0, (0.0, 0.0, z)))
+        z += part.thickness + (part.boss[1] if part.boss else 0.0)
+    return tuple(out)
+
+
 def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     """The files of a conjugate pair and its report (without the ``files`` map, which the bundle adds)."""
     out = design.spec.output
@@ -239,9 +251,8 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     items += [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"), ("cut-svg", f"{kind}_svg",
                                                                           f"{name}-{kind}.svg")], formats)
               for kind, drawing in sheet_kinds(nested.drawings(out.tolerance))]
-    items.append(item(tuple((f"{name}-{which + 1}", (step_part(d)[0],)) for which, d in enumerate(design.cams))
-                      if "step" in formats else None,
-                      [("step", "step", f"{name}.step")], formats))
+    items.append(item(step_solids(design) if "step" in formats else None, [("step", "step", f"{name}.step")],
+                      formats))
     checks = ("checks",) if (design.cams[0].speed or {}).get("forces") else ()   # at a speed with a mass
     checks += ("speeds",) if "speeds" in (design.cams[0].speed or {}) else ()
     items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: cam_page(design, report), formats)

@@ -33,8 +33,12 @@ from camgen.core.spec import CutOutputTable, Model, apply_overrides, length, nam
 
 #: the most holes a coupon may have
 MAX_HOLES = 50
-#: the formats a coupon is written in (the others of ``output.formats``, plots and pages, do not apply)
-COUPON_FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json")
+#: the formats a coupon is written in: its cut sheet (dxf, cut-svg), the printed plate and pin (stl, 3mf), the report
+#: (json), the sheet as a figure (png, svg) and the plate and pin as exact solids (step, with the step extra); a
+#: page (html) does not apply: a coupon has no motion to show
+COUPON_FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "step")
+#: what a coupon writes unless ``output.formats`` says otherwise
+COUPON_DEFAULT_FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json")
 
 
 def hole_count(low: float, high: float, step: float) -> int:
@@ -81,11 +85,22 @@ class CouponSpec(Model):
     coupon: CouponTable = CouponTable()
     output: CutOutputTable = CutOutputTable()
 
+    @model_validator(mode="before")
+    @classmethod
+    def _default_formats(cls, data: Any) -> Any:
+        """Without ``output.formats``, a coupon's own default formats (:data:`COUPON_DEFAULT_FORMATS`), not a
+        design's (which name the page)."""
+        if isinstance(data, Mapping) and isinstance(data.get("output", {}), Mapping) and \
+                "formats" not in data.get("output", {}):
+            return {**data, "output": {**data.get("output", {}), "formats": list(COUPON_DEFAULT_FORMATS)}}
+        return data
+
     @model_validator(mode="after")
     def _open(self) -> CouponSpec:
-        if not set(self.output.formats) & set(COUPON_FORMATS):
-            raise ValueError(f"output.formats: a coupon is written as {', '.join(COUPON_FORMATS)}; give one of them "
-                             f"(got {list(self.output.formats)})")
+        others = [f for f in self.output.formats if f not in COUPON_FORMATS]
+        if others:
+            raise ValueError(f"output.formats: a coupon is written as {', '.join(COUPON_FORMATS)} ({', '.join(others)} "
+                             f"does not apply: a coupon has no motion to show) (got {list(self.output.formats)})")
         smallest = self.coupon.diameter + self.coupon.clearance_min
         if self.output.kerf >= smallest:
             raise ValueError(f"output.kerf: must be < {smallest:g} mm (coupon.diameter + coupon.clearance_min), or "
@@ -236,10 +251,12 @@ def coupon_report(design: CouponDesign) -> dict[str, Any]:
 
 
 def coupon_bundle(design: CouponDesign) -> tuple[Bundle, dict[str, Any]]:
-    """The coupon's files (those of :data:`COUPON_FORMATS` that ``output.formats`` asks for) and its report."""
+    """The coupon's files (those of :data:`COUPON_FORMATS` that ``output.formats`` asks for) and its report. The
+    STEP file holds the printed plate and pin (``<name>`` and ``<name>-pin``) where the cut sheet has them: the pin
+    beside the plate."""
     spec = design.spec
     out, name = spec.output, spec.name
-    formats = [f for f in out.formats if f in COUPON_FORMATS]
+    formats = list(out.formats)
     report = coupon_report(design)
     add_routing(report, design.cut, out.tool_radius)
     items = [item(coupon_drawing(design), [("dxf", "dxf", f"{name}.dxf"), ("cut-svg", "cut_svg", f"{name}-cut.svg")],
@@ -256,6 +273,15 @@ def coupon_bundle(design: CouponDesign) -> tuple[Bundle, dict[str, Any]]:
             items.append(item(mesh, [("stl", f"{key}_stl", f"{stem}.stl"), ("3mf", f"{key}_3mf", f"{stem}.3mf")],
                               formats))
         report["mesh"] = checks
+    items.append(item(tuple((part.name, (part,)) for part in design.printed), [("step", "step", f"{name}.step")],
+                      formats))
+
+    def figure() -> Any:
+        from camgen.core.figures import drawing_figure
+
+        return drawing_figure(coupon_drawing(design), f"{name}: the cut sheet, holes from the smallest clearance")
+
+    items.append(item(figure, [("png", "png", f"{name}.png"), ("svg", "svg", f"{name}.svg")], formats))
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
     return Bundle.of(items, out.write_options), report
 

@@ -140,14 +140,16 @@ def disc(name: str, diameter: float, hole: float, thickness: float, tolerance: f
 @dataclass(frozen=True)
 class Solid:
     """A part standing at height ``z`` (mm) and placed at each pose: ``angles`` (n,) rad counter-clockwise about its
-    own origin, then ``origins`` (n, 2) mm (one pose for a fixed part). ``made`` says whether the kit makes it
-    (its files are written) or it is hardware (drawn and checked only)."""
+    own origin, then ``origins`` (n, 2) mm (one pose for a fixed part). ``made`` says whether the kit writes its
+    files; ``bought`` that it is hardware (a bolt, a nut, the shaft, a bearing: drawn, checked and listed in the bill
+    of materials, never in a file to print). A cam in its own kit is neither: its own build writes its files."""
 
     part: Part
     z: float
     angles: np.ndarray
     origins: np.ndarray
     made: bool = True
+    bought: bool = False
 
     @property
     def name(self) -> str:
@@ -164,9 +166,15 @@ class Solid:
         return float(self.angles[k]), np.asarray(self.origins[k], dtype=float)
 
 
-def fixed(part: Part, z: float, at: tuple[float, float] = (0.0, 0.0), made: bool = True) -> Solid:
+def fixed(part: Part, z: float, at: tuple[float, float] = (0.0, 0.0), made: bool = True,
+          bought: bool = False) -> Solid:
     """A part that does not move, its origin at ``at`` (mm), standing at ``z``."""
-    return Solid(part, z, np.zeros(1), np.array([at], dtype=float), made)
+    return Solid(part, z, np.zeros(1), np.array([at], dtype=float), made, bought)
+
+
+def bought(part: Part, z: float, angles: np.ndarray, origins: np.ndarray) -> Solid:
+    """A piece of hardware placed at each pose (see :class:`Solid`): neither made nor printed."""
+    return Solid(part, z, angles, origins, made=False, bought=True)
 
 
 def footprint(part: Part, angle: float, shift: np.ndarray, tolerance: float) -> Any:
@@ -250,11 +258,15 @@ def assembly_panels(solids: tuple[Solid, ...], poses: tuple[tuple[int, str], ...
 
 
 def placed_meshes(solids: tuple[Solid, ...], k: int) -> tuple[Any, ...]:
-    """Each solid as a mesh in its assembled place at pose ``k`` (the kit's 3MF), named after it."""
+    """Each solid the user makes (cut, printed, or a cam with its own files) as a mesh in its assembled place at pose
+    ``k``, named after it: the kit's 3MF. The bought ones are left out: a slicer puts every object of a 3MF on its
+    plate to be printed (PrusaSlicer refuses a whole file whose build holds an object of 3MF's non-printing type
+    "other"), so hardware there would be printed or deleted by hand; the bill of materials lists it and the assembly
+    drawing shows it in place."""
     from camgen.core.solids import extrude
 
     out = []
-    for solid in solids:
+    for solid in (s for s in solids if not s.bought):
         mesh = extrude(solid.part)
         angle, shift = solid.pose(k)
         c, s = np.cos(angle), np.sin(angle)
@@ -309,13 +321,14 @@ def part_entry(solid: Solid, allowances: Allowances, catalogue: dict[str, float]
 
 
 def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, meshes: Any, formats: Any,
-              title: str, bom: tuple[BomLine, ...] = ()) -> list[Any]:
+              title: str, bom: tuple[BomLine, ...] = (), placed: Any = None) -> list[Any]:
     """The kit's files: each part as its process makes it (a laser's as ``<name>-<part>.dxf`` and
     ``<name>-<part>-cut.svg``, a printer's as ``<name>-<part>.stl`` and ``.3mf``), the assembly drawing
-    (``<name>-kit-assembly.dxf|svg|png``), every part in its assembled place (``<name>-kit.3mf``; ``meshes()``
-    makes them, only if written) and, when asked, the kit's parts as exact solids in their own frames
-    (``<name>-kit.step``, one named product a part); with the report (``json``), the bill of materials ``bom`` as
-    ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), when it has lines."""
+    (``<name>-kit-assembly.dxf|svg|png``), every made part in its assembled place (``<name>-kit.3mf``; ``meshes()``
+    makes them, only if written) and, when asked, the kit's parts as exact solids (``<name>-kit.step``, one named
+    product a part: ``placed``, :class:`~camgen.core.parts.Placed` solids or a function making them, as
+    assembled; without it each part in its own frame); with the report (``json``), the bill of materials ``bom``
+    as ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), when it has lines."""
     from camgen.core.bundle import item
     from camgen.core.solids import checked_mesh
 
@@ -339,8 +352,8 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
                              ("cut-svg", "kit_assembly_svg", f"{name}-kit-assembly.svg")], formats),
               item(figure, [("png", "kit_assembly_png", f"{name}-kit-assembly.png")], formats),
               item(meshes, [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats),
-              item(tuple((part.name, (part,)) for part, _ in made), [("step", "kit_step", f"{name}-kit.step")],
-                   formats),
+              item(placed if placed is not None else tuple((part.name, (part,)) for part, _ in made),
+                   [("step", "kit_step", f"{name}-kit.step")], formats),
               bom_item(name, bom, formats)]
     return items
 

@@ -7,8 +7,9 @@ and as printed (clearance), for every product alike. Lengths in mm.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
-from typing import Protocol
+from typing import NamedTuple, Protocol
 
 from camgen.core.errors import DesignError
 from camgen.core.shapes import Circle, Contour, Polyline, Shape, Text
@@ -47,6 +48,17 @@ class Part:
         return Drawing.of_part(self)._repr_svg_()
 
 
+class Placed(NamedTuple):
+    """One solid of a file of several (a STEP file): its ``name``, its ``parts`` stacked from its own z = 0, each on
+    the one before, and where it goes: turned by ``angle`` (rad, counter-clockwise seen from +Z) about its own
+    origin, then moved by ``shift`` (x, y, z; mm). A plain ``(name, parts)`` pair is one at its own place."""
+
+    name: str
+    parts: Sequence[Part]
+    angle: float = 0.0
+    shift: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
 #: layer names used in every drawing
 LAYER_OUTLINE = "OUTLINE"
 LAYER_HOLES = "HOLES"
@@ -55,14 +67,26 @@ LAYER_GROOVE = "GROOVE"
 #: part names on a cut sheet: scored, not cut
 LAYER_LABELS = "LABELS"
 
-#: each layer's colour, the same in every format, as (AutoCAD colour index, RGB): laser programs that assign
+#: the AutoCAD Colour Index (ACI) numbers the drawings use, with their RGB in ACI's standard palette (as AutoCAD,
+#: LibreCAD and ezdxf's ``aci2rgb`` give them): the one source of every layer's colour, written as the number in a
+#: DXF and as this RGB in an SVG and a figure, so that both show the same colour. ACI 7 is the foreground colour
+#: (white on a dark screen, black on paper): black here, since SVGs and figures are drawn on white
+ACI_RGB = {1: "#ff0000", 3: "#00ff00", 4: "#00ffff", 5: "#0000ff", 6: "#ff00ff", 7: "#000000", 30: "#ff7f00",
+           94: "#007f00"}
+
+
+def _aci(number: int) -> tuple[int, str]:
+    return number, ACI_RGB[number]
+
+
+#: each layer's colour, the same in every format, as (ACI number, RGB) (:data:`ACI_RGB`): laser programs that assign
 #: operations by colour see red outlines, blue holes (cut first), green marks to score and magenta pockets to engrave
 #: to a depth, orange labels; an assembly's poses (layers ``DC1-...``, ``DC2-...``) each their own colour from
 #: :data:`POSE_COLOURS`; other layers black
-LAYER_COLOURS = {LAYER_OUTLINE: (1, "#ff0000"), LAYER_HOLES: (5, "#0000ff"), LAYER_ENGRAVE: (3, "#00ff00"),
-                 LAYER_GROOVE: (6, "#ff00ff"), LAYER_LABELS: (30, "#ff8000")}
-POSE_COLOURS = ((5, "#0000ff"), (1, "#ff0000"), (94, "#008000"), (6, "#ff00ff"), (30, "#ff8000"), (4, "#00c0c0"))
-OTHER_LAYER_COLOUR = (7, "#000000")
+LAYER_COLOURS = {LAYER_OUTLINE: _aci(1), LAYER_HOLES: _aci(5), LAYER_ENGRAVE: _aci(3), LAYER_GROOVE: _aci(6),
+                 LAYER_LABELS: _aci(30)}
+POSE_COLOURS = tuple(_aci(n) for n in (5, 1, 94, 6, 30, 4))
+OTHER_LAYER_COLOUR = _aci(7)
 
 
 def layer_colour(layer: str) -> tuple[int, str]:

@@ -269,9 +269,40 @@ class Text:
 
 Shape = Contour | Circle
 
+#: the shortest piece (line or arc) of a rounded hull's outline, as the distance between its two vertices (mm): two
+#: vertices closer than this are merged into one (their midpoint), so that no reader (Open CASCADE, whose own
+#: confusion distance is 1e-7 mm; FreeCAD, which makes an arc with coincident ends a full circle) gets a piece of
+#: no length. Merging moves the outline by at most half of it.
+MIN_PIECE_MM = 1e-6
+
+
+def merged_pieces(vertices: np.ndarray, bulges: np.ndarray,
+                  shortest: float = MIN_PIECE_MM) -> tuple[np.ndarray, np.ndarray]:
+    """A closed contour's vertices (n, 2) and bulges (n,) (see :class:`Contour`) with every piece whose two
+    vertices are less than ``shortest`` mm apart taken out: its two vertices become one at their midpoint, the
+    pieces before and after it keep their bulges (an arc's ends move by at most ``shortest`` / 2, its included
+    angle kept). The shortest piece goes first, until none is shorter or two vertices are left. For outlines whose
+    arcs turn through at most half a turn (a short chord is then a short piece)."""
+    vertices, bulges = np.asarray(vertices, dtype=float), np.asarray(bulges, dtype=float)
+    if len(vertices) <= 2 or np.linalg.norm(np.roll(vertices, -1, axis=0) - vertices, axis=1).min() >= shortest:
+        return vertices, bulges
+    v, b = list(vertices), list(bulges)
+    while len(v) > 2:
+        chords = [math.dist(v[i], v[(i + 1) % len(v)]) for i in range(len(v))]
+        i = min(range(len(v)), key=chords.__getitem__)
+        if chords[i] >= shortest:
+            break
+        j = (i + 1) % len(v)
+        v[i] = (v[i] + v[j]) / 2
+        del v[j]
+        del b[i]
+    return np.array(v), np.array(b, dtype=float)
+
 
 def rounded_hull(centres: np.ndarray, radius: float) -> Contour:
-    """Counter-clockwise outline at ``radius`` mm round the convex hull of ``centres`` (k, 2): lines and exact arcs."""
+    """Counter-clockwise outline at ``radius`` mm round the convex hull of ``centres`` (k, 2): lines and exact arcs,
+    none shorter than :data:`MIN_PIECE_MM` (a hull corner that turns so little, or two hull points so close, that its
+    arc or line would be shorter is merged into one vertex: :func:`merged_pieces`)."""
     pts = np.asarray(centres, dtype=float)
     hull = convex_hull(pts)
     n = len(hull)
@@ -289,7 +320,7 @@ def rounded_hull(centres: np.ndarray, radius: float) -> Contour:
             turn += 2 * math.pi if n == 2 else 0.0
         verts += [a + radius * n1, b + radius * n1]
         bulges += [0.0, math.tan(turn / 4)]
-    return Contour(np.array(verts), np.array(bulges))
+    return Contour(*merged_pieces(np.array(verts), np.array(bulges)))
 
 
 def _turn(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> float:

@@ -48,9 +48,10 @@ class Model(BaseModel):
                 info = cls.model_fields.get(name) if isinstance(name, str) else None
                 if info is None:
                     continue
-                if _mentions(info.annotation, (int, float)) and not _mentions(info.annotation, (bool,)) and \
-                        _holds_bool(value):
-                    raise ValueError(f"{name}: must be a number, not true or false")
+                if _mentions(info.annotation, (int, float)) and not _mentions(info.annotation, (bool,)):
+                    where = _bool_at(value, _keyed(info.annotation))
+                    if where is not None:
+                        raise ValueError(f"{name}{where}: must be a number, not true or false")
                 if _only_bool(info.annotation) and value is not None and not isinstance(value, bool):
                     raise ValueError(f"{name}: must be true or false (got {value!r})")
                 if _tiny_length(info, value):
@@ -86,6 +87,17 @@ def _holds_bool(value: Any) -> bool:
     if isinstance(value, bool):
         return True
     return isinstance(value, (list, tuple)) and any(_holds_bool(v) for v in value)
+
+
+def _bool_at(value: Any, keyed: bool) -> str | None:
+    """Where a field's ``value`` holds a boolean: ``""`` (the value, or a list holding one), ``".<key>"`` (in a
+    ``keyed`` field, a table of the user's own keys: the entry whose value holds one, ``joints.A = [true, 0]``),
+    or None. A table's entries that are tables themselves are their own model's to check."""
+    if _holds_bool(value):
+        return ""
+    if keyed and isinstance(value, Mapping):
+        return next((f".{key}" for key, v in value.items() if _holds_bool(v)), None)
+    return None
 
 
 #: the largest length a template may give (mm): ten metres, past any laser bed or printer, and small enough that

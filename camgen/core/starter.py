@@ -9,11 +9,12 @@ brackets) to the pydantic model whose fields describe its keys.
 from __future__ import annotations
 
 import json
+import textwrap
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-#: the column comments start at
-COMMENT_COLUMN = 28
+#: the column comments start at, and the widest a line is made (a longer comment goes on in that column)
+COMMENT_COLUMN, WIDTH = 28, 118
 
 
 def toml_value(value: Any) -> str:
@@ -53,9 +54,18 @@ def render(header: str, tables: Sequence[tuple[str, Mapping[str, Any]]], models:
         if name:
             lines += ["", f"[{name}]"]                   # "[motion]" makes [[motion]], an entry of a list
             if table in notes:
-                lines.append(f"# {notes[table]}")
+                lines += [f"# {line}" for line in textwrap.wrap(notes[table], WIDTH - 2)]
         for key, value in keys.items():
             text = f"{key} = {toml_value(value)}"
             comment = notes.get(f"{table}.{key}" if table else key) or field_comment(models.get(table), key)
-            lines.append(f"{text.ljust(COMMENT_COLUMN - 1)} # {comment}" if comment else text)
+            lines += _commented(text, comment) if comment else [text]
     return "\n".join(lines) + "\n"
+
+
+def _commented(text: str, comment: str) -> list[str]:
+    """The line ``text`` with ``comment`` from :data:`COMMENT_COLUMN`, continued on comment lines in that column when
+    it would pass :data:`WIDTH` characters."""
+    start = max(COMMENT_COLUMN - 1, len(text) + 1)
+    parts = textwrap.wrap(comment, WIDTH - start - 2) or [comment]
+    first = f"{text.ljust(COMMENT_COLUMN - 1)} # {parts[0]}"
+    return [first, *(f"{' ' * (COMMENT_COLUMN - 1)} # {part}" for part in parts[1:])]

@@ -1,19 +1,22 @@
 """A Geneva drive as files: each part's cut drawing, the printed wheel and driver, the report and the plots.
 
 Names: ``<name>-wheel.dxf``, ``<name>-lock.dxf``, ``<name>-crank.dxf`` and their ``-cut.svg`` (cut files, kerf
-applied); ``<name>-wheel.stl|3mf`` and ``<name>-driver.stl|3mf`` (the crank with the locking disc on top,
-one solid; clearance applied); ``<name>.json``; ``<name>-motion.png|svg`` and ``<name>-assembly.png|svg``;
-``<name>.html`` (the interactive page).
+applied); ``<name>-wheel.stl|3mf`` and ``<name>-driver.stl|3mf`` (the crank with the locking disc on top, one
+solid; clearance applied); ``<name>.step`` when asked (both as assembled, :func:`step_solids`); ``<name>.json``;
+``<name>-motion.png|svg`` and ``<name>-assembly.png|svg``; ``<name>.html`` (the interactive page).
 Only the formats ``output.formats`` asks for are made; nothing is written if any file fails.
 """
 from __future__ import annotations
 
+import math
 from typing import Any
+
+import numpy as np
 
 from camgen.core.bundle import Bundle, item, tail
 from camgen.core.errors import ExportError
 from camgen.core.nesting import SheetRules, nest, sheet_kinds
-from camgen.core.parts import Drawing
+from camgen.core.parts import Drawing, Placed
 from camgen.core.routing import add_routing
 from camgen.geneva.design import PARTS, GenevaDesign
 from camgen.geneva.page import geneva_page
@@ -62,11 +65,23 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
     items += [item(mesh, [("stl", f"{solid}_stl", f"{name}-{solid}.stl"),
                           ("3mf", f"{solid}_3mf", f"{name}-{solid}.3mf")], formats)
               for solid, (mesh, _) in solids.items()]
-    printed = design.printed
-    items.append(item(((f"{name}-wheel", (printed["wheel"],)), (f"{name}-driver", (printed["crank"], printed["lock"]))),
-                      [("step", "step", f"{name}.step")], formats))
+    items.append(item(lambda: step_solids(design), [("step", "step", f"{name}.step")], formats))
     items += tail(name, plot, ("motion", "assembly"), report, lambda: geneva_page(design, report), formats)
     return Bundle.of(items, out.write_options), report
+
+
+def step_solids(design: GenevaDesign) -> tuple[Placed, Placed]:
+    """The STEP file's two solids as assembled in the middle of the dwell (driver angle alpha = 180 degrees, the
+    locking disc holding the wheel, as the assembly figure's third panel): the driver (``<name>-driver``, the crank
+    with the locking disc on top) on its axis at the origin, turned by alpha; the wheel (``<name>-wheel``) on its
+    axis at (centre distance, 0), turned by 180 degrees - beta (its angle at alpha) and standing on the crank, in the
+    locking disc's plane."""
+    g, printed, name = design.geometry, design.printed, design.spec.name
+    alpha = math.pi
+    beta = float(g.law.motion(np.array([alpha]))[0, 0])
+    return (Placed(f"{name}-wheel", (printed["wheel"],), math.pi - beta,
+                   (g.centre_distance, 0.0, printed["crank"].thickness)),
+            Placed(f"{name}-driver", (printed["crank"], printed["lock"]), alpha))
 
 
 #: chord tolerance (mm) of the wheel drawn in a family's overview: a thumbnail an inch wide

@@ -7,6 +7,7 @@ ground line (+X) with the input pivot at the origin; each module states its own 
 
 * :mod:`~linkgen.kinematics.grashof`: Grashof class and inversion of a four-bar chain;
 * :mod:`~linkgen.kinematics.fourbar`: the four-bar, exact up to its toggles;
+* :mod:`~linkgen.kinematics.circuits`: a four-bar's circuits, and each link's limits and swing on them;
 * :mod:`~linkgen.kinematics.slidercrank`: slider-crank and scotch yoke;
 * :mod:`~linkgen.kinematics.quickreturn`: crank-shaper and Whitworth quick returns;
 * :mod:`~linkgen.kinematics.straightline`: Chebyshev, Hoekens, Roberts and Watt straight-line linkages.

@@ -323,9 +323,24 @@ class FourBar:
 
         B is then A + p D + q perp(D) = O4 + (p - 1) D + q perp(D), p = (L3^2 - L4^2 + z^2) r, with perp(D) D
         turned 90 degrees counter-clockwise: the intersection of the circles about A and O4, with no angle
-        computed. The area comes from Kahan's stable form of Heron's formula (:func:`_area4`) on z, or at a
-        linkage that folds (``fold``, :meth:`folds`) from the roots (:meth:`_roots`), so it stays exact up to the
-        toggles. ``reach``: all the angles, checked as :meth:`_poses` says when this chunk has one out of reach."""
+        computed. The sides are :meth:`_sides`'. ``reach``: all the angles, checked as :meth:`_poses` says when this
+        chunk has one out of reach or one that puts the crank pin on the rocker pivot; without it, no angle may put
+        it there (z = 0, where r is infinite: what needs no B there takes :meth:`_sides` alone)."""
+        dx, dy, z2, area4 = self._sides(t, work, fold, reach, mirrored)
+        r, q = work[2], work[5]                                 # z is done with
+        np.divide(0.5, z2, out=r)
+        np.multiply(area4, r, out=q)
+        if not (isinstance(sign, int) and sign == 1):
+            q *= sign
+        return dx, dy, r, z2, area4, q
+
+    def _sides(self, t: np.ndarray, work: np.ndarray, fold: bool, reach: np.ndarray | None = None,
+               mirrored: bool = False) -> tuple[np.ndarray, ...]:
+        """dx, dy (D = A -> O4, mm), z^2 (mm^2) and 4 times the area of the triangle A-B-O4 (mm^2, >= 0) at crank
+        angles ``t`` (a chunk), in rows 0, 1, 3 and 4 of ``work`` (row 2 holds z; rows 5 to 9 the area's
+        intermediates). Nothing is divided: defined also where z = 0. The area comes from Kahan's stable form of
+        Heron's formula (:func:`_area4`) on z, or at a linkage that folds (``fold``, :meth:`folds`) from the roots
+        (:meth:`_roots`), so it stays exact up to the toggles. ``reach``, ``mirrored``: as :meth:`_triangle`'s."""
         l1, l2, l3, l4 = self.ground, self.crank, self.coupler, self.rocker
         dx, dy, z, z2, area4 = work[:5]
         # A -> O4 without cancellation, as _z: (L1 - L2) + 2 L2 sin^2(theta2 / 2), -L2 sin theta2
@@ -348,12 +363,7 @@ class FourBar:
             np.abs(m.value * p.value, out=area4)
         else:
             _area4(l3, l4, z, area4, work[5:10])
-        r, q = z, work[5]                                       # z is done with
-        np.divide(0.5, z2, out=r)
-        np.multiply(area4, r, out=q)
-        if not (isinstance(sign, int) and sign == 1):
-            q *= sign
-        return dx, dy, r, z2, area4, q
+        return dx, dy, z2, area4
 
     def _place_b(self, triangle: tuple[np.ndarray, ...], work: np.ndarray, b: np.ndarray, from_o4: bool) -> None:
         """The rocker pin B (rows of ``b``, mm) of a chunk's ``triangle`` (:meth:`_triangle`): O4 + (p - 1) D +
@@ -496,48 +506,55 @@ class FourBar:
         return f1, f2
 
     def newton(self, theta2: float, guess: tuple[float, float], tol: float = 1e-12,
-               max_iter: int = 50) -> NewtonResult:
+               max_iter: int = 50, tolerance_mm: float | None = None) -> NewtonResult:
         """Newton-Raphson on the loop closure for (theta3, theta4), radians, from ``guess``.
 
         Converged when the residual is below ``tol`` times the longest link and the next step (the
-        iteration's own error estimate) below ``1000 tol`` rad. Each step is halved until it lowers the
-        residual. At a toggle (coupler and rocker collinear) the root is double: the Jacobian is singular
-        there and the convergence only linear; an input past the toggle by less than the closed form
-        accepts (``FEASIBILITY_TOL``) has no exact root at all. So the iteration also stops where the
-        Jacobian is singular or no step lowers the residual any more (at rounding) while the loop closes
-        to within ``tol`` plus that tolerance: the least-squares pose, the toggle's, as the closed form
-        has it. Raises :class:`SolverError` at a singular Jacobian far from a root (a guess with coupler
-        and rocker collinear), when no step helps far from a root, or after ``max_iter`` steps. The
-        result carries the iteration table.
+        iteration's own error estimate) below ``1000 tol`` rad; with ``tolerance_mm`` (mm, > 0) instead
+        at the first estimate whose residual norm |(f1, f2)| is at most that (the course's test). Each step
+        is the full Newton step, halved until it lowers the residual where it does not. At a toggle
+        (coupler and rocker collinear) the root is double: the Jacobian is singular there and the
+        convergence only linear; an input past the toggle by less than the closed form accepts
+        (``FEASIBILITY_TOL``) has no exact root at all. So the iteration also stops where the Jacobian is
+        singular or no step lowers the residual any more (at rounding) while the loop closes to within the
+        tolerance plus that one: the least-squares pose, the toggle's, as the closed form has it. Raises
+        :class:`SolverError` at a singular Jacobian far from a root (a guess with coupler and rocker
+        collinear), when no step helps far from a root, or after ``max_iter`` steps. The result carries
+        the iteration table.
         """
+        if tolerance_mm is not None and not (math.isfinite(tolerance_mm) and tolerance_mm > 0):
+            raise SpecError(f"must be a finite number of mm > 0 (got {tolerance_mm})", "tolerance")
         t3, t4 = float(guess[0]), float(guess[1])
         f1, f2 = self.residual(theta2, t3, t4)
         steps: list[NewtonStep] = []
         scale = self.longest
-        closes = (tol + FEASIBILITY_TOL) * scale        # the loop closes as nearly as the closed form asks
+        target = tol * scale if tolerance_mm is None else tolerance_mm
+        closes = target + FEASIBILITY_TOL * scale       # the loop closes as nearly as the closed form asks
         where = f"at crank angle {math.degrees(theta2):.6g} degrees"
         for k in range(max_iter + 1):
             steps.append(NewtonStep(k, t3, t4, f1, f2))
             res = math.hypot(f1, f2)
+            if tolerance_mm is not None and res <= tolerance_mm:
+                return NewtonResult(t3, t4, tuple(steps))
             # J = d(f1, f2)/d(t3, t4) = [[-L3 sin t3, L4 sin t4], [L3 cos t3, -L4 cos t4]]
             j11, j12 = -self.coupler * math.sin(t3), self.rocker * math.sin(t4)
             j21, j22 = self.coupler * math.cos(t3), -self.rocker * math.cos(t4)
             det = j11 * j22 - j12 * j21
             if abs(det) <= 1e-12 * self.coupler * self.rocker:
                 if res <= closes:
-                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > tol * scale)
+                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > target)
                 raise SolverError(f"Newton-Raphson: singular Jacobian at iteration {k} ({where}): coupler and "
                                   "rocker are collinear, a toggle position; start from another guess or use the "
                                   "closed form")
             d3, d4 = (j22 * f1 - j12 * f2) / det, (-j21 * f1 + j11 * f2) / det
-            if res <= tol * scale and max(abs(d3), abs(d4)) <= 1e3 * tol:
+            if tolerance_mm is None and res <= target and max(abs(d3), abs(d4)) <= 1e3 * tol:
                 return NewtonResult(t3, t4, tuple(steps))
             if k == max_iter:
                 break
             found = _descent(lambda a, b: self.residual(theta2, a, b), (t3, t4), (d3, d4), res)
             if found is None:                           # no step lowers the residual: rounding level
                 if res <= closes:
-                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > tol * scale)
+                    return NewtonResult(t3, t4, tuple(steps), least_squares=res > target)
                 raise SolverError(f"Newton-Raphson stalled at iteration {k} ({where}): no step lowers the "
                                   f"residual {res:.3g} mm; start from another guess or use the closed form")
             t3, t4, f1, f2 = found
@@ -633,10 +650,11 @@ class FourBar:
                 pin = reach * np.array([math.cos(phi), math.sin(phi)])
                 crank = phi if kind == "extended" or l2 > l3 else phi + math.pi
                 crank = math.atan2(math.sin(crank), math.cos(crank))
-                pose = self._poses(np.array([crank]), sign)
                 seen = any(d.kind == kind and abs(math.remainder(d.crank - crank, TWO_PI)) < 1e-9 for d in out)
-                undetermined = math.hypot(*self._z(np.array(crank))) <= tol
-                if np.linalg.norm(pose.b[0] - pin) <= 1e-7 * self.longest and not seen and not undetermined:
+                if seen or math.hypot(*self._z(np.array(crank))) <= tol:   # undetermined: A on O4
+                    continue
+                pose = self._poses(np.array([crank]), sign)
+                if np.linalg.norm(pose.b[0] - pin) <= 1e-7 * self.longest:
                     out.append(DeadCentre(kind, crank, float(pose.theta4[0])))
         for lo, hi in self.input_ranges() or ():
             for end in (lo, hi):
@@ -666,9 +684,16 @@ class FourBar:
         inside = [x for x in (0.0, math.pi) if ranges is None
                   or any(lo <= y <= hi for lo, hi in ranges for y in (x, x + TWO_PI, x - TWO_PI))]
         candidates = np.array(ends + inside)
-        poses = self._poses(candidates, 1)
-        i, j = int(np.argmin(poses.gamma)), int(np.argmax(poses.gamma))
-        return (float(poses.gamma[i]), float(candidates[i])), (float(poses.gamma[j]), float(candidates[j]))
+        gamma = self._gammas(candidates)
+        i, j = int(np.argmin(gamma)), int(np.argmax(gamma))
+        return (float(gamma[i]), float(candidates[i])), (float(gamma[j]), float(candidates[j]))
+
+    def _gammas(self, theta2: np.ndarray) -> np.ndarray:
+        """Transmission angles (rad) at crank angles ``theta2`` (1-D, within reach) from the triangle's sides alone,
+        as :meth:`_place_rest` has them: also where the crank pin sits on the rocker pivot (a deltoid's fold, where
+        no pose is determined but coupler and rocker overlap whatever B is: gamma 0)."""
+        _, _, z2, area4 = self._sides(theta2, np.empty((_ROWS, theta2.size)), any(self.folds()))
+        return np.arctan2(area4, (self.coupler**2 + self.rocker**2) - z2)
 
 
 def _input_angle(theta2: float, mirrored: bool) -> tuple[str, float]:

@@ -499,16 +499,28 @@ PARADOX_TOL = 1e-9
 
 
 def check_redundant(linkage: Linkage) -> None:
-    """Refuse a linkage whose redundant joints come apart over the motion from the drawing (an over-constrained
-    one); one whose redundant joints hold everywhere is paradoxical and kept (its plan lists them)."""
+    """Refuse a linkage whose redundant joints come apart, or whose redundant sliders leave their guides
+    (:func:`slider_gaps`), over the motion from the drawing (an over-constrained one); one whose redundant
+    constraints hold everywhere is paradoxical and kept (its plan lists them)."""
     from linkgen.kinematics.linkage import body_point
 
-    joints = [r for r in linkage.plan.redundant if not r.slider]
-    if not joints or len(linkage.structure.inputs) != 1:
+    if not linkage.plan.redundant or len(linkage.structure.inputs) != 1:
         return
+    joints = [r for r in linkage.plan.redundant if not r.slider]
     lo, hi = span(linkage)
     x = np.linspace(lo, hi, 721)
     sol = linkage.solve(x[None, :], strict=False, derivatives=False)
+    for name, (off, turn) in slider_gaps(linkage, sol).items():
+        sl = linkage.structure.slider_by_name[name]
+        if off > PARADOX_TOL * linkage.structure.scale:
+            why = f"its point {sl.point} cannot stay on its guide on {sl.guide} (it leaves it by up to {off:.3g} mm)"
+        elif turn > PARADOX_TOL:
+            why = (f"link {sl.body} cannot keep its angle to {sl.guide} (it turns by up to "
+                   f"{math.degrees(turn):.3g} degrees)")
+        else:
+            continue
+        raise SpecError(f"over-constrained (mobility {linkage.plan.mobility}): as the input moves, {why}; remove the "
+                        "slider or a joint", f"linkage.sliders.{name}")
     for r in joints:
         b1, b2 = r.bodies
         p1 = body_point(linkage.structure, sol, b1, r.name)[sol.ok]
@@ -526,6 +538,27 @@ def shown_ranges(linkage: Linkage, ranges: Sequence[tuple[float, float]]) -> lis
         return [(float(a), float(b)) for a, b in ranges]
     return [(math.degrees(a) - k, math.degrees(b) - k) for a, b in ranges
             for k in [360.0 * round((math.degrees(a) + math.degrees(b)) / 720.0)]]
+
+
+def slider_gaps(linkage: Linkage, sol: Solution) -> dict[str, tuple[float, float]]:
+    """How far each redundant slider comes apart over the poses of ``sol`` that assemble: the largest distance (mm)
+    of its point from its guide's line (each as its own body carries it) and the largest turn (rad) of its sliding
+    body relative to the guide's body (a prismatic joint keeps the drawn angle between them)."""
+    from linkgen.kinematics.linkage import body_point
+
+    s = linkage.structure
+    out = {}
+    for r in linkage.plan.redundant:
+        if not r.slider:
+            continue
+        sl = s.slider_by_name[r.name]
+        point = body_point(s, sol, sl.body, sl.point)[sol.ok]
+        on_guide = body_point(s, sol, sl.guide, sl.point)[sol.ok]
+        turn = (sol.angles[sl.guide] + sl.angle)[sol.ok]
+        off = np.abs(np.cos(turn) * (point - on_guide)[:, 1] - np.sin(turn) * (point - on_guide)[:, 0])
+        twist = np.abs(np.remainder(sol.angles[sl.body] - sol.angles[sl.guide] + math.pi, TWO_PI) - math.pi)[sol.ok]
+        out[r.name] = (float(off.max(initial=0.0)), float(twist.max(initial=0.0)))
+    return out
 
 
 def out_of_reach(linkage: Linkage, values: np.ndarray) -> NoReturn:

@@ -16,6 +16,7 @@ force in N along the slide's positive direction. Friction, weights and inertia a
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -25,6 +26,9 @@ from linkgen.kinematics.linkage import Solution
 
 #: N*mm in a N*m
 MM_PER_M = 1000.0
+#: a finite effort within this fraction of the loads' own power scale (sum |F| |v| + |M| |omega|) at a pose is
+#: rounding: the loads' terms cancel there (a force across its point's path), and the effort is 0
+CANCELLED = 1e-12
 
 
 @dataclass(frozen=True)
@@ -45,14 +49,18 @@ class LinkTorque:
 
 def load_power(sol: Solution, forces: Sequence[PointForce], torques: Sequence[LinkTorque]) -> np.ndarray:
     """The loads' power per unit input speed over the poses of ``sol`` (N*mm per rad of a crank, or N*mm per mm of
-    a slide, i.e. N): sum F . v + 1000 M omega."""
+    a slide, i.e. N): sum F . v + 1000 M omega, exactly 0 where that is within :data:`CANCELLED` of the terms'
+    sizes (the rounding of terms that cancel)."""
     n = sol.inputs.shape[-1]
-    power = np.zeros(n)
+    power, size = np.zeros(n), np.zeros(n)
     for f in forces:
-        power += sol.velocities[f.point] @ np.asarray(f.force, dtype=float)
+        force = np.asarray(f.force, dtype=float)
+        power += sol.velocities[f.point] @ force
+        size += np.hypot(*sol.velocities[f.point].T) * math.hypot(*force)
     for t in torques:
         power += MM_PER_M * t.torque * sol.omegas[t.link]
-    return power
+        size += MM_PER_M * abs(t.torque) * np.abs(sol.omegas[t.link])
+    return np.where(np.isfinite(power) & (np.abs(power) <= CANCELLED * size), 0.0, power)
 
 
 def input_effort(sol: Solution, forces: Sequence[PointForce], torques: Sequence[LinkTorque],
@@ -60,5 +68,6 @@ def input_effort(sol: Solution, forces: Sequence[PointForce], torques: Sequence[
     """The driver's effort that holds the loads at each pose of ``sol`` (solved with unit input speed): a torque
     in N*m (``crank``) or a force in N (a slide). Non-finite where the input cannot move the loads' points
     (their velocity per unit input grows without bound near a dead centre of the input)."""
-    effort = -load_power(sol, forces, torques)
+    power = load_power(sol, forces, torques)
+    effort = np.where(power == 0, 0.0, -power)          # no effort is 0, not -0
     return effort / MM_PER_M if crank else effort

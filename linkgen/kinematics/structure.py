@@ -228,9 +228,36 @@ def make_structure(points: Mapping[str, tuple[float, float]], links: Mapping[str
         if not math.isfinite(slider.angle):
             raise SpecError("must be a finite angle in degrees", f"{where}.angle")
     structure = Structure(points, bodies, tuple(sliders), tuple(inputs), scale)
+    _check_held(structure)
     _check_inputs(structure)
+    _check_input_count(structure)
     _check_connected(structure)
     return structure
+
+
+def _check_held(s: Structure) -> None:
+    """Refuse a drawn point on no body (a link, the ground or a slider's block): it would be drawn and then
+    ignored, and a tracer on none has no path."""
+    held = {p for pts in s.bodies.values() for p in pts}
+    for name in s.points:
+        if name not in held:
+            raise SpecError(f"joint {name} is on no link: list it in a link of linkage.links (a tracer too: the "
+                            "link it moves with) or in linkage.ground, or remove it", f"linkage.joints.{name}")
+
+
+def _check_input_count(s: Structure) -> None:
+    """Refuse more than one input where Gruebler's mobility is less than their count: one input of a mobility-1
+    linkage sets every pose, and a second would pull it apart (one input of a linkage of mobility 0 or less is
+    kept: a paradoxical linkage moves, which the motion's check of its redundant constraints decides)."""
+    mobility, count = s.mobility, len(s.inputs)
+    if count <= 1 or count <= mobility:
+        return
+    if mobility <= 0:
+        raise SpecError(f"mobility {mobility} (Gruebler): a structure, or a paradoxical linkage that one input may "
+                        f"move, not {count} inputs: give one input", "linkage.input")
+    raise SpecError(f"mobility {mobility} (Gruebler) takes {mobility} input{'s' if mobility > 1 else ''}, not "
+                    f"{count}: give {'one input (not a list)' if mobility == 1 else f'{mobility} inputs'}",
+                    "linkage.input")
 
 
 def _check_inputs(s: Structure) -> None:

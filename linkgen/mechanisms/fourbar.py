@@ -19,7 +19,8 @@ from camgen.core.parts import Drawing
 from camgen.core.shapes import Polyline
 from camgen.core.spec import Model, unit
 from linkgen import plots
-from linkgen.kinematics.fourbar import ASSEMBLIES, FourBar, Poses
+from linkgen.kinematics.fourbar import ASSEMBLIES, FEASIBILITY_TOL, FourBar, Poses
+from linkgen.mechanisms.circuits import circuits_report, split_warning
 from linkgen.mechanisms.common import Figure, deg, length, num, omega, rpm, types_of
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
 
@@ -54,6 +55,16 @@ def input_span(fb: FourBar) -> tuple[float, float]:
     return (0.0, TWO_PI) if ranges is None else ranges[0]
 
 
+def input_grid(fb: FourBar, n: int) -> np.ndarray:
+    """``n`` crank angles (rad) over :func:`input_span`, ends included; for a deltoid whose crank pin meets the
+    rocker pivot at crank angle 0 (ground = crank: no pose is determined there) a full turn's ``n`` angles sit
+    half a step off its ends instead, so that the drawings pass the fold as a sweep does."""
+    lo, hi = input_span(fb)
+    if fb.input_ranges() is None and math.hypot(*fb._z(np.array(0.0))) <= FEASIBILITY_TOL * fb.longest:
+        return lo + (np.arange(n) + 0.5) * ((hi - lo) / n)
+    return np.linspace(lo, hi, n)
+
+
 def position(fb: FourBar, pose: Poses, speed: float) -> dict[str, Any]:
     """The report's entry for one pose: angles (degrees), rates at ``speed`` rad/s of the input, pins (mm)."""
     w3, w4 = fb.velocities(pose, speed)
@@ -75,22 +86,46 @@ def _ranges_deg(ranges: tuple[tuple[float, float], ...] | None) -> Any:
     return out[0] if len(out) == 1 else out
 
 
-def _newton(fb: FourBar, theta: float, exact: Poses) -> dict[str, Any]:
-    """The Newton-Raphson table at crank angle ``theta`` (rad), started 10 degrees off the closed-form ``exact``."""
-    guess = (float(exact.theta3[0]) + math.radians(10), float(exact.theta4[0]) - math.radians(10))
-    result = fb.newton(theta, guess)
+def newton_table(fb: FourBar, angle: float, assembly: str, start: tuple[float, float] | None = None,
+                 tolerance: float | None = None) -> dict[str, Any]:
+    """The Newton-Raphson table at crank angle ``angle`` (degrees): started from ``start`` (theta3, theta4 in
+    degrees) or 10 degrees off the closed-form answer of ``assembly``, and stopped where the residual norm is at
+    most ``tolerance`` mm (the course's test) or, without one, below 1e-12 of the longest link with a step as
+    small. Says which assembly the answer is and how near the closed form's it is (degrees). Raises
+    :class:`SolverError` where the iteration fails (a singular Jacobian, a stall, no convergence)."""
+    least = 1e-12 * fb.longest
+    if tolerance is not None and not tolerance >= least:
+        raise SpecError(f"must be at least {least:.3g} mm here, 1e-12 of the longest link: the loop closes no "
+                        f"nearer than rounding lets it (got {tolerance:g})", "tolerance")
+    theta = math.radians(angle)
+    exact = {a: fb.positions([theta], a) for a in ASSEMBLIES}
+    if start is None:
+        closed = exact[assembly]
+        guess = (float(closed.theta3[0]) + math.radians(10), float(closed.theta4[0]) - math.radians(10))
+        said = "closed-form answer moved by +10 degrees (coupler) and -10 degrees (rocker)"
+    else:
+        guess = (math.radians(start[0]), math.radians(start[1]))
+        said = f"given: coupler {start[0]:g} degrees, rocker {start[1]:g} degrees"
+    result = fb.newton(theta, guess, tolerance_mm=tolerance)
+
+    def off(a: str) -> float:
+        return max(abs(math.degrees(math.remainder(result.theta3 - exact[a].theta3[0], TWO_PI))),
+                   abs(math.degrees(math.remainder(result.theta4 - exact[a].theta4[0], TWO_PI))))
+
+    found = assembly if start is None else min(ASSEMBLIES, key=off)
     return {
-        "start": "closed-form answer moved by +10 degrees (coupler) and -10 degrees (rocker)",
-        "tolerance_mm": 1e-12 * fb.longest,
+        "start": said, "start_deg": [math.degrees(g) for g in guess] if start is None else list(start),
+        "tolerance_mm": 1e-12 * fb.longest if tolerance is None else tolerance,
+        "test": ("residual norm at most the tolerance (the course's test)" if tolerance is not None
+                 else "residual below the tolerance and the next step below 1e-9 rad"),
         "stopped": ("at a toggle's least-squares pose: no step lowers the residual, which is within the tolerance "
                     "the closed form reaches past a toggle with" if result.least_squares
                     else "residual below the tolerance"),
         "iterations": [{"iteration": s.iteration, "coupler_deg": math.degrees(s.theta3),
                         "rocker_deg": math.degrees(s.theta4), "f1_mm": s.f1, "f2_mm": s.f2,
                         "residual_mm": s.residual} for s in result.steps],
-        "agrees_with_closed_form_deg": max(
-            abs(math.degrees(math.remainder(result.theta3 - exact.theta3[0], TWO_PI))),
-            abs(math.degrees(math.remainder(result.theta4 - exact.theta4[0], TWO_PI))))}
+        "coupler_deg": deg(result.theta3), "rocker_deg": deg(result.theta4), "assembly": found,
+        "agrees_with_closed_form_deg": off(found)}
 
 
 def _warnings(report: dict[str, Any], grashof_class: str) -> list[str]:
@@ -124,10 +159,7 @@ def fourbar_report(table: FourBarTable, fb: FourBar, angle: float | None, method
     if rocker_in:
         mr = mirror.input_ranges()
         ranges = None if mr is None else tuple((math.pi - hi, math.pi - lo) for lo, hi in mr)
-    swing = None
-    limits = [d for d in fb.dead_centres(table.assembly) if d.kind in ("extended", "folded")]
-    if len(limits) == 2 and not rocker_in:
-        swing = abs(math.degrees(math.remainder(limits[0].rocker - limits[1].rocker, TWO_PI)))
+    by_circuit = circuits_report(fb, table.assembly, rocker_in)
     ratio = None if rocker_in else fb.time_ratio(table.assembly)
     report: dict[str, Any] = {
         "grashof_class": g.grashof_class, "inversion": g.inversion, "form": g.form,
@@ -136,10 +168,14 @@ def fourbar_report(table: FourBarTable, fb: FourBar, angle: float | None, method
         "transmission_min_deg": round(math.degrees(gmin), 9), "transmission_min_at_crank_deg": deg(gmin_at),
         "transmission_max_deg": round(math.degrees(gmax), 9), "transmission_max_at_crank_deg": deg(gmax_at),
         "dead_centres": dead, "time_ratio": None if ratio is None else round(ratio, 12),
-        "rocker_swing_deg": None if swing is None else round(swing, 9),
+        "rocker_swing_deg": by_circuit["rocker_swing_deg"],
         "change_points_crank_deg": [deg(c) for c in fb.change_points()],
+        "motion": by_circuit["motion"], "circuits": by_circuit["circuits"],
     }
     report["warnings"] = _warnings(report, g.grashof_class)
+    split = split_warning(report, table.input)
+    if split is not None:
+        report["warnings"].append(split)
     if angle is not None:
         t = np.array([math.radians(angle)])
         solve = fb.rocker_positions if rocker_in else fb.positions
@@ -148,7 +184,7 @@ def fourbar_report(table: FourBarTable, fb: FourBar, angle: float | None, method
         if method == "newton":
             if rocker_in:
                 raise SpecError("the Newton-Raphson table is for crank input", "--method")
-            report["newton"] = _newton(fb, float(t[0]), poses[table.assembly])
+            report["newton"] = newton_table(fb, angle, table.assembly)
     return report
 
 
@@ -188,7 +224,7 @@ def fourbar_layout(fb: FourBar, assembly: str, table: PartsTable) -> Layout:
     (the coupler-rocker pin's without one)."""
     ranges = fb.input_ranges()
     lo, hi = input_span(fb)
-    sweep = placement(fb, np.linspace(lo, hi, SWEEP), assembly)
+    sweep = placement(fb, input_grid(fb, SWEEP), assembly)
     dead = tuple((d.kind, d.crank) for d in fb.dead_centres(assembly)
                  if ranges is None or lo <= d.crank <= hi or lo <= d.crank + TWO_PI <= hi)
     poses = tuple(placement(fb, np.array([angle]), assembly) for _, angle in dead)
@@ -199,7 +235,7 @@ def fourbar_layout(fb: FourBar, assembly: str, table: PartsTable) -> Layout:
 
 def fourbar_thumbnail(fb: FourBar, assembly: str) -> dict[str, Any]:
     """The path the coupler point (or the rocker pin) traces, for a family's overview picture."""
-    poses = fb.sweep(np.linspace(*input_span(fb), 121), assembly)
+    poses = fb.sweep(input_grid(fb, 121), assembly)
     path = poses.point if fb.point_distance > 0 else poses.b
     return {"thumbnail": path.round(3).tolist(), "thumbnail_kind": "path"}
 
@@ -211,7 +247,7 @@ def fourbar_sketch(fb: FourBar, assembly: str) -> Drawing:
     start = lo + 0.1 * (hi - lo) if fb.input_ranges() else math.radians(30)
     p = fb.positions([start], assembly)
     links = np.array([[0.0, 0.0], p.a[0], p.b[0], [fb.ground, 0.0], [0.0, 0.0]])
-    path = fb.sweep(np.linspace(lo, hi, 181), assembly).point
+    path = fb.sweep(input_grid(fb, 181), assembly).point
     items = [("LINKS", Polyline(links, np.zeros(4))), ("PATH", Polyline(path, np.zeros(len(path) - 1)))]
     return Drawing(tuple(items), 0.01)
 

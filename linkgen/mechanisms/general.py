@@ -283,11 +283,13 @@ def _refuse_runaway(a: Analysis, lo: float, hi: float) -> None:
 
 def _paradoxes(a: Analysis) -> list[str]:
     """What the redundant constraints say: each held over the whole motion (the solver refuses the linkage
-    otherwise), so the linkage is paradoxical; a redundant slider is not checked."""
+    otherwise), so the linkage is paradoxical."""
     notes = []
     for r in a.linkage.plan.redundant:
         if r.slider:
-            notes.append(f"slider {r.name} is one constraint more than the mobility allows and is not checked")
+            notes.append(f"paradoxical: Gruebler gives mobility {a.linkage.plan.mobility}, yet slider {r.name} keeps "
+                         f"{a.linkage.structure.slider_by_name[r.name].point} on its guide over the whole motion, so "
+                         "it moves")
         else:
             notes.append(f"paradoxical: Gruebler gives mobility {a.linkage.plan.mobility}, yet links {r.bodies[0]} "
                          f"and {r.bodies[1]} keep joint {r.name} together over the whole motion (parallel or equal "

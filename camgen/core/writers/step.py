@@ -1,14 +1,17 @@
 """The STEP writer: flat parts as exact B-rep solids (AP214, millimetres), with Open CASCADE through OCP.
 
-The payload is a tuple of solids, each ``(name, parts)``: the parts (:class:`~camgen.core.parts.Part`) stacked
-from z = 0, each on the one before (one part for a plain plate; a Geneva driver is its crank with the locking
-disc on top), fused into one solid that the file names ``name``. Every line of an outline is a line edge and
-every arc a circular edge through its two ends and its exact midpoint (never chords); a full-circle hole is one
-circular edge. Each part is its outline's face with the holes cut out, extruded by its thickness (+Z); a hub boss
-stands on the top face round the first hole, a radial set-screw hole runs along +Y at the boss's mid-height,
-and pockets are cut down from the top face, as :mod:`camgen.core.solids` makes the meshes; the first part's bed
-face is chamfered by its ``elephant_foot`` (45 degrees, every edge of the bed face). The geometry is the
-part's own, so the solid's volume is the part's exact area x thickness; no tolerance is involved.
+The payload is a tuple of solids, each a :class:`~camgen.core.parts.Placed` (or a plain ``(name, parts)`` pair,
+at its own place): the parts (:class:`~camgen.core.parts.Part`) stacked from z = 0, each on the one before (one
+part for a plain plate; a Geneva driver is its crank with the locking disc on top), fused into one solid that the
+file names ``name``, then turned about +Z and moved to where the product places it (a linkage's parts as
+assembled, a coupon's as on its sheet), exactly (Open CASCADE's rigid transform of the B-rep).
+Every line of an outline is a line edge and every arc a circular edge through its two ends and its exact midpoint
+(never chords); a full-circle hole is one circular edge. Each part is its outline's face with the holes cut out,
+extruded by its thickness (+Z); a hub boss stands on the top face round the first hole, a radial set-screw hole
+runs along +Y at the boss's mid-height, and pockets are cut down from the top face, as :mod:`camgen.core.solids`
+makes the meshes; the first part's bed face is chamfered by its ``elephant_foot`` (45 degrees, every edge of the
+bed face). The geometry is the part's own, so the solid's volume is the part's exact area x thickness; no tolerance
+is involved.
 
 OCP (the ``step`` extra, ``cadquery-ocp-novtk``) is imported only when a STEP file is written. The file's
 header carries a fixed time stamp, so the same parts give the same bytes.
@@ -25,13 +28,13 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import ExportError
-from camgen.core.parts import Part
+from camgen.core.parts import Part, Placed
 from camgen.core.shapes import Circle, Contour
 
 #: the time stamp written in every file's header (STEP requires one; a fixed one keeps the bytes reproducible)
 TIME_STAMP = "2000-01-01T00:00:00"
 
-Solids = Sequence[tuple[str, Sequence[Part]]]
+Solids = Sequence[Placed | tuple[str, Sequence[Part]]]
 
 
 def _point(x: float, y: float, z: float) -> Any:
@@ -63,12 +66,17 @@ def _wire(shape: Circle | Contour, z: float, ccw: bool) -> Any:
         for i in range(len(v)):          # piece i runs from vertex i to the next, sharing both (a connected wire)
             j = (i + 1) % len(v)
             if b[i] == 0:
-                curve = GC_MakeSegment(points[i], points[j]).Value()
+                made = GC_MakeSegment(points[i], points[j])
             else:      # the arc's midpoint: the chord's midpoint moved out by the sagitta, bulge x chord / 2
                 dx, dy = v[j] - v[i]
                 mid = (v[i] + v[j]) / 2 + b[i] / 2 * np.array([dy, -dx])
-                curve = GC_MakeArcOfCircle(points[i], _point(*mid, z), points[j]).Value()
-            edges.append(BRepBuilderAPI_MakeEdge(curve, corners[i], corners[j]).Edge())
+                made = GC_MakeArcOfCircle(points[i], _point(*mid, z), points[j])
+            edge = BRepBuilderAPI_MakeEdge(made.Value(), corners[i], corners[j]) if made.IsDone() else None
+            if edge is None or not edge.IsDone():
+                raise ExportError(f"an outline's {'line' if b[i] == 0 else 'arc'} from ({v[i][0]:.9g}, "
+                                  f"{v[i][1]:.9g}) mm is too short for an exact edge "
+                                  f"({float(np.linalg.norm(v[j] - v[i])):.3g} mm)")
+            edges.append(edge.Edge())
     for edge in edges:
         builder.Add(wire, edge)
     wire.Closed(True)
@@ -160,6 +168,21 @@ def stacked_solid(parts: Sequence[Part]) -> Any:
     return _checked(solid)
 
 
+def placed_solid(entry: Placed) -> Any:
+    """The solid of ``entry``: its parts stacked (:func:`stacked_solid`), turned by its angle about +Z and moved by
+    its shift (mm)."""
+    solid = stacked_solid(entry.parts)
+    if entry.angle == 0 and not any(entry.shift):
+        return solid
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
+    from OCP.gp import gp_Ax1, gp_Dir, gp_Trsf, gp_Vec
+
+    turn, move = gp_Trsf(), gp_Trsf()
+    turn.SetRotation(gp_Ax1(_point(0.0, 0.0, 0.0), gp_Dir(0.0, 0.0, 1.0)), float(entry.angle))
+    move.SetTranslation(gp_Vec(*(float(v) for v in entry.shift)))
+    return _checked(BRepBuilderAPI_Transform(solid, move.Multiplied(turn), True).Shape())   # turned, then moved
+
+
 def _checked(shape: Any) -> Any:
     """The one solid of ``shape`` if Open CASCADE finds it valid and made of exactly one solid, else an
     :class:`ExportError`."""
@@ -194,8 +217,8 @@ def _quiet() -> Iterator[None]:
 
 
 def write_step(solids: Solids, path: Path, options: Any = None) -> None:
-    """Write ``solids`` (``(name, parts)`` pairs, see the module docstring) as one AP214 STEP file in mm, each a
-    named product."""
+    """Write ``solids`` (:class:`~camgen.core.parts.Placed` entries or ``(name, parts)`` pairs, see the module
+    docstring) as one AP214 STEP file in mm, each a named product in its place."""
     from OCP.IFSelect import IFSelect_RetDone
     from OCP.Interface import Interface_Static
     from OCP.STEPCAFControl import STEPCAFControl_Writer
@@ -207,12 +230,13 @@ def write_step(solids: Solids, path: Path, options: Any = None) -> None:
 
     doc = TDocStd_Document(TCollection_ExtendedString("MDTV-XCAF"))
     shapes = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
-    for name, parts in solids:
+    for entry in solids:
+        entry = Placed(*entry)
         try:
-            solid = stacked_solid(parts)
+            solid = placed_solid(entry)
         except ExportError as exc:
-            raise ExportError(f"{name}: {exc}") from None
-        TDataStd_Name.Set_s(shapes.AddShape(solid, False), TCollection_ExtendedString(name))
+            raise ExportError(f"{entry.name}: {exc}") from None
+        TDataStd_Name.Set_s(shapes.AddShape(solid, False), TCollection_ExtendedString(entry.name))
     Interface_Static.SetCVal_s("write.step.unit", "MM")
     Interface_Static.SetCVal_s("write.step.schema", "AP214IS")
     writer = STEPCAFControl_Writer()
