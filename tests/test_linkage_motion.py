@@ -512,6 +512,7 @@ def test_a_kite_drawn_53_degrees_from_its_fold_analyses_through_it(tmp_path):
     r = report(raw)
     assert [(t["kind"], t["input_deg"]) for t in r["toggles"]] == [("change point", pytest.approx(0.0, abs=1e-9))]
     assert r["outputs"]["rocker"].get("turns_fully") is True
+    assert [p["branches"] for p in r["circuit"]["pieces"]] == ["as drawn", "other branch at B"]     # two turns
     assert r["tracers"]["B"] == {"x_mm": pytest.approx([114 - 178, 114 + 178], abs=1e-9),
                                  "y_mm": pytest.approx([-178, 178], abs=1e-9)}
 

@@ -335,7 +335,7 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                      "joint": t.joint} for t in a.toggles],
     }
     circuit = a.circuit
-    if circuit is not None and ranges is not None and table.inputs[0].range is None:
+    if circuit is not None and (ranges is not None or len(circuit.pieces) > 1) and table.inputs[0].range is None:
         report["circuit"] = _circuit_report(a, circuit)
     dyads = []
     if circuit is not None:
@@ -414,9 +414,14 @@ def _branch(circuit: linkage_circuit.Circuit, piece: int) -> str:
 
 
 def _circuit_report(a: Analysis, circuit: linkage_circuit.Circuit) -> dict[str, Any]:
-    """The circuit's pieces (input range and branches), whether it closes, and the ranges of separate circuits."""
+    """The circuit's pieces (input range and branches; a full turn from its start to its end, unreduced), whether
+    it closes, and the ranges of separate circuits."""
     unit = "deg" if a.crank else "mm"
-    return {"pieces": [{f"input_{unit}": [a.shown(p.lo), a.shown(p.hi)], "branches": _branch(circuit, k)}
+
+    def shown(v: float) -> float:
+        return round(math.degrees(v), 9) if circuit.turns else a.shown(v)
+
+    return {"pieces": [{f"input_{unit}": [shown(p.lo), shown(p.hi)], "branches": _branch(circuit, k)}
                        for k, p in enumerate(circuit.pieces)],
             "closed": circuit.closed,
             f"separate_{unit}": [[a.shown(lo), a.shown(hi)] for lo, hi in circuit.separate]}
