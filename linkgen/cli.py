@@ -213,13 +213,26 @@ def _print_general(r: dict[str, Any]) -> None:
     for t in r["toggles"]:
         out(f"  {t['kind']:<13} at input {t[f'input_{unit}']:.6f} {unit}: {'-'.join(t['links'])} in line at "
             f"{t['joint']}")
+    circuit = r.get("circuit")
+    if circuit:
+        pieces = "; then ".join(f"{p[f'input_{unit}'][0]:.6f} to {p[f'input_{unit}'][1]:.6f} {unit} {p['branches']}"
+                                for p in circuit["pieces"])
+        out(f"circuit of the drawing{'' if circuit['closed'] else ' (open)'}: {pieces}")
+        if circuit[f"separate_{unit}"]:
+            apart = ", ".join(f"[{a:.6f}, {b:.6f}]" for a, b in circuit[f"separate_{unit}"])
+            out(f"  the input's range is split into separate circuits: {apart} {unit} is never reached from the "
+                "drawing")
     for d in r["dyads"]:
         out(f"  dyad {d['kind']} {'-'.join(d['links'])} at {d['joint']}: transmission {d['transmission_min_deg']:.3f} "
             f"to {d['transmission_max_deg']:.3f} deg")
     for name, o in r["outputs"].items():
         if "swing_deg" in o:
             ratio = "" if o.get("time_ratio") is None else f", time ratio {o['time_ratio']:.6g}"
-            out(f"  {name}: swings {o['swing_deg']:.6g} deg{ratio}")
+            between = "" if "swing_between_deg" not in o else \
+                " ({:.6g} to {:.6g} deg from the drawing)".format(*o["swing_between_deg"])
+            out(f"  {name}: swings {o['swing_deg']:.6g} deg{between}{ratio}")
+        elif o.get("turns_fully"):
+            out(f"  {name}: turns fully")
         elif "stroke_mm" in o:
             ratio = "" if o.get("time_ratio") is None else f", time ratio {o['time_ratio']:.6g}"
             out(f"  {name}: stroke {o['stroke_mm']:.6g} mm{ratio}")

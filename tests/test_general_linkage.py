@@ -378,11 +378,21 @@ def test_rates_at_and_near_change_points_are_the_branchs(offset):
     assert np.allclose(sol.alphas["coupler"], a3, atol=1e-8) and np.allclose(sol.alphas["rocker"], a4, atol=1e-8)
 
 
-def test_a_kite_at_its_fold_is_refused_by_name():
+def test_a_kite_at_its_fold_is_placed_at_its_branchs_limit():
+    """At the fold of a deltoid 114/114/178/178 (the crank pin A on the rocker pivot O4) the circles of B are one:
+    B is the limit the motion carries it to, the same from either side: on the coupler's circle about O4, on the
+    line through O4 square to the crank pin's velocity there (the crank's tangent, so the x axis), 178 mm from O4:
+    x = 114 - 178 = -64 on the drawn branch. Poses a few rounding steps either side agree with it."""
     kite = Linkage.of(equivalents.fourbar(FourBar(114, 114, 178, 178), 1.0))
-    with pytest.raises(SpecError, match=r"input: at input 360 degrees the joints A and O4 meet, so joint B could be "
-                                        r"anywhere on its circle"):
-        kite.solve([2 * math.pi])
+    fold = 2 * math.pi
+    sol = kite.solve([fold, fold - 1e-15, fold + 1e-15, fold - 1e-9, fold + 1e-9])
+    assert sol.points["B"][0] == pytest.approx([114.0 - 178.0, 0.0], abs=1e-9)
+    assert np.abs(sol.points["B"][:3] - sol.points["B"][0]).max() < 1e-9
+    # h rad past the fold B lies on the bisector of A O4: B = (114, 57 h) - 178 (1, h / 2) = (-64, -32 h) to first
+    # order (the drawn branch continues to y < 0)
+    assert np.abs(sol.points["B"][3:] - np.array([[-64.0, 32e-9], [-64.0, -32e-9]])).max() < 1e-12
+    assert np.allclose(np.hypot(*(sol.points["B"] - sol.points["A"]).T), 178.0, atol=1e-9)
+    assert np.allclose(np.hypot(*(sol.points["B"] - np.array([114.0, 0.0])).T), 178.0, atol=1e-9)
 
 
 def test_linkgen_analyze_and_family_take_a_drawn_linkage(tmp_path):

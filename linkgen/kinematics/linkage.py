@@ -15,18 +15,21 @@ Branches: each dyad keeps the branch the drawing shows (the side its middle join
 At a change point (a dyad passes through its in-line position and goes on, the two branches
 meeting) the smooth continuation swaps sides; :class:`Linkage` finds those input values on
 the revolution (or the stroke) that starts at the drawing and counts them, so a crank angle
-is read on the revolution that starts at the drawn angle: theta0 <= theta < theta0 + 2 pi.
+is read on the revolution that starts at the drawn angle: theta0 <= theta < theta0 + 2 pi (its end
+kept as the end where a dyad's branch swaps an odd number of times a turn).
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
+from functools import cached_property
 from linkgen.kinematics import dyads
 from linkgen.kinematics.dyads import cross, dot, perp
 from linkgen.kinematics.grashof import check_finite
@@ -40,6 +43,15 @@ FEASIBILITY_TOL = 1e-5
 #: within this of a change point (rad or mm of input) the rates are the branch's limit, interpolated from rates
 #: one and two of it away
 CHANGE_REACH = 1e-2
+#: a dyad's slack (see :class:`DyadResult`) within this of 0 is in line to rounding: a change point where it
+#: touches 0 and comes back, an end of the input's range where it goes below
+CLOSE_TOL = 3e-14
+#: within this distance (relative to the drawing's size) of each other, a deltoid's two equal-radius pins are
+#: taken to meet: its joint is placed by the limit along the motion (the pins' relative velocity and
+#: acceleration), not by the direction between them, which rounding leaves undetermined there
+FOLD_REACH = 2e-6
+#: the dyads that run away (their joint to infinity) where their guides turn parallel, instead of toggling
+RUNAWAY = ("PRP", "RPP", "PPR")
 TWO_PI = 2.0 * math.pi
 
 
@@ -88,6 +100,11 @@ class DyadResult:
     joint: str
     margin: np.ndarray
     transmission: np.ndarray
+    #: how far the dyad is from its in-line position, relative to its links and to where its pins sit (so that
+    #: rounding is below :data:`CLOSE_TOL`): (r1 + r2 - d) or (d - |r1 - r2|) for RRR, r - h for RRP, d - |offset|
+    #: for RPR, over (the links + the pins' largest coordinate); < 0 where it cannot close. For the dyads with two
+    #: slides (PRP, RPP), which run away instead of toggling, the signed sine of their guides' angle (> 0 drawn)
+    slack: np.ndarray
     #: the rate (per unit input) at which the dyad's outer joints move apart (their distance, or the pin's from
     #: the guide line): 0 where the dyad is in line at a change point; None without derivatives
     spread: np.ndarray | None = None
@@ -113,27 +130,60 @@ class Solution:
         """Each body's turn from the drawing (rad, in (-pi, pi]), computed when asked."""
         return {b: np.arctan2(sn, c) for b, (c, sn) in self.rotations.items()}
 
+    def angle(self, body: str) -> np.ndarray:
+        """One body's turn from the drawing (rad, in (-pi, pi])."""
+        c, sn = self.rotations[body]
+        return np.arctan2(sn, c)
+
+
+#: the searches' hook into a solve (see :meth:`Linkage.solve`): a dyad's step index and result -> its change points
+Chooser = Callable[[int, DyadResult], np.ndarray | None]
+
 
 @dataclass(frozen=True)
 class Linkage:
-    """A planar linkage with its solve order; ``flips`` holds, per step, the input values (on the revolution or
-    stroke from the drawing) where that dyad's branch swaps sides at a change point."""
+    """A planar linkage with its solve order and its branches over the motion.
+
+    ``flips`` holds, per step, the input values where that dyad's branch swaps sides at a change point (sorted,
+    on the revolution that starts at ``origin`` for a crank). Each step's branch is ``start``'s sign at its
+    input value (the drawing's signs at the drawn input unless given: another assembly of the same linkage,
+    a piece of a circuit), swapped at every change point between there and the pose. ``origin`` (rad) is where
+    a crank's revolution starts: the drawn angle, or the low end of the range the drawing lies in when the crank
+    does not turn fully, so that the range is one piece of it."""
 
     structure: Structure
     plan: Plan
     flips: tuple[np.ndarray, ...] = field(default=())
+    origin: float | None = None
+    start: tuple[float, tuple[float, ...]] | None = None
 
     @classmethod
     def of(cls, structure: Structure) -> Linkage:
-        """The linkage of a structure, with its change points found over the motion that starts at the drawing."""
-        from linkgen.kinematics.motion import find_flips
-
-        from linkgen.kinematics.motion import check_redundant
+        """The linkage of a structure, with its change points found over the motion that starts at the drawing
+        (over the range it lies in, when a crank does not turn fully)."""
+        from linkgen.kinematics.motion import check_redundant, find_flips, origin_for
 
         bare = cls(structure, plan(structure))
-        linkage = cls(structure, bare.plan, find_flips(bare))
+        linkage = replace(bare, flips=find_flips(bare))
+        for _ in range(2):              # a change point below the drawing is passed going down from it, not round
+            ranges = linkage.ranges if linkage.is_crank() else None
+            if ranges is None:
+                break
+            origin = origin_for(ranges)
+            if linkage.origin is not None and abs(math.remainder(origin - linkage.origin, TWO_PI)) <= 1e-9:
+                break
+            moved = replace(bare, origin=origin)
+            linkage = replace(moved, flips=find_flips(moved))
         check_redundant(linkage)
         return linkage
+
+    def on(self, value: float, signs: tuple[float, ...]) -> Linkage:
+        """The same linkage carried from input ``value`` (rad or mm) with each step's branch sign ``signs`` there
+        (another assembly, or the next piece of a circuit), its change points found again."""
+        from linkgen.kinematics.motion import find_flips
+
+        bare = replace(self, flips=(), start=(float(value), tuple(float(v) for v in signs)))
+        return replace(bare, flips=find_flips(bare))
 
     # ------------------------------------------------------------------ inputs
 
@@ -146,36 +196,71 @@ class Linkage:
         """Whether the one input turns a link (its values wrap every 2 pi)."""
         return len(self.structure.inputs) == 1 and self.structure.inputs[0].kind == "crank"
 
+    @property
+    def revolution(self) -> float:
+        """Where a crank's revolution of input values starts (rad): ``origin``, else the drawn angle."""
+        return float(self.drawn_inputs[0]) if self.origin is None else self.origin
+
     def unwrap(self, values: np.ndarray) -> np.ndarray:
-        """Crank angles on the revolution that starts at the drawing: theta0 <= theta < theta0 + 2 pi."""
+        """Crank angles on the revolution that starts at :attr:`revolution`, t0 <= theta < t0 + 2 pi, any angle
+        turned onto it by whole turns; where a dyad's branch swaps an odd number of times a turn (a kite: not back
+        at its start after one), its end t0 + 2 pi is kept as the end."""
         if not self.is_crank():
             return values
-        t0 = self.drawn_inputs[0]
-        return t0 + np.mod(values - t0, TWO_PI)
+        t0 = self.revolution
+        values = np.asarray(values, dtype=float)
+        wrapped = t0 + np.mod(values - t0, TWO_PI)
+        if all(len(f) % 2 == 0 for f in self.flips):
+            return wrapped                  # back on its branches after a turn: the end is the start, exactly
+        return np.where((values >= t0) & (values <= t0 + TWO_PI), values, wrapped)
 
-    def _signs(self, inputs: np.ndarray) -> list[np.ndarray]:
-        """Each step's branch sign at each pose: the drawing's, swapped at every change point passed on the way
-        there from the drawing."""
-        drawn = _drawn_signs(self.structure, self.plan)
+    @property
+    def base_signs(self) -> tuple[float, ...]:
+        """Each step's branch sign at the input value the branches are carried from (+1 for steps without one)."""
+        return _drawn_signs(self.structure, self.plan) if self.start is None else self.start[1]
+
+    @property
+    def base_input(self) -> float:
+        """The input value the branches are carried from (unwrapped): the drawing's, or ``start``'s."""
+        value = float(self.drawn_inputs[0]) if self.start is None else self.start[0]
+        return float(self.unwrap(np.array([value]))[0])
+
+    def signs(self, inputs: np.ndarray) -> list[np.ndarray]:
+        """Each step's branch sign at each pose: the base sign, swapped at every change point passed on the way
+        there from the base input."""
+        base = self.base_signs
         if not any(len(f) for f in self.flips) or len(self.structure.inputs) != 1:
-            return [np.full(inputs.shape[1], s) for s in drawn]
+            return [np.full(inputs.shape[1], s) for s in base]
         x = self.unwrap(inputs[0])
-        x0 = self.drawn_inputs[0]
-        out = []
-        for s, flips in zip(drawn, self.flips, strict=True):
-            ahead = np.searchsorted(flips, x, side="right") - np.searchsorted(flips, x0, side="right")
-            out.append(s * np.where(ahead % 2 == 0, 1.0, -1.0))
-        return out
+        return [self.step_signs(s, flips, x) for s, flips in zip(base, self.flips, strict=True)]
+
+    def step_signs(self, base: float, flips: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """One step's branch sign at input values x (unwrapped): ``base`` at the base input, swapped at each of its
+        change points ``flips`` passed on the way from there (a value at a change point is past it)."""
+        x0 = self.base_input
+        ahead = np.searchsorted(flips, x, side="right") - np.searchsorted(flips, x0, side="right")
+        return base * np.where(ahead % 2 == 0, 1.0, -1.0)
+
+    @cached_property
+    def ranges(self) -> tuple[tuple[float, float], ...] | None:
+        """The input values it reaches on its branches (:func:`linkgen.kinematics.motion.input_ranges`), found
+        once."""
+        from linkgen.kinematics.motion import input_ranges
+
+        return input_ranges(self)
 
     # ------------------------------------------------------------------ solving
 
     def solve(self, inputs: ArrayLike, rates: ArrayLike | None = None, *, strict: bool = True,
-              derivatives: bool = True, upto: int | None = None, signs: list[np.ndarray] | None = None) -> Solution:
+              derivatives: bool = True, upto: int | None = None, signs: list[np.ndarray] | None = None,
+              choose: Chooser | None = None) -> Solution:
         """Every body at each input value: ``inputs`` (n,) for one input, (k, n) for k; ``rates`` the inputs'
         speeds (1 each unless given) for the velocities and accelerations. With ``strict`` a value the linkage does
         not reach is a :class:`SpecError` naming the input's reachable range, and one that is not a finite number
         (NaN, +-inf) one naming it (degrees or mm); else those poses are marked in ``ok``. ``upto`` stops after
-        that many steps (for the searches of :mod:`linkgen.kinematics.motion`)."""
+        that many steps, ``signs`` gives each step's branch at each pose, and ``choose`` (index, the dyad's result)
+        may answer a dyad's change points once its margins are known, which then place it (for the searches of
+        :mod:`linkgen.kinematics.motion`)."""
         x = np.atleast_2d(np.asarray(inputs, dtype=float))
         k = len(self.structure.inputs)
         if x.shape[0] != k:
@@ -186,10 +271,14 @@ class Linkage:
                 check_finite(row, "input", "input", "degrees" if crank else "mm", math.degrees if crank else float)
         r = np.ones(k) if rates is None else np.asarray(rates, dtype=float).reshape(k)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):   # not strict: +-inf marked, unsaid
+            given = x
             x = np.vstack([self.unwrap(x[0]), *x[1:]]) if self.is_crank() else x
-            if signs is None:
-                signs = self._signs(x)
-            sol = _solve(self, x, r, signs, strict, derivatives, upto)
+            signs = self.signs(x) if signs is None else list(signs)
+            sol = _solve(self, x, r, signs, strict, derivatives, upto, choose)
+            if strict and not sol.ok.all():
+                from linkgen.kinematics.motion import out_of_reach
+
+                out_of_reach(self, given[:, ~sol.ok][:, 0])
             if derivatives and upto is None and len(x) == 1 and any(len(f) for f in self.flips):
                 self._rates_at_change_points(sol, r)
             return sol
@@ -207,7 +296,7 @@ class Linkage:
         centre = nearest[near]
         nodes = np.array([-3.0, -2.0, -1.0, 1.0, 2.0, 3.0])
         stencil = [_solve(self, (centre + h * CHANGE_REACH)[None, :], rates,
-                          self._signs((centre + h * CHANGE_REACH)[None, :]), False, True, None) for h in nodes]
+                          self.signs((centre + h * CHANGE_REACH)[None, :]), False, True, None, None) for h in nodes]
         u = (x[near] - centre) / CHANGE_REACH
         weights = [np.prod([(u - nodes[m]) / (nodes[k] - nodes[m]) for m in range(len(nodes)) if m != k], axis=0)
                    for k in range(len(nodes))]
@@ -276,8 +365,25 @@ def _drawn_signs(s: Structure, p: Plan) -> list[float]:
                 pin_m, pin_g = (a1, a2) if step.bodies[0] == sl.body else (a2, a1)
                 d = _pt(s, pin_m.point) - _pt(s, pin_g.point)
                 sign = float(np.sign(cross(d, perp(_direction(sl.angle))))) or 1.0
+            elif kind in RUNAWAY:
+                sign = float(np.sign(_runaway_rate(s, step))) or 1.0
         out.append(sign)
     return out
+
+
+def _runaway_rate(s: Structure, step: DyadStep) -> float:
+    """In the drawing, what a dyad with two slides divides by (its margin before the sign): the cross product of
+    its two guides (PRP), or how fast its sliding body's travel moves its point across the joint's guide (RPP)."""
+    sliders = s.slider_by_name
+    a1, a2 = step.attachments
+    if step.kind == "PRP":
+        return float(cross(_direction(sliders[a1.slider].angle), _direction(sliders[a2.slider].angle)))
+    slide = a2 if isinstance(a1, Pin) else a1
+    sliding = step.bodies[1] if isinstance(a1, Pin) else step.bodies[0]
+    joint = sliders[step.joint]
+    n = perp(_direction(joint.angle))
+    sigma = 1.0 if slide.moving else -1.0
+    return float(dot(n, sigma * _direction(sliders[slide.slider].angle))) * (1.0 if joint.body == sliding else -1.0)
 
 
 # ---------------------------------------------------------------------- the solve, step by step
@@ -418,19 +524,34 @@ def _rows(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, bodies: dict
     return rows if moving_first else [(b, a, r) for a, b, r in rows]
 
 
+def _magnitude(*points: np.ndarray) -> np.ndarray:
+    """The largest coordinate (mm) among points (n, 2) at each pose: the scale of their rounding."""
+    return np.max(np.abs(np.concatenate(points, axis=1)), axis=1)
+
+
 def _place_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, sign: np.ndarray,
-                bodies: dict[str, Body]) -> tuple[np.ndarray, np.ndarray]:
-    """Place both bodies of a dyad; its margin and transmission angle."""
+                bodies: dict[str, Body], fold: tuple[np.ndarray, np.ndarray] | None = None
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Place both bodies of a dyad; its margin, transmission angle and slack. ``fold`` (poses, unit directions):
+    where an RRR's equal-radius pins meet, the direction the pins part along, which places its joint there."""
     kind = step.kind
     sliders = s.slider_by_name
     if kind == "RRR":
         jd = _pt(s, step.joint)
         r1, r2 = float(np.linalg.norm(jd - u1.pd)), float(np.linalg.norm(jd - u2.pd))
         jw, margin = dyads.circle_circle(u1.pin, r1, u2.pin, r2, sign)
+        d = np.hypot(*(u2.pin - u1.pin).T)
+        if fold is not None:
+            # the meeting circles of (nearly) equal radii: their intersection from the midpoint of the pins
+            at, unit = fold
+            half = np.sqrt(np.maximum((0.5 * (r1 + r2)) ** 2 - 0.25 * d[at] ** 2, 0.0))
+            side = np.broadcast_to(sign, d.shape)[at]
+            jw[at] = 0.5 * (u1.pin[at] + u2.pin[at]) + (side * half)[:, None] * perp(unit)
         for u in (u1, u2):
             bodies[u.name] = _turn_to(u, jw - u.pin, jd - u.pd)
         a, b = u1.pin - jw, u2.pin - jw
-        return margin, np.arctan2(np.abs(cross(a, b)), dot(a, b))
+        slack = np.minimum(r1 + r2 - d, d - abs(r1 - r2)) / (r1 + r2 + _magnitude(u1.pin, u2.pin))
+        return margin, np.arctan2(np.abs(cross(a, b)), dot(a, b)), slack
     if kind in ("RRP", "PRR"):
         up, us = (u1, u2) if u1.pinned else (u2, u1)
         jd = _pt(s, step.joint)
@@ -440,25 +561,35 @@ def _place_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, sign: 
         bodies[up.name] = _turn_to(up, jw - up.pin, jd - up.pd)
         bodies[us.name] = us.slid(us.sigma * dot(jw - c, us.u))
         rod = jw - up.pin
-        return margin, np.arctan2(np.abs(dot(rod, us.u)), np.abs(cross(us.u, rod)))
+        slack = (r - np.abs(cross(us.u, c - up.pin))) / (r + _magnitude(up.pin, c))
+        return margin, np.arctan2(np.abs(dot(rod, us.u)), np.abs(cross(us.u, rod))), slack
     if kind == "RPR":
         sl = sliders[step.joint]
         um, ug = (u1, u2) if step.bodies[0] == sl.body else (u2, u1)
         nd = perp(_direction(sl.angle))
         offset = float(dot(nd, um.pd - ug.pd))
         rot, margin = dyads.line_through(ug.pin, um.pin, math.atan2(nd[1], nd[0]), offset, sign)
+        if fold is not None:
+            # the pins (nearly) meet on a slot through the pivot: the slot lies along the way they part
+            at, unit = fold
+            along = unit if um is u2 else -unit
+            normal = np.broadcast_to(sign, (len(rot),))[at][:, None] * perp(along)
+            rot[at] = np.column_stack([normal @ nd, nd[0] * normal[:, 1] - nd[1] * normal[:, 0]])
         for u in (um, ug):
             bodies[u.name] = u.turned(rot[:, 0], rot[:, 1])
         d = um.pin - ug.pin
         dist = np.hypot(d[:, 0], d[:, 1])
-        return margin, np.arctan2(np.sqrt(np.maximum((dist - abs(offset)) * (dist + abs(offset)), 0.0)), abs(offset))
+        slack = (dist - abs(offset)) / np.maximum(abs(offset) + dist + _magnitude(um.pin, ug.pin), 1e-300)
+        return margin, np.arctan2(np.sqrt(np.maximum((dist - abs(offset)) * (dist + abs(offset)), 0.0)),
+                                  abs(offset)), slack
     if kind == "PRP":
         jd = _pt(s, step.joint)
         c1, c2 = u1.ref.at(jd), u2.ref.at(jd)
-        jw, margin = dyads.line_line(c1, u1.u, c2, u2.u)
+        jw, _ = dyads.line_line(c1, u1.u, c2, u2.u)
         bodies[u1.name] = u1.slid(u1.sigma * dot(jw - c1, u1.u))
         bodies[u2.name] = u2.slid(u2.sigma * dot(jw - c2, u2.u))
-        return margin, np.arcsin(np.minimum(margin, 1.0))
+        margin = sign * cross(u1.u, u2.u)          # signed: > 0 drawn, 0 where the guides turn parallel
+        return margin, np.arcsin(np.minimum(np.abs(margin), 1.0)), margin
     # RPP / PPR: the pinned body takes the sliding one's angle; the sliding one's travel follows (a linear solve)
     up, us = (u1, u2) if u1.pinned else (u2, u1)
     turned = up.turned(us.ref.c, us.ref.s)
@@ -472,10 +603,10 @@ def _place_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, sign: 
     # the sliding body's point qd moves by sigma t u along its own guide; the constraint n . (moving - guide) = 0
     gap = (us.ref.at(qd) - turned.at(qd)) if moving else (turned.at(qd) - us.ref.at(qd))
     rate = dot(n, us.sigma * us.u) * (1.0 if moving else -1.0)
-    margin = np.abs(rate)
+    margin = sign * rate                           # signed: > 0 drawn, 0 where the travel runs along the guide
     t = _ratio(-dot(n, gap), rate)
     bodies[us.name] = us.slid(np.where(np.isfinite(t), t, 0.0))
-    return margin, np.arcsin(np.minimum(margin, 1.0))
+    return margin, np.arcsin(np.minimum(np.abs(margin), 1.0)), margin
 
 
 def _turn_to(u: _Unknown, now: np.ndarray, drawn: np.ndarray) -> Body:
@@ -487,7 +618,7 @@ def _turn_to(u: _Unknown, now: np.ndarray, drawn: np.ndarray) -> Body:
 
 
 def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.ndarray], strict: bool,
-           derivatives: bool, upto: int | None) -> Solution:
+           derivatives: bool, upto: int | None, choose: Chooser | None) -> Solution:
     s, p = linkage.structure, linkage.plan
     n = x.shape[1]
     zero2 = np.zeros((n, 2))
@@ -503,12 +634,18 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
             _place_fixed(s, step, bodies, derivatives)
         else:
             u1, u2 = (_Unknown.of(s, b, a, bodies) for b, a in zip(step.bodies, step.attachments, strict=True))
-            margin, gamma = _place_dyad(step, s, u1, u2, signs[index], bodies)
-            if u1.pinned and u2.pinned:
-                _check_apart(linkage, step, u1, u2, x, strict, ok)
+            flips = linkage.flips[index] if linkage.flips else np.empty(0)
+            fold = _fold(linkage, index, u1, u2, x, signs, flips, strict)
+            margin, gamma, slack = _place_dyad(step, s, u1, u2, signs[index], bodies, fold)
             spread = _spread(u1, u2) if derivatives else None
-            results.append(DyadResult(step.kind, step.bodies, step.joint, margin, gamma, spread))
-            ok &= margin >= -FEASIBILITY_TOL
+            result = DyadResult(step.kind, step.bodies, step.joint, margin, gamma, slack, spread)
+            chosen = None if choose is None else choose(index, result)
+            if chosen is not None and len(chosen):             # the search found this dyad's change points
+                signs[index] = linkage.step_signs(linkage.base_signs[index], chosen, x[0])
+                fold = _fold(linkage, index, u1, u2, x, signs, chosen, strict)
+                _place_dyad(step, s, u1, u2, signs[index], bodies, fold)
+            results.append(result)
+            ok &= (margin > 0.0) if step.kind in RUNAWAY else (margin >= -FEASIBILITY_TOL)
             if derivatives:
                 xv = _solve2(_rows(step, s, u1, u2, bodies, "v"))
                 for u, rate in zip((u1, u2), xv, strict=True):
@@ -517,28 +654,66 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
                 ya = _solve2(_rows(step, s, u1, u2, bodies, "a", tdots))
                 for u, acc in zip((u1, u2), ya, strict=True):
                     u.finish_acceleration(bodies[u.name], acc, tdots[u.name])
-    if strict and not ok.all():
-        from linkgen.kinematics.motion import out_of_reach
-
-        out_of_reach(linkage, x[:, ~ok][:, 0])
     return _gather(s, x, bodies, tuple(results), ok, derivatives)
 
 
-def _check_apart(linkage: Linkage, step: DyadStep, u1: _Unknown, u2: _Unknown, x: np.ndarray, strict: bool,
-                 ok: np.ndarray) -> None:
-    """Refuse (or, not strict, mark) poses where a dyad's two pins meet: its joint could be anywhere on a circle
-    (a deltoid's change point)."""
-    met = np.hypot(*(u2.pin - u1.pin).T) <= 1e-12 * linkage.structure.scale
-    if not met.any():
-        return
-    if strict:
-        value = float(x[0, np.flatnonzero(met)[0]])
-        crank = linkage.structure.inputs[0].kind == "crank"
-        shown = f"{math.degrees(value):.9g} degrees" if crank else f"{value:.9g} mm"
-        raise SpecError(f"at input {shown} the joints {u1.attachment.point} and {u2.attachment.point} meet, so "
-                        f"joint {step.joint} could be anywhere on its circle (a deltoid's change point); step off it",
-                        "input")
-    ok &= ~met
+def _fold(linkage: Linkage, index: int, u1: _Unknown, u2: _Unknown, x: np.ndarray, signs: list[np.ndarray],
+          flips: np.ndarray, strict: bool) -> tuple[np.ndarray, np.ndarray] | None:
+    """Where a deltoid's two pins (of equal radii) meet or nearly do (within :data:`FOLD_REACH` of the drawing's
+    size), or the two pins of a slotted link whose slot runs through its pivot: the poses and the unit direction
+    the pins part along there, from their relative velocity v and acceleration a per unit input at the pose, h
+    past the change point: d = v h - a h^2 / 2 to second order (so that the joint is the branch's limit through
+    the fold, as the motion carries it); None elsewhere. With more than one input there is no motion to take the
+    limit along: a pose where the pins meet is refused (strict), else placed as the directions between them
+    say."""
+    s = linkage.structure
+    step = linkage.plan.steps[index]
+    if step.kind == "RRR":
+        jd = _pt(s, step.joint)
+        apart = abs(float(np.linalg.norm(jd - u1.pd)) - float(np.linalg.norm(jd - u2.pd)))
+    elif step.kind == "RPR":
+        sl = s.slider_by_name[step.joint]
+        um, ug = (u1, u2) if step.bodies[0] == sl.body else (u2, u1)
+        apart = abs(float(dot(perp(_direction(sl.angle)), um.pd - ug.pd)))
+    else:
+        return None
+    if apart > FOLD_REACH * s.size:
+        return None                   # unequal radii, an offset slot: pins that meet leave the dyad open
+    d = np.hypot(*(u2.pin - u1.pin).T)
+    near = d <= FOLD_REACH * s.size
+    if not near.any():
+        return None
+    at = np.flatnonzero(near)
+    if len(s.inputs) != 1:
+        met = d <= 1e-12 * s.size
+        if met.any() and strict:
+            crank = s.inputs[0].kind == "crank"
+            value = float(x[0, np.flatnonzero(met)[0]])
+            shown = f"{math.degrees(value):.9g} degrees" if crank else f"{value:.9g} mm"
+            raise SpecError(f"at input {shown} the joints {u1.attachment.point} and {u2.attachment.point} meet, so "
+                            f"dyad {step.kind} at {step.joint} could take any angle (a change point); give inputs "
+                            "that keep them apart", "input")
+        return None
+    # the pins' relative motion per unit input, from a solve of these poses up to this step with its rates
+    sub = _solve(linkage, x[:, at], np.ones(len(s.inputs)), [np.broadcast_to(g, x.shape[1:])[at] for g in signs],
+                 False, True, index, None)
+    p1, p2 = u1.attachment.point, u2.attachment.point
+    rel_v = sub.velocities[p2] - sub.velocities[p1]
+    rel_a = sub.accelerations[p2] - sub.accelerations[p1]
+    # h from the nearest change point of this dyad (a pose at one is past it); without one, from the pose itself
+    if len(flips):
+        nearest = flips[np.argmin(np.abs(x[0, at, None] - flips[None, :]), axis=1)]
+        h = x[0, at] - nearest
+        side = np.where(h >= 0.0, 1.0, -1.0)
+    else:
+        h = np.zeros(len(at))
+        side = np.ones(len(at))
+    direction = rel_v - 0.5 * h[:, None] * rel_a               # d(h) / h to second order, from the pose's rates
+    length = np.hypot(*direction.T)
+    usable = length > 0
+    unit = np.where(usable[:, None], side[:, None] * direction / np.where(usable, length, 1.0)[:, None],
+                    (u2.pin[at] - u1.pin[at]) / np.maximum(d[at], 1e-300)[:, None])
+    return at, unit
 
 
 def _spread(u1: _Unknown, u2: _Unknown) -> np.ndarray | None:

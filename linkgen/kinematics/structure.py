@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 from camgen.core.errors import SpecError
+from functools import cached_property
 
 GROUND = "ground"
 #: two drawn points closer than this (relative to the drawing's size) are one point
@@ -144,13 +145,28 @@ class Structure:
     inputs: tuple[Input, ...]
     scale: float = field(default=1.0)
 
+    @cached_property
+    def size(self) -> float:
+        """The drawing's own size (mm): the largest distance between two of its points (at least 1e-9 mm), the
+        same wherever the drawing sits (``scale``, the largest coordinate, is not)."""
+        xy = list(self.points.values())
+        return max([1e-9] + [math.dist(a, b) for i, a in enumerate(xy) for b in xy[i + 1:]])
+
     @property
     def slider_by_name(self) -> dict[str, Slider]:
         return {s.name: s for s in self.sliders}
 
     def holders(self, point: str) -> tuple[str, ...]:
         """The bodies holding ``point``, in body order."""
-        return tuple(b for b, pts in self.bodies.items() if point in pts)
+        return self._holders.get(point, ())
+
+    @cached_property
+    def _holders(self) -> dict[str, tuple[str, ...]]:
+        out: dict[str, list[str]] = {}
+        for body, pts in self.bodies.items():
+            for p in pts:
+                out.setdefault(p, []).append(body)
+        return {p: tuple(b) for p, b in out.items()}
 
     @property
     def revolutes(self) -> dict[str, tuple[str, ...]]:

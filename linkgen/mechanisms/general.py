@@ -37,7 +37,7 @@ from camgen.core.parts import Drawing
 from camgen.core.shapes import Polyline
 from camgen.core.spec import MAX_LENGTH_MM, Model, unit
 from linkgen import plots
-from linkgen.kinematics import motion
+from linkgen.kinematics import linkage_circuit, motion
 from linkgen.kinematics.linkage import Linkage, Solution
 from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, Input, InputStep, Slider, Structure,
                                           make_structure)
@@ -189,7 +189,8 @@ def structure_of(table: LinkageTable) -> Any:
 @dataclass(frozen=True)
 class Analysis:
     """A general linkage with what its report and parts read: the solved linkage, its sweep over the motion
-    analysed (input values in the input's unit: rad or mm), the reachable ranges, toggles and limit positions."""
+    analysed on the drawing's branches (input values in the input's unit: rad or mm), the reachable ranges, the
+    circuit the drawing lies on, toggles, and each output's motion over the circuit."""
 
     table: LinkageTable
     linkage: Linkage
@@ -200,12 +201,13 @@ class Analysis:
 
     @cached_property
     def ranges(self) -> tuple[tuple[float, float], ...] | None:
-        return motion.input_ranges(self.linkage)
+        return self.linkage.ranges if len(self.table.inputs) == 1 else None
 
     @cached_property
     def span(self) -> np.ndarray:
         """The input values analysed (k, SWEEP): the table's range, else the reachable range holding the drawing,
-        else a full turn from the drawing."""
+        else a full turn from the drawing. A range that ends where a dyad of two slides runs away (its guides
+        parallel, its joint at infinity) is refused unless the table gives one."""
         rows = []
         for i, inp in enumerate(self.table.inputs):
             if inp.range is not None:
@@ -217,6 +219,7 @@ class Analysis:
                 lo, hi = motion.span(self.linkage)
             else:
                 lo, hi = self.ranges[0]
+                _refuse_runaway(self, lo, hi)
             rows.append(np.linspace(lo, hi, SWEEP))
         return np.array(rows)
 
@@ -229,17 +232,53 @@ class Analysis:
         return motion.toggles(self.linkage) if len(self.table.inputs) == 1 else ()
 
     @cached_property
-    def extremes(self) -> dict[str, tuple[motion.Extreme, ...]]:
-        """The limit positions of each rocker and ground slider over the motion analysed."""
+    def circuit(self) -> linkage_circuit.Circuit | None:
+        """The circuit the motion analysed runs on (one input): the drawing's (see
+        :mod:`linkgen.kinematics.linkage_circuit`), or the table's range on the drawing's branches; None with more
+        inputs."""
         if len(self.table.inputs) != 1:
-            return {}
+            return None
         lo, hi = float(self.span[0, 0]), float(self.span[0, -1])
-        return {name: motion.limit_positions(self.linkage, name, lo, hi)
-                for name in motion.rockers(self.linkage) + motion.ground_sliders(self.linkage)}
+        if self.table.inputs[0].range is not None:
+            return linkage_circuit.Circuit((linkage_circuit.Piece(self.linkage, lo, hi, True, ()),), False, False, ())
+        return linkage_circuit.circuit(self.linkage)
+
+    @cached_property
+    def travel(self) -> Solution:
+        """The linkage over the whole circuit, piece after piece (the parts' slots and layers are made for it): the
+        sweep itself where the circuit is that one piece."""
+        if self.circuit is None or len(self.circuit.pieces) == 1:
+            return self.sweep
+        return linkage_circuit.sweep_over(self.circuit, SWEEP)
+
+    @cached_property
+    def outputs(self) -> dict[str, linkage_circuit.OutputMotion]:
+        """The motion of each rocker and ground slider over the circuit (one input; none with more)."""
+        if self.circuit is None:
+            return {}
+        outputs = motion.rockers(self.linkage) + motion.ground_sliders(self.linkage)
+        return linkage_circuit.outputs_over(self.circuit, outputs)
 
     def shown(self, value: float) -> float:
         """An input value in the report's unit (degrees in [0, 360) or mm)."""
         return round(math.degrees(value) % 360.0, 9) % 360.0 if self.crank else round(value, 9)
+
+
+def _refuse_runaway(a: Analysis, lo: float, hi: float) -> None:
+    """Refuse a range on the drawing's branches that ends where a dyad of two slides runs away: its joint goes to
+    infinity there, so no stroke or swing is finite; name the input and the range to give instead."""
+    stops = motion.stopping_dyad(a.linkage, np.array([lo, hi]))
+    ends = [(v, d) for v, (kind, d) in zip((lo, hi), stops, strict=True)
+            if kind == "runaway" and not motion.bounded(a.linkage, v)]
+    if not ends:
+        return
+    value, d = ends[0]
+    step = next(s for i, s in enumerate(a.linkage.plan.steps) if i == motion.dyad_steps(a.linkage)[d])
+    unit = "degrees" if a.crank else "mm"
+    shown = [a.shown(v) for v in (lo, hi)]
+    raise SpecError(f"at input {a.shown(value):.6g} {unit} the guides of the {step.kind} dyad of {step.bodies[0]} and "
+                    f"{step.bodies[1]} turn parallel, so {step.joint} runs to infinity; give range = [from, to] "
+                    f"strictly between {shown[0]:.6g} and {shown[1]:.6g} {unit}", "linkage.input")
 
 
 def _paradoxes(a: Analysis) -> list[str]:
@@ -295,9 +334,12 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
         "toggles": [{"kind": t.kind, f"input_{unit_name}": a.shown(t.value), "links": list(t.bodies),
                      "joint": t.joint} for t in a.toggles],
     }
+    circuit = a.circuit
+    if circuit is not None and (ranges is not None or len(circuit.pieces) > 1) and table.inputs[0].range is None:
+        report["circuit"] = _circuit_report(a, circuit)
     dyads = []
-    if len(table.inputs) == 1:
-        extremes = motion.transmission_extremes(a.linkage, float(a.span[0, 0]), float(a.span[0, -1]))
+    if circuit is not None:
+        extremes = [row[:4] for row in linkage_circuit.transmission_over(circuit)]
     else:
         extremes = [(float(np.min(d.transmission)), float(sweep.inputs[0, np.argmin(d.transmission)]),
                      float(np.max(d.transmission)), float(sweep.inputs[0, np.argmax(d.transmission)]))
@@ -309,29 +351,19 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                       "transmission_max_deg": num(math.degrees(gmax)),
                       f"transmission_max_at_{unit_name}": a.shown(at_max)})
     report["dyads"] = dyads
-    outputs = {}
-    sliders = a.linkage.structure.slider_by_name
-    for name, ext in a.extremes.items():
-        rocker = name not in sliders
-        at = [{f"input_{unit_name}": a.shown(e.value),
-               **({"angle_from_drawing_deg": num(math.degrees(e.position))} if rocker
-                  else {"travel_mm": num(e.position)})} for e in ext]
-        entry: dict[str, Any] = {"limit_positions": at}
-        if rocker and len(ext) == 2:
-            entry["swing_deg"] = num(abs(math.degrees(math.remainder(ext[1].position - ext[0].position, TWO_PI))))
-        ratio = motion.time_ratio(a.linkage, ext)
-        entry["time_ratio"] = None if ratio is None else round(ratio, 12)
-        outputs[name] = entry
-    for name, sl in sliders.items():
-        if sl.guide == GROUND:
-            # the travel's ends: the refined limit positions, or the ends of the motion analysed
-            travel = _travel(a, sl)
-            ends = [e.position for e in a.extremes.get(name, ())] + [float(travel[0]), float(travel[-1])]
-            outputs.setdefault(name, {}).update({"travel_mm": [num(min(ends)), num(max(ends))],
-                                                 "stroke_mm": num(max(ends) - min(ends))})
+    outputs = {name: _output_report(a, name, om) for name, om in a.outputs.items()}
+    for name, sl in a.linkage.structure.slider_by_name.items():
+        if sl.guide == GROUND and name not in outputs:
+            # an input's slider travels its range over the circuit; with more inputs, over the sweep
+            if circuit is not None:
+                ends = [min(p.lo for p in circuit.pieces), max(p.hi for p in circuit.pieces)]
+            else:
+                travel = _travel(a, sl)
+                ends = [float(travel.min()), float(travel.max())]
+            outputs[name] = {"travel_mm": [num(ends[0]), num(ends[1])], "stroke_mm": num(ends[1] - ends[0])}
     report["outputs"] = outputs
-    report["tracers"] = {t: dict(zip(("x_mm", "y_mm"), ([num(v) for v in axis] for axis in _extent(a, t)),
-                                     strict=True)) for t in table.tracers}
+    report["tracers"] = {t: dict(zip(("x_mm", "y_mm"), ([num(v) for v in axis] for axis in extent),
+                                     strict=True)) for t, extent in _extents(a, table.tracers).items()}
     warnings = list(notes)
     for d in report["dyads"]:
         lo_t, hi_t = d["transmission_min_deg"], d["transmission_max_deg"]
@@ -344,18 +376,86 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                             f"{lo_t:.2f} degrees (below 40)")
     if any(t.kind == "change point" for t in a.toggles):
         warnings.append("change point: a dyad folds flat and can switch branch; guide it through")
+    bound = _slide_bound(a)
+    if bound is not None:
+        report["input_bound_mm"] = num(bound)
+        warnings.append(f"no toggle ends the slide's range within {bound:.6g} mm of the drawing "
+                        f"({motion.SLIDE_REACH:g} times the drawing's size, {a.linkage.structure.size:.6g} mm): the "
+                        "motion is analysed to there; give range = [from, to] for another stretch")
     report["warnings"] = warnings
     if angle is not None:
         report["positions"] = positions(table, a, angle)
     return report
 
 
-def _extent(a: Analysis, point: str) -> tuple[tuple[float, float], tuple[float, float]]:
-    """A tracer's x and y ranges (mm): refined over the motion analysed with one input, sampled with more."""
-    if len(a.table.inputs) == 1:
-        return motion.extent(a.linkage, point, float(a.span[0, 0]), float(a.span[0, -1]))
-    p = a.sweep.points[point]
-    return (float(p[:, 0].min()), float(p[:, 0].max())), (float(p[:, 1].min()), float(p[:, 1].max()))
+def _extents(a: Analysis, points: tuple[str, ...]) -> dict[str, tuple[tuple[float, float], tuple[float, float]]]:
+    """The tracers' x and y ranges (mm): refined over the circuit with one input, sampled with more."""
+    if a.circuit is not None:
+        return linkage_circuit.extents_over(a.circuit, points) if points else {}
+    out = {}
+    for point in points:
+        p = a.sweep.points[point]
+        out[point] = (float(p[:, 0].min()), float(p[:, 0].max())), (float(p[:, 1].min()), float(p[:, 1].max()))
+    return out
+
+
+def _slide_bound(a: Analysis) -> float | None:
+    """The searched bound (mm either way of the drawing) where a slide input's range analysed ends without a toggle;
+    None where toggles end it (or the table gives the range)."""
+    if a.crank or a.circuit is None or a.table.inputs[0].range is not None:
+        return None
+    ends = [v for p in a.circuit.pieces for v in (p.lo, p.hi)]
+    return motion.reach(a.linkage) if any(motion.bounded(a.linkage, v) for v in ends) else None
+
+
+def _branch(circuit: linkage_circuit.Circuit, piece: int) -> str:
+    other = circuit.pieces[piece].other
+    return "as drawn" if not other else "other branch at " + ", ".join(other)
+
+
+def _circuit_report(a: Analysis, circuit: linkage_circuit.Circuit) -> dict[str, Any]:
+    """The circuit's pieces (input range and branches; a full turn from its start to its end, unreduced), whether
+    it closes, and the ranges of separate circuits."""
+    unit = "deg" if a.crank else "mm"
+
+    def shown(v: float) -> float:
+        return round(math.degrees(v), 9) if circuit.turns else a.shown(v)
+
+    return {"pieces": [{f"input_{unit}": [shown(p.lo), shown(p.hi)], "branches": _branch(circuit, k)}
+                       for k, p in enumerate(circuit.pieces)],
+            "closed": circuit.closed,
+            f"separate_{unit}": [[a.shown(lo), a.shown(hi)] for lo, hi in circuit.separate]}
+
+
+def _output_report(a: Analysis, name: str, om: linkage_circuit.OutputMotion) -> dict[str, Any]:
+    """A rocker's limit positions, swing and time ratio; a ground slider's limit positions, travel and stroke:
+    over the circuit (the branches named where it has more than one piece)."""
+    unit = "deg" if a.crank else "mm"
+    rocker = name not in a.linkage.structure.slider_by_name
+    circuit = a.circuit
+    several = circuit is not None and len(circuit.pieces) > 1
+    at = []
+    for e, k in zip(om.limits, om.pieces, strict=True):
+        entry = {f"input_{unit}": a.shown(e.value),
+                 **({"angle_from_drawing_deg": num(math.degrees(e.position))} if rocker else
+                    {"travel_mm": num(e.position)})}
+        if several:
+            entry["branches"] = _branch(circuit, k)
+        at.append(entry)
+    out: dict[str, Any] = {"limit_positions": at}
+    if rocker:
+        if om.turns:
+            out["turns_fully"] = True
+        elif om.limits:
+            out["swing_deg"] = num(math.degrees(om.travel))
+            if several:
+                out["swing_between_deg"] = [num(math.degrees(om.least[0])), num(math.degrees(om.greatest[0]))]
+    else:
+        travel = {"travel_mm": [num(om.least[0]), num(om.greatest[0])], "stroke_mm": num(om.travel)}
+    one_turn = circuit is not None and circuit.turns and len(circuit.pieces) == 1
+    ratio = motion.time_ratio(a.linkage, om.limits) if one_turn else None
+    out["time_ratio"] = None if ratio is None else round(ratio, 12)
+    return out if rocker else {**out, **travel}
 
 
 def _travel(a: Analysis, sl: Slider) -> np.ndarray:
@@ -418,7 +518,7 @@ def general_parts(a: Analysis, table: PartsTable) -> tuple[LinkPart, ...]:
         if name not in s.bodies:
             raise SpecError(f"no link {name!r} in this linkage (links: {', '.join(s.bodies)})", f"parts.links.{name}")
     stock = Stock.of(table)
-    sweep = a.sweep
+    sweep = a.travel
     slots: dict[str, list[tuple[np.ndarray, np.ndarray]]] = {b: [] for b in s.bodies}
     for sl in s.sliders:
         # the guide's slot spans the sliding point's travel, seen from the guide (in the drawing's frame)
@@ -477,8 +577,7 @@ def general_placement(a: Analysis, sol: Solution) -> Placement:
 def general_layout(a: Analysis, table: PartsTable) -> Layout:
     """The parts over the motion analysed; the assembly drawn at every toggle and limit position inside it (at
     the drawing when there is none), with the tracers' paths (every moving joint's when there are no tracers)."""
-    sweep = a.sweep
-    positions: list[tuple[str, float]] = []
+    positions: list[tuple[str, float, Linkage]] = []
     lo, hi = float(a.span[0, 0]), float(a.span[0, -1])
 
     def inside(v: float) -> bool:
@@ -486,20 +585,22 @@ def general_layout(a: Analysis, table: PartsTable) -> Layout:
 
     for t in a.toggles:
         if inside(t.value):
-            positions.append(("toggle" if t.kind == "limit" else "change-point", t.value))
-    for body, ext in a.extremes.items():
-        positions += [(f"limit-{body}", e.value) for e in ext if inside(e.value)]
+            positions.append(("toggle" if t.kind == "limit" else "change-point", t.value, a.linkage))
+    pieces = a.circuit.pieces if a.circuit is not None else ()
+    for body, om in a.outputs.items():
+        positions += [(f"limit-{body}", e.value, pieces[k].linkage) for e, k in zip(om.limits, om.pieces, strict=True)]
     if not positions or len(a.table.inputs) > 1:
-        positions = [("drawn", float(a.linkage.drawn_inputs[0]))]
+        positions = [("drawn", float(a.linkage.drawn_inputs[0]), a.linkage)]
     positions.sort(key=lambda p: p[1])
     if len(a.table.inputs) > 1:
         poses = (general_placement(a, a.linkage.solve(a.linkage.drawn_inputs[:, None])),)
     else:
-        poses = tuple(general_placement(a, a.linkage.solve(np.array([[v]]))) for _, v in positions)
+        poses = tuple(general_placement(a, linkage.solve(np.array([[v]]))) for _, v, linkage in positions)
     traced = a.table.tracers or tuple(p for p in a.linkage.structure.points
                                       if p not in a.linkage.structure.bodies[GROUND])
-    return Layout(general_parts(a, table), general_placement(a, sweep), tuple(positions), poses,
-                  tuple(sweep.points[t] for t in traced))
+    sweep = a.travel
+    return Layout(general_parts(a, table), general_placement(a, sweep), tuple((k, v) for k, v, _ in positions),
+                  poses, tuple(sweep.points[t] for t in traced))
 
 
 def general_sketch(a: Analysis) -> Drawing:
