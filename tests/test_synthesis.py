@@ -441,8 +441,11 @@ def test_python_api_writes_what_the_command_writes(tmp_path):
     ({"kind": "path", "points": [[0, 0], [10, 2], [20, 8]], "starts": 64, "generations": 10_000},
      "task.generations: starts x generations is 640000, at most 100000"),
     ({"kind": "path", "points": [[k, k * k % 7] for k in range(100)], "closed": True, "generations": 10_000,
-      "starts": 1}, "task.generations: the search would make 1.62e+09 design-target evaluations (starts x generations "
-                    "x population x 108 unknowns x 100 points), at most 1e+08"),
+      "starts": 1}, "task.generations: the search would make about 2.33e+09 design-target evaluations (starts x "
+                    "(generations x population x 108 unknowns + 600 x 109^2 for the polish) x 100 points), at most "
+                    "1.5e+08"),
+    ({"kind": "path", "points": [[math.cos(k), math.sin(k)] for k in range(60)], "closed": True, "starts": 1,
+      "generations": 10}, "task.generations: the search would make about 1.72e+08"),
     ({"kind": "path", "points": [[k, k * k % 7] for k in range(201)]}, "task.points: a path needs 3 to 200"),
     ({"kind": "function", "function": "x", "x_range": [1, 10], "input_angles": [30, 120], "output_angles": [90, 180],
       "precision_points": 1001}, "task.precision_points: must be >= 3 and <= 1000"),

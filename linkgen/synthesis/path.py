@@ -55,8 +55,10 @@ SOFT = 10.0
 GRASHOF_MARGIN = 1e-4
 #: the fractions of each step between targets where a crank that does not turn fully is checked for reach
 STEPS = np.array([0.25, 0.5, 0.75])
-#: distinct designs of each search's final population polished
+#: distinct designs of each search's final population polished (the task's budget counts them: POLISH_EVALUATIONS)
 POLISHED = 3
+#: the transmission limit is kept this far inside (rad), so that a candidate on it reports no less than the limit
+TRANSMISSION_MARGIN = 1e-10
 TWO_PI = 2.0 * math.pi
 
 
@@ -108,7 +110,8 @@ def problem_of(task: Any) -> Problem:
         bounds += [(0.0, TWO_PI), (-1.0, 1.0)] + [(0.05, 1.0)] * len(targets)
     mu = task.min_transmission
     return Problem(targets, timing, task.crank, tuple(bounds), box, (x_min, y_min, x_max, y_max), task.link_ratio,
-                   None if mu == 0 else math.cos(math.radians(mu)), task.generations, task.population, hi)
+                   None if mu == 0 else math.cos(math.radians(mu) + TRANSMISSION_MARGIN), task.generations,
+                   task.population, hi)
 
 
 def angles(x: np.ndarray, p: Problem) -> np.ndarray:

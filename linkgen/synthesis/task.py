@@ -41,9 +41,13 @@ MAX_SAMPLES = 3600
 MAX_MOTION_SAMPLES = 60
 #: a path search's budget: at most this many independent searches, generations a search, population per unknown
 MAX_STARTS, MAX_GENERATIONS, MAX_POPULATION = 64, 10_000, 100
-#: ... at most this many design-target evaluations in all (starts x generations x population x unknowns x points;
-#: about a minute and a half on one core) ...
-MAX_PATH_EVALUATIONS = 10**8
+#: ... at most this many design-target evaluations in all, the differential evolution's (starts x generations x
+#: population x unknowns x points) and the polish's (below; about two minutes on one core in all) ...
+MAX_PATH_EVALUATIONS = 15 * 10**7
+#: ... the polish of a search counted as this many evaluations per design number squared per point (3 designs
+#: polished, least squares and SLSQP over all the numbers with central differences: measured on curve18 and on 50
+#: untimed points, 80 to 300 each) ...
+POLISH_EVALUATIONS = 600
 #: ... and at most this many generations in all (starts x generations; each costs a vectorised call or two)
 MAX_PATH_GENERATIONS = 100_000
 #: the largest |x| or |y| of a function task's table or range, and of y = f(x) over the range
@@ -255,9 +259,9 @@ class PathTask(SearchOptions):
                          MAX_STARTS)
     generations: int = _count(f"differential evolution's generations a search, at most {MAX_GENERATIONS}, and "
                               f"starts x generations at most {MAX_PATH_GENERATIONS}", 1500, 1, MAX_GENERATIONS)
-    population: int = _count(f"differential evolution's population, per unknown, at most {MAX_POPULATION}; starts x "
-                             f"generations x population x unknowns x points at most {MAX_PATH_EVALUATIONS:.0e}", 15,
-                             5, MAX_POPULATION)
+    population: int = _count(f"differential evolution's population, per unknown, at most {MAX_POPULATION}; the "
+                             f"whole search at most {MAX_PATH_EVALUATIONS:.2g} design-target evaluations", 15, 5,
+                             MAX_POPULATION)
 
     @model_validator(mode="after")
     def _targets(self) -> PathTask:
@@ -293,16 +297,19 @@ class PathTask(SearchOptions):
     def _budget(self) -> None:
         """Refuse a search too big to finish in a couple of minutes on one core (see MAX_PATH_EVALUATIONS); the
         unknowns are those :func:`linkgen.synthesis.path.problem_of` searches (and, untimed, a crank angle a
-        point)."""
-        unknowns = 6 if self.input_angles is not None else 8 + len(self.points)
+        point), the polish runs over the nine design numbers (and the crank angles)."""
+        n = len(self.points)
+        searched, polished = (6, 9) if self.input_angles is not None else (8 + n, 9 + n)
         if self.starts * self.generations > MAX_PATH_GENERATIONS:
             raise ValueError(f"generations: starts x generations is {self.starts * self.generations}, at most "
                              f"{MAX_PATH_GENERATIONS}: give fewer generations or starts")
-        work = self.starts * self.generations * self.population * unknowns * len(self.points)
+        work = self.starts * (self.generations * self.population * searched + POLISH_EVALUATIONS * polished**2) * n
         if work > MAX_PATH_EVALUATIONS:
-            raise ValueError(f"generations: the search would make {work:.3g} design-target evaluations (starts x "
-                             f"generations x population x {unknowns} unknowns x {len(self.points)} points), at most "
-                             f"{MAX_PATH_EVALUATIONS:.0e}: give fewer generations, starts, population or points")
+            raise ValueError(f"generations: the search would make about {work:.3g} design-target evaluations (starts "
+                             f"x (generations x population x {searched} unknowns + {POLISH_EVALUATIONS} x {polished}^2 "
+                             f"for the polish) x {n} points), at most {MAX_PATH_EVALUATIONS:.2g}: give fewer "
+                             "generations, starts, population or points" + ("" if self.input_angles is not None else
+                                                                           ", or their input_angles"))
 
 
 #: ``task.kind`` -> its model
