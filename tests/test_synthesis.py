@@ -456,6 +456,10 @@ def test_python_api_writes_what_the_command_writes(tmp_path):
      "task.rocker: none of the 722 linkages found has its ground, crank, coupler, rocker within [1e-06, 10000] mm"),
     ({"kind": "function", "function": "log10(x)", "x_range": [1, 10], "input_angles": [30, 120],
       "output_angles": [105, 165], "ground": 10_000}, "task.ground: the linkage through the precision points has"),
+    # found by fuzzing after the issue: an OverflowError from a huge offset, a ZeroDivisionError from a tiny swing
+    ({"kind": "slider-crank", "stroke": 100, "time_ratio": 1.3, "offset": -1e300},
+     "task.offset: must be at most 10000 mm in size (got -1e+300)"),
+    ({"kind": "crank-rocker", "swing": 1e-300, "rocker": 50}, "task.swing: must be >= 0.01 and < 180 degrees"),
     # a requirement that binds: one line naming it
     ({"kind": "slider-crank", "stroke": 100, "time_ratio": 1.5},
      "task.min_transmission: none of the 217 linkages found keeps its transmission angle at least 30 degrees"),

@@ -127,7 +127,7 @@ class CrankRockerTask(SearchOptions):
     """A Grashof crank-rocker whose rocker swings ``swing`` degrees with time ratio ``time_ratio``."""
 
     kind: Literal["crank-rocker"]
-    swing: float = Field(gt=0, lt=180, description="rocker swing", json_schema_extra=unit("degrees"))
+    swing: float = Field(ge=0.01, lt=180, description="rocker swing", json_schema_extra=unit("degrees"))
     time_ratio: float = Field(1.0, ge=1, le=10, description="slower stroke's time over the faster's")
     rocker: float = _mm("rocker length (pivot to pin)")
     ground: float | None = _mm("ground length, when fixed (else the free choice is swept)", None)
@@ -154,6 +154,8 @@ class SliderCrankTask(SearchOptions):
 
     @model_validator(mode="after")
     def _offset(self) -> SliderCrankTask:
+        if self.offset is not None and not abs(self.offset) <= MAX_LENGTH_MM:
+            raise ValueError(f"offset: must be at most {MAX_LENGTH_MM:g} mm in size (got {self.offset:g})")
         if self.offset is not None and self.time_ratio == 1 and self.offset != 0:
             raise ValueError(f"offset: a time ratio of 1 needs a centred slider, offset 0 (got {self.offset:g} mm)")
         if self.offset is not None and self.time_ratio > 1 and self.offset == 0:
