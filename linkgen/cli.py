@@ -188,6 +188,8 @@ def _print_synthesis(summary: dict[str, Any]) -> None:
         lengths = ", ".join(f"{k} {row[k]:.6g}" for k in ("ground", "crank", "coupler", "rocker", "rod", "offset")
                             if k in row)
         click.echo(f"  {row['rank']}. {row['template']}: {'; '.join(figures)}; {lengths} mm")
+    for line in search.get("bound", []):
+        click.echo(f"note: {line}")
 
 
 add_family(main, "linkgen.spec:validate_spec", "linkgen.outputs:build_member",

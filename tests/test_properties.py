@@ -59,6 +59,8 @@ from camgen.spec import CamSpec
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
 from linkgen.spec import spec_model
+from linkgen.synthesis.task import TASKS
+from linkgen.synthesis.task import spec_model as task_model
 from tests.conftest import ROOT
 
 # --------------------------------------------------------------------------------------------------- profiles
@@ -264,7 +266,7 @@ def refused_alone(info: Any, value: Any) -> bool:
 
 
 #: every model a template is validated with
-ROOTS = (CamSpec, GenevaSpec, *{spec_model(m) for m in MECHANISMS.values()})
+ROOTS = (CamSpec, GenevaSpec, *{spec_model(m) for m in MECHANISMS.values()}, *(task_model(k) for k in TASKS))
 #: the names an error may give that are not a template's fields: the template itself, its include, a family's
 #: sweep and sheet, the commands' options
 OPTIONS = {"template", "base", "sweep", "sheet", "--set", "--jobs", "--angle", "--method", "--scheduler", "--output",
@@ -1091,7 +1093,10 @@ def _option_args(tmp: Path) -> st.SearchStrategy[tuple[Any, list[str], Path]]:
     afile = tmp / "afile"
     rdrd, crank = str(TEMPLATES / "rdrd.toml"), str(TEMPLATES / "crank-rocker.toml")
     fam = str(TEMPLATES / "automaton-cams.toml")
+    line6, motion, log10, rocker = (str(TEMPLATES / f"synth-{n}.toml") for n in ("line6", "motion", "log10",
+                                                                                   "crank-rocker"))
     out = tmp / "o"
+    quick = ["--set", "task.starts=1", "--set", "task.generations=20"]
     return st.sampled_from([
         (camgen, ["build", rdrd, "-o", str(afile)], afile),
         (camgen, ["build", rdrd, "-o", str(afile / "sub")], afile / "sub"),
@@ -1138,6 +1143,21 @@ def _option_args(tmp: Path) -> st.SearchStrategy[tuple[Any, list[str], Path]]:
         (linkgen, ["family", str(TEMPLATES / "crank-rockers.toml"), "-o", str(out), "--jobs", "0"], out),
         (linkgen, ["bench", "-o", str(afile)], afile),
         (linkgen, ["nothing"], out),
+        # issue 30's synthesis classes: an OverflowError, 1.96 TiB asked for, budgets without a bound, refusals naming
+        # the candidate's keys, raw warnings from matplotlib and scipy
+        (linkgen, ["synthesize", line6, "-o", str(out), *quick, "--set",
+                   "task.points=[[1e300, 0], [0, 1e300], [1e300, 1e300], [5, 5], [6, 6], [7, 7]]"], out),
+        (linkgen, ["synthesize", motion, "-o", str(out), "--set", "task.samples=720"], out),
+        (linkgen, ["synthesize", line6, "-o", str(out), "--set", "task.generations=100000000"], out),
+        (linkgen, ["synthesize", line6, "-o", str(out), "--set", "task.population=100000"], out),
+        (linkgen, ["synthesize", line6, "-o", str(out), "--set", "task.starts=100000"], out),
+        (linkgen, ["synthesize", rocker, "-o", str(out), "--set", "task.samples=10000000"], out),
+        (linkgen, ["synthesize", rocker, "-o", str(out), "--set", "task.rocker=10000", "--set",
+                   "task.link_range=[1, 10000]"], out),
+        (linkgen, ["synthesize", log10, "-o", str(out), "--set", "task.ground=10000"], out),
+        (linkgen, ["synthesize", log10, "-o", str(out), "--set", "task.precision_points=1000"], out),
+        (linkgen, ["synthesize", line6, "-o", str(out), *quick, "--set", "task.coupler_range=1e300"], out),
+        (linkgen, ["synthesize", line6, "-o", str(out), *quick, "--set", "task.min_transmission=89"], out),
     ])
 
 

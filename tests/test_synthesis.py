@@ -52,6 +52,48 @@ def reanalysed(candidate, angles_deg) -> np.ndarray:
     return np.array(out)
 
 
+def sampled_transmission(lengths, theta2) -> float:
+    """The worst transmission angle (degrees) of a four-bar at crank angles ``theta2`` (rad from the ground line),
+    sampled: the rocker pin B where the circles about the crank pin A (radius coupler) and about O4 (radius rocker)
+    meet, and the angle at B between B->A and B->O4 folded into [0, 90]. ``lengths`` is a row or table with ground,
+    crank, coupler and rocker (mm)."""
+    r1, r2, r3, r4 = (lengths[k] for k in ("ground", "crank", "coupler", "rocker"))
+    a = r2 * np.exp(1j * np.asarray(theta2))
+    d = r1 - a
+    z = np.abs(d)
+    along = (r3**2 - r4**2 + z**2) / (2 * z)
+    b = a + (along + 1j * np.sqrt(r3**2 - along**2)) * d / z
+    gamma = np.degrees(np.abs(np.angle((a - b) / (r1 - b))))
+    assert np.all(np.isfinite(gamma)), "the loop does not close over the motion"
+    return float(np.min(np.minimum(gamma, 180 - gamma)))
+
+
+def template_transmission(c, task_keys: dict) -> float:
+    """The worst transmission angle (degrees) of a candidate's template over the motion it makes, sampled (36 001
+    crank angles): the whole turn for a crank, else the crank's travel from the first target to the last; a
+    slider-crank's the angle between the rod and the normal to the slider line."""
+    table = c.template["linkage"]
+    if table["type"] == "slider-crank":
+        r, rod, e = table["crank"], table["rod"], table["offset"]
+        t = np.linspace(0, 2 * math.pi, 36001)
+        lean = np.degrees(np.abs(np.arcsin((r * np.sin(t) - e) / rod)))       # the rod's angle to the slider line
+        return float(np.min(90 - lean))
+    if table["type"] == "linkage":                  # drawn in the task's frame: its lengths from its joints
+        j = {k: np.array(v) for k, v in table["joints"].items()}
+        table = {"ground": math.dist(j["O2"], j["O4"]), "crank": math.dist(j["O2"], j["A"]),
+                 "coupler": math.dist(j["A"], j["B"]), "rocker": math.dist(j["O4"], j["B"])}
+    if task_keys["kind"] == "function":
+        turned = c.row["crank_turned_deg"]
+        lo, hi = (a + turned for a in task_keys["input_angles"])
+        return sampled_transmission(table, np.radians(np.linspace(lo, hi, 36001)))
+    if task_keys.get("crank", True) or task_keys["kind"] == "crank-rocker":
+        return sampled_transmission(table, np.linspace(0, 2 * math.pi, 36001))
+    start, end = np.radians(c.row["input_angles"][0]), np.radians(c.row["input_angles"][-1])
+    turn = 1 if sense(np.radians(c.row["input_angles"])) > 0 else -1
+    end = start + turn * np.mod(turn * (end - start), 2 * math.pi)
+    return sampled_transmission(table, np.linspace(start, end, 36001))
+
+
 def tomllib_text(raw: dict) -> str:
     from linkgen.synthesis.candidates import toml_text
 
@@ -92,10 +134,26 @@ def test_quick_return_crank_rocker_is_norton_example_3_9():
 
 
 def test_crank_rocker_with_its_ground_given_meets_it():
-    result = run(task("crank-rocker", swing=60.0, time_ratio=1.3, rocker=40.0, ground=70.0))
+    """On a ground of 70 mm the construction gives two linkages (and their mirror images); one lets its transmission
+    angle fall below the 30 degrees every candidate keeps by default, so only the other is offered, with a line naming
+    the limit. 60 degrees of swing with a time ratio of 1.3 on that ground binds whatever the choice: refused, naming
+    the limit, and offered once the task lowers it."""
+    result = run(task("crank-rocker", swing=45.0, time_ratio=1.2, rocker=50.0, ground=70.0))
+    assert result.candidates
     for c in result.candidates:
         assert c.row["ground"] == pytest.approx(70.0, rel=1e-12)
+        assert c.report["rocker_swing_deg"] == pytest.approx(45.0, abs=1e-6)
+        assert sampled_transmission(c.row, np.linspace(0, 2 * math.pi, 36001)) >= 30.0
+    assert len(result.search["bound"]) == 1 and result.search["bound"][0].startswith("task.min_transmission: 2 of ")
+    binding = task("crank-rocker", swing=60.0, time_ratio=1.3, rocker=40.0, ground=70.0)
+    with pytest.raises(SpecError, match=r"^task.min_transmission: none of the 2 linkages .* best reaches 16\.5"):
+        run(binding)
+    binding["task"]["min_transmission"] = 0
+    for c in run(binding).candidates:
+        assert c.row["ground"] == pytest.approx(70.0, rel=1e-12)
         assert c.report["rocker_swing_deg"] == pytest.approx(60.0, abs=1e-6)
+        assert sampled_transmission(c.row, np.linspace(0, 2 * math.pi, 36001)) == pytest.approx(
+            c.row["transmission_worst_deg"], abs=1e-3)
 
 
 def test_slider_crank_stroke_and_time_ratio():
@@ -117,7 +175,7 @@ def test_freudenstein_log10_three_chebyshev_points():
     Chebyshev points; the linkage meets log10 exactly there and its reported structural error is the one measured
     here over the range."""
     result = run(task("function", function="log10(x)", x_range=[1, 10], input_angles=[30, 120],
-                      output_angles=[90, 180]))
+                      output_angles=[90, 180], min_transmission=0))     # it binds: see the test below
     row = result.candidates[0].row
     x = 5.5 - 4.5 * np.cos(np.array([1, 3, 5]) * math.pi / 6)
     t2, t4 = np.radians(30 + (x - 1) / 9 * 90), np.radians(90 + np.log10(x) * 90)
@@ -137,11 +195,26 @@ def test_freudenstein_log10_three_chebyshev_points():
 
 def test_freudenstein_least_squares_meets_the_normal_equations():
     row = run(task("function", function="log10(x)", x_range=[1, 10], input_angles=[30, 120], output_angles=[90, 180],
-                   precision_points=9)).candidates[0].row
+                   precision_points=9, min_transmission=0)).candidates[0].row
     x = np.array(row["precision_x"])
     t2, t4 = np.radians(30 + (x - 1) / 9 * 90), np.radians(90 + np.log10(x) * 90)
     m = np.column_stack([np.cos(t4), -np.cos(t2), np.ones(9)])
     assert np.abs(m.T @ (m @ np.array(row["freudenstein_k"]) - np.cos(t2 - t4))).max() < 1e-12
+
+
+def test_a_function_generator_that_binds_is_refused_naming_the_limit():
+    """The textbook log10 task's linkage (crank 30 to 120 degrees, rocker 90 to 180) lets its transmission angle fall to
+    2.8 degrees over the input range (sampled here from its lengths): refused by default, naming the limit; the
+    bundled task's rocker range (105 to 165 degrees) keeps it above 30."""
+    keys = {"function": "log10(x)", "x_range": [1, 10], "input_angles": [30, 120]}
+    row = run(task("function", **keys, output_angles=[90, 180], min_transmission=0)).candidates[0].row
+    crank = np.radians(np.linspace(30, 120, 20001) + row["crank_turned_deg"])
+    worst = sampled_transmission(row, crank)
+    assert worst == pytest.approx(row["transmission_worst_deg"], abs=1e-6) and 2 < worst < 3
+    with pytest.raises(SpecError, match=rf"^task.min_transmission: .* fall to {worst:.3g} degrees over the input"):
+        run(task("function", **keys, output_angles=[90, 180]))
+    row = run(task("function", **keys, output_angles=[105, 165])).candidates[0].row
+    assert sampled_transmission(row, np.radians(np.linspace(30, 120, 20001) + row["crank_turned_deg"])) >= 30
 
 
 def test_function_from_a_table():
@@ -339,6 +412,59 @@ def test_python_api_writes_what_the_command_writes(tmp_path):
     ({"kind": "motion", "positions": [[0, 0, 0], [0, 0, 360]], "moving_pivots": [[1, 1], [5, 1]]},
      "task.positions: items 0 and 1 give the same pose"),
     ({"kind": "spiral"}, "task.kind: unknown value 'spiral'"),
+    # issue 30: coordinates a template cannot hold (1e300 raised OverflowError in the search's penalty)
+    ({"kind": "path", "points": [[1e300, 0], [0, 1e300], [1e300, 1e300]]},
+     "task.points: item 0, [1e+300, 0], must lie within 10000 mm of the origin"),
+    ({"kind": "path", "points": [[0, 0], [10, 2], [20, 8]], "ground_region": [[-1e300, -1], [1e300, 1]]},
+     "task.ground_region: item 0, [-1e+300, -1], must lie within 10000 mm"),
+    ({"kind": "motion", "positions": [[0, 0, 0], [40, 20, 30], [70, 55, 75]], "fixed_pivots": [[1e300, 0], [0, 5]]},
+     "task.fixed_pivots: item 0, [1e+300, 0], must lie within 10000 mm"),
+    ({"kind": "motion", "positions": [[0, 0, 0], [2e4, 20, 30], [70, 55, 75]]}, "task.positions: item 1, [20000, 20]"),
+    ({"kind": "function", "table": [[0, 0], [1, 1e300], [2, 3]], "input_angles": [30, 120], "output_angles": [90, 180]},
+     "task.table: every x and y must lie within +-1e+12"),
+    ({"kind": "function", "function": "exp(x)", "x_range": [1, 700], "input_angles": [30, 120],
+      "output_angles": [105, 165]}, "task.function: y must stay within +-1e+12 over the range (it reaches 3.78e+12)"),
+    # the coupler range that made scipy's least squares warn
+    ({"kind": "path", "points": [[0, 0], [10, 2], [20, 8]], "coupler_range": 1e300},
+     "task.coupler_range: must be > 0 and <= 10000 mm (got 1e+300)"),
+    # budgets: each bounded, the bound in the message (samples = 720 tried to allocate 1.96 TiB)
+    ({"kind": "motion", "positions": [[0, 0, 0], [40, 20, 30], [70, 55, 75]], "samples": 720},
+     "task.samples: must be >= 4 and <= 60 (got 720)"),
+    ({"kind": "crank-rocker", "swing": 45, "rocker": 50, "samples": 100_000},
+     "task.samples: must be >= 3 and <= 3600 (got 100000)"),
+    ({"kind": "slider-crank", "stroke": 50, "samples": 100_000}, "task.samples: must be >= 3 and <= 3600"),
+    ({"kind": "path", "points": [[0, 0], [10, 2], [20, 8]], "generations": 1_000_000},
+     "task.generations: must be >= 1 and <= 10000 (got 1000000)"),
+    ({"kind": "path", "points": [[0, 0], [10, 2], [20, 8]], "population": 1000},
+     "task.population: must be >= 5 and <= 100 (got 1000)"),
+    ({"kind": "path", "points": [[0, 0], [10, 2], [20, 8]], "starts": 1000}, "task.starts: must be >= 1 and <= 64"),
+    ({"kind": "path", "points": [[0, 0], [10, 2], [20, 8]], "starts": 64, "generations": 10_000},
+     "task.generations: starts x generations is 640000, at most 100000"),
+    ({"kind": "path", "points": [[k, k * k % 7] for k in range(100)], "closed": True, "generations": 10_000,
+      "starts": 1}, "task.generations: the search would make about 2.33e+09 design-target evaluations (starts x "
+                    "(generations x population x 108 unknowns + 600 x 109^2 for the polish) x 100 points), at most "
+                    "1.5e+08"),
+    ({"kind": "path", "points": [[math.cos(k), math.sin(k)] for k in range(60)], "closed": True, "starts": 1,
+      "generations": 10}, "task.generations: the search would make about 1.72e+08"),
+    ({"kind": "path", "points": [[k, k * k % 7] for k in range(201)]}, "task.points: a path needs 3 to 200"),
+    ({"kind": "function", "function": "x", "x_range": [1, 10], "input_angles": [30, 120], "output_angles": [90, 180],
+      "precision_points": 1001}, "task.precision_points: must be >= 3 and <= 1000"),
+    ({"kind": "crank-rocker", "swing": 45, "rocker": 50, "min_transmission": 90},
+     "task.min_transmission: must be >= 0 and < 90 degrees (got 90)"),
+    # refusals that named the candidate's keys (linkage.ground, linkage.rod, linkage.crank) name the task's
+    ({"kind": "crank-rocker", "swing": 45, "rocker": 10_000},
+     "task.rocker: none of the 722 linkages found has its ground, crank, coupler, rocker within [1e-06, 10000] mm"),
+    ({"kind": "function", "function": "log10(x)", "x_range": [1, 10], "input_angles": [30, 120],
+      "output_angles": [105, 165], "ground": 10_000}, "task.ground: the linkage through the precision points has"),
+    # found by fuzzing after the issue: an OverflowError from a huge offset, a ZeroDivisionError from a tiny swing
+    ({"kind": "slider-crank", "stroke": 100, "time_ratio": 1.3, "offset": -1e300},
+     "task.offset: must be at most 10000 mm in size (got -1e+300)"),
+    ({"kind": "crank-rocker", "swing": 1e-300, "rocker": 50}, "task.swing: must be >= 0.01 and < 180 degrees"),
+    # a requirement that binds: one line naming it
+    ({"kind": "slider-crank", "stroke": 100, "time_ratio": 1.5},
+     "task.min_transmission: none of the 217 linkages found keeps its transmission angle at least 30 degrees"),
+    ({"kind": "motion", "positions": [[0, 0, 0], [40, 20, 30], [70, 55, 75]], "link_range": [15, 200],
+      "min_transmission": 60}, "task.min_transmission: none of the 246 defect-free four-bars"),
 ])
 def test_bad_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, keys, message):
     from linkgen.cli import main
@@ -355,12 +481,142 @@ def test_bad_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, keys, messa
 
 @pytest.mark.parametrize("path", sorted((ROOT / "templates").glob("synth-*.toml")), ids=lambda p: p.name)
 def test_every_bundled_synthesis_template_gives_candidates(path):
-    """Each bundled task as written (a path search on a small budget) gives candidates whose reports are their own."""
+    """Each bundled task as written (a path search on a small budget) gives candidates whose reports are their own,
+    and none binds: each keeps its transmission angle at least 30 degrees over the motion it makes, as measured here
+    from its template by sampling, and reports that worst angle."""
     from linkgen.synthesis import load_task
 
-    searched = tomllib.loads(path.read_text())["task"]["kind"] == "path"
-    spec = load_task(path, ["task.starts=1", "task.generations=100"] if searched else [])
+    keys = tomllib.loads(path.read_text())["task"]
+    spec = load_task(path, ["task.starts=1", "task.generations=100"] if keys["kind"] == "path" else [])
     result = synthesize(spec)
     assert result.candidates
     for c in result.candidates:
         assert c.report["name"] == c.name and c.row["template"] == f"{c.name}.toml"
+        worst = template_transmission(c, keys)
+        assert worst >= 30 - 1e-6, (c.name, worst)
+        assert c.row["transmission_worst_deg"] >= 30 - 1e-9
+        assert c.row["transmission_worst_deg"] == pytest.approx(worst, abs=2e-3)
+
+
+# ---------------------------------------------------------------------- issue 30: limits, memory, warnings
+
+
+def test_worst_transmission_over_an_arc_is_the_sampled_one():
+    """The closed form over an arc (ends, and theta2 = 0 or 180 degrees where the arc holds them) against 20 001
+    samples of the angle at B, for random four-bars and arcs either way round, some longer than a turn."""
+    from linkgen.synthesis.geometry import worst_transmission
+
+    rng = np.random.default_rng(30)
+    for _ in range(300):
+        lengths = dict(zip(("ground", "crank", "coupler", "rocker"), rng.uniform(5, 100, 4), strict=True))
+        r1, r2, r3, r4 = lengths.values()
+        if not abs(r3 - r4) + 1e-6 < min(abs(r1 - r2), r1 + r2) or max(abs(r1 - r2), r1 + r2) > r3 + r4 - 1e-6:
+            continue                                    # only linkages that close over the whole turn
+        start = rng.uniform(-10, 10)
+        end = start + rng.uniform(-8, 8)
+        got = math.degrees(float(worst_transmission(r1, r2, r3, r4, start, end)))
+        assert got == pytest.approx(sampled_transmission(lengths, np.linspace(start, end, 20001)), abs=1e-4)
+
+
+def test_a_path_search_keeps_the_transmission_limit_and_says_it_binds():
+    """line6 on a small budget: the best candidate keeps 30 degrees over the whole turn (sampled here from its
+    template), the limit binds and a line says so; a task asking more gets it, and one asking nothing may go lower."""
+    keys = tomllib.loads(LINE6.read_text())["task"]
+    for limit in (30, 50):
+        result = run({"name": "l6", "task": {**keys, "starts": 1, "generations": 150, "candidates": 1,
+                                             "min_transmission": limit}})
+        c = result.candidates[0]
+        assert template_transmission(c, keys) >= limit - 1e-6
+        assert c.row["transmission_worst_deg"] == pytest.approx(template_transmission(c, keys), abs=2e-3)
+        assert any(f"task.min_transmission (its transmission angle falls to the {limit} degrees allowed)" in line
+                   for line in result.search["bound"]), result.search["bound"]
+    free = run({"name": "l6", "task": {**keys, "starts": 1, "generations": 150, "candidates": 1,
+                                       "min_transmission": 0}}).candidates[0]
+    assert free.row["error_mm2"] < c.row["error_mm2"] and free.row["transmission_worst_deg"] < 30
+
+
+def test_a_rocking_input_keeps_the_limit_over_its_travel():
+    """Without a crank that turns fully the transmission angle is kept over the crank's travel from the first target
+    (or position) to the last, the way it meets them: sampled here from each template."""
+    targets = _known_path([20, 50, 80, 110, 140])
+    keys = {"kind": "path", "points": targets.tolist(), "crank": False, "link_range": [5, 80]}
+    for c in run({"name": "p", "task": {**keys, "starts": 1, "generations": 100, "candidates": 2}}).candidates:
+        assert template_transmission(c, keys) >= 30 - 1e-6
+        assert c.row["transmission_worst_deg"] == pytest.approx(template_transmission(c, keys), abs=2e-3)
+    positions, _ = _poses([20, 100, 200])
+    keys = {"kind": "motion", "positions": positions, "crank": False, "link_range": [5, 150], "samples": 12}
+    result = run({"name": "m", "task": keys})
+    assert result.candidates
+    for c in result.candidates:
+        assert template_transmission(c, keys) >= 30 - 1e-6
+        assert c.row["transmission_worst_deg"] == pytest.approx(template_transmission(c, keys), abs=2e-3)
+
+
+def test_motion_screen_memory_does_not_grow_with_the_pairs():
+    """Three free positions screen about samples^4 / 2 pairs of dyads: block by block, so the peak memory (numpy's
+    allocations, as tracemalloc sees them) stays about the same from 16 to 32 samples (16 times the pairs; a screen
+    of all the pairs at once grew as samples^4: 3.5 GB at 60)."""
+    import tracemalloc
+
+    positions, _ = _poses([20, 100, 200])
+    peaks = []
+    for samples in (16, 32):
+        spec = validate_task(task("motion", positions=positions, link_range=[5, 150], samples=samples))
+        tracemalloc.start()
+        try:
+            from linkgen.synthesis import motion
+
+            motion.solve(spec.task)
+            peaks.append(tracemalloc.get_traced_memory()[1])
+        finally:
+            tracemalloc.stop()
+    assert peaks[1] < 2 * peaks[0] and peaks[1] < 200 * 2**20, peaks
+
+
+def _cli(tmp_path, keys: dict):
+    """`linkgen synthesize` on a task, with every warning recorded; (result, warnings, output folder)."""
+    import warnings
+
+    from linkgen.cli import main
+
+    template = tmp_path / "t.toml"
+    template.write_text(tomllib_text({"name": "t", "task": keys}))
+    out = tmp_path / "out"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = CliRunner().invoke(main, ["synthesize", str(template), "-o", str(out)])
+    return result, [f"{w.category.__name__}: {w.message} ({w.filename})" for w in caught], out
+
+
+@pytest.mark.parametrize("keys", [
+    # matplotlib's "constrained_layout not applied" on a legend of 1,000 poses: the figure draws five
+    {"kind": "function", "function": "log10(x)", "x_range": [1, 10], "input_angles": [30, 120],
+     "output_angles": [105, 165], "precision_points": 1000},
+    # scipy's overflow warnings from the polish with a huge coupler range: the largest allowed now
+    {"kind": "path", "points": [[0, 0], [10, 2], [20, 8], [28, 18]], "coupler_range": 10_000, "starts": 1,
+     "generations": 30, "candidates": 2},
+    # candidates near the edge of what a template holds were refused as `linkage.joints.O2` / `O4`: now each is
+    # kept within it
+    {"kind": "motion", "positions": [[0, 0, 0], [9000, 2000, 30], [9999, 5500, 75]], "candidates": 2},
+    {"kind": "path", "points": [[9000, 9000], [9990, 9000], [9999, 9999]], "starts": 1, "generations": 30},
+], ids=["1000-precision-points", "coupler-range", "motion-at-the-edge", "path-at-the-edge"])
+def test_no_raw_warning_and_templates_that_read_back(tmp_path, keys):
+    result, warned, out = _cli(tmp_path, keys)
+    assert result.exit_code == 0, result.output
+    assert not warned and result.stderr == "", (warned, result.stderr)
+    for template in out.glob("t-*.toml"):
+        spec = validate_spec(tomllib.loads(template.read_text()))       # raises if a template cannot hold it
+        assert spec.name == template.stem
+
+
+def test_a_path_search_that_finds_nothing_names_a_field_of_the_task(tmp_path):
+    """Ground pivots asked for far from the targets: no linkage reaches them; the refusal names a field of the task
+    (was a DesignError naming none) and writes nothing."""
+    keys = {**tomllib.loads(LINE6.read_text())["task"], "ground_region": [[500, 500], [501, 501]], "starts": 1,
+            "generations": 40}
+    result, warned, out = _cli(tmp_path, keys)
+    assert result.exit_code == 2 and not warned
+    line = result.stderr.strip()
+    assert "\n" not in line and line.startswith(("error: task.coupler_range: no linkage found",
+                                                 "error: task.ground_region: no linkage found")), line
+    assert not out.exists()

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.synthesis.geometry import place
 
 TWO_PI = 2.0 * math.pi
@@ -70,6 +71,20 @@ def ranked(candidates: Iterable[Candidate], count: int, tol: float = 1e-3) -> li
             if len(out) == count:
                 break
     return out
+
+
+def fits_template(lengths: Iterable[float]) -> bool:
+    """Whether every length (mm) is one a linkage template holds: 0, or between MIN_LENGTH_MM and MAX_LENGTH_MM in
+    size."""
+    return all(v == 0 or MIN_LENGTH_MM <= abs(v) <= MAX_LENGTH_MM for v in lengths)
+
+
+def table_fits(linkage: dict[str, Any]) -> bool:
+    """Whether a candidate's ``[linkage]`` table is one a template holds: its lengths (:func:`fits_template`) and,
+    drawn in the task's frame, every joint within MAX_LENGTH_MM of the origin in x and y."""
+    joints = linkage.get("joints", {})
+    numbers = [v for k, v in linkage.items() if isinstance(v, float) and k != "point_angle"]
+    return fits_template(numbers) and all(abs(c) <= MAX_LENGTH_MM for xy in joints.values() for c in xy)
 
 
 # ---------------------------------------------------------------------- rows and tables of four-bars

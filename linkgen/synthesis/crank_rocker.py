@@ -9,7 +9,8 @@ ground about O4; else ``samples`` points round the circle are tried. Every linka
 analysed as a four-bar (its own frame: O2 at the origin, O4 on +X) and kept only if it is a
 Grashof crank-rocker whose swing and time ratio are those asked for (1e-6 degrees, 1e-9 relative);
 the candidates are ranked by their worst transmission angle (the smaller of the least and 180
-minus the largest).
+minus the largest) over the turn, and those below ``min_transmission`` (30 degrees by default)
+are left out (:func:`keep`).
 """
 from __future__ import annotations
 
@@ -20,9 +21,10 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
+from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.kinematics.fourbar import FourBar
 from linkgen.synthesis import construction
-from linkgen.synthesis.candidates import Candidate, Sketch, deg, fourbar_table
+from linkgen.synthesis.candidates import Candidate, Sketch, deg, fits_template, fourbar_table
 
 TWO_PI = 2.0 * math.pi
 LENGTHS = ("ground", "crank", "coupler", "rocker")
@@ -101,26 +103,46 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
     elif task.ground is not None:
         o2 = construction.line_meets_circle(b1, (b2 - b1) / abs(b2 - b1), 0j, task.ground)
     else:
-        reach = task.link_range[1] if task.link_range is not None else 10.0 * c
+        reach = task.link_range[1] if task.link_range is not None else min(10.0 * c, MAX_LENGTH_MM)
         o2 = construction.pivots(b1, b2, alpha, task.samples, reach)
     cranks, couplers = construction.limit_lengths(o2, b1, b2)
     found = [x for x in (_checked(float(abs(o)), float(a), float(b), c, task, o) for o, a, b in
                          zip(o2, cranks, couplers, strict=True)) if x is not None]
     wanted = (f"swings its rocker {task.swing:g} degrees with time ratio {task.time_ratio:g}"
               + (f" on a ground of {task.ground:g} mm" if task.ground else ""))
-    kept = keep(found, task.link_range, LENGTHS, "Grashof crank-rocker", wanted,
-                "task.ground" if task.ground is not None else "task.time_ratio")
-    return kept, construction.info("rocker pin's limit positions", alpha, len(o2), len(found))
+    kept, bound = keep(found, task, LENGTHS, "Grashof crank-rocker", wanted,
+                       "task.ground" if task.ground is not None else "task.time_ratio", "task.rocker",
+                       "ask for a smaller swing or time ratio" + (", or another ground" if task.ground else ""))
+    return kept, construction.info("rocker pin's limit positions", alpha, len(o2), len(found)) | {"bound": bound}
 
 
-def keep(found: list[Candidate], link_range: tuple[float, float] | None, lengths: tuple[str, ...], what: str,
-         wanted: str, field: str) -> list[Candidate]:
-    """The candidates ``found`` whose ``lengths`` (row keys) lie within ``link_range``; a one-line error on
-    ``field`` if none was found, on ``task.link_range`` if none lies within it."""
+def keep(found: list[Candidate], task: Any, lengths: tuple[str, ...], what: str, wanted: str, field: str,
+         scale: str, hint: str) -> tuple[list[Candidate], list[str]]:
+    """The candidates ``found`` whose ``lengths`` (row keys) lie within ``link_range`` and what a template holds, and
+    whose worst transmission angle is at least ``task.min_transmission``; and a line naming that limit when it left
+    fewer than were asked for. A one-line error on ``field`` if none was found, on ``task.link_range`` if none lies
+    within it, on ``task.link_range`` (or, without one, the field ``scale`` that sizes them) if none fits a template,
+    on ``task.min_transmission`` (with ``hint``) if none keeps it."""
     if not found:
         raise SpecError(f"no {what} {wanted}", field)
-    kept = [x for x in found if within({k: x.row[k] for k in lengths}, link_range)]
+    kept = [x for x in found if within({k: x.row[k] for k in lengths}, task.link_range)]
     if not kept:
         raise SpecError(f"none of the {len(found)} linkages found has its {', '.join(lengths)} within "
-                        f"{list(link_range or ())} mm", "task.link_range")
-    return kept
+                        f"{list(task.link_range or ())} mm", "task.link_range")
+    kept = [x for x in kept if fits_template(x.row[k] for k in (*lengths, "offset") if k in x.row)]
+    if not kept:
+        raise SpecError(f"none of the {len(found)} linkages found has its {', '.join(lengths)} within "
+                        f"[{MIN_LENGTH_MM:g}, {MAX_LENGTH_MM:g}] mm, what a template holds: "
+                        + ("give a link_range within it" if task.link_range is not None else
+                           f"give a smaller or larger {scale[5:]}"), "task.link_range" if task.link_range else scale)
+    mu = task.min_transmission
+    good = [x for x in kept if x.row["transmission_worst_deg"] >= mu]
+    if not good:
+        best = max(x.row["transmission_worst_deg"] for x in kept)
+        raise SpecError(f"none of the {len(kept)} linkages found keeps its transmission angle at least {mu:g} degrees "
+                        f"over its turn (the best reaches {best:.4g}): lower min_transmission, or {hint}",
+                        "task.min_transmission")
+    bound = [] if len(good) >= task.candidates or len(good) == len(kept) else [
+        f"task.min_transmission: {len(good)} of the {len(kept)} linkages found keep the transmission angle at least "
+        f"{mu:g} degrees over their turn; the others are left out"]
+    return good, bound

@@ -8,7 +8,8 @@ K3 = (a^2 - b^2 + c^2 + d^2) / 2ac (a crank, b coupler, c rocker, d ground, give
 three points are met exactly, more in the least-squares sense. A negative a (or c) is a crank (or
 rocker) pointing the other way: it is made positive and its angles turned by 180 degrees. The
 linkage is then analysed as a four-bar: the assembly that meets the precision points, a branch
-defect if they lie on different assemblies, and the crank's whole range checked for a toggle; the
+defect if they lie on different assemblies, the crank's whole range checked for a toggle, and its
+worst transmission angle over that range for ``min_transmission`` (30 degrees by default); the
 structural error y_generated - f(x) is measured over the whole range (501 points).
 """
 from __future__ import annotations
@@ -19,14 +20,19 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
+from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.kinematics.fourbar import FourBar
-from linkgen.synthesis.candidates import Candidate, Sketch, deg, fourbar_table
+from linkgen.synthesis.candidates import Candidate, Sketch, deg, fits_template, fourbar_table
 from linkgen.synthesis.defects import defects
 from linkgen.synthesis.formula import evaluate
+from linkgen.synthesis.geometry import worst_transmission
+from linkgen.synthesis.task import MAX_FUNCTION_VALUE
 
 TWO_PI = 2.0 * math.pi
 #: points the structural error is measured at
 FINE = 501
+#: precision points the figure draws the linkage at, at most (spread over them)
+POSES = 5
 
 
 def chebyshev(x0: float, xn: float, n: int) -> np.ndarray:
@@ -59,9 +65,19 @@ def _function(task: Any) -> tuple[tuple[float, float], Any]:
     return task.x_range, lambda x: evaluate(task.function, np.asarray(x, dtype=float))
 
 
+def _bounded(y: np.ndarray, task: Any) -> None:
+    """Refuse a function whose values over the range leave +-MAX_FUNCTION_VALUE (their differences would
+    overflow)."""
+    big = np.abs(y) > MAX_FUNCTION_VALUE
+    if np.any(big):
+        raise SpecError(f"y must stay within +-{MAX_FUNCTION_VALUE:g} over the range (it reaches "
+                        f"{float(y[big][0]):.3g})", "task.function" if task.function else "task.table")
+
+
 def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
     """The four-bar of a validated function task and how it was found."""
     (x0, xn), f = _function(task)
+    _bounded(f(np.linspace(x0, xn, FINE)), task)
     y0, yn = (float(v) for v in f(np.array([x0, xn])))
     if y0 == yn:
         raise SpecError(f"y is {y0:g} at both ends of the range, so it cannot be mapped onto the rocker's angles",
@@ -88,6 +104,11 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
                         "other input_angles or output_angles", "task.output_angles")
     turn2, turn4 = (math.pi if a < 0 else 0.0), (math.pi if c < 0 else 0.0)
     lengths = (float(d), float(abs(a)), float(math.sqrt(b2)), float(abs(c)))
+    if not fits_template(lengths):
+        shown = ", ".join(f"{v:.4g}" for v in lengths)
+        raise SpecError(f"the linkage through the precision points has links of {shown} mm (ground, crank, coupler, "
+                        f"rocker); a template holds {MIN_LENGTH_MM:g} to {MAX_LENGTH_MM:g} mm: scale the ground",
+                        "task.ground")
     try:
         fb = FourBar(*lengths)
     except SpecError:
@@ -108,24 +129,30 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
         raise SpecError("the precision points lie on different assemblies of the linkage through them (a branch "
                         "defect): choose other input_angles or output_angles, or more precision points",
                         "task.input_angles")
+    worst = math.degrees(float(worst_transmission(*lengths, s2 + turn2, e2 + turn2)))
+    if worst < task.min_transmission:
+        raise SpecError(f"the linkage through the precision points lets its transmission angle fall to {worst:.3g} "
+                        f"degrees over the input range (at least {task.min_transmission:g} asked): choose other "
+                        "input_angles or output_angles, or lower min_transmission", "task.min_transmission")
     x = np.linspace(x0, xn, FINE)
     generated = fb.sweep(crank_of(x) + turn2, assembly).theta4 - turn4
     angle_error = np.remainder(generated - rocker_of(f(x)) + math.pi, TWO_PI) - math.pi
     y_error = angle_error / (e4 - s4) * (yn - y0)
-    worst = int(np.argmax(np.abs(y_error)))
+    at = int(np.argmax(np.abs(y_error)))
     row = {"ground_pivots": [[0.0, 0.0], [d, 0.0]], "ground": d, "crank": lengths[1], "coupler": lengths[2],
            "rocker": lengths[3], "coupler_point": [0.0, 0.0], "input_angles": [deg(t) for t in t2 + turn2],
            "output_angles": [deg(t) for t in t4 + turn4], "precision_x": xs.tolist(),
            "precision_y": [float(v) for v in f(xs)], "freudenstein_k": [float(k1), float(k2), float(k3)],
            "crank_turned_deg": math.degrees(turn2), "rocker_turned_deg": math.degrees(turn4), "assembly": assembly,
-           "structural_error_max": float(abs(y_error[worst])),
-           "structural_error_percent": float(100.0 * abs(y_error[worst]) / abs(yn - y0)),
+           "structural_error_max": float(abs(y_error[at])),
+           "structural_error_percent": float(100.0 * abs(y_error[at]) / abs(yn - y0)),
            "structural_error_deg": float(np.degrees(np.abs(angle_error).max())),
-           "structural_error_at_x": float(x[worst])}
+           "structural_error_at_x": float(x[at]), "transmission_worst_deg": worst}
     poses = fb.positions(t2 + turn2, assembly)
+    shown = np.unique(np.linspace(0, len(xs) - 1, min(len(xs), POSES)).round().astype(int))
     sketch = Sketch(paths=(("rocker pin", fb.sweep(crank_of(x) + turn2, assembly).b),),
-                    poses=tuple((f"x = {v:.4g}", np.array([[0.0, 0.0], poses.a[k], poses.b[k], [d, 0.0]]))
-                                for k, v in enumerate(xs)),
+                    poses=tuple((f"x = {xs[k]:.4g}", np.array([[0.0, 0.0], poses.a[k], poses.b[k], [d, 0.0]]))
+                                for k in shown),
                     reached=poses.b, error=(x, y_error, xs, "structural error (units of y)"))
     table = fourbar_table(*lengths, assembly=assembly)
     info = {"method": "Freudenstein's equation at Chebyshev precision points: "

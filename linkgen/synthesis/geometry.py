@@ -51,10 +51,30 @@ def place(x0, y0, theta0, r1, r2, r3, r4, cx, cy, branch, theta2) -> Placed:
     return Placed(ax, ay, bx, by, px, py, z, out)
 
 
-def transmission_cosines(r1, r2, r3, r4, theta2) -> np.ndarray:
-    """cos of the transmission angle (at B, between coupler and rocker) at crank angles ``theta2`` (rad)."""
-    z2 = r1 * r1 + r2 * r2 - 2.0 * r1 * r2 * np.cos(theta2)
-    return (r3 * r3 + r4 * r4 - z2) / (2.0 * r3 * r4)
+def transmission_range(r1, r2, r3, r4, start, end) -> tuple[np.ndarray, np.ndarray]:
+    """(cos gamma_min, cos gamma_max): the cosines of the least and largest transmission angle (gamma, at B between
+    coupler and rocker) while the crank turns from ``start`` to ``end`` (rad from the ground line, either sense;
+    ``end = start + 2 pi`` for a crank that turns fully). Not clipped: outside [-1, 1] where the loop cannot close.
+
+    The diagonal A O4, z^2 = r1^2 + r2^2 - 2 r1 r2 cos(theta2), is monotonic between multiples of pi, so over the
+    arc its extremes lie at the arc's ends or at theta2 = 0 (z = |r1 - r2|) and pi (z = r1 + r2) where the arc holds
+    them; gamma grows with z. Exact, no sampling.
+    """
+    lo, hi = np.minimum(start, end), np.maximum(start, end)
+    two_pi = 2.0 * math.pi
+    has_zero = np.floor(hi / two_pi) >= np.ceil(lo / two_pi)
+    has_pi = np.floor((hi - math.pi) / two_pi) >= np.ceil((lo - math.pi) / two_pi)
+    ends = [r1 * r1 + r2 * r2 - 2.0 * r1 * r2 * np.cos(t) for t in (start, end)]
+    z2_min = np.minimum(np.minimum(*ends), np.where(has_zero, (r1 - r2) ** 2, np.inf))
+    z2_max = np.maximum(np.maximum(*ends), np.where(has_pi, (r1 + r2) ** 2, -np.inf))
+    return tuple((r3 * r3 + r4 * r4 - z2) / (2.0 * r3 * r4) for z2 in (z2_min, z2_max))
+
+
+def worst_transmission(r1, r2, r3, r4, start, end) -> np.ndarray:
+    """The worst transmission angle (rad: the smaller of gamma and pi - gamma) while the crank turns from ``start``
+    to ``end`` (see :func:`transmission_range`): min(gamma_min, pi - gamma_max); 0 where the loop cannot close."""
+    cos_min, cos_max = (np.clip(c, -1.0, 1.0) for c in transmission_range(r1, r2, r3, r4, start, end))
+    return np.minimum(np.arccos(cos_min), math.pi - np.arccos(cos_max))
 
 
 def side(ax, ay, bx, by, ox, oy) -> np.ndarray:

@@ -16,28 +16,36 @@ W = A_1 - O and Z = P_1 - A_1, and the standard dyad form W (e^{i beta_k} - 1) +
 
 Every pair of dyads (either as the crank) is a four-bar; each is checked for the task's defects
 (:mod:`linkgen.synthesis.defects`: Grashof when a crank is asked for, order, branch) before it is
-offered, and ranked by its worst transmission angle (over the whole turn for a crank, else at the
-positions). Finally the four-bar is re-solved in closed form at its crank angles
-(:mod:`linkgen.synthesis.geometry`) and its distance from each position reported.
+offered, and ranked by its worst transmission angle (over the whole turn for a crank, else over the
+crank's travel from the first position to the last), which must be at least ``min_transmission``
+(30 degrees by default). The pairs are screened in blocks, keeping the best so far, so memory
+stays bounded (about samples^2 dyads) whatever the number of pairs. Finally the four-bar is
+re-solved in closed form at its crank angles (:mod:`linkgen.synthesis.geometry`) and its distance
+from each position reported.
 """
 from __future__ import annotations
 
 import cmath
 import math
+from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import SpecError
+from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row
 from linkgen.synthesis.defects import defects, sense
-from linkgen.synthesis.geometry import frame_of, place
+from linkgen.synthesis.geometry import frame_of, place, worst_transmission
 
 TWO_PI = 2.0 * math.pi
 #: the best pairs (by transmission) given the full defect check, at most
 CHECKED = 400
 #: defect-free candidates gathered, best first, for each one asked (the ranking leaves out near-copies)
 ENOUGH = 8
+#: pairs of dyads screened at once (about 2 kB each): the screen's memory, whatever the samples
+BLOCK = 1 << 16
 
 
 def circumcentre(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
@@ -105,17 +113,32 @@ def _betas(o: np.ndarray, a: np.ndarray) -> np.ndarray:
     return np.column_stack([np.angle((a[k] - o) / (a[0] - o)) % TWO_PI for k in range(1, len(a))])
 
 
-def _pairs(crank: tuple[np.ndarray, ...], rocker: tuple[np.ndarray, ...], same: bool) -> tuple[np.ndarray, ...]:
-    """Every pairing of a crank dyad with a rocker dyad (not a dyad with itself when both sides are one set)."""
-    i, j = (g.ravel() for g in np.meshgrid(np.arange(len(crank[0])), np.arange(len(rocker[0])), indexing="ij"))
-    keep = (i != j) if same else np.ones(len(i), dtype=bool)
-    keep &= np.isfinite(crank[0][i]) & np.isfinite(rocker[0][j])
-    return i[keep], j[keep]
+def _pair_blocks(crank: tuple[np.ndarray, ...], rocker: tuple[np.ndarray, ...],
+                 same: bool) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """Every pairing (i, j) of a crank dyad with a rocker dyad (not a dyad with itself when both sides are one set),
+    in order (i, then j), in blocks of about :data:`BLOCK` pairs: the screen's memory stays bounded whatever the
+    number of dyads."""
+    rows = np.flatnonzero(np.isfinite(crank[0]))
+    cols = np.flatnonzero(np.isfinite(rocker[0]))
+    if len(cols) == 0:
+        return
+    step = max(1, BLOCK // len(cols))
+    for k in range(0, len(rows), step):
+        i, j = (g.ravel() for g in np.meshgrid(rows[k:k + step], cols, indexing="ij"))
+        keep = i != j if same else slice(None)
+        yield i[keep], j[keep]
 
 
-def _screen(p: np.ndarray, alpha: np.ndarray, o2, a, o4, b, task: Any) -> tuple[np.ndarray, np.ndarray]:
-    """The vectorised first screen of pairs: lengths, Grashof, branch and order; (pass mask, worst transmission
-    angle, rad)."""
+def inside(*points: np.ndarray) -> np.ndarray:
+    """Where every point (complex, mm) lies within what a linkage template holds: each coordinate within
+    MAX_LENGTH_MM of the origin."""
+    return np.all([(np.abs(q.real) <= MAX_LENGTH_MM) & (np.abs(q.imag) <= MAX_LENGTH_MM) for q in points], axis=0)
+
+
+def _screen(p: np.ndarray, alpha: np.ndarray, o2, a, o4, b, task: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The vectorised first screen of pairs: (passes the lengths, Grashof, branch and order checks; fits a template
+    as well; worst transmission angle over the motion, rad). The motion is the whole turn for a crank, else the
+    crank's travel from the first position to the last, the way it meets them in order."""
     r1, r2, r3, r4 = np.abs(o4 - o2), np.abs(a - o2), np.abs(b - a), np.abs(b - o4)
     rot = np.exp(1j * alpha)[None, :]
     ak, bk = p[None, :] + (a - p[0])[:, None] * rot, p[None, :] + (b - p[0])[:, None] * rot
@@ -129,14 +152,56 @@ def _screen(p: np.ndarray, alpha: np.ndarray, o2, a, o4, b, task: Any) -> tuple[
         ok &= (r2 <= short) & (total - 2 * short - 2 * scale > 1e-9 * scale)
     cross = ((o4[:, None] - ak) * np.conj(bk - ak)).imag
     ok &= np.all(cross > 0, axis=1) | np.all(cross < 0, axis=1)
-    theta = np.angle((ak - o2[:, None]) / (o4 - o2)[:, None])
-    for_order = [np.mod(s * (theta[:, 1:] - theta[:, :1]), TWO_PI) for s in (1, -1)]
-    ok &= np.any([np.all(t > 1e-9, axis=1) & np.all(np.diff(t, axis=1) > 1e-9, axis=1) for t in for_order], axis=0)
-    z = np.abs(ak - o4[:, None]) if not task.crank else np.column_stack([np.abs(r1 - r2), r1 + r2])
+    with np.errstate(invalid="ignore", divide="ignore"):    # a pair with O2 on O4 is refused above
+        theta = np.angle((ak - o2[:, None]) / (o4 - o2)[:, None])
+    travel = [np.mod(s * (theta[:, 1:] - theta[:, :1]), TWO_PI) for s in (1, -1)]
+    order = [np.all(t > 1e-9, axis=1) & np.all(np.diff(t, axis=1) > 1e-9, axis=1) for t in travel]
+    ok &= order[0] | order[1]
+    if task.crank:
+        start, end = np.zeros(len(r1)), np.full(len(r1), TWO_PI)
+    else:
+        start = theta[:, 0]
+        end = start + np.where(order[0], travel[0][:, -1], -travel[1][:, -1])
     with np.errstate(invalid="ignore", divide="ignore"):
-        gamma = np.arccos(np.clip((r3[:, None] ** 2 + r4[:, None] ** 2 - z**2) / (2 * r3 * r4)[:, None], -1, 1))
-    worst = np.min(np.minimum(gamma, math.pi - gamma), axis=1)
-    return ok & np.isfinite(worst), worst
+        worst = worst_transmission(r1, r2, r3, r4, start, end)
+    fits = inside(o2, o4, a, b) & (links.min(axis=0) >= MIN_LENGTH_MM)
+    return ok & np.isfinite(worst), fits, worst
+
+
+@dataclass(frozen=True)
+class Screened:
+    """How the screen of pairs went: pairs tried, passing the checks, of those fitting a template, and the best
+    worst transmission angle among those (rad; -inf if none)."""
+
+    tried: int
+    passed: int
+    fitting: int
+    nearest: float
+
+
+def best_pairs(left: tuple[np.ndarray, ...], right: tuple[np.ndarray, ...], same: bool, p: np.ndarray,
+               alpha: np.ndarray, task: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, Screened]:
+    """The :data:`CHECKED` best pairs (crank dyad i, rocker dyad j, worst transmission angle in rad), best first
+    and in pair order among equals, of those that pass the screen, fit a template and keep the transmission limit;
+    and how the screen went. Screened block by block, keeping only the best so far."""
+    mu = math.radians(task.min_transmission)
+    kept_i, kept_j, kept_w = (np.zeros(0, dtype=int),) * 2 + (np.zeros(0),)
+    tried = passed = fitting = 0
+    nearest = -math.inf
+    for i, j in _pair_blocks(left, right, same):
+        ok, fits, worst = _screen(p, alpha, left[0][i], left[1][i], right[0][j], right[1][j], task)
+        tried += len(i)
+        passed += int(np.count_nonzero(ok))
+        ok &= fits
+        fitting += int(np.count_nonzero(ok))
+        if np.any(ok):
+            nearest = max(nearest, float(worst[ok].max()))
+        ok &= worst >= mu
+        order = np.lexsort((np.concatenate([kept_j, j[ok]]), np.concatenate([kept_i, i[ok]]),
+                            -np.concatenate([kept_w, worst[ok]])))[:CHECKED]
+        kept_i, kept_j, kept_w = (np.concatenate([kept_i, i[ok]])[order], np.concatenate([kept_j, j[ok]])[order],
+                                  np.concatenate([kept_w, worst[ok]])[order])
+    return kept_i, kept_j, kept_w, Screened(tried, passed, fitting, nearest)
 
 
 def _candidate(p: np.ndarray, alpha: np.ndarray, o2: complex, a: complex, o4: complex, b: complex, task: Any,
@@ -188,24 +253,42 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
         sides = [free_dyads(p, alpha, task.samples)] * 2
     same = task.moving_pivots is None and task.fixed_pivots is None
     out: list[Candidate] = []
-    tried = 0
+    screens, screened = [], 0
     for left, right in ((sides[0], sides[1]), (sides[1], sides[0]))[: 1 if same else 2]:
-        i, j = _pairs(left, right, same)
-        tried += len(i)
-        ok, worst = _screen(p, alpha, left[0][i], left[1][i], right[0][j], right[1][j], task)
-        best = np.flatnonzero(ok)[np.argsort(-worst[ok], kind="stable")][:CHECKED]
-        for k in best:
+        i, j, worst, found = best_pairs(left, right, same, p, alpha, task)
+        screens.append(found)
+        screened += len(i)
+        for k in range(len(i)):
             if len(out) >= ENOUGH * task.candidates:
                 break
             c = _candidate(p, alpha, left[0][i[k]], left[1][i[k]], right[0][j[k]], right[1][j[k]], task,
                            _choices(mode, left[2][i[k]], right[2][j[k]]), float(worst[k]))
             if c is not None:
                 out.append(c)
+    tried = sum(s.tried for s in screens)
     if not out:
-        what = "a Grashof crank" if task.crank else "a linkage"
-        raise SpecError(f"no defect-free four-bar with {what} passes these positions ({tried} dyad pairs tried): "
-                        "give other pivots, more samples, a wider link_range, or crank = false", "task.positions")
+        _refuse(task, screens, screened)
     info = {"method": "dyad form W (e^{i beta} - 1) + Z (e^{i alpha} - 1) = delta, pairs screened for Grashof, "
                       "order and branch defects", "free_choices": mode, "pairs_tried": tried, "offered": len(out)}
     return out, info
+
+
+def _refuse(task: Any, screens: list[Screened], checked: int) -> None:
+    """The one-line refusal of a motion task that found nothing to offer (``checked`` pairs passed the screen and
+    failed the full defect check), naming the requirement that bound."""
+    tried = sum(s.tried for s in screens)
+    fitting = sum(s.fitting for s in screens)
+    if fitting and not checked:
+        best = max(s.nearest for s in screens)
+        raise SpecError(f"none of the {fitting} defect-free four-bars through these positions keeps its transmission "
+                        f"angle at least {task.min_transmission:g} degrees over its motion (the best reaches "
+                        f"{math.degrees(best):.3g}): lower min_transmission, or give other positions or pivots",
+                        "task.min_transmission")
+    if not checked and any(s.passed for s in screens):
+        raise SpecError(f"every four-bar through these positions has a pivot or pin farther than {MAX_LENGTH_MM:g} mm "
+                        f"from the origin or a link shorter than {MIN_LENGTH_MM:g} mm, which no template holds: move "
+                        "the positions nearer the origin, or give pivots", "task.positions")
+    what = "a Grashof crank" if task.crank else "a linkage"
+    raise SpecError(f"no defect-free four-bar with {what} passes these positions ({tried} dyad pairs tried): "
+                    "give other pivots, more samples, a wider link_range, or crank = false", "task.positions")
 

@@ -20,7 +20,10 @@ Constraints: a Grashof crank (the crank the shortest link, S + L < P + Q) when a
 meeting the targets in order within one turn; one branch (the crank reaching every target, and
 the motion between them, without a toggle); the lengths within ``link_range`` and their ratio
 within ``link_ratio``; the coupler point within ``coupler_range`` of the crank pin (each of cx,
-cy); both ground pivots within ``ground_region``; the transmission angle within [mu, 180 - mu].
+cy); both ground pivots within ``ground_region``; the transmission angle within [mu, 180 - mu]
+over the motion (``min_transmission``, 30 degrees unless the task says otherwise; the whole turn
+for a crank), exactly. A refusal names the requirement the nearest design breaks most; where the
+best candidate sits on a limit, the search's ``bound`` line names it.
 ``starts`` independent searches, each seeded from ``seed``, run here, on local processes or on a
 Dask cluster, with the same results.
 """
@@ -33,11 +36,12 @@ from typing import Any
 
 import numpy as np
 
-from camgen.core.errors import DesignError
+from camgen.core.errors import SpecError
+from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.kinematics.grashof import classify
-from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row
+from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row, table_fits
 from linkgen.synthesis.defects import defects
-from linkgen.synthesis.geometry import place
+from linkgen.synthesis.geometry import place, transmission_range, worst_transmission
 from linkgen.synthesis.parallel import run_all, where
 
 BASE = ("x0", "y0", "theta0", "r1", "r2", "r3", "r4", "cx", "cy")
@@ -51,8 +55,10 @@ SOFT = 10.0
 GRASHOF_MARGIN = 1e-4
 #: the fractions of each step between targets where a crank that does not turn fully is checked for reach
 STEPS = np.array([0.25, 0.5, 0.75])
-#: distinct designs of each search's final population polished
+#: distinct designs of each search's final population polished (the task's budget counts them: POLISH_EVALUATIONS)
 POLISHED = 3
+#: the transmission limit is kept this far inside (rad), so that a candidate on it reports no less than the limit
+TRANSMISSION_MARGIN = 1e-10
 TWO_PI = 2.0 * math.pi
 
 
@@ -82,15 +88,21 @@ class Problem:
 def problem_of(task: Any) -> Problem:
     """The numbers of a validated :class:`~linkgen.synthesis.task.PathTask`; defaults: lengths from 1/20 to 4
     times the targets' spread, the coupler point within the longest length, the ground pivots within the
-    targets' box grown by the longest length."""
+    targets' box grown by the longest length; all within what a template holds (MIN_LENGTH_MM to MAX_LENGTH_MM,
+    joints within MAX_LENGTH_MM of the origin)."""
     targets = np.array(task.points, dtype=float)
     spread = float(np.max(np.ptp(targets, axis=0)))
-    lo, hi = task.link_range if task.link_range is not None else (spread / 20, 4 * spread)
+    if task.link_range is not None:
+        lo, hi = task.link_range
+    else:
+        lo = max(spread / 20, MIN_LENGTH_MM)
+        hi = min(max(4 * spread, 10 * lo), MAX_LENGTH_MM)
     reach = task.coupler_range if task.coupler_range is not None else hi
     if task.ground_region is not None:
         (x_min, y_min), (x_max, y_max) = task.ground_region
     else:
-        (x_min, y_min), (x_max, y_max) = targets.min(axis=0) - hi, targets.max(axis=0) + hi
+        (x_min, y_min), (x_max, y_max) = (np.clip(targets.min(axis=0) - hi, -MAX_LENGTH_MM, MAX_LENGTH_MM),
+                                          np.clip(targets.max(axis=0) + hi, -MAX_LENGTH_MM, MAX_LENGTH_MM))
     box = ((x_min, x_max), (y_min, y_max), (-math.pi, math.pi), *[(lo, hi)] * 4, (-reach, reach), (-reach, reach))
     bounds = [box[2], *box[3:7], (-1.0, 1.0)]
     timing = None if task.input_angles is None else np.radians(task.input_angles)
@@ -98,7 +110,8 @@ def problem_of(task: Any) -> Problem:
         bounds += [(0.0, TWO_PI), (-1.0, 1.0)] + [(0.05, 1.0)] * len(targets)
     mu = task.min_transmission
     return Problem(targets, timing, task.crank, tuple(bounds), box, (x_min, y_min, x_max, y_max), task.link_ratio,
-                   None if mu is None else math.cos(math.radians(mu)), task.generations, task.population, hi)
+                   None if mu == 0 else math.cos(math.radians(mu) + TRANSMISSION_MARGIN), task.generations,
+                   task.population, hi)
 
 
 def angles(x: np.ndarray, p: Problem) -> np.ndarray:
@@ -133,42 +146,56 @@ def project(x: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
     return np.vstack([x0, y0, x[0], x[1], x[2], x[3], x[4], cx, cy])
 
 
-def hard_constraints(base: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
+def hard_groups(base: np.ndarray, th: np.ndarray, p: Problem) -> dict[str, np.ndarray]:
     """The hard constraints as rows g >= 0 (m, N), dimensionless, for designs ``base`` (9, N) meeting the targets
-    at crank angles ``th`` (N, n): reach (or a Grashof crank), link ratio, transmission angle."""
+    at crank angles ``th`` (N, n), by the task's field each keeps: reach (``task.link_range``; for a Grashof crank
+    ``task.crank``), link ratio, and the transmission angle over the motion (the whole turn for a crank, else the
+    crank's travel from the first target to the last, exact: :func:`~linkgen.synthesis.geometry.transmission_range`)."""
     r1, r2, r3, r4 = base[3:7]
     s = p.scale
-    rows = []
+    groups: dict[str, np.ndarray] = {}
     checked = th if p.crank else np.hstack([th, (th[:, :-1, None] + STEPS * np.diff(th, axis=1)[:, :, None])
                                             .reshape(len(r1), -1)])
     if not p.crank:                                 # a Grashof crank reaches every angle: nothing to check
         z2 = (r1**2 + r2**2)[:, None] - 2.0 * (r1 * r2)[:, None] * np.cos(checked)
-        rows += [(((r3 + r4) ** 2)[:, None] - z2).T / s**2, (z2 - ((r3 - r4) ** 2)[:, None]).T / s**2]
+        groups["task.link_range"] = np.vstack([(((r3 + r4) ** 2)[:, None] - z2).T / s**2,
+                                               (z2 - ((r3 - r4) ** 2)[:, None]).T / s**2])
     else:
         total = r1 + r2 + r3 + r4
-        rows += [np.array([(r - r2) / s for r in (r1, r3, r4)]),
-                 np.array([(total - 2 * r2 - 2 * r) / s - GRASHOF_MARGIN for r in (r1, r3, r4)])]
+        groups["task.crank"] = np.vstack([np.array([(r - r2) / s for r in (r1, r3, r4)]),
+                                          np.array([(total - 2 * r2 - 2 * r) / s - GRASHOF_MARGIN
+                                                    for r in (r1, r3, r4)])])
     if p.link_ratio is not None:
         links = (r1, r2, r3, r4)
-        rows.append(np.array([(p.link_ratio * links[i] - links[j]) / s for i in range(4) for j in range(4)
-                              if i != j]))
+        groups["task.link_ratio"] = np.array([(p.link_ratio * links[i] - links[j]) / s for i in range(4)
+                                              for j in range(4) if i != j])
     if p.cos_transmission is not None:
-        at = np.array([0.0, math.pi]) if p.crank else checked
-        z2t = (r1**2 + r2**2)[:, None] - 2.0 * (r1 * r2)[:, None] * np.cos(at)
-        cos_g = ((r3**2 + r4**2)[:, None] - z2t) / (2.0 * (r3 * r4)[:, None])
-        rows.append((p.cos_transmission**2 - cos_g**2).T)
-    return np.vstack([np.atleast_2d(r) for r in rows])
+        start, end = (th[:, 0], th[:, 0] + TWO_PI) if p.crank else (th[:, 0], th[:, -1])
+        cos_min, cos_max = transmission_range(r1, r2, r3, r4, start, end)
+        groups["task.min_transmission"] = np.array([p.cos_transmission - cos_min, cos_max + p.cos_transmission])
+    return groups
 
 
-def soft_constraints(base: np.ndarray, p: Problem) -> np.ndarray:
-    """The box of (x0, y0, cx, cy) and the ground region of O4 as rows g >= 0 (m, N), relative to the scale."""
+def hard_constraints(base: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
+    """Every row of :func:`hard_groups` as one array (m, N)."""
+    return np.vstack(list(hard_groups(base, th, p).values()))
+
+
+def soft_groups(base: np.ndarray, p: Problem) -> dict[str, np.ndarray]:
+    """The box of (x0, y0, cx, cy) and the ground region of O4 as rows g >= 0 (m, N), relative to the scale, by the
+    task's field each keeps."""
     x0, y0, t0, r1 = base[:4]
     ox, oy = x0 + r1 * np.cos(t0), y0 + r1 * np.sin(t0)
     x_min, y_min, x_max, y_max = p.region
-    rows = [ox - x_min, x_max - ox, oy - y_min, y_max - oy]
-    for k in (0, 1, 7, 8):
-        rows += [base[k] - p.box[k][0], p.box[k][1] - base[k]]
-    return np.array(rows) / p.scale
+    region = [ox - x_min, x_max - ox, oy - y_min, y_max - oy]
+    region += [b for k in (0, 1) for b in (base[k] - p.box[k][0], p.box[k][1] - base[k])]
+    coupler = [b for k in (7, 8) for b in (base[k] - p.box[k][0], p.box[k][1] - base[k])]
+    return {"task.ground_region": np.array(region) / p.scale, "task.coupler_range": np.array(coupler) / p.scale}
+
+
+def soft_constraints(base: np.ndarray, p: Problem) -> np.ndarray:
+    """Every row of :func:`soft_groups` as one array (m, N)."""
+    return np.vstack(list(soft_groups(base, p).values()))
 
 
 def squared_errors(base: np.ndarray, branch: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
@@ -291,8 +318,52 @@ def search(args: tuple[Problem, int]) -> dict[str, Any]:
         if len(picked) == POLISHED:
             break
     found = [_polish(r.population[i], p) for i in picked]
+    nearest = r.population[int(np.argmin(r.population_energies))][:, None]
+    at = angles(nearest, p)
     return {"found": [(b.tolist(), br, th.tolist(), e) for b, br, th, e in found if math.isfinite(e)],
-            "evaluations": int(r.nfev), "generations": int(r.nit), "population": len(r.population)}
+            "evaluations": int(r.nfev), "generations": int(r.nit), "population": len(r.population),
+            # the best design of the final population, for a refusal: its energy and its shortfalls by field
+            "nearest": (float(np.min(r.population_energies)), shortfalls(project(nearest, at, p)[:, 0], at[0], p))}
+
+
+def shortfalls(base: np.ndarray, th: np.ndarray, p: Problem) -> dict[str, float]:
+    """How far one design (``base`` (9,), crank angles ``th`` (n,)) falls short of each field's constraints: the
+    most negative of its rows, as a positive number (0 where every row is kept; inf where the design is not a
+    linkage at all)."""
+    b, t = np.asarray(base, dtype=float)[:, None], np.asarray(th, dtype=float)[None, :]
+    if not np.all(np.isfinite(b)):
+        return {"task.points": math.inf}
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        groups = {**hard_groups(b, t, p), **soft_groups(b, p)}
+    return {k: float(max(0.0, -np.min(np.nan_to_num(v, nan=-math.inf)))) for k, v in groups.items()}
+
+
+def held_by(c: Candidate, base: list[float], th: list[float], p: Problem, task: Any) -> list[str]:
+    """The requirements that hold candidate ``c`` (a design ``base`` at crank angles ``th``) back: its transmission
+    angle at the least allowed, a length at an end of ``link_range``, its coupler point at the edge of
+    ``coupler_range``, a ground pivot on the edge of ``ground_region``, its link ratio at ``link_ratio``."""
+    near = 1e-6
+    out = []
+    if p.cos_transmission is not None and c.row["transmission_worst_deg"] - task.min_transmission < 1e-3:
+        out.append(f"task.min_transmission (its transmission angle falls to the {task.min_transmission:g} degrees "
+                   "allowed)")
+    lo, hi = p.box[3]
+    at_ends = [f"{name} {value:.6g} mm" for name, value in zip(("ground", "crank", "coupler", "rocker"), base[3:7],
+                                                                strict=True)
+               if min(abs(value - lo), abs(value - hi)) <= near * hi]
+    if at_ends:
+        default = "" if task.link_range is not None else "; by default 1/20 to 4 times the targets' spread"
+        out.append(f"task.link_range ({', '.join(at_ends)}{default})")
+    b, t = np.array(base)[:, None], np.array(th)[None, :]
+    groups = {**hard_groups(b, t, p), **soft_groups(b, p)}
+    for key, what in (("task.coupler_range", "its coupler point at the edge of the range, by default the longest "
+                                             "link"),
+                      ("task.ground_region", "a ground pivot on its edge, by default the targets' box grown by the "
+                                             "longest link"),
+                      ("task.link_ratio", "its links at the ratio")):
+        if key in groups and float(np.min(groups[key])) <= near:
+            out.append(f"{key} ({what})")
+    return out
 
 
 def _candidate(base: list[float], branch: float, th: list[float], p: Problem, crank: bool) -> Candidate | None:
@@ -302,12 +373,17 @@ def _candidate(base: list[float], branch: float, th: list[float], p: Problem, cr
     if defects(lengths, th, [branch] * p.n, crank):
         return None
     sq = squared_errors(np.array(base)[:, None], np.array([branch]), np.array([th]), p)[0]
+    end = th[0] + TWO_PI if crank else th[-1]
+    worst = math.degrees(float(worst_transmission(*lengths, th[0], end)))
     row = {"error_mm2": float(sq.sum()), **fourbar_row(d, th), "errors_mm": np.sqrt(sq).tolist(),
-           "inversion": classify(*lengths).inversion, "defects": []}
+           "inversion": classify(*lengths).inversion, "transmission_worst_deg": worst, "defects": []}
+    table = drawn_table(d, th[0])
+    if not table_fits(table):
+        return None
     sweep = np.linspace(0.0, TWO_PI, 721)
     sketch = coupler_sketch(d, th, p.targets, sweep)
     signature = (d["x0"], d["y0"], *lengths, d["cx"], d["cy"], d["theta0"] * p.scale)
-    return Candidate(drawn_table(d, th[0]), row, float(sq.sum()), signature, sketch)
+    return Candidate(table, row, float(sq.sum()), signature, sketch)
 
 
 def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[Candidate], dict[str, Any]]:
@@ -317,20 +393,58 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
     clock = time.perf_counter()
     runs = run_all(search, [(p, s) for s in seeds], jobs, scheduler)
     seconds = time.perf_counter() - clock
-    out = []
+    out, designs, polished = [], [], 0
     for run in runs:
         for base, branch, th, _ in run["found"]:
+            polished += 1
             c = _candidate(base, branch, th, p, task.crank)
             if c is not None:
                 out.append(c)
+                designs.append((base, th))
+    tried = sum(r["evaluations"] * r["population"] for r in runs)
     if not out:
-        raise DesignError("no linkage found that keeps every constraint: widen link_range or ground_region, drop "
-                          "link_ratio or min_transmission, or give more generations")
+        _refuse(task, runs, polished, tried)
+    best = int(np.argmin([c.score for c in out]))
+    held = held_by(out[best], *designs[best], p, task)
     info = {"method": "differential evolution (scipy, the whole population per call) over the ground line, lengths, "
                       "branch and crank angles, the pivot and coupler point by least squares; polished by least "
                       "squares (SLSQP where a constraint is in the way)",
             "seed": task.seed, "starts": task.starts, "generations": task.generations,
             "population": runs[0]["population"], "vectorised_calls": sum(r["evaluations"] for r in runs),
             "designs_evaluated": sum(r["evaluations"] * r["population"] for r in runs),
-            "seconds": round(seconds, 3), "ran_on": where(jobs, scheduler)}
+            "seconds": round(seconds, 3), "ran_on": where(jobs, scheduler),
+            "bound": [f"the best candidate is held by {'; '.join(held)}"] if held else []}
     return out, info
+
+
+#: what each field's constraint asks, and what to change, for a refusal
+_ASKED = {
+    "task.min_transmission": ("keeps its transmission angle at least {mu:g} degrees over its motion",
+                              "lower min_transmission, widen link_range, or give more generations"),
+    "task.crank": ("is a Grashof four-bar whose crank turns fully", "set crank = false, widen link_range, or give "
+                   "more generations"),
+    "task.link_range": ("reaches every target with its links within link_range", "widen link_range, or give more "
+                        "generations"),
+    "task.link_ratio": ("keeps its links within link_ratio", "raise link_ratio, or give more generations"),
+    "task.ground_region": ("has both ground pivots within ground_region (by default the targets' box grown by the "
+                           "longest link)", "widen ground_region or link_range, or give more generations"),
+    "task.coupler_range": ("has its coupler point within coupler_range of the crank pin", "raise coupler_range, or "
+                           "give more generations"),
+    "task.points": ("is a linkage through these targets", "give other targets, or more generations")}
+
+
+def _refuse(task: Any, runs: list[dict[str, Any]], polished: int, tried: int) -> None:
+    """The one-line refusal of a path task that found nothing to offer, naming the requirement that bound: the one
+    the best design of the searches falls shortest of; or, where designs were polished but each had a defect or
+    did not fit a template, the targets."""
+    if polished:
+        raise SpecError(f"each of the {polished} linkages found has a branch, order or Grashof defect, or a pivot or "
+                        f"pin beyond {MAX_LENGTH_MM:g} mm of the origin: give other targets, a ground_region, or more "
+                        "generations", "task.input_angles" if task.input_angles is not None else "task.points")
+    _, short = min((r["nearest"] for r in runs), key=lambda n: n[0])
+    field = max(short, key=lambda k: short[k]) if any(short.values()) else "task.points"
+    asked, hint = _ASKED[field]
+    also = [k for k in sorted(short) if short[k] > 0 and k != field]
+    more = f"; the nearest also breaks {', '.join(also)}" if also else ""
+    raise SpecError(f"no linkage found that {asked.format(mu=task.min_transmission)} ({tried} designs tried{more}): "
+                    f"{hint}", field)

@@ -6,6 +6,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from camgen.core.errors import CamgenError, SpecError
 from linkgen.synthesis import crank_rocker, function, motion, path, slider_crank
 from linkgen.synthesis.candidates import Candidate, Offered, offer, ranked
 from linkgen.synthesis.parallel import where
@@ -19,6 +20,10 @@ METHODS: dict[str, Callable[[Any], tuple[list[Candidate], dict[str, Any]]]] = {
 #: search's polished designs are copies within 1e-3; an analytic family's neighbours are offered 10 % apart
 COPIES = {"path": 1e-3, "motion": 0.05, "crank-rocker": 0.1, "slider-crank": 0.1}
 LENGTH_KEYS = ("ground", "crank", "coupler", "rocker", "rod")
+#: the task's field that sets where and how big its linkages are: a candidate whose template is refused is blamed on
+#: it (the methods offer only what a template holds; this names the task, not the template, if one slips through)
+SCALE_FIELDS = {"path": "task.points", "motion": "task.positions", "crank-rocker": "task.rocker",
+                "slider-crank": "task.stroke", "function": "task.ground"}
 
 
 @dataclass(frozen=True)
@@ -65,7 +70,13 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
                                            if jobs > 1 or scheduler else "")
     best = ranked(found, getattr(task, "candidates", 1), COPIES.get(task.kind, 0.1))
     parts = None if spec.parts is None else spec.parts.model_dump(mode="json", exclude_none=True)
-    offered = offer(spec.name, best, parts, lambda c: [c.row[k] for k in LENGTH_KEYS if k in c.row])
+    try:
+        offered = offer(spec.name, best, parts, lambda c: [c.row[k] for k in LENGTH_KEYS if k in c.row])
+    except CamgenError as exc:
+        field = SCALE_FIELDS[task.kind]
+        raise SpecError(f"a linkage found cannot be written as a template ({exc}): change {field[5:]}",
+                        field) from None
     info = {**info, "seconds": round(time.perf_counter() - clock, 3), "ran_on": info.get("ran_on",
-                                                                                        where(jobs, scheduler))}
+                                                                                        where(jobs, scheduler)),
+            "bound": info.get("bound", [])}
     return Synthesis(spec, offered, info)

@@ -8,7 +8,8 @@ ratio of 1 needs a centred slider: the pivot is on the line and the free choice 
 the longest of ``link_range`` (four strokes without one). With ``offset`` given, the pivot is where
 the circle meets the line at that depth. Each linkage is analysed as a slider-crank and kept if its
 stroke and time ratio are those asked for; candidates are ranked by their worst transmission angle,
-90 degrees less the rod's largest angle to the slider line.
+90 degrees less the rod's largest angle to the slider line, and those below ``min_transmission``
+(30 degrees by default) are left out.
 """
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
+from camgen.core.spec import MAX_LENGTH_MM
 from linkgen.kinematics.slidercrank import SliderCrank
 from linkgen.synthesis import construction
 from linkgen.synthesis.candidates import Candidate, Sketch, deg
@@ -62,7 +64,7 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
         o2 = np.concatenate([construction.line_meets_circle(complex(0.0, -task.offset), 1 + 0j, m, r)
                              for m, r in construction.circles(c1, c2, alpha)])
     else:
-        reach = task.link_range[1] if task.link_range is not None else 4.0 * task.stroke
+        reach = task.link_range[1] if task.link_range is not None else min(4.0 * task.stroke, MAX_LENGTH_MM)
         o2 = construction.pivots(c1, c2, alpha, task.samples, reach)
     o2 = o2[o2.imag <= 1e-12 * task.stroke] if alpha > 0 else o2[o2.real < 0]   # below the line; one mirror image
     cranks, rods = construction.limit_lengths(o2, c1, c2)
@@ -70,6 +72,8 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
                          for o, a, b in zip(o2, cranks, rods, strict=True)) if x is not None]
     wanted = (f"whose crank turns fully makes a stroke of {task.stroke:g} mm with time ratio {task.time_ratio:g}"
               + (f" at offset {task.offset:g} mm" if task.offset else ""))
-    kept = keep(found, task.link_range, ("crank", "rod"), "slider-crank", wanted,
-                "task.offset" if task.offset is not None else "task.time_ratio")
-    return kept, construction.info("slider pin's dead-centre positions", alpha, len(o2), len(found))
+    kept, bound = keep(found, task, ("crank", "rod"), "slider-crank", wanted,
+                       "task.offset" if task.offset is not None else "task.time_ratio", "task.stroke",
+                       "ask for a smaller time ratio" + (", or another offset" if task.offset is not None else
+                                                         ", or allow a longer rod (link_range)"))
+    return kept, construction.info("slider pin's dead-centre positions", alpha, len(o2), len(found)) | {"bound": bound}

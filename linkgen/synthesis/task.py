@@ -31,6 +31,28 @@ from linkgen.spec import PartsTable
 
 Point = tuple[float, float]
 
+#: the least transmission angle (degrees) every candidate keeps over the motion it makes, unless the task's
+#: ``min_transmission`` says otherwise: below it a linkage binds (the usual design band is 40-140 degrees)
+MIN_TRANSMISSION_DEG = 30.0
+#: the most values of a construction's free choice tried (crank-rocker, slider-crank): 0.1 degree round its circle
+MAX_SAMPLES = 3600
+#: the most link turns a motion task sweeps per free choice: three free positions pair samples^2 dyads with as
+#: many, about samples^4 / 2 pairs screened
+MAX_MOTION_SAMPLES = 60
+#: a path search's budget: at most this many independent searches, generations a search, population per unknown
+MAX_STARTS, MAX_GENERATIONS, MAX_POPULATION = 64, 10_000, 100
+#: ... at most this many design-target evaluations in all, the differential evolution's (starts x generations x
+#: population x unknowns x points) and the polish's (below; about two minutes on one core in all) ...
+MAX_PATH_EVALUATIONS = 15 * 10**7
+#: ... the polish of a search counted as this many evaluations per design number squared per point (3 designs
+#: polished, least squares and SLSQP over all the numbers with central differences: measured on curve18 and on 50
+#: untimed points, 80 to 300 each) ...
+POLISH_EVALUATIONS = 600
+#: ... and at most this many generations in all (starts x generations; each costs a vectorised call or two)
+MAX_PATH_GENERATIONS = 100_000
+#: the largest |x| or |y| of a function task's table or range, and of y = f(x) over the range
+MAX_FUNCTION_VALUE = 1e12
+
 
 def _mm(description: str, default: Any = ...) -> Any:
     return Field(default, description=description, json_schema_extra=unit("mm"))
@@ -66,6 +88,22 @@ def _distinct(name: str, values: Iterable[Any], what: str, gap: Callable[[Any, A
                 raise ValueError(f"{name}: items {i} and {j} give the same {what}; each must differ")
 
 
+def _placed(name: str, points: Iterable[Iterable[float]] | None) -> None:
+    """Refuse a point of the task's frame (mm) that a linkage template could not hold: each coordinate within
+    MAX_LENGTH_MM of the origin, as every joint of a template."""
+    for k, point in enumerate(points or ()):
+        if not all(abs(v) <= MAX_LENGTH_MM for v in point):
+            shown = ", ".join(f"{v:g}" for v in point)
+            raise ValueError(f"{name}: item {k}, [{shown}], must lie within {MAX_LENGTH_MM:g} mm of the origin in x "
+                             "and y (where a template's joints lie)")
+
+
+def _transmission() -> Any:
+    return Field(MIN_TRANSMISSION_DEG, ge=0, lt=90, description="least transmission angle every candidate keeps "
+                 "over the motion it makes (the whole turn for a crank; 0 for no limit)",
+                 json_schema_extra=unit("degrees"))
+
+
 def _turn(a: float, b: float) -> float:
     """The smallest turn between two angles (degrees)."""
     return abs(math.remainder(a - b, 360.0))
@@ -77,6 +115,7 @@ class SearchOptions(Model):
     link_range: tuple[float, float] | None = _mm("every link length and the ground length: [shortest, longest]",
                                                  None)
     candidates: int = _count("how many candidates to offer, best first", 5, 1, 50)
+    min_transmission: float = _transmission()
 
     @model_validator(mode="after")
     def _ranges(self) -> SearchOptions:
@@ -88,11 +127,12 @@ class CrankRockerTask(SearchOptions):
     """A Grashof crank-rocker whose rocker swings ``swing`` degrees with time ratio ``time_ratio``."""
 
     kind: Literal["crank-rocker"]
-    swing: float = Field(gt=0, lt=180, description="rocker swing", json_schema_extra=unit("degrees"))
+    swing: float = Field(ge=0.01, lt=180, description="rocker swing", json_schema_extra=unit("degrees"))
     time_ratio: float = Field(1.0, ge=1, le=10, description="slower stroke's time over the faster's")
     rocker: float = _mm("rocker length (pivot to pin)")
     ground: float | None = _mm("ground length, when fixed (else the free choice is swept)", None)
-    samples: int = _count("positions of the free choice (the crank pivot on its circle) tried", 361, 3, 100_000)
+    samples: int = _count(f"positions of the free choice (the crank pivot on its circle) tried, at most {MAX_SAMPLES}",
+                          361, 3, MAX_SAMPLES)
 
     @model_validator(mode="after")
     def _lengths(self) -> CrankRockerTask:
@@ -110,10 +150,12 @@ class SliderCrankTask(SearchOptions):
     stroke: float = Field(gt=0, le=MAX_LENGTH_MM, description="slider stroke", json_schema_extra=unit("mm"))
     time_ratio: float = Field(1.0, ge=1, le=10, description="slower stroke's time over the faster's")
     offset: float | None = _mm("slider line above the crank pivot, when fixed", None)
-    samples: int = _count("values of the free choice tried", 361, 3, 100_000)
+    samples: int = _count(f"values of the free choice tried, at most {MAX_SAMPLES}", 361, 3, MAX_SAMPLES)
 
     @model_validator(mode="after")
     def _offset(self) -> SliderCrankTask:
+        if self.offset is not None and not abs(self.offset) <= MAX_LENGTH_MM:
+            raise ValueError(f"offset: must be at most {MAX_LENGTH_MM:g} mm in size (got {self.offset:g})")
         if self.offset is not None and self.time_ratio == 1 and self.offset != 0:
             raise ValueError(f"offset: a time ratio of 1 needs a centred slider, offset 0 (got {self.offset:g} mm)")
         if self.offset is not None and self.time_ratio > 1 and self.offset == 0:
@@ -135,6 +177,7 @@ class FunctionTask(Model):
                                    1000)
     ground: float = Field(100.0, gt=0, le=MAX_LENGTH_MM, description="ground length (the scale)",
                           json_schema_extra=unit("mm"))
+    min_transmission: float = _transmission()
 
     @model_validator(mode="after")
     def _function(self) -> FunctionTask:
@@ -148,6 +191,11 @@ class FunctionTask(Model):
                 raise ValueError("table: x must increase from row to row")
         elif self.x_range is None:
             raise ValueError("x_range: missing: give x from, to for the formula")
+        for key in ("table", "x_range"):
+            values = getattr(self, key)
+            flat = [v for row in values for v in (row if isinstance(row, tuple) else (row,))] if values else []
+            if any(abs(v) > MAX_FUNCTION_VALUE for v in flat):
+                raise ValueError(f"{key}: every x and y must lie within +-{MAX_FUNCTION_VALUE:g}")
         if self.x_range is not None and not self.x_range[0] < self.x_range[1]:
             raise ValueError(f"x_range: give [from, to] with from < to (got {list(self.x_range)})")
         for key in ("input_angles", "output_angles"):
@@ -169,13 +217,17 @@ class MotionTask(SearchOptions):
                                                     None)
     fixed_pivots: tuple[Point, Point] | None = _mm("the two ground pivots", None)
     crank: bool = Field(True, description="the input must turn fully (a Grashof crank)")
-    samples: int = _count("values of each free choice tried", 24, 4, 720)
+    samples: int = _count(f"values of each free choice tried, at most {MAX_MOTION_SAMPLES}", 24, 4,
+                          MAX_MOTION_SAMPLES)
 
     @model_validator(mode="after")
     def _positions(self) -> MotionTask:
         n = len(self.positions)
         if n < 2:
             raise ValueError(f"positions: needs 2 or 3 positions [x, y, angle] (got {n})")
+        _placed("positions", (p[:2] for p in self.positions))
+        _placed("moving_pivots", self.moving_pivots)
+        _placed("fixed_pivots", self.fixed_pivots)
         _distinct("positions", self.positions, "pose", lambda p, q: max(abs(p[0] - q[0]), abs(p[1] - q[1]),
                                                                         _turn(p[2], q[2])))
         if self.moving_pivots is not None and self.fixed_pivots is not None:
@@ -204,18 +256,21 @@ class PathTask(SearchOptions):
     ground_region: tuple[Point, Point] | None = _mm("both ground pivots inside [[x_min, y_min], [x_max, y_max]]",
                                                     None)
     link_ratio: float | None = Field(None, gt=1, description="largest longest-to-shortest link ratio")
-    min_transmission: float | None = Field(None, gt=0, lt=90, description="smallest transmission angle",
-                                           json_schema_extra=unit("degrees"))
     seed: int = Field(1, ge=0, description="seed of the search: the same seed gives the same candidates")
-    starts: int = _count("independent searches (spread over --jobs or the cluster)", 4, 1, 1000)
-    generations: int = _count("differential evolution's generations a search", 1500, 1, 100_000)
-    population: int = _count("differential evolution's population, per unknown", 15, 5, 200)
+    starts: int = _count(f"independent searches (spread over --jobs or the cluster), at most {MAX_STARTS}", 4, 1,
+                         MAX_STARTS)
+    generations: int = _count(f"differential evolution's generations a search, at most {MAX_GENERATIONS}, and "
+                              f"starts x generations at most {MAX_PATH_GENERATIONS}", 1500, 1, MAX_GENERATIONS)
+    population: int = _count(f"differential evolution's population, per unknown, at most {MAX_POPULATION}; the "
+                             f"whole search at most {MAX_PATH_EVALUATIONS:.2g} design-target evaluations", 15, 5,
+                             MAX_POPULATION)
 
     @model_validator(mode="after")
     def _targets(self) -> PathTask:
         if not 3 <= len(self.points) <= 200:
             raise ValueError(f"points: a path needs 3 to 200 target points (got {len(self.points)})")
         n = len(self.points)
+        _placed("points", self.points)
         _distinct("points", (x + 1j * y for x, y in self.points), "point")
         if self.input_angles is not None:
             a = self.input_angles
@@ -231,13 +286,32 @@ class PathTask(SearchOptions):
                                  "within one turn of the crank")
         if self.closed and not self.crank:
             raise ValueError("crank: a closed path needs a crank that turns fully (crank = true)")
-        if self.coupler_range is not None and self.coupler_range <= 0:
-            raise ValueError(f"coupler_range: must be > 0 mm (got {self.coupler_range:g})")
+        if self.coupler_range is not None and not 0 < self.coupler_range <= MAX_LENGTH_MM:
+            raise ValueError(f"coupler_range: must be > 0 and <= {MAX_LENGTH_MM:g} mm (got {self.coupler_range:g})")
+        _placed("ground_region", self.ground_region)
         if self.ground_region is not None:
             (x0, y0), (x1, y1) = self.ground_region
             if not (x0 < x1 and y0 < y1):
                 raise ValueError("ground_region: give [[x_min, y_min], [x_max, y_max]] with min < max")
+        self._budget()
         return self
+
+    def _budget(self) -> None:
+        """Refuse a search too big to finish in a couple of minutes on one core (see MAX_PATH_EVALUATIONS); the
+        unknowns are those :func:`linkgen.synthesis.path.problem_of` searches (and, untimed, a crank angle a
+        point), the polish runs over the nine design numbers (and the crank angles)."""
+        n = len(self.points)
+        searched, polished = (6, 9) if self.input_angles is not None else (8 + n, 9 + n)
+        if self.starts * self.generations > MAX_PATH_GENERATIONS:
+            raise ValueError(f"generations: starts x generations is {self.starts * self.generations}, at most "
+                             f"{MAX_PATH_GENERATIONS}: give fewer generations or starts")
+        work = self.starts * (self.generations * self.population * searched + POLISH_EVALUATIONS * polished**2) * n
+        if work > MAX_PATH_EVALUATIONS:
+            raise ValueError(f"generations: the search would make about {work:.3g} design-target evaluations (starts "
+                             f"x (generations x population x {searched} unknowns + {POLISH_EVALUATIONS} x {polished}^2 "
+                             f"for the polish) x {n} points), at most {MAX_PATH_EVALUATIONS:.2g}: give fewer "
+                             "generations, starts, population or points" + ("" if self.input_angles is not None else
+                                                                           ", or their input_angles"))
 
 
 #: ``task.kind`` -> its model
