@@ -2,8 +2,9 @@
 solver (law of cosines, circle intersections written in this file, dense sampling):
 
 * extremes that fall on a grid point (the course's Example 3.3: two scotch yokes on one crank; the bundled
-  pantograph) and a property test over random four-bars, slider-cranks and six-bars drawn at round angles: every
-  reported extent, stroke and swing is that of 100 000 poses to 1e-9;
+  pantograph; an Oldham coupling, whose disc runs on the Thales circle of its hubs' pivots) and a property
+  test over random four-bars, slider-cranks and six-bars drawn at round angles: every reported extent, stroke
+  and swing is that of 100 000 poses to 1e-9;
 * limits and swings by circuit (the course's Exercise 3.1: a triple rocker's rocker through the ground line, a
   Grashof double rocker's two circuits), the pendulum pump's two circuits;
 * four-bars within 1e-6 to 1e-12 of a change point, either side: every pose on the drawing's branch;
@@ -24,6 +25,7 @@ from click.testing import CliRunner
 
 import linkgen
 from linkgen.cli import main as linkgen_cli
+from linkgen.kinematics import motion
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
 
@@ -166,6 +168,83 @@ def test_the_pantograph_tracer_and_pen_have_their_circles_extents():
 @pytest.fixture(autouse=True)
 def _no_stray_output(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)                   # the command-line runs above write under the test's own folder
+
+
+def oldham(d: float, slot: float, ground: float, arm: float, shift: tuple[float, float]) -> dict:
+    """An Oldham coupling: hub 1 turns about O1 (the input; its arm O1-A at ``arm`` degrees from its slot), hub 2
+    about O2, ``d`` mm from O1 at ``ground`` degrees (its arm O2-B along its slot); the middle disc, holding its
+    centre C, slides in hub 1's slot (through O1 at ``slot`` degrees) and in hub 2's (through O2, square to it).
+    C is drawn where the two slots cross: the foot of O2 on hub 1's slot."""
+    o1 = np.array(shift, float)
+    o2 = o1 + pin(d, ground)
+    u = pin(1.0, slot)
+    c = o1 + float(np.dot(o2 - o1, u)) * u
+    joints = {"O1": o1, "O2": o2, "A": o1 + pin(0.6 * d, slot + arm), "B": o2 + pin(0.6 * d, slot + 90.0), "C": c}
+    sliders = {"slot1": {"point": "C", "guide": "hub1", "angle": slot % 360.0, "link": "disc"},
+               "slot2": {"point": "C", "guide": "hub2", "angle": (slot + 90.0) % 360.0, "link": "disc"}}
+    return table(joints, {"hub1": ["O1", "A"], "hub2": ["O2", "B"], "disc": ["C"]}, ["O1", "O2"], sliders,
+                 tracers=("C",), input_={"link": "hub1", "pivot": "O1"}, name="oldham")
+
+
+@pytest.mark.parametrize("d, slot, ground, arm, shift, on_grid", [
+    (40.0, 0.0, 0.0, 0.0, (0.0, 0.0), True),        # C's y extent was reported -20 to 0: half the disc's range
+    (40.0, 45.0, 0.0, 0.0, (0.0, 0.0), True),
+    (40.0, 90.0, 0.0, 0.0, (0.0, 0.0), True),
+    (37.3, 135.0, 90.0, 30.0, (123.4, -56.7), True),   # a vertical ground line, the arm off the slot, off the origin
+    (37.3, 270.0, 45.0, -45.0, (0.0, 0.0), True),
+    (40.0, 37.3, 0.0, 0.0, (0.0, 0.0), False),
+    (25.0, 11.7, 17.0, 90.0, (-8.0, 5.0), False),
+])
+def test_an_oldham_couplings_disc_runs_on_the_thales_circle_and_its_hubs_turn_together(d, slot, ground, arm, shift,
+                                                                                       on_grid, tmp_path):
+    """Oldham coupling, hubs' pivots O1, O2 a distance d apart. The disc keeps its angle to both hubs' slots, which
+    are square to each other, so hub 2 turns exactly with hub 1 (the direction of O2-B less that of O1-A stays
+    the drawn one) and turns fully with it. C lies on both slots: the foot of O2 on hub 1's slot, which sees
+    O1-O2 at a right angle, so C runs on the circle with diameter O1-O2 (Thales), twice a turn: C - O1 =
+    d cos(s - g) (cos s, sin s), so C - M = (d / 2) (cos(2 s - g), sin(2 s - g)) (M the midpoint, s hub 1's slot
+    direction, g the ground line's), and C's extents are M -+ d / 2 on both axes. Its extremes lie where 2 s - g
+    is a multiple of 90 degrees: on the search's grid points when s and g are round angles (checked here),
+    between them otherwise."""
+    raw = oldham(d, slot, ground, arm, shift)
+    path = tmp_path / "oldham.toml"
+    path.write_text(dump(raw))
+    grid_step = 360.0 / motion.GRID                     # the search's input step from the drawing, degrees
+    steps = ((0.5 * ground - slot) % 45.0) / grid_step  # from the drawing to C's extremes, in grid steps
+    assert (abs(steps - round(steps)) < 1e-9) is on_grid
+
+    result = CliRunner().invoke(linkgen_cli, ["analyze", str(path), "--json"])
+    assert result.exit_code == 0, result.output
+    r = json.loads(result.output)
+    assert r["input_range_deg"] is None and r["toggles"] == []
+    assert r["outputs"]["hub2"] == {"limit_positions": [], "turns_fully": True, "time_ratio": None}
+    text = CliRunner().invoke(linkgen_cli, ["analyze", str(path)])
+    assert text.exit_code == 0 and "\ninput turns fully\n" in text.output and "  hub2: turns fully\n" in text.output
+    j = {k: np.array(v) for k, v in raw["linkage"]["joints"].items()}
+    m = 0.5 * (j["O1"] + j["O2"])
+    assert r["tracers"]["C"] == {"x_mm": pytest.approx([m[0] - d / 2, m[0] + d / 2], abs=1e-9),
+                                 "y_mm": pytest.approx([m[1] - d / 2, m[1] + d / 2], abs=1e-9)}
+
+    a = linkgen.design_linkage(validate_spec(raw)).kinematics
+    theta0 = math.radians(slot + arm)                   # the input: hub 1's arm O1-A, counter-clockwise from +x
+    x = theta0 + np.linspace(0.0, TAU, 100_001)
+    sol = a.linkage.solve(x)
+    p = sol.points
+
+    def direction(tip: str, pivot: str) -> np.ndarray:
+        return np.arctan2(p[tip][:, 1] - j[pivot][1], p[tip][:, 0] - j[pivot][0])
+
+    drawn = math.atan2(*(j["B"] - j["O2"])[::-1]) - math.atan2(*(j["A"] - j["O1"])[::-1])
+    hub1 = np.remainder(direction("A", "O1") - x + math.pi, TAU) - math.pi
+    apart = np.remainder(direction("B", "O2") - direction("A", "O1") - drawn + math.pi, TAU) - math.pi
+    assert np.degrees(np.abs(hub1)).max() < 1e-9                    # hub 1 turns with the input, a whole turn
+    assert np.degrees(np.abs(apart)).max() < 1e-9                   # hub 2 turns exactly with hub 1
+    turn = np.remainder(sol.angle("disc") - sol.angle("hub1") + math.pi, TAU) - math.pi
+    assert np.degrees(np.abs(turn)).max() < 1e-9                    # the disc keeps hub 1's (and 2's) angle
+    s = x - theta0 + math.radians(slot)                 # hub 1's slot direction
+    u = np.column_stack([np.cos(s), np.sin(s)])
+    foot = j["O1"] + ((j["O2"] - j["O1"]) @ u.T)[:, None] * u
+    assert np.hypot(*(p["C"] - foot).T).max() < 1e-9
+    assert np.abs(np.hypot(*(p["C"] - m).T) - d / 2).max() < 1e-9    # Thales
 
 
 # ---------------------------------------------------------------------- every extent equals that of 100 000 poses
