@@ -50,8 +50,7 @@ THIN_WALL = 2.0
 
 def swing_top(cam: Cam) -> float:
     """The follower's largest displacement over the turn (mm, or degrees of swing), spline overshoots included."""
-    segments = cam.program.segments
-    return cam.program.peak(lambda i, t: segments[i].evaluate(t)[0])[0]
+    return cam.program.top()
 
 
 def second_roller(spec: CamSpec, first: Cam) -> float:
