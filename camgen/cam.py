@@ -219,5 +219,9 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
             except SpecError as exc:
                 raise exc.under(f"motion[{i}]") from None
         steps.append((seg.type, seg.angle, seg.lift or 0.0, law))
-    return Cam(name=spec.name, program=build_program(steps), follower=kind_of(spec.cam.kind).follower(spec, rb, rr),
+    program = build_program(steps)
+    fits = FOLLOWERS[spec.follower.type].fits
+    if fits is not None:                                # a follower whose reach depends on how far it moves
+        fits(spec.follower, rb, program.top())
+    return Cam(name=spec.name, program=program, follower=kind_of(spec.cam.kind).follower(spec, rb, rr),
                base_radius=rb, thickness=spec.cam.thickness, bore=spec.cam.bore)

@@ -238,8 +238,7 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
         wall = reach - spec.cam.bore / 2.0
         _check_bore(spec, body, reach)
         _check_holes(spec, body, tol)
-    if spec.output.clearance > 0 and holes:
-        _check_opened_holes(spec, outline, tol)
+    check_opened_holes(spec, outline, tol)
     marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
     profile = _Profile(spec, cam, envelope, marks, outline, cut_off, holes)
     out = spec.output
@@ -572,22 +571,24 @@ def _check_holes(spec: CamSpec, body: Any, tolerance: float) -> None:
                               "holes, or another circle")
 
 
-def _check_opened_holes(spec: CamSpec, outline: Outline, tolerance: float) -> None:
+def check_opened_holes(spec: CamSpec, outline: Outline, tolerance: float, cam: str = "the cam") -> None:
     """The printed part's holes, opened by ``output.clearance``, must stay inside the outline as the drawn ones must
-    (:func:`_check_holes`): a hole opened through the outline is a notch in the printed cam, no hole. Bounds settle
-    it where they can (:func:`_certainly_clear`), shapely on the outline's chords where they cannot."""
+    (:func:`_check_holes`): a hole opened through the outline is a notch in the printed cam, no hole. Nothing to
+    check without a clearance or holes; bounds settle it where they can (:func:`_certainly_clear`), shapely on the
+    outline's chords where they cannot. Every cam cut to an outline with the spec's holes is checked so (a disc, a
+    plate, a grooved cam's island, each cam of a conjugate pair): ``cam`` names it in the message."""
     import shapely
 
     clearance = spec.output.clearance
-    opened = _holes(spec, clearance / 2)
-    if _certainly_clear(spec, opened, outline.contour, tolerance):
+    opened = _holes(spec, clearance / 2) if clearance > 0 else ()
+    if not opened or _certainly_clear(spec, opened, outline.contour, tolerance):
         return
     body = _body(outline, tolerance)
     for hole, drawn in zip(opened, _holes(spec, 0.0), strict=True):
         if not body.contains_properly(shapely.Polygon(hole.flatten(tolerance))):
             gap = body.exterior.distance(shapely.Polygon(drawn.flatten(tolerance)))
             raise DesignError(f"output.clearance: must be < {2 * gap:.4g} mm with these holes (got {clearance:g}): "
-                              f"it opens a hole through the cam's outline (as drawn the hole comes within {gap:.3g} "
+                              f"it opens a hole through {cam}'s outline (as drawn the hole comes within {gap:.3g} "
                               "mm of it)")
 
 

@@ -180,6 +180,12 @@ class Program:
     def max_lift(self) -> float:
         return max(max(seg.level, seg.end_level) for seg in self.segments)
 
+    def top(self) -> float:
+        """The largest displacement over the turn (mm, or degrees of swing), a law's overshoot included (a
+        spline's or a polynomial's between its ends), by :meth:`peak`."""
+        segments = self.segments
+        return self.peak(lambda i, t: segments[i].evaluate(t)[0])[0]
+
     @property
     def starts(self) -> np.ndarray:
         return np.array([seg.start for seg in self.segments])

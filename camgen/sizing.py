@@ -12,6 +12,7 @@ curvature everywhere); the larger decides, and the result says which.
 """
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -64,8 +65,12 @@ def pressure_limit(spec: CamSpec) -> float:
 
 
 def _domain(spec: CamSpec) -> tuple[float, float]:
-    """Base radii (mm) for which the follower can be assembled at all: (lowest, highest), exclusive."""
-    return FOLLOWERS[spec.follower.type].base_radius_range(spec.follower, spec.follower.contact_radius)
+    """Base radii (mm) for which the follower can be assembled and follow the program's levels at all: (lowest,
+    highest), exclusive (a law's overshoot above its levels is checked as each cam is built)."""
+    levels = itertools.accumulate(seg.lift if seg.type == "rise" else -seg.lift if seg.type == "return" else 0.0
+                                  for seg in spec.motion)
+    return FOLLOWERS[spec.follower.type].base_radius_range(spec.follower, spec.follower.contact_radius,
+                                                           max(0.0, *levels))
 
 
 def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
@@ -84,6 +89,8 @@ def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
             return False
 
     hi = max(spec.cam.base_radius if isinstance(spec.cam.base_radius, float) else 0.0, lo + lift, 1.0)
+    if hi >= top:                                       # a short range (an arm's): start from its bottom step
+        hi = lo + (top - lo) / 64
     while not holds(hi):
         nxt = hi * 2 if math.isinf(top) else hi + (top - lo) / 64
         if nxt > 1e7 or nxt >= top:

@@ -57,11 +57,13 @@ RULES: dict[str, dict[str, str]] = {
         "follower.arm_length": "mm: pivot to the roller's centre"},
     "oscillating-flat": {
         "follower": "a flat face through the pivot, touching the base circle at rest: pivot_distance > "
-                    "base_radius; the pressure-angle limit is 40 degrees",
+                    "base_radius / cos(the largest swing), so that the face touches the cam between the pivot and "
+                    "the rest contact; the pressure-angle limit is 40 degrees",
         **_FLAT_AUTO, **SWING,
         "cam.base_radius": "\"auto\": the smallest whose profile radius stays above min_rho_margin and that meets "
-                           "the pressure-angle limit; below pivot_distance",
-        "follower.pivot_distance": "mm: cam centre to the pivot the face turns about; > base_radius",
+                           "the pressure-angle limit; below pivot_distance * cos(the largest swing)",
+        "follower.pivot_distance": "mm: cam centre to the pivot the face turns about; > base_radius / cos(the "
+                                   "largest swing)",
         "follower.face_margin": "mm: face beyond the contact's travel along it, each side"},
     "plate": {
         "cam": "a plate cam slides along +X as the program runs: it does not turn and has no bore",

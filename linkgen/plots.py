@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.figures import figure, fit_equal
+from linkgen.kinematics.circuits import input_grid, input_spans
 from linkgen.kinematics.fourbar import FourBar, Poses
 
 
@@ -23,10 +24,9 @@ def _chart(width: float, height: float) -> tuple[Any, Any]:
 
 
 def _input_grid(fb: FourBar, n: int = 721) -> list[np.ndarray]:
-    ranges = fb.input_ranges()
-    if ranges is None:
-        return [np.linspace(0, 2 * math.pi, n)]
-    return [np.linspace(lo, hi, n) for lo, hi in ranges]
+    """The crank angles (rad) each curve is drawn at: ``n`` over the full turn or over each reachable range, off a
+    deltoid's undetermined fold (see :func:`linkgen.kinematics.circuits.input_grid`)."""
+    return [input_grid(fb, n, span) for span in input_spans(fb)]
 
 
 def transmission_figure(name: str, fb: FourBar, assembly: str) -> Any:

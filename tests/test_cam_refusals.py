@@ -374,6 +374,39 @@ def test_a_clearance_that_opens_a_hole_through_the_outline_is_refused_at_twice_i
                 design_cam(spec)
 
 
+#: eight 6 mm holes on a 70 mm circle on templates/conjugate.toml (base circles 40 mm; the engraving left off, it
+#: would not fit): the holes at 90 and 135 degrees lie where both cams' outlines are their base circles
+CONJUGATE_HOLES = {"hub.bolt_holes": 8, "hub.bolt_circle": 70, "hub.bolt_hole_diameter": 6, "hub.engrave": False}
+
+
+@pytest.mark.parametrize("second_base, refused", [(40.0, 1), (39.0, 2)])
+def test_a_clearance_that_opens_a_hole_through_either_conjugate_cam_is_refused(tmp_path, second_base, refused):
+    """Each cam of a conjugate pair gets the disc cam's check, by the same function: a hole reaching 35 + 3 = 38 mm
+    from the centre comes within g = R - 38 mm of a base circle of R mm (2 mm on the first cam's 40, 1 mm on a
+    second cam's 39), and a clearance c opens it by c / 2: refused, naming output.clearance and that cam, from
+    c = 2 g (was: built, a notch in the printed cam, the mesh still watertight)."""
+    gap = second_base - 38.0 if refused == 2 else 2.0
+    change = {**CONJUGATE_HOLES, "cam.second_base_radius": second_base}
+    conjugate = TEMPLATES / "conjugate.toml"
+    assert_refused(conjugate, {**change, "output.clearance": 2 * gap + 0.1}, "output.clearance: must be < ", tmp_path)
+    result = CliRunner().invoke(camgen, ["build", str(conjugate), "-o", str(tmp_path / "o"),
+                                         *(a for k, v in {**change, "output.clearance": 2 * gap + 0.1}.items()
+                                           for a in ("--set", f"{k}={json.dumps(v)}"))])
+    assert f"it opens a hole through cam {refused}'s outline" in result.stderr
+    bound = float(result.stderr.split("must be < ")[1].split(" mm")[0])
+    assert bound == pytest.approx(2 * gap, abs=0.02)                 # the outline and the hole as chords within 0.01
+    from camgen.design import design_cam
+    from camgen.spec import load_spec
+
+    def pair(clearance: float):
+        sets = {**change, "output.clearance": clearance}
+        return design_cam(load_spec(conjugate, [f"{k}={json.dumps(v)}" for k, v in sets.items()]))
+
+    assert len(pair(2 * gap - 0.05).cams) == 2
+    with pytest.raises(DesignError, match=rf"^output\.clearance: .* through cam {refused}'s outline"):
+        pair(2 * gap + 0.05)
+
+
 def test_a_part_in_two_bodies_is_not_written():
     """Past the spec (model_copy skips validation): a 3 mm clearance opens the ring of holes into each other and
     the hub falls out; the mesh check counts two bodies, so the STL is refused, never reported watertight."""

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -227,3 +228,172 @@ def test_size_command(tmp_path):
     assert r["base_radius_mm"] == pytest.approx(size_cam(template()).base_radius_mm)
     bad = CliRunner().invoke(main, ["size"])
     assert bad.exit_code == 2 and "give a TEMPLATE" in bad.stderr
+
+
+def _osc_flat(pivot: float, base: float, lift: float, rotation: str = "ccw") -> dict:
+    return {**OSC_FLAT, "follower.pivot_distance": pivot, "cam.base_radius": base, "motion.0.lift": lift,
+            "motion.2.lift": lift, "cam.rotation": rotation, "cam.bore": 0.0}
+
+
+def _turn(v: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]])
+
+
+def _face_lines(pivot: float, base: float, sense: int, program, theta: np.ndarray):
+    """The face's line at each cam angle in the cam's frame (a point, a unit direction), from its definition alone:
+    through the pivot (sqrt(C^2 - Rb^2), Rb), pointing along -X (to the rest contact (0, Rb)) at rest and turned
+    clockwise by the swing psi; the cam's frame is the fixed one turned by -sense theta."""
+    p = np.array([math.sqrt(pivot**2 - base**2), base])
+    psi = np.radians(program.evaluate(theta)[0])
+    u = np.column_stack([-np.cos(psi), np.sin(psi)])
+    back = -sense * theta
+    return _turn(np.tile(p, (theta.size, 1)), back), _turn(u, back), p, u
+
+
+def _meet(pivot: float, base: float, sense: int, program, theta: np.ndarray, h: float) -> np.ndarray:
+    """Where the face's lines at theta - h and theta + h meet (cam frame, mm): the contact, to O(h^2)."""
+    a1, d1, _, _ = _face_lines(pivot, base, sense, program, theta - h)
+    a2, d2, _, _ = _face_lines(pivot, base, sense, program, theta + h)
+    gap = a2 - a1
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    t1 = (gap[:, 0] * d2[:, 1] - gap[:, 1] * d2[:, 0]) / cross
+    return a1 + t1[:, None] * d1
+
+
+def _envelope(pivot: float, base: float, sense: int, program, theta: np.ndarray, h: float = 1e-3) -> np.ndarray:
+    """Contact points (cam frame, mm): neighbouring face lines' meeting points at h and h / 2, extrapolated
+    (Richardson: error O(h^4), about 1e-11 mm here)."""
+    return (4 * _meet(pivot, base, sense, program, theta, h / 2) - _meet(pivot, base, sense, program, theta, h)) / 3
+
+
+def _numeric_face(pivot: float, base: float, sense: int, program, theta: np.ndarray):
+    """An independent evaluation of the oscillating flat face: its contact's signed distance from the pivot along
+    the face (mm, towards the rest contact), and the pressure angle (rad): the angle between the profile's outward
+    normal (finite differences of the envelope's points) and the way the arm's point at the contact moves as the
+    arm rises (square to the pivot-to-contact line, turning clockwise)."""
+    q = _envelope(pivot, base, sense, program, theta)
+    delta = 1e-4
+    tangent = (_envelope(pivot, base, sense, program, theta + delta)
+               - _envelope(pivot, base, sense, program, theta - delta)) / (2 * delta)
+    normal = np.column_stack([tangent[:, 1], -tangent[:, 0]])
+    normal *= np.sign((normal * q).sum(axis=1))[:, None]           # outward: the cam's centre lies behind the face
+    _, _, p, u = _face_lines(pivot, base, sense, program, theta)
+    fixed, normal = _turn(q, sense * theta), _turn(normal, sense * theta)
+    arm = fixed - p
+    rising = np.column_stack([arm[:, 1], -arm[:, 0]])             # clockwise about the pivot
+    angle = np.arctan2(rising[:, 0] * normal[:, 1] - rising[:, 1] * normal[:, 0], (rising * normal).sum(axis=1))
+    return (arm * u).sum(axis=1), angle
+
+
+def _closed_form_reach(pivot: float, base: float, sense: int, program, theta: np.ndarray) -> np.ndarray:
+    """d = C cos(asin(Rb / C) + psi) / (1 + sense psi'): the contact's distance from the pivot (mm)."""
+    psi, psi1 = np.radians(program.evaluate(theta)[:2])
+    return pivot * np.cos(math.asin(base / pivot) + psi) / (1 + sense * psi1)
+
+
+#: (pivot distance, base radius, swing, rotation): ordinary arms with no cusp, and one a millionth beyond the nearest
+#: pivot Rb / cos(swing) (the contact then passes within about 2e-4 mm of the pivot at the top of the swing)
+FACE_GEOMETRIES = [(120.0, 60.0, 8.0, "ccw"), (150.0, 70.0, 12.0, "cw"), (90.0, 76.0, 20.0, "ccw"),
+                   (76.0 / math.cos(math.radians(20.0)) * (1 + 1e-6), 76.0, 20.0, "ccw"),
+                   (76.0 / math.cos(math.radians(20.0)) * (1 + 1e-6), 76.0, 20.0, "cw")]
+
+
+@pytest.mark.parametrize("pivot, base, lift, rotation", FACE_GEOMETRIES)
+def test_oscillating_flat_pressure_angle_against_finite_differences(pivot, base, lift, rotation):
+    """A face through its pivot is pushed along its own normal wherever it touches the cam on the arm's side of the
+    pivot: pressure angle 0, measured on the envelope of its lines, and the contact where the closed form puts it."""
+    cam = build_cam(spec(_osc_flat(pivot, base, lift, rotation)))
+    sense = cam.follower.sense
+    theta = np.radians(np.arange(0.25, 360.0, 1.5))
+    g = cam.pitch(theta)
+    reach, angle = _numeric_face(pivot, base, sense, cam.program, theta)
+    assert np.abs(g.point - _envelope(pivot, base, sense, cam.program, theta)).max() < 1e-6
+    assert reach.min() > 0
+    assert np.abs(reach - _closed_form_reach(pivot, base, sense, cam.program, theta)).max() < 1e-6
+    assert np.abs(cam.follower.face_position(g) - reach).max() < 1e-6
+    assert np.abs(angle).max() < 1e-6
+    assert np.abs(g.pressure_angle).max() < 1e-9
+    assert analyze(cam).pressure_angle_max_deg == pytest.approx(0.0, abs=1e-7)
+    assert analyze(cam).profile_rho_min_mm > 0
+
+
+def test_oscillating_flat_face_past_its_pivot_is_pushed_back():
+    """The issue's arm (pivot 80 mm from the centre of a 76 mm cam, 20 degrees of swing: the nearest pivot is
+    76 / cos 20 = 80.88 mm), evaluated without the refusal: where the closed form puts the contact beyond the pivot
+    (d < 0) the finite differences and the follower both give 180 degrees, and 0 elsewhere."""
+    from camgen.followers.oscillating_flat import OscillatingFlat
+
+    program = build_cam(spec(_osc_flat(120.0, 76.0, 20.0))).program
+    theta = np.radians(np.arange(0.25, 360.0, 0.5))
+    follower = OscillatingFlat(80.0, 76.0, 1)
+    g = follower.pitch(theta, program.evaluate(theta))
+    reach, angle = _numeric_face(80.0, 76.0, 1, program, theta)
+    beyond = _closed_form_reach(80.0, 76.0, 1, program, theta) < 0
+    assert beyond.any() and not beyond.all()
+    assert np.array_equal(reach < 0, beyond)
+    assert np.abs(np.abs(angle[beyond]) - math.pi).max() < 1e-6 and np.abs(angle[~beyond]).max() < 1e-6
+    assert np.abs(np.abs(g.pressure_angle[beyond]) - math.pi).max() < 1e-9
+    assert np.abs(g.pressure_angle[~beyond]).max() < 1e-9
+
+
+@pytest.mark.parametrize("base, lift", [(76.0, 20.0), (40.0, 30.0), (60.0, 8.0)])
+def test_oscillating_flat_pivot_nearer_than_rb_over_cos_swing_is_refused(base, lift):
+    """At its largest swing psi the face's nearest point to the cam centre lies C cos(asin(Rb / C) + psi) from the
+    pivot: on the arm's side only while C > Rb / cos(psi). A hair inside is refused naming the field and its range;
+    a hair outside builds, its nearest contact that far from the pivot (at the top dwell, where psi' = 0)."""
+    least = base / math.cos(math.radians(lift))
+    for pivot in (least * (1 - 1e-9), base, 0.5 * base):
+        with pytest.raises(SpecError) as refusal:
+            build_cam(spec(_osc_flat(pivot, base, lift)))
+        assert refusal.value.field == "follower.pivot_distance"
+        assert str(refusal.value).startswith(f"follower.pivot_distance: must be > {least:.6g} mm")
+        assert f"cam.base_radius < {pivot * math.cos(math.radians(lift)):.6g} mm" in str(refusal.value)
+    pivot = least * (1 + 1e-6)
+    cam = build_cam(spec(_osc_flat(pivot, base, lift)))
+    nearest = pivot * math.cos(math.asin(base / pivot) + math.radians(lift))
+    assert 0 < nearest < 1e-3 * base
+    assert face_extent(cam)[0] == pytest.approx(nearest, rel=1e-6)
+
+
+def test_oscillating_flat_swing_of_90_degrees_follows_no_pivot():
+    """Two rises of 50 and 45 degrees: at 95 degrees the face turns its back on the cam, whatever the pivot."""
+    t = spec(_osc_flat(500.0, 20.0, 50.0)).model_dump(exclude_unset=True)
+    t["motion"] = [{"type": kind, "law": "cycloidal", "lift": lift, "angle": 90.0}
+                   for kind, lift in (("rise", 50.0), ("rise", 45.0), ("return", 50.0), ("return", 45.0))]
+    from camgen.spec import validate_spec
+
+    with pytest.raises(SpecError, match=r"^motion: the arm's swing peaks at 95 degrees"):
+        build_cam(validate_spec(t))
+
+
+def test_oscillating_flat_pivot_refusal_from_the_command_line(tmp_path):
+    """The issue's case: one line naming follower.pivot_distance and its least value 76 / cos 20 deg, exit 2,
+    nothing written."""
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+    from tests.conftest import ROOT
+
+    text = (ROOT / "templates" / "rdrd.toml").read_text()
+    text = text.replace('type = "translating-roller"', 'type = "oscillating-flat"\npivot_distance = 80.0')
+    text = "\n".join(line for line in text.splitlines() if not line.startswith(("roller_radius", "offset")))
+    (tmp_path / "t.toml").write_text(text.replace("base_radius = 40.0", "base_radius = 76.0"))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["build", str(tmp_path / "t.toml"), "-o", str(out)])
+    assert result.exit_code == 2, result.output
+    least = 76.0 / math.cos(math.radians(20.0))
+    assert result.stderr.splitlines() == [result.stderr.strip()]
+    assert result.stderr.startswith(f"error: follower.pivot_distance: must be > {least:.6g} mm")
+    assert not out.exists()
+
+
+def test_auto_base_radius_of_an_oscillating_flat_face_stays_below_its_reach():
+    """base_radius = "auto" searches only radii under C cos(largest swing) (here 30 cos 60 = 15 mm): no base radius
+    meets the curvature there, and the refusal says how far it searched."""
+    with pytest.raises(DesignError, match=r"searched up to (\S+) mm") as refusal:
+        design_cam(spec({**_osc_flat(30.0, 20.0, 60.0), "cam.base_radius": "auto"}))
+    searched = float(re.search(r"searched up to (\S+) mm", str(refusal.value)).group(1))
+    assert searched < 30.0 * math.cos(math.radians(60.0))
+    d = design_cam(spec({**_osc_flat(45.0, 20.0, 25.0), "cam.base_radius": "auto"}))
+    assert 0 < d.cam.base_radius < 45.0 * math.cos(math.radians(25.0))

@@ -536,7 +536,7 @@ def test_a_rhombus_builds_its_parts_with_warnings_as_errors(tmp_path):
     import subprocess
     import sys
 
-    from linkgen.mechanisms.fourbar import input_grid
+    from linkgen.kinematics.circuits import input_grid
 
     grid = input_grid(FourBar(20, 20, 20, 20), 8)
     assert grid == pytest.approx(np.radians(22.5 + 45 * np.arange(8)), abs=1e-15)
@@ -549,3 +549,89 @@ def test_a_rhombus_builds_its_parts_with_warnings_as_errors(tmp_path):
                          capture_output=True, text=True, cwd=ROOT)
     assert run.returncode == 0 and run.stderr == "", run.stderr
     assert (tmp_path / "out" / "t.json").exists()
+
+
+#: deltoids whose crank pin meets the rocker pivot at crank angle 0: a rhombus and a kite (full turns), and a
+#: double rocker whose range, +-acos(1 - (L3 + L4)^2 / (2 L1^2)) = +-60 degrees, holds the fold in its middle
+DELTOIDS = [(20, 20, 20, 20), (20, 20, 40, 40), (40, 40, 20, 20)]
+
+
+def _deltoid_gamma(lengths: tuple[float, ...], theta: np.ndarray) -> np.ndarray:
+    """The transmission angle (rad) of a deltoid (L1 = L2, L3 = L4) from the law of cosines alone:
+    z^2 = 2 L1^2 (1 - cos theta2) and cos gamma = 1 - z^2 / (2 L3^2)."""
+    l1, _, l3, _ = lengths
+    return np.arccos(np.clip(1 - (l1 / l3) ** 2 * (1 - np.cos(theta)), -1, 1))
+
+
+@pytest.mark.parametrize("lengths", DELTOIDS)
+def test_the_shared_input_grid_steps_round_a_deltoids_fold(lengths):
+    """n angles over the full turn in the middle of n equal steps; over a range, its ends and equal steps, but the
+    one on the fold (0 of [-60, 60] with 7 angles) gives way to the two half a step either side of it."""
+    from linkgen.kinematics.circuits import input_grid, input_spans
+
+    fb = FourBar(*lengths)
+    (lo, hi), = input_spans(fb)
+    grid = input_grid(fb, 7)
+    if fb.input_ranges() is None:
+        assert (lo, hi) == (0.0, 2 * math.pi)
+        assert grid == pytest.approx((np.arange(7) + 0.5) * 2 * math.pi / 7, abs=1e-15)
+    else:
+        top = math.acos(1 - (lengths[2] + lengths[3]) ** 2 / (2 * lengths[0] ** 2))
+        assert (lo, hi) == (pytest.approx(-top, abs=1e-12), pytest.approx(top, abs=1e-12))
+        step = 2 * top / 6
+        assert grid == pytest.approx([-top, -top + step, -top + 2 * step, -step / 2, step / 2, top - 2 * step,
+                                      top - step, top], abs=1e-12)
+    poses = fb.sweep(grid, "open")                        # every one of them is drawn
+    assert np.degrees(poses.gamma) == pytest.approx(np.degrees(_deltoid_gamma(lengths, grid)), abs=1e-6)
+
+
+@pytest.mark.parametrize("lengths", DELTOIDS)
+def test_a_deltoids_figures_draw_round_its_fold(lengths):
+    """The figures sweep every curve over the shared grid (they were refused at the fold, naming an 'angle' nobody
+    gave): the transmission angle drawn is the law of cosines' at every crank angle it is drawn at, over the whole
+    span; the rocker pin's path lies on its circle about O4."""
+    from linkgen import plots
+
+    fb = FourBar(*lengths)
+    fig = plots.transmission_figure("t", fb, "open")
+    curve = fig.axes[0].lines[0]
+    x, y = np.radians(curve.get_xdata()), curve.get_ydata()
+    assert len(x) >= 721 and np.all(np.diff(x) > 0)
+    assert np.degrees(_deltoid_gamma(lengths, x)) == pytest.approx(y, abs=1e-6)
+    span = (0.0, 2 * math.pi) if fb.input_ranges() is None else fb.input_ranges()[0]
+    assert x[0] - span[0] <= 2 * math.pi / 721 and span[1] - x[-1] <= 2 * math.pi / 721
+    assert np.abs(np.remainder(x + math.pi, 2 * math.pi) - math.pi).min() > 1e-4       # never on the fold
+    fig = plots.dead_centre_figure("t", fb, "open")
+    pin = np.column_stack([fig.axes[0].lines[1].get_xdata(), fig.axes[0].lines[1].get_ydata()])
+    assert np.hypot(pin[:, 0] - lengths[0], pin[:, 1]) == pytest.approx(lengths[3], abs=1e-9)
+
+
+@pytest.mark.parametrize("lengths", [*DELTOIDS, (20, 50, 60, 55)])
+def test_deltoids_and_a_drag_link_analyze_and_build_every_file(tmp_path, lengths):
+    """`linkgen analyze --figures` and `linkgen build` with every format, Python's warnings as errors: a deltoid's
+    sweep passes its fold; a drag link (ground shortest) and the full-turn deltoids have no dead centre, so the STEP
+    file stands the parts at the motion's first pose (it was a traceback, 'NoneType' has no attribute 'angles')."""
+    import subprocess
+    import sys
+
+    from linkgen.parts import SWEEP
+
+    path = tmp_path / "t.toml"
+    body = "\n".join(f"{k} = {float(v)}" for k, v in zip(("ground", "crank", "coupler", "rocker"), lengths,
+                                                          strict=True))
+    path.write_text(f'name = "t"\n[linkage]\ntype = "four-bar"\n{body}\n[parts]\nwidth = 4.0\nthickness = 3.0\n'
+                    'pin_diameter = 2.0\n')
+    for args in (["analyze", "--figures"], ["build", "--set", "output.formats=['dxf', 'stl', 'step', 'json', 'png']"]):
+        out = tmp_path / args[0]
+        run = subprocess.run([sys.executable, "-W", "error", "-m", "linkgen", args[0], str(path), "-o", str(out),
+                              *args[1:]], capture_output=True, text=True, cwd=ROOT)
+        assert run.returncode == 0 and run.stderr == "", run.stderr
+        assert (out / "t-transmission.png").exists() and (out / "t-dead-centres.png").exists()
+    assert (tmp_path / "analyze" / "t-dead-centres.svg").exists() and (tmp_path / "build" / "t.step").exists()
+    design = design_linkage(load_spec(path), parts=True)
+    fb, pose = design.kinematics, design.build.pose
+    if not fb.dead_centres("open"):                   # at the sweep's first angle: a full turn's first grid point
+        first = math.pi / SWEEP if fb.folds()[0] and lengths[0] == lengths[1] else 0.0
+        assert pose.angles["crank"][0] == pytest.approx(first, abs=1e-15)
+        assert pose.joints["A"][1][0] == pytest.approx([lengths[1] * math.cos(first), lengths[1] * math.sin(first)],
+                                                       abs=1e-12)

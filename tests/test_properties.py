@@ -403,12 +403,7 @@ def run_case(case: Case, files: Callable[[Path], None] | None = None, process: b
 #: linkgen/mechanisms, linkgen/design.py, which others are changing): a pattern of the failure and the issue it is,
 #: with a reproduction. A test that meets one still runs all its examples (any other failure fails it) and then
 #: ends as xfail naming the issue; nothing is tolerated silently.
-KNOWN: dict[str, str] = {
-    r"'pressure_angle_max_deg', 0\)": (
-        "an oscillating flat face whose pivot lies almost on the cam's base circle reports a pressure angle of 180 "
-        "degrees (camgen/followers); reproduce: camgen build of rdrd.toml with [follower] type = "
-        "'oscillating-flat', pivot_distance = 80 and cam.base_radius = 76 prints 'pressure angle max 180.00 deg'"),
-}
+KNOWN: dict[str, str] = {}
 #: the known issues the running test has met
 MET: set[str] = set()
 

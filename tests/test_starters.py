@@ -235,8 +235,9 @@ def test_the_rules_the_cam_starters_state_hold():
     """Each starter's stated rule is where validation draws the line, just inside it and just past it: a barrel's
     groove floor outside the roller (pitch_radius - groove_depth / 2 > roller_radius + running_clearance / 2, the
     bore being smaller), an arm that puts the roller on the prime circle (|pivot_distance - arm_length| < base_radius
-    + roller_radius), an oscillating flat face's pivot beyond the base circle, an offset inside the prime circle,
-    a grooved cam's groove shallower than its plate, a Geneva wheel of 3 to 36 slots."""
+    + roller_radius), an oscillating flat face's pivot far enough that its contact stays on the arm's side of it
+    (base_radius / cos(the largest swing)), an offset inside the prime circle, a grooved cam's groove shallower than
+    its plate, a Geneva wheel of 3 to 36 slots."""
     eps = 1e-6
     # barrel: Rm 30, Rr 5, c 0.2, bore 10: depth < 2 (30 - 5.1) = 49.8 mm (the roller, not the bore, decides)
     limit = 2 * (30.0 - (5.0 + 0.2 / 2))
@@ -248,10 +249,13 @@ def test_the_rules_the_cam_starters_state_hold():
     # oscillating roller: pivot 110, Rb 40, Rr 8: |110 - L| < 48 < 110 + L, so L > 62
     assert not _refused(_cam_raw("oscillating-roller", follower={"arm_length": 62.0 + eps}), "follower")
     assert _refused(_cam_raw("oscillating-roller", follower={"arm_length": 62.0 - eps}), "follower.arm_length")
-    # oscillating flat face: pivot_distance > base_radius
+    # oscillating flat face: pivot_distance > base_radius / cos(the largest swing), the starter's 15 degrees
     flat = {"base_radius": 50.0}
-    assert _refused(_cam_raw("oscillating-flat", cam=flat, follower={"pivot_distance": 50.0}),
+    least = 50.0 / math.cos(math.radians(15.0))
+    assert _refused(_cam_raw("oscillating-flat", cam=flat, follower={"pivot_distance": least - eps}),
                     "follower.pivot_distance")
+    assert not _refused(_cam_raw("oscillating-flat", cam=flat, follower={"pivot_distance": least + eps}),
+                        "follower.pivot_distance")
     # an offset inside the prime circle (40 + 10) and, for a knife edge, inside the base circle
     assert _refused(_cam_raw("translating-roller", follower={"offset": 50.0}), "follower.offset")
     assert not _refused(_cam_raw("translating-roller", follower={"offset": 45.0}), "follower.offset")

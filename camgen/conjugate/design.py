@@ -32,7 +32,8 @@ from camgen.cam import Cam, build_cam
 from camgen.conjugate.followers import ArmRoller, YokeRoller, arm_prime, arm_turn, yoke_prime, yoke_span
 from camgen.core.errors import CamgenError, DesignError
 from camgen.core.parts import Allowances
-from camgen.design import CamDesign, _body, _check_holes, _curves, _engraving, _Profile, _reach, _speed, known_wall
+from camgen.design import (CamDesign, _body, _check_holes, _curves, _engraving, _Profile, _reach, _speed,
+                           check_opened_holes, known_wall)
 from camgen.forces import Contact, drive_speed
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
@@ -50,8 +51,7 @@ THIN_WALL = 2.0
 
 def swing_top(cam: Cam) -> float:
     """The follower's largest displacement over the turn (mm, or degrees of swing), spline overshoots included."""
-    segments = cam.program.segments
-    return cam.program.peak(lambda i, t: segments[i].evaluate(t)[0])[0]
+    return cam.program.top()
 
 
 def second_roller(spec: CamSpec, first: Cam) -> float:
@@ -393,6 +393,7 @@ def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: 
         update={"kind": "disc", "base_radius": cam.base_radius})})         # a disc cam's design, as far as it goes
     outline, body, wall = _outline_body(own, cam, which)
     _check_holes(own, body, own.output.tolerance)
+    check_opened_holes(own, outline, own.output.tolerance, f"cam {which + 1}")
     engrave = own.hub.engrave or "engrave" not in own.hub.model_fields_set
     near = wall + own.cam.bore / 2
     maker = _Profile(own, cam, False, _engraving(own, shared.timing, body, near) if engrave else (), outline)

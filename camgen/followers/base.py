@@ -171,9 +171,13 @@ class FollowerType:
     :data:`camgen.followers.FOLLOWERS`.
 
     ``make(table, base radius mm, roller radius mm, sense)`` builds the follower;
-    ``base_radius_range(table, roller radius mm)`` is the (lowest, highest) base radius that assembles, exclusive;
+    ``base_radius_range(table, roller radius mm, top)`` is the (lowest, highest) base radius that assembles and
+    follows a program rising to ``top`` (mm, or degrees of swing), exclusive;
     ``roller_floor(table, base radius mm)`` the least roller radius that assembles; ``path_length(table, lift)``
-    the roller's travel (mm) for a lift (the drafted modified-uniform law needs it), None where it has no meaning.
+    the roller's travel (mm) for a lift (the drafted modified-uniform law needs it), None where it has no meaning;
+    ``fits(table, base radius mm, top)`` raises :class:`SpecError` naming the field where the follower cannot follow
+    a program whose largest displacement is ``top`` (mm, or degrees of swing, overshoots included) on that base
+    circle, None where it follows any program it assembles for (checked as a cam is built).
     """
 
     name: str
@@ -181,9 +185,11 @@ class FollowerType:
     takes: frozenset[str]
     make: Callable[[Any, float, float, int], Any]
     oscillating: bool = False
-    base_radius_range: Callable[[Any, float], tuple[float, float]] = field(default=lambda t, rr: (0.0, math.inf))
+    base_radius_range: Callable[[Any, float, float], tuple[float, float]] = field(
+        default=lambda t, rr, top: (0.0, math.inf))
     roller_floor: Callable[[Any, float], float] = field(default=lambda t, rb: 0.0)
     path_length: Callable[[Any, float], float] | None = field(default=lambda t, lift: lift)
+    fits: Callable[[Any, float, float], None] | None = None
 
     @property
     def lift_unit(self) -> str:

@@ -9,4 +9,4 @@ from camgen.followers.translating_roller import TranslatingRoller
 FOLLOWER = FollowerType(
     "knife-edge", needs=frozenset(), takes=frozenset({"offset"}),
     make=lambda t, rb, rr, sense: TranslatingRoller(rb + rr, rr, t.offset, sense),
-    base_radius_range=lambda t, rr: (max(0.0, abs(t.offset) - rr), math.inf))
+    base_radius_range=lambda t, rr, top: (max(0.0, abs(t.offset) - rr), math.inf))

@@ -6,12 +6,31 @@ Rb, ``pivot_distance`` from the cam centre, on +X); a rise turns it away from th
 about the pivot. Its profile is the envelope of the face's lines. The pressure angle
 is the angle between the contact normal and the direction in which the face's point at
 the contact moves (square to the line from the pivot).
+
+Where the contact lies: at the pivot the face makes the angle gamma0 = asin(Rb / C) with the
+line to the cam centre at rest, gamma = gamma0 + psi swung by psi; the foot of the
+perpendicular from the cam centre onto the face lies C cos(gamma) from the pivot, and the
+envelope puts the contact at
+
+    d = C cos(gamma0 + psi) / (1 + sense psi')       (psi' in rad per rad of cam turn)
+
+from the pivot along the face, towards the cam (the rest contact's side) where d > 0. The line
+from the pivot to the contact is the face itself, so the face's point there moves square to the
+face, along its normal: the pressure angle is 0 wherever d > 0, with no approximation. Past the
+pivot (d < 0) it is 180 degrees: the cam, which can only push along the outward normal, would push
+the arm back, and no cam drives it there. At the top of the swing psi' = 0, so the design is
+possible only if C cos(gamma0 + psi_top) > 0, that is psi_top < acos(Rb / C), or
+
+    C > Rb / cos(psi_top)                             (:func:`least_pivot_distance`)
+
+and :data:`FOLLOWER` refuses a nearer pivot (a steeper return, 1 + sense psi' <= 0, folds the
+profile instead, which the design refuses as a cusp).
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -70,6 +89,38 @@ class OscillatingFlat(FlatFace):
         return np.linalg.norm(contact - self.pivot, axis=1)
 
 
+def least_pivot_distance(base_radius: float, top: float) -> float:
+    """The nearest pivot (mm from the cam centre) whose face meets a cam of ``base_radius`` mm on the arm's side of
+    the pivot all the way up to a swing of ``top`` degrees (0 <= top < 90): Rb / cos(psi_top), see the module
+    docstring. Exclusive: at it the contact reaches the pivot at the top of the swing."""
+    return base_radius / math.cos(math.radians(max(top, 0.0)))
+
+
+def largest_base_radius(pivot_distance: float, top: float) -> float:
+    """The largest base radius (mm, exclusive) a face pivoted ``pivot_distance`` mm from the cam centre follows up to
+    a swing of ``top`` degrees: C cos(psi_top), 0 for a swing of 90 degrees or more."""
+    return max(pivot_distance * math.cos(math.radians(max(top, 0.0))), 0.0)
+
+
+def check_reach(table: Any, base_radius: float, top: float) -> None:
+    """Refuse (:class:`SpecError`) a face pivoted ``table.pivot_distance`` mm from the centre of a cam of
+    ``base_radius`` mm whose contact would pass the pivot as the arm swings up to ``top`` degrees (see the module
+    docstring): one line naming ``follower.pivot_distance`` and its range, or ``motion`` for a swing of 90 degrees
+    or more, which no pivot follows."""
+    c = table.pivot_distance
+    positive(c, "follower.pivot_distance")
+    if top >= 90.0:
+        raise SpecError(f"the arm's swing peaks at {top:.6g} degrees: a flat face through its pivot meets the cam on "
+                        "its arm only while it swings less than 90 degrees from rest", "motion")
+    least = least_pivot_distance(base_radius, top)
+    if not c > least:
+        raise SpecError(f"must be > {least:.6g} mm (base radius {base_radius:.6g} mm / cos {top:.6g} deg, the arm's "
+                        f"largest swing), or cam.base_radius < {largest_base_radius(c, top):.6g} mm: nearer, the face "
+                        "swung that far touches the cam beyond its pivot, where the cam pushes the arm back "
+                        f"(pressure angle 180 degrees) (got {c:g})", "follower.pivot_distance")
+
+
 FOLLOWER = FollowerType("oscillating-flat", needs=frozenset({"pivot_distance"}), takes=frozenset({"face_margin"}),
                         oscillating=True, make=lambda t, rb, rr, sense: OscillatingFlat(t.pivot_distance, rb, sense),
-                        base_radius_range=lambda t, rr: (0.0, t.pivot_distance), path_length=None)
+                        base_radius_range=lambda t, rr, top: (0.0, largest_base_radius(t.pivot_distance, top)),
+                        path_length=None, fits=check_reach)

@@ -91,7 +91,7 @@ FOLLOWER = FollowerType(
     "oscillating-roller", needs=frozenset({"roller_radius", "pivot_distance", "arm_length"}), takes=frozenset(),
     oscillating=True,
     make=lambda t, rb, rr, sense: OscillatingRoller(t.pivot_distance, t.arm_length, rb + rr, rr, sense),
-    base_radius_range=lambda t, rr: (max(0.0, abs(t.pivot_distance - t.arm_length) - rr),
-                                     t.pivot_distance + t.arm_length - rr),
+    base_radius_range=lambda t, rr, top: (max(0.0, abs(t.pivot_distance - t.arm_length) - rr),
+                                          t.pivot_distance + t.arm_length - rr),
     roller_floor=_arm_floor,
     path_length=lambda t, lift: t.arm_length * math.radians(lift))

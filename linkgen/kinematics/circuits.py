@@ -115,6 +115,38 @@ class Circuit:
         return self.assemblies[0] * (-1 if past else 1)
 
 
+def input_spans(fb: FourBar) -> tuple[tuple[float, float], ...]:
+    """The crank angles (rad) the drawings sweep: a full turn (0, 2 pi), or every reachable range."""
+    ranges = fb.input_ranges()
+    return ((0.0, TWO_PI),) if ranges is None else ranges
+
+
+def input_span(fb: FourBar) -> tuple[float, float]:
+    """The crank angles (rad) a single drawing sweeps (the parts, a thumbnail): the first of :func:`input_spans`."""
+    return input_spans(fb)[0]
+
+
+def input_grid(fb: FourBar, n: int, span: tuple[float, float] | None = None) -> np.ndarray:
+    """``n`` crank angles (rad) over ``span`` (by default :func:`input_span`), ascending, ends included, that the
+    linkage can be drawn at: off a deltoid's undetermined fold. Where the crank pin meets the rocker pivot at crank
+    angle 0 (ground = crank and coupler = rocker: no pose is determined there, and the poses refuse it), a full
+    turn's ``n`` angles sit in the middle of ``n`` equal steps, half a step off its ends, and in a range that holds
+    the fold (a double rocker's) the angles within half a step of it give way to the two half a step either side
+    of it (one more angle where one sat on it), so that the drawing passes the fold as a sweep does."""
+    lo, hi = input_span(fb) if span is None else span
+    grid = np.linspace(lo, hi, n)
+    if math.hypot(*fb._z(np.array(0.0))) > FEASIBILITY_TOL * fb.longest or n < 2:
+        return grid
+    if fb.input_ranges() is None:
+        return lo + (np.arange(n) + 0.5) * ((hi - lo) / n)
+    half = 0.5 * (hi - lo) / (n - 1)
+    for turn in range(math.ceil((lo - half) / TWO_PI), math.floor((hi + half) / TWO_PI) + 1):
+        fold = turn * TWO_PI
+        sides = [x for x in (fold - half, fold + half) if lo <= x <= hi]
+        grid = np.unique(np.concatenate([grid[np.abs(grid - fold) >= half], sides]))
+    return grid
+
+
 def circuits(fb: FourBar) -> tuple[Circuit, ...]:
     """The circuits of a crank-driven four-bar: one a range of crank angles, else one an assembly (or one
     branch of two turns through a change point); see the module's docstring."""

@@ -19,7 +19,8 @@ from camgen.core.parts import Drawing
 from camgen.core.shapes import Polyline
 from camgen.core.spec import Model, unit
 from linkgen import plots
-from linkgen.kinematics.fourbar import ASSEMBLIES, FEASIBILITY_TOL, FourBar, Poses
+from linkgen.kinematics.circuits import input_grid, input_span
+from linkgen.kinematics.fourbar import ASSEMBLIES, FourBar, Poses
 from linkgen.mechanisms.circuits import circuits_report, split_warning
 from linkgen.mechanisms.common import Figure, deg, length, num, omega, rpm, types_of
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
@@ -47,22 +48,6 @@ class FourBarTable(Model):
     assembly: Literal["open", "crossed"] = Field("open", description="assembly branch")
     input: Literal["crank", "rocker"] = Field("crank", description="driven link")
     rpm: float = rpm()
-
-
-def input_span(fb: FourBar) -> tuple[float, float]:
-    """The crank angles (rad) the drawings sweep: a full turn, or the first reachable range."""
-    ranges = fb.input_ranges()
-    return (0.0, TWO_PI) if ranges is None else ranges[0]
-
-
-def input_grid(fb: FourBar, n: int) -> np.ndarray:
-    """``n`` crank angles (rad) over :func:`input_span`, ends included; for a deltoid whose crank pin meets the
-    rocker pivot at crank angle 0 (ground = crank: no pose is determined there) a full turn's ``n`` angles sit
-    half a step off its ends instead, so that the drawings pass the fold as a sweep does."""
-    lo, hi = input_span(fb)
-    if fb.input_ranges() is None and math.hypot(*fb._z(np.array(0.0))) <= FEASIBILITY_TOL * fb.longest:
-        return lo + (np.arange(n) + 0.5) * ((hi - lo) / n)
-    return np.linspace(lo, hi, n)
 
 
 def position(fb: FourBar, pose: Poses, speed: float) -> dict[str, Any]:
