@@ -42,7 +42,7 @@ ASSEMBLIES: tuple[str, ...] = ("open", "crossed")
 FEASIBILITY_TOL = 1e-10
 TWO_PI = 2.0 * math.pi
 #: crank angles placed at a time (:meth:`FourBar._poses`): each of the 10 intermediates 128 kB, together within a
-#: core's caches; of 4 096 to 32 768 at 100 000 angles, 4 096 and 8 192 measured slower (README, "Four-bar positions")
+#: core's caches; of 4 096 to 32 768 at 100 000 angles, 4 096 and 8 192 measured slower (docs/guides/speed.md)
 CHUNK = 16384
 #: up to this many angles :meth:`FourBar._poses` places every pin and angle in one pass: below it a second pass's
 #: own cost (some 50 numpy calls) is more than the arithmetic the pins and angles not asked for take
@@ -721,7 +721,7 @@ def _refuse_coincident(theta2: np.ndarray, coincident: np.ndarray, what: str, mi
 def _block(*shapes: tuple[int, ...]) -> list[np.ndarray]:
     """Arrays of floats of the given shapes, views of one block; a block of at least half of :data:`HUGE` bytes
     made that large: from that size numpy asks the kernel for huge pages, so that it is a few page faults instead
-    of one every 4 kB (at 100 000 angles that was the cost, not the arithmetic; README, "Four-bar positions")."""
+    of one every 4 kB (at 100 000 angles that was the cost, not the arithmetic; docs/guides/speed.md)."""
     sizes = [math.prod(shape) for shape in shapes]
     total = sum(sizes)
     block = np.empty(max(total, HUGE // 8) if 16 * total >= HUGE else total)
