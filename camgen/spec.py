@@ -467,7 +467,34 @@ class OutputTable(CutOutputTable):
 
 
 class CamSpec(Model):
-    """A whole cam template, validated: the spec of one cam."""
+    """A whole cam template, validated: the spec of one cam.
+
+    Made by :func:`validate_spec` or :func:`load_spec` from a template (every key, its unit, range and default:
+    the template reference); frozen. Built with the constructor, it is validated the same way.
+
+    Parameters
+    ----------
+    name : str
+        The part's name, used for its files: letters, digits, ``.``, ``_``, ``-``.
+    cam : CamTable
+        The cam body: its kind, size, bore, rotation, sizing limits and speed.
+    follower : FollowerTable
+        The follower: its type, geometry, mass, spring and loads.
+    motion : list of SegmentTable
+        The segments in order from theta = 0, their angles adding up to 360 degrees.
+    hub : HubTable, optional
+        Keyway, boss, set screw, bolt holes, engraving.
+    output : OutputTable, optional
+        Formats, tolerance, kerf, clearance and the files' flavours.
+    kit : CamKitTable or None, optional
+        The frame, follower and hardware round the cam.
+
+    Raises
+    ------
+    pydantic.ValidationError
+        Built with the constructor, a template that fails validation (:func:`validate_spec` turns the first
+        problem into a one-line :class:`~camgen.core.errors.SpecError` instead).
+    """
 
     name: str = name_field("part")
     cam: CamTable
