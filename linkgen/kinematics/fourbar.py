@@ -193,6 +193,30 @@ class FourBar:
 
     An optional coupler point lies at ``point_distance`` mm from A, at
     ``point_angle`` radians counter-clockwise from the coupler line A -> B.
+
+    The input pivot O2 is the origin and the output pivot O4 lies on +X, ``ground`` away; every angle is counter-
+    clockwise from that ground line, in radians.
+
+    Parameters
+    ----------
+    ground : float
+        L1 (mm): O2 to O4.
+    crank : float
+        L2 (mm): the input link, O2 to the crank pin A.
+    coupler : float
+        L3 (mm): A to the rocker pin B.
+    rocker : float
+        L4 (mm): the output link, O4 to B.
+    point_distance : float, optional
+        The coupler point's distance from A (mm), >= 0; 0 puts it on A.
+    point_angle : float, optional
+        The coupler point's angle from the line A -> B (radians, counter-clockwise).
+
+    Raises
+    ------
+    SpecError
+        A length that is not finite and > 0 (naming ``linkage.<link>``), a longest link not shorter than the
+        other three together (the chain closes only flat), or a negative or non-finite point distance.
     """
 
     ground: float

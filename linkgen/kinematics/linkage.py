@@ -117,7 +117,20 @@ class Solution:
 @dataclass(frozen=True)
 class Linkage:
     """A planar linkage with its solve order; ``flips`` holds, per step, the input values (on the revolution or
-    stroke from the drawing) where that dyad's branch swaps sides at a change point."""
+    stroke from the drawing) where that dyad's branch swaps sides at a change point.
+
+    Made by :meth:`of` from a structure (which finds the flips and checks the redundant constraints); positions
+    in the drawing's frame (mm), angles counter-clockwise in radians.
+
+    Parameters
+    ----------
+    structure : Structure
+        The joints' drawn positions, the links, the sliders and the inputs.
+    plan : Plan
+        The solve order: the inputs, then the dyads.
+    flips : tuple of ndarray, optional
+        Per step, the input values where its dyad swaps sides.
+    """
 
     structure: Structure
     plan: Plan
