@@ -138,11 +138,12 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
 
 def _step_solids(build: LinkageBuild) -> tuple[Placed, ...]:
     """The STEP file's solids (see :mod:`camgen.core.writers.step`), as assembled at the first dead centre the
-    assembly drawing shows (its ``DC1-...`` layer; the motion's first pose where it shows none): every printed part turned and moved as drawn there, standing at
-    its layer's height (layer x thickness); with pins, a pin at every pivot point (``pin-<joint>``: its shank, as
-    long as the stack of layers and 1 mm more, under a head 1.8 x as wide and half a diameter high, the head resting
-    on the highest part it joins) and a spacer on each run of empty layers a pin crosses (``spacer-<joint>-<layer>``,
-    from that layer up), the shapes of their meshes as exact discs and rings."""
+    assembly drawing shows (its ``DC1-...`` layer; the motion's first pose where it shows none): every printed part
+    turned and moved as drawn there, standing at its layer's height (layer x thickness); with pins, a pin at every
+    pivot point (``pin-<joint>``: its shank, as long as the stack of layers and 1 mm more, under a head 1.8 x as wide
+    and half a diameter high, the head resting on the highest part it joins) and a spacer on each run of empty layers
+    a pin crosses (``spacer-<joint>-<layer>``, from that layer up), the shapes of their meshes as exact discs and
+    rings."""
     from camgen.core.kit import disc
 
     table, pose = build.table, build.pose
