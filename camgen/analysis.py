@@ -116,7 +116,20 @@ def profile_rho_min(cam: Cam) -> float:
 
 
 def analyze(cam: Cam) -> CamAnalysis:
-    """:func:`analysis_maker` run on its own."""
+    """:func:`analysis_maker` run on its own.
+
+    Parameters
+    ----------
+    cam : Cam
+        A built cam (:func:`camgen.cam.build_cam`).
+
+    Returns
+    -------
+    CamAnalysis
+        The peak |pressure angle| (degrees) and where, the least convex radii of the pitch curve and of the cam
+        surface (mm; signed: positive convex) and where, the least concave ones, and whether the cam undercuts
+        (for a flat face: whether its profile folds), each located to about 1e-9 degrees of cam angle.
+    """
     return cam.serve([analysis_maker(cam)])[0]
 
 

@@ -35,6 +35,22 @@ class Cam:
     Lengths in mm, angles in radians. theta = 0 puts the follower on +Y; the cam
     turns counter-clockwise for ``follower.sense`` = +1 (see
     :mod:`camgen.followers.base` for the frame and sign conventions).
+
+    Parameters
+    ----------
+    name : str
+        The part's name (``spec.name``).
+    program : Program
+        The motion program: s and its first three derivatives at any cam angle.
+    follower : object
+        One of :mod:`camgen.followers`' followers (:class:`~camgen.followers.translating_roller.TranslatingRoller`,
+        ...), or a plate cam's :class:`~camgen.followers.plate.PlateRoller`.
+    base_radius : float
+        The base circle's radius (mm; a plate's height under the profile).
+    thickness : float
+        The plate's thickness (mm), the solid's extrusion.
+    bore : float
+        The bore's diameter (mm), 0 for none.
     """
 
     name: str
@@ -201,7 +217,31 @@ def _drafted_ratio(spec: CamSpec, angle: float, lift: float, prime: float, index
 
 
 def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: float | None = None) -> Cam:
-    """The :class:`Cam` a spec describes; ``roller_radius``, ``base_radius`` (mm) override the spec's."""
+    """The :class:`Cam` a spec describes; ``roller_radius``, ``base_radius`` (mm) override the spec's.
+
+    Parameters
+    ----------
+    spec : CamSpec
+        A validated cam template.
+    roller_radius : float, optional
+        The roller's radius to build with (mm), instead of ``follower.roller_radius`` (0 for a flat face or a knife
+        edge).
+    base_radius : float, optional
+        The base radius to build with (mm), instead of ``cam.base_radius``; needed when the spec's is ``"auto"``
+        (:func:`camgen.sizing.size_cam` finds one; :func:`camgen.design.design_cam` sizes and builds at once).
+
+    Returns
+    -------
+    Cam
+        The kinematic cam: its program, follower, base radius, thickness and bore; no geometry is checked.
+
+    Raises
+    ------
+    SpecError
+        A segment's law refuses its parameters (naming ``motion[i]`` and the key), the motion does not make one
+        turn that returns to its start, or the follower cannot be placed (an offset outside the prime circle, an
+        arm that cannot reach it), each naming the key.
+    """
     rr = spec.follower.contact_radius if roller_radius is None else roller_radius
     rb = spec.cam.base_radius if base_radius is None else base_radius
     prime = rb + rr if rb is not None else spec.cam.pitch_radius     # a barrel's: its pitch cylinder

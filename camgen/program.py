@@ -37,6 +37,21 @@ class Segment:
     A rise takes s from ``level`` to ``level + lift`` with s = level + h f(u); a return
     mirrors it, s = level - h + h f(1 - u), from ``level`` down to ``level - lift``;
     a dwell holds ``level``. ``start`` and ``beta`` are in radians.
+
+    Parameters
+    ----------
+    kind : str
+        ``"rise"``, ``"dwell"`` or ``"return"``.
+    start : float
+        The cam angle the segment starts at (radians).
+    beta : float
+        The segment's cam angle (radians, > 0).
+    lift : float, optional
+        h: the follower's travel over it (mm, or degrees of an arm's swing; 0 for a dwell).
+    level : float, optional
+        s at the segment's start (mm, or degrees of an arm's swing).
+    law : Law or None, optional
+        The motion law of a rise or return; None for a dwell.
     """
 
     kind: Kind
@@ -162,7 +177,19 @@ def _pair(v: np.ndarray, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 @dataclass(frozen=True)
 class Program:
-    """Ordered segments covering exactly one turn; s is continuous and returns to its start."""
+    """Ordered segments covering exactly one turn; s is continuous and returns to its start.
+
+    Parameters
+    ----------
+    segments : tuple of Segment
+        The segments in order from theta = 0, each starting where the one before ends.
+
+    Raises
+    ------
+    SpecError
+        Naming ``motion``: no segment, angles that do not add up to 2 pi, an end level that is not the start's, or
+        a level below s = 0.
+    """
 
     segments: tuple[Segment, ...]
 
@@ -544,7 +571,26 @@ def _end_level(kind: str, level: float, lift: float) -> float:
 
 
 def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program:
-    """A program from ``(kind, angle in degrees, lift in mm, law)`` steps, laid end to end from theta = 0."""
+    """A program from ``(kind, angle in degrees, lift in mm, law)`` steps, laid end to end from theta = 0.
+
+    Parameters
+    ----------
+    steps : list of tuple
+        Each segment as (kind, angle, lift, law): ``"rise"``, ``"dwell"`` or ``"return"``; its cam angle in
+        degrees; its lift (mm, or degrees of an arm's swing; ignored on a dwell); its :class:`Law` (None for a
+        dwell).
+
+    Returns
+    -------
+    Program
+        The segments in order, each starting where the one before ends (radians inside).
+
+    Raises
+    ------
+    SpecError
+        Naming ``motion``: no segment, angles that do not add up to 360 degrees, rises and returns that do not
+        balance over the turn, or a return below the follower's lowest position (s = 0).
+    """
     segments, start, level = [], 0.0, 0.0
     for kind, angle_deg, lift, law in steps:
         beta = math.radians(angle_deg)

@@ -100,7 +100,26 @@ def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
 
 
 def size_cam(spec: CamSpec) -> Sizing:
-    """The smallest base radius meeting the pressure-angle limit and the curvature margin."""
+    """The smallest base radius meeting the pressure-angle limit and the curvature margin.
+
+    Parameters
+    ----------
+    spec : CamSpec
+        A validated disc or plate cam template; its ``cam.base_radius`` is not read (``"auto"`` or a number).
+
+    Returns
+    -------
+    Sizing
+        The smallest base radius (mm) meeting ``cam.max_pressure_angle`` (30 degrees by default, 40 for an
+        oscillating follower) and keeping the cam surface's convex radii above ``cam.min_rho_margin`` mm, which
+        of the two decided it, and each one's own smallest radius.
+
+    Raises
+    ------
+    DesignError
+        A velocity jump no roller can follow at any size (naming its segment), or a limit no base radius meets
+        (naming ``cam.max_pressure_angle`` or ``cam.min_rho_margin``).
+    """
     limit = pressure_limit(spec)
     margin = spec.cam.min_rho_margin
     jumps = [i for i, turn in build_cam(spec, base_radius=_probe(spec)).corners() if turn > 0]

@@ -17,9 +17,11 @@ from typing import TYPE_CHECKING, Any, Literal
 from pydantic import Field, field_validator, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
-from camgen.core.spec import MAX_LENGTH_MM, Model, check_kind, length, name_field, read_template, unit, validate
+from camgen.laws.base import MAX_NORMALISED
+from camgen.core.spec import (MAX_LENGTH_MM, Model, check_kind, length, name_field, notes, read_template, unit,
+                              validate)
 from camgen.core.errors import SpecError
-from camgen.core.features import key_for, web_refusal
+from camgen.core.features import MIN_WEB_MM, key_for, web_refusal
 from camgen.core.reading import read_regular
 from camgen.core.spec import CutOutputTable
 from camgen.core.kit import CamKitTable, check_cam_kit
@@ -109,44 +111,78 @@ class CamTable(Model):
     discs on one shaft, each driving one of the follower's two rollers)."""
 
     kind: Literal[tuple(CAM_KINDS)] = Field("disc", description="cam kind")  # type: ignore[valid-type]
-    travel: float | None = length("plate cam: length the program's 360 degrees spread over", None)
-    base_radius: float | Literal["auto"] | None = Field(None, description="base circle radius, or \"auto\" for the "
-                                                        "smallest that meets the limits", json_schema_extra=unit("mm"))
-    thickness: float | None = length("plate thickness (STL extrusion)", None, le=1000.0)
-    bore: float = length("bore diameter, 0 for none", 0.0, zero=True)
+    travel: float | None = length("plate cam: length the program's 360 degrees spread over", None,
+                                  absent="required for a plate cam")
+    base_radius: float | Literal["auto"] | None = Field(
+        None, description="base circle radius, or \"auto\" for the smallest that meets the limits",
+        json_schema_extra=unit("mm", allowed=f"a number > 0 and <= {MAX_LENGTH_MM:g}; \"auto\": the smallest that "
+                               "meets max_pressure_angle and min_rho_margin", absent="required (not for a barrel)"))
+    thickness: float | None = length("plate thickness (STL extrusion)", None, le=1000.0,
+                                     absent="required (not for a barrel)")
+    bore: float = length("bore diameter, 0 for none", 0.0, zero=True,
+                         allowed="leaving material: inside the outline (a barrel: inside the groove's floor, as "
+                                 "printed)")
     rotation: Literal["ccw", "cw"] = Field("ccw", description="sense of rotation seen from +Z")
     allow_undercut: bool = Field(False, description="export the cutter's envelope instead of refusing an undercut")
     max_pressure_angle: float | None = Field(None, ge=1, lt=90, description="pressure-angle limit for sizing "
-                                             "(default 30, oscillating 40)", json_schema_extra=unit("degrees"))
+                                             "(default 30, oscillating 40)",
+                                             json_schema_extra=unit("degrees", absent="30; 40 for an oscillating "
+                                                                    "follower"))
     min_rho_margin: float = length("sizing: least convex radius of the cam surface", 0.0, zero=True)
     rpm: float | None = Field(None, gt=0, le=100_000, description="cam speed for velocities, accelerations and "
                               "contact", json_schema_extra=unit("rpm"))
     material: Material | None = Field(None, description="the cam's material, for the contact pressure")
-    rpm_range: tuple[float, float] | None = Field(None, description="[lowest, highest] cam speed of the report's "
-                                                  "speeds table and figure", json_schema_extra=unit("rpm"))
+    rpm_range: tuple[float, float] | None = Field(
+        None, description="[lowest, highest] cam speed of the report's speeds table and figure",
+        json_schema_extra=unit("rpm", allowed="0 < lowest < highest <= 100000; needs cam.rpm and follower.mass"))
     rpm_steps: int = Field(21, ge=2, le=201, description="speeds evenly spaced over cam.rpm_range (both ends; the "
                            "lift-off speed is added where it lies inside)")
-    groove_depth: float | None = length("grooved cam: depth of the groove the roller runs in (< thickness)", None)
+    groove_depth: float | None = length(
+        "grooved cam: depth of the groove the roller runs in (< thickness)", None,
+        allowed="grooved: < cam.thickness; barrel (about the pitch cylinder; a rib's height): the floor, pitch_radius "
+                "- groove_depth / 2 from the axis, wider than the roller there (roller_radius + running_clearance / 2 "
+                "for a cylindrical roller) and outside the bore as printed",
+        absent="required for a grooved or barrel cam")
     running_clearance: float = length("grooved cam: the groove's width less the roller's diameter", 0.2, zero=True,
                                       le=100.0)
     rim: float = length("grooved cam: wall outside the groove's outer flank", 5.0)
     second_base_radius: float | Literal["auto"] | None = Field(
         None, description="conjugate cam: the second cam's base circle radius (default: base_radius), or \"auto\"",
-        json_schema_extra=unit("mm"))
-    yoke_span: float | None = length("conjugate cam, translating yoke: distance between the two rollers' centres", None)
+        json_schema_extra=unit("mm", allowed=f"a number > 0 and <= {MAX_LENGTH_MM:g}, within the second roller's "
+                               "reach on its side of the cam; \"auto\": the smallest that meets max_pressure_angle and "
+                               "min_rho_margin; not with yoke_span or arm_angle", absent="cam.base_radius"))
+    yoke_span: float | None = length("conjugate cam, translating yoke: distance between the two rollers' centres", None,
+                                     allowed="> d0 + the largest lift + sqrt(Rr2^2 - offset^2) (d0 the first "
+                                             "roller's rest height, Rr2 the second roller's radius), so the second "
+                                             "roller stays beyond the shaft; not with a base_radius of \"auto\"",
+                                     absent="from second_base_radius")
     arm_angle: float | None = Field(None, gt=0, lt=360, description="conjugate cam, oscillating arm: angle at the "
                                     "pivot from the first arm to the second, turning towards the cam",
-                                    json_schema_extra=unit("degrees"))
+                                    json_schema_extra=unit("degrees", allowed="keeps the second roller on its side of "
+                                                           "the line from the pivot to the cam centre over the swing; "
+                                                           "not with a base_radius of \"auto\"",
+                                                           absent="from second_base_radius"))
     second_arm_length: float | None = length("conjugate cam, oscillating arm: pivot to the second roller's centre",
-                                             None)
+                                             None, absent="follower.arm_length")
     second_roller_radius: float | None = length("conjugate cam: the second roller's radius (default: "
-                                                "follower.roller_radius)", None, le=1000.0)
+                                                "follower.roller_radius)", None, le=1000.0,
+                                                absent="follower.roller_radius")
     barrel_form: Literal["groove", "rib"] = Field("groove", description="barrel cam: a groove the roller runs in, "
-                                                  "or a rib (a ridge) between two rollers")
+                                                  "or a rib (a ridge) between two rollers",
+                                                  json_schema_extra=notes(allowed="a rib: a translating-roller "
+                                                                          "follower with cylindrical rollers"))
     rib_width: float | None = length("barrel rib: the rib's axial width where the track runs level (the rollers' "
-                                     "centres are rib_width + 2 roller_radius + running_clearance apart)", None)
-    pitch_radius: float | None = length("barrel cam: radius of the pitch cylinder, the groove's mid-depth", None)
-    length: float | None = length("barrel cam: the cylinder's axial length", None)
+                                     "centres are rib_width + 2 roller_radius + running_clearance apart)", None,
+                                     allowed="the rib keeps a width where the track is steepest",
+                                     absent="required for a rib")
+    pitch_radius: float | None = length("barrel cam: radius of the pitch cylinder, the groove's mid-depth", None,
+                                        absent="required for a barrel cam")
+    length: float | None = length("barrel cam: the cylinder's axial length", None,
+                                  allowed="> the follower's travel + the groove's width at the rim (2 roller_radius "
+                                          "+ running_clearance for a cylindrical roller); an arm: > 2 arm_length "
+                                          "sin(swing / 2) + that width; a rib: > the travel + rib_width + 2 (2 "
+                                          "roller_radius + running_clearance)",
+                                  absent="required for a barrel cam")
 
     @model_validator(mode="after")
     def _conjugate_keys(self) -> "CamTable":
@@ -180,41 +216,60 @@ class FollowerTable(Model):
     """The follower; which keys a type needs and takes its :class:`~camgen.followers.FollowerType` says."""
 
     type: Literal[FOLLOWER_TYPES] = Field(description="follower type")  # type: ignore[valid-type]
-    roller_radius: float | None = length("roller radius", None, le=1000.0)
+    roller_radius: float | None = length("roller radius", None, le=1000.0,
+                                         allowed="below the pitch curve's least convex radius, else the cam undercuts "
+                                                 "(refused unless cam.allow_undercut)",
+                                         absent="required for a roller follower")
     offset: float = Field(0.0, ge=-MAX_LENGTH_MM, le=MAX_LENGTH_MM, description="follower axis offset, + to the right "
-                          "(+X)", json_schema_extra=unit("mm"))
-    pivot_distance: float | None = length("oscillating: cam centre to arm pivot", None)
-    arm_length: float | None = length("oscillating roller: pivot to roller centre", None)
+                          "(+X)", json_schema_extra=unit("mm", allowed="|offset| < base_radius + roller_radius (the "
+                                                         "prime radius)"))
+    pivot_distance: float | None = length(
+        "oscillating: cam centre to arm pivot", None,
+        allowed="a roller: |pivot_distance - arm_length| < base_radius + roller_radius < pivot_distance + arm_length; "
+                "a flat face: > base_radius; on a barrel, the cam's axis to the pivot's: the arm's chordal error "
+                "leaving the roller in the groove", absent="required for an oscillating follower")
+    arm_length: float | None = length("oscillating roller: pivot to roller centre", None,
+                                      allowed="puts the roller on the prime circle (see pivot_distance)",
+                                      absent="required for an oscillating roller")
     face_margin: float = length("flat face: extra face beyond the contact's travel, each side", 2.0, zero=True,
                                 le=1000.0)
     mass: float | None = Field(None, gt=0, le=1000, description="moving mass of the follower",
                                json_schema_extra=unit("kg"))
     spring_rate: float | None = Field(None, ge=0, le=1e6, description="return spring rate",
-                                      json_schema_extra=unit("N/mm"))
+                                      json_schema_extra=unit("N/mm", absent="none: no spring (without preload "
+                                                             "either, the follower's weight holds it on the cam)"))
     preload: float | None = Field(None, ge=0, le=1e6, description="return spring force at s = 0",
                                   json_schema_extra=unit("N"))
     load: float | None = Field(None, ge=-1e6, le=1e6, description="external force pressing the follower onto the "
                                "cam (negative pulls it off)", json_schema_extra=unit("N"))
     orientation: float | None = Field(None, ge=-180, le=180, description="the rise's direction from straight up: "
-                                      "the weight counts by its cosine", json_schema_extra=unit("degrees"))
+                                      "the weight counts by its cosine",
+                                      json_schema_extra=unit("degrees", absent="straight up without a spring; the "
+                                                             "weight neglected with one, on a positive drive and for "
+                                                             "an arm"))
     contact_margin: float | None = Field(None, ge=0, le=1e6, description="least contact force the spring sizing "
-                                         "keeps", json_schema_extra=unit("N"))
+                                         "keeps", json_schema_extra=unit("N", absent="0"))
     material: Material = Field("steel", description="the roller's (or face's) material, for the contact pressure")
     roller_width: float | None = length("the roller's width along its axis (default: the cam's thickness)", None,
-                                        le=1000.0)
+                                        le=1000.0, absent="cam.thickness")
     load_table: str | list[tuple[float, float]] | None = Field(
         None, description="a CSV of cam angle (degrees), load (N) rows (or the rows themselves): an external load "
-        "against cam angle, added to follower.load, interpolated linearly and periodic over the turn")
+        "against cam angle, added to follower.load, interpolated linearly and periodic over the turn",
+        json_schema_extra=notes(allowed="angles increasing in 0 to 360 (a row at 360 must repeat the one at 0); "
+                                "|load| <= 1e6 N; at least 2 rows (a file: 4, at most 10000 rows and 2 MB); not with "
+                                "motion[i].load"))
     inertia: float | None = Field(None, ge=0, le=1e9, description="oscillating roller: the arm's moment of inertia "
                                   "about the pivot, entering as a mass I / L^2 at the roller",
-                                  json_schema_extra=unit("kg*mm^2"))
+                                  json_schema_extra=unit("kg*mm^2", absent="0"))
     arm_mass: float | None = Field(None, ge=0, le=1000, description="oscillating roller: the arm's own mass, for its "
-                                   "weight (with follower.orientation)", json_schema_extra=unit("kg"))
+                                   "weight (with follower.orientation)",
+                                   json_schema_extra=unit("kg", allowed="with arm_com and orientation"))
     arm_com: float | None = Field(None, ge=0, le=MAX_LENGTH_MM, description="oscillating roller: pivot to the arm's "
-                                  "centre of mass, on the line to the roller's centre", json_schema_extra=unit("mm"))
+                                  "centre of mass, on the line to the roller's centre",
+                                  json_schema_extra=unit("mm", allowed="with arm_mass"))
     roller_shape: Literal["cylindrical", "conical"] = Field(
         "cylindrical", description="barrel cam: the roller's shape, a cylinder or a cone with its apex on the cam's "
-        "axis")
+        "axis", json_schema_extra=notes(allowed="conical: roller_radius < cam.pitch_radius, on the pitch cylinder"))
 
     @model_validator(mode="before")
     @classmethod
@@ -280,31 +335,56 @@ class SegmentTable(Model):
     """One segment of the motion program; law parameters sit beside the law name."""
 
     type: Literal["rise", "dwell", "return"] = Field(description="segment type")
-    angle: float = Field(gt=0, le=360, description="cam angle of the segment", json_schema_extra=unit("degrees"))
+    angle: float = Field(gt=0, le=360, description="cam angle of the segment",
+                         json_schema_extra=unit("degrees", allowed="the segments' angles add up to 360"))
     lift: float | None = Field(None, gt=0, le=MAX_LENGTH_MM, description="follower travel (rise and return)",
-                               json_schema_extra=unit("mm, or degrees of arm swing for an oscillating follower"))
-    law: LawName | None = Field(None, description="motion law (rise and return)")  # type: ignore[valid-type]
-    ratio: float | None = Field(None, ge=0.01, le=100, description="parabolic: acceleration ratio a1/a2")
-    form: Literal["blended", "drafted"] | None = Field(None, description="modified-uniform: form")
-    blend: float | None = Field(None, gt=0, le=0.5, description="modified-uniform blended: blend fraction of the angle")
-    blend_law: Literal["cycloidal", "parabolic"] | None = Field(None, description="modified-uniform blended: blends")
+                               json_schema_extra=unit("mm, or degrees of arm swing for an oscillating follower",
+                                                      allowed="an arm's swing < 90 degrees",
+                                                      absent="required for a rise or return"))
+    law: LawName | None = Field(None, description="motion law (rise and return)",  # type: ignore[valid-type]
+                                json_schema_extra=notes(absent="required for a rise or return"))
+    ratio: float | None = Field(None, ge=0.01, le=100, description="parabolic: acceleration ratio a1/a2",
+                                json_schema_extra=notes(absent="1"))
+    form: Literal["blended", "drafted"] | None = Field(None, description="modified-uniform: form",
+                                                       json_schema_extra=notes(absent='"blended"'))
+    blend: float | None = Field(None, gt=0, le=0.5, description="modified-uniform blended: blend fraction of the angle",
+                                json_schema_extra=notes(absent="0.25"))
+    blend_law: Literal["cycloidal", "parabolic"] | None = Field(None, description="modified-uniform blended: blends",
+                                                                json_schema_extra=notes(absent='"cycloidal"'))
     conditions: list[tuple[float, int, float]] | None = Field(
-        None, max_length=26, description="polynomial: [u, derivative order, value] in normalised units")
-    degree: int | None = Field(None, ge=1, le=25, description="polynomial: degree (default: conditions - 1)")
+        None, max_length=26, description="polynomial: [u, derivative order, value] in normalised units",
+        json_schema_extra=notes(allowed="the order-th derivative of f = s / h with respect to u = theta / beta "
+                                "equals value at u; must include [0, 0, 0] and [1, 0, 1] and fix the polynomial; f, "
+                                f"f', f'', f''' within {MAX_NORMALISED:g} on [0, 1]",
+                                absent='required for law "polynomial"'))
+    degree: int | None = Field(None, ge=1, le=25, description="polynomial: degree (default: conditions - 1)",
+                               json_schema_extra=notes(absent="the number of conditions - 1"))
     points: list[tuple[float, float]] | None = Field(
-        None, max_length=1000, description="spline: [u, f] points in normalised units from [0, 0] to [1, 1]")
-    ends: Literal["dwell", "natural"] | None = Field(None, description="spline, table: end conditions")
+        None, max_length=1000, description="spline: [u, f] points in normalised units from [0, 0] to [1, 1]",
+        json_schema_extra=notes(allowed="[u, f]: fractions of the angle and of the lift, from [0, 0] to [1, 1], u "
+                                f"increasing; f, f', f'', f''' within {MAX_NORMALISED:g} on [0, 1]",
+                                absent='required for law "spline"'))
+    ends: Literal["dwell", "natural"] | None = Field(
+        None, description="spline, table: end conditions",
+        json_schema_extra=notes(allowed="dwell: zero velocity and acceleration at both ends; natural: free",
+                                absent='"dwell"'))
     file: str | None = Field(None, max_length=1000, description="table: a CSV of angle (degrees from the segment's "
-                             "start), displacement above the segment's low end")
+                             "start), displacement above the segment's low end",
+                             json_schema_extra=notes(allowed="relative to the template; at most 10000 rows and 2 MB; "
+                                                     "a first line of names and lines starting with # are passed "
+                                                     "over", absent='required for law "table" (or data)'))
     data: list[tuple[float, float]] | None = Field(
         None, min_length=4, max_length=MAX_TABLE_ROWS, description="table: [angle, value] rows (degrees, lift's unit)")
     continuity: int | None = Field(None, ge=2, le=4, description="table: the fitted spline's continuity inside the "
-                                                                 "segment (2: acceleration, 3: jerk, 4)")
+                                                                 "segment (2: acceleration, 3: jerk, 4)",
+                                   json_schema_extra=notes(absent="3"))
     fit_tolerance: float | None = Field(None, gt=0, le=MAX_LENGTH_MM, description="table: how far a row may lie from "
-                                        "the fitted spline", json_schema_extra=unit("mm, or degrees of arm swing"))
+                                        "the fitted spline",
+                                        json_schema_extra=unit("mm, or degrees of arm swing", absent="0.01"))
     load: float | None = Field(None, ge=-1e6, le=1e6, description="an external force pressing the follower onto the "
                                "cam over this segment, constant (added to follower.load; the alternative to "
-                               "follower.load_table)", json_schema_extra=unit("N"))
+                               "follower.load_table)",
+                               json_schema_extra=unit("N", allowed="not with follower.load_table"))
 
     @model_validator(mode="before")
     @classmethod
@@ -349,12 +429,22 @@ class SegmentTable(Model):
 class HubTable(Model):
     """Hub features: a keyed bore, a boss with a set screw (printed part only), bolt-circle holes, engraving."""
 
-    keyway: bool = Field(False, description="cut a DIN 6885-1 keyway for the bore")
-    boss_diameter: float = length("printed hub boss diameter, 0 for none", 0.0, zero=True)
-    boss_height: float = length("printed hub boss height above the cam", 0.0, zero=True, le=1000.0)
-    set_screw: float = length("radial set-screw hole diameter through the boss, 0 for none", 0.0, zero=True)
-    bolt_circle: float = length("mounting-hole circle diameter", 0.0, zero=True)
-    bolt_holes: int = Field(0, ge=0, le=36, description="number of mounting holes")
+    keyway: bool = Field(False, description="cut a DIN 6885-1 keyway for the bore",
+                         json_schema_extra=notes(allowed="cam.bore over 6 up to 110 mm; output.kerf below the key's "
+                                                 "width"))
+    boss_diameter: float = length("printed hub boss diameter, 0 for none", 0.0, zero=True,
+                                  allowed="> cam.bore, with boss_height; not on a grooved cam")
+    boss_height: float = length("printed hub boss height above the cam", 0.0, zero=True, le=1000.0,
+                                allowed="with boss_diameter")
+    set_screw: float = length("radial set-screw hole diameter through the boss, 0 for none", 0.0, zero=True,
+                              allowed="< boss_height")
+    bolt_circle: float = length("mounting-hole circle diameter", 0.0, zero=True,
+                                allowed=f"the holes stay inside the cam and keep {MIN_WEB_MM:g} mm of material "
+                                        "between any two (the bore, its keyway, the bolt holes), as drawn and as "
+                                        "printed")
+    bolt_holes: int = Field(0, ge=0, le=36, description="number of mounting holes",
+                            json_schema_extra=notes(allowed="the first on +X; with bolt_circle and "
+                                                    "bolt_hole_diameter"))
     bolt_hole_diameter: float = length("mounting-hole diameter", 0.0, zero=True)
     engrave: bool = Field(False, description="add an ENGRAVE layer: name, rotation arrow, theta = 0 mark")
 
@@ -377,7 +467,34 @@ class OutputTable(CutOutputTable):
 
 
 class CamSpec(Model):
-    """A whole cam template, validated: the spec of one cam."""
+    """A whole cam template, validated: the spec of one cam.
+
+    Made by :func:`validate_spec` or :func:`load_spec` from a template (every key, its unit, range and default:
+    the template reference); frozen. Built with the constructor, it is validated the same way.
+
+    Parameters
+    ----------
+    name : str
+        The part's name, used for its files: letters, digits, ``.``, ``_``, ``-``.
+    cam : CamTable
+        The cam body: its kind, size, bore, rotation, sizing limits and speed.
+    follower : FollowerTable
+        The follower: its type, geometry, mass, spring and loads.
+    motion : list of SegmentTable
+        The segments in order from theta = 0, their angles adding up to 360 degrees.
+    hub : HubTable, optional
+        Keyway, boss, set screw, bolt holes, engraving.
+    output : OutputTable, optional
+        Formats, tolerance, kerf, clearance and the files' flavours.
+    kit : CamKitTable or None, optional
+        The frame, follower and hardware round the cam.
+
+    Raises
+    ------
+    pydantic.ValidationError
+        Built with the constructor, a template that fails validation (:func:`validate_spec` turns the first
+        problem into a one-line :class:`~camgen.core.errors.SpecError` instead).
+    """
 
     name: str = name_field("part")
     cam: CamTable

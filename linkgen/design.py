@@ -243,5 +243,10 @@ def analyze(spec: LinkageSpec, angle: float | None = None, method: str = "closed
     -------
     dict
         The report, as ``<name>.json`` holds it.
+
+    Raises
+    ------
+    SpecError
+        ``angle`` lies outside the input's reachable range (the message gives the range).
     """
     return design_linkage(spec, angle, method).report

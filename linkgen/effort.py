@@ -2,10 +2,10 @@
 advantage (``[[loads]]``; the virtual work itself is :mod:`linkgen.kinematics.statics`).
 
 Every mechanism linkgen draws as a general linkage takes loads by its joints' and links' names (a four-bar's
-O2, A, B, O4, P and crank, coupler, rocker; see the README). The effort is sampled over the motion analysed and
-its extremes refined to 1e-9 of the input's range; the mechanical advantage, for one force, is that force over
-the force the input gives at its lever's radius (a crank's torque over the input link's longest reach from its
-pivot; a slide's force itself).
+O2, A, B, O4, P and crank, coupler, rocker; see docs/guides/loads.md). The effort is sampled over the motion
+analysed and its extremes refined to 1e-9 of the input's range; the mechanical advantage, for one force, is that
+force over the force the input gives at its lever's radius (a crank's torque over the input link's longest reach
+from its pivot; a slide's force itself).
 """
 from __future__ import annotations
 

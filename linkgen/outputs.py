@@ -31,7 +31,24 @@ SUMMARY_KEYS = ("grashof_class", "inversion", "transmission_min_deg", "transmiss
 
 def linkage_bundle(design: LinkageDesign) -> Bundle:
     """The files of ``design`` that ``output.formats`` asks for: parts first (when built), then figures, then the
-    report."""
+    report.
+
+    Parameters
+    ----------
+    design : LinkageDesign
+        A design from :func:`linkgen.design.design_linkage`.
+
+    Returns
+    -------
+    Bundle
+        The files, each made only when written (:func:`camgen.core.bundle.write_bundle`): the parts' sheet,
+        assembly and solids (and a kit's), the figures, the JSON report and the page.
+
+    Raises
+    ------
+    SpecError
+        Naming ``output.formats``: ``"step"`` asked of a design made without parts.
+    """
     spec = design.spec
     formats, name = spec.output.formats, spec.name
     report = design.report

@@ -125,7 +125,25 @@ class LoadTable(Model):
 
 class LinkageSpec(Model):
     """A validated linkage template. Each mechanism has its own subclass (:func:`spec_model`), whose ``linkage``
-    is that mechanism's table and whose :attr:`mechanism` is the mechanism."""
+    is that mechanism's table and whose :attr:`mechanism` is the mechanism.
+
+    Made by :func:`validate_spec` or :func:`load_spec` from a template (every key: the template reference); frozen.
+
+    Parameters
+    ----------
+    name : str
+        The linkage's name, used for its files: letters, digits, ``.``, ``_``, ``-``.
+    linkage : Model
+        The mechanism's ``[linkage]`` table: its type, lengths (mm) and input.
+    parts : PartsTable or None, optional
+        The ``[parts]`` table ``linkgen build`` makes parts from.
+    loads : tuple of LoadTable, optional
+        The ``[[loads]]`` the linkage holds (at most 100).
+    output : OutputTable, optional
+        Formats and the files' flavours.
+    kit : KitTable or None, optional
+        The frame and hardware round the linkage.
+    """
 
     name: str = name_field("linkage")
     linkage: Model
@@ -175,7 +193,26 @@ def spec_model(mechanism: Mechanism) -> type[LinkageSpec]:
 
 def validate_spec(raw: Mapping[str, Any], mechanisms: Mapping[str, Mechanism] = MECHANISMS) -> LinkageSpec:
     """The spec of a raw template, its ``[linkage]`` validated by the mechanism ``mechanisms`` registers for its
-    type; a one-line :class:`SpecError` otherwise."""
+    type; a one-line :class:`SpecError` otherwise.
+
+    Parameters
+    ----------
+    raw : mapping
+        The template as TOML reads it: ``{"name": ..., "linkage": {"type": ..., ...}, "parts": {...}, ...}``.
+    mechanisms : mapping of str to Mechanism, optional
+        The registry to look ``linkage.type`` up in; by default every mechanism linkgen has.
+
+    Returns
+    -------
+    LinkageSpec
+        The validated, frozen spec (its ``linkage`` the mechanism's own table).
+
+    Raises
+    ------
+    SpecError
+        No ``[linkage]`` table or type, an unknown type (with the closest one), or the first problem of the
+        template, in one line naming the key.
+    """
     linkage = raw.get("linkage")
     if not isinstance(linkage, Mapping):
         raise SpecError("missing: give a [linkage] table with its type and lengths", "linkage")

@@ -36,7 +36,7 @@ def test_objects_render_themselves_as_svg():
 
 
 def test_a_family_in_ten_lines(tmp_path):
-    """The README's scripting guide: a family made in a few lines of Python."""
+    """docs/tutorials/scripting.md: a family made in a few lines of Python."""
     rows = []
     for lift in (10, 20, 30):
         spec = camgen.load_spec(ROOT / "templates" / "rdrd.toml", [f"motion.0.lift={lift}", f"motion.2.lift={lift}",

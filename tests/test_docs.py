@@ -97,6 +97,55 @@ def test_tutorial_runs_as_written(page, checkout_env):
             exec(compile(body, where, "exec"), namespace)
 
 
+def test_the_reference_states_the_base_radius_range_its_validator_keeps():
+    """cam.base_radius takes a number or "auto", so its bounds live in a validator, not in the field's metadata: the
+    note the reference prints gives them, and they are where validation draws the line."""
+    import math
+
+    from camgen.core.errors import SpecError
+    from camgen.core.spec import validate
+    from camgen.spec import CamTable
+
+    for key in ("base_radius", "second_base_radius"):
+        note = CamTable.model_fields[key].json_schema_extra["allowed"]
+        low, high = (float(x) for x in re.search(r"> (\S+) and <= ([^\s,;]+)", note).groups())
+        raw = {"kind": "conjugate"} if key.startswith("second") else {}
+        assert validate(CamTable, {**raw, key: high}) and validate(CamTable, {**raw, key: "auto"})
+        assert validate(CamTable, {**raw, key: math.nextafter(low, math.inf) + 1e-6})
+        for bad in (math.nextafter(high, math.inf), low, -1.0):
+            with pytest.raises(SpecError, match=rf"^{key}: must be > {low:g} and <= {high:g} mm"):
+                validate(CamTable, {**raw, key: bad})
+
+
+def test_the_law_defaults_the_reference_states_are_the_laws_own():
+    """A law parameter left out takes the law's own default (its factory's): the reference's default column says it,
+    from the field's note, and the note must be that default."""
+    import inspect
+
+    from camgen.laws import REGISTRY
+    from camgen.spec import SegmentTable
+
+    checked = 0
+    for name, (factory, keys) in REGISTRY.items():
+        parameters = inspect.signature(factory).parameters
+        for key in keys:
+            default = parameters[key].default
+            if default is inspect.Parameter.empty or default is None:
+                continue
+            stated = SegmentTable.model_fields[key].json_schema_extra["absent"]
+            assert stated == (f'"{default}"' if isinstance(default, str) else f"{default:g}"), (name, key, stated)
+            checked += 1
+    assert checked == 8
+
+
+def test_the_solid_tolerance_note_quotes_the_barrels_limit():
+    from camgen.barrel.design import SINGLE_STEPS
+    from camgen.core.spec import CutOutputTable
+
+    assert f"at least {SINGLE_STEPS} single-precision steps" in \
+        CutOutputTable.model_fields["tolerance"].json_schema_extra["allowed"]
+
+
 def test_the_block_reader_finds_files_commands_and_code(tmp_path):
     page = tmp_path / "p.md"
     page.write_text("text\n\n```{code-block} toml\n:caption: a.toml\n\nx = 1\n```\n\n```sh\necho hi\n```\n\n"
@@ -245,6 +294,10 @@ def template_reference_lists_every_key_with_its_unit_and_range(site: Path) -> No
                     if b not in row[3]]
             if (row[4] == "required") != info.is_required():
                 out.append(f"{name}: default {row[4]!r}")
+            if extra.get("allowed") and " ".join(extra["allowed"].split()) not in row[3]:
+                out.append(f"{name}: no note {extra['allowed']!r}")
+            if info.default is None and extra.get("absent") and row[4] != " ".join(extra["absent"].split()):
+                out.append(f"{name}: default {row[4]!r}, not the note {extra['absent']!r}")
             if row[5] != " ".join((info.description or "").split()):
                 out.append(f"{name}: description {row[5]!r}")
         return out

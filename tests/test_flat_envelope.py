@@ -1,10 +1,10 @@
 """Flat faces with cam.allow_undercut: the envelope of the face's lines with its folds cut off.
 
 The checks stand on the files as written and on geometry of their own: the face's line is placed at every cam angle
-from the README's description of each follower (a translating face at y = Rb + s, an arm's face through its pivot
-turned clockwise by the swing), never from the follower code; the DXF's outline is read back with ezdxf; the motion
-of a follower riding the cut cam is found by brute force as the support of that polygon; the cut cam is compared
-with shapely's intersection of the face's half-planes.
+from docs/guides/followers.md's description of each follower (a translating face at y = Rb + s, an arm's face
+through its pivot turned clockwise by the swing), never from the follower code; the DXF's outline is read back with
+ezdxf; the motion of a follower riding the cut cam is found by brute force as the support of that polygon; the cut
+cam is compared with shapely's intersection of the face's half-planes.
 """
 from __future__ import annotations
 
@@ -89,7 +89,7 @@ def _on(rows: np.ndarray) -> np.ndarray:
 
 
 class Face:
-    """The follower's face placed by the law, in the fixed frame (README: followers), from the spec alone."""
+    """The follower's face placed by the law, in the fixed frame (docs/guides/followers.md), from the spec alone."""
 
     def __init__(self, spec) -> None:
         self.spec = spec

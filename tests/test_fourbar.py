@@ -443,7 +443,7 @@ def test_poses_are_exact_to_rounding_against_50_digits(lengths):
     what it measures times the pose's condition (1 + L z / (4 area) + L / z, see _exact_pose) of the 50-digit
     pose: to rounding at random angles, at toggles and 1 ulp to 1e-9 rad inside them, at change points and beside
     them, with lengths 1e-6 to 1e6 apart. (Measured: at most 8.6 units, the same as the code before B was placed
-    without angles; README, "Four-bar positions".)"""
+    without angles; docs/guides/speed.md.)"""
     mpmath.mp.dps = 50
     fb = FourBar(*lengths)
     d, pa = mpmath.mpf(fb.point_distance), mpmath.mpf(fb.point_angle)

@@ -38,7 +38,7 @@ def test_every_linkage_starter_analyses_and_builds(tmp_path, kind):
     assert _run(linkgen, ["new", kind, "-o", path])[0] == 0
     code, output = _run(linkgen, ["analyze", path, "-o", tmp_path / "a"])
     assert code == 0 and "warning" not in output, output
-    if kind != "whitworth":                              # its parts cannot be stacked (README)
+    if kind != "whitworth":                 # its parts cannot be stacked (docs/guides/parts-and-allowances.md)
         code, output = _run(linkgen, ["build", path, "-o", tmp_path / "b"])
         assert code == 0, output
 

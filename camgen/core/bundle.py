@@ -147,7 +147,16 @@ def tail(name: str, plot: Any, kinds: Iterable[str], report: dict[str, Any], pag
 
 @dataclass(frozen=True)
 class Bundle:
-    """The files a result is written as, in order, and the writers' options."""
+    """The files a result is written as, in order, and the writers' options.
+
+    Parameters
+    ----------
+    items : tuple of Item
+        Each payload (or the function that makes it, called only when one of its files is written) with the
+        files it becomes.
+    options : WriteOptions, optional
+        The writers' settings (DXF version and flavour, text mode).
+    """
 
     items: tuple[Item, ...]
     options: WriteOptions = field(default_factory=WriteOptions)
@@ -164,7 +173,26 @@ class Bundle:
 
 
 def write_bundle(bundle: Bundle, directory: str | Path) -> dict[str, str]:
-    """Write every file of ``bundle`` into ``directory``, all or nothing; return ``{key: file name}``."""
+    """Write every file of ``bundle`` into ``directory``, all or nothing; return ``{key: file name}``.
+
+    Parameters
+    ----------
+    bundle : Bundle
+        The files to write.
+    directory : str or Path
+        The folder to write them into, created if missing.
+
+    Returns
+    -------
+    dict of str to str
+        Each file's key (as the report's ``files`` map names it) and its file name, in the order written.
+
+    Raises
+    ------
+    ExportError
+        The folder cannot be created or a file cannot be written; every file written by then is removed (and the
+        folders this call created), so a failure leaves the disk as it was.
+    """
     files = bundle.files
     with staged(directory) as stage:
         for it in bundle.items:

@@ -16,6 +16,14 @@ class SpecError(CamgenError, ValueError):
 
     ``field`` is the path of the offending field (``motion[2].angle``) when known;
     ``str(error)`` always starts with it.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong and what is allowed, in the user's units (``must be > 0 mm (got -1)``).
+    field : str or None, optional
+        The path of the offending key in the template (``motion[2].angle``); the message is then
+        ``"<field>: <message>"``.
     """
 
     def __init__(self, message: str, field: str | None = None) -> None:

@@ -67,7 +67,24 @@ class Member:
 
 def read_family(path: str | Path) -> tuple[dict, dict]:
     """The raw template (its ``base`` merged in) and its sweep table (the family's ``[sheet]`` table, which is no
-    member's, left out: :func:`split_family`)."""
+    member's, left out: :func:`split_family`).
+
+    Parameters
+    ----------
+    path : str or Path
+        The family template, a TOML file with a ``[sweep]`` table.
+
+    Returns
+    -------
+    tuple of dict
+        The raw template without its ``[sweep]`` and ``[sheet]`` tables, and the sweep table.
+
+    Raises
+    ------
+    SpecError
+        The file (or its ``base``) cannot be read or is no TOML, its ``sweep`` is not a table, or its ``[sheet]``
+        table fails validation.
+    """
     raw, sweep, _ = split_family(read_template(path))
     return raw, sweep
 
@@ -141,7 +158,29 @@ def _safe(text: str) -> str:
 
 
 def members(raw: dict, sweep: Mapping[str, Any]) -> list[Member]:
-    """The family's members, in product order (the first key varies slowest)."""
+    """The family's members, in product order (the first key varies slowest).
+
+    Parameters
+    ----------
+    raw : dict
+        The raw template the members vary (:func:`read_family`'s first).
+    sweep : mapping
+        The sweep table: each key a list of values or a range (``{start, stop, step}``, stop included), and a
+        ``zip`` table of keys that change together.
+
+    Returns
+    -------
+    list of Member
+        Each member's name (the template's name and the swept keys and values, safe as a file name), its swept
+        values and its raw template with them set; not validated.
+
+    Raises
+    ------
+    SpecError
+        Naming ``sweep.<key>`` (or ``sweep.zip``): an empty list, a range that is not start <= stop with step > 0,
+        zipped lists of unequal lengths, more than 10 000 values; naming ``sweep``: more than 10 000 members, or
+        two that would share a name.
+    """
     name = str(raw.get("name", "family"))
     facs = factors(sweep)
     keys = [k for fac in facs for k, _ in fac[0]]
@@ -282,7 +321,30 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
                progress: bool | None = None, scheduler: str | None = None) -> list[dict]:
     """Build every member (``jobs`` local processes, or the Dask cluster at ``scheduler``), resuming where a
     previous run stopped; rows sorted by name. Workers write into ``root``, which they must share; local
-    workers end when this process ends, however it ends."""
+    workers end when this process ends, however it ends.
+
+    Parameters
+    ----------
+    items : list of Member
+        The members (:func:`members`).
+    root : str or Path
+        The family's folder: each member is built into ``root/<member>/``.
+    builder : callable
+        ``builder(raw, folder)`` builds one member's raw template into its folder and returns its key figures (a
+        dict); anything it raises is recorded in that member's row.
+    jobs : int, optional
+        Local worker processes (1: in this process).
+    progress : bool or None, optional
+        Show a progress bar on the standard error; None: only where it is a terminal.
+    scheduler : str or None, optional
+        The address of a Dask scheduler to run the members on instead (the ``dask`` extra).
+
+    Returns
+    -------
+    list of dict
+        One row a member, sorted by name: its name and swept values, ``status`` (``"ok"`` or ``"failed"``), the
+        one-line ``error``, the builder's figures, and ``reused`` (an intact earlier build was kept).
+    """
     from tqdm import tqdm
 
     root = Path(root)

@@ -6,7 +6,7 @@ about its own origin; arcs stay exact arcs) and moved, so that no two outlines c
 margin, mm) and no outline comes closer than ``gap`` to a sheet's edge. Holes are not filled with small parts (a
 part in another's hole would need the cutter to cut it first).
 
-The method (ours, on shapely and numpy; see the README's nesting section for the libraries compared):
+The method (ours, on shapely and numpy; docs/guides/cut-sheets.md compares it with the libraries tried):
 
 1. **Raster bottom-left fill.** The sheet is a grid of square cells; each part's footprint (its outline as
    chords, grown by gap / 2 and by the chords' largest distance from the arcs) covers the cells it touches, for

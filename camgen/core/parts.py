@@ -26,6 +26,29 @@ class Part:
     the top face (a grooved cam's groove). ``elephant_foot`` (mm, 0 for none) is the 45-degree chamfer a printed
     solid gets round its bed face (z = 0), against the first layer's squashed outline (see
     :func:`camgen.core.solids.extrude`).
+
+    Parameters
+    ----------
+    name : str
+        The part's name (file names and labels).
+    outline : Contour
+        The outer contour, counter-clockwise (mm).
+    holes : tuple of Contour or Circle
+        The holes through it, the bore first.
+    thickness : float
+        The plate's thickness (mm), the solid's extrusion along +Z.
+    tolerance : float
+        The chord tolerance (mm) wherever arcs become polygons.
+    marks : tuple of tuple, optional
+        (layer, shape) pairs drawn but not cut.
+    boss : tuple of float, optional
+        A hub boss (diameter, height; mm) on the top face round the first hole; None for none.
+    set_screw : float, optional
+        The diameter (mm) of a radial set-screw hole through the boss along +Y; 0 for none.
+    pockets : tuple of Pocket, optional
+        Recesses into the top face.
+    elephant_foot : float, optional
+        The printed solid's 45-degree chamfer round its bed face (mm); 0 for none.
     """
 
     name: str
@@ -135,6 +158,16 @@ class Drawing:
     ``tolerance`` (mm) is the chord tolerance wherever a writer must turn arcs into
     lines (the DXF ``segments`` flavour, previews). ``stroke`` (mm) is the SVG's line width for a
     drawing made to be looked at (an assembly); None keeps the hairline a laser cuts along.
+
+    Parameters
+    ----------
+    items : tuple of tuple
+        (layer, shape) pairs in drawing order: a :class:`~camgen.core.shapes.Contour`, a
+        :class:`~camgen.core.shapes.Circle`, an open polyline or a text, in mm.
+    tolerance : float
+        The chord tolerance (mm) wherever arcs become lines.
+    stroke : float or None, optional
+        The SVG's line width (mm); None for a hairline.
     """
 
     items: tuple[tuple[str, Shape | Polyline | Text], ...]
@@ -181,6 +214,17 @@ class Allowances:
     ``clearance``: a printed hole is opened by this in diameter (clearance/2 a side).
     ``elephant_foot``: a printed part's bed face is chamfered by this at 45 degrees (its outline inset, its holes
     opened by it), against the first layer's squashed, widened outline.
+
+    Parameters
+    ----------
+    kerf : float, optional
+        The laser's kerf (mm): cut outlines grow and holes shrink by half of it.
+    clearance : float, optional
+        The printing clearance (mm): printed holes grow by it in diameter.
+    kerf_field : str, optional
+        The template key that sets the kerf, named when it closes a hole (``output.kerf``).
+    elephant_foot : float, optional
+        The printed bed face's 45-degree chamfer (mm).
     """
 
     kerf: float = 0.0

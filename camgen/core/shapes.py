@@ -50,6 +50,18 @@ class Contour:
     Piece i runs from ``vertices[i]`` to ``vertices[i + 1]`` (the last back to the
     first): a straight line where ``bulges[i]`` is 0, otherwise a circular arc with
     bulge = tan(included angle / 4), positive for a counter-clockwise arc.
+
+    Parameters
+    ----------
+    vertices : array-like
+        The n >= 2 vertices (mm), an (n, 2) array; copied and made read-only.
+    bulges : array-like, optional
+        The n pieces' bulges, each from its vertex to the next; all 0 (straight lines) by default.
+
+    Raises
+    ------
+    ValueError
+        Vertices that are not an (n, 2) array of n >= 2, or bulges that are not n.
     """
 
     vertices: np.ndarray
@@ -165,7 +177,15 @@ class Contour:
 
 @dataclass(frozen=True)
 class Circle:
-    """A full circle: ``centre`` (x, y) in mm and ``radius`` in mm."""
+    """A full circle: ``centre`` (x, y) in mm and ``radius`` in mm.
+
+    Parameters
+    ----------
+    centre : tuple of float
+        The centre (x, y), mm.
+    radius : float
+        The radius, mm.
+    """
 
     centre: tuple[float, float]
     radius: float

@@ -36,7 +36,24 @@ def _ccw(points: np.ndarray, ccw: bool) -> np.ndarray:
 
 def extrude(part: Part) -> Mesh:
     """The part as a solid from z = 0 to z = thickness, holes cut through (see :func:`_solid`), its bed face
-    chamfered by ``part.elephant_foot`` (see :func:`elephant_foot`)."""
+    chamfered by ``part.elephant_foot`` (see :func:`elephant_foot`).
+
+    Parameters
+    ----------
+    part : Part
+        A flat part (mm): its outline, holes, thickness, and any boss, set screw, pockets and chamfer.
+
+    Returns
+    -------
+    Mesh
+        A closed, outward triangle mesh (mm) named after the part.
+
+    Raises
+    ------
+    DesignError
+        Naming ``output.elephant_foot``: a chamfer not smaller than the thickness, or one that closes up the bed
+        face.
+    """
     return _mesh(_solid(part), part.name)
 
 

@@ -21,6 +21,7 @@ from typing import Annotated, Any, Literal, TypeVar, get_args, get_origin
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from camgen.core.errors import SpecError
+from camgen.core.features import MIN_WEB_MM
 from camgen.core.options import not_one_of
 from camgen.core.reading import NotRegularFile, read_regular
 from camgen.core.writers import (
@@ -111,15 +112,27 @@ MAX_LENGTH_MM = 10_000.0
 MIN_LENGTH_MM = 1e-6
 
 
-def length(description: str, default: Any = ..., *, zero: bool = False, le: float = MAX_LENGTH_MM) -> Any:
-    """A length field in mm: > 0 (>= 0 with ``zero``) and at most ``le``; required unless a default is given."""
+def length(description: str, default: Any = ..., *, zero: bool = False, le: float = MAX_LENGTH_MM, allowed: str = "",
+           absent: str = "") -> Any:
+    """A length field in mm: > 0 (>= 0 with ``zero``) and at most ``le``; required unless a default is given
+    (``allowed`` and ``absent`` as :func:`notes` takes them)."""
     bound = {"ge": 0} if zero else {"gt": 0}
-    return Field(default, **bound, le=le, description=description, json_schema_extra=unit("mm"))
+    return Field(default, **bound, le=le, description=description,
+                 json_schema_extra=unit("mm", allowed=allowed, absent=absent))
 
 
-def unit(name: str) -> dict[str, str]:
-    """``json_schema_extra`` naming a field's unit, used in error messages."""
-    return {"unit": name}
+def unit(name: str, *, allowed: str = "", absent: str = "") -> dict[str, str]:
+    """``json_schema_extra`` naming a field's unit (error messages, the starters' comments and the template reference
+    give it), with the :func:`notes` given."""
+    return {"unit": name, **notes(allowed=allowed, absent=absent)}
+
+
+def notes(*, allowed: str = "", absent: str = "") -> dict[str, str]:
+    """``json_schema_extra`` of what the template reference says of a field beyond its bounds and its default, in a
+    user's words: ``allowed``, a rule its own bounds do not show (one across keys, or one a validator checks:
+    ``> the follower's stroke + the groove's width``), and ``absent``, what leaving out a key whose default is
+    None means (``required for a plate cam``, ``follower.roller_radius``)."""
+    return {key: text for key, text in (("allowed", allowed), ("absent", absent)) if text}
 
 
 def name_field(what: str) -> Any:
@@ -150,7 +163,8 @@ class OutputTable(Model):
         "text", description="engraved text as text, or as the glyphs' outlines (for laser software that drops text)")
     elephant_foot: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="printed solids: 45-degree chamfer "
                                  "round the bed face (its outline inset, holes opened), 0 for none",
-                                 json_schema_extra=unit("mm"))
+                                 json_schema_extra=unit("mm", allowed="< each part's thickness, and not closing up "
+                                                        "its bed face"))
     tool_radius: float = Field(0.0, ge=0, le=1000.0, description="CNC routing: report every place an outline's "
                                "concave radius is smaller than this tool radius, 0 for no check",
                                json_schema_extra=unit("mm"))
@@ -192,11 +206,14 @@ class CutOutputTable(OutputTable):
     product of several parts nests them on (:mod:`camgen.core.nesting`)."""
 
     tolerance: float = Field(0.01, ge=1e-6, le=1.0, description="max distance of the exported curves from the "
-                             "exact ones", json_schema_extra=unit("mm"))
+                             "exact ones", json_schema_extra=unit("mm", allowed="a barrel cam's solid: at least 10 "
+                                                                  "single-precision steps at the cam's size"))
     kerf: float = Field(0.0, ge=0, le=5, description="laser kerf: cut files grow outlines and shrink holes by half",
-                        json_schema_extra=unit("mm"))
+                        json_schema_extra=unit("mm", allowed="with hub.keyway, < the keyway's width; none on a barrel "
+                                               "cam"))
     clearance: float = Field(0.0, ge=0, le=5, description="printing clearance: printed holes grow by this in "
-                             "diameter", json_schema_extra=unit("mm"))
+                             "diameter", json_schema_extra=unit("mm", allowed=f"on a cam, the holes so opened stay "
+                                                                f"inside it, {MIN_WEB_MM:g} mm apart"))
     sheet: tuple[SheetSide, SheetSide] = Field((600.0, 400.0), description="cut sheet of a product of several "
                                                "parts (Geneva drive, conjugate pair): width and height",
                                                json_schema_extra=unit("mm"))

@@ -9,7 +9,7 @@ from __future__ import annotations
 from camgen.followers import knife_edge, oscillating_flat, oscillating_roller, translating_flat, translating_roller
 from camgen.followers.base import FollowerType
 
-#: every follower type by its template name, in the order the README lists them
+#: every follower type by its template name, in the order docs/guides/followers.md lists them
 FOLLOWERS: dict[str, FollowerType] = {m.FOLLOWER.name: m.FOLLOWER for m in (
     translating_roller, knife_edge, translating_flat, oscillating_roller, oscillating_flat)}
 

@@ -40,7 +40,22 @@ from camgen.followers.base import FlatFace, FollowerType, PitchGeometry, from_su
 
 @dataclass(frozen=True)
 class OscillatingFlat(FlatFace):
-    """Flat-faced arm pivoted ``pivot_distance`` mm from the cam centre, on a cam of ``base_radius`` mm."""
+    """Flat-faced arm pivoted ``pivot_distance`` mm from the cam centre, on a cam of ``base_radius`` mm.
+
+    Parameters
+    ----------
+    pivot_distance : float
+        The cam centre to the pivot (mm), on +X at the base circle's height; more than ``base_radius``.
+    base_radius : float
+        Rb (mm): at rest the face touches the base circle at (0, Rb).
+    sense : int, optional
+        +1 for a cam turning counter-clockwise seen from +Z (the default), -1 for clockwise.
+
+    Raises
+    ------
+    SpecError
+        Naming ``follower.pivot_distance``: not a finite length > 0, or not beyond the base radius.
+    """
 
     pivot_distance: float
     base_radius: float

@@ -25,7 +25,27 @@ from camgen.followers.base import FollowerType, PitchGeometry, Swing, from_centr
 
 @dataclass(frozen=True)
 class OscillatingRoller(Swing):
-    """Roller follower on an arm (see the module docstring); lengths in mm."""
+    """Roller follower on an arm (see the module docstring); lengths in mm.
+
+    Parameters
+    ----------
+    pivot_distance : float
+        C (mm): the cam centre to the arm's pivot, on the +X side of the roller at rest.
+    arm_length : float
+        L (mm): the pivot to the roller's centre.
+    prime_radius : float
+        Rp (mm): the base radius plus the roller's; the roller's centre rests at (0, Rp).
+    roller_radius : float
+        The roller's radius (mm).
+    sense : int, optional
+        +1 for a cam turning counter-clockwise seen from +Z (the default), -1 for clockwise.
+
+    Raises
+    ------
+    SpecError
+        A pivot distance or arm length that is not a finite length > 0, or an arm that cannot put the roller on
+        the prime circle (|C - L| < Rp < C + L; naming ``follower.arm_length``).
+    """
 
     #: its curvature and pressure angle are made from the arm's swing in the fixed frame, not from the cam angle:
     #: constant on a dwell to the last bit (the analysis then searches a dwell at one point, see Program.maxima_steps)

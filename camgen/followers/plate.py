@@ -18,7 +18,17 @@ from camgen.followers.base import PitchGeometry, perp
 
 @dataclass(frozen=True)
 class PlateRoller:
-    """Roller of ``roller_radius`` mm (0: knife edge) over a plate ``base_height`` mm high, ``travel`` mm long."""
+    """Roller of ``roller_radius`` mm (0: knife edge) over a plate ``base_height`` mm high, ``travel`` mm long.
+
+    Parameters
+    ----------
+    base_height : float
+        The plate's height under the profile at s = 0 (mm): the template's ``cam.base_radius``.
+    roller_radius : float
+        The roller's radius (mm); 0 for a knife edge.
+    travel : float
+        How far the plate slides over the program's 360 degrees (mm), along +X.
+    """
 
     base_height: float
     roller_radius: float

@@ -18,7 +18,15 @@ from camgen.followers.base import FlatFace, FollowerType, PitchGeometry, from_su
 
 @dataclass(frozen=True)
 class TranslatingFlat(FlatFace):
-    """Flat face perpendicular to the motion, on a cam of ``base_radius`` mm (see the module docstring)."""
+    """Flat face perpendicular to the motion, on a cam of ``base_radius`` mm (see the module docstring).
+
+    Parameters
+    ----------
+    base_radius : float
+        Rb (mm): the face rests on the base circle, y = Rb at s = 0.
+    sense : int, optional
+        +1 for a cam turning counter-clockwise seen from +Z (the default), -1 for clockwise.
+    """
 
     base_radius: float
     sense: int = 1

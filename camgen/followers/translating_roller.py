@@ -23,7 +23,24 @@ from camgen.followers.base import FollowerType, PitchGeometry, centre_path
 
 @dataclass(frozen=True)
 class TranslatingRoller:
-    """Roller of ``roller_radius`` mm (0 for a knife edge) on a prime circle of ``prime_radius`` mm, offset mm (+X)."""
+    """Roller of ``roller_radius`` mm (0 for a knife edge) on a prime circle of ``prime_radius`` mm, offset mm (+X).
+
+    Parameters
+    ----------
+    prime_radius : float
+        Rp (mm): the base radius plus the roller's, the circle the roller's centre rides at rest.
+    roller_radius : float
+        The roller's radius (mm); 0 for a knife edge.
+    offset : float, optional
+        e (mm): the follower's line x = e, + to the right of the cam centre (+X) with the follower on top.
+    sense : int, optional
+        +1 for a cam turning counter-clockwise seen from +Z (the default), -1 for clockwise.
+
+    Raises
+    ------
+    SpecError
+        Naming ``follower.offset`` where |offset| is not below the prime radius.
+    """
 
     prime_radius: float
     roller_radius: float

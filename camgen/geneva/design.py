@@ -54,6 +54,23 @@ class GenevaDesign:
     ``parts``, ``cut`` and ``printed`` map each of :data:`PARTS` to its part: nominal, as cut (kerf) and as
     printed (clearance). ``motion`` holds the law's figures (per radian of driver angle; see
     :func:`motion_figures`), ``speed`` the same in time at ``geneva.rpm`` (None without it).
+
+    Attributes
+    ----------
+    spec : GenevaSpec
+        The validated template.
+    geometry : GenevaGeometry
+        The drive's dimensions (mm) and its parts' outlines.
+    parts, cut, printed : dict of str to Part
+        Each of ``"wheel"``, ``"lock"``, ``"crank"``: nominal, as cut and as printed.
+    assembly : AssemblyCheck
+        The clearances of the assembled drive over a turn and its entry.
+    motion : dict
+        The law's figures per radian of driver angle.
+    speed : dict or None
+        The same in time at ``geneva.rpm``.
+    warnings : tuple of str
+        The design's warnings, as the console prints them.
     """
 
     spec: GenevaSpec
@@ -147,8 +164,25 @@ def _warnings(spec: GenevaSpec, check: AssemblyCheck) -> tuple[str, ...]:
 
 
 def design_geneva(spec: GenevaSpec) -> GenevaDesign:
-    """The drive ``spec`` describes: its parts and checks. Raises :class:`DesignError` for a kerf that closes a
-    slot or a hole, or parts that collide over the turn."""
+    """The drive ``spec`` describes: its parts and checks.
+
+    Parameters
+    ----------
+    spec : GenevaSpec
+        A validated Geneva template.
+
+    Returns
+    -------
+    GenevaDesign
+        The wheel, locking disc and crank (nominal, as cut, as printed), the assembly's clearances over a turn,
+        the law's figures and the warnings.
+
+    Raises
+    ------
+    DesignError
+        A kerf that closes the wheel's slots (naming ``output.kerf``) or a hole, or the locking disc or the pin
+        running into the wheel over the turn (naming ``geneva`` and the driver angle).
+    """
     g = spec.geometry
     kerf = spec.output.kerf
     if kerf / 2 >= g.half_width:

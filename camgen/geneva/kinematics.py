@@ -36,6 +36,18 @@ class GenevaLaw:
 
     Lengths do not enter the law: it depends on n alone (lambda = sin(pi/n)); ``centre_distance`` (mm) gives the
     crank radius a = C sin(pi/n) and the wheel's radius to the pin at entry, b = C cos(pi/n).
+
+    Parameters
+    ----------
+    slots : int
+        n, the wheel's slots (3 or more).
+    centre_distance : float, optional
+        C (mm): the driver's axis to the wheel's.
+
+    Raises
+    ------
+    ValueError
+        Fewer than 3 slots, or not a whole number of them.
     """
 
     slots: int

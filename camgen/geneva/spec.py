@@ -43,7 +43,20 @@ class GenevaTable(Model):
 
 
 class GenevaSpec(Model):
-    """A whole Geneva template, validated."""
+    """A whole Geneva template, validated.
+
+    Made by :func:`camgen.spec.validate_spec` or :func:`camgen.spec.load_spec` from a template with a
+    ``[geneva]`` table (every key: the template reference); frozen.
+
+    Parameters
+    ----------
+    name : str
+        The drive's name, used for its files: letters, digits, ``.``, ``_``, ``-``.
+    geneva : GenevaTable
+        The drive: slots, centre distance, pin, clearances, bores, speed.
+    output : CutOutputTable, optional
+        Formats, tolerance, kerf, clearance and the cut sheet.
+    """
 
     name: str = name_field("drive")
     geneva: GenevaTable

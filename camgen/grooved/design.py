@@ -138,6 +138,23 @@ class GroovedDesign:
     whose surface is the inner flank (pitch curve, analysis, inner outline, holes, marks, warnings); ``outer``
     and ``cut_outer`` the outer flank as designed and as the cut files carry it; ``part``, ``cut`` and ``printed``
     the plate with its groove as a :class:`~camgen.core.parts.Pocket`.
+
+    Attributes
+    ----------
+    spec : CamSpec
+        The template, its base radius sized where it was ``"auto"``.
+    profile : CamDesign
+        The island: the disc cam whose surface is the inner flank.
+    inner, outer : Flank
+        Each flank's undercut check: the pitch curve's least radius bending that flank and where.
+    outer_outline, cut_outer : Outline
+        The outer flank as designed and as the cut files carry it (moved into the groove by half the kerf).
+    plate_radius_mm : float
+        The plate's radius (mm): the pitch curve's farthest reach, the roller's and the rim.
+    part, cut, printed : Part
+        The plate with its groove: nominal, as cut and as printed.
+    warnings : tuple of str
+        The design's warnings, as the console prints them.
     """
 
     spec: CamSpec
@@ -240,9 +257,23 @@ def _sized(spec: CamSpec, island: CamSpec) -> tuple[CamSpec, CamSpec, Sizing | N
 def design_grooved(spec: CamSpec) -> GroovedDesign:
     """Build, check and outline the grooved cam ``spec`` describes.
 
-    Raises :class:`DesignError` naming the flank, the angle and the radii for an undercut of either flank
-    (unless ``cam.allow_undercut``: that flank is then the envelope a cutter of the roller's size leaves), and
-    for a bore or holes that leave no material inside the inner flank.
+    Parameters
+    ----------
+    spec : CamSpec
+        A validated template with ``cam.kind = "grooved"``; a base radius of ``"auto"`` is sized first.
+
+    Returns
+    -------
+    GroovedDesign
+        The island (the disc cam whose surface is the inner flank), both flanks, the plate with its groove, as
+        designed, as cut and as printed, and the warnings.
+
+    Raises
+    ------
+    DesignError
+        An undercut of either flank, naming the flank, the angle and the radii (unless ``cam.allow_undercut``:
+        that flank is then the envelope a cutter of the roller's size leaves); a kerf that closes the groove
+        (naming ``output.kerf``); a bore or holes that leave no material inside the inner flank.
     """
     spec, island, sizing = _sized(spec, island_spec(spec))
     cam = build_cam(island)

@@ -55,7 +55,30 @@ TABLE_LAWS: tuple[str, ...] = tuple(n for n in LAW_NAMES if n not in ("polynomia
 
 
 def make_law(name: str, **params: Any) -> Law:
-    """The law registered as ``name``, built with ``params`` (template keys, plus ``k`` for drafted forms)."""
+    """The law registered as ``name``, built with ``params`` (template keys, plus ``k`` for drafted forms).
+
+    Parameters
+    ----------
+    name : str
+        A registry name, one of :data:`LAW_NAMES` (``"cycloidal"``, ``"polynomial"``, ...).
+    **params
+        The law's parameters as a template's segment gives them beside ``law`` (:data:`LAW_PARAMS` names each
+        law's: ``ratio`` for ``"parabolic"``, ``conditions`` and ``degree`` for ``"polynomial"``, ...), and for the
+        drafted modified-uniform form ``k``, the prime radius times the segment's angle over its lift.
+
+    Returns
+    -------
+    Law
+        The normalised rise: f and its first three derivatives of u in [0, 1] (:meth:`Law.derivatives`), from
+        f(0) = 0 to f(1) = 1; a segment scales it by its lift and angle.
+
+    Raises
+    ------
+    SpecError
+        An unknown ``name`` (naming ``law``), or a parameter's value the law refuses (naming the parameter).
+    TypeError
+        A parameter the law does not take (a template's is refused before, by its validation).
+    """
     try:
         factory, _ = REGISTRY[name]
     except KeyError:

@@ -141,6 +141,26 @@ def from_conditions(conditions: Sequence[Sequence[float]], degree: int | None = 
     must determine the polynomial exactly: too few independent conditions, or
     contradictory ones, raise :class:`SpecError` naming ``conditions``. Conditions at the two ends only, of
     consecutive orders from 0 at each, always do (see :func:`_two_point`), at any degree up to 25.
+
+    Parameters
+    ----------
+    conditions : sequence of tuple
+        The boundary conditions, each (u, order, value): u in [0, 1], a whole order 0 to 25, and the value of
+        that derivative of f at u, in normalised units (a lift and an angle of 1).
+    degree : int, optional
+        The polynomial's degree, 1 to 25; by default the number of conditions less one.
+
+    Returns
+    -------
+    PolynomialLaw
+        The law, f and its first three derivatives within 1e12 on [0, 1].
+
+    Raises
+    ------
+    SpecError
+        Naming ``conditions``: an entry that is not three finite numbers, u outside [0, 1], an order out of range,
+        conditions that contradict each other or are too few to fix the polynomial, a law that does not rise from
+        f(0) = 0 to f(1) = 1 or whose values pass 1e12; naming ``degree``: a degree outside 1 to 25.
     """
     conds = [tuple(c) for c in conditions]
     for i, c in enumerate(conds):

@@ -3,8 +3,10 @@
 ``{template-reference} ROOT`` (a MyST directive; ROOT one of :data:`ROOTS`) writes one section a table the template
 may hold, and in it one row a key: its type, unit, allowed values or range, default and description, each read from
 the model's field (``Field(description=...)``, ``json_schema_extra={"unit": ...}``, the bounds and ``Literal`` values
-of its annotation). The models are the one source of these facts: the error messages, the starter templates'
-comments and this page all read them. ``tests/test_docs.py`` compares the built page with the models.
+of its annotation, and the notes of ``camgen.core.spec.notes``: ``"allowed"``, a rule beyond the bounds, and
+``"absent"``, what leaving out a key whose default is None means). The models are the one source of these facts:
+the error messages, the starter templates' comments and this page all read them. ``tests/test_docs.py`` compares
+the built page with the models.
 """
 from __future__ import annotations
 
@@ -212,20 +214,26 @@ def _inner_bounds(annotation: Any) -> list[str]:
     return []
 
 
+def _extra(info: Any) -> dict[str, Any]:
+    extra = info.json_schema_extra
+    return extra if isinstance(extra, dict) else {}
+
+
 def allowed_of(info: Any) -> str:
-    """What a field allows: its Literal values, then its bounds and those of its items."""
+    """What a field allows: its Literal values, then its bounds and those of its items, then its ``allowed`` note."""
     parts = []
     literals = _literals(info.annotation)
     if literals:
         parts.append(", ".join(literals))
     parts += bounds(info.metadata) + _inner_bounds(info.annotation)
+    if _extra(info).get("allowed"):
+        parts.append(_extra(info)["allowed"])
     return "; ".join(parts)
 
 
 def unit_of(info: Any) -> str:
     """A field's unit, from its ``json_schema_extra``."""
-    extra = info.json_schema_extra
-    return extra.get("unit", "") if isinstance(extra, dict) else ""
+    return _extra(info).get("unit", "")
 
 
 def _toml(value: Any) -> str:
@@ -245,13 +253,14 @@ def _toml(value: Any) -> str:
 
 
 def default_of(info: Any) -> str:
-    """A field's default: ``required``, ``none`` (not given), or the value as TOML."""
+    """A field's default: ``required``, the value as TOML, or for a default of None its ``absent`` note (what
+    leaving the key out means), else ``none`` (not given)."""
     if info.is_required():
         return "required"
     if info.default_factory is not None:
         return _toml(info.default_factory())
     if info.default is None or info.default is PydanticUndefined:
-        return "none"
+        return _extra(info).get("absent", "none")
     return _toml(info.default)
 
 

@@ -41,7 +41,7 @@ ASSEMBLIES: tuple[str, ...] = ("open", "crossed")
 FEASIBILITY_TOL = 1e-10
 TWO_PI = 2.0 * math.pi
 #: crank angles placed at a time (:meth:`FourBar._poses`): each of the 10 intermediates 128 kB, together within a
-#: core's caches; of 4 096 to 32 768 at 100 000 angles, 4 096 and 8 192 measured slower (README, "Four-bar positions")
+#: core's caches; of 4 096 to 32 768 at 100 000 angles, 4 096 and 8 192 measured slower (docs/guides/speed.md)
 CHUNK = 16384
 #: up to this many angles :meth:`FourBar._poses` places every pin and angle in one pass: below it a second pass's
 #: own cost (some 50 numpy calls) is more than the arithmetic the pins and angles not asked for take
@@ -192,6 +192,30 @@ class FourBar:
 
     An optional coupler point lies at ``point_distance`` mm from A, at
     ``point_angle`` radians counter-clockwise from the coupler line A -> B.
+
+    The input pivot O2 is the origin and the output pivot O4 lies on +X, ``ground`` away; every angle is counter-
+    clockwise from that ground line, in radians.
+
+    Parameters
+    ----------
+    ground : float
+        L1 (mm): O2 to O4.
+    crank : float
+        L2 (mm): the input link, O2 to the crank pin A.
+    coupler : float
+        L3 (mm): A to the rocker pin B.
+    rocker : float
+        L4 (mm): the output link, O4 to B.
+    point_distance : float, optional
+        The coupler point's distance from A (mm), >= 0; 0 puts it on A.
+    point_angle : float, optional
+        The coupler point's angle from the line A -> B (radians, counter-clockwise).
+
+    Raises
+    ------
+    SpecError
+        A length that is not finite and > 0 (naming ``linkage.<link>``), a longest link not shorter than the
+        other three together (the chain closes only flat), or a negative or non-finite point distance.
     """
 
     ground: float
@@ -720,7 +744,7 @@ def _refuse_coincident(theta2: np.ndarray, coincident: np.ndarray, what: str, mi
 def _block(*shapes: tuple[int, ...]) -> list[np.ndarray]:
     """Arrays of floats of the given shapes, views of one block; a block of at least half of :data:`HUGE` bytes
     made that large: from that size numpy asks the kernel for huge pages, so that it is a few page faults instead
-    of one every 4 kB (at 100 000 angles that was the cost, not the arithmetic; README, "Four-bar positions")."""
+    of one every 4 kB (at 100 000 angles that was the cost, not the arithmetic; docs/guides/speed.md)."""
     sizes = [math.prod(shape) for shape in shapes]
     total = sum(sizes)
     block = np.empty(max(total, HUGE // 8) if 16 * total >= HUGE else total)

@@ -68,7 +68,21 @@ def check_finite(values: ArrayLike, what: str, field: str = "angle", unit: str =
 
 
 def classify(ground: float, driven: float, coupler: float, output: float) -> Grashof:
-    """Classify the four-bar with links in loop order ground, driven (input), coupler, output (mm)."""
+    """Classify the four-bar with links in loop order ground, driven (input), coupler, output (mm).
+
+    Parameters
+    ----------
+    ground, driven, coupler, output : float
+        The links' lengths in loop order (mm): the fixed link, the input, the coupler, the output.
+
+    Returns
+    -------
+    Grashof
+        The class (``"I"``: S + L < P + Q, ``"II"``: S + L > P + Q, ``"III"``: equal within 1e-10 of the longest
+        link, a change point), the inversion (``"crank-rocker"``, ...), the change-point form (parallelogram,
+        deltoid, rhombus) or None, whether the input and the output turn fully, and the margin (P + Q) - (S + L)
+        in mm.
+    """
     links = [ground, driven, coupler, output]
     s, big = min(links), max(links)
     p_q = sum(links) - s - big
@@ -111,6 +125,25 @@ def classify_chain(lengths: tuple[float, float, float, float], ground: int, driv
     """Classify a chain of four links given in loop order, with link ``ground`` fixed and link ``driven`` as input.
 
     The input must be a neighbour of the ground (index difference 1 modulo 4).
+
+    Parameters
+    ----------
+    lengths : tuple of float
+        The four links' lengths in loop order (mm).
+    ground : int
+        The index (0 to 3) of the fixed link.
+    driven : int
+        The index of the input link, next to the ground.
+
+    Returns
+    -------
+    Grashof
+        As :func:`classify` gives it for the links read from the ground through the input.
+
+    Raises
+    ------
+    SpecError
+        Naming ``input``: an input link that is not next to the ground.
     """
     if (driven - ground) % 4 not in (1, 3):
         raise SpecError(f"the input link must be next to the ground link (ground {ground}, input {driven})", "input")

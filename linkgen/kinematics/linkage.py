@@ -149,7 +149,24 @@ class Linkage:
     input value (the drawing's signs at the drawn input unless given: another assembly of the same linkage,
     a piece of a circuit), swapped at every change point between there and the pose. ``origin`` (rad) is where
     a crank's revolution starts: the drawn angle, or the low end of the range the drawing lies in when the crank
-    does not turn fully, so that the range is one piece of it."""
+    does not turn fully, so that the range is one piece of it.
+
+    Made by :meth:`of` from a structure (which finds the flips and checks the redundant constraints); positions
+    in the drawing's frame (mm), angles counter-clockwise in radians.
+
+    Parameters
+    ----------
+    structure : Structure
+        The joints' drawn positions, the links, the sliders and the inputs.
+    plan : Plan
+        The solve order: the inputs, then the dyads.
+    flips : tuple of ndarray, optional
+        Per step, the input values where its dyad swaps sides.
+    origin : float, optional
+        Where a crank's revolution starts (rad); the drawn angle unless given.
+    start : tuple, optional
+        The input value and the steps' branch signs there; the drawing's unless given.
+    """
 
     structure: Structure
     plan: Plan

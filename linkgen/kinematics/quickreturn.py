@@ -57,7 +57,22 @@ def _ratio(k: float) -> float:
 
 @dataclass(frozen=True)
 class CrankShaper:
-    """Crank ``crank``, pivots ``ground`` apart (> crank), lever reaching the ram line at ``lever`` (mm)."""
+    """Crank ``crank``, pivots ``ground`` apart (> crank), lever reaching the ram line at ``lever`` (mm).
+
+    Parameters
+    ----------
+    crank : float
+        The driving crank O2-A (mm).
+    ground : float
+        O2 to the lever's pivot O4 on +X (mm); more than the crank, so the lever oscillates.
+    lever : float
+        O4 to the ram's line, square to O2-O4 (mm).
+
+    Raises
+    ------
+    SpecError
+        A length that is not finite and > 0, or a ground not longer than the crank (naming ``linkage.ground``).
+    """
 
     crank: float
     ground: float
@@ -102,7 +117,25 @@ class CrankShaper:
 
 @dataclass(frozen=True)
 class Whitworth:
-    """Crank ``crank`` (> ``ground``), ram ``arm`` and ``rod`` (mm), see the module docstring."""
+    """Crank ``crank`` (> ``ground``), ram ``arm`` and ``rod`` (mm), see the module docstring.
+
+    Parameters
+    ----------
+    crank : float
+        The driving crank O2-A (mm); longer than the ground, so the slotted link turns fully.
+    ground : float
+        O2 to the slotted link's pivot O4 on +X (mm).
+    arm : float
+        The arm on the slotted link's shaft (mm), the ram's crank.
+    rod : float
+        The rod from the arm to the ram (mm); longer than the arm.
+
+    Raises
+    ------
+    SpecError
+        A length that is not finite and > 0, a ground not shorter than the crank (naming ``linkage.ground``), or
+        a rod not longer than the arm (naming ``linkage.rod``).
+    """
 
     crank: float
     ground: float

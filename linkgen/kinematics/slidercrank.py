@@ -34,7 +34,23 @@ class SliderMotion:
 
 @dataclass(frozen=True)
 class SliderCrank:
-    """Crank ``crank`` mm, connecting rod ``rod`` mm, slider line offset ``offset`` mm (see module docstring)."""
+    """Crank ``crank`` mm, connecting rod ``rod`` mm, slider line offset ``offset`` mm (see module docstring).
+
+    Parameters
+    ----------
+    crank : float
+        The crank's length (mm), from its pivot at the origin to the crank pin.
+    rod : float
+        The connecting rod's length (mm), from the crank pin to the slider pin.
+    offset : float, optional
+        The slider line y = offset (mm): + above the crank pivot.
+
+    Raises
+    ------
+    SpecError
+        A crank or rod that is not a finite length > 0, or an offset that is not finite or not below
+        crank + rod in size, each naming its ``linkage.<key>``.
+    """
 
     crank: float
     rod: float
@@ -147,7 +163,18 @@ class SliderCrank:
 
 @dataclass(frozen=True)
 class ScotchYoke:
-    """Scotch yoke of crank ``crank`` mm: x = r (1 - cos theta) from the dead centre, pure simple harmonic motion."""
+    """Scotch yoke of crank ``crank`` mm: x = r (1 - cos theta) from the dead centre, pure simple harmonic motion.
+
+    Parameters
+    ----------
+    crank : float
+        r (mm): the crank's length, its pin running in the yoke's slot.
+
+    Raises
+    ------
+    SpecError
+        Naming ``linkage.crank``: not a finite length > 0.
+    """
 
     crank: float
 

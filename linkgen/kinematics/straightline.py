@@ -214,7 +214,26 @@ def _golden_max(f: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.nd
 
 
 def straight_line(kind: str, size: float) -> StraightLine:
-    """The ``kind`` linkage (chebyshev, hoekens, roberts, watt) with unit length ``size`` mm."""
+    """The ``kind`` linkage (chebyshev, hoekens, roberts, watt) with unit length ``size`` mm.
+
+    Parameters
+    ----------
+    kind : str
+        ``"chebyshev"``, ``"hoekens"``, ``"roberts"`` or ``"watt"``.
+    size : float
+        The unit of the canonical proportions (mm): Hoekens' ground is 2 of it, its crank 1, ...
+
+    Returns
+    -------
+    StraightLine
+        Its four-bar with the tracing point as the coupler point, its assembly and its nominal stroke (mm).
+
+    Raises
+    ------
+    SpecError
+        An unknown ``kind`` (naming ``linkage.type``) or a size that is not a finite length > 0 (naming
+        ``linkage.size``).
+    """
     if kind not in CANONICAL:
         raise SpecError(f"must be one of {', '.join(CANONICAL)} (got {kind!r})", "linkage.type")
     if not (size > 0 and math.isfinite(size)):

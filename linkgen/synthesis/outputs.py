@@ -55,6 +55,11 @@ def write_synthesis(result: Synthesis, directory: str | Path) -> list[str]:
     -------
     list of str
         The names of the files written.
+
+    Raises
+    ------
+    ExportError
+        The folder cannot be created or a file cannot be written; nothing is left written then.
     """
     from linkgen.synthesis.plots import candidate_figure
 

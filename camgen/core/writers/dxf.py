@@ -281,7 +281,23 @@ def write_dxf(drawing: Drawing, path: Path, options: WriteOptions | None = None)
     bulged polylines), its text as TEXT entities or, with ``options.text = "outline"``, as the glyphs' outlines.
 
     The bytes are those of :func:`dxf_document`'s ``write`` (ezdxf's audit of it is run by the tests on what is
-    written: for the entities added here, a check of the drawing's numbers, :func:`_check`, is what it guards)."""
+    written: for the entities added here, a check of the drawing's numbers, :func:`_check`, is what it guards).
+
+    Parameters
+    ----------
+    drawing : Drawing
+        The shapes on their layers (mm); the file declares millimetres (R12 has no units header).
+    path : Path
+        The file to write (replaced if it exists).
+    options : WriteOptions, optional
+        The DXF version (``"R2010"``, ``"R12"``), flavour (``"polyline-bulge"``, ``"lines-arcs"``,
+        ``"segments"``) and text mode (``"text"``, ``"outline"``).
+
+    Raises
+    ------
+    ExportError
+        An unknown version or flavour, or a shape with a non-finite or non-positive size.
+    """
     options = options or WriteOptions()
     import logging
 

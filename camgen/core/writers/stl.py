@@ -13,7 +13,18 @@ _FACET = np.dtype([("normal", "<f4", (3,)), ("vertices", "<f4", (3, 3)), ("attri
 
 def stl_bytes(mesh: Mesh) -> bytes:
     """``mesh`` as binary STL: an empty 80-byte header, the triangle count, and each triangle's unit normal and
-    corners in single precision (the bytes trimesh writes for the same mesh)."""
+    corners in single precision (the bytes trimesh writes for the same mesh).
+
+    Parameters
+    ----------
+    mesh : Mesh
+        A triangle mesh (mm), its faces wound counter-clockwise seen from outside.
+
+    Returns
+    -------
+    bytes
+        The file's bytes (mm: STL has no units).
+    """
     facets = np.zeros(len(mesh.faces), dtype=_FACET)
     facets["normal"] = face_normals(mesh)
     facets["vertices"] = mesh.vertices[mesh.faces]

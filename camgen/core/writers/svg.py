@@ -41,7 +41,20 @@ def _num(x: float) -> str:
 
 
 def svg_document(drawing: Drawing, stroke_width: float = HAIRLINE_MM) -> str:
-    """The drawing as an SVG document (text); ``stroke_width`` in mm (hairline for laser software)."""
+    """The drawing as an SVG document (text); ``stroke_width`` in mm (hairline for laser software).
+
+    Parameters
+    ----------
+    drawing : Drawing
+        The shapes on their layers (mm); each layer is a group in its colour, arcs stay exact arcs.
+    stroke_width : float, optional
+        The lines' width (mm); by default a hairline, which laser software cuts along.
+
+    Returns
+    -------
+    str
+        The document, sized in mm (one user unit a millimetre), +Y up as in the drawing.
+    """
     x0, y0, x1, y1 = _bounds(drawing)
     left, top = x0 - MARGIN_MM, y1 + MARGIN_MM
     width, height = (x1 - x0) + 2 * MARGIN_MM, (y1 - y0) + 2 * MARGIN_MM

@@ -81,7 +81,18 @@ def _model(objects: str, build_id: uuid.UUID, items: str) -> str:
 
 
 def threemf_bytes(mesh: Mesh | tuple[Mesh, ...]) -> bytes:
-    """``mesh`` as a 3MF package (see the module docstring); a tuple of meshes as one package of them all."""
+    """``mesh`` as a 3MF package (see the module docstring); a tuple of meshes as one package of them all.
+
+    Parameters
+    ----------
+    mesh : Mesh or tuple of Mesh
+        One mesh, or several (each an object of the package, named after its mesh); mm.
+
+    Returns
+    -------
+    bytes
+        The package's bytes (a zip file, its model in millimetres), the same for the same meshes.
+    """
     out = io.BytesIO()
     model = assembly_xml(mesh) if isinstance(mesh, tuple) else model_xml(mesh)
     entries = {"3D/3dmodel.model": model, "[Content_Types].xml": _TYPES, "_rels/.rels": _RELS}
