@@ -89,8 +89,8 @@ RULES: dict[str, dict[str, str]] = {
         "cam.length": "mm: the cylinder's axial length; more than the follower's stroke and the groove's width, "
                       "2 roller_radius + running_clearance",
         "cam.groove_depth": "mm: depth of the groove about pitch_radius; its floor, at pitch_radius - "
-                            "groove_depth / 2, must lie outside bore / 2 and outside roller_radius + "
-                            "running_clearance / 2",
+                            "groove_depth / 2, must lie outside the bore as printed (bore / 2 + "
+                            "output.clearance / 2) and outside roller_radius + running_clearance / 2",
         "cam.bore": "mm: bore diameter, 0 for none; within the groove's floor"},
     "conjugate": {
         "cam": "a conjugate pair: a second disc drives a second roller on the far end of the yoke; its base circle "

@@ -12,6 +12,7 @@ from click.testing import CliRunner
 from camgen.cli import main as camgen
 from camgen.starters import STARTERS as CAM_STARTERS
 from camgen.spec import CamTable, validate_spec
+from camgen.core.errors import SpecError
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
 from linkgen.starters import STARTERS as LINKAGE_STARTERS
@@ -243,9 +244,13 @@ def test_the_rules_the_cam_starters_state_hold():
     limit = 2 * (30.0 - (5.0 + 0.2 / 2))
     assert not _refused(_cam_raw("barrel", cam={"groove_depth": limit - eps}), "cam.groove_depth")
     assert _refused(_cam_raw("barrel", cam={"groove_depth": limit + eps}), "cam.groove_depth")
-    # the bore decides when its radius is larger than the roller's reach: bore 20 -> depth < 2 (30 - 10) = 40
-    assert not _refused(_cam_raw("barrel", cam={"bore": 20.0, "groove_depth": 40.0 - eps}), "cam.groove_depth")
-    assert _refused(_cam_raw("barrel", cam={"bore": 20.0, "groove_depth": 40.0 + eps}), "cam.groove_depth")
+    # the bore as printed decides when it reaches further than the roller: bore 20, clearance 0.2 -> depth <
+    # 2 (30 - 10.1) = 39.8 (refused naming the bore, which the same message says a shallower groove would clear)
+    bored = 2 * (30.0 - (20.0 / 2 + 0.2 / 2))
+    assert not _refused(_cam_raw("barrel", cam={"bore": 20.0, "groove_depth": bored - eps}), "cam")
+    assert _refused(_cam_raw("barrel", cam={"bore": 20.0, "groove_depth": bored + eps}), "cam.bore")
+    with pytest.raises(SpecError, match=r"or cam\.groove_depth < 39\.8 mm"):
+        validate_spec(_cam_raw("barrel", cam={"bore": 20.0, "groove_depth": bored + eps}))
     # oscillating roller: pivot 110, Rb 40, Rr 8: |110 - L| < 48 < 110 + L, so L > 62
     assert not _refused(_cam_raw("oscillating-roller", follower={"arm_length": 62.0 + eps}), "follower")
     assert _refused(_cam_raw("oscillating-roller", follower={"arm_length": 62.0 - eps}), "follower.arm_length")
