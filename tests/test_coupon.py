@@ -176,7 +176,8 @@ def test_step_holds_the_plate_and_the_pin_as_on_the_sheet(tmp_path):
     FreeCAD: each its exact area x thickness (the holes nominal + c_k + output.clearance, the pin pi d^2 / 4 x
     pin_length), the plate's box from the origin, the pin's round its centre beside the plate on the cut sheet."""
     pytest.importorskip("OCP")
-    from tests.test_step import _fc, _freecad, assert_apart, assert_plate, expect_plate, measure, read_step
+    from tests.freecad import freecad_check
+    from tests.test_step import _fc, assert_apart, assert_plate, expect_plate, measure, read_step
 
     report = coupon(tmp_path, None, [f"output.clearance={PRINT}", 'output.formats=["step","json","dxf"]'])
     assert report["files"]["step"] == "coupon.step"
@@ -202,7 +203,7 @@ def test_step_holds_the_plate_and_the_pin_as_on_the_sheet(tmp_path):
     box = measure(solids[0][1])["box"]
     assert box == pytest.approx([0.0, 0.0, 0.0, width, height, 3.0], abs=1e-6)
     assert_apart([box, measure(solids[1][1])["box"]])
-    done = _freecad(tmp_path / "coupon.step", [_fc(expect_plate(p)) for p in (plate, pin)])
+    done = freecad_check("step", tmp_path / "coupon.step", [_fc(expect_plate(p)) for p in (plate, pin)])
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
 
 

@@ -11,9 +11,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import shutil
-import subprocess
 
 import numpy as np
 import pytest
@@ -26,8 +23,8 @@ from camgen.core.writers.dxf import write_dxf
 from linkgen.design import design_linkage
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
+from tests.freecad import freecad_check
 
-PROGRAMS = ROOT / "tests" / "programs"
 #: the [parts] table a bundled linkage template without one is built with
 PARTS = {"width": 12.0, "thickness": 4.0, "pin_diameter": 4.0}
 
@@ -115,15 +112,6 @@ def test_merging_by_hand():
     assert len(circle.vertices) == 2 and circle.area == pytest.approx(math.pi * 25.0, rel=1e-12)
 
 
-def _freecad(path, expect) -> subprocess.CompletedProcess:
-    program = shutil.which("freecadcmd")
-    if program is None:
-        pytest.skip("freecadcmd is not installed (Debian package freecad; .ci/run installs it)")
-    env = {**os.environ, "CAMGEN_DXF": str(path), "CAMGEN_EXPECT": json.dumps(expect)}
-    return subprocess.run([program, str(PROGRAMS / "freecad_dxf_check.py")], env=env, capture_output=True,
-                          text=True, timeout=300)
-
-
 def _expect(drawing: Drawing) -> dict:
     """Each contour's and circle's exact area (with 1e-6 of it allowed) and the drawing's box (mm)."""
     shapes = [s for _, s in drawing.items if not isinstance(s, (Text, Polyline))]
@@ -139,7 +127,7 @@ def test_freecad_reads_each_sheet_as_its_closed_wires(builds, name, tmp_path):
     for k, sheet in enumerate(builds[name].sheets):
         path = tmp_path / f"{name}-{k}.dxf"
         write_dxf(sheet, path)
-        done = _freecad(path, _expect(sheet))
+        done = freecad_check("dxf", path, _expect(sheet))
         assert done.returncode == 0, (name, done.stdout.strip().splitlines()[-1][:2000])
         found = json.loads(done.stdout.strip().splitlines()[-1])
         assert len(found["wires"]) == len(_expect(sheet)["areas"])
@@ -153,7 +141,7 @@ def test_freecad_check_sees_a_zero_length_arc(tmp_path):
                   np.array([0.0, 1e-13, 1.0, 0.0, 1.0]))
     drawing = Drawing((("OUTLINE", bar), ("HOLES", Circle((0.0, 0.0), 1.5))), 0.01)
     write_dxf(drawing, tmp_path / "bar.dxf")
-    done = _freecad(tmp_path / "bar.dxf", _expect(drawing))
+    done = freecad_check("dxf", tmp_path / "bar.dxf", _expect(drawing))
     assert done.returncode == 1
 
 

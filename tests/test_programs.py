@@ -17,9 +17,9 @@ import pytest
 
 from camgen.design import design_cam
 from camgen.outputs import write_cam
-from tests.conftest import ROOT, template
+from tests.conftest import template
+from tests.freecad import freecad_check
 
-PROGRAMS = ROOT / "tests" / "programs"
 HUB = {"cam.bore": 20.0, "hub.keyway": True, "hub.bolt_circle": 50.0, "hub.bolt_holes": 4,
        "hub.bolt_hole_diameter": 4.0, "hub.boss_diameter": 34.0, "hub.boss_height": 10.0, "hub.set_screw": 4.0}
 
@@ -73,24 +73,19 @@ def _expect(design, chords: bool = False) -> dict:
             "box": [ring[:, 0].min(), ring[:, 1].min(), ring[:, 0].max(), ring[:, 1].max()], "box_tol": 0.01}
 
 
-def _freecad(dxf: Path, expect: dict) -> subprocess.CompletedProcess:
-    env = {**os.environ, "CAMGEN_DXF": str(dxf), "CAMGEN_EXPECT": json.dumps(expect)}
-    return subprocess.run([need("freecadcmd"), str(PROGRAMS / "freecad_dxf_check.py")], env=env,
-                          capture_output=True, text=True, timeout=300)
-
-
 @pytest.mark.parametrize("flavour", ["polyline-bulge", "lines-arcs", "segments", "R12"])
 def test_freecad_imports_every_dxf_as_closed_valid_faces(files, flavour):
     out, design = files
     path = out / "rdrd.dxf" if flavour == "polyline-bulge" else out / flavour / "rdrd.dxf"
-    done = _freecad(path, _expect(design, chords=flavour == "segments"))
+    done = freecad_check("dxf", path, _expect(design, chords=flavour == "segments"))
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
 
 
 @pytest.mark.parametrize("name", ["open", "eight"])
 def test_freecad_check_rejects_a_broken_dxf(files, name):
     out, _ = files
-    done = _freecad(out / f"broken-{name}.dxf", {"areas": [[900.0, 1e-3]], "box": [0, 0, 30, 30], "box_tol": 0.01})
+    done = freecad_check("dxf", out / f"broken-{name}.dxf",
+                         {"areas": [[900.0, 1e-3]], "box": [0, 0, 30, 30], "box_tol": 0.01})
     assert done.returncode == 1
     assert json.loads(done.stdout.strip().splitlines()[-1])["problems"]
 

@@ -23,8 +23,8 @@ from camgen.design import design_cam, step_part
 from camgen.spec import load_spec
 from linkgen.cli import main as linkgen_main
 from tests.conftest import ROOT, template
+from tests.freecad import freecad_check
 
-PROGRAMS = ROOT / "tests" / "programs"
 HOLES = {"cam.bore": 20.0, "hub.keyway": True, "hub.bolt_circle": 50.0, "hub.bolt_holes": 4,
          "hub.bolt_hole_diameter": 4.0}
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
@@ -691,17 +691,6 @@ def test_barrel_cam_refused_in_one_line(tmp_path):
     assert not (tmp_path / "out").exists()
 
 
-def _freecad(path, expect: list[dict]) -> subprocess.CompletedProcess:
-    import shutil
-
-    program = shutil.which("freecadcmd")
-    if program is None:
-        pytest.skip("freecadcmd is not installed (Debian package freecad; .ci/run installs it)")
-    env = {**os.environ, "CAMGEN_STEP": str(path), "CAMGEN_EXPECT": json.dumps(expect)}
-    return subprocess.run([program, str(PROGRAMS / "freecad_step_check.py")], env=env, capture_output=True,
-                          text=True, timeout=300)
-
-
 def _fc(want: dict) -> dict:
     return {"volume": want["volume"], "box": want["box"].tolist(), "faces": want["faces"]}
 
@@ -709,14 +698,14 @@ def _fc(want: dict) -> dict:
 def test_freecad_reads_one_valid_solid(rdrd_cli):
     out, _ = rdrd_cli
     part, _ = step_part(design_cam(template()))
-    done = _freecad(out / "rdrd.step", [_fc(expect_plate(part))])
+    done = freecad_check("step", out / "rdrd.step", [_fc(expect_plate(part))])
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
 
 
 def test_freecad_reads_a_keyway_and_bolt_holes(tmp_path):
     part = design_cam(template({**HOLES, "output.curves": "biarcs", "output.formats": ["json"]})).printed
     write_step([(part.name, (part,))], tmp_path / "hub.step")
-    done = _freecad(tmp_path / "hub.step", [_fc(expect_plate(part))])
+    done = freecad_check("step", tmp_path / "hub.step", [_fc(expect_plate(part))])
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
 
 
@@ -726,7 +715,7 @@ def test_freecad_reads_every_part_of_a_linkage(crank_rocker):
     out, build = crank_rocker
     expected = [{"volume": w["volume"], "box": w["box"].tolist(), "faces": w["faces"]}
                 for w in _linkage_expected(out, build)]
-    done = _freecad(out / "crank-rocker.step", expected)
+    done = freecad_check("step", out / "crank-rocker.step", expected)
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
     assert len(json.loads(done.stdout.strip().splitlines()[-1])["solids"]) == 8
 
@@ -734,6 +723,6 @@ def test_freecad_reads_every_part_of_a_linkage(crank_rocker):
 def test_freecad_check_rejects_a_wrong_volume(rdrd_cli):
     out, _ = rdrd_cli
     want = _fc(expect_plate(step_part(design_cam(template()))[0]))
-    done = _freecad(out / "rdrd.step", [{**want, "volume": want["volume"] * (1 + 1e-5)}])
+    done = freecad_check("step", out / "rdrd.step", [{**want, "volume": want["volume"] * (1 + 1e-5)}])
     assert done.returncode == 1
     assert json.loads(done.stdout.strip().splitlines()[-1])["solids"][0]["valid"]
