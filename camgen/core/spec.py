@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Annotated, Any, Literal, TypeVar, get_args, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic.config import JsonDict
 
 from camgen.core.errors import SpecError
 from camgen.core.options import not_one_of
@@ -117,7 +118,7 @@ def length(description: str, default: Any = ..., *, zero: bool = False, le: floa
     return Field(default, **bound, le=le, description=description, json_schema_extra=unit("mm"))
 
 
-def unit(name: str) -> dict[str, str]:
+def unit(name: str) -> JsonDict:
     """``json_schema_extra`` naming a field's unit, used in error messages."""
     return {"unit": name}
 
