@@ -12,9 +12,17 @@ import re
 import shutil
 import subprocess
 import sys
+from typing import get_args
 
 import pytest
 
+from camgen.contact_stress import MATERIALS, MaterialName
+from camgen.core.hardware import BEARINGS, BOLTS, BearingName, BoltName
+from camgen.core.kit import BearingChoice, CamKitTable, KitTable
+from camgen.core.spec import OutputTable
+from camgen.core.writers import EXTRAS, FORMATS, OptionalFormat
+from camgen.followers import FOLLOWERS, FollowerName
+from camgen.laws import REGISTRY, LawName
 from tests.conftest import ROOT
 
 pytestmark = pytest.mark.skipif(importlib.util.find_spec("mypy") is None,
@@ -69,3 +77,23 @@ def test_mypy_applies_the_projects_settings(tmp_path):
     result = _mypy(tmp_path, "--cache-dir", str(tmp_path / "cache"), "bad.py")
     found = {(int(m[1]), m[2]) for m in re.finditer(r"^bad\.py:(\d+): error: .*\[([a-z-]+)\]$", result.stdout, re.M)}
     assert _count(result) == len(FINDINGS) and found == FINDINGS, result.stdout + result.stderr
+
+
+#: each Literal written out for the type checker: the registry whose names it must be, in their order
+ALIASES = {"LawName": (LawName, tuple(REGISTRY)), "FollowerName": (FollowerName, tuple(FOLLOWERS)),
+           "MaterialName": (MaterialName, tuple(MATERIALS)), "BoltName": (BoltName, tuple(BOLTS)),
+           "BearingName": (BearingName, tuple(BEARINGS)), "BearingChoice": (BearingChoice, (*BEARINGS, "none")),
+           "OptionalFormat": (OptionalFormat, tuple(EXTRAS))}
+
+
+@pytest.mark.parametrize("name", ALIASES)
+def test_a_written_out_literal_names_its_registry(name):
+    alias, names = ALIASES[name]
+    assert get_args(alias) == names
+
+
+def test_the_tables_take_the_registries_names():
+    """The models built on the aliases accept every registered name, in the registries' order."""
+    assert get_args(get_args(OutputTable.model_fields["formats"].annotation)[0]) == FORMATS + tuple(EXTRAS)
+    assert get_args(KitTable.model_fields["bolt"].annotation) == tuple(BOLTS)
+    assert get_args(CamKitTable.model_fields["bearing"].annotation) == (*BEARINGS, "none")

@@ -25,7 +25,7 @@ from camgen.core.errors import SpecError
 from camgen.core.options import not_one_of
 from camgen.core.reading import NotRegularFile, read_regular
 from camgen.core.writers import (
-    DEFAULT_FORMATS, DXF_FLAVOURS, DXF_VERSIONS, FIGURE_FORMATS, FORMATS, OPTIONAL_FORMATS, TEXT_MODES, WriteOptions,
+    DEFAULT_FORMATS, FIGURE_FORMATS, DxfFlavour, DxfVersion, Format, OptionalFormat, TextMode, WriteOptions,
     missing_extra)
 
 M = TypeVar("M", bound=BaseModel)
@@ -138,16 +138,15 @@ class OutputTable(Model):
     Products extend it with their own keys (camgen: the outline's tolerance and curves, kerf, clearance).
     """
 
-    formats: tuple[Literal[FORMATS + OPTIONAL_FORMATS], ...] = Field(  # type: ignore[valid-type]
+    formats: tuple[Literal[Format, OptionalFormat], ...] = Field(
         DEFAULT_FORMATS, min_length=1, description="files to write (png and svg figures, and step with the step "
         "extra installed, only when asked)")
     figures: bool = Field(False, description="also write the figures as PNG and SVG (the same as adding \"png\" "
                           "and \"svg\" to formats; `--figures` on the command line)")
-    dxf: Literal[DXF_FLAVOURS] = Field(  # type: ignore[valid-type]
+    dxf: DxfFlavour = Field(
         "polyline-bulge", description="DXF flavour: bulged polylines, LINE/ARC entities, or chords only")
-    dxf_version: Literal[DXF_VERSIONS] = Field("R2010",  # type: ignore[valid-type]
-                                               description="DXF version (R12 for old controllers)")
-    text: Literal[TEXT_MODES] = Field(  # type: ignore[valid-type]
+    dxf_version: DxfVersion = Field("R2010", description="DXF version (R12 for old controllers)")
+    text: TextMode = Field(
         "text", description="engraved text as text, or as the glyphs' outlines (for laser software that drops text)")
     elephant_foot: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="printed solids: 45-degree chamfer "
                                  "round the bed face (its outline inset, holes opened), 0 for none",
