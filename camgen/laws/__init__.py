@@ -19,7 +19,8 @@ from camgen.laws.spline import SplineLaw, spline_law
 from camgen.laws.trig import Cycloidal, DoubleHarmonic, Harmonic
 
 
-def _modified_uniform(form: str = "blended", blend: float = 0.25, blend_law: str = "cycloidal",
+def _modified_uniform(form: str = "blended", blend: float = 0.25,
+                      blend_law: Literal["cycloidal", "parabolic"] = "cycloidal",
                       k: float | None = None) -> Law:
     """Blended by default; the drafted form needs ``k`` = prime radius x angle / lift."""
     if form == "blended":
