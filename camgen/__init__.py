@@ -29,7 +29,7 @@ _MODULES = {
     "camgen.spec": ("load_spec", "validate_spec", "CamSpec"),
     "camgen.cam": ("build_cam", "Cam"),
     "camgen.analysis": ("analyze",),
-    "camgen.design": ("design_cam", "CamDesign"),
+    "camgen.profile": ("design_cam", "CamDesign"),
     "camgen.sizing": ("size_cam",),
     "camgen.convergence": ("convergence",),
     "camgen.grooved.design": ("design_grooved", "GroovedDesign"),

@@ -27,7 +27,7 @@ def main() -> None:
 @one_design
 def build(template: Path, output: Path | None, overrides: tuple[str, ...], construction: bool) -> None:
     """Build the cam described by TEMPLATE (a TOML file)."""
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
     from camgen.outputs import write_cam
     from camgen.report import design_lines
     from camgen.spec import load_spec

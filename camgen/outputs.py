@@ -20,7 +20,7 @@ from camgen.core.errors import SpecError
 from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
 from camgen.core.writers import WriteOptions
-from camgen.design import CamDesign, step_chords, step_part
+from camgen.profile import CamDesign, step_chords, step_part
 from camgen.kinds import kind_of
 from camgen.report import cam_report
 
@@ -34,7 +34,7 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     Parameters
     ----------
     design : CamDesign
-        A design from :func:`camgen.design.design_cam`.
+        A design from :func:`camgen.profile.design_cam`.
 
     Returns
     -------
@@ -77,7 +77,7 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
 
 
 def step_solid(design: CamDesign, report: dict[str, Any]) -> Part:
-    """The part the STEP file carries (its outline biarcs, see :func:`camgen.design.step_part`); the report gains
+    """The part the STEP file carries (its outline biarcs, see :func:`camgen.profile.step_part`); the report gains
     ``step_outline``: how it is made, its pieces and arcs, and its measured max error (mm) from the exact profile."""
     part, outline = step_part(design)
     contour = outline.contour
@@ -123,7 +123,7 @@ def write_cam(design: Any, directory: str | Path, extra: Iterable[Item] = ()) ->
     Parameters
     ----------
     design : object
-        A design of any cam kind, or of a Geneva drive, from :func:`camgen.design.design_cam`.
+        A design of any cam kind, or of a Geneva drive, from :func:`camgen.profile.design_cam`.
     directory : str or Path
         The folder to write into (made if missing). Every file is written under a temporary name and renamed only
         when all are complete, so a failure leaves nothing behind.
@@ -164,7 +164,7 @@ def _geneva(design: Any) -> bool:
 
 def build_member(raw: dict, folder: Path) -> dict[str, Any]:
     """Build one family member from its raw spec into ``folder``; its summary figures and a thumbnail."""
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
     from camgen.spec import validate_spec
 
     design = design_cam(validate_spec(raw))

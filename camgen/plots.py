@@ -14,7 +14,7 @@ import numpy as np
 from camgen.cam import Cam
 from camgen.analysis import face_extent
 from camgen.core.figures import figure, fit_equal
-from camgen.design import CamDesign
+from camgen.profile import CamDesign
 
 
 def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarray]:

@@ -1,6 +1,6 @@
 """The report of a cam design: every figure a designer checks before cutting, in mm and degrees.
 
-Pure formatting of a finished :class:`~camgen.design.CamDesign` (and the check of its
+Pure formatting of a finished :class:`~camgen.profile.CamDesign` (and the check of its
 solid, when one was made): nothing here computes a peak or reads a spec.
 """
 from __future__ import annotations
@@ -10,7 +10,7 @@ from typing import Any
 
 from camgen.core import VERSION as __version__
 from camgen.core.solids import MeshCheck
-from camgen.design import CamDesign
+from camgen.profile import CamDesign
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:

@@ -8,7 +8,7 @@ import pytest
 
 from camgen.analysis import analyze, largest_roller
 from camgen.cam import build_cam
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.core.errors import DesignError
 from tests.conftest import template
 

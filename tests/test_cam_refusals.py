@@ -364,12 +364,12 @@ def test_a_clearance_that_opens_a_hole_through_the_outline_is_refused_at_twice_i
     for c, made in ((bound * 0.99, True), (bound * 1.01, False)):
         spec = template({**holes, "output.clearance": c})
         if made:
-            from camgen.design import design_cam
+            from camgen.profile import design_cam
 
             design_cam(spec)
         else:
             with pytest.raises(DesignError, match=r"^output\.clearance: must be < "):
-                from camgen.design import design_cam
+                from camgen.profile import design_cam
 
                 design_cam(spec)
 
@@ -378,7 +378,7 @@ def test_a_part_in_two_bodies_is_not_written():
     """Past the spec (model_copy skips validation): a 3 mm clearance opens the ring of holes into each other and
     the hub falls out; the mesh check counts two bodies, so the STL is refused, never reported watertight."""
     from camgen.core.solids import bodies, check_mesh, extrude
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
     from camgen.outputs import write_cam
 
     spec = template(RING)

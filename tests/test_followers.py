@@ -8,7 +8,7 @@ import pytest
 
 from camgen.analysis import analyze, face_extent, pressure_angle_max, profile_rho_min
 from camgen.cam import build_cam
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.followers.base import rotate
 from camgen.laws import DraftedUniform, make_law

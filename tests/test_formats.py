@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from camgen.cam import build_cam
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.outputs import write_cam
 from camgen.surface import surface_deviation
 from tests.conftest import template

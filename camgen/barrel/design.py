@@ -142,7 +142,7 @@ class BarrelDesign:
         return self.drawing._repr_svg_()
 
     def _repr_html_(self) -> str | None:
-        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.barrel.outputs import barrel_bundle
         from camgen.core.page import bundle_frame
 

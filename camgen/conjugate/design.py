@@ -32,7 +32,7 @@ from camgen.cam import Cam, build_cam
 from camgen.conjugate.followers import ArmRoller, YokeRoller, arm_prime, arm_turn, yoke_prime, yoke_span
 from camgen.core.errors import CamgenError, DesignError
 from camgen.core.parts import Allowances
-from camgen.design import CamDesign, _body, _check_holes, _curves, _engraving, _Profile, _reach, _speed, known_wall
+from camgen.profile import CamDesign, _body, _check_holes, _curves, _engraving, _Profile, _reach, _speed, known_wall
 from camgen.forces import Contact, drive_speed
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
@@ -268,7 +268,7 @@ class ConjugateDesign:
     """Everything known about a conjugate pair before anything is written (mm, degrees).
 
     ``spec`` is the template's (base radii sized where ``"auto"``); ``cams`` the first and the second cam, each a
-    complete :class:`~camgen.design.CamDesign` (named ``<name>-1`` and ``<name>-2``); ``sizing`` each cam's where
+    complete :class:`~camgen.profile.CamDesign` (named ``<name>-1`` and ``<name>-2``); ``sizing`` each cam's where
     a base radius was ``"auto"``; ``contact`` both contacts measured over a turn.
     """
 
@@ -288,7 +288,7 @@ class ConjugateDesign:
         return self.cams[1].cam
 
     def _repr_html_(self) -> str | None:
-        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.conjugate.outputs import conjugate_bundle
         from camgen.core.page import bundle_frame
 

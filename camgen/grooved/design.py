@@ -3,7 +3,7 @@
 The pitch curve is the disc cam's (prime radius = base radius + roller radius). The inner
 flank is the pitch curve offset inwards by d = Rr + c/2 (the surface a disc cam with a
 roller of radius d would have: the *island* inside the groove, designed by
-:func:`camgen.design.design_profile`, bore, holes and engraving included); the outer
+:func:`camgen.profile.design_profile`, bore, holes and engraving included); the outer
 flank is the pitch curve offset outwards by d. Radii of curvature follow the project's
 signs (convex > 0, like the base circle): the inner flank bends with the pitch curve's
 convex stretches, radius rho - d, and undercuts (folds into a loop) where the convex pitch
@@ -31,7 +31,7 @@ from camgen.cam import Cam, build_cam
 from camgen.core.errors import DesignError
 from camgen.core.parts import Part, Pocket
 from camgen.core.shapes import Contour
-from camgen.design import CamDesign, design_profile, step_part
+from camgen.profile import CamDesign, design_profile, step_part
 from camgen.forces import Contact, drive_speed
 from camgen.kinds.base import GROOVE_KEYS
 from camgen.outline import Outline, envelope_outline, exact_outline
@@ -185,7 +185,7 @@ class GroovedDesign:
         return self.cut._repr_svg_()
 
     def _repr_html_(self) -> str | None:
-        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.core.page import bundle_frame
         from camgen.grooved.outputs import grooved_bundle
 
@@ -208,7 +208,7 @@ def _plate(spec: CamSpec, island: Part, outer: Outline, radius: float) -> Part:
 def step_plate(design: GroovedDesign) -> Part:
     """The printed plate as the STEP file carries it: both flanks made of biarcs (exact arcs within
     ``output.tolerance`` mm of the exact flanks, measured), whatever ``output.curves`` says, as a disc cam's
-    (:func:`camgen.design.step_part`); an undercut outer flank's envelope keeps its chords."""
+    (:func:`camgen.profile.step_part`); an undercut outer flank's envelope keeps its chords."""
     island, _ = step_part(design.profile)
     cam = design.profile.cam
     outer = (design.outer_outline if design.outer.undercut

@@ -19,4 +19,5 @@ def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
     return FOLLOWERS[spec.follower.type].make(spec.follower, base_radius, roller_radius, sense)
 
 
-KIND = CamKind("disc", tuple(FOLLOWERS), _check, _follower, "camgen.design:design_profile", "camgen.outputs:cam_bundle")
+KIND = CamKind("disc", tuple(FOLLOWERS), _check, _follower, "camgen.profile:design_profile",
+               "camgen.outputs:cam_bundle")

@@ -31,4 +31,4 @@ def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
     return PlateRoller(base_radius, roller_radius, spec.cam.travel)
 
 
-KIND = CamKind("plate", FOLLOWERS, _check, _follower, "camgen.design:design_profile", "camgen.outputs:cam_bundle")
+KIND = CamKind("plate", FOLLOWERS, _check, _follower, "camgen.profile:design_profile", "camgen.outputs:cam_bundle")
