@@ -14,7 +14,8 @@ from click.testing import CliRunner
 from camgen.cli import main
 from camgen.core.errors import DesignError
 from camgen.profile import design_cam
-from camgen.grooved.design import flank_checks, largest_roller
+from camgen.groove import flank_checks
+from camgen.grooved.design import largest_roller
 from camgen.spec import validate_spec
 from camgen.surface import pitch_distance
 from tests.conftest import ROOT

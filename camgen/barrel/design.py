@@ -41,7 +41,7 @@ from camgen.dynamics import speed_report
 from camgen.forces import Contact, drive_speed
 from camgen.followers.barrel import BarrelGeometry, DevelopedRoller, rolling_slip, translating_pose
 from camgen.followers.plate import PlateRoller
-from camgen.grooved.design import Flank, flank_checks
+from camgen.groove import Flank, flank_checks
 from camgen.program import Jump
 from camgen.sizing import pressure_limit
 from camgen.spec import CamSpec
@@ -62,7 +62,7 @@ SINGLE_STEPS = 10
 @dataclass(frozen=True)
 class WallCheck:
     """A wall's undercut check: the smallest radius of curvature of the developed curve bending that wall, over
-    the cylinders from the floor to the rim, as a :class:`~camgen.grooved.design.Flank` (its ``side`` the wall's
+    the cylinders from the floor to the rim, as a :class:`~camgen.groove.Flank` (its ``side`` the wall's
     name), and the cylinder's radius ``at_radius_mm`` where it is smallest."""
 
     flank: Flank
