@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.cam import build_cam
+from camgen.flat import build_cam
 from camgen.core import bench as core_bench
 from camgen.core.bench import call_seconds, process_seconds, ratio_markdown, ratio_row, timed
 from camgen.convergence import contour_error, convergence

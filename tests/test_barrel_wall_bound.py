@@ -99,7 +99,7 @@ class Envelope:
 
 def _program(spec):
     """s(theta) of the spec's program (mm or degrees), theta in [0, 2 pi)."""
-    from camgen.cam import build_cam
+    from camgen.flat import build_cam
 
     program = build_cam(spec).program
     return lambda theta: program.evaluate(np.asarray(theta, dtype=float).ravel())[0].reshape(np.shape(theta))

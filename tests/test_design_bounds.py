@@ -97,8 +97,8 @@ def _exact_wall(design) -> float:
 
 def test_the_reference_cam_is_checked_without_flattening_and_its_wall_measured_when_read(monkeypatch):
     made = []
-    real = camgen.profile._body
-    monkeypatch.setattr(camgen.profile, "_body", lambda *args: made.append(args) or real(*args))
+    real = camgen.profile.outline_body
+    monkeypatch.setattr(camgen.profile, "outline_body", lambda *args: made.append(args) or real(*args))
     design = design_cam(template({"hub.bolt_circle": 30.0, "hub.bolt_holes": 4, "hub.bolt_hole_diameter": 4.0}))
     assert made == []
     assert design.wall_mm == _exact_wall(design)

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.cam import build_cam
+from camgen.flat import build_cam
 from camgen.convergence import contour_error
 from camgen.outline import exact_outline
 from tests.conftest import template

@@ -218,7 +218,7 @@ def test_the_segments_flavour_reports_the_error_of_the_lines_it_writes(tmp_path)
     import ezdxf
     import numpy as np
 
-    from camgen.cam import build_cam
+    from camgen.flat import build_cam
     from camgen.spec import load_spec
     from camgen.surface import surface_deviation
 

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from camgen.cam import build_cam
+from camgen.flat import build_cam
 from camgen.laws import TABLE_LAWS
 from camgen.outline import exact_outline, stretch
 from camgen.spec import validate_spec
@@ -323,7 +323,7 @@ def test_a_hole_touching_the_outline_exactly_is_refused_and_one_1e9_mm_inside_is
     import shapely
 
     from camgen.core.errors import DesignError
-    from camgen.profile import _check_holes
+    from camgen.profile import Body, check_holes
 
     raw = copy.deepcopy(RDRD)
     raw["hub"] = {"bolt_circle": 40.0, "bolt_holes": count, "bolt_hole_diameter": 6.0}
@@ -331,13 +331,14 @@ def test_a_hole_touching_the_outline_exactly_is_refused_and_one_1e9_mm_inside_is
     for w, field in ((20.0 + 3.0, "hub.bolt_circle"), (5.0, "cam.bore")):
         if field == "cam.bore":
             spec = validate_spec({**raw, "hub": {}})
+        body = Body.of(spec.name, spec.cam, spec.hub)
         for half, made in ((w, False), (w + 1e-9, True), (w - 1e-9, False)):
-            body = shapely.box(-half, -half, half, half)
+            square = shapely.box(-half, -half, half, half)
             if made:
-                _check_holes(spec, body, 0.01)
+                check_holes(body, square, 0.01)
                 continue
             with pytest.raises(DesignError, match=rf"^{field}: a hole reaches the cam's outline \(it comes within "):
-                _check_holes(spec, body, 0.01)
+                check_holes(body, square, 0.01)
 
 
 def _chord_errors_span_by_span(start, end, surface, kappa, rr, count):

@@ -32,7 +32,7 @@ from camgen.analysis import CamAnalysis, analyze
 from camgen.barrel.mesh import SHORTEST_STEPS
 from camgen.barrel.solid import Tube, groove_tube, rib_tube
 from camgen.barrel.walls import GrooveWalls
-from camgen.cam import Cam, build_cam
+from camgen.cam import Cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.core.features import bore_reach, keyed_bore
 from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
@@ -43,6 +43,7 @@ from camgen.followers.barrel import BarrelGeometry, DevelopedRoller, rolling_sli
 from camgen.followers.plate import PlateRoller
 from camgen.groove import Flank, flank_checks
 from camgen.program import Jump
+from camgen.rig import Rig, developed_mount
 from camgen.sizing import pressure_limit
 from camgen.spec import CamSpec
 
@@ -288,11 +289,19 @@ def _rib(spec: CamSpec, span: float | None, cam: Cam, walls: GrooveWalls, core: 
     return rollers, thinnest
 
 
+def barrel_rig(spec: CamSpec, geometry: BarrelGeometry) -> Rig:
+    """The rig of a barrel cam's developed pitch curve: the template's motion on its developed mount
+    (:func:`camgen.rig.developed_mount` of its ``geometry``); its cam is ``rig.cam(z0 - Rr)``, the plate's height
+    under the roller's centre at rest."""
+    return Rig.of(spec.name, spec.motion, developed_mount(spec.follower, geometry))
+
+
 def design_barrel(spec: CamSpec) -> BarrelDesign:
     """Build and check the barrel cam ``spec`` describes: refused where a wall undercuts (see the module
     docstring). Its solid's cutter is made by :meth:`BarrelDesign.with_solid`."""
     g = BarrelGeometry.of(spec.cam, spec.follower, spec.motion)
-    cam = build_cam(spec)
+    rig = barrel_rig(spec, g)
+    cam = rig.cam(g.rest_height - rig.roller_radius)
     rm, depth, tol = spec.cam.pitch_radius, spec.cam.groove_depth, spec.output.tolerance
     radii = (rm - depth / 2, rm, rm + depth / 2)
     walls = GrooveWalls(cam.program, g.rest_height, g.cutter, g.sense, g.arm, g.taper, rm)

@@ -228,7 +228,7 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     """The files of a conjugate pair and its report (without the ``files`` map, which the bundle adds)."""
     out = design.spec.output
     formats, name = out.formats, design.spec.name
-    meshes = [printed_mesh(d.spec, d.printed) for d in design.cams]
+    meshes = [printed_mesh(design.spec, d.printed, d.printed.name) for d in design.cams]
     report = conjugate_report(design, (meshes[0][1], meshes[1][1]))
     add_routing(report, [d.cut for d in design.cams], out.tool_radius)
     nested = nest(tuple(d.cut for d in design.cams), SheetRules.of(out, out.kerf, "output.sheet"))

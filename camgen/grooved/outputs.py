@@ -54,7 +54,7 @@ def grooved_report(design: GroovedDesign, mesh: Any = None, volume: dict | None 
     t, profile = design.spec, design.profile
     report = cam_report(profile, mesh)
     d, kerf = design.offset_mm, t.output.kerf
-    report["cam"].update({"kind": "grooved", "base_radius_mm": t.cam.base_radius,
+    report["cam"].update({"kind": "grooved", "base_radius_mm": design.base_radius_mm,
                           "groove_depth_mm": t.cam.groove_depth, "running_clearance_mm": t.cam.running_clearance,
                           "groove_width_mm": round(2 * d, 12), "rim_mm": t.cam.rim,
                           "plate_diameter_mm": round(2 * design.plate_radius_mm, 9)})
