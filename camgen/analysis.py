@@ -7,11 +7,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camgen.cam import Ask, Cam, Maker, build_cam
-from camgen.followers import FOLLOWERS
+from camgen.cam import Ask, Cam, Maker
 from camgen.followers.base import PitchGeometry
 from camgen.numeric import boundary
-from camgen.spec import CamSpec
+from camgen.rig import Rig
 
 
 @dataclass(frozen=True)
@@ -121,7 +120,7 @@ def analyze(cam: Cam) -> CamAnalysis:
     Parameters
     ----------
     cam : Cam
-        A built cam (:func:`camgen.cam.build_cam`).
+        A built cam (:meth:`camgen.rig.Rig.cam`, :func:`camgen.flat.build_cam`).
 
     Returns
     -------
@@ -164,29 +163,29 @@ def analysis_maker(cam: Cam) -> Generator[list[Ask], list[PitchGeometry], CamAna
         concave_at_deg=kmin_at if concave is not None else None, undercut=rho < rr)
 
 
-def largest_roller(spec: CamSpec) -> float | None:
-    """The largest roller radius (mm) that does not undercut with the spec's base radius.
+def largest_roller(rig: Rig, base_radius: float) -> float | None:
+    """The largest roller radius (mm), up to the rig's, that does not undercut on a base circle of ``base_radius``.
 
     The pitch curve depends on the roller (prime radius = base + roller), so this
     bisects on the roller radius for min convex pitch radius = roller radius.
     Returns None when no roller fits: the pitch curve has a convex corner (a
     velocity jump), or even a vanishing roller undercuts, or the follower has no roller.
     """
-    if spec.follower.roller_radius is None:
+    if rig.mount.roller_radius is None:
         return None
     def margin(rr: float) -> float:
-        return convex_radius_min(build_cam(spec, roller_radius=rr))[0] - rr
+        return convex_radius_min(rig.cam(base_radius, rr))[0] - rr
 
-    if any(turn > 0 for _, turn in build_cam(spec).corners()):
+    if any(turn > 0 for _, turn in rig.cam(base_radius).corners()):
         return None
-    return largest_fitting(spec, margin)
+    return largest_fitting(rig, base_radius, margin)
 
 
-def largest_fitting(spec: CamSpec, margin: Callable[[float], float]) -> float | None:
-    """The largest roller radius (mm), up to the spec's, for which ``margin(roller radius)`` >= 0, by bisection
-    from the least roller that assembles; None when even that one fails."""
-    lo = FOLLOWERS[spec.follower.type].roller_floor(spec.follower, spec.cam.base_radius) + 1e-9
-    hi = spec.follower.contact_radius
+def largest_fitting(rig: Rig, base_radius: float, margin: Callable[[float], float]) -> float | None:
+    """The largest roller radius (mm), up to the rig's, for which ``margin(roller radius)`` >= 0, by bisection
+    from the least roller that assembles on a base circle of ``base_radius`` mm; None when even that one fails."""
+    lo = rig.mount.roller_floor(base_radius) + 1e-9
+    hi = rig.roller_radius
     if margin(lo) <= 0:
         return None
     if margin(hi) >= 0:

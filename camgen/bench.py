@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.cam import build_cam
+from camgen.flat import build_cam
 from camgen.core import bench as core_bench
 from camgen.core.bench import call_seconds, process_seconds, ratio_markdown, ratio_row, timed
 from camgen.convergence import contour_error, convergence
@@ -193,7 +193,7 @@ def speed_ratios(repeats: int, out: Path) -> list[dict]:
     tolerance; ``camgen build`` and ``camgen laws`` as whole processes (CPU seconds) against a process that only
     imports numpy and ezdxf."""
     from camgen.analysis import analyze
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
 
     spec = _template("cycloidal")
     tol = spec.output.tolerance
@@ -234,7 +234,7 @@ def hard_cases() -> list[dict]:
 def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
     import shapely
 
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
     from camgen.laws import from_conditions
 
     def cam(changes: dict) -> str:

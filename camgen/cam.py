@@ -1,7 +1,9 @@
-"""A disc cam built from a validated spec: kinematics and exact geometry, no I/O."""
+"""A cam: its motion program and its follower at one size, with the exact pitch geometry at any angle. No I/O.
+
+Built from a :class:`~camgen.rig.Rig` (the set-up without its size) at a base radius; nothing here reads a spec.
+"""
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Generator, Sequence
 from dataclasses import dataclass
 from functools import cached_property
@@ -9,15 +11,10 @@ from typing import Any
 
 import numpy as np
 
-from camgen.core.errors import SpecError
-from camgen.followers import FOLLOWERS
 from camgen.followers.base import PitchGeometry
 from camgen.followers.plate import PlateRoller
-from camgen.kinds import kind_of
-from camgen.laws import make_law
 from camgen.numeric import drive
-from camgen.program import Program, build_program
-from camgen.spec import CamSpec
+from camgen.program import Program
 
 #: a request for pitch geometry: (the segment of every point, an index or an array (n,); the points (n,); False when
 #: they are cam angles in radians, evaluated one-sided on their segment as :meth:`Program.evaluate_on` does, True when
@@ -30,11 +27,11 @@ Maker = Generator[list[Ask], list[PitchGeometry], Any]
 
 @dataclass(frozen=True)
 class Cam:
-    """A disc cam driving a follower (any of :mod:`camgen.followers`).
+    """A disc cam driving a follower (any of :mod:`camgen.followers`), or a plate cam under its roller.
 
     Lengths in mm, angles in radians. theta = 0 puts the follower on +Y; the cam
     turns counter-clockwise for ``follower.sense`` = +1 (see
-    :mod:`camgen.followers.base` for the frame and sign conventions).
+    :mod:`camgen.followers.base` for the frame and sign conventions). Made by :meth:`camgen.rig.Rig.cam`.
 
     Parameters
     ----------
@@ -46,19 +43,14 @@ class Cam:
         One of :mod:`camgen.followers`' followers (:class:`~camgen.followers.translating_roller.TranslatingRoller`,
         ...), or a plate cam's :class:`~camgen.followers.plate.PlateRoller`.
     base_radius : float
-        The base circle's radius (mm; a plate's height under the profile).
-    thickness : float
-        The plate's thickness (mm), the solid's extrusion.
-    bore : float
-        The bore's diameter (mm), 0 for none.
+        The base circle's radius (mm; a plate's height under the profile; a barrel's developed cam's height under
+        the roller, None where a barrel's cam was built without one).
     """
 
     name: str
     program: Program
     follower: Any                  # one of camgen.followers' followers, or a plate's roller
     base_radius: float
-    thickness: float
-    bore: float
 
     @property
     def contact_radius(self) -> float:
@@ -206,62 +198,3 @@ def together(makers: Sequence[Maker], first: Callable[[], None] | None = None) -
             at += count
         live = asking
     return results
-
-
-def _drafted_ratio(spec: CamSpec, angle: float, lift: float, prime: float, index: int) -> float:
-    """k = Rp beta / h of the drafted modified-uniform law; h is the rise along the follower's path (mm)."""
-    path_length = FOLLOWERS[spec.follower.type].path_length
-    if path_length is None:
-        raise SpecError("the drafted form needs a roller, knife-edge or translating follower", f"motion[{index}].form")
-    return prime * math.radians(angle) / path_length(spec.follower, lift)
-
-
-def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: float | None = None) -> Cam:
-    """The :class:`Cam` a spec describes; ``roller_radius``, ``base_radius`` (mm) override the spec's.
-
-    Parameters
-    ----------
-    spec : CamSpec
-        A validated cam template.
-    roller_radius : float, optional
-        The roller's radius to build with (mm), instead of ``follower.roller_radius`` (0 for a flat face or a knife
-        edge).
-    base_radius : float, optional
-        The base radius to build with (mm), instead of ``cam.base_radius``; needed when the spec's is ``"auto"``
-        (:func:`camgen.sizing.size_cam` finds one; :func:`camgen.design.design_cam` sizes and builds at once).
-
-    Returns
-    -------
-    Cam
-        The kinematic cam: its program, follower, base radius, thickness and bore; no geometry is checked.
-
-    Raises
-    ------
-    SpecError
-        A segment's law refuses its parameters (naming ``motion[i]`` and the key), the motion does not make one
-        turn that returns to its start, or the follower cannot be placed (an offset outside the prime circle, an
-        arm that cannot reach it), each naming the key.
-    """
-    rr = spec.follower.contact_radius if roller_radius is None else roller_radius
-    rb = spec.cam.base_radius if base_radius is None else base_radius
-    prime = rb + rr if rb is not None else spec.cam.pitch_radius     # a barrel's: its pitch cylinder
-    steps = []
-    for i, seg in enumerate(spec.motion):
-        law = None
-        if seg.type != "dwell":
-            params = seg.law_params()
-            if seg.law == "modified-uniform" and params.get("form") == "drafted":
-                params["k"] = _drafted_ratio(spec, seg.angle, seg.lift, prime, i)
-            if seg.law == "table":                      # its rows are in degrees and the lift's unit
-                params.update(beta_deg=seg.angle, lift=seg.lift, falling=seg.type == "return")
-            try:
-                law = make_law(seg.law, **params)
-            except SpecError as exc:
-                raise exc.under(f"motion[{i}]") from None
-        steps.append((seg.type, seg.angle, seg.lift or 0.0, law))
-    program = build_program(steps)
-    fits = FOLLOWERS[spec.follower.type].fits
-    if fits is not None:                                # a follower whose reach depends on how far it moves
-        fits(spec.follower, rb, program.top())
-    return Cam(name=spec.name, program=program, follower=kind_of(spec.cam.kind).follower(spec, rb, rr),
-               base_radius=rb, thickness=spec.cam.thickness, bore=spec.cam.bore)

@@ -27,7 +27,7 @@ def main() -> None:
 @one_design
 def build(template: Path, output: Path | None, overrides: tuple[str, ...], construction: bool) -> None:
     """Build the cam described by TEMPLATE (a TOML file)."""
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
     from camgen.outputs import write_cam
     from camgen.report import design_lines
     from camgen.spec import load_spec
@@ -102,7 +102,7 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
     """Smallest base radius for TEMPLATE, or (--factors) the cam factors f with Rp = f h / beta."""
     from camgen.core.errors import SpecError
     from camgen.geneva.spec import GenevaSpec
-    from camgen.sizing import FACTOR_ANGLES, factor_table, size_cam
+    from camgen.sizing import FACTOR_ANGLES, factor_table
     from camgen.spec import load_spec
 
     if factors:
@@ -134,7 +134,9 @@ def size(template: Path | None, factors: bool, as_json: bool, overrides: tuple[s
         alone = size_conjugate(spec)
         s = max(alone, key=lambda one: one.base_radius_mm)
     else:
-        s = size_cam(spec)
+        from camgen.flat import size_disc, size_plate
+
+        s = (size_plate if spec.cam.kind == "plate" else size_disc)(spec)
     result = {"base_radius_mm": s.base_radius_mm, "decided_by": s.decided_by,
               "pressure_radius_mm": s.pressure_radius_mm, "curvature_radius_mm": s.curvature_radius_mm,
               "max_pressure_angle_deg": s.max_pressure_angle_deg, "min_rho_margin_mm": s.min_rho_margin_mm}

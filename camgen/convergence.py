@@ -51,7 +51,7 @@ def convergence(cam: Cam, tolerances: Iterable[float], curves: str = "polylines"
     Parameters
     ----------
     cam : Cam
-        A built cam (:func:`camgen.cam.build_cam`).
+        A built cam (:meth:`camgen.rig.Rig.cam`, :func:`camgen.flat.build_cam`).
     tolerances : iterable of float
         The outline's tolerances to build at (mm).
     curves : str, optional

@@ -20,7 +20,8 @@ from camgen.core.errors import SpecError
 from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
 from camgen.core.writers import WriteOptions
-from camgen.design import CamDesign, step_chords, step_part
+from camgen.flat import FlatCamDesign
+from camgen.profile import step_chords, step_part
 from camgen.kinds import kind_of
 from camgen.report import cam_report
 
@@ -28,13 +29,13 @@ from camgen.report import cam_report
 THUMBNAIL_TOLERANCE_MM = 0.2
 
 
-def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
+def cam_bundle(design: FlatCamDesign) -> tuple[Bundle, dict[str, Any]]:
     """The files of a disc or plate cam's ``design`` and its report, made but not written.
 
     Parameters
     ----------
-    design : CamDesign
-        A design from :func:`camgen.design.design_cam`.
+    design : FlatCamDesign
+        A design from :func:`camgen.profile.design_cam`.
 
     Returns
     -------
@@ -76,8 +77,8 @@ def cam_bundle(design: CamDesign) -> tuple[Bundle, dict[str, Any]]:
     return Bundle.of((*bundle.items, *items), bundle.options), report
 
 
-def step_solid(design: CamDesign, report: dict[str, Any]) -> Part:
-    """The part the STEP file carries (its outline biarcs, see :func:`camgen.design.step_part`); the report gains
+def step_solid(design: FlatCamDesign, report: dict[str, Any]) -> Part:
+    """The part the STEP file carries (its outline biarcs, see :func:`camgen.profile.step_part`); the report gains
     ``step_outline``: how it is made, its pieces and arcs, and its measured max error (mm) from the exact profile."""
     part, outline = step_part(design)
     contour = outline.contour
@@ -86,14 +87,15 @@ def step_solid(design: CamDesign, report: dict[str, Any]) -> Part:
     return part
 
 
-def printed_mesh(spec: Any, printed: Part) -> tuple[Any, Any]:
-    """The printed part as a checked solid, and trimesh's check of it; (None, None) when ``spec.output.formats``
-    asks for no STL or 3MF. Raises :class:`ExportError` for a solid that is not closed and outward."""
+def printed_mesh(spec: Any, printed: Part, name: str | None = None) -> tuple[Any, Any]:
+    """The printed part as a checked solid named ``name`` (the spec's by default), and trimesh's check of it; (None,
+    None) when ``spec.output.formats`` asks for no STL or 3MF. Raises :class:`ExportError` for a solid that is not
+    closed and outward."""
     if not {"stl", "3mf"} & set(spec.output.formats):
         return None, None
     from camgen.core.solids import checked_mesh
 
-    return checked_mesh(printed, spec.name)
+    return checked_mesh(printed, spec.name if name is None else name)
 
 
 def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], report: dict[str, Any],
@@ -123,7 +125,7 @@ def write_cam(design: Any, directory: str | Path, extra: Iterable[Item] = ()) ->
     Parameters
     ----------
     design : object
-        A design of any cam kind, or of a Geneva drive, from :func:`camgen.design.design_cam`.
+        A design of any cam kind, or of a Geneva drive, from :func:`camgen.profile.design_cam`.
     directory : str or Path
         The folder to write into (made if missing). Every file is written under a temporary name and renamed only
         when all are complete, so a failure leaves nothing behind.
@@ -164,7 +166,7 @@ def _geneva(design: Any) -> bool:
 
 def build_member(raw: dict, folder: Path) -> dict[str, Any]:
     """Build one family member from its raw spec into ``folder``; its summary figures and a thumbnail."""
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
     from camgen.spec import validate_spec
 
     design = design_cam(validate_spec(raw))

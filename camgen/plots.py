@@ -14,7 +14,7 @@ import numpy as np
 from camgen.cam import Cam
 from camgen.analysis import face_extent
 from camgen.core.figures import figure, fit_equal
-from camgen.design import CamDesign
+from camgen.flat import FlatCamDesign
 
 
 def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarray]:
@@ -30,7 +30,7 @@ def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarr
     return np.concatenate(thetas), np.concatenate(motions, axis=1)
 
 
-def svaj_figure(design: CamDesign) -> Any:
+def svaj_figure(design: FlatCamDesign) -> Any:
     """Displacement, velocity, acceleration and jerk against cam angle: in time at ``cam.rpm`` (mm, m/s, m/s^2,
     m/s^3; an arm's swing in degrees and rad/s^n), else per radian of cam angle."""
     theta, motion = sample_cycle(design.cam)
@@ -58,7 +58,7 @@ def svaj_figure(design: CamDesign) -> Any:
     return fig
 
 
-def checks_figure(design: CamDesign) -> Any:
+def checks_figure(design: FlatCamDesign) -> Any:
     """What the design is checked against, over the turn: the pressure angle with its limit (a translating flat
     face's is 0 by definition, so the profile's radius stands alone), the radius of curvature of the cam's surface
     signed with its undercut limits (:func:`radius_panel`: convex, the roller + ``cam.min_rho_margin``; concave,
@@ -361,7 +361,7 @@ def _no_ticks() -> Any:
     return NullLocator()
 
 
-def _machine_units(design: CamDesign, motion: np.ndarray) -> tuple[np.ndarray, list[str]]:
+def _machine_units(design: FlatCamDesign, motion: np.ndarray) -> tuple[np.ndarray, list[str]]:
     """The rows s, s', s'', s''' and their axis labels: per radian of cam angle without a speed, in time at
     ``cam.rpm`` (v = omega s', a = omega^2 s'', j = omega^3 s''', in m/s^n, or rad/s^n for an arm)."""
     u = design.cam.follower.lift_unit
@@ -397,7 +397,7 @@ def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:
         ax.plot(contact[0] + rr * np.cos(circle), contact[1] + rr * np.sin(circle), color="C2", lw=1)
 
 
-def cam_figure(design: CamDesign) -> Any:
+def cam_figure(design: FlatCamDesign) -> Any:
     """The cam at theta = 0: outline, pitch curve, base and prime circles, follower, checks marked."""
     cam, a, t = design.cam, design.analysis, design.spec
     fig = figure(8, 9, layout=None)

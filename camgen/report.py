@@ -1,6 +1,6 @@
 """The report of a cam design: every figure a designer checks before cutting, in mm and degrees.
 
-Pure formatting of a finished :class:`~camgen.design.CamDesign` (and the check of its
+Pure formatting of a finished :class:`~camgen.flat.FlatCamDesign` (and the check of its
 solid, when one was made): nothing here computes a peak or reads a spec.
 """
 from __future__ import annotations
@@ -10,7 +10,7 @@ from typing import Any
 
 from camgen.core import VERSION as __version__
 from camgen.core.solids import MeshCheck
-from camgen.design import CamDesign
+from camgen.flat import FlatCamDesign
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:
@@ -30,7 +30,7 @@ def _fit(spec: Any, seg: Any) -> dict[str, Any]:
                     "residual_max_at_deg": _r(math.degrees(at)), "fit_tolerance": law.tolerance * spec.lift}}
 
 
-def cam_report(design: CamDesign, mesh: MeshCheck | None = None) -> dict[str, Any]:
+def cam_report(design: FlatCamDesign, mesh: MeshCheck | None = None) -> dict[str, Any]:
     """The report as a JSON-ready dict (keys carry their units)."""
     t, cam, a, outline = design.spec, design.cam, design.analysis, design.outline
     segments = [{

@@ -8,24 +8,25 @@ slope angle alpha equals the pressure angle, so f = k = (2 - cos alpha) / sin al
 Exact method: bisection on the base radius for the smallest one meeting the
 pressure-angle limit, and for the smallest meeting the curvature margin (the cam's
 smallest convex radius at least ``min_rho_margin`` mm; for a flat face its radius of
-curvature everywhere); the larger decides, and the result says which.
+curvature everywhere); the larger decides, and the result says which. Both search a
+:class:`~camgen.rig.Rig`'s cams (its motion and follower, without a size) against
+:class:`Limits`.
 """
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from camgen.analysis import pressure_angle_max, profile_rho_min
-from camgen.cam import Cam, build_cam
+from camgen.cam import Cam
 from camgen.core.errors import CamgenError, DesignError
-from camgen.followers import FOLLOWERS
 from camgen.laws import make_law
 from camgen.numeric import boundary
-from camgen.spec import CamSpec
+from camgen.rig import Rig
 
 FACTOR_LAWS = ("uniform", "modified-uniform", "harmonic", "parabolic", "cycloidal")
 FACTOR_ANGLES = tuple(range(10, 50, 5))
@@ -57,38 +58,50 @@ class Sizing:
     min_rho_margin_mm: float
 
 
-def pressure_limit(spec: CamSpec) -> float:
-    """The spec's pressure-angle limit, or the usual 30 degrees (translating) / 40 (oscillating)."""
+@dataclass(frozen=True)
+class Limits:
+    """What sizing keeps: the pressure angle at most ``pressure_deg`` (degrees) and the cam surface's convex radii
+    above ``min_rho_margin`` (mm; a flat face's profile radius everywhere)."""
+
+    pressure_deg: float
+    min_rho_margin: float = 0.0
+
+
+def pressure_limit(spec: Any) -> float:
+    """The template's pressure-angle limit (``cam.max_pressure_angle``), or the usual 30 degrees (translating) / 40
+    (oscillating)."""
     if spec.cam.max_pressure_angle is not None:
         return spec.cam.max_pressure_angle
     return 40.0 if spec.follower.oscillating else 30.0
 
 
-def _domain(spec: CamSpec) -> tuple[float, float]:
+def limits_of(spec: Any) -> Limits:
+    """The :class:`Limits` a template sets: its pressure-angle limit and ``cam.min_rho_margin``."""
+    return Limits(pressure_limit(spec), spec.cam.min_rho_margin)
+
+
+def _domain(rig: Rig) -> tuple[float, float]:
     """Base radii (mm) for which the follower can be assembled and follow the program's levels at all: (lowest,
     highest), exclusive (a law's overshoot above its levels is checked as each cam is built)."""
-    levels = itertools.accumulate(seg.lift if seg.type == "rise" else -seg.lift if seg.type == "return" else 0.0
-                                  for seg in spec.motion)
-    return FOLLOWERS[spec.follower.type].base_radius_range(spec.follower, spec.follower.contact_radius,
-                                                           max(0.0, *levels))
+    return rig.mount.base_range(rig.roller_radius, rig.level_top)
 
 
-def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
+def _smallest(rig: Rig, ok: Callable[[Cam], bool], what: str, near: float | None = None) -> float:
     """Smallest base radius (to 1e-9 relative) at which ``ok(cam)`` holds, by bisection from the first radius found
-    to hold: doubling where the follower assembles on any base circle, else stepping up through the range it
-    assembles on by 1/64 of it (an arm's pressure angle grows again towards the top of that range, where the arm
-    turns radial, so halving towards the top can step over every radius that holds)."""
-    lo, top = _domain(spec)
-    lift = max(seg.lift or 0.0 for seg in spec.motion)
+    to hold, starting from ``near`` (mm: a template's own base radius, where it gives one): doubling where the
+    follower assembles on any base circle, else stepping up through the range it assembles on by 1/64 of it (an
+    arm's pressure angle grows again towards the top of that range, where the arm turns radial, so halving towards
+    the top can step over every radius that holds)."""
+    lo, top = _domain(rig)
 
     def holds(rb: float) -> bool:
         try:
             with np.errstate(divide="raise", over="raise", invalid="raise"):
-                return ok(build_cam(spec, base_radius=rb))
+                return ok(rig.cam(rb))
         except (CamgenError, ArithmeticError):         # a radius so small its geometry degenerates fails too
             return False
 
-    hi = max(spec.cam.base_radius if isinstance(spec.cam.base_radius, float) else 0.0, lo + lift, 1.0)
+    hi = max(near or 0.0, lo + rig.lift_max, 1.0)
     if hi >= top:                                       # a short range (an arm's): start from its bottom step
         hi = lo + (top - lo) / 64
     while not holds(hi):
@@ -99,48 +112,53 @@ def _smallest(spec: CamSpec, ok: Callable[[Cam], bool], what: str) -> float:
     return boundary(holds, hi, lo)
 
 
-def size_cam(spec: CamSpec) -> Sizing:
-    """The smallest base radius meeting the pressure-angle limit and the curvature margin.
+def size_cam(rig: Rig, limits: Limits, near: float | None = None) -> Sizing:
+    """The smallest base radius of ``rig``'s cams meeting ``limits``: the pressure-angle limit and the curvature
+    margin.
 
     Parameters
     ----------
-    spec : CamSpec
-        A validated disc or plate cam template; its ``cam.base_radius`` is not read (``"auto"`` or a number).
+    rig : Rig
+        A disc or plate cam's set-up without its size (:mod:`camgen.rig`): its motion, follower and roller.
+    limits : Limits
+        The pressure-angle limit (degrees; a template's ``cam.max_pressure_angle``, 30 degrees by default, 40 for
+        an oscillating follower, :func:`limits_of`) and the curvature margin (mm, ``cam.min_rho_margin``).
+    near : float, optional
+        Where to start the search (mm): a template's own base radius, where it gives one.
 
     Returns
     -------
     Sizing
-        The smallest base radius (mm) meeting ``cam.max_pressure_angle`` (30 degrees by default, 40 for an
-        oscillating follower) and keeping the cam surface's convex radii above ``cam.min_rho_margin`` mm, which
-        of the two decided it, and each one's own smallest radius.
+        The smallest base radius (mm) meeting the pressure-angle limit and keeping the cam surface's convex radii
+        above the margin, which of the two decided it, and each one's own smallest radius.
 
     Raises
     ------
     DesignError
-        A velocity jump no roller can follow at any size (naming its segment), or a limit no base radius meets
-        (naming ``cam.max_pressure_angle`` or ``cam.min_rho_margin``).
+        A velocity jump no roller can follow at any size (naming its moving segment), or a limit no base radius
+        meets (naming ``cam.max_pressure_angle`` or ``cam.min_rho_margin``).
     """
-    limit = pressure_limit(spec)
-    margin = spec.cam.min_rho_margin
-    jumps = [i for i, turn in build_cam(spec, base_radius=_probe(spec)).corners() if turn > 0]
-    if jumps and spec.follower.contact_radius > 0:
-        raise DesignError(f"motion[{spec.moving_segment(jumps[0])}]: the follower velocity jumps (a convex pitch "
+    jumps = [i for i, turn in rig.cam(_probe(rig)).corners() if turn > 0]
+    if jumps and rig.roller_radius > 0:
+        raise DesignError(f"motion[{rig.moving_segment(jumps[0])}]: the follower velocity jumps (a convex pitch "
                           "corner): no base radius gives the roller a path it can follow; use a law with continuous "
                           "velocity")
-    pressure = _smallest(spec, lambda cam: pressure_angle_max(cam) <= limit,
-                         f"cam.max_pressure_angle: the pressure-angle limit of {limit:g} degrees")
-    curvature = smallest_for_curvature(spec, margin)
+    limit, margin = limits.pressure_deg, limits.min_rho_margin
+    pressure = _smallest(rig, lambda cam: pressure_angle_max(cam) <= limit,
+                         f"cam.max_pressure_angle: the pressure-angle limit of {limit:g} degrees", near)
+    curvature = smallest_for_curvature(rig, margin, near)
     decided = "pressure angle" if pressure >= curvature else "curvature"
     return Sizing(max(pressure, curvature), decided, pressure, curvature, limit, margin)
 
 
-def _probe(spec: CamSpec) -> float:
-    lo, hi = _domain(spec)
+def _probe(rig: Rig) -> float:
+    lo, hi = _domain(rig)
     middle = 0.5 * (lo + hi) if hi < math.inf else math.inf
-    return min(lo + max(seg.lift or 0.0 for seg in spec.motion) + 1.0, middle)
+    return min(lo + rig.lift_max + 1.0, middle)
 
 
-def smallest_for_curvature(spec: CamSpec, margin: float = 0.0) -> float:
-    """Smallest base radius (mm) whose cam surface keeps every convex radius above ``margin`` mm."""
-    return _smallest(spec, lambda cam: profile_rho_min(cam) > margin,
-                     f"cam.min_rho_margin: the curvature margin of {margin:g} mm")
+def smallest_for_curvature(rig: Rig, margin: float = 0.0, near: float | None = None) -> float:
+    """Smallest base radius (mm) whose cam surface keeps every convex radius above ``margin`` mm (searched from
+    ``near`` mm, where given)."""
+    return _smallest(rig, lambda cam: profile_rho_min(cam) > margin,
+                     f"cam.min_rho_margin: the curvature margin of {margin:g} mm", near)

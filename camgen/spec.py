@@ -546,11 +546,6 @@ class CamSpec(Model):
             check_cam_kit(self.kit, self.cam.kind, self.follower.type, self.cam.bore)
         return self
 
-    def moving_segment(self, end_of: int) -> int:
-        """The segment to name for a jump of the follower's velocity where segment ``end_of`` ends: that segment,
-        or the next one when it is a dwell (the jump is the moving segment's start)."""
-        return (end_of + 1) % len(self.motion) if self.motion[end_of].type == "dwell" else end_of
-
     @property
     def prime_radius(self) -> float:
         """Base radius plus the roller's (mm): the circle the roller's centre rides at rest (inf while "auto")."""
@@ -650,10 +645,3 @@ def _tables_beside(raw: dict[str, Any], folder: Path) -> dict[str, Any]:
                 raise SpecError(str(exc).removeprefix("file: "), f"motion[{i}].file") from None
         segments.append(seg)
     return {**raw, "motion": segments}
-
-
-def with_base_radius(spec: CamSpec, base_radius: float) -> CamSpec:
-    """The same spec with ``cam.base_radius`` set, validated afresh."""
-    raw = spec.model_dump(exclude_unset=True)        # keys as the user gave them, not every default
-    raw["cam"]["base_radius"] = base_radius
-    return validate_spec(raw)

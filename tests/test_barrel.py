@@ -15,7 +15,7 @@ from click.testing import CliRunner
 from camgen.barrel.walls import GrooveWalls
 from camgen.cli import main
 from camgen.core.errors import DesignError
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
 from tests.refusals import assert_refused
@@ -244,7 +244,7 @@ def test_undercut_at_the_floor_at_and_within_1e_12_of_the_limit():
     import dataclasses
 
     from camgen.followers.plate import PlateRoller
-    from camgen.grooved.design import flank_checks
+    from camgen.groove import flank_checks
 
     rw = 5.0 + limit / 2
     pitch = dataclasses.replace(base.cam, follower=PlateRoller(15.0 - rw, rw, 2 * math.pi * 30.0))

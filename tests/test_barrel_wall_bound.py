@@ -99,7 +99,7 @@ class Envelope:
 
 def _program(spec):
     """s(theta) of the spec's program (mm or degrees), theta in [0, 2 pi)."""
-    from camgen.cam import build_cam
+    from camgen.flat import build_cam
 
     program = build_cam(spec).program
     return lambda theta: program.evaluate(np.asarray(theta, dtype=float).ravel())[0].reshape(np.shape(theta))
@@ -298,7 +298,7 @@ def test_the_floor_error_is_the_floor_triangles_own():
     sampled on a barycentric grid of 30 steps a side, lie inside the cylinder by at most the reported floor error
     (less the files' rounding and the collapse allowance, which the fit adds), and by nearly as much."""
     from camgen.barrel.mesh import SHORTEST_STEPS
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
     from camgen.spec import load_spec
 
     design = design_cam(load_spec(ROOT / "templates" / "barrel.toml"))

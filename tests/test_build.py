@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from camgen.cam import build_cam
+from camgen.flat import build_cam
 from camgen.cli import main
 from camgen.core.shapes import Contour
 from camgen.surface import surface_deviation

@@ -7,9 +7,10 @@ import numpy as np
 import pytest
 
 from camgen.analysis import analyze, largest_roller
-from camgen.cam import build_cam
-from camgen.design import design_cam
+from camgen.flat import build_cam, flat_rig
+from camgen.profile import design_cam
 from camgen.core.errors import DesignError
+from camgen.rig import disc_mount
 from tests.conftest import template
 
 
@@ -116,7 +117,7 @@ def test_undercut_is_refused_with_angle_radius_and_largest_roller():
     t = template({"cam.base_radius": 10.0, "follower.offset": 0.0, "cam.bore": 0.0,
                   "motion.0.angle": 40.0, "motion.1.angle": 140.0})
     a = analyze(build_cam(t))
-    best = largest_roller(t)
+    best = largest_roller(flat_rig(t, disc_mount(t.follower, t.cam.rotation)), t.cam.base_radius)
     with pytest.raises(DesignError) as err:
         design_cam(t)
     msg = str(err.value)

@@ -14,7 +14,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main
 from camgen.core.errors import DesignError
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
 from tests.refusals import assert_refused
@@ -257,7 +257,7 @@ def _limit_roller(raw: dict) -> float:
     """The largest roller (mm) neither of whose cams undercuts, independently: the polar formula's least convex
     radius of each pitch curve (a centred yoke: r = rb + Rr + s for the first, rb2 + Rr + s_max - s for the second)
     on 2e5 angles, bisected on the roller radius."""
-    from camgen.cam import build_cam
+    from camgen.flat import build_cam
 
     theta = np.linspace(0, 2 * math.pi, 200_001)
     s, s1, s2 = build_cam(validate_spec(raw)).program.evaluate(theta)[:3]           # the program alone
@@ -420,7 +420,7 @@ def test_auto_sizes_an_arm_whose_pressure_angle_grows_again_towards_the_top_of_i
     halving towards its top, where none holds. A disc cam on such an arm (refused before: 'no base radius meets it')
     and the bell-crank pair both size to the limit, and 1e-6 of the radius smaller is over it."""
     from camgen.analysis import pressure_angle_max
-    from camgen.cam import build_cam
+    from camgen.flat import build_cam
 
     disc = {**RAW[ARM], "cam": {k: v for k, v in RAW[ARM]["cam"].items() if k != "kind"},
             "follower": {**RAW[ARM]["follower"], "pivot_distance": 150.0, "arm_length": 120.0}}

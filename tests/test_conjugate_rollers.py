@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from camgen.core.errors import DesignError
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.spec import validate_spec
 from tests.refusals import assert_refused
 from tests.test_conjugate import ARM, YOKE, _build, _layer, _raw, _rollers, _turn
@@ -73,9 +73,10 @@ def test_an_undercut_of_cam_2_names_its_roller_and_the_largest_that_fits():
                                           r"largest second roller that fits cam 2 is") as caught:
         design_cam(validate_spec(raw))
     best = float(re.search(r"fits cam 2 is ([0-9.]+) mm", str(caught.value)).group(1))
-    from camgen.conjugate.design import largest_second_roller
+    from camgen.conjugate.design import Placement, largest_second_roller, pair_rig
 
-    exact = largest_second_roller(validate_spec(raw), 5.0)
+    spec = validate_spec(raw)
+    exact = largest_second_roller(pair_rig(spec), spec.cam.base_radius, Placement.of(spec.cam), 5.0)
     assert exact == pytest.approx(best, rel=1e-3)
     raw["cam"]["second_roller_radius"] = exact
     design = design_cam(validate_spec(raw))

@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 import shapely
 
-import camgen.design
+import camgen.profile
 from camgen.core.errors import DesignError
 from camgen.core.shapes import Contour
-from camgen.design import THIN_WALL, _inside_clear, design_cam
+from camgen.profile import THIN_WALL, _inside_clear, design_cam
 from tests.conftest import template
 
 
@@ -75,8 +75,8 @@ def test_the_bound_for_all_pieces_at_once_passes_only_where_each_piece_s_own_doe
         z = contour.vertices.view(np.complex128)[:, 0]
         ring = np.concatenate((z, z[:1])) - points[:, None]
         near, length = np.abs(ring), np.abs(np.diff(ring[0]))
-        margin = camgen.design._CERTAIN * (1.0 + near.max() ** 2)
-        if camgen.design._far_from_all(near, length, float(bulge.max()), reach, margin):
+        margin = camgen.profile._CERTAIN * (1.0 + near.max() ** 2)
+        if camgen.profile._far_from_all(near, length, float(bulge.max()), reach, margin):
             passed += 1
             low, half = np.minimum(near[:, :-1], near[:, 1:]), length / 2
             assert (low * low - half * half - (reach[:, None] + half * bulge) ** 2 > margin).all(), trial
@@ -85,7 +85,7 @@ def test_the_bound_for_all_pieces_at_once_passes_only_where_each_piece_s_own_doe
     z = design.outline.contour.vertices.view(np.complex128)[:, 0]
     ring = np.concatenate((z, z[:1]))[None, :]
     bore = np.array([design.spec.cam.bore / 2 + THIN_WALL])
-    assert camgen.design._far_from_all(np.abs(ring), np.abs(np.diff(ring[0])),
+    assert camgen.profile._far_from_all(np.abs(ring), np.abs(np.diff(ring[0])),
                                        float(np.abs(design.outline.contour.bulges).max()), bore, 1e-6)
 
 
@@ -97,8 +97,8 @@ def _exact_wall(design) -> float:
 
 def test_the_reference_cam_is_checked_without_flattening_and_its_wall_measured_when_read(monkeypatch):
     made = []
-    real = camgen.design._body
-    monkeypatch.setattr(camgen.design, "_body", lambda *args: made.append(args) or real(*args))
+    real = camgen.profile.outline_body
+    monkeypatch.setattr(camgen.profile, "outline_body", lambda *args: made.append(args) or real(*args))
     design = design_cam(template({"hub.bolt_circle": 30.0, "hub.bolt_holes": 4, "hub.bolt_hole_diameter": 4.0}))
     assert made == []
     assert design.wall_mm == _exact_wall(design)
@@ -148,7 +148,7 @@ def test_the_bounds_decide_as_the_exact_check_for_holes_touching_the_outline(mon
                          "hub.bolt_hole_diameter": diameter}
             bounded = _outcome(overrides)
             with monkeypatch.context() as m:
-                m.setattr(camgen.design, "_certainly_clear", lambda *args: False)
+                m.setattr(camgen.profile, "_certainly_clear", lambda *args: False)
                 assert _outcome(overrides) == bounded, overrides
             outcomes.append(bounded[0])
     assert "refused" in outcomes and "made" in outcomes

@@ -17,10 +17,10 @@ import shapely
 from click.testing import CliRunner
 
 from camgen.analysis import profile_rho_min
-from camgen.cam import build_cam
+from camgen.flat import build_cam
 from camgen.cli import main
 from camgen.core.errors import DesignError
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.spec import load_spec
 from tests.conftest import ROOT
 

@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from camgen.analysis import analyze, face_extent, pressure_angle_max, profile_rho_min
-from camgen.cam import build_cam
-from camgen.design import design_cam
+from camgen.flat import build_cam, size_disc
+from camgen.profile import design_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.followers.base import rotate
 from camgen.laws import DraftedUniform, make_law
-from camgen.sizing import FACTOR_LAWS, cam_factor, factor_table, size_cam
+from camgen.sizing import FACTOR_LAWS, cam_factor, factor_table
 from camgen.surface import surface_deviation
 from tests.conftest import template
 
@@ -180,7 +180,7 @@ def test_drafted_modified_uniform_factor_from_its_arcs():
 ])
 def test_sized_radius_meets_its_limit_and_099_of_it_does_not(changes, decided):
     t = spec(changes)
-    s = size_cam(t)
+    s = size_disc(t)
     assert s.decided_by == decided
     at = build_cam(t, base_radius=s.base_radius_mm)
     below = build_cam(t, base_radius=0.99 * s.base_radius_mm)
@@ -225,7 +225,7 @@ def test_size_command(tmp_path):
     assert set(table["harmonic"]) == {"10", "15", "20", "25", "30", "35", "40", "45"}
     r = json.loads(CliRunner().invoke(main, ["size", str(ROOT / "templates" / "rdrd.toml"), "--json"]).output)
     assert r["decided_by"] == "pressure angle"
-    assert r["base_radius_mm"] == pytest.approx(size_cam(template()).base_radius_mm)
+    assert r["base_radius_mm"] == pytest.approx(size_disc(template()).base_radius_mm)
     bad = CliRunner().invoke(main, ["size"])
     assert bad.exit_code == 2 and "give a TEMPLATE" in bad.stderr
 

@@ -15,7 +15,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main
 from camgen.core.errors import SpecError
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.geneva.kinematics import GenevaLaw
 from camgen.geneva.spec import GenevaSpec, GenevaTable
 from camgen.spec import validate_spec

@@ -13,8 +13,9 @@ from click.testing import CliRunner
 
 from camgen.cli import main
 from camgen.core.errors import DesignError
-from camgen.design import design_cam
-from camgen.grooved.design import flank_checks, largest_roller
+from camgen.profile import design_cam
+from camgen.groove import flank_checks
+from camgen.grooved.design import largest_roller, pitch_rig
 from camgen.spec import validate_spec
 from camgen.surface import pitch_distance
 from tests.conftest import ROOT
@@ -213,7 +214,7 @@ def test_the_largest_roller_that_fits_both_flanks():
     raw["cam"]["base_radius"] = 5.0
     raw["follower"]["roller_radius"] = 6.0
     spec = validate_spec(raw)
-    best = largest_roller(spec)
+    best = largest_roller(pitch_rig(spec), spec.cam.base_radius, spec.cam.running_clearance)
     assert best is not None and best < 6.0
     # the outer flank at the harmonic rise's concave start decides, in closed form: (Rb + r)^2 / (s''(0) - Rb - r)
     # = r + c/2 with s''(0) = 80 mm/rad^2, Rb = 5, c/2 = 0.1: 2 r^2 - 64.9 r + 17.5 = 0, the smaller root
@@ -290,7 +291,9 @@ def test_auto_base_radius_sizes_the_inner_flank():
     raw = _raw(base_radius="auto", min_rho_margin=2.0)
     design = design_cam(validate_spec(raw))
     sizing = design.profile.sizing
-    assert design.spec.cam.base_radius == pytest.approx(sizing.base_radius_mm, rel=1e-15)
+    assert design.spec.cam.base_radius == "auto"                    # the template as given: never validated again
+    assert design.base_radius_mm == sizing.base_radius_mm
+    assert design.profile.cam.base_radius == pytest.approx(sizing.base_radius_mm - 0.1, rel=1e-15)   # c/2 less
     decided = min(design.inner.rho_min_mm - 2.0, 30.0 - design.analysis.pressure_angle_max_deg)
     assert abs(decided) < 1e-6                        # one of the two limits is met with equality
     assert design.inner.rho_min_mm >= 2.0 - 1e-6 and design.analysis.pressure_angle_max_deg <= 30 + 1e-6
@@ -311,23 +314,29 @@ def test_size_sizes_the_inner_flank():
     assert result.exit_code == 0, result.output
     sized = json.loads(result.output)
     design = design_cam(validate_spec(_raw(base_radius="auto")))
-    assert sized["base_radius_mm"] == pytest.approx(design.spec.cam.base_radius, rel=1e-8)   # bisection to 1e-9
+    assert sized["base_radius_mm"] == pytest.approx(design.base_radius_mm, rel=1e-8)   # bisection to 1e-9
     assert design.analysis.pressure_angle_max_deg == pytest.approx(30.0, abs=1e-6)
 
 
 def test_the_island_keeps_the_follower_and_takes_the_rates_alone():
-    """The island (the disc whose surface is the inner flank) is the template's follower as it is (its mass, load,
-    speed range kept), its design takes the rates alone (design_profile(rates_only=True): no disc's contact check,
-    lift-off or spring); the forces and speeds table are the groove's, a positive drive's (no lift-off, no margin),
-    the same as camgen.forces.drive_speed gives on the island's cam."""
+    """The island (the disc whose surface is the inner flank) is the template's rig with a roller c/2 larger on a
+    base circle c/2 smaller: the same pitch curve, the template's follower as it is (its mass, load, speed range
+    kept); its speed is the rates alone (no disc's contact check, lift-off or spring); the forces and speeds table
+    are the groove's, a positive drive's (no lift-off, no margin), the same as camgen.forces.drive_speed gives on
+    the island's cam."""
     from camgen.forces import drive_speed
-    from camgen.grooved.design import island_spec
+    from camgen.grooved.design import island_base, island_rig
     from camgen.spec import load_spec
 
     spec = load_spec(ROOT / "templates" / "grooved.toml", ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5",
                                                           "cam.rpm_range=[100, 1000]", "cam.rpm_steps=4"))
-    island = island_spec(spec)
-    assert (island.follower.mass, island.follower.load, island.cam.rpm_range) == (0.2, -5.0, spec.cam.rpm_range)
+    rig, half = pitch_rig(spec), spec.cam.running_clearance / 2
+    island = island_rig(rig, spec.cam.running_clearance)
+    assert island.mount.table is spec.follower and island.roller_radius == spec.follower.roller_radius + half
+    base = island_base(spec.cam.base_radius, spec.cam.running_clearance)
+    assert base == spec.cam.base_radius - half
+    theta = np.linspace(0.0, 2 * math.pi, 97)
+    assert np.abs(island.cam(base).pitch(theta).point - rig.cam(spec.cam.base_radius).pitch(theta).point).max() < 1e-12
     design = design_cam(spec)
     speed = design.profile.speed
     assert speed["contact"] is None

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import shapely
 
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.core.errors import DesignError, SpecError
 from tests.conftest import template
 

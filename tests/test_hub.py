@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.core.errors import DesignError
 from camgen.outputs import write_cam
 from camgen.core.shapes import Contour

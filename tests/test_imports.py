@@ -64,7 +64,7 @@ def test_a_cam_s_dxf_stl_json_build_loads_only_what_those_files_need(tmp_path):
                                 "--set", 'output.formats=["dxf","stl","json"]'))
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rdrd.dxf", "rdrd.json", "rdrd.stl"]
     assert not {m for m in modules for name in NOT_FOR_A_CAM if m == name or m.startswith(name + ".")}
-    assert {"camgen.design", "camgen.core.writers.dxf", "camgen.core.writers.stl", "ezdxf"} <= modules
+    assert {"camgen.profile", "camgen.core.writers.dxf", "camgen.core.writers.stl", "ezdxf"} <= modules
 
 
 def test_a_geneva_drive_still_builds_with_its_modules_loaded_on_demand(tmp_path):
@@ -85,11 +85,11 @@ def test_a_one_design_command_pauses_the_collector_and_restores_it(tmp_path, mon
 
     from click.testing import CliRunner
 
-    import camgen.design
+    import camgen.profile
     from camgen.cli import main
     from camgen.core.errors import DesignError
 
-    real, seen = camgen.design.design_cam, []
+    real, seen = camgen.profile.design_cam, []
 
     def recording(spec, *args, **kwargs):              # what the collector was doing while the design was made
         seen.append(gc.isenabled())
@@ -97,7 +97,7 @@ def test_a_one_design_command_pauses_the_collector_and_restores_it(tmp_path, mon
             raise DesignError("cam.thickness: refused by the test")
         return real(spec, *args, **kwargs)
 
-    monkeypatch.setattr(camgen.design, "design_cam", recording)
+    monkeypatch.setattr(camgen.profile, "design_cam", recording)
     build = ["build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path), "--set"]
     assert gc.isenabled()
     ok = CliRunner().invoke(main, [*build, 'output.formats=["json"]'])

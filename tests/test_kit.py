@@ -16,7 +16,7 @@ from click.testing import CliRunner
 from camgen.cli import main as camgen
 from camgen.core.hardware import BEARINGS, BOLTS
 from camgen.core.shapes import Contour
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.spec import load_spec
 from linkgen.cli import main as linkgen
 from tests.conftest import ROOT
@@ -558,7 +558,7 @@ def test_kit_step_holds_every_kit_part_exactly(tmp_path):
     round the shaft (0, 0), the roller's and the follower's axle holes at the roller's centre by the closed form
     (e, d0 + s(0)) = (5, sqrt(50^2 - 5^2)) mm; no two boxes coincide, and nothing bought is there."""
     pytest.importorskip("OCP")
-    from camgen.design import step_part
+    from camgen.profile import step_part
     from camgen.kit import cam_kit
     from tests.test_step import assert_apart, assert_placed, holes_at, measure, read_step
 

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.dynamics import LoadTable
 from camgen.spec import load_spec
 

@@ -120,7 +120,7 @@ def test_a_part_is_a_view_of_its_whole():
     part of a part likewise; dataclasses.replace makes a geometry holding every field."""
     import dataclasses
 
-    from camgen.cam import build_cam
+    from camgen.flat import build_cam
     from camgen.followers.base import PitchGeometry
     from tests.conftest import template
 
@@ -146,7 +146,7 @@ def test_a_part_pickles_as_its_own_samples_not_its_whole():
     import dataclasses
     import pickle
 
-    from camgen.cam import build_cam
+    from camgen.flat import build_cam
     from camgen.followers.base import PitchGeometry
     from tests.conftest import template
 

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.cam import build_cam
+from camgen.flat import build_cam
 from camgen.convergence import contour_error
 from camgen.outline import exact_outline
 from tests.conftest import template
@@ -89,7 +89,7 @@ def test_biarcs_read_back_from_the_dxf_are_tangent_continuous(tmp_path):
     """At every vertex the arc arriving and the arc leaving share their tangent (G1), as a CNC controller wants."""
     import ezdxf
 
-    from camgen.design import design_cam
+    from camgen.profile import design_cam
     from camgen.outputs import write_cam
     from camgen.core.shapes import Contour
 

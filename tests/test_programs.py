@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from camgen.design import design_cam
+from camgen.profile import design_cam
 from camgen.outputs import write_cam
 from tests.conftest import template
 from tests.freecad import freecad_check

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from camgen.analysis import analyze, face_extent
-from camgen.cam import build_cam
+from camgen.flat import build_cam
 from camgen.core.spec import apply_overrides
 from camgen import numeric
 from camgen.laws import make_law

@@ -220,7 +220,7 @@ def _cam_raw(kind: str, **changes: dict) -> dict:
 
 def _refused(raw: dict, field: str) -> bool:
     """Whether ``raw`` is refused naming ``field``, by validation or when its cam (its follower) is built."""
-    from camgen.cam import build_cam
+    from camgen.flat import build_cam
     from camgen.core.errors import SpecError
 
     try:

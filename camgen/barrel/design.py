@@ -32,18 +32,18 @@ from camgen.analysis import CamAnalysis, analyze
 from camgen.barrel.mesh import SHORTEST_STEPS
 from camgen.barrel.solid import Tube, groove_tube, rib_tube
 from camgen.barrel.walls import GrooveWalls
-from camgen.cam import Cam, build_cam
+from camgen.cam import Cam
 from camgen.core.errors import DesignError, SpecError
-from camgen.core.features import keyed_bore
+from camgen.core.features import bore_reach, keyed_bore
 from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
 from camgen.core.shapes import Circle, Contour, Polyline
 from camgen.dynamics import speed_report
 from camgen.forces import Contact, drive_speed
-from camgen.followers.barrel import DevelopedRoller, rolling_slip, translating_pose
+from camgen.followers.barrel import BarrelGeometry, DevelopedRoller, rolling_slip, translating_pose
 from camgen.followers.plate import PlateRoller
-from camgen.grooved.design import Flank, flank_checks
-from camgen.kinds import barrel as barrel_kind
+from camgen.groove import Flank, flank_checks
 from camgen.program import Jump
+from camgen.rig import Rig, developed_mount
 from camgen.sizing import pressure_limit
 from camgen.spec import CamSpec
 
@@ -63,7 +63,7 @@ SINGLE_STEPS = 10
 @dataclass(frozen=True)
 class WallCheck:
     """A wall's undercut check: the smallest radius of curvature of the developed curve bending that wall, over
-    the cylinders from the floor to the rim, as a :class:`~camgen.grooved.design.Flank` (its ``side`` the wall's
+    the cylinders from the floor to the rim, as a :class:`~camgen.groove.Flank` (its ``side`` the wall's
     name), and the cylinder's radius ``at_radius_mm`` where it is smallest."""
 
     flank: Flank
@@ -142,7 +142,7 @@ class BarrelDesign:
         return self.drawing._repr_svg_()
 
     def _repr_html_(self) -> str | None:
-        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.barrel.outputs import barrel_bundle
         from camgen.core.page import bundle_frame
 
@@ -272,11 +272,10 @@ def _rib_thinnest(cam: Cam, span: float, cutter: float, core: float) -> tuple[fl
     return 2 * span * math.cos(math.atan(steep[0] / core)) - 2 * cutter, steep[1]
 
 
-def _rib(spec: CamSpec, cam: Cam, walls: GrooveWalls, core: float
+def _rib(spec: CamSpec, span: float | None, cam: Cam, walls: GrooveWalls, core: float
          ) -> tuple[tuple[GrooveWalls, GrooveWalls], tuple[float, float]] | tuple[None, None]:
-    """A rib's two rollers' walls (below it, above it) and its thinnest width, refused where the rollers leave it
-    no width; (None, None) for a groove."""
-    span = barrel_kind.rib_span(spec)
+    """A rib's two rollers' walls (below it, above it, ``span`` mm either side of the track) and its thinnest
+    width, refused where the rollers leave it no width; (None, None) for a groove (no span)."""
     if span is None:
         return None, None
     thinnest = _rib_thinnest(cam, span, walls.cutter, core)
@@ -290,16 +289,24 @@ def _rib(spec: CamSpec, cam: Cam, walls: GrooveWalls, core: float
     return rollers, thinnest
 
 
+def barrel_rig(spec: CamSpec, geometry: BarrelGeometry) -> Rig:
+    """The rig of a barrel cam's developed pitch curve: the template's motion on its developed mount
+    (:func:`camgen.rig.developed_mount` of its ``geometry``); its cam is ``rig.cam(z0 - Rr)``, the plate's height
+    under the roller's centre at rest."""
+    return Rig.of(spec.name, spec.motion, developed_mount(spec.follower, geometry))
+
+
 def design_barrel(spec: CamSpec) -> BarrelDesign:
     """Build and check the barrel cam ``spec`` describes: refused where a wall undercuts (see the module
     docstring). Its solid's cutter is made by :meth:`BarrelDesign.with_solid`."""
-    cam = build_cam(spec)
+    g = BarrelGeometry.of(spec.cam, spec.follower, spec.motion)
+    rig = barrel_rig(spec, g)
+    cam = rig.cam(g.rest_height - rig.roller_radius)
     rm, depth, tol = spec.cam.pitch_radius, spec.cam.groove_depth, spec.output.tolerance
     radii = (rm - depth / 2, rm, rm + depth / 2)
-    walls = GrooveWalls(cam.program, barrel_kind.rest_height(spec), barrel_kind.cutter(spec),
-                        1 if spec.cam.rotation == "ccw" else -1, barrel_kind.arm(spec), barrel_kind.taper(spec), rm)
+    walls = GrooveWalls(cam.program, g.rest_height, g.cutter, g.sense, g.arm, g.taper, rm)
     checks = _wall_checks(cam, np.linspace(radii[0], radii[2], CHECK_RADII), walls)
-    rib, thinnest = _rib(spec, cam, walls, radii[0])
+    rib, thinnest = _rib(spec, g.rib_span, cam, walls, radii[0])
     if rib is not None:       # the rib's lower wall is the lower roller's upper side, bent as a groove's upper wall
         checks = tuple(WallCheck(dataclasses.replace(c.flank, side=name), c.at_radius_mm)
                        for c, name in ((checks[1], "rib's lower wall"), (checks[0], "rib's upper wall")))
@@ -331,7 +338,7 @@ def design_barrel(spec: CamSpec) -> BarrelDesign:
         speed.update(drive_speed(spec, cam, ("lower wall", "upper wall") if rib is None else
                                  ("rib's upper wall", "rib's lower wall"), stressed))
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
-    wall = radii[0] - barrel_kind.bore_reach(spec, bore)
+    wall = radii[0] - bore_reach(bore, spec.hub.keyway, spec.output.clearance)
     if bore and wall < THIN_WALL:
         warnings.append(f"only {wall:.3g} mm of material between the bore and "
                         f"{'the rib' if rib else 'the groove'}'s {'core' if rib else 'floor'}")

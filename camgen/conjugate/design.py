@@ -12,6 +12,10 @@ the cam, the angle, both radii and the largest roller that fits both cams) and a
 The second cam must drive the follower back everywhere: its pressure angle below 90 degrees (a second roller
 placed where it would move away from its cam on a rise is refused naming the key that placed it).
 
+Designs take domain objects: the template's :class:`~camgen.rig.Rig` (the disc's mount: the first cam's), a
+:class:`Placement` of the second roller, each cam's :class:`~camgen.profile.Body` and the template's
+:class:`~camgen.profile.Finish`; the template itself is read once, and never copied or validated again.
+
 Each cam is a part of its own (``<name>-1``, ``<name>-2``), with the same bore, keyway (on +Y), holes and boss,
 and engraved (unless ``hub.engrave = false``) with its name, the sense of rotation and a tick at the same angle
 on both: towards the first roller at theta = 0, so the ticks line up when the pair is stacked on its key, and
@@ -28,17 +32,18 @@ from typing import Any
 import numpy as np
 
 from camgen.analysis import CamAnalysis, analyze, largest_fitting, pressure_angle_max, profile_rho_min
-from camgen.cam import Cam, build_cam
+from camgen.cam import Cam
 from camgen.conjugate.followers import ArmRoller, YokeRoller, arm_prime, arm_turn, yoke_prime, yoke_span
 from camgen.core.errors import CamgenError, DesignError
-from camgen.core.parts import Allowances
-from camgen.design import (CamDesign, _body, _check_holes, _curves, _engraving, _Profile, _reach, _speed,
-                           check_opened_holes, known_wall)
+from camgen.flat import FlatCamDesign, flat_rig, parabolic_ratios, rates
 from camgen.forces import Contact, drive_speed
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
 from camgen.outline import exact_outline
-from camgen.sizing import Sizing, pressure_limit, size_cam
+from camgen.profile import (Body, Finish, Profile, ProfileMaker, check_holes, check_opened_holes, engraving,
+                            outline_body, reach)
+from camgen.rig import Rig, disc_mount
+from camgen.sizing import Limits, Sizing, limits_of, pressure_limit, size_cam
 from camgen.spec import CamSpec
 
 #: the cam angles (per turn) at which both contacts are measured against the outlines
@@ -49,69 +54,118 @@ SCAN = 64
 THIN_WALL = 2.0
 
 
+@dataclass(frozen=True)
+class Placement:
+    """Where the second roller goes, and what it is: ``yoke_span`` (mm: a yoke's rollers' centres apart) or
+    ``arm_angle`` (degrees: a bell crank's arms apart at the pivot) where the template fixes them (None: the second
+    roller is placed by its cam's base circle instead), the second arm's length ``arm_length`` (mm; None: the
+    first arm's) and the second roller's own ``roller_radius`` (mm; None: the first roller's). From the template's
+    ``cam.yoke_span``, ``cam.arm_angle``, ``cam.second_arm_length`` and ``cam.second_roller_radius``."""
+
+    yoke_span: float | None = None
+    arm_angle: float | None = None
+    arm_length: float | None = None
+    roller_radius: float | None = None
+
+    @classmethod
+    def of(cls, cam: Any) -> Placement:
+        """The placement a conjugate template's ``[cam]`` table gives."""
+        return cls(cam.yoke_span, cam.arm_angle, cam.second_arm_length, cam.second_roller_radius)
+
+    @property
+    def fixed(self) -> bool:
+        """Whether the template fixes the second roller (by its yoke span or arm angle), not its base circle."""
+        return self.yoke_span is not None or self.arm_angle is not None
+
+    def free(self) -> Placement:
+        """The same rollers placed by the second cam's base circle, whatever span or angle this one fixes."""
+        return dataclasses.replace(self, yoke_span=None, arm_angle=None)
+
+    def with_roller(self, radius: float) -> Placement:
+        """The same placement with a second roller of its own ``radius`` mm."""
+        return dataclasses.replace(self, roller_radius=radius)
+
+
+def pair_rig(spec: CamSpec) -> Rig:
+    """The rig of a conjugate pair's first cam: the disc cam's, the template's follower and roller."""
+    return flat_rig(spec, disc_mount(spec.follower, spec.cam.rotation))
+
+
+def _yoke(rig: Rig) -> bool:
+    """Whether the rig's follower is a translating yoke (else an arm, a bell crank)."""
+    return rig.mount.table.type == "translating-roller"
+
+
 def swing_top(cam: Cam) -> float:
     """The follower's largest displacement over the turn (mm, or degrees of swing), spline overshoots included."""
     return cam.program.top()
 
 
-def second_roller(spec: CamSpec, first: Cam) -> float:
-    """The second roller's radius (mm): ``cam.second_roller_radius``, else the first's."""
-    return spec.cam.second_roller_radius or first.contact_radius
+def second_roller(placement: Placement, first: Cam) -> float:
+    """The second roller's radius (mm): the placement's own, else the first's."""
+    return placement.roller_radius or first.contact_radius
 
 
-def second_cam(spec: CamSpec, first: Cam, second_base: float | None) -> Cam:
-    """The second cam of the pair whose first cam is ``first``: its roller placed by ``cam.yoke_span`` or
-    ``cam.arm_angle`` where the template gives them, else so that its base circle is ``second_base`` mm."""
-    rr, top = second_roller(spec, first), swing_top(first)
-    if spec.follower.type == "translating-roller":
-        span = spec.cam.yoke_span or yoke_span(first.follower, top, second_base + rr)
-        follower: Any = YokeRoller(first.follower, span, radius=spec.cam.second_roller_radius)
+def second_arm(rig: Rig, placement: Placement) -> float:
+    """The second arm's length (mm): the placement's own, else the first arm's."""
+    return placement.arm_length or rig.mount.table.arm_length
+
+
+def second_cam(rig: Rig, first: Cam, placement: Placement, second_base: float | None) -> Cam:
+    """The second cam of the pair whose first cam is ``first``: its roller placed by the ``placement``'s yoke span
+    or arm angle where it fixes one, else so that its base circle is ``second_base`` mm."""
+    rr, top = second_roller(placement, first), swing_top(first)
+    if _yoke(rig):
+        span = placement.yoke_span or yoke_span(first.follower, top, second_base + rr)
+        follower: Any = YokeRoller(first.follower, span, radius=placement.roller_radius)
         prime = yoke_prime(first.follower, top, span)
     else:
-        arm = spec.cam.second_arm_length or spec.follower.arm_length
-        turn = (math.radians(spec.cam.arm_angle) if spec.cam.arm_angle is not None
+        arm = second_arm(rig, placement)
+        turn = (math.radians(placement.arm_angle) if placement.arm_angle is not None
                 else arm_turn(first.follower, math.radians(top), arm, second_base + rr))
-        follower = ArmRoller(first.follower, turn, arm, radius=spec.cam.second_roller_radius)
+        follower = ArmRoller(first.follower, turn, arm, radius=placement.roller_radius)
         prime = arm_prime(first.follower, math.radians(top), arm, turn)
-    return Cam(f"{spec.name}-2", first.program, follower, prime - rr, spec.cam.thickness, spec.cam.bore)
+    return Cam(f"{rig.name}-2", first.program, follower, prime - rr)
 
 
-def build_pair(spec: CamSpec, base: float, second_base: float | None, roller: float | None = None) -> tuple[Cam, Cam]:
-    """Both cams with the first cam's base radius ``base``, the second's ``second_base`` (mm; where the template
-    does not place the second roller) and rollers of ``roller`` mm (the template's by default)."""
-    first = build_cam(spec, roller_radius=roller, base_radius=base)
-    return dataclasses.replace(first, name=f"{spec.name}-1"), second_cam(spec, first, second_base)
+def build_pair(rig: Rig, base: float, placement: Placement, second_base: float | None,
+               roller: float | None = None) -> tuple[Cam, Cam]:
+    """Both cams with the first cam's base radius ``base``, the second's ``second_base`` (mm; where the placement
+    does not fix the second roller) and rollers of ``roller`` mm (the rig's by default)."""
+    first = rig.cam(base, roller)
+    return dataclasses.replace(first, name=f"{rig.name}-1"), second_cam(rig, first, placement, second_base)
 
 
-def placement_range(spec: CamSpec, first: Cam, second_base: float | None) -> tuple[str, float, float, float]:
+def placement_range(rig: Rig, first: Cam, placement: Placement,
+                    second_base: float | None) -> tuple[str, float, float, float]:
     """Where the second roller may go: (the key that places it, its least and largest value, exclusive, and its
-    value), for the key the template gives or else ``cam.second_base_radius`` (mm; arm angles in degrees), whose
+    value), for the key the placement fixes or else ``cam.second_base_radius`` (mm; arm angles in degrees), whose
     value is then ``second_base``.
 
     A yoke's second roller must stay beyond the shaft and its cam keep a base circle: the span more than
     d0 + s_max + sqrt(Rr^2 - e^2). An arm's second roller must stay on its side of the line from the pivot to the
     cam centre over the whole swing (there it nears the cam as the follower rises) and its cam keep a base circle.
     """
-    rr, top, f = second_roller(spec, first), swing_top(first), first.follower
-    if spec.follower.type == "translating-roller":
+    rr, top, f = second_roller(placement, first), swing_top(first), first.follower
+    if _yoke(rig):
         least = f.d0 + top + math.sqrt(max(rr * rr - f.offset**2, 0.0))
-        if spec.cam.yoke_span is not None:
-            return "yoke_span", least, math.inf, spec.cam.yoke_span
+        if placement.yoke_span is not None:
+            return "yoke_span", least, math.inf, placement.yoke_span
         return "second_base_radius", yoke_prime(f, top, least) - rr, math.inf, second_base
-    arm, swing = spec.cam.second_arm_length or spec.follower.arm_length, math.radians(top)
+    arm, swing = second_arm(rig, placement), math.radians(top)
     c = f.pivot_distance
     near = math.acos(max(-1.0, min(1.0, (c * c + arm * arm - rr * rr) / (2 * c * arm)))) if rr > abs(c - arm) else 0.0
-    if spec.cam.arm_angle is not None:
+    if placement.arm_angle is not None:
         return ("arm_angle", math.degrees(f.rest_angle + swing + near), math.degrees(f.rest_angle + math.pi),
-                spec.cam.arm_angle)
+                placement.arm_angle)
     low = arm_prime(f, swing, arm, f.rest_angle + swing + near) - rr
     high = arm_prime(f, swing, arm, f.rest_angle + math.pi) - rr
     return "second_base_radius", low, high, second_base
 
 
-def check_placement(spec: CamSpec, first: Cam, second_base: float | None) -> None:
+def check_placement(rig: Rig, first: Cam, placement: Placement, second_base: float | None) -> None:
     """Refuse a second roller :func:`placement_range` does not allow, naming its key and the range."""
-    key, low, high, value = placement_range(spec, first, second_base)
+    key, low, high, value = placement_range(rig, first, placement, second_base)
     if low < value < high:
         return
     unit = "degrees" if key == "arm_angle" else "mm"
@@ -123,18 +177,19 @@ def check_placement(spec: CamSpec, first: Cam, second_base: float | None) -> Non
     raise DesignError(f"cam.{key}: must be {span}, {why} (got {value:.6g})")
 
 
-def _smallest_second(spec: CamSpec, first: Cam) -> Sizing:
-    """The smallest base radius of the second cam meeting the pressure-angle limit and the curvature margin (its
-    shape does not depend on the first cam's base radius, only on where the second roller goes), by bisection
-    within the range :func:`placement_range` allows."""
-    limit, margin = pressure_limit(spec), spec.cam.min_rho_margin
-    _, low, high, _ = placement_range(spec, first, None)
+def _smallest_second(rig: Rig, first: Cam, placement: Placement, limits: Limits) -> Sizing:
+    """The smallest base radius of the second cam meeting the ``limits`` (its shape does not depend on the first
+    cam's base radius, only on where the second roller goes, which its base circle sets here: the placement is
+    taken free), by bisection within the range :func:`placement_range` allows."""
+    limit, margin = limits.pressure_deg, limits.min_rho_margin
+    free = placement.free()
+    _, low, high, _ = placement_range(rig, first, free, None)
 
     def smallest(ok: Any, what: str) -> float:
         def holds(radius: float) -> bool:
             try:
                 with np.errstate(divide="raise", over="raise", invalid="raise"):
-                    return bool(ok(second_cam(spec, first, radius)))
+                    return bool(ok(second_cam(rig, first, free, radius)))
             except (CamgenError, ValueError, ArithmeticError):
                 return False
 
@@ -160,60 +215,60 @@ def _smallest_second(spec: CamSpec, first: Cam) -> Sizing:
 def size_conjugate(spec: CamSpec) -> tuple[Sizing, Sizing]:
     """Each cam's smallest base radius (:func:`camgen.sizing.size_cam` for the first; the second by bisection on
     its own base radius, its roller placed by it, whatever the template's ``cam.yoke_span`` or ``cam.arm_angle``)."""
-    first = size_cam(spec)
-    free = spec.model_copy(update={"cam": spec.cam.model_copy(update={"yoke_span": None, "arm_angle": None})})
-    return first, _smallest_second(free, build_cam(spec, base_radius=first.base_radius_mm))
+    rig, limits, base = pair_rig(spec), limits_of(spec), spec.cam.base_radius
+    first = size_cam(rig, limits, base if isinstance(base, float) else None)
+    return first, _smallest_second(rig, rig.cam(first.base_radius_mm), Placement.of(spec.cam), limits)
 
 
-def _sized(spec: CamSpec) -> tuple[CamSpec, float | None, tuple[Sizing | None, Sizing | None]]:
-    """The spec at its base radius (sized where ``"auto"``), the second cam's base radius (None where the template
-    places the second roller itself), and each cam's sizing where one was made."""
+def _sized(spec: CamSpec, rig: Rig, placement: Placement
+           ) -> tuple[float, float | None, tuple[Sizing | None, Sizing | None]]:
+    """The first cam's base radius (sized where ``"auto"``), the second cam's (None where the placement fixes the
+    second roller itself), and each cam's sizing where one was made."""
     base, second = spec.cam.base_radius, spec.cam.second_base_radius
+    limits = limits_of(spec)
     sizes: list[Sizing | None] = [None, None]
     if base == "auto":
-        sizes[0] = size_cam(spec)
+        sizes[0] = size_cam(rig, limits)
         base = sizes[0].base_radius_mm
     if second == "auto" or (second is None and spec.cam.base_radius == "auto"):
-        sizes[1] = _smallest_second(spec, build_cam(spec, base_radius=base))
+        sizes[1] = _smallest_second(rig, rig.cam(base), placement, limits)
         second = sizes[1].base_radius_mm
         if spec.cam.second_base_radius is None:          # equal base circles: the larger of both
             base = second = max(base, second)
-    cam = spec.cam.model_copy(update={"base_radius": base})
-    if spec.cam.yoke_span is not None or spec.cam.arm_angle is not None:
+    if placement.fixed:
         second = None
     elif second is None:
         second = base
-    return spec.model_copy(update={"cam": cam}), second, (sizes[0], sizes[1])
+    return base, second, (sizes[0], sizes[1])
 
 
-def largest_pair_roller(spec: CamSpec, second_base: float | None) -> float | None:
+def largest_pair_roller(rig: Rig, base: float, placement: Placement, second_base: float | None) -> float | None:
     """The largest roller radius (mm) with which neither cam undercuts, both rollers alike, the base circles as
     the template sets them (the pitch curves grow with the roller); None when even a vanishing one undercuts."""
     def margin(rr: float) -> float:
         try:
-            cams = build_pair(spec, spec.cam.base_radius, second_base, rr)
+            cams = build_pair(rig, base, placement, second_base, rr)
         except (CamgenError, ValueError, ArithmeticError):
             return -math.inf
         return min(analyze(cam).pitch_rho_min_mm - cam.contact_radius for cam in cams)
 
-    return largest_fitting(spec, margin)
+    return largest_fitting(rig, base, margin)
 
 
-def largest_second_roller(spec: CamSpec, second_base: float | None) -> float | None:
-    """The largest own radius (mm), up to the template's ``cam.second_roller_radius``, with which the second cam
-    does not undercut, the first cam and the base circles as the template sets them; None when even a vanishing
-    one undercuts."""
-    first = build_cam(spec)
+def largest_second_roller(rig: Rig, base: float, placement: Placement, second_base: float | None) -> float | None:
+    """The largest own radius (mm), up to the placement's second roller's, with which the second cam does not
+    undercut, the first cam and the base circles as the template sets them; None when even a vanishing one
+    undercuts."""
+    first = rig.cam(base)
 
     def fits(radius: float) -> bool:
-        own = spec.model_copy(update={"cam": spec.cam.model_copy(update={"second_roller_radius": radius})})
         try:
-            cam = second_cam(own, first, second_base)
+            cam = second_cam(rig, first, placement.with_roller(radius), second_base)
         except (CamgenError, ValueError, ArithmeticError):
             return False
         return analyze(cam).pitch_rho_min_mm - radius >= 0
 
-    top = spec.cam.second_roller_radius
+    top = placement.roller_radius
     if not fits(1e-6 * top):
         return None
     return top if fits(top) else boundary(fits, 1e-6 * top, top)
@@ -267,13 +322,14 @@ def contact_check(pair: tuple[Cam, Cam], outlines: tuple[Any, Any], tolerance: f
 class ConjugateDesign:
     """Everything known about a conjugate pair before anything is written (mm, degrees).
 
-    ``spec`` is the template's (base radii sized where ``"auto"``); ``cams`` the first and the second cam, each a
-    complete :class:`~camgen.design.CamDesign` (named ``<name>-1`` and ``<name>-2``); ``sizing`` each cam's where
-    a base radius was ``"auto"``; ``contact`` both contacts measured over a turn.
+    ``spec`` is the template's (its base radii ``"auto"`` where they were); ``cams`` the first and the second cam,
+    each a complete :class:`~camgen.flat.FlatCamDesign` of the template (their parts named ``<name>-1`` and
+    ``<name>-2``); ``sizing`` each cam's where a base radius was ``"auto"``; ``contact`` both contacts measured over
+    a turn.
     """
 
     spec: CamSpec
-    cams: tuple[CamDesign, CamDesign]
+    cams: tuple[FlatCamDesign, FlatCamDesign]
     contact: ContactCheck
     sizing: tuple[Sizing | None, Sizing | None]
     warnings: tuple[str, ...]
@@ -288,7 +344,7 @@ class ConjugateDesign:
         return self.cams[1].cam
 
     def _repr_html_(self) -> str | None:
-        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.conjugate.outputs import conjugate_bundle
         from camgen.core.page import bundle_frame
 
@@ -315,107 +371,114 @@ class ConjugateDesign:
         return self.cams[0].cut._repr_svg_()
 
 
-def _undercut_message(spec: CamSpec, cams: tuple[Cam, Cam], which: int, a: CamAnalysis,
-                      second_base: float | None) -> str:
+def _undercut_message(rig: Rig, base: float, placement: Placement, cams: tuple[Cam, Cam], which: int,
+                      a: CamAnalysis, second_base: float | None) -> str:
     cam = cams[which]
     where = f"undercut of cam {which + 1} at {a.pitch_rho_min_at_deg:.2f} degrees: "
     if a.pitch_rho_min_mm == 0.0:
         jump = next(i for i, turn in cam.corners() if turn > 0)
         other = 2 - which
-        return (f"motion[{spec.moving_segment(jump)}]: " + where + "the follower velocity jumps there, a convex corner "
+        return (f"motion[{rig.moving_segment(jump)}]: " + where + "the follower velocity jumps there, a convex corner "
                 f"of its pitch curve that no roller can follow (the same jump is a concave corner on cam {other}); "
                 "a conjugate pair needs a law with continuous velocity (e.g. modified-uniform)")
-    own = which == 1 and spec.cam.second_roller_radius is not None
-    best = largest_second_roller(spec, second_base) if own else largest_pair_roller(spec, second_base)
+    own = which == 1 and placement.roller_radius is not None
+    best = (largest_second_roller(rig, base, placement, second_base) if own
+            else largest_pair_roller(rig, base, placement, second_base))
     fits = ((f"the largest second roller that fits cam 2 is {best:.4g} mm" if own else
              f"the largest roller that fits both cams is {best:.4g} mm") if best is not None
             else "no roller fits these base circles")
-    larger = _enlarge(spec, which)
+    larger = _enlarge(placement, which)
     key = "cam.second_roller_radius" if own else "follower.roller_radius"
     return (where + f"its pitch curve's radius of curvature is {a.pitch_rho_min_mm:.4g} mm, smaller than "
             f"{key} {cam.contact_radius:.4g} mm; {fits} (or {larger})")
 
 
-def _enlarge(spec: CamSpec, which: int) -> str:
+def _enlarge(placement: Placement, which: int) -> str:
     """How to enlarge cam ``which``'s base circle, in the template's terms."""
     if which == 0:
         return "enlarge cam.base_radius"
-    if spec.cam.yoke_span is not None:
+    if placement.yoke_span is not None:
         return "lengthen cam.yoke_span"
-    if spec.cam.arm_angle is not None:
+    if placement.arm_angle is not None:
         return "widen cam.arm_angle"
     return "enlarge cam.second_base_radius"
 
 
-def _drives_back(spec: CamSpec, first: Cam, a: CamAnalysis) -> None:
+def _drives_back(rig: Rig, first: Cam, placement: Placement, a: CamAnalysis) -> None:
     """Refuse a second cam that cannot drive the follower back somewhere (its pressure angle 90 degrees or more)."""
     if a.pressure_angle_max_deg < 90.0:
         return
-    key = placement_range(spec, first, None)[0]
+    key = placement_range(rig, first, placement, None)[0]
     raise DesignError(f"cam.{key}: the second cam cannot drive the follower back near "
                       f"{a.pressure_angle_max_at_deg:.2f} degrees (its pressure angle reaches "
                       f"{a.pressure_angle_max_deg:.4g} degrees): the second roller moves along its cam there; place it "
                       "elsewhere")
 
 
-def _outline_body(spec: CamSpec, cam: Cam, which: int) -> tuple[Any, Any, float]:
+def _outline_body(body: Body, finish: Finish, cam: Cam, which: int) -> tuple[Any, Any, float]:
     """A cam's nominal outline, its shapely polygon and its wall round the bore (mm); refused where the bore leaves
     no material."""
     import shapely
 
-    tol = spec.output.tolerance
-    outline = exact_outline(cam, tol, _curves(spec))
-    body = _body(outline, tol)
-    near = _reach(body)
-    if spec.cam.bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and near > spec.cam.bore / 2):
-        raise DesignError(f"cam.bore: {spec.cam.bore:.4g} mm leaves no material in cam {which + 1}; its outline comes "
+    tol = finish.tolerance
+    outline = exact_outline(cam, tol, finish.outline_curves)
+    polygon = outline_body(outline, tol)
+    near = reach(polygon)
+    if body.bore > 0 and not (polygon.contains(shapely.Point(0.0, 0.0)) and near > body.bore / 2):
+        raise DesignError(f"cam.bore: {body.bore:.4g} mm leaves no material in cam {which + 1}; its outline comes "
                           f"within {near:.4g} mm of the centre, so the bore must be < {2 * near:.4g} mm")
-    return outline, body, near - spec.cam.bore / 2
+    return outline, polygon, near - body.bore / 2
 
 
 @dataclass(frozen=True)
 class _Shared:
     """What both cams' designs share: the follower's motion (its jumps, its speed at ``cam.rpm``), the
-    pressure-angle limit, the first cam (whose roller the theta = 0 tick points at) and each cam's sizing."""
+    pressure-angle limit, the first cam (whose roller the theta = 0 tick points at), each cam's sizing and how
+    both are made."""
 
     jumps: tuple
     speed: dict[str, Any] | None
     limit: float
     timing: Cam
     sizing: tuple[Sizing | None, Sizing | None]
+    finish: Finish
 
 
-def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: _Shared) -> CamDesign:
-    """One cam of the pair as a complete disc cam's design (its spec the template's as a disc, so whatever takes a
-    disc cam's design takes it): its part named ``<name>-<1|2>``, engraved with the theta = 0 tick towards the first
-    roller, at the same angle on both."""
-    own = spec.model_copy(update={"name": cam.name, "cam": spec.cam.model_copy(
-        update={"kind": "disc", "base_radius": cam.base_radius})})         # a disc cam's design, as far as it goes
-    outline, body, wall = _outline_body(own, cam, which)
-    _check_holes(own, body, own.output.tolerance)
-    check_opened_holes(own, outline, own.output.tolerance, f"cam {which + 1}")
-    engrave = own.hub.engrave or "engrave" not in own.hub.model_fields_set
-    near = wall + own.cam.bore / 2
-    maker = _Profile(own, cam, False, _engraving(own, shared.timing, body, near) if engrave else (), outline)
-    allow = Allowances(own.output.kerf, own.output.clearance, "output.kerf", own.output.elephant_foot)
-    return known_wall(CamDesign(own, cam, analysis, shared.jumps, outline, maker.part(0.0, 0.0),
-                                maker.outline(allow.kerf / 2), allow.cut(maker), allow.printed(maker), allow, (),
-                                shared.limit, None, shared.speed, shared.sizing[which]), wall)
+def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: _Shared) -> FlatCamDesign:
+    """One cam of the pair as a complete disc cam's design of the pair's template (whatever takes a disc cam's
+    design takes it): its part named ``<name>-<1|2>`` (the cam's name), engraved (unless ``hub.engrave = false``)
+    with the theta = 0 tick towards the first roller, at the same angle on both. Its holes are checked as a disc
+    cam's are, drawn and as the printing clearance opens them (:func:`~camgen.profile.check_opened_holes`, naming
+    the cam)."""
+    hub = spec.hub
+    body = Body(cam.name, spec.cam.thickness, spec.cam.bore, hub, hub.engrave or "engrave" not in hub.model_fields_set)
+    finish = shared.finish
+    outline, polygon, wall = _outline_body(body, finish, cam, which)
+    check_holes(body, polygon, finish.tolerance)
+    check_opened_holes(body, finish.allowances.clearance, outline, finish.tolerance, f"cam {which + 1}")
+    marks = engraving(body, shared.timing, polygon, wall + body.bore / 2) if body.engraved else ()
+    maker = ProfileMaker(body, finish, cam, False, marks, outline)
+    allow = finish.allowances
+    profile = Profile(body, finish, cam, analysis, shared.jumps, outline, maker.part(0.0, 0.0),
+                      maker.outline(allow.kerf / 2), allow.cut(maker), allow.printed(maker), (), shared.limit, None,
+                      measured_wall_mm=wall)
+    return FlatCamDesign.of(profile, spec, shared.speed, shared.sizing[which])
 
 
-def _warnings(spec: CamSpec, designs: tuple[CamDesign, CamDesign], limit: float) -> tuple[str, ...]:
+def _warnings(spec: CamSpec, placement: Placement, designs: tuple[FlatCamDesign, FlatCamDesign],
+              limit: float) -> tuple[str, ...]:
     out = []
     for which, d in enumerate(designs):
-        a, key = d.analysis, _enlarge(spec, which)
+        a, key = d.analysis, _enlarge(placement, which)
         if a.pressure_angle_max_deg > limit:
             out.append(f"cam {which + 1}: pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
                        f"{a.pressure_angle_max_at_deg:.2f} degrees), above the {limit:g} degree limit: {key} "
                        "or lengthen the segment")
         if spec.cam.bore > 0 and d.wall_mm < THIN_WALL:
             out.append(f"cam {which + 1}: only {d.wall_mm:.3g} mm of material between the bore and the outline")
-        reach = float(np.linalg.norm(d.outline.contour.vertices, axis=1).max())
-        if spec.follower.pivot_distance is not None and reach >= spec.follower.pivot_distance:
-            out.append(f"cam {which + 1} reaches {reach:.4g} mm from the shaft, past the crank's pivot "
+        extent = float(np.linalg.norm(d.outline.contour.vertices, axis=1).max())
+        if spec.follower.pivot_distance is not None and extent >= spec.follower.pivot_distance:
+            out.append(f"cam {which + 1} reaches {extent:.4g} mm from the shaft, past the crank's pivot "
                        f"({spec.follower.pivot_distance:g} mm away): the pivot's shaft cannot pass its plane")
         concave = a.profile_concave_rho_min_mm
         if concave is not None and concave < 1.0:
@@ -435,7 +498,7 @@ def _warnings(spec: CamSpec, designs: tuple[CamDesign, CamDesign], limit: float)
 def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
     """The follower's rates at ``cam.rpm`` and, with a mass, the pair's forces (:func:`camgen.forces.pair_report`):
     no spring, so no contact check."""
-    speed = _speed(spec, pair[0], rates_only=True)
+    speed = rates(pair[0], spec.cam.rpm, parabolic_ratios(spec.motion))
     if speed is not None and spec.follower.mass is not None:
         f = spec.follower
         contact = None if spec.cam.material is None else Contact(
@@ -445,26 +508,29 @@ def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
 
 
 def design_conjugate(spec: CamSpec) -> ConjugateDesign:
-    """Build, check and outline the conjugate pair ``spec`` describes.
+    """Build, check and outline the conjugate pair ``spec`` describes (sized first where its base radii are
+    ``"auto"``: the spec keeps them so, the sizes are ``design.cam.base_radius`` and ``design.second.base_radius``).
 
     Raises :class:`DesignError` for a second roller out of its range (naming ``cam.yoke_span``, ``cam.arm_angle``
     or ``cam.second_base_radius``), a second cam that cannot drive the follower back, an undercut of either cam
     (naming the cam, the angle, both radii and the largest roller that fits both), and for a bore or holes that
     leave no material in either cam.
     """
-    spec, second_base, sizing = _sized(spec)
-    first = build_cam(spec)
-    check_placement(spec, first, second_base)
-    pair = (dataclasses.replace(first, name=f"{spec.name}-1"), second_cam(spec, first, second_base))
+    rig, placement = pair_rig(spec), Placement.of(spec.cam)
+    base, second_base, sizing = _sized(spec, rig, placement)
+    first = rig.cam(base)
+    check_placement(rig, first, placement, second_base)
+    pair = (dataclasses.replace(first, name=f"{spec.name}-1"), second_cam(rig, first, placement, second_base))
     analyses = (analyze(pair[0]), analyze(pair[1]))
-    _drives_back(spec, first, analyses[1])
+    _drives_back(rig, first, placement, analyses[1])
     for which, a in enumerate(analyses):
         if a.undercut:
-            raise DesignError(_undercut_message(spec, pair, which, a, second_base))
-    shared = _Shared(tuple(first.program.jumps()), _pair_speed(spec, pair), pressure_limit(spec), pair[0], sizing)
+            raise DesignError(_undercut_message(rig, base, placement, pair, which, a, second_base))
+    shared = _Shared(tuple(first.program.jumps()), _pair_speed(spec, pair), pressure_limit(spec), pair[0], sizing,
+                     Finish.of(spec.output))
     designs = tuple(_member(spec, cam, a, which, shared)
                     for which, (cam, a) in enumerate(zip(pair, analyses, strict=True)))
-    designs = tuple(known_wall(dataclasses.replace(d, warnings=_warnings(spec, designs, shared.limit)), d.wall_mm)
-                    for d in designs)
+    warnings = _warnings(spec, placement, designs, shared.limit)
+    designs = tuple(dataclasses.replace(d, warnings=warnings) for d in designs)
     contact = contact_check(pair, (designs[0].outline, designs[1].outline), spec.output.tolerance)
     return ConjugateDesign(spec, designs, contact, sizing, designs[0].warnings)

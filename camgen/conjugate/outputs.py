@@ -23,7 +23,7 @@ from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.nesting import SheetRules, nest, sheet_kinds
 from camgen.core.parts import Drawing, Placed
 from camgen.core.routing import add_routing
-from camgen.design import step_part
+from camgen.profile import step_part
 from camgen.outputs import printed_mesh
 from camgen.page import cam_page
 from camgen.report import cam_report, design_lines
@@ -213,7 +213,7 @@ def assembly_figure(design: ConjugateDesign) -> Any:
 
 
 def step_solids(design: ConjugateDesign) -> tuple[Placed, ...]:
-    """The STEP file's cams (``<name>-1``, ``<name>-2``, their biarc outlines: :func:`camgen.design.step_part`) as
+    """The STEP file's cams (``<name>-1``, ``<name>-2``, their biarc outlines: :func:`camgen.profile.step_part`) as
     assembled: on one shaft in the pair's cam frame (both turned alike, so their keyways line up), the second
     standing on the first's top face (on its hub boss, if it has one)."""
     out, z = [], 0.0
@@ -228,7 +228,7 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     """The files of a conjugate pair and its report (without the ``files`` map, which the bundle adds)."""
     out = design.spec.output
     formats, name = out.formats, design.spec.name
-    meshes = [printed_mesh(d.spec, d.printed) for d in design.cams]
+    meshes = [printed_mesh(design.spec, d.printed, d.printed.name) for d in design.cams]
     report = conjugate_report(design, (meshes[0][1], meshes[1][1]))
     add_routing(report, [d.cut for d in design.cams], out.tool_radius)
     nested = nest(tuple(d.cut for d in design.cams), SheetRules.of(out, out.kerf, "output.sheet"))

@@ -34,6 +34,18 @@ def key_for(bore: float) -> tuple[float, float]:
     raise SpecError(f"DIN 6885-1 keys cover bores over 6 up to 110 mm (got {bore:g} mm)", "hub.keyway")
 
 
+def bore_reach(bore: float, keyway: bool, clearance: float) -> float:
+    """How far (mm) from the axis a bore of diameter ``bore`` reaches as printed: its radius grown by ``clearance`` /
+    2, and with a ``keyway`` its key's seat t2 (DIN 6885-1, the largest key's above its range) further; 0 for no
+    bore."""
+    if not bore:
+        return 0.0
+    seat = 0.0
+    if keyway:
+        seat = next((t2 for _, high, _, t2 in KEYS if bore <= high), KEYS[-1][3])
+    return bore / 2 + clearance / 2 + seat
+
+
 def keyed_bore(bore: float, grow: float = 0.0) -> Contour:
     """The bore with its keyway as one counter-clockwise contour (lines and one arc), edges moved by ``grow``.
     Raises :class:`DesignError` where edges moved in (a negative ``grow``: half a kerf) close the keyway."""

@@ -26,17 +26,22 @@ and v = z - zc, rho = sqrt(w^2 + v^2) = R(a) and the envelope condition
 solved by Newton's method for (beta, rho), w = rho sin(beta), v = side rho cos(beta) (side -1 the lower wall,
 +1 the upper). The pressure angle is the angle between the cutter's normal there and the roller's path (0, e',
 zc'), in 3D.
+
+:class:`BarrelGeometry` holds what a barrel's tables fix (the pitch cylinder, the roller and its cutter, the
+arm, the rest height, a rib's span), from their values, for the kind's checks and its design.
 """
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
 from camgen.core.errors import DesignError
 from camgen.followers.base import PitchGeometry, Swing, perp
+from camgen.followers.plate import PlateRoller
 
 #: Newton steps of the contact, and the residual (relative to the radius) that counts as solved
 _STEPS, _SOLVED = 40, 1e-12
@@ -172,3 +177,105 @@ class DevelopedRoller(Swing):
         angles = [pressure_angle(pose, *contact(r, pose, self.r0, self.taper, side)[:2]) for side in (-1, 1)]
         return PitchGeometry(theta=theta, point=point, d1=d1, d2=d2, normal=perp(d1) / speed[:, None], kappa=kappa,
                              pressure_angle=np.sign(motion[1]) * np.maximum(*angles))
+
+
+@dataclass(frozen=True)
+class BarrelGeometry:
+    """A barrel cam's geometry from its tables' values (mm, degrees): the pitch cylinder's ``pitch_radius`` Rm, the
+    cylinder's ``length``, the groove's ``groove_depth`` and ``running_clearance`` c, the roller's ``roller_radius``
+    Rr and whether it is ``conical``, the program's ``levels`` at the segments' ends (from 0; mm, or degrees of an
+    arm's swing), an arm's ``arm_length`` and ``pivot_distance`` (None for a translating roller), the cam's
+    ``sense`` of rotation (+1 counter-clockwise) and a rib's ``rib_width`` (None for a groove).
+
+    :meth:`of` reads them from a template's ``[cam]`` and ``[follower]`` tables and its motion; the kind's checks
+    (:mod:`camgen.kinds.barrel`) and its design (:mod:`camgen.barrel.design`) read what follows from them."""
+
+    pitch_radius: float
+    length: float
+    groove_depth: float
+    running_clearance: float
+    roller_radius: float
+    conical: bool
+    levels: tuple[float, ...]
+    arm_length: float | None = None
+    pivot_distance: float | None = None
+    sense: int = 1
+    rib_width: float | None = None
+
+    @classmethod
+    def of(cls, cam: Any, follower: Any, motion: Any) -> BarrelGeometry:
+        """The geometry a barrel template's ``[cam]`` and ``[follower]`` tables and its ``motion`` (segments with
+        ``type`` and ``lift``) describe (any objects with those attributes)."""
+        steps = [seg.lift if seg.type == "rise" else -seg.lift if seg.type == "return" else 0.0 for seg in motion]
+        oscillating = follower.oscillating
+        return cls(cam.pitch_radius, cam.length, cam.groove_depth, cam.running_clearance, follower.roller_radius,
+                   follower.roller_shape == "conical", (0.0, *itertools.accumulate(steps)),
+                   follower.arm_length if oscillating else None, follower.pivot_distance if oscillating else None,
+                   1 if cam.rotation == "ccw" else -1, cam.rib_width if cam.barrel_form == "rib" else None)
+
+    @property
+    def oscillating(self) -> bool:
+        """True for a roller on an arm (its lifts in degrees of swing)."""
+        return self.arm_length is not None
+
+    @property
+    def swing(self) -> float:
+        """The follower's whole travel (mm), or an arm's whole swing (degrees)."""
+        return max(self.levels) - min(self.levels)
+
+    @property
+    def rest_height(self) -> float:
+        """z0 (mm): the roller centre's height at s = 0, putting the program's travel mid-length; for an arm, its
+        pivot's height, mid-length (the arm square to the cam's axis at mid-swing puts the stroke there)."""
+        if self.oscillating:
+            return self.length / 2
+        return (self.length - max(self.levels) - min(self.levels)) / 2
+
+    @property
+    def taper(self) -> float:
+        """How fast the roller's radius grows along its axis: Rr / Rm for a conical roller (its apex where its axis
+        passes nearest the cam's axis, its radius Rr on the pitch cylinder), 0 for a cylindrical one."""
+        return self.roller_radius / self.pitch_radius if self.conical else 0.0
+
+    @property
+    def cutter(self) -> float:
+        """The radius (mm) the groove is cut with on the pitch cylinder: Rw = Rr + c/2 for a cylindrical roller, for
+        a conical one Rr + c/2 / cos(half-angle) (the cone grown by c/2 square to its surface)."""
+        if self.conical:
+            return self.roller_radius + self.running_clearance / 2 * math.hypot(1.0, self.taper)
+        return self.roller_radius + self.running_clearance / 2
+
+    def cutter_at(self, radius: float) -> float:
+        """The cutter's radius (mm) where its axis is ``radius`` from the cam's axis (about: the axis passes the
+        cam's by the chordal error at most): the same at every radius for a cylindrical roller."""
+        return self.cutter + self.taper * (radius - self.pitch_radius)
+
+    @property
+    def floor_room(self) -> float:
+        """The least radius (mm) of the groove's floor (a rib's core) that holds the cutter: its radius there, r0 +
+        taper r, below r: Rw for a cylindrical roller, r0 / (1 - taper) for a cone."""
+        rw, t = self.cutter, self.taper
+        return rw if not t else (rw - t * self.pitch_radius) / (1 - t)
+
+    @property
+    def arm(self) -> Arm | None:
+        """The arm of an oscillating roller (None for a translating one)."""
+        if self.arm_length is None or self.pivot_distance is None:
+            return None
+        return Arm(self.arm_length, self.pivot_distance, self.swing / 2, self.rest_height, self.sense)
+
+    @property
+    def rib_span(self) -> float | None:
+        """A rib's rollers' centres' half-distance g (mm): half the rib's width, the roller's radius and half the
+        running clearance (the rib's walls are the rollers' envelopes at Rw = Rr + c/2 from their axes); None for a
+        groove."""
+        return None if self.rib_width is None else self.rib_width / 2 + self.cutter
+
+    def developed(self, base_height: float, roller_radius: float) -> PlateRoller | DevelopedRoller:
+        """The developed pitch curve on the pitch cylinder: a plate cam of travel 2 pi Rm whose roller (of
+        ``roller_radius`` mm) runs ``base_height`` mm above its base line (z0 + s with the base height z0 - Rr), or,
+        for an arm, where its roller's axis pierces the pitch cylinder (its cutter's radius there)."""
+        arm = self.arm
+        if arm is not None:
+            return DevelopedRoller(arm, self.pitch_radius, self.cutter - self.taper * self.pitch_radius, self.taper)
+        return PlateRoller(base_height, roller_radius, 2 * math.pi * self.pitch_radius)

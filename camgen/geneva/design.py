@@ -104,7 +104,7 @@ class GenevaDesign:
         return self.cut["wheel"]._repr_svg_()
 
     def _repr_html_(self) -> str | None:
-        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.core.page import bundle_frame
         from camgen.geneva.outputs import geneva_bundle
 

@@ -1,16 +1,11 @@
 """A grooved face cam from a spec: its two flanks checked and outlined, the plate with its groove. No I/O.
 
-The pitch curve is the disc cam's (prime radius = base radius + roller radius). The inner
-flank is the pitch curve offset inwards by d = Rr + c/2 (the surface a disc cam with a
-roller of radius d would have: the *island* inside the groove, designed by
-:func:`camgen.design.design_profile`, bore, holes and engraving included); the outer
-flank is the pitch curve offset outwards by d. Radii of curvature follow the project's
-signs (convex > 0, like the base circle): the inner flank bends with the pitch curve's
-convex stretches, radius rho - d, and undercuts (folds into a loop) where the convex pitch
-radius rho < d; the outer flank bends the other way where the pitch curve is concave,
-radius |rho| - d, and undercuts where the concave pitch radius |rho| < d. A velocity jump
-is a corner of the pitch curve: a convex corner undercuts the inner flank, a concave one
-the outer.
+The pitch curve is the disc cam's (prime radius = base radius + roller radius): the template's
+:class:`~camgen.rig.Rig` on the disc's mount. The inner flank is the pitch curve offset inwards by
+d = Rr + c/2, the surface a disc cam with a roller of radius d would have: the *island* inside the
+groove, the same rig with that roller on a base circle c/2 smaller (the same prime circle), cut by
+:func:`camgen.profile.design_profile`, bore, holes and engraving included; the outer flank is the pitch
+curve offset outwards by d. Both are checked for undercut (:func:`camgen.groove.flank_checks`).
 
 The plate is a circle ``cam.rim`` mm outside the outer flank's farthest point; the groove
 is a pocket ``cam.groove_depth`` mm deep from its top face. The cut files carry the
@@ -21,89 +16,70 @@ flank moved into the groove by half the kerf. The printed groove is the nominal 
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from camgen.analysis import CamAnalysis, analyze, largest_fitting
-from camgen.cam import Cam, build_cam
+from camgen.analysis import CamAnalysis, largest_fitting
+from camgen.cam import Cam
 from camgen.core.errors import DesignError
 from camgen.core.parts import Part, Pocket
 from camgen.core.shapes import Contour
-from camgen.design import CamDesign, design_profile, step_part
+from camgen.flat import FlatCamDesign, flat_rig, parabolic_ratios, rates
 from camgen.forces import Contact, drive_speed
-from camgen.kinds.base import GROOVE_KEYS
+from camgen.groove import Flank, flank_checks
 from camgen.outline import Outline, envelope_outline, exact_outline
-from camgen.sizing import Sizing, size_cam
-from camgen.spec import CamSpec, validate_spec, with_base_radius
+from camgen.profile import Body, Finish, design_profile, step_part
+from camgen.rig import Rig, disc_mount
+from camgen.sizing import Sizing, limits_of, pressure_limit, size_cam
+from camgen.spec import CamSpec
 
 
-@dataclass(frozen=True)
-class Flank:
-    """The undercut check of one flank of the groove.
-
-    ``side`` is ``"inner"`` or ``"outer"``. ``pitch_rho_min_mm``: the pitch curve's smallest radius of curvature
-    in the sense that bends this flank (convex for the inner flank, concave for the outer; unsigned, mm; infinite
-    where the pitch curve never bends that way, 0 at a corner), at cam angle ``at_deg`` (degrees, None where
-    infinite). ``offset_mm`` is d = Rr + c/2, the flank's distance from the pitch curve.
-    """
-
-    side: str
-    pitch_rho_min_mm: float
-    at_deg: float | None
-    offset_mm: float
-
-    @property
-    def rho_min_mm(self) -> float:
-        """The flank's own smallest convex radius of curvature (mm): the pitch radius less d; negative: undercut."""
-        return self.pitch_rho_min_mm - self.offset_mm
-
-    @property
-    def undercut(self) -> bool:
-        """True where the pitch radius is below d: the offset folds into a loop, the roller cannot follow."""
-        return self.pitch_rho_min_mm < self.offset_mm
+def pitch_rig(spec: CamSpec) -> Rig:
+    """The rig of a grooved cam's pitch curve: the disc cam's, the template's own follower and roller."""
+    return flat_rig(spec, disc_mount(spec.follower, spec.cam.rotation))
 
 
-def flank_checks(cam: Cam, offset: float) -> tuple[Flank, Flank]:
-    """The inner and outer flank checks of a groove ``offset`` mm (Rr + c/2) either side of ``cam``'s pitch curve."""
-    a = analyze(cam)
-    convex_at = a.pitch_rho_min_at_deg if math.isfinite(a.pitch_rho_min_mm) else None
-    inner = Flank("inner", a.pitch_rho_min_mm, convex_at, offset)
-    concave_corners = [i for i, turn in cam.corners() if turn < 0]
-    if concave_corners:
-        at = math.degrees(cam.program.segments[concave_corners[0]].end) % 360.0
-        outer = Flank("outer", 0.0, at, offset)
-    elif a.pitch_concave_rho_min_mm is None:
-        outer = Flank("outer", math.inf, None, offset)
-    else:
-        outer = Flank("outer", a.pitch_concave_rho_min_mm, a.concave_at_deg, offset)
-    return inner, outer
+def island_rig(rig: Rig, clearance: float) -> Rig:
+    """The disc cam the inner flank bounds: the same pitch curve (the same prime radius) with a roller of radius
+    Rr + c/2 (``clearance`` c, mm) on a base circle c/2 smaller (:func:`island_base`), so its surface is the inner
+    flank."""
+    return rig.with_roller(rig.roller_radius + clearance / 2)
 
 
-def largest_roller(spec: CamSpec) -> float | None:
-    """The largest roller radius (mm) neither of whose flanks undercuts, at the spec's base radius and running
-    clearance (the pitch curve grows with the roller: prime radius = base + roller), by bisection; None when even
-    a vanishing roller undercuts (a velocity jump's corner)."""
-    half = spec.cam.running_clearance / 2
+def island_base(base_radius: float, clearance: float) -> float:
+    """The island's base radius (mm): the grooved cam's less c/2 (``clearance`` c), the same prime circle. Refused
+    naming cam.base_radius where that leaves no base circle."""
+    half = clearance / 2
+    if not base_radius > half:
+        raise DesignError(f"cam.base_radius: must be larger than cam.running_clearance / 2 = {half:g} mm, so the "
+                          "inner flank has a base circle")
+    return base_radius - half
+
+
+def largest_roller(rig: Rig, base_radius: float, clearance: float) -> float | None:
+    """The largest roller radius (mm), up to the rig's, neither of whose flanks undercuts on a base circle of
+    ``base_radius`` with a running ``clearance`` (mm; the pitch curve grows with the roller: prime radius = base +
+    roller), by bisection; None when even a vanishing roller undercuts (a velocity jump's corner)."""
+    half = clearance / 2
 
     def margin(rr: float) -> float:
-        inner, outer = flank_checks(build_cam(spec, roller_radius=rr), rr + half)
+        inner, outer = flank_checks(rig.cam(base_radius, rr), rr + half)
         return min(inner.rho_min_mm, outer.rho_min_mm)
 
-    return largest_fitting(spec, margin)
+    return largest_fitting(rig, base_radius, margin)
 
 
-def _undercut_message(spec: CamSpec, cam: Cam, flank: Flank) -> str:
+def _undercut_message(rig: Rig, base_radius: float, clearance: float, cam: Cam, flank: Flank) -> str:
     where = f"undercut of the {flank.side} flank at {flank.at_deg:.2f} degrees: "
     if flank.pitch_rho_min_mm == 0.0:
         sense = 1 if flank.side == "inner" else -1
         jump = next(i for i, turn in cam.corners() if sense * turn > 0)
         corner = "convex" if flank.side == "inner" else "concave"
-        return (f"motion[{spec.moving_segment(jump)}]: " + where + f"the follower velocity jumps there, so the pitch "
+        return (f"motion[{rig.moving_segment(jump)}]: " + where + f"the follower velocity jumps there, so the pitch "
                 f"curve has a {corner} corner that the {flank.side} flank cannot follow; use a law with continuous "
                 "velocity (e.g. modified-uniform) or set cam.allow_undercut = true")
-    best = largest_roller(spec)
+    best = largest_roller(rig, base_radius, clearance)
     fits = (f"the largest roller that fits is {best:.4g} mm" if best is not None
             else "no roller fits this base radius")
     sense = "convex" if flank.side == "inner" else "concave"
@@ -112,39 +88,24 @@ def _undercut_message(spec: CamSpec, cam: Cam, flank: Flank) -> str:
             "cam.base_radius, or set cam.allow_undercut = true)")
 
 
-def island_spec(spec: CamSpec) -> CamSpec:
-    """The disc cam the inner flank bounds: the same pitch curve (the same prime radius) with a roller of radius
-    Rr + c/2, so its surface is the inner flank; the template's hub, motion, follower and output as they are (its
-    design takes the rates alone: the forces are the groove's, :func:`design_grooved`)."""
-    half = spec.cam.running_clearance / 2
-    raw = spec.model_dump(exclude_unset=True)
-    for key in GROOVE_KEYS:
-        raw["cam"].pop(key, None)
-    raw["cam"]["kind"] = "disc"
-    if spec.cam.base_radius != "auto":
-        if not spec.cam.base_radius > half:
-            raise DesignError(f"cam.base_radius: must be larger than cam.running_clearance / 2 = {half:g} mm, so the "
-                              "inner flank has a base circle")
-        raw["cam"]["base_radius"] = spec.cam.base_radius - half
-    raw["follower"]["roller_radius"] = spec.follower.contact_radius + half
-    return validate_spec(raw)
-
-
 @dataclass(frozen=True)
 class GroovedDesign:
     """Everything known about a grooved cam before anything is written (mm, degrees).
 
-    ``spec`` is the template's (its base radius sized when it was ``"auto"``); ``profile`` the island: the disc cam
-    whose surface is the inner flank (pitch curve, analysis, inner outline, holes, marks, warnings); ``outer``
-    and ``cut_outer`` the outer flank as designed and as the cut files carry it; ``part``, ``cut`` and ``printed``
-    the plate with its groove as a :class:`~camgen.core.parts.Pocket`.
+    ``spec`` is the template's (its base radius ``"auto"`` where it was: the size is ``base_radius_mm``);
+    ``profile`` the island: the disc cam whose surface is the inner flank (pitch curve, analysis, inner outline,
+    holes, marks, warnings), as a design of the template with the groove's speed and sizing; ``outer`` and
+    ``cut_outer`` the outer flank as designed and as the cut files carry it; ``part``, ``cut`` and ``printed`` the
+    plate with its groove as a :class:`~camgen.core.parts.Pocket`.
 
     Attributes
     ----------
     spec : CamSpec
-        The template, its base radius sized where it was ``"auto"``.
-    profile : CamDesign
-        The island: the disc cam whose surface is the inner flank.
+        The template as given: its base radius ``"auto"`` where it was sized.
+    profile : FlatCamDesign
+        The island: the disc cam whose surface is the inner flank, with the groove's speed and sizing.
+    base_radius_mm : float
+        The groove's pitch base radius (mm): the template's, or the size chosen for ``"auto"``.
     inner, outer : Flank
         Each flank's undercut check: the pitch curve's least radius bending that flank and where.
     outer_outline, cut_outer : Outline
@@ -158,7 +119,8 @@ class GroovedDesign:
     """
 
     spec: CamSpec
-    profile: CamDesign
+    profile: FlatCamDesign
+    base_radius_mm: float
     inner: Flank
     outer: Flank
     outer_outline: Outline
@@ -202,7 +164,7 @@ class GroovedDesign:
         return self.cut._repr_svg_()
 
     def _repr_html_(self) -> str | None:
-        """Jupyter shows the interactive page, as :meth:`camgen.design.CamDesign._repr_html_` does."""
+        """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.core.page import bundle_frame
         from camgen.grooved.outputs import grooved_bundle
 
@@ -225,7 +187,7 @@ def _plate(spec: CamSpec, island: Part, outer: Outline, radius: float) -> Part:
 def step_plate(design: GroovedDesign) -> Part:
     """The printed plate as the STEP file carries it: both flanks made of biarcs (exact arcs within
     ``output.tolerance`` mm of the exact flanks, measured), whatever ``output.curves`` says, as a disc cam's
-    (:func:`camgen.design.step_part`); an undercut outer flank's envelope keeps its chords."""
+    (:func:`camgen.profile.step_part`); an undercut outer flank's envelope keeps its chords."""
     island, _ = step_part(design.profile)
     cam = design.profile.cam
     outer = (design.outer_outline if design.outer.undercut
@@ -235,27 +197,20 @@ def step_plate(design: GroovedDesign) -> Part:
 
 def size_grooved(spec: CamSpec) -> Sizing:
     """The smallest base radius meeting the pressure-angle limit and ``cam.min_rho_margin`` for the inner flank's
-    convex radius (:func:`camgen.sizing.size_cam` of the island), in the grooved cam's terms: its base radius is
-    c/2 more than the island's."""
-    found = size_cam(island_spec(spec))
-    half = spec.cam.running_clearance / 2
+    convex radius (:func:`camgen.sizing.size_cam` of the island, searched from the template's base radius where it
+    gives one), in the grooved cam's terms: its base radius is c/2 more than the island's."""
+    base, clearance = spec.cam.base_radius, spec.cam.running_clearance
+    near = island_base(base, clearance) if isinstance(base, float) else None
+    half = clearance / 2
+    found = size_cam(island_rig(pitch_rig(spec), clearance), limits_of(spec), near)
     return dataclasses.replace(found, base_radius_mm=found.base_radius_mm + half,
                                pressure_radius_mm=found.pressure_radius_mm + half,
                                curvature_radius_mm=found.curvature_radius_mm + half)
 
 
-def _sized(spec: CamSpec, island: CamSpec) -> tuple[CamSpec, CamSpec, Sizing | None]:
-    """With ``base_radius = "auto"``: both specs at the size :func:`size_grooved` finds, and that sizing."""
-    if spec.cam.base_radius != "auto":
-        return spec, island, None
-    sizing = size_grooved(spec)
-    half = spec.cam.running_clearance / 2
-    return (with_base_radius(spec, sizing.base_radius_mm), with_base_radius(island, sizing.base_radius_mm - half),
-            sizing)
-
-
 def design_grooved(spec: CamSpec) -> GroovedDesign:
-    """Build, check and outline the grooved cam ``spec`` describes.
+    """Build, check and outline the grooved cam ``spec`` describes (sized first where ``cam.base_radius =
+    "auto"``, :func:`size_grooved`; the spec keeps ``"auto"``, the size is ``design.base_radius_mm``).
 
     Parameters
     ----------
@@ -275,27 +230,34 @@ def design_grooved(spec: CamSpec) -> GroovedDesign:
         that flank is then the envelope a cutter of the roller's size leaves); a kerf that closes the groove
         (naming ``output.kerf``); a bore or holes that leave no material inside the inner flank.
     """
-    spec, island, sizing = _sized(spec, island_spec(spec))
-    cam = build_cam(island)
+    rig, clearance = pitch_rig(spec), spec.cam.running_clearance
+    base, sizing = spec.cam.base_radius, None
+    if not isinstance(base, float):
+        sizing = size_grooved(spec)
+        base = sizing.base_radius_mm
+    inside, inner_base = island_rig(rig, clearance), island_base(base, clearance)
+    cam = inside.cam(inner_base)
     d = cam.contact_radius
     inner, outer = flank_checks(cam, d)
     for flank in (inner, outer):
         if flank.undercut and not spec.cam.allow_undercut:
-            raise DesignError(_undercut_message(spec, cam, flank))
+            raise DesignError(_undercut_message(rig, base, clearance, cam, flank))
     out = spec.output
     if out.kerf >= 2 * d:
         raise DesignError(f"output.kerf: a kerf of {out.kerf:g} mm closes the groove ({2 * d:g} mm wide); the kerf "
                           "must be narrower than the groove")
-    profile = dataclasses.replace(design_profile(island, rates_only=True), sizing=sizing)  # forces: the groove's
-    if profile.speed is not None and spec.follower.mass is not None:
+    cut = design_profile(inside, inner_base, Body.of(spec.name, spec.cam, spec.hub), Finish.of(out),
+                         spec.cam.allow_undercut, pressure_limit(spec))
+    speed = rates(cut.cam, spec.cam.rpm, parabolic_ratios(spec.motion))      # forces: the groove's, not a spring's
+    if speed is not None and spec.follower.mass is not None:
         f, depth = spec.follower, spec.cam.groove_depth
         walls = None if spec.cam.material is None else (      # the flanks roller + clearance / 2 off the pitch curve
             Contact(spec.cam.material, f.material, min(depth, f.roller_width or depth)), inner.offset_mm,
             f.roller_radius)
         # the island's cam: the same pitch curve, arm
-        speed = {**profile.speed, **drive_speed(spec, cam, ("inner flank", "outer flank"), walls)}
-        profile = dataclasses.replace(profile, speed=speed)
-    curves = "polylines" if out.dxf == "segments" else out.curves
+        speed = {**speed, **drive_speed(spec, cam, ("inner flank", "outer flank"), walls)}
+    profile = FlatCamDesign.of(cut, spec, speed, sizing)
+    curves = cut.finish.outline_curves
 
     def outer_flank(grow: float) -> Outline:      # the outer flank with its material grown by ``grow`` mm
         offset = 2 * d - grow                     # the island's surface lies d inside the pitch curve: 2 d out
@@ -309,7 +271,7 @@ def design_grooved(spec: CamSpec) -> GroovedDesign:
     if outer.undercut:
         warnings += (f"undercut allowed: the outer flank is the cutter's envelope, and near {outer.at_deg:.2f} degrees "
                      "the follower does not follow the motion law",)
-    return GroovedDesign(spec, profile, inner, outer, nominal, cut_outer, radius,
+    return GroovedDesign(spec, profile, base, inner, outer, nominal, cut_outer, radius,
                          _plate(spec, profile.part, nominal, radius),
                          _plate(spec, profile.cut, cut_outer, radius + out.kerf / 2),
                          _plate(spec, profile.printed, nominal, radius), warnings)

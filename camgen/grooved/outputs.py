@@ -15,7 +15,8 @@ import numpy as np
 from camgen.core.bundle import Bundle
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.solids import volume_check
-from camgen.grooved.design import Flank, GroovedDesign, step_plate
+from camgen.groove import Flank
+from camgen.grooved.design import GroovedDesign, step_plate
 from camgen.outputs import cam_files, printed_mesh
 from camgen.page import cam_page
 from camgen.report import cam_report
@@ -53,7 +54,7 @@ def grooved_report(design: GroovedDesign, mesh: Any = None, volume: dict | None 
     t, profile = design.spec, design.profile
     report = cam_report(profile, mesh)
     d, kerf = design.offset_mm, t.output.kerf
-    report["cam"].update({"kind": "grooved", "base_radius_mm": t.cam.base_radius,
+    report["cam"].update({"kind": "grooved", "base_radius_mm": design.base_radius_mm,
                           "groove_depth_mm": t.cam.groove_depth, "running_clearance_mm": t.cam.running_clearance,
                           "groove_width_mm": round(2 * d, 12), "rim_mm": t.cam.rim,
                           "plate_diameter_mm": round(2 * design.plate_radius_mm, 9)})

@@ -7,12 +7,12 @@ a plate cam's of travel 2 pi Rm, so the pressure angle is atan(s' / Rm); see :mo
 """
 from __future__ import annotations
 
-import itertools
+import dataclasses
 import math
 from typing import Any
 
-from camgen.core.features import KEYS
-from camgen.followers.barrel import Arm, DevelopedRoller
+from camgen.core.features import KEYS, bore_reach
+from camgen.followers.barrel import BarrelGeometry, DevelopedRoller
 from camgen.followers.plate import PlateRoller
 from camgen.kinds.base import BARREL_KEYS, CamKind
 
@@ -23,60 +23,15 @@ _NOT_USED = {"base_radius": "pitch_radius", "thickness": "length", "travel": "le
 _FOLLOWER_NOT_USED = ("offset", "spring_rate", "preload", "contact_margin", "roller_width")
 
 
-def _levels(spec: Any) -> list[float]:
-    """The program's levels at the segments' ends (mm, or degrees of swing), from 0."""
-    steps = [seg.lift if seg.type == "rise" else -seg.lift if seg.type == "return" else 0.0 for seg in spec.motion]
-    return [0.0, *itertools.accumulate(steps)]
+def geometry(spec: Any) -> BarrelGeometry:
+    """The barrel's geometry from the template's tables (:class:`~camgen.followers.barrel.BarrelGeometry`)."""
+    return BarrelGeometry.of(spec.cam, spec.follower, spec.motion)
 
 
-def swing(spec: Any) -> float:
-    """The follower's whole travel (mm), or an arm's whole swing (degrees)."""
-    levels = _levels(spec)
-    return max(levels) - min(levels)
-
-
-def rest_height(spec: Any) -> float:
-    """z0 (mm): the roller centre's height at s = 0, putting the program's travel mid-length; for an arm, its
-    pivot's height, mid-length (the arm square to the cam's axis at mid-swing puts the stroke there)."""
-    if spec.follower.oscillating:
-        return spec.cam.length / 2
-    heights = _levels(spec)
-    return (spec.cam.length - max(heights) - min(heights)) / 2
-
-
-def taper(spec: Any) -> float:
-    """How fast the roller's radius grows along its axis: Rr / Rm for a conical roller (its apex where its axis
-    passes nearest the cam's axis, its radius Rr on the pitch cylinder), 0 for a cylindrical one."""
-    return spec.follower.roller_radius / spec.cam.pitch_radius if spec.follower.roller_shape == "conical" else 0.0
-
-
-def cutter(spec: Any) -> float:
-    """The radius (mm) the groove is cut with on the pitch cylinder: Rw = Rr + c/2 for a cylindrical roller, for a
-    conical one Rr + c/2 / cos(half-angle) (the cone grown by c/2 square to its surface)."""
-    if spec.follower.roller_shape == "conical":
-        return spec.follower.roller_radius + spec.cam.running_clearance / 2 * math.hypot(1.0, taper(spec))
-    return spec.follower.roller_radius + spec.cam.running_clearance / 2
-
-
-def cutter_at(spec: Any, radius: float) -> float:
-    """The cutter's radius (mm) where its axis is ``radius`` from the cam's axis (about: the axis passes the cam's
-    by the chordal error at most): the same at every radius for a cylindrical roller."""
-    return cutter(spec) + taper(spec) * (radius - spec.cam.pitch_radius)
-
-
-def arm(spec: Any) -> Arm | None:
-    """The arm of an oscillating roller (None for a translating one)."""
-    if not spec.follower.oscillating:
-        return None
-    f = spec.follower
-    return Arm(f.arm_length, f.pivot_distance, swing(spec) / 2, rest_height(spec),
-               1 if spec.cam.rotation == "ccw" else -1)
-
-
-def _check_arm(spec: Any, room: float, rw: float) -> None:
+def _check_arm(spec: Any, g: BarrelGeometry, room: float, rw: float) -> None:
     """An arm's swing, stroke and chordal error fit the cylinder and the groove: ``room`` (mm) is how far the roller's
     axis may pass the cam's axis (the floor's radius less the cutter's there), ``rw`` the groove's half-width."""
-    f, turn = spec.follower, swing(spec)
+    f, turn = spec.follower, g.swing
     if not turn < 180:
         raise ValueError(f"motion: an arm on a barrel cam swings less than 180 degrees in all (got {turn:.6g})")
     stroke = 2 * f.arm_length * math.sin(math.radians(turn / 2))
@@ -128,24 +83,18 @@ def _check(spec: Any) -> None:
     if follower.roller_shape == "conical" and not follower.roller_radius < cam.pitch_radius:
         raise ValueError(f"follower.roller_radius: a conical roller's must be < cam.pitch_radius = "
                          f"{cam.pitch_radius:g} mm, its apex on the cam's axis (got {follower.roller_radius:g})")
-    _check_floor(spec, floor)
-    _check_bore(spec, floor)
-    widest = cutter_at(spec, cam.pitch_radius + cam.groove_depth / 2)          # the groove's half-width at the rim
-    if _rib(spec, widest):
+    g = geometry(spec)
+    _check_floor(spec, g, floor)
+    _check_bore(spec, g, floor)
+    widest = g.cutter_at(cam.pitch_radius + cam.groove_depth / 2)          # the groove's half-width at the rim
+    if _rib(spec, g, widest):
         return
     if follower.oscillating:
-        _check_arm(spec, floor - cutter_at(spec, floor), widest)
-    elif not rest_height(spec) > widest:
-        travel = cam.length - 2 * rest_height(spec)
+        _check_arm(spec, g, floor - g.cutter_at(floor), widest)
+    elif not g.rest_height > widest:
+        travel = cam.length - 2 * g.rest_height
         raise ValueError(f"cam.length: must be > {travel + 2 * widest:.6g} mm, the follower's travel and the groove's "
                          f"width (got {cam.length:g})")
-
-
-def _floor_room(spec: Any) -> float:
-    """The least radius (mm) of the groove's floor (a rib's core) that holds the cutter: its radius there, r0 +
-    taper r, below r: Rw for a cylindrical roller, r0 / (1 - taper) for a cone."""
-    rw, t = cutter(spec), taper(spec)
-    return rw if not t else (rw - t * spec.cam.pitch_radius) / (1 - t)
 
 
 def _limit(fits: Any, good: float, bad: float) -> float:
@@ -157,26 +106,21 @@ def _limit(fits: Any, good: float, bad: float) -> float:
     return good
 
 
-def _changed(spec: Any, table: str, **values: float) -> Any:
-    """The spec with ``values`` in its ``table`` (unchecked: only to measure what they would do)."""
-    return spec.model_copy(update={table: getattr(spec, table).model_copy(update=values)})
-
-
-def _check_floor(spec: Any, floor: float) -> None:
+def _check_floor(spec: Any, g: BarrelGeometry, floor: float) -> None:
     """The groove's floor (a rib's core) wider than the cutter there. Refused naming cam.groove_depth (with the pitch
     radius that would do); where no depth will do (the roller as wide as the pitch cylinder), follower.roller_radius;
     where no roller will do either, cam.pitch_radius."""
     cam, follower = spec.cam, spec.follower
-    least = _floor_room(spec)
+    least = g.floor_room
     if floor > least:
         return
     what = "the rib's core" if cam.barrel_form == "rib" else "the groove's floor"
 
     def fits_pitch(radius: float) -> bool:
-        return radius - cam.groove_depth / 2 > _floor_room(_changed(spec, "cam", pitch_radius=radius))
+        return radius - cam.groove_depth / 2 > dataclasses.replace(g, pitch_radius=radius).floor_room
 
     def fits_roller(radius: float) -> bool:
-        return floor > _floor_room(_changed(spec, "follower", roller_radius=radius))
+        return floor > dataclasses.replace(g, roller_radius=radius).floor_room
 
     pitch = _limit(fits_pitch, 2 * cam.pitch_radius + cam.groove_depth + 4 * least, cam.pitch_radius)
     if cam.pitch_radius > least:
@@ -190,17 +134,6 @@ def _check_floor(spec: Any, floor: float) -> None:
                          f"{follower.roller_radius:g})")
     raise ValueError(f"cam.pitch_radius: must be > {pitch:.6g} mm, so {what} (cam.pitch_radius - groove_depth / 2 "
                      f"from the axis) holds the roller, {least:.6g} mm there (got {cam.pitch_radius:g})")
-
-
-def bore_reach(spec: Any, bore: float) -> float:
-    """How far (mm) from the axis a bore of diameter ``bore`` reaches as printed: its radius grown by
-    output.clearance / 2, and with hub.keyway its key's seat t2 (DIN 6885-1) further; 0 for no bore."""
-    if not bore:
-        return 0.0
-    seat = 0.0
-    if spec.hub.keyway:
-        seat = next((t2 for _, high, _, t2 in KEYS if bore <= high), KEYS[-1][3])
-    return bore / 2 + spec.output.clearance / 2 + seat
 
 
 def _largest_bore(spec: Any, floor: float) -> tuple[float, bool]:
@@ -218,13 +151,13 @@ def _largest_bore(spec: Any, floor: float) -> tuple[float, bool]:
     return best
 
 
-def _check_bore(spec: Any, floor: float) -> None:
+def _check_bore(spec: Any, g: BarrelGeometry, floor: float) -> None:
     """The bore as printed (grown by output.clearance / 2, with its keyway's seat where hub.keyway is set) inside
     the groove's floor (a rib's core). Refused naming cam.bore with the largest bore that leaves material there, and
     the depth of groove that would; where no bore will do, hub.keyway (no keyed bore fits) or output.clearance (the
     clearance alone reaches the floor). A thin wall is the design's warning."""
     cam = spec.cam
-    reach = bore_reach(spec, cam.bore)
+    reach = bore_reach(cam.bore, spec.hub.keyway, spec.output.clearance)
     if reach < floor:
         return
     what = "the rib's core" if cam.barrel_form == "rib" else "the groove's floor"
@@ -239,21 +172,14 @@ def _check_bore(spec: Any, floor: float) -> None:
                          f"the keyway out (a plain bore must be < {plain:.6g} mm)")
     deeper = 2 * (cam.pitch_radius - reach)
     also = (f"; or cam.groove_depth < {deeper:.6g} mm" if deeper > 0 and cam.pitch_radius - deeper / 2 >
-            _floor_room(spec) else "")
+            g.floor_room else "")
     seat = ", and its keyway's seat" if spec.hub.keyway else ""
     limit = f"at most {most:.6g}" if inclusive else f"< {most:.6g}"
     raise ValueError(f"cam.bore: must be {limit} mm, so the bore (its radius grown by output.clearance / 2{seat}: "
                      f"{reach:.6g} mm from the axis) stays inside {where} (got {cam.bore:g}){also}")
 
 
-def rib_span(spec: Any) -> float | None:
-    """A rib's rollers' centres' half-distance g (mm): half the rib's width, the roller's radius and half the
-    running clearance (the rib's walls are the rollers' envelopes at Rw = Rr + c/2 from their axes); None for a
-    groove."""
-    return None if spec.cam.barrel_form != "rib" else spec.cam.rib_width / 2 + cutter(spec)
-
-
-def _rib(spec: Any, rw: float) -> bool:
+def _rib(spec: Any, g: BarrelGeometry, rw: float) -> bool:
     """A rib's keys checked (True), or False for a groove: its width given, a translating cylindrical roller, and
     the length holding the rib and both rollers (``rw`` the rollers' reach beyond their axes)."""
     cam, follower = spec.cam, spec.follower
@@ -267,8 +193,9 @@ def _rib(spec: Any, rw: float) -> bool:
     if follower.oscillating or follower.roller_shape != "cylindrical":
         raise ValueError("cam.barrel_form: a rib takes a translating-roller follower with cylindrical rollers (got "
                          f"{follower.type}, {follower.roller_shape})")
-    travel = cam.length - 2 * rest_height(spec)
-    need = travel + 2 * (rib_span(spec) + rw)
+    travel, span = cam.length - 2 * g.rest_height, g.rib_span
+    assert span is not None                         # a rib with its width: its span is known
+    need = travel + 2 * (span + rw)
     if not cam.length > need:
         raise ValueError(f"cam.length: must be > {need:.6g} mm, the follower's travel, the rib and both rollers "
                          f"(got {cam.length:g})")
@@ -276,12 +203,11 @@ def _rib(spec: Any, rw: float) -> bool:
 
 
 def _follower(spec: Any, base_radius: Any, roller_radius: float) -> PlateRoller | DevelopedRoller:
-    """The developed pitch curve on the pitch cylinder: a plate cam of travel 2 pi Rm whose roller centre runs at
-    z0 + s, or where an arm's roller's axis pierces the pitch cylinder."""
-    if spec.follower.oscillating:
-        return DevelopedRoller(arm(spec), spec.cam.pitch_radius, cutter(spec) - taper(spec) * spec.cam.pitch_radius,
-                               taper(spec))
-    return PlateRoller(rest_height(spec) - roller_radius, roller_radius, 2 * math.pi * spec.cam.pitch_radius)
+    """The developed pitch curve on the pitch cylinder (:meth:`~camgen.followers.barrel.BarrelGeometry.developed`):
+    a plate cam of travel 2 pi Rm whose roller centre runs at z0 + s, or where an arm's roller's axis pierces the
+    pitch cylinder. A barrel has no base radius: the developed plate's height under the roller is z0 - Rr."""
+    g = geometry(spec)
+    return g.developed(g.rest_height - roller_radius, roller_radius)
 
 
 KIND = CamKind("barrel", FOLLOWERS, _check, _follower, "camgen.barrel.design:design_barrel",

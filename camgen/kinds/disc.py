@@ -5,6 +5,7 @@ from typing import Any
 
 from camgen.followers import FOLLOWERS
 from camgen.kinds.base import GROOVE_KEYS, GROOVED, CamKind, flat_body, refuse_keys
+from camgen.rig import disc_mount
 
 
 def _check(spec: Any) -> None:
@@ -15,8 +16,8 @@ def _check(spec: Any) -> None:
 
 
 def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
-    sense = 1 if spec.cam.rotation == "ccw" else -1
-    return FOLLOWERS[spec.follower.type].make(spec.follower, base_radius, roller_radius, sense)
+    """The follower on a disc of ``base_radius`` with a roller of ``roller_radius`` (mm): the disc's mount's."""
+    return disc_mount(spec.follower, spec.cam.rotation).at(base_radius, roller_radius)
 
 
-KIND = CamKind("disc", tuple(FOLLOWERS), _check, _follower, "camgen.design:design_profile", "camgen.outputs:cam_bundle")
+KIND = CamKind("disc", tuple(FOLLOWERS), _check, _follower, "camgen.flat:design_disc", "camgen.outputs:cam_bundle")

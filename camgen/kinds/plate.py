@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from camgen.followers.plate import PlateRoller
 from camgen.kinds.base import GROOVE_KEYS, GROOVED, CamKind, flat_body, refuse_keys
+from camgen.rig import plate_mount
 
 FOLLOWERS = ("translating-roller", "knife-edge")
 
@@ -28,7 +28,8 @@ def _check(spec: Any) -> None:
 
 
 def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
-    return PlateRoller(base_radius, roller_radius, spec.cam.travel)
+    """The roller over a plate ``base_radius`` mm high (the plate's mount's)."""
+    return plate_mount(spec.follower, spec.cam.travel).at(base_radius, roller_radius)
 
 
-KIND = CamKind("plate", FOLLOWERS, _check, _follower, "camgen.design:design_profile", "camgen.outputs:cam_bundle")
+KIND = CamKind("plate", FOLLOWERS, _check, _follower, "camgen.flat:design_plate", "camgen.outputs:cam_bundle")

@@ -1,4 +1,11 @@
-"""A cam design from a spec: the cam, its checks, its outline and its part. No I/O."""
+"""A cam cut to a profile (a disc or a plate), from domain objects: the :class:`~camgen.rig.Rig` at a base radius,
+the :class:`Body` it is cut into and the :class:`Finish` it is made to; its checks, its outline and its parts. No
+spec, no sizing, no speed (those are the kinds', see :mod:`camgen.flat`), no I/O.
+
+A grooved cam's island (its inner flank, :mod:`camgen.grooved.design`) is such a profile too, and a conjugate
+pair's members are assembled from the same pieces (:func:`outline_body`, :func:`check_holes`,
+:func:`engraving`, :class:`ProfileMaker`).
+"""
 from __future__ import annotations
 
 import dataclasses
@@ -12,40 +19,84 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from camgen.analysis import CamAnalysis, analysis_maker, face_extent, largest_roller
-from camgen.cam import Cam, Maker, build_cam
-from camgen.core.errors import DesignError, SpecError
+from camgen.cam import Cam, Maker
+from camgen.core.errors import DesignError
 from camgen.outline import Outline, envelope_outline, exact_outline, outline_maker, quietly
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
 from camgen.kinds import kind_of
 from camgen.program import Jump
-from camgen.sizing import Sizing, pressure_limit, size_cam, smallest_for_curvature
-from camgen.spec import CamSpec, with_base_radius
+from camgen.rig import Rig
+from camgen.sizing import smallest_for_curvature
+from camgen.spec import CamSpec
 
 if TYPE_CHECKING:
     from camgen.flat_envelope import FaceLeaves, FlatEnvelope
     from camgen.geneva.spec import GenevaSpec
+    from camgen.spec import HubTable, OutputTable
 
 #: thinnest wall between the bore and the outline before a warning (mm)
 THIN_WALL = 2.0
 
 
 @dataclass(frozen=True)
-class CamDesign:
-    """Everything known about one cam before anything is written (made by :func:`design_cam`).
+class Body:
+    """The flat part a profile is cut into: its ``name``, ``thickness`` and ``bore`` (diameter, 0 for none; mm),
+    its ``hub`` features (keyway, boss, set screw, bolt holes: :class:`~camgen.spec.HubTable`) and whether it is
+    ``engraved`` with its name, the sense of motion and a theta = 0 tick."""
+
+    name: str
+    thickness: float
+    bore: float
+    hub: HubTable
+    engraved: bool
+
+    @classmethod
+    def of(cls, name: str, cam: Any, hub: HubTable) -> Body:
+        """The body a template's ``name``, ``[cam]`` table (its thickness and bore) and ``[hub]`` table give."""
+        return cls(name, cam.thickness, cam.bore, hub, hub.engrave)
+
+
+@dataclass(frozen=True)
+class Finish:
+    """How the parts are made: every curve within ``tolerance`` mm, curved stretches as ``curves`` ("polylines"
+    or "biarcs"), the ``allowances`` of the laser's kerf and the printer's clearance, and the DXF flavour ``dxf``
+    ("segments" writes every arc as chords)."""
+
+    tolerance: float
+    curves: str
+    allowances: Allowances
+    dxf: str
+
+    @classmethod
+    def of(cls, output: OutputTable) -> Finish:
+        """The finish a template's ``[output]`` table asks for."""
+        return cls(output.tolerance, output.curves, Allowances(kerf=output.kerf, clearance=output.clearance,
+                                                               kerf_field="output.kerf",
+                                                               elephant_foot=output.elephant_foot), output.dxf)
+
+    @property
+    def outline_curves(self) -> str:
+        """How the outline's curved stretches are made: biarcs only where the DXF keeps arcs (the segments flavour
+        writes every arc as chords, so it gets chords measured against the surface instead)."""
+        return "polylines" if self.dxf == "segments" else self.curves
+
+
+@dataclass(frozen=True)
+class Profile:
+    """Everything known about a cam cut to a profile before anything is written (made by :func:`design_profile`).
 
     Lengths in mm, angles in degrees unless a name says otherwise; the cam centre is the origin, the follower on +Y
     at theta = 0 (see :doc:`/guides/conventions`).
 
     Attributes
     ----------
-    spec : CamSpec
-        The validated template: ``design.spec.cam.base_radius`` is the base radius as given (``"auto"`` when
-        sized: the size chosen is ``design.cam.base_radius``).
+    body, finish : Body, Finish
+        The part it is cut into and how it is made.
     cam : Cam
-        The kinematic cam: its program (``cam.program``), follower (``cam.follower``), ``base_radius``,
-        ``thickness`` and ``bore`` (mm), and the pitch geometry at any cam angles (``cam.pitch(theta)``, radians).
+        The kinematic cam: its program (``cam.program``), follower (``cam.follower``) and ``base_radius`` (mm), and
+        the pitch geometry at any cam angles (``cam.pitch(theta)``, radians).
     analysis : CamAnalysis
         The checks' extremes over the turn: ``pressure_angle_max_deg`` and where, the least convex radii of the
         pitch curve and the cam surface (``pitch_rho_min_mm``, ``profile_rho_min_mm``), the concave ones, and
@@ -54,7 +105,7 @@ class CamDesign:
         Where velocity, acceleration or jerk jump at a segment boundary (each reported as infinite acceleration or
         jerk).
     outline : Outline
-        The nominal outline: the exact cam surface as lines and arcs within ``output.tolerance``, with its measured
+        The nominal outline: the exact cam surface as lines and arcs within the tolerance, with its measured
         ``max_error_mm``.
     part : Part
         The nominal flat part: that outline, the bore and holes, the thickness.
@@ -62,23 +113,18 @@ class CamDesign:
         The outline and part as the cut files carry them: the surface moved out by half the kerf, holes shrunk.
     printed : Part
         The part as printed: holes opened by the printing clearance.
-    allowances : Allowances
-        The kerf and clearance applied (mm).
     warnings : tuple of str
-        The design's warnings, as the console prints them.
+        The profile's warnings, as the console prints them.
     pressure_limit_deg : float
-        The pressure-angle limit the checks and sizing used.
+        The pressure-angle limit the checks used.
     face_extent : tuple of float, or None
         Flat faces: the nearest and farthest contact along the face (mm).
-    speed : dict or None
-        With ``cam.rpm``: peak velocity, acceleration and jerk in time, and the contact check.
-    sizing : Sizing or None
-        With ``base_radius = "auto"``: what decided the size, and the size.
     face_leaves : tuple of FaceLeaves, or None
-        A flat face with its folds cut off (``cam.allow_undercut``): where the law's face leaves the cut cam.
+        A flat face with its folds cut off (an allowed undercut): where the law's face leaves the cut cam.
     """
 
-    spec: CamSpec
+    body: Body
+    finish: Finish
     cam: Cam
     analysis: CamAnalysis
     jumps: tuple[Jump, ...]
@@ -87,12 +133,9 @@ class CamDesign:
     cut_outline: Outline       # the outline the cut files carry: the surface moved out by half the kerf
     cut: Part                  # the part as cut: that outline, holes shrunk by half the kerf
     printed: Part              # the part as printed: holes opened by the clearance
-    allowances: Allowances
     warnings: tuple[str, ...]
     pressure_limit_deg: float
     face_extent: tuple[float, float] | None       # flat faces: nearest and farthest contact along the face (mm)
-    speed: dict[str, Any] | None                  # with cam.rpm: peak rates and the contact check
-    sizing: Sizing | None = None
     face_leaves: tuple[FaceLeaves, ...] | None = None
     #: :attr:`wall_mm` where the design's checks measured it already (mm); None: measured when first read
     measured_wall_mm: float | None = dataclasses.field(default=None, repr=False, compare=False)
@@ -105,42 +148,40 @@ class CamDesign:
         whether it is under :data:`THIN_WALL`, which bounds often tell without measuring)."""
         if self.measured_wall_mm is not None:
             return self.measured_wall_mm
-        return _reach(_body(self.outline, self.tolerance)) - self.spec.cam.bore / 2.0
+        return reach(outline_body(self.outline, self.tolerance)) - self.body.bore / 2.0
+
+    @property
+    def allowances(self) -> Allowances:
+        """The kerf and clearance applied (mm)."""
+        return self.finish.allowances
 
     @property
     def written_error_mm(self) -> float:
         """A bound (mm) on the distance of the cut file's outline from the exact surface, as written: the
         outline's measured bound, or where the DXF flavour writes chords only (its outline then has no biarcs,
         just exact arcs) the larger of that and the chords' distance from those arcs."""
-        chords = self.cut_outline.contour.flatten_error(self.tolerance) if self.spec.output.dxf == "segments" else 0
+        chords = self.cut_outline.contour.flatten_error(self.tolerance) if self.finish.dxf == "segments" else 0
         return max(self.cut_outline.max_error_mm, chords)
 
     @property
     def tolerance(self) -> float:
         """The chord tolerance (mm) every curve of this design was made to."""
-        return self.spec.output.tolerance
+        return self.finish.tolerance
 
     def _repr_svg_(self) -> str:
         """Jupyter shows the cam as it will be cut."""
         return self.cut._repr_svg_()
 
-    def _repr_html_(self) -> str | None:
-        """Jupyter shows the design's interactive page inline, as its html file holds it (without links to files);
-        none when ``output.formats`` leaves out html."""
-        from camgen.core.page import bundle_frame
 
-        return bundle_frame(kind_of(self.spec.cam.kind).bundler()(self)[0])
-
-
-def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
+def _undercut_message(rig: Rig, cam: Cam, a: CamAnalysis) -> str:
     if cam.follower.flat and math.isinf(a.profile_rho_min_mm):
         fold = next(i for i, step in cam.steps() if step < 0)
-        return (f"motion[{spec.moving_segment(fold)}]: cusp at {a.pitch_rho_min_at_deg:.4g} degrees: the follower "
+        return (f"motion[{rig.moving_segment(fold)}]: cusp at {a.pitch_rho_min_at_deg:.4g} degrees: the follower "
                 "velocity drops there, so the profile folds back on itself and no flat face can follow it; use a law "
                 "with continuous velocity (e.g. modified-uniform or cycloidal), or set cam.allow_undercut = true to "
                 "cut the fold off (the follower then leaves the law there)")
     if cam.follower.flat:
-        smallest = smallest_for_curvature(spec)
+        smallest = smallest_for_curvature(rig, near=cam.base_radius)
         return (f"cusp at {a.pitch_rho_min_at_deg:.2f} degrees: the profile's radius of curvature falls to "
                 f"{a.profile_rho_min_mm:.4g} mm, so the flat face cannot follow the law there; the smallest "
                 f"cam.base_radius that works is {smallest:.4g} mm (or set cam.allow_undercut = true to cut the fold "
@@ -150,10 +191,10 @@ def _undercut_message(spec: CamSpec, cam: Cam, a: CamAnalysis) -> str:
     where = f"undercut at {a.pitch_rho_min_at_deg:.2f} degrees: "
     if corner:
         jump = next(i for i, turn in cam.corners() if turn > 0)
-        return (f"motion[{spec.moving_segment(jump)}]: " + where + "the follower velocity jumps there, so the pitch "
+        return (f"motion[{rig.moving_segment(jump)}]: " + where + "the follower velocity jumps there, so the pitch "
                 "curve has a convex corner that no roller can follow; use a law with continuous velocity (e.g. "
                 "modified-uniform) or set cam.allow_undercut = true")
-    best = largest_roller(spec)
+    best = largest_roller(rig, cam.base_radius)
     fits = (f"the largest roller that fits is {best:.4g} mm" if best is not None
             else "no roller fits this base radius")
     return (where + f"the pitch curve's radius of curvature is {a.pitch_rho_min_mm:.4g} mm, smaller than "
@@ -173,8 +214,8 @@ def design_cam(spec: CamSpec | GenevaSpec) -> Any:
     Returns
     -------
     object
-        A disc or plate cam's :class:`CamDesign`; a grooved cam's, a barrel's, a conjugate pair's or a Geneva
-        drive's own design, which :func:`camgen.outputs.write_cam` writes alike.
+        A disc or plate cam's :class:`~camgen.flat.FlatCamDesign`; a grooved cam's, a barrel's, a conjugate pair's or
+        a Geneva drive's own design, which :func:`camgen.outputs.write_cam` writes alike.
 
     Raises
     ------
@@ -189,38 +230,35 @@ def design_cam(spec: CamSpec | GenevaSpec) -> Any:
     return kind_of(spec.cam.kind).designer()(spec)
 
 
-def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
-    """Build, check and outline a cam cut to a profile (a disc or a plate) as ``spec`` describes; ``rates_only``
-    leaves the follower's contact and forces out of its speed (a grooved cam's island: the groove's are its own).
+def design_profile(rig: Rig, base_radius: float, body: Body, finish: Finish, allow_undercut: bool,
+                   pressure_limit: float) -> Profile:
+    """Build, check and outline the cam ``rig`` makes on a base circle of ``base_radius`` mm (a plate's height
+    under its profile), cut into ``body`` and made to ``finish``; ``pressure_limit`` (degrees) is the limit its
+    warning names. No sizing (the base radius is given) and no speed: those are the kind's (:mod:`camgen.flat`).
 
-    Raises :class:`DesignError` for an undercut (unless ``cam.allow_undercut``: a roller's
-    cam is then the cutter's envelope, a flat face's the envelope of its lines with the folds cut
-    off, see :mod:`camgen.flat_envelope`) and for a bore that leaves no material. ``base_radius =
-    "auto"`` is first replaced by the smallest that meets the limits (see
-    :mod:`camgen.sizing`).
+    Raises :class:`DesignError` for an undercut (unless ``allow_undercut``: a roller's cam is then the cutter's
+    envelope, a flat face's the envelope of its lines with the folds cut off, see :mod:`camgen.flat_envelope`) and
+    for a bore or holes that leave no material. Messages name the template's keys (``cam.base_radius``,
+    ``follower.roller_radius``, ``cam.bore``, ``hub.bolt_circle``, ``output.clearance``, ``hub.engrave``).
     """
-    sizing = None
-    if spec.cam.base_radius == "auto":
-        sizing = size_cam(spec)
-        spec = with_base_radius(spec, sizing.base_radius_mm)
-    cam = build_cam(spec)
-    tol = spec.output.tolerance
+    cam = rig.cam(base_radius)
+    tol, curves = finish.tolerance, finish.outline_curves
     # the analysis and the exact outline from the same evaluations (one a round); the outline is kept only where
     # it is the one the cam needs (no undercut, no corner of a knife edge), and so are its errors
-    a, exact = cam.serve([analysis_maker(cam), _tentative(outline_maker(cam, tol, _curves(spec)))])
-    if a.undercut and not spec.cam.allow_undercut:
-        raise DesignError(_undercut_message(spec, cam, a))
+    a, exact = cam.serve([analysis_maker(cam), _tentative(outline_maker(cam, tol, curves))])
+    if a.undercut and not allow_undercut:
+        raise DesignError(_undercut_message(rig, cam, a))
     corners = cam.corners()
     sharp = [i for i, turn in corners if turn > 0]
-    if sharp and cam.contact_radius == 0 and not spec.cam.allow_undercut:
+    if sharp and cam.contact_radius == 0 and not allow_undercut:
         at = math.degrees(cam.program.segments[sharp[0]].end) % 360.0
-        raise DesignError(f"motion[{spec.moving_segment(sharp[0])}]: the follower velocity jumps at {at:.4g} "
+        raise DesignError(f"motion[{rig.moving_segment(sharp[0])}]: the follower velocity jumps at {at:.4g} "
                           "degrees, a sharp corner in the profile where the knife edge's pressure angle jumps; use a "
                           "law with continuous velocity (e.g. modified-uniform), or set cam.allow_undercut = true "
                           "to cut the corner as it is")
     # a knife edge's corners make corners in every offset too: the noded envelope trims and rounds them exactly
     envelope = a.undercut or (cam.contact_radius == 0 and bool(corners))
-    cut_off = _flat_envelope(cam, tol, _curves(spec)) if cam.follower.flat and a.undercut else None
+    cut_off = _flat_envelope(cam, tol, curves) if cam.follower.flat and a.undercut else None
     if cut_off is not None:
         outline = cut_off.outline(0.0)
     else:
@@ -231,39 +269,28 @@ def design_profile(spec: CamSpec, rates_only: bool = False) -> CamDesign:
     # the bore and the holes: where bounds make the checks certain (and no marks are to be fitted), nothing more;
     # else shapely on the outline's chords (the same checks, the same errors) and the wall measured
     wall = None                                         # certainly at least THIN_WALL
-    holes = _holes(spec, 0.0)
-    if spec.hub.engrave or not _certainly_clear(spec, holes, outline.contour, tol):
-        body = _body(outline, tol)
-        reach = _reach(body)
-        wall = reach - spec.cam.bore / 2.0
-        _check_bore(spec, body, reach)
-        _check_holes(spec, body, tol)
-    check_opened_holes(spec, outline, tol)
-    marks = _engraving(spec, cam, body, reach) if spec.hub.engrave else ()
-    profile = _Profile(spec, cam, envelope, marks, outline, cut_off, holes)
-    out = spec.output
-    allowances = Allowances(kerf=out.kerf, clearance=out.clearance, kerf_field="output.kerf",
-                            elephant_foot=out.elephant_foot)
-    part, cut, printed = profile.part(0.0, 0.0), allowances.cut(profile), allowances.printed(profile)
+    holes = body_holes(body, 0.0)
+    if body.engraved or not _certainly_clear(body.bore, holes, outline.contour, tol):
+        polygon = outline_body(outline, tol)
+        near = reach(polygon)
+        wall = near - body.bore / 2.0
+        _check_bore(body.bore, polygon, near)
+        check_holes(body, polygon, tol)
+    allowances = finish.allowances
+    check_opened_holes(body, allowances.clearance, outline, tol)
+    marks = engraving(body, cam, polygon, near) if body.engraved else ()
+    maker = ProfileMaker(body, finish, cam, envelope, marks, outline, cut_off, holes)
+    part, cut, printed = maker.part(0.0, 0.0), allowances.cut(maker), allowances.printed(maker)
     jumps = tuple(cam.program.jumps())
-    speed = _speed(spec, cam, rates_only)
-    limit = pressure_limit(spec)
-    warnings = _warnings(spec, a, jumps, wall, cam.program.segments, cut_off, limit) + _contact_warnings(speed)
+    warnings = _warnings(body.bore, a, jumps, wall, cam.program.segments, cut_off, pressure_limit)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
-    return CamDesign(spec=spec, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
-                     cut_outline=profile.outline(allowances.kerf / 2), cut=cut, printed=printed,
-                     allowances=allowances, warnings=warnings, pressure_limit_deg=limit,
-                     face_extent=extent, speed=speed, sizing=sizing,
-                     face_leaves=cut_off.leaves if cut_off is not None else None, measured_wall_mm=wall)
+    return Profile(body=body, finish=finish, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,
+                   cut_outline=maker.outline(allowances.kerf / 2), cut=cut, printed=printed, warnings=warnings,
+                   pressure_limit_deg=pressure_limit, face_extent=extent,
+                   face_leaves=cut_off.leaves if cut_off is not None else None, measured_wall_mm=wall)
 
 
-def known_wall(design: CamDesign, wall: float) -> CamDesign:
-    """``design`` with its :attr:`CamDesign.wall_mm` known to be ``wall`` (mm), measured already as the property
-    measures it (the same number), so that a report reading it does not flatten and measure the outline again."""
-    return dataclasses.replace(design, measured_wall_mm=wall)
-
-
-def _body(outline: Outline, tolerance: float) -> Any:
+def outline_body(outline: Outline, tolerance: float) -> Any:
     """The outline as shapely's polygon of its chords within ``tolerance`` mm: what the bore and hole checks and
     the wall are measured on."""
     import shapely
@@ -271,22 +298,21 @@ def _body(outline: Outline, tolerance: float) -> Any:
     return shapely.Polygon(outline.contour.flatten(tolerance))
 
 
-def _reach(body: Any) -> float:
-    """How near (mm) the outline ``body`` (:func:`_body`) comes to the centre."""
+def reach(polygon: Any) -> float:
+    """How near (mm) the outline ``polygon`` (:func:`outline_body`) comes to the centre."""
     import shapely
 
-    return float(body.exterior.distance(shapely.Point(0.0, 0.0)))
+    return float(polygon.exterior.distance(shapely.Point(0.0, 0.0)))
 
 
-def _check_bore(spec: CamSpec, body: Any, reach: float) -> None:
-    """The bore must leave material: the centre inside the outline ``body`` (:func:`_body`), which comes no nearer
-    to it than ``reach`` mm, further than the bore's radius."""
+def _check_bore(bore: float, polygon: Any, near: float) -> None:
+    """The bore (its diameter ``bore`` mm) must leave material: the centre inside the outline ``polygon``
+    (:func:`outline_body`), which comes no nearer to it than ``near`` mm, further than the bore's radius."""
     import shapely
 
-    bore = spec.cam.bore
-    if bore > 0 and not (body.contains(shapely.Point(0.0, 0.0)) and reach - bore / 2.0 > 0):
+    if bore > 0 and not (polygon.contains(shapely.Point(0.0, 0.0)) and near - bore / 2.0 > 0):
         raise DesignError(f"cam.bore: {bore:.4g} mm leaves no material; the outline comes within "
-                          f"{reach:.4g} mm of the centre, so the bore must be < {2 * reach:.4g} mm")
+                          f"{near:.4g} mm of the centre, so the bore must be < {2 * near:.4g} mm")
 
 
 def _tentative(maker: Maker) -> Maker:
@@ -300,16 +326,16 @@ def _tentative(maker: Maker) -> Maker:
         return error
 
 
-def step_part(design: CamDesign) -> tuple[Part, Outline]:
+def step_part(design: Profile) -> tuple[Part, Outline]:
     """The printed part as the STEP file carries it, and the outline it has: the outline made of biarcs (exact arcs
     within ``output.tolerance`` mm of the exact surface, measured), whatever ``output.curves`` and ``output.dxf``
     say, so a CAD program gets a few dozen smooth faces instead of hundreds of flat facets. An envelope of an
     allowed undercut that is not a flat face's (a roller's loops cut away, a knife edge's corners) has no biarc
     maker and keeps its chords. Holes, clearance and elephant foot are the printed part's."""
-    spec, outline = design.spec, design.outline
-    if _curves(spec) == "biarcs" or step_chords(design):
+    outline = design.outline
+    if design.finish.outline_curves == "biarcs" or step_chords(design):
         return design.printed, outline
-    tol = spec.output.tolerance
+    tol = design.tolerance
     smooth = (_flat_envelope(design.cam, tol, "biarcs").outline(0.0) if design.face_leaves is not None
               else exact_outline(design.cam, tol, "biarcs"))
     return dataclasses.replace(design.printed, outline=smooth.contour), smooth
@@ -322,26 +348,24 @@ def _flat_envelope(cam: Cam, tolerance: float, curves: str) -> FlatEnvelope:
     return flat_envelope(cam, tolerance, curves)
 
 
-def step_chords(design: CamDesign) -> bool:
+def step_chords(design: Profile) -> bool:
     """Whether the STEP file keeps the outline's chords (see :func:`step_part`): an envelope of an allowed undercut
     that is not a flat face's has no biarc maker."""
     return design.outline.envelope and design.face_leaves is None
 
 
-def _curves(spec: CamSpec) -> str:
-    """How the outline's curved stretches are made: biarcs only where the DXF keeps arcs (the segments flavour
-    writes every arc as chords, so it gets chords measured against the surface instead)."""
-    return "polylines" if spec.output.dxf == "segments" else spec.output.curves
+class ProfileMaker:
+    """The cam ``cam`` cut into ``body`` as a part at any offset of its surface (a
+    :class:`~camgen.core.parts.PartMaker`), made to ``finish``: the outline is made afresh from the exact surface
+    moved out by the offset (so kerf stays exact), once per offset; an ``envelope`` (an allowed undercut, a knife
+    edge's corners) as the cutter's, a flat face's folds ``cut_off`` as its envelope does. ``marks`` are the
+    engraving, ``nominal`` the outline at offset 0, ``holes`` the holes as drawn where the caller made them."""
 
-
-class _Profile:
-    """The cam as a part at any offset of its surface (a :class:`~camgen.core.parts.PartMaker`): the outline is
-    made afresh from the exact surface moved out by the offset (so kerf stays exact), once per offset."""
-
-    def __init__(self, spec: CamSpec, cam: Cam, envelope: bool, marks: tuple, nominal: Outline,
+    def __init__(self, body: Body, finish: Finish, cam: Cam, envelope: bool, marks: tuple, nominal: Outline,
                  cut_off: FlatEnvelope | None = None, holes: tuple | None = None) -> None:
-        self.spec, self.cam, self.envelope, self.marks, self.cut_off = spec, cam, envelope, marks, cut_off
-        #: the holes as drawn (:func:`_holes` grown by 0), where the caller made them already
+        self.body, self.finish, self.cam, self.envelope, self.marks = body, finish, cam, envelope, marks
+        self.cut_off = cut_off
+        #: the holes as drawn (:func:`body_holes` grown by 0), where the caller made them already
         self.holes = holes
         self._outlines = {0.0: nominal}
         self._parts: dict[tuple[float, float], Part] = {}
@@ -349,13 +373,13 @@ class _Profile:
     def outline(self, offset: float) -> Outline:
         """The outline of the surface moved out of the cam by ``offset`` mm."""
         if offset not in self._outlines:
-            t = self.spec
+            tol = self.finish.tolerance
             if self.cut_off is not None:                # a flat face's folds cut off: its corners become arcs
                 made = self.cut_off.outline(offset)
             elif self.envelope:
-                made = envelope_outline(self.cam, t.output.tolerance, offset)
+                made = envelope_outline(self.cam, tol, offset)
             else:
-                made = exact_outline(self.cam, t.output.tolerance, _curves(t), offset)
+                made = exact_outline(self.cam, tol, self.finish.outline_curves, offset)
             self._outlines[offset] = made
         return self._outlines[offset]
 
@@ -364,68 +388,23 @@ class _Profile:
         nominal, cut and printed parts are one where kerf and clearance are 0 (-0.0 the same as 0.0: the outline
         is the same and the holes only add it to their radii)."""
         if (outline_grow, hole_grow) not in self._parts:
-            t, hub = self.spec, self.spec.hub
+            body, hub = self.body, self.body.hub
             boss = (hub.boss_diameter, hub.boss_height) if hub.boss_diameter else None
             self._parts[outline_grow, hole_grow] = Part(
-                name=t.name, outline=self.outline(outline_grow).contour, holes=self._grown_holes(hole_grow),
-                thickness=t.cam.thickness, tolerance=t.output.tolerance, marks=self.marks, boss=boss,
+                name=body.name, outline=self.outline(outline_grow).contour, holes=self._grown_holes(hole_grow),
+                thickness=body.thickness, tolerance=self.finish.tolerance, marks=self.marks, boss=boss,
                 set_screw=hub.set_screw)
         return self._parts[outline_grow, hole_grow]
 
     def _grown_holes(self, grow: float) -> tuple:
-        """:func:`_holes` grown by ``grow`` mm: those made already where it is 0 (a hole adds it to its radius, so
-        -0.0 too)."""
-        return self.holes if grow == 0.0 and self.holes is not None else _holes(self.spec, grow)
+        """:func:`body_holes` grown by ``grow`` mm: those made already where it is 0 (a hole adds it to its radius,
+        so -0.0 too)."""
+        return self.holes if grow == 0.0 and self.holes is not None else body_holes(self.body, grow)
 
 
-def _speed(spec: CamSpec, cam: Cam, rates_only: bool = False) -> dict[str, Any] | None:
-    """Peak rates and the contact check at ``cam.rpm`` (None without a speed); with ``rates_only`` the rates alone
-    (no contact, forces nor speeds table: a positive drive has its own, :func:`camgen.forces.drive_speed`)."""
-    if spec.cam.rpm is None:
-        return None
-    from camgen.dynamics import spec_loading, speed_report         # only with a speed: a plain build loads neither
-    from camgen.forces import Contact, forces_report, speeds_report
-
-    parabolic = [(i, seg.ratio or 1.0) for i, seg in enumerate(spec.motion) if seg.law == "parabolic"]
-    f = spec.follower
-    mass = None if rates_only else f.mass
-    ld = None if mass is None else spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
-    out = speed_report(cam, spec.cam.rpm, mass, f.spring_rate, f.preload, parabolic, f.load, f.orientation,
-                       f.contact_margin, ld)
-    if ld is not None and out["contact"] and out["contact"].get("mode"):
-        if f.roller_width is not None and not f.contact_radius:
-            raise SpecError("only for a roller follower", "follower.roller_width")
-        contact = None if spec.cam.material is None else Contact(
-            spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
-        out["forces"] = forces_report(cam, ld, spec.cam.rpm, contact)
-        if spec.cam.rpm_range is not None:
-            stressed = "pressure_max_MPa" in out["forces"].get("stress", {})
-            out["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
-                                          contact if stressed else None, out["contact"]["liftoff_rpm"])
-    elif spec.cam.rpm_range is not None and not rates_only:
-        raise SpecError("needs a follower whose contact is analysed: an oscillating roller's arm held by a spring, a "
-                        "load or its weight (follower.orientation)", "cam.rpm_range")
-    return out
-
-
-def _contact_warnings(speed: dict[str, Any] | None) -> tuple[str, ...]:
-    contact = speed and speed["contact"]
-    if not contact or contact.get("holds") is not False:
-        return ()
-    if contact["mode"] == "gravity" and "liftoff_at_deg" in contact:
-        return (f"the follower leaves the cam near {contact['liftoff_at_deg']:.1f} degrees: "
-                f"gravity holds it only up to {contact['liftoff_rpm']:.4g} rpm",)
-    if contact["mode"] == "gravity":
-        return (f"the follower loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
-                f"{contact['force_min_n']:.3g} N): a spring with a preload of {contact['preload_needed_n']:.4g} N "
-                "would hold it",)
-    return (f"the spring loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
-            f"{contact['force_min_n']:.3g} N): a preload of {contact['preload_needed_n']:.4g} N would hold it",)
-
-
-def _holes(spec: CamSpec, grow: float) -> tuple:
-    """The bore (keyed or round) and the mounting holes, their edges moved out by ``grow`` mm."""
-    hub, bore = spec.hub, spec.cam.bore
+def body_holes(body: Body, grow: float) -> tuple:
+    """The body's bore (keyed or round) and mounting holes, their edges moved out by ``grow`` mm."""
+    hub, bore = body.hub, body.bore
     out: list = []
     if bore > 0:
         out.append(keyed_bore(bore, grow) if hub.keyway else Circle((0.0, 0.0), bore / 2 + grow))
@@ -440,13 +419,13 @@ def _holes(spec: CamSpec, grow: float) -> tuple:
 _CERTAIN = 1e-9
 
 
-def _certainly_clear(spec: CamSpec, holes: tuple, contour: Contour, tolerance: float) -> bool:
-    """Whether bounds make the bore and hole checks (:func:`_check_bore`, :func:`_check_holes`) certain to pass with
+def _certainly_clear(bore: float, holes: tuple, contour: Contour, tolerance: float) -> bool:
+    """Whether bounds make the bore and hole checks (:func:`_check_bore`, :func:`check_holes`) certain to pass with
     at least :data:`THIN_WALL` mm round the bore: the centre of the bore and of every hole inside the outline (as
     chords within ``tolerance`` mm: the polygon those checks test) and further from it than the hole reaches (the bore
     by THIN_WALL more), every two holes further apart than they reach, each with room to spare for rounding. False
-    where that is not certain: the exact checks then decide, raise their errors and measure the wall. ``holes``:
-    the spec's holes as drawn (:func:`_holes` grown by 0)."""
+    where that is not certain: the exact checks then decide, raise their errors and measure the wall. ``bore``: the
+    bore's diameter (mm); ``holes``: the body's holes as drawn (:func:`body_holes` grown by 0)."""
     circles = [_hole_circle(hole) for hole in holes]    # the bore first, centred on the origin
     if not circles:
         return True
@@ -456,8 +435,8 @@ def _certainly_clear(spec: CamSpec, holes: tuple, contour: Contour, tolerance: f
         if not abs(c - d) - r - q > _CERTAIN * (1.0 + abs(c) + abs(d) + r + q):
             return False
     reach = [r for _, r in circles]
-    if spec.cam.bore > 0:
-        reach[0] = max(reach[0], spec.cam.bore / 2.0 + THIN_WALL)
+    if bore > 0:
+        reach[0] = max(reach[0], bore / 2.0 + THIN_WALL)
     return _inside_clear(contour, tolerance, np.array([c for c, _ in circles]), reach)
 
 
@@ -549,56 +528,57 @@ def _arcs_clear(contour: Contour, tolerance: float, start: np.ndarray, run: np.n
     return not (inner & (np.abs(seen) < 1e-9)).any()
 
 
-def _check_holes(spec: CamSpec, body: Any, tolerance: float) -> None:
-    """Every hole must lie inside the cam with material round it, and no two holes may meet (holes as chords
-    within ``tolerance`` mm)."""
+def check_holes(body: Body, polygon: Any, tolerance: float) -> None:
+    """Every hole of ``body`` must lie inside the cam's outline ``polygon`` (:func:`outline_body`) with material
+    round it, and no two holes may meet (holes as chords within ``tolerance`` mm)."""
     import shapely
 
-    holes = _holes(spec, 0.0)
+    holes = body_holes(body, 0.0)
     rings = [shapely.Polygon(hole.flatten(tolerance)) for hole in holes]
     fields = ["hub.bolt_circle" if isinstance(h, Circle) and h.centre != (0.0, 0.0) else "cam.bore" for h in holes]
     for ring, field in zip(rings, fields, strict=True):
-        if not body.contains_properly(ring):           # inside, its edge clear of the outline (GEOS's predicate)
+        if not polygon.contains_properly(ring):        # inside, its edge clear of the outline (GEOS's predicate)
             raise DesignError(f"{field}: a hole reaches the cam's outline (it comes within "
-                              f"{body.exterior.distance(ring):.3g} mm); make it smaller or move it in")
+                              f"{polygon.exterior.distance(ring):.3g} mm); make it smaller or move it in")
     for i, j in itertools.combinations(range(len(rings)), 2):
         gap = rings[i].distance(rings[j])
         if gap <= 0:
             what = "two bolt holes overlap" if fields[i] == fields[j] else "a bolt hole cuts into the bore"
-            hub = spec.hub
+            hub = body.hub
             raise DesignError(f"hub.bolt_circle: {what} ({hub.bolt_holes} holes of {hub.bolt_hole_diameter:g} mm on a "
-                              f"{hub.bolt_circle:g} mm circle, bore {spec.cam.bore:g} mm); use fewer or smaller "
+                              f"{hub.bolt_circle:g} mm circle, bore {body.bore:g} mm); use fewer or smaller "
                               "holes, or another circle")
 
 
-def check_opened_holes(spec: CamSpec, outline: Outline, tolerance: float, cam: str = "the cam") -> None:
-    """The printed part's holes, opened by ``output.clearance``, must stay inside the outline as the drawn ones must
-    (:func:`_check_holes`): a hole opened through the outline is a notch in the printed cam, no hole. Nothing to
-    check without a clearance or holes; bounds settle it where they can (:func:`_certainly_clear`), shapely on the
-    outline's chords where they cannot. Every cam cut to an outline with the spec's holes is checked so (a disc, a
-    plate, a grooved cam's island, each cam of a conjugate pair): ``cam`` names it in the message."""
+def check_opened_holes(body: Body, clearance: float, outline: Outline, tolerance: float, cam: str = "the cam") -> None:
+    """The printed part's holes, opened by the printing ``clearance`` (``output.clearance``, mm), must stay inside
+    the outline as the drawn ones must (:func:`check_holes`): a hole opened through the outline is a notch in the
+    printed cam, no hole. Nothing to check without a clearance or holes; bounds settle it where they can
+    (:func:`_certainly_clear`), shapely on the outline's chords where they cannot. Every cam cut to an outline with
+    its body's holes is checked so (a disc, a plate, a grooved cam's island, each cam of a conjugate pair): ``cam``
+    names it in the message."""
     import shapely
 
-    clearance = spec.output.clearance
-    opened = _holes(spec, clearance / 2) if clearance > 0 else ()
-    if not opened or _certainly_clear(spec, opened, outline.contour, tolerance):
+    opened = body_holes(body, clearance / 2) if clearance > 0 else ()
+    if not opened or _certainly_clear(body.bore, opened, outline.contour, tolerance):
         return
-    body = _body(outline, tolerance)
-    for hole, drawn in zip(opened, _holes(spec, 0.0), strict=True):
-        if not body.contains_properly(shapely.Polygon(hole.flatten(tolerance))):
-            gap = body.exterior.distance(shapely.Polygon(drawn.flatten(tolerance)))
+    polygon = outline_body(outline, tolerance)
+    for hole, drawn in zip(opened, body_holes(body, 0.0), strict=True):
+        if not polygon.contains_properly(shapely.Polygon(hole.flatten(tolerance))):
+            gap = polygon.exterior.distance(shapely.Polygon(drawn.flatten(tolerance)))
             raise DesignError(f"output.clearance: must be < {2 * gap:.4g} mm with these holes (got {clearance:g}): "
                               f"it opens a hole through {cam}'s outline (as drawn the hole comes within {gap:.3g} "
                               "mm of it)")
 
 
-def _engraving(spec: CamSpec, cam: Cam, body: Any, reach: float) -> tuple:
-    """ENGRAVE marks, each clear of the others, of the holes and of the outline (checked): the part's name, an
-    arrow in the sense of motion and a tick at theta = 0. A disc carries them in the band between its outermost
-    hole and its outline (the name at the bottom, the arrow upper left, the tick towards the follower); a plate
-    in the strip under its profile (the arrow shows the way the plate moves under the follower)."""
-    marks = _plate_marks(spec, cam) if cam.is_plate else _disc_marks(spec, cam, reach)
-    _check_marks(spec, body, marks)
+def engraving(body: Body, cam: Cam, polygon: Any, near: float) -> tuple:
+    """ENGRAVE marks on ``body``, each clear of the others, of the holes and of the outline ``polygon``
+    (:func:`outline_body`, which comes ``near`` mm of the centre; checked): the part's name, an arrow in the sense of
+    motion and a tick at theta = 0, towards ``cam``'s follower there. A disc carries them in the band between its
+    outermost hole and its outline (the name at the bottom, the arrow upper left, the tick towards the follower); a
+    plate in the strip under its profile (the arrow shows the way the plate moves under the follower)."""
+    marks = _plate_marks(body, cam) if cam.is_plate else _disc_marks(body, cam, near)
+    _check_marks(body, polygon, marks)
     return tuple((LAYER_ENGRAVE, mark) for mark in marks)
 
 
@@ -611,15 +591,15 @@ def _arrow(tail: np.ndarray, tip: np.ndarray, bulge: float, width: float, back: 
             Polyline(np.array([base + side, tip, base - side]), np.zeros(2)))
 
 
-def _disc_marks(spec: CamSpec, cam: Cam, reach: float) -> tuple:
-    hub = spec.hub
-    inner = spec.cam.bore / 2 + (key_for(spec.cam.bore)[1] if hub.keyway else 0.0)
+def _disc_marks(body: Body, cam: Cam, reach: float) -> tuple:
+    hub = body.hub
+    inner = body.bore / 2 + (key_for(body.bore)[1] if hub.keyway else 0.0)
     if hub.bolt_holes:
         inner = max(inner, hub.bolt_circle / 2 + hub.bolt_hole_diameter / 2)
     mid = inner + 0.5 * (reach - inner)
-    height = max(1.0, min(5.0, 0.3 * (reach - inner), 1.2 * mid / max(1, len(spec.name))))
-    name = Text(spec.name, (-0.3 * height * len(spec.name), -mid - 0.5 * height), height)
-    sense = 1 if spec.cam.rotation == "ccw" else -1
+    height = max(1.0, min(5.0, 0.3 * (reach - inner), 1.2 * mid / max(1, len(body.name))))
+    name = Text(body.name, (-0.3 * height * len(body.name), -mid - 0.5 * height), height)
+    sense = cam.follower.sense                           # the cam's sense of rotation (+1 counter-clockwise)
 
     def at(radius: float, degrees: float) -> np.ndarray:
         return radius * np.array([math.cos(math.radians(degrees)), math.sin(math.radians(degrees))])
@@ -633,18 +613,18 @@ def _disc_marks(spec: CamSpec, cam: Cam, reach: float) -> tuple:
     return name, shaft, head, tick
 
 
-def _plate_marks(spec: CamSpec, cam: Cam) -> tuple:
-    strip = cam.base_radius                              # the plate under its profile, from y = 0
+def _plate_marks(body: Body, cam: Cam) -> tuple:
+    strip, travel = cam.base_radius, cam.follower.travel            # the plate under its profile, from y = 0
     height = max(1.0, min(5.0, 0.3 * strip))
     y = 0.5 * strip
-    name = Text(spec.name, (0.1 * spec.cam.travel, y - 0.5 * height), height)
-    tip_x = 0.6 * spec.cam.travel
+    name = Text(body.name, (0.1 * travel, y - 0.5 * height), height)
+    tip_x = 0.6 * travel
     shaft, head = _arrow(np.array([tip_x + 4 * height, y]), np.array([tip_x, y]), 0.0, height, np.array([1.0, 0.0]))
     tick = Polyline(np.array([[0.0, strip - 2 * height], [0.0, strip - height]]), np.zeros(1))
     return name, shaft, head, tick
 
 
-def _check_marks(spec: CamSpec, body: Any, marks: tuple) -> None:
+def _check_marks(body: Body, polygon: Any, marks: tuple) -> None:
     """Every mark (name, arrow, tick) lies on the part, off its holes, and clear of the other marks."""
     import shapely
 
@@ -654,8 +634,8 @@ def _check_marks(spec: CamSpec, body: Any, marks: tuple) -> None:
             return shapely.box(x, y, x + 0.6 * mark.height * len(mark.text), y + mark.height)
         return shapely.LineString(mark.flatten(0.05)).buffer(0.2)
 
-    solid = body
-    for hole in _holes(spec, 0.0):
+    solid = polygon
+    for hole in body_holes(body, 0.0):
         solid = solid.difference(shapely.Polygon(hole.flatten(0.05)))
     name, shaft, head, tick = (footprint(m) for m in marks)
     groups = [name, shaft.union(head), tick]
@@ -677,10 +657,10 @@ def _fold_warnings(cut_off: FlatEnvelope) -> list[str]:
             f"follower's motion falls short of the law by up to {f.deviation:.4g} {unit}" for f in cut_off.leaves]
 
 
-def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float | None,
+def _warnings(bore: float, a: CamAnalysis, jumps: tuple[Jump, ...], wall: float | None,
               segments: tuple, cut_off: FlatEnvelope | None, limit: float) -> tuple[str, ...]:
-    """The design's warnings; ``wall`` is the wall round the bore (mm), None where it is certainly at least
-    :data:`THIN_WALL`; ``limit`` the spec's :func:`~camgen.sizing.pressure_limit` (degrees)."""
+    """The profile's warnings; ``bore`` is the bore's diameter, ``wall`` the wall round it (mm), None where it is
+    certainly at least :data:`THIN_WALL`; ``limit`` the pressure-angle limit (degrees)."""
     out = []
     if a.pressure_angle_max_deg > limit:
         out.append(f"pressure angle peaks at {a.pressure_angle_max_deg:.2f} degrees (at "
@@ -694,7 +674,7 @@ def _warnings(spec: CamSpec, a: CamAnalysis, jumps: tuple[Jump, ...], wall: floa
     elif a.undercut:
         out.append(f"undercut allowed: the outline is the cutter's envelope, and near {a.pitch_rho_min_at_deg:.2f} "
                    "degrees the follower does not follow the motion law")
-    if spec.cam.bore > 0 and wall is not None and wall < THIN_WALL:
+    if bore > 0 and wall is not None and wall < THIN_WALL:
         out.append(f"only {wall:.3g} mm of material between the bore and the outline")
     for i, seg in enumerate(segments):
         over = seg.law.overshoot() if hasattr(seg.law, "overshoot") else 0.0

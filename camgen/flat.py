@@ -1,0 +1,214 @@
+"""What the flat cams share: a disc or plate cam's design from its template, and the pieces a conjugate pair's
+members and a grooved cam's speeds reuse. No I/O.
+
+A flat cam's design (:func:`design_flat`) is its kind's :class:`~camgen.rig.Mount` made into a
+:class:`~camgen.rig.Rig`, sized where ``cam.base_radius = "auto"`` (:func:`camgen.sizing.size_cam`), its profile
+cut (:func:`camgen.profile.design_profile`) and its speed at ``cam.rpm`` (:func:`sprung_speed`). The template is
+never validated again: a sized cam's spec keeps ``"auto"``, and the size is ``design.cam.base_radius``.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any
+
+from camgen.cam import Cam
+from camgen.core.errors import SpecError
+from camgen.kinds import kind_of
+from camgen.profile import Body, Finish, Profile, design_profile
+from camgen.rig import Mount, Rig, disc_mount, plate_mount
+from camgen.sizing import Sizing, limits_of, pressure_limit, size_cam
+from camgen.spec import CamSpec
+
+
+@dataclass(frozen=True, kw_only=True)
+class FlatCamDesign(Profile):
+    """Everything known about a disc or plate cam before anything is written (made by :func:`design_flat`): its
+    :class:`~camgen.profile.Profile` (every attribute of it: ``cam``, ``analysis``, ``outline``, ``part``, ``cut``,
+    ``printed``, ``warnings``...) with the template it came from and what the template's speed and sizing add.
+
+    Attributes
+    ----------
+    spec : CamSpec
+        The validated template: ``design.spec.cam.base_radius`` is the base radius as given (``"auto"`` when
+        sized: the size chosen is ``design.cam.base_radius``).
+    speed : dict or None
+        With ``cam.rpm``: peak velocity, acceleration and jerk in time, and the contact check.
+    sizing : Sizing or None
+        With ``base_radius = "auto"``: what decided the size, and the size.
+    warnings : tuple of str
+        The profile's warnings, then the contact's at ``cam.rpm``.
+    """
+
+    spec: CamSpec
+    speed: dict[str, Any] | None = None
+    sizing: Sizing | None = None
+
+    @classmethod
+    def of(cls, profile: Profile, spec: CamSpec, speed: dict[str, Any] | None = None, sizing: Sizing | None = None,
+           warnings: tuple[str, ...] | None = None) -> FlatCamDesign:
+        """``profile`` as the design of ``spec``, with its ``speed``, ``sizing`` and ``warnings`` (the profile's by
+        default)."""
+        fields = {f.name: getattr(profile, f.name) for f in dataclasses.fields(Profile)}
+        if warnings is not None:
+            fields["warnings"] = warnings
+        return cls(**fields, spec=spec, speed=speed, sizing=sizing)
+
+    def _repr_html_(self) -> str | None:
+        """Jupyter shows the design's interactive page inline, as its html file holds it (without links to files);
+        none when ``output.formats`` leaves out html."""
+        from camgen.core.page import bundle_frame
+
+        return bundle_frame(kind_of(self.spec.cam.kind).bundler()(self)[0])
+
+
+#: the name scripts know a disc or plate cam's design by
+CamDesign = FlatCamDesign
+
+
+def flat_rig(spec: CamSpec, mount: Mount) -> Rig:
+    """The :class:`~camgen.rig.Rig` of a flat cam's template on its kind's ``mount``."""
+    return Rig.of(spec.name, spec.motion, mount)
+
+
+def design_flat(spec: CamSpec, mount: Mount) -> FlatCamDesign:
+    """Build, check and outline the flat cam ``spec`` describes, its follower on ``mount`` (its kind's): sized
+    first where ``cam.base_radius = "auto"`` (:mod:`camgen.sizing`), its profile cut
+    (:func:`~camgen.profile.design_profile`: refused there for an undercut, unless ``cam.allow_undercut``, and for a
+    bore or holes that leave no material), its speed at ``cam.rpm`` (:func:`sprung_speed`)."""
+    rig = flat_rig(spec, mount)
+    sizing = None
+    base = spec.cam.base_radius
+    if base == "auto":
+        sizing = size_cam(rig, limits_of(spec))
+        base = sizing.base_radius_mm
+    profile = design_profile(rig, base, Body.of(spec.name, spec.cam, spec.hub), Finish.of(spec.output),
+                             spec.cam.allow_undercut, pressure_limit(spec))
+    speed = sprung_speed(spec, profile.cam)
+    return FlatCamDesign.of(profile, spec, speed, sizing, profile.warnings + contact_warnings(speed))
+
+
+def design_disc(spec: CamSpec) -> FlatCamDesign:
+    """A disc cam's design (:func:`design_flat` on the disc's mount, :func:`camgen.rig.disc_mount`)."""
+    return design_flat(spec, disc_mount(spec.follower, spec.cam.rotation))
+
+
+def design_plate(spec: CamSpec) -> FlatCamDesign:
+    """A plate cam's design (:func:`design_flat` on the plate's mount, :func:`camgen.rig.plate_mount`)."""
+    return design_flat(spec, plate_mount(spec.follower, spec.cam.travel))
+
+
+def size_flat(spec: CamSpec, mount: Mount) -> Sizing:
+    """The smallest base radius of a flat cam's template, its follower on ``mount`` (:func:`camgen.sizing.size_cam`
+    of its rig, searched from its base radius where it gives one)."""
+    near = spec.cam.base_radius if isinstance(spec.cam.base_radius, float) else None
+    return size_cam(flat_rig(spec, mount), limits_of(spec), near)
+
+
+def size_disc(spec: CamSpec) -> Sizing:
+    """A disc cam's smallest base radius (:func:`size_flat` on the disc's mount)."""
+    return size_flat(spec, disc_mount(spec.follower, spec.cam.rotation))
+
+
+def size_plate(spec: CamSpec) -> Sizing:
+    """A plate cam's smallest base radius, its plate's least height (:func:`size_flat` on the plate's mount)."""
+    return size_flat(spec, plate_mount(spec.follower, spec.cam.travel))
+
+
+def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: float | None = None) -> Cam:
+    """The :class:`~camgen.cam.Cam` a cam template describes (a grooved cam's pitch cam, a conjugate pair's first
+    cam, a barrel's developed cam), its follower placed by its kind (``kind_of(spec.cam.kind).follower``): a
+    script's and a test's way to a template's cam. A barrel has no base radius: a drafted law on one needs its own
+    rig (:func:`camgen.barrel.design.barrel_rig`).
+
+    Parameters
+    ----------
+    spec : CamSpec
+        A validated cam template.
+    roller_radius : float, optional
+        The roller's radius to build with (mm), instead of ``follower.roller_radius`` (0 for a flat face or a knife
+        edge).
+    base_radius : float, optional
+        The base radius to build with (mm), instead of ``cam.base_radius``; needed when the spec's is ``"auto"``
+        (:func:`size_disc` finds one; :func:`camgen.profile.design_cam` sizes and builds at once).
+
+    Returns
+    -------
+    Cam
+        The kinematic cam: its program, follower and base radius; no geometry is checked.
+
+    Raises
+    ------
+    SpecError
+        A segment's law refuses its parameters (naming ``motion[i]`` and the key), the motion does not make one
+        turn that returns to its start, or the follower cannot be placed (an offset outside the prime circle, an
+        arm that cannot reach it) or cannot follow the program's largest displacement on that base circle, each
+        naming the key.
+    """
+    rr = spec.follower.contact_radius if roller_radius is None else roller_radius
+    rb = spec.cam.base_radius if base_radius is None else base_radius
+    rig = Rig.of(spec.name, spec.motion, disc_mount(spec.follower, spec.cam.rotation))
+    sized = isinstance(rb, (int, float))                # a barrel's is None, an unsized template's "auto"
+    program = rig.program(rb + rr if sized else None)
+    if sized:                                           # a follower whose reach depends on how far it moves
+        rig.mount.check_fits(rb, program)
+    return Cam(spec.name, program, kind_of(spec.cam.kind).follower(spec, rb, rr), rb)
+
+
+def parabolic_ratios(motion: Any) -> list[tuple[int, float]]:
+    """The acceleration ratio of every parabolic segment of ``motion``, by its index (1 where not given)."""
+    return [(i, seg.ratio or 1.0) for i, seg in enumerate(motion) if seg.law == "parabolic"]
+
+
+def rates(cam: Cam, rpm: float | None, parabolic: list[tuple[int, float]]) -> dict[str, Any] | None:
+    """Peak velocity, acceleration and jerk in time at ``rpm`` (None without a speed), alone: no contact, forces
+    nor speeds table (a positive drive has its own, :func:`camgen.forces.drive_speed`)."""
+    if rpm is None:
+        return None
+    from camgen.dynamics import speed_report                       # only with a speed: a plain build loads it not
+
+    return speed_report(cam, rpm, None, None, None, parabolic)
+
+
+def sprung_speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
+    """Peak rates and the contact check at ``cam.rpm`` of a follower held on its cam by a spring, its weight or a
+    load (None without a speed): with a mass, the forces and, with ``cam.rpm_range``, the speeds table."""
+    if spec.cam.rpm is None:
+        return None
+    from camgen.dynamics import spec_loading, speed_report         # only with a speed: a plain build loads neither
+    from camgen.forces import Contact, forces_report, speeds_report
+
+    f = spec.follower
+    ld = None if f.mass is None else spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
+    out = speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic_ratios(spec.motion), f.load,
+                       f.orientation, f.contact_margin, ld)
+    if ld is not None and out["contact"] and out["contact"].get("mode"):
+        if f.roller_width is not None and not f.contact_radius:
+            raise SpecError("only for a roller follower", "follower.roller_width")
+        contact = None if spec.cam.material is None else Contact(
+            spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
+        out["forces"] = forces_report(cam, ld, spec.cam.rpm, contact)
+        if spec.cam.rpm_range is not None:
+            stressed = "pressure_max_MPa" in out["forces"].get("stress", {})
+            out["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
+                                          contact if stressed else None, out["contact"]["liftoff_rpm"])
+    elif spec.cam.rpm_range is not None:
+        raise SpecError("needs a follower whose contact is analysed: an oscillating roller's arm held by a spring, a "
+                        "load or its weight (follower.orientation)", "cam.rpm_range")
+    return out
+
+
+def contact_warnings(speed: dict[str, Any] | None) -> tuple[str, ...]:
+    """The warnings of a sprung follower's contact check (:func:`sprung_speed`): where it leaves the cam."""
+    contact = speed and speed["contact"]
+    if not contact or contact.get("holds") is not False:
+        return ()
+    if contact["mode"] == "gravity" and "liftoff_at_deg" in contact:
+        return (f"the follower leaves the cam near {contact['liftoff_at_deg']:.1f} degrees: "
+                f"gravity holds it only up to {contact['liftoff_rpm']:.4g} rpm",)
+    if contact["mode"] == "gravity":
+        return (f"the follower loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
+                f"{contact['force_min_n']:.3g} N): a spring with a preload of {contact['preload_needed_n']:.4g} N "
+                "would hold it",)
+    return (f"the spring loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
+            f"{contact['force_min_n']:.3g} N): a preload of {contact['preload_needed_n']:.4g} N would hold it",)
