@@ -11,7 +11,7 @@ import pytest
 
 from camgen.cam import build_cam
 from camgen.design import design_cam
-from camgen.outputs import write_cam
+from camgen.api import write_cam
 from camgen.surface import surface_deviation
 from tests.conftest import template
 

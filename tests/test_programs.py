@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from camgen.design import design_cam
-from camgen.outputs import write_cam
+from camgen.api import write_cam
 from tests.conftest import ROOT, template
 
 PROGRAMS = ROOT / "tests" / "programs"
