@@ -164,6 +164,23 @@ def test_a_template_with_a_cam_and_a_geneva_table_is_refused_in_one_line(tmp_pat
     assert not (tmp_path / "out").exists()
 
 
+def test_a_template_with_three_kinds_tables_is_refused_naming_each(monkeypatch):
+    from camgen.kinds.geneva import GenevaKind
+
+    class Ratchet(GenevaKind):
+        name: str = "ratchet"
+        title: str = "a ratchet"
+        table_key: str = "ratchet"
+
+    monkeypatch.setattr(camgen.kinds, "KINDS", registry([Ratchet()], lambda k: (k.name,), "cam.kind", "a cam kind",
+                                                        base=KINDS))
+    assert kind_for({"ratchet": {}}).name == "ratchet" and kind_for({"geneva": {}}).name == "geneva"
+    with pytest.raises(SpecError) as refused:
+        kind_for({"cam": {}, "geneva": {}, "ratchet": {}})
+    assert str(refused.value) == ("template: give only one of [cam] (a cam), [geneva] (a Geneva drive), [ratchet] "
+                                  "(a ratchet)")
+
+
 def test_a_format_a_kind_does_not_write_is_refused_before_it_is_designed(monkeypatch):
     import camgen.barrel.design
 

@@ -52,18 +52,21 @@ def kind_for(raw: Mapping[str, Any]) -> Kind[Any, Any]:
         Two kinds' tables in one template (``template: give [cam] (a cam) or [geneva] (a Geneva drive), not
         both``), or a ``cam.kind`` no kind has (the message lists them, with the closest).
     """
-    kinds = KINDS
-    own = [kind for kind in kinds.values() if kind.table_key != CAM_TABLE and kind.table_key in raw]
-    tables = [*([(CAM_TABLE, "a cam")] if CAM_TABLE in raw else []), *((k.table_key, k.title) for k in own)]
-    if len(tables) > 1:
-        given = [f"[{table}] ({what})" for table, what in tables]
-        alternatives = " or ".join(given) + ", not both" if len(given) == 2 else "only one of " + ", ".join(given)
-        raise SpecError(f"give {alternatives}", "template")
+    own = [kind for kind in KINDS.values() if kind.table_key != CAM_TABLE and kind.table_key in raw]
+    if len(own) + (CAM_TABLE in raw) > 1:
+        raise SpecError(_one_table(raw, own), "template")
     if own:
         return own[0]
     cam = raw.get(CAM_TABLE)
     name = cam.get("kind", DEFAULT_KIND) if isinstance(cam, Mapping) else DEFAULT_KIND
-    return kinds[choose(name, [n for n, kind in kinds.items() if kind.table_key == CAM_TABLE], "cam.kind")]
+    return KINDS[choose(name, [n for n, kind in KINDS.items() if kind.table_key == CAM_TABLE], "cam.kind")]
+
+
+def _one_table(raw: Mapping[str, Any], own: list[Kind[Any, Any]]) -> str:
+    """What to say of a template holding the tables of several kinds: ``[cam]`` and those of ``own``."""
+    tables = [(CAM_TABLE, "a cam")] if CAM_TABLE in raw else []
+    given = [f"[{table}] ({what})" for table, what in (*tables, *((k.table_key, k.title) for k in own))]
+    return "give " + (" or ".join(given) + ", not both" if len(given) == 2 else "only one of " + ", ".join(given))
 
 
 def spec_kind(spec: Any) -> Kind[Any, Any]:
