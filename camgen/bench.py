@@ -122,7 +122,7 @@ def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2)) -> list[d
     import resource
 
     from camgen.core.family import members, run_family
-    from camgen.outputs import build_member
+    from camgen.api import build_member
 
     def cpu() -> float:
         return sum(u.ru_utime + u.ru_stime for u in (resource.getrusage(resource.RUSAGE_SELF),

@@ -14,9 +14,9 @@ from typing import Any
 
 from camgen.cam import Cam
 from camgen.core.errors import SpecError
-from camgen.kinds import kind_of
+from camgen.kinds import kind_of, spec_kind
 from camgen.profile import Body, Finish, Profile, design_profile
-from camgen.rig import Mount, Rig, disc_mount, plate_mount
+from camgen.rig import Mount, Rig, disc_mount
 from camgen.sizing import Sizing, limits_of, pressure_limit, size_cam
 from camgen.spec import CamSpec
 
@@ -59,7 +59,7 @@ class FlatCamDesign(Profile):
         none when ``output.formats`` leaves out html."""
         from camgen.core.page import bundle_frame
 
-        return bundle_frame(kind_of(self.spec.cam.kind).bundler()(self)[0])
+        return bundle_frame(spec_kind(self.spec).bundle(self)[0])
 
 
 #: the name scripts know a disc or plate cam's design by
@@ -88,16 +88,6 @@ def design_flat(spec: CamSpec, mount: Mount) -> FlatCamDesign:
     return FlatCamDesign.of(profile, spec, speed, sizing, profile.warnings + contact_warnings(speed))
 
 
-def design_disc(spec: CamSpec) -> FlatCamDesign:
-    """A disc cam's design (:func:`design_flat` on the disc's mount, :func:`camgen.rig.disc_mount`)."""
-    return design_flat(spec, disc_mount(spec.follower, spec.cam.rotation))
-
-
-def design_plate(spec: CamSpec) -> FlatCamDesign:
-    """A plate cam's design (:func:`design_flat` on the plate's mount, :func:`camgen.rig.plate_mount`)."""
-    return design_flat(spec, plate_mount(spec.follower, spec.cam.travel))
-
-
 def size_flat(spec: CamSpec, mount: Mount) -> Sizing:
     """The smallest base radius of a flat cam's template, its follower on ``mount`` (:func:`camgen.sizing.size_cam`
     of its rig, searched from its base radius where it gives one)."""
@@ -108,11 +98,6 @@ def size_flat(spec: CamSpec, mount: Mount) -> Sizing:
 def size_disc(spec: CamSpec) -> Sizing:
     """A disc cam's smallest base radius (:func:`size_flat` on the disc's mount)."""
     return size_flat(spec, disc_mount(spec.follower, spec.cam.rotation))
-
-
-def size_plate(spec: CamSpec) -> Sizing:
-    """A plate cam's smallest base radius, its plate's least height (:func:`size_flat` on the plate's mount)."""
-    return size_flat(spec, plate_mount(spec.follower, spec.cam.travel))
 
 
 def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: float | None = None) -> Cam:

@@ -10,19 +10,17 @@ construction, with ``camgen build --construction``), ``<name>.html`` (the intera
 """
 from __future__ import annotations
 
-import sys
-from collections.abc import Callable, Iterable
-from pathlib import Path
+from collections.abc import Callable
 from typing import Any
 
-from camgen.core.bundle import Bundle, Item, item, tail, write_bundle
-from camgen.core.errors import SpecError
+import numpy as np
+
+from camgen.core.bundle import Bundle, item, tail
 from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
 from camgen.core.writers import WriteOptions
 from camgen.flat import FlatCamDesign
 from camgen.profile import step_chords, step_part
-from camgen.kinds import kind_of
 from camgen.report import cam_report
 
 #: chord tolerance (mm) of the outline drawn in a family's overview: a thumbnail an inch wide
@@ -118,66 +116,11 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
     return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text))
 
 
-def write_cam(design: Any, directory: str | Path, extra: Iterable[Item] = ()) -> dict[str, Any]:
-    """Write the files of ``design`` (of any cam kind) into ``directory``, all or nothing, and the files of the
-    ``extra`` items after them (a figure asked for on the command line).
-
-    Parameters
-    ----------
-    design : object
-        A design of any cam kind, or of a Geneva drive, from :func:`camgen.profile.design_cam`.
-    directory : str or Path
-        The folder to write into (made if missing). Every file is written under a temporary name and renamed only
-        when all are complete, so a failure leaves nothing behind.
-    extra : iterable of Item
-        More files to write after the design's own.
-
-    Returns
-    -------
-    dict
-        The report, as ``<name>.json`` holds it, with ``files``: each file's name by its key.
-
-    Raises
-    ------
-    SpecError
-        ``output.formats`` asks for a file this kind cannot have (a barrel cam's STEP solid).
-    ExportError
-        A file could not be written.
-    """
-    if _geneva(design):
-        from camgen.geneva.outputs import geneva_bundle
-
-        bundle, report = geneva_bundle(design)
-    else:
-        bundle, report = kind_of(design.spec.cam.kind).bundler()(design)
-    if "step" in design.spec.output.formats and not any(e.format == "step" for i in bundle.items for e in i.entries):
-        raise SpecError(f"a {design.spec.cam.kind} cam has no flat part to write as an exact STEP solid (its groove is "
-                        "cut round a cylinder); leave 'step' out and use 'stl' or '3mf'", "output.formats")
-    bundle = Bundle.of((*bundle.items, *extra), bundle.options)
-    return {**report, "files": write_bundle(bundle, directory)}
-
-
-def _geneva(design: Any) -> bool:
-    """Whether ``design`` is a Geneva drive's. Its module is imported only when a drive is designed, so that a cam's
-    build never loads it (nor its nesting and page)."""
-    module = sys.modules.get("camgen.geneva.design")
-    return module is not None and isinstance(design, module.GenevaDesign)
-
-
-def build_member(raw: dict, folder: Path) -> dict[str, Any]:
-    """Build one family member from its raw spec into ``folder``; its summary figures and a thumbnail."""
-    from camgen.profile import design_cam
-    from camgen.spec import validate_spec
-
-    design = design_cam(validate_spec(raw))
-    report = write_cam(design, folder)
-    if _geneva(design):
-        from camgen.geneva.outputs import geneva_row
-
-        return geneva_row(design, report)
-    tol = max(design.tolerance, THUMBNAIL_TOLERANCE_MM)
-    # a design that is no plate (a barrel) draws its own thumbnail
-    ring = design.thumbnail(tol) if hasattr(design, "thumbnail") else design.outline.contour.flatten(tol)
+def cam_row(design: Any, report: dict[str, Any], thumbnail: Callable[[float], np.ndarray]) -> dict[str, Any]:
+    """A cam's family row (see :meth:`camgen.kinds.base.Kind.family_row`): its checks' figures from ``report``, its
+    files and ``thumbnail(tolerance)`` (a closed ring in mm, drawn at :data:`THUMBNAIL_TOLERANCE_MM` or the design's
+    tolerance if coarser); the bore drawn in it is the kind's :meth:`~camgen.kinds.base.Kind.thumbnail_bore`."""
+    ring = thumbnail(max(design.tolerance, THUMBNAIL_TOLERANCE_MM))
     return {"pressure_angle_max_deg": report["pressure_angle_max_deg"],
             "profile_rho_min_mm": report.get("profile_rho_min_mm"), "undercut": report["undercut"],
             "outline_vertices": report.get("outline_vertices"), "outline_max_error_mm": report["outline_max_error_mm"],

@@ -143,14 +143,20 @@ def _title(spec: Any, what: str) -> tuple[str, str]:
 
 
 def cam_page(design: Any, report: dict[str, Any]) -> Page:
-    """The page of any cam design (disc, plate, grooved, barrel or a conjugate pair) whose report is ``report`` (the
-    JSON report's dict, its figures shown as they are there)."""
-    if hasattr(design, "walls") and hasattr(design, "drawing"):
-        return _barrel_page(design, report)
-    if hasattr(design, "cams"):
-        return _conjugate_page(design, report)
-    grooved = hasattr(design, "profile")
-    profile = design.profile if grooved else design
+    """The page of a disc or plate cam's design whose report is ``report`` (the JSON report's dict, its figures shown
+    as they are there)."""
+    return _profile_page(design, design, report, grooved=False)
+
+
+def grooved_page(design: Any, report: dict[str, Any]) -> Page:
+    """The page of a grooved cam's design (its groove round the island, the disc cam whose surface is the inner
+    flank), whose report is ``report``."""
+    return _profile_page(design, design.profile, report, grooved=True)
+
+
+def _profile_page(design: Any, profile: Any, report: dict[str, Any], grooved: bool) -> Page:
+    """The page of a cam cut to a profile: ``profile`` the design of that profile (``design`` itself, or a grooved
+    cam's island)."""
     spec, cam = design.spec, profile.cam
     theta = _theta()
     reach = float(np.abs(cam.pitch(np.linspace(0, 2 * math.pi, 361)).point).max()) + cam.contact_radius
@@ -207,7 +213,7 @@ CONJUGATE_FIGURES = (
 )
 
 
-def _conjugate_page(design: Any, report: dict[str, Any]) -> Page:
+def conjugate_page(design: Any, report: dict[str, Any]) -> Page:
     """A conjugate pair's page: both cams turning together on their shaft, each under its roller, the two rollers
     joined by the yoke (or by the bell crank through its pivot); the follower's S-V-A-J (the pair shares it), both
     pressure angles and both pitch curves' curvature."""
@@ -240,7 +246,7 @@ def _conjugate_page(design: Any, report: dict[str, Any]) -> Page:
                 tuple(report.get("warnings", ())))
 
 
-def _barrel_page(design: Any, report: dict[str, Any]) -> Page:
+def barrel_page(design: Any, report: dict[str, Any]) -> Page:
     """A barrel cam's page: its developed drawing (the pitch cylinder unrolled, x = Rm theta) sliding under the
     roller, which stands at x = 0 (an arm's roller where its axis pierces the pitch cylinder, Rm asin(e / Rm)) and
     rides at its height zc (z0 + s for a translating roller); three copies of the drawing keep the groove in view."""

@@ -25,7 +25,7 @@ from camgen.outline import Outline, envelope_outline, exact_outline, outline_mak
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
-from camgen.kinds import kind_of
+from camgen.kinds import spec_kind
 from camgen.program import Jump
 from camgen.rig import Rig
 from camgen.sizing import smallest_for_curvature
@@ -203,8 +203,9 @@ def _undercut_message(rig: Rig, cam: Cam, a: CamAnalysis) -> str:
 
 
 def design_cam(spec: CamSpec | GenevaSpec) -> Any:
-    """The design of the cam ``spec`` describes, by its kind's designer (see :mod:`camgen.kinds`), or of the Geneva
-    drive (see :mod:`camgen.geneva`): every check and all the geometry, nothing written.
+    """The design of the cam ``spec`` describes, by its kind (see :mod:`camgen.kinds`; a Geneva drive's too, see
+    :mod:`camgen.geneva`): every check and all the geometry, nothing written; :func:`camgen.api.design` is the same
+    call.
 
     Parameters
     ----------
@@ -215,7 +216,7 @@ def design_cam(spec: CamSpec | GenevaSpec) -> Any:
     -------
     object
         A disc or plate cam's :class:`~camgen.flat.FlatCamDesign`; a grooved cam's, a barrel's, a conjugate pair's or
-        a Geneva drive's own design, which :func:`camgen.outputs.write_cam` writes alike.
+        a Geneva drive's own design, which :func:`camgen.api.write` writes alike.
 
     Raises
     ------
@@ -223,11 +224,7 @@ def design_cam(spec: CamSpec | GenevaSpec) -> Any:
         The spec is valid but its part cannot be made as asked: an undercut, a cusp, no wall round the bore; the
         message names the key to change and by how much.
     """
-    if not isinstance(spec, CamSpec):
-        from camgen.geneva.design import design_geneva      # a cam's build imports nothing of the Geneva drive
-
-        return design_geneva(spec)
-    return kind_of(spec.cam.kind).designer()(spec)
+    return spec_kind(spec).design(spec)
 
 
 def design_profile(rig: Rig, base_radius: float, body: Body, finish: Finish, allow_undercut: bool,

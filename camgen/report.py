@@ -112,6 +112,31 @@ def cam_report(design: FlatCamDesign, mesh: MeshCheck | None = None) -> dict[str
     return report
 
 
+def checks_line(design: Any) -> str:
+    """The console's first line of a cam cut to a profile: the peak pressure angle and the smallest convex radius
+    (deg, mm). A flat face has no pitch curve apart from its profile, so only the cam's radius is given; a
+    translating flat face is pushed square to its face, so its pressure angle is said to be 0 by definition rather
+    than printed as a peak."""
+    a, name = design.analysis, design.spec.name
+    flat = design.cam.follower.flat
+    where = f"at {a.pitch_rho_min_at_deg:.2f} deg"
+    radius = (f"min convex radius {a.profile_rho_min_mm:.3f} mm (cam) {where}" if flat else
+              f"min convex radius {a.profile_rho_min_mm:.3f} mm (cam), {a.pitch_rho_min_mm:.3f} mm (pitch) {where}")
+    if flat and not design.spec.follower.oscillating:
+        return f"{name}: pressure angle 0 by definition (the flat face is pushed square to its face); {radius}"
+    return (f"{name}: pressure angle max {a.pressure_angle_max_deg:.2f} deg at {a.pressure_angle_max_at_deg:.2f} deg; "
+            f"{radius}")
+
+
+def cam_summary(design: Any, report: dict[str, Any]) -> list[str]:
+    """The lines ``camgen build`` prints of a cam cut to a profile (a disc, a plate, a grooved cam's inner flank)
+    whose report is ``report``: its checks (:func:`checks_line`), its outline, and :func:`design_lines`."""
+    return [checks_line(design),
+            f"outline: {report['outline_vertices']} vertices ({report['outline_arcs']} exact arcs), max error "
+            f"{report['outline_max_error_mm']:.2e} mm (tolerance {report['tolerance_mm']:g} mm)",
+            *design_lines(report)]
+
+
 def design_lines(report: dict[str, Any]) -> list[str]:
     """The figures a designer decides on, as lines for the console: a base radius sized by ``auto``, each table
     law's fit and, at a speed, the peak rates, the contact check with its lift-off speed, the camshaft torque and

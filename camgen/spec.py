@@ -27,7 +27,7 @@ from camgen.core.spec import CutOutputTable
 from camgen.core.kit import CamKitTable, check_cam_kit
 from camgen.contact_stress import MATERIALS
 from camgen.followers import FOLLOWERS
-from camgen.kinds import CAM_KINDS
+from camgen.kinds import CAM_KINDS, kind_for
 from camgen.kinds.base import CONJUGATE_KEYS
 
 if TYPE_CHECKING:
@@ -547,6 +547,11 @@ class CamSpec(Model):
         return self
 
     @property
+    def kind(self) -> str:
+        """The cam's kind, ``cam.kind`` (the registry's key, :data:`camgen.kinds.KINDS`)."""
+        return self.cam.kind
+
+    @property
     def prime_radius(self) -> float:
         """Base radius plus the roller's (mm): the circle the roller's centre rides at rest (inf while "auto")."""
         rb = self.cam.base_radius
@@ -554,8 +559,9 @@ class CamSpec(Model):
 
 
 def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
-    """A :class:`CamSpec` from a raw template mapping; a Geneva drive's template (a ``[geneva]`` table) gives a
-    :class:`~camgen.geneva.spec.GenevaSpec`.
+    """The spec of the kind the raw template ``raw`` describes (:func:`camgen.kinds.kind_for`): a :class:`CamSpec`
+    for a ``[cam]`` table, a :class:`~camgen.geneva.spec.GenevaSpec` for a ``[geneva]`` table; its
+    ``output.formats`` checked against those the kind writes.
 
     Parameters
     ----------
@@ -565,37 +571,21 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
     Returns
     -------
     CamSpec or GenevaSpec
-        The validated, frozen spec.
+        The validated, frozen spec (or the spec of another registered kind).
 
     Raises
     ------
     SpecError
         The first problem, in one line naming the key, what is allowed and what was given
-        (``motion[0].lift: must be > 0 and <= 10000 mm (got -1)``).
+        (``motion[0].lift: must be > 0 and <= 10000 mm (got -1)``); a format the kind does not write
+        (``output.formats: a barrel cam has no flat part to write as an exact STEP solid ...``).
     """
-    if "geneva" in raw:
-        from camgen.geneva.spec import validate_geneva      # a cam's build makes no Geneva models
-
-        return validate_geneva(raw)
-    return validate(CamSpec, raw)
-
-
-#: what a family's ``[sheet]`` nests, for messages
-_NESTED = "a family's [sheet] nests disc, plate and grooved cams"
-
-
-def sheet_refusal(spec: CamSpec | GenevaSpec) -> str | None:
-    """Why a family's ``[sheet]`` cannot nest this member's cut part, or None where the member writes one
-    (``<name>.dxf``: a disc, plate or grooved cam with "dxf" in its formats)."""
-    if not isinstance(spec, CamSpec):
-        return f"a Geneva drive's wheel, lock and crank are nested on its own <name>-sheet.dxf; {_NESTED}"
-    if spec.cam.kind == "conjugate":
-        return f"a conjugate pair's two cams are nested on its own <name>-sheet.dxf; {_NESTED}"
-    if spec.cam.kind == "barrel":
-        return f"a barrel cam is printed: its DXF is a developed template, not a part to cut; {_NESTED}"
-    if "dxf" not in spec.output.formats:
-        return 'it writes no cut file to nest: add "dxf" to output.formats'
-    return None
+    kind = kind_for(raw)
+    spec = validate(kind.spec, raw)
+    refused = [fmt for fmt in spec.output.formats if fmt not in kind.formats]
+    if refused:
+        raise SpecError(kind.format_refusal(refused[0]), "output.formats")
+    return spec
 
 
 def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:

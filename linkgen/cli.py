@@ -3,14 +3,15 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, add_bench, add_examples, add_family, add_new, echo_written, figures_option,
-                             fixed, one_design, output_option, set_option, template_argument, template_options,
-                             user_errors)
+from camgen.core.cli import (Commands, Family, Starters, add_bench, add_examples, add_family, add_new, echo_written,
+                             figures_option, fixed, one_design, output_option, set_option, template_argument,
+                             template_options, user_errors)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -192,14 +193,30 @@ def _print_synthesis(summary: dict[str, Any]) -> None:
         click.echo(f"note: {line}")
 
 
-add_family(main, "linkgen.spec:validate_spec", "linkgen.outputs:build_member",
-           "Analyze (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table describes; "
-           "re-running resumes.")
+def _family() -> Family:
+    from linkgen.outputs import build_member
+    from linkgen.spec import validate_spec
+
+    return Family(validate_spec, build_member)
 
 
-add_bench(main, "linkgen.bench:run_bench", Path("out/linkgen-bench"),
+def _starters() -> Starters:
+    from linkgen.starters import STARTERS, starter
+
+    return Starters({name: what for name, (what, _) in STARTERS.items()}, starter)
+
+
+def _bench() -> Callable[[Path, bool], dict[str, Any]]:
+    from linkgen.bench import run_bench
+
+    return run_bench
+
+
+add_family(main, _family, "Analyze (and, with [parts], make) every member of the family a TEMPLATE's [sweep] table "
+                          "describes; re-running resumes.")
+add_bench(main, _bench, Path("out/linkgen-bench"),
           "Measure linkage positions against a plain closed form and pylinkage, and rerun the hard cases.")
-add_new(main, "linkgen.starters:starter", "linkgen.starters:STARTERS", "linkgen")
+add_new(main, _starters, "linkgen")
 add_examples(main, "linkgen")
 
 

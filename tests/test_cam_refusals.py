@@ -411,8 +411,8 @@ def test_a_part_in_two_bodies_is_not_written():
     """Past the spec (model_copy skips validation): a 3 mm clearance opens the ring of holes into each other and
     the hub falls out; the mesh check counts two bodies, so the STL is refused, never reported watertight."""
     from camgen.core.solids import bodies, check_mesh, extrude
+    from camgen.api import write_cam
     from camgen.profile import design_cam
-    from camgen.outputs import write_cam
 
     spec = template(RING)
     wide = spec.model_copy(update={"output": spec.output.model_copy(update={"clearance": 3.0})})

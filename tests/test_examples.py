@@ -14,7 +14,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main as camgen
 from camgen.core import examples as bundled
-from camgen.starters import STARTERS as CAM_STARTERS
+from camgen.starters import starters as cam_starters
 from linkgen.cli import main as linkgen
 from linkgen.starters import STARTERS as LINKAGE_STARTERS
 from tests.conftest import ROOT
@@ -95,7 +95,7 @@ def test_new_never_overwrites_a_file_an_example_reads(tmp_path, monkeypatch):
 
 def test_a_kind_keeps_its_name_and_example_picks_the_example(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    clashes = sorted((set(CAM_STARTERS) | set(LINKAGE_STARTERS)) & set(bundled.examples()))
+    clashes = sorted((set(cam_starters()) | set(LINKAGE_STARTERS)) & set(bundled.examples()))
     assert clashes == ["barrel", "conjugate", "grooved", "hoekens", "plate", "slider-crank"]
     _run(camgen, "new", "plate", "-o", "starter.toml")
     _run(camgen, "new", "plate", "--example", "-o", "example.toml")
@@ -144,7 +144,7 @@ def test_every_example_runs_by_name_after_a_plain_install(tmp_path):
     run("linkgen", "new", "jansen", "-o", "j.toml")
     run("linkgen", "build", "j.toml")
     assert (work / "out" / "j" / "j-sheet.dxf").is_file()
-    starters = {"camgen": set(CAM_STARTERS), "linkgen": set(LINKAGE_STARTERS)}
+    starters = {"camgen": set(cam_starters()), "linkgen": set(LINKAGE_STARTERS)}
     for example in bundled.examples().values():
         name = f"x-{example.name}.toml"
         flag = ["--example"] if example.name in starters[example.program] else []

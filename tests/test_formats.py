@@ -9,9 +9,9 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
+from camgen.api import write_cam
 from camgen.flat import build_cam
 from camgen.profile import design_cam
-from camgen.outputs import write_cam
 from camgen.surface import surface_deviation
 from tests.conftest import template
 

@@ -346,7 +346,8 @@ def test_a_missing_key_and_a_cam_table_are_refused():
     with pytest.raises(SpecError, match=r"^geneva\.pin_diameter: missing: give diameter of the driver's pin in mm$"):
         validate_spec(raw)
     raw = copy.deepcopy(GOOD) | {"cam": {"base_radius": 10.0}}
-    with pytest.raises(SpecError, match=r"^cam: unknown key; known keys here: name, geneva, output$"):
+    with pytest.raises(SpecError, match=r"^template: give \[cam\] \(a cam\) or \[geneva\] \(a Geneva drive\), not "
+                                        r"both$"):
         validate_spec(raw)
 
 

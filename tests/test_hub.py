@@ -8,7 +8,7 @@ import pytest
 
 from camgen.profile import design_cam
 from camgen.core.errors import DesignError
-from camgen.outputs import write_cam
+from camgen.api import write_cam
 from camgen.core.shapes import Contour
 from camgen.core.features import key_for
 from tests.conftest import template

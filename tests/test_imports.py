@@ -85,11 +85,11 @@ def test_a_one_design_command_pauses_the_collector_and_restores_it(tmp_path, mon
 
     from click.testing import CliRunner
 
-    import camgen.profile
+    import camgen.api
     from camgen.cli import main
     from camgen.core.errors import DesignError
 
-    real, seen = camgen.profile.design_cam, []
+    real, seen = camgen.api.design, []
 
     def recording(spec, *args, **kwargs):              # what the collector was doing while the design was made
         seen.append(gc.isenabled())
@@ -97,7 +97,7 @@ def test_a_one_design_command_pauses_the_collector_and_restores_it(tmp_path, mon
             raise DesignError("cam.thickness: refused by the test")
         return real(spec, *args, **kwargs)
 
-    monkeypatch.setattr(camgen.profile, "design_cam", recording)
+    monkeypatch.setattr(camgen.api, "design", recording)
     build = ["build", str(ROOT / "templates" / "rdrd.toml"), "-o", str(tmp_path), "--set"]
     assert gc.isenabled()
     ok = CliRunner().invoke(main, [*build, 'output.formats=["json"]'])

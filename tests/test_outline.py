@@ -89,8 +89,8 @@ def test_biarcs_read_back_from_the_dxf_are_tangent_continuous(tmp_path):
     """At every vertex the arc arriving and the arc leaving share their tangent (G1), as a CNC controller wants."""
     import ezdxf
 
+    from camgen.api import write_cam
     from camgen.profile import design_cam
-    from camgen.outputs import write_cam
     from camgen.core.shapes import Contour
 
     design = design_cam(template({"output.curves": "biarcs", "output.formats": ["dxf"]}))

@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from camgen.api import write_cam
 from camgen.profile import design_cam
-from camgen.outputs import write_cam
 from tests.conftest import template
 from tests.freecad import freecad_check
 

@@ -10,12 +10,16 @@ import pytest
 from click.testing import CliRunner
 
 from camgen.cli import main as camgen
-from camgen.starters import STARTERS as CAM_STARTERS
+from camgen.core.starter import table_models
+from camgen.starters import starters
 from camgen.spec import CamTable, validate_spec
 from camgen.core.errors import SpecError
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
 from linkgen.starters import STARTERS as LINKAGE_STARTERS
+
+#: every cam kind's starter, with its kind
+CAM_STARTERS = starters()
 
 
 def _run(program, args):
@@ -145,15 +149,19 @@ def _sets(raw: dict, table: str, key: str) -> bool:
     return any(key in e for e in entries) if isinstance(entries, list) else key in (entries or {})
 
 
-def _cam_takes(text: str, table: str, key: str) -> bool:
+def _models(kind: str) -> dict:
+    """The template models of the kind whose starter ``kind`` is, by table."""
+    return table_models(CAM_STARTERS[kind][0].spec)
+
+
+def _cam_takes(kind: str, text: str, table: str, key: str) -> bool:
     """Whether the starter ``text`` takes ``table.key``: it sets it, or it validates with it added (its default, or a
     sample value)."""
-    from camgen.starters import MODELS
-
     raw = tomllib.loads(text)
     if _sets(raw, table, key):
         return True
-    field = MODELS[table].model_fields.get(key)
+    model = _models(kind).get(table)
+    field = model.model_fields.get(key) if model is not None else None
     if field is None:
         return False
     value = SAMPLES.get(key, field.default)
@@ -171,12 +179,12 @@ def _cam_takes(text: str, table: str, key: str) -> bool:
 
 @pytest.mark.parametrize("kind", sorted(CAM_STARTERS))
 def test_a_cam_starters_comments_name_only_keys_its_kind_takes(kind):
-    from camgen.starters import MODELS, starter
+    from camgen.starters import starter
 
     text = starter(kind, "x")
-    mentions = _mentions(text, {"": None, **MODELS})
+    mentions = _mentions(text, {"": None, **_models(kind)})
     assert mentions, text
-    refused = sorted(f"{t}.{k}" for t, k in mentions if not _cam_takes(text, t, k))
+    refused = sorted(f"{t}.{k}" for t, k in mentions if not _cam_takes(kind, text, t, k))
     assert refused == [], text
 
 
@@ -196,13 +204,13 @@ def test_a_linkage_starters_comments_name_only_keys_its_type_takes(kind):
 def test_the_generic_comment_that_named_another_kinds_key_is_gone():
     """The barrel's groove depth was commented "< thickness", a key a barrel refuses; its comment now says the
     barrel's own rule, and every kind has rules of its own."""
-    from camgen.starters import RULES, starter
+    from camgen.starters import starter
     from linkgen.starters import RULES as LINKAGE_RULES
 
     line = next(x for x in starter("barrel", "x").splitlines() if x.startswith("groove_depth"))
     assert "thickness" not in line and "pitch_radius" in line
-    assert _cam_takes(starter("barrel", "x"), "cam", "thickness") is False        # the test would have caught it
-    assert set(RULES) == set(CAM_STARTERS) and set(LINKAGE_RULES) == set(LINKAGE_STARTERS)
+    assert _cam_takes("barrel", starter("barrel", "x"), "cam", "thickness") is False    # the test would have caught it
+    assert all(s.rules for _, s in CAM_STARTERS.values()) and set(LINKAGE_RULES) == set(LINKAGE_STARTERS)
     lifts = {kind: next(x for x in starter(kind, "x").splitlines() if x.startswith("lift")).split("# ")[1]
              for kind in ("translating-roller", "oscillating-roller", "oscillating-flat", "barrel")}
     assert lifts["oscillating-roller"].startswith("degrees") and lifts["oscillating-flat"].startswith("degrees")

@@ -632,7 +632,7 @@ def test_linkgen_analyze_refuses_step(tmp_path):
 
 
 def test_a_build_without_step_never_imports_ocp(tmp_path):
-    code = ("import sys; from camgen.profile import design_cam; from camgen.outputs import write_cam; "
+    code = ("import sys; from camgen.profile import design_cam; from camgen.api import write_cam; "
             "from camgen.spec import load_spec; "
             f"write_cam(design_cam(load_spec({str(ROOT / 'templates' / 'rdrd.toml')!r}, "
             "['output.formats=[\"stl\",\"json\"]'])), 'out'); print('OCP' in sys.modules)")

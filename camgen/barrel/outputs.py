@@ -14,7 +14,7 @@ from camgen.barrel.design import BarrelDesign
 from camgen.core import VERSION
 from camgen.core.bundle import Bundle, item, tail
 from camgen.core.errors import ExportError
-from camgen.page import cam_page
+from camgen.page import barrel_page
 from camgen.report import design_lines
 from camgen.sizing import pressure_limit
 
@@ -215,6 +215,6 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
         item(design.drawing, [("dxf", "dxf", f"{name}-developed.dxf"), ("cut-svg", "cut_svg", f"{name}-developed.svg")],
              formats),
         item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
-        *tail(name, plot, ("svaj", "cam", *checks), report, lambda: cam_page(design, report), formats),
+        *tail(name, plot, ("svaj", "cam", *checks), report, lambda: barrel_page(design, report), formats),
     ]
     return Bundle.of(items, out.write_options), report

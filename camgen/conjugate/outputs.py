@@ -25,7 +25,7 @@ from camgen.core.parts import Drawing, Placed
 from camgen.core.routing import add_routing
 from camgen.profile import step_part
 from camgen.outputs import printed_mesh
-from camgen.page import cam_page
+from camgen.page import conjugate_page
 from camgen.report import cam_report, design_lines
 
 #: the keys of a disc cam's report that each cam of the pair has of its own (the rest they share)
@@ -255,5 +255,5 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
                       formats))
     checks = ("checks",) if (design.cams[0].speed or {}).get("forces") else ()   # at a speed with a mass
     checks += ("speeds",) if "speeds" in (design.cams[0].speed or {}) else ()
-    items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: cam_page(design, report), formats)
+    items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: conjugate_page(design, report), formats)
     return Bundle.of(items, out.write_options), report

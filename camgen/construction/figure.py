@@ -15,7 +15,6 @@ import numpy as np
 
 from camgen.construction.geometry import Construction, construct
 from camgen.core.bundle import Item, item
-from camgen.core.errors import SpecError
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 
 #: the figure's width, the diagram's height, the margins (inches): left, right, top, between the panels, foot
@@ -31,13 +30,8 @@ _CIRCLE = {"translating-roller": "prime circle", "knife-edge": "base (prime) cir
 
 def construction_files(design: Any) -> tuple[Item, ...]:
     """The construction's files of ``design`` (a disc cam's) for the bundle: ``<name>-construction.png`` and
-    ``.svg`` (report keys ``construction_png``, ``construction_svg``), drawn only when written. A one-line
-    :class:`SpecError` naming ``--construction`` for a design that is no disc cam (a plate, a grooved or barrel cam,
-    a conjugate pair, a Geneva drive), before anything is drawn or written."""
-    kind = getattr(getattr(design.spec, "cam", None), "kind", "geneva")
-    if kind != "disc":
-        what = "a Geneva drive" if kind == "geneva" else f"a {kind} cam"
-        raise SpecError(f"the graphical construction is drawn for a disc cam, not {what}", "--construction")
+    ``.svg`` (report keys ``construction_png``, ``construction_svg``), drawn only when written. The disc kind's
+    (:meth:`camgen.kinds.base.Kind.construction`): the other kinds refuse ``--construction`` in one line."""
     name = design.spec.name
     got = item(lambda: construction_figure(design), [("png", "construction_png", f"{name}-construction.png"),
                                                      ("svg", "construction_svg", f"{name}-construction.svg")],

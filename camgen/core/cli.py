@@ -8,10 +8,10 @@ from __future__ import annotations
 import atexit
 import functools
 import gc
-import importlib
 import os
 import sys
 from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -271,48 +271,65 @@ def family_options(func: Callable[..., Any]) -> Callable[..., Any]:
                           "processes.")))
 
 
-def _named(name: str) -> Any:
-    """The object a ``"module:attribute"`` name points to (imported when a command first needs it)."""
-    module, _, attr = name.partition(":")
-    return getattr(importlib.import_module(module), attr)
+@dataclass(frozen=True)
+class Family:
+    """What a product's ``family`` command calls: ``validate`` (raw template -> spec), ``build_member`` (raw
+    template, folder -> summary row; a module-level function, so that worker processes and Dask can take it) and
+    ``nestable`` (spec -> why a family's ``[sheet]`` cannot nest the member's cut part, or None; None itself: the
+    product's families take no ``[sheet]``) and ``thumbnail_bore`` (spec -> the bore, mm, the overview draws about
+    the centre of the member's thumbnail; None: none drawn)."""
+
+    validate: Callable[[dict[str, Any]], Any]
+    build_member: Callable[[dict[str, Any], Path], dict[str, Any]]
+    nestable: Callable[[Any], str | None] | None = None
+    thumbnail_bore: Callable[[Any], float] | None = None
 
 
-def add_family(group: click.Group, validate: str, build_member: str, what: str, nestable: str | None = None) -> None:
-    """Give ``group`` a ``family TEMPLATE -o DIR [--jobs N] [--scheduler ADDRESS]`` command; ``validate`` (raw
-    template -> spec), ``build_member`` (raw template, folder -> summary row) and ``nestable`` (spec -> why a
-    family's ``[sheet]`` cannot nest the member's cut part, or None; no name: the product's families take no
-    ``[sheet]``) are ``"module:function"``."""
+@dataclass(frozen=True)
+class Starters:
+    """What a product's ``new`` command offers: ``what`` (each starter's name -> what it is, its first line listed)
+    and ``text`` (name, template name -> the starter's TOML text; a :class:`SpecError` naming ``KIND`` for a name
+    that is none)."""
+
+    what: Mapping[str, str]
+    text: Callable[[str, str], str]
+
+
+def add_family(group: click.Group, family: Callable[[], Family], what: str) -> None:
+    """Give ``group`` a ``family TEMPLATE -o DIR [--jobs N] [--scheduler ADDRESS]`` command calling what
+    ``family()`` gives (called, and so its modules imported, only when the command runs); ``what`` is its help."""
     @group.command(name="family", help=what)
     @family_options
     @user_errors
-    def family(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
+    def family_command(template: Path, output: Path, jobs: int, scheduler: str | None) -> None:
         from camgen.core.family import build_family
 
-        report_family(build_family(template, output, _named(validate), _named(build_member), jobs, scheduler,
-                                   _named(nestable) if nestable is not None else None), output)
+        calls = family()
+        report_family(build_family(template, output, calls.validate, calls.build_member, jobs, scheduler,
+                                   calls.nestable, calls.thumbnail_bore), output)
 
 
-def add_bench(group: click.Group, run: str, default: Path, what: str) -> None:
-    """Give ``group`` a ``bench [--quick] [-o DIR]`` command running ``run(folder, quick)`` (a ``"module:function"``
-    name); ``what`` is its help."""
+def add_bench(group: click.Group, run: Callable[[], Callable[[Path, bool], dict[str, Any]]], default: Path,
+              what: str) -> None:
+    """Give ``group`` a ``bench [--quick] [-o DIR]`` command running ``run()(folder, quick)`` (``run`` imports the
+    bench only when the command runs); ``what`` is its help."""
     @group.command(name="bench", help=what)
     @click.option("--quick", is_flag=True, help="Fewer tolerances, sizes and repeats.")
     @output_option("Folder for RESULTS.md, results.json and any plots.", default=default, show_default=True)
     @user_errors
     def bench(quick: bool, output: Path) -> None:
-        results = _named(run)(output, quick)
+        results = run()(output, quick)
         wrong = [c for c in results["hard_cases"] if c["outcome"].startswith("WRONG")]
         for name in sorted(p.name for p in output.iterdir()):
             click.echo(f"wrote {output / name}")
         click.echo(f"{len(results['hard_cases'])} hard cases, {len(wrong)} wrong")
 
 
-def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
-    """Give ``group`` a ``new [NAME] [-o FILE] [--example]`` command: NAME is a kind, whose starter template
-    ``starter(kind, name)`` it writes (a ``"module:function"`` name; ``kinds`` names the mapping of kinds to (what,
-    tables)), or one of ``program``'s bundled examples (:mod:`camgen.core.examples`), which it copies with the files
-    it reads; ``--example`` picks the example where a kind has the same name. Without NAME it lists the kinds. An
-    existing file is never overwritten."""
+def add_new(group: click.Group, starters: Callable[[], Starters], program: str) -> None:
+    """Give ``group`` a ``new [NAME] [-o FILE] [--example]`` command: NAME is a starter of ``starters()`` (called only
+    when the command runs), whose template it writes, or one of ``program``'s bundled examples
+    (:mod:`camgen.core.examples`), which it copies with the files it reads; ``--example`` picks the example where a
+    starter has the same name. Without NAME it lists the starters. An existing file is never overwritten."""
     @group.command(name="new", help=f"Write a commented starter template of the kind NAME, or a copy of the bundled "
                                     f"example NAME (`{program} examples` lists them), that `{program}` takes as it "
                                     "is (without NAME: list the kinds).")
@@ -328,9 +345,9 @@ def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
         from camgen.core.errors import SpecError
         from camgen.core.spec import NAME_PATTERN
 
-        starters = _named(kinds)
+        offered = starters()
         if kind is None:
-            for name, (what, _) in starters.items():
+            for name, what in offered.what.items():
                 click.echo(f"{name:<20} {what.splitlines()[0]}")
             return
         path = output if output is not None else Path(f"{kind}.toml")
@@ -339,13 +356,13 @@ def add_new(group: click.Group, starter: str, kinds: str, program: str) -> None:
             raise SpecError(f"cannot write {path.name[:24]}: {why}", "--output")
         if not re.match(NAME_PATTERN, path.stem):
             raise SpecError(f"{path.stem!r} cannot name a template: letters, digits, '.', '_' and '-'", "--output")
-        if example or kind not in starters:
+        if example or kind not in offered.what:
             bundled = _example(kind, program, example)
             if bundled is not None:
                 _write_example(bundled, path)
                 return
         try:
-            text = _named(starter)(kind, path.stem)
+            text = offered.text(kind, path.stem)
         except SpecError as exc:
             raise _not_a_kind(exc, kind, program) from None
         if not path.parent.is_dir():

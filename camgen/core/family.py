@@ -375,12 +375,17 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
     return sorted(rows, key=lambda r: r["name"])
 
 
+#: a row's keys that the summary's files leave out: the overview's thumbnail (its ring, its kind, the bore drawn in
+#: it) and whether an earlier run built the member
+_NOT_COLUMNS = {"reused", "thumbnail", "thumbnail_kind", "thumbnail_bore"}
+
+
 def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview: Any = None,
                   page: str | None = None) -> list[str]:
     """summary.csv and summary.json (one row per member), the overview figure as PNG and the family's page
     (``overview.html``, see :func:`family_page`), all-or-nothing."""
     columns = ["name", *keys, "status", "error"]
-    extra = sorted({k for r in rows for k in r} - set(columns) - {"reused", "thumbnail", "thumbnail_kind"})
+    extra = sorted({k for r in rows for k in r} - set(columns) - _NOT_COLUMNS)
     columns += extra
     clean = [{k: r.get(k, "") for k in columns} for r in rows]
     text = io.StringIO()
@@ -401,7 +406,7 @@ def write_summary(rows: list[dict], root: str | Path, keys: list[str], overview:
 
 
 #: a row's keys that are no figure of the member (the family's page leaves them out of its table)
-_NOT_FIGURES = {"name", "status", "error", "files", "thumbnail", "thumbnail_kind", "reused"}
+_NOT_FIGURES = {"name", "status", "error", "files", *_NOT_COLUMNS}
 
 
 def family_page(title: str, rows: list[dict], root: str | Path, keys: list[str]) -> str | None:
@@ -425,11 +430,13 @@ def family_page(title: str, rows: list[dict], root: str | Path, keys: list[str])
 
 def build_family(template: str | Path, root: str | Path, validate: Callable[[dict], Any], builder: Builder,
                  jobs: int = 1, scheduler: str | None = None,
-                 nestable: Callable[[Any], str | None] | None = None) -> list[dict]:
+                 nestable: Callable[[Any], str | None] | None = None,
+                 thumbnail_bore: Callable[[Any], float] | None = None) -> list[dict]:
     """Everything ``family`` does: expand, validate every member, build (or resume), write the summary, and with a
     ``[sheet]`` table the members' cut parts nested on sheets (:func:`write_family_sheet`). ``nestable`` (a member's
     spec -> why the sheet cannot nest its cut part, None where it can) is checked for every member before any is
-    built (see :func:`check_sheet`)."""
+    built (see :func:`check_sheet`); ``thumbnail_bore`` (a member's spec -> the bore, mm, drawn about the centre of
+    its thumbnail in the overview; None: none) is the overview's alone, not the members' files."""
     raw, sweep, table = split_family(read_template(template))
     items = members(raw, sweep)
     specs = check_all(items, validate)
@@ -439,12 +446,12 @@ def build_family(template: str | Path, root: str | Path, validate: Callable[[dic
     rows = run_family(items, root, builder, jobs, scheduler=scheduler)
     keys = [k for k, _ in items[0].values]
     title = f"{raw.get('name')}: {len(rows)} members"
-    bores = {m.name: _bore(m.raw) for m in items}
-    shown = [{**r, "thumbnail_bore": bores.get(r["name"], 0.0)} for r in rows]     # the overview's, not the files'
     overview = None
     if figures:
         from camgen.core.figures import overview_figure
 
+        bores = {m.name: thumbnail_bore(s) for m, s in zip(items, specs, strict=True)} if thumbnail_bore else {}
+        shown = [{**r, "thumbnail_bore": bores.get(r["name"], 0.0)} for r in rows]     # the overview's, not the files'
         overview = overview_figure(shown, title)
     write_summary(rows, root, keys, overview, family_page(title, rows, root, keys))
     if table is not None:
@@ -571,13 +578,3 @@ def read_cut_part(path: Path, name: str) -> Any:
     if outline.area < 0:
         outline = outline.reversed()
     return Part(name, outline, tuple(contours[LAYER_HOLES]), 0.0, READ_TOLERANCE_MM, tuple(marks))
-
-
-def _bore(raw: dict) -> float:
-    """The bore (mm) a member's thumbnail shows about its centre: a cam's ``cam.bore`` (0 for a barrel, drawn
-    unrolled, and for what is no cam)."""
-    cam = raw.get("cam")
-    if not isinstance(cam, dict) or cam.get("kind") == "barrel":
-        return 0.0
-    bore = cam.get("bore", 0.0)
-    return float(bore) if isinstance(bore, (int, float)) and not isinstance(bore, bool) else 0.0

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import json
 import textwrap
+import types
+import typing
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -41,6 +43,22 @@ def field_comment(model: Any, key: str) -> str | None:
     extra = info.json_schema_extra if isinstance(info.json_schema_extra, dict) else {}
     unit = extra.get("unit")
     return f"{unit}: {info.description}" if unit else info.description
+
+
+def table_models(spec: Any) -> dict[str, Any]:
+    """The model of each table of the template model ``spec`` (a pydantic model class), by its key: a field whose
+    type is a model (``[cam]``), an optional one (``[kit]``) or a list of them (``[[motion]]``); what
+    :func:`render` comments a starter's keys from."""
+    models = {}
+    for key, info in spec.model_fields.items():
+        kind = info.annotation
+        if typing.get_origin(kind) in (typing.Union, types.UnionType):
+            kind = next((arg for arg in typing.get_args(kind) if arg is not type(None)), kind)
+        if typing.get_origin(kind) is list:
+            kind = typing.get_args(kind)[0]
+        if isinstance(kind, type) and hasattr(kind, "model_fields"):
+            models[key] = kind
+    return models
 
 
 def render(header: str, tables: Sequence[tuple[str, Mapping[str, Any]]], models: Mapping[str, Any],

@@ -9,13 +9,12 @@ wheel, a locking disc out of its range, a bore too large) are named the same way
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 from functools import cached_property
-from typing import Any
+from typing import ClassVar
 
 from pydantic import Field, model_validator
 
-from camgen.core.spec import CutOutputTable, Model, length, name_field, unit, validate
+from camgen.core.spec import CutOutputTable, Model, length, name_field, unit
 from camgen.geneva.geometry import GenevaGeometry
 
 #: the most slots a wheel may have
@@ -58,6 +57,8 @@ class GenevaSpec(Model):
         Formats, tolerance, kerf, clearance and the cut sheet.
     """
 
+    #: its kind's name (the registry's key, :data:`camgen.kinds.KINDS`)
+    kind: ClassVar[str] = "geneva"
     name: str = name_field("drive")
     geneva: GenevaTable
     output: CutOutputTable = CutOutputTable()
@@ -78,7 +79,3 @@ class GenevaSpec(Model):
         return GenevaGeometry(g.slots, g.centre_distance, pin, g.slot_clearance, g.lock_clearance, lock, crank,
                               g.driver_bore, g.wheel_bore)
 
-
-def validate_geneva(raw: Mapping[str, Any]) -> GenevaSpec:
-    """A :class:`GenevaSpec` from a raw template mapping, or a one-line :class:`~camgen.core.errors.SpecError`."""
-    return validate(GenevaSpec, raw)

@@ -18,7 +18,7 @@ from camgen.core.solids import volume_check
 from camgen.groove import Flank
 from camgen.grooved.design import GroovedDesign, step_plate
 from camgen.outputs import cam_files, printed_mesh
-from camgen.page import cam_page
+from camgen.page import grooved_page
 from camgen.report import cam_report
 
 
@@ -139,6 +139,6 @@ def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
 
     speed = design.profile.speed or {}
     checks = (("checks",) if speed.get("forces") else ()) + (("speeds",) if "speeds" in speed else ())
-    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: cam_page(design, report),
+    return cam_files(design.spec, design.cut, mesh, plot, report, lambda: grooved_page(design, report),
                      ("svaj", "cam", *checks),
                      printed=step_plate(design) if "step" in design.spec.output.formats else None), report

@@ -1,25 +1,81 @@
-"""Cam kinds: one module a kind, registered here, the one place a kind is looked up.
+"""Cam kinds (and the Geneva drive): one module a kind, registered here by one line, the one place a kind is looked up.
 
-A kind says which followers it drives, how its ``[cam]`` table is checked, how a follower
-sits on it, and which functions design it and turn its design into a bundle of files
-(named as ``"module:function"`` and imported when first used, so this registry stays
-light). Disc and plate cams share one design (a flat plate cut to a profile); a grooved cam's design
-makes its inner flank that way too (see :mod:`camgen.grooved`); a barrel cam's developed pitch curve
-is a plate cam's (see :mod:`camgen.barrel`); a conjugate pair's first cam is the disc cam and its second is
-designed from the second roller's path (see :mod:`camgen.conjugate`).
+A kind (:class:`~camgen.kinds.base.Kind`) says which table chooses it, which followers it drives, which formats its
+files come in, how its spec is designed, bundled into files, summarised on the console and sized, what a family's
+summary shows of it and which starter templates ``camgen new`` writes of it. Its methods import its design and
+output modules when first called, so this registry stays light. Disc and plate cams share one design (a flat plate
+cut to a profile, :class:`~camgen.kinds.shared.FlatKind`); a grooved cam's design makes its inner flank that way too
+(see :mod:`camgen.grooved`); a barrel cam's developed pitch curve is a plate cam's (see :mod:`camgen.barrel`); a
+conjugate pair's first cam is the disc cam and its second is designed from the second roller's path (see
+:mod:`camgen.conjugate`). A Geneva drive has a ``[geneva]`` table of its own, which chooses it.
+
+The command line, the family, the starters and the library's calls (:mod:`camgen.api`) ask :data:`KINDS`:
+:func:`kind_for` for a raw template, :func:`spec_kind` for a validated spec.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
+from typing import Any
+
+from camgen.core.errors import SpecError
 from camgen.core.options import choose
-from camgen.kinds import barrel, conjugate, disc, grooved, plate
-from camgen.kinds.base import CamKind
+from camgen.core.registry import registry
+from camgen.kinds import barrel, conjugate, disc, geneva, grooved, plate
+from camgen.kinds.base import CAM_TABLE, Kind
+from camgen.kinds.shared import SharedTableKind
 
-#: every cam kind by its template name (``cam.kind``)
-CAM_KINDS: dict[str, CamKind] = {m.KIND.name: m.KIND for m in (disc, plate, grooved, barrel, conjugate)}
+#: every kind by its name (``cam.kind``'s value, or its own table's name), in the order ``camgen new`` lists them
+KINDS: Mapping[str, Kind[Any, Any]] = registry((
+    disc.KIND,
+    plate.KIND,
+    grooved.KIND,
+    barrel.KIND,
+    conjugate.KIND,
+    geneva.KIND,
+), lambda kind: (kind.name,), "cam.kind", "a cam kind")
+
+#: the kinds of the shared ``[cam]`` table (:class:`~camgen.spec.CamTable`), which its ``kind`` names and its
+#: validation checks by (until each kind owns its table)
+CAM_KINDS: Mapping[str, SharedTableKind[Any]] = {name: kind for name, kind in KINDS.items()
+                                                 if isinstance(kind, SharedTableKind)}
+#: the kind of a ``[cam]`` table without ``kind``
+DEFAULT_KIND = "disc"
 
 
-def kind_of(kind: str) -> CamKind:
-    """The registered kind ``kind`` (``cam.kind``), or a one-line error listing them."""
+def kind_for(raw: Mapping[str, Any]) -> Kind[Any, Any]:
+    """The kind of the raw template ``raw``: the kind whose own table it has (a ``[geneva]`` table: a Geneva
+    drive), else its ``cam.kind`` (a disc without one).
+
+    Raises
+    ------
+    SpecError
+        Two kinds' tables in one template (``template: give [cam] (a cam) or [geneva] (a Geneva drive), not
+        both``), or a ``cam.kind`` no kind has (the message lists them, with the closest).
+    """
+    own = [kind for kind in KINDS.values() if kind.table_key != CAM_TABLE and kind.table_key in raw]
+    if len(own) + (CAM_TABLE in raw) > 1:
+        raise SpecError(_one_table(raw, own), "template")
+    if own:
+        return own[0]
+    cam = raw.get(CAM_TABLE)
+    name = cam.get("kind", DEFAULT_KIND) if isinstance(cam, Mapping) else DEFAULT_KIND
+    return KINDS[choose(name, [n for n, kind in KINDS.items() if kind.table_key == CAM_TABLE], "cam.kind")]
+
+
+def _one_table(raw: Mapping[str, Any], own: list[Kind[Any, Any]]) -> str:
+    """What to say of a template holding the tables of several kinds: ``[cam]`` and those of ``own``."""
+    tables = [(CAM_TABLE, "a cam")] if CAM_TABLE in raw else []
+    given = [f"[{table}] ({what})" for table, what in (*tables, *((k.table_key, k.title) for k in own))]
+    return "give " + (" or ".join(given) + ", not both" if len(given) == 2 else "only one of " + ", ".join(given))
+
+
+def spec_kind(spec: Any) -> Kind[Any, Any]:
+    """The kind of a validated spec (by its ``kind``: a cam's ``cam.kind``, a Geneva drive's ``"geneva"``)."""
+    return KINDS[choose(spec.kind, KINDS, "cam.kind")]
+
+
+def kind_of(kind: str) -> SharedTableKind[Any]:
+    """The kind of the shared ``[cam]`` table named ``kind`` (``cam.kind``), or a one-line error listing them."""
     try:
         return CAM_KINDS[kind]          # a registered name (a design asks twice): no list of the names made
     except (KeyError, TypeError):       # not one, or not a name at all: the error says which are

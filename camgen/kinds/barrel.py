@@ -9,12 +9,19 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any
+from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
 from camgen.core.features import KEYS, bore_reach
 from camgen.followers.barrel import BarrelGeometry, DevelopedRoller
 from camgen.followers.plate import PlateRoller
-from camgen.kinds.base import BARREL_KEYS, CamKind
+from camgen.kinds.base import ALL_FORMATS, BARREL_KEYS, NESTED, Operations, Starter
+from camgen.kinds.shared import SharedTableKind
+from camgen.kinds.starting import OUTPUT
+
+if TYPE_CHECKING:
+    from camgen.barrel.design import BarrelDesign
+    from camgen.spec import CamSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
 #: ``[cam]`` keys a barrel does not use, with what it takes instead
@@ -210,5 +217,62 @@ def _follower(spec: Any, base_radius: Any, roller_radius: float) -> PlateRoller 
     return g.developed(g.rest_height - roller_radius, roller_radius)
 
 
-KIND = CamKind("barrel", FOLLOWERS, _check, _follower, "camgen.barrel.design:design_barrel",
-               "camgen.barrel.outputs:barrel_bundle")
+STARTERS = {
+    "barrel": Starter(
+        "A barrel (cylindrical) cam: a groove round a cylinder moves the roller along the axis.",
+        (("cam", {"kind": "barrel", "pitch_radius": 30.0, "length": 50.0, "groove_depth": 6.0, "bore": 10.0,
+                  "rpm": 60.0}),
+         ("follower", {"type": "translating-roller", "roller_radius": 5.0}),
+         *(("[motion]", seg) for seg in ({"type": "rise", "law": "cycloidal", "lift": 20.0, "angle": 150.0},
+                                         {"type": "dwell", "angle": 30.0},
+                                         {"type": "return", "law": "modified-sine", "lift": 20.0, "angle": 150.0},
+                                         {"type": "dwell", "angle": 30.0})), OUTPUT),
+        {"cam": "a barrel cam, sized by pitch_radius, length and groove_depth; the pressure angle is "
+                "atan(s' / pitch_radius)",
+         "follower": "a roller moving along the cam's axis, driven both ways by the groove (no return spring)",
+         "cam.pitch_radius": "mm: radius of the pitch cylinder, the groove's mid-depth",
+         "cam.length": "mm: the cylinder's axial length; more than the follower's stroke and the groove's width, "
+                       "2 roller_radius + running_clearance",
+         "cam.groove_depth": "mm: depth of the groove about pitch_radius; its floor, at pitch_radius - "
+                             "groove_depth / 2, must lie outside the bore as printed (bore / 2 + "
+                             "output.clearance / 2) and outside roller_radius + running_clearance / 2",
+         "cam.bore": "mm: bore diameter, 0 for none; within the groove's floor"}),
+}
+
+
+class BarrelKind(SharedTableKind["BarrelDesign"]):
+    """A barrel cam (``cam.kind = "barrel"``): designed by :func:`camgen.barrel.design.design_barrel`, written by
+    :func:`camgen.barrel.outputs.barrel_bundle`; printed round its axis, so no STEP solid and nothing to size."""
+
+    name: str = "barrel"
+    title: str = "a barrel cam"
+    followers: tuple[str, ...] = FOLLOWERS
+    formats: frozenset[str] = ALL_FORMATS - {"step"}
+    unsized: str = ("a barrel cam has no base radius to size: its pitch_radius is the designer's choice (the report "
+               "gives the pressure angle at it)")
+    check: Callable[[CamSpec], None] = staticmethod(_check)
+    follower: Callable[[CamSpec, float, float], Any] = staticmethod(_follower)
+    starters: Mapping[str, Starter] = STARTERS
+
+    def operations(self) -> Operations[CamSpec, BarrelDesign]:
+        from camgen.barrel.design import design_barrel
+        from camgen.barrel.outputs import barrel_bundle, summary_lines
+        from camgen.outputs import cam_row
+
+        return Operations(design_barrel, barrel_bundle, lambda design, report: summary_lines(report),
+                          lambda design, report: cam_row(design, report, design.thumbnail))
+
+    def thumbnail_bore(self, spec: CamSpec) -> float:
+        return 0.0                                      # its thumbnail is the groove drawn unrolled
+
+    def sheet_refusal(self, spec: CamSpec) -> str | None:
+        return f"a barrel cam is printed: its DXF is a developed template, not a part to cut; {NESTED}"
+
+    def format_refusal(self, fmt: str) -> str:
+        if fmt == "step":
+            return ("a barrel cam has no flat part to write as an exact STEP solid (its groove is cut round a "
+                    "cylinder); leave 'step' out and use 'stl' or '3mf'")
+        return super().format_refusal(fmt)
+
+
+KIND = BarrelKind()

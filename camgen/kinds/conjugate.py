@@ -11,10 +11,16 @@ See :mod:`camgen.conjugate`.
 """
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
-from camgen.kinds import disc
-from camgen.kinds.base import GROOVE_KEYS, CamKind, flat_body
+from camgen.kinds.base import GROOVE_KEYS, NESTED, Operations, SizeReport, Starter, flat_body
+from camgen.kinds.shared import SharedTableKind
+from camgen.kinds.starting import OUTPUT, ROLLER, cam_table, motion
+
+if TYPE_CHECKING:
+    from camgen.conjugate.design import ConjugateDesign
+    from camgen.spec import CamSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
 #: the key that places the second roller instead of ``cam.second_base_radius``, by follower type
@@ -53,5 +59,51 @@ def _check(spec: Any) -> None:
                          f"cam.{place}, or a base radius")
 
 
-KIND = CamKind("conjugate", FOLLOWERS, _check, disc.KIND.follower, "camgen.conjugate.design:design_conjugate",
-               "camgen.conjugate.outputs:conjugate_bundle")
+STARTERS = {
+    "conjugate": Starter(
+        "A conjugate pair: two discs on one shaft drive a yoke's two rollers, both ways, no spring.",
+        (cam_table("conjugate", bore=12.0), ("follower", {"type": "translating-roller", "roller_radius": 8.0}),
+         *motion(), ("hub", {"keyway": True}), OUTPUT),
+        {"cam": "a conjugate pair: a second disc drives a second roller on the far end of the yoke; its base circle "
+                "is cam.second_base_radius (default: base_radius); both cams are checked for pressure angle and "
+                "undercut",
+         "follower": "positive drive: the two cams drive the yoke both ways, no return spring",
+         **ROLLER}),
+}
+
+
+class ConjugateKind(SharedTableKind["ConjugateDesign"]):
+    """A conjugate pair (``cam.kind = "conjugate"``): designed by :func:`camgen.conjugate.design.design_conjugate`,
+    written by :func:`camgen.conjugate.outputs.conjugate_bundle`; sized cam by cam, the pair at the larger."""
+
+    name: str = "conjugate"
+    title: str = "a conjugate cam"
+    followers: tuple[str, ...] = FOLLOWERS
+    check: Callable[[CamSpec], None] = staticmethod(_check)
+    starters: Mapping[str, Starter] = STARTERS
+
+    def operations(self) -> Operations[CamSpec, ConjugateDesign]:
+        from camgen.conjugate.design import design_conjugate
+        from camgen.conjugate.outputs import conjugate_bundle, summary_lines
+        from camgen.outputs import cam_row
+
+        return Operations(design_conjugate, conjugate_bundle, lambda design, report: summary_lines(report),
+                          lambda design, report: cam_row(design, report, design.thumbnail),
+                          _size)
+
+    def sheet_refusal(self, spec: CamSpec) -> str | None:
+        return f"a conjugate pair's two cams are nested on its own <name>-sheet.dxf; {NESTED}"
+
+
+def _size(spec: CamSpec) -> SizeReport:
+    """Each cam sized alone (:func:`camgen.conjugate.design.size_conjugate`), the pair at the larger."""
+    from camgen.conjugate.design import size_conjugate
+
+    alone = size_conjugate(spec)
+    note = (f"each cam alone: cam 1 needs {alone[0].base_radius_mm:.4f} mm (cam.base_radius), cam 2 "
+            f"{alone[1].base_radius_mm:.4f} mm (cam.second_base_radius); a pair of equal cams, the larger")
+    return SizeReport(max(alone, key=lambda one: one.base_radius_mm),
+                      {"each_cam_base_radius_mm": [one.base_radius_mm for one in alone]}, (note,))
+
+
+KIND = ConjugateKind()

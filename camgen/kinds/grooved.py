@@ -9,10 +9,16 @@ is the disc cam's (prime radius = base radius + roller radius).
 """
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING, Any
 
-from camgen.kinds import disc
-from camgen.kinds.base import CamKind, flat_body
+from camgen.kinds.base import Operations, SizeReport, Starter, flat_body
+from camgen.kinds.shared import SharedTableKind
+from camgen.kinds.starting import OUTPUT, cam_table, motion
+
+if TYPE_CHECKING:
+    from camgen.grooved.design import GroovedDesign
+    from camgen.spec import CamSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
 
@@ -38,5 +44,41 @@ def _check(spec: Any) -> None:
                          "a grooved cam by its bore (hub.keyway) or hub.bolt_circle holes")
 
 
-KIND = CamKind("grooved", FOLLOWERS, _check, disc.KIND.follower, "camgen.grooved.design:design_grooved",
-               "camgen.grooved.outputs:grooved_bundle")
+STARTERS = {
+    "grooved": Starter(
+        "A grooved face cam: the roller runs in a groove that drives it both ways, no spring.",
+        (cam_table("grooved", thickness=12.0, groove_depth=6.0, running_clearance=0.2, rim=5.0),
+         ("follower", {"type": "translating-roller", "roller_radius": 6.0}), *motion(), OUTPUT),
+        {"cam": "a grooved face cam: flanks roller_radius + running_clearance / 2 either side of the pitch curve; "
+                "the inner flank undercuts where the pitch curve's convex radius falls below that, the outer where "
+                "its concave radius does",
+         "follower": "positive drive: the groove drives the roller both ways, no return spring",
+         "cam.groove_depth": "mm: depth of the groove's pocket in the face; < thickness (it is no slot)",
+         "cam.thickness": "mm: plate thickness (STL extrusion); > groove_depth",
+         "cam.rim": "mm: wall outside the groove's outer flank"}),
+}
+
+
+class GroovedKind(SharedTableKind["GroovedDesign"]):
+    """A grooved face cam (``cam.kind = "grooved"``): designed by :func:`camgen.grooved.design.design_grooved`,
+    written by :func:`camgen.grooved.outputs.grooved_bundle`; its console lines are a disc cam's and the groove's."""
+
+    name: str = "grooved"
+    title: str = "a grooved cam"
+    followers: tuple[str, ...] = FOLLOWERS
+    check: Callable[[CamSpec], None] = staticmethod(_check)
+    starters: Mapping[str, Starter] = STARTERS
+
+    def operations(self) -> Operations[CamSpec, GroovedDesign]:
+        from camgen.grooved.design import design_grooved, size_grooved
+        from camgen.grooved.outputs import groove_summary, grooved_bundle
+        from camgen.outputs import cam_row
+        from camgen.report import cam_summary
+
+        return Operations(design_grooved, grooved_bundle,
+                          lambda design, report: [*cam_summary(design, report), groove_summary(report)],
+                          lambda design, report: cam_row(design, report, design.outline.contour.flatten),
+                          lambda spec: SizeReport(size_grooved(spec)))
+
+
+KIND = GroovedKind()

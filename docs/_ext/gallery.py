@@ -202,9 +202,11 @@ class Gallery(SphinxDirective):
 def _kinds(program: str) -> set[str]:
     """The starter kinds of ``program``: an example of the same name is copied by ``new --example NAME``."""
     if program == "camgen":
-        from camgen.starters import STARTERS
-    else:
-        from linkgen.starters import STARTERS
+        from camgen.starters import starters
+
+        return set(starters())
+    from linkgen.starters import STARTERS
+
     return set(STARTERS)
 
 

@@ -14,10 +14,9 @@ kinematics' in radians; speeds per second at the table's ``rpm``.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Protocol
 
-from camgen.core.errors import SpecError
+from camgen.core.registry import registry as shared_registry
 from linkgen.mechanisms import fourbar, general, quickreturn, slidercrank, straightline
 from linkgen.mechanisms.common import Figure
 
@@ -66,14 +65,8 @@ class Mechanism(Protocol):
 
 def registry(*mechanisms: Mechanism, base: Mapping[str, Mechanism] | None = None) -> Mapping[str, Mechanism]:
     """A read-only ``{linkage.type: mechanism}`` of ``base`` and then ``mechanisms``, in order; a type that two
-    mechanisms answer to is an error."""
-    out = dict(base or {})
-    for mechanism in mechanisms:
-        for kind in mechanism.types:
-            if kind in out:
-                raise SpecError(f"{kind!r} already names a mechanism", "linkage.type")
-            out[kind] = mechanism
-    return MappingProxyType(out)
+    mechanisms answer to is an error (the registry camgen's cam kinds share, :func:`camgen.core.registry.registry`)."""
+    return shared_registry(mechanisms, lambda mechanism: mechanism.types, "linkage.type", "a mechanism", base)
 
 
 #: the modules of the mechanisms, in the order their types are listed
