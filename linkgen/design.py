@@ -9,8 +9,12 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from camgen.core.errors import SpecError
 from camgen.core.routing import add_routing
+from linkgen.dynamics.run import Dynamics, flywheel_build
+from linkgen.dynamics.report import dynamics_report
 from linkgen.effort import Statics, statics_of, statics_report
 from linkgen.kit import LinkageKit, base_plate, linkage_kit
 from linkgen.mechanisms import Mechanism
@@ -48,6 +52,9 @@ class LinkageDesign:
     kit : LinkageKit or None
         The kit of a ``[kit]`` table, when parts are made (its build is :attr:`build`: the base plate is the
         ground).
+    dynamics : Dynamics or None
+        The dynamics of a ``[dynamics]`` table (:mod:`linkgen.dynamics`): masses, joint forces, driving effort,
+        shaking, flywheel, counterweight and the holes' and pins' loads.
     """
 
     spec: LinkageSpec
@@ -58,6 +65,7 @@ class LinkageDesign:
     angle: float | None = None
     statics: Statics | None = None
     kit: LinkageKit | None = None
+    dynamics: Dynamics | None = None
 
     def figures(self) -> tuple[Figure, ...]:
         """The mechanism's figures of this linkage, each drawn only when called; with an angle, the pose there (for
@@ -72,6 +80,10 @@ class LinkageDesign:
                 return plots.effort_figure(self.spec.name, statics)
 
             figures = (*figures, ("effort", effort))
+        if self.dynamics is not None:
+            from linkgen.dynamics.plots import dynamics_figures
+
+            figures = (*figures, *dynamics_figures(self.spec.name, self.dynamics))
         posed = None if self.angle is None else pose_of(self.kinematics, self.spec.linkage, self.angle)
         if posed is None:
             return figures
@@ -84,8 +96,12 @@ class LinkageDesign:
         return (*figures, ("pose", draw))
 
     def family_row(self) -> dict[str, Any]:
-        """What a family's summary adds for this linkage: the mechanism's columns and thumbnail."""
-        return self.mechanism.family_row(self.spec.linkage, self.kinematics, self.report)
+        """What a family's summary adds for this linkage: the mechanism's columns and thumbnail, and with
+        ``[dynamics]`` its peaks."""
+        from linkgen.dynamics.report import family_columns
+
+        return {**self.mechanism.family_row(self.spec.linkage, self.kinematics, self.report),
+                **family_columns(self.report)}
 
     def page(self, report: dict[str, Any] | None = None) -> Any:
         """The linkage's interactive page (:func:`linkgen.page.linkage_page`) showing the figures of ``report`` (the
@@ -102,7 +118,15 @@ class LinkageDesign:
             return None
         from linkgen.page import linkage_page
 
-        return linkage_page(self.spec.name, posed[0], self.report if report is None else report)
+        extra = None if self.dynamics is None else self.dynamics_plots
+        return linkage_page(self.spec.name, posed[0], self.report if report is None else report, extra)
+
+    def dynamics_plots(self, values: np.ndarray) -> tuple[Any, ...]:
+        """The page's plots of the dynamics at the page's input values (rad or mm): the driving effort and power,
+        and the joints' forces."""
+        from linkgen.dynamics.plots import page_plots
+
+        return () if self.dynamics is None else page_plots(self.dynamics, values)
 
     def _repr_html_(self) -> str | None:
         """Jupyter shows the linkage's interactive page inline, as its html file holds it (without the files)."""
@@ -178,22 +202,48 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     report: dict[str, Any] = {"name": spec.name, "type": table.type, "conventions": CONVENTIONS,
                               "lengths_mm": lengths(table), "rpm": table.rpm,
                               **mechanism.report(table, kinematics, angle, method)}
-    statics = None
+    statics = dynamics = None
     if spec.loads:
         posed = pose_of(kinematics, table, 0.0)
         if posed is None:
             raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
         statics = statics_of(spec.loads, posed[0])
         report["statics"] = statics_report(statics, table.rpm)
+    if spec.dynamics is not None:
+        dynamics = _dynamics(spec, kinematics, statics)
+        report["dynamics"] = dynamics_report(dynamics, table.rpm)
     if not parts:
-        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics)
+        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics, None, dynamics)
     layout, mounts = mechanism.layout(table, kinematics, spec.parts), ()
     if spec.kit is not None:
         layout, mounts = base_plate(layout, spec.kit)
     build = build_parts(layout, spec.parts, spec.output.elephant_foot)
     kit = None if spec.kit is None else linkage_kit(spec, layout, mounts, build)
+    if dynamics is not None and dynamics.flywheel is not None and kit is None:
+        build = flywheel_build(build, dynamics)
     add_routing(report, build.cut, spec.output.tool_radius)
-    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit)
+    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit, dynamics)
+
+
+def _dynamics(spec: LinkageSpec, kinematics: Any, statics: Statics | None) -> Dynamics:
+    """The dynamics of the ``[dynamics]`` table, on the linkage drawn as a general one (from the first input angle
+    it reaches of 0 and the middles of its ranges), with the loads of ``[[loads]]``."""
+    from linkgen.dynamics.run import dynamics_of
+
+    table = spec.linkage
+    posed = None
+    for angle in _drawable(kinematics, None):
+        try:
+            posed = pose_of(kinematics, table, angle)
+            break
+        except SpecError:
+            continue
+    if posed is None:
+        raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage, whose dynamics linkgen "
+                        "computes", "dynamics")
+    forces, torques = ((), ()) if statics is None else (statics.forces, statics.torques)
+    assert spec.dynamics is not None
+    return dynamics_of(spec.dynamics, posed[0], spec.parts, table.rpm, forces, torques, spec.kit)
 
 
 def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | None:
