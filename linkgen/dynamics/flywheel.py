@@ -124,7 +124,7 @@ def flywheel_size(table: FlywheelTable, energy: float, speed: float, own: float,
         for _ in range(200):
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if inertia(mid)[0] < needed else (lo, mid)
-            if hi - lo <= 1e-9 * hi:
+            if hi - lo <= 1e-13 * hi:
                 break
         radius = hi
     else:

@@ -33,7 +33,7 @@ def torque_figure(name: str, dyn: Dynamics) -> Any:
     r = dyn.result
     x, label = _input(dyn, r.inputs)
     fig = figure(8, 6, layout=None)
-    fig.subplots_adjust(left=0.11, right=0.97, bottom=0.09, top=0.93, hspace=0.12)
+    fig.subplots_adjust(left=0.13, right=0.97, bottom=0.09, top=0.93, hspace=0.12)
     top, bottom = fig.subplots(2, 1, sharex=True)
     top.plot(x, r.effort, color="C0", lw=1.5, label="driving " + ("torque" if dyn.crank else "force"))
     if dyn.fluctuation is not None:
@@ -82,7 +82,7 @@ def shaking_figure(name: str, dyn: Dynamics) -> Any:
     moment about the origin against the input."""
     r = dyn.result
     fig = figure(10, 4.8, layout=None)
-    fig.subplots_adjust(left=0.07, right=0.98, bottom=0.12, top=0.9, wspace=0.3)
+    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.12, top=0.9, wspace=0.3)
     locus, moment = fig.subplots(1, 2)
     f = r.shaking_force
     locus.plot(f[:, 0], f[:, 1], color="C0", lw=1.4, label="shaking force")

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from linkgen.dynamics.run import Dynamics
+from linkgen.dynamics.run import TOGGLE_CUT, Dynamics
 from linkgen.dynamics.strength import hole_force
 from linkgen.kinematics.kinetostatics import Kinetostatics
 
@@ -108,7 +108,7 @@ def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
             "max": _num(float(np.max(dyn.inertia)))},
         "joints": [_joint(pf, peak, shown, at_key) for pf, peak in zip(r.pairs, peaks[5:5 + len(r.pairs)],
                                                                        strict=True)],
-        "balance_residual": _num(float(np.nanmax(r.residual))) if len(r.residual) else 0.0,
+        "balance_residual": None if r.residual is None else _num(float(np.nanmax(r.residual))),
     }
     if dyn.turns and dyn.fluctuation is not None:
         out["mean_effort_N_m"] = _num(dyn.fluctuation.mean_torque)
@@ -126,6 +126,12 @@ def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
     holes, pins, warnings = _strength(dyn, peaks[5 + len(r.pairs):], shown, at_key)
     out["holes"] = holes
     out["pins"] = pins
+    if dyn.toggles:
+        ends = " and ".join(f"{shown(v):.6g}" for v in dyn.toggles)
+        out[f"analysed_{unit}"] = [shown(float(x[0])), shown(float(x[-1]))]
+        warnings.append(f"the input's range ends at a toggle ({ends} {'degrees' if crank else 'mm'}), where at "
+                        "constant input speed the links' rates and their inertia's forces grow without bound: the "
+                        f"forces are given from {100 * TOGGLE_CUT:g} % of the range inside it")
     if not finite.all():
         bad = x[~finite]
         warnings.append(f"the driver cannot move the linkage near input {shown(float(bad[0])):.4g} "

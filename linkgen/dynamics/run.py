@@ -17,7 +17,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from linkgen.dynamics.flywheel import FlywheelSize, flywheel_size, with_flywheel
-from linkgen.dynamics.masses import MassModel, mass_model
+from linkgen.dynamics.masses import MassModel, Stack, mass_model
 from linkgen.dynamics.strength import HoleLoad, hole_loads
 from linkgen.kinematics.balance import Counterweight, Fluctuation, counterweight, fluctuation
 from linkgen.kinematics.inertia import MM, generalised_inertia
@@ -33,6 +33,10 @@ if TYPE_CHECKING:
     from linkgen.spec import PartsTable
 
 TWO_PI = 2.0 * math.pi
+#: a range that ends at a toggle (a dyad in line, its margin within this of 0) is analysed from this fraction of the
+#: range inside it: at constant input speed the links' rates, and so their inertia's forces, grow without bound there
+TOGGLE_CUT = 0.01
+TOGGLE_MARGIN = 1e-6
 
 
 @dataclass(frozen=True)
@@ -56,6 +60,8 @@ class Dynamics:
     flywheel: FlywheelSize | None
     counterweight: Counterweight | None
     holes: tuple[HoleLoad, ...]
+    #: the ends of the input's range at toggles, left out by :data:`TOGGLE_CUT` of the range (rad or mm)
+    toggles: tuple[float, ...] = ()
 
     @property
     def crank(self) -> bool:
@@ -88,14 +94,20 @@ class Dynamics:
         return (float(found.x), value) if value > best else (float(x[index]), best)
 
 
-def poses(analysis: Analysis, count: int) -> tuple[np.ndarray, bool]:
-    """The input values the dynamics is computed at (rad or mm) and whether they are a full, periodic turn."""
+def poses(analysis: Analysis, count: int) -> tuple[np.ndarray, bool, tuple[float, ...]]:
+    """The input values the dynamics is computed at (rad or mm), whether they are a full, periodic turn, and the
+    ends of the range that are toggles (the values start and stop :data:`TOGGLE_CUT` of the range inside them)."""
     lo, hi = float(analysis.span[0, 0]), float(analysis.span[0, -1])
     linkage = analysis.linkage
     turns = analysis.crank and abs(hi - lo - TWO_PI) < 1e-9 and all(len(f) % 2 == 0 for f in linkage.flips)
     if turns:
-        return lo + TWO_PI * np.arange(count) / count, True
-    return np.linspace(lo, hi, count), False
+        return lo + TWO_PI * np.arange(count) / count, True, ()
+    ends = linkage.solve(np.array([lo, hi]), strict=False, derivatives=False)
+    margin = np.min([np.abs(d.margin) for d in ends.dyads], axis=0) if ends.dyads else np.ones(2)
+    toggles = tuple(v for v, m in zip((lo, hi), margin, strict=True) if m < TOGGLE_MARGIN)
+    cut = TOGGLE_CUT * (hi - lo)
+    return np.linspace(lo + (cut if lo in toggles else 0.0), hi - (cut if hi in toggles else 0.0), count), False, \
+        toggles
 
 
 def _springs(table: DynamicsTable, analysis: Analysis) -> tuple[Spring, ...]:
@@ -126,9 +138,10 @@ def _springs(table: DynamicsTable, analysis: Analysis) -> tuple[Spring, ...]:
 
 def dynamics_of(table: DynamicsTable, analysis: Analysis, parts: PartsTable | None, rpm: float,
                 forces: Sequence[PointForce] = (), torques: Sequence[LinkTorque] = (),
-                kit: KitTable | None = None) -> Dynamics:
+                kit: KitTable | None = None, stack: Stack | None = None) -> Dynamics:
     """The dynamics of the linkage ``analysis`` draws, for its ``[dynamics]`` ``table``, ``[parts]``, ``[kit]``,
-    speed ``rpm`` (a crank) and its loads (``[[loads]]`` as :mod:`linkgen.effort` reads them).
+    speed ``rpm`` (a crank) and its loads (``[[loads]]`` as :mod:`linkgen.effort` reads them), its pins and
+    spacers as ``stack`` has them (:class:`linkgen.dynamics.masses.Stack`; none without).
 
     Raises
     ------
@@ -140,11 +153,11 @@ def dynamics_of(table: DynamicsTable, analysis: Analysis, parts: PartsTable | No
     if len(s.inputs) != 1:
         raise SpecError("a linkage of one input has one effort; with two, the forces cannot be shared out",
                         "dynamics")
-    masses = mass_model(table, analysis, parts, kit)
+    masses = mass_model(table, analysis, parts, stack, kit)
     angle = math.radians(table.gravity_angle)
     g = G0 * math.sin(math.radians(table.incline))
     loads = Loads((g * math.cos(angle), g * math.sin(angle)), tuple(forces), tuple(torques), _springs(table, analysis))
-    x, turns = poses(analysis, table.poses)
+    x, turns, toggles = poses(analysis, table.poses)
     if table.flywheel is not None and not turns:
         raise SpecError("a flywheel is sized over a crank's full turn; this input does not turn fully",
                         "dynamics.flywheel")
@@ -153,7 +166,7 @@ def dynamics_of(table: DynamicsTable, analysis: Analysis, parts: PartsTable | No
     else:
         speed, acceleration = table.speed * MM, table.input_acceleration * MM
     sol = analysis.linkage.solve(x)
-    result = kinetostatics(analysis.linkage, sol, masses.drawn, speed, acceleration, loads)
+    result = kinetostatics(analysis.linkage, sol, masses.drawn, speed, acceleration, loads, check=True)
     j, dj = generalised_inertia(s, sol, masses.drawn)
     fl = size = cw = None
     if turns and np.isfinite(result.effort).all():
@@ -162,7 +175,8 @@ def dynamics_of(table: DynamicsTable, analysis: Analysis, parts: PartsTable | No
             size = flywheel_size(table.flywheel, fl.energy, speed, float(np.mean(j)), masses, parts)
         cw = counterweight(x, result.shaking_force, speed)
     holes = hole_loads(result, parts, masses.material, table)
-    return Dynamics(table, analysis, masses, loads, speed, acceleration, result, j, dj, turns, fl, size, cw, holes)
+    return Dynamics(table, analysis, masses, loads, speed, acceleration, result, j, dj, turns, fl, size, cw, holes,
+                    toggles)
 
 
 def flywheel_build(build: LinkageBuild, dyn: Dynamics) -> LinkageBuild:

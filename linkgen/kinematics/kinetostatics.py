@@ -126,8 +126,9 @@ class Kinetostatics:
         (n,) N*m about the origin, the same forces' moment (the driver's reaction couple included).
     power : ndarray
         (n,) W, the driver's power: effort x speed.
-    residual : ndarray
-        (n,) the largest imbalance of any link's equations, relative to the size of their terms.
+    residual : ndarray or None
+        (n,) the largest imbalance of any link's equations with the solved forces put back, relative to the size of
+        their terms (when asked for: ``check``).
     """
 
     inputs: np.ndarray
@@ -140,7 +141,7 @@ class Kinetostatics:
     frame_force: np.ndarray
     frame_moment: np.ndarray
     power: np.ndarray
-    residual: np.ndarray = field(repr=False)
+    residual: np.ndarray | None = field(default=None, repr=False)
 
 
 def pairs_of(linkage: Linkage) -> tuple[Pair, ...]:
@@ -200,7 +201,8 @@ class _Model:
 
 
 def _model(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], speed: float, acceleration: float,
-           loads: Loads) -> _Model:
+           loads: Loads, check: bool = False) -> _Model:
+    """The equations' terms over the poses; with ``check`` also each body's size of terms (for the residual)."""
     s = linkage.structure
     f = input_scale(s)
     n = sol.inputs.shape[-1]
@@ -214,10 +216,10 @@ def _model(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], spee
         centres[body] = cm.position * MM
         inertial[body] = np.column_stack([m.mass * a, m.inertia * MM**2 * alpha])
         applied[body] = np.column_stack([np.broadcast_to(m.mass * g, (n, 2)), np.zeros(n)])
-        size[body] = np.abs(inertial[body]).sum(axis=1) + np.abs(applied[body]).sum(axis=1)
-    holders = {p: next((b for b in s.holders(p) if b != GROUND), None) for p in s.points}
+        if check:
+            size[body] = np.abs(inertial[body]).sum(axis=1) + np.abs(applied[body]).sum(axis=1)
     for load in loads.forces:
-        body = holders[load.point]
+        body = next((b for b in s.holders(load.point) if b != GROUND), None)
         if body is None:
             continue
         force = np.broadcast_to(np.asarray(load.force, dtype=float), (n, 2))
@@ -225,7 +227,8 @@ def _model(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], spee
     for torque in loads.torques:
         if torque.link in applied:
             applied[torque.link][:, 2] += torque.torque
-            size[torque.link] += abs(torque.torque)
+            if check:
+                size[torque.link] += abs(torque.torque)
     for spring in loads.springs:
         pa, pb = _spring_end(s, sol, spring.a, spring.on_a), _spring_end(s, sol, spring.b, spring.on_b)
         d = pb - pa
@@ -251,44 +254,62 @@ def _add(applied: dict[str, np.ndarray], size: dict[str, np.ndarray], body: str,
     moment = cross(arm, force)
     applied[body][:, :2] += force
     applied[body][:, 2] += moment
-    size[body] += np.abs(force).sum(axis=1) + np.abs(moment)
+    if size:
+        size[body] += np.abs(force).sum(axis=1) + np.abs(moment)
 
 
-def _columns(s: Structure, sol: Solution, pair: Pair, centre: np.ndarray, sign: float) -> np.ndarray:
+def _columns(s: Structure, sol: Solution, pair: Pair, centre: np.ndarray, sign: float,
+             out: np.ndarray | None = None) -> np.ndarray:
     """How a pair's two unknowns enter the equations (Fx, Fy, moment about G) of a body it acts on with ``sign``
-    (+1 its ``on`` body, -1 its ``by`` body): an (n, 3, 2) block."""
+    (+1 its ``on`` body, -1 its ``by`` body): a (3, 2, n) block (the poses last, so that each entry is written
+    whole), written into ``out`` (zeros) when given."""
     n = sol.inputs.shape[-1]
     r = sol.points[pair.point] * MM - centre
-    out = np.zeros((n, 3, 2))
+    out = np.zeros((3, 2, n)) if out is None else out
     if pair.kind == "pin":
-        out[:, 0, 0] = sign
-        out[:, 1, 1] = sign
-        out[:, 2, 0] = -sign * r[:, 1]
-        out[:, 2, 1] = sign * r[:, 0]
+        out[0, 0] = sign
+        out[1, 1] = sign
+        out[2, 0] = -sign * r[:, 1]
+        out[2, 1] = sign * r[:, 0]
         return out
     normal = perp(_guide(s, sol, pair))
-    out[:, 0, 0] = sign * normal[:, 0]
-    out[:, 1, 0] = sign * normal[:, 1]
-    out[:, 2, 0] = sign * cross(r, normal)
-    out[:, 2, 1] = sign
+    out[0, 0] = sign * normal[:, 0]
+    out[1, 0] = sign * normal[:, 1]
+    out[2, 0] = sign * cross(r, normal)
+    out[2, 1] = sign
     return out
 
 
+def _wrench(s: Structure, sol: Solution, pair: Pair, centre: np.ndarray, sign: float,
+            value: np.ndarray) -> np.ndarray:
+    """The force and moment about ``centre`` (n, 3) that a pair whose unknowns are ``value`` (n, 2) puts on a body it
+    acts on with ``sign``."""
+    r = sol.points[pair.point] * MM - centre
+    if pair.kind == "pin":
+        force = sign * value
+        return np.column_stack([force, cross(r, force)])
+    normal = perp(_guide(s, sol, pair))
+    force = (sign * value[:, 0])[:, None] * normal
+    return np.column_stack([force, cross(r, force) + sign * value[:, 1]])
+
+
 def _effort_column(s: Structure, sol: Solution, first: Pair, centre: np.ndarray, sign: float) -> np.ndarray:
-    """How the driver's effort enters a body's equations: (n, 3)."""
+    """How the driver's effort enters a body's equations: (3, n), the poses last."""
     n = sol.inputs.shape[-1]
-    out = np.zeros((n, 3))
+    out = np.zeros((3, n))
     if s.inputs[0].kind == "crank":
-        out[:, 2] = sign
+        out[2] = sign
         return out
     u = _guide(s, sol, first)
-    out[:, :2] = sign * u
-    out[:, 2] = sign * cross(sol.points[first.point] * MM - centre, u)
+    out[:2] = sign * u.T
+    out[2] = sign * cross(sol.points[first.point] * MM - centre, u)
     return out
 
 
 def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Stacked solves a x = b, (n, k, k) and (n, k); where a pose's system is singular (a toggle), +-inf."""
+    """Stacked solves a x = b, (k, k, n) and (k, n) (the poses last), x (n, k); where a pose's system is singular (a
+    toggle), +-inf."""
+    a, b = a.transpose(2, 0, 1), b.T
     with np.errstate(all="ignore"):
         try:
             return np.linalg.solve(a, b[..., None])[..., 0]
@@ -322,22 +343,22 @@ def system(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], spee
     bodies = moving_links(s)
     row = {b: 3 * i for i, b in enumerate(bodies)}
     n, size = sol.inputs.shape[-1], 3 * len(bodies)
-    a, b = np.zeros((n, size, size)), np.zeros((n, size))
+    a, b = np.zeros((size, size, n)), np.zeros((size, n))
     for (col, k), pair in zip(_unknowns(pairs), pairs, strict=True):
         for body, sign in ((pair.on, 1.0), (pair.by, -1.0)):
             if body == GROUND:
                 continue
-            a[:, row[body]:row[body] + 3, col:col + 2] += _columns(s, sol, pair, model.centres[body], sign)
+            a[row[body]:row[body] + 3, col:col + 2] += _columns(s, sol, pair, model.centres[body], sign)
             if k == 0:
-                a[:, row[body]:row[body] + 3, col + 2] += _effort_column(s, sol, pair, model.centres[body], sign)
+                a[row[body]:row[body] + 3, col + 2] += _effort_column(s, sol, pair, model.centres[body], sign)
     for body in bodies:
-        b[:, row[body]:row[body] + 3] = model.inertial[body] - model.applied[body]
-    return a, b, bodies
+        b[row[body]:row[body] + 3] = (model.inertial[body] - model.applied[body]).T
+    return a.transpose(2, 0, 1), b.T, bodies
 
 
 def kinetostatics(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], speed: float = 0.0,
                   acceleration: float = 0.0, loads: Loads = Loads(),
-                  method: Literal["blocks", "dense"] = "blocks") -> Kinetostatics:
+                  method: Literal["blocks", "dense"] = "blocks", check: bool = False) -> Kinetostatics:
     """Every joint's force, the driver's effort and the frame's shaking over the poses of ``sol``.
 
     Parameters
@@ -356,6 +377,8 @@ def kinetostatics(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass
         Gravity, forces at joints, torques on links, springs.
     method : {"blocks", "dense"}
         Solve the system a step of the solve order at a time (its block-triangular form) or whole.
+    check : bool
+        Also put the solved forces back into every link's equations: the result's ``residual``.
 
     Returns
     -------
@@ -369,10 +392,10 @@ def kinetostatics(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass
     """
     s = linkage.structure
     pairs = pairs_of(linkage)
-    model = _model(linkage, sol, masses, speed, acceleration, loads)
+    model = _model(linkage, sol, masses, speed, acceleration, loads, check)
     if method == "dense":
         a, b, _ = system(linkage, sol, masses, speed, acceleration, loads)
-        x = _solve(a, b)
+        x = _solve(a.transpose(1, 2, 0), b.T)
         values = [x[:, c:c + 2] for c, _ in _unknowns(pairs)]
         effort = x[:, 2]
     else:
@@ -385,7 +408,7 @@ def kinetostatics(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass
         else:
             normal = perp(_guide(s, sol, pair))
             out.append(PairForce(pair, v[:, :1] * normal, where, v[:, 1].copy(), v[:, 0].copy()))
-    return _finish(s, sol, pairs, tuple(out), effort, model, speed, acceleration)
+    return _finish(s, sol, tuple(out), effort, model, speed, acceleration, check)
 
 
 def _step_bodies(linkage: Linkage) -> list[tuple[str, ...]]:
@@ -408,16 +431,16 @@ def _by_blocks(linkage: Linkage, sol: Solution, pairs: tuple[Pair, ...],
         own = [k for k, p in enumerate(pairs) if p.step == step]
         rows = {b: 3 * i for i, b in enumerate(placed[step])}
         width = 2 * len(own) + (1 if step == 0 else 0)
-        a = np.zeros((n, 3 * len(rows), width))
+        a = np.zeros((3 * len(rows), width, n))
         for i, k in enumerate(own):
             pair = pairs[k]
             for body, sign in ((pair.on, 1.0), (pair.by, -1.0)):
                 if body in rows:
                     r = rows[body]
-                    a[:, r:r + 3, 2 * i:2 * i + 2] = _columns(s, sol, pair, model.centres[body], sign)
+                    _columns(s, sol, pair, model.centres[body], sign, a[r:r + 3, 2 * i:2 * i + 2])
                     if k == 0:
-                        a[:, r:r + 3, width - 1] += _effort_column(s, sol, pair, model.centres[body], sign)
-        b = np.concatenate([model.inertial[body] - model.applied[body] - known[body] for body in rows], axis=1)
+                        a[r:r + 3, width - 1] += _effort_column(s, sol, pair, model.centres[body], sign)
+        b = np.concatenate([(model.inertial[body] - model.applied[body] - known[body]).T for body in rows])
         x = _solve(a, b)
         if step == 0:
             effort = x[:, width - 1]
@@ -426,16 +449,15 @@ def _by_blocks(linkage: Linkage, sol: Solution, pairs: tuple[Pair, ...],
             pair = pairs[k]
             for body, sign in ((pair.on, 1.0), (pair.by, -1.0)):
                 if body not in rows and body != GROUND:
-                    cols = _columns(s, sol, pair, model.centres[body], sign)
-                    known[body] += np.einsum("nij,nj->ni", cols, values[k])
+                    known[body] += _wrench(s, sol, pair, model.centres[body], sign, values[k])
                     if k == 0:
-                        known[body] += _effort_column(s, sol, pair, model.centres[body], sign) * effort[:, None]
+                        known[body] += (_effort_column(s, sol, pair, model.centres[body], sign) * effort).T
     return values, effort
 
 
-def _finish(s: Structure, sol: Solution, pairs: tuple[Pair, ...], forces: tuple[PairForce, ...],
-            effort: np.ndarray, model: _Model, speed: float, acceleration: float) -> Kinetostatics:
-    """The shaking, the frame's reactions, the power and the residual of every link's balance."""
+def _finish(s: Structure, sol: Solution, forces: tuple[PairForce, ...], effort: np.ndarray, model: _Model,
+            speed: float, acceleration: float, check: bool) -> Kinetostatics:
+    """The shaking, the frame's reactions, the power and (``check``) the residual of every link's balance."""
     n = sol.inputs.shape[-1]
     shaking = np.zeros((n, 2))
     moment = np.zeros(n)
@@ -444,8 +466,15 @@ def _finish(s: Structure, sol: Solution, pairs: tuple[Pair, ...], forces: tuple[
         shaking -= inertial[:, :2]
         moment -= inertial[:, 2] + cross(centre, inertial[:, :2])
     frame_force, frame_moment = np.zeros((n, 2)), np.zeros(n)
-    totals = {b: model.applied[b].copy() for b in model.centres}
-    scale = {b: model.size[b].copy() for b in model.centres}
+    totals = {b: model.applied[b].copy() for b in model.centres} if check else {}
+    scale = {b: model.size[b].copy() for b in model.centres} if check else {}
+
+    def put(body: str, wrench: np.ndarray) -> None:
+        """A force and moment (n, 3; the moment about the body's centre) on a moving body, into its sums."""
+        if check:
+            totals[body] += wrench
+            scale[body] += np.abs(wrench).sum(axis=1)
+
     for k, pf in enumerate(forces):
         pair = pf.pair
         for body, sign in ((pair.on, 1.0), (pair.by, -1.0)):
@@ -454,25 +483,24 @@ def _finish(s: Structure, sol: Solution, pairs: tuple[Pair, ...], forces: tuple[
             if body == GROUND:
                 frame_force += force
                 frame_moment += cross(pf.where * MM, force) + couple
-            else:
+            elif check:
                 arm = pf.where * MM - model.centres[body]
-                totals[body][:, :2] += force
-                totals[body][:, 2] += cross(arm, force) + couple
-                scale[body] += np.abs(force).sum(axis=1) + np.abs(cross(arm, force)) + np.abs(couple)
+                put(body, np.column_stack([force, cross(arm, force) + couple]))
         if k == 0:
             for body, sign in ((pair.on, 1.0), (pair.by, -1.0)):
                 centre = np.zeros((n, 2)) if body == GROUND else model.centres[body]
-                column = _effort_column(s, sol, pair, centre, sign) * effort[:, None]
+                column = (_effort_column(s, sol, pair, centre, sign) * effort).T
                 if body == GROUND:
                     frame_force += column[:, :2]
                     frame_moment += column[:, 2]
                 else:
-                    totals[body] += column
-                    scale[body] += np.abs(column).sum(axis=1)
-    residual = np.zeros(n)
-    with np.errstate(all="ignore"):
-        for body in model.centres:
-            miss = np.abs(totals[body] - model.inertial[body]).max(axis=1)
-            residual = np.maximum(residual, miss / np.maximum(scale[body], 1e-300))
+                    put(body, column)
+    residual = None
+    if check:
+        residual = np.zeros(n)
+        with np.errstate(all="ignore"):
+            for body in model.centres:
+                miss = np.abs(totals[body] - model.inertial[body]).max(axis=1)
+                residual = np.maximum(residual, miss / np.maximum(scale[body], 1e-300))
     return Kinetostatics(np.asarray(sol.inputs[0], dtype=float), speed, acceleration, effort, forces, shaking,
                          moment, frame_force, frame_moment, effort * speed, residual)
