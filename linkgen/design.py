@@ -13,6 +13,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.core.routing import add_routing
+from linkgen.dynamics.masses import Stack
 from linkgen.dynamics.run import Dynamics, flywheel_build
 from linkgen.dynamics.report import dynamics_report
 from linkgen.effort import Statics, statics_of, statics_report
@@ -209,41 +210,65 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
             raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
         statics = statics_of(spec.loads, posed[0])
         report["statics"] = statics_report(statics, table.rpm)
-    if spec.dynamics is not None:
-        dynamics = _dynamics(spec, kinematics, statics)
-        report["dynamics"] = dynamics_report(dynamics, table.rpm)
     if not parts:
+        if spec.dynamics is not None:
+            stack = None if spec.parts is None else Stack.of_layout(_layout(spec, kinematics), spec.parts)
+            dynamics = _dynamics(spec, kinematics, statics, stack)
+            report["dynamics"] = dynamics_report(dynamics, table.rpm)
         return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics, None, dynamics)
     layout, mounts = mechanism.layout(table, kinematics, spec.parts), ()
     if spec.kit is not None:
         layout, mounts = base_plate(layout, spec.kit)
     build = build_parts(layout, spec.parts, spec.output.elephant_foot)
     kit = None if spec.kit is None else linkage_kit(spec, layout, mounts, build)
-    if dynamics is not None and dynamics.flywheel is not None and kit is None:
-        build = flywheel_build(build, dynamics)
+    if spec.dynamics is not None:
+        dynamics = _dynamics(spec, kinematics, statics, Stack.of_build(build))
+        report["dynamics"] = dynamics_report(dynamics, table.rpm)
+        if dynamics.flywheel is not None and kit is None:
+            build = flywheel_build(build, dynamics)
     add_routing(report, build.cut, spec.output.tool_radius)
     return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit, dynamics)
 
 
-def _dynamics(spec: LinkageSpec, kinematics: Any, statics: Statics | None) -> Dynamics:
+def _layout(spec: LinkageSpec, kinematics: Any) -> Any:
+    """The mechanism's layout of its ``[parts]`` (with a kit's base plate), as a build makes it: the layer order the
+    dynamics' pins and spacers stack by; a :class:`SpecError` on ``dynamics`` for a mechanism that makes no parts."""
+    assert spec.parts is not None
+    try:
+        layout = spec.mechanism.layout(spec.linkage, kinematics, spec.parts)
+    except SpecError as exc:
+        raise SpecError(f"{exc.detail}, so its masses cannot come from [parts]: give each link's mass, centre and "
+                        "inertia in [dynamics.links.<link>] and leave [parts] out", "dynamics") from None
+    return layout if spec.kit is None else base_plate(layout, spec.kit)[0]
+
+
+def _dynamics(spec: LinkageSpec, kinematics: Any, statics: Statics | None, stack: Stack | None) -> Dynamics:
     """The dynamics of the ``[dynamics]`` table, on the linkage drawn as a general one (from the first input angle
-    it reaches of 0 and the middles of its ranges), with the loads of ``[[loads]]``."""
+    it reaches of 0 and the middles of its ranges), with the loads of ``[[loads]]`` and the pins and spacers of
+    ``stack``."""
     from linkgen.dynamics.run import dynamics_of
 
     table = spec.linkage
-    posed = None
+    forces, torques = ((), ()) if statics is None else (statics.forces, statics.torques)
+    assert spec.dynamics is not None
+    return dynamics_of(spec.dynamics, general_drawing(kinematics, table), spec.parts, table.rpm, forces, torques,
+                       spec.kit, stack)
+
+
+def general_drawing(kinematics: Any, table: Any) -> Any:
+    """The general-linkage analysis the dynamics runs on (:func:`pose_of`, drawn at the first input angle it
+    reaches of 0 and the middles of its ranges): its links and joints are what ``[dynamics]`` names; a
+    :class:`SpecError` on ``dynamics`` for a kind it cannot draw."""
     for angle in _drawable(kinematics, None):
         try:
             posed = pose_of(kinematics, table, angle)
-            break
         except SpecError:
             continue
-    if posed is None:
-        raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage, whose dynamics linkgen "
-                        "computes", "dynamics")
-    forces, torques = ((), ()) if statics is None else (statics.forces, statics.torques)
-    assert spec.dynamics is not None
-    return dynamics_of(spec.dynamics, posed[0], spec.parts, table.rpm, forces, torques, spec.kit)
+        if posed is not None:
+            return posed[0]
+    why = ", driven by its rocker," if getattr(table, "input", "crank") != "crank" else ""
+    raise SpecError(f"linkgen computes the dynamics of a linkage drawn as a general one, which this {table.type}"
+                    f"{why} is not: drive it by its crank, or draw it as type = \"linkage\"", "dynamics")
 
 
 def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | None:

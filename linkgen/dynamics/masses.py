@@ -28,8 +28,8 @@ from linkgen.dynamics.materials import PINS, SHEETS, SPACER, Material
 from linkgen.dynamics.section import part_section
 from linkgen.kinematics.inertia import LinkMass, combined, link_frame, moving_links
 from linkgen.kinematics.structure import GROUND, Structure
-from linkgen.mechanisms.general import Analysis, general_layout, general_parts
-from linkgen.parts import layer_order, pivots_of, spacers_of, with_top_plate
+from linkgen.mechanisms.general import Analysis, general_parts
+from linkgen.parts import Layout, LinkageBuild, Pivot, layer_order, pivots_of, spacers_of, with_top_plate
 
 if TYPE_CHECKING:
     from camgen.core.kit import KitTable
@@ -38,6 +38,32 @@ if TYPE_CHECKING:
 
 #: kg/mm^3 in a kg/m^3
 PER_MM3 = 1e-9
+
+
+@dataclass(frozen=True)
+class Stack:
+    """How the parts stack on their pins, as the layer order builds them: the layers' count above the frame
+    (``top``: a printed pin is ``top`` plates and 1 mm long), the pivot points, the spacers ((joint, its two parts,
+    its layers, its lowest)) and their inner and outer diameters (mm)."""
+
+    top: int
+    pivots: tuple[Pivot, ...]
+    spacers: tuple[tuple[str, tuple[str, str], int, int], ...]
+    spacer_diameters: tuple[float, float]
+
+    @classmethod
+    def of_build(cls, build: LinkageBuild) -> Stack:
+        """The stack of a build (its layers, pivots and spacers)."""
+        return cls(max(build.layers.values()) + 1, build.pivots, build.spacers, build.spacer_diameters)
+
+    @classmethod
+    def of_layout(cls, layout: Layout, parts: PartsTable) -> Stack:
+        """The stack the layer order gives a mechanism's layout (as :func:`linkgen.parts.build_parts` finds it)."""
+        layers, top = layer_order(layout.parts, layout.sweep, parts.pin_diameter / 2)
+        layout, layers = with_top_plate(layout, layers, top, parts.width_of(GROUND))
+        narrowest = min(2 * p.half_width for p in layout.parts)
+        return cls(max(layers.values()) + 1, pivots_of(layout.sweep, layers), spacers_of(layout.sweep, layers),
+                   (parts.pin_diameter + parts.clearance, min(2 * parts.pin_diameter, narrowest)))
 
 
 @dataclass(frozen=True)
@@ -71,11 +97,12 @@ class MassModel:
         return sum(m.total.mass for m in self.links.values())
 
 
-def mass_model(table: DynamicsTable, analysis: Analysis, parts: PartsTable | None,
+def mass_model(table: DynamicsTable, analysis: Analysis, parts: PartsTable | None, stack: Stack | None = None,
                kit: KitTable | None = None) -> MassModel:
     """The moving links' mass properties for the ``[dynamics]`` ``table`` of the linkage ``analysis`` draws, from
-    its ``[parts]`` (and ``[kit]``) when it has them; a :class:`SpecError` naming the key for a link the linkage has
-    not, or for a link whose values neither a part nor the table gives."""
+    its ``[parts]`` (and ``[kit]``) when it has them, the pins and spacers as ``stack`` has them (none without);
+    a :class:`SpecError` naming the key for a link the linkage has not, or for a link whose values neither a part
+    nor the table gives."""
     s = analysis.linkage.structure
     moving = moving_links(s)
     for name in table.links:
@@ -83,7 +110,7 @@ def mass_model(table: DynamicsTable, analysis: Analysis, parts: PartsTable | Non
             raise SpecError(f"no moving link {name!r} (links: {', '.join(moving)})", f"dynamics.links.{name}")
     material = SHEETS[table.material]
     density = table.density if table.density is not None else material.density
-    computed = _from_parts(table, analysis, parts, kit, material, density) if parts is not None else {}
+    computed = _from_parts(table, analysis, parts, stack, kit, material, density) if parts is not None else {}
     links, drawn = {}, {}
     for body in moving:
         part, hardware = computed.get(body, (None, ()))
@@ -102,8 +129,9 @@ def _total(body: str, part: LinkMass | None, hardware: tuple[tuple[str, LinkMass
     if not have_parts:
         missing = [k for k in ("mass", "centre", "inertia") if given is None or getattr(given, k) is None]
         if missing:
-            raise SpecError(f"give {', '.join(missing)}: with no [parts] table there is no part to compute "
-                            f"{body}'s from (or add a [parts] table)", f"dynamics.links.{body}")
+            said = missing[0] if len(missing) == 1 else f"{', '.join(missing[:-1])} and {missing[-1]}"
+            raise SpecError(f"give its {said}: with no [parts] table there is no part to compute them from (or "
+                            "add a [parts] table)", f"dynamics.links.{body}")
         return LinkMass(given.mass, tuple(given.centre), given.inertia)
     own = combined([m for m in ([part] if part is not None else [])] + [m for _, m in hardware])
     if given is None:
@@ -115,8 +143,9 @@ def _total(body: str, part: LinkMass | None, hardware: tuple[tuple[str, LinkMass
     return LinkMass(mass, centre, inertia)
 
 
-def _from_parts(table: DynamicsTable, analysis: Analysis, parts: PartsTable, kit: KitTable | None,
-                material: Material, density: float) -> dict[str, tuple[LinkMass, tuple[tuple[str, LinkMass], ...]]]:
+def _from_parts(table: DynamicsTable, analysis: Analysis, parts: PartsTable, stack: Stack | None,
+                kit: KitTable | None, material: Material,
+                density: float) -> dict[str, tuple[LinkMass, tuple[tuple[str, LinkMass], ...]]]:
     """Each moving link's part as made and the hardware of the pivots it carries (the link's frame)."""
     s = analysis.linkage.structure
     allowances = Allowances(kerf=parts.kerf, kerf_field="parts.kerf")
@@ -130,39 +159,34 @@ def _from_parts(table: DynamicsTable, analysis: Analysis, parts: PartsTable, kit
         section = part_section(made)
         out[link.name] = (LinkMass(per_mm2 * section.area, section.centroid,
                                    per_mm2 * section.polar_about_centroid), ())
-    for body, items in _hardware(table, analysis, parts, kit).items():
-        part, _ = out[body]
-        out[body] = (part, items)
+    if stack is not None:
+        for body, items in _hardware(table, analysis, parts, stack, kit).items():
+            part, _ = out[body]
+            out[body] = (part, items)
     return out
 
 
-def _hardware(table: DynamicsTable, analysis: Analysis, parts: PartsTable,
+def _hardware(table: DynamicsTable, analysis: Analysis, parts: PartsTable, stack: Stack,
               kit: KitTable | None) -> dict[str, tuple[tuple[str, LinkMass], ...]]:
     """The pins (or bolts) and spacers of each pivot point that moves, as point masses (kg) at their joint in the
     frame of the first moving link that holds it."""
     s = analysis.linkage.structure
-    layout = general_layout(analysis, parts)
-    layers, top = layer_order(layout.parts, layout.sweep, parts.pin_diameter / 2)
-    layout, layers = with_top_plate(layout, layers, top, parts.width_of(GROUND))
     t, d = parts.thickness, parts.pin_diameter
-    highest = max(layers.values()) + 1
     pin = PINS[table.pins]
     out: dict[str, list[tuple[str, LinkMass]]] = {}
-    spacers = spacers_of(layout.sweep, layers)
-    narrowest = min(2 * p.half_width for p in layout.parts)
-    inner, outer = d + parts.clearance, min(2 * d, narrowest)
-    for pivot in pivots_of(layout.sweep, layers):
+    inner, outer = stack.spacer_diameters
+    for pivot in stack.pivots:
         if any(p not in s.bodies or p == GROUND for p in pivot.parts):
             continue                               # on the frame: it does not move
-        body = pivot.parts[0]
-        point = _point_of(s, pivot.joints[0])
+        point = _point_of(s, pivot.parts)
+        body = next(p for p in pivot.parts if point in s.bodies[p])
         if kit is not None:
             mass = _bolt_mass(kit, (pivot.high - pivot.low + 1) * t)
         else:
-            shank = math.pi * d**2 / 4 * (highest * t + 1.0) + math.pi * (0.9 * d) ** 2 * d / 2
+            shank = math.pi * d**2 / 4 * (stack.top * t + 1.0) + math.pi * (0.9 * d) ** 2 * d / 2
             mass = shank * pin.density * PER_MM3
         items = [(f"{'bolt' if kit is not None else 'pin'} {point}", mass)]
-        for joint, _, run, _ in spacers:
+        for joint, _, run, _ in stack.spacers:
             if joint in pivot.joints:
                 ring = math.pi / 4 * (outer**2 - inner**2) * run * t
                 items.append((f"spacer {point}", ring * SPACER.density * PER_MM3))
@@ -174,12 +198,13 @@ def _hardware(table: DynamicsTable, analysis: Analysis, parts: PartsTable,
     return {b: tuple(items) for b, items in out.items()}
 
 
-def _point_of(s: Structure, joint: str) -> str:
-    """The drawing's point of a placement's joint: ``A``, ``A#2`` (a pin's second pair), ``<slider>-slot``."""
-    name = joint.partition("#")[0]
-    if name in s.points:
-        return name
-    return s.slider_by_name[name.removesuffix("-slot")].point
+def _point_of(s: Structure, parts: tuple[str, ...]) -> str:
+    """The drawing's joint a pivot's pin is at: the point every one of its parts holds, else (a pin in a slot) the
+    point of the slider between them."""
+    held = [p for p in s.bodies[parts[0]] if all(p in s.bodies[b] for b in parts if b in s.bodies)]
+    if held:
+        return held[0]
+    return next(sl.point for sl in s.sliders if {sl.body, sl.guide} <= set(parts))
 
 
 def _bolt_mass(kit: KitTable, grip: float) -> float:
