@@ -215,8 +215,7 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     if wanted is None:
         if spec.dynamics is not None:
             stack = None if spec.parts is None else Stack.of_layout(_layout(spec, kinematics), spec.parts)
-            dynamics = _dynamics(spec, kinematics, statics, stack)
-            report["dynamics"] = dynamics_report(dynamics, table.rpm)
+            dynamics, report["dynamics"] = _dynamics(spec, kinematics, statics, stack)
         return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics, None, dynamics)
     layout = mechanism.layout(table, kinematics, wanted)
     mounts: tuple[tuple[float, float], ...] = ()
@@ -225,8 +224,7 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     build = build_parts(layout, wanted, spec.output.elephant_foot)
     kit = None if spec.kit is None else linkage_kit(spec, layout, mounts, build)
     if spec.dynamics is not None:
-        dynamics = _dynamics(spec, kinematics, statics, Stack.of_build(build))
-        report["dynamics"] = dynamics_report(dynamics, table.rpm)
+        dynamics, report["dynamics"] = _dynamics(spec, kinematics, statics, Stack.of_build(build))
         if dynamics.flywheel is not None and kit is None:
             build = flywheel_build(build, dynamics)
     add_routing(report, build.cut, spec.output.tool_radius)
@@ -245,17 +243,19 @@ def _layout(spec: LinkageSpec, kinematics: Any) -> Any:
     return layout if spec.kit is None else base_plate(layout, spec.kit)[0]
 
 
-def _dynamics(spec: LinkageSpec, kinematics: Any, statics: Statics | None, stack: Stack | None) -> Dynamics:
-    """The dynamics of the ``[dynamics]`` table, on the linkage drawn as a general one (from the first input angle
-    it reaches of 0 and the middles of its ranges), with the loads of ``[[loads]]`` and the pins and spacers of
-    ``stack``."""
+def _dynamics(spec: LinkageSpec, kinematics: Any, statics: Statics | None,
+              stack: Stack | None) -> tuple[Dynamics, dict[str, Any]]:
+    """The dynamics of the ``[dynamics]`` table and the report's section of it, on the linkage drawn as a general
+    one (from the first input angle it reaches of 0 and the middles of its ranges), with the loads of ``[[loads]]``
+    and the pins and spacers of ``stack``."""
     from linkgen.dynamics.run import dynamics_of
 
-    table = spec.linkage
+    table: Any = spec.linkage
     forces, torques = ((), ()) if statics is None else (statics.forces, statics.torques)
     assert spec.dynamics is not None
-    return dynamics_of(spec.dynamics, general_drawing(kinematics, table), spec.parts, table.rpm, forces, torques,
-                       spec.kit, stack)
+    dynamics = dynamics_of(spec.dynamics, general_drawing(kinematics, table), spec.parts, table.rpm, forces,
+                           torques, spec.kit, stack)
+    return dynamics, dynamics_report(dynamics, table.rpm)
 
 
 def general_drawing(kinematics: Any, table: Any) -> Any:

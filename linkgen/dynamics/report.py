@@ -9,12 +9,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import numpy as np
 
 from linkgen.dynamics.run import TOGGLE_CUT, Dynamics
-from linkgen.dynamics.strength import hole_force
+from linkgen.dynamics.strength import HoleLoad, hole_force
 from linkgen.kinematics.kinetostatics import Kinetostatics
 
 #: rounds of the peaks' refinement, and the grid of each
@@ -61,6 +62,34 @@ def _num(x: float) -> float | None:
     return round(float(x), 9) if math.isfinite(x) else None
 
 
+def _effort(k: Kinetostatics) -> np.ndarray:
+    return k.effort
+
+
+def _negative_effort(k: Kinetostatics) -> np.ndarray:
+    return -k.effort
+
+
+def _power(k: Kinetostatics) -> np.ndarray:
+    return np.abs(k.power)
+
+
+def _shaking_force(k: Kinetostatics) -> np.ndarray:
+    return np.hypot(*k.shaking_force.T)
+
+
+def _shaking_moment(k: Kinetostatics) -> np.ndarray:
+    return np.abs(k.shaking_moment)
+
+
+def _pair_force(i: int, k: Kinetostatics) -> np.ndarray:
+    return np.hypot(*k.pairs[i].force.T)
+
+
+def _hole_force(h: HoleLoad, k: Kinetostatics) -> np.ndarray:
+    return np.hypot(*hole_force(k, h.part, h.joint, h.kind).T)
+
+
 def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
     """The ``dynamics`` section of the report (see the module's note)."""
     a, r = dyn.analysis, dyn.result
@@ -71,12 +100,9 @@ def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
     def shown(v: float) -> float:
         return a.shown(v)
 
-    quantities: list[Quantity] = [lambda k: k.effort, lambda k: -k.effort, lambda k: np.abs(k.power),
-                                  lambda k: np.hypot(*k.shaking_force.T), lambda k: np.abs(k.shaking_moment)]
-    for i in range(len(r.pairs)):
-        quantities.append(lambda k, i=i: np.hypot(*k.pairs[i].force.T))
-    for h in dyn.holes:
-        quantities.append(lambda k, h=h: np.hypot(*hole_force(k, h.part, h.joint, h.kind).T))
+    quantities: list[Quantity] = [_effort, _negative_effort, _power, _shaking_force, _shaking_moment]
+    quantities += [partial(_pair_force, i) for i in range(len(r.pairs))]
+    quantities += [partial(_hole_force, h) for h in dyn.holes]
     peaks = _peaks(dyn, quantities)
     (x_max, t_max), (x_min, t_min), (x_pow, p_pow), (x_sf, sf), (x_sm, sm) = peaks[:5]
     t_min = -t_min
@@ -199,7 +225,9 @@ def _strength(dyn: Dynamics, peaks: list[tuple[float, float]], shown: Callable[[
               at_key: str) -> tuple[list[dict[str, Any]], list[dict[str, Any]], list[str]]:
     """Each hole's peak force, bearing pressure and its allowable; each pin's shear stress at its most loaded hole;
     a warning for each that exceeds its allowable."""
-    holes, pins, warnings = [], {}, []
+    holes: list[dict[str, Any]] = []
+    pins: dict[str, dict[str, Any]] = {}
+    warnings: list[str] = []
     unit = "degrees" if dyn.crank else "mm"
     name = dyn.masses.material.name
     for h, (x, force) in zip(dyn.holes, peaks, strict=True):

@@ -219,11 +219,11 @@ def _model(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], spee
         if check:
             size[body] = np.abs(inertial[body]).sum(axis=1) + np.abs(applied[body]).sum(axis=1)
     for load in loads.forces:
-        body = next((b for b in s.holders(load.point) if b != GROUND), None)
-        if body is None:
+        holder = next((b for b in s.holders(load.point) if b != GROUND), None)
+        if holder is None:
             continue
         force = np.broadcast_to(np.asarray(load.force, dtype=float), (n, 2))
-        _add(applied, size, body, force, sol.points[load.point] * MM - centres[body])
+        _add(applied, size, holder, force, sol.points[load.point] * MM - centres[holder])
     for torque in loads.torques:
         if torque.link in applied:
             applied[torque.link][:, 2] += torque.torque
