@@ -134,15 +134,17 @@ EVERY_TYPE = {
     "chebyshev": {"type": "chebyshev", "size": 40.0},
     "roberts": {"type": "roberts", "size": 40.0},
     "watt": {"type": "watt", "size": 40.0},
+    "linkage": tomllib.loads((ROOT / "templates" / "stephenson3.toml").read_text())["linkage"],
 }
 
 
 @pytest.mark.parametrize("kind", sorted(EVERY_TYPE))
 def test_every_linkage_type_takes_a_dynamics_table(kind):
-    """Each dedicated type with each of its links given a mass: a dynamics section whose links are the type's
-    general drawing's, whose every link balances (1e-9), and whose mean torque over a crank's turn is 0 (no loads:
-    what the links' energy and weights take, they give back); the double rockers (Chebyshev, Roberts, Watt) are
-    analysed inside the toggles that end their crank's range, and say so."""
+    """Each dedicated type, and a Stephenson six-bar drawn as ``type = "linkage"``, with each of its links given a
+    mass: a dynamics section whose links are the type's general drawing's, whose every link balances (1e-9), and
+    whose mean torque over a crank's turn is 0 (no loads: what the links' energy and weights take, they give back);
+    the double rockers (Chebyshev, Roberts, Watt) are analysed inside the toggles that end their crank's range, and
+    say so."""
     from linkgen.design import general_drawing
 
     table = EVERY_TYPE[kind]
@@ -278,3 +280,24 @@ def test_the_summary_page_and_family_carry_the_peaks(tmp_path):
     assert row["flywheel_kg_m2"] == report["flywheel"]["flywheel_kg_m2"]
     page = (tmp_path / "jansen-dynamics.html").read_text()
     assert "driving torque" in page and "joint forces" in page and "peak shaking force" in page
+
+
+def test_a_flywheel_larger_than_the_sheet_is_warned_of_and_refused_by_build(tmp_path):
+    """A rim for Cs 1e-4 at 60 rpm (4.4 kg*m^2) is about 4 m across: the report sizes it and warns that it does not
+    fit the 600 x 400 mm sheet; ``linkgen build`` refuses it in one line naming the key, exit 2, nothing written.
+    With almost no density even the largest plate falls short of the inertia, and says so."""
+    rim = {"flywheel": {"fluctuation": 1e-4, "shape": "rim"}}
+    d = _crank_rocker(rim, parts=False).report["dynamics"]
+    assert d["flywheel"]["diameter_mm"] > 600 and not d["flywheel"]["fits_sheet"]
+    assert d["flywheel"]["inertia_as_made_kg_m2"] == pytest.approx(d["flywheel"]["flywheel_kg_m2"], rel=1e-6)
+    assert [w for w in d["warnings"] if w.startswith("the flywheel:")] == [
+        f"the flywheel: 1 plate(s) {d['flywheel']['diameter_mm']:.6g} mm across do not fit the sheet; linkgen build "
+        "refuses it: stack more plates (dynamics.flywheel.plates), or choose the rim shape or a denser material"]
+    args = ["build", str(ROOT / "templates" / "crank-rocker.toml"), "-o", str(tmp_path / "out"),
+            "--set", f"dynamics={_inline(rim)}"]
+    result = CliRunner().invoke(linkgen, args)
+    assert result.exit_code == 2 and result.output.count("\n") == 1, result.output
+    assert result.output.startswith("error: dynamics.flywheel.plates: 1 plate(s)") and not (tmp_path / "out").exists()
+    light = _crank_rocker({"density": 1e-6, "flywheel": {"fluctuation": 1e-3}}, parts=False).report["dynamics"]
+    assert light["flywheel"]["inertia_as_made_kg_m2"] < 1e-3 * light["flywheel"]["flywheel_kg_m2"]
+    assert any(w.startswith("the flywheel: the largest plate (10000 mm across) gives") for w in light["warnings"])

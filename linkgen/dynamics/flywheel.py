@@ -154,8 +154,9 @@ def with_flywheel(build: LinkageBuild, size: FlywheelSize, pivot: tuple[float, f
         return build
     table = build.table
     if not size.fits:
+        gives = "give" if (size.inertia or 0.0) >= size.needed * (1 - 1e-6) else "fall short of"
         raise DesignError(f"dynamics.flywheel.plates: {size.plates} plate(s) {2 * (size.radius or 0.0):.1f} mm "
-                          f"across give the {size.needed:.3g} kg*m^2 needed, larger than the sheet "
+                          f"across {gives} the {size.needed:.3g} kg*m^2 needed, larger than the sheet "
                           f"({table.sheet[0]:g} x {table.sheet[1]:g} mm); stack more plates, or choose the rim "
                           "shape or a denser material")
     cut = build.cut + tuple(build.allowances.cut(p) for p in plates)

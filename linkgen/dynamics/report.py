@@ -158,11 +158,30 @@ def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
         warnings.append(f"the input's range ends at a toggle ({ends} {'degrees' if crank else 'mm'}), where at "
                         "constant input speed the links' rates and their inertia's forces grow without bound: the "
                         f"forces are given from {100 * TOGGLE_CUT:g} % of the range inside it")
+    warnings += _flywheel_warnings(dyn)
     if not finite.all():
         bad = x[~finite]
         warnings.append(f"the driver cannot move the linkage near input {shown(float(bad[0])):.4g} "
                         f"{'degrees' if crank else 'mm'} (a dead centre): its effort and forces are unbounded there")
     out["warnings"] = warnings
+    return out
+
+
+def _flywheel_warnings(dyn: Dynamics) -> list[str]:
+    """What keeps the flywheel sized from being made: a plate larger than the sheet, or one that cannot give the
+    inertia needed within the largest plate (:data:`camgen.core.spec.MAX_LENGTH_MM` across)."""
+    f = dyn.flywheel
+    if f is None or f.radius is None or f.inertia is None:
+        return []
+    out = []
+    if f.inertia < f.needed * (1 - 1e-6):
+        out.append(f"the flywheel: the largest plate ({2 * f.radius:.6g} mm across) gives {f.inertia:.3g} of the "
+                   f"{f.needed:.3g} kg*m^2 needed; stack more plates (dynamics.flywheel.plates) or choose a denser "
+                   "material")
+    elif not f.fits:
+        out.append(f"the flywheel: {f.plates} plate(s) {2 * f.radius:.6g} mm across do not fit the sheet; linkgen "
+                   "build refuses it: stack more plates (dynamics.flywheel.plates), or choose the rim shape or a "
+                   "denser material")
     return out
 
 
