@@ -9,7 +9,7 @@ sums over the poses are a turn's integrals), or the input's range (its ends incl
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -72,26 +72,6 @@ class Dynamics:
         sol = self.analysis.linkage.solve(np.atleast_1d(np.asarray(values, dtype=float)))
         return kinetostatics(self.analysis.linkage, sol, self.masses.drawn, self.speed, self.acceleration,
                              self.loads)
-
-    def refine(self, quantity: Callable[[Kinetostatics], np.ndarray], index: int) -> tuple[float, float]:
-        """The largest value of ``quantity`` (of the kinetostatics at each pose) near pose ``index``, found between its
-        neighbours to 1e-9 of the motion's range: (input value, the value)."""
-        from scipy.optimize import minimize_scalar
-
-        x = self.result.inputs
-        lo, hi = x[max(index - 1, 0)], x[min(index + 1, len(x) - 1)]
-        best = float(quantity(self.result)[index])
-        if hi <= lo:
-            return float(x[index]), best
-
-        def minus(v: float) -> float:
-            got = float(quantity(self.at(np.array([v])))[0])
-            return -got if math.isfinite(got) else math.inf
-
-        found = minimize_scalar(minus, bounds=(float(lo), float(hi)), method="bounded",
-                                options={"xatol": 1e-9 * max(float(x[-1] - x[0]), 1e-9)})
-        value = -float(found.fun)
-        return (float(found.x), value) if value > best else (float(x[index]), best)
 
 
 def poses(analysis: Analysis, count: int) -> tuple[np.ndarray, bool, tuple[float, ...]]:
