@@ -22,6 +22,7 @@ from linkgen.mechanisms.general import table_of
 from linkgen.parts import LinkPart, Stock
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
+from tests.refusals import assert_refused
 
 CRANK_ROCKER = tomllib.loads((ROOT / "templates" / "crank-rocker.toml").read_text())
 
@@ -170,16 +171,10 @@ def test_a_rocker_driven_four_bar_is_refused_on_dynamics(tmp_path):
              "dynamics: linkgen computes the dynamics of a linkage drawn as a general one", tmp_path)
 
 
-def _refused(template: str, change: dict, message: str, tmp_path) -> None:
-    """``linkgen analyze`` of a bundled template with ``change`` (dotted keys, as --set) fails with
+def _refused(template: str, change: dict, message: str, tmp_path, command: str = "analyze") -> None:
+    """``linkgen analyze`` (or ``command``) of a bundled template with ``change`` (dotted keys, as --set) fails with
     ``error: message...`` on one line, exit code 2, and writes no folder."""
-    args = ["analyze", str(ROOT / "templates" / f"{template}.toml"), "-o", str(tmp_path / "out")]
-    for key, value in change.items():
-        args += ["--set", f"{key}={_inline(value)}"]
-    result = CliRunner().invoke(linkgen, args)
-    assert result.exit_code == 2, result.output
-    assert result.output.startswith(f"error: {message}") and result.output.count("\n") == 1, result.output
-    assert not (tmp_path / "out").exists()
+    assert_refused(ROOT / "templates" / f"{template}.toml", change, message, tmp_path, linkgen, command, _inline)
 
 
 def _inline(value: object) -> str:
@@ -293,11 +288,7 @@ def test_a_flywheel_larger_than_the_sheet_is_warned_of_and_refused_by_build(tmp_
     assert [w for w in d["warnings"] if w.startswith("the flywheel:")] == [
         f"the flywheel: 1 plate(s) {d['flywheel']['diameter_mm']:.6g} mm across do not fit the sheet; linkgen build "
         "refuses it: stack more plates (dynamics.flywheel.plates), or choose the rim shape or a denser material"]
-    args = ["build", str(ROOT / "templates" / "crank-rocker.toml"), "-o", str(tmp_path / "out"),
-            "--set", f"dynamics={_inline(rim)}"]
-    result = CliRunner().invoke(linkgen, args)
-    assert result.exit_code == 2 and result.output.count("\n") == 1, result.output
-    assert result.output.startswith("error: dynamics.flywheel.plates: 1 plate(s)") and not (tmp_path / "out").exists()
+    _refused("crank-rocker", {"dynamics": rim}, "dynamics.flywheel.plates: 1 plate(s)", tmp_path, "build")
     light = _crank_rocker({"density": 1e-6, "flywheel": {"fluctuation": 1e-3}}, parts=False).report["dynamics"]
     assert light["flywheel"]["inertia_as_made_kg_m2"] < 1e-3 * light["flywheel"]["flywheel_kg_m2"]
     assert any(w.startswith("the flywheel: the largest plate (10000 mm across) gives") for w in light["warnings"])

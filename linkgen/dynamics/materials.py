@@ -62,9 +62,7 @@ SHEETS = MappingProxyType({m.name: m for m in (
 PINS = MappingProxyType({m.name: m for m in (
     Material("steel", 7850.0, "cut", 640.0, 2.0),
     Material("brass", 8500.0, "cut", 250.0, 2.0),
-    Material("aluminium", 2700.0, "cut", 276.0, 2.0),
-    Material("pla", 1240.0, "printed", 45.0, 3.0),
-    Material("petg", 1270.0, "printed", 40.0, 3.0),
+    *(SHEETS[name] for name in ("aluminium", "pla", "petg")),    # a pin of the sheets' own aluminium or plastics
 )})
 
 #: the printed spacers' material (the kit's spacers are printed: ``fdm`` in its bill of materials)
