@@ -14,15 +14,13 @@ from camgen.core.spec import MAX_LENGTH_MM, Model, length, notes, unit
 from linkgen.dynamics.materials import PINS, SHEETS
 
 #: the heaviest link (kg) and the largest inertia (kg*mm^2) a user may give
-MAX_MASS_KG = 10_000.0
-MAX_INERTIA = 1e12
+MAX_MASS_KG, MAX_INERTIA = 10_000.0, 1e12
 #: the densest material (kg/m^3): osmium is 22 590
 MAX_DENSITY = 25_000.0
 #: the stiffest spring (N/mm)
 MAX_STIFFNESS = 1e6
 #: the fastest slide input (mm/s) and the largest input acceleration (rad/s^2 or mm/s^2)
-MAX_SPEED_MM_S = 1e5
-MAX_ACCELERATION = 1e6
+MAX_SPEED_MM_S, MAX_ACCELERATION = 1e5, 1e6
 #: the most poses over the motion
 MAX_POSES = 20_000
 #: the largest allowable stress a user may give (MPa)
