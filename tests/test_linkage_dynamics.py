@@ -394,3 +394,28 @@ def test_flywheel_meets_the_coefficient_in_a_forward_simulation():
     mean = 0.5 * (w.max() + w.min())
     assert mean == pytest.approx(w0, rel=1e-4)
     assert (w.max() - w.min()) / mean == pytest.approx(cs, rel=0.01)
+
+
+@pytest.mark.parametrize("name", sorted(LINKAGES))
+def test_the_torque_is_the_equation_of_motions_terms(name):
+    """What forward dynamics will integrate: the Newton-Euler effort at any speed and acceleration is
+    J(q) qddot + 1/2 J'(q) qdot^2 plus the effort at rest (weights, springs, loads), with J and J' of
+    :func:`generalised_inertia`, to 1e-12 of its peak; and J' is the derivative of J along the motion (10th-order
+    central differences of J at the neighbouring poses, 1e-10)."""
+    linkage = LINKAGES[name]()
+    s = linkage.structure
+    masses, loads = _masses(linkage), _loads(linkage)
+    theta = _inputs(linkage, 60, 0.2)
+    sol = linkage.solve(theta)
+    j, dj = generalised_inertia(s, sol, masses)
+    rest = kinetostatics(linkage, sol, masses, 0.0, 0.0, loads).effort
+    speed, acceleration = (20.0, -35.0) if linkage.is_crank() else (0.2, 0.6)
+    got = kinetostatics(linkage, sol, masses, speed, acceleration, loads).effort
+    want = j * acceleration + 0.5 * dj * speed**2 + rest
+    assert np.ptp(j) > 0.05 * j.mean() > 0                               # an inertia that varies over the motion
+    assert np.abs(got - want).max() <= 1e-12 * np.abs(got).max()
+    h = 4e-3 if linkage.is_crank() else 0.1                             # rad, or mm of a slide
+    per = 1.0 if linkage.is_crank() else 1e-3
+    near = linkage.solve((theta[:, None] + h * OFFSETS[None, :]).reshape(-1))
+    j_near = generalised_inertia(s, near, masses)[0].reshape(len(theta), len(OFFSETS))
+    assert np.abs(j_near @ D1 / (h * per) - dj).max() <= 1e-10 * np.abs(dj).max()
