@@ -292,3 +292,25 @@ def test_a_flywheel_larger_than_the_sheet_is_warned_of_and_refused_by_build(tmp_
     light = _crank_rocker({"density": 1e-6, "flywheel": {"fluctuation": 1e-3}}, parts=False).report["dynamics"]
     assert light["flywheel"]["inertia_as_made_kg_m2"] < 1e-3 * light["flywheel"]["flywheel_kg_m2"]
     assert any(w.startswith("the flywheel: the largest plate (10000 mm across) gives") for w in light["warnings"])
+
+
+def test_a_kits_pins_are_its_steel_bolts():
+    """With a ``[kit]`` the pins are its M4 bolts: each moving pivot carries the steel of its bolt, nut and washer
+    (ISO 4762, 4032, 7089) instead of a printed pin, and each pin's shear is against steel's allowable (an 8.8
+    bolt's 192 MPa) whatever ``dynamics.pins`` says."""
+    from camgen.core.hardware import bolt_length
+
+    raw = tomllib.loads((ROOT / "templates" / "kit-crank-rocker.toml").read_text())
+    design = design_linkage(validate_spec({**raw, "dynamics": {"pins": "pla"}}), parts=True)
+    d = design.report["dynamics"]
+    assert d["pins"] and [p["allowable_MPa"] for p in d["pins"]] == [pytest.approx(0.6 * 640 / 2)] * len(d["pins"])
+    bolt = validate_spec(raw).kit.hardware
+    (what, hardware), *_ = design.dynamics.masses.links["crank"].hardware
+    assert what == "bolt A"
+    grip = 2 * design.spec.parts.thickness               # the crank and the coupler at A, one plate each
+    shank = math.pi * bolt.diameter**2 / 4 * bolt_length(bolt, grip)
+    assert hardware.mass > PINS["steel"].density * 1e-9 * shank > 0
+    plain = design_linkage(validate_spec({**{k: v for k, v in raw.items() if k != "kit"},
+                                          "dynamics": {"pins": "pla"}}), parts=True)
+    pins = plain.report["dynamics"]["pins"]
+    assert pins and [p["allowable_MPa"] for p in pins] == [pytest.approx(0.6 * 45 / 3)] * len(pins)

@@ -154,7 +154,7 @@ def dynamics_of(table: DynamicsTable, analysis: Analysis, parts: PartsTable | No
         if table.flywheel is not None:
             size = flywheel_size(table.flywheel, fl.energy, speed, float(np.mean(j)), masses, parts)
         cw = counterweight(x, result.shaking_force, speed)
-    holes = hole_loads(result, parts, masses.material, table)
+    holes = hole_loads(result, parts, masses.material, table, kit is not None)
     return Dynamics(table, analysis, masses, loads, speed, acceleration, result, j, dj, turns, fl, size, cw, holes,
                     toggles)
 

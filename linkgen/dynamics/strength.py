@@ -67,11 +67,13 @@ def hole_force(k: Kinetostatics, part: str, joint: str, kind: str) -> np.ndarray
     return total
 
 
-def hole_loads(k: Kinetostatics, parts: PartsTable | None, material: Material,
-               table: DynamicsTable) -> tuple[HoleLoad, ...]:
-    """Every hole and slot of the moving parts and the frame, in the order of the pairs' joints."""
+def hole_loads(k: Kinetostatics, parts: PartsTable | None, material: Material, table: DynamicsTable,
+               bolts: bool = False) -> tuple[HoleLoad, ...]:
+    """Every hole and slot of the moving parts and the frame, in the order of the pairs' joints; the pins are
+    ``dynamics.pins``, or with ``bolts`` (a ``[kit]``) its steel bolts."""
     bearing = table.allowable_bearing if table.allowable_bearing is not None else material.allowable_bearing
-    shear = table.allowable_shear if table.allowable_shear is not None else PINS[table.pins].allowable_shear
+    pin = PINS["steel"] if bolts else PINS[table.pins]
+    shear = table.allowable_shear if table.allowable_shear is not None else pin.allowable_shear
     d = None if parts is None else parts.pin_diameter
     t = None if parts is None else parts.thickness
     seen: set[tuple[str, str, str]] = set()
