@@ -400,7 +400,8 @@ def test_flywheel_meets_the_coefficient_in_a_forward_simulation():
 def test_the_torque_is_the_equation_of_motions_terms(name):
     """What forward dynamics will integrate: the Newton-Euler effort at any speed and acceleration is
     J(q) qddot + 1/2 J'(q) qdot^2 plus the effort at rest (weights, springs, loads), with J and J' of
-    :func:`generalised_inertia`, to 1e-12 of its peak; and J' is the derivative of J along the motion (10th-order
+    :func:`generalised_inertia`, to 1e-12 of its peak, with one speed and acceleration for all the poses or one of
+    each a pose (and a pose alone gives the same forces); and J' is the derivative of J along the motion (10th-order
     central differences of J at the neighbouring poses, 1e-10)."""
     linkage = LINKAGES[name]()
     s = linkage.structure
@@ -414,6 +415,21 @@ def test_the_torque_is_the_equation_of_motions_terms(name):
     want = j * acceleration + 0.5 * dj * speed**2 + rest
     assert np.ptp(j) > 0.05 * j.mean() > 0                               # an inertia that varies over the motion
     assert np.abs(got - want).max() <= 1e-12 * np.abs(got).max()
+    # a speed and an acceleration of their own at each pose (a motion speeding up and slowing down)
+    speeds = speed * (1.0 + 0.5 * np.sin(np.arange(60)))
+    accelerations = acceleration * np.cos(0.3 * np.arange(60))
+    varying = kinetostatics(linkage, sol, masses, speeds, accelerations, loads)
+    want = j * accelerations + 0.5 * dj * speeds**2 + rest
+    assert np.abs(varying.effort - want).max() <= 1e-12 * np.abs(want).max()
+    assert np.abs(varying.power - varying.effort * speeds).max() == 0.0
+    for i in (0, 17, 59):                                               # each pose as if alone at its own rates
+        alone = kinetostatics(linkage, linkage.solve(theta[i:i + 1]), masses, float(speeds[i]),
+                              float(accelerations[i]), loads)
+        assert alone.effort[0] == pytest.approx(varying.effort[i], rel=1e-12, abs=1e-15)
+        for a, b in zip(alone.pairs, varying.pairs, strict=True):
+            assert a.force[0] == pytest.approx(b.force[i], rel=1e-12, abs=1e-12)
+    with pytest.raises(ValueError, match="speed: give one value or one a pose"):
+        kinetostatics(linkage, sol, masses, speeds[:10], 0.0, loads)
     h = 4e-3 if linkage.is_crank() else 0.1                             # rad, or mm of a slide
     per = 1.0 if linkage.is_crank() else 1e-3
     near = linkage.solve((theta[:, None] + h * OFFSETS[None, :]).reshape(-1))

@@ -42,6 +42,8 @@ from linkgen.kinematics.structure import GROUND, DyadStep, InputStep, Pin, Struc
 
 #: standard gravity (m/s^2)
 G0 = 9.80665
+#: an input's speed or acceleration: one for every pose, or an array of one a pose
+Rate = float | np.ndarray
 
 
 @dataclass(frozen=True)
@@ -110,8 +112,9 @@ class Kinetostatics:
     ----------
     inputs : ndarray
         The input's values (n,): rad (a crank) or mm (a slide).
-    speed, acceleration : float
-        The input's speed and acceleration: rad/s and rad/s^2, or m/s and m/s^2.
+    speed, acceleration : float or ndarray
+        The input's speed and acceleration: rad/s and rad/s^2, or m/s and m/s^2 (one for every pose, or (n,): a
+        motion's own at each pose).
     effort : ndarray
         The driver's effort (n,): N*m on a crank, N along a slide; +-inf where it cannot move the linkage.
     pairs : tuple of PairForce
@@ -132,8 +135,8 @@ class Kinetostatics:
     """
 
     inputs: np.ndarray
-    speed: float
-    acceleration: float
+    speed: float | np.ndarray
+    acceleration: float | np.ndarray
     effort: np.ndarray
     pairs: tuple[PairForce, ...]
     shaking_force: np.ndarray
@@ -200,19 +203,28 @@ class _Model:
     size: dict[str, np.ndarray]
 
 
-def _model(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], speed: float, acceleration: float,
+def _per_pose(value: Rate, n: int, name: str) -> np.ndarray:
+    """An input's speed or acceleration as an array: a scalar (0-d) for one at every pose, else its n values."""
+    out = np.asarray(value, dtype=float)
+    if out.shape not in ((), (n,)):
+        raise ValueError(f"{name}: give one value or one a pose ({n}), not an array of shape {out.shape}")
+    return out
+
+
+def _model(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], speed: Rate, acceleration: Rate,
            loads: Loads, check: bool = False) -> _Model:
     """The equations' terms over the poses; with ``check`` also each body's size of terms (for the residual)."""
     s = linkage.structure
     f = input_scale(s)
     n = sol.inputs.shape[-1]
+    squared, rate = _per_pose(speed, n, "speed") ** 2, _per_pose(acceleration, n, "acceleration")
     centres, inertial, applied, size = {}, {}, {}, {}
     g = np.asarray(loads.gravity, dtype=float)
     for body in moving_links(s):
         m = masses.get(body, LinkMass(0.0, s.points[s.bodies[body][0]], 0.0))
         cm = centre_motion(s, sol, body, m.centre)
-        a = cm.acceleration * (MM / f**2 * speed**2) + cm.velocity * (MM / f * acceleration)
-        alpha = cm.alpha * (speed**2 / f**2) + cm.omega * (acceleration / f)
+        a = cm.acceleration * (MM / f**2 * squared)[..., None] + cm.velocity * (MM / f * rate)[..., None]
+        alpha = cm.alpha * (squared / f**2) + cm.omega * (rate / f)
         centres[body] = cm.position * MM
         inertial[body] = np.column_stack([m.mass * a, m.inertia * MM**2 * alpha])
         applied[body] = np.column_stack([np.broadcast_to(m.mass * g, (n, 2)), np.zeros(n)])
@@ -332,8 +344,8 @@ def _unknowns(pairs: Sequence[Pair]) -> list[tuple[int, int]]:
     return out
 
 
-def system(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], speed: float = 0.0,
-           acceleration: float = 0.0, loads: Loads = Loads()) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
+def system(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], speed: Rate = 0.0,
+           acceleration: Rate = 0.0, loads: Loads = Loads()) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:
     """The whole linear system A x = b of every pose (n, 3L, 3L) and (n, 3L), L moving links, and the bodies in the
     rows' order (three rows each: Fx, Fy, moment about G). The unknowns: each pair's two in :func:`pairs_of`'s order,
     the effort third (after the input's pair)."""
@@ -356,8 +368,8 @@ def system(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], spee
     return a.transpose(2, 0, 1), b.T, bodies
 
 
-def kinetostatics(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], speed: float = 0.0,
-                  acceleration: float = 0.0, loads: Loads = Loads(),
+def kinetostatics(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass], speed: Rate = 0.0,
+                  acceleration: Rate = 0.0, loads: Loads = Loads(),
                   method: Literal["blocks", "dense"] = "blocks", check: bool = False) -> Kinetostatics:
     """Every joint's force, the driver's effort and the frame's shaking over the poses of ``sol``.
 
@@ -369,10 +381,11 @@ def kinetostatics(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass
         Its poses, solved with derivatives at unit input speed (``linkage.solve(values)``).
     masses : mapping of str to LinkMass
         Each moving link's mass properties (centre in the drawing's frame); a missing link is massless.
-    speed : float
-        The input's speed: rad/s for a crank, m/s for a slide.
-    acceleration : float
-        The input's acceleration: rad/s^2, or m/s^2.
+    speed : float or ndarray
+        The input's speed: rad/s for a crank, m/s for a slide; one for all the poses or (n,), one a pose (a motion
+        that speeds up and slows down, as forward dynamics integrates it).
+    acceleration : float or ndarray
+        The input's acceleration: rad/s^2, or m/s^2; one, or (n,).
     loads : Loads
         Gravity, forces at joints, torques on links, springs.
     method : {"blocks", "dense"}
@@ -456,7 +469,7 @@ def _by_blocks(linkage: Linkage, sol: Solution, pairs: tuple[Pair, ...],
 
 
 def _finish(s: Structure, sol: Solution, forces: tuple[PairForce, ...], effort: np.ndarray, model: _Model,
-            speed: float, acceleration: float, check: bool) -> Kinetostatics:
+            speed: Rate, acceleration: Rate, check: bool) -> Kinetostatics:
     """The shaking, the frame's reactions, the power and (``check``) the residual of every link's balance."""
     n = sol.inputs.shape[-1]
     shaking = np.zeros((n, 2))
