@@ -326,6 +326,20 @@ def _minus(a: Mapping[int, np.ndarray], b: Mapping[int, np.ndarray]) -> dict[int
 
 
 @dataclass(frozen=True)
+class InLine:
+    """How far a dyad of two bars (RRR) is from in line, over n poses: ``extended`` = r1 + r2 - d and ``folded`` =
+    d - |r1 - r2| (mm; 0 at its dead point, where its transmission angle is 180 or 0 degrees), r1 and r2 its bars
+    between their pins, d its outer pins' distance; and their derivatives in the slack (n, P). Unlike the
+    transmission angle, which goes like the square root of the distance to the dead point, both are smooth through
+    it, so their first order holds up to it."""
+
+    extended: np.ndarray
+    folded: np.ndarray
+    d_extended: np.ndarray
+    d_folded: np.ndarray
+
+
+@dataclass(frozen=True)
 class Response:
     """The first-order response to the slack at each of n poses of a solution: derivatives in pi (P columns).
 
@@ -342,6 +356,8 @@ class Response:
         :attr:`~linkgen.kinematics.linkage.Solution.dyads`).
     singular : ndarray
         (n,) bool: the poses where the closure's Jacobian is singular (a toggle); every derivative is inf there.
+    inline : tuple of InLine or None
+        Each dyad's distance from in line and its derivatives, for the dyads of two bars (None for the others).
     """
 
     model: SlackModel
@@ -349,6 +365,7 @@ class Response:
     turns: dict[str, np.ndarray]
     transmission: tuple[np.ndarray, ...]
     singular: np.ndarray
+    inline: tuple[InLine | None, ...] = ()
 
 
 def _state(s: Structure, sol: Solution) -> _State:
@@ -406,9 +423,36 @@ def response(linkage: Linkage, sol: Solution, model: SlackModel | None = None) -
         transmission = tuple(_transmission(s, step, sol, points, turns) for step in linkage.plan.steps
                              if isinstance(step, DyadStep))
     unbounded = singular[:, None]
+    inline = tuple(_inline(closure, step, sol, points, unbounded) if step.kind == "RRR" else None
+                   for step in linkage.plan.steps if isinstance(step, DyadStep))
     return Response(model, {p: np.where(unbounded[:, :, None], np.inf, v) for p, v in points.items()},
                     {b: np.where(unbounded, np.inf, v) for b, v in turns.items()},
-                    tuple(np.where(unbounded, np.inf, t) for t in transmission), singular)
+                    tuple(np.where(unbounded, np.inf, t) for t in transmission), singular, inline)
+
+
+def _inline(closure: _Closure, step: DyadStep, sol: Solution, points: Mapping[str, np.ndarray],
+            unbounded: np.ndarray) -> InLine:
+    """An RRR dyad's distance from in line and its derivatives: each bar's length between its pins changes with its
+    own slack alone (a rigid motion keeps it), the outer pins' distance with the known bodies' motion."""
+    a1, a2 = step.attachments
+    j = sol.points[step.joint]
+    n, size = len(j), closure.model.size
+    lengths, d_lengths = [], []
+    for body, pin in zip(step.bodies, (a1.point, a2.point), strict=True):
+        rel = j - sol.points[pin]
+        r = np.hypot(rel[:, 0], rel[:, 1])
+        d_r = np.zeros((n, size))
+        for place, sign in ((step.joint, 1.0), (pin, -1.0)):
+            for k, v in closure.point(body, place)[2].items():
+                d_r[:, k] += sign * dot(rel, v) / r
+        lengths.append(r)
+        d_lengths.append(d_r)
+    rel = sol.points[a2.point] - sol.points[a1.point]
+    d = np.hypot(rel[:, 0], rel[:, 1])
+    d_d = np.where(unbounded, np.inf, _dot_d(rel, points[a2.point] - points[a1.point]) / d[:, None])
+    (r1, r2), (d1, d2) = lengths, d_lengths
+    side = np.where(r1 >= r2, 1.0, -1.0)[:, None]
+    return InLine(r1 + r2 - d, d - np.abs(r1 - r2), d1 + d2 - d_d, d_d - side * (d1 - d2))
 
 
 def _direction(s: Structure, sol: Solution, slider: str, body: str) -> np.ndarray:
@@ -468,14 +512,14 @@ def _transmission(s: Structure, step: DyadStep, sol: Solution, points: Mapping[s
         sgn = np.where(off >= 0, 1.0, -1.0)
         dw = (dist[:, None] * ddist - off[:, None] * doff) / w[:, None]
         return (np.abs(off)[:, None] * dw - (w * sgn)[:, None] * doff) / (dist**2)[:, None]
+    like = next(iter(points.values()))[:, 0, :]
     if kind == "PRP":
+        # the angle between the guides, atan2(|u1 x u2|, |u1 . u2|), turns as they turn apart
         assert isinstance(a1, Slide) and isinstance(a2, Slide)
         u1, u2 = _direction(s, sol, a1.slider, a1.body), _direction(s, sol, a2.slider, a2.body)
-        like = points[step.joint][:, 0, :]
-        dcross = dot(u1, u2)[:, None] * (_turn_of(turns, a2.body, like) - _turn_of(turns, a1.body, like))
-        sine = cross(u1, u2)
-        return np.where(sine >= 0, 1.0, -1.0)[:, None] * dcross / np.sqrt(1.0 - np.minimum(sine**2, 1.0))[:, None]
-    return np.zeros_like(points[step.joint][:, 0, :])   # RPP / PPR: the guides keep their angle
+        side = np.where(cross(u1, u2) >= 0, 1.0, -1.0) * np.where(dot(u1, u2) >= 0, 1.0, -1.0)
+        return side[:, None] * (_turn_of(turns, a2.body, like) - _turn_of(turns, a1.body, like))
+    return np.zeros_like(like)          # RPP / PPR: the pinned body keeps the sliding one's angle, the guides theirs
 
 
 def _dot_d(a: np.ndarray, db: np.ndarray) -> np.ndarray:

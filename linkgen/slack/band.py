@@ -4,9 +4,12 @@ The band is first order in the slack (:mod:`linkgen.kinematics.sensitivity`): at
 values over the motion analysed (the report's ``analysed`` range, on the drawing's branches) every tracer's
 half-width across its path (along the normal, the path's direction turned 90 degrees counter-clockwise) and in
 any direction, every output's half-width (a rocker's angle in rad, a ground slider's travel in mm along its
-guide) and every dyad's transmission angle's. A dyad *binds* where its transmission angle's band reaches 0 (or
-180 degrees for two bars): a linkage as made may lock there. The widest band is refined to :data:`REFINE_TO` of
-the range by finer grids round the widest sample.
+guide) and every dyad's transmission angle's. A dyad *binds* where its slack may bring it to its dead point (its
+transmission angle 0, or 180 degrees for two bars): a linkage as made may lock there. For two bars (RRR) that is
+where the band of their distance from in line (:class:`~linkgen.kinematics.sensitivity.InLine`), smooth through
+the dead point, reaches 0; for a dyad with a slider, where its transmission angle's band reaches 0 (which near the
+dead point, the angle going like the square root of the distance to it, gives about half the range). The widest
+band is refined to :data:`REFINE_TO` of the range by finer grids round the widest sample.
 """
 from __future__ import annotations
 
@@ -60,8 +63,8 @@ class OutputBand:
 
 @dataclass(frozen=True)
 class DyadBand:
-    """A dyad's transmission angle (n,) rad and its worst-case half-width (n,) rad; ``binds`` (n,) where the band
-    reaches 0 (or pi for two bars), or is unbounded."""
+    """A dyad's transmission angle (n,) rad and its worst-case half-width (n,) rad; ``binds`` (n,) where its slack
+    may bring it to its dead point (see the module's docstring), or the band is unbounded."""
 
     kind: str
     bodies: tuple[str, str]
@@ -206,10 +209,14 @@ def _bands(a: Analysis, model: SlackModel, bounds: np.ndarray, x: np.ndarray
         else:
             outputs.append(OutputBand(name, True, sol.angle(name), worst_case(r.turns[name], model, bounds)))
     dyads = []
-    for d, grad in zip(sol.dyads, r.transmission, strict=True):
+    for d, grad, inline in zip(sol.dyads, r.transmission, r.inline, strict=True):
         h = worst_case(grad, model, bounds)
-        top = math.pi if d.kind == "RRR" else math.pi / 2
-        binds = ~np.isfinite(h) | (d.transmission - h <= 0.0) | ((d.transmission + h >= math.pi) & (top == math.pi))
+        if inline is None:               # a dyad with a slider: its transmission angle's band reaches 0
+            binds = ~np.isfinite(h) | (d.transmission - h <= 0.0)
+        else:                            # two bars: their distance from in line, extended or folded, reaches 0
+            binds = ~np.isfinite(h)
+            for margin, d_margin in ((inline.extended, inline.d_extended), (inline.folded, inline.d_folded)):
+                binds |= margin - worst_case(d_margin, model, bounds) <= 0.0
         dyads.append(DyadBand(d.kind, d.bodies, d.joint, d.transmission, h, binds))
     return tracers, tuple(outputs), tuple(dyads), sol, r
 

@@ -78,7 +78,7 @@ def slack_report(band: SlackBand, table: SlackTable, mc: MonteCarlo | None) -> d
             span = [a.shown(lo), a.shown(hi)]
             binds.append({"kind": d.kind, "links": list(d.bodies), "joint": d.joint, f"input_{unit}": span})
             warnings.append(f"binds: dyad {'-'.join(d.bodies)} (joint {d.joint}) may reach its dead point "
-                            f"(transmission angle 0) within its slack from input {span[0]:.6g} to {span[1]:.6g} "
+                            f"(its links in line) within its slack from input {span[0]:.6g} to {span[1]:.6g} "
                             f"{'degrees' if a.crank else 'mm'}")
     out["binds"] = binds
     if mc is not None:
