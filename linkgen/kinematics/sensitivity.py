@@ -435,6 +435,7 @@ def _inline(closure: _Closure, step: DyadStep, sol: Solution, points: Mapping[st
     """An RRR dyad's distance from in line and its derivatives: each bar's length between its pins changes with its
     own slack alone (a rigid motion keeps it), the outer pins' distance with the known bodies' motion."""
     a1, a2 = step.attachments
+    assert isinstance(a1, Pin) and isinstance(a2, Pin)
     j = sol.points[step.joint]
     n, size = len(j), closure.model.size
     lengths, d_lengths = [], []

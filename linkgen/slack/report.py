@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 
 from linkgen.mechanisms.common import num
-from linkgen.slack.band import SlackBand, refine_max, runs
+from linkgen.slack.band import OutputBand, SlackBand, TracerBand, refine_max, runs
 from linkgen.slack.montecarlo import MonteCarlo
 from linkgen.slack.table import SlackTable
 
@@ -39,34 +39,10 @@ def slack_report(band: SlackBand, table: SlackTable, mc: MonteCarlo | None) -> d
                              for v in (float(x[0]), float(x[-1]))],
         "samples": len(x),
     }
-    tracers = {}
-    for t in band.tracers:
-        if not (keep & np.isfinite(t.half_width)).any():
-            continue
-        def across(v: np.ndarray, name: str = t.name) -> np.ndarray:
-            return next(b.half_width for b in band.at(v)[0] if b.name == name)
-        at, half = refine_max(across, x, t.half_width, keep)
-        point = a.linkage.solve(np.array([[at]]), strict=False, derivatives=False).points[t.name][0]
-        i = int(np.argmax(np.where(keep, t.displacement, -np.inf)))
-        tracers[t.name] = {"width_max_mm": num(2 * half), f"at_input_{unit}": a.shown(at),
-                           "x_mm": num(point[0]), "y_mm": num(point[1]),
-                           "width_mean_mm": num(2 * float(np.mean(t.half_width[keep]))),
-                           "displacement_max_mm": num(float(t.displacement[i])),
-                           f"displacement_at_input_{unit}": a.shown(float(x[i]))}
-    out["tracers"] = tracers
-    outputs = {}
-    for o in band.outputs:
-        if not (keep & np.isfinite(o.half_width)).any():
-            continue
-        def half_width(v: np.ndarray, name: str = o.name) -> np.ndarray:
-            return next(b.half_width for b in band.at(v)[1] if b.name == name)
-        at, half = refine_max(half_width, x, o.half_width, keep)
-        ends = [int(np.argmax(np.where(keep, o.value, -np.inf))), int(np.argmin(np.where(keep, o.value, np.inf)))]
-        change = float(sum(o.half_width[i] for i in ends))
-        scale, key = (math.degrees, "deg") if o.rocker else (float, "mm")
-        outputs[o.name] = {f"band_max_{key}": num(scale(half)), f"at_input_{unit}": a.shown(at),
-                           f"{'swing' if o.rocker else 'stroke'}_change_{key}": num(scale(change))}
-    out["outputs"] = outputs
+    out["tracers"] = {t.name: _tracer_row(band, t, keep, unit) for t in band.tracers
+                      if (keep & np.isfinite(t.half_width)).any()}
+    out["outputs"] = {o.name: _output_row(band, o, keep, unit) for o in band.outputs
+                      if (keep & np.isfinite(o.half_width)).any()}
     binds, warnings = [], []
     n = len(x)
     for k, d in enumerate(band.dyads):
@@ -95,6 +71,38 @@ def slack_report(band: SlackBand, table: SlackTable, mc: MonteCarlo | None) -> d
             warnings.append(f"Monte Carlo: {mc.count - mc.assembled} of {mc.count} samples do not assemble")
     out["warnings"] = warnings
     return out
+
+
+def _tracer_row(band: SlackBand, t: TracerBand, keep: np.ndarray, unit: str) -> dict[str, Any]:
+    """A tracer's widest band across its path (refined among the samples ``keep``: where it does not bind), its
+    mean width and its worst displacement in any direction, with where they are."""
+    a, x = band.analysis, band.inputs
+
+    def across(v: np.ndarray) -> np.ndarray:
+        return next(b.half_width for b in band.at(v)[0] if b.name == t.name)
+
+    at, half = refine_max(across, x, t.half_width, keep)
+    point = a.linkage.solve(np.array([[at]]), strict=False, derivatives=False).points[t.name][0]
+    i = int(np.argmax(np.where(keep, t.displacement, -np.inf)))
+    return {"width_max_mm": num(2 * half), f"at_input_{unit}": a.shown(at), "x_mm": num(point[0]),
+            "y_mm": num(point[1]), "width_mean_mm": num(2 * float(np.mean(t.half_width[keep]))),
+            "displacement_max_mm": num(float(t.displacement[i])), f"displacement_at_input_{unit}": a.shown(float(x[i]))}
+
+
+def _output_row(band: SlackBand, o: OutputBand, keep: np.ndarray, unit: str) -> dict[str, Any]:
+    """An output's widest band (refined, among the samples ``keep``) and where, and how much its swing or stroke may
+    change: the band at its two limits (sampled)."""
+    a = band.analysis
+
+    def half_width(v: np.ndarray) -> np.ndarray:
+        return next(b.half_width for b in band.at(v)[1] if b.name == o.name)
+
+    at, half = refine_max(half_width, band.inputs, o.half_width, keep)
+    ends = [int(np.argmax(np.where(keep, o.value, -np.inf))), int(np.argmin(np.where(keep, o.value, np.inf)))]
+    change = float(sum(o.half_width[i] for i in ends))
+    scale, key = (math.degrees, "deg") if o.rocker else (float, "mm")
+    return {f"band_max_{key}": num(scale(half)), f"at_input_{unit}": a.shown(at),
+            f"{'swing' if o.rocker else 'stroke'}_change_{key}": num(scale(change))}
 
 
 def _monte_carlo_report(band: SlackBand, mc: MonteCarlo) -> dict[str, Any]:
