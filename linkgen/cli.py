@@ -266,7 +266,7 @@ def _print_slack(sl: dict[str, Any]) -> None:
                f"play {sl['play_mm']:.4g} mm; lengths within +-{sl['length_tolerance_mm']:g} mm")
     for name, t in sl["tracers"].items():
         click.echo(f"  tracer {name}: band up to {t['width_max_mm']:.4g} mm wide at input {t[f'at_input_{unit}']:.6g} "
-                   f"{unit}, {t['width_mean_mm']:.4g} mm on average")
+                   f"{unit} ({t['x_mm']:.4g}, {t['y_mm']:.4g} mm), {t['width_mean_mm']:.4g} mm on average")
     for name, o in sl["outputs"].items():
         key = "deg" if "band_max_deg" in o else "mm"
         change = o.get("swing_change_deg", o.get("stroke_change_mm"))

@@ -545,6 +545,36 @@ def test_a_general_linkage_reports_its_band_and_the_console_says_it(tmp_path):
     assert f"tracer G: band up to {g['width_max_mm']:.4g} mm wide" in result.output
 
 
+def test_the_console_summary_states_the_reports_band_in_user_units(tmp_path):
+    """The console's slack lines repeat the report's figures in mm and degrees: the pins' fit, each tracer's widest
+    band and where (input and place), each output's band and change of swing or stroke, the Monte Carlo count and
+    reach; a slider-crank's slider in mm; a triple rocker warns where it binds."""
+    result, out = _run(tmp_path, FOURBAR, "analyze", "slack.monte_carlo=5", 'output.formats=["json"]')
+    assert result.exit_code == 0, result.output
+    sl = json.loads((out / "fb.json").read_text())["slack"]
+    p, rocker, mc = sl["tracers"]["P"], sl["outputs"]["rocker"], sl["monte_carlo"]
+    assert sl["play_mm"] == pytest.approx(0.1, rel=1e-12)
+    lines = [
+        "slack: pins 4 mm in holes of 4.2 mm (cut), play 0.1 mm; lengths within +-0.05 mm",
+        f"  tracer P: band up to {p['width_max_mm']:.4g} mm wide at input {p['at_input_deg']:.6g} deg "
+        f"({p['x_mm']:.4g}, {p['y_mm']:.4g} mm), {p['width_mean_mm']:.4g} mm on average",
+        f"  rocker: within +-{rocker['band_max_deg']:.4g} deg (most at input {rocker['at_input_deg']:.6g} deg); its "
+        f"swing by up to {rocker['swing_change_deg']:.4g} deg",
+        f"  Monte Carlo: 5 of 5 samples (seed 1), {mc['compared_poses']} poses, reach "
+        f"{100 * max(mc['reach'].values()):.3g} % of the band; 0 poses outside it",
+    ]
+    assert "\n".join(lines) in result.output
+    assert 0 < rocker["band_max_deg"] < 5 and 0 < p["width_max_mm"] < 10
+    result, out = _run(tmp_path, SLIDER_CRANK, "analyze", 'output.formats=["json"]')
+    assert result.exit_code == 0, result.output
+    slider = json.loads((out / "sc.json").read_text())["slack"]["outputs"]["slider"]
+    assert (f"  slider: within +-{slider['band_max_mm']:.4g} mm (most at input {slider['at_input_deg']:.6g} deg); "
+            f"its stroke by up to {slider['stroke_change_mm']:.4g} mm") in result.output
+    result, _ = _run(tmp_path, TRIPLE_ROCKER, "analyze", 'output.formats=["json"]')
+    assert result.exit_code == 0, result.output
+    assert result.output.count("warning: binds: dyad coupler-rocker (joint B) may reach its dead point") == 2
+
+
 def test_the_holes_as_made_follow_the_process_and_a_measured_clearance():
     """A cut hole is drawn pin + clearance - kerf and burnt open by the kerf, a printed one is drawn as made: both
     pin + clearance; a measured clearance overrides both."""
