@@ -215,7 +215,8 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     if spec.slack is not None:
         drawn = drawn_pose(kinematics, table, angle)
         if drawn is None:
-            raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take slack", "slack")
+            raise SpecError(f"a {report['type']} of this kind cannot be drawn as a general linkage to take slack",
+                            "slack")
         slack = slack_of(spec.slack, spec.parts, drawn[0])
         report["slack"] = slack.report()
     if wanted is None:
