@@ -30,6 +30,7 @@ from click.testing import CliRunner
 from camgen.core.spec import apply_overrides
 from linkgen.cli import main as linkgen
 from linkgen.design import design_linkage
+from linkgen.mechanisms import MECHANISMS
 from linkgen.kinematics.sensitivity import perturbed, response, sample, slack_model, worst_case
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
@@ -506,9 +507,15 @@ DEDICATED = {
     "scotch-yoke": 'type = "scotch-yoke"\ncrank = 40.0',
     "whitworth": 'type = "whitworth"\ncrank = 60.0\nground = 30.0\narm = 50.0\nrod = 150.0',
     "crank-shaper": 'type = "crank-shaper"\ncrank = 60.0\nground = 150.0\nlever = 300.0',
+    "chebyshev": 'type = "chebyshev"\nsize = 25.0',
     "hoekens": 'type = "hoekens"\nsize = 25.0',
+    "roberts": 'type = "roberts"\nsize = 25.0',
     "watt": 'type = "watt"\nsize = 25.0',
 }
+
+
+def test_every_dedicated_type_is_covered():
+    assert set(DEDICATED) == set(MECHANISMS) - {"linkage"}
 
 
 @pytest.mark.parametrize("kind", sorted(DEDICATED))
