@@ -17,6 +17,7 @@ from linkgen.kit import LinkageKit, base_plate, linkage_kit
 from linkgen.mechanisms import Mechanism
 from linkgen.mechanisms.common import Figure
 from linkgen.parts import LinkageBuild, build_parts
+from linkgen.slack import Slack, slack_of
 from linkgen.spec import LinkageSpec
 
 CONVENTIONS = ("input pivot at the origin, output pivot on +X; angles counter-clockwise from the ground line (+X) "
@@ -49,6 +50,8 @@ class LinkageDesign:
     kit : LinkageKit or None
         The kit of a ``[kit]`` table, when parts are made (its build is :attr:`build`: the base plate is the
         ground).
+    slack : Slack or None
+        The band of its motion under its joints' play and its links' tolerances, with a ``[slack]`` table.
     """
 
     spec: LinkageSpec
@@ -59,6 +62,7 @@ class LinkageDesign:
     angle: float | None = None
     statics: Statics | None = None
     kit: LinkageKit | None = None
+    slack: Slack | None = None
 
     def figures(self) -> tuple[Figure, ...]:
         """The mechanism's figures of this linkage, each drawn only when called; with an angle, the pose there (for
@@ -73,6 +77,15 @@ class LinkageDesign:
                 return plots.effort_figure(self.spec.name, statics)
 
             figures = (*figures, ("effort", effort))
+        if self.slack is not None:
+            slack = self.slack
+
+            def blur() -> Any:
+                from linkgen.slack.figure import slack_figure
+
+                return slack_figure(self.spec.name, slack)
+
+            figures = (*figures, ("slack", blur))
         posed = None if self.angle is None else pose_of(self.kinematics, self.spec.linkage, self.angle)
         if posed is None:
             return figures
@@ -92,13 +105,13 @@ class LinkageDesign:
         """The linkage's interactive page (:func:`linkgen.page.linkage_page`) showing the figures of ``report`` (the
         design's own by default); None for a kind linkgen cannot draw as a general linkage (see :func:`pose_of`).
         It is drawn from the design's angle, else 0, else the middle of a range the input reaches."""
-        posed = None
-        for angle in _drawable(self.kinematics, self.angle):
-            try:
-                posed = pose_of(self.kinematics, self.spec.linkage, angle)
-                break
-            except SpecError:                  # out of reach there: try the next
-                continue
+        if self.slack is not None:                    # drawn as the slack's band was (from the same pose)
+            from linkgen.page import linkage_page
+            from linkgen.slack.figure import with_slack
+
+            return with_slack(linkage_page(self.spec.name, self.slack.band.analysis,
+                                           self.report if report is None else report), self.slack)
+        posed = drawn_pose(self.kinematics, self.spec.linkage, self.angle)
         if posed is None:
             return None
         from linkgen.page import linkage_page
@@ -120,6 +133,17 @@ class LinkageDesign:
         from camgen.core.writers.svg import svg_document
 
         return svg_document(drawing, stroke_width=0.5)
+
+
+def drawn_pose(kinematics: Any, table: Any, angle: float | None) -> tuple[Any, float] | None:
+    """The general-linkage analysis and input value (:func:`pose_of`) a linkage is drawn from: at ``angle`` (when
+    given), else 0, else the middle of a range the input reaches; None for a kind linkgen cannot draw so."""
+    for value in _drawable(kinematics, angle):
+        try:
+            return pose_of(kinematics, table, value)
+        except SpecError:                  # out of reach there: try the next
+            continue
+    return None
 
 
 def _drawable(kinematics: Any, angle: float | None) -> list[float]:
@@ -187,8 +211,16 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
             raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
         statics = statics_of(spec.loads, posed[0])
         report["statics"] = statics_report(statics, table.rpm)
+    slack = None
+    if spec.slack is not None:
+        drawn = drawn_pose(kinematics, table, angle)
+        if drawn is None:
+            raise SpecError(f"a {report['type']} of this kind cannot be drawn as a general linkage to take slack",
+                            "slack")
+        slack = slack_of(spec.slack, spec.parts, drawn[0])
+        report["slack"] = slack.report()
     if wanted is None:
-        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics)
+        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics, slack=slack)
     layout = mechanism.layout(table, kinematics, wanted)
     mounts: tuple[tuple[float, float], ...] = ()
     if spec.kit is not None:
@@ -196,7 +228,7 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     build = build_parts(layout, wanted, spec.output.elephant_foot)
     kit = None if spec.kit is None else linkage_kit(spec, layout, mounts, build)
     add_routing(report, build.cut, spec.output.tool_radius)
-    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit)
+    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit, slack)
 
 
 def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | None:
