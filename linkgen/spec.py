@@ -20,6 +20,7 @@ from camgen.core.kit import KitTable
 from camgen.core.options import choose
 from camgen.core.spec import (MAX_LENGTH_MM, Model, OutputTable, check_kind, length, name_field, read_template, unit,
                               validate)
+from linkgen.dynamics.table import DynamicsTable
 from linkgen.mechanisms import MECHANISMS, Mechanism
 from linkgen.slack.table import SlackTable
 
@@ -144,6 +145,8 @@ class LinkageSpec(Model):
         Formats and the files' flavours.
     kit : KitTable or None, optional
         The frame and hardware round the linkage.
+    dynamics : DynamicsTable or None, optional
+        The links' materials and masses, speed, gravity and springs: the report's ``dynamics`` section.
     slack : SlackTable or None, optional
         The joints' play and the links' length tolerances whose band the report gives (needs ``[parts]``).
     """
@@ -154,6 +157,7 @@ class LinkageSpec(Model):
     loads: tuple[LoadTable, ...] = Field((), max_length=100, description="loads the linkage holds")
     output: OutputTable = OutputTable()
     kit: KitTable | None = None
+    dynamics: DynamicsTable | None = None
     slack: SlackTable | None = None
 
     #: the mechanism registered for ``linkage.type``
