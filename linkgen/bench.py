@@ -21,6 +21,8 @@ from camgen.core import bench as core_bench
 from camgen.core.bench import call_seconds, process_seconds, ratio_markdown, ratio_row, timed
 from linkgen.kinematics import dyads, equivalents
 from linkgen.kinematics.fourbar import FourBar
+from linkgen.kinematics.inertia import LinkMass, moving_links
+from linkgen.kinematics.kinetostatics import Loads, kinetostatics
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.slidercrank import SliderCrank
 from linkgen.kinematics.structure import Input, Structure, make_structure
@@ -99,12 +101,46 @@ def positions_ratio(repeats: int) -> dict:
                      lambda: call_seconds(lambda: plain_positions(t), 3), repeats, goal="<= 1.0x")
 
 
+def jansen_masses(structure: Structure) -> dict[str, LinkMass]:
+    """Masses for Jansen's leg's moving links as 3 mm plywood bars 8 mm wide along their joints' lines (kg, mm,
+    kg*mm^2: 680 kg/m^3; each centre the middle of its joints; a slender bar's m L^2 / 12 over its longest side):
+    what :func:`kinetostatics_ratio` times the forces of (their values do not change the work)."""
+    out = {}
+    for body in moving_links(structure):
+        pts = np.array([structure.points[p] for p in structure.bodies[body]], dtype=float)
+        sides = [float(np.hypot(*(pts[i] - pts[j]))) for i in range(len(pts)) for j in range(i)]
+        mass = 680e-9 * 3.0 * 8.0 * sum(sides)
+        centre = pts.mean(axis=0)
+        out[body] = LinkMass(mass, (float(centre[0]), float(centre[1])), mass * max(sides) ** 2 / 12)
+    return out
+
+
+def kinetostatics_ratio(repeats: int, n: int = 3600) -> dict:
+    """Jansen's leg at 60 rpm under gravity at ``n`` crank angles: its kinetostatics (positions, rates and every
+    joint's force and the driving torque by Newton-Euler, :func:`linkgen.kinematics.kinetostatics.kinetostatics`)
+    against its kinematics alone (positions, velocities and accelerations), alternated ``repeats`` times; the
+    forces' share alone (given the kinematics) is in ``forces_seconds``."""
+    leg = Linkage.of(jansen(0.0))
+    masses, loads = jansen_masses(leg.structure), Loads((0.0, -9.80665))
+    t = 2 * math.pi / n * np.arange(n)
+    speed = 2 * math.pi
+    sol = leg.solve(t)
+    count = f"{n:,}".replace(",", " ")
+    row = ratio_row(f"kinetostatics of Jansen's leg, {count} crank angles",
+                    "its kinematics (positions, velocities, accelerations)",
+                    lambda: call_seconds(lambda: kinetostatics(leg, leg.solve(t), masses, speed, 0.0, loads), 3),
+                    lambda: call_seconds(lambda: leg.solve(t), 3), repeats, warm=2, goal="<= 3x")
+    _, forces = timed(lambda: kinetostatics(leg, sol, masses, speed, 0.0, loads), max(3, repeats))
+    return {**row, "forces_seconds": forces}
+
+
 def speed_ratios(repeats: int) -> list[dict]:
     """Each of the issue's figures next to its yardstick measured alternately in this run (see
     :func:`camgen.core.bench.ratio_row`): four-bar positions at 100 000 crank angles against :func:`plain_positions`;
-    ``linkgen analyze`` and ``linkgen build`` of the crank-rocker as whole processes (CPU seconds) against a process
-    that only imports numpy and ezdxf."""
-    rows = [positions_ratio(repeats * 4)]
+    Jansen's leg's kinetostatics at 3 600 against its kinematics (:func:`kinetostatics_ratio`); ``linkgen analyze``
+    and ``linkgen build`` of the crank-rocker as whole processes (CPU seconds) against a process that only imports
+    numpy and ezdxf."""
+    rows = [positions_ratio(repeats * 4), kinetostatics_ratio(repeats * 4)]
     python = sys.executable
     reference = [python, "-c", "import numpy, ezdxf"]
     with tempfile.TemporaryDirectory() as tmp:
@@ -309,6 +345,8 @@ def _markdown(r: dict) -> list[str]:
              "Each row alternates with its reference; the ratio is the median of the pairs' ratios, with the least "
              "and the largest. Whole processes are timed in CPU seconds (user + system).", "",
              *ratio_markdown(r.get("speed", [])), "",
+             *[f"The {row['what']}: the forces alone, given the kinematics, take {row['forces_seconds'] * 1e3:.3g} "
+               "ms." for row in r.get("speed", []) if "forces_seconds" in row], "",
              "## Linkage positions (rocker pin of the reference crank-rocker)", "",
              "| method | angles | seconds | max error (mm) | status |", "|---|---|---|---|---|"]
     for row in r["linkages"]:

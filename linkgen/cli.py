@@ -276,6 +276,63 @@ def _print_statics(st: dict[str, Any]) -> None:
                    f"at {st[f'mechanical_advantage_min_at_{where}']:.4g} {where[6:]}")
 
 
+def _print_dynamics(d: dict[str, Any]) -> None:
+    """The dynamics in a few lines: the moving mass, the driving effort and power, the most loaded joint, the
+    shaking, the flywheel and counterweight, and the most used hole."""
+    out = click.echo
+    crank = "max_N_m" in d
+    unit, label, where = ("N_m", "N*m", "deg") if crank else ("N", "N", "mm")
+    speed = f"{d['speed']['rpm']:g} rpm" if crank else f"{d['speed']['speed_mm_s']:g} mm/s"
+    out(f"dynamics at {speed}: moving links {1000 * d['moving_mass_kg']:.4g} g ({d['material']}); driving "
+        f"{'torque' if crank else 'force'} {d[f'min_{unit}']:.4g} to {d[f'max_{unit}']:.4g} {label} (at "
+        f"{d[f'min_at_input_{where}']:.4g} and {d[f'max_at_input_{where}']:.4g} {where}), peak power "
+        f"{d['power_peak_W']:.4g} W")
+    joints = [j for j in d["joints"] if j["peak_N"] is not None]
+    if joints:
+        j = max(joints, key=lambda j: j["peak_N"])
+        out(f"  most loaded joint {j['joint']} ({'-'.join(j['between'])}): {j['peak_N']:.4g} N at "
+            f"{j[f'at_input_{where}']:.4g} {where}; shaking force up to {d['shaking_force_peak_N']:.4g} N, moment "
+            f"{d['shaking_moment_peak_N_m']:.4g} N*m")
+    if "energy_fluctuation_J" in d:
+        out(f"  energy fluctuation {d['energy_fluctuation_J']:.4g} J over a turn")
+    f = d.get("flywheel")
+    if f is not None:
+        made = f" ({f['plates']} x {f['shape']} {f['diameter_mm']:.4g} mm, {1000 * f['mass_kg']:.4g} g)" \
+            if "diameter_mm" in f else ""
+        out(f"  flywheel for Cs {f['coefficient']:g}: {f['flywheel_kg_m2']:.4g} kg*m^2 beyond the linkage's own "
+            f"{f['linkage_own_kg_m2']:.4g}{made}")
+    c = d.get("counterweight")
+    if c is not None:
+        out(f"  counterweight {c['mass_radius_kg_mm']:.4g} kg*mm at {c['angle_from_crank_deg']:.4g} deg from the "
+            f"crank: shaking force peak {c['shaking_force_peak_N']:.4g} -> {c['shaking_force_peak_after_N']:.4g} N")
+    used = [h for h in d["holes"] if h.get("utilisation") is not None]
+    if used:
+        h = max(used, key=lambda h: h["utilisation"])
+        out(f"  most used hole: {h['part']} at {h['joint']}, {h['bearing_MPa']:.3g} MPa of {h['allowable_MPa']:.3g} "
+            f"({100 * h['utilisation']:.3g} %)")
+
+
+def _print_slack(sl: dict[str, Any]) -> None:
+    """The slack's band: the pins' play, each tracer's and output's widest band and where, the Monte Carlo check."""
+    unit = "deg" if "analysed_deg" in sl else "mm"
+    click.echo(f"slack: pins {sl['pin_diameter_mm']:g} mm in holes of {sl['hole_made_mm']:.4g} mm ({sl['process']}), "
+               f"play {sl['play_mm']:.4g} mm; lengths within +-{sl['length_tolerance_mm']:g} mm")
+    for name, t in sl["tracers"].items():
+        click.echo(f"  tracer {name}: band up to {t['width_max_mm']:.4g} mm wide at input {t[f'at_input_{unit}']:.6g} "
+                   f"{unit} ({t['x_mm']:.4g}, {t['y_mm']:.4g} mm), {t['width_mean_mm']:.4g} mm on average")
+    for name, o in sl["outputs"].items():
+        key = "deg" if "band_max_deg" in o else "mm"
+        change = o.get("swing_change_deg", o.get("stroke_change_mm"))
+        click.echo(f"  {name}: within +-{o[f'band_max_{key}']:.4g} {key} (most at input {o[f'at_input_{unit}']:.6g} "
+                   f"{unit}); its {'swing' if key == 'deg' else 'stroke'} by up to {change:.4g} {key}")
+    mc = sl.get("monte_carlo")
+    if mc is not None:
+        reach = max(mc["reach"].values(), default=0.0)
+        click.echo(f"  Monte Carlo: {mc['assembled']} of {mc['count']} samples (seed {mc['seed']}), "
+                   f"{mc['compared_poses']} poses, reach {100 * reach:.3g} % of the band; {mc['outside']} poses "
+                   "outside it")
+
+
 def _print_text(r: dict[str, Any]) -> None:
     out = click.echo
     out(f"{r['name']}: {r['type']}, lengths {r['lengths_mm']}")
@@ -318,7 +375,12 @@ def _print_text(r: dict[str, Any]) -> None:
                     f"transmission {p['transmission_deg']:.6f} deg")
     if "statics" in r:
         _print_statics(r["statics"])
-    for warning in r.get("warnings", []) + r.get("statics", {}).get("warnings", []):
+    if "dynamics" in r:
+        _print_dynamics(r["dynamics"])
+    if "slack" in r:
+        _print_slack(r["slack"])
+    for warning in (r.get("warnings", []) + r.get("statics", {}).get("warnings", [])
+                    + r.get("dynamics", {}).get("warnings", []) + r.get("slack", {}).get("warnings", [])):
         out(f"warning: {warning}")
     if "newton" in r:
         _print_newton(r["newton"], max(v for v in r["lengths_mm"].values() if isinstance(v, float)))

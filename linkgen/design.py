@@ -10,13 +10,19 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from camgen.core.errors import SpecError
 from camgen.core.routing import add_routing
+from linkgen.dynamics.masses import Stack
+from linkgen.dynamics.run import Dynamics, flywheel_build
+from linkgen.dynamics.report import dynamics_report
 from linkgen.effort import Statics, statics_of, statics_report
 from linkgen.kit import LinkageKit, base_plate, linkage_kit
 from linkgen.mechanisms import Mechanism
 from linkgen.mechanisms.common import Figure
 from linkgen.parts import LinkageBuild, build_parts
+from linkgen.slack import Slack, slack_of
 from linkgen.spec import LinkageSpec
 
 CONVENTIONS = ("input pivot at the origin, output pivot on +X; angles counter-clockwise from the ground line (+X) "
@@ -49,6 +55,11 @@ class LinkageDesign:
     kit : LinkageKit or None
         The kit of a ``[kit]`` table, when parts are made (its build is :attr:`build`: the base plate is the
         ground).
+    dynamics : Dynamics or None
+        The dynamics of a ``[dynamics]`` table (:mod:`linkgen.dynamics`): masses, joint forces, driving effort,
+        shaking, flywheel, counterweight and the holes' and pins' loads.
+    slack : Slack or None
+        The band of its motion under its joints' play and its links' tolerances, with a ``[slack]`` table.
     """
 
     spec: LinkageSpec
@@ -59,6 +70,8 @@ class LinkageDesign:
     angle: float | None = None
     statics: Statics | None = None
     kit: LinkageKit | None = None
+    dynamics: Dynamics | None = None
+    slack: Slack | None = None
 
     def figures(self) -> tuple[Figure, ...]:
         """The mechanism's figures of this linkage, each drawn only when called; with an angle, the pose there (for
@@ -73,6 +86,19 @@ class LinkageDesign:
                 return plots.effort_figure(self.spec.name, statics)
 
             figures = (*figures, ("effort", effort))
+        if self.dynamics is not None:
+            from linkgen.dynamics.plots import dynamics_figures
+
+            figures = (*figures, *dynamics_figures(self.spec.name, self.dynamics))
+        if self.slack is not None:
+            slack = self.slack
+
+            def blur() -> Any:
+                from linkgen.slack.figure import slack_figure
+
+                return slack_figure(self.spec.name, slack)
+
+            figures = (*figures, ("slack", blur))
         posed = None if self.angle is None else pose_of(self.kinematics, self.spec.linkage, self.angle)
         if posed is None:
             return figures
@@ -85,25 +111,36 @@ class LinkageDesign:
         return (*figures, ("pose", draw))
 
     def family_row(self) -> dict[str, Any]:
-        """What a family's summary adds for this linkage: the mechanism's columns and thumbnail."""
-        return self.mechanism.family_row(self.spec.linkage, self.kinematics, self.report)
+        """What a family's summary adds for this linkage: the mechanism's columns and thumbnail, and with
+        ``[dynamics]`` its peaks."""
+        from linkgen.dynamics.report import family_columns
+
+        return {**self.mechanism.family_row(self.spec.linkage, self.kinematics, self.report),
+                **family_columns(self.report)}
 
     def page(self, report: dict[str, Any] | None = None) -> Any:
         """The linkage's interactive page (:func:`linkgen.page.linkage_page`) showing the figures of ``report`` (the
         design's own by default); None for a kind linkgen cannot draw as a general linkage (see :func:`pose_of`).
         It is drawn from the design's angle, else 0, else the middle of a range the input reaches."""
-        posed = None
-        for angle in _drawable(self.kinematics, self.angle):
-            try:
-                posed = pose_of(self.kinematics, self.spec.linkage, angle)
-                break
-            except SpecError:                  # out of reach there: try the next
-                continue
-        if posed is None:
-            return None
         from linkgen.page import linkage_page
 
-        return linkage_page(self.spec.name, posed[0], self.report if report is None else report)
+        extra = None if self.dynamics is None else self.dynamics_plots
+        if self.slack is not None:                    # drawn as the slack's band was (from the same pose)
+            from linkgen.slack.figure import with_slack
+
+            return with_slack(linkage_page(self.spec.name, self.slack.band.analysis,
+                                           self.report if report is None else report, extra), self.slack)
+        posed = drawn_pose(self.kinematics, self.spec.linkage, self.angle)
+        if posed is None:
+            return None
+        return linkage_page(self.spec.name, posed[0], self.report if report is None else report, extra)
+
+    def dynamics_plots(self, values: np.ndarray) -> tuple[Any, ...]:
+        """The page's plots of the dynamics at the page's input values (rad or mm): the driving effort and power,
+        and the joints' forces."""
+        from linkgen.dynamics.plots import page_plots
+
+        return () if self.dynamics is None else page_plots(self.dynamics, values)
 
     def _repr_html_(self) -> str | None:
         """Jupyter shows the linkage's interactive page inline, as its html file holds it (without the files)."""
@@ -120,6 +157,17 @@ class LinkageDesign:
         from camgen.core.writers.svg import svg_document
 
         return svg_document(drawing, stroke_width=0.5)
+
+
+def drawn_pose(kinematics: Any, table: Any, angle: float | None) -> tuple[Any, float] | None:
+    """The general-linkage analysis and input value (:func:`pose_of`) a linkage is drawn from: at ``angle`` (when
+    given), else 0, else the middle of a range the input reaches; None for a kind linkgen cannot draw so."""
+    for value in _drawable(kinematics, angle):
+        try:
+            return pose_of(kinematics, table, value)
+        except SpecError:                  # out of reach there: try the next
+            continue
+    return None
 
 
 def _drawable(kinematics: Any, angle: float | None) -> list[float]:
@@ -180,23 +228,77 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     report: dict[str, Any] = {"name": spec.name, "type": table.type, "conventions": CONVENTIONS,
                               "lengths_mm": lengths(table), "rpm": table.rpm,
                               **mechanism.report(table, kinematics, angle, method)}
-    statics = None
+    statics = dynamics = None
     if spec.loads:
         posed = pose_of(kinematics, table, 0.0)
         if posed is None:
             raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
         statics = statics_of(spec.loads, posed[0])
         report["statics"] = statics_report(statics, table.rpm)
+    slack = None
+    if spec.slack is not None:
+        drawn = drawn_pose(kinematics, table, angle)
+        if drawn is None:
+            raise SpecError(f"a {report['type']} of this kind cannot be drawn as a general linkage to take slack",
+                            "slack")
+        slack = slack_of(spec.slack, spec.parts, drawn[0])
+        report["slack"] = slack.report()
     if wanted is None:
-        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics)
+        if spec.dynamics is not None:
+            stack = None if spec.parts is None else Stack.of_layout(_layout(spec, kinematics), spec.parts)
+            dynamics, report["dynamics"] = _dynamics(spec, kinematics, statics, stack)
+        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics, None, dynamics, slack)
     layout = mechanism.layout(table, kinematics, wanted)
     mounts: tuple[tuple[float, float], ...] = ()
     if spec.kit is not None:
         layout, mounts = base_plate(layout, spec.kit)
     build = build_parts(layout, wanted, spec.output.elephant_foot)
     kit = None if spec.kit is None else linkage_kit(spec, layout, mounts, build)
+    if spec.dynamics is not None:
+        dynamics, report["dynamics"] = _dynamics(spec, kinematics, statics, Stack.of_build(build))
+        if dynamics.flywheel is not None and kit is None:
+            build = flywheel_build(build, dynamics)
     add_routing(report, build.cut, spec.output.tool_radius)
-    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit)
+    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit, dynamics, slack)
+
+
+def _layout(spec: LinkageSpec, kinematics: Any) -> Any:
+    """The mechanism's layout of its ``[parts]`` (with a kit's base plate), as a build makes it: the layer order the
+    dynamics' pins and spacers stack by; a :class:`SpecError` on ``dynamics`` for a mechanism that makes no parts."""
+    assert spec.parts is not None
+    try:
+        layout = spec.mechanism.layout(spec.linkage, kinematics, spec.parts)
+    except SpecError as exc:
+        raise SpecError(f"{exc.detail}, so its masses cannot come from [parts]: give each link's mass, centre and "
+                        "inertia in [dynamics.links.<link>] and leave [parts] out", "dynamics") from None
+    return layout if spec.kit is None else base_plate(layout, spec.kit)[0]
+
+
+def _dynamics(spec: LinkageSpec, kinematics: Any, statics: Statics | None,
+              stack: Stack | None) -> tuple[Dynamics, dict[str, Any]]:
+    """The dynamics of the ``[dynamics]`` table and the report's section of it, on the linkage drawn as a general
+    one (from the first input angle it reaches of 0 and the middles of its ranges), with the loads of ``[[loads]]``
+    and the pins and spacers of ``stack``."""
+    from linkgen.dynamics.run import dynamics_of
+
+    table: Any = spec.linkage
+    forces, torques = ((), ()) if statics is None else (statics.forces, statics.torques)
+    assert spec.dynamics is not None
+    dynamics = dynamics_of(spec.dynamics, general_drawing(kinematics, table), spec.parts, table.rpm, forces,
+                           torques, spec.kit, stack)
+    return dynamics, dynamics_report(dynamics, table.rpm)
+
+
+def general_drawing(kinematics: Any, table: Any) -> Any:
+    """The general-linkage analysis the dynamics runs on (:func:`pose_of`, drawn at the first input angle it
+    reaches of 0 and the middles of its ranges): its links and joints are what ``[dynamics]`` names; a
+    :class:`SpecError` on ``dynamics`` for a kind it cannot draw."""
+    posed = drawn_pose(kinematics, table, None)
+    if posed is not None:
+        return posed[0]
+    why = ", driven by its rocker," if getattr(table, "input", "crank") != "crank" else ""
+    raise SpecError(f"linkgen computes the dynamics of a linkage drawn as a general one, which this {table.type}"
+                    f"{why} is not: drive it by its crank, or draw it as type = \"linkage\"", "dynamics")
 
 
 def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | None:

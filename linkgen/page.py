@@ -10,6 +10,7 @@ are per unit input: mm/rad and mm/rad^2 for a crank, mm/mm and mm/mm^2 for a sli
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -29,6 +30,20 @@ LINKAGE_FIGURES = (
     ("stroke", "stroke_mm", "mm"),
     ("input range", "input_range_deg", "deg"),
     ("speed", "rpm", "rpm"),
+)
+
+#: the dynamics' figures a page shows, where the report has them
+DYNAMICS_FIGURES = (
+    ("moving mass", "dynamics.moving_mass_kg", "kg"),
+    ("largest driving torque", "dynamics.max_N_m", "N·m"),
+    ("least driving torque", "dynamics.min_N_m", "N·m"),
+    ("largest driving force", "dynamics.max_N", "N"),
+    ("peak power", "dynamics.power_peak_W", "W"),
+    ("peak shaking force", "dynamics.shaking_force_peak_N", "N"),
+    ("energy fluctuation", "dynamics.energy_fluctuation_J", "J"),
+    ("flywheel inertia", "dynamics.flywheel.flywheel_kg_m2", "kg·m²"),
+    ("flywheel diameter", "dynamics.flywheel.diameter_mm", "mm"),
+    ("counterweight m·r", "dynamics.counterweight.mass_radius_kg_mm", "kg·mm"),
 )
 
 #: the usual band of transmission angles (degrees)
@@ -63,9 +78,11 @@ def _inputs(a: Any) -> tuple[np.ndarray, bool]:
     return lo[:, None] + (hi - lo)[:, None] * steps[None, :], cyclic
 
 
-def linkage_page(name: str, a: Any, report: dict[str, Any]) -> Page:
+def linkage_page(name: str, a: Any, report: dict[str, Any],
+                 extra: Callable[[np.ndarray], tuple[Plot, ...]] | None = None) -> Page:
     """The page of a linkage drawn as the general-linkage analysis ``a`` (:class:`linkgen.mechanisms.general.
-    Analysis`) whose report is ``report`` (the JSON report's dict, its figures shown as they are there)."""
+    Analysis`) whose report is ``report`` (the JSON report's dict, its figures shown as they are there); ``extra``
+    gives more plots at the frames' input values (k, frames), rad or mm (the dynamics')."""
     values, cyclic = _inputs(a)
     sol = a.linkage.solve(values)
     s = a.linkage.structure
@@ -111,7 +128,10 @@ def linkage_page(name: str, a: Any, report: dict[str, Any]) -> Page:
                           tuple((f"{'-'.join(d.bodies)} ({d.joint})", np.where(ok, np.degrees(d.transmission), np.nan))
                                 for d in sol.dyads[:4]),
                           tuple(("usual band", v) for v in BAND)))
-    figures = key_figures(report, (*LINKAGE_FIGURES, *_general_figures(report)))
+    if extra is not None:
+        plots += [Plot(p.title, p.unit, tuple((label, np.where(ok, v, np.nan)) for label, v in p.series), p.marks)
+                  for p in extra(values)]
+    figures = key_figures(report, (*LINKAGE_FIGURES, *DYNAMICS_FIGURES, *_general_figures(report)))
     kind = report.get("inversion") or report.get("type", "linkage")
     title = f"{name}: {kind}"
     subtitle = (f"{len(s.bodies) - 1} moving links, {len(moving)} moving joints; "

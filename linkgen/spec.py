@@ -20,7 +20,9 @@ from camgen.core.kit import KitTable
 from camgen.core.options import choose
 from camgen.core.spec import (MAX_LENGTH_MM, Model, OutputTable, check_kind, length, name_field, read_template, unit,
                               validate)
+from linkgen.dynamics.table import DynamicsTable
 from linkgen.mechanisms import MECHANISMS, Mechanism
+from linkgen.slack.table import SlackTable
 
 #: the largest kerf and clearance (mm), as camgen's ``output.kerf`` and ``output.clearance``
 MAX_ALLOWANCE_MM = 5.0
@@ -143,6 +145,10 @@ class LinkageSpec(Model):
         Formats and the files' flavours.
     kit : KitTable or None, optional
         The frame and hardware round the linkage.
+    dynamics : DynamicsTable or None, optional
+        The links' materials and masses, speed, gravity and springs: the report's ``dynamics`` section.
+    slack : SlackTable or None, optional
+        The joints' play and the links' length tolerances whose band the report gives (needs ``[parts]``).
     """
 
     name: str = name_field("linkage")
@@ -151,6 +157,8 @@ class LinkageSpec(Model):
     loads: tuple[LoadTable, ...] = Field((), max_length=100, description="loads the linkage holds")
     output: OutputTable = OutputTable()
     kit: KitTable | None = None
+    dynamics: DynamicsTable | None = None
+    slack: SlackTable | None = None
 
     #: the mechanism registered for ``linkage.type``
     mechanism: ClassVar[Any] = None
@@ -180,6 +188,13 @@ class LinkageSpec(Model):
                 sizes = ", ".join(f"{b.name} for {b.diameter:g} mm" for b in BOLTS.values())
                 raise ValueError(f"kit.bolt: the pins are {bolt.name} bolts, so parts.pin_diameter must be "
                                  f"{bolt.diameter:g} mm (got {self.parts.pin_diameter:g}); bolts: {sizes}")
+        return self
+
+    @model_validator(mode="after")
+    def _slack_fits(self) -> LinkageSpec:
+        """A ``[slack]`` table takes its holes from ``[parts]``, whose clearance must be less than the pin."""
+        if self.slack is not None:
+            self.slack.play(self.parts)
         return self
 
 

@@ -3,18 +3,22 @@ written."""
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 
 from click.testing import CliRunner
 
 
-def assert_refused(template, change: dict, message: str, tmp_path) -> None:
-    """``camgen build template`` with ``change`` ({dotted key: value}, as --set) fails with ``error: message...`` on
-    one line, exit code 2, and leaves no output folder."""
-    from camgen.cli import main
+def assert_refused(template, change: dict, message: str, tmp_path, main=None, command: str = "build",
+                   inline: Callable[[object], str] = json.dumps) -> None:
+    """``camgen build template`` (or ``main``'s ``command``) with ``change`` ({dotted key: value}, as --set, each
+    value written by ``inline``) fails with ``error: message...`` on one line, exit code 2, and leaves no output
+    folder."""
+    if main is None:
+        from camgen.cli import main
 
-    args = ["build", str(template), "-o", str(tmp_path / "out")]
+    args = [command, str(template), "-o", str(tmp_path / "out")]
     for key, value in change.items():
-        args += ["--set", f"{key}={json.dumps(value)}"]
+        args += ["--set", f"{key}={inline(value)}"]
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 2, result.output
     assert result.output.startswith(f"error: {message}") and result.output.count("\n") == 1, result.output
