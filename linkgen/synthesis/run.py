@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from camgen.core.errors import CamgenError, SpecError
-from linkgen.synthesis import crank_rocker, function, motion, path, slider_crank
+from linkgen.synthesis import crank_rocker, fourier_path, function, motion, path, slider_crank
 from linkgen.synthesis.candidates import Candidate, Offered, offer, ranked
 from linkgen.synthesis.parallel import where
 from linkgen.synthesis.task import SynthesisSpec
@@ -62,7 +62,11 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
     """
     task = spec.task
     clock = time.perf_counter()
-    if task.kind == "path":
+    if task.kind == "path" and getattr(task, "method", "evolution") == "fourier":
+        found, info = fourier_path.solve(task)
+        if jobs > 1 or scheduler:
+            info["ran_on"] += " (the Fourier method runs here: --jobs and --scheduler serve differential evolution)"
+    elif task.kind == "path":
         found, info = path.solve(task, jobs, scheduler)
     else:
         found, info = METHODS[task.kind](task)
