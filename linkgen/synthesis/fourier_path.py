@@ -13,14 +13,14 @@
    normalisations give in closed form (scale E_t / E_a, turn psi_t - psi_a, the mean points
    matched; reflected back for a mirrored match), are the first guesses.
 3. The ``guesses`` best of them by the true error are polished by least squares on the true
-   point-to-curve distances: each target's distance to the nearest point of the coupler curve
-   over the motion (the crank's turn), found each time on a grid of crank angles and refined by
-   golden section; the residual is the signed distance along the curve's normal there, whose
-   derivative with respect to the nine design numbers is the normal's component of the point's
-   own (the nearest point does not move to first order). Where the result breaks a requirement
-   (a Grashof crank, the transmission angle, the link ratio, the ground region, the coupler
-   range: as for the differential evolution, :mod:`linkgen.synthesis.path`), SLSQP keeps them as
-   inequalities, then least squares finishes where it can without breaking them.
+   point-to-curve distances: the unknowns are the nine design numbers and one crank angle a
+   target, the residuals the gaps from each target to the coupler point at its angle; each round
+   starts from every target's nearest point found afresh over the motion (the crank's turn; a
+   grid of crank angles refined by golden section), so at the end the gaps are the distances to
+   the curve. Where the result breaks a requirement (a Grashof crank, the transmission angle,
+   the link ratio, the ground region, the coupler range: as for the differential evolution,
+   :mod:`linkgen.synthesis.path`), the requirements join the residuals as penalties whose weight
+   rises until the result keeps them all (with a margin of MARGIN of the lengths' scale).
 
 The error (mm^2) is the sum of squared distances from the targets to the nearest point of the
 curve the coupler point makes: for a crank the whole turn; for ``crank = false`` the crank's travel
@@ -55,8 +55,9 @@ NEAREST = 24
 #: the golden section's ratio, 1 / phi
 GOLDEN_RATIO = (math.sqrt(5.0) - 1.0) / 2.0
 #: a polish: at most ROUNDS fresh assignments of nearest points, each at most LSQ_STEPS least-squares evaluations
-#: (and SLSQP_STEPS iterations where a requirement is in the way)
-ROUNDS, LSQ_STEPS, SLSQP_STEPS = 6, 200, 100
+#: a weight (PENALTIES: the requirements' weights, 0 first) and the margin kept inside every requirement
+ROUNDS, LSQ_STEPS, MARGIN = 6, 200, 1e-7
+PENALTIES = (0.0, 1.0, 10.0, 100.0, 1e3, 1e4, 1e5, 1e6)
 
 
 def _at(v: np.ndarray, branch: float, theta2: np.ndarray) -> np.ndarray:
@@ -167,8 +168,10 @@ def polish(v0: np.ndarray, branch: float, p: Problem) -> tuple[np.ndarray, float
 
     The unknowns are the design and one crank angle a target; least squares on the gaps there is the
     point-to-curve error wherever each angle is its target's nearest point, so each round starts from the nearest
-    points found afresh over the whole curve, and rounds go on while that lowers the error (at most ROUNDS)."""
-    from scipy.optimize import least_squares, minimize
+    points found afresh over the whole curve, and rounds go on while that lowers the error (at most ROUNDS).
+    Where the result breaks a requirement, the rows g >= 0 of every requirement join the residuals as
+    ``weight * scale * min(0, g - MARGIN)``, the weight raised through PENALTIES until the result keeps them all."""
+    from scipy.optimize import least_squares
 
     n = p.n
     lo = np.r_[[b[0] for b in p.box], np.full(n, -np.inf)]
@@ -184,48 +187,47 @@ def polish(v0: np.ndarray, branch: float, p: Problem) -> tuple[np.ndarray, float
             found.append((err, v))
         return err, th
 
-    def squares(u: np.ndarray) -> np.ndarray:
-        return np.asarray(least_squares(lambda w: _gaps(w, branch, p.targets), np.clip(u, lo, hi),
-                                        jac=lambda w: _gap_jacobian(w, branch, n), bounds=(lo, hi), method="trf",
-                                        x_scale="jac", xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=LSQ_STEPS).x)
+    def short(u: np.ndarray) -> np.ndarray:
+        """The requirements' rows less the margin, (m, k) for unknowns ``u`` (k, 9 + n)."""
+        return _feasible(u[:, :9].T, u[:, 9:], p) - MARGIN
 
-    def slsqp(v: np.ndarray, th: np.ndarray) -> np.ndarray:
-        """SLSQP on the design alone, the crank angles held, the requirements as inequalities."""
-        def total(w: np.ndarray) -> float:
-            return float(np.sum(_gaps(np.r_[w, th], branch, p.targets) ** 2))
+    def residuals(u: np.ndarray, weight: float) -> np.ndarray:
+        r = _gaps(u, branch, p.targets)
+        if weight == 0.0:
+            return r
+        return np.r_[r, weight * p.scale * np.minimum(short(u[None])[:, 0], 0.0)]
 
-        def grad(w: np.ndarray) -> np.ndarray:
-            u = np.r_[w, th]
-            return np.asarray(2.0 * _gap_jacobian(u, branch, n)[:, :9].T @ _gaps(u, branch, p.targets))
+    def jacobian(u: np.ndarray, weight: float) -> np.ndarray:
+        j = _gap_jacobian(u, branch, n)
+        if weight == 0.0:
+            return j
+        h = np.finfo(float).eps ** (1 / 3) * np.maximum(1.0, np.abs(u))
+        g = short(np.vstack([u + np.diag(h), u - np.diag(h)]))                 # (m, 2 (9 + n))
+        slope = (g[:, :len(u)] - g[:, len(u):]) / (2.0 * h)
+        active = short(u[None])[:, 0] < 0.0
+        return np.vstack([j, weight * p.scale * slope * active[:, None]])
 
-        def cons(w: np.ndarray) -> np.ndarray:
-            return _feasible(w[:, None], th[None], p)[:, 0]
-
-        def cons_jac(w: np.ndarray) -> np.ndarray:
-            h = np.finfo(float).eps ** (1 / 3) * np.maximum(1.0, np.abs(w))
-            g = _feasible(np.hstack([w[:, None] + np.diag(h), w[:, None] - np.diag(h)]), np.tile(th, (18, 1)), p)
-            return np.asarray((g[:, :9] - g[:, 9:]) / (2.0 * h))
-
-        return np.asarray(minimize(total, np.clip(v, lo[:9], hi[:9]), jac=grad, method="SLSQP",
-                                   bounds=list(zip(lo[:9], hi[:9], strict=True)),
-                                   constraints=[{"type": "ineq", "fun": cons, "jac": cons_jac}],
-                                   options={"maxiter": SLSQP_STEPS, "ftol": 1e-14}).x)
+    def squares(u: np.ndarray, weight: float) -> np.ndarray:
+        return np.asarray(least_squares(residuals, np.clip(u, lo, hi), jac=jacobian, bounds=(lo, hi), method="trf",
+                                        x_scale="jac", xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=LSQ_STEPS,
+                                        args=(weight,)).x)
 
     v = np.array(v0, dtype=float)
     v[2] = math.remainder(v[2], TWO_PI)                                      # the ground line's direction in [-pi, pi]
     err, th = keep(v)
+    u = np.r_[v, th]
     try:
-        for _ in range(ROUNDS):
-            u = squares(np.r_[v, th])
-            kept = len(found)
-            new, th_new = keep(u[:9])
-            if len(found) == kept:                   # a requirement is in the way: SLSQP keeps them as inequalities
-                w = slsqp(v, th)
-                new, th_new = keep(w)
-                u = np.r_[w, th_new]
-            if not new < err * (1.0 - 1e-9):
-                break
-            v, th, err = u[:9], th_new, new
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            for _ in range(ROUNDS):
+                kept = len(found)
+                for weight in PENALTIES:
+                    u = squares(u, weight)
+                    new, th_new = keep(u[:9])
+                    if len(found) > kept:
+                        break
+                if not new < err * (1.0 - 1e-9):
+                    break
+                err, u = new, np.r_[u[:9], th_new]
     except (ValueError, ArithmeticError, np.linalg.LinAlgError):
         pass
     if not found:
@@ -331,8 +333,8 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
                         f"{len(first)} atlas guesses: lower min_transmission, widen link_range, ground_region or "
                         "coupler_range, or raise guesses", "task.points")
     search = {"method": "elliptic Fourier descriptors: the nearest atlas entries put onto the targets in closed form, "
-                        "polished by least squares on the true point-to-curve distances (SLSQP where a "
-                        "requirement is in the way)",
+                        "polished by least squares on the true point-to-curve distances (the requirements as "
+                        "penalties where one is in the way)",
               "atlas": info, "guesses": len(first), "polished": task.guesses,
               "harmonics": used_harmonics(len(p.targets), closed, entries.curves.coefficients.shape[1]),
               "seconds": round(time.perf_counter() - clock, 3),
