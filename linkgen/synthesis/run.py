@@ -62,12 +62,13 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
     """
     task = spec.task
     clock = time.perf_counter()
-    if task.kind == "path" and getattr(task, "method", "evolution") == "fourier":
-        found, info = fourier_path.solve(task)
-        if jobs > 1 or scheduler:
-            info["ran_on"] += " (the Fourier method runs here: --jobs and --scheduler serve differential evolution)"
-    elif task.kind == "path":
-        found, info = path.solve(task, jobs, scheduler)
+    if task.kind == "path":
+        if getattr(task, "method", "evolution") == "fourier":
+            found, info = fourier_path.solve(task)
+            if jobs > 1 or scheduler:
+                info["ran_on"] += " (the Fourier method runs here: --jobs and --scheduler serve the evolution)"
+        else:
+            found, info = path.solve(task, jobs, scheduler)
     else:
         found, info = METHODS[task.kind](task)
         info["ran_on"] = "this process" + (" (an analytic method: --jobs and --scheduler serve path searches)"

@@ -279,13 +279,16 @@ class PathTask(SearchOptions):
 
     @model_validator(mode="after")
     def _targets(self) -> PathTask:
+        fourier = self.method == "fourier"
+        low, high = (MIN_FOURIER_POINTS, MAX_FOURIER_POINTS) if fourier else (3, 200)
         n = len(self.points)
-        if self.method == "fourier":
-            self._fourier()
-        elif not 3 <= n <= 200:
-            raise ValueError(f"points: a path needs 3 to 200 target points (got {n})")
+        if not low <= n <= high:
+            raise ValueError(f"points: {'method ' + repr(self.method) if fourier else 'a path'} needs {low} to "
+                             f"{high} target points (got {n})")
         _placed("points", self.points)
         _distinct("points", (x + 1j * y for x, y in self.points), "point")
+        if fourier:
+            self._fourier()
         if self.input_angles is not None:
             a = self.input_angles
             if len(a) != n:
@@ -312,15 +315,12 @@ class PathTask(SearchOptions):
         return self
 
     def _fourier(self) -> None:
-        """Refuse what the Fourier method cannot take: timing, too few or too many targets, a curve crossing
-        itself (its atlas holds coupler curves that do not)."""
+        """Refuse what the Fourier method cannot take (beyond the targets' count, checked first): timing, a curve
+        crossing itself (its atlas holds coupler curves that do not)."""
         n = len(self.points)
         if self.input_angles is not None:
             raise ValueError("input_angles: method 'fourier' is untimed: leave input_angles out, or use method "
                              "'evolution' for prescribed timing")
-        if not MIN_FOURIER_POINTS <= n <= MAX_FOURIER_POINTS:
-            raise ValueError(f"points: method 'fourier' needs {MIN_FOURIER_POINTS} to {MAX_FOURIER_POINTS} target "
-                             f"points (got {n})")
         crossing = _self_crossing(self.points, self.closed)
         if crossing is not None:
             i, j = crossing
