@@ -167,10 +167,17 @@ def build(kind: str) -> Atlas:
 
 
 def _save(atlas: Atlas, path: Path) -> None:
+    """Write ``atlas`` to ``path`` whole or not at all: into a ``.part`` file beside it, then renamed (the
+    coefficients as float32: they only rank first guesses); the part file is removed if writing fails."""
     c = atlas.curves
     with tempfile.NamedTemporaryFile(dir=path.parent, prefix=path.name, suffix=".part", delete=False) as f:
-        np.savez(f, linkages=atlas.linkages, arcs=atlas.arcs, coefficients=c.coefficients.astype(np.float32),
-                 centre=c.centre, scale=c.scale, rotation=c.rotation, phase=c.phase, reversed=c.reversed)
+        try:
+            np.savez(f, linkages=atlas.linkages, arcs=atlas.arcs, coefficients=c.coefficients.astype(np.float32),
+                     centre=c.centre, scale=c.scale, rotation=c.rotation, phase=c.phase, reversed=c.reversed)
+        except OSError:
+            f.close()
+            os.unlink(f.name)
+            raise
     os.replace(f.name, path)
 
 
