@@ -227,3 +227,17 @@ def test_fourier_method_refuses_an_atlas_folder_it_cannot_write(tmp_path):
                     f'atlas_folder = "{blocker / "atlas"}"\n')
     assert line.startswith("error: task.atlas_folder:") and str(blocker / "atlas") in line
     assert blocker.read_text() == "not a folder"
+
+
+def test_the_default_atlas_folder_is_the_users_cache_and_refused_in_one_line(tmp_path, monkeypatch):
+    """Without atlas_folder the atlas goes to $XDG_CACHE_HOME/linkgen; one that cannot be made is named, with how to
+    choose another, and nothing is written."""
+    from linkgen.synthesis.atlas import cache_folder
+
+    blocker = tmp_path / "cache-file"
+    blocker.write_text("not a folder")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(blocker))
+    assert cache_folder() == blocker / "linkgen"
+    line = _refused(tmp_path, "[[0, 0], [10, 0], [14, 8], [10, 16], [0, 16], [-4, 8]]")
+    assert line.startswith("error: task.atlas_folder:") and str(blocker / "linkgen") in line
+    assert "XDG_CACHE_HOME" in line and blocker.read_text() == "not a folder"
