@@ -329,12 +329,12 @@ def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
 def run_bench(out: str | Path, quick: bool = False) -> dict:
     """Run everything; write RESULTS.md and results.json into ``out``; return the results."""
     repeats = 1 if quick else 5
-    from linkgen.synthesis.bench import synthesis_rows
+    from linkgen.synthesis.bench import published_rows, synthesis_rows
 
     return core_bench.finish(Path(out), {"quick": quick, "speed": speed_ratios(1 if quick else 5),
                                          "linkages": linkage_speed(repeats),
                                          "general": general_speed(repeats, 10_000 if quick else 100_000),
-                                         "synthesis": synthesis_rows(quick),
+                                         "synthesis": synthesis_rows(quick), "published": published_rows(),
                                          "hard_cases": hard_cases()}, _markdown)
 
 
@@ -365,7 +365,11 @@ def _markdown(r: dict) -> list[str]:
               "the angles; the four-bar's against linkgen's dedicated closed form."]
     from linkgen.synthesis.bench import markdown as synthesis_markdown
 
+    from linkgen.synthesis.bench import published_markdown
+
     lines += ["", "## Synthesis (`linkgen synthesize`)", "", *synthesis_markdown(r.get("synthesis", []))]
+    lines += ["", "## Published path problems: each paper's linkage beside ours", "",
+              *published_markdown(r.get("published", []), r.get("synthesis", []))]
     return [*lines, "", "Errors of linkage positions are against linkgen's closed form (which the tests check "
                     "against 50-digit references); pylinkage's first call includes its compilation: "
                     + "; ".join(f"{row['method']} at {row['angles']}: {row['first_call_seconds']:.3f} s"

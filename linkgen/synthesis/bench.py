@@ -8,9 +8,10 @@ differential evolution given the same budget in the same run.
 
 The baseline searches all ten unknowns of a path (pivot, ground line, lengths, coupler point,
 branch; and without timing the crank angles) with the same constraints as a penalty and no
-polish, for as many designs as ours evaluated. Published errors are not quoted: no reference was
-checked in this run, and formulations (bounds, the constraints kept) differ from paper to paper.
-Nothing here is asserted about time.
+polish, for as many designs as ours evaluated. Nothing here is asserted about time.
+
+The published rows (:func:`published_rows`) put each paper's reported linkage beside ours, both
+scored by the same metric (:mod:`linkgen.synthesis.published`), with our wall and CPU time.
 """
 from __future__ import annotations
 
@@ -65,12 +66,12 @@ def plain_search(p: path.Problem, designs: int, seed: int) -> tuple[float, float
 def _path_row(name: str, keys: dict[str, Any], starts: int, generations: int) -> dict[str, Any]:
     raw = {"name": "bench", "task": {**keys, "starts": starts, "generations": generations, "candidates": 1}}
     spec = validate_task(raw)
-    clock = time.perf_counter()
+    clock, cpu = time.perf_counter(), time.process_time()
     result = synthesize(spec)
-    seconds = time.perf_counter() - clock
+    seconds, cpu_seconds = time.perf_counter() - clock, time.process_time() - cpu
     best = result.candidates[0].row
     baseline, plain_seconds = plain_search(path.problem_of(spec.task), result.search["designs_evaluated"], seed=1)
-    return {"problem": name, "ours_error": best["error_mm2"], "ours_seconds": seconds,
+    return {"problem": name, "ours_error": best["error_mm2"], "ours_seconds": seconds, "cpu_seconds": cpu_seconds,
             "designs": result.search["designs_evaluated"], "baseline_error": baseline,
             "baseline_seconds": plain_seconds, "published_error": None, "unit": "mm^2 (sum of squared distances)"}
 
@@ -93,6 +94,35 @@ def synthesis_rows(quick: bool) -> list[dict[str, Any]]:
             _path_row("eighteen points on a closed curve, untimed (Kunjur and Krishnamurty 1997)", CURVE18,
                       starts, curve),
             _function_row(3), _function_row(9)]
+
+
+def published_rows(atlas_folder: str | None = None) -> list[dict[str, Any]]:
+    """The published untimed problems (:data:`linkgen.synthesis.published.PROBLEMS`), each solved by the Fourier
+    method and scored beside its paper's linkage (the atlas from ``atlas_folder``, default the user's cache)."""
+    from linkgen.synthesis.published import PROBLEMS, solve_row
+
+    return [solve_row(problem, atlas_folder) for problem in PROBLEMS]
+
+
+def published_markdown(rows: list[dict[str, Any]], synthesis: list[dict[str, Any]]) -> list[str]:
+    """The published rows as a Markdown table, with the timed six-point line from the ``synthesis`` rows (no
+    linkage of its paper is in the data used)."""
+    lines = ["| problem | points | timed | paper's linkage (mm^2) | ours (mm^2) | ours / paper | wall (s) | CPU (s) "
+             "| worst transmission, paper / ours (deg) |", "|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        built = f" (atlas built: {r['atlas']['seconds']:.1f})" if r["atlas"]["built"] else ""
+        lines.append(f"| {r['problem']} (x{r['scale_mm']:g} mm) | {r['points']} | no | {r['published_error']:.4g} "
+                     f"| {r['ours_error']:.4g} | {r['ratio']:.3f} | {r['ours_seconds']:.1f}{built} | "
+                     f"{r['cpu_seconds']:.1f} | {r['published_transmission_deg']:.1f} / "
+                     f"{r['ours_transmission_deg']:.1f} |")
+    for r in synthesis:
+        if r["problem"].startswith("six points"):
+            cpu = f"{r['cpu_seconds']:.1f}" if "cpu_seconds" in r else "-"
+            lines.append(f"| {r['problem']} | 6 | yes | not in the data used | {r['ours_error']:.4g} | - | "
+                         f"{r['ours_seconds']:.1f} | {cpu} | - |")
+    return [*lines, "", "Untimed: the sum of squared distances from each target to the nearest point of the whole "
+            "coupler curve; timed: to the coupler point at the target's crank angle. Our transmission limit is the "
+            "paper's linkage's worst, rounded down, where that is below 30 degrees."]
 
 
 def markdown(rows: list[dict[str, Any]]) -> list[str]:

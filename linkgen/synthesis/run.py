@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from camgen.core.errors import CamgenError, SpecError
-from linkgen.synthesis import crank_rocker, function, motion, path, slider_crank
+from linkgen.synthesis import crank_rocker, fourier_path, function, motion, path, slider_crank
 from linkgen.synthesis.candidates import Candidate, Offered, offer, ranked
 from linkgen.synthesis.parallel import where
 from linkgen.synthesis.task import SynthesisSpec
@@ -63,7 +63,12 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
     task = spec.task
     clock = time.perf_counter()
     if task.kind == "path":
-        found, info = path.solve(task, jobs, scheduler)
+        if getattr(task, "method", "evolution") == "fourier":
+            found, info = fourier_path.solve(task)
+            if jobs > 1 or scheduler:
+                info["ran_on"] += " (the Fourier method runs here: --jobs and --scheduler serve the evolution)"
+        else:
+            found, info = path.solve(task, jobs, scheduler)
     else:
         found, info = METHODS[task.kind](task)
         info["ran_on"] = "this process" + (" (an analytic method: --jobs and --scheduler serve path searches)"

@@ -22,6 +22,7 @@ from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 from typing import Any, Literal
 
+import numpy as np
 from pydantic import Field, create_model, model_validator
 
 from camgen.core.errors import SpecError
@@ -50,6 +51,9 @@ MAX_PATH_EVALUATIONS = 15 * 10**7
 POLISH_EVALUATIONS = 600
 #: ... and at most this many generations in all (starts x generations; each costs a vectorised call or two)
 MAX_PATH_GENERATIONS = 100_000
+#: the Fourier method (``method = "fourier"``): at least this many targets (two harmonics of the polygon), at most
+#: this many (its cost grows with them only through vectorised evaluations), and at most this many guesses polished
+MIN_FOURIER_POINTS, MAX_FOURIER_POINTS, MAX_GUESSES = 5, 2000, 64
 #: the largest |x| or |y| of a function task's table or range, and of y = f(x) over the range
 MAX_FUNCTION_VALUE = 1e12
 
@@ -264,14 +268,27 @@ class PathTask(SearchOptions):
     population: int = _count(f"differential evolution's population, per unknown, at most {MAX_POPULATION}; the "
                              f"whole search at most {MAX_PATH_EVALUATIONS:.2g} design-target evaluations", 15, 5,
                              MAX_POPULATION)
+    method: Literal["evolution", "fourier"] = Field(
+        "evolution", description="how the path is searched: 'evolution' (differential evolution, timed or not) or "
+        "'fourier' (untimed: elliptic Fourier descriptors against an atlas of coupler curves, then least squares "
+        "on the true point-to-curve distances)")
+    guesses: int = _count(f"the Fourier method's atlas guesses polished, best first, at most {MAX_GUESSES}", 12, 1,
+                          MAX_GUESSES)
+    atlas_folder: str | None = Field(None, description="where the Fourier method keeps its atlas of coupler curves "
+                                     "(default: the user's cache folder, XDG_CACHE_HOME/linkgen)", max_length=4096)
 
     @model_validator(mode="after")
     def _targets(self) -> PathTask:
-        if not 3 <= len(self.points) <= 200:
-            raise ValueError(f"points: a path needs 3 to 200 target points (got {len(self.points)})")
+        fourier = self.method == "fourier"
+        low, high = (MIN_FOURIER_POINTS, MAX_FOURIER_POINTS) if fourier else (3, 200)
         n = len(self.points)
+        if not low <= n <= high:
+            raise ValueError(f"points: {'method ' + repr(self.method) if fourier else 'a path'} needs {low} to "
+                             f"{high} target points (got {n})")
         _placed("points", self.points)
         _distinct("points", (x + 1j * y for x, y in self.points), "point")
+        if fourier:
+            self._fourier()
         if self.input_angles is not None:
             a = self.input_angles
             if len(a) != n:
@@ -293,8 +310,24 @@ class PathTask(SearchOptions):
             (x0, y0), (x1, y1) = self.ground_region
             if not (x0 < x1 and y0 < y1):
                 raise ValueError("ground_region: give [[x_min, y_min], [x_max, y_max]] with min < max")
-        self._budget()
+        if self.method == "evolution":
+            self._budget()
         return self
+
+    def _fourier(self) -> None:
+        """Refuse what the Fourier method cannot take (beyond the targets' count, checked first): timing, a curve
+        crossing itself (its atlas holds coupler curves that do not)."""
+        n = len(self.points)
+        if self.input_angles is not None:
+            raise ValueError("input_angles: method 'fourier' is untimed: leave input_angles out, or use method "
+                             "'evolution' for prescribed timing")
+        crossing = _self_crossing(self.points, self.closed)
+        if crossing is not None:
+            i, j = crossing
+            shape = "closed curve" if self.closed else "curve"
+            raise ValueError(f"points: the targets' {shape} crosses itself (the side from item {i} to {i + 1} "
+                             f"crosses the side from item {j} to {(j + 1) % n}): method 'fourier' matches curves "
+                             "that do not cross themselves; use method 'evolution' for this one")
 
     def _budget(self) -> None:
         """Refuse a search too big to finish in a couple of minutes on one core (see MAX_PATH_EVALUATIONS); the
@@ -312,6 +345,27 @@ class PathTask(SearchOptions):
                              f"for the polish) x {n} points), at most {MAX_PATH_EVALUATIONS:.2g}: give fewer "
                              "generations, starts, population or points" + ("" if self.input_angles is not None else
                                                                            ", or their input_angles"))
+
+
+def _self_crossing(points: Iterable[Point], closed: bool) -> tuple[int, int] | None:
+    """The first two sides (indices of their first points) of the polygon through ``points`` (closed: back to the
+    first) that are not neighbours and cross at a point inside both, or None."""
+    p = np.asarray(list(points), dtype=float)
+    a, b = p, np.roll(p, -1, axis=0)
+    if not closed:
+        a, b = a[:-1], b[:-1]
+    k = len(a)
+    i, j = np.triu_indices(k, 2)
+    keep = ~((i == 0) & (j == k - 1)) if closed else np.ones(len(i), bool)
+    i, j = i[keep], j[keep]
+
+    def cross(o: Any, q: Any, r: Any) -> Any:
+        return (q[:, 0] - o[:, 0]) * (r[:, 1] - o[:, 1]) - (q[:, 1] - o[:, 1]) * (r[:, 0] - o[:, 0])
+
+    hit = ((cross(a[i], b[i], a[j]) * cross(a[i], b[i], b[j]) < 0)
+           & (cross(a[j], b[j], a[i]) * cross(a[j], b[j], b[i]) < 0))
+    first = np.flatnonzero(hit)
+    return None if not len(first) else (int(i[first[0]]), int(j[first[0]]))
 
 
 #: ``task.kind`` -> its model
