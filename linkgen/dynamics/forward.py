@@ -11,16 +11,19 @@ flywheel's and the motor's rotor's (constant), and Q the torque that holds the l
 loads and springs (the kinetostatics at zero speed and acceleration, i.e. the virtual-work statics). J, J' and Q
 are tabulated once on :data:`POSES` crank angles over a turn and interpolated by one periodic cubic Hermite spline
 (J with its exact J' as the slopes, so that the J' integrated is the derivative of the J whose kinetic energy
-1/2 J w^2 is reported; Q with a periodic cubic spline's slopes). scipy's ``solve_ivp`` (:data:`METHOD`, stiff-safe:
-a steep motor line on a light linkage is stiff) integrates (theta, w) with the motor's, the friction's and the
-loads' work as three more states, one turn at a time, from rest at the drawn crank angle, until:
+1/2 J w^2 is reported; Q with a periodic cubic spline's slopes). scipy's ``solve_ivp`` (:func:`method`: explicit
+DOP853, or LSODA, stiff-safe, where a steep motor line on a light linkage makes the motion stiff; :data:`RTOL`)
+integrates (theta, w) with the motor's, the friction's and the loads' work as three more states, one turn at a time,
+from rest at the drawn crank angle, until:
 
 * **stall**: the speed falls to 0 (the motor cannot pass a peak of the need); the crank then turns back (the need
   exceeds the motor's stall torque and the friction) or stays;
 * **steady**: a turn's mean speed (2 pi over the turn's time) changed by less than :data:`STEADY_CHANGE` of itself
   over each of the last :data:`STEADY_TURNS` turns;
-* the simulated time ``dynamics.motor.time`` or :data:`MAX_TURNS` turns (not steady yet), or the speed past
-  :data:`RUNAWAY_RPM` (a motor no load holds back).
+* **runaway**: a constant torque with no viscous friction has completed a turn (each turn then adds the same
+  energy, 2 pi (T - friction - mean Q), so the crank speeds up without bound; the run is kept to
+  :data:`RUNAWAY_TURNS` turns), or the speed passed :data:`RUNAWAY_RPM`;
+* the simulated time ``dynamics.motor.time`` or :data:`MAX_TURNS` turns (not steady yet).
 
 The time to steady speed is the end of the first turn from which every turn's mean speed stays within
 :data:`SETTLED` (1 %) of the last turn's; the steady speed's fluctuation is (max - min) / mean over the last turn.
@@ -50,13 +53,16 @@ TWO_PI = 2.0 * math.pi
 #: crank angles over a turn J, J' and Q are tabulated at
 POSES = 1024
 #: the integrator and its tolerances (relative; absolute on theta (rad), w (rad/s) and the works (J))
-METHOD, RTOL, ATOL = "LSODA", 1e-8, 1e-12
+RTOL, ATOL = 1e-8, 1e-12
+#: steps a turn an explicit method needs here: the motor's time constant J / (slope + viscous) shorter than this
+#: fraction of a turn at the speed it heads for makes the motion stiff (see :func:`method`)
+STEPS = 40
 #: a speed is steady when a turn's mean changed by less than this fraction over each of this many turns
 STEADY_CHANGE, STEADY_TURNS = 1e-5, 3
 #: settled: a turn's mean speed within this fraction of the final one
 SETTLED = 0.01
 #: the most turns integrated, and the speed (rpm) past which the crank runs away
-MAX_TURNS, RUNAWAY_RPM = 1000, 100_000.0
+MAX_TURNS, RUNAWAY_RPM, RUNAWAY_TURNS = 500, 100_000.0, 4
 #: samples of the last turn the fluctuation is measured on, and the most samples of the run kept for the figure
 LAST_TURN, KEPT = 4097, 20_000
 
@@ -214,8 +220,22 @@ def _is_steady(means: list[float]) -> bool:
     return bool(np.all(np.abs(np.diff(m)) < STEADY_CHANGE * m[-1]))
 
 
-def simulate(eq: EquationOfMotion, time: float) -> Motion:
-    """The motion of ``eq`` from rest at its start angle for at most ``time`` s (see the module's note)."""
+def method(eq: EquationOfMotion) -> str:
+    """The integrator for ``eq``: DOP853 (explicit, 8th order) unless the motor's own time constant
+    J_min / (slope + viscous) is shorter than 1 / :data:`STEPS` of a turn at the speed it heads for (the stall torque
+    less the friction over slope + viscous), where the motion is stiff: LSODA (it switches to BDF)."""
+    m = eq.motor
+    damping = m.slope + m.viscous
+    if damping <= 0:
+        return "DOP853"
+    heads = max(m.stall - m.friction, 0.0) / damping
+    least = float(np.min(eq.table(eq.table.x)[:, 0])) + eq.added
+    return "LSODA" if least / damping * STEPS * heads < TWO_PI else "DOP853"
+
+
+def simulate(eq: EquationOfMotion, time: float, turns: int = MAX_TURNS) -> Motion:
+    """The motion of ``eq`` from rest at its start angle for at most ``time`` s and ``turns`` turns (see the
+    module's note)."""
     m = eq.motor
     y = np.array([eq.start, 0.0, 0.0, 0.0, 0.0])
     net = m.stall - float(eq.terms(eq.start)[2])
@@ -231,9 +251,11 @@ def simulate(eq: EquationOfMotion, time: float) -> Motion:
     stall = None
     last_turn = None
     step: float | None = None
+    how = method(eq)
+    endless = m.constant and m.viscous == 0
     while True:
         target = eq.start + TWO_PI * (len(ends) + 1)
-        out = solve_ivp(eq.derivatives, (t, time), y, method=METHOD, rtol=RTOL, atol=ATOL, dense_output=True,
+        out = solve_ivp(eq.derivatives, (t, time), y, method=how, rtol=RTOL, atol=ATOL, dense_output=True,
                         events=_stops(eq, target), **({} if step is None else {"first_step": step}))
         times.append(out.t[1:])
         angles.append(out.y[0, 1:])
@@ -257,7 +279,10 @@ def simulate(eq: EquationOfMotion, time: float) -> Motion:
         if _is_steady(means):
             outcome = "steady"
             break
-        if len(ends) >= MAX_TURNS:
+        if endless and len(ends) >= RUNAWAY_TURNS:
+            outcome = "runaway"
+            break
+        if len(ends) >= turns:
             outcome = "turns"
             break
     ends_a, means_a = np.asarray(ends), np.asarray(means)

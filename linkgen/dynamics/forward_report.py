@@ -62,8 +62,9 @@ def motor_warnings(d: dict[str, Any]) -> list[str]:
                 f"cannot pass the linkage's peak need there; the crank then {s['then']}): a stronger motor, a lower "
                 "gear or a flywheel (dynamics.flywheel)"]
     if ended == "runaway":
-        return [f"the crank speeds up past {RUNAWAY_RPM:g} rpm after {d['simulated_s']:.4g} s: nothing holds the "
-                "motor back (give it a no-load speed or viscous friction)"]
+        return [f"the crank speeds up without bound (a constant torque above the linkage's mean need and the "
+                f"friction, or past {RUNAWAY_RPM:g} rpm): nothing holds the motor back; give it a no-load speed "
+                "(dynamics.motor.no_load_speed) or viscous friction (dynamics.motor.viscous)"]
     if ended in ("time", "turns"):
         bound = (f"the simulated time {d['simulated_s']:.4g} s (dynamics.motor.time)" if ended == "time" else
                  f"{MAX_TURNS} turns")
@@ -86,6 +87,9 @@ def motor_lines(d: dict[str, Any]) -> list[str]:
         return [head + f"stalls at theta = {s['at_input_deg']:.4g} degrees after {s['after_s']:.4g} s and "
                 f"{s['then']}"]
     last = d.get("last_turn")
+    if d["ended"] == "runaway":
+        return [head + f"speeds up without bound ({d['turns']} turns in {d['simulated_s']:.4g} s"
+                + (f", the last at {last['mean_rpm']:.5g} rpm)" if last is not None else ")")]
     tail = f"; last turn at {last['mean_rpm']:.5g} rpm" if last is not None else ""
     return [head + f"not steady after {d['simulated_s']:.4g} s ({d['turns']} turns){tail}"]
 
