@@ -51,7 +51,7 @@ if TYPE_CHECKING:
 
 TWO_PI = 2.0 * math.pi
 #: crank angles over a turn J, J' and Q are tabulated at
-POSES = 1024
+POSES = 4096
 #: the integrator and its tolerances (relative; absolute on theta (rad), w (rad/s) and the works (J))
 RTOL, ATOL = 1e-8, 1e-12
 #: steps a turn an explicit method needs here: the motor's time constant J / (slope + viscous) shorter than this

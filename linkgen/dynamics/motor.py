@@ -54,7 +54,7 @@ class MotorTable(Model):
                            "its speed, given at 1000 rpm of the crank", json_schema_extra=unit("N*m at 1000 rpm"))
     flywheel: bool = Field(True, description="turn the flywheel of [dynamics.flywheel] with the crank (when the "
                            "table has one)")
-    time: float = Field(20.0, gt=0, le=MAX_TIME, description="the longest simulated time from rest: the run ends "
+    time: float = Field(60.0, gt=0, le=MAX_TIME, description="the longest simulated time from rest: the run ends "
                         "there, at a stall, or once the speed is steady", json_schema_extra=unit("s"))
 
     @model_validator(mode="after")
