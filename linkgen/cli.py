@@ -300,6 +300,27 @@ def _print_dynamics(d: dict[str, Any]) -> None:
             out(line)
 
 
+def _print_slack(sl: dict[str, Any]) -> None:
+    """The slack's band: the pins' play, each tracer's and output's widest band and where, the Monte Carlo check."""
+    unit = "deg" if "analysed_deg" in sl else "mm"
+    click.echo(f"slack: pins {sl['pin_diameter_mm']:g} mm in holes of {sl['hole_made_mm']:.4g} mm ({sl['process']}), "
+               f"play {sl['play_mm']:.4g} mm; lengths within +-{sl['length_tolerance_mm']:g} mm")
+    for name, t in sl["tracers"].items():
+        click.echo(f"  tracer {name}: band up to {t['width_max_mm']:.4g} mm wide at input {t[f'at_input_{unit}']:.6g} "
+                   f"{unit} ({t['x_mm']:.4g}, {t['y_mm']:.4g} mm), {t['width_mean_mm']:.4g} mm on average")
+    for name, o in sl["outputs"].items():
+        key = "deg" if "band_max_deg" in o else "mm"
+        change = o.get("swing_change_deg", o.get("stroke_change_mm"))
+        click.echo(f"  {name}: within +-{o[f'band_max_{key}']:.4g} {key} (most at input {o[f'at_input_{unit}']:.6g} "
+                   f"{unit}); its {'swing' if key == 'deg' else 'stroke'} by up to {change:.4g} {key}")
+    mc = sl.get("monte_carlo")
+    if mc is not None:
+        reach = max(mc["reach"].values(), default=0.0)
+        click.echo(f"  Monte Carlo: {mc['assembled']} of {mc['count']} samples (seed {mc['seed']}), "
+                   f"{mc['compared_poses']} poses, reach {100 * reach:.3g} % of the band; {mc['outside']} poses "
+                   "outside it")
+
+
 def _print_text(r: dict[str, Any]) -> None:
     out = click.echo
     out(f"{r['name']}: {r['type']}, lengths {r['lengths_mm']}")
@@ -344,8 +365,10 @@ def _print_text(r: dict[str, Any]) -> None:
         _print_statics(r["statics"])
     if "dynamics" in r:
         _print_dynamics(r["dynamics"])
+    if "slack" in r:
+        _print_slack(r["slack"])
     for warning in (r.get("warnings", []) + r.get("statics", {}).get("warnings", [])
-                    + r.get("dynamics", {}).get("warnings", [])):
+                    + r.get("dynamics", {}).get("warnings", []) + r.get("slack", {}).get("warnings", [])):
         out(f"warning: {warning}")
     if "newton" in r:
         _print_newton(r["newton"], max(v for v in r["lengths_mm"].values() if isinstance(v, float)))

@@ -22,6 +22,7 @@ from linkgen.kit import LinkageKit, base_plate, linkage_kit
 from linkgen.mechanisms import Mechanism
 from linkgen.mechanisms.common import Figure
 from linkgen.parts import LinkageBuild, build_parts
+from linkgen.slack import Slack, slack_of
 from linkgen.spec import LinkageSpec
 
 CONVENTIONS = ("input pivot at the origin, output pivot on +X; angles counter-clockwise from the ground line (+X) "
@@ -57,6 +58,8 @@ class LinkageDesign:
     dynamics : Dynamics or None
         The dynamics of a ``[dynamics]`` table (:mod:`linkgen.dynamics`): masses, joint forces, driving effort,
         shaking, flywheel, counterweight and the holes' and pins' loads.
+    slack : Slack or None
+        The band of its motion under its joints' play and its links' tolerances, with a ``[slack]`` table.
     """
 
     spec: LinkageSpec
@@ -68,6 +71,7 @@ class LinkageDesign:
     statics: Statics | None = None
     kit: LinkageKit | None = None
     dynamics: Dynamics | None = None
+    slack: Slack | None = None
 
     def figures(self) -> tuple[Figure, ...]:
         """The mechanism's figures of this linkage, each drawn only when called; with an angle, the pose there (for
@@ -86,6 +90,15 @@ class LinkageDesign:
             from linkgen.dynamics.plots import dynamics_figures
 
             figures = (*figures, *dynamics_figures(self.spec.name, self.dynamics))
+        if self.slack is not None:
+            slack = self.slack
+
+            def blur() -> Any:
+                from linkgen.slack.figure import slack_figure
+
+                return slack_figure(self.spec.name, slack)
+
+            figures = (*figures, ("slack", blur))
         posed = None if self.angle is None else pose_of(self.kinematics, self.spec.linkage, self.angle)
         if posed is None:
             return figures
@@ -109,18 +122,17 @@ class LinkageDesign:
         """The linkage's interactive page (:func:`linkgen.page.linkage_page`) showing the figures of ``report`` (the
         design's own by default); None for a kind linkgen cannot draw as a general linkage (see :func:`pose_of`).
         It is drawn from the design's angle, else 0, else the middle of a range the input reaches."""
-        posed = None
-        for angle in _drawable(self.kinematics, self.angle):
-            try:
-                posed = pose_of(self.kinematics, self.spec.linkage, angle)
-                break
-            except SpecError:                  # out of reach there: try the next
-                continue
-        if posed is None:
-            return None
         from linkgen.page import linkage_page
 
         extra = None if self.dynamics is None else self.dynamics_plots
+        if self.slack is not None:                    # drawn as the slack's band was (from the same pose)
+            from linkgen.slack.figure import with_slack
+
+            return with_slack(linkage_page(self.spec.name, self.slack.band.analysis,
+                                           self.report if report is None else report, extra), self.slack)
+        posed = drawn_pose(self.kinematics, self.spec.linkage, self.angle)
+        if posed is None:
+            return None
         return linkage_page(self.spec.name, posed[0], self.report if report is None else report, extra)
 
     def dynamics_plots(self, values: np.ndarray) -> tuple[Any, ...]:
@@ -145,6 +157,17 @@ class LinkageDesign:
         from camgen.core.writers.svg import svg_document
 
         return svg_document(drawing, stroke_width=0.5)
+
+
+def drawn_pose(kinematics: Any, table: Any, angle: float | None) -> tuple[Any, float] | None:
+    """The general-linkage analysis and input value (:func:`pose_of`) a linkage is drawn from: at ``angle`` (when
+    given), else 0, else the middle of a range the input reaches; None for a kind linkgen cannot draw so."""
+    for value in _drawable(kinematics, angle):
+        try:
+            return pose_of(kinematics, table, value)
+        except SpecError:                  # out of reach there: try the next
+            continue
+    return None
 
 
 def _drawable(kinematics: Any, angle: float | None) -> list[float]:
@@ -212,11 +235,19 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
             raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
         statics = statics_of(spec.loads, posed[0])
         report["statics"] = statics_report(statics, table.rpm)
+    slack = None
+    if spec.slack is not None:
+        drawn = drawn_pose(kinematics, table, angle)
+        if drawn is None:
+            raise SpecError(f"a {report['type']} of this kind cannot be drawn as a general linkage to take slack",
+                            "slack")
+        slack = slack_of(spec.slack, spec.parts, drawn[0])
+        report["slack"] = slack.report()
     if wanted is None:
         if spec.dynamics is not None:
             stack = None if spec.parts is None else Stack.of_layout(_layout(spec, kinematics), spec.parts)
             dynamics, report["dynamics"] = _dynamics(spec, kinematics, statics, stack)
-        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics, None, dynamics)
+        return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics, None, dynamics, slack)
     layout = mechanism.layout(table, kinematics, wanted)
     mounts: tuple[tuple[float, float], ...] = ()
     if spec.kit is not None:
@@ -228,7 +259,7 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
         if dynamics.flywheel is not None and kit is None:
             build = flywheel_build(build, dynamics)
     add_routing(report, build.cut, spec.output.tool_radius)
-    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit, dynamics)
+    return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit, dynamics, slack)
 
 
 def _layout(spec: LinkageSpec, kinematics: Any) -> Any:
@@ -262,13 +293,9 @@ def general_drawing(kinematics: Any, table: Any) -> Any:
     """The general-linkage analysis the dynamics runs on (:func:`pose_of`, drawn at the first input angle it
     reaches of 0 and the middles of its ranges): its links and joints are what ``[dynamics]`` names; a
     :class:`SpecError` on ``dynamics`` for a kind it cannot draw."""
-    for angle in _drawable(kinematics, None):
-        try:
-            posed = pose_of(kinematics, table, angle)
-        except SpecError:
-            continue
-        if posed is not None:
-            return posed[0]
+    posed = drawn_pose(kinematics, table, None)
+    if posed is not None:
+        return posed[0]
     why = ", driven by its rocker," if getattr(table, "input", "crank") != "crank" else ""
     raise SpecError(f"linkgen computes the dynamics of a linkage drawn as a general one, which this {table.type}"
                     f"{why} is not: drive it by its crank, or draw it as type = \"linkage\"", "dynamics")

@@ -22,6 +22,7 @@ from camgen.core.spec import (MAX_LENGTH_MM, Model, OutputTable, check_kind, len
                               validate)
 from linkgen.dynamics.table import DynamicsTable
 from linkgen.mechanisms import MECHANISMS, Mechanism
+from linkgen.slack.table import SlackTable
 
 #: the largest kerf and clearance (mm), as camgen's ``output.kerf`` and ``output.clearance``
 MAX_ALLOWANCE_MM = 5.0
@@ -146,6 +147,8 @@ class LinkageSpec(Model):
         The frame and hardware round the linkage.
     dynamics : DynamicsTable or None, optional
         The links' materials and masses, speed, gravity and springs: the report's ``dynamics`` section.
+    slack : SlackTable or None, optional
+        The joints' play and the links' length tolerances whose band the report gives (needs ``[parts]``).
     """
 
     name: str = name_field("linkage")
@@ -155,6 +158,7 @@ class LinkageSpec(Model):
     output: OutputTable = OutputTable()
     kit: KitTable | None = None
     dynamics: DynamicsTable | None = None
+    slack: SlackTable | None = None
 
     #: the mechanism registered for ``linkage.type``
     mechanism: ClassVar[Any] = None
@@ -184,6 +188,13 @@ class LinkageSpec(Model):
                 sizes = ", ".join(f"{b.name} for {b.diameter:g} mm" for b in BOLTS.values())
                 raise ValueError(f"kit.bolt: the pins are {bolt.name} bolts, so parts.pin_diameter must be "
                                  f"{bolt.diameter:g} mm (got {self.parts.pin_diameter:g}); bolts: {sizes}")
+        return self
+
+    @model_validator(mode="after")
+    def _slack_fits(self) -> LinkageSpec:
+        """A ``[slack]`` table takes its holes from ``[parts]``, whose clearance must be less than the pin."""
+        if self.slack is not None:
+            self.slack.play(self.parts)
         return self
 
 
