@@ -23,8 +23,8 @@ def motor_figure(name: str, motion: Motion) -> Any:
     top, bottom = fig.subplots(2, 1)
     top.plot(motion.time, motion.speed * RPM, color="C0", lw=1.0, label="crank speed")
     if len(motion.turn_ends):
-        top.stairs(motion.turn_means * RPM, np.concatenate([[0.0], motion.turn_ends]), color="C1", lw=1.2,
-                   label="each turn's mean")
+        top.stairs(motion.turn_means * RPM, np.concatenate([[0.0], motion.turn_ends]), baseline=None, color="C1",
+                   lw=1.2, label="each turn's mean")
     last = motion.last
     if motion.outcome == "steady" and last is not None:
         top.axhspan(last.mean * RPM * (1 - SETTLED), last.mean * RPM * (1 + SETTLED), color="C2", alpha=0.15,
