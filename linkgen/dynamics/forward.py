@@ -39,7 +39,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.interpolate import CubicHermiteSpline, CubicSpline, PPoly
 
-from camgen.core.errors import SpecError
+from camgen.core.errors import SolverError, SpecError
 from linkgen.dynamics.motor import Motor
 from linkgen.kinematics.inertia import LinkMass, generalised_inertia
 from linkgen.kinematics.kinetostatics import Loads, kinetostatics
@@ -253,10 +253,14 @@ def simulate(eq: EquationOfMotion, time: float, turns: int = MAX_TURNS) -> Motio
     step: float | None = None
     how = method(eq)
     endless = m.constant and m.viscous == 0
-    while True:
+    while t < time:
         target = eq.start + TWO_PI * (len(ends) + 1)
+        first = {} if step is None else {"first_step": min(step, time - t)}
         out = solve_ivp(eq.derivatives, (t, time), y, method=how, rtol=RTOL, atol=ATOL, dense_output=True,
-                        events=_stops(eq, target), **({} if step is None else {"first_step": step}))
+                        events=_stops(eq, target), **first)
+        if out.status < 0:
+            raise SolverError(f"dynamics.motor: the motion from rest could not be integrated past t = "
+                              f"{float(out.t[-1]):.6g} s ({out.message})")
         times.append(out.t[1:])
         angles.append(out.y[0, 1:])
         speeds.append(out.y[1, 1:])

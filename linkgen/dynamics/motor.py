@@ -36,7 +36,7 @@ class MotorTable(Model):
 
     stall_torque: float | None = Field(None, gt=0, le=MAX_TORQUE, description="the motor's torque at rest, on its "
                                        "own shaft (with no_load_speed: a torque-speed line)",
-                                       json_schema_extra=unit("N*m", absent="torque, constant"))
+                                       json_schema_extra=unit("N*m", absent="a constant torque instead"))
     no_load_speed: float | None = Field(None, gt=0, le=MAX_NO_LOAD_RPM, description="the motor's speed where its "
                                         "torque falls to 0, on its own shaft", json_schema_extra=unit(
                                             "rpm", absent="required with stall_torque"))
