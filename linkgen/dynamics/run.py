@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from camgen.core.errors import SpecError
-from linkgen.dynamics.forward import Motion, motion_of
 from linkgen.dynamics.flywheel import FlywheelSize, flywheel_size, with_flywheel
+from linkgen.dynamics.forward import Motion, motion_of
 from linkgen.dynamics.masses import MassModel, Stack, mass_model
 from linkgen.dynamics.strength import HoleLoad, hole_loads
 from linkgen.kinematics.balance import Counterweight, Fluctuation, counterweight, fluctuation
