@@ -169,6 +169,30 @@ def test_the_energy_balances_over_a_run():
     assert got_kinetic == pytest.approx(kinetic, rel=1e-6)
 
 
+def test_a_constant_torque_with_nothing_to_hold_it_back_runs_away():
+    """Jansen's leg (no flywheel) under a constant 0.0006 N*m, a quarter of its peak need, against 0.0001 N*m of
+    friction and no viscous friction: once it has passed a turn, every turn adds the same energy, 2 pi (T - Tf - the
+    mean need), so the run stops as a runaway after four turns instead of running to its bound; at the fourth turn's
+    end (the start's pose again) 1/2 J w^2 is four turns' gain to 1e-6, and the report warns."""
+    dyn = _jansen("dynamics.motor.torque=0.0006", "dynamics.motor.friction=0.0001", "dynamics.motor.flywheel=false")
+    motion = dyn.motion
+    assert motion is not None and motion.outcome == "runaway" and len(motion.turn_ends) == 4
+    assert motion.end == motion.turn_ends[-1] < dyn.table.motor.time
+    linkage, masses = dyn.analysis.linkage, dyn.masses.drawn
+    start = motion.equation.start
+    grid = start + 2 * math.pi * np.arange(4096) / 4096
+    held = kinetostatics(linkage, linkage.solve(grid), masses, 0.0, 0.0, dyn.loads).effort
+    need = float(held.mean())
+    assert float(np.abs(held).max()) > 0.0006 / 0.3                    # well below the peak need
+    j = generalised_inertia(linkage.structure, linkage.solve(np.array([start])), masses)[0][0]
+    assert 0.5 * j * float(motion.speed[-1]) ** 2 == pytest.approx(4 * 2 * math.pi * (0.0006 - 0.0001 - need),
+                                                                   rel=1e-6)
+    report = design_linkage(load_spec(JANSEN, ("dynamics.motor.torque=0.0006", "dynamics.motor.friction=0.0001",
+                                               "dynamics.motor.flywheel=false"))).report["dynamics"]
+    assert report["motor"]["ended"] == "runaway"
+    assert any(w.startswith("the crank speeds up without bound") for w in report["warnings"])
+
+
 def test_the_flywheel_sized_for_a_coefficient_meets_it_from_rest():
     """Jansen's leg with the flywheel the dynamics sizes for Cs = 0.05 at 60 rpm, driven from rest by a motor line
     whose no-load speed is 60 rpm (with no loads but gravity, the mean need is 0, so the steady mean speed is the
