@@ -134,13 +134,46 @@ def kinetostatics_ratio(repeats: int, n: int = 3600) -> dict:
     return {**row, "forces_seconds": forces}
 
 
+def forward_ratio(repeats: int) -> dict:
+    """Forward dynamics of Jansen's leg (its masses of :func:`jansen_masses`, upright under gravity, with the
+    flywheel for a speed fluctuation of 0.05 at 60 rpm) driven by a motor's torque-speed line (0.005 N*m at rest,
+    no load at 60 rpm) from rest for 10 turns: the equation of motion tabulated and integrated
+    (:mod:`linkgen.dynamics.forward`), against the leg's kinematics at 3 600 crank angles, alternated ``repeats``
+    times. The issue asks for it under a second (the row's own time)."""
+    from linkgen.dynamics.forward import equation_of, simulate
+    from linkgen.dynamics.motor import MAX_TIME, Motor, MotorTable
+    from linkgen.kinematics.balance import fluctuation, flywheel_inertia
+    from linkgen.kinematics.inertia import generalised_inertia
+
+    leg = Linkage.of(jansen(0.0))
+    masses, loads = jansen_masses(leg.structure), Loads((0.0, -9.80665))
+    t = 2 * math.pi / 720 * np.arange(720)
+    sol = leg.solve(t)
+    energy = fluctuation(t, kinetostatics(leg, sol, masses, 2 * math.pi, 0.0, loads).effort).energy
+    _, flywheel = flywheel_inertia(energy, 0.05, 2 * math.pi, float(generalised_inertia(leg.structure, sol,
+                                                                                         masses)[0].mean()))
+    motor = Motor.of(MotorTable(stall_torque=0.005, no_load_speed=60.0))
+    fine = 2 * math.pi / 3600 * np.arange(3600)
+
+    def run() -> None:
+        motion = simulate(equation_of(leg, masses, loads, 0.0, flywheel, motor), MAX_TIME, turns=10)
+        if len(motion.turn_ends) != 10:
+            raise RuntimeError(f"the bench's leg ran {len(motion.turn_ends)} turns, not 10 ({motion.outcome})")
+
+    return ratio_row("forward dynamics of Jansen's leg, 10 turns from rest",
+                     "its kinematics at 3 600 crank angles (positions, velocities, accelerations)",
+                     lambda: call_seconds(run, 1), lambda: call_seconds(lambda: leg.solve(fine), 3), repeats,
+                     warm=1, goal="< 1 s")
+
+
 def speed_ratios(repeats: int) -> list[dict]:
     """Each of the issue's figures next to its yardstick measured alternately in this run (see
     :func:`camgen.core.bench.ratio_row`): four-bar positions at 100 000 crank angles against :func:`plain_positions`;
-    Jansen's leg's kinetostatics at 3 600 against its kinematics (:func:`kinetostatics_ratio`); ``linkgen analyze``
+    Jansen's leg's kinetostatics at 3 600 against its kinematics (:func:`kinetostatics_ratio`), and its forward
+    dynamics over 10 turns from rest (:func:`forward_ratio`); ``linkgen analyze``
     and ``linkgen build`` of the crank-rocker as whole processes (CPU seconds) against a process that only imports
     numpy and ezdxf."""
-    rows = [positions_ratio(repeats * 4), kinetostatics_ratio(repeats * 4)]
+    rows = [positions_ratio(repeats * 4), kinetostatics_ratio(repeats * 4), forward_ratio(repeats)]
     python = sys.executable
     reference = [python, "-c", "import numpy, ezdxf"]
     with tempfile.TemporaryDirectory() as tmp:

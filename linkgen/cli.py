@@ -310,6 +310,11 @@ def _print_dynamics(d: dict[str, Any]) -> None:
         h = max(used, key=lambda h: h["utilisation"])
         out(f"  most used hole: {h['part']} at {h['joint']}, {h['bearing_MPa']:.3g} MPa of {h['allowable_MPa']:.3g} "
             f"({100 * h['utilisation']:.3g} %)")
+    if "motor" in d:
+        from linkgen.dynamics.forward_report import motor_lines
+
+        for line in motor_lines(d["motor"]):
+            out(line)
 
 
 def _print_slack(sl: dict[str, Any]) -> None:

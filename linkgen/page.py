@@ -44,6 +44,10 @@ DYNAMICS_FIGURES = (
     ("flywheel inertia", "dynamics.flywheel.flywheel_kg_m2", "kg·m²"),
     ("flywheel diameter", "dynamics.flywheel.diameter_mm", "mm"),
     ("counterweight m·r", "dynamics.counterweight.mass_radius_kg_mm", "kg·mm"),
+    ("steady speed from rest", "dynamics.motor.steady.mean_rpm", "rpm"),
+    ("speed fluctuation", "dynamics.motor.steady.fluctuation", ""),
+    ("time to steady speed", "dynamics.motor.time_to_steady_s", "s"),
+    ("motor stalls at", "dynamics.motor.stall.at_input_deg", "deg"),
 )
 
 #: the usual band of transmission angles (degrees)

@@ -72,6 +72,7 @@ def test_quick_linkgen_bench(tmp_path, tmp_path_factory, monkeypatch):
     assert "## Published path problems" in (tmp_path / "RESULTS.md").read_text()
     _speed_rows(r, (tmp_path / "RESULTS.md").read_text(), {
         "four-bar positions, 100 000 crank angles", "kinetostatics of Jansen's leg, 3 600 crank angles",
+        "forward dynamics of Jansen's leg, 10 turns from rest",
         "linkgen analyze crank-rocker, every default output",
         "linkgen build crank-rocker, every default output", "linkgen build crank-rocker, with its figures (--figures)"})
 

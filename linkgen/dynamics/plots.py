@@ -23,9 +23,17 @@ def _input(dyn: Dynamics, x: np.ndarray) -> tuple[np.ndarray, str]:
 
 
 def dynamics_figures(name: str, dyn: Dynamics) -> tuple[tuple[str, Any], ...]:
-    """The figures ``(kind, draw)`` of the dynamics, each drawn only when called."""
-    return (("torque", lambda: torque_figure(name, dyn)), ("joint-forces", lambda: joint_force_figure(name, dyn)),
-            ("shaking", lambda: shaking_figure(name, dyn)))
+    """The figures ``(kind, draw)`` of the dynamics, each drawn only when called (``motor``: the speed from rest,
+    :mod:`linkgen.dynamics.forward_plots`)."""
+    figures: tuple[tuple[str, Any], ...] = (
+        ("torque", lambda: torque_figure(name, dyn)), ("joint-forces", lambda: joint_force_figure(name, dyn)),
+        ("shaking", lambda: shaking_figure(name, dyn)))
+    motion = dyn.motion
+    if motion is not None:
+        from linkgen.dynamics.forward_plots import motor_figure
+
+        figures += (("motor", lambda: motor_figure(name, motion)),)
+    return figures
 
 
 def torque_figure(name: str, dyn: Dynamics) -> Any:

@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from linkgen.dynamics.forward_report import motor_columns, motor_report, motor_warnings
 from linkgen.dynamics.run import TOGGLE_CUT, Dynamics
 from linkgen.dynamics.strength import HoleLoad, hole_force
 from linkgen.kinematics.kinetostatics import Kinetostatics
@@ -159,6 +160,9 @@ def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
                         "constant input speed the links' rates and their inertia's forces grow without bound: the "
                         f"forces are given from {100 * TOGGLE_CUT:g} % of the range inside it")
     warnings += _flywheel_warnings(dyn)
+    if dyn.motion is not None and dyn.table.motor is not None:
+        out["motor"] = motor_report(dyn.table.motor, dyn.motion, shown)
+        warnings += motor_warnings(out["motor"])
     if not finite.all():
         bad = x[~finite]
         warnings.append(f"the driver cannot move the linkage near input {shown(float(bad[0])):.4g} "
@@ -289,4 +293,6 @@ def family_columns(report: dict[str, Any]) -> dict[str, Any]:
         out["flywheel_kg_m2"] = d["flywheel"]["flywheel_kg_m2"]
     if used:
         out["bearing_utilisation_max"] = max(used)
+    if "motor" in d:
+        out.update(motor_columns(d["motor"]))
     return out

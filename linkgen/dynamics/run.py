@@ -17,6 +17,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from linkgen.dynamics.flywheel import FlywheelSize, flywheel_size, with_flywheel
+from linkgen.dynamics.forward import Motion, motion_of
 from linkgen.dynamics.masses import MassModel, Stack, mass_model
 from linkgen.dynamics.strength import HoleLoad, hole_loads
 from linkgen.kinematics.balance import Counterweight, Fluctuation, counterweight, fluctuation
@@ -62,6 +63,8 @@ class Dynamics:
     holes: tuple[HoleLoad, ...]
     #: the ends of the input's range at toggles, left out by :data:`TOGGLE_CUT` of the range (rad or mm)
     toggles: tuple[float, ...] = ()
+    #: the motion from rest under ``[dynamics.motor]`` (:mod:`linkgen.dynamics.forward`)
+    motion: Motion | None = None
 
     @property
     def crank(self) -> bool:
@@ -155,8 +158,9 @@ def dynamics_of(table: DynamicsTable, analysis: Analysis, parts: PartsTable | No
             size = flywheel_size(table.flywheel, fl.energy, speed, float(np.mean(j)), masses, parts)
         cw = counterweight(x, result.shaking_force, speed)
     holes = hole_loads(result, parts, masses.material, table, kit is not None)
+    motion = motion_of(table, analysis.linkage, masses.drawn, loads, float(x[0]), turns, size)
     return Dynamics(table, analysis, masses, loads, speed, acceleration, result, j, dj, turns, fl, size, cw, holes,
-                    toggles)
+                    toggles, motion)
 
 
 def flywheel_build(build: LinkageBuild, dyn: Dynamics) -> LinkageBuild:

@@ -12,6 +12,7 @@ from pydantic import Field, model_validator
 
 from camgen.core.spec import MAX_LENGTH_MM, Model, length, notes, unit
 from linkgen.dynamics.materials import PINS, SHEETS
+from linkgen.dynamics.motor import MotorTable
 
 #: the heaviest link (kg) and the largest inertia (kg*mm^2) a user may give
 MAX_MASS_KG, MAX_INERTIA = 10_000.0, 1e12
@@ -100,6 +101,8 @@ class DynamicsTable(Model):
                                             "computed: [dynamics.links.coupler] mass = 0.05")
     springs: tuple[SpringTable, ...] = Field((), max_length=50, description="springs between joints")
     flywheel: FlywheelTable | None = Field(None, description="a flywheel for a coefficient of speed fluctuation")
+    motor: MotorTable | None = Field(None, description="a motor on the crank: the motion from rest, its steady "
+                                     "speed and its fluctuation, or where it stalls")
     allowable_bearing: float | None = Field(None, gt=0, le=MAX_STRESS, description="the bearing pressure a hole may "
                                             "carry, instead of the material's",
                                             json_schema_extra=unit("MPa", absent="the material's"))
