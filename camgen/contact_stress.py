@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 
@@ -28,6 +29,8 @@ class Material:
     note: str
 
 
+#: the names of :data:`MATERIALS`, written out for the type checker
+MaterialName = Literal["steel", "aluminium", "pom", "nylon", "pla", "petg", "plywood", "acrylic"]
 #: the materials ``cam.material`` and ``follower.material`` name
 MATERIALS: dict[str, Material] = {
     "steel": Material(210_000.0, 0.30, 1000.0, "through-hardened carbon steel"),

@@ -197,7 +197,8 @@ class Program:
         segments = self.segments
         if not segments:
             raise SpecError("needs at least one segment", "motion")
-        total, levels = 0.0, []
+        total = 0.0
+        levels: list[float] = []
         for seg in segments:                            # the angles' running sum, each segment's start and end
             total += seg.beta
             levels += (seg.level, seg.end_level)
@@ -402,9 +403,8 @@ class _Table:
         table[_FACTORS] *= natural.T
         self.rows = table[:_H]                                  # (12, m), C-ordered: gathered along its rows
         self.laws = laws
-        #: each law but a dwell's, with the segments it evaluates (m,) bool when there are more (one evaluates all)
-        moving = [(law, k) for k, law in enumerate(laws) if law is not None]
-        self.moving = [(law, np.array(group) == k if len(moving) > 1 else None) for law, k in moving]
+        #: each law but a dwell's, with the segments it evaluates (m,) bool (a law alone evaluates every point)
+        self.moving = [(law, np.array(group) == k) for k, law in enumerate(laws) if law is not None]
 
     def angle(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
         """:meth:`Segment.angle` of each law variable ``v`` (n,) on its segment ``index`` (n,) (radians)."""

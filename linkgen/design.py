@@ -6,6 +6,7 @@ then the mechanism's own section (:meth:`linkgen.mechanisms.Mechanism.report`).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -171,7 +172,8 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     """
     if angle is not None and not math.isfinite(angle):
         raise SpecError(f"must be a finite number of degrees (got {angle})", "--angle")
-    if parts and spec.parts is None:
+    wanted = spec.parts if parts else None          # the [parts] table when parts are asked for
+    if parts and wanted is None:
         raise SpecError("missing: give a [parts] table (width, thickness, pin_diameter, ...)", "parts")
     mechanism, table = spec.mechanism, spec.linkage
     kinematics = mechanism.build(table)
@@ -185,12 +187,13 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
             raise SpecError(f"a {table.type} of this kind cannot be drawn as a general linkage to take loads", "loads")
         statics = statics_of(spec.loads, posed[0])
         report["statics"] = statics_report(statics, table.rpm)
-    if not parts:
+    if wanted is None:
         return LinkageDesign(spec, mechanism, kinematics, report, None, angle, statics)
-    layout, mounts = mechanism.layout(table, kinematics, spec.parts), ()
+    layout = mechanism.layout(table, kinematics, wanted)
+    mounts: tuple[tuple[float, float], ...] = ()
     if spec.kit is not None:
         layout, mounts = base_plate(layout, spec.kit)
-    build = build_parts(layout, spec.parts, spec.output.elephant_foot)
+    build = build_parts(layout, wanted, spec.output.elephant_foot)
     kit = None if spec.kit is None else linkage_kit(spec, layout, mounts, build)
     add_routing(report, build.cut, spec.output.tool_radius)
     return LinkageDesign(spec, mechanism, kinematics, report, build, angle, statics, kit)
@@ -206,6 +209,7 @@ def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | No
     from linkgen.kinematics.quickreturn import CrankShaper, Whitworth
     from linkgen.kinematics.slidercrank import ScotchYoke, SliderCrank
     from linkgen.kinematics.straightline import StraightLine
+    from linkgen.kinematics.structure import Structure
     from linkgen.mechanisms.general import Analysis, analysis_of
 
     if isinstance(kinematics, Analysis):
@@ -217,8 +221,9 @@ def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | No
         drawn = equivalents.fourbar(kinematics, theta, table.assembly)
         traced = ("P",) if kinematics.point_distance > 0 else ("B",)
     else:
-        make = {SliderCrank: (equivalents.slider_crank, "B"), ScotchYoke: (equivalents.scotch_yoke, "Y"),
-                CrankShaper: (equivalents.crank_shaper, "R"), Whitworth: (equivalents.whitworth, "D")}
+        make: dict[type, tuple[Callable[[Any, float], Structure], str]] = {
+            SliderCrank: (equivalents.slider_crank, "B"), ScotchYoke: (equivalents.scotch_yoke, "Y"),
+            CrankShaper: (equivalents.crank_shaper, "R"), Whitworth: (equivalents.whitworth, "D")}
         if type(kinematics) not in make:
             return None
         draw, point = make[type(kinematics)]

@@ -139,7 +139,8 @@ def statics_report(st: Statics, rpm: float) -> dict[str, Any]:
     if advantage is not None and np.isfinite(advantage).any():
         i = int(np.nanargmin(np.where(np.isfinite(advantage), advantage, np.nan)))
         x, _ = _refine(st.effort_at, st.inputs, i, 1.0 if st.effort[i] >= 0 else -1.0)
-        refined = float(st.advantage(st.effort_at(np.array([x])))[0])
+        there = st.advantage(st.effort_at(np.array([x])))      # not None: one force, as at the samples
+        refined = math.nan if there is None else float(there[0])
         if not math.isfinite(refined):                     # the refinement met a dead centre: keep the sample
             x, refined = float(st.inputs[i]), float(advantage[i])
         out["mechanical_advantage_min"] = refined

@@ -37,10 +37,10 @@ class LinkageKit:
     pins: tuple[dict[str, Any], ...]
     bom: tuple[BomLine, ...]
     report: dict[str, Any]
+    #: the bolt the pins and the mounting holes are sized for
+    bolt: Bolt
     #: the placement of the first pose the assembly drawing shows (the kit's 3MF shows the parts there)
     pose: Any = None
-    #: the bolt the pins and the mounting holes are sized for
-    bolt: Bolt | None = None
 
 
 def base_plate(layout: Layout, kit: KitTable) -> tuple[Layout, tuple[tuple[float, float], ...]]:
@@ -123,7 +123,7 @@ def linkage_kit(spec: Any, layout: Layout, mounts: tuple[tuple[float, float], ..
                                   "cut_diameter_mm": build.allowances.cut_diameter(bolt.clearance_hole)}
                                  for x, y in mounts],
               "pins": list(pins), "bom": [line.row() for line in bom]}
-    made = LinkageKit(build, mounts, pins, tuple(bom), report, layout.poses[0], bolt)
+    made = LinkageKit(build, mounts, pins, tuple(bom), report, bolt, layout.poses[0])
     sweep = layout.sweep
     check_clear(placed_solids(made, sweep), len(next(iter(sweep.angles.values()))), COLLISION_TOLERANCE_MM,
                 frozenset(), "parts.width")

@@ -235,8 +235,10 @@ def with_top_plate(layout: Layout, order: dict[str, int], top_pins: tuple[str, .
 
     def fixed_too(place: Placement) -> Placement:
         n = len(next(iter(place.angles.values())))
-        joints = {j: (tuple(plate.name if j in top_pins and p == ground.name else p for p in parts), where)
-                  for j, (parts, where) in place.joints.items()}
+        def on(part: str, joint: str) -> str:
+            return plate.name if joint in top_pins and part == ground.name else part
+
+        joints = {j: ((on(a, j), on(b, j)), where) for j, ((a, b), where) in place.joints.items()}
         return Placement({**place.angles, plate.name: np.zeros(n)},
                          {**place.origins, plate.name: np.zeros((n, 2))}, joints)
 
@@ -279,13 +281,13 @@ class LinkageBuild:
     sheets: tuple[Drawing, ...]
     assembly: Drawing
     positions: tuple[tuple[str, float], ...]
+    #: the placement of the first dead centre the assembly drawing shows (its layers ``DC1-...``), or of the
+    #: motion's first pose where it shows none (a rhombus): the parts as assembled (its first pose is the one used)
+    pose: Placement
     #: (joint, the two parts, how many layers it fills, the lowest of them) for each run of empty layers a pin
     #: crosses between the two parts it joins: a spacer fills it
     spacers: tuple[tuple[str, tuple[str, str], int, int], ...] = ()
     nesting: Nest | None = None
-    #: the placement of the first dead centre the assembly drawing shows (its layers ``DC1-...``), or of the
-    #: motion's first pose where it shows none (a rhombus): the parts as assembled (its first pose is the one used)
-    pose: Placement | None = None
     #: the pivot points: the joints that share one (over the whole motion), each one pin through all their parts
     pivots: tuple[Pivot, ...] = ()
 
@@ -391,5 +393,6 @@ def build_parts(layout: Layout, table: PartsTable, elephant_foot: float = 0.0) -
     nested = nest(cut, SheetRules.of(table, table.kerf, "parts.sheet"))
     spacers = spacers_of(layout.sweep, layers)
     return LinkageBuild(layout.parts, table, allowances, layers, cut, printed, nested.drawings(table.tolerance),
-                        assembly(printed, layout, table.tolerance), layout.positions, spacers, nested,
-                        layout.poses[0] if layout.poses else layout.sweep, pivots_of(layout.sweep, layers))
+                        assembly(printed, layout, table.tolerance), layout.positions,
+                        layout.poses[0] if layout.poses else layout.sweep, spacers, nested,
+                        pivots_of(layout.sweep, layers))

@@ -12,7 +12,7 @@ import numpy as np
 
 from camgen.core.figures import figure, fit_equal
 from linkgen.kinematics.circuits import input_grid, input_spans
-from linkgen.kinematics.fourbar import FourBar, Poses
+from linkgen.kinematics.fourbar import Assembly, FourBar, Poses
 
 
 def _chart(width: float, height: float) -> tuple[Any, Any]:
@@ -29,7 +29,7 @@ def _input_grid(fb: FourBar, n: int = 721) -> list[np.ndarray]:
     return [input_grid(fb, n, span) for span in input_spans(fb)]
 
 
-def transmission_figure(name: str, fb: FourBar, assembly: str) -> Any:
+def transmission_figure(name: str, fb: FourBar, assembly: Assembly) -> Any:
     """Transmission angle against crank angle, the 40-140 degree band shaded, extremes marked."""
     fig, ax = _chart(8, 4.5)
     ax.axhspan(40, 140, color="C2", alpha=0.12, label="40-140° (good force transmission)")
@@ -59,7 +59,7 @@ def _draw(ax: Any, fb: FourBar, pose: Poses, colour: str, label: str) -> None:
         ax.plot(*pose.point[0], "*", color=colour, ms=8)
 
 
-def dead_centre_figure(name: str, fb: FourBar, assembly: str) -> Any:
+def dead_centre_figure(name: str, fb: FourBar, assembly: Assembly) -> Any:
     """The linkage drawn at each dead-centre and toggle position, with the rocker pin's arc and, with a coupler
     point, its path."""
     fig = figure(8, 6.5, layout=None)
@@ -87,7 +87,8 @@ def dead_centre_figure(name: str, fb: FourBar, assembly: str) -> Any:
 def slider_figure(name: str, mech: Any, omega: float) -> Any:
     """Slider (ram) position, velocity and acceleration over one crank turn, dead centres marked."""
     rng = getattr(mech, "input_range", lambda: None)()
-    t = np.linspace(*(rng if rng else (0.0, 2 * math.pi)), 721)
+    lo, hi = rng if rng else (0.0, 2 * math.pi)
+    t = np.linspace(lo, hi, 721)
     m = mech.motion(t, omega)
     fig = figure(8, 7, layout=None)
     fig.subplots_adjust(left=0.12, right=0.97, bottom=0.08, top=0.95, hspace=0.12)

@@ -28,8 +28,9 @@ class Staging:
         self.directory = directory
         self.pending: list[tuple[Path, Path]] = []
 
-    def write(self, name: str, write: Callable[[Path], None]) -> Path:
-        """Call ``write(temporary path)``; the file takes ``name`` when the whole stage commits."""
+    def write(self, name: str, write: Callable[[Path], object]) -> Path:
+        """Call ``write(temporary path)`` (what it returns is ignored, e.g. the count of ``Path.write_text``); the
+        file takes ``name`` when the whole stage commits."""
         final = self.directory / name
         temp = self.directory / f".{name}.{os.getpid()}.tmp"
         self.pending.append((temp, final))

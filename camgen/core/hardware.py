@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Literal
 
 
 @dataclass(frozen=True)
@@ -50,6 +51,10 @@ class Bolt:
         """The nut's width across its corners (mm): across flats x 2 / sqrt(3)."""
         return self.nut_across_flats * 2.0 / math.sqrt(3.0)
 
+
+#: the designations of :data:`BEARINGS` and :data:`BOLTS`, written out for the type checker
+BearingName = Literal["623", "624", "625", "608"]
+BoltName = Literal["M3", "M4", "M5"]
 
 #: the bearings a kit may seat, by their designation
 BEARINGS: dict[str, Bearing] = {b.name: b for b in (

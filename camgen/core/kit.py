@@ -17,13 +17,13 @@ import numpy as np
 from pydantic import Field, field_validator, model_validator
 
 from camgen.core.errors import DesignError
-from camgen.core.hardware import BEARINGS, BOLTS, SHAFTS, Bearing, Bolt
+from camgen.core.hardware import BEARINGS, BOLTS, SHAFTS, Bearing, BearingName, Bolt, BoltName
 from camgen.core.parts import Allowances, Drawing, Part, PartMaker, preview_stroke
 from camgen.core.shapes import Circle, Contour, rounded_hull
 from camgen.core.spec import Model, length, unit
 
 #: the bearings a ``[kit]`` may name, and ``"none"`` for a plain hole the shaft runs in
-BEARING_CHOICES = (*BEARINGS, "none")
+BearingChoice = Literal[BearingName, "none"]
 #: a kit's moving parts clear the fixed ones by at least this much in plan (mm)
 RUNNING_GAP = 1.0
 
@@ -31,7 +31,7 @@ RUNNING_GAP = 1.0
 class KitTable(Model):
     """A ``[kit]`` table: the hardware a mechanism is mounted with (linkages: bolts as pins and mounting bolts)."""
 
-    bolt: Literal[tuple(BOLTS)] = Field("M4", description="bolt size: pins, guides and mounting holes")  # type: ignore[valid-type]
+    bolt: BoltName = Field("M4", description="bolt size: pins, guides and mounting holes")
     wall: float = length("material left round every hole of a kit part", 4.0, le=100.0)
 
     @property
@@ -45,8 +45,7 @@ class CamKitTable(KitTable):
     by and its allowance, their thickness."""
 
     shaft: float = Field(8.0, description="camshaft diameter", json_schema_extra=unit("mm"))
-    bearing: Literal[BEARING_CHOICES] = Field("none", description="bearing seated in the frame, or a plain "  # type: ignore[valid-type]
-                                              "hole")
+    bearing: BearingChoice = Field("none", description="bearing seated in the frame, or a plain hole")
     process: Literal["laser", "fdm"] = Field("laser", description="how the frame, follower and roller are made")
     thickness: float = length("frame and follower plate thickness", 5.0, le=100.0)
     kerf: float = Field(0.15, ge=0, le=5, description="laser kerf (process laser)", json_schema_extra=unit("mm"))

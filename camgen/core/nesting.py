@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from camgen.core.errors import DesignError
 from camgen.core.parts import LAYER_HOLES, LAYER_LABELS, LAYER_OUTLINE, Drawing, Part
@@ -174,8 +175,8 @@ def nest(parts: tuple[Part, ...], rules: SheetRules) -> Nest:
     reference = shelf(parts, rules.size, rules.gap)
     shelf_figure = None if reference is None else _area(parts) / _used_area(reference, rules)
     footprints = _Footprints(FOOTPRINT_CACHE_BYTES)
-    layouts = [(_fill(sorted(range(len(parts)), key=lambda i, o=order: _order_key(flats[i], o)), flats, rules, lean,
-                      footprints), f"{order}, {lean}") for order, lean in TRIES]
+    layouts = [(_fill(_ordered(flats, order), flats, rules, lean, footprints), f"{order}, {lean}")
+               for order, lean in TRIES]
     if reference is not None and 0.0 in rules.rotations:           # the shelves themselves, should they be best
         layouts.append(((reference, max((p.sheet for p in reference), default=0) + 1), "shelves"))
     best: Nest | None = None
@@ -288,6 +289,12 @@ class _Footprints:
             self.kept[i, k] = bits
             self.used += bits.nbytes + ENTRY_BYTES
         return lo, mask
+
+
+def _ordered(flats: list[_Flat], order: str) -> list[int]:
+    """The parts' indices sorted by ``order`` (see :func:`_order_key`)."""
+    keys = [_order_key(f, order) for f in flats]
+    return sorted(range(len(flats)), key=keys.__getitem__)
 
 
 def _order_key(flat: _Flat, order: str) -> tuple:
@@ -464,7 +471,7 @@ class _Overlap:
         return counts[:, :cols] < 0.5
 
 
-def _within(covered: np.ndarray, inside: np.ndarray, positions: int) -> np.ndarray:
+def _within(covered: ArrayLike, inside: np.ndarray, positions: int) -> np.ndarray:
     """Along one axis of an empty sheet: at which of ``positions`` a footprint whose ``covered`` cells (a
     boolean per cell from its first) all fall on ``inside`` cells (a run of free cells between the blocked
     borders)."""

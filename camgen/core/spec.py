@@ -19,13 +19,14 @@ from pathlib import Path
 from typing import Annotated, Any, Literal, TypeVar, get_args, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic.config import JsonDict
 
 from camgen.core.errors import SpecError
 from camgen.core.features import MIN_WEB_MM
 from camgen.core.options import not_one_of
 from camgen.core.reading import NotRegularFile, read_regular
 from camgen.core.writers import (
-    DEFAULT_FORMATS, DXF_FLAVOURS, DXF_VERSIONS, FIGURE_FORMATS, FORMATS, OPTIONAL_FORMATS, TEXT_MODES, WriteOptions,
+    DEFAULT_FORMATS, FIGURE_FORMATS, DxfFlavour, DxfVersion, Format, OptionalFormat, TextMode, WriteOptions,
     missing_extra)
 
 M = TypeVar("M", bound=BaseModel)
@@ -121,13 +122,13 @@ def length(description: str, default: Any = ..., *, zero: bool = False, le: floa
                  json_schema_extra=unit("mm", allowed=allowed, absent=absent))
 
 
-def unit(name: str, *, allowed: str = "", absent: str = "") -> dict[str, str]:
+def unit(name: str, *, allowed: str = "", absent: str = "") -> JsonDict:
     """``json_schema_extra`` naming a field's unit (error messages, the starters' comments and the template reference
     give it), with the :func:`notes` given."""
     return {"unit": name, **notes(allowed=allowed, absent=absent)}
 
 
-def notes(*, allowed: str = "", absent: str = "") -> dict[str, str]:
+def notes(*, allowed: str = "", absent: str = "") -> JsonDict:
     """``json_schema_extra`` of what the template reference says of a field beyond its bounds and its default, in a
     user's words: ``allowed``, a rule its own bounds do not show (one across keys, or one a validator checks:
     ``> the follower's stroke + the groove's width``), and ``absent``, what leaving out a key whose default is
@@ -150,16 +151,15 @@ class OutputTable(Model):
     Products extend it with their own keys (camgen: the outline's tolerance and curves, kerf, clearance).
     """
 
-    formats: tuple[Literal[FORMATS + OPTIONAL_FORMATS], ...] = Field(  # type: ignore[valid-type]
+    formats: tuple[Literal[Format, OptionalFormat], ...] = Field(
         DEFAULT_FORMATS, min_length=1, description="files to write (png and svg figures, and step with the step "
         "extra installed, only when asked)")
     figures: bool = Field(False, description="also write the figures as PNG and SVG (the same as adding \"png\" "
                           "and \"svg\" to formats; `--figures` on the command line)")
-    dxf: Literal[DXF_FLAVOURS] = Field(  # type: ignore[valid-type]
+    dxf: DxfFlavour = Field(
         "polyline-bulge", description="DXF flavour: bulged polylines, LINE/ARC entities, or chords only")
-    dxf_version: Literal[DXF_VERSIONS] = Field("R2010",  # type: ignore[valid-type]
-                                               description="DXF version (R12 for old controllers)")
-    text: Literal[TEXT_MODES] = Field(  # type: ignore[valid-type]
+    dxf_version: DxfVersion = Field("R2010", description="DXF version (R12 for old controllers)")
+    text: TextMode = Field(
         "text", description="engraved text as text, or as the glyphs' outlines (for laser software that drops text)")
     elephant_foot: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="printed solids: 45-degree chamfer "
                                  "round the bed face (its outline inset, holes opened), 0 for none",

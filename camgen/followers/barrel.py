@@ -76,7 +76,7 @@ def translating_pose(motion: np.ndarray, z0: float) -> np.ndarray:
     return np.array([z0 + motion[0], motion[1], motion[2], zero, zero, zero])
 
 
-def contact(radius: np.ndarray, pose: np.ndarray, r0: float, taper: float, side: int) -> tuple:
+def contact(radius: float | np.ndarray, pose: np.ndarray, r0: float, taper: float, side: int) -> tuple:
     """The cutter's contact with the wall ``side`` on the cylinder of ``radius`` (broadcast with the pose's rows):
     (w, v, rho, a) in mm, see the module docstring. Refused (DesignError) where Newton's method does not settle,
     which a spec's checks leave for degenerate groove shapes only."""

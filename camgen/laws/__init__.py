@@ -7,7 +7,7 @@ Every law is a normalised rise f(u) on u in [0, 1] (see :mod:`camgen.laws.base`)
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from typing import Any
+from typing import Any, Literal
 
 from camgen.core.errors import SpecError
 from camgen.laws.accel import AccelerationLaw, modified_sine, modified_trapezoid
@@ -19,7 +19,8 @@ from camgen.laws.spline import SplineLaw, spline_law
 from camgen.laws.trig import Cycloidal, DoubleHarmonic, Harmonic
 
 
-def _modified_uniform(form: str = "blended", blend: float = 0.25, blend_law: str = "cycloidal",
+def _modified_uniform(form: str = "blended", blend: float = 0.25,
+                      blend_law: Literal["cycloidal", "parabolic"] = "cycloidal",
                       k: float | None = None) -> Law:
     """Blended by default; the drafted form needs ``k`` = prime radius x angle / lift."""
     if form == "blended":
@@ -49,6 +50,10 @@ REGISTRY: Mapping[str, tuple[Callable[..., Law], tuple[str, ...]]] = {
 }
 
 LAW_NAMES: tuple[str, ...] = tuple(REGISTRY)
+#: the names of :data:`REGISTRY`, written out for the type checker (a template's ``law``)
+LawName = Literal["uniform", "modified-uniform", "parabolic", "harmonic", "cycloidal", "polynomial-345",
+                  "polynomial-4567", "modified-trapezoid", "modified-sine", "double-harmonic", "polynomial", "spline",
+                  "table"]
 LAW_PARAMS: Mapping[str, tuple[str, ...]] = {name: keys for name, (_, keys) in REGISTRY.items()}
 #: the laws of the standard comparison table (the general polynomial, the spline and the table need data)
 TABLE_LAWS: tuple[str, ...] = tuple(n for n in LAW_NAMES if n not in ("polynomial", "spline", "table"))
@@ -87,6 +92,6 @@ def make_law(name: str, **params: Any) -> Law:
 
 
 __all__ = ["LAW_NAMES", "LAW_PARAMS", "TABLE_LAWS", "AccelerationLaw", "BlendedUniform", "Cycloidal",
-           "DoubleHarmonic", "DraftedUniform", "FittedLaw", "Harmonic", "Law", "Parabolic", "PolynomialLaw",
+           "DoubleHarmonic", "DraftedUniform", "FittedLaw", "Harmonic", "Law", "LawName", "Parabolic", "PolynomialLaw",
            "SplineLaw", "Uniform", "from_conditions", "make_law", "modified_sine", "modified_trapezoid", "poly345",
            "poly4567", "spline_law", "table_law"]

@@ -29,7 +29,7 @@ class SplineLaw(Law):
     """Quintic spline through ``points`` with end conditions ``ends`` (see the module docstring)."""
 
     name: ClassVar[str] = "spline"
-    points: tuple[tuple[float, float], ...]
+    points: tuple[tuple[float, ...], ...]       # [u, f] pairs, checked to be so
     ends: str = "dwell"
     _spline: Any = field(init=False, repr=False, compare=False)
 

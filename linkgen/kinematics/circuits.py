@@ -152,6 +152,7 @@ def circuits(fb: FourBar) -> tuple[Circuit, ...]:
     branch of two turns through a change point); see the module's docstring."""
     ranges = fb.input_ranges()
     folds = fb.change_points()
+    frames: list[tuple[tuple[float, float] | None, tuple[int, ...], int]]     # (input range, labels, turns)
     if ranges is not None:
         frames = [(r, (1, -1), 0) for r in ranges]
     elif len(folds) == 1:

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from linkgen.kinematics.fourbar import FourBar
+from linkgen.kinematics.fourbar import Assembly, FourBar
 from linkgen.kinematics.quickreturn import CrankShaper, Whitworth
 from linkgen.kinematics.slidercrank import ScotchYoke, SliderCrank
 from linkgen.kinematics.structure import Input, Slider, Structure, make_structure
@@ -24,7 +24,7 @@ def _xy(p: np.ndarray) -> tuple[float, float]:
     return float(p[0]), float(p[1])
 
 
-def fourbar(fb: FourBar, theta0: float, assembly: str = "open") -> Structure:
+def fourbar(fb: FourBar, theta0: float, assembly: Assembly = "open") -> Structure:
     """Ground O2-O4, crank O2-A, coupler A-B (with the coupler point P when it has one), rocker O4-B."""
     p = fb.positions([theta0], assembly)
     points = {"O2": (0.0, 0.0), "O4": (fb.ground, 0.0), "A": _xy(p.a[0]), "B": _xy(p.b[0])}

@@ -24,10 +24,10 @@ placement in a form with no 0/0, so they are the branch's, to rounding, through 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property, partial
-from typing import Literal
+from typing import Literal, get_args
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -36,7 +36,7 @@ from camgen.core.errors import SolverError, SpecError
 from linkgen.kinematics.grashof import CHANGE_POINT_TOL, Grashof, check_finite, check_lengths, classify
 
 Assembly = Literal["open", "crossed"]
-ASSEMBLIES: tuple[str, ...] = ("open", "crossed")
+ASSEMBLIES: tuple[Assembly, ...] = get_args(Assembly)
 #: inputs this far (relative to the longest link) beyond a toggle are snapped onto it
 FEASIBILITY_TOL = 1e-10
 TWO_PI = 2.0 * math.pi
@@ -399,13 +399,13 @@ class FourBar:
         _turn(along, q, dx, dy, x, b[:, 1], tmp)
         np.add(x, 0.0 if from_o4 else self.ground, out=b[:, 0])
 
-    def _rest_arrays(self, n: int) -> tuple[np.ndarray, ...]:
+    def _rest_arrays(self, n: int) -> list[np.ndarray]:
         """Room for n poses' theta3, theta4, gamma, A, A -> B (for the coupler point, if any) and a workspace for
         the chunks (:data:`_ROWS` rows), in one block."""
         return _block((n,), (n,), (n,), (n, 2), (2, n if self.point_distance else 0), (_ROWS, min(n, CHUNK)))
 
     def _place_rest(self, t: np.ndarray, triangle: tuple[np.ndarray, ...], work: np.ndarray,
-                    rest: tuple[np.ndarray, ...], part: slice) -> None:
+                    rest: Sequence[np.ndarray], part: slice) -> None:
         """theta3, theta4, gamma (rad), A and A -> B (mm) at crank angles ``t`` (a chunk) into the ``part`` of
         ``rest`` (:meth:`_rest_arrays`), from their ``triangle`` (:meth:`_triangle`): the directions A -> B =
         p D + q perp(D) and O4 -> B = (p - 1) D + q perp(D) straight from it, not from the pins' differences (which
@@ -444,7 +444,7 @@ class FourBar:
                              rest, part)
         return self._finish(rest)
 
-    def _finish(self, rest: tuple[np.ndarray, ...]) -> tuple[np.ndarray, ...]:
+    def _finish(self, rest: Sequence[np.ndarray]) -> tuple[np.ndarray, ...]:
         """theta3, theta4, gamma, A and the coupler point from :meth:`_rest_arrays`' arrays, filled."""
         theta3, theta4, gamma, a, ab = rest
         return theta3, theta4, gamma, a, self._coupler_point(a, ab[0], ab[1])
@@ -592,8 +592,8 @@ class FourBar:
         :data:`CHANGE_POINT_TOL` but not this near are solved exactly as given: their two assemblies
         pass each other without touching (or stop short), and their rates are those of what they are."""
         close = 4.0 * np.finfo(float).eps * self.longest
-        return (abs(abs(self.ground - self.crank) - abs(self.coupler - self.rocker)) <= close,
-                abs((self.ground + self.crank) - (self.coupler + self.rocker)) <= close)
+        return (bool(abs(abs(self.ground - self.crank) - abs(self.coupler - self.rocker)) <= close),
+                bool(abs((self.ground + self.crank) - (self.coupler + self.rocker)) <= close))
 
     def _roots(self, theta2: np.ndarray) -> tuple[_Root, _Root]:
         """The two roots m = sqrt(z^2 - (L3 - L4)^2) and p = sqrt((L3 + L4)^2 - z^2) whose product is four

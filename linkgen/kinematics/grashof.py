@@ -49,7 +49,7 @@ def check_lengths(lengths: dict[str, float]) -> None:
     for name, value in lengths.items():
         if not (value > 0 and value < float("inf")):
             raise SpecError(f"must be a finite length > 0 mm (got {value})", name)
-    longest = max(lengths, key=lengths.get)
+    longest = max(lengths, key=lengths.__getitem__)
     others = sum(lengths.values()) - lengths[longest]
     if lengths[longest] >= others * (1 - CHANGE_POINT_TOL):
         raise SpecError(f"{lengths[longest]:.6g} mm is not shorter than the other three links together "

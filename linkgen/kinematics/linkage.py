@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import ClassVar, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -33,8 +33,8 @@ from functools import cached_property
 from linkgen.kinematics import dyads
 from linkgen.kinematics.dyads import cross, dot, perp
 from linkgen.kinematics.grashof import check_finite
-from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, Input, InputStep, Pin, Plan, Slide, Structure,
-                                          plan)
+from linkgen.kinematics.structure import (GROUND, Attachment, DyadStep, FixedStep, Input, InputStep, Pin, Plan, Slide,
+                                          Structure, plan)
 
 #: a dyad whose margin (a sine) is above minus this is taken to close, at its toggle: the margin grows like the
 #: square root of the distance past the toggle, so this snaps inputs within about 1e-10 (relative to the links)
@@ -53,20 +53,18 @@ FOLD_REACH = 2e-6
 #: the dyads that run away (their joint to infinity) where their guides turn parallel, instead of toggling
 RUNAWAY = ("PRP", "RPP", "PPR")
 TWO_PI = 2.0 * math.pi
+T = TypeVar("T")
+U = TypeVar("U")
 
 
-@dataclass
+@dataclass(frozen=True)
 class Body:
-    """A body's motion over the poses: rotation (cos, sin), translation T (n, 2) mm, angular velocity w and the
-    velocity vT of its material point at T, angular acceleration al and the acceleration aT."""
+    """A body's pose over the poses: its rotation (cos, sin) (n,) from the drawing and its translation T (n, 2) mm,
+    so that its drawn point x is at ``R(phi) x + T``."""
 
     c: np.ndarray
     s: np.ndarray
     T: np.ndarray
-    w: np.ndarray | None = None
-    vT: np.ndarray | None = None
-    al: np.ndarray | None = None
-    aT: np.ndarray | None = None
 
     def at(self, x: np.ndarray) -> np.ndarray:
         """World positions of drawn point(s) x (2,) -> (n, 2)."""
@@ -76,11 +74,32 @@ class Body:
         """A drawn direction v (2,) in the world, (n, 2)."""
         return np.stack([self.c * v[0] - self.s * v[1], self.s * v[0] + self.c * v[1]], axis=-1)
 
+
+@dataclass(frozen=True)
+class Rates:
+    """A body's velocity field per unit input speed: its angular velocity w (n,) (rad per unit of input,
+    counter-clockwise positive) and the velocity vT (n, 2) of its material point at T (n, 2) mm, its pose's
+    translation."""
+
+    T: np.ndarray
+    w: np.ndarray
+    vT: np.ndarray
+
     def vel(self, xw: np.ndarray) -> np.ndarray:
         """Velocity of the body's material point at world position(s) xw (n, 2)."""
         return self.vT + self.w[:, None] * perp(xw - self.T)
 
+
+@dataclass(frozen=True)
+class Motion(Rates):
+    """A body's velocity field (:class:`Rates`) with its acceleration field at constant input speed: its angular
+    acceleration al (n,) and the acceleration aT (n, 2) of its material point at T."""
+
+    al: np.ndarray
+    aT: np.ndarray
+
     def acc(self, xw: np.ndarray) -> np.ndarray:
+        """Acceleration of the body's material point at world position(s) xw (n, 2)."""
         r = xw - self.T
         return self.aT + self.al[:, None] * perp(r) - (self.w**2)[:, None] * r
 
@@ -283,8 +302,8 @@ class Linkage:
         if x.shape[0] != k:
             raise SpecError(f"the linkage has {k} input(s); give {k} row(s) of values", "input")
         if strict:
-            for given, row in zip(self.structure.inputs, x, strict=True):
-                crank = given.kind == "crank"
+            for inp, row in zip(self.structure.inputs, x, strict=True):
+                crank = inp.kind == "crank"
                 check_finite(row, "input", "input", "degrees" if crank else "mm", math.degrees if crank else float)
         r = np.ones(k) if rates is None else np.asarray(rates, dtype=float).reshape(k)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):   # not strict: +-inf marked, unsaid
@@ -360,7 +379,7 @@ def _direction(angle: float) -> np.ndarray:
     return np.array([math.cos(angle), math.sin(angle)])
 
 
-def _drawn_signs(s: Structure, p: Plan) -> list[float]:
+def _drawn_signs(s: Structure, p: Plan) -> tuple[float, ...]:
     """Each step's branch in the drawing (+1 or -1; +1 for steps without a branch)."""
     out = []
     sliders = s.slider_by_name
@@ -370,22 +389,21 @@ def _drawn_signs(s: Structure, p: Plan) -> list[float]:
             a1, a2 = step.attachments
             kind = step.kind
             if kind == "RRR":
-                p1, p2, j = _pt(s, a1.point), _pt(s, a2.point), _pt(s, step.joint)
+                p1, p2, j = _pt(s, _expect(Pin, a1).point), _pt(s, _expect(Pin, a2).point), _pt(s, step.joint)
                 sign = float(np.sign(cross(p2 - p1, j - p1))) or 1.0
             elif kind in ("RRP", "PRR"):
-                pin = a1 if isinstance(a1, Pin) else a2
-                slide = a2 if isinstance(a1, Pin) else a1
+                pin, slide = _split(Pin, Slide, a1, a2)
                 u = _direction(sliders[slide.slider].angle)
                 sign = float(np.sign(dot(_pt(s, step.joint) - _pt(s, pin.point), u))) or 1.0
             elif kind == "RPR":
                 sl = sliders[step.joint]
                 pin_m, pin_g = (a1, a2) if step.bodies[0] == sl.body else (a2, a1)
-                d = _pt(s, pin_m.point) - _pt(s, pin_g.point)
+                d = _pt(s, _expect(Pin, pin_m).point) - _pt(s, _expect(Pin, pin_g).point)
                 sign = float(np.sign(cross(d, perp(_direction(sl.angle))))) or 1.0
             elif kind in RUNAWAY:
                 sign = float(np.sign(_runaway_rate(s, step))) or 1.0
         out.append(sign)
-    return out
+    return tuple(out)
 
 
 def _runaway_rate(s: Structure, step: DyadStep) -> float:
@@ -394,8 +412,9 @@ def _runaway_rate(s: Structure, step: DyadStep) -> float:
     sliders = s.slider_by_name
     a1, a2 = step.attachments
     if step.kind == "PRP":
-        return float(cross(_direction(sliders[a1.slider].angle), _direction(sliders[a2.slider].angle)))
-    slide = a2 if isinstance(a1, Pin) else a1
+        g1, g2 = (_direction(sliders[_expect(Slide, a).slider].angle) for a in (a1, a2))
+        return float(cross(g1, g2))
+    _, slide = _split(Pin, Slide, a1, a2)
     sliding = step.bodies[1] if isinstance(a1, Pin) else step.bodies[0]
     joint = sliders[step.joint]
     n = perp(_direction(joint.angle))
@@ -405,88 +424,126 @@ def _runaway_rate(s: Structure, step: DyadStep) -> float:
 
 # ---------------------------------------------------------------------- the solve, step by step
 
+#: one closure row of a dyad in its two unknowns' rates over the poses: a x1 + b x2 = r
+Row = tuple[np.ndarray, np.ndarray, np.ndarray]
 
-@dataclass
-class _Unknown:
-    """A dyad body's one unknown over the poses: its turn about a pin (``pin`` the world point, ``pd`` drawn) or
-    its slide along ``u`` (world) relative to the known body ``ref`` (sign ``sigma``)."""
+
+@dataclass(frozen=True)
+class _Turning:
+    """A dyad body whose one unknown over the poses is its turn about a pin of the known body ``ref``: the pin at
+    world ``pin`` (n, 2), drawn at ``pd`` (2,).
+
+    Its velocity is ``base(x) + rate * g(x)`` and its angular velocity ``w_base + rate * dw`` in its unknown's rate
+    (here its angular velocity); accelerations the same in the unknown's acceleration. ``known`` is the motion of
+    ``ref``."""
 
     name: str
-    attachment: Pin | Slide
+    attachment: Pin
     ref: Body
-    pin: np.ndarray | None = None
-    pd: np.ndarray | None = None
-    u: np.ndarray | None = None
-    sigma: float = 1.0
-    t: np.ndarray | None = None
+    pin: np.ndarray
+    pd: np.ndarray
+    dw: ClassVar[float] = 1.0
 
-    @classmethod
-    def of(cls, s: Structure, name: str, attachment: Pin | Slide, bodies: dict[str, Body]) -> _Unknown:
-        ref = bodies[attachment.body]
-        if isinstance(attachment, Pin):
-            pd = _pt(s, attachment.point)
-            return cls(name, attachment, ref, pin=ref.at(pd), pd=pd)
-        sl = s.slider_by_name[attachment.slider]
-        return cls(name, attachment, ref, u=ref.rotate(_direction(sl.angle)), sigma=1.0 if attachment.moving else -1.0)
-
-    # the body once its unknown is known
     def turned(self, c: np.ndarray, sn: np.ndarray) -> Body:
+        """The body once its turn (c, s) is known."""
         return _pinned(c, sn, self.pin, self.pd)
 
-    def slid(self, t: np.ndarray) -> Body:
-        self.t = t
-        return Body(self.ref.c, self.ref.s, self.ref.T + self.sigma * t[:, None] * self.u)
+    def base_v(self, known: Motion, xw: np.ndarray) -> np.ndarray:
+        return np.broadcast_to(known.vel(self.pin), xw.shape)
 
-    @property
-    def pinned(self) -> bool:
-        return self.pin is not None
-
-    # velocity level: v(x) = base(x) + unknown * g(x); omega = wbase + unknown * dw. A sliding body's point moves
-    # with the known body's coincident point plus its slide (and, at acceleration level, Coriolis' term)
-    def base_v(self, xw: np.ndarray) -> np.ndarray:
-        if self.pinned:
-            return np.broadcast_to(self.ref.vel(self.pin), xw.shape)
-        return self.ref.vel(xw)
-
-    def base_a(self, xw: np.ndarray, w: np.ndarray, tdot: np.ndarray | None) -> np.ndarray:
-        if self.pinned:
-            return self.ref.acc(self.pin) - (w**2)[:, None] * (xw - self.pin)
-        return self.ref.acc(xw) + 2.0 * self.sigma * (tdot * self.ref.w)[:, None] * perp(self.u)
+    def base_a(self, known: Motion, xw: np.ndarray, w: np.ndarray, tdot: np.ndarray) -> np.ndarray:
+        return known.acc(self.pin) - (w**2)[:, None] * (xw - self.pin)
 
     def g(self, xw: np.ndarray) -> np.ndarray:
-        return perp(xw - self.pin) if self.pinned else np.broadcast_to(self.sigma * self.u, xw.shape)
+        return perp(xw - self.pin)
 
-    def w_base(self) -> np.ndarray:
-        return np.zeros(len(self.ref.c)) if self.pinned else self.ref.w
+    def w_base(self, known: Motion) -> np.ndarray:
+        return np.zeros(len(self.ref.c))
 
-    def al_base(self) -> np.ndarray:
-        return np.zeros(len(self.ref.c)) if self.pinned else self.ref.al
+    def al_base(self, known: Motion) -> np.ndarray:
+        return np.zeros(len(self.ref.c))
 
-    @property
-    def dw(self) -> float:
-        return 1.0 if self.pinned else 0.0
+    def rates(self, known: Motion, body: Body, x: np.ndarray) -> Rates:
+        """The body's velocity field from its solved unknown rate x (its angular velocity)."""
+        return Rates(body.T, x, known.vel(self.pin) + x[:, None] * perp(body.T - self.pin))
 
-    def finish_velocity(self, body: Body, x: np.ndarray) -> None:
-        """Set the body's angular velocity and vT from its solved unknown rate."""
-        if self.pinned:
-            body.w = x
-            body.vT = self.ref.vel(self.pin) + x[:, None] * perp(body.T - self.pin)
-        else:
-            body.w = self.ref.w
-            body.vT = self.ref.vT + self.sigma * (x[:, None] * self.u
-                                                   + (self.t * self.ref.w)[:, None] * perp(self.u))
+    def motion(self, known: Motion, rates: Rates, y: np.ndarray, tdot: np.ndarray) -> Motion:
+        """The body's motion from its velocity field and its solved unknown acceleration y (angular)."""
+        r = rates.T - self.pin
+        return Motion(rates.T, rates.w, rates.vT, y,
+                      known.acc(self.pin) + y[:, None] * perp(r) - (rates.w**2)[:, None] * r)
 
-    def finish_acceleration(self, body: Body, y: np.ndarray, tdot: np.ndarray | None) -> None:
-        if self.pinned:
-            body.al = y
-            r = body.T - self.pin
-            body.aT = self.ref.acc(self.pin) + y[:, None] * perp(r) - (body.w**2)[:, None] * r
-        else:
-            ref = self.ref
-            body.al = ref.al
-            body.aT = ref.aT + self.sigma * (y[:, None] * self.u + 2.0 * (tdot * ref.w)[:, None] * perp(self.u)
-                                             + self.t[:, None] * (ref.al[:, None] * perp(self.u)
-                                                                  - (ref.w**2)[:, None] * self.u))
+
+@dataclass(frozen=True)
+class _Sliding:
+    """A dyad body whose one unknown over the poses is its travel t (mm) along a guide of the known body ``ref``,
+    along world directions ``u`` (n, 2): ``sigma`` +1 where the body is the slider's sliding body, -1 where it
+    carries the guide. Its velocity and angular velocity in its unknown's rate as for :class:`_Turning`: a point
+    moves with the known body's coincident point plus the slide (and, at acceleration level, Coriolis' term)."""
+
+    name: str
+    attachment: Slide
+    ref: Body
+    u: np.ndarray
+    sigma: float
+    dw: ClassVar[float] = 0.0
+
+    def slid(self, t: np.ndarray) -> Body:
+        """The body once its travel t (n,) mm is known."""
+        return Body(self.ref.c, self.ref.s, self.ref.T + self.sigma * t[:, None] * self.u)
+
+    def base_v(self, known: Motion, xw: np.ndarray) -> np.ndarray:
+        return known.vel(xw)
+
+    def base_a(self, known: Motion, xw: np.ndarray, w: np.ndarray, tdot: np.ndarray) -> np.ndarray:
+        return known.acc(xw) + 2.0 * self.sigma * (tdot * known.w)[:, None] * perp(self.u)
+
+    def g(self, xw: np.ndarray) -> np.ndarray:
+        return np.broadcast_to(self.sigma * self.u, xw.shape)
+
+    def w_base(self, known: Motion) -> np.ndarray:
+        return known.w
+
+    def al_base(self, known: Motion) -> np.ndarray:
+        return known.al
+
+    def rates(self, known: Motion, body: Body, x: np.ndarray) -> Rates:
+        """The body's velocity field from its solved travel rate x (mm per unit input)."""
+        return Rates(body.T, known.w, known.vel(body.T) + self.sigma * x[:, None] * self.u)
+
+    def motion(self, known: Motion, rates: Rates, y: np.ndarray, tdot: np.ndarray) -> Motion:
+        """The body's motion from its velocity field, its travel rate tdot and its travel's acceleration y."""
+        return Motion(rates.T, rates.w, rates.vT, known.al,
+                      known.acc(rates.T) + self.sigma * (y[:, None] * self.u
+                                                         + 2.0 * (tdot * known.w)[:, None] * perp(self.u)))
+
+
+_Unknown = _Turning | _Sliding
+
+
+def _unknown(s: Structure, name: str, attachment: Attachment, bodies: dict[str, Body]) -> _Unknown:
+    """Body ``name``'s unknown, held by ``attachment`` to a known body."""
+    ref = bodies[attachment.body]
+    if isinstance(attachment, Pin):
+        pd = _pt(s, attachment.point)
+        return _Turning(name, attachment, ref, ref.at(pd), pd)
+    sl = s.slider_by_name[attachment.slider]
+    return _Sliding(name, attachment, ref, ref.rotate(_direction(sl.angle)), 1.0 if attachment.moving else -1.0)
+
+
+def _expect(kind: type[T], thing: object) -> T:
+    """``thing``, which its step's kind says is a ``kind`` (a pin, a slide, an unknown turning or sliding)."""
+    if isinstance(thing, kind):
+        return thing
+    raise TypeError(f"a {type(thing).__name__} where a {kind.__name__} was expected")
+
+
+def _split(first: type[T], second: type[U], a: object, b: object) -> tuple[T, U]:
+    """``a`` and ``b``, whichever is a ``first``, then the other, a ``second``: the pin and the slide of a step
+    with one of each."""
+    if isinstance(a, first):
+        return a, _expect(second, b)
+    return _expect(first, b), _expect(second, a)
 
 
 def _ratio(num: np.ndarray, den: np.ndarray) -> np.ndarray:
@@ -498,7 +555,7 @@ def _ratio(num: np.ndarray, den: np.ndarray) -> np.ndarray:
     return out
 
 
-def _solve2(rows: list[tuple[np.ndarray, np.ndarray, np.ndarray]]) -> tuple[np.ndarray, np.ndarray]:
+def _solve2(rows: list[Row]) -> tuple[np.ndarray, np.ndarray]:
     """Solve two linear rows a x1 + b x2 = r by Cramer's rule; +-inf where singular (a toggle)."""
     (a1, b1, r1), (a2, b2, r2) = rows
     det = a1 * b2 - a2 * b1
@@ -506,37 +563,42 @@ def _solve2(rows: list[tuple[np.ndarray, np.ndarray, np.ndarray]]) -> tuple[np.n
 
 
 def _rows(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, bodies: dict[str, Body],
-          level: str, rates: tuple | None = None) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
-    """The dyad's two closure rows at velocity (``level`` 'v') or acceleration ('a') level, in its unknowns."""
+          motions: dict[str, Motion], solved: dict[str, tuple[Rates, np.ndarray]] | None = None) -> list[Row]:
+    """The dyad's two closure rows in its unknowns at velocity level, or at acceleration level given ``solved``:
+    each of its bodies' velocity field and its unknown's rate, by body name."""
     b1, b2 = bodies[u1.name], bodies[u2.name]
 
-    def base(u: _Unknown, body: Body, xw: np.ndarray) -> np.ndarray:
-        if level == "v":
-            return u.base_v(xw)
-        return u.base_a(xw, body.w, None if rates is None else rates[u.name])
+    def base(u: _Unknown, xw: np.ndarray) -> np.ndarray:
+        known = motions[u.attachment.body]
+        if solved is None:
+            return u.base_v(known, xw)
+        rates, tdot = solved[u.name]
+        return u.base_a(known, xw, rates.w, tdot)
 
     if not step.prismatic:
         jw = b1.at(_pt(s, step.joint))
         g1, g2 = u1.g(jw), u2.g(jw)
-        rhs = base(u2, b2, jw) - base(u1, b1, jw)
+        rhs = base(u2, jw) - base(u1, jw)
         return [(g1[:, 0], -g2[:, 0], rhs[:, 0]), (g1[:, 1], -g2[:, 1], rhs[:, 1])]
     sl = s.slider_by_name[step.joint]
     moving_first = step.bodies[0] == sl.body
     um, ug = (u1, u2) if moving_first else (u2, u1)
     bm, bg = (b1, b2) if moving_first else (b2, b1)
+    km, kg = motions[um.attachment.body], motions[ug.attachment.body]
     uw = bg.rotate(_direction(sl.angle))
     n = perp(uw)
     jw = bm.at(_pt(s, sl.point))
     ones = np.ones(len(jw))
     # the two bodies turn together, and the moving body's point does not leave the guide's line (the relative
     # velocity of the coincident points lies along it; at acceleration level, less Coriolis' term)
-    if level == "v":
-        turn_rhs = ug.w_base() - um.w_base()
-        line_rhs = dot(n, ug.base_v(jw) - um.base_v(jw))
+    if solved is None:
+        turn_rhs = ug.w_base(kg) - um.w_base(km)
+        line_rhs = dot(n, base(ug, jw) - base(um, jw))
     else:
-        turn_rhs = ug.al_base() - um.al_base()
-        slip = dot(uw, bm.vel(jw) - bg.vel(jw))
-        line_rhs = dot(n, base(ug, bg, jw) - base(um, bm, jw)) + 2.0 * bg.w * slip
+        (rm, _), (rg, _) = solved[um.name], solved[ug.name]
+        turn_rhs = ug.al_base(kg) - um.al_base(km)
+        slip = dot(uw, rm.vel(jw) - rg.vel(jw))
+        line_rhs = dot(n, base(ug, jw) - base(um, jw)) + 2.0 * rg.w * slip
     rows = [(um.dw * ones, -ug.dw * ones, turn_rhs), (dot(n, um.g(jw)), -dot(n, ug.g(jw)), line_rhs)]
     return rows if moving_first else [(b, a, r) for a, b, r in rows]
 
@@ -554,23 +616,24 @@ def _place_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, sign: 
     kind = step.kind
     sliders = s.slider_by_name
     if kind == "RRR":
+        p1, p2 = _expect(_Turning, u1), _expect(_Turning, u2)
         jd = _pt(s, step.joint)
-        r1, r2 = float(np.linalg.norm(jd - u1.pd)), float(np.linalg.norm(jd - u2.pd))
-        jw, margin = dyads.circle_circle(u1.pin, r1, u2.pin, r2, sign)
-        d = np.hypot(*(u2.pin - u1.pin).T)
+        r1, r2 = float(np.linalg.norm(jd - p1.pd)), float(np.linalg.norm(jd - p2.pd))
+        jw, margin = dyads.circle_circle(p1.pin, r1, p2.pin, r2, sign)
+        d = np.hypot(*(p2.pin - p1.pin).T)
         if fold is not None:
             # the meeting circles of (nearly) equal radii: their intersection from the midpoint of the pins
             at, unit = fold
             half = np.sqrt(np.maximum((0.5 * (r1 + r2)) ** 2 - 0.25 * d[at] ** 2, 0.0))
             side = np.broadcast_to(sign, d.shape)[at]
-            jw[at] = 0.5 * (u1.pin[at] + u2.pin[at]) + (side * half)[:, None] * perp(unit)
-        for u in (u1, u2):
-            bodies[u.name] = _turn_to(u, jw - u.pin, jd - u.pd)
-        a, b = u1.pin - jw, u2.pin - jw
-        slack = np.minimum(r1 + r2 - d, d - abs(r1 - r2)) / (r1 + r2 + _magnitude(u1.pin, u2.pin))
+            jw[at] = 0.5 * (p1.pin[at] + p2.pin[at]) + (side * half)[:, None] * perp(unit)
+        for p in (p1, p2):
+            bodies[p.name] = _turn_to(p, jw - p.pin, jd - p.pd)
+        a, b = p1.pin - jw, p2.pin - jw
+        slack = np.minimum(r1 + r2 - d, d - abs(r1 - r2)) / (r1 + r2 + _magnitude(p1.pin, p2.pin))
         return margin, np.arctan2(np.abs(cross(a, b)), dot(a, b)), slack
     if kind in ("RRP", "PRR"):
-        up, us = (u1, u2) if u1.pinned else (u2, u1)
+        up, us = _split(_Turning, _Sliding, u1, u2)
         jd = _pt(s, step.joint)
         r = float(np.linalg.norm(jd - up.pd))
         c = us.ref.at(jd)
@@ -582,33 +645,35 @@ def _place_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, sign: 
         return margin, np.arctan2(np.abs(dot(rod, us.u)), np.abs(cross(us.u, rod))), slack
     if kind == "RPR":
         sl = sliders[step.joint]
-        um, ug = (u1, u2) if step.bodies[0] == sl.body else (u2, u1)
+        p1, p2 = _expect(_Turning, u1), _expect(_Turning, u2)
+        um, ug = (p1, p2) if step.bodies[0] == sl.body else (p2, p1)
         nd = perp(_direction(sl.angle))
         offset = float(dot(nd, um.pd - ug.pd))
         rot, margin = dyads.line_through(ug.pin, um.pin, math.atan2(nd[1], nd[0]), offset, sign)
         if fold is not None:
             # the pins (nearly) meet on a slot through the pivot: the slot lies along the way they part
             at, unit = fold
-            along = unit if um is u2 else -unit
+            along = unit if um is p2 else -unit
             normal = np.broadcast_to(sign, (len(rot),))[at][:, None] * perp(along)
             rot[at] = np.column_stack([normal @ nd, nd[0] * normal[:, 1] - nd[1] * normal[:, 0]])
-        for u in (um, ug):
-            bodies[u.name] = u.turned(rot[:, 0], rot[:, 1])
+        for p in (um, ug):
+            bodies[p.name] = p.turned(rot[:, 0], rot[:, 1])
         d = um.pin - ug.pin
         dist = np.hypot(d[:, 0], d[:, 1])
         slack = (dist - abs(offset)) / np.maximum(abs(offset) + dist + _magnitude(um.pin, ug.pin), 1e-300)
         return margin, np.arctan2(np.sqrt(np.maximum((dist - abs(offset)) * (dist + abs(offset)), 0.0)),
                                   abs(offset)), slack
     if kind == "PRP":
+        s1, s2 = _expect(_Sliding, u1), _expect(_Sliding, u2)
         jd = _pt(s, step.joint)
-        c1, c2 = u1.ref.at(jd), u2.ref.at(jd)
-        jw, _ = dyads.line_line(c1, u1.u, c2, u2.u)
-        bodies[u1.name] = u1.slid(u1.sigma * dot(jw - c1, u1.u))
-        bodies[u2.name] = u2.slid(u2.sigma * dot(jw - c2, u2.u))
-        margin = sign * cross(u1.u, u2.u)          # signed: > 0 drawn, 0 where the guides turn parallel
+        c1, c2 = s1.ref.at(jd), s2.ref.at(jd)
+        jw, _ = dyads.line_line(c1, s1.u, c2, s2.u)
+        bodies[s1.name] = s1.slid(s1.sigma * dot(jw - c1, s1.u))
+        bodies[s2.name] = s2.slid(s2.sigma * dot(jw - c2, s2.u))
+        margin = sign * cross(s1.u, s2.u)          # signed: > 0 drawn, 0 where the guides turn parallel
         return margin, np.arcsin(np.minimum(np.abs(margin), 1.0)), margin
     # RPP / PPR: the pinned body takes the sliding one's angle; the sliding one's travel follows (a linear solve)
-    up, us = (u1, u2) if u1.pinned else (u2, u1)
+    up, us = _split(_Turning, _Sliding, u1, u2)
     turned = up.turned(us.ref.c, us.ref.s)
     bodies[up.name] = turned
     sl = sliders[step.joint]
@@ -626,7 +691,7 @@ def _place_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, sign: 
     return margin, np.arcsin(np.minimum(np.abs(margin), 1.0)), margin
 
 
-def _turn_to(u: _Unknown, now: np.ndarray, drawn: np.ndarray) -> Body:
+def _turn_to(u: _Turning, now: np.ndarray, drawn: np.ndarray) -> Body:
     """The pinned body turned so that its drawn vector ``drawn`` lies along ``now``."""
     length = float(np.hypot(*drawn))
     c = (now[:, 0] * drawn[0] + now[:, 1] * drawn[1]) / length**2
@@ -638,23 +703,25 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
            derivatives: bool, upto: int | None, choose: Chooser | None) -> Solution:
     s, p = linkage.structure, linkage.plan
     n = x.shape[1]
-    zero2 = np.zeros((n, 2))
-    ground = Body(np.ones(n), np.zeros(n), zero2.copy(), np.zeros(n), zero2.copy(), np.zeros(n), zero2.copy())
+    ground = Body(np.ones(n), np.zeros(n), np.zeros((n, 2)))
     bodies: dict[str, Body] = {GROUND: ground}
+    # each placed body's velocities and accelerations, only where they are asked for
+    motions = ({GROUND: Motion(ground.T, np.zeros(n), np.zeros((n, 2)), np.zeros(n), np.zeros((n, 2)))}
+               if derivatives else None)
     results: list[DyadResult] = []
     ok = np.ones(n, dtype=bool)
     drawn = linkage.drawn_inputs
     for index, step in enumerate(p.steps[:upto]):
         if isinstance(step, InputStep):
-            _place_input(s, step, x[step.index] - drawn[step.index], rates[step.index], bodies, derivatives)
+            _place_input(s, step, x[step.index] - drawn[step.index], rates[step.index], bodies, motions)
         elif isinstance(step, FixedStep):
-            _place_fixed(s, step, bodies, derivatives)
+            _place_fixed(s, step, bodies, motions)
         else:
-            u1, u2 = (_Unknown.of(s, b, a, bodies) for b, a in zip(step.bodies, step.attachments, strict=True))
+            u1, u2 = (_unknown(s, b, a, bodies) for b, a in zip(step.bodies, step.attachments, strict=True))
             flips = linkage.flips[index] if linkage.flips else np.empty(0)
             fold = _fold(linkage, index, u1, u2, x, signs, flips, strict)
             margin, gamma, slack = _place_dyad(step, s, u1, u2, signs[index], bodies, fold)
-            spread = _spread(u1, u2) if derivatives else None
+            spread = None if motions is None else _spread(u1, u2, motions)
             result = DyadResult(step.kind, step.bodies, step.joint, margin, gamma, slack, spread)
             chosen = None if choose is None else choose(index, result)
             if chosen is not None and len(chosen):             # the search found this dyad's change points
@@ -663,15 +730,22 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
                 _place_dyad(step, s, u1, u2, signs[index], bodies, fold)
             results.append(result)
             ok &= (margin > 0.0) if step.kind in RUNAWAY else (margin >= -FEASIBILITY_TOL)
-            if derivatives:
-                xv = _solve2(_rows(step, s, u1, u2, bodies, "v"))
-                for u, rate in zip((u1, u2), xv, strict=True):
-                    u.finish_velocity(bodies[u.name], rate)
-                tdots = {u.name: rate for u, rate in zip((u1, u2), xv, strict=True)}
-                ya = _solve2(_rows(step, s, u1, u2, bodies, "a", tdots))
-                for u, acc in zip((u1, u2), ya, strict=True):
-                    u.finish_acceleration(bodies[u.name], acc, tdots[u.name])
-    return _gather(s, x, bodies, tuple(results), ok, derivatives)
+            if motions is not None:
+                _move_dyad(step, s, u1, u2, bodies, motions)
+    return _gather(s, x, bodies, motions, tuple(results), ok)
+
+
+def _move_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, bodies: dict[str, Body],
+               motions: dict[str, Motion]) -> None:
+    """The velocities and accelerations of a placed dyad's bodies: its closure's 2x2 solve at velocity level for
+    its unknowns' rates, then at acceleration level."""
+    known = [motions[u.attachment.body] for u in (u1, u2)]
+    xv = _solve2(_rows(step, s, u1, u2, bodies, motions))
+    solved = {u.name: (u.rates(k, bodies[u.name], rate), rate) for u, k, rate in zip((u1, u2), known, xv, strict=True)}
+    ya = _solve2(_rows(step, s, u1, u2, bodies, motions, solved))
+    for u, k, acc in zip((u1, u2), known, ya, strict=True):
+        rates, tdot = solved[u.name]
+        motions[u.name] = u.motion(k, rates, acc, tdot)
 
 
 def _fold(linkage: Linkage, index: int, u1: _Unknown, u2: _Unknown, x: np.ndarray, signs: list[np.ndarray],
@@ -685,38 +759,38 @@ def _fold(linkage: Linkage, index: int, u1: _Unknown, u2: _Unknown, x: np.ndarra
     say."""
     s = linkage.structure
     step = linkage.plan.steps[index]
+    if not isinstance(step, DyadStep) or step.kind not in ("RRR", "RPR"):
+        return None
+    p1, p2 = _expect(_Turning, u1), _expect(_Turning, u2)
     if step.kind == "RRR":
         jd = _pt(s, step.joint)
-        apart = abs(float(np.linalg.norm(jd - u1.pd)) - float(np.linalg.norm(jd - u2.pd)))
-    elif step.kind == "RPR":
-        sl = s.slider_by_name[step.joint]
-        um, ug = (u1, u2) if step.bodies[0] == sl.body else (u2, u1)
-        apart = abs(float(dot(perp(_direction(sl.angle)), um.pd - ug.pd)))
+        apart = abs(float(np.linalg.norm(jd - p1.pd)) - float(np.linalg.norm(jd - p2.pd)))
     else:
-        return None
+        sl = s.slider_by_name[step.joint]
+        um, ug = (p1, p2) if step.bodies[0] == sl.body else (p2, p1)
+        apart = abs(float(dot(perp(_direction(sl.angle)), um.pd - ug.pd)))
     if apart > FOLD_REACH * s.size:
         return None                   # unequal radii, an offset slot: pins that meet leave the dyad open
-    d = np.hypot(*(u2.pin - u1.pin).T)
+    d = np.hypot(*(p2.pin - p1.pin).T)
     near = d <= FOLD_REACH * s.size
     if not near.any():
         return None
     at = np.flatnonzero(near)
+    j1, j2 = p1.attachment.point, p2.attachment.point
     if len(s.inputs) != 1:
         met = d <= 1e-12 * s.size
         if met.any() and strict:
             crank = s.inputs[0].kind == "crank"
             value = float(x[0, np.flatnonzero(met)[0]])
             shown = f"{math.degrees(value):.9g} degrees" if crank else f"{value:.9g} mm"
-            raise SpecError(f"at input {shown} the joints {u1.attachment.point} and {u2.attachment.point} meet, so "
-                            f"dyad {step.kind} at {step.joint} could take any angle (a change point); give inputs "
-                            "that keep them apart", "input")
+            raise SpecError(f"at input {shown} the joints {j1} and {j2} meet, so dyad {step.kind} at {step.joint} "
+                            "could take any angle (a change point); give inputs that keep them apart", "input")
         return None
     # the pins' relative motion per unit input, from a solve of these poses up to this step with its rates
     sub = _solve(linkage, x[:, at], np.ones(len(s.inputs)), [np.broadcast_to(g, x.shape[1:])[at] for g in signs],
                  False, True, index, None)
-    p1, p2 = u1.attachment.point, u2.attachment.point
-    rel_v = sub.velocities[p2] - sub.velocities[p1]
-    rel_a = sub.accelerations[p2] - sub.accelerations[p1]
+    rel_v = sub.velocities[j2] - sub.velocities[j1]
+    rel_a = sub.accelerations[j2] - sub.accelerations[j1]
     # h from the nearest change point of this dyad (a pose at one is past it); without one, from the pose itself
     if len(flips):
         nearest = flips[np.argmin(np.abs(x[0, at, None] - flips[None, :]), axis=1)]
@@ -729,26 +803,26 @@ def _fold(linkage: Linkage, index: int, u1: _Unknown, u2: _Unknown, x: np.ndarra
     length = np.hypot(*direction.T)
     usable = length > 0
     unit = np.where(usable[:, None], side[:, None] * direction / np.where(usable, length, 1.0)[:, None],
-                    (u2.pin[at] - u1.pin[at]) / np.maximum(d[at], 1e-300)[:, None])
+                    (p2.pin[at] - p1.pin[at]) / np.maximum(d[at], 1e-300)[:, None])
     return at, unit
 
 
-def _spread(u1: _Unknown, u2: _Unknown) -> np.ndarray | None:
+def _spread(u1: _Unknown, u2: _Unknown, motions: dict[str, Motion]) -> np.ndarray | None:
     """How fast the dyad's outer joints move apart: the pins' relative velocity along the line between them, or a
     pin's velocity off the guide line relative to the guide (None for dyads of two slides)."""
-    if u1.pinned and u2.pinned:
-        return dot(u2.pin - u1.pin, u2.ref.vel(u2.pin) - u1.ref.vel(u1.pin))
-    if u1.pinned != u2.pinned:
-        up, us = (u1, u2) if u1.pinned else (u2, u1)
-        return dot(perp(us.u), up.ref.vel(up.pin) - us.ref.vel(up.pin))
-    return None
+    if isinstance(u1, _Turning) and isinstance(u2, _Turning):
+        return dot(u2.pin - u1.pin, motions[u2.attachment.body].vel(u2.pin) - motions[u1.attachment.body].vel(u1.pin))
+    if isinstance(u1, _Sliding) and isinstance(u2, _Sliding):
+        return None
+    up, us = _split(_Turning, _Sliding, u1, u2)
+    return dot(perp(us.u), motions[up.attachment.body].vel(up.pin) - motions[us.attachment.body].vel(up.pin))
 
 
 def _place_input(s: Structure, step: InputStep, delta: np.ndarray, rate: float, bodies: dict[str, Body],
-                 derivatives: bool) -> None:
-    """The driven body moved by ``delta`` (rad or mm) from the drawing, at unit ``rate`` of its input."""
+                 motions: dict[str, Motion] | None) -> None:
+    """The driven body moved by ``delta`` (rad or mm) from the drawing, at unit ``rate`` of its input; its motion
+    too, given ``motions``."""
     inp = s.inputs[step.index]
-    n = len(delta)
     if inp.kind == "crank":
         ref = bodies[inp.relative_to]
         c, sn = np.cos(delta), np.sin(delta)
@@ -756,57 +830,59 @@ def _place_input(s: Structure, step: InputStep, delta: np.ndarray, rate: float, 
         pd = _pt(s, inp.pivot)
         pw = ref.at(pd)
         body = _pinned(cc, ss, pw, pd)
-        if derivatives:
+        if motions is not None:
+            known = motions[inp.relative_to]
             r = body.T - pw
-            body.w = ref.w + rate
-            body.vT = ref.vel(pw) + body.w[:, None] * perp(r)
-            body.al = ref.al.copy()
-            body.aT = ref.acc(pw) + body.al[:, None] * perp(r) - (body.w**2)[:, None] * r
+            w = known.w + rate
+            motions[step.body] = Motion(body.T, w, known.vel(pw) + w[:, None] * perp(r), known.al,
+                                        known.acc(pw) + known.al[:, None] * perp(r) - (w**2)[:, None] * r)
     else:
         sl = s.slider_by_name[inp.slider]
         ref = bodies[sl.guide]
         u = ref.rotate(_direction(sl.angle))
         body = Body(ref.c, ref.s, ref.T + delta[:, None] * u)
-        if derivatives:
-            tdot = np.full(n, rate)
-            body.w, body.al = ref.w, ref.al
-            body.vT = ref.vT + tdot[:, None] * u + (delta * ref.w)[:, None] * perp(u)
-            body.aT = ref.aT + 2.0 * (tdot * ref.w)[:, None] * perp(u) + delta[:, None] * (
-                ref.al[:, None] * perp(u) - (ref.w**2)[:, None] * u)
+        if motions is not None:
+            known = motions[sl.guide]
+            tdot = np.full(len(delta), rate)
+            motions[step.body] = Motion(
+                body.T, known.w, known.vT + tdot[:, None] * u + (delta * known.w)[:, None] * perp(u), known.al,
+                known.aT + 2.0 * (tdot * known.w)[:, None] * perp(u) + delta[:, None] * (
+                    known.al[:, None] * perp(u) - (known.w**2)[:, None] * u))
     bodies[step.body] = body
 
 
-def _place_fixed(s: Structure, step: FixedStep, bodies: dict[str, Body], derivatives: bool) -> None:
+def _place_fixed(s: Structure, step: FixedStep, bodies: dict[str, Body], motions: dict[str, Motion] | None) -> None:
     """A body held by two attachments: two pins fix its angle by their direction; a pin and a slide by the
-    slide's."""
+    slide's. Its motion too, given ``motions``."""
     a1, a2 = step.attachments
-    if isinstance(a1, Slide):
-        a1, a2 = a2, a1
-    pd = _pt(s, a1.point)
-    pw = bodies[a1.body].at(pd)
-    if isinstance(a2, Pin):
-        qd = _pt(s, a2.point)
-        qw = bodies[a2.body].at(qd)
+    pin, other = (a1, a2) if isinstance(a1, Pin) else (_expect(Pin, a2), a1)
+    pd = _pt(s, pin.point)
+    pw = bodies[pin.body].at(pd)
+    if isinstance(other, Pin):
+        qd = _pt(s, other.point)
+        qw = bodies[other.body].at(qd)
         now, drawn = qw - pw, qd - pd
         length2 = float(dot(drawn, drawn))
         c, sn = dot(now, drawn) / length2, cross(drawn, now) / length2
         norm = np.hypot(c, sn)
         body = _pinned(c / norm, sn / norm, pw, pd)
-        if derivatives:
-            d = qw - pw
-            dd = dot(d, d)
-            body.w = cross(d, bodies[a2.body].vel(qw) - bodies[a1.body].vel(pw)) / dd
-            body.al = cross(d, bodies[a2.body].acc(qw) - bodies[a1.body].acc(pw)) / dd
     else:
-        ref = bodies[a2.body]
+        ref = bodies[other.body]
         body = _pinned(ref.c, ref.s, pw, pd)
-        if derivatives:
-            body.w, body.al = ref.w, ref.al
-    if derivatives:
-        r = body.T - pw
-        body.vT = bodies[a1.body].vel(pw) + body.w[:, None] * perp(r)
-        body.aT = bodies[a1.body].acc(pw) + body.al[:, None] * perp(r) - (body.w**2)[:, None] * r
     bodies[step.body] = body
+    if motions is None:
+        return
+    held, guide = motions[pin.body], motions[other.body]
+    if isinstance(other, Pin):
+        d = qw - pw
+        dd = dot(d, d)
+        w = cross(d, guide.vel(qw) - held.vel(pw)) / dd
+        al = cross(d, guide.acc(qw) - held.acc(pw)) / dd
+    else:
+        w, al = guide.w, guide.al
+    r = body.T - pw
+    motions[step.body] = Motion(body.T, w, held.vel(pw) + w[:, None] * perp(r), al,
+                                held.acc(pw) + al[:, None] * perp(r) - (w**2)[:, None] * r)
 
 
 def _unbounded(x: np.ndarray) -> np.ndarray:
@@ -814,20 +890,22 @@ def _unbounded(x: np.ndarray) -> np.ndarray:
     return np.where(np.isnan(x), np.inf, x)
 
 
-def _gather(s: Structure, x: np.ndarray, bodies: dict[str, Body], results: tuple[DyadResult, ...], ok: np.ndarray,
-            derivatives: bool) -> Solution:
-    """Each point from the first body placed that holds it."""
-    points, vels, accs = {}, {}, {}
+def _gather(s: Structure, x: np.ndarray, bodies: dict[str, Body], motions: dict[str, Motion] | None,
+            results: tuple[DyadResult, ...], ok: np.ndarray) -> Solution:
+    """Each point from the first body placed that holds it, with its velocity and acceleration given
+    ``motions``."""
+    points: dict[str, np.ndarray] = {}
+    vels: dict[str, np.ndarray] = {}
+    accs: dict[str, np.ndarray] = {}
     for name in s.points:
         holder = next((b for b in s.holders(name) if b in bodies), None)
         if holder is None:
             continue
-        body = bodies[holder]
-        xw = body.at(_pt(s, name))
+        xw = bodies[holder].at(_pt(s, name))
         points[name] = xw
-        if derivatives:
-            vels[name], accs[name] = _unbounded(body.vel(xw)), _unbounded(body.acc(xw))
+        if motions is not None:
+            vels[name], accs[name] = _unbounded(motions[holder].vel(xw)), _unbounded(motions[holder].acc(xw))
     rotations = {b: (body.c, body.s) for b, body in bodies.items()}
-    omegas: dict[str, Any] = {b: _unbounded(body.w) for b, body in bodies.items()} if derivatives else {}
-    alphas: dict[str, Any] = {b: _unbounded(body.al) for b, body in bodies.items()} if derivatives else {}
+    omegas = {} if motions is None else {b: _unbounded(motions[b].w) for b in bodies}
+    alphas = {} if motions is None else {b: _unbounded(motions[b].al) for b in bodies}
     return Solution(x, points, vels, accs, rotations, omegas, alphas, results, ok)

@@ -25,8 +25,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkgen.kinematics import motion
-from linkgen.kinematics.linkage import Linkage, Solution
+from linkgen.kinematics.linkage import DyadResult, Linkage, Solution
 from linkgen.kinematics.motion import BRANCHED, Extreme
+from linkgen.kinematics.structure import DyadStep
 
 #: at most this many pieces are followed round a circuit
 MAX_PIECES = 32
@@ -74,7 +75,7 @@ def _other(linkage: Linkage, drawn: Linkage, value: float) -> tuple[str, ...]:
     """The joints of the dyads whose branch at ``value`` differs from the drawing linkage's there."""
     steps = linkage.plan.steps
     mine, theirs = _signs_at(linkage, value), _signs_at(drawn, value)
-    return tuple(steps[i].joint for i in motion.dyad_steps(linkage) if mine[i] != theirs[i])
+    return tuple(step.joint for i, step in enumerate(steps) if isinstance(step, DyadStep) and mine[i] != theirs[i])
 
 
 def _run_at(ranges: Sequence[tuple[float, float]], value: float) -> tuple[float, float]:
@@ -97,7 +98,8 @@ def _follow(drawn: Linkage, start: Linkage, end: float, lo: float, hi: float) ->
             return pieces, False
         kind, d = motion.stopping_dyad(current, np.array([end]))[0]
         index = steps[d]
-        if kind != "limit" or current.plan.steps[index].kind not in BRANCHED:
+        step = current.plan.steps[index]
+        if kind != "limit" or not isinstance(step, DyadStep) or step.kind not in BRANCHED:
             return pieces, False
         signs = _signs_at(current, end)
         signs[index] = -signs[index]
@@ -246,8 +248,10 @@ def sweep_over(c: Circuit, n: int) -> Solution:
     rotations = {b: (np.concatenate([s.rotations[b][0] for s in sols]), np.concatenate([s.rotations[b][1]
                                                                                          for s in sols]))
                  for b in first.rotations}
-    dyads = tuple(type(d)(d.kind, d.bodies, d.joint, *(np.concatenate([getattr(s.dyads[i], f) for s in sols])
-                                                      for f in ("margin", "transmission", "slack")), None)
+    def cat(i: int, figure: str) -> np.ndarray:
+        return np.concatenate([getattr(s.dyads[i], figure) for s in sols])
+
+    dyads = tuple(DyadResult(d.kind, d.bodies, d.joint, cat(i, "margin"), cat(i, "transmission"), cat(i, "slack"))
                   for i, d in enumerate(first.dyads))
     return Solution(np.concatenate([s.inputs for s in sols], axis=1), joined("points"), joined("velocities"),
                     joined("accelerations"), rotations, joined("omegas"), joined("alphas"), dyads,

@@ -96,10 +96,16 @@ def _events(linkage: Linkage, index: int, grid: np.ndarray, result: DyadResult) 
     def at(x: np.ndarray) -> DyadResult:
         return linkage.solve(x[None, :], strict=False, upto=index + 1).dyads[-1]
 
+    def spread(x: np.ndarray) -> np.ndarray:
+        rate = at(x).spread
+        if rate is None:                           # a dyad of two slides, which runs away instead
+            raise TypeError(f"dyad {result.kind} has no spread rate")
+        return rate
+
     if result.kind in RUNAWAY:
         found, _ = _golden(lambda x: np.abs(at(x).margin), grid[k - 1], grid[k + 1])
     else:
-        found = _root(lambda x: at(x).spread, grid[k - 1], grid[k + 1])
+        found = _root(spread, grid[k - 1], grid[k + 1])
     inside = (found > grid[0]) & (found < grid[-1])
     found = found[inside]
     bottom = at(found)
@@ -194,15 +200,12 @@ def transmission_extremes(linkage: Linkage, lo: float, hi: float) -> list[tuple[
         return np.where(s.ok & np.isfinite(value), value, np.inf)
 
     x, value = _golden(f, grid[np.maximum(k_a - 1, 0)], grid[np.minimum(k_a + 1, GRID)])
-    out = []
-    for d in range(len(sol.dyads)):
-        found = []
-        for j in (2 * d, 2 * d + 1):
-            refined = value[j] < best[j]           # golden sections keep the grid's best if they lose it
-            found += [float(signs_a[j] * value[j]), float(x[j])] if refined else \
-                [float(signs_a[j] * best[j]) if np.isfinite(best[j]) else float("nan"), float(grid[k_a[j]])]
-        out.append(tuple(found))
-    return out
+    def extreme(j: int) -> tuple[float, float]:
+        if value[j] < best[j]:                     # golden sections keep the grid's best if they lose it
+            return float(signs_a[j] * value[j]), float(x[j])
+        return float(signs_a[j] * best[j]) if np.isfinite(best[j]) else float("nan"), float(grid[k_a[j]])
+
+    return [extreme(2 * d) + extreme(2 * d + 1) for d in range(len(sol.dyads))]
 
 
 @dataclass(frozen=True)

@@ -23,10 +23,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from camgen.core.errors import SpecError
-from linkgen.kinematics.fourbar import FourBar
+from linkgen.kinematics.fourbar import Assembly, FourBar
 
 #: (ground, crank, coupler, rocker, point distance, point angle rad, assembly, stroke), in units of size
-CANONICAL = {
+CANONICAL: dict[str, tuple[float, float, float, float, float, float, Assembly, float]] = {
     "chebyshev": (2.0, 2.5, 1.0, 2.5, 0.5, 0.0, "crossed", 2.0),
     "hoekens": (2.0, 1.0, 2.5, 2.5, 5.0, 0.0, "open", 2.0),
     "roberts": (2.0, 2.0, 1.0, 2.0, 2.0, -math.acos(0.25), "open", 2.0),
@@ -66,7 +66,7 @@ class StraightLine:
 
     kind: str
     linkage: FourBar
-    assembly: str
+    assembly: Assembly
     stroke: float
 
     def trace(self, theta2: np.ndarray) -> np.ndarray:

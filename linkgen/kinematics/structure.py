@@ -357,17 +357,17 @@ def plan(s: Structure) -> Plan:
         driven = {_driven(s, inp) for _, inp in pending}
         unknown = [b for b in s.bodies if b not in known and b not in driven]
         held = {b: _attachments(s, b, known) for b in unknown}
-        step: Step | None = _find_dyad(s, unknown, held)
-        if step is None:
+        dyad = _find_dyad(s, unknown, held)
+        if dyad is None:
             fixed = next((b for b in unknown if len(held[b]) >= 2
                           and not all(isinstance(a, Slide) for a in held[b][:2])), None)
             if fixed is None:
                 break
-            step = FixedStep(fixed, (held[fixed][0], held[fixed][1]))
+            steps.append(FixedStep(fixed, (held[fixed][0], held[fixed][1])))
             known.add(fixed)
         else:
-            known.update(step.bodies)
-        steps.append(step)
+            steps.append(dyad)
+            known.update(dyad.bodies)
     unknown = [b for b in s.bodies if b not in known]
     if unknown or pending:
         _diagnose(s, unknown, [inp for _, inp in pending])

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from linkgen.kinematics.circuits import Circuit, Limit, Swing, circuits, drawn, mirrored
-from linkgen.kinematics.fourbar import FourBar
+from linkgen.kinematics.fourbar import ASSEMBLIES, Assembly, FourBar
 from linkgen.mechanisms.common import deg
 
 #: which links are in line at each kind of limit position
@@ -84,7 +84,7 @@ def drawn_pose(fb: FourBar) -> float:
     return lo + 0.1 * (hi - lo)
 
 
-def circuits_report(fb: FourBar, assembly: str, rocker_in: bool) -> dict[str, Any]:
+def circuits_report(fb: FourBar, assembly: Assembly, rocker_in: bool) -> dict[str, Any]:
     """The report's ``circuits`` (every circuit, the drawn one marked), ``motion`` (the drawn circuit's, in the
     course's words) and ``rocker_swing_deg`` (the rocker's swing there, None where it turns fully); with
     ``rocker_in`` the circuits are the rocker-driven linkage's (its input range the rocker's angles, its
@@ -117,11 +117,11 @@ def split_warning(report: dict[str, Any], link: str) -> str | None:
             f"never passes from one to the other; it is drawn on circuit {first}")
 
 
-def _mirror_label(fb: FourBar, theta2: float, assembly: str) -> tuple[float, int]:
+def _mirror_label(fb: FourBar, theta2: float, assembly: Assembly) -> tuple[float, int]:
     """The rocker angle (rad) and the rocker-driven label (+1 open, -1 crossed, 0 both) of the crank-driven pose
     at ``theta2`` with ``assembly``."""
     pose = fb.positions([theta2], assembly)
     t4 = float(pose.theta4[0])
-    labels = [s for s, name in ((1, "open"), (-1, "crossed"))
+    labels = [s for s, name in zip((1, -1), ASSEMBLIES, strict=True)
               if np.linalg.norm(fb.rocker_positions([t4], name).a[0] - pose.a[0]) <= 1e-7 * fb.longest]
     return t4, labels[0] if len(labels) == 1 else 0

@@ -20,7 +20,7 @@ from camgen.core.shapes import Polyline
 from camgen.core.spec import Model, unit
 from linkgen import plots
 from linkgen.kinematics.circuits import input_grid, input_span
-from linkgen.kinematics.fourbar import ASSEMBLIES, FourBar, Poses
+from linkgen.kinematics.fourbar import ASSEMBLIES, Assembly, FourBar, Poses
 from linkgen.mechanisms.circuits import circuits_report, split_warning
 from linkgen.mechanisms.common import Figure, deg, length, num, omega, rpm, types_of
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
@@ -45,7 +45,7 @@ class FourBarTable(Model):
                                   json_schema_extra=unit("mm"))
     point_angle: float = Field(0.0, description="coupler point: angle from the coupler line, counter-clockwise",
                                json_schema_extra=unit("degrees"))
-    assembly: Literal["open", "crossed"] = Field("open", description="assembly branch")
+    assembly: Assembly = Field("open", description="assembly branch")
     input: Literal["crank", "rocker"] = Field("crank", description="driven link")
     rpm: float = rpm()
 
@@ -71,7 +71,7 @@ def _ranges_deg(ranges: tuple[tuple[float, float], ...] | None) -> Any:
     return out[0] if len(out) == 1 else out
 
 
-def newton_table(fb: FourBar, angle: float, assembly: str, start: tuple[float, float] | None = None,
+def newton_table(fb: FourBar, angle: float, assembly: Assembly, start: tuple[float, float] | None = None,
                  tolerance: float | None = None) -> dict[str, Any]:
     """The Newton-Raphson table at crank angle ``angle`` (degrees): started from ``start`` (theta3, theta4 in
     degrees) or 10 degrees off the closed-form answer of ``assembly``, and stopped where the residual norm is at
@@ -93,7 +93,7 @@ def newton_table(fb: FourBar, angle: float, assembly: str, start: tuple[float, f
         said = f"given: coupler {start[0]:g} degrees, rocker {start[1]:g} degrees"
     result = fb.newton(theta, guess, tolerance_mm=tolerance)
 
-    def off(a: str) -> float:
+    def off(a: Assembly) -> float:
         return max(abs(math.degrees(math.remainder(result.theta3 - exact[a].theta3[0], TWO_PI))),
                    abs(math.degrees(math.remainder(result.theta4 - exact[a].theta4[0], TWO_PI))))
 
@@ -173,13 +173,13 @@ def fourbar_report(table: FourBarTable, fb: FourBar, angle: float | None, method
     return report
 
 
-def fourbar_figures(name: str, fb: FourBar, assembly: str) -> tuple[Figure, ...]:
+def fourbar_figures(name: str, fb: FourBar, assembly: Assembly) -> tuple[Figure, ...]:
     """The transmission angle over the cycle, and the linkage at its dead centres with the coupler point's path."""
     return (("transmission", lambda: plots.transmission_figure(name, fb, assembly)),
             ("dead-centres", lambda: plots.dead_centre_figure(name, fb, assembly)))
 
 
-def placement(fb: FourBar, theta2: np.ndarray, assembly: str) -> Placement:
+def placement(fb: FourBar, theta2: np.ndarray, assembly: Assembly) -> Placement:
     """Where the ground, crank, coupler and rocker sit at crank angles ``theta2`` (rad), following one branch."""
     p = fb.sweep(theta2, assembly)
     o4 = np.tile([fb.ground, 0.0], (len(theta2), 1))
@@ -204,7 +204,7 @@ def fourbar_parts(fb: FourBar, table: PartsTable) -> tuple[LinkPart, ...]:
             LinkPart("rocker", np.array([[0.0, 0.0], [fb.rocker, 0.0]]), half["rocker"], stock))
 
 
-def fourbar_layout(fb: FourBar, assembly: str, table: PartsTable) -> Layout:
+def fourbar_layout(fb: FourBar, assembly: Assembly, table: PartsTable) -> Layout:
     """The parts over the first reachable crank range, the dead centres inside it, and the coupler point's path
     (the coupler-rocker pin's without one)."""
     ranges = fb.input_ranges()
@@ -218,14 +218,14 @@ def fourbar_layout(fb: FourBar, assembly: str, table: PartsTable) -> Layout:
     return Layout(fourbar_parts(fb, table), sweep, dead, poses, (path,))
 
 
-def fourbar_thumbnail(fb: FourBar, assembly: str) -> dict[str, Any]:
+def fourbar_thumbnail(fb: FourBar, assembly: Assembly) -> dict[str, Any]:
     """The path the coupler point (or the rocker pin) traces, for a family's overview picture."""
     poses = fb.sweep(input_grid(fb, 121), assembly)
     path = poses.point if fb.point_distance > 0 else poses.b
     return {"thumbnail": path.round(3).tolist(), "thumbnail_kind": "path"}
 
 
-def fourbar_sketch(fb: FourBar, assembly: str) -> Drawing:
+def fourbar_sketch(fb: FourBar, assembly: Assembly) -> Drawing:
     """The linkage a tenth into its first reachable range (at 30 degrees when the crank turns fully), with the
     coupler point's path."""
     lo, hi = input_span(fb)

@@ -273,7 +273,7 @@ def _refuse_runaway(a: Analysis, lo: float, hi: float) -> None:
     if not ends:
         return
     value, d = ends[0]
-    step = next(s for i, s in enumerate(a.linkage.plan.steps) if i == motion.dyad_steps(a.linkage)[d])
+    step = [s for s in a.linkage.plan.steps if isinstance(s, DyadStep)][d]      # the d-th dyad, in solve order
     unit = "degrees" if a.crank else "mm"
     shown = [a.shown(v) for v in (lo, hi)]
     raise SpecError(f"at input {a.shown(value):.6g} {unit} the guides of the {step.kind} dyad of {step.bodies[0]} and "
@@ -305,7 +305,7 @@ def _turned(d: np.ndarray, angle: np.ndarray) -> np.ndarray:
 
 
 def steps_report(a: Analysis) -> list[dict[str, Any]]:
-    out = []
+    out: list[dict[str, Any]] = []
     for step in a.linkage.plan.steps:
         if isinstance(step, InputStep):
             out.append({"step": "input", "link": step.body})
@@ -436,10 +436,10 @@ def _output_report(a: Analysis, name: str, om: linkage_circuit.OutputMotion) -> 
     several = circuit is not None and len(circuit.pieces) > 1
     at = []
     for e, k in zip(om.limits, om.pieces, strict=True):
-        entry = {f"input_{unit}": a.shown(e.value),
-                 **({"angle_from_drawing_deg": num(math.degrees(e.position))} if rocker else
-                    {"travel_mm": num(e.position)})}
-        if several:
+        entry: dict[str, Any] = {f"input_{unit}": a.shown(e.value),
+                                 **({"angle_from_drawing_deg": num(math.degrees(e.position))} if rocker else
+                                    {"travel_mm": num(e.position)})}
+        if several and circuit is not None:
             entry["branches"] = _branch(circuit, k)
         at.append(entry)
     out: dict[str, Any] = {"limit_positions": at}
@@ -593,7 +593,7 @@ def general_layout(a: Analysis, table: PartsTable) -> Layout:
         positions = [("drawn", float(a.linkage.drawn_inputs[0]), a.linkage)]
     positions.sort(key=lambda p: p[1])
     if len(a.table.inputs) > 1:
-        poses = (general_placement(a, a.linkage.solve(a.linkage.drawn_inputs[:, None])),)
+        poses: tuple[Placement, ...] = (general_placement(a, a.linkage.solve(a.linkage.drawn_inputs[:, None])),)
     else:
         poses = tuple(general_placement(a, linkage.solve(np.array([[v]]))) for _, v, linkage in positions)
     traced = a.table.tracers or tuple(p for p in a.linkage.structure.points

@@ -12,9 +12,9 @@ Crank angles are measured counter-clockwise from the ground line (O2 -> O4), in 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from linkgen.kinematics.fourbar import FourBar
@@ -25,7 +25,7 @@ TWO_PI = 2.0 * math.pi
 ANGLE_TOL = 1e-9
 
 
-def sense(theta2: Sequence[float]) -> int:
+def sense(theta2: ArrayLike) -> int:
     """+1 if turning counter-clockwise from the first angle meets the others in order, -1 if clockwise does,
     0 if neither (an order defect)."""
     t = np.asarray(theta2, dtype=float)
@@ -36,7 +36,7 @@ def sense(theta2: Sequence[float]) -> int:
     return 0
 
 
-def _within_reach(fb: FourBar, theta2: Sequence[float], turn: int) -> bool:
+def _within_reach(fb: FourBar, theta2: ArrayLike, turn: int) -> bool:
     """Whether the crank turns from the first angle through the others (in sense ``turn``) without a toggle."""
     ranges = fb.input_ranges()
     if ranges is None:
@@ -51,7 +51,7 @@ def _within_reach(fb: FourBar, theta2: Sequence[float], turn: int) -> bool:
     return False
 
 
-def defects(lengths: tuple[float, float, float, float], theta2: Sequence[float], branches: Sequence[float],
+def defects(lengths: tuple[float, float, float, float], theta2: ArrayLike, branches: ArrayLike,
             crank: bool) -> list[str]:
     """The defects (see the module) of the four-bar of ``lengths`` (ground, crank, coupler, rocker; mm) meeting
     the targets at crank angles ``theta2`` (rad, from the ground line) on ``branches`` (+1 open, -1 crossed,

@@ -21,7 +21,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
-from linkgen.kinematics.fourbar import FourBar
+from linkgen.kinematics.fourbar import ASSEMBLIES, FourBar
 from linkgen.synthesis.candidates import Candidate, Sketch, deg, fits_template, fourbar_table
 from linkgen.synthesis.defects import defects
 from linkgen.synthesis.formula import evaluate
@@ -123,7 +123,7 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
                         "task.input_angles")
     # how far each assembly's rocker is from the asked angle at each precision point (rad)
     off = {asm: np.abs(np.remainder(fb.positions(t2 + turn2, asm).theta4 - turn4 - t4 + math.pi, TWO_PI) - math.pi)
-           for asm in ("open", "crossed")}
+           for asm in ASSEMBLIES}
     assembly = min(off, key=lambda asm: float(off[asm].sum()))
     if len(t2) == 3 and off[assembly].max() > 1e-6:
         raise SpecError("the precision points lie on different assemblies of the linkage through them (a branch "
@@ -149,10 +149,10 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
            "structural_error_deg": float(np.degrees(np.abs(angle_error).max())),
            "structural_error_at_x": float(x[at]), "transmission_worst_deg": worst}
     poses = fb.positions(t2 + turn2, assembly)
-    shown = np.unique(np.linspace(0, len(xs) - 1, min(len(xs), POSES)).round().astype(int))
+    drawn = np.unique(np.linspace(0, len(xs) - 1, min(len(xs), POSES)).round().astype(int))
     sketch = Sketch(paths=(("rocker pin", fb.sweep(crank_of(x) + turn2, assembly).b),),
                     poses=tuple((f"x = {xs[k]:.4g}", np.array([[0.0, 0.0], poses.a[k], poses.b[k], [d, 0.0]]))
-                                for k in shown),
+                                for k in drawn),
                     reached=poses.b, error=(x, y_error, xs, "structural error (units of y)"))
     table = fourbar_table(*lengths, assembly=assembly)
     info = {"method": "Freudenstein's equation at Chebyshev precision points: "

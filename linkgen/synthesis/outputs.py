@@ -10,6 +10,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -67,18 +68,21 @@ def write_synthesis(result: Synthesis, directory: str | Path) -> list[str]:
     names = []
     with staged(directory) as stage:
         for c in result.candidates:
-            names.append(stage.write(f"{c.name}.toml", lambda p, c=c: p.write_text(
-                toml_text(c.template, _comment(c, result)), encoding="utf-8")).name)
+            names.append(stage.write(f"{c.name}.toml", partial(_write_text, toml_text(c.template,
+                                                                                   _comment(c, result)))).name)
             report = {**c.report, "synthesis": {"task": summary["task"], **c.row}}
-            names.append(stage.write(f"{c.name}.json", lambda p, r=report: p.write_text(report_json(r),
-                                                                                      encoding="utf-8")).name)
+            names.append(stage.write(f"{c.name}.json", partial(_write_text, report_json(report))).name)
             fig = candidate_figure(f"{c.name}: {_figure_title(c.row)}", c.sketch)
             for fmt in ("png", "svg"):
-                names.append(stage.write(f"{c.name}-curve.{fmt}", lambda p, f=fmt, g=fig: save(g, p, f)).name)
-        names.append(stage.write("summary.json", lambda p: p.write_text(report_json(summary), encoding="utf-8")).name)
-        names.append(stage.write("summary.csv", lambda p: p.write_text(summary_csv(summary["candidates"]),
-                                                                       encoding="utf-8")).name)
+                names.append(stage.write(f"{c.name}-curve.{fmt}", partial(save, fig, fmt=fmt)).name)
+        names.append(stage.write("summary.json", partial(_write_text, report_json(summary))).name)
+        names.append(stage.write("summary.csv", partial(_write_text, summary_csv(summary["candidates"]))).name)
     return names
+
+
+def _write_text(text: str, path: Path) -> None:
+    """``text`` into the file ``path``, UTF-8."""
+    path.write_text(text, encoding="utf-8")
 
 
 def _figure_title(row: dict[str, Any]) -> str:

@@ -27,23 +27,29 @@ import importlib
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, Literal, get_args
 
 #: every format a bundle can write, in the order their files are listed
-FORMATS = ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html")
+Format = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html"]
+FORMATS: tuple[Format, ...] = get_args(Format)
 #: the figures drawn by matplotlib: written on request (``output.figures``, ``--figures``, or named in
 #: ``output.formats``), since drawing them costs more than the rest of a build; the page plots the same curves
 FIGURE_FORMATS = ("png", "svg")
 #: what a build writes unless ``output.formats`` says otherwise: every format but the figures
 DEFAULT_FORMATS = tuple(f for f in FORMATS if f not in FIGURE_FORMATS)
-DXF_FLAVOURS = ("polyline-bulge", "lines-arcs", "segments")
-DXF_VERSIONS = ("R2010", "R12")
+DxfFlavour = Literal["polyline-bulge", "lines-arcs", "segments"]
+DXF_FLAVOURS: tuple[DxfFlavour, ...] = get_args(DxfFlavour)
+DxfVersion = Literal["R2010", "R12"]
+DXF_VERSIONS: tuple[DxfVersion, ...] = get_args(DxfVersion)
 #: how engraved text is written: TEXT entities (SVG <text>), or the glyphs' outlines for laser software that drops text
-TEXT_MODES = ("text", "outline")
+TextMode = Literal["text", "outline"]
+TEXT_MODES: tuple[TextMode, ...] = get_args(TextMode)
 
 #: formats a bundle writes only when asked and only with an optional extra installed: {format: (the module it
 #: needs, what that module is, the install command)}
 EXTRAS = {"step": ("OCP", "Open CASCADE through OCP", "pip install 'camgen[step]'")}
+#: the keys of :data:`EXTRAS`, written out for the type checker
+OptionalFormat = Literal["step"]
 OPTIONAL_FORMATS = tuple(EXTRAS)
 
 _MODULES = {"dxf": "dxf", "cut-svg": "svg", "stl": "stl", "3mf": "threemf", "json": "report", "png": "figure",
@@ -55,9 +61,9 @@ class WriteOptions:
     """Settings of the writers that are the user's choice, not the result's (the tolerance travels with the
     drawing, the allowances with the part)."""
 
-    dxf_version: Literal["R2010", "R12"] = "R2010"
-    dxf_flavour: Literal["polyline-bulge", "lines-arcs", "segments"] = "polyline-bulge"
-    text: Literal["text", "outline"] = "text"
+    dxf_version: DxfVersion = "R2010"
+    dxf_flavour: DxfFlavour = "polyline-bulge"
+    text: TextMode = "text"
 
 
 Writer = Callable[[Any, Path, WriteOptions], None]

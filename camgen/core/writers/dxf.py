@@ -64,8 +64,8 @@ def _open_line(msp: Any, line: Polyline, attribs: dict, version: str, flavour: s
         _pieces(msp, Contour(line.vertices, np.append(line.bulges, 0.0)), attribs, closed=False)
     else:
         if version == "R12":
-            pts = [(x, y, b) for (x, y), b in zip(line.vertices.tolist(), [*line.bulges.tolist(), 0.0], strict=True)]
-            msp.add_polyline2d(pts, format="xyb", dxfattribs=attribs)
+            rows = [(x, y, b) for (x, y), b in zip(line.vertices.tolist(), [*line.bulges.tolist(), 0.0], strict=True)]
+            msp.add_polyline2d(rows, format="xyb", dxfattribs=attribs)
         else:
             _lwpolyline(msp, line.vertices, np.append(line.bulges, 0.0), False, attribs)
 

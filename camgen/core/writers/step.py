@@ -70,7 +70,7 @@ def _wire(shape: Circle | Contour, z: float, ccw: bool) -> Any:
             else:      # the arc's midpoint: the chord's midpoint moved out by the sagitta, bulge x chord / 2
                 dx, dy = v[j] - v[i]
                 mid = (v[i] + v[j]) / 2 + b[i] / 2 * np.array([dy, -dx])
-                made = GC_MakeArcOfCircle(points[i], _point(*mid, z), points[j])
+                made = GC_MakeArcOfCircle(points[i], _point(mid[0], mid[1], z), points[j])
             edge = BRepBuilderAPI_MakeEdge(made.Value(), corners[i], corners[j]) if made.IsDone() else None
             if edge is None or not edge.IsDone():
                 raise ExportError(f"an outline's {'line' if b[i] == 0 else 'arc'} from ({v[i][0]:.9g}, "
