@@ -164,8 +164,8 @@ def offset_contour(vertices: np.ndarray, bulges: np.ndarray, distance: float) ->
                                   f"moves by {distance:g} mm")
         out_v.append(new.start)
         out_b.append(bulge)
-        corner = corners[i]
-        if corner is not None:
+        opened = corners[i]
+        if opened is not None:
             out_v.append(new.end)
-            out_b.append(corner[0])
+            out_b.append(opened[0])
     return np.array(out_v), np.array(out_b)
