@@ -343,3 +343,20 @@ def test_bad_input_is_one_line_naming_the_field(tmp_path, kind, other, sets, mes
     assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
     assert result.stderr.startswith(f"error: {message}") and result.stderr.count("\n") == 1, result.stderr
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize(("kind", "other", "line"), [
+    ("external", GEAR, "at pinion 10.0000 deg (360 deg/s): gear 170.000000 deg, -180 deg/s"),
+    ("rack", RACK, "at pinion 10.0000 deg (360 deg/s): rack 6.283185 mm, 113.097 mm/s")])
+def test_analyze_prints_the_pair_and_where_it_is(tmp_path, kind, other, line):
+    """18 teeth drive 36 at half the speed the other way (the gear's tooth space faces the pinion's tooth 0 at
+    180 - 5 degrees when the pinion is at 0); a rack moves r = 18 mm a radian from 0 where a pinion tooth points
+    straight down at it (-90 degrees, -10 less whole pitches of 20)."""
+    from linkgen.cli import main
+
+    path = tmp_path / "g.toml"
+    path.write_text(BASE.format(kind=kind, other=other))
+    result = CliRunner().invoke(main, ["analyze", str(path), "--angle", "10", "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert line in result.output.splitlines()
+    assert f"{kind} pair: centre distance {54 if kind == 'external' else 18} mm" in result.output
