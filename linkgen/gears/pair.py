@@ -33,7 +33,7 @@ from typing import Literal
 import numpy as np
 
 from linkgen.gears.involute import inv, inv_inverse
-from linkgen.gears.tooth import ADDENDUM, DEDENDUM, BasicRack, ExternalTooth
+from linkgen.gears.tooth import ADDENDUM, DEDENDUM, BasicRack, ExternalTooth, OnRack
 
 Kind = Literal["external", "internal", "rack"]
 
@@ -44,7 +44,7 @@ def _near_zero(angle: float, pitch: float) -> float:
 
 
 @dataclass(frozen=True)
-class GearPair:
+class GearPair(OnRack):
     """A meshing pair (see the module's notes): ``kind``, the basic ``rack`` (module and pressure angle), the pinion's
     teeth and shift, the other member's teeth (a rack's: how many it has) and shift (0 for a rack), the backlash
     (mm, circular on the working pitch circles)."""
@@ -56,14 +56,6 @@ class GearPair:
     gear_teeth: int
     gear_shift: float
     backlash: float
-
-    @property
-    def module(self) -> float:
-        return self.rack.module
-
-    @property
-    def pressure_angle(self) -> float:
-        return self.rack.pressure_angle
 
     @cached_property
     def working_pressure_angle(self) -> float:

@@ -69,8 +69,24 @@ class BasicRack:
         return 2.0 * (self.straight_depth - shift) / math.sin(self.pressure_angle) ** 2
 
 
+class OnRack:
+    """What is cut by a basic rack (its ``rack``) has that rack's module and pressure angle."""
+
+    rack: BasicRack
+
+    @property
+    def module(self) -> float:
+        """m (mm)."""
+        return self.rack.module
+
+    @property
+    def pressure_angle(self) -> float:
+        """a (rad)."""
+        return self.rack.pressure_angle
+
+
 @dataclass(frozen=True)
-class ExternalTooth:
+class ExternalTooth(OnRack):
     """One tooth of an external gear cut by ``rack``: ``teeth`` z, profile ``shift`` x (in modules) and ``thinning``
     (mm: how much thinner than m (pi/2 + 2 x tan a) the tooth is on its reference circle; the backlash allowance).
 
@@ -84,14 +100,6 @@ class ExternalTooth:
     tip_radius_override: float | None = None
 
     # ------------------------------------------------------------------------------------------- closed forms
-
-    @property
-    def module(self) -> float:
-        return self.rack.module
-
-    @property
-    def pressure_angle(self) -> float:
-        return self.rack.pressure_angle
 
     @property
     def pitch_radius(self) -> float:
