@@ -288,8 +288,13 @@ def _print_text(r: dict[str, Any]) -> None:
         _print_general(r)
     if "contact_ratio" in r:
         _print_gears(r)
+    if "engagement_angle_deg" in r:
+        _print_ratchet(r)
     positions = r.get("positions")
-    if positions and "pinion_deg" in positions:
+    if positions and "lever_deg" in positions:
+        out(f"at lever {positions['lever_deg']:.4f} deg: wheel {positions['wheel_deg']:.4f} deg, "
+            f"{positions['teeth_passed']} teeth passed")
+    elif positions and "pinion_deg" in positions:
         where = (f"rack {positions['rack_mm']:.6f} mm, {positions['rack_speed_mm_s']:.6g} mm/s" if "rack_mm" in
                  positions else f"gear {positions['gear_deg']:.6f} deg, {positions['gear_speed_deg_s']:.6g} deg/s")
         out(f"at pinion {positions['pinion_deg']:.4f} deg ({positions['pinion_speed_deg_s']:.6g} deg/s): {where}")
@@ -329,6 +334,18 @@ def _print_gears(r: dict[str, Any]) -> None:
         out(f"  {name:<6} {g['teeth']} teeth, shift {g['shift']:g}: radii base {g['base_radius_mm']:.6g}, tip "
             f"{g['tip_radius_mm']:.6g}, root {g['root_radius_mm']:.6g} mm; tip thickness "
             f"{g['tip_thickness_mm']:.4g} mm{fewest}")
+
+
+def _print_ratchet(r: dict[str, Any]) -> None:
+    """A ratchet's holding check and its index per stroke."""
+    w, lever = r["wheel"], r["lever"]
+    click.echo(f"wheel {w['teeth']} teeth, pitch {w['pitch_deg']:.6g} deg, tip radius {w['tip_radius_mm']:.6g} mm, "
+               f"root {w['root_radius_mm']:.6g} mm, faces leaning {w['face_angle_deg']:g} deg")
+    click.echo(f"pawl holds: engagement angle {r['engagement_angle_deg']:.6g} deg >= friction angle "
+               f"{r['friction_angle_deg']:.6g} deg (margin {r['holding_margin_deg']:.4g})")
+    click.echo(f"lever swing {lever['swing_deg']:g} deg indexes {lever['teeth_per_stroke']} teeth "
+               f"({lever['index_deg']:.6g} deg) a stroke, {lever['lost_motion_deg']:.6g} deg lost; wheel "
+               f"{r['wheel_rpm']:.6g} rpm")
 
 
 def _print_circuits(r: dict[str, Any]) -> None:
