@@ -47,6 +47,8 @@ RULES: dict[str, dict[str, str]] = {
                              "[linkage.slider]) for the other pairs",
                   "linkage.backlash": "mm: play along the pitch circles, each gear's teeth thinned by half of it; "
                                       "about the kerf for a cut pair"},
+    "ratchet": {"linkage": "the pawl holds while face_angle + pawl.angle >= atan(friction), the friction angle; "
+                           "the lever indexes floor(swing / (360 / teeth)) teeth a stroke"},
     "linkage": {"linkage": "any planar linkage of one input: mobility 3 x moving links - 2 x pins = 1 (a pin "
                            "joining k links counts k - 1), solved a dyad at a time on the assembly the joints draw",
                 "linkage.input": "what drives the linkage: a link turning about a pivot (or a slider)"},
@@ -87,6 +89,13 @@ STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
                      "backlash": 0.15, "rpm": 60.0}),
         ("linkage.pinion", {"teeth": 12, "shift": 0.3}),
         ("linkage.gear", {"teeth": 30, "shift": 0.0}),
+        PARTS]),
+    "ratchet": ("A ratchet and pawl: a 24-tooth wheel held by a sprung pawl and indexed two teeth a stroke by a "
+                "lever with a pawl of its own.", [
+        ("linkage", {"type": "ratchet", "teeth": 24, "tip_diameter": 80.0, "depth": 6.0, "face_angle": 15.0,
+                     "friction": 0.15, "rpm": 30.0}),
+        ("linkage.pawl", {"length": 30.0, "angle": 0.0, "spring": 14.0}),
+        ("linkage.lever", {"swing": 40.0, "length": 80.0}),
         PARTS]),
 }
 
