@@ -35,11 +35,8 @@ if TYPE_CHECKING:
     from camgen.core.parts import Drawing
     from linkgen.spec import PartsTable
 
-#: the most teeth a gear or rack may have, and the fewest
-MAX_TEETH = 1000
-MIN_TEETH = 4
-#: the largest module (mm)
-MAX_MODULE = 100.0
+#: the fewest and the most teeth a gear may have, and the largest module (mm)
+MIN_TEETH, MAX_TEETH, MAX_MODULE = 4, 1000, 100.0
 #: a given centre distance may differ from the one the teeth mesh at by this much (mm)
 CENTRE_TOLERANCE_MM = 1e-3
 #: a contact ratio below this is warned of
