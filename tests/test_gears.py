@@ -219,6 +219,18 @@ def test_a_pair_rolled_two_pitches_keeps_its_backlash_and_never_overlaps(kind, z
     assert np.abs(gaps - normal).max() <= 2 * tol + 2 * flat, (gaps.min(), gaps.max(), normal)
 
 
+@pytest.mark.parametrize(("kind", "z1", "x1", "z2", "x2"), [("external", 12, 0.3, 30, 0.0),
+                                                      ("internal", 20, 0.0, 50, 0.5), ("rack", 18, 0.0, 0, 0.0)])
+def test_the_build_time_overlap_check_sees_teeth_too_thick_to_mesh(kind, z1, x1, z2, x2):
+    """The check :class:`GearPairMechanism` runs before it makes a pair: teeth thickened by a negative backlash of
+    0.05 mm (each 0.025 mm on its pitch circle) are found overlapping; thinned by 0.05 mm they never touch."""
+    from linkgen.mechanisms.gearparts import overlap
+
+    rack = BasicRack(2.0, math.radians(20))
+    assert overlap(GearPair(kind, rack, z1, x1, z2, x2, 0.05), travel=40.0) is None
+    assert overlap(GearPair(kind, rack, z1, x1, z2, x2, -0.05), travel=40.0) is not None
+
+
 # ------------------------------------------------------------------------------------------ contact ratio
 
 def _aw_50_digits(a: float, total: float, span: int) -> float:
@@ -325,6 +337,8 @@ RACK = "[linkage.slider]\ntravel = 40.0"
                                                        "54.000000 mm (got 55)"),
     ("external", GEAR + "\n" + RACK, [], "linkage.slider: only a rack rides on a slider"),
     ("internal", "[linkage.gear]\nteeth = 16", [], "linkage.gear.teeth: an internal gear needs more teeth"),
+    ("internal", "[linkage.gear]\nteeth = 22\nshift = 0.8", ["linkage.pinion.teeth=16", "linkage.pinion.shift=0.2"],
+     "linkage.gear.shift: the internal gear's tooth spaces close before its root circle"),
     ("external", GEAR, ["linkage.pinion.teeth=6", "linkage.pinion.shift=0.8"], "linkage.pinion.shift: the teeth "
                                                                               "come to a point"),
     ("external", GEAR, ["linkage.backlash=2"], "linkage.backlash: must be > 0 and <= 0.785398 mm"),

@@ -207,6 +207,9 @@ def check(table: GearPairTable) -> None:
         if not p.ring_tip_radius > g.base_radius:
             raise ValueError(f"gear.shift: the internal gear's tips (radius {p.ring_tip_radius:.6g} mm) lie inside "
                              f"its base circle ({g.base_radius:.6g} mm), where no involute is; raise its shift")
+        if not g.tip_thickness > 0:
+            raise ValueError(f"gear.shift: the internal gear's tooth spaces close before its root circle (their "
+                             f"width there {g.tip_thickness:.4g} mm); lower its shift (got {g.shift:g})")
         if p.ring_interference < 0:
             raise ValueError(f"gear.teeth: the internal gear's tips reach {-p.ring_interference:.4g} mm past the "
                              "point where the line of action touches the pinion's base circle (involute "
