@@ -365,8 +365,19 @@ def _print_text(r: dict[str, Any]) -> None:
             f"({100 * s['error_ratio']:.3f} %), input {s['input_from_deg']:.2f} to {s['input_to_deg']:.2f} deg")
     if "solve_order" in r:
         _print_general(r)
+    if "contact_ratio" in r:
+        _print_gears(r)
+    if "engagement_angle_deg" in r:
+        _print_ratchet(r)
     positions = r.get("positions")
-    if positions and "joints" in positions:
+    if positions and "lever_deg" in positions:
+        out(f"at lever {positions['lever_deg']:.4f} deg: wheel {positions['wheel_deg']:.4f} deg, "
+            f"{positions['teeth_passed']} teeth passed")
+    elif positions and "pinion_deg" in positions:
+        where = (f"rack {positions['rack_mm']:.6f} mm, {positions['rack_speed_mm_s']:.6g} mm/s" if "rack_mm" in
+                 positions else f"gear {positions['gear_deg']:.6f} deg, {positions['gear_speed_deg_s']:.6g} deg/s")
+        out(f"at pinion {positions['pinion_deg']:.4f} deg ({positions['pinion_speed_deg_s']:.6g} deg/s): {where}")
+    elif positions and "joints" in positions:
         for joint, p in positions["joints"].items():
             out(f"  {joint:>6}: x {p['x_mm']:12.6f} mm  y {p['y_mm']:12.6f} mm  "
                 f"|v| {math.hypot(*p['v_mm_s']):.6g} mm/s  |a| {math.hypot(*p['a_mm_s2']):.6g} mm/s^2")
@@ -389,6 +400,36 @@ def _print_text(r: dict[str, Any]) -> None:
         out(f"warning: {warning}")
     if "newton" in r:
         _print_newton(r["newton"], max(v for v in r["lengths_mm"].values() if isinstance(v, float)))
+
+
+def _print_gears(r: dict[str, Any]) -> None:
+    """A gear pair's working figures, and each member's circles, tip thickness and undercut limit."""
+    out = click.echo
+    out(f"{r['kind']} pair: centre distance {r['centre_distance_mm']:.6g} mm, working pressure angle "
+        f"{r['working_pressure_angle_deg']:.6g} deg, contact ratio {r['contact_ratio']:.6g}, speed ratio "
+        f"{r['speed_ratio']:.6g}, backlash {r['backlash_mm']:.4g} mm ({r['normal_backlash_mm']:.4g} mm normal)")
+    for name, g in r["gears"].items():
+        if "base_radius_mm" not in g:
+            out(f"  {name:<6} {g['teeth']} teeth, {g['length_mm']:.6g} mm long, teeth thinned by "
+                f"{g['thinning_mm']:.4g} mm")
+            continue
+        fewest = (f", fewest teeth without undercut {g['fewest_teeth_without_undercut']:.4g}"
+                  if "fewest_teeth_without_undercut" in g else "")
+        out(f"  {name:<6} {g['teeth']} teeth, shift {g['shift']:g}: radii base {g['base_radius_mm']:.6g}, tip "
+            f"{g['tip_radius_mm']:.6g}, root {g['root_radius_mm']:.6g} mm; tip thickness "
+            f"{g['tip_thickness_mm']:.4g} mm{fewest}")
+
+
+def _print_ratchet(r: dict[str, Any]) -> None:
+    """A ratchet's holding check and its index per stroke."""
+    w, lever = r["wheel"], r["lever"]
+    click.echo(f"wheel {w['teeth']} teeth, pitch {w['pitch_deg']:.6g} deg, tip radius {w['tip_radius_mm']:.6g} mm, "
+               f"root {w['root_radius_mm']:.6g} mm, faces leaning {w['face_angle_deg']:g} deg")
+    click.echo(f"pawl holds: engagement angle {r['engagement_angle_deg']:.6g} deg >= friction angle "
+               f"{r['friction_angle_deg']:.6g} deg (margin {r['holding_margin_deg']:.4g})")
+    click.echo(f"lever swing {lever['swing_deg']:g} deg indexes {lever['teeth_per_stroke']} teeth "
+               f"({lever['index_deg']:.6g} deg) a stroke, {lever['lost_motion_deg']:.6g} deg lost; wheel "
+               f"{r['wheel_rpm']:.6g} rpm")
 
 
 def _print_circuits(r: dict[str, Any]) -> None:

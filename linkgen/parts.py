@@ -99,7 +99,8 @@ class Layout:
     ``parts``: the parts, the ground first; ``sweep``: their placement over the motion (collisions
     are checked there); ``positions``: the dead centres drawn in the assembly, (kind, input angle
     rad); ``poses``: the placement at each of them (one pose each); ``paths``: the points (n, 2) mm
-    of each path drawn with them (a coupler point's, a slider's).
+    of each path drawn with them (a coupler point's, a slider's); ``layers``: each part's layer where
+    the mechanism knows its stack (gears that mesh share a layer), else None for :func:`layer_order`'s.
     """
 
     parts: tuple[LinkPart, ...]
@@ -107,6 +108,7 @@ class Layout:
     positions: tuple[tuple[str, float], ...]
     poses: tuple[Placement, ...]
     paths: tuple[np.ndarray, ...]
+    layers: dict[str, int] | None = None
 
 
 #: partial layer assignments the layer search may try before it gives up
@@ -381,8 +383,11 @@ def build_parts(layout: Layout, table: PartsTable, elephant_foot: float = 0.0) -
     """Layers, cut and printed parts, cut sheet and assembly drawing of a mechanism's ``layout``, for its
     ``[parts]`` table; the printed parts' bed faces chamfered by ``elephant_foot`` mm (``output.elephant_foot``)."""
     allowances = Allowances(kerf=table.kerf, clearance=0.0, kerf_field="parts.kerf", elephant_foot=elephant_foot)
-    layers, top_pins = layer_order(layout.parts, layout.sweep, table.pin_diameter / 2)
-    layout, layers = with_top_plate(layout, layers, top_pins, table.width_of("ground"))
+    if layout.layers is not None:
+        layers = dict(layout.layers)
+    else:
+        layers, top_pins = layer_order(layout.parts, layout.sweep, table.pin_diameter / 2)
+        layout, layers = with_top_plate(layout, layers, top_pins, table.width_of("ground"))
     cut = tuple(allowances.cut(p) for p in layout.parts)
     printed = tuple(allowances.printed(p) for p in layout.parts)
     nested = nest(cut, SheetRules.of(table, table.kerf, "parts.sheet"))

@@ -4,7 +4,9 @@ analysed: its parts cannot be stacked), every key commented from the template's 
 input turn fully, its proportions), naming only keys that type takes; each analyses and builds as it is."""
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, get_args
+
+from pydantic import BaseModel
 
 from camgen.core.options import choose
 from camgen.core.starter import render
@@ -39,6 +41,14 @@ RULES: dict[str, dict[str, str]] = {
     "crank-shaper": {"linkage": "ground > crank: the lever swings 2 asin(crank / ground) and the time ratio is "
                                 "(180 + that) / (180 - that); lever reaches the ram line"},
     **{kind: {"linkage": f"its canonical proportions in units of size: {rule}"} for kind, rule in _STRAIGHT.items()},
+    "gear-pair": {"linkage": "involute spur gears of one module and pressure angle mesh; fewest teeth without "
+                             "undercut 2 (1 - shift) / sin^2(pressure_angle) (17 at 20 degrees, no shift); shifted "
+                             "pairs mesh at their working centre distance; kind = \"internal\" or \"rack\" (with "
+                             "[linkage.slider]) for the other pairs",
+                  "linkage.backlash": "mm: play along the pitch circles, each gear's teeth thinned by half of it; "
+                                      "about the kerf for a cut pair"},
+    "ratchet": {"linkage": "the pawl holds while face_angle + pawl.angle >= atan(friction), the friction angle; "
+                           "the lever indexes floor(swing / (360 / teeth)) teeth a stroke"},
     "linkage": {"linkage": "any planar linkage of one input: mobility 3 x moving links - 2 x pins = 1 (a pin "
                            "joining k links counts k - 1), solved a dyad at a time on the assembly the joints draw",
                 "linkage.input": "what drives the linkage: a link turning about a pivot (or a slider)"},
@@ -73,7 +83,32 @@ STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
                             "P": [34.685, 93.959]}),
         ("linkage.links", {"crank": ["O", "A"], "coupler": ["A", "B", "P"], "rocker": ["Q", "B"]}),
         PARTS]),
+    "gear-pair": ("An external pair of involute spur gears: a 12-tooth pinion, shifted clear of undercut, drives a "
+                  "30-tooth gear.", [
+        ("linkage", {"type": "gear-pair", "kind": "external", "module": 2.0, "pressure_angle": 20.0,
+                     "backlash": 0.15, "rpm": 60.0}),
+        ("linkage.pinion", {"teeth": 12, "shift": 0.3}),
+        ("linkage.gear", {"teeth": 30, "shift": 0.0}),
+        PARTS]),
+    "ratchet": ("A ratchet and pawl: a 24-tooth wheel held by a sprung pawl and indexed two teeth a stroke by a "
+                "lever with a pawl of its own.", [
+        ("linkage", {"type": "ratchet", "teeth": 24, "tip_diameter": 80.0, "depth": 6.0, "face_angle": 15.0,
+                     "friction": 0.15, "rpm": 30.0}),
+        ("linkage.pawl", {"length": 30.0, "angle": 0.0, "spring": 14.0}),
+        ("linkage.lever", {"swing": 40.0, "length": 80.0}),
+        PARTS]),
 }
+
+
+def _sub_model(model: type[BaseModel], table: str) -> type[BaseModel] | None:
+    """The model of ``linkage.KEY``'s table (``KEY`` a field of ``model`` holding a model, or an optional one), or
+    None."""
+    head, _, key = table.partition(".")
+    info = model.model_fields.get(key) if head == "linkage" else None
+    for kind in (info.annotation, *get_args(info.annotation)) if info is not None else ():
+        if isinstance(kind, type) and issubclass(kind, BaseModel):
+            return kind
+    return None
 
 
 def starter(kind: str, name: str) -> str:
@@ -85,5 +120,6 @@ def starter(kind: str, name: str) -> str:
     header = (f"{what}\nAnalyse it with:  linkgen analyze {name}.toml   (files land in out/{name}/){build}\n"
               "Every key is explained in the documentation's template reference; --set KEY=VALUE changes one for a "
               "run.")
-    models = {"linkage": MECHANISMS[kind].table, "parts": PartsTable}
+    models = {"linkage": MECHANISMS[kind].table, "parts": PartsTable,
+              **{table: model for table, _ in tables if (model := _sub_model(MECHANISMS[kind].table, table))}}
     return render(header, [("", {"name": name}), *tables], models, {**NOTES, **RULES[kind]})

@@ -32,6 +32,9 @@ EXAMPLES = {
                 "joints": {"O2": [0.0, 0.0], "O4": [180.0, 0.0], "A": [40.0, 69.2820323], "B": [240.0, 130.0],
                            "P": [150.0, 150.0]},
                 "links": {"crank": ["O2", "A"], "coupler": ["A", "B", "P"], "rocker": ["O4", "B"]}},
+    "gear-pair": {"module": 2.0, "pinion": {"teeth": 14, "shift": 0.2}, "gear": {"teeth": 25}},
+    "ratchet": {"teeth": 20, "tip_diameter": 80.0, "depth": 6.0, "pawl": {"length": 30.0},
+                "lever": {"swing": 72.0, "length": 80.0}},
 }
 #: the types whose mechanism makes parts (all but Whitworth, whose crank sweeps over its slotted link's pivot)
 WITH_PARTS = set(EXAMPLES) - {"whitworth"}
@@ -44,7 +47,7 @@ def _raw(kind: str, **more: Any) -> dict[str, Any]:
 
 def test_the_registry_lists_every_type_once_in_module_order():
     assert list(MECHANISMS) == ["four-bar", "slider-crank", "scotch-yoke", "whitworth", "crank-shaper", "chebyshev",
-                                "hoekens", "roberts", "watt", "linkage"]
+                                "hoekens", "roberts", "watt", "linkage", "gear-pair", "ratchet"]
     assert set(EXAMPLES) == set(MECHANISMS)
     assert [m for module in MODULES for m in module.REGISTER] == list(dict.fromkeys(MECHANISMS.values()))
     for kind, mechanism in MECHANISMS.items():

@@ -1,0 +1,256 @@
+"""A gear pair's parts and drawings, and the check that its outlines never overlap as it turns.
+
+Parts (all in the gears' plane on one layer, their pins from the base plate below): an external pair is the base
+plate with both pivots, the pinion and the gear; a rack pair the base plate with the pinion's pivot and the guide slot
+the rack's two pins run in (its travel), the pinion and the rack; an internal pair the base plate with the ring's
+pivot, the ring's web (a disc on that pivot, layer 1), the ring (its toothed rim, layer 2, bolted to the web by three
+pins on the rim's mid circle) with the pinion inside it on the same layer, and a top plate above them (layer 3, posts
+to the base plate are the kit's) holding the pinion's pivot, which cannot pass the web. Each gear's hole is the
+linkage's pin hole (pin + clearance), with an optional printed hub boss and set screw.
+
+Frames: each gear's own frame has its centre at the origin and tooth 0 on +X (:mod:`linkgen.gears.outline`); the
+rack's its datum line's middle, teeth up. Placed as :class:`linkgen.gears.pair.GearPair` places them.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from camgen.core.errors import DesignError
+from camgen.core.parts import Drawing, preview_stroke
+from camgen.core.shapes import Circle, Contour, Polyline, rounded_hull
+from linkgen.gears.outline import gear_outline, rack_outline, ring_outline
+from linkgen.gears.pair import GearPair
+from linkgen.gears.tooth import DEDENDUM
+from linkgen.mechanisms.shaped import Pieces, ShapedPart
+from linkgen.parts import Layout, LinkPart, Placement, Stock
+
+#: the resolution of the overlap check, in modules: the outlines' tolerance and the step of the tips along their path
+CHECK_RESOLUTION = 2e-3
+#: how many bolts hold an internal gear's ring to its web
+RING_BOLTS = 3
+#: poses of the parts' sweep over one pitch of the pinion (a kit's bolt heads are kept clear of it)
+SWEEP_POSES = 13
+
+
+@dataclass(frozen=True)
+class Outlines:
+    """The pair's outlines in their own frames at one tolerance: the pinion, the other member (an external gear, an
+    internal gear's toothed hole, a rack), and a rack's length (mm) and teeth."""
+
+    pinion: Pieces
+    other: Pieces
+    rack_teeth: int = 0
+
+
+def rack_teeth(pair: GearPair, travel: float) -> int:
+    """The teeth (an even number) a rack needs to stay in mesh over ``travel`` mm: the travel and the stretch of its
+    tip line inside the pinion's tip circle, and a tooth more at each end."""
+    p = pair.pinion_tooth
+    inside = p.tip_radius**2 - (pair.centre_distance - pair.module) ** 2
+    span = travel + 2 * math.sqrt(max(inside, 0.0))
+    teeth = math.ceil(span / (math.pi * pair.module)) + 2
+    return teeth + teeth % 2
+
+
+def outlines(pair: GearPair, tolerance: float, travel: float = 0.0, back: float = 0.0) -> Outlines:
+    """Both members' outlines within ``tolerance`` mm (a rack's for ``travel`` mm, on a back ``back`` mm deep below
+    its root line, one module if 0)."""
+    pinion = gear_outline(pair.pinion_tooth, tolerance)
+    gear = pair.gear_tooth
+    if pair.kind == "rack":
+        teeth = rack_teeth(pair, travel)
+        return Outlines(pinion, rack_outline(pair.rack, teeth, pair.rack_thinning, back or pair.module), teeth)
+    assert gear is not None
+    if pair.kind == "external":
+        return Outlines(pinion, gear_outline(gear, tolerance))
+    return Outlines(pinion, ring_outline(gear, pair.ring_tip_radius, tolerance))
+
+
+def _flat(pieces: Pieces, tolerance: float) -> np.ndarray:
+    return Contour(*pieces).flatten(tolerance)
+
+
+def overlap(pair: GearPair, travel: float = 0.0) -> float | None:
+    """The first pinion angle (rad) over one pinion pitch from its mesh phase at which a vertex of one member's
+    outline (flattened within :data:`CHECK_RESOLUTION` modules) lies inside the other's, the pinion stepping so that
+    its tips move that much a step; None where they never do. One pitch is every relative position of the teeth."""
+    import shapely
+
+    res = CHECK_RESOLUTION * pair.module
+    shapes = outlines(pair, res, travel)
+    p_pts, o_pts = _flat(shapes.pinion, res), _flat(shapes.other, res)
+    pinion_poly = shapely.Polygon(p_pts)
+    if pair.kind == "internal":
+        g = pair.gear_tooth
+        assert g is not None
+        rim = Circle((0.0, 0.0), g.tip_radius + 2 * pair.module).flatten(res)
+        other_poly = shapely.Polygon(rim, [o_pts])
+    else:
+        other_poly = shapely.Polygon(o_pts)
+    shapely.prepare(pinion_poly)
+    shapely.prepare(other_poly)
+    first, _ = pair.mesh_phases
+    pitch = 2 * math.pi / pair.pinion_teeth
+    steps = math.ceil(pitch * pair.pinion_tooth.tip_radius / res)
+    theta = first + pitch * np.arange(steps + 1) / steps
+    where = pair.gear_angle(theta)
+    reach = pair.pinion_tooth.tip_radius + res
+    for k in range(len(theta)):
+        turn, centre = _other_pose(pair, float(where[k]))
+        # the other member's vertices in the pinion's frame, and the pinion's in the other's
+        o_world = _turn(o_pts, turn) + centre
+        o_in_p = _turn(o_world, -theta[k])
+        near = np.hypot(o_in_p[:, 0], o_in_p[:, 1]) <= reach
+        p_in_o = _turn(_turn(p_pts, theta[k]) - centre, -turn)
+        if shapely.contains_xy(pinion_poly, o_in_p[near, 0], o_in_p[near, 1]).any() or \
+                shapely.contains_xy(other_poly, p_in_o[:, 0], p_in_o[:, 1]).any():
+            return float(theta[k])
+    return None
+
+
+def _turn(points: np.ndarray, angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return points @ np.array([[c, s], [-s, c]])
+
+
+def _other_pose(pair: GearPair, position: float) -> tuple[float, np.ndarray]:
+    """The other member's angle (rad) and origin (mm) at ``position`` (its angle, or a rack's shift)."""
+    if pair.kind == "rack":
+        return 0.0, np.array([position, -pair.centre_distance])
+    return position, np.array([pair.centre_distance, 0.0])
+
+
+def placement(pair: GearPair, theta: np.ndarray, fixed: tuple[str, ...], others: tuple[str, ...],
+              extras: dict[str, np.ndarray]) -> Placement:
+    """Where the parts sit at pinion angles ``theta`` (rad): the ``fixed`` ones (the ground, a top plate) still, the
+    pinion turned, the ``others`` (the other member; an internal gear's ring and its web together) turned or shifted;
+    the joints at the pivots, and at the ring's bolts or the rack's pins (``extras``: each such joint's point in the
+    other member's frame)."""
+    n = len(theta)
+    zero, origin = np.zeros(n), np.zeros((n, 2))
+    position = pair.gear_angle(theta)
+    if pair.kind == "rack":
+        turn, centres = zero, np.column_stack([position, np.full(n, -pair.centre_distance)])
+    else:
+        turn, centres = position, np.tile([pair.centre_distance, 0.0], (n, 1))
+    angles = {**{name: zero for name in fixed}, "pinion": theta, **{name: turn for name in others}}
+    origins = {**{name: origin for name in fixed}, "pinion": origin, **{name: centres for name in others}}
+    c, s = np.cos(turn), np.sin(turn)
+    moved = {j: centres + np.column_stack([c * x - s * y, s * x + c * y]) for j, (x, y) in extras.items()}
+    joints: dict[str, tuple[tuple[str, str], np.ndarray]] = {"O1": ((fixed[-1], "pinion"), origin)}
+    if pair.kind == "rack":
+        joints.update({j: (("ground", others[0]), where) for j, where in moved.items()})
+    else:
+        joints["O2"] = (("ground", others[0]), centres.copy())
+        joints.update({j: ((others[0], others[-1]), where) for j, where in moved.items()})
+    return Placement(angles, origins, joints)
+
+
+def pair_layout(pair: GearPair, stock: Stock, width: float, travel: float,
+                hubs: dict[str, tuple[tuple[float, float] | None, float]]) -> Layout:
+    """The parts of ``pair`` (see the module's notes) for a stock whose bars are ``width`` mm wide, a rack's
+    ``travel`` (mm), and each gear's hub (``hubs[name]``: the boss (diameter, height; mm) or None, and the set
+    screw's diameter, mm)."""
+    shapes = outlines(pair, stock.tolerance, travel, width)
+    half, c = width / 2, pair.centre_distance
+    for name, tooth in (("pinion", pair.pinion_tooth), ("gear", pair.gear_tooth)):
+        if tooth is not None and not (pair.kind == "internal" and name == "gear") and \
+                stock.hole / 2 + 1.0 > tooth.root_radius:
+            raise DesignError(f"parts.pin_diameter: the {name}'s hole ({stock.hole:g} mm: pin + clearance) leaves "
+                              f"less than 1 mm inside its root circle ({2 * tooth.root_radius:.4g} mm across)")
+    pinion = ShapedPart("pinion", np.zeros((1, 2)), half, stock, shape=shapes.pinion, boss=hubs["pinion"][0],
+                        set_screw=hubs["pinion"][1])
+    extras: dict[str, np.ndarray] = {}
+    positions: list[tuple[str, float]] = [("mesh", pair.mesh_phases[0])]
+    if pair.kind == "external":
+        ground = LinkPart("ground", np.array([[0.0, 0.0], [c, 0.0]]), half, stock, moving=False)
+        gear = ShapedPart("gear", np.zeros((1, 2)), half, stock, shape=shapes.other, boss=hubs["gear"][0],
+                          set_screw=hubs["gear"][1])
+        parts: tuple[LinkPart, ...] = (ground, pinion, gear)
+        layers = {"ground": 0, "pinion": 1, "gear": 1}
+    elif pair.kind == "rack":
+        length = shapes.rack_teeth * math.pi * pair.module
+        pin_y = -DEDENDUM * pair.module - half                # the pins on the middle of the rack's back
+        spread = length / 4
+        extras = {"R1": np.array([-spread, pin_y]), "R2": np.array([spread, pin_y])}
+        rack = ShapedPart("rack", np.array(list(extras.values())), half, stock, shape=shapes.other)
+        ends = (np.array([-spread - travel / 2, pin_y - c]), np.array([spread + travel / 2, pin_y - c]))
+        ground = LinkPart("ground", np.zeros((1, 2)), half, stock, slots=(ends,), moving=False,
+                          body=np.array([[0.0, 0.0], ends[0], ends[1]]))
+        parts = (ground, pinion, rack)
+        layers = {"ground": 0, "pinion": 1, "rack": 1}
+        r1 = pair.working_pitch_radii[0]
+        positions = [("travel-start", positions[0][1] - travel / (2 * r1)), positions[0],
+                     ("travel-end", positions[0][1] + travel / (2 * r1))]
+    else:
+        g = pair.gear_tooth
+        assert g is not None
+        outer = g.tip_radius + width
+        bolt = g.tip_radius + width / 2
+        if stock.hole / 2 >= width / 2 - 0.5:
+            raise DesignError(f"parts.width: the ring's rim ({width:g} mm) leaves under 0.5 mm round its bolt holes "
+                              f"({stock.hole:g} mm)")
+        extras = {f"B{k + 1}": bolt * np.array([math.cos(a), math.sin(a)])
+                  for k, a in enumerate(2 * math.pi * np.arange(RING_BOLTS) / RING_BOLTS)}
+        disc = rounded_hull(np.zeros((1, 2)), outer)
+        circle: Pieces = (disc.vertices, disc.bulges)
+        bolts = np.array(list(extras.values()))
+        web = ShapedPart("ring-web", np.vstack([[0.0, 0.0], bolts]), half, stock, shape=circle,
+                         boss=hubs["gear"][0], set_screw=hubs["gear"][1])
+        ring = ShapedPart("ring", bolts, half, stock, shape=circle, windows=(shapes.other,))
+        ground = LinkPart("ground", np.array([[c, 0.0]]), half, stock, moving=False)
+        top = LinkPart("ground-top", np.zeros((1, 2)), half, stock, moving=False, body=np.array([[0.0, 0.0], [c, 0.0]]))
+        parts = (ground, top, pinion, web, ring)
+        layers = {"ground": 0, "ring-web": 1, "ring": 2, "pinion": 2, "ground-top": 3}
+    fixed = tuple(p.name for p in parts if not p.moving)
+    others = tuple(p.name for p in parts if p.moving and p.name != "pinion")
+    theta = positions[0][1] + 2 * math.pi / pair.pinion_teeth * np.arange(SWEEP_POSES) / (SWEEP_POSES - 1)
+    if pair.kind == "rack":
+        first, last = positions[0][1], positions[-1][1]
+        theta = np.linspace(first, last, SWEEP_POSES)
+    sweep = placement(pair, theta, fixed, others, extras)
+    poses = tuple(placement(pair, np.array([t]), fixed, others, extras) for _, t in positions)
+    return Layout(parts, sweep, tuple(positions), poses, (), layers)
+
+
+def pair_drawing(pair: GearPair, shapes: Outlines, theta: float) -> Drawing:
+    """The pair at pinion angle ``theta`` (rad): both outlines, their base and working pitch circles, and the line of
+    action through the pitch point (to its ends on the base circles' tangents)."""
+    turn, centre = _other_pose(pair, float(pair.gear_angle(np.array([theta]))[0]))
+    items: list = [("pinion", Contour(*shapes.pinion).moved(theta, np.zeros(2)))]
+    other = Contour(*shapes.other).moved(turn, centre)
+    name = {"external": "gear", "internal": "ring", "rack": "rack"}[pair.kind]
+    items.append((name, other))
+    p, g = pair.pinion_tooth, pair.gear_tooth
+    r1, r2 = pair.working_pitch_radii
+    items += [("base circles", Circle((0.0, 0.0), p.base_radius)), ("pitch circles", Circle((0.0, 0.0), r1))]
+    if g is not None:
+        items += [("base circles", Circle((centre[0], centre[1]), g.base_radius)),
+                  ("pitch circles", Circle((centre[0], centre[1]), r2))]
+    line = _line_of_action(pair)
+    items.append(("line of action", Polyline(line, np.zeros(1))))
+    return Drawing(tuple(items), pair.module * CHECK_RESOLUTION * 10, stroke=preview_stroke(items))
+
+
+def _line_of_action(pair: GearPair) -> np.ndarray:
+    """The line of action (2, 2) mm for the pinion driving counter-clockwise: from its tangent point on the other
+    member's base circle (a rack's: as far beyond the pitch point as the pinion's is before it) to the pinion's (an
+    internal pair's: on through the pitch point, which lies beyond it)."""
+    aw = pair.working_pressure_angle
+    rb1, c = pair.pinion_tooth.base_radius, pair.centre_distance
+    g = pair.gear_tooth
+    if pair.kind == "rack":
+        t1 = rb1 * np.array([-math.sin(aw), -math.cos(aw)])
+        pitch_point = np.array([0.0, -pair.working_pitch_radii[0]])
+        return np.array([2 * pitch_point - t1, t1])
+    assert g is not None
+    if pair.kind == "external":
+        t1 = rb1 * np.array([math.cos(aw), -math.sin(aw)])
+        return np.array([np.array([c, 0.0]) + g.base_radius * np.array([-math.cos(aw), math.sin(aw)]), t1])
+    t2 = np.array([c, 0.0]) + g.base_radius * np.array([-math.cos(aw), math.sin(aw)])
+    pitch_point = np.array([-pair.working_pitch_radii[0], 0.0])
+    t1 = rb1 * np.array([-math.cos(aw), math.sin(aw)])
+    return np.array([t2, 2 * pitch_point - t1])
