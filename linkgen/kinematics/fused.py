@@ -1,0 +1,426 @@
+"""Fused kernels of the general solver: a crank followed by RRR dyads, in complex numbers, chunk by chunk.
+
+The general solve (:func:`linkgen.kinematics.linkage._solve`) places every body step by step with a
+dozen named intermediate arrays per dyad over all poses at once. For the linkages most users draw
+(one crank on the ground or on another link, then RRR dyads: Jansen's and Klann's legs, Watt's and
+Stephenson's six-bars) this module does the same work with
+
+* the solve order planned once (:func:`program`, cached on the linkage): each step's drawn points,
+  radii and the complex factors that turn a drawn vector into a body's rotation, as numbers;
+* every pose a complex number: a body's rotation ``q = cos(phi) + i sin(phi)`` and translation
+  ``T`` (mm), so ``world(x) = q x + T`` is one multiply and one add, and a point (n, 2) is the float
+  view of a complex (n,) array (no copy);
+* the poses cut into chunks of :data:`CHUNK` that stay in the processor's cache, each result
+  written in place into its slice of the full outputs, so a long run holds only the outputs and one
+  chunk's temporaries.
+
+Signs and frames are :mod:`linkgen.kinematics.linkage`'s: an RRR's joint lies to the left of
+pin 1 -> pin 2 for sign +1; velocities per unit input speed, accelerations at constant input speed.
+The closed form is the same construction (Kahan's stable triangle area, the joint from the pins'
+frame), so the results equal the general solve's to rounding. A linkage of any other dyad (RRP, RPR,
+PRP, RPP), a fixed step, several inputs or a slide input has no program and is solved by the general
+path; so is a solve where a deltoid's equal-radius pins meet (:data:`~linkgen.kinematics.linkage.FOLD_REACH`),
+whose joint is placed by the motion's limit there.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from linkgen.kinematics.structure import GROUND, DyadStep, InputStep, Pin, Structure
+
+#: poses per chunk: a complex array of this many is 128 KiB, so a dyad's temporaries fit a core's cache
+CHUNK = 8192
+
+
+#: a point of a body over the poses: its body (None: the ground) and its drawn name
+Key = tuple[str | None, str]
+
+
+@dataclass(frozen=True)
+class Frame:
+    """How a body's drawn points reach the world: ``world(x) = P + a * (f * (x - pd))`` with ``P`` the world
+    position of its anchor (the pin it turns about, drawn at ``pd``) and ``a`` (n,) complex the world image of the
+    drawn vector 1 / f; so its rotation is ``q = a f``. ``f`` and ``pd`` are numbers, fixed by the solve order."""
+
+    pd: complex
+    f: complex
+
+    def factor(self, xd: complex) -> complex:
+        """The number k with world(x) = P + a k."""
+        return self.f * (xd - self.pd)
+
+
+@dataclass(frozen=True)
+class CrankOp:
+    """Turn ``body`` about drawn point ``pivot`` held by ``ref`` (None: the ground) by input ``index`` from its
+    drawn value ``drawn`` (rad)."""
+
+    body: str
+    ref: str | None
+    pivot: str
+    index: int
+    drawn: float
+
+
+@dataclass(frozen=True)
+class RRROp:
+    """An RRR dyad of step ``step``: bodies ``bodies`` pinned at drawn points ``pins`` to known ``refs`` (None: the
+    ground), meeting at ``joint``; radii ``r1``, ``r2`` (mm). ``deltoid`` when the radii are equal (within
+    ``fold_reach``, mm): its pins may meet."""
+
+    step: int
+    bodies: tuple[str, str]
+    refs: tuple[str | None, str | None]
+    pins: tuple[str, str]
+    joint: str
+    r1: float
+    r2: float
+    deltoid: bool
+    fold_reach: float
+
+    def area4(self, c: np.ndarray) -> np.ndarray:
+        """Four times the area of the triangles of sides r1, r2 and the pins' distance c, signed as
+        :func:`linkgen.kinematics.dyads.area4` (negative beyond reach): the product of its four factors, each
+        grouped as in Kahan's stable Heron (the difference that vanishes at a toggle taken exactly)."""
+        big, small = max(self.r1, self.r2), min(self.r1, self.r2)
+        prod = c + (big + small)
+        t = c - big                     # exact near the outer toggle (Sterbenz)
+        np.subtract(small, t, out=t)    # r1 + r2 - c
+        prod *= t
+        if big <= 2.0 * small:          # big - small exact: c - (big - small) vanishes exactly at the inner toggle
+            np.subtract(c, big - small, out=t)
+        else:                           # there big - c is exact instead
+            np.subtract(big, c, out=t)
+            np.subtract(small, t, out=t)
+        prod *= t
+        np.add(c, big - small, out=t)
+        prod *= t
+        return np.copysign(np.sqrt(np.abs(prod)), prod)
+
+
+@dataclass(frozen=True)
+class Program:
+    """The planned solve: its operations in order; each placed body's :class:`Frame`; each point's holder (the
+    first placed body that holds it, None: the ground) and drawn position (complex, mm)."""
+
+    ops: tuple[CrankOp | RRROp, ...]
+    frames: dict[str, Frame]
+    points: tuple[tuple[str, str | None, complex], ...]
+    drawn: dict[str, complex]
+
+    @property
+    def bodies(self) -> tuple[str, ...]:
+        """The moving bodies in the order they are placed."""
+        return tuple(self.frames)
+
+
+def _c(s: Structure, name: str) -> complex:
+    x, y = s.points[name]
+    return complex(float(x), float(y))
+
+
+def program(s: Structure, steps: tuple[object, ...], drawn: tuple[float, ...], fold_reach: float) -> Program | None:
+    """The fused program of a solve order (``drawn`` each input's drawn value, rad; ``fold_reach`` relative to the
+    drawing's size), or None where it has a step the kernels do not cover (anything but one crank input and RRR
+    dyads)."""
+    if len(s.inputs) != 1 or s.inputs[0].kind != "crank":
+        return None
+    ops: list[CrankOp | RRROp] = []
+    frames: dict[str, Frame] = {}
+    for index, step in enumerate(steps):
+        if isinstance(step, InputStep):
+            inp = s.inputs[step.index]
+            ref = None if inp.relative_to == GROUND else inp.relative_to
+            ops.append(CrankOp(step.body, ref, inp.pivot, step.index, drawn[step.index]))
+            frames[step.body] = Frame(_c(s, inp.pivot), 1.0 + 0j if ref is None else frames[ref].f)
+        elif isinstance(step, DyadStep) and step.kind == "RRR":
+            a1, a2 = step.attachments
+            if not (isinstance(a1, Pin) and isinstance(a2, Pin)):
+                return None
+            jd = _c(s, step.joint)
+            v1, v2 = jd - _c(s, a1.point), jd - _c(s, a2.point)
+            r1, r2 = abs(v1), abs(v2)
+            refs = (None if a1.body == GROUND else a1.body, None if a2.body == GROUND else a2.body)
+            ops.append(RRROp(index, step.bodies, refs, (a1.point, a2.point), step.joint, r1, r2,
+                             abs(r1 - r2) <= fold_reach * s.size, fold_reach * s.size))
+            # the drawn vector pin -> joint turns onto the world one a: q = a conj(v) / |v|^2
+            frames[step.bodies[0]] = Frame(_c(s, a1.point), v1.conjugate() / (r1 * r1))
+            frames[step.bodies[1]] = Frame(_c(s, a2.point), v2.conjugate() / (r2 * r2))
+        else:
+            return None
+    points = []
+    for name in s.points:
+        holder = next((b for b in s.holders(name) if b == GROUND or b in frames), None)
+        if holder is not None:
+            points.append((name, None if holder == GROUND else holder, _c(s, name)))
+    return Program(tuple(ops), frames, tuple(points), {name: _c(s, name) for name in s.points})
+
+
+@dataclass
+class Outputs:
+    """The full-length results the chunks write into: complex points (and velocities, accelerations), complex
+    rotations, angular rates, each dyad's margin, transmission angle, slack and spread, and ``ok``."""
+
+    points: dict[str, np.ndarray]
+    velocities: dict[str, np.ndarray]
+    accelerations: dict[str, np.ndarray]
+    rotations: dict[str, np.ndarray]
+    omegas: dict[str, np.ndarray]
+    alphas: dict[str, np.ndarray]
+    margins: list[np.ndarray]
+    transmissions: list[np.ndarray]
+    slacks: list[np.ndarray]
+    spreads: list[np.ndarray]
+    ok: np.ndarray
+
+
+def allocate(prog: Program, n: int, derivatives: bool, extras: bool) -> Outputs:
+    """Empty outputs for n poses (moving points only: a ground point is a constant); ``extras`` the rotations, the
+    bodies' rates and the dyads' results besides the points."""
+    moving = [name for name, holder, _ in prog.points if holder is not None]
+    dyads = sum(isinstance(op, RRROp) for op in prog.ops) if extras else 0
+    rates = derivatives and extras
+
+    def cplx(names: list[str] | tuple[str, ...], want: bool = True) -> dict[str, np.ndarray]:
+        return {k: np.empty(n, dtype=complex) for k in names} if want else {}
+
+    def real(count: int) -> list[np.ndarray]:
+        return [np.empty(n) for _ in range(count)]
+
+    return Outputs(cplx(moving), cplx(moving, derivatives), cplx(moving, derivatives), cplx(prog.bodies, extras),
+                   {b: np.empty(n) for b in prog.bodies} if rates else {},
+                   {b: np.empty(n) for b in prog.bodies} if rates else {},
+                   real(dyads), real(dyads), real(dyads), real(dyads if derivatives else 0), np.ones(n, dtype=bool))
+
+
+class Folded(Exception):
+    """A deltoid's equal-radius pins meet in this solve: the general path places its joint by the motion."""
+
+
+def run(prog: Program, x: np.ndarray, rates: np.ndarray, signs: list[np.ndarray] | list[float], derivatives: bool,
+        extras: bool, feasibility_tol: float) -> Outputs:
+    """Every chunk of the poses ``x`` (k, n) through the program (``signs`` each step's branch, a number or one a
+    pose); raises :class:`Folded` where the general path must place a deltoid."""
+    n = x.shape[1]
+    out = allocate(prog, n, derivatives, extras)
+    rows = [g if np.ndim(g) == 0 else np.broadcast_to(np.asarray(g, dtype=float), (n,)) for g in signs]
+    for start in range(0, n, CHUNK):
+        _Chunk(prog, slice(start, min(n, start + CHUNK)), rates, derivatives, extras, out).run(
+            x, rows, feasibility_tol)
+    return out
+
+
+class _Chunk:
+    """One chunk of poses through the program: each placed body's anchor P and vector a (and, with derivatives,
+    its angular velocity w and acceleration al and its anchor's velocity vP and acceleration aP), the ground's as
+    numbers; points computed once."""
+
+    def __init__(self, prog: Program, sl: slice, rates: np.ndarray, derivatives: bool, extras: bool,
+                 out: Outputs) -> None:
+        self.prog, self.sl, self.rates, self.derivatives, self.extras, self.out = (prog, sl, rates, derivatives,
+                                                                                  extras, out)
+        self.m = sl.stop - sl.start
+        self.P: dict[str, np.ndarray | complex] = {}
+        self.a: dict[str, np.ndarray] = {}
+        self.w: dict[str, np.ndarray] = {}
+        self.al: dict[str, np.ndarray] = {}
+        self.vP: dict[str, np.ndarray] = {}
+        self.aP: dict[str, np.ndarray] = {}
+        self.known: dict[Key, np.ndarray | complex] = {}
+
+    def point(self, body: str | None, name: str) -> np.ndarray | complex:
+        """World position of drawn point ``name`` on ``body`` (a number on the ground)."""
+        key = (body, name)
+        if key not in self.known:
+            if body is None:
+                self.known[key] = self.prog.drawn[name]
+            else:
+                xw = self.a[body] * self.prog.frames[body].factor(self.prog.drawn[name])
+                xw += self.P[body]
+                self.known[key] = xw
+        return self.known[key]
+
+    def vel(self, body: str | None, xw: np.ndarray | complex) -> np.ndarray | complex:
+        """Velocity of ``body``'s material point at world xw (0 on the ground)."""
+        if body is None:
+            return 0j
+        out = xw - self.P[body]
+        out *= self.w[body]
+        out *= 1j
+        out += self.vP[body]
+        return out
+
+    def acc(self, body: str | None, xw: np.ndarray | complex) -> np.ndarray | complex:
+        """Acceleration of ``body``'s material point at world xw, at constant input speed (0 on the ground)."""
+        if body is None:
+            return 0j
+        out = xw - self.P[body]
+        out *= _spin(self.w[body], self.al[body])
+        out += self.aP[body]
+        return out
+
+    def run(self, x: np.ndarray, signs: list[np.ndarray | float], tol: float) -> None:
+        dyad = 0
+        for op in self.prog.ops:
+            if isinstance(op, CrankOp):
+                self.crank(op, x[op.index, self.sl])
+            else:
+                sign = signs[op.step]
+                self.rrr(op, dyad, sign if np.ndim(sign) == 0 else sign[self.sl], tol)
+                dyad += 1
+        out, sl = self.out, self.sl
+        for name, holder, _ in self.prog.points:
+            if holder is None:
+                continue
+            xw = self.point(holder, name)
+            out.points[name][sl] = xw
+            if self.derivatives:
+                out.velocities[name][sl] = self.vel(holder, xw)
+                out.accelerations[name][sl] = self.acc(holder, xw)
+
+    def crank(self, op: CrankOp, values: np.ndarray) -> None:
+        """The crank turned by ``values`` - drawn (rad): its rotation by the tangent half-angle (cos and sin to
+        about 1e-16 from one vectorised tangent)."""
+        h = np.subtract(values, op.drawn)
+        h *= 0.5
+        np.tan(h, out=h)
+        h2 = np.square(h)
+        inv = h2 + 1.0
+        np.reciprocal(inv, out=inv)
+        e = np.empty(self.m, dtype=complex)
+        np.subtract(1.0, h2, out=e.real)
+        e.real *= inv
+        np.multiply(h, inv, out=e.imag)
+        e.imag *= 2.0
+        if op.ref is not None:
+            e *= self.a[op.ref]
+        pw = self.point(op.ref, op.pivot)
+        self.P[op.body] = pw
+        self.a[op.body] = e
+        self.known[(op.body, op.pivot)] = pw
+        if self.extras:
+            np.multiply(e, self.prog.frames[op.body].f, out=self.out.rotations[op.body][self.sl])
+        if self.derivatives:
+            w = (self.w[op.ref] + self.rates[op.index]) if op.ref else np.full(self.m, float(self.rates[op.index]))
+            al = self.al[op.ref] if op.ref else np.zeros(self.m)
+            self.w[op.body], self.al[op.body] = w, al
+            self.vP[op.body] = np.broadcast_to(self.vel(op.ref, pw), (self.m,))
+            self.aP[op.body] = np.broadcast_to(self.acc(op.ref, pw), (self.m,))
+            if self.extras:
+                self.out.omegas[op.body][self.sl] = w
+                self.out.alphas[op.body][self.sl] = al
+
+    def rrr(self, op: RRROp, dyad: int, sign: np.ndarray | float, tol: float) -> None:
+        """Place an RRR dyad: its joint J = p1 + d (along + i height) from the pins' frame (d = p2 - p1), each
+        body's vector from its pin to J; its margin into ``ok``; with derivatives the 2x2 closure solved in
+        closed form, i w1 a - i w2 b = v2 - v1 (a, b the vectors from the pins to J)."""
+        out, sl, m = self.out, self.sl, self.m
+        p1, p2 = self.point(op.refs[0], op.pins[0]), self.point(op.refs[1], op.pins[1])
+        d = p2 - p1
+        dd = np.square(d.real)
+        dd += np.square(d.imag)
+        dist = np.sqrt(dd)
+        if op.deltoid and (dist <= op.fold_reach).any():
+            raise Folded
+        a4 = op.area4(dist)
+        inv = np.divide(0.5, dd if dd.all() else np.where(dd > 0, dd, 1.0))
+        wj = np.empty(m, dtype=complex)
+        np.add(dd, op.r1 * op.r1 - op.r2 * op.r2, out=wj.real)
+        wj.real *= inv
+        np.maximum(a4, 0.0, out=wj.imag)
+        wj.imag *= inv
+        if np.ndim(sign) or sign < 0:
+            wj.imag *= sign
+        a = d * wj                     # pin 1 -> J
+        jw = p1 + a
+        b = jw - p2                    # pin 2 -> J
+        b1, b2 = op.bodies
+        for body, pin, vec, p in ((b1, op.pins[0], a, p1), (b2, op.pins[1], b, p2)):
+            self.P[body] = p
+            self.a[body] = vec
+            self.known[(body, pin)] = p
+            self.known[(body, op.joint)] = jw
+        out.ok[sl] &= a4 >= -tol * (2.0 * op.r1 * op.r2)
+        if self.extras:
+            np.multiply(a, self.prog.frames[b1].f, out=out.rotations[b1][sl])
+            np.multiply(b, self.prog.frames[b2].f, out=out.rotations[b2][sl])
+            np.divide(a4, 2.0 * op.r1 * op.r2, out=out.margins[dyad][sl])
+            ab = np.conjugate(a)
+            ab *= b                    # dot(a, b) + i cross(a, b)
+            np.arctan2(np.abs(ab.imag), ab.real, out=out.transmissions[dyad][sl])
+            slack = np.minimum(op.r1 + op.r2 - dist, dist - abs(op.r1 - op.r2))
+            mag = _magnitude(p1, p2, m)
+            mag += op.r1 + op.r2
+            np.divide(slack, mag, out=out.slacks[dyad][sl])
+        if not self.derivatives:
+            return
+        k1, k2 = op.refs
+        v1, v2 = self.vel(k1, p1), self.vel(k2, p2)
+        dv = v2 - v1
+        den = np.conjugate(b)
+        den *= a
+        den = den.imag                 # Im(a conj b)
+        cb, ca = np.conjugate(b), np.conjugate(a)
+        w1 = _ratio(-(dv * cb).real, den)
+        w2 = _ratio(-(dv * ca).real, den)
+        c1, c2 = self.acc(k1, p1), self.acc(k2, p2)
+        da = (c2 - np.square(w2) * b) - (c1 - np.square(w1) * a)
+        al1 = _ratio(-(da * cb).real, den)
+        al2 = _ratio(-(da * ca).real, den)
+        for body, w, al, v, c in ((b1, w1, al1, v1, c1), (b2, w2, al2, v2, c2)):
+            self.w[body], self.al[body] = w, al
+            self.vP[body] = np.broadcast_to(v, (m,))
+            self.aP[body] = np.broadcast_to(c, (m,))
+            if self.extras:
+                out.omegas[body][sl] = w
+                out.alphas[body][sl] = al
+        if self.extras:
+            np.multiply(d, np.conjugate(dv), out=wj)
+            out.spreads[dyad][sl] = wj.real
+
+
+def _spin(w: np.ndarray, al: np.ndarray) -> np.ndarray:
+    """The complex factor -w^2 + i al that takes a radius vector r to its acceleration about the body's point."""
+    k = np.empty(len(w), dtype=complex)
+    np.square(w, out=k.real)
+    np.negative(k.real, out=k.real)
+    k.imag[:] = al
+    return k
+
+
+def _ratio(num: np.ndarray, den: np.ndarray) -> np.ndarray:
+    """num / den; +-inf where den is 0 (0 where both are): a toggle, never NaN (the general solve's rule)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = num / den
+    if not den.all():
+        bad = den == 0
+        out[bad] = np.where(num[bad] == 0, 0.0, np.copysign(np.inf, num[bad]))
+    return out
+
+
+def _magnitude(p1: np.ndarray | complex, p2: np.ndarray | complex, m: int) -> np.ndarray:
+    """The largest coordinate magnitude (mm) of two points at each pose."""
+    out = np.zeros(m)
+    for p in (p1, p2):
+        for part in (p.real, p.imag):
+            np.maximum(out, np.abs(part), out=out)
+    return out
+
+
+def point_view(z: np.ndarray) -> np.ndarray:
+    """A complex (n,) array as the (n, 2) float array of its real and imaginary parts (a view: no copy)."""
+    return z.view(np.float64).reshape(len(z), 2)
+
+
+def constant_point(xd: complex, n: int) -> np.ndarray:
+    """A ground point over n poses: one (2,) row broadcast (read-only, no memory per pose)."""
+    return np.broadcast_to(np.array([xd.real, xd.imag]), (n, 2))
+
+
+def unbounded(z: np.ndarray) -> np.ndarray:
+    """Rates past a toggle are +inf, never NaN (in place)."""
+    view = z.view(np.float64) if np.iscomplexobj(z) else z
+    np.copyto(view, np.inf, where=np.isnan(view))
+    return z
