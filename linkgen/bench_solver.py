@@ -68,8 +68,8 @@ def reference(linkage: Any, t: np.ndarray, digits: int = 50) -> dict[str, np.nda
             if isinstance(op, CrankOp):
                 delta = mp.mpf(float(theta)) - mp.mpf(op.drawn)
                 turn = mp.expjpi(delta / mp.pi)
-                q = turn if op.ref is None else turn * frame[op.ref][1]
-                frame[op.body] = (at(op.ref, op.pivot), q, drawn[op.pivot])
+                q = turn
+                frame[op.body] = (at(None, op.pivot), q, drawn[op.pivot])
                 continue
             p1, p2 = at(op.refs[0], op.pins[0]), at(op.refs[1], op.pins[1])
             jd = drawn[op.joint]
@@ -109,7 +109,7 @@ def plain_positions(linkage: Any, t: np.ndarray) -> dict[str, np.ndarray]:
     for op in prog.ops:
         if isinstance(op, CrankOp):
             phi = t - op.drawn
-            frame[op.body] = (at(op.ref, op.pivot), phi, drawn[op.pivot])
+            frame[op.body] = (at(None, op.pivot), phi, drawn[op.pivot])
             continue
         p1, p2 = at(op.refs[0], op.pins[0]), at(op.refs[1], op.pins[1])
         d = p2 - p1
@@ -157,7 +157,7 @@ def pylinkage_model(linkage: Any, t: np.ndarray) -> tuple[Any, list[str]]:
 
     for op in prog.ops:
         if isinstance(op, CrankOp):
-            pivot = joint(op.ref, op.pivot)
+            pivot = joint(None, op.pivot)
             pin = next(p for p in linkage.structure.bodies[op.body] if p != op.pivot)
             r = math.dist(xy[op.pivot], xy[pin])
             angle = math.atan2(xy[pin][1] - xy[op.pivot][1], xy[pin][0] - xy[op.pivot][0])

@@ -2,7 +2,7 @@
 
 The general solve (:func:`linkgen.kinematics.linkage._solve`) places every body step by step with a
 dozen named intermediate arrays per dyad over all poses at once. For the linkages most users draw
-(one crank on the ground or on another link, then RRR dyads: Jansen's and Klann's legs, Watt's and
+(one crank on the ground, then RRR dyads: Jansen's and Klann's legs, Watt's and
 Stephenson's six-bars) this module does the same work with
 
 * the solve order planned once (:func:`program`, cached on the linkage): each step's drawn points,
@@ -30,8 +30,9 @@ import numpy as np
 
 from linkgen.kinematics.structure import GROUND, DyadStep, InputStep, Pin, Structure
 
-#: poses per chunk: a complex array of this many is 128 KiB, so a dyad's temporaries fit a core's cache
-CHUNK = 8192
+#: poses per chunk: a complex array of this many is 64 KiB, so a dyad's temporaries stay in a core's cache and
+#: below the allocator's threshold for mapping fresh pages (128 KiB) at every temporary
+CHUNK = 4096
 
 
 #: a point of a body over the poses: its body (None: the ground) and its drawn name
@@ -54,11 +55,9 @@ class Frame:
 
 @dataclass(frozen=True)
 class CrankOp:
-    """Turn ``body`` about drawn point ``pivot`` held by ``ref`` (None: the ground) by input ``index`` from its
-    drawn value ``drawn`` (rad)."""
+    """Turn ``body`` about its ground pivot ``pivot`` by input ``index`` from its drawn value ``drawn`` (rad)."""
 
     body: str
-    ref: str | None
     pivot: str
     index: int
     drawn: float
@@ -80,24 +79,14 @@ class RRROp:
     deltoid: bool
     fold_reach: float
 
-    def area4(self, c: np.ndarray) -> np.ndarray:
-        """Four times the area of the triangles of sides r1, r2 and the pins' distance c, signed as
-        :func:`linkgen.kinematics.dyads.area4` (negative beyond reach): the product of its four factors, each
-        grouped as in Kahan's stable Heron (the difference that vanishes at a toggle taken exactly)."""
-        big, small = max(self.r1, self.r2), min(self.r1, self.r2)
-        prod = c + (big + small)
-        t = c - big                     # exact near the outer toggle (Sterbenz)
-        np.subtract(small, t, out=t)    # r1 + r2 - c
-        prod *= t
-        if big <= 2.0 * small:          # big - small exact: c - (big - small) vanishes exactly at the inner toggle
-            np.subtract(c, big - small, out=t)
-        else:                           # there big - c is exact instead
-            np.subtract(big, c, out=t)
-            np.subtract(small, t, out=t)
-        prod *= t
-        np.add(c, big - small, out=t)
-        prod *= t
-        return np.copysign(np.sqrt(np.abs(prod)), prod)
+    def area_squared(self, dd: np.ndarray) -> np.ndarray:
+        """(4 area)^2 of the triangles of sides r1, r2 and the pins' distance sqrt(dd): ((r1 + r2)^2 - dd)
+        (dd - (r1 - r2)^2), negative beyond reach. From the squared distance itself, each factor vanishing at its
+        toggle to the rounding of dd and of the squared radii: as close as Kahan's stable Heron of the rounded
+        distance (:func:`linkgen.kinematics.dyads.area4`), in three operations instead of twelve."""
+        prod = np.subtract((self.r1 + self.r2) ** 2, dd)
+        prod *= dd - (self.r1 - self.r2) ** 2
+        return prod
 
 
 @dataclass(frozen=True)
@@ -123,18 +112,17 @@ def _c(s: Structure, name: str) -> complex:
 
 def program(s: Structure, steps: tuple[object, ...], drawn: tuple[float, ...], fold_reach: float) -> Program | None:
     """The fused program of a solve order (``drawn`` each input's drawn value, rad; ``fold_reach`` relative to the
-    drawing's size), or None where it has a step the kernels do not cover (anything but one crank input and RRR
+    drawing's size), or None where it has a step the kernels do not cover (anything but one crank on the ground and RRR
     dyads)."""
-    if len(s.inputs) != 1 or s.inputs[0].kind != "crank":
+    if len(s.inputs) != 1 or s.inputs[0].kind != "crank" or s.inputs[0].relative_to != GROUND:
         return None
     ops: list[CrankOp | RRROp] = []
     frames: dict[str, Frame] = {}
     for index, step in enumerate(steps):
         if isinstance(step, InputStep):
             inp = s.inputs[step.index]
-            ref = None if inp.relative_to == GROUND else inp.relative_to
-            ops.append(CrankOp(step.body, ref, inp.pivot, step.index, drawn[step.index]))
-            frames[step.body] = Frame(_c(s, inp.pivot), 1.0 + 0j if ref is None else frames[ref].f)
+            ops.append(CrankOp(step.body, inp.pivot, step.index, drawn[step.index]))
+            frames[step.body] = Frame(_c(s, inp.pivot), 1.0 + 0j)
         elif isinstance(step, DyadStep) and step.kind == "RRR":
             a1, a2 = step.attachments
             if not (isinstance(a1, Pin) and isinstance(a2, Pin)):
@@ -214,8 +202,9 @@ def run(prog: Program, x: np.ndarray, rates: np.ndarray, signs: list[np.ndarray]
 
 class _Chunk:
     """One chunk of poses through the program: each placed body's anchor P and vector a (and, with derivatives,
-    its angular velocity w and acceleration al and its anchor's velocity vP and acceleration aP), the ground's as
-    numbers; points computed once."""
+    its anchor's velocity vP and acceleration aP, and the factors i w and -w^2 + i al that take a radius vector from
+    the anchor to its point's velocity and acceleration about it), the ground's as numbers; each point computed
+    once, with its radius vector from its body's anchor."""
 
     def __init__(self, prog: Program, sl: slice, rates: np.ndarray, derivatives: bool, extras: bool,
                  out: Outputs) -> None:
@@ -224,11 +213,13 @@ class _Chunk:
         self.m = sl.stop - sl.start
         self.P: dict[str, np.ndarray | complex] = {}
         self.a: dict[str, np.ndarray] = {}
-        self.w: dict[str, np.ndarray] = {}
-        self.al: dict[str, np.ndarray] = {}
-        self.vP: dict[str, np.ndarray] = {}
-        self.aP: dict[str, np.ndarray] = {}
+        self.vP: dict[str, np.ndarray | complex] = {}
+        self.aP: dict[str, np.ndarray | complex] = {}
+        self.iw: dict[str, np.ndarray | complex] = {}
+        self.spin: dict[str, np.ndarray | complex] = {}
         self.known: dict[Key, np.ndarray | complex] = {}
+        self.radius: dict[Key, np.ndarray | None] = {}
+        self.moving: dict[Key, tuple[np.ndarray | complex, np.ndarray | complex]] = {}
 
     def point(self, body: str | None, name: str) -> np.ndarray | complex:
         """World position of drawn point ``name`` on ``body`` (a number on the ground)."""
@@ -237,29 +228,33 @@ class _Chunk:
             if body is None:
                 self.known[key] = self.prog.drawn[name]
             else:
-                xw = self.a[body] * self.prog.frames[body].factor(self.prog.drawn[name])
-                xw += self.P[body]
-                self.known[key] = xw
+                r = self.a[body] * self.prog.frames[body].factor(self.prog.drawn[name])
+                self.radius[key] = r
+                self.known[key] = r + self.P[body]
         return self.known[key]
 
-    def vel(self, body: str | None, xw: np.ndarray | complex) -> np.ndarray | complex:
-        """Velocity of ``body``'s material point at world xw (0 on the ground)."""
-        if body is None:
-            return 0j
-        out = xw - self.P[body]
-        out *= self.w[body]
-        out *= 1j
-        out += self.vP[body]
-        return out
+    def place(self, body: str, name: str, xw: np.ndarray | complex, r: np.ndarray | None) -> None:
+        """Record ``name`` on ``body`` at world xw, radius vector r from the body's anchor (None: the anchor)."""
+        self.known[(body, name)] = xw
+        self.radius[(body, name)] = r
 
-    def acc(self, body: str | None, xw: np.ndarray | complex) -> np.ndarray | complex:
-        """Acceleration of ``body``'s material point at world xw, at constant input speed (0 on the ground)."""
+    def rates_of(self, body: str | None, name: str) -> tuple[np.ndarray | complex, np.ndarray | complex]:
+        """Velocity and acceleration of point ``name`` on ``body`` (zero on the ground), computed once."""
         if body is None:
-            return 0j
-        out = xw - self.P[body]
-        out *= _spin(self.w[body], self.al[body])
-        out += self.aP[body]
-        return out
+            return 0j, 0j
+        key = (body, name)
+        if key not in self.moving:
+            self.point(body, name)
+            r = self.radius[key]
+            if r is None:
+                self.moving[key] = self.vP[body], self.aP[body]
+            else:
+                v = self.iw[body] * r
+                v += self.vP[body]
+                acc = self.spin[body] * r
+                acc += self.aP[body]
+                self.moving[key] = v, acc
+        return self.moving[key]
 
     def run(self, x: np.ndarray, signs: list[np.ndarray | float], tol: float) -> None:
         dyad = 0
@@ -274,15 +269,15 @@ class _Chunk:
         for name, holder, _ in self.prog.points:
             if holder is None:
                 continue
-            xw = self.point(holder, name)
-            out.points[name][sl] = xw
+            out.points[name][sl] = self.point(holder, name)
             if self.derivatives:
-                out.velocities[name][sl] = self.vel(holder, xw)
-                out.accelerations[name][sl] = self.acc(holder, xw)
+                v, acc = self.rates_of(holder, name)
+                out.velocities[name][sl] = v
+                out.accelerations[name][sl] = acc
 
     def crank(self, op: CrankOp, values: np.ndarray) -> None:
         """The crank turned by ``values`` - drawn (rad): its rotation by the tangent half-angle (cos and sin to
-        about 1e-16 from one vectorised tangent)."""
+        about 1e-16 from one vectorised tangent: numpy's float64 cosine and sine are not vectorised)."""
         h = np.subtract(values, op.drawn)
         h *= 0.5
         np.tan(h, out=h)
@@ -294,23 +289,21 @@ class _Chunk:
         e.real *= inv
         np.multiply(h, inv, out=e.imag)
         e.imag *= 2.0
-        if op.ref is not None:
-            e *= self.a[op.ref]
-        pw = self.point(op.ref, op.pivot)
+        pw = self.point(None, op.pivot)
         self.P[op.body] = pw
         self.a[op.body] = e
-        self.known[(op.body, op.pivot)] = pw
+        self.place(op.body, op.pivot, pw, None)
         if self.extras:
             np.multiply(e, self.prog.frames[op.body].f, out=self.out.rotations[op.body][self.sl])
-        if self.derivatives:
-            w = (self.w[op.ref] + self.rates[op.index]) if op.ref else np.full(self.m, float(self.rates[op.index]))
-            al = self.al[op.ref] if op.ref else np.zeros(self.m)
-            self.w[op.body], self.al[op.body] = w, al
-            self.vP[op.body] = np.broadcast_to(self.vel(op.ref, pw), (self.m,))
-            self.aP[op.body] = np.broadcast_to(self.acc(op.ref, pw), (self.m,))
-            if self.extras:
-                self.out.omegas[op.body][self.sl] = w
-                self.out.alphas[op.body][self.sl] = al
+        if not self.derivatives:
+            return
+        # about a ground pivot at constant speed: its velocity and acceleration factors i w and -w^2 are numbers
+        rate = float(self.rates[op.index])
+        self.vP[op.body], self.aP[op.body] = 0j, 0j
+        self.iw[op.body], self.spin[op.body] = 1j * rate, -rate * rate + 0j
+        if self.extras:
+            self.out.omegas[op.body][self.sl] = rate
+            self.out.alphas[op.body][self.sl] = 0.0
 
     def rrr(self, op: RRROp, dyad: int, sign: np.ndarray | float, tol: float) -> None:
         """Place an RRR dyad: its joint J = p1 + d (along + i height) from the pins' frame (d = p2 - p1), each
@@ -321,16 +314,16 @@ class _Chunk:
         d = p2 - p1
         dd = np.square(d.real)
         dd += np.square(d.imag)
-        dist = np.sqrt(dd)
-        if op.deltoid and (dist <= op.fold_reach).any():
+        if op.deltoid and (dd <= op.fold_reach**2).any():
             raise Folded
-        a4 = op.area4(dist)
+        prod = op.area_squared(dd)
         inv = np.divide(0.5, dd if dd.all() else np.where(dd > 0, dd, 1.0))
         wj = np.empty(m, dtype=complex)
-        np.add(dd, op.r1 * op.r1 - op.r2 * op.r2, out=wj.real)
-        wj.real *= inv
-        np.maximum(a4, 0.0, out=wj.imag)
-        wj.imag *= inv
+        np.multiply(inv, op.r1 * op.r1 - op.r2 * op.r2, out=wj.real)
+        wj.real += 0.5                 # along: (dd + r1^2 - r2^2) / (2 dd)
+        np.maximum(prod, 0.0, out=wj.imag)
+        np.sqrt(wj.imag, out=wj.imag)
+        wj.imag *= inv                 # height: 4 area / (2 dd), on the branch's side
         if np.ndim(sign) or sign < 0:
             wj.imag *= sign
         a = d * wj                     # pin 1 -> J
@@ -340,10 +333,12 @@ class _Chunk:
         for body, pin, vec, p in ((b1, op.pins[0], a, p1), (b2, op.pins[1], b, p2)):
             self.P[body] = p
             self.a[body] = vec
-            self.known[(body, pin)] = p
-            self.known[(body, op.joint)] = jw
-        out.ok[sl] &= a4 >= -tol * (2.0 * op.r1 * op.r2)
+            self.place(body, pin, p, None)
+            self.place(body, op.joint, jw, vec)
+        out.ok[sl] &= prod >= -(tol * 2.0 * op.r1 * op.r2) ** 2      # the margin 4 area / (2 r1 r2) >= -tol
         if self.extras:
+            a4 = np.copysign(np.sqrt(np.abs(prod)), prod)
+            dist = np.sqrt(dd)
             np.multiply(a, self.prog.frames[b1].f, out=out.rotations[b1][sl])
             np.multiply(b, self.prog.frames[b2].f, out=out.rotations[b2][sl])
             np.divide(a4, 2.0 * op.r1 * op.r2, out=out.margins[dyad][sl])
@@ -354,31 +349,54 @@ class _Chunk:
             mag = _magnitude(p1, p2, m)
             mag += op.r1 + op.r2
             np.divide(slack, mag, out=out.slacks[dyad][sl])
-        if not self.derivatives:
-            return
-        k1, k2 = op.refs
-        v1, v2 = self.vel(k1, p1), self.vel(k2, p2)
+        if self.derivatives:
+            self.rrr_rates(op, dyad, d, a, b)
+
+    def rrr_rates(self, op: RRROp, dyad: int, d: np.ndarray, a: np.ndarray, b: np.ndarray) -> None:
+        """The dyad's angular velocities and accelerations: i w1 a - i w2 b = v2 - v1 gives w1 = -(dv . b) / (a x b)
+        and w2 = -(dv . a) / (a x b) (a x b = Im(a conj b)); the same with the accelerations' right-hand side."""
+        out, sl = self.out, self.sl
+        (b1, b2), (k1, k2) = op.bodies, op.refs
+        v1, c1 = self.rates_of(k1, op.pins[0])
+        v2, c2 = self.rates_of(k2, op.pins[1])
         dv = v2 - v1
-        den = np.conjugate(b)
-        den *= a
-        den = den.imag                 # Im(a conj b)
-        cb, ca = np.conjugate(b), np.conjugate(a)
-        w1 = _ratio(-(dv * cb).real, den)
-        w2 = _ratio(-(dv * ca).real, den)
-        c1, c2 = self.acc(k1, p1), self.acc(k2, p2)
-        da = (c2 - np.square(w2) * b) - (c1 - np.square(w1) * a)
-        al1 = _ratio(-(da * cb).real, den)
-        al2 = _ratio(-(da * ca).real, den)
+        den = a.imag * b.real
+        den -= a.real * b.imag
+        w1, w2 = _dot(dv, b), _dot(dv, a)
+        _over(w1, den)
+        _over(w2, den)
+        da = c2 - c1
+        da -= np.square(w2) * b
+        da += np.square(w1) * a
+        al1, al2 = _dot(da, b), _dot(da, a)
+        _over(al1, den)
+        _over(al2, den)
         for body, w, al, v, c in ((b1, w1, al1, v1, c1), (b2, w2, al2, v2, c2)):
-            self.w[body], self.al[body] = w, al
-            self.vP[body] = np.broadcast_to(v, (m,))
-            self.aP[body] = np.broadcast_to(c, (m,))
+            self.vP[body], self.aP[body] = v, c
+            self.iw[body] = w * 1j
+            self.spin[body] = _spin(w, al)
             if self.extras:
                 out.omegas[body][sl] = w
                 out.alphas[body][sl] = al
         if self.extras:
-            np.multiply(d, np.conjugate(dv), out=wj)
-            out.spreads[dyad][sl] = wj.real
+            np.copyto(out.spreads[dyad][sl], _dot(d, np.asarray(dv)))
+
+
+def _dot(u: np.ndarray | complex, v: np.ndarray) -> np.ndarray:
+    """The dot product of complex numbers as plane vectors: Re(u conj v)."""
+    out = np.multiply(np.real(u), v.real)
+    out += np.imag(u) * v.imag
+    return out
+
+
+def _over(num: np.ndarray, den: np.ndarray) -> None:
+    """num <- -num / den in place; +-inf where den is 0 (0 where both are): a toggle, never NaN (the general
+    solve's rule for its 2x2 solve)."""
+    np.negative(num, out=num)
+    if den.all():
+        num /= den
+    else:
+        num[...] = _ratio(num, den)
 
 
 def _spin(w: np.ndarray, al: np.ndarray) -> np.ndarray:
