@@ -188,10 +188,11 @@ def _least(funcs: dict[str, Callable[[], Any]], repeats: int) -> dict[str, float
 
 
 def solver_rows(sizes: tuple[int, ...] = (10_000, 100_000, 1_000_000), repeats: int = 5) -> list[dict]:
-    """Per linkage and size: the least times of our positions (:meth:`Linkage.positions`), our full solve
-    (``solve(derivatives=False)``), the plain numpy closed form and pylinkage's ``step_fast``; with velocities and
-    accelerations our ``solve()`` and pylinkage's ``step_fast_with_kinematics``; their ratios to pylinkage, rates
-    (angles per second) and the accuracy at 100 angles against 50 digits."""
+    """Per linkage and size: the least times of our positions (:meth:`Linkage.positions`: every joint, as
+    pylinkage gives), our full solve (``solve(derivatives=False)``: rotations, margins and transmission angles too),
+    the plain numpy closed form and pylinkage's ``step_fast``; with velocities and accelerations our positions
+    (``derivatives=True``: every joint's), our full ``solve()`` and pylinkage's ``step_fast_with_kinematics``;
+    their ratios to pylinkage, rates (angles per second) and the accuracy at 100 angles against 50 digits."""
     try:
         import pylinkage  # noqa: F401
         have = True
@@ -211,6 +212,7 @@ def solver_rows(sizes: tuple[int, ...] = (10_000, 100_000, 1_000_000), repeats: 
                 "ours positions": lambda: linkage.positions(t),
                 "ours solve": lambda: linkage.solve(t, derivatives=False),
                 "plain numpy": lambda: plain_positions(linkage, t),
+                "ours positions with rates": lambda: linkage.positions(t, derivatives=True),
                 "ours with rates": lambda: linkage.solve(t)}
             if have:
                 model, order = pylinkage_model(linkage, t)
@@ -229,7 +231,8 @@ def solver_rows(sizes: tuple[int, ...] = (10_000, 100_000, 1_000_000), repeats: 
             if have:
                 row["positions speed-up"] = best["pylinkage step_fast"] / best["ours positions"]
                 row["solve speed-up"] = best["pylinkage step_fast"] / best["ours solve"]
-                row["rates speed-up"] = best["pylinkage with rates"] / best["ours with rates"]
+                row["rates speed-up"] = best["pylinkage with rates"] / best["ours positions with rates"]
+                row["solve with rates speed-up"] = best["pylinkage with rates"] / best["ours with rates"]
             row["plain numpy / ours positions"] = best["plain numpy"] / best["ours positions"]
             rows.append(row)
     return rows
@@ -239,6 +242,7 @@ def solver_rows(sizes: tuple[int, ...] = (10_000, 100_000, 1_000_000), repeats: 
 _MEMORY_CALLS = {
     "ours positions": "linkage.positions(t)",
     "ours solve": "linkage.solve(t, derivatives=False)",
+    "ours positions with rates": "linkage.positions(t, derivatives=True)",
     "ours with rates": "linkage.solve(t)",
     "pylinkage step_fast": "model.step_fast(iterations=n)",
     "pylinkage with rates": "model.step_fast_with_kinematics(iterations=n)",
@@ -295,9 +299,13 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
              "Each linkage is the bundled template. Least of the repeats, the sides taking turns in the same run; "
              "speed-up = pylinkage's least time / ours (above 1: ours faster); errors of the reported point against "
              "a 50-digit solution at 100 of the angles.", "",
+             "Positions: every joint's (what pylinkage's step_fast gives); solve: the whole Solution (rotations, "
+             "margins, transmission angles, slack too). With rates: every joint's velocity and acceleration besides "
+             "(step_fast_with_kinematics), and solve() with the bodies' rates.", "",
              "| linkage | angles | ours positions | ours solve | plain numpy | pylinkage step_fast | speed-up "
-             "positions / solve | ours with rates | pylinkage with rates | speed-up with rates | error ours / "
-             "pylinkage / plain (mm) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "positions / solve | ours positions with rates | ours solve with rates | pylinkage with rates | "
+             "speed-up with rates (positions / solve) | error ours / pylinkage / plain (mm) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
 
     def ms(row: dict, key: str) -> str:
         v = row.get(f"{key} s")
@@ -314,9 +322,10 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
     for r in rows:
         lines.append(f"| {r['linkage']} | {r['angles']} | {ms(r, 'ours positions')} | {ms(r, 'ours solve')} | "
                      f"{ms(r, 'plain numpy')} | {ms(r, 'pylinkage step_fast')} | {ratio(r, 'positions speed-up')} / "
-                     f"{ratio(r, 'solve speed-up')} | {ms(r, 'ours with rates')} | {ms(r, 'pylinkage with rates')} | "
-                     f"{ratio(r, 'rates speed-up')} | {err(r, 'ours error mm')} / {err(r, 'pylinkage error mm')} / "
-                     f"{err(r, 'plain numpy error mm')} |")
+                     f"{ratio(r, 'solve speed-up')} | {ms(r, 'ours positions with rates')} | {ms(r, 'ours with rates')} | "
+                     f"{ms(r, 'pylinkage with rates')} | {ratio(r, 'rates speed-up')} / "
+                     f"{ratio(r, 'solve with rates speed-up')} | {err(r, 'ours error mm')} / "
+                     f"{err(r, 'pylinkage error mm')} / {err(r, 'plain numpy error mm')} |")
     if memory:
         lines += ["", "Peak memory of one call (MiB: the rise of a fresh process's peak resident set, numba's "
                   "allocations included):", "",

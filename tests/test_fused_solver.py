@@ -224,3 +224,25 @@ def test_the_benchs_leg_is_the_bundled_template():
     assert leg[:, 1].max() - leg[:, 1].min() == pytest.approx(22.457, abs=1e-3)
     assert leg[:, 0].max() - leg[:, 0].min() == pytest.approx(67.908, abs=1e-3)
     assert table is not None
+
+
+def test_positions_far_from_the_drawn_turn_and_non_finite_rates_follow_the_general_rule():
+    """Angles many turns away are the same poses; a pose the linkage cannot take (non-strict) has infinite rates,
+    never NaN, as the general solve gives."""
+    linkage = _linkage("watt1")
+    t = np.radians(np.arange(0.0, 360.0, 1.0))
+    near = linkage.positions(t)
+    for turns in (3, 1000):                  # read on the drawn turn as they are, and unwrapped onto it
+        far = linkage.positions(t + 2 * math.pi * turns)
+        for name, xy in near.points.items():
+            assert np.abs(far.points[name] - xy).max() <= 1e-9, name
+    values = np.array([0.3, float("nan"), 1.2])
+    fast = linkage.solve(values, strict=False)
+    for name, v in fast.velocities.items():
+        if name in linkage.structure.bodies["ground"]:
+            continue
+        assert not np.isnan(v).any() and np.isinf(v[1]).all(), name
+        assert not np.isnan(fast.accelerations[name]).any(), name
+    lean = linkage.positions(values, derivatives=True, strict=False)
+    for name, v in lean.velocities.items():
+        assert np.array_equal(v, fast.velocities[name]), name

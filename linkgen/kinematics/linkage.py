@@ -157,16 +157,19 @@ class Solution:
 
 @dataclass(frozen=True)
 class Positions:
-    """Every point's position (n, 2) mm over the poses (a ground point as a read-only broadcast row), the inputs
-    (unwrapped as in :class:`Solution`) and ``ok``: what :meth:`Linkage.positions` gives."""
+    """Every point's position (n, 2) mm over the poses (a ground point as a read-only broadcast row), the inputs as
+    given (k, n) and ``ok``: what :meth:`Linkage.positions` gives."""
 
     inputs: np.ndarray
     points: dict[str, np.ndarray]
     ok: np.ndarray
+    #: each point's velocity and acceleration (n, 2) per unit input speed, where asked for (else empty)
+    velocities: dict[str, np.ndarray] = field(default_factory=dict)
+    accelerations: dict[str, np.ndarray] = field(default_factory=dict)
 
 
 def _positions_of(sol: Solution) -> Positions:
-    return Positions(sol.inputs, sol.points, sol.ok)
+    return Positions(sol.inputs, sol.points, sol.ok, sol.velocities, sol.accelerations)
 
 
 #: the searches' hook into a solve (see :meth:`Linkage.solve`): a dyad's step index and result -> its change points
@@ -340,33 +343,35 @@ class Linkage:
                 self._rates_at_change_points(sol, r)
             return sol
 
-    def positions(self, inputs: ArrayLike, *, strict: bool = True) -> Positions:
-        """Every joint's position (n, 2) mm at each input value, and nothing else (no rotations, margins or rates):
-        what :meth:`solve` gives in ``points``, on the same branches, in less time and memory (the fused kernels
-        of :mod:`linkgen.kinematics.fused`, chunk by chunk). ``strict`` as for :meth:`solve`."""
+    def positions(self, inputs: ArrayLike, *, derivatives: bool = False, strict: bool = True) -> Positions:
+        """Every joint's position (n, 2) mm at each input value, with ``derivatives`` its velocity and acceleration
+        per unit input speed, and nothing else (no rotations, margins or body rates): what :meth:`solve` gives in
+        ``points`` (``velocities``, ``accelerations``), on the same branches, in less time and memory (the fused
+        kernels of :mod:`linkgen.kinematics.fused`, chunk by chunk). ``strict`` as for :meth:`solve`."""
         x = np.atleast_2d(np.asarray(inputs, dtype=float))
         prog = self.program
-        if prog is None or x.shape[0] != 1:
-            return _positions_of(self.solve(x, strict=strict, derivatives=False))
+        flipped = any(len(f) for f in self.flips)
+        if prog is None or x.shape[0] != 1 or (derivatives and flipped):
+            return _positions_of(self.solve(x, strict=strict, derivatives=derivatives))
         if strict:
             check_finite(x[0], "input", "input", "degrees", math.degrees)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             given = x
-            x = self.unwrap(x[0])[None, :]
-            flipped = any(len(f) for f in self.flips)
+            # the crank's turn is periodic: values within a few turns of the drawing need no unwrapping unless a
+            # change point's branch swap depends on the revolution they lie on
+            near = bool(len(x[0])) and float(np.abs(x[0] - self.revolution).max()) <= 4 * TWO_PI
+            x = self.unwrap(x[0])[None, :] if flipped or not near else x
             signs = self.signs(x) if flipped else list(self.base_signs)
             try:
-                out = fused.run(prog, x, np.ones(1), signs, False, False, FEASIBILITY_TOL)
+                out = fused.run(prog, x, np.ones(1), signs, derivatives, False, FEASIBILITY_TOL)
             except fused.Folded:
-                return _positions_of(self.solve(given, strict=strict, derivatives=False))
+                return _positions_of(self.solve(given, strict=strict, derivatives=derivatives))
         if strict and not out.ok.all():
             from linkgen.kinematics.motion import out_of_reach
 
             out_of_reach(self, given[:, ~out.ok][:, 0])
-        n = x.shape[1]
-        points = {name: fused.constant_point(xd, n) if holder is None else fused.point_view(out.points[name])
-                  for name, holder, xd in prog.points}
-        return Positions(x, points, out.ok)
+        points, vels, accs = _fused_points(prog, out, x.shape[1], derivatives)
+        return Positions(given, points, out.ok, vels, accs)
 
     def _rates_at_change_points(self, sol: Solution, rates: np.ndarray) -> None:
         """Rates within ``CHANGE_REACH`` of a change point, where a dyad's 2x2 solve is 0/0: the branch's limit,
@@ -796,6 +801,20 @@ def _solve_fused(prog: fused.Program, x: np.ndarray, rates: np.ndarray, signs: l
     out = fused.run(prog, x, rates, signs, derivatives, True, FEASIBILITY_TOL)
     n = x.shape[1]
     zero, one = np.broadcast_to(0.0, (n,)), np.broadcast_to(1.0, (n,))
+    points, vels, accs = _fused_points(prog, out, n, derivatives)
+    rotations = {GROUND: (one, zero), **{b: (q.real, q.imag) for b, q in out.rotations.items()}}
+    omegas = {GROUND: zero, **out.omegas} if derivatives else {}
+    alphas = {GROUND: zero, **out.alphas} if derivatives else {}
+    ops = [op for op in prog.ops if isinstance(op, fused.RRROp)]
+    results = tuple(DyadResult("RRR", op.bodies, op.joint, out.margins[i], out.transmissions[i], out.slacks[i],
+                               out.spreads[i] if derivatives else None) for i, op in enumerate(ops))
+    return Solution(x, points, vels, accs, rotations, omegas, alphas, results, out.ok)
+
+
+def _fused_points(prog: fused.Program, out: fused.Outputs, n: int, derivatives: bool
+                  ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """The fused outputs' points (and velocities, accelerations) as (n, 2) float views; a ground point's as one
+    broadcast row."""
     points, vels, accs = {}, {}, {}
     for name, holder, xd in prog.points:
         if holder is None:
@@ -805,15 +824,9 @@ def _solve_fused(prog: fused.Program, x: np.ndarray, rates: np.ndarray, signs: l
         else:
             points[name] = fused.point_view(out.points[name])
             if derivatives:
-                vels[name] = fused.point_view(fused.unbounded(out.velocities[name]))
-                accs[name] = fused.point_view(fused.unbounded(out.accelerations[name]))
-    rotations = {GROUND: (one, zero), **{b: (q.real, q.imag) for b, q in out.rotations.items()}}
-    omegas = {GROUND: zero, **{b: fused.unbounded(w) for b, w in out.omegas.items()}} if derivatives else {}
-    alphas = {GROUND: zero, **{b: fused.unbounded(a) for b, a in out.alphas.items()}} if derivatives else {}
-    ops = [op for op in prog.ops if isinstance(op, fused.RRROp)]
-    results = tuple(DyadResult("RRR", op.bodies, op.joint, out.margins[i], out.transmissions[i], out.slacks[i],
-                               out.spreads[i] if derivatives else None) for i, op in enumerate(ops))
-    return Solution(x, points, vels, accs, rotations, omegas, alphas, results, out.ok)
+                vels[name] = fused.point_view(out.velocities[name])
+                accs[name] = fused.point_view(out.accelerations[name])
+    return points, vels, accs
 
 
 def _move_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, bodies: dict[str, Body],
