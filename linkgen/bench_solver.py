@@ -54,24 +54,22 @@ def reference(linkage: Any, t: np.ndarray, digits: int = 50) -> dict[str, np.nda
     out: dict[str, list[complex]] = {name: [] for name, holder, _ in prog.points if holder is not None}
     from linkgen.kinematics.fused import CrankOp
 
+    def at(frame: dict[str, tuple[Any, Any, Any]], body: str | None, name: str) -> Any:
+        if body is None:
+            return drawn[name]
+        p, q, pd = frame[body]
+        return p + q * (drawn[name] - pd)
+
     for i, theta in enumerate(t):
-        world: dict[tuple[str | None, str], Any] = {}
         frame: dict[str, tuple[Any, Any, Any]] = {}      # body -> (P, rotation q, pd): world(x) = P + q (x - pd)
-
-        def at(body: str | None, name: str) -> Any:
-            if body is None:
-                return drawn[name]
-            p, q, pd = frame[body]
-            return p + q * (drawn[name] - pd)
-
         for op in prog.ops:
             if isinstance(op, CrankOp):
                 delta = mp.mpf(float(theta)) - mp.mpf(op.drawn)
                 turn = mp.expjpi(delta / mp.pi)
                 q = turn
-                frame[op.body] = (at(None, op.pivot), q, drawn[op.pivot])
+                frame[op.body] = (at(frame, None, op.pivot), q, drawn[op.pivot])
                 continue
-            p1, p2 = at(op.refs[0], op.pins[0]), at(op.refs[1], op.pins[1])
+            p1, p2 = at(frame, op.refs[0], op.pins[0]), at(frame, op.refs[1], op.pins[1])
             jd = drawn[op.joint]
             r1, r2 = abs(jd - drawn[op.pins[0]]), abs(jd - drawn[op.pins[1]])
             d = p2 - p1
@@ -82,9 +80,7 @@ def reference(linkage: Any, t: np.ndarray, digits: int = 50) -> dict[str, np.nda
             for body, p, pd in ((op.bodies[0], p1, drawn[op.pins[0]]), (op.bodies[1], p2, drawn[op.pins[1]])):
                 frame[body] = (p, (j - p) / (jd - pd), pd)
         for name in out:
-            holder = next(h for n, h, _ in prog.points if n == name)
-            world[(holder, name)] = at(holder, name)
-            out[name].append(complex(world[(holder, name)]))
+            out[name].append(complex(at(frame, prog.holders[name], name)))
     return {name: np.array([[z.real, z.imag] for z in zs]) for name, zs in out.items()}
 
 
@@ -198,44 +194,44 @@ def solver_rows(sizes: tuple[int, ...] = (10_000, 100_000, 1_000_000), repeats: 
         have = True
     except ImportError:
         have = False
-    rows = []
-    for name, template, point in LINKAGES:
-        linkage = bundled(template)
-        for n in sizes:
-            t = angles(linkage, n)
-            probe = np.arange(0, n, max(1, n // 100))
-            try:
-                ref = reference(linkage, t[probe])[point]
-            except ImportError:
-                ref = None
-            funcs: dict[str, Callable[[], Any]] = {
-                "ours positions": lambda: linkage.positions(t),
-                "ours solve": lambda: linkage.solve(t, derivatives=False),
-                "plain numpy": lambda: plain_positions(linkage, t),
-                "ours positions with rates": lambda: linkage.positions(t, derivatives=True),
-                "ours with rates": lambda: linkage.solve(t)}
-            if have:
-                model, order = pylinkage_model(linkage, t)
-                funcs["pylinkage step_fast"] = lambda: model.step_fast(iterations=n)
-                funcs["pylinkage with rates"] = lambda: model.step_fast_with_kinematics(iterations=n)
-            best = _least(funcs, repeats)
-            row: dict[str, Any] = {"linkage": name, "angles": n, "point": point,
-                                   **{f"{k} s": v for k, v in best.items()}}
-            if ref is not None:
-                row["ours error mm"] = float(np.abs(linkage.positions(t[probe]).points[point] - ref).max())
-                row["plain numpy error mm"] = float(np.abs(plain_positions(linkage, t[probe])[point] - ref).max())
-                if have:
-                    model, order = pylinkage_model(linkage, t)
-                    theirs = np.asarray(model.step_fast(iterations=n))[probe, order.index(point), :]
-                    row["pylinkage error mm"] = float(np.abs(theirs - ref).max())
-            if have:
-                row["positions speed-up"] = best["pylinkage step_fast"] / best["ours positions"]
-                row["solve speed-up"] = best["pylinkage step_fast"] / best["ours solve"]
-                row["rates speed-up"] = best["pylinkage with rates"] / best["ours positions with rates"]
-                row["solve with rates speed-up"] = best["pylinkage with rates"] / best["ours with rates"]
-            row["plain numpy / ours positions"] = best["plain numpy"] / best["ours positions"]
-            rows.append(row)
-    return rows
+    return [_row(name, bundled(template), point, n, repeats, have) for name, template, point in LINKAGES
+            for n in sizes]
+
+
+def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) -> dict:
+    """One row of :func:`solver_rows`: ``linkage`` at n angles, ``have`` whether pylinkage is installed."""
+    t = angles(linkage, n)
+    probe = np.arange(0, n, max(1, n // 100))
+    try:
+        ref = reference(linkage, t[probe])[point]
+    except ImportError:
+        ref = None
+    funcs: dict[str, Callable[[], Any]] = {
+        "ours positions": lambda: linkage.positions(t),
+        "ours solve": lambda: linkage.solve(t, derivatives=False),
+        "plain numpy": lambda: plain_positions(linkage, t),
+        "ours positions with rates": lambda: linkage.positions(t, derivatives=True),
+        "ours with rates": lambda: linkage.solve(t)}
+    if have:
+        model, order = pylinkage_model(linkage, t)
+        funcs["pylinkage step_fast"] = lambda: model.step_fast(iterations=n)
+        funcs["pylinkage with rates"] = lambda: model.step_fast_with_kinematics(iterations=n)
+    best = _least(funcs, repeats)
+    row: dict[str, Any] = {"linkage": name, "angles": n, "point": point, **{f"{k} s": v for k, v in best.items()}}
+    if ref is not None:
+        row["ours error mm"] = float(np.abs(linkage.positions(t[probe]).points[point] - ref).max())
+        row["plain numpy error mm"] = float(np.abs(plain_positions(linkage, t[probe])[point] - ref).max())
+        if have:
+            model, order = pylinkage_model(linkage, t)
+            theirs = np.asarray(model.step_fast(iterations=n))[probe, order.index(point), :]
+            row["pylinkage error mm"] = float(np.abs(theirs - ref).max())
+    if have:
+        row["positions speed-up"] = best["pylinkage step_fast"] / best["ours positions"]
+        row["solve speed-up"] = best["pylinkage step_fast"] / best["ours solve"]
+        row["rates speed-up"] = best["pylinkage with rates"] / best["ours positions with rates"]
+        row["solve with rates speed-up"] = best["pylinkage with rates"] / best["ours with rates"]
+    row["plain numpy / ours positions"] = best["plain numpy"] / best["ours positions"]
+    return row
 
 
 #: what :func:`memory_rows` measures in a fresh process each: the call and its label
@@ -322,8 +318,8 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
     for r in rows:
         lines.append(f"| {r['linkage']} | {r['angles']} | {ms(r, 'ours positions')} | {ms(r, 'ours solve')} | "
                      f"{ms(r, 'plain numpy')} | {ms(r, 'pylinkage step_fast')} | {ratio(r, 'positions speed-up')} / "
-                     f"{ratio(r, 'solve speed-up')} | {ms(r, 'ours positions with rates')} | {ms(r, 'ours with rates')} | "
-                     f"{ms(r, 'pylinkage with rates')} | {ratio(r, 'rates speed-up')} / "
+                     f"{ratio(r, 'solve speed-up')} | {ms(r, 'ours positions with rates')} | "
+                     f"{ms(r, 'ours with rates')} | {ms(r, 'pylinkage with rates')} | {ratio(r, 'rates speed-up')} / "
                      f"{ratio(r, 'solve with rates speed-up')} | {err(r, 'ours error mm')} / "
                      f"{err(r, 'pylinkage error mm')} / {err(r, 'plain numpy error mm')} |")
     if memory:

@@ -275,7 +275,7 @@ class _Chunk:
                 self.crank(op, x[op.index, self.sl])
             else:
                 sign = signs[op.step]
-                self.rrr(op, dyad, sign if np.ndim(sign) == 0 else sign[self.sl], tol)
+                self.rrr(op, dyad, sign[self.sl] if isinstance(sign, np.ndarray) else sign, tol)
                 dyad += 1
         out, sl = self.out, self.sl
         for name, holder, _ in self.prog.points:
@@ -335,7 +335,7 @@ class _Chunk:
         closed form, i w1 a - i w2 b = v2 - v1 (a, b the vectors from the pins to J)."""
         out, sl, m = self.out, self.sl, self.m
         p1, p2 = self.point(op.refs[0], op.pins[0]), self.point(op.refs[1], op.pins[1])
-        d = p2 - p1
+        d = np.asarray(p2 - p1)        # an array: a dyad has a moving pin
         dd = np.square(d.real)
         dd += np.square(d.imag)
         if op.deltoid and (dd <= op.fold_reach**2).any():
