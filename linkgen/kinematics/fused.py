@@ -348,7 +348,7 @@ class _Chunk:
         np.maximum(prod, 0.0, out=wj.imag)
         np.sqrt(wj.imag, out=wj.imag)
         wj.imag *= inv                 # height: 4 area / (2 dd), on the branch's side
-        if np.ndim(sign) or sign < 0:
+        if isinstance(sign, np.ndarray) or sign < 0:
             wj.imag *= sign
         a = d * wj                     # pin 1 -> J
         dest = self.dest(op.bodies[0], op.joint)
