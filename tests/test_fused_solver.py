@@ -119,7 +119,10 @@ def test_the_fused_solver_equals_the_general_one_on_every_bundled_linkage(name):
 def _random_six_bar(rng: np.random.Generator, kind: str) -> Linkage:
     """A six-bar drawn at random joint positions (mm): Watt I (coupler A-B-E and rocker O4-B-F ternary, dyad
     F-G-E) or Stephenson III (coupler A-B-E ternary, dyad E-G-O6 to the ground)."""
-    pts = {name: tuple(float(v) for v in rng.uniform(-100.0, 100.0, 2)) for name in ("B", "E", "F", "G", "O6")}
+    pts: dict[str, tuple[float, float]] = {}
+    for name in ("B", "E", "F", "G", "O6"):
+        x, y = rng.uniform(-100.0, 100.0, 2)
+        pts[name] = (float(x), float(y))
     pts["O2"], pts["O4"] = (0.0, 0.0), (float(rng.uniform(60.0, 120.0)), float(rng.uniform(-20.0, 20.0)))
     crank = float(rng.uniform(10.0, 30.0))
     angle = float(rng.uniform(0.0, 2 * math.pi))
