@@ -34,7 +34,7 @@ HOLY = {"a": 38.0, "b": 41.5, "c": 39.3, "d": 40.1, "e": 55.8, "f": 39.4, "g": 3
 #: Jansen's joints in solve order: (joint, first known joint, its distance, second, its distance, pick), ``pick``
 #: choosing the intersection: the upper ('y+'), lower ('y-') or left ('x-') one
 JANSEN_DYADS = (("C", "A", "j", "B", "b", "y+"), ("D", "A", "k", "B", "c", "y-"), ("E", "B", "d", "C", "e", "x-"),
-                ("F", "E", "f", "D", "g", "x-"), ("G", "D", "h", "F", "i", "y-"))
+                ("F", "E", "f", "D", "g", "x-"), ("G", "D", "i", "F", "h", "y-"))
 
 
 def linkage_speed(repeats: int) -> list[dict]:
@@ -362,11 +362,15 @@ def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
 def run_bench(out: str | Path, quick: bool = False) -> dict:
     """Run everything; write RESULTS.md and results.json into ``out``; return the results."""
     repeats = 1 if quick else 5
+    from linkgen.bench_solver import memory_rows, solver_rows
     from linkgen.synthesis.bench import published_rows, synthesis_rows
 
     return core_bench.finish(Path(out), {"quick": quick, "speed": speed_ratios(1 if quick else 5),
                                          "linkages": linkage_speed(repeats),
                                          "general": general_speed(repeats, 10_000 if quick else 100_000),
+                                         "solver": solver_rows((10_000,) if quick else (10_000, 100_000, 1_000_000),
+                                                               1 if quick else 5),
+                                         "solver_memory": [] if quick else memory_rows(),
                                          "synthesis": synthesis_rows(quick), "published": published_rows(),
                                          "hard_cases": hard_cases()}, _markdown)
 
@@ -396,9 +400,11 @@ def _markdown(r: dict) -> list[str]:
                      f"{row.get('status', 'measured')} |")
     lines += ["", "Jansen's leg (the holy numbers): errors of the foot against a 50-digit (mpmath) solution at 100 of "
               "the angles; the four-bar's against linkgen's dedicated closed form."]
+    from linkgen.bench_solver import markdown as solver_markdown
     from linkgen.synthesis.bench import markdown as synthesis_markdown
-
     from linkgen.synthesis.bench import published_markdown
+
+    lines += ["", *solver_markdown(r.get("solver", []), r.get("solver_memory", []))]
 
     lines += ["", "## Synthesis (`linkgen synthesize`)", "", *synthesis_markdown(r.get("synthesis", []))]
     lines += ["", "## Published path problems: each paper's linkage beside ours", "",

@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from functools import cached_property
-from linkgen.kinematics import dyads
+from linkgen.kinematics import dyads, fused
 from linkgen.kinematics.dyads import cross, dot, perp
 from linkgen.kinematics.grashof import check_finite
 from linkgen.kinematics.structure import (GROUND, Attachment, DyadStep, FixedStep, Input, InputStep, Pin, Plan, Slide,
@@ -153,6 +153,23 @@ class Solution:
         """One body's turn from the drawing (rad, in (-pi, pi])."""
         c, sn = self.rotations[body]
         return np.arctan2(sn, c)
+
+
+@dataclass(frozen=True)
+class Positions:
+    """Every point's position (n, 2) mm over the poses (a ground point as a read-only broadcast row), the inputs as
+    given (k, n) and ``ok``: what :meth:`Linkage.positions` gives."""
+
+    inputs: np.ndarray
+    points: dict[str, np.ndarray]
+    ok: np.ndarray
+    #: each point's velocity and acceleration (n, 2) per unit input speed, where asked for (else empty)
+    velocities: dict[str, np.ndarray] = field(default_factory=dict)
+    accelerations: dict[str, np.ndarray] = field(default_factory=dict)
+
+
+def _positions_of(sol: Solution) -> Positions:
+    return Positions(sol.inputs, sol.points, sol.ok, sol.velocities, sol.accelerations)
 
 
 #: the searches' hook into a solve (see :meth:`Linkage.solve`): a dyad's step index and result -> its change points
@@ -278,6 +295,13 @@ class Linkage:
         return base * np.where(ahead % 2 == 0, 1.0, -1.0)
 
     @cached_property
+    def program(self) -> fused.Program | None:
+        """The solve order planned once for the fused kernels (:mod:`linkgen.kinematics.fused`), or None where a
+        step needs the general path."""
+        return fused.program(self.structure, self.plan.steps, tuple(float(v) for v in self.drawn_inputs),
+                             FOLD_REACH)
+
+    @cached_property
     def ranges(self) -> tuple[tuple[float, float], ...] | None:
         """The input values it reaches on its branches (:func:`linkgen.kinematics.motion.input_ranges`), found
         once."""
@@ -318,6 +342,36 @@ class Linkage:
             if derivatives and upto is None and len(x) == 1 and any(len(f) for f in self.flips):
                 self._rates_at_change_points(sol, r)
             return sol
+
+    def positions(self, inputs: ArrayLike, *, derivatives: bool = False, strict: bool = True) -> Positions:
+        """Every joint's position (n, 2) mm at each input value, with ``derivatives`` its velocity and acceleration
+        per unit input speed, and nothing else (no rotations, margins or body rates): what :meth:`solve` gives in
+        ``points`` (``velocities``, ``accelerations``), on the same branches, in less time and memory (the fused
+        kernels of :mod:`linkgen.kinematics.fused`, chunk by chunk). ``strict`` as for :meth:`solve`."""
+        x = np.atleast_2d(np.asarray(inputs, dtype=float))
+        prog = self.program
+        flipped = any(len(f) for f in self.flips)
+        if prog is None or x.shape[0] != 1 or (derivatives and flipped):
+            return _positions_of(self.solve(x, strict=strict, derivatives=derivatives))
+        if strict:
+            check_finite(x[0], "input", "input", "degrees", math.degrees)
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            given = x
+            # the crank's turn is periodic: values within a few turns of the drawing need no unwrapping unless a
+            # change point's branch swap depends on the revolution they lie on
+            near = bool(len(x[0])) and float(np.abs(x[0] - self.revolution).max()) <= 4 * TWO_PI
+            x = self.unwrap(x[0])[None, :] if flipped or not near else x
+            signs = self.signs(x) if flipped else list(self.base_signs)
+            try:
+                out = fused.run(prog, x, np.ones(1), signs, derivatives, False, FEASIBILITY_TOL)
+            except fused.Folded:
+                return _positions_of(self.solve(given, strict=strict, derivatives=derivatives))
+        if strict and not out.ok.all():
+            from linkgen.kinematics.motion import out_of_reach
+
+            out_of_reach(self, given[:, ~out.ok][:, 0])
+        points, vels, accs = _fused_points(prog, out, x.shape[1], derivatives)
+        return Positions(given, points, out.ok, vels, accs)
 
     def _rates_at_change_points(self, sol: Solution, rates: np.ndarray) -> None:
         """Rates within ``CHANGE_REACH`` of a change point, where a dyad's 2x2 solve is 0/0: the branch's limit,
@@ -701,6 +755,11 @@ def _turn_to(u: _Turning, now: np.ndarray, drawn: np.ndarray) -> Body:
 
 def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.ndarray], strict: bool,
            derivatives: bool, upto: int | None, choose: Chooser | None) -> Solution:
+    if choose is None and upto is None and linkage.program is not None:
+        try:
+            return _solve_fused(linkage.program, x, rates, signs, derivatives)
+        except fused.Folded:
+            pass                        # a deltoid's pins meet: its joint is placed by the motion, below
     s, p = linkage.structure, linkage.plan
     n = x.shape[1]
     ground = Body(np.ones(n), np.zeros(n), np.zeros((n, 2)))
@@ -733,6 +792,41 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
             if motions is not None:
                 _move_dyad(step, s, u1, u2, bodies, motions)
     return _gather(s, x, bodies, motions, tuple(results), ok)
+
+
+def _solve_fused(prog: fused.Program, x: np.ndarray, rates: np.ndarray, signs: list[np.ndarray],
+                 derivatives: bool) -> Solution:
+    """:func:`_solve` by the fused kernels: the same solution, the ground's points and rates as constants
+    (read-only broadcast arrays)."""
+    out = fused.run(prog, x, rates, signs, derivatives, True, FEASIBILITY_TOL)
+    n = x.shape[1]
+    zero, one = np.broadcast_to(0.0, (n,)), np.broadcast_to(1.0, (n,))
+    points, vels, accs = _fused_points(prog, out, n, derivatives)
+    rotations = {GROUND: (one, zero), **{b: (q.real, q.imag) for b, q in out.rotations.items()}}
+    omegas = {GROUND: zero, **out.omegas} if derivatives else {}
+    alphas = {GROUND: zero, **out.alphas} if derivatives else {}
+    ops = [op for op in prog.ops if isinstance(op, fused.RRROp)]
+    results = tuple(DyadResult("RRR", op.bodies, op.joint, out.margins[i], out.transmissions[i], out.slacks[i],
+                               out.spreads[i] if derivatives else None) for i, op in enumerate(ops))
+    return Solution(x, points, vels, accs, rotations, omegas, alphas, results, out.ok)
+
+
+def _fused_points(prog: fused.Program, out: fused.Outputs, n: int, derivatives: bool
+                  ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """The fused outputs' points (and velocities, accelerations) as (n, 2) float views; a ground point's as one
+    broadcast row."""
+    points, vels, accs = {}, {}, {}
+    for name, holder, xd in prog.points:
+        if holder is None:
+            points[name] = fused.constant_point(xd, n)
+            if derivatives:
+                vels[name] = accs[name] = fused.constant_point(0j, n)
+        else:
+            points[name] = fused.point_view(out.points[name])
+            if derivatives:
+                vels[name] = fused.point_view(out.velocities[name])
+                accs[name] = fused.point_view(out.accelerations[name])
+    return points, vels, accs
 
 
 def _move_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, bodies: dict[str, Body],

@@ -591,7 +591,9 @@ def general_layout(a: Analysis, table: PartsTable) -> Layout:
         positions += [(f"limit-{body}", e.value, pieces[k].linkage) for e, k in zip(om.limits, om.pieces, strict=True)]
     if not positions or len(a.table.inputs) > 1:
         positions = [("drawn", float(a.linkage.drawn_inputs[0]), a.linkage)]
-    positions.sort(key=lambda p: p[1])
+    # in order of the input; positions at the same input to 1e-9 (two limits at one crank angle) by name, so that
+    # their order does not hang on the last bits of where each was refined to
+    positions.sort(key=lambda p: (round(p[1] * 1e9), p[0]))
     if len(a.table.inputs) > 1:
         poses: tuple[Placement, ...] = (general_placement(a, a.linkage.solve(a.linkage.drawn_inputs[:, None])),)
     else:
