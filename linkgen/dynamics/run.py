@@ -50,9 +50,9 @@ TOGGLE_MARGIN = 1e-6
 class Dynamics:
     """A linkage's dynamics (see the module's note): the table, the analysis it runs on, the masses, the loads, the
     input's speed and acceleration (SI: rad/s, rad/s^2 or m/s, m/s^2: the constant ones, or with a profile its mean
-    speed and 0) and the profile the poses run at (:mod:`linkgen.dynamics.profile`), the kinetostatics over the poses, the
-    generalised inertia J and J' there (:func:`linkgen.kinematics.inertia.generalised_inertia`), and for a crank
-    that turns fully the energy fluctuation, the flywheel and the counterweight; the holes' and pins' loads."""
+    speed and 0) and the profile the poses run at (:mod:`linkgen.dynamics.profile`), the kinetostatics over the
+    poses, the generalised inertia J and J' there (:func:`linkgen.kinematics.inertia.generalised_inertia`), and for a
+    crank that turns fully the energy fluctuation, the flywheel and the counterweight; the holes' and pins' loads."""
 
     table: DynamicsTable
     analysis: Analysis

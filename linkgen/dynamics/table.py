@@ -134,7 +134,7 @@ class DynamicsTable(Model):
             raise ValueError(f'must be "motor" or rows [[crank_deg, rpm], ...] (got {value!r})')
         if not MIN_ROWS <= len(value) <= MAX_ROWS:
             raise ValueError(f"needs {MIN_ROWS} to {MAX_ROWS} rows [[crank_deg, rpm], ...] (got {len(value)})")
-        rows = []
+        rows: list[tuple[float, float]] = []
         for k, row in enumerate(value):
             if not (isinstance(row, (list, tuple)) and len(row) == 2 and all(
                     isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and abs(v) <= 1e6
