@@ -199,11 +199,12 @@ def test_the_motors_steady_turn():
 def test_the_report_and_console_say_the_speed_used(tmp_path):
     """``linkgen analyze`` with the sine profile: the report's speed section says "profile" with its rows and its
     min, mean and max in rpm (w0 (1 - e), w0 sqrt(1 - e^2), w0 (1 + e) within the spline's error), the console's
-    dynamics line says it; without a profile it says "constant"."""
+    dynamics line says it and the torque's figure is drawn; without a profile it says "constant"."""
     out = tmp_path / "out"
-    result = CliRunner().invoke(main, ["analyze", str(JANSEN), "-o", str(out), "--set",
+    result = CliRunner().invoke(main, ["analyze", str(JANSEN), "-o", str(out), "--figures", "--set",
                                        f"dynamics.speed_profile={_rows(72)}"])
     assert result.exit_code == 0, result.output
+    assert (out / "jansen-dynamics-torque.png").stat().st_size > 10_000
     d = json.loads((out / "jansen-dynamics.json").read_text())["dynamics"]
     s = d["speed"]
     assert s["used"] == "profile" and s["rows"] == 72 and "input_acceleration_rad_s2" not in d
@@ -254,3 +255,9 @@ def test_a_slides_rows_short_of_its_travel_are_refused(tmp_path):
     assert_refused(PUMP, {"dynamics.speed_profile": [[-30, 50], [-10, 50], [10, 50], [40, 50]]},
                    "dynamics.speed_profile: the rows' positions must cover the travel analysed, -39.2 to 39.2 mm "
                    "(they cover -30 to 40 mm)", tmp_path, main, "analyze")
+
+
+def test_a_slides_speed_with_a_profile_is_refused(tmp_path):
+    assert_refused(PUMP, {"dynamics.speed_profile": [[-40, 50], [-10, 50], [10, 50], [40, 50]], "dynamics.speed": 50},
+                   "dynamics.speed: dynamics.speed_profile gives the input's speed and acceleration at every pose: "
+                   "give dynamics.speed_profile or dynamics.speed, not both", tmp_path, main, "analyze")

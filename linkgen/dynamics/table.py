@@ -91,10 +91,11 @@ class DynamicsTable(Model):
                           "skins counted (a 3 mm plate with two perimeters at 20 % infill is about 0.5)")
     pins: Literal[tuple(PINS)] = Field("steel", description="the pins' material (a kit's bolts are steel)")  # type: ignore[valid-type]
     speed: float = Field(100.0, gt=0, le=MAX_SPEED_MM_S, description="a slide input's speed (a crank runs at "
-                         "linkage.rpm)", json_schema_extra=unit("mm/s"))
+                         "linkage.rpm; not with speed_profile)", json_schema_extra=unit("mm/s"))
     input_acceleration: float = Field(0.0, ge=-MAX_ACCELERATION, le=MAX_ACCELERATION,
                                       description="the input's acceleration at every pose: rad/s^2 for a crank, "
-                                                  "mm/s^2 for a slide", json_schema_extra=unit("rad/s^2 or mm/s^2"))
+                                                  "mm/s^2 for a slide (not with speed_profile)",
+                                      json_schema_extra=unit("rad/s^2 or mm/s^2"))
     speed_profile: tuple[tuple[float, float], ...] | Literal["motor"] | None = Field(
         None, description=f"the input's speed over the motion instead of a constant one: rows [[crank_deg, rpm], ...] "
         f"over one turn ({MIN_ROWS} to {MAX_ROWS} rows, the crank angles strictly increasing and less than 360 "
