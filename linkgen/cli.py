@@ -282,7 +282,9 @@ def _print_dynamics(d: dict[str, Any]) -> None:
     out = click.echo
     crank = "max_N_m" in d
     unit, label, where = ("N_m", "N*m", "deg") if crank else ("N", "N", "mm")
-    speed = f"{d['speed']['rpm']:g} rpm" if crank else f"{d['speed']['speed_mm_s']:g} mm/s"
+    from linkgen.dynamics.report import speed_words
+
+    speed = speed_words(d["speed"])
     out(f"dynamics at {speed}: moving links {1000 * d['moving_mass_kg']:.4g} g ({d['material']}); driving "
         f"{'torque' if crank else 'force'} {d[f'min_{unit}']:.4g} to {d[f'max_{unit}']:.4g} {label} (at "
         f"{d[f'min_at_input_{where}']:.4g} and {d[f'max_at_input_{where}']:.4g} {where}), peak power "

@@ -4,6 +4,7 @@ reactions, a slider-crank's classical harmonics and counterweight, and a flywhee
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -92,13 +93,16 @@ def _loads(linkage: Linkage) -> Loads:
                  (Spring(anchor, GROUND, point, holder, 0.02, free),))
 
 
-def _energy_torque(linkage: Linkage, theta: np.ndarray, masses: dict[str, LinkMass], loads: Loads, speed: float,
-                   acceleration: float = 0.0, h: float = 4e-3) -> np.ndarray:
+def _energy_torque(linkage: Linkage, theta: np.ndarray, masses: dict[str, LinkMass], loads: Loads,
+                   speed: float | Callable[[np.ndarray], np.ndarray], acceleration: float = 0.0,
+                   h: float = 4e-3) -> np.ndarray:
     """The driving torque by the energy method from the positions alone: T = dE/dtheta - P' + J alpha, with E the
     kinetic energy at ``speed`` plus the potential energy of gravity and the springs, P' the loads' power per unit
     input speed and J = 2 KE / speed^2; every rate by 10th-order central differences of the solver's positions (no
     velocity or acceleration of the solver is used). A slide's values and steps are mm, its speed m/s and its
-    effort N."""
+    effort N. ``speed`` may be a function of the input value (a speed that varies over the motion): E is then the
+    kinetic energy at each differenced pose's own speed, whose change carries the acceleration (``acceleration``
+    is left at 0)."""
     s = linkage.structure
     per = 1.0 if linkage.is_crank() else 1e-3          # the input's unit in SI
     grid = theta[:, None, None] + h * OFFSETS[None, :, None] + h * OFFSETS[None, None, :]
@@ -117,6 +121,7 @@ def _energy_torque(linkage: Linkage, theta: np.ndarray, masses: dict[str, LinkMa
         return np.unwrap(shaped(np.arctan2(sn, c)).reshape(n, -1), axis=1).reshape(n, len(OFFSETS), len(OFFSETS))
 
     kinetic = np.zeros((n, len(OFFSETS)))
+    squared = np.square(speed(theta[:, None] + h * OFFSETS[None, :])) if callable(speed) else speed**2
     potential = np.zeros((n, len(OFFSETS)))
     for body, m in masses.items():
         first = s.bodies[body][0]
@@ -126,7 +131,7 @@ def _energy_torque(linkage: Linkage, theta: np.ndarray, masses: dict[str, LinkMa
         g = shaped(g)
         v = rate(g) * 1e-3 / per                               # m per unit input (SI) at the outer offsets
         w = rate(angle(body)) / per
-        kinetic += 0.5 * speed**2 * (m.mass * np.sum(v**2, axis=-1) + m.inertia * 1e-6 * w**2)
+        kinetic += 0.5 * squared * (m.mass * np.sum(v**2, axis=-1) + m.inertia * 1e-6 * w**2)
         potential -= m.mass * (g[:, :, 5] * 1e-3) @ np.asarray(loads.gravity)
     for sp in loads.springs:
         ends = [np.broadcast_to(np.asarray(s.points[p], dtype=float), (len(grid.reshape(-1)), 2)) if b == GROUND
@@ -139,7 +144,7 @@ def _energy_torque(linkage: Linkage, theta: np.ndarray, masses: dict[str, LinkMa
     for t in loads.torques:
         power += t.torque * rate(angle(t.link))[:, 5] / per
     energy = kinetic + potential
-    j = 2.0 * kinetic[:, 5] / speed**2 if speed else 0.0
+    j = 2.0 * kinetic[:, 5] / speed**2 if speed and not callable(speed) else 0.0
     return energy @ D1 / (h * per) - power + j * acceleration
 
 

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.figures import figure
+from linkgen.dynamics.report import speed_section, speed_words
 from linkgen.dynamics.run import Dynamics
 
 #: joints drawn in the polar figure (the most loaded first when there are more)
@@ -55,7 +56,7 @@ def torque_figure(name: str, dyn: Dynamics) -> Any:
     bottom.set_xlabel(label)
     for ax in (top, bottom):
         ax.grid(alpha=0.3)
-    speed = f"{dyn.speed * 60 / (2 * math.pi):g} rpm" if dyn.crank else f"{dyn.table.speed:g} mm/s"
+    speed = speed_words(speed_section(dyn, dyn.speed * 60 / (2 * math.pi)))
     top.set_title(f"{name}: driving {'torque' if dyn.crank else 'force'} and power at {speed}")
     return fig
 

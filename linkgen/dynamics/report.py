@@ -113,8 +113,7 @@ def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
         "conventions": "SI units (N, N*m, W, J, kg); masses' centres in mm in each link's own frame (origin at its "
                        "first joint, +x towards its second); forces in the drawing's frame; a joint's force is on "
                        "the second link named from the first",
-        "speed": {"rpm": rpm} if crank else {"speed_mm_s": dyn.table.speed},
-        f"input_acceleration_{'rad_s2' if crank else 'mm_s2'}": dyn.table.input_acceleration,
+        "speed": speed_section(dyn, rpm),
         "gravity_m_s2": [_num(v) for v in dyn.loads.gravity],
         "poses": len(x),
         "material": dyn.masses.material.name, "density_kg_m3": dyn.masses.density,
@@ -137,6 +136,8 @@ def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
                                                                        strict=True)],
         "balance_residual": None if r.residual is None else _num(float(np.nanmax(r.residual))),
     }
+    if dyn.profile is None:
+        out[f"input_acceleration_{'rad_s2' if crank else 'mm_s2'}"] = dyn.table.input_acceleration
     if dyn.turns and dyn.fluctuation is not None:
         out["mean_effort_N_m"] = _num(dyn.fluctuation.mean_torque)
         out["energy_fluctuation_J"] = _num(dyn.fluctuation.energy)
@@ -169,6 +170,34 @@ def dynamics_report(dyn: Dynamics, rpm: float) -> dict[str, Any]:
                         f"{'degrees' if crank else 'mm'} (a dead centre): its effort and forces are unbounded there")
     out["warnings"] = warnings
     return out
+
+
+def speed_section(dyn: Dynamics, rpm: float) -> dict[str, Any]:
+    """The speed the dynamics ran at: ``used`` (constant, profile or motor) and its least, mean (over time: a turn,
+    or the travel, over the time it takes) and largest, in rpm or mm/s; the constant's own key (``rpm`` or
+    ``speed_mm_s``), or a profile's row count."""
+    p = dyn.profile
+    unit, scale = ("rpm", 60.0 / (2.0 * math.pi)) if dyn.crank else ("mm_s", 1e3)
+    if p is None:
+        value = rpm if dyn.crank else dyn.table.speed
+        out: dict[str, Any] = {"used": "constant", "rpm" if dyn.crank else "speed_mm_s": value}
+        out.update({f"{k}_{unit}": value for k in ("min", "mean", "max")})
+        return out
+    out = {"used": p.kind, f"min_{unit}": _num(p.slowest * scale), f"mean_{unit}": _num(p.mean * scale),
+           f"max_{unit}": _num(p.fastest * scale)}
+    if isinstance(dyn.table.speed_profile, tuple):
+        out["rows"] = len(dyn.table.speed_profile)
+    return out
+
+
+def speed_words(speed: dict[str, Any]) -> str:
+    """The report's ``speed`` section in a few words: ``60 rpm``, or ``40 to 80 rpm (profile, mean 57.7)``."""
+    unit = "rpm" if "mean_rpm" in speed else "mm_s"
+    shown = "rpm" if unit == "rpm" else "mm/s"
+    if speed.get("used", "constant") == "constant":
+        return f"{speed['rpm' if unit == 'rpm' else 'speed_mm_s']:g} {shown}"
+    return f"{speed[f'min_{unit}']:.4g} to {speed[f'max_{unit}']:.4g} {shown} ({speed['used']}, mean " \
+           f"{speed[f'mean_{unit}']:.4g})"
 
 
 def _flywheel_warnings(dyn: Dynamics) -> list[str]:

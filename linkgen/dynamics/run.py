@@ -4,7 +4,12 @@ speed, the flywheel and the counterweight of a crank that turns fully, and what 
 The linkage is its general-linkage drawing (:func:`linkgen.design.pose_of`: the dedicated mechanisms drawn as one),
 solved at ``dynamics.poses`` input values: a crank's full turn from the drawing (uniform, its end left out, so that
 sums over the poses are a turn's integrals), or the input's range (its ends included). Speeds: a crank at
-``linkage.rpm``, a slide at ``dynamics.speed``; both at ``dynamics.input_acceleration``.
+``linkage.rpm``, a slide at ``dynamics.speed``; both at ``dynamics.input_acceleration``; or the speed and acceleration
+of ``dynamics.speed_profile`` at each pose (:mod:`linkgen.dynamics.profile`: rows, or the motor's steady turn).
+
+The flywheel is sized at a constant speed (I = dE / (Cs w^2), dE from the driving torque at that speed): the
+profile's mean speed, or with ``speed_profile = "motor"`` ``linkage.rpm`` (the motor's run turns the flywheel, so it
+is sized before it); the counterweight at the mean speed.
 """
 from __future__ import annotations
 
@@ -19,6 +24,7 @@ from camgen.core.errors import SpecError
 from linkgen.dynamics.flywheel import FlywheelSize, flywheel_size, with_flywheel
 from linkgen.dynamics.forward import Motion, motion_of
 from linkgen.dynamics.masses import MassModel, Stack, mass_model
+from linkgen.dynamics.profile import SpeedProfile, constant, motor_profile, rows_profile
 from linkgen.dynamics.strength import HoleLoad, hole_loads
 from linkgen.kinematics.balance import Counterweight, Fluctuation, counterweight, fluctuation
 from linkgen.kinematics.inertia import MM, generalised_inertia
@@ -43,9 +49,10 @@ TOGGLE_MARGIN = 1e-6
 @dataclass(frozen=True)
 class Dynamics:
     """A linkage's dynamics (see the module's note): the table, the analysis it runs on, the masses, the loads, the
-    input's speed and acceleration (SI: rad/s, rad/s^2 or m/s, m/s^2), the kinetostatics over the poses, the
-    generalised inertia J and J' there (:func:`linkgen.kinematics.inertia.generalised_inertia`), and for a crank
-    that turns fully the energy fluctuation, the flywheel and the counterweight; the holes' and pins' loads."""
+    input's speed and acceleration (SI: rad/s, rad/s^2 or m/s, m/s^2: the constant ones, or with a profile its mean
+    speed and 0) and the profile the poses run at (:mod:`linkgen.dynamics.profile`), the kinetostatics over the
+    poses, the generalised inertia J and J' there (:func:`linkgen.kinematics.inertia.generalised_inertia`), and for a
+    crank that turns fully the energy fluctuation, the flywheel and the counterweight; the holes' and pins' loads."""
 
     table: DynamicsTable
     analysis: Analysis
@@ -65,16 +72,19 @@ class Dynamics:
     toggles: tuple[float, ...] = ()
     #: the motion from rest under ``[dynamics.motor]`` (:mod:`linkgen.dynamics.forward`)
     motion: Motion | None = None
+    #: the input's speed and acceleration at each pose (None: ``speed`` and ``acceleration`` at every pose)
+    profile: SpeedProfile | None = None
 
     @property
     def crank(self) -> bool:
         return self.analysis.crank
 
     def at(self, values: np.ndarray) -> Kinetostatics:
-        """The kinetostatics at other input values (rad or mm), at the same speed and loads."""
-        sol = self.analysis.linkage.solve(np.atleast_1d(np.asarray(values, dtype=float)))
-        return kinetostatics(self.analysis.linkage, sol, self.masses.drawn, self.speed, self.acceleration,
-                             self.loads)
+        """The kinetostatics at other input values (rad or mm), at the same speed (the profile's there) and loads."""
+        x = np.atleast_1d(np.asarray(values, dtype=float))
+        sol = self.analysis.linkage.solve(x)
+        speed, acceleration = (self.speed, self.acceleration) if self.profile is None else self.profile.at(x)
+        return kinetostatics(self.analysis.linkage, sol, self.masses.drawn, speed, acceleration, self.loads)
 
 
 def poses(analysis: Analysis, count: int) -> tuple[np.ndarray, bool, tuple[float, ...]]:
@@ -148,19 +158,45 @@ def dynamics_of(table: DynamicsTable, analysis: Analysis, parts: PartsTable | No
         speed, acceleration = rpm * TWO_PI / 60.0, table.input_acceleration
     else:
         speed, acceleration = table.speed * MM, table.input_acceleration * MM
+    profile = constant(speed, acceleration, analysis.crank)
+    if isinstance(table.speed_profile, tuple):
+        profile = rows_profile(table.speed_profile, analysis.crank, float(x[0]), float(x[-1]))
     sol = analysis.linkage.solve(x)
-    result = kinetostatics(analysis.linkage, sol, masses.drawn, speed, acceleration, loads, check=True)
     j, dj = generalised_inertia(s, sol, masses.drawn)
-    fl = size = cw = None
+    size = None
+    if table.speed_profile == "motor":
+        if table.flywheel is not None:         # sized at linkage.rpm, before the run that turns it
+            size = _flywheel(table, x, kinetostatics(analysis.linkage, sol, masses.drawn, speed, 0.0, loads).effort,
+                             speed, j, masses, parts)
+        motion = motion_of(table, analysis.linkage, masses.drawn, loads, float(x[0]), turns, size)
+        profile = motor_profile(table, motion)
+    rates = profile.at(x)
+    result = kinetostatics(analysis.linkage, sol, masses.drawn, *rates, loads, check=True)
+    fl = cw = None
     if turns and np.isfinite(result.effort).all():
         fl = fluctuation(x, result.effort)
-        if table.flywheel is not None:
-            size = flywheel_size(table.flywheel, fl.energy, speed, float(np.mean(j)), masses, parts)
-        cw = counterweight(x, result.shaking_force, speed)
+        if table.flywheel is not None and table.speed_profile != "motor":
+            effort = result.effort if not profile.varies else \
+                kinetostatics(analysis.linkage, sol, masses.drawn, profile.mean, 0.0, loads).effort
+            size = _flywheel(table, x, effort, profile.mean, j, masses, parts)
+        cw = counterweight(x, result.shaking_force, profile.mean)
     holes = hole_loads(result, parts, masses.material, table, kit is not None)
-    motion = motion_of(table, analysis.linkage, masses.drawn, loads, float(x[0]), turns, size)
+    if table.speed_profile != "motor":
+        motion = motion_of(table, analysis.linkage, masses.drawn, loads, float(x[0]), turns, size)
+    if profile.varies:
+        speed, acceleration = profile.mean, 0.0
     return Dynamics(table, analysis, masses, loads, speed, acceleration, result, j, dj, turns, fl, size, cw, holes,
-                    toggles, motion)
+                    toggles, motion, profile if profile.varies else None)
+
+
+def _flywheel(table: DynamicsTable, x: np.ndarray, effort: np.ndarray, speed: float, j: np.ndarray,
+              masses: MassModel, parts: PartsTable | None) -> FlywheelSize | None:
+    """The flywheel of ``table.flywheel`` for the driving torque ``effort`` (N*m) over the turn ``x`` (rad) at the
+    constant ``speed`` (rad/s); None where the torque is not finite (a dead centre)."""
+    assert table.flywheel is not None
+    if not np.isfinite(effort).all():
+        return None
+    return flywheel_size(table.flywheel, fluctuation(x, effort).energy, speed, float(np.mean(j)), masses, parts)
 
 
 def flywheel_build(build: LinkageBuild, dyn: Dynamics) -> LinkageBuild:

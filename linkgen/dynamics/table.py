@@ -6,9 +6,10 @@ Every key has its unit and range here (the template reference is made from these
 """
 from __future__ import annotations
 
-from typing import Literal
+import math
+from typing import Any, Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from camgen.core.spec import MAX_LENGTH_MM, Model, length, notes, unit
 from linkgen.dynamics.materials import PINS, SHEETS
@@ -22,6 +23,9 @@ MAX_DENSITY = 25_000.0
 MAX_STIFFNESS = 1e6
 #: the fastest slide input (mm/s) and the largest input acceleration (rad/s^2 or mm/s^2)
 MAX_SPEED_MM_S, MAX_ACCELERATION = 1e5, 1e6
+#: the fastest crank speed a profile's row may give (rpm), as linkage.rpm's bound (``linkgen.spec.MAX_RPM``); the
+#: fewest and the most rows of a profile
+MAX_PROFILE_RPM, MIN_ROWS, MAX_ROWS = 100_000.0, 4, 3600
 #: the most poses over the motion
 MAX_POSES = 20_000
 #: the largest allowable stress a user may give (MPa)
@@ -87,10 +91,20 @@ class DynamicsTable(Model):
                           "skins counted (a 3 mm plate with two perimeters at 20 % infill is about 0.5)")
     pins: Literal[tuple(PINS)] = Field("steel", description="the pins' material (a kit's bolts are steel)")  # type: ignore[valid-type]
     speed: float = Field(100.0, gt=0, le=MAX_SPEED_MM_S, description="a slide input's speed (a crank runs at "
-                         "linkage.rpm)", json_schema_extra=unit("mm/s"))
+                         "linkage.rpm; not with speed_profile)", json_schema_extra=unit("mm/s"))
     input_acceleration: float = Field(0.0, ge=-MAX_ACCELERATION, le=MAX_ACCELERATION,
                                       description="the input's acceleration at every pose: rad/s^2 for a crank, "
-                                                  "mm/s^2 for a slide", json_schema_extra=unit("rad/s^2 or mm/s^2"))
+                                                  "mm/s^2 for a slide (not with speed_profile)",
+                                      json_schema_extra=unit("rad/s^2 or mm/s^2"))
+    speed_profile: tuple[tuple[float, float], ...] | Literal["motor"] | None = Field(
+        None, description=f"the input's speed over the motion instead of a constant one: rows [[crank_deg, rpm], ...] "
+        f"over one turn ({MIN_ROWS} to {MAX_ROWS} rows, the crank angles strictly increasing and less than 360 "
+        f"degrees past the first, each rpm > 0 and <= {MAX_PROFILE_RPM:g}), a periodic cubic spline through them "
+        f"with the acceleration w dw/dtheta; a slide's rows [[position_mm, speed_mm_s], ...] over the travel "
+        f"analysed (speeds > 0 and <= {MAX_SPEED_MM_S:g} mm/s, a natural cubic spline); or \"motor\": the steady "
+        "turn the [dynamics.motor] run reaches", json_schema_extra=unit(
+            "degrees and rpm, or mm and mm/s", absent="constant: linkage.rpm (a crank) or speed (a slide), at "
+            "input_acceleration"))
     incline: float = Field(90.0, ge=0, le=90, description="the mechanism's plane against the horizontal: 90 "
                            "upright (all of gravity in its plane), 0 lying flat (none)",
                            json_schema_extra=unit("degrees"))
@@ -111,6 +125,43 @@ class DynamicsTable(Model):
                                           json_schema_extra=unit("MPa", absent="the pins' material's"))
     poses: int = Field(720, ge=36, le=MAX_POSES, description="poses over the motion (a crank's turn, or the input's "
                        "range) the forces are computed at")
+
+    @field_validator("speed_profile", mode="before")
+    @classmethod
+    def _profile_rows(cls, value: Any) -> Any:
+        if value is None or value == "motor":
+            return value
+        if isinstance(value, str) or not isinstance(value, (list, tuple)):
+            raise ValueError(f'must be "motor" or rows [[crank_deg, rpm], ...] (got {value!r})')
+        if not MIN_ROWS <= len(value) <= MAX_ROWS:
+            raise ValueError(f"needs {MIN_ROWS} to {MAX_ROWS} rows [[crank_deg, rpm], ...] (got {len(value)})")
+        rows: list[tuple[float, float]] = []
+        for k, row in enumerate(value):
+            if not (isinstance(row, (list, tuple)) and len(row) == 2 and all(
+                    isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and abs(v) <= 1e6
+                    for v in row)):
+                raise ValueError(f"{k}: a row is two finite numbers [crank_deg, rpm] (or [position_mm, speed_mm_s]) "
+                                 f"within 1e6 in size (got {row!r})")
+            if row[1] <= 0:
+                raise ValueError(f"{k}: a speed must be > 0 rpm (or mm/s) (got {row[1]:g})")
+            if k and row[0] <= rows[-1][0]:
+                raise ValueError(f"{k}: the rows' crank angles (or positions) must increase strictly (got "
+                                 f"{row[0]:g} after {rows[-1][0]:g})")
+            rows.append((float(row[0]), float(row[1])))
+        return tuple(rows)
+
+    @model_validator(mode="after")
+    def _one_speed(self) -> DynamicsTable:
+        if self.speed_profile is None:
+            return self
+        for key in ("input_acceleration", "speed"):
+            if key in self.model_fields_set:
+                raise ValueError(f"{key}: dynamics.speed_profile gives the input's speed and acceleration at every "
+                                 f"pose: give dynamics.speed_profile or dynamics.{key}, not both")
+        if self.speed_profile == "motor" and self.motor is None:
+            raise ValueError('speed_profile: "motor" is the steady turn the [dynamics.motor] run reaches: give a '
+                             "[dynamics.motor], or rows [[crank_deg, rpm], ...]")
+        return self
 
     @model_validator(mode="after")
     def _infill_printed(self) -> DynamicsTable:
