@@ -25,6 +25,7 @@ from camgen.core.shapes import Contour
 from linkgen.gears.pair import GearPair
 from linkgen.gears.tooth import BasicRack, ExternalTooth
 from linkgen.mechanisms.gearparts import outlines
+from tests.refusals import assert_refused_sets
 
 TOL = 0.01            # mm: the outlines' tolerance (the parts table's default)
 FINE = 1e-4           # mm: chords of the arcs when an outline is measured
@@ -349,14 +350,7 @@ def test_bad_input_is_one_line_naming_the_field(tmp_path, kind, other, sets, mes
 
     path = tmp_path / "g.toml"
     path.write_text(BASE.format(kind=kind, other=other))
-    args = [command, str(path), "-o", str(tmp_path / "out")]
-    for s in sets:
-        args += ["--set", s]
-    result = CliRunner().invoke(main, args)
-    assert result.exit_code == 2, result.output
-    assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
-    assert result.stderr.startswith(f"error: {message}") and result.stderr.count("\n") == 1, result.stderr
-    assert not (tmp_path / "out").exists()
+    assert_refused_sets(path, sets, message, tmp_path, main, command)
 
 
 @pytest.mark.parametrize(("kind", "other", "line"), [

@@ -13,6 +13,7 @@ from click.testing import CliRunner
 from camgen.core.errors import SpecError
 from linkgen.gears.ratchet import Pawl, RatchetWheel, teeth_per_stroke
 from linkgen.spec import validate_spec
+from tests.refusals import assert_refused_sets
 
 
 def _raw(**linkage) -> dict:
@@ -161,14 +162,7 @@ def test_bad_input_is_one_line_naming_the_field(tmp_path, command, sets, message
 
     path = tmp_path / "r.toml"
     path.write_text(BASE)
-    args = [command, str(path), "-o", str(tmp_path / "out")]
-    for s in sets:
-        args += ["--set", s]
-    result = CliRunner().invoke(main, args)
-    assert result.exit_code == 2, result.output
-    assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
-    assert result.stderr.startswith(f"error: {message}") and result.stderr.count("\n") == 1, result.stderr
-    assert not (tmp_path / "out").exists()
+    assert_refused_sets(path, sets, message, tmp_path, main, command)
 
 
 def test_analyze_prints_the_check_and_the_index(tmp_path):
