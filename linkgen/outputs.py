@@ -19,7 +19,7 @@ from camgen.core.errors import SpecError
 from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
 from camgen.core.parts import Placed
-from linkgen.design import LinkageDesign, design_linkage
+from linkgen.linkage_design import LinkageDesign, design_linkage
 from linkgen.kit import placed_solids
 from linkgen.parts import LinkageBuild
 from linkgen.spec import validate_spec
@@ -36,7 +36,7 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     Parameters
     ----------
     design : LinkageDesign
-        A design from :func:`linkgen.design.design_linkage`.
+        A design from :func:`linkgen.linkage_design.design_linkage`.
 
     Returns
     -------
@@ -80,7 +80,7 @@ def write_linkage(design: LinkageDesign, directory: str | Path) -> dict[str, str
     Parameters
     ----------
     design : LinkageDesign
-        A design from :func:`linkgen.design.design_linkage`.
+        A design from :func:`linkgen.linkage_design.design_linkage`.
     directory : str or Path
         The folder to write into (made if missing).
 

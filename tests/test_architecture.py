@@ -41,7 +41,7 @@ BREAKS = {
     "cli": ("camgen/profile.py", "import click"),
     "flow": ("camgen/cam.py", "import camgen.outputs"),
     "linkgen-kinematics": ("linkgen/kinematics/fourbar.py", "import pydantic"),
-    "linkgen-flow": ("linkgen/parts.py", "import linkgen.design"),
+    "linkgen-flow": ("linkgen/parts.py", "import linkgen.linkage_design"),
 }
 
 
