@@ -32,7 +32,7 @@ _MODULES = {
     "camgen.profile": ("design_cam", "Profile"),
     "camgen.flat": ("build_cam", "CamDesign"),
     "camgen.sizing": ("size_cam",),
-    "camgen.convergence": ("convergence",),
+    "camgen.convergence_study": ("convergence",),
     "camgen.grooved.design": ("design_grooved", "GroovedDesign"),
     "camgen.geneva.kinematics": ("GenevaLaw",),
     "camgen.geneva.spec": ("GenevaSpec",),
