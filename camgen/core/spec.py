@@ -375,7 +375,8 @@ class TemplateSpec(Model):
         except SpecError as exc:
             raise SpecError(exc.detail, (exc.field or "").removeprefix("--set ") or None) from None
         spec = type(self).validate_raw(changed)
-        chooser = next(c for c in type(self).__mro__ if "validate_raw" in c.__dict__)   # the class that dispatches
+        chooser = next(c for c in type(self).__mro__                      # the class that dispatches
+                       if isinstance(c, type) and issubclass(c, TemplateSpec) and "validate_raw" in c.__dict__)
         if not isinstance(spec, chooser):
             raise SpecError(f"{type(spec).noun}, not {chooser.noun}", "template")
         return cast(Self, spec)             # of this class, or (a linkage's new type) of its chooser's
