@@ -1,10 +1,11 @@
 """The library's calls, the command line's and the family's: each asks the kind registry (:data:`camgen.kinds.KINDS`)
 what a spec or design is, so that none of them names a kind::
 
-    from camgen import api
-    spec = api.load("templates/rdrd.toml", ["motion.0.lift=25"])   # checked, no geometry yet
-    design = api.design(spec)                                       # every check and the geometry, no I/O
-    report = api.write(design, "out/rdrd-25")                        # the files, all or nothing, and the report
+    import camgen
+    spec = camgen.CamSpec.from_toml("templates/rdrd.toml").with_changes({"motion.0.lift": 25})
+    design = camgen.design(spec)                                    # every check and the geometry, no I/O
+    written = camgen.write(design, "out/rdrd-25", formats=["dxf", "stl"])   # all or nothing
+    written.files["dxf"], written.report["files"]
 
 Nothing here prints or exits; a problem is a :class:`~camgen.core.errors.CamgenError` in one line.
 """
@@ -12,37 +13,70 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, Protocol
 
-from camgen.core.bundle import Bundle, Item, write_bundle
+from camgen.core.bundle import Bundle, Item, Written, with_formats, write_bundle
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
 from camgen.kinds.base import SizeReport
-from camgen.spec import load_spec, validate_spec
+from camgen.spec import CamSpec, load_spec, validate_spec
+
+if TYPE_CHECKING:
+    from camgen.geneva.spec import GenevaSpec
 
 
-def load(path: str | Path, overrides: Iterable[str] = ()) -> Any:
+class Design(Protocol):
+    """What :func:`design` gives for every kind (a disc or plate cam's :class:`~camgen.flat.FlatCamDesign`, a
+    grooved, barrel or conjugate cam's design, a Geneva drive's): frozen, everything computed, nothing written."""
+
+    @property
+    def spec(self) -> CamSpec | GenevaSpec:
+        """The validated template it was designed from."""
+        ...
+
+    @property
+    def tolerance(self) -> float:
+        """The chord tolerance (mm) its curves were made to."""
+        ...
+
+    @property
+    def warnings(self) -> tuple[str, ...]:
+        """What the console prints after the summary: each a line in the user's terms."""
+        ...
+
+    def _repr_svg_(self) -> str:
+        """The part (or parts) as drawn, for Jupyter."""
+        ...
+
+    def _repr_html_(self) -> str | None:
+        """The interactive page, for Jupyter; None where ``output.formats`` leaves out html."""
+        ...
+
+
+def load(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:
     """The validated spec of the template file ``path`` with ``"key=value"`` ``overrides`` merged in (see
-    :func:`camgen.spec.load_spec`)."""
+    :func:`camgen.spec.load_spec`; :meth:`CamSpec.from_toml <camgen.core.spec.TemplateSpec.from_toml>` is the same
+    for a cam only)."""
     return load_spec(path, overrides)
 
 
-def validate(raw: Mapping[str, Any]) -> Any:
+def validate(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
     """The validated spec of the raw template ``raw`` (see :func:`camgen.spec.validate_spec`)."""
     return validate_spec(raw)
 
 
-def design(spec: Any) -> Any:
+def design(spec: CamSpec | GenevaSpec) -> Design:
     """The design of ``spec`` by its kind: every check and all the geometry, nothing written.
 
     Parameters
     ----------
-    spec : object
-        A validated spec (:func:`load`, :func:`validate`) of any registered kind.
+    spec : CamSpec or GenevaSpec
+        A validated spec (:func:`load`, :meth:`CamSpec.from_toml <camgen.core.spec.TemplateSpec.from_toml>`) of any
+        registered kind.
 
     Returns
     -------
-    object
+    Design
         The kind's design: a disc or plate cam's :class:`~camgen.flat.FlatCamDesign`, a grooved cam's, a barrel's, a
         conjugate pair's or a Geneva drive's own, which :func:`write` writes alike.
 
@@ -52,40 +86,49 @@ def design(spec: Any) -> Any:
         The spec is valid but its part cannot be made as asked (an undercut, a cusp, no wall round the bore); the
         message names the key to change and by how much.
     """
-    return spec_kind(spec).design(spec)
+    made: Design = spec_kind(spec).design(spec)
+    return made
 
 
-def write(design: Any, directory: str | Path, extra: Iterable[Item] = ()) -> dict[str, Any]:
+def write(design: Design, directory: str | Path, formats: Iterable[str] | None = None,
+          extra: Iterable[Item] = ()) -> Written:
     """Write the files of ``design`` (of any kind) into ``directory``, all or nothing, and the files of the
     ``extra`` items after them (a figure asked for on the command line).
 
     Parameters
     ----------
-    design : object
+    design : Design
         A design from :func:`design`.
     directory : str or Path
         The folder to write into (made if missing). Every file is written under a temporary name and renamed only
         when all are complete, so a failure leaves nothing behind.
+    formats : iterable of str, optional
+        The formats to write (``["dxf", "stl"]``), instead of the spec's ``output.formats``.
     extra : iterable of Item
         More files to write after the design's own.
 
     Returns
     -------
-    dict
-        The report, as ``<name>.json`` holds it, with ``files``: each file's name by its key.
+    Written
+        The report, as ``<name>.json`` holds it (with ``files``: each file's name by its key), and each file's path.
 
     Raises
     ------
+    SpecError
+        A format the design's kind does not write, naming ``output.formats``.
     ExportError
         A file could not be written.
     """
+    design = with_formats(design, formats)
     bundle, report = spec_kind(design.spec).bundle(design)
     bundle = Bundle.of((*bundle.items, *extra), bundle.options)
-    return {**report, "files": write_bundle(bundle, directory)}
+    return Written.of(report, write_bundle(bundle, directory), directory)
 
 
-#: the name scripts have written the files with (``camgen.write_cam``)
-write_cam = write
+def write_cam(design: Design, directory: str | Path) -> dict[str, Any]:
+    """The files of ``design`` written into ``directory`` as :func:`write` writes them, and the report: the name
+    scripts have written them with (``camgen.write_cam``), kept for one release."""
+    return write(design, directory).report
 
 
 def summary(design: Any, report: dict[str, Any]) -> list[str]:
@@ -125,5 +168,5 @@ def build_member(raw: dict[str, Any], folder: Path) -> dict[str, Any]:
     """Build one family member from its raw template into ``folder``: its summary row (the kind's figures, its
     files and a thumbnail)."""
     made = design(validate(raw))
-    report = write(made, folder)
+    report = write(made, folder).report
     return spec_kind(made.spec).family_row(made, report)

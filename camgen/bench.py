@@ -20,7 +20,7 @@ import numpy as np
 from camgen.flat import build_cam
 from camgen.core import bench as core_bench
 from camgen.core.bench import call_seconds, process_seconds, ratio_markdown, ratio_row, timed
-from camgen.convergence import contour_error, convergence
+from camgen.convergence_study import contour_error, convergence
 from camgen.spec import validate_spec
 from camgen.core.spec import apply_overrides
 

@@ -35,7 +35,7 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...], const
     design = api.design(spec)
     directory = output if output is not None else Path("out") / spec.name
     extra = api.construction(design) if construction else ()
-    report = api.write(design, directory, extra)
+    report = api.write(design, directory, extra=extra).report
     for line in api.summary(design, report):
         click.echo(line)
     echo_written(report["files"], directory, report["warnings"])

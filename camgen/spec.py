@@ -12,7 +12,7 @@ import math
 import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 from pydantic import Field, field_validator, model_validator
 
@@ -23,7 +23,7 @@ from camgen.core.spec import (MAX_LENGTH_MM, Model, check_kind, length, name_fie
 from camgen.core.errors import SpecError
 from camgen.core.features import MIN_WEB_MM, key_for, web_refusal
 from camgen.core.reading import read_regular
-from camgen.core.spec import CutOutputTable
+from camgen.core.spec import CutOutputTable, TemplateSpec
 from camgen.core.kit import CamKitTable, check_cam_kit
 from camgen.contact_stress import MATERIALS
 from camgen.followers import FOLLOWERS
@@ -466,7 +466,7 @@ class OutputTable(CutOutputTable):
     curves: Literal["polylines", "biarcs"] = Field("polylines", description="how curved stretches are written")
 
 
-class CamSpec(Model):
+class CamSpec(TemplateSpec):
     """A whole cam template, validated: the spec of one cam.
 
     Made by :func:`validate_spec` or :func:`load_spec` from a template (every key, its unit, range and default:
@@ -503,6 +503,15 @@ class CamSpec(Model):
     hub: HubTable = HubTable()
     output: OutputTable = OutputTable()
     kit: CamKitTable | None = None
+
+    product: ClassVar[str] = "camgen"
+    noun: ClassVar[str] = "a cam"
+
+    @classmethod
+    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> CamSpec | GenevaSpec:
+        """The spec of the kind ``raw`` describes (:func:`validate_spec`: a Geneva drive's for a ``[geneva]`` table),
+        each table law's ``file`` read from ``folder`` (None: the current folder)."""
+        return validate_spec(raw if folder is None else _tables_beside(dict(raw), folder))
 
     @model_validator(mode="after")
     def _whole(self) -> "CamSpec":

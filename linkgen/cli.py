@@ -41,7 +41,7 @@ def analyze(template: Path, angle: float | None, method: str, newton: str | None
             as_json: bool, output: Path | None, overrides: tuple[str, ...]) -> None:
     """Analyze the linkage described by TEMPLATE (a TOML file)."""
     from camgen.core.errors import SpecError
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.outputs import write_linkage
     from linkgen.spec import load_spec
 
@@ -132,7 +132,7 @@ def _with_newton(design: Any, angle: float, start: tuple[float, float] | None, t
 @one_design
 def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> None:
     """Make the parts of the linkage in TEMPLATE: cut sheet, assembly drawing, meshes and the report."""
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.outputs import write_linkage
     from linkgen.spec import load_spec
 

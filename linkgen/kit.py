@@ -92,9 +92,9 @@ def pins_of(build: LinkageBuild, layout: Layout) -> tuple[dict[str, Any], ...]:
 def linkage_kit(spec: Any, layout: Layout, mounts: tuple[tuple[float, float], ...],
                 build: LinkageBuild) -> LinkageKit:
     """The kit of a linkage ``spec`` (its ``[kit]`` table) from the ``layout`` whose ground :func:`base_plate` made
-    the base plate with ``mounts``, and the ``build`` of that layout (:func:`linkgen.design.design_linkage` makes
-    both, once). The parts, pins, spacers and mounting heads are placed over the motion's sweep, and two that share
-    some height and meet in plan at any pose are refused (:class:`DesignError` naming ``parts.width``)."""
+    the base plate with ``mounts``, and the ``build`` of that layout (:func:`linkgen.linkage_design.design_linkage`
+    makes both, once). The parts, pins, spacers and mounting heads are placed over the motion's sweep, and two that
+    share some height and meet in plan at any pose are refused (:class:`DesignError` naming ``parts.width``)."""
     kit, table = spec.kit, spec.parts
     pins = pins_of(build, layout)
     bolt = kit.hardware

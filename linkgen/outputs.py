@@ -19,7 +19,7 @@ from camgen.core.errors import SpecError
 from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
 from camgen.core.parts import Placed
-from linkgen.design import LinkageDesign, design_linkage
+from linkgen.linkage_design import LinkageDesign, design_linkage
 from linkgen.kit import placed_solids
 from linkgen.parts import LinkageBuild
 from linkgen.spec import validate_spec
@@ -36,7 +36,7 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     Parameters
     ----------
     design : LinkageDesign
-        A design from :func:`linkgen.design.design_linkage`.
+        A design from :func:`linkgen.linkage_design.design_linkage`.
 
     Returns
     -------
@@ -51,7 +51,7 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     """
     spec = design.spec
     formats, name = spec.output.formats, spec.name
-    report = design.report
+    report = linkage_report(design)
     items: list[Item | None] = []
     if design.build is None and "step" in formats:
         raise SpecError("'step' writes the linkage's parts, which `linkgen build` makes from the [parts] table; "
@@ -59,13 +59,11 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     if design.kit is not None:
         kit = design.kit
         items += _parts_items(name, kit.build, formats)
-        report = {**report, **kit.build.report, "kit": kit.report}
         items.append(item(lambda: placed_meshes(placed_solids(kit, kit.pose), 0),
                           [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats))
         items.append(bom_item(name, kit.bom, formats))
     elif design.build is not None:
         items += _parts_items(name, design.build, formats)
-        report = {**report, **design.build.report}
     items += [item(draw, [("png", f"{kind}_png", f"{name}-{kind}.png"), ("svg", f"{kind}_svg", f"{name}-{kind}.svg")],
                    formats) for kind, draw in design.figures()]
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
@@ -74,13 +72,23 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     return Bundle.of(items, spec.output.write_options)
 
 
+def linkage_report(design: LinkageDesign) -> dict[str, Any]:
+    """The report of ``design`` as ``<name>.json`` holds it but for its ``files``: the design's, then its parts'
+    section (and its kit's) when it has parts."""
+    if design.kit is not None:
+        return {**design.report, **design.kit.build.report, "kit": design.kit.report}
+    if design.build is not None:
+        return {**design.report, **design.build.report}
+    return design.report
+
+
 def write_linkage(design: LinkageDesign, directory: str | Path) -> dict[str, str]:
     """Write the files of ``design`` into ``directory``, all or nothing.
 
     Parameters
     ----------
     design : LinkageDesign
-        A design from :func:`linkgen.design.design_linkage`.
+        A design from :func:`linkgen.linkage_design.design_linkage`.
     directory : str or Path
         The folder to write into (made if missing).
 

@@ -3,7 +3,7 @@ velocity and acceleration and each dyad's transmission angle against the input, 
 :mod:`camgen.core.page`).
 
 The poses are the general-linkage analysis of the design (a four-bar, slider-crank, quick-return or straight-line
-linkage drawn as one, :func:`linkgen.design.pose_of`), solved at 360 input values over the motion analysed: a
+linkage drawn as one, :func:`linkgen.linkage_design.pose_of`), solved at 360 input values over the motion analysed: a
 crank's full turn (played round and round) or the input's range (played to and fro). Velocities and accelerations
 are per unit input: mm/rad and mm/rad^2 for a crank, mm/mm and mm/mm^2 for a slide.
 """

@@ -18,8 +18,8 @@ from camgen.core.errors import SpecError
 from camgen.core.hardware import BOLTS
 from camgen.core.kit import KitTable
 from camgen.core.options import choose
-from camgen.core.spec import (MAX_LENGTH_MM, Model, OutputTable, check_kind, length, name_field, read_template, unit,
-                              validate)
+from camgen.core.spec import (MAX_LENGTH_MM, Model, OutputTable, TemplateSpec, check_kind, length, name_field,
+                              read_template, unit, validate)
 from linkgen.dynamics.table import DynamicsTable
 from linkgen.mechanisms import MECHANISMS, Mechanism
 from linkgen.slack.table import SlackTable
@@ -125,7 +125,7 @@ class LoadTable(Model):
         return self
 
 
-class LinkageSpec(Model):
+class LinkageSpec(TemplateSpec):
     """A validated linkage template. Each mechanism has its own subclass (:func:`spec_model`), whose ``linkage``
     is that mechanism's table and whose :attr:`mechanism` is the mechanism.
 
@@ -162,6 +162,14 @@ class LinkageSpec(Model):
 
     #: the mechanism registered for ``linkage.type``
     mechanism: ClassVar[Any] = None
+    product: ClassVar[str] = "linkgen"
+    noun: ClassVar[str] = "a linkage"
+
+    @classmethod
+    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> LinkageSpec:
+        """The spec of the raw template ``raw``, of the mechanism its ``linkage.type`` names (:func:`validate_spec`;
+        a linkage template names no files, so ``folder`` is not read)."""
+        return validate_spec(raw)
 
     @model_validator(mode="after")
     def _bounded(self) -> LinkageSpec:
@@ -203,6 +211,7 @@ def spec_model(mechanism: Mechanism) -> type[LinkageSpec]:
     """The :class:`LinkageSpec` of templates of ``mechanism`` (made once a mechanism)."""
     model = create_model(f"{mechanism.table.__name__}Spec", __base__=LinkageSpec, linkage=(mechanism.table, ...))
     model.mechanism = mechanism
+    model.noun = f"a {mechanism.types[0]} linkage"
     return model
 
 

@@ -42,7 +42,7 @@ BREAKS = {
     "flow": ("camgen/cam.py", "import camgen.outputs"),
     "linkgen-kinematics": ("linkgen/kinematics/fourbar.py", "import pydantic"),
     "linkgen-gears": ("linkgen/gears/involute.py", "import shapely"),
-    "linkgen-flow": ("linkgen/parts.py", "import linkgen.design"),
+    "linkgen-flow": ("linkgen/parts.py", "import linkgen.linkage_design"),
 }
 
 

@@ -14,7 +14,7 @@ from scipy.integrate import quad, simpson
 from scipy.optimize import brentq
 
 from linkgen.cli import main
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.dynamics.forward import SETTLED, equation_of, method, simulate
 from linkgen.dynamics.motor import Motor, MotorTable
 from linkgen.kinematics import equivalents

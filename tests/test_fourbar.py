@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from camgen.core.errors import SolverError, SpecError
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.kinematics.fourbar import FourBar
 from linkgen.spec import load_spec
 from tests.conftest import ROOT

@@ -450,7 +450,7 @@ rocker = ["O4", "B"]
 
 
 def test_per_link_widths_by_name(tmp_path):
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.spec import validate_spec
 
     fb = FourBar(180, 80, 200, 150)
@@ -510,7 +510,7 @@ def test_spacers_fill_the_empty_layers_a_pin_crosses(tmp_path):
     with pins asked for, the spacer is written as a tube with the printed hole and twice the pin outside."""
     import trimesh
 
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.outputs import write_linkage
     from linkgen.spec import validate_spec
 

@@ -485,7 +485,7 @@ def test_linkage_mounting_heads_clear_the_moving_parts_over_the_turn(crank_rocke
     """The bolt heads on the base plate's corners never meet the crank, coupler or rocker (placed from the report's
     joints over the turn by the four-bar's closed form)."""
     _, report = crank_rocker
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.spec import load_spec as load_linkage
 
     spec = load_linkage(TEMPLATES / "kit-crank-rocker.toml")
@@ -591,7 +591,7 @@ def test_a_linkage_kits_printed_parts_keep_the_elephant_foot():
     without the base plate, vertex for vertex, and their bed faces are inset (the lowest vertices' ring is smaller
     than the next one up)."""
     from camgen.core.solids import extrude
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.parts import build_parts
     from linkgen.spec import load_spec as load_linkage
 
@@ -617,7 +617,7 @@ def test_a_linkage_kit_is_built_once_and_routed_with_its_mounting_holes(tmp_path
     (layout, nest and build_parts each called once), and the report's routing block is of the parts as made: the
     base plate's four mounting holes (ISO 273 medium, 4.5 mm less the 0.15 mm kerf: radius 2.175 mm) fail beside its
     two pivot holes (4.2 - 0.15 mm: radius 2.025 mm), at the report's mounting-hole centres."""
-    from linkgen import design as linkage_design
+    from linkgen import linkage_design
     from linkgen import parts as linkage_parts
     from linkgen.mechanisms.fourbar import FourBarMechanism
 

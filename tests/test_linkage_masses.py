@@ -13,7 +13,7 @@ from click.testing import CliRunner
 from camgen.core.parts import Allowances, Part
 from camgen.core.shapes import Circle, rounded_hull
 from linkgen.cli import main as linkgen
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.dynamics.materials import PINS, SHEETS
 from linkgen.dynamics.section import part_section
 from linkgen.kinematics import equivalents
@@ -146,7 +146,7 @@ def test_every_linkage_type_takes_a_dynamics_table(kind):
     whose mean torque over a crank's turn is 0 (no loads: what the links' energy and weights take, they give back);
     the double rockers (Chebyshev, Roberts, Watt) are analysed inside the toggles that end their crank's range, and
     say so."""
-    from linkgen.design import general_drawing
+    from linkgen.linkage_design import general_drawing
 
     table = EVERY_TYPE[kind]
     spec = validate_spec({"name": "x", "linkage": table})

@@ -11,7 +11,7 @@ import shapely
 from click.testing import CliRunner
 
 from linkgen.cli import main
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.spec import load_spec
 from tests.conftest import ROOT
 

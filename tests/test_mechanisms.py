@@ -13,7 +13,7 @@ import pytest
 
 from camgen.core.errors import SpecError
 from camgen.core.spec import Model
-from linkgen.design import LinkageDesign, analyze, design_linkage
+from linkgen.linkage_design import LinkageDesign, analyze, design_linkage
 from linkgen.mechanisms import MECHANISMS, MODULES, Mechanism, registry
 from linkgen.mechanisms.common import length, rpm
 from linkgen.outputs import linkage_bundle, write_linkage

@@ -67,7 +67,7 @@ def _check_sheet(parts: list[tuple[Contour, list]], size: tuple[float, float], g
 @pytest.fixture(scope="module")
 def jansen(tmp_path_factory):
     from camgen.core.spec import read_template
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.spec import validate_spec
 
     out, result = _build(tmp_path_factory.mktemp("jansen"))

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from camgen.flat import build_cam
-from camgen.convergence import contour_error
+from camgen.convergence_study import contour_error
 from camgen.outline import exact_outline
 from tests.conftest import template
 
@@ -75,7 +75,7 @@ def test_biarcs_within_tolerance_with_far_fewer_entities():
 
 
 def test_error_order_of_polylines_about_2_and_of_biarcs_at_least_2_5():
-    from camgen.convergence import convergence, error_order
+    from camgen.convergence_study import convergence, error_order
 
     cam = build_cam(template())
     poly = convergence(cam, [1e-2, 1e-3, 1e-4], "polylines", repeats=1)

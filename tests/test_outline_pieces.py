@@ -20,7 +20,7 @@ from camgen.core.parts import Drawing
 from camgen.core.shapes import MIN_PIECE_MM, Circle, Contour, Polyline, Text, merged_pieces, rounded_hull
 from camgen.core.spec import read_template
 from camgen.core.writers.dxf import write_dxf
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
 from tests.freecad import freecad_check

@@ -400,8 +400,8 @@ def run_case(case: Case, files: Callable[[Path], None] | None = None, process: b
 
 
 #: failures whose cause is in modules this suite may not change (linkgen/parts.py, linkgen/kinematics,
-#: linkgen/mechanisms, linkgen/design.py, which others are changing): a pattern of the failure and the issue it is,
-#: with a reproduction. A test that meets one still runs all its examples (any other failure fails it) and then
+#: linkgen/mechanisms, linkgen/linkage_design.py, which others are changing): a pattern of the failure and the issue
+#: it is, with a reproduction. A test that meets one still runs all its examples (any other failure fails it) and then
 #: ends as xfail naming the issue; nothing is tolerated silently.
 KNOWN: dict[str, str] = {}
 #: the known issues the running test has met

@@ -97,7 +97,7 @@ def test_the_lever_indexes_whole_teeth_per_stroke(z):
     swing = 360.0 / z
     if swing <= 180.0:
         spec = validate_spec(_raw(teeth=z, tip_diameter=200.0, depth=6.0, **{"lever.swing": min(1.5 * swing, 180.0)}))
-        from linkgen.design import design_linkage
+        from linkgen.linkage_design import design_linkage
 
         report = design_linkage(spec).report
         assert report["lever"]["teeth_per_stroke"] == 1
@@ -108,7 +108,7 @@ def test_the_lever_indexes_whole_teeth_per_stroke(z):
 
 
 def test_the_pawls_clear_the_wheel_by_the_nose_gap_and_bear_on_the_face():
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.mechanisms.ratchet import NOSE_GAP_MM
 
     spec = validate_spec({**_raw(), "parts": {"width": 10.0, "thickness": 4.0, "pin_diameter": 4.0}})

@@ -97,8 +97,10 @@ def test_every_kind_designs_bundles_and_summarises_through_the_registry(tmp_path
     design_of, bundle_of, summary_of = _own(name, spec)
     design = api.design(spec)
     assert type(design) is type(design_of(spec))
-    report = api.write(design, tmp_path)
+    written = api.write(design, tmp_path)
+    report = written.report
     assert report["files"] == bundle_of(design)[0].files
+    assert written.files == {key: tmp_path / name for key, name in report["files"].items()}
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(report["files"].values())
     assert json.loads((tmp_path / report["files"]["json"]).read_text()) == json.loads(json.dumps(report))
     assert api.summary(design, report) == summary_of(design, report)

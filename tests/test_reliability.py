@@ -195,7 +195,7 @@ def test_a_flat_face_where_the_velocity_drops_is_refused_as_a_cusp(tmp_path, fol
 def test_a_flat_face_where_the_velocity_rises_gets_its_straight_flat(tmp_path):
     """A rise leaving a dwell at speed: the face lies along the profile from one contact to the next. The outline
     is measured against the exact envelope (contact curve and flats) by the independent measure."""
-    from camgen.convergence import contour_error
+    from camgen.convergence_study import contour_error
     from camgen.profile import design_cam
     from camgen.spec import validate_spec
 
@@ -239,7 +239,7 @@ def test_the_reported_outline_error_bounds_the_true_one(curves):
     measured independently (dense points on every piece, projected onto the exact pitch curve)."""
     import random
 
-    from camgen.convergence import contour_error
+    from camgen.convergence_study import contour_error
     from camgen.core.spec import apply_overrides
     from camgen.profile import design_cam
     from camgen.spec import validate_spec

@@ -29,7 +29,7 @@ from click.testing import CliRunner
 
 from camgen.core.spec import apply_overrides
 from linkgen.cli import main as linkgen
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.mechanisms import MECHANISMS
 from linkgen.kinematics.sensitivity import perturbed, response, sample, slack_model, worst_case
 from linkgen.spec import validate_spec

@@ -14,7 +14,7 @@ from scipy.interpolate import CubicSpline
 
 from linkgen import spec as linkgen_spec
 from linkgen.cli import main
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.dynamics.profile import rows_profile
 from linkgen.dynamics.run import Dynamics
 from linkgen.dynamics.table import MAX_PROFILE_RPM

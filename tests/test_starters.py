@@ -288,7 +288,7 @@ def test_the_rules_the_linkage_starters_state_hold():
     105), the slider-crank's (its parts need rod >= crank + |offset|), the crank-shaper's lever swing
     2 asin(crank / ground) and time ratio (180 + swing) / (180 - swing), Chebyshev's proportions in units of size:
     all read back from the analysis."""
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.spec import validate_spec as validate_linkage
     from linkgen.starters import starter
 

@@ -10,7 +10,7 @@ import pytest
 from click.testing import CliRunner
 
 from linkgen.cli import main as linkgen
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.kinematics.fourbar import FourBar
 from linkgen.spec import validate_spec
 

@@ -514,7 +514,7 @@ def test_conjugate_pair_two_named_cams(tmp_path):
 def crank_rocker(tmp_path_factory):
     """``linkgen build templates/crank-rocker.toml`` with step, dxf, stl and json, run from a folder outside the
     checkout; the folder and the build."""
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.spec import load_spec as load_linkage
 
     cwd = tmp_path_factory.mktemp("outside-linkage")
@@ -595,7 +595,7 @@ def test_linkage_spacers_are_rings(tmp_path):
     """stephenson1 with pins: a spacer bridges one empty layer, a ring of the spacer's diameters one layer high,
     round its joint at the drawing's first dead centre and on the empty layer between the two parts the joint joins,
     the pins' heads each on the highest part of their pivot; no two boxes coincide."""
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.spec import load_spec as load_linkage
 
     template_path = ROOT / "templates" / "stephenson1.toml"

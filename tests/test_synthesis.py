@@ -11,7 +11,7 @@ import pytest
 from click.testing import CliRunner
 
 from camgen.core.errors import SpecError
-from linkgen.design import design_linkage
+from linkgen.linkage_design import design_linkage
 from linkgen.kinematics.fourbar import FourBar
 from linkgen.kinematics.slidercrank import SliderCrank
 from linkgen.spec import validate_spec

@@ -10,15 +10,19 @@ temporary behind.
 """
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar, cast
 
-from camgen.core.errors import ExportError
+from camgen.core.errors import ExportError, SpecError
 from camgen.core.writers import WriteOptions, writer
+
+#: a design: a frozen dataclass whose ``spec`` says which files it makes
+D = TypeVar("D")
 
 
 class Staging:
@@ -171,6 +175,40 @@ class Bundle:
     def files(self) -> dict[str, str]:
         """``{key: file name}`` of every file, in the order they are written."""
         return {e.key: e.name for i in self.items for e in i.entries}
+
+
+@dataclass(frozen=True)
+class Written:
+    """What writing a design gave (``camgen.write``, ``linkgen.write``).
+
+    Attributes
+    ----------
+    report : dict
+        The report, as ``<name>.json`` holds it (with ``files``: each file's name by its key).
+    files : dict of str to Path
+        Each file written, by its key (``"dxf"``, ``"json"``, ``"sheet_dxf"``...), in the order written.
+    """
+
+    report: dict[str, Any]
+    files: dict[str, Path]
+
+    @classmethod
+    def of(cls, report: dict[str, Any], names: dict[str, str], directory: str | Path) -> Written:
+        """The report of the files ``names`` (``{key: file name}``) written into ``directory``."""
+        return cls({**report, "files": names}, {key: Path(directory) / name for key, name in names.items()})
+
+
+def with_formats(design: D, formats: Iterable[str] | None) -> D:
+    """``design`` (a frozen dataclass with a ``spec``) with its spec's ``output.formats`` set to ``formats`` and
+    ``output.figures`` off, so that those are exactly the files its bundle makes, the spec validated again (a format
+    its kind does not write is refused in one line); ``design`` itself for None. Nothing is designed again: no
+    design depends on its formats."""
+    if formats is None:
+        return design
+    if isinstance(formats, str):
+        raise SpecError(f"give a list of formats, e.g. [{formats!r}] (got {formats!r})", "formats")
+    spec = cast(Any, design).spec.with_changes({"output.formats": list(formats), "output.figures": False})
+    return cast(D, dataclasses.replace(cast(Any, design), spec=spec))
 
 
 def write_bundle(bundle: Bundle, directory: str | Path) -> dict[str, str]:

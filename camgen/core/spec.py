@@ -16,7 +16,7 @@ import re
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Annotated, Any, Literal, TypeVar, get_args, get_origin
+from typing import Annotated, Any, ClassVar, Literal, Self, TypeVar, cast, get_args, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 from pydantic.config import JsonDict
@@ -312,6 +312,81 @@ def read_template(path: str | Path, overrides: Iterable[str] = ()) -> dict[str, 
     """A TOML template as a raw mapping: its ``base`` (a template it starts from, path relative to it)
     merged under it, then ``key=value`` overrides merged in, all before any validation."""
     return apply_overrides(_with_base(Path(path), set()), parse_overrides(overrides))
+
+
+class TemplateSpec(Model):
+    """A whole template, validated: the base of every product's spec (camgen's cams and Geneva drives, linkgen's
+    linkages), made from a TOML file, from a mapping, or from another spec with some keys changed::
+
+        spec = CamSpec.from_toml("templates/rdrd.toml").with_changes({"motion.0.lift": 25})
+
+    Each product's spec class says how a raw template is validated (:meth:`validate_raw`: the class its tables
+    choose, e.g. a :class:`~camgen.geneva.spec.GenevaSpec` for a ``[geneva]`` table) and which command builds it
+    (:attr:`product`); a template of another class is refused in one line naming ``template``.
+    """
+
+    #: the command that builds it (``"camgen"`` or ``"linkgen"``): another product's template is refused by name
+    product: ClassVar[str] = ""
+    #: how a message names a template of this class (``"a cam"``, ``"a Geneva drive"``)
+    noun: ClassVar[str] = "a template"
+
+    @classmethod
+    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> TemplateSpec:
+        """The spec of the raw template ``raw``, of the class its tables choose (here: this class); ``folder`` is
+        where relative files named in it lie (the template's folder; None: the current folder)."""
+        return validate(cls, raw)
+
+    @classmethod
+    def from_toml(cls, path: str | Path, overrides: Iterable[str] = ()) -> Self:
+        """The spec of the TOML template ``path`` (and its ``base``) with ``"key=value"`` ``overrides`` merged in, as
+        ``--set`` takes them.
+
+        Raises
+        ------
+        SpecError
+            The file cannot be read, is another product's or another class's template (``template: a Geneva
+            drive, not a cam``), or fails validation: one line naming the key.
+        """
+        raw = read_template(path, overrides)
+        check_kind(raw, cls.product)
+        return cls._own(cls.validate_raw(raw, Path(path).parent))
+
+    @classmethod
+    def from_mapping(cls, raw: Mapping[str, Any]) -> Self:
+        """The spec of the raw template ``raw`` (the mapping TOML reads, files relative to the current folder);
+        a one-line :class:`SpecError` as :meth:`from_toml` gives."""
+        check_kind(raw, cls.product)
+        return cls._own(cls.validate_raw(raw))
+
+    def with_changes(self, changes: Mapping[str, Any]) -> Self:
+        """This spec with each dotted key of ``changes`` set to its value (the keys ``--set`` takes:
+        ``{"motion.0.lift": 25}``, list items by index), validated again as a whole; a change that chooses another
+        class (a linkage's ``linkage.type``) gives a spec of that class, of this one's product.
+
+        Raises
+        ------
+        SpecError
+            A key that leads nowhere (``motion.9.lift: no item 9 in 'motion' ...``) or a changed template that
+            fails validation: one line naming the key.
+        """
+        raw = self.model_dump(mode="json", exclude_unset=True)
+        try:
+            changed = apply_overrides(raw, changes.items())
+        except SpecError as exc:
+            raise SpecError(exc.detail, (exc.field or "").removeprefix("--set ") or None) from None
+        spec = type(self).validate_raw(changed)
+        chooser = next(c for c in type(self).__mro__                      # the class that dispatches
+                       if isinstance(c, type) and issubclass(c, TemplateSpec) and "validate_raw" in c.__dict__)
+        if not isinstance(spec, chooser):
+            raise SpecError(f"{type(spec).noun}, not {chooser.noun}", "template")
+        return cast(Self, spec)             # of this class, or (a linkage's new type) of its chooser's
+
+    @classmethod
+    def _own(cls, spec: TemplateSpec) -> Self:
+        """``spec`` where it is of this class, else a one-line :class:`SpecError` naming ``template``."""
+        if not isinstance(spec, cls):
+            raise SpecError(f"{type(spec).noun}, not {cls.noun}", "template")
+        return spec
 
 
 #: the largest template file read (bytes); a template is a few kB, so more is a mistake (or /dev/zero)

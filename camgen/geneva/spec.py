@@ -9,12 +9,15 @@ wheel, a locking disc out of its range, a bore too large) are named the same way
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from functools import cached_property
-from typing import ClassVar
+from pathlib import Path
+from typing import Any, ClassVar
 
 from pydantic import Field, model_validator
 
-from camgen.core.spec import CutOutputTable, Model, length, name_field, unit
+from camgen.core.errors import SpecError
+from camgen.core.spec import CutOutputTable, Model, TemplateSpec, length, name_field, unit, validate
 from camgen.geneva.geometry import GenevaGeometry
 
 #: the most slots a wheel may have
@@ -41,7 +44,7 @@ class GenevaTable(Model):
                               json_schema_extra=unit("rpm"))
 
 
-class GenevaSpec(Model):
+class GenevaSpec(TemplateSpec):
     """A whole Geneva template, validated.
 
     Made by :func:`camgen.spec.validate_spec` or :func:`camgen.spec.load_spec` from a template with a
@@ -59,9 +62,19 @@ class GenevaSpec(Model):
 
     #: its kind's name (the registry's key, :data:`camgen.kinds.KINDS`)
     kind: ClassVar[str] = "geneva"
+    product: ClassVar[str] = "camgen"
+    noun: ClassVar[str] = "a Geneva drive"
     name: str = name_field("drive")
     geneva: GenevaTable
     output: CutOutputTable = CutOutputTable()
+
+    @classmethod
+    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> GenevaSpec:
+        """The drive of the raw template ``raw``; a cam's template (a ``[cam]`` table) refused naming ``template``
+        (a Geneva drive writes every format and reads no files, so nothing else is to check)."""
+        if "cam" in raw:
+            raise SpecError(f"a cam, not {cls.noun}", "template")
+        return validate(cls, raw)
 
     @model_validator(mode="after")
     def _parts_exist(self) -> "GenevaSpec":

@@ -2,7 +2,8 @@
 
 ``{public-api} camgen`` documents every name ``camgen.__all__`` exports, grouped by the module that defines it,
 with autodoc (the docstrings, numpydoc style through napoleon): so a name added to the package's exports is on
-this page without an edit here, and the page can list nothing the package does not export.
+this page without an edit here, and the page can list nothing the package does not export. A name one package
+exports from another (linkgen's errors, camgen's) is shown without its members and indexed on its own package's page.
 """
 from __future__ import annotations
 
@@ -58,7 +59,9 @@ class PublicApi(SphinxDirective):
             lines += [f"``{module}``", "-" * (len(module) + 4), "", f".. currentmodule:: {module}", ""]
             for name, obj in names:
                 lines.append(f".. {directive_of(obj)}:: {name}")
-                if inspect.isclass(obj):
+                if not module.startswith(package.split(".")[0] + "."):
+                    lines.append("   :no-index:")           # another package's (linkgen's errors): indexed there
+                elif inspect.isclass(obj):
                     lines.append("   :members:")
                 if directive_of(obj) == "autodata":
                     lines += ["   :no-value:", "   :annotation:"]

@@ -1,9 +1,9 @@
 """A linkage's dynamics from its ``[dynamics]`` table: the mass model, Newton-Euler over the motion at the table's
 speed, the flywheel and the counterweight of a crank that turns fully, and what the holes and pins carry. No I/O.
 
-The linkage is its general-linkage drawing (:func:`linkgen.design.pose_of`: the dedicated mechanisms drawn as one),
-solved at ``dynamics.poses`` input values: a crank's full turn from the drawing (uniform, its end left out, so that
-sums over the poses are a turn's integrals), or the input's range (its ends included). Speeds: a crank at
+The linkage is its general-linkage drawing (:func:`linkgen.linkage_design.pose_of`: the dedicated mechanisms drawn as
+one), solved at ``dynamics.poses`` input values: a crank's full turn from the drawing (uniform, its end left out, so
+that sums over the poses are a turn's integrals), or the input's range (its ends included). Speeds: a crank at
 ``linkage.rpm``, a slide at ``dynamics.speed``; both at ``dynamics.input_acceleration``; or the speed and acceleration
 of ``dynamics.speed_profile`` at each pose (:mod:`linkgen.dynamics.profile`: rows, or the motor's steady turn).
 

@@ -4,7 +4,7 @@ binds, and a Monte Carlo check of the band (see docs/guides/slack.md).
 
 :func:`slack_of` makes a :class:`Slack` from the ``[slack]`` table, the ``[parts]`` table (the holes) and the
 linkage's general-linkage analysis (a dedicated mechanism's general drawing,
-:func:`linkgen.design.pose_of`); :mod:`linkgen.slack.report` gives the report's section,
+:func:`linkgen.linkage_design.pose_of`); :mod:`linkgen.slack.report` gives the report's section,
 :mod:`linkgen.slack.figure` the figure and the page's band. The first-order response itself is
 :mod:`linkgen.kinematics.sensitivity`.
 """

@@ -170,7 +170,7 @@ def offer(name: str, candidates: Sequence[Candidate], parts: dict[str, Any] | No
           lengths: Callable[[Candidate], Iterable[float]]) -> tuple[Offered, ...]:
     """Name the ranked ``candidates`` ``<name>-<rank>``, give each its template (``parts``, else parts sized by
     ``lengths(candidate)``) and the report ``linkgen analyze`` makes of it."""
-    from linkgen.design import design_linkage
+    from linkgen.linkage_design import design_linkage
     from linkgen.spec import validate_spec
 
     out = []
