@@ -18,7 +18,8 @@ from camgen.kinds import kind_of, spec_kind
 from camgen.profile import Body, Finish, Profile, design_profile
 from camgen.rig import Mount, Rig, disc_mount
 from camgen.sizing import Sizing, limits_of, pressure_limit, size_cam
-from camgen.spec import CamSpec
+from camgen.spec import CamSpec, FlatSpec
+from camgen.tables import BarrelTable
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -40,12 +41,12 @@ class FlatCamDesign(Profile):
         The profile's warnings, then the contact's at ``cam.rpm``.
     """
 
-    spec: CamSpec
+    spec: FlatSpec
     speed: dict[str, Any] | None = None
     sizing: Sizing | None = None
 
     @classmethod
-    def of(cls, profile: Profile, spec: CamSpec, speed: dict[str, Any] | None = None, sizing: Sizing | None = None,
+    def of(cls, profile: Profile, spec: FlatSpec, speed: dict[str, Any] | None = None, sizing: Sizing | None = None,
            warnings: tuple[str, ...] | None = None) -> FlatCamDesign:
         """``profile`` as the design of ``spec``, with its ``speed``, ``sizing`` and ``warnings`` (the profile's by
         default)."""
@@ -66,12 +67,12 @@ class FlatCamDesign(Profile):
 CamDesign = FlatCamDesign
 
 
-def flat_rig(spec: CamSpec, mount: Mount) -> Rig:
+def flat_rig(spec: FlatSpec, mount: Mount) -> Rig:
     """The :class:`~camgen.rig.Rig` of a flat cam's template on its kind's ``mount``."""
     return Rig.of(spec.name, spec.motion, mount)
 
 
-def design_flat(spec: CamSpec, mount: Mount) -> FlatCamDesign:
+def design_flat(spec: FlatSpec, mount: Mount) -> FlatCamDesign:
     """Build, check and outline the flat cam ``spec`` describes, its follower on ``mount`` (its kind's): sized
     first where ``cam.base_radius = "auto"`` (:mod:`camgen.sizing`), its profile cut
     (:func:`~camgen.profile.design_profile`: refused there for an undercut, unless ``cam.allow_undercut``, and for a
@@ -88,14 +89,14 @@ def design_flat(spec: CamSpec, mount: Mount) -> FlatCamDesign:
     return FlatCamDesign.of(profile, spec, speed, sizing, profile.warnings + contact_warnings(speed))
 
 
-def size_flat(spec: CamSpec, mount: Mount) -> Sizing:
+def size_flat(spec: FlatSpec, mount: Mount) -> Sizing:
     """The smallest base radius of a flat cam's template, its follower on ``mount`` (:func:`camgen.sizing.size_cam`
     of its rig, searched from its base radius where it gives one)."""
     near = spec.cam.base_radius if isinstance(spec.cam.base_radius, float) else None
     return size_cam(flat_rig(spec, mount), limits_of(spec), near)
 
 
-def size_disc(spec: CamSpec) -> Sizing:
+def size_disc(spec: FlatSpec) -> Sizing:
     """A disc cam's smallest base radius (:func:`size_flat` on the disc's mount)."""
     return size_flat(spec, disc_mount(spec.follower, spec.cam.rotation))
 
@@ -131,7 +132,8 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
         naming the key.
     """
     rr = spec.follower.contact_radius if roller_radius is None else roller_radius
-    rb = spec.cam.base_radius if base_radius is None else base_radius
+    rb = base_radius if base_radius is not None else (
+        None if isinstance(spec.cam, BarrelTable) else spec.cam.base_radius)   # a barrel has no base circle
     rig = Rig.of(spec.name, spec.motion, disc_mount(spec.follower, spec.cam.rotation))
     sized = isinstance(rb, (int, float))                # a barrel's is None, an unsized template's "auto"
     program = rig.program(rb + rr if sized else None)
@@ -155,7 +157,7 @@ def rates(cam: Cam, rpm: float | None, parabolic: list[tuple[int, float]]) -> di
     return speed_report(cam, rpm, None, None, None, parabolic)
 
 
-def sprung_speed(spec: CamSpec, cam: Cam) -> dict[str, Any] | None:
+def sprung_speed(spec: FlatSpec, cam: Cam) -> dict[str, Any] | None:
     """Peak rates and the contact check at ``cam.rpm`` of a follower held on its cam by a spring, its weight or a
     load (None without a speed): with a mass, the forces and, with ``cam.rpm_range``, the speeds table."""
     if spec.cam.rpm is None:

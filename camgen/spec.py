@@ -12,9 +12,9 @@ import math
 import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, field_validator, model_validator
+from pydantic import Discriminator, Field, Tag, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.laws.base import MAX_NORMALISED
@@ -25,16 +25,14 @@ from camgen.core.features import MIN_WEB_MM, key_for, web_refusal
 from camgen.core.reading import read_regular
 from camgen.core.spec import CutOutputTable, TemplateSpec
 from camgen.core.kit import CamKitTable, check_cam_kit
-from camgen.contact_stress import MATERIALS
 from camgen.followers import FOLLOWERS
-from camgen.kinds import CAM_KINDS, kind_for
-from camgen.kinds.base import CONJUGATE_KEYS
+from camgen.kinds import CAM_TABLE, KINDS, kind_for, kind_of, table_keys
+from camgen.tables import CAM_TABLES, BarrelTable, ConjugateTable, DiscTable, GroovedTable, Material, PlateTable
 
 if TYPE_CHECKING:
     from camgen.geneva.spec import GenevaSpec
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
-Material = Literal[tuple(MATERIALS)]  # type: ignore[valid-type]
 #: the most rows a table law reads, and the largest CSV file (bytes)
 MAX_TABLE_ROWS = 10_000
 MAX_TABLE_BYTES = 2_000_000
@@ -102,106 +100,6 @@ def load_rows(rows: list[tuple[float, float]]) -> list[tuple[float, float]]:
 
 #: every law parameter key a segment may carry
 LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
-
-
-class CamTable(Model):
-    """The cam body: a disc, a plate (linear cam) whose ``base_radius`` is its height under the profile, a grooved
-    disc (a face cam whose groove drives the roller both ways), a barrel (a cylinder with a groove round it,
-    sized by ``pitch_radius`` and ``length`` instead of ``base_radius`` and ``thickness``), or a conjugate pair (two
-    discs on one shaft, each driving one of the follower's two rollers)."""
-
-    kind: Literal[tuple(CAM_KINDS)] = Field("disc", description="cam kind")  # type: ignore[valid-type]
-    travel: float | None = length("plate cam: length the program's 360 degrees spread over", None,
-                                  absent="required for a plate cam")
-    base_radius: float | Literal["auto"] | None = Field(
-        None, description="base circle radius, or \"auto\" for the smallest that meets the limits",
-        json_schema_extra=unit("mm", allowed=f"a number > 0 and <= {MAX_LENGTH_MM:g}; \"auto\": the smallest that "
-                               "meets max_pressure_angle and min_rho_margin", absent="required (not for a barrel)"))
-    thickness: float | None = length("plate thickness (STL extrusion)", None, le=1000.0,
-                                     absent="required (not for a barrel)")
-    bore: float = length("bore diameter, 0 for none", 0.0, zero=True,
-                         allowed="leaving material: inside the outline (a barrel: inside the groove's floor, as "
-                                 "printed)")
-    rotation: Literal["ccw", "cw"] = Field("ccw", description="sense of rotation seen from +Z")
-    allow_undercut: bool = Field(False, description="export the cutter's envelope instead of refusing an undercut")
-    max_pressure_angle: float | None = Field(None, ge=1, lt=90, description="pressure-angle limit for sizing "
-                                             "(default 30, oscillating 40)",
-                                             json_schema_extra=unit("degrees", absent="30; 40 for an oscillating "
-                                                                    "follower"))
-    min_rho_margin: float = length("sizing: least convex radius of the cam surface", 0.0, zero=True)
-    rpm: float | None = Field(None, gt=0, le=100_000, description="cam speed for velocities, accelerations and "
-                              "contact", json_schema_extra=unit("rpm"))
-    material: Material | None = Field(None, description="the cam's material, for the contact pressure")
-    rpm_range: tuple[float, float] | None = Field(
-        None, description="[lowest, highest] cam speed of the report's speeds table and figure",
-        json_schema_extra=unit("rpm", allowed="0 < lowest < highest <= 100000; needs cam.rpm and follower.mass"))
-    rpm_steps: int = Field(21, ge=2, le=201, description="speeds evenly spaced over cam.rpm_range (both ends; the "
-                           "lift-off speed is added where it lies inside)")
-    groove_depth: float | None = length(
-        "grooved cam: depth of the groove the roller runs in (< thickness)", None,
-        allowed="grooved: < cam.thickness; barrel (about the pitch cylinder; a rib's height): the floor, pitch_radius "
-                "- groove_depth / 2 from the axis, wider than the roller there (roller_radius + running_clearance / 2 "
-                "for a cylindrical roller) and outside the bore as printed",
-        absent="required for a grooved or barrel cam")
-    running_clearance: float = length("grooved cam: the groove's width less the roller's diameter", 0.2, zero=True,
-                                      le=100.0)
-    rim: float = length("grooved cam: wall outside the groove's outer flank", 5.0)
-    second_base_radius: float | Literal["auto"] | None = Field(
-        None, description="conjugate cam: the second cam's base circle radius (default: base_radius), or \"auto\"",
-        json_schema_extra=unit("mm", allowed=f"a number > 0 and <= {MAX_LENGTH_MM:g}, within the second roller's "
-                               "reach on its side of the cam; \"auto\": the smallest that meets max_pressure_angle and "
-                               "min_rho_margin; not with yoke_span or arm_angle", absent="cam.base_radius"))
-    yoke_span: float | None = length("conjugate cam, translating yoke: distance between the two rollers' centres", None,
-                                     allowed="> d0 + the largest lift + sqrt(Rr2^2 - offset^2) (d0 the first "
-                                             "roller's rest height, Rr2 the second roller's radius), so the second "
-                                             "roller stays beyond the shaft; not with a base_radius of \"auto\"",
-                                     absent="from second_base_radius")
-    arm_angle: float | None = Field(None, gt=0, lt=360, description="conjugate cam, oscillating arm: angle at the "
-                                    "pivot from the first arm to the second, turning towards the cam",
-                                    json_schema_extra=unit("degrees", allowed="keeps the second roller on its side of "
-                                                           "the line from the pivot to the cam centre over the swing; "
-                                                           "not with a base_radius of \"auto\"",
-                                                           absent="from second_base_radius"))
-    second_arm_length: float | None = length("conjugate cam, oscillating arm: pivot to the second roller's centre",
-                                             None, absent="follower.arm_length")
-    second_roller_radius: float | None = length("conjugate cam: the second roller's radius (default: "
-                                                "follower.roller_radius)", None, le=1000.0,
-                                                absent="follower.roller_radius")
-    barrel_form: Literal["groove", "rib"] = Field("groove", description="barrel cam: a groove the roller runs in, "
-                                                  "or a rib (a ridge) between two rollers",
-                                                  json_schema_extra=notes(allowed="a rib: a translating-roller "
-                                                                          "follower with cylindrical rollers"))
-    rib_width: float | None = length("barrel rib: the rib's axial width where the track runs level (the rollers' "
-                                     "centres are rib_width + 2 roller_radius + running_clearance apart)", None,
-                                     allowed="the rib keeps a width where the track is steepest",
-                                     absent="required for a rib")
-    pitch_radius: float | None = length("barrel cam: radius of the pitch cylinder, the groove's mid-depth", None,
-                                        absent="required for a barrel cam")
-    length: float | None = length("barrel cam: the cylinder's axial length", None,
-                                  allowed="> the follower's travel + the groove's width at the rim (2 roller_radius "
-                                          "+ running_clearance for a cylindrical roller); an arm: > 2 arm_length "
-                                          "sin(swing / 2) + that width; a rib: > the travel + rib_width + 2 (2 "
-                                          "roller_radius + running_clearance)",
-                                  absent="required for a barrel cam")
-
-    @model_validator(mode="after")
-    def _conjugate_keys(self) -> "CamTable":
-        if self.kind != "conjugate":
-            for key in CONJUGATE_KEYS:
-                if key in self.model_fields_set:
-                    raise ValueError(f"{key}: only for a conjugate cam (cam.kind = \"conjugate\")")
-        return self
-
-    @field_validator("base_radius", "second_base_radius", mode="before")
-    @classmethod
-    def _radius(cls, value: Any) -> Any:
-        if value == "auto":
-            return value
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise ValueError(f'must be a number of mm or "auto" (got {value!r})')
-        if not (math.isfinite(value) and 0 < value <= MAX_LENGTH_MM):
-            raise ValueError(f'must be > 0 and <= {MAX_LENGTH_MM:g} mm, or "auto" (got {value!r})')
-        return float(value)
 
 
 FOLLOWER_TYPES = tuple(FOLLOWERS)
@@ -466,6 +364,20 @@ class OutputTable(CutOutputTable):
     curves: Literal["polylines", "biarcs"] = Field("polylines", description="how curved stretches are written")
 
 
+def _cam_kind(value: Any) -> str:
+    """The kind a ``[cam]`` table (raw or validated) names: its ``kind``, a disc without one."""
+    kind = value.get("kind", "disc") if isinstance(value, Mapping) else getattr(value, "kind", "disc")
+    return kind if kind in CAM_TABLES else "disc"
+
+
+#: a ``[cam]`` table of any kind, chosen by its ``kind`` (a disc without one); a kind's own spec narrows it to
+#: that kind's table
+CamTableOfAnyKind = Annotated[
+    Annotated[DiscTable, Tag("disc")] | Annotated[PlateTable, Tag("plate")] | Annotated[GroovedTable, Tag("grooved")]
+    | Annotated[BarrelTable, Tag("barrel")] | Annotated[ConjugateTable, Tag("conjugate")],
+    Discriminator(_cam_kind)]
+
+
 class CamSpec(TemplateSpec):
     """A whole cam template, validated: the spec of one cam.
 
@@ -476,8 +388,9 @@ class CamSpec(TemplateSpec):
     ----------
     name : str
         The part's name, used for its files: letters, digits, ``.``, ``_``, ``-``.
-    cam : CamTable
-        The cam body: its kind, size, bore, rotation, sizing limits and speed.
+    cam : DiscTable, PlateTable, GroovedTable, BarrelTable or ConjugateTable
+        The cam body, the table of its ``kind`` (:mod:`camgen.tables`; a kind's spec, :data:`CAM_SPECS`, holds its
+        own): its size, bore, rotation, sizing limits and speed.
     follower : FollowerTable
         The follower: its type, geometry, mass, spring and loads.
     motion : list of SegmentTable
@@ -497,7 +410,7 @@ class CamSpec(TemplateSpec):
     """
 
     name: str = name_field("part")
-    cam: CamTable
+    cam: CamTableOfAnyKind
     follower: FollowerTable
     motion: list[SegmentTable] = Field(min_length=1, description="segments in order from theta = 0")
     hub: HubTable = HubTable()
@@ -522,7 +435,7 @@ class CamSpec(TemplateSpec):
         if not abs(self.follower.offset) < prime:
             raise ValueError(f"follower.offset: |offset| must be < the prime radius {prime:.6g} mm "
                              f"(base_radius + roller_radius; got {self.follower.offset:.6g} mm)")
-        CAM_KINDS[self.cam.kind].check(self)
+        kind_of(self.cam.kind).check(self)
         hub = self.hub
         if hub.keyway and not 6 < self.cam.bore <= 110:
             raise ValueError(f"hub.keyway: DIN 6885-1 keys need a bore over 6 up to 110 mm (cam.bore is "
@@ -562,9 +475,57 @@ class CamSpec(TemplateSpec):
 
     @property
     def prime_radius(self) -> float:
-        """Base radius plus the roller's (mm): the circle the roller's centre rides at rest (inf while "auto")."""
-        rb = self.cam.base_radius
+        """Base radius plus the roller's (mm): the circle the roller's centre rides at rest (inf while "auto", and
+        for a barrel, which has no base circle)."""
+        rb = self.cam.base_radius if not isinstance(self.cam, BarrelTable) else "auto"
         return (rb if isinstance(rb, float) else math.inf) + self.follower.contact_radius
+
+
+class DiscSpec(CamSpec):
+    """A disc cam's template (``cam.kind = "disc"``, the default), validated."""
+
+    cam: DiscTable
+
+    noun: ClassVar[str] = DiscTable.model_config["title"]
+
+
+class PlateSpec(CamSpec):
+    """A plate (linear) cam's template (``cam.kind = "plate"``), validated."""
+
+    cam: PlateTable
+
+    noun: ClassVar[str] = PlateTable.model_config["title"]
+
+
+class GroovedSpec(CamSpec):
+    """A grooved face cam's template (``cam.kind = "grooved"``), validated."""
+
+    cam: GroovedTable
+
+    noun: ClassVar[str] = GroovedTable.model_config["title"]
+
+
+class BarrelSpec(CamSpec):
+    """A barrel cam's template (``cam.kind = "barrel"``), validated."""
+
+    cam: BarrelTable
+
+    noun: ClassVar[str] = BarrelTable.model_config["title"]
+
+
+class ConjugateSpec(CamSpec):
+    """A conjugate pair's template (``cam.kind = "conjugate"``), validated."""
+
+    cam: ConjugateTable
+
+    noun: ClassVar[str] = ConjugateTable.model_config["title"]
+
+
+#: the spec of a cam cut from a flat plate (every kind but the barrel)
+FlatSpec = DiscSpec | PlateSpec | GroovedSpec | ConjugateSpec
+#: every cam kind's spec by the kind's name (``cam.kind``)
+CAM_SPECS: dict[str, type[CamSpec]] = {"disc": DiscSpec, "plate": PlateSpec, "grooved": GroovedSpec,
+                                       "barrel": BarrelSpec, "conjugate": ConjugateSpec}
 
 
 def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
@@ -590,11 +551,36 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
         (``output.formats: a barrel cam has no flat part to write as an exact STEP solid ...``).
     """
     kind = kind_for(raw)
-    spec = validate(kind.spec, raw)
+    try:
+        spec = validate(kind.spec, raw)
+    except SpecError as exc:
+        raise _owned(exc, kind) from None
     refused = [fmt for fmt in spec.output.formats if fmt not in kind.formats]
     if refused:
         raise SpecError(kind.format_refusal(refused[0]), "output.formats")
     return spec
+
+
+def _owned(exc: SpecError, kind: Any) -> SpecError:
+    """``exc`` with the kinds whose table has its key named, where it refuses a key of ``kind``'s table that another
+    kind takes (``cam.pitch_radius: not a key of a disc cam (a key of cam.kind = "barrel"); it takes: ...``)."""
+    table, _, key = (exc.field or "").partition(".")
+    if table != kind.table_key or not key.isidentifier() or not exc.detail.startswith("not a key of"):
+        return exc
+    cams = [f'"{name}"' for name, other in KINDS.items() if other.table_key == CAM_TABLE and key in table_keys(other)]
+    where = [("" if table == CAM_TABLE else f"[{CAM_TABLE}] with ") + "cam.kind = " + _either(cams)] if cams else []
+    where += [f"[{other.table_key}], {other.title}" for other in KINDS.values()
+              if other.table_key not in (CAM_TABLE, table) and key in table_keys(other)]
+    if not where:
+        return exc
+    head, sep, rest = exc.detail.partition(";")
+    head = head.split(" (did you mean")[0]
+    return SpecError(f"{head} (a key of {' or '.join(where)}){sep}{rest}", exc.field)
+
+
+def _either(names: list[str]) -> str:
+    """``"a"``, ``"a" or "b"``, ``"a", "b" or "c"``."""
+    return " or ".join((", ".join(names[:-1]), names[-1])) if len(names) > 1 else names[0]
 
 
 def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:

@@ -177,7 +177,10 @@ def _model(name: str):
 
     if name in linkgen.MECHANISMS:
         return spec_model(linkgen.MECHANISMS[name])
-    return {"CamSpec": camgen.CamSpec, "GenevaSpec": camgen.GenevaSpec, "LinkageSpec": linkgen.LinkageSpec}[name]
+    from camgen.spec import BarrelSpec, DiscSpec
+
+    return {"CamSpec": camgen.CamSpec, "GenevaSpec": camgen.GenevaSpec, "LinkageSpec": linkgen.LinkageSpec,
+            "DiscSpec": DiscSpec, "BarrelSpec": BarrelSpec}[name]
 
 
 @pytest.mark.parametrize("cls, name, message", [
@@ -186,6 +189,8 @@ def _model(name: str):
     ("CamSpec", "crank-rocker.toml", "template: this is a linkgen template: use `linkgen build` or `linkgen analyze`"),
     ("LinkageSpec", "rdrd.toml", "template: this is a camgen template: use `camgen build`"),
     ("slider-crank", "crank-rocker.toml", "template: a four-bar linkage, not a slider-crank linkage"),
+    ("DiscSpec", "barrel.toml", "template: a barrel cam, not a disc cam"),
+    ("BarrelSpec", "rdrd.toml", "template: a disc cam, not a barrel cam"),
 ])
 def test_from_toml_refuses_another_kind_s_template_in_one_line(cls, name, message):
     model = _model(cls)
@@ -202,6 +207,7 @@ def test_a_spec_of_its_own_class_is_the_one_the_product_loads():
     assert camgen.GenevaSpec.from_toml(geneva) == camgen.load(geneva)
     rdrd = ROOT / "templates" / "rdrd.toml"
     assert camgen.CamSpec.from_mapping(tomllib.loads(rdrd.read_text())) == camgen.CamSpec.from_toml(rdrd)
+    assert type(camgen.CamSpec.from_toml(ROOT / "templates" / "barrel.toml")).__name__ == "BarrelSpec"
     assert camgen.CamSpec.from_toml(rdrd, ["motion.0.lift=25"]) == \
         camgen.CamSpec.from_toml(rdrd).with_changes({"motion.0.lift": 25})
 

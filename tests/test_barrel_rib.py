@@ -151,4 +151,4 @@ def test_bad_rib_values_are_refused_by_name(tmp_path, change, message):
 
 def test_rib_keys_are_only_for_a_barrel(tmp_path):
     assert_refused(ROOT / "templates" / "rdrd.toml", {"cam.rib_width": 5.0},
-                   'cam.rib_width: only for a barrel cam (cam.kind = "barrel")', tmp_path)
+                   'cam.rib_width: not a key of a disc cam (a key of cam.kind = "barrel"); it takes: ', tmp_path)

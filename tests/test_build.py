@@ -134,7 +134,7 @@ def test_set_overrides_a_field(tmp_path):
     (["motion.1.angle=50"], "motion: segment angles add up to 350 degrees"),
     (["motion.0.law='cycloid'"], "motion[0].law: unknown value 'cycloid' (did you mean 'cycloidal'?); one of uniform"),
     (["follower.offset=50"], "follower.offset: |offset| must be < the prime radius 50 mm"),
-    (["cam.colour='red'"], "cam.colour: unknown key"),
+    (["cam.colour='red'"], "cam.colour: not a key of a disc cam; it takes: base_radius, thickness, "),
     (["motion.0.ratio=2"], "motion[0].ratio: not a parameter of law 'cycloidal'"),
     (["cam.bore=90"], "cam.bore: 90 mm leaves no material"),
     (["cam.base_radius=10", "cam.bore=0", "follower.offset=0", "motion.0.angle=40", "motion.1.angle=140"],

@@ -384,7 +384,8 @@ def test_a_conjugate_family(tmp_path):
     (YOKE, {"follower.preload": 10.0}, "follower.preload: a conjugate pair drives the follower both ways"),
     (ARM, {"follower.contact_margin": 1.0}, "follower.contact_margin: a conjugate pair drives the follower both ways"),
     (YOKE, {"cam.allow_undercut": True}, "cam.allow_undercut: both contacts of a conjugate pair must hold"),
-    (YOKE, {"cam.groove_depth": 3.0}, "cam.groove_depth: not used by a conjugate cam"),
+    (YOKE, {"cam.groove_depth": 3.0}, 'cam.groove_depth: not a key of a conjugate cam (a key of cam.kind = '
+                                      '"grooved" or "barrel"); it takes: base_radius, thickness, '),
     (YOKE, {"cam.arm_angle": 80.0}, "cam.arm_angle: only for a conjugate cam with an oscillating-roller follower"),
     (ARM, {"cam.yoke_span": 130.0}, "cam.yoke_span: only for a conjugate cam with a translating-roller follower"),
     (YOKE, {"cam.yoke_span": 130.0, "cam.second_base_radius": 30.0}, "cam.yoke_span: give cam.yoke_span or "
@@ -411,7 +412,7 @@ def test_a_follower_without_rollers_is_refused(tmp_path):
 
 def test_other_kinds_refuse_the_pairs_keys(tmp_path):
     assert_refused(ROOT / "templates" / "rdrd.toml", {"cam.yoke_span": 100.0},
-                   'cam.yoke_span: only for a conjugate cam (cam.kind = "conjugate")', tmp_path)
+                   'cam.yoke_span: not a key of a disc cam (a key of cam.kind = "conjugate"); it takes: ', tmp_path)
 
 
 def test_auto_sizes_an_arm_whose_pressure_angle_grows_again_towards_the_top_of_its_range(tmp_path):

@@ -104,4 +104,5 @@ def test_other_kinds_refuse_it(tmp_path):
     from tests.conftest import ROOT
 
     assert_refused(ROOT / "templates" / "rdrd.toml", {"cam.second_roller_radius": 5.0},
-                   'cam.second_roller_radius: only for a conjugate cam (cam.kind = "conjugate")', tmp_path)
+                   'cam.second_roller_radius: not a key of a disc cam (a key of cam.kind = "conjugate"); it takes: ',
+                   tmp_path)

@@ -104,17 +104,17 @@ def test_the_reference_states_the_base_radius_range_its_validator_keeps():
 
     from camgen.core.errors import SpecError
     from camgen.core.spec import validate
-    from camgen.spec import CamTable
+    from camgen.tables import ConjugateTable
 
     for key in ("base_radius", "second_base_radius"):
-        note = CamTable.model_fields[key].json_schema_extra["allowed"]
+        note = ConjugateTable.model_fields[key].json_schema_extra["allowed"]
         low, high = (float(x) for x in re.search(r"> (\S+) and <= ([^\s,;]+)", note).groups())
-        raw = {"kind": "conjugate"} if key.startswith("second") else {}
-        assert validate(CamTable, {**raw, key: high}) and validate(CamTable, {**raw, key: "auto"})
-        assert validate(CamTable, {**raw, key: math.nextafter(low, math.inf) + 1e-6})
+        raw = {"kind": "conjugate", "base_radius": 40.0, "thickness": 8.0}
+        for good in (high, "auto", math.nextafter(low, math.inf) + 1e-6):
+            assert validate(ConjugateTable, {**raw, key: good})
         for bad in (math.nextafter(high, math.inf), low, -1.0):
             with pytest.raises(SpecError, match=rf"^{key}: must be > {low:g} and <= {high:g} mm"):
-                validate(CamTable, {**raw, key: bad})
+                validate(ConjugateTable, {**raw, key: bad})
 
 
 def test_the_law_defaults_the_reference_states_are_the_laws_own():
@@ -273,8 +273,9 @@ def template_reference_lists_every_key_with_its_unit_and_range(site: Path) -> No
     tables = parser.tables
     assert tables and all(len(row) == 6 for table in tables for row in table)   # key, type, unit, allowed, ...
     models = _every_model()
-    assert {"CamTable", "FollowerTable", "SegmentTable", "HubTable", "GenevaTable", "CouponTable", "SheetTable",
-            "KitTable", "CamKitTable", "FourBarTable", "LinkageTable", "PartsTable", "LoadTable", "PathTask"} <= \
+    assert {"DiscTable", "PlateTable", "GroovedTable", "BarrelTable", "ConjugateTable", "FollowerTable",
+            "SegmentTable", "HubTable", "GenevaTable", "CouponTable", "SheetTable", "KitTable", "CamKitTable",
+            "FourBarTable", "LinkageTable", "PartsTable", "LoadTable", "PathTask"} <= \
         {m.__name__ for m in models}
 
     def problems(model: type, table: list[list[str]]) -> list[str]:

@@ -332,7 +332,7 @@ def test_the_locking_disc_at_and_within_1e_12_of_its_limits():
                                "and inside the crank (got 50)"),
     ("geneva.crank_width", 5, "geneva.crank_width: must be > pin_diameter 6 mm, so the crank holds the pin (got 5)"),
     ("geneva.rpm", -1, "geneva.rpm: must be > 0 and <= 100000 rpm (got -1)"),
-    ("geneva.teeth", 3, "geneva.teeth: unknown key; known keys here: slots, "),
+    ("geneva.teeth", 3, "geneva.teeth: not a key of a Geneva drive; it takes: slots, "),
     ("output.kerf", 5, "output.kerf: a kerf of 5 mm closes the wheel's slots (3.2 mm wide)"),
 ])
 def test_bad_values_are_one_line_exit_2_nothing_written(tmp_path, key, value, message):

@@ -260,7 +260,8 @@ def test_an_oscillating_roller_in_a_groove():
     ({"cam.rim": 0.0}, "cam.rim: must be > 0 and <= 10000 mm (got 0.0)"),
     ({"follower.spring_rate": 2.0}, "follower.spring_rate: a grooved cam drives the follower both ways"),
     ({"hub.boss_diameter": 20.0, "hub.boss_height": 5.0}, "hub.boss_diameter: a boss would stand on the grooved face"),
-    ({"cam.kind": "disc"}, 'cam.groove_depth: only for a grooved cam (cam.kind = "grooved")'),
+    ({"cam.kind": "disc"}, 'cam.groove_depth: not a key of a disc cam (a key of cam.kind = "grooved" or "barrel"); it '
+                          'takes: base_radius, thickness, '),
     ({"output.kerf": 5.0, "follower.roller_radius": 2.0},
      "output.kerf: a kerf of 5 mm closes the groove (4.2 mm wide)"),
 ])
@@ -277,11 +278,14 @@ def test_groove_depth_is_required_and_refused_on_a_plate():
     raw = copy.deepcopy(RAW)
     del raw["cam"]["groove_depth"]
     with pytest.raises(ValueError,
-                       match=r"cam\.groove_depth: required for a grooved cam \(mm, > 0 and < cam\.thickness\)"):
+                       match=r"^cam\.groove_depth: missing: give the depth of the groove the roller runs in \(< "
+                             r"thickness\) in mm$"):
         validate_spec(raw)
     plate = {"name": "p", "cam": {"kind": "plate", "travel": 200.0, "base_radius": 20.0, "thickness": 6.0, "rim": 3.0},
              "follower": {"type": "knife-edge"}, "motion": [{"type": "dwell", "angle": 360.0}]}
-    with pytest.raises(ValueError, match=r'cam\.rim: only for a grooved cam \(cam\.kind = "grooved"\)'):
+    with pytest.raises(ValueError, match=r'^cam\.rim: not a key of a plate cam \(a key of cam\.kind = "grooved"\); '
+                                          r'it takes: base_radius, thickness, allow_undercut, max_pressure_angle, '
+                                          r'min_rho_margin, rpm, material, rpm_range, rpm_steps, travel$'):
         validate_spec(plate)
 
 

@@ -66,8 +66,9 @@ def test_plate_files(tmp_path):
 
 
 @pytest.mark.parametrize("change, message", [
-    ({"travel": None}, "cam.travel: required for a plate cam"),
-    ({"bore": 5.0}, "cam.bore: not used by a plate cam"),
+    ({"travel": None}, "cam.travel: missing: give the distance the plate slides over the program's 360 degrees in mm"),
+    ({"bore": 5.0}, 'cam.bore: not a key of a plate cam \\(a key of cam.kind = "disc", "grooved", "barrel" or '
+                    '"conjugate"\\); it takes: base_radius, thickness'),
 ])
 def test_plate_errors(change, message):
     import copy

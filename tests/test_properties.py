@@ -55,7 +55,7 @@ from camgen.cli import main as camgen
 from camgen.followers import FOLLOWERS
 from camgen.geneva.spec import GenevaSpec
 from camgen.laws import LAW_NAMES
-from camgen.spec import CamSpec
+from camgen.spec import CAM_SPECS, CamSpec
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
 from linkgen.spec import spec_model
@@ -191,7 +191,11 @@ def _model_of(annotation: Any) -> Any:
 def root_model(program: str, raw: dict) -> Any:
     """The model a raw template is validated with (for linkgen, its mechanism's), or None when it has none."""
     if program == "camgen":
-        return GenevaSpec if "geneva" in raw else CamSpec
+        if "geneva" in raw:
+            return GenevaSpec
+        cam = raw.get("cam")
+        kind = cam.get("kind", "disc") if isinstance(cam, dict) else "disc"
+        return CAM_SPECS.get(kind, CamSpec) if isinstance(kind, str) else CamSpec
     kind = raw.get("linkage", {}).get("type") if isinstance(raw.get("linkage"), dict) else None
     return spec_model(MECHANISMS[kind]) if isinstance(kind, str) and kind in MECHANISMS else None
 
@@ -266,7 +270,8 @@ def refused_alone(info: Any, value: Any) -> bool:
 
 
 #: every model a template is validated with
-ROOTS = (CamSpec, GenevaSpec, *{spec_model(m) for m in MECHANISMS.values()}, *(task_model(k) for k in TASKS))
+ROOTS = (*CAM_SPECS.values(), GenevaSpec, *{spec_model(m) for m in MECHANISMS.values()},
+         *(task_model(k) for k in TASKS))
 #: the names an error may give that are not a template's fields: the template itself, its include, a family's
 #: sweep and sheet, the commands' options
 OPTIONS = {"template", "base", "sweep", "sheet", "--set", "--jobs", "--angle", "--method", "--scheduler", "--output",
@@ -301,7 +306,8 @@ def named_field(line: str, extra: set[str] = frozenset()) -> str | None:
     if is_field(lead) or lead in OPTIONS or _normal(lead) in made_up or lead.startswith("sweep."):
         return lead
     parent = lead.rpartition(".")[0]
-    if body.startswith(f"{lead}: unknown key") and (not parent or is_field(parent) or _normal(parent) in made_up):
+    unknown = body.startswith((f"{lead}: unknown key", f"{lead}: not a key of"))
+    if unknown and (not parent or is_field(parent) or _normal(parent) in made_up):
         return lead                                      # the key as the user spelt it, in a table that exists
     for token in _TOKEN.findall(body):
         if (token.startswith("-") and token in OPTIONS) or _normal(token) in made_up or \

@@ -12,7 +12,8 @@ from click.testing import CliRunner
 from camgen.cli import main as camgen
 from camgen.core.starter import table_models
 from camgen.starters import starters
-from camgen.spec import CamTable, validate_spec
+from camgen.spec import validate_spec
+from camgen.tables import DiscTable
 from camgen.core.errors import SpecError
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
@@ -58,7 +59,7 @@ def test_comments_are_the_models_descriptions(tmp_path):
     path = tmp_path / "c.toml"
     _run(camgen, ["new", "translating-roller", "-o", path])
     lines = path.read_text().splitlines()
-    info = CamTable.model_fields["base_radius"]
+    info = DiscTable.model_fields["base_radius"]
     line = next(x for x in lines if x.startswith("base_radius"))
     assert line.split("# ", 1)[1] == f"mm: {info.description}"
     assert 'name = "c"' in lines

@@ -45,7 +45,7 @@ from camgen.groove import Flank, flank_checks
 from camgen.program import Jump
 from camgen.rig import Rig, developed_mount
 from camgen.sizing import pressure_limit
-from camgen.spec import CamSpec
+from camgen.spec import BarrelSpec
 
 #: the layer of the developed pitch curve
 LAYER_PITCH = "PITCH"
@@ -74,7 +74,7 @@ class WallCheck:
 class BarrelDesign:
     """Everything known about a barrel cam before anything is written (mm, degrees)."""
 
-    spec: CamSpec
+    spec: BarrelSpec
     cam: Cam                       # the developed pitch curve at Rm (a plate cam of travel 2 pi Rm)
     analysis: CamAnalysis          # its pressure angle (atan(s'/Rm)) and radii
     jumps: tuple[Jump, ...]
@@ -227,7 +227,7 @@ def _clipped(points: np.ndarray, width: float) -> np.ndarray:
     return np.concatenate(out)
 
 
-def _drawing(spec: CamSpec, lines: tuple[tuple[GrooveWalls, int, str], ...], tolerance: float
+def _drawing(spec: BarrelSpec, lines: tuple[tuple[GrooveWalls, int, str], ...], tolerance: float
              ) -> tuple[Drawing, float]:
     """The developed drawing at Rm and the largest distance (mm) of its chords from the exact curves: each of
     ``lines`` a roller's walls and a side (-1 its lower wall, +1 its upper, 0 where its axis pierces the pitch
@@ -272,7 +272,7 @@ def _rib_thinnest(cam: Cam, span: float, cutter: float, core: float) -> tuple[fl
     return 2 * span * math.cos(math.atan(steep[0] / core)) - 2 * cutter, steep[1]
 
 
-def _rib(spec: CamSpec, span: float | None, cam: Cam, walls: GrooveWalls, core: float
+def _rib(spec: BarrelSpec, span: float | None, cam: Cam, walls: GrooveWalls, core: float
          ) -> tuple[tuple[GrooveWalls, GrooveWalls], tuple[float, float]] | tuple[None, None]:
     """A rib's two rollers' walls (below it, above it, ``span`` mm either side of the track) and its thinnest
     width, refused where the rollers leave it no width; (None, None) for a groove (no span)."""
@@ -289,14 +289,14 @@ def _rib(spec: CamSpec, span: float | None, cam: Cam, walls: GrooveWalls, core: 
     return rollers, thinnest
 
 
-def barrel_rig(spec: CamSpec, geometry: BarrelGeometry) -> Rig:
+def barrel_rig(spec: BarrelSpec, geometry: BarrelGeometry) -> Rig:
     """The rig of a barrel cam's developed pitch curve: the template's motion on its developed mount
     (:func:`camgen.rig.developed_mount` of its ``geometry``); its cam is ``rig.cam(z0 - Rr)``, the plate's height
     under the roller's centre at rest."""
     return Rig.of(spec.name, spec.motion, developed_mount(spec.follower, geometry))
 
 
-def design_barrel(spec: CamSpec) -> BarrelDesign:
+def design_barrel(spec: BarrelSpec) -> BarrelDesign:
     """Build and check the barrel cam ``spec`` describes: refused where a wall undercuts (see the module
     docstring). Its solid's cutter is made by :meth:`BarrelDesign.with_solid`."""
     g = BarrelGeometry.of(spec.cam, spec.follower, spec.motion)

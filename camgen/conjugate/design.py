@@ -44,7 +44,7 @@ from camgen.profile import (Body, Finish, Profile, ProfileMaker, check_holes, ch
                             outline_body, reach)
 from camgen.rig import Rig, disc_mount
 from camgen.sizing import Limits, Sizing, limits_of, pressure_limit, size_cam
-from camgen.spec import CamSpec
+from camgen.spec import ConjugateSpec
 
 #: the cam angles (per turn) at which both contacts are measured against the outlines
 CONTACT_ANGLES = 720
@@ -86,7 +86,7 @@ class Placement:
         return dataclasses.replace(self, roller_radius=radius)
 
 
-def pair_rig(spec: CamSpec) -> Rig:
+def pair_rig(spec: ConjugateSpec) -> Rig:
     """The rig of a conjugate pair's first cam: the disc cam's, the template's follower and roller."""
     return flat_rig(spec, disc_mount(spec.follower, spec.cam.rotation))
 
@@ -212,7 +212,7 @@ def _smallest_second(rig: Rig, first: Cam, placement: Placement, limits: Limits)
     return Sizing(max(pressure, curvature), decided, pressure, curvature, limit, margin)
 
 
-def size_conjugate(spec: CamSpec) -> tuple[Sizing, Sizing]:
+def size_conjugate(spec: ConjugateSpec) -> tuple[Sizing, Sizing]:
     """Each cam's smallest base radius (:func:`camgen.sizing.size_cam` for the first; the second by bisection on
     its own base radius, its roller placed by it, whatever the template's ``cam.yoke_span`` or ``cam.arm_angle``)."""
     rig, limits, base = pair_rig(spec), limits_of(spec), spec.cam.base_radius
@@ -220,7 +220,7 @@ def size_conjugate(spec: CamSpec) -> tuple[Sizing, Sizing]:
     return first, _smallest_second(rig, rig.cam(first.base_radius_mm), Placement.of(spec.cam), limits)
 
 
-def _sized(spec: CamSpec, rig: Rig, placement: Placement
+def _sized(spec: ConjugateSpec, rig: Rig, placement: Placement
            ) -> tuple[float, float | None, tuple[Sizing | None, Sizing | None]]:
     """The first cam's base radius (sized where ``"auto"``), the second cam's (None where the placement fixes the
     second roller itself), and each cam's sizing where one was made."""
@@ -328,7 +328,7 @@ class ConjugateDesign:
     a turn.
     """
 
-    spec: CamSpec
+    spec: ConjugateSpec
     cams: tuple[FlatCamDesign, FlatCamDesign]
     contact: ContactCheck
     sizing: tuple[Sizing | None, Sizing | None]
@@ -444,7 +444,7 @@ class _Shared:
     finish: Finish
 
 
-def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: _Shared) -> FlatCamDesign:
+def _member(spec: ConjugateSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: _Shared) -> FlatCamDesign:
     """One cam of the pair as a complete disc cam's design of the pair's template (whatever takes a disc cam's
     design takes it): its part named ``<name>-<1|2>`` (the cam's name), engraved (unless ``hub.engrave = false``)
     with the theta = 0 tick towards the first roller, at the same angle on both. Its holes are checked as a disc
@@ -465,7 +465,7 @@ def _member(spec: CamSpec, cam: Cam, analysis: CamAnalysis, which: int, shared: 
     return FlatCamDesign.of(profile, spec, shared.speed, shared.sizing[which])
 
 
-def _warnings(spec: CamSpec, placement: Placement, designs: tuple[FlatCamDesign, FlatCamDesign],
+def _warnings(spec: ConjugateSpec, placement: Placement, designs: tuple[FlatCamDesign, FlatCamDesign],
               limit: float) -> tuple[str, ...]:
     out = []
     for which, d in enumerate(designs):
@@ -495,7 +495,7 @@ def _warnings(spec: CamSpec, placement: Placement, designs: tuple[FlatCamDesign,
     return tuple(out)
 
 
-def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
+def _pair_speed(spec: ConjugateSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
     """The follower's rates at ``cam.rpm`` and, with a mass, the pair's forces (:func:`camgen.forces.pair_report`):
     no spring, so no contact check."""
     speed = rates(pair[0], spec.cam.rpm, parabolic_ratios(spec.motion))
@@ -507,7 +507,7 @@ def _pair_speed(spec: CamSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
     return speed
 
 
-def design_conjugate(spec: CamSpec) -> ConjugateDesign:
+def design_conjugate(spec: ConjugateSpec) -> ConjugateDesign:
     """Build, check and outline the conjugate pair ``spec`` describes (sized first where its base radii are
     ``"auto"``: the spec keeps them so, the sizes are ``design.cam.base_radius`` and ``design.second.base_radius``).
 

@@ -596,6 +596,10 @@ def _models_below(root: Any) -> set[str]:
 _PLAIN_TAGS = frozenset({"str", "int", "float", "bool", "none", "list", "dict"})
 
 
+#: the keys that choose a table (a cam's ``kind``, a follower's ``type``), left out of what a kind's table takes
+TAGS = frozenset({"kind", "type"})
+
+
 def _union_tag(part: Any, root: type[BaseModel]) -> bool:
     """Whether a pydantic error location's ``part`` names a member of a union (``function-after[...]``,
     ``tuple[...]``, a model's class name) rather than a key of the template."""
@@ -633,7 +637,12 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
         known = list(getattr(model, "model_fields", {}))
         close = difflib.get_close_matches(str(loc[-1]), known, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
-        msg = f"unknown key{hint}; known keys here: {', '.join(known)}"
+        title = getattr(model, "model_config", {}).get("title")
+        if title:           # a kind's own table: it names the kind and what it takes (not its tag)
+            takes = ", ".join(k for k in known if k not in TAGS)
+            msg = f"not a key of {title}{hint}; it takes: {takes}"
+        else:
+            msg = f"unknown key{hint}; known keys here: {', '.join(known)}"
     elif kind == "literal_error":
         allowed = _literals(info.annotation) if info is not None else ()
         msg = not_one_of(given, allowed) if allowed else f"must be one of {ctx.get('expected')}{got}"

@@ -14,7 +14,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import Any, ClassVar
 
-from pydantic import Field, model_validator
+from pydantic import ConfigDict, Field, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.spec import CutOutputTable, Model, TemplateSpec, length, name_field, unit, validate
@@ -28,6 +28,8 @@ LOCK_PINS = 1.5
 
 class GenevaTable(Model):
     """The drive: slots, centre distance, pin and clearances; optional sizes of the locking disc, crank and bores."""
+
+    model_config = ConfigDict(title="a Geneva drive")
 
     slots: int = Field(ge=3, le=MAX_SLOTS, description="number of slots in the wheel")
     centre_distance: float = length("distance between the driver's and the wheel's axes")

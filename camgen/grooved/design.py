@@ -32,10 +32,10 @@ from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.profile import Body, Finish, design_profile, step_part
 from camgen.rig import Rig, disc_mount
 from camgen.sizing import Sizing, limits_of, pressure_limit, size_cam
-from camgen.spec import CamSpec
+from camgen.spec import GroovedSpec
 
 
-def pitch_rig(spec: CamSpec) -> Rig:
+def pitch_rig(spec: GroovedSpec) -> Rig:
     """The rig of a grooved cam's pitch curve: the disc cam's, the template's own follower and roller."""
     return flat_rig(spec, disc_mount(spec.follower, spec.cam.rotation))
 
@@ -100,7 +100,7 @@ class GroovedDesign:
 
     Attributes
     ----------
-    spec : CamSpec
+    spec : GroovedSpec
         The template as given: its base radius ``"auto"`` where it was sized.
     profile : FlatCamDesign
         The island: the disc cam whose surface is the inner flank, with the groove's speed and sizing.
@@ -118,7 +118,7 @@ class GroovedDesign:
         The design's warnings, as the console prints them.
     """
 
-    spec: CamSpec
+    spec: GroovedSpec
     profile: FlatCamDesign
     base_radius_mm: float
     inner: Flank
@@ -176,7 +176,7 @@ def _circle(radius: float) -> Contour:
     return Contour(np.array([[radius, 0.0], [-radius, 0.0]]), np.array([1.0, 1.0]))
 
 
-def _plate(spec: CamSpec, island: Part, outer: Outline, radius: float) -> Part:
+def _plate(spec: GroovedSpec, island: Part, outer: Outline, radius: float) -> Part:
     """The plate of ``radius`` mm with the island's holes and marks, and the groove between its outline and
     ``outer`` as a pocket."""
     groove = Pocket(outer.contour, island.outline, spec.cam.groove_depth)
@@ -195,7 +195,7 @@ def step_plate(design: GroovedDesign) -> Part:
     return _plate(design.spec, island, outer, design.plate_radius_mm)
 
 
-def size_grooved(spec: CamSpec) -> Sizing:
+def size_grooved(spec: GroovedSpec) -> Sizing:
     """The smallest base radius meeting the pressure-angle limit and ``cam.min_rho_margin`` for the inner flank's
     convex radius (:func:`camgen.sizing.size_cam` of the island, searched from the template's base radius where it
     gives one), in the grooved cam's terms: its base radius is c/2 more than the island's."""
@@ -208,13 +208,13 @@ def size_grooved(spec: CamSpec) -> Sizing:
                                curvature_radius_mm=found.curvature_radius_mm + half)
 
 
-def design_grooved(spec: CamSpec) -> GroovedDesign:
+def design_grooved(spec: GroovedSpec) -> GroovedDesign:
     """Build, check and outline the grooved cam ``spec`` describes (sized first where ``cam.base_radius =
     "auto"``, :func:`size_grooved`; the spec keeps ``"auto"``, the size is ``design.base_radius_mm``).
 
     Parameters
     ----------
-    spec : CamSpec
+    spec : GroovedSpec
         A validated template with ``cam.kind = "grooved"``; a base radius of ``"auto"`` is sized first.
 
     Returns

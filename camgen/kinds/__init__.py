@@ -34,9 +34,9 @@ KINDS: Mapping[str, Kind[Any, Any]] = registry((
     geneva.KIND,
 ), lambda kind: (kind.name,), "cam.kind", "a cam kind")
 
-#: the kinds of the shared ``[cam]`` table (:class:`~camgen.spec.CamTable`), which its ``kind`` names and its
-#: validation checks by (until each kind owns its table)
-CAM_KINDS: Mapping[str, SharedTableKind[Any]] = {name: kind for name, kind in KINDS.items()
+#: the kinds chosen by ``cam.kind``, each with its own ``[cam]`` table (:mod:`camgen.tables`), whose ``kind`` names
+#: and the spec's validation checks values by (:attr:`~camgen.kinds.shared.SharedTableKind.check`)
+CAM_KINDS: Mapping[str, SharedTableKind[Any, Any]] = {name: kind for name, kind in KINDS.items()
                                                  if isinstance(kind, SharedTableKind)}
 #: the kind of a ``[cam]`` table without ``kind``
 DEFAULT_KIND = "disc"
@@ -69,12 +69,19 @@ def _one_table(raw: Mapping[str, Any], own: list[Kind[Any, Any]]) -> str:
     return "give " + (" or ".join(given) + ", not both" if len(given) == 2 else "only one of " + ", ".join(given))
 
 
+def table_keys(kind: Kind[Any, Any]) -> Mapping[str, Any]:
+    """The keys of the table ``kind`` is chosen by (:attr:`~camgen.kinds.base.Kind.table_key`: a cam's ``[cam]``, a
+    Geneva drive's ``[geneva]``), as its spec's model declares them (imported here)."""
+    table = kind.spec.model_fields[kind.table_key].annotation
+    return getattr(table, "model_fields", {})
+
+
 def spec_kind(spec: Any) -> Kind[Any, Any]:
     """The kind of a validated spec (by its ``kind``: a cam's ``cam.kind``, a Geneva drive's ``"geneva"``)."""
     return KINDS[choose(spec.kind, KINDS, "cam.kind")]
 
 
-def kind_of(kind: str) -> SharedTableKind[Any]:
+def kind_of(kind: str) -> SharedTableKind[Any, Any]:
     """The kind of the shared ``[cam]`` table named ``kind`` (``cam.kind``), or a one-line error listing them."""
     try:
         return CAM_KINDS[kind]          # a registered name (a design asks twice): no list of the names made

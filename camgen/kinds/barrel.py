@@ -15,17 +15,15 @@ from typing import TYPE_CHECKING, Any
 from camgen.core.features import KEYS, bore_reach
 from camgen.followers.barrel import BarrelGeometry, DevelopedRoller
 from camgen.followers.plate import PlateRoller
-from camgen.kinds.base import ALL_FORMATS, BARREL_KEYS, NESTED, Operations, Starter
+from camgen.kinds.base import ALL_FORMATS, NESTED, Operations, Starter
 from camgen.kinds.shared import SharedTableKind
 from camgen.kinds.starting import OUTPUT
 
 if TYPE_CHECKING:
     from camgen.barrel.design import BarrelDesign
-    from camgen.spec import CamSpec
+    from camgen.spec import BarrelSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
-#: ``[cam]`` keys a barrel does not use, with what it takes instead
-_NOT_USED = {"base_radius": "pitch_radius", "thickness": "length", "travel": "length", "rim": "length"}
 #: ``[follower]`` keys a barrel does not use: an offset, and the spring and contact of a spring-loaded follower
 _FOLLOWER_NOT_USED = ("offset", "spring_rate", "preload", "contact_margin", "roller_width")
 
@@ -60,13 +58,6 @@ def _check_arm(spec: Any, g: BarrelGeometry, room: float, rw: float) -> None:
 
 def _check(spec: Any) -> None:
     cam, follower = spec.cam, spec.follower
-    for key, instead in _NOT_USED.items():
-        if key in cam.model_fields_set:
-            raise ValueError(f"cam.{key}: not used by a barrel cam (its size is cam.pitch_radius, cam.length and "
-                             f"cam.groove_depth; see cam.{instead})")
-    for key in (*BARREL_KEYS, "groove_depth"):
-        if getattr(cam, key) is None:
-            raise ValueError(f"cam.{key}: required for a barrel cam (mm, > 0)")
     if follower.type not in FOLLOWERS:
         raise ValueError(f"follower.type: a barrel cam takes a translating-roller follower (moving along the cam's "
                          f"axis) or an oscillating-roller (on an arm swinging along it; got {follower.type!r})")
@@ -77,9 +68,6 @@ def _check(spec: Any) -> None:
     if follower.oscillating and follower.orientation is not None:
         raise ValueError("follower.orientation: not modelled for a barrel's arm (it swings in a plane through the "
                          "cam's axis): give the weights as follower.load, or leave them out")
-    for key in ("allow_undercut", "min_rho_margin"):
-        if key in cam.model_fields_set:
-            raise ValueError(f"cam.{key}: not used by a barrel cam: its groove's walls are refused where they undercut")
     if "material" in cam.model_fields_set and (cam.rpm is None or follower.mass is None):
         raise ValueError("cam.material: a barrel cam's contact pressure is at cam.rpm with follower.mass; give both")
     for key in sorted(spec.hub.model_fields_set - {"keyway"}):
@@ -240,7 +228,7 @@ STARTERS = {
 }
 
 
-class BarrelKind(SharedTableKind["BarrelDesign"]):
+class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
     """A barrel cam (``cam.kind = "barrel"``): designed by :func:`camgen.barrel.design.design_barrel`, written by
     :func:`camgen.barrel.outputs.barrel_bundle`; printed round its axis, so no STEP solid and nothing to size."""
 
@@ -250,11 +238,17 @@ class BarrelKind(SharedTableKind["BarrelDesign"]):
     formats: frozenset[str] = ALL_FORMATS - {"step"}
     unsized: str = ("a barrel cam has no base radius to size: its pitch_radius is the designer's choice (the report "
                "gives the pressure angle at it)")
-    check: Callable[[CamSpec], None] = staticmethod(_check)
-    follower: Callable[[CamSpec, float, float], Any] = staticmethod(_follower)
+    check: Callable[[BarrelSpec], None] = staticmethod(_check)
+    follower: Callable[[BarrelSpec, float, float], Any] = staticmethod(_follower)
     starters: Mapping[str, Starter] = STARTERS
 
-    def operations(self) -> Operations[CamSpec, BarrelDesign]:
+    @property
+    def spec(self) -> type[BarrelSpec]:
+        from camgen.spec import BarrelSpec
+
+        return BarrelSpec
+
+    def operations(self) -> Operations[BarrelSpec, BarrelDesign]:
         from camgen.barrel.design import design_barrel
         from camgen.barrel.outputs import barrel_bundle, summary_lines
         from camgen.outputs import cam_row
@@ -262,10 +256,10 @@ class BarrelKind(SharedTableKind["BarrelDesign"]):
         return Operations(design_barrel, barrel_bundle, lambda design, report: summary_lines(report),
                           lambda design, report: cam_row(design, report, design.thumbnail))
 
-    def thumbnail_bore(self, spec: CamSpec) -> float:
+    def thumbnail_bore(self, spec: BarrelSpec) -> float:
         return 0.0                                      # its thumbnail is the groove drawn unrolled
 
-    def sheet_refusal(self, spec: CamSpec) -> str | None:
+    def sheet_refusal(self, spec: BarrelSpec) -> str | None:
         return f"a barrel cam is printed: its DXF is a developed template, not a part to cut; {NESTED}"
 
     def format_refusal(self, fmt: str) -> str:

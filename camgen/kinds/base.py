@@ -222,38 +222,13 @@ class KindBase(ABC, Generic[S, D]):
         return f"{self.title} writes no {fmt!r} file; give formats of {', '.join(sorted(self.formats))}"
 
 
-# ---- the shared [cam] table's key lists, until each kind owns its table (step S5b of issue 31) ----
+# ---- the shared [follower] table's checks, until each kind declares its followers' tables ----
 
-#: the ``[cam]`` keys only a grooved cam takes
-GROOVE_KEYS = ("groove_depth", "running_clearance", "rim")
-#: how a message names the grooved kind
-GROOVED = 'a grooved cam (cam.kind = "grooved")'
-#: the ``[cam]`` keys only a barrel cam takes, and how a message names it
-BARREL_KEYS = ("pitch_radius", "length")
+#: how a message names the barrel kind
 BARREL = 'a barrel cam (cam.kind = "barrel")'
-#: the ``[cam]`` keys of a barrel's rib (refused for the other kinds)
-RIB_KEYS = ("barrel_form", "rib_width")
-#: the ``[cam]`` keys only a conjugate cam takes (refused for the other kinds by :class:`camgen.spec.CamTable`)
-CONJUGATE_KEYS = ("second_base_radius", "yoke_span", "arm_angle", "second_arm_length", "second_roller_radius")
-#: the ``[cam]`` keys every flat cam (disc, plate, grooved, conjugate) needs
-FLAT_KEYS = ("base_radius", "thickness")
 
 
-def flat_body(spec: Any) -> None:
-    """The checks every flat cam (disc, plate, grooved, conjugate) shares: ``base_radius`` and ``thickness``
-    given (the message pydantic gives a missing key), and no barrel's keys."""
-    for key in FLAT_KEYS:
-        if getattr(spec.cam, key) is None:
-            info = type(spec.cam).model_fields[key]
-            raise ValueError(f"cam.{key}: missing: give {info.description} in {info.json_schema_extra['unit']}")
-    refuse_keys(spec, (*BARREL_KEYS, *RIB_KEYS), BARREL)
+def flat_follower(spec: Any) -> None:
+    """The follower check every flat cam (disc, plate, grooved, conjugate) shares: no barrel's conical roller."""
     if "roller_shape" in spec.follower.model_fields_set:
         raise ValueError(f"follower.roller_shape: only for {BARREL}")
-
-
-def refuse_keys(spec: Any, keys: tuple[str, ...], owner: str) -> None:
-    """Raise ``ValueError("cam.<key>: ...")`` for the first of ``keys`` the template gives in ``[cam]``: keys only
-    ``owner`` (a kind, described for the message) takes."""
-    for key in keys:
-        if key in spec.cam.model_fields_set:
-            raise ValueError(f"cam.{key}: only for {owner}")

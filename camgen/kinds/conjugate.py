@@ -14,13 +14,13 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.kinds.base import GROOVE_KEYS, NESTED, Operations, SizeReport, Starter, flat_body
+from camgen.kinds.base import NESTED, Operations, SizeReport, Starter, flat_follower
 from camgen.kinds.shared import SharedTableKind
 from camgen.kinds.starting import OUTPUT, ROLLER, cam_table, motion
 
 if TYPE_CHECKING:
     from camgen.conjugate.design import ConjugateDesign
-    from camgen.spec import CamSpec
+    from camgen.spec import ConjugateSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
 #: the key that places the second roller instead of ``cam.second_base_radius``, by follower type
@@ -31,11 +31,8 @@ OWNERS = {"yoke_span": "a translating-roller", "arm_angle": "an oscillating-roll
 
 
 def _check(spec: Any) -> None:
-    flat_body(spec)
+    flat_follower(spec)
     cam, follower = spec.cam, spec.follower
-    for key in ("travel", *GROOVE_KEYS):
-        if key in cam.model_fields_set:
-            raise ValueError(f"cam.{key}: not used by a conjugate cam (two discs, each cut to its own profile)")
     if follower.type not in FOLLOWERS:
         raise ValueError(f"follower.type: a conjugate cam takes a translating-roller (a yoke with two rollers) or "
                          f"oscillating-roller follower (an arm with two rollers) (got {follower.type!r})")
@@ -72,17 +69,23 @@ STARTERS = {
 }
 
 
-class ConjugateKind(SharedTableKind["ConjugateDesign"]):
+class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
     """A conjugate pair (``cam.kind = "conjugate"``): designed by :func:`camgen.conjugate.design.design_conjugate`,
     written by :func:`camgen.conjugate.outputs.conjugate_bundle`; sized cam by cam, the pair at the larger."""
 
     name: str = "conjugate"
     title: str = "a conjugate cam"
     followers: tuple[str, ...] = FOLLOWERS
-    check: Callable[[CamSpec], None] = staticmethod(_check)
+    check: Callable[[ConjugateSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 
-    def operations(self) -> Operations[CamSpec, ConjugateDesign]:
+    @property
+    def spec(self) -> type[ConjugateSpec]:
+        from camgen.spec import ConjugateSpec
+
+        return ConjugateSpec
+
+    def operations(self) -> Operations[ConjugateSpec, ConjugateDesign]:
         from camgen.conjugate.design import design_conjugate
         from camgen.conjugate.outputs import conjugate_bundle, summary_lines
         from camgen.outputs import cam_row
@@ -91,11 +94,11 @@ class ConjugateKind(SharedTableKind["ConjugateDesign"]):
                           lambda design, report: cam_row(design, report, design.thumbnail),
                           _size)
 
-    def sheet_refusal(self, spec: CamSpec) -> str | None:
+    def sheet_refusal(self, spec: ConjugateSpec) -> str | None:
         return f"a conjugate pair's two cams are nested on its own <name>-sheet.dxf; {NESTED}"
 
 
-def _size(spec: CamSpec) -> SizeReport:
+def _size(spec: ConjugateSpec) -> SizeReport:
     """Each cam sized alone (:func:`camgen.conjugate.design.size_conjugate`), the pair at the larger."""
     from camgen.conjugate.design import size_conjugate
 

@@ -5,22 +5,19 @@ from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from camgen.followers import FOLLOWERS
-from camgen.kinds.base import GROOVE_KEYS, GROOVED, Starter, flat_body, refuse_keys
+from camgen.kinds.base import Starter, flat_follower
 from camgen.kinds.shared import FlatKind
 from camgen.kinds.starting import FLAT_AUTO, OUTPUT, ROLLER, SPRUNG, SWING, cam_table, motion
 from camgen.rig import Mount, disc_mount
 
 if TYPE_CHECKING:
-    from camgen.spec import CamSpec
+    from camgen.spec import DiscSpec
     from camgen.core.bundle import Item
     from camgen.flat import FlatCamDesign
 
 
 def _check(spec: Any) -> None:
-    flat_body(spec)
-    if spec.cam.travel is not None:
-        raise ValueError("cam.travel: only for a plate cam (cam.kind = \"plate\")")
-    refuse_keys(spec, GROOVE_KEYS, GROOVED)
+    flat_follower(spec)
 
 
 #: a disc cam's starters, one a follower type
@@ -73,16 +70,22 @@ STARTERS = {
 }
 
 
-class DiscKind(FlatKind):
+class DiscKind(FlatKind["DiscSpec"]):
     """A disc cam (``cam.kind = "disc"``, the default); the one kind with a graphical construction."""
 
     name: str = "disc"
     title: str = "a disc cam"
     followers: tuple[str, ...] = tuple(FOLLOWERS)
-    check: Callable[[CamSpec], None] = staticmethod(_check)
+    check: Callable[[DiscSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 
-    def mount(self, spec: CamSpec) -> Mount:
+    @property
+    def spec(self) -> type[DiscSpec]:
+        from camgen.spec import DiscSpec
+
+        return DiscSpec
+
+    def mount(self, spec: DiscSpec) -> Mount:
         return disc_mount(spec.follower, spec.cam.rotation)
 
     def construction(self, design: FlatCamDesign) -> tuple[Item, ...]:

@@ -12,27 +12,23 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.kinds.base import Operations, SizeReport, Starter, flat_body
+from camgen.kinds.base import Operations, SizeReport, Starter, flat_follower
 from camgen.kinds.shared import SharedTableKind
 from camgen.kinds.starting import OUTPUT, cam_table, motion
 
 if TYPE_CHECKING:
     from camgen.grooved.design import GroovedDesign
-    from camgen.spec import CamSpec
+    from camgen.spec import GroovedSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
 
 
 def _check(spec: Any) -> None:
-    flat_body(spec)
+    flat_follower(spec)
     cam, follower = spec.cam, spec.follower
-    if cam.travel is not None:
-        raise ValueError("cam.travel: only for a plate cam (cam.kind = \"plate\")")
     if follower.type not in FOLLOWERS:
         raise ValueError(f"follower.type: a grooved cam takes a translating-roller or oscillating-roller follower "
                          f"(got {follower.type!r})")
-    if cam.groove_depth is None:
-        raise ValueError("cam.groove_depth: required for a grooved cam (mm, > 0 and < cam.thickness)")
     if not cam.groove_depth < cam.thickness:
         raise ValueError(f"cam.groove_depth: must be < cam.thickness {cam.thickness:g} mm (got {cam.groove_depth:g})")
     for key in ("spring_rate", "preload", "contact_margin"):
@@ -59,17 +55,23 @@ STARTERS = {
 }
 
 
-class GroovedKind(SharedTableKind["GroovedDesign"]):
+class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
     """A grooved face cam (``cam.kind = "grooved"``): designed by :func:`camgen.grooved.design.design_grooved`,
     written by :func:`camgen.grooved.outputs.grooved_bundle`; its console lines are a disc cam's and the groove's."""
 
     name: str = "grooved"
     title: str = "a grooved cam"
     followers: tuple[str, ...] = FOLLOWERS
-    check: Callable[[CamSpec], None] = staticmethod(_check)
+    check: Callable[[GroovedSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 
-    def operations(self) -> Operations[CamSpec, GroovedDesign]:
+    @property
+    def spec(self) -> type[GroovedSpec]:
+        from camgen.spec import GroovedSpec
+
+        return GroovedSpec
+
+    def operations(self) -> Operations[GroovedSpec, GroovedDesign]:
         from camgen.grooved.design import design_grooved, size_grooved
         from camgen.grooved.outputs import groove_summary, grooved_bundle
         from camgen.outputs import cam_row

@@ -8,29 +8,24 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.kinds.base import GROOVE_KEYS, GROOVED, Starter, flat_body, refuse_keys
+from camgen.kinds.base import Starter, flat_follower
 from camgen.kinds.shared import FlatKind
 from camgen.kinds.starting import OUTPUT, motion
 from camgen.rig import Mount, plate_mount
 
 if TYPE_CHECKING:
-    from camgen.spec import CamSpec
+    from camgen.spec import PlateSpec
 
 FOLLOWERS = ("translating-roller", "knife-edge")
 
 
 def _check(spec: Any) -> None:
-    flat_body(spec)
-    if spec.cam.travel is None:
-        raise ValueError("cam.travel: required for a plate cam (mm)")
+    flat_follower(spec)
     if spec.follower.type not in FOLLOWERS:
         raise ValueError(f"follower.type: a plate cam takes a translating-roller or knife-edge follower "
                          f"(got {spec.follower.type!r})")
-    if spec.follower.offset != 0 or spec.cam.bore != 0:
-        raise ValueError(f"{'cam.bore' if spec.cam.bore else 'follower.offset'}: not used by a plate cam")
-    if spec.cam.rotation != "ccw":
-        raise ValueError("cam.rotation: not used by a plate cam (the plate slides along +X as the program runs)")
-    refuse_keys(spec, GROOVE_KEYS, GROOVED)
+    if spec.follower.offset != 0:
+        raise ValueError("follower.offset: not used by a plate cam")
 
 
 def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
@@ -53,17 +48,23 @@ STARTERS = {
 }
 
 
-class PlateKind(FlatKind):
+class PlateKind(FlatKind["PlateSpec"]):
     """A plate (linear) cam (``cam.kind = "plate"``)."""
 
     name: str = "plate"
     title: str = "a plate cam"
     followers: tuple[str, ...] = FOLLOWERS
-    check: Callable[[CamSpec], None] = staticmethod(_check)
-    follower: Callable[[CamSpec, float, float], Any] = staticmethod(_follower)
+    check: Callable[[PlateSpec], None] = staticmethod(_check)
+    follower: Callable[[PlateSpec, float, float], Any] = staticmethod(_follower)
     starters: Mapping[str, Starter] = STARTERS
 
-    def mount(self, spec: CamSpec) -> Mount:
+    @property
+    def spec(self) -> type[PlateSpec]:
+        from camgen.spec import PlateSpec
+
+        return PlateSpec
+
+    def mount(self, spec: PlateSpec) -> Mount:
         return plate_mount(spec.follower, spec.cam.travel)
 
 

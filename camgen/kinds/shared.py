@@ -1,10 +1,11 @@
-"""What the cam kinds of the shared ``[cam]`` table have in common: :class:`SharedTableKind` (disc, plate, grooved,
-barrel and conjugate cams: one spec, a check of its keys, the follower on the cam) and :class:`FlatKind` (disc and
-plate cams: a flat plate cut to a profile, one design and one bundle).
+"""What the cam kinds chosen by ``cam.kind`` have in common: :class:`SharedTableKind` (disc, plate, grooved, barrel
+and conjugate cams: a spec of :class:`~camgen.spec.CamSpec`'s shape with the kind's own ``[cam]`` table, a check of
+the values its table cannot check alone, the follower on the cam) and :class:`FlatKind` (disc and plate cams: a flat
+plate cut to a profile, one design and one bundle).
 
-The shared table and the kinds' ``check`` stay until each kind owns its table (step S5b of issue 31); ``follower``
-(the follower on a spec's cam, for :func:`camgen.flat.build_cam`) until the kinds are packages (step S6). A flat
-kind's design and size take its :meth:`FlatKind.mount` (:mod:`camgen.rig`), not the spec's kind.
+The kinds' ``check`` and ``follower`` (the follower on a spec's cam, for :func:`camgen.flat.build_cam`) stay until the
+kinds are packages (step S6 of issue 31). A flat kind's design and size take its :meth:`FlatKind.mount`
+(:mod:`camgen.rig`), not the spec's kind.
 """
 from __future__ import annotations
 
@@ -17,9 +18,12 @@ from camgen.rig import Mount, disc_mount
 
 if TYPE_CHECKING:
     from camgen.flat import FlatCamDesign
-    from camgen.spec import CamSpec
+    from camgen.spec import CamSpec, FlatSpec
 
 D = TypeVar("D")
+#: a cam kind's spec, and a flat cam kind's
+S = TypeVar("S", bound="CamSpec")
+F = TypeVar("F", bound="FlatSpec")
 
 
 def disc_follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
@@ -28,41 +32,36 @@ def disc_follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
     return disc_mount(spec.follower, spec.cam.rotation).at(base_radius, roller_radius)
 
 
-class SharedTableKind(KindBase["CamSpec", D]):
-    """A cam kind whose ``[cam]`` keys are the shared :class:`~camgen.spec.CamTable`'s: its spec is
-    :class:`~camgen.spec.CamSpec`, whose validation calls :attr:`check` (``ValueError("field: why")`` for a spec this
-    kind cannot take); the cam builder asks :attr:`follower` for the follower on a cam of base radius
-    ``base_radius`` (mm) under a roller of ``roller_radius`` (mm; 0 for a knife edge or a flat face): by default
-    :func:`disc_follower`. Its cut part is nested on a family's ``[sheet]`` where it writes one (a DXF)."""
+class SharedTableKind(KindBase[S, D]):
+    """A cam kind chosen by ``cam.kind``: its :attr:`spec` is a :class:`~camgen.spec.CamSpec` holding the kind's own
+    ``[cam]`` table (:mod:`camgen.tables`, which refuses another kind's keys), whose validation calls :attr:`check`
+    (``ValueError("field: why")`` for values this kind cannot take: a rule across tables, or one of geometry); the
+    cam builder asks :attr:`follower` for the follower on a cam of base radius ``base_radius`` (mm) under a roller of
+    ``roller_radius`` (mm; 0 for a knife edge or a flat face): by default :func:`disc_follower`. Its cut part is
+    nested on a family's ``[sheet]`` where it writes one (a DXF)."""
 
-    check: Callable[[CamSpec], None]
-    follower: Callable[[CamSpec, float, float], Any] = staticmethod(disc_follower)
+    check: Callable[[S], None]
+    follower: Callable[[S, float, float], Any] = staticmethod(disc_follower)
 
-    @property
-    def spec(self) -> type[CamSpec]:
-        from camgen.spec import CamSpec
-
-        return CamSpec
-
-    def thumbnail_bore(self, spec: CamSpec) -> float:
+    def thumbnail_bore(self, spec: S) -> float:
         return float(spec.cam.bore)
 
-    def sheet_refusal(self, spec: CamSpec) -> str | None:
+    def sheet_refusal(self, spec: S) -> str | None:
         if "dxf" not in spec.output.formats:
             return 'it writes no cut file to nest: add "dxf" to output.formats'
         return None
 
 
-class FlatKind(SharedTableKind["FlatCamDesign"]):
+class FlatKind(SharedTableKind[F, "FlatCamDesign"]):
     """A cam cut to a profile from a flat plate, a disc or a plate (linear) cam: its follower on the kind's
     :meth:`mount`, designed by :func:`camgen.flat.design_flat`, written by :func:`camgen.outputs.cam_bundle`, sized
     by :func:`camgen.flat.size_flat`."""
 
     @abstractmethod
-    def mount(self, spec: CamSpec) -> Mount:
+    def mount(self, spec: F) -> Mount:
         """How the kind carries the follower ``spec`` describes (:mod:`camgen.rig`)."""
 
-    def operations(self) -> Operations[CamSpec, FlatCamDesign]:
+    def operations(self) -> Operations[F, FlatCamDesign]:
         from camgen.flat import design_flat, size_flat
         from camgen.outputs import cam_bundle, cam_row
         from camgen.report import cam_summary

@@ -43,6 +43,7 @@ def roots() -> dict[str, list[Table]]:
     from camgen.core.family import _SheetTemplate
     from camgen.geneva.spec import GenevaSpec
     from camgen.spec import CamSpec
+    from camgen.tables import CAM_TABLES
     from linkgen.mechanisms import MECHANISMS
     from linkgen.spec import LinkageSpec
     from linkgen.synthesis.task import TASKS, SynthesisSpec
@@ -53,11 +54,14 @@ def roots() -> dict[str, list[Table]]:
         by_table.setdefault(mechanism.table, []).append(name)
     linkage = [top[0], *(Table(t.path, t.model, f"{t.title} (type {', '.join(names)})")
                          for table, names in by_table.items() for t in tables(table, "linkage")), *top[1:]]
+    top = list(tables(CamSpec, "", skip={"cam"}))
+    cam = [top[0], *(Table(t.path, t.model, f"{t.title} (kind {kind})")
+                     for kind, table in CAM_TABLES.items() for t in tables(table, "cam")), *top[1:]]
     top = list(tables(SynthesisSpec, "", skip={"task"}))
     synthesis = [top[0], *(Table(t.path, t.model, f"{t.title} (kind {kind})")
                            for kind, task in TASKS.items() for t in tables(task, "task")), *top[1:]]
     return {
-        "cam": list(tables(CamSpec, "")),
+        "cam": _ordered(cam),
         "geneva": list(tables(GenevaSpec, "")),
         "coupon": list(tables(CouponSpec, "")),
         "family": list(tables(_SheetTemplate, ""))[1:],
