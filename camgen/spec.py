@@ -486,7 +486,7 @@ class DiscSpec(CamSpec):
 
     cam: DiscTable
 
-    noun: ClassVar[str] = DiscTable.model_config["title"]
+    noun: ClassVar[str] = "a disc cam"  # its table's title
 
 
 class PlateSpec(CamSpec):
@@ -494,7 +494,7 @@ class PlateSpec(CamSpec):
 
     cam: PlateTable
 
-    noun: ClassVar[str] = PlateTable.model_config["title"]
+    noun: ClassVar[str] = "a plate cam"  # its table's title
 
 
 class GroovedSpec(CamSpec):
@@ -502,7 +502,7 @@ class GroovedSpec(CamSpec):
 
     cam: GroovedTable
 
-    noun: ClassVar[str] = GroovedTable.model_config["title"]
+    noun: ClassVar[str] = "a grooved cam"  # its table's title
 
 
 class BarrelSpec(CamSpec):
@@ -510,7 +510,7 @@ class BarrelSpec(CamSpec):
 
     cam: BarrelTable
 
-    noun: ClassVar[str] = BarrelTable.model_config["title"]
+    noun: ClassVar[str] = "a barrel cam"  # its table's title
 
 
 class ConjugateSpec(CamSpec):
@@ -518,7 +518,7 @@ class ConjugateSpec(CamSpec):
 
     cam: ConjugateTable
 
-    noun: ClassVar[str] = ConjugateTable.model_config["title"]
+    noun: ClassVar[str] = "a conjugate cam"  # its table's title
 
 
 #: the spec of a cam cut from a flat plate (every kind but the barrel)

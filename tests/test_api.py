@@ -290,3 +290,11 @@ def test_mypy_passes_a_script_of_the_api_and_types_its_designs(tmp_path):
                                    'note: Revealed type is "dict[str, Any]"',
                                    'note: Revealed type is "camgen.core.errors.SpecError"'],
                      "typo.py": ['error: Module has no attribute "desing"  [attr-defined]']}, result.stdout
+
+
+def test_each_cam_kind_s_spec_is_named_as_its_table():
+    from camgen.spec import CAM_SPECS
+
+    for kind, spec in CAM_SPECS.items():
+        table = spec.model_fields["cam"].annotation
+        assert spec.noun == table.model_config["title"], kind
