@@ -156,7 +156,7 @@ def forward_ratio(repeats: int) -> dict:
     fine = 2 * math.pi / 3600 * np.arange(3600)
 
     def run() -> None:
-        motion = simulate(equation_of(leg, masses, loads, 0.0, flywheel, motor), MAX_TIME, turns=10)
+        motion = simulate(equation_of(leg, masses, loads, 0.0, flywheel, motor), MAX_TIME, turns=10, settle=False)
         if len(motion.turn_ends) != 10:
             raise RuntimeError(f"the bench's leg ran {len(motion.turn_ends)} turns, not 10 ({motion.outcome})")
 

@@ -514,8 +514,24 @@ DEDICATED = {
 }
 
 
+#: mechanisms of gears and pawls, not of bars and pins: no slack band (refused in one line)
+HIGHER_PAIRS = ("gear-pair", "ratchet")
+
+
 def test_every_dedicated_type_is_covered():
-    assert set(DEDICATED) == set(MECHANISMS) - {"linkage"}
+    assert set(DEDICATED) == set(MECHANISMS) - {"linkage", *HIGHER_PAIRS}
+
+
+@pytest.mark.parametrize("kind", HIGHER_PAIRS)
+def test_a_mechanism_of_gears_or_pawls_refuses_slack_in_one_line(tmp_path, kind):
+    from linkgen.cli import main
+
+    path = tmp_path / "t.toml"
+    path.write_text((ROOT / "templates" / f"{kind}.toml").read_text(encoding="utf-8") + "\n[slack]\n")
+    result = CliRunner().invoke(main, ["analyze", str(path), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("error: slack: ") and result.output.count("\n") == 1, result.output
+    assert not (tmp_path / "out").exists()
 
 
 @pytest.mark.parametrize("kind", sorted(DEDICATED))

@@ -233,9 +233,9 @@ def method(eq: EquationOfMotion) -> str:
     return "LSODA" if least / damping * STEPS * heads < TWO_PI else "DOP853"
 
 
-def simulate(eq: EquationOfMotion, time: float, turns: int = MAX_TURNS) -> Motion:
+def simulate(eq: EquationOfMotion, time: float, turns: int = MAX_TURNS, settle: bool = True) -> Motion:
     """The motion of ``eq`` from rest at its start angle for at most ``time`` s and ``turns`` turns (see the
-    module's note)."""
+    module's note); ``settle=False`` runs on past a steady speed (to time a given number of turns)."""
     m = eq.motor
     y = np.array([eq.start, 0.0, 0.0, 0.0, 0.0])
     net = m.stall - float(eq.terms(eq.start)[2])
@@ -280,7 +280,7 @@ def simulate(eq: EquationOfMotion, time: float, turns: int = MAX_TURNS) -> Motio
         means.append(TWO_PI / (t - (ends[-2] if len(ends) > 1 else 0.0)))
         marks.append(y)
         last_turn = out.sol
-        if _is_steady(means):
+        if settle and _is_steady(means):
             outcome = "steady"
             break
         if endless and len(ends) >= RUNAWAY_TURNS:
