@@ -208,6 +208,8 @@ def _holds_tables(annotation: typing.Any) -> bool:
     from pydantic import BaseModel
 
     def table(a: typing.Any) -> bool:
+        if typing.get_origin(a) is typing.Annotated:       # a tagged union's member
+            return table(typing.get_args(a)[0])
         if isinstance(a, type) and issubclass(a, BaseModel):
             return True
         args = [x for x in typing.get_args(a) if x is not Ellipsis]

@@ -47,7 +47,7 @@ def _spec(law: str, follower: str, rotation: str):
     if "flat" in follower:
         raw["cam"]["base_radius"] = 60.0
     if follower == "plate":
-        raw["cam"] = {"kind": "plate", "travel": 200.0, "base_radius": 20.0, "thickness": 6.0, "bore": 0.0}
+        raw["cam"] = {"kind": "plate", "travel": 200.0, "base_radius": 20.0, "thickness": 6.0}
     lift = 15.0 if follower.startswith("oscillating") else 20.0
     name, _, _ = law.partition("/")
     for i, angle in ((0, 120.0), (2, 100.0)):

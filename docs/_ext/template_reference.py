@@ -85,10 +85,16 @@ def _ordered(found: list[Table]) -> list[Table]:
 
 
 def _unwrap(annotation: Any) -> list[Any]:
-    """The members of a union (``X | None`` gives ``[X]``), or ``[annotation]``."""
+    """The members of a union (``X | None`` gives ``[X]``), or ``[annotation]``; each without its ``Annotated``
+    metadata (a tagged union's ``Tag``)."""
     if typing.get_origin(annotation) in (typing.Union, types.UnionType):
-        return [a for a in typing.get_args(annotation) if a is not type(None)]
-    return [annotation]
+        return [_bare(a) for a in typing.get_args(annotation) if a is not type(None)]
+    return [_bare(annotation)]
+
+
+def _bare(annotation: Any) -> Any:
+    """``annotation`` without ``Annotated[...]``'s metadata."""
+    return typing.get_args(annotation)[0] if typing.get_origin(annotation) is typing.Annotated else annotation
 
 
 def _models_in(annotation: Any, path: str) -> Iterator[tuple[str, type[BaseModel]]]:
