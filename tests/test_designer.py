@@ -1,0 +1,133 @@
+"""The designer's server (``camgen serve``) without a browser: a websocket client as a tab. Refusals answer one
+error each, write nothing and leave the server running; tabs are separate; the TOML it saves reads back equal."""
+from __future__ import annotations
+
+import contextlib
+import json
+import shutil
+import tomllib
+
+import pytest
+
+from tests.conftest import ROOT
+from tests.designer_server import designer
+
+pytest.importorskip("starlette")
+pytest.importorskip("uvicorn")
+from websockets.sync.client import connect
+
+
+def _folder(tmp_path, *names):
+    for name in names:
+        shutil.copy(ROOT / "templates" / f"{name}.toml", tmp_path / f"{name}.toml")
+    return tmp_path
+
+
+def _snapshot(folder):
+    return {p.relative_to(folder).as_posix(): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+@contextlib.contextmanager
+def _tab(url):
+    """A tab's websocket, the state it opened with and the folder's listing."""
+    with connect(url.replace("http", "ws") + "ws", max_size=None, open_timeout=30) as ws:
+        first = json.loads(ws.recv(timeout=60))
+        listing = first if first["kind"] == "files" else json.loads(ws.recv(timeout=60))
+        yield ws, (first if first["kind"] == "state" else None), listing
+
+
+def _ask(ws, message):
+    ws.send(message if isinstance(message, (str, bytes)) else json.dumps(message))
+    return json.loads(ws.recv(timeout=120))
+
+
+def test_the_toml_it_writes_reads_back_to_every_template():
+    from camgen.designer.toml_text import dumps
+
+    for path in sorted((ROOT / "templates").glob("*.toml")):
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+        assert tomllib.loads(dumps(raw)) == raw, path.name
+
+
+def test_bad_requests_answer_one_error_each_and_write_nothing(tmp_path):
+    folder = _folder(tmp_path, "rdrd")
+    outside = tmp_path.parent / f"{tmp_path.name}-outside.toml"
+    shutil.copy(folder / "rdrd.toml", outside)
+    before = _snapshot(folder)
+    with designer(folder, "rdrd.toml") as url:
+        with _tab(url) as (ws, state, listing):
+            _refusals(ws, state, listing, outside)
+        assert not outside.with_name("escaped.toml").exists()
+        assert _snapshot(folder) == before
+    outside.unlink()
+
+
+def _refusals(ws, state, listing, outside):
+    """Each bad request of a tab answers one error and changes nothing; the tab is served after."""
+    assert state["file"] == "rdrd.toml" and listing["files"] == ["rdrd.toml"]
+    bad = [({"op": "open", "path": f"../{outside.name}"}, "path", "outside the folder"),
+           ({"op": "open", "path": str(outside)}, "path", "outside the folder"),
+           ({"op": "save", "path": "../escaped.toml"}, "path", "outside the folder"),
+           ({"op": "save", "path": "notes.txt"}, "path", "give a .toml file"),
+           ("this is not JSON", "message", "not JSON"),
+           ("[1, 2]", "message", '"op"'),
+           ({"op": "format-disk"}, "op", "no such operation"),
+           ({"op": "set", "path": "cam.base_radius"}, "message", '"path" and "text"'),
+           ({"op": "set", "path": "nothing[x].here", "text": "1"}, "nothing[x].here", "not a field"),
+           ({"op": "drag", "joint": "G", "x": 1, "y": 2}, "joint", "no joint"),
+           ("x" * (300 * 1024), "message", "at most 262144 bytes"),
+           (b"\x00" * 10, "message", "send text")]
+    for message, field, says in bad:
+        got = _ask(ws, message)
+        assert got["kind"] == "error", message
+        assert got["field"] == field and says in got["message"], got
+        assert got["message"].startswith("error: ") and "\n" not in got["message"]
+    with pytest.raises(TimeoutError):                         # one answer each: nothing more is waiting
+        ws.recv(timeout=0.5)
+    again = _ask(ws, {"op": "set", "path": "cam.thickness", "text": "9"})   # still serving this tab
+    assert again["kind"] == "state" and "thickness = 9" in again["text"]
+
+
+def test_each_tab_is_its_own_design(tmp_path):
+    folder = _folder(tmp_path, "rdrd")
+    with designer(folder, "rdrd.toml") as url, _tab(url) as (one, _, _), _tab(url) as (two, _, _):
+        _separate(one, two, folder)
+
+
+def _separate(one, two, folder):
+    """An edit in one tab is not in the other."""
+    changed = _ask(one, {"op": "set", "path": "cam.thickness", "text": "12"})
+    assert "thickness = 12" in changed["text"] and changed["can_undo"]
+    other = _ask(two, {"op": "redo"})                       # the second tab has no edit of its own to redo
+    assert other["kind"] == "error" and other["field"] == "history"
+    saved = _ask(two, {"op": "save", "path": "second.toml"})
+    assert saved == {"kind": "saved", "path": "second.toml"}
+    assert (folder / "second.toml").read_bytes() == (folder / "rdrd.toml").read_bytes()
+
+
+def test_a_missing_extra_is_one_line_naming_it(monkeypatch, tmp_path):
+    import importlib.util
+
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "starlette" else real(name, *a))
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, ["serve", "--no-browser"])
+    assert result.exit_code == 2
+    assert result.output.strip().splitlines() == [
+        "error: serve: the designer needs starlette: pip install 'camgen[serve]'"]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_port_out_of_range_is_refused(tmp_path, monkeypatch):
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, ["serve", "--no-browser", "--port", "70000"])
+    assert result.exit_code == 2
+    assert result.output.strip() == "error: --port: must be 0 to 65535 (got 70000)"
