@@ -78,9 +78,10 @@ def make_app(root: Path, template: str | None = None, port: int | None = None) -
         await ws.accept()
         session = Session(root)                          # this tab's own design: nothing shared between tabs
         try:
-            if template is not None:
-                await ws.send_json(await answer(session, json.dumps({"op": "open", "path": template})))
-            await ws.send_json(await answer(session, json.dumps({"op": "list"})))
+            greetings = ([json.dumps({"op": "open", "path": template})] if template is not None else []) + [
+                json.dumps({"op": "list"})]
+            for text in greetings:                       # what the tab is shown unasked: the template, the folder
+                await ws.send_json({**await answer(session, text), "greeting": True})
             while True:
                 event = await ws.receive()
                 if event["type"] == "websocket.disconnect":
