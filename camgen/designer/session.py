@@ -28,6 +28,8 @@ MAX_TEMPLATE = 1 << 20
 MAX_HISTORY = 500
 #: the most template files listed of the folder
 MAX_LISTED = 500
+#: the most fields one edit changes together
+MAX_CHANGES = 100
 
 
 class Abandoned(Exception):
@@ -181,14 +183,20 @@ class Session:
         return {"kind": "files", "files": names[:MAX_LISTED]}
 
     def set_field(self, message: Mapping[str, Any], abandoned: threading.Event) -> dict[str, Any]:
+        """Set one field (``path``, ``text`` as typed) or several at once (``changes``: a list of them, what must
+        change together: a rise's lift and the return's that balances it), as one step of the history."""
         raw = self._raw()
-        path, text = message.get("path"), message.get("text")
-        if not isinstance(path, str) or not isinstance(text, str):
-            raise SpecError('give "path" and "text" (strings)', "message")
-        value = _parse(text, self.entries.get(path))
-        _set(raw, path, value)
-        if _program(raw) == "linkgen" and path.startswith("linkage.joints.") and isinstance(value, list):
-            _follow_checks(raw, path.removeprefix("linkage.joints."))
+        changes = message.get("changes", [message])
+        if not isinstance(changes, list) or not 0 < len(changes) <= MAX_CHANGES:
+            raise SpecError(f"give 1 to {MAX_CHANGES} changes", "message")
+        for change in changes:
+            path, text = (change.get("path"), change.get("text")) if isinstance(change, dict) else (None, None)
+            if not isinstance(path, str) or not isinstance(text, str):
+                raise SpecError('give "path" and "text" (strings)', "message")
+            value = _parse(text, self.entries.get(path))
+            _set(raw, path, value)
+            if _program(raw) == "linkgen" and path.startswith("linkage.joints.") and isinstance(value, list):
+                _follow_checks(raw, path.removeprefix("linkage.joints."))
         return self._edit(raw, self.angle, abandoned)
 
     def drag(self, message: Mapping[str, Any], abandoned: threading.Event) -> dict[str, Any]:
