@@ -86,13 +86,13 @@ def make_app(root: Path, template: str | None = None, port: int | None = None) -
                 event = await ws.receive()
                 if event["type"] == "websocket.disconnect":
                     return
-                text = event.get("text")
-                if text is None:
+                received = event.get("text")
+                if received is None:
                     data = event.get("bytes") or b""
                     reply = _too_big(len(data)) if len(data) > MAX_MESSAGE else {
                         "kind": "error", "field": "message", "fields": [], "message": "error: message: send text"}
                 else:
-                    reply = await answer(session, text)
+                    reply = await answer(session, received)
                 await ws.send_json(reply)
         except WebSocketDisconnect:
             return
