@@ -131,3 +131,26 @@ def test_a_port_out_of_range_is_refused(tmp_path, monkeypatch):
     result = CliRunner().invoke(main, ["serve", "--no-browser", "--port", "70000"])
     assert result.exit_code == 2
     assert result.output.strip() == "error: --port: must be 0 to 65535 (got 70000)"
+
+
+def test_only_requests_addressed_to_this_machine_are_answered(tmp_path):
+    import urllib.error
+    import urllib.request
+
+    from websockets.exceptions import InvalidStatus
+
+    folder = _folder(tmp_path, "rdrd")
+    with designer(folder, "rdrd.toml") as url:
+        with urllib.request.urlopen(url, timeout=30) as page:
+            assert page.status == 200 and b"camgen designer" in page.read()
+        other = urllib.request.Request(url, headers={"Host": "designer.example.com"})
+        with pytest.raises(urllib.error.HTTPError) as refused:
+            urllib.request.urlopen(other, timeout=30)
+        assert refused.value.code == 403
+        with pytest.raises(urllib.error.HTTPError) as missing:
+            urllib.request.urlopen(url + "rdrd.toml", timeout=30)      # no route to the folder's files
+        assert missing.value.code == 404
+        with pytest.raises(InvalidStatus):                              # a page of another site
+            connect(url.replace("http", "ws") + "ws", origin="http://designer.example.com", open_timeout=30)
+        with _tab(url) as (_, state, _):                                # still serving
+            assert state["file"] == "rdrd.toml"

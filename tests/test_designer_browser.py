@@ -197,3 +197,25 @@ def test_editing_a_cam_and_a_bad_value(browser, tmp_path):  # noqa: F811
         for name in files:
             assert archive.read(name) == (tmp_path / "built" / name).read_bytes(), name
         shutil.rmtree(downloads)
+
+
+def test_play_turns_the_input_and_pause_stops_it(browser, tmp_path):  # noqa: F811
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    shutil.copy(ROOT / "templates" / "jansen.toml", tmp_path / "jansen.toml")
+    with designer(tmp_path, "jansen.toml") as url:
+        _open(browser, url)
+        start = browser.execute_script("return window.designer.scene.angle")
+        play = browser.find_element(By.ID, "play")
+        play.click()
+        WebDriverWait(browser, 60).until(lambda d: d.execute_script("return window.designer.scene.angle") >= start + 10)
+        play.click()
+        assert play.text == "Play"
+        _settled(browser)
+        stopped = browser.execute_script("return window.designer.scene.angle")
+        time.sleep(0.5)
+        assert browser.execute_script("return window.designer.scene.angle") == stopped
+        shown, _ = _positions(browser)
+        for p, xy in _analyzed(tmp_path, "jansen.toml", stopped).items():        # the pose it stopped at
+            assert shown[p] == pytest.approx(xy, abs=1e-9), p
