@@ -154,3 +154,49 @@ def test_only_requests_addressed_to_this_machine_are_answered(tmp_path):
             connect(url.replace("http", "ws") + "ws", origin="http://designer.example.com", open_timeout=30)
         with _tab(url) as (_, state, _):                                # still serving
             assert state["file"] == "rdrd.toml"
+
+
+def test_the_form_is_every_field_of_the_models_with_their_schema():
+    from camgen import api
+    from camgen.designer.form import form
+    from camgen.spec import CamSpec
+
+    raw = tomllib.loads((ROOT / "templates" / "rdrd.toml").read_text(encoding="utf-8"))
+    spec = api.validate(raw)
+    entries = {e["path"]: e for e in form(spec, raw)}
+    cam = type(spec.cam)
+    assert {p for p in entries if p.startswith("cam.")} == {f"cam.{k}" for k in cam.model_fields}
+    schema = CamSpec.model_json_schema()
+    segment = schema["$defs"][type(spec.motion[0]).__name__]["properties"]["angle"]
+    assert entries["motion[1].angle"]["unit"] == segment["unit"] == "degrees"
+    assert entries["motion[1].angle"]["maximum"] == segment["maximum"] == 360
+    assert entries["motion[1].angle"]["exclusiveMinimum"] == 0
+    assert entries["cam.thickness"]["value"] == 8.0 and entries["cam.thickness"]["given"]
+    rotation = cam.model_fields["rotation"]
+    assert entries["cam.rotation"]["enum"] == ["ccw", "cw"] and entries["cam.rotation"]["description"] == \
+        rotation.description
+    left_out = entries["cam.min_rho_margin"]
+    assert not left_out["given"] and left_out["value"] == cam.model_fields["min_rho_margin"].default
+
+
+def test_a_dragged_joint_takes_its_length_checks_along(tmp_path):
+    import math
+
+    from camgen.designer.session import Session
+
+    folder = _folder(tmp_path, "jansen")
+    session = Session(folder.resolve())
+    start = session.handle({"op": "open", "path": "jansen.toml"})
+    assert start["kind"] == "state" and not start["can_undo"]
+    moved = session.handle({"op": "drag", "joint": "F", "x": -58.0, "y": -46.0, "final": True})
+    assert moved["kind"] == "state" and moved["can_undo"]
+    table = tomllib.loads(moved["text"])["linkage"]
+    joints, checks = table["joints"], table["lengths"]
+    for key in ("E-F", "D-F", "F-G"):                       # every check naming F: the new distance
+        a, b = key.split("-")
+        assert checks[key] == pytest.approx(math.dist(joints[a], joints[b]), rel=1e-15)
+    assert checks["A-C"] == 50.0                            # the others as they were
+    assert moved["scene"]["joints"]["F"] == pytest.approx([-58.0, -46.0], abs=1e-9)
+    back = session.handle({"op": "undo"})
+    assert back["text"] == (folder / "jansen.toml").read_text(encoding="utf-8")
+    assert session.handle({"op": "redo"})["text"] == moved["text"]

@@ -140,12 +140,18 @@ class Session:
     angle: float | None = None
     design: Any = None
     entries: dict[str, dict[str, Any]] = field(default_factory=dict)
+    #: one message at a time: an answer abandoned past its time limit may still be running
+    lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     # -- what the tab asks ------------------------------------------------------------------------------------------
     def handle(self, message: Any, abandoned: threading.Event | None = None) -> dict[str, Any]:
         """The answer to one message from the tab (a dict with ``op``), the session changed only where the answer
         is not an error (and not ``abandoned`` meanwhile): an error is ``{"kind": "error", "field": ..., "message":
         "error: <field>: <what is allowed>"}``, the line the command line prints."""
+        with self.lock:
+            return self._handle(message, abandoned)
+
+    def _handle(self, message: Any, abandoned: threading.Event | None) -> dict[str, Any]:
         try:
             if not isinstance(message, dict) or not isinstance(message.get("op"), str):
                 raise SpecError('give a JSON object with "op"', "message")
