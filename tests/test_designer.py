@@ -200,3 +200,27 @@ def test_a_dragged_joint_takes_its_length_checks_along(tmp_path):
     back = session.handle({"op": "undo"})
     assert back["text"] == (folder / "jansen.toml").read_text(encoding="utf-8")
     assert session.handle({"op": "redo"})["text"] == moved["text"]
+
+
+def test_without_a_template_a_tab_opens_one_of_the_folder(tmp_path):
+    folder = _folder(tmp_path, "rdrd", "jansen")
+    with designer(folder) as url, _tab(url) as (ws, state, listing):
+        assert state is None and listing["files"] == ["jansen.toml", "rdrd.toml"]
+        opened = _ask(ws, {"op": "open", "path": "jansen.toml"})
+        assert opened["kind"] == "state" and opened["program"] == "linkgen" and opened["scene"]["joints"]["G"]
+
+
+def test_a_frame_past_the_websockets_limit_closes_that_tab_only(tmp_path):
+    from websockets.exceptions import ConnectionClosed
+
+    folder = _folder(tmp_path, "rdrd")
+    before = _snapshot(folder)
+    with designer(folder, "rdrd.toml") as url:
+        with _tab(url) as (ws, _, _):
+            ws.send("x" * (2 << 20))
+            with pytest.raises(ConnectionClosed) as closed:
+                ws.recv(timeout=60)
+            assert closed.value.rcvd is not None and closed.value.rcvd.code == 1009     # "message too big"
+        with _tab(url) as (ws, state, _):                                          # the server goes on
+            assert state["file"] == "rdrd.toml"
+    assert _snapshot(folder) == before

@@ -128,6 +128,7 @@ def test_dragging_a_joint_of_jansens_leg(browser, tmp_path):  # noqa: F811
         _save(browser, "undone.toml")
         assert (tmp_path / "undone.toml").read_bytes() == original
         assert browser.execute_script("return window.designer.errors") == []
+        assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
 
 
 def _page_parts(html):
@@ -197,6 +198,7 @@ def test_editing_a_cam_and_a_bad_value(browser, tmp_path):  # noqa: F811
         for name in files:
             assert archive.read(name) == (tmp_path / "built" / name).read_bytes(), name
         shutil.rmtree(downloads)
+        assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
 
 
 def test_play_turns_the_input_and_pause_stops_it(browser, tmp_path):  # noqa: F811
