@@ -224,3 +224,19 @@ def test_a_frame_past_the_websockets_limit_closes_that_tab_only(tmp_path):
         with _tab(url) as (ws, state, _):                                          # the server goes on
             assert state["file"] == "rdrd.toml"
     assert _snapshot(folder) == before
+
+
+def test_a_file_a_template_reads_must_lie_in_the_folder_too(tmp_path):
+    from camgen.designer.session import Session
+
+    for name in ("table-law.toml", "table-law.csv", "speeds.toml"):
+        shutil.copy(ROOT / "templates" / name, tmp_path / name)
+    (tmp_path.parent / "law-outside.csv").write_text("0, 0\n1, 1\n", encoding="utf-8")
+    session = Session(tmp_path.resolve())
+    opened = session.handle({"op": "open", "path": "table-law.toml"})
+    assert opened["kind"] == "state"
+    refused = session.handle({"op": "set", "path": "motion[0].file", "text": "../law-outside.csv"})
+    assert refused["field"] == "motion[0].file" and "lies outside the folder" in refused["message"]
+    assert session.handle({"op": "undo"})["kind"] == "error"              # the refusal was no step
+    family = Session(tmp_path.resolve()).handle({"op": "open", "path": "speeds.toml"})
+    assert family["field"] == "base" and family["message"].startswith("error: base: the designer edits one design")

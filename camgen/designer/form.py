@@ -52,7 +52,7 @@ def _given(raw: Any, key: str | int) -> Any:
     return None
 
 
-def _join(path: str, key: str | int) -> str:
+def join(path: str, key: str | int) -> str:
     """A field's path as the spec's errors name it: ``motion[0].lift``, ``linkage.joints.G``."""
     if isinstance(key, int):
         return f"{path}[{key}]"
@@ -64,19 +64,19 @@ def _walk(model: BaseModel, raw: Any, path: str, out: list[dict[str, Any]]) -> N
     for name in type(model).model_fields:
         value = getattr(model, name)
         given = _given(raw, name)
-        here = _join(path, name)
+        here = join(path, name)
         if isinstance(value, BaseModel):
             _walk(value, given, here, out)
         elif isinstance(value, (list, tuple)) and value and all(isinstance(v, BaseModel) for v in value):
             for i, v in enumerate(value):
-                _walk(v, _given(given, i), _join(here, i), out)
+                _walk(v, _given(given, i), join(here, i), out)
         elif isinstance(value, Mapping) and value and all(isinstance(v, BaseModel) for v in value.values()):
             for k, v in value.items():
-                _walk(v, _given(given, k), _join(here, k), out)
+                _walk(v, _given(given, k), join(here, k), out)
         elif isinstance(value, Mapping) and isinstance(given, Mapping) and given:
             item = _allowed(props.get(name, {}))
             for k in given:
-                out.append({"path": _join(here, str(k)), **item, "value": _plain(given[k]), "given": True})
+                out.append({"path": join(here, str(k)), **item, "value": _plain(given[k]), "given": True})
         else:
             out.append({"path": here, **_allowed(props.get(name, {})),
                         "value": _plain(given if given is not None else value), "given": given is not None})

@@ -51,16 +51,16 @@ def _api(program: str) -> Any:
     return cam_api
 
 
-def inside(root: Path, name: Any, suffix: str = ".toml") -> Path:
-    """The file ``name`` (relative to ``root``) once resolved, refused in one line naming ``path`` where it is not a
-    ``suffix`` file inside ``root`` (an absolute path, ``..``, a link leading out)."""
+def inside(root: Path, name: Any, suffix: str = ".toml", field: str = "path") -> Path:
+    """The file ``name`` (relative to ``root``) once resolved, refused in one line naming ``field`` where it is not
+    a ``suffix`` file inside ``root`` (an absolute path, ``..``, a link leading out)."""
     if not isinstance(name, str) or not name or "\x00" in name:
-        raise SpecError("give a file name inside the folder the designer was started in", "path")
+        raise SpecError("give a file name inside the folder the designer was started in", field)
     path = (root / name).resolve()
     if not path.is_relative_to(root) or Path(name).is_absolute():
-        raise SpecError(f"{name!r} lies outside the folder the designer was started in ({root})", "path")
+        raise SpecError(f"{name!r} lies outside the folder the designer was started in ({root})", field)
     if path.suffix != suffix:
-        raise SpecError(f"give a {suffix} file (got {name!r})", "path")
+        raise SpecError(f"give a {suffix} file (got {name!r})", field)
     return path
 
 
@@ -110,6 +110,36 @@ def _set(raw: dict[str, Any], path: str, value: Any) -> None:
         here.pop(last, None)
     else:
         here[last] = value
+
+
+#: the tables a template may hold that make it something other than one design, and what to run instead
+NOT_ONE_DESIGN = {"sweep": "a family: build it with `camgen family` or `linkgen family`",
+                  "task": "a synthesis task: run it with `linkgen synthesize`",
+                  "base": "a template built on another (base = ...): open the template it names, or copy its keys in"}
+#: the keys whose values name a file the template reads (a law's table, a load table)
+FILE_KEYS = ("file", "load_table")
+
+
+def _one_design(raw: dict[str, Any], root: Path) -> dict[str, Any]:
+    """``raw`` with each file it reads named by its full path in ``root`` (a copy: the template keeps its own
+    names); refused, in one line, where the designer cannot edit it as one design or it names a file to read
+    outside ``root``."""
+    raw = copy.deepcopy(raw)
+    for table, what in NOT_ONE_DESIGN.items():
+        if table in raw:
+            raise SpecError(f"the designer edits one design; this template is {what}", table)
+    todo: list[tuple[str, Any]] = [("", raw)]
+    while todo:
+        path, here = todo.pop()
+        items: list[tuple[str | int, Any]] = (list(here.items()) if isinstance(here, Mapping)
+                                              else list(enumerate(here)) if isinstance(here, list) else [])
+        for key, value in items:
+            where = form.join(path, key)
+            if key in FILE_KEYS and isinstance(value, str):
+                here[key] = str(inside(root, value, Path(value).suffix, where))
+            elif isinstance(value, (Mapping, list)):
+                todo.append((where, value))
+    return raw
 
 
 def _named(text: str, paths: list[str]) -> list[str]:
@@ -252,7 +282,7 @@ class Session:
         raw = self._raw()
         program = _program(raw)
         api = _api(program)
-        spec = api.validate(raw)
+        spec = api.validate(_one_design(raw, self.root))
         if program == "linkgen":
             made = api.design(spec, parts=getattr(spec, "parts", None) is not None)
         else:
@@ -291,7 +321,7 @@ class Session:
         an answer, nothing of the session changed."""
         program = _program(raw)
         api = _api(program)
-        spec = api.validate(raw)
+        spec = api.validate(_one_design(raw, self.root))
         if program == "linkgen":
             first = api.design(spec) if angle is None else None
             at = views.drawn_angle(first) if first is not None else angle
