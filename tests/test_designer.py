@@ -240,3 +240,19 @@ def test_a_file_a_template_reads_must_lie_in_the_folder_too(tmp_path):
     assert session.handle({"op": "undo"})["kind"] == "error"              # the refusal was no step
     family = Session(tmp_path.resolve()).handle({"op": "open", "path": "speeds.toml"})
     assert family["field"] == "base" and family["message"].startswith("error: base: the designer edits one design")
+
+
+def test_an_answer_past_its_time_limit_changes_nothing(tmp_path):
+    import asyncio
+
+    from camgen.designer.app import answer
+    from camgen.designer.session import Session
+
+    folder = _folder(tmp_path, "jansen")
+    session = Session(folder.resolve())
+    late = asyncio.run(answer(session, json.dumps({"op": "open", "path": "jansen.toml"}), seconds=1e-4))
+    assert late["kind"] == "error" and "took longer than 0.0001 s" in late["message"]
+    with session.lock:                                   # the abandoned answer has finished, changing nothing
+        assert session.texts == [] and session.at == -1 and session.design is None
+    opened = asyncio.run(answer(session, json.dumps({"op": "open", "path": "jansen.toml"})))
+    assert opened["kind"] == "state"

@@ -45,6 +45,10 @@ async def answer(session: Session, text: str, seconds: float = MAX_SECONDS) -> d
         abandoned.set()
         return {"kind": "error", "field": None, "fields": [],
                 "message": f"error: the answer took longer than {seconds:g} s; nothing was changed"}
+    except Exception as exc:          # a fault of ours: one line to the tab, which goes on (the session unchanged)
+        return {"kind": "error", "field": None, "fields": [],
+                "message": f"error: the designer failed on this message ({type(exc).__name__}: {exc}); "
+                           "nothing was changed"}
 
 
 def make_app(root: Path, template: str | None = None, port: int | None = None) -> Any:

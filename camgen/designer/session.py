@@ -192,7 +192,7 @@ class Session:
         except CamgenError as exc:
             return self.error(exc)
         except OSError as exc:
-            return {"kind": "error", "field": "path", "message": f"error: {exc.strerror or exc}"}
+            return {"kind": "error", "field": "path", "fields": ["path"], "message": f"error: {exc.strerror or exc}"}
 
     def error(self, exc: CamgenError) -> dict[str, Any]:
         """An error as the command line prints it, with the form fields it names."""
@@ -306,7 +306,8 @@ class Session:
         return self.texts[self.at]
 
     def _raw(self) -> dict[str, Any]:
-        return copy.deepcopy(self._read(self._text()))
+        """The shown template's raw tables, a fresh copy to edit."""
+        return self._read(self._text())
 
     @staticmethod
     def _read(text: str) -> dict[str, Any]:
