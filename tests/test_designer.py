@@ -256,3 +256,11 @@ def test_an_answer_past_its_time_limit_changes_nothing(tmp_path):
         assert session.texts == [] and session.at == -1 and session.design is None
     opened = asyncio.run(answer(session, json.dumps({"op": "open", "path": "jansen.toml"})))
     assert opened["kind"] == "state"
+
+
+def test_the_bench_times_a_drag_step_of_jansens_leg(tmp_path):
+    from camgen.designer.bench import STEPS, drag_row
+
+    row = drag_row(tmp_path / "designer")
+    assert row["what"] == f"designer: one drag step of Jansen's leg (median of {STEPS})"
+    assert row["seconds"] > 0 and row["cams_per_second"] is None          # a time measured, none asserted
