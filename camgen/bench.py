@@ -151,6 +151,9 @@ def throughput(count: int, out: Path) -> list[dict]:
                    check=True, capture_output=True)
     rows.append({"what": "camgen build of the reference cam, whole process", "seconds": time.perf_counter() - start,
                  "cams_per_second": None})
+    from camgen.designer.bench import drag_row
+
+    rows.append(drag_row(out / "designer"))
     return rows
 
 

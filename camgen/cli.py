@@ -9,7 +9,7 @@ from typing import Any
 import click
 
 from camgen.core.cli import (Commands, Family, Starters, add_bench, add_examples, add_family, add_new, echo_written,
-                             one_design, output_option, set_option, template_options)
+                             one_design, output_option, set_option, template_options, user_errors)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -141,3 +141,23 @@ def laws(as_json: bool) -> None:
         click.echo(f"{row['law']:<18}{row['cv']:>10.4f}{row['ca']:>10.4f}{row['cj']:>10.4f}   {inf}")
     click.echo("Cv, Ca, Cj: peak |s'|, |s''|, |s'''| inside the segment for h = beta = 1 "
                "(modified-uniform: cycloidal blends over 0.25 of beta)")
+
+
+@main.command()
+@click.argument("template", type=click.Path(exists=True, dir_okay=False, path_type=Path), required=False)
+@click.option("--port", type=int, default=None, help="Port on 127.0.0.1 (default: a free one).")
+@click.option("--no-browser", is_flag=True, help="Do not open the page in the browser (scripts, tests).")
+@user_errors
+def serve(template: Path | None, port: int | None, no_browser: bool) -> None:
+    """Edit cams and linkages in the browser: serve the designer on 127.0.0.1 for the templates in this folder,
+    opening TEMPLATE (a cam's or a linkage's) in each tab, until Ctrl-C."""
+    from camgen.designer.serve import serve as run
+
+    def started(url: str) -> None:
+        click.echo(f"designer at {url} (folder {Path.cwd()}); Ctrl-C stops it", err=False)
+        if not no_browser:
+            import webbrowser
+
+            webbrowser.open(url)
+
+    run(Path.cwd(), template, port, started)

@@ -1,0 +1,45 @@
+"""Start ``camgen serve`` on a free port in a folder, as a user does, and stop it with Ctrl-C (SIGINT), checking
+that it stopped cleanly: exit code 0, no process left, no temporary folder of its own left behind."""
+from __future__ import annotations
+
+import contextlib
+import os
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+
+from tests.conftest import ROOT
+
+
+def _temporaries() -> set[str]:
+    return {p.name for p in Path(tempfile.gettempdir()).glob("camgen-designer-*")}
+
+
+@contextlib.contextmanager
+def designer(folder: Path, template: str | None = None) -> Iterator[str]:
+    """The address of ``camgen serve [template] --no-browser`` running in ``folder``, stopped by SIGINT after."""
+    before = _temporaries()
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    args = [sys.executable, "-m", "camgen", "serve", *([template] if template else []), "--no-browser"]
+    proc = subprocess.Popen(args, cwd=folder, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout is not None
+        line = proc.stdout.readline()
+        found = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+        assert found, f"no address in {line!r}; stderr: {proc.stderr.read() if proc.poll() is not None else ''}"
+        yield found.group(0)
+    finally:
+        proc.send_signal(signal.SIGINT)
+        try:
+            _, err = proc.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.communicate()
+            raise AssertionError("the designer did not stop on Ctrl-C within 30 s") from None
+    assert proc.returncode == 0, err
+    assert "Traceback" not in err, err
+    assert _temporaries() <= before, "the designer left a temporary folder behind"
