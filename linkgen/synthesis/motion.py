@@ -252,6 +252,18 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
         mode = "none: the dyads' turns swept"
         sides = [free_dyads(p, alpha, task.samples)] * 2
     same = task.moving_pivots is None and task.fixed_pivots is None
+    out, tried = paired(p, alpha, sides, same, task, mode)
+    info = {"method": "dyad form W (e^{i beta} - 1) + Z (e^{i alpha} - 1) = delta, pairs screened for Grashof, "
+                      "order and branch defects", "free_choices": mode, "pairs_tried": tried, "offered": len(out)}
+    return out, info
+
+
+def paired(p: np.ndarray, alpha: np.ndarray, sides: list[tuple[np.ndarray, ...]], same: bool, task: Any,
+           mode: str) -> tuple[list[Candidate], int]:
+    """The defect-free four-bars (best worst transmission angle first) that pair a dyad of ``sides[0]`` with one of
+    ``sides[1]`` (either as the crank; one set paired with itself when ``same``), each side (centre points O, circle
+    points A_1 (complex mm), the link's turns (k, n - 1) rad); and the pairs tried. Raises the one-line refusal
+    naming the requirement that bound when none is found."""
     out: list[Candidate] = []
     screens, screened = [], 0
     for left, right in ((sides[0], sides[1]), (sides[1], sides[0]))[: 1 if same else 2]:
@@ -265,12 +277,9 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
                            _choices(mode, left[2][i[k]], right[2][j[k]]), float(worst[k]))
             if c is not None:
                 out.append(c)
-    tried = sum(s.tried for s in screens)
     if not out:
         _refuse(task, screens, screened)
-    info = {"method": "dyad form W (e^{i beta} - 1) + Z (e^{i alpha} - 1) = delta, pairs screened for Grashof, "
-                      "order and branch defects", "free_choices": mode, "pairs_tried": tried, "offered": len(out)}
-    return out, info
+    return out, sum(s.tried for s in screens)
 
 
 def _refuse(task: Any, screens: list[Screened], checked: int) -> None:
