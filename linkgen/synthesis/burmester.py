@@ -22,7 +22,7 @@ where the centre-point curve of positions 1-4 meets that of positions 1, 2, 3, 5
 curve the fifth equation asks |delta_5 + W - Z (e^{i alpha_5} - 1)| = |W| (the link's length is
 kept); its sign changes between samples of either branch are refined by Brent's method to the
 roots, of which there are zero, two or four (real ones; a root closer than the sampling to another
-or to a branch's end can be missed).
+or to a branch's end can be missed; a pivot at infinity, a slider's dyad, is left out).
 """
 from __future__ import annotations
 
@@ -37,6 +37,8 @@ from camgen.core.errors import SpecError
 TWO_PI = 2.0 * math.pi
 #: samples of the curve's parameter a branch searched for the five-position roots (then refined to 1e-15 rad)
 ROOT_SAMPLES = 7200
+#: a dyad link longer than this many times the positions' spread counts as a pivot at infinity (a slider's dyad)
+FAR = 1e6
 #: relative size of the compatibility linkage's links below which four positions leave the dyads undetermined
 DEGENERATE = 1e-9
 
@@ -156,8 +158,9 @@ def burmester_points(p: np.ndarray, alpha: np.ndarray) -> Dyads:
                 continue
             dyad = _branch(p, alpha, links, np.array([root]), s)
             arm = float(np.abs(dyad.circle - dyad.centre)[0])
-            # a sign change through a pivot at infinity is no root: keep those the fifth equation holds at
-            held = math.isfinite(arm) and abs(miss(root)) <= 1e-9 * max(size, arm)
+            # a sign change through a pivot at infinity is no root (nor is a pivot at infinity, a slider's dyad):
+            # keep those the fifth equation holds at with the link within FAR of the positions' size
+            held = math.isfinite(arm) and arm <= FAR * size and abs(miss(root)) <= 1e-9 * max(size, arm)
             if held and not any(s == t and abs(math.remainder(root - r, TWO_PI)) < 1e-9 for r, t in found):
                 found.append((root, s))
     if not found:
