@@ -167,13 +167,16 @@ def test_bad_burmester_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, k
 
 
 def test_a_written_candidate_builds(tmp_path):
-    """The bundled four-position task's first candidate, written, is a template `linkgen build` takes."""
+    """The bundled four-position task's first candidate, written, is a template `linkgen build` takes; its figure
+    (with the curves) is drawn when asked."""
     from linkgen.cli import main
 
     from tests.conftest import ROOT
     out = tmp_path / "s"
-    result = CliRunner().invoke(main, ["synthesize", str(ROOT / "templates" / "synth-burmester.toml"), "-o", str(out)])
+    result = CliRunner().invoke(main, ["synthesize", str(ROOT / "templates" / "synth-burmester.toml"), "-o", str(out),
+                                       "--figures"])
     assert result.exit_code == 0, result.output
+    assert (out / "synth-burmester-1-curve.png").stat().st_size > 0
     first = out / "synth-burmester-1.toml"
     assert tomllib.loads(first.read_text())["linkage"]["type"] == "linkage"
     built = CliRunner().invoke(main, ["build", str(first), "-o", str(tmp_path / "b")])

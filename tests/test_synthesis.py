@@ -378,13 +378,25 @@ def test_line6_contract_through_the_command(tmp_path):
     assert (tmp_path / "b" / rows[0]["template"].replace(".toml", "-sheet.dxf")).exists()
 
 
-def test_python_api_writes_what_the_command_writes(tmp_path):
+@pytest.mark.parametrize("figures", [False, True])
+def test_python_api_writes_what_the_command_writes(tmp_path, figures):
+    """The files written, figures only when asked; the command writes the same (``--figures`` or not)."""
+    from linkgen.cli import main
+
     result = run(task("crank-rocker", swing=30.0, rocker=40.0, candidates=2))
-    names = write_synthesis(result, tmp_path)
+    names = write_synthesis(result, tmp_path / "api", figures=figures)
+    ends = (".toml", ".json") + (("-curve.png", "-curve.svg") if figures else ())
     assert sorted(names) == sorted(["summary.json", "summary.csv"] + [
-        f"t-crank-rocker-{k}{end}" for k in (1, 2) for end in (".toml", ".json", "-curve.png", "-curve.svg")])
-    report = json.loads((tmp_path / "t-crank-rocker-1.json").read_text())
+        f"t-crank-rocker-{k}{end}" for k in (1, 2) for end in ends])
+    assert sorted(p.name for p in (tmp_path / "api").iterdir()) == sorted(names)
+    report = json.loads((tmp_path / "api" / "t-crank-rocker-1.json").read_text())
     assert report["synthesis"]["rank"] == 1 and report["inversion"] == "crank-rocker"
+    template = tmp_path / "t.toml"
+    template.write_text(tomllib_text(task("crank-rocker", swing=30.0, rocker=40.0, candidates=2)))
+    flag = "--figures" if figures else "--no-figures"
+    ran = CliRunner().invoke(main, ["synthesize", str(template), "-o", str(tmp_path / "cli"), flag])
+    assert ran.exit_code == 0, ran.output
+    assert sorted(p.name for p in (tmp_path / "cli").iterdir()) == sorted(names)
 
 
 # ---------------------------------------------------------------------- bad tasks
