@@ -149,7 +149,6 @@ _POSE4 = [[18.1, 43.0, 68.2], [12.3, 63.1, 46.2], [-14.8, 50.3, 39.2], [-22.9, 1
     ({"positions": _POSE4, "centre_region": [[5, 5], [0, 10]]}, "task.centre_region: give [[x_min, y_min]"),
     ({"positions": _POSE4, "curve_range": [90, 400]}, "task.curve_range: give [from, to] in degrees with 0 <= from"),
     ({"positions": _POSE4, "samples": 100000}, "task.samples"),
-    ({"positions": _POSE4, "min_transmission": 89}, "task.min_transmission: none of the"),
     ({"kind": "motion", "positions": _POSE4}, "task.positions: needs 2 or 3 positions [x, y, angle] (got 4; four or "
                                               "five: kind = 'burmester')"),
 ])

@@ -100,12 +100,12 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
                             "pairs two: give four positions, or other positions", "task.positions")
     chosen = picked(dyads, task)
     side = (chosen.centre, chosen.circle, chosen.betas)
-    found, tried = paired(p, alpha, [side, side], True, task, mode)
+    found, tried, bound = paired(p, alpha, [side, side], True, task, mode)
     info: dict[str, Any] = {
         "method": "Burmester theory: the compatibility linkage's loop closed at each curve parameter, the dyad "
                   "form solved by Cramer's rule; pairs screened for Grashof, order and branch defects",
         "free_choices": mode, "dyads": len(dyads.beta2), "dyads_picked": len(chosen.beta2), "pairs_tried": tried,
-        "offered": len(found)}
+        "offered": len(found), "bound": bound}
     if len(p) == 5:
         info["burmester_points"] = [{"centre": [float(z.real), float(z.imag)], "circle": [float(c.real), float(c.imag)],
                                      "curve_parameter_deg": math.degrees(float(b))}
