@@ -271,11 +271,11 @@ def paired(p: np.ndarray, alpha: np.ndarray, sides: list[tuple[np.ndarray, ...]]
         picks += [(left, right, i[k], j[k], float(worst[k])) for k in range(len(i))]
     out: list[Candidate] = []
     for keeps in (True, False):                         # those that keep the limit; else the nearest
-        for left, right, i, j, worst in picks:
-            if (worst >= mu) != keeps or len(out) >= ENOUGH * task.candidates:
+        for crank, rocker, a, b, gamma in picks:
+            if (gamma >= mu) != keeps or len(out) >= ENOUGH * task.candidates:
                 continue
-            c = _candidate(p, alpha, left[0][i], left[1][i], right[0][j], right[1][j], task,
-                           _choices(mode, left[2][i], right[2][j]), worst)
+            c = _candidate(p, alpha, crank[0][a], crank[1][a], rocker[0][b], rocker[1][b], task,
+                           _choices(mode, crank[2][a], rocker[2][b]), gamma)
             if c is not None:
                 out.append(c)
         if out:

@@ -74,12 +74,11 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
                 info["ran_on"] += " (the Fourier method runs here: --jobs and --scheduler serve the evolution)"
         else:
             found, info = path.solve(task, jobs, scheduler)
+        found = [weighed(c) for c in found]
     else:
         found, info = METHODS[task.kind](task)
         info["ran_on"] = "this process" + (" (an analytic method: --jobs and --scheduler serve path searches)"
                                            if jobs > 1 or scheduler else "")
-    if task.kind == "path":
-        found = [weighed(c) for c in found]
     best = ranked(found, getattr(task, "candidates", 1), COPIES.get(task.kind, 0.1))
     parts = None if spec.parts is None else spec.parts.model_dump(mode="json", exclude_none=True)
     try:

@@ -116,6 +116,14 @@ def _turn(a: float, b: float) -> float:
     return abs(math.remainder(a - b, 360.0))
 
 
+def _poses(positions: Iterable[tuple[float, float, float]]) -> None:
+    """Refuse a coupler pose [x mm, y mm, angle degrees] a template could not hold, or two the same."""
+    positions = list(positions)
+    _placed("positions", (p[:2] for p in positions))
+    _distinct("positions", positions, "pose", lambda p, q: max(abs(p[0] - q[0]), abs(p[1] - q[1]),
+                                                               _turn(p[2], q[2])))
+
+
 class SearchOptions(Model):
     """What every optimising task shares: how many candidates to offer and the limits of the lengths."""
 
@@ -234,11 +242,9 @@ class MotionTask(SearchOptions):
         if not 2 <= n <= 3:
             raise ValueError(f"positions: needs 2 or 3 positions [x, y, angle] (got {n}; four or five: kind = "
                              "'burmester')")
-        _placed("positions", (p[:2] for p in self.positions))
+        _poses(self.positions)
         _placed("moving_pivots", self.moving_pivots)
         _placed("fixed_pivots", self.fixed_pivots)
-        _distinct("positions", self.positions, "pose", lambda p, q: max(abs(p[0] - q[0]), abs(p[1] - q[1]),
-                                                                        _turn(p[2], q[2])))
         if self.moving_pivots is not None and self.fixed_pivots is not None:
             raise ValueError("fixed_pivots: give the moving pivots or the fixed pivots, not both")
         if n == 2 and self.moving_pivots is None and self.fixed_pivots is None:
@@ -285,9 +291,7 @@ class BurmesterTask(SearchOptions):
         if not 4 <= n <= 5:
             raise ValueError(f"positions: Burmester motion generation needs 4 or 5 positions [x, y, angle] (got {n}; "
                              "two or three: kind = 'motion')")
-        _placed("positions", (p[:2] for p in self.positions))
-        _distinct("positions", self.positions, "pose", lambda p, q: max(abs(p[0] - q[0]), abs(p[1] - q[1]),
-                                                                        _turn(p[2], q[2])))
+        _poses(self.positions)
         _box("centre_region", self.centre_region)
         _box("circle_region", self.circle_region)
         if self.curve_range is not None and not 0 <= self.curve_range[0] < self.curve_range[1] <= 360:
