@@ -140,8 +140,8 @@ _POSE4 = [[18.1, 43.0, 68.2], [12.3, 63.1, 46.2], [-14.8, 50.3, 39.2], [-22.9, 1
 
 
 @pytest.mark.parametrize(("keys", "message"), [
-    ({"positions": _POSE4[:3]}, "task.positions: Burmester motion generation needs 4 or 5 positions [x, y, angle] "
-                                "(got 3; two or three: kind = 'motion')"),
+    ({"positions": _POSE4[:3]}, "task.positions: needs 4 or 5 positions [x, y, angle] (got 3; 2 or 3: kind = "
+                                "'motion')"),
     ({"positions": [*_POSE4, *_POSE4[:2]]}, "needs 4 or 5 positions [x, y, angle] (got 6"),
     ({"positions": [*_POSE4[:3], [18.1, 43.0, 428.2]]}, "task.positions: items 0 and 3 give the same pose"),
     ({"positions": [[0, 0, 10], [10, 0, 10], [20, 5, 10], [5, 30, 10]]}, "task.positions: the coupler must turn"),
@@ -149,8 +149,8 @@ _POSE4 = [[18.1, 43.0, 68.2], [12.3, 63.1, 46.2], [-14.8, 50.3, 39.2], [-22.9, 1
     ({"positions": _POSE4, "centre_region": [[5, 5], [0, 10]]}, "task.centre_region: give [[x_min, y_min]"),
     ({"positions": _POSE4, "curve_range": [90, 400]}, "task.curve_range: give [from, to] in degrees with 0 <= from"),
     ({"positions": _POSE4, "samples": 100000}, "task.samples"),
-    ({"kind": "motion", "positions": _POSE4}, "task.positions: needs 2 or 3 positions [x, y, angle] (got 4; four or "
-                                              "five: kind = 'burmester')"),
+    ({"kind": "motion", "positions": _POSE4}, "task.positions: needs 2 or 3 positions [x, y, angle] (got 4; 4 or 5: "
+                                              "kind = 'burmester')"),
 ])
 def test_bad_burmester_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, keys, message):
     from linkgen.cli import main

@@ -20,7 +20,7 @@ import itertools
 import math
 from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 from pydantic import Field, create_model, model_validator
@@ -222,27 +222,43 @@ class FunctionTask(Model):
         return self
 
 
-class MotionTask(SearchOptions):
+class PosesTask(SearchOptions):
+    """What the tasks of a coupler line's positions share: the positions' count, checked with the poses, and a
+    crank."""
+
+    #: how many positions the task takes, and which kind takes others
+    counts: ClassVar[tuple[int, int, str]]
+    positions: tuple[tuple[float, float, float], ...]
+    crank: bool = Field(True, description="the input must turn fully (a Grashof crank)")
+
+    def _counted(self) -> None:
+        n = len(self.positions)
+        low, high, other = self.counts
+        if not low <= n <= high:
+            raise ValueError(f"positions: needs {low} or {high} positions [x, y, angle] (got {n}; {other})")
+        _poses(self.positions)
+
+
+def _positions(description: str) -> Any:
+    return Field(description=f"the coupler's poses as [x mm, y mm, angle degrees]: {description}", max_length=100)
+
+
+class MotionTask(PosesTask):
     """Two or three positions of a coupler line (a point and the line's direction)."""
 
+    counts = (2, 3, "4 or 5: kind = 'burmester'")
     kind: Literal["motion"]
-    positions: tuple[tuple[float, float, float], ...] = Field(
-        description="the coupler's poses as [x mm, y mm, angle degrees]: 2 or 3 (4 or 5: kind 'burmester')",
-        max_length=100)
+    positions: tuple[tuple[float, float, float], ...] = _positions("2 or 3 (4 or 5: kind 'burmester')")
     moving_pivots: tuple[Point, Point] | None = _mm("the two pivots on the coupler, drawn at the first position",
                                                     None)
     fixed_pivots: tuple[Point, Point] | None = _mm("the two ground pivots", None)
-    crank: bool = Field(True, description="the input must turn fully (a Grashof crank)")
     samples: int = _count(f"values of each free choice tried, at most {MAX_MOTION_SAMPLES}", 24, 4,
                           MAX_MOTION_SAMPLES)
 
     @model_validator(mode="after")
     def _positions(self) -> MotionTask:
         n = len(self.positions)
-        if not 2 <= n <= 3:
-            raise ValueError(f"positions: needs 2 or 3 positions [x, y, angle] (got {n}; four or five: kind = "
-                             "'burmester')")
-        _poses(self.positions)
+        self._counted()
         _placed("moving_pivots", self.moving_pivots)
         _placed("fixed_pivots", self.fixed_pivots)
         if self.moving_pivots is not None and self.fixed_pivots is not None:
@@ -266,13 +282,13 @@ def _box(name: str, box: tuple[Point, Point] | None) -> None:
             raise ValueError(f"{name}: give [[x_min, y_min], [x_max, y_max]] with min < max")
 
 
-class BurmesterTask(SearchOptions):
+class BurmesterTask(PosesTask):
     """Four or five positions of a coupler line (Burmester theory); the dyads picked from a region of the curves."""
 
+    counts = (4, 5, "2 or 3: kind = 'motion'")
     kind: Literal["burmester"]
-    positions: tuple[tuple[float, float, float], ...] = Field(
-        description="the coupler's poses as [x mm, y mm, angle degrees]: 4 (the centre-point and circle-point "
-        "curves) or 5 (their Ball-Burmester points)", max_length=100)
+    positions: tuple[tuple[float, float, float], ...] = _positions(
+        "4 (the centre-point and circle-point curves) or 5 (their Ball-Burmester points)")
     centre_region: tuple[Point, Point] | None = _mm("only dyads whose ground pivot (centre point) lies inside "
                                                     "[[x_min, y_min], [x_max, y_max]]", None)
     circle_region: tuple[Point, Point] | None = _mm("only dyads whose moving pivot at the first position (circle "
@@ -280,18 +296,13 @@ class BurmesterTask(SearchOptions):
     curve_range: tuple[float, float] | None = _deg(
         "only dyads whose curve parameter (the dyad link's turn from position 1 to 2, counter-clockwise) lies in "
         "[from, to], 0 <= from < to <= 360", None)
-    crank: bool = Field(True, description="the input must turn fully (a Grashof crank)")
     samples: int = _count(f"values of the curve parameter sampled over a turn (each gives up to two dyads, on the "
                           f"curves' two branches), at least 12, at most {MAX_BURMESTER_SAMPLES}; four positions "
                           "only", 360, 12, MAX_BURMESTER_SAMPLES)
 
     @model_validator(mode="after")
     def _positions(self) -> BurmesterTask:
-        n = len(self.positions)
-        if not 4 <= n <= 5:
-            raise ValueError(f"positions: Burmester motion generation needs 4 or 5 positions [x, y, angle] (got {n}; "
-                             "two or three: kind = 'motion')")
-        _poses(self.positions)
+        self._counted()
         _box("centre_region", self.centre_region)
         _box("circle_region", self.circle_region)
         if self.curve_range is not None and not 0 <= self.curve_range[0] < self.curve_range[1] <= 360:
