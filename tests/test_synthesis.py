@@ -512,8 +512,7 @@ def test_a_path_ranks_its_error_weighed_against_its_transmission():
 def test_a_binding_transmission_costs_a_path_candidate_its_rank():
     """Error 1.0 mm^2 at a worst transmission angle of 25 degrees weighs 1.0 x sin 40 / sin 25 = 1.521: a candidate
     of error 1.2 at 45 degrees (weight 1) ranks above it, one of error 1.6 does not."""
-    from linkgen.synthesis.candidates import Candidate, ranked
-    from linkgen.synthesis.run import weighed
+    from linkgen.synthesis.candidates import Candidate, ranked, weighed
 
     def made(error, gamma, k):
         return weighed(Candidate({}, {"error_mm2": error, "transmission_worst_deg": gamma}, error, (float(k),)))

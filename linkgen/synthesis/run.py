@@ -1,8 +1,6 @@
 """``synthesize``: a validated task to its ranked candidates, each re-analysed as the template written. No I/O."""
 from __future__ import annotations
 
-import dataclasses
-import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -22,9 +20,7 @@ METHODS: dict[str, Callable[[Any], tuple[list[Candidate], dict[str, Any]]]] = {
 #: search's polished designs are copies within 1e-3; an analytic family's neighbours are offered 10 % apart
 COPIES = {"path": 1e-3, "motion": 0.05, "burmester": 0.05, "crank-rocker": 0.1, "slider-crank": 0.1}
 LENGTH_KEYS = ("ground", "crank", "coupler", "rocker", "rod")
-#: a path candidate's error counts for more as its worst transmission angle falls below this (degrees): the lower
-#: end of the usual design band (40 to 140 degrees)
-GOOD_TRANSMISSION_DEG = 40.0
+
 #: the task's field that sets where and how big its linkages are: a candidate whose template is refused is blamed on
 #: it (the methods offer only what a template holds; this names the task, not the template, if one slips through)
 SCALE_FIELDS = {"path": "task.points", "motion": "task.positions", "crank-rocker": "task.rocker",
@@ -74,7 +70,6 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
                 info["ran_on"] += " (the Fourier method runs here: --jobs and --scheduler serve the evolution)"
         else:
             found, info = path.solve(task, jobs, scheduler)
-        found = [weighed(c) for c in found]
     else:
         found, info = METHODS[task.kind](task)
         info["ran_on"] = "this process" + (" (an analytic method: --jobs and --scheduler serve path searches)"
@@ -92,13 +87,3 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
             "bound": info.get("bound", [])}
     return Synthesis(spec, offered, info)
 
-
-def weighed(c: Candidate) -> Candidate:
-    """A path candidate ranked by its error weighed against its transmission: ``rank_score`` = ``error_mm2`` x
-    max(1, sin 40 degrees / sin gamma), gamma its worst transmission angle over the motion (degrees in the row).
-    A linkage at 40 degrees or better is ranked by its error alone; at 30 degrees its error counts 1.29 times, at
-    20 degrees 1.88 times, so a linkage that binds must be that much closer to rank above one that does not."""
-    gamma = math.radians(c.row["transmission_worst_deg"])
-    weight = max(1.0, math.sin(math.radians(GOOD_TRANSMISSION_DEG)) / max(math.sin(gamma), 1e-12))
-    score = c.row["error_mm2"] * weight
-    return dataclasses.replace(c, score=score, row={**c.row, "rank_score": score})
