@@ -14,7 +14,7 @@ from click.testing import CliRunner
 from linkgen.synthesis import synthesize, validate_task
 from linkgen.synthesis.burmester import burmester_points, four_position_dyads, poses
 from linkgen.synthesis.defects import defects
-from tests.test_synthesis import tomllib_text
+from tests.test_synthesis import refused_in_one_line
 
 #: known four-bars placed in the task's frame: crank pivot O2 (mm), ground direction (rad), ground, crank, coupler,
 #: rocker (mm), coupler point (along A->B, square to it; mm), branch (+1 open, -1 crossed), crank angles (degrees)
@@ -153,16 +153,7 @@ _POSE4 = [[18.1, 43.0, 68.2], [12.3, 63.1, 46.2], [-14.8, 50.3, 39.2], [-22.9, 1
                                               "kind = 'burmester')"),
 ])
 def test_bad_burmester_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, keys, message):
-    from linkgen.cli import main
-
-    template = tmp_path / "bad.toml"
-    template.write_text(tomllib_text({"name": "bad", "task": {"kind": "burmester", **keys}}))
-    out = tmp_path / "out"
-    result = CliRunner().invoke(main, ["synthesize", str(template), "-o", str(out)])
-    assert result.exit_code == 2, result.output
-    lines = result.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("error: ") and message in lines[0], lines
-    assert not out.exists()
+    refused_in_one_line(tmp_path, {"kind": "burmester", **keys}, message)
 
 
 def test_a_written_candidate_builds(tmp_path):

@@ -482,6 +482,11 @@ def test_python_api_writes_what_the_command_writes(tmp_path, figures):
     ({"kind": "crank-rocker", "swing": 1e-300, "rocker": 50}, "task.swing: must be >= 0.01 and < 180 degrees"),
 ])
 def test_bad_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, keys, message):
+    refused_in_one_line(tmp_path, keys, message)
+
+
+def refused_in_one_line(tmp_path, keys: dict, message: str) -> None:
+    """``linkgen synthesize`` on the task ``keys``: exit 2, one line on stderr holding ``message``, nothing written."""
     from linkgen.cli import main
 
     template = tmp_path / "bad.toml"
