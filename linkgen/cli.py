@@ -153,15 +153,17 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
 
 @main.command()
 @template_argument()
-@output_option("Folder for the candidates' templates, reports and figures, summary.json and summary.csv "
+@output_option("Folder for the candidates' templates, reports (and figures), summary.json and summary.csv "
                "(default: out/<name>/).", default=None)
 @click.option("--jobs", type=click.IntRange(1, 256), default=1, show_default=True,
               help="Local processes a path search spreads its independent searches over.")
 @click.option("--scheduler", metavar="ADDRESS", default=None,
               help="Run a path search's independent searches on the Dask cluster at ADDRESS (e.g. tcp://host:8786).")
+@click.option("--figures/--no-figures", default=False, show_default=True,
+              help="Also draw each candidate's figure as PNG and SVG (off by default, as for linkgen build).")
 @set_option("task.seed=2")
 @user_errors
-def synthesize(template: Path, output: Path | None, jobs: int, scheduler: str | None,
+def synthesize(template: Path, output: Path | None, jobs: int, scheduler: str | None, figures: bool,
                overrides: tuple[str, ...]) -> None:
     """Find linkages that do what TEMPLATE's [task] asks, best first, each written as a template with its report."""
     from linkgen.synthesis import load_task, write_synthesis
@@ -170,10 +172,10 @@ def synthesize(template: Path, output: Path | None, jobs: int, scheduler: str | 
     spec = load_task(template, overrides)
     result = find(spec, jobs, scheduler)
     directory = output if output is not None else Path("out") / spec.name
-    names = write_synthesis(result, directory)
+    names = write_synthesis(result, directory, figures)
     _print_synthesis(result.summary())
-    click.echo(f"wrote {len(names)} files to {directory} (summary.json, summary.csv; a template, report and figure a "
-               "candidate)")
+    each = "a template, report and figure" if figures else "a template and report"
+    click.echo(f"wrote {len(names)} files to {directory} (summary.json, summary.csv; {each} a candidate)")
 
 
 def _print_synthesis(summary: dict[str, Any]) -> None:

@@ -60,7 +60,7 @@ def arguments(name: str, path: Path, program: str, command: str, folder: Path) -
     if command == "family":
         return ["family", str(_family_template(path, program, folder)), "-o", str(folder), "--jobs", "1"]
     if command == "synthesize":
-        return ["synthesize", str(path), "-o", str(folder)]
+        return ["synthesize", str(path), "-o", str(folder), "--figures"]
     if program == "camgen":
         return ["build", str(path), "-o", str(folder), "--set", f"output.formats={CAM_FORMATS}"]
     formats = BUILD_FORMATS if command == "build" else ANALYZE_FORMATS

@@ -10,7 +10,8 @@ analysed as a four-bar (its own frame: O2 at the origin, O4 on +X) and kept only
 Grashof crank-rocker whose swing and time ratio are those asked for (1e-6 degrees, 1e-9 relative);
 the candidates are ranked by their worst transmission angle (the smaller of the least and 180
 minus the largest) over the turn, and those below ``min_transmission`` (30 degrees by default)
-are left out (:func:`keep`).
+are left out, unless none keeps it: then the nearest are offered and a ``bound`` line names the
+limit (:func:`keep`).
 """
 from __future__ import annotations
 
@@ -122,7 +123,8 @@ def keep(found: list[Candidate], task: Any, lengths: tuple[str, ...], what: str,
     whose worst transmission angle is at least ``task.min_transmission``; and a line naming that limit when it left
     fewer than were asked for. A one-line error on ``field`` if none was found, on ``task.link_range`` if none lies
     within it, on ``task.link_range`` (or, without one, the field ``scale`` that sizes them) if none fits a template,
-    on ``task.min_transmission`` (with ``hint``) if none keeps it."""
+    and, if none keeps the transmission limit, all of them (the nearest: ranked by their worst transmission angle)
+    with a line naming ``task.min_transmission`` (and ``hint``)."""
     if not found:
         raise SpecError(f"no {what} {wanted}", field)
     kept = [x for x in found if within({k: x.row[k] for k in lengths}, task.link_range)]
@@ -139,9 +141,9 @@ def keep(found: list[Candidate], task: Any, lengths: tuple[str, ...], what: str,
     good = [x for x in kept if x.row["transmission_worst_deg"] >= mu]
     if not good:
         best = max(x.row["transmission_worst_deg"] for x in kept)
-        raise SpecError(f"none of the {len(kept)} linkages found keeps its transmission angle at least {mu:g} degrees "
-                        f"over its turn (the best reaches {best:.4g}): lower min_transmission, or {hint}",
-                        "task.min_transmission")
+        return kept, [f"task.min_transmission: none of the {len(kept)} linkages found keeps its transmission angle at "
+                      f"least {mu:g} degrees over its turn; the nearest are offered (the best reaches {best:.4g}): "
+                      f"lower min_transmission, or {hint}"]
     bound = [] if len(good) >= task.candidates or len(good) == len(kept) else [
         f"task.min_transmission: {len(good)} of the {len(kept)} linkages found keep the transmission angle at least "
         f"{mu:g} degrees over their turn; the others are left out"]

@@ -41,7 +41,7 @@ from camgen.core.errors import SpecError
 from linkgen.kinematics.grashof import classify
 from linkgen.synthesis import atlas as atlases
 from linkgen.synthesis import fourier
-from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row, table_fits
+from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row, table_fits, weighed
 from linkgen.synthesis.defects import sense
 from linkgen.synthesis.geometry import place, worst_transmission
 from linkgen.synthesis.path import BASE, Problem, hard_constraints, problem_of, soft_constraints
@@ -342,7 +342,7 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
     for w, branch in _polished([(v, branch) for _, _, v, branch in scored[:task.guesses]], p):
         c = _candidate(w, branch, p, task.crank)
         if c is not None:
-            out.append(c)
+            out.append(weighed(c))
     if not out:
         raise SpecError(f"no linkage found that keeps every requirement from the {task.guesses} best of "
                         f"{len(first)} atlas guesses: lower min_transmission, widen link_range, ground_region or "

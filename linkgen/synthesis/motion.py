@@ -18,7 +18,8 @@ Every pair of dyads (either as the crank) is a four-bar; each is checked for the
 (:mod:`linkgen.synthesis.defects`: Grashof when a crank is asked for, order, branch) before it is
 offered, and ranked by its worst transmission angle (over the whole turn for a crank, else over the
 crank's travel from the first position to the last), which must be at least ``min_transmission``
-(30 degrees by default). The pairs are screened in blocks, keeping the best so far, so memory
+(30 degrees by default; where no four-bar keeps it, the nearest are offered and the search's
+``bound`` line names the limit). The pairs are screened in blocks, keeping the best so far, so memory
 stays bounded (about samples^2 dyads) whatever the number of pairs. Finally the four-bar is
 re-solved in closed form at its crank angles (:mod:`linkgen.synthesis.geometry`) and its distance
 from each position reported.
@@ -170,38 +171,32 @@ def _screen(p: np.ndarray, alpha: np.ndarray, o2, a, o4, b, task: Any) -> tuple[
 
 @dataclass(frozen=True)
 class Screened:
-    """How the screen of pairs went: pairs tried, passing the checks, of those fitting a template, and the best
-    worst transmission angle among those (rad; -inf if none)."""
+    """How the screen of pairs went: pairs tried, passing the checks, and of those fitting a template."""
 
     tried: int
     passed: int
     fitting: int
-    nearest: float
 
 
 def best_pairs(left: tuple[np.ndarray, ...], right: tuple[np.ndarray, ...], same: bool, p: np.ndarray,
                alpha: np.ndarray, task: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, Screened]:
     """The :data:`CHECKED` best pairs (crank dyad i, rocker dyad j, worst transmission angle in rad), best first
-    and in pair order among equals, of those that pass the screen, fit a template and keep the transmission limit;
-    and how the screen went. Screened block by block, keeping only the best so far."""
-    mu = math.radians(task.min_transmission)
+    and in pair order among equals, of those that pass the screen and fit a template, whether or not they keep the
+    transmission limit (those that do come first); and how the screen went. Screened block by block, keeping only
+    the best so far."""
     kept_i, kept_j, kept_w = (np.zeros(0, dtype=int),) * 2 + (np.zeros(0),)
     tried = passed = fitting = 0
-    nearest = -math.inf
     for i, j in _pair_blocks(left, right, same):
         ok, fits, worst = _screen(p, alpha, left[0][i], left[1][i], right[0][j], right[1][j], task)
         tried += len(i)
         passed += int(np.count_nonzero(ok))
         ok &= fits
         fitting += int(np.count_nonzero(ok))
-        if np.any(ok):
-            nearest = max(nearest, float(worst[ok].max()))
-        ok &= worst >= mu
         order = np.lexsort((np.concatenate([kept_j, j[ok]]), np.concatenate([kept_i, i[ok]]),
                             -np.concatenate([kept_w, worst[ok]])))[:CHECKED]
         kept_i, kept_j, kept_w = (np.concatenate([kept_i, i[ok]])[order], np.concatenate([kept_j, j[ok]])[order],
                                   np.concatenate([kept_w, worst[ok]])[order])
-    return kept_i, kept_j, kept_w, Screened(tried, passed, fitting, nearest)
+    return kept_i, kept_j, kept_w, Screened(tried, passed, fitting)
 
 
 def _candidate(p: np.ndarray, alpha: np.ndarray, o2: complex, a: complex, o4: complex, b: complex, task: Any,
@@ -252,38 +247,53 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
         mode = "none: the dyads' turns swept"
         sides = [free_dyads(p, alpha, task.samples)] * 2
     same = task.moving_pivots is None and task.fixed_pivots is None
-    out: list[Candidate] = []
-    screens, screened = [], 0
+    out, tried, bound = paired(p, alpha, sides, same, task, mode)
+    info = {"method": "dyad form W (e^{i beta} - 1) + Z (e^{i alpha} - 1) = delta, pairs screened for Grashof, "
+                      "order and branch defects", "free_choices": mode, "pairs_tried": tried, "offered": len(out),
+            "bound": bound}
+    return out, info
+
+
+def paired(p: np.ndarray, alpha: np.ndarray, sides: list[tuple[np.ndarray, ...]], same: bool, task: Any,
+           mode: str) -> tuple[list[Candidate], int, list[str]]:
+    """The defect-free four-bars (best worst transmission angle first) that pair a dyad of ``sides[0]`` with one of
+    ``sides[1]`` (either as the crank; one set paired with itself when ``same``), each side (centre points O, circle
+    points A_1 (complex mm), the link's turns (k, n - 1) rad); the pairs tried; and the line naming
+    ``task.min_transmission`` when no four-bar keeps it and the nearest (those whose worst transmission angle comes
+    closest) are offered instead. Raises the one-line refusal naming the requirement that bound when none is
+    found."""
+    mu = math.radians(task.min_transmission)
+    screens, screened, picks = [], 0, []
     for left, right in ((sides[0], sides[1]), (sides[1], sides[0]))[: 1 if same else 2]:
         i, j, worst, found = best_pairs(left, right, same, p, alpha, task)
         screens.append(found)
         screened += len(i)
-        for k in range(len(i)):
-            if len(out) >= ENOUGH * task.candidates:
-                break
-            c = _candidate(p, alpha, left[0][i[k]], left[1][i[k]], right[0][j[k]], right[1][j[k]], task,
-                           _choices(mode, left[2][i[k]], right[2][j[k]]), float(worst[k]))
+        picks += [(left, right, i[k], j[k], float(worst[k])) for k in range(len(i))]
+    out: list[Candidate] = []
+    for keeps in (True, False):                         # those that keep the limit; else the nearest
+        for crank, rocker, a, b, gamma in picks:
+            if (gamma >= mu) != keeps or len(out) >= ENOUGH * task.candidates:
+                continue
+            c = _candidate(p, alpha, crank[0][a], crank[1][a], rocker[0][b], rocker[1][b], task,
+                           _choices(mode, crank[2][a], rocker[2][b]), gamma)
             if c is not None:
                 out.append(c)
-    tried = sum(s.tried for s in screens)
+        if out:
+            break
     if not out:
         _refuse(task, screens, screened)
-    info = {"method": "dyad form W (e^{i beta} - 1) + Z (e^{i alpha} - 1) = delta, pairs screened for Grashof, "
-                      "order and branch defects", "free_choices": mode, "pairs_tried": tried, "offered": len(out)}
-    return out, info
+    best = max(c.row["transmission_worst_deg"] for c in out)
+    bound = [] if best >= task.min_transmission else [
+        f"task.min_transmission: no defect-free four-bar through these positions keeps its transmission angle at "
+        f"least {task.min_transmission:g} degrees over its motion; the nearest are offered (the best reaches "
+        f"{best:.4g}): lower min_transmission, or give other positions or pivots"]
+    return out, sum(s.tried for s in screens), bound
 
 
 def _refuse(task: Any, screens: list[Screened], checked: int) -> None:
     """The one-line refusal of a motion task that found nothing to offer (``checked`` pairs passed the screen and
     failed the full defect check), naming the requirement that bound."""
     tried = sum(s.tried for s in screens)
-    fitting = sum(s.fitting for s in screens)
-    if fitting and not checked:
-        best = max(s.nearest for s in screens)
-        raise SpecError(f"none of the {fitting} defect-free four-bars through these positions keeps its transmission "
-                        f"angle at least {task.min_transmission:g} degrees over its motion (the best reaches "
-                        f"{math.degrees(best):.3g}): lower min_transmission, or give other positions or pivots",
-                        "task.min_transmission")
     if not checked and any(s.passed for s in screens):
         raise SpecError(f"every four-bar through these positions has a pivot or pin farther than {MAX_LENGTH_MM:g} mm "
                         f"from the origin or a link shorter than {MIN_LENGTH_MM:g} mm, which no template holds: move "

@@ -3,7 +3,7 @@
 ``DIR/summary.json`` (``{"candidates": [...]}``, best first, with the task and the search),
 ``DIR/summary.csv`` (one row a candidate), and per candidate ``<name>-<rank>.toml`` (a template
 ``linkgen analyze`` and ``linkgen build`` take as it is), ``<name>-<rank>.json`` (the report of
-``linkgen analyze`` on it, with the synthesis' row) and ``<name>-<rank>-curve.png|svg``.
+``linkgen analyze`` on it, with the synthesis' row) and, when asked, ``<name>-<rank>-curve.png|svg``.
 """
 from __future__ import annotations
 
@@ -42,7 +42,7 @@ def _comment(c: Offered, result: Synthesis) -> str:
             f"{c.name}.toml")
 
 
-def write_synthesis(result: Synthesis, directory: str | Path) -> list[str]:
+def write_synthesis(result: Synthesis, directory: str | Path, figures: bool = False) -> list[str]:
     """Write every file of ``result`` into ``directory`` (created if missing), all or nothing.
 
     Parameters
@@ -50,7 +50,9 @@ def write_synthesis(result: Synthesis, directory: str | Path) -> list[str]:
     result : Synthesis
         The candidates from :func:`linkgen.synthesis.run.synthesize`.
     directory : str or Path
-        The folder: a template, a report and a figure a candidate, and ``summary.csv`` and ``summary.json``.
+        The folder: a template, a report (and a figure) a candidate, and ``summary.csv`` and ``summary.json``.
+    figures : bool
+        Also draw each candidate's figure as PNG and SVG (off by default, as ``linkgen build``'s ``--figures``).
 
     Returns
     -------
@@ -72,9 +74,10 @@ def write_synthesis(result: Synthesis, directory: str | Path) -> list[str]:
                                                                                    _comment(c, result)))).name)
             report = {**c.report, "synthesis": {"task": summary["task"], **c.row}}
             names.append(stage.write(f"{c.name}.json", partial(_write_text, report_json(report))).name)
-            fig = candidate_figure(f"{c.name}: {_figure_title(c.row)}", c.sketch)
-            for fmt in ("png", "svg"):
-                names.append(stage.write(f"{c.name}-curve.{fmt}", partial(save, fig, fmt=fmt)).name)
+            if figures:
+                fig = candidate_figure(f"{c.name}: {_figure_title(c.row)}", c.sketch)
+                for fmt in ("png", "svg"):
+                    names.append(stage.write(f"{c.name}-curve.{fmt}", partial(save, fig, fmt=fmt)).name)
         names.append(stage.write("summary.json", partial(_write_text, report_json(summary))).name)
         names.append(stage.write("summary.csv", partial(_write_text, summary_csv(summary["candidates"]))).name)
     return names

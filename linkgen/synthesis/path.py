@@ -39,7 +39,7 @@ import numpy as np
 from camgen.core.errors import SpecError
 from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.kinematics.grashof import classify
-from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row, table_fits
+from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row, table_fits, weighed
 from linkgen.synthesis.defects import defects
 from linkgen.synthesis.geometry import place, transmission_range, worst_transmission
 from linkgen.synthesis.parallel import run_all, where
@@ -404,6 +404,7 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
     tried = sum(r["evaluations"] * r["population"] for r in runs)
     if not out:
         _refuse(task, runs, polished, tried)
+    out = [weighed(c) for c in out]
     best = int(np.argmin([c.score for c in out]))
     held = held_by(out[best], *designs[best], p, task)
     info = {"method": "differential evolution (scipy, the whole population per call) over the ground line, lengths, "

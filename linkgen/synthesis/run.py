@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from camgen.core.errors import CamgenError, SpecError
-from linkgen.synthesis import crank_rocker, fourier_path, function, motion, path, slider_crank
+from linkgen.synthesis import burmester_motion, crank_rocker, fourier_path, function, motion, path, slider_crank
 from linkgen.synthesis.candidates import Candidate, Offered, offer, ranked
 from linkgen.synthesis.parallel import where
 from linkgen.synthesis.task import SynthesisSpec
@@ -15,15 +15,16 @@ from linkgen.synthesis.task import SynthesisSpec
 #: the analytic methods by task kind (path generation, a search, is called with the jobs and scheduler)
 METHODS: dict[str, Callable[[Any], tuple[list[Candidate], dict[str, Any]]]] = {
     "crank-rocker": crank_rocker.solve, "slider-crank": slider_crank.solve, "function": function.solve,
-    "motion": motion.solve}
+    "motion": motion.solve, "burmester": burmester_motion.solve}
 #: how close (relative to the largest) two candidates' numbers may be before the worse is left out as a copy: a
 #: search's polished designs are copies within 1e-3; an analytic family's neighbours are offered 10 % apart
-COPIES = {"path": 1e-3, "motion": 0.05, "crank-rocker": 0.1, "slider-crank": 0.1}
+COPIES = {"path": 1e-3, "motion": 0.05, "burmester": 0.05, "crank-rocker": 0.1, "slider-crank": 0.1}
 LENGTH_KEYS = ("ground", "crank", "coupler", "rocker", "rod")
+
 #: the task's field that sets where and how big its linkages are: a candidate whose template is refused is blamed on
 #: it (the methods offer only what a template holds; this names the task, not the template, if one slips through)
 SCALE_FIELDS = {"path": "task.points", "motion": "task.positions", "crank-rocker": "task.rocker",
-                "slider-crank": "task.stroke", "function": "task.ground"}
+                "slider-crank": "task.stroke", "function": "task.ground", "burmester": "task.positions"}
 
 
 @dataclass(frozen=True)
@@ -85,3 +86,4 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
                                                                                         where(jobs, scheduler)),
             "bound": info.get("bound", [])}
     return Synthesis(spec, offered, info)
+

@@ -9,7 +9,8 @@ the longest of ``link_range`` (four strokes without one). With ``offset`` given,
 the circle meets the line at that depth. Each linkage is analysed as a slider-crank and kept if its
 stroke and time ratio are those asked for; candidates are ranked by their worst transmission angle,
 90 degrees less the rod's largest angle to the slider line, and those below ``min_transmission``
-(30 degrees by default) are left out.
+(30 degrees by default) are left out, unless none keeps it (the nearest are offered then, with a
+``bound`` line naming the limit).
 """
 from __future__ import annotations
 

@@ -20,7 +20,7 @@ import itertools
 import math
 from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 from pydantic import Field, create_model, model_validator
@@ -40,6 +40,9 @@ MAX_SAMPLES = 3600
 #: the most link turns a motion task sweeps per free choice: three free positions pair samples^2 dyads with as
 #: many, about samples^4 / 2 pairs screened
 MAX_MOTION_SAMPLES = 60
+#: the most values of the Burmester curves' parameter sampled: each gives up to two dyads, and every pair of the
+#: dyads in the region is screened (up to (2 x samples)^2, about 8 million pairs, some 30 s on one core)
+MAX_BURMESTER_SAMPLES = 1440
 #: a path search's budget: at most this many independent searches, generations a search, population per unknown
 MAX_STARTS, MAX_GENERATIONS, MAX_POPULATION = 64, 10_000, 100
 #: ... at most this many design-target evaluations in all, the differential evolution's (starts x generations x
@@ -111,6 +114,14 @@ def _transmission() -> Any:
 def _turn(a: float, b: float) -> float:
     """The smallest turn between two angles (degrees)."""
     return abs(math.remainder(a - b, 360.0))
+
+
+def _poses(positions: Iterable[tuple[float, float, float]]) -> None:
+    """Refuse a coupler pose [x mm, y mm, angle degrees] a template could not hold, or two the same."""
+    positions = list(positions)
+    _placed("positions", (p[:2] for p in positions))
+    _distinct("positions", positions, "pose", lambda p, q: max(abs(p[0] - q[0]), abs(p[1] - q[1]),
+                                                               _turn(p[2], q[2])))
 
 
 class SearchOptions(Model):
@@ -211,29 +222,45 @@ class FunctionTask(Model):
         return self
 
 
-class MotionTask(SearchOptions):
+class PosesTask(SearchOptions):
+    """What the tasks of a coupler line's positions share: the positions' count, checked with the poses, and a
+    crank."""
+
+    #: how many positions the task takes, and which kind takes others
+    counts: ClassVar[tuple[int, int, str]]
+    positions: tuple[tuple[float, float, float], ...]
+    crank: bool = Field(True, description="the input must turn fully (a Grashof crank)")
+
+    def _counted(self) -> None:
+        n = len(self.positions)
+        low, high, other = self.counts
+        if not low <= n <= high:
+            raise ValueError(f"positions: needs {low} or {high} positions [x, y, angle] (got {n}; {other})")
+        _poses(self.positions)
+
+
+def _positions(description: str) -> Any:
+    return Field(description=f"the coupler's poses as [x mm, y mm, angle degrees]: {description}", max_length=100)
+
+
+class MotionTask(PosesTask):
     """Two or three positions of a coupler line (a point and the line's direction)."""
 
+    counts = (2, 3, "4 or 5: kind = 'burmester'")
     kind: Literal["motion"]
-    positions: tuple[tuple[float, float, float], ...] = Field(
-        description="the coupler's poses as [x mm, y mm, angle degrees]", max_length=3)
+    positions: tuple[tuple[float, float, float], ...] = _positions("2 or 3 (4 or 5: kind 'burmester')")
     moving_pivots: tuple[Point, Point] | None = _mm("the two pivots on the coupler, drawn at the first position",
                                                     None)
     fixed_pivots: tuple[Point, Point] | None = _mm("the two ground pivots", None)
-    crank: bool = Field(True, description="the input must turn fully (a Grashof crank)")
     samples: int = _count(f"values of each free choice tried, at most {MAX_MOTION_SAMPLES}", 24, 4,
                           MAX_MOTION_SAMPLES)
 
     @model_validator(mode="after")
     def _positions(self) -> MotionTask:
         n = len(self.positions)
-        if n < 2:
-            raise ValueError(f"positions: needs 2 or 3 positions [x, y, angle] (got {n})")
-        _placed("positions", (p[:2] for p in self.positions))
+        self._counted()
         _placed("moving_pivots", self.moving_pivots)
         _placed("fixed_pivots", self.fixed_pivots)
-        _distinct("positions", self.positions, "pose", lambda p, q: max(abs(p[0] - q[0]), abs(p[1] - q[1]),
-                                                                        _turn(p[2], q[2])))
         if self.moving_pivots is not None and self.fixed_pivots is not None:
             raise ValueError("fixed_pivots: give the moving pivots or the fixed pivots, not both")
         if n == 2 and self.moving_pivots is None and self.fixed_pivots is None:
@@ -243,6 +270,44 @@ class MotionTask(SearchOptions):
                 if getattr(self, k) is not None and math.dist(*getattr(self, k)) < 1e-9]
         if same:
             raise ValueError(f"{same[0]}: the two pivots are at the same place")
+        return self
+
+
+def _box(name: str, box: tuple[Point, Point] | None) -> None:
+    """Refuse a box [[x_min, y_min], [x_max, y_max]] (mm) that is empty or lies beyond what a template holds."""
+    _placed(name, box)
+    if box is not None:
+        (x0, y0), (x1, y1) = box
+        if not (x0 < x1 and y0 < y1):
+            raise ValueError(f"{name}: give [[x_min, y_min], [x_max, y_max]] with min < max")
+
+
+class BurmesterTask(PosesTask):
+    """Four or five positions of a coupler line (Burmester theory); the dyads picked from a region of the curves."""
+
+    counts = (4, 5, "2 or 3: kind = 'motion'")
+    kind: Literal["burmester"]
+    positions: tuple[tuple[float, float, float], ...] = _positions(
+        "4 (the centre-point and circle-point curves) or 5 (their Ball-Burmester points)")
+    centre_region: tuple[Point, Point] | None = _mm("only dyads whose ground pivot (centre point) lies inside "
+                                                    "[[x_min, y_min], [x_max, y_max]]", None)
+    circle_region: tuple[Point, Point] | None = _mm("only dyads whose moving pivot at the first position (circle "
+                                                    "point) lies inside [[x_min, y_min], [x_max, y_max]]", None)
+    curve_range: tuple[float, float] | None = _deg(
+        "only dyads whose curve parameter (the dyad link's turn from position 1 to 2, counter-clockwise) lies in "
+        "[from, to], 0 <= from < to <= 360", None)
+    samples: int = _count(f"values of the curve parameter sampled over a turn (each gives up to two dyads, on the "
+                          f"curves' two branches), at least 12, at most {MAX_BURMESTER_SAMPLES}; four positions "
+                          "only", 360, 12, MAX_BURMESTER_SAMPLES)
+
+    @model_validator(mode="after")
+    def _positions(self) -> BurmesterTask:
+        self._counted()
+        _box("centre_region", self.centre_region)
+        _box("circle_region", self.circle_region)
+        if self.curve_range is not None and not 0 <= self.curve_range[0] < self.curve_range[1] <= 360:
+            raise ValueError("curve_range: give [from, to] in degrees with 0 <= from < to <= 360 (got "
+                             f"[{self.curve_range[0]:g}, {self.curve_range[1]:g}])")
         return self
 
 
@@ -305,11 +370,7 @@ class PathTask(SearchOptions):
             raise ValueError("crank: a closed path needs a crank that turns fully (crank = true)")
         if self.coupler_range is not None and not 0 < self.coupler_range <= MAX_LENGTH_MM:
             raise ValueError(f"coupler_range: must be > 0 and <= {MAX_LENGTH_MM:g} mm (got {self.coupler_range:g})")
-        _placed("ground_region", self.ground_region)
-        if self.ground_region is not None:
-            (x0, y0), (x1, y1) = self.ground_region
-            if not (x0 < x1 and y0 < y1):
-                raise ValueError("ground_region: give [[x_min, y_min], [x_max, y_max]] with min < max")
+        _box("ground_region", self.ground_region)
         if self.method == "evolution":
             self._budget()
         return self
@@ -370,7 +431,8 @@ def _self_crossing(points: Iterable[Point], closed: bool) -> tuple[int, int] | N
 
 #: ``task.kind`` -> its model
 TASKS: dict[str, type[Model]] = {"crank-rocker": CrankRockerTask, "slider-crank": SliderCrankTask,
-                                 "function": FunctionTask, "motion": MotionTask, "path": PathTask}
+                                 "function": FunctionTask, "motion": MotionTask, "path": PathTask,
+                                 "burmester": BurmesterTask}
 
 
 class SynthesisSpec(Model):
