@@ -5,9 +5,10 @@ files come in, how its spec is designed, bundled into files, summarised on the c
 summary shows of it and which starter templates ``camgen new`` writes of it. Its methods import its design and
 output modules when first called, so this registry stays light. Disc and plate cams share one design (a flat plate
 cut to a profile, :class:`~camgen.kinds.shared.FlatKind`); a grooved cam's design makes its inner flank that way too
-(see :mod:`camgen.grooved`); a barrel cam's developed pitch curve is a plate cam's (see :mod:`camgen.barrel`); a
-conjugate pair's first cam is the disc cam and its second is designed from the second roller's path (see
-:mod:`camgen.conjugate`). A Geneva drive has a ``[geneva]`` table of its own, which chooses it.
+(see :mod:`camgen.kinds.grooved`); a barrel cam's developed pitch curve is a plate cam's (see
+:mod:`camgen.kinds.barrel`); a conjugate pair's first cam is the disc cam and its second is designed from the second
+roller's path (see
+:mod:`camgen.kinds.conjugate`). A Geneva drive has a ``[geneva]`` table of its own, which chooses it.
 
 The command line, the family, the starters and the library's calls (:mod:`camgen.api`) ask :data:`KINDS`:
 :func:`kind_for` for a raw template, :func:`spec_kind` for a validated spec.

@@ -7,7 +7,7 @@ developed curve is (r theta, zc), steeper and more sharply bent for smaller r, s
 undercut (as a grooved cam's flanks: the lower wall where the curve bulges up, the upper where it bulges down)
 on the cylinders from the floor to the rim, and refused, naming the wall, the angle and the radius, where its
 radius of curvature falls below Rw. The solid's walls are the exact envelope of the roller (see
-:mod:`camgen.barrel.walls`), measured within the tolerance (:mod:`camgen.barrel.solid`).
+:mod:`camgen.kinds.barrel.kinematics`), measured within the tolerance (:mod:`camgen.kinds.barrel.solid`).
 
 An oscillating roller's developed curve on each cylinder is where its axis pierces it, and its pressure angle the
 3D one (:class:`~camgen.followers.barrel.DevelopedRoller`); a conical roller's cutter there has the cone's radius
@@ -29,9 +29,9 @@ from typing import Any
 import numpy as np
 
 from camgen.analysis import CamAnalysis, analyze
-from camgen.barrel.mesh import SHORTEST_STEPS
-from camgen.barrel.solid import Tube, groove_tube, rib_tube
-from camgen.barrel.walls import GrooveWalls
+from camgen.kinds.barrel.mesh import SHORTEST_STEPS
+from camgen.kinds.barrel.solid import Tube, groove_tube, rib_tube
+from camgen.kinds.barrel.kinematics import GrooveWalls
 from camgen.cam import Cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.core.features import bore_reach, keyed_bore
@@ -110,11 +110,12 @@ class BarrelDesign:
         return float(np.spacing(np.float32(max(self.radii[2], self.spec.cam.length))))
 
     def with_solid(self, phase: float = 0.0) -> "BarrelDesign":
-        """The same design with the groove's cutter made (:func:`camgen.barrel.solid.groove_tube`, its loops
+        """The same design with the groove's cutter made (:func:`camgen.kinds.barrel.solid.groove_tube`, its loops
         ``phase`` of a step round), its errors those of the files: within the tolerance once rounded to single
         precision (a point moves by up to sqrt(3)/2 of a step) and its short edges collapsed (by up to
-        ``SHORTEST_STEPS`` steps, :func:`camgen.barrel.mesh.without_short_edges`). Refused (:class:`DesignError` naming
-        output.tolerance) below ``SINGLE_STEPS`` steps of single precision at the cam's size (the larger of the
+        ``SHORTEST_STEPS`` steps, :func:`camgen.kinds.barrel.mesh.without_short_edges`). Refused
+        (:class:`DesignError` naming output.tolerance) below ``SINGLE_STEPS`` steps of single precision at the cam's
+        size (the larger of the
         rim's radius and the length, mm)."""
         inner, _, outer = self.radii
         size, step = max(outer, self.spec.cam.length), self.single_step
@@ -124,7 +125,7 @@ class BarrelDesign:
                               f"{SINGLE_STEPS * step:.3g} mm ({SINGLE_STEPS} of those steps) for the solid, up to 1 mm "
                               f"(got {self.tolerance:g}); or leave stl and 3mf out of output.formats")
         # how far a point may move in the files: single precision's rounding, and the collapse of an edge shorter than
-        # SHORTEST_STEPS of its steps (camgen.barrel.mesh)
+        # SHORTEST_STEPS of its steps (camgen.kinds.barrel.mesh)
         rounding = (math.sqrt(3) / 2 + SHORTEST_STEPS) * step
         if self.rib is not None:
             return dataclasses.replace(self, tube=rib_tube(*self.rib, inner, outer, self.spec.cam.length,
@@ -143,7 +144,7 @@ class BarrelDesign:
 
     def _repr_html_(self) -> str | None:
         """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
-        from camgen.barrel.outputs import barrel_bundle
+        from camgen.kinds.barrel.outputs import barrel_bundle
         from camgen.core.page import bundle_frame
 
         return bundle_frame(barrel_bundle(self)[0])

@@ -3,7 +3,7 @@
 The cylinder is ``cam.length`` long with the groove ``cam.groove_depth`` deep about the pitch cylinder of
 radius ``cam.pitch_radius`` (the groove's mid-depth); the roller's centre runs on the pitch cylinder at
 z = z0 + s, z0 putting the groove in the middle of the length. Developed (x = Rm theta) the pitch curve is
-a plate cam's of travel 2 pi Rm, so the pressure angle is atan(s' / Rm); see :mod:`camgen.barrel`.
+a plate cam's of travel 2 pi Rm, so the pressure angle is atan(s' / Rm); see :mod:`camgen.kinds.barrel`.
 """
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ from camgen.kinds.shared import SharedTableKind
 from camgen.kinds.starting import OUTPUT
 
 if TYPE_CHECKING:
-    from camgen.barrel.design import BarrelDesign
+    from camgen.kinds.barrel.design import BarrelDesign
     from camgen.spec import BarrelSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
@@ -229,8 +229,8 @@ STARTERS = {
 
 
 class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
-    """A barrel cam (``cam.kind = "barrel"``): designed by :func:`camgen.barrel.design.design_barrel`, written by
-    :func:`camgen.barrel.outputs.barrel_bundle`; printed round its axis, so no STEP solid and nothing to size."""
+    """A barrel cam (``cam.kind = "barrel"``): designed by :func:`camgen.kinds.barrel.design.design_barrel`, written by
+    :func:`camgen.kinds.barrel.outputs.barrel_bundle`; printed round its axis, so no STEP solid and nothing to size."""
 
     name: str = "barrel"
     title: str = "a barrel cam"
@@ -249,8 +249,8 @@ class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
         return BarrelSpec
 
     def operations(self) -> Operations[BarrelSpec, BarrelDesign]:
-        from camgen.barrel.design import design_barrel
-        from camgen.barrel.outputs import barrel_bundle, summary_lines
+        from camgen.kinds.barrel.design import design_barrel
+        from camgen.kinds.barrel.outputs import barrel_bundle, summary_lines
         from camgen.outputs import cam_row
 
         return Operations(design_barrel, barrel_bundle, lambda design, report: summary_lines(report),

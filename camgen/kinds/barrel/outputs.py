@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from camgen.barrel.design import BarrelDesign
+from camgen.kinds.barrel.design import BarrelDesign
 from camgen.core import VERSION
 from camgen.core.bundle import Bundle, item, tail
 from camgen.core.errors import ExportError
@@ -21,7 +21,7 @@ from camgen.sizing import pressure_limit
 
 #: where the cutter's loops start, in steps round from theta = 0, tried in turn: should the cut leave two vertices
 #: on one point that no edge joins, or a short edge that cannot be collapsed safely
-#: (:func:`camgen.barrel.mesh.without_short_edges`), another phase moves every vertex of the cut
+#: (:func:`camgen.kinds.barrel.mesh.without_short_edges`), another phase moves every vertex of the cut
 SOLID_PHASES = (0.0, 0.5, 0.25, 0.75)
 
 
@@ -175,7 +175,7 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
     formats, name = out.formats, design.spec.name
     mesh = check = None
     if {"stl", "3mf"} & set(formats):
-        from camgen.barrel.mesh import SHORTEST_STEPS, without_short_edges
+        from camgen.kinds.barrel.mesh import SHORTEST_STEPS, without_short_edges
         from camgen.core.solids import carve, check_mesh
 
         plain, shortest = design, SHORTEST_STEPS * design.single_step

@@ -10,8 +10,8 @@ run along the blank's rim facets, touching them at their corners, and the cut wo
 whose triangles cross once the file rounds them to single precision.
 
 The walls are measured triangle by triangle: the signed distance from the exact walls
-(:meth:`~camgen.barrel.walls.GrooveWalls.deviation`) at the triangle's corners and its edges' midpoints gives the
-quadratic that takes those six values, whose largest magnitude over the triangle (at a corner, on an edge or
+(:meth:`~camgen.kinds.barrel.kinematics.GrooveWalls.deviation`) at the triangle's corners and its edges' midpoints
+gives the quadratic that takes those six values, whose largest magnitude over the triangle (at a corner, on an edge or
 inside) is taken, plus how far the distance at the triangle's centroid is from that quadratic (what the quadratic
 misses); so the error between the rings (radially) and between the loops (along the groove), and across a
 quad's diagonal where the wall twists, is counted. The floor's triangles, whose corners lie on the cylinder Ri,
@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.barrel.walls import GrooveWalls
+from camgen.kinds.barrel.kinematics import GrooveWalls
 from camgen.core.errors import DesignError
 
 #: past the rim (mm) the cutter reaches beyond its last ring

@@ -2,7 +2,7 @@
 
 The first cam is the disc cam of the template (the follower's own roller, prime radius base radius + roller
 radius at rest); the second cam's pitch curve is the second roller's path in the same cam frame (see
-:mod:`camgen.conjugate.followers`), sharing the first cam's motion program. Where the template does not place
+:mod:`camgen.kinds.conjugate.kinematics`), sharing the first cam's motion program. Where the template does not place
 the second roller (``cam.yoke_span``, ``cam.arm_angle``) it is placed so that the second cam's base circle (the
 second roller's nearest approach less its radius) is ``cam.second_base_radius``, by default the first cam's.
 
@@ -33,7 +33,7 @@ import numpy as np
 
 from camgen.analysis import CamAnalysis, analyze, largest_fitting, pressure_angle_max, profile_rho_min
 from camgen.cam import Cam
-from camgen.conjugate.followers import ArmRoller, YokeRoller, arm_prime, arm_turn, yoke_prime, yoke_span
+from camgen.kinds.conjugate.kinematics import ArmRoller, YokeRoller, arm_prime, arm_turn, yoke_prime, yoke_span
 from camgen.core.errors import CamgenError, DesignError
 from camgen.flat import FlatCamDesign, flat_rig, parabolic_ratios, rates
 from camgen.forces import Contact, drive_speed
@@ -345,7 +345,7 @@ class ConjugateDesign:
 
     def _repr_html_(self) -> str | None:
         """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
-        from camgen.conjugate.outputs import conjugate_bundle
+        from camgen.kinds.conjugate.outputs import conjugate_bundle
         from camgen.core.page import bundle_frame
 
         return bundle_frame(conjugate_bundle(self)[0])

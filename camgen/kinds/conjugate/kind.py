@@ -7,7 +7,7 @@ so each cam holds the follower against the other. A translating follower is a yo
 follower is a bell crank carrying the second roller on an arm ``cam.second_arm_length`` long at
 ``cam.arm_angle`` degrees from the first, on the same pivot. Either is set by the second cam's base circle
 (``cam.second_base_radius``, by default ``cam.base_radius``) instead. Both rollers are ``follower.roller_radius``.
-See :mod:`camgen.conjugate`.
+See :mod:`camgen.kinds.conjugate`.
 """
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from camgen.kinds.shared import SharedTableKind
 from camgen.kinds.starting import OUTPUT, ROLLER, cam_table, motion
 
 if TYPE_CHECKING:
-    from camgen.conjugate.design import ConjugateDesign
+    from camgen.kinds.conjugate.design import ConjugateDesign
     from camgen.spec import ConjugateSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
@@ -70,8 +70,9 @@ STARTERS = {
 
 
 class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
-    """A conjugate pair (``cam.kind = "conjugate"``): designed by :func:`camgen.conjugate.design.design_conjugate`,
-    written by :func:`camgen.conjugate.outputs.conjugate_bundle`; sized cam by cam, the pair at the larger."""
+    """A conjugate pair (``cam.kind = "conjugate"``): designed by
+    :func:`camgen.kinds.conjugate.design.design_conjugate`, written by
+    :func:`camgen.kinds.conjugate.outputs.conjugate_bundle`; sized cam by cam, the pair at the larger."""
 
     name: str = "conjugate"
     title: str = "a conjugate cam"
@@ -86,8 +87,8 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
         return ConjugateSpec
 
     def operations(self) -> Operations[ConjugateSpec, ConjugateDesign]:
-        from camgen.conjugate.design import design_conjugate
-        from camgen.conjugate.outputs import conjugate_bundle, summary_lines
+        from camgen.kinds.conjugate.design import design_conjugate
+        from camgen.kinds.conjugate.outputs import conjugate_bundle, summary_lines
         from camgen.outputs import cam_row
 
         return Operations(design_conjugate, conjugate_bundle, lambda design, report: summary_lines(report),
@@ -99,8 +100,8 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
 
 
 def _size(spec: ConjugateSpec) -> SizeReport:
-    """Each cam sized alone (:func:`camgen.conjugate.design.size_conjugate`), the pair at the larger."""
-    from camgen.conjugate.design import size_conjugate
+    """Each cam sized alone (:func:`camgen.kinds.conjugate.design.size_conjugate`), the pair at the larger."""
+    from camgen.kinds.conjugate.design import size_conjugate
 
     alone = size_conjugate(spec)
     note = (f"each cam alone: cam 1 needs {alone[0].base_radius_mm:.4f} mm (cam.base_radius), cam 2 "

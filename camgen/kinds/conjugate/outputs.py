@@ -16,8 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from camgen.conjugate.design import ConjugateDesign, roller_centres
-from camgen.conjugate.followers import ArmRoller
+from camgen.kinds.conjugate.design import ConjugateDesign, roller_centres
+from camgen.kinds.conjugate.kinematics import ArmRoller
 from camgen.core.bundle import Bundle, item, tail
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.nesting import SheetRules, nest, sheet_kinds

@@ -4,9 +4,10 @@ A driver turning at constant speed carries a pin on a crank of radius a and a lo
 the wheel has n radial slots and n concave locking arcs. The pin enters a slot tangentially
 (radial entry, a = C sin(pi / n), C the centre distance), turns the wheel by 2 pi / n while
 the driver turns pi - 2 pi / n, and leaves; the locking disc then holds the wheel still for
-the rest of the driver's turn. Modules, in the order data flows: :mod:`~camgen.geneva.spec`
-(the template), :mod:`~camgen.geneva.kinematics` (the Geneva law, numpy only),
-:mod:`~camgen.geneva.geometry` (the parts' exact outlines), :mod:`~camgen.geneva.assembly`
-(clearances over a whole turn), :mod:`~camgen.geneva.design`, :mod:`~camgen.geneva.report`,
-:mod:`~camgen.geneva.plots` and :mod:`~camgen.geneva.outputs` (the files).
+the rest of the driver's turn. Modules, in the order data flows: :mod:`~camgen.kinds.geneva.table`
+(the template), :mod:`~camgen.kinds.geneva.kinematics` (the Geneva law, numpy only),
+:mod:`~camgen.kinds.geneva.geometry` (the parts' exact outlines), :mod:`~camgen.kinds.geneva.assembly`
+(clearances over a whole turn), :mod:`~camgen.kinds.geneva.design`, :mod:`~camgen.kinds.geneva.report`,
+:mod:`~camgen.kinds.geneva.plots` and :mod:`~camgen.kinds.geneva.outputs` (the files).
 """
+from .kind import KIND as KIND

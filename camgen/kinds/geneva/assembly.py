@@ -2,7 +2,7 @@
 wheel, the pin's tangential entry, and the lock over the dwell. Lengths in mm, angles in degrees of driver angle.
 
 Everything is measured in the driver's frame, where the locking disc and the pin stand still and the wheel moves
-(:meth:`~camgen.geneva.geometry.GenevaGeometry.in_driver_frame`), at 3600 driver angles over the turn (the
+(:meth:`~camgen.kinds.geneva.geometry.GenevaGeometry.in_driver_frame`), at 3600 driver angles over the turn (the
 engagement's ends and middle among them), each least gap then refined round its worst angle
 (:func:`camgen.numeric.maximise` on its negative). The locking disc's gap is exact to the disc (a circle less a
 circular cutout, its signed distance in closed form) from points of the wheel's exact outline, 1e-3 mm apart
@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camgen.geneva.geometry import GenevaGeometry, cosine_rule
+from camgen.kinds.geneva.geometry import GenevaGeometry, cosine_rule
 from camgen.numeric import maximise
 
 #: driver angles over a turn

@@ -1,7 +1,7 @@
 """A Geneva drive's design from its spec: the law's figures, the three parts (nominal, as cut, as printed) and the
 assembly's checks. No I/O.
 
-The parts (see :mod:`camgen.geneva.geometry`), each a :class:`~camgen.core.parts.Part` in its own frame: the
+The parts (see :mod:`camgen.kinds.geneva.geometry`), each a :class:`~camgen.core.parts.Part` in its own frame: the
 wheel (its bore), the locking disc (the driver's bore) and the crank (the driver's bore and the pin's hole).
 Printed, the driver is one solid: the crank with the locking disc on top of it, in the wheel's plane; the pin
 (a dowel in the crank's hole) reaches up into the wheel's slots. The cut files carry each part with its outline
@@ -19,10 +19,10 @@ import numpy as np
 from camgen.core.errors import DesignError
 from camgen.core.parts import Allowances, Part
 from camgen.core.shapes import Circle
-from camgen.geneva.assembly import AssemblyCheck, check_assembly
-from camgen.geneva.geometry import GenevaGeometry
-from camgen.geneva.kinematics import GenevaLaw
-from camgen.geneva.spec import GenevaSpec
+from camgen.kinds.geneva.assembly import AssemblyCheck, check_assembly
+from camgen.kinds.geneva.geometry import GenevaGeometry
+from camgen.kinds.geneva.kinematics import GenevaLaw
+from camgen.kinds.geneva.table import GenevaSpec
 
 #: the parts, in the order they are written
 PARTS = ("wheel", "lock", "crank")
@@ -106,7 +106,7 @@ class GenevaDesign:
     def _repr_html_(self) -> str | None:
         """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.core.page import bundle_frame
-        from camgen.geneva.outputs import geneva_bundle
+        from camgen.kinds.geneva.outputs import geneva_bundle
 
         return bundle_frame(geneva_bundle(self)[0])
 

@@ -17,7 +17,7 @@ crank: a bar of ``crank_width`` with round ends from the driver's axis to the pi
 
 Poses. In the assembly the driver's axis is the origin and the wheel's (C, 0); at driver angle
 alpha the driver's frame is turned by alpha and the wheel's by pi - beta(alpha) about its axis
-(slot 0 then points at the driver's axis when beta = 0; see :mod:`camgen.geneva.kinematics`).
+(slot 0 then points at the driver's axis when beta = 0; see :mod:`camgen.kinds.geneva.kinematics`).
 
 Every outline can be made with its material grown outwards by ``grow`` mm (a laser's half kerf):
 the flanks, slot bottoms, locking arcs and the cutout move into the air, the rims and the disc
@@ -32,7 +32,7 @@ from functools import cached_property
 import numpy as np
 
 from camgen.core.shapes import Circle, Contour, rounded_hull
-from camgen.geneva.kinematics import GenevaLaw
+from camgen.kinds.geneva.kinematics import GenevaLaw
 from camgen.numeric import maximise
 
 #: the chord tolerance (mm) of the outlines the cutout is sized from

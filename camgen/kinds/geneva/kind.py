@@ -1,5 +1,5 @@
 """The Geneva drive: a driver's pin indexes a slotted wheel, then a locking disc holds it; chosen by its own
-``[geneva]`` table (no follower and no motion program: its motion is the Geneva law). See :mod:`camgen.geneva`,
+``[geneva]`` table (no follower and no motion program: its motion is the Geneva law). See :mod:`camgen.kinds.geneva`,
 which is imported only when a drive is validated, designed or written."""
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING
 from camgen.kinds.base import NESTED, KindBase, Operations, Starter
 
 if TYPE_CHECKING:
-    from camgen.geneva.design import GenevaDesign
-    from camgen.geneva.spec import GenevaSpec
+    from camgen.kinds.geneva.design import GenevaDesign
+    from camgen.kinds.geneva.table import GenevaSpec
 
 STARTERS = {
     "geneva": Starter(
@@ -26,8 +26,8 @@ STARTERS = {
 
 
 class GenevaKind(KindBase["GenevaSpec", "GenevaDesign"]):
-    """A Geneva drive (a ``[geneva]`` table): designed by :func:`camgen.geneva.design.design_geneva`, written by
-    :func:`camgen.geneva.outputs.geneva_bundle`, its parts nested on a sheet of its own."""
+    """A Geneva drive (a ``[geneva]`` table): designed by :func:`camgen.kinds.geneva.design.design_geneva`, written by
+    :func:`camgen.kinds.geneva.outputs.geneva_bundle`, its parts nested on a sheet of its own."""
 
     name: str = "geneva"
     title: str = "a Geneva drive"
@@ -37,14 +37,14 @@ class GenevaKind(KindBase["GenevaSpec", "GenevaDesign"]):
 
     @property
     def spec(self) -> type[GenevaSpec]:
-        from camgen.geneva.spec import GenevaSpec
+        from camgen.kinds.geneva.table import GenevaSpec
 
         return GenevaSpec
 
     def operations(self) -> Operations[GenevaSpec, GenevaDesign]:
-        from camgen.geneva.design import design_geneva
-        from camgen.geneva.outputs import geneva_bundle, geneva_row
-        from camgen.geneva.report import summary_lines
+        from camgen.kinds.geneva.design import design_geneva
+        from camgen.kinds.geneva.outputs import geneva_bundle, geneva_row
+        from camgen.kinds.geneva.report import summary_lines
 
         return Operations(design_geneva, geneva_bundle, lambda design, report: summary_lines(report), geneva_row)
 

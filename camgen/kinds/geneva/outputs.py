@@ -18,9 +18,9 @@ from camgen.core.errors import ExportError
 from camgen.core.nesting import SheetRules, nest, sheet_kinds
 from camgen.core.parts import Drawing, Placed
 from camgen.core.routing import add_routing
-from camgen.geneva.design import PARTS, GenevaDesign
-from camgen.geneva.page import geneva_page
-from camgen.geneva.report import geneva_report
+from camgen.kinds.geneva.design import PARTS, GenevaDesign
+from camgen.kinds.geneva.page import geneva_page
+from camgen.kinds.geneva.report import geneva_report
 
 
 def _solids(design: GenevaDesign) -> dict[str, Any]:
@@ -52,7 +52,7 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
     report["sheet"] = nested.report
 
     def plot(kind: str) -> Any:
-        from camgen.geneva import plots
+        from camgen.kinds.geneva import plots
 
         return plots.motion_figure(design) if kind == "motion" else plots.assembly_figure(design)
 

@@ -4,7 +4,7 @@ wheel's angle, velocity, acceleration and jerk against the driver's angle, the r
 
 Frames: one a degree of driver angle alpha, -180 ... 179 degrees (the pin's direction from the centre line, the
 driver's axis at the origin, the wheel's at (C, 0)). The wheel's outline is turned by pi - beta about its axis,
-the locking disc and the crank by alpha about the driver's, as in :mod:`camgen.geneva.plots`.
+the locking disc and the crank by alpha about the driver's, as in :mod:`camgen.kinds.geneva.plots`.
 """
 from __future__ import annotations
 

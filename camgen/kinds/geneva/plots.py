@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
-from camgen.geneva.design import GenevaDesign, sample_turn
+from camgen.kinds.geneva.design import GenevaDesign, sample_turn
 
 
 def motion_figure(design: GenevaDesign) -> Any:

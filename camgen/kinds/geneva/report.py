@@ -1,6 +1,6 @@
 """The report of a Geneva drive: the law's figures, the parts' dimensions, the assembly's checks and the solids'.
 
-Pure formatting of a finished :class:`~camgen.geneva.design.GenevaDesign` and the checks of its solids; nothing
+Pure formatting of a finished :class:`~camgen.kinds.geneva.design.GenevaDesign` and the checks of its solids; nothing
 here computes a figure. Keys carry their units; rates are per radian of driver angle (multiply by omega,
 omega^2 of the driver) unless they say otherwise.
 """
@@ -11,7 +11,7 @@ import math
 from typing import Any
 
 from camgen.core import VERSION
-from camgen.geneva.design import PARTS, GenevaDesign
+from camgen.kinds.geneva.design import PARTS, GenevaDesign
 
 
 def _r(x: Any) -> Any:

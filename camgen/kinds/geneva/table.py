@@ -4,7 +4,7 @@ Geneva law), ``name`` and ``[output]``, validated into a frozen :class:`GenevaSp
 Every bad value is one :class:`~camgen.core.errors.SpecError` naming the field and its allowed range, e.g.
 ``geneva.slots: must be >= 3 and <= 36 (got 2)``; dimensions that leave no part (a slot too wide for the
 wheel, a locking disc out of its range, a bore too large) are named the same way (see
-:meth:`camgen.geneva.geometry.GenevaGeometry.check`).
+:meth:`camgen.kinds.geneva.geometry.GenevaGeometry.check`).
 """
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ from pydantic import ConfigDict, Field, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.spec import CutOutputTable, Model, TemplateSpec, length, name_field, unit, validate
-from camgen.geneva.geometry import GenevaGeometry
+from camgen.kinds.geneva.geometry import GenevaGeometry
 
 #: the most slots a wheel may have
 MAX_SLOTS = 36

@@ -166,7 +166,7 @@ class GroovedDesign:
     def _repr_html_(self) -> str | None:
         """Jupyter shows the interactive page, as :meth:`camgen.profile.CamDesign._repr_html_` does."""
         from camgen.core.page import bundle_frame
-        from camgen.grooved.outputs import grooved_bundle
+        from camgen.kinds.grooved.outputs import grooved_bundle
 
         return bundle_frame(grooved_bundle(self)[0])
 

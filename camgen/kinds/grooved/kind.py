@@ -2,7 +2,7 @@
 
 The groove's two flanks are the exact offsets of the pitch curve by +/-(Rr + c/2), Rr the
 roller's radius and c ``cam.running_clearance``; the groove is a pocket ``cam.groove_depth``
-mm deep in the face (see :mod:`camgen.grooved`). Positive drive holds the follower without a
+mm deep in the face (see :mod:`camgen.kinds.grooved`). Positive drive holds the follower without a
 spring, so rollers only, and no spring or preload; at ``cam.rpm`` with a mass the report gives the forces, the
 flank that carries them and the torque (:func:`camgen.forces.drive_report`). The pitch curve
 is the disc cam's (prime radius = base radius + roller radius).
@@ -17,7 +17,7 @@ from camgen.kinds.shared import SharedTableKind
 from camgen.kinds.starting import OUTPUT, cam_table, motion
 
 if TYPE_CHECKING:
-    from camgen.grooved.design import GroovedDesign
+    from camgen.kinds.grooved.design import GroovedDesign
     from camgen.spec import GroovedSpec
 
 FOLLOWERS = ("translating-roller", "oscillating-roller")
@@ -56,8 +56,9 @@ STARTERS = {
 
 
 class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
-    """A grooved face cam (``cam.kind = "grooved"``): designed by :func:`camgen.grooved.design.design_grooved`,
-    written by :func:`camgen.grooved.outputs.grooved_bundle`; its console lines are a disc cam's and the groove's."""
+    """A grooved face cam (``cam.kind = "grooved"``): designed by
+    :func:`camgen.kinds.grooved.design.design_grooved`, written by :func:`camgen.kinds.grooved.outputs.grooved_bundle`;
+    its console lines are a disc cam's and the groove's."""
 
     name: str = "grooved"
     title: str = "a grooved cam"
@@ -72,8 +73,8 @@ class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
         return GroovedSpec
 
     def operations(self) -> Operations[GroovedSpec, GroovedDesign]:
-        from camgen.grooved.design import design_grooved, size_grooved
-        from camgen.grooved.outputs import groove_summary, grooved_bundle
+        from camgen.kinds.grooved.design import design_grooved, size_grooved
+        from camgen.kinds.grooved.outputs import groove_summary, grooved_bundle
         from camgen.outputs import cam_row
         from camgen.report import cam_summary
 

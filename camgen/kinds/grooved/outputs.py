@@ -16,7 +16,7 @@ from camgen.core.bundle import Bundle
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.solids import volume_check
 from camgen.groove import Flank
-from camgen.grooved.design import GroovedDesign, step_plate
+from camgen.kinds.grooved.design import GroovedDesign, step_plate
 from camgen.outputs import cam_files, printed_mesh
 from camgen.page import grooved_page
 from camgen.report import cam_report
