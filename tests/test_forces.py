@@ -548,7 +548,8 @@ def _barrel_checks(design):
                                     w.r0 + w.taper * design.radii[1], 5.0, ("lower wall", "upper wall"))
 
 
-@pytest.mark.parametrize("template, figure", [(GROOVED, "grooved_checks_figure"), (CONJUGATE, "pair_checks_figure"),
+@pytest.mark.parametrize("template, figure", [(GROOVED, "camgen.kinds.grooved.plots:grooved_checks_figure"),
+                                              (CONJUGATE, "camgen.kinds.conjugate.plots:pair_checks_figure"),
                                               (BARREL, None)])
 def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, figure, tmp_path):
     """A grooved cam's, a pair's and a barrel's checks figure at a speed with a mass: its normal forces peak at the
@@ -556,7 +557,8 @@ def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, fi
     0.5 % of the refined peaks); a build writes <name>-checks.png/.svg only then."""
     from click.testing import CliRunner
 
-    from camgen import plots
+    import importlib
+
     from camgen.cli import main
     from camgen.kinds.conjugate.design import design_conjugate
 
@@ -565,7 +567,11 @@ def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, fi
     design = {GROOVED: design_grooved, CONJUGATE: design_conjugate, BARREL: design_barrel}[template](spec)
     forces = {GROOVED: lambda: design.profile.speed, CONJUGATE: lambda: design.cams[0].speed,
               BARREL: lambda: design.speed}[template]()["forces"]
-    axes = (getattr(plots, figure)(design) if figure else _barrel_checks(design)).axes
+    if figure:
+        module, name = figure.split(":")
+        axes = getattr(importlib.import_module(module), name)(design).axes
+    else:
+        axes = _barrel_checks(design).axes
     peak = lambda ax: max(float(np.max(line.get_ydata())) for line in ax.get_lines()[:2])   # noqa: E731
     largest = forces["contact_force_max_N"] if template != CONJUGATE else max(
         forces["cam_1_contact_force_max_N"], forces["cam_2_contact_force_max_N"])   # each on its own cam's normal

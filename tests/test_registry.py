@@ -175,7 +175,7 @@ def test_a_template_with_a_cam_and_a_geneva_table_is_refused_in_one_line(tmp_pat
 
 
 def test_a_template_with_three_kinds_tables_is_refused_naming_each(monkeypatch):
-    from camgen.kinds.geneva import GenevaKind
+    from camgen.kinds.geneva.kind import GenevaKind
 
     class Ratchet(GenevaKind):
         name: str = "ratchet"

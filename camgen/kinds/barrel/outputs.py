@@ -14,7 +14,7 @@ from camgen.kinds.barrel.design import BarrelDesign
 from camgen.core import VERSION
 from camgen.core.bundle import Bundle, item, tail
 from camgen.core.errors import ExportError
-from camgen.page import barrel_page
+from camgen.kinds.barrel.page import barrel_page
 from camgen.report import design_lines
 from camgen.sizing import pressure_limit
 

@@ -25,7 +25,7 @@ from camgen.core.parts import Drawing, Placed
 from camgen.core.routing import add_routing
 from camgen.profile import step_part
 from camgen.outputs import printed_mesh
-from camgen.page import conjugate_page
+from camgen.kinds.conjugate.page import conjugate_page
 from camgen.report import cam_report, design_lines
 
 #: the keys of a disc cam's report that each cam of the pair has of its own (the rest they share)
@@ -236,8 +236,9 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
 
     def plot(kind: str) -> Any:
         from camgen import plots
+        from camgen.kinds.conjugate.plots import pair_checks_figure
 
-        return {"svaj": lambda: plots.svaj_figure(design.cams[0]), "checks": lambda: plots.pair_checks_figure(
+        return {"svaj": lambda: plots.svaj_figure(design.cams[0]), "checks": lambda: pair_checks_figure(
             design), "speeds": lambda: plots.speeds_plot(name, design.cams[0].speed["speeds"])}.get(
             kind, lambda: assembly_figure(design))()
 

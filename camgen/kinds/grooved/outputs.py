@@ -18,7 +18,7 @@ from camgen.core.solids import volume_check
 from camgen.groove import Flank
 from camgen.kinds.grooved.design import GroovedDesign, step_plate
 from camgen.outputs import cam_files, printed_mesh
-from camgen.page import grooved_page
+from camgen.kinds.grooved.page import grooved_page
 from camgen.report import cam_report
 
 
@@ -132,8 +132,9 @@ def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
 
     def plot(kind: str) -> Any:
         from camgen import plots
+        from camgen.kinds.grooved.plots import grooved_checks_figure
 
-        return {"svaj": lambda: plots.svaj_figure(design.profile), "checks": lambda: plots.grooved_checks_figure(
+        return {"svaj": lambda: plots.svaj_figure(design.profile), "checks": lambda: grooved_checks_figure(
             design), "speeds": lambda: plots.speeds_plot(design.spec.name, design.profile.speed["speeds"])}.get(
             kind, lambda: grooved_figure(design))()
 
