@@ -15,8 +15,8 @@ from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from camgen.kinds.base import NESTED, Operations, SizeReport, Starter, flat_follower
+from camgen.kinds.conjugate.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
-from camgen.kinds.starting import OUTPUT, ROLLER, cam_table, motion
 
 if TYPE_CHECKING:
     from camgen.kinds.conjugate.design import ConjugateDesign
@@ -54,19 +54,6 @@ def _check(spec: Any) -> None:
         raise ValueError(f"cam.base_radius: \"auto\" sizes each cam by its base circle; with cam.{place} fixed the "
                          "second cam changes with the first, so give cam.second_base_radius (or \"auto\") instead of "
                          f"cam.{place}, or a base radius")
-
-
-STARTERS = {
-    "conjugate": Starter(
-        "A conjugate pair: two discs on one shaft drive a yoke's two rollers, both ways, no spring.",
-        (cam_table("conjugate", bore=12.0), ("follower", {"type": "translating-roller", "roller_radius": 8.0}),
-         *motion(), ("hub", {"keyway": True}), OUTPUT),
-        {"cam": "a conjugate pair: a second disc drives a second roller on the far end of the yoke; its base circle "
-                "is cam.second_base_radius (default: base_radius); both cams are checked for pressure angle and "
-                "undercut",
-         "follower": "positive drive: the two cams drive the yoke both ways, no return spring",
-         **ROLLER}),
-}
 
 
 class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):

@@ -9,8 +9,8 @@ from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from camgen.kinds.base import Starter, flat_follower
+from camgen.kinds.plate.starters import STARTERS
 from camgen.kinds.shared import FlatKind
-from camgen.kinds.starting import OUTPUT, motion
 from camgen.rig import Mount, plate_mount
 
 if TYPE_CHECKING:
@@ -31,21 +31,6 @@ def _check(spec: Any) -> None:
 def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
     """The roller over a plate ``base_radius`` mm high (the plate's mount's)."""
     return plate_mount(spec.follower, spec.cam.travel).at(base_radius, roller_radius)
-
-
-STARTERS = {
-    "plate": Starter(
-        "A plate (linear) cam: the profile along a plate that slides, lifting a roller.",
-        (("cam", {"kind": "plate", "travel": 200.0, "base_radius": 20.0, "thickness": 6.0}),
-         ("follower", {"type": "translating-roller", "roller_radius": 8.0}), *motion(15.0), OUTPUT),
-        {"cam": "a plate cam slides along +X as the program runs: it does not turn and has no bore",
-         "cam.travel": "mm: how far the plate slides over the program's 360 degrees: a segment of a degrees "
-                       "takes a / 360 of it",
-         "cam.base_radius": "mm: the plate's height under the profile; the roller's centre runs at base_radius + "
-                            "roller_radius + s",
-         "follower.roller_radius": "mm: roller radius; below the pitch curve's least convex radius, else the plate "
-                                   "undercuts"}),
-}
 
 
 class PlateKind(FlatKind["PlateSpec"]):
