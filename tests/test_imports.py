@@ -65,12 +65,12 @@ def test_a_cam_s_dxf_stl_json_build_loads_only_what_those_files_need(tmp_path):
     assert not {m for m in modules for name in NOT_FOR_A_CAM if m == name or m.startswith(name + ".")}
     assert {"camgen.profile", "camgen.core.writers.dxf", "camgen.core.writers.stl", "ezdxf"} <= modules
     # of every other kind (the Geneva drive's models included) only what the registry holds: its declaration
-    others = {m for m in modules if m.startswith("camgen.kinds.") and m.count(".") >= 2
-              and not m.startswith(("camgen.kinds.disc", "camgen.kinds.base", "camgen.kinds.shared",
-                                    "camgen.kinds.starting"))}
-    declared = {f"camgen.kinds.{k}{part}" for k in ("plate", "grooved", "barrel", "conjugate", "geneva")
-                for part in ("", ".kind", ".starters")}
-    assert {"camgen.kinds.geneva", "camgen.kinds.geneva.kind"} <= others <= declared
+    from camgen.kinds import BUILT_IN
+
+    others = {f"camgen.kinds.{kind.name}" for kind in BUILT_IN if kind.name != "disc"}
+    loaded = {m for m in modules for pkg in others if m == pkg or m.startswith(pkg + ".")}
+    declared = {f"{pkg}{part}" for pkg in others for part in ("", ".kind", ".starters")}
+    assert {"camgen.kinds.geneva", "camgen.kinds.geneva.kind"} <= loaded <= declared
 
 
 def test_a_geneva_drive_still_builds_with_its_modules_loaded_on_demand(tmp_path):

@@ -1,14 +1,16 @@
 """A cam kind from a plugin: a toy "eccentric" kind (an eccentric circle disc under a translating roller), written
 here into a temporary folder as a module and a ``*.dist-info/entry_points.txt`` (group ``camgen.kinds``), found by
 the registry through that folder on PYTHONPATH alone: no file of the package changed. The console commands run as
-a user runs them (``python -m camgen`` in its own interpreter, from a folder outside the checkout): ``new``,
-``build`` (its DXF, STL, JSON and page checked against the eccentric's closed forms) and ``size``; a plugin whose
-name is a built-in kind's is refused in one line. Nothing is written inside the checkout."""
+a user runs them (the ``camgen`` console script, or ``python -m camgen``, in its own interpreter, from a folder
+outside the checkout): ``new``, ``build`` (its DXF, STL, JSON and page checked against the eccentric's closed forms)
+and ``size``; a plugin whose name is a built-in kind's is refused in one line. Nothing is written inside the
+checkout."""
 from __future__ import annotations
 
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -44,6 +46,8 @@ from camgen.sizing import Sizing
 
 
 class EccentricTable(Model):
+    """The ``[eccentric]`` table: the disc, its offset, the roller, the plate and the bore."""
+
     radius: float = length("the disc's radius R")
     eccentricity: float = length("distance e from the shaft's axis to the disc's centre", le=1000.0)
     roller_radius: float = length("the follower's roller radius", le=1000.0)
@@ -77,12 +81,10 @@ class EccentricSpec(TemplateSpec):
 
 @dataclass(frozen=True)
 class EccentricDesign:
+    """The eccentric designed: its spec and its part (the disc as at theta = 0, the bore about the shaft)."""
+
     spec: EccentricSpec
     part: Part
-
-    @property
-    def tolerance(self) -> float:
-        return self.spec.output.tolerance
 
     def lift(self, theta: np.ndarray) -> np.ndarray:
         t = self.spec.eccentric
@@ -114,7 +116,7 @@ def report_of(d: EccentricDesign) -> dict[str, Any]:
 def page(d: EccentricDesign, report: dict[str, Any]) -> Page:
     t = d.spec.eccentric
     theta = np.radians(np.arange(FRAMES) * 360.0 / FRAMES)
-    ring = d.part.outline.flatten(d.tolerance)
+    ring = d.part.outline.flatten(d.spec.output.tolerance)
     rest = t.radius + t.roller_radius - t.eccentricity
     centre = np.column_stack([np.zeros_like(theta), rest + d.lift(theta)])
     return Page(d.spec.name, f"{d.spec.name}: eccentric disc", f"e = {t.eccentricity:g} mm, R = {t.radius:g} mm",
@@ -182,11 +184,18 @@ def _plugin(folder: Path, module: str, entry: str) -> Path:
     return folder
 
 
-def _camgen(cwd: Path, site: Path, *args: str) -> subprocess.CompletedProcess:
-    """``python -m camgen ARGS`` in its own interpreter, run from ``cwd`` with ``site`` (and the checkout, which a
-    user's installed package stands for) on its path."""
+#: the installed console script, which imports the package first found on the path (the checkout's, below)
+SCRIPT = shutil.which("camgen")
+
+
+def _camgen(cwd: Path, site: Path, *args: str, script: bool = False) -> subprocess.CompletedProcess:
+    """``python -m camgen ARGS`` (with ``script``: the ``camgen`` console script) in its own interpreter, run from
+    ``cwd`` with ``site`` and the checkout (which the installed package stands for) first on its path."""
+    if script and SCRIPT is None:
+        pytest.skip("no camgen console script installed")
     path = os.pathsep.join([str(site), str(ROOT), os.environ.get("PYTHONPATH", "")])
-    return subprocess.run([sys.executable, "-m", "camgen", *args], cwd=cwd, capture_output=True, text=True,
+    command = [SCRIPT] if script else [sys.executable, "-m", "camgen"]
+    return subprocess.run([*command, *args], cwd=cwd, capture_output=True, text=True,
                           env={**os.environ, "PYTHONPATH": path}, timeout=300)
 
 
@@ -209,7 +218,7 @@ def toy(tmp_path: Path) -> tuple[Path, Path]:
 def test_a_plugin_kind_is_made_built_and_sized_by_the_console_commands(toy):
     site, work = toy
     before = _checkout_files()
-    new = _camgen(work, site, "new", "eccentric", "-o", "ecc.toml")
+    new = _camgen(work, site, "new", "eccentric", "-o", "ecc.toml", script=True)
     assert new.returncode == 0, new.stderr
     text = (work / "ecc.toml").read_text()
     assert "[eccentric]" in text and "the stroke is twice this" in text
@@ -244,7 +253,7 @@ def test_a_plugin_kind_is_made_built_and_sized_by_the_console_commands(toy):
     page = (work / "out" / "ecc.html").read_text()
     assert "ecc: eccentric disc" in page and "stroke" in page and "largest pressure angle" in page
 
-    sized = _camgen(work, site, "size", "ecc.toml", "--json")
+    sized = _camgen(work, site, "size", "ecc.toml", "--json", script=True)
     assert sized.returncode == 0, sized.stderr
     s = json.loads(sized.stdout)
     # asin(e / (R + Rr)) = 30 degrees: R = e / sin 30 - Rr = 12 mm, less than the bore needs (e + 4 = 14)
