@@ -36,10 +36,10 @@ _MODULES = {
     "camgen.flat": ("build_cam", "CamDesign"),
     "camgen.sizing": ("size_cam",),
     "camgen.convergence_study": ("convergence",),
-    "camgen.grooved.design": ("design_grooved", "GroovedDesign"),
-    "camgen.geneva.kinematics": ("GenevaLaw",),
-    "camgen.geneva.spec": ("GenevaSpec",),
-    "camgen.geneva.design": ("design_geneva", "GenevaDesign"),
+    "camgen.kinds.grooved.design": ("design_grooved", "GroovedDesign"),
+    "camgen.kinds.geneva.kinematics": ("GenevaLaw",),
+    "camgen.kinds.geneva.table": ("GenevaSpec",),
+    "camgen.kinds.geneva.design": ("design_geneva", "GenevaDesign"),
     "camgen.outputs": ("cam_bundle",),
     "camgen.api": ("load", "design", "write", "Design", "write_cam"),
     "camgen.core.shapes": ("Contour", "Circle"),
@@ -75,10 +75,10 @@ if TYPE_CHECKING:      # what an editor and mypy see: the same names, imported (
     from camgen.flat import build_cam as build_cam, CamDesign as CamDesign
     from camgen.sizing import size_cam as size_cam
     from camgen.convergence_study import convergence as convergence
-    from camgen.grooved.design import design_grooved as design_grooved, GroovedDesign as GroovedDesign
-    from camgen.geneva.kinematics import GenevaLaw as GenevaLaw
-    from camgen.geneva.spec import GenevaSpec as GenevaSpec
-    from camgen.geneva.design import design_geneva as design_geneva, GenevaDesign as GenevaDesign
+    from camgen.kinds.grooved.design import design_grooved as design_grooved, GroovedDesign as GroovedDesign
+    from camgen.kinds.geneva.kinematics import GenevaLaw as GenevaLaw
+    from camgen.kinds.geneva.table import GenevaSpec as GenevaSpec
+    from camgen.kinds.geneva.design import design_geneva as design_geneva, GenevaDesign as GenevaDesign
     from camgen.outputs import cam_bundle as cam_bundle
     from camgen.api import load as load, design as design, write as write, Design as Design, write_cam as write_cam
     from camgen.core.shapes import Contour as Contour, Circle as Circle

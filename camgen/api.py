@@ -22,7 +22,7 @@ from camgen.kinds.base import SizeReport
 from camgen.spec import CamSpec, load_spec, validate_spec
 
 if TYPE_CHECKING:
-    from camgen.geneva.spec import GenevaSpec
+    from camgen.kinds.geneva.table import GenevaSpec
 
 
 class Design(Protocol):

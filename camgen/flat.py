@@ -105,7 +105,7 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
     """The :class:`~camgen.cam.Cam` a cam template describes (a grooved cam's pitch cam, a conjugate pair's first
     cam, a barrel's developed cam), its follower placed by its kind (``kind_of(spec.cam.kind).follower``): a
     script's and a test's way to a template's cam. A barrel has no base radius: a drafted law on one needs its own
-    rig (:func:`camgen.barrel.design.barrel_rig`).
+    rig (:func:`camgen.kinds.barrel.design.barrel_rig`).
 
     Parameters
     ----------

@@ -1,6 +1,6 @@
 """What the groove kinds share: the undercut check of a groove's two flanks (or walls), each an offset of the
-pitch curve by the cutter's radius. Used by the grooved face cam (:mod:`camgen.grooved`) and by the barrel cam on
-each cylinder it checks (:mod:`camgen.barrel`). No I/O.
+pitch curve by the cutter's radius. Used by the grooved face cam (:mod:`camgen.kinds.grooved`) and by the barrel cam on
+each cylinder it checks (:mod:`camgen.kinds.barrel`). No I/O.
 
 Radii of curvature follow the project's signs (convex > 0, like the base circle): the inner flank (the one towards
 the cam's centre, a plate cam's lower wall) bends with the pitch curve's convex stretches, radius rho - d, and

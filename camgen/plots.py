@@ -217,14 +217,6 @@ def drive_checks_plot(title: str, limit_deg: float, contacts: list[tuple[str, Ca
     return fig
 
 
-def grooved_checks_figure(design: Any) -> Any:
-    """:func:`groove_checks_plot` of a grooved cam: its inner flank (convex, carrying F > 0) and outer flank
-    (concave round the roller, carrying F < 0), d = roller + running clearance / 2 either side of the pitch curve."""
-    return groove_checks_plot(design.spec, design.cam, design.profile.speed["forces"],
-                              design.profile.pressure_limit_deg, design.cam.contact_radius,
-                              design.spec.follower.roller_radius, ("inner flank", "outer flank"))
-
-
 def groove_checks_plot(spec: Any, cam: Cam, forces: dict[str, Any], limit_deg: float, d: float, rr: float,
                        labels: tuple[str, str]) -> Any:
     """:func:`drive_checks_plot` of a roller in a groove whose walls lie ``d`` mm either side of ``cam``'s pitch
@@ -251,29 +243,6 @@ def groove_checks_plot(spec: Any, cam: Cam, forces: dict[str, Any], limit_deg: f
         (labels[1], cam, lambda g: -(1.0 / g.kappa + d), *contact_of(-1.0))],
         lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"], d,
         getattr(spec.output, "tool_radius", 0.0))
-
-
-def pair_checks_figure(design: Any) -> Any:
-    """:func:`drive_checks_plot` of a conjugate pair: each roller on its cam, cam 1 carrying F > 0 (N1 = F /
-    cos(phi1)), cam 2 F < 0 (N2 = -F (L1 / L2) / cos(phi2)), each profile's radius its pitch curve's less its own
-    roller's."""
-    from camgen.dynamics import spec_loading
-    from camgen.forces import Contact, contact_pressure, pair_forces, torque
-
-    spec, pair = design.spec, tuple(d.cam for d in design.cams)
-    forces = design.cams[0].speed["forces"]
-    ld = spec_loading(spec.follower, pair[0].follower, True, spec.motion, pair[0].program)
-    omega = spec.cam.rpm * 2 * math.pi / 60
-    st = forces.get("stress")
-    contact = None if st is None else Contact(st["cam_material"], st["follower_material"], st["length_mm"])
-    contacts = []
-    for k, (cam, force) in enumerate(zip(pair, pair_forces(pair, ld, omega), strict=True)):
-        def pressure(g: Any, m: np.ndarray, cam: Cam = cam, force: Any = force) -> np.ndarray:
-            return contact_pressure(cam, contact, g, force(g, m))[0]
-        contacts.append((f"cam {k + 1}", cam, lambda g, cam=cam: 1.0 / g.kappa - cam.contact_radius, force, pressure))
-    return drive_checks_plot(spec.name, design.cams[0].pressure_limit_deg, contacts,
-                             lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"],
-                             max(cam.contact_radius for cam in pair), getattr(spec.output, "tool_radius", 0.0))
 
 
 #: the radius panel: the farthest it draws (a multiple of the cam's size, rounded up to a power of ten: a straight

@@ -2,7 +2,7 @@
 the :class:`Body` it is cut into and the :class:`Finish` it is made to; its checks, its outline and its parts. No
 spec, no sizing, no speed (those are the kinds', see :mod:`camgen.flat`), no I/O.
 
-A grooved cam's island (its inner flank, :mod:`camgen.grooved.design`) is such a profile too, and a conjugate
+A grooved cam's island (its inner flank, :mod:`camgen.kinds.grooved.design`) is such a profile too, and a conjugate
 pair's members are assembled from the same pieces (:func:`outline_body`, :func:`check_holes`,
 :func:`engraving`, :class:`ProfileMaker`).
 """
@@ -33,7 +33,7 @@ from camgen.spec import CamSpec
 
 if TYPE_CHECKING:
     from camgen.flat_envelope import FaceLeaves, FlatEnvelope
-    from camgen.geneva.spec import GenevaSpec
+    from camgen.kinds.geneva.table import GenevaSpec
     from camgen.spec import HubTable, OutputTable
 
 #: thinnest wall between the bore and the outline before a warning (mm)
@@ -204,8 +204,8 @@ def _undercut_message(rig: Rig, cam: Cam, a: CamAnalysis) -> str:
 
 def design_cam(spec: CamSpec | GenevaSpec) -> Any:
     """The design of the cam ``spec`` describes, by its kind (see :mod:`camgen.kinds`; a Geneva drive's too, see
-    :mod:`camgen.geneva`): every check and all the geometry, nothing written; :func:`camgen.api.design` is the same
-    call.
+    :mod:`camgen.kinds.geneva`): every check and all the geometry, nothing written; :func:`camgen.api.design` is the
+    same call.
 
     Parameters
     ----------

@@ -30,7 +30,7 @@ from camgen.kinds import CAM_TABLE, KINDS, kind_for, kind_of, table_keys
 from camgen.tables import CAM_TABLES, BarrelTable, ConjugateTable, DiscTable, GroovedTable, Material, PlateTable
 
 if TYPE_CHECKING:
-    from camgen.geneva.spec import GenevaSpec
+    from camgen.kinds.geneva.table import GenevaSpec
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
 #: the most rows a table law reads, and the largest CSV file (bytes)
@@ -530,7 +530,7 @@ CAM_SPECS: dict[str, type[CamSpec]] = {"disc": DiscSpec, "plate": PlateSpec, "gr
 
 def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
     """The spec of the kind the raw template ``raw`` describes (:func:`camgen.kinds.kind_for`): a :class:`CamSpec`
-    for a ``[cam]`` table, a :class:`~camgen.geneva.spec.GenevaSpec` for a ``[geneva]`` table; its
+    for a ``[cam]`` table, a :class:`~camgen.kinds.geneva.table.GenevaSpec` for a ``[geneva]`` table; its
     ``output.formats`` checked against those the kind writes.
 
     Parameters

@@ -148,7 +148,7 @@ def test_every_public_name_is_its_type_checking_import(package):
 
 def test_no_public_name_is_shadowed_by_a_submodule():
     """Importing every submodule binds each as an attribute of its package; none may take a public name's place
-    (``camgen.design`` stays the function after ``camgen.geneva.design`` or any ``design`` module is imported)."""
+    (``camgen.design`` stays the function after ``camgen.kinds.geneva.design`` or any ``design`` module is imported)."""
     code = ("import importlib, pkgutil, camgen, linkgen\n"
             "for package in (camgen, linkgen):\n"
             "    for info in pkgutil.walk_packages(package.__path__, package.__name__ + '.'):\n"

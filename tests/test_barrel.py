@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from camgen.barrel.walls import GrooveWalls
+from camgen.kinds.barrel.kinematics import GrooveWalls
 from camgen.cli import main
 from camgen.core.errors import DesignError
 from camgen.profile import design_cam

@@ -116,7 +116,7 @@ def test_axial_height_is_l_sin_psi_and_the_chordal_error():
     """The roller's height and its axis's offset from the cam's axis against the arm's geometry; the chordal error
     the report states against the largest |C - L cos(psi)| over a grid of 1e6 cam angles; the least error at the
     pivot distance L (1 + cos(swing/2)) / 2, where it is L (1 - cos(swing/2)) / 2."""
-    from camgen.barrel.outputs import barrel_report
+    from camgen.kinds.barrel.outputs import barrel_report
 
     design = design_cam(validate_spec(RAW))
     theta = np.linspace(0, 2 * math.pi, 1_000_000, endpoint=False)
@@ -164,7 +164,7 @@ def test_pressure_angle_in_3d_against_finite_differences():
                 np.linalg.norm(path, axis=1), 1e-300)
             angles.append(np.where(np.linalg.norm(path, axis=1) > 1e-12, np.arccos(np.minimum(cos, 1.0)), 0.0))
         fd = np.maximum(*angles)
-        from camgen.barrel.design import _developed_cam
+        from camgen.kinds.barrel.design import _developed_cam
 
         developed = _developed_cam(design.cam, r, design.walls)
         exact = np.abs(developed.pitch(theta).pressure_angle)

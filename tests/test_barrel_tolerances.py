@@ -134,7 +134,7 @@ def test_finer_than_ten_single_precision_steps_is_refused_for_the_solid(tmp_path
     must be >= 10 x 2^-18 = 3.814697265625e-05 mm for the solid. At the limit the cutter is made (stubbed here: the
     real one takes some 100 s), 1e-12 below it and at 1e-5 refused by name, exit 2, nothing written; the
     developed drawing alone is still made at 1e-5."""
-    import camgen.barrel.design as barrel_design
+    import camgen.kinds.barrel.design as barrel_design
     from camgen.core.errors import DesignError
     from tests.refusals import assert_refused
 

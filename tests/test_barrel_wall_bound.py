@@ -276,7 +276,7 @@ def test_the_quadratic_peak_over_a_triangle():
     """quadratic_peak of random quadratics (seeded; their values at the corners and the edges' midpoints) against
     the largest magnitude on a barycentric grid of 201 steps a side: never below it, and above it by no more than
     the grid's step can hide (a quadratic's peak moves its value by at most its second rates times a step squared)."""
-    from camgen.barrel.solid import quadratic_peak
+    from camgen.kinds.barrel.solid import quadratic_peak
 
     rng = np.random.default_rng(7)
     c = rng.normal(size=(200, 6))
@@ -297,7 +297,7 @@ def test_the_floor_error_is_the_floor_triangles_own():
     """barrel.toml's cutter at 0.01 mm: its floor's triangles (every corner on the floor's cylinder, 27 mm),
     sampled on a barycentric grid of 30 steps a side, lie inside the cylinder by at most the reported floor error
     (less the files' rounding and the collapse allowance, which the fit adds), and by nearly as much."""
-    from camgen.barrel.mesh import SHORTEST_STEPS
+    from camgen.kinds.barrel.mesh import SHORTEST_STEPS
     from camgen.profile import design_cam
     from camgen.spec import load_spec
 
@@ -320,7 +320,7 @@ def test_a_short_edge_is_collapsed_and_a_long_one_kept():
     the short edge go, leaving the closed tetrahedron of 1/6 mm^3; at 1e-4 mm the mesh is kept as it is; a
     collapse that would leave no closed solid (the short edge is a tetrahedron's own, and the bound its size)
     is refused (None)."""
-    from camgen.barrel.mesh import shortest_edge, without_short_edges
+    from camgen.kinds.barrel.mesh import shortest_edge, without_short_edges
     from camgen.core.solids import check_mesh
     from tests.test_barrel_tolerances import _split_edge
 

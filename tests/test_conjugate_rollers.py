@@ -73,7 +73,7 @@ def test_an_undercut_of_cam_2_names_its_roller_and_the_largest_that_fits():
                                           r"largest second roller that fits cam 2 is") as caught:
         design_cam(validate_spec(raw))
     best = float(re.search(r"fits cam 2 is ([0-9.]+) mm", str(caught.value)).group(1))
-    from camgen.conjugate.design import Placement, largest_second_roller, pair_rig
+    from camgen.kinds.conjugate.design import Placement, largest_second_roller, pair_rig
 
     spec = validate_spec(raw)
     exact = largest_second_roller(pair_rig(spec), spec.cam.base_radius, Placement.of(spec.cam), 5.0)

@@ -139,7 +139,7 @@ def test_the_law_defaults_the_reference_states_are_the_laws_own():
 
 
 def test_the_solid_tolerance_note_quotes_the_barrels_limit():
-    from camgen.barrel.design import SINGLE_STEPS
+    from camgen.kinds.barrel.design import SINGLE_STEPS
     from camgen.core.spec import CutOutputTable
 
     assert f"at least {SINGLE_STEPS} single-precision steps" in \

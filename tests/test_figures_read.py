@@ -243,8 +243,8 @@ def test_a_straight_stretch_is_drawn_at_the_top_not_as_an_undercut():
 def test_a_grooves_flanks_are_drawn_signed_and_finite():
     """grooved-loaded.toml's checks figure: each flank's radius finite and signed (the outer flank concave where the
     inner one is convex), on the scale that shows both, the undercut band the roller's reach (5 + 0.2 / 2 mm)."""
-    from camgen.grooved.design import design_grooved
-    from camgen.plots import grooved_checks_figure
+    from camgen.kinds.grooved.design import design_grooved
+    from camgen.kinds.grooved.plots import grooved_checks_figure
     from camgen.spec import load_spec
 
     design = design_grooved(load_spec(ROOT / "templates" / "grooved-loaded.toml", ()))

@@ -13,8 +13,8 @@ from camgen.contact_stress import MATERIALS, Material, effective_modulus, line_c
 from camgen.profile import design_cam
 from camgen.dynamics import G_MM, loading, spec_loading
 from camgen.forces import Contact, contact_pressure, normal_force, torque
-from camgen.barrel.design import design_barrel
-from camgen.grooved.design import design_grooved
+from camgen.kinds.barrel.design import design_barrel
+from camgen.kinds.grooved.design import design_grooved
 from camgen.spec import load_spec
 from tests.refusals import assert_refused
 
@@ -433,7 +433,7 @@ def test_a_conjugate_pairs_torque_is_the_sum_of_both_contacts_moments(template, 
     """A conjugate pair: cam 1 pushes the follower where F > 0, cam 2 where F < 0 with N2 = -F (L1 / L2) / cos(phi2)
     along its own pitch normal at the second roller; the sum of both contacts' moments about the shaft, sense N (p x
     n) / 1000 each, is the shaft's torque F s' / 1000 (1e-9), for a yoke and a bell crank, both turning senses."""
-    from camgen.conjugate.design import design_conjugate
+    from camgen.kinds.conjugate.design import design_conjugate
 
     design = design_conjugate(load_spec(ROOT / "templates" / template,
                                         ("cam.rpm=150", "follower.mass=0.25", f'cam.rotation="{rotation}"', *sets)))
@@ -520,7 +520,7 @@ def test_a_conjugate_pairs_pressure_by_hand():
     40 + 8 + 25 = 73 mm, its profile 65; cam 2's 121 - 73 = 48, its profile 40). +10 N on cam 1: p = sqrt(10 E*
     (1/8 + 1/65) / (pi 8)) = 14.858 MPa, b = 0.053558 mm; -10 N on cam 2: sqrt(10 E* (1/8 + 1/40) / (pi 8)) =
     15.359 MPa, b = 0.051813 mm. Each cam's peak is the largest over the turn of its own roller's pressure."""
-    from camgen.conjugate.design import design_conjugate
+    from camgen.kinds.conjugate.design import design_conjugate
 
     for load, which, (p, b) in ((10, 0, (14.85810, 0.0535583)), (-10, 1, (15.35851, 0.0518133))):
         design = design_conjugate(load_spec(CONJUGATE, ("cam.rpm=300", "follower.mass=0.2", f"follower.load={load}",
@@ -548,7 +548,8 @@ def _barrel_checks(design):
                                     w.r0 + w.taper * design.radii[1], 5.0, ("lower wall", "upper wall"))
 
 
-@pytest.mark.parametrize("template, figure", [(GROOVED, "grooved_checks_figure"), (CONJUGATE, "pair_checks_figure"),
+@pytest.mark.parametrize("template, figure", [(GROOVED, "camgen.kinds.grooved.plots:grooved_checks_figure"),
+                                              (CONJUGATE, "camgen.kinds.conjugate.plots:pair_checks_figure"),
                                               (BARREL, None)])
 def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, figure, tmp_path):
     """A grooved cam's, a pair's and a barrel's checks figure at a speed with a mass: its normal forces peak at the
@@ -556,16 +557,21 @@ def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, fi
     0.5 % of the refined peaks); a build writes <name>-checks.png/.svg only then."""
     from click.testing import CliRunner
 
-    from camgen import plots
+    import importlib
+
     from camgen.cli import main
-    from camgen.conjugate.design import design_conjugate
+    from camgen.kinds.conjugate.design import design_conjugate
 
     sets = ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5", 'cam.material="pla"')
     spec = load_spec(template, sets)
     design = {GROOVED: design_grooved, CONJUGATE: design_conjugate, BARREL: design_barrel}[template](spec)
     forces = {GROOVED: lambda: design.profile.speed, CONJUGATE: lambda: design.cams[0].speed,
               BARREL: lambda: design.speed}[template]()["forces"]
-    axes = (getattr(plots, figure)(design) if figure else _barrel_checks(design)).axes
+    if figure:
+        module, name = figure.split(":")
+        axes = getattr(importlib.import_module(module), name)(design).axes
+    else:
+        axes = _barrel_checks(design).axes
     peak = lambda ax: max(float(np.max(line.get_ydata())) for line in ax.get_lines()[:2])   # noqa: E731
     largest = forces["contact_force_max_N"] if template != CONJUGATE else max(
         forces["cam_1_contact_force_max_N"], forces["cam_2_contact_force_max_N"])   # each on its own cam's normal

@@ -16,8 +16,8 @@ from click.testing import CliRunner
 from camgen.cli import main
 from camgen.core.errors import SpecError
 from camgen.profile import design_cam
-from camgen.geneva.kinematics import GenevaLaw
-from camgen.geneva.spec import GenevaSpec, GenevaTable
+from camgen.kinds.geneva.kinematics import GenevaLaw
+from camgen.kinds.geneva.table import GenevaSpec, GenevaTable
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
 from tests.refusals import assert_refused

@@ -15,7 +15,7 @@ from camgen.cli import main
 from camgen.core.errors import DesignError
 from camgen.profile import design_cam
 from camgen.groove import flank_checks
-from camgen.grooved.design import largest_roller, pitch_rig
+from camgen.kinds.grooved.design import largest_roller, pitch_rig
 from camgen.spec import validate_spec
 from camgen.surface import pitch_distance
 from tests.conftest import ROOT
@@ -329,7 +329,7 @@ def test_the_island_keeps_the_follower_and_takes_the_rates_alone():
     are the groove's, a positive drive's (no lift-off, no margin), the same as camgen.forces.drive_speed gives on
     the island's cam."""
     from camgen.forces import drive_speed
-    from camgen.grooved.design import island_base, island_rig
+    from camgen.kinds.grooved.design import island_base, island_rig
     from camgen.spec import load_spec
 
     spec = load_spec(ROOT / "templates" / "grooved.toml", ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5",

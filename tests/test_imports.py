@@ -51,10 +51,9 @@ def test_a_dxf_only_build_loads_neither_matplotlib_nor_trimesh(tmp_path):
     assert "ezdxf" in loaded and not loaded & set(HEAVY)
 
 
-#: what a cam's build of DXF, STL and JSON does not use: the Geneva drive (its models included), cut sheets, pages,
-#: kits, figures, the speed's dynamics and forces (no cam.rpm), a flat face's envelope, the second mesh library
-#: (each package with everything below it)
-NOT_FOR_A_CAM = ("camgen.geneva", "camgen.core.nesting", "camgen.core.page", "camgen.page", "camgen.kit",
+#: what a cam's build of DXF, STL and JSON does not use: cut sheets, pages, kits, figures, the speed's dynamics and
+#: forces (no cam.rpm), a flat face's envelope, the second mesh library (each package with everything below it)
+NOT_FOR_A_CAM = ("camgen.core.nesting", "camgen.core.page", "camgen.page", "camgen.kit",
                  "camgen.plots", "camgen.core.figures", "camgen.dynamics", "camgen.forces", "camgen.flat_envelope",
                  "matplotlib", "trimesh", "scipy")
 
@@ -65,6 +64,13 @@ def test_a_cam_s_dxf_stl_json_build_loads_only_what_those_files_need(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["rdrd.dxf", "rdrd.json", "rdrd.stl"]
     assert not {m for m in modules for name in NOT_FOR_A_CAM if m == name or m.startswith(name + ".")}
     assert {"camgen.profile", "camgen.core.writers.dxf", "camgen.core.writers.stl", "ezdxf"} <= modules
+    # of every other kind (the Geneva drive's models included) only what the registry holds: its declaration
+    from camgen.kinds import BUILT_IN
+
+    others = {f"camgen.kinds.{kind.name}" for kind in BUILT_IN if kind.name != "disc"}
+    loaded = {m for m in modules for pkg in others if m == pkg or m.startswith(pkg + ".")}
+    declared = {f"{pkg}{part}" for pkg in others for part in ("", ".kind", ".starters")}
+    assert {"camgen.kinds.geneva", "camgen.kinds.geneva.kind"} <= loaded <= declared
 
 
 def test_a_geneva_drive_still_builds_with_its_modules_loaded_on_demand(tmp_path):
@@ -74,7 +80,7 @@ def test_a_geneva_drive_still_builds_with_its_modules_loaded_on_demand(tmp_path)
                                 "--set", 'output.formats=["dxf","json"]'))
     report = json.loads((tmp_path / "geneva4.json").read_text())
     assert "geneva" in report and (tmp_path / "geneva4-sheet.dxf").is_file()
-    assert {"camgen.geneva.spec", "camgen.geneva.design", "camgen.core.nesting"} <= modules
+    assert {"camgen.kinds.geneva.table", "camgen.kinds.geneva.design", "camgen.core.nesting"} <= modules
 
 
 def test_a_one_design_command_pauses_the_collector_and_restores_it(tmp_path, monkeypatch):

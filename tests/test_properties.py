@@ -53,7 +53,7 @@ from pydantic import BaseModel
 
 from camgen.cli import main as camgen
 from camgen.followers import FOLLOWERS
-from camgen.geneva.spec import GenevaSpec
+from camgen.kinds.geneva.table import GenevaSpec
 from camgen.laws import LAW_NAMES
 from camgen.spec import CAM_SPECS, CamSpec
 from linkgen.cli import main as linkgen

@@ -70,23 +70,23 @@ def _own(name: str, spec: Any) -> tuple[Any, Any, Any]:
                  else plate_mount(spec.follower, spec.cam.travel))
         return lambda s: design_flat(s, mount), cam_bundle, cam_summary
     if name == "grooved":
-        from camgen.grooved.design import design_grooved
-        from camgen.grooved.outputs import groove_summary, grooved_bundle
+        from camgen.kinds.grooved.design import design_grooved
+        from camgen.kinds.grooved.outputs import groove_summary, grooved_bundle
 
         return design_grooved, grooved_bundle, lambda d, r: [*cam_summary(d, r), groove_summary(r)]
     if name == "barrel":
-        from camgen.barrel.design import design_barrel
-        from camgen.barrel.outputs import barrel_bundle, summary_lines
+        from camgen.kinds.barrel.design import design_barrel
+        from camgen.kinds.barrel.outputs import barrel_bundle, summary_lines
 
         return design_barrel, barrel_bundle, lambda d, r: summary_lines(r)
     if name == "conjugate":
-        from camgen.conjugate.design import design_conjugate
-        from camgen.conjugate.outputs import conjugate_bundle, summary_lines
+        from camgen.kinds.conjugate.design import design_conjugate
+        from camgen.kinds.conjugate.outputs import conjugate_bundle, summary_lines
 
         return design_conjugate, conjugate_bundle, lambda d, r: summary_lines(r)
-    from camgen.geneva.design import design_geneva
-    from camgen.geneva.outputs import geneva_bundle
-    from camgen.geneva.report import summary_lines
+    from camgen.kinds.geneva.design import design_geneva
+    from camgen.kinds.geneva.outputs import geneva_bundle
+    from camgen.kinds.geneva.report import summary_lines
 
     return design_geneva, geneva_bundle, lambda d, r: summary_lines(r)
 
@@ -159,7 +159,7 @@ def test_a_geneva_drive_joins_by_its_own_table(tmp_path):
     report = json.loads((tmp_path / "geneva6.json").read_text())
     assert report["motion"]["index_deg"] == pytest.approx(360 / slots)
     assert report["motion"]["motion_deg"] == pytest.approx(180 - 360 / slots)
-    from camgen.geneva.report import summary_lines
+    from camgen.kinds.geneva.report import summary_lines
 
     assert output.splitlines()[:3] == summary_lines(report)
 
@@ -175,7 +175,7 @@ def test_a_template_with_a_cam_and_a_geneva_table_is_refused_in_one_line(tmp_pat
 
 
 def test_a_template_with_three_kinds_tables_is_refused_naming_each(monkeypatch):
-    from camgen.kinds.geneva import GenevaKind
+    from camgen.kinds.geneva.kind import GenevaKind
 
     class Ratchet(GenevaKind):
         name: str = "ratchet"
@@ -192,12 +192,12 @@ def test_a_template_with_three_kinds_tables_is_refused_naming_each(monkeypatch):
 
 
 def test_a_format_a_kind_does_not_write_is_refused_before_it_is_designed(monkeypatch):
-    import camgen.barrel.design
+    import camgen.kinds.barrel.design
 
     def never(spec: Any) -> None:
         raise AssertionError("designed")
 
-    monkeypatch.setattr(camgen.barrel.design, "design_barrel", never)
+    monkeypatch.setattr(camgen.kinds.barrel.design, "design_barrel", never)
     with pytest.raises(SpecError, match=r"^output\.formats: a barrel cam has no flat part to write as an exact STEP"):
         api.validate(_raw("barrel.toml", **{"output.formats": ["step", "stl"]}))
     assert "step" not in KINDS["barrel"].formats and "step" in KINDS["disc"].formats

@@ -208,7 +208,7 @@ def test_a_grooves_speeds_are_single_speed_builds(template, tmp_path):
 def test_a_conjugate_pairs_speeds_are_single_speed_builds():
     """A pair over a range: each row is a build at that one cam.rpm (torque figures, the larger of both cams' normal
     forces, both cams' larger Hertz pressure) to 1e-9; no lift-off."""
-    from camgen.conjugate.design import design_conjugate
+    from camgen.kinds.conjugate.design import design_conjugate
 
     path = ROOT / "templates" / "conjugate.toml"
     sets = ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5", 'cam.material="pla"')

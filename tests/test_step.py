@@ -424,7 +424,7 @@ def test_grooved_cam_pocket(tmp_path):
     result = CliRunner().invoke(main, ["build", str(ROOT / "templates" / "grooved.toml"), "-o", str(tmp_path),
                                        "--set", 'output.formats=["step"]'])
     assert result.exit_code == 0, result.output
-    from camgen.grooved.design import step_plate
+    from camgen.kinds.grooved.design import step_plate
     from camgen.surface import surface_deviation
 
     design = _design("grooved")
@@ -485,7 +485,7 @@ def test_conjugate_pair_two_named_cams(tmp_path):
     assert result.exit_code == 0, result.output
     names = [name for name, _ in read_step(tmp_path / "conjugate.step")]
     assert names == ["conjugate-1", "conjugate-2"]
-    from camgen.conjugate.design import design_conjugate
+    from camgen.kinds.conjugate.design import design_conjugate
     from camgen.surface import surface_deviation
 
     pair = design_conjugate(load_spec(ROOT / "templates" / "conjugate.toml", ['output.formats=["json"]']))

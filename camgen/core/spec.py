@@ -321,7 +321,7 @@ class TemplateSpec(Model):
         spec = CamSpec.from_toml("templates/rdrd.toml").with_changes({"motion.0.lift": 25})
 
     Each product's spec class says how a raw template is validated (:meth:`validate_raw`: the class its tables
-    choose, e.g. a :class:`~camgen.geneva.spec.GenevaSpec` for a ``[geneva]`` table) and which command builds it
+    choose, e.g. a :class:`~camgen.kinds.geneva.table.GenevaSpec` for a ``[geneva]`` table) and which command builds it
     (:attr:`product`); a template of another class is refused in one line naming ``template``.
     """
 

@@ -4,7 +4,7 @@ the groove developed on a cylinder as a plane pitch curve. numpy only.
 Frames. The cam's axis is +Z. At theta = 0 the roller stands on +X in the fixed frame; its axis is square to
 the cam's axis. Everything here is worked in "theta-space": the cam's frame, reflected for a counter-clockwise
 cam (``sense`` +1) so that the roller at cam angle theta stands at the polar angle +theta (see
-:mod:`camgen.barrel.walls`); turned by theta, the roller's axis runs along x at the height zc and the
+:mod:`camgen.kinds.barrel.kinematics`); turned by theta, the roller's axis runs along x at the height zc and the
 tangential offset e from the cam's axis: the line (t, e, zc).
 
 Two followers move the roller. A translating one (``arm`` None) slides it along the cam's axis, zc = z0 + s,
@@ -188,7 +188,7 @@ class BarrelGeometry:
     ``sense`` of rotation (+1 counter-clockwise) and a rib's ``rib_width`` (None for a groove).
 
     :meth:`of` reads them from a template's ``[cam]`` and ``[follower]`` tables and its motion; the kind's checks
-    (:mod:`camgen.kinds.barrel`) and its design (:mod:`camgen.barrel.design`) read what follows from them."""
+    (:mod:`camgen.kinds.barrel`) and its design (:mod:`camgen.kinds.barrel.design`) read what follows from them."""
 
     pitch_radius: float
     length: float

@@ -1,20 +1,26 @@
-"""Cam kinds (and the Geneva drive): one module a kind, registered here by one line, the one place a kind is looked up.
+"""Cam kinds (and the Geneva drive): one package a kind (``camgen/kinds/<kind>/``), registered here by one line,
+the one place a kind is looked up; a kind of an installed plugin is registered by its entry point in the group
+:data:`GROUP` (:func:`plugins`).
 
 A kind (:class:`~camgen.kinds.base.Kind`) says which table chooses it, which followers it drives, which formats its
 files come in, how its spec is designed, bundled into files, summarised on the console and sized, what a family's
-summary shows of it and which starter templates ``camgen new`` writes of it. Its methods import its design and
-output modules when first called, so this registry stays light. Disc and plate cams share one design (a flat plate
-cut to a profile, :class:`~camgen.kinds.shared.FlatKind`); a grooved cam's design makes its inner flank that way too
-(see :mod:`camgen.grooved`); a barrel cam's developed pitch curve is a plate cam's (see :mod:`camgen.barrel`); a
-conjugate pair's first cam is the disc cam and its second is designed from the second roller's path (see
-:mod:`camgen.conjugate`). A Geneva drive has a ``[geneva]`` table of its own, which chooses it.
+summary shows of it and which starter templates ``camgen new`` writes of it. A kind's package holds its kind
+(``kind.py``, which ``__init__.py`` exports as ``KIND``), its starters and, as it needs them, its design, files, page,
+figures and pure-numpy ``kinematics.py``; its methods import its design and output modules when first called, so
+this registry stays light. No kind's package imports another's: what kinds share lives outside them. Disc and plate
+cams share one design (a flat plate cut to a profile, :class:`~camgen.kinds.shared.FlatKind`); a grooved cam's
+design makes its inner flank that way too (see :mod:`camgen.kinds.grooved`); a barrel cam's developed pitch curve is
+a plate cam's (see :mod:`camgen.kinds.barrel`); a conjugate pair's first cam is the disc cam and its second is
+designed from the second roller's path (see :mod:`camgen.kinds.conjugate`). A Geneva drive has a ``[geneva]`` table
+of its own, which chooses it.
 
 The command line, the family, the starters and the library's calls (:mod:`camgen.api`) ask :data:`KINDS`:
 :func:`kind_for` for a raw template, :func:`spec_kind` for a validated spec.
 """
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
+from importlib.metadata import EntryPoint, entry_points
 from typing import Any
 
 from camgen.core.errors import SpecError
@@ -24,15 +30,51 @@ from camgen.kinds import barrel, conjugate, disc, geneva, grooved, plate
 from camgen.kinds.base import CAM_TABLE, Kind
 from camgen.kinds.shared import SharedTableKind
 
-#: every kind by its name (``cam.kind``'s value, or its own table's name), in the order ``camgen new`` lists them
-KINDS: Mapping[str, Kind[Any, Any]] = registry((
-    disc.KIND,
-    plate.KIND,
-    grooved.KIND,
-    barrel.KIND,
-    conjugate.KIND,
-    geneva.KIND,
-), lambda kind: (kind.name,), "cam.kind", "a cam kind")
+#: the entry-point group a distribution declares its cam kinds in (``eccentric = my_package.kind:KIND``)
+GROUP = "camgen.kinds"
+#: the kinds this package holds, in the order ``camgen new`` lists them
+BUILT_IN: tuple[Kind[Any, Any], ...] = (disc.KIND, plate.KIND, grooved.KIND, barrel.KIND, conjugate.KIND, geneva.KIND)
+
+
+def plugins(found: Iterable[EntryPoint], taken: Iterable[str]) -> tuple[Kind[Any, Any], ...]:
+    """The kinds the entry points ``found`` (of :data:`GROUP`) load, each the object its entry point names.
+
+    Parameters
+    ----------
+    found : iterable of EntryPoint
+        The installed distributions' entry points of :data:`GROUP`, each named as its kind (``cam.kind``'s value,
+        or its own table's name).
+    taken : iterable of str
+        The built-in kinds' names, which no plugin may take.
+
+    Raises
+    ------
+    SpecError
+        One line on ``camgen.kinds``: an entry point named as a built-in kind, one that cannot be loaded, or one
+        whose kind has another name than the entry point's.
+    """
+    taken = set(taken)
+    kinds = []
+    for entry in sorted(found, key=lambda e: e.name):
+        where = f"the plugin kind {entry.name!r} ({entry.value})"
+        if entry.name in taken:
+            raise SpecError(f"{where} is named as a built-in kind; its distribution must give it another name",
+                            GROUP)
+        try:
+            kind = entry.load()
+        except Exception as exc:                         # a plugin's own failure, whatever it is: one line
+            raise SpecError(f"{where} cannot be loaded: {type(exc).__name__}: {exc}", GROUP) from None
+        if getattr(kind, "name", None) != entry.name:
+            raise SpecError(f"{where} loads a kind named {getattr(kind, 'name', None)!r}, not {entry.name!r}", GROUP)
+        kinds.append(kind)
+    return tuple(kinds)
+
+
+#: every kind by its name (``cam.kind``'s value, or its own table's name): the built-in ones in the order ``camgen
+#: new`` lists them, then those of installed plugins (:func:`plugins`) by name
+KINDS: Mapping[str, Kind[Any, Any]] = registry(
+    (*BUILT_IN, *plugins(entry_points(group=GROUP), (kind.name for kind in BUILT_IN))),
+    lambda kind: (kind.name,), "cam.kind", "a cam kind")
 
 #: the kinds chosen by ``cam.kind``, each with its own ``[cam]`` table (:mod:`camgen.tables`), whose ``kind`` names
 #: and the spec's validation checks values by (:attr:`~camgen.kinds.shared.SharedTableKind.check`)

@@ -41,7 +41,7 @@ def roots() -> dict[str, list[Table]]:
     """Every kind of template, by the name the directive takes, as its tables in order."""
     from camgen.core.coupon import CouponSpec
     from camgen.core.family import _SheetTemplate
-    from camgen.geneva.spec import GenevaSpec
+    from camgen.kinds.geneva.table import GenevaSpec
     from camgen.spec import CamSpec
     from camgen.tables import CAM_TABLES
     from linkgen.mechanisms import MECHANISMS

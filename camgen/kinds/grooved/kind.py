@@ -1,0 +1,72 @@
+"""The grooved face (track) cam: a disc whose face carries a groove the roller runs in, driving it both ways.
+
+The groove's two flanks are the exact offsets of the pitch curve by +/-(Rr + c/2), Rr the
+roller's radius and c ``cam.running_clearance``; the groove is a pocket ``cam.groove_depth``
+mm deep in the face (see :mod:`camgen.kinds.grooved`). Positive drive holds the follower without a
+spring, so rollers only, and no spring or preload; at ``cam.rpm`` with a mass the report gives the forces, the
+flank that carries them and the torque (:func:`camgen.forces.drive_report`). The pitch curve
+is the disc cam's (prime radius = base radius + roller radius).
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING, Any
+
+from camgen.kinds.base import Operations, SizeReport, Starter, flat_follower
+from camgen.kinds.grooved.starters import STARTERS
+from camgen.kinds.shared import SharedTableKind
+
+if TYPE_CHECKING:
+    from camgen.kinds.grooved.design import GroovedDesign
+    from camgen.spec import GroovedSpec
+
+FOLLOWERS = ("translating-roller", "oscillating-roller")
+
+
+def _check(spec: Any) -> None:
+    flat_follower(spec)
+    cam, follower = spec.cam, spec.follower
+    if follower.type not in FOLLOWERS:
+        raise ValueError(f"follower.type: a grooved cam takes a translating-roller or oscillating-roller follower "
+                         f"(got {follower.type!r})")
+    if not cam.groove_depth < cam.thickness:
+        raise ValueError(f"cam.groove_depth: must be < cam.thickness {cam.thickness:g} mm (got {cam.groove_depth:g})")
+    for key in ("spring_rate", "preload", "contact_margin"):
+        if getattr(follower, key) is not None:
+            raise ValueError(f"follower.{key}: a grooved cam drives the follower both ways (positive drive): no "
+                             "return spring and no contact check (its forces need only follower.mass)")
+    if spec.hub.boss_diameter:
+        raise ValueError("hub.boss_diameter: a boss would stand on the grooved face, where the follower runs; mount "
+                         "a grooved cam by its bore (hub.keyway) or hub.bolt_circle holes")
+
+
+class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
+    """A grooved face cam (``cam.kind = "grooved"``): designed by
+    :func:`camgen.kinds.grooved.design.design_grooved`, written by :func:`camgen.kinds.grooved.outputs.grooved_bundle`;
+    its console lines are a disc cam's and the groove's."""
+
+    name: str = "grooved"
+    title: str = "a grooved cam"
+    followers: tuple[str, ...] = FOLLOWERS
+    check: Callable[[GroovedSpec], None] = staticmethod(_check)
+    starters: Mapping[str, Starter] = STARTERS
+
+    @property
+    def spec(self) -> type[GroovedSpec]:
+        from camgen.spec import GroovedSpec
+
+        return GroovedSpec
+
+    def operations(self) -> Operations[GroovedSpec, GroovedDesign]:
+        from camgen.kinds.grooved.design import design_grooved, size_grooved
+        from camgen.kinds.grooved.outputs import groove_summary, grooved_bundle
+        from camgen.outputs import cam_row
+        from camgen.report import cam_summary
+
+        return Operations(design_grooved, grooved_bundle,
+                          lambda design, report: [*cam_summary(design, report), groove_summary(report)],
+                          lambda design, report: cam_row(design, report, design.outline.contour.flatten),
+                          lambda spec: SizeReport(size_grooved(spec)))
+
+
+KIND = GroovedKind()
