@@ -23,6 +23,7 @@ from camgen.core.registry import registry
 from camgen.kinds import barrel, conjugate, disc, geneva, grooved, plate
 from camgen.kinds.base import CAM_TABLE, Kind
 from camgen.kinds.shared import SharedTableKind
+from camgen.machine.kind import KIND as MACHINE
 
 #: every kind by its name (``cam.kind``'s value, or its own table's name), in the order ``camgen new`` lists them
 KINDS: Mapping[str, Kind[Any, Any]] = registry((
@@ -32,6 +33,7 @@ KINDS: Mapping[str, Kind[Any, Any]] = registry((
     barrel.KIND,
     conjugate.KIND,
     geneva.KIND,
+    MACHINE,
 ), lambda kind: (kind.name,), "cam.kind", "a cam kind")
 
 #: the kinds chosen by ``cam.kind``, each with its own ``[cam]`` table (:mod:`camgen.tables`), whose ``kind`` names
