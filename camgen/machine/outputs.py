@@ -45,12 +45,14 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
     out = design.spec.output
     formats, name = tuple(out.formats), design.spec.name
     items: list[Item | None] = []
+    cams = []
     for cam in design.cams:
-        bundle, _ = spec_kind(cam.design.spec).bundle(cam.design)
+        bundle, cam_report = spec_kind(cam.design.spec).bundle(cam.design)
         items += _scoped(bundle.items, cam.name, formats)
+        cams.append(cam_report)
     for m in design.linkages:
         items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats)
-    report = machine_report(design)
+    report = {**machine_report(design), **_parts_summary(cams)}
 
     def plot() -> Any:
         from camgen.machine.plots import timing_figure
@@ -63,6 +65,18 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
                       ["csv"] if "json" in formats else []))
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
     return Bundle.of(items, out.write_options), report
+
+
+def _parts_summary(cams: list[dict[str, Any]]) -> dict[str, Any]:
+    """What the machine's report says of its cams' parts together, from their own reports: the largest distance of
+    an exported outline from the exact one and the finest tolerance (mm), and whether every printed cam's mesh is
+    watertight (where one is made)."""
+    out: dict[str, Any] = {"outline_max_error_mm": max(r.get("outline_max_error_mm", 0.0) for r in cams),
+                           "tolerance_mm": min(r.get("tolerance_mm", float("inf")) for r in cams)}
+    meshes = [r["mesh"] for r in cams if isinstance(r.get("mesh"), dict)]
+    if meshes:
+        out["mesh"] = {"watertight": all(m.get("watertight") for m in meshes), "cams": len(meshes)}
+    return out
 
 
 def machine_row(design: MachineDesign, report: dict[str, Any]) -> dict[str, Any]:
