@@ -12,9 +12,9 @@ if TYPE_CHECKING:
     from camgen.machine.design import MachineDesign
     from camgen.machine.spec import MachineSpec
 
-#: what a machine writes: its cams' and linkages' files (those of their kinds that these name), the timing diagram
-#: and the report
-MACHINE_FORMATS = frozenset(("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg"))
+#: what a machine writes: its cams' and linkages' files (those of their kinds that these name; html their own
+#: pages), the timing diagram and the report
+MACHINE_FORMATS = frozenset(("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html"))
 
 #: ``camgen new machine``: one cam whose follower's arm is a four-bar's crank
 STARTERS = {

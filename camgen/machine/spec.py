@@ -118,16 +118,17 @@ class Coupling(Model):
 
 
 #: the formats a machine writes (its cams' and linkages' files of these formats, its timing diagram, its report)
-MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg"]
+MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html"]
 
 
 class MachineOutputTable(OutputTable):
     """A machine's ``[output]``: which of its cams' and linkages' files, its timing diagram and its report to
-    write (no page and no STEP file of the whole machine yet)."""
+    write (no page and no STEP file of the whole machine yet: html writes each cam's and linkage's own page)."""
 
     formats: tuple[MachineFormat, ...] = Field(
         ("dxf", "cut-svg", "stl", "3mf", "json"), min_length=1, description="files to write: each cam's and "
-        "linkage's of these formats, the timing diagram as png and svg (and its CSV with json), the report as json")
+        "linkage's of these formats (html: each one's own page), the timing diagram as png and svg (and its CSV "
+        "with json), the report as json")
 
 
 class MachineSpec(TemplateSpec):
