@@ -207,22 +207,16 @@ def _refused(tmp_path, raw: dict, message: str) -> None:
     assert_refused(_write(tmp_path, raw), {}, message, tmp_path)
 
 
-def test_a_follower_coupled_to_a_link_that_does_not_exist(tmp_path):
+@pytest.mark.parametrize("key, value, message", [
+    ("link", "lever", "couplings[0].link: linkages.arm-bars has no link 'lever'; its links: ground, crank"),
+    ("linkage", "leg", "couplings[0].linkage: no linkage 'leg'; linkages: arm-bars"),
+    ("link", "rocker", "couplings[0].link: the follower's arm is a four-bar's input link, its crank"),
+    ("cam", "tail", "couplings[0].cam: no cam 'tail'; cams: head, jaw, arm"),
+])
+def test_a_follower_coupled_to_what_does_not_exist(tmp_path, key, value, message):
     raw = _raw()
-    raw["couplings"][0]["link"] = "lever"
-    _refused(tmp_path, raw, "couplings[0].link: linkages.arm-bars has no link 'lever'; its links: ground, crank")
-
-
-def test_a_follower_coupled_to_a_linkage_that_does_not_exist(tmp_path):
-    raw = _raw()
-    raw["couplings"][0]["linkage"] = "leg"
-    _refused(tmp_path, raw, "couplings[0].linkage: no linkage 'leg'; linkages: arm-bars")
-
-
-def test_a_follower_coupled_to_the_rocker_is_refused(tmp_path):
-    raw = _raw()
-    raw["couplings"][0]["link"] = "rocker"
-    _refused(tmp_path, raw, "couplings[0].link: the follower's arm is a four-bar's input link, its crank")
+    raw["couplings"][0][key] = value
+    _refused(tmp_path, raw, message)
 
 
 def test_two_cams_on_one_shaft_at_one_layer(tmp_path):

@@ -45,27 +45,26 @@ STARTERS = {
 
 
 class MachineKind(KindBase["MachineSpec", "MachineDesign"]):
-    """A machine (a ``[machine]`` table): cams on phased shafts driving four-bars through their followers' arms."""
+    """A machine (a ``[machine]`` table): cams on phased shafts driving four-bars through their followers' arms.
+    Its modules are imported when first asked for, so the registry stays light."""
 
     name: str = "machine"
+    starters: Mapping[str, Starter] = STARTERS
+    formats: frozenset[str] = MACHINE_FORMATS
     title: str = "a machine"
     table_key: str = "machine"
-    formats: frozenset[str] = MACHINE_FORMATS
     unsized: str = "a machine has no base radius of its own to size; size each cam's template"
-    starters: Mapping[str, Starter] = STARTERS
 
     @property
     def spec(self) -> type[MachineSpec]:
-        from camgen.machine.spec import MachineSpec
+        from camgen.machine import spec
 
-        return MachineSpec
+        return spec.MachineSpec
 
     def operations(self) -> Operations[MachineSpec, MachineDesign]:
-        from camgen.machine.design import design_machine
-        from camgen.machine.outputs import machine_bundle, machine_row
-        from camgen.machine.report import summary_lines
+        from camgen.machine import design, outputs, report
 
-        return Operations(design_machine, machine_bundle, lambda design, report: summary_lines(report), machine_row)
+        return Operations(design.design_machine, outputs.machine_bundle, report.summary, outputs.machine_row)
 
     def sheet_refusal(self, spec: Any) -> str | None:
         return "a machine's cams and linkages write their own cut files; a family's [sheet] nests single cams"

@@ -1,7 +1,7 @@
 """The machine's timing diagram: every output against the main shaft's angle, each normalised to its own range
 (0 at its lowest, 1 at its highest) on a row of its own, its dwells shaded and the runs where it moves together
-with another output (an overlap) marked beneath (a follower and the four-bar it drives move together by construction: not
-marked). matplotlib's object API, imported only when a plot is asked for.
+with another output (an overlap) marked beneath (not with the four-bar a follower drives: they move together by
+construction). matplotlib's object API, imported only when a plot is asked for.
 """
 from __future__ import annotations
 

@@ -113,6 +113,11 @@ def timing_rows(design: MachineDesign) -> list[dict[str, Any]]:
     return [{k: _num(v[j]) for k, v in columns.items()} for j in range(len(design.phi))]
 
 
+def summary(design: MachineDesign, report: dict[str, Any]) -> list[str]:
+    """What ``camgen build`` prints of ``design``, whose written report is ``report`` (:func:`summary_lines`)."""
+    return summary_lines(report)
+
+
 def summary_lines(report: dict[str, Any]) -> list[str]:
     """What ``camgen build`` prints of a machine's report."""
     lines = [f"{report['name']}: a machine of {len(report['cams'])} cam(s) and {len(report['linkages'])} "

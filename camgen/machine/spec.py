@@ -11,16 +11,15 @@ at another distance than its pitch circles need, a coupling loop (a shaft driven
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from functools import cached_property
-from pathlib import Path
 from typing import Any, ClassVar, Literal
 
 from pydantic import ConfigDict, Field, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.spec import (MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec, check_kind,
-                              name_field, notes, read_template, unit, validate)
+                              name_field, notes, read_template, unit)
 
 #: the most shafts, gear pairs, cams, linkages or couplings a machine may have
 MAX_MOUNTS = 20
@@ -35,6 +34,13 @@ ARMS = ("oscillating-roller", "oscillating-flat")
 
 MountName = Field(pattern=NAME_PATTERN, description="its name: letters, digits, '.', '_', '-' (its files' names "
                   "are <machine>-<name>)")
+
+
+def _template_field(description: str, allowed: str) -> Any:
+    """A mount's ``template`` field: an inline template or the path of a template file (relative to the current
+    folder)."""
+    return Field(description=f"{description} (relative to the current folder)",
+                 json_schema_extra=notes(allowed=allowed))
 
 
 class MachineTable(Model):
@@ -85,22 +91,19 @@ class CamMount(Model):
     phase: float = Field(0.0, ge=0, lt=360, description="the shaft's angle (turned from the machine's start) at "
                          "which the cam's program starts: its motion over the turn is its program shifted by this",
                          json_schema_extra=unit("degrees"))
-    template: str | dict[str, Any] = Field(description="the cam: a cam template in its own terms ([cam], "
-                                           "[follower], [[motion]] as an inline table) or a cam template file's "
-                                           "path (relative to the current folder)",
-                                           json_schema_extra=notes(allowed="a cam of any kind, not a Geneva drive "
-                                                                   "or a machine; its cam.rpm is the shaft's"))
+    template: str | dict[str, Any] = _template_field("the cam: a cam template in its own terms ([cam], [follower], "
+                                                     "[[motion]] as an inline table) or a cam template file's path",
+                                                     "a cam of any kind, not a Geneva drive or a machine; its "
+                                                     "cam.rpm is the shaft's")
 
 
 class LinkageMount(Model):
     """A linkage of the machine: a linkgen template."""
 
     name: str = MountName
-    template: str | dict[str, Any] = Field(description="the linkage: a linkgen template ([linkage], [parts]) as an "
-                                           "inline table, or a linkgen template file's path (relative to the "
-                                           "current folder)",
-                                           json_schema_extra=notes(allowed="driven by a coupling: a four-bar "
-                                                                   "driven by its crank"))
+    template: str | dict[str, Any] = _template_field("the linkage: a linkgen template ([linkage], [parts]) as an "
+                                                     "inline table, or a linkgen template file's path",
+                                                     "driven by a coupling: a four-bar driven by its crank")
 
 
 class Coupling(Model):
@@ -146,9 +149,6 @@ class MachineSpec(TemplateSpec):
         Which files to write (each cam's and linkage's own files are those of these formats its kind writes).
     """
 
-    kind: ClassVar[str] = "machine"
-    product: ClassVar[str] = "camgen"
-    noun: ClassVar[str] = "a machine"
     name: str = name_field("machine")
     machine: MachineTable
     shafts: tuple[ShaftTable, ...] = Field(min_length=1, max_length=MAX_MOUNTS, description="the shafts")
@@ -158,14 +158,10 @@ class MachineSpec(TemplateSpec):
     couplings: tuple[Coupling, ...] = Field((), max_length=MAX_MOUNTS, description="each follower driving a "
                                             "linkage")
     output: MachineOutputTable = MachineOutputTable()
-
-    @classmethod
-    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> MachineSpec:
-        """The machine of the raw template ``raw``; a cam's template (a ``[cam]`` table) refused naming
-        ``template``."""
-        if "cam" in raw:
-            raise SpecError(f"a cam, not {cls.noun}", "template")
-        return validate(cls, raw)
+    #: its kind's name (the registry's key), the command that builds it and how a message names it
+    kind: ClassVar[str] = "machine"
+    product: ClassVar[str] = "camgen"
+    noun: ClassVar[str] = "a machine"
 
     @model_validator(mode="after")
     def _whole(self) -> MachineSpec:
