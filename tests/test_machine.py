@@ -394,3 +394,20 @@ def test_every_solid_reads_back_closed(built):
         assert all(stats[k] == 0 for k in stats if k != "volume"), (name, stats)
         assert stats["volume"] > 0
         assert "manifold = yes" in _prusa(out / name), name
+
+
+def test_a_grooved_cam_drives_a_four_bar_as_a_disc_does():
+    """The arm's cam made a grooved cam (its inner flank is the disc cam's profile): the same program gives the
+    same rocker, the composition being the follower's, whatever carries it; a positive drive has no spring to size,
+    so the reflected load is carried into its report without a contact check."""
+    raw = _raw()
+    cam = raw["cams"][2]["template"]
+    cam["cam"].update(kind="grooved", groove_depth=3.0, running_clearance=0.2, rim=5.0)
+    for key in ("mass", "spring_rate", "preload"):
+        del cam["follower"][key]
+    design = _design(raw)
+    assert type(design.cam("arm").design).__name__ == "GroovedDesign"
+    expected = _independent_rocker(design, design.phi)
+    assert np.abs(np.angle(np.exp(1j * (design.linkages[0].theta4 - expected)))).max() < 1e-9
+    plain = _design(_raw())
+    assert np.abs(design.linkages[0].torque - plain.linkages[0].torque).max() < 1e-12
