@@ -411,3 +411,32 @@ def test_a_grooved_cam_drives_a_four_bar_as_a_disc_does():
     assert np.abs(np.angle(np.exp(1j * (design.linkages[0].theta4 - expected)))).max() < 1e-9
     plain = _design(_raw())
     assert np.abs(design.linkages[0].torque - plain.linkages[0].torque).max() < 1e-12
+
+
+def test_a_cam_shaft_turning_part_of_a_main_turn_is_refused(tmp_path):
+    """Over one main turn such a cam runs part of its program: the machine's cycle would be several main turns."""
+    raw = _raw()
+    raw["shafts"].append({"name": "second", "at": [0.0, 60.0]})
+    raw["gears"] = [{"driver": "camshaft", "driven": "second", "driver_teeth": 20, "driven_teeth": 40,
+                     "module": 2.0}]
+    raw["cams"][0]["shaft"] = "second"
+    _refused(tmp_path, raw, "cams[0].shaft: shaft second turns 0.5 times a turn of the main shaft")
+
+
+def test_a_cam_template_by_its_path(tmp_path):
+    """A mount's template may be a cam template file; the machine renames it and sets its speed."""
+    raw = _raw()
+    raw["cams"][0]["template"] = str(ROOT / "templates" / "oscillating.toml")
+    design = _design(raw)
+    head = design.cam("head").design.spec
+    assert head.name == "automaton-head" and head.cam.rpm == 20.0
+    assert head.motion[0].lift == 20.0                            # oscillating.toml's own program
+    missing = _raw()
+    missing["cams"][0]["template"] = str(tmp_path / "nowhere.toml")
+    _refused(tmp_path, missing, "cams[0].template: ")
+
+
+def test_a_linkage_template_that_is_a_cam_is_refused(tmp_path):
+    raw = _raw()
+    raw["linkages"][0]["template"] = str(ROOT / "templates" / "rdrd.toml")
+    _refused(tmp_path, raw, "linkages[0].template: this is a camgen template")

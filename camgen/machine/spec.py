@@ -182,6 +182,11 @@ class MachineSpec(TemplateSpec):
             if cam.shaft not in self.turns:
                 raise ValueError(f"cams[{i}].shaft: shaft {cam.shaft} is not driven: no gear pair connects it to "
                                  f"the main shaft {self.machine.main}")
+            turns = abs(self.turns[cam.shaft])
+            if abs(turns - round(turns)) > 1e-9:
+                raise ValueError(f"cams[{i}].shaft: shaft {cam.shaft} turns {turns:.6g} times a turn of the main "
+                                 f"shaft; a cam's shaft turns a whole number of times a main turn (so one main turn "
+                                 f"is the machine's cycle): make the slowest shaft the main one")
             other = seats.setdefault((cam.shaft, cam.layer), cam.name)
             if other != cam.name:
                 raise ValueError(f"cams[{i}].layer: cams.{other} already sits on shaft {cam.shaft} at layer "
