@@ -13,7 +13,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
-from camgen.core.bundle import Written, with_formats, write_bundle
+from camgen.core.bundle import Bundle, Written, with_formats, write_bundle
 from linkgen.linkage_design import LinkageDesign, design_linkage
 from linkgen.outputs import linkage_bundle, linkage_report
 from linkgen.spec import LinkageSpec, load_spec, validate_spec
@@ -84,3 +84,10 @@ def write(design: LinkageDesign, directory: str | Path, formats: Iterable[str] |
     """
     design = with_formats(design, formats)
     return Written.of(linkage_report(design), write_bundle(linkage_bundle(design), directory), directory)
+
+
+def bundle(design: LinkageDesign) -> tuple[Bundle, dict[str, Any]]:
+    """The files of ``design`` that its ``output.formats`` asks for, made but not written, and its report (as
+    ``linkgen analyze`` gives it, without the ``files`` map): what a camgen machine writes of a linkage it
+    drives, beside its own files."""
+    return linkage_bundle(design), linkage_report(design)

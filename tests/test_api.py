@@ -219,8 +219,8 @@ def test_no_changes_give_the_same_spec(path):
     raw = tomllib.loads(path.read_text())
     if "sweep" in raw or "task" in raw:
         pytest.skip("a family or a synthesis task: no single spec")
-    spec = (linkgen.LinkageSpec if "linkage" in raw else camgen.CamSpec if "cam" in raw else camgen.GenevaSpec
-            ).from_toml(path)
+    spec = (linkgen.LinkageSpec if "linkage" in raw else camgen.CamSpec if "cam" in raw else camgen.MachineSpec
+            if "machine" in raw else camgen.GenevaSpec).from_toml(path)
     assert spec.with_changes({}) == spec and type(spec.with_changes({})) is type(spec)
 
 

@@ -28,7 +28,7 @@ from tests.conftest import ROOT
 
 #: a bundled template of each kind
 TEMPLATES = {"disc": "rdrd.toml", "plate": "plate.toml", "grooved": "grooved.toml", "barrel": "barrel.toml",
-             "conjugate": "conjugate.toml", "geneva": "geneva4.toml"}
+             "conjugate": "conjugate.toml", "geneva": "geneva4.toml", "machine": "automaton.toml"}
 
 
 def _raw(name: str, **changes: Any) -> dict[str, Any]:
@@ -45,7 +45,7 @@ def _run(args: list[Any]) -> tuple[int, str]:
 
 
 def test_every_kind_is_registered_once_and_chosen_by_its_template():
-    assert list(KINDS) == ["disc", "plate", "grooved", "barrel", "conjugate", "geneva"]
+    assert list(KINDS) == ["disc", "plate", "grooved", "barrel", "conjugate", "geneva", "machine"]
     assert set(TEMPLATES) == set(KINDS)
     for name, template in TEMPLATES.items():
         raw = _raw(template)
@@ -84,6 +84,12 @@ def _own(name: str, spec: Any) -> tuple[Any, Any, Any]:
         from camgen.kinds.conjugate.outputs import conjugate_bundle, summary_lines
 
         return design_conjugate, conjugate_bundle, lambda d, r: summary_lines(r)
+    if name == "machine":
+        from camgen.machine.design import design_machine
+        from camgen.machine.outputs import machine_bundle
+        from camgen.machine.report import summary_lines as machine_lines
+
+        return design_machine, machine_bundle, lambda d, r: machine_lines(r)
     from camgen.kinds.geneva.design import design_geneva
     from camgen.kinds.geneva.outputs import geneva_bundle
     from camgen.kinds.geneva.report import summary_lines
@@ -125,9 +131,10 @@ def test_a_disc_cam_s_family_row_is_its_outline_and_the_overview_draws_its_bore(
     assert barrel["thumbnail"] and "thumbnail_bore" not in barrel
     # the bore the overview draws in each thumbnail, by the kind: a flat cam's cam.bore as its template gives it
     # (rdrd 10, grooved 8, conjugate 12 mm; a plate has none), none in a barrel drawn unrolled (its template's bore
-    # is 10 mm) nor in a Geneva wheel
+    # is 10 mm) nor in a Geneva wheel, nor a machine (no outline of its own)
     bores = {name: api.thumbnail_bore(api.load(ROOT / "templates" / template)) for name, template in TEMPLATES.items()}
-    assert bores == {"disc": 10.0, "plate": 0.0, "grooved": 8.0, "barrel": 0.0, "conjugate": 12.0, "geneva": 0.0}
+    assert bores == {"disc": 10.0, "plate": 0.0, "grooved": 8.0, "barrel": 0.0, "conjugate": 12.0, "geneva": 0.0,
+                     "machine": 0.0}
 
 
 def test_sizing_through_the_registry_meets_the_limit_it_names():

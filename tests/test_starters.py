@@ -52,7 +52,7 @@ def test_every_linkage_starter_analyses_and_builds(tmp_path, kind):
 def test_every_kind_has_a_starter():
     assert set(LINKAGE_STARTERS) == set(MECHANISMS)
     assert {"translating-roller", "knife-edge", "translating-flat", "oscillating-roller", "oscillating-flat",
-            "plate", "grooved", "barrel", "conjugate", "geneva"} == set(CAM_STARTERS)
+            "plate", "grooved", "barrel", "conjugate", "geneva", "machine"} == set(CAM_STARTERS)
 
 
 def test_comments_are_the_models_descriptions(tmp_path):

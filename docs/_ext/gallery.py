@@ -23,6 +23,7 @@ from sphinx.util.docutils import SphinxDirective
 GROUPS = (
     ("Disc cams", ("disc",)), ("Plate cams", ("plate",)), ("Grooved face cams", ("grooved",)),
     ("Barrel cams", ("barrel",)), ("Conjugate cams", ("conjugate",)), ("Geneva drives", ("geneva",)),
+    ("Machines: cams driving linkages", ("machine",)),
     ("Four-bars, slider-cranks, quick returns and straight-line linkages", ("mechanism",)),
     ("Any planar linkage: six-bars, legs, presses", ("linkage",)), ("Kits", ("kit",)),
     ("Families", ("family",)), ("Synthesis", ("synthesis",)),
@@ -50,6 +51,8 @@ def kind_of(path: Path, command: str) -> str:
         return "kit"
     if "geneva" in raw:
         return "geneva"
+    if "machine" in raw:
+        return "machine"
     if "linkage" in raw:
         return "linkage" if raw["linkage"].get("type") == "linkage" else "mechanism"
     return str(raw.get("cam", {}).get("kind", "disc"))
@@ -104,8 +107,8 @@ def shown(name: str, folder: Path) -> dict[str, Path | None]:
     """The files an entry shows: its figure, its cut drawing and its page (None where the build has none)."""
     return {
         "figure": _first(folder, (f"{name}-svaj.svg", f"{name}-assembly.svg", f"{name}-motion.svg",
-                                  f"{name}-transmission.svg", "*-1-curve.svg", "*-1-motion.svg", "*/*-assembly.svg",
-                                  "*/*-svaj.svg", "*/*.svg", "*.svg")),
+                                  f"{name}-timing.svg", f"{name}-transmission.svg", "*-1-curve.svg", "*-1-motion.svg",
+                                  "*/*-assembly.svg", "*/*-svaj.svg", "*/*.svg", "*.svg")),
         "drawing": _first(folder, (f"{name}-cut.svg", f"{name}-sheet.svg", f"{name}-developed.svg", f"{name}-1-cut.svg",
                                    "*/*-cut.svg", "*/*-sheet.svg")),
         "page": _first(folder, (f"{name}.html", "overview.html", "*/*.html")),

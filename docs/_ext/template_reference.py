@@ -42,6 +42,7 @@ def roots() -> dict[str, list[Table]]:
     from camgen.core.coupon import CouponSpec
     from camgen.core.family import _SheetTemplate
     from camgen.kinds.geneva.table import GenevaSpec
+    from camgen.machine.spec import MachineSpec
     from camgen.spec import CamSpec
     from camgen.tables import CAM_TABLES
     from linkgen.mechanisms import MECHANISMS
@@ -63,6 +64,7 @@ def roots() -> dict[str, list[Table]]:
     return {
         "cam": _ordered(cam),
         "geneva": list(tables(GenevaSpec, "")),
+        "machine": list(tables(MachineSpec, "")),
         "coupon": list(tables(CouponSpec, "")),
         "family": list(tables(_SheetTemplate, ""))[1:],
         "linkage": _ordered(linkage),
@@ -71,7 +73,7 @@ def roots() -> dict[str, list[Table]]:
 
 
 #: every directive argument
-ROOTS = ("cam", "geneva", "coupon", "family", "linkage", "synthesis")
+ROOTS = ("cam", "geneva", "machine", "coupon", "family", "linkage", "synthesis")
 
 
 def _ordered(found: list[Table]) -> list[Table]:

@@ -1,0 +1,288 @@
+"""A machine designed: every cam by its kind (the registry, :mod:`camgen.kinds`), every coupled four-bar driven
+through the range its follower swings it, every output over one turn of the main shaft with its rates, the
+checks together and the forces carried back onto each follower and camshaft. Nothing is written.
+
+A four-bar driven past a toggle (a crank angle out of its reach) is a :class:`SpecError` naming the coupling, the
+cam and the linkage. The linkage's ``output_torque`` is reflected onto its follower as a load against cam angle
+(camgen's ``follower.load_table``), and the cam is designed again with it, so its own contact check (with its
+follower's mass and spring) says whether the follower stays on the cam with the linkage attached and what preload
+or spring rate would hold it (:func:`camgen.dynamics.speed_report`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from camgen.core.errors import SpecError
+from camgen.kinds import spec_kind
+from camgen.machine import motion
+from camgen.machine.spec import Coupling, MachineSpec
+from linkgen import api as linkgen_api
+from linkgen.kinematics.fourbar import FourBar
+
+#: rows of the reflected load table (cam angle, degrees) a coupled cam is designed again with
+LOAD_ROWS = 360
+#: the least transmission angle (degrees from square or flat, whichever is nearer) not warned of
+TRANSMISSION_WARN_DEG = 40.0
+
+
+@dataclass(frozen=True)
+class CamMotion:
+    """One cam of the machine: its mount's name, its design (by its kind), its shaft's turns per main turn, its
+    program angles theta (radians) at the machine's shaft angles and its follower's (s, s', s'') there (camgen's
+    units: mm or degrees of swing, per radian of the program)."""
+
+    name: str
+    design: Any
+    turns: float
+    phase_deg: float
+    theta: np.ndarray
+    follower: np.ndarray
+
+    @property
+    def unit(self) -> str:
+        """The follower's unit: ``"deg"`` for an arm's swing, ``"mm"`` for a translating follower."""
+        return str(_cam_of(self.design).follower.lift_unit)
+
+    @property
+    def rate(self) -> np.ndarray:
+        """d s / d phi: the follower's rate per radian of the main shaft."""
+        return self.follower[1] * abs(self.turns)
+
+
+@dataclass(frozen=True)
+class LinkageMotion:
+    """One coupled four-bar over the turn (arrays by the machine's shaft angles; angles in radians).
+
+    Attributes
+    ----------
+    name, cam : str
+        Its mount's name and the cam whose follower drives it.
+    coupling : Coupling
+        The coupling.
+    design : LinkageDesign
+        Its linkgen design (its own report and parts).
+    fourbar : FourBar
+        Its kinematics.
+    chain : Chain
+        The crank's angle and rates per radian of the main shaft.
+    theta3, theta4, gamma : ndarray
+        Coupler and rocker angles, transmission angle.
+    k3, k4 : ndarray
+        d theta3 / d theta2 and d theta4 / d theta2.
+    rocker_rate, rocker_acc : ndarray
+        d theta4 / d phi (rad/rad) and d^2 theta4 / d phi^2.
+    point, point_rate : ndarray
+        (n, 2) the coupler point (mm, the linkage's frame) and d P / d phi (mm/rad).
+    force : ndarray
+        The output torque reflected onto the follower's roller (N, pressing it onto the cam).
+    torque : ndarray
+        The main shaft's torque working against the output torque (N*m).
+    """
+
+    name: str
+    cam: str
+    coupling: Coupling
+    design: Any
+    fourbar: FourBar
+    chain: motion.Chain
+    theta3: np.ndarray
+    theta4: np.ndarray
+    gamma: np.ndarray
+    k3: np.ndarray
+    k4: np.ndarray
+    rocker_rate: np.ndarray
+    rocker_acc: np.ndarray
+    point: np.ndarray
+    point_rate: np.ndarray
+    force: np.ndarray
+    torque: np.ndarray
+
+
+@dataclass(frozen=True)
+class Output:
+    """One output of the timing diagram: its ``label`` (``cams.head`` a follower, ``linkages.arm`` a rocker), its
+    ``unit`` and its ``values`` and ``rate`` (per radian of the main shaft) at the machine's shaft angles."""
+
+    label: str
+    unit: str
+    values: np.ndarray
+    rate: np.ndarray
+
+    @property
+    def still(self) -> np.ndarray:
+        """Where it stands still (:func:`camgen.machine.motion.still`)."""
+        return motion.still(self.rate, self.values)
+
+
+@dataclass(frozen=True)
+class MachineDesign:
+    """Everything known about a machine before anything is written: its spec, the main shaft's angles ``phi``
+    (radians, one turn), each cam's motion and each coupled linkage's, and the warnings."""
+
+    spec: MachineSpec
+    phi: np.ndarray
+    cams: tuple[CamMotion, ...]
+    linkages: tuple[LinkageMotion, ...]
+    warnings: tuple[str, ...]
+
+    @property
+    def tolerance(self) -> float:
+        """The finest chord tolerance (mm) its cams were made to."""
+        return min(float(c.design.tolerance) for c in self.cams)
+
+    @property
+    def omega(self) -> float:
+        """The main shaft's speed (rad/s)."""
+        return self.spec.machine.rpm * math.pi / 30.0
+
+    @property
+    def outputs(self) -> tuple[Output, ...]:
+        """The timing diagram's outputs in order: each follower (its swing in degrees, or its lift in mm), then each
+        coupled four-bar's rocker (its angle in degrees)."""
+        cams = tuple(Output(f"cams.{c.name}", c.unit, c.follower[0], c.rate) for c in self.cams)
+        return (*cams, *(Output(f"linkages.{m.name}", "deg", np.degrees(m.theta4), np.degrees(m.rocker_rate))
+                         for m in self.linkages))
+
+    @property
+    def shaft_torque(self) -> np.ndarray:
+        """The main shaft's torque (N*m) working against every linkage's output torque, at its angles."""
+        return sum((m.torque for m in self.linkages), np.zeros_like(self.phi))
+
+    def cam(self, name: str) -> CamMotion:
+        """The cam mounted as ``name``."""
+        return next(c for c in self.cams if c.name == name)
+
+    def _repr_svg_(self) -> str:
+        """Jupyter shows the timing diagram."""
+        import io
+
+        from camgen.machine.plots import timing_figure
+
+        text = io.StringIO()
+        timing_figure(self).savefig(text, format="svg")
+        return text.getvalue()
+
+    def _repr_html_(self) -> str | None:
+        return None
+
+
+def _cam_of(design: Any) -> Any:
+    """The kinematic cam (:class:`~camgen.cam.Cam`) of a cam kind's design: its own, or its profile's (a grooved
+    cam's island)."""
+    cam = getattr(design, "cam", None)
+    if cam is None:
+        cam = getattr(getattr(design, "profile", None), "cam", None)
+    return cam
+
+
+def design_machine(spec: MachineSpec) -> MachineDesign:
+    """The machine ``spec`` describes: its cams designed by their kinds, its couplings composed over one turn.
+
+    Raises
+    ------
+    SpecError
+        A cam whose kind has no single follower program to drive a linkage with (naming ``cams[i].template``), a
+        four-bar whose follower swings it past a toggle (naming ``couplings[i]``, the cam and the linkage).
+    DesignError
+        A cam or linkage that cannot be made as asked (its own message, the key under its template).
+    """
+    phi = motion.shaft_angles(spec.machine.samples)
+    cams = {mount.name: _cam_motion(spec, i, phi) for i, mount in enumerate(spec.cams)}
+    linkages = []
+    warnings: list[str] = []
+    for i, coupling in enumerate(spec.couplings):
+        index = next(j for j, m in enumerate(spec.linkages) if m.name == coupling.linkage)
+        found = _linkage_motion(spec, i, index, cams[coupling.cam])
+        linkages.append(found)
+        worst = float(np.degrees(np.min(np.minimum(found.gamma, math.pi - found.gamma))))
+        if worst < TRANSMISSION_WARN_DEG:
+            warnings.append(f"linkages.{coupling.linkage}: the transmission angle comes within {worst:.1f} degrees "
+                            f"of a toggle over the range cams.{coupling.cam} drives it through")
+        if coupling.output_torque:
+            cams[coupling.cam] = _loaded(spec, cams[coupling.cam], found)
+    for c in cams.values():
+        warnings += [f"cams.{c.name}: {w}" for w in c.design.warnings]
+    return MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings))
+
+
+def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray) -> CamMotion:
+    """The cam of ``spec.cams[index]`` designed by its kind, and its follower's motion at shaft angles ``phi``."""
+    mount, cam_spec = spec.cams[index], spec.cam_specs[index]
+    try:
+        design = spec_kind(cam_spec).design(cam_spec)
+    except SpecError as exc:
+        raise exc.under(f"cams[{index}].template") from None
+    cam = _cam_of(design)
+    if cam is None:
+        raise SpecError(f"{spec_kind(cam_spec).title} has no single follower program for a machine to drive "
+                        "with; give a disc, plate or grooved cam", f"cams[{index}].template")
+    turns = spec.turns[mount.shaft]
+    theta = motion.program_angles(phi, turns, math.radians(mount.phase))
+    return CamMotion(mount.name, design, turns, mount.phase, theta, cam.program.evaluate(theta)[:3])
+
+
+def _linkage_motion(spec: MachineSpec, index: int, mount_index: int, cam: CamMotion) -> LinkageMotion:
+    """The four-bar of ``spec.linkages[mount_index]`` driven by ``cam``'s follower through coupling ``index``."""
+    coupling, lspec = spec.couplings[index], spec.linkage_specs[mount_index]
+    table = lspec.linkage
+    fb = FourBar(table.ground, table.crank, table.coupler, table.rocker, table.point_distance,
+                 math.radians(table.point_angle))
+    chain = motion.crank_chain(coupling.rest, cam.follower, cam.turns)
+    _check_reach(fb, chain.theta2, index, coupling)
+    poses = fb.positions(chain.theta2, table.assembly)
+    k3, k4, _, k4d = fb.rates(poses)
+    rocker_rate, rocker_acc = motion.output_rates(k4, k4d, chain)
+    arm = float(_cam_of(cam.design).follower.arm_length)
+    try:
+        design = linkgen_api.design(lspec, parts=lspec.parts is not None)
+    except SpecError as exc:
+        raise exc.under(f"linkages[{mount_index}].template") from None
+    return LinkageMotion(
+        coupling.linkage, coupling.cam, coupling, design, fb, chain, poses.theta3, poses.theta4, poses.gamma, k3, k4,
+        rocker_rate, rocker_acc, poses.point,
+        motion.point_rate(fb.crank, fb.point_distance, fb.point_angle, poses.theta3, k3, chain),
+        motion.reflected_force(coupling.output_torque, k4, arm),
+        motion.shaft_torque(coupling.output_torque, k4, chain))
+
+
+def _check_reach(fb: FourBar, theta2: np.ndarray, index: int, coupling: Coupling) -> None:
+    """Refuse a follower that swings the crank out of the four-bar's reach (past a toggle), naming both."""
+    ranges = fb.input_ranges()
+    if ranges is None:
+        return
+    lo, hi = float(theta2.min()), float(theta2.max())
+    for a, b in ranges:
+        shift = math.floor((lo - a) / motion.TWO_PI) * motion.TWO_PI     # the range's copy at or below lo
+        for base in (a + shift, a + shift + motion.TWO_PI):
+            if base <= lo and hi <= base - a + b:
+                return
+    reach = " or ".join(f"[{math.degrees(a):.4g}, {math.degrees(b):.4g}]" for a, b in ranges)
+    raise SpecError(f"cams.{coupling.cam}'s follower swings the crank of linkages.{coupling.linkage} through "
+                    f"[{math.degrees(lo):.4g}, {math.degrees(hi):.4g}] degrees (rest {coupling.rest:g} + its swing), "
+                    f"past a toggle: this four-bar's crank reaches {reach} degrees; change couplings[{index}].rest, "
+                    "the cam's lift or the linkage", f"couplings[{index}]")
+
+
+def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMotion:
+    """``cam`` designed again with the linkage's output torque reflected onto its follower as a load table (cam
+    angle in degrees, N pressing onto the cam), sampled at :data:`LOAD_ROWS` program angles."""
+    index = next(i for i, m in enumerate(spec.cams) if m.name == cam.name)
+    theta = np.arange(LOAD_ROWS) * (motion.TWO_PI / LOAD_ROWS)
+    swing = _cam_of(cam.design).program.evaluate(theta)[:3]
+    chain = motion.crank_chain(linkage.coupling.rest, swing, 1.0)
+    poses = linkage.fourbar.positions(chain.theta2, spec.linkage_specs[
+        next(i for i, m in enumerate(spec.linkages) if m.name == linkage.name)].linkage.assembly)
+    k4 = linkage.fourbar.rates(poses)[1]
+    arm = float(_cam_of(cam.design).follower.arm_length)
+    force = motion.reflected_force(linkage.coupling.output_torque, k4, arm)
+    rows = [[round(float(a), 9), round(float(f), 9)] for a, f in zip(np.degrees(theta), force, strict=True)]
+    cam_spec = spec.cam_specs[index].with_changes({"follower.load_table": rows})
+    try:
+        design = spec_kind(cam_spec).design(cam_spec)
+    except SpecError as exc:
+        raise exc.under(f"cams[{index}].template") from None
+    return CamMotion(cam.name, design, cam.turns, cam.phase_deg, cam.theta, cam.follower)

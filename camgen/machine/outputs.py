@@ -1,0 +1,86 @@
+"""A machine as files: each cam's and each linkage's own files (their kinds' bundles, named
+``<machine>-<mount>...`` beside the machine's, their report keys under ``<mount>.``), the timing diagram
+(``<name>-timing.png|svg`` and ``<name>-timing.csv``) and the machine's report ``<name>.json``. Only the formats
+``output.formats`` asks for are made; nothing is written if any file fails.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from camgen.core.bundle import Bundle, Entry, Item, Report, item
+from camgen.kinds import spec_kind
+from camgen.machine.design import MachineDesign
+from camgen.machine.report import machine_report, timing_rows
+from linkgen import api as linkgen_api
+
+
+@dataclass(frozen=True)
+class Scoped:
+    """A sub-bundle's payload that names its bundle's files (a report): given the machine's ``files`` map, it
+    sees only its own, their keys without the mount's ``prefix``."""
+
+    payload: Any
+    prefix: str
+
+    def with_files(self, files: dict[str, str]) -> Any:
+        own = {k.removeprefix(self.prefix): v for k, v in files.items() if k.startswith(self.prefix)}
+        return self.payload.with_files(own)
+
+
+def _scoped(items: tuple[Item, ...], mount: str, formats: tuple[str, ...]) -> list[Item]:
+    """A sub-bundle's ``items`` with the entries of ``formats`` only, their keys under ``<mount>.``."""
+    prefix = f"{mount}."
+    out = []
+    for it in items:
+        entries = tuple(Entry(e.format, prefix + e.key, e.name) for e in it.entries if e.format in formats)
+        if entries:
+            payload = Scoped(it.payload, prefix) if hasattr(it.payload, "with_files") else it.payload
+            out.append(Item(payload, entries))
+    return out
+
+
+def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
+    """The files of a machine and its report (without the ``files`` map, which the bundle adds)."""
+    out = design.spec.output
+    formats, name = tuple(out.formats), design.spec.name
+    items: list[Item | None] = []
+    cams = []
+    for cam in design.cams:
+        bundle, cam_report = spec_kind(cam.design.spec).bundle(cam.design)
+        items += _scoped(bundle.items, cam.name, formats)
+        cams.append(cam_report)
+    for m in design.linkages:
+        items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats)
+    report = {**machine_report(design), **_parts_summary(cams)}
+
+    def plot() -> Any:
+        from camgen.machine.plots import timing_figure
+
+        return timing_figure(design)
+
+    items.append(item(plot, [("png", "timing_png", f"{name}-timing.png"), ("svg", "timing_svg",
+                                                                          f"{name}-timing.svg")], formats))
+    items.append(item(lambda: timing_rows(design), [("csv", "timing_csv", f"{name}-timing.csv")],
+                      ["csv"] if "json" in formats else []))
+    items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
+    return Bundle.of(items, out.write_options), report
+
+
+def _parts_summary(cams: list[dict[str, Any]]) -> dict[str, Any]:
+    """What the machine's report says of its cams' parts together, from their own reports: the largest distance of
+    an exported outline from the exact one and the finest tolerance (mm), and whether every printed cam's mesh is
+    watertight (where one is made)."""
+    out: dict[str, Any] = {"outline_max_error_mm": max(r.get("outline_max_error_mm", 0.0) for r in cams),
+                           "tolerance_mm": min(r.get("tolerance_mm", float("inf")) for r in cams)}
+    meshes = [r["mesh"] for r in cams if isinstance(r.get("mesh"), dict)]
+    if meshes:
+        out["mesh"] = {"watertight": all(m.get("watertight") for m in meshes), "cams": len(meshes)}
+    return out
+
+
+def machine_row(design: MachineDesign, report: dict[str, Any]) -> dict[str, Any]:
+    """A family member's summary row: its cams' and linkages' counts, the torque and its files."""
+    return {"cams": len(report["cams"]), "linkages": len(report["linkages"]),
+            "shaft_torque_max_n_m": report["shaft_torque_n_m"]["max"],
+            "files": " ".join(sorted(report["files"].values())), "thumbnail": []}

@@ -1,0 +1,139 @@
+"""A machine's report (its ``<name>.json``, in mm, degrees, N and N*m) and the lines ``camgen build`` prints.
+
+Angles of the timing diagram are the main shaft's, in degrees from the machine's start; a dwell is a run of shaft
+angles where an output's rate is at most 1e-9 of its range per radian (to the sampling's step, 360 /
+``machine.samples`` degrees), an overlap a run where two outputs both move.
+"""
+from __future__ import annotations
+
+from itertools import combinations
+from typing import Any
+
+import numpy as np
+
+from camgen.machine import motion
+from camgen.machine.design import MachineDesign, Output, _cam_of
+
+
+def _num(value: float, digits: int = 9) -> float:
+    """A float for the report, rounded to ``digits`` decimals."""
+    return round(float(value), digits)
+
+
+def _runs(runs: list[tuple[float, float]]) -> list[list[float]]:
+    return [[_num(a, 6), _num(b, 6)] for a, b in runs]
+
+
+def _profile(design: Any) -> Any:
+    """The design holding a cam's analysis: itself, or its profile (a grooved cam's island)."""
+    return design if hasattr(design, "analysis") else design.profile
+
+
+def timing(design: MachineDesign) -> dict[str, Any]:
+    """The timing diagram's figures: each output's range, dwells and moving runs, and each pair's overlaps (a
+    follower and the linkage it drives left out: they move together by construction)."""
+    outputs = design.outputs
+    coupled = {(f"cams.{m.cam}", f"linkages.{m.name}") for m in design.linkages}
+    rows = [{"output": o.label, "unit": o.unit, "min": _num(o.values.min()), "max": _num(o.values.max()),
+             "dwells_deg": _runs(motion.intervals(o.still)), "moving_deg": _runs(motion.intervals(~o.still))}
+            for o in outputs]
+    overlaps = [{"outputs": [a.label, b.label], "deg": _runs(motion.overlap(~a.still, ~b.still))}
+                for a, b in combinations(outputs, 2) if (a.label, b.label) not in coupled]
+    return {"samples": len(design.phi), "step_deg": 360.0 / len(design.phi), "outputs": rows,
+            "overlaps": [o for o in overlaps if o["deg"]]}
+
+
+def _cam_entry(design: MachineDesign, index: int) -> dict[str, Any]:
+    cam, mount = design.cams[index], design.spec.cams[index]
+    profile = _profile(cam.design)
+    speed = getattr(profile, "speed", None) or getattr(cam.design, "speed", None) or {}
+    contact = speed.get("contact") if isinstance(speed, dict) else None
+    out = {"shaft": mount.shaft, "layer": mount.layer, "phase_deg": mount.phase, "kind": cam.design.spec.kind,
+           "turns_per_main_turn": cam.turns, "rpm": cam.design.spec.cam.rpm,
+           "follower": cam.design.spec.follower.type, "unit": cam.unit,
+           "follower_min": _num(cam.follower[0].min()), "follower_max": _num(cam.follower[0].max()),
+           "pressure_angle_max_deg": _num(profile.analysis.pressure_angle_max_deg, 6),
+           "base_radius_mm": _num(_cam_of(cam.design).base_radius, 6), "files_prefix": cam.design.spec.name}
+    if contact:
+        out["contact"] = {k: v for k, v in contact.items() if not isinstance(v, list)}
+    return out
+
+
+def _linkage_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
+    omega = design.omega
+    gamma = np.degrees(m.gamma)
+    return {"cam": m.cam, "rest_deg": m.coupling.rest, "output_torque_n_m": m.coupling.output_torque,
+            "crank_deg": [_num(np.degrees(m.chain.theta2.min())), _num(np.degrees(m.chain.theta2.max()))],
+            "rocker_deg": [_num(np.degrees(m.theta4.min())), _num(np.degrees(m.theta4.max()))],
+            "rocker_omega_max_rad_s": _num(np.abs(m.rocker_rate).max() * omega),
+            "rocker_alpha_max_rad_s2": _num(np.abs(m.rocker_acc).max() * omega ** 2),
+            "transmission_deg": [_num(gamma.min(), 6), _num(gamma.max(), 6)],
+            "tracer_mm": {"x": [_num(m.point[:, 0].min(), 6), _num(m.point[:, 0].max(), 6)],
+                          "y": [_num(m.point[:, 1].min(), 6), _num(m.point[:, 1].max(), 6)],
+                          "speed_max_mm_s": _num(np.hypot(*m.point_rate.T).max() * omega, 6)},
+            "reflected_force_n": [_num(m.force.min(), 6), _num(m.force.max(), 6)],
+            "shaft_torque_n_m": [_num(m.torque.min(), 6), _num(m.torque.max(), 6)],
+            "files_prefix": m.design.spec.name}
+
+
+def machine_report(design: MachineDesign) -> dict[str, Any]:
+    """The report of ``design`` without its ``files`` map (which the bundle adds)."""
+    spec = design.spec
+    torque = design.shaft_torque
+    return {
+        "name": spec.name, "kind": "machine",
+        "conventions": "main shaft angles in degrees from the machine's start; a follower's swing in degrees (away "
+                       "from its cam), a lift in mm; four-bar angles counter-clockwise from its ground line; torques "
+                       "in N*m, counter-clockwise positive; per-second rates at machine.rpm",
+        "machine": {"main": spec.machine.main, "rpm": spec.machine.rpm, "omega_rad_s": _num(design.omega),
+                    "samples": spec.machine.samples},
+        "shafts": [{"name": s.name, "at_mm": list(s.at), "turns_per_main_turn": spec.turns.get(s.name)}
+                   for s in spec.shafts],
+        "gears": [g.model_dump() for g in spec.gears],
+        "cams": {c.name: _cam_entry(design, i) for i, c in enumerate(design.cams)},
+        "linkages": {m.name: _linkage_entry(design, m) for m in design.linkages},
+        "timing": timing(design),
+        "shaft_torque_n_m": {"min": _num(torque.min(), 6), "max": _num(torque.max(), 6),
+                             "mean": _num(torque.mean(), 9),
+                             "note": "the main shaft's torque against the linkages' output torques (virtual work: "
+                                     "their power over the shaft's speed); each cam's own follower forces are in "
+                                     "its own report"},
+        "warnings": list(design.warnings),
+    }
+
+
+def timing_rows(design: MachineDesign) -> list[dict[str, Any]]:
+    """The timing diagram as CSV rows: the main shaft's angle (degrees), then each output's value and its
+    normalised value (0 to 1 over its range)."""
+    outputs: tuple[Output, ...] = design.outputs
+    columns = {"shaft_deg": np.degrees(design.phi)}
+    for o in outputs:
+        columns[f"{o.label}_{o.unit}"] = o.values
+        columns[f"{o.label}_normalised"] = motion.normalised(o.values)
+    return [{k: _num(v[j]) for k, v in columns.items()} for j in range(len(design.phi))]
+
+
+def summary(design: MachineDesign, report: dict[str, Any]) -> list[str]:
+    """What ``camgen build`` prints of ``design``, whose written report is ``report`` (:func:`summary_lines`)."""
+    return summary_lines(report)
+
+
+def summary_lines(report: dict[str, Any]) -> list[str]:
+    """What ``camgen build`` prints of a machine's report."""
+    lines = [f"{report['name']}: a machine of {len(report['cams'])} cam(s) and {len(report['linkages'])} "
+             f"linkage(s) at {report['machine']['rpm']:g} rpm"]
+    for name, cam in report["cams"].items():
+        held = cam.get("contact", {}).get("holds")
+        lines.append(f"  cams.{name}: {cam['kind']} on {cam['shaft']} (layer {cam['layer']}, phase "
+                     f"{cam['phase_deg']:g} deg), follower {cam['follower_min']:.4g} to {cam['follower_max']:.4g} "
+                     f"{cam['unit']}, pressure angle <= {cam['pressure_angle_max_deg']:.2f} deg"
+                     + ("" if held is None else f", contact {'holds' if held else 'LOST'}"))
+    for name, m in report["linkages"].items():
+        lines.append(f"  linkages.{name}: driven by cams.{m['cam']}, rocker {m['rocker_deg'][0]:.2f} to "
+                     f"{m['rocker_deg'][1]:.2f} deg, transmission {m['transmission_deg'][0]:.1f} to "
+                     f"{m['transmission_deg'][1]:.1f} deg")
+    t = report["shaft_torque_n_m"]
+    if t["min"] or t["max"]:
+        lines.append(f"  main shaft torque against the linkages' loads: {t['min']:.4g} to {t['max']:.4g} N*m")
+    return lines
+

@@ -1,0 +1,338 @@
+"""The machine's template: a ``[machine]`` table (the main shaft and its speed), ``[[shafts]]``, ``[[gears]]``,
+``[[cams]]``, ``[[linkages]]`` and ``[[couplings]]``, validated into a frozen :class:`MachineSpec`.
+
+Each cam is a cam template in its own terms (``template``: an inline table, or the path of a cam template file,
+relative to the current folder) mounted on a shaft at a ``phase`` and a ``layer``; each linkage a linkgen template
+likewise. The machine names every sub-template ``<machine>-<mount>`` (its files' names) and sets each cam's
+``cam.rpm`` to its shaft's speed. Every cross-reference is checked here, one :class:`SpecError` naming the field:
+a shaft, cam, linkage or link that does not exist, two cams on one shaft at one layer, a gear pair whose shafts lie
+at another distance than its pitch circles need, a coupling loop (a shaft driven twice, or round a ring of gears).
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from functools import cached_property
+from typing import Any, ClassVar, Literal
+
+from pydantic import ConfigDict, Field, model_validator
+
+from camgen.core.errors import SpecError
+from camgen.core.spec import (MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec, check_kind,
+                              name_field, notes, read_template, unit)
+
+#: the most shafts, gear pairs, cams, linkages or couplings a machine may have
+MAX_MOUNTS = 20
+#: the most layers a shaft may stack its cams in
+MAX_LAYER = 50
+#: how far apart (mm) a gear pair's shafts may lie from the sum of its pitch radii
+GEAR_DISTANCE_TOL_MM = 0.01
+#: the four-bar's links a coupling may name, and the one a follower arm can be (its input)
+FOUR_BAR_LINKS = ("ground", "crank", "coupler", "rocker")
+#: the follower types whose arm can be a linkage's input link
+ARMS = ("oscillating-roller", "oscillating-flat")
+
+MountName = Field(pattern=NAME_PATTERN, description="its name: letters, digits, '.', '_', '-' (its files' names "
+                  "are <machine>-<name>)")
+
+
+def _template_field(description: str, allowed: str) -> Any:
+    """A mount's ``template`` field: an inline template or the path of a template file (relative to the current
+    folder)."""
+    return Field(description=f"{description} (relative to the current folder)",
+                 json_schema_extra=notes(allowed=allowed))
+
+
+class MachineTable(Model):
+    """The machine's input: the main shaft and its speed."""
+
+    model_config = ConfigDict(title="a machine")
+
+    main: str = Field(description="the main shaft's name (one of [[shafts]]), the machine's input")
+    rpm: float = Field(gt=0, le=10_000, description="the main shaft's speed", json_schema_extra=unit("rpm"))
+    samples: int = Field(720, ge=36, le=36_000, description="shaft angles over one turn of the main shaft at which "
+                         "every output, the timing diagram and the forces are evaluated")
+
+
+class ShaftTable(Model):
+    """A shaft: a fixed pivot on the frame."""
+
+    name: str = Field(pattern=NAME_PATTERN, description="the shaft's name")
+    at: tuple[float, float] = Field(description="the shaft's centre on the frame (x, y)",
+                                    json_schema_extra=unit("mm", allowed=f"|x|, |y| <= {MAX_LENGTH_MM:g}"))
+
+    @model_validator(mode="after")
+    def _on_the_frame(self) -> ShaftTable:
+        if any(abs(v) > MAX_LENGTH_MM for v in self.at):
+            raise ValueError(f"at: each coordinate within +-{MAX_LENGTH_MM:g} mm (got {list(self.at)})")
+        return self
+
+
+class GearTable(Model):
+    """A pair of external spur gears between two shafts: the driven shaft turns the other way, driver_teeth /
+    driven_teeth times as fast."""
+
+    driver: str = Field(description="the driving shaft's name")
+    driven: str = Field(description="the driven shaft's name")
+    driver_teeth: int = Field(ge=6, le=400, description="teeth of the driver's gear")
+    driven_teeth: int = Field(ge=6, le=400, description="teeth of the driven gear")
+    module: float = Field(gt=0, le=50, description="the gears' module: pitch diameter / teeth",
+                          json_schema_extra=unit("mm", allowed="the shafts lie module (driver_teeth + driven_teeth) "
+                                                 f"/ 2 apart, within {GEAR_DISTANCE_TOL_MM:g} mm"))
+
+
+class CamMount(Model):
+    """A cam on a shaft: a cam template, its phase and its layer."""
+
+    name: str = MountName
+    shaft: str = Field(description="the shaft it turns with (one of [[shafts]])")
+    layer: int = Field(0, ge=0, le=MAX_LAYER, description="its plane along the shaft, 0 nearest the frame; two "
+                       "cams on one shaft take different layers")
+    phase: float = Field(0.0, ge=0, lt=360, description="the shaft's angle (turned from the machine's start) at "
+                         "which the cam's program starts: its motion over the turn is its program shifted by this",
+                         json_schema_extra=unit("degrees"))
+    template: str | dict[str, Any] = _template_field("the cam: a cam template in its own terms ([cam], [follower], "
+                                                     "[[motion]] as an inline table) or a cam template file's path",
+                                                     "a cam of any kind, not a Geneva drive or a machine; its "
+                                                     "cam.rpm is the shaft's")
+
+
+class LinkageMount(Model):
+    """A linkage of the machine: a linkgen template."""
+
+    name: str = MountName
+    template: str | dict[str, Any] = _template_field("the linkage: a linkgen template ([linkage], [parts]) as an "
+                                                     "inline table, or a linkgen template file's path",
+                                                     "driven by a coupling: a four-bar driven by its crank")
+
+
+class Coupling(Model):
+    """A cam's follower driving a linkage: the follower's arm is the linkage's input link, its pivot the linkage's
+    input pivot, and the linkage's input angle is ``rest`` + the follower's swing."""
+
+    cam: str = Field(description="the cam whose follower drives (one of [[cams]]): an oscillating follower")
+    linkage: str = Field(description="the linkage it drives (one of [[linkages]])")
+    link: str = Field("crank", description="the linkage's link the follower's arm is: its input link")
+    rest: float = Field(ge=-360, le=360, description="the linkage's input angle (from its ground line, "
+                        "counter-clockwise) with the follower at rest (swing 0)", json_schema_extra=unit("degrees"))
+    output_torque: float = Field(0.0, ge=-1e4, le=1e4, description="an external torque on the linkage's output "
+                                 "link (counter-clockwise positive), which the machine holds and works against: "
+                                 "reflected onto the follower and the camshaft", json_schema_extra=unit("N*m"))
+
+
+#: the formats a machine writes (its cams' and linkages' files of these formats, its timing diagram, its report)
+MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html"]
+
+
+class MachineOutputTable(OutputTable):
+    """A machine's ``[output]``: which of its cams' and linkages' files, its timing diagram and its report to
+    write (no page and no STEP file of the whole machine yet: html writes each cam's and linkage's own page)."""
+
+    formats: tuple[MachineFormat, ...] = Field(
+        ("dxf", "cut-svg", "stl", "3mf", "json"), min_length=1, description="files to write: each cam's and "
+        "linkage's of these formats (html: each one's own page), the timing diagram as png and svg (and its CSV "
+        "with json), the report as json")
+
+
+class MachineSpec(TemplateSpec):
+    """A whole machine template, validated (every key: the template reference); frozen.
+
+    Parameters
+    ----------
+    name : str
+        The machine's name, used for its files.
+    machine : MachineTable
+        The main shaft and its speed.
+    shafts, gears, cams, linkages, couplings : tuple
+        The frame's shafts, the gear pairs between them, the cams on them, the linkages and what drives them.
+    output : OutputTable
+        Which files to write (each cam's and linkage's own files are those of these formats its kind writes).
+    """
+
+    name: str = name_field("machine")
+    machine: MachineTable
+    shafts: tuple[ShaftTable, ...] = Field(min_length=1, max_length=MAX_MOUNTS, description="the shafts")
+    gears: tuple[GearTable, ...] = Field((), max_length=MAX_MOUNTS, description="gear pairs between shafts")
+    cams: tuple[CamMount, ...] = Field(min_length=1, max_length=MAX_MOUNTS, description="the cams on the shafts")
+    linkages: tuple[LinkageMount, ...] = Field((), max_length=MAX_MOUNTS, description="the linkages")
+    couplings: tuple[Coupling, ...] = Field((), max_length=MAX_MOUNTS, description="each follower driving a "
+                                            "linkage")
+    output: MachineOutputTable = MachineOutputTable()
+    #: its kind's name (the registry's key), the command that builds it and how a message names it
+    kind: ClassVar[str] = "machine"
+    product: ClassVar[str] = "camgen"
+    noun: ClassVar[str] = "a machine"
+
+    @model_validator(mode="after")
+    def _whole(self) -> MachineSpec:
+        shafts = _unique([s.name for s in self.shafts], "shafts")
+        cams = _unique([c.name for c in self.cams], "cams")
+        _unique([m.name for m in self.linkages], "linkages")
+        for i, m in enumerate(self.linkages):
+            if m.name in cams:
+                raise ValueError(f"linkages[{i}].name: {m.name!r} names cams[{cams.index(m.name)}] already (their "
+                                 "files share the machine's folder: give each mount a name of its own)")
+        if self.machine.main not in shafts:
+            raise ValueError(f"machine.main: no shaft {self.machine.main!r}; shafts: {', '.join(shafts)}")
+        self._check_gears(shafts)
+        seats: dict[tuple[str, int], str] = {}
+        for i, cam in enumerate(self.cams):
+            if cam.shaft not in shafts:
+                raise ValueError(f"cams[{i}].shaft: no shaft {cam.shaft!r}; shafts: {', '.join(shafts)}")
+            if cam.shaft not in self.turns:
+                raise ValueError(f"cams[{i}].shaft: shaft {cam.shaft} is not driven: no gear pair connects it to "
+                                 f"the main shaft {self.machine.main}")
+            turns = abs(self.turns[cam.shaft])
+            if abs(turns - round(turns)) > 1e-9:
+                raise ValueError(f"cams[{i}].shaft: shaft {cam.shaft} turns {turns:.6g} times a turn of the main "
+                                 f"shaft; a cam's shaft turns a whole number of times a main turn (so one main turn "
+                                 f"is the machine's cycle): make the slowest shaft the main one")
+            other = seats.setdefault((cam.shaft, cam.layer), cam.name)
+            if other != cam.name:
+                raise ValueError(f"cams[{i}].layer: cams.{other} already sits on shaft {cam.shaft} at layer "
+                                 f"{cam.layer}; give another layer (0 to {MAX_LAYER})")
+        self.cam_specs, self.linkage_specs                  # noqa: B018 (each sub-template validated here)
+        self._check_couplings()
+        return self
+
+    def _check_gears(self, shafts: list[str]) -> None:
+        at = {s.name: s.at for s in self.shafts}
+        driven: dict[str, int] = {}
+        for i, g in enumerate(self.gears):
+            for key in ("driver", "driven"):
+                if getattr(g, key) not in at:
+                    raise ValueError(f"gears[{i}].{key}: no shaft {getattr(g, key)!r}; shafts: {', '.join(shafts)}")
+            if g.driven == self.machine.main or g.driven == g.driver:
+                raise ValueError(f"gears[{i}].driven: a coupling loop: shaft {g.driven} is the "
+                                 + ("main shaft, the machine's input" if g.driven == self.machine.main else
+                                    "driver itself"))
+            if g.driven in driven:
+                raise ValueError(f"gears[{i}].driven: a coupling loop: shaft {g.driven} is driven by "
+                                 f"gears[{driven[g.driven]}] already")
+            driven[g.driven] = i
+            need = g.module * (g.driver_teeth + g.driven_teeth) / 2
+            apart = math.dist(at[g.driver], at[g.driven])
+            if abs(apart - need) > GEAR_DISTANCE_TOL_MM:
+                raise ValueError(f"gears[{i}].module: the shafts {g.driver} and {g.driven} lie {apart:.6g} mm "
+                                 f"apart; these gears need {need:.6g} mm (module x (driver_teeth + driven_teeth) "
+                                 f"/ 2)")
+        for i, g in enumerate(self.gears):
+            seen, shaft = [g.driven], g.driver
+            while shaft in driven:
+                if shaft in seen:
+                    raise ValueError(f"gears[{i}]: a coupling loop: " + " -> ".join([*seen, shaft]))
+                seen.append(shaft)
+                shaft = self.gears[driven[shaft]].driver
+
+    def _check_couplings(self) -> None:
+        cams = {c.name: i for i, c in enumerate(self.cams)}
+        linkages = {m.name: i for i, m in enumerate(self.linkages)}
+        driving: dict[str, int] = {}
+        driven: dict[str, int] = {}
+        for i, c in enumerate(self.couplings):
+            if c.cam not in cams:
+                raise ValueError(f"couplings[{i}].cam: no cam {c.cam!r}; cams: {', '.join(cams)}")
+            if c.linkage not in linkages:
+                raise ValueError(f"couplings[{i}].linkage: no linkage {c.linkage!r}; linkages: "
+                                 f"{', '.join(linkages) or 'none'}")
+            if c.cam in driving:
+                raise ValueError(f"couplings[{i}].cam: cams.{c.cam}'s follower drives couplings[{driving[c.cam]}] "
+                                 "already; one arm is one linkage's input link")
+            if c.linkage in driven:
+                raise ValueError(f"couplings[{i}].linkage: a coupling loop: linkages.{c.linkage} is driven by "
+                                 f"couplings[{driven[c.linkage]}] already")
+            driving[c.cam], driven[c.linkage] = i, i
+            follower = self.cam_specs[cams[c.cam]].follower.type
+            if follower not in ARMS:
+                raise ValueError(f"couplings[{i}].cam: cams.{c.cam} has a {follower} follower; a follower drives a "
+                                 f"linkage through its arm: give an oscillating-roller or oscillating-flat follower")
+            table = self.linkage_specs[linkages[c.linkage]].linkage
+            if table.type != "four-bar":
+                raise ValueError(f"couplings[{i}].linkage: linkages.{c.linkage} is a {table.type}; a follower's "
+                                 "arm drives a four-bar's crank")
+            if c.link not in FOUR_BAR_LINKS:
+                raise ValueError(f"couplings[{i}].link: linkages.{c.linkage} has no link {c.link!r}; its links: "
+                                 f"{', '.join(FOUR_BAR_LINKS)}")
+            if c.link != table.input or table.input != "crank":
+                raise ValueError(f"couplings[{i}].link: the follower's arm is a four-bar's input link, its crank "
+                                 f"(linkage.input = \"crank\"), not its {c.link}")
+        for name, i in linkages.items():
+            if name not in driven:
+                raise ValueError(f"linkages[{i}]: linkages.{name} is driven by no coupling; give a [[couplings]] "
+                                 "entry naming it")
+
+    @cached_property
+    def turns(self) -> dict[str, float]:
+        """Each driven shaft's turns per turn of the main shaft, negative where it turns the other way (through an
+        odd number of external gear pairs); shafts no gear pair reaches are left out."""
+        out = {self.machine.main: 1.0}
+        pending = list(self.gears)
+        while pending:
+            ready = [g for g in pending if g.driver in out]
+            if not ready:
+                break
+            for g in ready:
+                out[g.driven] = -out[g.driver] * g.driver_teeth / g.driven_teeth
+                pending.remove(g)
+        return out
+
+    @cached_property
+    def cam_specs(self) -> tuple[Any, ...]:
+        """Each cam's validated cam spec, named ``<machine>-<cam>`` and turning at its shaft's speed."""
+        from camgen.spec import validate_spec
+
+        out = []
+        for i, mount in enumerate(self.cams):
+            where = f"cams[{i}].template"
+            raw = _template(mount.template, where)
+            if "machine" in raw or "cam" not in raw:
+                raise SpecError("a cam template (with a [cam] table); a machine's cams are cams", where)
+            rpm = self.machine.rpm * abs(self.turns[mount.shaft])
+            raw = {**raw, "name": f"{self.name}-{mount.name}", "cam": {**raw["cam"], "rpm": rpm}}
+            try:
+                out.append(validate_spec(raw))
+            except SpecError as exc:
+                raise exc.under(where) from None
+        return tuple(out)
+
+    @cached_property
+    def linkage_specs(self) -> tuple[Any, ...]:
+        """Each linkage's validated linkgen spec, named ``<machine>-<linkage>``."""
+        from linkgen.spec import validate_spec
+
+        out = []
+        for i, mount in enumerate(self.linkages):
+            where = f"linkages[{i}].template"
+            raw = _template(mount.template, where, "linkgen")
+            try:
+                out.append(validate_spec({**raw, "name": f"{self.name}-{mount.name}"}))
+            except SpecError as exc:
+                raise exc.under(where) from None
+        return tuple(out)
+
+
+def _template(given: str | dict[str, Any], where: str, product: str = "camgen") -> dict[str, Any]:
+    """The raw template a mount gives: its inline table, or the file it names read (its ``base`` merged)."""
+    if isinstance(given, str):
+        try:
+            raw = read_template(given)
+        except SpecError as exc:
+            raise SpecError(exc.detail, where) from None
+    else:
+        raw = dict(given)
+    try:
+        check_kind(raw, product)
+    except SpecError as exc:
+        raise SpecError(exc.detail, where) from None
+    return raw
+
+
+def _unique(names: Sequence[str], table: str) -> list[str]:
+    """``names`` where no two are the same, else a :class:`ValueError` naming the second."""
+    seen: list[str] = []
+    for i, name in enumerate(names):
+        if name in seen:
+            raise ValueError(f"{table}[{i}].name: {name!r} names {table}[{seen.index(name)}] already")
+        seen.append(name)
+    return seen
+
