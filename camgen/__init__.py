@@ -40,7 +40,7 @@ _MODULES = {
     "camgen.kinds.geneva.kinematics": ("GenevaLaw",),
     "camgen.kinds.geneva.table": ("GenevaSpec",),
     "camgen.kinds.geneva.design": ("design_geneva", "GenevaDesign"),
-    "camgen.machine.spec": ("MachineSpec",),
+    "camgen.kinds.machine.spec": ("MachineSpec",),
     "camgen.outputs": ("cam_bundle",),
     "camgen.api": ("load", "design", "write", "Design", "write_cam"),
     "camgen.core.shapes": ("Contour", "Circle"),
@@ -80,7 +80,7 @@ if TYPE_CHECKING:      # what an editor and mypy see: the same names, imported (
     from camgen.kinds.geneva.kinematics import GenevaLaw as GenevaLaw
     from camgen.kinds.geneva.table import GenevaSpec as GenevaSpec
     from camgen.kinds.geneva.design import design_geneva as design_geneva, GenevaDesign as GenevaDesign
-    from camgen.machine.spec import MachineSpec as MachineSpec
+    from camgen.kinds.machine.spec import MachineSpec as MachineSpec
     from camgen.outputs import cam_bundle as cam_bundle
     from camgen.api import load as load, design as design, write as write, Design as Design, write_cam as write_cam
     from camgen.core.shapes import Contour as Contour, Circle as Circle

@@ -150,7 +150,7 @@ def _program_dwells(motion: list[dict], phase: float) -> list[tuple[float, float
 
 
 def test_the_timing_dwells_are_the_programs_shifted_by_their_phases(automaton):
-    from camgen.machine.report import timing
+    from camgen.kinds.machine.report import timing
 
     rows = {row["output"]: row for row in timing(automaton)["outputs"]}
     raw = _raw()
@@ -165,7 +165,7 @@ def test_the_timing_dwells_are_the_programs_shifted_by_their_phases(automaton):
 
 
 def test_a_phase_moves_every_dwell_by_itself():
-    from camgen.machine.report import timing
+    from camgen.kinds.machine.report import timing
 
     raw = _raw()
     before = {r["output"]: r for r in timing(_design(raw))["outputs"]}
@@ -178,7 +178,7 @@ def test_a_phase_moves_every_dwell_by_itself():
 
 
 def test_overlaps_are_where_two_outputs_move_together(automaton):
-    from camgen.machine.report import timing
+    from camgen.kinds.machine.report import timing
 
     pairs = {tuple(o["outputs"]): o["deg"] for o in timing(automaton)["overlaps"]}
     assert ("cams.head", "cams.jaw") not in pairs                 # the jaw moves in the head's dwell
@@ -305,7 +305,7 @@ def test_a_gear_pair_turns_a_cam_at_its_ratio():
     assert design.spec.turns["second"] == -2.0
     assert design.cam("head").design.spec.cam.rpm == pytest.approx(40.0)
     # the head's program runs twice over one main turn: four dwells
-    from camgen.machine.report import timing
+    from camgen.kinds.machine.report import timing
 
     head = next(r for r in timing(design)["outputs"] if r["output"] == "cams.head")
     assert len(head["dwells_deg"]) == 4

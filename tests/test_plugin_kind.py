@@ -286,8 +286,8 @@ def test_a_plugin_kind_named_as_a_built_in_one_is_refused_in_one_line(tmp_path):
 
 
 def test_without_plugins_the_registry_holds_the_built_in_kinds_only():
-    """The registry in this interpreter (no plugin on its path) is the six built-in kinds, in order."""
+    """The registry in this interpreter (no plugin on its path) is the seven built-in kinds, in order."""
     from camgen.kinds import KINDS
 
-    assert list(KINDS) == ["disc", "plate", "grooved", "barrel", "conjugate", "geneva"]
+    assert list(KINDS) == ["disc", "plate", "grooved", "barrel", "conjugate", "geneva", "machine"]
 

@@ -85,9 +85,9 @@ def _own(name: str, spec: Any) -> tuple[Any, Any, Any]:
 
         return design_conjugate, conjugate_bundle, lambda d, r: summary_lines(r)
     if name == "machine":
-        from camgen.machine.design import design_machine
-        from camgen.machine.outputs import machine_bundle
-        from camgen.machine.report import summary_lines as machine_lines
+        from camgen.kinds.machine.design import design_machine
+        from camgen.kinds.machine.outputs import machine_bundle
+        from camgen.kinds.machine.report import summary_lines as machine_lines
 
         return design_machine, machine_bundle, lambda d, r: machine_lines(r)
     from camgen.kinds.geneva.design import design_geneva

@@ -26,16 +26,15 @@ from typing import Any
 from camgen.core.errors import SpecError
 from camgen.core.options import choose
 from camgen.core.registry import registry
-from camgen.kinds import barrel, conjugate, disc, geneva, grooved, plate
+from camgen.kinds import barrel, conjugate, disc, geneva, grooved, machine, plate
 from camgen.kinds.base import CAM_TABLE, Kind
 from camgen.kinds.shared import SharedTableKind
-from camgen.machine.kind import KIND as MACHINE
 
 #: the entry-point group a distribution declares its cam kinds in (``eccentric = my_package.kind:KIND``)
 GROUP = "camgen.kinds"
 #: the kinds this package holds, in the order ``camgen new`` lists them
 BUILT_IN: tuple[Kind[Any, Any], ...] = (disc.KIND, plate.KIND, grooved.KIND, barrel.KIND, conjugate.KIND, geneva.KIND,
-                                        MACHINE)
+                                        machine.KIND)
 
 
 def plugins(found: Iterable[EntryPoint], taken: Iterable[str]) -> tuple[Kind[Any, Any], ...]:

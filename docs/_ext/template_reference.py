@@ -42,7 +42,7 @@ def roots() -> dict[str, list[Table]]:
     from camgen.core.coupon import CouponSpec
     from camgen.core.family import _SheetTemplate
     from camgen.kinds.geneva.table import GenevaSpec
-    from camgen.machine.spec import MachineSpec
+    from camgen.kinds.machine.spec import MachineSpec
     from camgen.spec import CamSpec
     from camgen.tables import CAM_TABLES
     from linkgen.mechanisms import MECHANISMS

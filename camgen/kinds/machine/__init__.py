@@ -5,9 +5,11 @@ a frame, the main shaft the input at ``machine.rpm``), gear pairs between shafts
 inline cam template or a path to one, at a phase and a layer), the linkages (likewise, linkgen templates) and the
 couplings: a cam's oscillating follower arm as a four-bar's crank.
 
-* :mod:`~camgen.machine.spec`: the template, validated (every cross-reference checked, one line naming the field);
-* :mod:`~camgen.machine.motion`: the composition, pure numpy (chain rule, dwells and overlaps, virtual work);
-* :mod:`~camgen.machine.design`: every cam designed by its kind, every output over one turn, checks and forces;
-* :mod:`~camgen.machine.report`, :mod:`~camgen.machine.plots`, :mod:`~camgen.machine.outputs`: the files;
-* :mod:`~camgen.machine.kind`: its entry in the kind registry (:data:`camgen.kinds.KINDS`).
+* :mod:`~camgen.kinds.machine.spec`: the template, validated (every cross-reference checked, one line naming the field);
+* :mod:`~camgen.kinds.machine.kinematics`: the composition, pure numpy (chain rule, dwells and overlaps, virtual work);
+* :mod:`~camgen.kinds.machine.design`: every cam designed by its kind, every output over one turn, checks and forces;
+* :mod:`~camgen.kinds.machine.report`, :mod:`~camgen.kinds.machine.plots`, :mod:`~camgen.kinds.machine.outputs`:
+  the files;
+* :mod:`~camgen.kinds.machine.kind`: its entry in the kind registry (:data:`camgen.kinds.KINDS`).
 """
+from .kind import KIND as KIND

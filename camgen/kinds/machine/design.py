@@ -18,8 +18,8 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.machine import motion
-from camgen.machine.spec import Coupling, MachineSpec
+from camgen.kinds.machine import kinematics
+from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
 from linkgen.kinematics.fourbar import FourBar
 
@@ -88,7 +88,7 @@ class LinkageMotion:
     coupling: Coupling
     design: Any
     fourbar: FourBar
-    chain: motion.Chain
+    chain: kinematics.Chain
     theta3: np.ndarray
     theta4: np.ndarray
     gamma: np.ndarray
@@ -114,8 +114,8 @@ class Output:
 
     @property
     def still(self) -> np.ndarray:
-        """Where it stands still (:func:`camgen.machine.motion.still`)."""
-        return motion.still(self.rate, self.values)
+        """Where it stands still (:func:`camgen.kinds.machine.kinematics.still`)."""
+        return kinematics.still(self.rate, self.values)
 
 
 @dataclass(frozen=True)
@@ -160,7 +160,7 @@ class MachineDesign:
         """Jupyter shows the timing diagram."""
         import io
 
-        from camgen.machine.plots import timing_figure
+        from camgen.kinds.machine.plots import timing_figure
 
         text = io.StringIO()
         timing_figure(self).savefig(text, format="svg")
@@ -190,7 +190,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     DesignError
         A cam or linkage that cannot be made as asked (its own message, the key under its template).
     """
-    phi = motion.shaft_angles(spec.machine.samples)
+    phi = kinematics.shaft_angles(spec.machine.samples)
     cams = {mount.name: _cam_motion(spec, i, phi) for i, mount in enumerate(spec.cams)}
     linkages = []
     warnings: list[str] = []
@@ -221,7 +221,7 @@ def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray) -> CamMotion:
         raise SpecError(f"{spec_kind(cam_spec).title} has no single follower program for a machine to drive "
                         "with; give a disc, plate or grooved cam", f"cams[{index}].template")
     turns = spec.turns[mount.shaft]
-    theta = motion.program_angles(phi, turns, math.radians(mount.phase))
+    theta = kinematics.program_angles(phi, turns, math.radians(mount.phase))
     return CamMotion(mount.name, design, turns, mount.phase, theta, cam.program.evaluate(theta)[:3])
 
 
@@ -231,11 +231,11 @@ def _linkage_motion(spec: MachineSpec, index: int, mount_index: int, cam: CamMot
     table = lspec.linkage
     fb = FourBar(table.ground, table.crank, table.coupler, table.rocker, table.point_distance,
                  math.radians(table.point_angle))
-    chain = motion.crank_chain(coupling.rest, cam.follower, cam.turns)
+    chain = kinematics.crank_chain(coupling.rest, cam.follower, cam.turns)
     _check_reach(fb, chain.theta2, index, coupling)
     poses = fb.positions(chain.theta2, table.assembly)
     k3, k4, _, k4d = fb.rates(poses)
-    rocker_rate, rocker_acc = motion.output_rates(k4, k4d, chain)
+    rocker_rate, rocker_acc = kinematics.output_rates(k4, k4d, chain)
     arm = float(_cam_of(cam.design).follower.arm_length)
     try:
         design = linkgen_api.design(lspec, parts=lspec.parts is not None)
@@ -244,9 +244,9 @@ def _linkage_motion(spec: MachineSpec, index: int, mount_index: int, cam: CamMot
     return LinkageMotion(
         coupling.linkage, coupling.cam, coupling, design, fb, chain, poses.theta3, poses.theta4, poses.gamma, k3, k4,
         rocker_rate, rocker_acc, poses.point,
-        motion.point_rate(fb.crank, fb.point_distance, fb.point_angle, poses.theta3, k3, chain),
-        motion.reflected_force(coupling.output_torque, k4, arm),
-        motion.shaft_torque(coupling.output_torque, k4, chain))
+        kinematics.point_rate(fb.crank, fb.point_distance, fb.point_angle, poses.theta3, k3, chain),
+        kinematics.reflected_force(coupling.output_torque, k4, arm),
+        kinematics.shaft_torque(coupling.output_torque, k4, chain))
 
 
 def _check_reach(fb: FourBar, theta2: np.ndarray, index: int, coupling: Coupling) -> None:
@@ -256,8 +256,8 @@ def _check_reach(fb: FourBar, theta2: np.ndarray, index: int, coupling: Coupling
         return
     lo, hi = float(theta2.min()), float(theta2.max())
     for a, b in ranges:
-        shift = math.floor((lo - a) / motion.TWO_PI) * motion.TWO_PI     # the range's copy at or below lo
-        for base in (a + shift, a + shift + motion.TWO_PI):
+        shift = math.floor((lo - a) / kinematics.TWO_PI) * kinematics.TWO_PI     # the range's copy at or below lo
+        for base in (a + shift, a + shift + kinematics.TWO_PI):
             if base <= lo and hi <= base - a + b:
                 return
     reach = " or ".join(f"[{math.degrees(a):.4g}, {math.degrees(b):.4g}]" for a, b in ranges)
@@ -271,14 +271,14 @@ def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMot
     """``cam`` designed again with the linkage's output torque reflected onto its follower as a load table (cam
     angle in degrees, N pressing onto the cam), sampled at :data:`LOAD_ROWS` program angles."""
     index = next(i for i, m in enumerate(spec.cams) if m.name == cam.name)
-    theta = np.arange(LOAD_ROWS) * (motion.TWO_PI / LOAD_ROWS)
+    theta = np.arange(LOAD_ROWS) * (kinematics.TWO_PI / LOAD_ROWS)
     swing = _cam_of(cam.design).program.evaluate(theta)[:3]
-    chain = motion.crank_chain(linkage.coupling.rest, swing, 1.0)
+    chain = kinematics.crank_chain(linkage.coupling.rest, swing, 1.0)
     poses = linkage.fourbar.positions(chain.theta2, spec.linkage_specs[
         next(i for i, m in enumerate(spec.linkages) if m.name == linkage.name)].linkage.assembly)
     k4 = linkage.fourbar.rates(poses)[1]
     arm = float(_cam_of(cam.design).follower.arm_length)
-    force = motion.reflected_force(linkage.coupling.output_torque, k4, arm)
+    force = kinematics.reflected_force(linkage.coupling.output_torque, k4, arm)
     rows = [[round(float(a), 9), round(float(f), 9)] for a, f in zip(np.degrees(theta), force, strict=True)]
     cam_spec = spec.cam_specs[index].with_changes({"follower.load_table": rows})
     try:

@@ -1,6 +1,6 @@
 """The machine's entry in the kind registry (:data:`camgen.kinds.KINDS`): chosen by its own ``[machine]`` table,
-designed by :func:`camgen.machine.design.design_machine` and written by :func:`camgen.machine.outputs.machine_bundle`
-(both imported when first called)."""
+designed by :func:`camgen.kinds.machine.design.design_machine` and written by
+:func:`camgen.kinds.machine.outputs.machine_bundle` (both imported when first called)."""
 from __future__ import annotations
 
 from collections.abc import Mapping
@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING, Any
 from camgen.kinds.base import KindBase, Operations, Starter
 
 if TYPE_CHECKING:
-    from camgen.machine.design import MachineDesign
-    from camgen.machine.spec import MachineSpec
+    from camgen.kinds.machine.design import MachineDesign
+    from camgen.kinds.machine.spec import MachineSpec
 
 #: what a machine writes: its cams' and linkages' files (those of their kinds that these name; html their own
 #: pages), the timing diagram and the report
@@ -57,12 +57,12 @@ class MachineKind(KindBase["MachineSpec", "MachineDesign"]):
 
     @property
     def spec(self) -> type[MachineSpec]:
-        from camgen.machine import spec
+        from camgen.kinds.machine import spec
 
         return spec.MachineSpec
 
     def operations(self) -> Operations[MachineSpec, MachineDesign]:
-        from camgen.machine import design, outputs, report
+        from camgen.kinds.machine import design, outputs, report
 
         return Operations(design.design_machine, outputs.machine_bundle, report.summary, outputs.machine_row)
 

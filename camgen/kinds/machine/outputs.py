@@ -10,8 +10,8 @@ from typing import Any
 
 from camgen.core.bundle import Bundle, Entry, Item, Report, item
 from camgen.kinds import spec_kind
-from camgen.machine.design import MachineDesign
-from camgen.machine.report import machine_report, timing_rows
+from camgen.kinds.machine.design import MachineDesign
+from camgen.kinds.machine.report import machine_report, timing_rows
 from linkgen import api as linkgen_api
 
 
@@ -55,7 +55,7 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
     report = {**machine_report(design), **_parts_summary(cams)}
 
     def plot() -> Any:
-        from camgen.machine.plots import timing_figure
+        from camgen.kinds.machine.plots import timing_figure
 
         return timing_figure(design)
 

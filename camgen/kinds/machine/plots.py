@@ -10,8 +10,8 @@ from typing import Any
 import numpy as np
 
 from camgen.core.figures import figure
-from camgen.machine import motion
-from camgen.machine.design import MachineDesign
+from camgen.kinds.machine import kinematics
+from camgen.kinds.machine.design import MachineDesign
 
 
 def timing_figure(design: MachineDesign) -> Any:
@@ -23,8 +23,8 @@ def timing_figure(design: MachineDesign) -> Any:
     moving = [~o.still for o in outputs]
     coupled = {frozenset((f"cams.{m.cam}", f"linkages.{m.name}")) for m in design.linkages}
     for j, (ax, o) in enumerate(zip(axes, outputs, strict=True)):
-        ax.plot(deg, motion.normalised(o.values), color=f"C{j % 10}", lw=1.4)
-        for a, b in motion.intervals(o.still):
+        ax.plot(deg, kinematics.normalised(o.values), color=f"C{j % 10}", lw=1.4)
+        for a, b in kinematics.intervals(o.still):
             for lo, hi in ((a, min(b, 360.0)), (a - 360.0, b - 360.0)):
                 if hi > 0 and lo < 360:
                     ax.axvspan(max(lo, 0.0), hi, color="0.9", zorder=0)

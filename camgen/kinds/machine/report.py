@@ -11,8 +11,8 @@ from typing import Any
 
 import numpy as np
 
-from camgen.machine import motion
-from camgen.machine.design import MachineDesign, Output, _cam_of
+from camgen.kinds.machine import kinematics
+from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
 
 
 def _num(value: float, digits: int = 9) -> float:
@@ -35,9 +35,9 @@ def timing(design: MachineDesign) -> dict[str, Any]:
     outputs = design.outputs
     coupled = {(f"cams.{m.cam}", f"linkages.{m.name}") for m in design.linkages}
     rows = [{"output": o.label, "unit": o.unit, "min": _num(o.values.min()), "max": _num(o.values.max()),
-             "dwells_deg": _runs(motion.intervals(o.still)), "moving_deg": _runs(motion.intervals(~o.still))}
+             "dwells_deg": _runs(kinematics.intervals(o.still)), "moving_deg": _runs(kinematics.intervals(~o.still))}
             for o in outputs]
-    overlaps = [{"outputs": [a.label, b.label], "deg": _runs(motion.overlap(~a.still, ~b.still))}
+    overlaps = [{"outputs": [a.label, b.label], "deg": _runs(kinematics.overlap(~a.still, ~b.still))}
                 for a, b in combinations(outputs, 2) if (a.label, b.label) not in coupled]
     return {"samples": len(design.phi), "step_deg": 360.0 / len(design.phi), "outputs": rows,
             "overlaps": [o for o in overlaps if o["deg"]]}
@@ -109,7 +109,7 @@ def timing_rows(design: MachineDesign) -> list[dict[str, Any]]:
     columns = {"shaft_deg": np.degrees(design.phi)}
     for o in outputs:
         columns[f"{o.label}_{o.unit}"] = o.values
-        columns[f"{o.label}_normalised"] = motion.normalised(o.values)
+        columns[f"{o.label}_normalised"] = kinematics.normalised(o.values)
     return [{k: _num(v[j]) for k, v in columns.items()} for j in range(len(design.phi))]
 
 
