@@ -12,7 +12,7 @@ from typing import Any
 
 from camgen.barrel.design import BarrelDesign
 from camgen.core import VERSION
-from camgen.core.bundle import Bundle, item, tail
+from camgen.core.bundle import Bundle, mesh_files, sheet_files, tail
 from camgen.core.errors import ExportError
 from camgen.page import barrel_page
 from camgen.report import design_lines
@@ -211,10 +211,6 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
 
     checks = ("checks",) if (design.speed or {}).get("forces") and design.rib is None else ()   # with a mass
     checks += ("speeds",) if "speeds" in (design.speed or {}) else ()
-    items = [
-        item(design.drawing, [("dxf", "dxf", f"{name}-developed.dxf"), ("cut-svg", "cut_svg", f"{name}-developed.svg")],
-             formats),
-        item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
-        *tail(name, plot, ("svaj", "cam", *checks), report, lambda: barrel_page(design, report), formats),
-    ]
-    return Bundle.of(items, out.write_options), report
+    items = [sheet_files(design.drawing, f"{name}-developed"), mesh_files(mesh, name),
+             *tail(name, plot, ("svaj", "cam", *checks), report, lambda: barrel_page(design, report))]
+    return Bundle.of(items, out.write_options, formats), report
