@@ -15,10 +15,14 @@ png, svg   a figure (matplotlib)                               ``matplotlib.figu
 html       the design's interactive page, self-contained       :class:`~camgen.core.page.Page`
 step       STEP AP214 (mm), exact solids, each part named      ``(name, parts)`` pairs (see
                                                                :mod:`~camgen.core.writers.step`)
+csv        a table, with the JSON report                       rows (dicts), or a finished text
+toml       a template, with the JSON report                    a finished text
 =========  ==================================================  ===========================
 
-Writers are imported only when a file of their format is written, so a JSON-only
-build never loads ezdxf, trimesh or matplotlib. ``step`` is an optional format: it needs the ``step`` extra
+Each format is one :class:`Format` line of :data:`REGISTRY`: its writer's module and how its files are named for
+each payload role; :mod:`camgen.core.bundle`'s constructors name every bundle's files from it, and the tuples below
+and the type of ``output.formats`` are derived from it. Writers are imported only when a file of their format is
+written, so a JSON-only build never loads ezdxf, trimesh or matplotlib. ``step`` is an optional format: it needs the ``step`` extra
 (Open CASCADE through OCP) and is never written unless ``output.formats`` names it.
 """
 from __future__ import annotations
