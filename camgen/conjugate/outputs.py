@@ -234,11 +234,13 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     nested = nest(tuple(d.cut for d in design.cams), SheetRules.of(out, out.kerf, "output.sheet"))
     report["sheet"] = nested.report
 
+    speed = design.cams[0].speed or {}
+
     def plot(kind: str) -> Any:
         from camgen import plots
 
         return {"svaj": lambda: plots.svaj_figure(design.cams[0]), "checks": lambda: plots.pair_checks_figure(
-            design), "speeds": lambda: plots.speeds_plot(name, design.cams[0].speed["speeds"])}.get(
+            design), "speeds": lambda: plots.speeds_plot(name, speed["speeds"])}.get(
             kind, lambda: assembly_figure(design))()
 
     items: list[Item | None] = []
@@ -248,7 +250,7 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     items += [sheet_files(drawing, f"{name}-{kind}", kind) for kind, drawing in sheet_kinds(nested.drawings(
         out.tolerance))]
     items.append(solid_files(step_solids(design) if "step" in formats else None, name))
-    checks = ("checks",) if (design.cams[0].speed or {}).get("forces") else ()   # at a speed with a mass
-    checks += ("speeds",) if "speeds" in (design.cams[0].speed or {}) else ()
+    checks: tuple[str, ...] = ("checks",) if speed.get("forces") else ()   # at a speed with a mass
+    checks += ("speeds",) if "speeds" in speed else ()
     items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: conjugate_page(design, report))
     return Bundle.of(items, out.write_options, formats), report

@@ -12,17 +12,27 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
+from functools import partial
 from pathlib import Path
-from typing import Any, TypeVar, cast
+from typing import TYPE_CHECKING, Any, TypeAlias, TypeVar, cast
 
 from camgen.core.errors import ExportError, SpecError
-from camgen.core.writers import REGISTRY, Role, WriteOptions, writer
+from camgen.core.writers import REGISTRY, Role, WriteOptions, Writer, writer
+
+if TYPE_CHECKING:
+    from camgen.core.page import Page
+    from camgen.core.parts import Drawing
+    from camgen.core.solids import Mesh
+    from camgen.core.writers.step import Solids
 
 #: a design: a frozen dataclass whose ``spec`` says which files it makes
 D = TypeVar("D")
+#: a payload, or the function of no arguments that makes it when it is written
+T = TypeVar("T")
+Lazy: TypeAlias = "T | Callable[[], T]"
 
 
 class Staging:
@@ -164,31 +174,33 @@ def files_of(role: Role, payload: Any, stem: str, key: str = "", only: Iterable[
     return Item(payload, entries) if entries else None
 
 
-def part_files(drawing: Any, stem: str, key: str = "") -> Item | None:
+def part_files(drawing: Drawing | None, stem: str, key: str = "") -> Item | None:
     """A part's cut drawing (a :class:`~camgen.core.parts.Drawing`) as ``<stem>.dxf`` and ``<stem>-cut.svg``
     (keys ``<key>_dxf``, ``<key>_cut_svg``; ``dxf``, ``cut_svg`` without a key)."""
     return files_of("part", drawing, stem, key)
 
 
-def sheet_files(drawing: Any, stem: str, key: str = "") -> Item | None:
+def sheet_files(drawing: Drawing | None, stem: str, key: str = "") -> Item | None:
     """A sheet's or an assembly's drawing as ``<stem>.dxf`` and ``<stem>.svg`` (keys ``<key>_dxf``, ``<key>_svg``):
     the same formats as a part's, the SVG without ``-cut`` since the whole file is the drawing."""
     return files_of("sheet", drawing, stem, key)
 
 
-def mesh_files(mesh: Any, stem: str, key: str = "", only: Iterable[str] | None = None) -> Item | None:
+def mesh_files(mesh: Lazy[Mesh | Sequence[Mesh]] | None, stem: str, key: str = "",
+               only: Iterable[str] | None = None) -> Item | None:
     """A checked mesh (or a function making placed meshes) as ``<stem>.stl`` and ``<stem>.3mf`` (keys ``<key>_stl``,
     ``<key>_3mf``), or only the formats of ``only``; None for no mesh."""
     return files_of("mesh", mesh, stem, key, only)
 
 
-def solid_files(solids: Any, stem: str, key: str = "") -> Item | None:
+def solid_files(solids: Lazy[Solids] | None, stem: str, key: str = "") -> Item | None:
     """Exact solids (``(name, parts)`` pairs or placed solids, see :mod:`camgen.core.writers.step`, or a function
     making them) as ``<stem>.step`` (key ``<key>_step``, ``step`` without a key)."""
     return files_of("solids", solids, stem, key)
 
 
-def figure_files(make: Any, stem: str, key: str = "", only: Iterable[str] | None = None) -> Item | None:
+def figure_files(make: Callable[[], Any], stem: str, key: str = "", only: Iterable[str] | None = None
+                 ) -> Item | None:
     """The figure ``make()`` draws (called once, only if written) as ``<stem>.png`` and ``<stem>.svg`` (keys
     ``<key>_png``, ``<key>_svg``), or only the formats of ``only`` (a PNG beside a drawing's SVG of the same stem)."""
     return files_of("figure", make, stem, key, only)
@@ -200,13 +212,13 @@ def report_file(report: dict[str, Any], stem: str, key: str = "", listing: bool 
     return files_of("report", Report(report) if listing else report, stem, key)
 
 
-def page_file(page: Any, stem: str) -> Item | None:
+def page_file(page: Lazy[Page | str] | None, stem: str) -> Item | None:
     """The interactive page (a :class:`~camgen.core.page.Page` or a function making one) as ``<stem>.html`` (key
     ``html``); None for no page."""
     return files_of("page", page, stem)
 
 
-def rows_file(rows: Any, stem: str, key: str = "") -> Item | None:
+def rows_file(rows: Sequence[Mapping[str, Any]] | str, stem: str, key: str = "") -> Item | None:
     """A table (dicts with the same keys, or a finished CSV text) as ``<stem>.csv`` (key ``<key>_csv``), written
     with the JSON report; None when it has no rows."""
     return files_of("rows", rows, stem, key) if len(rows) else None
@@ -223,7 +235,7 @@ def tail(name: str, plot: Any, kinds: Iterable[str], report: dict[str, Any], pag
     written) as ``<name>-<kind>.png`` and ``.svg``, the ``report`` as ``<name>.json`` and the interactive page
     ``page()`` (none when None) as ``<name>.html``; only those of ``formats`` when given (else
     :meth:`Bundle.of` keeps the wanted ones)."""
-    items = [*(figure_files(lambda kind=kind: plot(kind), f"{name}-{kind}", kind) for kind in kinds),
+    items = [*(figure_files(partial(plot, kind), f"{name}-{kind}", kind) for kind in kinds),
              report_file(report, name), page_file(page, name)]
     if formats is None:
         return items
@@ -358,6 +370,10 @@ def write_bundle(bundle: Bundle, directory: str | Path, formats: Iterable[str] |
             if hasattr(payload, "with_files"):       # a report, a page: they name the bundle's files
                 payload = payload.with_files(files)
             for entry in it.entries:
-                write = writer(entry.format)
-                stage.write(entry.name, lambda p, w=write, x=payload: w(x, p, bundle.options))
+                stage.write(entry.name, _writing(writer(entry.format), payload, bundle.options))
     return files
+
+
+def _writing(write: Writer, payload: Any, options: WriteOptions) -> Callable[[Path], None]:
+    """The function :meth:`Staging.write` calls: ``write`` of ``payload`` with ``options`` to a path."""
+    return lambda path: write(payload, path, options)

@@ -10,8 +10,9 @@ must never overlap in plan (:func:`interferences`). The bill of materials lists 
 from __future__ import annotations
 
 import itertools
+from collections.abc import Iterable
 from dataclasses import dataclass, replace
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from pydantic import Field, field_validator, model_validator
@@ -21,6 +22,9 @@ from camgen.core.hardware import BEARINGS, BOLTS, SHAFTS, Bearing, BearingName, 
 from camgen.core.parts import Allowances, Drawing, Part, PartMaker, preview_stroke
 from camgen.core.shapes import Circle, Contour, rounded_hull
 from camgen.core.spec import Model, length, unit
+
+if TYPE_CHECKING:
+    from camgen.core.bundle import Item
 
 #: the bearings a ``[kit]`` may name, and ``"none"`` for a plain hole the shaft runs in
 BearingChoice = Literal[BearingName, "none"]
@@ -320,7 +324,7 @@ def part_entry(solid: Solid, allowances: Allowances, catalogue: dict[str, float]
 
 
 def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, meshes: Any, formats: Any,
-              title: str, bom: tuple[BomLine, ...] = (), placed: Any = None) -> list[Any]:
+              title: str, bom: tuple[BomLine, ...] = (), placed: Any = None) -> list[Item | None]:
     """The kit's files: each part as its process makes it (a laser's as ``<name>-<part>.dxf`` and
     ``<name>-<part>-cut.svg``, a printer's as ``<name>-<part>.stl`` and ``.3mf``), the assembly drawing
     (``<name>-kit-assembly.dxf|svg|png``), every made part in its assembled place (``<name>-kit.3mf``; ``meshes()``
@@ -333,7 +337,7 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
     from camgen.core.bundle import figure_files, mesh_files, part_files, sheet_files, solid_files
     from camgen.core.solids import checked_mesh
 
-    items = []
+    items: list[Item | None] = []
     for part, source in made:
         if source == "laser":
             items.append(part_files(Drawing.of_part(part), f"{name}-{part.name}", part.name))
@@ -355,7 +359,7 @@ def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, m
     return items
 
 
-def bom_item(name: str, bom: tuple[BomLine, ...], formats: Any = None) -> Any:
+def bom_item(name: str, bom: tuple[BomLine, ...], formats: Iterable[str] | None = None) -> Item | None:
     """The bill of materials ``bom`` as ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), written with the
     report (``json``), when it has lines; else None. Only when ``formats`` asks for the report, when given."""
     from camgen.core.bundle import rows_file

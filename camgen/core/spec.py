@@ -123,8 +123,7 @@ def length(description: str, default: Any = ..., *, zero: bool = False, le: floa
            absent: str = "") -> Any:
     """A length field in mm: > 0 (>= 0 with ``zero``) and at most ``le``; required unless a default is given
     (``allowed`` and ``absent`` as :func:`notes` takes them)."""
-    bound = {"ge": 0} if zero else {"gt": 0}
-    return Field(default, **bound, le=le, description=description,
+    return Field(default, ge=0 if zero else None, gt=None if zero else 0, le=le, description=description,
                  json_schema_extra=unit("mm", allowed=allowed, absent=absent))
 
 

@@ -32,11 +32,13 @@ def summary_csv(rows: list[dict[str, Any]]) -> str:
     return text.getvalue()
 
 
-def _comment(c: Offered, result: Synthesis) -> str:
+def _comment(c: Offered, summary: dict[str, Any]) -> str:
+    """The candidate's template's comment: where it comes from (``summary``: the synthesis' summary) and the
+    commands that analyse it and make its parts."""
     angle = c.row.get("input_directions", c.row.get("input_angles", [None]))[0]
     at = "" if angle is None else f" --angle {angle:.6f}"
-    return (f"{c.name}: candidate {c.row['rank']} of `linkgen synthesize` for {result.spec.name} "
-            f"({result.spec.task.kind})\nanalyse: linkgen analyze {c.name}.toml{at}    parts: linkgen build "
+    return (f"{c.name}: candidate {c.row['rank']} of `linkgen synthesize` for {summary['name']} "
+            f"({summary['kind']})\nanalyse: linkgen analyze {c.name}.toml{at}    parts: linkgen build "
             f"{c.name}.toml")
 
 
@@ -75,7 +77,7 @@ def synthesis_bundle(result: Synthesis) -> Bundle:
     for c in result.candidates:
         report = {**c.report, "synthesis": {"task": summary["task"], **c.row}}
         figure = partial(candidate_figure, f"{c.name}: {_figure_title(c.row)}", c.sketch)
-        items += [text_file(toml_text(c.template, _comment(c, result)), c.name, c.name),
+        items += [text_file(toml_text(c.template, _comment(c, summary)), c.name, c.name),
                   report_file(report, c.name, c.name, listing=False),
                   figure_files(figure, f"{c.name}-curve", f"{c.name}-curve")]
     items += [report_file(summary, "summary", "summary", listing=False),

@@ -22,8 +22,8 @@ toml       a template, with the JSON report                    a finished text
 Each format is one :class:`Format` line of :data:`REGISTRY`: its writer's module and how its files are named for
 each payload role; :mod:`camgen.core.bundle`'s constructors name every bundle's files from it, and the tuples below
 and the type of ``output.formats`` are derived from it. Writers are imported only when a file of their format is
-written, so a JSON-only build never loads ezdxf, trimesh or matplotlib. ``step`` is an optional format: it needs the ``step`` extra
-(Open CASCADE through OCP) and is never written unless ``output.formats`` names it.
+written, so a JSON-only build never loads ezdxf, trimesh or matplotlib. ``step`` is an optional format: it needs
+the ``step`` extra (Open CASCADE through OCP) and is never written unless ``output.formats`` names it.
 """
 from __future__ import annotations
 
