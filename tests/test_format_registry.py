@@ -94,7 +94,7 @@ def test_a_bundle_keeps_what_is_asked_offers_the_rest_and_refuses_what_it_has_no
     with pytest.raises(SpecError) as refused:
         bundle.require(("json", "stl"))
     assert str(refused.value) == ("output.formats: 'stl': this design has no stl file to write; give formats of "
-                                  "dxf, cut-svg, json, csv")
+                                  "dxf, cut-svg, json")
     assert write_bundle(bundle, tmp_path) == {"json": "p.json", "kit_csv": "p-kit.csv"}
     assert json.loads((tmp_path / "p.json").read_text()) == {"a": 1.5, "files": bundle.files}
     assert (tmp_path / "p-kit.csv").read_text() == "n\n1\n"

@@ -297,7 +297,8 @@ class Bundle:
         for fmt in formats:
             if fmt not in offers and _follows(fmt) is None:
                 raise SpecError(f"{fmt!r}: this design has no {fmt} file to write; give formats of "
-                                f"{', '.join(f for f in REGISTRY if f in offers)}", "output.formats")
+                                f"{', '.join(f for f in REGISTRY if f in offers and _follows(f) is None)}",
+                                "output.formats")
 
 
 @dataclass(frozen=True)
