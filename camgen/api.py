@@ -15,7 +15,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
-from camgen.core.bundle import Bundle, Item, Written, with_formats, write_bundle
+from camgen.core.bundle import Item, Written, with_formats, write_bundle
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
 from camgen.kinds.base import SizeReport
@@ -115,14 +115,16 @@ def write(design: Design, directory: str | Path, formats: Iterable[str] | None =
     Raises
     ------
     SpecError
-        A format the design's kind does not write, naming ``output.formats``.
+        A format the design's kind does not write, or one it has nothing to write as (``"step"`` of a cam made
+        with no printed part), naming ``output.formats``.
     ExportError
         A file could not be written.
     """
     design = with_formats(design, formats)
     bundle, report = spec_kind(design.spec).bundle(design)
-    bundle = Bundle.of((*bundle.items, *extra), bundle.options)
-    return Written.of(report, write_bundle(bundle, directory), directory)
+    if formats is not None:
+        bundle.require(design.spec.output.formats)
+    return Written.of(report, write_bundle(bundle.plus(extra), directory), directory)
 
 
 def write_cam(design: Design, directory: str | Path) -> dict[str, Any]:

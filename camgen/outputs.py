@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.core.bundle import Bundle, item, tail
+from camgen.core.bundle import Bundle, mesh_files, part_files, solid_files, tail
 from camgen.core.parts import Drawing, Part
 from camgen.core.routing import add_routing
 from camgen.core.writers import WriteOptions
@@ -72,7 +72,7 @@ def cam_bundle(design: FlatCamDesign) -> tuple[Bundle, dict[str, Any]]:
     items = kit_items(name, kit.made, kit.drawing, kit.meshes, design.spec.output.formats,
                       f"{name}: the kit assembled at theta = 0, 90, 180 and 270 deg", kit.bom,
                       lambda: kit.placed(solid))
-    return Bundle.of((*bundle.items, *items), bundle.options), report
+    return bundle.plus(items, design.spec.output.formats), report
 
 
 def step_solid(design: FlatCamDesign, report: dict[str, Any]) -> Part:
@@ -107,13 +107,10 @@ def cam_files(spec: Any, cut: Part, mesh: Any, plot: Callable[[str], Any], repor
     out, name = spec.output, spec.name
     formats = out.formats
     add_routing(report, [cut], out.tool_radius)
-    items = [
-        item(Drawing.of_part(cut), [("dxf", "dxf", f"{name}.dxf"), ("cut-svg", "cut_svg", f"{name}-cut.svg")], formats),
-        item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
-        item(((name, (printed,)),), [("step", "step", f"{name}.step")], formats) if printed is not None else None,
-        *tail(name, plot, figures, report, page, formats),
-    ]
-    return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text))
+    items = [part_files(Drawing.of_part(cut), name), mesh_files(mesh, name),
+             solid_files(((name, (printed,)),) if printed is not None else None, name),
+             *tail(name, plot, figures, report, page)]
+    return Bundle.of(items, WriteOptions(out.dxf_version, out.dxf, out.text), formats)
 
 
 def cam_row(design: Any, report: dict[str, Any], thumbnail: Callable[[float], np.ndarray]) -> dict[str, Any]:

@@ -78,12 +78,16 @@ def write(design: LinkageDesign, directory: str | Path, formats: Iterable[str] |
     Raises
     ------
     SpecError
-        A format the design cannot write (``"step"`` of a design made without parts), naming ``output.formats``.
+        A format the design cannot write (``"step"`` or ``"dxf"`` of a design made without parts), naming
+        ``output.formats``.
     ExportError
         A file could not be written.
     """
     design = with_formats(design, formats)
-    return Written.of(linkage_report(design), write_bundle(linkage_bundle(design), directory), directory)
+    bundle = linkage_bundle(design)
+    if formats is not None:
+        bundle.require(design.spec.output.formats)
+    return Written.of(linkage_report(design), write_bundle(bundle, directory), directory)
 
 
 def bundle(design: LinkageDesign) -> tuple[Bundle, dict[str, Any]]:

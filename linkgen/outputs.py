@@ -14,7 +14,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from camgen.core.bundle import Bundle, Item, Report, item, write_bundle
+from camgen.core.bundle import (
+    Bundle, Item, figure_files, mesh_files, page_file, report_file, sheet_files, solid_files, write_bundle)
 from camgen.core.errors import SpecError
 from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
@@ -59,17 +60,15 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     if design.kit is not None:
         kit = design.kit
         items += _parts_items(name, kit.build, formats)
-        items.append(item(lambda: placed_meshes(placed_solids(kit, kit.pose), 0),
-                          [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats))
-        items.append(bom_item(name, kit.bom, formats))
+        items.append(mesh_files(lambda: placed_meshes(placed_solids(kit, kit.pose), 0), f"{name}-kit", "kit",
+                                only=("3mf",)))
+        items.append(bom_item(name, kit.bom))
     elif design.build is not None:
         items += _parts_items(name, design.build, formats)
-    items += [item(draw, [("png", f"{kind}_png", f"{name}-{kind}.png"), ("svg", f"{kind}_svg", f"{name}-{kind}.svg")],
-                   formats) for kind, draw in design.figures()]
-    items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
-    page = design.page(report) if "html" in formats else None
-    items.append(item(page, [("html", "html", f"{name}.html")], formats) if page is not None else None)
-    return Bundle.of(items, spec.output.write_options)
+    items += [figure_files(draw, f"{name}-{kind}", kind) for kind, draw in design.figures()]
+    items.append(report_file(report, name))
+    items.append(page_file(design.page(report) if "html" in formats else None, name))
+    return Bundle.of(items, spec.output.write_options, formats)
 
 
 def linkage_report(design: LinkageDesign) -> dict[str, Any]:
@@ -110,8 +109,7 @@ def write_linkage(design: LinkageDesign, directory: str | Path) -> dict[str, str
 def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | None]:
     """Sheet and assembly drawings, the assembly as a figure, a mesh a printed part and an optional pin."""
     table = build.table
-    items = [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"),
-                            ("cut-svg", f"{kind}_svg", f"{name}-{kind}.svg")], formats)
+    items = [sheet_files(drawing, f"{name}-{kind}", kind)
              for kind, drawing in (*sheet_kinds(build.sheets), ("assembly", build.assembly))]
 
     def assembly_figure() -> Any:
@@ -119,8 +117,8 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
 
         return drawing_figure(build.assembly, f"{name}: assembly at the dead centres, with the path")
 
-    items.append(item(assembly_figure, [("png", "assembly_png", f"{name}-assembly.png")], formats))
-    items.append(item(_step_solids(build), [("step", "step", f"{name}.step")], formats))
+    items.append(figure_files(assembly_figure, f"{name}-assembly", "assembly", only=("png",)))
+    items.append(solid_files(_step_solids(build), name))
     if {"stl", "3mf"} & set(formats):
         from camgen.core.solids import closed, extrude, pin, spacer
 
@@ -139,8 +137,7 @@ def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | No
                             "rename its link or slider", "parts.pins")
         for part_name, mesh in meshes:
             closed(mesh, f"{name}-{part_name}")
-            items.append(item(mesh, [("stl", f"{part_name}_stl", f"{name}-{part_name}.stl"),
-                                     ("3mf", f"{part_name}_3mf", f"{name}-{part_name}.3mf")], formats))
+            items.append(mesh_files(mesh, f"{name}-{part_name}", part_name))
     return items
 
 

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from camgen.construction.geometry import Construction, construct
-from camgen.core.bundle import Item, item
+from camgen.core.bundle import Item, figure_files
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 
 #: the figure's width, the diagram's height, the margins (inches): left, right, top, between the panels, foot
@@ -33,9 +33,7 @@ def construction_files(design: Any) -> tuple[Item, ...]:
     ``.svg`` (report keys ``construction_png``, ``construction_svg``), drawn only when written. The disc kind's
     (:meth:`camgen.kinds.base.Kind.construction`): the other kinds refuse ``--construction`` in one line."""
     name = design.spec.name
-    got = item(lambda: construction_figure(design), [("png", "construction_png", f"{name}-construction.png"),
-                                                     ("svg", "construction_svg", f"{name}-construction.svg")],
-               ("png", "svg"))
+    got = figure_files(lambda: construction_figure(design), f"{name}-construction", "construction")
     return (got,) if got is not None else ()
 
 

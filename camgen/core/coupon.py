@@ -25,7 +25,8 @@ from typing import Any
 import numpy as np
 from pydantic import Field, model_validator
 
-from camgen.core.bundle import Bundle, Report, item, write_bundle
+from camgen.core.bundle import (
+    Bundle, Item, figure_files, mesh_files, part_files, report_file, solid_files, write_bundle)
 from camgen.core.parts import LAYER_LABELS, LAYER_OUTLINE, Allowances, Drawing, Part
 from camgen.core.routing import add_routing
 from camgen.core.shapes import Circle, Contour, Text, rounded_hull
@@ -259,8 +260,7 @@ def coupon_bundle(design: CouponDesign) -> tuple[Bundle, dict[str, Any]]:
     formats = list(out.formats)
     report = coupon_report(design)
     add_routing(report, design.cut, out.tool_radius)
-    items = [item(coupon_drawing(design), [("dxf", "dxf", f"{name}.dxf"), ("cut-svg", "cut_svg", f"{name}-cut.svg")],
-                  formats)]
+    items: list[Item | None] = [part_files(coupon_drawing(design), name)]
     if {"stl", "3mf"} & set(formats):
         from camgen.core.solids import checked_mesh, volume_check
 
@@ -269,21 +269,17 @@ def coupon_bundle(design: CouponDesign) -> tuple[Bundle, dict[str, Any]]:
             mesh, check = checked_mesh(part)
             checks[key] = {"watertight": check.watertight, "volume_mm3": round(check.volume_mm3, 6),
                            "triangles": check.triangles, **volume_check([part], check.volume_mm3)}
-            stem = name if key == "plate" else f"{name}-pin"
-            items.append(item(mesh, [("stl", f"{key}_stl", f"{stem}.stl"), ("3mf", f"{key}_3mf", f"{stem}.3mf")],
-                              formats))
+            items.append(mesh_files(mesh, name if key == "plate" else f"{name}-pin", key))
         report["mesh"] = checks
-    items.append(item(tuple((part.name, (part,)) for part in design.printed), [("step", "step", f"{name}.step")],
-                      formats))
+    items.append(solid_files(tuple((part.name, (part,)) for part in design.printed), name))
 
     def figure() -> Any:
         from camgen.core.figures import drawing_figure
 
         return drawing_figure(coupon_drawing(design), f"{name}: the cut sheet, holes from the smallest clearance")
 
-    items.append(item(figure, [("png", "png", f"{name}.png"), ("svg", "svg", f"{name}.svg")], formats))
-    items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
-    return Bundle.of(items, out.write_options), report
+    items += [figure_files(figure, name), report_file(report, name)]
+    return Bundle.of(items, out.write_options, formats), report
 
 
 def write_coupon(design: CouponDesign, directory: str | Path) -> dict[str, Any]:

@@ -36,6 +36,7 @@ import time
 from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -526,7 +527,7 @@ def write_family_sheet(name: str, items: list[Member], rows: list[dict], root: s
     written = []
     with staged(root) as stage:
         for kind, drawing in sheet_kinds(nested.drawings(tolerance)):
-            written.append(stage.write(f"{name}-{kind}.dxf", lambda p, d=drawing: write_dxf(d, p)).name)
+            written.append(stage.write(f"{name}-{kind}.dxf", partial(write_dxf, drawing)).name)
         written.append(stage.write(f"{name}-sheet.json", lambda p: p.write_text(
             json.dumps(nested.report, indent=1) + "\n")).name)
     return written
@@ -544,6 +545,7 @@ def read_cut_part(path: Path, name: str) -> Any:
     import numpy as np
     import shapely
     from ezdxf import path as dxfpath
+    from ezdxf.entities import LWPolyline
 
     from camgen.core.parts import LAYER_ENGRAVE, LAYER_HOLES, LAYER_OUTLINE, Part
     from camgen.core.shapes import Circle, Contour, Polyline, Text
@@ -556,7 +558,7 @@ def read_cut_part(path: Path, name: str) -> Any:
         layer, kind = e.dxf.layer, e.dxftype()
         if layer == LAYER_ENGRAVE and kind == "TEXT":
             marks.append((layer, Text(e.dxf.text, tuple(e.dxf.insert)[:2], e.dxf.height, e.dxf.rotation)))
-        elif kind == "LWPOLYLINE":
+        elif isinstance(e, LWPolyline):
             pts = np.array([(x, y, b) for x, y, _, _, b in e.get_points("xyseb")])
             if layer in contours and e.closed:
                 contours[layer].append(Contour(pts[:, :2], pts[:, 2]))

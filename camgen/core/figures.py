@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 import os
 import re
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
@@ -19,7 +19,8 @@ from camgen.core.shapes import Polyline, Text
 PREVIEW_TOLERANCE_MM = 0.05
 
 
-def figure(width: float, height: float, layout: str | None = "constrained") -> Any:
+def figure(width: float, height: float, layout: Literal["constrained", "compressed", "tight"] | None = "constrained"
+           ) -> Any:
     """A blank figure ``width`` x ``height`` inches with the Agg canvas (no pyplot state) and constrained layout, or
     ``layout`` (None: the caller sets fixed margins, which cost nothing each time the figure is written)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg

@@ -10,8 +10,9 @@ must never overlap in plan (:func:`interferences`). The bill of materials lists 
 from __future__ import annotations
 
 import itertools
+from collections.abc import Iterable
 from dataclasses import dataclass, replace
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from pydantic import Field, field_validator, model_validator
@@ -21,6 +22,9 @@ from camgen.core.hardware import BEARINGS, BOLTS, SHAFTS, Bearing, BearingName, 
 from camgen.core.parts import Allowances, Drawing, Part, PartMaker, preview_stroke
 from camgen.core.shapes import Circle, Contour, rounded_hull
 from camgen.core.spec import Model, length, unit
+
+if TYPE_CHECKING:
+    from camgen.core.bundle import Item
 
 #: the bearings a ``[kit]`` may name, and ``"none"`` for a plain hole the shaft runs in
 BearingChoice = Literal[BearingName, "none"]
@@ -320,47 +324,45 @@ def part_entry(solid: Solid, allowances: Allowances, catalogue: dict[str, float]
 
 
 def kit_items(name: str, made: tuple[tuple[Part, str], ...], drawing: Drawing, meshes: Any, formats: Any,
-              title: str, bom: tuple[BomLine, ...] = (), placed: Any = None) -> list[Any]:
+              title: str, bom: tuple[BomLine, ...] = (), placed: Any = None) -> list[Item | None]:
     """The kit's files: each part as its process makes it (a laser's as ``<name>-<part>.dxf`` and
     ``<name>-<part>-cut.svg``, a printer's as ``<name>-<part>.stl`` and ``.3mf``), the assembly drawing
     (``<name>-kit-assembly.dxf|svg|png``), every made part in its assembled place (``<name>-kit.3mf``; ``meshes()``
     makes them, only if written) and, when asked, the kit's parts as exact solids (``<name>-kit.step``, one named
     product a part: ``placed``, :class:`~camgen.core.parts.Placed` solids or a function making them, as
     assembled; without it each part in its own frame); with the report (``json``), the bill of materials ``bom``
-    as ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), when it has lines."""
-    from camgen.core.bundle import item
+    as ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), when it has lines. Every file the kit offers: the
+    bundle keeps those ``formats`` asks for (:meth:`~camgen.core.bundle.Bundle.of`); ``formats`` decides which
+    meshes are made."""
+    from camgen.core.bundle import figure_files, mesh_files, part_files, sheet_files, solid_files
     from camgen.core.solids import checked_mesh
 
-    items = []
+    items: list[Item | None] = []
     for part, source in made:
         if source == "laser":
-            items.append(item(Drawing.of_part(part), [("dxf", f"{part.name}_dxf", f"{name}-{part.name}.dxf"),
-                                                      ("cut-svg", f"{part.name}_svg", f"{name}-{part.name}-cut.svg")],
-                              formats))
+            items.append(part_files(Drawing.of_part(part), f"{name}-{part.name}", part.name))
             continue
         mesh = checked_mesh(part, f"{name}-{part.name}")[0] if {"stl", "3mf"} & set(formats) else None
-        items.append(item(mesh, [("stl", f"{part.name}_stl", f"{name}-{part.name}.stl"),
-                                 ("3mf", f"{part.name}_3mf", f"{name}-{part.name}.3mf")], formats))
+        items.append(mesh_files(mesh, f"{name}-{part.name}", part.name))
 
     def figure() -> Any:
         from camgen.core.figures import drawing_figure
 
         return drawing_figure(drawing, title)
 
-    items += [item(drawing, [("dxf", "kit_assembly_dxf", f"{name}-kit-assembly.dxf"),
-                             ("cut-svg", "kit_assembly_svg", f"{name}-kit-assembly.svg")], formats),
-              item(figure, [("png", "kit_assembly_png", f"{name}-kit-assembly.png")], formats),
-              item(meshes, [("3mf", "kit_3mf", f"{name}-kit.3mf")], formats),
-              item(placed if placed is not None else tuple((part.name, (part,)) for part, _ in made),
-                   [("step", "kit_step", f"{name}-kit.step")], formats),
-              bom_item(name, bom, formats)]
+    items += [sheet_files(drawing, f"{name}-kit-assembly", "kit_assembly"),
+              figure_files(figure, f"{name}-kit-assembly", "kit_assembly", only=("png",)),
+              mesh_files(meshes, f"{name}-kit", "kit", only=("3mf",)),
+              solid_files(placed if placed is not None else tuple((part.name, (part,)) for part, _ in made),
+                          f"{name}-kit", "kit"),
+              bom_item(name, bom)]
     return items
 
 
-def bom_item(name: str, bom: tuple[BomLine, ...], formats: Any) -> Any:
-    """The bill of materials ``bom`` as ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns) when ``formats`` asks
-    for the report (``json``) and there are lines; else None."""
-    from camgen.core.bundle import item
+def bom_item(name: str, bom: tuple[BomLine, ...], formats: Iterable[str] | None = None) -> Item | None:
+    """The bill of materials ``bom`` as ``<name>-kit.csv`` (:meth:`BomLine.csv_row`'s columns), written with the
+    report (``json``), when it has lines; else None. Only when ``formats`` asks for the report, when given."""
+    from camgen.core.bundle import rows_file
 
-    return item(tuple(line.csv_row() for line in bom), [("csv", "kit_csv", f"{name}-kit.csv")],
-                ["csv"] if bom and "json" in formats else [])
+    got = rows_file(tuple(line.csv_row() for line in bom), f"{name}-kit", "kit")
+    return got.only(formats) if got is not None and formats is not None else got

@@ -377,11 +377,12 @@ def _padded(box: tuple[float, float, float, float], by: float = 0.04) -> tuple[f
 
 def page_body(page: Page) -> str:
     """The page's <body> content (without the script's data)."""
-    scene = replace(page.scene, view=_padded(page.scene.bounds()))
+    view = _padded(page.scene.bounds())
+    scene = replace(page.scene, view=view)
     plots = "".join(_plot_svg(p, page.inputs, 0, f"{page.input_label} ({page.input_unit})") for p in page.plots)
     notes = "".join(f'<p class="note">{html.escape(n)}</p>' for n in page.notes)
     return (f'<header><h1>{html.escape(page.title)}</h1><p class="sub">{html.escape(page.subtitle)}</p></header>'
-            f'<main><section class="stage">{_scene_svg(scene, 0, scene.view)}{_controls(page)}</section>'
+            f'<main><section class="stage">{_scene_svg(scene, 0, view)}{_controls(page)}</section>'
             f'<section class="plots">{plots}{notes}</section>'
             f'<section class="facts"><h2>Key figures</h2>{_figures_table(page.figures)}'
             f'<h2>Warnings</h2>{_list(page.warnings, "warnings", "none")}'

@@ -65,7 +65,7 @@ class Contour:
     """
 
     vertices: np.ndarray
-    bulges: np.ndarray = field(default=None)  # type: ignore[assignment]
+    bulges: np.ndarray = field(default=None)  # type: ignore[arg-type]
 
     def __post_init__(self) -> None:
         v = _frozen(self.vertices)
@@ -248,7 +248,8 @@ class Text:
 
         # drawn 100 units high, where matplotlib's flattening of the glyphs' curves is fine, then scaled down
         path = TextPath((0.0, 0.0), self.text, size=100.0, prop=FontProperties(family="DejaVu Sans"))
-        rings = [np.asarray(r, dtype=float) for r in path.to_polygons(closed_only=True) if len(r) >= 3]
+        rings = [ring for ring in (np.asarray(r, dtype=float) for r in path.to_polygons(closed_only=True))
+                 if len(ring) >= 3]
         if not rings:
             return ()
         allp = np.vstack(rings)

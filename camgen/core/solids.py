@@ -316,11 +316,12 @@ def elephant_foot(rings: Sequence[np.ndarray], height: float, size: float, toler
         blocks += [np.column_stack([ring, np.full(n, size)]), np.column_stack([ring, np.full(n, height)]),
                    np.column_stack([bed[kept], np.zeros(len(kept))])]
         count += 2 * n + len(kept)
-        i = np.arange(n)
-        j = (i + 1) % n
-        faces += [np.column_stack([mid + i, mid + j, top + j]), np.column_stack([mid + i, top + j, top + i]),
-                  np.column_stack([low + where[last], low + where[ahead], mid + j]),
-                  np.column_stack([low + where[last], mid + j, mid + i])]
+        at = np.arange(n)
+        after = (at + 1) % n
+        faces += [np.column_stack([mid + at, mid + after, top + after]),
+                  np.column_stack([mid + at, top + after, top + at]),
+                  np.column_stack([low + where[last], low + where[ahead], mid + after]),
+                  np.column_stack([low + where[last], mid + after, mid + at])]
         for k in np.flatnonzero(sizes > 1):       # the cone's fan at a concave corner
             fan = low + where[first[k] + np.arange(sizes[k])]
             faces.append(np.column_stack([np.full(sizes[k] - 1, mid + k), fan[:-1], fan[1:]]))

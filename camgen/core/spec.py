@@ -16,7 +16,7 @@ import re
 import tomllib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Literal, Self, TypeVar, cast, get_args, get_origin
+from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal, Self, TypeVar, cast, get_args, get_origin
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 from pydantic.config import JsonDict
@@ -26,10 +26,16 @@ from camgen.core.features import MIN_WEB_MM
 from camgen.core.options import not_one_of
 from camgen.core.reading import NotRegularFile, read_regular
 from camgen.core.writers import (
-    DEFAULT_FORMATS, FIGURE_FORMATS, DxfFlavour, DxfVersion, Format, OptionalFormat, TextMode, WriteOptions,
+    DEFAULT_FORMATS, FIGURE_FORMATS, FORMATS, OPTIONAL_FORMATS, DxfFlavour, DxfVersion, TextMode, WriteOptions,
     missing_extra)
 
 M = TypeVar("M", bound=BaseModel)
+if TYPE_CHECKING:
+    FormatNames = tuple[str, ...]
+else:
+    #: what ``output.formats`` holds: names of the formats' registry (:data:`camgen.core.writers.REGISTRY`) as
+    #: registered when this module is imported, a ``Literal`` for pydantic's check and the key reference
+    FormatNames = tuple[Literal[FORMATS + OPTIONAL_FORMATS], ...]
 
 #: pattern of a part name: safe as a file name
 NAME_PATTERN = r"^[A-Za-z0-9][A-Za-z0-9._-]{0,99}$"
@@ -117,8 +123,7 @@ def length(description: str, default: Any = ..., *, zero: bool = False, le: floa
            absent: str = "") -> Any:
     """A length field in mm: > 0 (>= 0 with ``zero``) and at most ``le``; required unless a default is given
     (``allowed`` and ``absent`` as :func:`notes` takes them)."""
-    bound = {"ge": 0} if zero else {"gt": 0}
-    return Field(default, **bound, le=le, description=description,
+    return Field(default, ge=0 if zero else None, gt=None if zero else 0, le=le, description=description,
                  json_schema_extra=unit("mm", allowed=allowed, absent=absent))
 
 
@@ -151,7 +156,7 @@ class OutputTable(Model):
     Products extend it with their own keys (camgen: the outline's tolerance and curves, kerf, clearance).
     """
 
-    formats: tuple[Literal[Format, OptionalFormat], ...] = Field(
+    formats: FormatNames = Field(
         DEFAULT_FORMATS, min_length=1, description="files to write (png and svg figures, and step with the step "
         "extra installed, only when asked)")
     figures: bool = Field(False, description="also write the figures as PNG and SVG (the same as adding \"png\" "

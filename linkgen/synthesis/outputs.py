@@ -14,9 +14,7 @@ from functools import partial
 from pathlib import Path
 from typing import Any
 
-from camgen.core.bundle import staged
-from camgen.core.writers.figure import save
-from camgen.core.writers.report import report_json
+from camgen.core.bundle import Bundle, Item, figure_files, report_file, rows_file, text_file, write_bundle
 from linkgen.synthesis.candidates import Offered, toml_text
 from linkgen.synthesis.run import Synthesis
 
@@ -34,11 +32,13 @@ def summary_csv(rows: list[dict[str, Any]]) -> str:
     return text.getvalue()
 
 
-def _comment(c: Offered, result: Synthesis) -> str:
+def _comment(c: Offered, summary: dict[str, Any]) -> str:
+    """The candidate's template's comment: where it comes from (``summary``: the synthesis' summary) and the
+    commands that analyse it and make its parts."""
     angle = c.row.get("input_directions", c.row.get("input_angles", [None]))[0]
     at = "" if angle is None else f" --angle {angle:.6f}"
-    return (f"{c.name}: candidate {c.row['rank']} of `linkgen synthesize` for {result.spec.name} "
-            f"({result.spec.task.kind})\nanalyse: linkgen analyze {c.name}.toml{at}    parts: linkgen build "
+    return (f"{c.name}: candidate {c.row['rank']} of `linkgen synthesize` for {summary['name']} "
+            f"({summary['kind']})\nanalyse: linkgen analyze {c.name}.toml{at}    parts: linkgen build "
             f"{c.name}.toml")
 
 
@@ -64,28 +64,28 @@ def write_synthesis(result: Synthesis, directory: str | Path, figures: bool = Fa
     ExportError
         The folder cannot be created or a file cannot be written; nothing is left written then.
     """
+    return list(write_bundle(synthesis_bundle(result, figures), directory).values())
+
+
+def synthesis_bundle(result: Synthesis, figures: bool = False) -> Bundle:
+    """The files of ``result``, made but not written: per candidate its template (``toml``), its report
+    (``json``, without a ``files`` map) and, with ``figures``, its figure (``png``, ``svg``, drawn only when
+    written), each keyed
+    ``<name>-<rank>_<format>`` (the figure's ``<name>-<rank>-curve_<format>``); then ``summary.json`` and
+    ``summary.csv`` (keys ``summary_json``, ``summary_csv``)."""
     from linkgen.synthesis.plots import candidate_figure
 
     summary = result.summary()
-    names = []
-    with staged(directory) as stage:
-        for c in result.candidates:
-            names.append(stage.write(f"{c.name}.toml", partial(_write_text, toml_text(c.template,
-                                                                                   _comment(c, result)))).name)
-            report = {**c.report, "synthesis": {"task": summary["task"], **c.row}}
-            names.append(stage.write(f"{c.name}.json", partial(_write_text, report_json(report))).name)
-            if figures:
-                fig = candidate_figure(f"{c.name}: {_figure_title(c.row)}", c.sketch)
-                for fmt in ("png", "svg"):
-                    names.append(stage.write(f"{c.name}-curve.{fmt}", partial(save, fig, fmt=fmt)).name)
-        names.append(stage.write("summary.json", partial(_write_text, report_json(summary))).name)
-        names.append(stage.write("summary.csv", partial(_write_text, summary_csv(summary["candidates"]))).name)
-    return names
-
-
-def _write_text(text: str, path: Path) -> None:
-    """``text`` into the file ``path``, UTF-8."""
-    path.write_text(text, encoding="utf-8")
+    items: list[Item | None] = []
+    for c in result.candidates:
+        report = {**c.report, "synthesis": {"task": summary["task"], **c.row}}
+        figure = partial(candidate_figure, f"{c.name}: {_figure_title(c.row)}", c.sketch)
+        items += [text_file(toml_text(c.template, _comment(c, summary)), c.name, c.name),
+                  report_file(report, c.name, c.name, listing=False),
+                  figure_files(figure, f"{c.name}-curve", f"{c.name}-curve") if figures else None]
+    items += [report_file(summary, "summary", "summary", listing=False),
+              rows_file(summary_csv(summary["candidates"]), "summary", "summary")]
+    return Bundle.of(items)
 
 
 def _figure_title(row: dict[str, Any]) -> str:

@@ -30,9 +30,12 @@ def write_json(report: dict[str, Any], path: Path, options: Any = None) -> None:
 
 def write_csv(rows: Any, path: Path, options: Any = None) -> None:
     """A table (a sequence of dicts with the same keys, the first's keys the header) as CSV: comma-separated,
-    quoted where needed, ``\\n`` line ends, UTF-8."""
+    quoted where needed, ``\\n`` line ends, UTF-8; or a finished CSV text, written as it is."""
     import csv
 
+    if isinstance(rows, str):
+        path.write_text(rows, encoding="utf-8")
+        return
     with path.open("w", encoding="utf-8", newline="") as stream:
         table = csv.DictWriter(stream, fieldnames=list(rows[0]), lineterminator="\n")
         table.writeheader()

@@ -10,10 +10,13 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
 from camgen.kinds.barrel.design import BarrelDesign
 from camgen.core import VERSION
-from camgen.core.bundle import Bundle, item, tail
+from camgen.core.bundle import Bundle, mesh_files, sheet_files, tail
 from camgen.core.errors import ExportError
+from camgen.followers.barrel import Arm
 from camgen.kinds.barrel.page import barrel_page
 from camgen.report import design_lines
 from camgen.sizing import pressure_limit
@@ -35,9 +38,9 @@ def _wall(check: Any) -> dict[str, Any]:
             "wall_rho_min_mm": _r(f.rho_min_mm), "undercut": f.undercut}
 
 
-def _arm(design: BarrelDesign) -> dict[str, Any]:
-    """An arm's figures: its swing, its axial stroke against the arc, and its chordal error."""
-    arm, rm = design.walls.arm, design.radii[1]
+def _arm(arm: Arm, rm: float) -> dict[str, Any]:
+    """An arm's figures: its swing, its axial stroke against the arc, and its chordal error (``rm``: the pitch
+    cylinder's radius, mm)."""
     turn = 2 * arm.mid
     half = math.radians(arm.mid)
     chordal = arm.chordal_error(turn)
@@ -64,19 +67,19 @@ def _cone(design: BarrelDesign) -> dict[str, Any]:
 def _rib(design: BarrelDesign) -> dict[str, Any]:
     """A rib's figures: its width where level and at its thinnest (square to the track, on the core), the rollers'
     centres' distance (mm); nothing for a groove (whose width is groove_width_mm)."""
-    if design.rib is None:
+    if design.rib is None or design.rib_thinnest is None:      # both set for a rib, neither for a groove
         return {}
-    below, above = design.rib
+    (below, above), (thinnest, at) = design.rib, design.rib_thinnest
     return {"form": "rib", "rib_width_mm": design.spec.cam.rib_width, "rib_height_mm": design.spec.cam.groove_depth,
-            "roller_centres_apart_mm": _r(above.z0 - below.z0), "rib_thinnest_mm": _r(design.rib_thinnest[0]),
-            "rib_thinnest_at_deg": _r(design.rib_thinnest[1])}
+            "roller_centres_apart_mm": _r(above.z0 - below.z0), "rib_thinnest_mm": _r(thinnest),
+            "rib_thinnest_at_deg": _r(at)}
 
 
 def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
     """The report of a barrel cam as a JSON-ready dict (keys carry their units)."""
     t, a = design.spec, design.analysis
     inner, rm, outer = design.radii
-    tube = design.tube
+    tube, slip = design.tube, design.slip or {}
     arm = design.walls.arm
     report: dict[str, Any] = {
         "name": t.name,
@@ -93,10 +96,11 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
         "cam": {"kind": "barrel", "pitch_radius_mm": rm, "floor_radius_mm": inner, "rim_radius_mm": outer,
                 "length_mm": t.cam.length, "groove_depth_mm": t.cam.groove_depth,
                 "groove_width_mm": round(2 * design.cutter, 12), "running_clearance_mm": t.cam.running_clearance,
-                "rest_height_mm": _r(design.walls.z0 if arm is None else float(design.walls.centre(0.0)[0, 0])),
+                "rest_height_mm": _r(design.walls.z0 if arm is None else float(design.walls.centre(np.zeros(1))[0, 0])),
                 "bore_mm": t.cam.bore, "rotation": t.cam.rotation, **_rib(design)},
         "follower": {"type": t.follower.type, "roller_radius_mm": t.follower.roller_radius,
-                     "roller_shape": t.follower.roller_shape, **_cone(design), **({} if arm is None else _arm(design))},
+                     "roller_shape": t.follower.roller_shape, **_cone(design),
+                     **({} if arm is None else _arm(arm, rm))},
         "segments": [{"index": i, "type": seg.type, "law": seg.law, **seg.law_params(), "angle_deg": seg.angle,
                       "lift_mm": seg.lift} for i, seg in enumerate(t.motion)],
         "lift_max_mm": _r(design.cam.program.max_lift),
@@ -109,7 +113,7 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
                   "plane_offset_gap_mm": _r(design.walls.plane_offset_gap(rm)),
                   "plane_offset_gap_floor_mm": _r(design.walls.plane_offset_gap(inner))},
         "undercut": False,
-        "rolling_slip": {"floor_percent": _r(design.slip["floor"]), "rim_percent": _r(design.slip["rim"]),
+        "rolling_slip": {"floor_percent": _r(slip.get("floor")), "rim_percent": _r(slip.get("rim")),
                          "note": "the largest slip of the roller along the way it rolls, over the cycle and both "
                                  "walls, in percent of the cam's surface speed there, the roller rolling without "
                                  "slip on the pitch cylinder"},
@@ -198,10 +202,10 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
         if kind == "svaj":
             return plots.svaj_figure(design)
         if kind == "speeds":
-            return plots.speeds_plot(name, design.speed["speeds"])
+            return plots.speeds_plot(name, speed["speeds"])
         if kind == "checks":           # the developed walls at Rm, the cutter's radius there off the pitch curve
             w = design.walls
-            return plots.groove_checks_plot(design.spec, design.cam, design.speed["forces"],
+            return plots.groove_checks_plot(design.spec, design.cam, speed["forces"],
                                             pressure_limit(design.spec), w.r0 + w.taper * design.radii[1],
                                             design.spec.follower.roller_radius, ("lower wall", "upper wall"))
         what = ("the groove's walls and the pitch curve" if design.rib is None
@@ -209,12 +213,9 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
         return drawing_figure(design.drawing, f"{name}: the pitch cylinder (radius {design.radii[1]:g} mm) unrolled, "
                                               + what)
 
-    checks = ("checks",) if (design.speed or {}).get("forces") and design.rib is None else ()   # with a mass
-    checks += ("speeds",) if "speeds" in (design.speed or {}) else ()
-    items = [
-        item(design.drawing, [("dxf", "dxf", f"{name}-developed.dxf"), ("cut-svg", "cut_svg", f"{name}-developed.svg")],
-             formats),
-        item(mesh, [("stl", "stl", f"{name}.stl"), ("3mf", "3mf", f"{name}.3mf")], formats),
-        *tail(name, plot, ("svaj", "cam", *checks), report, lambda: barrel_page(design, report), formats),
-    ]
-    return Bundle.of(items, out.write_options), report
+    speed = design.speed or {}
+    checks: tuple[str, ...] = ("checks",) if speed.get("forces") and design.rib is None else ()   # with a mass
+    checks += ("speeds",) if "speeds" in speed else ()
+    items = [sheet_files(design.drawing, f"{name}-developed"), mesh_files(mesh, name),
+             *tail(name, plot, ("svaj", "cam", *checks), report, lambda: barrel_page(design, report))]
+    return Bundle.of(items, out.write_options, formats), report

@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.kinds.conjugate.design import ConjugateDesign, roller_centres
 from camgen.kinds.conjugate.kinematics import ArmRoller
-from camgen.core.bundle import Bundle, item, tail
+from camgen.core.bundle import Bundle, Item, mesh_files, part_files, sheet_files, solid_files, tail
 from camgen.core.figures import PREVIEW_TOLERANCE_MM, figure
 from camgen.core.nesting import SheetRules, nest, sheet_kinds
 from camgen.core.parts import Drawing, Placed
@@ -234,27 +234,24 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     nested = nest(tuple(d.cut for d in design.cams), SheetRules.of(out, out.kerf, "output.sheet"))
     report["sheet"] = nested.report
 
+    speed = design.cams[0].speed or {}
+
     def plot(kind: str) -> Any:
         from camgen import plots
         from camgen.kinds.conjugate.plots import pair_checks_figure
 
         return {"svaj": lambda: plots.svaj_figure(design.cams[0]), "checks": lambda: pair_checks_figure(
-            design), "speeds": lambda: plots.speeds_plot(name, design.cams[0].speed["speeds"])}.get(
+            design), "speeds": lambda: plots.speeds_plot(name, speed["speeds"])}.get(
             kind, lambda: assembly_figure(design))()
 
-    items = []
+    items: list[Item | None] = []
     for which, (d, (mesh, _)) in enumerate(zip(design.cams, meshes, strict=True)):
-        part = f"{name}-{which + 1}"
-        items += [item(Drawing.of_part(d.cut), [("dxf", f"cam{which + 1}_dxf", f"{part}.dxf"),
-                                                ("cut-svg", f"cam{which + 1}_cut_svg", f"{part}-cut.svg")], formats),
-                  item(mesh, [("stl", f"cam{which + 1}_stl", f"{part}.stl"),
-                              ("3mf", f"cam{which + 1}_3mf", f"{part}.3mf")], formats)]
-    items += [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"), ("cut-svg", f"{kind}_svg",
-                                                                          f"{name}-{kind}.svg")], formats)
-              for kind, drawing in sheet_kinds(nested.drawings(out.tolerance))]
-    items.append(item(step_solids(design) if "step" in formats else None, [("step", "step", f"{name}.step")],
-                      formats))
-    checks = ("checks",) if (design.cams[0].speed or {}).get("forces") else ()   # at a speed with a mass
-    checks += ("speeds",) if "speeds" in (design.cams[0].speed or {}) else ()
-    items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: conjugate_page(design, report), formats)
-    return Bundle.of(items, out.write_options), report
+        items += [part_files(Drawing.of_part(d.cut), f"{name}-{which + 1}", f"cam{which + 1}"),
+                  mesh_files(mesh, f"{name}-{which + 1}", f"cam{which + 1}")]
+    items += [sheet_files(drawing, f"{name}-{kind}", kind) for kind, drawing in sheet_kinds(nested.drawings(
+        out.tolerance))]
+    items.append(solid_files(step_solids(design) if "step" in formats else None, name))
+    checks: tuple[str, ...] = ("checks",) if speed.get("forces") else ()   # at a speed with a mass
+    checks += ("speeds",) if "speeds" in speed else ()
+    items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: conjugate_page(design, report))
+    return Bundle.of(items, out.write_options, formats), report

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.core.bundle import Bundle, item, tail
+from camgen.core.bundle import Bundle, mesh_files, part_files, sheet_files, solid_files, tail
 from camgen.core.errors import ExportError
 from camgen.core.nesting import SheetRules, nest, sheet_kinds
 from camgen.core.parts import Drawing, Placed
@@ -56,18 +56,13 @@ def geneva_bundle(design: GenevaDesign) -> tuple[Bundle, dict[str, Any]]:
 
         return plots.motion_figure(design) if kind == "motion" else plots.assembly_figure(design)
 
-    items = [item(Drawing.of_part(design.cut[part]), [("dxf", f"{part}_dxf", f"{name}-{part}.dxf"),
-                                                        ("cut-svg", f"{part}_cut_svg", f"{name}-{part}-cut.svg")],
-                  formats) for part in PARTS]
-    items += [item(drawing, [("dxf", f"{kind}_dxf", f"{name}-{kind}.dxf"), ("cut-svg", f"{kind}_svg",
-                                                                          f"{name}-{kind}.svg")], formats)
-              for kind, drawing in sheet_kinds(nested.drawings(out.tolerance))]
-    items += [item(mesh, [("stl", f"{solid}_stl", f"{name}-{solid}.stl"),
-                          ("3mf", f"{solid}_3mf", f"{name}-{solid}.3mf")], formats)
-              for solid, (mesh, _) in solids.items()]
-    items.append(item(lambda: step_solids(design), [("step", "step", f"{name}.step")], formats))
-    items += tail(name, plot, ("motion", "assembly"), report, lambda: geneva_page(design, report), formats)
-    return Bundle.of(items, out.write_options), report
+    items = [part_files(Drawing.of_part(design.cut[part]), f"{name}-{part}", part) for part in PARTS]
+    items += [sheet_files(drawing, f"{name}-{kind}", kind) for kind, drawing in sheet_kinds(nested.drawings(
+        out.tolerance))]
+    items += [mesh_files(mesh, f"{name}-{solid}", solid) for solid, (mesh, _) in solids.items()]
+    items.append(solid_files(lambda: step_solids(design), name))
+    items += tail(name, plot, ("motion", "assembly"), report, lambda: geneva_page(design, report))
+    return Bundle.of(items, out.write_options, formats), report
 
 
 def step_solids(design: GenevaDesign) -> tuple[Placed, Placed]:
