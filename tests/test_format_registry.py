@@ -171,10 +171,11 @@ def test_synthesis_writes_through_a_bundle_all_or_nothing(tmp_path, monkeypatch)
 
     result = synthesize(validate_task({"name": "t", "task": {"kind": "crank-rocker", "swing": 30.0, "rocker": 40.0,
                                                               "candidates": 1}}))
-    bundle = synthesis_bundle(result)
+    bundle = synthesis_bundle(result, figures=True)
     assert list(bundle.files.values()) == ["t-1.toml", "t-1.json", "t-1-curve.png", "t-1-curve.svg", "summary.json",
                                            "summary.csv"]
     assert bundle.offers == {"toml", "json", "png", "svg", "csv"}
+    assert list(synthesis_bundle(result).files.values()) == ["t-1.toml", "t-1.json", "summary.json", "summary.csv"]
 
     def failing(rows, path, options=None):
         raise ExportError("the csv writer failed")
