@@ -375,6 +375,9 @@ def _print_text(r: dict[str, Any]) -> None:
     if r["type"] in ("oldham", "trammel", "rapson"):
         _print_coupling(r)
         positions = None
+    if r["type"] == "gear-train":
+        _print_train(r)
+        positions = None
     if positions and "lever_deg" in positions:
         out(f"at lever {positions['lever_deg']:.4f} deg: wheel {positions['wheel_deg']:.4f} deg, "
             f"{positions['teeth_passed']} teeth passed")
@@ -461,6 +464,19 @@ def _print_coupling(r: dict[str, Any]) -> None:
         if p:
             out(f"at crosshead {p['crosshead_mm']:.6f} mm: tiller {p['tiller_deg']:.6f} deg, "
                 f"{p['tiller_rate_deg_s']:.6g} deg/s, leverage {p['leverage_mm']:.6g} mm")
+
+
+def _print_train(r: dict[str, Any]) -> None:
+    """A gear train's ratio, its gears' speeds and, at the asked input, their angles."""
+    out, p = click.echo, r.get("positions")
+    out(f"{r['kind']} train, module {r['module_mm']:g} mm: ratio {r['ratio']:.9g} (output speed per input speed)")
+    if "planetary" in r:
+        pl = r["planetary"]
+        out(f"  {pl['fixed']} fixed, {pl['input']} driven, {pl['output']} the output; {pl['planets']} planets on a "
+            f"carrier of {pl['carrier_radius_mm']:.6g} mm")
+    for g in r["gears"]:
+        angle = f", at {p['gears'][g['name']]['angle_deg']:.4f} deg" if p else ""
+        out(f"  {g['name']:<8} {g['teeth']:>4} teeth, {g['rpm']:.6g} rpm{angle}")
 
 
 def _print_circuits(r: dict[str, Any]) -> None:

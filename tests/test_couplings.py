@@ -105,7 +105,7 @@ def test_oldhams_pins_stay_in_their_hubs_slots_over_a_turn():
     parts = {p.name: p for p in layout.parts}
     sweep = layout.sweep
     for joint in ("P1", "P2", "P3", "P4"):
-        (disc, hub), where = sweep.joints[joint]
+        (_, hub), where = sweep.joints[joint]
         angle, origin = sweep.angles[hub], sweep.origins[hub]
         c, s = np.cos(angle), np.sin(angle)
         rel = where - origin

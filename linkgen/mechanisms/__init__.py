@@ -21,6 +21,7 @@ from linkgen.mechanisms import (
     couplings,
     fourbar,
     gearpair,
+    geartrain,
     general,
     quickreturn,
     ratchet,
@@ -79,6 +80,6 @@ def registry(*mechanisms: Mechanism, base: Mapping[str, Mechanism] | None = None
 
 
 #: the modules of the mechanisms, in the order their types are listed
-MODULES = (fourbar, slidercrank, quickreturn, straightline, general, gearpair, ratchet, couplings)
+MODULES = (fourbar, slidercrank, quickreturn, straightline, general, gearpair, ratchet, couplings, geartrain)
 #: ``linkage.type`` -> its mechanism
 MECHANISMS: Mapping[str, Mechanism] = registry(*(m for module in MODULES for m in module.REGISTER))
