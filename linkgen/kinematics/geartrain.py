@@ -82,13 +82,13 @@ class PlanetaryTrain:
     @property
     def speeds(self) -> dict[str, float]:
         """The sun's, carrier's, ring's and each planet's (about its own centre) speeds per unit input speed: the
-        fixed member 0, the input 1, Willis' relation z_s (w_s - w_c) + z_r (w_r - w_c) = 0 for the third."""
-        zs, zr = self.sun, self.ring
-        willis = np.array([zs, -(zs + zr), zr], dtype=float)
-        system = np.array([np.eye(3)[MEMBERS.index(self.fixed)], np.eye(3)[MEMBERS.index(self.driven)], willis])
-        ws, wc, wr = np.linalg.solve(system, np.array([0.0, 1.0, 0.0]))
-        return {"sun": float(ws), "carrier": float(wc), "ring": float(wr),
-                "planet": float(wc - (ws - wc) * zs / self.planet)}
+        fixed member 0, the input 1, Willis' relation z_s (w_s - w_c) + z_r (w_r - w_c) = 0 for the third (solved
+        for it directly: the fixed member stays exactly still)."""
+        # z_s w_s + z_r w_r - (z_s + z_r) w_c = 0 with the fixed member's w = 0 and the input's 1
+        coefficient = {"sun": float(self.sun), "ring": float(self.ring), "carrier": -float(self.sun + self.ring)}
+        w = {self.fixed: 0.0, self.driven: 1.0, self.output: -coefficient[self.driven] / coefficient[self.output]}
+        ws, wc = w["sun"], w["carrier"]
+        return {"sun": ws, "carrier": wc, "ring": w["ring"], "planet": wc - (ws - wc) * self.sun / self.planet}
 
     @property
     def ratio(self) -> float:

@@ -43,6 +43,7 @@ MAX_GEARS, MAX_STAGES, MAX_PLANETS = 12, 6, 12
 PLANET_GAP_MM = 0.5
 
 Teeth = Annotated[int, Field(ge=MIN_TEETH, le=MAX_TEETH)]
+Distance = Annotated[float, Field(gt=0, le=MAX_LENGTH_MM)]
 Member = Literal["sun", "carrier", "ring"]
 
 
@@ -78,7 +79,8 @@ class GearTrainTable(Model):
                          json_schema_extra=notes(allowed="(sun + ring) / planets whole, tips clear of each other"))
     fixed: Member = Field("ring", description="a planetary train's member held still")
     input: Member = Field("sun", description="a planetary train's driven member (the third is the output)")
-    centre_distances: list[float] | None = Field(None, description="each mesh's centre distance (a simple train's "
+    centre_distances: list[Distance] | None = Field(None, max_length=MAX_GEARS,
+                                                    description="each mesh's centre distance (a simple train's "
                                                  "meshes in order, a compound train's stages), checked against the "
                                                  "one the teeth mesh at",
                                                  json_schema_extra=unit("mm", allowed=f"within {CENTRE_TOLERANCE_MM:g}"
