@@ -38,6 +38,7 @@ EXAMPLES = {
     "oldham": {"offset": 20.0},
     "trammel": {"rod": 80.0, "point": 30.0},
     "rapson": {"distance": 100.0},          # its input is the crosshead's height: 60 mm is inside its 70 mm travel
+    "gear-train": {"module": 2.0, "teeth": [18, 24]},
 }
 #: the types whose mechanism makes parts (all but Whitworth, whose crank sweeps over its slotted link's pivot)
 WITH_PARTS = set(EXAMPLES) - {"whitworth"}
@@ -51,7 +52,7 @@ def _raw(kind: str, **more: Any) -> dict[str, Any]:
 def test_the_registry_lists_every_type_once_in_module_order():
     assert list(MECHANISMS) == ["four-bar", "slider-crank", "scotch-yoke", "whitworth", "crank-shaper", "chebyshev",
                                 "hoekens", "roberts", "watt", "linkage", "gear-pair", "ratchet", "oldham",
-                                "trammel", "rapson"]
+                                "trammel", "rapson", "gear-train"]
     assert set(EXAMPLES) == set(MECHANISMS)
     assert [m for module in MODULES for m in module.REGISTER] == list(dict.fromkeys(MECHANISMS.values()))
     for kind, mechanism in MECHANISMS.items():
