@@ -41,6 +41,9 @@ class OldhamTable(Model):
                           json_schema_extra=unit("mm"))
     rpm: float = rpm()
 
+    def closed_form(self) -> Oldham:
+        return Oldham(self.offset)
+
 
 class TrammelTable(Model):
     """``[linkage]`` of the elliptic trammel (double slider): the rod between the blocks' pins and the tracer on
@@ -52,6 +55,9 @@ class TrammelTable(Model):
                          "rod towards B (negative behind A, above rod beyond B): its ellipse has semi-axes "
                          "|rod - point| along X and |point| along Y", json_schema_extra=unit("mm"))
     rpm: float = rpm()
+
+    def closed_form(self) -> Trammel:
+        return Trammel(self.rod, self.point)
 
 
 class RapsonTable(Model):
@@ -65,6 +71,9 @@ class RapsonTable(Model):
                              json_schema_extra=unit("degrees"))
     speed: float = Field(10.0, gt=0, le=MAX_SPEED_MM_S, description="the crosshead's speed, constant: the tiller's "
                          "rates are given at it", json_schema_extra=unit("mm/s"))
+
+    def closed_form(self) -> Rapson:
+        return Rapson(self.distance)
 
     @property
     def rpm(self) -> None:
@@ -187,11 +196,10 @@ def rapson_sketch(r: Rapson, max_angle: float) -> Drawing:
 
 @dataclass(frozen=True)
 class CouplingMechanism:
-    """One of the couplings (:class:`linkgen.mechanisms.Mechanism`): its table, kinematics, report, sketch and
-    layout as functions of the table and the kinematics."""
+    """One of the couplings (:class:`linkgen.mechanisms.Mechanism`): its table (whose ``closed_form()`` is its
+    kinematics), and its report, sketch and layout as functions of the table and the kinematics."""
 
     table: type[Model]
-    make: Callable[[Any], Any]
     reporter: Callable[[Any, Any, float | None], dict[str, Any]]
     sketcher: Callable[[Any, Any], Drawing]
     layouter: Callable[[Any, Any, Stock, float], Layout]
@@ -199,10 +207,12 @@ class CouplingMechanism:
 
     @property
     def types(self) -> tuple[str, ...]:
+        """Its table's ``type`` value."""
         return types_of(self.table)
 
     def build(self, table: Any) -> Any:
-        return self.make(table)
+        """The closed form (:mod:`linkgen.kinematics.couplings`) the table describes."""
+        return table.closed_form()
 
     def report(self, table: Any, kinematics: Any, angle: float | None, method: str) -> dict[str, Any]:
         if method == "newton":
@@ -248,11 +258,11 @@ def _rapson_layout(table: RapsonTable, r: Rapson, stock: Stock, width: float) ->
 
 
 REGISTER = (
-    CouplingMechanism(OldhamTable, lambda t: Oldham(t.offset), oldham_report, lambda t, k: oldham_sketch(k),
+    CouplingMechanism(OldhamTable, oldham_report, lambda t, k: oldham_sketch(k),
                       _oldham_layout, "the hubs' slots and the disc centre's circle"),
-    CouplingMechanism(TrammelTable, lambda t: Trammel(t.rod, t.point), trammel_report,
+    CouplingMechanism(TrammelTable, trammel_report,
                       lambda t, k: trammel_sketch(k), _trammel_layout, "the guides, the rod and the tracer's ellipse"),
-    CouplingMechanism(RapsonTable, lambda t: Rapson(t.distance), rapson_report,
+    CouplingMechanism(RapsonTable, rapson_report,
                       lambda t, k: rapson_sketch(k, math.radians(t.max_angle)), _rapson_layout,
                       "the tiller amidships and hard over, and the crosshead's guide"),
 )

@@ -18,10 +18,9 @@ import math
 import numpy as np
 
 from camgen.core.errors import DesignError
-from camgen.core.shapes import rounded_hull
 from linkgen.mechanisms.geartrain import Gear, Train, _outline
-from linkgen.mechanisms.gearparts import RING_BOLTS
-from linkgen.mechanisms.shaped import Pieces, ShapedPart
+from linkgen.mechanisms.gearparts import ring_rim
+from linkgen.mechanisms.shaped import ShapedPart
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
 
 
@@ -101,15 +100,7 @@ def _planetary(train: Train, stock: Stock, width: float,
     planets = [g for g in train.gears if g.carrier]
     turned, centres = train.poses(theta)
     n = len(theta)
-    outer = ring.tooth.tip_radius + width
-    bolt = ring.tooth.tip_radius + width / 2
-    if stock.hole / 2 >= width / 2 - 0.5:
-        raise DesignError(f"parts.width: the ring's rim ({width:g} mm) leaves under 0.5 mm round its bolt holes "
-                          f"({stock.hole:g} mm)")
-    extras = {f"B{k + 1}": bolt * np.array([math.cos(a), math.sin(a)])
-              for k, a in enumerate(2 * math.pi * np.arange(RING_BOLTS) / RING_BOLTS)}
-    disc = rounded_hull(np.zeros((1, 2)), outer)
-    circle: Pieces = (disc.vertices, disc.bulges)
+    extras, circle = ring_rim(ring.tooth.tip_radius, width, stock)
     bolts = np.array(list(extras.values()))
     planet_centres = np.array([p.centre for p in planets])
     parts: tuple[LinkPart, ...] = (
