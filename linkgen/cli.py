@@ -374,6 +374,12 @@ def _print_text(r: dict[str, Any]) -> None:
     if "engagement_angle_deg" in r:
         _print_ratchet(r)
     positions = r.get("positions")
+    if r["type"] in ("oldham", "trammel", "rapson"):
+        _print_coupling(r)
+        positions = None
+    if r["type"] == "gear-train":
+        _print_train(r)
+        positions = None
     if positions and "lever_deg" in positions:
         out(f"at lever {positions['lever_deg']:.4f} deg: wheel {positions['wheel_deg']:.4f} deg, "
             f"{positions['teeth_passed']} teeth passed")
@@ -434,6 +440,45 @@ def _print_ratchet(r: dict[str, Any]) -> None:
     click.echo(f"lever swing {lever['swing_deg']:g} deg indexes {lever['teeth_per_stroke']} teeth "
                f"({lever['index_deg']:.6g} deg) a stroke, {lever['lost_motion_deg']:.6g} deg lost; wheel "
                f"{r['wheel_rpm']:.6g} rpm")
+
+
+def _print_coupling(r: dict[str, Any]) -> None:
+    """A coupling's or double slider's figures (Oldham, trammel, Rapson) and its pose at the asked input."""
+    out, p = click.echo, r.get("positions")
+    if r["type"] == "oldham":
+        c = r["disc_centre_circle"]
+        out(f"hub 2 turns with hub 1 (speed ratio {r['speed_ratio']:g}); the disc's centre runs on the circle "
+            f"centre {c['centre_mm']} mm, radius {c['radius_mm']:.6g} mm, twice a turn; each tongue slides "
+            f"{r['slot_stroke_mm']:.6g} mm, at most {r['sliding_speed_max_mm_s']:.6g} mm/s")
+        if p:
+            out(f"at hub 1 {p['hub1_deg']:.4f} deg: hub 2 {p['hub2_deg']:.4f} deg, disc centre {p['disc_centre_mm']} "
+                f"mm, slides {p['slides_mm']} mm")
+    elif r["type"] == "trammel":
+        e = r["ellipse"]
+        out(f"the tracer's ellipse: semi-axes {e['semi_axis_x_mm']:.6g} mm (X) and {e['semi_axis_y_mm']:.6g} mm (Y); "
+            f"each block strokes {r['block_stroke_mm']:.6g} mm")
+        if p:
+            out(f"at input {p['input_deg']:.4f} deg: blocks {p['block_a_mm']:.6f} and {p['block_b_mm']:.6f} mm, "
+                f"tracer {p['tracer_mm']} mm")
+    else:
+        out(f"crosshead travel {r['input_range_mm']} mm; leverage {r['leverage_amidships_mm']:.6g} mm amidships, "
+            f"{r['leverage_hard_over_mm']:.6g} mm hard over (x {r['leverage_gain_hard_over']:.6g})")
+        if p:
+            out(f"at crosshead {p['crosshead_mm']:.6f} mm: tiller {p['tiller_deg']:.6f} deg, "
+                f"{p['tiller_rate_deg_s']:.6g} deg/s, leverage {p['leverage_mm']:.6g} mm")
+
+
+def _print_train(r: dict[str, Any]) -> None:
+    """A gear train's ratio, its gears' speeds and, at the asked input, their angles."""
+    out, p = click.echo, r.get("positions")
+    out(f"{r['kind']} train, module {r['module_mm']:g} mm: ratio {r['ratio']:.9g} (output speed per input speed)")
+    if "planetary" in r:
+        pl = r["planetary"]
+        out(f"  {pl['fixed']} fixed, {pl['input']} driven, {pl['output']} the output; {pl['planets']} planets on a "
+            f"carrier of {pl['carrier_radius_mm']:.6g} mm")
+    for g in r["gears"]:
+        angle = f", at {p['gears'][g['name']]['angle_deg']:.4f} deg" if p else ""
+        out(f"  {g['name']:<8} {g['teeth']:>4} teeth, {g['rpm']:.6g} rpm{angle}")
 
 
 def _print_circuits(r: dict[str, Any]) -> None:

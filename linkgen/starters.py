@@ -49,6 +49,18 @@ RULES: dict[str, dict[str, str]] = {
                                       "about the kerf for a cut pair"},
     "ratchet": {"linkage": "the pawl holds while face_angle + pawl.angle >= atan(friction), the friction angle; "
                            "the lever indexes floor(swing / (360 / teeth)) teeth a stroke"},
+    "oldham": {"linkage": "hub 2 turns exactly with hub 1; the disc's centre runs twice a turn round the circle on "
+                          "the shafts' centres as diameter (radius offset / 2); each tongue slides 2 x offset"},
+    "trammel": {"linkage": "the tracer's ellipse has semi-axes |rod - point| along X and |point| along Y; the rod's "
+                           "midpoint turns like a crank of rod / 2",
+                "linkage.point": "mm: the tracer's place on the rod's line from block A; 0 < point < rod inside"},
+    "rapson": {"linkage": "tan(tiller) = crosshead / distance; the tiller's torque per unit crosshead force is "
+                          "distance / cos^2(tiller), growing towards hard over"},
+    "gear-train": {"linkage": "ratio = output speed / input speed: a simple train's -z1/z2 a mesh (idlers set only "
+                              "the sense), a compound train's product of its stages; a planetary one's from Willis' "
+                              "(w_sun - w_carrier) / (w_ring - w_carrier) = -ring / sun, ring = sun + 2 planet",
+                   "linkage.stages": "each stage's [driver, driven] teeth; a stage's driven gear shares its shaft "
+                                     "with the next stage's driver"},
     "linkage": {"linkage": "any planar linkage of one input: mobility 3 x moving links - 2 x pins = 1 (a pin "
                            "joining k links counts k - 1), solved a dyad at a time on the assembly the joints draw",
                 "linkage.input": "what drives the linkage: a link turning about a pivot (or a slider)"},
@@ -97,6 +109,18 @@ STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
         ("linkage.pawl", {"length": 30.0, "angle": 0.0, "spring": 14.0}),
         ("linkage.lever", {"swing": 40.0, "length": 80.0}),
         PARTS]),
+    "oldham": ("Oldham's coupling: two parallel shafts 20 mm apart turn together through a middle disc whose "
+               "tongues slide in both hubs' slots.", [
+        ("linkage", {"type": "oldham", "offset": 20.0, "rpm": 60.0}), PARTS]),
+    "trammel": ("An elliptic trammel (double slider): two blocks on square guides carry a rod whose tracer draws a "
+                "50 by 30 mm ellipse.", [
+        ("linkage", {"type": "trammel", "rod": 80.0, "point": 30.0, "rpm": 30.0}), PARTS]),
+    "rapson": ("Rapson's slide: a crosshead moving square to the ship's centre line turns the tiller through a "
+               "swivel block, with more torque towards hard over.", [
+        ("linkage", {"type": "rapson", "distance": 80.0, "max_angle": 35.0, "speed": 10.0}), PARTS]),
+    "gear-train": ("A compound gear train of two stages: 18 to 40 teeth, then 18 to 36, a ratio of 0.225.", [
+        ("linkage", {"type": "gear-train", "kind": "compound", "module": 2.0, "pressure_angle": 20.0,
+                     "stages": [[18, 40], [18, 36]], "backlash": 0.15, "rpm": 60.0}), PARTS]),
 }
 
 

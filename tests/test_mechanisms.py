@@ -35,6 +35,10 @@ EXAMPLES = {
     "gear-pair": {"module": 2.0, "pinion": {"teeth": 14, "shift": 0.2}, "gear": {"teeth": 25}},
     "ratchet": {"teeth": 20, "tip_diameter": 80.0, "depth": 6.0, "pawl": {"length": 30.0},
                 "lever": {"swing": 72.0, "length": 80.0}},
+    "oldham": {"offset": 20.0},
+    "trammel": {"rod": 80.0, "point": 30.0},
+    "rapson": {"distance": 100.0},          # its input is the crosshead's height: 60 mm is inside its 70 mm travel
+    "gear-train": {"module": 2.0, "teeth": [18, 24]},
 }
 #: the types whose mechanism makes parts (all but Whitworth, whose crank sweeps over its slotted link's pivot)
 WITH_PARTS = set(EXAMPLES) - {"whitworth"}
@@ -47,7 +51,8 @@ def _raw(kind: str, **more: Any) -> dict[str, Any]:
 
 def test_the_registry_lists_every_type_once_in_module_order():
     assert list(MECHANISMS) == ["four-bar", "slider-crank", "scotch-yoke", "whitworth", "crank-shaper", "chebyshev",
-                                "hoekens", "roberts", "watt", "linkage", "gear-pair", "ratchet"]
+                                "hoekens", "roberts", "watt", "linkage", "gear-pair", "ratchet", "oldham",
+                                "trammel", "rapson", "gear-train"]
     assert set(EXAMPLES) == set(MECHANISMS)
     assert [m for module in MODULES for m in module.REGISTER] == list(dict.fromkeys(MECHANISMS.values()))
     for kind, mechanism in MECHANISMS.items():

@@ -17,7 +17,17 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any, Protocol
 
 from camgen.core.registry import registry as shared_registry
-from linkgen.mechanisms import fourbar, gearpair, general, quickreturn, ratchet, slidercrank, straightline
+from linkgen.mechanisms import (
+    couplings,
+    fourbar,
+    gearpair,
+    geartrain,
+    general,
+    quickreturn,
+    ratchet,
+    slidercrank,
+    straightline,
+)
 from linkgen.mechanisms.common import Figure
 
 if TYPE_CHECKING:
@@ -70,6 +80,6 @@ def registry(*mechanisms: Mechanism, base: Mapping[str, Mechanism] | None = None
 
 
 #: the modules of the mechanisms, in the order their types are listed
-MODULES = (fourbar, slidercrank, quickreturn, straightline, general, gearpair, ratchet)
+MODULES = (fourbar, slidercrank, quickreturn, straightline, general, gearpair, ratchet, couplings, geartrain)
 #: ``linkage.type`` -> its mechanism
 MECHANISMS: Mapping[str, Mechanism] = registry(*(m for module in MODULES for m in module.REGISTER))

@@ -149,6 +149,20 @@ def placement(pair: GearPair, theta: np.ndarray, fixed: tuple[str, ...], others:
     return Placement(angles, origins, joints)
 
 
+def ring_rim(root_radius: float, width: float, stock: Stock) -> tuple[dict[str, np.ndarray], Pieces]:
+    """An internal gear's rim round its root circle (``root_radius`` mm, its master's tip) and ``width`` mm wide: the
+    :data:`RING_BOLTS` bolt points (``B1``, ...) on its mid circle, in the ring's frame, and the rim's (and its web's)
+    outer circle; a DesignError naming ``parts.width`` where the rim leaves under 0.5 mm round a bolt hole."""
+    if stock.hole / 2 >= width / 2 - 0.5:
+        raise DesignError(f"parts.width: the ring's rim ({width:g} mm) leaves under 0.5 mm round its bolt holes "
+                          f"({stock.hole:g} mm)")
+    bolt = root_radius + width / 2
+    extras = {f"B{k + 1}": bolt * np.array([math.cos(a), math.sin(a)])
+              for k, a in enumerate(2 * math.pi * np.arange(RING_BOLTS) / RING_BOLTS)}
+    disc = rounded_hull(np.zeros((1, 2)), root_radius + width)
+    return extras, (disc.vertices, disc.bulges)
+
+
 def pair_layout(pair: GearPair, stock: Stock, width: float, travel: float,
                 hubs: dict[str, tuple[tuple[float, float] | None, float]]) -> Layout:
     """The parts of ``pair`` (see the module's notes) for a stock whose bars are ``width`` mm wide, a rack's
@@ -188,15 +202,7 @@ def pair_layout(pair: GearPair, stock: Stock, width: float, travel: float,
     else:
         g = pair.gear_tooth
         assert g is not None
-        outer = g.tip_radius + width
-        bolt = g.tip_radius + width / 2
-        if stock.hole / 2 >= width / 2 - 0.5:
-            raise DesignError(f"parts.width: the ring's rim ({width:g} mm) leaves under 0.5 mm round its bolt holes "
-                              f"({stock.hole:g} mm)")
-        extras = {f"B{k + 1}": bolt * np.array([math.cos(a), math.sin(a)])
-                  for k, a in enumerate(2 * math.pi * np.arange(RING_BOLTS) / RING_BOLTS)}
-        disc = rounded_hull(np.zeros((1, 2)), outer)
-        circle: Pieces = (disc.vertices, disc.bulges)
+        extras, circle = ring_rim(g.tip_radius, width, stock)
         bolts = np.array(list(extras.values()))
         web = ShapedPart("ring-web", np.vstack([[0.0, 0.0], bolts]), half, stock, shape=circle,
                          boss=hubs["gear"][0], set_screw=hubs["gear"][1])
