@@ -9,9 +9,9 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, Family, Starters, add_bench, add_examples, add_family, add_new, echo_written,
-                             figures_option, fixed, one_design, output_option, set_option, template_argument,
-                             template_options, user_errors)
+from camgen.core.cli import (Commands, Family, Starters, add_bench, add_examples, add_family, add_new,
+                             animation_options, echo_written, figures_option, fixed, one_design, output_option,
+                             set_option, template_argument, template_options, user_errors, write_animation_file)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -470,3 +470,18 @@ def _print_newton(n: dict[str, Any], longest: float) -> None:
                    f"{s['residual_mm']:>13.3e}")
     click.echo(f"{n['stopped']}: the {n['assembly']} assembly, {n['agrees_with_closed_form_deg']:.2g} degrees from "
                "its closed form")
+
+
+@main.command()
+@animation_options
+@one_design
+def animate(template: Path, output: Path | None, overrides: tuple[str, ...], options: Any) -> None:
+    """Write one full cycle of the linkage in TEMPLATE as an animation, its tracers' paths drawn."""
+    from linkgen.animation import analysis_for_animation, linkage_frames
+    from linkgen.linkage_design import design_linkage
+    from linkgen.spec import load_spec
+
+    spec = load_spec(template, overrides)
+    frames = linkage_frames(analysis_for_animation(design_linkage(spec)), options.frames, options.size)
+    directory = output if output is not None else Path("out") / spec.name
+    click.echo(f"wrote {write_animation_file(frames, options, directory, spec.name)}")
