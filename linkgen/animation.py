@@ -24,8 +24,9 @@ def analysis_for_animation(design: LinkageDesign) -> Analysis:
     table = design.spec.linkage
     got = pose_of(design.kinematics, table, 0.0)
     if got is None:
+        kind = getattr(table, "type", "mechanism")
         raise SpecError(f"linkgen animates linkages it can draw as general ones: type = \"linkage\" and the "
-                        f"crank-driven dedicated mechanisms, not this {table.type}", "linkage.type")
+                        f"crank-driven dedicated mechanisms, not this {kind}", "linkage.type")
     a = got[0]
     if len(a.table.inputs) != 1:
         raise SpecError("linkgen animates a linkage of one input", "linkage.input")

@@ -61,7 +61,20 @@ def animation_options(frames: int, size: str, fps: float, fmt: str) -> Animation
         raise SpecError(f"must be from {FPS[0]:g} to {FPS[1]:g} frames per second (got {fps:g})", "--fps")
     if fmt not in FORMATS:
         raise SpecError(f"must be one of {', '.join(FORMATS)} (got {fmt!r})", "--format")
+    missing = video_missing(fmt)
+    if missing is not None:
+        raise SpecError(missing, "--format")
     return AnimationOptions(frames, parse_size(size), float(fps), fmt)
+
+
+def video_missing(fmt: str) -> str | None:
+    """Why format ``fmt`` cannot be written here (MP4 and WebM need imageio and imageio-ffmpeg, the ``anim``
+    extra), or None."""
+    from importlib.util import find_spec
+
+    if fmt == "gif" or (find_spec("imageio") is not None and find_spec("imageio_ffmpeg") is not None):
+        return None
+    return f"{fmt} needs imageio and imageio-ffmpeg: pip install 'camgen[anim]', or write --format gif"
 
 
 def cycle(n: int, full_turn: bool, lo: float, hi: float) -> np.ndarray:

@@ -6,6 +6,7 @@ turns the project's errors into one line on stderr and exit code 2.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import functools
 import gc
 import os
@@ -491,11 +492,18 @@ def animation_options(func: Callable[..., Any]) -> Callable[..., Any]:
 
 
 def write_animation_file(frames: Any, options: Any, directory: Path, name: str) -> Path:
-    """Write ``frames`` as ``directory/<name>-animation.<format>`` (the folder made if missing) and return the
-    path."""
+    """Write ``frames`` as ``directory/<name>-animation.<format>`` (the folder made if missing, and removed again if
+    the writing fails) and return the path."""
     from camgen.core.writers.animation import write_animation
 
+    made = [p for p in (directory, *directory.parents) if not _exists(p)]
     directory.mkdir(parents=True, exist_ok=True)
     path = directory / f"{name}-animation.{options.format}"
-    write_animation(frames, path, options.format, options.fps)
+    try:
+        write_animation(frames, path, options.format, options.fps)
+    except BaseException:
+        for folder in made:
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        raise
     return path

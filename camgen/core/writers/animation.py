@@ -41,12 +41,13 @@ def _gif(frames: np.ndarray, path: Path, fps: float) -> None:
 
 
 def _video(frames: np.ndarray, path: Path, fmt: str, fps: float) -> None:
-    try:
-        import imageio.v2 as imageio
-        import imageio_ffmpeg  # noqa: F401  (the encoder imageio runs)
-    except ImportError:
-        raise ExportError(f"{fmt.upper()} needs imageio and imageio-ffmpeg: pip install 'camgen[anim]', or write "
-                          "--format gif") from None
+    from camgen.core.animation import video_missing
+
+    missing = video_missing(fmt)
+    if missing is not None:
+        raise ExportError(missing)
+    import imageio.v2 as imageio
+
     try:
         writer = imageio.get_writer(path, format="FFMPEG", mode="I", fps=fps, codec=CODECS[fmt],
                                     pixelformat="yuv420p", macro_block_size=1, ffmpeg_log_level="error",
