@@ -196,12 +196,12 @@ def test_own_assembly_reads_back(tmp_path):
     assert j["O1"] == pytest.approx([0.0, 0.0], abs=1e-9) and j["O2"] == pytest.approx([180.0, 0.0], abs=1e-9)
     lengths = sorted(round(math.dist(j[a], j[b]), 6) for a, b in t["links"].values())
     assert lengths == [80.0, 150.0, 200.0]
-    crank = [p for p in t["links"]["crank"] if p != "O1"][0]
+    crank = next(p for p in t["links"]["crank"] if p != "O1")
     start = math.atan2(j[crank][1], j[crank][0])
     values = start + np.linspace(0, 2 * math.pi, 37)
     got = motion(t, values)
     fb = FourBar(180.0, 80.0, 200.0, 150.0)
-    rocker_pin = [p for p in t["links"][next(k for k, v in t["links"].items() if "O2" in v)] if p != "O2"][0]
+    rocker_pin = next(p for p in t["links"][next(k for k, v in t["links"].items() if "O2" in v)] if p != "O2")
     assembly = "open" if np.allclose(fb.positions(np.array([start]), "open").b[0], j[rocker_pin], atol=1e-6) \
         else "crossed"
     want = fb.positions(values, assembly)
@@ -230,3 +230,27 @@ def test_bad_input_refused(tmp_path, case):
     lines = result.output.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: sketch: "), result.output
     assert not out.exists()
+
+
+def test_red_ground_and_input_layer(tmp_path):
+    """The ground drawn in red (colour 1) instead of on layer ground, and the input marked by layer 'input': here
+    the link at O2, which the first-ground-pivot rule would not pick."""
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 4                     # mm (ezdxf's new drawings are in metres)
+    msp = doc.modelspace()
+    for p in (O1, O2):
+        msp.add_circle(p, 2.0, dxfattribs={"color": 1})
+    for p in (A, B):
+        circle(msp, p)
+    msp.add_line(O1, A)
+    msp.add_line(A, B)
+    msp.add_line(O2, B, dxfattribs={"layer": "Input"})
+    out = tmp_path / "red.toml"
+    result = run(save(doc, tmp_path), "-o", out)
+    assert result.exit_code == 0, result.output
+    t = read(out)["linkage"]
+    names = by_position(t["joints"], {"O1": O1, "O2": O2, "A": A, "B": B})
+    assert sorted(t["ground"]) == sorted([names["O1"], names["O2"]])
+    assert set(t["links"]["crank"]) == {names["O2"], names["B"]}
+    assert t["input"] == {"link": "crank", "pivot": names["O2"]}
+    assert run(save(doc, tmp_path), "-o", out).exit_code == 2          # never overwrites the template
