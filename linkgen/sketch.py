@@ -47,6 +47,7 @@ class Sketch:
 
     linkage: dict[str, Any]
     notes: tuple[str, ...]
+    hole: float = 0.0              # the smallest joint circle's diameter (mm)
 
 
 @dataclass(frozen=True)
@@ -100,7 +101,8 @@ def read_sketch(path: Path) -> Sketch:
     if not moving:
         raise SpecError("nothing to read: no line or polyline joins two joints, or every one is on the ground",
                         "sketch")
-    return Sketch(_table(centres, moving, ground, sliders), tuple(notes))
+    hole = 2 * min(c.radius for c in circles)
+    return Sketch(_table(centres, moving, ground, sliders), tuple(notes), hole)
 
 
 def _entities(path: Path) -> tuple[list[_Entity], list[str]]:
@@ -311,9 +313,11 @@ def _letter(k: int) -> str:
 
 
 def sketch_template(sketch: Sketch, name: str) -> dict[str, Any]:
-    """The raw template of ``sketch``: ``name`` and its ``[linkage]``, tracing every moving joint not on the
-    crank."""
+    """The raw template of ``sketch``: ``name``, its ``[linkage]`` (tracing up to two moving joints off the crank)
+    and a ``[parts]`` table for ``linkgen build``: pins as wide as the smallest circle drawn (at least 1 mm, at most
+    20), bars three pins wide, plates 3 mm thick."""
     table = dict(sketch.linkage)
     crank = set(table["links"]["crank"])
     table["tracers"] = [p for p in table["joints"] if p not in table["ground"] and p not in crank][:2]
-    return {"name": name, "linkage": table}
+    pin = round(min(max(sketch.hole, 1.0), 20.0), 3)
+    return {"name": name, "linkage": table, "parts": {"width": 3 * pin, "thickness": 3.0, "pin_diameter": pin}}

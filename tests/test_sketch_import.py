@@ -111,9 +111,11 @@ def test_fourbar_reads_as_drawn(tmp_path):
     at = np.asarray(got[names["B"]])[18]
     a90 = (O1[0] + 40 * math.cos(values[18]), O1[1] + 40 * math.sin(values[18]))
     assert at == pytest.approx(_meet(a90, 120.0, O2, 100.0), abs=1e-9)
-    # the template builds: linkgen analyze runs on it
-    analyzed = CliRunner().invoke(main, ["analyze", str(out), "-o", str(tmp_path / "a")])
-    assert analyzed.exit_code == 0, analyzed.output
+    # the template builds: linkgen build makes its parts, pins as wide as the circles drawn
+    assert read(out)["parts"] == {"width": 12.0, "thickness": 3.0, "pin_diameter": 4.0}
+    built = CliRunner().invoke(main, ["build", str(out), "-o", str(tmp_path / "a")])
+    assert built.exit_code == 0, built.output
+    assert (tmp_path / "a" / "sketch-assembly.dxf").exists()
 
 
 def test_inches_are_read_as_mm(tmp_path):
