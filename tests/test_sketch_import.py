@@ -256,3 +256,27 @@ def test_red_ground_and_input_layer(tmp_path):
     assert set(t["links"]["crank"]) == {names["O2"], names["B"]}
     assert t["input"] == {"link": "crank", "pivot": names["O2"]}
     assert run(save(doc, tmp_path), "-o", out).exit_code == 2          # never overwrites the template
+
+
+@pytest.mark.parametrize("name", ["stephenson3", "jansen"])
+def test_own_assembly_of_a_general_linkage_reads_back(tmp_path, name):
+    """A six-bar (ternary frame and coupler) and Jansen's leg (eight links) read back from their assembly drawings:
+    the same links (each link's joint-to-joint distances, to 1e-6 mm) and the same ground pivots, to 1e-9 mm."""
+    import itertools
+
+    template = ROOT / "templates" / f"{name}.toml"
+    built = CliRunner().invoke(main, ["build", str(template), "-o", str(tmp_path)])
+    assert built.exit_code == 0, built.output
+    out = tmp_path / "back.toml"
+    result = run(tmp_path / f"{name}-assembly.dxf", "-o", out)
+    assert result.exit_code == 0, result.output
+
+    def links(table):
+        j = table["joints"]
+        return sorted(tuple(sorted(round(math.dist(j[a], j[b]), 6) for a, b in itertools.combinations(pts, 2)))
+                      for pts in table["links"].values())
+
+    want, got = read(template)["linkage"], read(out)["linkage"]
+    assert links(got) == links(want)
+    assert np.array(sorted(got["joints"][p] for p in got["ground"])) == pytest.approx(
+        np.array(sorted(want["joints"][p] for p in want["ground"])), abs=1e-9)
