@@ -1,5 +1,5 @@
 """A disc cam's animation: one full turn of the cam with its follower riding it. Pure: returns frames as arrays
-(:mod:`camgen.core.animation`); the command writes them (:mod:`camgen.core.writers.animation`).
+(:mod:`camgen.core.frames`); the command writes them (:mod:`camgen.core.writers.animation`).
 
 Frame k shows the cam turned by theta_k = 2 pi k / n in its sense of rotation (``cam.rotation``) from its drawing at
 theta = 0 (the fixed frame is the cam's frame turned by sense * theta, sense = +1 counter-clockwise), its pitch curve
@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.core.animation import bounds, cycle, render
+from camgen.core.frames import bounds, cycle, render
 from camgen.core.errors import SpecError
 from camgen.flat import FlatCamDesign
 from camgen.followers.base import rotate

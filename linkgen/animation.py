@@ -1,5 +1,5 @@
 """A linkage's animation: one full cycle of its input, the linkage drawn at each step and its tracers' paths (every
-moving joint's when it has none) drawn whole. Pure: returns frames as arrays (:mod:`camgen.core.animation`); the
+moving joint's when it has none) drawn whole. Pure: returns frames as arrays (:mod:`camgen.core.frames`); the
 command writes them (:mod:`camgen.core.writers.animation`).
 
 A crank that turns fully makes one turn from the drawing, frame k at the drawn angle + 2 pi k / n (counter-clockwise);
@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.core.animation import bounds, cycle, render
+from camgen.core.frames import bounds, cycle, render
 from camgen.core.errors import SpecError
 from linkgen.linkage_design import LinkageDesign, pose_of
 from linkgen.mechanisms.general import Analysis

@@ -10,7 +10,7 @@ from click.testing import CliRunner
 from PIL import Image
 
 from camgen.cli import main as camgen_main
-from camgen.core.animation import cycle
+from camgen.core.frames import cycle
 from camgen.core.writers.animation import write_animation
 from linkgen.cli import main as linkgen_main
 from tests.conftest import ROOT
