@@ -8,8 +8,9 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, Family, Starters, add_bench, add_examples, add_family, add_new, echo_written,
-                             one_design, output_option, set_option, template_options, user_errors)
+from camgen.core.cli import (Commands, Family, Starters, add_bench, add_examples, add_family, add_new,
+                             animation_options, echo_written, one_design, output_option, set_option, template_options,
+                             user_errors, write_animation_file)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -161,3 +162,17 @@ def serve(template: Path | None, port: int | None, no_browser: bool) -> None:
             webbrowser.open(url)
 
     run(Path.cwd(), template, port, started)
+
+
+@main.command()
+@animation_options
+@one_design
+def animate(template: Path, output: Path | None, overrides: tuple[str, ...], options: Any) -> None:
+    """Write one full turn of the disc cam in TEMPLATE, its follower riding it, as an animation."""
+    from camgen import api
+    from camgen.animation import cam_frames, disc_design
+
+    spec = api.load(template, overrides)
+    frames = cam_frames(disc_design(api.design(spec)), options.frames, options.size)
+    directory = output if output is not None else Path("out") / spec.name
+    click.echo(f"wrote {write_animation_file(frames, options, directory, spec.name)}")

@@ -9,9 +9,9 @@ from typing import Any
 
 import click
 
-from camgen.core.cli import (Commands, Family, Starters, add_bench, add_examples, add_family, add_new, echo_written,
-                             figures_option, fixed, one_design, output_option, set_option, template_argument,
-                             template_options, user_errors)
+from camgen.core.cli import (Commands, Family, Starters, add_bench, add_examples, add_family, add_new,
+                             animation_options, echo_written, figures_option, fixed, one_design, output_option,
+                             set_option, template_argument, template_options, user_errors, write_animation_file)
 
 
 @click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
@@ -517,3 +517,54 @@ def _print_newton(n: dict[str, Any], longest: float) -> None:
                    f"{s['residual_mm']:>13.3e}")
     click.echo(f"{n['stopped']}: the {n['assembly']} assembly, {n['agrees_with_closed_form_deg']:.2g} degrees from "
                "its closed form")
+
+
+@main.command()
+@animation_options
+@one_design
+def animate(template: Path, output: Path | None, overrides: tuple[str, ...], options: Any) -> None:
+    """Write one full cycle of the linkage in TEMPLATE as an animation, its tracers' paths drawn."""
+    from linkgen.animation import analysis_for_animation, linkage_frames
+    from linkgen.linkage_design import design_linkage
+    from linkgen.spec import load_spec
+
+    spec = load_spec(template, overrides)
+    frames = linkage_frames(analysis_for_animation(design_linkage(spec)), options.frames, options.size)
+    directory = output if output is not None else Path("out") / spec.name
+    click.echo(f"wrote {write_animation_file(frames, options, directory, spec.name)}")
+
+
+@main.command("import")
+@click.argument("sketch", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="The template to write (default: <sketch's name>.toml here); an existing file is never "
+                   "overwritten.")
+@one_design
+def import_sketch(sketch: Path, output: Path | None) -> None:
+    """Read the linkage drawn in SKETCH (a DXF) into a type = "linkage" template: circles are joints, lines and
+    polylines links, layer "ground" (or red) the frame, layer "input" the crank; says what it could not read."""
+    import re
+
+    from camgen.core.cli import _write_new
+    from camgen.core.errors import SpecError
+    from linkgen.linkage_design import design_linkage
+    from linkgen.sketch import read_sketch, sketch_template
+    from linkgen.spec import validate_spec
+    from linkgen.synthesis.candidates import toml_text
+
+    path = output if output is not None else Path(f"{sketch.stem}.toml")
+    name = re.sub(r"[^A-Za-z0-9_-]+", "-", sketch.stem).strip("-")[:64] or "sketch"
+    read = read_sketch(sketch)
+    raw = sketch_template(read, name)
+    try:
+        design_linkage(validate_spec(raw))
+    except SpecError as exc:
+        raise SpecError(f"the linkage read does not build: {exc}", "sketch") from None
+    for note in read.notes:
+        click.echo(f"warning: {note}")
+    _write_new(path, toml_text(raw, f"Read from {sketch.name} by linkgen import.\nCheck it with:  linkgen analyze "
+                                    f"{path.name}").encode())
+    links = raw["linkage"]["links"]
+    click.echo(f"{name}: {len(raw['linkage']['joints'])} joints, {len(links)} moving links, ground "
+               f"{', '.join(raw['linkage']['ground'])}, input {raw['linkage']['input']['link']}")
+    click.echo(f"wrote {path}")

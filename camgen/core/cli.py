@@ -6,6 +6,7 @@ turns the project's errors into one line on stderr and exit code 2.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import functools
 import gc
 import os
@@ -461,3 +462,48 @@ def report_family(rows: list[dict], output: Path) -> None:
     for r in rows:
         if r["status"] != "ok":
             click.echo(f"failed {r['name']}: {r['error']}")
+
+
+def animation_options(func: Callable[..., Any]) -> Callable[..., Any]:
+    """The options of an ``animate`` command: TEMPLATE, ``-o``, ``--set``, ``--frames``, ``--size``, ``--format``,
+    ``--fps``; the function receives them checked, as one :class:`~camgen.core.animation.AnimationOptions`
+    ``options`` (a bad value: one line naming its option, before any work)."""
+    from camgen.core.animation import FORMATS, FPS, FRAMES, PIXELS
+
+    @functools.wraps(func)
+    def wrapper(*args: Any, frames: int, size: str, fmt: str, fps: float, **kwargs: Any) -> Any:
+        from camgen.core.animation import animation_options as checked
+
+        return func(*args, options=user_errors(checked)(frames, size, fps, fmt), **kwargs)
+
+    return _apply(wrapper, (
+        template_argument(),
+        output_option("Folder for the animation (default: out/<name>/).", default=None),
+        set_option("name=demo"),
+        click.option("--frames", type=int, default=72, show_default=True,
+                     help=f"Frames in the cycle ({FRAMES[0]} to {FRAMES[1]})."),
+        click.option("--size", default="640x480", show_default=True, metavar="WxH",
+                     help=f"Frame size in pixels, each side even, {PIXELS[0]} to {PIXELS[1]}."),
+        click.option("--format", "fmt", type=click.Choice(FORMATS), default="gif", show_default=True,
+                     help="gif (Pillow), or mp4 / webm (imageio-ffmpeg: the anim extra)."),
+        click.option("--fps", type=float, default=24.0, show_default=True,
+                     help=f"Frames per second ({FPS[0]:g} to {FPS[1]:g})."),
+    ))
+
+
+def write_animation_file(frames: Any, options: Any, directory: Path, name: str) -> Path:
+    """Write ``frames`` as ``directory/<name>-animation.<format>`` (the folder made if missing, and removed again if
+    the writing fails) and return the path."""
+    from camgen.core.writers.animation import write_animation
+
+    made = [p for p in (directory, *directory.parents) if not _exists(p)]
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / f"{name}-animation.{options.format}"
+    try:
+        write_animation(frames, path, options.format, options.fps)
+    except BaseException:
+        for folder in made:
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        raise
+    return path

@@ -1,0 +1,66 @@
+"""Frames of an animation: one figure redrawn per step of a cycle, returned as pixel arrays (matplotlib's Agg
+canvas). Pure: nothing is written here (the encoders are :mod:`camgen.core.writers.animation`)."""
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from camgen.core.figures import figure
+
+#: the figure's resolution (dots per inch): a frame of W x H pixels is a figure of W/DPI x H/DPI inches
+DPI = 100
+
+
+def cycle(n: int, full_turn: bool, lo: float, hi: float) -> np.ndarray:
+    """The ``n`` input values of one cycle, the last one step before the first comes again: a full turn from
+    ``lo`` (rad, ``hi`` ignored) in steps of 2 pi / n, or forth and back between ``lo`` and ``hi`` (rad or mm) as
+    lo + (hi - lo) (1 - cos(2 pi k / n)) / 2, which slows to a stop at both ends as a rocker or a ram does."""
+    k = np.arange(n) / n
+    if full_turn:
+        return lo + 2 * math.pi * k
+    return lo + (hi - lo) * (1 - np.cos(2 * math.pi * k)) / 2
+
+
+def render(draw: Callable[[Any, int], None], n: int, size: tuple[int, int],
+           box: tuple[float, float, float, float]) -> np.ndarray:
+    """Frames ``0 .. n-1`` as an array (n, height, width, 3) of uint8 RGB: each frame the axes are cleared,
+    ``draw(ax, k)`` draws frame ``k`` in mm, and the view is the fixed region ``box`` (x0, y0, x1, y1 mm, equal
+    scale, centred), so that frames line up. One figure of ``size`` pixels is reused for every frame."""
+    width, height = size
+    fig = figure(width / DPI, height / DPI, layout=None)
+    fig.set_dpi(DPI)
+    ax = fig.add_axes((0.02, 0.02, 0.96, 0.96))
+    x0, y0, x1, y1 = _fitted(box, width / height)
+    out = np.empty((n, height, width, 3), dtype=np.uint8)
+    for k in range(n):
+        ax.clear()
+        draw(ax, k)
+        ax.set_xlim(x0, x1)
+        ax.set_ylim(y0, y1)
+        ax.set_axis_off()
+        fig.canvas.draw()
+        out[k] = np.asarray(fig.canvas.buffer_rgba())[:height, :width, :3]
+    return out
+
+
+def _fitted(box: tuple[float, float, float, float], aspect: float) -> tuple[float, float, float, float]:
+    """``box`` widened (or heightened) about its centre to the proportions ``aspect`` (width / height) of the
+    frame, so that one mm is as many pixels across as up."""
+    x0, y0, x1, y1 = box
+    w, h = x1 - x0, y1 - y0
+    w, h = max(w, h * aspect), max(h, w / aspect)
+    cx, cy = (x0 + x1) / 2, (y0 + y1) / 2
+    return cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2
+
+
+def bounds(*points: np.ndarray, margin: float = 0.06) -> tuple[float, float, float, float]:
+    """The region (x0, y0, x1, y1 mm) holding every point of ``points`` (arrays (..., 2) mm) with ``margin`` of its
+    larger side round it."""
+    xy = np.concatenate([np.asarray(p, dtype=float).reshape(-1, 2) for p in points])
+    xy = xy[np.isfinite(xy).all(axis=1)]
+    (x0, y0), (x1, y1) = xy.min(axis=0), xy.max(axis=0)
+    pad = margin * max(x1 - x0, y1 - y0, 1.0)
+    return float(x0 - pad), float(y0 - pad), float(x1 + pad), float(y1 + pad)
