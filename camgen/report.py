@@ -11,6 +11,7 @@ from typing import Any
 from camgen.core import VERSION as __version__
 from camgen.core.solids import MeshCheck
 from camgen.flat import FlatCamDesign
+from camgen.tables.followers import Face
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:
@@ -85,7 +86,7 @@ def cam_report(design: FlatCamDesign, mesh: MeshCheck | None = None) -> dict[str
         "warnings": list(design.warnings),
     }
     f = cam.follower
-    if design.face_extent is not None:
+    if design.face_extent is not None and isinstance(t.follower, Face):
         lo, hi = design.face_extent
         report["face_position_min_mm"], report["face_position_max_mm"] = _r(lo), _r(hi)
         report["face_width_mm"] = _r(hi - lo + 2 * t.follower.face_margin)

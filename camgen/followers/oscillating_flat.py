@@ -135,7 +135,7 @@ def check_reach(table: Any, base_radius: float, top: float) -> None:
                         f"(pressure angle 180 degrees) (got {c:g})", "follower.pivot_distance")
 
 
-FOLLOWER = FollowerType("oscillating-flat", needs=frozenset({"pivot_distance"}), takes=frozenset({"face_margin"}),
-                        oscillating=True, make=lambda t, rb, rr, sense: OscillatingFlat(t.pivot_distance, rb, sense),
+FOLLOWER = FollowerType("oscillating-flat", oscillating=True,
+                        make=lambda t, rb, rr, sense: OscillatingFlat(t.pivot_distance, rb, sense),
                         base_radius_range=lambda t, rr, top: (0.0, largest_base_radius(t.pivot_distance, top)),
                         path_length=None, fits=check_reach)

@@ -108,8 +108,7 @@ def _arm_floor(table: Any, base_radius: float) -> float:
 
 
 FOLLOWER = FollowerType(
-    "oscillating-roller", needs=frozenset({"roller_radius", "pivot_distance", "arm_length"}), takes=frozenset(),
-    oscillating=True,
+    "oscillating-roller", oscillating=True,
     make=lambda t, rb, rr, sense: OscillatingRoller(t.pivot_distance, t.arm_length, rb + rr, rr, sense),
     base_radius_range=lambda t, rr, top: (max(0.0, abs(t.pivot_distance - t.arm_length) - rr),
                                           t.pivot_distance + t.arm_length - rr),

@@ -48,5 +48,4 @@ class TranslatingFlat(FlatFace):
         return rotate(geometry.point, self.sense * geometry.theta)[:, 0]
 
 
-FOLLOWER = FollowerType("translating-flat", needs=frozenset(), takes=frozenset({"face_margin"}),
-                        make=lambda t, rb, rr, sense: TranslatingFlat(rb, sense))
+FOLLOWER = FollowerType("translating-flat", make=lambda t, rb, rr, sense: TranslatingFlat(rb, sense))

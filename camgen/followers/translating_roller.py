@@ -79,7 +79,6 @@ def _offset_floor(table: Any, base_radius: float) -> float:
 
 
 FOLLOWER = FollowerType(
-    "translating-roller", needs=frozenset({"roller_radius"}), takes=frozenset({"offset"}),
-    make=lambda t, rb, rr, sense: TranslatingRoller(rb + rr, rr, t.offset, sense),
+    "translating-roller", make=lambda t, rb, rr, sense: TranslatingRoller(rb + rr, rr, t.offset, sense),
     base_radius_range=lambda t, rr, top: (max(0.0, abs(t.offset) - rr), math.inf),
     roller_floor=_offset_floor)

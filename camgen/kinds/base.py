@@ -220,15 +220,3 @@ class KindBase(ABC, Generic[S, D]):
 
     def format_refusal(self, fmt: str) -> str:
         return f"{self.title} writes no {fmt!r} file; give formats of {', '.join(sorted(self.formats))}"
-
-
-# ---- the shared [follower] table's checks, until each kind declares its followers' tables ----
-
-#: how a message names the barrel kind
-BARREL = 'a barrel cam (cam.kind = "barrel")'
-
-
-def flat_follower(spec: Any) -> None:
-    """The follower check every flat cam (disc, plate, grooved, conjugate) shares: no barrel's conical roller."""
-    if "roller_shape" in spec.follower.model_fields_set:
-        raise ValueError(f"follower.roller_shape: only for {BARREL}")

@@ -5,7 +5,7 @@ from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from camgen.followers import FOLLOWERS
-from camgen.kinds.base import Starter, flat_follower
+from camgen.kinds.base import Starter
 from camgen.kinds.shared import FlatKind
 from camgen.kinds.starting import FLAT_AUTO, OUTPUT, ROLLER, SPRUNG, SWING, cam_table, motion
 from camgen.rig import Mount, disc_mount
@@ -17,7 +17,8 @@ if TYPE_CHECKING:
 
 
 def _check(spec: Any) -> None:
-    flat_follower(spec)
+    """Nothing beyond its tables: a disc cam's follower tables are the spring-held ones
+    (:mod:`camgen.tables.followers`)."""
 
 
 #: a disc cam's starters, one a follower type
