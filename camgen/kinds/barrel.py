@@ -23,7 +23,6 @@ if TYPE_CHECKING:
     from camgen.barrel.design import BarrelDesign
     from camgen.spec import BarrelSpec
 
-FOLLOWERS = ("translating-roller", "oscillating-roller")
 
 
 def geometry(spec: Any) -> BarrelGeometry:
@@ -225,7 +224,6 @@ class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
 
     name: str = "barrel"
     title: str = "a barrel cam"
-    followers: tuple[str, ...] = FOLLOWERS
     formats: frozenset[str] = ALL_FORMATS - {"step"}
     unsized: str = ("a barrel cam has no base radius to size: its pitch_radius is the designer's choice (the report "
                "gives the pressure angle at it)")

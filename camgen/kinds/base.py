@@ -175,13 +175,19 @@ class KindBase(ABC, Generic[S, D]):
     name: str
     title: str
     table_key: str = CAM_TABLE
-    followers: tuple[str, ...] = ()
     formats: frozenset[str] = ALL_FORMATS
     starters: Mapping[str, Starter] = MappingProxyType({})
 
     @property
     def unsized(self) -> str:
         return f"{self.title} has no base radius to size"
+
+    @property
+    def followers(self) -> tuple[str, ...]:
+        """The follower types its spec's ``follower`` union takes (:func:`camgen.tables.followers.follower_types`)."""
+        from camgen.tables.followers import follower_types
+
+        return follower_types(self.spec)
 
     @property
     @abstractmethod

@@ -22,7 +22,6 @@ if TYPE_CHECKING:
     from camgen.conjugate.design import ConjugateDesign
     from camgen.spec import ConjugateSpec
 
-FOLLOWERS = ("translating-roller", "oscillating-roller")
 #: the key that places the second roller instead of ``cam.second_base_radius``, by follower type
 PLACES = {"translating-roller": "yoke_span", "oscillating-roller": "arm_angle"}
 #: the follower type each of the second roller's own ``[cam]`` keys is for: a rule across two tables (the cam's keys
@@ -68,7 +67,6 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
 
     name: str = "conjugate"
     title: str = "a conjugate cam"
-    followers: tuple[str, ...] = FOLLOWERS
     check: Callable[[ConjugateSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 

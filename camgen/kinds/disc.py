@@ -4,7 +4,6 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.followers import FOLLOWERS
 from camgen.kinds.base import Starter
 from camgen.kinds.shared import FlatKind
 from camgen.kinds.starting import FLAT_AUTO, OUTPUT, ROLLER, SPRUNG, SWING, cam_table, motion
@@ -76,7 +75,6 @@ class DiscKind(FlatKind["DiscSpec"]):
 
     name: str = "disc"
     title: str = "a disc cam"
-    followers: tuple[str, ...] = tuple(FOLLOWERS)
     check: Callable[[DiscSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 

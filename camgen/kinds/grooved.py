@@ -20,7 +20,6 @@ if TYPE_CHECKING:
     from camgen.grooved.design import GroovedDesign
     from camgen.spec import GroovedSpec
 
-FOLLOWERS = ("translating-roller", "oscillating-roller")
 
 
 def _check(spec: Any) -> None:
@@ -53,7 +52,6 @@ class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
 
     name: str = "grooved"
     title: str = "a grooved cam"
-    followers: tuple[str, ...] = FOLLOWERS
     check: Callable[[GroovedSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 

@@ -16,7 +16,6 @@ from camgen.rig import Mount, plate_mount
 if TYPE_CHECKING:
     from camgen.spec import PlateSpec
 
-FOLLOWERS = ("translating-roller", "knife-edge")
 
 
 def _check(spec: Any) -> None:
@@ -48,7 +47,6 @@ class PlateKind(FlatKind["PlateSpec"]):
 
     name: str = "plate"
     title: str = "a plate cam"
-    followers: tuple[str, ...] = FOLLOWERS
     check: Callable[[PlateSpec], None] = staticmethod(_check)
     follower: Callable[[PlateSpec, float, float], Any] = staticmethod(_follower)
     starters: Mapping[str, Starter] = STARTERS

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Literal
+from typing import Annotated, Any, ClassVar, Literal, get_args
 
 from pydantic import ConfigDict, Field, model_validator
 
@@ -357,6 +357,14 @@ class BarrelOscillatingRollerTable(Dynamics, Cone, Arm, Roller, Centred, Unsprun
     def roller_width(self) -> None:
         """A barrel's roller has no width of its own to give: its contact is along the groove's depth."""
         return None
+
+
+def follower_types(spec: Any) -> tuple[str, ...]:
+    """The follower types a kind's spec (a model class) takes: the tags of its ``follower`` union, in its order;
+    none for a spec without a follower (a Geneva drive's)."""
+    field = getattr(spec, "model_fields", {}).get("follower")
+    members = get_args(field.annotation) if field is not None else ()
+    return tuple(tag for member in members for tag in get_args(member.model_fields["type"].annotation))
 
 
 #: a disc cam's followers
