@@ -93,10 +93,8 @@ def cam_report(design: FlatCamDesign, mesh: MeshCheck | None = None) -> dict[str
         report["face_measured_from"] = f.face_origin
     if design.face_leaves is not None:          # a flat face's folds cut off (cam.allow_undercut)
         report["face_leaves_cam"] = [leaves.as_dict() for leaves in design.face_leaves]
-    if hasattr(f, "pivot"):
-        report["follower"]["pivot_mm"] = [_r(x) for x in f.pivot]
-    if hasattr(f, "rest_angle"):
-        report["follower"]["rest_angle_deg"] = _r(math.degrees(f.rest_angle))
+    report["follower"].update({key: [_r(x) for x in value] if isinstance(value, list) else _r(value)
+                               for key, value in f.report_fields().items()})
     if design.speed is not None:
         report["speed"] = design.speed
     if design.sizing is not None:

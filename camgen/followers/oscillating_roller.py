@@ -21,10 +21,11 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.followers.base import FollowerType, PitchGeometry, Swing, from_centre_path, perp, positive, rotate
+from camgen.followers.drawing import Face, Pivoted, Stroke
 
 
 @dataclass(frozen=True)
-class OscillatingRoller(Swing):
+class OscillatingRoller(Swing, Pivoted):
     """Roller follower on an arm (see the module docstring); lengths in mm.
 
     Parameters
@@ -100,6 +101,22 @@ class OscillatingRoller(Swing):
         q1 = k * psi1[:, None] * perp(w)
         q2 = k * psi2[:, None] * perp(w) - (psi1**2)[:, None] * w
         return from_centre_path(theta, p + w, q1, q2, k * perp(w) / self.arm_length, self.sense)
+
+    @property
+    def roller(self) -> float:
+        return self.roller_radius
+
+    def sketch(self, theta: np.ndarray, geometry: PitchGeometry, reach: float, face: Face,
+               roller: float) -> tuple[Stroke, ...]:
+        """Its arm from the pivot to the roller's centre, and the roller."""
+        centre = self.fixed(theta, geometry)
+        pivot = np.asarray(self.pivot, dtype=float)
+        arm = np.stack([np.broadcast_to(pivot, (len(theta), 2)), centre], axis=1)
+        return Stroke("arm", arm, "follower"), Stroke("roller", centre[:, None, :], "roller", roller)
+
+    def report_fields(self) -> dict[str, Any]:
+        """Its pivot and the arm's rest angle (degrees)."""
+        return {**super().report_fields(), "rest_angle_deg": math.degrees(self.rest_angle)}
 
 
 def _arm_floor(table: Any, base_radius: float) -> float:
