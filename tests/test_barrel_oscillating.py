@@ -191,7 +191,8 @@ def test_pressure_angle_in_3d_against_finite_differences():
                                "roller_radius, pivot_distance, arm_length, inertia, arm_mass, arm_com, roller_shape, "),
     ({"follower.mass": 2.0, "follower.orientation": 0.0}, "follower.orientation: not modelled for a barrel's arm"),
     ({"follower.spring_rate": 2.0}, f"follower.spring_rate: not a key of {ARM_TABLE}; "),
-    ({"follower.roller_width": 8.0}, f"follower.roller_width: not a key of {ARM_TABLE}; "),
+    ({"follower.roller_width": 8.0}, f"follower.roller_width: not a key of {ARM_TABLE} (did you mean "
+                                     "'roller_shape'?); it takes: "),
     ({"cam.material": "steel"}, "cam.material: a barrel cam's contact pressure is at cam.rpm with follower.mass"),
     ({"follower.face_margin": 2.0}, f"follower.face_margin: not a key of {ARM_TABLE}; "),
 ])
