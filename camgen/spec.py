@@ -198,7 +198,7 @@ class CamSpec(TemplateSpec):
     cam : DiscTable, PlateTable, GroovedTable, BarrelTable or ConjugateTable
         The cam body, the table of its ``kind`` (:mod:`camgen.tables`; a kind's spec, :data:`CAM_SPECS`, holds its
         own): its size, bore, rotation, sizing limits and speed.
-    follower : a follower's table
+    follower : AnyFollower
         The follower: its type, geometry, mass, spring and loads, the table of its ``type`` among those the kind
         drives (:mod:`camgen.tables.followers`).
     motion : list of SegmentTable

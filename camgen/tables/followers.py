@@ -12,9 +12,11 @@ A kind's spec declares the tables it drives as a union chosen by ``type`` (:data
 :data:`PlateFollower` for a plate cam, :data:`DrivenFollower` for the positive drives of a grooved cam and a
 conjugate pair, :data:`BarrelFollower` for a barrel cam). Keys a type needs are required, not optional.
 
-A table that lacks a piece answers for it with what its absence means (:class:`Unsprung`: no spring;
-:class:`Centred`: an offset of 0; :class:`Rollerless`: no roller; :class:`Armless`: no arm), so the code that
-reads any follower (its loading, its report) reads one shape; a key that is not a field stays refused.
+A table that lacks a piece answers for it with what its absence means, as class constants that are no keys
+(:class:`Unsprung`: no spring; :class:`Centred`: an offset of 0; :class:`Rollerless`: no roller; :class:`Armless`
+and :class:`Unpivoted`: no arm, no pivot), so the code that reads any follower (its loading, its report) reads one
+shape; a key that is not a field stays refused. The groups: :class:`Sprung` and :class:`Driven` (held by a spring,
+or driven both ways), :class:`Straight` and :class:`OnCentre` (translating, and on the cam centre's line).
 """
 from __future__ import annotations
 
@@ -22,7 +24,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, Literal, get_args
 
-from pydantic import ConfigDict, Field, model_validator
+from pydantic import Field, model_validator
 
 from camgen.core.spec import MAX_LENGTH_MM, Model, length, notes, unit
 from camgen.tables import Material
@@ -97,20 +99,9 @@ class Spring(Model):
 class Unsprung:
     """A follower the cam drives both ways (a groove, a conjugate pair): no spring, no contact margin."""
 
-    @property
-    def spring_rate(self) -> None:
-        """No return spring."""
-        return None
-
-    @property
-    def preload(self) -> None:
-        """No spring force."""
-        return None
-
-    @property
-    def contact_margin(self) -> None:
-        """No contact to keep: the cam drives the follower both ways."""
-        return None
+    spring_rate: ClassVar[None] = None
+    preload: ClassVar[None] = None
+    contact_margin: ClassVar[None] = None
 
 
 class Roller(Model):
@@ -136,20 +127,10 @@ class RollerWidth(Model):
 class Rollerless:
     """A knife edge or a flat face: no roller, so a contact radius of 0."""
 
-    @property
-    def roller_radius(self) -> None:
-        """No roller."""
-        return None
-
-    @property
-    def roller_width(self) -> None:
-        """No roller."""
-        return None
-
-    @property
-    def contact_radius(self) -> float:
-        """0: the contact is a point of the follower (mm)."""
-        return 0.0
+    roller_radius: ClassVar[None] = None
+    roller_width: ClassVar[None] = None
+    #: the contact is a point of the follower (mm)
+    contact_radius: ClassVar[float] = 0.0
 
 
 class Offset(Model):
@@ -163,10 +144,8 @@ class Offset(Model):
 class Centred:
     """A follower on the cam centre's line (a flat face, a plate cam's, a barrel's, an arm's): an offset of 0."""
 
-    @property
-    def offset(self) -> float:
-        """0 mm: the follower's axis passes through the cam centre."""
-        return 0.0
+    #: the follower's axis passes through the cam centre (mm)
+    offset: ClassVar[float] = 0.0
 
 
 class Pivot(Model):
@@ -206,36 +185,17 @@ class Arm(Pivot):
 class Armless:
     """A follower without an arm (translating, or a flat face on a pivot): no arm length, inertia or weight."""
 
-    @property
-    def arm_length(self) -> None:
-        """No arm."""
-        return None
-
-    @property
-    def inertia(self) -> None:
-        """No arm."""
-        return None
-
-    @property
-    def arm_mass(self) -> None:
-        """No arm."""
-        return None
-
-    @property
-    def arm_com(self) -> None:
-        """No arm."""
-        return None
+    arm_length: ClassVar[None] = None
+    inertia: ClassVar[None] = None
+    arm_mass: ClassVar[None] = None
+    arm_com: ClassVar[None] = None
 
 
 class Unpivoted:
     """A translating follower: no pivot; its lift is in mm."""
 
+    pivot_distance: ClassVar[None] = None
     oscillating: ClassVar[bool] = False
-
-    @property
-    def pivot_distance(self) -> None:
-        """No pivot."""
-        return None
 
 
 class Face(Model):
@@ -253,110 +213,115 @@ class Cone(Model):
         "axis", json_schema_extra=notes(allowed="conical: roller_radius < cam.pitch_radius, on the pitch cylinder"))
 
 
+class Sprung(Dynamics, Spring):
+    """A follower held on its cam by a spring (or its weight, or a load): a disc cam's, a plate cam's."""
+
+
+class Driven(Dynamics, Unsprung):
+    """A follower its cam drives both ways (a groove, a conjugate pair, a barrel's groove): no spring."""
+
+
+class Straight(Armless, Unpivoted):
+    """A translating follower: no arm, no pivot."""
+
+
+class OnCentre(Straight, Centred):
+    """A translating follower whose axis passes through the cam centre (a face's, a plate cam's, a barrel's)."""
+
+
 # --- a disc cam's followers, held on by a spring (or their weight, or a load) ---------------------------------------
 
-class TranslatingRollerTable(Dynamics, Spring, RollerWidth, Offset, Roller, Armless, Unpivoted):
+class TranslatingRollerTable(Sprung, RollerWidth, Offset, Roller, Straight, title="a translating-roller follower"):
     """A translating roller follower, held on by a spring (its weight, or a load)."""
 
-    model_config = ConfigDict(title="a translating-roller follower")
 
     type: Literal["translating-roller"] = Field(description="follower type")
 
 
-class KnifeEdgeTable(Dynamics, Spring, Offset, Armless, Unpivoted, Rollerless):
+class KnifeEdgeTable(Sprung, Offset, Straight, Rollerless, title="a knife-edge follower"):
     """A knife-edge follower: a point on the follower's axis."""
 
-    model_config = ConfigDict(title="a knife-edge follower")
 
     type: Literal["knife-edge"] = Field(description="follower type")
 
 
-class TranslatingFlatTable(Dynamics, Spring, Face, Armless, Unpivoted, Centred, Rollerless):
+class TranslatingFlatTable(Sprung, Face, OnCentre, Rollerless, title="a translating-flat follower"):
     """A translating flat-faced follower, its face square to its motion."""
 
-    model_config = ConfigDict(title="a translating-flat follower")
 
     type: Literal["translating-flat"] = Field(description="follower type")
 
 
-class OscillatingRollerTable(Dynamics, Spring, RollerWidth, Arm, Roller, Centred):
+class OscillatingRollerTable(Sprung, RollerWidth, Arm, Roller, Centred, title="an oscillating-roller follower"):
     """A roller on a swinging arm, held on by a spring (its weight, or a load)."""
 
-    model_config = ConfigDict(title="an oscillating-roller follower")
 
     type: Literal["oscillating-roller"] = Field(description="follower type")
 
 
-class OscillatingFlatTable(Dynamics, Spring, Face, Pivot, Armless, Centred, Rollerless):
+class OscillatingFlatTable(Sprung, Face, Pivot, Armless, Centred, Rollerless, title="an oscillating-flat follower"):
     """A flat face swinging about a pivot."""
 
-    model_config = ConfigDict(title="an oscillating-flat follower")
 
     type: Literal["oscillating-flat"] = Field(description="follower type")
 
 
 # --- a plate cam's: on the plate's normal, no offset ----------------------------------------------------------------
 
-class PlateRollerTable(Dynamics, Spring, RollerWidth, Roller, Armless, Unpivoted, Centred):
+class PlateRollerTable(Sprung, RollerWidth, Roller, OnCentre, title="a plate cam's translating-roller follower"):
     """A plate cam's translating roller: it moves square to the plate's slide, so it has no offset."""
 
-    model_config = ConfigDict(title="a plate cam's translating-roller follower")
 
     type: Literal["translating-roller"] = Field(description="follower type")
 
 
-class PlateKnifeEdgeTable(Dynamics, Spring, Armless, Unpivoted, Centred, Rollerless):
+class PlateKnifeEdgeTable(Sprung, OnCentre, Rollerless, title="a plate cam's knife-edge follower"):
     """A plate cam's knife edge: a point moving square to the plate's slide."""
 
-    model_config = ConfigDict(title="a plate cam's knife-edge follower")
 
     type: Literal["knife-edge"] = Field(description="follower type")
 
 
 # --- positive drives: a groove or a conjugate pair drives the roller both ways, no spring ---------------------------
 
-class DrivenTranslatingRollerTable(Dynamics, RollerWidth, Offset, Roller, Armless, Unpivoted, Unsprung):
+class DrivenTranslatingRollerTable(Driven, RollerWidth, Offset, Roller, Straight,
+                                   title="a positive-drive translating-roller follower (driven both ways, no spring)"):
     """A translating roller driven both ways (a grooved cam's, a conjugate pair's yoke): no spring."""
 
-    model_config = ConfigDict(title="a positive-drive translating-roller follower (driven both ways, no spring)")
 
     type: Literal["translating-roller"] = Field(description="follower type")
 
 
-class DrivenOscillatingRollerTable(Dynamics, RollerWidth, Arm, Roller, Centred, Unsprung):
+class DrivenOscillatingRollerTable(Driven, RollerWidth, Arm, Roller, Centred,
+                                   title="a positive-drive oscillating-roller follower (driven both ways, no spring)"):
     """A roller on an arm driven both ways (a grooved cam's, a conjugate pair's bell crank): no spring."""
 
-    model_config = ConfigDict(title="a positive-drive oscillating-roller follower (driven both ways, no spring)")
 
     type: Literal["oscillating-roller"] = Field(description="follower type")
 
 
 # --- a barrel cam's: along the cam's axis, in its groove ------------------------------------------------------------
 
-class BarrelTranslatingRollerTable(Dynamics, Cone, Roller, Armless, Unpivoted, Centred, Unsprung):
+class BarrelTranslatingRollerTable(Driven, Cone, Roller, OnCentre,
+                                   title="a barrel cam's translating-roller follower (driven both ways, no spring)"):
     """A barrel cam's roller moving along the cam's axis, driven both ways by the groove."""
 
-    model_config = ConfigDict(title="a barrel cam's translating-roller follower (driven both ways, no spring)")
 
     type: Literal["translating-roller"] = Field(description="follower type")
 
-    @property
-    def roller_width(self) -> None:
-        """A barrel's roller has no width of its own to give: its contact is along the groove's depth."""
-        return None
+    #: a barrel's roller has no width of its own to give: its contact is along the groove's depth
+    roller_width: ClassVar[None] = None
 
 
-class BarrelOscillatingRollerTable(Dynamics, Cone, Arm, Roller, Centred, Unsprung):
+class BarrelOscillatingRollerTable(Driven, Cone, Arm, Roller, Centred,
+                                   title="a barrel cam's oscillating-roller follower (driven both ways, no spring)"):
     """A barrel cam's roller on an arm swinging along the cam's axis, driven both ways by the groove."""
 
-    model_config = ConfigDict(title="a barrel cam's oscillating-roller follower (driven both ways, no spring)")
 
     type: Literal["oscillating-roller"] = Field(description="follower type")
 
-    @property
-    def roller_width(self) -> None:
-        """A barrel's roller has no width of its own to give: its contact is along the groove's depth."""
-        return None
+    #: a barrel's roller has no width of its own to give: its contact is along the groove's depth
+    roller_width: ClassVar[None] = None
 
 
 def follower_types(spec: Any) -> tuple[str, ...]:
