@@ -680,10 +680,13 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
             msg = f"not a key of {title}{hint}; it takes: {takes}"
         else:
             msg = f"unknown key{hint}; known keys here: {', '.join(known)}"
-    elif kind == "union_tag_invalid":       # a follower's type the kind does not drive
-        tag = ctx.get("discriminator", "'type'").strip("'")
-        msg = f"{getattr(root, 'noun', 'this template')} takes {_either(list(_tag_members(info)))} (got " \
-              f"{ctx.get('tag')!r})"
+    elif kind == "union_tag_invalid":       # a follower's type the kind does not drive, or a misspelt one
+        tag, tags = ctx.get("discriminator", "'type'").strip("'"), list(_tag_members(info))
+        value = ctx.get("tag")
+        # a typo of one of them is as near as 0.9 ('translating-rolle'); another type is not ('translating-flat' is
+        # 0.76 from 'translating-roller')
+        msg = not_one_of(value, tags) if difflib.get_close_matches(str(value), tags, n=1, cutoff=0.9) else \
+            f"{getattr(root, 'noun', 'this template')} takes {_either(tags)} (got {value!r})"
         loc = (*loc, tag)
     elif kind == "union_tag_not_found":
         tag = ctx.get("discriminator", "'type'").strip("'")
