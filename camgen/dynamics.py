@@ -215,7 +215,7 @@ def arm_weight(follower: Any, inertia: float | None, arm_mass: float | None, arm
 
 def spec_loading(table: Any, follower: Any, positive: bool = False, motion: Any = (), program: Any = None
                  ) -> Loading:
-    """The :class:`Loading` of a ``[follower]`` table (:class:`camgen.spec.FollowerTable`) on its built
+    """The :class:`Loading` of a ``[follower]`` table (one of :mod:`camgen.tables.followers`) on its built
     ``follower``: the spring, loads and load table (or the ``motion`` tables' loads per segment on the built
     ``program``), and for an oscillating roller its arm's inertia and weights. A ``positive`` drive (a groove: no
     spring) counts the weight only with ``orientation``."""

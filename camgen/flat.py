@@ -170,8 +170,6 @@ def sprung_speed(spec: FlatSpec, cam: Cam) -> dict[str, Any] | None:
     out = speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic_ratios(spec.motion), f.load,
                        f.orientation, f.contact_margin, ld)
     if ld is not None and out["contact"] and out["contact"].get("mode"):
-        if f.roller_width is not None and not f.contact_radius:
-            raise SpecError("only for a roller follower", "follower.roller_width")
         contact = None if spec.cam.material is None else Contact(
             spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
         out["forces"] = forces_report(cam, ld, spec.cam.rpm, contact)

@@ -22,6 +22,7 @@ from camgen.core.writers import WriteOptions
 from camgen.flat import FlatCamDesign
 from camgen.profile import step_chords, step_part
 from camgen.report import cam_report
+from camgen.spec import DiscSpec
 
 #: chord tolerance (mm) of the outline drawn in a family's overview: a thumbnail an inch wide
 THUMBNAIL_TOLERANCE_MM = 0.2
@@ -56,7 +57,7 @@ def cam_bundle(design: FlatCamDesign) -> tuple[Bundle, dict[str, Any]]:
         return cam_page(design, report)
 
     kit = None
-    if design.spec.kit is not None:
+    if isinstance(design.spec, DiscSpec) and design.spec.kit is not None:        # a disc cam alone takes a kit
         from camgen.kit import cam_kit
 
         kit = cam_kit(design)

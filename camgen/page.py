@@ -15,6 +15,7 @@ import numpy as np
 
 from camgen.core.page import FRAMES, Body, Mover, Outline, Page, Plot, Scene, key_figures, pose_motion
 from camgen.followers.base import rotate
+from camgen.tables.followers import Face
 
 #: the figures a cam's page shows, where its report has them: (label, dotted key, unit)
 CAM_FIGURES = (
@@ -92,46 +93,16 @@ def ring(points: np.ndarray) -> np.ndarray:
 
 def _follower(spec: Any, cam: Any, theta: np.ndarray, report: dict[str, Any], roller: float,
               reach: float) -> tuple[tuple[Mover, ...], tuple[Outline, ...]]:
-    """The follower frame by frame in the fixed frame (a turning cam's), and what of it stands still (guide, pivot)."""
-    f, kind = cam.follower, spec.follower.type
-    g = cam.pitch(theta)
-    turn = f.sense * theta
-    centre = rotate(g.point, turn)                       # roller centre, or a flat face's contact point
-    stem = 0.45 * reach
-    n = len(theta)
-    if kind.startswith("oscillating"):
-        pivot = np.asarray(f.pivot, dtype=float)
-        still = (Outline(_circle(pivot, 0.03 * reach), "ground"),)
-        if kind == "oscillating-flat":
-            along = centre - pivot
-            unit = along / np.linalg.norm(along, axis=1)[:, None]
-            far = float(report.get("face_position_max_mm") or np.linalg.norm(along, axis=1).max())
-            margin = spec.follower.face_margin
-            face = np.stack([np.broadcast_to(pivot, (n, 2)), pivot + unit * (far + margin)], axis=1)
-            return (Mover("face", face, "follower"),), still
-        arm = np.stack([np.broadcast_to(pivot, (n, 2)), centre], axis=1)
-        return (Mover("arm", arm, "follower"), Mover("roller", centre[:, None, :], "roller", roller)), still
-    axis_x = float(spec.follower.offset or 0.0) if kind != "translating-flat" else 0.0
-    top = centre + np.array([0.0, stem])
-    guide = (Outline(np.array([[axis_x, centre[:, 1].min() + stem * 0.6], [axis_x, centre[:, 1].max() + stem * 1.1]]),
-                     "guide", False),)
-    if kind == "translating-flat":
-        lo, hi, margin = report["face_position_min_mm"], report["face_position_max_mm"], spec.follower.face_margin
-        y = centre[:, 1]
-        face = np.stack([np.column_stack([np.full(n, lo - margin), y]), np.column_stack([np.full(n, hi + margin), y])],
-                        axis=1)
-        rod = np.stack([np.column_stack([np.zeros(n), y]), np.column_stack([np.zeros(n), y + stem])], axis=1)
-        return (Mover("face", face, "follower"), Mover("stem", rod, "follower")), guide
-    rod = np.stack([centre, top], axis=1)
-    movers = [Mover("stem", rod, "follower")]
-    if roller > 0:
-        movers.append(Mover("roller", centre[:, None, :], "roller", roller))
-    return tuple(movers), guide
-
-
-def _circle(centre: np.ndarray, r: float, n: int = 48) -> np.ndarray:
-    a = np.linspace(0, 2 * math.pi, n, endpoint=False)
-    return np.column_stack([centre[0] + r * np.cos(a), centre[1] + r * np.sin(a)])
+    """The follower frame by frame (a turning cam's in the fixed frame, a plate's at x = 0), and what of it stands
+    still (guide, pivot): as it sketches itself (:class:`~camgen.followers.drawing.Follower`), a flat face as wide as
+    the report's face positions and its margins."""
+    f, g = cam.follower, cam.pitch(theta)
+    face = None
+    if "face_position_min_mm" in report and isinstance(spec.follower, Face):
+        margin = spec.follower.face_margin
+        face = (report["face_position_min_mm"] - margin, report["face_position_max_mm"] + margin)
+    movers = tuple(Mover(s.name, s.points, s.style, s.radius) for s in f.sketch(theta, g, reach, face, roller))
+    return movers, tuple(Outline(s.points, s.style, s.closed) for s in f.still(theta, g, reach))
 
 
 def hole_outlines(part: Any, tol: float) -> tuple[Outline, ...]:
@@ -178,19 +149,12 @@ def profile_page(design: Any, cam: Any, report: dict[str, Any], outlines: tuple[
     theta = frame_angles()
     reach = _reach(cam)
     roller = float(spec.follower.roller_radius or 0.0)
+    movers, still = _follower(spec, cam, theta, report, roller, reach)
     if cam.is_plate:
         shift = np.column_stack([-cam.follower.travel * theta / (2 * math.pi), np.zeros_like(theta)])
         body = Body("plate", outlines, pose_motion(np.zeros_like(theta), shift))
-        g = cam.pitch(theta)
-        centre = np.column_stack([np.zeros_like(theta), g.point[:, 1]])
-        stem = np.stack([centre, centre + np.array([0.0, 0.3 * reach])], axis=1)
-        movers: tuple[Mover, ...] = (Mover("stem", stem, "follower"),)
-        if roller > 0:
-            movers += (Mover("roller", centre[:, None, :], "roller", roller),)
-        still: tuple[Outline, ...] = ()
-    else:
+    else:                                       # a turning cam: its centre marked
         body = Body("cam", outlines, pose_motion(np.degrees(cam.follower.sense * theta)))
-        movers, still = _follower(spec, cam, theta, report, roller, reach)
         still += (Outline(np.array([[-0.06 * reach, 0], [0.06 * reach, 0]]), "guide", False),
                   Outline(np.array([[0, -0.06 * reach], [0, 0.06 * reach]]), "guide", False))
     limit = report.get("pressure_angle_limit_deg")

@@ -344,26 +344,26 @@ def _machine_units(design: FlatCamDesign, motion: np.ndarray) -> tuple[np.ndarra
 
 
 def _draw_follower(ax: Any, cam: Cam, circle: np.ndarray) -> None:
-    """The follower at theta = 0: roller and axis, flat face, or arm on its pivot."""
-    g = cam.pitch(np.array([0.0]))
-    contact, rr, f = g.point[0], cam.contact_radius, cam.follower
+    """The follower at theta = 0 as it poses itself (:meth:`~camgen.followers.drawing.Follower.pose`): its links,
+    its pivot marked, its roller; a flat face 5 mm past the contact's travel each side."""
+    contact, f = cam.pitch(np.array([0.0])).point[0], cam.follower
     style = {"color": "C2", "lw": 2}
     reach = cam.base_radius + cam.program.max_lift if f.lift_unit == "mm" else cam.base_radius
-    if hasattr(f, "pivot"):
-        pivot = f.pivot
-        ax.plot(*pivot, "^", color="C2", ms=9)
-        end = pivot + 1.2 * (contact - pivot) if f.flat else contact
-        ax.plot([pivot[0], end[0]], [pivot[1], end[1]], label="follower at θ = 0", **style)
-    elif f.flat:
+    face = None
+    if f.flat:
         lo, hi = face_extent(cam)
-        y = contact[1]
-        ax.plot([lo - 5, hi + 5], [y, y], label="follower at θ = 0", **style)
-        ax.plot([0, 0], [y, y + 0.5 * reach], **style)
-    else:
-        x = getattr(f, "offset", contact[0])
-        ax.plot([x, x], [contact[1], reach + 2 * rr], label="follower at θ = 0", **style)
-    if rr > 0:
-        ax.plot(contact[0] + rr * np.cos(circle), contact[1] + rr * np.sin(circle), color="C2", lw=1)
+        face = (lo - 5, hi + 5)
+    label = {"label": "follower at θ = 0"}
+    for stroke in f.pose(contact, reach, face):
+        centre = stroke.points[0]
+        if stroke.style == "pivot":
+            ax.plot(*centre, "^", color="C2", ms=9)
+        elif stroke.radius > 0:
+            ax.plot(centre[0] + stroke.radius * np.cos(circle), centre[1] + stroke.radius * np.sin(circle),
+                    color="C2", lw=1)
+        else:
+            ax.plot(stroke.points[:, 0], stroke.points[:, 1], **label, **style)
+            label = {}
 
 
 def cam_figure(design: FlatCamDesign) -> Any:

@@ -11,6 +11,7 @@ from typing import Any
 from camgen.core import VERSION as __version__
 from camgen.core.solids import MeshCheck
 from camgen.flat import FlatCamDesign
+from camgen.tables.followers import Face
 
 
 def _r(x: float | None, digits: int = 9) -> float | None:
@@ -85,17 +86,15 @@ def cam_report(design: FlatCamDesign, mesh: MeshCheck | None = None) -> dict[str
         "warnings": list(design.warnings),
     }
     f = cam.follower
-    if design.face_extent is not None:
+    if design.face_extent is not None and isinstance(t.follower, Face):
         lo, hi = design.face_extent
         report["face_position_min_mm"], report["face_position_max_mm"] = _r(lo), _r(hi)
         report["face_width_mm"] = _r(hi - lo + 2 * t.follower.face_margin)
         report["face_measured_from"] = f.face_origin
     if design.face_leaves is not None:          # a flat face's folds cut off (cam.allow_undercut)
         report["face_leaves_cam"] = [leaves.as_dict() for leaves in design.face_leaves]
-    if hasattr(f, "pivot"):
-        report["follower"]["pivot_mm"] = [_r(x) for x in f.pivot]
-    if hasattr(f, "rest_angle"):
-        report["follower"]["rest_angle_deg"] = _r(math.degrees(f.rest_angle))
+    report["follower"].update({key: [_r(x) for x in value] if isinstance(value, list) else _r(value)
+                               for key, value in f.report_fields().items()})
     if design.speed is not None:
         report["speed"] = design.speed
     if design.sizing is not None:

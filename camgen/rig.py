@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 @dataclass(frozen=True)
 class Mount:
     """How a disc cam carries its follower: the ``[follower]`` table (any object with its attributes, see
-    :class:`camgen.spec.FollowerTable`) and the cam's ``sense`` of rotation (+1 counter-clockwise seen from +Z, -1
+    :mod:`camgen.tables.followers`) and the cam's ``sense`` of rotation (+1 counter-clockwise seen from +Z, -1
     clockwise; see :mod:`camgen.followers.base` for the frames)."""
 
     table: Any

@@ -9,7 +9,6 @@ the field, what is allowed and what was given, e.g.
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal
@@ -22,211 +21,19 @@ from camgen.core.spec import (MAX_LENGTH_MM, Model, check_kind, length, name_fie
                               validate)
 from camgen.core.errors import SpecError
 from camgen.core.features import MIN_WEB_MM, key_for, web_refusal
-from camgen.core.reading import read_regular
 from camgen.core.spec import CutOutputTable, TemplateSpec
 from camgen.core.kit import CamKitTable, check_cam_kit
-from camgen.followers import FOLLOWERS
 from camgen.kinds import CAM_TABLE, KINDS, kind_for, kind_of, table_keys
-from camgen.tables import CAM_TABLES, BarrelTable, ConjugateTable, DiscTable, GroovedTable, Material, PlateTable
+from camgen.tables import CAM_TABLES, BarrelTable, ConjugateTable, DiscTable, GroovedTable, PlateTable
+from camgen.tables.followers import AnyFollower, BarrelFollower, DrivenFollower, Offset, PlateFollower, SprungFollower
+from camgen.tables.rows import MAX_TABLE_ROWS, read_table
 
 if TYPE_CHECKING:
     from camgen.kinds.geneva.table import GenevaSpec
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
-#: the most rows a table law reads, and the largest CSV file (bytes)
-MAX_TABLE_ROWS = 10_000
-MAX_TABLE_BYTES = 2_000_000
-
-
-def read_table(path: Path) -> list[tuple[float, float]]:
-    """The (angle, value) rows of a CSV file: two numbers a line, separated by a comma (or a semicolon, a tab or
-    spaces); a first line of names, blank lines and lines starting with # are passed over. A ValueError naming
-    ``file`` (and the line) otherwise."""
-    try:
-        raw = read_regular(path, MAX_TABLE_BYTES)       # a FIFO or a device is refused, never waited on
-    except OSError as exc:
-        raise ValueError(f"file: cannot read {str(path)!r} ({exc.strerror or exc})") from None
-    if len(raw) > MAX_TABLE_BYTES:
-        raise ValueError(f"file: {str(path)!r} is larger than {MAX_TABLE_BYTES // 1_000_000} MB")
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise ValueError(f"file: {str(path)!r} is not UTF-8 text") from None
-    rows, names = [], False
-    for number, line in enumerate(text.splitlines(), 1):
-        fields = [f for f in re.split(r"[,;\t ]+", line.strip()) if f]
-        if not fields or fields[0].startswith("#"):
-            continue
-        try:
-            values = [float(f) for f in fields]
-        except ValueError:
-            if not rows and not names:
-                names = True                             # a first line of column names
-                continue
-            raise ValueError(f"file: line {number}: expected two numbers, angle and value (got {line.strip()[:40]!r})"
-                             ) from None
-        if len(values) != 2 or not all(math.isfinite(v) for v in values):
-            raise ValueError(f"file: line {number}: expected two finite numbers, angle and value")
-        rows.append((values[0], values[1]))
-        if len(rows) > MAX_TABLE_ROWS:
-            raise ValueError(f"file: more than {MAX_TABLE_ROWS} rows")
-    if len(rows) < 4:
-        raise ValueError(f"file: {str(path)!r} holds {len(rows)} rows of angle, value; a table needs at least 4")
-    return rows
-
-
-def load_rows(rows: list[tuple[float, float]]) -> list[tuple[float, float]]:
-    """A load table's (cam angle in degrees, load in N) rows checked: angles strictly increasing from >= 0 to <= 360,
-    a row at 360 only if one at 0 gives the same load (it is then dropped: the table is periodic over a turn), loads
-    within 1e6 N; a ValueError saying what is wrong otherwise."""
-    angles = [a for a, _ in rows]
-    loads = [v for _, v in rows]
-    if angles[0] < 0 or angles[-1] > 360:
-        raise ValueError(f"cam angles must lie in 0 to 360 degrees (got {min(angles):g} to {max(angles):g})")
-    bad = next((i for i in range(1, len(angles)) if not angles[i] > angles[i - 1]), None)
-    if bad is not None:
-        raise ValueError(f"cam angles must increase row by row (row {bad + 1}: {angles[bad]:g} after "
-                         f"{angles[bad - 1]:g} degrees)")
-    if any(not abs(v) <= 1e6 for v in loads):
-        raise ValueError("loads must lie in -1e6 to 1e6 N")
-    if angles[-1] == 360:
-        if angles[0] != 0 or abs(loads[-1] - loads[0]) > 1e-9 * max(1.0, max(abs(v) for v in loads)):
-            raise ValueError(f"the row at 360 degrees ({loads[-1]:g} N) must repeat the one at 0 degrees"
-                             + (f" ({loads[0]:g} N)" if angles[0] == 0 else " (there is none)")
-                             + ": the load is periodic over a turn")
-        rows = list(rows[:-1])
-    return list(rows)
-
-
 #: every law parameter key a segment may carry
 LAW_PARAMS_ALL = sorted({k for keys in LAW_PARAMS.values() for k in keys})
-
-
-FOLLOWER_TYPES = tuple(FOLLOWERS)
-#: keys every follower takes: its mass, its return spring, what else loads it, and what it is made of
-DYNAMIC_KEYS = {"mass", "spring_rate", "preload", "load", "orientation", "contact_margin", "material", "roller_width",
-                "load_table"}
-#: keys of an oscillating roller's arm: its moment of inertia and its own weight
-ARM_KEYS = ("inertia", "arm_mass", "arm_com")
-
-
-class FollowerTable(Model):
-    """The follower; which keys a type needs and takes its :class:`~camgen.followers.FollowerType` says."""
-
-    type: Literal[FOLLOWER_TYPES] = Field(description="follower type")  # type: ignore[valid-type]
-    roller_radius: float | None = length("roller radius", None, le=1000.0,
-                                         allowed="below the pitch curve's least convex radius, else the cam undercuts "
-                                                 "(refused unless cam.allow_undercut)",
-                                         absent="required for a roller follower")
-    offset: float = Field(0.0, ge=-MAX_LENGTH_MM, le=MAX_LENGTH_MM, description="follower axis offset, + to the right "
-                          "(+X)", json_schema_extra=unit("mm", allowed="|offset| < base_radius + roller_radius (the "
-                                                         "prime radius)"))
-    pivot_distance: float | None = length(
-        "oscillating: cam centre to arm pivot", None,
-        allowed="a roller: |pivot_distance - arm_length| < base_radius + roller_radius < pivot_distance + arm_length; "
-                "a flat face: > base_radius; on a barrel, the cam's axis to the pivot's: the arm's chordal error "
-                "leaving the roller in the groove", absent="required for an oscillating follower")
-    arm_length: float | None = length("oscillating roller: pivot to roller centre", None,
-                                      allowed="puts the roller on the prime circle (see pivot_distance)",
-                                      absent="required for an oscillating roller")
-    face_margin: float = length("flat face: extra face beyond the contact's travel, each side", 2.0, zero=True,
-                                le=1000.0)
-    mass: float | None = Field(None, gt=0, le=1000, description="moving mass of the follower",
-                               json_schema_extra=unit("kg"))
-    spring_rate: float | None = Field(None, ge=0, le=1e6, description="return spring rate",
-                                      json_schema_extra=unit("N/mm", absent="none: no spring (without preload "
-                                                             "either, the follower's weight holds it on the cam)"))
-    preload: float | None = Field(None, ge=0, le=1e6, description="return spring force at s = 0",
-                                  json_schema_extra=unit("N"))
-    load: float | None = Field(None, ge=-1e6, le=1e6, description="external force pressing the follower onto the "
-                               "cam (negative pulls it off)", json_schema_extra=unit("N"))
-    orientation: float | None = Field(None, ge=-180, le=180, description="the rise's direction from straight up: "
-                                      "the weight counts by its cosine",
-                                      json_schema_extra=unit("degrees", absent="straight up without a spring; the "
-                                                             "weight neglected with one, on a positive drive and for "
-                                                             "an arm"))
-    contact_margin: float | None = Field(None, ge=0, le=1e6, description="least contact force the spring sizing "
-                                         "keeps", json_schema_extra=unit("N", absent="0"))
-    material: Material = Field("steel", description="the roller's (or face's) material, for the contact pressure")
-    roller_width: float | None = length("the roller's width along its axis (default: the cam's thickness)", None,
-                                        le=1000.0, absent="cam.thickness")
-    load_table: str | list[tuple[float, float]] | None = Field(
-        None, description="a CSV of cam angle (degrees), load (N) rows (or the rows themselves): an external load "
-        "against cam angle, added to follower.load, interpolated linearly and periodic over the turn",
-        json_schema_extra=notes(allowed="angles increasing in 0 to 360 (a row at 360 must repeat the one at 0); "
-                                "|load| <= 1e6 N; at least 2 rows (a file: 4, at most 10000 rows and 2 MB); not with "
-                                "motion[i].load"))
-    inertia: float | None = Field(None, ge=0, le=1e9, description="oscillating roller: the arm's moment of inertia "
-                                  "about the pivot, entering as a mass I / L^2 at the roller",
-                                  json_schema_extra=unit("kg*mm^2", absent="0"))
-    arm_mass: float | None = Field(None, ge=0, le=1000, description="oscillating roller: the arm's own mass, for its "
-                                   "weight (with follower.orientation)",
-                                   json_schema_extra=unit("kg", allowed="with arm_com and orientation"))
-    arm_com: float | None = Field(None, ge=0, le=MAX_LENGTH_MM, description="oscillating roller: pivot to the arm's "
-                                  "centre of mass, on the line to the roller's centre",
-                                  json_schema_extra=unit("mm", allowed="with arm_mass"))
-    roller_shape: Literal["cylindrical", "conical"] = Field(
-        "cylindrical", description="barrel cam: the roller's shape, a cylinder or a cone with its apex on the cam's "
-        "axis", json_schema_extra=notes(allowed="conical: roller_radius < cam.pitch_radius, on the pitch cylinder"))
-
-    @model_validator(mode="before")
-    @classmethod
-    def _read_load_table(cls, data: Any) -> Any:
-        """A ``load_table`` file read into its rows (a path relative to the current folder; :func:`load_spec` makes a
-        template's relative to the template)."""
-        if isinstance(data, Mapping) and isinstance(data.get("load_table"), str):
-            try:
-                return {**data, "load_table": read_table(Path(data["load_table"]))}
-            except ValueError as exc:
-                raise ValueError(f"load_table: {str(exc).removeprefix('file: ')}") from None
-        return data
-
-    @model_validator(mode="after")
-    def _arm_and_table(self) -> "FollowerTable":
-        given = [k for k in ARM_KEYS if k in self.model_fields_set]
-        if given and self.type != "oscillating-roller":
-            raise ValueError(f"{given[0]}: only for an oscillating-roller follower")
-        if (self.arm_mass is None) != (self.arm_com is None):
-            raise ValueError("arm_com: give both arm_mass (kg) and arm_com (mm from the pivot), or neither")
-        if self.arm_mass and self.orientation is None:
-            raise ValueError("arm_mass: its weight needs follower.orientation (degrees of the drawing's +Y from "
-                             "straight up)")
-        if isinstance(self.load_table, list):
-            if len(self.load_table) < 2:
-                raise ValueError("load_table: give at least 2 rows of cam angle (degrees), load (N)")
-            try:
-                load_rows(self.load_table)
-            except ValueError as exc:
-                raise ValueError(f"load_table: {exc}") from None
-        return self
-
-    @property
-    def load_table_rows(self) -> list[tuple[float, float]] | None:
-        """The load table's (cam angle in degrees, load in N) rows, a row at 360 dropped, or None."""
-        return None if not isinstance(self.load_table, list) else load_rows(self.load_table)
-
-    @model_validator(mode="after")
-    def _keys_fit_type(self) -> "FollowerTable":
-        needs, takes = FOLLOWERS[self.type].needs, FOLLOWERS[self.type].takes
-        for key in sorted(needs):
-            if getattr(self, key) is None:
-                raise ValueError(f"{key}: required for a {self.type} follower")
-        rolls = {"roller_shape"} if "roller_radius" in needs else set()         # refused by the flat kinds
-        arm = set(ARM_KEYS) if self.type == "oscillating-roller" else set()
-        for key in sorted(self.model_fields_set - needs - takes - DYNAMIC_KEYS - rolls - arm - {"type"}):
-            allowed = ", ".join(sorted(needs | takes)) or "none"
-            raise ValueError(f"{key}: not used by a {self.type} follower (its keys: {allowed})")
-        return self
-
-    @property
-    def oscillating(self) -> bool:
-        """True for an arm's swing (lifts in degrees)."""
-        return FOLLOWERS[self.type].oscillating
-
-    @property
-    def contact_radius(self) -> float:
-        """Roller radius, 0 for knife edges and flat faces (mm)."""
-        return self.roller_radius or 0.0
 
 
 class SegmentTable(Model):
@@ -391,8 +198,9 @@ class CamSpec(TemplateSpec):
     cam : DiscTable, PlateTable, GroovedTable, BarrelTable or ConjugateTable
         The cam body, the table of its ``kind`` (:mod:`camgen.tables`; a kind's spec, :data:`CAM_SPECS`, holds its
         own): its size, bore, rotation, sizing limits and speed.
-    follower : FollowerTable
-        The follower: its type, geometry, mass, spring and loads.
+    follower : AnyFollower
+        The follower: its type, geometry, mass, spring and loads, the table of its ``type`` among those the kind
+        drives (:mod:`camgen.tables.followers`).
     motion : list of SegmentTable
         The segments in order from theta = 0, their angles adding up to 360 degrees.
     hub : HubTable, optional
@@ -400,7 +208,7 @@ class CamSpec(TemplateSpec):
     output : OutputTable, optional
         Formats, tolerance, kerf, clearance and the files' flavours.
     kit : CamKitTable or None, optional
-        The frame, follower and hardware round the cam.
+        The frame, follower and hardware round the cam (a disc cam's alone, :class:`DiscSpec`).
 
     Raises
     ------
@@ -411,11 +219,10 @@ class CamSpec(TemplateSpec):
 
     name: str = name_field("part")
     cam: CamTableOfAnyKind
-    follower: FollowerTable
+    follower: AnyFollower
     motion: list[SegmentTable] = Field(min_length=1, description="segments in order from theta = 0")
     hub: HubTable = HubTable()
     output: OutputTable = OutputTable()
-    kit: CamKitTable | None = None
 
     product: ClassVar[str] = "camgen"
     noun: ClassVar[str] = "a cam"
@@ -432,7 +239,7 @@ class CamSpec(TemplateSpec):
         if abs(total - 360.0) > 1e-9:
             raise ValueError(f"motion: segment angles add up to {total:.6g} degrees; they must add up to 360")
         prime = self.prime_radius
-        if not abs(self.follower.offset) < prime:
+        if isinstance(self.follower, Offset) and not abs(self.follower.offset) < prime:
             raise ValueError(f"follower.offset: |offset| must be < the prime radius {prime:.6g} mm "
                              f"(base_radius + roller_radius; got {self.follower.offset:.6g} mm)")
         kind_of(self.cam.kind).check(self)
@@ -464,8 +271,6 @@ class CamSpec(TemplateSpec):
         loaded = [i for i, seg in enumerate(self.motion) if seg.load is not None]
         if loaded and self.follower.load_table is not None:
             raise ValueError(f"motion[{loaded[0]}].load: give loads per segment or follower.load_table, not both")
-        if self.kit is not None:
-            check_cam_kit(self.kit, self.cam.kind, self.follower.type, self.cam.bore)
         return self
 
     @property
@@ -485,14 +290,23 @@ class DiscSpec(CamSpec):
     """A disc cam's template (``cam.kind = "disc"``, the default), validated."""
 
     cam: DiscTable
+    follower: SprungFollower
+    kit: CamKitTable | None = None
 
     noun: ClassVar[str] = "a disc cam"  # its table's title
+
+    @model_validator(mode="after")
+    def _kit(self) -> DiscSpec:
+        if self.kit is not None:
+            check_cam_kit(self.kit, self.follower.type, self.cam.bore)
+        return self
 
 
 class PlateSpec(CamSpec):
     """A plate (linear) cam's template (``cam.kind = "plate"``), validated."""
 
     cam: PlateTable
+    follower: PlateFollower
 
     noun: ClassVar[str] = "a plate cam"  # its table's title
 
@@ -501,6 +315,7 @@ class GroovedSpec(CamSpec):
     """A grooved face cam's template (``cam.kind = "grooved"``), validated."""
 
     cam: GroovedTable
+    follower: DrivenFollower
 
     noun: ClassVar[str] = "a grooved cam"  # its table's title
 
@@ -509,6 +324,7 @@ class BarrelSpec(CamSpec):
     """A barrel cam's template (``cam.kind = "barrel"``), validated."""
 
     cam: BarrelTable
+    follower: BarrelFollower
 
     noun: ClassVar[str] = "a barrel cam"  # its table's title
 
@@ -517,6 +333,7 @@ class ConjugateSpec(CamSpec):
     """A conjugate pair's template (``cam.kind = "conjugate"``), validated."""
 
     cam: ConjugateTable
+    follower: DrivenFollower
 
     noun: ClassVar[str] = "a conjugate cam"  # its table's title
 

@@ -261,7 +261,8 @@ def test_undercut_at_the_floor_at_and_within_1e_12_of_the_limit():
                                  "or cam.pitch_radius > 30.1 mm"),
     ({"cam.length": 28.0}, "cam.length: must be > 30.2 mm, the follower's travel and the groove's width (got 28)"),
     ({"cam.allow_undercut": True}, 'cam.allow_undercut: not a key of a barrel cam (a key of cam.kind = "disc", '),
-    ({"follower.offset": 2.0}, "follower.offset: not used by a barrel cam"),
+    ({"follower.offset": 2.0}, "follower.offset: not a key of a barrel cam's translating-roller follower (driven "
+                               "both ways, no spring); it takes: roller_radius, roller_shape, mass, "),
     ({"output.kerf": 0.2}, "output.kerf: a barrel cam is printed; its drawing is a developed template"),
     ({"hub.engrave": True}, "hub.engrave: not used by a barrel cam (it takes cam.bore and hub.keyway)"),
     ({"cam.kind": "disc"}, 'cam.pitch_radius: not a key of a disc cam (a key of cam.kind = "barrel"); it takes: '),

@@ -184,8 +184,8 @@ def test_an_oscillating_roller_may_be_conical(tmp_path):
 
 
 @pytest.mark.parametrize("template, change, message", [
-    ("rdrd.toml", {"follower.roller_shape": "conical"}, 'follower.roller_shape: only for a barrel cam (cam.kind = '
-                                                        '"barrel")'),
+    ("rdrd.toml", {"follower.roller_shape": "conical"}, "follower.roller_shape: not a key of a translating-roller "
+                                                        "follower (did you mean 'roller_width'?); it takes: "),
     ("barrel-conical.toml", {"follower.roller_shape": "spherical"}, "follower.roller_shape: unknown value 'spherical'"),
     ("barrel-conical.toml", {"follower.roller_radius": 30.0}, "follower.roller_radius: a conical roller's must be < "
                                                               "cam.pitch_radius = 30 mm, its apex on the cam's axis "

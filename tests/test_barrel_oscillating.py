@@ -19,6 +19,10 @@ from camgen.spec import validate_spec
 from tests.conftest import ROOT
 from tests.refusals import assert_refused
 
+#: how a refusal names the follower's table
+ARM_TABLE = "a barrel cam's oscillating-roller follower (driven both ways, no spring)"
+
+
 TEMPLATE = ROOT / "templates" / "barrel-oscillating.toml"
 RAW = tomllib.loads(TEMPLATE.read_text())
 L, C, RR, CLEAR = 80.0, 79.4, 5.0, 0.2
@@ -183,13 +187,14 @@ def test_pressure_angle_in_3d_against_finite_differences():
      "follower.arm_length: must be < 4067.86 mm, so the arm's chordal error (half of arm_length (1 - cos(swing / 2)) "
      "at best) leaves the roller in the groove (got 5000)"),
     ({"cam.length": 30.0}, "cam.length: must be > 37.9837 mm, the roller's axial stroke"),
-    ({"follower.offset": 2.0}, "follower.offset: not used by a oscillating-roller follower"),
+    ({"follower.offset": 2.0}, f"follower.offset: not a key of {ARM_TABLE}; it takes: "
+                               "roller_radius, pivot_distance, arm_length, inertia, arm_mass, arm_com, roller_shape, "),
     ({"follower.mass": 2.0, "follower.orientation": 0.0}, "follower.orientation: not modelled for a barrel's arm"),
-    ({"follower.spring_rate": 2.0}, "follower.spring_rate: not used by a barrel cam (the groove drives the roller "
-                                    "both ways; its forces need only follower.mass)"),
-    ({"follower.roller_width": 8.0}, "follower.roller_width: not used by a barrel cam"),
+    ({"follower.spring_rate": 2.0}, f"follower.spring_rate: not a key of {ARM_TABLE}; "),
+    ({"follower.roller_width": 8.0}, f"follower.roller_width: not a key of {ARM_TABLE} (did you mean "
+                                     "'roller_shape'?); it takes: "),
     ({"cam.material": "steel"}, "cam.material: a barrel cam's contact pressure is at cam.rpm with follower.mass"),
-    ({"follower.face_margin": 2.0}, "follower.face_margin: not used by a oscillating-roller follower"),
+    ({"follower.face_margin": 2.0}, f"follower.face_margin: not a key of {ARM_TABLE}; "),
 ])
 def test_bad_values_are_one_line_exit_2_nothing_written(tmp_path, change, message):
     assert_refused(TEMPLATE, change, message, tmp_path)
@@ -199,7 +204,7 @@ def test_required_keys_and_a_swing_of_180_degrees_or_more():
     for key in ("arm_length", "pivot_distance"):
         raw = copy.deepcopy(RAW)
         del raw["follower"][key]
-        with pytest.raises(ValueError, match=rf"^follower\.{key}: required for a oscillating-roller follower$"):
+        with pytest.raises(ValueError, match=rf"^follower\.{key}: missing: give oscillating(?: roller)?: .* in mm$"):
             validate_spec(raw)
     raw = copy.deepcopy(RAW)
     raw["motion"] = [{"type": "rise", "law": "cycloidal", "lift": 70.0, "angle": 60.0}] * 3 + [

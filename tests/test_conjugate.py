@@ -19,6 +19,11 @@ from camgen.spec import validate_spec
 from tests.conftest import ROOT
 from tests.refusals import assert_refused
 
+#: how a refusal names the follower's table
+YOKE_TABLE = "a positive-drive translating-roller follower (driven both ways, no spring)"
+ARM_TABLE = "a positive-drive oscillating-roller follower (driven both ways, no spring)"
+
+
 YOKE = ROOT / "templates" / "conjugate.toml"
 ARM = ROOT / "templates" / "conjugate-arm.toml"
 RAW = {path: tomllib.loads(path.read_text()) for path in (YOKE, ARM)}
@@ -380,9 +385,12 @@ def test_a_conjugate_family(tmp_path):
 
 
 @pytest.mark.parametrize("template, change, message", [
-    (YOKE, {"follower.spring_rate": 2.0}, "follower.spring_rate: a conjugate pair drives the follower both ways"),
-    (YOKE, {"follower.preload": 10.0}, "follower.preload: a conjugate pair drives the follower both ways"),
-    (ARM, {"follower.contact_margin": 1.0}, "follower.contact_margin: a conjugate pair drives the follower both ways"),
+    (YOKE, {"follower.spring_rate": 2.0}, f"follower.spring_rate: not a key of {YOKE_TABLE}; it takes: "
+                                          "roller_radius, offset, roller_width, mass, "),
+    (YOKE, {"follower.preload": 10.0}, f"follower.preload: not a key of {YOKE_TABLE} (did you "
+                                       "mean 'load'?); it takes: "),
+    (ARM, {"follower.contact_margin": 1.0}, f"follower.contact_margin: not a key of {ARM_TABLE}; "
+                                            "it takes: roller_radius, pivot_distance, arm_length, "),
     (YOKE, {"cam.allow_undercut": True}, "cam.allow_undercut: both contacts of a conjugate pair must hold"),
     (YOKE, {"cam.groove_depth": 3.0}, 'cam.groove_depth: not a key of a conjugate cam (a key of cam.kind = '
                                       '"grooved" or "barrel"); it takes: base_radius, thickness, '),
@@ -407,7 +415,8 @@ def test_a_follower_without_rollers_is_refused(tmp_path):
     template = tmp_path / "flat.toml"
     template.write_text(YOKE.read_text().replace('type = "translating-roller"', 'type = "translating-flat"')
                         .replace("roller_radius = 8.0        # mm, both rollers", ""))
-    assert_refused(template, {}, "follower.type: a conjugate cam takes a translating-roller", tmp_path)
+    assert_refused(template, {}, "follower.type: a conjugate cam takes translating-roller or oscillating-roller "
+                                 "(got 'translating-flat')", tmp_path)
 
 
 def test_other_kinds_refuse_the_pairs_keys(tmp_path):

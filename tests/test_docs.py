@@ -275,7 +275,8 @@ def template_reference_lists_every_key_with_its_unit_and_range(site: Path) -> No
     tables = parser.tables
     assert tables and all(len(row) == 6 for table in tables for row in table)   # key, type, unit, allowed, ...
     models = _every_model()
-    assert {"DiscTable", "PlateTable", "GroovedTable", "BarrelTable", "ConjugateTable", "FollowerTable",
+    assert {"DiscTable", "PlateTable", "GroovedTable", "BarrelTable", "ConjugateTable", "TranslatingRollerTable",
+            "PlateKnifeEdgeTable", "DrivenOscillatingRollerTable", "BarrelTranslatingRollerTable",
             "SegmentTable", "HubTable", "GenevaTable", "CouponTable", "SheetTable", "KitTable", "CamKitTable",
             "FourBarTable", "LinkageTable", "PartsTable", "LoadTable", "PathTask"} <= \
         {m.__name__ for m in models}

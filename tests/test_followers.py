@@ -200,9 +200,12 @@ def test_auto_base_radius_builds_at_the_sized_radius():
 
 
 @pytest.mark.parametrize("changes, message", [
-    ({"follower.type": "oscillating-roller"}, "follower.arm_length: required for a oscillating-roller"),
+    ({"follower.type": "oscillating-roller", "follower.offset": None, "follower.pivot_distance": 110.0},
+     "follower.arm_length: missing: give oscillating roller: pivot to roller centre in mm"),
+    ({"follower.type": "oscillating-roller"}, "follower.offset: not a key of an oscillating-roller follower; it takes: "
+     "roller_radius, pivot_distance, arm_length,"),
     ({"follower.type": "translating-flat", "follower.offset": None},
-     "follower.roller_radius: not used by a translating-flat follower"),
+     "follower.roller_radius: not a key of a translating-flat follower; it takes: face_margin, spring_rate,"),
     ({**OSC_ROLLER, "follower.arm_length": 10.0}, "follower.arm_length: the arm cannot put the roller"),
     ({**OSC_ROLLER, "motion.0.lift": 95.0, "motion.2.lift": 95.0}, "motion[0].lift: an arm swing must be < 90"),
 ])

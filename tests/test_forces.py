@@ -231,7 +231,7 @@ def test_an_arms_weight_turns_with_it():
 
 
 @pytest.mark.parametrize("change, message", [
-    ({"follower.inertia": 10.0}, "follower.inertia: only for an oscillating-roller follower"),
+    ({"follower.inertia": 10.0}, "follower.inertia: not a key of a translating-roller follower; it takes: "),
     ({"follower.arm_mass": 0.1}, "follower.arm_com: give both arm_mass (kg) and arm_com"),
     ({"follower.inertia": -1.0}, "follower.inertia: must be >= 0"),
 ])

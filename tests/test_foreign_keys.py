@@ -9,6 +9,7 @@ import os
 import re
 import subprocess
 import sys
+import typing
 from typing import Any
 
 import pytest
@@ -112,4 +113,121 @@ def test_through_python_m_camgen(templates, tmp_path, name, key):
                             cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)})
     assert result.returncode == 2 and result.stdout == ""
     _check_line(result.stderr, name, key)
+    assert not out.exists()
+
+
+# ---- the followers: every kind x every follower type it drives x every key that type's table lacks ----------------
+
+#: a value for each key a follower's table may require, so that the table is whole but for the foreign key
+_REQUIRED = {"roller_radius": 5.0, "pivot_distance": 110.0, "arm_length": 90.0}
+
+
+def _members(kind: Any) -> list[Any]:
+    """The follower tables ``kind``'s spec takes (its union's members, chosen by ``type``), or none for a kind
+    without a follower (a Geneva drive)."""
+    field = kind.spec.model_fields.get("follower")
+    return [] if field is None else list(typing.get_args(field.annotation))
+
+
+def _type_of(table: Any) -> str:
+    """The ``type`` a follower table is chosen by."""
+    (tag,) = typing.get_args(table.model_fields["type"].annotation)
+    return tag
+
+
+#: every key of any kind's follower tables, in the registry's order
+FOLLOWER_KEYS = list(dict.fromkeys(key for kind in KINDS.values() for table in _members(kind)
+                                   for key in table.model_fields))
+
+
+def _follower_cases() -> list[tuple[str, str, str]]:
+    """(kind, follower type, a key of some follower's table that this one lacks)."""
+    return [(name, _type_of(table), key) for name, kind in KINDS.items() for table in _members(kind)
+            for key in FOLLOWER_KEYS if key not in table.model_fields]
+
+
+FOLLOWER_CASES = _follower_cases()
+
+
+def _table_of(name: str, follower_type: str) -> Any:
+    """The follower table of ``follower_type`` that kind ``name`` takes."""
+    return next(t for t in _members(KINDS[name]) if _type_of(t) == follower_type)
+
+
+def _follower_set(table: Any, extra: str) -> str:
+    """A ``--set`` replacing the whole ``[follower]`` table: its type, the keys it requires, and ``extra``."""
+    keys = [f'type = "{_type_of(table)}"'] + [f"{key} = {_REQUIRED[key]}" for key, info in table.model_fields.items()
+                                               if key != "type" and info.is_required()]
+    return "follower={" + ", ".join([*keys, extra]) + "}"
+
+
+def test_the_follower_cases_cover_every_kind_and_type():
+    """Every kind with a follower is tried with every type it drives; each type's own keys are tried on the tables
+    that lack them (an arm's inertia on a translating roller, a spring on a groove's roller, an offset on a barrel's
+    and a plate's roller, a conical roller on a disc's)."""
+    driven = {(name, _type_of(t)) for name, kind in KINDS.items() for t in _members(kind)}
+    assert {(n, t) for n, t, _ in FOLLOWER_CASES} == driven and len(driven) == 13
+    for case in (("disc", "translating-roller", "inertia"), ("grooved", "translating-roller", "spring_rate"),
+                 ("barrel", "translating-roller", "offset"), ("plate", "translating-roller", "offset"),
+                 ("disc", "translating-roller", "roller_shape"), ("disc", "knife-edge", "roller_width"),
+                 ("conjugate", "oscillating-roller", "face_margin")):
+        assert case in FOLLOWER_CASES
+    assert "geneva" not in {n for n, _, _ in FOLLOWER_CASES}
+
+
+@pytest.mark.parametrize("name, follower_type, key", FOLLOWER_CASES,
+                         ids=[f"{k}-on-{n}-{t}" for n, t, k in FOLLOWER_CASES])
+def test_a_foreign_follower_key_is_one_line_naming_it_and_the_type(templates, tmp_path, name, follower_type, key):
+    out = tmp_path / "out"
+    table = _table_of(name, follower_type)
+    result = CliRunner().invoke(main, ["build", str(templates[name]), "-o", str(out),
+                                       "--set", _follower_set(table, f"{key} = 1")])
+    assert result.exit_code == 2, result.output
+    title = table.model_config["title"]
+    assert title.startswith(("a ", "an ")) and follower_type in title
+    head = f"error: follower.{key}: not a key of {title}"
+    line = result.output
+    assert line.startswith(head) and line.count("\n") == 1, line
+    takes = line.rstrip("\n").split("; it takes: ")[1]
+    assert takes.split(", ") == [k for k in table.model_fields if k != "type"]
+    assert not out.exists() and sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_the_same_table_whole_builds(templates, tmp_path):
+    """Without the foreign key, the replaced table validates: the refusal above is the key's, not the table's."""
+    from camgen.spec import validate_spec
+    from camgen.core.spec import read_template
+
+    for name, kind in KINDS.items():
+        for table in _members(kind):
+            raw = read_template(templates[name], [_follower_set(table, "mass = 1")])
+            assert validate_spec(raw).follower.type == _type_of(table)
+
+
+#: every kind with a follower x every follower type of any kind that it does not drive
+TYPE_CASES = [(name, t) for name, kind in KINDS.items() if _members(kind)
+              for t in dict.fromkeys(_type_of(m) for k in KINDS.values() for m in _members(k))
+              if t not in {_type_of(m) for m in _members(kind)}]
+
+
+@pytest.mark.parametrize("name, follower_type", TYPE_CASES, ids=[f"{t}-on-{n}" for n, t in TYPE_CASES])
+def test_a_follower_type_the_kind_does_not_drive_is_one_line(templates, tmp_path, name, follower_type):
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["build", str(templates[name]), "-o", str(out),
+                                       "--set", f'follower={{type = "{follower_type}"}}'])
+    assert result.exit_code == 2, result.output
+    drives = [_type_of(m) for m in _members(KINDS[name])]
+    either = " or ".join((", ".join(drives[:-1]), drives[-1]))
+    assert result.output == f"error: follower.type: {KINDS[name].title} takes {either} (got {follower_type!r})\n"
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("name", [n for n, k in KINDS.items() if k.table_key == CAM_TABLE and n != "disc"])
+def test_a_kit_is_a_disc_cams_alone(templates, tmp_path, name):
+    """Only a disc cam's spec has a ``[kit]``: on any other cam it is refused as a key of none of its tables."""
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["build", str(templates[name]), "-o", str(out), "--set", "kit.shaft=8"])
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith("error: kit: unknown key") and result.output.count("\n") == 1, result.output
+    assert "kit" not in KINDS[name].spec.model_fields and "kit" in KINDS["disc"].spec.model_fields
     assert not out.exists()

@@ -88,5 +88,6 @@ def test_plate_refuses_other_followers():
 
     raw = copy.deepcopy(PLATE)
     raw["follower"] = {"type": "translating-flat"}
-    with pytest.raises(SpecError, match=r"follower\.type: a plate cam takes a translating-roller or knife-edge"):
+    with pytest.raises(SpecError, match=r"^follower\.type: a plate cam takes translating-roller or knife-edge "
+                                        r"\(got 'translating-flat'\)$"):
         validate_spec(raw)

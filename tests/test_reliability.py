@@ -421,7 +421,7 @@ def test_a_velocity_jump_names_its_segment(tmp_path, template, sets, words):
 
 def test_a_plate_cam_offset_is_named_as_the_followers(tmp_path):
     refused(["build", str(PLATE), "-o", str(tmp_path / "o"), "--set", "follower.offset=2"], tmp_path / "o",
-            "follower.offset: not used by a plate cam")
+            "follower.offset: not a key of a plate cam's translating-roller follower; it takes: roller_radius, ")
 
 
 def test_a_set_key_with_an_empty_name_is_refused_as_the_override(tmp_path):

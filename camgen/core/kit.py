@@ -96,12 +96,12 @@ class CamKitTable(KitTable):
 KIT_FOLLOWERS = ("translating-roller", "oscillating-roller")
 
 
-def check_cam_kit(kit: CamKitTable, kind: str, follower: str, bore: float) -> None:
-    """A ValueError naming the field when a cam's ``[kit]`` cannot mount it: a kit is for a disc cam with a roller
-    follower, and the shaft must pass through the cam's bore."""
-    if kind != "disc" or follower not in KIT_FOLLOWERS:
-        raise ValueError(f"kit: a kit mounts a disc cam (cam.kind = \"disc\") with a {' or '.join(KIT_FOLLOWERS)} "
-                         f"follower (got a {kind} cam with a {follower} follower)")
+def check_cam_kit(kit: CamKitTable, follower: str, bore: float) -> None:
+    """A ValueError naming the field when a disc cam's ``[kit]`` cannot mount it: a kit is for a roller follower
+    (only a disc cam's spec takes a kit), and the shaft must pass through the cam's bore."""
+    if follower not in KIT_FOLLOWERS:
+        raise ValueError(f"kit: a kit mounts a disc cam with a {' or '.join(KIT_FOLLOWERS)} follower (got a "
+                         f"{follower} follower)")
     if kit.shaft > bore:
         fits = [f"{s:g}" for s in SHAFTS if s <= bore]
         raise ValueError(f"kit.shaft: a {kit.shaft:g} mm shaft does not pass through the cam's bore of {bore:.15g} mm "

@@ -564,13 +564,14 @@ def _keyed(annotation: Any) -> bool:
     return get_origin(annotation) is dict or any(get_origin(a) is dict for a in getattr(annotation, "__args__", ()))
 
 
-def _field(root: type[BaseModel], loc: tuple) -> Any:
+def _field(root: type[BaseModel], loc: tuple, chosen: Mapping[tuple, Any] | None = None) -> Any:
     """The pydantic FieldInfo at ``loc`` below the ``root`` model, or None (list indices and the user's own keys of
-    a table of tables are passed over)."""
+    a table of tables are passed over); ``chosen`` holds the member a tagged union's field took, by its location
+    (:func:`_tagged_members`)."""
     model: Any = root
     info = None
     key = False
-    for part in loc:
+    for depth, part in enumerate(loc):
         if isinstance(part, int) or key:
             key = False
             continue
@@ -579,7 +580,42 @@ def _field(root: type[BaseModel], loc: tuple) -> Any:
             return None
         info = fields[part]
         model, key = _unwrap(info.annotation), _keyed(info.annotation)
+        model = (chosen or {}).get(loc[:depth + 1], model)
     return info
+
+
+def _either(names: list[str]) -> str:
+    """``a``, ``a or b``, ``a, b or c``."""
+    return " or ".join((", ".join(names[:-1]), names[-1])) if len(names) > 1 else "".join(names)
+
+
+def _tag_members(info: Any) -> dict[str, Any]:
+    """The members of a field's union chosen by a discriminating key (a follower's ``type``), by their tag; empty
+    for any other field."""
+    if info is None or not isinstance(info.discriminator, str):
+        return {}
+    members = {}
+    for member in get_args(info.annotation):
+        tag = getattr(member, "model_fields", {}).get(info.discriminator)
+        for value in get_args(tag.annotation) if tag is not None else ():
+            members[value] = member
+    return members
+
+
+def _tagged_members(root: type[BaseModel], loc: tuple) -> tuple[tuple, dict[tuple, Any]]:
+    """``loc`` without the tags pydantic puts after a tagged union's field (``('follower', 'knife-edge', 'offset')``
+    is ``('follower', 'offset')``), and the member each such field took, by its location in the location returned."""
+    out: list[Any] = []
+    chosen: dict[tuple, Any] = {}
+    members: dict[str, Any] = {}
+    for part in loc:
+        if isinstance(part, str) and part in members:
+            chosen[tuple(out)] = members[part]
+            members = {}
+            continue
+        out.append(part)
+        members = _tag_members(_field(root, tuple(out), chosen))
+    return tuple(out), chosen
 
 
 def _models_below(root: Any) -> set[str]:
@@ -617,10 +653,11 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
     # an unknown key first: a misspelt required key is also reported missing, and the spelling is the news
     err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
     # the first part is always a key of the template (a user's key may look like a tag: motion[0])
-    loc = tuple(part for i, part in enumerate(err["loc"]) if i == 0 or not _union_tag(part, root))
+    tagless, chosen = _tagged_members(root, tuple(err["loc"]))
+    loc = tuple(part for i, part in enumerate(tagless) if i == 0 or not _union_tag(part, root))
     kind, ctx = err["type"], err.get("ctx", {})
     given = err.get("input")
-    info = _field(root, loc)
+    info = _field(root, loc, chosen)
     unit = ((info.json_schema_extra or {}) if info is not None else {}).get("unit", "")
     got = f" (got {given!r})" if not isinstance(given, (dict, list)) else ""
     if kind in _WORDS:
@@ -637,8 +674,8 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
         what = info.description if info is not None and info.description else "a value"
         msg = f"missing: give {what}{' in ' + unit if unit else ''}"
     elif kind == "extra_forbidden":
-        parent = _field(root, loc[:-1])
-        model = _unwrap(parent.annotation) if parent is not None else root
+        parent = _field(root, loc[:-1], chosen)
+        model = chosen.get(loc[:-1], _unwrap(parent.annotation) if parent is not None else root)
         known = list(getattr(model, "model_fields", {}))
         close = difflib.get_close_matches(str(loc[-1]), known, n=1)
         hint = f" (did you mean {close[0]!r}?)" if close else ""
@@ -648,6 +685,18 @@ def _first_error(exc: ValidationError, root: type[BaseModel]) -> SpecError:
             msg = f"not a key of {title}{hint}; it takes: {takes}"
         else:
             msg = f"unknown key{hint}; known keys here: {', '.join(known)}"
+    elif kind == "union_tag_invalid":       # a follower's type the kind does not drive, or a misspelt one
+        tag, tags = ctx.get("discriminator", "'type'").strip("'"), list(_tag_members(info))
+        value = ctx.get("tag")
+        # a typo of one of them is as near as 0.9 ('translating-rolle'); another type is not ('translating-flat' is
+        # 0.76 from 'translating-roller')
+        msg = not_one_of(value, tags) if difflib.get_close_matches(str(value), tags, n=1, cutoff=0.9) else \
+            f"{getattr(root, 'noun', 'this template')} takes {_either(tags)} (got {value!r})"
+        loc = (*loc, tag)
+    elif kind == "union_tag_not_found":
+        tag = ctx.get("discriminator", "'type'").strip("'")
+        msg = f"missing: give one of {', '.join(_tag_members(info))}"
+        loc = (*loc, tag)
     elif kind == "literal_error":
         allowed = _literals(info.annotation) if info is not None else ()
         msg = not_one_of(given, allowed) if allowed else f"must be one of {ctx.get('expected')}{got}"

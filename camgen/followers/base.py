@@ -166,9 +166,9 @@ def positive(value: float, field: str) -> None:
 
 @dataclass(frozen=True)
 class FollowerType:
-    """How a follower type enters a design: its template keys, its unit of lift, and the few functions that read
-    its ``[follower]`` table (any object with the table's attributes). One per follower module, registered in
-    :data:`camgen.followers.FOLLOWERS`.
+    """How a follower type enters a design: its unit of lift, and the few functions that read its ``[follower]``
+    table (:mod:`camgen.tables.followers`, which holds the keys each type takes). One per follower module,
+    registered in :data:`camgen.followers.FOLLOWERS`.
 
     ``make(table, base radius mm, roller radius mm, sense)`` builds the follower;
     ``base_radius_range(table, roller radius mm, top)`` is the (lowest, highest) base radius that assembles and
@@ -181,8 +181,6 @@ class FollowerType:
     """
 
     name: str
-    needs: frozenset[str]
-    takes: frozenset[str]
     make: Callable[[Any, float, float, int], Any]
     oscillating: bool = False
     base_radius_range: Callable[[Any, float, float], tuple[float, float]] = field(

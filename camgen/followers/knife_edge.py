@@ -7,6 +7,5 @@ from camgen.followers.base import FollowerType
 from camgen.followers.translating_roller import TranslatingRoller
 
 FOLLOWER = FollowerType(
-    "knife-edge", needs=frozenset(), takes=frozenset({"offset"}),
-    make=lambda t, rb, rr, sense: TranslatingRoller(rb + rr, rr, t.offset, sense),
+    "knife-edge", make=lambda t, rb, rr, sense: TranslatingRoller(rb + rr, rr, t.offset, sense),
     base_radius_range=lambda t, rr, top: (max(0.0, abs(t.offset) - rr), math.inf))

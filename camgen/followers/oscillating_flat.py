@@ -36,10 +36,11 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.followers.base import FlatFace, FollowerType, PitchGeometry, from_support, perp, positive, rotate
+from camgen.followers.drawing import Face, Pivoted, Stroke
 
 
 @dataclass(frozen=True)
-class OscillatingFlat(FlatFace):
+class OscillatingFlat(FlatFace, Pivoted):
     """Flat-faced arm pivoted ``pivot_distance`` mm from the cam centre, on a cam of ``base_radius`` mm.
 
     Parameters
@@ -76,6 +77,21 @@ class OscillatingFlat(FlatFace):
     def pivot(self) -> np.ndarray:
         rb = self.base_radius
         return np.array([math.sqrt(self.pivot_distance**2 - rb**2), rb])
+
+    def arm_end(self, contact: np.ndarray) -> np.ndarray:
+        """The face drawn at theta = 0 runs a fifth past the contact."""
+        return self.pivot + 1.2 * (contact - self.pivot)
+
+    def sketch(self, theta: np.ndarray, geometry: PitchGeometry, reach: float, face: Face,
+               roller: float) -> tuple[Stroke, ...]:
+        """Its face from the pivot to the face's far end (``face[1]`` mm along it; without one, to the contact
+        farthest from the pivot)."""
+        pivot = np.asarray(self.pivot, dtype=float)
+        along = self.fixed(theta, geometry) - pivot
+        unit = along / np.linalg.norm(along, axis=1)[:, None]
+        far = face[1] if face is not None else float(np.linalg.norm(along, axis=1).max())
+        return (Stroke("face", np.stack([np.broadcast_to(pivot, (len(theta), 2)), pivot + unit * far], axis=1),
+                       "follower"),)
 
     def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
         """The profile for arm swing ``motion`` = psi, psi', psi'', psi''' in degrees per rad^k."""
@@ -135,7 +151,7 @@ def check_reach(table: Any, base_radius: float, top: float) -> None:
                         f"(pressure angle 180 degrees) (got {c:g})", "follower.pivot_distance")
 
 
-FOLLOWER = FollowerType("oscillating-flat", needs=frozenset({"pivot_distance"}), takes=frozenset({"face_margin"}),
-                        oscillating=True, make=lambda t, rb, rr, sense: OscillatingFlat(t.pivot_distance, rb, sense),
+FOLLOWER = FollowerType("oscillating-flat", oscillating=True,
+                        make=lambda t, rb, rr, sense: OscillatingFlat(t.pivot_distance, rb, sense),
                         base_radius_range=lambda t, rr, top: (0.0, largest_base_radius(t.pivot_distance, top)),
                         path_length=None, fits=check_reach)

@@ -21,10 +21,11 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.followers.base import FollowerType, PitchGeometry, Swing, from_centre_path, perp, positive, rotate
+from camgen.followers.drawing import Face, Pivoted, Stroke
 
 
 @dataclass(frozen=True)
-class OscillatingRoller(Swing):
+class OscillatingRoller(Swing, Pivoted):
     """Roller follower on an arm (see the module docstring); lengths in mm.
 
     Parameters
@@ -101,6 +102,22 @@ class OscillatingRoller(Swing):
         q2 = k * psi2[:, None] * perp(w) - (psi1**2)[:, None] * w
         return from_centre_path(theta, p + w, q1, q2, k * perp(w) / self.arm_length, self.sense)
 
+    @property
+    def roller(self) -> float:
+        return self.roller_radius
+
+    def sketch(self, theta: np.ndarray, geometry: PitchGeometry, reach: float, face: Face,
+               roller: float) -> tuple[Stroke, ...]:
+        """Its arm from the pivot to the roller's centre, and the roller."""
+        centre = self.fixed(theta, geometry)
+        pivot = np.asarray(self.pivot, dtype=float)
+        arm = np.stack([np.broadcast_to(pivot, (len(theta), 2)), centre], axis=1)
+        return Stroke("arm", arm, "follower"), Stroke("roller", centre[:, None, :], "roller", roller)
+
+    def report_fields(self) -> dict[str, Any]:
+        """Its pivot and the arm's rest angle (degrees)."""
+        return {**super().report_fields(), "rest_angle_deg": math.degrees(self.rest_angle)}
+
 
 def _arm_floor(table: Any, base_radius: float) -> float:
     """The least roller radius (mm) whose centre the arm can put on the prime circle."""
@@ -108,8 +125,7 @@ def _arm_floor(table: Any, base_radius: float) -> float:
 
 
 FOLLOWER = FollowerType(
-    "oscillating-roller", needs=frozenset({"roller_radius", "pivot_distance", "arm_length"}), takes=frozenset(),
-    oscillating=True,
+    "oscillating-roller", oscillating=True,
     make=lambda t, rb, rr, sense: OscillatingRoller(t.pivot_distance, t.arm_length, rb + rr, rr, sense),
     base_radius_range=lambda t, rr, top: (max(0.0, abs(t.pivot_distance - t.arm_length) - rr),
                                           t.pivot_distance + t.arm_length - rr),

@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
 from camgen.followers.base import PitchGeometry, perp
+from camgen.followers.drawing import Face, Stroke, stem_and_roller, upright
 
 
 @dataclass(frozen=True)
@@ -54,3 +55,20 @@ class PlateRoller:
         kappa = -c * s2 / speed**3                           # bulging up is convex
         return PitchGeometry(theta=theta, point=point, d1=d1, d2=d2, normal=normal, kappa=kappa,
                              pressure_angle=np.arctan2(s1, c))
+
+    def sketch(self, theta: np.ndarray, geometry: PitchGeometry, reach: float, face: Face,
+               roller: float) -> tuple[Stroke, ...]:
+        """Its stem at x = 0 (the plate slides under it), 0.3 ``reach`` long, and its roller (none for a knife
+        edge)."""
+        centre = np.column_stack([np.zeros_like(theta), geometry.point[:, 1]])
+        return stem_and_roller(centre, 0.3 * reach, roller)
+
+    def still(self, theta: np.ndarray, geometry: PitchGeometry, reach: float) -> tuple[Stroke, ...]:
+        """Nothing: the plate's page shows no guide."""
+        return ()
+
+    def pose(self, contact: np.ndarray, reach: float, face: Face) -> tuple[Stroke, ...]:
+        return upright(float(contact[0]), contact, reach, self.roller_radius)
+
+    def report_fields(self) -> dict[str, Any]:
+        return {}

@@ -14,10 +14,11 @@ from typing import ClassVar
 import numpy as np
 
 from camgen.followers.base import FlatFace, FollowerType, PitchGeometry, from_support, rotate
+from camgen.followers.drawing import Face, Stroke, Translating
 
 
 @dataclass(frozen=True)
-class TranslatingFlat(FlatFace):
+class TranslatingFlat(FlatFace, Translating):
     """Flat face perpendicular to the motion, on a cam of ``base_radius`` mm (see the module docstring).
 
     Parameters
@@ -47,6 +48,23 @@ class TranslatingFlat(FlatFace):
         """Where the face touches the cam: along the face from the follower's axis (mm, +X positive), = sense s'."""
         return rotate(geometry.point, self.sense * geometry.theta)[:, 0]
 
+    def sketch(self, theta: np.ndarray, geometry: PitchGeometry, reach: float, face: Face,
+               roller: float) -> tuple[Stroke, ...]:
+        """Its face from ``face[0]`` to ``face[1]`` mm along it (the contact's travel and the face's margins), at
+        the contact's height, and its stem on the axis, 0.45 ``reach`` long."""
+        y = self.fixed(theta, geometry)[:, 1]
+        n, stem = len(theta), 0.45 * reach
+        lo, hi = face if face is not None else (0.0, 0.0)
+        line = np.stack([np.column_stack([np.full(n, lo), y]), np.column_stack([np.full(n, hi), y])], axis=1)
+        rod = np.stack([np.column_stack([np.zeros(n), y]), np.column_stack([np.zeros(n), y + stem])], axis=1)
+        return Stroke("face", line, "follower"), Stroke("stem", rod, "follower")
 
-FOLLOWER = FollowerType("translating-flat", needs=frozenset(), takes=frozenset({"face_margin"}),
-                        make=lambda t, rb, rr, sense: TranslatingFlat(rb, sense))
+    def pose(self, contact: np.ndarray, reach: float, face: Face) -> tuple[Stroke, ...]:
+        """Its face from ``face[0]`` to ``face[1]`` at the contact's height, and its stem rising half ``reach``."""
+        y = float(contact[1])
+        lo, hi = face if face is not None else (0.0, 0.0)
+        return (Stroke("follower", np.array([[lo, y], [hi, y]]), "follower"),
+                Stroke("stem", np.array([[0.0, y], [0.0, y + 0.5 * reach]]), "follower"))
+
+
+FOLLOWER = FollowerType("translating-flat", make=lambda t, rb, rr, sense: TranslatingFlat(rb, sense))

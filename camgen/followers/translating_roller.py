@@ -19,10 +19,11 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.followers.base import FollowerType, PitchGeometry, centre_path
+from camgen.followers.drawing import Face, Stroke, Translating, stem_and_roller, upright
 
 
 @dataclass(frozen=True)
-class TranslatingRoller:
+class TranslatingRoller(Translating):
     """Roller of ``roller_radius`` mm (0 for a knife edge) on a prime circle of ``prime_radius`` mm, offset mm (+X).
 
     Parameters
@@ -72,6 +73,19 @@ class TranslatingRoller:
         s, s1, s2 = motion[0], motion[1], motion[2]
         return centre_path(theta, (self.offset, self.d0 + s), (0.0, s1), (0.0, s2), (0.0, 1.0), self.sense)
 
+    @property
+    def axis_x(self) -> float:
+        """Its axis, x = offset (mm)."""
+        return float(self.offset or 0.0)
+
+    def sketch(self, theta: np.ndarray, geometry: PitchGeometry, reach: float, face: Face,
+               roller: float) -> tuple[Stroke, ...]:
+        """Its stem, 0.45 ``reach`` long, and its roller (none for a knife edge)."""
+        return stem_and_roller(self.fixed(theta, geometry), 0.45 * reach, roller)
+
+    def pose(self, contact: np.ndarray, reach: float, face: Face) -> tuple[Stroke, ...]:
+        return upright(self.offset, contact, reach, self.roller_radius)
+
 
 def _offset_floor(table: Any, base_radius: float) -> float:
     """The least roller radius (mm) that puts an offset follower's centre on the prime circle."""
@@ -79,7 +93,6 @@ def _offset_floor(table: Any, base_radius: float) -> float:
 
 
 FOLLOWER = FollowerType(
-    "translating-roller", needs=frozenset({"roller_radius"}), takes=frozenset({"offset"}),
-    make=lambda t, rb, rr, sense: TranslatingRoller(rb + rr, rr, t.offset, sense),
+    "translating-roller", make=lambda t, rb, rr, sense: TranslatingRoller(rb + rr, rr, t.offset, sense),
     base_radius_range=lambda t, rr, top: (max(0.0, abs(t.offset) - rr), math.inf),
     roller_floor=_offset_floor)

@@ -175,13 +175,19 @@ class KindBase(ABC, Generic[S, D]):
     name: str
     title: str
     table_key: str = CAM_TABLE
-    followers: tuple[str, ...] = ()
     formats: frozenset[str] = ALL_FORMATS
     starters: Mapping[str, Starter] = MappingProxyType({})
 
     @property
     def unsized(self) -> str:
         return f"{self.title} has no base radius to size"
+
+    @property
+    def followers(self) -> tuple[str, ...]:
+        """The follower types its spec's ``follower`` union takes (:func:`camgen.tables.followers.follower_types`)."""
+        from camgen.tables.followers import follower_types
+
+        return follower_types(self.spec)
 
     @property
     @abstractmethod
@@ -220,15 +226,3 @@ class KindBase(ABC, Generic[S, D]):
 
     def format_refusal(self, fmt: str) -> str:
         return f"{self.title} writes no {fmt!r} file; give formats of {', '.join(sorted(self.formats))}"
-
-
-# ---- the shared [follower] table's checks, until each kind declares its followers' tables ----
-
-#: how a message names the barrel kind
-BARREL = 'a barrel cam (cam.kind = "barrel")'
-
-
-def flat_follower(spec: Any) -> None:
-    """The follower check every flat cam (disc, plate, grooved, conjugate) shares: no barrel's conical roller."""
-    if "roller_shape" in spec.follower.model_fields_set:
-        raise ValueError(f"follower.roller_shape: only for {BARREL}")

@@ -43,7 +43,7 @@ def roots() -> dict[str, list[Table]]:
     from camgen.core.family import _SheetTemplate
     from camgen.kinds.geneva.table import GenevaSpec
     from camgen.kinds.machine.spec import MachineSpec
-    from camgen.spec import CamSpec
+    from camgen.spec import CAM_SPECS, DiscSpec
     from camgen.tables import CAM_TABLES
     from linkgen.mechanisms import MECHANISMS
     from linkgen.spec import LinkageSpec
@@ -55,9 +55,13 @@ def roots() -> dict[str, list[Table]]:
         by_table.setdefault(mechanism.table, []).append(name)
     linkage = [top[0], *(Table(t.path, t.model, f"{t.title} (type {', '.join(names)})")
                          for table, names in by_table.items() for t in tables(table, "linkage")), *top[1:]]
-    top = list(tables(CamSpec, "", skip={"cam"}))
+    top = list(tables(DiscSpec, "", skip={"cam", "follower"}))      # a disc cam's: with its kit
+    followers = dict.fromkeys(member for spec in CAM_SPECS.values()
+                              for member in _unwrap(spec.model_fields["follower"].annotation))
     cam = [top[0], *(Table(t.path, t.model, f"{t.title} (kind {kind})")
-                     for kind, table in CAM_TABLES.items() for t in tables(table, "cam")), *top[1:]]
+                     for kind, table in CAM_TABLES.items() for t in tables(table, "cam")),
+           *(Table(t.path, t.model, f"{t.title} ({follower.model_config['title']})")
+             for follower in followers for t in tables(follower, "follower")), *top[1:]]
     top = list(tables(SynthesisSpec, "", skip={"task"}))
     synthesis = [top[0], *(Table(t.path, t.model, f"{t.title} (kind {kind})")
                            for kind, task in TASKS.items() for t in tables(task, "task")), *top[1:]]

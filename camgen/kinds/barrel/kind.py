@@ -23,9 +23,6 @@ if TYPE_CHECKING:
     from camgen.kinds.barrel.design import BarrelDesign
     from camgen.spec import BarrelSpec
 
-FOLLOWERS = ("translating-roller", "oscillating-roller")
-#: ``[follower]`` keys a barrel does not use: an offset, and the spring and contact of a spring-loaded follower
-_FOLLOWER_NOT_USED = ("offset", "spring_rate", "preload", "contact_margin", "roller_width")
 
 
 def geometry(spec: Any) -> BarrelGeometry:
@@ -58,13 +55,6 @@ def _check_arm(spec: Any, g: BarrelGeometry, room: float, rw: float) -> None:
 
 def _check(spec: Any) -> None:
     cam, follower = spec.cam, spec.follower
-    if follower.type not in FOLLOWERS:
-        raise ValueError(f"follower.type: a barrel cam takes a translating-roller follower (moving along the cam's "
-                         f"axis) or an oscillating-roller (on an arm swinging along it; got {follower.type!r})")
-    for key in _FOLLOWER_NOT_USED:
-        if key in follower.model_fields_set:
-            raise ValueError(f"follower.{key}: not used by a barrel cam (the groove drives the roller both ways; its "
-                             "forces need only follower.mass)")
     if follower.oscillating and follower.orientation is not None:
         raise ValueError("follower.orientation: not modelled for a barrel's arm (it swings in a plane through the "
                          "cam's axis): give the weights as follower.load, or leave them out")
@@ -211,7 +201,6 @@ class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
 
     name: str = "barrel"
     title: str = "a barrel cam"
-    followers: tuple[str, ...] = FOLLOWERS
     formats: frozenset[str] = ALL_FORMATS - {"step"}
     unsized: str = ("a barrel cam has no base radius to size: its pitch_radius is the designer's choice (the report "
                "gives the pressure angle at it)")

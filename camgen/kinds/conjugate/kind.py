@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.kinds.base import NESTED, Operations, SizeReport, Starter, flat_follower
+from camgen.kinds.base import NESTED, Operations, SizeReport, Starter
 from camgen.kinds.conjugate.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
 
@@ -22,24 +22,16 @@ if TYPE_CHECKING:
     from camgen.kinds.conjugate.design import ConjugateDesign
     from camgen.spec import ConjugateSpec
 
-FOLLOWERS = ("translating-roller", "oscillating-roller")
 #: the key that places the second roller instead of ``cam.second_base_radius``, by follower type
 PLACES = {"translating-roller": "yoke_span", "oscillating-roller": "arm_angle"}
-#: the follower type each of the second roller's own keys is for
+#: the follower type each of the second roller's own ``[cam]`` keys is for: a rule across two tables (the cam's keys
+#: by the follower's type), which neither table's model can hold
 OWNERS = {"yoke_span": "a translating-roller", "arm_angle": "an oscillating-roller",
           "second_arm_length": "an oscillating-roller"}
 
 
 def _check(spec: Any) -> None:
-    flat_follower(spec)
     cam, follower = spec.cam, spec.follower
-    if follower.type not in FOLLOWERS:
-        raise ValueError(f"follower.type: a conjugate cam takes a translating-roller (a yoke with two rollers) or "
-                         f"oscillating-roller follower (an arm with two rollers) (got {follower.type!r})")
-    for key in ("spring_rate", "preload", "contact_margin"):
-        if getattr(follower, key) is not None:
-            raise ValueError(f"follower.{key}: a conjugate pair drives the follower both ways (positive drive): no "
-                             "return spring and no contact check (its forces need only follower.mass)")
     if cam.allow_undercut:
         raise ValueError("cam.allow_undercut: both contacts of a conjugate pair must hold over the whole turn, so an "
                          "undercut is refused, never cut as an envelope")
@@ -63,7 +55,6 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
 
     name: str = "conjugate"
     title: str = "a conjugate cam"
-    followers: tuple[str, ...] = FOLLOWERS
     check: Callable[[ConjugateSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 

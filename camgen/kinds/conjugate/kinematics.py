@@ -53,6 +53,11 @@ class SecondRoller:
     def lift_unit(self) -> str:
         return self.first.lift_unit
 
+    def report_fields(self) -> dict[str, Any]:
+        """What the report's ``follower`` table adds for this roller's cam (see
+        :meth:`camgen.followers.drawing.Follower.report_fields`): nothing of its own."""
+        return {}
+
 
 @dataclass(frozen=True)
 class YokeRoller(SecondRoller):
@@ -102,6 +107,10 @@ class ArmRoller(SecondRoller):
     def pivot(self) -> np.ndarray:
         """The pivot (mm, fixed frame): the first arm's."""
         return self.first.pivot
+
+    def report_fields(self) -> dict[str, Any]:
+        """The pivot (mm), as the first arm's cam reports it."""
+        return {"pivot_mm": [float(x) for x in self.pivot]}
 
     @property
     def away(self) -> float:

@@ -4,8 +4,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.followers import FOLLOWERS
-from camgen.kinds.base import Starter, flat_follower
+from camgen.kinds.base import Starter
 from camgen.kinds.disc.starters import STARTERS
 from camgen.kinds.shared import FlatKind
 from camgen.rig import Mount, disc_mount
@@ -17,7 +16,8 @@ if TYPE_CHECKING:
 
 
 def _check(spec: Any) -> None:
-    flat_follower(spec)
+    """Nothing beyond its tables: a disc cam's follower tables are the spring-held ones
+    (:mod:`camgen.tables.followers`)."""
 
 
 class DiscKind(FlatKind["DiscSpec"]):
@@ -25,7 +25,6 @@ class DiscKind(FlatKind["DiscSpec"]):
 
     name: str = "disc"
     title: str = "a disc cam"
-    followers: tuple[str, ...] = tuple(FOLLOWERS)
     check: Callable[[DiscSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 

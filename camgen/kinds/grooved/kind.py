@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.kinds.base import Operations, SizeReport, Starter, flat_follower
+from camgen.kinds.base import Operations, SizeReport, Starter
 from camgen.kinds.grooved.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
 
@@ -20,21 +20,12 @@ if TYPE_CHECKING:
     from camgen.kinds.grooved.design import GroovedDesign
     from camgen.spec import GroovedSpec
 
-FOLLOWERS = ("translating-roller", "oscillating-roller")
 
 
 def _check(spec: Any) -> None:
-    flat_follower(spec)
-    cam, follower = spec.cam, spec.follower
-    if follower.type not in FOLLOWERS:
-        raise ValueError(f"follower.type: a grooved cam takes a translating-roller or oscillating-roller follower "
-                         f"(got {follower.type!r})")
+    cam = spec.cam
     if not cam.groove_depth < cam.thickness:
         raise ValueError(f"cam.groove_depth: must be < cam.thickness {cam.thickness:g} mm (got {cam.groove_depth:g})")
-    for key in ("spring_rate", "preload", "contact_margin"):
-        if getattr(follower, key) is not None:
-            raise ValueError(f"follower.{key}: a grooved cam drives the follower both ways (positive drive): no "
-                             "return spring and no contact check (its forces need only follower.mass)")
     if spec.hub.boss_diameter:
         raise ValueError("hub.boss_diameter: a boss would stand on the grooved face, where the follower runs; mount "
                          "a grooved cam by its bore (hub.keyway) or hub.bolt_circle holes")
@@ -47,7 +38,6 @@ class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
 
     name: str = "grooved"
     title: str = "a grooved cam"
-    followers: tuple[str, ...] = FOLLOWERS
     check: Callable[[GroovedSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 

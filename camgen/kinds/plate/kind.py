@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.kinds.base import Starter, flat_follower
+from camgen.kinds.base import Starter
 from camgen.kinds.plate.starters import STARTERS
 from camgen.kinds.shared import FlatKind
 from camgen.rig import Mount, plate_mount
@@ -16,16 +16,10 @@ from camgen.rig import Mount, plate_mount
 if TYPE_CHECKING:
     from camgen.spec import PlateSpec
 
-FOLLOWERS = ("translating-roller", "knife-edge")
 
 
 def _check(spec: Any) -> None:
-    flat_follower(spec)
-    if spec.follower.type not in FOLLOWERS:
-        raise ValueError(f"follower.type: a plate cam takes a translating-roller or knife-edge follower "
-                         f"(got {spec.follower.type!r})")
-    if spec.follower.offset != 0:
-        raise ValueError("follower.offset: not used by a plate cam")
+    """Nothing beyond its tables: a plate cam's follower table has no offset (:mod:`camgen.tables.followers`)."""
 
 
 def _follower(spec: Any, base_radius: float, roller_radius: float) -> Any:
@@ -38,7 +32,6 @@ class PlateKind(FlatKind["PlateSpec"]):
 
     name: str = "plate"
     title: str = "a plate cam"
-    followers: tuple[str, ...] = FOLLOWERS
     check: Callable[[PlateSpec], None] = staticmethod(_check)
     follower: Callable[[PlateSpec, float, float], Any] = staticmethod(_follower)
     starters: Mapping[str, Starter] = STARTERS
