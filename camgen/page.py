@@ -14,7 +14,6 @@ from typing import Any
 import numpy as np
 
 from camgen.core.page import FRAMES, Body, Mover, Outline, Page, Plot, Scene, key_figures, pose_motion
-from camgen.followers.base import rotate
 from camgen.tables.followers import Face
 
 #: the figures a cam's page shows, where its report has them: (label, dotted key, unit)
