@@ -23,6 +23,7 @@ and angle columns scaled by the drawing's size): 1 well conditioned, 0 at a togg
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Protocol
@@ -33,7 +34,7 @@ from linkgen.kinematics.structure import GroupStep, Structure
 
 #: the kinds of :class:`~linkgen.kinematics.structure.GroupStep` (their results are among a solution's ``dyads``)
 GROUP_KINDS = ("triad", "group")
-#: continuation steps over the input's span (a crank's revolution: two degrees each)
+#: continuation steps a crank's turn (two degrees each), or a slide's travel of the drawing's size
 TRACK_STEPS = 180
 #: a continuation step is halved down to this fraction of the span before the track ends at a toggle
 MIN_STEP = 1e-10
@@ -287,21 +288,24 @@ def track(group: Group, x0: float, lo: float, hi: float, upstream: Upstream, per
     toggles that stop it; ``upstream`` gives the known bodies' poses at input values (n,); ``period`` the crank's
     turn, by which input values are read on it."""
     q0 = np.zeros((1, group.m))
-    ahead = _walk(group, x0, q0, hi, upstream)
+    ahead = _walk(group, x0, q0, hi, upstream, period is not None)
     behind = (np.empty(0), np.empty((0, group.m)))
     if not len(ahead[0]) or ahead[0][-1] != hi:
-        behind = _walk(group, x0, q0, lo, upstream)
+        behind = _walk(group, x0, q0, lo, upstream, period is not None)
     return Track(np.concatenate([behind[0][::-1], [x0], ahead[0]]), np.concatenate([behind[1][::-1], q0, ahead[1]]),
                  period)
 
 
-def _walk(group: Group, x0: float, q0: np.ndarray, end: float, upstream: Upstream) -> tuple[np.ndarray, np.ndarray]:
+def _walk(group: Group, x0: float, q0: np.ndarray, end: float, upstream: Upstream, period: bool
+          ) -> tuple[np.ndarray, np.ndarray]:
     """One way of :func:`track`: the inputs passed and the poses there."""
     if end == x0:
         return np.empty(0), np.empty((0, group.m))
     span = abs(end - x0)
-    h = (end - x0) / max(1, int(np.ceil(TRACK_STEPS * span / (2.0 * np.pi if span > 1e-300 else 1.0))))
-    grid = x0 + h * np.arange(1, int(round((end - x0) / h)) + 1)
+    # a crank's turn, or a slide's travel of the drawing's size, in TRACK_STEPS steps
+    steps = max(1, math.ceil(TRACK_STEPS * span / (2.0 * math.pi if period else group.size)))
+    h = (end - x0) / steps
+    grid = x0 + h * np.arange(1, steps + 1)
     grid[-1] = end
     known_grid = upstream(grid)
     xs: list[float] = []

@@ -342,6 +342,8 @@ def rockers(linkage: Linkage) -> list[str]:
             for body, att in zip(step.bodies, step.attachments, strict=True):
                 if isinstance(att, Pin) and att.body == GROUND and body not in driven:
                     out.append(body)
+        elif isinstance(step, GroupStep):
+            out += [body for _, body, other in step.pins if other == GROUND and body not in driven]
     return out
 
 
