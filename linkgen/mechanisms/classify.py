@@ -45,9 +45,9 @@ DWELL_INPUT = 30.0
 #: links this close to in line (degrees) at a slider's limit make a toggle
 IN_LINE = 1.0
 #: a straight stretch: within this fraction of its chord of the best line ...
-STRAIGHT_BAND = 0.005
+STRAIGHT_BAND = 0.0025
 #: ... over at least this many degrees of input ...
-STRAIGHT_INPUT = 60.0
+STRAIGHT_INPUT = 90.0
 #: ... with a chord of at least this fraction of the drawing's size
 STRAIGHT_CHORD = 0.1
 #: poses a turn the rules sample
