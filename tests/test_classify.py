@@ -107,7 +107,7 @@ def _expected(name: str, design) -> set[str]:
     a, _ = pose_of(design.kinematics, table, 0.0)
     out = set()
     full = a.crank and a.ranges is None
-    x, sol = _turn_solution(a)
+    _, sol = _turn_solution(a)
     sliders = a.linkage.structure.slider_by_name
     for out_name, om in a.outputs.items():
         if not a.crank and om.travel > 0:

@@ -16,7 +16,8 @@ Each class is earned by a rule on what the kinematics computed, stated with the 
 - **straight-line generator**: a traced point on a floating link (neither the input, nor pivoted on the frame, nor
   sliding on it) runs within :data:`STRAIGHT_BAND` of its chord's length of a straight line over at least
   :data:`STRAIGHT_INPUT` degrees of the input, the chord at least :data:`STRAIGHT_CHORD` of the drawing's size;
-- **curve generator**: a traced point on a floating link that no straight stretch earns the class above;
+- **curve generator**: a traced point on a floating link that no straight stretch earns the class above (both
+  with an input that turns fully);
 - **linear actuator**: a slide input moves an output (a swing or a stroke);
 - **indexing**: an output advances a step per stroke of the input and is held between strokes (a ratchet).
 
@@ -125,7 +126,7 @@ def of_analysis(a: Analysis) -> list[Earned]:
                                             f"{dwell:.4g} degrees of input (at least {DWELL_INPUT:g}), then moves"))
         if slider:
             out += _clamp(a, name, [e.value for e in om.limits])
-    for point in a.table.tracers:
+    for point in a.table.tracers if full_turn else ():
         if not _floating(a, point):
             continue
         path = sol.points[point][np.isfinite(sol.points[point]).all(axis=1)]
@@ -225,8 +226,7 @@ def _straight(path: np.ndarray, x: np.ndarray, size: float, cyclic: bool) -> tup
         return None
     step = float(np.median(np.abs(np.diff(x))))         # the samples' spacing (rad or mm)
     best = None
-    widths = [w for w in range(int(math.ceil(math.radians(STRAIGHT_INPUT) / max(step, 1e-300))), n + 1, max(1, n // 24))]
-    for w in widths:
+    for w in range(math.ceil(math.radians(STRAIGHT_INPUT) / max(step, 1e-300)), n + 1, max(1, n // 24)):
         starts = range(0, n if cyclic else n - w + 1, max(1, n // 72))
         found = None
         for start in starts:
