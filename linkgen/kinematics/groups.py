@@ -34,19 +34,13 @@ from linkgen.kinematics.structure import GroupStep, Structure
 
 #: the kinds of :class:`~linkgen.kinematics.structure.GroupStep` (their results are among a solution's ``dyads``)
 GROUP_KINDS = ("triad", "group")
-#: continuation steps a crank's turn (two degrees each), or a slide's travel of the drawing's size
-TRACK_STEPS = 180
-#: a continuation step is halved down to this fraction of the span before the track ends at a toggle
-MIN_STEP = 1e-10
-#: a continuation step moving a group's point more than this times the drawing's size is refused (a branch jump)
-JUMP = 0.05
-#: Newton's iterations at most (from the track; from a continuation step's prediction), and the residual (relative
-#: to the drawing's scale) taken as converged
-MAX_ITER = 40
-STEP_ITER = 8
-#: Newton's steps without progress before a pose is given up
-STALL = 6
-RESIDUAL = 1e-12
+#: the continuation: steps a crank's turn (two degrees each) or a slide's travel of the drawing's size; the least
+#: step (a fraction of the span) halving goes down to before the track ends at a toggle; the most a step may move a
+#: group's point (times the drawing's size) before it is refused as a branch jump
+TRACK_STEPS, MIN_STEP, JUMP = 180, 1e-10, 0.05
+#: Newton's iterations at most, from the track and from a continuation step's prediction; the steps without
+#: progress before a pose is given up; the residual (relative to the drawing's scale) taken as converged
+MAX_ITER, STEP_ITER, STALL, RESIDUAL = 40, 8, 6, 1e-12
 
 
 class Pose(Protocol):
@@ -334,12 +328,15 @@ def _walk(group: Group, x0: float, q0: np.ndarray, end: float, upstream: Upstrea
 
 @dataclass(frozen=True)
 class _Row:
+    """Some poses of a known body (a :class:`Pose`)."""
+
     c: np.ndarray
     s: np.ndarray
     T: np.ndarray
 
 
 def _take(p: Pose, i: int) -> Pose:
+    """Pose i of a known body's poses, as one pose."""
     return _Row(p.c[i:i + 1], p.s[i:i + 1], p.T[i:i + 1])
 
 

@@ -39,18 +39,13 @@ from linkgen.mechanisms.general import Analysis
 #: the classes in the order a report lists them
 CLASSES = ("linear actuator", "oscillator", "reciprocator", "coupling", "reversing", "hesitation", "clamp",
            "indexing", "straight-line generator", "curve generator")
-#: a dwell: the output within this fraction of its travel ...
-DWELL_BAND = 0.005
-#: ... over at least this many degrees of input
-DWELL_INPUT = 30.0
+#: a dwell: the output within DWELL_BAND of its travel over at least DWELL_INPUT degrees of input
+DWELL_BAND, DWELL_INPUT = 0.005, 30.0
 #: links this close to in line (degrees) at a slider's limit make a toggle
 IN_LINE = 1.0
-#: a straight stretch: within this fraction of its chord of the best line ...
-STRAIGHT_BAND = 0.0025
-#: ... over at least this many degrees of input ...
-STRAIGHT_INPUT = 90.0
-#: ... with a chord of at least this fraction of the drawing's size
-STRAIGHT_CHORD = 0.1
+#: a straight stretch: within STRAIGHT_BAND of its chord of the best line over at least STRAIGHT_INPUT degrees of
+#: input, the chord at least STRAIGHT_CHORD of the drawing's size
+STRAIGHT_BAND, STRAIGHT_INPUT, STRAIGHT_CHORD = 0.0025, 90.0, 0.1
 #: poses a turn the rules sample
 SAMPLES = 720
 
