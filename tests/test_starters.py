@@ -197,8 +197,8 @@ def test_a_linkage_starters_comments_name_only_keys_its_type_takes(kind):
     from linkgen.starters import starter
 
     text = starter(kind, "x")
-    models = {"linkage": MECHANISMS[kind].table, "parts": PartsTable}
     raw = tomllib.loads(text)
+    models = {"linkage": MECHANISMS[raw["linkage"]["type"]].table, "parts": PartsTable}
     refused = sorted(f"{t}.{k}" for t, k in _mentions(text, models)
                      if not (_sets(raw, t, k) or k in getattr(models.get(t), "model_fields", {})))
     assert refused == [], text

@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Protocol
 
 import numpy as np
@@ -118,22 +119,23 @@ class Group:
             c[b], s[b], t[b] = np.cos(q[:, 3 * j]), np.sin(q[:, 3 * j]), q[:, 3 * j + 1:3 * j + 3]
         return Frames(c, s, t)
 
-    def residual(self, q: np.ndarray, known: Mapping[str, Pose]) -> tuple[np.ndarray, np.ndarray]:
+    def residual(self, q: np.ndarray, known: Mapping[str, Pose], jacobian: bool = True
+                 ) -> tuple[np.ndarray, np.ndarray]:
         """The closure's residuals F (n, m) (mm, rad for a slider's angle row) and its Jacobian J (n, m, m) in the
-        group's unknowns."""
+        group's unknowns (an empty array unless ``jacobian``)."""
         f = self.frames(q, known)
         n = len(q)
         res = np.zeros((n, self.m))
-        jac = np.zeros((n, self.m, self.m))
+        # the rows' constant entries (the translations' and the angle rows') once, then the angles' columns
+        jac = np.broadcast_to(self._constant, (n, self.m, self.m)).copy() if jacobian else np.zeros((n, self.m, 0))
         row = 0
         for p, a, b in self.pins:
             ra, rb = _rot(f, a, p), _rot(f, b, p)
             res[:, row:row + 2] = ra + f.T[a] - rb - f.T[b]
             for body, r, sign in ((a, ra, 1.0), (b, rb, -1.0)):
                 col = self.column(body)
-                if col is not None:
+                if col is not None and jacobian:
                     jac[:, row:row + 2, col] = sign * _perp(r)
-                    jac[:, row, col + 1] = jac[:, row + 1, col + 2] = sign
             row += 2
         for p, a, g, n0 in self.slides:
             ang = np.arctan2(f.s[a] * f.c[g] - f.c[a] * f.s[g], f.c[a] * f.c[g] + f.s[a] * f.s[g])
@@ -143,16 +145,34 @@ class Group:
             d = ra + f.T[a] - rg - f.T[g]
             res[:, row + 1] = _dot(normal, d)
             ca, cg = self.column(a), self.column(g)
-            if ca is not None:
-                jac[:, row, ca] = 1.0
+            if ca is not None and jacobian:
                 jac[:, row + 1, ca] = _dot(normal, _perp(ra))
                 jac[:, row + 1, ca + 1:ca + 3] = normal
-            if cg is not None:
-                jac[:, row, cg] = -1.0
+            if cg is not None and jacobian:
                 jac[:, row + 1, cg] = _dot(_perp(normal), d) - _dot(normal, _perp(rg))
                 jac[:, row + 1, cg + 1:cg + 3] = -normal
             row += 2
         return res, jac
+
+    @cached_property
+    def _constant(self) -> np.ndarray:
+        """The Jacobian's entries that do not change with the pose (m, m): +-1 for a pin row's translations and a
+        slider's angle row."""
+        out = np.zeros((self.m, self.m))
+        row = 0
+        for _, a, b in self.pins:
+            for body, sign in ((a, 1.0), (b, -1.0)):
+                col = self.column(body)
+                if col is not None:
+                    out[row, col + 1] = out[row + 1, col + 2] = sign
+            row += 2
+        for _, a, g, _ in self.slides:
+            for body, sign in ((a, 1.0), (g, -1.0)):
+                col = self.column(body)
+                if col is not None:
+                    out[row, col] = sign
+            row += 2
+        return out
 
     def rows_scale(self) -> np.ndarray:
         """Each row's scale to mm: the drawing's size for a slider's angle row, else 1."""
@@ -176,9 +196,10 @@ class Group:
             rx, ry = c * cx - s * cy, s * cx + c * cy
             scaled[:, :, 3 * j] = (scaled[:, :, 3 * j] + ry[:, None] * scaled[:, :, 3 * j + 1]
                                    - rx[:, None] * scaled[:, :, 3 * j + 2]) / self.size
-        with np.errstate(invalid="ignore"):
-            sv = np.linalg.svd(np.where(np.isfinite(scaled), scaled, 0.0), compute_uv=False)
-        return sv[:, -1] / np.maximum(sv[:, 0], 1e-300)
+        scaled = np.where(np.isfinite(scaled), scaled, 0.0)
+        with np.errstate(invalid="ignore"):         # the singular values squared: J^T J's eigenvalues, ascending
+            ev = np.maximum(np.linalg.eigvalsh(np.swapaxes(scaled, 1, 2) @ scaled), 0.0)
+        return np.sqrt(ev[:, 0] / np.maximum(ev[:, -1], 1e-300))
 
     def points(self, q: np.ndarray) -> np.ndarray:
         """Every drawn point of the group's bodies in the world at q (n, k, 2), for the continuation's jump test."""
@@ -253,7 +274,7 @@ def newton(group: Group, q: np.ndarray, known: Mapping[str, Pose], iterations: i
         converged = err <= RESIDUAL
         done[rows] |= converged
         live[rows] = ~converged & finite & (since[rows] < STALL)
-    res, _ = group.residual(q, known)
+    res, _ = group.residual(q, known, jacobian=False)
     return q, done & (group.error(res) <= 10.0 * RESIDUAL)
 
 
