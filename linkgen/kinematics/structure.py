@@ -539,6 +539,6 @@ def _diagnose(s: Structure, unknown: list[str], pending: list[Input]) -> None:
                         "linkage")
     joints = sorted({p for b in unknown for p in s.bodies[b] if len(s.holders(p)) >= 2}
                     | {sl.name for sl in s.sliders if sl.body in unknown or sl.guide in unknown})
-    raise SpecError(f"links {names} form a group of a higher class than dyads (joints {', '.join(joints)}): "
-                    "linkgen solves dyads (RRR, RRP, RPR, PRP, RPP) in closed form only; drive the linkage from "
-                    "another link", "linkage")
+    raise SpecError(f"links {names} form a group of a higher class than dyads (joints {', '.join(joints)}) with "
+                    f"more than {GROUP_BODIES} links: linkgen solves dyads and groups of up to {GROUP_BODIES} links; "
+                    "drive the linkage from another link", "linkage")
