@@ -236,3 +236,55 @@ def test_a_triad_with_a_slider_against_a_50_digit_solution():
             1.0, np.abs(mid.velocities[name]).max())
         assert np.abs(mid.accelerations[name] - (up.velocities[name] - down.velocities[name]) / (2 * h)).max() <= (
             1e-6 * max(1.0, np.abs(mid.accelerations[name]).max()))
+
+
+def _xy(k) -> tuple[float, float]:
+    return (float(k[0]), float(k[1]))
+
+
+def _built_at(theta_deg: float, drawn_deg: float) -> dict:
+    """A crank and triad drawn so that the triad locks at crank angle ``theta_deg``: there the plate P-Q-R's bars
+    A-P, G2-Q and G3-R lie on three lines through one point (Pc), which makes the closure's Jacobian singular; the
+    drawing is that linkage continued in 50 digits (findroot, degree by degree) to ``drawn_deg``."""
+    mp.mp.dps = 50
+    th = mp.radians(theta_deg)
+    a = mp.matrix([25 * mp.cos(th), 25 * mp.sin(th)])
+    pc, q, r = mp.matrix([35, 140]), mp.matrix([60, 90]), mp.matrix([40, 50])
+    p = a + (pc - a) / 2                                  # P on the line A-Pc, Q and R on lines through Pc
+    g2, g3 = pc + mp.mpf("2.2") * (q - pc), pc + mp.mpf("1.9") * (r - pc)
+    plate, lengths = (p, q, r), (mp.norm(p - a), mp.norm(q - g2), mp.norm(r - g3))
+
+    def equations(theta):
+        ks = (mp.matrix([25 * mp.cos(theta), 25 * mp.sin(theta)]), g2, g3)
+        return lambda phi, tx, ty: [mp.norm(_turn(phi, x) + mp.matrix([tx, ty]) - k) ** 2 - ln**2
+                                    for x, k, ln in zip(plate, ks, lengths, strict=True)]
+
+    step = 1 if drawn_deg > theta_deg else -1
+    jac = mp.jacobian(lambda u, v, w: equations(th)(u, v, w), [0, 0, 0])
+    assert abs(mp.det(jac)) < mp.mpf(10) ** -10              # singular at the built pose
+    _, _, vt = mp.svd_r(jac)
+    guess = [mp.mpf("0.05") * vt[2, k] for k in range(3)]    # off the fold along its null direction
+    for deg in range(int(theta_deg) + step, int(drawn_deg) + step, step):
+        guess = list(mp.findroot(equations(mp.radians(deg)), guess, tol=mp.mpf(10) ** -40))
+    phi, tx, ty = guess
+
+    def world(x):
+        w = _turn(phi, x) + mp.matrix([tx, ty])
+        return (float(w[0]), float(w[1]))
+
+    d = mp.radians(drawn_deg)
+    return {"O": (0.0, 0.0), "A": (float(25 * mp.cos(d)), float(25 * mp.sin(d))), "G2": _xy(g2),
+            "G3": _xy(g3), "P": world(p), "Q": world(q), "R": world(r)}
+
+
+def test_a_toggle_built_at_100_degrees_is_found_there():
+    """The triad built to lock at crank angle 100 degrees, drawn at 115: linkgen's range ends at 100 degrees within
+    1e-6 degree, a 'limit' of the group."""
+    pts = _built_at(100.0, 115.0)
+    lk = Linkage.of(make_structure(pts, SIX_LINKS, ("O", "G2", "G3"), (), CRANK))
+    near = [t for t in motion.toggles(lk) if abs(math.remainder(math.degrees(t.value) - 100.0, 360.0)) < 1.0]
+    assert len(near) == 1 and near[0].kind == "limit" and near[0].bodies == ("bar1", "plate", "bar2", "bar3")
+    assert abs(math.remainder(math.degrees(near[0].value) - 100.0, 360.0)) <= 1e-6
+    assert any(abs(math.remainder(math.degrees(lo) - 100.0, 360.0)) <= 1e-6 for lo, _ in lk.ranges)
+    sol = lk.solve([math.radians(100.5)], strict=False)
+    assert sol.ok.all() and not lk.solve([math.radians(99.5)], strict=False).ok.any()

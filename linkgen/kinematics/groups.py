@@ -286,12 +286,24 @@ class Track:
     xs: np.ndarray
     qs: np.ndarray
     period: float | None = None
+    #: whether the track stopped at a toggle going down and going up (else it reached the end of the span)
+    stopped: tuple[bool, bool] = (False, False)
+
+    def _on(self, x: np.ndarray) -> np.ndarray:
+        return x if self.period is None else self.xs[0] + np.mod(x - self.xs[0], self.period)
 
     def guess(self, x: np.ndarray) -> np.ndarray:
         """The unknowns interpolated at inputs x (n,), the track's ends held beyond them (n, m)."""
-        if self.period is not None:
-            x = self.xs[0] + np.mod(x - self.xs[0], self.period)
+        x = self._on(x)
         return np.column_stack([np.interp(x, self.xs, self.qs[:, k]) for k in range(self.qs.shape[1])])
+
+    def covers(self, x: np.ndarray) -> np.ndarray:
+        """Where inputs x (n,) lie on the track, or past an end of it that did not stop at a toggle: beyond a
+        toggle (by more than :data:`MIN_STEP` of the track's length) the group has no pose on this assembly, even
+        where Newton's method finds one of another."""
+        x = self._on(x)
+        tol = MIN_STEP * max(float(self.xs[-1] - self.xs[0]), 1.0)
+        return ((x >= self.xs[0] - tol) | (not self.stopped[0])) & ((x <= self.xs[-1] + tol) | (not self.stopped[1]))
 
 
 Upstream = Callable[[np.ndarray], Mapping[str, Pose]]
@@ -307,8 +319,11 @@ def track(group: Group, x0: float, lo: float, hi: float, upstream: Upstream, per
     behind = (np.empty(0), np.empty((0, group.m)))
     if not len(ahead[0]) or ahead[0][-1] != hi:
         behind = _walk(group, x0, q0, lo, upstream, period is not None)
+    up = not len(ahead[0]) or ahead[0][-1] != hi
+    down = up and (not len(behind[0]) or behind[0][-1] != lo)
+    low, high = (down, up) if hi >= lo else (up, down)
     return Track(np.concatenate([behind[0][::-1], [x0], ahead[0]]), np.concatenate([behind[1][::-1], q0, ahead[1]]),
-                 period)
+                 period, (low, high))
 
 
 def _walk(group: Group, x0: float, q0: np.ndarray, end: float, upstream: Upstream, period: bool

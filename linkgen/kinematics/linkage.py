@@ -859,7 +859,11 @@ def _place_group(linkage: Linkage, index: int, step: GroupStep, x: np.ndarray, b
         track = linkage.tracks[key] = groups.track(group, x0, lo, hi, upstream,
                                                    TWO_PI if linkage.is_crank() else None)
     known = {b: bodies[b] for b in bodies}
-    q, converged = groups.newton(group, track.guess(x[0]), known)
+    guess = track.guess(x[0])
+    q, converged = groups.newton(group, guess, known)
+    # on the track's assembly: a pose near the track's (not another assembly Newton's method found instead)
+    moved = np.max(np.hypot(*np.moveaxis(group.points(q) - group.points(guess), -1, 0)), axis=1, initial=0.0)
+    converged &= track.covers(x[0]) & (moved <= groups.JUMP * group.size)
     _, jac = group.residual(q, known)
     margin = np.where(converged, group.margin(q, jac), -1.0)
     for j, b in enumerate(step.bodies):
