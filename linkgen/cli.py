@@ -227,7 +227,7 @@ def _print_general(r: dict[str, Any]) -> None:
     out = click.echo
     unit = "deg" if "input_range_deg" in r else "mm"
     order = ", ".join(s["step"] if s["step"] == "input" else f"{s['step']}({'+'.join(s.get('links', []))} at "
-                      f"{s.get('joint')})" for s in r["solve_order"])
+                      f"{s.get('joint', ', '.join(s.get('joints', [])))})" for s in r["solve_order"])
     out(f"mobility {r['mobility']}; solved as: {order}")
     if unit == "mm":
         out(f"input reaches {r['input_range_mm']} mm")
@@ -244,6 +244,10 @@ def _print_general(r: dict[str, Any]) -> None:
             out(f"  the input's range is split into separate circuits: {apart} {unit} is never reached from the "
                 "drawing")
     for d in r["dyads"]:
+        if "conditioning_min" in d:             # a class-III group
+            out(f"  group {d['kind']} {'-'.join(d['links'])} at {d['joint']}: conditioning {d['conditioning_min']:.4g} "
+                f"to {d['conditioning_max']:.4g} (0 at a toggle)")
+            continue
         out(f"  dyad {d['kind']} {'-'.join(d['links'])} at {d['joint']}: transmission {d['transmission_min_deg']:.3f} "
             f"to {d['transmission_max_deg']:.3f} deg")
     for name, o in r["outputs"].items():
@@ -373,6 +377,8 @@ def _print_text(r: dict[str, Any]) -> None:
         _print_gears(r)
     if "engagement_angle_deg" in r:
         _print_ratchet(r)
+    if r.get("classification", {}).get("classes"):
+        out(f"class: {', '.join(r['classification']['classes'])} (the rules: the report's classification)")
     positions = r.get("positions")
     if r["type"] in ("oldham", "trammel", "rapson"):
         _print_coupling(r)

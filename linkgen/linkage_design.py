@@ -228,6 +228,7 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     report: dict[str, Any] = {"name": spec.name, "type": table.type, "conventions": CONVENTIONS,
                               "lengths_mm": lengths(table), "rpm": table.rpm,
                               **mechanism.report(table, kinematics, angle, method)}
+    report["classification"] = classification(kinematics, table, report)
     statics = dynamics = None
     if spec.loads:
         posed = pose_of(kinematics, table, 0.0)
@@ -332,6 +333,19 @@ def pose_of(kinematics: Any, table: Any, angle: float) -> tuple[Any, float] | No
         drawn, traced = draw(kinematics, theta), (point,)
     analysis = analysis_of(drawn, traced)
     return analysis, float(analysis.linkage.drawn_inputs[0])
+
+
+def classification(kinematics: Any, table: Any, report: dict[str, Any]) -> dict[str, Any]:
+    """The course's class(es) of the mechanism by the motion it transforms (:mod:`linkgen.mechanisms.classify`):
+    from its kinematics drawn as a general linkage where it can be, else from its own figures in ``report``."""
+    from linkgen.mechanisms import classify
+
+    try:
+        posed = pose_of(kinematics, table, 0.0)
+    except SpecError:                   # the input does not reach 0: classified from its own figures
+        posed = None
+    earned = classify.of_analysis(posed[0]) if posed is not None else classify.of_report(table.type, report)
+    return classify.report(earned)
 
 
 def analyze(spec: LinkageSpec, angle: float | None = None, method: str = "closed") -> dict[str, Any]:

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.page import FRAMES, Body, Mover, Outline, Page, Plot, Scene, key_figures
+from linkgen.kinematics.groups import GROUP_KINDS
 
 #: the figures a linkage's page shows, where its report has them: (label, dotted key, unit)
 LINKAGE_FIGURES = (
@@ -127,10 +128,11 @@ def linkage_page(name: str, a: Any, report: dict[str, Any],
                   tuple((p, np.where(ok, np.linalg.norm(sol.velocities[p], axis=1), np.nan)) for p in watched)),
              Plot("acceleration of " + ", ".join(watched), unit + "^2" if a.crank else "1/mm",
                   tuple((p, np.where(ok, np.linalg.norm(sol.accelerations[p], axis=1), np.nan)) for p in watched))]
-    if sol.dyads:
+    dyads = [d for d in sol.dyads if d.kind not in GROUP_KINDS]      # a class-III group has no transmission angle
+    if dyads:
         plots.append(Plot("transmission angle", "deg",
                           tuple((f"{'-'.join(d.bodies)} ({d.joint})", np.where(ok, np.degrees(d.transmission), np.nan))
-                                for d in sol.dyads[:4]),
+                                for d in dyads[:4]),
                           tuple(("usual band", v) for v in BAND)))
     if extra is not None:
         plots += [Plot(p.title, p.unit, tuple((label, np.where(ok, v, np.nan)) for label, v in p.series), p.marks)

@@ -13,6 +13,7 @@ import numpy as np
 from camgen.core.figures import figure, fit_equal
 from linkgen.kinematics.circuits import input_grid, input_spans
 from linkgen.kinematics.fourbar import Assembly, FourBar, Poses
+from linkgen.kinematics.groups import GROUP_KINDS
 
 
 def _chart(width: float, height: float) -> tuple[Any, Any]:
@@ -155,7 +156,7 @@ def linkage_transmission_figure(name: str, a: Any) -> Any:
     fig, ax = _chart(8, 4.5)
     ax.axhspan(40, 140, color="C2", alpha=0.12, label="40-140°")
     x, label = _input_axis(a)
-    for k, d in enumerate(a.sweep.dyads):
+    for k, d in enumerate(d for d in a.sweep.dyads if d.kind not in GROUP_KINDS):   # a group has no such angle
         ax.plot(x, np.degrees(d.transmission), color=f"C{k % 10}", lw=1.3,
                 label=f"{d.kind} {'-'.join(d.bodies)} at {d.joint}")
     ax.set_xlabel(label)

@@ -64,6 +64,9 @@ RULES: dict[str, dict[str, str]] = {
     "linkage": {"linkage": "any planar linkage of one input: mobility 3 x moving links - 2 x pins = 1 (a pin "
                            "joining k links counts k - 1), solved a dyad at a time on the assembly the joints draw",
                 "linkage.input": "what drives the linkage: a link turning about a pivot (or a slider)"},
+    "eight-bar": {"linkage": "mobility 3 x 7 - 2 x 10 = 1; the triad (bar1, bar2, bar3, triad) is one group, solved "
+                             "by Newton's method continued from the assembly the joints draw",
+                  "linkage.input": "what drives the linkage: a link turning about a pivot (or a slider)"},
 }
 
 #: kind -> (what it is, its tables)
@@ -94,6 +97,19 @@ STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
         ("linkage.joints", {"O": [0.0, 0.0], "Q": [150.0, 0.0], "A": [0.0, 45.0], "B": [122.664, 101.379],
                             "P": [34.685, 93.959]}),
         ("linkage.links", {"crank": ["O", "A"], "coupler": ["A", "B", "P"], "rocker": ["Q", "B"]}),
+        PARTS]),
+    "eight-bar": ("A class-III eight-bar: a crank-rocker's coupler point C drives a triad, the plate E-F-G held by the "
+                  "bars C-E, O6-F and O8-G,\nwhich no order of dyads places: it is solved as one group, continued "
+                  "from this drawing.", [
+        ("linkage", {"type": "linkage", "ground": ["O2", "O4", "O6", "O8"], "input": {"link": "crank", "pivot": "O2"},
+                     "tracers": ["C", "E"], "rpm": 60.0}),
+        ("linkage.joints", {"O2": [0.0, 0.0], "A": [10.0, 17.320508076], "O4": [80.0, 0.0],
+                            "B": [72.221149669, 49.391188359], "C": [28.282302721, 58.244308085],
+                            "O6": [144.646417155, 165.096768061], "O8": [19.602606767, 207.097309528],
+                            "E": [92.376455415, 130.017651713], "F": [76.116993536, 179.369752979],
+                            "G": [41.506551049, 140.612595308]}),
+        ("linkage.links", {"crank": ["O2", "A"], "coupler": ["A", "B", "C"], "rocker": ["O4", "B"],
+                           "bar1": ["C", "E"], "bar2": ["O6", "F"], "bar3": ["O8", "G"], "triad": ["E", "F", "G"]}),
         PARTS]),
     "gear-pair": ("An external pair of involute spur gears: a 12-tooth pinion, shifted clear of undercut, drives a "
                   "30-tooth gear.", [
@@ -140,10 +156,11 @@ def starter(kind: str, name: str) -> str:
     :class:`~camgen.core.errors.SpecError` naming ``KIND`` for another."""
     kind = choose(kind, STARTERS, "KIND")
     what, tables = STARTERS[kind]
+    mechanism = str(tables[0][1]["type"])          # a named example of a type (eight-bar) starts as that type
     build = "" if kind == "whitworth" else f"\nCut and print its parts with:  linkgen build {name}.toml"
     header = (f"{what}\nAnalyse it with:  linkgen analyze {name}.toml   (files land in out/{name}/){build}\n"
               "Every key is explained in the documentation's template reference; --set KEY=VALUE changes one for a "
               "run.")
-    models = {"linkage": MECHANISMS[kind].table, "parts": PartsTable,
-              **{table: model for table, _ in tables if (model := _sub_model(MECHANISMS[kind].table, table))}}
-    return render(header, [("", {"name": name}), *tables], models, {**NOTES, **RULES[kind]})
+    models = {"linkage": MECHANISMS[mechanism].table, "parts": PartsTable,
+              **{table: model for table, _ in tables if (model := _sub_model(MECHANISMS[mechanism].table, table))}}
+    return render(header, [("", {"name": name}), *tables], models, {**NOTES, **RULES.get(kind, RULES[mechanism])})

@@ -16,7 +16,7 @@ from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.quickreturn import CrankShaper, Whitworth
 from linkgen.kinematics.slidercrank import ScotchYoke, SliderCrank
 from linkgen.kinematics.straightline import straight_line
-from linkgen.kinematics.structure import Input, Slider, make_structure
+from linkgen.kinematics.structure import GroupStep, Input, Slider, make_structure, plan
 
 RNG = np.random.default_rng(12)
 CRANK = (Input("crank", "crank", "O"),)
@@ -229,14 +229,15 @@ def test_a_two_degree_of_freedom_chain_asks_for_another_input():
     assert math.dist(sol.points["A"][0], sol.points["B"][0]) == pytest.approx(math.dist((20, 30), (60, 60)))
 
 
-def test_a_class_three_group_is_refused_naming_its_joints():
-    """A ternary plate held by three bars, one from the crank: no dyad closes it."""
+def test_a_class_three_group_is_planned_as_one_group_naming_its_joints():
+    """A ternary plate held by three bars, one from the crank: no dyad closes it, so it is solved as one group
+    (tests/test_groups.py checks its solution)."""
     pts = {"O": (0.0, 0.0), "G2": (120.0, 0.0), "G3": (60.0, -80.0), "A": (20.0, 15.0), "P": (40.0, 70.0),
            "Q": (90.0, 60.0), "R": (70.0, 30.0)}
     links = {"crank": ("O", "A"), "bar1": ("A", "P"), "plate": ("P", "Q", "R"), "bar2": ("G2", "Q"),
              "bar3": ("G3", "R")}
-    with pytest.raises(SpecError, match=r"a group of a higher class than dyads \(joints .*P.*Q.*R"):
-        Linkage.of(make_structure(pts, links, ("O", "G2", "G3"), (), CRANK))
+    steps = plan(make_structure(pts, links, ("O", "G2", "G3"), (), CRANK)).steps
+    assert [s.joints for s in steps if isinstance(s, GroupStep)] == [("A", "G2", "G3", "P", "Q", "R")]
 
 
 def test_a_paradoxical_parallelogram_with_a_third_parallel_bar_moves():

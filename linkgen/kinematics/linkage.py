@@ -30,11 +30,11 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from functools import cached_property
-from linkgen.kinematics import dyads, fused
+from linkgen.kinematics import dyads, fused, groups
 from linkgen.kinematics.dyads import cross, dot, perp
 from linkgen.kinematics.grashof import check_finite
-from linkgen.kinematics.structure import (GROUND, Attachment, DyadStep, FixedStep, Input, InputStep, Pin, Plan, Slide,
-                                          Structure, plan)
+from linkgen.kinematics.structure import (GROUND, Attachment, DyadStep, FixedStep, GroupStep, Input, InputStep, Pin,
+                                          Plan, Slide, Structure, plan)
 
 #: a dyad whose margin (a sine) is above minus this is taken to close, at its toggle: the margin grows like the
 #: square root of the distance past the toggle, so this snaps inputs within about 1e-10 (relative to the links)
@@ -115,7 +115,7 @@ class DyadResult:
     (rad, in [0, pi] for RRR, [0, pi/2] otherwise; 0 or pi at the toggle)."""
 
     kind: str
-    bodies: tuple[str, str]
+    bodies: tuple[str, ...]
     joint: str
     margin: np.ndarray
     transmission: np.ndarray
@@ -209,6 +209,9 @@ class Linkage:
     flips: tuple[np.ndarray, ...] = field(default=())
     origin: float | None = None
     start: tuple[float, tuple[float, ...]] | None = None
+    #: the class-III groups' continuation tracks (:mod:`linkgen.kinematics.groups`), filled when first solved and
+    #: shared with the linkages made from this one by ``replace`` (keyed by what a track depends on)
+    tracks: dict[tuple[object, ...], groups.Track] = field(default_factory=dict, compare=False, repr=False)
 
     @classmethod
     def of(cls, structure: Structure) -> Linkage:
@@ -775,6 +778,10 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
             _place_input(s, step, x[step.index] - drawn[step.index], rates[step.index], bodies, motions)
         elif isinstance(step, FixedStep):
             _place_fixed(s, step, bodies, motions)
+        elif isinstance(step, GroupStep):
+            result = _place_group(linkage, index, step, x, bodies, motions)
+            results.append(result)
+            ok &= result.slack >= 0.0
         else:
             u1, u2 = (_unknown(s, b, a, bodies) for b, a in zip(step.bodies, step.attachments, strict=True))
             flips = linkage.flips[index] if linkage.flips else np.empty(0)
@@ -827,6 +834,53 @@ def _fused_points(prog: fused.Program, out: fused.Outputs, n: int, derivatives: 
                 vels[name] = fused.point_view(out.velocities[name])
                 accs[name] = fused.point_view(out.accelerations[name])
     return points, vels, accs
+
+
+def _place_group(linkage: Linkage, index: int, step: GroupStep, x: np.ndarray, bodies: dict[str, Body],
+                 motions: dict[str, Motion] | None) -> DyadResult:
+    """Place a class-III group (:mod:`linkgen.kinematics.groups`) by Newton's method from its track at x, its
+    motion too given ``motions``; its result as a dyad's: margin and slack its Jacobian's conditioning (-1 where it
+    does not assemble), transmission the angle whose sine that is."""
+    group = groups.group_of(linkage.structure, step)
+    from linkgen.kinematics.motion import span
+
+    drawn = linkage.drawn_inputs
+    x0 = float(drawn[0])
+    # a crank's track runs a turn either way of the drawing (its revolution may start below it), a slide's its span
+    lo, hi = ((x0 - TWO_PI, x0 + TWO_PI) if linkage.is_crank() else span(linkage)) if len(drawn) == 1 else (x0, x0)
+    key = (index, lo, hi, x0, tuple((i, tuple(f)) for i, f in enumerate(linkage.flips[:index]) if len(f)))
+    track = linkage.tracks.get(key)
+    if track is None:
+        def upstream(values: np.ndarray) -> dict[str, Body]:
+            xs = np.vstack([values, *np.broadcast_to(drawn[1:, None], (len(drawn) - 1, len(values)))])
+            sol = _solve(linkage, xs, np.ones(len(drawn)), linkage.signs(xs), False, False, index, None)
+            return {b: _body_of(linkage.structure, sol, b) for b in sol.rotations}
+
+        track = linkage.tracks[key] = groups.track(group, x0, lo, hi, upstream,
+                                                   TWO_PI if linkage.is_crank() else None)
+    known = {b: bodies[b] for b in bodies}
+    guess = track.guess(x[0])
+    q, converged = groups.newton(group, guess, known)
+    # on the track's assembly: a pose near the track's (not another assembly Newton's method found instead)
+    moved = np.max(np.hypot(*np.moveaxis(group.points(q) - group.points(guess), -1, 0)), axis=1, initial=0.0)
+    converged &= track.covers(x[0]) & (moved <= groups.JUMP * group.size)
+    _, jac = group.residual(q, known)
+    margin = np.where(converged, group.margin(q, jac), -1.0)
+    for j, b in enumerate(step.bodies):
+        bodies[b] = Body(np.cos(q[:, 3 * j]), np.sin(q[:, 3 * j]), q[:, 3 * j + 1:3 * j + 3])
+    if motions is not None:
+        for b, (w, vt, al, at) in groups.derivatives(group, q, known, motions).items():
+            motions[b] = Motion(bodies[b].T, w, vt, al, at)
+    return DyadResult(step.kind, step.bodies, ", ".join(step.joints), margin, np.arcsin(np.clip(margin, 0.0, 1.0)),
+                      margin)
+
+
+def _body_of(s: Structure, sol: Solution, body: str) -> Body:
+    """A placed body's pose from a solution: its rotation and where its first point is."""
+    c, sn = sol.rotations[body]
+    pd = _pt(s, s.bodies[body][0])
+    pw = sol.points[s.bodies[body][0]]
+    return _pinned(np.asarray(c), np.asarray(sn), pw, pd)
 
 
 def _move_dyad(step: DyadStep, s: Structure, u1: _Unknown, u2: _Unknown, bodies: dict[str, Body],

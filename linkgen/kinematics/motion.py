@@ -25,7 +25,8 @@ import numpy as np
 from camgen.core.errors import SpecError
 from linkgen.kinematics.fourbar import digits_apart
 from linkgen.kinematics.linkage import CLOSE_TOL, RUNAWAY, DyadResult
-from linkgen.kinematics.structure import GROUND, DyadStep, Pin
+from linkgen.kinematics.groups import GROUP_KINDS
+from linkgen.kinematics.structure import GROUND, DyadStep, GroupStep, Pin
 
 if TYPE_CHECKING:
     from linkgen.kinematics.linkage import Linkage, Solution
@@ -77,8 +78,8 @@ def _feasible(linkage: Linkage, x: np.ndarray) -> np.ndarray:
 
 
 def dyad_steps(linkage: Linkage) -> list[int]:
-    """The step index of each dyad, in solve order (the order of a solution's ``dyads``)."""
-    return [i for i, s in enumerate(linkage.plan.steps) if isinstance(s, DyadStep)]
+    """The step index of each dyad (and class-III group), in solve order (the order of a solution's ``dyads``)."""
+    return [i for i, s in enumerate(linkage.plan.steps) if isinstance(s, (DyadStep, GroupStep))]
 
 
 def _events(linkage: Linkage, index: int, grid: np.ndarray, result: DyadResult) -> tuple[np.ndarray, np.ndarray]:
@@ -87,6 +88,8 @@ def _events(linkage: Linkage, index: int, grid: np.ndarray, result: DyadResult) 
     slides), a change point where its slack there is within :data:`CLOSE_TOL` of 0, a gap (a stretch the input
     cannot pass, its bottom given) where it is below."""
     # a slotted link's margin is 1 until its pins meet (a slot through the pivot): its dips show in its slack
+    if result.kind in GROUP_KINDS:
+        return np.empty(0), np.empty(0)          # a group's track stops at its toggles: no change points, no gaps
     m = {"RPR": result.slack}.get(result.kind, np.abs(result.margin) if result.kind in RUNAWAY else result.margin)
     k = np.flatnonzero((m[1:-1] <= m[:-2]) & (m[1:-1] <= m[2:]) & (m[:-2] > 0) & (m[2:] > 0) & (m[1:-1] < DIP)) + 1
     empty = np.empty(0)
@@ -216,7 +219,7 @@ class Toggle:
 
     kind: str
     value: float
-    bodies: tuple[str, str]
+    bodies: tuple[str, ...]
     joint: str
 
 
@@ -302,7 +305,8 @@ def stopping_dyad(linkage: Linkage, values: np.ndarray) -> list[tuple[str, int]]
 def toggles(linkage: Linkage) -> tuple[Toggle, ...]:
     """The ends of the reachable ranges (which dyad stops the input there; a slide's bound of the search is none)
     and the change points, by input value."""
-    dyads = [s for s in linkage.plan.steps if isinstance(s, DyadStep)]
+    dyads = [(s.bodies, s.joint if isinstance(s, DyadStep) else ", ".join(s.joints)) for s in linkage.plan.steps
+             if isinstance(s, (DyadStep, GroupStep))]
     out = []
     for index, step in enumerate(linkage.plan.steps):
         if isinstance(step, DyadStep) and linkage.flips:
@@ -310,7 +314,7 @@ def toggles(linkage: Linkage) -> tuple[Toggle, ...]:
     ends = [end for rng in linkage.ranges or () for end in rng if not bounded(linkage, end)]
     if ends:
         for end, (kind, d) in zip(ends, stopping_dyad(linkage, np.array(ends)), strict=True):
-            out.append(Toggle(kind, end, dyads[d].bodies, dyads[d].joint))
+            out.append(Toggle(kind, end, *dyads[d]))
     return tuple(sorted(out, key=lambda t: t.value))
 
 
@@ -338,6 +342,8 @@ def rockers(linkage: Linkage) -> list[str]:
             for body, att in zip(step.bodies, step.attachments, strict=True):
                 if isinstance(att, Pin) and att.body == GROUND and body not in driven:
                     out.append(body)
+        elif isinstance(step, GroupStep):
+            out += [body for _, body, other in step.pins if other == GROUND and body not in driven]
     return out
 
 

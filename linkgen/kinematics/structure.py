@@ -131,7 +131,30 @@ class Redundant:
     slider: bool
 
 
-Step = InputStep | DyadStep | FixedStep
+@dataclass(frozen=True)
+class GroupStep:
+    """Place an Assur group of a class above II (no dyad order solves it): ``bodies`` held among themselves and to
+    known bodies by as many constraints as they have freedoms, solved together by Newton's method with continuation
+    along the input (:mod:`linkgen.kinematics.groups`). ``pins`` are its revolute pairs (point, a body of the group,
+    the other body: of the group or known), ``sliders`` its prismatic joints' names."""
+
+    bodies: tuple[str, ...]
+    pins: tuple[tuple[str, str, str], ...]
+    sliders: tuple[str, ...]
+
+    @property
+    def kind(self) -> str:
+        """'triad' for a group of four bodies (the class-III group: a ternary link and three binary ones), else
+        'group'."""
+        return "triad" if len(self.bodies) == 4 else "group"
+
+    @property
+    def joints(self) -> tuple[str, ...]:
+        """Its revolutes and sliders, by name (sorted)."""
+        return tuple(sorted({p for p, _, _ in self.pins} | set(self.sliders)))
+
+
+Step = InputStep | DyadStep | FixedStep | GroupStep
 
 
 @dataclass(frozen=True)
@@ -362,7 +385,12 @@ def plan(s: Structure) -> Plan:
             fixed = next((b for b in unknown if len(held[b]) >= 2
                           and not all(isinstance(a, Slide) for a in held[b][:2])), None)
             if fixed is None:
-                break
+                group = _find_group(s, unknown, known)
+                if group is None:
+                    break
+                steps.append(group)
+                known.update(group.bodies)
+                continue
             steps.append(FixedStep(fixed, (held[fixed][0], held[fixed][1])))
             known.add(fixed)
         else:
@@ -414,6 +442,10 @@ def _redundant(s: Structure, steps: list[Step]) -> tuple[Redundant, ...]:
                 used_sliders.add(step.joint)
             else:
                 used[step.joint].append(step.bodies)
+        elif isinstance(step, GroupStep):
+            for point, a, b in step.pins:
+                used[point].append((a, b))
+            used_sliders.update(step.sliders)
         else:
             use(step.body, step.attachments[0])     # the second attachment is the one too many: checked
     out = []
@@ -433,6 +465,40 @@ def _redundant(s: Structure, steps: list[Step]) -> tuple[Redundant, ...]:
                 group[root(h)] = root(holders[0])
     out += [Redundant(sl.name, (sl.body, sl.guide), True) for sl in s.sliders if sl.name not in used_sliders]
     return tuple(out)
+
+
+def _find_group(s: Structure, unknown: list[str], known: set[str]) -> GroupStep | None:
+    """The smallest set of unknown bodies (3 to :data:`GROUP_BODIES`) held among themselves and to known bodies by
+    exactly as many pairs as they have freedoms (an Assur group: no smaller set is, or a dyad would have been
+    found); None if there is none."""
+    from itertools import combinations
+
+    for size in range(3, min(GROUP_BODIES, len(unknown)) + 1):
+        for group in combinations(unknown, size):
+            pins, sliders = _group_pairs(s, set(group), known)
+            if 3 * size == 2 * (len(pins) + len(sliders)):
+                return GroupStep(tuple(group), pins, sliders)
+    return None
+
+
+#: the most bodies :func:`_find_group` puts in one group (a triad has 4; class IV groups 6)
+GROUP_BODIES = 6
+
+
+def _group_pairs(s: Structure, group: set[str], known: set[str]
+                 ) -> tuple[tuple[tuple[str, str, str], ...], tuple[str, ...]]:
+    """The pairs holding ``group`` among themselves and to ``known`` bodies: at each shared point, its holders in
+    the group each joined to the first holder (a known one first, as one body); the sliders between them."""
+    pins = []
+    for point, holders in s.revolutes.items():
+        mine = [b for b in holders if b in group]
+        anchor = next((b for b in holders if b in known), None)
+        if not mine or (anchor is None and len(mine) < 2):
+            continue
+        first = anchor if anchor is not None else mine[0]
+        pins += [(point, b, first) for b in mine if b != first]
+    sliders = tuple(sl.name for sl in s.sliders if {sl.body, sl.guide} & group and {sl.body, sl.guide} <= group | known)
+    return tuple(pins), sliders
 
 
 def _find_dyad(s: Structure, unknown: list[str], held: dict[str, list[Attachment]]) -> DyadStep | None:
@@ -473,6 +539,6 @@ def _diagnose(s: Structure, unknown: list[str], pending: list[Input]) -> None:
                         "linkage")
     joints = sorted({p for b in unknown for p in s.bodies[b] if len(s.holders(p)) >= 2}
                     | {sl.name for sl in s.sliders if sl.body in unknown or sl.guide in unknown})
-    raise SpecError(f"links {names} form a group of a higher class than dyads (joints {', '.join(joints)}): "
-                    "linkgen solves dyads (RRR, RRP, RPR, PRP, RPP) in closed form only; drive the linkage from "
-                    "another link", "linkage")
+    raise SpecError(f"links {names} form a group of a higher class than dyads (joints {', '.join(joints)}) with "
+                    f"more than {GROUP_BODIES} links: linkgen solves dyads and groups of up to {GROUP_BODIES} links; "
+                    "drive the linkage from another link", "linkage")

@@ -38,8 +38,9 @@ from camgen.core.shapes import Polyline
 from camgen.core.spec import MAX_LENGTH_MM, Model, unit
 from linkgen import plots
 from linkgen.kinematics import linkage_circuit, motion
+from linkgen.kinematics.groups import GROUP_KINDS
 from linkgen.kinematics.linkage import Linkage, Solution
-from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, Input, InputStep, Slider, Structure,
+from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, GroupStep, Input, InputStep, Slider, Structure,
                                           make_structure)
 from linkgen.mechanisms.common import Figure, num, omega, rpm
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
@@ -313,6 +314,9 @@ def steps_report(a: Analysis) -> list[dict[str, Any]]:
             out.append({"step": step.kind, "links": list(step.bodies), "joint": step.joint})
         elif isinstance(step, FixedStep):
             out.append({"step": "fixed", "link": step.body})
+        elif isinstance(step, GroupStep):
+            out.append({"step": step.kind, "links": list(step.bodies), "joints": list(step.joints),
+                        "method": "Newton's method continued along the input from the drawing"})
     return out
 
 
@@ -345,6 +349,12 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                      float(np.max(d.transmission)), float(sweep.inputs[0, np.argmax(d.transmission)]))
                     for d in sweep.dyads]
     for d, (gmin, at_min, gmax, at_max) in zip(sweep.dyads, extremes, strict=True):
+        if d.kind in GROUP_KINDS:
+            # a group has no one transmission angle: its Jacobian's conditioning (sine of the angle given), 0 at a
+            # toggle; where its flat extremes lie is left out (rounding moves them)
+            dyads.append({"kind": d.kind, "links": list(d.bodies), "joint": d.joint,
+                          "conditioning_min": num(math.sin(gmin)), "conditioning_max": num(math.sin(gmax))})
+            continue
         dyads.append({"kind": d.kind, "links": list(d.bodies), "joint": d.joint,
                       "transmission_min_deg": num(math.degrees(gmin)),
                       f"transmission_min_at_{unit_name}": a.shown(at_min),
@@ -366,6 +376,8 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
                                      strict=True)) for t, extent in _extents(a, table.tracers).items()}
     warnings = list(notes)
     for d in report["dyads"]:
+        if d["kind"] in GROUP_KINDS:
+            continue
         lo_t, hi_t = d["transmission_min_deg"], d["transmission_max_deg"]
         if d["kind"] == "RRR" and (lo_t < TRANSMISSION_BAND[0] or hi_t > TRANSMISSION_BAND[1]):
             warnings.append(f"dyad {'-'.join(d['links'])} (joint {d['joint']}): transmission angle spans "

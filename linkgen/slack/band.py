@@ -67,7 +67,7 @@ class DyadBand:
     may bring it to its dead point (see the module's docstring), or the band is unbounded."""
 
     kind: str
-    bodies: tuple[str, str]
+    bodies: tuple[str, ...]
     joint: str
     transmission: np.ndarray
     half_width: np.ndarray
