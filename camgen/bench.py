@@ -5,6 +5,7 @@ Results go to ``RESULTS.md`` (tables a user can read), ``results.json`` and plot
 """
 from __future__ import annotations
 
+import functools
 import math
 import subprocess
 import sys
@@ -157,37 +158,52 @@ def throughput(count: int, out: Path) -> list[dict]:
     return rows
 
 
-def plain_outline(tolerance: float) -> np.ndarray:
-    """The reference cam's surface as a quick numpy script makes it, the yardstick of :func:`speed_ratios`: the
-    roller's centre in closed form (cycloidal rise and return, offset follower, counter-clockwise cam), moved in by the
-    roller radius along the normal, at equal steps of cam angle (as many as a circle of the largest radius needs),
-    doubled until the surface midway between two vertices lies within ``tolerance`` mm of their chord. Returns the
-    vertices (n, 2)."""
+def _plain_surface(theta: np.ndarray) -> np.ndarray:
+    """The reference cam's surface at cam angles ``theta`` (rad) as a quick numpy script makes it: the roller's
+    centre in closed form (cycloidal rise 0-120 degrees and return 180-300 degrees, 20 mm, offset 5 mm, base radius
+    40 mm, roller 10 mm, counter-clockwise cam), moved in by the roller radius along the normal. Returns (n, 2) mm."""
     rb, rr, e, h, beta = 40.0, 10.0, 5.0, 20.0, math.radians(120.0)
     d0 = math.sqrt((rb + rr) ** 2 - e**2)
+    u = np.clip(theta / beta, 0.0, 1.0)                                     # the rise: 0 to 120 degrees
+    w = np.clip((theta - math.pi) / beta, 0.0, 1.0)                         # the return: 180 to 300
+    s = h * (u - np.sin(2 * math.pi * u) / (2 * math.pi)) - h * (w - np.sin(2 * math.pi * w) / (2 * math.pi))
+    ds = h / beta * ((theta < beta) * (1 - np.cos(2 * math.pi * u))
+                     - ((theta > math.pi) & (theta < math.pi + beta)) * (1 - np.cos(2 * math.pi * w)))
+    y = d0 + s                                                              # the centre (e, y), fixed frame
+    tx, ty = y, ds - e                                                      # its velocity in the cam's frame
+    speed = np.hypot(tx, ty)
+    px, py = e + rr * ty / speed, y - rr * tx / speed                       # the surface point, fixed frame
+    c, sn = np.cos(theta), np.sin(theta)
+    return np.column_stack([px * c + py * sn, py * c - px * sn])            # turned back by theta
 
-    def surface(theta: np.ndarray) -> np.ndarray:
-        u = np.clip(theta / beta, 0.0, 1.0)                                     # the rise: 0 to 120 degrees
-        w = np.clip((theta - math.pi) / beta, 0.0, 1.0)                         # the return: 180 to 300
-        s = h * (u - np.sin(2 * math.pi * u) / (2 * math.pi)) - h * (w - np.sin(2 * math.pi * w) / (2 * math.pi))
-        ds = h / beta * ((theta < beta) * (1 - np.cos(2 * math.pi * u))
-                         - ((theta > math.pi) & (theta < math.pi + beta)) * (1 - np.cos(2 * math.pi * w)))
-        y = d0 + s                                                              # the centre (e, y), fixed frame
-        tx, ty = y, ds - e                                                      # its velocity in the cam's frame
-        speed = np.hypot(tx, ty)
-        px, py = e + rr * ty / speed, y - rr * tx / speed                       # the surface point, fixed frame
-        c, sn = np.cos(theta), np.sin(theta)
-        return np.column_stack([px * c + py * sn, py * c - px * sn])            # turned back by theta
 
-    n = math.ceil(2 * math.pi * math.sqrt((rb + h) / (8 * tolerance)))   # chords of a circle that big
-    while True:
-        theta = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
-        points = surface(theta)
-        middle = surface(theta + math.pi / n)
-        chord = (points + np.roll(points, -1, axis=0)) / 2
-        if np.abs(np.linalg.norm(middle - chord, axis=1)).max() <= tolerance:
-            return points
-        n *= 2
+def plain_chord_error(n: int) -> float:
+    """The largest distance (mm) between the plain surface midway (in cam angle) between two of ``n`` equally
+    spaced vertices and their chord's midpoint."""
+    theta = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    points = _plain_surface(theta)
+    chord = (points + np.roll(points, -1, axis=0)) / 2
+    return float(np.linalg.norm(_plain_surface(theta + math.pi / n) - chord, axis=1).max())
+
+
+@functools.cache
+def plain_vertices(tolerance: float) -> int:
+    """The fewest equally spaced vertices whose chords all lie within ``tolerance`` mm of the plain surface (by
+    :func:`plain_chord_error`), found by trying every count from 3 up: the yardstick's resolution is the one the
+    tolerance needs, not a round figure above it. At most 10^6 vertices (a tolerance below about 1e-8 mm)."""
+    n = 3
+    while plain_chord_error(n) > tolerance:
+        n += 1 if n < 4096 else n // 64
+        if n > 1_000_000:
+            raise ValueError(f"tolerance {tolerance} mm needs more than 10^6 vertices")
+    return n
+
+
+def plain_outline(tolerance: float) -> np.ndarray:
+    """The yardstick of :func:`speed_ratios`: the reference cam's surface as a quick numpy script makes it
+    (:func:`_plain_surface`) at the fewest equal steps of cam angle that meet ``tolerance`` mm
+    (:func:`plain_vertices`, searched once and cached, untimed). Returns the vertices (n, 2)."""
+    return _plain_surface(np.linspace(0.0, 2 * math.pi, plain_vertices(tolerance), endpoint=False))
 
 
 def speed_ratios(repeats: int, out: Path) -> list[dict]:
