@@ -177,13 +177,18 @@ def _plain_surface(theta: np.ndarray) -> np.ndarray:
     return np.column_stack([px * c + py * sn, py * c - px * sn])            # turned back by theta
 
 
-def plain_chord_error(n: int) -> float:
-    """The largest distance (mm) between the plain surface midway (in cam angle) between two of ``n`` equally
-    spaced vertices and their chord's midpoint."""
+def _plain_checked(n: int) -> tuple[np.ndarray, float]:
+    """The plain surface at ``n`` equally spaced vertices (n, 2) and the largest distance (mm) between the surface
+    midway (in cam angle) between two vertices and their chord's midpoint."""
     theta = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
     points = _plain_surface(theta)
     chord = (points + np.roll(points, -1, axis=0)) / 2
-    return float(np.linalg.norm(_plain_surface(theta + math.pi / n) - chord, axis=1).max())
+    return points, float(np.linalg.norm(_plain_surface(theta + math.pi / n) - chord, axis=1).max())
+
+
+def plain_chord_error(n: int) -> float:
+    """:func:`_plain_checked`'s chord error (mm) at ``n`` vertices."""
+    return _plain_checked(n)[1]
 
 
 @functools.cache
@@ -202,8 +207,12 @@ def plain_vertices(tolerance: float) -> int:
 def plain_outline(tolerance: float) -> np.ndarray:
     """The yardstick of :func:`speed_ratios`: the reference cam's surface as a quick numpy script makes it
     (:func:`_plain_surface`) at the fewest equal steps of cam angle that meet ``tolerance`` mm
-    (:func:`plain_vertices`, searched once and cached, untimed). Returns the vertices (n, 2)."""
-    return _plain_surface(np.linspace(0.0, 2 * math.pi, plain_vertices(tolerance), endpoint=False))
+    (:func:`plain_vertices`, searched once and cached, untimed), and its chord check (the surface midway between
+    vertices against their chords: design_cam checks its tolerance too). Returns the vertices (n, 2)."""
+    points, error = _plain_checked(plain_vertices(tolerance))
+    if error > tolerance:
+        raise ArithmeticError(f"the plain outline misses {tolerance} mm by {error - tolerance:.1e} mm")
+    return points
 
 
 def speed_ratios(repeats: int, out: Path) -> list[dict]:
