@@ -37,6 +37,8 @@ motion = [{type = "rise", law = "cycloidal", lift = 20.0, angle = 120.0}, {type 
           {type = "return", law = "cycloidal", lift = 20.0, angle = 120.0}, {type = "dwell", angle = 60.0}]
 """
 BASE = tomllib.loads(BASE_TOML)
+#: the reference cam's output tolerance (mm), the default
+BASE_SPEC_TOLERANCE = 0.01
 
 
 def _template(law: str, **changes: Any):
@@ -213,6 +215,34 @@ def plain_outline(tolerance: float) -> np.ndarray:
     if error > tolerance:
         raise ArithmeticError(f"the plain outline misses {tolerance} mm by {error - tolerance:.1e} mm")
     return points
+
+
+def program_template(segments: int):
+    """The reference cam's program cut ``segments`` ways (a multiple of 4): rise, dwell, return, dwell repeated, each
+    segment 360 / ``segments`` degrees, cycloidal, its lift 20 (4 / segments)^2 mm so that the follower's
+    acceleration (and the pitch curve's curvature, clear of undercut) stays the reference cam's."""
+    if segments % 4 or segments < 4:
+        raise ValueError(f"segments: a multiple of 4, not {segments}")
+    angle, lift = 360.0 / segments, 20.0 * (4 / segments) ** 2
+    quarter = [{"type": "rise", "law": "cycloidal", "lift": lift, "angle": angle}, {"type": "dwell", "angle": angle},
+               {"type": "return", "law": "cycloidal", "lift": lift, "angle": angle}, {"type": "dwell", "angle": angle}]
+    return validate_spec({**BASE, "motion": quarter * (segments // 4)})
+
+
+def segment_rows(repeats: int, counts: tuple[int, ...] = (4, 64, 256, 1024)) -> list[dict]:
+    """design_cam of :func:`program_template` at each count of segments against :func:`plain_outline` (the
+    reference cam at its tolerance), alternated in this run: the per-segment cost of cam design."""
+    from camgen.profile import design_cam
+
+    tol = BASE_SPEC_TOLERANCE
+    plain = f"the plain numpy outline ({plain_vertices(tol)} vertices)"
+    rows = []
+    for count in counts:
+        spec = program_template(count)
+        rows.append(ratio_row(f"design_cam of {count} segments (in-process)", plain, lambda spec=spec: call_seconds(
+            lambda: design_cam(spec), 3), lambda: call_seconds(lambda: plain_outline(tol), 5), repeats, warm=1,
+            goal="<= 5x at 256"))
+    return rows
 
 
 def speed_ratios(repeats: int, out: Path) -> list[dict]:
