@@ -116,11 +116,12 @@ def mechanism_peer(repeats: int) -> dict:
             "max_error_mm": best, "seconds": seconds}
 
 
-def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2)) -> list[dict]:
+def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2), dask_workers: int = 0) -> list[dict]:
     """A family of ``count`` reference cams (lifts 5 to 30 mm), DXF and STL, built into ``out`` on each number of
-    ``jobs``: wall seconds, cams per second and CPU seconds (this process and its workers: on a shared machine
-    the wall time follows the other sessions' load and the disk, the CPU time far less). Alone:
-    ``python -c "from pathlib import Path; from camgen.bench import family_rows; print(family_rows(200, Path('f')))"``.
+    ``jobs`` (and on a local Dask cluster of ``dask_workers`` workers, if any, see :func:`_dask_family_row`): wall
+    seconds, cams per second and CPU seconds (this process and its workers: on a shared machine the wall time
+    follows the other sessions' load and the disk, the CPU time far less). Alone: ``python -c "from pathlib import
+    Path; from camgen.bench import family_rows; print(family_rows(200, Path('f'), dask_workers=2))"``.
     """
     import resource
 
@@ -141,12 +142,34 @@ def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2)) -> list[d
         seconds = time.perf_counter() - start
         rows.append({"what": f"family of {count} cams, DXF + STL, {n} job(s)", "seconds": seconds,
                      "cams_per_second": count / seconds, "cpu_seconds": cpu() - used})
+    if dask_workers:
+        rows.append(_dask_family_row(items, out / "family-dask", dask_workers, cpu))
     return rows
 
 
-def throughput(count: int, out: Path) -> list[dict]:
-    """:func:`family_rows` on one and two jobs, then ``camgen build`` of the reference cam as a whole process."""
-    rows = family_rows(count, out)
+def _dask_family_row(items: list, out: Path, workers: int, cpu: Callable[[], float]) -> dict:
+    """The family on a local Dask cluster of ``workers`` worker processes (one thread each, on loopback), timed
+    from the scheduler's address given (the cluster started untimed) to the last member's row; CPU seconds once the
+    cluster has closed (a worker's time counts when it ends)."""
+    from dask.distributed import LocalCluster
+
+    from camgen.api import build_member
+    from camgen.core.family import run_family
+
+    used = cpu()
+    with LocalCluster(n_workers=workers, threads_per_worker=1, host="127.0.0.1", dashboard_address=None,
+                      processes=True) as cluster:
+        start = time.perf_counter()
+        run_family(items, out, build_member, progress=False, scheduler=cluster.scheduler_address)
+        seconds = time.perf_counter() - start
+    return {"what": f"family of {len(items)} cams, DXF + STL, a local Dask cluster of {workers} workers",
+            "seconds": seconds, "cams_per_second": len(items) / seconds, "cpu_seconds": cpu() - used}
+
+
+def throughput(count: int, out: Path, quick: bool = False) -> list[dict]:
+    """:func:`family_rows` on one and two jobs (and, unless ``quick``, a local Dask cluster of two workers), then
+    ``camgen build`` of the reference cam as a whole process."""
+    rows = family_rows(count, out, dask_workers=0 if quick else 2)
     template = out / "bench.toml"
     template.write_text(BASE_TOML, encoding="utf-8")
     start = time.perf_counter()
@@ -364,7 +387,7 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
     outlines += naive_peer([90, 360] if quick else [90, 360, 1440, 5760, 23040], repeats)
     peer = mechanism_peer(repeats)
     with tempfile.TemporaryDirectory() as tmp:
-        flow = throughput(10 if quick else 200, Path(tmp))
+        flow = throughput(10 if quick else 200, Path(tmp), quick)
         ratios = speed_ratios(1 if quick else 5, Path(tmp)) + segment_rows(1 if quick else 5)
     _plot(outlines, out / "speed-vs-error.png")
     return core_bench.finish(out, {"quick": quick, "speed": ratios, "outlines": outlines, "mechanism": peer,
