@@ -128,25 +128,6 @@ def _breadth(a2: float, a4: float, step: float, size: float) -> float:
     return size if math.isnan(breadth) else breadth
 
 
-def _vertices(a: np.ndarray, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """:func:`_vertex` of every row of the coefficients ``a`` (m, 4) at once, within ``lo`` and ``hi`` (m,): NaN
-    where it gives None (a step dividing by zero gives an infinite or NaN t here, which no check passes)."""
-    a1, a2, a3, a4 = a.T
-    with np.errstate(all="ignore"):
-        t = -a1 / (2 * a2)
-        for _ in range(3):
-            t = t - (a1 + t * (2 * a2 + t * (3 * a3 + t * 4 * a4))) / (2 * a2 + t * (6 * a3 + t * 12 * a4))
-        keep = (2 * a2 + t * (6 * a3 + t * 12 * a4) < 0) & (lo <= t) & (t <= hi)
-    return np.where(keep, t, np.nan)
-
-
-def _breadths(a2: np.ndarray, a4: np.ndarray, step: np.ndarray, size: np.ndarray) -> np.ndarray:
-    """:func:`_breadth` of each peak at once, (m,) each."""
-    with np.errstate(all="ignore"):
-        breadth = np.minimum(np.maximum(step * np.sqrt(np.abs(a2 / a4) / 2), 2 * step), size)
-    return np.where((a4 == 0) | np.isnan(breadth), size, breadth)
-
-
 #: what :func:`maxima_steps` asks for, abscissae (m,) and their pieces (m,) (as its ``ask`` puts them); it is sent
 #: the values (k, m) (as its ``answer`` makes them)
 Steps = Generator[Any, Any, tuple[list[list[float]], list[list[float]], list[float]]]
@@ -338,26 +319,19 @@ def _estimates(candidates: Iterable[tuple[tuple[int, int], int, list[float], lis
     quartic through them, see :func:`_windows`), each placed by its quartic (within a grid step of its grid point)
     and given its breadth and its grid value."""
     count = len(moving)
-    unit = _unit(n)[0]
-    found = list(candidates)
-    if not found:
-        return []
-    r, j = np.array([g for g, _, _, _ in found]).T
-    c = np.array([centre for _, centre, _, _ in found])
-    a = np.array([fit for _, _, _, fit in found], dtype=float).reshape(-1, 4)
-    piece = np.asarray(moving)[r % count]
-    low, size, top = np.asarray(lo)[piece], np.asarray(width)[piece], np.asarray(hi)[piece]
-    step = size / (n - 1)
-    shift = (j - c).astype(float)
-    t = _vertices(a, shift - 1.0, shift + 1.0)
-    centre = np.minimum(np.maximum(low + size * unit[c] + np.where(np.isnan(t), shift, t) * step, low), top)
-    at = np.where(j == n - 1, top, low + size * unit[j])             # the grid's own point: its last the end
-    breadth = _breadths(a[:, 1], a[:, 3], step, size)
+    unit = _unit(n)[1]
     out = []
-    for k, ((rk, jk), ck, near, _) in enumerate(found):
-        value = near[jk - ck + 2]
-        out.append(_Peak(rk, rk // count, int(piece[k]), float(at[k]), value, float(centre[k]), float(breadth[k]),
-                         value if jk == 0 or jk == n - 1 else None))
+    for (r, j), c, near, (a1, a2, a3, a4) in candidates:
+        value = near[j - c + 2]
+        piece = moving[r % count]
+        low, size = lo[piece], width[piece]
+        step = size / (n - 1)
+        shift = float(j - c)
+        t = _vertex(a1, a2, a3, a4, shift - 1.0, shift + 1.0)
+        centre = min(max(low + size * unit[c] + (shift if t is None else t) * step, low), hi[piece])
+        at = hi[piece] if j == n - 1 else low + size * unit[j]           # the grid's own point: its last the end
+        out.append(_Peak(r, r // count, piece, at, value, centre, _breadth(a2, a4, step, size),
+                         value if j == 0 or j == n - 1 else None))
     return out
 
 

@@ -245,49 +245,6 @@ def _spaced(index: int, aux: np.ndarray, cum: np.ndarray, tolerance: float, fact
     return np.interp(np.linspace(0.0, total, n + 1), cum, aux)
 
 
-def _spaced_rows(index: list[int], aux: np.ndarray, cum: np.ndarray, tolerance: float,
-                 factor: list[float]) -> tuple[np.ndarray, list[int]]:
-    """:func:`_spaced` of every row of the grids ``aux`` (m, g) and their counts of chords ``cum`` (m, g) (motion
-    indices ``index`` and ``factor`` (m,) each), in one vectorised pass: all rows' vertices end to end and each
-    row's count of them. The same numbers as row by row: numpy's linspace and interp, their formulas and ties
-    (an abscissa on a run of equal grid counts takes the run's last), over all rows at once."""
-    total = cum[:, -1]
-    wanted = total * np.asarray(factor, dtype=float)
-    bad = ~(wanted <= MAX_SEGMENT_VERTICES)             # also NaN or infinite (a curvature without bound)
-    if bad.any():
-        j = int(np.argmax(bad))
-        _spaced(index[j], aux[j], cum[j], tolerance, factor[j])      # raises its error
-    n = np.maximum(1, np.ceil(wanted)).astype(int)
-    sizes = n + 1
-    row = np.repeat(np.arange(len(n)), sizes)
-    ends = np.cumsum(sizes)
-    k = np.arange(ends[-1]) - np.repeat(ends - sizes, sizes)    # each vertex's place in its row
-    flat = total <= 0
-    span = np.where(flat, aux[:, -1] - aux[:, 0], total)
-    x = k * (span / n)[row]                                     # linspace's step times the place
-    x[ends - 1] = span                                          # its last exactly the end
-    if flat.any():                                              # no chords needed: equal steps of the grid
-        x[flat[row]] += aux[row[flat[row]], 0]
-    out = np.empty(x.size)
-    width = cum.shape[1]
-    for start in range(0, x.size, 65_536):                      # bounded temporaries: (chunk, g) booleans
-        part = slice(start, min(start + 65_536, x.size))
-        r, xs = row[part], x[part]
-        xp, fp = cum[r], aux[r]
-        j = np.minimum((xp <= xs[:, None]).sum(axis=1) - 1, width - 2).clip(0)
-        lo_x, hi_x = np.take_along_axis(xp, j[:, None], 1)[:, 0], np.take_along_axis(xp, j[:, None] + 1, 1)[:, 0]
-        lo_f, hi_f = np.take_along_axis(fp, j[:, None], 1)[:, 0], np.take_along_axis(fp, j[:, None] + 1, 1)[:, 0]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            slope = (hi_f - lo_f) / (hi_x - lo_x)
-            y = slope * (xs - lo_x) + lo_f
-            again = np.isnan(y)
-            y[again] = np.where(lo_f[again] == hi_f[again], lo_f[again],
-                                slope[again] * (xs[again] - hi_x[again]) + hi_f[again])
-        y = np.where(xs >= xp[:, -1], fp[:, -1], y)             # at (or past) the last count: the grid's end
-        out[part] = np.where(flat[r], xs, y)
-    return out, sizes.tolist()
-
-
 Span = tuple[float, float] | None
 
 
@@ -306,15 +263,14 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     live = list(range(len(stretches)))
     err = [math.inf] * len(stretches)
     for _ in range(40):
-        theta, sizes = _spaced_rows([index[j] for j in live], aux[live], cum[live], tolerance,
-                                    [factor[j] for j in live])
-        n = theta.size
+        theta = [_spaced(index[j], aux[j], cum[j], tolerance, factor[j]) for j in live]
+        sizes = [t.size for t in theta]
+        n = sum(sizes)
         # one ask: the vertices, then the probes of every span between neighbouring vertices (probe by probe), one
         # stretch's last to the next one's first too (none of theirs, its error left out): its probes sit at its
         # start (a width of 0.0, as x - x is), a point of its own segment
         angles = np.empty(n + _PROBES * (n - 1))
-        vertex = angles[:n]
-        vertex[:] = theta
+        vertex = np.concatenate(theta, out=angles[:n])
         ahead = list(itertools.accumulate(sizes))       # each stretch's end, one past its last vertex
         across = [k - 1 for k in ahead[:-1]]            # the spans from one stretch to the next
         width = vertex[1:] - vertex[:-1]
