@@ -5,6 +5,7 @@ Results go to ``RESULTS.md`` (tables a user can read), ``results.json`` and plot
 """
 from __future__ import annotations
 
+import functools
 import math
 import subprocess
 import sys
@@ -36,6 +37,8 @@ motion = [{type = "rise", law = "cycloidal", lift = 20.0, angle = 120.0}, {type 
           {type = "return", law = "cycloidal", lift = 20.0, angle = 120.0}, {type = "dwell", angle = 60.0}]
 """
 BASE = tomllib.loads(BASE_TOML)
+#: the reference cam's output tolerance (mm), the default
+BASE_SPEC_TOLERANCE = 0.01
 
 
 def _template(law: str, **changes: Any):
@@ -113,11 +116,12 @@ def mechanism_peer(repeats: int) -> dict:
             "max_error_mm": best, "seconds": seconds}
 
 
-def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2)) -> list[dict]:
+def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2), dask_workers: int = 0) -> list[dict]:
     """A family of ``count`` reference cams (lifts 5 to 30 mm), DXF and STL, built into ``out`` on each number of
-    ``jobs``: wall seconds, cams per second and CPU seconds (this process and its workers: on a shared machine
-    the wall time follows the other sessions' load and the disk, the CPU time far less). Alone:
-    ``python -c "from pathlib import Path; from camgen.bench import family_rows; print(family_rows(200, Path('f')))"``.
+    ``jobs`` (and on a local Dask cluster of ``dask_workers`` workers, if any, see :func:`_dask_family_row`): wall
+    seconds, cams per second and CPU seconds (this process and its workers: on a shared machine the wall time
+    follows the other sessions' load and the disk, the CPU time far less). Alone: ``python -c "from pathlib import
+    Path; from camgen.bench import family_rows; print(family_rows(200, Path('f'), dask_workers=2))"``.
     """
     import resource
 
@@ -138,12 +142,34 @@ def family_rows(count: int, out: Path, jobs: tuple[int, ...] = (1, 2)) -> list[d
         seconds = time.perf_counter() - start
         rows.append({"what": f"family of {count} cams, DXF + STL, {n} job(s)", "seconds": seconds,
                      "cams_per_second": count / seconds, "cpu_seconds": cpu() - used})
+    if dask_workers:
+        rows.append(_dask_family_row(items, out / "family-dask", dask_workers, cpu))
     return rows
 
 
-def throughput(count: int, out: Path) -> list[dict]:
-    """:func:`family_rows` on one and two jobs, then ``camgen build`` of the reference cam as a whole process."""
-    rows = family_rows(count, out)
+def _dask_family_row(items: list, out: Path, workers: int, cpu: Callable[[], float]) -> dict:
+    """The family on a local Dask cluster of ``workers`` worker processes (one thread each, on loopback), timed
+    from the scheduler's address given (the cluster started untimed) to the last member's row; CPU seconds once the
+    cluster has closed (a worker's time counts when it ends)."""
+    from dask.distributed import LocalCluster
+
+    from camgen.api import build_member
+    from camgen.core.family import run_family
+
+    used = cpu()
+    with LocalCluster(n_workers=workers, threads_per_worker=1, host="127.0.0.1", dashboard_address=None,
+                      processes=True) as cluster:
+        start = time.perf_counter()
+        run_family(items, out, build_member, progress=False, scheduler=cluster.scheduler_address)
+        seconds = time.perf_counter() - start
+    return {"what": f"family of {len(items)} cams, DXF + STL, a local Dask cluster of {workers} workers",
+            "seconds": seconds, "cams_per_second": len(items) / seconds, "cpu_seconds": cpu() - used}
+
+
+def throughput(count: int, out: Path, quick: bool = False) -> list[dict]:
+    """:func:`family_rows` on one and two jobs (and, unless ``quick``, a local Dask cluster of two workers), then
+    ``camgen build`` of the reference cam as a whole process."""
+    rows = family_rows(count, out, dask_workers=0 if quick else 2)
     template = out / "bench.toml"
     template.write_text(BASE_TOML, encoding="utf-8")
     start = time.perf_counter()
@@ -157,37 +183,93 @@ def throughput(count: int, out: Path) -> list[dict]:
     return rows
 
 
-def plain_outline(tolerance: float) -> np.ndarray:
-    """The reference cam's surface as a quick numpy script makes it, the yardstick of :func:`speed_ratios`: the
-    roller's centre in closed form (cycloidal rise and return, offset follower, counter-clockwise cam), moved in by the
-    roller radius along the normal, at equal steps of cam angle (as many as a circle of the largest radius needs),
-    doubled until the surface midway between two vertices lies within ``tolerance`` mm of their chord. Returns the
-    vertices (n, 2)."""
+def _plain_surface(theta: np.ndarray) -> np.ndarray:
+    """The reference cam's surface at cam angles ``theta`` (rad) as a quick numpy script makes it: the roller's
+    centre in closed form (cycloidal rise 0-120 degrees and return 180-300 degrees, 20 mm, offset 5 mm, base radius
+    40 mm, roller 10 mm, counter-clockwise cam), moved in by the roller radius along the normal. Returns (n, 2) mm."""
     rb, rr, e, h, beta = 40.0, 10.0, 5.0, 20.0, math.radians(120.0)
     d0 = math.sqrt((rb + rr) ** 2 - e**2)
+    u = np.clip(theta / beta, 0.0, 1.0)                                     # the rise: 0 to 120 degrees
+    w = np.clip((theta - math.pi) / beta, 0.0, 1.0)                         # the return: 180 to 300
+    s = h * (u - np.sin(2 * math.pi * u) / (2 * math.pi)) - h * (w - np.sin(2 * math.pi * w) / (2 * math.pi))
+    ds = h / beta * ((theta < beta) * (1 - np.cos(2 * math.pi * u))
+                     - ((theta > math.pi) & (theta < math.pi + beta)) * (1 - np.cos(2 * math.pi * w)))
+    y = d0 + s                                                              # the centre (e, y), fixed frame
+    tx, ty = y, ds - e                                                      # its velocity in the cam's frame
+    speed = np.hypot(tx, ty)
+    px, py = e + rr * ty / speed, y - rr * tx / speed                       # the surface point, fixed frame
+    c, sn = np.cos(theta), np.sin(theta)
+    return np.column_stack([px * c + py * sn, py * c - px * sn])            # turned back by theta
 
-    def surface(theta: np.ndarray) -> np.ndarray:
-        u = np.clip(theta / beta, 0.0, 1.0)                                     # the rise: 0 to 120 degrees
-        w = np.clip((theta - math.pi) / beta, 0.0, 1.0)                         # the return: 180 to 300
-        s = h * (u - np.sin(2 * math.pi * u) / (2 * math.pi)) - h * (w - np.sin(2 * math.pi * w) / (2 * math.pi))
-        ds = h / beta * ((theta < beta) * (1 - np.cos(2 * math.pi * u))
-                         - ((theta > math.pi) & (theta < math.pi + beta)) * (1 - np.cos(2 * math.pi * w)))
-        y = d0 + s                                                              # the centre (e, y), fixed frame
-        tx, ty = y, ds - e                                                      # its velocity in the cam's frame
-        speed = np.hypot(tx, ty)
-        px, py = e + rr * ty / speed, y - rr * tx / speed                       # the surface point, fixed frame
-        c, sn = np.cos(theta), np.sin(theta)
-        return np.column_stack([px * c + py * sn, py * c - px * sn])            # turned back by theta
 
-    n = math.ceil(2 * math.pi * math.sqrt((rb + h) / (8 * tolerance)))   # chords of a circle that big
-    while True:
-        theta = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
-        points = surface(theta)
-        middle = surface(theta + math.pi / n)
-        chord = (points + np.roll(points, -1, axis=0)) / 2
-        if np.abs(np.linalg.norm(middle - chord, axis=1)).max() <= tolerance:
-            return points
-        n *= 2
+def _plain_checked(n: int) -> tuple[np.ndarray, float]:
+    """The plain surface at ``n`` equally spaced vertices (n, 2) and the largest distance (mm) between the surface
+    midway (in cam angle) between two vertices and their chord's midpoint."""
+    theta = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    points = _plain_surface(theta)
+    chord = (points + np.roll(points, -1, axis=0)) / 2
+    return points, float(np.linalg.norm(_plain_surface(theta + math.pi / n) - chord, axis=1).max())
+
+
+def plain_chord_error(n: int) -> float:
+    """:func:`_plain_checked`'s chord error (mm) at ``n`` vertices."""
+    return _plain_checked(n)[1]
+
+
+@functools.cache
+def plain_vertices(tolerance: float) -> int:
+    """The fewest equally spaced vertices whose chords all lie within ``tolerance`` mm of the plain surface (by
+    :func:`plain_chord_error`), found by trying every count from 3 up: the yardstick's resolution is the one the
+    tolerance needs, not a round figure above it. At most 10^6 vertices (a tolerance below about 1e-8 mm)."""
+    n = 3
+    while plain_chord_error(n) > tolerance:
+        n += 1 if n < 4096 else n // 64
+        if n > 1_000_000:
+            raise ValueError(f"tolerance {tolerance} mm needs more than 10^6 vertices")
+    return n
+
+
+def plain_outline(tolerance: float) -> np.ndarray:
+    """The yardstick of :func:`speed_ratios`: the reference cam's surface as a quick numpy script makes it
+    (:func:`_plain_surface`) at the fewest equal steps of cam angle that meet ``tolerance`` mm
+    (:func:`plain_vertices`, searched once and cached, untimed), and its chord check (the surface midway between
+    vertices against their chords: design_cam checks its tolerance too). Returns the vertices (n, 2)."""
+    points, error = _plain_checked(plain_vertices(tolerance))
+    if error > tolerance:
+        raise ArithmeticError(f"the plain outline misses {tolerance} mm by {error - tolerance:.1e} mm")
+    return points
+
+
+def program_template(segments: int):
+    """The reference cam's program cut ``segments`` ways (a multiple of 4): rise, dwell, return, dwell repeated, each
+    segment 360 / ``segments`` degrees, cycloidal, its lift 20 (4 / segments)^2 mm so that the follower's
+    acceleration (and the pitch curve's curvature, clear of undercut) stays the reference cam's."""
+    if segments % 4 or segments < 4:
+        raise ValueError(f"segments: a multiple of 4, not {segments}")
+    angle, lift = 360.0 / segments, 20.0 * (4 / segments) ** 2
+    quarter = [{"type": "rise", "law": "cycloidal", "lift": lift, "angle": angle}, {"type": "dwell", "angle": angle},
+               {"type": "return", "law": "cycloidal", "lift": lift, "angle": angle}, {"type": "dwell", "angle": angle}]
+    return validate_spec({**BASE, "motion": quarter * (segments // 4)})
+
+
+def segment_rows(repeats: int, counts: tuple[int, ...] = (4, 64, 256, 1024)) -> list[dict]:
+    """design_cam of :func:`program_template` at each count of segments against :func:`plain_outline` (the
+    reference cam at its tolerance), alternated in this run: the per-segment cost of cam design."""
+    from camgen.profile import design_cam
+
+    tol = BASE_SPEC_TOLERANCE
+    plain = f"the plain numpy outline ({plain_vertices(tol)} vertices)"
+    rows = []
+    for count in counts:
+        spec = program_template(count)
+
+        def design(spec: Any = spec) -> float:
+            return call_seconds(lambda: design_cam(spec), 3)
+
+        rows.append(ratio_row(f"design_cam of {count} segments (in-process)", plain, design,
+                              lambda: call_seconds(lambda: plain_outline(tol), 5), repeats, warm=1,
+                              goal="<= 5x at 256"))
+    return rows
 
 
 def speed_ratios(repeats: int, out: Path) -> list[dict]:
@@ -305,8 +387,8 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
     outlines += naive_peer([90, 360] if quick else [90, 360, 1440, 5760, 23040], repeats)
     peer = mechanism_peer(repeats)
     with tempfile.TemporaryDirectory() as tmp:
-        flow = throughput(10 if quick else 200, Path(tmp))
-        ratios = speed_ratios(1 if quick else 5, Path(tmp))
+        flow = throughput(10 if quick else 200, Path(tmp), quick)
+        ratios = speed_ratios(1 if quick else 5, Path(tmp)) + segment_rows(1 if quick else 5)
     _plot(outlines, out / "speed-vs-error.png")
     return core_bench.finish(out, {"quick": quick, "speed": ratios, "outlines": outlines, "mechanism": peer,
                                    "throughput": flow, "hard_cases": hard_cases()}, _markdown)

@@ -86,3 +86,23 @@ def test_ratio_row_leaves_its_warm_pairs_out():
     assert (row["runs"], row["seconds"], row["reference_seconds"]) == (3, 4.0, 1.0)
     assert (row["ratio_min"], row["ratio"], row["ratio_max"]) == (2.0, 2.0, 6.0)
     assert next(ours, None) is None and next(theirs, None) is None      # every measure called once, no more
+
+
+def test_plain_yardstick_has_the_fewest_vertices_that_meet_the_tolerance():
+    """The yardstick's vertex count is the least that meets 0.01 mm, measured independently: its polygon against
+    camgen's exact surface of the same cam (not the yardstick's own closed form) meets 0.01 mm, one vertex fewer
+    does not."""
+    import math
+
+    import numpy as np
+
+    from camgen.bench import _plain_surface, _template, plain_outline, plain_vertices
+    from camgen.convergence_study import contour_error
+    from camgen.core.shapes import Contour
+    from camgen.flat import build_cam
+
+    cam = build_cam(_template("cycloidal"))
+    n = plain_vertices(0.01)
+    assert len(plain_outline(0.01)) == n
+    fewer = _plain_surface(np.linspace(0.0, 2 * math.pi, n - 1, endpoint=False))
+    assert contour_error(cam, Contour(plain_outline(0.01)), 1e-3) <= 0.01 < contour_error(cam, Contour(fewer), 1e-3)

@@ -288,6 +288,19 @@ def _run_one_packed(args: tuple) -> dict:
     return _run_one(*args)
 
 
+def _run_batch(batch: list[tuple]) -> list[dict]:
+    """A batch of members built one after the other in one worker (one task, one hand-over, the worker's modules
+    imported once for all of them): their rows in the batch's order."""
+    return [_run_one(*args) for args in batch]
+
+
+def _batches(work: list[tuple], workers: int) -> list[list[tuple]]:
+    """``work`` cut into batches for ``workers``: at least eight a worker (so that they even out), at most
+    ``PROGRESS_CHUNK`` members each (so that the progress bar moves)."""
+    size = max(1, min(len(work) // (8 * max(1, workers)), PROGRESS_CHUNK))
+    return [work[i:i + size] for i in range(0, len(work), size)]
+
+
 def _end_with_parent() -> None:
     """In a worker process: end it as soon as the process that started it is gone, however that ended."""
     parent = os.getppid()
@@ -358,20 +371,21 @@ def run_family(items: list[Member], root: str | Path, builder: Builder, jobs: in
     if client is not None:
         from dask.distributed import as_completed
 
-        with client:
-            for future in as_completed(client.map(_run_one_packed, work, pure=False)):
-                rows.append(future.result())
-                bar.update()
+        with client:                        # batches, not members: one task a batch for the scheduler to place
+            workers = sum(client.nthreads().values())
+            for future in as_completed(client.map(_run_batch, _batches(work, workers), pure=False)):
+                done = future.result()
+                rows += done
+                bar.update(len(done))
     elif jobs <= 1:
         for args in work:
             rows.append(_run_one_packed(args))
             bar.update()
     else:
-        chunk = max(1, min(len(work) // (8 * jobs), PROGRESS_CHUNK))
         with ProcessPoolExecutor(max_workers=jobs, initializer=_end_with_parent) as pool:
-            for row in pool.map(_run_one_packed, work, chunksize=chunk):
-                rows.append(row)
-                bar.update()
+            for done in pool.map(_run_batch, _batches(work, jobs)):
+                rows += done
+                bar.update(len(done))
     bar.close()
     return sorted(rows, key=lambda r: r["name"])
 
