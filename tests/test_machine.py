@@ -507,3 +507,11 @@ def test_a_clash_is_an_error_by_machine_clash_naming_both_parts(tmp_path):
     design = _design(raw)
     assert design.clashes and any(w.startswith("clash: ") for w in design.warnings)
     assert any({c.a, c.b} == {"cams.head", "cams.twin"} for c in design.clashes)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"machine.clash_samples": 99999}, "machine.clash_samples: must be >= 36 and <= 3600 (got 99999)"),
+    ({"machine.clash": "never"}, "machine.clash: unknown value 'never'; one of error, warn"),
+])
+def test_the_clash_checks_settings_are_bounded(tmp_path, change, message):
+    assert_refused(AUTOMATON, change, message, tmp_path)
