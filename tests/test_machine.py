@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import shapely
 from click.testing import CliRunner
 
 from camgen.cli import main as camgen
@@ -440,3 +441,77 @@ def test_a_linkage_template_that_is_a_cam_is_refused(tmp_path):
     raw = _raw()
     raw["linkages"][0]["template"] = str(ROOT / "templates" / "rdrd.toml")
     _refused(tmp_path, raw, "linkages[0].template: this is a camgen template")
+
+
+# ---- the clash check (item 4): a clash built on purpose, found at its closed-form angle; none in the automaton
+
+
+def test_two_levers_on_one_layer_clash_at_the_angle_worked_in_closed_form():
+    from camgen.kinds.machine import clash
+
+    # lever a (length L, half width h) turns clockwise from straight up about the origin; lever b stands upright
+    # at x = D. They first touch when a's tip comes within 2 h of b's axis: L sin(phi) + 2 h = D.
+    length, reach, h = 100.0, 80.0, 5.0
+
+    def turning(phi):
+        return clash.rotation(math.pi / 2 - phi), np.zeros((len(phi), 2))
+
+    def upright(phi):
+        return clash.rotation(np.full(len(phi), math.pi / 2)), np.tile([reach, 0.0], (len(phi), 1))
+
+    levers = [clash.Body("a", 0, 0, clash.bar(length, h), turning), clash.Body("b", 0, 0, clash.bar(150.0, h),
+                                                                             upright)]
+    expected = math.degrees(math.asin((reach - 2 * h) / length))                 # 44.427 degrees
+    (found,) = clash.clashes(levers, [], 720)
+    assert {found.a, found.b} == {"a", "b"}
+    assert abs(found.angle_deg - expected) <= 0.1
+    # on neighbouring planes they pass each other
+    assert clash.clashes([levers[0], clash.Body("b", 1, 1, levers[1].outline, upright)], [], 720) == ()
+
+
+def test_the_automaton_has_no_clash_and_its_parts_meet_only_at_their_joints(automaton):
+    from camgen.kinds.machine import clash
+
+    assert automaton.clashes == () and automaton.unchecked == ()
+    bodies, joints, _ = clash.machine_parts(automaton)
+    names = {b.name for b in bodies}
+    assert {"cams.arm.arm", "linkages.arm-bars.coupler", "linkages.arm-bars.rocker", "shafts.camshaft"} <= names
+    phi = np.arange(720) * (2 * math.pi / 720)
+    # every joint is a real one: its two parts meet (overlap, or a roller touches its cam to 0.02 mm) at every one
+    # of the 720 angles, and on a common plane overlap only in its disc
+    for joint in joints:
+        a, b = (next(x for x in bodies if x.name == n) for n in (joint.a, joint.b))
+        gap = shapely.distance(clash._shapes(a, phi), clash._shapes(b, phi))
+        assert gap.max() <= 0.02, (joint.a, joint.b, gap.max())
+        if a.low <= b.high and b.low <= a.high:                               # on a common plane
+            assert not clash._overlap(a, b, joint, phi).any(), (joint.a, joint.b)
+    # the crank pin where the coupler meets the arm is crank mm from the follower's pivot, on the arm
+    coupler = next(j for j in joints if {j.a, j.b} == {"cams.arm.arm", "linkages.arm-bars.coupler"})
+    arm = next(b for b in bodies if b.name == "cams.arm.arm")
+    m, pivot = arm.place(phi)
+    pin = coupler.centre(phi)
+    along = np.einsum("nji,nj->ni", m, pin - pivot)                       # the pin in the arm's own frame
+    assert np.allclose(along, [30.0, 0.0], atol=1e-9)
+
+
+def test_a_clash_is_an_error_by_machine_clash_naming_both_parts(tmp_path):
+    raw = _raw()
+    raw["machine"]["clash"] = "error"
+    raw["shafts"].append({"name": "second", "at": [0.0, -100.0]})
+    raw["gears"] = [{"driver": "camshaft", "driven": "second", "driver_teeth": 50, "driven_teeth": 50, "module": 2.0}]
+    twin = copy.deepcopy(raw["cams"][1])
+    twin.update(name="twin", shaft="second", layer=0)
+    raw["cams"].append(twin)
+    assert_refused(_write(tmp_path, raw), {}, "machine.clash: cams.", tmp_path)
+    raw["machine"]["clash"] = "warn"
+    design = _design(raw)
+    assert design.clashes and any(w.startswith("clash: ") for w in design.warnings)
+    assert any({c.a, c.b} == {"cams.head", "cams.twin"} for c in design.clashes)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"machine.clash_samples": 99999}, "machine.clash_samples: must be >= 36 and <= 3600 (got 99999)"),
+    ({"machine.clash": "never"}, "machine.clash: unknown value 'never'; one of error, warn"),
+])
+def test_the_clash_checks_settings_are_bounded(tmp_path, change, message):
+    assert_refused(AUTOMATON, change, message, tmp_path)

@@ -11,14 +11,14 @@ or spring rate would hold it (:func:`camgen.dynamics.speed_report`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import kinematics
+from camgen.kinds.machine import clash, kinematics
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
 from linkgen.kinematics.fourbar import FourBar
@@ -128,6 +128,8 @@ class MachineDesign:
     cams: tuple[CamMotion, ...]
     linkages: tuple[LinkageMotion, ...]
     warnings: tuple[str, ...]
+    clashes: tuple[clash.Clash, ...] = ()
+    unchecked: tuple[str, ...] = ()
 
     @property
     def tolerance(self) -> float:
@@ -206,7 +208,16 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             cams[coupling.cam] = _loaded(spec, cams[coupling.cam], found)
     for c in cams.values():
         warnings += [f"cams.{c.name}: {w}" for w in c.design.warnings]
-    return MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings))
+    made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings))
+    bodies, joints, unchecked = clash.machine_parts(made)
+    met = clash.clashes(bodies, joints, spec.machine.clash_samples)
+    if met and spec.machine.clash == "error":
+        more = f" (and {len(met) - 1} more clash(es))" if len(met) > 1 else ""
+        raise SpecError(f"{met[0].message()}{more}; move a part to another layer, or set machine.clash = "
+                        '"warn"',
+                        "machine.clash")
+    noted = (*warnings, *(f"clash: {c.message()}" for c in met))
+    return replace(made, clashes=met, unchecked=unchecked, warnings=noted)
 
 
 def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray) -> CamMotion:

@@ -98,6 +98,9 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
                              "note": "the main shaft's torque against the linkages' output torques (virtual work: "
                                      "their power over the shaft's speed); each cam's own follower forces are in "
                                      "its own report"},
+        "clashes": [{"parts": [c.a, c.b], "first_deg": c.angle_deg} for c in design.clashes],
+        "clash_check": {"samples": spec.machine.clash_samples, "refined_deg": 0.1, "mode": spec.machine.clash,
+                        "not_checked": list(design.unchecked)},
         "warnings": list(design.warnings),
     }
 

@@ -52,6 +52,11 @@ class MachineTable(Model):
     rpm: float = Field(gt=0, le=10_000, description="the main shaft's speed", json_schema_extra=unit("rpm"))
     samples: int = Field(720, ge=36, le=36_000, description="shaft angles over one turn of the main shaft at which "
                          "every output, the timing diagram and the forces are evaluated")
+    clash: Literal["error", "warn"] = Field("warn", description="what a clash of two moving parts (or of a part "
+                                            "and a shaft or pin) over the turn is: an error (nothing written) or a "
+                                            "warning in the report")
+    clash_samples: int = Field(720, ge=36, le=3600, description="main shaft angles over one turn at which the clash "
+                               "check places every part (a clash's first angle is then refined to 0.1 degree)")
 
 
 class ShaftTable(Model):

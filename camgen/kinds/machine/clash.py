@@ -1,0 +1,313 @@
+"""The clash check of a machine's parts over one turn of the main shaft (shapely, vectorised over the angles).
+
+Every part is a :class:`Body`: an outline in its own frame (mm), the planes it fills (a cam's layer; a pin from
+the frame, plane 0, up to its highest part) and its placement at any main shaft angle phi (radians): a 2x2 matrix
+and a shift, ``x_machine = M x_local + t``. Two bodies on a common plane clash where their outlines overlap by more
+than :data:`AREA_TOL_MM2`, except within a :class:`Joint`'s disc (the parts meeting at their shared pin, or a
+roller on its cam). A clash is named by its two parts and the first main shaft angle at which they meet, found on
+the sampled angles and refined by bisection to :data:`REFINE_DEG`.
+"""
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+#: an overlap of at most this area (mm^2) is a touch, not a clash (chordal outlines meeting tangentially)
+AREA_TOL_MM2 = 1e-3
+#: the width (degrees of the main shaft) to which a clash's first angle is refined by bisection
+REFINE_DEG = 0.1
+
+#: phi (n,) radians -> (M (n, 2, 2), t (n, 2) mm)
+Placement = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
+@dataclass(frozen=True)
+class Body:
+    """A part of the machine: its ``name``, the planes ``low`` to ``high`` it fills, its ``outline`` (m, 2) mm in
+    its own frame and its ``place`` ment at main shaft angles."""
+
+    name: str
+    low: int
+    high: int
+    outline: np.ndarray
+    place: Placement
+
+
+@dataclass(frozen=True)
+class Joint:
+    """Two bodies that meet by design within ``radius`` mm of ``centre`` (phi -> (n, 2) mm): a pin they share, or
+    a roller on its cam."""
+
+    a: str
+    b: str
+    centre: Callable[[np.ndarray], np.ndarray]
+    radius: float
+
+
+@dataclass(frozen=True)
+class Clash:
+    """Two parts that overlap: their names and the first main shaft angle (degrees, to :data:`REFINE_DEG`)."""
+
+    a: str
+    b: str
+    angle_deg: float
+
+    def message(self) -> str:
+        return f"{self.a} and {self.b} meet at {self.angle_deg:.1f} degrees of the main shaft"
+
+
+def rotation(angle: np.ndarray) -> np.ndarray:
+    """(n, 2, 2) counter-clockwise rotations by ``angle`` (n,) radians."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
+
+
+def still(at: Sequence[float] | np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
+    """A joint centre that does not move: ``at`` (mm) at every angle."""
+    def centre(phi: np.ndarray) -> np.ndarray:
+        return np.tile(np.asarray(at, float), (len(phi), 1))
+    return centre
+
+
+def fixed(at: Sequence[float] | np.ndarray) -> Placement:
+    """The placement of a part that does not move, its frame's origin at ``at`` (mm)."""
+    def place(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        n = len(phi)
+        return np.broadcast_to(np.eye(2), (n, 2, 2)), np.broadcast_to(np.asarray(at, float), (n, 2))
+    return place
+
+
+def circle(radius: float, tolerance: float = 0.01) -> np.ndarray:
+    """A polygon (m, 2) round a circle of ``radius`` mm about the origin, chords within ``tolerance`` mm."""
+    steps = max(16, math.ceil(math.pi / math.acos(max(1.0 - tolerance / radius, -1.0))))
+    a = np.arange(steps) * (2 * math.pi / steps)
+    return radius * np.column_stack([np.cos(a), np.sin(a)])
+
+
+def bar(length: float, half_width: float, tolerance: float = 0.01) -> np.ndarray:
+    """A straight bar's outline (m, 2) mm: round ends of ``half_width`` about (0, 0) and (``length``, 0)."""
+    ring = circle(half_width, tolerance)
+    a = np.arctan2(ring[:, 1], ring[:, 0])
+    right = ring[np.abs(a) <= math.pi / 2] + (length, 0.0)
+    left = ring[np.abs(a) > math.pi / 2]
+    return np.concatenate([right[np.argsort(np.arctan2(right[:, 1], right[:, 0] - length))],
+                           left[np.argsort(np.mod(np.arctan2(left[:, 1], left[:, 0]), 2 * math.pi))]])
+
+
+def _shapes(body: Body, phi: np.ndarray) -> np.ndarray:
+    m, t = body.place(phi)
+    coords = np.einsum("nij,mj->nmi", m, body.outline) + np.asarray(t)[:, None, :]
+    return shapely.make_valid(shapely.polygons(coords))
+
+
+def _overlap(a: Body, b: Body, joint: Joint | None, phi: np.ndarray) -> np.ndarray:
+    """Where (bool (n,)) bodies ``a`` and ``b`` overlap at angles ``phi``, outside their joint's disc."""
+    pa, pb = _shapes(a, phi), _shapes(b, phi)
+    near = shapely.intersects(pa, pb)
+    out = np.zeros(len(phi), bool)
+    if not near.any():
+        return out
+    common = shapely.intersection(pa[near], pb[near])
+    if joint is not None:
+        discs = shapely.buffer(shapely.points(joint.centre(phi[near])), joint.radius, quad_segs=32)
+        common = shapely.difference(common, discs)
+    out[near] = shapely.area(common) > AREA_TOL_MM2
+    return out
+
+
+def _refine(a: Body, b: Body, joint: Joint | None, lo: float, hi: float) -> float:
+    """The first angle (radians) in (lo, hi] at which ``a`` and ``b`` overlap: clear at lo, overlapping at hi."""
+    while hi - lo > math.radians(REFINE_DEG) / 2:
+        mid = 0.5 * (lo + hi)
+        if _overlap(a, b, joint, np.array([mid]))[0]:
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
+def clashes(bodies: Sequence[Body], joints: Sequence[Joint], samples: int) -> tuple[Clash, ...]:
+    """Every pair of ``bodies`` sharing a plane that overlaps at one of ``samples`` main shaft angles over a turn
+    (outside their joints), with the first angle at which it does, refined to :data:`REFINE_DEG`."""
+    phi = np.arange(samples) * (2 * math.pi / samples)
+    pairs = {frozenset((j.a, j.b)): j for j in joints}
+    found = []
+    for i, a in enumerate(bodies):
+        for b in bodies[i + 1:]:
+            if a.high < b.low or b.high < a.low:
+                continue
+            joint = pairs.get(frozenset((a.name, b.name)))
+            hit = _overlap(a, b, joint, phi)
+            if not hit.any():
+                continue
+            if hit.all():
+                found.append(Clash(a.name, b.name, 0.0))
+                continue
+            k = int(np.argmax(hit & ~np.roll(hit, 1)))            # the first angle entering a clash
+            lo = phi[k - 1] if k else phi[-1] - 2 * math.pi
+            angle = math.degrees(_refine(a, b, joint, float(lo), float(phi[k])))
+            found.append(Clash(a.name, b.name, round(angle % 360.0, 6)))
+    return tuple(found)
+
+
+#: the pin diameter (mm) of a follower's pivot where no linkage's parts give one
+PIVOT_PIN_MM = 4.0
+
+
+def _margin(radius: float) -> float:
+    """A joint's disc: ``radius`` mm and room for the chords of the outlines meeting in it."""
+    return 1.01 * radius + 0.05
+
+
+def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], tuple[str, ...]]:
+    """The bodies and joints of a :class:`~camgen.kinds.machine.design.MachineDesign`, and the parts not checked.
+
+    Each cam (its part's outline as cut, turned by sense x its program angle about its shaft) and, for an
+    oscillating roller, its follower's arm (a bar from its pivot to its roller, as wide as the roller) and roller,
+    on the cam's layer; each coupled four-bar's coupler and rocker (their parts as cut, the crank being the arm),
+    the four-bar placed with its crank pin on the arm, ``crank`` mm from the pivot, and mirrored where the arm
+    swings clockwise, on the arm's layer plus its own layer over its crank's; the shafts and pins from plane 0 up.
+    The four-bar's ground link is the frame's and is not a moving part."""
+    from camgen.followers.oscillating_roller import OscillatingRoller
+    from camgen.kinds.machine import kinematics
+    from camgen.kinds.machine.design import _cam_of
+
+    d = design
+    spec = d.spec                                          # type: ignore[attr-defined]
+    at = {s.name: np.asarray(s.at, float) for s in spec.shafts}
+    bodies: list[Body] = []
+    joints: list[Joint] = []
+    skipped: list[str] = []
+    arms: dict[str, tuple[OscillatingRoller, np.ndarray, int, Callable[[np.ndarray], np.ndarray]]] = {}
+    shafts: dict[str, list[tuple[int, float]]] = {}
+    for cam, mount in zip(d.cams, spec.cams, strict=True):  # type: ignore[attr-defined]
+        kin = _cam_of(cam.design)
+        part = getattr(cam.design, "part", None)
+        if part is None:
+            skipped.append(f"cams.{cam.name}")
+            continue
+        centre, tol = at[mount.shaft], float(cam.design.tolerance)
+        sense, turns, phase = kin.follower.sense, cam.turns, math.radians(mount.phase)
+
+        def theta(phi: np.ndarray, turns: float = turns, phase: float = phase) -> np.ndarray:
+            return kinematics.program_angles(phi, turns, phase)
+
+        def place_cam(phi: np.ndarray, theta: Callable = theta, sense: int = sense,
+                      centre: np.ndarray = centre) -> tuple[np.ndarray, np.ndarray]:
+            return rotation(sense * theta(phi)), np.broadcast_to(centre, (len(phi), 2))
+
+        name = f"cams.{cam.name}"
+        bodies.append(Body(name, 2 * mount.layer, 2 * mount.layer, part.outline.flatten(tol), place_cam))
+        shafts.setdefault(mount.shaft, []).append((2 * mount.layer, float(part.holes[0].radius) if part.holes else 0.0))
+        joints.append(Joint(name, f"shafts.{mount.shaft}", still(centre),
+                            _margin(max((h.radius for h in part.holes), default=0.0))))
+        f = kin.follower
+        if not isinstance(f, OscillatingRoller):
+            skipped.append(f"cams.{cam.name}'s follower")
+            continue
+        pivot = centre + f.pivot
+        rest = np.array([0.0, f.prime_radius]) - f.pivot
+
+        def arm(phi: np.ndarray, theta: Callable = theta, program: object = kin.program, k: float = f._swing_sign,
+                rest: np.ndarray = rest) -> np.ndarray:
+            psi = np.radians(program.evaluate(theta(phi))[0])   # type: ignore[attr-defined]
+            c, s = np.cos(k * psi), np.sin(k * psi)
+            return np.column_stack([c * rest[0] - s * rest[1], s * rest[0] + c * rest[1]])
+
+        def place_arm(phi: np.ndarray, arm: Callable = arm, pivot: np.ndarray = pivot) -> tuple[np.ndarray, np.ndarray]:
+            w = arm(phi)
+            return rotation(np.arctan2(w[:, 1], w[:, 0])), np.broadcast_to(pivot, (len(phi), 2))
+
+        def roller(phi: np.ndarray, arm: Callable = arm, pivot: np.ndarray = pivot) -> np.ndarray:
+            return pivot + arm(phi)
+
+        def place_roller(phi: np.ndarray, roller: Callable = roller) -> tuple[np.ndarray, np.ndarray]:
+            return np.broadcast_to(np.eye(2), (len(phi), 2, 2)), roller(phi)
+
+        r = f.roller_radius
+        plane = 2 * mount.layer
+        bodies += [Body(f"{name}.arm", plane + 1, plane + 1, bar(f.arm_length, r / 2, tol), place_arm),
+                   Body(f"{name}.roller", plane, plane + 1, circle(r, tol), place_roller)]
+        joints += [Joint(name, f"{name}.roller", roller, _margin(r)),
+                   Joint(f"{name}.arm", f"{name}.roller", roller, _margin(r))]
+        arms[cam.name] = (f, pivot, plane + 1, arm)
+    pins: dict[tuple[float, float], tuple[list[str], int, float]] = {}
+    for m in d.linkages:                                   # type: ignore[attr-defined]
+        f, pivot, layer, _ = arms[m.cam]
+        build, table = m.design.build, m.design.spec.linkage
+        k = f._swing_sign
+        rest = math.radians(m.coupling.rest)
+        base = np.array([0.0, f.prime_radius]) - f.pivot
+        alpha = math.atan2(base[1], base[0]) - k * rest
+        frame = rotation(np.array([alpha]))[0] @ np.diag([1.0, k])
+        hw = max(p.half_width for p in build.parts)
+        cut = {p.name: p for p in build.cut}
+        fb, assembly = m.fourbar, table.assembly
+        crank_layer = build.layers["crank"]
+
+        def poses(phi: np.ndarray, m: object = m, f: object = f, assembly: str = assembly,
+                  fb: object = fb) -> object:
+            cam = d.cam(m.cam)                              # type: ignore[attr-defined]
+            kin = _cam_of(cam.design)
+            theta = kinematics.program_angles(phi, cam.turns, math.radians(cam.phase_deg))
+            swing = kin.program.evaluate(theta)[:3]
+            chain = kinematics.crank_chain(m.coupling.rest, swing, cam.turns)   # type: ignore[attr-defined]
+            return fb.positions(chain.theta2, assembly), chain.theta2           # type: ignore[attr-defined]
+
+        def crank_pin(phi: np.ndarray, poses: Callable = poses, fb: object = fb, frame: np.ndarray = frame,
+                      pivot: np.ndarray = pivot) -> np.ndarray:
+            t2 = poses(phi)[1]
+            local = fb.crank * np.column_stack([np.cos(t2), np.sin(t2)])        # type: ignore[attr-defined]
+            return pivot + local @ frame.T
+
+        def rocker_pin(phi: np.ndarray, poses: Callable = poses, fb: object = fb, frame: np.ndarray = frame,
+                       pivot: np.ndarray = pivot) -> np.ndarray:
+            p = poses(phi)[0]
+            local = fb.ground * np.column_stack([np.ones(len(phi)), np.zeros(len(phi))])   # type: ignore
+            local = local + fb.rocker * np.column_stack([np.cos(p.theta4), np.sin(p.theta4)])  # type: ignore
+            return pivot + local @ frame.T
+
+        o4 = pivot + np.array([fb.ground, 0.0]) @ frame.T
+
+        def place_link(phi: np.ndarray, which: str, poses: Callable = poses, frame: np.ndarray = frame,
+                       crank_pin: Callable = crank_pin, o4: np.ndarray = o4) -> tuple[np.ndarray, np.ndarray]:
+            p = poses(phi)[0]
+            angle = p.theta3 if which == "coupler" else p.theta4
+            shift = crank_pin(phi) if which == "coupler" else np.broadcast_to(o4, (len(phi), 2))
+            return frame @ rotation(angle), shift
+
+        names = {}
+        for which in ("coupler", "rocker"):
+            plane = layer + build.layers[which] - crank_layer
+            name = f"linkages.{m.name}.{which}"
+            names[which] = (name, plane)
+            bodies.append(Body(name, plane, plane, cut[which].outline.flatten(0.01),
+                               functools.partial(place_link, which=which)))
+        joints += [Joint(f"cams.{m.cam}.arm", names["coupler"][0], crank_pin, _margin(hw)),
+                   Joint(names["coupler"][0], names["rocker"][0], rocker_pin, _margin(hw))]
+        pin_r = m.design.spec.parts.pin_diameter / 2 if m.design.spec.parts else PIVOT_PIN_MM / 2
+        pins.setdefault((float(o4[0]), float(o4[1])), ([], 1, pin_r))[0].append(names["rocker"][0])
+        entry = pins.setdefault((float(pivot[0]), float(pivot[1])), ([], 0, pin_r))
+        entry[0].append(f"cams.{m.cam}.arm")
+    for name, (_, pivot, _, _) in arms.items():
+        entry = pins.setdefault((float(pivot[0]), float(pivot[1])), ([], 0, PIVOT_PIN_MM / 2))
+        if f"cams.{name}.arm" not in entry[0]:
+            entry[0].append(f"cams.{name}.arm")
+    plane_of = {b.name: b.high for b in bodies}
+    roof = max(plane_of.values()) + 1                       # the top plate's plane
+    for i, ((x, y), (held, from_top, r)) in enumerate(pins.items()):
+        name = f"pins.{i}"
+        low, high = (min(plane_of[h] for h in held), roof) if from_top else (0, max(plane_of[h] for h in held))
+        bodies.append(Body(name, low, high, circle(r), fixed((x, y))))
+        joints += [Joint(h, name, still((x, y)), _margin(r)) for h in held]
+    for shaft, seats in shafts.items():
+        top = max(layer for layer, _ in seats)
+        r = min(radius for _, radius in seats)
+        if r > 0:
+            bodies.append(Body(f"shafts.{shaft}", 0, top, circle(r), fixed(at[shaft])))
+    return tuple(bodies), tuple(joints), tuple(skipped)
