@@ -47,10 +47,9 @@ from linkgen.synthesis.candidates import Candidate, Sketch, table_fits, weighed
 from linkgen.synthesis.parallel import run_all, where
 
 TWO_PI = 2.0 * math.pi
-#: the crank angles (evenly over a turn) at which a design's dyads are checked during the search
-TURN = 72
-#: ... and a candidate's, for its worst transmission angle and its figure
-FINE_TURN = 1440
+#: the crank angles (evenly over a turn) at which a design's dyads are checked during the search, and a
+#: candidate's, for its worst transmission angle and its figure
+TURN, FINE_TURN = 72, 1440
 #: a dyad's margin (a sine, see :class:`linkgen.kinematics.linkage.DyadResult`) must stay above this over the turn
 MARGIN_FLOOR = 1e-3
 #: the objective of a design breaking a hard constraint: BIG * (1 + its violation), behind every feasible one
@@ -101,17 +100,14 @@ class Problem:
 
 
 def problem_of(task: Any) -> Problem:
-    """The numbers of a validated six-bar path task; lengths by default from 1/20 to 4 times the targets' spread
-    (as the four-bar's, :func:`linkgen.synthesis.path.problem_of`), within what a template holds."""
-    targets = np.array(task.points, dtype=float)
-    spread = float(np.max(np.ptp(targets, axis=0)))
-    if task.link_range is not None:
-        lo, hi = task.link_range
-    else:
-        lo = max(spread / 20, MIN_LENGTH_MM)
-        hi = min(max(4 * spread, 10 * lo), MAX_LENGTH_MM)
-    return Problem(TOPOLOGIES[task.linkage], targets[:, 0] + 1j * targets[:, 1], np.radians(task.input_angles),
-                   (lo, hi), math.radians(task.min_transmission), task.generations, task.population, hi)
+    """The numbers of a validated six-bar path task; the lengths' limits those of the four-bar's search on the same
+    targets (:func:`linkgen.synthesis.path.problem_of`: by default 1/20 to 4 times the targets' spread)."""
+    from linkgen.synthesis import path
+
+    four = path.problem_of(task)
+    targets = four.targets[:, 0] + 1j * four.targets[:, 1]
+    return Problem(TOPOLOGIES[task.linkage], targets, np.radians(task.input_angles), four.box[3],
+                   math.radians(task.min_transmission), task.generations, task.population, four.scale)
 
 
 def drawing(x: np.ndarray, topology: Topology, tracer: complex | None = None) -> dict[str, tuple[float, float]]:
@@ -335,9 +331,9 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
     """Six-bar path generation for a validated path task (``linkage`` a six-bar, timed): the candidates
     (unranked) and how the search went, the four-bar's best next to it."""
     p = problem_of(task)
-    seeds = [int(s.generate_state(1)[0]) for s in np.random.SeedSequence(task.seed).spawn(task.starts)]
+    spawned = np.random.SeedSequence(task.seed).spawn(task.starts)
     clock = time.perf_counter()
-    runs = run_all(search, [(p, s) for s in seeds], jobs, scheduler)
+    runs = run_all(search, [(p, int(seq.generate_state(1)[0])) for seq in spawned], jobs, scheduler)
     seconds = time.perf_counter() - clock
     four = four_bar_best(task, jobs, scheduler)
     out = []
