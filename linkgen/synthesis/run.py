@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from camgen.core.errors import CamgenError, SpecError
-from linkgen.synthesis import burmester_motion, crank_rocker, fourier_path, function, motion, path, slider_crank
+from linkgen.synthesis import burmester_motion, crank_rocker, fourier_path, function, motion, path, sixbar, slider_crank
 from linkgen.synthesis.candidates import Candidate, Offered, offer, ranked
 from linkgen.synthesis.parallel import where
 from linkgen.synthesis.task import SynthesisSpec
@@ -64,7 +64,9 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
     task = spec.task
     clock = time.perf_counter()
     if task.kind == "path":
-        if getattr(task, "method", "evolution") == "fourier":
+        if getattr(task, "linkage", "four-bar") != "four-bar":
+            found, info = sixbar.solve(task, jobs, scheduler)
+        elif getattr(task, "method", "evolution") == "fourier":
             found, info = fourier_path.solve(task)
             if jobs > 1 or scheduler:
                 info["ran_on"] += " (the Fourier method runs here: --jobs and --scheduler serve the evolution)"
@@ -77,7 +79,8 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None)
     best = ranked(found, getattr(task, "candidates", 1), COPIES.get(task.kind, 0.1))
     parts = None if spec.parts is None else spec.parts.model_dump(mode="json", exclude_none=True)
     try:
-        offered = offer(spec.name, best, parts, lambda c: [c.row[k] for k in LENGTH_KEYS if k in c.row])
+        offered = offer(spec.name, best, parts, lambda c: [c.row[k] for k in LENGTH_KEYS if k in c.row]
+                        + list(c.row.get("link_lengths", {}).values()))
     except CamgenError as exc:
         field = SCALE_FIELDS[task.kind]
         raise SpecError(f"a linkage found cannot be written as a template ({exc}): change {field[5:]}",

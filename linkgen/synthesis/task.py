@@ -57,6 +57,10 @@ MAX_PATH_GENERATIONS = 100_000
 #: the Fourier method (``method = "fourier"``): at least this many targets (two harmonics of the polygon), at most
 #: this many (its cost grows with them only through vectorised evaluations), and at most this many guesses polished
 MIN_FOURIER_POINTS, MAX_FOURIER_POINTS, MAX_GUESSES = 5, 2000, 64
+#: a six-bar path search (``linkage = "watt1"`` or ``"stephenson3"``): at most this many general-solver solves in
+#: all, starts x generations x population x 10 unknowns (about 1 ms each on one core: some 3 minutes), and at most
+#: this many targets
+MAX_SIXBAR_SOLVES, MAX_SIXBAR_POINTS = 200_000, 100
 #: the largest |x| or |y| of a function task's table or range, and of y = f(x) over the range
 MAX_FUNCTION_VALUE = 1e12
 
@@ -341,6 +345,11 @@ class PathTask(SearchOptions):
                           MAX_GUESSES)
     atlas_folder: str | None = Field(None, description="where the Fourier method keeps its atlas of coupler curves "
                                      "(default: the user's cache folder, XDG_CACHE_HOME/linkgen)", max_length=4096)
+    linkage: Literal["four-bar", "watt1", "stephenson3"] = Field(
+        "four-bar", description="the linkage searched: 'four-bar', or a six-bar, 'watt1' (Watt I) or 'stephenson3' "
+        f"(Stephenson III): timed only (input_angles), crank = true, method 'evolution', 3 to {MAX_SIXBAR_POINTS} "
+        f"targets, starts x generations x population x 10 at most {MAX_SIXBAR_SOLVES} solves; the four-bar's best "
+        "on the same targets is reported next to it")
 
     @model_validator(mode="after")
     def _targets(self) -> PathTask:
@@ -371,9 +380,35 @@ class PathTask(SearchOptions):
         if self.coupler_range is not None and not 0 < self.coupler_range <= MAX_LENGTH_MM:
             raise ValueError(f"coupler_range: must be > 0 and <= {MAX_LENGTH_MM:g} mm (got {self.coupler_range:g})")
         _box("ground_region", self.ground_region)
-        if self.method == "evolution":
+        if self.linkage != "four-bar":
+            self._sixbar()
+        elif self.method == "evolution":
             self._budget()
         return self
+
+    def _sixbar(self) -> None:
+        """Refuse what the six-bar search (:mod:`linkgen.synthesis.sixbar`) cannot take, and a budget beyond
+        MAX_SIXBAR_SOLVES."""
+        six = repr(self.linkage)
+        if self.input_angles is None:
+            raise ValueError(f"input_angles: linkage {six} is searched with prescribed timing only: give one crank "
+                             "angle a target (degrees from the ground line), or use linkage 'four-bar'")
+        if len(self.points) > MAX_SIXBAR_POINTS:
+            raise ValueError(f"points: linkage {six} takes 3 to {MAX_SIXBAR_POINTS} targets (got {len(self.points)})")
+        unused = [k for k in ("coupler_range", "ground_region", "link_ratio") if getattr(self, k) is not None]
+        if self.method != "evolution":
+            unused.insert(0, "method")
+        if not self.crank:
+            unused.insert(0, "crank")
+        if unused:
+            raise ValueError(f"{unused[0]}: linkage {six} takes link_range, min_transmission and the search's budget "
+                             "with a crank that turns fully (crank = true, method 'evolution'): leave "
+                             f"{unused[0]} out, or use linkage 'four-bar'")
+        solves = self.starts * self.generations * self.population * 10
+        if solves > MAX_SIXBAR_SOLVES:
+            raise ValueError(f"generations: linkage {six} would make about {solves} solves (starts x generations x "
+                             f"population x 10 unknowns), at most {MAX_SIXBAR_SOLVES}: give fewer generations, "
+                             "starts or population")
 
     def _fourier(self) -> None:
         """Refuse what the Fourier method cannot take (beyond the targets' count, checked first): timing, a curve

@@ -1,0 +1,359 @@
+"""Six-bar path generation with prescribed timing: a Watt I or Stephenson III whose tracer meets N targets.
+
+``task.linkage = "watt1"`` or ``"stephenson3"`` of a path task with ``input_angles``. The two
+topologies, as the bundled templates ``watt1.toml`` and ``stephenson3.toml`` draw them:
+
+* **Watt I**: the four-bar O2-A-B-O4 with a ternary coupler (A, B, E) and a ternary rocker
+  (O4, B, F) sharing B; the dyad E-G-F (rod E-G, output F-G) between them; the tracer P on the
+  output.
+* **Stephenson III**: the four-bar O2-A-B-O4 with a ternary coupler (A, B, C); the dyad C-D-O6
+  (rod C-D, output O6-D) from its coupler point to a third ground pivot O6; the tracer P on the rod.
+
+A design is a drawing normalised so that O2 = (0, 0) and O4 = (1, 0) (the ground line on +X, so the
+crank's direction in it is its angle from the ground line): five free joints, ten numbers. Every
+evaluation is the general solver (:class:`linkgen.kinematics.linkage.Linkage`) on that drawing,
+batched over the targets' crank angles and a sampled turn, each dyad on the branch the drawing shows.
+The tracer's place on its link and the similarity (scale, turn, shift) that puts the drawing onto the
+targets are linear: with R_k the tracer link's turn and F_k its reference joint at target k (complex
+numbers), the tracer is W_k = R_k u + z F_k + t, so (u, z, t) come by least squares in closed form
+(variable projection); the search runs over the ten drawing numbers only, by scipy's differential
+evolution, and its best few designs are polished by least squares on the distances.
+
+Constraints (hard: a design breaking one ranks behind every one that keeps them): every dyad closes
+over the whole turn of the crank on its drawn branch (its margin above MARGIN_FLOOR at the sampled
+angles); every transmission angle within [mu, 180 - mu] there (``min_transmission``); every link and
+the ground within ``link_range``. A candidate is then checked by the solver as ``linkgen analyze``
+reads it: the crank turns fully and no dyad passes a change point over the turn (else a ``branch``
+defect), its worst transmission angle over FINE_TURN angles at least ``min_transmission``.
+
+The four-bar's best on the same targets (:mod:`linkgen.synthesis.path`, the same seed and budget) is
+reported next to it: in the search's ``four_bar`` and each row's ``four_bar_error_mm2``.
+Units: mm and degrees (radians inside); angles counter-clockwise.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from camgen.core.errors import CamgenError, SpecError
+from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
+from linkgen.kinematics.linkage import Linkage
+from linkgen.kinematics.structure import Input, Structure, make_structure, plan
+from linkgen.synthesis.candidates import Candidate, Sketch, table_fits, weighed
+from linkgen.synthesis.parallel import run_all, where
+
+TWO_PI = 2.0 * math.pi
+#: the crank angles (evenly over a turn) at which a design's dyads are checked during the search, and a
+#: candidate's, for its worst transmission angle and its figure
+TURN, FINE_TURN = 72, 1440
+#: a dyad's margin (a sine, see :class:`linkgen.kinematics.linkage.DyadResult`) must stay above this over the turn
+MARGIN_FLOOR = 1e-3
+#: the objective of a design breaking a hard constraint: BIG * (1 + its violation), behind every feasible one
+BIG = 1e12
+#: distinct designs of each search's final population polished
+POLISHED = 3
+#: the box of each free joint's coordinates in the normalised drawing (ground lengths, O2 at 0 and O4 at 1)
+SHAPE_BOX = 3.0
+
+
+@dataclass(frozen=True)
+class Topology:
+    """A six-bar's drawing: the free joints (searched), the links (name -> joints; the tracer P last on its
+    link), the ground pivots, the tracer's link and the joint it is placed from."""
+
+    name: str
+    free: tuple[str, ...]
+    links: dict[str, tuple[str, ...]]
+    ground: tuple[str, ...]
+    tracer_link: str
+    reference: str
+
+
+TOPOLOGIES = {
+    "watt1": Topology("watt1", ("A", "B", "E", "F", "G"),
+                      {"crank": ("O2", "A"), "coupler": ("A", "B", "E"), "rocker": ("O4", "B", "F"),
+                       "output": ("F", "G", "P"), "rod": ("E", "G")}, ("O2", "O4"), "output", "F"),
+    "stephenson3": Topology("stephenson3", ("A", "B", "C", "O6", "D"),
+                            {"crank": ("O2", "A"), "coupler": ("A", "B", "C"), "rocker": ("O4", "B"),
+                             "rod": ("C", "D", "P"), "output": ("O6", "D")}, ("O2", "O4", "O6"), "rod", "C"),
+}
+CRANK = (Input("crank", "crank", "O2"),)
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A six-bar path task in numbers: the topology, the targets (n,) complex mm, the crank angles there (n,) rad
+    from the ground line, the lengths' limits (mm), cos of the least transmission angle (or None) and the budget."""
+
+    topology: Topology
+    targets: np.ndarray
+    timing: np.ndarray
+    lengths: tuple[float, float]
+    min_transmission: float
+    generations: int
+    population: int
+    scale: float
+
+
+def problem_of(task: Any) -> Problem:
+    """The numbers of a validated six-bar path task; the lengths' limits those of the four-bar's search on the same
+    targets (:func:`linkgen.synthesis.path.problem_of`: by default 1/20 to 4 times the targets' spread)."""
+    from linkgen.synthesis import path
+
+    four = path.problem_of(task)
+    targets = four.targets[:, 0] + 1j * four.targets[:, 1]
+    return Problem(TOPOLOGIES[task.linkage], targets, np.radians(task.input_angles), four.box[3],
+                   math.radians(task.min_transmission), task.generations, task.population, four.scale)
+
+
+def drawing(x: np.ndarray, topology: Topology, tracer: complex | None = None) -> dict[str, tuple[float, float]]:
+    """The normalised drawing of design ``x`` (10,): O2 at the origin, O4 at (1, 0), the free joints from ``x``
+    (and the tracer P, when given)."""
+    points = {"O2": (0.0, 0.0), "O4": (1.0, 0.0)}
+    points |= {name: (float(x[2 * i]), float(x[2 * i + 1])) for i, name in enumerate(topology.free)}
+    if tracer is not None:
+        points["P"] = (tracer.real, tracer.imag)
+    return points
+
+
+def structure_of(points: dict[str, tuple[float, float]], topology: Topology) -> Structure:
+    """The solver's structure of a drawing (with or without the tracer P)."""
+    links = {k: tuple(p for p in v if p in points) for k, v in topology.links.items()}
+    return make_structure(points, links, topology.ground, (), CRANK)
+
+
+def link_lengths(points: dict[str, tuple[float, float]], topology: Topology) -> dict[str, float]:
+    """Every distance between two joints of one link (the ground's pivots too), by ``"J1-J2"`` (P left out)."""
+    out = {}
+    for pts in (topology.ground, *topology.links.values()):
+        joints = [p for p in pts if p != "P" and p in points]
+        for i, a in enumerate(joints):
+            for b in joints[i + 1:]:
+                out[f"{a}-{b}"] = math.dist(points[a], points[b])
+    return out
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """One design evaluated: the residuals (n,) complex mm, the similarity and tracer (u, z, t), the hard
+    constraints' rows (>= 0 kept, dimensionless) and the solve at the targets."""
+
+    residuals: np.ndarray
+    uzt: np.ndarray
+    rows: np.ndarray
+
+
+def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
+    """Design ``x`` through the general solver at the targets' crank angles and over a sampled turn; None where it
+    is not a linkage (joints drawn together, a dyad that cannot close at its drawing)."""
+    topo = p.topology
+    if not np.all(np.isfinite(x)):
+        return None
+    try:
+        s = structure_of(drawing(x, topo), topo)
+        linkage = Linkage(s, plan(s))
+        angles = np.concatenate([p.timing, np.linspace(0.0, TWO_PI, TURN, endpoint=False)])
+        sol = linkage.solve(angles[None, :], strict=False, derivatives=False)
+    except (CamgenError, ValueError, ArithmeticError):
+        return None
+    n = len(p.timing)
+    ok = sol.ok
+    margin = np.min([d.margin for d in sol.dyads], axis=0)
+    gamma = np.min([np.minimum(d.transmission, math.pi - d.transmission) for d in sol.dyads], axis=0)
+    rows = [np.where(ok, margin, -1.0) - MARGIN_FLOOR]
+    if p.min_transmission > 0:
+        rows.append(np.where(ok, gamma, -1.0) - p.min_transmission)
+    if not ok[:n].all():
+        return Evaluation(np.full(n, np.nan), np.full(3, np.nan), np.concatenate(rows))
+    c, sn = sol.rotations[topo.tracer_link]
+    rot = (c + 1j * sn)[:n]
+    ref = sol.points[topo.reference][:n]
+    ref = ref[:, 0] + 1j * ref[:, 1]
+    a = np.column_stack([rot, ref, np.ones(n)])
+    uzt, *_ = np.linalg.lstsq(a, p.targets, rcond=None)
+    scale = abs(uzt[1])
+    lengths = np.array(list(link_lengths(drawing(x, topo), topo).values())) * scale
+    lo, hi = p.lengths
+    rows.append(np.concatenate([(lengths - lo) / p.scale, (hi - lengths) / p.scale]))
+    return Evaluation(a @ uzt - p.targets, uzt, np.concatenate(rows))
+
+
+def objective(x: np.ndarray, p: Problem) -> np.ndarray:
+    """The error (mm^2) of each design of a population ``x`` (10, N), or BIG (1 + violation) where it breaks a hard
+    constraint: the general solver once a design, batched over its crank angles."""
+    out = np.empty(x.shape[1])
+    for j in range(x.shape[1]):
+        e = evaluate(x[:, j], p)
+        if e is None:
+            out[j] = 2.0 * BIG
+            continue
+        broken = float(np.sum(np.maximum(0.0, -e.rows)))
+        err = float(np.sum(np.abs(e.residuals) ** 2))
+        out[j] = BIG * (1.0 + broken) if broken > 0 or not math.isfinite(err) else err
+    return out
+
+
+def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
+    """Design ``x`` polished by least squares on the distances (central differences); the polished design if it
+    keeps every hard constraint and is no worse, else ``x``."""
+    from scipy.optimize import least_squares
+
+    def error(v: np.ndarray) -> float:
+        e = evaluate(v, p)
+        if e is None or np.any(e.rows < 0):
+            return math.inf
+        return float(np.sum(np.abs(e.residuals) ** 2))
+
+    def residuals(v: np.ndarray) -> np.ndarray:
+        e = evaluate(v, p)
+        if e is None or not np.all(np.isfinite(e.residuals)):
+            return np.full(2 * len(p.timing), p.scale)
+        return np.concatenate([e.residuals.real, e.residuals.imag])
+
+    found = error(x)
+    try:
+        v = least_squares(residuals, x, method="trf", diff_step=1e-7, bounds=(-SHAPE_BOX, SHAPE_BOX),
+                          xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=60 * len(x)).x
+    except (ValueError, ArithmeticError):
+        return x, found
+    polished = error(v)
+    return (v, polished) if polished <= found else (x, found)
+
+
+def search(args: tuple[Problem, int]) -> dict[str, Any]:
+    """One seeded search: differential evolution over the drawing, then its best few distinct designs polished.
+    Returns those that keep every constraint (design, error) and the designs evaluated."""
+    from scipy.optimize import differential_evolution
+
+    p, seed = args
+    bounds = [(-SHAPE_BOX, SHAPE_BOX)] * (2 * len(p.topology.free))
+    r = differential_evolution(objective, bounds, args=(p,), vectorized=True, updating="deferred", seed=seed,
+                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False)
+    picked: list[int] = []
+    for i in np.argsort(r.population_energies, kind="stable"):
+        if r.population_energies[i] >= BIG:
+            break
+        if all(np.max(np.abs(r.population[i] - r.population[j])) > 1e-3 * SHAPE_BOX for j in picked):
+            picked.append(int(i))
+        if len(picked) == POLISHED:
+            break
+    found = [_polish(r.population[i], p) for i in picked]
+    return {"found": [(v.tolist(), e) for v, e in found if math.isfinite(e)], "evaluations": int(r.nfev),
+            "best_energy": float(np.min(r.population_energies))}
+
+
+def placed(x: np.ndarray, p: Problem) -> tuple[dict[str, tuple[float, float]], Evaluation] | None:
+    """The drawing of design ``x`` in the task's frame at the first target's crank angle, with the tracer P: every
+    joint where the solver puts it there, moved by the similarity z (.) + t."""
+    topo = p.topology
+    e = evaluate(x, p)
+    if e is None:
+        return None
+    u, z, t = e.uzt
+    norm = drawing(x, topo)
+    s = structure_of(norm, topo)
+    sol = Linkage(s, plan(s)).solve(p.timing[:1][None, :], strict=False, derivatives=False)
+    c, sn = sol.rotations[topo.tracer_link]
+    at = {k: complex(*v[0]) for k, v in sol.points.items()}
+    at["P"] = complex((c[0] + 1j * sn[0]) * u + z * at[topo.reference] + t)
+    world = {k: (v if k == "P" else z * v + t) for k, v in at.items()}
+    return {k: (float(v.real), float(v.imag)) for k, v in world.items()}, e
+
+
+def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
+    """A polished design as a candidate (None if it has a branch defect, breaks the transmission limit over the
+    fine turn, or does not fit a template): the ``[linkage]`` table drawn at the first target, its row, figure."""
+    topo = p.topology
+    got = placed(x, p)
+    if got is None:
+        return None
+    joints, e = got
+    try:
+        linkage = Linkage.of(structure_of(joints, topo))
+    except CamgenError:
+        return None
+    if linkage.ranges is not None or any(len(f) for f in linkage.flips):
+        return None                               # the crank does not turn fully, or a dyad passes a change point
+    z = complex(e.uzt[1])
+    first = float(np.angle(complex(*joints["A"]) - complex(*joints["O2"])))
+    turn = first + np.linspace(0.0, TWO_PI, FINE_TURN + 1)
+    sol = linkage.solve(turn[None, :], strict=False, derivatives=False)
+    if not sol.ok.all():
+        return None
+    worst = min(float(np.min(np.minimum(d.transmission, math.pi - d.transmission))) for d in sol.dyads)
+    if worst < p.min_transmission - 1e-9:
+        return None
+    table = {"type": "linkage", "ground": list(topo.ground), "input": {"link": "crank", "pivot": "O2"},
+             "tracers": ["P"], "joints": {k: list(v) for k, v in joints.items()},
+             "links": {k: list(v) for k, v in topo.links.items()}}
+    if not table_fits(table):
+        return None
+    sq = np.abs(e.residuals) ** 2
+    directions = np.degrees(p.timing + np.angle(z)) % 360.0
+    lengths = link_lengths(joints, topo)
+    row = {"error_mm2": float(sq.sum()), "linkage": topo.name, "joints": table["joints"], "link_lengths": lengths,
+           "input_angles": [round(math.degrees(t) % 360.0, 9) % 360.0 for t in p.timing],
+           "input_directions": directions.tolist(), "errors_mm": np.sqrt(sq).tolist(),
+           "transmission_worst_deg": math.degrees(worst), "defects": []}
+    if not all(MIN_LENGTH_MM <= v <= MAX_LENGTH_MM for v in lengths.values()):
+        return None
+    curve = sol.points["P"]
+    pose = np.array([joints[k] for k in (*topo.ground[:1], "A", "B", topo.ground[1], "B",
+                                         *[j for j in topo.free[2:]], topo.reference, "P")])
+    targets = np.column_stack([p.targets.real, p.targets.imag])
+    reached = targets + np.column_stack([e.residuals.real, e.residuals.imag])
+    sketch = Sketch(paths=(("tracer curve", curve),), poses=(("at the first target", pose),), targets=targets,
+                    reached=reached)
+    signature = tuple(v for xy in joints.values() for v in xy)
+    return Candidate(table, row, float(sq.sum()), signature, sketch)
+
+
+def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> dict[str, Any]:
+    """The best four-bar on the same targets, timing, seed and budget (:func:`linkgen.synthesis.path.solve`): its
+    error and worst transmission angle, or why none was found."""
+    from linkgen.synthesis import path
+
+    four = task.model_copy(update={"linkage": "four-bar"})
+    try:
+        found, _ = path.solve(four, jobs, scheduler)
+    except SpecError as exc:
+        return {"error_mm2": None, "why": str(exc)}
+    best = min((weighed(c) for c in found), key=lambda c: c.score)
+    return {"error_mm2": best.row["error_mm2"], "transmission_worst_deg": best.row["transmission_worst_deg"],
+            "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")]}
+
+
+def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[Candidate], dict[str, Any]]:
+    """Six-bar path generation for a validated path task (``linkage`` a six-bar, timed): the candidates
+    (unranked) and how the search went, the four-bar's best next to it."""
+    p = problem_of(task)
+    spawned = np.random.SeedSequence(task.seed).spawn(task.starts)
+    clock = time.perf_counter()
+    runs = run_all(search, [(p, int(seq.generate_state(1)[0])) for seq in spawned], jobs, scheduler)
+    seconds = time.perf_counter() - clock
+    four = four_bar_best(task, jobs, scheduler)
+    out = []
+    for run in runs:
+        for x, _ in run["found"]:
+            c = _candidate(np.asarray(x), p)
+            if c is not None:
+                out.append(weighed(c))
+    tried = sum(r["evaluations"] for r in runs)
+    if not out:
+        raise SpecError(f"no {task.linkage} six-bar found whose crank turns fully with every dyad on its branch, "
+                        f"its transmission angle at least {task.min_transmission:g} degrees and its links within "
+                        f"link_range ({tried} designs tried): give more generations, widen link_range or lower "
+                        "min_transmission", "task.points")
+    out = [Candidate(c.linkage, {**c.row, "four_bar_error_mm2": four["error_mm2"]}, c.score, c.signature, c.sketch)
+           for c in out]
+    info = {"method": f"{task.linkage} six-bar: differential evolution (scipy) over the normalised drawing, each "
+                      "design solved by the general solver at the targets and over a turn, the tracer and the "
+                      "similarity by least squares; polished by least squares",
+            "seed": task.seed, "starts": task.starts, "generations": task.generations,
+            "designs_evaluated": tried, "seconds": round(seconds, 3), "ran_on": where(jobs, scheduler),
+            "four_bar": four, "bound": []}
+    return out, info
