@@ -38,7 +38,9 @@ def drawing(name: str) -> dict[str, Any]:
     kind = kind_of(spec.kind)
     design = kind.design(spec)
     _, report = kind.bundle(design)
-    shown = (page.grooved_page if spec.kind == "grooved" else page.cam_page)(design, report)
+    from camgen.kinds.grooved.page import grooved_page
+
+    shown = (grooved_page if spec.kind == "grooved" else page.cam_page)(design, report)
     frame = next(b for b in shown.scene.bodies if b.name == "frame")
     out: dict[str, Any] = {
         "still": [{"style": o.style, "closed": o.closed, "points": np.asarray(o.points, float).tolist()}

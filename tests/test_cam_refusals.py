@@ -215,9 +215,10 @@ def test_a_family_hands_its_workers_small_batches_and_shows_a_bar_on_a_terminal(
         def __exit__(self, *exc):
             return False
 
-        def map(self, func, work, chunksize):
-            asked.append(chunksize)
-            return ({"name": m.name, "status": "ok"} for _, m, _ in work)
+        def map(self, func, batches):
+            batches = list(batches)
+            asked.append(max(len(b) for b in batches))
+            return ([{"name": m.name, "status": "ok"} for _, m, _ in batch] for batch in batches)
 
     class Terminal(io.StringIO):
         def isatty(self):

@@ -104,6 +104,24 @@ def _expected(name: str, design) -> set[str]:
         lever, wheel = rep["lever"], rep["wheel"]
         assert lever["teeth_per_stroke"] == math.floor(lever["swing_deg"] / wheel["pitch_deg"])
         return {"indexing"} if lever["teeth_per_stroke"] >= 1 and rep["holds"] else set()
+    if table.type == "gear-train":
+        if rep["kind"] == "planetary":                        # Willis: the ratio from the members' own speeds
+            speeds = rep["planetary"]["speeds"]
+            assert rep["ratio"] == pytest.approx(speeds[rep["planetary"]["output"]] / speeds[rep["planetary"]["input"]],
+                                                 rel=1e-8)
+        return {"coupling"} | ({"reversing"} if rep["ratio"] < 0 else set())
+    if table.type == "oldham":
+        assert rep["speed_ratio"] == 1.0 and rep["offset_mm"] == pytest.approx(table.offset)
+        return {"coupling"}
+    if table.type == "trammel":                               # the tracer on its ellipse, the blocks on their slots
+        assert rep["ellipse"]["semi_axis_x_mm"] == pytest.approx(abs(table.rod - table.point))
+        assert rep["ellipse"]["semi_axis_y_mm"] == pytest.approx(abs(table.point))
+        assert rep["block_stroke_mm"] == pytest.approx(2 * table.rod)
+        return {"reciprocator", "curve generator"}
+    if table.type == "rapson":
+        lo, hi = rep["input_range_mm"]
+        assert rep["stroke_mm"] == pytest.approx(hi - lo) and rep["stroke_mm"] > 0
+        return {"linear actuator"}
     a, _ = pose_of(design.kinematics, table, 0.0)
     out = set()
     full = a.crank and a.ranges is None

@@ -177,15 +177,22 @@ def _args(annotation: Any) -> tuple:
     return tuple(a for a in args if a is not type(None))
 
 
-def _model_of(annotation: Any) -> Any:
-    """The model an annotation holds (``X``, ``X | None``, ``list[X]``), or None."""
+def _models_of(annotation: Any) -> tuple[Any, ...]:
+    """Every model an annotation holds (``X``, ``X | None``, ``list[X]``, a union of tables such as the follower's
+    tables of each type), in order."""
+    found: list[Any] = []
     for a in _args(annotation):
-        if isinstance(a, type) and issubclass(a, BaseModel):
-            return a
-        for inner in get_args(a):
-            if isinstance(inner, type) and issubclass(inner, BaseModel):
-                return inner
-    return None
+        for m in (a, *get_args(a)):
+            for inner in _args(m):
+                if isinstance(inner, type) and issubclass(inner, BaseModel) and inner not in found:
+                    found.append(inner)
+    return tuple(found)
+
+
+def _model_of(annotation: Any) -> Any:
+    """The first model an annotation holds, or None."""
+    models = _models_of(annotation)
+    return models[0] if models else None
 
 
 def root_model(program: str, raw: dict) -> Any:
@@ -219,7 +226,11 @@ def lookup(model: Any, path: Path_) -> tuple[str, Any]:
         if part not in fields:
             return ("extra", None) if i == len(path) - 1 else ("?", None)
         info = fields[part]
-        model, key = _model_of(info.annotation), _keyed(info.annotation)
+        models, key = _models_of(info.annotation), _keyed(info.annotation)
+        if len(models) > 1 and not key and i < len(path) - 1:      # a union of tables: the path in any of them
+            found = [lookup(m, path[i + 1:]) for m in models]
+            return next((f for rank in ("field", "key", "extra") for f in found if f[0] == rank), ("?", None))
+        model = models[0] if models else None
     return ("field", info) if info is not None else ("?", None)
 
 

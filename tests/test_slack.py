@@ -514,20 +514,22 @@ DEDICATED = {
 }
 
 
-#: mechanisms of gears and pawls, not of bars and pins: no slack band (refused in one line)
-HIGHER_PAIRS = ("gear-pair", "ratchet")
+#: mechanisms not drawn as bars and pins (gears, pawls, the couplings' slotted discs and blocks), by the bundled
+#: template of each: no slack band (refused in one line)
+HIGHER_PAIRS = {"gear-pair": "gear-pair", "ratchet": "ratchet", "gear-train": "planetary-train",
+                "oldham": "oldham-coupling", "trammel": "elliptic-trammel", "rapson": "rapson-slide"}
 
 
 def test_every_dedicated_type_is_covered():
     assert set(DEDICATED) == set(MECHANISMS) - {"linkage", *HIGHER_PAIRS}
 
 
-@pytest.mark.parametrize("kind", HIGHER_PAIRS)
+@pytest.mark.parametrize("kind", sorted(HIGHER_PAIRS))
 def test_a_mechanism_of_gears_or_pawls_refuses_slack_in_one_line(tmp_path, kind):
     from linkgen.cli import main
 
     path = tmp_path / "t.toml"
-    path.write_text((ROOT / "templates" / f"{kind}.toml").read_text(encoding="utf-8") + "\n[slack]\n")
+    path.write_text((ROOT / "templates" / f"{HIGHER_PAIRS[kind]}.toml").read_text(encoding="utf-8") + "\n[slack]\n")
     result = CliRunner().invoke(main, ["analyze", str(path), "-o", str(tmp_path / "out")])
     assert result.exit_code == 2, result.output
     assert result.output.startswith("error: slack: ") and result.output.count("\n") == 1, result.output

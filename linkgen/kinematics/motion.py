@@ -366,7 +366,10 @@ def values_of(linkage: Linkage, sol: Solution, name: Output) -> tuple[np.ndarray
     sl = sliders[name]
     u = np.array([math.cos(sl.angle), math.sin(sl.angle)])
     p = sol.points[sl.point] - np.asarray(linkage.structure.points[sl.point])
-    return p @ u, sol.velocities[sl.point] @ u, sol.accelerations[sl.point] @ u
+    # a pose the linkage cannot take is NaN (strict=False) and a rate at a toggle unbounded (inf): along the guide
+    # those have no value, NaN, which the callers skip as not finite
+    with np.errstate(invalid="ignore"):
+        return p @ u, sol.velocities[sl.point] @ u, sol.accelerations[sl.point] @ u
 
 
 def _brackets(grid: np.ndarray, rate: np.ndarray, periodic: bool) -> tuple[np.ndarray, np.ndarray]:

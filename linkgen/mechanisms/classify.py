@@ -70,7 +70,8 @@ def report(earned: list[Earned]) -> dict[str, Any]:
 
 def of_report(kind: str, rep: Mapping[str, Any]) -> list[Earned]:
     """The classes of the mechanisms not drawn as general linkages, from their own kinematic figures: a gear pair
-    (its speed ratio), a ratchet (its index per stroke)."""
+    (its speed ratio), a ratchet (its index per stroke), a gear train (its ratio), Oldham's coupling (its speed
+    ratio), the elliptic trammel (its blocks' stroke and its ellipse) and Rapson's slide (its crosshead's stroke)."""
     out = []
     if kind == "gear-pair" and rep.get("speed_ratio") is not None:
         ratio = float(rep["speed_ratio"])
@@ -83,6 +84,25 @@ def of_report(kind: str, rep: Mapping[str, Any]) -> list[Earned]:
                                       f"wheel {int(lever['teeth_per_stroke'])} tooth (tooth) of "
                                       f"{float(rep['wheel']['pitch_deg']):.6g} degrees, and the pawl holds it "
                                       "between strokes"))
+    if kind == "gear-train" and rep.get("ratio") is not None:
+        ratio = float(rep["ratio"])
+        out.append(Earned("coupling", f"the output turns fully with the input at a ratio of {ratio:.6g}"))
+        if ratio < 0:
+            out.append(Earned("reversing", f"the ratio {ratio:.6g} is negative: the output turns the other way"))
+    if kind == "oldham" and rep.get("speed_ratio") is not None:
+        ratio, offset = float(rep["speed_ratio"]), float(rep["offset_mm"])
+        out.append(Earned("coupling", f"hub 2 turns fully with hub 1 at a speed ratio of {ratio:.6g}, {offset:.6g} mm "
+                                      "off its axis"))
+    if kind == "trammel" and isinstance(rep.get("ellipse"), Mapping):
+        ellipse = rep["ellipse"]
+        out.append(Earned("reciprocator", f"the crank turns fully and each block moves back and forth, a stroke of "
+                                          f"{float(rep['block_stroke_mm']):.6g} mm"))
+        out.append(Earned("curve generator", f"the tracer draws an ellipse of semi-axes "
+                                             f"{float(ellipse['semi_axis_x_mm']):.6g} and "
+                                             f"{float(ellipse['semi_axis_y_mm']):.6g} mm"))
+    if kind == "rapson" and rep.get("stroke_mm"):
+        out.append(Earned("linear actuator", f"the crosshead's stroke of {float(rep['stroke_mm']):.6g} mm swings the "
+                                             "tiller"))
     return out
 
 
