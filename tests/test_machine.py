@@ -515,3 +515,14 @@ def test_a_clash_is_an_error_by_machine_clash_naming_both_parts(tmp_path):
 ])
 def test_the_clash_checks_settings_are_bounded(tmp_path, change, message):
     assert_refused(AUTOMATON, change, message, tmp_path)
+
+
+def test_a_linkage_without_parts_is_named_as_not_checked_for_clashes():
+    """A linkage drawn without a [parts] table has no outlines to place: the clash check says it did not check it,
+    and still checks the rest (the cams, arms and rollers)."""
+    raw = _raw()
+    for linkage in raw["linkages"]:
+        linkage["template"].pop("parts", None)
+    design = _design(raw)
+    assert set(design.unchecked) == {f"linkages.{m['name']}" for m in raw["linkages"]}
+    assert design.clashes == ()

@@ -238,8 +238,11 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
         arms[cam.name] = (f, pivot, plane + 1, arm)
     pins: dict[tuple[float, float], tuple[list[str], int, float]] = {}
     for m in d.linkages:                                   # type: ignore[attr-defined]
-        f, pivot, layer, _ = arms[m.cam]
         build, table = m.design.build, m.design.spec.linkage
+        if build is None or m.cam not in arms:              # no [parts] table: no outlines to place
+            skipped.append(f"linkages.{m.name}")
+            continue
+        f, pivot, layer, _ = arms[m.cam]
         k = f._swing_sign
         rest = math.radians(m.coupling.rest)
         base = np.array([0.0, f.prime_radius]) - f.pivot
