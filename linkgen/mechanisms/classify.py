@@ -74,10 +74,7 @@ def of_report(kind: str, rep: Mapping[str, Any]) -> list[Earned]:
     ratio), the elliptic trammel (its blocks' stroke and its ellipse) and Rapson's slide (its crosshead's stroke)."""
     out = []
     if kind == "gear-pair" and rep.get("speed_ratio") is not None:
-        ratio = float(rep["speed_ratio"])
-        out.append(Earned("coupling", f"the gear turns fully with the pinion at a speed ratio of {ratio:.6g}"))
-        if ratio < 0:
-            out.append(Earned("reversing", f"the speed ratio {ratio:.6g} is negative: the gear turns the other way"))
+        out += _geared(float(rep["speed_ratio"]), "the gear", "the pinion", "speed ratio")
     if kind == "ratchet" and isinstance(rep.get("lever"), Mapping) and rep.get("holds"):
         lever = rep["lever"]
         out.append(Earned("indexing", f"each {float(lever['swing_deg']):.6g} degree stroke of the lever advances the "
@@ -85,10 +82,7 @@ def of_report(kind: str, rep: Mapping[str, Any]) -> list[Earned]:
                                       f"{float(rep['wheel']['pitch_deg']):.6g} degrees, and the pawl holds it "
                                       "between strokes"))
     if kind == "gear-train" and rep.get("ratio") is not None:
-        ratio = float(rep["ratio"])
-        out.append(Earned("coupling", f"the output turns fully with the input at a ratio of {ratio:.6g}"))
-        if ratio < 0:
-            out.append(Earned("reversing", f"the ratio {ratio:.6g} is negative: the output turns the other way"))
+        out += _geared(float(rep["ratio"]), "the output", "the input", "ratio")
     if kind == "oldham" and rep.get("speed_ratio") is not None:
         ratio, offset = float(rep["speed_ratio"]), float(rep["offset_mm"])
         out.append(Earned("coupling", f"hub 2 turns fully with hub 1 at a speed ratio of {ratio:.6g}, {offset:.6g} mm "
@@ -103,6 +97,15 @@ def of_report(kind: str, rep: Mapping[str, Any]) -> list[Earned]:
     if kind == "rapson" and rep.get("stroke_mm"):
         out.append(Earned("linear actuator", f"the crosshead's stroke of {float(rep['stroke_mm']):.6g} mm swings the "
                                              "tiller"))
+    return out
+
+
+def _geared(ratio: float, driven: str, driver: str, word: str) -> list[Earned]:
+    """A pair or train of gears: a coupling at its ``ratio`` (output over input speed, named ``word``), reversing
+    where the ratio is negative."""
+    out = [Earned("coupling", f"{driven} turns fully with {driver} at a {word} of {ratio:.6g}")]
+    if ratio < 0:
+        out.append(Earned("reversing", f"the {word} {ratio:.6g} is negative: {driven} turns the other way"))
     return out
 
 
