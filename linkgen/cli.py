@@ -553,10 +553,10 @@ def import_sketch(sketch: Path, output: Path | None) -> None:
 
     from camgen.core.cli import _write_new
     from camgen.core.errors import SpecError
+    from camgen.core.toml_text import dumps
     from linkgen.linkage_design import design_linkage
     from linkgen.sketch import read_sketch, sketch_template
     from linkgen.spec import validate_spec
-    from linkgen.synthesis.candidates import toml_text
 
     path = output if output is not None else Path(f"{sketch.stem}.toml")
     name = re.sub(r"[^A-Za-z0-9_-]+", "-", sketch.stem).strip("-")[:64] or "sketch"
@@ -568,8 +568,8 @@ def import_sketch(sketch: Path, output: Path | None) -> None:
         raise SpecError(f"the linkage read does not build: {exc}", "sketch") from None
     for note in read.notes:
         click.echo(f"warning: {note}")
-    _write_new(path, toml_text(raw, f"Read from {sketch.name} by linkgen import.\nCheck it with:  linkgen analyze "
-                                    f"{path.name}").encode())
+    _write_new(path, dumps(raw, f"Read from {sketch.name} by linkgen import.\nCheck it with:  linkgen analyze "
+                              f"{path.name}").encode())
     links = raw["linkage"]["links"]
     click.echo(f"{name}: {len(raw['linkage']['joints'])} joints, {len(links)} moving links, ground "
                f"{', '.join(raw['linkage']['ground'])}, input {raw['linkage']['input']['link']}")

@@ -42,7 +42,7 @@ def _ask(ws, message):
 
 
 def test_the_toml_it_writes_reads_back_to_every_template():
-    from camgen.designer.toml_text import dumps
+    from camgen.core.toml_text import dumps
 
     for path in sorted((ROOT / "templates").glob("*.toml")):
         raw = tomllib.loads(path.read_text(encoding="utf-8"))

@@ -95,9 +95,9 @@ def template_transmission(c, task_keys: dict) -> float:
 
 
 def tomllib_text(raw: dict) -> str:
-    from linkgen.synthesis.candidates import toml_text
+    from camgen.core.toml_text import dumps
 
-    return toml_text(raw, "test")
+    return dumps(raw, "test")
 
 
 # ---------------------------------------------------------------------- crank-rocker and slider-crank

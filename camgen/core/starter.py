@@ -8,30 +8,16 @@ brackets) to the pydantic model whose fields describe its keys.
 """
 from __future__ import annotations
 
-import json
 import textwrap
 import types
 import typing
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from camgen.core.toml_text import toml_value
+
 #: the column comments start at, and the widest a line is made (a longer comment goes on in that column)
 COMMENT_COLUMN, WIDTH = 28, 118
-
-
-def toml_value(value: Any) -> str:
-    """``value`` (bool, int, float, str, list, or a mapping for an inline table) as TOML."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, float):
-        return repr(value)
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, str):
-        return json.dumps(value)
-    if isinstance(value, Mapping):
-        return "{ " + ", ".join(f"{k} = {toml_value(v)}" for k, v in value.items()) + " }"
-    return "[" + ", ".join(toml_value(v) for v in value) + "]"
 
 
 def field_comment(model: Any, key: str) -> str | None:

@@ -20,7 +20,7 @@ from typing import Any, cast
 
 from camgen.core.errors import CamgenError, SpecError
 from camgen.designer import form, views
-from camgen.designer.toml_text import dumps
+from camgen.core.toml_text import dumps
 
 #: the largest template file the designer opens (bytes)
 MAX_TEMPLATE = 1 << 20

@@ -9,9 +9,7 @@ placed and turned by the task), the summary row (mm and degrees) and what its fi
 from __future__ import annotations
 
 import dataclasses
-import json
 import math
-import re
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -198,46 +196,3 @@ def offer(name: str, candidates: Sequence[Candidate], parts: dict[str, Any] | No
     return tuple(out)
 
 
-_BARE = re.compile(r"^[A-Za-z0-9_-]+$")
-
-
-def _key(k: str) -> str:
-    return k if _BARE.match(k) else json.dumps(k)
-
-
-def _value(v: Any) -> str:
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (int, float, np.floating, np.integer)):
-        x = float(v) if isinstance(v, (float, np.floating)) else int(v)
-        if isinstance(x, float) and not math.isfinite(x):
-            raise ValueError(f"a template holds only finite numbers (got {x})")
-        return repr(x)
-    if isinstance(v, str):
-        return json.dumps(v)
-    if isinstance(v, (list, tuple)):
-        return "[" + ", ".join(_value(x) for x in v) + "]"
-    raise TypeError(f"no TOML form for {type(v).__name__}")
-
-
-def _table(lines: list[str], path: str, table: dict[str, Any]) -> None:
-    lines += ["", f"[{path}]"]
-    for k, v in table.items():
-        if not isinstance(v, dict):
-            lines.append(f"{_key(k)} = {_value(v)}")
-    for k, v in table.items():
-        if isinstance(v, dict):
-            _table(lines, f"{path}.{_key(k)}", v)
-
-
-def toml_text(raw: dict[str, Any], comment: str) -> str:
-    """``raw`` (tables of numbers, strings, booleans and lists) as TOML, numbers in full (they read back
-    exactly), ``comment`` on the first line."""
-    lines = [f"# {line}" for line in comment.splitlines()]
-    for k, v in raw.items():
-        if not isinstance(v, dict):
-            lines.append(f"{_key(k)} = {_value(v)}")
-    for k, v in raw.items():
-        if isinstance(v, dict):
-            _table(lines, _key(k), v)
-    return "\n".join(lines) + "\n"

@@ -15,7 +15,8 @@ from pathlib import Path
 from typing import Any
 
 from camgen.core.bundle import Bundle, Item, figure_files, report_file, rows_file, text_file, write_bundle
-from linkgen.synthesis.candidates import Offered, toml_text
+from camgen.core.toml_text import dumps
+from linkgen.synthesis.candidates import Offered
 from linkgen.synthesis.run import Synthesis
 
 
@@ -80,7 +81,7 @@ def synthesis_bundle(result: Synthesis, figures: bool = False) -> Bundle:
     for c in result.candidates:
         report = {**c.report, "synthesis": {"task": summary["task"], **c.row}}
         figure = partial(candidate_figure, f"{c.name}: {_figure_title(c.row)}", c.sketch)
-        items += [text_file(toml_text(c.template, _comment(c, summary)), c.name, c.name),
+        items += [text_file(dumps(c.template, _comment(c, summary)), c.name, c.name),
                   report_file(report, c.name, c.name, listing=False),
                   figure_files(figure, f"{c.name}-curve", f"{c.name}-curve") if figures else None]
     items += [report_file(summary, "summary", "summary", listing=False),
