@@ -20,6 +20,7 @@ from camgen.core.errors import SpecError
 from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
 from camgen.core.parts import Placed
+from camgen.core.writers import REGISTRY
 from linkgen.linkage_design import LinkageDesign, design_linkage
 from linkgen.kit import placed_solids
 from linkgen.parts import LinkageBuild
@@ -54,9 +55,8 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
     formats, name = spec.output.formats, spec.name
     report = linkage_report(design)
     items: list[Item | None] = []
-    if design.build is None and "step" in formats:
-        raise SpecError("'step' writes the linkage's parts, which `linkgen build` makes from the [parts] table; "
-                        "leave 'step' out here", "output.formats")
+    if design.build is None:
+        _refuse_parts_formats(spec)
     if design.kit is not None:
         kit = design.kit
         items += _parts_items(name, kit.build, formats)
@@ -104,6 +104,24 @@ def write_linkage(design: LinkageDesign, directory: str | Path) -> dict[str, str
         A file could not be written.
     """
     return write_bundle(linkage_bundle(design), directory)
+
+
+#: the roles of a format that writes parts (a part's or sheet's drawing, a mesh, solids)
+_PART_ROLES = {"part", "sheet", "mesh", "solids"}
+
+
+def _refuse_parts_formats(spec: Any) -> None:
+    """Refuse, naming ``output.formats``, a parts' format asked of a design made without parts (``linkgen analyze``,
+    or a template without ``[parts]``): STEP whenever it is named, DXF, cut SVG, STL and 3MF when the template or
+    ``--set`` names them (the default list has them, and a design without parts then just writes none)."""
+    formats = spec.output.formats
+    named = "formats" in spec.output.model_fields_set
+    asked = [f for f in formats if f in REGISTRY and set(REGISTRY[f].files) & _PART_ROLES and (named or f == "step")]
+    if asked:
+        names = ", ".join(f"'{f}'" for f in asked)
+        verb = "writes" if len(asked) == 1 else "write"
+        raise SpecError(f"{names} {verb} the linkage's parts, which `linkgen build` makes from the [parts] table; "
+                        f"leave {names} out here", "output.formats")
 
 
 def _parts_items(name: str, build: LinkageBuild, formats: Any) -> list[Item | None]:

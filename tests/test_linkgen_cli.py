@@ -127,3 +127,20 @@ def test_console_script_as_a_process(tmp_path):
     assert done.returncode == 0, done.stderr
     assert json.loads(done.stdout)["inversion"] == "crank-rocker"
     assert (tmp_path / "out" / "crank-rocker" / "crank-rocker.json").exists()
+
+
+@pytest.mark.parametrize("template, formats, named", [
+    ("slider-crank.toml", '["json", "dxf"]', "'dxf' writes"),                # no [parts] table
+    ("slider-crank.toml", '["json", "stl", "3mf"]', "'stl', '3mf' write"),
+    ("crank-rocker.toml", '["cut-svg", "json"]', "'cut-svg' writes"),         # analyze makes no parts
+])
+def test_parts_formats_named_without_parts_are_refused(tmp_path, template, formats, named):
+    """A parts' format named in ``output.formats`` of a design made without parts is one line, not files quietly
+    left out; the default list (which has them) still writes what it can."""
+    result = CliRunner().invoke(main, ["analyze", str(ROOT / "templates" / template), "-o", str(tmp_path / "out"),
+                                       "--set", f"output.formats={formats}"])
+    assert result.exit_code == 2, result.output
+    assert result.output.startswith(f"error: output.formats: {named} the linkage's parts, which `linkgen build`")
+    assert result.output.count("\n") == 1 and not (tmp_path / "out").exists()
+    default = CliRunner().invoke(main, ["analyze", str(ROOT / "templates" / template), "-o", str(tmp_path / "d")])
+    assert default.exit_code == 0 and sorted(p.suffix for p in (tmp_path / "d").iterdir()) == [".html", ".json"]
