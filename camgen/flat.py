@@ -136,13 +136,16 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
     rig = Rig.of(spec.name, spec.motion, disc_mount(spec.follower, spec.cam.rotation))
     follower = kind_of(spec.cam.kind).follower
     table = spec.cam
-    if isinstance(table, BarrelTable) and base_radius is None:  # no base circle: the plate's height under the roller
+    if base_radius is not None:
+        rb = base_radius
+    elif isinstance(table, BarrelTable):                # no base circle: the plate's height under the roller
         height = BarrelGeometry.of(table, spec.follower, spec.motion).rest_height - rr
         return Cam(spec.name, rig.program(None), follower(spec, height, rr), height)
-    rb = base_radius if base_radius is not None or isinstance(table, BarrelTable) else table.base_radius
-    if rb is None or rb == "auto":
+    elif isinstance(table.base_radius, str):
         raise SpecError('is "auto": size the cam first (size_disc) and build it with that base radius',
                         "cam.base_radius")
+    else:
+        rb = table.base_radius
     program = rig.program(rb + rr)
     rig.mount.check_fits(rb, program)                   # a follower whose reach depends on how far it moves
     return Cam(spec.name, program, follower(spec, rb, rr), rb)

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -359,7 +360,7 @@ def pair_forces(pair: tuple[Cam, Cam], ld: Loading, omega: float) -> tuple[Any, 
     first, second = pair
     ratio = getattr(first.follower, "arm_length", 1.0) / getattr(second.follower, "arm_length", 1.0)
 
-    def loaded(sign: float) -> Any:
+    def loaded(sign: float) -> Callable[[Any, np.ndarray], np.ndarray]:
         return lambda g, m: np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
 
     return loaded(1.0), loaded(-ratio)
