@@ -24,6 +24,8 @@ from camgen.core.spec import OutputTable
 from camgen.core.writers import EXTRAS, FORMATS, OptionalFormat
 from camgen.followers import FOLLOWERS, FollowerName
 from camgen.laws import REGISTRY, LawName
+from linkgen.dynamics.materials import PINS, SHEETS, PinName, SheetName
+from linkgen.dynamics.table import DynamicsTable
 from tests.conftest import ROOT
 
 needs_mypy = pytest.mark.skipif(importlib.util.find_spec("mypy") is None,
@@ -91,7 +93,8 @@ def test_mypy_applies_the_projects_settings(tmp_path):
 ALIASES = {"LawName": (LawName, tuple(REGISTRY)), "FollowerName": (FollowerName, tuple(FOLLOWERS)),
            "MaterialName": (MaterialName, tuple(MATERIALS)), "BoltName": (BoltName, tuple(BOLTS)),
            "BearingName": (BearingName, tuple(BEARINGS)), "BearingChoice": (BearingChoice, (*BEARINGS, "none")),
-           "OptionalFormat": (OptionalFormat, tuple(EXTRAS))}
+           "OptionalFormat": (OptionalFormat, tuple(EXTRAS)), "SheetName": (SheetName, tuple(SHEETS)),
+           "PinName": (PinName, tuple(PINS))}
 
 
 @pytest.mark.parametrize("name", ALIASES)
@@ -105,3 +108,5 @@ def test_the_tables_take_the_registries_names():
     assert get_args(get_args(OutputTable.model_fields["formats"].annotation)[0]) == FORMATS + tuple(EXTRAS)
     assert get_args(KitTable.model_fields["bolt"].annotation) == tuple(BOLTS)
     assert get_args(CamKitTable.model_fields["bearing"].annotation) == (*BEARINGS, "none")
+    assert get_args(DynamicsTable.model_fields["material"].annotation) == tuple(SHEETS)
+    assert get_args(DynamicsTable.model_fields["pins"].annotation) == tuple(PINS)
