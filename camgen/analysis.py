@@ -77,7 +77,7 @@ def _concave(g: PitchGeometry) -> np.ndarray:
 
 
 def _cusp(g: PitchGeometry) -> np.ndarray:
-    return -g.rho
+    return -g.face_rho
 
 
 def convex_curvature_max(cam: Cam) -> tuple[float, float]:

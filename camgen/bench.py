@@ -306,7 +306,7 @@ def speed_ratios(repeats: int, out: Path) -> list[dict]:
                                                 'output.formats=["dxf","stl","json"]'], "<= 1.5x"),
                 ("camgen laws", ["laws"], "<= 0.25 s")]
     for what, args, goal in commands:
-        rows.append(ratio_row(what, label, lambda args=args: process_seconds([python, "-m", "camgen", *args]),
+        rows.append(ratio_row(what, label, functools.partial(process_seconds, [python, "-m", "camgen", *args]),
                               lambda: process_seconds(reference), repeats, unit="cpu s", goal=goal))
     return rows
 
@@ -332,8 +332,8 @@ def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
     rho = design_cam(validate_spec(apply_overrides(BASE, [("follower.offset", 0.0)]))).analysis.pitch_rho_min_mm
     for side, sign in (("below", -1), ("above", 1)):
         yield (f"roller radius 1e-9 {side} the smallest convex radius",
-               lambda s=sign: cam({"follower.offset": 0.0, "follower.roller_radius": rho + s * 1e-9,
-                                   "cam.base_radius": 50.0 - rho - s * 1e-9, "cam.bore": 0.0}))
+               functools.partial(cam, {"follower.offset": 0.0, "follower.roller_radius": rho + sign * 1e-9,
+                                       "cam.base_radius": 50.0 - rho - sign * 1e-9, "cam.bore": 0.0}))
     yield "rise over 1 degree", lambda: cam({"motion.0.angle": 1.0, "motion.1.angle": 179.0})
     yield "rise over 358.9999 degrees", lambda: cam({"motion.0.angle": 358.9999, "motion.1.angle": 0.5,
                                                      "motion.2.angle": 0.5, "motion.3.angle": 0.0001})

@@ -68,8 +68,9 @@ class Cam:
         theta = np.asarray(theta, dtype=float)
         return self.follower.pitch(theta, self.program.evaluate(theta))
 
-    def segment_pitch(self, index: int, theta: np.ndarray) -> PitchGeometry:
-        """Pitch geometry on segment ``index`` only, including its end (one-sided limits at both ends)."""
+    def segment_pitch(self, index: int, theta: np.ndarray | float) -> PitchGeometry:
+        """Pitch geometry on segment ``index`` only at cam angles ``theta`` (radians, an array or one number, taken
+        as an array of one), including its end (one-sided limits at both ends)."""
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         return self.follower.pitch(theta, self.program.segments[index].evaluate(theta))
 
@@ -107,7 +108,8 @@ class Cam:
         :meth:`corners` and :meth:`Program.jumps`, the same numbers as their own evaluation). The asks in the law's
         variable are evaluated first, then those in cam angles (each point's numbers are its own either way)."""
         program = self.program
-        first, later = [], []                           # the law's variable before, cam angles after
+        first: list[int] = []                           # the law's variable before, cam angles after
+        later: list[int] = []
         for k, a in enumerate(asks):
             (first if a[2] else later).append(k)
         order = first + later
@@ -121,14 +123,14 @@ class Cam:
         theta, motion = program._table.on(np.concatenate(index), np.concatenate(x), cut)
         g = self.follower.pitch(theta, motion)
         out: list[Any] = [None] * len(asks)
-        a = 0
+        at = 0
         for k, part in zip(order, x, strict=False):
-            out[k] = g.part(a, a + part.size)
-            a += part.size
+            out[k] = g.part(at, at + part.size)
+            at += part.size
         if boundaries:
-            program.known_boundaries(motion[:, a:])
+            program.known_boundaries(motion[:, at:])
             n = len(program.segments)
-            self.__dict__["_boundaries"] = g.part(a, a + n), g.part(a + n, a + 2 * n)
+            self.__dict__["_boundaries"] = g.part(at, at + n), g.part(at + n, at + 2 * n)
         return out
 
     def corners(self) -> list[tuple[int, float]]:
@@ -166,8 +168,8 @@ class Cam:
             gap = starts.point[i] - ends.point[i]
             if np.linalg.norm(gap) <= 1e-9 * max(1.0, self.base_radius):
                 continue
-            side = ends if abs(ends.rho[i]) >= abs(starts.rho[i]) else starts
-            ahead = side.d1[i] / side.rho[i]                 # the way a sound profile runs there
+            side = ends if abs(ends.face_rho[i]) >= abs(starts.face_rho[i]) else starts
+            ahead = side.d1[i] / side.face_rho[i]                 # the way a sound profile runs there
             out.append((i, float(gap @ ahead / np.linalg.norm(ahead))))
         return out
 

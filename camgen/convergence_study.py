@@ -68,7 +68,7 @@ def convergence(cam: Cam, tolerances: Iterable[float], curves: str = "polylines"
     """
     rows = []
     for tol in tolerances:
-        times, outline = [], None
+        times = []
         for _ in range(repeats):
             start = time.perf_counter()
             outline = exact_outline(cam, tol, curves)

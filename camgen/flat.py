@@ -14,6 +14,7 @@ from typing import Any
 
 from camgen.cam import Cam
 from camgen.core.errors import SpecError
+from camgen.followers.barrel import BarrelGeometry
 from camgen.kinds import kind_of, spec_kind
 from camgen.profile import Body, Finish, Profile, design_profile
 from camgen.rig import Mount, Rig, disc_mount
@@ -132,14 +133,22 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
         naming the key.
     """
     rr = spec.follower.contact_radius if roller_radius is None else roller_radius
-    rb = base_radius if base_radius is not None else (
-        None if isinstance(spec.cam, BarrelTable) else spec.cam.base_radius)   # a barrel has no base circle
     rig = Rig.of(spec.name, spec.motion, disc_mount(spec.follower, spec.cam.rotation))
-    sized = isinstance(rb, (int, float))                # a barrel's is None, an unsized template's "auto"
-    program = rig.program(rb + rr if sized else None)
-    if sized:                                           # a follower whose reach depends on how far it moves
-        rig.mount.check_fits(rb, program)
-    return Cam(spec.name, program, kind_of(spec.cam.kind).follower(spec, rb, rr), rb)
+    follower = kind_of(spec.cam.kind).follower
+    table = spec.cam
+    if base_radius is not None:
+        rb = base_radius
+    elif isinstance(table, BarrelTable):                # no base circle: the plate's height under the roller
+        height = BarrelGeometry.of(table, spec.follower, spec.motion).rest_height - rr
+        return Cam(spec.name, rig.program(None), follower(spec, height, rr), height)
+    elif isinstance(table.base_radius, str):
+        raise SpecError('is "auto": size the cam first (size_disc) and build it with that base radius',
+                        "cam.base_radius")
+    else:
+        rb = table.base_radius
+    program = rig.program(rb + rr)
+    rig.mount.check_fits(rb, program)                   # a follower whose reach depends on how far it moves
+    return Cam(spec.name, program, follower(spec, rb, rr), rb)
 
 
 def parabolic_ratios(motion: Any) -> list[tuple[int, float]]:

@@ -32,6 +32,7 @@ in the outline's measured error.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import math
 from dataclasses import dataclass
@@ -93,13 +94,15 @@ class _Path:
         self.cam = cam
         segments = cam.program.segments
         jumps = dict(cam.steps())
-        starts, kinds, owners, ends = [], [], [], []
+        starts: list[float] = []
+        kinds: list[int] = []
+        owners: list[int] = []
+        ends: dict[int, tuple[np.ndarray, np.ndarray]] = {}    # a straight piece's end points, by its place
         u = 0.0
         for i, seg in enumerate(segments):
             starts.append(u)
             kinds.append(0)
             owners.append(i)
-            ends.append(None)
             u += seg.end - seg.start
             if i in jumps:
                 j = (i + 1) % len(segments)
@@ -107,8 +110,8 @@ class _Path:
                 b = cam.segment_pitch(j, segments[j].start).point[0]
                 starts.append(u)
                 kinds.append(1 if jumps[i] > 0 else -1)
+                ends[len(owners)] = a, b
                 owners.append(i)
-                ends.append((a, b))
                 u += float(np.linalg.norm(b - a)) / self.scale
         self.total = u
         self.starts = np.array([*starts, u])
@@ -204,6 +207,11 @@ def _check_turning(cam: Cam) -> None:
                           "cam turns): no cam can be cut for it")
 
 
+def _fold_depth(cam: Cam, index: int, theta: np.ndarray) -> np.ndarray:
+    """-rho (mm) of the face's profile along segment ``index`` at cam angles ``theta`` (rad): positive in a fold."""
+    return -cam.segment_pitch(index, theta).face_rho
+
+
 def _sample(cam: Cam, path: _Path) -> _Lines:
     segments = cam.program.segments
     thetas, uf, ul = [], [], []
@@ -212,9 +220,9 @@ def _sample(cam: Cam, path: _Path) -> _Lines:
         grid = seg.start + (seg.end - seg.start) * np.arange(m) / m
         extra = []
         if seg.kind != "dwell":
-            rho = cam.segment_pitch(i, grid).rho
+            rho = cam.segment_pitch(i, grid).face_rho
             before, after = np.r_[rho[:1], rho[:-1]], np.r_[rho[1:], rho[-1:]]
-            at, least = maximise(lambda t, i=i: -cam.segment_pitch(i, t).rho, seg.start, seg.end)
+            at, least = maximise(functools.partial(_fold_depth, cam, i), seg.start, seg.end)
             centres = [*grid[(rho < 0) & (rho <= before) & (rho <= after)], *([at] if -least < 0 else [])]
             h = (seg.end - seg.start) / m
             for c in centres:
@@ -351,8 +359,8 @@ class FlatEnvelope:
             else:
                 found.append(corner)
         found = self._merged(found)
-        for k in np.flatnonzero(path.kinds < 0):        # a jump back is always inside a fold
-            mid = 0.5 * (path.starts[k] + path.starts[k + 1])
+        for back in np.flatnonzero(path.kinds < 0):     # a jump back is always inside a fold
+            mid = 0.5 * (path.starts[back] + path.starts[back + 1])
             if not any(_inside(mid, c, path.total) for c in found):
                 raise DesignError(f"the fold at {math.degrees(path.at(mid).theta[0]) % 360:.4g} degrees could not be "
                                   "cut off; loosen output.tolerance or smooth the motion")
@@ -542,7 +550,7 @@ class FlatEnvelope:
             return (a + lo / length * (b - a) + offset * normal)[None, :], np.zeros(1), 0.0
         whole = lo <= 0 and hi >= seg.end - seg.start
         span = None if whole else (seg.start + lo, min(seg.start + hi, seg.end))
-        if self.curves == "biarcs" and (whole or span[1] - span[0] > 1e-6):
+        if self.curves == "biarcs" and (span is None or span[1] - span[0] > 1e-6):
             try:
                 return stretch(cam, i, tolerance, -offset, "biarcs", span)
             except DesignError:                         # a fold left uncut bends too sharply for arcs: chords

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -142,7 +143,7 @@ def torque(ld: Loading, omega: float, m: np.ndarray, theta: np.ndarray | None = 
     return ld.force(m, omega, theta) * ld.scale * m[1] / 1000.0
 
 
-def _torques(ld: Loading, omega: float, push: Any) -> tuple[Any, Any, Any]:
+def _torques(ld: Loading, omega: float, push: Any) -> tuple[Any, ...]:
     """The quantities (of pitch geometry and motion) whose peaks :func:`_torque_figures` takes: the torque, its
     negative and ``push(geometry, motion)``, the normal contact force (N)."""
     return (lambda g, m: torque(ld, omega, m, g.theta), lambda g, m: -torque(ld, omega, m, g.theta), push)
@@ -173,16 +174,17 @@ def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) ->
     quantities = _torques(ld, omega, lambda g, m: normal_force(ld, omega, g, m))
     knife = cam.contact_radius == 0 and not cam.follower.flat
 
-    def pressure(g: Any, m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        return contact_pressure(cam, contact, g, normal_force(ld, omega, g, m))
+    hertz = None if contact is None or knife else contact
 
-    stressed = contact is not None and not knife
-    peaks = _peaks_each(cam, *quantities, *((lambda g, m: pressure(g, m)[0]),) * stressed)
+    def pressure(g: Any, m: np.ndarray, hertz: Contact) -> tuple[np.ndarray, np.ndarray]:
+        return contact_pressure(cam, hertz, g, normal_force(ld, omega, g, m))
+
+    peaks = _peaks_each(cam, *quantities, *(() if hertz is None else (lambda g, m: pressure(g, m, hertz)[0],)))
     out = _torque_figures(ld, omega, peaks[:3], _load_nodes(cam, ld))
     if contact is not None and knife:
         out["stress"] = {"note": "a knife edge touches the cam on a line of no width: no Hertz pressure"}
-    elif stressed:
-        out["stress"] = _stress(cam, contact, pressure, peaks[3])[0]
+    elif hertz is not None:
+        out["stress"] = _stress(cam, hertz, lambda g, m: pressure(g, m, hertz), peaks[3])[0]
     return out
 
 
@@ -357,8 +359,11 @@ def pair_forces(pair: tuple[Cam, Cam], ld: Loading, omega: float) -> tuple[Any, 
     the arms' ratio of a bell crank (1 for a yoke; see :func:`pair_report`)."""
     first, second = pair
     ratio = getattr(first.follower, "arm_length", 1.0) / getattr(second.follower, "arm_length", 1.0)
-    return tuple(lambda g, m, sign=sign: np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
-                 for sign in (1.0, -ratio))
+
+    def loaded(sign: float) -> Callable[[Any, np.ndarray], np.ndarray]:
+        return lambda g, m: np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
+
+    return loaded(1.0), loaded(-ratio)
 
 
 def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float, contact: Contact | None = None

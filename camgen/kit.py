@@ -66,10 +66,15 @@ class CamKit:
         out = []
         for solid in self.solids:
             stem = solid.name.rpartition("-")[0] if solid.name.rpartition("-")[2].isdigit() else solid.name
-            part = made.get(solid.name) or made.get(stem)
-            if solid.bought or (part is None and (cam is None or solid.made)):
+            if solid.bought:
                 continue
-            part = cam if part is None else _named(part, solid.name)
+            part = made.get(solid.name) or made.get(stem)
+            if part is not None:
+                part = _named(part, solid.name)
+            elif not solid.made:                        # a solid of no made part: the cam, when given
+                part = cam
+            if part is None:
+                continue
             angle, (x, y) = solid.pose(0)
             out.append(Placed(solid.name, (part,), angle, (float(x), float(y), solid.z)))
         return tuple(out)

@@ -209,9 +209,9 @@ def _plan(lo: bytes, hi: bytes, steady: tuple[Any, ...], reverse: tuple[Any, ...
     x = np.concatenate([x.ravel(), low[steady_pieces] + width[steady_pieces] * _unit(n)[0][0]])
     piece = np.concatenate([np.repeat(moving, n), steady_pieces]).astype(np.intp)
     x.flags.writeable = piece.flags.writeable = False
-    lo, hi, backwards = low.tolist(), high.tolist(), _flags(reverse, p)
-    resting = [(i, _first_largest([(lo[i], 0.0), (hi[i], 0.0)], 0.0, backwards[i])[0]) for i in steady_pieces]
-    return _Plan(lo, hi, width.tolist(), moving, resting, backwards, (x, piece))
+    starts, ends, backwards = low.tolist(), high.tolist(), _flags(reverse, p)
+    resting = [(i, _first_largest([(starts[i], 0.0), (ends[i], 0.0)], 0.0, backwards[i])[0]) for i in steady_pieces]
+    return _Plan(starts, ends, width.tolist(), moving, resting, backwards, (x, piece))
 
 
 @functools.lru_cache(maxsize=16)

@@ -15,7 +15,7 @@ import functools
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
@@ -246,6 +246,8 @@ def _spaced(index: int, aux: np.ndarray, cum: np.ndarray, tolerance: float, fact
 
 
 Span = tuple[float, float] | None
+#: how numpy treats a floating-point error (np.errstate's values)
+ErrorMode = Literal["ignore", "warn", "raise", "call", "print", "log"]
 
 
 def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float) -> Maker:
@@ -352,7 +354,13 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     and 8 n - 1 probes, asked in one ask (every dwell's vertices, then every dwell's probes)."""
     segments = cam.program.segments
     turn = -cam.follower.sense
-    theta, probe, at, on, first, within, bulges = [], [], [], [], [], [], []
+    theta: list[float] = []
+    probe: list[float] = []
+    at: list[int] = []
+    on: list[int] = []
+    first: list[int] = []
+    within: list[int] = []
+    bulges: list[float] = []
     for i, span in stretches:
         start, beta = (segments[i].start, segments[i].beta) if span is None else (span[0], span[1] - span[0])
         n = max(1, math.ceil(beta / (math.pi / 2) - 1e-12))
@@ -381,7 +389,9 @@ def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     for all the moving segments' chords, or one a moving segment for biarcs; and where each stretch's result is
     among theirs, (maker, item of its list or None) each (see :func:`_made`)."""
     segments = cam.program.segments
-    dwells, moving, places = [], [], []                 # each stretch's place among the dwells' or the moving ones'
+    dwells: list[tuple[int, Span]] = []
+    moving: list[tuple[int, Span]] = []
+    places: list[tuple[bool, int]] = []                 # each stretch's place among the dwells' or the moving ones'
     for stretch in stretches:
         if segments[stretch[0]].kind == "dwell":
             places.append((True, len(dwells)))
@@ -413,13 +423,14 @@ def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
     return _made(plan, cam.serve([quietly(together(makers))])[0])[0]
 
 
-def quietly(maker: Maker, **errstate: str) -> Maker:
+def quietly(maker: Maker, all: ErrorMode | None = None) -> Maker:
     """``maker`` with its steps run in a copy of the caller's context in which numpy's floating-point errors are
-    treated as ``errstate`` says (np.errstate's keywords; by default a division by zero and an invalid operation
-    are silenced: a surface's curvature where it has none, see :func:`_bend`), set once for all its steps rather
+    treated as ``all`` says (np.errstate's ``all``; by default a division by zero and an invalid operation are
+    silenced: a surface's curvature where it has none, see :func:`_bend`), set once for all its steps rather
     than a np.errstate a step (np.errstate sets a context variable)."""
     quiet = contextvars.copy_context()
-    quiet.run(np.errstate(**(errstate or {"divide": "ignore", "invalid": "ignore"})).__enter__)   # the copy's own
+    state = np.errstate(divide="ignore", invalid="ignore") if all is None else np.errstate(all=all)
+    quiet.run(state.__enter__)                          # the copy's own
     try:
         ask = quiet.run(next, maker)
         while True:
@@ -471,7 +482,8 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     rr = cam.contact_radius - offset
     segments = cam.program.segments
     plate = cam.is_plate
-    stretches = [(i, None) for i, seg in enumerate(segments) if not (plate and seg.kind == "dwell")]
+    stretches: list[tuple[int, Span]] = [(i, None) for i, seg in enumerate(segments)
+                                         if not (plate and seg.kind == "dwell")]
 
     def convex() -> None:
         if rr > 0 and any(turn > 0 for _, turn in cam.corners()):

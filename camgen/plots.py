@@ -7,7 +7,7 @@ each time a figure is written, and took 0.4 s of the 0.9 s these two figures cos
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -15,6 +15,10 @@ from camgen.cam import Cam
 from camgen.analysis import face_extent
 from camgen.core.figures import figure, fit_equal
 from camgen.flat import FlatCamDesign
+
+if TYPE_CHECKING:
+    from camgen.program import Jump
+    from camgen.spec import CamSpec
 
 
 def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarray]:
@@ -30,7 +34,21 @@ def sample_cycle(cam: Cam, per_segment: int = 181) -> tuple[np.ndarray, np.ndarr
     return np.concatenate(thetas), np.concatenate(motions, axis=1)
 
 
-def svaj_figure(design: FlatCamDesign) -> Any:
+class Traced(Protocol):
+    """What :func:`svaj_figure` draws of a design (a disc, plate, grooved or conjugate cam's, or a barrel's): its
+    cam, its spec (its name and ``cam.rpm``) and its program's jumps."""
+
+    @property
+    def cam(self) -> Cam: ...
+
+    @property
+    def spec(self) -> CamSpec: ...
+
+    @property
+    def jumps(self) -> tuple[Jump, ...]: ...
+
+
+def svaj_figure(design: Traced) -> Any:
     """Displacement, velocity, acceleration and jerk against cam angle: in time at ``cam.rpm`` (mm, m/s, m/s^2,
     m/s^3; an arm's swing in degrees and rad/s^n), else per radian of cam angle."""
     theta, motion = sample_cycle(design.cam)
@@ -94,9 +112,10 @@ def checks_figure(design: FlatCamDesign) -> Any:
         rho = g.rho if g.rho is not None else 1.0 / g.kappa - cam.contact_radius
     radius_panel(axes[1], [("cam surface", deg, rho, "C0")], _size(cam), cam.contact_radius, spec.cam.min_rho_margin,
                  spec.output.tool_radius, flat=cam.follower.flat)
-    if forces:
+    rpm = spec.cam.rpm
+    if forces and rpm is not None:                      # forces are found at a speed
         ld = spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
-        omega = spec.cam.rpm * 2 * math.pi / 60
+        omega = rpm * 2 * math.pi / 60
         push = normal_force(ld, omega, g, motion)
         axes[2].plot(deg, push, color="C0", lw=1.2, label="contact force (N)")
         axes[2].axhline(0.0, color="C3", lw=0.8, ls="--")
@@ -234,6 +253,9 @@ def groove_checks_plot(spec: Any, cam: Cam, forces: dict[str, Any], limit_deg: f
         def force(g: Any, m: np.ndarray) -> np.ndarray:
             return np.maximum(sign * normal_force(ld, omega, g, m), 0.0)
 
+        if contact is None:                             # no materials: no pressure panel
+            return force, None
+
         def pressure(g: Any, m: np.ndarray) -> np.ndarray:
             return flank_pressure(contact, g, sign * force(g, m), d, rr)[0]
         return force, pressure
@@ -330,7 +352,7 @@ def _no_ticks() -> Any:
     return NullLocator()
 
 
-def _machine_units(design: FlatCamDesign, motion: np.ndarray) -> tuple[np.ndarray, list[str]]:
+def _machine_units(design: Traced, motion: np.ndarray) -> tuple[np.ndarray, list[str]]:
     """The rows s, s', s'', s''' and their axis labels: per radian of cam angle without a speed, in time at
     ``cam.rpm`` (v = omega s', a = omega^2 s'', j = omega^3 s''', in m/s^n, or rad/s^n for an arm)."""
     u = design.cam.follower.lift_unit

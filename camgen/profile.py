@@ -423,10 +423,11 @@ def _certainly_clear(bore: float, holes: tuple, contour: Contour, tolerance: flo
     by THIN_WALL more), every two holes further apart than they reach, each with room to spare for rounding. False
     where that is not certain: the exact checks then decide, raise their errors and measure the wall. ``bore``: the
     bore's diameter (mm); ``holes``: the body's holes as drawn (:func:`body_holes` grown by 0)."""
-    circles = [_hole_circle(hole) for hole in holes]    # the bore first, centred on the origin
-    if not circles:
+    found = [_hole_circle(hole) for hole in holes]      # the bore first, centred on the origin
+    if not found:
         return True
-    if None in circles:
+    circles = [c for c in found if c is not None]
+    if len(circles) < len(found):                       # a hole that is not a circle: the exact checks decide
         return False
     for (c, r), (d, q) in itertools.combinations(circles, 2):
         if not abs(c - d) - r - q > _CERTAIN * (1.0 + abs(c) + abs(d) + r + q):

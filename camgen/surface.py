@@ -46,8 +46,8 @@ def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
         dist = np.linalg.norm(cam.segment_pitch(i, theta).point - points, axis=1)
         best = np.minimum(best, dist)
     segments = cam.program.segments
-    for i, step in cam.steps():                        # a flat face's flats: the face line between two contacts
-        if step > 0:
+    for i, jump in cam.steps():                        # a flat face's flats: the face line between two contacts
+        if jump > 0:
             j = (i + 1) % len(segments)
             a = cam.segment_pitch(i, segments[i].end).point[0]
             b = cam.segment_pitch(j, segments[j].start).point[0]

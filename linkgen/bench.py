@@ -341,7 +341,10 @@ def hard_cases() -> list[dict]:
 
 def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
     fb = FourBar(100, 70, 60, 80)
-    _, hi = fb.input_ranges()[0]
+    ranges = fb.input_ranges()
+    if ranges is None:                                  # a rocker: its crank has a toggle
+        raise ValueError("the hard case's four-bar turns fully: it has no toggle")
+    _, hi = ranges[0]
     for offset in (0.0, 1e-12):
         def toggle(offset: float = offset) -> str:
             p = fb.positions([hi - offset])

@@ -141,7 +141,8 @@ def build(template: Path, output: Path | None, overrides: tuple[str, ...]) -> No
     directory = output if output is not None else Path("out") / spec.name
     files = write_linkage(design, directory)
     built = design.build
-    click.echo(f"{spec.name}: {len(built.parts)} parts; layers from the bottom: {', '.join(built.layer_names)}")
+    if built is not None:                               # parts=True: made, or refused without a [parts] table
+        click.echo(f"{spec.name}: {len(built.parts)} parts; layers from the bottom: {', '.join(built.layer_names)}")
     if "routing" in design.report:
         from camgen.core.routing import tool_warning
 

@@ -19,7 +19,7 @@ from linkgen.dynamics.run import Dynamics, flywheel_build
 from linkgen.dynamics.report import dynamics_report
 from linkgen.effort import Statics, statics_of, statics_report
 from linkgen.kit import LinkageKit, base_plate, linkage_kit
-from linkgen.mechanisms import Mechanism
+from linkgen.mechanisms import Mechanism, MechanismTable
 from linkgen.mechanisms.common import Figure
 from linkgen.parts import LinkageBuild, build_parts
 from linkgen.slack import Slack, slack_of
@@ -224,6 +224,8 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
     if parts and wanted is None:
         raise SpecError("missing: give a [parts] table (width, thickness, pin_diameter, ...)", "parts")
     mechanism, table = spec.mechanism, spec.linkage
+    if not isinstance(table, MechanismTable):
+        raise TypeError(f"{type(table).__name__} is not a [linkage] table: it has no type and rpm")
     kinematics = mechanism.build(table)
     report: dict[str, Any] = {"name": spec.name, "type": table.type, "conventions": CONVENTIONS,
                               "lengths_mm": lengths(table), "rpm": table.rpm,

@@ -1,11 +1,10 @@
 """The type hints hold: mypy, with the settings of pyproject.toml's [tool.mypy] (the pydantic plugin), over camgen
-and linkgen finds exactly :data:`BUDGET` errors; and it is shown finding what it should in a file written to break
-those settings once each, so that a low count means the project's settings were read and applied. Each Literal
-written out for mypy names exactly its registry's entries.
+and linkgen finds no errors (issue 31's goal), but those of :data:`PENDING`; and it is shown finding what it should
+in a file written to break those settings once each, so that no errors means the project's settings were read and
+applied. Each Literal written out for mypy names exactly its registry's entries.
 
-Issue 31's goal is no errors at all. Until then the count is held to the budget: a new error fails the test (a
-fix that leaves the budget above the count is said in the test's output, so that the budget is lowered; not failed,
-since mypy's count also moves with numpy's and pydantic's own hints, which CI installs anew).
+A failure lists mypy's findings. mypy's findings also move with numpy's and pydantic's own hints, which CI installs
+anew: a new one is fixed where it is found (an annotation, a narrowing), not silenced.
 """
 from __future__ import annotations
 
@@ -25,13 +24,16 @@ from camgen.core.spec import OutputTable
 from camgen.core.writers import EXTRAS, FORMATS, OptionalFormat
 from camgen.followers import FOLLOWERS, FollowerName
 from camgen.laws import REGISTRY, LawName
+from linkgen.dynamics.materials import PINS, SHEETS, PinName, SheetName
+from linkgen.dynamics.table import DynamicsTable
 from tests.conftest import ROOT
 
 needs_mypy = pytest.mark.skipif(importlib.util.find_spec("mypy") is None,
                                 reason="mypy is not installed: pip install '.[test]' (the test extra has it)")
 
-#: mypy's error count over camgen and linkgen; lower it with each fix, down to issue 31's goal of 0
-BUDGET = 110
+#: mypy's findings (file, error code) left in a file another branch rewrites at the same time (camgen/spec.py,
+#: whose tables move into the kinds' packages), for the lead to fix once both are merged; then this is emptied
+PENDING = {("camgen/spec.py", "unused-ignore"), ("camgen/spec.py", "assignment")}
 
 
 def _mypy(cwd, *args: str) -> subprocess.CompletedProcess:
@@ -46,14 +48,18 @@ def _count(result: subprocess.CompletedProcess) -> int:
     return int(found[1] or 0)
 
 
+def _findings(result: subprocess.CompletedProcess) -> list[tuple[str, str]]:
+    """Each error of mypy's output as (file, error code), in its order; all of them, as its summary counts."""
+    found = [(m[1], m[2]) for m in re.finditer(r"^([\w./-]+\.py):\d+: error: .*\[([a-z-]+)\]$", result.stdout, re.M)]
+    assert len(found) == _count(result), result.stdout + result.stderr
+    return found
+
+
 @needs_mypy
-def test_mypy_finds_no_more_errors_than_the_budget():
+def test_mypy_finds_no_errors():
     result = _mypy(ROOT, "camgen", "linkgen")
-    count = _count(result)
-    assert count <= BUDGET, (f"mypy finds {count} errors, {count - BUDGET} more than the budget of {BUDGET}; fix "
-                             f"the new ones:\n{result.stdout}")
-    if count < BUDGET:
-        print(f"mypy finds {count} errors, fewer than the budget: lower BUDGET in tests/test_types.py to {count}")
+    new = [f for f in _findings(result) if f not in PENDING]
+    assert not new, f"mypy finds {len(new)} errors; fix them:\n{result.stdout}"
 
 
 #: a module that breaks each setting once: its lines, and the (line, code) findings mypy must give, no others
@@ -87,7 +93,8 @@ def test_mypy_applies_the_projects_settings(tmp_path):
 ALIASES = {"LawName": (LawName, tuple(REGISTRY)), "FollowerName": (FollowerName, tuple(FOLLOWERS)),
            "MaterialName": (MaterialName, tuple(MATERIALS)), "BoltName": (BoltName, tuple(BOLTS)),
            "BearingName": (BearingName, tuple(BEARINGS)), "BearingChoice": (BearingChoice, (*BEARINGS, "none")),
-           "OptionalFormat": (OptionalFormat, tuple(EXTRAS))}
+           "OptionalFormat": (OptionalFormat, tuple(EXTRAS)), "SheetName": (SheetName, tuple(SHEETS)),
+           "PinName": (PinName, tuple(PINS))}
 
 
 @pytest.mark.parametrize("name", ALIASES)
@@ -101,3 +108,5 @@ def test_the_tables_take_the_registries_names():
     assert get_args(get_args(OutputTable.model_fields["formats"].annotation)[0]) == FORMATS + tuple(EXTRAS)
     assert get_args(KitTable.model_fields["bolt"].annotation) == tuple(BOLTS)
     assert get_args(CamKitTable.model_fields["bearing"].annotation) == (*BEARINGS, "none")
+    assert get_args(DynamicsTable.model_fields["material"].annotation) == tuple(SHEETS)
+    assert get_args(DynamicsTable.model_fields["pins"].annotation) == tuple(PINS)

@@ -49,6 +49,14 @@ class PitchGeometry:
     pressure_angle: np.ndarray  # (n,) rad, signed (see the module docstring)
     rho: np.ndarray | None = None  # (n,) radius of curvature of a flat face's profile, mm
 
+    @property
+    def face_rho(self) -> np.ndarray:
+        """:attr:`rho` (mm) of a flat face's profile, which always carries it; a roller's or a knife edge's pitch
+        curve has none (ValueError)."""
+        if self.rho is None:
+            raise ValueError("a roller's or a knife edge's pitch curve has no face radius of curvature")
+        return self.rho
+
     def part(self, start: int, stop: int) -> PitchGeometry:
         """The samples ``start`` to ``stop`` (a slice, views of the same arrays)."""
         rho = None if self.rho is None else self.rho[start:stop]

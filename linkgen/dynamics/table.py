@@ -12,7 +12,7 @@ from typing import Any, Literal
 from pydantic import Field, field_validator, model_validator
 
 from camgen.core.spec import MAX_LENGTH_MM, Model, length, notes, unit
-from linkgen.dynamics.materials import PINS, SHEETS
+from linkgen.dynamics.materials import SHEETS, PinName, SheetName
 from linkgen.dynamics.motor import MotorTable
 
 #: the heaviest link (kg) and the largest inertia (kg*mm^2) a user may give
@@ -83,13 +83,13 @@ class DynamicsTable(Model):
     force, the driving torque, the shaking, the power, a flywheel and a counterweight, and whether the holes and pins
     hold (see docs/guides/dynamics.md)."""
 
-    material: Literal[tuple(SHEETS)] = Field("plywood", description="the parts' material: its density, how they "  # type: ignore[valid-type]
+    material: SheetName = Field("plywood", description="the parts' material: its density, how they "
                                              "are made (laser-cut or printed) and its allowable bearing pressure")
     density: float | None = Field(None, gt=0, le=MAX_DENSITY, description="the parts' density, instead of the "
                                   "material's", json_schema_extra=unit("kg/m^3", absent="the material's"))
     infill: float = Field(1.0, gt=0, le=1, description="printed parts (pla, petg): their solid fraction, walls and "
                           "skins counted (a 3 mm plate with two perimeters at 20 % infill is about 0.5)")
-    pins: Literal[tuple(PINS)] = Field("steel", description="the pins' material (a kit's bolts are steel)")  # type: ignore[valid-type]
+    pins: PinName = Field("steel", description="the pins' material (a kit's bolts are steel)")
     speed: float = Field(100.0, gt=0, le=MAX_SPEED_MM_S, description="a slide input's speed (a crank runs at "
                          "linkage.rpm; not with speed_profile)", json_schema_extra=unit("mm/s"))
     input_acceleration: float = Field(0.0, ge=-MAX_ACCELERATION, le=MAX_ACCELERATION,

@@ -83,8 +83,9 @@ def _area4(a: float, b: float, c: np.ndarray, out: np.ndarray | None = None,
     elif high <= q:
         x, y, z = p, q, c
     else:
-        x, z, y = np.maximum(c, p, out=next(rows)), np.minimum(c, q, out=next(rows)), np.maximum(c, q, out=next(rows))
-        np.minimum(y, p, out=y)                  # the middle side: c between q and p, else the nearer of them
+        x, z = np.maximum(c, p, out=next(rows)), np.minimum(c, q, out=next(rows))
+        middle = np.maximum(c, q, out=next(rows))
+        y = np.minimum(middle, p, out=middle)    # the middle side: c between q and p, else the nearer of them
 
     def op(ufunc: np.ufunc, u: np.ndarray | float, v: np.ndarray | float, into: np.ndarray) -> np.ndarray | float:
         return ufunc(u, v) if isinstance(u, float) and isinstance(v, float) else ufunc(u, v, out=into)

@@ -14,7 +14,7 @@ kinematics' in radians; speeds per second at the table's ``rpm``.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 from camgen.core.registry import registry as shared_registry
 from linkgen.mechanisms import (
@@ -70,6 +70,25 @@ class Mechanism(Protocol):
 
     def sketch(self, table: Any, kinematics: Any) -> Drawing | None:
         """A drawing of the linkage at one pose with its path (what Jupyter shows), or None."""
+        ...
+
+    def __hash__(self) -> int:
+        """A mechanism is hashable (a frozen dataclass): :func:`linkgen.spec.spec_model` makes a model once each."""
+        ...
+
+
+@runtime_checkable
+class MechanismTable(Protocol):
+    """What linkgen reads of every mechanism's ``[linkage]`` table (an instance of :attr:`Mechanism.table`)."""
+
+    @property
+    def type(self) -> str:
+        """The ``linkage.type`` the table was given."""
+        ...
+
+    @property
+    def rpm(self) -> float:
+        """The input speed (rpm)."""
         ...
 
 

@@ -167,11 +167,20 @@ def analysis_of(s: Structure, tracers: tuple[str, ...] = ()) -> Analysis:
     return Analysis(table_of(s, tracers), Linkage.of(s))
 
 
+def _input(table: InputTable) -> Input:
+    """The kinematic input an ``[[linkage.inputs]]`` table gives: a slide of its slider, else a crank (its
+    validator has made sure a crank names its link and pivot)."""
+    if table.slider is not None:
+        return Input("slide", slider=table.slider)
+    if table.link is None or table.pivot is None:
+        raise SpecError("give link and pivot (a crank) or slider (a slide input)", "linkage.inputs")
+    return Input("crank", table.link, table.pivot, table.relative_to)
+
+
 def structure_of(table: LinkageTable) -> Any:
     """The kinematic structure a ``[linkage]`` table draws (a :class:`SpecError` naming the field otherwise)."""
     sliders = tuple(Slider(name, t.point, t.guide, math.radians(t.angle), t.link) for name, t in table.sliders.items())
-    inputs = tuple(Input("slide", slider=i.slider) if i.slider is not None
-                   else Input("crank", i.link, i.pivot, i.relative_to) for i in table.inputs)
+    inputs = tuple(_input(i) for i in table.inputs)
     s = make_structure(dict(table.joints), dict(table.links), tuple(table.ground), sliders, inputs)
     for key, want in table.lengths.items():
         a, sep, b = key.partition("-")

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
-from linkgen.synthesis.geometry import place
+from linkgen.synthesis.geometry import place_design
 
 TWO_PI = 2.0 * math.pi
 #: a path candidate's error counts for more as its worst transmission angle falls below this (degrees): the lower
@@ -121,7 +121,7 @@ def drawn_table(d: dict[str, float], theta2: float) -> dict[str, Any]:
     """The ``[linkage]`` table (``type = "linkage"``) that draws design ``d`` (see
     :mod:`linkgen.synthesis.geometry`) in the task's frame at crank angle ``theta2`` (rad, from the ground line),
     the coupler point traced as P (A or B where it sits on a pin)."""
-    p = place(*(d[k] for k in ("x0", "y0", "theta0", "r1", "r2", "r3", "r4", "cx", "cy", "branch")), theta2)
+    p = place_design([d[k] for k in ("x0", "y0", "theta0", "r1", "r2", "r3", "r4", "cx", "cy", "branch")], theta2)
     o4 = (d["x0"] + d["r1"] * math.cos(d["theta0"]), d["y0"] + d["r1"] * math.sin(d["theta0"]))
     joints = {"O2": [d["x0"], d["y0"]], "O4": list(o4), "A": [float(p.ax), float(p.ay)],
               "B": [float(p.bx), float(p.by)]}
@@ -154,9 +154,9 @@ def coupler_sketch(d: dict[str, float], theta2: Sequence[float], targets: np.nda
     """The coupler curve over crank angles ``sweep`` (rad), the linkage at the first target, the targets and the
     points reached at ``theta2``."""
     args = [d[k] for k in ("x0", "y0", "theta0", "r1", "r2", "r3", "r4", "cx", "cy", "branch")]
-    curve = place(*args, sweep)
-    hit = place(*args, np.asarray(theta2, dtype=float))
-    first = place(*args, float(theta2[0]))
+    curve = place_design(args, sweep)
+    hit = place_design(args, np.asarray(theta2, dtype=float))
+    first = place_design(args, float(theta2[0]))
     o4 = (d["x0"] + d["r1"] * math.cos(d["theta0"]), d["y0"] + d["r1"] * math.sin(d["theta0"]))
     chain = np.array([[d["x0"], d["y0"]], [first.ax, first.ay], [first.px, first.py], [first.bx, first.by],
                       [first.ax, first.ay], [first.bx, first.by], list(o4)], dtype=float)

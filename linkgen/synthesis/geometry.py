@@ -11,6 +11,7 @@ target angles is one call.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,6 +50,13 @@ def place(x0, y0, theta0, r1, r2, r3, r4, cx, cy, branch, theta2) -> Placed:
     bx, by = ax + r3 * ex, ay + r3 * ey
     px, py = ax + cx * ex - cy * ey, ay + cx * ey + cy * ex
     return Placed(ax, ay, bx, by, px, py, z, out)
+
+
+def place_design(design: Sequence[np.ndarray | float], theta2: np.ndarray | float) -> Placed:
+    """:func:`place` of a design given as its ten numbers (or arrays, broadcast) in the module's order: x0, y0,
+    theta0, r1, r2, r3, r4, cx, cy, branch."""
+    x0, y0, theta0, r1, r2, r3, r4, cx, cy, branch = design
+    return place(x0, y0, theta0, r1, r2, r3, r4, cx, cy, branch, theta2)
 
 
 def transmission_range(r1, r2, r3, r4, start, end) -> tuple[np.ndarray, np.ndarray]:

@@ -38,7 +38,7 @@ from camgen.core.errors import SpecError
 from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row
 from linkgen.synthesis.defects import defects, sense
-from linkgen.synthesis.geometry import frame_of, place, worst_transmission
+from linkgen.synthesis.geometry import frame_of, place_design, worst_transmission
 
 TWO_PI = 2.0 * math.pi
 #: the best pairs (by transmission) given the full defect check, at most
@@ -211,7 +211,7 @@ def _candidate(p: np.ndarray, alpha: np.ndarray, o2: complex, a: complex, o4: co
     if defects((d["r1"], d["r2"], d["r3"], d["r4"]), theta, branches, task.crank):
         return None
     args = [d[k] for k in ("x0", "y0", "theta0", "r1", "r2", "r3", "r4", "cx", "cy", "branch")]
-    at = place(*args, theta)
+    at = place_design(args, theta)
     got = at.px + 1j * at.py
     line = np.angle((at.bx + 1j * at.by - at.ax - 1j * at.ay) / (b - a)) - alpha
     targets = np.column_stack([p.real, p.imag])

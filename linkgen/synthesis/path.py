@@ -41,7 +41,7 @@ from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.kinematics.grashof import classify
 from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table, fourbar_row, table_fits, weighed
 from linkgen.synthesis.defects import defects
-from linkgen.synthesis.geometry import place, transmission_range, worst_transmission
+from linkgen.synthesis.geometry import place, place_design, transmission_range, worst_transmission
 from linkgen.synthesis.parallel import run_all, where
 
 BASE = ("x0", "y0", "theta0", "r1", "r2", "r3", "r4", "cx", "cy")
@@ -201,7 +201,7 @@ def soft_constraints(base: np.ndarray, p: Problem) -> np.ndarray:
 def squared_errors(base: np.ndarray, branch: np.ndarray, th: np.ndarray, p: Problem) -> np.ndarray:
     """Squared distances (N, n) of the coupler point from each target."""
     q = [v[:, None] for v in base] + [branch[:, None]]
-    at = place(*q, th)
+    at = place_design(q, th)
     return (at.px - p.targets[:, 0]) ** 2 + (at.py - p.targets[:, 1]) ** 2
 
 
@@ -244,7 +244,7 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float, np.ndarray, f
 
     def residuals(v: np.ndarray) -> np.ndarray:
         base, th = split(v)
-        at = place(*[b[:, None] for b in base], branch, th)
+        at = place_design([*(b[:, None] for b in base), branch], th)
         return np.hstack([at.px - p.targets[:, 0], at.py - p.targets[:, 1]])
 
     def squared(v: np.ndarray) -> np.ndarray:

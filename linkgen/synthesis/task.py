@@ -470,11 +470,15 @@ TASKS: dict[str, type[Model]] = {"crank-rocker": CrankRockerTask, "slider-crank"
                                  "burmester": BurmesterTask}
 
 
+#: a validated ``[task]`` table, one of :data:`TASKS`' models (a spec of :func:`spec_model` holds its kind's only)
+Task = CrankRockerTask | SliderCrankTask | FunctionTask | MotionTask | PathTask | BurmesterTask
+
+
 class SynthesisSpec(Model):
     """A validated synthesis template: its name, the task, and the ``[parts]`` every candidate's template gets."""
 
     name: str = name_field("synthesis")
-    task: Model
+    task: Task
     parts: PartsTable | None = None
 
 

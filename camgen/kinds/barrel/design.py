@@ -104,6 +104,13 @@ class BarrelDesign:
         return self.walls.cutter
 
     @property
+    def solid_tube(self) -> Tube:
+        """The groove's cutter :meth:`with_solid` made (a ValueError on a design made without it)."""
+        if self.tube is None:
+            raise ValueError("the barrel's cutter is made by with_solid(): this design was made without it")
+        return self.tube
+
+    @property
     def single_step(self) -> float:
         """The step (mm) of single precision, which the solid's files hold, at the cam's size: the larger of the
         rim's radius and the length."""
@@ -135,7 +142,8 @@ class BarrelDesign:
     def thumbnail(self, tolerance: float) -> np.ndarray:
         """The developed groove as a closed ring (mm, points within about ``tolerance``), for a family's overview:
         the lower wall along, the upper wall back."""
-        walls = [shape.vertices for layer, shape in self.drawing.items if layer == LAYER_GROOVE]
+        walls = [shape.vertices for layer, shape in self.drawing.items
+                 if layer == LAYER_GROOVE and isinstance(shape, Polyline)]
         step = max(1, int(len(walls[0]) * tolerance / (2 * math.pi * self.radii[1])))
         return np.vstack([walls[0][::step], walls[1][::-step]])
 
@@ -258,7 +266,7 @@ def _drawing(spec: BarrelSpec, lines: tuple[tuple[GrooveWalls, int, str], ...], 
     else:
         raise DesignError(f"output.tolerance: the developed drawing cannot be brought within {tolerance:g} mm")
     frame = Contour(np.array([[0.0, 0.0], [width, 0.0], [width, length], [0.0, length]]))
-    items = [(LAYER_OUTLINE, frame)]
+    items: list[tuple[str, Contour | Polyline]] = [(LAYER_OUTLINE, frame)]
     for (_, _, layer), pts in zip(lines, points, strict=True):
         pts = _clipped(pts, width)
         items.append((layer, Polyline(pts, np.zeros(len(pts) - 1))))
@@ -309,8 +317,9 @@ def design_barrel(spec: BarrelSpec) -> BarrelDesign:
     checks = _wall_checks(cam, np.linspace(radii[0], radii[2], CHECK_RADII), walls)
     rib, thinnest = _rib(spec, g.rib_span, cam, walls, radii[0])
     if rib is not None:       # the rib's lower wall is the lower roller's upper side, bent as a groove's upper wall
-        checks = tuple(WallCheck(dataclasses.replace(c.flank, side=name), c.at_radius_mm)
-                       for c, name in ((checks[1], "rib's lower wall"), (checks[0], "rib's upper wall")))
+        lower, upper = (WallCheck(dataclasses.replace(c.flank, side=name), c.at_radius_mm)
+                        for c, name in ((checks[1], "rib's lower wall"), (checks[0], "rib's upper wall")))
+        checks = lower, upper
     for check in sorted(checks, key=lambda c: c.flank.rho_min_mm):      # the worse wall first (stable: ties, lower)
         if check.flank.undercut:
             raise DesignError(_undercut_message(check))

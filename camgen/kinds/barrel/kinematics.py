@@ -70,7 +70,7 @@ class GrooveWalls:
         phi, z = self.developed(theta, radius, side)
         return -self.sense * phi, z
 
-    def developed(self, theta: np.ndarray, radius: np.ndarray, side: int) -> tuple[np.ndarray, np.ndarray]:
+    def developed(self, theta: np.ndarray, radius: np.ndarray | float, side: int) -> tuple[np.ndarray, np.ndarray]:
         """As :meth:`wall`, the angle in theta-space (the developed drawing's x is the radius times it)."""
         theta, radius = np.broadcast_arrays(np.asarray(theta, dtype=float), np.asarray(radius, dtype=float))
         if self.arm is not None or self.taper:

@@ -133,7 +133,7 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
     if mesh is not None:
         report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
                           "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles,
-                          "bodies": mesh.bodies, "loops": tube.loops, "radii": tube.radii + 1}
+                          "bodies": mesh.bodies, "loops": design.solid_tube.loops, "radii": design.solid_tube.radii + 1}
     return report
 
 
@@ -185,7 +185,7 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
         plain, shortest = design, SHORTEST_STEPS * design.single_step
         for phase in SOLID_PHASES:            # the first whose cut is a closed solid in single precision
             design = plain.with_solid(phase)
-            carved = carve(design.blank, design.tube.vertices, design.tube.faces, name)
+            carved = carve(design.blank, design.solid_tube.vertices, design.solid_tube.faces, name)
             mesh = without_short_edges(carved, shortest)
             check = check_mesh(carved if mesh is None else mesh)
             if mesh is not None and check.ok:

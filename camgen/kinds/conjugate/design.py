@@ -111,18 +111,26 @@ def second_arm(rig: Rig, placement: Placement) -> float:
     return placement.arm_length or rig.mount.table.arm_length
 
 
+def _needed(second_base: float | None) -> float:
+    """The second cam's base radius (mm), which places the second roller where the placement does not fix it
+    (a ValueError where it is not given then)."""
+    if second_base is None:
+        raise ValueError("the second cam's base radius places its roller where no yoke span or arm angle does")
+    return second_base
+
+
 def second_cam(rig: Rig, first: Cam, placement: Placement, second_base: float | None) -> Cam:
     """The second cam of the pair whose first cam is ``first``: its roller placed by the ``placement``'s yoke span
     or arm angle where it fixes one, else so that its base circle is ``second_base`` mm."""
     rr, top = second_roller(placement, first), swing_top(first)
     if _yoke(rig):
-        span = placement.yoke_span or yoke_span(first.follower, top, second_base + rr)
+        span = placement.yoke_span or yoke_span(first.follower, top, _needed(second_base) + rr)
         follower: Any = YokeRoller(first.follower, span, radius=placement.roller_radius)
         prime = yoke_prime(first.follower, top, span)
     else:
         arm = second_arm(rig, placement)
         turn = (math.radians(placement.arm_angle) if placement.arm_angle is not None
-                else arm_turn(first.follower, math.radians(top), arm, second_base + rr))
+                else arm_turn(first.follower, math.radians(top), arm, _needed(second_base) + rr))
         follower = ArmRoller(first.follower, turn, arm, radius=placement.roller_radius)
         prime = arm_prime(first.follower, math.radians(top), arm, turn)
     return Cam(f"{rig.name}-2", first.program, follower, prime - rr)
@@ -137,10 +145,10 @@ def build_pair(rig: Rig, base: float, placement: Placement, second_base: float |
 
 
 def placement_range(rig: Rig, first: Cam, placement: Placement,
-                    second_base: float | None) -> tuple[str, float, float, float]:
+                    second_base: float | None) -> tuple[str, float, float, float | None]:
     """Where the second roller may go: (the key that places it, its least and largest value, exclusive, and its
     value), for the key the placement fixes or else ``cam.second_base_radius`` (mm; arm angles in degrees), whose
-    value is then ``second_base``.
+    value is then ``second_base`` (None where not given).
 
     A yoke's second roller must stay beyond the shaft and its cam keep a base circle: the span more than
     d0 + s_max + sqrt(Rr^2 - e^2). An arm's second roller must stay on its side of the line from the pivot to the
@@ -165,7 +173,8 @@ def placement_range(rig: Rig, first: Cam, placement: Placement,
 
 def check_placement(rig: Rig, first: Cam, placement: Placement, second_base: float | None) -> None:
     """Refuse a second roller :func:`placement_range` does not allow, naming its key and the range."""
-    key, low, high, value = placement_range(rig, first, placement, second_base)
+    key, low, high, given = placement_range(rig, first, placement, second_base)
+    value = _needed(given)
     if low < value < high:
         return
     unit = "degrees" if key == "arm_angle" else "mm"
@@ -228,11 +237,11 @@ def _sized(spec: ConjugateSpec, rig: Rig, placement: Placement
     limits = limits_of(spec)
     sizes: list[Sizing | None] = [None, None]
     if base == "auto":
-        sizes[0] = size_cam(rig, limits)
-        base = sizes[0].base_radius_mm
+        sizes[0] = sized = size_cam(rig, limits)
+        base = sized.base_radius_mm
     if second == "auto" or (second is None and spec.cam.base_radius == "auto"):
-        sizes[1] = _smallest_second(rig, rig.cam(base), placement, limits)
-        second = sizes[1].base_radius_mm
+        sizes[1] = sized = _smallest_second(rig, rig.cam(base), placement, limits)
+        second = sized.base_radius_mm
         if spec.cam.second_base_radius is None:          # equal base circles: the larger of both
             base = second = max(base, second)
     if placement.fixed:
@@ -269,6 +278,8 @@ def largest_second_roller(rig: Rig, base: float, placement: Placement, second_ba
         return analyze(cam).pitch_rho_min_mm - radius >= 0
 
     top = placement.roller_radius
+    if top is None:
+        raise ValueError("the placement's second roller has no radius of its own: see largest_pair_roller")
     if not fits(1e-6 * top):
         return None
     return top if fits(top) else boundary(fits, 1e-6 * top, top)
@@ -488,7 +499,8 @@ def _warnings(spec: ConjugateSpec, placement: Placement, designs: tuple[FlatCamD
         if j.order < 3:
             out.append(f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}")
     for i, seg in enumerate(designs[0].cam.program.segments):
-        over = seg.law.overshoot() if hasattr(seg.law, "overshoot") else 0.0
+        law = seg.law                                   # None on a dwell
+        over = law.overshoot() if law is not None and hasattr(law, "overshoot") else 0.0
         if over > 1e-9:
             out.append(f"motion[{i}]: the spline through the points overshoots by {100 * over:.3g} % of the lift "
                        "between them; add points where it bulges")
@@ -528,9 +540,8 @@ def design_conjugate(spec: ConjugateSpec) -> ConjugateDesign:
             raise DesignError(_undercut_message(rig, base, placement, pair, which, a, second_base))
     shared = _Shared(tuple(first.program.jumps()), _pair_speed(spec, pair), pressure_limit(spec), pair[0], sizing,
                      Finish.of(spec.output))
-    designs = tuple(_member(spec, cam, a, which, shared)
-                    for which, (cam, a) in enumerate(zip(pair, analyses, strict=True)))
-    warnings = _warnings(spec, placement, designs, shared.limit)
-    designs = tuple(dataclasses.replace(d, warnings=warnings) for d in designs)
+    made = (_member(spec, pair[0], analyses[0], 0, shared), _member(spec, pair[1], analyses[1], 1, shared))
+    warnings = _warnings(spec, placement, made, shared.limit)
+    designs = (dataclasses.replace(made[0], warnings=warnings), dataclasses.replace(made[1], warnings=warnings))
     contact = contact_check(pair, (designs[0].outline, designs[1].outline), spec.output.tolerance)
     return ConjugateDesign(spec, designs, contact, sizing, designs[0].warnings)

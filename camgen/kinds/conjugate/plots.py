@@ -2,12 +2,21 @@
 from __future__ import annotations
 
 import math
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from camgen.cam import Cam
 from camgen.plots import drive_checks_plot
+
+if TYPE_CHECKING:
+    from camgen.forces import Contact
+
+
+def _pressure(cam: Cam, force: Any, contact: Contact) -> Any:
+    """The Hertz pressure (MPa) of ``contact`` on ``cam`` under the normal force
+    ``force(geometry, motion)`` (N), as a function of pitch geometry and motion."""
+    from camgen.forces import contact_pressure
+
+    return lambda g, m: contact_pressure(cam, contact, g, force(g, m))[0]
 
 
 def pair_checks_figure(design: Any) -> Any:
@@ -15,7 +24,7 @@ def pair_checks_figure(design: Any) -> Any:
     cos(phi1)), cam 2 F < 0 (N2 = -F (L1 / L2) / cos(phi2)), each profile's radius its pitch curve's less its own
     roller's."""
     from camgen.dynamics import spec_loading
-    from camgen.forces import Contact, contact_pressure, pair_forces, torque
+    from camgen.forces import Contact, pair_forces, torque
 
     spec, pair = design.spec, tuple(d.cam for d in design.cams)
     forces = design.cams[0].speed["forces"]
@@ -25,9 +34,8 @@ def pair_checks_figure(design: Any) -> Any:
     contact = None if st is None else Contact(st["cam_material"], st["follower_material"], st["length_mm"])
     contacts = []
     for k, (cam, force) in enumerate(zip(pair, pair_forces(pair, ld, omega), strict=True)):
-        def pressure(g: Any, m: np.ndarray, cam: Cam = cam, force: Any = force) -> np.ndarray:
-            return contact_pressure(cam, contact, g, force(g, m))[0]
-        contacts.append((f"cam {k + 1}", cam, lambda g, cam=cam: 1.0 / g.kappa - cam.contact_radius, force, pressure))
+        contacts.append((f"cam {k + 1}", cam, lambda g, cam=cam: 1.0 / g.kappa - cam.contact_radius, force,
+                         None if contact is None else _pressure(cam, force, contact)))
     return drive_checks_plot(spec.name, design.cams[0].pressure_limit_deg, contacts,
                              lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"],
                              max(cam.contact_radius for cam in pair), getattr(spec.output, "tool_radius", 0.0))

@@ -11,6 +11,7 @@ import math
 from typing import Any
 
 from camgen.core import VERSION
+from camgen.core.shapes import Circle, Contour
 from camgen.kinds.geneva.design import PARTS, GenevaDesign
 
 
@@ -25,6 +26,11 @@ def _r(x: Any) -> Any:
     return x
 
 
+def _diameters(holes: tuple[Contour | Circle, ...]) -> list[float]:
+    """The diameters (mm) of a Geneva part's holes, every one a circle (the bore, the crank's pin hole)."""
+    return [2 * h.radius for h in holes if isinstance(h, Circle)]
+
+
 def geneva_report(design: GenevaDesign, solids: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
     """The report as a JSON-ready dict. ``solids``: each printed solid's checks (watertight, winding, volume and its
     check), by name, when solids were made."""
@@ -34,8 +40,8 @@ def geneva_report(design: GenevaDesign, solids: dict[str, dict[str, Any]] | None
         cut = design.cut[name]
         parts[name] = {"area_mm2": design.parts[name].area, "vertices": len(cut.outline.vertices),
                        "arcs": cut.outline.n_arcs, "lines": cut.outline.n_lines,
-                       "holes_cut_mm": [2 * h.radius for h in cut.holes],
-                       "holes_printed_mm": [2 * h.radius for h in design.printed[name].holes]}
+                       "holes_cut_mm": _diameters(cut.holes),
+                       "holes_printed_mm": _diameters(design.printed[name].holes)}
     report: dict[str, Any] = {
         "name": t.name,
         "generator": f"camgen {VERSION}",

@@ -82,8 +82,8 @@ def _undercut_message(rig: Rig, base_radius: float, clearance: float, cam: Cam, 
     best = largest_roller(rig, base_radius, clearance)
     fits = (f"the largest roller that fits is {best:.4g} mm" if best is not None
             else "no roller fits this base radius")
-    sense = "convex" if flank.side == "inner" else "concave"
-    return (where + f"the pitch curve's {sense} radius of curvature is {flank.pitch_rho_min_mm:.4g} mm, smaller than "
+    bend = "convex" if flank.side == "inner" else "concave"
+    return (where + f"the pitch curve's {bend} radius of curvature is {flank.pitch_rho_min_mm:.4g} mm, smaller than "
             f"follower.roller_radius + cam.running_clearance / 2 = {flank.offset_mm:.4g} mm; {fits} (or enlarge "
             "cam.base_radius, or set cam.allow_undercut = true)")
 

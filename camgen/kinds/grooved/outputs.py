@@ -129,16 +129,16 @@ def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
     mesh, mesh_check = printed_mesh(design.spec, design.printed)
     volume = volume_check([design.printed], mesh_check.volume_mm3) if mesh_check is not None else None
     report = grooved_report(design, mesh_check, volume)
+    speed = design.profile.speed or {}
 
     def plot(kind: str) -> Any:
         from camgen import plots
         from camgen.kinds.grooved.plots import grooved_checks_figure
 
         return {"svaj": lambda: plots.svaj_figure(design.profile), "checks": lambda: grooved_checks_figure(
-            design), "speeds": lambda: plots.speeds_plot(design.spec.name, design.profile.speed["speeds"])}.get(
+            design), "speeds": lambda: plots.speeds_plot(design.spec.name, speed["speeds"])}.get(
             kind, lambda: grooved_figure(design))()
 
-    speed = design.profile.speed or {}
     checks = (("checks",) if speed.get("forces") else ()) + (("speeds",) if "speeds" in speed else ())
     return cam_files(design.spec, design.cut, mesh, plot, report, lambda: grooved_page(design, report),
                      ("svaj", "cam", *checks),
