@@ -20,7 +20,7 @@ from camgen.core.errors import SpecError
 from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
 from camgen.core.parts import Placed
-from camgen.core.writers import REGISTRY
+from camgen.core.writers import DEFAULT_FORMATS, FIGURE_FORMATS, REGISTRY
 from linkgen.linkage_design import LinkageDesign, design_linkage
 from linkgen.kit import placed_solids
 from linkgen.parts import LinkageBuild
@@ -113,9 +113,10 @@ _PART_ROLES = {"part", "sheet", "mesh", "solids"}
 def _refuse_parts_formats(spec: Any) -> None:
     """Refuse, naming ``output.formats``, a parts' format asked of a design made without parts (``linkgen analyze``,
     or a template without ``[parts]``): STEP whenever it is named, DXF, cut SVG, STL and 3MF when the template or
-    ``--set`` names them (the default list has them, and a design without parts then just writes none)."""
+    ``--set`` names them in a list other than the default (which has them: a design without parts then just writes
+    none; ``--figures`` adds the figures to it)."""
     formats = spec.output.formats
-    named = "formats" in spec.output.model_fields_set
+    named = set(formats) - set(FIGURE_FORMATS) != set(DEFAULT_FORMATS) - set(FIGURE_FORMATS)
     asked = [f for f in formats if f in REGISTRY and set(REGISTRY[f].files) & _PART_ROLES and (named or f == "step")]
     if asked:
         names = ", ".join(f"'{f}'" for f in asked)
