@@ -21,7 +21,6 @@ def timing_figure(design: MachineDesign) -> Any:
     fig = figure(9, 1.2 + 1.1 * len(outputs))
     axes = np.atleast_1d(fig.subplots(len(outputs), 1, sharex=True))
     moving = [~o.still for o in outputs]
-    coupled = {frozenset((f"cams.{m.cam}", f"linkages.{m.name}")) for m in design.linkages}
     for j, (ax, o) in enumerate(zip(axes, outputs, strict=True)):
         ax.plot(deg, kinematics.normalised(o.values), color=f"C{j % 10}", lw=1.4)
         for a, b in kinematics.intervals(o.still):
@@ -30,7 +29,7 @@ def timing_figure(design: MachineDesign) -> Any:
                     ax.axvspan(max(lo, 0.0), hi, color="0.9", zorder=0)
         together = np.zeros_like(moving[j])
         for k, other in enumerate(moving):
-            if k != j and frozenset((o.label, outputs[k].label)) not in coupled:
+            if k != j and not design.together(o.label, outputs[k].label):
                 together |= moving[j] & other
         ax.fill_between(deg, -0.12, -0.04, where=together, color="C3", alpha=0.5, lw=0, step="mid")
         ax.set_ylim(-0.15, 1.08)
