@@ -159,6 +159,16 @@ def clashes(bodies: Sequence[Body], joints: Sequence[Joint], samples: int) -> tu
 PIVOT_PIN_MM = 4.0
 
 
+def arm_frame(follower: object, rest_deg: float) -> np.ndarray:
+    """The 2x2 matrix taking a coupled four-bar's frame (its crank's pivot at the origin, its ground line along +x)
+    into the machine's, about the follower's pivot: the crank lies along the arm (the follower's rest direction at
+    crank angle ``rest_deg``), mirrored where the arm swings clockwise."""
+    k = follower._swing_sign                                                # type: ignore[attr-defined]
+    base = np.array([0.0, follower.prime_radius]) - follower.pivot          # type: ignore[attr-defined]
+    alpha = math.atan2(base[1], base[0]) - k * math.radians(rest_deg)
+    return rotation(np.array([alpha]))[0] @ np.diag([1.0, k])
+
+
 def _margin(radius: float) -> float:
     """A joint's disc: ``radius`` mm and room for the chords of the outlines meeting in it."""
     return 1.01 * radius + 0.05
@@ -243,11 +253,7 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
             skipped.append(f"linkages.{m.name}")
             continue
         f, pivot, layer, _ = arms[m.cam]
-        k = f._swing_sign
-        rest = math.radians(m.coupling.rest)
-        base = np.array([0.0, f.prime_radius]) - f.pivot
-        alpha = math.atan2(base[1], base[0]) - k * rest
-        frame = rotation(np.array([alpha]))[0] @ np.diag([1.0, k])
+        frame = arm_frame(f, m.coupling.rest)
         hw = max(p.half_width for p in build.parts)
         cut = {p.name: p for p in build.cut}
         fb, assembly = m.fourbar, table.assembly

@@ -64,6 +64,13 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
     items.append(item(lambda: timing_rows(design), [("csv", "timing_csv", f"{name}-timing.csv")],
                       ["csv"] if "json" in formats else []))
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
+
+    def page() -> Any:
+        from camgen.kinds.machine.page import machine_page
+
+        return machine_page(design, report)
+
+    items.append(item(page, [("html", "html", f"{name}.html")], formats))
     return Bundle.of(items, out.write_options), report
 
 
