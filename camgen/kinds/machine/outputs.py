@@ -61,6 +61,14 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
 
     items.append(item(plot, [("png", "timing_png", f"{name}-timing.png"), ("svg", "timing_svg",
                                                                           f"{name}-timing.svg")], formats))
+
+    def posed() -> Any:
+        from camgen.kinds.machine.plots import machine_figure
+
+        return machine_figure(design)
+
+    items.append(item(posed, [("png", "machine_png", f"{name}-machine.png"), ("svg", "machine_svg",
+                                                                            f"{name}-machine.svg")], formats))
     items.append(item(lambda: timing_rows(design), [("csv", "timing_csv", f"{name}-timing.csv")],
                       ["csv"] if "json" in formats else []))
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))

@@ -13,6 +13,7 @@ import numpy as np
 
 from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
+from camgen.kinds.machine.poses import poses_report
 
 
 def _num(value: float, digits: int = 9) -> float:
@@ -104,6 +105,7 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         "linkages": {m.name: _linkage_entry(design, m) for m in design.linkages},
         **({"cranked": {m.name: _cranked_entry(design, m) for m in design.cranked}} if design.cranked else {}),
         "timing": timing(design),
+        "poses": poses_report(design),
         "shaft_torque_n_m": {"min": _num(torque.min(), 6), "max": _num(torque.max(), 6),
                              "mean": _num(torque.mean(), 9),
                              "note": "the main shaft's torque against the linkages' output torques (virtual work: "
