@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from functools import cached_property
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import ConfigDict, Field, model_validator
+from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.spec import (MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec, check_kind,
@@ -60,10 +60,18 @@ class MachineTable(Model):
     clash_samples: int = Field(720, ge=36, le=3600, description="main shaft angles over one turn at which the clash "
                                "check places every part (a clash's first angle is then refined to 0.1 degree)")
     figure_angles: tuple[Annotated[float, Field(ge=0, lt=360)], ...] = Field(
-        (0.0, 90.0, 180.0, 270.0), min_length=1, max_length=MAX_FIGURE_ANGLES,
+        (0.0, 90.0, 180.0, 270.0),
         description="main shaft angles at which the figures (<name>-machine.png and .svg, a panel each) draw the "
                     "whole machine and the report gives every part's pose",
         json_schema_extra=unit("degrees", allowed=f"each from 0 to under 360; 1 to {MAX_FIGURE_ANGLES} angles"))
+
+
+    @field_validator("figure_angles")
+    @classmethod
+    def _few_angles(cls, angles: tuple[float, ...]) -> tuple[float, ...]:
+        if not 1 <= len(angles) <= MAX_FIGURE_ANGLES:
+            raise ValueError(f"give 1 to {MAX_FIGURE_ANGLES} angles (got {len(angles)})")
+        return angles
 
 
 class ShaftTable(Model):
