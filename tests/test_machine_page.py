@@ -76,7 +76,7 @@ _TRANSFORM = re.compile(r"translate\(([-\d.e]+) ([-\d.e]+)\) rotate\(([-\d.e]+)\
 def test_the_page_shows_the_reported_poses_in_chromium(browser, built, name):  # noqa: F811
     from selenium.webdriver.common.by import By
 
-    page, report, folder = built[name]
+    _, report, folder = built[name]
     browser.get((folder / f"{name}.html").as_uri())
     assert browser.execute_script("return window.camgenPage && window.camgenPage.frames") == 360
     assert [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "WARNING")] == []
@@ -94,7 +94,7 @@ def test_the_page_shows_the_reported_poses_in_chromium(browser, built, name):  #
       out.cursors.push([+c.getAttribute("x1"),+p.dataset.x0,+p.dataset.x1]);});
     return out;"""
     for pose in report["poses"]:
-        frame = int(round(pose["angle_deg"]))
+        frame = round(pose["angle_deg"])
         browser.execute_script(f"window.camgenPage.show({frame})")
         shown = browser.execute_script(read)
         assert set(pose["parts"]) <= set(shown["bodies"])

@@ -6,7 +6,6 @@ names the shaft crossing the lower leg's rods at the angle the rods' own positio
 one line naming the field."""
 from __future__ import annotations
 
-import copy
 import json
 import math
 import tomllib

@@ -13,6 +13,7 @@ import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import shapely
@@ -329,47 +330,47 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
     return tuple(bodies), tuple(joints), tuple(skipped)
 
 
-def cranked_placement(m: object) -> Callable[[np.ndarray, str], tuple[np.ndarray, np.ndarray]]:
+def cranked_placement(m: Any) -> Callable[..., tuple[np.ndarray, np.ndarray]]:
     """(phi, link) -> the placement (M, t) of link ``link`` of the shaft-driven linkage ``m``
     (:class:`~camgen.kinds.machine.cranked.CrankedMotion`) in the machine's frame: its part's frame (its first joint,
     turned as the line to its second) as :func:`linkgen.mechanisms.general.general_placement` places it, moved by
     the mount's offset. The last angles' solution is kept, as every link is placed at the same angles in turn."""
     from linkgen.mechanisms.general import general_placement
 
-    last: list[tuple[bytes, object]] = []
+    last: list[tuple[bytes, Any]] = []
 
     def place(phi: np.ndarray, link: str) -> tuple[np.ndarray, np.ndarray]:
         key = np.asarray(phi, float).tobytes()
         if not last or last[0][0] != key:
-            last[:] = [(key, general_placement(m.analysis, m.solve(phi)))]      # type: ignore[attr-defined]
+            last[:] = [(key, general_placement(m.analysis, m.solve(phi)))]
         placed = last[0][1]
-        shift = placed.origins[link] + m.offset                                   # type: ignore[attr-defined]
-        return rotation(placed.angles[link]), shift                              # type: ignore[attr-defined]
+        shift = placed.origins[link] + m.offset
+        return rotation(placed.angles[link]), shift
 
     return place
 
 
-def _cranked_parts(m: object, bodies: list[Body], joints: list[Joint],
+def _cranked_parts(m: Any, bodies: list[Body], joints: list[Joint],
                    pins: dict[tuple[float, float], tuple[list[str], int, float]],
                    shafts: dict[str, list[tuple[int, float]]]) -> None:
     """The parts of a shaft-driven linkage ``m`` (:class:`~camgen.kinds.machine.cranked.CrankedMotion`): each moving
     link's part as cut on plane 2 layer + its own layer, a joint at each pin two of them share, its crank on its
     shaft and its other ground joints as pins from the frame (merged with any pin at the same place)."""
-    a, build = m.analysis, m.design.build                                        # type: ignore[attr-defined]
+    a, build = m.analysis, m.design.build
     s = a.linkage.structure
     cut = {p.name: p for p in build.cut}
     hw = max(p.half_width for p in build.parts)
-    pin_r = m.design.spec.parts.pin_diameter / 2                                 # type: ignore[attr-defined]
+    pin_r = m.design.spec.parts.pin_diameter / 2
     place = cranked_placement(m)
-    prefix = f"linkages.{m.name}"                                                # type: ignore[attr-defined]
+    prefix = f"linkages.{m.name}"
     for link in s.bodies:
         if link != "ground":
-            plane = m.side * (2 * m.layer + build.layers[link])                  # type: ignore[attr-defined]
+            plane = m.side * (2 * m.layer + build.layers[link])
             bodies.append(Body(f"{prefix}.{link}", plane, plane, cut[link].outline.flatten(0.01),
                                functools.partial(place, link=link)))
 
     def centre(phi: np.ndarray, point: str) -> np.ndarray:
-        return np.asarray(m.solve(phi).points[point], float) + m.offset          # type: ignore[attr-defined]
+        return np.asarray(m.solve(phi).points[point], float) + m.offset
 
     pivot = a.table.inputs[0].pivot
     for point, holders in s.revolutes.items():
@@ -378,12 +379,12 @@ def _cranked_parts(m: object, bodies: list[Body], joints: list[Joint],
                    for i, x in enumerate(moving) for y in moving[i + 1:]]
         if "ground" not in holders:
             continue
-        at = np.asarray(s.points[point], float) + m.offset                      # type: ignore[attr-defined]
+        at = np.asarray(s.points[point], float) + m.offset
         if point == pivot:
-            shaft = f"shafts.{m.shaft}"                                          # type: ignore[attr-defined]
+            shaft = f"shafts.{m.shaft}"
             planes = [next(b.high for b in bodies if b.name == h) for h in moving]
             far = max(planes, key=abs)
-            shafts.setdefault(m.shaft, []).append((far, pin_r))                  # type: ignore[attr-defined]
+            shafts.setdefault(m.shaft, []).append((far, pin_r))
             joints += [Joint(h, shaft, still(at), _margin(hw)) for h in moving]
         else:
             entry = pins.setdefault((float(at[0]), float(at[1])), ([], 0, pin_r))

@@ -50,7 +50,8 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
         bundle, cam_report = spec_kind(cam.design.spec).bundle(cam.design)
         items += _scoped(bundle.items, cam.name, formats)
         cams.append(cam_report)
-    for m in (*design.linkages, *design.cranked):
+    mounts: tuple[Any, ...] = (*design.linkages, *design.cranked)
+    for m in mounts:
         items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats)
     report = {**machine_report(design), **_parts_summary(cams)}
 

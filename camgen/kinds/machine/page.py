@@ -44,9 +44,10 @@ def _still(design: Any, paths: list[np.ndarray]) -> Body:
     at = {s.name: np.asarray(s.at, dtype=float) for s in design.spec.shafts}
     size = 6.0
     outlines = []
+    across, up = np.array([size, 0.0]), np.array([0.0, size])
     for c in at.values():
-        outlines += [Outline(np.array([c - (size, 0.0), c + (size, 0.0)]), "guide", False),
-                     Outline(np.array([c - (0.0, size), c + (0.0, size)]), "guide", False)]
+        outlines += [Outline(np.array([c - across, c + across]), "guide", False),
+                     Outline(np.array([c - up, c + up]), "guide", False)]
     for g in design.spec.gears:
         outlines += [Outline(circle(g.module * g.driver_teeth / 2, 0.05) + at[g.driver], "pitch"),
                      Outline(circle(g.module * g.driven_teeth / 2, 0.05) + at[g.driven], "pitch")]

@@ -251,7 +251,7 @@ class MachineSpec(TemplateSpec):
             if m.shaft is None:
                 continue
             table = lspec.linkage
-            inputs = getattr(table, "inputs", ())
+            inputs: tuple[Any, ...] = getattr(table, "inputs", ())
             if table.type != "linkage" or len(inputs) != 1 or inputs[0].slider is not None \
                     or inputs[0].relative_to != "ground" or inputs[0].pivot not in table.ground:
                 raise ValueError(f"linkages[{i}].template: a shaft drives a type = \"linkage\" template whose one "
