@@ -18,20 +18,14 @@ from click.testing import CliRunner
 from camgen.core.errors import SpecError
 from tests.conftest import ROOT
 from tests.refusals import assert_refused
+from tests.test_machine import _design
 
 TOY = ROOT / "templates" / "walking-toy.toml"
 JANSEN = ROOT / "templates" / "jansen.toml"
 
 
 def _raw() -> dict:
-    with TOY.open("rb") as stream:
-        return tomllib.load(stream)
-
-
-def _design(raw: dict):
-    from camgen import api
-
-    return api.design(api.validate(raw))
+    return tomllib.loads(TOY.read_text(encoding="utf-8"))
 
 
 @pytest.fixture(scope="module")
