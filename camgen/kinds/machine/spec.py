@@ -159,13 +159,14 @@ MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "h
 
 
 class MachineOutputTable(OutputTable):
-    """A machine's ``[output]``: which of its cams' and linkages' files, its timing diagram and its report to
-    write (no page and no STEP file of the whole machine yet: html writes each cam's and linkage's own page)."""
+    """A machine's ``[output]``: which of its cams' and linkages' files, its timing diagram, its figures at
+    chosen angles, its page and its report to write (no STEP file of the whole machine yet)."""
 
     formats: tuple[MachineFormat, ...] = Field(
         ("dxf", "cut-svg", "stl", "3mf", "json"), min_length=1, description="files to write: each cam's and "
-        "linkage's of these formats (html: each one's own page), the timing diagram as png and svg (and its CSV "
-        "with json), the report as json")
+        "linkage's of these formats (html: each one's own page), the timing diagram and the machine at "
+        "machine.figure_angles as png and svg (and the timing's CSV with json), the report as json, the machine's "
+        "page as html")
 
 
 class MachineSpec(TemplateSpec):
