@@ -243,3 +243,32 @@ def test_the_report_and_the_timing_name_both_feet(toy, tmp_path):
     for leg_name in ("left", "right"):
         assert (tmp_path / f"walking-toy-{leg_name}-sheet.dxf").exists()
     assert "2 linkage(s)" in result.output
+
+
+def test_every_file_of_the_toy_reads_back(tmp_path):
+    """The toy's files, read back: every DXF by ezdxf with no audit error, every STL closed by admesh and
+    PrusaSlicer, the page and the figures; the report names exactly the files written."""
+    import ezdxf
+
+    from camgen.cli import main
+    from tests.test_programs import _admesh, _prusa
+
+    result = CliRunner().invoke(main, ["build", str(TOY), "-o", str(tmp_path), "--set",
+                                       'output.formats=["json", "dxf", "stl", "png", "svg", "html"]'])
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "walking-toy.json").read_text())
+    assert set(report["files"].values()) == {p.name for p in tmp_path.iterdir()}
+    dxf = sorted(tmp_path.glob("*.dxf"))
+    assert [p.name for p in dxf] == [f"walking-toy-{leg}-{what}.dxf" for leg in ("left", "right")
+                                     for what in ("assembly", "sheet")]
+    for path in dxf:
+        doc = ezdxf.readfile(path)
+        assert not doc.audit().has_errors and len(doc.modelspace()) > 0, path.name
+    solids = sorted(tmp_path.glob("*.stl"))
+    assert len(solids) == 16                                  # 8 parts a leg, the ground plate included
+    for path in solids:
+        stats = _admesh(path)
+        assert all(stats[k] == 0 for k in stats if k != "volume"), (path.name, stats)
+        assert stats["volume"] > 0
+        assert "manifold = yes" in _prusa(path), path.name
+    assert (tmp_path / "walking-toy.html").read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
