@@ -110,6 +110,31 @@ def test_the_page_shows_the_reported_poses_in_chromium(browser, built, name):  #
     assert [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "WARNING")] == []
 
 
+@pytest.mark.skipif(not (CHROMIUM and DRIVER), reason="headless browser test: Debian's chromium and "
+                    "chromium-driver are not installed (apt-get install chromium chromium-driver)")
+def test_the_slider_moves_the_machine_and_the_cursors(browser, built):  # noqa: F811
+    """Moving the slider by keys, as a person does, turns the main shaft a degree a key: the machine moves, the
+    timing diagram's cursor follows and the key figures stand still."""
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.common.keys import Keys
+
+    from tests.test_page_browser import _changed
+
+    browser.get((built["walking-toy"][2] / "walking-toy.html").as_uri())
+    scene, plot, facts = (browser.find_element(By.CSS_SELECTOR, css) for css in ("svg.scene", "svg.plot",
+                                                                                 "table.figures"))
+    before = (scene.screenshot_as_png, plot.screenshot_as_png, facts.screenshot_as_png)
+    slider = browser.find_element(By.ID, "frame")
+    slider.send_keys(Keys.ARROW_RIGHT * 30)
+    assert slider.get_attribute("value") == "30"
+    assert browser.find_element(By.ID, "shown").text == "30 deg"
+    after = (scene.screenshot_as_png, plot.screenshot_as_png, facts.screenshot_as_png)
+    assert _changed(before[0], after[0]) > 0.002
+    assert _changed(before[1], after[1]) > 0.0005
+    assert _changed(before[2], after[2]) == 0.0
+    assert [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "WARNING")] == []
+
+
 # ---- the page's data without a browser
 
 

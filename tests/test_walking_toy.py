@@ -119,7 +119,7 @@ def test_the_toy_has_no_clash_and_its_parts_meet_only_at_their_joints(toy):
     names = {b.name for b in bodies}
     assert {f"linkages.{s}.{link}" for s in ("left", "right") for link in ("crank", "leg", "hip")} <= names
     assert "shafts.legs" in names
-    phi = np.arange(360) * (2 * math.pi / 360)
+    phi = np.arange(720) * (2 * math.pi / 720)
     for joint in joints:
         a, b = (next(x for x in bodies if x.name == n) for n in (joint.a, joint.b))
         gap = shapely.distance(clash._shapes(a, phi), clash._shapes(b, phi))
