@@ -48,6 +48,6 @@ def test_bundled_template(path, tmp_path):
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     report = json.loads((tmp_path / f"{path.stem}.json").read_text())
-    if not is_linkage:
+    if not is_linkage and report.get("cams") != {}:         # a machine of linkages only: its parts are linkgen's
         assert report["outline_max_error_mm"] <= report["tolerance_mm"]
         assert report["mesh"]["watertight"]

@@ -67,6 +67,9 @@ class Scene:
     bodies: tuple[Body, ...]
     movers: tuple[Mover, ...] = ()
     view: tuple[float, float, float, float] | None = None
+    #: the rounding step (a power of ten; mm, and degrees for turns) of the frames' data the script moves them by;
+    #: None: a 100000th of the drawing's size (and at most 1e-4 degrees)
+    precision: float | None = None
 
     def bounds(self) -> tuple[float, float, float, float]:
         """The window (mm): ``view``, or the extent of every outline at every pose and every mover."""
@@ -240,7 +243,7 @@ def _scene_svg(scene: Scene, frame: int, box: tuple[float, float, float, float],
 
 
 def _scene_data(scene: Scene, box: tuple[float, float, float, float]) -> dict[str, Any]:
-    step = _grid(max(box[2] - box[0], box[3] - box[1]))
+    step = _grid(max(box[2] - box[0], box[3] - box[1])) if scene.precision is None else scene.precision
     bodies = [None if b.motion is None else _compact(b.motion, min(step, 1e-4)) for b in scene.bodies]
     movers = [{"k": int(m.points.shape[1]), "r": m.radius > 0, "d": _compact(m.points, step)} for m in scene.movers]
     return {"bodies": bodies, "movers": movers}

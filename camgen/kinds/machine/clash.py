@@ -13,6 +13,7 @@ import functools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import shapely
@@ -159,6 +160,16 @@ def clashes(bodies: Sequence[Body], joints: Sequence[Joint], samples: int) -> tu
 PIVOT_PIN_MM = 4.0
 
 
+def arm_frame(follower: object, rest_deg: float) -> np.ndarray:
+    """The 2x2 matrix taking a coupled four-bar's frame (its crank's pivot at the origin, its ground line along +x)
+    into the machine's, about the follower's pivot: the crank lies along the arm (the follower's rest direction at
+    crank angle ``rest_deg``), mirrored where the arm swings clockwise."""
+    k = follower._swing_sign                                                # type: ignore[attr-defined]
+    base = np.array([0.0, follower.prime_radius]) - follower.pivot          # type: ignore[attr-defined]
+    alpha = math.atan2(base[1], base[0]) - k * math.radians(rest_deg)
+    return rotation(np.array([alpha]))[0] @ np.diag([1.0, k])
+
+
 def _margin(radius: float) -> float:
     """A joint's disc: ``radius`` mm and room for the chords of the outlines meeting in it."""
     return 1.01 * radius + 0.05
@@ -243,11 +254,7 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
             skipped.append(f"linkages.{m.name}")
             continue
         f, pivot, layer, _ = arms[m.cam]
-        k = f._swing_sign
-        rest = math.radians(m.coupling.rest)
-        base = np.array([0.0, f.prime_radius]) - f.pivot
-        alpha = math.atan2(base[1], base[0]) - k * rest
-        frame = rotation(np.array([alpha]))[0] @ np.diag([1.0, k])
+        frame = arm_frame(f, m.coupling.rest)
         hw = max(p.half_width for p in build.parts)
         cut = {p.name: p for p in build.cut}
         fb, assembly = m.fourbar, table.assembly
@@ -297,6 +304,11 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
         pins.setdefault((float(o4[0]), float(o4[1])), ([], 1, pin_r))[0].append(names["rocker"][0])
         entry = pins.setdefault((float(pivot[0]), float(pivot[1])), ([], 0, pin_r))
         entry[0].append(f"cams.{m.cam}.arm")
+    for m in getattr(d, "cranked", ()):
+        if m.design.build is None:                          # no [parts] table: no outlines to place
+            skipped.append(f"linkages.{m.name}")
+            continue
+        _cranked_parts(m, bodies, joints, pins, shafts)
     for name, (_, pivot, _, _) in arms.items():
         entry = pins.setdefault((float(pivot[0]), float(pivot[1])), ([], 0, PIVOT_PIN_MM / 2))
         if f"cams.{name}.arm" not in entry[0]:
@@ -305,12 +317,75 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
     roof = max(plane_of.values()) + 1                       # the top plate's plane
     for i, ((x, y), (held, from_top, r)) in enumerate(pins.items()):
         name = f"pins.{i}"
-        low, high = (min(plane_of[h] for h in held), roof) if from_top else (0, max(plane_of[h] for h in held))
+        planes = [plane_of[h] for h in held]
+        low, high = (min(planes), roof) if from_top else (min(0, *planes), max(0, *planes))
         bodies.append(Body(name, low, high, circle(r), fixed((x, y))))
         joints += [Joint(h, name, still((x, y)), _margin(r)) for h in held]
     for shaft, seats in shafts.items():
-        top = max(layer for layer, _ in seats)
+        top = max(0, *(layer for layer, _ in seats))
+        bottom = min(0, *(layer for layer, _ in seats))             # below 0: through the frame to its back
         r = min(radius for _, radius in seats)
         if r > 0:
-            bodies.append(Body(f"shafts.{shaft}", 0, top, circle(r), fixed(at[shaft])))
+            bodies.append(Body(f"shafts.{shaft}", bottom, top, circle(r), fixed(at[shaft])))
     return tuple(bodies), tuple(joints), tuple(skipped)
+
+
+def cranked_placement(m: Any) -> Callable[..., tuple[np.ndarray, np.ndarray]]:
+    """(phi, link) -> the placement (M, t) of link ``link`` of the shaft-driven linkage ``m``
+    (:class:`~camgen.kinds.machine.cranked.CrankedMotion`) in the machine's frame: its part's frame (its first joint,
+    turned as the line to its second) as :func:`linkgen.mechanisms.general.general_placement` places it, moved by
+    the mount's offset. The last angles' solution is kept, as every link is placed at the same angles in turn."""
+    from linkgen.mechanisms.general import general_placement
+
+    last: list[tuple[bytes, Any]] = []
+
+    def place(phi: np.ndarray, link: str) -> tuple[np.ndarray, np.ndarray]:
+        key = np.asarray(phi, float).tobytes()
+        if not last or last[0][0] != key:
+            last[:] = [(key, general_placement(m.analysis, m.solve(phi)))]
+        placed = last[0][1]
+        shift = placed.origins[link] + m.offset
+        return rotation(placed.angles[link]), shift
+
+    return place
+
+
+def _cranked_parts(m: Any, bodies: list[Body], joints: list[Joint],
+                   pins: dict[tuple[float, float], tuple[list[str], int, float]],
+                   shafts: dict[str, list[tuple[int, float]]]) -> None:
+    """The parts of a shaft-driven linkage ``m`` (:class:`~camgen.kinds.machine.cranked.CrankedMotion`): each moving
+    link's part as cut on plane 2 layer + its own layer, a joint at each pin two of them share, its crank on its
+    shaft and its other ground joints as pins from the frame (merged with any pin at the same place)."""
+    a, build = m.analysis, m.design.build
+    s = a.linkage.structure
+    cut = {p.name: p for p in build.cut}
+    hw = max(p.half_width for p in build.parts)
+    pin_r = m.design.spec.parts.pin_diameter / 2
+    place = cranked_placement(m)
+    prefix = f"linkages.{m.name}"
+    for link in s.bodies:
+        if link != "ground":
+            plane = m.side * (2 * m.layer + build.layers[link])
+            bodies.append(Body(f"{prefix}.{link}", plane, plane, cut[link].outline.flatten(0.01),
+                               functools.partial(place, link=link)))
+
+    def centre(phi: np.ndarray, point: str) -> np.ndarray:
+        return np.asarray(m.solve(phi).points[point], float) + m.offset
+
+    pivot = a.table.inputs[0].pivot
+    for point, holders in s.revolutes.items():
+        moving = [f"{prefix}.{h}" for h in holders if h != "ground"]
+        joints += [Joint(x, y, functools.partial(centre, point=point), _margin(hw))
+                   for i, x in enumerate(moving) for y in moving[i + 1:]]
+        if "ground" not in holders:
+            continue
+        at = np.asarray(s.points[point], float) + m.offset
+        if point == pivot:
+            shaft = f"shafts.{m.shaft}"
+            planes = [next(b.high for b in bodies if b.name == h) for h in moving]
+            far = max(planes, key=abs)
+            shafts.setdefault(m.shaft, []).append((far, pin_r))
+            joints += [Joint(h, shaft, still(at), _margin(hw)) for h in moving]
+        else:
+            entry = pins.setdefault((float(at[0]), float(at[1])), ([], 0, pin_r))
+            entry[0].extend(moving)

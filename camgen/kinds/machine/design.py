@@ -19,6 +19,7 @@ import numpy as np
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
 from camgen.kinds.machine import clash, kinematics
+from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
 from linkgen.kinematics.fourbar import FourBar
@@ -121,7 +122,8 @@ class Output:
 @dataclass(frozen=True)
 class MachineDesign:
     """Everything known about a machine before anything is written: its spec, the main shaft's angles ``phi``
-    (radians, one turn), each cam's motion and each coupled linkage's, and the warnings."""
+    (radians, one turn), each cam's motion and each coupled linkage's, the warnings, the clash check's findings, and
+    each linkage a shaft's crank drives (``cranked``)."""
 
     spec: MachineSpec
     phi: np.ndarray
@@ -130,11 +132,12 @@ class MachineDesign:
     warnings: tuple[str, ...]
     clashes: tuple[clash.Clash, ...] = ()
     unchecked: tuple[str, ...] = ()
+    cranked: tuple[CrankedMotion, ...] = ()
 
     @property
     def tolerance(self) -> float:
-        """The finest chord tolerance (mm) its cams were made to."""
-        return min(float(c.design.tolerance) for c in self.cams)
+        """The finest chord tolerance (mm) its cams were made to (0.01 mm for a machine of no cams)."""
+        return min((float(c.design.tolerance) for c in self.cams), default=0.01)
 
     @property
     def omega(self) -> float:
@@ -144,15 +147,26 @@ class MachineDesign:
     @property
     def outputs(self) -> tuple[Output, ...]:
         """The timing diagram's outputs in order: each follower (its swing in degrees, or its lift in mm), then each
-        coupled four-bar's rocker (its angle in degrees)."""
+        coupled four-bar's rocker (its angle in degrees), then each shaft-driven linkage's tracers (x and y, mm in
+        the machine's frame)."""
         cams = tuple(Output(f"cams.{c.name}", c.unit, c.follower[0], c.rate) for c in self.cams)
+        traced = tuple(Output(f"linkages.{m.name}.{p}.{axis}", "mm", m.points[p][:, k], m.rates[p][:, k])
+                       for m in self.cranked for p in m.tracers for k, axis in enumerate("xy"))
         return (*cams, *(Output(f"linkages.{m.name}", "deg", np.degrees(m.theta4), np.degrees(m.rocker_rate))
-                         for m in self.linkages))
+                         for m in self.linkages), *traced)
 
     @property
     def shaft_torque(self) -> np.ndarray:
         """The main shaft's torque (N*m) working against every linkage's output torque, at its angles."""
         return sum((m.torque for m in self.linkages), np.zeros_like(self.phi))
+
+    def together(self, a: str, b: str) -> bool:
+        """Whether outputs labelled ``a`` and ``b`` move together by construction (left out of the overlaps): a
+        follower and the four-bar it drives, or two tracers' coordinates of one shaft-driven linkage."""
+        pairs = {frozenset((f"cams.{m.cam}", f"linkages.{m.name}")) for m in self.linkages}
+        own = [m.name for m in self.cranked if a.startswith(f"linkages.{m.name}.") and b.startswith(
+            f"linkages.{m.name}.")]
+        return frozenset((a, b)) in pairs or bool(own)
 
     def cam(self, name: str) -> CamMotion:
         """The cam mounted as ``name``."""
@@ -208,7 +222,17 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             cams[coupling.cam] = _loaded(spec, cams[coupling.cam], found)
     for c in cams.values():
         warnings += [f"cams.{c.name}: {w}" for w in c.design.warnings]
-    made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings))
+    cranked = []
+    for i, mount in enumerate(spec.linkages):
+        if mount.shaft is not None:
+            lspec = spec.linkage_specs[i]
+            try:
+                made_linkage = linkgen_api.design(lspec, parts=lspec.parts is not None)
+            except SpecError as exc:
+                raise exc.under(f"linkages[{i}].template") from None
+            cranked.append(cranked_motion(spec, i, phi, made_linkage))
+            warnings += [f"linkages.{mount.name}: {w}" for w in made_linkage.report.get("warnings", ())]
+    made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked))
     bodies, joints, unchecked = clash.machine_parts(made)
     met = clash.clashes(bodies, joints, spec.machine.clash_samples)
     if met and spec.machine.clash == "error":

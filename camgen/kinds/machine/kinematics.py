@@ -121,3 +121,10 @@ def intervals(mask: np.ndarray) -> list[tuple[float, float]]:
 def overlap(a: np.ndarray, b: np.ndarray) -> list[tuple[float, float]]:
     """Where two outputs both move (masks of moving samples): the runs of ``a & b`` in degrees."""
     return intervals(a & b)
+
+
+def crank_inputs(drawn: float, phase_deg: float, turns: float, phi: np.ndarray) -> np.ndarray:
+    """A shaft-driven linkage's crank input (radians, counter-clockwise from +X of its drawing) at main shaft angles
+    ``phi``: its drawn value ``drawn`` (radians) turned ``phase_deg`` degrees ahead, plus its shaft's ``turns``
+    (signed: negative where the shaft turns the other way) times ``phi``."""
+    return drawn + math.radians(phase_deg) + turns * np.asarray(phi, dtype=float)

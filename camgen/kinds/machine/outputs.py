@@ -50,7 +50,8 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
         bundle, cam_report = spec_kind(cam.design.spec).bundle(cam.design)
         items += _scoped(bundle.items, cam.name, formats)
         cams.append(cam_report)
-    for m in design.linkages:
+    mounts: tuple[Any, ...] = (*design.linkages, *design.cranked)
+    for m in mounts:
         items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats)
     report = {**machine_report(design), **_parts_summary(cams)}
 
@@ -61,9 +62,24 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
 
     items.append(item(plot, [("png", "timing_png", f"{name}-timing.png"), ("svg", "timing_svg",
                                                                           f"{name}-timing.svg")], formats))
+
+    def posed() -> Any:
+        from camgen.kinds.machine.plots import machine_figure
+
+        return machine_figure(design)
+
+    items.append(item(posed, [("png", "machine_png", f"{name}-machine.png"), ("svg", "machine_svg",
+                                                                            f"{name}-machine.svg")], formats))
     items.append(item(lambda: timing_rows(design), [("csv", "timing_csv", f"{name}-timing.csv")],
                       ["csv"] if "json" in formats else []))
     items.append(item(Report(report), [("json", "json", f"{name}.json")], formats))
+
+    def page() -> Any:
+        from camgen.kinds.machine.page import machine_page
+
+        return machine_page(design, report)
+
+    items.append(item(page, [("html", "html", f"{name}.html")], formats))
     return Bundle.of(items, out.write_options), report
 
 
@@ -71,6 +87,8 @@ def _parts_summary(cams: list[dict[str, Any]]) -> dict[str, Any]:
     """What the machine's report says of its cams' parts together, from their own reports: the largest distance of
     an exported outline from the exact one and the finest tolerance (mm), and whether every printed cam's mesh is
     watertight (where one is made)."""
+    if not cams:                                        # a machine of linkages only: their own reports say
+        return {}
     out: dict[str, Any] = {"outline_max_error_mm": max(r.get("outline_max_error_mm", 0.0) for r in cams),
                            "tolerance_mm": min(r.get("tolerance_mm", float("inf")) for r in cams)}
     meshes = [r["mesh"] for r in cams if isinstance(r.get("mesh"), dict)]
@@ -81,6 +99,6 @@ def _parts_summary(cams: list[dict[str, Any]]) -> dict[str, Any]:
 
 def machine_row(design: MachineDesign, report: dict[str, Any]) -> dict[str, Any]:
     """A family member's summary row: its cams' and linkages' counts, the torque and its files."""
-    return {"cams": len(report["cams"]), "linkages": len(report["linkages"]),
+    return {"cams": len(report["cams"]), "linkages": len(report["linkages"]) + len(report.get("cranked", {})),
             "shaft_torque_max_n_m": report["shaft_torque_n_m"]["max"],
             "files": " ".join(sorted(report["files"].values())), "thumbnail": []}

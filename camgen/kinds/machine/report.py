@@ -13,6 +13,7 @@ import numpy as np
 
 from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
+from camgen.kinds.machine.poses import poses_report
 
 
 def _num(value: float, digits: int = 9) -> float:
@@ -33,12 +34,11 @@ def timing(design: MachineDesign) -> dict[str, Any]:
     """The timing diagram's figures: each output's range, dwells and moving runs, and each pair's overlaps (a
     follower and the linkage it drives left out: they move together by construction)."""
     outputs = design.outputs
-    coupled = {(f"cams.{m.cam}", f"linkages.{m.name}") for m in design.linkages}
     rows = [{"output": o.label, "unit": o.unit, "min": _num(o.values.min()), "max": _num(o.values.max()),
              "dwells_deg": _runs(kinematics.intervals(o.still)), "moving_deg": _runs(kinematics.intervals(~o.still))}
             for o in outputs]
     overlaps = [{"outputs": [a.label, b.label], "deg": _runs(kinematics.overlap(~a.still, ~b.still))}
-                for a, b in combinations(outputs, 2) if (a.label, b.label) not in coupled]
+                for a, b in combinations(outputs, 2) if not design.together(a.label, b.label)]
     return {"samples": len(design.phi), "step_deg": 360.0 / len(design.phi), "outputs": rows,
             "overlaps": [o for o in overlaps if o["deg"]]}
 
@@ -76,6 +76,17 @@ def _linkage_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
             "files_prefix": m.design.spec.name}
 
 
+def _cranked_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
+    """A shaft-driven linkage: its shaft, phase and planes, and its tracers' extents and speeds over the turn."""
+    omega = design.omega
+    tracers = {p: {"x_mm": [_num(m.points[p][:, 0].min(), 6), _num(m.points[p][:, 0].max(), 6)],
+                   "y_mm": [_num(m.points[p][:, 1].min(), 6), _num(m.points[p][:, 1].max(), 6)],
+                   "speed_max_mm_s": _num(np.hypot(*m.rates[p].T).max() * omega, 6)} for p in m.tracers}
+    return {"shaft": m.shaft, "phase_deg": m.phase_deg, "layer": m.layer, "side": "front" if m.side > 0 else "back",
+            "turns_per_main_turn": m.turns, "offset_mm": [_num(v) for v in m.offset], "tracers": tracers,
+            "files_prefix": m.design.spec.name}
+
+
 def machine_report(design: MachineDesign) -> dict[str, Any]:
     """The report of ``design`` without its ``files`` map (which the bundle adds)."""
     spec = design.spec
@@ -92,7 +103,9 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         "gears": [g.model_dump() for g in spec.gears],
         "cams": {c.name: _cam_entry(design, i) for i, c in enumerate(design.cams)},
         "linkages": {m.name: _linkage_entry(design, m) for m in design.linkages},
+        **({"cranked": {m.name: _cranked_entry(design, m) for m in design.cranked}} if design.cranked else {}),
         "timing": timing(design),
+        "poses": poses_report(design),
         "shaft_torque_n_m": {"min": _num(torque.min(), 6), "max": _num(torque.max(), 6),
                              "mean": _num(torque.mean(), 9),
                              "note": "the main shaft's torque against the linkages' output torques (virtual work: "
@@ -123,7 +136,8 @@ def summary(design: MachineDesign, report: dict[str, Any]) -> list[str]:
 
 def summary_lines(report: dict[str, Any]) -> list[str]:
     """What ``camgen build`` prints of a machine's report."""
-    lines = [f"{report['name']}: a machine of {len(report['cams'])} cam(s) and {len(report['linkages'])} "
+    linkages = len(report["linkages"]) + len(report.get("cranked", {}))
+    lines = [f"{report['name']}: a machine of {len(report['cams'])} cam(s) and {linkages} "
              f"linkage(s) at {report['machine']['rpm']:g} rpm"]
     for name, cam in report["cams"].items():
         held = cam.get("contact", {}).get("holds")
@@ -135,6 +149,11 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
         lines.append(f"  linkages.{name}: driven by cams.{m['cam']}, rocker {m['rocker_deg'][0]:.2f} to "
                      f"{m['rocker_deg'][1]:.2f} deg, transmission {m['transmission_deg'][0]:.1f} to "
                      f"{m['transmission_deg'][1]:.1f} deg")
+    for name, m in report.get("cranked", {}).items():
+        feet = ", ".join(f"{p} {t['x_mm'][1] - t['x_mm'][0]:.4g} x {t['y_mm'][1] - t['y_mm'][0]:.4g} mm"
+                         for p, t in m["tracers"].items())
+        lines.append(f"  linkages.{name}: turned by shaft {m['shaft']} ({m['turns_per_main_turn']:g} turns a main "
+                     f"turn, phase {m['phase_deg']:g} deg, {m['side']})" + (f", tracing {feet}" if feet else ""))
     t = report["shaft_torque_n_m"]
     if t["min"] or t["max"]:
         lines.append(f"  main shaft torque against the linkages' loads: {t['min']:.4g} to {t['max']:.4g} N*m")

@@ -13,9 +13,9 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from functools import cached_property
-from typing import Any, ClassVar, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import ConfigDict, Field, model_validator
+from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from camgen.core.errors import SpecError
 from camgen.core.spec import (MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec, check_kind,
@@ -31,6 +31,8 @@ GEAR_DISTANCE_TOL_MM = 0.01
 FOUR_BAR_LINKS = ("ground", "crank", "coupler", "rocker")
 #: the follower types whose arm can be a linkage's input link
 ARMS = ("oscillating-roller", "oscillating-flat")
+#: the most main shaft angles the machine's figures may draw it at
+MAX_FIGURE_ANGLES = 12
 
 MountName = Field(pattern=NAME_PATTERN, description="its name: letters, digits, '.', '_', '-' (its files' names "
                   "are <machine>-<name>)")
@@ -57,6 +59,19 @@ class MachineTable(Model):
                                             "warning in the report")
     clash_samples: int = Field(720, ge=36, le=3600, description="main shaft angles over one turn at which the clash "
                                "check places every part (a clash's first angle is then refined to 0.1 degree)")
+    figure_angles: tuple[Annotated[float, Field(ge=0, lt=360)], ...] = Field(
+        (0.0, 90.0, 180.0, 270.0),
+        description="main shaft angles at which the figures (<name>-machine.png and .svg, a panel each) draw the "
+                    "whole machine and the report gives every part's pose",
+        json_schema_extra=unit("degrees", allowed=f"each from 0 to under 360; 1 to {MAX_FIGURE_ANGLES} angles"))
+
+
+    @field_validator("figure_angles")
+    @classmethod
+    def _few_angles(cls, angles: tuple[float, ...]) -> tuple[float, ...]:
+        if not 1 <= len(angles) <= MAX_FIGURE_ANGLES:
+            raise ValueError(f"give 1 to {MAX_FIGURE_ANGLES} angles (got {len(angles)})")
+        return angles
 
 
 class ShaftTable(Model):
@@ -103,12 +118,26 @@ class CamMount(Model):
 
 
 class LinkageMount(Model):
-    """A linkage of the machine: a linkgen template."""
+    """A linkage of the machine: a linkgen template, driven by a coupling (a follower's arm as its crank) or, with
+    ``shaft``, by a crank on a shaft (its input crank turning with the shaft, its pivot on the shaft's centre)."""
 
     name: str = MountName
     template: str | dict[str, Any] = _template_field("the linkage: a linkgen template ([linkage], [parts]) as an "
                                                      "inline table, or a linkgen template file's path",
-                                                     "driven by a coupling: a four-bar driven by its crank")
+                                                     "driven by a coupling: a four-bar driven by its crank; driven "
+                                                     "by a shaft: a type = \"linkage\" template whose one input is "
+                                                     "a crank turning fully about a ground joint")
+    shaft: str | None = Field(None, description="the shaft that turns its input crank (one of [[shafts]]): the "
+                              "linkage's drawing is moved so that its crank's pivot lies on the shaft's centre; none: "
+                              "a [[couplings]] entry drives it")
+    phase: float = Field(0.0, ge=0, lt=360, description="with shaft: how far (counter-clockwise) its crank stands "
+                         "ahead of its drawing at the machine's start; two mounts of one leg at 0 and 180 move in "
+                         "antiphase", json_schema_extra=unit("degrees"))
+    layer: int = Field(0, ge=0, le=MAX_LAYER, description="with shaft: its plane along the shaft; its parts fill "
+                       "planes 2 layer + their own layers (a cam's layer k is plane 2k)")
+    side: Literal["front", "back"] = Field("front", description="with shaft: the frame's side it stands on: front "
+                                           "(planes counted up from the frame, as the cams') or back (the same "
+                                           "planes behind the frame, its shaft passing through the frame)")
 
 
 class Coupling(Model):
@@ -130,13 +159,14 @@ MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "h
 
 
 class MachineOutputTable(OutputTable):
-    """A machine's ``[output]``: which of its cams' and linkages' files, its timing diagram and its report to
-    write (no page and no STEP file of the whole machine yet: html writes each cam's and linkage's own page)."""
+    """A machine's ``[output]``: which of its cams' and linkages' files, its timing diagram, its figures at
+    chosen angles, its page and its report to write (no STEP file of the whole machine yet)."""
 
     formats: tuple[MachineFormat, ...] = Field(
         ("dxf", "cut-svg", "stl", "3mf", "json"), min_length=1, description="files to write: each cam's and "
-        "linkage's of these formats (html: each one's own page), the timing diagram as png and svg (and its CSV "
-        "with json), the report as json")
+        "linkage's of these formats (html: each one's own page), the timing diagram and the machine at "
+        "machine.figure_angles as png and svg (and the timing's CSV with json), the report as json, the machine's "
+        "page as html")
 
 
 class MachineSpec(TemplateSpec):
@@ -158,7 +188,8 @@ class MachineSpec(TemplateSpec):
     machine: MachineTable
     shafts: tuple[ShaftTable, ...] = Field(min_length=1, max_length=MAX_MOUNTS, description="the shafts")
     gears: tuple[GearTable, ...] = Field((), max_length=MAX_MOUNTS, description="gear pairs between shafts")
-    cams: tuple[CamMount, ...] = Field(min_length=1, max_length=MAX_MOUNTS, description="the cams on the shafts")
+    cams: tuple[CamMount, ...] = Field((), max_length=MAX_MOUNTS, description="the cams on the shafts (a machine "
+                                       "has at least one cam, or a linkage driven by a shaft)")
     linkages: tuple[LinkageMount, ...] = Field((), max_length=MAX_MOUNTS, description="the linkages")
     couplings: tuple[Coupling, ...] = Field((), max_length=MAX_MOUNTS, description="each follower driving a "
                                             "linkage")
@@ -180,25 +211,53 @@ class MachineSpec(TemplateSpec):
         if self.machine.main not in shafts:
             raise ValueError(f"machine.main: no shaft {self.machine.main!r}; shafts: {', '.join(shafts)}")
         self._check_gears(shafts)
+        if not self.cams and not any(m.shaft for m in self.linkages):
+            raise ValueError("cams: a machine has at least one cam, or a linkage driven by a shaft "
+                             "(linkages[i].shaft)")
         seats: dict[tuple[str, int], str] = {}
         for i, cam in enumerate(self.cams):
-            if cam.shaft not in shafts:
-                raise ValueError(f"cams[{i}].shaft: no shaft {cam.shaft!r}; shafts: {', '.join(shafts)}")
-            if cam.shaft not in self.turns:
-                raise ValueError(f"cams[{i}].shaft: shaft {cam.shaft} is not driven: no gear pair connects it to "
-                                 f"the main shaft {self.machine.main}")
-            turns = abs(self.turns[cam.shaft])
-            if abs(turns - round(turns)) > 1e-9:
-                raise ValueError(f"cams[{i}].shaft: shaft {cam.shaft} turns {turns:.6g} times a turn of the main "
-                                 f"shaft; a cam's shaft turns a whole number of times a main turn (so one main turn "
-                                 f"is the machine's cycle): make the slowest shaft the main one")
+            self._check_shaft(f"cams[{i}].shaft", cam.shaft, shafts)
             other = seats.setdefault((cam.shaft, cam.layer), cam.name)
             if other != cam.name:
                 raise ValueError(f"cams[{i}].layer: cams.{other} already sits on shaft {cam.shaft} at layer "
                                  f"{cam.layer}; give another layer (0 to {MAX_LAYER})")
+        for i, m in enumerate(self.linkages):
+            if m.shaft is not None:
+                self._check_shaft(f"linkages[{i}].shaft", m.shaft, shafts)
+            elif m.phase or m.layer or m.side != "front":
+                key = "phase" if m.phase else "layer" if m.layer else "side"
+                raise ValueError(f"linkages[{i}].{key}: a linkage driven by a coupling takes its phase and plane "
+                                 "from its cam; give shaft, or leave it out")
         self.cam_specs, self.linkage_specs                  # noqa: B018 (each sub-template validated here)
+        self._check_cranked()
         self._check_couplings()
         return self
+
+    def _check_shaft(self, where: str, shaft: str, shafts: list[str]) -> None:
+        """Refuse a mount on a shaft that does not exist, is not driven, or turns part of a main turn."""
+        if shaft not in shafts:
+            raise ValueError(f"{where}: no shaft {shaft!r}; shafts: {', '.join(shafts)}")
+        if shaft not in self.turns:
+            raise ValueError(f"{where}: shaft {shaft} is not driven: no gear pair connects it to "
+                             f"the main shaft {self.machine.main}")
+        turns = abs(self.turns[shaft])
+        if abs(turns - round(turns)) > 1e-9:
+            raise ValueError(f"{where}: shaft {shaft} turns {turns:.6g} times a turn of the main "
+                             f"shaft; a mount's shaft turns a whole number of times a main turn (so one main turn "
+                             f"is the machine's cycle): make the slowest shaft the main one")
+
+    def _check_cranked(self) -> None:
+        """Refuse a linkage a shaft drives whose template has no single crank input about a ground joint."""
+        for i, (m, lspec) in enumerate(zip(self.linkages, self.linkage_specs, strict=True)):
+            if m.shaft is None:
+                continue
+            table = lspec.linkage
+            inputs: tuple[Any, ...] = getattr(table, "inputs", ())
+            if table.type != "linkage" or len(inputs) != 1 or inputs[0].slider is not None \
+                    or inputs[0].relative_to != "ground" or inputs[0].pivot not in table.ground:
+                raise ValueError(f"linkages[{i}].template: a shaft drives a type = \"linkage\" template whose one "
+                                 f"input is a crank about a ground joint (input = {{ link, pivot }}); this is "
+                                 + (f"a {table.type}" if table.type != "linkage" else "another input"))
 
     def _check_gears(self, shafts: list[str]) -> None:
         at = {s.name: s.at for s in self.shafts}
@@ -246,6 +305,10 @@ class MachineSpec(TemplateSpec):
             if c.linkage in driven:
                 raise ValueError(f"couplings[{i}].linkage: a coupling loop: linkages.{c.linkage} is driven by "
                                  f"couplings[{driven[c.linkage]}] already")
+            shaft = self.linkages[linkages[c.linkage]].shaft
+            if shaft is not None:
+                raise ValueError(f"couplings[{i}].linkage: a coupling loop: linkages.{c.linkage} is driven by "
+                                 f"shaft {shaft} already (its shaft)")
             driving[c.cam], driven[c.linkage] = i, i
             follower = self.cam_specs[cams[c.cam]].follower.type
             if follower not in ARMS:
@@ -262,9 +325,9 @@ class MachineSpec(TemplateSpec):
                 raise ValueError(f"couplings[{i}].link: the follower's arm is a four-bar's input link, its crank "
                                  f"(linkage.input = \"crank\"), not its {c.link}")
         for name, i in linkages.items():
-            if name not in driven:
+            if name not in driven and self.linkages[i].shaft is None:
                 raise ValueError(f"linkages[{i}]: linkages.{name} is driven by no coupling; give a [[couplings]] "
-                                 "entry naming it")
+                                 "entry naming it, or its shaft")
 
     @cached_property
     def turns(self) -> dict[str, float]:

@@ -1,0 +1,100 @@
+"""A linkage driven by a crank on a shaft (``linkages[i].shaft``): its drawing moved so that its crank's pivot lies
+on the shaft's centre, its crank turning with the shaft from its drawn angle plus the mount's ``phase``.
+
+The crank's input at main shaft angle phi (radians) is ``drawn + phase + n phi`` (:func:`~camgen.kinds.machine.
+kinematics.crank_inputs`), n the shaft's turns per main turn, negative where it turns the other way (through an odd
+number of gear pairs): the main shaft's crank turns counter-clockwise. Every joint is solved in closed form, dyad by
+dyad, on the drawing's branches (:mod:`linkgen.kinematics.linkage`); positions in the machine's frame (mm), rates
+per radian of the main shaft (mm/rad).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from camgen.core.errors import SpecError
+from camgen.kinds.machine import kinematics
+
+
+@dataclass(frozen=True)
+class CrankedMotion:
+    """A shaft-driven linkage over one turn of the main shaft (arrays by the machine's shaft angles).
+
+    Attributes
+    ----------
+    name, shaft : str
+        Its mount's name and its shaft's.
+    turns : float
+        Its shaft's turns per main turn (negative: the other way).
+    phase_deg : float
+        Its crank's lead over its drawing at the machine's start (degrees).
+    layer : int
+        Its mount's layer (its parts fill planes 2 layer + their own layers, behind the frame on its back side).
+    side : int
+        1 for a linkage on the frame's front, -1 on its back (its planes' sign).
+    design : LinkageDesign
+        Its linkgen design (its own report and parts).
+    offset : ndarray
+        (2,) mm added to the drawing's coordinates: the shaft's centre less the crank's drawn pivot.
+    inputs : ndarray
+        The crank's input (radians, the drawing's frame) at each shaft angle.
+    points, rates : dict of str to ndarray
+        Every joint (n, 2) in the machine's frame (mm) and its rate d P / d phi (mm/rad).
+    """
+
+    name: str
+    shaft: str
+    turns: float
+    phase_deg: float
+    layer: int
+    side: int
+    design: Any
+    offset: np.ndarray
+    inputs: np.ndarray
+    points: dict[str, np.ndarray]
+    rates: dict[str, np.ndarray]
+
+    @property
+    def analysis(self) -> Any:
+        """Its general-linkage analysis (:class:`linkgen.mechanisms.general.Analysis`)."""
+        return self.design.kinematics
+
+    @property
+    def tracers(self) -> tuple[str, ...]:
+        """The joints its template traces (``linkage.tracers``)."""
+        return tuple(self.analysis.table.tracers)
+
+    def solve(self, phi: np.ndarray) -> Any:
+        """Its linkage solved at main shaft angles ``phi`` (radians), in its drawing's frame
+        (:class:`linkgen.kinematics.linkage.Solution`)."""
+        return self.analysis.linkage.solve(self.inputs_at(phi)[None, :], rates=[self.turns])
+
+    def inputs_at(self, phi: np.ndarray) -> np.ndarray:
+        """The crank's input (radians) at main shaft angles ``phi``."""
+        drawn = float(self.analysis.linkage.drawn_inputs[0])
+        return kinematics.crank_inputs(drawn, self.phase_deg, self.turns, phi)
+
+
+def cranked_motion(spec: Any, index: int, phi: np.ndarray, design: Any) -> CrankedMotion:
+    """The linkage of ``spec.linkages[index]`` (designed as ``design``) turned by its shaft at main shaft angles
+    ``phi``; a :class:`SpecError` naming ``linkages[i].template`` for a crank that does not turn fully."""
+    mount = spec.linkages[index]
+    a = design.kinematics
+    if a.ranges is not None:
+        reach = " or ".join(f"[{math.degrees(lo):.4g}, {math.degrees(hi):.4g}]" for lo, hi in a.ranges)
+        raise SpecError(f"its crank reaches only {reach} degrees; a shaft turns it fully: give a linkage whose crank "
+                        "turns round", f"linkages[{index}].template")
+    pivot = np.asarray(a.linkage.structure.points[a.table.inputs[0].pivot], dtype=float)
+    at = next(np.asarray(s.at, dtype=float) for s in spec.shafts if s.name == mount.shaft)
+    turns = spec.turns[mount.shaft]
+    side = 1 if mount.side == "front" else -1
+    made = CrankedMotion(mount.name, mount.shaft, turns, mount.phase, mount.layer, side, design, at - pivot,
+                         np.empty(0), {}, {})
+    sol = made.solve(phi)
+    points = {p: np.asarray(xy, dtype=float) + made.offset for p, xy in sol.points.items()}
+    rates = {p: np.asarray(v, dtype=float) for p, v in sol.velocities.items()}
+    return CrankedMotion(mount.name, mount.shaft, turns, mount.phase, mount.layer, side, design, made.offset,
+                         made.inputs_at(phi), points, rates)
