@@ -13,6 +13,7 @@ import numpy as np
 
 from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
+from camgen.kinds.machine.keeptime import timing_report
 
 
 def _num(value: float, digits: int = 9) -> float:
@@ -102,6 +103,7 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         "clash_check": {"samples": spec.machine.clash_samples, "refined_deg": 0.1, "mode": spec.machine.clash,
                         "not_checked": list(design.unchecked)},
         "warnings": list(design.warnings),
+        **({"keep_time": timed} if (timed := timing_report(design)) else {}),
     }
 
 
@@ -135,6 +137,11 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
         lines.append(f"  linkages.{name}: driven by cams.{m['cam']}, rocker {m['rocker_deg'][0]:.2f} to "
                      f"{m['rocker_deg'][1]:.2f} deg, transmission {m['transmission_deg'][0]:.1f} to "
                      f"{m['transmission_deg'][1]:.1f} deg")
+    for where, timed in report.get("keep_time", {}).items():
+        worst = timed.get("worst_from_path_point_mm", timed.get("at_points_max_deg"))
+        lines.append(f"  {where} keeps time: cams.{timed['cam']} drives linkages.{timed['linkage']} through "
+                     f"{len(timed.get('targets', ())) or timed.get('points')} point(s), each within {worst:.2g} "
+                     f"{'mm' if 'targets' in timed else 'deg'} of its time")
     t = report["shaft_torque_n_m"]
     if t["min"] or t["max"]:
         lines.append(f"  main shaft torque against the linkages' loads: {t['min']:.4g} to {t['max']:.4g} N*m")
