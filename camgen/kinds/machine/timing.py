@@ -22,7 +22,7 @@ d theta2), so there the pieces reproduce the inverse motion to the step's sixth 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -73,8 +73,6 @@ def nearest(fb: FourBar, assembly: Assembly, target: Sequence[float]) -> Reach:
     """The crank angle at which the tracer comes nearest ``target`` (x, y mm) on ``assembly``: the roots of
     (P - T) . P' (half the derivative of the squared distance) where it turns from negative to positive on a grid
     of :data:`GRID` angles a range, each refined by Brent's method to 1e-14 radians, and the ranges' ends."""
-    from scipy.optimize import brentq
-
     t = np.asarray(target, dtype=float)
 
     def slope(x: float) -> float:
@@ -90,7 +88,7 @@ def nearest(fb: FourBar, assembly: Assembly, target: Sequence[float]) -> Reach:
         g = np.einsum("ij,ij->i", p - t, d)
         left, right = (grid, grid + step) if full else (grid[:-1], grid[1:])
         g_left, g_right = (g, np.roll(g, -1)) if full else (g[:-1], g[1:])
-        found = [brentq(slope, float(a), float(b), xtol=1e-14) if gb > 0 else float(b)
+        found = [_root(slope, float(a), float(b)) if gb > 0 else float(b)
                  for a, b, ga, gb in zip(left, right, g_left, g_right, strict=True) if ga < 0 <= gb]
         candidates = np.array([*found, *([] if full else [lo, hi]), float(grid[int(np.argmin(np.hypot(*(p - t).T)))])])
         points = fb.positions(candidates, assembly).point
@@ -101,6 +99,17 @@ def nearest(fb: FourBar, assembly: Assembly, target: Sequence[float]) -> Reach:
             best = Reach(math.degrees(angle), float(dist[i]), (float(points[i, 0]), float(points[i, 1])), index)
     assert best is not None
     return best
+
+
+def _root(slope: Callable[[float], float], a: float, b: float) -> float:
+    """Where ``slope`` turns from negative at ``a`` to positive at ``b`` (radians), by Brent's method to 1e-14; the
+    end nearer zero where a single evaluation does not see the sign change the grid's did (a root at an end)."""
+    from scipy.optimize import brentq
+
+    fa, fb = slope(a), slope(b)
+    if fa * fb > 0 or fa == 0 or fb == 0:
+        return a if abs(fa) <= abs(fb) else b
+    return float(brentq(slope, a, b, xtol=1e-14))
 
 
 def unwrapped(angles_deg: Sequence[float], full: bool) -> np.ndarray:
