@@ -246,16 +246,10 @@ def test_a_finer_step_follows_the_program_more_closely():
 # ---- the bundled example
 
 
-@pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    out = tmp_path_factory.mktemp("keep-time")
-    result = CliRunner().invoke(camgen, ["build", str(KEEP_TIME), "-o", str(out)])
+def test_the_bundled_cam_passes_its_own_checks(tmp_path):
+    result = CliRunner().invoke(camgen, ["build", str(KEEP_TIME), "-o", str(tmp_path)])
     assert result.exit_code == 0, result.output
-    return out, json.loads((out / "keep-time.json").read_text())
-
-
-def test_the_bundled_cam_passes_its_own_checks(built):
-    out, report = built
+    out, report = tmp_path, json.loads((tmp_path / "keep-time.json").read_text())
     cam = json.loads((out / "keep-time-lever.json").read_text())
     assert cam["pressure_angle_max_deg"] < cam["pressure_angle_limit_deg"]
     assert cam["undercut"] is False and cam["warnings"] == []

@@ -27,10 +27,8 @@ from camgen.kinds.machine import timing
 from camgen.spec import SegmentTable
 from linkgen.kinematics.fourbar import Assembly, FourBar
 
-#: the most targets a coupling's keep_time may give
-MAX_TARGETS = 360
-#: the most segments an output's program may have
-MAX_OUTPUT_SEGMENTS = 100
+#: the most targets a coupling's keep_time may give, and the most segments an output's program may have
+MAX_TARGETS, MAX_OUTPUT_SEGMENTS = 360, 100
 #: the largest swing (degrees) a follower's arm may make (camgen's limit on an arm's lift)
 MAX_SWING_DEG = 90.0
 
