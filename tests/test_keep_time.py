@@ -324,7 +324,10 @@ TARGETS = "couplings.0.keep_time.targets"
      "couplings[0].keep_time.targets[0]: a target is [x, y, angle] or [x, y, angle, dwell] (got 2 numbers)"),
     ({TARGETS: [[*_path_point(60.0), 0.0], [*_path_point(70.0), 360.0]]},
      "couplings[0].keep_time.targets[1]: its angle must be >= 0 and < 360 degrees (got 360)"),
+    ({TARGETS: [[20000.0, 0.0, 0.0], [*_path_point(70.0), 100.0]]},
+     "couplings[0].keep_time.targets[0]: x and y must lie within +-10000 mm (got 20000, 0)"),
     ({"couplings.0.keep_time.tolerance": 20.0}, "couplings[0].keep_time.tolerance: must be > 0 and <= 10 mm"),
+    ({"couplings.0.keep_time.step": 0.1}, "couplings[0].keep_time.step: must be >= 0.5 and <= 30 degrees"),
     ({"couplings.0.keep_time.start": 30.0}, "couplings[0].keep_time.start: only with output"),
     ({"couplings.0.keep_time.output": [{"type": "dwell", "angle": 360.0}]},
      "couplings[0].keep_time.targets: give targets"),
@@ -376,6 +379,21 @@ def test_an_output_program_beyond_the_rockers_reach(tmp_path):
                                         r"lifts\) cannot be followed: rocker angle 131.897 degrees is out of "
                                         r"reach; this linkage reaches rocker angles \[-131.81, -62.7204\] or "
                                         r"\[62.7204, 131.81\] degrees"):
+        api.validate(raw)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"angle": 100.0}, r"^couplings\[0\]\.keep_time\.output: segment angles add up to 340 degrees; they must add up "
+                       r"to 360"),
+    ({"law": "modified-uniform", "form": "drafted"}, r"^couplings\[0\]\.keep_time\.output\[0\]\.form: the drafted "
+                                                     r"form needs a cam's prime radius"),
+])
+def test_a_bad_output_program(change, message):
+    raw = _output_raw()[0]
+    raw["couplings"][0]["keep_time"]["output"][0].update(change)
+    from camgen import api
+
+    with pytest.raises(SpecError, match=message):
         api.validate(raw)
 
 

@@ -22,7 +22,7 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from camgen.core.errors import SpecError
-from camgen.core.spec import Model, notes, unit, validate
+from camgen.core.spec import MAX_LENGTH_MM, Model, notes, unit, validate
 from camgen.kinds.machine import timing
 from camgen.spec import SegmentTable
 from linkgen.kinematics.fourbar import Assembly, FourBar
@@ -41,8 +41,9 @@ class KeepTime(Model):
         None, min_length=2, max_length=MAX_TARGETS, description="the tracer's targets in time order, each [x, y, "
         "angle] or [x, y, angle, dwell]: a point in the linkage's frame (its crank pivot at the origin, its rocker "
         "pivot on +x), the cam shaft's angle at which the tracer is there and how long it holds there",
-        json_schema_extra=unit("mm, mm, degrees, degrees", allowed="angles increasing from 0 to below 360; a dwell "
-                               ">= 0 ending before the next target's angle; each point within tolerance of the "
+        json_schema_extra=unit("mm (x, y), degrees (angle, dwell)",
+                               allowed=f"|x|, |y| <= {MAX_LENGTH_MM:g}; angles increasing from 0 to below 360; a "
+                               "dwell >= 0 ending before the next target's angle; each point within tolerance of the "
                                "tracer's path on the linkage's assembly", absent="give targets or output"))
     output: list[SegmentTable] | None = Field(
         None, min_length=1, max_length=MAX_OUTPUT_SEGMENTS, description="the rocker's program instead of targets: "
@@ -55,7 +56,7 @@ class KeepTime(Model):
                                 json_schema_extra=unit("degrees", absent="required with output"))
     turn: Literal["ccw", "cw"] = Field("ccw", description="output: the way a rise turns the rocker, counter-clockwise "
                                        "or clockwise")
-    step: float = Field(2.0, ge=0.1, le=30.0, description="output: the cam shaft's angle between two points of the "
+    step: float = Field(2.0, ge=0.5, le=30.0, description="output: the cam shaft's angle between two points of the "
                         "program the crank's motion passes through exactly", json_schema_extra=unit("degrees"))
     stroke: Literal["transmission", "swing"] = Field("transmission", description="output: which of the crank's two "
                                                      "strokes that turn the rocker so it takes: the one whose "
@@ -84,6 +85,9 @@ class KeepTime(Model):
             if len(row) not in (3, 4):
                 raise ValueError(f"targets[{i}]: a target is [x, y, angle] or [x, y, angle, dwell] (got {len(row)} "
                                  "numbers)")
+            if any(abs(v) > MAX_LENGTH_MM for v in row[:2]):
+                raise ValueError(f"targets[{i}]: x and y must lie within +-{MAX_LENGTH_MM:g} mm (got {row[0]:g}, "
+                                 f"{row[1]:g})")
             if not 0.0 <= row[2] < 360.0:
                 raise ValueError(f"targets[{i}]: its angle must be >= 0 and < 360 degrees (got {row[2]:g})")
             if len(row) == 4 and not 0.0 <= row[3] < 360.0:
