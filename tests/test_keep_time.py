@@ -189,6 +189,34 @@ def test_an_overshooting_piece_is_made_monotone_and_still_meets_its_targets():
         assert (np.diff(values) >= -1e-12).all()
 
 
+def test_targets_in_a_synthesis_frame_are_met_there():
+    """The bundled targets given in a frame where the linkage's crank pivot sits at (120, -35) and its ground line
+    points at 150 degrees (as a synthesis row places it): met there, and refused when the pivots lie 1 mm too far
+    apart."""
+    from camgen import api
+
+    raw = _raw()
+    keep = raw["couplings"][0]["keep_time"]
+    turn, origin = math.radians(150.0), np.array([120.0, -35.0])
+    c, s = math.cos(turn), math.sin(turn)
+    world = [[c * x - s * y + origin[0], s * x + c * y + origin[1], *rest] for x, y, *rest in keep["targets"]]
+    keep["targets"] = world
+    keep["ground_pivots"] = [origin.tolist(), (origin + 80.0 * np.array([c, s])).tolist()]
+    design = _design(raw)
+    for x, y, at, *_ in world:
+        local = _hand(LENGTHS, HAND, _crank(design, [at]))[0]
+        placed = (c * local[0] - s * local[1] + origin[0], s * local[0] + c * local[1] + origin[1])
+        assert math.hypot(placed[0] - x, placed[1] - y) < 1e-6
+    from camgen.kinds.machine.report import machine_report
+
+    rows = machine_report(design)["keep_time"]["couplings[0]"]["targets"]
+    assert max(r["from_target_mm"] for r in rows) < 1e-6
+    keep["ground_pivots"][1] = (origin + 81.0 * np.array([c, s])).tolist()
+    with pytest.raises(SpecError, match=r"^couplings\[0\]\.keep_time\.ground_pivots: the pivots lie 81 mm apart; "
+                                        r"this linkage's ground is 80 mm"):
+        api.validate(raw)
+
+
 # ---- an output program: the rocker's rise, dwell and return
 
 

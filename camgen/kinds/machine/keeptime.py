@@ -40,7 +40,7 @@ class KeepTime(Model):
     targets: list[list[float]] | None = Field(
         None, min_length=2, max_length=MAX_TARGETS, description="the tracer's targets in time order, each [x, y, "
         "angle] or [x, y, angle, dwell]: a point in the linkage's frame (its crank pivot at the origin, its rocker "
-        "pivot on +x), the cam shaft's angle at which the tracer is there and how long it holds there",
+        "pivot on +x; with ground_pivots, in theirs), the cam shaft's angle at which the tracer is there and how long it holds there",
         json_schema_extra=unit("mm (x, y), degrees (angle, dwell)",
                                allowed=f"|x|, |y| <= {MAX_LENGTH_MM:g}; angles increasing from 0 to below 360; a "
                                "dwell >= 0 ending before the next target's angle; each point within tolerance of the "
@@ -51,6 +51,11 @@ class KeepTime(Model):
         "cam shaft's angle 0", json_schema_extra=notes(allowed="angles adding up to 360; the rocker kept within its "
                                                        "swing on one stroke of the crank",
                                                        absent="give targets or output"))
+    ground_pivots: tuple[tuple[float, float], tuple[float, float]] | None = Field(
+        None, description="targets: the linkage's crank pivot and rocker pivot in the targets' frame, as linkgen "
+        "synthesize's rows give them (ground_pivots); without it the targets are in the linkage's own frame",
+        json_schema_extra=unit("mm", allowed=f"|x|, |y| <= {MAX_LENGTH_MM:g}, as far apart as linkage.ground (to "
+                               "1e-6 mm)", absent="the linkage's own frame: [[0, 0], [ground, 0]]"))
     start: float | None = Field(None, ge=-360, le=360, description="output: the rocker's angle (from the ground "
                                 "line, counter-clockwise) where its program is 0",
                                 json_schema_extra=unit("degrees", absent="required with output"))
@@ -77,9 +82,13 @@ class KeepTime(Model):
             total = sum(seg.angle for seg in self.output)
             if abs(total - 360.0) > 1e-9:
                 raise ValueError(f"output: segment angles add up to {total:.6g} degrees; they must add up to 360")
+            if self.ground_pivots is not None:
+                raise ValueError("ground_pivots: only with targets (an output's program is the rocker's own angle)")
             return self
         if self.start is not None:
             raise ValueError("start: only with output (the rocker's program)")
+        if self.ground_pivots is not None and any(abs(v) > MAX_LENGTH_MM for xy in self.ground_pivots for v in xy):
+            raise ValueError(f"ground_pivots: each coordinate within +-{MAX_LENGTH_MM:g} mm")
         rows = self.targets or []
         for i, row in enumerate(rows):
             if len(row) not in (3, 4):
@@ -144,14 +153,43 @@ def plan(keep: KeepTime, table: Any) -> Plan:
     return _output(keep, fb, table.assembly)
 
 
+def frame(keep: KeepTime, fb: FourBar) -> tuple[np.ndarray, float]:
+    """Where the linkage's own frame lies in the targets' (its crank pivot, mm, and its ground line's angle,
+    radians), from ``keep.ground_pivots``; a refusal naming them where they lie farther apart or nearer than the
+    linkage's ground (by more than 1e-6 mm)."""
+    if keep.ground_pivots is None:
+        return np.zeros(2), 0.0
+    o2, o4 = (np.asarray(p, dtype=float) for p in keep.ground_pivots)
+    apart = float(np.hypot(*(o4 - o2)))
+    if abs(apart - fb.ground) > 1e-6:
+        raise SpecError(f"the pivots lie {apart:.9g} mm apart; this linkage's ground is {fb.ground:.9g} mm (they "
+                        "must agree within 1e-6 mm)", "ground_pivots")
+    return o2, math.atan2(*(o4 - o2)[::-1])
+
+
+def to_linkage(points: np.ndarray, origin: np.ndarray, angle: float) -> np.ndarray:
+    """Points (n, 2) of the targets' frame in the linkage's own (mm): turned by -angle about ``origin``."""
+    c, s = math.cos(angle), math.sin(angle)
+    d = np.atleast_2d(points) - origin
+    return np.column_stack((c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]))
+
+
+def from_linkage(points: np.ndarray, origin: np.ndarray, angle: float) -> np.ndarray:
+    """Points (n, 2) of the linkage's own frame in the targets' (mm): turned by angle, then moved to ``origin``."""
+    c, s = math.cos(angle), math.sin(angle)
+    p = np.atleast_2d(points)
+    return np.column_stack((c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1])) + origin
+
+
 def _targets(keep: KeepTime, fb: FourBar, assembly: Assembly) -> Plan:
     rows = keep.targets or []
+    local = to_linkage(np.array([r[:2] for r in rows]), *frame(keep, fb))
     reaches: list[timing.Reach] = []
     other: Assembly = "crossed" if assembly == "open" else "open"
     for i, row in enumerate(rows):
-        reach = timing.nearest(fb, assembly, row[:2])
+        reach = timing.nearest(fb, assembly, local[i])
         if reach.distance > keep.tolerance:
-            there = timing.nearest(fb, other, row[:2])
+            there = timing.nearest(fb, other, local[i])
             hint = (f"; only the {other} assembly passes it (crank at {there.crank_deg:.6g} degrees): reaching it "
                     "would need the crank to reverse through a toggle" if there.distance <= keep.tolerance else "")
             raise SpecError(f"the tracer comes no nearer than {reach.distance:.4g} mm to ({row[0]:g}, {row[1]:g}) on "
@@ -357,13 +395,14 @@ def coupling_check(design: Any, coupling: Any) -> dict[str, Any]:
     entry: dict[str, Any] = {"cam": coupling.cam, "linkage": coupling.linkage, "law": LAW, "phase_deg": phase,
                              "rest_deg": coupling.rest, "segments": len(made.motion)}
     if keep.targets is not None:
-        rows = []
+        rows, placed = [], frame(keep, fb)
         for row, reach in zip(keep.targets, made.reaches, strict=True):
             for at in (row[2], row[2] + _dwell(row)) if _dwell(row) else (row[2],):
                 point = built(np.array([at])).point[0]
+                world = from_linkage(point, *placed)[0]
                 rows.append({"target_mm": row[:2], "angle_deg": at, "crank_deg": _round(reach.crank_deg),
-                             "tracer_mm": [_round(v) for v in point],
-                             "from_target_mm": _round(float(np.hypot(*(point - row[:2])))),
+                             "tracer_mm": [_round(v) for v in world],
+                             "from_target_mm": _round(float(np.hypot(*(world - row[:2])))),
                              "from_path_point_mm": float(np.hypot(*(point - reach.point))),
                              "target_off_path_mm": _round(reach.distance)})
         return {**entry, "targets": rows, "worst_from_path_point_mm": max(r["from_path_point_mm"] for r in rows)}
