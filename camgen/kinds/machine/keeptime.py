@@ -40,7 +40,8 @@ class KeepTime(Model):
     targets: list[list[float]] | None = Field(
         None, min_length=2, max_length=MAX_TARGETS, description="the tracer's targets in time order, each [x, y, "
         "angle] or [x, y, angle, dwell]: a point in the linkage's frame (its crank pivot at the origin, its rocker "
-        "pivot on +x; with ground_pivots, in theirs), the cam shaft's angle at which the tracer is there and how long it holds there",
+        "pivot on +x; with ground_pivots, in theirs), the cam shaft's angle at which the tracer is there and how "
+        "long it holds there",
         json_schema_extra=unit("mm (x, y), degrees (angle, dwell)",
                                allowed=f"|x|, |y| <= {MAX_LENGTH_MM:g}; angles increasing from 0 to below 360; a "
                                "dwell >= 0 ending before the next target's angle; each point within tolerance of the "
