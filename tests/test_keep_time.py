@@ -433,3 +433,12 @@ def test_a_linkage_that_is_not_a_four_bar(tmp_path):
 
     with pytest.raises(SpecError, match=r"^couplings\[0\]\.keep_time: keep_time drives a four-bar by its crank"):
         api.validate(copy.deepcopy(raw))
+
+
+def test_targets_too_quick_for_the_cam_are_refused_by_its_own_check(tmp_path):
+    """Three targets a degree of shaft apart swing the arm 16 degrees in 2: the cam's own curvature check finds the
+    pitch curve far sharper than the roller (an undercut) and refuses, before anything is written."""
+    from camgen.core.starter import toml_value
+
+    quick = [[*_path_point(60.0), 0.0], [*_path_point(72.0), 1.0], [*_path_point(76.0), 2.0]]
+    assert_refused(KEEP_TIME, {TARGETS: quick}, "undercut at", tmp_path, inline=toml_value)
