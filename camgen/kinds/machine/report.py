@@ -13,6 +13,7 @@ import numpy as np
 
 from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
+from camgen.kinds.machine.keeptime import timing_report
 from camgen.kinds.machine.poses import poses_report
 
 
@@ -115,6 +116,7 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         "clash_check": {"samples": spec.machine.clash_samples, "refined_deg": 0.1, "mode": spec.machine.clash,
                         "not_checked": list(design.unchecked)},
         "warnings": list(design.warnings),
+        **({"keep_time": timed} if (timed := timing_report(design)) else {}),
     }
 
 
@@ -154,6 +156,11 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
                          for p, t in m["tracers"].items())
         lines.append(f"  linkages.{name}: turned by shaft {m['shaft']} ({m['turns_per_main_turn']:g} turns a main "
                      f"turn, phase {m['phase_deg']:g} deg, {m['side']})" + (f", tracing {feet}" if feet else ""))
+    for where, timed in report.get("keep_time", {}).items():
+        worst = timed.get("worst_from_path_point_mm", timed.get("at_points_max_deg"))
+        lines.append(f"  {where} keeps time: cams.{timed['cam']} drives linkages.{timed['linkage']} through "
+                     f"{len(timed.get('targets', ())) or timed.get('points')} point(s), each within {worst:.2g} "
+                     f"{'mm' if 'targets' in timed else 'deg'} of its time")
     t = report["shaft_torque_n_m"]
     if t["min"] or t["max"]:
         lines.append(f"  main shaft torque against the linkages' loads: {t['min']:.4g} to {t['max']:.4g} N*m")

@@ -20,6 +20,7 @@ from pydantic import ConfigDict, Field, field_validator, model_validator
 from camgen.core.errors import SpecError
 from camgen.core.spec import (MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec, check_kind,
                               name_field, notes, read_template, unit)
+from camgen.kinds.machine.keeptime import KeepTime
 
 #: the most shafts, gear pairs, cams, linkages or couplings a machine may have
 MAX_MOUNTS = 20
@@ -152,6 +153,9 @@ class Coupling(Model):
     output_torque: float = Field(0.0, ge=-1e4, le=1e4, description="an external torque on the linkage's output "
                                  "link (counter-clockwise positive), which the machine holds and works against: "
                                  "reflected onto the follower and the camshaft", json_schema_extra=unit("N*m"))
+    keep_time: KeepTime | None = Field(None, description="the cam that makes the linkage keep time: targets its "
+                                       "tracer reaches at given shaft angles, or its rocker's program; the machine "
+                                       "designs the cam's motion and phase and this rest from it (give neither)")
 
 
 #: the formats a machine writes (its cams' and linkages' files of these formats, its timing diagram, its report)
@@ -198,6 +202,15 @@ class MachineSpec(TemplateSpec):
     kind: ClassVar[str] = "machine"
     product: ClassVar[str] = "camgen"
     noun: ClassVar[str] = "a machine"
+
+    @model_validator(mode="before")
+    @classmethod
+    def _keep_time(cls, data: Any) -> Any:
+        """Each coupling's ``keep_time`` worked into its cam's motion and phase and its rest, before validation
+        (:func:`camgen.kinds.machine.keeptime.expand`)."""
+        from camgen.kinds.machine.keeptime import expand
+
+        return expand(data, _template)
 
     @model_validator(mode="after")
     def _whole(self) -> MachineSpec:
