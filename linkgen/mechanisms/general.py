@@ -629,8 +629,13 @@ def general_layout(a: Analysis, table: PartsTable) -> Layout:
     traced = a.table.tracers or tuple(p for p in a.linkage.structure.points
                                       if p not in a.linkage.structure.bodies[GROUND])
     sweep = a.travel
-    return Layout(general_parts(a, table), general_placement(a, sweep), tuple((k, v) for k, v, _ in positions),
-                  poses, tuple(sweep.points[t] for t in traced))
+    layout = Layout(general_parts(a, table), general_placement(a, sweep), tuple((k, v) for k, v, _ in positions),
+                    poses, tuple(sweep.points[t] for t in traced))
+    if a.linkage.structure.pairs:
+        from linkgen.mechanisms.gearjointparts import with_gears
+
+        return with_gears(a, table, layout)
+    return layout
 
 
 def general_sketch(a: Analysis) -> Drawing:
