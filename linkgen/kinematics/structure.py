@@ -529,7 +529,6 @@ def plan(s: Structure) -> Plan:
     if unknown or pending:
         _diagnose(s, unknown, [inp for _, inp in pending])
     _check_pairs_used(s, steps)
-    _check_whole_turns(s, steps)
     mobility = s.mobility
     if mobility > len(s.inputs):
         raise SpecError(f"mobility {mobility} (Gruebler) but {len(s.inputs)} input(s): the linkage would move "
@@ -574,11 +573,13 @@ def _check_pairs_used(s: Structure, steps: list[Step]) -> None:
                             "joints before it, so its teeth would fight them; remove the pair or a joint", where)
 
 
-def _check_whole_turns(s: Structure, steps: list[Step]) -> None:
+def check_whole_turns(s: Structure, steps: tuple[Step, ...]) -> None:
     """With one crank input, refuse a pair that makes a link turn a fraction of a turn per turn of the input (the
     linkage would come back to its drawing only after several), or a rack run away from it (its pinion turning
     fully). Turns per input turn are followed exactly along the inputs and the pairs; a body placed by a dyad turns
-    a whole number of times (unknown here), so a pair from it is refused only when its ratio is sure to break that."""
+    a whole number of times (unknown here), so a pair from it is refused only when its ratio is sure to break that.
+    (:meth:`~linkgen.kinematics.linkage.Linkage.solve` reads a crank's input on one turn from the drawing: input
+    values within that turn are right whatever the ratio.)"""
     if len(s.inputs) != 1 or s.inputs[0].kind != "crank":
         return
     turns: dict[str, Fraction | None] = {GROUND: Fraction(0)}

@@ -32,8 +32,8 @@ from camgen.core.errors import SpecError
 from camgen.core.spec import MAX_LENGTH_MM, Model, unit
 from linkgen.gears.pair import GearPair
 from linkgen.gears.tooth import BasicRack
-from linkgen.kinematics.linkage import Linkage, Solution
-from linkgen.kinematics.structure import GROUND, MESH_TOL_MM, Gear, Rack
+from linkgen.kinematics.linkage import Linkage, Solution, input_angle
+from linkgen.kinematics.structure import GROUND, MESH_TOL_MM, Gear, Rack, Structure, check_whole_turns, plan
 from linkgen.mechanisms.gearpair import MAX_MODULE, MAX_TEETH, MIN_TEETH, GearPairTable
 
 #: the most gear pairs, and racks, a linkage may have
@@ -162,6 +162,22 @@ def racks_of(racks: dict[str, RackJointTable], joints: dict[str, tuple[float, fl
             lead = math.copysign(radius, side)
         out.append(Rack(name, t.slider, t.pinion.link, t.pinion.centre, lead))
     return tuple(out)
+
+
+def check_turns(s: Structure, given: tuple[float, float] | None) -> None:
+    """Refuse pairs that make a link turn a fraction of a turn (or a rack run away) per turn of a crank input
+    (:func:`~linkgen.kinematics.structure.check_whole_turns`), unless the input's range ``given`` (degrees) lies
+    within the one turn from its drawn angle, which the solve reads as it is."""
+    if len(s.inputs) != 1 or s.inputs[0].kind != "crank":
+        return
+    try:
+        check_whole_turns(s, plan(s).steps)
+    except SpecError as exc:
+        drawn = math.degrees(input_angle(s, s.inputs[0]))
+        if given is not None and drawn - 1e-9 <= given[0] and given[1] <= drawn + 360.0 + 1e-9:
+            return
+        raise SpecError(f"{exc.detail}; or give the input range = [from, to] within the turn from its drawn "
+                        f"{drawn:.9g} degrees", exc.field) from None
 
 
 def check_meshes(linkage: Linkage, sol: Solution) -> None:

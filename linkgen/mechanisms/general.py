@@ -660,7 +660,10 @@ class GeneralMechanism:
     table: type[Model] = LinkageTable
 
     def build(self, table: LinkageTable) -> Analysis:
-        analysis = Analysis(table, Linkage.of(structure_of(table)))
+        s = structure_of(table)
+        if s.pairs:
+            gearjoints.check_turns(s, table.inputs[0].range)
+        analysis = Analysis(table, Linkage.of(s))
         if analysis.linkage.structure.gears:
             gearjoints.check_meshes(analysis.linkage, analysis.travel)
         return analysis
