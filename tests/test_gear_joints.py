@@ -289,3 +289,13 @@ def test_the_parts_and_assembly_hold_the_gears_on_one_layer_that_never_overlap()
     # the assembly drawing carries both gears' outlines (the teeth: far more pieces than a bar's)
     outlines = [item for _, item in build.assembly.items if hasattr(item, "vertices") and len(item.vertices) > 100]
     assert len(outlines) >= 2 * len(layout.positions)
+
+
+@pytest.mark.parametrize("key", ["slack", "dynamics"])
+def test_slack_and_dynamics_are_refused_with_gears(tmp_path, key):
+    from linkgen.cli import main
+
+    path = tmp_path / "g.toml"
+    path.write_text(FIVEBAR.read_text() + f"\n[{key}]\n")
+    assert_refused_sets(path, [], f"{key}: a linkage with gears or racks takes no [{key}] yet", tmp_path, main,
+                        "analyze")

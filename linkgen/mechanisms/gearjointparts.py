@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,7 +28,9 @@ from linkgen.mechanisms.gearparts import outlines, rack_teeth
 from linkgen.mechanisms.general import Analysis, _frame, _turned
 from linkgen.mechanisms.shaped import ShapedPart
 from linkgen.parts import COLLISION_TOLERANCE_MM, Layout, LinkPart, Placement, Stock, layer_order, with_top_plate
-from linkgen.spec import PartsTable
+
+if TYPE_CHECKING:
+    from linkgen.spec import PartsTable
 
 
 @dataclass(frozen=True)
