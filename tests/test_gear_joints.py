@@ -263,6 +263,30 @@ def test_a_crank_that_turns_a_rack_away_is_refused_unless_its_range_is_one_turn(
     assert np.max(np.abs(sol.points["B"][:, 0] - 80.0 - 20.0 * sol.inputs[0])) < 1e-12
 
 
+def _worst_overlap(layout, first: str, second: str) -> float:
+    parts = {p.name: p for p in layout.parts}
+    worst = 0.0
+    for k in range(0, len(layout.sweep.angles[first]), 4):
+        shapes = [shapely.Polygon(parts[n].outline().moved(layout.sweep.angles[n][k], layout.sweep.origins[n][k])
+                                  .flatten(0.002)) for n in (first, second)]
+        worst = max(worst, shapes[0].intersection(shapes[1]).area)
+    return worst
+
+
+def test_a_rack_and_its_pinion_are_parts_on_one_layer_that_never_overlap(tmp_path):
+    path = tmp_path / "rack.toml"
+    path.write_text(RACK_TEMPLATE.format(slider="ram"))
+    design = api.design(api.load(path), parts=True)
+    layers = design.build.layers
+    assert layers["drive-rack"] == layers["pinion-gear"] and list(layers.values()).count(layers["drive-rack"]) == 2
+    from linkgen.mechanisms.general import general_layout
+
+    layout = general_layout(design.kinematics, design.spec.parts)
+    assert _worst_overlap(layout, "drive-rack", "pinion-gear") < 1e-6
+    # the pinion swings by the stroke over its pitch radius: 40 / 20 rad
+    assert design.report["outputs"]["pinion"]["swing_deg"] == pytest.approx(math.degrees(2.0), abs=1e-9)
+
+
 def test_the_parts_and_assembly_hold_the_gears_on_one_layer_that_never_overlap():
     design = api.design(api.load(FIVEBAR), parts=True)
     build = design.build
@@ -276,16 +300,10 @@ def test_the_parts_and_assembly_hold_the_gears_on_one_layer_that_never_overlap()
     from linkgen.mechanisms.general import general_layout
 
     layout = general_layout(a, design.spec.parts)
-    parts = {p.name: p for p in layout.parts}
-    worst = 0.0
-    for k in range(0, len(layout.sweep.angles["crank-gear"]), 4):
-        shapes = [shapely.Polygon(parts[n].outline().moved(layout.sweep.angles[n][k], layout.sweep.origins[n][k])
-                                  .flatten(0.002)) for n in ("crank-gear", "crank2-gear")]
-        worst = max(worst, shapes[0].intersection(shapes[1]).area)
-        # and their centres stay on the pivots
-        assert np.allclose(layout.sweep.origins["crank-gear"][k], [0.0, 0.0], atol=1e-9)
-        assert np.allclose(layout.sweep.origins["crank2-gear"][k], [45.0, 0.0], atol=1e-9)
-    assert worst < 1e-6
+    assert _worst_overlap(layout, "crank-gear", "crank2-gear") < 1e-6
+    # and their centres stay on the pivots
+    assert np.allclose(layout.sweep.origins["crank-gear"], [0.0, 0.0], atol=1e-9)
+    assert np.allclose(layout.sweep.origins["crank2-gear"], [45.0, 0.0], atol=1e-9)
     # the assembly drawing carries both gears' outlines (the teeth: far more pieces than a bar's)
     outlines = [item for _, item in build.assembly.items if hasattr(item, "vertices") and len(item.vertices) > 100]
     assert len(outlines) >= 2 * len(layout.positions)

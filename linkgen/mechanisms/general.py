@@ -652,6 +652,18 @@ def general_sketch(a: Analysis) -> Drawing:
     return Drawing(tuple(items), 0.01)
 
 
+def analysis_of_table(table: LinkageTable) -> Analysis:
+    """The analysis of a ``[linkage]`` table; its gears' turns per input turn and, where no link carries a pair,
+    its centres' distance over the motion checked (a :class:`SpecError` naming the pair otherwise)."""
+    s = structure_of(table)
+    if s.pairs:
+        gearjoints.check_turns(s, table.inputs[0].range)
+    analysis = Analysis(table, Linkage.of(s))
+    if s.gears:
+        gearjoints.check_meshes(analysis.linkage, analysis.travel)
+    return analysis
+
+
 @dataclass(frozen=True)
 class GeneralMechanism:
     """``linkage``: any planar linkage of dyads (bars, plates, sliders), one or more inputs."""
@@ -660,13 +672,7 @@ class GeneralMechanism:
     table: type[Model] = LinkageTable
 
     def build(self, table: LinkageTable) -> Analysis:
-        s = structure_of(table)
-        if s.pairs:
-            gearjoints.check_turns(s, table.inputs[0].range)
-        analysis = Analysis(table, Linkage.of(s))
-        if analysis.linkage.structure.gears:
-            gearjoints.check_meshes(analysis.linkage, analysis.travel)
-        return analysis
+        return analysis_of_table(table)
 
     def report(self, table: LinkageTable, kinematics: Analysis, angle: float | None, method: str) -> dict[str, Any]:
         if method == "newton":
