@@ -190,8 +190,9 @@ def lengths(table: Any) -> dict[str, Any]:
 def _refuse_geared(spec: LinkageSpec, kinematics: Any) -> None:
     """Refuse ``[slack]`` and ``[dynamics]`` for a linkage with gears or racks: their closures and joint forces do
     not take the higher pairs yet."""
-    linkage = getattr(kinematics, "linkage", None)
-    if linkage is None or not linkage.structure.pairs:
+    from linkgen.mechanisms.general import Analysis
+
+    if not isinstance(kinematics, Analysis) or not kinematics.linkage.structure.pairs:
         return
     for key in ("slack", "dynamics"):
         if getattr(spec, key) is not None:
