@@ -227,7 +227,9 @@ def _print_general(r: dict[str, Any]) -> None:
     """The general linkage's part of the text report: mobility, solve order, toggles, dyads, outputs."""
     out = click.echo
     unit = "deg" if "input_range_deg" in r else "mm"
-    order = ", ".join(s["step"] if s["step"] == "input" else f"{s['step']}({'+'.join(s.get('links', []))} at "
+    order = ", ".join(s["step"] if s["step"] == "input" else
+                      f"{s['step']}({s['link']} from {s['from']})" if s["step"] in ("gear", "rack") else
+                      f"{s['step']}({'+'.join(s.get('links', []))} at "
                       f"{s.get('joint', ', '.join(s.get('joints', [])))})" for s in r["solve_order"])
     out(f"mobility {r['mobility']}; solved as: {order}")
     if unit == "mm":

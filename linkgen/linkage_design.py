@@ -187,6 +187,19 @@ def lengths(table: Any) -> dict[str, Any]:
             if (type(table).model_fields[k].json_schema_extra or {}).get("unit") == "mm" and isinstance(v, float)}
 
 
+def _refuse_geared(spec: LinkageSpec, kinematics: Any) -> None:
+    """Refuse ``[slack]`` and ``[dynamics]`` for a linkage with gears or racks: their closures and joint forces do
+    not take the higher pairs yet."""
+    from linkgen.mechanisms.general import Analysis
+
+    if not isinstance(kinematics, Analysis) or not kinematics.linkage.structure.pairs:
+        return
+    for key in ("slack", "dynamics"):
+        if getattr(spec, key) is not None:
+            raise SpecError(f"a linkage with gears or racks takes no [{key}] yet (the tooth forces of its higher pairs "
+                            "are not modelled); leave it out", key)
+
+
 def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = "closed",
                    parts: bool = False) -> LinkageDesign:
     """The design of a validated linkage spec: kinematics, report and, when asked, parts; nothing written.
@@ -231,6 +244,7 @@ def design_linkage(spec: LinkageSpec, angle: float | None = None, method: str = 
                               "lengths_mm": lengths(table), "rpm": table.rpm,
                               **mechanism.report(table, kinematics, angle, method)}
     report["classification"] = classification(kinematics, table, report)
+    _refuse_geared(spec, kinematics)
     statics = dynamics = None
     if spec.loads:
         posed = pose_of(kinematics, table, 0.0)

@@ -61,6 +61,8 @@ RULES: dict[str, dict[str, str]] = {
                               "(w_sun - w_carrier) / (w_ring - w_carrier) = -ring / sun, ring = sun + 2 planet",
                    "linkage.stages": "each stage's [driver, driven] teeth; a stage's driven gear shares its shaft "
                                      "with the next stage's driver"},
+    "geared-fivebar": {"linkage": "mobility 3 x moving links - 2 x pins - 1 x gear pairs = 1; a gear pair's centres "
+                                  "drawn m (z_a + z_b) / 2 apart"},
     "linkage": {"linkage": "any planar linkage of one input: mobility 3 x moving links - 2 x pins = 1 (a pin "
                            "joining k links counts k - 1), solved a dyad at a time on the assembly the joints draw",
                 "linkage.input": "what drives the linkage: a link turning about a pivot (or a slider)"},
@@ -111,6 +113,20 @@ STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
         ("linkage.links", {"crank": ["O2", "A"], "coupler": ["A", "B", "C"], "rocker": ["O4", "B"],
                            "bar1": ["C", "E"], "bar2": ["O6", "F"], "bar3": ["O8", "G"], "triad": ["E", "F", "G"]}),
         PARTS]),
+    "geared-fivebar": ("A geared five-bar: two cranks on the frame geared together (40 teeth to 20, module 1.5), "
+                       "so the second turns twice, the other way,\nfor each turn of the first; the couplers' point P "
+                       "traces the curve. The gear pair is a higher pair: mobility 1.", [
+        ("linkage", {"type": "linkage", "ground": ["O2", "O5"], "input": {"link": "crank", "pivot": "O2"},
+                     "tracers": ["P"], "rpm": 30.0}),
+        ("linkage.joints", {"O2": [0.0, 0.0], "A": [5.0, 8.660254038], "O5": [45.0, 0.0],
+                            "B": [36.339745962, 5.0], "C": [22.5, 40.0], "P": [35.0, 50.0]}),
+        ("linkage.links", {"crank": ["O2", "A"], "left": ["A", "C", "P"], "right": ["C", "B"],
+                           "crank2": ["O5", "B"]}),
+        ("linkage.gears.mesh", {"a": {"link": "crank", "centre": "O2", "teeth": 40},
+                                "b": {"link": "crank2", "centre": "O5", "teeth": 20}, "module": 1.5,
+                                "pressure_angle": 20.0, "backlash": 0.15}),
+        ("parts", {"width": 8.0, "thickness": 3.0, "pin_diameter": 3.0, "clearance": 0.2, "kerf": 0.15,
+                   "sheet": [600.0, 400.0]})]),
     "gear-pair": ("An external pair of involute spur gears: a 12-tooth pinion, shifted clear of undercut, drives a "
                   "30-tooth gear.", [
         ("linkage", {"type": "gear-pair", "kind": "external", "module": 2.0, "pressure_angle": 20.0,
@@ -144,8 +160,11 @@ def _sub_model(model: type[BaseModel], table: str) -> type[BaseModel] | None:
     """The model of ``linkage.KEY``'s table (``KEY`` a field of ``model`` holding a model, or an optional one), or
     None."""
     head, _, key = table.partition(".")
+    key, _, named = key.partition(".")          # linkage.gears.NAME: a model of a table of named ones
     info = model.model_fields.get(key) if head == "linkage" else None
-    for kind in (info.annotation, *get_args(info.annotation)) if info is not None else ():
+    kinds = get_args(info.annotation)[1:] if info is not None and named else \
+        (info.annotation, *get_args(info.annotation)) if info is not None else ()
+    for kind in kinds:
         if isinstance(kind, type) and issubclass(kind, BaseModel):
             return kind
     return None

@@ -134,6 +134,8 @@ def _expected(name: str, design) -> set[str]:
             continue
         if om.turns:
             out.add("coupling")
+            if out_name not in sliders and float(np.mean(sol.omegas[out_name])) < 0:
+                out.add("reversing")                          # a geared crank turning the other way
             continue
         out.add("reciprocator" if out_name in sliders else "oscillator")
         value, _, _ = motion.values_of(a.linkage, sol, out_name)

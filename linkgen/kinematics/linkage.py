@@ -33,8 +33,8 @@ from functools import cached_property
 from linkgen.kinematics import dyads, fused, groups
 from linkgen.kinematics.dyads import cross, dot, perp
 from linkgen.kinematics.grashof import check_finite
-from linkgen.kinematics.structure import (GROUND, Attachment, DyadStep, FixedStep, GroupStep, Input, InputStep, Pin,
-                                          Plan, Slide, Structure, plan)
+from linkgen.kinematics.structure import (GROUND, Attachment, DyadStep, FixedStep, GearStep, GroupStep, Input,
+                                          InputStep, Pin, Plan, Slide, Structure, plan)
 
 #: a dyad whose margin (a sine) is above minus this is taken to close, at its toggle: the margin grows like the
 #: square root of the distance past the toggle, so this snaps inputs within about 1e-10 (relative to the links)
@@ -773,9 +773,16 @@ def _solve(linkage: Linkage, x: np.ndarray, rates: np.ndarray, signs: list[np.nd
     results: list[DyadResult] = []
     ok = np.ones(n, dtype=bool)
     drawn = linkage.drawn_inputs
+    # the turns from the drawing (rad) known exactly, not modulo a turn: the ground's, an input's, a gear's
+    turns = {GROUND: np.zeros(n)}
     for index, step in enumerate(p.steps[:upto]):
         if isinstance(step, InputStep):
             _place_input(s, step, x[step.index] - drawn[step.index], rates[step.index], bodies, motions)
+            _input_turn(s, step, x[step.index] - drawn[step.index], turns)
+        elif isinstance(step, GearStep):
+            from linkgen.kinematics import gearing
+
+            gearing.place(s, step, bodies, motions, turns)
         elif isinstance(step, FixedStep):
             _place_fixed(s, step, bodies, motions)
         elif isinstance(step, GroupStep):
@@ -980,23 +987,43 @@ def _place_input(s: Structure, step: InputStep, delta: np.ndarray, rate: float, 
         body = _pinned(cc, ss, pw, pd)
         if motions is not None:
             known = motions[inp.relative_to]
-            r = body.T - pw
-            w = known.w + rate
-            motions[step.body] = Motion(body.T, w, known.vel(pw) + w[:, None] * perp(r), known.al,
-                                        known.acc(pw) + known.al[:, None] * perp(r) - (w**2)[:, None] * r)
+            motions[step.body] = pivoted(known, pw, body.T, known.w + rate, known.al)
     else:
         sl = s.slider_by_name[inp.slider]
         ref = bodies[sl.guide]
         u = ref.rotate(_direction(sl.angle))
         body = Body(ref.c, ref.s, ref.T + delta[:, None] * u)
         if motions is not None:
-            known = motions[sl.guide]
-            tdot = np.full(len(delta), rate)
-            motions[step.body] = Motion(
-                body.T, known.w, known.vT + tdot[:, None] * u + (delta * known.w)[:, None] * perp(u), known.al,
-                known.aT + 2.0 * (tdot * known.w)[:, None] * perp(u) + delta[:, None] * (
-                    known.al[:, None] * perp(u) - (known.w**2)[:, None] * u))
+            zero = np.zeros(len(delta))
+            motions[step.body] = slid(motions[sl.guide], body.T, u, delta, zero + rate, zero)
     bodies[step.body] = body
+
+
+def _input_turn(s: Structure, step: InputStep, delta: np.ndarray, turns: dict[str, np.ndarray]) -> None:
+    """The driven body's turn from the drawing, exactly, where its reference body's is known so."""
+    inp = s.inputs[step.index]
+    ref = inp.relative_to if inp.kind == "crank" else s.slider_by_name[inp.slider].guide
+    if ref in turns:
+        turns[step.body] = turns[ref] + delta if inp.kind == "crank" else turns[ref]
+
+
+def pivoted(known: Motion, pw: np.ndarray, T: np.ndarray, w: np.ndarray, al: np.ndarray) -> Motion:
+    """The motion of a body turning about the material point at ``pw`` (n, 2) mm of a body moving as ``known``, at
+    angular velocity ``w`` and acceleration ``al`` (n,), its pose's translation ``T`` (n, 2)."""
+    r = T - pw
+    return Motion(T, w, known.vel(pw) + w[:, None] * perp(r), al,
+                  known.acc(pw) + al[:, None] * perp(r) - (w**2)[:, None] * r)
+
+
+def slid(known: Motion, T: np.ndarray, u: np.ndarray, t: np.ndarray, tdot: np.ndarray, tddot: np.ndarray) -> Motion:
+    """The motion of a body sliding on a guide of a body moving as ``known``: travel ``t`` (n,) mm along the guide's
+    world direction ``u`` (n, 2) from where the two bodies' poses coincide, its rate ``tdot`` and acceleration
+    ``tddot``, its pose's translation ``T``; the guide's coincident point's motion, the slide and Coriolis'
+    term."""
+    w, al = known.w, known.al
+    return Motion(T, w, known.vT + tdot[:, None] * u + (t * w)[:, None] * perp(u), al,
+                  known.aT + tddot[:, None] * u + 2.0 * (tdot * w)[:, None] * perp(u)
+                  + t[:, None] * (al[:, None] * perp(u) - (w**2)[:, None] * u))
 
 
 def _place_fixed(s: Structure, step: FixedStep, bodies: dict[str, Body], motions: dict[str, Motion] | None) -> None:
@@ -1028,9 +1055,7 @@ def _place_fixed(s: Structure, step: FixedStep, bodies: dict[str, Body], motions
         al = cross(d, guide.acc(qw) - held.acc(pw)) / dd
     else:
         w, al = guide.w, guide.al
-    r = body.T - pw
-    motions[step.body] = Motion(body.T, w, held.vel(pw) + w[:, None] * perp(r), al,
-                                held.acc(pw) + al[:, None] * perp(r) - (w**2)[:, None] * r)
+    motions[step.body] = pivoted(held, pw, body.T, w, al)
 
 
 def _unbounded(x: np.ndarray) -> np.ndarray:

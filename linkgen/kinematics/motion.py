@@ -26,7 +26,7 @@ from camgen.core.errors import SpecError
 from linkgen.kinematics.fourbar import digits_apart
 from linkgen.kinematics.linkage import CLOSE_TOL, RUNAWAY, DyadResult
 from linkgen.kinematics.groups import GROUP_KINDS
-from linkgen.kinematics.structure import GROUND, DyadStep, GroupStep, Pin
+from linkgen.kinematics.structure import GROUND, DyadStep, GearStep, GroupStep, Pin
 
 if TYPE_CHECKING:
     from linkgen.kinematics.linkage import Linkage, Solution
@@ -344,6 +344,8 @@ def rockers(linkage: Linkage) -> list[str]:
                     out.append(body)
         elif isinstance(step, GroupStep):
             out += [body for _, body, other in step.pins if other == GROUND and body not in driven]
+        elif isinstance(step, GearStep) and isinstance(step.attachment, Pin) and step.attachment.body == GROUND:
+            out.append(step.body)                   # a gear or pinion turning on the frame
     return out
 
 

@@ -12,19 +12,22 @@ after the slider that pivots on ``point``. Inputs turn a link about one of its p
 Every body's pose is a rotation phi and a translation T from the drawing:
 ``world(x) = R(phi) x + T`` for any drawn point x, so the drawing is the pose phi = 0, T = 0.
 
-Mobility (Gruebler-Kutzbach): M = 3 (n - 1) - 2 j, n bodies with the ground and the blocks,
-j revolute pairs (a point shared by k bodies is k - 1 of them) plus prismatic joints.
+Mobility (Gruebler-Kutzbach): M = 3 (n - 1) - 2 j1 - j2, n bodies with the ground and the blocks,
+j1 revolute pairs (a point shared by k bodies is k - 1 of them) plus prismatic joints, j2 the higher
+pairs: gear pairs and racks (:class:`Gear`, :class:`Rack`), each of which removes one freedom.
 :func:`plan` finds the solve order: inputs first, then dyads, each of two bodies that have one
 unknown each (turning about a known point, or sliding along a known guide) and meet at a
 joint of their own. Where none is left and bodies remain, it says why: too few inputs
 (under-constrained), too many constraints (over-constrained), or a group of a higher class
-than dyads (named with its joints).
+than dyads (named with its joints). A higher pair is a :class:`GearStep`: it places one of its
+two links from the other (and their centres) in closed form, before any dyad that could use that link.
 """
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from fractions import Fraction
 from typing import Literal
 
 from camgen.core.errors import SpecError
@@ -50,6 +53,50 @@ class Slider:
     def body(self) -> str:
         """The sliding body's name."""
         return self.link or self.name
+
+
+@dataclass(frozen=True)
+class Gear:
+    """A gear pair, a higher pair: a gear fixed to ``bodies[0]`` about its joint ``centres[0]`` meshing with one fixed
+    to ``bodies[1]`` about ``centres[1]`` (either may be the ground). Turns from the drawing (rad, counter-clockwise)
+    keep ``phi_1 - phi_L = ratio (phi_0 - phi_L)``, phi_L the turn of the line of centres (of the carrier, the body
+    holding both centres, where there is one): ``ratio`` is -z0 / z1 for an external pair, +z0 / z1 for an internal
+    one (bodies[1] the ring); ``teeth`` (z0, z1) and ``distance`` (mm), the centre distance the teeth mesh at."""
+
+    name: str
+    bodies: tuple[str, str]
+    centres: tuple[str, str]
+    teeth: tuple[int, int]
+    internal: bool
+    distance: float
+
+    @property
+    def turns(self) -> Fraction:
+        """:attr:`ratio` as an exact fraction."""
+        return Fraction(self.teeth[0], self.teeth[1]) * (1 if self.internal else -1)
+
+    @property
+    def ratio(self) -> float:
+        """bodies[1]'s turn relative to the line of centres per bodies[0]'s."""
+        return float(self.turns)
+
+
+@dataclass(frozen=True)
+class Rack:
+    """A rack and pinion, a higher pair: a rack fixed to slider ``slider``'s sliding body meshing with a pinion fixed
+    to ``pinion`` about its joint ``centre``, which the slider's guide body holds. The rack's travel t (mm along the
+    guide from the drawing, relative to the guide) and the pinion's turn psi relative to the guide (rad,
+    counter-clockwise) keep ``t = lead psi``: ``lead`` is the pinion's pitch radius, positive where its centre lies
+    to the left of the guide's direction (the rack's pitch line below it, seen along the guide)."""
+
+    name: str
+    slider: str
+    pinion: str
+    centre: str
+    lead: float
+
+
+Pair = Gear | Rack
 
 
 @dataclass(frozen=True)
@@ -154,7 +201,26 @@ class GroupStep:
         return tuple(sorted({p for p, _, _ in self.pins} | set(self.sliders)))
 
 
-Step = InputStep | DyadStep | FixedStep | GroupStep
+@dataclass(frozen=True)
+class GearStep:
+    """Place ``body`` by the higher pair ``pair`` (a :class:`Gear` or a :class:`Rack`) from its other member's body
+    ``partner``, already placed: the body turns about its gear's centre on a known body (``attachment`` a
+    :class:`Pin`), or slides along the rack's slider on its known guide (a :class:`Slide`); ``rack`` for a rack
+    and pinion."""
+
+    pair: str
+    body: str
+    partner: str
+    attachment: Attachment
+    rack: bool = False
+
+    @property
+    def kind(self) -> str:
+        """'gear' or 'rack'."""
+        return "rack" if self.rack else "gear"
+
+
+Step = InputStep | DyadStep | FixedStep | GroupStep | GearStep
 
 
 @dataclass(frozen=True)
@@ -167,6 +233,9 @@ class Structure:
     sliders: tuple[Slider, ...]
     inputs: tuple[Input, ...]
     scale: float = field(default=1.0)
+    #: the higher pairs: gear pairs and racks
+    gears: tuple[Gear, ...] = ()
+    racks: tuple[Rack, ...] = ()
 
     @cached_property
     def size(self) -> float:
@@ -198,13 +267,24 @@ class Structure:
 
     @property
     def mobility(self) -> int:
-        """Gruebler-Kutzbach: 3 (n - 1) - 2 j for n bodies and j pairs."""
+        """Gruebler-Kutzbach: 3 (n - 1) - 2 j1 - j2 for n bodies, j1 full pairs and j2 higher pairs (gears, racks)."""
         pairs = sum(len(h) - 1 for h in self.revolutes.values()) + len(self.sliders)
-        return 3 * (len(self.bodies) - 1) - 2 * pairs
+        return 3 * (len(self.bodies) - 1) - 2 * pairs - len(self.gears) - len(self.racks)
+
+    @property
+    def pairs(self) -> tuple[Pair, ...]:
+        """The higher pairs: the gear pairs, then the racks."""
+        return (*self.gears, *self.racks)
+
+    def carrier(self, gear: Gear) -> str | None:
+        """The body holding both of a gear pair's centres (its carrier: the line of centres turns with it), if
+        any."""
+        return next((b for b in self.holders(gear.centres[0]) if gear.centres[1] in self.bodies[b]), None)
 
 
 def make_structure(points: Mapping[str, tuple[float, float]], links: Mapping[str, tuple[str, ...]],
-                   ground: tuple[str, ...], sliders: tuple[Slider, ...], inputs: tuple[Input, ...]) -> Structure:
+                   ground: tuple[str, ...], sliders: tuple[Slider, ...], inputs: tuple[Input, ...],
+                   gears: tuple[Gear, ...] = (), racks: tuple[Rack, ...] = ()) -> Structure:
     """Check the names and the drawing and gather the bodies; a :class:`SpecError` naming the field otherwise."""
     if not points:
         raise SpecError("missing: give each joint's drawn position, e.g. A = [0, 0]", "linkage.joints")
@@ -250,12 +330,56 @@ def make_structure(points: Mapping[str, tuple[float, float]], links: Mapping[str
             raise SpecError("a link cannot slide on itself", f"{where}.guide")
         if not math.isfinite(slider.angle):
             raise SpecError("must be a finite angle in degrees", f"{where}.angle")
-    structure = Structure(points, bodies, tuple(sliders), tuple(inputs), scale)
+    structure = Structure(points, bodies, tuple(sliders), tuple(inputs), scale, tuple(gears), tuple(racks))
+    _check_pairs(structure)
     _check_held(structure)
     _check_inputs(structure)
     _check_input_count(structure)
     _check_connected(structure)
     return structure
+
+
+#: how closely (mm) a gear pair's centres, or a pinion's centre and its rack's pitch line, must lie at the distance
+#: their teeth mesh at
+MESH_TOL_MM = 1e-6
+
+
+def _check_pairs(s: Structure) -> None:
+    """Refuse a gear on a link that does not hold its centre, two gears on one link, a rack on no slider or with its
+    pinion's centre off the guide's body, and members drawn other than at the distance their teeth mesh at."""
+    for g in s.gears:
+        where = f"linkage.gears.{g.name}"
+        for key, body, centre in zip("ab", g.bodies, g.centres, strict=True):
+            if body not in s.bodies:
+                raise SpecError(f"no link {body!r} (links: {', '.join(s.bodies)})", f"{where}.{key}.link")
+            if centre not in s.bodies[body]:
+                raise SpecError(f"link {body!r} does not hold {centre!r}: a gear turns with its link about one of "
+                                f"its joints ({', '.join(s.bodies[body])})", f"{where}.{key}.centre")
+        if g.bodies[0] == g.bodies[1]:
+            raise SpecError("the two gears of a pair are on one link: they could not turn", f"{where}.b.link")
+        if g.centres[0] == g.centres[1] and not g.internal:
+            raise SpecError("an external pair's centres are one joint: give each gear its own centre",
+                            f"{where}.b.centre")
+        got = math.dist(s.points[g.centres[0]], s.points[g.centres[1]])
+        if abs(got - g.distance) > MESH_TOL_MM:
+            raise SpecError(f"the drawing puts the centres {g.centres[0]} and {g.centres[1]} {got:.9g} mm apart, but "
+                            f"teeth {g.teeth[0]} and {g.teeth[1]} mesh at {g.distance:.9g} mm (m (z1 "
+                            f"{'-' if g.internal else '+'} z2) / 2, within {MESH_TOL_MM:g} mm): move a centre",
+                            where)
+    sliders = s.slider_by_name
+    for r in s.racks:
+        where = f"linkage.racks.{r.name}"
+        if r.slider not in sliders:
+            raise SpecError(f"a rack rides on a slider: no slider {r.slider!r} (sliders: "
+                            f"{', '.join(sliders) or 'none'})", f"{where}.slider")
+        if r.pinion not in s.bodies:
+            raise SpecError(f"no link {r.pinion!r} (links: {', '.join(s.bodies)})", f"{where}.pinion.link")
+        sl = sliders[r.slider]
+        if r.centre not in s.bodies[r.pinion]:
+            raise SpecError(f"link {r.pinion!r} does not hold {r.centre!r}", f"{where}.pinion.centre")
+        if r.centre not in s.bodies[sl.guide] or r.pinion in (sl.guide, sl.body):
+            raise SpecError(f"the pinion turns about a joint of the rack's guide {sl.guide!r} (its joints: "
+                            f"{', '.join(s.bodies[sl.guide])}), on a link of its own", f"{where}.pinion.centre")
 
 
 def _check_held(s: Structure) -> None:
@@ -378,6 +502,11 @@ def plan(s: Structure) -> Plan:
             del pending[k]
             continue
         driven = {_driven(s, inp) for _, inp in pending}
+        geared = _find_gear(s, known, driven, {st.pair for st in steps if isinstance(st, GearStep)})
+        if geared is not None:
+            steps.append(geared)
+            known.add(geared.body)
+            continue
         unknown = [b for b in s.bodies if b not in known and b not in driven]
         held = {b: _attachments(s, b, known) for b in unknown}
         dyad = _find_dyad(s, unknown, held)
@@ -399,11 +528,95 @@ def plan(s: Structure) -> Plan:
     unknown = [b for b in s.bodies if b not in known]
     if unknown or pending:
         _diagnose(s, unknown, [inp for _, inp in pending])
+    _check_pairs_used(s, steps)
     mobility = s.mobility
     if mobility > len(s.inputs):
         raise SpecError(f"mobility {mobility} (Gruebler) but {len(s.inputs)} input(s): the linkage would move "
                         "freely; add an input or a link", "linkage.input")
     return Plan(tuple(steps), _redundant(s, steps), mobility)
+
+
+def _find_gear(s: Structure, known: set[str], driven: set[str], used: set[str]) -> GearStep | None:
+    """The first higher pair not yet used that places a body from its placed partner: a gear whose centre a known
+    body holds, or a rack (from its pinion) or a pinion (from its rack) once the rack's guide is known; None if no
+    pair can."""
+    for g in s.gears:
+        if g.name in used:
+            continue
+        for k in (0, 1):
+            body, partner, centre = g.bodies[1 - k], g.bodies[k], g.centres[1 - k]
+            if partner not in known or body in known or body in driven:
+                continue
+            holder = next((b for b in s.holders(centre) if b in known and b != body), None)
+            if holder is not None:
+                return GearStep(g.name, body, partner, Pin(centre, holder))
+    sliders = s.slider_by_name
+    for r in s.racks:
+        sl = sliders[r.slider]
+        if r.name in used or sl.guide not in known:
+            continue
+        if r.pinion in known and sl.body not in known and sl.body not in driven:
+            return GearStep(r.name, sl.body, r.pinion, Slide(sl.name, sl.guide, True), True)
+        if sl.body in known and r.pinion not in known and r.pinion not in driven:
+            return GearStep(r.name, r.pinion, sl.body, Pin(r.centre, sl.guide), True)
+    return None
+
+
+def _check_pairs_used(s: Structure, steps: list[Step]) -> None:
+    """Refuse a higher pair no step used: both its members were placed by other joints, so it could only hold by
+    chance (an over-constrained linkage)."""
+    used = {st.pair for st in steps if isinstance(st, GearStep)}
+    for pair in s.pairs:
+        if pair.name not in used:
+            where = f"linkage.gears.{pair.name}" if isinstance(pair, Gear) else f"linkage.racks.{pair.name}"
+            raise SpecError(f"over-constrained (mobility {s.mobility}): the links of this pair are placed by other "
+                            "joints before it, so its teeth would fight them; remove the pair or a joint", where)
+
+
+def check_whole_turns(s: Structure, steps: tuple[Step, ...]) -> None:
+    """With one crank input, refuse a pair that makes a link turn a fraction of a turn per turn of the input (the
+    linkage would come back to its drawing only after several), or a rack run away from it (its pinion turning
+    fully). Turns per input turn are followed exactly along the inputs and the pairs; a body placed by a dyad turns
+    a whole number of times (unknown here), so a pair from it is refused only when its ratio is sure to break that.
+    (:meth:`~linkgen.kinematics.linkage.Linkage.solve` reads a crank's input on one turn from the drawing: input
+    values within that turn are right whatever the ratio.)"""
+    if len(s.inputs) != 1 or s.inputs[0].kind != "crank":
+        return
+    turns: dict[str, Fraction | None] = {GROUND: Fraction(0)}
+    for step in steps:
+        if isinstance(step, InputStep):
+            ref = turns.get(s.inputs[0].relative_to)
+            turns[step.body] = None if ref is None else ref + 1
+        elif isinstance(step, GearStep):
+            pair = next(p for p in s.pairs if p.name == step.pair)
+            turns[step.body] = _geared_turns(s, step, pair, turns)
+        else:
+            for body in (step.bodies if isinstance(step, (DyadStep, GroupStep)) else (step.body,)):
+                turns[body] = None
+
+
+def _geared_turns(s: Structure, step: GearStep, pair: Pair, turns: dict[str, Fraction | None]) -> Fraction | None:
+    """The turns per input turn of the body a gear step places (None where not known: a whole number), or a
+    :class:`SpecError` where they are not whole."""
+    partner = turns.get(step.partner)
+    if isinstance(pair, Rack):
+        guide = turns.get(s.slider_by_name[pair.slider].guide)
+        if step.body != pair.pinion and partner is not None and guide is not None and partner != guide:
+            raise SpecError(f"the crank turns pinion {pair.pinion} fully, so the rack would run away along its "
+                            "guide; drive the slider (input = { slider = ... }) or move the rack from a link that "
+                            "swings", f"linkage.racks.{pair.name}")
+        return guide
+    carrier = s.carrier(pair)
+    line = turns.get(carrier) if carrier is not None else None
+    ratio = pair.turns if step.body == pair.bodies[1] else 1 / pair.turns
+    if partner is None or line is None:
+        return None
+    got = line + ratio * (partner - line)
+    if got.denominator != 1:
+        raise SpecError(f"with the crank input, link {step.body} turns {got} times a turn of the input, so the linkage "
+                        f"comes back to its drawing only after {got.denominator} turns, which is not analysed; "
+                        f"drive link {step.body} instead or give teeth in a whole ratio", f"linkage.gears.{pair.name}")
+    return got
 
 
 def _reference(s: Structure, inp: Input) -> str:
@@ -446,6 +659,8 @@ def _redundant(s: Structure, steps: list[Step]) -> tuple[Redundant, ...]:
             for point, a, b in step.pins:
                 used[point].append((a, b))
             used_sliders.update(step.sliders)
+        elif isinstance(step, GearStep):
+            use(step.body, step.attachment)
         else:
             use(step.body, step.attachments[0])     # the second attachment is the one too many: checked
     out = []
@@ -529,7 +744,9 @@ def _diagnose(s: Structure, unknown: list[str], pending: list[Input]) -> None:
         if any(b in unknown for b in holders):
             pairs += len(ends) - 1
     pairs += sum(1 for sl in s.sliders if merged[sl.body] != merged[sl.guide])
-    freedom = 3 * len(unknown) - 2 * pairs
+    higher = sum(1 for g in s.gears if merged[g.bodies[0]] != merged[g.bodies[1]])
+    higher += sum(1 for r in s.racks if merged[r.pinion] != merged[s.slider_by_name[r.slider].body])
+    freedom = 3 * len(unknown) - 2 * pairs - higher
     names = ", ".join(unknown)
     if freedom > 0:
         raise SpecError(f"links {names} are not fixed by the inputs (mobility {s.mobility}, {len(s.inputs)} "

@@ -17,6 +17,9 @@ The ``[linkage]`` table::
     guide = "ground"
     angle = 0
 
+Gears are joints too: ``[linkage.gears.NAME]`` (a gear on a link meshing with one on another) and
+``[linkage.racks.NAME]`` (a rack on a slider meshing with a pinion), see :mod:`linkgen.mechanisms.gearjoints`.
+
 The input's value is the crank's direction in degrees (counter-clockwise from +X, the
 drawing's frame) or the slider's travel in mm from the drawing. The report gives every
 angle in degrees, lengths in mm, speeds at the table's ``rpm`` (or ``speed`` mm/s for a
@@ -40,9 +43,11 @@ from linkgen import plots
 from linkgen.kinematics import linkage_circuit, motion
 from linkgen.kinematics.groups import GROUP_KINDS
 from linkgen.kinematics.linkage import Linkage, Solution
-from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, GroupStep, Input, InputStep, Slider, Structure,
-                                          make_structure)
+from linkgen.kinematics.structure import (GROUND, DyadStep, FixedStep, GearStep, GroupStep, Input, InputStep, Slider,
+                                          Structure, make_structure)
+from linkgen.mechanisms import gearjoints
 from linkgen.mechanisms.common import Figure, num, omega, rpm
+from linkgen.mechanisms.gearjoints import GearJointTable, RackJointTable
 from linkgen.parts import SWEEP, Layout, LinkPart, Placement, Stock
 
 if TYPE_CHECKING:
@@ -107,6 +112,13 @@ class LinkageTable(Model):
     tracers: tuple[str, ...] = Field((), description="points whose paths are drawn and reported")
     lengths: dict[str, float] = Field(default_factory=dict, description="checks: 'A-B' = the distance the drawing "
                                                                         "must show", json_schema_extra=unit("mm"))
+    gears: dict[str, GearJointTable] = Field(default_factory=dict, max_length=gearjoints.MAX_PAIRS,
+                                             description="gear pairs: a gear fixed to a link about one of its joints "
+                                                         "meshing with a gear on another link (at most 50)")
+    racks: dict[str, RackJointTable] = Field(default_factory=dict, max_length=gearjoints.MAX_PAIRS,
+                                             description="racks: a rack on a slider's sliding link meshing with a "
+                                                         "pinion on a link turning about a joint of its guide (at "
+                                                         "most 50)")
     rpm: float = rpm()
 
     @field_validator("joints")
@@ -181,7 +193,8 @@ def structure_of(table: LinkageTable) -> Any:
     """The kinematic structure a ``[linkage]`` table draws (a :class:`SpecError` naming the field otherwise)."""
     sliders = tuple(Slider(name, t.point, t.guide, math.radians(t.angle), t.link) for name, t in table.sliders.items())
     inputs = tuple(_input(i) for i in table.inputs)
-    s = make_structure(dict(table.joints), dict(table.links), tuple(table.ground), sliders, inputs)
+    s = make_structure(dict(table.joints), dict(table.links), tuple(table.ground), sliders, inputs,
+                       gearjoints.gears_of(table.gears), gearjoints.racks_of(table.racks, table.joints, table.sliders))
     for key, want in table.lengths.items():
         a, sep, b = key.partition("-")
         if not sep or a not in s.points or b not in s.points:
@@ -326,6 +339,8 @@ def steps_report(a: Analysis) -> list[dict[str, Any]]:
         elif isinstance(step, GroupStep):
             out.append({"step": step.kind, "links": list(step.bodies), "joints": list(step.joints),
                         "method": "Newton's method continued along the input from the drawing"})
+        elif isinstance(step, GearStep):
+            out.append({"step": step.kind, "link": step.body, "from": step.partner, "pair": step.pair})
     return out
 
 
@@ -340,6 +355,7 @@ def general_report(table: LinkageTable, a: Analysis, angle: float | None) -> dic
         "conventions": CONVENTIONS,
         "mobility": a.linkage.plan.mobility, "inputs": [_input_report(i) for i in table.inputs],
         "solve_order": steps_report(a),
+        **({"higher_pairs": gearjoints.pairs_report(a.linkage)} if a.linkage.structure.pairs else {}),
         f"input_range_{unit_name}": None if ranges is None else [[a.shown(lo) if a.crank else lo, a.shown(hi)]
                                                                    for lo, hi in ranges],
         f"analysed_{unit_name}": [round(math.degrees(v), 9) if a.crank else round(v, 9)
@@ -622,8 +638,13 @@ def general_layout(a: Analysis, table: PartsTable) -> Layout:
     traced = a.table.tracers or tuple(p for p in a.linkage.structure.points
                                       if p not in a.linkage.structure.bodies[GROUND])
     sweep = a.travel
-    return Layout(general_parts(a, table), general_placement(a, sweep), tuple((k, v) for k, v, _ in positions),
-                  poses, tuple(sweep.points[t] for t in traced))
+    layout = Layout(general_parts(a, table), general_placement(a, sweep), tuple((k, v) for k, v, _ in positions),
+                    poses, tuple(sweep.points[t] for t in traced))
+    if a.linkage.structure.pairs:
+        from linkgen.mechanisms.gearjointparts import with_gears
+
+        return with_gears(a, table, layout)
+    return layout
 
 
 def general_sketch(a: Analysis) -> Drawing:
@@ -640,6 +661,18 @@ def general_sketch(a: Analysis) -> Drawing:
     return Drawing(tuple(items), 0.01)
 
 
+def analysis_of_table(table: LinkageTable) -> Analysis:
+    """The analysis of a ``[linkage]`` table; its gears' turns per input turn and, where no link carries a pair,
+    its centres' distance over the motion checked (a :class:`SpecError` naming the pair otherwise)."""
+    s = structure_of(table)
+    if s.pairs:
+        gearjoints.check_turns(s, table.inputs[0].range)
+    analysis = Analysis(table, Linkage.of(s))
+    if s.gears:
+        gearjoints.check_meshes(analysis.linkage, analysis.travel)
+    return analysis
+
+
 @dataclass(frozen=True)
 class GeneralMechanism:
     """``linkage``: any planar linkage of dyads (bars, plates, sliders), one or more inputs."""
@@ -648,7 +681,7 @@ class GeneralMechanism:
     table: type[Model] = LinkageTable
 
     def build(self, table: LinkageTable) -> Analysis:
-        return Analysis(table, Linkage.of(structure_of(table)))
+        return analysis_of_table(table)
 
     def report(self, table: LinkageTable, kinematics: Analysis, angle: float | None, method: str) -> dict[str, Any]:
         if method == "newton":
