@@ -164,8 +164,11 @@ def _margin(radius: float) -> float:
     return 1.01 * radius + 0.05
 
 
-def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], tuple[str, ...]]:
+def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, ...], tuple[Joint, ...],
+                                                                   tuple[str, ...]]:
     """The bodies and joints of a :class:`~camgen.kinds.machine.design.MachineDesign`, and the parts not checked.
+    With ``one_plate`` (``machine.frame = "one"``) every pin stands on the frame, a rocker's pivot too (else it
+    hangs from a top plate).
 
     Each cam (its part's outline as cut, turned by sense x its program angle about its shaft) and, for an
     oscillating roller, its follower's arm (a bar from its pivot to its roller, as wide as the roller) and roller,
@@ -305,7 +308,8 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
     roof = max(plane_of.values()) + 1                       # the top plate's plane
     for i, ((x, y), (held, from_top, r)) in enumerate(pins.items()):
         name = f"pins.{i}"
-        low, high = (min(plane_of[h] for h in held), roof) if from_top else (0, max(plane_of[h] for h in held))
+        hangs = from_top and not one_plate
+        low, high = (min(plane_of[h] for h in held), roof) if hangs else (0, max(plane_of[h] for h in held))
         bodies.append(Body(name, low, high, circle(r), fixed((x, y))))
         joints += [Joint(h, name, still((x, y)), _margin(r)) for h in held]
     for shaft, seats in shafts.items():

@@ -53,6 +53,11 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
     for m in design.linkages:
         items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats)
     report = {**machine_report(design), **_parts_summary(cams)}
+    if design.frame is not None:
+        from camgen.kinds.machine.framekit import frame_items, frame_report
+
+        report["frame"] = frame_report(design.frame, design)
+        items += frame_items(design.frame, design, formats)
 
     def plot() -> Any:
         from camgen.kinds.machine.plots import timing_figure
