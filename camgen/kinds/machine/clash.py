@@ -29,13 +29,15 @@ Placement = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
 @dataclass(frozen=True)
 class Body:
     """A part of the machine: its ``name``, the planes ``low`` to ``high`` it fills, its ``outline`` (m, 2) mm in
-    its own frame and its ``place`` ment at main shaft angles."""
+    its own frame and its ``place`` ment at main shaft angles; its round ``holes`` ((centre, radius) mm in its own
+    frame: a cam's bore, a link's pin holes), which the assembly shows and the clash check does not need."""
 
     name: str
     low: int
     high: int
     outline: np.ndarray
     place: Placement
+    holes: tuple[tuple[tuple[float, float], float], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -159,6 +161,13 @@ def clashes(bodies: Sequence[Body], joints: Sequence[Joint], samples: int) -> tu
 PIVOT_PIN_MM = 4.0
 
 
+def _round_holes(holes: Sequence[object]) -> tuple[tuple[tuple[float, float], float], ...]:
+    """The round ones of a part's ``holes`` as (centre, radius) pairs (mm)."""
+    from camgen.core.shapes import Circle
+
+    return tuple(((float(h.centre[0]), float(h.centre[1])), float(h.radius)) for h in holes if isinstance(h, Circle))
+
+
 def _margin(radius: float) -> float:
     """A joint's disc: ``radius`` mm and room for the chords of the outlines meeting in it."""
     return 1.01 * radius + 0.05
@@ -205,7 +214,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             return rotation(sense * theta(phi)), np.broadcast_to(centre, (len(phi), 2))
 
         name = f"cams.{cam.name}"
-        bodies.append(Body(name, 2 * mount.layer, 2 * mount.layer, part.outline.flatten(tol), place_cam))
+        bodies.append(Body(name, 2 * mount.layer, 2 * mount.layer, part.outline.flatten(tol), place_cam,
+                           _round_holes(part.holes)))
         shafts.setdefault(mount.shaft, []).append((2 * mount.layer, float(part.holes[0].radius) if part.holes else 0.0))
         joints.append(Joint(name, f"shafts.{mount.shaft}", still(centre),
                             _margin(max((h.radius for h in part.holes), default=0.0))))
@@ -293,7 +303,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             name = f"linkages.{m.name}.{which}"
             names[which] = (name, plane)
             bodies.append(Body(name, plane, plane, cut[which].outline.flatten(0.01),
-                               functools.partial(place_link, which=which)))
+                               functools.partial(place_link, which=which),
+                               _round_holes(cut[which].holes)))
         joints += [Joint(f"cams.{m.cam}.arm", names["coupler"][0], crank_pin, _margin(hw)),
                    Joint(names["coupler"][0], names["rocker"][0], rocker_pin, _margin(hw))]
         pin_r = m.design.spec.parts.pin_diameter / 2 if m.design.spec.parts else PIVOT_PIN_MM / 2

@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from camgen.core.bundle import Bundle, Entry, Item, Report, item
+from camgen.core.bundle import Bundle, Entry, Item, Report, item, mesh_files, solid_files
 from camgen.kinds import spec_kind
 from camgen.kinds.machine.design import MachineDesign
 from camgen.kinds.machine.report import machine_report, timing_rows
@@ -58,6 +58,12 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
 
         report["frame"] = frame_report(design.frame, design)
         items += frame_items(design.frame, design, formats)
+    from camgen.kinds.machine import assembly
+
+    report["assembly"] = assembly.assembly_report(design)
+    for made in (mesh_files(lambda: assembly.meshes(design), f"{name}-assembly", "assembly", only=("3mf",)),
+                 solid_files(lambda: assembly.solids(design), f"{name}-assembly", "assembly")):
+        items.append(made.only(formats) if made is not None else None)
 
     def plot() -> Any:
         from camgen.kinds.machine.plots import timing_figure
