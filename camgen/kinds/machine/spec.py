@@ -152,6 +152,8 @@ class MachineOutputTable(OutputTable):
         ("dxf", "cut-svg", "stl", "3mf", "json"), min_length=1, description="files to write: each cam's and "
         "linkage's of these formats (html: each one's own page), the timing diagram as png and svg (and its CSV "
         "with json), the report as json; step the assembly's solids (with the step extra)")
+    folders: bool = Field(False, description="write each cam's and linkage's files in a sub-folder of its own, "
+                          "<out>/<mount>/ (the machine's own files stay in <out>)")
     kerf: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="laser kerf of the frame's cut files: its "
                         "outline grows and its holes shrink by half of it", json_schema_extra=unit("mm"))
     clearance: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="printing clearance of the frame's and "
