@@ -137,9 +137,9 @@ def test_freecad_reads_the_step_file_one_solid_a_part(built, automaton):
     want = pieces(automaton)
     assert len(found) == len(want) == 17
     for solid, piece in zip(found, want, strict=True):
-        assert solid["valid"], piece.name
-        assert solid["volume"] == pytest.approx(piece.part.area * piece.part.thickness, rel=5e-3), piece.name
-        assert solid["box"][2] == pytest.approx(piece.z, abs=1e-6), piece.name
+        assert solid["valid"], piece.part.name
+        assert solid["volume"] == pytest.approx(piece.part.area * piece.part.thickness, rel=5e-3), piece.part.name
+        assert solid["box"][2] == pytest.approx(piece.z, abs=1e-6), piece.part.name
 
 
 def test_the_assembly_angle_is_bounded(tmp_path):

@@ -14,7 +14,7 @@ from __future__ import annotations
 import dataclasses
 import os
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
@@ -108,10 +108,8 @@ def staged(directory: str | Path) -> Iterator[Staging]:
         for temp, _ in stage.pending:
             temp.unlink(missing_ok=True)
         for folder in stage.created[::-1]:                  # deepest first; each empty once its temporaries went
-            try:
+            with suppress(OSError):
                 folder.rmdir()
-            except OSError:
-                pass
         _remove(created)
         if isinstance(exc, OSError) and not isinstance(exc, ExportError):
             raise ExportError(f"cannot write to {directory}: {exc.strerror}") from None

@@ -37,10 +37,6 @@ class Piece:
     z: float
     bought: bool
 
-    @property
-    def name(self) -> str:
-        return self.part.name
-
 
 def _placed_part(body: Body, phi: float, thickness: float, tolerance: float) -> Part:
     """``body``'s outline and round holes placed at main shaft angle ``phi`` (rad): a flat part ``thickness`` mm
@@ -132,7 +128,7 @@ def meshes(design: Any) -> tuple[Any, ...]:
     bought: list[Mesh] = []
     for piece in pieces(design):
         mesh = checked_mesh(piece.part)[0]
-        mesh = replace(mesh, vertices=mesh.vertices + np.array([0.0, 0.0, piece.z]), name=piece.name)
+        mesh = replace(mesh, vertices=mesh.vertices + np.array([0.0, 0.0, piece.z]), name=piece.part.name)
         (bought if piece.bought else made).append(mesh)
     if not bought:
         return tuple(made)
@@ -145,7 +141,7 @@ def meshes(design: Any) -> tuple[Any, ...]:
 
 def solids(design: Any) -> tuple[Placed, ...]:
     """The assembly's STEP payload: every piece a solid of its own, raised to its height."""
-    return tuple(Placed(p.name, (p.part,), 0.0, (0.0, 0.0, p.z)) for p in pieces(design))
+    return tuple(Placed(p.part.name, (p.part,), 0.0, (0.0, 0.0, p.z)) for p in pieces(design))
 
 
 def assembly_report(design: Any) -> dict[str, Any]:
@@ -154,6 +150,6 @@ def assembly_report(design: Any) -> dict[str, Any]:
     out = []
     for p in pieces(design):
         x0, y0, x1, y1 = p.part.outline.bounds()
-        out.append({"name": p.name, "z_mm": round(p.z, 9), "thickness_mm": round(p.part.thickness, 9),
+        out.append({"name": p.part.name, "z_mm": round(p.z, 9), "thickness_mm": round(p.part.thickness, 9),
                     "bounds_mm": [round(v, 9) for v in (x0, y0, x1, y1)], "bought": p.bought})
     return {"angle_deg": design.spec.machine.assembly_angle, "pieces": out}

@@ -147,7 +147,7 @@ def pins(bodies: Sequence[Body]) -> list[tuple[str, tuple[float, float], float, 
 
 def roof_plane(bodies: Sequence[Body]) -> int:
     """The top plate's plane: one over every moving part's (the plane the clash check hangs pins from)."""
-    return max(b.high for b in bodies if not b.name.startswith(("pins.", "shafts.", "spacers."))) + 1
+    return max((b.high for b in bodies if not b.name.startswith(("pins.", "shafts.", "spacers."))), default=-1) + 1
 
 
 def spacers(bodies: Sequence[Body]) -> tuple[Spacer, ...]:
