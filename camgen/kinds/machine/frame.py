@@ -33,12 +33,9 @@ from camgen.core.parts import Allowances, Part
 from camgen.core.shapes import rounded_hull
 from camgen.kinds.machine.clash import Body, Joint, circle, fixed, still
 
-#: the least plate left between two holes, and between a hole and the plate's edge (mm)
-MIN_WALL_MM = 2.0
-#: a spacer's wall round its pin's hole (mm)
-SPACER_WALL_MM = 3.0
-#: the vertical gap between two planes of parts, and between the plates and the parts next to them (mm)
-PLANE_GAP_MM = 1.0
+#: (mm) the least plate left between two holes, and between a hole and the plate's edge; a spacer's wall round its
+#: pin's hole; the vertical gap between two planes of parts, and between the plates and the parts next to them
+MIN_WALL_MM, SPACER_WALL_MM, PLANE_GAP_MM = 2.0, 3.0, 1.0
 #: a shaft's diameter where no cam on it gives one (a shaft carrying only gears): the smallest cam bore of the
 #: machine, else this (mm)
 SHAFT_MM = 8.0
