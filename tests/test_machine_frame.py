@@ -210,3 +210,20 @@ def test_one_plate_stands_every_pin_on_it():
     assert all(s.bottom and not s.top for s in design.frame.seats)
     # the rocker's pivot pin now stands up through the cams' planes, where the cams sweep over it
     assert any("pins." in c.a + c.b for c in design.clashes)
+
+
+def test_the_report_gives_the_sweep_outside_the_plate(automaton):
+    """At the automaton's 12 mm margin the cams stand out of the plate: at least the disc the largest cam sweeps
+    over a turn (its farthest point's radius) less the plate; at a 100 mm margin the plate covers every part."""
+    from camgen.kinds.machine.framekit import swept_outside
+
+    outside = swept_outside(automaton.frame, automaton)
+    reach = max(float(np.linalg.norm(c.design.part.outline.flatten(c.design.tolerance), axis=1).max())
+                for c in automaton.cams)
+    plate = shapely.Polygon(automaton.frame.plate.outline.flatten(1e-4))
+    disc = shapely.Point(0.0, 0.0).buffer(reach * math.cos(math.radians(2.5)), quad_segs=256)  # inside 5-degree steps
+    assert outside >= disc.difference(plate).area > 1000.0
+    raw = _raw()
+    raw["machine"]["frame_margin"] = 100.0
+    wide = _design(raw)
+    assert swept_outside(wide.frame, wide) == 0.0

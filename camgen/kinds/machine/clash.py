@@ -107,6 +107,11 @@ def _shapes(body: Body, phi: np.ndarray) -> np.ndarray:
     return shapely.make_valid(shapely.polygons(coords))
 
 
+def outlines(body: Body, phi: np.ndarray) -> np.ndarray:
+    """``body``'s outline placed at each of the main shaft angles ``phi`` (rad): shapely polygons (n,), mm."""
+    return _shapes(body, phi)
+
+
 def _overlap(a: Body, b: Body, joint: Joint | None, phi: np.ndarray) -> np.ndarray:
     """Where (bool (n,)) bodies ``a`` and ``b`` overlap at angles ``phi``, outside their joint's disc."""
     pa, pb = _shapes(a, phi), _shapes(b, phi)

@@ -70,9 +70,31 @@ def bom(frame: Frame, design: Any) -> tuple[BomLine, ...]:
     return tuple(lines)
 
 
+#: main shaft angles over the turn at which the moving parts' sweep is taken (every 5 degrees)
+SWEEP_SAMPLES = 72
+
+
+def swept_outside(frame: Frame, design: Any) -> float:
+    """The plan area (mm^2) the moving parts sweep over the turn (placed at :data:`SWEEP_SAMPLES` angles) outside
+    the plate's outline: 0 when the plate covers every moving part at every angle."""
+    import numpy as np
+    import shapely
+
+    from camgen.kinds.machine.clash import outlines
+
+    phi = np.arange(SWEEP_SAMPLES) * (2 * math.pi / SWEEP_SAMPLES)
+    moving = [b for b in design.bodies if not b.name.startswith(("pins.", "shafts.", "spacers."))]
+    if not moving:
+        return 0.0
+    swept = shapely.union_all(np.concatenate([outlines(b, phi) for b in moving]))
+    plate = shapely.Polygon(frame.plate.outline.flatten(frame.plate.tolerance))
+    return float(swept.difference(plate).area)
+
+
 def frame_report(frame: Frame, design: Any) -> dict[str, Any]:
     """The report's ``frame`` section: the plates, every seat (where, what it carries, its hole nominal, as cut and
-    as printed, and which plates hold it), the spacers, the planes' heights and the bill of materials."""
+    as printed, and which plates hold it), the spacers, the planes' heights, the area the moving parts sweep
+    outside the plate (:func:`swept_outside`) and the bill of materials."""
     allow = frame.allowances
     seats = [{"name": s.name, "x_mm": round(s.centre[0], 9), "y_mm": round(s.centre[1], 9),
               "carries_mm": s.diameter, "nominal_mm": round(s.hole, 9),
@@ -92,6 +114,7 @@ def frame_report(frame: Frame, design: Any) -> dict[str, Any]:
             "planes": [{"plane": p, "bottom_mm": round(b, 9), "top_mm": round(t, 9)}
                        for p, (b, t) in enumerate(zip(s.bottom, s.top, strict=True))],
             "top_plate_mm": round(s.bottom[s.roof], 9) if frame.top is not None else None,
+            "swept_outside_mm2": round(swept_outside(frame, design), 3),
             "bom": [line.row() for line in bom(frame, design)]}
 
 
