@@ -196,10 +196,12 @@ def test_bad_frame_settings_are_refused(tmp_path, change, message):
     assert_refused(AUTOMATON, change, message, tmp_path)
 
 
-def test_a_mount_named_like_the_frames_files_is_refused(tmp_path):
+@pytest.mark.parametrize("frame", ["none", "two"])
+def test_a_mount_named_like_the_machines_own_files_is_refused(tmp_path, frame):
     raw = _raw()
-    raw["cams"][1]["name"] = "frame"
-    assert_refused(_write(tmp_path, raw), {}, "cams[1].name: 'frame' names the frame's files", tmp_path)
+    raw["machine"]["frame"] = frame
+    raw["cams"][1]["name"] = "assembly"
+    assert_refused(_write(tmp_path, raw), {}, "cams[1].name: 'assembly' names the machine's own files", tmp_path)
 
 
 def test_one_plate_stands_every_pin_on_it():

@@ -196,6 +196,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     DesignError
         A cam or linkage that cannot be made as asked (its own message, the key under its template).
     """
+    frame.check_names(spec)
     phi = kinematics.shaft_angles(spec.machine.samples)
     cams = {mount.name: _cam_motion(spec, i, phi) for i, mount in enumerate(spec.cams)}
     linkages = []

@@ -263,6 +263,20 @@ def thicknesses(design: Any) -> dict[str, float]:
     return out
 
 
+#: the mount names that the machine's own files take (``<machine>-frame.dxf``, ``<machine>-assembly.3mf``...)
+RESERVED = ("frame", "frame-top", "kit", "assembly")
+
+
+def check_names(spec: Any) -> None:
+    """Refuse a cam or linkage named as the machine's own files are (:data:`RESERVED`, ``spacer-<i>``): their files
+    would be the same."""
+    for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages)):
+        for i, mount in enumerate(mounts):
+            if mount.name in RESERVED or mount.name.startswith("spacer-"):
+                raise SpecError(f"{mount.name!r} names the machine's own files (<machine>-{mount.name}...): give the "
+                                "mount another name", f"{key}[{i}].name")
+
+
 def machine_frame(design: Any, bodies: Sequence[Body]) -> Frame | None:
     """The frame ``machine.frame`` asks for (None for ``"none"``), its pins those of the clash check's ``bodies``
     (with a two-plate frame's spacers among them).
@@ -278,11 +292,6 @@ def machine_frame(design: Any, bodies: Sequence[Body]) -> Frame | None:
     table = spec.machine
     if table.frame == "none":
         return None
-    for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages)):
-        for i, mount in enumerate(mounts):
-            if mount.name in ("frame", "frame-top", "kit", "assembly") or mount.name.startswith("spacer-"):
-                raise SpecError(f"{mount.name!r} names the frame's files (<machine>-{mount.name}...): give the mount "
-                                "another name", f"{key}[{i}].name")
     found = seats(spec, bodies)
     _check(found, table.frame_margin)
     outline = rounded_hull(np.array([s.centre for s in found]), table.frame_margin)
