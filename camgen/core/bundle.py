@@ -4,16 +4,17 @@ A :class:`Bundle` lists :class:`Item` s, each a finished payload (a drawing, a m
 report, a figure, a page or a function that makes it) and the files it becomes, one
 :class:`Entry` a format. :func:`write_bundle` hands each payload to the writer of each
 of its formats (:mod:`camgen.core.writers`) and nothing more. Every file is first
-written to a hidden temporary name beside its target; only when all of them are
-written are they renamed into place, so a failure leaves no half-written file and no
-temporary behind.
+written to a hidden temporary name beside its target (in its sub-folder, for a name
+that has one, ``"head/cam.dxf"``); only when all of them are written are they renamed
+into place, so a failure leaves no half-written file, no temporary and no folder it
+made behind.
 """
 from __future__ import annotations
 
 import dataclasses
 import os
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass, field
 from functools import partial
 from pathlib import Path
@@ -41,12 +42,24 @@ class Staging:
     def __init__(self, directory: Path) -> None:
         self.directory = directory
         self.pending: list[tuple[Path, Path]] = []
+        #: the sub-folders this stage created for names with a folder part, in the order created
+        self.created: list[Path] = []
 
     def write(self, name: str, write: Callable[[Path], object]) -> Path:
         """Call ``write(temporary path)`` (what it returns is ignored, e.g. the count of ``Path.write_text``); the
-        file takes ``name`` when the whole stage commits."""
+        file takes ``name`` when the whole stage commits. ``name`` may hold sub-folders (``"head/cam.dxf"``, ``/``
+        between them), created as needed (and removed again if the stage fails); never an absolute path or ``..``."""
+        parts = Path(name).parts
+        if not parts or Path(name).is_absolute() or ".." in parts:
+            raise ExportError(f"{name}: a file's name must stay inside its output folder")
         final = self.directory / name
-        temp = self.directory / f".{name}.{os.getpid()}.tmp"
+        temp = final.parent / f".{final.name}.{os.getpid()}.tmp"
+        missing = _missing(final.parent)
+        try:
+            final.parent.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise ExportError(f"cannot create folder {final.parent}: {exc.strerror or exc}") from None
+        self.created += reversed(missing)
         self.pending.append((temp, final))
         try:
             write(temp)
@@ -94,6 +107,9 @@ def staged(directory: str | Path) -> Iterator[Staging]:
     except BaseException as exc:
         for temp, _ in stage.pending:
             temp.unlink(missing_ok=True)
+        for folder in stage.created[::-1]:                  # deepest first; each empty once its temporaries went
+            with suppress(OSError):
+                folder.rmdir()
         _remove(created)
         if isinstance(exc, OSError) and not isinstance(exc, ExportError):
             raise ExportError(f"cannot write to {directory}: {exc.strerror}") from None

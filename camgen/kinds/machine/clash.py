@@ -30,13 +30,15 @@ Placement = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
 @dataclass(frozen=True)
 class Body:
     """A part of the machine: its ``name``, the planes ``low`` to ``high`` it fills, its ``outline`` (m, 2) mm in
-    its own frame and its ``place`` ment at main shaft angles."""
+    its own frame and its ``place`` ment at main shaft angles; its round ``holes`` ((centre, radius) mm in its own
+    frame: a cam's bore, a link's pin holes), which the assembly shows and the clash check does not need."""
 
     name: str
     low: int
     high: int
     outline: np.ndarray
     place: Placement
+    holes: tuple[tuple[tuple[float, float], float], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -106,6 +108,11 @@ def _shapes(body: Body, phi: np.ndarray) -> np.ndarray:
     return shapely.make_valid(shapely.polygons(coords))
 
 
+def outlines(body: Body, phi: np.ndarray) -> np.ndarray:
+    """``body``'s outline placed at each of the main shaft angles ``phi`` (rad): shapely polygons (n,), mm."""
+    return _shapes(body, phi)
+
+
 def _overlap(a: Body, b: Body, joint: Joint | None, phi: np.ndarray) -> np.ndarray:
     """Where (bool (n,)) bodies ``a`` and ``b`` overlap at angles ``phi``, outside their joint's disc."""
     pa, pb = _shapes(a, phi), _shapes(b, phi)
@@ -168,6 +175,11 @@ def arm_frame(follower: object, rest_deg: float) -> np.ndarray:
     base = np.array([0.0, follower.prime_radius]) - follower.pivot          # type: ignore[attr-defined]
     alpha = math.atan2(base[1], base[0]) - k * math.radians(rest_deg)
     return rotation(np.array([alpha]))[0] @ np.diag([1.0, k])
+def _round_holes(holes: Sequence[object]) -> tuple[tuple[tuple[float, float], float], ...]:
+    """The round ones of a part's ``holes`` as (centre, radius) pairs (mm)."""
+    from camgen.core.shapes import Circle
+
+    return tuple(((float(h.centre[0]), float(h.centre[1])), float(h.radius)) for h in holes if isinstance(h, Circle))
 
 
 def _margin(radius: float) -> float:
@@ -175,8 +187,11 @@ def _margin(radius: float) -> float:
     return 1.01 * radius + 0.05
 
 
-def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], tuple[str, ...]]:
+def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, ...], tuple[Joint, ...],
+                                                                   tuple[str, ...]]:
     """The bodies and joints of a :class:`~camgen.kinds.machine.design.MachineDesign`, and the parts not checked.
+    With ``one_plate`` (``machine.frame = "one"``) every pin stands on the frame, a rocker's pivot too (else it
+    hangs from a top plate).
 
     Each cam (its part's outline as cut, turned by sense x its program angle about its shaft) and, for an
     oscillating roller, its follower's arm (a bar from its pivot to its roller, as wide as the roller) and roller,
@@ -213,7 +228,8 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
             return rotation(sense * theta(phi)), np.broadcast_to(centre, (len(phi), 2))
 
         name = f"cams.{cam.name}"
-        bodies.append(Body(name, 2 * mount.layer, 2 * mount.layer, part.outline.flatten(tol), place_cam))
+        bodies.append(Body(name, 2 * mount.layer, 2 * mount.layer, part.outline.flatten(tol), place_cam,
+                           _round_holes(part.holes)))
         shafts.setdefault(mount.shaft, []).append((2 * mount.layer, float(part.holes[0].radius) if part.holes else 0.0))
         joints.append(Joint(name, f"shafts.{mount.shaft}", still(centre),
                             _margin(max((h.radius for h in part.holes), default=0.0))))
@@ -297,7 +313,8 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
             name = f"linkages.{m.name}.{which}"
             names[which] = (name, plane)
             bodies.append(Body(name, plane, plane, cut[which].outline.flatten(0.01),
-                               functools.partial(place_link, which=which)))
+                               functools.partial(place_link, which=which),
+                               _round_holes(cut[which].holes)))
         joints += [Joint(f"cams.{m.cam}.arm", names["coupler"][0], crank_pin, _margin(hw)),
                    Joint(names["coupler"][0], names["rocker"][0], rocker_pin, _margin(hw))]
         pin_r = m.design.spec.parts.pin_diameter / 2 if m.design.spec.parts else PIVOT_PIN_MM / 2
@@ -318,7 +335,8 @@ def machine_parts(design: object) -> tuple[tuple[Body, ...], tuple[Joint, ...], 
     for i, ((x, y), (held, from_top, r)) in enumerate(pins.items()):
         name = f"pins.{i}"
         planes = [plane_of[h] for h in held]
-        low, high = (min(planes), roof) if from_top else (min(0, *planes), max(0, *planes))
+        hangs = from_top and not one_plate
+        low, high = (min(planes), roof) if hangs else (min(0, *planes), max(0, *planes))
         bodies.append(Body(name, low, high, circle(r), fixed((x, y))))
         joints += [Joint(h, name, still((x, y)), _margin(r)) for h in held]
     for shaft, seats in shafts.items():

@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import clash, kinematics
+from camgen.kinds.machine import clash, frame, kinematics
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -133,6 +133,10 @@ class MachineDesign:
     clashes: tuple[clash.Clash, ...] = ()
     unchecked: tuple[str, ...] = ()
     cranked: tuple[CrankedMotion, ...] = ()
+    #: every part the clash check placed (:func:`camgen.kinds.machine.clash.machine_parts`, a frame's spacers too)
+    bodies: tuple[clash.Body, ...] = ()
+    #: the frame ``machine.frame`` asks for (:mod:`camgen.kinds.machine.frame`), None for none
+    frame: frame.Frame | None = None
 
     @property
     def tolerance(self) -> float:
@@ -206,6 +210,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     DesignError
         A cam or linkage that cannot be made as asked (its own message, the key under its template).
     """
+    frame.check_names(spec)
     phi = kinematics.shaft_angles(spec.machine.samples)
     cams = {mount.name: _cam_motion(spec, i, phi) for i, mount in enumerate(spec.cams)}
     linkages = []
@@ -233,7 +238,9 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             cranked.append(cranked_motion(spec, i, phi, made_linkage))
             warnings += [f"linkages.{mount.name}: {w}" for w in made_linkage.report.get("warnings", ())]
     made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked))
-    bodies, joints, unchecked = clash.machine_parts(made)
+    bodies, joints, unchecked = clash.machine_parts(made, one_plate=spec.machine.frame == "one")
+    if spec.machine.frame == "two":
+        bodies, joints = frame.with_top_plate(bodies, joints)
     met = clash.clashes(bodies, joints, spec.machine.clash_samples)
     if met and spec.machine.clash == "error":
         more = f" (and {len(met) - 1} more clash(es))" if len(met) > 1 else ""
@@ -241,7 +248,8 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
                         '"warn"',
                         "machine.clash")
     noted = (*warnings, *(f"clash: {c.message()}" for c in met))
-    return replace(made, clashes=met, unchecked=unchecked, warnings=noted)
+    return replace(made, clashes=met, unchecked=unchecked, warnings=noted, bodies=bodies,
+                   frame=frame.machine_frame(made, bodies))
 
 
 def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray) -> CamMotion:

@@ -1,5 +1,6 @@
 """A machine as files: each cam's and each linkage's own files (their kinds' bundles, named
-``<machine>-<mount>...`` beside the machine's, their report keys under ``<mount>.``), the timing diagram
+``<machine>-<mount>...`` beside the machine's, or in a sub-folder ``<mount>/`` each with ``output.folders``, their
+report keys under ``<mount>.``), the timing diagram
 (``<name>-timing.png|svg`` and ``<name>-timing.csv``) and the machine's report ``<name>.json``. Only the formats
 ``output.formats`` asks for are made; nothing is written if any file fails.
 """
@@ -8,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from camgen.core.bundle import Bundle, Entry, Item, Report, item
+from camgen.core.bundle import Bundle, Entry, Item, Report, item, mesh_files, solid_files
 from camgen.kinds import spec_kind
 from camgen.kinds.machine.design import MachineDesign
 from camgen.kinds.machine.report import machine_report, timing_rows
@@ -22,20 +23,23 @@ class Scoped:
 
     payload: Any
     prefix: str
+    folder: str = ""
 
     def with_files(self, files: dict[str, str]) -> Any:
-        own = {k.removeprefix(self.prefix): v for k, v in files.items() if k.startswith(self.prefix)}
+        own = {k.removeprefix(self.prefix): v.removeprefix(self.folder) for k, v in files.items()
+               if k.startswith(self.prefix)}
         return self.payload.with_files(own)
 
 
-def _scoped(items: tuple[Item, ...], mount: str, formats: tuple[str, ...]) -> list[Item]:
-    """A sub-bundle's ``items`` with the entries of ``formats`` only, their keys under ``<mount>.``."""
-    prefix = f"{mount}."
+def _scoped(items: tuple[Item, ...], mount: str, formats: tuple[str, ...], folders: bool = False) -> list[Item]:
+    """A sub-bundle's ``items`` with the entries of ``formats`` only, their keys under ``<mount>.`` (and with
+    ``folders`` their files in the sub-folder ``<mount>/``, the names its own report lists relative to it)."""
+    prefix, folder = f"{mount}.", f"{mount}/" if folders else ""
     out = []
     for it in items:
-        entries = tuple(Entry(e.format, prefix + e.key, e.name) for e in it.entries if e.format in formats)
+        entries = tuple(Entry(e.format, prefix + e.key, folder + e.name) for e in it.entries if e.format in formats)
         if entries:
-            payload = Scoped(it.payload, prefix) if hasattr(it.payload, "with_files") else it.payload
+            payload = Scoped(it.payload, prefix, folder) if hasattr(it.payload, "with_files") else it.payload
             out.append(Item(payload, entries))
     return out
 
@@ -48,12 +52,23 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
     cams = []
     for cam in design.cams:
         bundle, cam_report = spec_kind(cam.design.spec).bundle(cam.design)
-        items += _scoped(bundle.items, cam.name, formats)
+        items += _scoped(bundle.items, cam.name, formats, out.folders)
         cams.append(cam_report)
     mounts: tuple[Any, ...] = (*design.linkages, *design.cranked)
     for m in mounts:
-        items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats)
+        items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats, out.folders)
     report = {**machine_report(design), **_parts_summary(cams)}
+    if design.frame is not None:
+        from camgen.kinds.machine.framekit import frame_items, frame_report
+
+        report["frame"] = frame_report(design.frame, design)
+        items += frame_items(design.frame, design, formats)
+    from camgen.kinds.machine import assembly
+
+    report["assembly"] = assembly.assembly_report(design)
+    for made in (mesh_files(lambda: assembly.meshes(design), f"{name}-assembly", "assembly", only=("3mf",)),
+                 solid_files(lambda: assembly.solids(design), f"{name}-assembly", "assembly")):
+        items.append(made.only(formats) if made is not None else None)
 
     def plot() -> Any:
         from camgen.kinds.machine.plots import timing_figure

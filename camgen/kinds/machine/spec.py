@@ -18,12 +18,15 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import ConfigDict, Field, field_validator, model_validator
 
 from camgen.core.errors import SpecError
-from camgen.core.spec import (MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec, check_kind,
-                              name_field, notes, read_template, unit)
+from camgen.core.kit import BearingChoice
+from camgen.core.spec import (MAX_ALLOWANCE_MM, MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec,
+                              check_kind, length, name_field, notes, read_template, unit)
 from camgen.kinds.machine.keeptime import KeepTime
 
 #: the most shafts, gear pairs, cams, linkages or couplings a machine may have
 MAX_MOUNTS = 20
+#: the largest frame margin and plate thickness (mm)
+FRAME_MARGIN_MAX_MM, FRAME_THICKNESS_MAX_MM = 200.0, 50.0
 #: the most layers a shaft may stack its cams in
 MAX_LAYER = 50
 #: how far apart (mm) a gear pair's shafts may lie from the sum of its pitch radii
@@ -60,12 +63,23 @@ class MachineTable(Model):
                                             "warning in the report")
     clash_samples: int = Field(720, ge=36, le=3600, description="main shaft angles over one turn at which the clash "
                                "check places every part (a clash's first angle is then refined to 0.1 degree)")
+    frame: Literal["none", "one", "two"] = Field("none", description="the frame plate carrying every shaft and "
+                                                 "pivot: none, one plate under the parts, or two plates (under and "
+                                                 "over the parts) held apart by spacers round the pivot pins")
+    frame_margin: float = length("the frame plate's margin round every shaft and pivot (its outline: their rounded "
+                                 "hull at this distance)", 12.0, le=FRAME_MARGIN_MAX_MM,
+                                 allowed=">= the largest seat's radius + 2 mm of wall")
+    frame_thickness: float = length("the frame plates' thickness", 6.0, le=FRAME_THICKNESS_MAX_MM)
+    bearing: BearingChoice = Field("none", description="the ball bearing the frame seats every shaft in (its bore "
+                                   "the shaft's diameter: the smallest cam.bore on it), or none: a plain hole the "
+                                   "shaft runs in")
+    assembly_angle: float = Field(0.0, ge=0, lt=360, description="the main shaft's angle at which the assembly "
+                                  "(its 3MF and STEP files) places every part", json_schema_extra=unit("degrees"))
     figure_angles: tuple[Annotated[float, Field(ge=0, lt=360)], ...] = Field(
         (0.0, 90.0, 180.0, 270.0),
         description="main shaft angles at which the figures (<name>-machine.png and .svg, a panel each) draw the "
                     "whole machine and the report gives every part's pose",
         json_schema_extra=unit("degrees", allowed=f"each from 0 to under 360; 1 to {MAX_FIGURE_ANGLES} angles"))
-
 
     @field_validator("figure_angles")
     @classmethod
@@ -159,7 +173,7 @@ class Coupling(Model):
 
 
 #: the formats a machine writes (its cams' and linkages' files of these formats, its timing diagram, its report)
-MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html"]
+MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html", "step"]
 
 
 class MachineOutputTable(OutputTable):
@@ -170,7 +184,14 @@ class MachineOutputTable(OutputTable):
         ("dxf", "cut-svg", "stl", "3mf", "json"), min_length=1, description="files to write: each cam's and "
         "linkage's of these formats (html: each one's own page), the timing diagram and the machine at "
         "machine.figure_angles as png and svg (and the timing's CSV with json), the report as json, the machine's "
-        "page as html")
+        "page as html; step the assembly's solids (with the step extra)")
+    folders: bool = Field(False, description="write each cam's and linkage's files in a sub-folder of its own, "
+                          "<out>/<mount>/ (the machine's own files stay in <out>)")
+    kerf: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="laser kerf of the frame's cut files: its "
+                        "outline grows and its holes shrink by half of it", json_schema_extra=unit("mm"))
+    clearance: float = Field(0.0, ge=0, le=MAX_ALLOWANCE_MM, description="printing clearance of the frame's and "
+                             "spacers' printed files: their holes grow by this in diameter",
+                             json_schema_extra=unit("mm"))
 
 
 class MachineSpec(TemplateSpec):
