@@ -272,3 +272,34 @@ def test_every_file_of_the_toy_reads_back(tmp_path):
         assert stats["volume"] > 0
         assert "manifold = yes" in _prusa(path), path.name
     assert (tmp_path / "walking-toy.html").read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
+
+
+def test_the_assembly_stacks_the_back_leg_below_the_frame_and_the_front_leg_above(toy):
+    """The front leg's parts stand over the (virtual) frame plate's top face, the back leg's hang under its bottom
+    face, each as thick as linkgen cut it; on each side a higher layer is further from the plate (parts on one plane
+    at one height), and the back leg's shaft reaches down past it."""
+    from camgen.kinds.machine import assembly
+
+    pieces = {p.part.name: p for p in assembly.pieces(toy)}
+    t = toy.spec.machine.frame_thickness
+    for m in toy.cranked:
+        away = {}                                                       # plane on its side -> distance from the plate
+        for part in m.design.build.cut:
+            if part.name == "ground":                                   # the frame carries the leg's pivots
+                continue
+            piece = pieces[f"linkages.{m.name}.{part.name}"]
+            assert piece.part.thickness == pytest.approx(part.thickness, abs=1e-12)
+            k = 2 * m.layer + m.design.build.layers[part.name]
+            gap = piece.z - t if m.side > 0 else -(piece.z + part.thickness)
+            assert gap >= 1.0 - 1e-9, part.name                       # clear of the plate by a plane's gap
+            assert away.setdefault(k, gap) == pytest.approx(gap, abs=1e-12)
+        order = [away[k] for k in sorted(away)]
+        assert order == sorted(order) and len(set(order)) == len(order)
+    shaft = pieces["shafts.legs"]
+    lowest = min(p.z for name, p in pieces.items() if name.startswith("linkages.right."))
+    assert shaft.z < lowest and not any(math.isnan(p.z) for p in pieces.values())
+
+
+def test_a_frame_is_refused_for_a_leg_behind_it(tmp_path):
+    assert_refused(TOY, {"machine.frame": "one"}, "machine.frame: the frame's plates under and over the parts do not "
+                   "carry linkages.right, which stands behind the frame", tmp_path)

@@ -66,7 +66,8 @@ def _span(body: Body, design: Any, stack: frames.Stack, thick: dict[str, float])
             return pin_span(design.frame, design, name)
         return (0.0 if body.low == 0 else stack.bottom[body.low]), stack.top[body.high]
     if name.startswith("shafts."):
-        return -SHAFT_STUB_MM, stack.top[body.high]
+        behind = stack.bottom[body.low] if body.low < 0 else 0.0    # a shaft reaching a linkage behind the frame
+        return behind - SHAFT_STUB_MM, stack.top[body.high]
     if name in thick and body.low == body.high:
         return stack.bottom[body.low], stack.bottom[body.low] + thick[name]
     return stack.bottom[body.low], stack.top[body.high]
@@ -78,7 +79,8 @@ def pieces(design: Any) -> tuple[Piece, ...]:
     parts (pins, shafts, bearings)."""
     spec = design.spec
     phi = math.radians(spec.machine.assembly_angle)
-    tol = min(float(c.design.tolerance) for c in design.cams)
+    tol = min((*(float(c.design.tolerance) for c in design.cams),
+               *(float(m.design.spec.parts.tolerance) for m in getattr(design, "cranked", ()))))
     frame = design.frame
     stack = frame.stack if frame is not None else frames.stack(spec, design, design.bodies)
     thick = frames.thicknesses(design)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -77,15 +77,17 @@ class Spacer:
 @dataclass(frozen=True)
 class Stack:
     """Heights (mm, up from the bottom plate's bottom face) of the clash check's planes: plane ``p``'s parts stand
-    on ``bottom[p]`` and the thickest reaches ``top[p]``; plane ``roof`` is the top plate's (two plates)."""
+    on ``bottom[p]`` and the thickest reaches ``top[p]``; plane ``roof`` is the top plate's (two plates). The
+    planes of a linkage behind the frame (``side = "back"``) are negative, stacked down from the plate's bottom
+    face."""
 
     thickness: float
-    bottom: tuple[float, ...]
-    top: tuple[float, ...]
+    bottom: Mapping[int, float]
+    top: Mapping[int, float]
 
     @property
     def roof(self) -> int:
-        return len(self.bottom) - 1
+        return max(self.bottom)
 
 
 @dataclass(frozen=True)
@@ -232,16 +234,22 @@ def stack(spec: Any, design: Any, bodies: Sequence[Body]) -> Stack:
     t = spec.machine.frame_thickness
     thick = thicknesses(design)
     roof = roof_plane(bodies)
-    high = [0.0] * (roof + 1)
+    floor = min((b.low for b in bodies), default=0)
+    high = dict.fromkeys(range(min(floor, 0), roof + 1), 0.0)
     for b in bodies:
         if b.low == b.high and b.name in thick:
             high[b.low] = max(high[b.low], thick[b.name])
-    bottom, top, z = [], [], t
-    for h in high:
-        bottom.append(z + PLANE_GAP_MM)
-        top.append(z + PLANE_GAP_MM + h)
-        z = top[-1]
-    return Stack(t, tuple(bottom), tuple(top))
+    bottom: dict[int, float] = {}
+    top: dict[int, float] = {}
+    z = t
+    for p in range(0, roof + 1):
+        bottom[p], top[p] = z + PLANE_GAP_MM, z + PLANE_GAP_MM + high[p]
+        z = top[p]
+    z = 0.0
+    for p in range(-1, min(floor, 0) - 1, -1):                    # behind the frame: down from its bottom face
+        top[p], bottom[p] = z - PLANE_GAP_MM, z - PLANE_GAP_MM - high[p]
+        z = bottom[p]
+    return Stack(t, dict(sorted(bottom.items())), dict(sorted(top.items())))
 
 
 def thicknesses(design: Any) -> dict[str, float]:
@@ -260,6 +268,10 @@ def thicknesses(design: Any) -> dict[str, float]:
         for which in ("coupler", "rocker"):
             out[f"linkages.{m.name}.{which}"] = float(cut[which].thickness)
         out[f"cams.{m.cam}.arm"] = float(cut["crank"].thickness)
+    for m in getattr(design, "cranked", ()):                    # a linkage a shaft turns: every moving link's part
+        for part in m.design.build.cut:
+            if part.name != "ground":
+                out[f"linkages.{m.name}.{part.name}"] = float(part.thickness)
     return out
 
 
@@ -269,12 +281,19 @@ RESERVED = ("frame", "frame-top", "kit", "assembly")
 
 def check_names(spec: Any) -> None:
     """Refuse a cam or linkage named as the machine's own files are (:data:`RESERVED`, ``spacer-<i>``): their files
-    would be the same."""
+    would be the same; and a frame for a machine with a linkage behind it (the plates carry only what stands in
+    front)."""
     for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages)):
         for i, mount in enumerate(mounts):
             if mount.name in RESERVED or mount.name.startswith("spacer-"):
                 raise SpecError(f"{mount.name!r} names the machine's own files (<machine>-{mount.name}...): give the "
                                 "mount another name", f"{key}[{i}].name")
+    if spec.machine.frame != "none":
+        for i, mount in enumerate(spec.linkages):
+            if mount.shaft is not None and mount.side == "back":
+                raise SpecError(f"the frame's plates under and over the parts do not carry linkages.{mount.name}, "
+                                "which stands behind the frame (side = \"back\"): give frame = \"none\" or stand "
+                                "it in front", "machine.frame")
 
 
 def machine_frame(design: Any, bodies: Sequence[Body]) -> Frame | None:

@@ -111,8 +111,8 @@ def frame_report(frame: Frame, design: Any) -> dict[str, Any]:
     return {"plates": [p.name for p in frame.plates], "thickness_mm": s.thickness, "margin_mm": frame.margin,
             "allowances": {"kerf_mm": allow.kerf, "clearance_mm": allow.clearance},
             "seats": seats, "spacers": spacers,
-            "planes": [{"plane": p, "bottom_mm": round(b, 9), "top_mm": round(t, 9)}
-                       for p, (b, t) in enumerate(zip(s.bottom, s.top, strict=True))],
+            "planes": [{"plane": p, "bottom_mm": round(s.bottom[p], 9), "top_mm": round(s.top[p], 9)}
+                       for p in s.bottom],
             "top_plate_mm": round(s.bottom[s.roof], 9) if frame.top is not None else None,
             "swept_outside_mm2": round(swept_outside(frame, design), 3),
             "bom": [line.row() for line in bom(frame, design)]}
