@@ -127,6 +127,31 @@ def write(design: Design, directory: str | Path, formats: Iterable[str] | None =
     return Written.of(report, write_bundle(bundle.plus(extra), directory), directory)
 
 
+def design_cam(spec: CamSpec | GenevaSpec) -> Any:
+    """The design of the cam ``spec`` describes, by its kind (see :mod:`camgen.kinds`; a Geneva drive's too, see
+    :mod:`camgen.kinds.geneva`): every check and all the geometry, nothing written; :func:`camgen.api.design` is the
+    same call (the name of an earlier release, kept for one more).
+
+    Parameters
+    ----------
+    spec : CamSpec or GenevaSpec
+        A validated template (:func:`camgen.spec.load_spec`, :func:`camgen.spec.validate_spec`).
+
+    Returns
+    -------
+    object
+        A disc or plate cam's :class:`~camgen.flat.FlatCamDesign`; a grooved cam's, a barrel's, a conjugate pair's or
+        a Geneva drive's own design, which :func:`camgen.api.write` writes alike.
+
+    Raises
+    ------
+    DesignError
+        The spec is valid but its part cannot be made as asked: an undercut, a cusp, no wall round the bore; the
+        message names the key to change and by how much.
+    """
+    return spec_kind(spec).design(spec)
+
+
 def write_cam(design: Design, directory: str | Path) -> dict[str, Any]:
     """The files of ``design`` written into ``directory`` as :func:`write` writes them, and the report: the name
     scripts have written them with (``camgen.write_cam``), kept for one release."""

@@ -55,13 +55,16 @@ from camgen.cli import main as camgen
 from camgen.followers import FOLLOWERS
 from camgen.kinds.geneva.table import GenevaSpec
 from camgen.laws import LAW_NAMES
-from camgen.spec import CAM_SPECS, CamSpec
+from camgen.spec import CamSpec, cam_specs
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
 from linkgen.spec import spec_model
 from linkgen.synthesis.task import TASKS
 from linkgen.synthesis.task import spec_model as task_model
 from tests.conftest import ROOT
+
+#: every cam kind's spec by its name
+CAM_SPECS = cam_specs()
 
 # --------------------------------------------------------------------------------------------------- profiles
 
