@@ -32,7 +32,6 @@ from camgen.tables.rows import MAX_TABLE_ROWS, read_table
 
 if TYPE_CHECKING:
     from camgen.kinds.base import Kind
-    from camgen.kinds.geneva.table import GenevaSpec
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
 #: every law parameter key a segment may carry
@@ -218,8 +217,8 @@ class CamSpec(TemplateSpec):
     noun: ClassVar[str] = "a cam"
 
     @classmethod
-    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> CamSpec | GenevaSpec:
-        """The spec of the kind ``raw`` describes (:func:`validate_spec`: a Geneva drive's for a ``[geneva]`` table),
+    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> TemplateSpec:
+        """The spec of the kind ``raw`` describes (:func:`validate_spec`: another kind's for a table of its own),
         each table law's ``file`` read from ``folder`` (None: the current folder)."""
         return validate_spec(raw if folder is None else _tables_beside(dict(raw), folder))
 
@@ -306,10 +305,10 @@ def cam_specs() -> dict[str, type[CamSpec]]:
     return {name: kind.spec for name, kind in KINDS.items() if kind.table_key == CAM_TABLE}
 
 
-def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
+def validate_spec(raw: Mapping[str, Any]) -> TemplateSpec:
     """The spec of the kind the raw template ``raw`` describes (:func:`camgen.kinds.kind_for`): a :class:`CamSpec`
-    for a ``[cam]`` table, a :class:`~camgen.kinds.geneva.table.GenevaSpec` for a ``[geneva]`` table; its
-    ``output.formats`` checked against those the kind writes.
+    of the kind its ``cam.kind`` names, or the spec of the kind whose own table it has (a Geneva drive's for a
+    ``[geneva]`` table); its ``output.formats`` checked against those the kind writes.
 
     Parameters
     ----------
@@ -318,8 +317,8 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
 
     Returns
     -------
-    CamSpec or GenevaSpec
-        The validated, frozen spec (or the spec of another registered kind).
+    TemplateSpec
+        The validated, frozen spec of the kind (a :class:`CamSpec` for a ``[cam]`` table).
 
     Raises
     ------
@@ -361,7 +360,7 @@ def _either(names: list[str]) -> str:
     return " or ".join((", ".join(names[:-1]), names[-1])) if len(names) > 1 else names[0]
 
 
-def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:
+def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> TemplateSpec:
     """Read a TOML cam (or Geneva) template (and its ``base``), merge ``key=value`` overrides, validate.
 
     Parameters
@@ -374,7 +373,7 @@ def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | Gene
 
     Returns
     -------
-    CamSpec or GenevaSpec
+    TemplateSpec
         The validated spec (see :func:`validate_spec`).
 
     Raises

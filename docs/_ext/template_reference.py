@@ -57,7 +57,7 @@ def roots() -> dict[str, list[Table]]:
                          for table, names in by_table.items() for t in tables(table, "linkage")), *top[1:]]
     top = list(tables(DiscSpec, "", skip={"cam", "follower"}))      # a disc cam's: with its kit
     specs = cam_specs()
-    followers = dict.fromkeys(member for spec in specs.values()
+    followers = dict.fromkeys(member for spec in specs.values() if "follower" in spec.model_fields
                               for member in _unwrap(spec.model_fields["follower"].annotation))
     cam = [top[0], *(Table(t.path, t.model, f"{t.title} (kind {kind})")
                      for kind, spec in specs.items() for t in tables(spec.model_fields["cam"].annotation, "cam")),
