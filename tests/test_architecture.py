@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ast
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -76,7 +77,7 @@ def test_the_contracts_name_every_module():
     others = _top_level("camgen") - {"camgen.core"}
     assert set(CONTRACTS["core"]["forbidden_modules"]) == others | {"linkgen"}
     assert set(CONTRACTS["linkgen"]["forbidden_modules"]) == others
-    flow = {m.strip() for layer in CONTRACTS["flow"]["layers"] for m in layer.split("|")}
+    flow = {m.strip() for layer in CONTRACTS["flow"]["layers"] for m in re.split(r"[|:]", layer)}
     assert flow == others | {"camgen.core"}
     linkgen = _top_level("linkgen")
     assert {m.strip() for layer in CONTRACTS["linkgen-flow"]["layers"] for m in layer.split("|")} == linkgen

@@ -118,3 +118,18 @@ def test_the_second_roller_s_keys_are_the_follower_type_s(template, key, value, 
     with pytest.raises(SpecError) as refused:
         validate_spec(raw)
     assert str(refused.value) == f"cam.{key}: only for a conjugate cam with {owner} follower"
+
+
+def test_a_kind_s_rule_is_checked_where_it_was_before_the_shared_hub_checks():
+    """The kind's rules run inside the shared validation, after the motion's and before the hub's, as before the
+    tables moved: a conjugate template with a yoke's arm_angle and a keyway on a 5 mm bore is refused for the
+    arm_angle (a separate after-validator of the kind's spec would run after the hub's and name the keyway)."""
+    raw = tomllib.loads((ROOT / "templates" / "conjugate.toml").read_text(encoding="utf-8"))
+    raw["cam"].update(arm_angle=80.0, bore=5.0)
+    raw["hub"] = {"keyway": True}
+    with pytest.raises(SpecError) as refused:
+        validate_spec(raw)
+    assert str(refused.value) == "cam.arm_angle: only for a conjugate cam with an oscillating-roller follower"
+    del raw["cam"]["arm_angle"]
+    with pytest.raises(SpecError, match=r"^hub\.keyway: DIN 6885-1 keys need a bore over 6 up to 110 mm"):
+        validate_spec(raw)
