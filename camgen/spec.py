@@ -27,6 +27,7 @@ from camgen.core.features import MIN_WEB_MM, key_for, web_refusal
 from camgen.core.spec import CutOutputTable, TemplateSpec
 from camgen.kinds import CAM_TABLE, KINDS, kind_for, table_keys
 from camgen.rig import Mount, disc_mount
+from camgen.tables import CamBody, FlatCamBody
 from camgen.tables.followers import AnyFollower, Offset
 from camgen.tables.rows import MAX_TABLE_ROWS, read_table
 
@@ -207,7 +208,10 @@ class CamSpec(TemplateSpec):
     """
 
     name: str = name_field("part")
-    cam: Any                                        # a kind's spec names its own [cam] table
+    if TYPE_CHECKING:
+        cam: CamBody                                # what every kind's table gives, for the shared checks
+    else:
+        cam: Any                                    # a kind's spec names its own [cam] table
     follower: AnyFollower
     motion: list[SegmentTable] = Field(min_length=1, description="segments in order from theta = 0")
     hub: HubTable = HubTable()
@@ -279,8 +283,9 @@ class CamSpec(TemplateSpec):
 
     @property
     def base_circle(self) -> float | Literal["auto"] | None:
-        """``cam.base_radius`` as given (mm, or ``"auto"``); None for a cam without a base circle (a barrel)."""
-        return self.cam.base_radius
+        """``cam.base_radius`` as given (mm, or ``"auto"``); None for a cam without a base circle (a barrel): here,
+        a flat cam's spec says its own."""
+        return None
 
     @property
     def kind(self) -> str:
@@ -297,7 +302,14 @@ class CamSpec(TemplateSpec):
 
 class FlatSpec(CamSpec):
     """The spec of a cam cut from a flat plate (every kind but the barrel: a disc, a plate, a grooved cam and a
-    conjugate pair; :mod:`camgen.flat` designs and sizes them)."""
+    conjugate pair; :mod:`camgen.flat` designs and sizes them): its base circle is its table's."""
+
+    if TYPE_CHECKING:
+        cam: FlatCamBody
+
+    @property
+    def base_circle(self) -> float | Literal["auto"]:
+        return self.cam.base_radius
 
 
 def cam_specs() -> dict[str, type[CamSpec]]:

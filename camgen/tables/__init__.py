@@ -13,7 +13,7 @@ named here.
 from __future__ import annotations
 
 import math
-from typing import Any, Literal
+from typing import Any, Literal, Protocol
 
 from pydantic import Field, field_validator
 
@@ -33,6 +33,42 @@ def auto_radius(value: Any) -> Any:
     if not (math.isfinite(value) and 0 < value <= MAX_LENGTH_MM):
         raise ValueError(f'must be > 0 and <= {MAX_LENGTH_MM:g} mm, or "auto" (got {value!r})')
     return float(value)
+
+
+class CamBody(Protocol):
+    """What every kind's ``[cam]`` table gives, read only: its kind, bore (mm; 0 for none), sense of rotation, speed
+    (rpm) and material, which the checks and the speeds every kind shares read (:class:`camgen.spec.CamSpec`)."""
+
+    @property
+    def kind(self) -> str: ...
+    @property
+    def bore(self) -> float: ...
+    @property
+    def rotation(self) -> Literal["ccw", "cw"]: ...
+    @property
+    def rpm(self) -> float | None: ...
+    @property
+    def rpm_range(self) -> tuple[float, float] | None: ...
+    @property
+    def rpm_steps(self) -> int: ...
+    @property
+    def material(self) -> Material | None: ...
+
+
+class FlatCamBody(CamBody, Protocol):
+    """What a flat cam's ``[cam]`` table gives beyond :class:`CamBody`: its base radius (mm, or ``"auto"``), thickness
+    (mm), sizing limits and whether an undercut is cut as an envelope (:class:`camgen.spec.FlatSpec`)."""
+
+    @property
+    def base_radius(self) -> float | Literal["auto"]: ...
+    @property
+    def thickness(self) -> float: ...
+    @property
+    def allow_undercut(self) -> bool: ...
+    @property
+    def max_pressure_angle(self) -> float | None: ...
+    @property
+    def min_rho_margin(self) -> float: ...
 
 
 class Speeds(Model):

@@ -239,11 +239,6 @@ class BarrelSpec(CamSpec):
     def kind_rules(self) -> None:
         check(self)
 
-    @property
-    def base_circle(self) -> None:
-        """A barrel has no base circle."""
-        return None
-
     def mount(self) -> Mount:
         """The roller on the developed pitch cylinder (:func:`camgen.rig.developed_mount`)."""
         return developed_mount(self.follower, geometry(self))
