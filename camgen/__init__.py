@@ -32,7 +32,7 @@ _MODULES = {
     "camgen.spec": ("load_spec", "validate_spec", "CamSpec"),
     "camgen.cam": ("Cam",),
     "camgen.analysis": ("analyze",),
-    "camgen.profile": ("design_cam", "Profile"),
+    "camgen.profile": ("Profile",),
     "camgen.flat": ("build_cam", "CamDesign"),
     "camgen.sizing": ("size_cam",),
     "camgen.convergence_study": ("convergence",),
@@ -42,7 +42,7 @@ _MODULES = {
     "camgen.kinds.geneva.design": ("design_geneva", "GenevaDesign"),
     "camgen.kinds.machine.spec": ("MachineSpec",),
     "camgen.outputs": ("cam_bundle",),
-    "camgen.api": ("load", "design", "write", "Design", "write_cam"),
+    "camgen.api": ("load", "design", "write", "Design", "write_cam", "design_cam"),
     "camgen.core.shapes": ("Contour", "Circle"),
     "camgen.core.parts": ("Part", "Drawing", "Allowances"),
     "camgen.core.writers.dxf": ("write_dxf",),
@@ -72,7 +72,7 @@ if TYPE_CHECKING:      # what an editor and mypy see: the same names, imported (
     from camgen.spec import load_spec as load_spec, validate_spec as validate_spec, CamSpec as CamSpec
     from camgen.cam import Cam as Cam
     from camgen.analysis import analyze as analyze
-    from camgen.profile import design_cam as design_cam, Profile as Profile
+    from camgen.profile import Profile as Profile
     from camgen.flat import build_cam as build_cam, CamDesign as CamDesign
     from camgen.sizing import size_cam as size_cam
     from camgen.convergence_study import convergence as convergence
@@ -83,6 +83,7 @@ if TYPE_CHECKING:      # what an editor and mypy see: the same names, imported (
     from camgen.kinds.machine.spec import MachineSpec as MachineSpec
     from camgen.outputs import cam_bundle as cam_bundle
     from camgen.api import load as load, design as design, write as write, Design as Design, write_cam as write_cam
+    from camgen.api import design_cam as design_cam
     from camgen.core.shapes import Contour as Contour, Circle as Circle
     from camgen.core.parts import Part as Part, Drawing as Drawing, Allowances as Allowances
     from camgen.core.writers.dxf import write_dxf as write_dxf

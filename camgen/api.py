@@ -13,10 +13,11 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol, cast
 
 from camgen.core.bundle import Item, Written, with_formats, write_bundle
 from camgen.core.errors import SpecError
+from camgen.core.spec import TemplateSpec
 from camgen.kinds import spec_kind
 from camgen.kinds.base import SizeReport
 from camgen.spec import CamSpec, load_spec, validate_spec
@@ -57,15 +58,21 @@ def load(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpe
     """The validated spec of the template file ``path`` with ``"key=value"`` ``overrides`` merged in (see
     :func:`camgen.spec.load_spec`; :meth:`CamSpec.from_toml <camgen.core.spec.TemplateSpec.from_toml>` is the same
     for a cam only)."""
-    return load_spec(path, overrides)
+    return _named(load_spec(path, overrides))
 
 
 def validate(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
     """The validated spec of the raw template ``raw`` (see :func:`camgen.spec.validate_spec`)."""
-    return validate_spec(raw)
+    return _named(validate_spec(raw))
 
 
-def design(spec: CamSpec | GenevaSpec) -> Design:
+def _named(spec: TemplateSpec) -> CamSpec | GenevaSpec:
+    """The spec the registry gave, typed as the library's callers read it: a cam's or a Geneva drive's (another
+    registered kind's, a machine's or a plugin's, has their ``name`` and ``output`` too)."""
+    return cast("CamSpec | GenevaSpec", spec)
+
+
+def design(spec: TemplateSpec) -> Design:
     """The design of ``spec`` by its kind: every check and all the geometry, nothing written.
 
     Parameters
@@ -125,6 +132,31 @@ def write(design: Design, directory: str | Path, formats: Iterable[str] | None =
     if formats is not None:
         bundle.require(design.spec.output.formats)
     return Written.of(report, write_bundle(bundle.plus(extra), directory), directory)
+
+
+def design_cam(spec: TemplateSpec) -> Any:
+    """The design of the cam ``spec`` describes, by its kind (see :mod:`camgen.kinds`; a Geneva drive's too, see
+    :mod:`camgen.kinds.geneva`): every check and all the geometry, nothing written; :func:`camgen.api.design` is the
+    same call (the name of an earlier release, kept for one more).
+
+    Parameters
+    ----------
+    spec : CamSpec or GenevaSpec
+        A validated template (:func:`camgen.spec.load_spec`, :func:`camgen.spec.validate_spec`).
+
+    Returns
+    -------
+    object
+        A disc or plate cam's :class:`~camgen.flat.FlatCamDesign`; a grooved cam's, a barrel's, a conjugate pair's or
+        a Geneva drive's own design, which :func:`camgen.api.write` writes alike.
+
+    Raises
+    ------
+    DesignError
+        The spec is valid but its part cannot be made as asked: an undercut, a cusp, no wall round the bore; the
+        message names the key to change and by how much.
+    """
+    return spec_kind(spec).design(spec)
 
 
 def write_cam(design: Design, directory: str | Path) -> dict[str, Any]:

@@ -255,7 +255,7 @@ def program_template(segments: int):
 def segment_rows(repeats: int, counts: tuple[int, ...] = (4, 64, 256, 1024)) -> list[dict]:
     """design_cam of :func:`program_template` at each count of segments against :func:`plain_outline` (the
     reference cam at its tolerance), alternated in this run: the per-segment cost of cam design."""
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
 
     tol = BASE_SPEC_TOLERANCE
     plain = f"the plain numpy outline ({plain_vertices(tol)} vertices)"
@@ -278,7 +278,7 @@ def speed_ratios(repeats: int, out: Path) -> list[dict]:
     tolerance; ``camgen build`` and ``camgen laws`` as whole processes (CPU seconds) against a process that only
     imports numpy and ezdxf."""
     from camgen.analysis import analyze
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
 
     spec = _template("cycloidal")
     tol = spec.output.tolerance
@@ -319,7 +319,7 @@ def hard_cases() -> list[dict]:
 def _cases() -> Iterator[tuple[str, Callable[[], str]]]:
     import shapely
 
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.laws import from_conditions
 
     def cam(changes: dict) -> str:

@@ -9,18 +9,19 @@ never validated again: a sized cam's spec keeps ``"auto"``, and the size is ``de
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
-from typing import Any
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 from camgen.cam import Cam
 from camgen.core.errors import SpecError
-from camgen.followers.barrel import BarrelGeometry
-from camgen.kinds import kind_of, spec_kind
 from camgen.profile import Body, Finish, Profile, design_profile
 from camgen.rig import Mount, Rig, disc_mount
 from camgen.sizing import Sizing, limits_of, pressure_limit, size_cam
-from camgen.spec import CamSpec, FlatSpec
-from camgen.tables import BarrelTable
+
+if TYPE_CHECKING:
+    from camgen.core.bundle import Bundle
+    from camgen.spec import CamSpec, FlatSpec
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -40,28 +41,34 @@ class FlatCamDesign(Profile):
         With ``base_radius = "auto"``: what decided the size, and the size.
     warnings : tuple of str
         The profile's warnings, then the contact's at ``cam.rpm``.
+    bundler : callable or None
+        Its kind's bundle (:meth:`camgen.kinds.base.Kind.bundle`), which Jupyter's page is made by; None for a
+        design no kind writes alone (a conjugate pair's member).
     """
 
     spec: FlatSpec
     speed: dict[str, Any] | None = None
     sizing: Sizing | None = None
+    bundler: Callable[[FlatCamDesign], tuple[Bundle, dict[str, Any]]] | None = field(default=None, repr=False,
+                                                                                      compare=False)
 
     @classmethod
     def of(cls, profile: Profile, spec: FlatSpec, speed: dict[str, Any] | None = None, sizing: Sizing | None = None,
-           warnings: tuple[str, ...] | None = None) -> FlatCamDesign:
-        """``profile`` as the design of ``spec``, with its ``speed``, ``sizing`` and ``warnings`` (the profile's by
-        default)."""
+           warnings: tuple[str, ...] | None = None,
+           bundler: Callable[[FlatCamDesign], tuple[Bundle, dict[str, Any]]] | None = None) -> FlatCamDesign:
+        """``profile`` as the design of ``spec``, with its ``speed``, ``sizing``, ``warnings`` (the profile's by
+        default) and its kind's ``bundler``."""
         fields = {f.name: getattr(profile, f.name) for f in dataclasses.fields(Profile)}
         if warnings is not None:
             fields["warnings"] = warnings
-        return cls(**fields, spec=spec, speed=speed, sizing=sizing)
+        return cls(**fields, spec=spec, speed=speed, sizing=sizing, bundler=bundler)
 
     def _repr_html_(self) -> str | None:
         """Jupyter shows the design's interactive page inline, as its html file holds it (without links to files);
-        none when ``output.formats`` leaves out html."""
+        none when ``output.formats`` leaves out html, or the design has no bundler of its own."""
         from camgen.core.page import bundle_frame
 
-        return bundle_frame(spec_kind(self.spec).bundle(self)[0])
+        return None if self.bundler is None else bundle_frame(self.bundler(self)[0])
 
 
 #: the name scripts know a disc or plate cam's design by
@@ -73,11 +80,13 @@ def flat_rig(spec: FlatSpec, mount: Mount) -> Rig:
     return Rig.of(spec.name, spec.motion, mount)
 
 
-def design_flat(spec: FlatSpec, mount: Mount) -> FlatCamDesign:
+def design_flat(spec: FlatSpec, mount: Mount,
+                bundler: Callable[[FlatCamDesign], tuple[Bundle, dict[str, Any]]] | None = None) -> FlatCamDesign:
     """Build, check and outline the flat cam ``spec`` describes, its follower on ``mount`` (its kind's): sized
     first where ``cam.base_radius = "auto"`` (:mod:`camgen.sizing`), its profile cut
     (:func:`~camgen.profile.design_profile`: refused there for an undercut, unless ``cam.allow_undercut``, and for a
-    bore or holes that leave no material), its speed at ``cam.rpm`` (:func:`sprung_speed`)."""
+    bore or holes that leave no material), its speed at ``cam.rpm`` (:func:`sprung_speed`); ``bundler`` is its
+    kind's bundle (for Jupyter's page)."""
     rig = flat_rig(spec, mount)
     sizing = None
     base = spec.cam.base_radius
@@ -87,7 +96,7 @@ def design_flat(spec: FlatSpec, mount: Mount) -> FlatCamDesign:
     profile = design_profile(rig, base, Body.of(spec.name, spec.cam, spec.hub), Finish.of(spec.output),
                              spec.cam.allow_undercut, pressure_limit(spec))
     speed = sprung_speed(spec, profile.cam)
-    return FlatCamDesign.of(profile, spec, speed, sizing, profile.warnings + contact_warnings(speed))
+    return FlatCamDesign.of(profile, spec, speed, sizing, profile.warnings + contact_warnings(speed), bundler)
 
 
 def size_flat(spec: FlatSpec, mount: Mount) -> Sizing:
@@ -104,7 +113,8 @@ def size_disc(spec: FlatSpec) -> Sizing:
 
 def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: float | None = None) -> Cam:
     """The :class:`~camgen.cam.Cam` a cam template describes (a grooved cam's pitch cam, a conjugate pair's first
-    cam, a barrel's developed cam), its follower placed by its kind (``kind_of(spec.cam.kind).follower``): a
+    cam, a barrel's developed cam), its follower placed as its kind's spec says
+    (:meth:`~camgen.spec.CamSpec.follower_at`): a
     script's and a test's way to a template's cam. A barrel has no base radius: a drafted law on one needs its own
     rig (:func:`camgen.kinds.barrel.design.barrel_rig`).
 
@@ -117,7 +127,7 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
         edge).
     base_radius : float, optional
         The base radius to build with (mm), instead of ``cam.base_radius``; needed when the spec's is ``"auto"``
-        (:func:`size_disc` finds one; :func:`camgen.profile.design_cam` sizes and builds at once).
+        (:func:`size_disc` finds one; :func:`camgen.api.design_cam` sizes and builds at once).
 
     Returns
     -------
@@ -133,22 +143,16 @@ def build_cam(spec: CamSpec, roller_radius: float | None = None, base_radius: fl
         naming the key.
     """
     rr = spec.follower.contact_radius if roller_radius is None else roller_radius
-    rig = Rig.of(spec.name, spec.motion, disc_mount(spec.follower, spec.cam.rotation))
-    follower = kind_of(spec.cam.kind).follower
-    table = spec.cam
-    if base_radius is not None:
-        rb = base_radius
-    elif isinstance(table, BarrelTable):                # no base circle: the plate's height under the roller
-        height = BarrelGeometry.of(table, spec.follower, spec.motion).rest_height - rr
-        return Cam(spec.name, rig.program(None), follower(spec, height, rr), height)
-    elif isinstance(table.base_radius, str):
+    rb = base_radius if base_radius is not None else spec.base_circle   # a barrel has no base circle: None
+    if isinstance(rb, str):
         raise SpecError('is "auto": size the cam first (size_disc) and build it with that base radius',
                         "cam.base_radius")
-    else:
-        rb = table.base_radius
+    rig = Rig.of(spec.name, spec.motion, disc_mount(spec.follower, spec.cam.rotation))
+    if rb is None:                                      # no base circle: the plate's height under the roller
+        return Cam(spec.name, rig.program(None), spec.follower_at(None, rr), spec.rest_height(rr))
     program = rig.program(rb + rr)
     rig.mount.check_fits(rb, program)                   # a follower whose reach depends on how far it moves
-    return Cam(spec.name, program, follower(spec, rb, rr), rb)
+    return Cam(spec.name, program, spec.follower_at(rb, rr), rb)
 
 
 def parabolic_ratios(motion: Any) -> list[tuple[int, float]]:

@@ -22,19 +22,21 @@ from camgen.core.writers import WriteOptions
 from camgen.flat import FlatCamDesign
 from camgen.profile import step_chords, step_part
 from camgen.report import cam_report
-from camgen.spec import DiscSpec
 
 #: chord tolerance (mm) of the outline drawn in a family's overview: a thumbnail an inch wide
 THUMBNAIL_TOLERANCE_MM = 0.2
 
 
-def cam_bundle(design: FlatCamDesign) -> tuple[Bundle, dict[str, Any]]:
+def cam_bundle(design: FlatCamDesign, with_kit: bool = False) -> tuple[Bundle, dict[str, Any]]:
     """The files of a disc or plate cam's ``design`` and its report, made but not written.
 
     Parameters
     ----------
     design : FlatCamDesign
-        A design from :func:`camgen.profile.design_cam`.
+        A design from :func:`camgen.api.design_cam`.
+    with_kit : bool, optional
+        Whether the kit round the cam its spec's ``[kit]`` describes (a disc cam's, :func:`camgen.kit.cam_kit`)
+        joins the files and the report.
 
     Returns
     -------
@@ -57,7 +59,7 @@ def cam_bundle(design: FlatCamDesign) -> tuple[Bundle, dict[str, Any]]:
         return cam_page(design, report)
 
     kit = None
-    if isinstance(design.spec, DiscSpec) and design.spec.kit is not None:        # a disc cam alone takes a kit
+    if with_kit:
         from camgen.kit import cam_kit
 
         kit = cam_kit(design)

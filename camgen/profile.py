@@ -25,15 +25,12 @@ from camgen.outline import Outline, envelope_outline, exact_outline, outline_mak
 from camgen.core.parts import LAYER_ENGRAVE, Allowances, Part
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.features import bolt_holes, key_for, keyed_bore
-from camgen.kinds import spec_kind
 from camgen.program import Jump
 from camgen.rig import Rig
 from camgen.sizing import smallest_for_curvature
-from camgen.spec import CamSpec
 
 if TYPE_CHECKING:
     from camgen.flat_envelope import FaceLeaves, FlatEnvelope
-    from camgen.kinds.geneva.table import GenevaSpec
     from camgen.spec import HubTable, OutputTable
 
 #: thinnest wall between the bore and the outline before a warning (mm)
@@ -200,31 +197,6 @@ def _undercut_message(rig: Rig, cam: Cam, a: CamAnalysis) -> str:
     return (where + f"the pitch curve's radius of curvature is {a.pitch_rho_min_mm:.4g} mm, smaller than "
             f"follower.roller_radius {rr:.4g} mm; {fits} (or enlarge cam.base_radius, or set "
             "cam.allow_undercut = true)")
-
-
-def design_cam(spec: CamSpec | GenevaSpec) -> Any:
-    """The design of the cam ``spec`` describes, by its kind (see :mod:`camgen.kinds`; a Geneva drive's too, see
-    :mod:`camgen.kinds.geneva`): every check and all the geometry, nothing written; :func:`camgen.api.design` is the
-    same call.
-
-    Parameters
-    ----------
-    spec : CamSpec or GenevaSpec
-        A validated template (:func:`camgen.spec.load_spec`, :func:`camgen.spec.validate_spec`).
-
-    Returns
-    -------
-    object
-        A disc or plate cam's :class:`~camgen.flat.FlatCamDesign`; a grooved cam's, a barrel's, a conjugate pair's or
-        a Geneva drive's own design, which :func:`camgen.api.write` writes alike.
-
-    Raises
-    ------
-    DesignError
-        The spec is valid but its part cannot be made as asked: an undercut, a cusp, no wall round the bore; the
-        message names the key to change and by how much.
-    """
-    return spec_kind(spec).design(spec)
 
 
 def design_profile(rig: Rig, base_radius: float, body: Body, finish: Finish, allow_undercut: bool,

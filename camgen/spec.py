@@ -2,18 +2,21 @@
 
 A template is a TOML file (or the same mapping from Python); :func:`load_spec`
 reads it, merges ``--set`` overrides into the raw mapping, then validates it all at
-once into a :class:`CamSpec`; every problem becomes a :class:`~camgen.core.errors.SpecError` whose message names
-the field, what is allowed and what was given, e.g.
-``motion[2].angle: must be > 0 degrees (got -30)``.
+once into the spec of the kind it names (:func:`validate_spec`: the registry, :func:`camgen.kinds.kind_for`,
+chooses the kind, whose package holds its spec, a :class:`CamSpec`); every problem becomes a
+:class:`~camgen.core.errors.SpecError` whose message names the field, what is allowed and what was given, e.g.
+``motion[2].angle: must be > 0 degrees (got -30)``. No kind is named here: this module and the registry form one
+layer of the flow, the specs of the kinds deriving from :class:`CamSpec`, whose validation dispatches through the
+registry.
 """
 from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
-from pydantic import Discriminator, Field, Tag, model_validator
+from pydantic import Field, model_validator
 
 from camgen.laws import LAW_NAMES, LAW_PARAMS
 from camgen.laws.base import MAX_NORMALISED
@@ -22,14 +25,14 @@ from camgen.core.spec import (MAX_LENGTH_MM, Model, check_kind, length, name_fie
 from camgen.core.errors import SpecError
 from camgen.core.features import MIN_WEB_MM, key_for, web_refusal
 from camgen.core.spec import CutOutputTable, TemplateSpec
-from camgen.core.kit import CamKitTable, check_cam_kit
-from camgen.kinds import CAM_TABLE, KINDS, kind_for, kind_of, table_keys
-from camgen.tables import CAM_TABLES, BarrelTable, ConjugateTable, DiscTable, GroovedTable, PlateTable
-from camgen.tables.followers import AnyFollower, BarrelFollower, DrivenFollower, Offset, PlateFollower, SprungFollower
+from camgen.kinds import CAM_TABLE, KINDS, kind_for, table_keys
+from camgen.rig import Mount, disc_mount
+from camgen.tables import CamBody, FlatCamBody
+from camgen.tables.followers import AnyFollower, Offset
 from camgen.tables.rows import MAX_TABLE_ROWS, read_table
 
 if TYPE_CHECKING:
-    from camgen.kinds.geneva.table import GenevaSpec
+    from camgen.kinds.base import Kind
 
 LawName = Literal[LAW_NAMES]  # type: ignore[valid-type]
 #: every law parameter key a segment may carry
@@ -46,7 +49,7 @@ class SegmentTable(Model):
                                json_schema_extra=unit("mm, or degrees of arm swing for an oscillating follower",
                                                       allowed="an arm's swing < 90 degrees",
                                                       absent="required for a rise or return"))
-    law: LawName | None = Field(None, description="motion law (rise and return)",  # type: ignore[valid-type]
+    law: LawName | None = Field(None, description="motion law (rise and return)",
                                 json_schema_extra=notes(absent="required for a rise or return"))
     ratio: float | None = Field(None, ge=0.01, le=100, description="parabolic: acceleration ratio a1/a2",
                                 json_schema_extra=notes(absent="1"))
@@ -171,33 +174,22 @@ class OutputTable(CutOutputTable):
     curves: Literal["polylines", "biarcs"] = Field("polylines", description="how curved stretches are written")
 
 
-def _cam_kind(value: Any) -> str:
-    """The kind a ``[cam]`` table (raw or validated) names: its ``kind``, a disc without one."""
-    kind = value.get("kind", "disc") if isinstance(value, Mapping) else getattr(value, "kind", "disc")
-    return kind if kind in CAM_TABLES else "disc"
-
-
-#: a ``[cam]`` table of any kind, chosen by its ``kind`` (a disc without one); a kind's own spec narrows it to
-#: that kind's table
-CamTableOfAnyKind = Annotated[
-    Annotated[DiscTable, Tag("disc")] | Annotated[PlateTable, Tag("plate")] | Annotated[GroovedTable, Tag("grooved")]
-    | Annotated[BarrelTable, Tag("barrel")] | Annotated[ConjugateTable, Tag("conjugate")],
-    Discriminator(_cam_kind)]
-
-
 class CamSpec(TemplateSpec):
-    """A whole cam template, validated: the spec of one cam.
+    """A whole cam template, validated: the base of every cam kind's spec, which its package holds
+    (``camgen/kinds/<kind>/table.py``), naming its own ``[cam]`` table and the followers it drives;
+    ``CamSpec.from_toml`` and :func:`validate_spec` give the spec of the kind a template names (by the registry,
+    :func:`camgen.kinds.kind_for`).
 
     Made by :func:`validate_spec` or :func:`load_spec` from a template (every key, its unit, range and default:
-    the template reference); frozen. Built with the constructor, it is validated the same way.
+    the template reference); frozen. A kind's spec built with its constructor is validated the same way.
 
     Parameters
     ----------
     name : str
         The part's name, used for its files: letters, digits, ``.``, ``_``, ``-``.
-    cam : DiscTable, PlateTable, GroovedTable, BarrelTable or ConjugateTable
-        The cam body, the table of its ``kind`` (:mod:`camgen.tables`; a kind's spec, :data:`CAM_SPECS`, holds its
-        own): its size, bore, rotation, sizing limits and speed.
+    cam : table
+        The cam body, its kind's ``[cam]`` table (built from :mod:`camgen.tables`): its size, bore, rotation, sizing
+        limits and speed.
     follower : AnyFollower
         The follower: its type, geometry, mass, spring and loads, the table of its ``type`` among those the kind
         drives (:mod:`camgen.tables.followers`).
@@ -207,18 +199,19 @@ class CamSpec(TemplateSpec):
         Keyway, boss, set screw, bolt holes, engraving.
     output : OutputTable, optional
         Formats, tolerance, kerf, clearance and the files' flavours.
-    kit : CamKitTable or None, optional
-        The frame, follower and hardware round the cam (a disc cam's alone, :class:`DiscSpec`).
 
     Raises
     ------
     pydantic.ValidationError
-        Built with the constructor, a template that fails validation (:func:`validate_spec` turns the first
-        problem into a one-line :class:`~camgen.core.errors.SpecError` instead).
+        A kind's spec built with its constructor, from a template that fails validation (:func:`validate_spec` turns
+        the first problem into a one-line :class:`~camgen.core.errors.SpecError` instead).
     """
 
     name: str = name_field("part")
-    cam: CamTableOfAnyKind
+    if TYPE_CHECKING:
+        cam: CamBody                                # what every kind's table gives, for the shared checks
+    else:
+        cam: Any                                    # a kind's spec names its own [cam] table
     follower: AnyFollower
     motion: list[SegmentTable] = Field(min_length=1, description="segments in order from theta = 0")
     hub: HubTable = HubTable()
@@ -228,8 +221,8 @@ class CamSpec(TemplateSpec):
     noun: ClassVar[str] = "a cam"
 
     @classmethod
-    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> CamSpec | GenevaSpec:
-        """The spec of the kind ``raw`` describes (:func:`validate_spec`: a Geneva drive's for a ``[geneva]`` table),
+    def validate_raw(cls, raw: Mapping[str, Any], folder: Path | None = None) -> TemplateSpec:
+        """The spec of the kind ``raw`` describes (:func:`validate_spec`: another kind's for a table of its own),
         each table law's ``file`` read from ``folder`` (None: the current folder)."""
         return validate_spec(raw if folder is None else _tables_beside(dict(raw), folder))
 
@@ -242,7 +235,7 @@ class CamSpec(TemplateSpec):
         if isinstance(self.follower, Offset) and not abs(self.follower.offset) < prime:
             raise ValueError(f"follower.offset: |offset| must be < the prime radius {prime:.6g} mm "
                              f"(base_radius + roller_radius; got {self.follower.offset:.6g} mm)")
-        kind_of(self.cam.kind).check(self)
+        self.kind_rules()
         hub = self.hub
         if hub.keyway and not 6 < self.cam.bore <= 110:
             raise ValueError(f"hub.keyway: DIN 6885-1 keys need a bore over 6 up to 110 mm (cam.bore is "
@@ -264,14 +257,40 @@ class CamSpec(TemplateSpec):
             if not 0 < lo < hi <= 100_000:
                 raise ValueError(f"cam.rpm_range: give [lowest, highest] with 0 < lowest < highest <= 100000 rpm "
                                  f"(got [{lo:g}, {hi:g}])")
-            for key, value in (("cam.rpm", self.cam.rpm), ("follower.mass", self.follower.mass)):
+            for needed, value in (("cam.rpm", self.cam.rpm), ("follower.mass", self.follower.mass)):
                 if value is None:
-                    raise ValueError(f"cam.rpm_range: needs {key} (the report's forces are at cam.rpm, with the "
+                    raise ValueError(f"cam.rpm_range: needs {needed} (the report's forces are at cam.rpm, with the "
                                      "follower's mass)")
         loaded = [i for i, seg in enumerate(self.motion) if seg.load is not None]
         if loaded and self.follower.load_table is not None:
             raise ValueError(f"motion[{loaded[0]}].load: give loads per segment or follower.load_table, not both")
         return self
+
+    def kind_rules(self) -> None:
+        """The rules of this kind that its tables cannot check alone (a rule across two tables, or one of
+        geometry): a ``ValueError("field: why")`` for the first broken. Called by the spec's validation after the
+        motion's and the offset's checks and before the hub's; none here, a kind's spec says its own."""
+
+    def mount(self) -> Mount:
+        """How the cam carries its follower (:mod:`camgen.rig`): a disc's, turning in ``cam.rotation``'s sense; a kind
+        whose cam is not a disc turning about its centre says its own."""
+        return disc_mount(self.follower, self.cam.rotation)
+
+    def follower_at(self, base_radius: Any, roller_radius: float) -> Any:
+        """The follower on this cam of base radius ``base_radius`` (mm) under a roller of ``roller_radius`` (mm; 0 for
+        a knife edge or a flat face), for :func:`camgen.flat.build_cam`: on its :meth:`mount`."""
+        return self.mount().at(base_radius, roller_radius)
+
+    @property
+    def base_circle(self) -> float | Literal["auto"] | None:
+        """``cam.base_radius`` as given (mm, or ``"auto"``); None for a cam without a base circle (a barrel): here,
+        a flat cam's spec says its own."""
+        return None
+
+    def rest_height(self, roller_radius: float) -> float:
+        """For a cam without a base circle (:attr:`base_circle` None), what its cam is built on instead (mm): a
+        barrel's developed plate's height under a roller of ``roller_radius`` mm. A kind without one says its own."""
+        raise SpecError("give the cam's base radius (cam.base_radius)", "cam.base_radius")
 
     @property
     def kind(self) -> str:
@@ -281,74 +300,32 @@ class CamSpec(TemplateSpec):
     @property
     def prime_radius(self) -> float:
         """Base radius plus the roller's (mm): the circle the roller's centre rides at rest (inf while "auto", and
-        for a barrel, which has no base circle)."""
-        rb = self.cam.base_radius if not isinstance(self.cam, BarrelTable) else "auto"
+        for a cam without a base circle, a barrel)."""
+        rb = self.base_circle
         return (rb if isinstance(rb, float) else math.inf) + self.follower.contact_radius
 
 
-class DiscSpec(CamSpec):
-    """A disc cam's template (``cam.kind = "disc"``, the default), validated."""
+class FlatSpec(CamSpec):
+    """The spec of a cam cut from a flat plate (every kind but the barrel: a disc, a plate, a grooved cam and a
+    conjugate pair; :mod:`camgen.flat` designs and sizes them): its base circle is its table's."""
 
-    cam: DiscTable
-    follower: SprungFollower
-    kit: CamKitTable | None = None
+    if TYPE_CHECKING:
+        cam: FlatCamBody
 
-    noun: ClassVar[str] = "a disc cam"  # its table's title
-
-    @model_validator(mode="after")
-    def _kit(self) -> DiscSpec:
-        if self.kit is not None:
-            check_cam_kit(self.kit, self.follower.type, self.cam.bore)
-        return self
+    @property
+    def base_circle(self) -> float | Literal["auto"]:
+        return self.cam.base_radius
 
 
-class PlateSpec(CamSpec):
-    """A plate (linear) cam's template (``cam.kind = "plate"``), validated."""
-
-    cam: PlateTable
-    follower: PlateFollower
-
-    noun: ClassVar[str] = "a plate cam"  # its table's title
+def cam_specs() -> dict[str, type[CamSpec]]:
+    """Every kind chosen by ``cam.kind``'s spec by the kind's name, in the registry's order (each imported)."""
+    return {name: kind.spec for name, kind in KINDS.items() if kind.table_key == CAM_TABLE}
 
 
-class GroovedSpec(CamSpec):
-    """A grooved face cam's template (``cam.kind = "grooved"``), validated."""
-
-    cam: GroovedTable
-    follower: DrivenFollower
-
-    noun: ClassVar[str] = "a grooved cam"  # its table's title
-
-
-class BarrelSpec(CamSpec):
-    """A barrel cam's template (``cam.kind = "barrel"``), validated."""
-
-    cam: BarrelTable
-    follower: BarrelFollower
-
-    noun: ClassVar[str] = "a barrel cam"  # its table's title
-
-
-class ConjugateSpec(CamSpec):
-    """A conjugate pair's template (``cam.kind = "conjugate"``), validated."""
-
-    cam: ConjugateTable
-    follower: DrivenFollower
-
-    noun: ClassVar[str] = "a conjugate cam"  # its table's title
-
-
-#: the spec of a cam cut from a flat plate (every kind but the barrel)
-FlatSpec = DiscSpec | PlateSpec | GroovedSpec | ConjugateSpec
-#: every cam kind's spec by the kind's name (``cam.kind``)
-CAM_SPECS: dict[str, type[CamSpec]] = {"disc": DiscSpec, "plate": PlateSpec, "grooved": GroovedSpec,
-                                       "barrel": BarrelSpec, "conjugate": ConjugateSpec}
-
-
-def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
+def validate_spec(raw: Mapping[str, Any]) -> TemplateSpec:
     """The spec of the kind the raw template ``raw`` describes (:func:`camgen.kinds.kind_for`): a :class:`CamSpec`
-    for a ``[cam]`` table, a :class:`~camgen.kinds.geneva.table.GenevaSpec` for a ``[geneva]`` table; its
-    ``output.formats`` checked against those the kind writes.
+    of the kind its ``cam.kind`` names, or the spec of the kind whose own table it has (a Geneva drive's for a
+    ``[geneva]`` table); its ``output.formats`` checked against those the kind writes.
 
     Parameters
     ----------
@@ -357,8 +334,8 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
 
     Returns
     -------
-    CamSpec or GenevaSpec
-        The validated, frozen spec (or the spec of another registered kind).
+    TemplateSpec
+        The validated, frozen spec of the kind (a :class:`CamSpec` for a ``[cam]`` table).
 
     Raises
     ------
@@ -378,7 +355,7 @@ def validate_spec(raw: Mapping[str, Any]) -> CamSpec | GenevaSpec:
     return spec
 
 
-def _owned(exc: SpecError, kind: Any) -> SpecError:
+def _owned(exc: SpecError, kind: Kind[Any, Any]) -> SpecError:
     """``exc`` with the kinds whose table has its key named, where it refuses a key of ``kind``'s table that another
     kind takes (``cam.pitch_radius: not a key of a disc cam (a key of cam.kind = "barrel"); it takes: ...``)."""
     table, _, key = (exc.field or "").partition(".")
@@ -400,7 +377,7 @@ def _either(names: list[str]) -> str:
     return " or ".join((", ".join(names[:-1]), names[-1])) if len(names) > 1 else names[0]
 
 
-def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | GenevaSpec:
+def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> TemplateSpec:
     """Read a TOML cam (or Geneva) template (and its ``base``), merge ``key=value`` overrides, validate.
 
     Parameters
@@ -413,7 +390,7 @@ def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> CamSpec | Gene
 
     Returns
     -------
-    CamSpec or GenevaSpec
+    TemplateSpec
         The validated spec (see :func:`validate_spec`).
 
     Raises

@@ -110,7 +110,7 @@ def test_every_printed_cam_gets_the_foot_and_default_files_stay_the_same(tmp_pat
     assert plain.read_bytes() == zero.read_bytes()
     import trimesh
 
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.spec import load_spec
 
     printed = design_cam(load_spec(RDRD, ["hub.keyway=true", "output.elephant_foot=0.4"])).printed

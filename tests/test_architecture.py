@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ast
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -73,7 +74,7 @@ def _top_level(package: str) -> set[str]:
 
 
 def _layered(contract: str) -> set[str]:
-    return {m.strip() for layer in CONTRACTS[contract]["layers"] for m in layer.split("|")}
+    return {m.strip() for layer in CONTRACTS[contract]["layers"] for m in re.split(r"[|:]", layer)}
 
 
 def test_the_layers_name_every_module():

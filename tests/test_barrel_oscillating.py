@@ -14,7 +14,7 @@ import pytest
 from click.testing import CliRunner
 
 from camgen.cli import main
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
 from tests.refusals import assert_refused

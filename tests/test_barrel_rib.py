@@ -13,7 +13,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main
 from camgen.core.errors import DesignError
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.spec import load_spec
 from tests.conftest import ROOT
 from tests.test_barrel_oscillating import _wall_samples

@@ -298,7 +298,7 @@ def test_the_floor_error_is_the_floor_triangles_own():
     sampled on a barycentric grid of 30 steps a side, lie inside the cylinder by at most the reported floor error
     (less the files' rounding and the collapse allowance, which the fit adds), and by nearly as much."""
     from camgen.kinds.barrel.mesh import SHORTEST_STEPS
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.spec import load_spec
 
     design = design_cam(load_spec(ROOT / "templates" / "barrel.toml"))

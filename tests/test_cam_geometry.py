@@ -8,7 +8,7 @@ import pytest
 
 from camgen.analysis import analyze, largest_roller
 from camgen.flat import build_cam, flat_rig
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.core.errors import DesignError
 from camgen.rig import disc_mount
 from tests.conftest import template

@@ -365,12 +365,12 @@ def test_a_clearance_that_opens_a_hole_through_the_outline_is_refused_at_twice_i
     for c, made in ((bound * 0.99, True), (bound * 1.01, False)):
         spec = template({**holes, "output.clearance": c})
         if made:
-            from camgen.profile import design_cam
+            from camgen.api import design_cam
 
             design_cam(spec)
         else:
             with pytest.raises(DesignError, match=r"^output\.clearance: must be < "):
-                from camgen.profile import design_cam
+                from camgen.api import design_cam
 
                 design_cam(spec)
 
@@ -396,7 +396,7 @@ def test_a_clearance_that_opens_a_hole_through_either_conjugate_cam_is_refused(t
     assert f"it opens a hole through cam {refused}'s outline" in result.stderr
     bound = float(result.stderr.split("must be < ")[1].split(" mm")[0])
     assert bound == pytest.approx(2 * gap, abs=0.02)                 # the outline and the hole as chords within 0.01
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.spec import load_spec
 
     def pair(clearance: float):
@@ -413,7 +413,7 @@ def test_a_part_in_two_bodies_is_not_written():
     the hub falls out; the mesh check counts two bodies, so the STL is refused, never reported watertight."""
     from camgen.core.solids import bodies, check_mesh, extrude
     from camgen.api import write_cam
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
 
     spec = template(RING)
     wide = spec.model_copy(update={"output": spec.output.model_copy(update={"clearance": 3.0})})

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from camgen.core.errors import DesignError
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.spec import validate_spec
 from tests.refusals import assert_refused
 from tests.test_conjugate import ARM, YOKE, _build, _layer, _raw, _rollers, _turn

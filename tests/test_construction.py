@@ -17,7 +17,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main
 from camgen.construction.geometry import construct, station_angles
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
 

@@ -10,7 +10,8 @@ import shapely
 import camgen.profile
 from camgen.core.errors import DesignError
 from camgen.core.shapes import Contour
-from camgen.profile import THIN_WALL, _inside_clear, design_cam
+from camgen.api import design_cam
+from camgen.profile import THIN_WALL, _inside_clear
 from tests.conftest import template
 
 

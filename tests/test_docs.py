@@ -104,7 +104,7 @@ def test_the_reference_states_the_base_radius_range_its_validator_keeps():
 
     from camgen.core.errors import SpecError
     from camgen.core.spec import validate
-    from camgen.tables import ConjugateTable
+    from camgen.kinds.conjugate.table import ConjugateTable
 
     for key in ("base_radius", "second_base_radius"):
         note = ConjugateTable.model_fields[key].json_schema_extra["allowed"]

@@ -16,7 +16,7 @@ from camgen.core.parts import Drawing
 from camgen.core.shapes import Circle, Contour, Polyline, Text
 from camgen.core.writers import DXF_FLAVOURS, DXF_VERSIONS, TEXT_MODES, WriteOptions
 from camgen.core.writers.dxf import _sorted_classes, dxf_document, write_dxf
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from tests.conftest import template
 
 

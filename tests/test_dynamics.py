@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.dynamics import G_MM
 from camgen.report import cam_report
 from tests.conftest import template

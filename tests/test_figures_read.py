@@ -14,7 +14,7 @@ import pytest
 from camgen.core.figures import drawing_figure, natural_key, overview_figure
 from camgen.core.parts import POSE_COLOURS, Drawing
 from camgen.core.shapes import Circle, Polyline
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.plots import cam_figure
 from camgen.spec import validate_spec
 

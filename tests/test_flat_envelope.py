@@ -20,7 +20,7 @@ from camgen.analysis import profile_rho_min
 from camgen.flat import build_cam
 from camgen.cli import main
 from camgen.core.errors import DesignError
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.spec import load_spec
 from tests.conftest import ROOT
 

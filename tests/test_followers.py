@@ -9,7 +9,7 @@ import pytest
 
 from camgen.analysis import analyze, face_extent, pressure_angle_max, profile_rho_min
 from camgen.flat import build_cam, size_disc
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.core.errors import DesignError, SpecError
 from camgen.followers.base import rotate
 from camgen.laws import DraftedUniform, make_law

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from camgen.contact_stress import MATERIALS, Material, effective_modulus, line_contact
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.dynamics import G_MM, loading, spec_loading
 from camgen.forces import Contact, contact_pressure, normal_force, torque
 from camgen.kinds.barrel.design import design_barrel

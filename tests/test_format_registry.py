@@ -54,7 +54,7 @@ def _plugin(folder):
 
 
 def _design():
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
 
     return design_cam(template())
 

@@ -11,7 +11,7 @@ import pytest
 
 from camgen.api import write_cam
 from camgen.flat import build_cam
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.surface import surface_deviation
 from tests.conftest import template
 

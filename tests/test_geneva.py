@@ -15,7 +15,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main
 from camgen.core.errors import SpecError
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.kinds.geneva.kinematics import GenevaLaw
 from camgen.kinds.geneva.table import GenevaSpec, GenevaTable
 from camgen.spec import validate_spec

@@ -13,7 +13,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main
 from camgen.core.errors import DesignError
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.groove import flank_checks
 from camgen.kinds.grooved.design import largest_roller, pitch_rig
 from camgen.spec import validate_spec

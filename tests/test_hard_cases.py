@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import shapely
 
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.core.errors import DesignError, SpecError
 from tests.conftest import template
 

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.core.errors import DesignError
 from camgen.api import write_cam
 from camgen.core.shapes import Contour

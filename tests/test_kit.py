@@ -16,7 +16,7 @@ from click.testing import CliRunner
 from camgen.cli import main as camgen
 from camgen.core.hardware import BEARINGS, BOLTS
 from camgen.core.shapes import Contour
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.spec import load_spec
 from linkgen.cli import main as linkgen
 from tests.conftest import ROOT

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.dynamics import LoadTable
 from camgen.spec import load_spec
 

@@ -90,7 +90,7 @@ def test_biarcs_read_back_from_the_dxf_are_tangent_continuous(tmp_path):
     import ezdxf
 
     from camgen.api import write_cam
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.core.shapes import Contour
 
     design = design_cam(template({"output.curves": "biarcs", "output.formats": ["dxf"]}))

@@ -8,7 +8,7 @@ import pytest
 from click.testing import CliRunner
 
 from camgen.cli import main
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.core.errors import SpecError
 from camgen.surface import surface_deviation
 from camgen.spec import validate_spec

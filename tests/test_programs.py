@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from camgen.api import write_cam
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from tests.conftest import template
 from tests.freecad import freecad_check
 

@@ -55,13 +55,16 @@ from camgen.cli import main as camgen
 from camgen.followers import FOLLOWERS
 from camgen.kinds.geneva.table import GenevaSpec
 from camgen.laws import LAW_NAMES
-from camgen.spec import CAM_SPECS, CamSpec
+from camgen.spec import CamSpec, cam_specs
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
 from linkgen.spec import spec_model
 from linkgen.synthesis.task import TASKS
 from linkgen.synthesis.task import spec_model as task_model
 from tests.conftest import ROOT
+
+#: every cam kind's spec by its name
+CAM_SPECS = cam_specs()
 
 # --------------------------------------------------------------------------------------------------- profiles
 
@@ -1232,9 +1235,10 @@ def test_the_oracle_knows_a_wrong_value_from_a_right_one():
     assert refused_alone(lift, -1) and refused_alone(lift, math.nan) and refused_alone(lift, True)
     assert refused_alone(lift, "abc") and refused_alone(lift, [1]) and not refused_alone(lift, 20.0)
     assert not refused_alone(lift, MISSING) and refused_alone(lookup(CamSpec, ("motion", 0, "angle"))[1], MISSING)
-    assert lookup(CamSpec, ("cam", "bor")) == ("extra", None)
+    disc = CAM_SPECS["disc"]                            # a kind's spec names its [cam] table; CamSpec, none
+    assert lookup(disc, ("cam", "bor")) == ("extra", None) and lookup(CamSpec, ("cam", "bor"))[0] != "field"
     assert refused_alone(lookup(spec_model(MECHANISMS["four-bar"]), ("parts", "kerf"))[1], -1)
-    assert not refused_alone(lookup(CamSpec, ("cam", "base_radius"))[1], "auto")
+    assert not refused_alone(lookup(disc, ("cam", "base_radius"))[1], "auto")
     assert named_field("error: motion[0].lift: must be > 0 (got -1)") == "motion[0].lift"
     assert named_field("error: undercut at 3 degrees: smaller than follower.roller_radius 10 mm")
     assert named_field("error: Invalid value for '--jobs': 0 is not in the range 1<=x<=256.") == "--jobs"

@@ -162,7 +162,7 @@ def test_a_knife_edge_corner_allowed_is_cut_as_its_exact_envelope(tmp_path, kerf
     trims the concave one. Checked against the exact surface and for self-intersection."""
     import shapely
 
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.spec import load_spec
     from camgen.surface import surface_deviation
 
@@ -197,7 +197,7 @@ def test_a_flat_face_where_the_velocity_rises_gets_its_straight_flat(tmp_path):
     """A rise leaving a dwell at speed: the face lies along the profile from one contact to the next. The outline
     is measured against the exact envelope (contact curve and flats) by the independent measure."""
     from camgen.convergence_study import contour_error
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.spec import validate_spec
 
     raw = {"name": "flatspot", "cam": {"base_radius": 60.0, "thickness": 6.0},
@@ -242,7 +242,7 @@ def test_the_reported_outline_error_bounds_the_true_one(curves):
 
     from camgen.convergence_study import contour_error
     from camgen.core.spec import apply_overrides
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.spec import validate_spec
     from tests.conftest import RDRD as RAW
 
@@ -298,7 +298,7 @@ def test_engraved_marks_lie_on_the_part_clear_of_each_other(template, sets):
     import shapely
 
     from camgen.core.spec import read_template
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.spec import validate_spec
 
     d = design_cam(validate_spec(read_template(template, ["hub.engrave=true", *sets])))
@@ -460,7 +460,7 @@ def test_a_plate_cams_undercut_envelope_is_closed_by_the_plate(sets):
     import numpy as np
     import shapely
 
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.spec import load_spec
     from camgen.surface import surface_deviation
 

@@ -15,7 +15,8 @@ import pytest
 
 from camgen.analysis import profile_rho_min
 from camgen.core.parts import Allowances
-from camgen.profile import Body, Finish, design_cam, design_profile
+from camgen.api import design_cam
+from camgen.profile import Body, Finish, design_profile
 from camgen.rig import Rig, disc_mount, plate_mount
 from camgen.sizing import Limits, size_cam
 from camgen.spec import load_spec

@@ -139,7 +139,7 @@ def test_a_program_evaluates_all_its_segments_at_once_as_each_alone(law):
 
 def test_a_design_takes_two_evaluations_of_its_follower(monkeypatch):
     from camgen.analysis import analyze
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
     from camgen.followers.translating_roller import TranslatingRoller
 
     spec = validate_spec(copy.deepcopy(RDRD))
@@ -184,7 +184,7 @@ def test_a_dwell_searched_at_one_point_is_the_search_of_its_grid(follower, law, 
 def test_a_designs_tentative_outline_raises_only_where_it_is_used(monkeypatch):
     import camgen.outline
     from camgen.core.errors import DesignError
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
 
     spec = validate_spec(copy.deepcopy(RDRD))
     small = copy.deepcopy(RDRD)
@@ -219,7 +219,7 @@ def test_a_hole_is_refused_where_it_touches_or_leaves_the_outline_as_measured_by
     import shapely
 
     from camgen.core.shapes import Circle
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
 
     design = design_cam(validate_spec(copy.deepcopy(RDRD)))
     outline = design.outline.contour.flatten(0.01)
@@ -279,7 +279,7 @@ def _threshold(accepted: Any, low: float, high: float) -> float:
 def test_a_bolt_hole_touching_the_outline_is_refused_and_one_1e9_mm_inside_is_made(follower):
     from camgen.core.errors import DesignError
     from camgen.core.features import bolt_holes
-    from camgen.profile import design_cam
+    from camgen.api import design_cam
 
     raw = _raw(FOLLOWERS[follower])
     count, diameter = 3, 6.0

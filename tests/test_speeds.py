@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.dynamics import spec_loading
 from camgen.forces import cycle_mean, torque
 from camgen.spec import load_spec

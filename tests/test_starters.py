@@ -13,7 +13,7 @@ from camgen.cli import main as camgen
 from camgen.core.starter import table_models
 from camgen.starters import starters
 from camgen.spec import validate_spec
-from camgen.tables import DiscTable
+from camgen.kinds.disc.table import DiscTable
 from camgen.core.errors import SpecError
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS

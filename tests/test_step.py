@@ -19,7 +19,8 @@ from camgen.core.parts import Part
 from camgen.core.shapes import Circle, Contour
 from camgen.core.writers import FORMATS
 from camgen.core.writers.step import _quiet, write_step
-from camgen.profile import design_cam, step_part
+from camgen.api import design_cam
+from camgen.profile import step_part
 from camgen.spec import load_spec
 from linkgen.cli import main as linkgen_main
 from tests.conftest import ROOT, template
@@ -632,7 +633,7 @@ def test_linkgen_analyze_refuses_step(tmp_path):
 
 
 def test_a_build_without_step_never_imports_ocp(tmp_path):
-    code = ("import sys; from camgen.profile import design_cam; from camgen.api import write_cam; "
+    code = ("import sys; from camgen.api import design_cam, write_cam; "
             "from camgen.spec import load_spec; "
             f"write_cam(design_cam(load_spec({str(ROOT / 'templates' / 'rdrd.toml')!r}, "
             "['output.formats=[\"stl\",\"json\"]'])), 'out'); print('OCP' in sys.modules)")

@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main as camgen
 from camgen.core.errors import SpecError
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.laws import make_law
 from camgen.laws.fitted import table_law
 from camgen.numeric import left_of

@@ -7,7 +7,9 @@ files come in, how its spec is designed, bundled into files, summarised on the c
 summary shows of it and which starter templates ``camgen new`` writes of it. A kind's package holds its kind
 (``kind.py``, which ``__init__.py`` exports as ``KIND``), its starters and, as it needs them, its design, files, page,
 figures and pure-numpy ``kinematics.py``; its methods import its design and output modules when first called, so
-this registry stays light. No kind's package imports another's: what kinds share lives outside them. Disc and plate
+this registry stays light; a cam kind chosen by ``cam.kind`` keeps its ``[cam]`` table and its spec (a
+:class:`camgen.spec.CamSpec`) in its ``table.py``. No kind's package imports another's: what kinds share lives outside
+them. Disc and plate
 cams share one design (a flat plate cut to a profile, :class:`~camgen.kinds.shared.FlatKind`); a grooved cam's
 design makes its inner flank that way too (see :mod:`camgen.kinds.grooved`); a barrel cam's developed pitch curve is
 a plate cam's (see :mod:`camgen.kinds.barrel`); a conjugate pair's first cam is the disc cam and its second is
@@ -28,7 +30,6 @@ from camgen.core.options import choose
 from camgen.core.registry import registry
 from camgen.kinds import barrel, conjugate, disc, geneva, grooved, machine, plate
 from camgen.kinds.base import CAM_TABLE, Kind
-from camgen.kinds.shared import SharedTableKind
 
 #: the entry-point group a distribution declares its cam kinds in (``eccentric = my_package.kind:KIND``)
 GROUP = "camgen.kinds"
@@ -77,10 +78,8 @@ KINDS: Mapping[str, Kind[Any, Any]] = registry(
     (*BUILT_IN, *plugins(entry_points(group=GROUP), (kind.name for kind in BUILT_IN))),
     lambda kind: (kind.name,), "cam.kind", "a cam kind")
 
-#: the kinds chosen by ``cam.kind``, each with its own ``[cam]`` table (:mod:`camgen.tables`), whose ``kind`` names
-#: and the spec's validation checks values by (:attr:`~camgen.kinds.shared.SharedTableKind.check`)
-CAM_KINDS: Mapping[str, SharedTableKind[Any, Any]] = {name: kind for name, kind in KINDS.items()
-                                                 if isinstance(kind, SharedTableKind)}
+#: the kinds chosen by ``cam.kind``, each with its own ``[cam]`` table and spec (in its package's ``table.py``)
+CAM_KINDS: Mapping[str, Kind[Any, Any]] = {name: kind for name, kind in KINDS.items() if kind.table_key == CAM_TABLE}
 #: the kind of a ``[cam]`` table without ``kind``
 DEFAULT_KIND = "disc"
 
@@ -124,8 +123,8 @@ def spec_kind(spec: Any) -> Kind[Any, Any]:
     return KINDS[choose(spec.kind, KINDS, "cam.kind")]
 
 
-def kind_of(kind: str) -> SharedTableKind[Any, Any]:
-    """The kind of the shared ``[cam]`` table named ``kind`` (``cam.kind``), or a one-line error listing them."""
+def kind_of(kind: str) -> Kind[Any, Any]:
+    """The cam kind named ``kind`` (``cam.kind``), or a one-line error listing them."""
     try:
         return CAM_KINDS[kind]          # a registered name (a design asks twice): no list of the names made
     except (KeyError, TypeError):       # not one, or not a name at all: the error says which are

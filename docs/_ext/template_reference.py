@@ -43,8 +43,8 @@ def roots() -> dict[str, list[Table]]:
     from camgen.core.family import _SheetTemplate
     from camgen.kinds.geneva.table import GenevaSpec
     from camgen.kinds.machine.spec import MachineSpec
-    from camgen.spec import CAM_SPECS, DiscSpec
-    from camgen.tables import CAM_TABLES
+    from camgen.kinds.disc.table import DiscSpec
+    from camgen.spec import cam_specs
     from linkgen.mechanisms import MECHANISMS
     from linkgen.spec import LinkageSpec
     from linkgen.synthesis.task import TASKS, SynthesisSpec
@@ -56,10 +56,11 @@ def roots() -> dict[str, list[Table]]:
     linkage = [top[0], *(Table(t.path, t.model, f"{t.title} (type {', '.join(names)})")
                          for table, names in by_table.items() for t in tables(table, "linkage")), *top[1:]]
     top = list(tables(DiscSpec, "", skip={"cam", "follower"}))      # a disc cam's: with its kit
-    followers = dict.fromkeys(member for spec in CAM_SPECS.values()
+    specs = cam_specs()
+    followers = dict.fromkeys(member for spec in specs.values() if "follower" in spec.model_fields
                               for member in _unwrap(spec.model_fields["follower"].annotation))
     cam = [top[0], *(Table(t.path, t.model, f"{t.title} (kind {kind})")
-                     for kind, table in CAM_TABLES.items() for t in tables(table, "cam")),
+                     for kind, spec in specs.items() for t in tables(spec.model_fields["cam"].annotation, "cam")),
            *(Table(t.path, t.model, f"{t.title} ({follower.model_config['title']})")
              for follower in followers for t in tables(follower, "follower")), *top[1:]]
     top = list(tables(SynthesisSpec, "", skip={"task"}))

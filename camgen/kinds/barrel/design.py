@@ -45,7 +45,7 @@ from camgen.groove import Flank, flank_checks
 from camgen.program import Jump
 from camgen.rig import Rig, developed_mount
 from camgen.sizing import pressure_limit
-from camgen.spec import BarrelSpec
+from camgen.kinds.barrel.table import BarrelSpec
 
 #: the layer of the developed pitch curve
 LAYER_PITCH = "PITCH"

@@ -44,7 +44,7 @@ from camgen.profile import (Body, Finish, Profile, ProfileMaker, check_holes, ch
                             outline_body, reach)
 from camgen.rig import Rig, disc_mount
 from camgen.sizing import Limits, Sizing, limits_of, pressure_limit, size_cam
-from camgen.spec import ConjugateSpec
+from camgen.kinds.conjugate.table import ConjugateSpec
 
 #: the cam angles (per turn) at which both contacts are measured against the outlines
 CONTACT_ANGLES = 720

@@ -11,8 +11,8 @@ See :mod:`camgen.kinds.conjugate`.
 """
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from camgen.kinds.base import NESTED, Operations, SizeReport, Starter
 from camgen.kinds.conjugate.starters import STARTERS
@@ -20,32 +20,7 @@ from camgen.kinds.shared import SharedTableKind
 
 if TYPE_CHECKING:
     from camgen.kinds.conjugate.design import ConjugateDesign
-    from camgen.spec import ConjugateSpec
-
-#: the key that places the second roller instead of ``cam.second_base_radius``, by follower type
-PLACES = {"translating-roller": "yoke_span", "oscillating-roller": "arm_angle"}
-#: the follower type each of the second roller's own ``[cam]`` keys is for: a rule across two tables (the cam's keys
-#: by the follower's type), which neither table's model can hold
-OWNERS = {"yoke_span": "a translating-roller", "arm_angle": "an oscillating-roller",
-          "second_arm_length": "an oscillating-roller"}
-
-
-def _check(spec: Any) -> None:
-    cam, follower = spec.cam, spec.follower
-    if cam.allow_undercut:
-        raise ValueError("cam.allow_undercut: both contacts of a conjugate pair must hold over the whole turn, so an "
-                         "undercut is refused, never cut as an envelope")
-    for key, owner in OWNERS.items():
-        if not owner.endswith(follower.type) and key in cam.model_fields_set:
-            raise ValueError(f"cam.{key}: only for a conjugate cam with {owner} follower")
-    place = PLACES[follower.type]
-    if place in cam.model_fields_set and "second_base_radius" in cam.model_fields_set:
-        raise ValueError(f"cam.{place}: give cam.{place} or cam.second_base_radius (either places the second roller), "
-                         "not both")
-    if place in cam.model_fields_set and cam.base_radius == "auto":
-        raise ValueError(f"cam.base_radius: \"auto\" sizes each cam by its base circle; with cam.{place} fixed the "
-                         "second cam changes with the first, so give cam.second_base_radius (or \"auto\") instead of "
-                         f"cam.{place}, or a base radius")
+    from camgen.kinds.conjugate.table import ConjugateSpec
 
 
 class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
@@ -55,12 +30,12 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
 
     name: str = "conjugate"
     title: str = "a conjugate cam"
-    check: Callable[[ConjugateSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 
     @property
     def spec(self) -> type[ConjugateSpec]:
-        from camgen.spec import ConjugateSpec
+        from camgen.kinds.conjugate.table import ConjugateSpec
+
 
         return ConjugateSpec
 

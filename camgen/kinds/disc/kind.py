@@ -1,41 +1,37 @@
 """The disc cam: a plate turning about its centre, cut to a profile; every follower type drives it."""
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from camgen.kinds.base import Starter
 from camgen.kinds.disc.starters import STARTERS
 from camgen.kinds.shared import FlatKind
-from camgen.rig import Mount, disc_mount
 
 if TYPE_CHECKING:
-    from camgen.spec import DiscSpec
     from camgen.core.bundle import Item
     from camgen.flat import FlatCamDesign
-
-
-def _check(spec: Any) -> None:
-    """Nothing beyond its tables: a disc cam's follower tables are the spring-held ones
-    (:mod:`camgen.tables.followers`)."""
+    from camgen.kinds.disc.table import DiscSpec
+    from camgen.spec import FlatSpec
 
 
 class DiscKind(FlatKind["DiscSpec"]):
-    """A disc cam (``cam.kind = "disc"``, the default); the one kind with a graphical construction."""
+    """A disc cam (``cam.kind = "disc"``, the default); the one kind with a graphical construction and a kit."""
 
     name: str = "disc"
     title: str = "a disc cam"
-    check: Callable[[DiscSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 
     @property
     def spec(self) -> type[DiscSpec]:
-        from camgen.spec import DiscSpec
+        from camgen.kinds.disc.table import DiscSpec
 
         return DiscSpec
 
-    def mount(self, spec: DiscSpec) -> Mount:
-        return disc_mount(spec.follower, spec.cam.rotation)
+    def with_kit(self, spec: FlatSpec) -> bool:
+        from camgen.kinds.disc.table import DiscSpec
+
+        return isinstance(spec, DiscSpec) and spec.kit is not None
 
     def construction(self, design: FlatCamDesign) -> tuple[Item, ...]:
         from camgen.construction.figure import construction_files

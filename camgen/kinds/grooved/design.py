@@ -32,7 +32,7 @@ from camgen.outline import Outline, envelope_outline, exact_outline
 from camgen.profile import Body, Finish, design_profile, step_part
 from camgen.rig import Rig, disc_mount
 from camgen.sizing import Sizing, limits_of, pressure_limit, size_cam
-from camgen.spec import GroovedSpec
+from camgen.kinds.grooved.table import GroovedSpec
 
 
 def pitch_rig(spec: GroovedSpec) -> Rig:

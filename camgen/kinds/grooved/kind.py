@@ -9,8 +9,8 @@ is the disc cam's (prime radius = base radius + roller radius).
 """
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
-from typing import TYPE_CHECKING, Any
+from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from camgen.kinds.base import Operations, SizeReport, Starter
 from camgen.kinds.grooved.starters import STARTERS
@@ -18,17 +18,7 @@ from camgen.kinds.shared import SharedTableKind
 
 if TYPE_CHECKING:
     from camgen.kinds.grooved.design import GroovedDesign
-    from camgen.spec import GroovedSpec
-
-
-
-def _check(spec: Any) -> None:
-    cam = spec.cam
-    if not cam.groove_depth < cam.thickness:
-        raise ValueError(f"cam.groove_depth: must be < cam.thickness {cam.thickness:g} mm (got {cam.groove_depth:g})")
-    if spec.hub.boss_diameter:
-        raise ValueError("hub.boss_diameter: a boss would stand on the grooved face, where the follower runs; mount "
-                         "a grooved cam by its bore (hub.keyway) or hub.bolt_circle holes")
+    from camgen.kinds.grooved.table import GroovedSpec
 
 
 class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
@@ -38,12 +28,11 @@ class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
 
     name: str = "grooved"
     title: str = "a grooved cam"
-    check: Callable[[GroovedSpec], None] = staticmethod(_check)
     starters: Mapping[str, Starter] = STARTERS
 
     @property
     def spec(self) -> type[GroovedSpec]:
-        from camgen.spec import GroovedSpec
+        from camgen.kinds.grooved.table import GroovedSpec
 
         return GroovedSpec
 

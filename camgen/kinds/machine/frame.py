@@ -289,7 +289,7 @@ def check_names(spec: Any) -> None:
                 raise SpecError(f"{mount.name!r} names the machine's own files (<machine>-{mount.name}...): give the "
                                 "mount another name", f"{key}[{i}].name")
     if spec.machine.frame != "none":
-        for i, mount in enumerate(spec.linkages):
+        for mount in spec.linkages:
             if mount.shaft is not None and mount.side == "back":
                 raise SpecError(f"the frame's plates under and over the parts do not carry linkages.{mount.name}, "
                                 "which stands behind the frame (side = \"back\"): give frame = \"none\" or stand "
