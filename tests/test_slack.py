@@ -524,7 +524,8 @@ DEDICATED = {
 #: mechanisms not drawn as bars and pins (gears, pawls, the couplings' slotted discs and blocks), by the bundled
 #: template of each: no slack band (refused in one line)
 HIGHER_PAIRS = {"gear-pair": "gear-pair", "ratchet": "ratchet", "gear-train": "planetary-train",
-                "oldham": "oldham-coupling", "trammel": "elliptic-trammel", "rapson": "rapson-slide"}
+                "oldham": "oldham-coupling", "trammel": "elliptic-trammel", "rapson": "rapson-slide",
+                "counter": "counter"}
 
 
 def test_every_dedicated_type_is_covered():
