@@ -290,3 +290,13 @@ def test_analyze_and_build_write_the_count_and_the_parts(tmp_path):
     for part in ("ground", "wheel", "pawl", "lever", "lever-pawl", "lock-disc", "tens-wheel"):
         assert (out / f"counter-{part}.stl").stat().st_size > 0
     assert (out / "counter-sheet.dxf").stat().st_size > 0
+
+
+def test_the_angle_asked_is_the_levers_on_its_first_stroke_out():
+    """--angle: the lever's angle; the units wheel stands over the lost motion (swing - index = 4 degrees) and then
+    turns with it; the tens wheel stands (its window is in the turn's last strokes)."""
+    spec, mechanism, counter = _built(CASES[0])
+    for angle, wheel in ((2.0, 0.0), (4.0, 0.0), (20.0, 16.0), (40.0, 36.0)):
+        positions = mechanism.report(spec.linkage, counter, angle, "closed")["positions"]
+        assert positions["wheel_deg"] == pytest.approx(wheel, abs=1e-9) and positions["tens_deg"] == 0.0
+        assert positions["teeth_passed"] == (1 if angle == 40.0 else 0)

@@ -116,5 +116,10 @@ def stroke_turns(strokes: np.ndarray, index: float, swing: float) -> tuple[np.nd
     whole = np.floor(t)
     u = t - whole
     lever = swing * (1 - np.cos(2 * math.pi * u)) / 2
-    driven = np.where(u < 0.5, np.clip(lever - (swing - index), 0.0, index), index)
-    return lever, whole * index + driven
+    return lever, whole * index + np.where(u < 0.5, driven(lever, index, swing), index)
+
+
+def driven(lever: np.ndarray, index: float, swing: float) -> np.ndarray:
+    """The units wheel's turn (rad) on a stroke going out, the lever at ``lever`` (rad from rest): nothing over the
+    lost motion swing - index, then with the lever up to the index."""
+    return np.clip(np.asarray(lever, dtype=float) - (swing - index), 0.0, index)

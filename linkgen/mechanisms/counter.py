@@ -32,7 +32,7 @@ from pydantic import Field, model_validator
 
 from camgen.core.errors import DesignError
 from camgen.core.spec import MAX_LENGTH_MM, Model, unit
-from linkgen.gears.counter import Transfer, stroke_turns
+from linkgen.gears.counter import Transfer, driven, stroke_turns
 from linkgen.gears.geneva import GenevaStep
 from linkgen.gears.ratchet import teeth_per_stroke
 from linkgen.mechanisms.common import Figure, num, types_of
@@ -160,8 +160,11 @@ def counter_report(table: CounterTable, counter: Counter, angle: float | None) -
         "tens_index": [math.floor(float(v) / t.step + 1e-9) % t.slots for v in tens],
         "units_deg": [num(math.degrees(u)) for u in units], "tens_deg": [num(math.degrees(v)) for v in tens]}
     report["tens_rpm"] = num(table.rpm / (n * t.slots))
-    if angle is not None:
-        report["positions"]["tens_deg"] = 0.0
+    if angle is not None:                       # the lever's angle on the first stroke going out (checked above)
+        units = float(driven(np.array(math.radians(angle)), index, counter.ratchet.swing))
+        report["positions"] = {"lever_deg": num(angle), "wheel_deg": num(math.degrees(units)),
+                               "teeth_passed": math.floor(units / counter.ratchet.wheel.pitch + 1e-9),
+                               "tens_deg": num(math.degrees(float(t.tens_turn(np.array([units]))[0])))}
     return report
 
 
