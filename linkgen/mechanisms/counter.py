@@ -161,10 +161,10 @@ def counter_report(table: CounterTable, counter: Counter, angle: float | None) -
         "units_deg": [num(math.degrees(u)) for u in units], "tens_deg": [num(math.degrees(v)) for v in tens]}
     report["tens_rpm"] = num(table.rpm / (n * t.slots))
     if angle is not None:                       # the lever's angle on the first stroke going out (checked above)
-        units = float(driven(np.array(math.radians(angle)), index, counter.ratchet.swing))
-        report["positions"] = {"lever_deg": num(angle), "wheel_deg": num(math.degrees(units)),
-                               "teeth_passed": math.floor(units / counter.ratchet.wheel.pitch + 1e-9),
-                               "tens_deg": num(math.degrees(float(t.tens_turn(np.array([units]))[0])))}
+        turned = float(driven(np.array(math.radians(angle)), index, counter.ratchet.swing))
+        report["positions"] = {"lever_deg": num(angle), "wheel_deg": num(math.degrees(turned)),
+                               "teeth_passed": math.floor(turned / counter.ratchet.wheel.pitch + 1e-9),
+                               "tens_deg": num(math.degrees(float(t.tens_turn(np.array([turned]))[0])))}
     return report
 
 
