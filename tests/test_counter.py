@@ -300,3 +300,15 @@ def test_the_angle_asked_is_the_levers_on_its_first_stroke_out():
         positions = mechanism.report(spec.linkage, counter, angle, "closed")["positions"]
         assert positions["wheel_deg"] == pytest.approx(wheel, abs=1e-9) and positions["tens_deg"] == 0.0
         assert positions["teeth_passed"] == (1 if angle == 40.0 else 0)
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_the_figures_draw_without_parts(case):
+    """The counter's figures (the count, the wheels at rest) draw for every case, the tens wheel and its disc with
+    them."""
+    spec, mechanism, counter = _built(case)
+    drawing = mechanism.sketch(spec.linkage, counter)
+    layers = {layer for layer, _ in drawing.items}
+    assert {"tens wheel", "locking disc", "pin circle", "wheel", "pawl"} <= layers
+    for _, draw in mechanism.figures("c", spec.linkage, counter):
+        assert draw() is not None

@@ -47,6 +47,8 @@ if TYPE_CHECKING:
 MIN_SLOTS, MAX_SLOTS = 3, 36
 #: the most strokes the report counts
 MAX_STROKES = 10_000
+#: the most samples the count's figure draws (200 a stroke up to 500 strokes)
+FIGURE_SAMPLES = 100_000
 #: the gap (mm) kept between the units wheel's holes (its axle, the transfer pin, the dowel) and its root circle
 #: or each other
 WALL_MM = 1.0
@@ -172,7 +174,7 @@ def count_figure(name: str, counter: Counter) -> Any:
     """Both wheels' turns (degrees) over the strokes the report counts, the tens wheel's window shaded."""
     from camgen.core.figures import figure
 
-    k = np.linspace(0.0, counter.strokes, 200 * counter.strokes + 1)
+    k = np.linspace(0.0, counter.strokes, min(200 * counter.strokes, FIGURE_SAMPLES) + 1)
     _, units, tens = counter.count(k)
     fig = figure(9, 4.5)
     ax = fig.subplots()
@@ -306,20 +308,28 @@ def counter_drawing(counter: Counter, table: CounterTable, width: float) -> Draw
 
     base = ratchet_drawing(counter.ratchet, width)
     t = counter.transfer
-    stock = Stock(width / 2, 1.0, base.tolerance)
-    step = geneva_step(counter, stock, table.transfer.clearance)
-    cutout, _ = _check_geneva(counter, step, stock)
     pin = t.pin(np.zeros(1), counter.angle)[0]
     direction = math.atan2(pin[1], pin[0])
     o2 = t.centre_distance * np.array([math.cos(counter.angle), math.sin(counter.angle)])
+    items = [*base.items, ("pin circle", Circle((0.0, 0.0), t.pin_radius)),
+             ("pivots", Circle((float(o2[0]), float(o2[1])), width / 4)),
+             ("pin", Circle((float(pin[0]), float(pin[1])), width / 4))]
+    # without [parts], slots half the drawing's width wide, or as wide as the wheel leaves room for
+    root = counter.ratchet.wheel.root_radius
+    hole = min(width / 2, (t.pin_radius - 2 * WALL_MM) / 3, 2 * (root - t.pin_radius - WALL_MM))
+    stock = Stock(hole, 1.0, base.tolerance)
+    step = geneva_step(counter, stock, table.transfer.clearance)
+    try:
+        if not hole > 0:
+            raise DesignError("no room for the slots")
+        cutout, _ = _check_geneva(counter, step, stock)
+    except DesignError:             # no room for drawn slots: the pin's circle and the axes only
+        return Drawing(tuple(items), base.tolerance, stroke=preview_stroke(items))
     vertices, bulges = step.wheel()
     spin = counter.angle + math.pi
     c, s = math.cos(spin), math.sin(spin)
     wheel = vertices @ np.array([[c, s], [-s, c]]) + o2
-    items = [*base.items, ("tens wheel", Contour(wheel, bulges)),
-             ("locking disc", Contour(*step.disc(cutout, direction))), ("pin circle", Circle((0.0, 0.0), t.pin_radius)),
-             ("pivots", Circle((float(o2[0]), float(o2[1])), width / 4)),
-             ("pin", Circle((float(pin[0]), float(pin[1])), width / 4))]
+    items += [("tens wheel", Contour(wheel, bulges)), ("locking disc", Contour(*step.disc(cutout, direction)))]
     return Drawing(tuple(items), base.tolerance, stroke=preview_stroke(items))
 
 
