@@ -380,6 +380,8 @@ def _print_text(r: dict[str, Any]) -> None:
         _print_gears(r)
     if "engagement_angle_deg" in r:
         _print_ratchet(r)
+    if "count" in r:
+        _print_counter(r)
     if r.get("classification", {}).get("classes"):
         out(f"class: {', '.join(r['classification']['classes'])} (the rules: the report's classification)")
     positions = r.get("positions")
@@ -449,6 +451,16 @@ def _print_ratchet(r: dict[str, Any]) -> None:
     click.echo(f"lever swing {lever['swing_deg']:g} deg indexes {lever['teeth_per_stroke']} teeth "
                f"({lever['index_deg']:.6g} deg) a stroke, {lever['lost_motion_deg']:.6g} deg lost; wheel "
                f"{r['wheel_rpm']:.6g} rpm")
+
+
+def _print_counter(r: dict[str, Any]) -> None:
+    """A counter's transfer: the tens wheel's step, its window and the count."""
+    t, c = r["transfer"], r["count"]
+    start, end = t["units_window_deg"]
+    click.echo(f"tens wheel {t['slots']} slots: one step of {t['step_deg']:.6g} deg every {c['strokes_per_turn']} "
+               f"strokes, turning while the units wheel goes {start:.6g} to {end:.6g} deg of its turn (strokes "
+               f"{', '.join(str(s) for s in t['strokes_turning_tens'])}); after {c['strokes']} strokes it reads "
+               f"{c['tens_index'][-1]} {c['units_index'][-1]}")
 
 
 def _print_coupling(r: dict[str, Any]) -> None:

@@ -49,6 +49,11 @@ RULES: dict[str, dict[str, str]] = {
                                       "about the kerf for a cut pair"},
     "ratchet": {"linkage": "the pawl holds while face_angle + pawl.angle >= atan(friction), the friction angle; "
                            "the lever indexes floor(swing / (360 / teeth)) teeth a stroke"},
+    "counter": {"linkage": "the ratchet's rules for the units wheel, whose lever's index must divide its teeth; the "
+                           "tens wheel steps 360 / transfer.slots degrees a turn of it, while the units wheel turns "
+                           "180 - 360 / slots",
+                "linkage.transfer.centre_distance": "mm: the transfer pin stands centre_distance x sin(180 / slots) "
+                                                    "from the units wheel's axis, inside its root circle"},
     "oldham": {"linkage": "hub 2 turns exactly with hub 1; the disc's centre runs twice a turn round the circle on "
                           "the shafts' centres as diameter (radius offset / 2); each tongue slides 2 x offset"},
     "trammel": {"linkage": "the tracer's ellipse has semi-axes |rod - point| along X and |point| along Y; the rod's "
@@ -140,6 +145,14 @@ STARTERS: dict[str, tuple[str, list[tuple[str, dict[str, Any]]]]] = {
                      "friction": 0.15, "rpm": 30.0}),
         ("linkage.pawl", {"length": 30.0, "angle": 0.0, "spring": 14.0}),
         ("linkage.lever", {"swing": 40.0, "length": 80.0}),
+        PARTS]),
+    "counter": ("A counter: a 10-tooth ratchet wheel (the units), indexed a tooth a stroke by a lever, steps a "
+                "10-slot Geneva wheel (the tens) once a turn through its transfer pin.", [
+        ("linkage", {"type": "counter", "teeth": 10, "tip_diameter": 100.0, "depth": 8.0, "face_angle": 16.0,
+                     "friction": 0.2, "rpm": 20.0}),
+        ("linkage.pawl", {"length": 32.0, "angle": 0.0, "spring": 14.0}),
+        ("linkage.lever", {"swing": 40.0, "length": 95.0}),
+        ("linkage.transfer", {"slots": 10, "centre_distance": 97.0, "angle": -90.0, "clearance": 0.2}),
         PARTS]),
     "oldham": ("Oldham's coupling: two parallel shafts 20 mm apart turn together through a middle disc whose "
                "tongues slide in both hubs' slots.", [

@@ -104,6 +104,11 @@ def _expected(name: str, design) -> set[str]:
         lever, wheel = rep["lever"], rep["wheel"]
         assert lever["teeth_per_stroke"] == math.floor(lever["swing_deg"] / wheel["pitch_deg"])
         return {"indexing"} if lever["teeth_per_stroke"] >= 1 and rep["holds"] else set()
+    if table.type == "counter":                              # the tens wheel's index after k strokes: floor(k / N)
+        lever, wheel, count = rep["lever"], rep["wheel"], rep["count"]
+        n = wheel["teeth"] // lever["teeth_per_stroke"]
+        assert count["tens_index"] == [k // n % rep["transfer"]["slots"] for k in range(count["strokes"] + 1)]
+        return {"indexing", "counter"} if rep["holds"] else {"counter"}
     if table.type == "gear-train":
         if rep["kind"] == "planetary":                        # Willis: the ratio from the members' own speeds
             speeds = rep["planetary"]["speeds"]

@@ -96,7 +96,8 @@ def test_new_never_overwrites_a_file_an_example_reads(tmp_path, monkeypatch):
 def test_a_kind_keeps_its_name_and_example_picks_the_example(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     clashes = sorted((set(cam_starters()) | set(LINKAGE_STARTERS)) & set(bundled.examples()))
-    assert clashes == ["barrel", "conjugate", "gear-pair", "grooved", "hoekens", "plate", "ratchet", "slider-crank"]
+    assert clashes == ["barrel", "conjugate", "counter", "gear-pair", "grooved", "hoekens", "plate", "ratchet",
+                       "slider-crank"]
     _run(camgen, "new", "plate", "-o", "starter.toml")
     _run(camgen, "new", "plate", "--example", "-o", "example.toml")
     assert "Every key is explained" in (tmp_path / "starter.toml").read_text()
@@ -112,7 +113,7 @@ def test_new_refuses_another_programs_example_and_an_unknown_name_in_one_line(tm
     assert code == 2 and output.startswith("error: KIND: unknown value 'rdrdd'; one of translating-roller")
     assert "(did you mean the example 'rdrd'?): `camgen examples` lists them" in output
     code, output = _run(linkgen, "new", "nosuch", "--example")
-    assert code == 2 and output.startswith("error: NAME: unknown value 'nosuch'; one of crank-rocker")
+    assert code == 2 and output.startswith("error: NAME: unknown value 'nosuch'; one of counter, crank-rocker")
     assert list(tmp_path.iterdir()) == []
 
 

@@ -44,12 +44,14 @@ def _slider_crank(offset: float = 12.0) -> Linkage:
     return Linkage.of(equivalents.slider_crank(SliderCrank(40.0, 130.0, offset), 0.0))
 
 
-#: the issue's five, and a crank-shaper and a Whitworth (slides on turning guides) and a slide-driven pump
+#: the issue's five, and a crank-shaper and a Whitworth (slides on turning guides), a slide-driven pump and an
+#: eight-bar whose triad (a class-III group) is one block of twelve unknowns
 LINKAGES = {"four-bar": _fourbar, "slider-crank": _slider_crank, "watt": lambda: _template_linkage("watt1"),
             "stephenson": lambda: _template_linkage("stephenson3"), "jansen": lambda: Linkage.of(jansen(0.0)),
             "crank-shaper": lambda: Linkage.of(equivalents.crank_shaper(CrankShaper(60.0, 150.0, 300.0), 0.3)),
             "whitworth": lambda: Linkage.of(equivalents.whitworth(Whitworth(40.0, 20.0, 60.0, 150.0), 0.3)),
-            "pendulum-pump": lambda: _template_linkage("pendulum-pump")}
+            "pendulum-pump": lambda: _template_linkage("pendulum-pump"),
+            "eightbar-triad": lambda: _template_linkage("eightbar-triad")}
 
 
 def _inputs(linkage: Linkage, n: int, shift: float = 0.0) -> np.ndarray:

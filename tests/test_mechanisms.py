@@ -39,6 +39,8 @@ EXAMPLES = {
     "trammel": {"rod": 80.0, "point": 30.0},
     "rapson": {"distance": 100.0},          # its input is the crosshead's height: 60 mm is inside its 70 mm travel
     "gear-train": {"module": 2.0, "teeth": [18, 24]},
+    "counter": {"teeth": 10, "tip_diameter": 100.0, "depth": 8.0, "pawl": {"length": 32.0},
+                "lever": {"swing": 72.0, "length": 95.0}, "transfer": {"slots": 10, "centre_distance": 97.0}},
 }
 #: the types whose mechanism makes parts (all but Whitworth, whose crank sweeps over its slotted link's pivot)
 WITH_PARTS = set(EXAMPLES) - {"whitworth"}
@@ -52,7 +54,7 @@ def _raw(kind: str, **more: Any) -> dict[str, Any]:
 def test_the_registry_lists_every_type_once_in_module_order():
     assert list(MECHANISMS) == ["four-bar", "slider-crank", "scotch-yoke", "whitworth", "crank-shaper", "chebyshev",
                                 "hoekens", "roberts", "watt", "linkage", "gear-pair", "ratchet", "oldham",
-                                "trammel", "rapson", "gear-train"]
+                                "trammel", "rapson", "gear-train", "counter"]
     assert set(EXAMPLES) == set(MECHANISMS)
     assert [m for module in MODULES for m in module.REGISTER] == list(dict.fromkeys(MECHANISMS.values()))
     for kind, mechanism in MECHANISMS.items():

@@ -163,6 +163,7 @@ CASES = {
     "jansen": lambda: _template("jansen"),
     "shaper": lambda: _template("shaper"),
     "toggle-press": lambda: _template("toggle-press"),
+    "eightbar-triad": lambda: _template("eightbar-triad"),      # a class-III group: its links' slack too
 }
 
 
@@ -208,9 +209,15 @@ def test_the_response_is_the_solvers_own_to_central_differences(case):
 #: 0.1 mm, lengths +-0.05 mm): Jansen's leg passes a transmission angle of 8.6 degrees, where its sensitivities
 #: grow sixfold and their curvature with them
 MARGIN = {"four-bar": 0.01, "slider-crank": 0.01, "crank-shaper": 0.01, "jansen": 0.2, "shaper": 0.01,
-          "toggle-press": 0.01}
+          "toggle-press": 0.01, "eightbar-triad": 0.08}
+#: the eight-bar's triad hangs on bars of 70 to 96 mm from a coupler point 45 mm off its bar, and every one of its
+#: 52 parameters at its bound adds to the second-order error alike: at the worst case's offsets it reaches 6.2 % of
+#: the tracer F's widest band (0.024 of 0.39 mm; 2 % in Monte Carlo) and falls by 4 as they halve (checked)
 #: Monte Carlo samples a case
 COUNT = 30
+#: the fraction of the band the samples must reach: a third, but for the eight-bar, whose 52 parameters (20 pin
+#: holes) its 30 samples line up less often (its largest reach is 0.33 of the worst case's sum)
+REACH = {"eightbar-triad": 0.3}
 
 
 def _offsets(band, params):
@@ -282,10 +289,10 @@ def test_monte_carlo_lies_inside_the_band_and_its_second_order_error_shrinks_qua
         e1, e2, e4 = (errors[s][name] for s in (1.0, 0.5, 0.25))
         assert across_error[name] <= MARGIN[case] * widest[name], name
         assert 3.5 <= e1 / e2 <= 4.5 and 3.5 <= e2 / e4 <= 4.5, (name, e1, e2, e4)
-        assert reach[name] >= 1 / 3, (name, reach[name])
+        assert reach[name] >= REACH.get(case, 1 / 3), (name, reach[name])
 
 
-@pytest.mark.parametrize("case", ["four-bar", "jansen", "shaper"])
+@pytest.mark.parametrize("case", ["four-bar", "jansen", "shaper", "eightbar-triad"])
 def test_the_band_is_reached_by_the_offsets_it_picks(case):
     """At each of a few poses, the slack that the band's worst case picks for a tracer's offset across its path (each
     pin's offset along its gradient, each other slack at its bound with the gradient's sign) gives a linkage that,
@@ -517,7 +524,8 @@ DEDICATED = {
 #: mechanisms not drawn as bars and pins (gears, pawls, the couplings' slotted discs and blocks), by the bundled
 #: template of each: no slack band (refused in one line)
 HIGHER_PAIRS = {"gear-pair": "gear-pair", "ratchet": "ratchet", "gear-train": "planetary-train",
-                "oldham": "oldham-coupling", "trammel": "elliptic-trammel", "rapson": "rapson-slide"}
+                "oldham": "oldham-coupling", "trammel": "elliptic-trammel", "rapson": "rapson-slide",
+                "counter": "counter"}
 
 
 def test_every_dedicated_type_is_covered():
@@ -622,3 +630,23 @@ def test_the_model_counts_a_hole_at_every_pin_of_every_part():
                                           ("coupler", "B"), ("rocker", "B"), ("ground", "O4"), ("rocker", "O4")])
     assert sorted(model.lengths) == sorted([("ground", "O4"), ("crank", "A"), ("coupler", "B"), ("coupler", "P"),
                                             ("rocker", "B")])
+
+
+def test_a_class_iii_groups_links_have_their_band_in_the_report(tmp_path):
+    """The eight-bar's triad (a class-III group) analysed with [slack]: strict JSON with a band for each tracer on the
+    triad, wider than the play alone (0.1 mm) where the bars' slack adds to it, Monte Carlo inside it; every pin of
+    the triad's links is a hole of the model."""
+    text = (ROOT / "templates" / "eightbar-triad.toml").read_text(encoding="utf-8") + "\n[slack]\nmonte_carlo = 10\n"
+    result, out = _run(tmp_path, text, "analyze")
+    assert result.exit_code == 0, result.output
+    def refuse(constant: str) -> None:
+        raise AssertionError(f"the JSON holds {constant}")
+
+    report = json.loads((out / "eightbar-triad.json").read_text(), parse_constant=refuse)["slack"]
+    assert set(report["tracers"]) == {"C", "E", "F", "G"}
+    assert all(report["tracers"][p]["width_max_mm"] > 2 * 0.1 for p in ("E", "F", "G"))
+    assert report["binds"] == [] and report["monte_carlo"]["outside"] == 0
+    model = _band(_template("eightbar-triad")).model
+    for link, points in (("bar1", ("C", "E")), ("bar2", ("O6", "F")), ("bar3", ("O8", "G")),
+                         ("triad", ("E", "F", "G"))):
+        assert all(model.hole(link, p) is not None for p in points), link

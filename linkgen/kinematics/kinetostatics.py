@@ -7,9 +7,10 @@ unknowns are the forces the linkage's constraints carry, one pair of bodies at a
 normal, through the sliding point, and the couple; and the driver's effort (a torque on a crank, a force along a
 slide input's guide). A linkage of one input and no redundant constraint has as many unknowns as equations, three a
 link: one linear system a pose (:func:`system`). Its unknowns fall into the solve order's steps (the input, then a
-dyad at a time), each step's bodies held only by its own unknowns and the steps placed after it, so the system is
-block-triangular: :func:`kinetostatics` solves it a step at a time from the last (``np.linalg.solve`` on the stacked
-3x3 and 6x6 blocks of all poses at once), or whole (``method="dense"``, the same system in one stacked solve).
+dyad or a class-III group at a time), each step's bodies held only by its own unknowns and the steps placed after
+it, so the system is block-triangular: :func:`kinetostatics` solves it a step at a time from the last
+(``np.linalg.solve`` on the stacked 3x3 and 6x6 blocks of all poses at once, 12x12 for a triad), or whole
+(``method="dense"``, the same system in one stacked solve).
 
 Units and signs: SI throughout (N, N*m, kg, m, s) but positions, given in the drawing's frame in mm. Forces are in the
 drawing's frame (x, y); moments and torques counter-clockwise. A pair's force is the force on its ``on`` body from
@@ -38,7 +39,7 @@ from linkgen.kinematics.dyads import cross, perp
 from linkgen.kinematics.inertia import MM, LinkMass, centre_motion, input_scale, moving_links
 from linkgen.kinematics.linkage import Linkage, Solution
 from linkgen.kinematics.statics import LinkTorque, PointForce
-from linkgen.kinematics.structure import GROUND, DyadStep, InputStep, Pin, Structure
+from linkgen.kinematics.structure import GROUND, DyadStep, GroupStep, InputStep, Pin, Structure
 
 #: standard gravity (m/s^2)
 G0 = 9.80665
@@ -149,13 +150,14 @@ class Kinetostatics:
 
 def pairs_of(linkage: Linkage) -> tuple[Pair, ...]:
     """The constraints of a one-input linkage in the order its solve places them (each step's pairs: an input's
-    pivot or guide, then a dyad's two attachments and its joint); a :class:`SpecError` on ``dynamics`` for a linkage
-    whose joint forces the links' equations cannot fix (more than one input, a redundant constraint)."""
+    pivot or guide, then a dyad's two attachments and its joint, a group's pins and slides); a :class:`SpecError` on
+    ``dynamics`` for a linkage whose joint forces the links' equations cannot fix (more than one input, a redundant
+    constraint)."""
     s, plan = linkage.structure, linkage.plan
     if len(s.inputs) != 1:
         raise SpecError("a linkage of one input has one effort; with two, the forces cannot be shared out",
                         "dynamics")
-    if plan.redundant or any(not isinstance(step, (InputStep, DyadStep)) for step in plan.steps):
+    if plan.redundant or any(not isinstance(step, (InputStep, DyadStep, GroupStep)) for step in plan.steps):
         named = ", ".join(r.name for r in plan.redundant) or "a link held at three places"
         raise SpecError(f"the linkage has a redundant constraint ({named}): its joint forces are statically "
                         "indeterminate (any share of them holds the links), so they are not computed", "dynamics")
@@ -170,6 +172,9 @@ def pairs_of(linkage: Linkage) -> tuple[Pair, ...]:
                 sl = sliders[inp.slider]
                 out.append(Pair("slide", sl.point, sl.guide, sl.body, k, sl.name))
             continue
+        if isinstance(step, GroupStep):
+            out += _group_pairs(s, step, k)
+            continue
         assert isinstance(step, DyadStep)
         for body, att in zip(step.bodies, step.attachments, strict=True):
             if isinstance(att, Pin):
@@ -183,6 +188,17 @@ def pairs_of(linkage: Linkage) -> tuple[Pair, ...]:
         else:
             out.append(Pair("pin", step.joint, step.bodies[0], step.bodies[1], k))
     return tuple(out)
+
+
+def _group_pairs(s: Structure, group: GroupStep, step: int) -> list[Pair]:
+    """A class-III (or higher) group's pairs: its pins (on a body of the group, from the other: of the group or
+    placed before it) and its slides; as many unknowns as its bodies have equations (an Assur group), so its block
+    is square like a dyad's."""
+    sliders = s.slider_by_name
+    out = [Pair("pin", point, by, on, step) for point, on, by in group.pins]
+    out += [Pair("slide", sliders[name].point, sliders[name].guide, sliders[name].body, step, name)
+            for name in group.sliders]
+    return out
 
 
 def _guide(s: Structure, sol: Solution, pair: Pair) -> np.ndarray:
@@ -425,7 +441,7 @@ def kinetostatics(linkage: Linkage, sol: Solution, masses: Mapping[str, LinkMass
 
 
 def _step_bodies(linkage: Linkage) -> list[tuple[str, ...]]:
-    """The bodies each step of the solve order places: the input's link, a dyad's two."""
+    """The bodies each step of the solve order places: the input's link, a dyad's two, a group's."""
     return [(step.body,) if isinstance(step, InputStep) else step.bodies  # type: ignore[union-attr]
             for step in linkage.plan.steps]
 
@@ -433,7 +449,8 @@ def _step_bodies(linkage: Linkage) -> list[tuple[str, ...]]:
 def _by_blocks(linkage: Linkage, sol: Solution, pairs: tuple[Pair, ...],
                model: _Model) -> tuple[list[np.ndarray], np.ndarray]:
     """The system solved a step at a time from the last: each step's bodies are held by its own pairs and the
-    later steps' (already known), so its block (3x3 for the input, 6x6 for a dyad) is solved on its own."""
+    later steps' (already known), so its block (3x3 for the input, 6x6 for a dyad, 3 a link for a group) is solved
+    on its own."""
     s = linkage.structure
     n = sol.inputs.shape[-1]
     known = {b: np.zeros((n, 3)) for b in model.centres}

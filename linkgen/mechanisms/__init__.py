@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any, Protocol, runtime_checkable
 
 from camgen.core.registry import registry as shared_registry
 from linkgen.mechanisms import (
+    counter,
     couplings,
     fourbar,
     gearpair,
@@ -99,6 +100,7 @@ def registry(*mechanisms: Mechanism, base: Mapping[str, Mechanism] | None = None
 
 
 #: the modules of the mechanisms, in the order their types are listed
-MODULES = (fourbar, slidercrank, quickreturn, straightline, general, gearpair, ratchet, couplings, geartrain)
+MODULES = (fourbar, slidercrank, quickreturn, straightline, general, gearpair, ratchet, couplings, geartrain,
+           counter)
 #: ``linkage.type`` -> its mechanism
 MECHANISMS: Mapping[str, Mechanism] = registry(*(m for module in MODULES for m in module.REGISTER))

@@ -20,8 +20,10 @@ Each class is earned by a rule on what the kinematics computed, stated with the 
   with an input that turns fully);
 - **linear actuator**: a slide input moves an output (a swing or a stroke);
 - **indexing**: an output advances a step per stroke of the input and is held between strokes (a ratchet).
+- **counter**: a second wheel advances one step a turn of an indexed first wheel and is held between (a counter's
+  tens wheel): its strokes a step.
 
-Classes of the list the kinematics cannot tell (fine adjustment, counter) are not given.
+Classes of the list the kinematics cannot tell (fine adjustment) are not given.
 """
 from __future__ import annotations
 
@@ -38,7 +40,7 @@ from linkgen.mechanisms.general import Analysis
 
 #: the classes in the order a report lists them
 CLASSES = ("linear actuator", "oscillator", "reciprocator", "coupling", "reversing", "hesitation", "clamp",
-           "indexing", "straight-line generator", "curve generator")
+           "indexing", "counter", "straight-line generator", "curve generator")
 #: a dwell: the output within DWELL_BAND of its travel over at least DWELL_INPUT degrees of input
 DWELL_BAND, DWELL_INPUT = 0.005, 30.0
 #: links this close to in line (degrees) at a slider's limit make a toggle
@@ -70,17 +72,23 @@ def report(earned: list[Earned]) -> dict[str, Any]:
 
 def of_report(kind: str, rep: Mapping[str, Any]) -> list[Earned]:
     """The classes of the mechanisms not drawn as general linkages, from their own kinematic figures: a gear pair
-    (its speed ratio), a ratchet (its index per stroke), a gear train (its ratio), Oldham's coupling (its speed
-    ratio), the elliptic trammel (its blocks' stroke and its ellipse) and Rapson's slide (its crosshead's stroke)."""
+    (its speed ratio), a ratchet (its index per stroke), a counter (its index and its transfer), a gear train (its
+    ratio), Oldham's coupling (its speed ratio), the elliptic trammel (its blocks' stroke and its ellipse) and
+    Rapson's slide (its crosshead's stroke)."""
     out = []
     if kind == "gear-pair" and rep.get("speed_ratio") is not None:
         out += _geared(float(rep["speed_ratio"]), "the gear", "the pinion", "speed ratio")
-    if kind == "ratchet" and isinstance(rep.get("lever"), Mapping) and rep.get("holds"):
+    if kind in ("ratchet", "counter") and isinstance(rep.get("lever"), Mapping) and rep.get("holds"):
         lever = rep["lever"]
+        wheel = "wheel" if kind == "ratchet" else "units wheel"
         out.append(Earned("indexing", f"each {float(lever['swing_deg']):.6g} degree stroke of the lever advances the "
-                                      f"wheel {int(lever['teeth_per_stroke'])} tooth (tooth) of "
+                                      f"{wheel} {int(lever['teeth_per_stroke'])} tooth (tooth) of "
                                       f"{float(rep['wheel']['pitch_deg']):.6g} degrees, and the pawl holds it "
                                       "between strokes"))
+    if kind == "counter" and isinstance(rep.get("count"), Mapping):
+        out.append(Earned("counter", f"the tens wheel advances one step of {float(rep['transfer']['step_deg']):.6g} "
+                                     f"degrees every {int(rep['count']['strokes_per_turn'])} strokes (a turn of the "
+                                     "units wheel), held by its locking disc between"))
     if kind == "gear-train" and rep.get("ratio") is not None:
         out += _geared(float(rep["ratio"]), "the output", "the input", "ratio")
     if kind == "oldham" and rep.get("speed_ratio") is not None:

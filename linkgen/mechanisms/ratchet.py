@@ -25,6 +25,7 @@ import numpy as np
 from pydantic import Field, model_validator
 
 from camgen.core.errors import DesignError, SpecError
+from camgen.core.shapes import merged_pieces
 from camgen.core.spec import MAX_LENGTH_MM, Model, unit
 from linkgen.gears.ratchet import Pawl, RatchetWheel, teeth_per_stroke
 from linkgen.mechanisms.common import Figure, num, types_of
@@ -42,6 +43,8 @@ MARGIN_WARNING_DEG = 3.0
 NOSE_GAP_MM = 0.05
 #: the gap (mm) between a pawl's bar and the wheel's tip circle
 BAR_CLEARANCE_MM = 0.5
+#: a pawl's outline has no piece shorter than this (mm)
+SHORTEST_PIECE_MM = 0.05
 
 
 class PawlTable(Model):
@@ -217,7 +220,9 @@ def pawl_shape(ratchet: Ratchet, width: float, tolerance: float) -> tuple[np.nda
         raise DesignError("linkage.pawl: the pawl's bar does not clear the wheel: give the pawl a larger angle or "
                           "the parts less width")
     ring = np.asarray(orient(shape, 1.0).exterior.coords)[:-1]
-    return ring, np.zeros(len(ring))
+    # the union and simplification may leave a sliver of an edge where the nose meets the bar's clearance arc, which
+    # a kerf's offset would close: merged into its neighbours (each end moves by half of it at most)
+    return merged_pieces(ring, np.zeros(len(ring)), SHORTEST_PIECE_MM)
 
 
 def _tail(width: float) -> float:

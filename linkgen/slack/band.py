@@ -31,6 +31,8 @@ from linkgen.slack.table import Play, SlackTable
 SAMPLES = 361
 #: how finely the widest band is placed: a fraction of the input's range
 REFINE_TO = 1e-7
+#: the dyads' kinds (a class-III group's result is named ``triad`` or ``group`` instead)
+DYAD_KINDS = frozenset({"RRR", "RRP", "PRR", "RPR", "PRP", "RPP", "PPR"})
 #: the directions (over half a turn) a tracer's worst displacement in any direction is the largest of
 DIRECTIONS = 180
 #: a tracer whose speed per unit input is below this fraction of the drawing's size stands still there: its band
@@ -64,7 +66,11 @@ class OutputBand:
 @dataclass(frozen=True)
 class DyadBand:
     """A dyad's transmission angle (n,) rad and its worst-case half-width (n,) rad; ``binds`` (n,) where its slack
-    may bring it to its dead point (see the module's docstring), or the band is unbounded."""
+    may bring it to its dead point (see the module's docstring), or the band is unbounded. For a class-III group
+    (``kind`` ``triad`` or ``group``) the transmission is the angle whose sine is its closure's conditioning (as the
+    solver reports it), the half-width NaN (not computed: the conditioning's first-order band needs the closure's
+    second derivatives), and it binds only where the closure is singular (the response unbounded) or the group
+    does not assemble."""
 
     kind: str
     bodies: tuple[str, ...]
@@ -209,7 +215,13 @@ def _bands(a: Analysis, model: SlackModel, bounds: np.ndarray, x: np.ndarray
         else:
             outputs.append(OutputBand(name, True, sol.angle(name), worst_case(r.turns[name], model, bounds)))
     dyads = []
-    for d, grad, inline in zip(sol.dyads, r.transmission, r.inline, strict=True):
+    grads = iter(zip(r.transmission, r.inline, strict=True))
+    for d in sol.dyads:
+        if d.kind not in DYAD_KINDS:     # a class-III group: it locks where its closure (the response) is singular
+            dyads.append(DyadBand(d.kind, d.bodies, d.joint, d.transmission, np.full(len(x), np.nan),
+                                  r.singular | ~np.asarray(sol.ok, dtype=bool)))
+            continue
+        grad, inline = next(grads)
         h = worst_case(grad, model, bounds)
         if inline is None:               # a dyad with a slider: its transmission angle's band reaches 0
             binds = ~np.isfinite(h) | (d.transmission - h <= 0.0)
