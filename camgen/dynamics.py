@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from camgen.cam import Cam
+from camgen.speed import ContactCheck, GravityHold, HeldContact, LoadRange, Speed, Unanalysed
 
 #: standard gravity, mm/s^2
 G_MM = 9806.65
@@ -236,7 +237,7 @@ def spec_loading(table: Any, follower: Any, positive: bool = False, motion: Any 
 def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | None,
                  preload: float | None, parabolic: list[tuple[int, float]], load: float | None = None,
                  orientation: float | None = None, margin: float | None = None,
-                 ld: Loading | None = None) -> dict[str, Any]:
+                 ld: Loading | None = None) -> Speed:
     """Peak velocity, acceleration and jerk at ``rpm``; contact with ``mass`` kg, an optional spring (N/mm, N), an
     external ``load`` (N), the follower's ``orientation`` (degrees from straight up) and a contact ``margin`` (N),
     or with the :class:`Loading` ``ld`` built from them (with a load table, an arm's inertia and weights).
@@ -244,35 +245,32 @@ def speed_report(cam: Cam, rpm: float, mass: float | None, spring_rate: float | 
     omega = rpm * 2 * math.pi / 60
     unit = cam.follower.lift_unit
     v, a, j = peaks_at(cam, *(lambda t, m, k=k: np.abs(m[k]) for k in (1, 2, 3)))
-    out: dict[str, Any] = {
-        "rpm": rpm, "omega_rad_s": omega,
-        f"velocity_max_{unit}_s": v.value * omega, "velocity_max_at_deg": v.at_deg,
-        f"acceleration_max_{unit}_s2": a.value * omega**2, "acceleration_max_at_deg": a.at_deg,
-        f"jerk_max_{unit}_s3": j.value * omega**3, "jerk_max_at_deg": j.at_deg,
-        "parabolic_acceleration_ratios": [{"segment": i, "ratio": r} for i, r in parabolic],
-    }
-    if mass is None:
-        out["contact"] = None
-        return out
+    contact = None if mass is None else _check(cam, rpm, omega, mass, spring_rate, preload, load, orientation,
+                                               margin, ld)
+    return Speed(rpm, omega, unit, v.value * omega, v.at_deg, a.value * omega**2, a.at_deg, j.value * omega**3,
+                 j.at_deg, tuple(parabolic), contact)
+
+
+def _check(cam: Cam, rpm: float, omega: float, mass: float, spring_rate: float | None, preload: float | None,
+           load: float | None, orientation: float | None, margin: float | None, ld: Loading | None) -> ContactCheck:
+    """:func:`speed_report`'s contact check with a ``mass``."""
+    unit = cam.follower.lift_unit
     arm = getattr(cam.follower, "arm_length", None) if unit != "mm" else None
     ld = ld or loading(mass, spring_rate, preload, load, orientation, margin, arm)
     held = spring_rate is not None or preload is not None or bool(load) or ld.varies or ld.weight != 0
     if unit != "mm" and (arm is None or not held):
-        out["contact"] = {"mode": None, "note": "contact is analysed for translating followers and for an "
-                                                 "oscillating roller's arm held by a spring, a load or its weight"}
-        return out
+        return Unanalysed("contact is analysed for translating followers and for an oscillating roller's arm held "
+                          "by a spring, a load or its weight")
     if arm is None and spring_rate is None and preload is None and not load and orientation is None and not margin \
             and not ld.varies:
         decel = peak_of(cam, lambda m: -m[2])                      # largest -s'' (mm/rad^2)
         limit = math.inf if decel.value <= 0 else math.sqrt(G_MM / decel.value) * 60 / (2 * math.pi)
-        out["contact"] = {"mode": "gravity", "liftoff_rpm": None if math.isinf(limit) else limit,
-                          "liftoff_at_deg": decel.at_deg if decel.value > 0 else None, "holds": rpm < limit}
-        return out
-    out["contact"] = _contact(cam, ld, omega, "gravity" if spring_rate is None and preload is None else "spring")
-    return out
+        return GravityHold(None if math.isinf(limit) else limit, decel.at_deg if decel.value > 0 else None,
+                           rpm < limit)
+    return _contact(cam, ld, omega, "gravity" if spring_rate is None and preload is None else "spring")
 
 
-def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> dict[str, Any]:
+def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> HeldContact:
     """The contact force's least value and where, the preload and the rate that keep it at the margin at this
     speed, and the speed at which this loading lets the follower go."""
     # the rate that would do with this preload: max of (margin - rest) / s where s > 0; where s = 0 only the
@@ -297,13 +295,8 @@ def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> dict[str, Any]:
     # 0 if the follower leaves at rest (the least force still at rest not above 0)
     liftoff = 0.0 if -rest.value <= 0 else (None if -slowest.value >= big
                                             else math.sqrt(max(-slowest.value, 0.0)) * 60 / (2 * math.pi))
-    out = {"mode": mode, "spring_rate_n_mm": ld.rate, "preload_n": ld.preload, "load_n": ld.load,
-           "weight_n": ld.weight_at_rest, "margin_n": ld.margin,
-           "force_min_n": -low.value, "force_min_at_deg": low.at_deg, "holds": -low.value > ld.margin,
-           "preload_needed_n": max(0.0, need.value), "rate_needed_n_mm": need_rate, "liftoff_rpm": liftoff}
-    if ld.table is not None:
-        out["load_table_n"] = {"min": float(min(ld.table.loads)), "max": float(max(ld.table.loads)),
-                               "rows": len(ld.table.loads), "interpolation": "linear, periodic over the turn"}
-    if ld.segments is not None:
-        out["segment_loads_n"] = [{"segment": i, "load_n": v} for i, v in enumerate(ld.segments.loads)]
-    return out
+    return HeldContact(mode, ld.rate, ld.preload, ld.load, ld.weight_at_rest, ld.margin, -low.value, low.at_deg,
+                       -low.value > ld.margin, max(0.0, need.value), need_rate, liftoff,
+                       None if ld.table is None else LoadRange(float(min(ld.table.loads)), float(max(ld.table.loads)),
+                                                               len(ld.table.loads)),
+                       None if ld.segments is None else tuple(ld.segments.loads))

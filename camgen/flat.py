@@ -18,6 +18,7 @@ from camgen.core.errors import SpecError
 from camgen.profile import Body, Finish, Profile, design_profile
 from camgen.rig import Mount, Rig, disc_mount
 from camgen.sizing import Sizing, limits_of, pressure_limit, size_cam
+from camgen.speed import GravityHold, HeldContact, Speed
 
 if TYPE_CHECKING:
     from camgen.core.bundle import Bundle
@@ -35,8 +36,9 @@ class FlatCamDesign(Profile):
     spec : CamSpec
         The validated template: ``design.spec.cam.base_radius`` is the base radius as given (``"auto"`` when
         sized: the size chosen is ``design.cam.base_radius``).
-    speed : dict or None
-        With ``cam.rpm``: peak velocity, acceleration and jerk in time, and the contact check.
+    speed : Speed or None
+        With ``cam.rpm``: peak velocity, acceleration and jerk in time, the contact check and, with a mass, the
+        forces (and the speeds table with ``cam.rpm_range``).
     sizing : Sizing or None
         With ``base_radius = "auto"``: what decided the size, and the size.
     warnings : tuple of str
@@ -47,13 +49,13 @@ class FlatCamDesign(Profile):
     """
 
     spec: FlatSpec
-    speed: dict[str, Any] | None = None
+    speed: Speed | None = None
     sizing: Sizing | None = None
     bundler: Callable[[FlatCamDesign], tuple[Bundle, dict[str, Any]]] | None = field(default=None, repr=False,
                                                                                       compare=False)
 
     @classmethod
-    def of(cls, profile: Profile, spec: FlatSpec, speed: dict[str, Any] | None = None, sizing: Sizing | None = None,
+    def of(cls, profile: Profile, spec: FlatSpec, speed: Speed | None = None, sizing: Sizing | None = None,
            warnings: tuple[str, ...] | None = None,
            bundler: Callable[[FlatCamDesign], tuple[Bundle, dict[str, Any]]] | None = None) -> FlatCamDesign:
         """``profile`` as the design of ``spec``, with its ``speed``, ``sizing``, ``warnings`` (the profile's by
@@ -160,7 +162,7 @@ def parabolic_ratios(motion: Any) -> list[tuple[int, float]]:
     return [(i, seg.ratio or 1.0) for i, seg in enumerate(motion) if seg.law == "parabolic"]
 
 
-def rates(cam: Cam, rpm: float | None, parabolic: list[tuple[int, float]]) -> dict[str, Any] | None:
+def rates(cam: Cam, rpm: float | None, parabolic: list[tuple[int, float]]) -> Speed | None:
     """Peak velocity, acceleration and jerk in time at ``rpm`` (None without a speed), alone: no contact, forces
     nor speeds table (a positive drive has its own, :func:`camgen.forces.drive_speed`)."""
     if rpm is None:
@@ -170,7 +172,7 @@ def rates(cam: Cam, rpm: float | None, parabolic: list[tuple[int, float]]) -> di
     return speed_report(cam, rpm, None, None, None, parabolic)
 
 
-def sprung_speed(spec: FlatSpec, cam: Cam) -> dict[str, Any] | None:
+def sprung_speed(spec: FlatSpec, cam: Cam) -> Speed | None:
     """Peak rates and the contact check at ``cam.rpm`` of a follower held on its cam by a spring, its weight or a
     load (None without a speed): with a mass, the forces and, with ``cam.rpm_range``, the speeds table."""
     if spec.cam.rpm is None:
@@ -182,31 +184,30 @@ def sprung_speed(spec: FlatSpec, cam: Cam) -> dict[str, Any] | None:
     ld = None if f.mass is None else spec_loading(f, cam.follower, motion=spec.motion, program=cam.program)
     out = speed_report(cam, spec.cam.rpm, f.mass, f.spring_rate, f.preload, parabolic_ratios(spec.motion), f.load,
                        f.orientation, f.contact_margin, ld)
-    if ld is not None and out["contact"] and out["contact"].get("mode"):
+    if ld is not None and isinstance(out.contact, HeldContact | GravityHold):
         contact = None if spec.cam.material is None else Contact(
             spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
-        out["forces"] = forces_report(cam, ld, spec.cam.rpm, contact)
-        if spec.cam.rpm_range is not None:
-            stressed = "pressure_max_MPa" in out["forces"].get("stress", {})
-            out["speeds"] = speeds_report(cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps,
-                                          contact if stressed else None, out["contact"]["liftoff_rpm"])
-    elif spec.cam.rpm_range is not None:
+        forces = forces_report(cam, ld, spec.cam.rpm, contact)
+        return dataclasses.replace(out, forces=forces, speeds=None if spec.cam.rpm_range is None else speeds_report(
+            cam, ld, spec.cam.rpm_range, spec.cam.rpm_steps, None if forces.hertz is None else contact,
+            out.contact.liftoff_rpm))
+    if spec.cam.rpm_range is not None:
         raise SpecError("needs a follower whose contact is analysed: an oscillating roller's arm held by a spring, a "
                         "load or its weight (follower.orientation)", "cam.rpm_range")
     return out
 
 
-def contact_warnings(speed: dict[str, Any] | None) -> tuple[str, ...]:
+def contact_warnings(speed: Speed | None) -> tuple[str, ...]:
     """The warnings of a sprung follower's contact check (:func:`sprung_speed`): where it leaves the cam."""
-    contact = speed and speed["contact"]
-    if not contact or contact.get("holds") is not False:
+    contact = None if speed is None else speed.contact
+    if isinstance(contact, GravityHold) and contact.holds is False:
+        return (f"the follower leaves the cam near {contact.liftoff_at_deg:.1f} degrees: "
+                f"gravity holds it only up to {contact.liftoff_rpm:.4g} rpm",)
+    if not isinstance(contact, HeldContact) or contact.holds:
         return ()
-    if contact["mode"] == "gravity" and "liftoff_at_deg" in contact:
-        return (f"the follower leaves the cam near {contact['liftoff_at_deg']:.1f} degrees: "
-                f"gravity holds it only up to {contact['liftoff_rpm']:.4g} rpm",)
-    if contact["mode"] == "gravity":
-        return (f"the follower loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
-                f"{contact['force_min_n']:.3g} N): a spring with a preload of {contact['preload_needed_n']:.4g} N "
+    if contact.mode == "gravity":
+        return (f"the follower loses contact near {contact.force_min_at_deg:.1f} degrees (force "
+                f"{contact.force_min:.3g} N): a spring with a preload of {contact.preload_needed:.4g} N "
                 "would hold it",)
-    return (f"the spring loses contact near {contact['force_min_at_deg']:.1f} degrees (force "
-            f"{contact['force_min_n']:.3g} N): a preload of {contact['preload_needed_n']:.4g} N would hold it",)
+    return (f"the spring loses contact near {contact.force_min_at_deg:.1f} degrees (force "
+            f"{contact.force_min:.3g} N): a preload of {contact.preload_needed:.4g} N would hold it",)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -22,6 +22,7 @@ from camgen.cam import Cam
 from camgen.contact_stress import MATERIALS, effective_modulus, line_contact, relative_curvature
 from camgen.dynamics import Loading, Peak, spec_loading, stacked_peaks
 from camgen.numeric import boundary
+from camgen.speed import Drive, Extreme, Forces, KnifeEdge, SideChange, SpeedRow, SpeedTable, Stress
 
 #: Gauss-Legendre nodes a segment for the means over the cycle (each law is smooth inside its segment)
 NODES = 64
@@ -43,6 +44,11 @@ class Contact:
     def allowable(self) -> float:
         """The lower of the two materials' allowable contact pressures (MPa)."""
         return min(MATERIALS[self.cam].allowable, MATERIALS[self.follower].allowable)
+
+
+def materials_of(stress: Stress | None) -> Contact | None:
+    """The materials in contact and the contact's length a ``stress`` was found for (None without one)."""
+    return None if stress is None else Contact(stress.cam_material, stress.follower_material, stress.length)
 
 
 def cycle_mean(cam: Cam, quantity: Any, breaks: tuple[float, ...] = ()) -> float:
@@ -149,17 +155,13 @@ def _torques(ld: Loading, omega: float, push: Any) -> tuple[Any, ...]:
     return (lambda g, m: torque(ld, omega, m, g.theta), lambda g, m: -torque(ld, omega, m, g.theta), push)
 
 
-def _torque_figures(ld: Loading, omega: float, peaks: list[Peak], nodes: Nodes) -> dict[str, Any]:
+def _torque_figures(ld: Loading, omega: float, peaks: list[Peak], nodes: Nodes) -> Forces:
     """The torque's extremes and RMS, the peak power and the largest normal contact force (N), from the ``peaks`` of
     :func:`_torques`'s quantities and the loading's ``nodes`` (:func:`_load_nodes`) for the RMS."""
     hi, lo, most = peaks
-    return {
-        "torque_max_N_m": hi.value, "torque_max_at_deg": hi.at_deg,
-        "torque_min_N_m": -lo.value, "torque_min_at_deg": lo.at_deg,
-        "torque_rms_N_m": math.sqrt(_mean(nodes, lambda t, m: torque(ld, omega, m, t) ** 2)),
-        "power_max_W": max(hi.value, lo.value) * omega,
-        "contact_force_max_N": most.value, "contact_force_max_at_deg": most.at_deg,
-    }
+    return Forces(hi.value, hi.at_deg, -lo.value, lo.at_deg,
+                  math.sqrt(_mean(nodes, lambda t, m: torque(ld, omega, m, t) ** 2)), max(hi.value, lo.value) * omega,
+                  most.value, most.at_deg)
 
 
 def _omega(rpm: float) -> float:
@@ -167,7 +169,7 @@ def _omega(rpm: float) -> float:
     return rpm * 2 * math.pi / 60
 
 
-def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) -> dict[str, Any]:
+def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) -> Forces:
     """The report's ``forces``: the torque's extremes and RMS, the peak power, the largest normal contact force
     and, with materials, the largest contact pressure and where."""
     omega = _omega(rpm)
@@ -182,22 +184,20 @@ def forces_report(cam: Cam, ld: Loading, rpm: float, contact: Contact | None) ->
     peaks = _peaks_each(cam, *quantities, *(() if hertz is None else (lambda g, m: pressure(g, m, hertz)[0],)))
     out = _torque_figures(ld, omega, peaks[:3], _load_nodes(cam, ld))
     if contact is not None and knife:
-        out["stress"] = {"note": "a knife edge touches the cam on a line of no width: no Hertz pressure"}
-    elif hertz is not None:
-        out["stress"] = _stress(cam, hertz, lambda g, m: pressure(g, m, hertz), peaks[3])[0]
+        return replace(out, stress=KnifeEdge())
+    if hertz is not None:
+        return replace(out, stress=_stress(cam, hertz, lambda g, m: pressure(g, m, hertz), peaks[3])[0])
     return out
 
 
-def _stress(cam: Cam, contact: Contact, pressure: Any, peak: Peak) -> tuple[dict[str, Any], Any, np.ndarray]:
+def _stress(cam: Cam, contact: Contact, pressure: Any, peak: Peak) -> tuple[Stress, Any, np.ndarray]:
     """The report's ``stress`` of ``pressure(geometry, motion)`` -> (pressure MPa, half-width mm) whose ``peak`` over
     the turn is given: where, the strip's half-width there, the materials and the allowable; and the geometry and
     motion there."""
     at = np.array([math.radians(peak.at_deg)])
     g, m = cam.pitch(at), cam.program.evaluate(at)
-    return ({"cam_material": contact.cam, "follower_material": contact.follower, "length_mm": contact.length,
-             "e_star_MPa": contact.e_star, "pressure_max_MPa": peak.value, "pressure_max_at_deg": peak.at_deg,
-             "half_width_mm": float(pressure(g, m)[1][0]), "allowable_MPa": contact.allowable,
-             "holds": peak.value <= contact.allowable}, g, m)
+    return (Stress(contact.cam, contact.follower, contact.length, contact.e_star, peak.value, peak.at_deg,
+                   float(pressure(g, m)[1][0]), contact.allowable, peak.value <= contact.allowable), g, m)
 
 
 def flank_pressure(contact: Contact, geometry: Any, force: np.ndarray, offset: float, roller: float
@@ -228,21 +228,24 @@ def _row_quantities(cam: Cam, ld: Loading, rpm: float, contact: Contact | None, 
 
 
 def _row(ld: Loading, rpm: float, peaks: list[Peak], nodes: Nodes, contact: Contact | None,
-         positive: bool) -> dict[str, Any]:
+         positive: bool) -> SpeedRow:
     """One row of the ``speeds`` table at ``rpm`` from the ``peaks`` of :func:`_row_quantities`'s quantities: the
     torque's extremes and RMS, the peak power, the largest normal contact force, and for a follower held on (not
     ``positive``) the least axial contact force, where, and whether it stays above ``ld.margin``; with materials
     the largest Hertz pressure (MPa)."""
-    figures = _torque_figures(ld, _omega(rpm), peaks[:3], nodes)
-    row = {"rpm": rpm, **{k: figures[k] for k in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m",
-                                                    "power_max_W", "contact_force_max_N")}}
+    row = _speed_row(rpm, _torque_figures(ld, _omega(rpm), peaks[:3], nodes))
     rest = peaks[3:]
     if not positive:
         low, *rest = rest
-        row.update(contact_force_min_N=-low.value, contact_force_min_at_deg=low.at_deg, holds=-low.value > ld.margin)
-    if contact is not None:
-        row["pressure_max_MPa"] = rest[0].value
-    return row
+        row = replace(row, contact_force_min=-low.value, contact_force_min_at_deg=low.at_deg,
+                      holds=-low.value > ld.margin)
+    return row if contact is None else replace(row, pressure_max=rest[0].value)
+
+
+def _speed_row(rpm: float, figures: Forces) -> SpeedRow:
+    """The row of the ``speeds`` table at ``rpm`` of the torque ``figures`` there (no least force nor pressure)."""
+    return SpeedRow(rpm, figures.torque_max, figures.torque_min, figures.torque_rms, figures.power_max,
+                    figures.contact_force_max)
 
 
 def speed_list(rpm_range: tuple[float, float], steps: int, liftoff: float | None) -> list[float]:
@@ -263,7 +266,7 @@ def _split(peaks: list[Peak], sizes: list[int]) -> list[list[Peak]]:
 
 def speeds_report(cam: Cam, ld: Loading, rpm_range: tuple[float, float], steps: int, contact: Contact | None,
                   liftoff: float | None = None, positive: bool = False,
-                  walls: tuple[float, float] | None = None) -> dict[str, Any]:
+                  walls: tuple[float, float] | None = None) -> SpeedTable:
     """The report's ``speeds``: at each of :func:`speed_list`'s speeds, the torque's extremes and RMS, the peak
     power, the largest normal contact force, and for a follower held on (not ``positive``) the least axial contact
     force, where, and whether it stays above ``ld.margin``; with materials the largest Hertz pressure (MPa), for a
@@ -277,23 +280,19 @@ def speeds_report(cam: Cam, ld: Loading, rpm_range: tuple[float, float], steps: 
     wanted = [_row_quantities(cam, ld, rpm, contact, positive, walls) for rpm in speeds]
     found = _split(_peaks_over(cam, *itertools.chain(*wanted)), [len(q) for q in wanted])
     nodes = _load_nodes(cam, ld)
-    out: dict[str, Any] = {"rpm_range": list(rpm_range), "liftoff_rpm": liftoff,
-                           "rows": [_row(ld, rpm, peaks, nodes, contact, positive)
-                                    for rpm, peaks in zip(speeds, found, strict=True)]}
-    if not positive:
-        out["margin_N"] = ld.margin
-    if contact is not None:
-        out["allowable_MPa"] = contact.allowable
-    return out
+    return SpeedTable(rpm_range, liftoff, tuple(_row(ld, rpm, peaks, nodes, contact, positive)
+                                                for rpm, peaks in zip(speeds, found, strict=True)),
+                      None if positive else ld.margin, None if contact is None else contact.allowable)
 
 
-def flank_changes(cam: Cam, force: Any, sides: tuple[str, str]) -> list[dict[str, Any]]:
+def flank_changes(cam: Cam, force: Any, sides: tuple[str, str]) -> list[SideChange]:
     """Where the force ``force(theta, motion)`` (N) changes sign over the turn and which side carries it from there
     (``sides[0]`` while it is positive, ``sides[1]`` while negative): each segment sampled every half degree, a
     change inside one found by bisection (:func:`camgen.numeric.boundary`) to ~1e-12 rad, the last angle where the
     force keeps its sign before it, one across a segment's end placed there. Stretches where
     the force is 0 (a dwell with nothing on the follower: no side carries anything) keep the side before them."""
-    changes, last, first = [], 0.0, None
+    changes: list[SideChange] = []
+    last, first = 0.0, None
     for seg in cam.program.segments:
         t = np.linspace(seg.start, seg.end, max(3, int(math.degrees(seg.end - seg.start) * 2) + 1))
         v = force(t, seg.evaluate(t))
@@ -310,17 +309,17 @@ def flank_changes(cam: Cam, force: Any, sides: tuple[str, str]) -> list[dict[str
 
                 at = boundary(same, lo, hi, 1e-12 / max(abs(lo), abs(hi)))
             if last:
-                changes.append({"at_deg": math.degrees(at) % 360.0, "to": sides[0 if value > 0 else 1]})
+                changes.append(SideChange(math.degrees(at) % 360.0, sides[0 if value > 0 else 1]))
             else:
                 first = (math.degrees(at) % 360.0, sides[0 if value > 0 else 1])
             last = float(np.sign(value))
     if first is not None and sides[0 if last > 0 else 1] != first[1]:   # the turn wraps to the other side
-        changes.insert(0, {"at_deg": first[0], "to": first[1]})
+        changes.insert(0, SideChange(*first))
     return changes
 
 
 def drive_report(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str],
-                 walls: tuple[Contact, float, float] | None = None) -> dict[str, Any]:
+                 walls: tuple[Contact, float, float] | None = None) -> Forces:
     """The ``forces`` of a positive drive (a groove or a conjugate pair: no spring, contact both ways): the force F
     on the follower along its path (:class:`~camgen.dynamics.Loading`, its inertia, loads and weights) is carried by
     ``sides[0]`` where F > 0 (it presses the follower against its rise) and by ``sides[1]`` where F < 0; the torque
@@ -331,7 +330,7 @@ def drive_report(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str],
 
 
 def _drive(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str], walls: tuple[Contact, float, float] | None,
-           extra: tuple[Any, ...] = ()) -> tuple[dict[str, Any], list[Peak]]:
+           extra: tuple[Any, ...] = ()) -> tuple[Forces, list[Peak]]:
     """:func:`drive_report`, and the peaks of the ``extra`` quantities (of pitch geometry and motion) found in the
     same search."""
     omega = _omega(rpm)
@@ -344,12 +343,12 @@ def _drive(cam: Cam, ld: Loading, rpm: float, sides: tuple[str, str], walls: tup
 
         quantities += (lambda g, m: pressure(g, m)[0],)
     peaks = _peaks_each(cam, *quantities, *extra)
-    out = _torque_figures(ld, omega, peaks[:3], _load_nodes(cam, ld))
-    out["carried_by"] = {"force_positive": sides[0], "force_negative": sides[1]}
-    out["side_changes"] = flank_changes(cam, lambda t, m: ld.force(m, omega, t), sides)
+    out = replace(_torque_figures(ld, omega, peaks[:3], _load_nodes(cam, ld)), drive=Drive(
+        *sides, tuple(flank_changes(cam, lambda t, m: ld.force(m, omega, t), sides))))
     if walls is not None:
         stress, g, m = _stress(cam, contact, pressure, peaks[3])
-        out["stress"] = {**stress, "on": sides[0] if float(ld.force(m, omega, g.theta)[0]) > 0 else sides[1]}
+        out = replace(out, stress=replace(stress, on=sides[0] if float(ld.force(m, omega, g.theta)[0]) > 0
+                                          else sides[1]))
     return out, peaks[len(quantities):]
 
 
@@ -367,7 +366,7 @@ def pair_forces(pair: tuple[Cam, Cam], ld: Loading, omega: float) -> tuple[Any, 
 
 
 def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float, contact: Contact | None = None
-                ) -> dict[str, Any]:
+                ) -> Forces:
     """The ``forces`` of a conjugate pair: :func:`drive_report` on the first cam (the torque T = F s' / 1000 is the
     follower's power over the cam's speed whichever cam drives), the first cam carrying F > 0 (pressing the follower
     against its rise) and the second F < 0: a rigid follower with no preload between its rollers, so one contact
@@ -379,14 +378,13 @@ def pair_report(pair: tuple[Cam, Cam], ld: Loading, rpm: float, contact: Contact
     pressures = _pair_pressures(pair, contact, forces)
     out, found = _drive(pair[0], ld, rpm, ("cam 1", "cam 2"), None, (forces[0], *pressures[:1]))
     peaks = [found, _peaks_each(pair[1], forces[1], *pressures[1:])]
-    for which, (most, *_) in enumerate(peaks):
-        out[f"cam_{which + 1}_contact_force_max_N"] = most.value
-        out[f"cam_{which + 1}_contact_force_max_at_deg"] = most.at_deg
+    first, second = (Extreme(most.value, most.at_deg) for most, *_ in peaks)
+    out = replace(out, pair=(first, second))
     if contact is not None:          # each roller on its cam, as a disc cam's (its own roller's radius)
-        cams = [{**_stress(cam, contact, lambda g, m, cam=cam, force=force: contact_pressure(
-            cam, contact, g, force(g, m)), peak)[0], "on": f"cam {k + 1}"}
-            for k, (cam, force, (_, peak)) in enumerate(zip(pair, forces, peaks, strict=True))]
-        out["stress"] = {**max(cams, key=lambda c: c["pressure_max_MPa"]), "cams": cams}
+        cams = tuple(replace(_stress(cam, contact, lambda g, m, cam=cam, force=force: contact_pressure(
+            cam, contact, g, force(g, m)), peak)[0], on=f"cam {k + 1}")
+            for k, (cam, force, (_, peak)) in enumerate(zip(pair, forces, peaks, strict=True)))
+        out = replace(out, stress=replace(max(cams, key=lambda c: c.pressure_max), cams=cams))
     return out
 
 
@@ -400,7 +398,7 @@ def _pair_pressures(pair: tuple[Cam, Cam], contact: Contact | None, forces: tupl
 
 
 def pair_speeds(pair: tuple[Cam, Cam], ld: Loading, rpm_range: tuple[float, float], steps: int,
-                contact: Contact | None) -> dict[str, Any]:
+                contact: Contact | None) -> SpeedTable:
     """The ``speeds`` table of a conjugate pair: at each of :func:`speed_list`'s speeds :func:`pair_report`'s
     torque figures, the larger of both cams' normal forces and with materials both cams' larger Hertz pressure (no
     lift-off: the pair drives both ways). One search over the turn a cam for every row's peaks."""
@@ -420,36 +418,27 @@ def pair_speeds(pair: tuple[Cam, Cam], ld: Loading, rpm_range: tuple[float, floa
     nodes = _load_nodes(first, ld)
     rows = []
     for rpm, one, two in zip(speeds, firsts, seconds, strict=True):
-        got = _torque_figures(ld, _omega(rpm), one[:3], nodes)
-        row = {"rpm": rpm, **{k: got[k] for k in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m",
-                                                  "power_max_W")},
-               "contact_force_max_N": max(one[2].value, two[0].value)}
-        if contact is not None:
-            row["pressure_max_MPa"] = max(one[3].value, two[1].value)
-        rows.append(row)
-    out: dict[str, Any] = {"rpm_range": list(rpm_range), "liftoff_rpm": None, "rows": rows}
-    if contact is not None:
-        out["allowable_MPa"] = contact.allowable
-    return out
+        row = replace(_speed_row(rpm, _torque_figures(ld, _omega(rpm), one[:3], nodes)),
+                      contact_force_max=max(one[2].value, two[0].value))
+        rows.append(row if contact is None else replace(row, pressure_max=max(one[3].value, two[1].value)))
+    return SpeedTable(rpm_range, None, tuple(rows), None, None if contact is None else contact.allowable)
 
 
 def drive_speed(spec: Any, cam: Cam, sides: tuple[str, str] = ("cam 1", "cam 2"),
                 walls: tuple[Contact, float, float] | None = None, pair: tuple[Cam, Cam] | None = None,
-                contact: Contact | None = None) -> dict[str, Any]:
+                contact: Contact | None = None) -> tuple[Forces, SpeedTable | None]:
     """The ``forces`` and, with ``cam.rpm_range``, the ``speeds`` of a positive drive's ``spec`` (no spring: its
     ``[follower]``'s mass, loads and weights pressing the follower either way, :func:`~camgen.dynamics.spec_loading`
     of a positive drive) on its built ``cam``: a groove's or a barrel's (:func:`drive_report` with ``sides`` and
     ``walls``, :func:`speeds_report` with no lift-off), or a conjugate ``pair``'s whose first cam ``cam`` is
-    (:func:`pair_report`, :func:`pair_speeds`, each roller on its cam with ``contact``)."""
+    (:func:`pair_report`, :func:`pair_speeds`, each roller on its cam with ``contact``); no speeds table (None)
+    without a range."""
     ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
     table = spec.cam
+    span = table.rpm_range
     if pair is not None:
-        out = {"forces": pair_report(pair, ld, table.rpm, contact)}
-        if table.rpm_range is not None:
-            out["speeds"] = pair_speeds(pair, ld, table.rpm_range, table.rpm_steps, contact)
-        return out
-    out = {"forces": drive_report(cam, ld, table.rpm, sides, walls)}
-    if table.rpm_range is not None:
-        out["speeds"] = speeds_report(cam, ld, table.rpm_range, table.rpm_steps, None if walls is None else walls[0],
-                                      positive=True, walls=None if walls is None else walls[1:])
-    return out
+        return (pair_report(pair, ld, table.rpm, contact),
+                None if span is None else pair_speeds(pair, ld, span, table.rpm_steps, contact))
+    return (drive_report(cam, ld, table.rpm, sides, walls),
+            None if span is None else speeds_report(cam, ld, span, table.rpm_steps, None if walls is None else walls[0],
+                                                    positive=True, walls=None if walls is None else walls[1:]))

@@ -65,8 +65,9 @@ def cam_bundle(design: FlatCamDesign, with_kit: bool = False) -> tuple[Bundle, d
         kit = cam_kit(design)
         report["kit"] = kit.report
     solid = step_solid(design, report) if "step" in design.spec.output.formats else design.printed
+    tabled = design.speed is not None and design.speed.speeds is not None
     bundle = cam_files(design.spec, design.cut, mesh, plot, report, page,
-                       ("svaj", "cam", "checks", *(("speeds",) if "speeds" in (design.speed or {}) else ())), solid)
+                       ("svaj", "cam", "checks", *(("speeds",) if tabled else ())), solid)
     if kit is None:
         return bundle, report
     from camgen.core.kit import kit_items

@@ -15,6 +15,7 @@ from camgen.cam import Cam
 from camgen.analysis import face_extent
 from camgen.core.figures import figure, fit_equal
 from camgen.flat import FlatCamDesign
+from camgen.speed import Forces, SpeedTable
 
 if TYPE_CHECKING:
     from camgen.program import Jump
@@ -83,17 +84,16 @@ def checks_figure(design: FlatCamDesign) -> Any:
     ``output.tool_radius``) and, at a speed with a mass, the contact force and camshaft torque, and
     with materials the Hertz pressure against its allowable."""
     from camgen.dynamics import spec_loading
-    from camgen.forces import Contact, contact_pressure, normal_force, torque
+    from camgen.forces import contact_pressure, materials_of, normal_force, torque
 
     cam, spec = design.cam, design.spec
     theta, motion = sample_cycle(cam)
     g = cam.follower.pitch(theta, motion)             # each segment's own, as the motion is
     deg = np.degrees(theta)
     f = spec.follower
-    forces = (design.speed or {}).get("forces")
-    panels = ["pressure", "radius"] + (["force"] if forces else []) + (["stress"] if forces and
-                                                                        "pressure_max_MPa" in forces.get("stress", {})
-                                                                        else [])
+    forces = None if design.speed is None else design.speed.forces
+    hertz = None if forces is None else forces.hertz
+    panels = ["pressure", "radius"] + (["force"] if forces else []) + (["stress"] if hertz else [])
     fig = figure(8, 2.4 * len(panels) + 1.2, layout=None)
     # room on the right only for the force panel's torque axis (no empty band without one)
     fig.subplots_adjust(left=0.12, right=0.88 if forces else 0.97, bottom=0.08, top=0.94, hspace=0.15)
@@ -123,11 +123,10 @@ def checks_figure(design: FlatCamDesign) -> Any:
         twin = axes[2].twinx()
         twin.plot(deg, torque(ld, omega, motion, theta), color="C1", lw=1.0, ls="-.")
         twin.set_ylabel("shaft torque (N·m)", color="C1")
-        if "stress" in panels:
-            st = forces["stress"]
-            contact = Contact(st["cam_material"], st["follower_material"], st["length_mm"])
+        contact = materials_of(hertz)
+        if hertz is not None and contact is not None:
             axes[3].plot(deg, contact_pressure(cam, contact, g, push)[0], color="C0", lw=1.2)
-            axes[3].axhline(st["allowable_MPa"], color="C3", lw=0.8, ls="--")
+            axes[3].axhline(hertz.allowable, color="C3", lw=0.8, ls="--")
             axes[3].set_ylabel("Hertz pressure (MPa)")
     for a in axes:
         a.grid(alpha=0.3)
@@ -141,40 +140,40 @@ def checks_figure(design: FlatCamDesign) -> Any:
 
 def speeds_figure(design: Any) -> Any:
     """The report's ``speeds`` table drawn against cam speed: :func:`speeds_plot` of ``design.speed``."""
-    return speeds_plot(design.spec.name, design.speed["speeds"])
+    return speeds_plot(design.spec.name, design.speed.speeds)
 
 
-def speeds_plot(name: str, speeds: dict[str, Any]) -> Any:
+def speeds_plot(name: str, speeds: SpeedTable) -> Any:
     """The ``speeds`` table (:func:`camgen.forces.speeds_report`) against rpm: the camshaft torque's extremes and
     RMS with the peak power, the contact force's largest and (for a follower held on) least values with the margin
     (dashed) and the lift-off speed (dotted, every panel), and with materials the Hertz pressure against its
     allowable (dashed)."""
-    rows = speeds["rows"]
-    rpm = np.array([r["rpm"] for r in rows])
-    column = lambda key: np.array([r[key] for r in rows])   # noqa: E731
-    stress = "pressure_max_MPa" in rows[0]
+    rows = speeds.rows
+    rpm = np.array([r.rpm for r in rows])
+    column = lambda key: np.array([getattr(r, key) for r in rows])   # noqa: E731
+    stress = speeds.allowable is not None
     fig = figure(8, 2.4 * (3 if stress else 2) + 1.2, layout=None)
     fig.subplots_adjust(left=0.12, right=0.88, bottom=0.08, top=0.94, hspace=0.15)
     axes = np.atleast_1d(fig.subplots(3 if stress else 2, 1, sharex=True))
-    for key, label, style in (("torque_max_N_m", "torque max", "-"), ("torque_min_N_m", "torque min", "--"),
-                              ("torque_rms_N_m", "torque RMS", ":")):
+    for key, label, style in (("torque_max", "torque max", "-"), ("torque_min", "torque min", "--"),
+                              ("torque_rms", "torque RMS", ":")):
         axes[0].plot(rpm, column(key), color="C0", lw=1.2, ls=style, label=label)
     axes[0].set_ylabel("shaft torque (N·m)")
     axes[0].legend(fontsize=7, loc="upper left")
     twin = axes[0].twinx()
-    twin.plot(rpm, column("power_max_W"), color="C1", lw=1.0, ls="-.")
+    twin.plot(rpm, column("power_max"), color="C1", lw=1.0, ls="-.")
     twin.set_ylabel("peak power (W)", color="C1")
-    axes[1].plot(rpm, column("contact_force_max_N"), color="C0", lw=1.2, label="largest normal force")
-    if "contact_force_min_N" in rows[0]:
-        axes[1].plot(rpm, column("contact_force_min_N"), color="C2", lw=1.2, label="least contact force")
-        axes[1].axhline(speeds["margin_N"], color="C3", lw=0.8, ls="--", label="margin")
+    axes[1].plot(rpm, column("contact_force_max"), color="C0", lw=1.2, label="largest normal force")
+    if speeds.margin is not None:
+        axes[1].plot(rpm, column("contact_force_min"), color="C2", lw=1.2, label="least contact force")
+        axes[1].axhline(speeds.margin, color="C3", lw=0.8, ls="--", label="margin")
     axes[1].set_ylabel("contact force (N)")
     axes[1].legend(fontsize=7, loc="upper left")
-    if stress:
-        axes[2].plot(rpm, column("pressure_max_MPa"), color="C0", lw=1.2)
-        axes[2].axhline(speeds["allowable_MPa"], color="C3", lw=0.8, ls="--")
+    if speeds.allowable is not None:
+        axes[2].plot(rpm, column("pressure_max"), color="C0", lw=1.2)
+        axes[2].axhline(speeds.allowable, color="C3", lw=0.8, ls="--")
         axes[2].set_ylabel("Hertz pressure max (MPa)")
-    off = speeds.get("liftoff_rpm")
+    off = speeds.liftoff_rpm
     for a in axes:
         a.grid(alpha=0.3)
         if off is not None and rpm[0] <= off <= rpm[-1]:
@@ -236,18 +235,18 @@ def drive_checks_plot(title: str, limit_deg: float, contacts: list[tuple[str, Ca
     return fig
 
 
-def groove_checks_plot(spec: Any, cam: Cam, forces: dict[str, Any], limit_deg: float, d: float, rr: float,
+def groove_checks_plot(spec: Any, cam: Cam, forces: Forces, limit_deg: float, d: float, rr: float,
                        labels: tuple[str, str]) -> Any:
     """:func:`drive_checks_plot` of a roller in a groove whose walls lie ``d`` mm either side of ``cam``'s pitch
     curve (a grooved cam's flanks, a barrel's developed walls): ``labels[0]`` the wall carrying F > 0 (curvature
     kappa / (1 - d kappa)), ``labels[1]`` the other (-kappa / (1 + d kappa)), the roller of radius ``rr`` mm."""
     from camgen.dynamics import spec_loading
-    from camgen.forces import Contact, flank_pressure, normal_force, torque
+    from camgen.forces import flank_pressure, materials_of, normal_force, torque
 
     ld = spec_loading(spec.follower, cam.follower, True, spec.motion, cam.program)
     omega = spec.cam.rpm * 2 * math.pi / 60
-    st = forces.get("stress")
-    contact = None if st is None else Contact(st["cam_material"], st["follower_material"], st["length_mm"])
+    st = forces.hertz
+    contact = materials_of(st)
 
     def contact_of(sign: float) -> tuple[Any, Any]:
         def force(g: Any, m: np.ndarray) -> np.ndarray:
@@ -263,7 +262,7 @@ def groove_checks_plot(spec: Any, cam: Cam, forces: dict[str, Any], limit_deg: f
     return drive_checks_plot(spec.name, limit_deg, [
         (labels[0], cam, lambda g: 1.0 / g.kappa - d, *contact_of(1.0)),
         (labels[1], cam, lambda g: -(1.0 / g.kappa + d), *contact_of(-1.0))],
-        lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"], d,
+        lambda t, m: torque(ld, omega, m, t), None if st is None else st.allowable, d,
         getattr(spec.output, "tool_radius", 0.0))
 
 

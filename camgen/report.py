@@ -96,7 +96,7 @@ def cam_report(design: FlatCamDesign, mesh: MeshCheck | None = None) -> dict[str
     report["follower"].update({key: [_r(x) for x in value] if isinstance(value, list) else _r(value)
                                for key, value in f.report_fields().items()})
     if design.speed is not None:
-        report["speed"] = design.speed
+        report["speed"] = design.speed.as_report()
     if design.sizing is not None:
         s = design.sizing
         report["sizing"] = {"base_radius_mm": _r(s.base_radius_mm), "decided_by": s.decided_by,

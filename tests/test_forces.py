@@ -16,6 +16,7 @@ from camgen.forces import Contact, contact_pressure, normal_force, torque
 from camgen.kinds.barrel.design import design_barrel
 from camgen.kinds.grooved.design import design_grooved
 from camgen.spec import load_spec
+from camgen.speed import LoadRange
 from tests.refusals import assert_refused
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -43,7 +44,7 @@ def test_torque_is_the_moment_of_the_contact_force_about_the_axis(template, sets
         theta = np.linspace(0.0, 2 * math.pi, 721)[:-1]
         m, g = cam.program.evaluate(theta), cam.pitch(theta)
         omega = 300 * 2 * math.pi / 60
-        assert design.speed["forces"]["torque_max_N_m"] == pytest.approx(torque(ld, omega, m).max(), rel=1e-3)
+        assert design.speed.forces.torque_max == pytest.approx(torque(ld, omega, m).max(), rel=1e-3)
         moment = normal_force(ld, omega, g, m) * (g.point[:, 0] * g.normal[:, 1] - g.point[:, 1] * g.normal[:, 0])
         by_energy = torque(ld, omega, m)
         assert np.max(np.abs(cam.follower.sense * moment / 1000.0 - by_energy)) < 1e-9 * np.max(np.abs(by_energy))
@@ -52,13 +53,13 @@ def test_torque_is_the_moment_of_the_contact_force_about_the_axis(template, sets
 
 def test_reported_torque_extremes_and_rms():
     design = _design()
-    forces, f = design.speed["forces"], design.spec.follower
+    forces, f = design.speed.forces, design.spec.follower
     ld = loading(f.mass, f.spring_rate, f.preload, f.load)
     theta = np.linspace(0.0, 2 * math.pi, 400001)
     t = torque(ld, 300 * 2 * math.pi / 60, design.cam.program.evaluate(theta))
-    assert forces["torque_max_N_m"] == pytest.approx(t.max(), rel=1e-9, abs=1e-12)
-    assert forces["torque_min_N_m"] == pytest.approx(t.min(), rel=1e-9, abs=1e-12)
-    assert forces["torque_rms_N_m"] == pytest.approx(math.sqrt(np.mean(t[:-1] ** 2)), rel=1e-9)   # periodic: trapezoid
+    assert forces.torque_max == pytest.approx(t.max(), rel=1e-9, abs=1e-12)
+    assert forces.torque_min == pytest.approx(t.min(), rel=1e-9, abs=1e-12)
+    assert forces.torque_rms == pytest.approx(math.sqrt(np.mean(t[:-1] ** 2)), rel=1e-9)   # periodic: trapezoid
     # a conservative spring and load do no net work over a turn, so the mean torque is the inertia's: zero as well
     assert abs(np.mean(t[:-1])) < 1e-9 * np.max(np.abs(t))
 
@@ -78,68 +79,68 @@ def test_hertz_line_contact_by_hand():
 
 def test_reported_pressure_is_the_largest_over_the_turn():
     design = _design()
-    stress, cam, f = design.speed["forces"]["stress"], design.cam, design.spec.follower
+    stress, cam, f = design.speed.forces.stress, design.cam, design.spec.follower
     ld = loading(f.mass, f.spring_rate, f.preload, f.load)
     theta = np.linspace(0.0, 2 * math.pi, 200001)
     g, m = cam.pitch(theta), cam.program.evaluate(theta)
     p, _ = contact_pressure(cam, Contact("pla", "steel", 8.0), g, normal_force(ld, 10 * math.pi, g, m))
-    assert stress["pressure_max_MPa"] >= p.max() - 1e-9 and stress["pressure_max_MPa"] - p.max() < 1e-6
+    assert stress.pressure_max >= p.max() - 1e-9 and stress.pressure_max - p.max() < 1e-6
     # by hand at the peak: the roller (10 mm) on the profile of radius rho_pitch - 10
-    at = math.radians(stress["pressure_max_at_deg"])
+    at = math.radians(stress.pressure_max_at_deg)
     g1, m1 = cam.pitch(np.array([at])), cam.program.evaluate(np.array([at]))
     rho = 1 / g1.kappa[0] - 10.0
     n = float(normal_force(ld, 10 * math.pi, g1, m1)[0])
     e = 1 / ((1 - 0.36 ** 2) / 3500 + (1 - 0.3 ** 2) / 210000)
-    assert stress["pressure_max_MPa"] == pytest.approx(math.sqrt(n * e * (1 / 10 + 1 / rho) / (math.pi * 8)),
+    assert stress.pressure_max == pytest.approx(math.sqrt(n * e * (1 / 10 + 1 / rho) / (math.pi * 8)),
                                                        rel=1e-12)
-    assert stress["allowable_MPa"] == 30.0 and stress["holds"] is True
+    assert stress.allowable == 30.0 and stress.holds is True
 
 
 def test_the_preload_found_holds_exactly_the_margin():
     base = (*LOADED[:3], "follower.contact_margin=2.5")
-    need = _design(sets=base).speed["contact"]["preload_needed_n"]
+    need = _design(sets=base).speed.contact.preload_needed
     assert need > 0
-    held = _design(sets=(*base, f"follower.preload={need!r}")).speed["contact"]
-    assert held["force_min_n"] == pytest.approx(2.5, abs=1e-9)
-    assert held["preload_needed_n"] == pytest.approx(need, abs=1e-9)
+    held = _design(sets=(*base, f"follower.preload={need!r}")).speed.contact
+    assert held.force_min == pytest.approx(2.5, abs=1e-9)
+    assert held.preload_needed == pytest.approx(need, abs=1e-9)
 
 
 def test_the_spring_lets_go_at_the_liftoff_speed():
-    off = _design().speed["contact"]["liftoff_rpm"]
+    off = _design().speed.contact.liftoff_rpm
     assert 300 < off < 1000
-    at = _design(sets=(*LOADED, f"cam.rpm={off!r}")).speed["contact"]
-    assert at["force_min_n"] == pytest.approx(0.0, abs=1e-9)
-    assert _design(sets=(*LOADED, f"cam.rpm={off * 0.999!r}")).speed["contact"]["force_min_n"] > 0
-    assert _design(sets=(*LOADED, f"cam.rpm={off * 1.001!r}")).speed["contact"]["force_min_n"] < 0
+    at = _design(sets=(*LOADED, f"cam.rpm={off!r}")).speed.contact
+    assert at.force_min == pytest.approx(0.0, abs=1e-9)
+    assert _design(sets=(*LOADED, f"cam.rpm={off * 0.999!r}")).speed.contact.force_min > 0
+    assert _design(sets=(*LOADED, f"cam.rpm={off * 1.001!r}")).speed.contact.force_min < 0
 
 
 def test_weight_counts_by_the_orientation():
     """Upright the weight presses the follower onto the cam, upside down it pulls it off: 2 m g apart."""
-    up = _design(sets=(*LOADED, "follower.orientation=0")).speed["contact"]
-    down = _design(sets=(*LOADED, "follower.orientation=180")).speed["contact"]
-    assert up["weight_n"] == pytest.approx(0.2 * G_MM / 1000)
-    assert up["force_min_n"] - down["force_min_n"] == pytest.approx(2 * 0.2 * G_MM / 1000, rel=1e-9)
+    up = _design(sets=(*LOADED, "follower.orientation=0")).speed.contact
+    down = _design(sets=(*LOADED, "follower.orientation=180")).speed.contact
+    assert up.weight == pytest.approx(0.2 * G_MM / 1000)
+    assert up.force_min - down.force_min == pytest.approx(2 * 0.2 * G_MM / 1000, rel=1e-9)
 
 
 def test_gravity_alone_keeps_its_liftoff_speed():
     """The flat-face template's gravity return: the follower leaves where s'' omega^2 = -g."""
     design = _design(ROOT / "templates" / "flat-face.toml", ())
-    contact, cam = design.speed["contact"], design.cam
+    contact, cam = design.speed.contact, design.cam
     theta = np.linspace(0.0, 2 * math.pi, 400001)
     decel = -cam.program.evaluate(theta)[2].min()
-    assert contact["liftoff_rpm"] == pytest.approx(math.sqrt(G_MM / decel) * 60 / (2 * math.pi), rel=1e-8)
-    assert "forces" in design.speed and "stress" not in design.speed["forces"]
+    assert contact.liftoff_rpm == pytest.approx(math.sqrt(G_MM / decel) * 60 / (2 * math.pi), rel=1e-8)
+    assert design.speed.forces is not None and design.speed.forces.stress is None
 
 
 def test_a_flat_face_presses_on_the_profiles_radius_alone():
     design = _design(ROOT / "templates" / "flat-face.toml", ('cam.material="acrylic"', 'follower.material="pom"'))
-    stress, cam = design.speed["forces"]["stress"], design.cam
-    at = math.radians(stress["pressure_max_at_deg"])
+    stress, cam = design.speed.forces.stress, design.cam
+    at = math.radians(stress.pressure_max_at_deg)
     g = cam.pitch(np.array([at]))
     f = design.spec.follower
     n = float(normal_force(loading(f.mass, None, None), 200 * math.pi / 30, g, cam.program.evaluate(np.array([at])))[0])
     e = effective_modulus(MATERIALS["acrylic"], MATERIALS["pom"])
-    assert stress["pressure_max_MPa"] == pytest.approx(math.sqrt(n * e / g.rho[0] / (math.pi * 6.0)), rel=1e-9)
+    assert stress.pressure_max == pytest.approx(math.sqrt(n * e / g.rho[0] / (math.pi * 6.0)), rel=1e-9)
 
 
 @pytest.mark.parametrize("change, message", [
@@ -154,10 +155,10 @@ def test_bad_values_are_refused_by_name(tmp_path, change, message):
 def test_an_arms_spring_is_sized_at_the_roller_with_its_weights():
     base = ("follower.contact_margin=12", "follower.inertia=1500", "follower.arm_mass=0.1", "follower.arm_com=40",
             "follower.orientation=30")
-    need = _design(OSCILLATING, base).speed["contact"]["preload_needed_n"]
+    need = _design(OSCILLATING, base).speed.contact.preload_needed
     assert need > 5
-    held = _design(OSCILLATING, (*base, f"follower.preload={need!r}")).speed["contact"]
-    assert held["force_min_n"] == pytest.approx(12.0, abs=1e-9)
+    held = _design(OSCILLATING, (*base, f"follower.preload={need!r}")).speed.contact
+    assert held.force_min == pytest.approx(12.0, abs=1e-9)
 
 
 ARM = ("cam.rpm=300", "follower.inertia=1500", "follower.arm_mass=0.1", "follower.arm_com=40", "follower.load=3")
@@ -208,12 +209,12 @@ def test_an_arms_torque_is_the_rate_of_its_energy(orientation, rotation):
     assert ld.mass == pytest.approx(0.2 + 1500 / 90 ** 2, rel=1e-15)
     by_force = torque(ld, omega, design.cam.program.evaluate(theta), theta)
     assert np.max(np.abs(by_force - by_energy)) < 1e-8 * np.max(np.abs(by_force))
-    forces = design.speed["forces"]
-    assert forces["torque_max_N_m"] >= by_force.max() - 1e-12
-    assert forces["torque_max_N_m"] == pytest.approx(by_force.max(), rel=1e-3)
+    forces = design.speed.forces
+    assert forces.torque_max >= by_force.max() - 1e-12
+    assert forces.torque_max == pytest.approx(by_force.max(), rel=1e-3)
     if orientation is not None:          # the weights' pull at rest: (m L + m_arm c) g / L along the rising path
-        contact = design.speed["contact"]
-        assert abs(contact["weight_n"]) <= (0.2 * 90 + 0.1 * 40) / 90 * G_MM / 1000 + 1e-12
+        contact = design.speed.contact
+        assert abs(contact.weight) <= (0.2 * 90 + 0.1 * 40) / 90 * G_MM / 1000 + 1e-12
 
 
 def test_an_arms_weight_turns_with_it():
@@ -223,9 +224,9 @@ def test_an_arms_weight_turns_with_it():
     fol = design.cam.follower
     w0 = np.array([0.0, fol.prime_radius]) - fol.pivot
     hang = math.degrees(math.atan2(-w0[0], -w0[1]))    # up = (sin o, cos o) in the drawing: the arm along -up
-    down = _design(OSCILLATING, (*ARM, f"follower.orientation={hang!r}")).speed["contact"]["weight_n"]
+    down = _design(OSCILLATING, (*ARM, f"follower.orientation={hang!r}")).speed.contact.weight
     assert abs(down) < 1e-12
-    turned = [_design(OSCILLATING, (*ARM, f"follower.orientation={o}")).speed["contact"]["weight_n"]
+    turned = [_design(OSCILLATING, (*ARM, f"follower.orientation={o}")).speed.contact.weight
               for o in (20.0, -160.0)]
     assert turned[0] == pytest.approx(-turned[1], rel=1e-12) and abs(turned[0]) > 0.1
 
@@ -267,21 +268,20 @@ def test_a_load_table_by_hand():
     assert mean == pytest.approx((120 - 180 - 120 / math.pi) / (2 * math.pi) / 1000, rel=1e-9)
     theta = np.linspace(0.0, 2 * math.pi, 400001)
     m = design.cam.program.evaluate(theta)
-    forces, contact = design.speed["forces"], design.speed["contact"]
+    forces, contact = design.speed.forces, design.speed.contact
     t = torque(ld, omega, m, theta)
-    assert forces["torque_max_N_m"] == pytest.approx(t.max(), rel=1e-9)
-    assert forces["torque_rms_N_m"] == pytest.approx(math.sqrt(np.mean(t[:-1] ** 2)), rel=1e-7)
-    assert contact["force_min_n"] == pytest.approx(ld.force(m, omega, theta).min(), abs=1e-6)
-    assert contact["load_table_n"] == {"min": 0.0, "max": 12.0, "rows": 3, "interpolation": "linear, periodic over "
-                                                                                            "the turn"}
+    assert forces.torque_max == pytest.approx(t.max(), rel=1e-9)
+    assert forces.torque_rms == pytest.approx(math.sqrt(np.mean(t[:-1] ** 2)), rel=1e-7)
+    assert contact.force_min == pytest.approx(ld.force(m, omega, theta).min(), abs=1e-6)
+    assert contact.load_table == LoadRange(0.0, 12.0, 3)
 
 
 def test_a_load_table_from_a_csv_beside_the_template(tmp_path):
     (tmp_path / "loads.csv").write_text("angle,load\n0,0\n120,12\n240,12\n360,0\n")
     (tmp_path / "t.toml").write_text(RDRD.read_text().replace('offset = 5.0', 'offset = 5.0\nload_table = '
                                                                                '"loads.csv"'))
-    from_file = _design(tmp_path / "t.toml", LOADED).speed["forces"]
-    assert from_file == _design(sets=TABLE).speed["forces"]
+    from_file = _design(tmp_path / "t.toml", LOADED).speed.forces
+    assert from_file == _design(sets=TABLE).speed.forces
 
 
 @pytest.mark.parametrize("table, message", [
@@ -299,15 +299,15 @@ def test_gravity_with_a_margin_warns_in_words():
     """A flat face held by gravity with a contact margin is checked as a loading: losing contact is a warning (it
     was a KeyError: the gravity warning read a lift-off angle that only gravity alone gives)."""
     design = _design(ROOT / "templates" / "flat-face.toml", ("follower.contact_margin=5", "cam.rpm=400"))
-    assert design.speed["contact"]["holds"] is False
+    assert design.speed.contact.holds is False
     assert any(w.startswith("the follower loses contact near") for w in design.warnings)
 
 
-@pytest.mark.parametrize("template, sets, key, scale, unit", [
-    (RDRD, ("cam.rpm=300",), "velocity_max_mm_s", 1e-3, "v (m/s)"),
-    (OSCILLATING, (), "velocity_max_deg_s", math.pi / 180, "v (rad/s)"),
+@pytest.mark.parametrize("template, sets, lift, scale, unit", [
+    (RDRD, ("cam.rpm=300",), "mm", 1e-3, "v (m/s)"),
+    (OSCILLATING, (), "deg", math.pi / 180, "v (rad/s)"),
 ])
-def test_svaj_plots_in_the_machines_units(template, sets, key, scale, unit):
+def test_svaj_plots_in_the_machines_units(template, sets, lift, scale, unit):
     """At a speed the S-V-A-J figure is in time: its velocity peak is the report's, in m/s (or rad/s for an arm)."""
     from camgen.plots import svaj_figure
 
@@ -315,7 +315,8 @@ def test_svaj_plots_in_the_machines_units(template, sets, key, scale, unit):
     axes = svaj_figure(design).axes
     assert axes[1].get_ylabel() == unit
     peak = float(np.max(np.abs(axes[1].get_lines()[0].get_ydata())))
-    assert peak == pytest.approx(design.speed[key] * scale, rel=1e-6)
+    assert design.speed.unit == lift
+    assert peak == pytest.approx(design.speed.velocity_max * scale, rel=1e-6)
 
 
 def test_the_checks_figure_draws_the_reported_figures():
@@ -328,9 +329,9 @@ def test_the_checks_figure_draws_the_reported_figures():
     pressure = np.max(np.abs(axes[0].get_lines()[0].get_ydata()))
     assert pressure == pytest.approx(design.analysis.pressure_angle_max_deg, rel=5e-3)
     torque_line = next(a for a in axes if a.get_ylabel().startswith("shaft torque")).get_lines()[0].get_ydata()
-    assert np.max(torque_line) == pytest.approx(design.speed["forces"]["torque_max_N_m"], rel=5e-3)
+    assert np.max(torque_line) == pytest.approx(design.speed.forces.torque_max, rel=5e-3)
     hertz = next(a for a in axes if a.get_ylabel().startswith("Hertz")).get_lines()[0].get_ydata()
-    assert np.max(hertz) == pytest.approx(design.speed["forces"]["stress"]["pressure_max_MPa"], rel=5e-3)
+    assert np.max(hertz) == pytest.approx(design.speed.forces.stress.pressure_max, rel=5e-3)
     flat = checks_figure(_design(ROOT / "templates" / "flat-face.toml", ())).axes[0]
     assert not flat.get_lines() and "0 by definition" in flat.texts[0].get_text()
 
@@ -341,17 +342,17 @@ BARREL = ROOT / "templates" / "barrel.toml"
 
 def _sides_hold(design, ld, omega, forces) -> None:
     """Between the reported changes of side the force has the sign of the side reported to carry it."""
-    changes = forces["side_changes"]
+    changes = forces.drive.changes
     pairs = list(zip(changes, changes[1:] + changes[:1], strict=True))
-    assert len(changes) >= 2 and all(a["to"] != b["to"] for a, b in pairs)
-    positive = forces["carried_by"]["force_positive"]
+    assert len(changes) >= 2 and all(a.to != b.to for a, b in pairs)
+    positive = forces.drive.force_positive
     for a, b in pairs:
-        span = (b["at_deg"] - a["at_deg"]) % 360.0
-        theta = np.radians(a["at_deg"] + span * np.linspace(0.02, 0.98, 200))
+        span = (b.at_deg - a.at_deg) % 360.0
+        theta = np.radians(a.at_deg + span * np.linspace(0.02, 0.98, 200))
         f = ld.force(design.cam.program.evaluate(theta), omega, theta)
-        carried = f[np.abs(f) > 1e-9] * (1 if a["to"] == positive else -1)
+        carried = f[np.abs(f) > 1e-9] * (1 if a.to == positive else -1)
         assert (carried > 0).all()
-        edge = math.radians(a["at_deg"])               # the force changes sign there (or jumps across a segment end)
+        edge = math.radians(a.at_deg)               # the force changes sign there (or jumps across a segment end)
         near = ld.force(design.cam.program.evaluate(np.array([edge - 1e-7, edge + 1e-7])), omega,
                         np.array([edge - 1e-7, edge + 1e-7]))
         assert near[0] * near[1] <= 0 or abs(near).min() < 1e-5
@@ -367,7 +368,7 @@ def test_a_grooved_cams_torque_is_the_moment_of_the_flank_force(sets, rotation):
     the axis, sense N (p x n) / 1000 (1e-9), both turning senses."""
     design = design_grooved(load_spec(GROOVED, ("cam.rpm=200", "follower.mass=0.3", f'cam.rotation="{rotation}"',
                                                 *sets)))
-    cam, forces = design.profile.cam, design.profile.speed["forces"]
+    cam, forces = design.profile.cam, design.profile.speed.forces
     ld = spec_loading(design.spec.follower, cam.follower, positive=True)
     omega = 200 * 2 * math.pi / 60
     theta = np.linspace(0.0, 2 * math.pi, 1441)[:-1]
@@ -376,9 +377,9 @@ def test_a_grooved_cams_torque_is_the_moment_of_the_flank_force(sets, rotation):
     moment = cam.follower.sense * n * (g.point[:, 0] * g.normal[:, 1] - g.point[:, 1] * g.normal[:, 0]) / 1000.0
     by_power = torque(ld, omega, m, theta)
     assert np.max(np.abs(moment - by_power)) < 1e-9 * np.max(np.abs(by_power))
-    assert forces["torque_max_N_m"] == pytest.approx(by_power.max(), rel=1e-3)
-    assert forces["contact_force_max_N"] == pytest.approx(np.abs(n).max(), rel=1e-3)
-    assert forces["carried_by"] == {"force_positive": "inner flank", "force_negative": "outer flank"}
+    assert forces.torque_max == pytest.approx(by_power.max(), rel=1e-3)
+    assert forces.contact_force_max == pytest.approx(np.abs(n).max(), rel=1e-3)
+    assert (forces.drive.force_positive, forces.drive.force_negative) == ("inner flank", "outer flank")
     _sides_hold(design.profile, ld, omega, forces)
 
 
@@ -389,7 +390,7 @@ def test_a_barrels_torque_is_the_moment_of_the_wall_force_at_the_pitch_radius():
     towards z = 0), the upper F < 0. With a load table as well."""
     design = design_barrel(load_spec(BARREL, ("cam.rpm=120", "follower.mass=0.5", "follower.load=4",
                                               "follower.load_table=[[0, 0], [90, -30], [270, 10]]")))
-    cam, forces = design.cam, design.speed["forces"]
+    cam, forces = design.cam, design.speed.forces
     ld = spec_loading(design.spec.follower, cam.follower, positive=True)
     omega = 120 * 2 * math.pi / 60
     theta = np.linspace(0.0, 2 * math.pi, 1441)[:-1]
@@ -399,8 +400,8 @@ def test_a_barrels_torque_is_the_moment_of_the_wall_force_at_the_pitch_radius():
     moment = -n * g.normal[:, 0] * 30.0 / 1000.0
     by_power = torque(ld, omega, m, theta)
     assert np.max(np.abs(moment - by_power)) < 1e-9 * np.max(np.abs(by_power))
-    assert forces["torque_min_N_m"] == pytest.approx(by_power.min(), rel=1e-3)
-    assert forces["carried_by"]["force_positive"] == "lower wall"
+    assert forces.torque_min == pytest.approx(by_power.min(), rel=1e-3)
+    assert forces.drive.force_positive == "lower wall"
     _sides_hold(design, ld, omega, forces)
 
 
@@ -421,7 +422,7 @@ def test_a_barrel_arms_torque_is_the_rate_of_its_energy():
                  ) / (12 * h)
     by_force = torque(ld, omega, design.cam.program.evaluate(theta), theta)
     assert np.max(np.abs(by_force - by_energy)) < 1e-8 * np.max(np.abs(by_force))
-    assert design.speed["forces"]["torque_max_N_m"] == pytest.approx(by_force.max(), rel=1e-3)
+    assert design.speed.forces.torque_max == pytest.approx(by_force.max(), rel=1e-3)
 
 
 @pytest.mark.parametrize("template, sets", [
@@ -438,7 +439,7 @@ def test_a_conjugate_pairs_torque_is_the_sum_of_both_contacts_moments(template, 
     design = design_conjugate(load_spec(ROOT / "templates" / template,
                                         ("cam.rpm=150", "follower.mass=0.25", f'cam.rotation="{rotation}"', *sets)))
     pair = tuple(d.cam for d in design.cams)
-    forces = design.cams[0].speed["forces"]
+    forces = design.cams[0].speed.forces
     ld = spec_loading(design.spec.follower, pair[0].follower, positive=True)
     omega = 150 * 2 * math.pi / 60
     theta = np.linspace(0.0, 2 * math.pi, 1441)[:-1]
@@ -453,11 +454,11 @@ def test_a_conjugate_pairs_torque_is_the_sum_of_both_contacts_moments(template, 
         total += cam.follower.sense * n * (g.point[:, 0] * g.normal[:, 1] - g.point[:, 1] * g.normal[:, 0]) / 1000
     by_power = torque(ld, omega, m, theta)
     assert np.max(np.abs(total - by_power)) < 1e-9 * np.max(np.abs(by_power))
-    assert forces["torque_max_N_m"] == pytest.approx(by_power.max(), rel=1e-3)
+    assert forces.torque_max == pytest.approx(by_power.max(), rel=1e-3)
     g2 = pair[1].pitch(theta)
-    assert forces["cam_2_contact_force_max_N"] == pytest.approx(
+    assert forces.pair[1].value == pytest.approx(
         np.max(ratio * np.maximum(-f, 0.0) / np.cos(g2.pressure_angle)), rel=1e-3)
-    assert forces["carried_by"] == {"force_positive": "cam 1", "force_negative": "cam 2"}
+    assert (forces.drive.force_positive, forces.drive.force_negative) == ("cam 1", "cam 2")
     _sides_hold(design.cams[0], ld, omega, forces)
 
 
@@ -491,9 +492,9 @@ def test_a_grooved_cams_flank_pressure_by_hand():
     for load, side, (p, b) in ((10, "inner flank", (23.35003, 0.0545284)), (-10, "outer flank", (21.61772, 0.0588980))):
         design = design_grooved(load_spec(GROOVED, ("cam.rpm=300", "follower.mass=0.2", f"follower.load={load}",
                                                     'cam.material="pla"')))
-        stress = design.profile.speed["forces"]["stress"]
+        stress = design.profile.speed.forces.stress
         contact = Contact("pla", "steel", 5.0)
-        assert stress["length_mm"] == 5.0 and stress["e_star_MPa"] == pytest.approx(3952.2716, rel=1e-8)
+        assert stress.length == 5.0 and stress.e_star == pytest.approx(3952.2716, rel=1e-8)
         cam = design.cam
         at = np.radians([130.0])
         g = cam.pitch(at)
@@ -504,12 +505,12 @@ def test_a_grooved_cams_flank_pressure_by_hand():
         theta = np.linspace(0, 2 * math.pi, 72001)
         gg = cam.pitch(theta)
         dense = flank_pressure(contact, gg, normal_force(ld, 10 * math.pi, gg, cam.program.evaluate(theta)), 5.1, 5.0)
-        assert stress["pressure_max_MPa"] == pytest.approx(dense[0].max(), rel=1e-5)
-        assert stress["pressure_max_MPa"] >= dense[0].max() * (1 - 1e-12)
-        peak = np.radians([stress["pressure_max_at_deg"]])
+        assert stress.pressure_max == pytest.approx(dense[0].max(), rel=1e-5)
+        assert stress.pressure_max >= dense[0].max() * (1 - 1e-12)
+        peak = np.radians([stress.pressure_max_at_deg])
         pressing = float(ld.force(cam.program.evaluate(peak), 10 * math.pi, peak)[0]) > 0
-        assert stress["on"] == ("inner flank" if pressing else "outer flank")
-        assert design.profile.speed["forces"]["carried_by"]["force_positive" if load > 0 else "force_negative"] == side
+        assert stress.on == ("inner flank" if pressing else "outer flank")
+        assert getattr(design.profile.speed.forces.drive, "force_positive" if load > 0 else "force_negative") == side
 
 
 CONJUGATE = ROOT / "templates" / "conjugate.toml"
@@ -525,7 +526,7 @@ def test_a_conjugate_pairs_pressure_by_hand():
     for load, which, (p, b) in ((10, 0, (14.85810, 0.0535583)), (-10, 1, (15.35851, 0.0518133))):
         design = design_conjugate(load_spec(CONJUGATE, ("cam.rpm=300", "follower.mass=0.2", f"follower.load={load}",
                                                         'cam.material="pla"')))
-        stress = design.cams[0].speed["forces"]["stress"]
+        stress = design.cams[0].speed.forces.stress
         cam = design.cams[which].cam
         at = np.radians([135.0])
         g = cam.pitch(at)
@@ -534,9 +535,9 @@ def test_a_conjugate_pairs_pressure_by_hand():
         push = abs(normal_force(ld, 10 * math.pi, g, cam.program.evaluate(at)))
         got = contact_pressure(cam, Contact("pla", "steel", 8.0), g, push)
         assert (got[0][0], got[1][0]) == pytest.approx((p, b), rel=2e-6)
-        own = stress["cams"][which]
-        assert own["on"] == f"cam {which + 1}" and own["pressure_max_MPa"] >= p * (1 - 1e-12)
-        assert stress["pressure_max_MPa"] == max(c["pressure_max_MPa"] for c in stress["cams"])
+        own = stress.cams[which]
+        assert own.on == f"cam {which + 1}" and own.pressure_max >= p * (1 - 1e-12)
+        assert stress.pressure_max == max(c.pressure_max for c in stress.cams)
 
 
 def _barrel_checks(design):
@@ -544,7 +545,7 @@ def _barrel_checks(design):
     from camgen.sizing import pressure_limit
 
     w = design.walls
-    return plots.groove_checks_plot(design.spec, design.cam, design.speed["forces"], pressure_limit(design.spec),
+    return plots.groove_checks_plot(design.spec, design.cam, design.speed.forces, pressure_limit(design.spec),
                                     w.r0 + w.taper * design.radii[1], 5.0, ("lower wall", "upper wall"))
 
 
@@ -566,19 +567,19 @@ def test_a_positive_drives_checks_figure_draws_the_reported_figures(template, fi
     spec = load_spec(template, sets)
     design = {GROOVED: design_grooved, CONJUGATE: design_conjugate, BARREL: design_barrel}[template](spec)
     forces = {GROOVED: lambda: design.profile.speed, CONJUGATE: lambda: design.cams[0].speed,
-              BARREL: lambda: design.speed}[template]()["forces"]
+              BARREL: lambda: design.speed}[template]().forces
     if figure:
         module, name = figure.split(":")
         axes = getattr(importlib.import_module(module), name)(design).axes
     else:
         axes = _barrel_checks(design).axes
     peak = lambda ax: max(float(np.max(line.get_ydata())) for line in ax.get_lines()[:2])   # noqa: E731
-    largest = forces["contact_force_max_N"] if template != CONJUGATE else max(
-        forces["cam_1_contact_force_max_N"], forces["cam_2_contact_force_max_N"])   # each on its own cam's normal
+    largest = forces.contact_force_max if template != CONJUGATE else max(
+        forces.pair[0].value, forces.pair[1].value)   # each on its own cam's normal
     assert peak(axes[2]) == pytest.approx(largest, rel=5e-3)
-    assert peak(axes[3]) == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=5e-3)
+    assert peak(axes[3]) == pytest.approx(forces.stress.pressure_max, rel=5e-3)
     torque_line = axes[-1].get_lines()[0].get_ydata()
-    assert float(np.max(torque_line)) == pytest.approx(forces["torque_max_N_m"], rel=5e-3)
+    assert float(np.max(torque_line)) == pytest.approx(forces.torque_max, rel=5e-3)
     name = spec.name
     for extra, expected in (((), False), (sets, True)):
         args = ["build", str(template), "-o", str(tmp_path / str(expected)), "--figures"]
@@ -601,8 +602,8 @@ def test_a_barrels_wall_pressure_by_hand():
     for load, side in ((10, "lower wall"), (-10, "upper wall")):
         design = design_barrel(load_spec(BARREL, ("cam.rpm=300", "follower.mass=0.2", f"follower.load={load}",
                                                   'cam.material="pla"')))
-        stress = design.speed["forces"]["stress"]
-        assert stress["length_mm"] == 6.0
+        stress = design.speed.forces.stress
+        assert stress.length == 6.0
         cam = design.cam
         ld = spec_loading(design.spec.follower, cam.follower, positive=True)
         contact = Contact("pla", "steel", 6.0)
@@ -615,8 +616,8 @@ def test_a_barrels_wall_pressure_by_hand():
         wall = k / (1 - 5.1 * k) if force[1] > 0 else -k / (1 + 5.1 * k)
         assert p[1] == pytest.approx(math.sqrt(abs(force[1]) * contact.e_star * (0.2 + wall) / (math.pi * 6)),
                                      rel=1e-12)
-        assert stress["pressure_max_MPa"] >= p.max() * (1 - 1e-12)
-        assert design.speed["forces"]["carried_by"]["force_positive" if load > 0 else "force_negative"] == side
+        assert stress.pressure_max >= p.max() * (1 - 1e-12)
+        assert getattr(design.speed.forces.drive, "force_positive" if load > 0 else "force_negative") == side
 
 
 def test_a_barrels_material_needs_its_forces_and_no_rib(tmp_path):

@@ -348,9 +348,10 @@ def test_the_island_keeps_the_follower_and_takes_the_rates_alone():
     assert np.abs(island.cam(base).pitch(theta).point - rig.cam(spec.cam.base_radius).pitch(theta).point).max() < 1e-12
     design = design_cam(spec)
     speed = design.profile.speed
-    assert speed["contact"] is None
-    assert speed["forces"]["carried_by"] == {"force_positive": "inner flank", "force_negative": "outer flank"}
-    assert speed["speeds"]["liftoff_rpm"] is None and "margin_N" not in speed["speeds"]
-    assert all("holds" not in row for row in speed["speeds"]["rows"])
+    assert speed.contact is None
+    drive = speed.forces.drive
+    assert (drive.force_positive, drive.force_negative) == ("inner flank", "outer flank")
+    assert speed.speeds.liftoff_rpm is None and speed.speeds.margin is None
+    assert all(row.holds is None for row in speed.speeds.rows)
     same = drive_speed(spec, design.profile.cam, ("inner flank", "outer flank"))
-    assert same == {k: speed[k] for k in ("forces", "speeds")}
+    assert same == (speed.forces, speed.speeds)

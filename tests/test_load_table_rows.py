@@ -66,7 +66,7 @@ def test_a_long_tables_torque_figures_against_a_quadrature():
     rows = _table(3000)
     table = "[" + ", ".join(f"[{a!r}, {v!r}]" for a, v in rows) + "]"
     design = design_cam(load_spec(RDRD, (*LOADED, f"follower.load_table={table}")))
-    forces = design.speed["forces"]
+    forces = design.speed.forces
     theta = np.linspace(0.0, 2 * math.pi, 400001)
     m = design.cam.program.evaluate(theta)
     omega = 300 * 2 * math.pi / 60
@@ -74,6 +74,6 @@ def test_a_long_tables_torque_figures_against_a_quadrature():
     force = 5.0 + 0.5 * m[0] + 0.2 * omega ** 2 * m[2] / 1000.0 + load
     t = force * m[1] / 1000.0
     rms = math.sqrt(np.trapezoid(t ** 2, theta) / (2 * math.pi))
-    assert forces["torque_rms_N_m"] == pytest.approx(rms, rel=1e-6)
-    assert forces["torque_max_N_m"] == pytest.approx(t.max(), abs=1e-6)
-    assert forces["torque_min_N_m"] == pytest.approx(t.min(), abs=1e-6)
+    assert forces.torque_rms == pytest.approx(rms, rel=1e-6)
+    assert forces.torque_max == pytest.approx(t.max(), abs=1e-6)
+    assert forces.torque_min == pytest.approx(t.min(), abs=1e-6)

@@ -117,7 +117,7 @@ def test_the_reflected_load_reaches_the_cam_as_its_load_table(automaton):
     for degree in (0, 50, 100, 170, 300):
         j = round(((degree + mount.phase) % 360) * 2)
         assert rows[degree][1] == pytest.approx(automaton.linkages[0].force[j], abs=1e-8)
-    assert cam.design.speed["contact"]["load_table_n"]["rows"] == 360
+    assert cam.design.speed.contact.load_table.rows == 360
 
 
 def test_the_spring_is_sized_with_the_linkage_attached():
@@ -126,12 +126,12 @@ def test_the_spring_is_sized_with_the_linkage_attached():
     raw = _raw()
     raw["couplings"][0]["output_torque"] = 3.0                   # N*m: pulls the follower off its cam
     design = _design(raw)
-    contact = design.cam("arm").design.speed["contact"]
-    assert contact["holds"] is False and contact["preload_needed_n"] > 12.0
+    contact = design.cam("arm").design.speed.contact
+    assert contact.holds is False and contact.preload_needed > 12.0
     assert any(w.startswith("cams.arm: the spring loses contact") for w in design.warnings)
-    raw["cams"][2]["template"]["follower"]["preload"] = contact["preload_needed_n"] + 0.5
-    held = _design(raw).cam("arm").design.speed["contact"]
-    assert held["holds"] is True and held["force_min_n"] == pytest.approx(0.5, abs=0.05)
+    raw["cams"][2]["template"]["follower"]["preload"] = contact.preload_needed + 0.5
+    held = _design(raw).cam("arm").design.speed.contact
+    assert held.holds is True and held.force_min == pytest.approx(0.5, abs=0.05)
 
 
 def _program_dwells(motion: list[dict], phase: float) -> list[tuple[float, float]]:

@@ -12,6 +12,7 @@ from camgen.api import design_cam
 from camgen.dynamics import spec_loading
 from camgen.forces import cycle_mean, torque
 from camgen.spec import load_spec
+from camgen.speed import Speed
 from tests.refusals import assert_refused
 from tests.test_forces import LOADED, RDRD, ROOT, _design  # the loaded rdrd of the forces tests
 
@@ -45,19 +46,18 @@ def test_a_load_per_segment_by_hand(tmp_path):
     assert mean == pytest.approx(200 / (2 * math.pi) / 1000, rel=1e-9)
     theta = np.linspace(0.0, 2 * math.pi, 400001)
     t = torque(ld, omega, design.cam.program.evaluate(theta), theta)
-    forces, contact = design.speed["forces"], design.speed["contact"]
-    assert forces["torque_max_N_m"] == pytest.approx(t.max(), rel=1e-9)
-    assert forces["torque_rms_N_m"] == pytest.approx(math.sqrt(np.mean(t[:-1] ** 2)), rel=1e-6)
-    assert contact["segment_loads_n"] == [{"segment": 0, "load_n": 8.0}, {"segment": 1, "load_n": 0.0},
-                                          {"segment": 2, "load_n": -2.0}, {"segment": 3, "load_n": 0.0}]
+    forces, contact = design.speed.forces, design.speed.contact
+    assert forces.torque_max == pytest.approx(t.max(), rel=1e-9)
+    assert forces.torque_rms == pytest.approx(math.sqrt(np.mean(t[:-1] ** 2)), rel=1e-6)
+    assert contact.segment_loads == (8.0, 0.0, -2.0, 0.0)
 
 
 def test_a_segments_load_at_its_bounds_and_with_a_table_refused(tmp_path):
     """-1e6 N (the bound) on the first dwell pulls the follower off there; 1e-12 beyond is refused by name, and so is
     a load per segment beside a load table."""
     design = _design(_with_loads(tmp_path, {1: -1e6}))
-    assert design.speed["contact"]["holds"] is False
-    assert 120.0 - 1e-9 <= design.speed["contact"]["force_min_at_deg"] <= 180.0 + 1e-9
+    assert design.speed.contact.holds is False
+    assert 120.0 - 1e-9 <= design.speed.contact.force_min_at_deg <= 180.0 + 1e-9
     assert_refused(_with_loads(tmp_path, {0: 1e6 * (1 + 1e-12)}), {}, "motion[0].load: must be", tmp_path)
     assert_refused(_with_loads(tmp_path, {1: 2.0}), {"follower.load_table": [[0, 1], [180, 2]]},
                    "motion[1].load: give loads per segment or follower.load_table, not both", tmp_path)
@@ -68,16 +68,16 @@ RANGE = (*LOADED, "cam.rpm_range=[100, 1500]", "cam.rpm_steps=8")
 
 def test_each_speed_is_a_single_speed_build():
     """Every row of the speeds table is what a build at that one cam.rpm reports, to 1e-9."""
-    rows = _design(sets=RANGE).speed["speeds"]["rows"]
-    assert [r["rpm"] for r in rows[:2]] == [100.0, 300.0] and rows[-1]["rpm"] == 1500.0
+    rows = _design(sets=RANGE).speed.speeds.rows
+    assert [r.rpm for r in rows[:2]] == [100.0, 300.0] and rows[-1].rpm == 1500.0
     for row in (rows[0], rows[3], rows[-1]):
-        single = _design(sets=(*LOADED, f"cam.rpm={row['rpm']!r}")).speed
-        forces, contact = single["forces"], single["contact"]
-        for key in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m", "power_max_W", "contact_force_max_N"):
-            assert row[key] == pytest.approx(forces[key], rel=1e-9, abs=1e-12)
-        assert row["contact_force_min_N"] == pytest.approx(contact["force_min_n"], rel=1e-9, abs=1e-12)
-        assert row["holds"] is contact["holds"]
-        assert row["pressure_max_MPa"] == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=1e-9)
+        single = _design(sets=(*LOADED, f"cam.rpm={row.rpm!r}")).speed
+        forces, contact = single.forces, single.contact
+        for key in ("torque_max", "torque_min", "torque_rms", "power_max", "contact_force_max"):
+            assert getattr(row, key) == pytest.approx(getattr(forces, key), rel=1e-9, abs=1e-12)
+        assert row.contact_force_min == pytest.approx(contact.force_min, rel=1e-9, abs=1e-12)
+        assert row.holds is contact.holds
+        assert row.pressure_max == pytest.approx(forces.stress.pressure_max, rel=1e-9)
 
 
 def test_the_inertia_scales_with_the_speed_squared():
@@ -93,9 +93,9 @@ def test_the_inertia_scales_with_the_speed_squared():
     for rpm in (100.0, 471.3, 1500.0):
         t = torque(ld, rpm * math.pi / 30, m, theta)
         assert t == pytest.approx(still + (rpm / 300) ** 2 * inertia, rel=1e-9, abs=1e-12)
-    rows = design.speed["speeds"]["rows"]
-    k = np.array([(r["rpm"] / 300) ** 2 for r in rows])
-    ms = np.array([r["torque_rms_N_m"] ** 2 for r in rows])
+    rows = design.speed.speeds.rows
+    k = np.array([(r.rpm / 300) ** 2 for r in rows])
+    ms = np.array([r.torque_rms ** 2 for r in rows])
     quadratic = np.polyfit(k[[0, 3, -1]], ms[[0, 3, -1]], 2)
     assert np.polyval(quadratic, k) == pytest.approx(ms, rel=1e-9)
 
@@ -104,15 +104,15 @@ def test_the_least_contact_force_crosses_zero_at_the_liftoff_speed():
     """The lift-off speed is a row of the table where the least contact force is 0 (to 1e-9 of the spring's
     force): positive at every slower row, negative at every faster one, and 1e-9 either side of it the same."""
     design = _design(sets=RANGE)
-    speeds = design.speed["speeds"]
-    off = speeds["liftoff_rpm"]
-    assert off == design.speed["contact"]["liftoff_rpm"] and 100 < off < 1500
-    rows = speeds["rows"]
-    assert len(rows) == 9 and sorted(r["rpm"] for r in rows) == [r["rpm"] for r in rows]
-    at = next(r for r in rows if r["rpm"] == off)
-    assert at["contact_force_min_N"] == pytest.approx(0.0, abs=1e-9 * 15)
-    assert all(r["contact_force_min_N"] > 0 and r["holds"] for r in rows if r["rpm"] < off)
-    assert all(r["contact_force_min_N"] < 0 and not r["holds"] for r in rows if r["rpm"] > off)
+    speeds = design.speed.speeds
+    off = speeds.liftoff_rpm
+    assert off == design.speed.contact.liftoff_rpm and 100 < off < 1500
+    rows = speeds.rows
+    assert len(rows) == 9 and sorted(r.rpm for r in rows) == [r.rpm for r in rows]
+    at = next(r for r in rows if r.rpm == off)
+    assert at.contact_force_min == pytest.approx(0.0, abs=1e-9 * 15)
+    assert all(r.contact_force_min > 0 and r.holds for r in rows if r.rpm < off)
+    assert all(r.contact_force_min < 0 and not r.holds for r in rows if r.rpm > off)
     ld = spec_loading(design.spec.follower, design.cam.follower)
     from camgen.dynamics import peak_at
 
@@ -130,25 +130,25 @@ def test_the_speeds_figure_and_console_draw_the_table(tmp_path):
     from camgen.plots import speeds_figure
 
     design = _design(sets=RANGE)
-    rows = design.speed["speeds"]["rows"]
+    rows = design.speed.speeds.rows
     axes = speeds_figure(design).axes
-    assert list(axes[0].get_lines()[0].get_ydata()) == [r["torque_max_N_m"] for r in rows]
-    assert list(axes[1].get_lines()[1].get_ydata()) == [r["contact_force_min_N"] for r in rows]
+    assert list(axes[0].get_lines()[0].get_ydata()) == [r.torque_max for r in rows]
+    assert list(axes[1].get_lines()[1].get_ydata()) == [r.contact_force_min for r in rows]
     pressure = next(a for a in axes if a.get_ylabel().startswith("Hertz"))
-    assert list(pressure.get_lines()[0].get_ydata()) == [r["pressure_max_MPa"] for r in rows]
+    assert list(pressure.get_lines()[0].get_ydata()) == [r.pressure_max for r in rows]
     args = ["build", str(RDRD), "-o", str(tmp_path / "out"), "--figures"]
     for s in RANGE:
         args += ["--set", s]
     result = CliRunner().invoke(main, args)
     assert result.exit_code == 0, result.output
     assert (tmp_path / "out" / "rdrd-speeds.png").exists() and (tmp_path / "out" / "rdrd-speeds.svg").exists()
-    speeds = design.speed["speeds"]
+    speeds = design.speed.speeds
     line = next(x for x in result.output.splitlines() if x.startswith("over 100 to 1500 rpm"))
-    assert f"lift-off {speeds['liftoff_rpm']:.4g} rpm" in line and "allowable" in line
+    assert f"lift-off {speeds.liftoff_rpm:.4g} rpm" in line and "allowable" in line
     plain = CliRunner().invoke(main, ["build", str(RDRD), "-o", str(tmp_path / "plain"), "--figures"])
     assert plain.exit_code == 0, plain.output
     assert len(list((tmp_path / "out").iterdir())) == len(list((tmp_path / "plain").iterdir())) + 2
-    off = design.speed["speeds"]["liftoff_rpm"]
+    off = design.speed.speeds.liftoff_rpm
     assert ("over 100 to 1500 rpm (9 speeds)" in result.output and f"(lift-off {off:.4g} rpm)" in result.output
             and "over the allowable 30 MPa from" in result.output), result.output
 
@@ -167,9 +167,9 @@ def test_bad_speed_ranges_are_refused(tmp_path, change, message):
 
 def test_the_range_at_its_bounds():
     """The widest range, 1e-12 rpm up to 100 000 rpm, in two speeds: both ends are rows, nothing NaN."""
-    rows = _design(sets=(*LOADED, "cam.rpm_range=[1e-12, 100000]", "cam.rpm_steps=2")).speed["speeds"]["rows"]
-    assert [r["rpm"] for r in rows][::len(rows) - 1] == [1e-12, 100000.0]
-    assert all(math.isfinite(v) for r in rows for v in r.values() if isinstance(v, float))
+    rows = _design(sets=(*LOADED, "cam.rpm_range=[1e-12, 100000]", "cam.rpm_steps=2")).speed.speeds.rows
+    assert [r.rpm for r in rows][::len(rows) - 1] == [1e-12, 100000.0]
+    assert all(math.isfinite(v) for r in rows for v in vars(r).values() if isinstance(v, float))
 
 
 @pytest.mark.parametrize("template", ["grooved.toml", "barrel.toml"])
@@ -184,18 +184,18 @@ def test_a_grooves_speeds_are_single_speed_builds(template, tmp_path):
     path = ROOT / "templates" / template
     sets = ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5", 'cam.material="pla"')
 
-    def speed(extra: tuple[str, ...]) -> dict:
+    def speed(extra: tuple[str, ...]) -> Speed:
         design = design_cam(load_spec(path, (*sets, *extra)))
         return getattr(design, "profile", design).speed
 
-    speeds = speed(("cam.rpm_range=[100, 1000]", "cam.rpm_steps=4"))["speeds"]
-    assert speeds["liftoff_rpm"] is None and [r["rpm"] for r in speeds["rows"]] == [100.0, 400.0, 700.0, 1000.0]
-    for row in speeds["rows"][::3]:
-        forces = speed((f"cam.rpm={row['rpm']!r}",))["forces"]
-        for key in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m", "power_max_W", "contact_force_max_N"):
-            assert row[key] == pytest.approx(forces[key], rel=1e-9, abs=1e-12)
-        assert row["pressure_max_MPa"] == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=1e-9)
-        assert "holds" not in row
+    speeds = speed(("cam.rpm_range=[100, 1000]", "cam.rpm_steps=4")).speeds
+    assert speeds.liftoff_rpm is None and [r.rpm for r in speeds.rows] == [100.0, 400.0, 700.0, 1000.0]
+    for row in speeds.rows[::3]:
+        forces = speed((f"cam.rpm={row.rpm!r}",)).forces
+        for key in ("torque_max", "torque_min", "torque_rms", "power_max", "contact_force_max"):
+            assert getattr(row, key) == pytest.approx(getattr(forces, key), rel=1e-9, abs=1e-12)
+        assert row.pressure_max == pytest.approx(forces.stress.pressure_max, rel=1e-9)
+        assert row.holds is None and row.contact_force_min is None
     args = ["build", str(path), "-o", str(tmp_path / "out"), "--figures"]
     for s in (*sets, "cam.rpm_range=[100, 1000]", "cam.rpm_steps=4"):
         args += ["--set", s]
@@ -213,15 +213,15 @@ def test_a_conjugate_pairs_speeds_are_single_speed_builds():
     path = ROOT / "templates" / "conjugate.toml"
     sets = ("cam.rpm=300", "follower.mass=0.2", "follower.load=-5", 'cam.material="pla"')
     speeds = design_conjugate(load_spec(path, (*sets, "cam.rpm_range=[100, 1000]", "cam.rpm_steps=3"))
-                              ).cams[0].speed["speeds"]
-    assert speeds["liftoff_rpm"] is None and [r["rpm"] for r in speeds["rows"]] == [100.0, 550.0, 1000.0]
-    for row in speeds["rows"][::2]:
-        forces = design_conjugate(load_spec(path, (*sets, f"cam.rpm={row['rpm']!r}"))).cams[0].speed["forces"]
-        for key in ("torque_max_N_m", "torque_min_N_m", "torque_rms_N_m", "power_max_W"):
-            assert row[key] == pytest.approx(forces[key], rel=1e-9, abs=1e-12)
-        assert row["contact_force_max_N"] == pytest.approx(max(forces["cam_1_contact_force_max_N"],
-                                                               forces["cam_2_contact_force_max_N"]), rel=1e-9)
-        assert row["pressure_max_MPa"] == pytest.approx(forces["stress"]["pressure_max_MPa"], rel=1e-9)
+                              ).cams[0].speed.speeds
+    assert speeds.liftoff_rpm is None and [r.rpm for r in speeds.rows] == [100.0, 550.0, 1000.0]
+    for row in speeds.rows[::2]:
+        forces = design_conjugate(load_spec(path, (*sets, f"cam.rpm={row.rpm!r}"))).cams[0].speed.forces
+        for key in ("torque_max", "torque_min", "torque_rms", "power_max"):
+            assert getattr(row, key) == pytest.approx(getattr(forces, key), rel=1e-9, abs=1e-12)
+        assert row.contact_force_max == pytest.approx(max(forces.pair[0].value,
+                                                               forces.pair[1].value), rel=1e-9)
+        assert row.pressure_max == pytest.approx(forces.stress.pressure_max, rel=1e-9)
 
 
 def test_a_stacked_search_finds_each_peak_as_a_search_alone():

@@ -39,6 +39,7 @@ from camgen.core.parts import LAYER_GROOVE, LAYER_OUTLINE, Drawing, Part
 from camgen.core.shapes import Circle, Contour, Polyline
 from camgen.dynamics import speed_report
 from camgen.forces import Contact, drive_speed
+from camgen.speed import Speed
 from camgen.followers.barrel import BarrelGeometry, DevelopedRoller, rolling_slip, translating_pose
 from camgen.followers.plate import PlateRoller
 from camgen.groove import Flank, flank_checks
@@ -86,7 +87,7 @@ class BarrelDesign:
     drawing_error_mm: float
     blank: Part                    # the cylinder with its bore (as printed: the clearance applied), before the groove
     tube: Tube | None              # the groove's cutter (None until a solid is asked for)
-    speed: dict[str, Any] | None
+    speed: Speed | None
     warnings: tuple[str, ...]
     slip: dict[str, float] | None = None       # the roller's largest rolling slip (percent) at the floor and the rim
     #: a rib's two rollers, below it and above it (their walls shifted by -g and +g), and the rib's thinnest
@@ -345,8 +346,9 @@ def design_barrel(spec: BarrelSpec) -> BarrelDesign:
         stressed = None if spec.cam.material is None else (   # line contact along the depth, the walls at Rm
             Contact(spec.cam.material, spec.follower.material, depth), walls.r0 + walls.taper * rm,
             spec.follower.roller_radius)
-        speed.update(drive_speed(spec, cam, ("lower wall", "upper wall") if rib is None else
-                                 ("rib's upper wall", "rib's lower wall"), stressed))
+        forces, speeds = drive_speed(spec, cam, ("lower wall", "upper wall") if rib is None else
+                                     ("rib's upper wall", "rib's lower wall"), stressed)
+        speed = dataclasses.replace(speed, forces=forces, speeds=speeds)
     warnings = [f"{j.quantity} jumps at {j.at_deg:.4g} degrees: {j.consequence}" for j in jumps if j.order < 3]
     wall = radii[0] - bore_reach(bore, spec.hub.keyway, spec.output.clearance)
     if bore and wall < THIN_WALL:

@@ -129,7 +129,7 @@ def barrel_report(design: BarrelDesign, mesh: Any = None) -> dict[str, Any]:
         "warnings": list(design.warnings),
     }
     if design.speed is not None:
-        report["speed"] = design.speed
+        report["speed"] = design.speed.as_report()
     if mesh is not None:
         report["mesh"] = {"watertight": mesh.watertight, "winding_consistent": mesh.winding_consistent,
                           "volume_mm3": _r(mesh.volume_mm3, 6), "triangles": mesh.triangles,
@@ -194,6 +194,7 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
             raise ExportError(f"{name}: the mesh is not a closed outward solid in single precision with no edge "
                               f"shorter than {shortest:.3g} mm ({check}); try another output.tolerance")
     report = barrel_report(design, check)
+    forces, speeds = (None, None) if design.speed is None else (design.speed.forces, design.speed.speeds)
 
     def plot(kind: str) -> Any:
         from camgen import plots
@@ -201,11 +202,11 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
 
         if kind == "svaj":
             return plots.svaj_figure(design)
-        if kind == "speeds":
-            return plots.speeds_plot(name, speed["speeds"])
-        if kind == "checks":           # the developed walls at Rm, the cutter's radius there off the pitch curve
-            w = design.walls
-            return plots.groove_checks_plot(design.spec, design.cam, speed["forces"],
+        if kind == "speeds" and speeds is not None:
+            return plots.speeds_plot(name, speeds)
+        if kind == "checks" and forces is not None:
+            w = design.walls            # the developed walls at Rm, the cutter's radius there off the pitch curve
+            return plots.groove_checks_plot(design.spec, design.cam, forces,
                                             pressure_limit(design.spec), w.r0 + w.taper * design.radii[1],
                                             design.spec.follower.roller_radius, ("lower wall", "upper wall"))
         what = ("the groove's walls and the pitch curve" if design.rib is None
@@ -213,9 +214,8 @@ def barrel_bundle(design: BarrelDesign) -> tuple[Bundle, dict[str, Any]]:
         return drawing_figure(design.drawing, f"{name}: the pitch cylinder (radius {design.radii[1]:g} mm) unrolled, "
                                               + what)
 
-    speed = design.speed or {}
-    checks: tuple[str, ...] = ("checks",) if speed.get("forces") and design.rib is None else ()   # with a mass
-    checks += ("speeds",) if "speeds" in speed else ()
+    checks: tuple[str, ...] = ("checks",) if forces and design.rib is None else ()   # with a mass
+    checks += ("speeds",) if speeds else ()
     items = [sheet_files(design.drawing, f"{name}-developed"), mesh_files(mesh, name),
              *tail(name, plot, ("svaj", "cam", *checks), report, lambda: barrel_page(design, report))]
     return Bundle.of(items, out.write_options, formats), report

@@ -37,6 +37,7 @@ from camgen.kinds.conjugate.kinematics import ArmRoller, YokeRoller, arm_prime, 
 from camgen.core.errors import CamgenError, DesignError
 from camgen.flat import FlatCamDesign, flat_rig, parabolic_ratios, rates
 from camgen.forces import Contact, drive_speed
+from camgen.speed import Speed
 from camgen.followers.base import rotate
 from camgen.numeric import boundary
 from camgen.outline import exact_outline
@@ -448,7 +449,7 @@ class _Shared:
     both are made."""
 
     jumps: tuple
-    speed: dict[str, Any] | None
+    speed: Speed | None
     limit: float
     timing: Cam
     sizing: tuple[Sizing | None, Sizing | None]
@@ -507,7 +508,7 @@ def _warnings(spec: ConjugateSpec, placement: Placement, designs: tuple[FlatCamD
     return tuple(out)
 
 
-def _pair_speed(spec: ConjugateSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | None:
+def _pair_speed(spec: ConjugateSpec, pair: tuple[Cam, Cam]) -> Speed | None:
     """The follower's rates at ``cam.rpm`` and, with a mass, the pair's forces (:func:`camgen.forces.pair_report`):
     no spring, so no contact check."""
     speed = rates(pair[0], spec.cam.rpm, parabolic_ratios(spec.motion))
@@ -515,7 +516,8 @@ def _pair_speed(spec: ConjugateSpec, pair: tuple[Cam, Cam]) -> dict[str, Any] | 
         f = spec.follower
         contact = None if spec.cam.material is None else Contact(
             spec.cam.material, f.material, min(spec.cam.thickness, f.roller_width or spec.cam.thickness))
-        speed = {**speed, **drive_speed(spec, pair[0], pair=pair, contact=contact)}
+        forces, speeds = drive_speed(spec, pair[0], pair=pair, contact=contact)
+        speed = dataclasses.replace(speed, forces=forces, speeds=speeds)
     return speed
 
 

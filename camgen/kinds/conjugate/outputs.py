@@ -234,15 +234,20 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     nested = nest(tuple(d.cut for d in design.cams), SheetRules.of(out, out.kerf, "output.sheet"))
     report["sheet"] = nested.report
 
-    speed = design.cams[0].speed or {}
+    speed = design.cams[0].speed
+    forces, speeds = (None, None) if speed is None else (speed.forces, speed.speeds)
 
     def plot(kind: str) -> Any:
         from camgen import plots
         from camgen.kinds.conjugate.plots import pair_checks_figure
 
-        return {"svaj": lambda: plots.svaj_figure(design.cams[0]), "checks": lambda: pair_checks_figure(
-            design), "speeds": lambda: plots.speeds_plot(name, speed["speeds"])}.get(
-            kind, lambda: assembly_figure(design))()
+        if kind == "svaj":
+            return plots.svaj_figure(design.cams[0])
+        if kind == "checks":
+            return pair_checks_figure(design)
+        if kind == "speeds" and speeds is not None:
+            return plots.speeds_plot(name, speeds)
+        return assembly_figure(design)
 
     items: list[Item | None] = []
     for which, (d, (mesh, _)) in enumerate(zip(design.cams, meshes, strict=True)):
@@ -251,7 +256,7 @@ def conjugate_bundle(design: ConjugateDesign) -> tuple[Bundle, dict[str, Any]]:
     items += [sheet_files(drawing, f"{name}-{kind}", kind) for kind, drawing in sheet_kinds(nested.drawings(
         out.tolerance))]
     items.append(solid_files(step_solids(design) if "step" in formats else None, name))
-    checks: tuple[str, ...] = ("checks",) if speed.get("forces") else ()   # at a speed with a mass
-    checks += ("speeds",) if "speeds" in speed else ()
+    checks: tuple[str, ...] = ("checks",) if forces else ()   # at a speed with a mass
+    checks += ("speeds",) if speeds else ()
     items += tail(name, plot, ("svaj", "assembly", *checks), report, lambda: conjugate_page(design, report))
     return Bundle.of(items, out.write_options, formats), report

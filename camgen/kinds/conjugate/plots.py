@@ -24,18 +24,18 @@ def pair_checks_figure(design: Any) -> Any:
     cos(phi1)), cam 2 F < 0 (N2 = -F (L1 / L2) / cos(phi2)), each profile's radius its pitch curve's less its own
     roller's."""
     from camgen.dynamics import spec_loading
-    from camgen.forces import Contact, pair_forces, torque
+    from camgen.forces import materials_of, pair_forces, torque
 
     spec, pair = design.spec, tuple(d.cam for d in design.cams)
-    forces = design.cams[0].speed["forces"]
+    forces = design.cams[0].speed.forces
     ld = spec_loading(spec.follower, pair[0].follower, True, spec.motion, pair[0].program)
     omega = spec.cam.rpm * 2 * math.pi / 60
-    st = forces.get("stress")
-    contact = None if st is None else Contact(st["cam_material"], st["follower_material"], st["length_mm"])
+    st = forces.hertz
+    contact = materials_of(st)
     contacts = []
     for k, (cam, force) in enumerate(zip(pair, pair_forces(pair, ld, omega), strict=True)):
         contacts.append((f"cam {k + 1}", cam, lambda g, cam=cam: 1.0 / g.kappa - cam.contact_radius, force,
                          None if contact is None else _pressure(cam, force, contact)))
     return drive_checks_plot(spec.name, design.cams[0].pressure_limit_deg, contacts,
-                             lambda t, m: torque(ld, omega, m, t), None if st is None else st["allowable_MPa"],
+                             lambda t, m: torque(ld, omega, m, t), None if st is None else st.allowable,
                              max(cam.contact_radius for cam in pair), getattr(spec.output, "tool_radius", 0.0))

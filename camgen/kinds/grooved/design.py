@@ -255,7 +255,8 @@ def design_grooved(spec: GroovedSpec) -> GroovedDesign:
             Contact(spec.cam.material, f.material, min(depth, f.roller_width or depth)), inner.offset_mm,
             f.roller_radius)
         # the island's cam: the same pitch curve, arm
-        speed = {**speed, **drive_speed(spec, cam, ("inner flank", "outer flank"), walls)}
+        forces, speeds = drive_speed(spec, cam, ("inner flank", "outer flank"), walls)
+        speed = dataclasses.replace(speed, forces=forces, speeds=speeds)
     profile = FlatCamDesign.of(cut, spec, speed, sizing)
     curves = cut.finish.outline_curves
 

@@ -129,17 +129,22 @@ def grooved_bundle(design: GroovedDesign) -> tuple[Bundle, dict[str, Any]]:
     mesh, mesh_check = printed_mesh(design.spec, design.printed)
     volume = volume_check([design.printed], mesh_check.volume_mm3) if mesh_check is not None else None
     report = grooved_report(design, mesh_check, volume)
-    speed = design.profile.speed or {}
+    speed = design.profile.speed
+    forces, speeds = (None, None) if speed is None else (speed.forces, speed.speeds)
 
     def plot(kind: str) -> Any:
         from camgen import plots
         from camgen.kinds.grooved.plots import grooved_checks_figure
 
-        return {"svaj": lambda: plots.svaj_figure(design.profile), "checks": lambda: grooved_checks_figure(
-            design), "speeds": lambda: plots.speeds_plot(design.spec.name, speed["speeds"])}.get(
-            kind, lambda: grooved_figure(design))()
+        if kind == "svaj":
+            return plots.svaj_figure(design.profile)
+        if kind == "checks":
+            return grooved_checks_figure(design)
+        if kind == "speeds" and speeds is not None:
+            return plots.speeds_plot(design.spec.name, speeds)
+        return grooved_figure(design)
 
-    checks = (("checks",) if speed.get("forces") else ()) + (("speeds",) if "speeds" in speed else ())
+    checks = (("checks",) if forces else ()) + (("speeds",) if speeds else ())
     return cam_files(design.spec, design.cut, mesh, plot, report, lambda: grooved_page(design, report),
                      ("svaj", "cam", *checks),
                      printed=step_plate(design) if "step" in design.spec.output.formats else None), report

@@ -15,6 +15,7 @@ from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
 from camgen.kinds.machine.keeptime import timing_report
 from camgen.kinds.machine.poses import poses_report
+from camgen.speed import Speed
 
 
 def _num(value: float, digits: int = 9) -> float:
@@ -47,8 +48,8 @@ def timing(design: MachineDesign) -> dict[str, Any]:
 def _cam_entry(design: MachineDesign, index: int) -> dict[str, Any]:
     cam, mount = design.cams[index], design.spec.cams[index]
     profile = _profile(cam.design)
-    speed = getattr(profile, "speed", None) or getattr(cam.design, "speed", None) or {}
-    contact = speed.get("contact") if isinstance(speed, dict) else None
+    speed = getattr(profile, "speed", None) or getattr(cam.design, "speed", None)
+    contact = speed.contact if isinstance(speed, Speed) else None
     out = {"shaft": mount.shaft, "layer": mount.layer, "phase_deg": mount.phase, "kind": cam.design.spec.kind,
            "turns_per_main_turn": cam.turns, "rpm": cam.design.spec.cam.rpm,
            "follower": cam.design.spec.follower.type, "unit": cam.unit,
@@ -56,7 +57,7 @@ def _cam_entry(design: MachineDesign, index: int) -> dict[str, Any]:
            "pressure_angle_max_deg": _num(profile.analysis.pressure_angle_max_deg, 6),
            "base_radius_mm": _num(_cam_of(cam.design).base_radius, 6), "files_prefix": cam.design.spec.name}
     if contact:
-        out["contact"] = {k: v for k, v in contact.items() if not isinstance(v, list)}
+        out["contact"] = {k: v for k, v in contact.as_report().items() if not isinstance(v, list)}
     return out
 
 
