@@ -408,9 +408,11 @@ def _runs(p: Problem, seeds: list[int], jobs: int, scheduler: str | None, report
         if report is not None:
             report(1.0, f"{len(seeds)} searches done", [c for r in runs for c in found(r)])
         return runs
-    runs, so_far, total = [], [], len(seeds) * p.generations
+    runs: list[dict[str, Any]] = []
+    so_far: list[Candidate] = []
+    total = len(seeds) * p.generations
     for k, seed in enumerate(seeds):
-        def generation(nit: int, k: int = k) -> None:
+        def generation(nit: int, k: int = k, so_far: list[Candidate] = so_far) -> None:
             report(min(k * p.generations + nit, total) / total,
                    f"search {k + 1} of {len(seeds)}, generation {nit} of {p.generations}", so_far)
 

@@ -128,8 +128,8 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None,
         info["ran_on"] = "this process" + (" (an analytic method: --jobs and --scheduler serve path searches)"
                                            if jobs > 1 or scheduler else "")
     if follow is not None:
-        follow(SEARCH_SHARE if task.kind == "path" else 0.5, f"{len(found)} linkages found; ranking and writing the best",
-               found if follow.count else [])
+        follow(SEARCH_SHARE if task.kind == "path" else 0.5,
+               f"{len(found)} linkages found; ranking and writing the best", found if follow.count else [])
     offered = _offered(spec, found)
     if progress is not None and not progress(Progress(1.0, f"{len(offered)} candidates offered", offered)):
         raise Cancelled(offered)
