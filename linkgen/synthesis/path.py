@@ -404,10 +404,10 @@ def _runs(p: Problem, seeds: list[int], jobs: int, scheduler: str | None, report
     with a ``report`` and ``jobs`` 1, one after another here with ``report`` called after each generation and
     each search (``found`` gives a run's candidates)."""
     if report is None or jobs > 1 or scheduler is not None:
-        runs = run_all(search, [(p, s) for s in seeds], jobs, scheduler)
+        done = run_all(search, [(p, s) for s in seeds], jobs, scheduler)
         if report is not None:
-            report(1.0, f"{len(seeds)} searches done", [c for r in runs for c in found(r)])
-        return runs
+            report(1.0, f"{len(seeds)} searches done", [c for r in done for c in found(r)])
+        return done
     runs: list[dict[str, Any]] = []
     so_far: list[Candidate] = []
     total = len(seeds) * p.generations
