@@ -172,6 +172,8 @@ class Session:
     entries: dict[str, dict[str, Any]] = field(default_factory=dict)
     #: one message at a time: an answer abandoned past its time limit may still be running
     lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+    #: the tab's synthesis' latest candidates: name -> template text (replaced whole as they come, never edited)
+    candidates: dict[str, str] = field(default_factory=dict)
 
     # -- what the tab asks ------------------------------------------------------------------------------------------
     def handle(self, message: Any, abandoned: threading.Event | None = None) -> dict[str, Any]:
@@ -212,6 +214,18 @@ class Session:
         raw = self._read(text)
         state = self._designed(raw, None, abandoned)
         self.texts, self.at, self.file = [text], 0, path.relative_to(self.root).as_posix()
+        return self._commit(state)
+
+    def candidate(self, message: Mapping[str, Any], abandoned: threading.Event) -> dict[str, Any]:
+        """Open the candidate ``name`` of the tab's synthesis as the design: its template as ``linkgen synthesize``
+        writes it, not yet saved (undo goes back to it, save writes it)."""
+        name = message.get("name")
+        text = self.candidates.get(name) if isinstance(name, str) else None
+        if text is None:
+            offered = ", ".join(self.candidates) or "none yet: run a synthesis"
+            raise SpecError(f"no candidate {name!r} of this tab's synthesis (offered: {offered})", "candidate")
+        state = self._designed(self._read(text), None, abandoned)
+        self.texts, self.at, self.file = [text], 0, None
         return self._commit(state)
 
     def listing(self, message: Mapping[str, Any], abandoned: threading.Event) -> dict[str, Any]:
@@ -389,4 +403,4 @@ def _follow_checks(raw: dict[str, Any], joint: str) -> None:
 OPS: dict[str, Callable[[Session, Mapping[str, Any], threading.Event], dict[str, Any]]] = {
     "open": Session.open, "list": Session.listing, "set": Session.set_field, "drag": Session.drag,
     "angle": Session.turn, "undo": Session.undo, "redo": Session.redo, "save": Session.save,
-    "export": Session.export}
+    "export": Session.export, "candidate": Session.candidate}
