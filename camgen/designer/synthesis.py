@@ -18,6 +18,8 @@ from camgen.core.toml_text import dumps
 EVERY_SECONDS = 0.1
 #: the candidate templates' base name where the page gives none
 NAME = "synthesis"
+#: every how many of a candidate's figure's path points the tab draws (its coupler curve)
+CURVE_STEP = 4
 #: the summary numbers shown of each candidate, where its row has them
 SHOWN = ("error_mm2", "rank_score", "transmission_worst_deg", "ground", "crank", "coupler", "rocker", "rod")
 
@@ -39,7 +41,10 @@ def candidate_json(offered: Any) -> dict[str, Any]:
     the comment) and its summary numbers; NaN-free."""
     row = {k: offered.row[k] for k in SHOWN if isinstance(offered.row.get(k), (int, float))
            and math.isfinite(offered.row[k])}
-    return {"name": offered.name, "text": dumps(offered.template), "row": row}
+    paths = offered.sketch.paths
+    curve = paths[0][1][::CURVE_STEP].round(6).tolist() if paths and len(paths[0][1]) else []
+    return {"name": offered.name, "text": dumps(offered.template), "row": row,
+            "curve": [xy for xy in curve if all(math.isfinite(v) for v in xy)]}
 
 
 @dataclass
