@@ -152,3 +152,19 @@ def test_a_disconnect_mid_synthesis_stops_its_thread_and_the_server_goes_on(tmp_
             assert dragged["kind"] == "preview"
     assert set(Path(tempfile.gettempdir()).glob("camgen-designer-*")) <= temporaries
     assert (folder / "jansen.toml").read_bytes() == (ROOT / "templates" / "jansen.toml").read_bytes()
+
+
+def test_ctrl_c_during_a_synthesis_stops_the_server_cleanly(tmp_path):
+    """The tab still open and its synthesis running when the server is stopped: exit code 0, no traceback, no
+    temporary folder (the checks of :func:`tests.designer_server.designer`)."""
+    from websockets.sync.client import connect
+
+    folder = _folder(tmp_path, "jansen")
+    # the tab closes only after the server has stopped (the stack exits last)
+    with contextlib.ExitStack() as later, designer(folder, "jansen.toml") as url:
+        ws = later.enter_context(connect(url.replace("http", "ws") + "ws", max_size=None, open_timeout=30))
+        json.loads(ws.recv(timeout=60))
+        json.loads(ws.recv(timeout=60))
+        assert _ask(ws, {"op": "synthesize", "task": LONG})["kind"] == "synthesis-started"
+        _progress(ws)
+    assert (folder / "jansen.toml").read_bytes() == (ROOT / "templates" / "jansen.toml").read_bytes()
