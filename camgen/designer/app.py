@@ -11,6 +11,7 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from camgen.designer.background import Background, background_op
 from camgen.designer.session import Abandoned, Session
 
 #: the largest message a tab may send (bytes of text); the server's websocket refuses a frame past 4 times it
@@ -81,11 +82,18 @@ def make_app(root: Path, template: str | None = None, port: int | None = None) -
             return
         await ws.accept()
         session = Session(root)                          # this tab's own design: nothing shared between tabs
+        sending = asyncio.Lock()                         # answers and a synthesis' messages, one at a time
+
+        async def send(reply: dict[str, Any]) -> None:
+            async with sending:
+                await ws.send_json(reply)
+
+        background = Background(session, send)           # its synthesis: stopped when the tab goes
         try:
             greetings = ([json.dumps({"op": "open", "path": template})] if template is not None else []) + [
                 json.dumps({"op": "list"})]
             for text in greetings:                       # what the tab is shown unasked: the template, the folder
-                await ws.send_json({**await answer(session, text), "greeting": True})
+                await send({**await answer(session, text), "greeting": True})
             while True:
                 event = await ws.receive()
                 if event["type"] == "websocket.disconnect":
@@ -95,10 +103,15 @@ def make_app(root: Path, template: str | None = None, port: int | None = None) -
                     data = event.get("bytes") or b""
                     reply = _too_big(len(data)) if len(data) > MAX_MESSAGE else {
                         "kind": "error", "field": "message", "fields": [], "message": "error: message: send text"}
+                elif (asked := background_op(received, MAX_MESSAGE)) is not None:
+                    reply = await background.answer(asked)
                 else:
                     reply = await answer(session, received)
-                await ws.send_json(reply)
+                await send(reply)
+                background.launch()
         except WebSocketDisconnect:
             return
+        finally:
+            await background.close()
 
     return Starlette(routes=[Route("/", index), WebSocketRoute("/ws", socket)])

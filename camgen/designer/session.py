@@ -28,6 +28,8 @@ MAX_TEMPLATE = 1 << 20
 MAX_HISTORY = 500
 #: the most template files listed of the folder
 MAX_LISTED = 500
+#: an animation's options where the tab leaves them out: the ``animate`` commands' defaults
+ANIMATION_DEFAULTS = {"frames": 72, "size": "640x480", "fps": 24.0, "format": "gif"}
 #: the most fields one edit changes together
 MAX_CHANGES = 100
 
@@ -172,6 +174,8 @@ class Session:
     entries: dict[str, dict[str, Any]] = field(default_factory=dict)
     #: one message at a time: an answer abandoned past its time limit may still be running
     lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+    #: the tab's synthesis' latest candidates: name -> template text (replaced whole as they come, never edited)
+    candidates: dict[str, str] = field(default_factory=dict)
 
     # -- what the tab asks ------------------------------------------------------------------------------------------
     def handle(self, message: Any, abandoned: threading.Event | None = None) -> dict[str, Any]:
@@ -212,6 +216,18 @@ class Session:
         raw = self._read(text)
         state = self._designed(raw, None, abandoned)
         self.texts, self.at, self.file = [text], 0, path.relative_to(self.root).as_posix()
+        return self._commit(state)
+
+    def candidate(self, message: Mapping[str, Any], abandoned: threading.Event) -> dict[str, Any]:
+        """Open the candidate ``name`` of the tab's synthesis as the design: its template as ``linkgen synthesize``
+        writes it, not yet saved (undo goes back to it, save writes it)."""
+        name = message.get("name")
+        text = self.candidates.get(name) if isinstance(name, str) else None
+        if text is None:
+            offered = ", ".join(self.candidates) or "none yet: run a synthesis"
+            raise SpecError(f"no candidate {name!r} of this tab's synthesis (offered: {offered})", "candidate")
+        state = self._designed(self._read(text), None, abandoned)
+        self.texts, self.at, self.file = [text], 0, None
         return self._commit(state)
 
     def listing(self, message: Mapping[str, Any], abandoned: threading.Event) -> dict[str, Any]:
@@ -298,6 +314,40 @@ class Session:
         if abandoned.is_set():
             raise Abandoned
         return {"kind": "export", "name": f"{spec.name}.zip", "data": base64.b64encode(buffer.getvalue()).decode()}
+
+    def animate(self, message: Mapping[str, Any], abandoned: threading.Event) -> dict[str, Any]:
+        """One full cycle of this design as ``linkgen animate`` or ``camgen animate`` writes it (``frames``,
+        ``size`` as ``WxH`` pixels, ``fps``, ``format``: the commands' options and bounds, refused in their line),
+        as a file to download (base64)."""
+        from camgen.core.animation import animation_options
+        from camgen.core.writers.animation import write_animation
+
+        asked = {**ANIMATION_DEFAULTS, **message}
+        frames, size, fps, fmt = (asked[k] for k in ("frames", "size", "fps", "format"))
+        if not (isinstance(frames, int) and not isinstance(frames, bool) and isinstance(size, str)
+                and isinstance(fps, (int, float)) and not isinstance(fps, bool) and isinstance(fmt, str)):
+            raise SpecError("give frames (a whole number), size (WxH), fps (a number) and format (a name)", "animate")
+        options = animation_options(frames, size, float(fps), fmt)
+        raw = self._raw()
+        program = _program(raw)
+        spec = _api(program).validate(_one_design(raw, self.root))
+        if program == "linkgen":
+            from linkgen.animation import analysis_for_animation, linkage_frames
+            from linkgen.linkage_design import design_linkage
+
+            drawn = linkage_frames(analysis_for_animation(design_linkage(spec)), options.frames, options.size)
+        else:
+            from camgen.animation import cam_frames, disc_design
+
+            drawn = cam_frames(disc_design(_api(program).design(spec)), options.frames, options.size)
+        if abandoned.is_set():
+            raise Abandoned
+        name = f"{spec.name}-animation.{options.format}"
+        with tempfile.TemporaryDirectory(prefix="camgen-designer-") as tmp:
+            path = Path(tmp) / name
+            write_animation(drawn, path, options.format, options.fps)
+            data = path.read_bytes()
+        return {"kind": "animation", "name": name, "format": options.format, "data": base64.b64encode(data).decode()}
 
     # -- the state ------------------------------------------------------------------------------------------------
     def _text(self) -> str:
@@ -389,4 +439,4 @@ def _follow_checks(raw: dict[str, Any], joint: str) -> None:
 OPS: dict[str, Callable[[Session, Mapping[str, Any], threading.Event], dict[str, Any]]] = {
     "open": Session.open, "list": Session.listing, "set": Session.set_field, "drag": Session.drag,
     "angle": Session.turn, "undo": Session.undo, "redo": Session.redo, "save": Session.save,
-    "export": Session.export}
+    "export": Session.export, "candidate": Session.candidate, "animate": Session.animate}

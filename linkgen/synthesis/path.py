@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -297,15 +298,21 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float, np.ndarray, f
     return base[:, 0], branch, th[0], found
 
 
-def search(args: tuple[Problem, int]) -> dict[str, Any]:
+def search(args: tuple[Problem, int], generation: Callable[[int], None] | None = None) -> dict[str, Any]:
     """One seeded search: differential evolution, then its best few distinct designs polished. Returns the
     polished designs that keep every constraint (base, branch, angles, error) and the number of vectorised
-    evaluations (each of the whole population)."""
+    evaluations (each of the whole population). ``generation``, if given, is called with the count of generations
+    run after each (it may raise to stop the search; it changes nothing of the search's numbers)."""
     from scipy.optimize import differential_evolution
 
     p, seed = args
+    def hook(intermediate_result: Any) -> None:      # scipy passes the result so far to a parameter of this name
+        if generation is not None:
+            generation(int(intermediate_result.nit))
+
     r = differential_evolution(objective, p.bounds, args=(p,), vectorized=True, updating="deferred", seed=seed,
-                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False)
+                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False,
+                               callback=None if generation is None else hook)
     lo, hi = np.array(p.bounds).T
     unit = (r.population - lo) / (hi - lo)
     picked: list[int] = []
@@ -386,12 +393,48 @@ def _candidate(base: list[float], branch: float, th: list[float], p: Problem, cr
     return Candidate(table, row, float(sq.sum()), signature, sketch)
 
 
-def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[Candidate], dict[str, Any]]:
-    """Path generation for a validated path task: the candidates (unranked) and how the search went."""
+#: what :func:`solve` reports as it goes: the fraction done (0 to 1), the stage in words and the candidates found so
+#: far (weighed, unranked); it may raise to stop the search
+Report = Callable[[float, str, list[Candidate]], None]
+
+
+def _runs(p: Problem, seeds: list[int], jobs: int, scheduler: str | None, report: Report | None,
+          found: Callable[[dict[str, Any]], list[Candidate]]) -> list[dict[str, Any]]:
+    """Every seeded search's run: on ``jobs`` processes or the cluster (``report`` called once, at the end), or,
+    with a ``report`` and ``jobs`` 1, one after another here with ``report`` called after each generation and
+    each search (``found`` gives a run's candidates)."""
+    if report is None or jobs > 1 or scheduler is not None:
+        done = run_all(search, [(p, s) for s in seeds], jobs, scheduler)
+        if report is not None:
+            report(1.0, f"{len(seeds)} searches done", [c for r in done for c in found(r)])
+        return done
+    runs: list[dict[str, Any]] = []
+    so_far: list[Candidate] = []
+    total = len(seeds) * p.generations
+    for k, seed in enumerate(seeds):
+        def generation(nit: int, k: int = k, so_far: list[Candidate] = so_far) -> None:
+            report(min(k * p.generations + nit, total) / total,
+                   f"search {k + 1} of {len(seeds)}, generation {nit} of {p.generations}", so_far)
+
+        runs.append(search((p, seed), generation))
+        so_far = so_far + found(runs[-1])
+        report((k + 1) / len(seeds), f"search {k + 1} of {len(seeds)} polished", so_far)
+    return runs
+
+
+def solve(task: Any, jobs: int = 1, scheduler: str | None = None,
+          report: Report | None = None) -> tuple[list[Candidate], dict[str, Any]]:
+    """Path generation for a validated path task: the candidates (unranked) and how the search went; ``report``
+    (see :data:`Report`) follows it, each generation where it runs here (``jobs`` 1), without changing it."""
     p = problem_of(task)
     seeds = [int(s.generate_state(1)[0]) for s in np.random.SeedSequence(task.seed).spawn(task.starts)]
+
+    def found(run: dict[str, Any]) -> list[Candidate]:
+        made = (_candidate(base, branch, th, p, task.crank) for base, branch, th, _ in run["found"])
+        return [weighed(c) for c in made if c is not None]
+
     clock = time.perf_counter()
-    runs = run_all(search, [(p, s) for s in seeds], jobs, scheduler)
+    runs = _runs(p, seeds, jobs, scheduler, report, found)
     seconds = time.perf_counter() - clock
     out, designs, polished = [], [], 0
     for run in runs:
