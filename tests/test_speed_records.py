@@ -12,7 +12,7 @@ import pytest
 
 from camgen.kinds.conjugate.design import design_conjugate
 from camgen.kinds.grooved.design import design_grooved
-from camgen.profile import design_cam
+from camgen.api import design_cam
 from camgen.report import cam_report
 from camgen.spec import load_spec
 from camgen.speed import (KNIFE_NOTE, Forces, GravityHold, HeldContact, KnifeEdge, LoadRange, SpeedRow, SpeedTable,
