@@ -1,4 +1,4 @@
-"""Sphinx configuration of the camgen / linkgen documentation (built by tests/test_docs.py, warnings as errors).
+"""Sphinx configuration of the camgen / linkgen documentation (built by tests/project/test_docs.py, warnings as errors).
 
 Pages are Markdown (myst-parser); the API reference is autodoc with napoleon (numpydoc docstrings); the CLI
 reference is sphinx-click; the template-key reference and the gallery are this folder's own extensions in _ext/,

@@ -12,7 +12,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from tests.designer_server import designer  # noqa: E402
+from tests.support.designer_server import designer  # noqa: E402
 
 
 def main() -> None:

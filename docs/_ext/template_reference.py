@@ -5,7 +5,7 @@ may hold, and in it one row a key: its type, unit, allowed values or range, defa
 the model's field (``Field(description=...)``, ``json_schema_extra={"unit": ...}``, the bounds and ``Literal`` values
 of its annotation, and the notes of ``camgen.core.spec.notes``: ``"allowed"``, a rule beyond the bounds, and
 ``"absent"``, what leaving out a key whose default is None means). The models are the one source of these facts:
-the error messages, the starter templates' comments and this page all read them. ``tests/test_docs.py`` compares
+the error messages, the starter templates' comments and this page all read them. ``tests/project/test_docs.py`` compares
 the built page with the models.
 """
 from __future__ import annotations

@@ -65,7 +65,7 @@ PINS = MappingProxyType({m.name: m for m in (
     *(SHEETS[name] for name in ("aluminium", "pla", "petg")),    # a pin of the sheets' own aluminium or plastics
 )})
 
-#: the names of :data:`SHEETS` and of :data:`PINS`, written out for the type checker (tests/test_types.py checks
+#: the names of :data:`SHEETS` and of :data:`PINS`, written out for the type checker (tests/project/test_types.py checks
 #: that each names exactly its table's entries, in order)
 SheetName = Literal["plywood", "mdf", "acrylic", "aluminium", "steel", "pla", "petg"]
 PinName = Literal["steel", "brass", "aluminium", "pla", "petg"]

@@ -22,7 +22,7 @@ from camgen.cli import main as camgen
 from camgen.core.errors import DesignError, ExportError, SpecError
 from linkgen.cli import main as linkgen
 from tests.conftest import RDRD, ROOT, template
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 TEMPLATES = ROOT / "templates"
 RDRD_FILE = TEMPLATES / "rdrd.toml"

@@ -10,7 +10,7 @@ import tomllib
 import pytest
 
 from tests.conftest import ROOT
-from tests.designer_server import designer
+from tests.support.designer_server import designer
 
 pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")

@@ -9,10 +9,10 @@ import time
 
 import pytest
 
-from tests.designer_server import designer
-from tests.test_designer import _ask, _folder, _snapshot, _tab
-from tests.test_designer_browser import _run, _save, _settled
-from tests.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
+from tests.support.designer_server import designer
+from tests.camgen.test_designer import _ask, _folder, _snapshot, _tab
+from tests.project.test_designer_browser import _run, _save, _settled
+from tests.project.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
 
 pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")

@@ -11,8 +11,8 @@ import time
 import pytest
 
 from tests.conftest import ROOT
-from tests.designer_server import designer
-from tests.test_designer import _ask, _folder, _snapshot, _tab
+from tests.support.designer_server import designer
+from tests.camgen.test_designer import _ask, _folder, _snapshot, _tab
 
 pytest.importorskip("starlette")
 pytest.importorskip("uvicorn")
@@ -156,7 +156,7 @@ def test_a_disconnect_mid_synthesis_stops_its_thread_and_the_server_goes_on(tmp_
 
 def test_ctrl_c_during_a_synthesis_stops_the_server_cleanly(tmp_path):
     """The tab still open and its synthesis running when the server is stopped: exit code 0, no traceback, no
-    temporary folder (the checks of :func:`tests.designer_server.designer`)."""
+    temporary folder (the checks of :func:`tests.support.designer_server.designer`)."""
     from websockets.sync.client import connect
 
     folder = _folder(tmp_path, "jansen")

@@ -66,7 +66,7 @@ def test_spring_contact_force_and_the_spring_that_would_hold():
 
 
 def test_contact_for_an_oscillating_follower_is_not_guessed():
-    from tests.test_followers import OSC_ROLLER, spec
+    from tests.camgen.test_followers import OSC_ROLLER, spec
 
     d = design_cam(spec({**OSC_ROLLER, "cam.rpm": 60.0, "follower.mass": 0.2}))
     assert d.speed.unit == "deg" and isinstance(d.speed.contact, Unanalysed)

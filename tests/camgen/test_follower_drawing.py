@@ -2,7 +2,8 @@
 cam figure's lines are what the page and the figure drew before, when they held a branch a follower type.
 
 The reference, tests/data/follower_drawing.json, was recorded from main before the change by
-tests/follower_drawing.py (the same extraction as here); each drawing is compared point for point within 1e-9 mm."""
+tests/support/follower_drawing.py (the same extraction as here); each drawing is compared point for point within 1e-9
+mm."""
 from __future__ import annotations
 
 import json
@@ -11,7 +12,7 @@ import numpy as np
 import pytest
 
 from camgen.followers.drawing import Follower, Stroke
-from tests.follower_drawing import DATA, STARTERS, drawing
+from tests.support.follower_drawing import DATA, STARTERS, drawing
 
 RECORDED = json.loads(DATA.read_text())
 

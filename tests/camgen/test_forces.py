@@ -17,9 +17,9 @@ from camgen.kinds.barrel.design import design_barrel
 from camgen.kinds.grooved.design import design_grooved
 from camgen.spec import load_spec
 from camgen.speed import LoadRange
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
+from tests.conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 RDRD = ROOT / "templates" / "rdrd.toml"
 LOADED = ("cam.rpm=300", "follower.mass=0.2", "follower.spring_rate=0.5", "follower.preload=5",
           "follower.load=3", 'cam.material="pla"')

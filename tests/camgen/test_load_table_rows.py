@@ -9,7 +9,6 @@ same table given with its rows at 360 degrees repeated (which splits nothing mor
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,8 +16,8 @@ import pytest
 from camgen.api import design_cam
 from camgen.dynamics import LoadTable
 from camgen.spec import load_spec
+from tests.conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 RDRD = ROOT / "templates" / "rdrd.toml"
 LOADED = ("cam.rpm=300", "follower.mass=0.2", "follower.spring_rate=0.5", "follower.preload=5")
 

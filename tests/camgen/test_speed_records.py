@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from pathlib import Path
 
 import pytest
 
@@ -17,8 +16,8 @@ from camgen.report import cam_report
 from camgen.spec import load_spec
 from camgen.speed import (KNIFE_NOTE, Forces, GravityHold, HeldContact, KnifeEdge, LoadRange, SpeedRow, SpeedTable,
                           Stress, Unanalysed)
+from tests.conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 TEMPLATES = ROOT / "templates"
 
 RATES = ["rpm", "omega_rad_s", "velocity_max_mm_s", "velocity_max_at_deg", "acceleration_max_mm_s2",
@@ -88,7 +87,7 @@ def test_the_contact_checks_each_keep_their_keys():
     assert isinstance(gravity.contact, GravityHold) and gravity.contact.mode == "gravity"
     assert list(gravity.as_report()["contact"]) == ["mode", "liftoff_rpm", "liftoff_at_deg", "holds"]
     assert list(gravity.as_report()) == [*RATES, "forces"] and list(gravity.as_report()["forces"]) == TORQUES
-    from tests.test_followers import OSC_ROLLER, spec
+    from tests.camgen.test_followers import OSC_ROLLER, spec
 
     free = design_cam(spec({**OSC_ROLLER, "cam.rpm": 60.0, "follower.mass": 0.2})).speed
     assert isinstance(free.contact, Unanalysed) and free.forces is None

@@ -13,8 +13,8 @@ from camgen.dynamics import spec_loading
 from camgen.forces import cycle_mean, torque
 from camgen.spec import load_spec
 from camgen.speed import Speed
-from tests.refusals import assert_refused
-from tests.test_forces import LOADED, RDRD, ROOT, _design  # the loaded rdrd of the forces tests
+from tests.support.refusals import assert_refused
+from tests.camgen.test_forces import LOADED, RDRD, ROOT, _design  # the loaded rdrd of the forces tests
 
 
 def _with_loads(folder: Path, loads: dict[int, float]) -> Path:

@@ -18,6 +18,7 @@ from camgen.core.errors import SpecError
 from linkgen.cli import main as linkgen
 from linkgen.mechanisms import MECHANISMS
 from linkgen.starters import STARTERS as LINKAGE_STARTERS
+from tests.conftest import ROOT
 
 #: every cam kind's starter, with its kind
 CAM_STARTERS = starters()
@@ -85,9 +86,8 @@ def test_no_file_is_overwritten_and_bad_names_are_refused(tmp_path, monkeypatch)
 
 def test_a_part_sharing_the_printable_pins_files_is_refused(tmp_path):
     """A slider named "pin" makes a block part "pin": its STL would be the printable pin's."""
-    from pathlib import Path
 
-    text = (Path(__file__).resolve().parent.parent / "templates" / "toggle-press.toml").read_text()
+    text = (ROOT / "templates" / "toggle-press.toml").read_text()
     path = tmp_path / "press.toml"
     path.write_text(text.replace("[linkage.sliders.ram]", "[linkage.sliders.pin]"))
     code, output = _run(linkgen, ["build", path, "-o", tmp_path / "o", "--set", "parts.pins=true"])

@@ -3,7 +3,6 @@ stated continuity inside and at the ends, a return's table, the CSV read beside 
 from __future__ import annotations
 
 import shutil
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,8 +15,8 @@ from camgen.laws import make_law
 from camgen.laws.fitted import table_law
 from camgen.numeric import left_of
 from camgen.spec import load_spec, validate_spec
+from tests.conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 TEMPLATE = ROOT / "templates" / "table-law.toml"
 CYCLOIDAL = make_law("cycloidal")
 

@@ -11,7 +11,7 @@ from click.testing import CliRunner
 from camgen.cli import main as camgen
 from camgen.core.bundle import staged
 from camgen.core.errors import ExportError
-from tests.test_machine import AUTOMATON
+from tests.camgen.kinds.machine.test_machine import AUTOMATON
 
 
 def _tree(folder) -> set[str]:

@@ -176,8 +176,8 @@ def test_step_holds_the_plate_and_the_pin_as_on_the_sheet(tmp_path):
     FreeCAD: each its exact area x thickness (the holes nominal + c_k + output.clearance, the pin pi d^2 / 4 x
     pin_length), the plate's box from the origin, the pin's round its centre beside the plate on the cut sheet."""
     pytest.importorskip("OCP")
-    from tests.freecad import freecad_check
-    from tests.test_step import _fc, assert_apart, assert_plate, expect_plate, measure, read_step
+    from tests.support.freecad import freecad_check
+    from tests.core.test_step import _fc, assert_apart, assert_plate, expect_plate, measure, read_step
 
     report = coupon(tmp_path, None, [f"output.clearance={PRINT}", 'output.formats=["step","json","dxf"]'])
     assert report["files"]["step"] == "coupon.step"

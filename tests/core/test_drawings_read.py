@@ -11,8 +11,7 @@ from click.testing import CliRunner
 
 from camgen.core.parts import ACI_RGB, LAYER_LABELS, POSE_COLOURS, layer_colour
 from linkgen.cli import main as linkgen
-
-ROOT = Path(__file__).resolve().parent.parent
+from tests.conftest import ROOT
 
 
 @pytest.fixture(scope="module")

@@ -268,7 +268,7 @@ def test_killing_a_family_leaves_no_worker_and_a_rerun_finishes_it(tmp_path, sig
 
 def test_the_sheet_table_is_a_model_and_every_key_documented():
     """The family's [sheet] table is validated by its model (camgen.core.family.SheetTable): errors name
-    sheet.<key>, defaults fill what is not given (tests/test_docs.py checks the template reference lists every
+    sheet.<key>, defaults fill what is not given (tests/project/test_docs.py checks the template reference lists every
     key)."""
     from camgen.core.family import SheetTable, split_family
 

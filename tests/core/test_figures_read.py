@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import math
 import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -17,8 +16,7 @@ from camgen.core.shapes import Circle, Polyline
 from camgen.api import design_cam
 from camgen.plots import cam_figure
 from camgen.spec import validate_spec
-
-ROOT = Path(__file__).resolve().parent.parent
+from tests.conftest import ROOT
 
 
 def _disc(radius: float, n: int = 90) -> list[list[float]]:

@@ -13,7 +13,7 @@ from camgen.api import write_cam
 from camgen.flat import build_cam
 from camgen.api import design_cam
 from camgen.surface import surface_deviation
-from tests.conftest import template
+from tests.conftest import template, ROOT
 
 TOL = 0.01
 
@@ -168,7 +168,6 @@ def test_every_file_is_reproducible_across_processes(tmp_path, program, template
 def test_no_negative_zero_in_reports_or_on_the_console(tmp_path):
     """The toggle press's ram runs on x = 0: rounding leaves -0.0 and -1e-13; the JSON says 0.0 and the console
     0.000 (a sign on nothing reads as a direction)."""
-    from pathlib import Path
 
     from click.testing import CliRunner
 
@@ -179,7 +178,7 @@ def test_no_negative_zero_in_reports_or_on_the_console(tmp_path):
     assert report_json({"a": [-0.0, (1.5, -0.0)], "b": {"c": -0.0, "d": -2.0}}) == report_json(
         {"a": [0.0, [1.5, 0.0]], "b": {"c": 0.0, "d": -2.0}})
     assert (fixed(-1e-13), fixed(-0.0004), fixed(-0.0006), fixed(2.5, 1)) == ("0.000", "0.000", "-0.001", "2.5")
-    template = Path(__file__).resolve().parent.parent / "templates" / "toggle-press.toml"
+    template = ROOT / "templates" / "toggle-press.toml"
     result = CliRunner().invoke(linkgen, ["analyze", str(template), "-o", str(tmp_path)])
     assert result.exit_code == 0 and "tracer R: x 0.000 to 0.000 mm (0.000 wide)" in result.output
     assert "-0.0," not in (tmp_path / "toggle-press.json").read_text() and "-0.0\n" not in (

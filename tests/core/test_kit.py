@@ -560,7 +560,7 @@ def test_kit_step_holds_every_kit_part_exactly(tmp_path):
     pytest.importorskip("OCP")
     from camgen.profile import step_part
     from camgen.kit import cam_kit
-    from tests.test_step import assert_apart, assert_placed, holes_at, measure, read_step
+    from tests.core.test_step import assert_apart, assert_placed, holes_at, measure, read_step
 
     out = tmp_path / "kit-rdrd"
     report = _build(camgen, TEMPLATES / "kit-rdrd.toml", out, 'output.formats=["step", "json"]')

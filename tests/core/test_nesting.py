@@ -21,8 +21,8 @@ from camgen.core.nesting import SheetRules, nest, rotations_of, shelf
 from camgen.core.parts import Part
 from camgen.core.shapes import Circle, Contour, rounded_hull
 from linkgen.cli import main as linkgen
+from tests.conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 JANSEN = ROOT / "templates" / "jansen.toml"
 FORMATS = 'output.formats=["dxf","json"]'
 

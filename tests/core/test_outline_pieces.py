@@ -23,7 +23,7 @@ from camgen.core.writers.dxf import write_dxf
 from linkgen.linkage_design import design_linkage
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.freecad import freecad_check
+from tests.support.freecad import freecad_check
 
 #: the [parts] table a bundled linkage template without one is built with
 PARTS = {"width": 12.0, "thickness": 4.0, "pin_diameter": 4.0}
@@ -153,7 +153,7 @@ def test_watt_step_builds_every_part(name, tmp_path):
     from click.testing import CliRunner
 
     from linkgen.cli import main
-    from tests.test_step import measure, read_step
+    from tests.core.test_step import measure, read_step
 
     result = CliRunner().invoke(main, ["build", str(ROOT / "templates" / f"{name}.toml"), "-o", str(tmp_path),
                                        "--set", 'output.formats=["step"]'])

@@ -24,7 +24,7 @@ from camgen.profile import step_part
 from camgen.spec import load_spec
 from linkgen.cli import main as linkgen_main
 from tests.conftest import ROOT, template
-from tests.freecad import freecad_check
+from tests.support.freecad import freecad_check
 
 HOLES = {"cam.bore": 20.0, "hub.keyway": True, "hub.bolt_circle": 50.0, "hub.bolt_holes": 4,
          "hub.bolt_hole_diameter": 4.0}

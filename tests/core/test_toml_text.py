@@ -4,14 +4,12 @@ from __future__ import annotations
 
 import math
 import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from camgen.core.toml_text import dumps, toml_value
-
-ROOT = Path(__file__).resolve().parent.parent
+from tests.conftest import ROOT
 
 
 def test_every_bundled_template_reads_back_to_its_values():

@@ -169,7 +169,7 @@ def test_the_other_assembly_is_drawn_on_the_same_circuit_and_the_rocker_driven_v
 
 def test_a_crank_rockers_two_assemblies_are_two_circuits_mirrored(tmp_path):
     """The bundled crank-rocker (180, 80, 200, 150): each assembly a circuit, the crank turning fully, the rocker
-    between the extended and folded limits (law of cosines, as tests/test_fourbar.py has them), the crossed
+    between the extended and folded limits (law of cosines, as tests/linkgen/test_fourbar.py has them), the crossed
     assembly the mirror image; the swing as it was reported before."""
     fb = FourBar(180, 80, 200, 150)
     found = circuits(fb)

@@ -34,7 +34,7 @@ from linkgen.mechanisms.counter import geneva_step
 from linkgen.parts import Stock
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.refusals import assert_refused_sets
+from tests.support.refusals import assert_refused_sets
 
 TEMPLATE = ROOT / "templates" / "counter.toml"
 #: (teeth, lever swing, slots, centre distance, transfer angle): the bundled counter, a 12-tooth wheel indexed two

@@ -24,7 +24,7 @@ from linkgen.kinematics.kinetostatics import G0, Loads, kinetostatics
 from linkgen.kinematics.linkage import Linkage
 from linkgen.spec import load_spec
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 JANSEN = ROOT / "templates" / "jansen-dynamics.toml"
 RPM = 2 * math.pi / 60

@@ -16,7 +16,6 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -27,9 +26,9 @@ from linkgen import api
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.statics import LinkTorque, PointForce, input_effort
 from linkgen.kinematics.structure import Gear, Input, Rack, Slider, make_structure
-from tests.refusals import assert_refused_sets
+from tests.support.refusals import assert_refused_sets
+from tests.conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 FIVEBAR = ROOT / "templates" / "geared-fivebar.toml"
 
 

@@ -25,7 +25,7 @@ from camgen.core.shapes import Contour
 from linkgen.gears.pair import GearPair
 from linkgen.gears.tooth import BasicRack, ExternalTooth
 from linkgen.mechanisms.gearparts import outlines
-from tests.refusals import assert_refused_sets
+from tests.support.refusals import assert_refused_sets
 
 TOL = 0.01            # mm: the outlines' tolerance (the parts table's default)
 FINE = 1e-4           # mm: chords of the arcs when an outline is measured

@@ -231,7 +231,7 @@ def test_a_two_degree_of_freedom_chain_asks_for_another_input():
 
 def test_a_class_three_group_is_planned_as_one_group_naming_its_joints():
     """A ternary plate held by three bars, one from the crank: no dyad closes it, so it is solved as one group
-    (tests/test_groups.py checks its solution)."""
+    (tests/linkgen/test_groups.py checks its solution)."""
     pts = {"O": (0.0, 0.0), "G2": (120.0, 0.0), "G3": (60.0, -80.0), "A": (20.0, 15.0), "P": (40.0, 70.0),
            "Q": (90.0, 60.0), "R": (70.0, 30.0)}
     links = {"crank": ("O", "A"), "bar1": ("A", "P"), "plate": ("P", "Q", "R"), "bar2": ("G2", "Q"),

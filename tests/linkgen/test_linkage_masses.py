@@ -22,7 +22,7 @@ from linkgen.mechanisms.general import table_of
 from linkgen.parts import LinkPart, Stock
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 CRANK_ROCKER = tomllib.loads((ROOT / "templates" / "crank-rocker.toml").read_text())
 

@@ -13,7 +13,7 @@ from click.testing import CliRunner
 from camgen.core.errors import SpecError
 from linkgen.gears.ratchet import Pawl, RatchetWheel, teeth_per_stroke
 from linkgen.spec import validate_spec
-from tests.refusals import assert_refused_sets
+from tests.support.refusals import assert_refused_sets
 
 
 def _raw(**linkage) -> dict:

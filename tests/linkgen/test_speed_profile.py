@@ -20,8 +20,8 @@ from linkgen.dynamics.run import Dynamics
 from linkgen.dynamics.table import MAX_PROFILE_RPM
 from linkgen.spec import load_spec
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
-from tests.test_linkage_dynamics import _energy_torque
+from tests.support.refusals import assert_refused
+from tests.linkgen.test_linkage_dynamics import _energy_torque
 
 JANSEN = ROOT / "templates" / "jansen-dynamics.toml"
 PUMP = ROOT / "templates" / "pendulum-pump.toml"

@@ -66,7 +66,7 @@ def test_quick_linkgen_bench(tmp_path, tmp_path_factory, monkeypatch):
     # synthesis: each published problem solved, our error not worse than plain differential evolution's
     assert len(r["synthesis"]) == 4 and "## Synthesis" in (tmp_path / "RESULTS.md").read_text()
     # the published problems: each paper's linkage scored beside ours, ours no worse (re-checked independently in
-    # tests/test_synthesis_published.py)
+    # tests/synthesis/test_synthesis_published.py)
     assert [row["key"] for row in r["published"]] == ["mkh1", "yu1", "mkh3"]
     assert all(0 < row["ours_error"] <= row["published_error"] for row in r["published"])
     assert "## Published path problems" in (tmp_path / "RESULTS.md").read_text()

@@ -1,6 +1,6 @@
-"""The designer in headless Chromium (the page tests' browser, :mod:`tests.test_page_browser`): a joint of Jansen's
-leg dragged shows the positions ``linkgen analyze --angle`` gives of the saved template; a cam's lift edited shows
-the profile and pressure angle ``camgen build`` gives; a bad value shows the command line's line at its field and
+"""The designer in headless Chromium (the page tests' browser, :mod:`tests.project.test_page_browser`): a joint of
+Jansen's leg dragged shows the positions ``linkgen analyze --angle`` gives of the saved template; a cam's lift edited
+shows the profile and pressure angle ``camgen build`` gives; a bad value shows the command line's line at its field and
 changes nothing; undo restores the file byte for byte; export downloads the command line's files."""
 from __future__ import annotations
 
@@ -17,8 +17,8 @@ import zipfile
 import pytest
 
 from tests.conftest import ROOT
-from tests.designer_server import designer
-from tests.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
+from tests.support.designer_server import designer
+from tests.project.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
 
 pytest.importorskip("starlette")
 pytestmark = pytest.mark.skipif(not (CHROMIUM and DRIVER), reason="headless browser test: Debian's chromium and "

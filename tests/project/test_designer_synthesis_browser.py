@@ -11,14 +11,14 @@ import tomllib
 import pytest
 
 from tests.conftest import ROOT
-from tests.designer_server import designer
-from tests.test_designer_browser import _analyzed, _open, _positions, _run, _save, _settled
-from tests.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
+from tests.support.designer_server import designer
+from tests.project.test_designer_browser import _analyzed, _open, _positions, _run, _save, _settled
+from tests.project.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
 
 pytest.importorskip("starlette")
 pytestmark = pytest.mark.skipif(not (CHROMIUM and DRIVER), reason="headless browser test: Debian's chromium and "
                                 "chromium-driver are not installed (apt-get install chromium chromium-driver)")
-#: targets the tests click (mm): those of the path tests of tests/test_synthesis_progress.py
+#: targets the tests click (mm): those of the path tests of tests/synthesis/test_synthesis_progress.py
 TARGETS = [[0, 0], [10, 2], [20, 8], [28, 18], [32, 30]]
 
 

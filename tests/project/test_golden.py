@@ -1,7 +1,7 @@
 """Every bundled template gives the files recorded in tests/data/golden.json, by content within tolerances.
 
-A change that alters an output on purpose re-records them with ``python -m tests.golden`` and says so in its
-commit; any other difference is a regression. What is compared, and how closely, is :mod:`tests.golden`'s
+A change that alters an output on purpose re-records them with ``python -m tests.support.golden`` and says so in its
+commit; any other difference is a regression. What is compared, and how closely, is :mod:`tests.support.golden`'s
 docstring; bits are not (the determinism tests compare two runs byte for byte).
 """
 from __future__ import annotations
@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from tests.golden import ABS, GOLDEN, all_runs, build, differences
+from tests.support.golden import ABS, GOLDEN, all_runs, build, differences
 
 
 RECORDED = json.loads(GOLDEN.read_text())
@@ -75,7 +75,7 @@ def test_the_comparison_takes_noise_and_finds_a_change(tmp_path, name):
 
 def test_a_fingerprint_reads_a_polylines_arcs():
     """A closed polyline of two half circles (bulge 1) of radius 5: area 25 pi, length 10 pi."""
-    from tests.golden import _polyline_area, _polyline_length
+    from tests.support.golden import _polyline_area, _polyline_length
 
     points = [(0.0, 0.0, 1.0), (10.0, 0.0, 1.0)]
     assert math.isclose(_polyline_area(points, True), 25.0 * math.pi, rel_tol=1e-12)

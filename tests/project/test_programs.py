@@ -18,7 +18,7 @@ import pytest
 from camgen.api import write_cam
 from camgen.api import design_cam
 from tests.conftest import template
-from tests.freecad import freecad_check
+from tests.support.freecad import freecad_check
 
 HUB = {"cam.bore": 20.0, "hub.keyway": True, "hub.bolt_circle": 50.0, "hub.bolt_holes": 4,
        "hub.bolt_hole_diameter": 4.0, "hub.boss_diameter": 34.0, "hub.boss_height": 10.0, "hub.set_screw": 4.0}

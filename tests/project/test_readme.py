@@ -1,6 +1,6 @@
 """The README's promises: it opens with the two commands, stays short (at most 200 lines), its examples run as
 written, and its links lead to files that exist. (Every template key is documented by the generated reference,
-checked by tests/test_docs.py.)"""
+checked by tests/project/test_docs.py.)"""
 from __future__ import annotations
 
 import os
@@ -9,7 +9,7 @@ import subprocess
 import sys
 
 from tests.conftest import ROOT
-from tests.test_docs import checkout_commands
+from tests.project.test_docs import checkout_commands
 
 README = (ROOT / "README.md").read_text()
 

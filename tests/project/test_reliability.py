@@ -387,7 +387,7 @@ def test_cut_files_hold_no_duplicate_or_crossing_entities(tmp_path, template, pr
                 assert not a.boundary.intersects(b.boundary), dxf.name
 
 
-# Found by the property-based suite (tests/test_properties.py), one regression a case.
+# Found by the property-based suite (tests/project/test_properties.py), one regression a case.
 
 def set_options(sets: list[str]) -> list[str]:
     """A ``--set`` option for each of ``sets``."""

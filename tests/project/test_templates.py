@@ -35,7 +35,7 @@ def test_bundled_family(path, tmp_path):
 @pytest.mark.parametrize("path", [p for p in TEMPLATES if not {"sweep", "task"} & set(tomllib.loads(p.read_text()))],
                          ids=lambda p: p.name)
 def test_bundled_template(path, tmp_path):
-    """(Synthesis tasks, templates with a [task] table, are run by tests/test_synthesis.py.)"""
+    """(Synthesis tasks, templates with a [task] table, are run by tests/synthesis/test_synthesis.py.)"""
     is_linkage = _is_linkage(path)
     if is_linkage:
         from linkgen.cli import main

@@ -1,7 +1,7 @@
 """What each follower type draws on a cam's page and in its cam figure, as plain numbers, for
-tests/test_follower_drawing.py.
+tests/camgen/test_follower_drawing.py.
 
-``python tests/follower_drawing.py`` (with ``PYTHONPATH`` at the checkout to record from) writes
+``python tests/support/follower_drawing.py`` (with ``PYTHONPATH`` at the checkout to record from) writes
 tests/data/follower_drawing.json: for each starter below, the page's still outlines (the frame's: guide, pivot, the
 centre mark) and its movers (every :data:`STEP`-th frame), and the cam figure's follower lines (colour ``C2``). It
 was recorded from main before the followers drew themselves, so the test holds today's drawing to that one.
@@ -11,17 +11,17 @@ from __future__ import annotations
 import json
 import sys
 import tomllib
-from pathlib import Path
 from typing import Any
 
 import numpy as np
+from tests.conftest import ROOT
 
 #: one starter a follower type (and the plate's and the grooved cam's, which draw theirs through the same page)
 STARTERS = ("translating-roller", "knife-edge", "translating-flat", "oscillating-roller", "oscillating-flat", "plate",
             "grooved")
 #: every how many frames of the page's movers are recorded
 STEP = 4
-DATA = Path(__file__).parent / "data" / "follower_drawing.json"
+DATA = ROOT / "tests" / "data" / "follower_drawing.json"
 
 
 def drawing(name: str) -> dict[str, Any]:

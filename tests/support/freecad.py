@@ -8,8 +8,9 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from tests.conftest import ROOT
 
-PROGRAMS = Path(__file__).resolve().parent / "programs"
+PROGRAMS = ROOT / "tests" / "programs"
 
 
 def freecad_check(kind: str, path: Path, expect) -> subprocess.CompletedProcess:

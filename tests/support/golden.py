@@ -1,10 +1,11 @@
 """Golden files by content: every bundled template built through the commands users run, each file's content
 recorded as a fingerprint and compared within tolerances.
 
-``python -m tests.golden [TEMPLATE.toml ...]`` writes ``tests/data/golden.json`` (all, or those templates' entries
-only; run it when a change of the output is intended, and say so in the commit); ``tests/test_golden.py`` rebuilds
-every template and compares. Cam templates run ``camgen build``; linkage templates run ``linkgen analyze`` and,
-with a ``[parts]`` table, ``linkgen build``; families run ``camgen family`` or ``linkgen family``.
+``python -m tests.support.golden [TEMPLATE.toml ...]`` writes ``tests/data/golden.json`` (all, or those templates'
+entries only; run it when a change of the output is intended, and say so in the commit);
+``tests/project/test_golden.py`` rebuilds every template and compares. Cam templates run ``camgen build``; linkage
+templates run ``linkgen analyze`` and, with a ``[parts]`` table, ``linkgen build``; families run ``camgen family`` or
+``linkgen family``.
 
 What a fingerprint holds, by file type (numbers compared to :data:`ABS` plus :data:`REL` of their size):
 
@@ -21,7 +22,7 @@ What a fingerprint holds, by file type (numbers compared to :data:`ABS` plus :da
 * A family's resume markers: the member's input hash and the names of the files it lists.
 
 Bits are not compared: they change with the platform and the library versions. The same run twice giving the same
-bytes is tested on its own (tests/test_formats.py, tests/test_family.py).
+bytes is tested on its own (tests/core/test_formats.py, tests/core/test_family.py).
 """
 from __future__ import annotations
 
@@ -38,8 +39,8 @@ from pathlib import Path
 from typing import Any
 
 from click.testing import CliRunner
+from tests.conftest import ROOT
 
-ROOT = Path(__file__).resolve().parent.parent
 GOLDEN = ROOT / "tests" / "data" / "golden.json"
 #: absolute (mm, or the report's unit) and relative tolerance of a recorded number
 ABS = 1e-9
@@ -61,7 +62,7 @@ def runs(path: Path) -> list[tuple[str, list[str]]]:
     """(program, arguments without -o) for each command a bundled template is meant for."""
     raw = _raw(path)
     if "task" in raw:
-        return []                     # synthesis tasks: searches, run by tests/test_synthesis.py
+        return []                     # synthesis tasks: searches, run by tests/synthesis/test_synthesis.py
     linkage = "linkage" in raw
     program = "linkgen" if linkage else "camgen"
     if "sweep" in raw:
@@ -249,7 +250,7 @@ def _marker(path: Path) -> dict[str, Any]:
 
 
 def fingerprint(path: Path) -> Any:
-    """The content of one written file, as :mod:`tests.golden` compares it (see the module's docstring)."""
+    """The content of one written file, as :mod:`tests.support.golden` compares it (see the module's docstring)."""
     if is_figure(path):
         return "figure"
     kind = path.suffix.lower()

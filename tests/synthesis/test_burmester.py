@@ -14,7 +14,7 @@ from click.testing import CliRunner
 from linkgen.synthesis import synthesize, validate_task
 from linkgen.synthesis.burmester import burmester_points, four_position_dyads, poses
 from linkgen.synthesis.defects import defects
-from tests.test_synthesis import refused_in_one_line
+from tests.synthesis.test_synthesis import refused_in_one_line
 
 #: known four-bars placed in the task's frame: crank pivot O2 (mm), ground direction (rad), ground, crank, coupler,
 #: rocker (mm), coupler point (along A->B, square to it; mm), branch (+1 open, -1 crossed), crank angles (degrees)

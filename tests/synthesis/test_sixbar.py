@@ -14,7 +14,7 @@ from click.testing import CliRunner
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.structure import Input, make_structure
 from linkgen.synthesis import synthesize, validate_task, write_synthesis
-from tests.test_synthesis import refused_in_one_line
+from tests.synthesis.test_synthesis import refused_in_one_line
 
 #: the known Watt I (the bundled watt1.toml's drawing): the crank-rocker O2-A-B-O4 with the ternary coupler A-B-E and
 #: the ternary rocker O4-B-F, the dyad E-G-F, the tracer P on the output F-G

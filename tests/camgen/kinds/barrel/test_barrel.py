@@ -18,7 +18,7 @@ from camgen.core.errors import DesignError
 from camgen.api import design_cam
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 #: the issue's contract, word for word
 CONTRACT = '''name = "barrel"

@@ -18,7 +18,7 @@ from camgen.cli import main
 from camgen.api import design_cam
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 TEMPLATE = ROOT / "templates" / "barrel-conical.toml"
 RAW = tomllib.loads(TEMPLATE.read_text())

@@ -16,9 +16,9 @@ from camgen.core.errors import DesignError
 from camgen.api import design_cam
 from camgen.spec import load_spec
 from tests.conftest import ROOT
-from tests.test_barrel_oscillating import _wall_samples
-from tests.test_barrel_tolerances import exact_volume
-from tests.refusals import assert_refused
+from tests.camgen.kinds.barrel.test_barrel_oscillating import _wall_samples
+from tests.camgen.kinds.barrel.test_barrel_tolerances import exact_volume
+from tests.support.refusals import assert_refused
 
 RIB = ROOT / "templates" / "barrel-rib.toml"
 RR, C = 5.0, 0.2                                    # the rollers' radius, the running clearance (default)
@@ -83,9 +83,9 @@ def test_both_rollers_run_on_the_exported_rib(tmp_path, rotation):
 
 def test_the_solids_volume_is_the_core_and_the_exact_rib(tmp_path):
     """The exported solid's volume against the core pi (Ri^2 - rb^2) L and the rib from its exact walls
-    (:func:`tests.test_barrel_tolerances.exact_volume`: on each cylinder of radius r the rib's developed area, the
-    loop integral of z dphi of the upper wall less the lower's, integrated over r by Gauss-Legendre); within the
-    tolerance times the walls' area."""
+    (:func:`tests.camgen.kinds.barrel.test_barrel_tolerances.exact_volume`: on each cylinder of radius r the rib's
+    developed area, the loop integral of z dphi of the upper wall less the lower's, integrated over r by
+    Gauss-Legendre); within the tolerance times the walls' area."""
     report, _ = _build(tmp_path, "output.formats=['stl','json']")
     expected = exact_volume(design_cam(load_spec(RIB)))[0]
     rib = expected - math.pi * (27.0 ** 2 - 5.0 ** 2) * 70.0

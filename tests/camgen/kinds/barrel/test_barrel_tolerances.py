@@ -136,7 +136,7 @@ def test_finer_than_ten_single_precision_steps_is_refused_for_the_solid(tmp_path
     developed drawing alone is still made at 1e-5."""
     import camgen.kinds.barrel.design as barrel_design
     from camgen.core.errors import DesignError
-    from tests.refusals import assert_refused
+    from tests.support.refusals import assert_refused
 
     limit = 10 * 2.0**-18
     design = design_cam(load_spec(ROOT / "templates" / "barrel.toml", (f"output.tolerance={limit!r}",)))

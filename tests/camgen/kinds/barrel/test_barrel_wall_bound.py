@@ -25,7 +25,7 @@ from click.testing import CliRunner
 from camgen.cli import main
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.mesh_intersections import self_intersections
+from tests.support.mesh_intersections import self_intersections
 
 GOLD = (math.sqrt(5) - 1) / 2
 LAWS = ("cycloidal", "harmonic", "polynomial-345", "modified-sine", "polynomial-4567")
@@ -322,7 +322,7 @@ def test_a_short_edge_is_collapsed_and_a_long_one_kept():
     is refused (None)."""
     from camgen.kinds.barrel.mesh import shortest_edge, without_short_edges
     from camgen.core.solids import check_mesh
-    from tests.test_barrel_tolerances import _split_edge
+    from tests.camgen.kinds.barrel.test_barrel_tolerances import _split_edge
 
     step = float(np.spacing(np.float32(30.0)))
     mesh = _split_edge(5e-6)

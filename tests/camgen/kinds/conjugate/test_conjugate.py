@@ -17,7 +17,7 @@ from camgen.core.errors import DesignError
 from camgen.api import design_cam
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 #: how a refusal names the follower's table
 YOKE_TABLE = "a positive-drive translating-roller follower (driven both ways, no spring)"

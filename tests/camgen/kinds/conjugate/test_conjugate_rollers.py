@@ -11,8 +11,8 @@ import pytest
 from camgen.core.errors import DesignError
 from camgen.api import design_cam
 from camgen.spec import validate_spec
-from tests.refusals import assert_refused
-from tests.test_conjugate import ARM, YOKE, _build, _layer, _raw, _rollers, _turn
+from tests.support.refusals import assert_refused
+from tests.camgen.kinds.conjugate.test_conjugate import ARM, YOKE, _build, _layer, _raw, _rollers, _turn
 
 R2 = 5.0                                              # the second roller's radius (the first's is 8 mm)
 

@@ -20,7 +20,7 @@ from camgen.kinds.geneva.kinematics import GenevaLaw
 from camgen.kinds.geneva.table import GenevaSpec, GenevaTable
 from camgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 G4, G6 = (ROOT / "templates" / f"geneva{n}.toml" for n in (4, 6))
 
@@ -352,7 +352,7 @@ def test_a_missing_key_and_a_cam_table_are_refused():
 
 
 def test_a_geneva_template_has_its_three_tables():
-    """(tests/test_docs.py checks the template reference lists every key of GenevaTable.)"""
+    """(tests/project/test_docs.py checks the template reference lists every key of GenevaTable.)"""
     assert set(GenevaSpec.model_fields) == {"name", "geneva", "output"}
     assert {"slots", "centre_distance", "pin_diameter", "thickness"} <= set(GenevaTable.model_fields)
 

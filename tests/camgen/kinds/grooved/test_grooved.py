@@ -19,7 +19,7 @@ from camgen.kinds.grooved.design import largest_roller, pitch_rig
 from camgen.spec import validate_spec
 from camgen.surface import pitch_distance
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 #: how a refusal names the follower's table
 DRIVEN = "a positive-drive translating-roller follower (driven both ways, no spring)"

@@ -17,7 +17,7 @@ from click.testing import CliRunner
 from camgen.cli import main as camgen
 from camgen.core.errors import SpecError
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 KEEP_TIME = ROOT / "templates" / "keep-time.toml"
 #: the bundled example's four-bar: ground, crank, coupler, rocker (mm), the hand at 45 mm, 30 degrees off A -> B
@@ -100,7 +100,7 @@ CASES = {
                      [50.0, 0.0, 0.0, 40.0, 0.0]),
     # its crank through 0 degrees: the arm's swing lies across the cut at 360
     "through-zero": (LENGTHS, HAND, [350.0, 5.0, 15.0, 0.0], [20.0, 90.0, 170.0, 280.0], None),
-    # a triple rocker whose crank reaches -100.8 to 100.8 degrees (see tests/test_machine.py)
+    # a triple rocker whose crank reaches -100.8 to 100.8 degrees (see tests/camgen/kinds/machine/test_machine.py)
     "triple-rocker": ((60.0, 50.0, 40.0, 45.0), (20.0, math.radians(-40.0)), [70.0, 85.0, 95.0, 80.0],
                       [0.0, 90.0, 150.0, 240.0], [30.0, 0.0, 20.0, 0.0]),
 }

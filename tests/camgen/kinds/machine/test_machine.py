@@ -19,7 +19,7 @@ from click.testing import CliRunner
 from camgen.cli import main as camgen
 from camgen.core.errors import SpecError
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
+from tests.support.refusals import assert_refused
 
 AUTOMATON = ROOT / "templates" / "automaton.toml"
 
@@ -365,8 +365,8 @@ def test_the_figures_read_back(built):
 
 
 def test_the_cams_dxf_read_back_in_freecad(built, automaton):
-    from tests.freecad import freecad_check
-    from tests.test_programs import _expect
+    from tests.support.freecad import freecad_check
+    from tests.project.test_programs import _expect
 
     out, _ = built
     for cam in automaton.cams:
@@ -385,7 +385,7 @@ def test_the_linkage_sheet_reads_back_in_ezdxf(built):
 
 
 def test_every_solid_reads_back_closed(built):
-    from tests.test_programs import _admesh, _prusa
+    from tests.project.test_programs import _admesh, _prusa
 
     out, report = built
     solids = [n for n in report["files"].values() if n.endswith(".stl")]

@@ -19,8 +19,8 @@ import pytest
 from click.testing import CliRunner
 
 from camgen.cli import main as camgen
-from tests.refusals import assert_refused
-from tests.test_machine import AUTOMATON, _design, _raw
+from tests.support.refusals import assert_refused
+from tests.camgen.kinds.machine.test_machine import AUTOMATON, _design, _raw
 
 ANGLE = 75.0
 CORE = "{http://schemas.microsoft.com/3dmanufacturing/core/2015/02}"
@@ -129,7 +129,7 @@ def test_prusaslicer_reads_the_assembly_each_object_closed(built):
 
 def test_freecad_reads_the_step_file_one_solid_a_part(built, automaton):
     from camgen.kinds.machine.assembly import pieces
-    from tests.freecad import freecad_check
+    from tests.support.freecad import freecad_check
 
     out, _ = built
     done = freecad_check("step", out / "automaton-assembly.step", [])

@@ -18,8 +18,8 @@ from click.testing import CliRunner
 
 from camgen.cli import main as camgen
 from camgen.core.hardware import BOLTS, RUNNING_PLAY
-from tests.refusals import assert_refused
-from tests.test_machine import AUTOMATON, _design, _raw, _write
+from tests.support.refusals import assert_refused
+from tests.camgen.kinds.machine.test_machine import AUTOMATON, _design, _raw, _write
 
 KERF, CLEARANCE = 0.2, 0.3
 
@@ -176,7 +176,7 @@ def test_the_bill_of_materials_lists_the_frame_and_its_hardware(built):
 
 
 def test_the_frames_solids_read_back_closed(built):
-    from tests.test_programs import _admesh, _prusa
+    from tests.project.test_programs import _admesh, _prusa
 
     out, _ = built
     for name in ("automaton-frame.stl", "automaton-frame-top.stl", "automaton-spacer-0.stl"):

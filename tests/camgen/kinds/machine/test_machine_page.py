@@ -17,9 +17,9 @@ import shapely
 from click.testing import CliRunner
 
 from tests.conftest import ROOT
-from tests.test_machine import _rocker, _swing
-from tests.test_page import page_data
-from tests.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
+from tests.camgen.kinds.machine.test_machine import _rocker, _swing
+from tests.camgen.test_page import page_data
+from tests.project.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
 
 TEMPLATES = ROOT / "templates"
 MACHINES = ("automaton", "walking-toy")
@@ -118,7 +118,7 @@ def test_the_slider_moves_the_machine_and_the_cursors(browser, built):  # noqa: 
     from selenium.webdriver.common.by import By
     from selenium.webdriver.common.keys import Keys
 
-    from tests.test_page_browser import _changed
+    from tests.project.test_page_browser import _changed
 
     browser.get((built["walking-toy"][2] / "walking-toy.html").as_uri())
     scene, plot, facts = (browser.find_element(By.CSS_SELECTOR, css) for css in ("svg.scene", "svg.plot",

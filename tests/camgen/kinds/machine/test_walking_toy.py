@@ -17,8 +17,8 @@ from click.testing import CliRunner
 
 from camgen.core.errors import SpecError
 from tests.conftest import ROOT
-from tests.refusals import assert_refused
-from tests.test_machine import _design
+from tests.support.refusals import assert_refused
+from tests.camgen.kinds.machine.test_machine import _design
 
 TOY = ROOT / "templates" / "walking-toy.toml"
 JANSEN = ROOT / "templates" / "jansen.toml"
@@ -251,7 +251,7 @@ def test_every_file_of_the_toy_reads_back(tmp_path):
     import ezdxf
 
     from camgen.cli import main
-    from tests.test_programs import _admesh, _prusa
+    from tests.project.test_programs import _admesh, _prusa
 
     result = CliRunner().invoke(main, ["build", str(TOY), "-o", str(tmp_path), "--set",
                                        'output.formats=["json", "dxf", "stl", "png", "svg", "html"]'])
