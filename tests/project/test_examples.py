@@ -96,8 +96,8 @@ def test_new_never_overwrites_a_file_an_example_reads(tmp_path, monkeypatch):
 def test_a_kind_keeps_its_name_and_example_picks_the_example(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     clashes = sorted((set(cam_starters()) | set(LINKAGE_STARTERS)) & set(bundled.examples()))
-    assert clashes == ["barrel", "conjugate", "counter", "gear-pair", "grooved", "hoekens", "plate", "ratchet",
-                       "slider-crank"]
+    assert clashes == ["barrel", "conjugate", "counter", "gear-pair", "geared-fivebar", "grooved", "hoekens", "plate",
+                       "ratchet", "slider-crank"]
     _run(camgen, "new", "plate", "-o", "starter.toml")
     _run(camgen, "new", "plate", "--example", "-o", "example.toml")
     assert "Every key is explained" in (tmp_path / "starter.toml").read_text()

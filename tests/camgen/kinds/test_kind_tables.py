@@ -96,10 +96,11 @@ def test_a_plate_cam_s_roller_rides_over_the_sliding_plate():
 def test_a_barrel_s_roller_rides_on_its_developed_pitch_cylinder():
     """templates/barrel.toml: length 50 mm, a rise of 20 mm from 0, so the roller's centre rests at z0 = (50 - 20) / 2
     = 15 mm; the developed plate is 2 pi 30 mm long and its height under the 5 mm roller z0 - 5 = 10 mm. A barrel has
-    no base circle: the cam has none either."""
+    no base circle: the cam is built on that height instead."""
     spec = load_spec(ROOT / "templates" / "barrel.toml")
     cam = build_cam(spec)
-    assert spec.base_circle is None and cam.base_radius is None and math.isinf(spec.prime_radius)
+    assert spec.base_circle is None and math.isinf(spec.prime_radius)
+    assert cam.base_radius == pytest.approx(10.0, abs=1e-12) == spec.rest_height(5.0)
     assert isinstance(cam.follower, PlateRoller)
     assert (cam.follower.base_height, cam.follower.roller_radius) == pytest.approx((10.0, 5.0), abs=1e-12)
     assert cam.follower.travel == pytest.approx(2 * math.pi * 30.0, rel=1e-15)
