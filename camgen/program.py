@@ -306,11 +306,6 @@ class Program:
                          + [segments[0].start])            # Segment.end's sums, then the next segments' starts
         return theta, _boundary_segments(len(segments))
 
-    def known_boundaries(self, motion: np.ndarray) -> None:
-        """Keep ``motion`` (4, 2n), evaluated elsewhere at :attr:`boundary_points`, as :attr:`boundaries`' motion
-        (a cache: the same numbers its own evaluation makes)."""
-        self.__dict__["boundaries"] = (self.boundary_points[0], motion)
-
     @cached_property
     def _pieces(self) -> tuple[np.ndarray | None, list[float], list[float], list[bool], list[bool],
                                list[tuple[float, float, bool]]]:
@@ -347,15 +342,18 @@ class Program:
 
         return self.maxima(values)[0]
 
-    def jumps(self) -> list[Jump]:
+    def jumps(self, motion: np.ndarray | None = None) -> list[Jump]:
         """Every jump of s', s'', s''' at segment boundaries (360 wrapping to 0) and inside laws.
 
         A jump counts when it exceeds 1e-9 of the larger natural scale h/beta^k of
-        the segments on either side.
+        the segments on either side. ``motion`` (4, 2n): the motion at :attr:`boundary_points` where it has been
+        evaluated with other points (the same numbers as :attr:`boundaries`' own), else :attr:`boundaries`'.
         """
         found: list[Jump] = []
         n = len(self.segments)
-        theta, motion = self.boundaries
+        theta = self.boundary_points[0]
+        if motion is None:
+            motion = self.boundaries[1]
         ends = theta.tolist()                               # every Segment.end first (its sums: the same numbers)
         motion = motion.T.tolist()                          # as Python floats: the same numbers, cheaper one by one
         scales = self._table.scales
