@@ -268,17 +268,14 @@ class Program:
         at, value, magnitude = yield from maxima_steps(
             lo, hi, scale=scale, reverse=backwards, steady=still if steady else False, answer=values,
             ask=ask if owner is None else lambda v, piece: ask(v, owner[piece]))     # a piece's segment
-        out = []
-        for row_at, row_value, size in zip(at, value, magnitude, strict=True):
-            limit = max(row_value) - TIE * size
-            best = (0.0, math.inf)
-            for v, x, (start, beta, back) in zip(row_value, row_at, angles, strict=True):
-                if v >= limit:                  # Segment.angle's, in degrees: the same operations on the same numbers
-                    degrees = math.degrees(start + beta * (1.0 - x if back else x)) % 360.0
-                    if degrees < best[1]:
-                        best = (v, degrees)
-            out.append(best)
-        return out
+        start, beta, back = angles
+        x, v = np.array(at), np.array(value)
+        # Segment.angle's, in degrees: the same operations on the same numbers
+        degrees = np.degrees(start + beta * np.where(back, 1.0 - x, x)) % 360.0
+        near = v >= (v.max(axis=1) - TIE * np.array(magnitude))[:, None]
+        best = np.where(near, degrees, math.inf).argmin(axis=1)          # the first of the least angles
+        rows = np.arange(len(at))
+        return list(zip(v[rows, best].tolist(), degrees[rows, best].tolist(), strict=True))
 
     @cached_property
     def _table(self) -> _Table:
@@ -308,13 +305,13 @@ class Program:
 
     @cached_property
     def _pieces(self) -> tuple[np.ndarray | None, list[float], list[float], list[bool], list[bool],
-                               list[tuple[float, float, bool]]]:
+                               tuple[np.ndarray, np.ndarray, np.ndarray]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them: the
         owning segment of each (an array, to map asks; None where each segment is one piece, its own), the law
         variable's ends (floats), whether its segment holds still (a dwell) and whether it runs its law backwards (a
-        return, see :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag. Made once a
-        program (read-only for its readers): a roller's design searches its program once, a flat face's or one with
-        a speed up to eight times."""
+        return, see :meth:`Segment.angle`), and the segments' starts, angles (radians) and backwards flags (arrays, a
+        piece each). Made once a program (read-only for its readers): a roller's design searches its program once, a
+        flat face's or one with a speed up to eight times."""
         owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
         for i, seg in enumerate(self.segments):
             moving = seg.kind != "dwell" and seg.law is not None
@@ -328,7 +325,8 @@ class Program:
                 angles.append((seg.start, seg.beta, back))
         # each segment one piece, its own: no mapping of the asks
         mapping = None if owner == list(range(len(self.segments))) else np.array(owner)
-        return mapping, lo, hi, still, backwards, angles
+        table = np.array(angles, dtype=float).reshape(-1, 3).T                # start, beta, backwards (1.0 or 0.0)
+        return mapping, lo, hi, still, backwards, (table[0], table[1], table[2] == 1.0)
 
     def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
         """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)),
