@@ -211,7 +211,8 @@ def corner_turns(left: np.ndarray, right: np.ndarray, sense: int) -> tuple[tuple
     convex corner of a cam turning with ``sense``) where it exceeds 1e-9 radians."""
     cross = left[:, 0] * right[:, 1] - left[:, 1] * right[:, 0]
     turn = np.arctan2(cross, (left * right).sum(axis=1))
-    return tuple((i, -sense * t) for i, t in enumerate(turn.tolist()) if abs(t) > 1e-9)
+    at = (np.abs(turn) > 1e-9).nonzero()[0]
+    return tuple(zip(at.tolist(), (-sense * turn[at]).tolist(), strict=True))
 
 
 def together(makers: Sequence[Maker], first: Callable[[], None] | None = None) -> Maker:

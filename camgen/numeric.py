@@ -245,9 +245,8 @@ def _grid_candidates(y: np.ndarray, flat: np.ndarray, magnitude: np.ndarray) -> 
     peak = inner >= np.maximum(before, after)                # as inner >= before and inner >= after (no NaN)
     peak[flat] = False
     rows, inside = peak.nonzero()
-    first, last = _inward_ends(y[:, _EDGES], magnitude)
-    first &= ~flat
-    last &= ~flat
+    ends = _inward_ends(y[:, _EDGES], magnitude) & ~flat[:, None]
+    first, last = ends.T
     cell = np.concatenate([rows * n + inside + 1, first.nonzero()[0] * n, last.nonzero()[0] * n + n - 1])
     cell.sort()                                              # by row, then grid index
     row, j = np.divmod(cell, n)
@@ -261,9 +260,10 @@ def _grid_candidates(y: np.ndarray, flat: np.ndarray, magnitude: np.ndarray) -> 
     return row[keep], j[keep]
 
 
-def _inward_ends(edges: np.ndarray, magnitude: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The ends of the grid rows (``edges`` (rows, 10): each row's first five and last five values) near which a peak
-    may lie inside the grid's first or last step ((rows,) bool each, the first ends and the last): where the end is
+def _inward_ends(edges: np.ndarray, magnitude: np.ndarray) -> np.ndarray:
+    """The ends of the grid rows (``edges`` (rows, 2, 5): each row's first five values and its last five from its
+    end) near which a peak may lie inside the grid's first or last step ((rows, 2) bool: the first end, the last):
+    where the end is
     no lower than its neighbour and the quartic through it and the next four points rises inwards from it and bends
     down, so that the parabola of its slope and curvature there peaks above the end by more than the row's tie
     (``TIE`` of its function's ``magnitude``, (rows,)). A quartic, not a parabola through three points: where
@@ -271,9 +271,8 @@ def _inward_ends(edges: np.ndarray, magnitude: np.ndarray) -> tuple[np.ndarray, 
     parabola's slope there is off by the cubic and quartic terms and would flag the end; the quartic's is off by the
     fifth-order term only. A candidate is kept only where its refined peak beats the end by more than the tie (see
     :func:`maxima_steps`)."""
-    tie = 24.0 * TIE * magnitude
-    a, b, c, d, e, z4, z3, z2, z1, z0 = edges.T
-    return (a >= b) & _rises_inwards(a, b, c, d, e, tie), (z0 >= z1) & _rises_inwards(z0, z1, z2, z3, z4, tie)
+    a, b, c, d, e = edges.transpose(2, 0, 1)                 # each (rows, 2): both ends at once
+    return (a >= b) & _rises_inwards(a, b, c, d, e, (24.0 * TIE * magnitude)[:, None])
 
 
 def _rises_inwards(a: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray, e: np.ndarray,
@@ -286,8 +285,8 @@ def _rises_inwards(a: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray, e
     return (slope > 0.0) & (bend > 0.0) & (slope * slope > tie * bend)
 
 
-#: the grid indices of a row's first five and last five points (see :func:`_inward_ends`)
-_EDGES = np.array([0, 1, 2, 3, 4, -5, -4, -3, -2, -1])
+#: the grid indices of a row's first five points and of its last five from its end (see :func:`_inward_ends`)
+_EDGES = np.array([[0, 1, 2, 3, 4], [-1, -2, -3, -4, -5]])
 
 
 class _Peaks(NamedTuple):

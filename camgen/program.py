@@ -352,11 +352,15 @@ class Program:
         theta = self.boundary_points[0]
         if motion is None:
             motion = self.boundaries[1]
-        ends = theta.tolist()                               # every Segment.end first (its sums: the same numbers)
-        motion = motion.T.tolist()                          # as Python floats: the same numbers, cheaper one by one
-        scales = self._table.scales
+        # the boundaries all at once: each segment's end (its scales) against the next one's start (the next's)
+        table = self._table
+        step = motion[1:, n:] - motion[1:, :n]
+        limit = JUMP_TOL * np.maximum(np.maximum(table.rates, table.next_rates), 1e-300)
+        order, at = (np.abs(step) > limit).nonzero()
+        for k, i, jump in zip((order + 1).tolist(), at.tolist(), step[order, at].tolist(), strict=True):
+            found.append(Jump(at_deg=round(math.degrees(theta[i]), 9) % 360.0, order=k, jump=jump, inside=False))
+        scales = table.scales
         for i, seg in enumerate(self.segments):
-            _compare(found, ends[i], motion[i], motion[n + i], scales[i], scales[i + 1 - n], inside=False)
             for t, lo, hi in seg.inner_limits():
                 _compare(found, t, lo.tolist(), hi.tolist(), scales[i], scales[i], inside=True)
         found.sort(key=_AT_ORDER)
@@ -394,6 +398,9 @@ class _Table:
         # bits of some from about 2 700 segments on)
         natural = _natural(table[_H], table[_BETA])
         self.scales: list[list[float]] = natural.tolist()
+        #: the natural scales of the three derivatives (3, m), and the next segment's (the last's next is the first)
+        self.rates = np.ascontiguousarray(natural[:, 1:].T)
+        self.next_rates = np.concatenate([self.rates[:, 1:], self.rates[:, :1]], axis=1)
         # the factors: natural scales times the signs in their place, 1 (a rise), +-1 (a return's even and odd orders)
         # or 0 (a dwell): exact
         table[_FACTORS] *= natural.T
