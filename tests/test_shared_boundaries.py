@@ -3,28 +3,13 @@ cache filled behind a cached_property): what the design reads equals the boundar
 from __future__ import annotations
 
 import dataclasses
-from typing import Any
-
 import numpy as np
 
 from camgen.analysis import analyze
 from camgen.flat import build_cam
 from camgen.followers.base import PitchGeometry
 from tests.conftest import template
-
-
-class _Counting:
-    """A follower that counts its evaluations (points each) and is otherwise the one it wraps."""
-
-    def __init__(self, inner: Any) -> None:
-        self.inner, self.calls = inner, []
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(self.inner, name)
-
-    def pitch(self, theta: np.ndarray, motion: np.ndarray) -> PitchGeometry:
-        self.calls.append(theta.size)
-        return self.inner.pitch(theta, motion)
+from tests.test_speed_outline import _Counting
 
 
 def _fields(g: PitchGeometry) -> list[np.ndarray]:
