@@ -5,7 +5,7 @@ Built from a :class:`~camgen.rig.Rig` (the set-up without its size) at a base ra
 from __future__ import annotations
 
 from collections.abc import Callable, Generator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any
 
@@ -14,7 +14,7 @@ import numpy as np
 from camgen.followers.base import PitchGeometry
 from camgen.followers.plate import PlateRoller
 from camgen.numeric import drive
-from camgen.program import Program
+from camgen.program import Jump, Program
 
 #: a request for pitch geometry: (the segment of every point, an index or an array (n,); the points (n,); False when
 #: they are cam angles in radians, evaluated one-sided on their segment as :meth:`Program.evaluate_on` does, True when
@@ -23,6 +23,27 @@ Ask = tuple[int | np.ndarray, np.ndarray, bool]
 #: what :meth:`Cam.serve` drives: a generator that yields a list of asks, is sent their pitch geometry (a list, one
 #: for each ask) and returns its result
 Maker = Generator[list[Ask], list[PitchGeometry], Any]
+
+
+@dataclass(frozen=True)
+class Boundaries:
+    """A cam's segment boundaries, evaluated once: the program's motion (s and its first three derivatives, (4, 2n))
+    at :attr:`Program.boundary_points` (every segment's end, its left-hand limit, then the next one's start) and the
+    pitch geometry there, split into the ends (n) and the starts (n)."""
+
+    motion: np.ndarray
+    ends: PitchGeometry
+    starts: PitchGeometry
+
+
+class _Evaluated:
+    """Where a cam keeps its :class:`Boundaries` once made, by their own evaluation or by the first round of
+    :meth:`Cam.serve` (which evaluates them with its asks, in the same call): set once, read after."""
+
+    __slots__ = ("boundaries",)
+
+    def __init__(self) -> None:
+        self.boundaries: Boundaries | None = None
 
 
 @dataclass(frozen=True)
@@ -51,6 +72,8 @@ class Cam:
     program: Program
     follower: Any                  # one of camgen.followers' followers, or a plate's roller
     base_radius: float
+    #: the boundaries once evaluated (see :meth:`boundaries`); a copy made by dataclasses.replace starts afresh
+    _evaluated: _Evaluated = field(default_factory=_Evaluated, init=False, repr=False, compare=False)
 
     @property
     def contact_radius(self) -> float:
@@ -74,18 +97,31 @@ class Cam:
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         return self.follower.pitch(theta, self.program.segments[index].evaluate(theta))
 
-    @cached_property
-    def _boundaries(self) -> tuple[PitchGeometry, PitchGeometry]:
-        """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start."""
-        return self._halves(self.follower.pitch(*self.program.boundaries))
+    def boundaries(self) -> Boundaries:
+        """The segment boundaries' motion and pitch geometry (see :class:`Boundaries`): those :meth:`serve`'s first
+        round made, else their own evaluation (made once)."""
+        known = self._evaluated.boundaries
+        if known is None:
+            theta, index = self.program.boundary_points
+            motion = self.program.evaluate_on(index, theta)
+            known = self._keep(motion, self.follower.pitch(theta, motion))
+        return known
+
+    def _keep(self, motion: np.ndarray, g: PitchGeometry) -> Boundaries:
+        """Keep the boundaries' ``motion`` (4, 2n) and pitch geometry ``g`` (2n) as :meth:`boundaries`."""
+        n = len(self.program.segments)
+        known = self._evaluated.boundaries = Boundaries(motion, g.part(0, n), g.part(n, 2 * n))
+        return known
 
     def boundary_geometry(self) -> tuple[PitchGeometry, PitchGeometry]:
         """Pitch geometry at every segment's end (its left-hand limit) and at the next one's start (n each)."""
-        return self._boundaries
+        b = self.boundaries()
+        return b.ends, b.starts
 
-    def _halves(self, g: PitchGeometry) -> tuple[PitchGeometry, PitchGeometry]:
-        n = len(self.program.segments)
-        return g.part(0, n), g.part(n, 2 * n)
+    def jumps(self) -> list[Jump]:
+        """The program's jumps (see :meth:`Program.jumps`) from the boundaries' motion as :meth:`boundaries` has
+        it."""
+        return self.program.jumps(self.boundaries().motion)
 
     def serve(self, makers: Sequence[Maker]) -> list[Any]:
         """Drive every maker at once (see :func:`together`) and return their results in order: each round evaluates
@@ -93,7 +129,7 @@ class Cam:
         is mostly per call, not per point. The first round also evaluates the segment boundaries unless they are
         known (:meth:`corners`, :meth:`steps` and the program's jumps need them), so that a maker that looks at them
         after its first ask finds them made."""
-        fresh = ["_boundaries" not in self.__dict__]
+        fresh = [self._evaluated.boundaries is None]
 
         def answer(asks: list[Ask]) -> list[PitchGeometry]:
             out = self.pitch_of(asks, boundaries=fresh[0])
@@ -128,9 +164,7 @@ class Cam:
             out[k] = g.part(at, at + part.size)
             at += part.size
         if boundaries:
-            program.known_boundaries(motion[:, at:])
-            n = len(program.segments)
-            self.__dict__["_boundaries"] = g.part(at, at + n), g.part(at + n, at + 2 * n)
+            self._keep(motion[:, at:], g.part(at, at + 2 * len(program.segments)))
         return out
 
     def corners(self) -> list[tuple[int, float]]:
@@ -147,11 +181,8 @@ class Cam:
     def _corners(self) -> tuple[tuple[int, float], ...]:
         """:meth:`corners`, found once a cam (a design asks several times): the turn from each segment's end tangent
         to the next one's start tangent, atan2 of their cross and dot products, where it exceeds 1e-9 radians."""
-        ends, starts = self._boundaries
-        left, right = ends.d1, starts.d1
-        cross = left[:, 0] * right[:, 1] - left[:, 1] * right[:, 0]
-        turn = np.arctan2(cross, (left * right).sum(axis=1))
-        return tuple((i, -self.follower.sense * t) for i, t in enumerate(turn.tolist()) if abs(t) > 1e-9)
+        ends, starts = self.boundary_geometry()
+        return corner_turns(ends.d1, starts.d1, self.follower.sense)
 
     def steps(self) -> list[tuple[int, float]]:
         """Where a flat face's contact point jumps at a segment end (a velocity jump): ``(segment index, step)``.
@@ -163,7 +194,7 @@ class Cam:
         if not self.follower.flat:
             return []
         out = []
-        ends, starts = self._boundaries
+        ends, starts = self.boundary_geometry()
         for i in range(len(self.program.segments)):
             gap = starts.point[i] - ends.point[i]
             if np.linalg.norm(gap) <= 1e-9 * max(1.0, self.base_radius):
@@ -172,6 +203,16 @@ class Cam:
             ahead = side.d1[i] / side.face_rho[i]                 # the way a sound profile runs there
             out.append((i, float(gap @ ahead / np.linalg.norm(ahead))))
         return out
+
+
+def corner_turns(left: np.ndarray, right: np.ndarray, sense: int) -> tuple[tuple[int, float], ...]:
+    """:meth:`Cam.corners` from the pitch tangents at every segment's end ``left`` (n, 2) and at the next one's start
+    ``right`` (n, 2): the turn from one to the other (radians, atan2 of their cross and dot products, positive for a
+    convex corner of a cam turning with ``sense``) where it exceeds 1e-9 radians."""
+    cross = left[:, 0] * right[:, 1] - left[:, 1] * right[:, 0]
+    turn = np.arctan2(cross, (left * right).sum(axis=1))
+    at = (np.abs(turn) > 1e-9).nonzero()[0]
+    return tuple(zip(at.tolist(), (-sense * turn[at]).tolist(), strict=True))
 
 
 def together(makers: Sequence[Maker], first: Callable[[], None] | None = None) -> Maker:

@@ -2,9 +2,8 @@
 from __future__ import annotations
 
 import functools
-import itertools
 import math
-from collections.abc import Callable, Generator, Iterable
+from collections.abc import Callable, Generator
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -87,45 +86,49 @@ _QUARTIC = (np.array([[1, -1, -1, 1], [-8, 16, 2, -4], [0, -30, 0, 6], [8, 16, -
             / [12, 24, 12, 24])
 
 
-def _coefficients(windows: np.ndarray) -> list[list[float]]:
-    """a1, a2, a3, a4 (the coefficients of t, t^2, t^3, t^4) of the quartic through each row of ``windows`` (m, 5)
-    (values at t = -2..2), as floats. One matrix product for all rows: its rounding depends on whether there is one
-    row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place."""
-    return (windows @ _QUARTIC).tolist()
+def _coefficients(windows: np.ndarray) -> np.ndarray:
+    """a1, a2, a3, a4 (the coefficients of t, t^2, t^3, t^4; columns (m, 4)) of the quartic through each row of
+    ``windows`` (m, 5) (values at t = -2..2). One matrix product for all rows: its rounding depends on whether there
+    is one row or more (BLAS's vector or matrix kernel), not on the other rows' values or the row's place."""
+    return windows @ _QUARTIC
 
 
-def _coefficients_apart(windows: np.ndarray, from_end: list[bool]) -> list[list[float]]:
-    """:func:`_coefficients` of ``windows`` (m, 5), those of the peaks found from an end (``from_end``, see
-    :func:`_inward_peaks`) in a product of their own: so their number never changes which BLAS kernel (one row or
+def _coefficients_apart(windows: np.ndarray, from_end: np.ndarray) -> np.ndarray:
+    """:func:`_coefficients` of ``windows`` (m, 5), those of the peaks found from an end (``from_end``, (m,) bool, see
+    :func:`_inward_ends`) in a product of their own: so their number never changes which BLAS kernel (one row or
     more) rounds the others', and a peak found inside gets the same bits whether or not an end was a candidate
     beside it."""
-    if True not in from_end:
+    if not from_end.any():
         return _coefficients(windows)
-    mask = np.array(from_end)
-    made = {flag: iter(_coefficients(windows[mask == flag])) for flag in set(from_end)}
-    return [next(made[flag]) for flag in from_end]
+    out = np.empty((windows.shape[0], 4))
+    inside = ~from_end
+    out[from_end] = _coefficients(windows[from_end])
+    if inside.any():
+        out[inside] = _coefficients(windows[inside])
+    return out
 
 
-def _vertex(a1: float, a2: float, a3: float, a4: float, lo: float, hi: float) -> float | None:
-    """Where the quartic of coefficients a1..a4 (of t..t^4) peaks within [lo, hi], by three Newton steps on its
-    slope from the parabola's vertex; None where it has no maximum there (a step dividing by zero has none)."""
-    try:
-        t = -a1 / (2 * a2)
+def _vertex(a1: np.ndarray, a2: np.ndarray, a3: np.ndarray, a4: np.ndarray, lo: ArrayLike,
+            hi: ArrayLike) -> np.ndarray:
+    """Where each quartic of coefficients a1..a4 (of t..t^4; arrays (m,)) peaks within [lo, hi], by three Newton steps
+    on its slope a1 + 2 a2 t + 3 a3 t^2 + 4 a4 t^3 from the parabola's vertex; NaN where it has none there (a step
+    that divides by zero makes t infinite or NaN: no maximum within). The slope's and its derivative's coefficients
+    are made once (2 a2 and 4 a4 exactly: their products with t round as t's with the products do)."""
+    b2, b3, b4, c3 = 2 * a2, 3 * a3, 4 * a4, 6 * a3
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        t = -a1 / b2
         for _ in range(3):
-            t -= (a1 + t * (2 * a2 + t * (3 * a3 + t * 4 * a4))) / (2 * a2 + t * (6 * a3 + t * 12 * a4))
-    except ZeroDivisionError:                                 # t would be infinite or NaN: no maximum within
-        return None
-    return t if 2 * a2 + t * (6 * a3 + t * 12 * a4) < 0 and lo <= t <= hi else None   # False where t is NaN
+            t = t - (a1 + t * (b2 + t * (b3 + t * b4))) / (b2 + t * (c3 + t * 12 * a4))
+        peaks = (b2 + t * (c3 + t * 12 * a4) < 0) & (lo <= t) & (t <= hi)       # False where t is NaN
+    return np.where(peaks, t, np.nan)
 
 
-def _breadth(a2: float, a4: float, step: float, size: float) -> float:
-    """A peak's breadth from its grid quartic's a2 and a4: a bell of breadth b has a2 / a4 = 2 b^2 / h^2 on a grid
-    of step h; kept between 2 h and the piece's ``size`` (the piece's where a4 is zero or the ratio NaN)."""
-    try:
-        breadth = min(max(step * math.sqrt(abs(a2 / a4) / 2), 2 * step), size)
-    except ZeroDivisionError:
-        return size
-    return size if math.isnan(breadth) else breadth
+def _breadth(a2: ArrayLike, a4: ArrayLike, step: np.ndarray | float, size: np.ndarray | float) -> np.ndarray:
+    """Each peak's breadth from its grid quartic's a2 and a4 (arrays): a bell of breadth b has a2 / a4 = 2 b^2 / h^2
+    on a grid of step h; kept between 2 h and the piece's ``size`` (the piece's where a4 is zero or the ratio NaN)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        breadth = np.minimum(np.maximum(step * np.sqrt(np.abs(np.divide(a2, a4)) / 2), 2 * step), size)
+    return np.where(np.isnan(breadth), size, breadth)
 
 
 #: what :func:`maxima_steps` asks for, abscissae (m,) and their pieces (m,) (as its ``ask`` puts them); it is sent
@@ -179,39 +182,42 @@ def _key(flag: ArrayLike) -> tuple[bool, ...]:
 
 
 class _Plan(NamedTuple):
-    """What :func:`maxima_steps` knows of a set of pieces before it asks anything (see :func:`_plan`)."""
+    """What :func:`maxima_steps` knows of a set of pieces before it asks anything (see :func:`_plan`); arrays
+    read-only."""
 
-    lo: list[float]
-    hi: list[float]
-    width: list[float]
-    moving: list[int]                  #: the pieces that are not steady, in order
-    #: each steady piece and where its maximum is: its values are all its first, the end :func:`_first_largest` takes
-    #: for any finite tie
-    resting: list[tuple[int, float]]
-    backwards: list[bool]
+    lo: np.ndarray
+    hi: np.ndarray
+    width: np.ndarray
+    moving: np.ndarray                 #: the pieces that are not steady, in order
+    #: the steady pieces, and where each one's maximum is: its values are all its first, and of equal values the
+    #: first from its low end (from its high end where it runs backwards) is taken
+    resting: np.ndarray
+    resting_at: np.ndarray
+    backwards: np.ndarray
     ask: tuple[np.ndarray, np.ndarray]
 
 
 @functools.lru_cache(maxsize=32)
 def _plan(lo: bytes, hi: bytes, steady: tuple[Any, ...], reverse: tuple[Any, ...], n: int) -> _Plan:
     """:func:`maxima_steps`' pieces (given by the bytes of their float ``lo`` and ``hi``) and flags (see
-    :func:`_key`) as floats and bools, made once for a set of pieces (a program's are mostly [0, 1]); and its first
-    ask, read-only: the grid of ``n`` points on each piece that is not ``steady``, then each steady piece's first
-    point; and the piece of each."""
+    :func:`_key`) as arrays, made once for a set of pieces (a program's are mostly [0, 1]); and its first ask: the
+    grid of ``n`` points on each piece that is not ``steady``, then each steady piece's first point; and the piece
+    of each."""
     low, high = np.frombuffer(lo), np.frombuffer(hi)
     width = high - low
     p = low.size
-    still = _flags(steady, p)
-    moving = [i for i, s in enumerate(still) if not s]
-    steady_pieces = [i for i, s in enumerate(still) if s]
+    still = np.array(_flags(steady, p), dtype=bool)
+    backwards = np.array(_flags(reverse, p), dtype=bool)
+    moving, steady_pieces = (~still).nonzero()[0], still.nonzero()[0]
     x = low[moving, None] + width[moving, None] * _unit(n)[0]
     x[:, -1] = high[moving]
     x = np.concatenate([x.ravel(), low[steady_pieces] + width[steady_pieces] * _unit(n)[0][0]])
     piece = np.concatenate([np.repeat(moving, n), steady_pieces]).astype(np.intp)
-    x.flags.writeable = piece.flags.writeable = False
-    starts, ends, backwards = low.tolist(), high.tolist(), _flags(reverse, p)
-    resting = [(i, _first_largest([(starts[i], 0.0), (ends[i], 0.0)], 0.0, backwards[i])[0]) for i in steady_pieces]
-    return _Plan(starts, ends, width.tolist(), moving, resting, backwards, (x, piece))
+    resting_at = np.where(backwards[steady_pieces], high[steady_pieces], low[steady_pieces])
+    plan = _Plan(low, high, width, moving, steady_pieces, resting_at, backwards, (x, piece))
+    for a in (*plan[:-1], x, piece):
+        a.flags.writeable = False
+    return plan
 
 
 @functools.lru_cache(maxsize=16)
@@ -228,174 +234,153 @@ def _flat_rows(y: np.ndarray, magnitude: list[float], count: int) -> list[int]:
     return [r for r, d in enumerate(spread) if not d > TIE * magnitude[r // count]]
 
 
-def _grid_candidates(y: np.ndarray, flat: list[int], edges: list[list[float]], magnitude: list[float],
-                     count: int) -> list[tuple[int, int]]:
+def _grid_candidates(y: np.ndarray, flat: np.ndarray, magnitude: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Each row's local maxima on the grid ``y`` (rows, n; finite) that may be its largest: within what a peak can
-    rise above its grid points (the row's largest second difference) of the row's highest; none on the rows ``flat``
-    (constant within the tie). ``(row, grid index)`` each, in order of row and index. The interior points no lower
-    than their neighbours, and an end (see :func:`_inward_peaks`; ``edges``, each row's first five and last five
-    values, ``magnitude`` each function's, ``count`` rows a function) where a peak lies within the grid's first or
-    last step, which no interior point shows."""
+    rise above its grid points (the row's largest second difference) of the row's highest; none on the rows
+    ``flat`` ((rows,) bool: constant within the tie). The interior points no lower than their neighbours, and an end
+    where a peak lies within the grid's first or last step, which no interior point shows (see :func:`_inward_ends`;
+    ``magnitude``, each row's function's). Their rows and grid indices ((m,) each), in order of row and index."""
+    rows_n, n = y.shape
     inner, before, after = y[:, 1:-1], y[:, :-2], y[:, 2:]
     peak = inner >= np.maximum(before, after)                # as inner >= before and inner >= after (no NaN)
-    if flat:
-        peak[flat] = False
+    peak[flat] = False
     rows, inside = peak.nonzero()
-    cells = sorted([*zip(rows.tolist(), (inside + 1).tolist(), strict=True),
-                    *_inward_peaks(edges, flat, magnitude, count, y.shape[1])])
-    if not cells:
-        return cells
-    values = y[[r for r, _ in cells], [j for _, j in cells]].tolist()
-    drop = np.abs(before - 2 * inner + after).max(axis=1).tolist()
-    top: dict[int, float] = {}
-    for (r, _), v in zip(cells, values, strict=True):
-        top[r] = max(top.get(r, -math.inf), v)
-    return [(r, j) for (r, j), v in zip(cells, values, strict=True) if v >= top[r] - drop[r]]
+    ends = _inward_ends(y[:, _EDGES], magnitude) & ~flat[:, None]
+    first, last = ends.T
+    cell = np.concatenate([rows * n + inside + 1, first.nonzero()[0] * n, last.nonzero()[0] * n + n - 1])
+    cell.sort()                                              # by row, then grid index
+    row, j = np.divmod(cell, n)
+    if not cell.size:
+        return row, j
+    values = y.take(cell)
+    drop = np.abs(before - 2 * inner + after).max(axis=1)
+    top = np.full(rows_n, -math.inf)
+    np.maximum.at(top, row, values)
+    keep = values >= top[row] - drop[row]
+    return row[keep], j[keep]
 
 
-def _inward_peaks(edges: list[list[float]], flat: list[int], magnitude: list[float], count: int,
-                  n: int) -> list[tuple[int, int]]:
-    """The ends of the grid rows (``edges``: each row's first five and last five values, of a grid of ``n``) near
-    which a peak may lie inside the grid's first or last step: where the end is no lower than its neighbour and the
-    quartic through it and the next four points rises inwards from it and bends down, so that the parabola of its
-    slope and curvature there peaks above the end by more than the tie (``TIE`` of the row's function's
-    ``magnitude``, ``count`` rows a function; none on the rows ``flat``). A quartic, not a parabola through three
-    points: where the function levels off at the end (a rise ending in a dwell, s = h - k (1 - u)^3, or a cosine's
-    top) a parabola's slope there is off by the cubic and quartic terms and would flag the end; the quartic's is
-    off by the fifth-order term only. A candidate is kept only where its refined peak beats the end by more than
-    the tie (see :func:`maxima_steps`). ``(row, grid index)`` each: 0 for the first end, n - 1 for the last."""
-    out = []
-    for r, (a, b, c, d, e, z4, z3, z2, z1, z0) in enumerate(edges):
-        tie = 24.0 * TIE * magnitude[r // count]
-        if a >= b and _rises_inwards(a, b, c, d, e, tie) and r not in flat:
-            out.append((r, 0))
-        if z0 >= z1 and _rises_inwards(z0, z1, z2, z3, z4, tie) and r not in flat:
-            out.append((r, n - 1))
-    return out
+def _inward_ends(edges: np.ndarray, magnitude: np.ndarray) -> np.ndarray:
+    """The ends of the grid rows (``edges`` (rows, 2, 5): each row's first five values and its last five from its
+    end) near which a peak may lie inside the grid's first or last step ((rows, 2) bool: the first end, the last):
+    where the end is
+    no lower than its neighbour and the quartic through it and the next four points rises inwards from it and bends
+    down, so that the parabola of its slope and curvature there peaks above the end by more than the row's tie
+    (``TIE`` of its function's ``magnitude``, (rows,)). A quartic, not a parabola through three points: where
+    the function levels off at the end (a rise ending in a dwell, s = h - k (1 - u)^3, or a cosine's top) a
+    parabola's slope there is off by the cubic and quartic terms and would flag the end; the quartic's is off by the
+    fifth-order term only. A candidate is kept only where its refined peak beats the end by more than the tie (see
+    :func:`maxima_steps`)."""
+    a, b, c, d, e = edges.transpose(2, 0, 1)                 # each (rows, 2): both ends at once
+    return (a >= b) & _rises_inwards(a, b, c, d, e, (24.0 * TIE * magnitude)[:, None])
 
 
-def _rises_inwards(a: float, b: float, c: float, d: float, e: float, tie: float) -> bool:
-    """Whether from an end's value ``a`` (no lower than its next, ``b``; then ``c``, ``d``, ``e``, a step apart) the
-    quartic through them rises and bends down: its slope there is S / 12 a step and its curvature -B / 12 a step
-    squared, whose parabola rises S^2 / (24 B) above ``a``, by more than ``tie`` / 24 (see :func:`_inward_peaks`)."""
+def _rises_inwards(a: np.ndarray, b: np.ndarray, c: np.ndarray, d: np.ndarray, e: np.ndarray,
+                   tie: np.ndarray) -> np.ndarray:
+    """Whether from an end's values ``a`` (then ``b``, ``c``, ``d``, ``e``, a step apart; arrays) the quartic through
+    them rises and bends down: its slope there is S / 12 a step and its curvature -B / 12 a step squared, whose
+    parabola rises S^2 / (24 B) above ``a``, by more than ``tie`` / 24 (see :func:`_inward_ends`)."""
     slope = 48.0 * b - 25.0 * a - 36.0 * c + 16.0 * d - 3.0 * e
     bend = 104.0 * b - 35.0 * a - 114.0 * c + 56.0 * d - 11.0 * e
-    return slope > 0.0 and bend > 0.0 and slope * slope > tie * bend
+    return (slope > 0.0) & (bend > 0.0) & (slope * slope > tie * bend)
 
 
-#: the grid indices of a row's first five and last five points (see :func:`_inward_peaks`)
-_EDGES = np.array([0, 1, 2, 3, 4, -5, -4, -3, -2, -1])
+#: the grid indices of a row's first five points and of its last five from its end (see :func:`_inward_ends`)
+_EDGES = np.array([[0, 1, 2, 3, 4], [-1, -2, -3, -4, -5]])
 
 
-class _Peak:
-    """A peak being located: its grid ``row``, function ``f`` and ``piece``, where it is so far (``at``) and the
-    largest value seen (``value``), the next stencil's ``centre`` and the peak's ``breadth`` (all in the piece's
-    abscissa); the value of the end it was found from (``end``, see :func:`_inward_peaks`), None for a peak found
-    inside."""
+class _Peaks(NamedTuple):
+    """The peaks being located, all at once (arrays (m,)): each one's grid ``row``, function ``f`` and ``piece``,
+    where it is so far (``at``) and the largest value seen (``value``), the next stencil's ``centre`` and the peak's
+    ``breadth`` (all in the piece's abscissa); whether it was found from an end (``from_end``, see
+    :func:`_inward_ends`) and that end's value (``end``)."""
 
-    __slots__ = ("at", "breadth", "centre", "end", "f", "piece", "row", "value")
-
-    def __init__(self, row: int, f: int, piece: int, at: float, value: float, centre: float, breadth: float,
-                 end: float | None) -> None:
-        self.f, self.piece, self.at, self.value, self.centre, self.breadth = f, piece, at, value, centre, breadth
-        self.row, self.end = row, end
-
-
-def _windows(y: np.ndarray, found: list[tuple[int, int]], n: int) -> tuple[list[int], np.ndarray]:
-    """The grid index about which each peak ``found`` (row, grid index) on the grid rows ``y`` is placed (its own,
-    kept two points from the row's ends) and the five grid values there (m, 5)."""
-    centres, firsts = [], []                             # each window's centre and first point in y's flat order
-    for r, j in found:
-        c = min(max(j, 2), n - 3)
-        centres.append(c)
-        firsts.append(r * n + c - 2)
-    return centres, y.take(np.add.outer(firsts, _FIVE))
+    row: np.ndarray
+    f: np.ndarray
+    piece: np.ndarray
+    at: np.ndarray
+    value: np.ndarray
+    centre: np.ndarray
+    breadth: np.ndarray
+    from_end: np.ndarray
+    end: np.ndarray
 
 
-def _estimates(candidates: Iterable[tuple[tuple[int, int], int, list[float], list[float]]], moving: list[int],
-               lo: list[float], hi: list[float], width: list[float], n: int) -> list[_Peak]:
-    """The ``candidates`` (a peak found on the grid rows, (row, grid index), a row for each function on each piece
-    of ``moving``; the grid index of its window's centre; the window's five values and the coefficients of the
-    quartic through them, see :func:`_windows`), each placed by its quartic (within a grid step of its grid point)
-    and given its breadth and its grid value."""
-    count = len(moving)
-    unit = _unit(n)[1]
-    out = []
-    for (r, j), c, near, (a1, a2, a3, a4) in candidates:
-        value = near[j - c + 2]
-        piece = moving[r % count]
-        low, size = lo[piece], width[piece]
-        step = size / (n - 1)
-        shift = float(j - c)
-        t = _vertex(a1, a2, a3, a4, shift - 1.0, shift + 1.0)
-        centre = min(max(low + size * unit[c] + (shift if t is None else t) * step, low), hi[piece])
-        at = hi[piece] if j == n - 1 else low + size * unit[j]           # the grid's own point: its last the end
-        out.append(_Peak(r, r // count, piece, at, value, centre, _breadth(a2, a4, step, size),
-                         value if j == 0 or j == n - 1 else None))
-    return out
+def _estimates(y: np.ndarray, row: np.ndarray, j: np.ndarray, plan: _Plan, n: int) -> _Peaks:
+    """The candidates (grid ``row`` and index ``j``, (m,) each, on the grid rows ``y``, a row for each function on
+    each piece of the plan's ``moving``), each placed by the quartic through the five grid values about it (its
+    window, kept two points from the row's ends; within a grid step of its grid point) and given its breadth and its
+    grid value."""
+    count = plan.moving.size
+    unit = _unit(n)[0]
+    centre = np.minimum(np.maximum(j, 2), n - 3)             # each window's centre
+    windows = y.take((row * n + centre - 2)[:, None] + _FIVE)
+    from_end = (j == 0) | (j == n - 1)
+    a1, a2, a3, a4 = _coefficients_apart(windows, from_end).T
+    value = y.take(row * n + j)
+    piece = plan.moving[row % count]
+    low, size, high = plan.lo[piece], plan.width[piece], plan.hi[piece]
+    step = size / (n - 1)
+    shift = (j - centre).astype(float)
+    t = _vertex(a1, a2, a3, a4, shift - 1.0, shift + 1.0)
+    placed = np.minimum(np.maximum(low + size * unit[centre] + np.where(np.isnan(t), shift, t) * step, low), high)
+    at = np.where(j == n - 1, high, low + size * unit[j])        # the grid's own point: its last the end
+    return _Peaks(row, row // count, piece, at, value, placed, _breadth(a2, a4, step, size), from_end, value.copy())
 
 
-def _stencil(peak: _Peak, lo: list[float], hi: list[float], width: list[float]) -> float:
-    """The spacing of ``peak``'s next stencil: ``STENCIL`` of its breadth, within half its distance to its piece's
-    nearer end; 0.0 where it is at an end already (within 1e-12 of its piece: the grid's point stands)."""
-    c, left, right = peak.centre, lo[peak.piece], hi[peak.piece]
-    d = min(STENCIL * peak.breadth, 0.5 * min(c - left, right - c))
-    return d if d > 1e-12 * width[peak.piece] else 0.0
-
-
-def _refined(peaks: list[_Peak], lo: list[float], hi: list[float], width: list[float],
-             ask: Callable[[np.ndarray, np.ndarray], Any], answer: Callable[[Any], np.ndarray]) -> Generator[
-        Any, Any, None]:
-    """Locate the ``peaks`` (in place): each round asks five points ``STENCIL`` of a peak's breadth apart about its
-    estimate and takes the quartic through its values there (or the best of them where the quartic has no maximum
-    within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds. Its asks and answers are put and
-    read by ``ask`` and ``answer`` (see :func:`maxima_steps`)."""
-    active = peaks
+def _refined(peaks: _Peaks, plan: _Plan, ask: Callable[[np.ndarray, np.ndarray], Any],
+             answer: Callable[[Any], np.ndarray]) -> Generator[Any, Any, None]:
+    """Locate the ``peaks`` (in place), all in one ask a round: each round asks five points ``STENCIL`` of a peak's
+    breadth apart about its estimate (within half its distance to its piece's nearer end; none where that is within
+    1e-12 of the piece: the point stands) and takes the quartic through its values there (or the best of them where
+    the quartic has no maximum within); a peak well inside its stencil is done, at most ``ROUNDS`` rounds. Its asks
+    and answers are put and read by ``ask`` and ``answer`` (see :func:`maxima_steps`)."""
+    active = np.arange(peaks.row.size)
     for _ in range(ROUNDS):
-        stencils, pieces, from_end = [], [], []          # each peak's (peak, centre, spacing), piece, whether
-        for peak in active:                              # it was found from an end
-            if d := _stencil(peak, lo, hi, width):
-                stencils.append((peak, peak.centre, d))
-                pieces.append(peak.piece)
-                from_end.append(peak.end is not None)
-        if not stencils:
+        piece, c = peaks.piece[active], peaks.centre[active]
+        d = np.minimum(STENCIL * peaks.breadth[active], 0.5 * np.minimum(c - plan.lo[piece], plan.hi[piece] - c))
+        live = d > 1e-12 * plan.width[piece]
+        active, piece, c, d = active[live], piece[live], c[live], d[live]
+        m = active.size
+        if not m:
             return
-        points = [c + d * s for _, c, d in stencils for s in _OFFSETS]     # five a stencil, one flat list
-        got = answer((yield ask(np.array(points), np.array(pieces).repeat(5))))
-        values = got.tolist()
-        ys = [values[peak.f][5 * i:5 * i + 5] for i, (peak, _, _) in enumerate(stencils)]   # each its own function
-        if not all(map(math.isfinite, itertools.chain.from_iterable(ys))):
+        got = answer((yield ask((c[:, None] + d[:, None] * _STEPS).ravel(), piece.repeat(5))))
+        ys = got.reshape(got.shape[0], m, 5)[peaks.f[active], np.arange(m)]     # each its own function
+        if not np.isfinite(ys).all():
             raise FloatingPointError("function is not finite near a peak")
-        active = []
-        coefficients = _coefficients_apart(np.array(ys), from_end)
-        for (peak, c, d), row, (a1, a2, a3, a4) in zip(stencils, ys, coefficients, strict=True):
-            t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
-            high = max(row)
-            if t is None:
-                moved = c + d * _OFFSETS[row.index(high)]          # that stencil point, made again
-                if high >= peak.value:
-                    peak.at = moved
-                peak.value = max(peak.value, high)
-                active.append(peak)
-            else:
-                moved = peak.at = c + t * d
-                peak.value = max(peak.value, max(row[2] + t * (a1 + t * (a2 + t * (a3 + t * a4))), high))
-                if abs(t) > 0.5:                                 # else the peak is well inside: its quartic's is exact
-                    active.append(peak)
-            peak.centre = moved
+        a1, a2, a3, a4 = _coefficients_apart(ys, peaks.from_end[active]).T
+        t = _vertex(a1, a2, a3, a4, -2.0, 2.0)
+        high = ys.max(axis=1)
+        value = peaks.value[active]
+        none = np.isnan(t)
+        best = c + d * _STEPS[ys.argmax(axis=1)]                 # the stencil's best point, where no quartic peaks
+        t = np.where(none, 0.0, t)
+        moved = c + t * d
+        fitted = ys[:, 2] + t * (a1 + t * (a2 + t * (a3 + t * a4)))
+        peaks.at[active] = np.where(none, np.where(high >= value, best, peaks.at[active]), moved)
+        peaks.value[active] = np.where(none, np.maximum(value, high), np.maximum(value, np.maximum(fitted, high)))
+        peaks.centre[active] = np.where(none, best, moved)
+        active = active[none | (np.abs(t) > 0.5)]                # else the peak is well inside: its quartic's is exact
 
 
-def _first_largest(candidates: list[tuple[float, float]], tie: float, backwards: bool) -> tuple[float, float]:
-    """Of a piece's ``candidates`` (abscissa, value), its ends and peaks, the first from the low end (the high end
-    where ``backwards``) whose value is within ``tie`` of the largest; of equal abscissae the earliest listed."""
-    limit = max(v for _, v in candidates) - tie
-    sign = -1.0 if backwards else 1.0
-    best, key = candidates[0], math.inf
-    for candidate in candidates:
-        x, v = candidate
-        if v >= limit and sign * x < key:
-            best, key = candidate, sign * x
-    return best
+#: a refinement stencil's five points about its centre, in its spacings
+_STEPS = np.array(_OFFSETS)
+
+
+def _first_largest(row: np.ndarray, x: np.ndarray, v: np.ndarray, ties: np.ndarray, backwards: np.ndarray,
+                   rows: int) -> np.ndarray:
+    """Of each row's candidates (``row``, abscissa ``x`` and value ``v``, (m,) each, listed in order within a row:
+    its ends, then its peaks), the first from the low end (the high end where the row's ``backwards``) whose value
+    is within the row's tie (``ties``) of its largest; of equal abscissae the earliest listed. The chosen
+    candidate of each of the ``rows`` rows (indices into the candidates, (rows,))."""
+    top = np.full(rows, -math.inf)
+    np.maximum.at(top, row, v)
+    near = (v >= (top - ties)[row]).nonzero()[0]
+    key = np.where(backwards, -1.0, 1.0)[row[near]] * x[near]
+    ordered = near[np.lexsort((near, key, row[near]))]       # by row, then from the low end, then as listed
+    first = np.ones(ordered.size, dtype=bool)
+    first[1:] = row[ordered[1:]] != row[ordered[:-1]]
+    return ordered[first]
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
@@ -414,7 +399,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     of ``scale`` (k,) and its largest |value| on the grid.
 
     One dense evaluation (``n`` >= 5 points a piece) finds each function's interior local maxima on each piece that
-    may be its largest, and a peak within the grid's first or last step (see :func:`_inward_peaks`; none on a piece
+    may be its largest, and a peak within the grid's first or last step (see :func:`_inward_ends`; none on a piece
     where it is constant, within ``TIE``); the quartic through the five grid
     values about each puts its maximiser within ~1e-9 of the piece and tells the peak's breadth; a second
     evaluation, at five points ``STENCIL`` of that breadth apart about the estimate, gives a quartic whose peak is
@@ -429,47 +414,40 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     if n < 5:
         raise ValueError(f"a grid of {n} points: the search needs 5 a piece at least")
     plan = _plan(_exact(lo), _exact(hi), _key(steady), _key(reverse), n)
-    lo, hi, width, moving, resting, backwards, first = plan
-    p = len(lo)
-    got = answer((yield ask(*first)))
+    p = plan.lo.size
+    got = answer((yield ask(*plan.ask)))
     k = got.shape[0]
-    count = len(moving)
+    count = plan.moving.size
     y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
     largest = np.abs(got).max(axis=1).tolist()                 # NaN or infinite where any value is
     if not all(map(math.isfinite, largest)):
         raise FloatingPointError("function is not finite on the search grid")
     scales = np.broadcast_to(np.asarray(scale, dtype=float).reshape(-1), (k,)).tolist()   # one for all, or one each
     magnitude = [max(s, m) for s, m in zip(scales, largest, strict=True)]
-    held = got[:, count * n:].tolist()                         # each steady piece's value, for each function
-    edges = y[:, _EDGES].tolist()                              # each row's first five and last five
-    flat = _flat_rows(y, magnitude, count)
-    grid = _grid_candidates(y, flat, edges, magnitude, count) if count else []
-    found: list[list[tuple[float, float]]] = [[] for _ in edges]   # each grid row's peaks
-    if grid:
-        centres, windows = _windows(y, grid, n)
-        near = windows.tolist()
-        from_end = [j == 0 or j == n - 1 for _, j in grid]
-        fits = _coefficients_apart(windows, from_end)
-        peaks = _estimates(zip(grid, centres, near, fits, strict=True), moving, lo, hi, width, n)
-        yield from _refined(peaks, lo, hi, width, ask, answer)
-        for peak in peaks:                  # a peak found from an end only where it beats that end by the tie
-            if peak.end is None or peak.value - peak.end > TIE * magnitude[peak.f]:
-                found[peak.row].append((peak.at, peak.value))
-    at: list[list[float]] = []
-    value: list[list[float]] = []
-    rows = zip(edges, found, strict=True)
-    for f in range(k):
-        tie = TIE * magnitude[f]
-        row_at, row_value = [0.0] * p, [0.0] * p
-        at.append(row_at)
-        value.append(row_value)
-        for piece, (edge, here) in zip(moving, rows, strict=False):   # this function's rows (moving first: zip
-            #                                                           then takes no row past its last piece)
-            row_at[piece], row_value[piece] = _first_largest([(lo[piece], edge[0]), (hi[piece], edge[9]), *here], tie,
-                                                             backwards[piece])
-        for (piece, where), v in zip(resting, held[f], strict=True):
-            row_at[piece], row_value[piece] = where, v
-    return at, value, magnitude
+    at, value = np.empty((k, p)), np.empty((k, p))
+    at[:, plan.resting] = plan.resting_at
+    value[:, plan.resting] = got[:, count * n:]                # each steady piece's value, for each function
+    if count:
+        rows = k * count
+        sizes = np.array(magnitude).repeat(count)              # each row's function's magnitude
+        ties = TIE * sizes
+        flat = np.zeros(rows, dtype=bool)
+        flat[_flat_rows(y, magnitude, count)] = True
+        row, j = _grid_candidates(y, flat, sizes)
+        peaks = _estimates(y, row, j, plan, n)
+        if row.size:
+            yield from _refined(peaks, plan, ask, answer)
+        # a peak found from an end only where it beats that end by the tie
+        kept = ~peaks.from_end | (peaks.value - peaks.end > ties[peaks.row])
+        piece = plan.moving[np.arange(rows) % count]           # each row's piece
+        every = np.arange(rows)
+        row_of = np.concatenate([every, every, peaks.row[kept]])        # each row's ends, then its peaks
+        x = np.concatenate([plan.lo[piece], plan.hi[piece], peaks.at[kept]])
+        v = np.concatenate([y[:, 0], y[:, -1], peaks.value[kept]])
+        chosen = _first_largest(row_of, x, v, ties, plan.backwards[piece], rows)
+        at[every // count, piece] = x[chosen]
+        value[every // count, piece] = v[chosen]
+    return at.tolist(), value.tolist(), magnitude
 
 
 def present(index: np.ndarray) -> np.ndarray:

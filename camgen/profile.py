@@ -250,7 +250,7 @@ def design_profile(rig: Rig, base_radius: float, body: Body, finish: Finish, all
     marks = engraving(body, cam, polygon, near) if body.engraved else ()
     maker = ProfileMaker(body, finish, cam, envelope, marks, outline, cut_off, holes)
     part, cut, printed = maker.part(0.0, 0.0), allowances.cut(maker), allowances.printed(maker)
-    jumps = tuple(cam.program.jumps())
+    jumps = tuple(cam.jumps())
     warnings = _warnings(body.bore, a, jumps, wall, cam.program.segments, cut_off, pressure_limit)
     extent = (cut_off.face_extent if cut_off is not None else face_extent(cam)) if cam.follower.flat else None
     return Profile(body=body, finish=finish, cam=cam, analysis=a, jumps=jumps, outline=outline, part=part,

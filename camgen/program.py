@@ -268,17 +268,14 @@ class Program:
         at, value, magnitude = yield from maxima_steps(
             lo, hi, scale=scale, reverse=backwards, steady=still if steady else False, answer=values,
             ask=ask if owner is None else lambda v, piece: ask(v, owner[piece]))     # a piece's segment
-        out = []
-        for row_at, row_value, size in zip(at, value, magnitude, strict=True):
-            limit = max(row_value) - TIE * size
-            best = (0.0, math.inf)
-            for v, x, (start, beta, back) in zip(row_value, row_at, angles, strict=True):
-                if v >= limit:                  # Segment.angle's, in degrees: the same operations on the same numbers
-                    degrees = math.degrees(start + beta * (1.0 - x if back else x)) % 360.0
-                    if degrees < best[1]:
-                        best = (v, degrees)
-            out.append(best)
-        return out
+        start, beta, back = angles
+        x, v = np.array(at), np.array(value)
+        # Segment.angle's, in degrees: the same operations on the same numbers
+        degrees = np.degrees(start + beta * np.where(back, 1.0 - x, x)) % 360.0
+        near = v >= (v.max(axis=1) - TIE * np.array(magnitude))[:, None]
+        best = np.where(near, degrees, math.inf).argmin(axis=1)          # the first of the least angles
+        rows = np.arange(len(at))
+        return list(zip(v[rows, best].tolist(), degrees[rows, best].tolist(), strict=True))
 
     @cached_property
     def _table(self) -> _Table:
@@ -306,20 +303,15 @@ class Program:
                          + [segments[0].start])            # Segment.end's sums, then the next segments' starts
         return theta, _boundary_segments(len(segments))
 
-    def known_boundaries(self, motion: np.ndarray) -> None:
-        """Keep ``motion`` (4, 2n), evaluated elsewhere at :attr:`boundary_points`, as :attr:`boundaries`' motion
-        (a cache: the same numbers its own evaluation makes)."""
-        self.__dict__["boundaries"] = (self.boundary_points[0], motion)
-
     @cached_property
     def _pieces(self) -> tuple[np.ndarray | None, list[float], list[float], list[bool], list[bool],
-                               list[tuple[float, float, bool]]]:
+                               tuple[np.ndarray, np.ndarray, np.ndarray]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them: the
         owning segment of each (an array, to map asks; None where each segment is one piece, its own), the law
         variable's ends (floats), whether its segment holds still (a dwell) and whether it runs its law backwards (a
-        return, see :meth:`Segment.angle`), and that segment's start, angle (radians) and backwards flag. Made once a
-        program (read-only for its readers): a roller's design searches its program once, a flat face's or one with
-        a speed up to eight times."""
+        return, see :meth:`Segment.angle`), and the segments' starts, angles (radians) and backwards flags (arrays, a
+        piece each). Made once a program (read-only for its readers): a roller's design searches its program once, a
+        flat face's or one with a speed up to eight times."""
         owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
         for i, seg in enumerate(self.segments):
             moving = seg.kind != "dwell" and seg.law is not None
@@ -333,7 +325,8 @@ class Program:
                 angles.append((seg.start, seg.beta, back))
         # each segment one piece, its own: no mapping of the asks
         mapping = None if owner == list(range(len(self.segments))) else np.array(owner)
-        return mapping, lo, hi, still, backwards, angles
+        table = np.array(angles, dtype=float).reshape(-1, 3).T                # start, beta, backwards (1.0 or 0.0)
+        return mapping, lo, hi, still, backwards, (table[0], table[1], table[2] == 1.0)
 
     def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
         """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)),
@@ -347,20 +340,27 @@ class Program:
 
         return self.maxima(values)[0]
 
-    def jumps(self) -> list[Jump]:
+    def jumps(self, motion: np.ndarray | None = None) -> list[Jump]:
         """Every jump of s', s'', s''' at segment boundaries (360 wrapping to 0) and inside laws.
 
         A jump counts when it exceeds 1e-9 of the larger natural scale h/beta^k of
-        the segments on either side.
+        the segments on either side. ``motion`` (4, 2n): the motion at :attr:`boundary_points` where it has been
+        evaluated with other points (the same numbers as :attr:`boundaries`' own), else :attr:`boundaries`'.
         """
         found: list[Jump] = []
         n = len(self.segments)
-        theta, motion = self.boundaries
-        ends = theta.tolist()                               # every Segment.end first (its sums: the same numbers)
-        motion = motion.T.tolist()                          # as Python floats: the same numbers, cheaper one by one
-        scales = self._table.scales
+        theta = self.boundary_points[0]
+        if motion is None:
+            motion = self.boundaries[1]
+        # the boundaries all at once: each segment's end (its scales) against the next one's start (the next's)
+        table = self._table
+        step = motion[1:, n:] - motion[1:, :n]
+        limit = JUMP_TOL * np.maximum(np.maximum(table.rates, table.next_rates), 1e-300)
+        order, at = (np.abs(step) > limit).nonzero()
+        for k, i, jump in zip((order + 1).tolist(), at.tolist(), step[order, at].tolist(), strict=True):
+            found.append(Jump(at_deg=round(math.degrees(theta[i]), 9) % 360.0, order=k, jump=jump, inside=False))
+        scales = table.scales
         for i, seg in enumerate(self.segments):
-            _compare(found, ends[i], motion[i], motion[n + i], scales[i], scales[i + 1 - n], inside=False)
             for t, lo, hi in seg.inner_limits():
                 _compare(found, t, lo.tolist(), hi.tolist(), scales[i], scales[i], inside=True)
         found.sort(key=_AT_ORDER)
@@ -398,6 +398,9 @@ class _Table:
         # bits of some from about 2 700 segments on)
         natural = _natural(table[_H], table[_BETA])
         self.scales: list[list[float]] = natural.tolist()
+        #: the natural scales of the three derivatives (3, m), and the next segment's (the last's next is the first)
+        self.rates = np.ascontiguousarray(natural[:, 1:].T)
+        self.next_rates = np.concatenate([self.rates[:, 1:], self.rates[:, :1]], axis=1)
         # the factors: natural scales times the signs in their place, 1 (a rise), +-1 (a return's even and odd orders)
         # or 0 (a dwell): exact
         table[_FACTORS] *= natural.T

@@ -250,12 +250,13 @@ def test_flat_rows_are_those_whose_range_is_within_the_tie():
 def test_the_quartic_vertex_has_no_maximum_where_a_step_divides_by_zero():
     """A flat window (no parabola) or a Newton step with a zero slope's derivative: no maximum, as the arrays' NaN
     and infinities gave; a peak inside the window: the quartic's."""
-    assert numeric._vertex(0.0, 0.0, 0.0, 0.0, -2.0, 2.0) is None
-    assert numeric._vertex(1.0, 0.0, 0.0, 1.0, -2.0, 2.0) is None
-    assert numeric._vertex(0.0, -1.0, 0.0, 0.0, -2.0, 2.0) == 0.0
-    t = numeric._vertex(0.3, -1.0, 0.01, -0.02, -2.0, 2.0)
-    assert abs(0.3 - 2.0 * t + 0.03 * t**2 - 0.08 * t**3) < 1e-15 and numeric._vertex(0.3, -1.0, 0.01, -0.02,
-                                                                                       -2.0, 0.1) is None
+    a = np.array([[0.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 1.0], [0.0, -1.0, 0.0, 0.0], [0.3, -1.0, 0.01, -0.02]])
+    flat, step, inside, t = numeric._vertex(*a.T, -2.0, 2.0)
+    assert np.isnan(flat) and np.isnan(step) and inside == 0.0
+    assert abs(0.3 - 2.0 * t + 0.03 * t**2 - 0.08 * t**3) < 1e-15
+    assert np.isnan(numeric._vertex(*a[3:].T, -2.0, 0.1)[0])                 # its peak beyond the window
+    alone = [numeric._vertex(*r[:, None], -2.0, 2.0)[0] for r in a]          # all at once: each row as it is alone
+    assert np.array_equal(numeric._vertex(*a.T, -2.0, 2.0), alone, equal_nan=True)
     assert numeric._breadth(1.0, 0.0, 0.01, 0.5) == 0.5 and numeric._breadth(-0.0, 0.0, 0.01, 0.5) == 0.5
 
 
