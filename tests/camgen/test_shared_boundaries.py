@@ -9,7 +9,7 @@ from camgen.analysis import analyze
 from camgen.flat import build_cam
 from camgen.followers.base import PitchGeometry
 from tests.conftest import template
-from tests.test_speed_outline import _Counting
+from tests.camgen.test_speed_outline import _Counting
 
 
 def _fields(g: PitchGeometry) -> list[np.ndarray]:
