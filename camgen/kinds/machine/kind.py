@@ -9,6 +9,8 @@ from typing import TYPE_CHECKING, Any
 from camgen.kinds.base import KindBase, Operations, Starter
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from camgen.kinds.machine.design import MachineDesign
     from camgen.kinds.machine.spec import MachineSpec
 
@@ -68,6 +70,13 @@ class MachineKind(KindBase["MachineSpec", "MachineDesign"]):
 
     def sheet_refusal(self, spec: Any) -> str | None:
         return "a machine's cams and linkages write their own cut files; a family's [sheet] nests single cams"
+
+    def beside(self, raw: dict[str, Any], folder: Path) -> dict[str, Any]:
+        """Each mount's template path read from the machine template's folder
+        (:func:`camgen.kinds.machine.mounts.beside`)."""
+        from camgen.kinds.machine.mounts import beside
+
+        return beside(raw, folder)
 
 
 KIND = MachineKind()
