@@ -405,7 +405,9 @@ def load_spec(path: str | Path, overrides: Iterable[str] = ()) -> TemplateSpec:
 
 def _tables_beside(raw: dict[str, Any], folder: Path) -> dict[str, Any]:
     """``raw`` with each table law's relative ``file`` read from ``folder`` (the template's) into its ``data``;
-    ``file`` stays as the user wrote it (the report names it so, wherever the template lies)."""
+    ``file`` stays as the user wrote it (the report names it so, wherever the template lies); the files its kind
+    names made to lie beside it (:meth:`camgen.kinds.base.Kind.beside`: a machine's mounts)."""
+    raw = kind_for(raw).beside(raw, folder)
     follower = raw.get("follower")
     if isinstance(follower, dict) and isinstance(follower.get("load_table"), str):
         try:

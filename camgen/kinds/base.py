@@ -18,6 +18,8 @@ from camgen.core.errors import SpecError
 from camgen.core.writers import FORMATS, OPTIONAL_FORMATS
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     from camgen.core.bundle import Bundle, Item
     from camgen.sizing import Sizing
 
@@ -151,6 +153,11 @@ class Kind(Protocol[S, D]):
         """What to say of ``fmt``, a format in ``output.formats`` that is not one of :attr:`formats`."""
         ...
 
+    def beside(self, raw: dict[str, Any], folder: Path) -> dict[str, Any]:
+        """The raw template ``raw`` read from a file in ``folder`` with the files it names by a relative path made
+        to lie beside it (before validation; a template of its kind without such files as it is)."""
+        ...
+
 
 @dataclass(frozen=True)
 class Operations(Generic[S, D]):
@@ -226,3 +233,6 @@ class KindBase(ABC, Generic[S, D]):
 
     def format_refusal(self, fmt: str) -> str:
         return f"{self.title} writes no {fmt!r} file; give formats of {', '.join(sorted(self.formats))}"
+
+    def beside(self, raw: dict[str, Any], folder: Path) -> dict[str, Any]:
+        return raw

@@ -56,7 +56,7 @@ def test_every_kind_has_a_starter():
     assert extra == {"eight-bar", "geared-fivebar"}
     assert all(LINKAGE_STARTERS[k][1][0][1]["type"] in MECHANISMS for k in extra)
     assert {"translating-roller", "knife-edge", "translating-flat", "oscillating-roller", "oscillating-flat",
-            "plate", "grooved", "barrel", "conjugate", "geneva", "machine"} == set(CAM_STARTERS)
+            "plate", "grooved", "barrel", "conjugate", "geneva", "machine", "walking-toy"} == set(CAM_STARTERS)
 
 
 def test_comments_are_the_models_descriptions(tmp_path):

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.kinds.machine import kinematics
+from camgen.kinds.machine import chain_inertia, kinematics
 
 
 @dataclass(frozen=True)
@@ -43,6 +43,9 @@ class CrankedMotion:
         The crank's input (radians, the drawing's frame) at each shaft angle.
     points, rates : dict of str to ndarray
         Every joint (n, 2) in the machine's frame (mm) and its rate d P / d phi (mm/rad).
+    torque : ndarray or None
+        With its template's ``[dynamics]``: the main shaft's torque (N*m) that turns it at the machine's speed
+        (:func:`camgen.kinds.machine.chain_inertia.cranked_shaft_torque`); None without.
     """
 
     name: str
@@ -56,6 +59,7 @@ class CrankedMotion:
     inputs: np.ndarray
     points: dict[str, np.ndarray]
     rates: dict[str, np.ndarray]
+    torque: np.ndarray | None = None
 
     @property
     def analysis(self) -> Any:
@@ -96,5 +100,7 @@ def cranked_motion(spec: Any, index: int, phi: np.ndarray, design: Any) -> Crank
     sol = made.solve(phi)
     points = {p: np.asarray(xy, dtype=float) + made.offset for p, xy in sol.points.items()}
     rates = {p: np.asarray(v, dtype=float) for p, v in sol.velocities.items()}
+    inputs = made.inputs_at(phi)
+    torque = chain_inertia.cranked_shaft_torque(design, inputs, turns, spec.machine.rpm * math.pi / 30.0)
     return CrankedMotion(mount.name, mount.shaft, turns, mount.phase, mount.layer, side, design, made.offset,
-                         made.inputs_at(phi), points, rates)
+                         inputs, points, rates, torque)

@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import clash, frame, kinematics
+from camgen.kinds.machine import chain_inertia, clash, frame, kinematics
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -79,9 +79,13 @@ class LinkageMotion:
     point, point_rate : ndarray
         (n, 2) the coupler point (mm, the linkage's frame) and d P / d phi (mm/rad).
     force : ndarray
-        The output torque reflected onto the follower's roller (N, pressing it onto the cam).
+        The output torque reflected onto the follower's roller (N, pressing it onto the cam), with the linkage's
+        own dynamics where its template has ``[dynamics]`` (:mod:`camgen.kinds.machine.chain_inertia`).
     torque : ndarray
-        The main shaft's torque working against the output torque (N*m).
+        The main shaft's torque working against the output torque (N*m), and against the linkage's inertia, weight,
+        springs and loads with ``[dynamics]``.
+    effort : ndarray or None
+        With ``[dynamics]``: the inverse dynamics' share of the crank's torque (N*m), the output torque's left out.
     """
 
     name: str
@@ -101,6 +105,7 @@ class LinkageMotion:
     point_rate: np.ndarray
     force: np.ndarray
     torque: np.ndarray
+    effort: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -161,8 +166,10 @@ class MachineDesign:
 
     @property
     def shaft_torque(self) -> np.ndarray:
-        """The main shaft's torque (N*m) working against every linkage's output torque, at its angles."""
-        return sum((m.torque for m in self.linkages), np.zeros_like(self.phi))
+        """The main shaft's torque (N*m) working against every linkage's output torque, at its angles (and against
+        each linkage's own dynamics, where its template has ``[dynamics]``)."""
+        cranked = (m.torque for m in self.cranked if m.torque is not None)
+        return sum((*(m.torque for m in self.linkages), *cranked), np.zeros_like(self.phi))
 
     def together(self, a: str, b: str) -> bool:
         """Whether outputs labelled ``a`` and ``b`` move together by construction (left out of the overlaps): a
@@ -223,7 +230,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
         if worst < TRANSMISSION_WARN_DEG:
             warnings.append(f"linkages.{coupling.linkage}: the transmission angle comes within {worst:.1f} degrees "
                             f"of a toggle over the range cams.{coupling.cam} drives it through")
-        if coupling.output_torque:
+        if coupling.output_torque or found.effort is not None:
             cams[coupling.cam] = _loaded(spec, cams[coupling.cam], found)
     for c in cams.values():
         warnings += [f"cams.{c.name}: {w}" for w in c.design.warnings]
@@ -284,12 +291,14 @@ def _linkage_motion(spec: MachineSpec, index: int, mount_index: int, cam: CamMot
         design = linkgen_api.design(lspec, parts=lspec.parts is not None)
     except SpecError as exc:
         raise exc.under(f"linkages[{mount_index}].template") from None
+    load = chain_inertia.coupled_input_torque(design, chain.theta2, chain.d1, chain.d2,
+                                              spec.machine.rpm * math.pi / 30.0, coupling.output_torque, k4)
+    force, torque = chain_inertia.carried(load, coupling.output_torque, k4, arm, chain)
     return LinkageMotion(
         coupling.linkage, coupling.cam, coupling, design, fb, chain, poses.theta3, poses.theta4, poses.gamma, k3, k4,
         rocker_rate, rocker_acc, poses.point,
-        kinematics.point_rate(fb.crank, fb.point_distance, fb.point_angle, poses.theta3, k3, chain),
-        kinematics.reflected_force(coupling.output_torque, k4, arm),
-        kinematics.shaft_torque(coupling.output_torque, k4, chain))
+        kinematics.point_rate(fb.crank, fb.point_distance, fb.point_angle, poses.theta3, k3, chain), force, torque,
+        load.dynamic)
 
 
 def _check_reach(fb: FourBar, theta2: np.ndarray, index: int, coupling: Coupling) -> None:
@@ -311,8 +320,9 @@ def _check_reach(fb: FourBar, theta2: np.ndarray, index: int, coupling: Coupling
 
 
 def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMotion:
-    """``cam`` designed again with the linkage's output torque reflected onto its follower as a load table (cam
-    angle in degrees, N pressing onto the cam), sampled at :data:`LOAD_ROWS` program angles."""
+    """``cam`` designed again with the linkage's output torque (and, with ``[dynamics]``, its inverse dynamics at
+    the cam's speed) reflected onto its follower as a load table (cam angle in degrees, N pressing onto the cam),
+    sampled at :data:`LOAD_ROWS` program angles."""
     index = next(i for i, m in enumerate(spec.cams) if m.name == cam.name)
     theta = np.arange(LOAD_ROWS) * (kinematics.TWO_PI / LOAD_ROWS)
     swing = _cam_of(cam.design).program.evaluate(theta)[:3]
@@ -321,7 +331,10 @@ def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMot
         next(i for i, m in enumerate(spec.linkages) if m.name == linkage.name)].linkage.assembly)
     k4 = linkage.fourbar.rates(poses)[1]
     arm = float(_cam_of(cam.design).follower.arm_length)
-    force = kinematics.reflected_force(linkage.coupling.output_torque, k4, arm)
+    load = chain_inertia.coupled_input_torque(linkage.design, chain.theta2, chain.d1, chain.d2,
+                                              cam.design.spec.cam.rpm * math.pi / 30.0,
+                                              linkage.coupling.output_torque, k4)
+    force = chain_inertia.carried(load, linkage.coupling.output_torque, k4, arm, chain)[0]
     rows = [[round(float(a), 9), round(float(f), 9)] for a, f in zip(np.degrees(theta), force, strict=True)]
     cam_spec = spec.cam_specs[index].with_changes({"follower.load_table": rows})
     try:

@@ -15,7 +15,8 @@ from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
 from camgen.kinds.machine.keeptime import timing_report
 from camgen.kinds.machine.poses import poses_report
-from camgen.speed import Speed
+from camgen.speed import HeldContact, Speed
+from camgen.tables.followers import Driven
 
 
 def _num(value: float, digits: int = 9) -> float:
@@ -61,9 +62,34 @@ def _cam_entry(design: MachineDesign, index: int) -> dict[str, Any]:
     return out
 
 
+def _spring_entry(design: MachineDesign, m: Any) -> dict[str, Any] | None:
+    """How the follower driving ``m`` stays on its cam with the linkage attached: a positive drive needs no spring;
+    with the linkage's ``[dynamics]`` the least contact force (N), where (cam and main shaft degrees) and the preload
+    (N) or rate (N/mm) that would keep it at the cam's margin; None otherwise (the cam's own ``contact`` says it)."""
+    cam = design.cam(m.cam)
+    if isinstance(cam.design.spec.follower, Driven):
+        return {"positive_drive": True, "note": f"cams.{m.cam} drives its follower both ways (a positive drive): "
+                                               "no spring to size, whatever the linkage's load"}
+    speed = getattr(_profile(cam.design), "speed", None)
+    contact = speed.contact if isinstance(speed, Speed) else None
+    if m.effort is None or not isinstance(contact, HeldContact):
+        return None
+    shaft = (contact.force_min_at_deg + cam.phase_deg) / abs(cam.turns) % 360.0
+    return {"positive_drive": False, "least_contact_force_n": _num(contact.force_min, 6),
+            "at_cam_deg": _num(contact.force_min_at_deg, 6), "at_shaft_deg": _num(shaft, 6),
+            "margin_n": contact.margin, "holds": contact.holds, "spring_rate_n_mm": contact.spring_rate,
+            "preload_n": contact.preload, "preload_needed_n": _num(contact.preload_needed, 6),
+            "rate_needed_n_mm": None if contact.rate_needed is None else _num(contact.rate_needed, 6)}
+
+
 def _linkage_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
     omega = design.omega
     gamma = np.degrees(m.gamma)
+    extra: dict[str, Any] = {}
+    if m.effort is not None:
+        extra["inertia_torque_n_m"] = [_num(m.effort.min(), 6), _num(m.effort.max(), 6)]
+    if (spring := _spring_entry(design, m)) is not None:
+        extra["spring"] = spring
     return {"cam": m.cam, "rest_deg": m.coupling.rest, "output_torque_n_m": m.coupling.output_torque,
             "crank_deg": [_num(np.degrees(m.chain.theta2.min())), _num(np.degrees(m.chain.theta2.max()))],
             "rocker_deg": [_num(np.degrees(m.theta4.min())), _num(np.degrees(m.theta4.max()))],
@@ -75,7 +101,7 @@ def _linkage_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
                           "speed_max_mm_s": _num(np.hypot(*m.point_rate.T).max() * omega, 6)},
             "reflected_force_n": [_num(m.force.min(), 6), _num(m.force.max(), 6)],
             "shaft_torque_n_m": [_num(m.torque.min(), 6), _num(m.torque.max(), 6)],
-            "files_prefix": m.design.spec.name}
+            "files_prefix": m.design.spec.name, **extra}
 
 
 def _cranked_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
@@ -86,7 +112,8 @@ def _cranked_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
                    "speed_max_mm_s": _num(np.hypot(*m.rates[p].T).max() * omega, 6)} for p in m.tracers}
     return {"shaft": m.shaft, "phase_deg": m.phase_deg, "layer": m.layer, "side": "front" if m.side > 0 else "back",
             "turns_per_main_turn": m.turns, "offset_mm": [_num(v) for v in m.offset], "tracers": tracers,
-            "files_prefix": m.design.spec.name}
+            "files_prefix": m.design.spec.name,
+            **({} if m.torque is None else {"shaft_torque_n_m": [_num(m.torque.min(), 6), _num(m.torque.max(), 6)]})}
 
 
 def machine_report(design: MachineDesign) -> dict[str, Any]:
@@ -110,15 +137,22 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         "poses": poses_report(design),
         "shaft_torque_n_m": {"min": _num(torque.min(), 6), "max": _num(torque.max(), 6),
                              "mean": _num(torque.mean(), 9),
-                             "note": "the main shaft's torque against the linkages' output torques (virtual work: "
-                                     "their power over the shaft's speed); each cam's own follower forces are in "
-                                     "its own report"},
+                             "note": _torque_note(design)},
         "clashes": [{"parts": [c.a, c.b], "first_deg": c.angle_deg} for c in design.clashes],
         "clash_check": {"samples": spec.machine.clash_samples, "refined_deg": 0.1, "mode": spec.machine.clash,
                         "not_checked": list(design.unchecked)},
         "warnings": list(design.warnings),
         **({"keep_time": timed} if (timed := timing_report(design)) else {}),
     }
+
+
+def _torque_note(design: MachineDesign) -> str:
+    """What the report's main shaft torque counts."""
+    dynamic = any(m.effort is not None for m in design.linkages) or any(m.torque is not None for m in design.cranked)
+    return ("the main shaft's torque against the linkages' output torques"
+            + (" and their own inertia, weight, springs and loads ([dynamics])" if dynamic else "")
+            + " (virtual work: their power over the shaft's speed); each cam's own follower forces are in its own "
+            "report")
 
 
 def timing_rows(design: MachineDesign) -> list[dict[str, Any]]:

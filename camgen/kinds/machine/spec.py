@@ -2,11 +2,12 @@
 ``[[cams]]``, ``[[linkages]]`` and ``[[couplings]]``, validated into a frozen :class:`MachineSpec`.
 
 Each cam is a cam template in its own terms (``template``: an inline table, or the path of a cam template file,
-relative to the current folder) mounted on a shaft at a ``phase`` and a ``layer``; each linkage a linkgen template
-likewise. The machine names every sub-template ``<machine>-<mount>`` (its files' names) and sets each cam's
-``cam.rpm`` to its shaft's speed. Every cross-reference is checked here, one :class:`SpecError` naming the field:
-a shaft, cam, linkage or link that does not exist, two cams on one shaft at one layer, a gear pair whose shafts lie
-at another distance than its pitch circles need, a coupling loop (a shaft driven twice, or round a ring of gears).
+relative to the machine template's folder: :mod:`camgen.kinds.machine.mounts`) mounted on a shaft at a ``phase``
+and a ``layer``; each linkage a linkgen template likewise. The machine names every sub-template
+``<machine>-<mount>`` (its files' names) and sets each cam's ``cam.rpm`` to its shaft's speed. Every
+cross-reference is checked here, one :class:`SpecError` naming the field: a shaft, cam, linkage or link that does
+not exist, two cams on one shaft at one layer, a gear pair whose shafts lie at another distance than its pitch
+circles need, a coupling loop (a shaft driven twice, or round a ring of gears).
 """
 from __future__ import annotations
 
@@ -43,9 +44,10 @@ MountName = Field(pattern=NAME_PATTERN, description="its name: letters, digits, 
 
 
 def _template_field(description: str, allowed: str) -> Any:
-    """A mount's ``template`` field: an inline template or the path of a template file (relative to the current
-    folder)."""
-    return Field(description=f"{description} (relative to the current folder)",
+    """A mount's ``template`` field: an inline template or the path of a template file (relative to the machine
+    template's folder)."""
+    return Field(description=f"{description} (relative to the machine template's folder; its own table laws' files "
+                 "relative to it)",
                  json_schema_extra=notes(allowed=allowed))
 
 
@@ -381,7 +383,8 @@ class MachineSpec(TemplateSpec):
     @cached_property
     def cam_specs(self) -> tuple[Any, ...]:
         """Each cam's validated cam spec, named ``<machine>-<cam>`` and turning at its shaft's speed."""
-        from camgen.spec import validate_spec
+        from camgen.kinds.machine.mounts import folder_of
+        from camgen.spec import CamSpec
 
         out = []
         for i, mount in enumerate(self.cams):
@@ -392,7 +395,7 @@ class MachineSpec(TemplateSpec):
             rpm = self.machine.rpm * abs(self.turns[mount.shaft])
             raw = {**raw, "name": f"{self.name}-{mount.name}", "cam": {**raw["cam"], "rpm": rpm}}
             try:
-                out.append(validate_spec(raw))
+                out.append(CamSpec.validate_raw(raw, folder_of(mount.template)))
             except SpecError as exc:
                 raise exc.under(where) from None
         return tuple(out)
