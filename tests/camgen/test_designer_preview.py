@@ -75,7 +75,8 @@ def test_a_drag_preview_equals_the_whole_design_but_for_the_refined_extremes(tmp
     inputs = np.asarray(travel.inputs[0], dtype=float).reshape(-1)
     assert len(quick["dyads"]) == len(full["dyads"]) == len(travel.dyads)
     for sampled, refined, d in zip(quick["dyads"], full["dyads"], travel.dyads, strict=True):
-        assert {k: sampled[k] for k in ("kind", "links", "joint")} == {k: refined[k] for k in ("kind", "links", "joint")}
+        named = ("kind", "links", "joint")
+        assert {k: sampled[k] for k in named} == {k: refined[k] for k in named}
         if "transmission_min_deg" not in refined:
             continue
         bound = math.degrees(_sample_bound(d.transmission, inputs)) + 1e-9
