@@ -94,7 +94,7 @@ class ChildJob:
         self.found: dict[str, str] = {}
         self._shown: list[dict[str, Any]] = []
         self._told = math.inf
-        self._ended = False
+        self._ended = self._done = False
 
     @property
     def pid(self) -> int | None:
@@ -111,14 +111,16 @@ class ChildJob:
         self._told = min(self._told, time.monotonic())
 
     def running(self) -> bool:
-        """True until the child has ended and its last message has been handed on."""
-        return self.reader.is_alive()
+        """True from :meth:`start` until the child's last message is handed on (its process may take a moment
+        more to end: :meth:`join` waits for that too)."""
+        return self.reader.is_alive() and not self._done
 
     def join(self, seconds: float) -> None:
         """Wait (at most ``seconds``) for the child to end and its messages to be handed on."""
         self.reader.join(seconds)
 
     def _hand(self, message: dict[str, Any]) -> None:
+        self._done = message.get("kind") in LAST
         if "candidates" in message:
             self._shown = message["candidates"]
             self.found = {c["name"]: c["text"] for c in self._shown}
@@ -144,7 +146,7 @@ class ChildJob:
                         return
                     continue
                 self._hand(message)
-                if message.get("kind") in LAST:
+                if self._done:
                     return
         finally:
             self._end(STOP_SECONDS)
