@@ -1,9 +1,10 @@
 """A drag's preview (camgen/designer/quick.py) against the whole design: the positions are `linkgen analyze
---angle`'s on the template as dragged to 1e-9 mm, the paths, toggles and transmission at the angle are the full
+--angle`'s on the template as dragged, saved, to 1e-9 mm, the paths, toggles and transmission at the angle are the full
 scene's, and each dyad's extremes, taken at the samples, lie inside the refined ones within the bound the samples'
 spacing and curvature give; the released drag answers the whole design again (refined)."""
 from __future__ import annotations
 
+import json
 import math
 import shutil
 import tomllib
@@ -47,9 +48,13 @@ def _sample_bound(values, inputs):
 
 @pytest.mark.parametrize("name", sorted(DRAGS))
 def test_a_drag_preview_equals_the_whole_design_but_for_the_refined_extremes(tmp_path, name):
+    from click.testing import CliRunner
+
+    from camgen.core.toml_text import dumps
     from camgen.designer import views
     from camgen.designer.session import _follow_checks
     from linkgen import api
+    from linkgen.cli import main
 
     session, scene = _session(tmp_path, name)
     asked = _moved(scene, name)
@@ -64,7 +69,14 @@ def test_a_drag_preview_equals_the_whole_design_but_for_the_refined_extremes(tmp
     spec = api.validate(raw)
     angle = scene["drawn_angle"]
     analysed = api.design(spec, angle=angle)
-    for joint, shown in analysed.report["positions"]["joints"].items():
+    # the positions shown equal `linkgen analyze --angle` on the template as saved
+    (tmp_path / "dragged.toml").write_text(dumps(raw), encoding="utf-8")
+    done = CliRunner().invoke(main, ["analyze", str(tmp_path / "dragged.toml"), "--angle", repr(angle), "--json",
+                                     "-o", str(tmp_path / "analysis")])
+    assert done.exit_code == 0, done.output
+    joints = json.loads(done.stdout)["positions"]["joints"]
+    assert set(joints) == set(quick["joints"])
+    for joint, shown in joints.items():
         assert quick["joints"][joint] == pytest.approx([shown["x_mm"], shown["y_mm"]], abs=1e-9), joint
     full = views.linkage_scene(analysed)
     assert full is not None
