@@ -8,22 +8,12 @@ import time
 
 import pytest
 
+from tests.support.designer_server import gone
+
 #: a short search (as the browser test runs it) and a long one, cancelled long before it ends
 SHORT = {"kind": "path", "points": [[0, 0], [10, 2], [20, 8], [28, 18], [32, 30]], "starts": 1, "generations": 40,
          "seed": 3, "candidates": 2}
 LONG = {**SHORT, "starts": 4, "generations": 2000}
-
-
-def _gone(pid, seconds=30.0):
-    """True once no process has the id ``pid`` (reaped: not even a zombie), within ``seconds``."""
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
-            return True
-        time.sleep(0.05)
-    return False
 
 
 def _until(messages, kind_or_test, seconds=120.0):
@@ -66,10 +56,10 @@ def test_a_synthesis_in_the_child_equals_the_same_synthesis_in_this_process():
     assert {k: v for k, v in here[-1]["search"].items() if k != "seconds"} == {
         k: v for k, v in there[-1]["search"].items() if k != "seconds"}
     assert job.found == {c["name"]: c["text"] for c in here[-1]["candidates"]}
-    assert job.process.exitcode == 0 and _gone(pid)
+    assert job.process.exitcode == 0 and gone(pid)
 
 
-def test_a_cancel_stops_the_child_within_a_generation_and_its_process_is_gone():
+def test_a_cancel_stops_the_child_within_a_generation_and_its_process_isgone():
     from camgen.designer.child import ChildJob
 
     seen: list[dict] = []
@@ -82,7 +72,7 @@ def test_a_cancel_stops_the_child_within_a_generation_and_its_process_is_gone():
     assert seen[-1]["kind"] == "synthesis-cancelled", seen[-1]
     assert seen[-1]["message"] == "synthesis cancelled (0 candidates found before it stopped)"
     assert job.process.exitcode == 0                     # it stopped by itself: not terminated
-    assert _gone(job.pid)
+    assert gone(job.pid)
 
 
 def test_a_child_that_does_not_stop_when_told_is_terminated(monkeypatch):
@@ -99,7 +89,7 @@ def test_a_child_that_does_not_stop_when_told_is_terminated(monkeypatch):
     assert seen[-1]["kind"] == "synthesis-cancelled" and seen[-1]["message"].startswith(
         "synthesis stopped (it did not stop within 0.5 s of being told, so its process was ended)")
     assert job.process.exitcode == -15                   # SIGTERM
-    assert _gone(job.pid)
+    assert gone(job.pid)
 
 
 def test_a_task_the_child_cannot_validate_is_one_error_line():
@@ -111,7 +101,7 @@ def test_a_task_the_child_cannot_validate_is_one_error_line():
     job.join(120)
     assert [m["kind"] for m in seen] == ["error"]
     assert seen[0]["message"].startswith("error: task: give the task as a JSON object")
-    assert _gone(job.pid)
+    assert gone(job.pid)
 
 
 @pytest.fixture(autouse=True)

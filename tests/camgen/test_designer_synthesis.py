@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import ROOT
-from tests.support.designer_server import child_pids, designer, designer_process
+from tests.support.designer_server import child_pids, designer, designer_process, gone
 from tests.camgen.test_designer import _ask, _folder, _snapshot, _tab
 
 pytest.importorskip("starlette")
@@ -46,20 +46,6 @@ def _children():
     import multiprocessing
 
     return [p for p in multiprocessing.active_children() if p.name == "camgen-synthesis"]
-
-
-def _gone(pid, seconds=60.0):
-    """True once no process has the id ``pid`` (not even a zombie), within ``seconds``."""
-    import os
-
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        try:
-            os.kill(pid, 0)
-        except ProcessLookupError:
-            return True
-        time.sleep(0.05)
-    return False
 
 
 @contextlib.contextmanager
@@ -158,7 +144,7 @@ def test_a_disconnect_mid_synthesis_ends_its_child_and_the_server_goes_on(tmp_pa
             _progress(ws)
             (child,) = _children()
             ws.socket.close()                            # gone without a word
-        assert _gone(child.pid), "the synthesis went on after its tab disconnected"
+        assert gone(child.pid), "the synthesis went on after its tab disconnected"
         assert not _children()
         with _tab(url) as (ws, _, _):
             opened = _ask(ws, {"op": "open", "path": "jansen.toml"})
@@ -187,5 +173,5 @@ def test_ctrl_c_during_a_synthesis_stops_the_server_cleanly_and_leaves_no_proces
         children = child_pids(server.pid)
         commands = [Path(f"/proc/{pid}/cmdline").read_bytes() for pid in children]
         assert any(b"spawn_main" in c for c in commands), commands
-    assert children and all(_gone(pid) for pid in children), "a process of the server outlived it"
+    assert children and all(gone(pid) for pid in children), "a process of the server outlived it"
     assert (folder / "jansen.toml").read_bytes() == (ROOT / "templates" / "jansen.toml").read_bytes()

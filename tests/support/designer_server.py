@@ -9,6 +9,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -17,6 +18,18 @@ from tests.conftest import ROOT
 
 def _temporaries() -> set[str]:
     return {p.name for p in Path(tempfile.gettempdir()).glob("camgen-designer-*")}
+
+
+def gone(pid: int, seconds: float = 60.0) -> bool:
+    """True once no process has the id ``pid`` (reaped: not even a zombie), within ``seconds``."""
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.05)
+    return False
 
 
 def child_pids(pid: int) -> list[int]:
