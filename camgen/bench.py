@@ -185,6 +185,7 @@ def throughput(count: int, out: Path, quick: bool = False) -> list[dict]:
     from camgen.designer.bench import drag_row
 
     rows.append(drag_row(out / "designer"))
+    rows.append(drag_row(out / "designer-busy", busy=True))
     return rows
 
 

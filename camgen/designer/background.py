@@ -1,21 +1,23 @@
-"""A tab's work that outlasts one answer: its synthesis, one at a time, on a thread of its own, its messages sent
-on the server's event loop as they come; stopped, and its thread waited for, when the tab cancels it or goes away.
-No server library here: ``send`` is the tab's websocket."""
+"""A tab's work that outlasts one answer: its synthesis, one at a time, in a process of its own
+(:mod:`camgen.designer.child`), its messages sent on the server's event loop as they come; stopped, and its process
+waited for (else ended), when the tab cancels it or goes away. No server library here: ``send`` is the tab's
+websocket."""
 from __future__ import annotations
 
 import asyncio
 import json
-import threading
 from collections.abc import Awaitable, Callable
 from typing import Any
 
 from camgen.core.errors import CamgenError, SpecError
+from camgen.designer.child import ChildJob
 from camgen.designer.session import Session
-from camgen.designer.synthesis import Job, task_of
+from camgen.designer.synthesis import task_of
 
 #: the operations a tab's background answers (the rest go to its session)
 OPS = ("synthesize", "cancel")
-#: the longest a job's thread is waited for once told to stop (s): a search stops within one generation
+#: the longest a job is waited for once told to stop (s): a search stops within one generation, and a child that
+#: does not is ended within :data:`camgen.designer.child.STOP_SECONDS` and a kill's wait
 JOIN_SECONDS = 30.0
 
 
@@ -39,7 +41,7 @@ def _error(exc: CamgenError) -> dict[str, Any]:
 
 class Background:
     """One tab's synthesis: :meth:`answer` a ``synthesize`` or ``cancel`` message, :meth:`launch` the job asked
-    for once its answer is sent, :meth:`close` when the tab goes (the job stopped, its thread joined).
+    for once its answer is sent, :meth:`close` when the tab goes (the job stopped, its process ended).
 
     Parameters
     ----------
@@ -53,13 +55,12 @@ class Background:
         self.session, self.send = session, send
         self.loop = asyncio.get_running_loop()
         self.queue: asyncio.Queue[dict[str, Any]] = asyncio.Queue()
-        self.job: Job | None = None
-        self.thread: threading.Thread | None = None
-        self.pending: Job | None = None
+        self.job: ChildJob | None = None
+        self.pending: ChildJob | None = None
         self.forwarder = asyncio.create_task(self._forward())
 
     def running(self) -> bool:
-        return self.thread is not None and self.thread.is_alive()
+        return self.job is not None and self.job.running()
 
     async def answer(self, message: dict[str, Any]) -> dict[str, Any]:
         """The answer to a ``synthesize`` (the job made, not yet started) or ``cancel`` message."""
@@ -75,7 +76,7 @@ class Background:
             spec = await asyncio.to_thread(task_of, message)
         except CamgenError as exc:
             return _error(exc)
-        self.pending = Job(spec, self._emit)
+        self.pending = ChildJob(message, self._emit)
         return {"kind": "synthesis-started", "name": spec.name, "task": spec.task.kind}
 
     def launch(self) -> None:
@@ -83,11 +84,10 @@ class Background:
         if self.pending is None:
             return
         self.job, self.pending = self.pending, None
-        self.thread = threading.Thread(target=self.job.run, name="camgen-synthesis", daemon=True)
-        self.thread.start()
+        self.job.start()
 
     def _emit(self, message: dict[str, Any]) -> None:
-        """From the job's thread: the candidates to the session, the message to the tab's queue."""
+        """From the job's reader thread: the candidates to the session, the message to the tab's queue."""
         job = self.job
         if job is not None and "candidates" in message:
             self.session.candidates = job.found          # replaced whole: the session only reads it
@@ -109,13 +109,13 @@ class Background:
                 return
 
     async def close(self) -> None:
-        """Stop the job (within one generation) and wait for its thread; stop forwarding."""
-        if self.job is not None:
-            self.job.cancel()
+        """Stop the job (within one generation, else its process ended) and wait for it; stop forwarding."""
+        job = self.job
+        if job is not None:
+            job.cancel()
         self.pending = None
-        thread = self.thread
         try:
-            if thread is not None:
-                await asyncio.to_thread(thread.join, JOIN_SECONDS)
+            if job is not None:
+                await asyncio.to_thread(job.join, JOIN_SECONDS)
         finally:
             self.forwarder.cancel()

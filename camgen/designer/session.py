@@ -266,8 +266,10 @@ class Session:
         angle = views.drawn_angle(self.design) if self.design is not None else None
         if message.get("final"):
             return self._edit(raw, angle, abandoned)
-        state = self._designed(raw, angle, abandoned, full=False)
-        return {"kind": "preview", "scene": state["scene"]}
+        scene = self._preview(raw, angle, abandoned)
+        if scene is None:
+            scene = self._designed(raw, angle, abandoned, full=False)["scene"]
+        return {"kind": "preview", "scene": scene}
 
     def turn(self, message: Mapping[str, Any], abandoned: threading.Event) -> dict[str, Any]:
         value = message.get("value")
@@ -393,6 +395,18 @@ class Session:
         if abandoned.is_set():
             raise Abandoned
         return state
+
+    def _preview(self, raw: dict[str, Any], angle: float | None, abandoned: threading.Event) -> dict[str, Any] | None:
+        """A drag's scene of ``raw`` at ``angle`` from the linkage's analysis alone (:mod:`camgen.designer.quick`:
+        the dyads' extremes at the samples); None where that does not apply (not a general linkage, no angle)."""
+        from camgen.designer.quick import quick_scene
+
+        if _program(raw) != "linkgen" or angle is None:
+            return None
+        scene = quick_scene(_api("linkgen").validate(_one_design(raw, self.root)), angle)
+        if abandoned.is_set():
+            raise Abandoned
+        return scene
 
     def _edit(self, raw: dict[str, Any], angle: float | None, abandoned: threading.Event) -> dict[str, Any]:
         state = self._designed(raw, angle, abandoned)

@@ -1,7 +1,8 @@
 """A tab's synthesis (``linkgen synthesize`` in the background): the task the page sends validated as the command
-line validates a template's ``[task]`` (its budget bounded as there), run on a thread of its own by
-:func:`linkgen.synthesis.run.synthesize` with its progress hook, the candidates sent as they come, stopped within
-one generation when the tab cancels or goes away. No server library here: messages out through ``emit``."""
+line validates a template's ``[task]`` (its budget bounded as there), run in a process of its own
+(:mod:`camgen.designer.child`) by :func:`linkgen.synthesis.run.synthesize` with its progress hook, the candidates
+sent as they come, stopped within one generation when the tab cancels or goes away. No server library here:
+messages out through ``emit``."""
 from __future__ import annotations
 
 import math
@@ -9,7 +10,7 @@ import threading
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Protocol
 
 from camgen.core.errors import CamgenError, SpecError
 from camgen.core.toml_text import dumps
@@ -47,24 +48,32 @@ def candidate_json(offered: Any) -> dict[str, Any]:
             "curve": [xy for xy in curve if all(math.isfinite(v) for v in xy)]}
 
 
+class Flag(Protocol):
+    """A stop flag: a :class:`threading.Event`, a multiprocessing one, or one that also reads other signs."""
+
+    def is_set(self) -> bool: ...
+
+    def set(self) -> None: ...
+
+
 @dataclass
 class Job:
-    """One synthesis of a tab, run by :meth:`run` (on a thread of its own); :meth:`cancel` stops it within one
-    generation of a search.
+    """One synthesis of a tab, run by :meth:`run` (in the child process of :mod:`camgen.designer.child`, or any
+    thread); :meth:`cancel` (or ``stop`` set) stops it within one generation of a search.
 
     Parameters
     ----------
     spec : SynthesisSpec
         The validated task (:func:`task_of`).
     emit : callable
-        Called (from the job's thread) with each message for the tab: ``progress`` (``fraction`` 0 to 1,
+        Called (from the thread running the job) with each message for the tab: ``progress`` (``fraction`` 0 to 1,
         ``stage``, ``candidates`` so far), then one of ``synthesized`` (the candidates and how the search went),
         ``synthesis-cancelled`` (the candidates found before) or ``error`` (the command line's line).
     """
 
     spec: Any
     emit: Callable[[dict[str, Any]], None]
-    stop: threading.Event = field(default_factory=threading.Event)
+    stop: Flag = field(default_factory=threading.Event)
     #: the latest candidates sent, by name: the templates :meth:`~camgen.designer.session.Session` opens
     found: dict[str, str] = field(default_factory=dict)
     _sent: float = -math.inf

@@ -39,27 +39,38 @@ def linkage_scene(design: Any) -> dict[str, Any] | None:
         1e-9 mm), ``drawn`` the template's drawing, ``ground``, ``links`` {name: [joints]}, ``paths`` {tracer: [[x,
         y], ...]} over the analysed input (NaN-free: poses that do not close left out), ``transmission`` each
         dyad's transmission angle (degrees) at the angle, the report's ``toggles`` and ``dyads``, ``angle``,
-        ``drawn_angle``, ``span`` [from, to] and ``crank`` (True: degrees; False: a slide's mm). None for a
-        mechanism that is not a general linkage (its page still shows it).
+        ``drawn_angle``, ``span`` [from, to], ``crank`` (True: degrees; False: a slide's mm) and ``refined`` (True:
+        the dyads' extremes are the report's, refined between samples). None for a mechanism that is not a general
+        linkage (its page still shows it).
     """
     a = design.kinematics
     table = design.spec.linkage
     if getattr(table, "type", None) != "linkage" or not hasattr(a, "linkage"):
         return None
+    report = design.report
+    return scene_of(a, table, design.angle, report["positions"], report.get("toggles", []),
+                    report.get("dyads", []), refined=True)
+
+
+def scene_of(a: Any, table: Any, angle: float, shown: dict[str, Any], toggles: list[dict[str, Any]],
+             dyads: list[dict[str, Any]], refined: bool) -> dict[str, Any]:
+    """The scene of :func:`linkage_scene` of the general linkage's analysis ``a`` (its ``table``) at the input
+    ``angle`` (degrees; mm for a slide), ``shown`` its positions there as the report gives them
+    (:func:`linkgen.mechanisms.general.positions`), ``toggles`` and ``dyads`` as the report lists them (``refined``
+    False: the dyads' extremes only at the analysed samples)."""
     lo, hi = float(a.span[0, 0]), float(a.span[0, -1])
     sol = a.linkage.solve(np.linspace(lo, hi, PATH_SAMPLES)[None, :])
     ok = np.asarray(sol.ok, dtype=bool).reshape(-1)
     paths = {t: np.asarray(sol.points[t], dtype=float)[ok].round(6).tolist() for t in table.tracers}
-    shown = design.report["positions"]
-    value = math.radians(design.angle) if a.crank else design.angle
+    value = math.radians(angle) if a.crank else angle
     here = a.linkage.solve(np.array([[value]], dtype=float))
     transmission = [{"joint": d.joint, "links": list(d.bodies),
                      "deg": round(math.degrees(float(np.asarray(d.transmission).reshape(-1)[0])), 9)}
                     for d in here.dyads]
     span = [math.degrees(lo), math.degrees(hi)] if a.crank else [lo, hi]
+    start = round(math.degrees(lo), 9) if a.crank else round(lo, 9)
     return {"joints": {p: [j["x_mm"], j["y_mm"]] for p, j in shown["joints"].items()},
             "drawn": {p: list(xy) for p, xy in table.joints.items()},
             "ground": list(table.ground), "links": {k: list(v) for k, v in table.links.items()},
-            "paths": paths, "transmission": transmission, "toggles": design.report.get("toggles", []),
-            "dyads": design.report.get("dyads", []), "angle": design.angle, "drawn_angle": drawn_angle(design),
-            "span": span, "crank": bool(a.crank)}
+            "paths": paths, "transmission": transmission, "toggles": toggles, "dyads": dyads, "angle": angle,
+            "drawn_angle": start, "span": span, "crank": bool(a.crank), "refined": refined}

@@ -261,6 +261,12 @@ def test_an_answer_past_its_time_limit_changes_nothing(tmp_path):
 def test_the_bench_times_a_drag_step_of_jansens_leg(tmp_path):
     from camgen.designer.bench import STEPS, drag_row
 
-    row = drag_row(tmp_path / "designer")
-    assert row["what"] == f"designer: one drag step of Jansen's leg (median of {STEPS})"
-    assert row["seconds"] > 0 and row["cams_per_second"] is None          # a time measured, none asserted
+    import multiprocessing
+    import re
+
+    for busy, during in ((False, ""), (True, ", a synthesis running in another tab")):
+        row = drag_row(tmp_path / f"designer-{busy}", busy=busy)
+        assert re.fullmatch(rf"designer: one drag step of Jansen's leg \(median of {STEPS}{during}; max "
+                            r"\d+\.\d ms\)", row["what"]), row["what"]
+        assert row["seconds"] > 0 and row["cams_per_second"] is None      # a time measured, none asserted
+        assert not [p for p in multiprocessing.active_children() if p.name == "camgen-synthesis"]

@@ -1,17 +1,19 @@
 """Synthesis in the designer's server, a websocket client as a tab: it runs in the background (another tab drags
 meanwhile), one at a time a tab, its budget bounded as the command line bounds it (the same line), cancelled on
-asking, and a tab that disconnects mid-synthesis stops it: its thread ends, the server goes on and stops cleanly."""
+asking, and a tab that disconnects mid-synthesis stops it: its child process ends (checked by its pid), the server
+goes on and stops cleanly, and Ctrl-C leaves no child behind."""
 from __future__ import annotations
 
 import contextlib
 import json
 import threading
 import time
+from pathlib import Path
 
 import pytest
 
 from tests.conftest import ROOT
-from tests.support.designer_server import designer
+from tests.support.designer_server import child_pids, designer, designer_process, gone
 from tests.camgen.test_designer import _ask, _folder, _snapshot, _tab
 
 pytest.importorskip("starlette")
@@ -39,8 +41,11 @@ def _next(ws):
             return m
 
 
-def _threads():
-    return [t for t in threading.enumerate() if t.name == "camgen-synthesis"]
+def _children():
+    """The synthesis processes of this process (the server served on a thread of it)."""
+    import multiprocessing
+
+    return [p for p in multiprocessing.active_children() if p.name == "camgen-synthesis"]
 
 
 @contextlib.contextmanager
@@ -127,23 +132,20 @@ def test_a_task_the_command_line_refuses_is_refused_in_its_line(tmp_path, task, 
     assert _snapshot(folder) == before
 
 
-def test_a_disconnect_mid_synthesis_stops_its_thread_and_the_server_goes_on(tmp_path):
+def test_a_disconnect_mid_synthesis_ends_its_child_and_the_server_goes_on(tmp_path):
     import tempfile
-    from pathlib import Path
 
     folder = _folder(tmp_path, "jansen")
     temporaries = set(Path(tempfile.gettempdir()).glob("camgen-designer-*"))
     with _served(folder) as url:
-        assert not _threads()
+        assert not _children()
         with _tab(url) as (ws, _, _):
             assert _ask(ws, {"op": "synthesize", "task": LONG})["kind"] == "synthesis-started"
             _progress(ws)
-            assert len(_threads()) == 1
+            (child,) = _children()
             ws.socket.close()                            # gone without a word
-        end = time.monotonic() + 60
-        while _threads() and time.monotonic() < end:
-            time.sleep(0.05)
-        assert not _threads(), "the synthesis went on after its tab disconnected"
+        assert gone(child.pid), "the synthesis went on after its tab disconnected"
+        assert not _children()
         with _tab(url) as (ws, _, _):
             opened = _ask(ws, {"op": "open", "path": "jansen.toml"})
             assert opened["kind"] == "state"
@@ -154,17 +156,22 @@ def test_a_disconnect_mid_synthesis_stops_its_thread_and_the_server_goes_on(tmp_
     assert (folder / "jansen.toml").read_bytes() == (ROOT / "templates" / "jansen.toml").read_bytes()
 
 
-def test_ctrl_c_during_a_synthesis_stops_the_server_cleanly(tmp_path):
+def test_ctrl_c_during_a_synthesis_stops_the_server_cleanly_and_leaves_no_process(tmp_path):
     """The tab still open and its synthesis running when the server is stopped: exit code 0, no traceback, no
-    temporary folder (the checks of :func:`tests.support.designer_server.designer`)."""
+    temporary folder (the checks of :func:`tests.support.designer_server.designer`), and none of the server's
+    child processes (the synthesis', multiprocessing's resource tracker) left, by their pids."""
     from websockets.sync.client import connect
 
     folder = _folder(tmp_path, "jansen")
     # the tab closes only after the server has stopped (the stack exits last)
-    with contextlib.ExitStack() as later, designer(folder, "jansen.toml") as url:
+    with contextlib.ExitStack() as later, designer_process(folder, "jansen.toml") as (url, server):
         ws = later.enter_context(connect(url.replace("http", "ws") + "ws", max_size=None, open_timeout=30))
         json.loads(ws.recv(timeout=60))
         json.loads(ws.recv(timeout=60))
         assert _ask(ws, {"op": "synthesize", "task": LONG})["kind"] == "synthesis-started"
         _progress(ws)
+        children = child_pids(server.pid)
+        commands = [Path(f"/proc/{pid}/cmdline").read_bytes() for pid in children]
+        assert any(b"spawn_main" in c for c in commands), commands
+    assert children and all(gone(pid) for pid in children), "a process of the server outlived it"
     assert (folder / "jansen.toml").read_bytes() == (ROOT / "templates" / "jansen.toml").read_bytes()

@@ -9,6 +9,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import time
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -19,9 +20,41 @@ def _temporaries() -> set[str]:
     return {p.name for p in Path(tempfile.gettempdir()).glob("camgen-designer-*")}
 
 
+def gone(pid: int, seconds: float = 60.0) -> bool:
+    """True once no process has the id ``pid`` (reaped: not even a zombie), within ``seconds``."""
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return True
+        time.sleep(0.05)
+    return False
+
+
+def child_pids(pid: int) -> list[int]:
+    """The ids of the processes whose parent is ``pid`` (read from /proc; zombies included, as they are not gone)."""
+    found = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:                      # ended meanwhile
+            continue
+        if int(fields[1]) == pid:
+            found.append(int(stat.parent.name))
+    return found
+
+
 @contextlib.contextmanager
 def designer(folder: Path, template: str | None = None) -> Iterator[str]:
     """The address of ``camgen serve [template] --no-browser`` running in ``folder``, stopped by SIGINT after."""
+    with designer_process(folder, template) as (url, _):
+        yield url
+
+
+@contextlib.contextmanager
+def designer_process(folder: Path, template: str | None = None) -> Iterator[tuple[str, subprocess.Popen[str]]]:
+    """:func:`designer`'s address and the server's process."""
     before = _temporaries()
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     args = [sys.executable, "-m", "camgen", "serve", *([template] if template else []), "--no-browser"]
@@ -31,7 +64,7 @@ def designer(folder: Path, template: str | None = None) -> Iterator[str]:
         line = proc.stdout.readline()
         found = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
         assert found, f"no address in {line!r}; stderr: {proc.stderr.read() if proc.poll() is not None else ''}"
-        yield found.group(0)
+        yield found.group(0), proc
     finally:
         proc.send_signal(signal.SIGINT)
         try:
