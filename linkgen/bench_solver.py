@@ -233,6 +233,10 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
         "ours with rates": lambda: linkage.solve(t)}
     for threads in (1, 2):             # the fused kernels alone on one thread and on two: what the threads win
         funcs[f"fused kernels {threads} thread{'s' if threads > 1 else ''}"] = _kernels(linkage, t, threads)
+    if have:
+        model, order = pylinkage_model(linkage, t)
+        funcs["pylinkage step_fast"] = lambda: model.step_fast(iterations=n)
+        funcs["pylinkage with rates"] = lambda: model.step_fast_with_kinematics(iterations=n)
     times = _rounds(funcs, repeats)
     best = {k: min(v) for k, v in times.items()}
     row: dict[str, Any] = {"linkage": name, "angles": n, "point": point, **{f"{k} s": v for k, v in best.items()}}
