@@ -12,7 +12,9 @@ Stephenson's six-bars) this module does the same work with
   view of a complex (n,) array (no copy);
 * the poses cut into chunks of :data:`CHUNK` that stay in the processor's cache, each result
   written in place into its slice of the full outputs, so a long run holds only the outputs and one
-  chunk's temporaries.
+  chunk's temporaries;
+* the chunks shared among :data:`WORKERS` threads in contiguous runs (numpy releases the interpreter lock inside
+  its array operations), each writing only its own slices, so the result does not depend on the thread count.
 
 Signs and frames are :mod:`linkgen.kinematics.linkage`'s: an RRR's joint lies to the left of
 pin 1 -> pin 2 for sign +1; velocities per unit input speed, accelerations at constant input speed.
