@@ -22,6 +22,8 @@ from typing import Any
 import numpy as np
 
 from camgen.core.bench import child_env
+from linkgen.kinematics import fused
+from linkgen.kinematics.linkage import FEASIBILITY_TOL
 
 #: the bundled linkages of the solver rows: (bench name, template, the point whose accuracy is reported)
 LINKAGES = (("jansen", "jansen", "G"), ("klann", "klann", "F"), ("watt six-bar", "watt1", "P"))
@@ -170,17 +172,28 @@ def pylinkage_model(linkage: Any, t: np.ndarray) -> tuple[Any, list[str]]:
     return model, list(joints)
 
 
-def _least(funcs: dict[str, Callable[[], Any]], repeats: int) -> dict[str, float]:
-    """Each function's least wall time over ``repeats`` rounds, the functions taking turns in each round (so that
-    every side sees the same machine), after one untimed round."""
-    best = {k: math.inf for k in funcs}
+def _rounds(funcs: dict[str, Callable[[], Any]], repeats: int) -> dict[str, list[float]]:
+    """Each function's wall times over ``repeats`` rounds, the functions taking turns in each round (so that every
+    side sees the same machine), after one untimed round."""
+    times: dict[str, list[float]] = {k: [] for k in funcs}
     for round_ in range(repeats + 1):
         for k, f in funcs.items():
             start = time.perf_counter()
             f()
             if round_:
-                best[k] = min(best[k], time.perf_counter() - start)
-    return best
+                times[k].append(time.perf_counter() - start)
+    return times
+
+
+def _least(funcs: dict[str, Callable[[], Any]], repeats: int) -> dict[str, float]:
+    """Each function's least wall time over ``repeats`` rounds taken in turn (see :func:`_rounds`)."""
+    return {k: min(v) for k, v in _rounds(funcs, repeats).items()}
+
+
+def _spread(theirs: list[float], ours: list[float]) -> tuple[float, float, float]:
+    """The least, median and largest of the rounds' ratios theirs / ours (each round's pair measured in turn)."""
+    ratios = sorted(a / b for a, b in zip(theirs, ours, strict=True))
+    return ratios[0], float(np.median(ratios)), ratios[-1]
 
 
 def solver_rows(sizes: tuple[int, ...] = (10_000, 100_000, 1_000_000), repeats: int = 5) -> list[dict]:
@@ -198,6 +211,12 @@ def solver_rows(sizes: tuple[int, ...] = (10_000, 100_000, 1_000_000), repeats: 
             for n in sizes]
 
 
+def _kernels(linkage: Any, t: np.ndarray, threads: int) -> Callable[[], Any]:
+    """The fused kernels' positions of ``linkage`` at angles ``t`` (near its drawn turn) on ``threads`` threads."""
+    prog, x, signs = linkage.program, t[None, :], list(linkage.base_signs)
+    return lambda: fused.run(prog, x, np.ones(1), signs, False, False, FEASIBILITY_TOL, workers=threads)
+
+
 def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) -> dict:
     """One row of :func:`solver_rows`: ``linkage`` at n angles, ``have`` whether pylinkage is installed."""
     t = angles(linkage, n)
@@ -212,11 +231,14 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
         "plain numpy": lambda: plain_positions(linkage, t),
         "ours positions with rates": lambda: linkage.positions(t, derivatives=True),
         "ours with rates": lambda: linkage.solve(t)}
+    for threads in (1, 2):             # the fused kernels alone on one thread and on two: what the threads win
+        funcs[f"fused kernels {threads} thread{'s' if threads > 1 else ''}"] = _kernels(linkage, t, threads)
     if have:
         model, order = pylinkage_model(linkage, t)
         funcs["pylinkage step_fast"] = lambda: model.step_fast(iterations=n)
         funcs["pylinkage with rates"] = lambda: model.step_fast_with_kinematics(iterations=n)
-    best = _least(funcs, repeats)
+    times = _rounds(funcs, repeats)
+    best = {k: min(v) for k, v in times.items()}
     row: dict[str, Any] = {"linkage": name, "angles": n, "point": point, **{f"{k} s": v for k, v in best.items()}}
     if ref is not None:
         row["ours error mm"] = float(np.abs(linkage.positions(t[probe]).points[point] - ref).max())
@@ -230,6 +252,9 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
         row["solve speed-up"] = best["pylinkage step_fast"] / best["ours solve"]
         row["rates speed-up"] = best["pylinkage with rates"] / best["ours positions with rates"]
         row["solve with rates speed-up"] = best["pylinkage with rates"] / best["ours with rates"]
+        row["positions speed-up rounds"] = _spread(times["pylinkage step_fast"], times["ours positions"])
+        row["rates speed-up rounds"] = _spread(times["pylinkage with rates"], times["ours positions with rates"])
+    row["two threads / one"] = best["fused kernels 1 thread"] / best["fused kernels 2 threads"]
     row["plain numpy / ours positions"] = best["plain numpy"] / best["ours positions"]
     return row
 
@@ -293,15 +318,18 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
     """The solver rows as Markdown tables."""
     lines = ["## The general solver against pylinkage (numba) and a plain numpy closed form", "",
              "Each linkage is the bundled template. Least of the repeats, the sides taking turns in the same run; "
-             "speed-up = pylinkage's least time / ours (above 1: ours faster); errors of the reported point against "
+             "speed-up = pylinkage's least time / ours (above 1: ours faster), and the least, median and largest "
+             "of the rounds' own ratios; two threads / one: the fused kernels' least time on one thread over "
+             "theirs on two (what the second core wins); errors of the reported point against "
              "a 50-digit solution at 100 of the angles.", "",
              "Positions: every joint's (what pylinkage's step_fast gives); solve: the whole Solution (rotations, "
              "margins, transmission angles, slack too). With rates: every joint's velocity and acceleration besides "
              "(step_fast_with_kinematics), and solve() with the bodies' rates.", "",
              "| linkage | angles | ours positions | ours solve | plain numpy | pylinkage step_fast | speed-up "
              "positions / solve | ours positions with rates | ours solve with rates | pylinkage with rates | "
-             "speed-up with rates (positions / solve) | error ours / pylinkage / plain (mm) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "speed-up with rates (positions / solve) | rounds' speed-ups min / median / max, positions; with rates | "
+             "two threads / one | error ours / pylinkage / plain (mm) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 
     def ms(row: dict, key: str) -> str:
         v = row.get(f"{key} s")
@@ -310,6 +338,10 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
     def ratio(row: dict, key: str) -> str:
         v = row.get(key)
         return "-" if v is None else f"{v:.2f}x"
+
+    def rounds(row: dict, key: str) -> str:
+        v = row.get(key)
+        return "-" if v is None else " / ".join(f"{r:.2f}" for r in v)
 
     def err(row: dict, key: str) -> str:
         v = row.get(key)
@@ -320,7 +352,9 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
                      f"{ms(r, 'plain numpy')} | {ms(r, 'pylinkage step_fast')} | {ratio(r, 'positions speed-up')} / "
                      f"{ratio(r, 'solve speed-up')} | {ms(r, 'ours positions with rates')} | "
                      f"{ms(r, 'ours with rates')} | {ms(r, 'pylinkage with rates')} | {ratio(r, 'rates speed-up')} / "
-                     f"{ratio(r, 'solve with rates speed-up')} | {err(r, 'ours error mm')} / "
+                     f"{ratio(r, 'solve with rates speed-up')} | {rounds(r, 'positions speed-up rounds')}; "
+                     f"{rounds(r, 'rates speed-up rounds')} | {ratio(r, 'two threads / one')} | "
+                     f"{err(r, 'ours error mm')} / "
                      f"{err(r, 'pylinkage error mm')} / {err(r, 'plain numpy error mm')} |")
     if memory:
         lines += ["", "Peak memory of one call (MiB: the rise of a fresh process's peak resident set, numba's "

@@ -12,7 +12,9 @@ Stephenson's six-bars) this module does the same work with
   view of a complex (n,) array (no copy);
 * the poses cut into chunks of :data:`CHUNK` that stay in the processor's cache, each result
   written in place into its slice of the full outputs, so a long run holds only the outputs and one
-  chunk's temporaries.
+  chunk's temporaries;
+* the chunks shared among :data:`WORKERS` threads in contiguous runs (numpy releases the interpreter lock inside
+  its array operations), each writing only its own slices, so the result does not depend on the thread count.
 
 Signs and frames are :mod:`linkgen.kinematics.linkage`'s: an RRR's joint lies to the left of
 pin 1 -> pin 2 for sign +1; velocities per unit input speed, accelerations at constant input speed.
@@ -24,6 +26,9 @@ whose joint is placed by the motion's limit there.
 """
 from __future__ import annotations
 
+import functools
+import os
+from concurrent.futures import ThreadPoolExecutor, wait
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,6 +38,11 @@ from linkgen.kinematics.structure import GROUND, DyadStep, InputStep, Pin, Struc
 #: poses per chunk: a complex array of this many is 128 KiB, so a dyad's few dozen temporaries stay in a core's
 #: 2 MiB cache (measured on Jansen's leg: flat from 4096 to 32768, slower below)
 CHUNK = 8192
+
+
+#: threads the chunks are shared among (numpy releases the interpreter lock inside its array operations, so two
+#: threads run two chunks at once on two cores); a run of fewer than two chunks stays on the calling thread
+WORKERS = min(2, os.cpu_count() or 1)
 
 
 #: a point of a body over the poses: its body (None: the ground) and its drawn name
@@ -191,16 +201,43 @@ class Folded(Exception):
 
 
 def run(prog: Program, x: np.ndarray, rates: np.ndarray, signs: list[np.ndarray] | list[float], derivatives: bool,
-        extras: bool, feasibility_tol: float) -> Outputs:
+        extras: bool, feasibility_tol: float, workers: int | None = None, chunk: int | None = None) -> Outputs:
     """Every chunk of the poses ``x`` (k, n) through the program (``signs`` each step's branch, a number or one a
-    pose); raises :class:`Folded` where the general path must place a deltoid."""
+    pose), the chunks (of ``chunk`` poses, default :data:`CHUNK`) shared among ``workers`` threads (default
+    :data:`WORKERS`) in contiguous runs, each chunk writing only its own slice of the outputs, so that the result
+    does not depend on either; raises :class:`Folded` where the general path must place a deltoid."""
     n = x.shape[1]
+    size = CHUNK if chunk is None else int(chunk)
     out = allocate(prog, n, derivatives, extras)
     rows = [g if np.ndim(g) == 0 else np.broadcast_to(np.asarray(g, dtype=float), (n,)) for g in signs]
-    for start in range(0, n, CHUNK):
-        _Chunk(prog, slice(start, min(n, start + CHUNK)), rates, derivatives, extras, out).run(
-            x, rows, feasibility_tol)
+    starts = list(range(0, n, size))
+    threads = max(1, min(WORKERS if workers is None else int(workers), len(starts)))
+    # numpy's floating-point error state is per thread (a context variable): the caller's goes with each task
+    err = np.geterr()
+
+    def chunks(part: list[int]) -> None:
+        with np.errstate(**err):
+            for start in part:
+                _Chunk(prog, slice(start, min(n, start + size)), rates, derivatives, extras, out).run(
+                    x, rows, feasibility_tol)
+
+    if threads == 1:
+        chunks(starts)
+        return out
+    share = -(-len(starts) // threads)
+    parts = [starts[i:i + share] for i in range(0, len(starts), share)]
+    tasks = [_pool(threads).submit(chunks, part) for part in parts]
+    wait(tasks)                        # every task done before a task's Folded (or any error) is raised here
+    for task in tasks:
+        task.result()
     return out
+
+
+@functools.cache
+def _pool(threads: int) -> ThreadPoolExecutor:
+    """The threads of :func:`run` for ``threads`` workers, started once per process and kept (idle threads cost
+    nothing; starting them costs about as much as a short run)."""
+    return ThreadPoolExecutor(max_workers=threads, thread_name_prefix="linkgen-fused")
 
 
 class _Chunk:
@@ -223,6 +260,8 @@ class _Chunk:
         self.known: dict[Key, np.ndarray | complex] = {}
         self.radius: dict[Key, np.ndarray | None] = {}
         self.moving: dict[Key, tuple[np.ndarray | complex, np.ndarray | complex]] = {}
+        #: a body whose vector ``a`` is not made yet: the world points (J, p) it runs between, a = J - p
+        self.later: dict[str, tuple[np.ndarray, np.ndarray | complex]] = {}
         #: whether every input and every dyad's 2x2 determinant is finite and non-zero: then no rate is NaN
         self.finite = True
 
@@ -240,10 +279,17 @@ class _Chunk:
             if body is None:
                 self.known[key] = self.prog.drawn[name]
             else:
-                r = self.a[body] * self.prog.frames[body].factor(self.prog.drawn[name])
+                r = self.vector(body) * self.prog.frames[body].factor(self.prog.drawn[name])
                 self.radius[key] = r
                 self.known[key] = np.add(r, self.P[body], out=self.dest(body, name))
         return self.known[key]
+
+    def vector(self, body: str) -> np.ndarray:
+        """The body's vector ``a`` (see :class:`Frame`), made on first use where its dyad left it for later."""
+        if body not in self.a:
+            jw, p = self.later.pop(body)
+            self.a[body] = np.subtract(jw, p)
+        return self.a[body]
 
     def place(self, body: str, name: str, xw: np.ndarray | complex, r: np.ndarray | None) -> None:
         """Record ``name`` on ``body`` at world xw, radius vector r from the body's anchor (None: the anchor)."""
@@ -335,33 +381,44 @@ class _Chunk:
         closed form, i w1 a - i w2 b = v2 - v1 (a, b the vectors from the pins to J)."""
         out, sl, m = self.out, self.sl, self.m
         p1, p2 = self.point(op.refs[0], op.pins[0]), self.point(op.refs[1], op.pins[1])
-        d = np.asarray(p2 - p1)        # an array: a dyad has a moving pin
+        d = np.subtract(p2, p1)        # an array: a dyad has a moving pin
         dd = np.square(d.real)
         dd += np.square(d.imag)
-        if op.deltoid and (dd <= op.fold_reach**2).any():
+        # one reduction (NaN poses ignored: they stay NaN) answers both: do the pins meet, may dd divide?
+        near = float(np.fmin.reduce(dd))
+        if op.deltoid and near <= op.fold_reach**2:
             raise Folded
         prod = op.area_squared(dd)
-        inv = np.divide(0.5, dd if dd.all() else np.where(dd > 0, dd, 1.0))
+        # one reduction (NaN kept: not >= anything) spares the clamp and the margin's test where all is in reach
+        low = float(prod.min())
+        inv = np.divide(0.5, dd if near > 0.0 else np.where(dd > 0, dd, 1.0))
         wj = np.empty(m, dtype=complex)
         np.multiply(inv, op.r1 * op.r1 - op.r2 * op.r2, out=wj.real)
         wj.real += 0.5                 # along: (dd + r1^2 - r2^2) / (2 dd)
-        np.maximum(prod, 0.0, out=wj.imag)
-        np.sqrt(wj.imag, out=wj.imag)
+        if not low >= 0.0:
+            np.maximum(prod, 0.0, out=wj.imag)
+            np.sqrt(wj.imag, out=wj.imag)
+        else:
+            np.sqrt(prod, out=wj.imag)
         wj.imag *= inv                 # height: 4 area / (2 dd), on the branch's side
         if isinstance(sign, np.ndarray) or sign < 0:
             wj.imag *= sign
-        a = d * wj                     # pin 1 -> J
+        a = np.multiply(d, wj, out=wj)  # pin 1 -> J
         dest = self.dest(op.bodies[0], op.joint)
         jw = np.add(p1, a, out=self.dest(op.bodies[1], op.joint) if dest is None else dest)
-        b = jw - p2                    # pin 2 -> J
         b1, b2 = op.bodies
-        for body, pin, vec, p in ((b1, op.pins[0], a, p1), (b2, op.pins[1], b, p2)):
-            self.P[body] = p
-            self.a[body] = vec
-            self.place(body, pin, p, None)
-            self.place(body, op.joint, jw, vec)
-        out.ok[sl] &= prod >= -(tol * 2.0 * op.r1 * op.r2) ** 2      # the margin 4 area / (2 r1 r2) >= -tol
-        if self.extras:
+        self.P[b1], self.a[b1] = p1, a
+        self.place(b1, op.pins[0], p1, None)
+        self.place(b1, op.joint, jw, a)
+        self.P[b2] = p2
+        self.place(b2, op.pins[1], p2, None)
+        self.later[b2] = (jw, p2)      # pin 2 -> J, b = J - p2, made only where it is asked for
+        floor = -(tol * 2.0 * op.r1 * op.r2) ** 2
+        if not low >= floor:
+            out.ok[sl] &= prod >= floor                # the margin 4 area / (2 r1 r2) >= -tol
+        b = self.vector(b2) if self.extras or self.derivatives else None
+        self.place(b2, op.joint, jw, b)
+        if self.extras and b is not None:
             a4 = np.copysign(np.sqrt(np.abs(prod)), prod)
             dist = np.sqrt(dd)
             np.multiply(a, self.prog.frames[b1].f, out=out.rotations[b1][sl])
@@ -374,7 +431,7 @@ class _Chunk:
             mag = _magnitude(p1, p2, m)
             mag += op.r1 + op.r2
             np.divide(slack, mag, out=out.slacks[dyad][sl])
-        if self.derivatives:
+        if self.derivatives and b is not None:
             self.rrr_rates(op, dyad, d, a, b)
 
     def rrr_rates(self, op: RRROp, dyad: int, d: np.ndarray, a: np.ndarray, b: np.ndarray) -> None:
