@@ -151,6 +151,12 @@ class Kind(Protocol[S, D]):
         """What to say of ``fmt``, a format in ``output.formats`` that is not one of :attr:`formats`."""
         ...
 
+    def animation(self, design: D, n: int, size: tuple[int, int]) -> Any:
+        """The ``n`` frames of one cycle of ``design`` (``camgen animate``), ``size`` (width, height) pixels, as an
+        array (n, height, width, 3) of uint8 drawn by the kind's own ``animation.py``; a one-line
+        :class:`~camgen.core.errors.SpecError` naming ``cam.kind`` for a kind that is not animated."""
+        ...
+
 
 @dataclass(frozen=True)
 class Operations(Generic[S, D]):
@@ -223,6 +229,9 @@ class KindBase(ABC, Generic[S, D]):
 
     def sheet_refusal(self, spec: S) -> str | None:
         return f"{self.title} has no cut part of its own to nest; {NESTED}"
+
+    def animation(self, design: D, n: int, size: tuple[int, int]) -> Any:
+        raise SpecError(f"{self.title} is not animated", "cam.kind")
 
     def format_refusal(self, fmt: str) -> str:
         return f"{self.title} writes no {fmt!r} file; give formats of {', '.join(sorted(self.formats))}"

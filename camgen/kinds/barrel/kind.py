@@ -8,7 +8,7 @@ a plate cam's of travel 2 pi Rm, so the pressure angle is atan(s' / Rm); see :mo
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from camgen.kinds.base import ALL_FORMATS, NESTED, Operations, Starter
 from camgen.kinds.barrel.starters import STARTERS
@@ -35,6 +35,11 @@ class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
         from camgen.kinds.barrel.table import BarrelSpec
 
         return BarrelSpec
+
+    def animation(self, design: BarrelDesign, n: int, size: tuple[int, int]) -> Any:
+        from camgen.kinds.barrel.animation import barrel_frames
+
+        return barrel_frames(design, self.bundle(design)[1], n, size)
 
     def operations(self) -> Operations[BarrelSpec, BarrelDesign]:
         from camgen.kinds.barrel.design import design_barrel

@@ -12,7 +12,7 @@ See :mod:`camgen.kinds.conjugate`.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from camgen.kinds.base import NESTED, Operations, SizeReport, Starter
 from camgen.kinds.conjugate.starters import STARTERS
@@ -38,6 +38,11 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
 
 
         return ConjugateSpec
+
+    def animation(self, design: ConjugateDesign, n: int, size: tuple[int, int]) -> Any:
+        from camgen.kinds.conjugate.animation import conjugate_frames
+
+        return conjugate_frames(design, self.bundle(design)[1], n, size)
 
     def operations(self) -> Operations[ConjugateSpec, ConjugateDesign]:
         from camgen.kinds.conjugate.design import design_conjugate

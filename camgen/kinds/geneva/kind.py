@@ -4,7 +4,7 @@ which is imported only when a drive is validated, designed or written."""
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from camgen.kinds.base import NESTED, KindBase, Operations, Starter
 from camgen.kinds.geneva.starters import STARTERS
@@ -29,6 +29,11 @@ class GenevaKind(KindBase["GenevaSpec", "GenevaDesign"]):
         from camgen.kinds.geneva.table import GenevaSpec
 
         return GenevaSpec
+
+    def animation(self, design: GenevaDesign, n: int, size: tuple[int, int]) -> Any:
+        from camgen.kinds.geneva.animation import geneva_frames
+
+        return geneva_frames(design, self.bundle(design)[1], n, size)
 
     def operations(self) -> Operations[GenevaSpec, GenevaDesign]:
         from camgen.kinds.geneva.design import design_geneva

@@ -10,7 +10,7 @@ is the disc cam's (prime radius = base radius + roller radius).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from camgen.kinds.base import Operations, SizeReport, Starter
 from camgen.kinds.grooved.starters import STARTERS
@@ -35,6 +35,11 @@ class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
         from camgen.kinds.grooved.table import GroovedSpec
 
         return GroovedSpec
+
+    def animation(self, design: GroovedDesign, n: int, size: tuple[int, int]) -> Any:
+        from camgen.kinds.grooved.animation import grooved_frames
+
+        return grooved_frames(design, self.bundle(design)[1], n, size)
 
     def operations(self) -> Operations[GroovedSpec, GroovedDesign]:
         from camgen.kinds.grooved.design import design_grooved, size_grooved

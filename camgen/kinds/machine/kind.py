@@ -61,6 +61,11 @@ class MachineKind(KindBase["MachineSpec", "MachineDesign"]):
 
         return spec.MachineSpec
 
+    def animation(self, design: MachineDesign, n: int, size: tuple[int, int]) -> Any:
+        from camgen.kinds.machine.animation import machine_frames
+
+        return machine_frames(design, self.bundle(design)[1], n, size)
+
     def operations(self) -> Operations[MachineSpec, MachineDesign]:
         from camgen.kinds.machine import design, outputs, report
 

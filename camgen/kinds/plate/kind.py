@@ -6,13 +6,14 @@ plate's height under the profile (see :mod:`camgen.followers.plate`).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from camgen.kinds.base import Starter
 from camgen.kinds.plate.starters import STARTERS
 from camgen.kinds.shared import FlatKind
 
 if TYPE_CHECKING:
+    from camgen.flat import FlatCamDesign
     from camgen.kinds.plate.table import PlateSpec
 
 
@@ -28,6 +29,11 @@ class PlateKind(FlatKind["PlateSpec"]):
         from camgen.kinds.plate.table import PlateSpec
 
         return PlateSpec
+
+    def animation(self, design: FlatCamDesign, n: int, size: tuple[int, int]) -> Any:
+        from camgen.kinds.plate.animation import plate_frames
+
+        return plate_frames(design, self.bundle(design)[1], n, size)
 
 
 KIND = PlateKind()
