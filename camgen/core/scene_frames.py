@@ -21,7 +21,8 @@ from camgen.core.page import Page, Scene
 STYLES: dict[str, tuple[str | None, str, float, str]] = {
     "part": ("0.85", "k", 1.2, "-"), "wheel": ("0.85", "k", 1.2, "-"), "island": ("0.85", "k", 1.2, "-"),
     "lock": ("0.75", "k", 1.0, "-"), "crank": ("0.7", "k", 1.0, "-"), "groove": ("white", "k", 1.0, "-"),
-    "hole": ("white", "k", 0.8, "-"), "pitch": (None, "C0", 0.8, "--"), "path": (None, "C1", 1.0, "-"),
+    "hole": ("white", "k", 0.8, "-"), "second": ("0.7", "k", 1.0, "-"), "pitch": (None, "C0", 0.8, "--"),
+    "path": (None, "C1", 1.0, "-"),
     "ground": (None, "0.3", 1.5, "-"), "guide": (None, "0.5", 0.8, "-"),
 }
 #: how a style the table does not name is drawn (a follower's pieces, links)
