@@ -25,6 +25,9 @@ if TYPE_CHECKING:
 S = TypeVar("S")
 D = TypeVar("D")
 
+#: a kind's frames function: (design, its report, frame count, (width, height) pixels) -> (n, height, width, 3)
+#: uint8 frames
+Animator = Callable[[Any, dict[str, Any], int, tuple[int, int]], Any]
 #: the table a cam's kind is named in (``cam.kind``); a kind with a table of its own (a Geneva drive's
 #: ``[geneva]``) is chosen by that table instead
 CAM_TABLE = "cam"
@@ -231,7 +234,15 @@ class KindBase(ABC, Generic[S, D]):
         return f"{self.title} has no cut part of its own to nest; {NESTED}"
 
     def animation(self, design: D, n: int, size: tuple[int, int]) -> Any:
-        raise SpecError(f"{self.title} is not animated", "cam.kind")
+        frames = self.animator()
+        if frames is None:
+            raise SpecError(f"{self.title} is not animated", "cam.kind")
+        return frames(design, self.bundle(design)[1], n, size)
+
+    def animator(self) -> Animator | None:
+        """The frames function of its ``animation.py`` (imported here, when first asked): ``frames(design, report,
+        n, size)``, the design's report as its bundle makes it; None for a kind that is not animated."""
+        return None
 
     def format_refusal(self, fmt: str) -> str:
         return f"{self.title} writes no {fmt!r} file; give formats of {', '.join(sorted(self.formats))}"

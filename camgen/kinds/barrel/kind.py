@@ -8,9 +8,9 @@ a plate cam's of travel 2 pi Rm, so the pressure angle is atan(s' / Rm); see :mo
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from camgen.kinds.base import ALL_FORMATS, NESTED, Operations, Starter
+from camgen.kinds.base import Animator, ALL_FORMATS, NESTED, Operations, Starter
 from camgen.kinds.barrel.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
 
@@ -36,11 +36,6 @@ class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
 
         return BarrelSpec
 
-    def animation(self, design: BarrelDesign, n: int, size: tuple[int, int]) -> Any:
-        from camgen.kinds.barrel.animation import barrel_frames
-
-        return barrel_frames(design, self.bundle(design)[1], n, size)
-
     def operations(self) -> Operations[BarrelSpec, BarrelDesign]:
         from camgen.kinds.barrel.design import design_barrel
         from camgen.kinds.barrel.outputs import barrel_bundle, summary_lines
@@ -60,6 +55,11 @@ class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
             return ("a barrel cam has no flat part to write as an exact STEP solid (its groove is cut round a "
                     "cylinder); leave 'step' out and use 'stl' or '3mf'")
         return super().format_refusal(fmt)
+
+    def animator(self) -> Animator:
+        from camgen.kinds.barrel.animation import barrel_frames
+
+        return barrel_frames
 
 
 KIND = BarrelKind()

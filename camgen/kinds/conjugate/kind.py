@@ -12,9 +12,9 @@ See :mod:`camgen.kinds.conjugate`.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from camgen.kinds.base import NESTED, Operations, SizeReport, Starter
+from camgen.kinds.base import Animator, NESTED, Operations, SizeReport, Starter
 from camgen.kinds.conjugate.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
 
@@ -39,11 +39,6 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
 
         return ConjugateSpec
 
-    def animation(self, design: ConjugateDesign, n: int, size: tuple[int, int]) -> Any:
-        from camgen.kinds.conjugate.animation import conjugate_frames
-
-        return conjugate_frames(design, self.bundle(design)[1], n, size)
-
     def operations(self) -> Operations[ConjugateSpec, ConjugateDesign]:
         from camgen.kinds.conjugate.design import design_conjugate
         from camgen.kinds.conjugate.outputs import conjugate_bundle, summary_lines
@@ -55,6 +50,11 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
 
     def sheet_refusal(self, spec: ConjugateSpec) -> str | None:
         return f"a conjugate pair's two cams are nested on its own <name>-sheet.dxf; {NESTED}"
+
+    def animator(self) -> Animator:
+        from camgen.kinds.conjugate.animation import conjugate_frames
+
+        return conjugate_frames
 
 
 def _size(spec: ConjugateSpec) -> SizeReport:

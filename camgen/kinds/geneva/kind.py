@@ -4,9 +4,9 @@ which is imported only when a drive is validated, designed or written."""
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from camgen.kinds.base import NESTED, KindBase, Operations, Starter
+from camgen.kinds.base import Animator, NESTED, KindBase, Operations, Starter
 from camgen.kinds.geneva.starters import STARTERS
 
 if TYPE_CHECKING:
@@ -30,11 +30,6 @@ class GenevaKind(KindBase["GenevaSpec", "GenevaDesign"]):
 
         return GenevaSpec
 
-    def animation(self, design: GenevaDesign, n: int, size: tuple[int, int]) -> Any:
-        from camgen.kinds.geneva.animation import geneva_frames
-
-        return geneva_frames(design, self.bundle(design)[1], n, size)
-
     def operations(self) -> Operations[GenevaSpec, GenevaDesign]:
         from camgen.kinds.geneva.design import design_geneva
         from camgen.kinds.geneva.outputs import geneva_bundle, geneva_row
@@ -44,6 +39,11 @@ class GenevaKind(KindBase["GenevaSpec", "GenevaDesign"]):
 
     def sheet_refusal(self, spec: GenevaSpec) -> str | None:
         return f"a Geneva drive's wheel, lock and crank are nested on its own <name>-sheet.dxf; {NESTED}"
+
+    def animator(self) -> Animator:
+        from camgen.kinds.geneva.animation import geneva_frames
+
+        return geneva_frames
 
 
 KIND = GenevaKind()

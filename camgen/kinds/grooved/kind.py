@@ -10,9 +10,9 @@ is the disc cam's (prime radius = base radius + roller radius).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from camgen.kinds.base import Operations, SizeReport, Starter
+from camgen.kinds.base import Animator, Operations, SizeReport, Starter
 from camgen.kinds.grooved.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
 
@@ -36,11 +36,6 @@ class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
 
         return GroovedSpec
 
-    def animation(self, design: GroovedDesign, n: int, size: tuple[int, int]) -> Any:
-        from camgen.kinds.grooved.animation import grooved_frames
-
-        return grooved_frames(design, self.bundle(design)[1], n, size)
-
     def operations(self) -> Operations[GroovedSpec, GroovedDesign]:
         from camgen.kinds.grooved.design import design_grooved, size_grooved
         from camgen.kinds.grooved.outputs import groove_summary, grooved_bundle
@@ -51,6 +46,11 @@ class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
                           lambda design, report: [*cam_summary(design, report), groove_summary(report)],
                           lambda design, report: cam_row(design, report, design.outline.contour.flatten),
                           lambda spec: SizeReport(size_grooved(spec)))
+
+    def animator(self) -> Animator:
+        from camgen.kinds.grooved.animation import grooved_frames
+
+        return grooved_frames
 
 
 KIND = GroovedKind()

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.kinds.base import KindBase, Operations, Starter
+from camgen.kinds.base import Animator, KindBase, Operations, Starter
 
 if TYPE_CHECKING:
     from camgen.kinds.machine.design import MachineDesign
@@ -61,11 +61,6 @@ class MachineKind(KindBase["MachineSpec", "MachineDesign"]):
 
         return spec.MachineSpec
 
-    def animation(self, design: MachineDesign, n: int, size: tuple[int, int]) -> Any:
-        from camgen.kinds.machine.animation import machine_frames
-
-        return machine_frames(design, self.bundle(design)[1], n, size)
-
     def operations(self) -> Operations[MachineSpec, MachineDesign]:
         from camgen.kinds.machine import design, outputs, report
 
@@ -73,6 +68,11 @@ class MachineKind(KindBase["MachineSpec", "MachineDesign"]):
 
     def sheet_refusal(self, spec: Any) -> str | None:
         return "a machine's cams and linkages write their own cut files; a family's [sheet] nests single cams"
+
+    def animator(self) -> Animator:
+        from camgen.kinds.machine.animation import machine_frames
+
+        return machine_frames
 
 
 KIND = MachineKind()

@@ -6,14 +6,13 @@ plate's height under the profile (see :mod:`camgen.followers.plate`).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from camgen.kinds.base import Starter
+from camgen.kinds.base import Animator, Starter
 from camgen.kinds.plate.starters import STARTERS
 from camgen.kinds.shared import FlatKind
 
 if TYPE_CHECKING:
-    from camgen.flat import FlatCamDesign
     from camgen.kinds.plate.table import PlateSpec
 
 
@@ -30,10 +29,10 @@ class PlateKind(FlatKind["PlateSpec"]):
 
         return PlateSpec
 
-    def animation(self, design: FlatCamDesign, n: int, size: tuple[int, int]) -> Any:
+    def animator(self) -> Animator:
         from camgen.kinds.plate.animation import plate_frames
 
-        return plate_frames(design, self.bundle(design)[1], n, size)
+        return plate_frames
 
 
 KIND = PlateKind()
