@@ -175,6 +175,17 @@ class Operations(Generic[S, D]):
     size: Callable[[S], SizeReport] | None = None
 
 
+def default_animation(kind: Kind[Any, Any], design: Any) -> Item | None:
+    """The ``gif`` file of ``design`` where its ``output.formats`` asks for one: one cycle as ``camgen animate``
+    writes it with its defaults (the frames drawn only when written); None otherwise."""
+    if "gif" not in design.spec.output.formats:
+        return None
+    from camgen.core.animation import DEFAULT_FRAMES, DEFAULT_SIZE
+    from camgen.core.bundle import animation_file
+
+    return animation_file(lambda: kind.animation(design, DEFAULT_FRAMES, DEFAULT_SIZE), design.spec.name)
+
+
 class KindBase(ABC, Generic[S, D]):
     """The defaults of a :class:`Kind`: chosen by ``cam.kind``, every format, no construction, no starter, not nested
     on a family's sheet; its design, files, console lines, family row and size are its :meth:`operations`'. A kind
@@ -212,7 +223,8 @@ class KindBase(ABC, Generic[S, D]):
         return self.operations().design(spec)
 
     def bundle(self, design: D) -> tuple[Bundle, dict[str, Any]]:
-        return self.operations().bundle(design)
+        bundle, report = self.operations().bundle(design)
+        return bundle.plus([default_animation(self, design)]), report
 
     def summary(self, design: D, report: dict[str, Any]) -> list[str]:
         return self.operations().summary(design, report)

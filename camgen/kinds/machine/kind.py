@@ -14,7 +14,7 @@ if TYPE_CHECKING:
 
 #: what a machine writes: its cams' and linkages' files (those of their kinds that these name; html their own
 #: pages), the timing diagram and the report
-MACHINE_FORMATS = frozenset(("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html", "step"))
+MACHINE_FORMATS = frozenset(("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html", "step", "gif"))
 
 #: ``camgen new machine``: one cam whose follower's arm is a four-bar's crank
 STARTERS = {
