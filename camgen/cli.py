@@ -168,11 +168,11 @@ def serve(template: Path | None, port: int | None, no_browser: bool) -> None:
 @animation_options
 @one_design
 def animate(template: Path, output: Path | None, overrides: tuple[str, ...], options: Any) -> None:
-    """Write one full turn of the disc cam in TEMPLATE, its follower riding it, as an animation."""
+    """Write one full cycle of the cam, Geneva drive or machine in TEMPLATE, its follower riding it, as an animation."""
     from camgen import api
-    from camgen.animation import cam_frames, disc_design
+    from camgen.kinds import spec_kind
 
     spec = api.load(template, overrides)
-    frames = cam_frames(disc_design(api.design(spec)), options.frames, options.size)
+    frames = spec_kind(spec).animation(api.design(spec), options.frames, options.size)
     directory = output if output is not None else Path("out") / spec.name
     click.echo(f"wrote {write_animation_file(frames, options, directory, spec.name)}")

@@ -11,11 +11,13 @@ file fails. Everything written is computed by the design; meshes are made here f
 """
 from __future__ import annotations
 
+from functools import partial
 from pathlib import Path
 from typing import Any
 
 from camgen.core.bundle import (
-    Bundle, Item, figure_files, mesh_files, page_file, report_file, sheet_files, solid_files, write_bundle)
+    Bundle, Item, animation_file, figure_files, mesh_files, page_file, report_file, sheet_files, solid_files,
+    write_bundle)
 from camgen.core.errors import SpecError
 from camgen.core.kit import bom_item, placed_meshes
 from camgen.core.nesting import sheet_kinds
@@ -29,6 +31,15 @@ from linkgen.spec import validate_spec
 #: report keys every family's summary carries, where the mechanism reports them
 SUMMARY_KEYS = ("grashof_class", "inversion", "transmission_min_deg", "transmission_max_deg", "time_ratio",
                 "stroke_mm", "input_range_deg")
+
+
+def default_frames(design: LinkageDesign) -> Any:
+    """One cycle of ``design`` as ``linkgen animate`` draws it with its defaults (the ``gif`` of ``output.formats``):
+    (frames, height, width, 3) uint8; a :class:`SpecError` for a linkage it does not animate."""
+    from camgen.core.animation import DEFAULT_FRAMES, DEFAULT_SIZE
+    from linkgen.animation import analysis_for_animation, linkage_frames
+
+    return linkage_frames(analysis_for_animation(design), DEFAULT_FRAMES, DEFAULT_SIZE)
 
 
 def linkage_bundle(design: LinkageDesign) -> Bundle:
@@ -67,6 +78,7 @@ def linkage_bundle(design: LinkageDesign) -> Bundle:
         items += _parts_items(name, design.build, formats)
     items += [figure_files(draw, f"{name}-{kind}", kind) for kind, draw in design.figures()]
     items.append(report_file(report, name))
+    items.append(animation_file(partial(default_frames, design) if "gif" in formats else None, name))
     items.append(page_file(design.page(report) if "html" in formats else None, name))
     return Bundle.of(items, spec.output.write_options, formats)
 

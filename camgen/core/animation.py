@@ -16,6 +16,11 @@ FRAMES = (2, 720)
 PIXELS = (32, 1920)
 #: the frame rates an animation may play at (frames per second, inclusive)
 FPS = (1.0, 60.0)
+#: an animation's defaults (the ``animate`` commands', and the ``gif`` an ``output.formats`` asks a build for): frames
+#: in the cycle, (width, height) pixels, frames per second
+DEFAULT_FRAMES = 72
+DEFAULT_SIZE = (640, 480)
+DEFAULT_FPS = 24.0
 #: the formats an animation may be written as
 FORMATS = ("gif", "mp4", "webm")
 

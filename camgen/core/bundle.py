@@ -234,6 +234,12 @@ def page_file(page: Lazy[Page | str] | None, stem: str) -> Item | None:
     return files_of("page", page, stem)
 
 
+def animation_file(make: Callable[[], Any] | None, stem: str) -> Item | None:
+    """One cycle's frames (a function making them, called only if written) as ``<stem>-animation.gif`` (key
+    ``gif``): the file ``animate`` writes with its defaults; None for no animation."""
+    return files_of("animation", make, stem)
+
+
 def rows_file(rows: Sequence[Mapping[str, Any]] | str, stem: str, key: str = "") -> Item | None:
     """A table (dicts with the same keys, or a finished CSV text) as ``<stem>.csv`` (key ``<key>_csv``), written
     with the JSON report; None when it has no rows."""

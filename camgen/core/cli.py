@@ -468,7 +468,7 @@ def animation_options(func: Callable[..., Any]) -> Callable[..., Any]:
     """The options of an ``animate`` command: TEMPLATE, ``-o``, ``--set``, ``--frames``, ``--size``, ``--format``,
     ``--fps``; the function receives them checked, as one :class:`~camgen.core.animation.AnimationOptions`
     ``options`` (a bad value: one line naming its option, before any work)."""
-    from camgen.core.animation import FORMATS, FPS, FRAMES, PIXELS
+    from camgen.core.animation import DEFAULT_FPS, DEFAULT_FRAMES, DEFAULT_SIZE, FORMATS, FPS, FRAMES, PIXELS
 
     @functools.wraps(func)
     def wrapper(*args: Any, frames: int, size: str, fmt: str, fps: float, **kwargs: Any) -> Any:
@@ -480,13 +480,13 @@ def animation_options(func: Callable[..., Any]) -> Callable[..., Any]:
         template_argument(),
         output_option("Folder for the animation (default: out/<name>/).", default=None),
         set_option("name=demo"),
-        click.option("--frames", type=int, default=72, show_default=True,
+        click.option("--frames", type=int, default=DEFAULT_FRAMES, show_default=True,
                      help=f"Frames in the cycle ({FRAMES[0]} to {FRAMES[1]})."),
-        click.option("--size", default="640x480", show_default=True, metavar="WxH",
+        click.option("--size", default="{}x{}".format(*DEFAULT_SIZE), show_default=True, metavar="WxH",
                      help=f"Frame size in pixels, each side even, {PIXELS[0]} to {PIXELS[1]}."),
         click.option("--format", "fmt", type=click.Choice(FORMATS), default="gif", show_default=True,
                      help="gif (Pillow), or mp4 / webm (imageio-ffmpeg: the anim extra)."),
-        click.option("--fps", type=float, default=24.0, show_default=True,
+        click.option("--fps", type=float, default=DEFAULT_FPS, show_default=True,
                      help=f"Frames per second ({FPS[0]:g} to {FPS[1]:g})."),
     ))
 

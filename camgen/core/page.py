@@ -350,12 +350,27 @@ def _shown(page: Page, frame: int) -> str:
     return f"{_label(round(float(page.inputs[frame]), 4))} {page.input_unit}"
 
 
+#: what the animate control says where no GIF was written beside the page
+ANIMATE_HOW = ('no animation written beside this page: add "gif" to output.formats and build again, or run camgen '
+               'animate (a cam, a Geneva drive, a machine) or linkgen animate (a linkage) on the template')
+
+
+def _animate(files: dict[str, str]) -> str:
+    """The animate control: a link offering the GIF written beside the page (the bundle's file of key ``gif``, as
+    ``animate`` writes it with its defaults), or a disabled button saying how to make one."""
+    name = files.get("gif")
+    if name is not None:
+        return f'<a id="animate" class="animate" href="{html.escape(name)}" download="{html.escape(name)}">Animate</a>'
+    return (f'<button id="animate" type="button" disabled title="{html.escape(ANIMATE_HOW)}">Animate</button>'
+            f'<span class="animate-how">{html.escape(ANIMATE_HOW)}</span>')
+
+
 def _controls(page: Page) -> str:
     n = len(page.inputs)
     return (f'<div class="controls"><button id="play" type="button">Play</button>'
             f'<label for="frame">{html.escape(page.input_label)}</label>'
             f'<input id="frame" type="range" min="0" max="{n - 1}" step="1" value="0">'
-            f'<output id="shown">{html.escape(_shown(page, 0))}</output></div>')
+            f'<output id="shown">{html.escape(_shown(page, 0))}</output>{_animate(page.files)}</div>')
 
 
 def _data(page: Page, box: tuple[float, float, float, float]) -> dict[str, Any]:
@@ -548,6 +563,8 @@ border:1px solid #ddd}svg.plot .frame{fill:none;stroke:#999}.grid{stroke:#eee}.z
 table{border-collapse:collapse}th,td{padding:2px 8px;border-bottom:1px solid #eee;text-align:left}
 td.num{text-align:right;font-variant-numeric:tabular-nums}.warnings li,p.warnings{color:#a40000}
 .none{color:#777!important}.note{color:#555;font-style:italic;margin:2px 4px}
+.animate{padding:4px 14px;border:1px solid #888;border-radius:3px;text-decoration:none;color:inherit}
+.animate-how{color:#555;font-size:12px;flex-basis:100%}.controls{flex-wrap:wrap}
 .cards{display:flex;flex-wrap:wrap;gap:10px}.card{background:#fff;border:1px solid #ddd;padding:6px;width:230px}
 .card svg.scene{height:200px}.card.failed{background:#fff0f0}table.sortable th{cursor:pointer;user-select:none}
 """

@@ -27,6 +27,9 @@ if TYPE_CHECKING:
 S = TypeVar("S")
 D = TypeVar("D")
 
+#: a kind's frames function: (design, its report, frame count, (width, height) pixels) -> (n, height, width, 3)
+#: uint8 frames
+Animator = Callable[[Any, dict[str, Any], int, tuple[int, int]], Any]
 #: the table a cam's kind is named in (``cam.kind``); a kind with a table of its own (a Geneva drive's
 #: ``[geneva]``) is chosen by that table instead
 CAM_TABLE = "cam"
@@ -158,6 +161,12 @@ class Kind(Protocol[S, D]):
         to lie beside it (before validation; a template of its kind without such files as it is)."""
         ...
 
+    def animation(self, design: D, n: int, size: tuple[int, int]) -> Any:
+        """The ``n`` frames of one cycle of ``design`` (``camgen animate``), ``size`` (width, height) pixels, as an
+        array (n, height, width, 3) of uint8 drawn by the kind's own ``animation.py``; a one-line
+        :class:`~camgen.core.errors.SpecError` naming ``cam.kind`` for a kind that is not animated."""
+        ...
+
 
 @dataclass(frozen=True)
 class Operations(Generic[S, D]):
@@ -171,6 +180,17 @@ class Operations(Generic[S, D]):
     summary: Callable[[D, dict[str, Any]], list[str]]
     family_row: Callable[[D, dict[str, Any]], dict[str, Any]]
     size: Callable[[S], SizeReport] | None = None
+
+
+def default_animation(kind: Kind[Any, Any], design: Any) -> Item | None:
+    """The ``gif`` file of ``design`` where its ``output.formats`` asks for one: one cycle as ``camgen animate``
+    writes it with its defaults (the frames drawn only when written); None otherwise."""
+    if "gif" not in design.spec.output.formats:
+        return None
+    from camgen.core.animation import DEFAULT_FRAMES, DEFAULT_SIZE
+    from camgen.core.bundle import animation_file
+
+    return animation_file(lambda: kind.animation(design, DEFAULT_FRAMES, DEFAULT_SIZE), design.spec.name)
 
 
 class KindBase(ABC, Generic[S, D]):
@@ -210,7 +230,8 @@ class KindBase(ABC, Generic[S, D]):
         return self.operations().design(spec)
 
     def bundle(self, design: D) -> tuple[Bundle, dict[str, Any]]:
-        return self.operations().bundle(design)
+        bundle, report = self.operations().bundle(design)
+        return bundle.plus([default_animation(self, design)]), report
 
     def summary(self, design: D, report: dict[str, Any]) -> list[str]:
         return self.operations().summary(design, report)
@@ -230,6 +251,17 @@ class KindBase(ABC, Generic[S, D]):
 
     def sheet_refusal(self, spec: S) -> str | None:
         return f"{self.title} has no cut part of its own to nest; {NESTED}"
+
+    def animation(self, design: D, n: int, size: tuple[int, int]) -> Any:
+        frames = self.animator()
+        if frames is None:
+            raise SpecError(f"{self.title} is not animated", "cam.kind")
+        return frames(design, self.bundle(design)[1], n, size)
+
+    def animator(self) -> Animator | None:
+        """The frames function of its ``animation.py`` (imported here, when first asked): ``frames(design, report,
+        n, size)``, the design's report as its bundle makes it; None for a kind that is not animated."""
+        return None
 
     def format_refusal(self, fmt: str) -> str:
         return f"{self.title} writes no {fmt!r} file; give formats of {', '.join(sorted(self.formats))}"

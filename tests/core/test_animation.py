@@ -7,13 +7,13 @@ import math
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from PIL import Image
 
 from camgen.cli import main as camgen_main
 from camgen.core.frames import cycle
 from camgen.core.writers.animation import write_animation
 from linkgen.cli import main as linkgen_main
 from tests.conftest import ROOT
+from tests.support.kind_animation import gif_frames
 
 STEPHENSON = ROOT / "templates" / "stephenson3.toml"
 ROCKER = ROOT / "templates" / "crank-rocker.toml"
@@ -23,15 +23,6 @@ SIZE = (160, 120)
 
 def animate(main, template, folder, *options):
     return CliRunner().invoke(main, ["animate", str(template), "-o", str(folder), *map(str, options)])
-
-
-def gif_frames(path):
-    with Image.open(path) as im:
-        out = []
-        for k in range(im.n_frames):
-            im.seek(k)
-            out.append(np.asarray(im.convert("RGB"), dtype=float))
-        return im.size, np.array(out)
 
 
 def test_cycle_inputs():
@@ -162,7 +153,7 @@ def test_follower_rides_the_lift():
     (linkgen_main, ROCKER, ["--format", "avi"], "--format"),
     (camgen_main, CAM, ["--frames", "0"], "--frames"),
     (linkgen_main, ROOT / "templates" / "gear-pair.toml", [], "linkage.type"),
-    (camgen_main, ROOT / "templates" / "barrel.toml", [], "cam.kind"),
+    (camgen_main, ROOT / "templates" / "barrel.toml", ["--frames", "7"], "--frames"),
 ])
 def test_bad_options_refused(tmp_path, main, template, args, option):
     folder = tmp_path / "out"

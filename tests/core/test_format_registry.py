@@ -61,7 +61,7 @@ def _design():
 
 def test_the_tuples_and_the_output_formats_type_come_from_the_registry():
     chosen = tuple(f.name for f in REGISTRY.values() if f.extra is None and f.follows is None)
-    assert FORMATS == chosen == ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html")
+    assert FORMATS == chosen == ("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html", "gif")
     assert FIGURE_FORMATS == ("png", "svg") and DEFAULT_FORMATS == ("dxf", "cut-svg", "stl", "3mf", "json", "html")
     assert OPTIONAL_FORMATS == tuple(EXTRAS) == ("step",)
     assert get_args(get_args(OutputTable.model_fields["formats"].annotation)[0]) == FORMATS + OPTIONAL_FORMATS

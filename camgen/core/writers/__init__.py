@@ -17,6 +17,8 @@ step       STEP AP214 (mm), exact solids, each part named      ``(name, parts)``
                                                                :mod:`~camgen.core.writers.step`)
 csv        a table, with the JSON report                       rows (dicts), or a finished text
 toml       a template, with the JSON report                    a finished text
+gif        one cycle as ``animate`` writes it by default        frames (n, height, width, 3) uint8
+           (``<name>-animation.gif``; only when asked)
 =========  ==================================================  ===========================
 
 Each format is one :class:`Format` line of :data:`REGISTRY`: its writer's module and how its files are named for
@@ -35,7 +37,7 @@ from typing import Any, Literal, cast, get_args
 
 #: what a format's writer takes, by the role it plays in a bundle: a part's drawing (its cut files), a sheet's or an
 #: assembly's drawing, a mesh (or placed meshes), exact solids, a figure, a report, a page, rows of a table, a text
-Role = Literal["part", "sheet", "mesh", "solids", "figure", "report", "page", "rows", "text"]
+Role = Literal["part", "sheet", "mesh", "solids", "figure", "report", "page", "rows", "text", "animation"]
 
 
 @dataclass(frozen=True)
@@ -85,6 +87,7 @@ REGISTRY: dict[str, Format] = {f.name: f for f in (
            extra=("OCP", "Open CASCADE through OCP", "pip install 'camgen[step]'")),
     Format("csv", "report", {"rows": (".csv", "csv")}, follows="json"),
     Format("toml", "text", {"text": (".toml", "toml")}, follows="json"),
+    Format("gif", "animation", {"animation": ("-animation.gif", "gif")}),
 )}
 
 
@@ -93,7 +96,7 @@ FORMATS: tuple[str, ...] = ()
 #: the figures drawn by matplotlib: written on request (``output.figures``, ``--figures``, or named in
 #: ``output.formats``), since drawing them costs more than the rest of a build; the page plots the same curves
 FIGURE_FORMATS: tuple[str, ...] = ()
-#: what a build writes unless ``output.formats`` says otherwise: every format but the figures
+#: what a build writes unless ``output.formats`` says otherwise: every format but the figures and the animation
 DEFAULT_FORMATS: tuple[str, ...] = ()
 #: formats a bundle writes only when asked and only with an optional extra installed: {format: (the module it
 #: needs, what that module is, the install command)}
@@ -110,7 +113,7 @@ def _derive() -> None:
     lines = REGISTRY.values()
     FORMATS = tuple(f.name for f in lines if f.extra is None and f.follows is None)
     FIGURE_FORMATS = tuple(f.name for f in lines if "figure" in f.files)
-    DEFAULT_FORMATS = tuple(f for f in FORMATS if f not in FIGURE_FORMATS)
+    DEFAULT_FORMATS = tuple(f for f in FORMATS if f not in FIGURE_FORMATS and "animation" not in REGISTRY[f].files)
     EXTRAS = {f.name: f.extra for f in lines if f.extra is not None}
     OPTIONAL_FORMATS = tuple(EXTRAS)
 

@@ -18,6 +18,17 @@ from camgen.core.errors import ExportError
 CODECS = {"mp4": "libx264", "webm": "libvpx-vp9"}
 
 
+def _default_gif(frames: np.ndarray, path: Path, options: object = None) -> None:
+    """``frames`` as the GIF ``animate`` writes with its defaults (:data:`camgen.core.animation.DEFAULT_FPS`)."""
+    from camgen.core.animation import DEFAULT_FPS
+
+    write_animation(frames, path, "gif", DEFAULT_FPS)
+
+
+#: the writer of the ``gif`` format a bundle writes (``output.formats``): the default animation's file
+WRITERS = {"gif": _default_gif}
+
+
 def write_animation(frames: np.ndarray, path: Path, fmt: str, fps: float) -> None:
     """Write ``frames`` to ``path`` as ``fmt`` (``"gif"``, ``"mp4"`` or ``"webm"``) at ``fps`` frames a second; an
     :class:`ExportError` when a video's encoder is not installed or fails."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from camgen.kinds.base import ALL_FORMATS, NESTED, Operations, Starter
+from camgen.kinds.base import Animator, ALL_FORMATS, NESTED, Operations, Starter
 from camgen.kinds.barrel.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
 
@@ -55,6 +55,11 @@ class BarrelKind(SharedTableKind["BarrelSpec", "BarrelDesign"]):
             return ("a barrel cam has no flat part to write as an exact STEP solid (its groove is cut round a "
                     "cylinder); leave 'step' out and use 'stl' or '3mf'")
         return super().format_refusal(fmt)
+
+    def animator(self) -> Animator:
+        from camgen.kinds.barrel.animation import barrel_frames
+
+        return barrel_frames
 
 
 KIND = BarrelKind()

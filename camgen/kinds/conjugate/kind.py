@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from camgen.kinds.base import NESTED, Operations, SizeReport, Starter
+from camgen.kinds.base import Animator, NESTED, Operations, SizeReport, Starter
 from camgen.kinds.conjugate.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
 
@@ -50,6 +50,11 @@ class ConjugateKind(SharedTableKind["ConjugateSpec", "ConjugateDesign"]):
 
     def sheet_refusal(self, spec: ConjugateSpec) -> str | None:
         return f"a conjugate pair's two cams are nested on its own <name>-sheet.dxf; {NESTED}"
+
+    def animator(self) -> Animator:
+        from camgen.kinds.conjugate.animation import conjugate_frames
+
+        return conjugate_frames
 
 
 def _size(spec: ConjugateSpec) -> SizeReport:

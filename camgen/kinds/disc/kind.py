@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from camgen.kinds.base import Starter
 from camgen.kinds.disc.starters import STARTERS
@@ -32,6 +32,11 @@ class DiscKind(FlatKind["DiscSpec"]):
         from camgen.kinds.disc.table import DiscSpec
 
         return isinstance(spec, DiscSpec) and spec.kit is not None
+
+    def animation(self, design: FlatCamDesign, n: int, size: tuple[int, int]) -> Any:
+        from camgen.animation import cam_frames
+
+        return cam_frames(design, n, size)
 
     def construction(self, design: FlatCamDesign) -> tuple[Item, ...]:
         from camgen.construction.figure import construction_files

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from camgen.kinds.base import NESTED, KindBase, Operations, Starter
+from camgen.kinds.base import Animator, NESTED, KindBase, Operations, Starter
 from camgen.kinds.geneva.starters import STARTERS
 
 if TYPE_CHECKING:
@@ -39,6 +39,11 @@ class GenevaKind(KindBase["GenevaSpec", "GenevaDesign"]):
 
     def sheet_refusal(self, spec: GenevaSpec) -> str | None:
         return f"a Geneva drive's wheel, lock and crank are nested on its own <name>-sheet.dxf; {NESTED}"
+
+    def animator(self) -> Animator:
+        from camgen.kinds.geneva.animation import geneva_frames
+
+        return geneva_frames
 
 
 KIND = GenevaKind()

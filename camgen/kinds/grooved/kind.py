@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from camgen.kinds.base import Operations, SizeReport, Starter
+from camgen.kinds.base import Animator, Operations, SizeReport, Starter
 from camgen.kinds.grooved.starters import STARTERS
 from camgen.kinds.shared import SharedTableKind
 
@@ -46,6 +46,11 @@ class GroovedKind(SharedTableKind["GroovedSpec", "GroovedDesign"]):
                           lambda design, report: [*cam_summary(design, report), groove_summary(report)],
                           lambda design, report: cam_row(design, report, design.outline.contour.flatten),
                           lambda spec: SizeReport(size_grooved(spec)))
+
+    def animator(self) -> Animator:
+        from camgen.kinds.grooved.animation import grooved_frames
+
+        return grooved_frames
 
 
 KIND = GroovedKind()

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
-from camgen.kinds.base import KindBase, Operations, Starter
+from camgen.kinds.base import Animator, KindBase, Operations, Starter
 
 if TYPE_CHECKING:
     from pathlib import Path
@@ -16,7 +16,7 @@ if TYPE_CHECKING:
 
 #: what a machine writes: its cams' and linkages' files (those of their kinds that these name; html their own
 #: pages), the timing diagram and the report
-MACHINE_FORMATS = frozenset(("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html", "step"))
+MACHINE_FORMATS = frozenset(("dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html", "step", "gif"))
 
 def _leg(side: str, phase: float) -> tuple[tuple[str, dict[str, Any]], ...]:
     """A walking toy's leg on the legs' shaft: a crank-rocker (ground 60, crank 15, coupler 50, rocker 50 mm) whose
@@ -105,6 +105,11 @@ class MachineKind(KindBase["MachineSpec", "MachineDesign"]):
         from camgen.kinds.machine.mounts import beside
 
         return beside(raw, folder)
+
+    def animator(self) -> Animator:
+        from camgen.kinds.machine.animation import machine_frames
+
+        return machine_frames
 
 
 KIND = MachineKind()

@@ -175,7 +175,7 @@ class Coupling(Model):
 
 
 #: the formats a machine writes (its cams' and linkages' files of these formats, its timing diagram, its report)
-MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html", "step"]
+MachineFormat = Literal["dxf", "cut-svg", "stl", "3mf", "json", "png", "svg", "html", "step", "gif"]
 
 
 class MachineOutputTable(OutputTable):

@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from camgen.kinds.base import Starter
+from camgen.kinds.base import Animator, Starter
 from camgen.kinds.plate.starters import STARTERS
 from camgen.kinds.shared import FlatKind
 
@@ -28,6 +28,11 @@ class PlateKind(FlatKind["PlateSpec"]):
         from camgen.kinds.plate.table import PlateSpec
 
         return PlateSpec
+
+    def animator(self) -> Animator:
+        from camgen.kinds.plate.animation import plate_frames
+
+        return plate_frames
 
 
 KIND = PlateKind()

@@ -1,0 +1,86 @@
+"""A page's mechanism as the frames of an animation: the :class:`~camgen.core.page.Scene` a kind's page shows (its
+bodies posed frame by frame, its movers), drawn with matplotlib at ``n`` of the page's frames evenly over its cycle,
+the path of every circle it moves (a roller's centre, a Geneva drive's pin) traced whole. Pure: returns the frames
+(:func:`camgen.core.frames.render`); the command writes them (:mod:`camgen.core.writers.animation`).
+
+A page draws its cycle at :data:`~camgen.core.page.FRAMES` (360) frames, one a degree of its input from its first
+frame; frame k of an animation of ``n`` frames is the page's frame k * 360 / n, so ``n`` divides 360 (a refusal on
+``--frames`` otherwise): the animation shows exactly what the page does, no pose interpolated.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from camgen.core.errors import SpecError
+from camgen.core.frames import render
+from camgen.core.page import Page, Scene
+
+#: how each outline style of a page is drawn: (fill colour or None, line colour, line width, line style)
+STYLES: dict[str, tuple[str | None, str, float, str]] = {
+    "part": ("0.85", "k", 1.2, "-"), "wheel": ("0.85", "k", 1.2, "-"), "island": ("0.85", "k", 1.2, "-"),
+    "lock": ("0.75", "k", 1.0, "-"), "crank": ("0.7", "k", 1.0, "-"), "groove": ("white", "k", 1.0, "-"),
+    "hole": ("white", "k", 0.8, "-"), "second": ("0.7", "k", 1.0, "-"), "pitch": (None, "C0", 0.8, "--"),
+    "path": (None, "C1", 1.0, "-"),
+    "ground": (None, "0.3", 1.5, "-"), "guide": (None, "0.5", 0.8, "-"),
+}
+#: how a style the table does not name is drawn (a follower's pieces, links)
+OTHER = (None, "C2", 2.0, "-")
+#: the colour a traced path is drawn in, and a roller's or pin's circle
+TRACE, CIRCLE = "C1", "C2"
+
+
+def frame_indices(total: int, n: int, what: str) -> np.ndarray:
+    """The page frames (of ``total``) an animation of ``n`` frames shows: k * total / n for k = 0 .. n - 1; a
+    :class:`SpecError` naming ``--frames`` (``what`` the kind's title) where ``n`` does not divide ``total``."""
+    if n < 1 or total % n:
+        divisors = ", ".join(str(d) for d in range(2, total + 1) if total % d == 0)
+        raise SpecError(f"{what}'s animation shows its page's {total} frames: give one of {divisors} (got {n})",
+                        "--frames")
+    return np.arange(n) * (total // n)
+
+
+def _pose(points: np.ndarray, motion: np.ndarray | None, frame: int) -> np.ndarray:
+    """``points`` (k, 2; mm) in a body's frame placed at its pose of ``frame`` (turned about its origin, moved)."""
+    if motion is None:
+        return points
+    turn, dx, dy = motion[frame]
+    c, s = np.cos(np.radians(turn)), np.sin(np.radians(turn))
+    return np.column_stack([c * points[:, 0] - s * points[:, 1] + dx, s * points[:, 0] + c * points[:, 1] + dy])
+
+
+def scene_frames(page: Page, n: int, size: tuple[int, int], what: str) -> np.ndarray:
+    """``page``'s scene at ``n`` frames evenly over its cycle (:func:`frame_indices`; ``what`` names the kind in a
+    refusal), ``size`` (width, height) pixels, the view the page's (:meth:`~camgen.core.page.Scene.bounds`).
+    Returns (n, height, width, 3) uint8."""
+    scene: Scene = page.scene
+    index = frame_indices(len(page.inputs), n, what)
+    ring = np.linspace(0.0, 2 * np.pi, 73)
+    disc = np.column_stack([np.cos(ring), np.sin(ring)])
+    traces = [m.points[:, j] for m in scene.movers if m.radius > 0 for j in range(m.points.shape[1])]
+
+    def draw(ax: Any, k: int) -> None:
+        frame = int(index[k])
+        for body in scene.bodies:
+            for o in body.outlines:
+                fill, colour, width, line = STYLES.get(o.style, OTHER)
+                p = _pose(np.asarray(o.points, dtype=float), body.motion, frame)
+                if o.closed:
+                    p = np.vstack([p, p[:1]])
+                if fill is not None:
+                    ax.fill(p[:, 0], p[:, 1], color=fill, lw=0)
+                ax.plot(p[:, 0], p[:, 1], line, color=colour, lw=width)
+        for t in traces:
+            ax.plot(t[:, 0], t[:, 1], "-", color=TRACE, lw=0.8)
+        for m in scene.movers:
+            pts = m.points[frame]
+            if m.radius > 0:
+                for x, y in pts[np.isfinite(pts).all(axis=1)]:
+                    ax.plot(x + m.radius * disc[:, 0], y + m.radius * disc[:, 1], color=CIRCLE, lw=1.5)
+            else:
+                _, colour, width, line = STYLES.get(m.style, OTHER)
+                p = np.vstack([pts, pts[:1]]) if m.closed else pts
+                ax.plot(p[:, 0], p[:, 1], line, color=colour, lw=width)
+
+    return render(draw, n, size, scene.bounds())

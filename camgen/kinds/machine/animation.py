@@ -1,0 +1,17 @@
+"""The animation of a machine: every mechanism over one turn of the main shaft, as its page shows it. Pure: its page's
+scene drawn frame by frame (:mod:`camgen.core.scene_frames`), nothing written.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from camgen.core.scene_frames import scene_frames
+from camgen.kinds.machine.page import machine_page
+
+
+def machine_frames(design: Any, report: dict[str, Any], n: int, size: tuple[int, int]) -> np.ndarray:
+    """``n`` frames (a divisor of 360) of one cycle of ``design``, whose report is ``report``, ``size`` (width,
+    height) pixels: (n, height, width, 3) uint8."""
+    return scene_frames(machine_page(design, report), n, size, "a machine")
