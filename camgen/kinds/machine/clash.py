@@ -326,6 +326,11 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             skipped.append(f"linkages.{m.name}")
             continue
         _cranked_parts(m, bodies, joints, pins, shafts)
+    for m in getattr(d, "slid", ()):                       # a translating follower's linkage: as a shaft's
+        if m.design.build is None:
+            skipped.append(f"linkages.{m.name}")
+            continue
+        _cranked_parts(m, bodies, joints, pins, shafts)
     for name, (_, pivot, _, _) in arms.items():
         entry = pins.setdefault((float(pivot[0]), float(pivot[1])), ([], 0, PIVOT_PIN_MM / 2))
         if f"cams.{name}.arm" not in entry[0]:
