@@ -111,8 +111,8 @@ class SliderMotion:
 
 def transmission_warnings(motion: SliderMotion) -> list[str]:
     """A warning for each dyad of ``motion``'s linkage whose transmission angle comes within
-    :data:`TRANSMISSION_WARN_DEG` degrees of a toggle (0 or 180 for a pin dyad, 90 for one with a slide) over the range the
-    follower drives it through (the linkage's own report judges its whole reach instead)."""
+    :data:`TRANSMISSION_WARN_DEG` degrees of a toggle (0 or 180 for a pin dyad, 0 for one with a slide) over the
+    range the follower drives it through (the linkage's own report judges its whole reach instead)."""
     sol = motion.analysis.linkage.solve(motion.inputs[None, :])
     out = []
     for dyad in sol.dyads:
