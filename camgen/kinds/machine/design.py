@@ -224,7 +224,8 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     warnings: list[str] = []
     for i, coupling in enumerate(spec.couplings):
         index = next(j for j, m in enumerate(spec.linkages) if m.name == coupling.linkage)
-        if _cam_of(cams[coupling.cam].design).follower.lift_unit == "mm":
+        if _cam_of(cams[coupling.cam].design).follower.lift_unit == "mm" \
+                or spec.linkage_specs[index].linkage.type == "linkage":
             driven = _slider_motion(spec, i, index, cams[coupling.cam])
             slid.append(driven)
             warnings += slider_coupling.transmission_warnings(driven)
@@ -342,15 +343,17 @@ def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMot
 
 def _slider_motion(spec: MachineSpec, index: int, mount_index: int,
                    cam: CamMotion) -> slider_coupling.SliderMotion:
-    """The general linkage of ``spec.linkages[mount_index]`` driven by ``cam``'s translating follower through
-    coupling ``index`` (:func:`camgen.kinds.machine.slider_coupling.slider_motion`)."""
+    """The general linkage of ``spec.linkages[mount_index]`` driven by ``cam``'s follower through coupling
+    ``index``: a translating one's stem as its slider (:func:`camgen.kinds.machine.slider_coupling.slider_motion`),
+    an arm as its crank (:func:`~camgen.kinds.machine.slider_coupling.arm_motion`)."""
     lspec = spec.linkage_specs[mount_index]
     try:
         made = linkgen_api.design(lspec, parts=lspec.parts is not None)
     except SpecError as exc:
         raise exc.under(f"linkages[{mount_index}].template") from None
-    return slider_coupling.slider_motion(spec, index, mount_index, cam, _cam_of(cam.design), made,
-                                         kinematics.shaft_angles(spec.machine.samples))
+    kin = _cam_of(cam.design)
+    motion = slider_coupling.slider_motion if kin.follower.lift_unit == "mm" else slider_coupling.arm_motion
+    return motion(spec, index, mount_index, cam, kin, made, kinematics.shaft_angles(spec.machine.samples))
 
 
 def _loaded_stem(spec: MachineSpec, cam: CamMotion, driven: slider_coupling.SliderMotion) -> CamMotion:
@@ -359,9 +362,9 @@ def _loaded_stem(spec: MachineSpec, cam: CamMotion, driven: slider_coupling.Slid
     index = next(i for i, m in enumerate(spec.cams) if m.name == cam.name)
     theta = np.arange(LOAD_ROWS) * (kinematics.TWO_PI / LOAD_ROWS)
     lift = driven.program.evaluate(theta)[0]
-    sol = driven.analysis.linkage.solve((driven.coupling.rest + lift)[None, :])
-    per_mm = np.asarray(sol.omegas[driven.coupling.output], dtype=float)
-    force = slider_coupling.reflected_force(driven.coupling.output_torque, per_mm)
+    sol = driven.analysis.linkage.solve((driven.base + driven.scale * lift)[None, :])
+    per_unit = driven.scale * np.asarray(sol.omegas[driven.coupling.output], dtype=float)
+    force = slider_coupling.reflected_force(driven.coupling.output_torque, per_unit / driven.lever)
     return _redesigned(spec, index, cam, theta, force)
 
 

@@ -65,6 +65,11 @@ class SliderMotion:
     program, turns, phase_deg : object, float, float
         The cam's follower program (:class:`camgen.motion.Program`), its shaft's turns per main turn and its phase
         (degrees): what :meth:`solve` places the slider by.
+    base, scale : float
+        The input's value is base + scale s: rest (mm) and 1 for a stem; rest in radians and the arm's swing sign
+        in radians per degree for an arm (:func:`arm_motion`).
+    lever : float
+        The follower's path (mm) per unit of s: 1 for a stem, the roller's arc per degree of swing for an arm.
     """
 
     name: str
@@ -84,6 +89,9 @@ class SliderMotion:
     program: Any
     turns: float
     phase_deg: float
+    base: float = 0.0
+    scale: float = 1.0
+    lever: float = 1.0
 
     #: a slider-driven linkage stands on the frame's front, as its cam (the clash check's planes)
     side = 1
@@ -105,7 +113,7 @@ class SliderMotion:
         from camgen.kinds.machine import kinematics
 
         theta = kinematics.program_angles(np.asarray(phi, dtype=float), self.turns, math.radians(self.phase_deg))
-        values = self.coupling.rest + self.program.evaluate(theta)[0]
+        values = self.base + self.scale * self.program.evaluate(theta)[0]
         return self.analysis.linkage.solve(np.asarray(values, dtype=float)[None, :])
 
 
@@ -148,12 +156,51 @@ def check(spec: Any, index: int, lspec: Any) -> None:
     if abs(math.remainder(slider.angle - 90.0, 360.0)) > GUIDE_TOL_DEG:
         raise ValueError(f"{where}.link: slider {name} of linkages.{c.linkage} is drawn at {slider.angle:g} "
                          "degrees; draw its guide along +Y (angle = 90), the follower's lift")
+    _check_output(c, where, table)
+
+
+def check_arm(spec: Any, index: int, lspec: Any) -> None:
+    """Refuse coupling ``spec.couplings[index]`` of an oscillating follower's arm to ``lspec``, a ``type =
+    "linkage"`` template, unless its one input is a crank about a ground joint (relative to the ground) and
+    ``coupling.link`` names that crank (a ValueError naming the field)."""
+    c = spec.couplings[index]
+    table = lspec.linkage
+    where = f"couplings[{index}]"
+    inputs: tuple[Any, ...] = table.inputs
+    if len(inputs) != 1 or inputs[0].slider is not None or inputs[0].relative_to != "ground" \
+            or inputs[0].pivot not in table.ground:
+        raise ValueError(f"{where}.linkage: cams.{c.cam}'s arm drives a type = \"linkage\" template whose one "
+                         f"input is a crank about a ground joint (input = {{ link, pivot }}); linkages.{c.linkage} "
+                         "has another input")
+    if c.link != inputs[0].link:
+        raise ValueError(f"{where}.link: the follower's arm is its linkage's input crank: {inputs[0].link!r}, not "
+                         f"{c.link!r}")
+    _check_output(c, where, table)
+
+
+def _check_output(c: Any, where: str, table: Any) -> None:
+    """Refuse an ``output`` that is not one of the linkage's links, or an output torque with no link to act on."""
     if c.output is not None and c.output not in table.links:
         raise ValueError(f"{where}.output: linkages.{c.linkage} has no link {c.output!r}; its links: "
                          f"{', '.join(table.links)}")
     if c.output_torque and c.output is None:
         raise ValueError(f"{where}.output: give the link output_torque acts on (one of "
                          f"{', '.join(table.links)})")
+
+
+def arm_motion(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: Any,
+               phi: np.ndarray) -> SliderMotion:
+    """The linkage of ``spec.linkages[mount_index]`` (``design``) whose input crank is ``cam``'s follower arm
+    (coupling ``index``): the drawing moved (not turned) so that its crank's pivot lies on the arm's, the crank's
+    direction (degrees from +X) ``rest`` + the arm's swing turned the way the arm turns, so that the crank and the
+    arm are one rigid bell crank."""
+    coupling, f = spec.couplings[index], kin.follower
+    pivot = design.kinematics.table.inputs[0].pivot
+    drawn = np.asarray(design.kinematics.linkage.structure.points[pivot], dtype=float)
+    offset = _shaft_at(spec, cam.name) + np.asarray(f.pivot, dtype=float) - drawn
+    k = float(f._swing_sign)
+    mapping = (math.radians(coupling.rest), k * math.pi / 180.0, float(f.arm_length) * math.pi / 180.0)
+    return driven(spec, index, mount_index, cam, kin, design, phi, offset, mapping)
 
 
 def rest_point(follower: Any) -> np.ndarray:
@@ -183,35 +230,52 @@ def slider_motion(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, d
         follower's stroke drives it past a toggle (out of its reach), naming the cam, the linkage and the first
         main shaft angle.
     """
-    coupling, follower, program = spec.couplings[index], kin.follower, kin.program
+    coupling, follower = spec.couplings[index], kin.follower
+    point = design.kinematics.table.sliders[coupling.link].point
+    drawn = np.asarray(design.kinematics.linkage.structure.points[point], dtype=float)
+    offset = _shaft_at(spec, cam.name) + rest_point(follower) - drawn - np.array([0.0, coupling.rest])
+    return driven(spec, index, mount_index, cam, kin, design, phi, offset, (coupling.rest, 1.0, 1.0))
+
+
+def driven(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: Any, phi: np.ndarray,
+           offset: np.ndarray, mapping: tuple[float, float, float]) -> SliderMotion:
+    """The linkage of ``spec.linkages[mount_index]`` (``design``) moved by ``offset`` (mm) and driven through
+    coupling ``index`` by ``cam``'s follower: its input base + scale s, ``mapping`` = (base, scale, lever), lever
+    the follower's path (mm) per unit of s (1 for a stem's lift; the arm's length in mm per degree of swing), by
+    which a force along it does the work of the load."""
+    coupling = spec.couplings[index]
+    base, scale, lever = mapping
     linkage = design.kinematics.linkage
     name = spec.linkages[mount_index].name
     lift = stem_lift(cam.follower, cam.turns)
-    inputs = coupling.rest + lift[0]
-    _check_reach(linkage, coupling, index, inputs, phi, name)
+    inputs = base + scale * lift[0]
+    _check_reach(linkage, coupling, index, inputs, phi, name, base)
     sol = linkage.solve(inputs[None, :])
-    point = design.kinematics.table.sliders[coupling.link].point
-    drawn = np.asarray(linkage.structure.points[point], dtype=float)
-    at = next(np.asarray(s.at, dtype=float) for s in spec.shafts if s.name == spec.cams[
-        next(i for i, c in enumerate(spec.cams) if c.name == cam.name)].shaft)
-    offset = at + rest_point(follower) - drawn - np.array([0.0, coupling.rest])
     points = {p: np.asarray(xy, dtype=float) + offset for p, xy in sol.points.items()}
-    rates = {p: np.asarray(v, dtype=float) * lift[1][:, None] for p, v in sol.velocities.items()}
+    rates = {p: np.asarray(v, dtype=float) * (scale * lift[1])[:, None] for p, v in sol.velocities.items()}
     if coupling.output is None:
-        angle = per_mm = np.zeros_like(phi)
+        angle = per_unit = np.zeros_like(phi)
     else:
         angle = np.asarray(sol.angle(coupling.output), dtype=float)
-        per_mm = np.asarray(sol.omegas[coupling.output], dtype=float)
+        per_unit = scale * np.asarray(sol.omegas[coupling.output], dtype=float)
     layer = next(c.layer for c in spec.cams if c.name == cam.name)
     return SliderMotion(name, cam.name, coupling, design, layer, offset, lift, inputs, points, rates, angle,
-                        per_mm * lift[1], reflected_force(coupling.output_torque, per_mm),
-                        shaft_torque(coupling.output_torque, per_mm, lift[1]), program, cam.turns, cam.phase_deg)
+                        per_unit * lift[1], reflected_force(coupling.output_torque, per_unit / lever),
+                        shaft_torque(coupling.output_torque, per_unit, lift[1]), kin.program, cam.turns,
+                        cam.phase_deg, base, scale, lever)
+
+
+def _shaft_at(spec: Any, cam: str) -> np.ndarray:
+    """The centre (mm) of the shaft cam ``cam`` is mounted on."""
+    shaft = next(c.shaft for c in spec.cams if c.name == cam)
+    return next(np.asarray(s.at, dtype=float) for s in spec.shafts if s.name == shaft)
 
 
 def reflected_force(output_torque: float, per_mm: np.ndarray) -> np.ndarray:
-    """The force (N) an external torque ``output_torque`` (N*m) on the output link presses the stem onto its cam
-    with: -T d theta_out / d s, ``per_mm`` = d theta_out / d s (rad/mm), so -1000 T per_mm (virtual work: the stem
-    pushes the slider with it, and the follower takes it back)."""
+    """The force (N) an external torque ``output_torque`` (N*m) on the output link presses the follower onto its
+    cam with: -T d theta_out / d s, ``per_mm`` = d theta_out / d s (rad per mm of the follower's path: its stem's
+    lift, or its roller's arc), so -1000 T per_mm (virtual work: the follower drives the input with it, and takes
+    it back)."""
     return -output_torque * per_mm * 1000.0
 
 
@@ -222,22 +286,24 @@ def shaft_torque(output_torque: float, per_mm: np.ndarray, lift_rate: np.ndarray
     return -output_torque * per_mm * lift_rate
 
 
-def _check_reach(linkage: Any, coupling: Any, index: int, inputs: np.ndarray, phi: np.ndarray, name: str) -> None:
-    """Refuse a rest out of the slider's reach, or a stroke that drives it out (past a toggle), naming both."""
+def _check_reach(linkage: Any, coupling: Any, index: int, inputs: np.ndarray, phi: np.ndarray, name: str,
+                 base: float) -> None:
+    """Refuse a rest out of the input's reach, or a stroke that drives it out (past a toggle), naming the coupling,
+    the cam, the linkage and the first main shaft angle (a slider's travel in mm, a crank's angle in degrees)."""
+    crank = linkage.structure.inputs[0].kind == "crank"
+    noun, unit, shown = ("crank", "degrees", math.degrees) if crank else ("slider", "mm", float)
     ranges = linkage.ranges
-    reach = ("its slider reaches " + " or ".join(f"[{lo:.6g}, {hi:.6g}] mm" for lo, hi in ranges)
-             if ranges else "")
-    rest = linkage.solve(np.array([[coupling.rest]]), strict=False)
-    if not rest.ok.all():
-        raise SpecError(f"the slider of linkages.{name} at rest ({coupling.rest:g} mm from its drawing) is out of "
-                        f"its reach{': ' + reach if reach else ''}; give a rest within its travel",
-                        f"couplings[{index}].rest")
+    reach = (f"; its {noun} reaches " + " or ".join(f"[{shown(lo):.6g}, {shown(hi):.6g}] {unit}"
+                                                     for lo, hi in ranges)) if ranges else ""
+    if not linkage.solve(np.array([[base]]), strict=False).ok.all():
+        raise SpecError(f"the {noun} of linkages.{name} at rest ({coupling.rest:g} {unit}) is out of its "
+                        f"reach{reach}; give a rest within its travel", f"couplings[{index}].rest")
     ok = linkage.solve(inputs[None, :], strict=False).ok
     if ok.all():
         return
     first = int(np.argmin(ok))
-    raise SpecError(f"cams.{coupling.cam}'s follower drives the slider of linkages.{name} through "
-                    f"[{inputs.min():.6g}, {inputs.max():.6g}] mm (rest {coupling.rest:g} + its lift), past a toggle "
-                    f"from the main shaft's {math.degrees(float(phi[first])):.4g} degrees"
-                    f"{': ' + reach if reach else ''}; change couplings[{index}].rest, the cam's lift or the "
-                    "linkage", f"couplings[{index}]")
+    raise SpecError(f"cams.{coupling.cam}'s follower drives the {noun} of linkages.{name} through "
+                    f"[{shown(inputs.min()):.6g}, {shown(inputs.max()):.6g}] {unit} (rest {coupling.rest:g} + its "
+                    f"{'swing' if crank else 'lift'}), past a toggle from the main shaft's "
+                    f"{math.degrees(float(phi[first])):.4g} degrees{reach}; change couplings[{index}].rest, the "
+                    "cam's lift or the linkage", f"couplings[{index}]")

@@ -24,6 +24,7 @@ from camgen.core.spec import (MAX_ALLOWANCE_MM, MAX_LENGTH_MM, NAME_PATTERN, Mod
 from camgen.kinds.machine.keeptime import KeepTime
 from camgen.kinds.machine.slider_coupling import STEMS
 from camgen.kinds.machine.slider_coupling import check as check_slider
+from camgen.kinds.machine.slider_coupling import check_arm
 
 #: the most shafts, gear pairs, cams, linkages or couplings a machine may have
 MAX_MOUNTS = 20
@@ -361,9 +362,12 @@ class MachineSpec(TemplateSpec):
                 raise ValueError(f"couplings[{i}].cam: cams.{c.cam} has a {follower} follower; a follower drives a "
                                  f"linkage through its arm: give an oscillating-roller or oscillating-flat follower")
             table = self.linkage_specs[linkages[c.linkage]].linkage
+            if table.type == "linkage":
+                check_arm(self, i, self.linkage_specs[linkages[c.linkage]])
+                continue
             if table.type != "four-bar":
                 raise ValueError(f"couplings[{i}].linkage: linkages.{c.linkage} is a {table.type}; a follower's "
-                                 "arm drives a four-bar's crank")
+                                 "arm drives a four-bar's crank or a type = \"linkage\" template's")
             if c.link not in FOUR_BAR_LINKS:
                 raise ValueError(f"couplings[{i}].link: linkages.{c.linkage} has no link {c.link!r}; its links: "
                                  f"{', '.join(FOUR_BAR_LINKS)}")

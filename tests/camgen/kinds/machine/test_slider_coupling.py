@@ -215,8 +215,8 @@ def test_the_driven_parts_are_in_the_clash_check(lifter):
     ("O = [50.0, 60.0]", "O = [20.0, 40.0]",                  # the rod 80, the crank 36.4: |OC| >= 43.6 mm
      "couplings[0]: cams.lift's follower drives the slider of linkages.rocker through [0, 30] mm (rest 0 + its "
      "lift), past a toggle from the main shaft's "),
-    ("rest = 0.0", "rest = -100.0", "couplings[0].rest: the slider of linkages.rocker at rest (-100 mm from its "
-                                    "drawing) is out of its reach"),
+    ("rest = 0.0", "rest = -100.0",
+     "couplings[0].rest: the slider of linkages.rocker at rest (-100 mm) is out of its reach; its slider reaches "),
     ("angle = 90.0\n", "angle = 0.0\n", "couplings[0].link: slider stem of linkages.rocker is drawn at 0 degrees; "
                                         "draw its guide along +Y"),
     ('output = "crank"', 'output = "lever"', "couplings[0].output: linkages.rocker has no link 'lever'"),
@@ -258,3 +258,77 @@ def test_the_machine_builds_and_its_files_read_back(tmp_path, lifter):
     assert entry["travel_mm"] == pytest.approx([0.0, 30.0], abs=1e-6)
     turn = np.degrees(_crank_turn(np.linspace(0, 2 * math.pi, 720, endpoint=False), lifter))
     assert entry["output_deg"] == pytest.approx([turn.min(), turn.max()], abs=1e-6)
+
+
+# ---- the bundled pick-and-place: a grooved cam's arm as a bell crank driving a carriage (a slider-crank)
+
+PICK = Path(__file__).resolve().parents[4] / "templates" / "pick-and-place.toml"
+
+
+@pytest.fixture(scope="module")
+def pick():
+    from camgen import api
+
+    return api.design(api.validate(tomllib.loads(PICK.read_text())))
+
+
+def _carriage_x(design, phi: np.ndarray) -> np.ndarray:
+    """The carriage C's x (mm, machine frame) independently: the bell crank's second arm at rest + the arm's
+    turn (its swing, clockwise for this arm: the roller sits left of the pivot), the crank pin A on it, C on the
+    guide's line (the drawn C's height) at the rod's length from A, on the drawing's side (right of A)."""
+    raw = tomllib.loads(PICK.read_text())
+    joints = raw["linkages"][0]["template"]["linkage"]["joints"]
+    o, a0, c0 = (np.array(joints[k], dtype=float) for k in ("O", "A", "C"))
+    follower = design.cam("shuttle").design.profile.cam.follower
+    pivot = np.asarray(follower.pivot, dtype=float)                   # the shaft is at the origin
+    program = design.cam("shuttle").design.profile.cam.program
+    psi = np.radians(program.evaluate(np.mod(phi, 2 * math.pi))[0])
+    angle = math.radians(raw["couplings"][0]["rest"]) - psi             # the arm swings clockwise (k = -1)
+    r, rod = np.linalg.norm(a0 - o), np.linalg.norm(c0 - a0)
+    a = pivot + r * np.column_stack([np.cos(angle), np.sin(angle)])
+    height = pivot[1] + (c0 - o)[1]
+    return a[:, 0] + np.sqrt(rod ** 2 - (height - a[:, 1]) ** 2)
+
+
+def test_the_pick_and_place_carriage_is_the_cam_fed_into_a_slider_crank(pick):
+    m = pick.slid[0]
+    assert pick.cam("shuttle").design.profile.cam.follower._swing_sign == -1.0
+    expected = _carriage_x(pick, pick.phi)
+    assert np.abs(m.points["C"][:, 0] - expected).max() < 1e-9
+    assert np.ptp(m.points["C"][:, 1]) < 1e-9                          # on its guide
+    assert np.ptp(expected) > 20.0
+    # the carriage stands still while the cam dwells (120-180 and 300-360 degrees of its program)
+    dwell = (np.degrees(pick.phi) > 121) & (np.degrees(pick.phi) < 179)
+    assert np.ptp(m.points["C"][dwell, 0]) < 1e-9
+
+
+def test_the_pick_and_place_is_clean(pick):
+    """Its pressure angles within the cam's limit, no warnings, no clash, every moving part checked (the bell
+    crank's arms share one pin)."""
+    assert pick.warnings == ()
+    assert pick.clashes == () and pick.unchecked == ()
+    names = {b.name for b in pick.bodies}
+    assert {"cams.shuttle.arm", "linkages.carriage.bell", "linkages.carriage.rod",
+            "linkages.carriage.carriage"} <= names
+    assert sum(n.startswith("pins.") for n in names) == 1
+    profile = pick.cam("shuttle").design.profile
+    assert 5.0 < profile.analysis.pressure_angle_max_deg <= profile.pressure_limit_deg
+
+
+def test_the_pick_and_place_builds_and_its_files_read_back(tmp_path):
+    import ezdxf
+
+    result = CliRunner().invoke(camgen, ["build", str(PICK), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert "warning" not in result.output
+    out = tmp_path / "out"
+    dxfs = sorted(out.glob("*.dxf"))
+    assert any(p.name.startswith("pick-and-place-carriage") for p in dxfs)
+    for path in dxfs:
+        assert len(ezdxf.readfile(path).modelspace()) > 0
+    for path in sorted(out.glob("*.stl")):
+        text = subprocess.run(["admesh", "-e", str(path)], capture_output=True, text=True, timeout=120).stdout
+        for key in ("Degenerate facets", "Facets reversed", "Backwards edges"):
+            assert int(re.search(rf"{key}\s*:\s*(\d+)", text).group(1)) == 0, (path, key)
+    report = json.loads((out / "pick-and-place.json").read_text())
+    assert report["slid"]["carriage"]["cam"] == "shuttle" and report["warnings"] == []
