@@ -19,8 +19,24 @@ from camgen.core.errors import SpecError
 from camgen.kinds.machine import kinematics
 
 
+class GeneralMotion:
+    """What a machine's general linkage (``type = "linkage"``) reads of its design, shaft- or follower-driven."""
+
+    design: Any
+
+    @property
+    def analysis(self) -> Any:
+        """Its general-linkage analysis (:class:`linkgen.mechanisms.general.Analysis`)."""
+        return self.design.kinematics
+
+    @property
+    def tracers(self) -> tuple[str, ...]:
+        """The joints its template traces (``linkage.tracers``)."""
+        return tuple(self.analysis.table.tracers)
+
+
 @dataclass(frozen=True)
-class CrankedMotion:
+class CrankedMotion(GeneralMotion):
     """A shaft-driven linkage over one turn of the main shaft (arrays by the machine's shaft angles).
 
     Attributes
@@ -56,16 +72,6 @@ class CrankedMotion:
     inputs: np.ndarray
     points: dict[str, np.ndarray]
     rates: dict[str, np.ndarray]
-
-    @property
-    def analysis(self) -> Any:
-        """Its general-linkage analysis (:class:`linkgen.mechanisms.general.Analysis`)."""
-        return self.design.kinematics
-
-    @property
-    def tracers(self) -> tuple[str, ...]:
-        """The joints its template traces (``linkage.tracers``)."""
-        return tuple(self.analysis.table.tracers)
 
     def solve(self, phi: np.ndarray) -> Any:
         """Its linkage solved at main shaft angles ``phi`` (radians), in its drawing's frame

@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
+from camgen.kinds.machine.cranked import GeneralMotion
 
 #: the follower types whose stem can be a linkage's slider
 STEMS = ("translating-roller", "translating-flat", "knife-edge")
@@ -33,7 +34,7 @@ TRANSMISSION_WARN_DEG = 40.0
 
 
 @dataclass(frozen=True)
-class SliderMotion:
+class SliderMotion(GeneralMotion):
     """A linkage driven by a translating follower's stem over one turn of the main shaft (arrays by the machine's
     shaft angles).
 
@@ -96,16 +97,6 @@ class SliderMotion:
     #: a slider-driven linkage stands on the frame's front, as its cam (the clash check's planes)
     side = 1
     shaft = ""
-
-    @property
-    def analysis(self) -> Any:
-        """Its general-linkage analysis (:class:`linkgen.mechanisms.general.Analysis`)."""
-        return self.design.kinematics
-
-    @property
-    def tracers(self) -> tuple[str, ...]:
-        """The joints its template traces (``linkage.tracers``)."""
-        return tuple(self.analysis.table.tracers)
 
     def solve(self, phi: np.ndarray) -> Any:
         """Its linkage solved at main shaft angles ``phi`` (radians) in its drawing's frame, by the slider's travel

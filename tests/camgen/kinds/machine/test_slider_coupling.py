@@ -63,13 +63,13 @@ angle = 60.0
 
 [[cams.template.motion]]
 type = "return"
-law = "cycloidal"
+law = "modified-sine"
 lift = 30.0
-angle = 120.0
+angle = 130.0
 
 [[cams.template.motion]]
 type = "dwell"
-angle = 60.0
+angle = 50.0
 
 [[linkages]]
 name = "rocker"
