@@ -20,9 +20,13 @@ from camgen.kinds.machine import kinematics
 
 
 class GeneralMotion:
-    """What a machine's general linkage (``type = "linkage"``) reads of its design, shaft- or follower-driven."""
+    """What a machine's general linkage (``type = "linkage"``) reads of its design, shaft- or follower-driven: its
+    mount's name, its design, and every joint (n, 2) in the machine's frame (mm) with its rate (mm/rad)."""
 
+    name: str
     design: Any
+    points: dict[str, np.ndarray]
+    rates: dict[str, np.ndarray]
 
     @property
     def analysis(self) -> Any:

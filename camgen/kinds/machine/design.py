@@ -153,11 +153,12 @@ class MachineDesign:
     @property
     def outputs(self) -> tuple[Output, ...]:
         """The timing diagram's outputs in order: each follower (its swing in degrees, or its lift in mm), then each
-        coupled four-bar's rocker (its angle in degrees), then each shaft-driven linkage's tracers (x and y, mm in
-        the machine's frame)."""
+        coupled four-bar's rocker (its angle in degrees), then each follower-driven general linkage's output link
+        (its turn from its drawing, degrees), then each shaft-driven and each follower-driven general linkage's
+        tracers (x and y, mm in the machine's frame)."""
         cams = tuple(Output(f"cams.{c.name}", c.unit, c.follower[0], c.rate) for c in self.cams)
         traced = tuple(Output(f"linkages.{m.name}.{p}.{axis}", "mm", m.points[p][:, k], m.rates[p][:, k])
-                       for m in self.cranked for p in m.tracers for k, axis in enumerate("xy"))
+                       for m in (*self.cranked, *self.slid) for p in m.tracers for k, axis in enumerate("xy"))
         slid = tuple(Output(f"linkages.{m.name}", "deg", np.degrees(m.output_angle), np.degrees(m.output_rate))
                      for m in self.slid if m.coupling.output is not None)
         return (*cams, *(Output(f"linkages.{m.name}", "deg", np.degrees(m.theta4), np.degrees(m.rocker_rate))
@@ -171,12 +172,14 @@ class MachineDesign:
 
     def together(self, a: str, b: str) -> bool:
         """Whether outputs labelled ``a`` and ``b`` move together by construction (left out of the overlaps): a
-        follower and the four-bar it drives, or two tracers' coordinates of one shaft-driven linkage."""
+        follower and the linkage it drives (and its tracers), or two outputs of one general linkage."""
         driven = [(m.cam, m.name) for m in self.linkages] + [(m.cam, m.name) for m in self.slid]
         pairs = {frozenset((f"cams.{cam}", f"linkages.{name}")) for cam, name in driven}
-        own = [m.name for m in self.cranked if a.startswith(f"linkages.{m.name}.") and b.startswith(
-            f"linkages.{m.name}.")]
-        return frozenset((a, b)) in pairs or bool(own)
+        own = [m.name for m in (*self.cranked, *self.slid) if a.startswith(f"linkages.{m.name}")
+               and b.startswith(f"linkages.{m.name}")]
+        followed = [m.name for m in self.slid if {a, b} & {f"cams.{m.cam}"}
+                    and any(x.startswith(f"linkages.{m.name}.") for x in (a, b))]
+        return frozenset((a, b)) in pairs or bool(own) or bool(followed)
 
     def cam(self, name: str) -> CamMotion:
         """The cam mounted as ``name``."""
