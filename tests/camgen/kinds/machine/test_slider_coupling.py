@@ -300,6 +300,9 @@ def test_the_pick_and_place_carriage_is_the_cam_fed_into_a_slider_crank(pick):
     # the carriage stands still while the cam dwells (120-180 and 300-360 degrees of its program)
     dwell = (np.degrees(pick.phi) > 121) & (np.degrees(pick.phi) < 179)
     assert np.ptp(m.points["C"][dwell, 0]) < 1e-9
+    outputs = {o.label: o for o in pick.outputs}                        # the timing diagram's carriage travel
+    assert np.abs(outputs["linkages.carriage.C.x"].values - expected).max() < 1e-9
+    assert pick.together("cams.shuttle", "linkages.carriage.C.x") and not pick.together("cams.shuttle", "cams.x")
 
 
 def test_the_pick_and_place_is_clean(pick):
