@@ -326,8 +326,18 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             skipped.append(f"linkages.{m.name}")
             continue
         _cranked_parts(m, bodies, joints, pins, shafts)
+    for m in getattr(d, "slid", ()):                       # a translating follower's linkage: as a shaft's
+        if m.design.build is None:
+            skipped.append(f"linkages.{m.name}")
+            continue
+        _cranked_parts(m, bodies, joints, pins, shafts)
+        if m.cam in arms and m.analysis.crank:              # its crank and the arm: one bell crank
+            link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
+            joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),
+                                _margin(max(p.half_width for p in m.design.build.parts))))
     for name, (_, pivot, _, _) in arms.items():
-        entry = pins.setdefault((float(pivot[0]), float(pivot[1])), ([], 0, PIVOT_PIN_MM / 2))
+        key = next((k for k in pins if math.dist(k, pivot) < 1e-9), (float(pivot[0]), float(pivot[1])))
+        entry = pins.setdefault(key, ([], 0, PIVOT_PIN_MM / 2))
         if f"cams.{name}.arm" not in entry[0]:
             entry[0].append(f"cams.{name}.arm")
     plane_of = {b.name: b.high for b in bodies}
@@ -398,12 +408,13 @@ def _cranked_parts(m: Any, bodies: list[Body], joints: list[Joint],
         if "ground" not in holders:
             continue
         at = np.asarray(s.points[point], float) + m.offset
-        if point == pivot:
+        if point == pivot and m.shaft:
             shaft = f"shafts.{m.shaft}"
             planes = [next(b.high for b in bodies if b.name == h) for h in moving]
             far = max(planes, key=abs)
             shafts.setdefault(m.shaft, []).append((far, pin_r))
             joints += [Joint(h, shaft, still(at), _margin(hw)) for h in moving]
-        else:
-            entry = pins.setdefault((float(at[0]), float(at[1])), ([], 0, pin_r))
+        else:                                               # a pin at the same place (to 1e-9 mm) is one pin
+            key = next((k for k in pins if math.dist(k, at) < 1e-9), (float(at[0]), float(at[1])))
+            entry = pins.setdefault(key, ([], 0, pin_r))
             entry[0].extend(moving)

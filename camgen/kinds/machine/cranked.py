@@ -19,8 +19,28 @@ from camgen.core.errors import SpecError
 from camgen.kinds.machine import chain_inertia, kinematics
 
 
+class GeneralMotion:
+    """What a machine's general linkage (``type = "linkage"``) reads of its design, shaft- or follower-driven: its
+    mount's name, its design, and every joint (n, 2) in the machine's frame (mm) with its rate (mm/rad)."""
+
+    name: str
+    design: Any
+    points: dict[str, np.ndarray]
+    rates: dict[str, np.ndarray]
+
+    @property
+    def analysis(self) -> Any:
+        """Its general-linkage analysis (:class:`linkgen.mechanisms.general.Analysis`)."""
+        return self.design.kinematics
+
+    @property
+    def tracers(self) -> tuple[str, ...]:
+        """The joints its template traces (``linkage.tracers``)."""
+        return tuple(self.analysis.table.tracers)
+
+
 @dataclass(frozen=True)
-class CrankedMotion:
+class CrankedMotion(GeneralMotion):
     """A shaft-driven linkage over one turn of the main shaft (arrays by the machine's shaft angles).
 
     Attributes
@@ -60,16 +80,6 @@ class CrankedMotion:
     points: dict[str, np.ndarray]
     rates: dict[str, np.ndarray]
     torque: np.ndarray | None = None
-
-    @property
-    def analysis(self) -> Any:
-        """Its general-linkage analysis (:class:`linkgen.mechanisms.general.Analysis`)."""
-        return self.design.kinematics
-
-    @property
-    def tracers(self) -> tuple[str, ...]:
-        """The joints its template traces (``linkage.tracers``)."""
-        return tuple(self.analysis.table.tracers)
 
     def solve(self, phi: np.ndarray) -> Any:
         """Its linkage solved at main shaft angles ``phi`` (radians), in its drawing's frame

@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import chain_inertia, clash, frame, kinematics
+from camgen.kinds.machine import chain_inertia, clash, frame, kinematics, slider_coupling
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -142,6 +142,8 @@ class MachineDesign:
     bodies: tuple[clash.Body, ...] = ()
     #: the frame ``machine.frame`` asks for (:mod:`camgen.kinds.machine.frame`), None for none
     frame: frame.Frame | None = None
+    #: each linkage a translating follower's stem drives (:mod:`camgen.kinds.machine.slider_coupling`)
+    slid: tuple[slider_coupling.SliderMotion, ...] = ()
 
     @property
     def tolerance(self) -> float:
@@ -156,28 +158,35 @@ class MachineDesign:
     @property
     def outputs(self) -> tuple[Output, ...]:
         """The timing diagram's outputs in order: each follower (its swing in degrees, or its lift in mm), then each
-        coupled four-bar's rocker (its angle in degrees), then each shaft-driven linkage's tracers (x and y, mm in
-        the machine's frame)."""
+        coupled four-bar's rocker (its angle in degrees), then each follower-driven general linkage's output link
+        (its turn from its drawing, degrees), then each shaft-driven and each follower-driven general linkage's
+        tracers (x and y, mm in the machine's frame)."""
         cams = tuple(Output(f"cams.{c.name}", c.unit, c.follower[0], c.rate) for c in self.cams)
         traced = tuple(Output(f"linkages.{m.name}.{p}.{axis}", "mm", m.points[p][:, k], m.rates[p][:, k])
-                       for m in self.cranked for p in m.tracers for k, axis in enumerate("xy"))
+                       for m in (*self.cranked, *self.slid) for p in m.tracers for k, axis in enumerate("xy"))
+        slid = tuple(Output(f"linkages.{m.name}", "deg", np.degrees(m.output_angle), np.degrees(m.output_rate))
+                     for m in self.slid if m.coupling.output is not None)
         return (*cams, *(Output(f"linkages.{m.name}", "deg", np.degrees(m.theta4), np.degrees(m.rocker_rate))
-                         for m in self.linkages), *traced)
+                         for m in self.linkages), *slid, *traced)
 
     @property
     def shaft_torque(self) -> np.ndarray:
         """The main shaft's torque (N*m) working against every linkage's output torque, at its angles (and against
         each linkage's own dynamics, where its template has ``[dynamics]``)."""
         cranked = (m.torque for m in self.cranked if m.torque is not None)
-        return sum((*(m.torque for m in self.linkages), *cranked), np.zeros_like(self.phi))
+        return sum((*(m.torque for m in self.linkages), *cranked, *(m.torque for m in self.slid)),
+                   np.zeros_like(self.phi))
 
     def together(self, a: str, b: str) -> bool:
         """Whether outputs labelled ``a`` and ``b`` move together by construction (left out of the overlaps): a
-        follower and the four-bar it drives, or two tracers' coordinates of one shaft-driven linkage."""
-        pairs = {frozenset((f"cams.{m.cam}", f"linkages.{m.name}")) for m in self.linkages}
-        own = [m.name for m in self.cranked if a.startswith(f"linkages.{m.name}.") and b.startswith(
-            f"linkages.{m.name}.")]
-        return frozenset((a, b)) in pairs or bool(own)
+        follower and the linkage it drives (and its tracers), or two outputs of one general linkage."""
+        driven = [(m.cam, m.name) for m in self.linkages] + [(m.cam, m.name) for m in self.slid]
+        pairs = {frozenset((f"cams.{cam}", f"linkages.{name}")) for cam, name in driven}
+        own = [m.name for m in (*self.cranked, *self.slid) if a.startswith(f"linkages.{m.name}")
+               and b.startswith(f"linkages.{m.name}")]
+        followed = [m.name for m in self.slid if {a, b} & {f"cams.{m.cam}"}
+                    and any(x.startswith(f"linkages.{m.name}.") for x in (a, b))]
+        return frozenset((a, b)) in pairs or bool(own) or bool(followed)
 
     def cam(self, name: str) -> CamMotion:
         """The cam mounted as ``name``."""
@@ -221,9 +230,18 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     phi = kinematics.shaft_angles(spec.machine.samples)
     cams = {mount.name: _cam_motion(spec, i, phi) for i, mount in enumerate(spec.cams)}
     linkages = []
+    slid = []
     warnings: list[str] = []
     for i, coupling in enumerate(spec.couplings):
         index = next(j for j, m in enumerate(spec.linkages) if m.name == coupling.linkage)
+        if _cam_of(cams[coupling.cam].design).follower.lift_unit == "mm" \
+                or spec.linkage_specs[index].linkage.type == "linkage":
+            driven = _slider_motion(spec, i, index, cams[coupling.cam])
+            slid.append(driven)
+            warnings += slider_coupling.transmission_warnings(driven)
+            if coupling.output_torque:
+                cams[coupling.cam] = _loaded_stem(spec, cams[coupling.cam], driven)
+            continue
         found = _linkage_motion(spec, i, index, cams[coupling.cam])
         linkages.append(found)
         worst = float(np.degrees(np.min(np.minimum(found.gamma, math.pi - found.gamma))))
@@ -244,7 +262,8 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
                 raise exc.under(f"linkages[{i}].template") from None
             cranked.append(cranked_motion(spec, i, phi, made_linkage))
             warnings += [f"linkages.{mount.name}: {w}" for w in made_linkage.report.get("warnings", ())]
-    made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked))
+    made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked),
+                         slid=tuple(slid))
     bodies, joints, unchecked = clash.machine_parts(made, one_plate=spec.machine.frame == "one")
     if spec.machine.frame == "two":
         bodies, joints = frame.with_top_plate(bodies, joints)
@@ -335,6 +354,39 @@ def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMot
                                               cam.design.spec.cam.rpm * math.pi / 30.0,
                                               linkage.coupling.output_torque, k4)
     force = chain_inertia.carried(load, linkage.coupling.output_torque, k4, arm, chain)[0]
+    return _redesigned(spec, index, cam, theta, force)
+
+
+def _slider_motion(spec: MachineSpec, index: int, mount_index: int,
+                   cam: CamMotion) -> slider_coupling.SliderMotion:
+    """The general linkage of ``spec.linkages[mount_index]`` driven by ``cam``'s follower through coupling
+    ``index``: a translating one's stem as its slider (:func:`camgen.kinds.machine.slider_coupling.slider_motion`),
+    an arm as its crank (:func:`~camgen.kinds.machine.slider_coupling.arm_motion`)."""
+    lspec = spec.linkage_specs[mount_index]
+    try:
+        made = linkgen_api.design(lspec, parts=lspec.parts is not None)
+    except SpecError as exc:
+        raise exc.under(f"linkages[{mount_index}].template") from None
+    kin = _cam_of(cam.design)
+    motion = slider_coupling.slider_motion if kin.follower.lift_unit == "mm" else slider_coupling.arm_motion
+    return motion(spec, index, mount_index, cam, kin, made, kinematics.shaft_angles(spec.machine.samples))
+
+
+def _loaded_stem(spec: MachineSpec, cam: CamMotion, driven: slider_coupling.SliderMotion) -> CamMotion:
+    """``cam`` designed again with the output torque of the linkage its stem drives reflected onto its follower
+    (N pressing it onto the cam) as a load table against cam angle, at :data:`LOAD_ROWS` program angles."""
+    index = next(i for i, m in enumerate(spec.cams) if m.name == cam.name)
+    theta = np.arange(LOAD_ROWS) * (kinematics.TWO_PI / LOAD_ROWS)
+    lift = driven.program.evaluate(theta)[0]
+    sol = driven.analysis.linkage.solve((driven.base + driven.scale * lift)[None, :])
+    per_unit = driven.scale * np.asarray(sol.omegas[driven.coupling.output], dtype=float)
+    force = slider_coupling.reflected_force(driven.coupling.output_torque, per_unit / driven.lever)
+    return _redesigned(spec, index, cam, theta, force)
+
+
+def _redesigned(spec: MachineSpec, index: int, cam: CamMotion, theta: np.ndarray, force: np.ndarray) -> CamMotion:
+    """``cam`` (``spec.cams[index]``) designed again with the load table ``force`` (N) at program angles
+    ``theta`` (radians)."""
     rows = [[round(float(a), 9), round(float(f), 9)] for a, f in zip(np.degrees(theta), force, strict=True)]
     cam_spec = spec.cam_specs[index].with_changes({"follower.load_table": rows})
     try:

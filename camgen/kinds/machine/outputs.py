@@ -54,7 +54,7 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
         bundle, cam_report = spec_kind(cam.design.spec).bundle(cam.design)
         items += _scoped(bundle.items, cam.name, formats, out.folders)
         cams.append(cam_report)
-    mounts: tuple[Any, ...] = (*design.linkages, *design.cranked)
+    mounts: tuple[Any, ...] = (*design.linkages, *design.cranked, *design.slid)
     for m in mounts:
         items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats, out.folders)
     report = {**machine_report(design), **_parts_summary(cams)}

@@ -59,17 +59,21 @@ def traced(design: Any) -> tuple[str, ...]:
     """The points whose paths the page draws: each coupled four-bar's coupler point, each shaft-driven linkage's
     tracers."""
     return (*(f"linkages.{m.name}.P" for m in design.linkages if m.fourbar.point_distance > 0),
-            *(f"linkages.{m.name}.{p}" for m in design.cranked for p in m.tracers))
+            *(f"linkages.{m.name}.{p}" for m in (*design.cranked, *design.slid) for p in m.tracers))
 
 
 def outputs_at(design: Any, phi: np.ndarray) -> dict[str, tuple[str, np.ndarray]]:
     """The timing diagram's outputs (labels and units as :attr:`~camgen.kinds.machine.design.MachineDesign.outputs`)
     at main shaft angles ``phi`` (radians): each follower, each coupled four-bar's rocker angle (degrees, from its
-    ground line), each shaft-driven linkage's tracers' x and y (mm, the machine's frame)."""
+    ground line), each follower-driven general linkage's output turn (degrees), each shaft- or follower-driven
+    general linkage's tracers' x and y (mm, the machine's frame)."""
     out = {f"cams.{c.name}": (c.unit, poses.swing(c, phi)[0]) for c in design.cams}
     for m in design.linkages:
         out[f"linkages.{m.name}"] = ("deg", np.degrees(poses.fourbar_at(design, m, phi)[1].theta4))
-    for m in design.cranked:
+    for m in design.slid:
+        if m.coupling.output is not None:
+            out[f"linkages.{m.name}"] = ("deg", np.degrees(m.solve(phi).angle(m.coupling.output)))
+    for m in (*design.cranked, *design.slid):
         sol = m.solve(phi)
         for p in m.tracers:
             for k, axis in enumerate("xy"):

@@ -98,7 +98,7 @@ def points(design: Any, phi: np.ndarray) -> dict[str, np.ndarray]:
             u = p.theta3 + fb.point_angle
             local["P"] = a + fb.point_distance * np.column_stack([np.cos(u), np.sin(u)])
         out.update({f"linkages.{m.name}.{k}": pivot + v @ frame.T for k, v in local.items()})
-    for m in design.cranked:
+    for m in (*design.cranked, *design.slid):
         sol = m.solve(phi)
         out.update({f"linkages.{m.name}.{k}": np.asarray(v, dtype=float) + m.offset for k, v in sol.points.items()})
     return out

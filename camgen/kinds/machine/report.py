@@ -116,6 +116,23 @@ def _cranked_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
             **({} if m.torque is None else {"shaft_torque_n_m": [_num(m.torque.min(), 6), _num(m.torque.max(), 6)]})}
 
 
+def slid_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
+    """A linkage a translating follower's stem drives: its slider's travel, its output's turn, its tracers, the
+    reflected force and the shaft torque over the turn."""
+    omega = design.omega
+    tracers = {p: {"x_mm": [_num(m.points[p][:, 0].min(), 6), _num(m.points[p][:, 0].max(), 6)],
+                   "y_mm": [_num(m.points[p][:, 1].min(), 6), _num(m.points[p][:, 1].max(), 6)],
+                   "speed_max_mm_s": _num(np.hypot(*m.rates[p].T).max() * omega, 6)} for p in m.tracers}
+    return {"cam": m.cam, "slider": m.coupling.link, "rest_mm": m.coupling.rest,
+            "travel_mm": [_num(m.inputs.min(), 6), _num(m.inputs.max(), 6)], "output": m.coupling.output,
+            "output_torque_n_m": m.coupling.output_torque,
+            "output_deg": [_num(np.degrees(m.output_angle.min()), 6), _num(np.degrees(m.output_angle.max()), 6)],
+            "offset_mm": [_num(v) for v in m.offset], "tracers": tracers,
+            "reflected_force_n": [_num(m.force.min(), 6), _num(m.force.max(), 6)],
+            "shaft_torque_n_m": [_num(m.torque.min(), 6), _num(m.torque.max(), 6)],
+            "files_prefix": m.design.spec.name}
+
+
 def machine_report(design: MachineDesign) -> dict[str, Any]:
     """The report of ``design`` without its ``files`` map (which the bundle adds)."""
     spec = design.spec
@@ -133,6 +150,7 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         "cams": {c.name: _cam_entry(design, i) for i, c in enumerate(design.cams)},
         "linkages": {m.name: _linkage_entry(design, m) for m in design.linkages},
         **({"cranked": {m.name: _cranked_entry(design, m) for m in design.cranked}} if design.cranked else {}),
+        **({"slid": {m.name: slid_entry(design, m) for m in design.slid}} if design.slid else {}),
         "timing": timing(design),
         "poses": poses_report(design),
         "shaft_torque_n_m": {"min": _num(torque.min(), 6), "max": _num(torque.max(), 6),

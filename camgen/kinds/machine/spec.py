@@ -23,6 +23,9 @@ from camgen.core.kit import BearingChoice
 from camgen.core.spec import (MAX_ALLOWANCE_MM, MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec,
                               check_kind, length, name_field, notes, read_template, unit)
 from camgen.kinds.machine.keeptime import KeepTime
+from camgen.kinds.machine.slider_coupling import STEMS
+from camgen.kinds.machine.slider_coupling import check as check_slider
+from camgen.kinds.machine.slider_coupling import check_arm
 
 #: the most shafts, gear pairs, cams, linkages or couplings a machine may have
 MAX_MOUNTS = 20
@@ -161,11 +164,18 @@ class Coupling(Model):
     """A cam's follower driving a linkage: the follower's arm is the linkage's input link, its pivot the linkage's
     input pivot, and the linkage's input angle is ``rest`` + the follower's swing."""
 
-    cam: str = Field(description="the cam whose follower drives (one of [[cams]]): an oscillating follower")
+    cam: str = Field(description="the cam whose follower drives (one of [[cams]]): an oscillating follower (its "
+                     "arm a four-bar's crank) or a translating one (its stem a general linkage's input slider)")
     linkage: str = Field(description="the linkage it drives (one of [[linkages]])")
-    link: str = Field("crank", description="the linkage's link the follower's arm is: its input link")
+    link: str = Field("crank", description="the linkage's link the follower's arm is: its input link (a "
+                      "translating follower: the name of its input slider, whose guide is drawn along +Y)")
     rest: float = Field(ge=-360, le=360, description="the linkage's input angle (from its ground line, "
-                        "counter-clockwise) with the follower at rest (swing 0)", json_schema_extra=unit("degrees"))
+                        "counter-clockwise) with the follower at rest (swing 0); a translating follower: the "
+                        "slider's travel (mm from its drawing) at lift 0, its travel then rest + the lift",
+                        json_schema_extra=unit("degrees", allowed="a translating follower's: mm, within "
+                                               "its slider's reach"))
+    output: str | None = Field(None, description="a translating follower's linkage: the link output_torque acts on "
+                               "(one of its links; a four-bar's is its rocker)")
     output_torque: float = Field(0.0, ge=-1e4, le=1e4, description="an external torque on the linkage's output "
                                  "link (counter-clockwise positive), which the machine holds and works against: "
                                  "reflected onto the follower and the camshaft", json_schema_extra=unit("N*m"))
@@ -347,13 +357,19 @@ class MachineSpec(TemplateSpec):
                                  f"shaft {shaft} already (its shaft)")
             driving[c.cam], driven[c.linkage] = i, i
             follower = self.cam_specs[cams[c.cam]].follower.type
+            if follower in STEMS:
+                check_slider(self, i, self.linkage_specs[linkages[c.linkage]])
+                continue
             if follower not in ARMS:
                 raise ValueError(f"couplings[{i}].cam: cams.{c.cam} has a {follower} follower; a follower drives a "
                                  f"linkage through its arm: give an oscillating-roller or oscillating-flat follower")
             table = self.linkage_specs[linkages[c.linkage]].linkage
+            if table.type == "linkage":
+                check_arm(self, i, self.linkage_specs[linkages[c.linkage]])
+                continue
             if table.type != "four-bar":
                 raise ValueError(f"couplings[{i}].linkage: linkages.{c.linkage} is a {table.type}; a follower's "
-                                 "arm drives a four-bar's crank")
+                                 "arm drives a four-bar's crank or a type = \"linkage\" template's")
             if c.link not in FOUR_BAR_LINKS:
                 raise ValueError(f"couplings[{i}].link: linkages.{c.linkage} has no link {c.link!r}; its links: "
                                  f"{', '.join(FOUR_BAR_LINKS)}")

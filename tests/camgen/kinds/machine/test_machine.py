@@ -293,7 +293,8 @@ def test_a_translating_follower_cannot_drive_a_four_bar(tmp_path):
     for seg in raw["cams"][2]["template"]["motion"]:
         if "lift" in seg:
             seg["lift"] = 10.0
-    _refused(tmp_path, raw, "couplings[0].cam: cams.arm has a translating-roller follower")
+    _refused(tmp_path, raw, "couplings[0].linkage: cams.arm's translating follower drives a type = \"linkage\" "
+             "template whose one input is a slider (input = { slider = NAME }); linkages.arm-bars is a four-bar")
 
 
 def test_a_gear_pair_turns_a_cam_at_its_ratio():
