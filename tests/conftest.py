@@ -58,3 +58,8 @@ def template(overrides: dict | None = None, **changes):
 
     return validate_spec(apply_overrides(RDRD, list((overrides or {}).items())))
 
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Run the tests marked ``slow`` first, the rest in their collected order: with ``-n auto`` the workers take
+    the longest checks while many short ones remain, so both end at about the same time."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
