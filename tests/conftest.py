@@ -1,12 +1,35 @@
-"""Shared fixtures: the issue's reference template as a raw mapping."""
+"""Shared fixtures: the issue's reference template as a raw mapping; the Hypothesis profiles."""
 from __future__ import annotations
 
 import copy
+import os
+from datetime import timedelta
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, settings
 
 ROOT = Path(__file__).resolve().parent.parent
+
+# --------------------------------------------------------------------------------------------------- Hypothesis
+#: Hypothesis' own deadline for one example (a call or two of a command, in seconds)
+DEADLINE_SECONDS = 10
+_COMMON = {
+    "database": None, "deadline": timedelta(seconds=DEADLINE_SECONDS), "print_blob": True,
+    "suppress_health_check": [HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much,
+                              HealthCheck.function_scoped_fixture]}
+#: the profiles, by the name ``HYPOTHESIS_PROFILE`` picks: ``local`` (the default, sized for a quick run: a fifth of
+#: ``ci``'s cases, derandomized), ``ci`` (what ``.ci/run`` sets: 100 cases a unit, derandomized) and ``thorough``
+#: (ten times ``ci``, random, for a hunt)
+PROFILES = {"local": {"max_examples": 20, "derandomize": True},
+            "ci": {"max_examples": 100, "derandomize": True},
+            "thorough": {"max_examples": 1000}}
+for _name, _sizes in PROFILES.items():
+    settings.register_profile(_name, **_sizes, **_COMMON)
+PROFILE_NAME = os.environ.get("HYPOTHESIS_PROFILE", "local")
+if PROFILE_NAME not in PROFILES:
+    raise pytest.UsageError(f"HYPOTHESIS_PROFILE: one of {', '.join(PROFILES)} (got {PROFILE_NAME!r})")
+settings.load_profile(PROFILE_NAME)
 
 RDRD = {
     "name": "rdrd",
@@ -34,3 +57,9 @@ def template(overrides: dict | None = None, **changes):
     from camgen.core.spec import apply_overrides
 
     return validate_spec(apply_overrides(RDRD, list((overrides or {}).items())))
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Run the tests marked ``slow`` first, the rest in their collected order: with ``-n auto`` the workers take
+    the longest checks while many short ones remain, so both end at about the same time."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)

@@ -21,8 +21,10 @@ from tests.support.designer_server import designer
 from tests.project.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
 
 pytest.importorskip("starlette")
-pytestmark = pytest.mark.skipif(not (CHROMIUM and DRIVER), reason="headless browser test: Debian's chromium and "
-                                "chromium-driver are not installed (apt-get install chromium chromium-driver)")
+# slow: a designer server and Chromium per test (tests/conftest.py runs slow tests first; -m "not slow" skips them)
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not (CHROMIUM and DRIVER), reason="headless browser test: Debian's chromium and "
+                                 "chromium-driver are not installed (apt-get install chromium chromium-driver)")]
 ENV = {**os.environ, "PYTHONPATH": str(ROOT)}
 
 

@@ -16,8 +16,10 @@ from tests.project.test_designer_browser import _analyzed, _open, _positions, _r
 from tests.project.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
 
 pytest.importorskip("starlette")
-pytestmark = pytest.mark.skipif(not (CHROMIUM and DRIVER), reason="headless browser test: Debian's chromium and "
-                                "chromium-driver are not installed (apt-get install chromium chromium-driver)")
+# slow: a designer server and Chromium per test (tests/conftest.py runs slow tests first; -m "not slow" skips them)
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not (CHROMIUM and DRIVER), reason="headless browser test: Debian's chromium and "
+                                 "chromium-driver are not installed (apt-get install chromium chromium-driver)")]
 #: targets the tests click (mm): those of the path tests of tests/synthesis/test_synthesis_progress.py
 TARGETS = [[0, 0], [10, 2], [20, 8], [28, 18], [32, 30]]
 

@@ -52,6 +52,7 @@ def _findings(result: subprocess.CompletedProcess) -> list[tuple[str, str]]:
     return found
 
 
+@pytest.mark.slow                                     # about 80 s of mypy over both packages
 @needs_mypy
 def test_mypy_finds_no_errors():
     result = _mypy(ROOT, "camgen", "linkgen")
