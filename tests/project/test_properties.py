@@ -13,9 +13,9 @@ unknown and misspelt keys, tables of the wrong type, bad options. Whatever is ge
 never a traceback or a warning, within a deadline and a memory budget (each call runs in-process with click's
 CliRunner under an address-space limit; a few run as subprocesses under RLIMIT_AS).
 
-Profiles (tests/conftest.py, chosen with ``HYPOTHESIS_PROFILE``): ``local`` (the default: a fifth of ci's cases),
-``ci`` (what .ci/run sets: derandomized, no example database, about 3300 cases in about three minutes on two cores)
-and ``thorough`` (ten times ci's, random). A failure whose cause
+Profiles (tests/conftest.py, chosen with ``HYPOTHESIS_PROFILE``): ``ci`` (the default, what .ci/run runs: 50 cases
+a unit, derandomized, no example database), ``quick`` (20 cases a unit, derandomized) and ``thorough`` (1000 a unit,
+random). A failure whose cause
 lies in a module this suite's authors may not change is listed in :data:`KNOWN` with its reproduction: the test
 still runs every example and then ends as xfail naming it.
 """
@@ -74,7 +74,7 @@ HANG_SECONDS = 60
 MEMORY_BUDGET_MB = 3000
 RSS_GROWTH_MB = 1000
 
-#: the profile tests/conftest.py loaded (``HYPOTHESIS_PROFILE``: local, ci or thorough)
+#: the profile tests/conftest.py loaded (``HYPOTHESIS_PROFILE``: ci, quick or thorough)
 PROFILE = settings.get_profile(PROFILE_NAME)
 
 
