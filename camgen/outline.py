@@ -244,8 +244,8 @@ def _spaced_all(index: list[int], aux: np.ndarray, cum: np.ndarray, tolerance: f
     Returns every stretch's cam angles one after another (radians) and each one's count of them (m,).
 
     Each stretch's n = max(1, ceil(total factor)) chords put vertex i at the count of chords i total / n (the last
-    at the total), placed on its grid by linear interpolation in its counts, as np.interp does (the last grid
-    point at or below the count, the first one above it next); a stretch of no count is spaced evenly."""
+    at the total), placed on its grid by np.interp in its counts (its first and last vertex the grid's ends, or
+    where its count first rises and last stops); a stretch of no count is spaced evenly."""
     total = cum[:, -1]
     wanted = total * factor
     bad = ~(wanted <= MAX_SEGMENT_VERTICES)             # also NaN or infinite (a curvature without bound)
@@ -254,39 +254,40 @@ def _spaced_all(index: list[int], aux: np.ndarray, cum: np.ndarray, tolerance: f
         raise DesignError(f"output.tolerance: the outline of motion[{index[j]}] would need {wanted[j]:.3g} "
                           f"vertices to stay within {tolerance:g} mm (at most {MAX_SEGMENT_VERTICES}); loosen the "
                           "tolerance or smooth the motion")
-    chords = np.maximum(np.ceil(wanted), 1.0).astype(np.intp)
-    sizes = chords + 1
-    row = np.repeat(np.arange(len(sizes)), sizes)
+    chords = np.maximum(np.ceil(wanted), 1.0)
+    sizes = chords.astype(np.intp) + 1
+    row = np.repeat(np.arange(sizes.size), sizes)
     first = np.cumsum(sizes) - sizes                    # each stretch's first vertex among all
-    k = (np.arange(row.size) - first[row]).astype(float)
-    last = first + chords
+    last = first + sizes - 1
+    k = np.arange(row.size) - first[row]
     count = k * (total / chords)[row]                   # np.linspace's k step, its last the total itself
     count[last] = total
+    # np.interp in each row, its numbers those of the row alone: one search over all rows laid end to end, each
+    # raised above the one before by its total and one (so that no count reaches into another row), finds each
+    # count's grid point at or below it, or one too far where the raised numbers round equal; then the step back
+    # and the interpolation in the row's own numbers, as np.interp makes it
     width = aux.shape[1]
-    # the grid point at or below each count within its row: one search over all rows laid end to end, each row
-    # raised above the one before by its total and one, then set right where that sum rounded across a grid point
     lift = np.cumsum(total + 1.0) - (total + 1.0)
-    at = np.searchsorted((cum + lift[:, None]).ravel(), count + lift[row], side="right") - 1 - row * width
-    at = np.minimum(np.maximum(at, 0), width - 2)
-    flat = cum.ravel()
-    base = row * width
-    for _ in range(width):                              # a rounding's correction: rarely a step, never more than k
-        low = (count < flat[base + at]) & (at > 0)
-        high = (count >= flat[base + at + 1]) & (at < width - 2)
-        if not (low.any() or high.any()):
-            break
-        at = at - low + high
-    x0, x1 = flat[base + at], flat[base + at + 1]
-    grid = aux.ravel()
-    f0, f1 = grid[base + at], grid[base + at + 1]
-    slope = np.divide(f1 - f0, x1 - x0, out=np.zeros(row.size), where=x1 > x0)   # else overwritten below
-    theta = slope * (count - x0) + f0
-    end = count >= flat[base + width - 1]               # at or past the last count: the grid's end
-    theta[end] = grid[base[end] + width - 1]
-    even = (total <= 0)[row]                            # no count: evenly spaced, as np.linspace
-    start, stop = grid[base + 0], grid[base + width - 1]
-    theta[even] = (start + k * ((stop - start) / chords[row]))[even]
-    theta[last] = np.where(even[last], stop[last], theta[last])
+    flat, grid = cum.ravel(), aux.ravel()
+    at = np.searchsorted((cum + lift[:, None]).ravel(), count + lift[row], side="right") - 1
+    over = count < flat[at]
+    while over.any():                                   # rarely once: a rounding's, at most a row's points
+        at -= over
+        over = count < flat[at]
+    top = row * width + width - 1                       # each count's row's last point
+    end = at >= top                                     # at the total: the row's last angle
+    at = np.minimum(at, top - 1)
+    x0, x1, f0 = flat[at], flat[at + 1], grid[at]
+    theta = np.divide(grid[at + 1] - f0, x1 - x0, out=np.zeros(row.size), where=x1 > x0)
+    theta *= count - x0
+    theta += f0
+    theta[end] = grid[top[end]]
+    even = total <= 0                                   # no count: evenly spaced, as np.linspace
+    if even.any():
+        start, stop = aux[:, 0], aux[:, -1]
+        spread = start[row] + k * ((stop - start) / chords)[row]
+        spread[last] = stop
+        theta = np.where(even[row], spread, theta)
     return theta, sizes
 
 
@@ -398,27 +399,25 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     and 8 n - 1 probes, asked in one ask (every dwell's vertices, then every dwell's probes)."""
     segments = cam.program.segments
     turn = -cam.follower.sense
-    at = np.array([i for i, _ in stretches])
-    start = np.array([segments[i].start if span is None else span[0] for i, span in stretches])
-    beta = np.array([segments[i].beta if span is None else span[1] - span[0] for i, span in stretches])
-    n = np.maximum(np.ceil(beta / (math.pi / 2) - 1e-12), 1.0).astype(np.intp)
+    at, start, beta = np.array([(i, segments[i].start, segments[i].beta) if span is None else
+                                (i, span[0], span[1] - span[0]) for i, span in stretches]).T
+    n = np.maximum(np.ceil(beta / (math.pi / 2) - 1e-12), 1.0)
     probes = 8 * n - 1
-    dwell, k = _ranks(n)                                # each vertex's dwell and its place in it
-    near, j = _ranks(probes)                            # each probe's, its place counted from 1
-    j += 1
+    dwell, k = _ranks(n.astype(np.intp))                # each vertex's dwell and its place in it
+    near, j = _ranks(probes.astype(np.intp))            # each probe's, its place counted from 1
     theta = start[dwell] + beta[dwell] * k / n[dwell]
-    probe = start[near] + beta[near] * (j / (8 * n[near]))
-    (g,) = yield [(np.concatenate([at[dwell], at[near]]), np.concatenate([theta, probe]), False)]
+    probe = start[near] + beta[near] * ((j + 1) / (8 * n[near]))
+    (g,) = yield [(at[np.concatenate([dwell, near])].astype(np.intp), np.concatenate([theta, probe]), False)]
     surface = _surface(g, rr)                           # in rows, as a contour holds them
     vertices = theta.size
     distance = _length(surface)                         # from the cam centre
     # each dwell's error: the most its probes lie off the circle through its first vertex
-    first = np.cumsum(n) - n
+    ends = np.cumsum(n).astype(np.intp)
+    first = ends - n.astype(np.intp)
     off = np.abs(distance[vertices:] - distance[first[near]])
-    err = np.maximum.reduceat(off, np.cumsum(probes) - probes).tolist()
+    err = np.maximum.reduceat(off, (np.cumsum(probes) - probes).astype(np.intp)).tolist()
     bulge = np.tan(turn * beta / n / 4.0)[dwell]
-    ends = [*first[1:].tolist(), vertices]
-    return [(surface[a:b], bulge[a:b], e) for a, b, e in zip(first.tolist(), ends, err, strict=True)]
+    return [(surface[a:b], bulge[a:b], e) for a, b, e in zip(first.tolist(), ends.tolist(), err, strict=True)]
 
 
 def _ranks(sizes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
