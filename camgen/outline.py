@@ -232,17 +232,63 @@ def _density(aux: np.ndarray, d1: np.ndarray, kappa: np.ndarray, tolerance: floa
 
 
 def _spaced(index: int, aux: np.ndarray, cum: np.ndarray, tolerance: float, factor: float) -> np.ndarray:
-    """:func:`_spacing` on the grid ``aux`` from its count of chords ``cum`` (see :func:`_density`)."""
-    total = float(cum[-1])
+    """:func:`_spacing` on the grid ``aux`` from its count of chords ``cum`` (see :func:`_density`): one stretch's
+    :func:`_spaced_all`."""
+    return _spaced_all([index], aux[None, :], cum[None, :], tolerance, np.array([factor]))[0]
+
+
+def _spaced_all(index: list[int], aux: np.ndarray, cum: np.ndarray, tolerance: float,
+                factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_spaced` of every stretch at once: the grids ``aux`` (m, k) (radians), their counts of chords ``cum``
+    (m, k) (see :func:`_density`) and densifications ``factor`` (m,) of the segments ``index`` (m, for the error).
+    Returns every stretch's cam angles one after another (radians) and each one's count of them (m,).
+
+    Each stretch's n = max(1, ceil(total factor)) chords put vertex i at the count of chords i total / n (the last
+    at the total), placed on its grid by np.interp in its counts (its first and last vertex the grid's ends, or
+    where its count first rises and last stops); a stretch of no count is spaced evenly."""
+    total = cum[:, -1]
     wanted = total * factor
-    if not wanted <= MAX_SEGMENT_VERTICES:              # also NaN or infinite (a curvature without bound)
-        raise DesignError(f"output.tolerance: the outline of motion[{index}] would need {wanted:.3g} vertices to "
-                          f"stay within {tolerance:g} mm (at most {MAX_SEGMENT_VERTICES}); loosen the tolerance or "
-                          "smooth the motion")
-    n = max(1, math.ceil(wanted))
-    if total <= 0:
-        return np.linspace(aux[0], aux[-1], n + 1)
-    return np.interp(np.linspace(0.0, total, n + 1), cum, aux)
+    bad = ~(wanted <= MAX_SEGMENT_VERTICES)             # also NaN or infinite (a curvature without bound)
+    if bad.any():
+        j = int(bad.argmax())
+        raise DesignError(f"output.tolerance: the outline of motion[{index[j]}] would need {wanted[j]:.3g} "
+                          f"vertices to stay within {tolerance:g} mm (at most {MAX_SEGMENT_VERTICES}); loosen the "
+                          "tolerance or smooth the motion")
+    chords = np.maximum(np.ceil(wanted), 1.0)
+    sizes = chords.astype(np.intp) + 1
+    row = np.repeat(np.arange(sizes.size), sizes)
+    first = np.cumsum(sizes) - sizes                    # each stretch's first vertex among all
+    last = first + sizes - 1
+    k = np.arange(row.size) - first[row]
+    count = k * (total / chords)[row]                   # np.linspace's k step, its last the total itself
+    count[last] = total
+    # np.interp in each row, its numbers those of the row alone: one search over all rows laid end to end, each
+    # raised above the one before by its total and one (so that no count reaches into another row), finds each
+    # count's grid point at or below it, or one too far where the raised numbers round equal; then the step back
+    # and the interpolation in the row's own numbers, as np.interp makes it
+    width = aux.shape[1]
+    lift = np.cumsum(total + 1.0) - (total + 1.0)
+    flat, grid = cum.ravel(), aux.ravel()
+    at = np.searchsorted((cum + lift[:, None]).ravel(), count + lift[row], side="right") - 1
+    over = count < flat[at]
+    while over.any():                                   # rarely once: a rounding's, at most a row's points
+        at -= over
+        over = count < flat[at]
+    top = row * width + width - 1                       # each count's row's last point
+    end = at >= top                                     # at the total: the row's last angle
+    at = np.minimum(at, top - 1)
+    x0, x1, f0 = flat[at], flat[at + 1], grid[at]
+    theta = np.divide(grid[at + 1] - f0, x1 - x0, out=np.zeros(row.size), where=x1 > x0)
+    theta *= count - x0
+    theta += f0
+    theta[end] = grid[top[end]]
+    even = total <= 0                                   # no count: evenly spaced, as np.linspace
+    if even.any():
+        start, stop = aux[:, 0], aux[:, -1]
+        spread = start[row] + k * ((stop - start) / chords)[row]
+        spread[last] = stop
+        theta = np.where(even[row], spread, theta)
+    return theta, sizes
 
 
 Span = tuple[float, float] | None
@@ -260,32 +306,31 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     aux = _grids(ranges)
     (g,) = yield [(np.array(index).repeat(_AUX), aux.ravel(), False)]
     cum = _density(aux, g.d1, g.kappa, tolerance, rr)
-    factor = [1.0] * len(stretches)
+    factor = np.ones(len(stretches))
     results: list[Any] = [None] * len(stretches)
     live = list(range(len(stretches)))
     err = [math.inf] * len(stretches)
     for _ in range(40):
-        theta = [_spaced(index[j], aux[j], cum[j], tolerance, factor[j]) for j in live]
-        sizes = [t.size for t in theta]
+        theta, counts = _spaced_all([index[j] for j in live], aux[live], cum[live], tolerance, factor[live])
+        sizes = counts.tolist()
         n = sum(sizes)
         # one ask: the vertices, then the probes of every span between neighbouring vertices (probe by probe), one
         # stretch's last to the next one's first too (none of theirs, its error left out): its probes sit at its
         # start (a width of 0.0, as x - x is), a point of its own segment
         angles = np.empty(n + _PROBES * (n - 1))
-        vertex = np.concatenate(theta, out=angles[:n])
+        vertex = angles[:n]
+        vertex[:] = theta
         ahead = list(itertools.accumulate(sizes))       # each stretch's end, one past its last vertex
         across = [k - 1 for k in ahead[:-1]]            # the spans from one stretch to the next
         width = vertex[1:] - vertex[:-1]
-        for k in across:                                # a few: one by one, not a fancy index
-            width[k] = 0.0
+        width[across] = 0.0
         _across(vertex[:-1], width, _PROBES, angles[n:].reshape(_PROBES, n - 1))
         # each span's probes on its first vertex's segment: every stretch's but the last's last
         (g,) = yield [(np.array([index[j] for j in live] * (1 + _PROBES)).repeat(
             sizes + [*sizes[:-1], sizes[-1] - 1] * _PROBES), angles, False)]
         at = _planes(g, rr)
         spans = _chord_errors(at[:, :n], at[:, n:].reshape(2, _PROBES, n - 1), g.kappa[n:], rr)
-        for k in across:                                # under any error (errors are >= 0 or NaN)
-            spans[k] = 0.0
+        spans[across] = 0.0                             # under any error (errors are >= 0 or NaN)
         worst = np.maximum.reduceat(spans, [0, *ahead[:-1]])
         points = at[:, :n].T.copy()                     # the vertices (n, 2), in rows as a contour holds them
         zeros = np.zeros(n)                             # every stretch's bulges, sliced
@@ -354,33 +399,31 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     and 8 n - 1 probes, asked in one ask (every dwell's vertices, then every dwell's probes)."""
     segments = cam.program.segments
     turn = -cam.follower.sense
-    theta: list[float] = []
-    probe: list[float] = []
-    at: list[int] = []
-    on: list[int] = []
-    first: list[int] = []
-    within: list[int] = []
-    bulges: list[float] = []
-    for i, span in stretches:
-        start, beta = (segments[i].start, segments[i].beta) if span is None else (span[0], span[1] - span[0])
-        n = max(1, math.ceil(beta / (math.pi / 2) - 1e-12))
-        first.append(len(theta))
-        within.append(len(probe))
-        theta += [start + beta * k / n for k in range(n)]
-        probe += [start + beta * (k / (8 * n)) for k in range(1, 8 * n)]
-        at += [i] * n
-        on += [i] * (8 * n - 1)
-        bulges += [math.tan(turn * beta / n / 4.0)] * n
-    (g,) = yield [(np.array(at + on), np.array(theta + probe), False)]
+    at, start, beta = np.array([(i, segments[i].start, segments[i].beta) if span is None else
+                                (i, span[0], span[1] - span[0]) for i, span in stretches]).T
+    n = np.maximum(np.ceil(beta / (math.pi / 2) - 1e-12), 1.0)
+    probes = 8 * n - 1
+    dwell, k = _ranks(n.astype(np.intp))                # each vertex's dwell and its place in it
+    near, j = _ranks(probes.astype(np.intp))            # each probe's, its place counted from 1
+    theta = start[dwell] + beta[dwell] * k / n[dwell]
+    probe = start[near] + beta[near] * ((j + 1) / (8 * n[near]))
+    (g,) = yield [(at[np.concatenate([dwell, near])].astype(np.intp), np.concatenate([theta, probe]), False)]
     surface = _surface(g, rr)                           # in rows, as a contour holds them
-    vertices = len(theta)
+    vertices = theta.size
     distance = _length(surface)                         # from the cam centre
     # each dwell's error: the most its probes lie off the circle through its first vertex
-    probes = [vertices + a for a in [*within, len(probe)]]
-    err = [float(np.abs(distance[a:b] - distance[v]).max())
-           for v, a, b in zip(first, probes[:-1], probes[1:], strict=True)]
-    bulge = np.array(bulges)
-    return [(surface[a:b], bulge[a:b], e) for a, b, e in zip(first, [*first[1:], vertices], err, strict=True)]
+    ends = np.cumsum(n).astype(np.intp)
+    first = ends - n.astype(np.intp)
+    off = np.abs(distance[vertices:] - distance[first[near]])
+    err = np.maximum.reduceat(off, (np.cumsum(probes) - probes).astype(np.intp)).tolist()
+    bulge = np.tan(turn * beta / n / 4.0)[dwell]
+    return [(surface[a:b], bulge[a:b], e) for a, b, e in zip(first.tolist(), ends.tolist(), err, strict=True)]
+
+
+def _ranks(sizes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For groups of ``sizes`` (m,) items laid one after another: each item's group and its place in it (from 0)."""
+    group = np.repeat(np.arange(sizes.size), sizes)
+    return group, np.arange(group.size) - (np.cumsum(sizes) - sizes)[group]
 
 
 def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float,
