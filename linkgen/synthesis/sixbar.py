@@ -42,14 +42,18 @@ import numpy as np
 from camgen.core.errors import CamgenError, SpecError
 from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.kinematics.linkage import Linkage
-from linkgen.kinematics.structure import Input, Structure, make_structure, plan
+from linkgen.kinematics.structure import Structure, make_structure, plan
 from linkgen.synthesis.candidates import Candidate, Sketch, table_fits, weighed
 from linkgen.synthesis.parallel import run_all, where
+from linkgen.synthesis.sixbar_types import CRANK, TOPOLOGIES, Topology
+from linkgen.synthesis.sixbar_untimed import nearest_fit, nearest_on
 
 TWO_PI = 2.0 * math.pi
 #: the crank angles (evenly over a turn) at which a design's dyads are checked during the search, and a
 #: candidate's, for its worst transmission angle and its figure
 TURN, FINE_TURN = 72, 1440
+#: untimed, the crank angles (evenly over a turn) of the curve each target's nearest point is looked for on
+UNTIMED_TURN = 360
 #: a dyad's margin (a sine, see :class:`linkgen.kinematics.linkage.DyadResult`) must stay above this over the turn
 MARGIN_FLOOR = 1e-3
 #: the objective of a design breaking a hard constraint: BIG * (1 + its violation), behind every feasible one
@@ -60,28 +64,6 @@ POLISHED = 3
 SHAPE_BOX = 3.0
 
 
-@dataclass(frozen=True)
-class Topology:
-    """A six-bar's drawing: the free joints (searched), the links (name -> joints; the tracer P last on its
-    link), the ground pivots, the tracer's link and the joint it is placed from."""
-
-    name: str
-    free: tuple[str, ...]
-    links: dict[str, tuple[str, ...]]
-    ground: tuple[str, ...]
-    tracer_link: str
-    reference: str
-
-
-TOPOLOGIES = {
-    "watt1": Topology("watt1", ("A", "B", "E", "F", "G"),
-                      {"crank": ("O2", "A"), "coupler": ("A", "B", "E"), "rocker": ("O4", "B", "F"),
-                       "output": ("F", "G", "P"), "rod": ("E", "G")}, ("O2", "O4"), "output", "F"),
-    "stephenson3": Topology("stephenson3", ("A", "B", "C", "O6", "D"),
-                            {"crank": ("O2", "A"), "coupler": ("A", "B", "C"), "rocker": ("O4", "B"),
-                             "rod": ("C", "D", "P"), "output": ("O6", "D")}, ("O2", "O4", "O6"), "rod", "C"),
-}
-CRANK = (Input("crank", "crank", "O2"),)
 
 
 @dataclass(frozen=True)
@@ -91,7 +73,7 @@ class Problem:
 
     topology: Topology
     targets: np.ndarray
-    timing: np.ndarray
+    timing: np.ndarray | None
     lengths: tuple[float, float]
     min_transmission: float
     generations: int
@@ -106,7 +88,8 @@ def problem_of(task: Any) -> Problem:
 
     four = path.problem_of(task)
     targets = four.targets[:, 0] + 1j * four.targets[:, 1]
-    return Problem(TOPOLOGIES[task.linkage], targets, np.radians(task.input_angles), four.box[3],
+    timing = None if task.input_angles is None else np.radians(task.input_angles)
+    return Problem(TOPOLOGIES[task.linkage], targets, timing, four.box[3],
                    math.radians(task.min_transmission), task.generations, task.population, four.scale)
 
 
@@ -145,6 +128,7 @@ class Evaluation:
     residuals: np.ndarray
     uzt: np.ndarray
     rows: np.ndarray
+    angles: np.ndarray
 
 
 def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
@@ -156,30 +140,36 @@ def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
     try:
         s = structure_of(drawing(x, topo), topo)
         linkage = Linkage(s, plan(s))
-        angles = np.concatenate([p.timing, np.linspace(0.0, TWO_PI, TURN, endpoint=False)])
+        turn = np.linspace(0.0, TWO_PI, TURN if p.timing is not None else UNTIMED_TURN, endpoint=False)
+        angles = turn if p.timing is None else np.concatenate([p.timing, turn])
         sol = linkage.solve(angles[None, :], strict=False, derivatives=False)
     except (CamgenError, ValueError, ArithmeticError):
         return None
-    n = len(p.timing)
+    n = 0 if p.timing is None else len(p.timing)
     ok = sol.ok
     margin = np.min([d.margin for d in sol.dyads], axis=0)
     gamma = np.min([np.minimum(d.transmission, math.pi - d.transmission) for d in sol.dyads], axis=0)
     rows = [np.where(ok, margin, -1.0) - MARGIN_FLOOR]
     if p.min_transmission > 0:
         rows.append(np.where(ok, gamma, -1.0) - p.min_transmission)
-    if not ok[:n].all():
-        return Evaluation(np.full(n, np.nan), np.full(3, np.nan), np.concatenate(rows))
+    k = len(p.targets)
+    if not ok[:n].all() or (p.timing is None and not ok.all()):
+        return Evaluation(np.full(k, np.nan), np.full(3, np.nan), np.concatenate(rows), np.full(k, np.nan))
     c, sn = sol.rotations[topo.tracer_link]
-    rot = (c + 1j * sn)[:n]
-    ref = sol.points[topo.reference][:n]
-    ref = ref[:, 0] + 1j * ref[:, 1]
-    a = np.column_stack([rot, ref, np.ones(n)])
-    uzt, *_ = np.linalg.lstsq(a, p.targets, rcond=None)
+    ref = sol.points[topo.reference]
+    rot, ref = c + 1j * sn, ref[:, 0] + 1j * ref[:, 1]
+    if p.timing is None:
+        uzt, nearest = nearest_fit(rot, ref, p.targets)
+        at, rot, ref = turn[nearest], rot[nearest], ref[nearest]
+    else:
+        at, rot, ref = p.timing, rot[:n], ref[:n]
+        uzt, *_ = np.linalg.lstsq(np.column_stack([rot, ref, np.ones(n)]), p.targets, rcond=None)
+    a = np.column_stack([rot, ref, np.ones(k)])
     scale = abs(uzt[1])
     lengths = np.array(list(link_lengths(drawing(x, topo), topo).values())) * scale
     lo, hi = p.lengths
     rows.append(np.concatenate([(lengths - lo) / p.scale, (hi - lengths) / p.scale]))
-    return Evaluation(a @ uzt - p.targets, uzt, np.concatenate(rows))
+    return Evaluation(a @ uzt - p.targets, uzt, np.concatenate(rows), at)
 
 
 def objective(x: np.ndarray, p: Problem) -> np.ndarray:
@@ -211,7 +201,7 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
     def residuals(v: np.ndarray) -> np.ndarray:
         e = evaluate(v, p)
         if e is None or not np.all(np.isfinite(e.residuals)):
-            return np.full(2 * len(p.timing), p.scale)
+            return np.full(2 * len(p.targets), p.scale)
         return np.concatenate([e.residuals.real, e.residuals.imag])
 
     found = error(x)
@@ -256,7 +246,7 @@ def placed(x: np.ndarray, p: Problem) -> tuple[dict[str, tuple[float, float]], E
     u, z, t = e.uzt
     norm = drawing(x, topo)
     s = structure_of(norm, topo)
-    sol = Linkage(s, plan(s)).solve(p.timing[:1][None, :], strict=False, derivatives=False)
+    sol = Linkage(s, plan(s)).solve(e.angles[:1][None, :], strict=False, derivatives=False)
     c, sn = sol.rotations[topo.tracer_link]
     at = {k: complex(*v[0]) for k, v in sol.points.items()}
     at["P"] = complex((c[0] + 1j * sn[0]) * u + z * at[topo.reference] + t)
@@ -292,11 +282,21 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
              "links": {k: list(v) for k, v in topo.links.items()}}
     if not table_fits(table):
         return None
-    sq = np.abs(e.residuals) ** 2
-    directions = np.degrees(p.timing + np.angle(z)) % 360.0
+    targets = np.column_stack([p.targets.real, p.targets.imag])
+    if p.timing is None:
+        def tracer(t: np.ndarray) -> np.ndarray:
+            return linkage.solve(t[None, :], strict=False, derivatives=False).points["P"]
+
+        reached, world = nearest_on(tracer, turn, sol.points["P"], targets)
+        timing = world - np.angle(z)
+    else:
+        reached, timing = targets + np.column_stack([e.residuals.real, e.residuals.imag]), p.timing
+    sq = np.sum((reached - targets) ** 2, axis=1)
+    directions = np.degrees(timing + np.angle(z)) % 360.0
     lengths = link_lengths(joints, topo)
-    row = {"error_mm2": float(sq.sum()), "linkage": topo.name, "joints": table["joints"], "link_lengths": lengths,
-           "input_angles": [round(math.degrees(t) % 360.0, 9) % 360.0 for t in p.timing],
+    row = {"error_mm2": float(sq.sum()), "linkage": topo.name, "timed": p.timing is not None,
+           "joints": table["joints"], "link_lengths": lengths,
+           "input_angles": [round(math.degrees(t) % 360.0, 9) % 360.0 for t in timing],
            "input_directions": directions.tolist(), "errors_mm": np.sqrt(sq).tolist(),
            "transmission_worst_deg": math.degrees(worst), "defects": []}
     if not all(MIN_LENGTH_MM <= v <= MAX_LENGTH_MM for v in lengths.values()):
@@ -304,8 +304,6 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
     curve = sol.points["P"]
     pose = np.array([joints[k] for k in (*topo.ground[:1], "A", "B", topo.ground[1], "B",
                                          *[j for j in topo.free[2:]], topo.reference, "P")])
-    targets = np.column_stack([p.targets.real, p.targets.imag])
-    reached = targets + np.column_stack([e.residuals.real, e.residuals.imag])
     sketch = Sketch(paths=(("tracer curve", curve),), poses=(("at the first target", pose),), targets=targets,
                     reached=reached)
     signature = tuple(v for xy in joints.values() for v in xy)
