@@ -59,14 +59,15 @@ def nearest_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray) -> tuple[
     return uzt[best], np.argmin(gap, axis=1)
 
 
-#: the crank angles tried about each target's nearest sample of the fine turn, within one sample either side
-REFINE = 41
+#: the crank angles tried about each target's nearest sample of the fine turn, within one sample either side, and
+#: the passes of it (each about the last's best, within one of its steps either side: 1/400 of a sample in all)
+REFINE, PASSES = 41, 2
 
 
 def nearest_on(tracer: Callable[[np.ndarray], np.ndarray], turn: np.ndarray, curve: np.ndarray,
                targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Each target's nearest point of a candidate's curve and the crank direction there: the nearest of the fine
-    turn's samples, then of REFINE crank directions within one sample either side of it.
+    turn's samples, then, PASSES times, of REFINE crank directions within one step either side of the last.
 
     Parameters
     ----------
@@ -84,8 +85,10 @@ def nearest_on(tracer: Callable[[np.ndarray], np.ndarray], turn: np.ndarray, cur
     """
     gap = np.sum((curve[None, :, :] - targets[:, None, :]) ** 2, axis=2)
     step = float(turn[1] - turn[0])
-    around = turn[np.argmin(gap, axis=1)][:, None] + np.linspace(-step, step, REFINE)[None, :]
-    near = tracer(around.ravel()).reshape(len(targets), REFINE, 2)
-    best = np.argmin(np.sum((near - targets[:, None, :]) ** 2, axis=2), axis=1)
-    rows = np.arange(len(targets))
-    return near[rows, best], around[rows, best]
+    at, rows = turn[np.argmin(gap, axis=1)], np.arange(len(targets))
+    for _ in range(PASSES):
+        around = at[:, None] + np.linspace(-step, step, REFINE)[None, :]
+        near = tracer(around.ravel()).reshape(len(targets), REFINE, 2)
+        best = np.argmin(np.sum((near - targets[:, None, :]) ** 2, axis=2), axis=1)
+        at, point, step = around[rows, best], near[rows, best], 2.0 * step / (REFINE - 1)
+    return point, at
