@@ -1,13 +1,8 @@
-"""Six-bar path generation with prescribed timing: a Watt I or Stephenson III whose tracer meets N targets.
+"""Six-bar path generation, timed or untimed: a Watt I, Watt II, Stephenson I or III whose tracer meets N targets.
 
-``task.linkage = "watt1"`` or ``"stephenson3"`` of a path task with ``input_angles``. The two
-topologies, as the bundled templates ``watt1.toml`` and ``stephenson3.toml`` draw them:
-
-* **Watt I**: the four-bar O2-A-B-O4 with a ternary coupler (A, B, E) and a ternary rocker
-  (O4, B, F) sharing B; the dyad E-G-F (rod E-G, output F-G) between them; the tracer P on the
-  output.
-* **Stephenson III**: the four-bar O2-A-B-O4 with a ternary coupler (A, B, C); the dyad C-D-O6
-  (rod C-D, output O6-D) from its coupler point to a third ground pivot O6; the tracer P on the rod.
+``task.linkage`` one of :data:`linkgen.synthesis.sixbar_types.SIXBARS` (their drawings there) of a path task,
+with ``input_angles`` (timed) or without (untimed: each target met where the curve passes nearest it, the tracer
+and similarity fitted by :func:`linkgen.synthesis.sixbar_untimed.nearest_fit`).
 
 A design is a drawing normalised so that O2 = (0, 0) and O4 = (1, 0) (the ground line on +X, so the
 crank's direction in it is its angle from the ground line): five free joints, ten numbers. Every
