@@ -40,6 +40,7 @@ from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.structure import Structure, make_structure, plan
 from linkgen.synthesis.candidates import Candidate, Sketch, table_fits, weighed
 from linkgen.synthesis.parallel import run_all, where
+from linkgen.synthesis.sixbar_seed import embedded
 from linkgen.synthesis.sixbar_types import CRANK, TOPOLOGIES, Topology
 from linkgen.synthesis.sixbar_untimed import nearest_fit, nearest_on
 
@@ -209,15 +210,30 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
     return (v, polished) if polished <= found else (x, found)
 
 
-def search(args: tuple[Problem, int]) -> dict[str, Any]:
-    """One seeded search: differential evolution over the drawing, then its best few distinct designs polished.
-    Returns those that keep every constraint (design, error) and the designs evaluated."""
+def _first_population(p: Problem, seed: int, start: np.ndarray | None) -> np.ndarray | str:
+    """The differential evolution's first population: scipy's Latin hypercube, or (with a ``start`` design) one
+    of the same size drawn from the same seed with ``start`` as its first member."""
+    if start is None:
+        return "latinhypercube"
+    from scipy.stats import qmc
+
+    dim = 2 * len(p.topology.free)
+    out = -SHAPE_BOX + 2.0 * SHAPE_BOX * qmc.LatinHypercube(d=dim, seed=seed).random(p.population * dim)
+    out[0] = start
+    return out
+
+
+def search(args: tuple[Problem, int, np.ndarray | None]) -> dict[str, Any]:
+    """One seeded search: differential evolution over the drawing (its first population holding ``start``, the
+    best four-bar embedded, where given), then its best few distinct designs polished. Returns those that keep
+    every constraint (design, error) and the designs evaluated."""
     from scipy.optimize import differential_evolution
 
-    p, seed = args
+    p, seed, start = args
     bounds = [(-SHAPE_BOX, SHAPE_BOX)] * (2 * len(p.topology.free))
     r = differential_evolution(objective, bounds, args=(p,), vectorized=True, updating="deferred", seed=seed,
-                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False)
+                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False,
+                               init=_first_population(p, seed, start))
     picked: list[int] = []
     for i in np.argsort(r.population_energies, kind="stable"):
         if r.population_energies[i] >= BIG:
@@ -305,19 +321,26 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
     return Candidate(table, row, float(sq.sum()), signature, sketch)
 
 
-def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> dict[str, Any]:
+def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> tuple[dict[str, Any], dict[str, Any]]:
     """The best four-bar on the same targets, timing, seed and budget (:func:`linkgen.synthesis.path.solve`): its
-    error and worst transmission angle, or why none was found."""
+    error and worst transmission angle, or why none was found; and its joints drawn at the first target (empty
+    where none was found)."""
     from linkgen.synthesis import path
 
     four = task.model_copy(update={"linkage": "four-bar"})
     try:
         found, _ = path.solve(four, jobs, scheduler)
     except SpecError as exc:
-        return {"error_mm2": None, "why": str(exc)}
+        return {"error_mm2": None, "why": str(exc)}, {}
     best = min((weighed(c) for c in found), key=lambda c: c.score)
-    return {"error_mm2": best.row["error_mm2"], "transmission_worst_deg": best.row["transmission_worst_deg"],
-            "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")]}
+    return ({"error_mm2": best.row["error_mm2"], "transmission_worst_deg": best.row["transmission_worst_deg"],
+             "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")]}, best.linkage["joints"])
+
+
+def _keeps(x: np.ndarray, p: Problem) -> bool:
+    """Whether design ``x`` keeps every hard constraint of the search."""
+    e = evaluate(x, p)
+    return e is not None and bool(np.all(e.rows >= 0)) and bool(np.all(np.isfinite(e.residuals)))
 
 
 def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[Candidate], dict[str, Any]]:
@@ -325,10 +348,11 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
     (unranked) and how the search went, the four-bar's best next to it."""
     p = problem_of(task)
     spawned = np.random.SeedSequence(task.seed).spawn(task.starts)
+    four, joints = four_bar_best(task, jobs, scheduler)
+    start = embedded(joints, task.linkage, SHAPE_BOX, lambda x: _keeps(x, p)) if joints else None
     clock = time.perf_counter()
-    runs = run_all(search, [(p, int(seq.generate_state(1)[0])) for seq in spawned], jobs, scheduler)
+    runs = run_all(search, [(p, int(seq.generate_state(1)[0]), start) for seq in spawned], jobs, scheduler)
     seconds = time.perf_counter() - clock
-    four = four_bar_best(task, jobs, scheduler)
     out = []
     for run in runs:
         for x, _ in run["found"]:
@@ -348,5 +372,5 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
                       "similarity by least squares; polished by least squares",
             "seed": task.seed, "starts": task.starts, "generations": task.generations,
             "designs_evaluated": tried, "seconds": round(seconds, 3), "ran_on": where(jobs, scheduler),
-            "four_bar": four, "bound": []}
+            "four_bar": four, "seeded_from_four_bar": start is not None, "bound": []}
     return out, info

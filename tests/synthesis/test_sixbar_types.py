@@ -139,3 +139,29 @@ def test_bad_six_bar_type_tasks_are_one_line_exit_2_and_nothing_written(tmp_path
     template = tmp_path / "bad.toml"
     template.write_text(TEMPLATE.format(points=points))
     assert_refused_sets(template, sets, message, tmp_path, main, "synthesize")
+
+
+def test_the_best_four_bar_embedded_as_a_stephenson3_meets_its_targets_as_the_four_bar_does():
+    """The four-bar of templates/stephenson3.toml (its coupler point C) drawn as the four-bar search draws a
+    candidate (O2, O4, A, B and P at the first target): embedded as a Stephenson III with a dyad that keeps the
+    search's constraints, the six-bar's tracer (fitted by least squares) meets the four-bar's twelve timed points of
+    C to rounding, so the search that starts from it starts at the four-bar's error."""
+    from linkgen.synthesis.sixbar import SHAPE_BOX, evaluate, problem_of
+    from linkgen.synthesis.sixbar_seed import embedded
+
+    four = {"O2": (0.0, 0.0), "O4": (120.0, 0.0), "A": (12.5, 21.650635095), "B": (75.78826943, 78.392109807),
+            "P": (104.570023599, -17.376416479)}
+    s = make_structure(four, {"crank": ("O2", "A"), "coupler": ("A", "B", "P"), "rocker": ("O4", "B")},
+                       ("O2", "O4"), (), (Input("crank", "crank", "O2"),))
+    angles = np.arange(60.0, 420.0, 30.0)
+    targets = Linkage.of(s).solve(np.radians(angles)[None, :], derivatives=False).points["P"]
+    spec = validate_task({"name": "s3", "task": {"kind": "path", "linkage": "stephenson3", "points": targets.tolist(),
+                                                 "input_angles": angles.tolist(), "starts": 1, "generations": 10}})
+    p = problem_of(spec.task)
+    x = embedded(four, "stephenson3", SHAPE_BOX, lambda v: bool(np.all(evaluate(v, p).rows >= 0)))
+    assert x is not None
+    # A, B and C of the drawing are the four-bar's, normalised to O2 at 0 and O4 at 1
+    assert x[:6] == pytest.approx(np.array([v for k in ("A", "B", "P") for v in four[k]]) / 120.0, abs=1e-12)
+    e = evaluate(x, p)
+    assert np.max(np.abs(e.residuals)) < 1e-9
+    assert embedded(four, "watt1", SHAPE_BOX, lambda v: True) is None
