@@ -1,13 +1,8 @@
-"""Six-bar path generation with prescribed timing: a Watt I or Stephenson III whose tracer meets N targets.
+"""Six-bar path generation, timed or untimed: a Watt I, Watt II, Stephenson I or III whose tracer meets N targets.
 
-``task.linkage = "watt1"`` or ``"stephenson3"`` of a path task with ``input_angles``. The two
-topologies, as the bundled templates ``watt1.toml`` and ``stephenson3.toml`` draw them:
-
-* **Watt I**: the four-bar O2-A-B-O4 with a ternary coupler (A, B, E) and a ternary rocker
-  (O4, B, F) sharing B; the dyad E-G-F (rod E-G, output F-G) between them; the tracer P on the
-  output.
-* **Stephenson III**: the four-bar O2-A-B-O4 with a ternary coupler (A, B, C); the dyad C-D-O6
-  (rod C-D, output O6-D) from its coupler point to a third ground pivot O6; the tracer P on the rod.
+``task.linkage`` one of :data:`linkgen.synthesis.sixbar_types.SIXBARS` (their drawings there) of a path task,
+with ``input_angles`` (timed) or without (untimed: each target met where the curve passes nearest it, the tracer
+and similarity fitted by :func:`linkgen.synthesis.sixbar_untimed.nearest_fit`).
 
 A design is a drawing normalised so that O2 = (0, 0) and O4 = (1, 0) (the ground line on +X, so the
 crank's direction in it is its angle from the ground line): five free joints, ten numbers. Every
@@ -42,14 +37,19 @@ import numpy as np
 from camgen.core.errors import CamgenError, SpecError
 from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
 from linkgen.kinematics.linkage import Linkage
-from linkgen.kinematics.structure import Input, Structure, make_structure, plan
+from linkgen.kinematics.structure import Structure, make_structure, plan
 from linkgen.synthesis.candidates import Candidate, Sketch, table_fits, weighed
 from linkgen.synthesis.parallel import run_all, where
+from linkgen.synthesis.sixbar_seed import embedded
+from linkgen.synthesis.sixbar_types import CRANK, TOPOLOGIES, Topology
+from linkgen.synthesis.sixbar_untimed import nearest_fit, nearest_on
 
 TWO_PI = 2.0 * math.pi
 #: the crank angles (evenly over a turn) at which a design's dyads are checked during the search, and a
 #: candidate's, for its worst transmission angle and its figure
 TURN, FINE_TURN = 72, 1440
+#: untimed, the crank angles (evenly over a turn) of the curve each target's nearest point is looked for on
+UNTIMED_TURN = 360
 #: a dyad's margin (a sine, see :class:`linkgen.kinematics.linkage.DyadResult`) must stay above this over the turn
 MARGIN_FLOOR = 1e-3
 #: the objective of a design breaking a hard constraint: BIG * (1 + its violation), behind every feasible one
@@ -60,28 +60,6 @@ POLISHED = 3
 SHAPE_BOX = 3.0
 
 
-@dataclass(frozen=True)
-class Topology:
-    """A six-bar's drawing: the free joints (searched), the links (name -> joints; the tracer P last on its
-    link), the ground pivots, the tracer's link and the joint it is placed from."""
-
-    name: str
-    free: tuple[str, ...]
-    links: dict[str, tuple[str, ...]]
-    ground: tuple[str, ...]
-    tracer_link: str
-    reference: str
-
-
-TOPOLOGIES = {
-    "watt1": Topology("watt1", ("A", "B", "E", "F", "G"),
-                      {"crank": ("O2", "A"), "coupler": ("A", "B", "E"), "rocker": ("O4", "B", "F"),
-                       "output": ("F", "G", "P"), "rod": ("E", "G")}, ("O2", "O4"), "output", "F"),
-    "stephenson3": Topology("stephenson3", ("A", "B", "C", "O6", "D"),
-                            {"crank": ("O2", "A"), "coupler": ("A", "B", "C"), "rocker": ("O4", "B"),
-                             "rod": ("C", "D", "P"), "output": ("O6", "D")}, ("O2", "O4", "O6"), "rod", "C"),
-}
-CRANK = (Input("crank", "crank", "O2"),)
 
 
 @dataclass(frozen=True)
@@ -91,7 +69,7 @@ class Problem:
 
     topology: Topology
     targets: np.ndarray
-    timing: np.ndarray
+    timing: np.ndarray | None
     lengths: tuple[float, float]
     min_transmission: float
     generations: int
@@ -106,7 +84,8 @@ def problem_of(task: Any) -> Problem:
 
     four = path.problem_of(task)
     targets = four.targets[:, 0] + 1j * four.targets[:, 1]
-    return Problem(TOPOLOGIES[task.linkage], targets, np.radians(task.input_angles), four.box[3],
+    timing = None if task.input_angles is None else np.radians(task.input_angles)
+    return Problem(TOPOLOGIES[task.linkage], targets, timing, four.box[3],
                    math.radians(task.min_transmission), task.generations, task.population, four.scale)
 
 
@@ -145,6 +124,7 @@ class Evaluation:
     residuals: np.ndarray
     uzt: np.ndarray
     rows: np.ndarray
+    angles: np.ndarray
 
 
 def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
@@ -156,30 +136,36 @@ def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
     try:
         s = structure_of(drawing(x, topo), topo)
         linkage = Linkage(s, plan(s))
-        angles = np.concatenate([p.timing, np.linspace(0.0, TWO_PI, TURN, endpoint=False)])
+        turn = np.linspace(0.0, TWO_PI, TURN if p.timing is not None else UNTIMED_TURN, endpoint=False)
+        angles = turn if p.timing is None else np.concatenate([p.timing, turn])
         sol = linkage.solve(angles[None, :], strict=False, derivatives=False)
     except (CamgenError, ValueError, ArithmeticError):
         return None
-    n = len(p.timing)
+    n = 0 if p.timing is None else len(p.timing)
     ok = sol.ok
     margin = np.min([d.margin for d in sol.dyads], axis=0)
     gamma = np.min([np.minimum(d.transmission, math.pi - d.transmission) for d in sol.dyads], axis=0)
     rows = [np.where(ok, margin, -1.0) - MARGIN_FLOOR]
     if p.min_transmission > 0:
         rows.append(np.where(ok, gamma, -1.0) - p.min_transmission)
-    if not ok[:n].all():
-        return Evaluation(np.full(n, np.nan), np.full(3, np.nan), np.concatenate(rows))
+    k = len(p.targets)
+    if not ok[:n].all() or (p.timing is None and not ok.all()):
+        return Evaluation(np.full(k, np.nan), np.full(3, np.nan), np.concatenate(rows), np.full(k, np.nan))
     c, sn = sol.rotations[topo.tracer_link]
-    rot = (c + 1j * sn)[:n]
-    ref = sol.points[topo.reference][:n]
-    ref = ref[:, 0] + 1j * ref[:, 1]
-    a = np.column_stack([rot, ref, np.ones(n)])
-    uzt, *_ = np.linalg.lstsq(a, p.targets, rcond=None)
+    ref = sol.points[topo.reference]
+    rot, ref = c + 1j * sn, ref[:, 0] + 1j * ref[:, 1]
+    if p.timing is None:
+        uzt, nearest = nearest_fit(rot, ref, p.targets)
+        at, rot, ref = turn[nearest], rot[nearest], ref[nearest]
+    else:
+        at, rot, ref = p.timing, rot[:n], ref[:n]
+        uzt, *_ = np.linalg.lstsq(np.column_stack([rot, ref, np.ones(n)]), p.targets, rcond=None)
+    a = np.column_stack([rot, ref, np.ones(k)])
     scale = abs(uzt[1])
     lengths = np.array(list(link_lengths(drawing(x, topo), topo).values())) * scale
     lo, hi = p.lengths
     rows.append(np.concatenate([(lengths - lo) / p.scale, (hi - lengths) / p.scale]))
-    return Evaluation(a @ uzt - p.targets, uzt, np.concatenate(rows))
+    return Evaluation(a @ uzt - p.targets, uzt, np.concatenate(rows), at)
 
 
 def objective(x: np.ndarray, p: Problem) -> np.ndarray:
@@ -211,7 +197,7 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
     def residuals(v: np.ndarray) -> np.ndarray:
         e = evaluate(v, p)
         if e is None or not np.all(np.isfinite(e.residuals)):
-            return np.full(2 * len(p.timing), p.scale)
+            return np.full(2 * len(p.targets), p.scale)
         return np.concatenate([e.residuals.real, e.residuals.imag])
 
     found = error(x)
@@ -224,15 +210,30 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
     return (v, polished) if polished <= found else (x, found)
 
 
-def search(args: tuple[Problem, int]) -> dict[str, Any]:
-    """One seeded search: differential evolution over the drawing, then its best few distinct designs polished.
-    Returns those that keep every constraint (design, error) and the designs evaluated."""
+def _first_population(p: Problem, seed: int, start: np.ndarray | None) -> np.ndarray | str:
+    """The differential evolution's first population: scipy's Latin hypercube, or (with a ``start`` design) one
+    of the same size drawn from the same seed with ``start`` as its first member."""
+    if start is None:
+        return "latinhypercube"
+    from scipy.stats import qmc
+
+    dim = 2 * len(p.topology.free)
+    out = -SHAPE_BOX + 2.0 * SHAPE_BOX * qmc.LatinHypercube(d=dim, seed=seed).random(p.population * dim)
+    out[0] = start
+    return out
+
+
+def search(args: tuple[Problem, int, np.ndarray | None]) -> dict[str, Any]:
+    """One seeded search: differential evolution over the drawing (its first population holding ``start``, the
+    best four-bar embedded, where given), then its best few distinct designs polished. Returns those that keep
+    every constraint (design, error) and the designs evaluated."""
     from scipy.optimize import differential_evolution
 
-    p, seed = args
+    p, seed, start = args
     bounds = [(-SHAPE_BOX, SHAPE_BOX)] * (2 * len(p.topology.free))
     r = differential_evolution(objective, bounds, args=(p,), vectorized=True, updating="deferred", seed=seed,
-                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False)
+                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False,
+                               init=_first_population(p, seed, start))
     picked: list[int] = []
     for i in np.argsort(r.population_energies, kind="stable"):
         if r.population_energies[i] >= BIG:
@@ -256,7 +257,7 @@ def placed(x: np.ndarray, p: Problem) -> tuple[dict[str, tuple[float, float]], E
     u, z, t = e.uzt
     norm = drawing(x, topo)
     s = structure_of(norm, topo)
-    sol = Linkage(s, plan(s)).solve(p.timing[:1][None, :], strict=False, derivatives=False)
+    sol = Linkage(s, plan(s)).solve(e.angles[:1][None, :], strict=False, derivatives=False)
     c, sn = sol.rotations[topo.tracer_link]
     at = {k: complex(*v[0]) for k, v in sol.points.items()}
     at["P"] = complex((c[0] + 1j * sn[0]) * u + z * at[topo.reference] + t)
@@ -292,11 +293,21 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
              "links": {k: list(v) for k, v in topo.links.items()}}
     if not table_fits(table):
         return None
-    sq = np.abs(e.residuals) ** 2
-    directions = np.degrees(p.timing + np.angle(z)) % 360.0
+    targets = np.column_stack([p.targets.real, p.targets.imag])
+    if p.timing is None:
+        def tracer(t: np.ndarray) -> np.ndarray:
+            return linkage.solve(t[None, :], strict=False, derivatives=False).points["P"]
+
+        reached, world = nearest_on(tracer, turn, sol.points["P"], targets)
+        timing = world - np.angle(z)
+    else:
+        reached, timing = targets + np.column_stack([e.residuals.real, e.residuals.imag]), p.timing
+    sq = np.sum((reached - targets) ** 2, axis=1)
+    directions = np.degrees(timing + np.angle(z)) % 360.0
     lengths = link_lengths(joints, topo)
-    row = {"error_mm2": float(sq.sum()), "linkage": topo.name, "joints": table["joints"], "link_lengths": lengths,
-           "input_angles": [round(math.degrees(t) % 360.0, 9) % 360.0 for t in p.timing],
+    row = {"error_mm2": float(sq.sum()), "linkage": topo.name, "timed": p.timing is not None,
+           "joints": table["joints"], "link_lengths": lengths,
+           "input_angles": [round(math.degrees(t) % 360.0, 9) % 360.0 for t in timing],
            "input_directions": directions.tolist(), "errors_mm": np.sqrt(sq).tolist(),
            "transmission_worst_deg": math.degrees(worst), "defects": []}
     if not all(MIN_LENGTH_MM <= v <= MAX_LENGTH_MM for v in lengths.values()):
@@ -304,27 +315,32 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
     curve = sol.points["P"]
     pose = np.array([joints[k] for k in (*topo.ground[:1], "A", "B", topo.ground[1], "B",
                                          *[j for j in topo.free[2:]], topo.reference, "P")])
-    targets = np.column_stack([p.targets.real, p.targets.imag])
-    reached = targets + np.column_stack([e.residuals.real, e.residuals.imag])
     sketch = Sketch(paths=(("tracer curve", curve),), poses=(("at the first target", pose),), targets=targets,
                     reached=reached)
     signature = tuple(v for xy in joints.values() for v in xy)
     return Candidate(table, row, float(sq.sum()), signature, sketch)
 
 
-def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> dict[str, Any]:
+def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> tuple[dict[str, Any], dict[str, Any]]:
     """The best four-bar on the same targets, timing, seed and budget (:func:`linkgen.synthesis.path.solve`): its
-    error and worst transmission angle, or why none was found."""
+    error and worst transmission angle, or why none was found; and its joints drawn at the first target (empty
+    where none was found)."""
     from linkgen.synthesis import path
 
     four = task.model_copy(update={"linkage": "four-bar"})
     try:
         found, _ = path.solve(four, jobs, scheduler)
     except SpecError as exc:
-        return {"error_mm2": None, "why": str(exc)}
+        return {"error_mm2": None, "why": str(exc)}, {}
     best = min((weighed(c) for c in found), key=lambda c: c.score)
-    return {"error_mm2": best.row["error_mm2"], "transmission_worst_deg": best.row["transmission_worst_deg"],
-            "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")]}
+    return ({"error_mm2": best.row["error_mm2"], "transmission_worst_deg": best.row["transmission_worst_deg"],
+             "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")]}, best.linkage["joints"])
+
+
+def _keeps(x: np.ndarray, p: Problem) -> bool:
+    """Whether design ``x`` keeps every hard constraint of the search."""
+    e = evaluate(x, p)
+    return e is not None and bool(np.all(e.rows >= 0)) and bool(np.all(np.isfinite(e.residuals)))
 
 
 def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[Candidate], dict[str, Any]]:
@@ -332,10 +348,11 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
     (unranked) and how the search went, the four-bar's best next to it."""
     p = problem_of(task)
     spawned = np.random.SeedSequence(task.seed).spawn(task.starts)
+    four, joints = four_bar_best(task, jobs, scheduler)
+    start = embedded(joints, task.linkage, SHAPE_BOX, lambda x: _keeps(x, p)) if joints else None
     clock = time.perf_counter()
-    runs = run_all(search, [(p, int(seq.generate_state(1)[0])) for seq in spawned], jobs, scheduler)
+    runs = run_all(search, [(p, int(seq.generate_state(1)[0]), start) for seq in spawned], jobs, scheduler)
     seconds = time.perf_counter() - clock
-    four = four_bar_best(task, jobs, scheduler)
     out = []
     for run in runs:
         for x, _ in run["found"]:
@@ -355,5 +372,5 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
                       "similarity by least squares; polished by least squares",
             "seed": task.seed, "starts": task.starts, "generations": task.generations,
             "designs_evaluated": tried, "seconds": round(seconds, 3), "ran_on": where(jobs, scheduler),
-            "four_bar": four, "bound": []}
+            "four_bar": four, "seeded_from_four_bar": start is not None, "bound": []}
     return out, info

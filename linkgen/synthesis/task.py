@@ -61,6 +61,9 @@ MIN_FOURIER_POINTS, MAX_FOURIER_POINTS, MAX_GUESSES = 5, 2000, 64
 #: all, starts x generations x population x 10 unknowns (about 1 ms each on one core: some 3 minutes), and at most
 #: this many targets
 MAX_SIXBAR_SOLVES, MAX_SIXBAR_POINTS = 200_000, 100
+#: ... and at least this many targets: a six-bar's 10 drawing numbers and the tracer and similarity's 6 take 8 timed
+#: targets (2 equations each), 16 untimed ones (each target's crank angle is one more unknown)
+MIN_SIXBAR_TIMED, MIN_SIXBAR_UNTIMED = 8, 16
 #: the largest |x| or |y| of a function task's table or range, and of y = f(x) over the range
 MAX_FUNCTION_VALUE = 1e12
 
@@ -345,11 +348,13 @@ class PathTask(SearchOptions):
                           MAX_GUESSES)
     atlas_folder: str | None = Field(None, description="where the Fourier method keeps its atlas of coupler curves "
                                      "(default: the user's cache folder, XDG_CACHE_HOME/linkgen)", max_length=4096)
-    linkage: Literal["four-bar", "watt1", "stephenson3"] = Field(
-        "four-bar", description="the linkage searched: 'four-bar', or a six-bar, 'watt1' (Watt I) or 'stephenson3' "
-        f"(Stephenson III): timed only (input_angles), crank = true, method 'evolution', 3 to {MAX_SIXBAR_POINTS} "
-        f"targets, starts x generations x population x 10 at most {MAX_SIXBAR_SOLVES} solves; the four-bar's best "
-        "on the same targets is reported next to it")
+    linkage: Literal["four-bar", "watt1", "watt2", "stephenson1", "stephenson3"] = Field(
+        "four-bar", description="the linkage searched: 'four-bar', or a six-bar, 'watt1' (Watt I), 'watt2' (Watt "
+        "II), 'stephenson1' (Stephenson I) or 'stephenson3' (Stephenson III): crank = true, method 'evolution', "
+        f"{MIN_SIXBAR_TIMED} to {MAX_SIXBAR_POINTS} targets with input_angles (timed), {MIN_SIXBAR_UNTIMED} to "
+        f"{MAX_SIXBAR_POINTS} without (untimed: the error to the nearest point of the curve), starts x generations x "
+        f"population x 10 at most {MAX_SIXBAR_SOLVES} solves; the four-bar's best on the same targets is reported "
+        "next to it")
 
     @model_validator(mode="after")
     def _targets(self) -> PathTask:
@@ -390,11 +395,9 @@ class PathTask(SearchOptions):
         """Refuse what the six-bar search (:mod:`linkgen.synthesis.sixbar`) cannot take, and a budget beyond
         MAX_SIXBAR_SOLVES."""
         six = repr(self.linkage)
-        if self.input_angles is None:
-            raise ValueError(f"input_angles: linkage {six} is searched with prescribed timing only: give one crank "
-                             "angle a target (degrees from the ground line), or use linkage 'four-bar'")
         if len(self.points) > MAX_SIXBAR_POINTS:
-            raise ValueError(f"points: linkage {six} takes 3 to {MAX_SIXBAR_POINTS} targets (got {len(self.points)})")
+            raise ValueError(f"points: linkage {six} takes at most {MAX_SIXBAR_POINTS} targets (got "
+                             f"{len(self.points)})")
         unused = [k for k in ("coupler_range", "ground_region", "link_ratio") if getattr(self, k) is not None]
         if self.method != "evolution":
             unused.insert(0, "method")
@@ -409,6 +412,12 @@ class PathTask(SearchOptions):
             raise ValueError(f"generations: linkage {six} would make about {solves} solves (starts x generations x "
                              f"population x 10 unknowns), at most {MAX_SIXBAR_SOLVES}: give fewer generations, "
                              "starts or population")
+        least, how = ((MIN_SIXBAR_TIMED, "timed") if self.input_angles is not None else
+                      (MIN_SIXBAR_UNTIMED, "untimed (no input_angles)"))
+        if len(self.points) < least:
+            raise ValueError(f"points: linkage {six} {how} needs at least {least} targets for its unknowns (10 "
+                             f"drawing numbers, the tracer and the similarity; untimed also a crank angle a target), "
+                             f"got {len(self.points)}")
 
     def _fourier(self) -> None:
         """Refuse what the Fourier method cannot take (beyond the targets' count, checked first): timing, a curve

@@ -14,6 +14,7 @@ from click.testing import CliRunner
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.structure import Input, make_structure
 from linkgen.synthesis import synthesize, validate_task, write_synthesis
+from tests.support.six_bar_circles import circles, rigid, side
 from tests.synthesis.test_synthesis import refused_in_one_line
 
 #: the known Watt I (the bundled watt1.toml's drawing): the crank-rocker O2-A-B-O4 with the ternary coupler A-B-E and
@@ -41,30 +42,6 @@ def written(tmp_path_factory):
     out = tmp_path_factory.mktemp("w1")
     write_synthesis(result, out)
     return result, out
-
-
-def circles(c1: np.ndarray, r1: float, c2: np.ndarray, r2: float, side: float) -> np.ndarray:
-    """The intersection (n, 2) of circles about c1 (n, 2) and c2 (n, 2) on ``side`` (+1: left of c1 -> c2)."""
-    d = c2 - c1
-    dist = np.hypot(d[:, 0], d[:, 1])
-    a = (r1**2 - r2**2 + dist**2) / (2 * dist)
-    h = np.sqrt(r1**2 - a**2)
-    u = d / dist[:, None]
-    return c1 + a[:, None] * u + side * h[:, None] * np.column_stack([-u[:, 1], u[:, 0]])
-
-
-def rigid(p0: np.ndarray, q0: np.ndarray, x0: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """Where drawn point x0 goes on the body whose drawn points p0, q0 are at p, q (n, 2)."""
-    z0, w0 = complex(*(q0 - p0)), complex(*(x0 - p0))
-    z = (q[:, 0] - p[:, 0]) + 1j * (q[:, 1] - p[:, 1])
-    out = (p[:, 0] + 1j * p[:, 1]) + w0 / z0 * z
-    return np.column_stack([out.real, out.imag])
-
-
-def side(a: np.ndarray, b: np.ndarray, x: np.ndarray) -> float:
-    """+1 where drawn x lies left of the line a -> b."""
-    d, e = b - a, x - a
-    return float(np.sign(d[0] * e[1] - d[1] * e[0]))
 
 
 def watt1_tracer(joints: dict, directions: np.ndarray) -> np.ndarray:
@@ -120,7 +97,7 @@ POINTS = [[0, 0], [10, 5], [20, 0], [10, -5]]
 
 
 @pytest.mark.parametrize("keys, message", [
-    ({"linkage": "watt1"}, "input_angles: linkage 'watt1' is searched with prescribed timing only"),
+    ({"linkage": "watt1"}, "points: linkage 'watt1' untimed (no input_angles) needs at least 16 targets"),
     ({"linkage": "stephenson3", "input_angles": [0, 90, 180, 270], "crank": False}, "crank: linkage"),
     ({"linkage": "watt1", "input_angles": [0, 90, 180, 270], "link_ratio": 3}, "link_ratio: linkage 'watt1'"),
     ({"linkage": "watt1", "input_angles": [0, 90, 180, 270], "generations": 5000},
