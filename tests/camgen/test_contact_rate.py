@@ -82,8 +82,8 @@ GRID = np.linspace(1e-9, 2 * math.pi, 360_001)[:-1]
                                                         (250.0, 1.5, 5.0, 1.0)])
 def test_the_rate_needed_and_where_against_the_closed_form_laws(rpm, mass, preload, margin):
     """Where the inertia dominates, the report's rate and its angle are the closed form's maximum of
-    (margin - F_rest) / s to 1e-9 (relative) and 1e-5 degrees; that rate holds the least force at the margin, and a spring a little
-    stiffer holds (the rate needed is the whole rate, whatever the spring's own)."""
+    (margin - F_rest) / s to 1e-9 (relative) and 1e-5 degrees; that rate holds the least force at the margin, and
+    a spring a little stiffer holds (the rate needed is the whole rate, whatever the spring's own)."""
     contact = _contact(rpm, mass, 0.05, preload, margin)
     rate, at = _refined_max(_demand(rpm, mass, preload, margin), GRID)
     assert rate > 0.05 and contact.holds is False

@@ -159,7 +159,8 @@ def test_freecad_reads_the_assembly_with_the_back_leg_under_the_plate(built, toy
 
 def test_the_bill_of_materials_gives_the_shaft_and_pin_through_both_sides(toy):
     """The legs' shaft runs from the back crank's bottom face (no stub there: the back leg's rods cross its axis
-    under it) to the front crank's top (its length in the bill that long), the pivot bolt through the links at B on both sides, long enough for its grip."""
+    under it) to the front crank's top (its length in the bill that long), the pivot bolt through the links at B
+    on both sides, long enough for its grip."""
     from camgen.kinds.machine import assembly
     from camgen.kinds.machine.framekit import bom
 
