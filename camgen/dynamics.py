@@ -270,33 +270,51 @@ def _check(cam: Cam, rpm: float, omega: float, mass: float, spring_rate: float |
     return _contact(cam, ld, omega, "gravity" if spring_rate is None and preload is None else "spring")
 
 
+#: :func:`rate_angle`'s value where the follower is at rest with a shortfall (pi/2): only the preload can help
+RATE_ONLY_PRELOAD = math.pi / 2
+
+
+def rate_angle(ld: Loading, omega: float, theta: np.ndarray, m: np.ndarray) -> np.ndarray:
+    """The rate (N/mm) that would keep the contact force at the margin with this preload, as an angle (radians):
+    atan2(shortfall, s), the shortfall ``margin - (force - rate s)`` (N) and s the travel along the path (mm, >= 0).
+
+    Where the follower has moved (s > 0) it is atan(shortfall / s), the rate this point asks for, increasing with
+    it; where it is at rest (s = 0) it is +pi/2 with a shortfall (no rate can help there: only the preload, see
+    :data:`RATE_ONLY_PRELOAD`) and -pi/2 (or 0) without. So the function is finite and continuous (but at a point
+    with no shortfall at rest, where it asks for nothing), its largest value over the turn is the rate needed's
+    angle, tan of it the rate (clamped at 0 by the caller), and a peak search sees no sentinel: the least rate is
+    max over s > 0 of shortfall / s."""
+    short = ld.margin - (ld.force(m, omega, theta) - ld.rate * ld.scale * m[0])
+    return np.arctan2(short, np.maximum(ld.scale * m[0], 0.0))
+
+
+def liftoff_demand(ld: Loading, theta: np.ndarray, m: np.ndarray) -> np.ndarray:
+    """1 / omega^2 (s^2/rad^2) of the speed at which the follower leaves the cam here: the force at ``omega`` is
+    ``still + mass omega^2 s'' / 1000``, zero at omega^2 = 1000 still / (mass * -s''), so this is
+    mass * -s'' / (1000 still) (<= 0 where s'' >= 0: no speed lets it go there). Its largest value over the turn,
+    if > 0, gives the lift-off speed, omega = 1 / sqrt of it. Finite and continuous where the force at rest
+    ``still`` is > 0 (0 elsewhere: the caller reports lift-off at rest, 0 rpm, from the least force at rest)."""
+    still = ld.still(m, theta)
+    top = ld.mass * ld.scale * -np.asarray(m[2], dtype=float) / 1000.0
+    return np.divide(top, still, out=np.zeros(np.broadcast(top, still).shape), where=still > 0)
+
+
 def _contact(cam: Cam, ld: Loading, omega: float, mode: str) -> HeldContact:
     """The contact force's least value and where, the preload and the rate that keep it at the margin at this
-    speed, and the speed at which this loading lets the follower go."""
-    # the rate that would do with this preload: max of (margin - rest) / s where s > 0; where s = 0 only the
-    # preload can help (sentinel +BIG), and where the force is enough there is no demand (sentinel -BIG)
-    big = 1e30
-
-    def demand(t: np.ndarray, m: np.ndarray) -> np.ndarray:
-        short = ld.margin - (ld.force(m, omega, t) - ld.rate * ld.scale * m[0])
-        lifted = m[0] > 1e-9 * max(cam.program.max_lift, 1e-300)
-        return np.where(lifted, short / np.where(lifted, ld.scale * m[0], 1.0), np.where(short > 0, big, -big))
-
-    def leaves(t: np.ndarray, m: np.ndarray) -> np.ndarray:
-        # lift-off: the force is still(s) + mass omega^2 s'' / 1000, so omega^2 <= 1000 still / (mass * -s'')
-        # wherever s'' < 0 (sentinel -BIG elsewhere); the least of that over the cycle, as a largest of its negative
-        falling = m[2] < 0
-        return np.where(falling, -1000.0 * ld.still(m, t) / (ld.mass * ld.scale * np.where(falling, -m[2], 1.0)), -big)
-
+    speed, and the speed at which this loading lets the follower go (see :func:`rate_angle` and
+    :func:`liftoff_demand` for the two searched functions, finite and continuous over the whole turn)."""
     low, need, worst, rest, slowest = peaks_at(
         cam, lambda t, m: -ld.force(m, omega, t), lambda t, m: ld.margin - (ld.force(m, omega, t) - ld.preload),
-        demand, lambda t, m: -ld.still(m, t), leaves)
-    need_rate = None if worst.value >= big else max(0.0, worst.value)
-    # 0 if the follower leaves at rest (the least force still at rest not above 0)
-    liftoff = 0.0 if -rest.value <= 0 else (None if -slowest.value >= big
-                                            else math.sqrt(max(-slowest.value, 0.0)) * 60 / (2 * math.pi))
+        lambda t, m: rate_angle(ld, omega, t, m), lambda t, m: -ld.still(m, t),
+        lambda t, m: liftoff_demand(ld, t, m))
+    need_rate = None if worst.value >= RATE_ONLY_PRELOAD else max(0.0, math.tan(worst.value))
+    held_at_rest = -rest.value > 0
+    # 0 if the follower leaves at rest (the least force still at rest not above 0); None if it never decelerates
+    liftoff = 0.0 if not held_at_rest else (None if slowest.value <= 0
+                                            else math.sqrt(1.0 / slowest.value) * 60 / (2 * math.pi))
     return HeldContact(mode, ld.rate, ld.preload, ld.load, ld.weight_at_rest, ld.margin, -low.value, low.at_deg,
                        -low.value > ld.margin, max(0.0, need.value), need_rate, liftoff,
                        None if ld.table is None else LoadRange(float(min(ld.table.loads)), float(max(ld.table.loads)),
                                                                len(ld.table.loads)),
-                       None if ld.segments is None else tuple(ld.segments.loads))
+                       None if ld.segments is None else tuple(ld.segments.loads),
+                       None if need_rate is None or need_rate == 0.0 else worst.at_deg)

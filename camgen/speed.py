@@ -91,6 +91,9 @@ class HeldContact:
         The preload (N) that would keep the least force at the margin with this rate.
     rate_needed : float or None
         The rate (N/mm) that would do so with this preload; None where no rate can (only a preload helps).
+    rate_needed_at_deg : float or None
+        Where (degrees) that rate is needed (the largest of shortfall / travel over the points away from rest);
+        None when no rate is needed (0) or none can help.
     liftoff_rpm : float or None
         The speed (rpm) above which the follower leaves; 0 if it leaves at rest, None if held at any speed.
     load_table : LoadRange or None
@@ -113,6 +116,7 @@ class HeldContact:
     liftoff_rpm: float | None
     load_table: LoadRange | None = None
     segment_loads: tuple[float, ...] | None = None
+    rate_needed_at_deg: float | None = None
 
     def as_report(self) -> dict[str, Any]:
         """The report's ``speed.contact``."""
@@ -120,7 +124,8 @@ class HeldContact:
             "mode": self.mode, "spring_rate_n_mm": self.spring_rate, "preload_n": self.preload, "load_n": self.load,
             "weight_n": self.weight, "margin_n": self.margin, "force_min_n": self.force_min,
             "force_min_at_deg": self.force_min_at_deg, "holds": self.holds, "preload_needed_n": self.preload_needed,
-            "rate_needed_n_mm": self.rate_needed, "liftoff_rpm": self.liftoff_rpm}
+            "rate_needed_n_mm": self.rate_needed,
+            "rate_needed_at_deg": self.rate_needed_at_deg, "liftoff_rpm": self.liftoff_rpm}
         if self.load_table is not None:
             out["load_table_n"] = self.load_table.as_report()
         if self.segment_loads is not None:

@@ -23,7 +23,7 @@ TEMPLATES = ROOT / "templates"
 RATES = ["rpm", "omega_rad_s", "velocity_max_mm_s", "velocity_max_at_deg", "acceleration_max_mm_s2",
          "acceleration_max_at_deg", "jerk_max_mm_s3", "jerk_max_at_deg", "parabolic_acceleration_ratios", "contact"]
 HELD = ["mode", "spring_rate_n_mm", "preload_n", "load_n", "weight_n", "margin_n", "force_min_n", "force_min_at_deg",
-        "holds", "preload_needed_n", "rate_needed_n_mm", "liftoff_rpm"]
+        "holds", "preload_needed_n", "rate_needed_n_mm", "rate_needed_at_deg", "liftoff_rpm"]
 TORQUES = ["torque_max_N_m", "torque_max_at_deg", "torque_min_N_m", "torque_min_at_deg", "torque_rms_N_m",
            "power_max_W", "contact_force_max_N", "contact_force_max_at_deg"]
 STRESS = ["cam_material", "follower_material", "length_mm", "e_star_MPa", "pressure_max_MPa", "pressure_max_at_deg",

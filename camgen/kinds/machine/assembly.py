@@ -54,7 +54,8 @@ def _placed_part(body: Body, phi: float, thickness: float, tolerance: float) -> 
 def _span(body: Body, design: Any, stack: frames.Stack, thick: dict[str, float]) -> tuple[float, float]:
     """A body's bottom and top (mm): a flat moving part on its plane, as thick as it is made; a roller over its
     planes; a pin from under the bottom plate or its lowest part to its highest part or the top plate's top; a shaft
-    from its stub under the bottom plate to its highest cam; a spacer between its neighbours."""
+    from its stub under the bottom plate (or from the bottom face of its part behind the frame: a stub there would
+    cross the back linkage's rods) to its highest cam; a spacer between its neighbours."""
     from camgen.kinds.machine.framekit import SHAFT_STUB_MM, pin_span
 
     name = body.name
@@ -66,8 +67,9 @@ def _span(body: Body, design: Any, stack: frames.Stack, thick: dict[str, float])
             return pin_span(design.frame, design, name)
         return (0.0 if body.low == 0 else stack.bottom[body.low]), stack.top[body.high]
     if name.startswith("shafts."):
-        behind = stack.bottom[body.low] if body.low < 0 else 0.0    # a shaft reaching a linkage behind the frame
-        return behind - SHAFT_STUB_MM, stack.top[body.high]
+        if body.low < 0:           # reaching a linkage behind the frame: to its crank's face (its rods cross below)
+            return stack.bottom[body.low], stack.top[body.high]
+        return -SHAFT_STUB_MM, stack.top[body.high]
     if name in thick and body.low == body.high:
         return stack.bottom[body.low], stack.bottom[body.low] + thick[name]
     return stack.bottom[body.low], stack.top[body.high]

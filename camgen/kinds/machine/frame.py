@@ -208,7 +208,7 @@ def seats(spec: Any, bodies: Sequence[Body]) -> tuple[Seat, ...]:
         hole = bearing.outside if bearing is not None else d + RUNNING_PLAY
         out.append(Seat(f"shafts.{shaft.name}", (float(shaft.at[0]), float(shaft.at[1])), d, hole, bearing))
     roof, spaced = roof_plane(bodies), {sp.pin for sp in spacers(bodies)} if spec.machine.frame == "two" else set()
-    out += [Seat(name, centre, d, pin_hole(d), None, low == 0, high == roof or name in spaced)
+    out += [Seat(name, centre, d, pin_hole(d), None, low <= 0, high == roof or name in spaced)
             for name, centre, d, low, high in pins(bodies)]
     return tuple(out)
 
@@ -281,19 +281,20 @@ RESERVED = ("frame", "frame-top", "kit", "assembly")
 
 def check_names(spec: Any) -> None:
     """Refuse a cam or linkage named as the machine's own files are (:data:`RESERVED`, ``spacer-<i>``): their files
-    would be the same; and a frame for a machine with a linkage behind it (the plates carry only what stands in
-    front)."""
+    would be the same; and two plates for a machine with a linkage behind it (one plate carries both sides, between
+    them; a second over the front parts would leave the back's pins without a spacer's plate)."""
     for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages)):
         for i, mount in enumerate(mounts):
             if mount.name in RESERVED or mount.name.startswith("spacer-"):
                 raise SpecError(f"{mount.name!r} names the machine's own files (<machine>-{mount.name}...): give the "
                                 "mount another name", f"{key}[{i}].name")
-    if spec.machine.frame != "none":
+    if spec.machine.frame == "two":
         for mount in spec.linkages:
             if mount.shaft is not None and mount.side == "back":
-                raise SpecError(f"the frame's plates under and over the parts do not carry linkages.{mount.name}, "
-                                "which stands behind the frame (side = \"back\"): give frame = \"none\" or stand "
-                                "it in front", "machine.frame")
+                raise SpecError(f"two plates stand under and over the front parts only, and linkages.{mount.name} "
+                                "stands behind the frame (side = \"back\"), where no top plate's spacers reach: "
+                                'give frame = "one" (one plate between the sides) or stand it in front',
+                                "machine.frame")
 
 
 def machine_frame(design: Any, bodies: Sequence[Body]) -> Frame | None:
@@ -314,7 +315,8 @@ def machine_frame(design: Any, bodies: Sequence[Body]) -> Frame | None:
     found = seats(spec, bodies)
     _check(found, table.frame_margin)
     outline = rounded_hull(np.array([s.centre for s in found]), table.frame_margin)
-    tol = min(float(c.design.tolerance) for c in design.cams)
+    tol = min((*(float(c.design.tolerance) for c in design.cams),        # a machine of shaft-driven linkages only
+               *(float(m.design.spec.parts.tolerance) for m in getattr(design, "cranked", ()))))
     plate = Plate("frame", outline, tuple((s.centre, s.hole) for s in found if s.bottom), table.frame_thickness, tol)
     kept = spacers(bodies) if table.frame == "two" else ()
     if table.frame == "two" and not kept:

@@ -22,10 +22,13 @@ SHAFT_STUB_MM = 10.0
 
 
 def shaft_length(frame: Frame, design: Any, shaft: str) -> float:
-    """How long (mm) shaft ``shaft`` is: from :data:`SHAFT_STUB_MM` under the bottom plate to the top of its
-    highest cam (the bottom plate's top for a shaft carrying none)."""
+    """How long (mm) shaft ``shaft`` is: from :data:`SHAFT_STUB_MM` under the bottom plate (from the bottom face of
+    the part it carries behind the plate, with a linkage there) to the top of its highest cam (the bottom plate's
+    top for a shaft carrying none), as the assembly draws it."""
     body = next((b for b in design.bodies if b.name == f"shafts.{shaft}"), None)
     top = frame.stack.top[body.high] if body is not None else frame.stack.thickness
+    if body is not None and body.low < 0:
+        return top - frame.stack.bottom[body.low]
     return SHAFT_STUB_MM + top
 
 
