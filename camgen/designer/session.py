@@ -339,9 +339,9 @@ class Session:
 
             drawn = linkage_frames(analysis_for_animation(design_linkage(spec)), options.frames, options.size)
         else:
-            from camgen.animation import cam_frames, disc_design
+            from camgen.kinds import spec_kind
 
-            drawn = cam_frames(disc_design(_api(program).design(spec)), options.frames, options.size)
+            drawn = spec_kind(spec).animation(_api(program).design(spec), options.frames, options.size)
         if abandoned.is_set():
             raise Abandoned
         name = f"{spec.name}-animation.{options.format}"

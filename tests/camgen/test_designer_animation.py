@@ -25,7 +25,7 @@ def _gif(data):
     return image.n_frames, image.size
 
 
-@pytest.mark.parametrize(("name", "program"), [("crank-rocker", "linkgen"), ("rdrd", "camgen")])
+@pytest.mark.parametrize(("name", "program"), [("crank-rocker", "linkgen"), ("rdrd", "camgen"), ("grooved", "camgen")])
 def test_the_animation_is_the_commands_gif_of_the_design(tmp_path, name, program):
     folder = _folder(tmp_path, name)
     with designer(folder, f"{name}.toml") as url, _tab(url) as (ws, _, _):
