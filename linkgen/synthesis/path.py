@@ -83,6 +83,8 @@ class Problem:
     generations: int
     population: int
     scale: float
+    #: the candidates asked for: the starts go on until their designs have as many distinct errors
+    wanted: int = 1
 
     @property
     def n(self) -> int:
@@ -115,7 +117,7 @@ def problem_of(task: Any) -> Problem:
     mu = task.min_transmission
     return Problem(targets, timing, task.crank, tuple(bounds), box, (x_min, y_min, x_max, y_max), task.link_ratio,
                    None if mu == 0 else math.cos(math.radians(mu) + TRANSMISSION_MARGIN), task.generations,
-                   task.population, hi)
+                   task.population, hi, task.candidates)
 
 
 def angles(x: np.ndarray, p: Problem) -> np.ndarray:
@@ -427,7 +429,7 @@ def _runs(p: Problem, seeds: list[int], jobs: int, scheduler: str | None, report
     atol = rule_for(p.scale).atol
     if report is None or jobs > 1 or scheduler is not None:
         done, agree = run_starts(lambda batch: run_all(search, [(p, s) for s in batch], jobs, scheduler), seeds,
-                                 len(seeds) if scheduler is not None else jobs, atol)
+                                 len(seeds) if scheduler is not None else jobs, atol, p.wanted)
         if report is not None:
             report(1.0, f"{len(done)} searches done", [c for r in done for c in found(r)])
         return done, agree
@@ -449,7 +451,7 @@ def _runs(p: Problem, seeds: list[int], jobs: int, scheduler: str | None, report
         ran.append(run)
         return [run]
 
-    return run_starts(one, seeds, 1, atol)
+    return run_starts(one, seeds, 1, atol, p.wanted)
 
 
 def solve(task: Any, jobs: int = 1, scheduler: str | None = None,

@@ -14,10 +14,11 @@ generation. Two tests that do trigger replace it, checked after every generation
 linkage meets exactly (E -> 0) stops too. The polish that follows each search (least squares on
 the distances) finishes the optimum, so the search needs only to have found its basin.
 
-The **starts** (independent seeded searches) stop once two of them agree: their best polished
-errors within ``AGREE_RTOL`` relative (plus ``atol``) of each other. They are run in batches of the
-processes at hand and cut at the first start where the agreement holds, so the result is the same
-on one process, several or a cluster.
+The **starts** (independent seeded searches) stop once two of them agree (their best polished
+errors within ``AGREE_RTOL`` relative, plus ``atol``, of each other) and the starts run hold as
+many designs of distinct errors as the candidates asked for. They are run in batches of the
+processes at hand and cut at the first start where both hold, so the result is the same on one
+process, several or a cluster.
 """
 from __future__ import annotations
 
@@ -75,14 +76,26 @@ def agreed(errors: Sequence[float], atol: float) -> int | None:
     return None
 
 
-def run_starts(run: Callable[[list[int]], list[dict]], seeds: list[int], batch: int, atol: float
+def distinct(errors: Sequence[float], atol: float) -> int:
+    """How many of the polished ``errors`` (mm^2) differ from each other by more than AGREE_RTOL (plus ``atol``)."""
+    out: list[float] = []
+    for e in sorted(e for e in errors if math.isfinite(e)):
+        if not out or e - out[-1] > AGREE_RTOL * abs(e) + atol:
+            out.append(e)
+    return len(out)
+
+
+def run_starts(run: Callable[[list[int]], list[dict]], seeds: list[int], batch: int, atol: float, wanted: int = 1
                ) -> tuple[list[dict], bool]:
     """The starts' runs, ``batch`` seeds at a time through ``run`` (seeds -> their runs, in order), until two agree
-    (:func:`agreed`; each run's ``found`` lists (base, branch, angles, error)); and whether they agreed."""
+    (:func:`agreed`; each run's ``found`` lists (base, branch, angles, error)) and the runs kept hold at least
+    ``wanted`` designs of distinct errors (the candidates asked for); and whether they stopped so. The runs kept
+    are the shortest such prefix of the seeds, whatever the batch."""
     done: list[dict] = []
     for i in range(0, len(seeds), max(1, batch)):
         done += run(seeds[i:i + max(1, batch)])
         keep = agreed([min((f[3] for f in r["found"]), default=math.inf) for r in done], atol)
-        if keep is not None:
-            return done[:keep], True
+        for m in range(keep or len(done) + 1, len(done) + 1):
+            if distinct([f[3] for r in done[:m] for f in r["found"]], atol) >= wanted:
+                return done[:m], True
     return done, False

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from linkgen.synthesis import synthesize, validate_task
-from linkgen.synthesis.stop import Rule, agreed, why_stop
+from linkgen.synthesis.stop import Rule, agreed, distinct, run_starts, why_stop
 
 #: a Grashof crank-rocker: ground 40, crank 10, coupler 35, rocker 30 mm, crank pivot (5, -3), ground line at 0.3 rad,
 #: coupler point (15, 10) mm in the coupler's frame, the open assembly (B left of A -> O4)
@@ -93,3 +93,19 @@ def test_starts_are_cut_at_the_first_that_agrees_with_an_earlier_one():
     assert agreed([1.0, 2.0, 1.0 + 1e-7, 2.0], 0.0) == 3
     assert agreed([math.inf, math.inf], 0.0) is None
     assert agreed([2.0, 1.0, 1.0 + 1e-3], 0.0) is None
+
+
+def test_starts_go_on_until_they_hold_the_candidates_asked_for_and_are_cut_alike_in_any_batch():
+    """Runs whose best errors are 3, 1, 1 (agreeing at the third) holding errors {3}, {1, 2}, {1}, {4}: one candidate
+    asked for stops at the third start, three at the third too (1, 2, 3), four only at the fourth; the same runs are
+    kept whatever the batch size."""
+    held = {10: [3.0], 11: [1.0, 2.0], 12: [1.0], 13: [4.0]}
+
+    def run(batch):
+        return [{"seed": s, "found": [(None, 1.0, None, e) for e in held[s]]} for s in batch]
+
+    assert distinct([1.0, 1.0 + 1e-9, 2.0, math.inf], 0.0) == 2
+    for batch in (1, 2, 4):
+        for wanted, kept, agree in ((1, 3, True), (3, 3, True), (4, 4, True), (5, 4, False)):
+            done, stopped = run_starts(run, [10, 11, 12, 13], batch, 0.0, wanted)
+            assert [r["seed"] for r in done] == [10, 11, 12, 13][:kept] and stopped == agree
