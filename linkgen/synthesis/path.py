@@ -22,10 +22,12 @@ the motion between them, without a toggle); the lengths within ``link_range`` an
 within ``link_ratio``; the coupler point within ``coupler_range`` of the crank pin (each of cx,
 cy); both ground pivots within ``ground_region``; the transmission angle within [mu, 180 - mu]
 over the motion (``min_transmission``, 30 degrees unless the task says otherwise; the whole turn
-for a crank), exactly. A refusal names the requirement the nearest design breaks most; where the
-best candidate sits on a limit, the search's ``bound`` line names it.
-``starts`` independent searches, each seeded from ``seed``, run here, on local processes or on a
-Dask cluster, with the same results.
+for a crank), exactly. Where no design keeps the hard ones, the nearest are offered
+(:mod:`linkgen.synthesis.path_nearest`); where the best candidate sits on a limit, the search's
+``bound`` line names it.
+Each search stops when it stalls or its population collapses, and the ``starts`` (independent
+searches, each seeded from ``seed``) once two agree (:mod:`linkgen.synthesis.stop`); they run here,
+on local processes or on a Dask cluster, with the same results.
 """
 from __future__ import annotations
 
