@@ -166,21 +166,21 @@ def forward_ratio(repeats: int) -> dict:
                      warm=1, goal="< 1 s")
 
 
-def speed_ratios(repeats: int) -> list[dict]:
+def speed_ratios(repeats: int, quick: bool = False) -> list[dict]:
     """Each of the issue's figures next to its yardstick measured alternately in this run (see
     :func:`camgen.core.bench.ratio_row`): four-bar positions at 100 000 crank angles against :func:`plain_positions`;
     Jansen's leg's kinetostatics at 3 600 against its kinematics (:func:`kinetostatics_ratio`), and its forward
     dynamics over 10 turns from rest (:func:`forward_ratio`); ``linkgen analyze``
     and ``linkgen build`` of the crank-rocker as whole processes (CPU seconds) against a process that only imports
-    numpy and ezdxf."""
+    numpy and ezdxf (``quick``: ``linkgen build`` with its default outputs only)."""
     rows = [positions_ratio(repeats * 4), kinetostatics_ratio(repeats * 4), forward_ratio(repeats)]
     python = sys.executable
     reference = [python, "-c", "import numpy, ezdxf"]
     with tempfile.TemporaryDirectory() as tmp:
         template = Path(tmp) / "crank-rocker.toml"
         template.write_text(CRANK_ROCKER, encoding="utf-8")
-        for command, goal, extra in (("analyze", "<= 3x", ""), ("build", "<= 3x", ""),
-                                     ("build", "-", " --figures")):
+        commands = (("analyze", "<= 3x", ""), ("build", "<= 3x", ""), ("build", "-", " --figures"))
+        for command, goal, extra in commands[1:2] if quick else commands:
             args = [python, "-m", "linkgen", command, str(template), "-o", str(Path(tmp) / command), *extra.split()]
             what = "with its figures (--figures)" if extra else "every default output"
             rows.append(ratio_row(f"linkgen {command} crank-rocker, {what}",
@@ -368,13 +368,14 @@ def run_bench(out: str | Path, quick: bool = False) -> dict:
     from linkgen.bench_solver import memory_rows, solver_rows
     from linkgen.synthesis.bench import published_rows, synthesis_rows
 
-    return core_bench.finish(Path(out), {"quick": quick, "speed": speed_ratios(1 if quick else 5),
+    return core_bench.finish(Path(out), {"quick": quick, "speed": speed_ratios(1 if quick else 5, quick),
                                          "linkages": linkage_speed(repeats),
                                          "general": general_speed(repeats, 10_000 if quick else 100_000),
                                          "solver": solver_rows((10_000,) if quick else (10_000, 100_000, 1_000_000),
                                                                1 if quick else 5),
                                          "solver_memory": [] if quick else memory_rows(),
-                                         "synthesis": synthesis_rows(quick), "published": published_rows(),
+                                         "synthesis": synthesis_rows(quick),
+                                         "published": published_rows(quick=quick),
                                          "hard_cases": hard_cases()}, _markdown)
 
 

@@ -101,29 +101,47 @@ def traced(linkages: np.ndarray, theta2: np.ndarray) -> np.ndarray:
 
 def crossings(points: np.ndarray, closed: bool, step: int = 1) -> np.ndarray:
     """Whether each polygon (N, K, 2) (every ``step``-th vertex; ``closed``: its last side back to the first) has
-    two sides that are not neighbours crossing each other (N,)."""
+    two sides that are not neighbours crossing each other (N,): each side's line strictly separating the other's
+    ends, both ways. A closed polygon whose turning number is not +-1 crosses itself and is not checked further;
+    for the rest the cross products of every side with every vertex are one batched matrix product."""
     p = points[:, ::step]
-    a, b = p, np.roll(p, -1, axis=1)
-    if not closed:
-        a, b = a[:, :-1], b[:, :-1]
-    k = a.shape[1]
-    i, j = np.triu_indices(k, 2)
-    keep = ~((i == 0) & (j == k - 1)) if closed else np.ones(len(i), bool)
-    i, j = i[keep], j[keep]
+    k = p.shape[1]
     out = np.zeros(len(p), bool)
-    for lo in range(0, len(p), 256):
-        pa, pb, qa, qb = a[lo:lo + 256, i], b[lo:lo + 256, i], a[lo:lo + 256, j], b[lo:lo + 256, j]
-        out[lo:lo + 256] = np.any(_crossing(pa, pb, qa, qb), axis=1)
+    checked = np.arange(len(p))
+    if closed:                      # a simple closed polygon turns once: any other turning number has a crossing
+        out = np.abs(turns(p)) != 1
+        checked = np.flatnonzero(~out)
+    i, j = np.triu_indices(k, 2)
+    pair = np.zeros((k, k), bool)
+    pair[i, j] = True
+    pair[0, k - 1] = not closed
+    if not closed:                  # the open polygon has no side from its last vertex back to its first
+        pair[k - 1, :] = pair[:, k - 1] = False
+    for lo in range(0, len(checked), 1024):
+        c = checked[lo:lo + 1024]
+        out[c] = np.any(_separated(p[c]) & np.swapaxes(_separated(p[c]), 1, 2) & pair, axis=(1, 2))
     return out
 
 
-def _cross(o: np.ndarray, p: np.ndarray, q: np.ndarray) -> np.ndarray:
-    return (p[..., 0] - o[..., 0]) * (q[..., 1] - o[..., 1]) - (p[..., 1] - o[..., 1]) * (q[..., 0] - o[..., 0])
+def _separated(p: np.ndarray) -> np.ndarray:
+    """Whether the line of side e (p_e -> p_{e+1}, the last back to the first) strictly separates p_v and p_{v+1}:
+    (N, K sides e, K sides v). The cross products (p_{e+1} - p_e) x (p_v - p_e) of every side with every vertex
+    are [dx, -dy, dy x_e - dx y_e] . [y_v, x_v, 1]."""
+    a, b = p, np.roll(p, -1, axis=1)
+    d = b - a
+    lhs = np.stack([d[..., 0], -d[..., 1], d[..., 1] * a[..., 0] - d[..., 0] * a[..., 1]], axis=-1)
+    rhs = np.stack([p[..., 1], p[..., 0], np.ones(p.shape[:2])], axis=-1)
+    s = lhs @ np.swapaxes(rhs, 1, 2)                                              # (N, K, K)
+    return s * np.roll(s, -1, axis=2) < 0
 
 
-def _crossing(pa: np.ndarray, pb: np.ndarray, qa: np.ndarray, qb: np.ndarray) -> np.ndarray:
-    """Whether sides pa-pb and qa-qb cross at a point inside both."""
-    return (_cross(pa, pb, qa) * _cross(pa, pb, qb) < 0) & (_cross(qa, qb, pa) * _cross(qa, qb, pb) < 0)
+def turns(p: np.ndarray) -> np.ndarray:
+    """The turning numbers (N,) of closed polygons (N, K, 2): the sides' turns (each in (-pi, pi]) summed, in whole
+    turns (counter-clockwise positive)."""
+    side = np.roll(p, -1, axis=1) - p
+    heading = np.arctan2(side[..., 1], side[..., 0])
+    turn = np.mod(np.roll(heading, -1, axis=1) - heading + math.pi, 2.0 * math.pi) - math.pi
+    return np.rint(turn.sum(axis=1) / (2.0 * math.pi)).astype(int)
 
 
 def _closed(entries: int) -> tuple[np.ndarray, np.ndarray]:

@@ -31,6 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 
 TWO_PI = 2.0 * math.pi
+#: curves whose descriptors are computed together at most (more are taken in chunks of this many)
+CHUNK = 1024
 
 
 @dataclass(frozen=True)
@@ -63,6 +65,11 @@ def coefficients(points: np.ndarray, harmonics: int) -> tuple[np.ndarray, np.nda
     sin, c_n and d_n with dy/dt; the powers exp(i n phi) are built by repeated products.
     """
     p = np.asarray(points, dtype=float)
+    if p.ndim > 2 and math.prod(p.shape[:-2]) > CHUNK:      # in chunks that stay in the cache: the same numbers
+        flat = p.reshape(-1, *p.shape[-2:])
+        parts = [coefficients(flat[lo:lo + CHUNK], harmonics) for lo in range(0, len(flat), CHUNK)]
+        return (np.concatenate([c for c, _ in parts]).reshape(*p.shape[:-2], 2),
+                np.concatenate([d for _, d in parts]).reshape(*p.shape[:-2], harmonics, 4))
     step = np.roll(p, -1, axis=-2) - p                                   # side i: p_i -> p_{i+1}
     length = np.hypot(step[..., 0], step[..., 1])                        # (..., K)
     total = length.sum(axis=-1)                                          # T

@@ -22,10 +22,12 @@ the motion between them, without a toggle); the lengths within ``link_range`` an
 within ``link_ratio``; the coupler point within ``coupler_range`` of the crank pin (each of cx,
 cy); both ground pivots within ``ground_region``; the transmission angle within [mu, 180 - mu]
 over the motion (``min_transmission``, 30 degrees unless the task says otherwise; the whole turn
-for a crank), exactly. A refusal names the requirement the nearest design breaks most; where the
-best candidate sits on a limit, the search's ``bound`` line names it.
-``starts`` independent searches, each seeded from ``seed``, run here, on local processes or on a
-Dask cluster, with the same results.
+for a crank), exactly. Where no design keeps the hard ones, the nearest are offered
+(:mod:`linkgen.synthesis.path_nearest`); where the best candidate sits on a limit, the search's
+``bound`` line names it.
+Each search stops when it stalls or its population collapses, and the ``starts`` (independent
+searches, each seeded from ``seed``) once two agree (:mod:`linkgen.synthesis.stop`); they run here,
+on local processes or on a Dask cluster, with the same results.
 """
 from __future__ import annotations
 
@@ -44,6 +46,7 @@ from linkgen.synthesis.candidates import Candidate, coupler_sketch, drawn_table,
 from linkgen.synthesis.defects import defects
 from linkgen.synthesis.geometry import place, place_design, transmission_range, worst_transmission
 from linkgen.synthesis.parallel import run_all, where
+from linkgen.synthesis.stop import rule_for, run_starts, why_stop
 
 BASE = ("x0", "y0", "theta0", "r1", "r2", "r3", "r4", "cx", "cy")
 #: what differential evolution searches over (then, without timing, the start angle, sense and partition)
@@ -60,6 +63,8 @@ STEPS = np.array([0.25, 0.5, 0.75])
 POLISHED = 3
 #: the transmission limit is kept this far inside (rad), so that a candidate on it reports no less than the limit
 TRANSMISSION_MARGIN = 1e-10
+#: designs of each search's final population kept as the nearest where none keeps every hard constraint
+NEAREST_KEPT = 12
 TWO_PI = 2.0 * math.pi
 
 
@@ -80,6 +85,8 @@ class Problem:
     generations: int
     population: int
     scale: float
+    #: the candidates asked for: the starts go on until their designs have as many distinct errors
+    wanted: int = 1
 
     @property
     def n(self) -> int:
@@ -112,7 +119,7 @@ def problem_of(task: Any) -> Problem:
     mu = task.min_transmission
     return Problem(targets, timing, task.crank, tuple(bounds), box, (x_min, y_min, x_max, y_max), task.link_ratio,
                    None if mu == 0 else math.cos(math.radians(mu) + TRANSMISSION_MARGIN), task.generations,
-                   task.population, hi)
+                   task.population, hi, task.candidates)
 
 
 def angles(x: np.ndarray, p: Problem) -> np.ndarray:
@@ -299,20 +306,32 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float, np.ndarray, f
 
 
 def search(args: tuple[Problem, int], generation: Callable[[int], None] | None = None) -> dict[str, Any]:
-    """One seeded search: differential evolution, then its best few distinct designs polished. Returns the
-    polished designs that keep every constraint (base, branch, angles, error) and the number of vectorised
-    evaluations (each of the whole population). ``generation``, if given, is called with the count of generations
-    run after each (it may raise to stop the search; it changes nothing of the search's numbers)."""
+    """One seeded search: differential evolution until it stalls or collapses (:mod:`linkgen.synthesis.stop`) or
+    its budget runs out, then its best few distinct designs polished. Returns the polished designs that keep every
+    constraint (base, branch, angles, error), the number of vectorised evaluations (each of the whole population),
+    the generations run and why it stopped ("stall", "collapse" or "budget"). ``generation``, if given, is called
+    with the count of generations run after each (it may raise to stop the search; it changes nothing of the
+    search's numbers)."""
     from scipy.optimize import differential_evolution
 
     p, seed = args
-    def hook(intermediate_result: Any) -> None:      # scipy passes the result so far to a parameter of this name
+    rule = rule_for(p.scale)
+    best: list[float] = []
+    stopped: list[str] = []
+
+    def hook(intermediate_result: Any) -> bool:      # scipy passes the result so far to a parameter of this name
         if generation is not None:
             generation(int(intermediate_result.nit))
+        energies = np.asarray(intermediate_result.population_energies)
+        best.append(float(np.min(energies)))
+        why = why_stop(best, energies, rule)
+        if why is not None:
+            stopped.append(why)
+        return why is not None
 
     r = differential_evolution(objective, p.bounds, args=(p,), vectorized=True, updating="deferred", seed=seed,
-                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False,
-                               callback=None if generation is None else hook)
+                               maxiter=p.generations, popsize=p.population, tol=0, atol=0, polish=False,
+                               callback=hook)
     lo, hi = np.array(p.bounds).T
     unit = (r.population - lo) / (hi - lo)
     picked: list[int] = []
@@ -325,10 +344,15 @@ def search(args: tuple[Problem, int], generation: Callable[[int], None] | None =
         if len(picked) == POLISHED:
             break
     found = [_polish(r.population[i], p) for i in picked]
-    nearest = r.population[int(np.argmin(r.population_energies))][:, None]
+    order = np.argsort(r.population_energies, kind="stable")
+    # where no design keeps every hard constraint: the few that break them least, the nearest a task can offer
+    closest = [r.population[i].tolist() for i in order[:NEAREST_KEPT]] if r.population_energies[order[0]] >= BIG \
+        else []
+    nearest = r.population[int(order[0])][:, None]
     at = angles(nearest, p)
     return {"found": [(b.tolist(), br, th.tolist(), e) for b, br, th, e in found if math.isfinite(e)],
             "evaluations": int(r.nfev), "generations": int(r.nit), "population": len(r.population),
+            "stopped": stopped[0] if stopped else "budget", "closest": closest,
             # the best design of the final population, for a refusal: its energy and its shortfalls by field
             "nearest": (float(np.min(r.population_energies)), shortfalls(project(nearest, at, p)[:, 0], at[0], p))}
 
@@ -399,27 +423,37 @@ Report = Callable[[float, str, list[Candidate]], None]
 
 
 def _runs(p: Problem, seeds: list[int], jobs: int, scheduler: str | None, report: Report | None,
-          found: Callable[[dict[str, Any]], list[Candidate]]) -> list[dict[str, Any]]:
-    """Every seeded search's run: on ``jobs`` processes or the cluster (``report`` called once, at the end), or,
-    with a ``report`` and ``jobs`` 1, one after another here with ``report`` called after each generation and
-    each search (``found`` gives a run's candidates)."""
+          found: Callable[[dict[str, Any]], list[Candidate]]) -> tuple[list[dict[str, Any]], bool]:
+    """The seeded searches' runs until two starts agree (:func:`linkgen.synthesis.stop.run_starts`), and whether they
+    did: ``jobs`` at a time on local processes, or all on the cluster (``report`` called once, at the end), or, with
+    a ``report`` and ``jobs`` 1, one after another here with ``report`` called after each generation and each
+    search (``found`` gives a run's candidates). Wherever they run, the same runs are kept."""
+    atol = rule_for(p.scale).atol
     if report is None or jobs > 1 or scheduler is not None:
-        done = run_all(search, [(p, s) for s in seeds], jobs, scheduler)
+        done, agree = run_starts(lambda batch: run_all(search, [(p, s) for s in batch], jobs, scheduler), seeds,
+                                 len(seeds) if scheduler is not None else jobs, atol, p.wanted)
         if report is not None:
-            report(1.0, f"{len(seeds)} searches done", [c for r in done for c in found(r)])
-        return done
-    runs: list[dict[str, Any]] = []
+            report(1.0, f"{len(done)} searches done", [c for r in done for c in found(r)])
+        return done, agree
     so_far: list[Candidate] = []
+    ran: list[dict[str, Any]] = []
     total = len(seeds) * p.generations
-    for k, seed in enumerate(seeds):
-        def generation(nit: int, k: int = k, so_far: list[Candidate] = so_far) -> None:
+
+    def one(batch: list[int]) -> list[dict[str, Any]]:
+        nonlocal so_far
+        k, seed = len(ran), batch[0]
+
+        def generation(nit: int) -> None:
             report(min(k * p.generations + nit, total) / total,
                    f"search {k + 1} of {len(seeds)}, generation {nit} of {p.generations}", so_far)
 
-        runs.append(search((p, seed), generation))
-        so_far = so_far + found(runs[-1])
+        run = search((p, seed), generation)
+        so_far = so_far + found(run)
         report((k + 1) / len(seeds), f"search {k + 1} of {len(seeds)} polished", so_far)
-    return runs
+        ran.append(run)
+        return [run]
+
+    return run_starts(one, seeds, 1, atol, p.wanted)
 
 
 def solve(task: Any, jobs: int = 1, scheduler: str | None = None,
@@ -434,7 +468,7 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None,
         return [weighed(c) for c in made if c is not None]
 
     clock = time.perf_counter()
-    runs = _runs(p, seeds, jobs, scheduler, report, found)
+    runs, agree = _runs(p, seeds, jobs, scheduler, report, found)
     seconds = time.perf_counter() - clock
     out, designs, polished = [], [], 0
     for run in runs:
@@ -445,19 +479,28 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None,
                 out.append(c)
                 designs.append((base, th))
     tried = sum(r["evaluations"] * r["population"] for r in runs)
+    bound: list[str] = []
+    if not out and not polished:
+        from linkgen.synthesis.path_nearest import nearest_candidates   # it builds on this module's functions
+
+        out, bound = nearest_candidates(task, runs, p, tried)
     if not out:
         _refuse(task, runs, polished, tried)
-    out = [weighed(c) for c in out]
-    best = int(np.argmin([c.score for c in out]))
-    held = held_by(out[best], *designs[best], p, task)
+    if not bound:
+        out = [weighed(c) for c in out]
+        best = int(np.argmin([c.score for c in out]))
+        held = held_by(out[best], *designs[best], p, task)
+        bound = [f"the best candidate is held by {'; '.join(held)}"] if held else []
     info = {"method": "differential evolution (scipy, the whole population per call) over the ground line, lengths, "
                       "branch and crank angles, the pivot and coupler point by least squares; polished by least "
                       "squares (SLSQP where a constraint is in the way)",
-            "seed": task.seed, "starts": task.starts, "generations": task.generations,
+            "seed": task.seed, "starts": task.starts, "generations": task.generations, "starts_run": len(runs),
+            "starts_agreed": agree, "generations_run": [r["generations"] for r in runs],
+            "stopped": [r["stopped"] for r in runs],
             "population": runs[0]["population"], "vectorised_calls": sum(r["evaluations"] for r in runs),
             "designs_evaluated": sum(r["evaluations"] * r["population"] for r in runs),
             "seconds": round(seconds, 3), "ran_on": where(jobs, scheduler),
-            "bound": [f"the best candidate is held by {'; '.join(held)}"] if held else []}
+            "bound": bound}
     return out, info
 
 

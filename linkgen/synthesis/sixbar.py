@@ -329,9 +329,11 @@ def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> tuple[dict[str
 
     four = task.model_copy(update={"linkage": "four-bar"})
     try:
-        found, _ = path.solve(four, jobs, scheduler)
+        found, info = path.solve(four, jobs, scheduler)
     except SpecError as exc:
         return {"error_mm2": None, "why": str(exc)}, {}
+    if found and "violation" in found[0].row:           # none keeps the requirements: the nearest, not a best
+        return {"error_mm2": None, "why": "; ".join(info["bound"])}, {}
     best = min((weighed(c) for c in found), key=lambda c: c.score)
     return ({"error_mm2": best.row["error_mm2"], "transmission_worst_deg": best.row["transmission_worst_deg"],
              "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")]}, best.linkage["joints"])

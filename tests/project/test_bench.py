@@ -67,14 +67,13 @@ def test_quick_linkgen_bench(tmp_path, tmp_path_factory, monkeypatch):
     assert len(r["synthesis"]) == 4 and "## Synthesis" in (tmp_path / "RESULTS.md").read_text()
     # the published problems: each paper's linkage scored beside ours, ours no worse (re-checked independently in
     # tests/synthesis/test_synthesis_published.py)
-    assert [row["key"] for row in r["published"]] == ["mkh1", "yu1", "mkh3"]
+    assert [row["key"] for row in r["published"]] == ["mkh1"]                 # quick: the one that builds the atlas
     assert all(0 < row["ours_error"] <= row["published_error"] for row in r["published"])
     assert "## Published path problems" in (tmp_path / "RESULTS.md").read_text()
     _speed_rows(r, (tmp_path / "RESULTS.md").read_text(), {
         "four-bar positions, 100 000 crank angles", "kinetostatics of Jansen's leg, 3 600 crank angles",
         "forward dynamics of Jansen's leg, 10 turns from rest",
-        "linkgen analyze crank-rocker, every default output",
-        "linkgen build crank-rocker, every default output", "linkgen build crank-rocker, with its figures (--figures)"})
+        "linkgen build crank-rocker, every default output"})                  # quick: the other commands left out
 
 
 def test_ratio_row_leaves_its_warm_pairs_out():
