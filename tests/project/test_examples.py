@@ -97,7 +97,7 @@ def test_a_kind_keeps_its_name_and_example_picks_the_example(tmp_path, monkeypat
     monkeypatch.chdir(tmp_path)
     clashes = sorted((set(cam_starters()) | set(LINKAGE_STARTERS)) & set(bundled.examples()))
     assert clashes == ["barrel", "conjugate", "counter", "gear-pair", "geared-fivebar", "grooved", "hoekens", "plate",
-                       "ratchet", "slider-crank"]
+                       "ratchet", "slider-crank", "walking-toy"]
     _run(camgen, "new", "plate", "-o", "starter.toml")
     _run(camgen, "new", "plate", "--example", "-o", "example.toml")
     assert "Every key is explained" in (tmp_path / "starter.toml").read_text()

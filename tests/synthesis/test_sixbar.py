@@ -97,7 +97,8 @@ POINTS = [[0, 0], [10, 5], [20, 0], [10, -5]]
 
 
 @pytest.mark.parametrize("keys, message", [
-    ({"linkage": "watt1"}, "points: linkage 'watt1' untimed (no input_angles) needs at least 16 targets"),
+    ({"linkage": "watt1", "generations": 100},
+     "points: linkage 'watt1' untimed (no input_angles) needs at least 16 targets"),
     ({"linkage": "stephenson3", "input_angles": [0, 90, 180, 270], "crank": False}, "crank: linkage"),
     ({"linkage": "watt1", "input_angles": [0, 90, 180, 270], "link_ratio": 3}, "link_ratio: linkage 'watt1'"),
     ({"linkage": "watt1", "input_angles": [0, 90, 180, 270], "generations": 5000},
