@@ -29,7 +29,8 @@ MARK = "C3"
 class Wheel:
     """One wheel over the frames: its outline (m, 2) mm about its own centre at angle 0 (tooth 0 on +X), its pitch
     radius (mm), its angle (n,) rad counter-clockwise and centre (n, 2) mm at each frame, whether its tooth 0 is
-    marked, and whether it is a ring (its outline a toothed hole, drawn as a line)."""
+    marked, whether it is a ring (its outline a toothed hole, drawn as a line), and its fill colour (wheels that
+    stand for one another, a train's planets, share one so that the picture repeats when they change places)."""
 
     outline: np.ndarray
     pitch_radius: float
@@ -37,6 +38,7 @@ class Wheel:
     centres: np.ndarray
     marked: bool = False
     internal: bool = False
+    colour: str = "C0"
 
     def drawn(self, k: int) -> np.ndarray:
         """The outline (m, 2) mm at frame ``k``."""
@@ -79,12 +81,12 @@ def wheel_frames(wheels: list[Wheel], arms: list[np.ndarray], paths: list[np.nda
     def draw(ax: Any, k: int) -> None:
         for path in paths:
             ax.plot(path[:, 0], path[:, 1], "-", color="C1", lw=1.0, alpha=0.8)
-        for i, w in enumerate(wheels):
+        for w in wheels:
             xy = w.drawn(k)
             if w.internal:
                 ax.fill(*np.vstack([xy, xy[:1]]).T, fill=False, ec="k", lw=1.0)
             else:
-                ax.fill(xy[:, 0], xy[:, 1], color=f"C{(2 * i) % 10}", alpha=0.45, lw=0)
+                ax.fill(xy[:, 0], xy[:, 1], color=w.colour, alpha=0.45, lw=0)
                 ax.plot(*np.vstack([xy, xy[:1]]).T, "-", color="k", lw=0.6)
             centre = w.centres[k]
             pitch = centre + w.pitch_radius * unit

@@ -38,5 +38,5 @@ def pair_frames(pair: GearPair, values: np.ndarray, size: tuple[int, int]) -> np
     n = len(theta)
     pinion = Wheel(Contour(*shapes.pinion).flatten(res), r1, theta, np.zeros((n, 2)), marked=True)
     other = Wheel(Contour(*shapes.other).flatten(res), r2, pair.gear_angle(theta),
-                  np.tile([pair.centre_distance, 0.0], (n, 1)), internal=pair.kind == "internal")
+                  np.tile([pair.centre_distance, 0.0], (n, 1)), internal=pair.kind == "internal", colour="C2")
     return wheel_frames([pinion, other], [], [], size)

@@ -28,6 +28,14 @@ def input_name(train: Train) -> str:
     return train.table.input if train.table.kind == "planetary" else train.gears[0].name
 
 
+def _colour(train: Train, k: int) -> str:
+    """The fill of gear ``k``: every planet the same (they change places over a cycle), the others in turn."""
+    g = train.gears[k]
+    if g.carrier:
+        return "C2"
+    return ("C0", "C4", "C6", "C8", "C9")[k % 5] if k else "C0"
+
+
 def train_turns(train: Train) -> int:
     """The input turns of one cycle (see the module docstring)."""
     marked = input_name(train)
@@ -52,7 +60,8 @@ def train_frames(train: Train, values: np.ndarray, size: tuple[int, int]) -> np.
     turned, centres = train.poses(theta)
     marked = input_name(train)
     wheels = [Wheel(Contour(*_outline(g, res)).flatten(res), g.tooth.pitch_radius, turned[g.name], centres[g.name],
-                    marked=g.name == marked, internal=g.internal) for g in train.gears]
+                    marked=g.name == marked, internal=g.internal, colour=_colour(train, k))
+              for k, g in enumerate(train.gears)]
     planets = [g for g in train.gears if g.carrier]
     arms = [np.stack([centres["carrier"], centres[g.name]], axis=1) for g in planets]
     paths: list[np.ndarray] = []
