@@ -1,6 +1,7 @@
 """``linkgen animate`` of the dedicated mechanisms that draw themselves (the gear pair, the gear trains): frame count
 and size read back, one cycle (frame n drawn again is frame 0, frame n/2 is not), the parts drawn where their
-kinematics puts them to a pixel, the same bytes twice, and the ``gif`` of ``output.formats`` as ``animate`` writes it."""
+kinematics puts them to a pixel, the same bytes twice, and the ``gif`` of ``output.formats`` as ``animate`` writes
+it."""
 from __future__ import annotations
 
 import math
