@@ -1,7 +1,7 @@
-"""``linkgen animate`` of the dedicated mechanisms that draw themselves (the gear pair, the gear trains): frame count
-and size read back, one cycle (frame n drawn again is frame 0, frame n/2 is not), the parts drawn where their
-kinematics puts them to a pixel, the same bytes twice, and the ``gif`` of ``output.formats`` as ``animate`` writes
-it."""
+"""``linkgen animate`` of the dedicated mechanisms that draw themselves (the gear pair, the gear trains, the
+ratchet): frame count and size read back, one cycle (frame n drawn again is frame 0, frame n/2 is not), the parts drawn
+where their kinematics puts them to a pixel, the same bytes twice, and the ``gif`` of ``output.formats`` as
+``animate`` writes it."""
 from __future__ import annotations
 
 import math
@@ -17,8 +17,11 @@ from tests.support.kind_animation import gif_frames
 
 PAIR = ROOT / "templates" / "gear-pair.toml"
 PLANETARY = ROOT / "templates" / "planetary-train.toml"
+RATCHET = ROOT / "templates" / "ratchet.toml"
 SIZE = (160, 120)
-#: matplotlib's C3 (the input's tooth-0 mark) and C2 (the gear's fill, drawn at alpha 0.45 on white)
+#: matplotlib's C4 (the ratchet's lever), C3 (the input's tooth-0 mark) and C2 (the gear's fill, drawn at alpha 0.45
+#: on white)
+PURPLE = np.array([0x94, 0x67, 0xBD], dtype=float)
 RED = np.array([0xD6, 0x27, 0x28], dtype=float)
 GREEN = 255 - 0.45 * (255 - np.array([0x2C, 0xA0, 0x2C], dtype=float))
 
@@ -53,7 +56,7 @@ def _near(frame, rc, colour, within: float = 40.0) -> bool:
     return bool((np.abs(patch - colour).max(axis=-1) < within).any())
 
 
-@pytest.mark.parametrize(("template", "n"), [(PAIR, 12), (PLANETARY, 8)])
+@pytest.mark.parametrize(("template", "n"), [(PAIR, 12), (PLANETARY, 8), (RATCHET, 6)])
 def test_count_size_drawn_frames_and_same_bytes(tmp_path, template, n):
     from linkgen.animation import design_frames
 
@@ -155,3 +158,66 @@ def test_page_gif_is_the_animation(tmp_path):
     assert animated.exit_code == 0, animated.output
     name = "gear-pair-animation.gif"
     assert (tmp_path / "p" / name).read_bytes() == (tmp_path / "a" / name).read_bytes()
+
+
+def test_ratchet_cycle_is_one_stroke_a_tooth_on():
+    from linkgen.animation import design_frames_at
+    from linkgen.mechanisms.ratchetframes import lever_wheel
+
+    d = _design(RATCHET)
+    # a 15 degree swing over 30 teeth (12 degrees a pitch) indexes one tooth: the wheel is 12 degrees on after a
+    # stroke, 15 at the stroke's end, and back on the holding pawl at 12 as the lever returns
+    lever, wheel = lever_wheel(d.kinematics, np.array([0.0, math.pi / 2, math.pi, 1.5 * math.pi, 2 * math.pi]))
+    assert np.degrees(lever) == pytest.approx([0.0, 7.5, 15.0, 7.5, 0.0], abs=1e-9)
+    assert np.degrees(wheel) == pytest.approx([0.0, 7.5, 15.0, 12.0, 12.0], abs=1e-9)
+    frames = design_frames_at(d, np.array([0.0, math.pi, 2 * math.pi]), SIZE).astype(float)
+    assert np.abs(frames[2] - frames[0]).mean() < 0.05
+    assert np.abs(frames[1] - frames[0]).mean() > 1.0
+
+
+@pytest.mark.parametrize("u", [1.5, 5.0])
+def test_ratchet_lever_and_pawls(u):
+    import shapely
+
+    from camgen.core.shapes import Contour
+    from linkgen.animation import design_frames_at
+    from linkgen.mechanisms.ratchet import pawl_shape
+    from linkgen.mechanisms.ratchetframes import _turned, lever_wheel, lift
+
+    d = _design(RATCHET)
+    r, size = d.kinematics, (480, 360)
+    phi = math.radians(15.0) * (1 - math.cos(u)) / 2
+    # the lever's pawl is the holding one turned by tooth 15's 180 degrees: its pivot at -((0, 45) + 32 (1, 0)),
+    # the handle 85 mm out along that line
+    rest = -np.array([32.0, 45.0])
+    handle = 85.0 * rest / np.hypot(*rest)
+    at = _turned(handle[None], phi)[0]
+    frame = design_frames_at(d, np.array([u]), size)[0]
+    drawn = np.argwhere(np.abs(frame.astype(float) - PURPLE).max(axis=-1) < 40)
+    rows, cols = drawn[:, 0], drawn[:, 1]
+    # the handle is the end of the purple lever farthest from the wheel's axis (the axis's pixel found the same way)
+    axis = _pixel_of(frame, size, d, np.zeros(2))
+    tip = drawn[np.argmax(np.hypot(rows - axis[0], cols - axis[1]))]
+    assert np.hypot(*(tip - np.array(_pixel_of(frame, size, d, at)))) <= 4.0      # the marker's radius, 2 px, + 2
+    # the pawls clear the wheel; half way out (u = 1.5: the wheel 7 degrees on) the lever's pawl drives (no lift)
+    # and the holding one rides over tooth 1's back; half way back (u = 5: the lever 5.4 degrees out, the wheel held
+    # at 12) the holding pawl holds and the lever's rides over a tooth's back
+    wheel_turn = float(lever_wheel(r, np.array([u]))[1][0])
+    teeth = _turned(Contour(*r.wheel.outline()).flatten(0.05), wheel_turn)
+    pawl = Contour(*pawl_shape(r, 1.5 * 5.0, 0.05)).flatten(0.05)
+    on_lever = _turned(_turned(pawl, math.pi), phi)
+    pivot = _turned(_turned(r.pawl.pivot[None], math.pi), phi)[0]
+    held, driven = lift(pawl, r.pawl.pivot, teeth), lift(on_lever, pivot, teeth)
+    for xy, about, beta in ((pawl, r.pawl.pivot, held), (on_lever, pivot, driven)):
+        assert not shapely.Polygon(_turned(xy, beta, about)).intersects(shapely.Polygon(teeth))
+    if u < math.pi:
+        assert driven == 0.0 and held != 0.0
+    else:
+        assert held == 0.0 and driven != 0.0
+
+
+def _pixel_of(frame, size, design, xy):
+    """The pixel of ``xy`` (mm) in a ratchet frame of ``size`` (the region its frames show: wheel, pawls, arc)."""
+    from linkgen.mechanisms.ratchetframes import view
+
+    return _pixel(view(design.kinematics, 1.5 * 5.0), size, xy)
