@@ -12,6 +12,7 @@ wheel, found by bisection to :data:`LIFT_TOLERANCE`), as its spring lets it ride
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -118,14 +119,14 @@ def ratchet_frames(ratchet: Ratchet, width: float, values: np.ndarray, size: tup
         poses.append((teeth, holding, driving, np.array([[0.0, 0.0], pivot, _turned(handle[None], float(phi))[0]])))
     box = view(ratchet, width)
 
-    def draw(ax: object, k: int) -> None:
+    def draw(ax: Any, k: int) -> None:
         teeth, holding, driving, bar = poses[k]
-        ax.plot(path[:, 0], path[:, 1], "-", color="C1", lw=1.2)             # type: ignore[attr-defined]
+        ax.plot(path[:, 0], path[:, 1], "-", color="C1", lw=1.2)
         for xy, colour in ((teeth, "C0"), (holding, "C2"), (driving, "C2")):
-            ax.fill(xy[:, 0], xy[:, 1], color=colour, alpha=0.45, lw=0)      # type: ignore[attr-defined]
+            ax.fill(xy[:, 0], xy[:, 1], color=colour, alpha=0.45, lw=0)
             ring = np.vstack([xy, xy[:1]])
-            ax.plot(ring[:, 0], ring[:, 1], "-", color="k", lw=0.6)          # type: ignore[attr-defined]
-        ax.plot(bar[:, 0], bar[:, 1], "-o", color="C4", lw=3.0, ms=4)        # type: ignore[attr-defined]
-        ax.plot([0.0, pawl.pivot[0]], [0.0, pawl.pivot[1]], "^", color="0.3", ms=8)  # type: ignore[attr-defined]
+            ax.plot(ring[:, 0], ring[:, 1], "-", color="k", lw=0.6)
+        ax.plot(bar[:, 0], bar[:, 1], "-o", color="C4", lw=3.0, ms=4)
+        ax.plot([0.0, pawl.pivot[0]], [0.0, pawl.pivot[1]], "^", color="0.3", ms=8)
 
     return render(draw, len(lever), size, box)
