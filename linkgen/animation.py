@@ -5,6 +5,10 @@ command writes them (:mod:`camgen.core.writers.animation`).
 A crank that turns fully makes one turn from the drawing, frame k at the drawn angle + 2 pi k / n (counter-clockwise);
 an input that cannot (a rocker, a slide, a crank limited by a toggle or a ``range``) goes from one end of the range
 analysed to the other and back, the frames spaced as a cosine so that it slows to a stop at each end.
+
+A dedicated mechanism that cannot be drawn as a general linkage (a gear pair, a gear train) draws itself: its
+mechanism is an :class:`~linkgen.mechanisms.AnimatedMechanism`, found through the mechanisms' registry
+(:func:`design_frames`).
 """
 from __future__ import annotations
 
@@ -15,6 +19,7 @@ import numpy as np
 from camgen.core.frames import bounds, cycle, render
 from camgen.core.errors import SpecError
 from linkgen.linkage_design import LinkageDesign, pose_of
+from linkgen.mechanisms import AnimatedMechanism
 from linkgen.mechanisms.general import Analysis
 
 
@@ -77,3 +82,27 @@ def frames_at(a: Analysis, values: np.ndarray, size: tuple[int, int],
 def linkage_frames(a: Analysis, n: int, size: tuple[int, int]) -> np.ndarray:
     """The ``n`` frames of one cycle (:func:`cycle_inputs`), ``size`` pixels: (n, height, width, 3) uint8."""
     return frames_at(a, cycle_inputs(a, n), size)
+
+
+def design_inputs(design: LinkageDesign, n: int) -> np.ndarray:
+    """The ``n`` input values (rad, or mm) of one cycle of ``design``: its mechanism's own
+    (:class:`~linkgen.mechanisms.AnimatedMechanism`), or its general linkage's (:func:`cycle_inputs`); the
+    :class:`SpecError` of :func:`analysis_for_animation` for what cannot be animated."""
+    m = design.mechanism
+    if isinstance(m, AnimatedMechanism):
+        return np.asarray(m.animation_inputs(design.spec.linkage, design.kinematics, n), dtype=float)
+    return cycle_inputs(analysis_for_animation(design), n)
+
+
+def design_frames_at(design: LinkageDesign, values: np.ndarray, size: tuple[int, int]) -> np.ndarray:
+    """``design`` drawn at input values ``values`` (:func:`design_inputs`), ``size`` pixels: (n, height, width, 3)
+    uint8, by its mechanism where it draws itself, else as a general linkage (:func:`frames_at`)."""
+    m = design.mechanism
+    if isinstance(m, AnimatedMechanism):
+        return np.asarray(m.animation_frames(design.spec.linkage, design.kinematics, values, size))
+    return frames_at(analysis_for_animation(design), values, size)
+
+
+def design_frames(design: LinkageDesign, n: int, size: tuple[int, int]) -> np.ndarray:
+    """The ``n`` frames of one cycle of ``design``, ``size`` pixels: (n, height, width, 3) uint8."""
+    return design_frames_at(design, design_inputs(design, n), size)

@@ -545,12 +545,12 @@ def _print_newton(n: dict[str, Any], longest: float) -> None:
 @one_design
 def animate(template: Path, output: Path | None, overrides: tuple[str, ...], options: Any) -> None:
     """Write one full cycle of the linkage in TEMPLATE as an animation, its tracers' paths drawn."""
-    from linkgen.animation import analysis_for_animation, linkage_frames
+    from linkgen.animation import design_frames
     from linkgen.linkage_design import design_linkage
     from linkgen.spec import load_spec
 
     spec = load_spec(template, overrides)
-    frames = linkage_frames(analysis_for_animation(design_linkage(spec)), options.frames, options.size)
+    frames = design_frames(design_linkage(spec), options.frames, options.size)
     directory = output if output is not None else Path("out") / spec.name
     click.echo(f"wrote {write_animation_file(frames, options, directory, spec.name)}")
 

@@ -37,9 +37,9 @@ def default_frames(design: LinkageDesign) -> Any:
     """One cycle of ``design`` as ``linkgen animate`` draws it with its defaults (the ``gif`` of ``output.formats``):
     (frames, height, width, 3) uint8; a :class:`SpecError` for a linkage it does not animate."""
     from camgen.core.animation import DEFAULT_FRAMES, DEFAULT_SIZE
-    from linkgen.animation import analysis_for_animation, linkage_frames
+    from linkgen.animation import design_frames
 
-    return linkage_frames(analysis_for_animation(design), DEFAULT_FRAMES, DEFAULT_SIZE)
+    return design_frames(design, DEFAULT_FRAMES, DEFAULT_SIZE)
 
 
 def linkage_bundle(design: LinkageDesign) -> Bundle:

@@ -79,6 +79,21 @@ class Mechanism(Protocol):
 
 
 @runtime_checkable
+class AnimatedMechanism(Protocol):
+    """A mechanism that draws its own animation (``linkgen animate`` of a kind it cannot draw as a general linkage):
+    its frames function lives beside its module (``linkgen/mechanisms/<m>frames.py``)."""
+
+    def animation_inputs(self, table: Any, kinematics: Any, n: int) -> Any:
+        """The ``n`` input values (rad) of one cycle, the last one step before the first comes again."""
+        ...
+
+    def animation_frames(self, table: Any, kinematics: Any, values: Any, size: tuple[int, int]) -> Any:
+        """The mechanism drawn at input values ``values`` (rad), ``size`` (width, height) pixels: (n, height, width, 3)
+        uint8."""
+        ...
+
+
+@runtime_checkable
 class MechanismTable(Protocol):
     """What linkgen reads of every mechanism's ``[linkage]`` table (an instance of :attr:`Mechanism.table`)."""
 

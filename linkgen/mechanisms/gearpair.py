@@ -396,6 +396,17 @@ class GearPairMechanism:
     def sketch(self, table: GearPairTable, kinematics: GearPair) -> Drawing | None:
         return _mesh_drawing(table, kinematics, False)
 
+    def animation_inputs(self, table: GearPairTable, kinematics: GearPair, n: int) -> np.ndarray:
+        from linkgen.mechanisms.gearpairframes import pair_inputs
+
+        return pair_inputs(kinematics, n)
+
+    def animation_frames(self, table: GearPairTable, kinematics: GearPair, values: np.ndarray,
+                         size: tuple[int, int]) -> np.ndarray:
+        from linkgen.mechanisms.gearpairframes import pair_frames
+
+        return pair_frames(kinematics, values, size)
+
 
 def _mesh_drawing(table: GearPairTable, pair: GearPair, close: bool) -> Drawing:
     """The pair drawn at its mesh phase (outlines within 1 % of a module); ``close``: only what lies within three

@@ -458,5 +458,16 @@ class GearTrainMechanism:
     def sketch(self, table: GearTrainTable, kinematics: Train) -> Drawing | None:
         return train_sketch(kinematics, 0.01 * table.module)
 
+    def animation_inputs(self, table: GearTrainTable, kinematics: Train, n: int) -> np.ndarray:
+        from linkgen.mechanisms.geartrainframes import train_inputs
+
+        return train_inputs(kinematics, n)
+
+    def animation_frames(self, table: GearTrainTable, kinematics: Train, values: np.ndarray,
+                         size: tuple[int, int]) -> np.ndarray:
+        from linkgen.mechanisms.geartrainframes import train_frames
+
+        return train_frames(kinematics, values, size)
+
 
 REGISTER = (GearTrainMechanism(),)

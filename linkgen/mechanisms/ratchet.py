@@ -342,6 +342,17 @@ class RatchetMechanism:
     def sketch(self, table: RatchetTable, kinematics: Ratchet) -> Drawing | None:
         return ratchet_drawing(kinematics, _width(table))
 
+    def animation_inputs(self, table: RatchetTable, kinematics: Ratchet, n: int) -> np.ndarray:
+        from linkgen.mechanisms.ratchetframes import stroke_inputs
+
+        return stroke_inputs(n)
+
+    def animation_frames(self, table: RatchetTable, kinematics: Ratchet, values: np.ndarray,
+                         size: tuple[int, int]) -> np.ndarray:
+        from linkgen.mechanisms.ratchetframes import ratchet_frames
+
+        return ratchet_frames(kinematics, _width(table), values, size)
+
 
 def _width(table: RatchetTable) -> float:
     """The pawl's width in a drawing without parts: a third of the teeth's depth's worth more than the depth."""

@@ -152,7 +152,7 @@ def test_follower_rides_the_lift():
     (linkgen_main, ROCKER, ["--fps", "nan"], "--fps"),
     (linkgen_main, ROCKER, ["--format", "avi"], "--format"),
     (camgen_main, CAM, ["--frames", "0"], "--frames"),
-    (linkgen_main, ROOT / "templates" / "gear-pair.toml", [], "linkage.type"),
+    (linkgen_main, ROOT / "templates" / "counter.toml", [], "linkage.type"),
     (camgen_main, ROOT / "templates" / "barrel.toml", ["--frames", "7"], "--frames"),
 ])
 def test_bad_options_refused(tmp_path, main, template, args, option):

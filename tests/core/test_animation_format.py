@@ -35,5 +35,5 @@ def test_build_writes_the_default_animation(tmp_path):
 
 
 def test_gif_of_a_linkage_animate_refuses(tmp_path):
-    assert_refused_sets(ROOT / "templates" / "gear-pair.toml", ['output.formats=["json", "gif"]'],
+    assert_refused_sets(ROOT / "templates" / "counter.toml", ['output.formats=["json", "gif"]'],
                         "linkage.type: linkgen animates", tmp_path, linkgen_main, "analyze")
