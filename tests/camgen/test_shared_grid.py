@@ -77,7 +77,7 @@ def test_what_cannot_share_asks_its_own_grids():
     cam = build_cam(program_template(8))
     stretches = _moving(cam)
     seg = cam.program.segments[0]
-    assert _shared_grid(cam, [(0, (seg.start, 0.5 * (seg.start + seg.end)))] + stretches[1:]) is None   # a span
+    assert _shared_grid(cam, [(0, (seg.start, 0.5 * (seg.start + seg.end))), *stretches[1:]]) is None   # a span
     assert _shared_grid(cam, stretches[1:]) is None                                   # not every moving segment
     pieces = validate_spec({**BASE, "motion": [
         {"type": "rise", "law": "modified-trapezoid", "lift": 20.0, "angle": 150.0}, {"type": "dwell", "angle": 60.0},
