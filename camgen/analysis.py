@@ -50,7 +50,7 @@ def _peaks_steps(cam: Cam, *quantities: Callable[[PitchGeometry], np.ndarray]) -
         return np.array([q(g) for q in quantities])
 
     return cam.program.maxima_steps(values, [1.0 if q is _pressure else 0.0 for q in quantities],
-                                    getattr(cam.follower, "steady", False), _ask)
+                                    cam.steady, _ask)
 
 
 def _ask(v: np.ndarray, index: np.ndarray) -> list[Ask]:

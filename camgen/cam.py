@@ -82,6 +82,13 @@ class Cam:
         return self.follower.contact_radius
 
     @property
+    def steady(self) -> bool:
+        """True where the follower's pitch geometry depends on the motion only, not on the cam angle, so that a
+        dwell's is constant (the peaks' search then asks a dwell's first point only, see
+        :meth:`Program.maxima_steps`)."""
+        return bool(getattr(self.follower, "steady", False))
+
+    @property
     def is_plate(self) -> bool:
         """True for a linear (plate) cam, whose frame is the plate's (see :mod:`camgen.followers.plate`)."""
         return isinstance(self.follower, PlateRoller)
@@ -142,11 +149,20 @@ class Cam:
         """Pitch geometry at the points of every ask (see :data:`Ask`), each on its own segment (one-sided limits
         at its ends), all from one evaluation; with ``boundaries`` the segment boundaries' too (kept for
         :meth:`corners` and :meth:`Program.jumps`, the same numbers as their own evaluation). The asks in the law's
-        variable are evaluated first, then those in cam angles (each point's numbers are its own either way)."""
+        variable are evaluated first, then those in cam angles (each point's numbers are its own either way). Asks
+        of the very same arrays (the peaks' search grid, which the outline shares: see :meth:`Program.search_grid`)
+        are evaluated once, each given the same geometry."""
         program = self.program
         first: list[int] = []                           # the law's variable before, cam angles after
         later: list[int] = []
+        same: dict[tuple[int, int, bool], int] = {}     # the identities of each ask's arrays: its first ask
+        twin: list[tuple[int, int]] = []                # (an ask, the earlier ask of the same arrays)
         for k, a in enumerate(asks):
+            key = (id(a[0]), id(a[1]), a[2])
+            if isinstance(a[0], np.ndarray) and key in same:
+                twin.append((k, same[key]))
+                continue
+            same[key] = k
             (first if a[2] else later).append(k)
         order = first + later
         index = [a[0] if isinstance(a[0], np.ndarray) else np.full(a[1].size, a[0]) for a in (asks[k] for k in order)]
@@ -163,6 +179,8 @@ class Cam:
         for k, part in zip(order, x, strict=False):
             out[k] = g.part(at, at + part.size)
             at += part.size
+        for k, earlier in twin:
+            out[k] = out[earlier]
         if boundaries:
             self._keep(motion[:, at:], g.part(at, at + 2 * len(program.segments)))
         return out

@@ -450,6 +450,18 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     return at.tolist(), value.tolist(), magnitude
 
 
+def search_grid(lo: ArrayLike, hi: ArrayLike, *, reverse: ArrayLike = False, steady: ArrayLike = False,
+                n: int = GRID) -> tuple[np.ndarray, np.ndarray, int]:
+    """The points that :func:`maxima_steps` asks first on these pieces and flags (the same arguments): the abscissae
+    and pieces ((m,) each, read-only), the very arrays its first ask holds, so that a caller who asks them in the same
+    round as the search has them evaluated once (see :meth:`camgen.cam.Cam.pitch_of`); and how many of them lead as
+    the grids of ``n`` points of the pieces that are not ``steady``, piece after piece (the rest are each steady
+    piece's first point)."""
+    plan = _plan(_exact(lo), _exact(hi), _key(steady), _key(reverse), n)
+    x, piece = plan.ask
+    return x, piece, plan.moving.size * n
+
+
 def present(index: np.ndarray) -> np.ndarray:
     """The distinct values of the non-negative integers ``index``, in order (np.unique without loading numpy.ma)."""
     return np.flatnonzero(np.bincount(index)) if index.size else index

@@ -20,9 +20,10 @@ from typing import Any, Literal
 import numpy as np
 
 from camgen.biarcs import arc_distance, biarcs
-from camgen.cam import Cam, Maker, together
+from camgen.cam import Ask, Cam, Maker, together
 from camgen.core.errors import DesignError
 from camgen.followers.base import PitchGeometry
+from camgen.numeric import GRID
 from camgen.core.shapes import Contour, arc_steps, reversed_pieces
 from camgen.surface import surface_deviation
 
@@ -199,6 +200,31 @@ def _grids(ranges: list[tuple[float, float]]) -> np.ndarray:
 _UNIT = np.linspace(0.0, 1.0, _AUX)
 
 
+#: the peaks' search grid's points a grid of _AUX points takes (every second one of GRID: the same fractions)
+_STRIDE = (GRID - 1) // (_AUX - 1)
+assert _STRIDE * (_AUX - 1) == GRID - 1
+
+
+def _shared_grid(cam: Cam, stretches: list[tuple[int, Span]]) -> tuple[Ask, np.ndarray] | None:
+    """The peaks' search grid as the ask of the spacing's grids of whole moving ``stretches`` (see
+    :meth:`Program.search_grid`: the very arrays, so that a design that searches its peaks in the same round
+    evaluates them once), and where each stretch's grid lies in its answer ((m, _AUX) indices, from the segment's
+    start to its end: a return's law variable runs from its end); None where the stretches are not every moving
+    segment whole, in order, or a segment is several smooth pieces (each then asks its own grid)."""
+    grid = cam.program.search_grid(cam.steady)
+    if grid is None or any(span is not None for _, span in stretches):
+        return None
+    index, v, count = grid
+    moving = index[:count:GRID]
+    if moving.size != len(stretches) or moving.tolist() != [i for i, _ in stretches]:
+        return None
+    segments = cam.program.segments
+    back = np.array([segments[i].kind == "return" for i in moving.tolist()])
+    step = np.where(back, -_STRIDE, _STRIDE)
+    pick = (np.arange(moving.size) * GRID + np.where(back, GRID - 1, 0))[:, None] + step[:, None] * np.arange(_AUX)
+    return (index, v, True), pick
+
+
 def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float,
              span: tuple[float, float] | None = None) -> np.ndarray:
     """Cam angles for chords within ~``tolerance`` mm of the surface, from its curvature (``factor`` >= 1 densifies),
@@ -296,16 +322,26 @@ Span = tuple[float, float] | None
 ErrorMode = Literal["ignore", "warn", "raise", "call", "print", "log"]
 
 
-def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float) -> Maker:
+def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float, share: bool = False) -> Maker:
     """Makes the chords of the moving segments (or their spans) ``stretches``, (segment index, span or None) each,
     all at once: vertices spaced from the surface's curvature, then densified until their measured error is within
-    ``tolerance``; returns each stretch's vertices (its end's left to what follows), zero bulges and error."""
+    ``tolerance``; returns each stretch's vertices (its end's left to what follows), zero bulges and error. With
+    ``share`` the spacing's grids are every second point of the peaks' search grid where they can be (see
+    :func:`_shared_grid`), for a design that searches its peaks in the same rounds."""
     index = [i for i, _ in stretches]
     segments = cam.program.segments
     ranges = [(segments[i].start, segments[i].end) if span is None else span for i, span in stretches]
-    aux = _grids(ranges)
-    (g,) = yield [(np.array(index).repeat(_AUX), aux.ravel(), False)]
-    cum = _density(aux, g.d1, g.kappa, tolerance, rr)
+    shared = _shared_grid(cam, stretches) if share else None
+    if shared is None:
+        aux = _grids(ranges)
+        (g,) = yield [(np.array(index).repeat(_AUX), aux.ravel(), False)]
+        d1, kappa = g.d1, g.kappa
+    else:
+        ask, pick = shared
+        (g,) = yield [ask]
+        aux = g.theta.take(pick)
+        d1, kappa = g.d1.take(pick.ravel(), axis=0), g.kappa.take(pick.ravel())
+    cum = _density(aux, d1, kappa, tolerance, rr)
     factor = np.ones(len(stretches))
     results: list[Any] = [None] * len(stretches)
     live = list(range(len(stretches)))
@@ -427,7 +463,7 @@ def _ranks(sizes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float,
-            curves: str) -> tuple[list[Maker], list[tuple[int, int | None]]]:
+            curves: str, share: bool = False) -> tuple[list[Maker], list[tuple[int, int | None]]]:
     """What makes the ``stretches`` (segment index, span or None each): one maker for all the dwells' arcs, one
     for all the moving segments' chords, or one a moving segment for biarcs; and where each stretch's result is
     among theirs, (maker, item of its list or None) each (see :func:`_made`)."""
@@ -448,7 +484,7 @@ def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
         makers += [_biarcs(cam, i, tolerance, rr, span) for i, span in moving]
         return makers, [(0, k) if dwell else (chords + k, None) for dwell, k in places]
     if moving:
-        makers.append(_chords(cam, moving, tolerance, rr))
+        makers.append(_chords(cam, moving, tolerance, rr, share))
     return makers, [(0, k) if dwell else (chords, k) for dwell, k in places]
 
 
@@ -514,14 +550,18 @@ def exact_outline(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     ends one roller radius beyond the travel (where the roller can still sit) and the
     bottom edge on y = 0. Every stretch is made at once (see :func:`outline_maker`).
     """
-    return cam.serve([quietly(outline_maker(cam, tolerance, curves, offset))])[0]
+    return cam.serve([quietly(outline_maker(cam, tolerance, curves, offset, share=False))])[0]
 
 
-def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset: float = 0.0) -> Maker:
+def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset: float = 0.0,
+                  share: bool = True) -> Maker:
     """:func:`exact_outline` as a maker of :meth:`Cam.serve`, so that a design evaluates it with its analysis:
     every stretch's maker runs at once (the chords of all moving segments in one), two rounds of evaluation for
     the whole cam where the first spacing holds. Corners, a flat face's flats and a plate's dwells are made from
-    the segment boundaries, which the first round evaluates."""
+    the segment boundaries, which the first round evaluates. With ``share`` (for a design that searches its peaks
+    in the same rounds, see :func:`camgen.analysis.analysis_maker`) the chords' spacing reads its grids from the
+    search's own (see :func:`_shared_grid`): one evaluation serves both; :func:`exact_outline`, on its own, asks its
+    smaller grids."""
     rr = cam.contact_radius - offset
     segments = cam.program.segments
     plate = cam.is_plate
@@ -533,7 +573,7 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
             raise DesignError("the pitch curve has a convex corner that a roller cannot follow; its outline is the "
                               "cutter's envelope (cam.allow_undercut)")
 
-    makers, plan = _makers(cam, stretches, tolerance, rr, curves)
+    makers, plan = _makers(cam, stretches, tolerance, rr, curves, share)
     made = iter(_made(plan, (yield from together(makers, convex))))
     if not makers:                                      # nothing asked (a plate of dwells): checked all the same
         convex()

@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from camgen.laws import Law
-from camgen.numeric import TIE, drive, left_of, maxima_steps, present
+from camgen.numeric import TIE, drive, left_of, maxima_steps, present, search_grid
 
 Kind = Literal["rise", "dwell", "return"]
 TWO_PI = 2.0 * math.pi
@@ -276,6 +276,18 @@ class Program:
         best = np.where(near, degrees, math.inf).argmin(axis=1)          # the first of the least angles
         rows = np.arange(len(at))
         return list(zip(v[rows, best].tolist(), degrees[rows, best].tolist(), strict=True))
+
+    def search_grid(self, steady: bool = False) -> tuple[np.ndarray, np.ndarray, int] | None:
+        """The points :meth:`maxima_steps` (with this ``steady``) asks first, where every segment is one smooth
+        piece, else None: their segments and law variables ((m,) each, read-only), the very arrays of its ask, so
+        that an ask of them in the same round of :meth:`camgen.cam.Cam.serve` is evaluated once with it; and how many
+        of them lead as every moving segment's grid of :data:`camgen.numeric.GRID` points, segment after segment,
+        each from its law variable 0 to 1 (see :func:`camgen.numeric.search_grid`)."""
+        owner, lo, hi, still, backwards, _ = self._pieces
+        if owner is not None:
+            return None
+        v, index, count = search_grid(lo, hi, reverse=backwards, steady=still if steady else False)
+        return index, v, count
 
     @cached_property
     def _table(self) -> _Table:
