@@ -62,6 +62,25 @@ def task_of(kind: str, n: int, timed: bool, generations: int, population: int) -
     return {"name": kind, "task": task}
 
 
+#: the four-bar of templates/stephenson3.toml (its coupler point C as P), drawn as the four-bar search draws a
+#: candidate: O2, O4, A, B and P at the first target
+FOUR = {"O2": (0.0, 0.0), "O4": (120.0, 0.0), "A": (12.5, 21.650635095), "B": (75.78826943, 78.392109807),
+        "P": (104.570023599, -17.376416479)}
+
+
+def four_bar_task(kind: str):
+    """FOUR and the six-bar ``kind`` path problem of its twelve timed points of P (every 30 degrees from 60)."""
+    from linkgen.synthesis.sixbar import problem_of
+
+    s = make_structure(FOUR, {"crank": ("O2", "A"), "coupler": ("A", "B", "P"), "rocker": ("O4", "B")},
+                       ("O2", "O4"), (), (Input("crank", "crank", "O2"),))
+    angles = np.arange(60.0, 420.0, 30.0)
+    targets = Linkage.of(s).solve(np.radians(angles)[None, :], derivatives=False).points["P"]
+    spec = validate_task({"name": kind, "task": {"kind": "path", "linkage": kind, "points": targets.tolist(),
+                                                 "input_angles": angles.tolist(), "starts": 1, "generations": 10}})
+    return FOUR, problem_of(spec.task)
+
+
 def nearest_error(kind: str, joints: dict, targets: np.ndarray) -> float:
     """The sum of squared distances (mm^2) from the targets to the nearest point of the curve, by this test's own
     curve: 36,000 crank directions, then 2,001 within one step either side of each target's nearest."""
@@ -146,18 +165,10 @@ def test_the_best_four_bar_embedded_as_a_stephenson3_meets_its_targets_as_the_fo
     candidate (O2, O4, A, B and P at the first target): embedded as a Stephenson III with a dyad that keeps the
     search's constraints, the six-bar's tracer (fitted by least squares) meets the four-bar's twelve timed points of
     C to rounding, so the search that starts from it starts at the four-bar's error."""
-    from linkgen.synthesis.sixbar import SHAPE_BOX, evaluate, problem_of
+    from linkgen.synthesis.sixbar import SHAPE_BOX, evaluate
     from linkgen.synthesis.sixbar_seed import embedded
 
-    four = {"O2": (0.0, 0.0), "O4": (120.0, 0.0), "A": (12.5, 21.650635095), "B": (75.78826943, 78.392109807),
-            "P": (104.570023599, -17.376416479)}
-    s = make_structure(four, {"crank": ("O2", "A"), "coupler": ("A", "B", "P"), "rocker": ("O4", "B")},
-                       ("O2", "O4"), (), (Input("crank", "crank", "O2"),))
-    angles = np.arange(60.0, 420.0, 30.0)
-    targets = Linkage.of(s).solve(np.radians(angles)[None, :], derivatives=False).points["P"]
-    spec = validate_task({"name": "s3", "task": {"kind": "path", "linkage": "stephenson3", "points": targets.tolist(),
-                                                 "input_angles": angles.tolist(), "starts": 1, "generations": 10}})
-    p = problem_of(spec.task)
+    four, p = four_bar_task("stephenson3")
     x = embedded(four, "stephenson3", SHAPE_BOX, lambda v: bool(np.all(evaluate(v, p).rows >= 0)))
     assert x is not None
     # A, B and C of the drawing are the four-bar's, normalised to O2 at 0 and O4 at 1
@@ -211,19 +222,10 @@ def test_the_best_four_bar_embedded_as_a_stephenson1_keeps_the_constraints_near_
     F a short offset from O4 on a rocker a short crank barely swings): the design keeps every hard constraint and
     its error is within 1 mm^2 of the four-bar's own on its twelve timed points of P (the six-bar's tracer nearly
     the coupler curve); where every embedding breaks a constraint there is none."""
-    from linkgen.synthesis.sixbar import SHAPE_BOX, _error, evaluate, problem_of
+    from linkgen.synthesis.sixbar import SHAPE_BOX, _error, evaluate
     from linkgen.synthesis.sixbar_seed import embedded_stephenson1
 
-    four = {"O2": (0.0, 0.0), "O4": (120.0, 0.0), "A": (12.5, 21.650635095), "B": (75.78826943, 78.392109807),
-            "P": (104.570023599, -17.376416479)}
-    s = make_structure(four, {"crank": ("O2", "A"), "coupler": ("A", "B", "P"), "rocker": ("O4", "B")},
-                       ("O2", "O4"), (), (Input("crank", "crank", "O2"),))
-    angles = np.arange(60.0, 420.0, 30.0)
-    targets = Linkage.of(s).solve(np.radians(angles)[None, :], derivatives=False).points["P"]
-    spec = validate_task({"name": "s1", "task": {"kind": "path", "linkage": "stephenson1",
-                                                 "points": targets.tolist(), "input_angles": angles.tolist(),
-                                                 "starts": 1, "generations": 10}})
-    p = problem_of(spec.task)
+    four, p = four_bar_task("stephenson1")
     x = embedded_stephenson1(four, SHAPE_BOX, p.lengths[0] / 120.0, lambda v: _error(v, p))
     assert x is not None
     e = evaluate(x, p)
