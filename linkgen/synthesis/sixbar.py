@@ -40,7 +40,7 @@ from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.structure import Structure, make_structure, plan
 from linkgen.synthesis.candidates import Candidate, Sketch, table_fits, weighed
 from linkgen.synthesis.parallel import run_all, where
-from linkgen.synthesis.sixbar_seed import embedded
+from linkgen.synthesis.sixbar_seed import embedded, embedded_stephenson1
 from linkgen.synthesis.sixbar_types import CRANK, TOPOLOGIES, Topology
 from linkgen.synthesis.sixbar_untimed import nearest_fit, nearest_on
 
@@ -345,13 +345,29 @@ def _keeps(x: np.ndarray, p: Problem) -> bool:
     return e is not None and bool(np.all(e.rows >= 0)) and bool(np.all(np.isfinite(e.residuals)))
 
 
+def _error(x: np.ndarray, p: Problem) -> float:
+    """The error (mm^2) of design ``x``, infinite where it breaks a hard constraint."""
+    value = float(objective(x[:, None], p)[0])
+    return value if value < BIG else math.inf
+
+
+def _start(joints: dict[str, Any], p: Problem) -> np.ndarray | None:
+    """The best four-bar (drawn at ``joints``) embedded as a design of the task's six-bar type, or None: a
+    Stephenson III by :func:`linkgen.synthesis.sixbar_seed.embedded`, a Stephenson I by
+    :func:`linkgen.synthesis.sixbar_seed.embedded_stephenson1`."""
+    if p.topology.name == "stephenson1":
+        shortest = p.lengths[0] / math.dist(joints["O2"], joints["O4"])
+        return embedded_stephenson1(joints, SHAPE_BOX, shortest, lambda x: _error(x, p))
+    return embedded(joints, p.topology.name, SHAPE_BOX, lambda x: _keeps(x, p))
+
+
 def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[Candidate], dict[str, Any]]:
     """Six-bar path generation for a validated path task (``linkage`` a six-bar, timed): the candidates
     (unranked) and how the search went, the four-bar's best next to it."""
     p = problem_of(task)
     spawned = np.random.SeedSequence(task.seed).spawn(task.starts)
     four, joints = four_bar_best(task, jobs, scheduler)
-    start = embedded(joints, task.linkage, SHAPE_BOX, lambda x: _keeps(x, p)) if joints else None
+    start = _start(joints, p) if joints else None
     clock = time.perf_counter()
     runs = run_all(search, [(p, int(seq.generate_state(1)[0]), start) for seq in spawned], jobs, scheduler)
     seconds = time.perf_counter() - clock
