@@ -60,6 +60,15 @@ def template(overrides: dict | None = None, **changes):
     return validate_spec(apply_overrides(RDRD, list((overrides or {}).items())))
 
 
+@pytest.fixture(scope="session")
+def bundled_builds(tmp_path_factory: pytest.TempPathFactory):
+    """The folders of bundled templates' commands, each run once per test run (:mod:`tests.support.builds`); read
+    them, never write into them."""
+    from tests.support.builds import Builds, shared_root
+
+    return Builds(shared_root(tmp_path_factory.getbasetemp()))
+
+
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
     """Run the tests marked ``slow`` first, the rest in their collected order: with ``-n auto`` the workers take
     the longest checks while many short ones remain, so both end at about the same time."""

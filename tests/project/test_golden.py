@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from tests.support.golden import ABS, GOLDEN, all_runs, build, differences
+from tests.support.golden import ABS, GOLDEN, all_runs, differences, prints
 
 
 RECORDED = json.loads(GOLDEN.read_text())
@@ -23,8 +23,8 @@ def test_every_bundled_template_is_recorded():
 
 
 @pytest.mark.parametrize("run_id", sorted(RUNS))
-def test_bundled_templates_give_the_recorded_files(tmp_path, run_id):
-    _, built = build(*RUNS[run_id], tmp_path)
+def test_bundled_templates_give_the_recorded_files(bundled_builds, run_id):
+    built = prints(bundled_builds.folder(*RUNS[run_id]))
     recorded = RECORDED[run_id]
     assert sorted(built) == sorted(recorded), run_id
     found = [f"{name}: {line}" for name, content in recorded.items() for line in differences(content, built[name])]
@@ -63,10 +63,10 @@ def _reworded(value):
 
 
 @pytest.mark.parametrize("name", ["rdrd.dxf", "rdrd.json", "rdrd.stl", "rdrd-cut.svg", "rdrd.html", "rdrd.3mf"])
-def test_the_comparison_takes_noise_and_finds_a_change(tmp_path, name):
+def test_the_comparison_takes_noise_and_finds_a_change(bundled_builds, name):
     """A fingerprint moved by a tenth of the tolerance still matches; moved by a thousand times it, or with a word
     changed, it does not."""
-    _, built = build(*RUNS["camgen build rdrd.toml"], tmp_path)
+    built = prints(bundled_builds.folder(*RUNS["camgen build rdrd.toml"]))
     print_ = built[name]
     assert not list(differences(print_, _moved(print_, ABS / 10)))
     assert list(differences(print_, _moved(print_, ABS * 1e3)))

@@ -317,17 +317,35 @@ def _summaries(recorded: dict[str, Any], built: dict[str, Any], where: str) -> I
 
 # --------------------------------------------------------------------------------------------------- recording
 
-def build(path: Path, program: str, args: list[str], root: Path) -> tuple[str, dict[str, Any]]:
-    """Run one command on a bundled template into a folder under ``root``: (run id, {relative file: fingerprint})."""
+def run_id_of(path: Path, program: str, args: list[str]) -> str:
+    """The name of one command on a bundled template, as :data:`GOLDEN` keys it (``camgen build rdrd.toml``)."""
+    return f"{program} {args[0]} {path.name}"
+
+
+def run(path: Path, program: str, args: list[str], root: Path) -> Path:
+    """Run one command on a bundled template into a folder under ``root`` (named after its run id); that folder.
+
+    Raises ``RuntimeError`` with the command's output when it exits with a code other than 0.
+    """
     from camgen.cli import main as camgen
     from linkgen.cli import main as linkgen
 
-    run_id = f"{program} {args[0]} {path.name}"
+    run_id = run_id_of(path, program, args)
     folder = root / run_id.replace(" ", "_")
     result = CliRunner().invoke({"camgen": camgen, "linkgen": linkgen}[program], [*args, "-o", str(folder)])
     if result.exit_code != 0:
         raise RuntimeError(f"{run_id}: exit {result.exit_code}: {result.output}")
-    return run_id, {p.relative_to(folder).as_posix(): fingerprint(p) for p in sorted(folder.rglob("*")) if p.is_file()}
+    return folder
+
+
+def prints(folder: Path) -> dict[str, Any]:
+    """{file relative to ``folder``: fingerprint} of every file a command wrote into ``folder``."""
+    return {p.relative_to(folder).as_posix(): fingerprint(p) for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def build(path: Path, program: str, args: list[str], root: Path) -> tuple[str, dict[str, Any]]:
+    """Run one command on a bundled template into a folder under ``root``: (run id, {relative file: fingerprint})."""
+    return run_id_of(path, program, args), prints(run(path, program, args, root))
 
 
 def all_runs(names: tuple[str, ...] = ()) -> list[tuple[Path, str, list[str]]]:
