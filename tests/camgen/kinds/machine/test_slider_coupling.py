@@ -205,8 +205,27 @@ def test_the_spring_check_counts_the_linkage_load(lifter):
 
 def test_the_driven_parts_are_in_the_clash_check(lifter):
     names = {b.name for b in lifter.bodies}
-    assert {"linkages.rocker.crank", "linkages.rocker.rod"} <= names
-    assert not lifter.clashes
+    assert {"linkages.rocker.crank", "linkages.rocker.rod", "cams.lift.stem", "cams.lift.roller"} <= names
+    assert not lifter.clashes and lifter.unchecked == ()
+
+
+@pytest.mark.parametrize("old, new", [
+    ('type = "translating-roller"\nroller_radius = 8.0\n', 'type = "knife-edge"\n'),
+    ('type = "translating-roller"\nroller_radius = 8.0\n', 'type = "translating-flat"\n'),
+])
+def test_a_knife_or_flat_stem_is_checked_too(old, new):
+    """The stem as wide as the linkage's parts (8 mm), rising from the knife's edge or the face at the base circle
+    (40 mm over the shaft), twice the stroke plus its width long; no roller; no clash."""
+    from camgen import api
+    from camgen.kinds.machine.clash import outlines
+
+    assert old in TEMPLATE
+    design = api.design(api.validate(tomllib.loads(TEMPLATE.replace(old, new, 1))))
+    stem = next(b for b in design.bodies if b.name == "cams.lift.stem")
+    assert "cams.lift.roller" not in {b.name for b in design.bodies}
+    assert design.unchecked == () and design.clashes == ()
+    x0, y0, x1, y1 = outlines(stem, np.array([PHASE]))[0].bounds       # the program's start: lift 0
+    assert (x0, y0, x1, y1) == pytest.approx((-4.0, 40.0, 4.0, 40.0 + 2 * 30.0 + 8.0), abs=1e-9)
 
 
 @pytest.mark.parametrize("old, new, message", [
