@@ -354,3 +354,46 @@ def test_the_pick_and_place_builds_and_its_files_read_back(tmp_path):
             assert int(re.search(rf"{key}\s*:\s*(\d+)", text).group(1)) == 0, (path, key)
     report = json.loads((out / "pick-and-place.json").read_text())
     assert report["slid"]["carriage"]["cam"] == "shuttle" and report["warnings"] == []
+
+
+# ---- the sliders' guides (drawn still, over the slider's travel)
+
+
+def test_the_stems_guide_spans_its_travel(lifter):
+    """The stem's guide: on the follower's line x = 0, from its rest point to the top of its 30 mm stroke, in
+    every pose of the report, on the stem's plane."""
+    from camgen.kinds.machine.guides import guides
+    from camgen.kinds.machine.poses import poses_report
+
+    expected = np.stack([REST, REST + np.array([0.0, 30.0])])
+    for pose in poses_report(lifter):
+        assert set(pose["guides"]) == {"linkages.rocker.stem.guide"}
+        assert np.abs(np.array(pose["guides"]["linkages.rocker.stem.guide"]) - expected).max() < 1e-9
+    assert [g.plane for g in guides(lifter)] == [1]
+
+
+def test_the_carriages_guide_spans_its_travel(pick):
+    """The carriage's guide: along +X at the carriage's height, from the least to the largest x of the carriage's
+    slider-crank (the independent closed form, on a grid of 0.01 degree: its ends fall in the cam's dwells), in the
+    report's poses and as the figure's line."""
+    from camgen.kinds.machine.plots import machine_figure
+    from camgen.kinds.machine.poses import poses_report
+
+    raw = tomllib.loads(PICK.read_text())
+    joints = raw["linkages"][0]["template"]["linkage"]["joints"]
+    follower = pick.cam("shuttle").design.profile.cam.follower
+    height = float(follower.pivot[1]) + joints["C"][1] - joints["O"][1]
+    x = _carriage_x(pick, np.radians(np.arange(36000) / 100.0))
+    expected = np.array([[x.min(), height], [x.max(), height]])
+    assert x.max() - x.min() > 20.0
+    name = "linkages.carriage.carriage.guide"
+    for pose in poses_report(pick):
+        assert np.abs(np.array(pose["guides"][name]) - expected).max() < 1e-9
+    fig = machine_figure(pick)
+    lines = [line for ax in fig.axes for line in ax.get_lines() if line.get_gid() == name]
+    assert len(lines) == len(pick.spec.machine.figure_angles)
+    for line in lines:
+        assert np.abs(np.column_stack([line.get_xdata(), line.get_ydata()]) - expected).max() < 1e-9
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
