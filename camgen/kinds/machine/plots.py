@@ -77,8 +77,8 @@ def machine_figure(design: MachineDesign) -> Any:
             for shaft, teeth in ((g.driver, g.driver_teeth), (g.driven, g.driven_teeth)):
                 ring = circle(g.module * teeth / 2, 0.05) + at[shaft]
                 ax.add_patch(Polygon(ring, closed=True, fill=False, ls="--", ec="0.5", lw=0.8))
-        for g in fixed:
-            ax.plot(g.ends[:, 0], g.ends[:, 1], color="0.35", lw=1.2, ls="-.", gid=g.name)
+        for guide in fixed:
+            ax.plot(guide.ends[:, 0], guide.ends[:, 1], color="0.35", lw=1.2, ls="-.", gid=guide.name)
         for p in parts:
             back = p.high < 0
             pin = p.name.startswith(("pins.", "shafts."))

@@ -11,6 +11,15 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+
+def _program(lift: float, rise: float, dwell: float, back: float, rest: float) -> str:
+    """A cam's [[motion]] tables: a cycloidal rise of ``lift``, a dwell, a cycloidal return, a dwell (degrees)."""
+    steps = (("rise", lift, rise), ("dwell", 0.0, dwell), ("return", lift, back), ("dwell", 0.0, rest))
+    return "".join(f'\n[[cams.template.motion]]\ntype = "{kind}"\n'
+                   + (f'law = "cycloidal"\nlift = {h}\n' if kind != "dwell" else "") + f"angle = {a}\n"
+                   for kind, h, a in steps)
+
+
 #: a lever (an oscillating roller on shaft "left") whose arm, still over phi in [0, 180] degrees (its program's
 #: dwell: phase 180), lies across the line of the stem of a translating roller on shaft "right" (turned by a 1:1
 #: gear pair, 125 mm away), which rises 30 mm (cycloidal, over the main shaft's first 120 degrees) into it
@@ -53,27 +62,7 @@ type = "oscillating-roller"
 roller_radius = 8.0
 pivot_distance = 160.0
 arm_length = 150.0
-
-[[cams.template.motion]]
-type = "rise"
-law = "cycloidal"
-lift = 5.0
-angle = 60.0
-
-[[cams.template.motion]]
-type = "dwell"
-angle = 60.0
-
-[[cams.template.motion]]
-type = "return"
-law = "cycloidal"
-lift = 5.0
-angle = 60.0
-
-[[cams.template.motion]]
-type = "dwell"
-angle = 180.0
-
+""" + _program(5.0, 60.0, 60.0, 60.0, 180.0) + """
 [[cams]]
 name = "lift"
 shaft = "right"
@@ -86,27 +75,7 @@ bore = 8.0
 [cams.template.follower]
 type = "translating-roller"
 roller_radius = 5.0
-
-[[cams.template.motion]]
-type = "rise"
-law = "cycloidal"
-lift = 30.0
-angle = 120.0
-
-[[cams.template.motion]]
-type = "dwell"
-angle = 60.0
-
-[[cams.template.motion]]
-type = "return"
-law = "cycloidal"
-lift = 30.0
-angle = 120.0
-
-[[cams.template.motion]]
-type = "dwell"
-angle = 60.0
-"""
+""" + _program(30.0, 120.0, 60.0, 120.0, 60.0)
 RIGHT = np.array([100.0, -75.0])
 STROKE, WIDTH = 30.0, 8.0                       # the stem: 8 mm wide (no linkage to take a width from)
 PRIME = 35.0                                    # the stem's roller centre at rest: base 30 + roller 5 over its shaft
