@@ -397,3 +397,31 @@ def test_the_carriages_guide_spans_its_travel(pick):
     import matplotlib.pyplot as plt
 
     plt.close(fig)
+
+
+def _heights(path: Path) -> dict[str, float]:
+    """Each object of a 3MF by its name: its height (mm, the z extent of its vertices)."""
+    import zipfile
+    from xml.etree import ElementTree
+
+    core = "{http://schemas.microsoft.com/3dmanufacturing/core/2015/02}"
+    with zipfile.ZipFile(path) as package:
+        root = ElementTree.fromstring(package.read("3D/3dmodel.model"))
+    return {o.get("name"): float(np.ptp([float(v.get("z")) for v in o.iter(f"{core}vertex")]))
+            for o in root.iter(f"{core}object")}
+
+
+def test_the_slider_driven_parts_stand_in_the_assembly_at_their_thickness(tmp_path):
+    """The assembly 3MF of the pick-and-place and of the lifter: each linkage part as thick as its [parts] table
+    (4 and 3 mm: a follower-driven linkage's planes used to be 0 high, and no solid could be built), the lifter's
+    stem as thick as its cam (6 mm)."""
+    for path, name, linkage, thick in ((PICK, "pick-and-place", "carriage", 4.0),
+                                       (_write(tmp_path), "lifter", "rocker", 3.0)):
+        out = tmp_path / name
+        result = CliRunner().invoke(camgen, ["build", str(path), "-o", str(out), "--set", 'output.formats=["3mf"]'])
+        assert result.exit_code == 0, result.output
+        heights = _heights(out / f"{name}-assembly.3mf")
+        parts = {k: v for k, v in heights.items() if k.startswith(f"linkages.{linkage}.")}
+        assert len(parts) == 3
+        assert all(abs(v - thick) < 1e-5 for v in parts.values()), parts
+    assert heights["cams.lift.stem"] == pytest.approx(6.0, abs=1e-5)
