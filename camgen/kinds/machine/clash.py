@@ -200,6 +200,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     swings clockwise, on the arm's layer plus its own layer over its crank's; the shafts and pins from plane 0 up.
     The four-bar's ground link is the frame's and is not a moving part."""
     from camgen.followers.oscillating_roller import OscillatingRoller
+    from camgen.followers.translating_flat import TranslatingFlat
+    from camgen.followers.translating_roller import TranslatingRoller
     from camgen.kinds.machine import kinematics
     from camgen.kinds.machine.design import _cam_of
 
@@ -234,6 +236,9 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         joints.append(Joint(name, f"shafts.{mount.shaft}", still(centre),
                             _margin(max((h.radius for h in part.holes), default=0.0))))
         f = kin.follower
+        if isinstance(f, TranslatingRoller | TranslatingFlat):
+            _stem(d, cam, kin, f, 2 * mount.layer, centre, theta, tol, bodies, joints)
+            continue
         if not isinstance(f, OscillatingRoller):
             skipped.append(f"cams.{cam.name}'s follower")
             continue
@@ -331,6 +336,12 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             skipped.append(f"linkages.{m.name}")
             continue
         _cranked_parts(m, bodies, joints, pins, shafts)
+        slider = next((x for x in m.analysis.linkage.structure.sliders if x.name == m.coupling.link), None)
+        if m.cam not in arms and slider is not None and slider.link is None:   # its stem carries its slider
+            block = next(b for b in bodies if b.name == f"linkages.{m.name}.{slider.name}")
+            joints += [Joint(b.name, block.name, functools.partial(_slid_point, m=m, point=slider.point),
+                             _margin(float(np.hypot(*block.outline.T).max())))
+                       for b in bodies if b.name in (f"cams.{m.cam}.stem", f"cams.{m.cam}.roller")]
         if m.cam in arms and m.analysis.crank:              # its crank and the arm: one bell crank
             link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
             joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),
@@ -356,6 +367,29 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         if r > 0:
             bodies.append(Body(f"shafts.{shaft}", bottom, top, circle(r), fixed(at[shaft])))
     return tuple(bodies), tuple(joints), tuple(skipped)
+
+
+def _slid_point(phi: np.ndarray, m: Any, point: str) -> np.ndarray:
+    """Joint ``point`` of the slider-driven linkage ``m`` at main shaft angles ``phi`` (mm, the machine's frame)."""
+    return np.asarray(m.solve(phi).points[point], float) + m.offset
+
+
+def _stem(d: Any, cam: Any, kin: Any, f: Any, plane: int, centre: np.ndarray, theta: Callable, tol: float,
+          bodies: list[Body], joints: list[Joint]) -> None:
+    """Add cam ``cam``'s translating follower's stem and roller (:func:`camgen.kinds.machine.stem_parts.stem_bodies`):
+    as wide as the parts of the linkage its stem drives, if any."""
+    from camgen.kinds.machine.slider_coupling import rest_point
+    from camgen.kinds.machine.stem_parts import WIDTH_MM, stem_bodies
+
+    driven = [m for m in getattr(d, "slid", ()) if m.cam == cam.name and m.design.spec.parts is not None]
+    width = float(driven[0].design.spec.parts.width) if driven else WIDTH_MM
+
+    def lift(phi: np.ndarray, theta: Callable = theta, program: Any = kin.program) -> np.ndarray:
+        return np.asarray(program.evaluate(theta(phi))[0], float)
+
+    made, met = stem_bodies(cam.name, f, plane, centre + rest_point(f), lift, width, tol)
+    bodies += made
+    joints += met
 
 
 def cranked_placement(m: Any) -> Callable[..., tuple[np.ndarray, np.ndarray]]:

@@ -253,8 +253,9 @@ def stack(spec: Any, design: Any, bodies: Sequence[Body]) -> Stack:
 
 
 def thicknesses(design: Any) -> dict[str, float]:
-    """Each flat moving part's thickness (mm) by its clash-check name: a cam's, its follower arm's (the cam's, or
-    the crank's of the four-bar it drives) and a four-bar's coupler and rocker (their parts')."""
+    """Each flat moving part's thickness (mm) by its clash-check name: a cam's, its follower arm's or stem's (the
+    cam's, or the crank's of the four-bar it drives), a four-bar's coupler and rocker and every moving link of a
+    shaft- or follower-driven general linkage (their parts')."""
     out: dict[str, float] = {}
     for cam in design.cams:
         part = getattr(cam.design, "part", None)
@@ -268,10 +269,15 @@ def thicknesses(design: Any) -> dict[str, float]:
         for which in ("coupler", "rocker"):
             out[f"linkages.{m.name}.{which}"] = float(cut[which].thickness)
         out[f"cams.{m.cam}.arm"] = float(cut["crank"].thickness)
-    for m in getattr(design, "cranked", ()):                    # a linkage a shaft turns: every moving link's part
+    for m in (*getattr(design, "cranked", ()), *getattr(design, "slid", ())):   # a shaft's or a follower's linkage
+        if m.design.build is None:
+            continue
         for part in m.design.build.cut:
             if part.name != "ground":
                 out[f"linkages.{m.name}.{part.name}"] = float(part.thickness)
+    for cam in design.cams:                                     # a translating follower's stem: as its cam
+        if f"cams.{cam.name}" in out:
+            out[f"cams.{cam.name}.stem"] = out[f"cams.{cam.name}"]
     return out
 
 

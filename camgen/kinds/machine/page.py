@@ -7,7 +7,8 @@ The parts are the clash check's, placed by :func:`camgen.kinds.machine.poses.pla
 arms and rollers, the linkages' parts as cut), drawn from the lowest plane up, those behind the frame (a
 shaft-driven linkage on its back) in orange; shafts and pins are white discs, each named point
 (:func:`~camgen.kinds.machine.poses.points`) a small disc, the tracers' paths over the turn in red and the gear
-pairs' pitch circles dashed. The frames' data are rounded to 1e-8 mm (and degrees), so that a frame shows the poses
+pairs' pitch circles dashed; each slider's guide (:mod:`camgen.kinds.machine.guides`) a still line over its
+travel, after the moving parts. The frames' data are rounded to 1e-8 mm (and degrees), so that a frame shows the poses
 the report gives (its ``poses``) to far better than a micrometre.
 """
 from __future__ import annotations
@@ -19,6 +20,7 @@ import numpy as np
 from camgen.core.page import FRAMES, Body, KeyFigure, Mover, Outline, Page, Plot, Scene, key_figures, pose_motion
 from camgen.kinds.machine import poses
 from camgen.kinds.machine.clash import circle
+from camgen.kinds.machine.guides import guides
 
 #: the rounding step of the page's frames (mm, and degrees for turns)
 PRECISION = 1e-8
@@ -109,6 +111,7 @@ def machine_page(design: Any, report: dict[str, Any]) -> Page:
     scale = float(np.ptp(every, axis=0).max()) if len(every) else 100.0
     bodies = [_still(design, [named[t] for t in traced(design)])]
     bodies += [Body(p.name, (Outline(p.outline, _style(p)),), pose_motion(p.turn, p.shift)) for p in parts]
+    bodies += [Body(g.name, (Outline(g.ends, "guide", False),)) for g in guides(design)]
     movers = tuple(Mover(n, xy[:, None, :], "pin" if n in traced(design) else "joint", 0.006 * max(scale, 1.0))
                    for n, xy in named.items())
     plots = tuple(Plot(label, unit, ((label, values),)) for label, (unit, values) in outputs_at(design, phi).items())

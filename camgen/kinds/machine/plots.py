@@ -48,18 +48,21 @@ def machine_figure(design: MachineDesign) -> Any:
     """The whole machine at each of ``machine.figure_angles``, a panel each (mm, y up, one scale for all): every part
     the clash check places (:func:`camgen.kinds.machine.poses.placed_parts`, from the lowest plane up; those behind
     the frame in orange), each named point (:func:`~camgen.kinds.machine.poses.points`) as a dot, the tracers' paths
-    over the turn and the gear pairs' pitch circles (dashed). Each part is a patch and each point a line whose
-    ``gid`` is its name."""
+    over the turn, the gear pairs' pitch circles (dashed) and each slider's guide over its travel (dash-dotted,
+    :mod:`camgen.kinds.machine.guides`). Each part is a patch and each point and guide a line whose ``gid`` is its
+    name."""
     from matplotlib.patches import Polygon
 
     from camgen.kinds.machine import poses
     from camgen.kinds.machine.clash import circle
+    from camgen.kinds.machine.guides import guides
     from camgen.kinds.machine.page import frame_angles, traced
 
     angles = design.spec.machine.figure_angles
     phi = np.radians(np.asarray(angles, dtype=float))
     parts = sorted(poses.placed_parts(design, phi), key=lambda p: (p.low, p.high))
     named = poses.points(design, phi)
+    fixed = guides(design)
     turn = poses.points(design, frame_angles())
     paths = [turn[t] for t in traced(design)]
     at = {s.name: np.asarray(s.at, dtype=float) for s in design.spec.shafts}
@@ -74,6 +77,8 @@ def machine_figure(design: MachineDesign) -> Any:
             for shaft, teeth in ((g.driver, g.driver_teeth), (g.driven, g.driven_teeth)):
                 ring = circle(g.module * teeth / 2, 0.05) + at[shaft]
                 ax.add_patch(Polygon(ring, closed=True, fill=False, ls="--", ec="0.5", lw=0.8))
+        for guide in fixed:
+            ax.plot(guide.ends[:, 0], guide.ends[:, 1], color="0.35", lw=1.2, ls="-.", gid=guide.name)
         for p in parts:
             back = p.high < 0
             pin = p.name.startswith(("pins.", "shafts."))

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from camgen.kinds.machine import clash, kinematics
+from camgen.kinds.machine.guides import guides
 
 #: mirrors a part's outline in its own x axis
 MIRROR = np.diag([1.0, -1.0])
@@ -123,15 +124,18 @@ def swing(cam: Any, phi: np.ndarray) -> np.ndarray:
 
 def poses_report(design: Any) -> list[dict[str, Any]]:
     """The report's ``poses``: at each of ``machine.figure_angles``, every part's pose (its turn in degrees, its
-    shift in mm, whether it is mirrored) and every named point (mm), to 1e-9."""
+    shift in mm, whether it is mirrored), every named point (mm) and every slider's guide (its two ends, mm, which
+    stand still: :func:`camgen.kinds.machine.guides.guides`), to 1e-9."""
     angles = design.spec.machine.figure_angles
     phi = np.radians(np.asarray(angles, dtype=float))
     parts = placed_parts(design, phi)
     named = points(design, phi)
+    fixed = {g.name: [[_num(v) for v in end] for end in g.ends] for g in guides(design)}
     return [{"angle_deg": a,
              "parts": {p.name: {"turn_deg": _num(p.turn[k]), "at_mm": [_num(v) for v in p.shift[k]],
                                 "mirrored": p.mirrored} for p in parts},
-             "points": {n: [_num(v) for v in xy[k]] for n, xy in named.items()}}
+             "points": {n: [_num(v) for v in xy[k]] for n, xy in named.items()},
+             "guides": fixed}
             for k, a in enumerate(angles)]
 
 

@@ -22,9 +22,10 @@ from tests.camgen.test_page import page_data
 from tests.project.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
 
 TEMPLATES = ROOT / "templates"
-MACHINES = ("automaton", "walking-toy")
+MACHINES = ("automaton", "walking-toy", "pick-and-place")
 #: figure angles on whole degrees (the page's frames) for each machine's page test
-ANGLES = {"automaton": [0.0, 37.0, 200.0, 311.0], "walking-toy": [0.0, 45.0, 90.0, 135.0]}
+ANGLES = {"automaton": [0.0, 37.0, 200.0, 311.0], "walking-toy": [0.0, 45.0, 90.0, 135.0],
+          "pick-and-place": [0.0, 60.0, 150.0, 240.0]}
 
 
 def _design(name: str, **machine):
@@ -85,9 +86,11 @@ def test_the_page_shows_the_reported_poses_in_chromium(browser, built, name):  #
     plots = browser.find_elements(By.CSS_SELECTOR, "svg.plot")
     assert len(plots) == len(report["timing"]["outputs"])
     read = """
-    var svg=document.querySelector("svg.scene"),out={bodies:{},points:{},cursors:[]};
-    svg.querySelectorAll("[data-body]").forEach(function(g){
-      out.bodies[g.querySelector("title").textContent]=g.getAttribute("transform");});
+    var svg=document.querySelector("svg.scene"),out={bodies:{},points:{},cursors:[],guides:{}};
+    svg.querySelectorAll("[data-body]").forEach(function(g){var t=g.querySelector("title").textContent;
+      out.bodies[t]=g.getAttribute("transform");
+      if(/[.]guide$/.test(t)){var p=g.querySelector("path.guide"),n=p.getTotalLength();
+        var a=p.getPointAtLength(0),b=p.getPointAtLength(n);out.guides[t]=[[a.x,a.y],[b.x,b.y]];}});
     svg.querySelectorAll("[data-mover]").forEach(function(g){var c=g.querySelector("circle");
       out.points[g.querySelector("title").textContent]=[+c.getAttribute("cx"),+c.getAttribute("cy")];});
     document.querySelectorAll("svg.plot").forEach(function(p){var c=p.querySelector(".cursor");
@@ -102,6 +105,10 @@ def test_the_page_shows_the_reported_poses_in_chromium(browser, built, name):  #
             x, y, turn = (float(v) for v in _TRANSFORM.fullmatch(shown["bodies"][part]).groups())
             assert [x, y] == pytest.approx(placed["at_mm"], abs=1e-6), (frame, part)
             assert math.remainder(turn - placed["turn_deg"], 360.0) == pytest.approx(0.0, abs=1e-6), (frame, part)
+        assert set(shown["guides"]) == set(pose["guides"])              # the sliders' guides stand still
+        for guide, ends in pose["guides"].items():
+            assert shown["bodies"][guide] is None
+            assert np.abs(np.array(shown["guides"][guide]) - np.array(ends)).max() < 1e-3, (frame, guide)
         assert set(shown["points"]) == set(pose["points"])
         for point, at in pose["points"].items():
             assert shown["points"][point] == pytest.approx(at, abs=1e-6), (frame, point)

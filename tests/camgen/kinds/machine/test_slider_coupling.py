@@ -205,8 +205,27 @@ def test_the_spring_check_counts_the_linkage_load(lifter):
 
 def test_the_driven_parts_are_in_the_clash_check(lifter):
     names = {b.name for b in lifter.bodies}
-    assert {"linkages.rocker.crank", "linkages.rocker.rod"} <= names
-    assert not lifter.clashes
+    assert {"linkages.rocker.crank", "linkages.rocker.rod", "cams.lift.stem", "cams.lift.roller"} <= names
+    assert not lifter.clashes and lifter.unchecked == ()
+
+
+@pytest.mark.parametrize("old, new", [
+    ('type = "translating-roller"\nroller_radius = 8.0\n', 'type = "knife-edge"\n'),
+    ('type = "translating-roller"\nroller_radius = 8.0\n', 'type = "translating-flat"\n'),
+])
+def test_a_knife_or_flat_stem_is_checked_too(old, new):
+    """The stem as wide as the linkage's parts (8 mm), rising from the knife's edge or the face at the base circle
+    (40 mm over the shaft), twice the stroke plus its width long; no roller; no clash."""
+    from camgen import api
+    from camgen.kinds.machine.clash import outlines
+
+    assert old in TEMPLATE
+    design = api.design(api.validate(tomllib.loads(TEMPLATE.replace(old, new, 1))))
+    stem = next(b for b in design.bodies if b.name == "cams.lift.stem")
+    assert "cams.lift.roller" not in {b.name for b in design.bodies}
+    assert design.unchecked == () and design.clashes == ()
+    x0, y0, x1, y1 = outlines(stem, np.array([PHASE]))[0].bounds       # the program's start: lift 0
+    assert (x0, y0, x1, y1) == pytest.approx((-4.0, 40.0, 4.0, 40.0 + 2 * 30.0 + 8.0), abs=1e-9)
 
 
 @pytest.mark.parametrize("old, new, message", [
@@ -335,3 +354,74 @@ def test_the_pick_and_place_builds_and_its_files_read_back(tmp_path):
             assert int(re.search(rf"{key}\s*:\s*(\d+)", text).group(1)) == 0, (path, key)
     report = json.loads((out / "pick-and-place.json").read_text())
     assert report["slid"]["carriage"]["cam"] == "shuttle" and report["warnings"] == []
+
+
+# ---- the sliders' guides (drawn still, over the slider's travel)
+
+
+def test_the_stems_guide_spans_its_travel(lifter):
+    """The stem's guide: on the follower's line x = 0, from its rest point to the top of its 30 mm stroke, in
+    every pose of the report, on the stem's plane."""
+    from camgen.kinds.machine.guides import guides
+    from camgen.kinds.machine.poses import poses_report
+
+    expected = np.stack([REST, REST + np.array([0.0, 30.0])])
+    for pose in poses_report(lifter):
+        assert set(pose["guides"]) == {"linkages.rocker.stem.guide"}
+        assert np.abs(np.array(pose["guides"]["linkages.rocker.stem.guide"]) - expected).max() < 1e-9
+    assert [g.plane for g in guides(lifter)] == [1]
+
+
+def test_the_carriages_guide_spans_its_travel(pick):
+    """The carriage's guide: along +X at the carriage's height, from the least to the largest x of the carriage's
+    slider-crank (the independent closed form, on a grid of 0.01 degree: its ends fall in the cam's dwells), in the
+    report's poses and as the figure's line."""
+    from camgen.kinds.machine.plots import machine_figure
+    from camgen.kinds.machine.poses import poses_report
+
+    raw = tomllib.loads(PICK.read_text())
+    joints = raw["linkages"][0]["template"]["linkage"]["joints"]
+    follower = pick.cam("shuttle").design.profile.cam.follower
+    height = float(follower.pivot[1]) + joints["C"][1] - joints["O"][1]
+    x = _carriage_x(pick, np.radians(np.arange(36000) / 100.0))
+    expected = np.array([[x.min(), height], [x.max(), height]])
+    assert x.max() - x.min() > 20.0
+    name = "linkages.carriage.carriage.guide"
+    for pose in poses_report(pick):
+        assert np.abs(np.array(pose["guides"][name]) - expected).max() < 1e-9
+    fig = machine_figure(pick)
+    lines = [line for ax in fig.axes for line in ax.get_lines() if line.get_gid() == name]
+    assert len(lines) == len(pick.spec.machine.figure_angles)
+    for line in lines:
+        assert np.abs(np.column_stack([line.get_xdata(), line.get_ydata()]) - expected).max() < 1e-9
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
+
+
+def _heights(path: Path) -> dict[str, float]:
+    """Each object of a 3MF by its name: its height (mm, the z extent of its vertices)."""
+    import zipfile
+    from xml.etree import ElementTree
+
+    core = "{http://schemas.microsoft.com/3dmanufacturing/core/2015/02}"
+    with zipfile.ZipFile(path) as package:
+        root = ElementTree.fromstring(package.read("3D/3dmodel.model"))
+    return {o.get("name"): float(np.ptp([float(v.get("z")) for v in o.iter(f"{core}vertex")]))
+            for o in root.iter(f"{core}object")}
+
+
+def test_the_slider_driven_parts_stand_in_the_assembly_at_their_thickness(tmp_path):
+    """The assembly 3MF of the pick-and-place and of the lifter: each linkage part as thick as its [parts] table
+    (4 and 3 mm: a follower-driven linkage's planes used to be 0 high, and no solid could be built), the lifter's
+    stem as thick as its cam (6 mm)."""
+    for path, name, linkage, thick in ((PICK, "pick-and-place", "carriage", 4.0),
+                                       (_write(tmp_path), "lifter", "rocker", 3.0)):
+        out = tmp_path / name
+        result = CliRunner().invoke(camgen, ["build", str(path), "-o", str(out), "--set", 'output.formats=["3mf"]'])
+        assert result.exit_code == 0, result.output
+        heights = _heights(out / f"{name}-assembly.3mf")
+        parts = {k: v for k, v in heights.items() if k.startswith(f"linkages.{linkage}.")}
+        assert len(parts) == 3
+        assert all(abs(v - thick) < 1e-5 for v in parts.values()), parts
+    assert heights["cams.lift.stem"] == pytest.approx(6.0, abs=1e-5)
