@@ -91,6 +91,6 @@ def carried(load: InputTorque, output_torque: float, k4: np.ndarray, arm: float,
     :func:`~camgen.kinds.machine.kinematics.shaft_torque` of the output torque; with them the whole torque over the
     arm and times d theta2 / d phi."""
     if load.dynamic is None:
-        return kinematics.reflected_force(output_torque, k4, arm), kinematics.shaft_torque(output_torque, k4, chain)
+        return kinematics.reflected_force(output_torque, k4, arm), kinematics.shaft_torque(output_torque, k4, chain.d1)
     total = load.total
     return arm_force(total, arm), total * chain.d1

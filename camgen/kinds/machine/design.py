@@ -380,7 +380,7 @@ def _loaded_stem(spec: MachineSpec, cam: CamMotion, driven: slider_coupling.Slid
     lift = driven.program.evaluate(theta)[0]
     sol = driven.analysis.linkage.solve((driven.base + driven.scale * lift)[None, :])
     per_unit = driven.scale * np.asarray(sol.omegas[driven.coupling.output], dtype=float)
-    force = slider_coupling.reflected_force(driven.coupling.output_torque, per_unit / driven.lever)
+    force = kinematics.reflected_force(driven.coupling.output_torque, per_unit, driven.lever)
     return _redesigned(spec, index, cam, theta, force)
 
 

@@ -73,16 +73,19 @@ def point_rate(crank: float, distance: float, angle: float, theta3: np.ndarray, 
 
 
 def reflected_force(output_torque: float, k1: np.ndarray, arm: float) -> np.ndarray:
-    """The force (N) an external torque ``output_torque`` (N*m) on the output link presses the follower's roller
-    onto its cam with, along the roller's path at ``arm`` mm from the pivot: the linkage holds the crank with
-    output_torque k1 (virtual work), which turns the arm the way it rises (off the cam) where positive."""
+    """The force (N) an external torque ``output_torque`` (N*m) on the output link presses the follower onto its
+    cam with, along the follower's path, the output turning k1 rad per unit of the linkage's input and the follower
+    moving ``arm`` mm per unit of it (an arm's length in mm per radian of its swing; 1 for a stem driving a slider by
+    its lift): the linkage holds the input with output_torque k1 (virtual work), which moves the follower the way it
+    rises (off the cam) where positive."""
     return -output_torque * k1 * 1000.0 / arm
 
 
-def shaft_torque(output_torque: float, k1: np.ndarray, chain: Chain) -> np.ndarray:
-    """The main shaft's torque (N*m) that works against ``output_torque`` (N*m) on the output link, which turns
-    k1 theta2' rad per radian of the main shaft: -T k1 theta2' (its power, T omega_out, over the shaft's speed)."""
-    return -output_torque * k1 * chain.d1
+def shaft_torque(output_torque: float, k1: np.ndarray, rate: np.ndarray) -> np.ndarray:
+    """The main shaft's torque (N*m) that works against ``output_torque`` (N*m) on the output link, which turns k1
+    rad per unit of the linkage's input (a crank's radian, a slider's mm), the input moving ``rate`` units per radian
+    of the main shaft (a crank's theta2'): -T k1 rate (its power, T omega_out, over the shaft's speed)."""
+    return -output_torque * k1 * rate
 
 
 def normalised(values: np.ndarray) -> np.ndarray:

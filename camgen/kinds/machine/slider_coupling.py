@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
+from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.cranked import GeneralMotion
 
 #: the follower types whose stem can be a linkage's slider
@@ -101,8 +102,6 @@ class SliderMotion(GeneralMotion):
     def solve(self, phi: np.ndarray) -> Any:
         """Its linkage solved at main shaft angles ``phi`` (radians) in its drawing's frame, by the slider's travel
         rest + s (velocities per mm of it): :class:`linkgen.kinematics.linkage.Solution`."""
-        from camgen.kinds.machine import kinematics
-
         theta = kinematics.program_angles(np.asarray(phi, dtype=float), self.turns, math.radians(self.phase_deg))
         values = self.base + self.scale * self.program.evaluate(theta)[0]
         return self.analysis.linkage.solve(np.asarray(values, dtype=float)[None, :])
@@ -251,8 +250,8 @@ def driven(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: 
         per_unit = scale * np.asarray(sol.omegas[coupling.output], dtype=float)
     layer = next(c.layer for c in spec.cams if c.name == cam.name)
     return SliderMotion(name, cam.name, coupling, design, layer, offset, lift, inputs, points, rates, angle,
-                        per_unit * lift[1], reflected_force(coupling.output_torque, per_unit / lever),
-                        shaft_torque(coupling.output_torque, per_unit, lift[1]), kin.program, cam.turns,
+                        per_unit * lift[1], kinematics.reflected_force(coupling.output_torque, per_unit, lever),
+                        kinematics.shaft_torque(coupling.output_torque, per_unit, lift[1]), kin.program, cam.turns,
                         cam.phase_deg, base, scale, lever)
 
 
@@ -260,21 +259,6 @@ def _shaft_at(spec: Any, cam: str) -> np.ndarray:
     """The centre (mm) of the shaft cam ``cam`` is mounted on."""
     shaft = next(c.shaft for c in spec.cams if c.name == cam)
     return next(np.asarray(s.at, dtype=float) for s in spec.shafts if s.name == shaft)
-
-
-def reflected_force(output_torque: float, per_mm: np.ndarray) -> np.ndarray:
-    """The force (N) an external torque ``output_torque`` (N*m) on the output link presses the follower onto its
-    cam with: -T d theta_out / d s, ``per_mm`` = d theta_out / d s (rad per mm of the follower's path: its stem's
-    lift, or its roller's arc), so -1000 T per_mm (virtual work: the follower drives the input with it, and takes
-    it back)."""
-    return -output_torque * per_mm * 1000.0
-
-
-def shaft_torque(output_torque: float, per_mm: np.ndarray, lift_rate: np.ndarray) -> np.ndarray:
-    """The main shaft's torque (N*m) working against ``output_torque`` (N*m) on the output link, which turns
-    per_mm * ds/dphi rad per radian of the main shaft: -T d theta_out / d phi (its power over the shaft's
-    speed)."""
-    return -output_torque * per_mm * lift_rate
 
 
 def _check_reach(linkage: Any, coupling: Any, index: int, inputs: np.ndarray, phi: np.ndarray, name: str,

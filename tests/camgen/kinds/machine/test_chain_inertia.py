@@ -166,7 +166,7 @@ def test_at_zero_masses_the_figures_are_the_output_torques_exactly():
     arm = plain.cam("arm").design.spec.follower.arm_length
     out = plain.spec.couplings[0].output_torque
     assert np.array_equal(b.force, kinematics.reflected_force(out, b.k4, arm))         # the present figures
-    assert np.array_equal(b.torque, kinematics.shaft_torque(out, b.k4, b.chain))
+    assert np.array_equal(b.torque, kinematics.shaft_torque(out, b.k4, b.chain.d1))
     assert np.array_equal(a.force, b.force) and np.array_equal(a.torque, b.torque)
     assert np.array_equal(massless.shaft_torque, plain.shaft_torque)
     assert massless.cam("arm").design.spec.follower.load_table_rows == \
