@@ -161,10 +161,11 @@ class Kind(Protocol[S, D]):
         to lie beside it (before validation; a template of its kind without such files as it is)."""
         ...
 
-    def animation(self, design: D, n: int, size: tuple[int, int]) -> Any:
+    def animation(self, design: D, n: int, size: tuple[int, int], report: dict[str, Any] | None = None) -> Any:
         """The ``n`` frames of one cycle of ``design`` (``camgen animate``), ``size`` (width, height) pixels, as an
-        array (n, height, width, 3) of uint8 drawn by the kind's own ``animation.py``; a one-line
-        :class:`~camgen.core.errors.SpecError` naming ``cam.kind`` for a kind that is not animated."""
+        array (n, height, width, 3) of uint8 drawn by the kind's own ``animation.py`` (from ``report``, the design's
+        report where the caller has made it, else made here); a one-line :class:`~camgen.core.errors.SpecError`
+        naming ``cam.kind`` for a kind that is not animated."""
         ...
 
 
@@ -182,15 +183,15 @@ class Operations(Generic[S, D]):
     size: Callable[[S], SizeReport] | None = None
 
 
-def default_animation(kind: Kind[Any, Any], design: Any) -> Item | None:
-    """The ``gif`` file of ``design`` where its ``output.formats`` asks for one: one cycle as ``camgen animate``
-    writes it with its defaults (the frames drawn only when written); None otherwise."""
+def default_animation(kind: Kind[Any, Any], design: Any, report: dict[str, Any]) -> Item | None:
+    """The ``gif`` file of ``design`` (its report ``report``) where its ``output.formats`` asks for one: one cycle
+    as ``camgen animate`` writes it with its defaults (the frames drawn only when written); None otherwise."""
     if "gif" not in design.spec.output.formats:
         return None
     from camgen.core.animation import DEFAULT_FRAMES, DEFAULT_SIZE
     from camgen.core.bundle import animation_file
 
-    return animation_file(lambda: kind.animation(design, DEFAULT_FRAMES, DEFAULT_SIZE), design.spec.name)
+    return animation_file(lambda: kind.animation(design, DEFAULT_FRAMES, DEFAULT_SIZE, report), design.spec.name)
 
 
 class KindBase(ABC, Generic[S, D]):
@@ -231,7 +232,7 @@ class KindBase(ABC, Generic[S, D]):
 
     def bundle(self, design: D) -> tuple[Bundle, dict[str, Any]]:
         bundle, report = self.operations().bundle(design)
-        return bundle.plus([default_animation(self, design)]), report
+        return bundle.plus([default_animation(self, design, report)]), report
 
     def summary(self, design: D, report: dict[str, Any]) -> list[str]:
         return self.operations().summary(design, report)
@@ -252,11 +253,11 @@ class KindBase(ABC, Generic[S, D]):
     def sheet_refusal(self, spec: S) -> str | None:
         return f"{self.title} has no cut part of its own to nest; {NESTED}"
 
-    def animation(self, design: D, n: int, size: tuple[int, int]) -> Any:
+    def animation(self, design: D, n: int, size: tuple[int, int], report: dict[str, Any] | None = None) -> Any:
         frames = self.animator()
         if frames is None:
             raise SpecError(f"{self.title} is not animated", "cam.kind")
-        return frames(design, self.bundle(design)[1], n, size)
+        return frames(design, self.operations().bundle(design)[1] if report is None else report, n, size)
 
     def animator(self) -> Animator | None:
         """The frames function of its ``animation.py`` (imported here, when first asked): ``frames(design, report,

@@ -33,8 +33,9 @@ class DiscKind(FlatKind["DiscSpec"]):
 
         return isinstance(spec, DiscSpec) and spec.kit is not None
 
-    def animation(self, design: FlatCamDesign, n: int, size: tuple[int, int]) -> Any:
-        from camgen.animation import cam_frames
+    def animation(self, design: FlatCamDesign, n: int, size: tuple[int, int],
+                  report: dict[str, Any] | None = None) -> Any:
+        from camgen.animation import cam_frames                 # drawn from the design alone: no report needed
 
         return cam_frames(design, n, size)
 
