@@ -178,7 +178,7 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
 
 def _torque_note(design: MachineDesign) -> str:
     """What the report's main shaft torque counts."""
-    dynamic = any(m.effort is not None for m in (*design.linkages, *design.slid)) \
+    dynamic = any(m.effort is not None for m in design.linkages) or any(m.effort is not None for m in design.slid) \
         or any(m.torque is not None for m in design.cranked)
     return ("the main shaft's torque against the linkages' output torques"
             + (" and their own inertia, weight, springs and loads ([dynamics])" if dynamic else "")

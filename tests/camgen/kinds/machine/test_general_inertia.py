@@ -21,6 +21,7 @@ import pytest
 from click.testing import CliRunner
 
 from tests.conftest import ROOT
+from tests.support.kinetic_energy import kinetic_energy
 
 PICK = ROOT / "templates" / "pick-and-place.toml"
 
@@ -155,14 +156,8 @@ def _link_poses(m, links: dict, phi: np.ndarray) -> dict[str, tuple[np.ndarray, 
 def _kinetic_energy(design, links: dict, phi: np.ndarray, h: float = 1e-4) -> np.ndarray:
     """sum 1/2 m v^2 + 1/2 I w^2 (J) at main shaft angles ``phi``, each velocity by central differences of the
     positions over +-h radians of the shaft at its speed."""
-    m, omega = design.slid[0], design.omega
-    ahead, behind = _link_poses(m, links, phi + h), _link_poses(m, links, phi - h)
-    energy = np.zeros_like(phi)
-    for link, values in links.items():
-        v = (ahead[link][0] - behind[link][0]) / (2 * h) * omega / 1000.0                        # m/s
-        w = np.angle(np.exp(1j * (ahead[link][1] - behind[link][1]))) / (2 * h) * omega          # rad/s
-        energy += 0.5 * values["mass"] * np.sum(v ** 2, axis=1) + 0.5 * values["inertia"] * 1e-6 * w ** 2
-    return energy
+    m = design.slid[0]
+    return kinetic_energy(_link_poses(m, links, phi + h), _link_poses(m, links, phi - h), links, h, design.omega)
 
 
 @pytest.mark.parametrize("which", ["bell", "lifter"])
