@@ -178,6 +178,27 @@ def test_the_camshaft_torque_is_the_rate_of_kinetic_energy_less_the_load_power(w
     assert abs(share.mean()) < 1e-9 * np.abs(share).max()                  # the kinetic energy returns over a turn
 
 
+def test_upright_the_torque_also_lifts_the_links_weight():
+    """With the slider-crank upright (gravity 9.80665 m/s^2 down the drawing's -y, the machine's too: the drawing is
+    moved, not turned), T_shaft = d(E + V)/dt / omega - T omega_out / omega, V = sum m g y_G from the positions."""
+    raw = _lifter()
+    raw["linkages"][0]["template"]["dynamics"]["incline"] = 90.0
+    design = _design(raw)
+    m, phi, omega, h = design.slid[0], design.phi, design.omega, 1e-4
+
+    def potential(at: np.ndarray) -> np.ndarray:
+        return sum(LIFTER_LINKS[k]["mass"] * 9.80665 * centre[:, 1] / 1000.0
+                   for k, (centre, _) in _link_poses(m, LIFTER_LINKS, at).items())
+
+    d_energy = (_kinetic_energy(design, LIFTER_LINKS, phi + h) + potential(phi + h)
+                - _kinetic_energy(design, LIFTER_LINKS, phi - h) - potential(phi - h)) / (2 * h) * omega
+    turn = [np.unwrap(m.solve(at).angle(m.coupling.output)) for at in (phi + h, phi - h)]
+    expected = (d_energy - m.coupling.output_torque * (turn[0] - turn[1]) / (2 * h) * omega) / omega
+    flat = _design(_lifter())
+    assert np.abs(m.torque - flat.slid[0].torque).max() > 0.05 * np.abs(expected).max()      # the weight counts
+    assert np.abs(m.torque - expected).max() < 1e-6 * np.abs(expected).max()
+
+
 def test_the_reflected_force_times_the_followers_speed_is_the_shaft_torque(driven):
     """Virtual work through the follower: its force along its path (N) times its path's speed (m per radian of the
     shaft: the stem's lift rate, or the roller's arc, arm length times the swing's rate) is the shaft torque."""
