@@ -257,8 +257,8 @@ def _contact_rows(design) -> np.ndarray:
 
 def test_the_linkages_inertia_pulls_the_stem_off_and_the_check_says_where():
     """At 240 rpm with 2 N of preload the linkage's inertia lifts the stem off its cam (without the masses the
-    spring holds it): the cam's own least contact force equals the one computed row by row here, the report's
-    ``slid.rocker.spring`` gives where and the preload that holds it, and with that preload (and 0.5 N more) the
+    spring holds it): the cam's own least contact force equals the one computed row by row here, a warning names
+    the cam and the angle, the report's ``slid.rocker.spring`` gives where and the preload that holds it, and with that preload (and 0.5 N more) the
     least force is 0.5 N."""
     from camgen.kinds.machine.report import machine_report
 
@@ -268,6 +268,8 @@ def test_the_linkages_inertia_pulls_the_stem_off_and_the_check_says_where():
     assert rows.min() < 0 and contact.holds is False
     assert contact.force_min == pytest.approx(rows.min(), abs=0.02 * np.ptp(rows))
     assert abs((contact.force_min_at_deg - float(np.argmin(rows)) + 180) % 360 - 180) <= 2.0
+    lost = [w for w in design.warnings if w.startswith("cams.lift: the spring loses contact near")]
+    assert len(lost) == 1 and f"{contact.force_min_at_deg:.1f} degrees" in lost[0]
     spring = machine_report(design)["slid"]["rocker"]["spring"]
     assert spring["holds"] is False and spring["least_contact_force_n"] == pytest.approx(contact.force_min)
     assert spring["preload_needed_n"] == pytest.approx(contact.preload_needed) and contact.preload_needed > 2.0
@@ -277,6 +279,7 @@ def test_the_linkages_inertia_pulls_the_stem_off_and_the_check_says_where():
     again = held.cam("lift").design.speed.contact
     assert again.holds is True and again.force_min == pytest.approx(0.5, abs=0.05)
     assert _contact_rows(held).min() == pytest.approx(0.5, abs=0.05)
+    assert not any(w.startswith("cams.lift: the spring") for w in held.warnings)
 
 
 # ---- the report and the bundled pick-and-place with [dynamics] -------------------------------------------------
