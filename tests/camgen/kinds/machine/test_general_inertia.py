@@ -258,8 +258,8 @@ def _contact_rows(design) -> np.ndarray:
 def test_the_linkages_inertia_pulls_the_stem_off_and_the_check_says_where():
     """At 240 rpm with 2 N of preload the linkage's inertia lifts the stem off its cam (without the masses the
     spring holds it): the cam's own least contact force equals the one computed row by row here, a warning names
-    the cam and the angle, the report's ``slid.rocker.spring`` gives where and the preload that holds it, and with that preload (and 0.5 N more) the
-    least force is 0.5 N."""
+    the cam and the angle, the report's ``slid.rocker.spring`` gives where and the preload that holds it, and with
+    that preload (and 0.5 N more) the least force is 0.5 N and no warning is left."""
     from camgen.kinds.machine.report import machine_report
 
     design = _design(_lifter(rpm=240.0, preload=2.0))
