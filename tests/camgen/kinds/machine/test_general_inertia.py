@@ -22,6 +22,7 @@ from click.testing import CliRunner
 
 from tests.conftest import ROOT
 from tests.support.kinetic_energy import kinetic_energy
+from tests.support.lost_contact import assert_contact_lost
 
 PICK = ROOT / "templates" / "pick-and-place.toml"
 
@@ -263,17 +264,8 @@ def test_the_linkages_inertia_pulls_the_stem_off_and_the_check_says_where():
     from camgen.kinds.machine.report import machine_report
 
     design = _design(_lifter(rpm=240.0, preload=2.0))
-    contact = design.cam("lift").design.speed.contact
-    rows = _contact_rows(design)
-    assert rows.min() < 0 and contact.holds is False
-    assert contact.force_min == pytest.approx(rows.min(), abs=0.02 * np.ptp(rows))
-    assert abs((contact.force_min_at_deg - float(np.argmin(rows)) + 180) % 360 - 180) <= 2.0
-    lost = [w for w in design.warnings if w.startswith("cams.lift: the spring loses contact near")]
-    assert len(lost) == 1 and f"{contact.force_min_at_deg:.1f} degrees" in lost[0]
     spring = machine_report(design)["slid"]["rocker"]["spring"]
-    assert spring["holds"] is False and spring["least_contact_force_n"] == pytest.approx(contact.force_min)
-    assert spring["preload_needed_n"] == pytest.approx(contact.preload_needed) and contact.preload_needed > 2.0
-    assert spring["at_shaft_deg"] == pytest.approx((spring["at_cam_deg"] + 40.0) % 360)
+    contact = assert_contact_lost(design, "lift", _contact_rows(design), spring, 40.0)
     assert _design(_lifter(links=None, rpm=240.0, preload=2.0)).cam("lift").design.speed.contact.holds is True
     held = _design(_lifter(rpm=240.0, preload=contact.preload_needed + 0.5))
     again = held.cam("lift").design.speed.contact
