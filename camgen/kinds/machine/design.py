@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import chain_inertia, clash, frame, kinematics, slider_coupling
+from camgen.kinds.machine import chain_inertia, clash, frame, general_inertia, kinematics, slider_coupling
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -239,7 +239,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             driven = _slider_motion(spec, i, index, cams[coupling.cam])
             slid.append(driven)
             warnings += slider_coupling.transmission_warnings(driven)
-            if coupling.output_torque:
+            if coupling.output_torque or driven.effort is not None:
                 cams[coupling.cam] = _loaded_stem(spec, cams[coupling.cam], driven)
             continue
         found = _linkage_motion(spec, i, index, cams[coupling.cam])
@@ -373,14 +373,13 @@ def _slider_motion(spec: MachineSpec, index: int, mount_index: int,
 
 
 def _loaded_stem(spec: MachineSpec, cam: CamMotion, driven: slider_coupling.SliderMotion) -> CamMotion:
-    """``cam`` designed again with the output torque of the linkage its stem drives reflected onto its follower
-    (N pressing it onto the cam) as a load table against cam angle, at :data:`LOAD_ROWS` program angles."""
+    """``cam`` designed again with the output torque of the linkage its follower drives (and, with ``[dynamics]``,
+    the linkage's inverse dynamics at the cam's speed) reflected onto its follower (N pressing it onto the cam) as a
+    load table against cam angle, at :data:`LOAD_ROWS` program angles
+    (:func:`camgen.kinds.machine.general_inertia.program_load`)."""
     index = next(i for i, m in enumerate(spec.cams) if m.name == cam.name)
     theta = np.arange(LOAD_ROWS) * (kinematics.TWO_PI / LOAD_ROWS)
-    lift = driven.program.evaluate(theta)[0]
-    sol = driven.analysis.linkage.solve((driven.base + driven.scale * lift)[None, :])
-    per_unit = driven.scale * np.asarray(sol.omegas[driven.coupling.output], dtype=float)
-    force = kinematics.reflected_force(driven.coupling.output_torque, per_unit, driven.lever)
+    force = general_inertia.program_load(driven, theta, cam.design.spec.cam.rpm * math.pi / 30.0)
     return _redesigned(spec, index, cam, theta, force)
 
 

@@ -117,12 +117,24 @@ def _cranked_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
 
 
 def slid_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
-    """A linkage a translating follower's stem drives: its slider's travel, its output's turn, its tracers, the
-    reflected force and the shaft torque over the turn."""
+    """A linkage a follower drives (a stem as its slider, an arm as its crank): its input's travel, its output's turn
+    and its largest angular acceleration, its tracers (with their largest speed and acceleration), the reflected force
+    and the shaft torque over the turn; with ``[dynamics]`` the inverse dynamics' effort on its input and how the
+    follower's spring holds it on its cam."""
     omega = design.omega
     tracers = {p: {"x_mm": [_num(m.points[p][:, 0].min(), 6), _num(m.points[p][:, 0].max(), 6)],
                    "y_mm": [_num(m.points[p][:, 1].min(), 6), _num(m.points[p][:, 1].max(), 6)],
-                   "speed_max_mm_s": _num(np.hypot(*m.rates[p].T).max() * omega, 6)} for p in m.tracers}
+                   "speed_max_mm_s": _num(np.hypot(*m.rates[p].T).max() * omega, 6),
+                   "acceleration_max_mm_s2": _num(np.hypot(*m.accelerations[p].T).max() * omega ** 2, 6)}
+               for p in m.tracers}
+    extra: dict[str, Any] = {}
+    if m.coupling.output is not None and m.output_acc is not None:
+        extra["output_alpha_max_rad_s2"] = _num(np.abs(m.output_acc).max() * omega ** 2, 6)
+    if m.effort is not None:
+        unit = "n_m" if m.analysis.crank else "n"
+        extra[f"inertia_effort_{unit}"] = [_num(m.effort.min(), 6), _num(m.effort.max(), 6)]
+    if (spring := _spring_entry(design, m)) is not None:
+        extra["spring"] = spring
     return {"cam": m.cam, "slider": m.coupling.link, "rest_mm": m.coupling.rest,
             "travel_mm": [_num(m.inputs.min(), 6), _num(m.inputs.max(), 6)], "output": m.coupling.output,
             "output_torque_n_m": m.coupling.output_torque,
@@ -130,7 +142,7 @@ def slid_entry(design: MachineDesign, m: Any) -> dict[str, Any]:
             "offset_mm": [_num(v) for v in m.offset], "tracers": tracers,
             "reflected_force_n": [_num(m.force.min(), 6), _num(m.force.max(), 6)],
             "shaft_torque_n_m": [_num(m.torque.min(), 6), _num(m.torque.max(), 6)],
-            "files_prefix": m.design.spec.name}
+            "files_prefix": m.design.spec.name, **extra}
 
 
 def machine_report(design: MachineDesign) -> dict[str, Any]:
@@ -166,7 +178,8 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
 
 def _torque_note(design: MachineDesign) -> str:
     """What the report's main shaft torque counts."""
-    dynamic = any(m.effort is not None for m in design.linkages) or any(m.torque is not None for m in design.cranked)
+    dynamic = any(m.effort is not None for m in design.linkages) or any(m.effort is not None for m in design.slid) \
+        or any(m.torque is not None for m in design.cranked)
     return ("the main shaft's torque against the linkages' output torques"
             + (" and their own inertia, weight, springs and loads ([dynamics])" if dynamic else "")
             + " (virtual work: their power over the shaft's speed); each cam's own follower forces are in its own "

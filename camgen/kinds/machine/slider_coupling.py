@@ -17,13 +17,13 @@ works against it with -T d theta_out / d phi.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.kinds.machine import kinematics
+from camgen.kinds.machine import general_inertia, kinematics
 from camgen.kinds.machine.cranked import GeneralMotion
 
 #: the follower types whose stem can be a linkage's slider
@@ -72,6 +72,14 @@ class SliderMotion(GeneralMotion):
         in radians per degree for an arm (:func:`arm_motion`).
     lever : float
         The follower's path (mm) per unit of s: 1 for a stem, the roller's arc per degree of swing for an arm.
+    accelerations : dict of str to ndarray
+        Every joint's d^2 P / d phi^2 (n, 2; mm/rad^2) (:mod:`camgen.kinds.machine.general_inertia`).
+    output_acc : ndarray or None
+        d^2 theta_out / d phi^2 (rad/rad^2); zeros without ``coupling.output``.
+    effort : ndarray or None
+        With its template's ``[dynamics]``: the input's effort its inverse dynamics gives at the machine's speed
+        (N*m on a crank, N on a slider; the output torque's share left out), counted in ``force`` and ``torque``;
+        None without.
     """
 
     name: str
@@ -94,6 +102,9 @@ class SliderMotion(GeneralMotion):
     base: float = 0.0
     scale: float = 1.0
     lever: float = 1.0
+    accelerations: dict[str, np.ndarray] = field(default_factory=dict)
+    output_acc: np.ndarray | None = None
+    effort: np.ndarray | None = None
 
     #: a slider-driven linkage stands on the frame's front, as its cam (the clash check's planes)
     side = 1
@@ -243,16 +254,19 @@ def driven(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: 
     sol = linkage.solve(inputs[None, :])
     points = {p: np.asarray(xy, dtype=float) + offset for p, xy in sol.points.items()}
     rates = {p: np.asarray(v, dtype=float) * (scale * lift[1])[:, None] for p, v in sol.velocities.items()}
+    d1, d2 = general_inertia.input_rates(scale, lift)
     if coupling.output is None:
-        angle = per_unit = np.zeros_like(phi)
+        angle = per_unit = output_acc = np.zeros_like(phi)
     else:
         angle = np.asarray(sol.angle(coupling.output), dtype=float)
         per_unit = scale * np.asarray(sol.omegas[coupling.output], dtype=float)
+        output_acc = general_inertia.angular_acceleration(sol, coupling.output, d1, d2)
     layer = next(c.layer for c in spec.cams if c.name == cam.name)
+    load = general_inertia.driven_load(design, inputs, lift, mapping, coupling.output_torque, per_unit,
+                                       spec.machine.rpm * math.pi / 30.0)
     return SliderMotion(name, cam.name, coupling, design, layer, offset, lift, inputs, points, rates, angle,
-                        per_unit * lift[1], kinematics.reflected_force(coupling.output_torque, per_unit, lever),
-                        kinematics.shaft_torque(coupling.output_torque, per_unit, lift[1]), kin.program, cam.turns,
-                        cam.phase_deg, base, scale, lever)
+                        per_unit * lift[1], load.force, load.torque, kin.program, cam.turns, cam.phase_deg, base,
+                        scale, lever, general_inertia.accelerations(sol, d1, d2), output_acc, load.effort)
 
 
 def _shaft_at(spec: Any, cam: str) -> np.ndarray:
