@@ -234,6 +234,7 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
     if compiled.available():           # the optional compiled kernel (numba), compiled before it is timed
         linkage.positions(t[:10], engine="numba")
         funcs["ours compiled positions"] = lambda: linkage.positions(t, engine="numba")
+        funcs["ours compiled with rates"] = lambda: linkage.positions(t, derivatives=True, engine="numba")
     for threads in (1, 2):             # the fused kernels alone on one thread and on two: what the threads win
         funcs[f"fused kernels {threads} thread{'s' if threads > 1 else ''}"] = _kernels(linkage, t, threads)
     if have:
@@ -263,6 +264,9 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
             row["compiled positions speed-up"] = best["pylinkage step_fast"] / best["ours compiled positions"]
             row["compiled positions speed-up rounds"] = _spread(times["pylinkage step_fast"],
                                                                 times["ours compiled positions"])
+            row["compiled rates speed-up"] = best["pylinkage with rates"] / best["ours compiled with rates"]
+            row["compiled rates speed-up rounds"] = _spread(times["pylinkage with rates"],
+                                                            times["ours compiled with rates"])
         row["rates speed-up rounds"] = _spread(times["pylinkage with rates"], times["ours positions with rates"])
     row["two threads / one"] = best["fused kernels 1 thread"] / best["fused kernels 2 threads"]
     row["plain numpy / ours positions"] = best["plain numpy"] / best["ours positions"]
@@ -343,8 +347,9 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
              "positions / solve | ours positions with rates | ours solve with rates | pylinkage with rates | "
              "speed-up with rates (positions / solve) | rounds' speed-ups min / median / max, positions; with rates | "
              "two threads / one | ours compiled positions | compiled speed-up (rounds min / median / max) | "
+             "ours compiled with rates | compiled speed-up with rates (rounds) | "
              "error ours / compiled / pylinkage / plain (mm) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 
     def ms(row: dict, key: str) -> str:
         v = row.get(f"{key} s")
@@ -370,7 +375,8 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
                      f"{ratio(r, 'solve with rates speed-up')} | {rounds(r, 'positions speed-up rounds')}; "
                      f"{rounds(r, 'rates speed-up rounds')} | {ratio(r, 'two threads / one')} | "
                      f"{ms(r, 'ours compiled positions')} | {ratio(r, 'compiled positions speed-up')} "
-                     f"({rounds(r, 'compiled positions speed-up rounds')}) | "
+                     f"({rounds(r, 'compiled positions speed-up rounds')}) | {ms(r, 'ours compiled with rates')} | "
+                     f"{ratio(r, 'compiled rates speed-up')} ({rounds(r, 'compiled rates speed-up rounds')}) | "
                      f"{err(r, 'ours error mm')} / {err(r, 'ours compiled error mm')} / "
                      f"{err(r, 'pylinkage error mm')} / {err(r, 'plain numpy error mm')} |")
     if memory:

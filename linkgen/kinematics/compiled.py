@@ -1,4 +1,4 @@
-"""An optional compiled path for the fused kernels' positions: the same construction as
+"""An optional compiled path for the fused kernels' positions and rates: the same construction as
 :mod:`linkgen.kinematics.fused`, one pose at a time in machine code (numba), every dyad of a pose in registers.
 
 numpy's kernels make a dozen passes over memory per dyad (each an array of all poses); past about 10^4 poses their
@@ -10,13 +10,12 @@ thread (numba's ``prange``). numpy stays the default: this path is taken only wh
 The construction is :mod:`~linkgen.kinematics.fused`'s: the crank turned by its angle from the drawing; an RRR's
 joint at ``p1 + d (along + i height)`` from its pins' frame (``d = p2 - p1``, height on the branch's side, from the
 triangle's squared area ``((r1 + r2)^2 - dd)(dd - (r1 - r2)^2)``); each body's drawn point ``x`` at
-``P + a f (x - pd)``. So its results equal the numpy kernels' to rounding (about 1e-13 mm on the bundled legs). A
+``P + a f (x - pd)``; with rates each dyad's 2x2 closure in closed form, as there. So its results equal the numpy
+kernels' to rounding (about 1e-13 mm on the bundled legs, rates to about 1e-14 relative). A
 deltoid whose equal-radius pins meet raises :class:`~linkgen.kinematics.fused.Folded`, as there.
 """
 from __future__ import annotations
 
-import functools
-import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -24,10 +23,6 @@ import numpy as np
 
 from linkgen.kinematics.fused import CrankOp, Folded, Program, RRROp
 
-try:                                   # the kernel's parallel loop; a plain range where numba is absent (never run)
-    from numba import prange
-except ImportError:                    # pragma: no cover - numba is optional
-    prange = range  # type: ignore[misc]
 
 #: op kinds in :class:`Encoded`
 CRANK, RRR = 0, 1
@@ -107,111 +102,58 @@ def encode(prog: Program, feasibility_tol: float) -> Encoded:
                    np.array([prog.frames[h].factor(xd) for _, h, xd in moving], dtype=complex), len(prog.bodies))
 
 
-def positions(enc: Encoded, x: np.ndarray, signs: list[np.ndarray] | list[float],
-              threads: int | None = None) -> tuple[dict[str, np.ndarray], np.ndarray]:
+@dataclass(frozen=True)
+class Poses:
+    """The kernel's results: each moving point's position (complex, mm), with rates its velocity and acceleration
+    (complex, mm per unit time and its square; empty without), and whether each pose is in reach."""
+
+    points: dict[str, np.ndarray]
+    velocities: dict[str, np.ndarray]
+    accelerations: dict[str, np.ndarray]
+    ok: np.ndarray
+
+
+def positions(enc: Encoded, x: np.ndarray, signs: list[np.ndarray] | list[float], threads: int | None = None,
+              speeds: np.ndarray | None = None) -> Poses:
     """Every moving point (complex, mm) at poses ``x`` (k, n) and whether each pose is in reach, on the branches
-    ``signs`` (one per step: a number, or one a pose); ``threads`` the runs the poses are cut into (default: numba's
-    threads). Raises :class:`~linkgen.kinematics.fused.Folded` where a deltoid's pins meet."""
+    ``signs`` (one per step: a number, or one a pose); with ``speeds`` (the inputs' constant speeds, (k,)) each
+    point's velocity and acceleration too. ``threads``: the runs the poses are cut into (default: numba's threads).
+    Raises :class:`~linkgen.kinematics.fused.Folded` where a deltoid's pins meet."""
     n = x.shape[1]
     steps = len(signs)
     per_pose = any(np.ndim(g) for g in signs)
     table = np.empty((steps, n if per_pose else 1))
     for row in range(steps):
         table[row] = np.asarray(signs[row], dtype=float)
-    out = np.empty((len(enc.names), n), dtype=complex)
+    shape = (len(enc.names), n)
+    out = np.empty(shape, dtype=complex)
+    rated = speeds is not None
+    vel, acc = (np.empty(shape, dtype=complex), np.empty(shape, dtype=complex)) if rated else (_NONE, _NONE)
     ok = np.ones(n, dtype=np.uint8)
     kernel = _kernel()
     import numba
 
     runs = max(1, min(numba.get_num_threads() if threads is None else int(threads), n))
+    rates = np.ones(x.shape[0]) if speeds is None else np.asarray(speeds, dtype=float).reshape(x.shape[0])
     folded = kernel(np.ascontiguousarray(x, dtype=float), table, enc.kind, enc.b1, enc.b2, enc.ref1, enc.ref2,
                     enc.k1, enc.k2, enc.r1, enc.r2, enc.step, enc.fold2, enc.floor, enc.index, enc.drawn,
-                    enc.holder, enc.factor, enc.bodies, runs, out, ok)
+                    enc.holder, enc.factor, enc.bodies, runs, rates, out, vel, acc, ok)
     if folded <= 0.0:
         raise Folded
-    return dict(zip(enc.names, out, strict=True)), ok.view(bool)
+
+    def named(z: np.ndarray) -> dict[str, np.ndarray]:
+        return dict(zip(enc.names, z, strict=True)) if len(z) else {}
+
+    return Poses(named(out), named(vel) if rated else {}, named(acc) if rated else {}, ok.view(bool))
 
 
-@functools.cache
+#: no rates asked for: the kernel's velocity and acceleration outputs have no rows
+_NONE = np.empty((0, 0), dtype=complex)
+
+
 def _kernel() -> Any:
-    """The compiled kernel, built on first use (numba compiles it once a process, from its cache where it can)."""
-    import numba
+    """The compiled kernel (:mod:`linkgen.kinematics.compiled_kernels`, imported here so that numba is imported only
+    when the compiled path is asked for; numba compiles it once a process, from its cache where it can)."""
+    from linkgen.kinematics.compiled_kernels import poses
 
-    return numba.njit(parallel=True, cache=True, nogil=True)(_poses)
-
-
-def _poses(x: np.ndarray, table: np.ndarray, kind: np.ndarray, b1: np.ndarray, b2: np.ndarray, ref1: np.ndarray,
-           ref2: np.ndarray, k1: np.ndarray, k2: np.ndarray, r1: np.ndarray, r2: np.ndarray, step: np.ndarray,
-           fold2: np.ndarray, floor: np.ndarray, index: np.ndarray, drawn: np.ndarray, holder: np.ndarray,
-           factor: np.ndarray, bodies: int, runs: int, out: np.ndarray, ok: np.ndarray) -> float:
-    """The kernel's source (compiled by :func:`_kernel`): poses ``x`` cut into ``runs`` contiguous runs, each run
-    into blocks of :data:`BLOCK` poses; each op of :class:`Encoded` over a block in one branch-free loop (which the
-    compiler turns into vector instructions), the bodies' anchors and vectors held for the block only; the ground
-    is one more body (anchor 0, vector 1), so a pin's world point is ``P + a k`` wherever it lies. Writes ``out`` and
-    ``ok`` (0 where a pose is out of reach); returns the least squared distance of a deltoid's pins less its squared
-    fold reach (negative: they met)."""
-    n = x.shape[1]
-    per_pose = table.shape[1] > 1
-    nearest = np.full(runs, np.inf)
-    for run in prange(runs):
-        lo, hi = run * n // runs, (run + 1) * n // runs
-        pr = np.zeros((bodies + 1, BLOCK))
-        pi = np.zeros((bodies + 1, BLOCK))
-        vr = np.ones((bodies + 1, BLOCK))
-        vi = np.zeros((bodies + 1, BLOCK))
-        sg = np.empty(BLOCK)
-        tmp = np.empty((10, BLOCK))
-        near = np.inf
-        for start in range(lo, hi, BLOCK):
-            m = min(BLOCK, hi - start)
-            for j in range(kind.shape[0]):
-                u, w = b1[j], b2[j]
-                if kind[j] == CRANK:
-                    row, th0, cr, ci = index[j], drawn[j], k1[j].real, k1[j].imag
-                    for c in range(m):
-                        th = x[row, start + c] - th0
-                        pr[u, c] = cr
-                        pi[u, c] = ci
-                        vr[u, c] = math.cos(th)
-                        vi[u, c] = math.sin(th)
-                    continue
-                g1 = ref1[j] if ref1[j] >= 0 else bodies
-                g2 = ref2[j] if ref2[j] >= 0 else bodies
-                a1r, a1i, a2r, a2i = k1[j].real, k1[j].imag, k2[j].real, k2[j].imag
-                s1, s2 = r1[j] + r2[j], r1[j] - r2[j]
-                s1, s2, dr2 = s1 * s1, s2 * s2, r1[j] * r1[j] - r2[j] * r2[j]
-                low, srow = floor[j], step[j]
-                if per_pose:
-                    for c in range(m):
-                        sg[c] = table[srow, start + c]
-                else:
-                    sg[:m] = table[srow, 0]
-                for c in range(m):           # reads the bodies' rows, writes only the dyad's own rows
-                    x1 = pr[g1, c] + vr[g1, c] * a1r - vi[g1, c] * a1i
-                    y1 = pi[g1, c] + vr[g1, c] * a1i + vi[g1, c] * a1r
-                    x2 = pr[g2, c] + vr[g2, c] * a2r - vi[g2, c] * a2i
-                    y2 = pi[g2, c] + vr[g2, c] * a2i + vi[g2, c] * a2r
-                    dx, dy = x2 - x1, y2 - y1
-                    dd = dx * dx + dy * dy
-                    prod = (s1 - dd) * (dd - s2)
-                    inv = 0.5 / dd if dd > 0.0 else 0.5
-                    along = inv * dr2 + 0.5
-                    height = math.sqrt(max(prod, 0.0)) * inv * sg[c]
-                    ax, ay = dx * along - dy * height, dx * height + dy * along
-                    tmp[0, c], tmp[1, c], tmp[2, c], tmp[3, c] = x1, y1, ax, ay
-                    tmp[4, c], tmp[5, c], tmp[6, c], tmp[7, c] = x2, y2, x1 + ax - x2, y1 + ay - y2
-                    tmp[8, c], tmp[9, c] = dd, prod
-                for c in range(m):
-                    pr[u, c], pi[u, c], vr[u, c], vi[u, c] = tmp[0, c], tmp[1, c], tmp[2, c], tmp[3, c]
-                    pr[w, c], pi[w, c], vr[w, c], vi[w, c] = tmp[4, c], tmp[5, c], tmp[6, c], tmp[7, c]
-                    ok[start + c] &= tmp[9, c] >= low
-                if fold2[j] >= 0.0:
-                    for c in range(m):
-                        near = min(near, tmp[8, c] - fold2[j])
-            for p in range(holder.shape[0]):
-                h, fr, fi = holder[p], factor[p].real, factor[p].imag
-                for c in range(m):
-                    out[p, start + c] = complex(pr[h, c] + vr[h, c] * fr - vi[h, c] * fi,
-                                                pi[h, c] + vr[h, c] * fi + vi[h, c] * fr)
-        nearest[run] = near
-    return nearest.min()
+    return poses

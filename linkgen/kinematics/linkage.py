@@ -364,8 +364,8 @@ class Linkage:
         kernels of :mod:`linkgen.kinematics.fused`, chunk by chunk). ``strict`` as for :meth:`solve`.
 
         ``engine``: ``"numpy"`` (the default) or ``"numba"``, the optional compiled kernel of
-        :mod:`linkgen.kinematics.compiled` for the positions (its rates are numpy's); a :class:`SpecError` naming it
-        where numba is not installed."""
+        :mod:`linkgen.kinematics.compiled` (positions, and with ``derivatives`` their rates too); a
+        :class:`SpecError` naming it where numba is not installed."""
         if engine not in ENGINES:
             raise SpecError(f"one of {', '.join(ENGINES)}, not {engine!r}", "engine")
         if engine == "numba" and not compiled.available():
@@ -385,9 +385,11 @@ class Linkage:
             x = self.unwrap(x[0])[None, :] if flipped or not near else x
             signs = self.signs(x) if flipped else list(self.base_signs)
             try:
-                if engine == "numba" and not derivatives:
-                    moving, ok = compiled.positions(self.compiled_program, x, signs)
-                    out = fused.Outputs(moving, {}, {}, {}, {}, {}, [], [], [], [], ok)
+                if engine == "numba":
+                    got = compiled.positions(self.compiled_program, x, signs,
+                                             speeds=np.ones(1) if derivatives else None)
+                    out = fused.Outputs(got.points, got.velocities, got.accelerations, {}, {}, {}, [], [], [], [],
+                                        got.ok)
                 else:
                     out = fused.run(prog, x, np.ones(1), signs, derivatives, False, FEASIBILITY_TOL)
             except fused.Folded:

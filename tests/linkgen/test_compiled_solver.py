@@ -38,12 +38,13 @@ def _inputs(linkage: Linkage, n: int = N) -> np.ndarray:
     return linkage.unwrap(linkage.revolution + 2 * math.pi / n * np.arange(n))
 
 
-def _numpy(linkage: Linkage, x: np.ndarray) -> fused.Outputs:
-    """The numpy kernels' positions, margins and reach at crank angles x on the linkage's branches."""
+def _numpy(linkage: Linkage, x: np.ndarray, rates: bool = False) -> fused.Outputs:
+    """The numpy kernels' positions (with ``rates`` velocities and accelerations), margins and reach at crank
+    angles x on the linkage's branches."""
     prog = linkage.program
     assert prog is not None
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        return fused.run(prog, x[None, :], np.ones(1), list(linkage.base_signs), False, True, FEASIBILITY_TOL)
+        return fused.run(prog, x[None, :], np.ones(1), list(linkage.base_signs), rates, True, FEASIBILITY_TOL)
 
 
 def _bound(out: fused.Outputs, tol: float) -> np.ndarray:
@@ -55,7 +56,8 @@ def _bound(out: fused.Outputs, tol: float) -> np.ndarray:
 
 def _agree(linkage: Linkage, x: np.ndarray, tol: float) -> tuple[dict[str, np.ndarray], fused.Outputs]:
     theirs = _numpy(linkage, x)
-    mine, ok = compiled.positions(linkage.compiled_program, x[None, :], list(linkage.base_signs))
+    got = compiled.positions(linkage.compiled_program, x[None, :], list(linkage.base_signs))
+    mine, ok = got.points, got.ok
     assert ok.dtype == bool and (ok == theirs.ok).all() and ok.any()
     assert set(mine) == {name for name, holder, _ in linkage.program.points if holder is not None}
     bound = _bound(theirs, tol)[ok]
@@ -68,6 +70,27 @@ def _agree(linkage: Linkage, x: np.ndarray, tol: float) -> tuple[dict[str, np.nd
 def test_the_compiled_kernel_equals_the_numpy_kernels_on_every_bundled_linkage(name):
     linkage = _linkage(name)
     _agree(linkage, _inputs(linkage), 1e-12)
+
+
+def _rates_agree(linkage: Linkage, x: np.ndarray, tol: float = 1e-9) -> None:
+    """Velocities and accelerations to ``tol`` relative, loosened near a toggle as 1 / margin^2 (the 2x2 solve's
+    determinant and the rates themselves grow there), as the fused solver's own test."""
+    theirs = _numpy(linkage, x, rates=True)
+    got = compiled.positions(linkage.compiled_program, x[None, :], list(linkage.base_signs), speeds=np.ones(1))
+    ok = theirs.ok
+    near = _bound(theirs, 1.0)[ok] ** 2
+    for table in ("velocities", "accelerations"):
+        mine = getattr(got, table)
+        assert set(mine) == set(getattr(theirs, table))
+        for name, want in getattr(theirs, table).items():
+            scale = tol * np.maximum(1.0, np.abs(want[ok])) * near
+            assert np.all(np.abs(mine[name][ok] - want[ok]) <= scale), (table, name)
+
+
+@pytest.mark.parametrize("name", FUSED)
+def test_the_compiled_rates_equal_the_numpy_kernels_on_every_bundled_linkage(name):
+    linkage = _linkage(name)
+    _rates_agree(linkage, _inputs(linkage, N // 10))
 
 
 @pytest.mark.parametrize("kind", ["watt", "stephenson"])
@@ -89,6 +112,7 @@ def test_the_compiled_kernel_equals_the_numpy_kernels_on_random_six_bars(kind):
         for name, xy in ref.items():
             z = mine[name][worst]
             assert np.all(np.hypot(z.real - xy[:, 0], z.imag - xy[:, 1]) <= bound), name
+        _rates_agree(linkage, x[::10])
         done += 1
 
 
@@ -96,11 +120,13 @@ def test_the_compiled_kernel_equals_the_numpy_kernels_on_random_six_bars(kind):
 def test_threads_and_blocks_join_without_a_seam(n):
     linkage = _linkage("jansen")
     x = _inputs(linkage, n)[None, :]
-    runs = [compiled.positions(linkage.compiled_program, x, list(linkage.base_signs), threads=k) for k in (1, 2, 3)]
-    for points, ok in runs[1:]:
-        assert (ok == runs[0][1]).all()
-        for name, z in points.items():
-            assert np.array_equal(z, runs[0][0][name]), name
+    runs = [compiled.positions(linkage.compiled_program, x, list(linkage.base_signs), threads=k, speeds=np.ones(1))
+            for k in (1, 2, 3)]
+    for got in runs[1:]:
+        assert (got.ok == runs[0].ok).all()
+        for table in ("points", "velocities", "accelerations"):
+            for name, z in getattr(got, table).items():
+                assert np.array_equal(z, getattr(runs[0], table)[name]), (table, name)
     _agree(linkage, x[0], 1e-12)
 
 
@@ -113,7 +139,8 @@ def test_branches_given_pose_by_pose_are_taken_pose_by_pose():
     signs = [np.where(rng.random(x.shape[1]) < 0.5, -1.0, 1.0) * g for g in linkage.base_signs]
     with np.errstate(invalid="ignore"):
         theirs = fused.run(prog, x, np.ones(1), signs, False, False, FEASIBILITY_TOL)
-    mine, ok = compiled.positions(linkage.compiled_program, x, signs)
+    got = compiled.positions(linkage.compiled_program, x, signs)
+    mine, ok = got.points, got.ok
     assert (ok == theirs.ok).all() and not ok.all() and ok.any()     # some flipped poses cannot close
     for name, z in mine.items():
         assert np.all(np.abs(z[ok] - theirs.points[name][ok]) <= 1e-11), name
@@ -130,8 +157,16 @@ def test_positions_by_the_compiled_engine_are_the_numpy_engines_and_refuse_alike
         linkage.positions(t, engine="fortran")
     with pytest.raises(SpecError, match="finite"):
         linkage.positions([float("nan")], engine="numba")
-    loose = linkage.positions(np.array([t[3], float("nan"), t[300]]), strict=False, engine="numba")
+    values = np.array([t[3], float("nan"), t[300]])
+    loose = linkage.positions(values, strict=False, engine="numba")
     assert loose.ok.tolist() == [True, False, True]
+    lean, fast = (linkage.positions(values, derivatives=True, strict=False, engine=e) for e in ("numba", "numpy"))
+    for name, v in lean.velocities.items():        # past reach the rates are infinite, never NaN, as numpy's
+        if name in linkage.structure.bodies["ground"]:
+            continue
+        assert not np.isnan(v).any() and np.isinf(v[1]).all(), name
+        assert not np.isnan(lean.accelerations[name]).any(), name
+        assert np.allclose(v[[0, 2]], fast.velocities[name][[0, 2]], rtol=1e-9, atol=1e-9), name
 
 
 def test_an_unreachable_input_is_refused_alike_by_both_engines():
