@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.bench import child_env
-from linkgen.kinematics import fused
+from linkgen.kinematics import compiled, fused
 from linkgen.kinematics.linkage import FEASIBILITY_TOL
 
 #: the bundled linkages of the solver rows: (bench name, template, the point whose accuracy is reported)
@@ -231,6 +231,10 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
         "plain numpy": lambda: plain_positions(linkage, t),
         "ours positions with rates": lambda: linkage.positions(t, derivatives=True),
         "ours with rates": lambda: linkage.solve(t)}
+    if compiled.available():           # the optional compiled kernel (numba), compiled before it is timed
+        linkage.positions(t[:10], engine="numba")
+        funcs["ours compiled positions"] = lambda: linkage.positions(t, engine="numba")
+        funcs["ours compiled with rates"] = lambda: linkage.positions(t, derivatives=True, engine="numba")
     for threads in (1, 2):             # the fused kernels alone on one thread and on two: what the threads win
         funcs[f"fused kernels {threads} thread{'s' if threads > 1 else ''}"] = _kernels(linkage, t, threads)
     if have:
@@ -242,6 +246,9 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
     row: dict[str, Any] = {"linkage": name, "angles": n, "point": point, **{f"{k} s": v for k, v in best.items()}}
     if ref is not None:
         row["ours error mm"] = float(np.abs(linkage.positions(t[probe]).points[point] - ref).max())
+        if "ours compiled positions" in funcs:
+            got = linkage.positions(t[probe], engine="numba").points[point]
+            row["ours compiled error mm"] = float(np.abs(got - ref).max())
         row["plain numpy error mm"] = float(np.abs(plain_positions(linkage, t[probe])[point] - ref).max())
         if have:
             model, order = pylinkage_model(linkage, t)
@@ -253,6 +260,13 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
         row["rates speed-up"] = best["pylinkage with rates"] / best["ours positions with rates"]
         row["solve with rates speed-up"] = best["pylinkage with rates"] / best["ours with rates"]
         row["positions speed-up rounds"] = _spread(times["pylinkage step_fast"], times["ours positions"])
+        if "ours compiled positions" in best:
+            row["compiled positions speed-up"] = best["pylinkage step_fast"] / best["ours compiled positions"]
+            row["compiled positions speed-up rounds"] = _spread(times["pylinkage step_fast"],
+                                                                times["ours compiled positions"])
+            row["compiled rates speed-up"] = best["pylinkage with rates"] / best["ours compiled with rates"]
+            row["compiled rates speed-up rounds"] = _spread(times["pylinkage with rates"],
+                                                            times["ours compiled with rates"])
         row["rates speed-up rounds"] = _spread(times["pylinkage with rates"], times["ours positions with rates"])
     row["two threads / one"] = best["fused kernels 1 thread"] / best["fused kernels 2 threads"]
     row["plain numpy / ours positions"] = best["plain numpy"] / best["ours positions"]
@@ -262,6 +276,7 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
 #: what :func:`memory_rows` measures in a fresh process each: the call and its label
 _MEMORY_CALLS = {
     "ours positions": "linkage.positions(t)",
+    "ours compiled positions": "linkage.positions(t, engine='numba')",
     "ours solve": "linkage.solve(t, derivatives=False)",
     "ours positions with rates": "linkage.positions(t, derivatives=True)",
     "ours with rates": "linkage.solve(t)",
@@ -285,6 +300,8 @@ if {what!r}.startswith("pylinkage"):
     model.step_fast(iterations=10)
     model.step_fast_with_kinematics(iterations=10)
 linkage.positions(t[:100]); linkage.solve(t[:100])
+if {what!r} == "ours compiled positions":
+    linkage.positions(t[:100], engine="numba")
 
 def status(key):
     for line in open("/proc/self/status"):
@@ -324,12 +341,15 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
              "a 50-digit solution at 100 of the angles.", "",
              "Positions: every joint's (what pylinkage's step_fast gives); solve: the whole Solution (rotations, "
              "margins, transmission angles, slack too). With rates: every joint's velocity and acceleration besides "
-             "(step_fast_with_kinematics), and solve() with the bodies' rates.", "",
+             "(step_fast_with_kinematics), and solve() with the bodies' rates. Compiled: the optional numba "
+             "kernel (positions(engine=\"numba\"), pip install 'camgen[fast]'); numpy's is the default.", "",
              "| linkage | angles | ours positions | ours solve | plain numpy | pylinkage step_fast | speed-up "
              "positions / solve | ours positions with rates | ours solve with rates | pylinkage with rates | "
              "speed-up with rates (positions / solve) | rounds' speed-ups min / median / max, positions; with rates | "
-             "two threads / one | error ours / pylinkage / plain (mm) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "two threads / one | ours compiled positions | compiled speed-up (rounds min / median / max) | "
+             "ours compiled with rates | compiled speed-up with rates (rounds) | "
+             "error ours / compiled / pylinkage / plain (mm) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 
     def ms(row: dict, key: str) -> str:
         v = row.get(f"{key} s")
@@ -354,7 +374,10 @@ def markdown(rows: list[dict], memory: list[dict]) -> list[str]:
                      f"{ms(r, 'ours with rates')} | {ms(r, 'pylinkage with rates')} | {ratio(r, 'rates speed-up')} / "
                      f"{ratio(r, 'solve with rates speed-up')} | {rounds(r, 'positions speed-up rounds')}; "
                      f"{rounds(r, 'rates speed-up rounds')} | {ratio(r, 'two threads / one')} | "
-                     f"{err(r, 'ours error mm')} / "
+                     f"{ms(r, 'ours compiled positions')} | {ratio(r, 'compiled positions speed-up')} "
+                     f"({rounds(r, 'compiled positions speed-up rounds')}) | {ms(r, 'ours compiled with rates')} | "
+                     f"{ratio(r, 'compiled rates speed-up')} ({rounds(r, 'compiled rates speed-up rounds')}) | "
+                     f"{err(r, 'ours error mm')} / {err(r, 'ours compiled error mm')} / "
                      f"{err(r, 'pylinkage error mm')} / {err(r, 'plain numpy error mm')} |")
     if memory:
         lines += ["", "Peak memory of one call (MiB: the rise of a fresh process's peak resident set, numba's "

@@ -30,7 +30,7 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from functools import cached_property
-from linkgen.kinematics import dyads, fused, groups
+from linkgen.kinematics import compiled, dyads, fused, groups
 from linkgen.kinematics.dyads import cross, dot, perp
 from linkgen.kinematics.grashof import check_finite
 from linkgen.kinematics.structure import (GROUND, Attachment, DyadStep, FixedStep, GearStep, GroupStep, Input,
@@ -53,6 +53,8 @@ FOLD_REACH = 2e-6
 #: the dyads that run away (their joint to infinity) where their guides turn parallel, instead of toggling
 RUNAWAY = ("PRP", "RPP", "PPR")
 TWO_PI = 2.0 * math.pi
+#: the kernels :meth:`Linkage.positions` can run on: numpy's (the default) and numba's, optional
+ENGINES = ("numpy", "numba")
 T = TypeVar("T")
 U = TypeVar("U")
 
@@ -305,6 +307,14 @@ class Linkage:
                              FOLD_REACH)
 
     @cached_property
+    def compiled_program(self) -> compiled.Encoded:
+        """The fused program as the compiled kernel's arrays (:func:`linkgen.kinematics.compiled.encode`), made
+        once; only for a linkage that has a :attr:`program`."""
+        prog = self.program
+        assert prog is not None
+        return compiled.encode(prog, FEASIBILITY_TOL)
+
+    @cached_property
     def ranges(self) -> tuple[tuple[float, float], ...] | None:
         """The input values it reaches on its branches (:func:`linkgen.kinematics.motion.input_ranges`), found
         once."""
@@ -346,11 +356,20 @@ class Linkage:
                 self._rates_at_change_points(sol, r)
             return sol
 
-    def positions(self, inputs: ArrayLike, *, derivatives: bool = False, strict: bool = True) -> Positions:
+    def positions(self, inputs: ArrayLike, *, derivatives: bool = False, strict: bool = True,
+                  engine: str = "numpy") -> Positions:
         """Every joint's position (n, 2) mm at each input value, with ``derivatives`` its velocity and acceleration
         per unit input speed, and nothing else (no rotations, margins or body rates): what :meth:`solve` gives in
         ``points`` (``velocities``, ``accelerations``), on the same branches, in less time and memory (the fused
-        kernels of :mod:`linkgen.kinematics.fused`, chunk by chunk). ``strict`` as for :meth:`solve`."""
+        kernels of :mod:`linkgen.kinematics.fused`, chunk by chunk). ``strict`` as for :meth:`solve`.
+
+        ``engine``: ``"numpy"`` (the default) or ``"numba"``, the optional compiled kernel of
+        :mod:`linkgen.kinematics.compiled` (positions, and with ``derivatives`` their rates too); a
+        :class:`SpecError` naming it where numba is not installed."""
+        if engine not in ENGINES:
+            raise SpecError(f"one of {', '.join(ENGINES)}, not {engine!r}", "engine")
+        if engine == "numba" and not compiled.available():
+            raise SpecError("'numba' needs numba installed (pip install 'camgen[fast]')", "engine")
         x = np.atleast_2d(np.asarray(inputs, dtype=float))
         prog = self.program
         flipped = any(len(f) for f in self.flips)
@@ -366,7 +385,13 @@ class Linkage:
             x = self.unwrap(x[0])[None, :] if flipped or not near else x
             signs = self.signs(x) if flipped else list(self.base_signs)
             try:
-                out = fused.run(prog, x, np.ones(1), signs, derivatives, False, FEASIBILITY_TOL)
+                if engine == "numba":
+                    got = compiled.positions(self.compiled_program, x, signs,
+                                             speeds=np.ones(1) if derivatives else None)
+                    out = fused.Outputs(got.points, got.velocities, got.accelerations, {}, {}, {}, [], [], [], [],
+                                        got.ok)
+                else:
+                    out = fused.run(prog, x, np.ones(1), signs, derivatives, False, FEASIBILITY_TOL)
             except fused.Folded:
                 return _positions_of(self.solve(given, strict=strict, derivatives=derivatives))
         if strict and not out.ok.all():

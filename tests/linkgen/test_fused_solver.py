@@ -23,6 +23,7 @@ from linkgen.kinematics.dyads import cross
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.structure import Input, make_structure
 from tests.conftest import ROOT
+from tests.support.random_six_bars import random_six_bar
 
 TEMPLATES = ("jansen", "klann", "watt1", "watt2", "stephenson1", "stephenson3", "shaper", "pendulum-pump",
              "toggle-press", "pantograph", "single-dwell")
@@ -116,37 +117,13 @@ def test_the_fused_solver_equals_the_general_one_on_every_bundled_linkage(name):
     _agree(linkage, *_both(linkage, x[::10], True), rates=True)
 
 
-def _random_six_bar(rng: np.random.Generator, kind: str) -> Linkage:
-    """A six-bar drawn at random joint positions (mm): Watt I (coupler A-B-E and rocker O4-B-F ternary, dyad
-    F-G-E) or Stephenson III (coupler A-B-E ternary, dyad E-G-O6 to the ground)."""
-    pts: dict[str, tuple[float, float]] = {}
-    for name in ("B", "E", "F", "G", "O6"):
-        x, y = rng.uniform(-100.0, 100.0, 2)
-        pts[name] = (float(x), float(y))
-    pts["O2"], pts["O4"] = (0.0, 0.0), (float(rng.uniform(60.0, 120.0)), float(rng.uniform(-20.0, 20.0)))
-    crank = float(rng.uniform(10.0, 30.0))
-    angle = float(rng.uniform(0.0, 2 * math.pi))
-    pts["A"] = (crank * math.cos(angle), crank * math.sin(angle))
-    if kind == "watt":
-        links = {"crank": ("O2", "A"), "coupler": ("A", "B", "E"), "rocker": ("O4", "B", "F"), "output": ("F", "G"),
-                 "rod": ("E", "G")}
-        ground: tuple[str, ...] = ("O2", "O4")
-        del pts["O6"]
-    else:
-        links = {"crank": ("O2", "A"), "coupler": ("A", "B", "E"), "rocker": ("O4", "B"), "rod": ("E", "G"),
-                 "output": ("O6", "G")}
-        ground = ("O2", "O4", "O6")
-        del pts["F"]
-    return Linkage.of(make_structure(pts, links, ground, (), (Input("crank", "crank", "O2"),)))
-
-
 @pytest.mark.parametrize("kind", ["watt", "stephenson"])
 def test_the_fused_solver_equals_the_general_one_on_random_six_bars(kind):
     rng = np.random.default_rng(38 if kind == "watt" else 3838)
     done = 0
     while done < 6:
         try:
-            linkage = _random_six_bar(rng, kind)
+            linkage = random_six_bar(rng, kind)
         except SpecError:
             continue                                # a drawing that cannot move (e.g. at a toggle): draw again
         assert linkage.program is not None
