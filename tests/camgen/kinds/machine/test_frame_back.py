@@ -3,7 +3,8 @@ of the plate, one behind it, ``frame = "one"``). Every hole of the plate is at i
 both worked here from the template's own numbers and read back from the plate's DXF; at 720 angles of the main shaft
 every part meets no other (the plate among them, with its holes) except at its joints, heights taken from the
 assembly and outlines from the kinematics; FreeCAD reads the assembly's STEP file with the back leg under the plate
-and the front one over it; two plates with a leg behind are refused in one line."""
+and the front one over it; with two plates, the spacer at the legs' pivot is crossed by the front leg's rod, found
+at the angle computed independently."""
 from __future__ import annotations
 
 import json
@@ -16,7 +17,6 @@ import shapely
 from click.testing import CliRunner
 
 from tests.conftest import ROOT
-from tests.support.refusals import assert_refused
 
 TOY = ROOT / "templates" / "walking-toy.toml"
 ANGLE = 40.0
@@ -183,6 +183,43 @@ def test_the_bill_of_materials_gives_the_shaft_and_pin_through_both_sides(toy):
     assert len(bolt) == 1 and bolt[0].item.startswith("M3 x ") and length >= pin.part.thickness
 
 
-def test_two_plates_with_a_leg_behind_are_refused(tmp_path):
-    assert_refused(TOY, {"machine.frame": "two"}, "machine.frame: two plates stand under and over the front parts "
-                   "only, and linkages.right stands behind the frame", tmp_path)
+def _rod_k_gap(deg: float) -> float:
+    """The front leg's rod A-D (8 mm wide, round ends) less its reach to a spacer's edge (9.2 mm across: the 3 mm
+    pin + 0.2 mm play + two 3 mm walls) at the frame pivot B, at main shaft angle ``deg`` (mm; negative: they
+    overlap). The legs' shaft turns twice the other way (36 teeth to 18); A from its drawing angle of 90 degrees,
+    D by the circle intersection |D - A| = 61.9, |D - B| = 39.3 on the drawing's side of A -> B."""
+    b, d0 = np.array([-38.0, -7.8]), np.array([-20.995300643, -43.23063928])
+    t = math.pi / 2 - 2 * math.radians(deg)
+    a = 15.0 * np.array([math.cos(t), math.sin(t)])
+    dist = float(np.linalg.norm(b - a))
+    along = (61.9**2 - 39.3**2 + dist * dist) / (2 * dist)
+    u = (b - a) / dist
+    normal = np.array([-u[1], u[0]])
+    (ux, uy), (vx, vy) = b - np.array([0.0, 15.0]), d0 - np.array([0.0, 15.0])
+    side = math.copysign(1.0, float(ux * vy - uy * vx))
+    d = a + along * u + side * math.sqrt(61.9**2 - along**2) * normal
+    w = d - a
+    x = min(max(float((b - a) @ w / (w @ w)), 0.0), 1.0)
+    return float(np.linalg.norm(a + x * w - b)) - (4.0 + 9.2 / 2)
+
+
+def test_two_plates_put_a_spacer_at_the_legs_pivot_which_the_front_rod_crosses():
+    """With two plates the pin at B (both legs' pivot) carries front links, so a spacer stands on it from the front
+    leg's B links up to the top plate; the front leg's rod A-D, on the plane over them, sweeps across B: the check
+    names that clash (and no other) within 0.1 degree of the angle found here independently."""
+    from scipy.optimize import brentq
+
+    from camgen import api
+
+    raw = _raw()
+    raw["machine"]["frame"] = "two"
+    made = api.design(api.validate(raw))
+    assert [sp.pin for sp in made.frame.spacers] == ["pins.0"]
+    grid = np.arange(0.0, 360.0, 0.5)
+    gaps = np.array([_rod_k_gap(x) for x in grid])
+    k = int(np.argmax((gaps < 0) & (np.roll(gaps, 1) >= 0)))
+    expected = brentq(_rod_k_gap, grid[k - 1], grid[k], xtol=1e-10)
+    assert len(made.clashes) == 1
+    met = made.clashes[0]
+    assert {met.a, met.b} == {"linkages.left.rod_k", "spacers.0"}
+    assert abs(met.angle_deg - expected) <= 0.1, (met.angle_deg, expected)
