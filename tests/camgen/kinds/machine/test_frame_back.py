@@ -17,6 +17,7 @@ import shapely
 from click.testing import CliRunner
 
 from tests.conftest import ROOT
+from tests.support.machine_meetings import assert_meet_only_at_joints, spans
 
 TOY = ROOT / "templates" / "walking-toy.toml"
 ANGLE = 40.0
@@ -82,36 +83,16 @@ def test_every_hole_of_the_plate_is_at_its_shaft_or_pivot_read_back_from_the_dxf
         assert near[0][1] == pytest.approx(radius, abs=1e-9)
 
 
-def _joint_free(a, b, joints, phi: np.ndarray) -> np.ndarray:
-    """Where (bool (n,)) the placed outlines of bodies ``a`` and ``b`` overlap (by more than 1e-6 mm^2) outside the
-    discs of the joints between them."""
-    from camgen.kinds.machine.clash import outlines
-
-    common = shapely.intersection(outlines(a, phi), outlines(b, phi))
-    for joint in joints:
-        if {joint.a, joint.b} == {a.name, b.name}:
-            common = shapely.difference(common, shapely.buffer(shapely.points(joint.centre(phi)), joint.radius))
-    return shapely.area(common) > 1e-6
-
-
 def test_at_720_angles_every_part_meets_no_other_but_at_its_joints(toy):
     """Heights from the assembly (each piece's z and thickness), outlines from the kinematics at 720 angles: two
     parts whose heights overlap meet only inside a joint's disc; the plate (its outline with its holes, at 0..t)
     meets only the pins and shafts, each in its hole (no area in common), and every leg's part lies wholly above or
     below it."""
-    from camgen.kinds.machine import assembly, clash
+    from camgen.kinds.machine import clash
 
     bodies, joints, _ = clash.machine_parts(toy, one_plate=True)
-    pieces = {p.part.name: p for p in assembly.pieces(toy)}
-    span = {b.name: (pieces[b.name].z, pieces[b.name].z + pieces[b.name].part.thickness) for b in bodies}
-    checked = 0
-    for i, a in enumerate(bodies):
-        for b in bodies[i + 1:]:
-            (a0, a1), (b0, b1) = span[a.name], span[b.name]
-            if a0 < b1 - 1e-9 and b0 < a1 - 1e-9:
-                met = _joint_free(a, b, joints, PHI)
-                assert not met.any(), (a.name, b.name, np.degrees(PHI[met][:3]))
-                checked += 1
+    span = spans(toy, bodies)
+    checked = assert_meet_only_at_joints(bodies, joints, span, PHI)
     assert checked >= 20
     t = toy.spec.machine.frame_thickness
     plate = toy.frame.plate

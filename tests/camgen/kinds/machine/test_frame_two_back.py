@@ -16,10 +16,12 @@ import pytest
 import shapely
 
 from tests.conftest import ROOT
+from tests.support.machine_meetings import assert_meet_only_at_joints, spans
 
 AUTOMATON = ROOT / "templates" / "automaton.toml"
-#: the back crank-rocker (mm, its drawing = the machine's frame: O on the camshaft): crank O-A, rod A-B, rocker B-C
-O, A, C = np.array([0.0, 0.0]), np.array([12.0, 0.0]), np.array([0.0, -75.0])
+#: the back crank-rocker (mm, its drawing = the machine's frame, O = PIVOT on the camshaft): crank O-A, rod A-B,
+#: rocker B-C
+PIVOT, A, C = np.array([0.0, 0.0]), np.array([12.0, 0.0]), np.array([0.0, -75.0])
 ROD, ROCKER, PIN = 70.0, 55.0, 4.0
 ANGLE = 30.0
 #: main shaft angles of the meeting check
@@ -42,7 +44,7 @@ def _raw() -> dict:
         "name": "back", "shaft": "camshaft", "side": "back",
         "template": {"linkage": {"type": "linkage", "ground": ["O", "C"], "input": {"link": "crank", "pivot": "O"},
                                  "tracers": ["B"],
-                                 "joints": {"O": O.tolist(), "A": A.tolist(), "B": [round(float(v), 9) for v in b],
+                                 "joints": {"O": PIVOT.tolist(), "A": A.tolist(), "B": [round(float(v), 9) for v in b],
                                             "C": C.tolist()},
                                  "links": {"crank": ["O", "A"], "rod": ["A", "B"], "rocker": ["B", "C"]}},
                      "parts": {"width": 8.0, "thickness": 3.0, "pin_diameter": PIN}}})
@@ -99,7 +101,7 @@ def test_the_plates_holes_read_back_from_their_dxfs(built, machine):
     M4 clearance hole (4.5 mm) at C, to 1e-9 mm; the top plate has neither; each plate's holes are at the seats it
     holds."""
     bottom, top = _holes(built / "automaton-frame.dxf"), _holes(built / "automaton-frame-top.dxf")
-    for centre, radius in ((tuple(O), 8.2 / 2), (tuple(C), 4.5 / 2)):
+    for centre, radius in ((tuple(PIVOT), 8.2 / 2), (tuple(C), 4.5 / 2)):
         near = [h for h in bottom if math.dist(h[0], centre) <= 1e-9]
         assert len(near) == 1 and near[0][1] == pytest.approx(radius, abs=1e-9), (centre, bottom)
         assert not [h for h in top if math.dist(h[0], centre) < 5.0], (centre, top)
@@ -111,18 +113,6 @@ def test_the_plates_holes_read_back_from_their_dxfs(built, machine):
                        for h in holes), s.name
 
 
-def _joint_free(a, b, joints, phi: np.ndarray) -> np.ndarray:
-    """Where (bool (n,)) the placed outlines of ``a`` and ``b`` overlap (by more than 1e-6 mm^2) outside the discs
-    of the joints between them."""
-    from camgen.kinds.machine.clash import outlines
-
-    common = shapely.intersection(outlines(a, phi), outlines(b, phi))
-    for joint in joints:
-        if {joint.a, joint.b} == {a.name, b.name}:
-            common = shapely.difference(common, shapely.buffer(shapely.points(joint.centre(phi)), joint.radius))
-    return shapely.area(common) > 1e-6
-
-
 def test_at_720_angles_every_part_meets_no_other_but_at_its_joints(machine):
     """Heights from the assembly, outlines from the kinematics at 720 angles: two parts whose heights overlap meet
     only inside a joint's disc; each plate (its outline with its holes) meets only the pins, shafts and spacers
@@ -130,21 +120,14 @@ def test_at_720_angles_every_part_meets_no_other_but_at_its_joints(machine):
     from camgen.kinds.machine import assembly, clash, frame
 
     bodies, joints = frame.with_top_plate(*clash.machine_parts(machine)[:2])
-    pieces = {p.part.name: p for p in assembly.pieces(machine)}
-    span = {b.name: (pieces[b.name].z, pieces[b.name].z + pieces[b.name].part.thickness) for b in bodies}
-    checked = 0
-    for i, a in enumerate(bodies):
-        for b in bodies[i + 1:]:
-            (a0, a1), (b0, b1) = span[a.name], span[b.name]
-            if a0 < b1 - 1e-9 and b0 < a1 - 1e-9:
-                met = _joint_free(a, b, joints, PHI)
-                assert not met.any(), (a.name, b.name, np.degrees(PHI[met][:3]))
-                checked += 1
+    span = spans(machine, bodies)
+    checked = assert_meet_only_at_joints(bodies, joints, span, PHI)
     assert checked >= 15
     t = machine.spec.machine.frame_thickness
     crossing = {}
+    plates = {p.part.name: p.z for p in assembly.pieces(machine)}
     for plate in machine.frame.plates:
-        z = pieces[plate.name].z
+        z = plates[plate.name]
         ring = shapely.Polygon(plate.outline.flatten(0.01),
                                [shapely.Point(c).buffer(d / 2, quad_segs=64).exterior.coords for c, d in plate.holes])
         crossing[plate.name] = []
