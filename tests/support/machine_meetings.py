@@ -38,3 +38,25 @@ def assert_meet_only_at_joints(bodies, joints, span: dict[str, tuple[float, floa
                 assert not met.any(), (a.name, b.name, np.degrees(phi[met][:3]))
                 checked += 1
     return checked
+
+
+def freecad_boxes(design, step) -> dict[str, list[float]]:
+    """FreeCAD's reading of the assembly STEP file ``step`` of ``design``: one valid solid a piece (in the pieces'
+    order) of the piece's volume (to 0.5 %), each piece's bounding box (x0, y0, z0, x1, y1, z1 mm) by its name."""
+    import json
+
+    import pytest
+
+    from camgen.kinds.machine.assembly import pieces
+    from tests.support.freecad import freecad_check
+
+    done = freecad_check("step", step, [])
+    found = json.loads(done.stdout.strip().splitlines()[-1])["solids"]
+    want = pieces(design)
+    assert len(found) == len(want)
+    box = {}
+    for solid, piece in zip(found, want, strict=True):
+        assert solid["valid"], piece.part.name
+        assert solid["volume"] == pytest.approx(piece.part.area * piece.part.thickness, rel=5e-3), piece.part.name
+        box[piece.part.name] = solid["box"]
+    return box

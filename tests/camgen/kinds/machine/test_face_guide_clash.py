@@ -5,6 +5,7 @@ arm's side, the cycloidal rise inverted; the crank's leading side against the ra
 guide's outlines where the rules put them."""
 from __future__ import annotations
 
+import copy
 import json
 import math
 import tomllib
@@ -16,146 +17,63 @@ from scipy.optimize import brentq
 from tests.conftest import ROOT
 
 
-def _program(steps) -> str:
+def _motion(steps) -> list[dict]:
     """A cam's [[motion]] tables: (kind, lift mm, angle degrees) each, cycloidal where it moves."""
-    return "".join(f'\n[[cams.template.motion]]\ntype = "{kind}"\n'
-                   + (f'law = "cycloidal"\nlift = {h}\n' if kind != "dwell" else "") + f"angle = {a}\n"
-                   for kind, h, a in steps)
+    return [{"type": kind, "angle": a, **({"law": "cycloidal", "lift": h} if kind != "dwell" else {})}
+            for kind, h, a in steps]
+
+
+def _cam(name: str, shaft: str, follower: dict, steps, phase: float = 0.0, **output) -> dict:
+    """A cam mount on ``shaft``: a 6 mm disc on an 8 mm bore, its base radius in ``follower`` (``base``)."""
+    base = follower.pop("base")
+    return {"name": name, "shaft": shaft, "phase": phase,
+            "template": {"cam": {"base_radius": base, "thickness": 6.0, "bore": 8.0}, "follower": follower,
+                         "motion": _motion(steps), **({"output": output} if output else {})}}
+
+
+def _machine(name: str, main: str, shafts: dict[str, tuple[float, float]], teeth: int, module: float,
+             cams: list[dict], linkages: list[dict] = ()) -> dict:
+    """A machine of two shafts (``main`` first) joined by a 1:1 gear pair, reporting as JSON."""
+    driver, driven = shafts
+    return {"name": name, "machine": {"main": main, "rpm": 30.0},
+            "shafts": [{"name": k, "at": list(at)} for k, at in shafts.items()],
+            "gears": [{"driver": driver, "driven": driven, "driver_teeth": teeth, "driven_teeth": teeth,
+                       "module": module}],
+            "output": {"formats": ["json"]}, "cams": cams, "linkages": list(linkages)}
 
 
 #: the flat face's shaft: 170 mm from the lever's (a 1:1 gear pair of 68 teeth, module 2.5), 12 mm up
 FY = 12.0
 FX = math.sqrt(170.0**2 - FY**2)
-#: a lever (as tests/camgen/kinds/machine/test_stem_clash.py's: still over phi in [0, 180] degrees) whose arm lies
-#: over the left end of a translating flat face, which rises 15 mm (cycloidal over the main shaft's first 120
-#: degrees) into it; its return of 90 degrees sets the face's left end (the contact's least position). The lever's
-#: outlines are made to 0.001 mm: the arm's side, a chord between its round ends' points, then lies within 0.004 mm
-#: of the exact one (0.022 mm at 0.01 mm, which the face's slow, grazing approach turns into 0.1 degree)
-FACED = f"""name = "faced"
-
-[machine]
-main = "left"
-rpm = 30.0
-
-[[shafts]]
-name = "left"
-at = [0.0, 0.0]
-
-[[shafts]]
-name = "right"
-at = [{FX!r}, {FY!r}]
-
-[[gears]]
-driver = "left"
-driven = "right"
-driver_teeth = 68
-driven_teeth = 68
-module = 2.5
-
-[output]
-formats = ["json"]
-
-[[cams]]
-name = "lever"
-shaft = "left"
-phase = 180.0
-
-[cams.template.cam]
-base_radius = 40.0
-thickness = 6.0
-bore = 8.0
-
-[cams.template.follower]
-type = "oscillating-roller"
-roller_radius = 8.0
-pivot_distance = 160.0
-arm_length = 150.0
-
-[cams.template.output]
-tolerance = 0.001
-""" + _program((("rise", 5.0, 60.0), ("dwell", 0, 60.0), ("return", 5.0, 60.0), ("dwell", 0, 180.0))) + """
-[[cams]]
-name = "lift"
-shaft = "right"
-
-[cams.template.cam]
-base_radius = 30.0
-thickness = 6.0
-bore = 8.0
-
-[cams.template.follower]
-type = "translating-flat"
-face_margin = 3.0
-""" + _program((("rise", 15.0, 120.0), ("dwell", 0, 60.0), ("return", 15.0, 90.0), ("dwell", 0, 90.0)))
-
+#: a lever (an oscillating roller, still over phi in [0, 180] degrees: its program's last dwell, phase 180) whose
+#: arm lies over the left end of a translating flat face, which rises 15 mm (cycloidal over the main shaft's first
+#: 120 degrees) into it; its return of 90 degrees sets the face's left end (the contact's least position). The
+#: lever's outlines are made to 0.001 mm: the arm's side, a chord between its round ends' points, then lies within
+#: 0.004 mm of the exact one (0.022 mm at 0.01 mm, which the face's slow, grazing approach turns into 0.1 degree)
+FACED = _machine("faced", "left", {"left": (0.0, 0.0), "right": (FX, FY)}, 68, 2.5, [
+    _cam("lever", "left", {"type": "oscillating-roller", "base": 40.0, "roller_radius": 8.0,
+                           "pivot_distance": 160.0, "arm_length": 150.0},
+         (("rise", 5.0, 60.0), ("dwell", 0, 60.0), ("return", 5.0, 60.0), ("dwell", 0, 180.0)), 180.0,
+         tolerance=0.001),
+    _cam("lift", "right", {"type": "translating-flat", "base": 30.0, "face_margin": 3.0},
+         (("rise", 15.0, 120.0), ("dwell", 0, 60.0), ("return", 15.0, 90.0), ("dwell", 0, 90.0)))])
 #: a crank (45 mm, 8 mm wide, drawn pointing up, turning counter-clockwise with the main shaft at (42, 56)) that
 #: sweeps down across the guide of a translating roller (radius 5 mm, base 30 mm, still at lift 0 over the main
 #: shaft's first 180 degrees) on a shaft 70 mm away (a 1:1 gear pair of 35 teeth, module 2)
-SWEPT = """name = "swept"
-
-[machine]
-main = "crank"
-rpm = 30.0
-
-[[shafts]]
-name = "crank"
-at = [42.0, 56.0]
-
-[[shafts]]
-name = "cam"
-at = [0.0, 0.0]
-
-[[gears]]
-driver = "crank"
-driven = "cam"
-driver_teeth = 35
-driven_teeth = 35
-module = 2.0
-
-[output]
-formats = ["json"]
-
-[[cams]]
-name = "lift"
-shaft = "cam"
-
-[cams.template.cam]
-base_radius = 30.0
-thickness = 6.0
-bore = 8.0
-
-[cams.template.follower]
-type = "translating-roller"
-roller_radius = 5.0
-""" + _program((("dwell", 0, 180.0), ("rise", 10.0, 60.0), ("dwell", 0, 60.0), ("return", 10.0, 60.0))) + """
-[[linkages]]
-name = "sweep"
-shaft = "crank"
-
-[linkages.template.linkage]
-type = "linkage"
-ground = ["O"]
-input = { link = "crank", pivot = "O" }
-tracers = ["A"]
-
-[linkages.template.linkage.joints]
-O = [0.0, 0.0]
-A = [0.0, 45.0]
-
-[linkages.template.linkage.links]
-crank = ["O", "A"]
-
-[linkages.template.parts]
-width = 8.0
-thickness = 3.0
-pin_diameter = 3.0
-"""
+SWEPT = _machine("swept", "crank", {"crank": (42.0, 56.0), "cam": (0.0, 0.0)}, 35, 2.0, [
+    _cam("lift", "cam", {"type": "translating-roller", "base": 30.0, "roller_radius": 5.0},
+         (("dwell", 0, 180.0), ("rise", 10.0, 60.0), ("dwell", 0, 60.0), ("return", 10.0, 60.0)))], [
+    {"name": "sweep", "shaft": "crank",
+     "template": {"linkage": {"type": "linkage", "ground": ["O"], "input": {"link": "crank", "pivot": "O"},
+                              "tracers": ["A"], "joints": {"O": [0.0, 0.0], "A": [0.0, 45.0]},
+                              "links": {"crank": ["O", "A"]}},
+                  "parts": {"width": 8.0, "thickness": 3.0, "pin_diameter": 3.0}}}])
 
 
-def _design(text: str):
+def _design(raw: dict):
     from camgen import api
 
-    return api.design(api.validate(tomllib.loads(text)))
+    return api.design(api.validate(copy.deepcopy(raw)))
 
 
 @pytest.fixture(scope="module")

@@ -7,7 +7,6 @@ and the front one over it; with two plates, the spacer at the legs' pivot is cro
 at the angle computed independently."""
 from __future__ import annotations
 
-import json
 import math
 import tomllib
 
@@ -17,7 +16,7 @@ import shapely
 from click.testing import CliRunner
 
 from tests.conftest import ROOT
-from tests.support.machine_meetings import assert_meet_only_at_joints, spans
+from tests.support.machine_meetings import assert_meet_only_at_joints, freecad_boxes, spans
 
 TOY = ROOT / "templates" / "walking-toy.toml"
 ANGLE = 40.0
@@ -115,19 +114,8 @@ def test_freecad_reads_the_assembly_with_the_back_leg_under_the_plate(built, toy
     """FreeCAD reads the STEP file's solids, one a piece, valid, of the pieces' volumes; the plate's solid spans
     0..t, the back leg's parts lie wholly under its bottom face and the front leg's over its top face, by a
     plane's gap (1 mm) at least; the pivot pin and the legs' shaft cross it."""
-    from camgen.kinds.machine.assembly import pieces
-    from tests.support.freecad import freecad_check
-
-    done = freecad_check("step", built / "walking-toy-assembly.step", [])
-    found = json.loads(done.stdout.strip().splitlines()[-1])["solids"]
-    want = pieces(toy)
-    assert len(found) == len(want)
+    box = freecad_boxes(toy, built / "walking-toy-assembly.step")
     t = toy.spec.machine.frame_thickness
-    box = {}
-    for solid, piece in zip(found, want, strict=True):
-        assert solid["valid"], piece.part.name
-        assert solid["volume"] == pytest.approx(piece.part.area * piece.part.thickness, rel=5e-3), piece.part.name
-        box[piece.part.name] = solid["box"]
     assert box["frame"][2] == pytest.approx(0.0, abs=1e-6) and box["frame"][5] == pytest.approx(t, abs=1e-6)
     back = [name for name in box if name.startswith("linkages.right.")]
     front = [name for name in box if name.startswith("linkages.left.")]

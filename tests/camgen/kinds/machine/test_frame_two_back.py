@@ -7,7 +7,6 @@ plates among them, with their holes) but at its joints, heights from the assembl
 with the back parts under the lower plate, the front ones between the plates."""
 from __future__ import annotations
 
-import json
 import math
 import tomllib
 
@@ -16,7 +15,7 @@ import pytest
 import shapely
 
 from tests.conftest import ROOT
-from tests.support.machine_meetings import assert_meet_only_at_joints, spans
+from tests.support.machine_meetings import assert_meet_only_at_joints, freecad_boxes, spans
 
 AUTOMATON = ROOT / "templates" / "automaton.toml"
 #: the back crank-rocker (mm, its drawing = the machine's frame, O = PIVOT on the camshaft): crank O-A, rod A-B,
@@ -148,19 +147,8 @@ def test_freecad_reads_the_assembly_with_the_back_parts_under_the_lower_plate(bu
     parts lie wholly under it by a plane's gap (1 mm) at least, every front moving part between the plates' faces
     by that gap, the spacers from a part's top to the top plate's bottom face; the back pivot's pin and the camshaft
     cross the lower plate."""
-    from camgen.kinds.machine.assembly import pieces
-    from tests.support.freecad import freecad_check
-
-    done = freecad_check("step", built / "automaton-assembly.step", [])
-    found = json.loads(done.stdout.strip().splitlines()[-1])["solids"]
-    want = pieces(machine)
-    assert len(found) == len(want)
+    box = freecad_boxes(machine, built / "automaton-assembly.step")
     t = machine.spec.machine.frame_thickness
-    box = {}
-    for solid, piece in zip(found, want, strict=True):
-        assert solid["valid"], piece.part.name
-        assert solid["volume"] == pytest.approx(piece.part.area * piece.part.thickness, rel=5e-3), piece.part.name
-        box[piece.part.name] = solid["box"]
     assert box["frame"][2] == pytest.approx(0.0, abs=1e-6) and box["frame"][5] == pytest.approx(t, abs=1e-6)
     roof = box["frame-top"][2]
     assert box["frame-top"][5] == pytest.approx(roof + t, abs=1e-6)
