@@ -136,6 +136,23 @@ def test_the_face_spans_its_contact_and_moves_with_the_lift(faced):
     assert (face.low, face.high) == (0, 1)
 
 
+def test_the_face_meets_its_cam_at_the_contact(faced):
+    """The joint of the face and its cam follows the contact along the face: (axis + s', 12 + 30 + s), s' per
+    radian of the cycloidal rise (15 mm over 120 degrees) and return (15 mm over 90), at angles through the turn."""
+    from camgen.kinds.machine import clash
+
+    _, joints, _ = clash.machine_parts(faced)
+    joint = next(j for j in joints if {j.a, j.b} == {"cams.lift", "cams.lift.face"})
+    deg = np.array([0.0, 30.0, 60.0, 90.0, 150.0, 200.0, 240.0, 300.0])
+    rising, back = deg < 120.0, (deg >= 180.0) & (deg < 270.0)
+    u = np.where(rising, deg / 120.0, np.where(back, (deg - 180.0) / 90.0, 0.0))
+    bump = u - np.sin(2 * np.pi * u) / (2 * np.pi)
+    s = 15.0 * np.where(rising, bump, np.where(back, 1.0 - bump, np.where(deg < 180.0, 1.0, 0.0)))
+    rate = 15.0 * (1.0 - np.cos(2 * np.pi * u))
+    s1 = np.where(rising, rate / math.radians(120.0), np.where(back, -rate / math.radians(90.0), 0.0))
+    assert joint.centre(np.radians(deg)) == pytest.approx(np.column_stack([FX + s1, FY + 30.0 + s]), abs=1e-9)
+
+
 def _rail_corners() -> np.ndarray:
     """The right rail's corners (mm): 0.2 mm clear of the 8 mm stem on x = 0, 3 mm wide, from 1 mm over the roller's
     top at the top of the stroke (30 + 5 + 10 + 5 + 1) to the stem's top at lift 0 (the roller's centre at 35 plus
