@@ -341,7 +341,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             block = next(b for b in bodies if b.name == f"linkages.{m.name}.{slider.name}")
             joints += [Joint(b.name, block.name, functools.partial(_slid_point, m=m, point=slider.point),
                              _margin(float(np.hypot(*block.outline.T).max())))
-                       for b in bodies if b.name in (f"cams.{m.cam}.stem", f"cams.{m.cam}.roller")]
+                       for b in bodies if b.name in (f"cams.{m.cam}.{p}" for p in ("stem", "roller", "face"))]
         if m.cam in arms and m.analysis.crank:              # its crank and the arm: one bell crank
             link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
             joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),
@@ -387,7 +387,17 @@ def _stem(d: Any, cam: Any, kin: Any, f: Any, plane: int, centre: np.ndarray, th
     def lift(phi: np.ndarray, theta: Callable = theta, program: Any = kin.program) -> np.ndarray:
         return np.asarray(program.evaluate(theta(phi))[0], float)
 
-    made, met = stem_bodies(cam.name, f, plane, centre + rest_point(f), lift, width, tol)
+    face = None
+    extent = getattr(cam.design, "face_extent", None)
+    if extent is not None:                                  # a flat face: its ends, its contact over the turn
+        margin = float(cam.design.spec.follower.face_margin)
+
+        def contact(phi: np.ndarray, theta: Callable = theta, kin: Any = kin) -> np.ndarray:
+            t = np.asarray(theta(phi), float)
+            return centre + kin.follower.fixed(t, kin.follower.pitch(t, kin.program.evaluate(t)))
+
+        face = ((float(extent[0]) - margin, float(extent[1]) + margin), contact)
+    made, met = stem_bodies(cam.name, f, plane, centre + rest_point(f), lift, width, tol, face)
     bodies += made
     joints += met
 

@@ -275,7 +275,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
                         "machine.clash")
     noted = (*warnings, *(f"clash: {c.message()}" for c in met))
     return replace(made, clashes=met, unchecked=unchecked, warnings=noted, bodies=bodies,
-                   frame=frame.machine_frame(made, bodies))
+                   frame=frame.machine_frame(made, bodies, joints))
 
 
 def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray) -> CamMotion:

@@ -149,14 +149,29 @@ def roof_plane(bodies: Sequence[Body]) -> int:
     return max((b.high for b in bodies if not b.name.startswith(("pins.", "shafts.", "spacers."))), default=-1) + 1
 
 
-def spacers(bodies: Sequence[Body]) -> tuple[Spacer, ...]:
-    """A spacer round each pin standing on the bottom plate (its lowest plane 0): the planes from the one over the
-    pin's highest part to the one under the top plate (none where its part is the highest: then it is
-    :data:`PLANE_GAP_MM` high)."""
+def front_pins(bodies: Sequence[Body], joints: Sequence[Joint]) -> set[str]:
+    """The pins among ``bodies`` that carry a part in front of the bottom plate (a part on a plane >= 0 meeting the
+    pin in one of ``joints``): those a top plate can hold through a spacer. A pin of a linkage behind the frame
+    alone (``side = "back"``) comes up through the bottom plate from below and carries nothing in front."""
+    plane = {b.name: b.low for b in bodies if not b.name.startswith(("pins.", "spacers."))}
+    out = set()
+    for j in joints:
+        for pin, part in ((j.a, j.b), (j.b, j.a)):
+            if pin.startswith("pins.") and plane.get(part, -1) >= 0:
+                out.add(pin)
+    return out
+
+
+def spacers(bodies: Sequence[Body], joints: Sequence[Joint]) -> tuple[Spacer, ...]:
+    """A spacer round each pin standing on the bottom plate or passing through it (its lowest plane 0 or behind
+    the frame) that carries a part in front (:func:`front_pins`): the planes from the one over the pin's highest
+    part to the one under the top plate (none where its part is the highest: then it is :data:`PLANE_GAP_MM`
+    high). A pin of the back side alone has none: it stands in the bottom plate, as with one plate."""
     roof = roof_plane(bodies)
+    front = front_pins(bodies, joints)
     out: list[Spacer] = []
     for name, centre, diameter, low, high in pins(bodies):
-        if low == 0 and high < roof:
+        if low <= 0 and high < roof and name in front:
             bore = diameter + RUNNING_PLAY
             out.append(Spacer(f"spacers.{len(out)}", name, centre, high + 1, roof - 1, bore + 2 * SPACER_WALL_MM,
                               bore))
@@ -187,7 +202,7 @@ def pin_hole(diameter: float) -> float:
     return bolt.clearance_hole if bolt is not None else diameter + RUNNING_PLAY
 
 
-def seats(spec: Any, bodies: Sequence[Body]) -> tuple[Seat, ...]:
+def seats(spec: Any, bodies: Sequence[Body], joints: Sequence[Joint]) -> tuple[Seat, ...]:
     """Every shaft's seat and every pin's hole, shafts first (in ``[[shafts]]``' order), each once: a shaft in the
     bottom plate, a pin in the plate it stands on or hangs from, and in the top plate too when a spacer stands
     round it.
@@ -207,7 +222,8 @@ def seats(spec: Any, bodies: Sequence[Body]) -> tuple[Seat, ...]:
                             f"(the smallest cam.bore on it): give one of {', '.join(fits)}", "machine.bearing")
         hole = bearing.outside if bearing is not None else d + RUNNING_PLAY
         out.append(Seat(f"shafts.{shaft.name}", (float(shaft.at[0]), float(shaft.at[1])), d, hole, bearing))
-    roof, spaced = roof_plane(bodies), {sp.pin for sp in spacers(bodies)} if spec.machine.frame == "two" else set()
+    roof = roof_plane(bodies)
+    spaced = {sp.pin for sp in spacers(bodies, joints)} if spec.machine.frame == "two" else set()
     out += [Seat(name, centre, d, pin_hole(d), None, low <= 0, high == roof or name in spaced)
             for name, centre, d, low, high in pins(bodies)]
     return tuple(out)
@@ -287,25 +303,17 @@ RESERVED = ("frame", "frame-top", "kit", "assembly")
 
 def check_names(spec: Any) -> None:
     """Refuse a cam or linkage named as the machine's own files are (:data:`RESERVED`, ``spacer-<i>``): their files
-    would be the same; and two plates for a machine with a linkage behind it (one plate carries both sides, between
-    them; a second over the front parts would leave the back's pins without a spacer's plate)."""
+    would be the same."""
     for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages)):
         for i, mount in enumerate(mounts):
             if mount.name in RESERVED or mount.name.startswith("spacer-"):
                 raise SpecError(f"{mount.name!r} names the machine's own files (<machine>-{mount.name}...): give the "
                                 "mount another name", f"{key}[{i}].name")
-    if spec.machine.frame == "two":
-        for mount in spec.linkages:
-            if mount.shaft is not None and mount.side == "back":
-                raise SpecError(f"two plates stand under and over the front parts only, and linkages.{mount.name} "
-                                "stands behind the frame (side = \"back\"), where no top plate's spacers reach: "
-                                'give frame = "one" (one plate between the sides) or stand it in front',
-                                "machine.frame")
 
 
-def machine_frame(design: Any, bodies: Sequence[Body]) -> Frame | None:
+def machine_frame(design: Any, bodies: Sequence[Body], joints: Sequence[Joint]) -> Frame | None:
     """The frame ``machine.frame`` asks for (None for ``"none"``), its pins those of the clash check's ``bodies``
-    (with a two-plate frame's spacers among them).
+    (with a two-plate frame's spacers among them) and ``joints``.
 
     Raises
     ------
@@ -318,13 +326,13 @@ def machine_frame(design: Any, bodies: Sequence[Body]) -> Frame | None:
     table = spec.machine
     if table.frame == "none":
         return None
-    found = seats(spec, bodies)
+    found = seats(spec, bodies, joints)
     _check(found, table.frame_margin)
     outline = rounded_hull(np.array([s.centre for s in found]), table.frame_margin)
     tol = min((*(float(c.design.tolerance) for c in design.cams),        # a machine of shaft-driven linkages only
                *(float(m.design.spec.parts.tolerance) for m in getattr(design, "cranked", ()))))
     plate = Plate("frame", outline, tuple((s.centre, s.hole) for s in found if s.bottom), table.frame_thickness, tol)
-    kept = spacers(bodies) if table.frame == "two" else ()
+    kept = spacers(bodies, joints) if table.frame == "two" else ()
     if table.frame == "two" and not kept:
         raise SpecError("two plates need a pin standing on the bottom plate with room over it for a spacer (none "
                         'here): set machine.frame = "one"', "machine.frame")
@@ -338,5 +346,5 @@ def with_top_plate(bodies: Sequence[Body], joints: Sequence[Joint]) -> tuple[tup
     """The clash check's ``bodies`` and ``joints`` with a top plate: the :func:`spacers` round the pins standing on
     the bottom plate, each meeting its pin. (A shaft stays in the bottom plate only: the parts over its cams, a
     four-bar's links, may cross its axis.)"""
-    found = spacers(bodies)
+    found = spacers(bodies, joints)
     return (*bodies, *(s.body() for s in found)), (*joints, *spacer_joints(found))

@@ -9,7 +9,9 @@ the cam's plane and the stem's, meeting the cam at its centre's disc. A knife's 
 the follower's point: a joint disc of half the stem's width there.
 
 The stem's length is twice its stroke plus its width (it stays in a guide as long as its stroke), and at least
-:data:`MIN_LENGTH_MM`; its width is the coupled linkage's parts' width, else :data:`WIDTH_MM`.
+:data:`MIN_LENGTH_MM` and its stroke, its foot's height (a roller's radius, a face's depth), the guide's gap and its
+width (so that a width of it stays in the guide); its width is the coupled linkage's parts' width, else
+:data:`WIDTH_MM`. A flat face and the guide are bodies too (:mod:`camgen.kinds.machine.stem_guide`).
 """
 from __future__ import annotations
 
@@ -18,6 +20,10 @@ from collections.abc import Callable
 import numpy as np
 
 from camgen.kinds.machine.clash import Body, Joint, circle
+from camgen.kinds.machine.stem_guide import FACE_DEPTH_MM, GUIDE_GAP_MM, face_bodies, guide_bodies, guide_span
+
+#: a flat face: its ends along it (mm from the follower's axis, +X) and its contact (phi -> (n, 2) mm)
+Face = tuple[tuple[float, float], Callable[[np.ndarray], np.ndarray]]
 
 #: the width (mm) of a stem not coupled to a linkage (no parts table to take one from)
 WIDTH_MM = 8.0
@@ -25,10 +31,11 @@ WIDTH_MM = 8.0
 MIN_LENGTH_MM = 20.0
 
 
-def stem_length(stroke: float, width: float) -> float:
+def stem_length(stroke: float, width: float, foot: float = 0.0) -> float:
     """The stem's length (mm): twice the follower's ``stroke`` (mm) plus its ``width`` (mm), at least
-    :data:`MIN_LENGTH_MM`."""
-    return max(2.0 * stroke + width, MIN_LENGTH_MM)
+    :data:`MIN_LENGTH_MM` and the ``stroke``, the ``foot`` (mm over the follower's point), the guide's gap and the
+    ``width`` together."""
+    return max(2.0 * stroke + width, MIN_LENGTH_MM, stroke + foot + GUIDE_GAP_MM + width)
 
 
 def rectangle(length: float, width: float) -> np.ndarray:
@@ -38,9 +45,10 @@ def rectangle(length: float, width: float) -> np.ndarray:
 
 
 def stem_bodies(cam: str, follower: object, plane: int, point: np.ndarray, lift: Callable[[np.ndarray], np.ndarray],
-                width: float, tolerance: float) -> tuple[list[Body], list[Joint]]:
+                width: float, tolerance: float, face: Face | None = None) -> tuple[list[Body], list[Joint]]:
     """The bodies and joints of cam ``cam``'s translating follower (its clash name ``cams.<cam>``): its stem
-    ``cams.<cam>.stem`` and, with a roller, ``cams.<cam>.roller``.
+    ``cams.<cam>.stem``, with a roller ``cams.<cam>.roller``, with a flat face ``cams.<cam>.face``, and the stem's
+    guide (:func:`camgen.kinds.machine.stem_guide.guide_bodies`).
 
     Parameters
     ----------
@@ -56,10 +64,17 @@ def stem_bodies(cam: str, follower: object, plane: int, point: np.ndarray, lift:
         phi (n,) radians -> the follower's lift s (n,) mm along +Y.
     width, tolerance
         The stem's width and the outlines' chordal tolerance (mm).
+    face
+        A flat face's ends along it (mm from the axis, +X) and its contact (phi -> (n, 2) mm, the machine's
+        frame); None for a roller or a knife edge.
     """
     name = f"cams.{cam}"
     sample = lift(np.linspace(0.0, 2 * np.pi, 721))
-    length = stem_length(float(np.ptp(sample)), width)
+    radius = float(getattr(follower, "roller_radius", 0.0))
+    foot = FACE_DEPTH_MM if face is not None else radius
+    length = stem_length(float(np.ptp(sample)), width, foot)
+    rails = guide_bodies(cam, plane + 1, float(point[0]), width,
+                         guide_span(float(point[1]), float(sample.min()), float(sample.max()), length, foot))
 
     def centre(phi: np.ndarray, point: np.ndarray = point) -> np.ndarray:
         s = lift(phi)
@@ -68,13 +83,15 @@ def stem_bodies(cam: str, follower: object, plane: int, point: np.ndarray, lift:
     def place(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return np.broadcast_to(np.eye(2), (len(phi), 2, 2)), centre(phi)
 
-    radius = float(getattr(follower, "roller_radius", 0.0))
     bodies = [Body(f"{name}.stem", plane + 1, plane + 1, rectangle(length, width), place)]
     if radius > 0:
         bodies.append(Body(f"{name}.roller", plane, plane + 1, circle(radius, tolerance), place))
         joints = [Joint(name, f"{name}.roller", centre, 1.01 * radius + 0.05),
                   Joint(f"{name}.stem", f"{name}.roller", centre, 1.01 * radius + 0.05)]
+    elif face is not None:
+        faced, joints = face_bodies(cam, plane, point, face[0], width, lift, face[1])
+        bodies += faced
     else:
         joints = [Joint(name, f"{name}.stem", centre, 0.51 * width + 0.05)]
-    return bodies, joints
+    return [*bodies, *rails], joints
 

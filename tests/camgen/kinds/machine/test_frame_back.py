@@ -3,10 +3,10 @@ of the plate, one behind it, ``frame = "one"``). Every hole of the plate is at i
 both worked here from the template's own numbers and read back from the plate's DXF; at 720 angles of the main shaft
 every part meets no other (the plate among them, with its holes) except at its joints, heights taken from the
 assembly and outlines from the kinematics; FreeCAD reads the assembly's STEP file with the back leg under the plate
-and the front one over it; two plates with a leg behind are refused in one line."""
+and the front one over it; with two plates, the spacer at the legs' pivot is crossed by the front leg's rod, found
+at the angle computed independently."""
 from __future__ import annotations
 
-import json
 import math
 import tomllib
 
@@ -16,7 +16,7 @@ import shapely
 from click.testing import CliRunner
 
 from tests.conftest import ROOT
-from tests.support.refusals import assert_refused
+from tests.support.machine_meetings import assert_meet_only_at_joints, freecad_boxes, spans
 
 TOY = ROOT / "templates" / "walking-toy.toml"
 ANGLE = 40.0
@@ -82,36 +82,16 @@ def test_every_hole_of_the_plate_is_at_its_shaft_or_pivot_read_back_from_the_dxf
         assert near[0][1] == pytest.approx(radius, abs=1e-9)
 
 
-def _joint_free(a, b, joints, phi: np.ndarray) -> np.ndarray:
-    """Where (bool (n,)) the placed outlines of bodies ``a`` and ``b`` overlap (by more than 1e-6 mm^2) outside the
-    discs of the joints between them."""
-    from camgen.kinds.machine.clash import outlines
-
-    common = shapely.intersection(outlines(a, phi), outlines(b, phi))
-    for joint in joints:
-        if {joint.a, joint.b} == {a.name, b.name}:
-            common = shapely.difference(common, shapely.buffer(shapely.points(joint.centre(phi)), joint.radius))
-    return shapely.area(common) > 1e-6
-
-
 def test_at_720_angles_every_part_meets_no_other_but_at_its_joints(toy):
     """Heights from the assembly (each piece's z and thickness), outlines from the kinematics at 720 angles: two
     parts whose heights overlap meet only inside a joint's disc; the plate (its outline with its holes, at 0..t)
     meets only the pins and shafts, each in its hole (no area in common), and every leg's part lies wholly above or
     below it."""
-    from camgen.kinds.machine import assembly, clash
+    from camgen.kinds.machine import clash
 
     bodies, joints, _ = clash.machine_parts(toy, one_plate=True)
-    pieces = {p.part.name: p for p in assembly.pieces(toy)}
-    span = {b.name: (pieces[b.name].z, pieces[b.name].z + pieces[b.name].part.thickness) for b in bodies}
-    checked = 0
-    for i, a in enumerate(bodies):
-        for b in bodies[i + 1:]:
-            (a0, a1), (b0, b1) = span[a.name], span[b.name]
-            if a0 < b1 - 1e-9 and b0 < a1 - 1e-9:
-                met = _joint_free(a, b, joints, PHI)
-                assert not met.any(), (a.name, b.name, np.degrees(PHI[met][:3]))
-                checked += 1
+    span = spans(toy, bodies)
+    checked = assert_meet_only_at_joints(bodies, joints, span, PHI)
     assert checked >= 20
     t = toy.spec.machine.frame_thickness
     plate = toy.frame.plate
@@ -134,19 +114,8 @@ def test_freecad_reads_the_assembly_with_the_back_leg_under_the_plate(built, toy
     """FreeCAD reads the STEP file's solids, one a piece, valid, of the pieces' volumes; the plate's solid spans
     0..t, the back leg's parts lie wholly under its bottom face and the front leg's over its top face, by a
     plane's gap (1 mm) at least; the pivot pin and the legs' shaft cross it."""
-    from camgen.kinds.machine.assembly import pieces
-    from tests.support.freecad import freecad_check
-
-    done = freecad_check("step", built / "walking-toy-assembly.step", [])
-    found = json.loads(done.stdout.strip().splitlines()[-1])["solids"]
-    want = pieces(toy)
-    assert len(found) == len(want)
+    box = freecad_boxes(toy, built / "walking-toy-assembly.step")
     t = toy.spec.machine.frame_thickness
-    box = {}
-    for solid, piece in zip(found, want, strict=True):
-        assert solid["valid"], piece.part.name
-        assert solid["volume"] == pytest.approx(piece.part.area * piece.part.thickness, rel=5e-3), piece.part.name
-        box[piece.part.name] = solid["box"]
     assert box["frame"][2] == pytest.approx(0.0, abs=1e-6) and box["frame"][5] == pytest.approx(t, abs=1e-6)
     back = [name for name in box if name.startswith("linkages.right.")]
     front = [name for name in box if name.startswith("linkages.left.")]
@@ -183,6 +152,43 @@ def test_the_bill_of_materials_gives_the_shaft_and_pin_through_both_sides(toy):
     assert len(bolt) == 1 and bolt[0].item.startswith("M3 x ") and length >= pin.part.thickness
 
 
-def test_two_plates_with_a_leg_behind_are_refused(tmp_path):
-    assert_refused(TOY, {"machine.frame": "two"}, "machine.frame: two plates stand under and over the front parts "
-                   "only, and linkages.right stands behind the frame", tmp_path)
+def _rod_k_gap(deg: float) -> float:
+    """The front leg's rod A-D (8 mm wide, round ends) less its reach to a spacer's edge (9.2 mm across: the 3 mm
+    pin + 0.2 mm play + two 3 mm walls) at the frame pivot B, at main shaft angle ``deg`` (mm; negative: they
+    overlap). The legs' shaft turns twice the other way (36 teeth to 18); A from its drawing angle of 90 degrees,
+    D by the circle intersection |D - A| = 61.9, |D - B| = 39.3 on the drawing's side of A -> B."""
+    b, d0 = np.array([-38.0, -7.8]), np.array([-20.995300643, -43.23063928])
+    t = math.pi / 2 - 2 * math.radians(deg)
+    a = 15.0 * np.array([math.cos(t), math.sin(t)])
+    dist = float(np.linalg.norm(b - a))
+    along = (61.9**2 - 39.3**2 + dist * dist) / (2 * dist)
+    u = (b - a) / dist
+    normal = np.array([-u[1], u[0]])
+    (ux, uy), (vx, vy) = b - np.array([0.0, 15.0]), d0 - np.array([0.0, 15.0])
+    side = math.copysign(1.0, float(ux * vy - uy * vx))
+    d = a + along * u + side * math.sqrt(61.9**2 - along**2) * normal
+    w = d - a
+    x = min(max(float((b - a) @ w / (w @ w)), 0.0), 1.0)
+    return float(np.linalg.norm(a + x * w - b)) - (4.0 + 9.2 / 2)
+
+
+def test_two_plates_put_a_spacer_at_the_legs_pivot_which_the_front_rod_crosses():
+    """With two plates the pin at B (both legs' pivot) carries front links, so a spacer stands on it from the front
+    leg's B links up to the top plate; the front leg's rod A-D, on the plane over them, sweeps across B: the check
+    names that clash (and no other) within 0.1 degree of the angle found here independently."""
+    from scipy.optimize import brentq
+
+    from camgen import api
+
+    raw = _raw()
+    raw["machine"]["frame"] = "two"
+    made = api.design(api.validate(raw))
+    assert [sp.pin for sp in made.frame.spacers] == ["pins.0"]
+    grid = np.arange(0.0, 360.0, 0.5)
+    gaps = np.array([_rod_k_gap(x) for x in grid])
+    k = int(np.argmax((gaps < 0) & (np.roll(gaps, 1) >= 0)))
+    expected = brentq(_rod_k_gap, grid[k - 1], grid[k], xtol=1e-10)
+    assert len(made.clashes) == 1
+    met = made.clashes[0]
+    assert {met.a, met.b} == {"linkages.left.rod_k", "spacers.0"}
+    assert abs(met.angle_deg - expected) <= 0.1, (met.angle_deg, expected)
