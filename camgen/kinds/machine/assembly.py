@@ -8,8 +8,8 @@ A piece is a flat :class:`~camgen.core.parts.Part` already in the machine's fram
 turned, mirrored where the kinematics mirrors a four-bar, and moved: x, y in mm as the frame's plate has them) and
 its height ``z`` (mm, up from the bottom plate's bottom face). The outlines are the clash check's (chords within the
 cams' tolerance, 0.01 mm for the links). ``bought`` marks the hardware (pins, shafts, bearings): the 3MF holds it
-as one object of its own (:data:`BOUGHT_GROUP`), which a slicer user deletes before printing; the STEP file holds
-every piece as a solid of its own.
+as one object of its own (:data:`BOUGHT_GROUP`), its build item marked not printable (a slicer shows it and slices
+only the printed parts); the STEP file holds every piece as a solid of its own.
 """
 from __future__ import annotations
 
@@ -124,8 +124,8 @@ def _circle(centre: tuple[float, float], radius: float) -> Contour:
 
 def meshes(design: Any) -> tuple[Any, ...]:
     """The assembly's 3MF payload: each made piece's mesh in place, then the bought ones together as one mesh named
-    :data:`BOUGHT_GROUP` (one object of several closed shells: a slicer splits a 3MF object of components into its
-    components, but keeps one mesh one object, which its user deletes in one go)."""
+    :data:`BOUGHT_GROUP`, not printable (one object of several closed shells: a slicer splits a 3MF object of
+    components into its components, but keeps one mesh one object, which it shows and does not slice)."""
     from camgen.core.solids import Mesh, checked_mesh
 
     made: list[Mesh] = []
@@ -139,7 +139,7 @@ def meshes(design: Any) -> tuple[Any, ...]:
     offsets = np.cumsum(np.array([0, *(len(m.vertices) for m in bought[:-1])], dtype=np.int64))
     group = replace(bought[0], vertices=np.concatenate([m.vertices for m in bought]),
                     faces=np.concatenate([m.faces + k for m, k in zip(bought, offsets, strict=True)]),
-                    name=BOUGHT_GROUP)
+                    name=BOUGHT_GROUP, printable=False)
     return (*made, group)
 
 
