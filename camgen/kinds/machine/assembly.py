@@ -100,6 +100,7 @@ def pieces(design: Any) -> tuple[Piece, ...]:
         hardware = body.name.startswith(("pins.", "shafts."))
         (bought if hardware else made).append(Piece(part, bottom, hardware))
     if frame is not None:
+        bought += _bare_shafts(design, frame, tol)
         for seat in frame.seats:
             if seat.bearing is not None:
                 b = seat.bearing
@@ -107,6 +108,22 @@ def pieces(design: Any) -> tuple[Piece, ...]:
                             (Circle(seat.centre, b.bore / 2),), b.width, tol)
                 bought.append(Piece(ring, 0.0, True))
     return (*made, *bought)
+
+
+def _bare_shafts(design: Any, frame: Any, tolerance: float) -> list[Piece]:
+    """The shafts in the frame that carry no part the clash check places (a hand crank's, turning gears only): each
+    a rod of its seat's diameter (mm) from its stub under the bottom plate up to the plate's top, as long as the kit
+    buys it (:func:`camgen.kinds.machine.framekit.shaft_length`)."""
+    from camgen.kinds.machine.framekit import SHAFT_STUB_MM, shaft_length
+
+    placed = {body.name for body in design.bodies}
+    out = []
+    for seat in frame.seats:
+        if seat.name.startswith("shafts.") and seat.name not in placed:
+            length = shaft_length(frame, design, seat.name.removeprefix("shafts."))
+            rod = Part(seat.name, _circle(seat.centre, seat.diameter / 2), (), length, tolerance)
+            out.append(Piece(rod, -SHAFT_STUB_MM, True))
+    return out
 
 
 def _centre_hole(body: Body, frame: Any) -> tuple[tuple[float, float], float]:
