@@ -208,22 +208,13 @@ def _admesh(path: Path) -> dict[str, float]:
     return {**stats, "volume": float(re.search(r"Volume\s*:\s*([-\d.]+)", text).group(1)), "height": high - low}
 
 
-def _meshlab(path: Path) -> dict:
-    pymeshlab = pytest.importorskip("pymeshlab", reason="pymeshlab is not installed (PyPI; .ci/run installs it)")
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(str(path))
-    topo = ms.get_topological_measures()
-    ms.compute_selection_by_self_intersections_per_face()
-    return {"manifold": topo["is_mesh_two_manifold"], "boundary_edges": topo["boundary_edges"],
-            "self_intersecting": ms.current_mesh().selected_face_number(),
-            "volume": ms.get_geometric_measures()["mesh_volume"]}
-
-
 def test_every_stl_is_closed_for_admesh_and_pymeshlab_and_as_thick_as_its_part(machine):
+    from tests.support.meshlab import meshlab as measure
+
     stls = machine.files(".stl")
     assert stls
     for key, path in stls.items():
-        admesh, meshlab = _admesh(path), _meshlab(path)
+        admesh, meshlab = _admesh(path), measure(path)
         assert all(v == 0 for k, v in admesh.items() if k not in ("volume", "height")), (path.name, admesh)
         assert meshlab["manifold"] and meshlab["boundary_edges"] == 0, path.name
         assert meshlab["self_intersecting"] == 0, path.name
