@@ -61,8 +61,8 @@ MACHINES = (*BUNDLED, *STARTED)
 #: every format a machine writes (its timing table comes with json)
 FORMATS = json.dumps(sorted(MACHINE_FORMATS))
 CORE = "{http://schemas.microsoft.com/3dmanufacturing/core/2015/02}"
-#: PrusaSlicer's default layers (mm): the first, then each one after
-FIRST_LAYER, LAYER = 0.35, 0.3
+#: PrusaSlicer's default layer height after the first (mm)
+LAYER = 0.3
 
 
 @dataclass(frozen=True)
@@ -123,7 +123,7 @@ def test_the_machines_are_found():
 
 def test_the_report_lists_every_file_written_and_each_mount_its_own(machine):
     """The machine's ``files`` are the folder's files; each mount's own report lists the machine's files of that
-    mount, named as the machine's report names them; every format is written (a cut SVG where something is cut)."""
+    mount, named as the machine's report names them; a file of every type a machine writes is there."""
     folder, files = machine.folder, machine.report["files"]
     assert set(files.values()) == {p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file()}
     mounts = [k.removesuffix(".json") for k in files if k.endswith(".json")]
