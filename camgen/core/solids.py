@@ -20,12 +20,14 @@ from camgen.core.shapes import Circle, arc_steps
 
 @dataclass(frozen=True)
 class Mesh:
-    """A triangle mesh in mm: ``vertices`` (n, 3) and ``faces`` (m, 3), outward (counter-clockwise) faces, and the
-    name of the part it is (3MF files carry it, so a slicer lists the part by name)."""
+    """A triangle mesh in mm: ``vertices`` (n, 3) and ``faces`` (m, 3), outward (counter-clockwise) faces, the
+    name of the part it is (3MF files carry it, so a slicer lists the part by name), and whether a slicer prints it
+    (a 3MF's build item says so: bought parts shown in an assembly are not printed)."""
 
     vertices: np.ndarray
     faces: np.ndarray
     name: str = "part"
+    printable: bool = True
 
 
 def _ccw(points: np.ndarray, ccw: bool) -> np.ndarray:

@@ -19,6 +19,7 @@ from camgen.api import write_cam
 from camgen.api import design_cam
 from tests.conftest import template
 from tests.support.freecad import freecad_check
+from tests.support.meshlab import meshlab
 
 HUB = {"cam.bore": 20.0, "hub.keyway": True, "hub.bolt_circle": 50.0, "hub.bolt_holes": 4,
        "hub.bolt_hole_diameter": 4.0, "hub.boss_diameter": 34.0, "hub.boss_height": 10.0, "hub.set_screw": 4.0}
@@ -90,20 +91,9 @@ def test_freecad_check_rejects_a_broken_dxf(files, name):
     assert json.loads(done.stdout.strip().splitlines()[-1])["problems"]
 
 
-def _meshlab(path: Path) -> dict:
-    pymeshlab = pytest.importorskip("pymeshlab", reason="pymeshlab is not installed (PyPI; .ci/run installs it)")
-    ms = pymeshlab.MeshSet()
-    ms.load_new_mesh(str(path))
-    topo = ms.get_topological_measures()
-    ms.compute_selection_by_self_intersections_per_face()
-    return {"manifold": topo["is_mesh_two_manifold"], "boundary_edges": topo["boundary_edges"],
-            "self_intersecting": ms.current_mesh().selected_face_number(),
-            "volume": ms.get_geometric_measures().get("mesh_volume", float("nan"))}
-
-
 def test_pymeshlab_finds_a_closed_two_manifold_of_our_volume(files):
     out, _ = files
-    m = _meshlab(out / "rdrd.stl")
+    m = meshlab(out / "rdrd.stl")
     assert m["manifold"] and m["boundary_edges"] == 0 and m["self_intersecting"] == 0
     import trimesh
 
@@ -113,7 +103,7 @@ def test_pymeshlab_finds_a_closed_two_manifold_of_our_volume(files):
 
 def test_pymeshlab_rejects_a_mesh_with_a_hole(files):
     out, _ = files
-    assert _meshlab(out / "broken-hole.stl")["boundary_edges"] > 0
+    assert meshlab(out / "broken-hole.stl")["boundary_edges"] > 0
 
 
 def _admesh(path: Path) -> dict:

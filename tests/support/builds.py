@@ -3,15 +3,17 @@ that assert on the same command's output (tests/project/test_golden.py, tests/pr
 
 The cache lives in the run's base temporary folder, which pytest-xdist's workers share: a command is run into a
 private folder and renamed into place when it is done (a rename is atomic), so a reader never sees half a build, two
-workers that race for the same command both get a complete folder, and no lock is needed. A worker that loses the race
-throws its own copy away and uses the one in place (the two are the same command's output). Without xdist the
-run's base folder is used the same way.
+workers that race for the same command both get a complete folder. A worker that loses the race
+throws its own copy away and uses the one in place (the two are the same command's output). A worker that asks
+for a command another is running waits for it (a lock file per command, ``fcntl.flock``) instead of running it again
+on the same cores. Without xdist the run's base folder is used the same way.
 
 The folders are read only by convention: a test that writes next to the files, or changes them, must run its own
 command into its ``tmp_path`` instead.
 """
 from __future__ import annotations
 
+import fcntl
 import hashlib
 import os
 import shutil
@@ -56,6 +58,14 @@ class Builds:
         done = self.root / f"{run_id.replace(' ', '_')}-{key}"
         if not done.is_dir():
             self.root.mkdir(parents=True, exist_ok=True)
+            with (self.root / f".{key}.lock").open("w") as lock:
+                fcntl.flock(lock, fcntl.LOCK_EX)        # a worker asking for a command another runs waits for it
+                self._run(done, path, program, args)
+        return done / run_id.replace(" ", "_")
+
+    def _run(self, done: Path, path: Path, program: str, args: list[str]) -> None:
+        """Run the command into a private folder and rename it to ``done``, unless another worker has."""
+        if not done.is_dir():
             part = self.root / f".part-{uuid.uuid4().hex}"
             try:
                 run(path, program, args, part)
@@ -66,4 +76,3 @@ class Builds:
                         raise
             finally:
                 shutil.rmtree(part, ignore_errors=True)
-        return done / run_id.replace(" ", "_")

@@ -68,9 +68,12 @@ def _object(number: int, mesh: Mesh, object_id: uuid.UUID) -> str:
 
 
 def _item(number: int, mesh: Mesh, item_id: uuid.UUID, namespaces: str = "") -> str:
-    """The build item placing object ``number`` (``mesh``'s) where it is drawn (the identity transform)."""
+    """The build item placing object ``number`` (``mesh``'s) where it is drawn (the identity transform); a mesh
+    that is not ``printable`` marked ``printable="0"`` (PrusaSlicer's attribute, which it and the slicers derived
+    from it read: the object is shown, not sliced)."""
+    printable = "" if mesh.printable else ' printable="0"'
     return (f'<item{namespaces} objectid="{number}" transform="1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 0.0 0.0 0.0" '
-            f'p:UUID="{item_id}" partnumber="{_attribute(mesh.name)}"/>')
+            f'p:UUID="{item_id}" partnumber="{_attribute(mesh.name)}"{printable}/>')
 
 
 def _model(objects: str, build_id: uuid.UUID, items: str) -> str:

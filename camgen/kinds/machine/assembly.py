@@ -8,8 +8,8 @@ A piece is a flat :class:`~camgen.core.parts.Part` already in the machine's fram
 turned, mirrored where the kinematics mirrors a four-bar, and moved: x, y in mm as the frame's plate has them) and
 its height ``z`` (mm, up from the bottom plate's bottom face). The outlines are the clash check's (chords within the
 cams' tolerance, 0.01 mm for the links). ``bought`` marks the hardware (pins, shafts, bearings): the 3MF holds it
-as one object of its own (:data:`BOUGHT_GROUP`), which a slicer user deletes before printing; the STEP file holds
-every piece as a solid of its own.
+as one object of its own (:data:`BOUGHT_GROUP`), its build item marked not printable (a slicer shows it and slices
+only the printed parts); the STEP file holds every piece as a solid of its own.
 """
 from __future__ import annotations
 
@@ -100,6 +100,7 @@ def pieces(design: Any) -> tuple[Piece, ...]:
         hardware = body.name.startswith(("pins.", "shafts."))
         (bought if hardware else made).append(Piece(part, bottom, hardware))
     if frame is not None:
+        bought += _bare_shafts(design, frame, tol)
         for seat in frame.seats:
             if seat.bearing is not None:
                 b = seat.bearing
@@ -107,6 +108,22 @@ def pieces(design: Any) -> tuple[Piece, ...]:
                             (Circle(seat.centre, b.bore / 2),), b.width, tol)
                 bought.append(Piece(ring, 0.0, True))
     return (*made, *bought)
+
+
+def _bare_shafts(design: Any, frame: Any, tolerance: float) -> list[Piece]:
+    """The shafts in the frame that carry no part the clash check places (a hand crank's, turning gears only): each
+    a rod of its seat's diameter (mm) from its stub under the bottom plate up to the plate's top, as long as the kit
+    buys it (:func:`camgen.kinds.machine.framekit.shaft_length`)."""
+    from camgen.kinds.machine.framekit import SHAFT_STUB_MM, shaft_length
+
+    placed = {body.name for body in design.bodies}
+    out = []
+    for seat in frame.seats:
+        if seat.name.startswith("shafts.") and seat.name not in placed:
+            length = shaft_length(frame, design, seat.name.removeprefix("shafts."))
+            rod = Part(seat.name, _circle(seat.centre, seat.diameter / 2), (), length, tolerance)
+            out.append(Piece(rod, -SHAFT_STUB_MM, True))
+    return out
 
 
 def _centre_hole(body: Body, frame: Any) -> tuple[tuple[float, float], float]:
@@ -124,8 +141,8 @@ def _circle(centre: tuple[float, float], radius: float) -> Contour:
 
 def meshes(design: Any) -> tuple[Any, ...]:
     """The assembly's 3MF payload: each made piece's mesh in place, then the bought ones together as one mesh named
-    :data:`BOUGHT_GROUP` (one object of several closed shells: a slicer splits a 3MF object of components into its
-    components, but keeps one mesh one object, which its user deletes in one go)."""
+    :data:`BOUGHT_GROUP`, not printable (one object of several closed shells: a slicer splits a 3MF object of
+    components into its components, but keeps one mesh one object, which it shows and does not slice)."""
     from camgen.core.solids import Mesh, checked_mesh
 
     made: list[Mesh] = []
@@ -139,7 +156,7 @@ def meshes(design: Any) -> tuple[Any, ...]:
     offsets = np.cumsum(np.array([0, *(len(m.vertices) for m in bought[:-1])], dtype=np.int64))
     group = replace(bought[0], vertices=np.concatenate([m.vertices for m in bought]),
                     faces=np.concatenate([m.faces + k for m, k in zip(bought, offsets, strict=True)]),
-                    name=BOUGHT_GROUP)
+                    name=BOUGHT_GROUP, printable=False)
     return (*made, group)
 
 
