@@ -202,7 +202,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     from camgen.followers.oscillating_roller import OscillatingRoller
     from camgen.followers.translating_flat import TranslatingFlat
     from camgen.followers.translating_roller import TranslatingRoller
-    from camgen.kinds.machine import kinematics
+    from camgen.kinds.machine import conjugate_parts, kinematics
     from camgen.kinds.machine.design import _cam_of
 
     d = design
@@ -215,7 +215,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     shafts: dict[str, list[tuple[int, float]]] = {}
     for cam, mount in zip(d.cams, spec.cams, strict=True):  # type: ignore[attr-defined]
         kin = _cam_of(cam.design)
-        part = getattr(cam.design, "part", None)
+        part = next(iter(dict(conjugate_parts.plates(cam.design)).values()), None)
         if part is None:
             skipped.append(f"cams.{cam.name}")
             continue
@@ -232,10 +232,19 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         name = f"cams.{cam.name}"
         bodies.append(Body(name, 2 * mount.layer, 2 * mount.layer, part.outline.flatten(tol), place_cam,
                            _round_holes(part.holes)))
-        shafts.setdefault(mount.shaft, []).append((2 * mount.layer, float(part.holes[0].radius) if part.holes else 0.0))
-        joints.append(Joint(name, f"shafts.{mount.shaft}", still(centre),
-                            _margin(max((h.radius for h in part.holes), default=0.0))))
+        bore = float(cam.design.spec.cam.bore) / 2                 # a keyed bore's round part: the shaft
+        shafts.setdefault(mount.shaft, []).append((2 * mount.layer, bore))
+        joints.append(Joint(name, f"shafts.{mount.shaft}", still(centre), _margin(bore)))
         f = kin.follower
+        if conjugate_parts.is_conjugate(cam.design):        # its second plate and its follower's two rollers
+            made, met, arm_of = conjugate_parts.follower_bodies(
+                cam.name, cam.design, 2 * mount.layer, centre, theta, tol, mount.shaft, bore)
+            bodies += made
+            joints += met
+            shafts[mount.shaft].append((2 * mount.layer + 2, bore))
+            if arm_of is not None:
+                arms[cam.name] = (f, arm_of[0], 2 * mount.layer + 3, arm_of[1])   # its linkage over both plates
+                continue
         if isinstance(f, TranslatingRoller | TranslatingFlat):
             _stem(d, cam, kin, f, 2 * mount.layer, centre, theta, tol, bodies, joints)
             continue

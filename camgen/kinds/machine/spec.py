@@ -22,6 +22,7 @@ from camgen.core.errors import SpecError
 from camgen.core.kit import BearingChoice
 from camgen.core.spec import (MAX_ALLOWANCE_MM, MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec,
                               check_kind, length, name_field, notes, read_template, unit)
+from camgen.kinds.machine.conjugate_parts import check_layers
 from camgen.kinds.machine.keeptime import KeepTime
 from camgen.kinds.machine.slider_coupling import STEMS
 from camgen.kinds.machine.slider_coupling import check as check_slider
@@ -260,13 +261,9 @@ class MachineSpec(TemplateSpec):
         if not self.cams and not any(m.shaft for m in self.linkages):
             raise ValueError("cams: a machine has at least one cam, or a linkage driven by a shaft "
                              "(linkages[i].shaft)")
-        seats: dict[tuple[str, int], str] = {}
         for i, cam in enumerate(self.cams):
             self._check_shaft(f"cams[{i}].shaft", cam.shaft, shafts)
-            other = seats.setdefault((cam.shaft, cam.layer), cam.name)
-            if other != cam.name:
-                raise ValueError(f"cams[{i}].layer: cams.{other} already sits on shaft {cam.shaft} at layer "
-                                 f"{cam.layer}; give another layer (0 to {MAX_LAYER})")
+        check_layers(self.cams, self.cam_specs, MAX_LAYER)
         for i, m in enumerate(self.linkages):
             if m.shaft is not None:
                 self._check_shaft(f"linkages[{i}].shaft", m.shaft, shafts)
