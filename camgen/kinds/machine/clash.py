@@ -202,7 +202,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     from camgen.followers.oscillating_roller import OscillatingRoller
     from camgen.followers.translating_flat import TranslatingFlat
     from camgen.followers.translating_roller import TranslatingRoller
-    from camgen.kinds.machine import conjugate_parts, kinematics
+    from camgen.kinds.machine import barrel_parts, conjugate_parts, kinematics
     from camgen.kinds.machine.design import _cam_of
 
     d = design
@@ -216,6 +216,14 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     for cam, mount in zip(d.cams, spec.cams, strict=True):  # type: ignore[attr-defined]
         kin = _cam_of(cam.design)
         part = next(iter(dict(conjugate_parts.plates(cam.design)).values()), None)
+        if barrel_parts.is_barrel(cam.design):              # its drum; its follower moves out of the plane
+            at_shaft, bore = at[mount.shaft], float(cam.design.spec.cam.bore) / 2
+            bodies.append(barrel_parts.drum(cam.name, cam.design, 2 * mount.layer, at_shaft,
+                                            float(cam.design.tolerance)))
+            shafts.setdefault(mount.shaft, []).append((2 * mount.layer, bore))
+            joints.append(Joint(f"cams.{cam.name}", f"shafts.{mount.shaft}", still(at_shaft), _margin(bore)))
+            skipped.append(f"cams.{cam.name}'s follower (it {barrel_parts.OUT_OF_PLANE})")
+            continue
         if part is None:
             skipped.append(f"cams.{cam.name}")
             continue
@@ -361,7 +369,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         if f"cams.{name}.arm" not in entry[0]:
             entry[0].append(f"cams.{name}.arm")
     plane_of = {b.name: b.high for b in bodies}
-    roof = max(plane_of.values()) + 1                       # the top plate's plane
+    roof = max(plane_of.values(), default=0) + 1                       # the top plate's plane
     for i, ((x, y), (held, from_top, r)) in enumerate(pins.items()):
         name = f"pins.{i}"
         planes = [plane_of[h] for h in held]

@@ -32,7 +32,7 @@ from camgen.core.kit import Plate
 from camgen.core.parts import Allowances, Part
 from camgen.core.shapes import rounded_hull
 from camgen.kinds.machine.clash import Body, Joint, circle, fixed, still
-from camgen.kinds.machine import conjugate_parts
+from camgen.kinds.machine import barrel_parts, conjugate_parts
 
 #: (mm) the least plate left between two holes, and between a hole and the plate's edge; a spacer's wall round its
 #: pin's hole; the vertical gap between two planes of parts, and between the plates and the parts next to them
@@ -277,6 +277,7 @@ def thicknesses(design: Any) -> dict[str, float]:
         for part in m.design.build.cut:
             if part.name != "ground":
                 out[f"linkages.{m.name}.{part.name}"] = float(part.thickness)
+    out.update(barrel_parts.thicknesses(design))                # a barrel's drum: as long as it is
     for cam in design.cams:                                     # a translating follower's stem: as its cam
         if f"cams.{cam.name}" in out:
             out[f"cams.{cam.name}.stem"] = out[f"cams.{cam.name}"]

@@ -22,6 +22,7 @@ from camgen.core.errors import SpecError
 from camgen.core.kit import BearingChoice
 from camgen.core.spec import (MAX_ALLOWANCE_MM, MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec,
                               check_kind, length, name_field, notes, read_template, unit)
+from camgen.kinds.machine.barrel_parts import check_coupling as check_barrel
 from camgen.kinds.machine.conjugate_parts import check_layers
 from camgen.kinds.machine.keeptime import KeepTime
 from camgen.kinds.machine.slider_coupling import STEMS
@@ -353,6 +354,7 @@ class MachineSpec(TemplateSpec):
                 raise ValueError(f"couplings[{i}].linkage: a coupling loop: linkages.{c.linkage} is driven by "
                                  f"shaft {shaft} already (its shaft)")
             driving[c.cam], driven[c.linkage] = i, i
+            check_barrel(self.cam_specs[cams[c.cam]], i, c.cam)
             follower = self.cam_specs[cams[c.cam]].follower.type
             if follower in STEMS:
                 check_slider(self, i, self.linkage_specs[linkages[c.linkage]])
