@@ -45,5 +45,5 @@ def check_coupling(cam_spec: Any, index: int, cam: str) -> None:
     """Refuse coupling ``couplings[index]`` from the barrel ``cams.<cam>`` to a planar linkage (a
     :class:`ValueError` naming ``couplings[i].cam``); nothing for another kind's cam."""
     if getattr(cam_spec.cam, "kind", None) == "barrel":
-        raise ValueError(f"couplings[{index}].cam: cams.{cam} is a barrel cam: its follower {OUT_OF_PLANE}, so it drives no "
-                         "planar linkage; couple a disc, plate, grooved or conjugate cam's follower")
+        raise ValueError(f"couplings[{index}].cam: cams.{cam} is a barrel cam: its follower {OUT_OF_PLANE}, so it "
+                         "drives no planar linkage; couple a disc, plate, grooved or conjugate cam's follower")

@@ -139,16 +139,16 @@ def follower_bodies(name: str, cam_design: Any, plane: int, centre: np.ndarray,
         h = width / 2
         outline = np.array([[-h, -length], [h, -length], [h, 0.0], [-h, 0.0]])
 
-        def roller1(phi: np.ndarray) -> np.ndarray:
+        def yoke_roller(phi: np.ndarray) -> np.ndarray:
             return centre + np.column_stack([np.full(len(phi), f.offset), f.d0 + swing(phi)])
 
         def place_yoke(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            return np.broadcast_to(np.eye(2), (len(phi), 2, 2)), roller1(phi)
+            return np.broadcast_to(np.eye(2), (len(phi), 2, 2)), yoke_roller(phi)
 
         bodies.append(Body(f"{me}.yoke", plane + 1, plane + 1, outline, place_yoke))
         joints += [Joint(f"{me}.yoke", f"{me}.roller2", roller2, _margin(r2)),
-                   Joint(f"{me}.yoke", f"{me}.roller", roller1, _margin(float(f.roller_radius))),
-                   Joint(f"{me}.yoke", f"{me}.stem", roller1, _margin(h)),
+                   Joint(f"{me}.yoke", f"{me}.roller", yoke_roller, _margin(float(f.roller_radius))),
+                   Joint(f"{me}.yoke", f"{me}.stem", yoke_roller, _margin(h)),
                    Joint(f"{me}.yoke", f"shafts.{shaft}", still(centre), _margin(shaft_radius))]
         return bodies, joints, None
     pivot = centre + f.pivot
