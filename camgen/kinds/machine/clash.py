@@ -358,7 +358,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             block = next(b for b in bodies if b.name == f"linkages.{m.name}.{slider.name}")
             joints += [Joint(b.name, block.name, functools.partial(_slid_point, m=m, point=slider.point),
                              _margin(float(np.hypot(*block.outline.T).max())))
-                       for b in bodies if b.name in (f"cams.{m.cam}.stem", f"cams.{m.cam}.roller")]
+                       for b in bodies if b.name in (f"cams.{m.cam}.stem", f"cams.{m.cam}.roller",
+                                                     f"cams.{m.cam}.yoke")]      # a conjugate pair's yoke too
         if m.cam in arms and m.analysis.crank:              # its crank and the arm: one bell crank
             link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
             joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),

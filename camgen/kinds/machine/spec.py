@@ -405,6 +405,9 @@ class MachineSpec(TemplateSpec):
         for i, mount in enumerate(self.cams):
             where = f"cams[{i}].template"
             raw = _template(mount.template, where)
+            if "geneva" in raw:
+                raise SpecError("a cam template; a Geneva drive is not mounted on a machine's shafts yet (make it "
+                                "with its own camgen build)", where)
             if "machine" in raw or "cam" not in raw:
                 raise SpecError("a cam template (with a [cam] table); a machine's cams are cams", where)
             rpm = self.machine.rpm * abs(self.turns[mount.shaft])

@@ -230,3 +230,70 @@ def test_both_plates_are_in_the_machines_files(tmp_path):
     assert {"conjarm-lever-1.dxf", "conjarm-lever-2.dxf"} <= files
     assert all((tmp_path / "out" / f).is_file() for f in files)
     assert report["clashes"] == []
+
+
+#: the yoke's first roller (the conjugate template's: base 40 mm, roller 8 mm, 48 mm above the shaft at rest) lifts
+#: the slider C of a slider-crank: crank O-A about O, rod A-C, C sliding along +Y
+O_DRAWN, A_DRAWN = np.array([50.0, 60.0]), np.array([24.684032711, 76.096639408])
+LIFTER = YOKE.replace('name = "conjyoke"', 'name = "conjlift"') + """
+[[linkages]]
+name = "rocker"
+
+[linkages.template.linkage]
+type = "linkage"
+ground = ["O"]
+input = { slider = "stem" }
+tracers = ["A"]
+
+[linkages.template.linkage.joints]
+C = [0.0, 0.0]
+O = [50.0, 60.0]
+A = [24.684032711, 76.096639408]
+
+[linkages.template.linkage.links]
+crank = ["O", "A"]
+rod = ["A", "C"]
+
+[linkages.template.linkage.sliders.stem]
+point = "C"
+guide = "ground"
+angle = 90.0
+
+[linkages.template.parts]
+width = 8.0
+thickness = 3.0
+pin_diameter = 3.0
+
+[[couplings]]
+cam = "yoke"
+linkage = "rocker"
+link = "stem"
+rest = 0.0
+output = "crank"
+output_torque = 1.5
+"""
+
+
+def _crank_pin(c: np.ndarray, o: np.ndarray) -> np.ndarray:
+    """A where the circle about O (radius |OA| drawn) meets the circle about C (radius |AC| drawn), on the drawn
+    A's side of the line C -> O (mm)."""
+    crank, rod = np.hypot(*(A_DRAWN - O_DRAWN)), np.hypot(*A_DRAWN)
+    u = o - c
+    d = np.hypot(u[:, 0], u[:, 1])[:, None]
+    along = (rod ** 2 - crank ** 2 + d ** 2) / (2 * d)
+    h = np.sqrt(rod ** 2 - along ** 2)
+    left = np.column_stack([-u[:, 1], u[:, 0]]) / d
+    side = np.sign(O_DRAWN[0] * A_DRAWN[1] - O_DRAWN[1] * A_DRAWN[0])     # the drawing's C is the origin
+    return c + along * u / d + side * h * left
+
+
+def test_the_yokes_stem_drives_a_slider_crank_as_a_single_cams_does():
+    design = _design(LIFTER)
+    m = design.slid[0]
+    lift = _swing_deg(design, "yoke", design.phi)
+    roller = next(b for b in design.bodies if b.name == "cams.yoke.roller").place(design.phi)[1]
+    assert np.allclose(roller, np.column_stack([np.zeros_like(lift), 48.0 + lift]), atol=1e-12)
+    expected = _crank_pin(np.asarray(roller, float), np.broadcast_to(O_DRAWN + np.array([0.0, 48.0]), roller.shape))
+    assert np.abs(m.points["A"] - expected).max() < 1e-9
+    assert np.ptp(m.points["A"][:, 1]) > 5.0
+    assert design.clashes == ()                                    # the block rides the stem and the yoke
