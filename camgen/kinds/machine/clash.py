@@ -228,10 +228,10 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             skipped.append(f"cams.{cam.name}")
             continue
         centre, tol = at[mount.shaft], float(cam.design.tolerance)
-        sense, turns, phase = kin.follower.sense, cam.turns, math.radians(mount.phase)
+        sense = kin.follower.sense
 
-        def theta(phi: np.ndarray, turns: float = turns, phase: float = phase) -> np.ndarray:
-            return kinematics.program_angles(phi, turns, phase)
+        def theta(phi: np.ndarray, cam: Any = cam) -> np.ndarray:
+            return cam.program_angles(phi)
 
         def place_cam(phi: np.ndarray, theta: Callable = theta, sense: int = sense,
                       centre: np.ndarray = centre) -> tuple[np.ndarray, np.ndarray]:
@@ -286,6 +286,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                    Joint(f"{name}.arm", f"{name}.roller", roller, _margin(r))]
         arms[cam.name] = (f, pivot, plane + 1, arm)
     pins: dict[tuple[float, float], tuple[list[str], int, float]] = {}
+    skipped += [f"genevas.{g.name} (its driver and wheel are not placed yet)"
+                for g in getattr(d, "indexed", ())]
     for m in d.linkages:                                   # type: ignore[attr-defined]
         build, table = m.design.build, m.design.spec.linkage
         if build is None or m.cam not in arms:              # no [parts] table: no outlines to place

@@ -24,6 +24,7 @@ from camgen.core.spec import (MAX_ALLOWANCE_MM, MAX_LENGTH_MM, NAME_PATTERN, Mod
                               check_kind, length, name_field, notes, read_template, unit)
 from camgen.kinds.machine.barrel_parts import check_coupling as check_barrel
 from camgen.kinds.machine.conjugate_parts import check_layers
+from camgen.kinds.machine.indexing import check_genevas
 from camgen.kinds.machine.keeptime import KeepTime
 from camgen.kinds.machine.slider_coupling import STEMS
 from camgen.kinds.machine.slider_coupling import check as check_slider
@@ -139,6 +140,22 @@ class CamMount(Model):
                                                      "cam.rpm is the shaft's")
 
 
+class GenevaMount(Model):
+    """A Geneva drive between two shafts: its driver (crank and locking disc) on ``driver``, its wheel on ``wheel``;
+    the wheel shaft indexes (:mod:`camgen.kinds.machine.indexing`)."""
+
+    name: str = MountName
+    driver: str = Field(description="the shaft its driver turns with (one of [[shafts]], driven)")
+    wheel: str = Field(description="the shaft its wheel turns (one of [[shafts]]; no gear pair or other Geneva "
+                       "drive turns it), its centre_distance from the driver's")
+    phase: float = Field(180.0, ge=-180, le=180, description="the driver's pin angle at the machine's start, from "
+                         "the line from the driver's shaft to the wheel's (counter-clockwise): 0 mid-index, 180 "
+                         "mid-dwell", json_schema_extra=unit("degrees"))
+    template: str | dict[str, Any] = _template_field("the drive: a Geneva template ([geneva]) as an inline table or "
+                                                     "a Geneva template file's path",
+                                                     "its geneva.rpm is the driver shaft's")
+
+
 class LinkageMount(Model):
     """A linkage of the machine: a linkgen template, driven by a coupling (a follower's arm as its crank) or, with
     ``shaft``, by a crank on a shaft (its input crank turning with the shaft, its pivot on the shaft's centre)."""
@@ -230,6 +247,7 @@ class MachineSpec(TemplateSpec):
     cams: tuple[CamMount, ...] = Field((), max_length=MAX_MOUNTS, description="the cams on the shafts (a machine "
                                        "has at least one cam, or a linkage driven by a shaft)")
     linkages: tuple[LinkageMount, ...] = Field((), max_length=MAX_MOUNTS, description="the linkages")
+    genevas: tuple[GenevaMount, ...] = Field((), max_length=MAX_MOUNTS, description="Geneva drives between shafts")
     couplings: tuple[Coupling, ...] = Field((), max_length=MAX_MOUNTS, description="each follower driving a "
                                             "linkage")
     output: MachineOutputTable = MachineOutputTable()
@@ -259,6 +277,7 @@ class MachineSpec(TemplateSpec):
         if self.machine.main not in shafts:
             raise ValueError(f"machine.main: no shaft {self.machine.main!r}; shafts: {', '.join(shafts)}")
         self._check_gears(shafts)
+        check_genevas(self, shafts)
         if not self.cams and not any(m.shaft for m in self.linkages):
             raise ValueError("cams: a machine has at least one cam, or a linkage driven by a shaft "
                              "(linkages[i].shaft)")
@@ -385,14 +404,47 @@ class MachineSpec(TemplateSpec):
         """Each driven shaft's turns per turn of the main shaft, negative where it turns the other way (through an
         odd number of external gear pairs); shafts no gear pair reaches are left out."""
         out = {self.machine.main: 1.0}
-        pending = list(self.gears)
+        pending: list[Any] = [*self.gears, *self.genevas]
         while pending:
             ready = [g for g in pending if g.driver in out]
             if not ready:
                 break
             for g in ready:
-                out[g.driven] = -out[g.driver] * g.driver_teeth / g.driven_teeth
+                if isinstance(g, GenevaMount):                  # its mean ratio: one index a driver turn
+                    out[g.wheel] = -out[g.driver] / self.geneva_specs[self.genevas.index(g)].geneva.slots
+                else:
+                    out[g.driven] = -out[g.driver] * g.driver_teeth / g.driven_teeth
                 pending.remove(g)
+        return out
+
+    @cached_property
+    def geneva_specs(self) -> tuple[Any, ...]:
+        """Each Geneva drive's validated spec, named ``<machine>-<mount>``, its ``geneva.rpm`` its driver shaft's
+        (a shaft no gear reaches: the main shaft's)."""
+        from camgen.kinds.machine.mounts import folder_of
+        from camgen.spec import CamSpec
+
+        out = []
+        for i, mount in enumerate(self.genevas):
+            where = f"genevas[{i}].template"
+            raw = _template(mount.template, where)
+            if "geneva" not in raw:
+                raise SpecError("a Geneva template (with a [geneva] table)", where)
+            rpm = self.machine.rpm * abs(self._gear_turns().get(mount.driver, 1.0))
+            raw = {**raw, "name": f"{self.name}-{mount.name}", "geneva": {**raw["geneva"], "rpm": rpm}}
+            try:
+                out.append(CamSpec.validate_raw(raw, folder_of(mount.template)))
+            except SpecError as exc:
+                raise exc.under(where) from None
+        return tuple(out)
+
+    def _gear_turns(self) -> dict[str, float]:
+        """Each shaft's turns per main turn through gear pairs alone (a Geneva's driver is never its wheel's)."""
+        out = {self.machine.main: 1.0}
+        for _ in self.gears:
+            for g in self.gears:
+                if g.driver in out:
+                    out[g.driven] = -out[g.driver] * g.driver_teeth / g.driven_teeth
         return out
 
     @cached_property
@@ -406,8 +458,8 @@ class MachineSpec(TemplateSpec):
             where = f"cams[{i}].template"
             raw = _template(mount.template, where)
             if "geneva" in raw:
-                raise SpecError("a cam template; a Geneva drive is not mounted on a machine's shafts yet (make it "
-                                "with its own camgen build)", where)
+                raise SpecError("a cam template; a Geneva drive stands between two shafts: give it in [[genevas]] "
+                                "(driver, wheel, template)", where)
             if "machine" in raw or "cam" not in raw:
                 raise SpecError("a cam template (with a [cam] table); a machine's cams are cams", where)
             rpm = self.machine.rpm * abs(self.turns[mount.shaft])
