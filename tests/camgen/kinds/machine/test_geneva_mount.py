@@ -121,6 +121,12 @@ def test_the_timing_shows_four_indexes_and_their_dwells(indexer):
     assert not any("genevas.index" in o["outputs"] and "cams.lift" in o["outputs"]
                    for o in timing(indexer)["overlaps"])              # they move together by construction
     assert "genevas.index (its driver and wheel are not placed yet)" in indexer.unchecked
+    # the pin in a slot while 4 phi + 150 lies within 45 degrees of a whole turn: phi from 41.25 to 63.75, ...
+    from camgen.kinds.machine.report import machine_report
+
+    runs = machine_report(indexer)["genevas"]["index"]["indexing_deg"]
+    assert runs == [[pytest.approx(41.25 + 90 * k, abs=0.5), pytest.approx(63.75 + 90 * k, abs=0.5)]
+                    for k in range(4)]
 
 
 @pytest.mark.parametrize(("old", "new", "message"), [
