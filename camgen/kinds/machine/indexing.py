@@ -3,7 +3,7 @@ shaft, its wheel on the other, and the wheel shaft's angle as an intermittent fu
 
 Angles in radians. The driver turns ``driver_turns`` = |n_d| times a main turn (its shaft's turns, through gears);
 its pin's angle from the centre line (the driver's shaft towards the wheel's) is alpha(phi) = n_d phi + alpha_0,
-alpha_0 the mount's ``phase``. The Geneva law (:class:`~camgen.kinds.geneva.kinematics.GenevaLaw`) gives the wheel's
+alpha_0 the mount's ``phase``. The Geneva law (the Geneva kind's ``GenevaDesign.law``) gives the wheel's
 angle beta in (-pi/n, pi/n] over one driver turn (alpha in (-pi, pi]); over many, with alpha = 2 pi k + a, a in
 (-pi, pi], the wheel has turned
 
@@ -22,21 +22,20 @@ from typing import Any
 
 import numpy as np
 
-from camgen.kinds.geneva.kinematics import GenevaLaw
-
 TWO_PI = 2.0 * math.pi
 
 
 @dataclass(frozen=True)
 class Indexer:
-    """A Geneva drive of the machine: its mount's ``name``, its ``driver`` and ``wheel`` shafts, its ``law``, the
+    """A Geneva drive of the machine: its mount's ``name``, its ``driver`` and ``wheel`` shafts, its ``law`` (the
+    Geneva kind's ``GenevaLaw``), the
     driver shaft's turns per main turn ``driver_turns`` (> 0), the pin's angle ``start`` (rad) at the machine's start
     and its ``design`` (the Geneva kind's)."""
 
     name: str
     driver: str
     wheel: str
-    law: GenevaLaw
+    law: Any
     driver_turns: float
     start: float
     design: Any = None
@@ -69,9 +68,8 @@ class Indexer:
 def indexers(spec: Any, designs: tuple[Any, ...]) -> tuple[Indexer, ...]:
     """Each of ``spec.genevas`` as an :class:`Indexer`, with its Geneva design from ``designs`` (in order)."""
     out = []
-    for mount, gspec, made in zip(spec.genevas, spec.geneva_specs, designs, strict=True):
-        law = GenevaLaw(int(gspec.geneva.slots), float(gspec.geneva.centre_distance))
-        out.append(Indexer(mount.name, mount.driver, mount.wheel, law, abs(spec.turns[mount.driver]),
+    for mount, made in zip(spec.genevas, designs, strict=True):
+        out.append(Indexer(mount.name, mount.driver, mount.wheel, made.law, abs(spec.turns[mount.driver]),
                            math.radians(mount.phase), made))
     return tuple(out)
 

@@ -421,22 +421,27 @@ class MachineSpec(TemplateSpec):
     def geneva_specs(self) -> tuple[Any, ...]:
         """Each Geneva drive's validated spec, named ``<machine>-<mount>``, its ``geneva.rpm`` its driver shaft's
         (a shaft no gear reaches: the main shaft's)."""
+        geared = self._gear_turns()
+        out = []
+        for i, mount in enumerate(self.genevas):
+            raw = _template(mount.template, f"genevas[{i}].template")
+            if "geneva" not in raw:
+                raise SpecError("a Geneva template (with a [geneva] table)", f"genevas[{i}].template")
+            rpm = self.machine.rpm * abs(geared.get(mount.driver, 1.0))
+            out.append(self._turning(mount, raw, "geneva", rpm, f"genevas[{i}].template"))
+        return tuple(out)
+
+    def _turning(self, mount: Any, raw: dict[str, Any], table: str, rpm: float, where: str) -> Any:
+        """A mount's cam or Geneva template ``raw`` validated, named ``<machine>-<mount>``, its ``<table>.rpm``
+        its shaft's ``rpm`` (a :class:`SpecError` under ``where``)."""
         from camgen.kinds.machine.mounts import folder_of
         from camgen.spec import CamSpec
 
-        out = []
-        for i, mount in enumerate(self.genevas):
-            where = f"genevas[{i}].template"
-            raw = _template(mount.template, where)
-            if "geneva" not in raw:
-                raise SpecError("a Geneva template (with a [geneva] table)", where)
-            rpm = self.machine.rpm * abs(self._gear_turns().get(mount.driver, 1.0))
-            raw = {**raw, "name": f"{self.name}-{mount.name}", "geneva": {**raw["geneva"], "rpm": rpm}}
-            try:
-                out.append(CamSpec.validate_raw(raw, folder_of(mount.template)))
-            except SpecError as exc:
-                raise exc.under(where) from None
-        return tuple(out)
+        raw = {**raw, "name": f"{self.name}-{mount.name}", table: {**raw[table], "rpm": rpm}}
+        try:
+            return CamSpec.validate_raw(raw, folder_of(mount.template))
+        except SpecError as exc:
+            raise exc.under(where) from None
 
     def _gear_turns(self) -> dict[str, float]:
         """Each shaft's turns per main turn through gear pairs alone (a Geneva's driver is never its wheel's)."""
@@ -450,25 +455,16 @@ class MachineSpec(TemplateSpec):
     @cached_property
     def cam_specs(self) -> tuple[Any, ...]:
         """Each cam's validated cam spec, named ``<machine>-<cam>`` and turning at its shaft's speed."""
-        from camgen.kinds.machine.mounts import folder_of
-        from camgen.spec import CamSpec
+        return tuple(self._cam_spec(f"cams[{i}].template", m) for i, m in enumerate(self.cams))
 
-        out = []
-        for i, mount in enumerate(self.cams):
-            where = f"cams[{i}].template"
-            raw = _template(mount.template, where)
-            if "geneva" in raw:
-                raise SpecError("a cam template; a Geneva drive stands between two shafts: give it in [[genevas]] "
-                                "(driver, wheel, template)", where)
-            if "machine" in raw or "cam" not in raw:
-                raise SpecError("a cam template (with a [cam] table); a machine's cams are cams", where)
-            rpm = self.machine.rpm * abs(self.turns[mount.shaft])
-            raw = {**raw, "name": f"{self.name}-{mount.name}", "cam": {**raw["cam"], "rpm": rpm}}
-            try:
-                out.append(CamSpec.validate_raw(raw, folder_of(mount.template)))
-            except SpecError as exc:
-                raise exc.under(where) from None
-        return tuple(out)
+    def _cam_spec(self, where: str, mount: CamMount) -> Any:
+        raw = _template(mount.template, where)
+        if "geneva" in raw:
+            raise SpecError("a cam template; a Geneva drive stands between two shafts: give it in [[genevas]] "
+                            "(driver, wheel, template)", where)
+        if "machine" in raw or "cam" not in raw:
+            raise SpecError("a cam template (with a [cam] table); a machine's cams are cams", where)
+        return self._turning(mount, raw, "cam", self.machine.rpm * abs(self.turns[mount.shaft]), where)
 
     @cached_property
     def linkage_specs(self) -> tuple[Any, ...]:
