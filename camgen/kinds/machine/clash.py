@@ -202,7 +202,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     from camgen.followers.oscillating_roller import OscillatingRoller
     from camgen.followers.translating_flat import TranslatingFlat
     from camgen.followers.translating_roller import TranslatingRoller
-    from camgen.kinds.machine import kinematics
+    from camgen.kinds.machine import barrel_parts, conjugate_parts, kinematics
     from camgen.kinds.machine.design import _cam_of
 
     d = design
@@ -215,15 +215,23 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     shafts: dict[str, list[tuple[int, float]]] = {}
     for cam, mount in zip(d.cams, spec.cams, strict=True):  # type: ignore[attr-defined]
         kin = _cam_of(cam.design)
-        part = getattr(cam.design, "part", None)
+        part = next(iter(dict(conjugate_parts.plates(cam.design)).values()), None)
+        if barrel_parts.is_barrel(cam.design):              # its drum; its follower moves out of the plane
+            at_shaft, bore = at[mount.shaft], float(cam.design.spec.cam.bore) / 2
+            bodies.append(barrel_parts.drum(cam.name, cam.design, 2 * mount.layer, at_shaft,
+                                            float(cam.design.tolerance)))
+            shafts.setdefault(mount.shaft, []).append((2 * mount.layer, bore))
+            joints.append(Joint(f"cams.{cam.name}", f"shafts.{mount.shaft}", still(at_shaft), _margin(bore)))
+            skipped.append(f"cams.{cam.name}'s follower (it {barrel_parts.OUT_OF_PLANE})")
+            continue
         if part is None:
             skipped.append(f"cams.{cam.name}")
             continue
         centre, tol = at[mount.shaft], float(cam.design.tolerance)
-        sense, turns, phase = kin.follower.sense, cam.turns, math.radians(mount.phase)
+        sense = kin.follower.sense
 
-        def theta(phi: np.ndarray, turns: float = turns, phase: float = phase) -> np.ndarray:
-            return kinematics.program_angles(phi, turns, phase)
+        def theta(phi: np.ndarray, cam: Any = cam) -> np.ndarray:
+            return cam.program_angles(phi)
 
         def place_cam(phi: np.ndarray, theta: Callable = theta, sense: int = sense,
                       centre: np.ndarray = centre) -> tuple[np.ndarray, np.ndarray]:
@@ -232,10 +240,19 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         name = f"cams.{cam.name}"
         bodies.append(Body(name, 2 * mount.layer, 2 * mount.layer, part.outline.flatten(tol), place_cam,
                            _round_holes(part.holes)))
-        shafts.setdefault(mount.shaft, []).append((2 * mount.layer, float(part.holes[0].radius) if part.holes else 0.0))
-        joints.append(Joint(name, f"shafts.{mount.shaft}", still(centre),
-                            _margin(max((h.radius for h in part.holes), default=0.0))))
+        bore = float(cam.design.spec.cam.bore) / 2                 # a keyed bore's round part: the shaft
+        shafts.setdefault(mount.shaft, []).append((2 * mount.layer, bore))
+        joints.append(Joint(name, f"shafts.{mount.shaft}", still(centre), _margin(bore)))
         f = kin.follower
+        if conjugate_parts.is_conjugate(cam.design):        # its second plate and its follower's two rollers
+            made, met, arm_of = conjugate_parts.follower_bodies(
+                cam.name, cam.design, 2 * mount.layer, centre, theta, tol, mount.shaft, bore)
+            bodies += made
+            joints += met
+            shafts[mount.shaft].append((2 * mount.layer + 2, bore))
+            if arm_of is not None:
+                arms[cam.name] = (f, arm_of[0], 2 * mount.layer + 3, arm_of[1])   # its linkage over both plates
+                continue
         if isinstance(f, TranslatingRoller | TranslatingFlat):
             _stem(d, cam, kin, f, 2 * mount.layer, centre, theta, tol, bodies, joints)
             continue
@@ -269,6 +286,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                    Joint(f"{name}.arm", f"{name}.roller", roller, _margin(r))]
         arms[cam.name] = (f, pivot, plane + 1, arm)
     pins: dict[tuple[float, float], tuple[list[str], int, float]] = {}
+    skipped += [f"genevas.{g.name} (its driver and wheel are not placed yet)"
+                for g in getattr(d, "indexed", ())]
     for m in d.linkages:                                   # type: ignore[attr-defined]
         build, table = m.design.build, m.design.spec.linkage
         if build is None or m.cam not in arms:              # no [parts] table: no outlines to place
@@ -341,7 +360,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             block = next(b for b in bodies if b.name == f"linkages.{m.name}.{slider.name}")
             joints += [Joint(b.name, block.name, functools.partial(_slid_point, m=m, point=slider.point),
                              _margin(float(np.hypot(*block.outline.T).max())))
-                       for b in bodies if b.name in (f"cams.{m.cam}.{p}" for p in ("stem", "roller", "face"))]
+                       for b in bodies if b.name in (f"cams.{m.cam}.{p}" for p in ("stem", "roller", "face",
+                                                                                "yoke"))]   # a conjugate's yoke too
         if m.cam in arms and m.analysis.crank:              # its crank and the arm: one bell crank
             link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
             joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),
@@ -352,7 +372,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         if f"cams.{name}.arm" not in entry[0]:
             entry[0].append(f"cams.{name}.arm")
     plane_of = {b.name: b.high for b in bodies}
-    roof = max(plane_of.values()) + 1                       # the top plate's plane
+    roof = max(plane_of.values(), default=0) + 1                       # the top plate's plane
     for i, ((x, y), (held, from_top, r)) in enumerate(pins.items()):
         name = f"pins.{i}"
         planes = [plane_of[h] for h in held]

@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import chain_inertia, clash, frame, general_inertia, kinematics, slider_coupling
+from camgen.kinds.machine import chain_inertia, clash, frame, general_inertia, indexing, kinematics, slider_coupling
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -42,6 +42,15 @@ class CamMotion:
     phase_deg: float
     theta: np.ndarray
     follower: np.ndarray
+    #: the Geneva drive whose wheel turns its shaft (:class:`~camgen.kinds.machine.indexing.Indexer`), else None
+    indexer: Any = None
+
+    def program_angles(self, phi: np.ndarray) -> np.ndarray:
+        """Its program angles (rad, in [0, 2 pi)) at main shaft angles ``phi`` (rad): its shaft's angle less its
+        phase (an indexing shaft's from its Geneva drive)."""
+        if self.indexer is None:
+            return kinematics.program_angles(phi, self.turns, math.radians(self.phase_deg))
+        return np.mod(self.indexer.wheel_motion(phi)[0] - math.radians(self.phase_deg), kinematics.TWO_PI)
 
     @property
     def unit(self) -> str:
@@ -50,8 +59,10 @@ class CamMotion:
 
     @property
     def rate(self) -> np.ndarray:
-        """d s / d phi: the follower's rate per radian of the main shaft."""
-        return self.follower[1] * abs(self.turns)
+        """d s / d phi: the follower's rate per radian of the main shaft (on an indexing shaft, times its rate)."""
+        if self.indexer is None:
+            return self.follower[1] * abs(self.turns)
+        return self.follower[1] * self.indexer.wheel_motion(kinematics.shaft_angles(len(self.theta)))[1]
 
 
 @dataclass(frozen=True)
@@ -144,6 +155,8 @@ class MachineDesign:
     frame: frame.Frame | None = None
     #: each linkage a translating follower's stem drives (:mod:`camgen.kinds.machine.slider_coupling`)
     slid: tuple[slider_coupling.SliderMotion, ...] = ()
+    #: each Geneva drive between two shafts (:mod:`camgen.kinds.machine.indexing`)
+    indexed: tuple[indexing.Indexer, ...] = ()
 
     @property
     def tolerance(self) -> float:
@@ -166,8 +179,10 @@ class MachineDesign:
                        for m in (*self.cranked, *self.slid) for p in m.tracers for k, axis in enumerate("xy"))
         slid = tuple(Output(f"linkages.{m.name}", "deg", np.degrees(m.output_angle), np.degrees(m.output_rate))
                      for m in self.slid if m.coupling.output is not None)
+        wheels = tuple(Output(f"genevas.{g.name}", "deg", *map(np.degrees, g.wheel_motion(self.phi)))
+                       for g in self.indexed)
         return (*cams, *(Output(f"linkages.{m.name}", "deg", np.degrees(m.theta4), np.degrees(m.rocker_rate))
-                         for m in self.linkages), *slid, *traced)
+                         for m in self.linkages), *slid, *traced, *wheels)
 
     @property
     def shaft_torque(self) -> np.ndarray:
@@ -179,14 +194,16 @@ class MachineDesign:
 
     def together(self, a: str, b: str) -> bool:
         """Whether outputs labelled ``a`` and ``b`` move together by construction (left out of the overlaps): a
-        follower and the linkage it drives (and its tracers), or two outputs of one general linkage."""
+        follower and the linkage it drives (and its tracers), two outputs of one general linkage, or a Geneva drive's
+        wheel and a cam on its shaft."""
         driven = [(m.cam, m.name) for m in self.linkages] + [(m.cam, m.name) for m in self.slid]
         pairs = {frozenset((f"cams.{cam}", f"linkages.{name}")) for cam, name in driven}
         own = [m.name for m in (*self.cranked, *self.slid) if a.startswith(f"linkages.{m.name}")
                and b.startswith(f"linkages.{m.name}")]
         followed = [m.name for m in self.slid if {a, b} & {f"cams.{m.cam}"}
                     and any(x.startswith(f"linkages.{m.name}.") for x in (a, b))]
-        return frozenset((a, b)) in pairs or bool(own) or bool(followed)
+        indexed = {frozenset((f"cams.{c.name}", f"genevas.{c.indexer.name}")) for c in self.cams if c.indexer}
+        return frozenset((a, b)) in pairs | indexed or bool(own) or bool(followed)
 
     def cam(self, name: str) -> CamMotion:
         """The cam mounted as ``name``."""
@@ -228,7 +245,9 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     """
     frame.check_names(spec)
     phi = kinematics.shaft_angles(spec.machine.samples)
-    cams = {mount.name: _cam_motion(spec, i, phi) for i, mount in enumerate(spec.cams)}
+    indexed = indexing.indexers(spec, tuple(_geneva(spec, i) for i in range(len(spec.genevas))))
+    cams = {mount.name: _cam_motion(spec, i, phi, indexing.wheel_of(indexed, mount.shaft))
+            for i, mount in enumerate(spec.cams)}
     linkages = []
     slid = []
     warnings: list[str] = []
@@ -262,8 +281,9 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
                 raise exc.under(f"linkages[{i}].template") from None
             cranked.append(cranked_motion(spec, i, phi, made_linkage))
             warnings += [f"linkages.{mount.name}: {w}" for w in made_linkage.report.get("warnings", ())]
+    warnings += [f"genevas.{g.name}: {w}" for g in indexed for w in g.design.warnings]
     made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked),
-                         slid=tuple(slid))
+                         slid=tuple(slid), indexed=indexed)
     bodies, joints, unchecked = clash.machine_parts(made, one_plate=spec.machine.frame == "one")
     if spec.machine.frame == "two":
         bodies, joints = frame.with_top_plate(bodies, joints)
@@ -278,8 +298,18 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
                    frame=frame.machine_frame(made, bodies, joints))
 
 
-def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray) -> CamMotion:
-    """The cam of ``spec.cams[index]`` designed by its kind, and its follower's motion at shaft angles ``phi``."""
+def _geneva(spec: MachineSpec, index: int) -> Any:
+    """The Geneva drive of ``spec.genevas[index]`` designed by its kind."""
+    gspec = spec.geneva_specs[index]
+    try:
+        return spec_kind(gspec).design(gspec)
+    except SpecError as exc:
+        raise exc.under(f"genevas[{index}].template") from None
+
+
+def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray, indexer: indexing.Indexer | None = None) -> CamMotion:
+    """The cam of ``spec.cams[index]`` designed by its kind, and its follower's motion at shaft angles ``phi`` (its
+    shaft's angle from ``indexer``, the Geneva drive turning it, if any)."""
     mount, cam_spec = spec.cams[index], spec.cam_specs[index]
     try:
         design = spec_kind(cam_spec).design(cam_spec)
@@ -290,8 +320,9 @@ def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray) -> CamMotion:
         raise SpecError(f"{spec_kind(cam_spec).title} has no single follower program for a machine to drive "
                         "with; give a disc, plate or grooved cam", f"cams[{index}].template")
     turns = spec.turns[mount.shaft]
-    theta = kinematics.program_angles(phi, turns, math.radians(mount.phase))
-    return CamMotion(mount.name, design, turns, mount.phase, theta, cam.program.evaluate(theta)[:3])
+    made = CamMotion(mount.name, design, turns, mount.phase, phi, np.zeros((3, len(phi))), indexer)
+    theta = made.program_angles(phi)
+    return replace(made, theta=theta, follower=cam.program.evaluate(theta)[:3])
 
 
 def _linkage_motion(spec: MachineSpec, index: int, mount_index: int, cam: CamMotion) -> LinkageMotion:
@@ -392,4 +423,4 @@ def _redesigned(spec: MachineSpec, index: int, cam: CamMotion, theta: np.ndarray
         design = spec_kind(cam_spec).design(cam_spec)
     except SpecError as exc:
         raise exc.under(f"cams[{index}].template") from None
-    return CamMotion(cam.name, design, cam.turns, cam.phase_deg, cam.theta, cam.follower)
+    return replace(cam, design=design)

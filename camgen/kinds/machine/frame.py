@@ -32,6 +32,7 @@ from camgen.core.kit import Plate
 from camgen.core.parts import Allowances, Part
 from camgen.core.shapes import rounded_hull
 from camgen.kinds.machine.clash import Body, Joint, circle, fixed, still
+from camgen.kinds.machine import barrel_parts, conjugate_parts
 
 #: (mm) the least plate left between two holes, and between a hole and the plate's edge; a spacer's wall round its
 #: pin's hole; the vertical gap between two planes of parts, and between the plates and the parts next to them
@@ -274,9 +275,10 @@ def thicknesses(design: Any) -> dict[str, float]:
     shaft- or follower-driven general linkage (their parts')."""
     out: dict[str, float] = {}
     for cam in design.cams:
-        part = getattr(cam.design, "part", None)
-        if part is not None:
-            out[f"cams.{cam.name}"] = out[f"cams.{cam.name}.arm"] = float(part.thickness)
+        for suffix, part in conjugate_parts.plates(cam.design):      # a conjugate pair's two plates
+            out[f"cams.{cam.name}{suffix}"] = out[f"cams.{cam.name}.arm"] = float(part.thickness)
+        if conjugate_parts.is_conjugate(cam.design):
+            out[f"cams.{cam.name}.yoke"] = out[f"cams.{cam.name}"]
     for m in design.linkages:
         build = m.design.build
         if build is None:
@@ -291,6 +293,7 @@ def thicknesses(design: Any) -> dict[str, float]:
         for part in m.design.build.cut:
             if part.name != "ground":
                 out[f"linkages.{m.name}.{part.name}"] = float(part.thickness)
+    out.update(barrel_parts.thicknesses(design))                # a barrel's drum: as long as it is
     for cam in design.cams:                                     # a translating follower's stem: as its cam
         if f"cams.{cam.name}" in out:
             out[f"cams.{cam.name}.stem"] = out[f"cams.{cam.name}"]

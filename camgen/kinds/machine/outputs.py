@@ -54,6 +54,8 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
         bundle, cam_report = spec_kind(cam.design.spec).bundle(cam.design)
         items += _scoped(bundle.items, cam.name, formats, out.folders)
         cams.append(cam_report)
+    for g in design.indexed:                            # each Geneva drive's own files
+        items += _scoped(spec_kind(g.design.spec).bundle(g.design)[0].items, g.name, formats, out.folders)
     mounts: tuple[Any, ...] = (*design.linkages, *design.cranked, *design.slid)
     for m in mounts:
         items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats, out.folders)

@@ -118,8 +118,7 @@ def swing(cam: Any, phi: np.ndarray) -> np.ndarray:
     """A cam's follower (s, s', s'') at main shaft angles ``phi``: its program at its program angles."""
     from camgen.kinds.machine.design import _cam_of
 
-    theta = kinematics.program_angles(phi, cam.turns, math.radians(cam.phase_deg))
-    return _cam_of(cam.design).program.evaluate(theta)[:3]
+    return _cam_of(cam.design).program.evaluate(cam.program_angles(phi))[:3]
 
 
 def poses_report(design: Any) -> list[dict[str, Any]]:

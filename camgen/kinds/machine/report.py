@@ -6,6 +6,7 @@ angles where an output's rate is at most 1e-9 of its range per radian (to the sa
 """
 from __future__ import annotations
 
+import math
 from itertools import combinations
 from typing import Any
 
@@ -163,6 +164,7 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         "linkages": {m.name: _linkage_entry(design, m) for m in design.linkages},
         **({"cranked": {m.name: _cranked_entry(design, m) for m in design.cranked}} if design.cranked else {}),
         **({"slid": {m.name: slid_entry(design, m) for m in design.slid}} if design.slid else {}),
+        **({"genevas": {g.name: _geneva_entry(design, g) for g in design.indexed}} if design.indexed else {}),
         "timing": timing(design),
         "poses": poses_report(design),
         "shaft_torque_n_m": {"min": _num(torque.min(), 6), "max": _num(torque.max(), 6),
@@ -174,6 +176,14 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         "warnings": list(design.warnings),
         **({"keep_time": timed} if (timed := timing_report(design)) else {}),
     }
+
+
+def _geneva_entry(design: MachineDesign, g: Any) -> dict[str, Any]:
+    """A Geneva drive's entry: its shafts, slots, centre distance (mm), driver turns per main turn, the pin's angle
+    at the start (degrees) and the main shaft's runs (degrees) over which the wheel indexes."""
+    return {"driver": g.driver, "wheel": g.wheel, "slots": g.law.slots, "centre_distance_mm": g.law.centre_distance,
+            "driver_turns_per_main_turn": g.driver_turns, "start_deg": _num(math.degrees(g.start), 9),
+            "indexing_deg": _runs(kinematics.intervals(g.indexing(design.phi))), "files_prefix": g.design.spec.name}
 
 
 def _torque_note(design: MachineDesign) -> str:

@@ -22,6 +22,9 @@ from camgen.core.errors import SpecError
 from camgen.core.kit import BearingChoice
 from camgen.core.spec import (MAX_ALLOWANCE_MM, MAX_LENGTH_MM, NAME_PATTERN, Model, OutputTable, TemplateSpec,
                               check_kind, length, name_field, notes, read_template, unit)
+from camgen.kinds.machine.barrel_parts import check_coupling as check_barrel
+from camgen.kinds.machine.conjugate_parts import check_layers
+from camgen.kinds.machine.indexing import check_genevas
 from camgen.kinds.machine.keeptime import KeepTime
 from camgen.kinds.machine.slider_coupling import STEMS
 from camgen.kinds.machine.slider_coupling import check as check_slider
@@ -137,6 +140,22 @@ class CamMount(Model):
                                                      "cam.rpm is the shaft's")
 
 
+class GenevaMount(Model):
+    """A Geneva drive between two shafts: its driver (crank and locking disc) on ``driver``, its wheel on ``wheel``;
+    the wheel shaft indexes (:mod:`camgen.kinds.machine.indexing`)."""
+
+    name: str = MountName
+    driver: str = Field(description="the shaft its driver turns with (one of [[shafts]], driven)")
+    wheel: str = Field(description="the shaft its wheel turns (one of [[shafts]]; no gear pair or other Geneva "
+                       "drive turns it), its centre_distance from the driver's")
+    phase: float = Field(180.0, ge=-180, le=180, description="the driver's pin angle at the machine's start, from "
+                         "the line from the driver's shaft to the wheel's (counter-clockwise): 0 mid-index, 180 "
+                         "mid-dwell", json_schema_extra=unit("degrees"))
+    template: str | dict[str, Any] = _template_field("the drive: a Geneva template ([geneva]) as an inline table or "
+                                                     "a Geneva template file's path",
+                                                     "its geneva.rpm is the driver shaft's")
+
+
 class LinkageMount(Model):
     """A linkage of the machine: a linkgen template, driven by a coupling (a follower's arm as its crank) or, with
     ``shaft``, by a crank on a shaft (its input crank turning with the shaft, its pivot on the shaft's centre)."""
@@ -228,6 +247,7 @@ class MachineSpec(TemplateSpec):
     cams: tuple[CamMount, ...] = Field((), max_length=MAX_MOUNTS, description="the cams on the shafts (a machine "
                                        "has at least one cam, or a linkage driven by a shaft)")
     linkages: tuple[LinkageMount, ...] = Field((), max_length=MAX_MOUNTS, description="the linkages")
+    genevas: tuple[GenevaMount, ...] = Field((), max_length=MAX_MOUNTS, description="Geneva drives between shafts")
     couplings: tuple[Coupling, ...] = Field((), max_length=MAX_MOUNTS, description="each follower driving a "
                                             "linkage")
     output: MachineOutputTable = MachineOutputTable()
@@ -257,16 +277,13 @@ class MachineSpec(TemplateSpec):
         if self.machine.main not in shafts:
             raise ValueError(f"machine.main: no shaft {self.machine.main!r}; shafts: {', '.join(shafts)}")
         self._check_gears(shafts)
+        check_genevas(self, shafts)
         if not self.cams and not any(m.shaft for m in self.linkages):
             raise ValueError("cams: a machine has at least one cam, or a linkage driven by a shaft "
                              "(linkages[i].shaft)")
-        seats: dict[tuple[str, int], str] = {}
         for i, cam in enumerate(self.cams):
             self._check_shaft(f"cams[{i}].shaft", cam.shaft, shafts)
-            other = seats.setdefault((cam.shaft, cam.layer), cam.name)
-            if other != cam.name:
-                raise ValueError(f"cams[{i}].layer: cams.{other} already sits on shaft {cam.shaft} at layer "
-                                 f"{cam.layer}; give another layer (0 to {MAX_LAYER})")
+        check_layers(self.cams, self.cam_specs, MAX_LAYER)
         for i, m in enumerate(self.linkages):
             if m.shaft is not None:
                 self._check_shaft(f"linkages[{i}].shaft", m.shaft, shafts)
@@ -356,6 +373,7 @@ class MachineSpec(TemplateSpec):
                 raise ValueError(f"couplings[{i}].linkage: a coupling loop: linkages.{c.linkage} is driven by "
                                  f"shaft {shaft} already (its shaft)")
             driving[c.cam], driven[c.linkage] = i, i
+            check_barrel(self.cam_specs[cams[c.cam]], i, c.cam)
             follower = self.cam_specs[cams[c.cam]].follower.type
             if follower in STEMS:
                 check_slider(self, i, self.linkage_specs[linkages[c.linkage]])
@@ -386,35 +404,67 @@ class MachineSpec(TemplateSpec):
         """Each driven shaft's turns per turn of the main shaft, negative where it turns the other way (through an
         odd number of external gear pairs); shafts no gear pair reaches are left out."""
         out = {self.machine.main: 1.0}
-        pending = list(self.gears)
+        pending: list[Any] = [*self.gears, *self.genevas]
         while pending:
             ready = [g for g in pending if g.driver in out]
             if not ready:
                 break
             for g in ready:
-                out[g.driven] = -out[g.driver] * g.driver_teeth / g.driven_teeth
+                if isinstance(g, GenevaMount):                  # its mean ratio: one index a driver turn
+                    out[g.wheel] = -out[g.driver] / self.geneva_specs[self.genevas.index(g)].geneva.slots
+                else:
+                    out[g.driven] = -out[g.driver] * g.driver_teeth / g.driven_teeth
                 pending.remove(g)
+        return out
+
+    @cached_property
+    def geneva_specs(self) -> tuple[Any, ...]:
+        """Each Geneva drive's validated spec, named ``<machine>-<mount>``, its ``geneva.rpm`` its driver shaft's
+        (a shaft no gear reaches: the main shaft's)."""
+        geared = self._gear_turns()
+        out = []
+        for i, mount in enumerate(self.genevas):
+            raw = _template(mount.template, f"genevas[{i}].template")
+            if "geneva" not in raw:
+                raise SpecError("a Geneva template (with a [geneva] table)", f"genevas[{i}].template")
+            rpm = self.machine.rpm * abs(geared.get(mount.driver, 1.0))
+            out.append(self._turning(mount, raw, "geneva", rpm, f"genevas[{i}].template"))
+        return tuple(out)
+
+    def _turning(self, mount: Any, raw: dict[str, Any], table: str, rpm: float, where: str) -> Any:
+        """A mount's cam or Geneva template ``raw`` validated, named ``<machine>-<mount>``, its ``<table>.rpm``
+        its shaft's ``rpm`` (a :class:`SpecError` under ``where``)."""
+        from camgen.kinds.machine.mounts import folder_of
+        from camgen.spec import CamSpec
+
+        raw = {**raw, "name": f"{self.name}-{mount.name}", table: {**raw[table], "rpm": rpm}}
+        try:
+            return CamSpec.validate_raw(raw, folder_of(mount.template))
+        except SpecError as exc:
+            raise exc.under(where) from None
+
+    def _gear_turns(self) -> dict[str, float]:
+        """Each shaft's turns per main turn through gear pairs alone (a Geneva's driver is never its wheel's)."""
+        out = {self.machine.main: 1.0}
+        for _ in self.gears:
+            for g in self.gears:
+                if g.driver in out:
+                    out[g.driven] = -out[g.driver] * g.driver_teeth / g.driven_teeth
         return out
 
     @cached_property
     def cam_specs(self) -> tuple[Any, ...]:
         """Each cam's validated cam spec, named ``<machine>-<cam>`` and turning at its shaft's speed."""
-        from camgen.kinds.machine.mounts import folder_of
-        from camgen.spec import CamSpec
+        return tuple(self._cam_spec(f"cams[{i}].template", m) for i, m in enumerate(self.cams))
 
-        out = []
-        for i, mount in enumerate(self.cams):
-            where = f"cams[{i}].template"
-            raw = _template(mount.template, where)
-            if "machine" in raw or "cam" not in raw:
-                raise SpecError("a cam template (with a [cam] table); a machine's cams are cams", where)
-            rpm = self.machine.rpm * abs(self.turns[mount.shaft])
-            raw = {**raw, "name": f"{self.name}-{mount.name}", "cam": {**raw["cam"], "rpm": rpm}}
-            try:
-                out.append(CamSpec.validate_raw(raw, folder_of(mount.template)))
-            except SpecError as exc:
-                raise exc.under(where) from None
-        return tuple(out)
+    def _cam_spec(self, where: str, mount: CamMount) -> Any:
+        raw = _template(mount.template, where)
+        if "geneva" in raw:
+            raise SpecError("a cam template; a Geneva drive stands between two shafts: give it in [[genevas]] "
+                            "(driver, wheel, template)", where)
+        if "machine" in raw or "cam" not in raw:
+            raise SpecError("a cam template (with a [cam] table); a machine's cams are cams", where)
+        return self._turning(mount, raw, "cam", self.machine.rpm * abs(self.turns[mount.shaft]), where)
 
     @cached_property
     def linkage_specs(self) -> tuple[Any, ...]:
