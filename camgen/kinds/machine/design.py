@@ -18,7 +18,7 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import chain_inertia, clash, frame, kinematics, slider_coupling
+from camgen.kinds.machine import chain_inertia, clash, frame, kinematics, machine_gears, slider_coupling
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -144,6 +144,8 @@ class MachineDesign:
     frame: frame.Frame | None = None
     #: each linkage a translating follower's stem drives (:mod:`camgen.kinds.machine.slider_coupling`)
     slid: tuple[slider_coupling.SliderMotion, ...] = ()
+    #: each gear pair as real involute gears (:mod:`camgen.kinds.machine.machine_gears`)
+    gears: tuple[machine_gears.MachineGear, ...] = ()
 
     @property
     def tolerance(self) -> float:
@@ -264,6 +266,9 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             warnings += [f"linkages.{mount.name}: {w}" for w in made_linkage.report.get("warnings", ())]
     made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked),
                          slid=tuple(slid))
+    gears = machine_gears.designed(spec, made.tolerance)
+    warnings += [w for g in gears for w in machine_gears.warnings_of(g)]
+    made = replace(made, gears=gears, warnings=tuple(warnings))
     bodies, joints, unchecked = clash.machine_parts(made, one_plate=spec.machine.frame == "one")
     if spec.machine.frame == "two":
         bodies, joints = frame.with_top_plate(bodies, joints)

@@ -278,6 +278,9 @@ def thicknesses(design: Any) -> dict[str, float]:
     for cam in design.cams:                                     # a translating follower's stem: as its cam
         if f"cams.{cam.name}" in out:
             out[f"cams.{cam.name}.stem"] = out[f"cams.{cam.name}"]
+    from camgen.kinds.machine.machine_gears import thicknesses as gear_thicknesses
+
+    out.update(gear_thicknesses(design))
     return out
 
 
