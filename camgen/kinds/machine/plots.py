@@ -48,9 +48,9 @@ def machine_figure(design: MachineDesign) -> Any:
     """The whole machine at each of ``machine.figure_angles``, a panel each (mm, y up, one scale for all): every part
     the clash check places (:func:`camgen.kinds.machine.poses.placed_parts`, from the lowest plane up; those behind
     the frame in orange), each named point (:func:`~camgen.kinds.machine.poses.points`) as a dot, the tracers' paths
-    over the turn, the gear pairs' working pitch circles (dashed, over their gears) and each slider's guide over its travel (dash-dotted,
-    :mod:`camgen.kinds.machine.guides`). Each part is a patch and each point and guide a line whose ``gid`` is its
-    name."""
+    over the turn, the gear pairs' working pitch circles (dashed, over their gears) and each slider's guide over its
+    travel (dash-dotted, :mod:`camgen.kinds.machine.guides`). Each part is a patch and each point and guide a line
+    whose ``gid`` is its name."""
     from matplotlib.patches import Polygon
 
     from camgen.kinds.machine import poses
