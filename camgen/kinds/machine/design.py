@@ -231,6 +231,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     frame.check_names(spec)
     phi = kinematics.shaft_angles(spec.machine.samples)
     cams = {mount.name: _cam_motion(spec, i, phi) for i, mount in enumerate(spec.cams)}
+    gears = machine_gears.designed(spec, min((float(c.design.tolerance) for c in cams.values()), default=0.01))
     linkages = []
     slid = []
     warnings: list[str] = []
@@ -266,7 +267,6 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             warnings += [f"linkages.{mount.name}: {w}" for w in made_linkage.report.get("warnings", ())]
     made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked),
                          slid=tuple(slid))
-    gears = machine_gears.designed(spec, made.tolerance)
     warnings += [w for g in gears for w in machine_gears.warnings_of(g)]
     made = replace(made, gears=gears, warnings=tuple(warnings))
     bodies, joints, unchecked = clash.machine_parts(made, one_plate=spec.machine.frame == "one")

@@ -79,16 +79,24 @@ def _standalone_cut_outlines():
     return cut["pinion"], cut["gear"]
 
 
-def test_the_dxf_outlines_equal_the_standalone_gear_pair(toy, tmp_path):
-    """Each gear's cut DXF (written by the machine) holds the standalone pair's outline, vertices and bulges, to
-    1e-9 mm, and its hole."""
+def _bundled(bundled_builds):
+    """The folder ``camgen build templates/walking-toy.toml`` wrote (shared with the golden test)."""
+    from tests.support.golden import runs
+
+    return bundled_builds.folder(TOY, *runs(TOY)[0])
+
+
+def test_the_dxf_outlines_equal_the_standalone_gear_pair(bundled_builds):
+    """Each gear's cut DXF (written by the machine, listed in its report's files) holds the standalone pair's
+    outline, vertices and bulges, to 1e-9 mm, and its hole."""
+    import json
+
     import ezdxf
 
-    from camgen import api
-
-    written = api.write(toy, tmp_path / "toy", formats=["dxf"])
+    folder = _bundled(bundled_builds)
+    files = json.loads((folder / "walking-toy.json").read_text())["files"]
     for stem, part in zip(("driver", "driven"), _standalone_cut_outlines(), strict=True):
-        doc = ezdxf.readfile(tmp_path / "toy" / written.files[f"gears.crank-legs-{stem}_dxf"])
+        doc = ezdxf.readfile(folder / files[f"gears.crank-legs-{stem}_dxf"])
         lines = [e for e in doc.modelspace() if e.dxftype() == "LWPOLYLINE" and e.dxf.layer == "OUTLINE"]
         assert len(lines) == 1
         got = np.array(lines[0].get_points("xyb"))
@@ -99,14 +107,12 @@ def test_the_dxf_outlines_equal_the_standalone_gear_pair(toy, tmp_path):
         assert [round(h.dxf.radius, 12) for h in holes] == [4.0]
 
 
-def test_the_report_gives_the_textbook_contact_ratio(toy, bundled_builds):
+def test_the_report_gives_the_textbook_contact_ratio(bundled_builds):
     """The report's contact ratio equals (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - c sin a) / (pi m cos a), with
     ra = m (z/2 + 1) and rb = m z/2 cos a, to 1e-9; the speed ratio is -z1/z2; no warning."""
     import json
 
-    from tests.support.golden import runs
-
-    folder = bundled_builds.folder(TOY, *runs(TOY)[0])
+    folder = _bundled(bundled_builds)
     report = json.loads((folder / "walking-toy.json").read_text())
     entry = report["gears"][0]
     m, a, z1, z2 = 1.5, math.radians(20.0), 36, 18
@@ -123,8 +129,6 @@ def test_the_report_gives_the_textbook_contact_ratio(toy, bundled_builds):
         kit = {row["part"]: row for row in csv.DictReader(f)}
     assert kit["gear crank-legs-driver"]["size"].startswith("36 teeth, module 1.5 mm, 6 mm thick, 8 mm hole")
     assert kit["gear crank-legs-driven"]["size"].startswith("18 teeth, module 1.5 mm")
-    for stem in ("driver", "driven"):
-        assert (folder / f"walking-toy-crank-legs-{stem}.dxf").is_file()
 
 
 def test_the_assembly_and_the_figures_turn_the_gears(toy):
@@ -151,32 +155,49 @@ def test_the_assembly_and_the_figures_turn_the_gears(toy):
         assert np.abs(np.angle(np.exp(1j * (turn - gear.angles(figure_phi)[k])))).max() < 1e-9
 
 
-def test_a_gear_is_a_clash_body(tmp_path):
-    """Put on the front leg's second plane (layer 1: plane 2) the legs' gear meets the leg's rods there: the clash
-    check names the gear."""
+def _with_gears(toy, change: dict, at: float | None = None):
+    """The toy's design with its gears designed again from ``change`` (its legs as they are): the gears alone
+    depend on it."""
+    from dataclasses import replace
+
     from camgen import api
+    from camgen.kinds.machine.machine_gears import designed
 
     raw = _raw()
-    raw["gears"][0]["layer"] = 1
-    design = api.design(api.validate(raw))
-    met = [c for c in design.clashes if "gears.crank-legs.driven" in (c.a, c.b)]
-    assert met and all(other.startswith("linkages.left.") for c in met for other in (c.a, c.b)
+    raw["gears"][0].update(change)
+    if at is not None:
+        raw["shafts"][0]["at"] = [at, 0.0]
+    spec = api.validate(raw)
+    return replace(toy, spec=spec, gears=designed(spec, toy.tolerance))
+
+
+def test_a_gear_is_a_clash_body(toy):
+    """Put on the front leg's second plane (layer 1: plane 2) the legs' gear meets the leg's links there: the clash
+    check names the gear and a link of the left leg."""
+    from camgen.kinds.machine import clash
+
+    bodies, joints, _ = clash.machine_parts(_with_gears(toy, {"layer": 1}), one_plate=True)
+    assert [(b.low, b.high) for b in bodies if b.name.startswith("gears.")] == [(2, 2), (2, 2)]
+    second = [b for b in bodies if b.low <= 2 <= b.high]                      # what shares plane 2
+    met = [c for c in clash.clashes(second, joints, 720) if "gears.crank-legs.driven" in (c.a, c.b)]
+    assert met and all(other.startswith(("linkages.left.", "shafts.")) for c in met for other in (c.a, c.b)
                        if not other.startswith("gears."))
 
 
-def test_a_hub_is_printed_and_placed(tmp_path):
+def test_a_hub_is_printed_and_placed(toy):
     """A hub (12 mm across, 4 mm high) stands on each printed gear (its STL 6 + 4 mm high) and fills the plane over
-    the gears in the clash check."""
-    from camgen import api
+    the gears (plane 1) in the clash check, meeting its shaft."""
+    from camgen.core.solids import checked_mesh
+    from camgen.kinds.machine import clash
     from camgen.kinds.machine.machine_gears import gear_parts
 
-    raw = _raw()
-    raw["gears"][0].update(hub_diameter=12.0, hub_height=4.0)
-    design = api.design(api.validate(raw))
-    hubs = [b for b in design.bodies if b.name.endswith(".hub")]
-    assert [(b.low, b.high) for b in hubs] == [(1, 1), (1, 1)]
-    from camgen.core.solids import checked_mesh
-
+    design = _with_gears(toy, {"hub_diameter": 12.0, "hub_height": 4.0})
+    bodies, joints, _ = clash.machine_parts(design, one_plate=True)
+    hubs = [b for b in bodies if b.name.endswith(".hub")]
+    assert [(b.name, b.low, b.high) for b in hubs] == [("gears.crank-legs.driver.hub", 1, 1),
+                                                       ("gears.crank-legs.driven.hub", 1, 1)]
+    assert {(j.a, j.b) for j in joints if j.a.endswith(".hub")} == {("gears.crank-legs.driver.hub", "shafts.crank"),
+                                                                    ("gears.crank-legs.driven.hub", "shafts.legs")}
     for _, _, printed in gear_parts(design):
         mesh = checked_mesh(printed)[0]
         assert mesh.vertices[:, 2].max() - mesh.vertices[:, 2].min() == pytest.approx(10.0, abs=1e-9)
@@ -194,11 +215,10 @@ def test_bad_gears_are_refused(tmp_path, change, message):
     assert_refused(TOY, change, message, tmp_path)
 
 
-def test_a_shifted_pair_meshes_at_its_working_distance():
+def test_a_shifted_pair_meshes_at_its_working_distance(toy):
     """Shifts whose sum is not 0 mesh the pair at the working centre distance c = m (z1 + z2) / 2 cos a / cos a_w,
-    inv a_w = inv a + 2 tan a (x1 + x2) / (z1 + z2) (a_w solved here by bisection): the shafts placed there build,
-    and the teeth still never overlap."""
-    from camgen import api
+    inv a_w = inv a + 2 tan a (x1 + x2) / (z1 + z2) (a_w solved here by bisection): the shafts placed there are
+    accepted, and the teeth still never overlap over 720 angles."""
     from camgen.kinds.machine.clash import outlines
 
     m, a, z1, z2, x1, x2 = 1.5, math.radians(20.0), 36, 18, 0.2, 0.3
@@ -208,12 +228,40 @@ def test_a_shifted_pair_meshes_at_its_working_distance():
         mid = (lo + hi) / 2
         lo, hi = (mid, hi) if math.tan(mid) - mid < target else (lo, mid)
     c = m * (z1 + z2) / 2 * math.cos(a) / math.cos(lo)
-    raw = _raw()
-    raw["shafts"][0]["at"] = [c, 0.0]
-    raw["gears"][0].update(driver_shift=x1, driven_shift=x2)
-    design = api.design(api.validate(raw))
+    design = _with_gears(toy, {"driver_shift": x1, "driven_shift": x2}, at=c)
     gear = design.gears[0]
     assert gear.pair.centre_distance == pytest.approx(c, abs=1e-9)
-    a_body, b_body = _gear_bodies(design)
+    from camgen.kinds.machine import clash
+
+    bodies = [b for b in clash.machine_parts(design)[0] if b.name.startswith("gears.")]
     phi = np.arange(720) * (2 * math.pi / 720)
-    assert not shapely.intersects(outlines(a_body, phi), outlines(b_body, phi)).any()
+    pa, pb = outlines(bodies[0], phi), outlines(bodies[1], phi)
+    assert not shapely.intersects(pa, pb).any()
+    assert shapely.distance(pa, pb).max() <= 0.1 * math.cos(lo)
+
+
+def _gears_of(change: dict, at: float):
+    from camgen import api
+    from camgen.kinds.machine.machine_gears import designed, warnings_of
+
+    raw = _raw()
+    raw["shafts"][0]["at"] = [at, 0.0]
+    raw["gears"][0].update(change)
+    return next(warnings_of(g) for g in designed(api.validate(raw), 0.01))
+
+
+def test_an_undercut_gear_is_warned_of_naming_its_shift():
+    """14 teeth at 20 degrees are undercut (fewer than 2 / sin^2 a = 17.1): a warning naming gears[0].driven_shift
+    and the least shift 1 - z sin^2 a / 2 that avoids it; shifted by +0.2 (and the driver by -0.2, the same
+    distance) it is cut whole."""
+    a = math.radians(20.0)
+    least = 1 - 14 * math.sin(a) ** 2 / 2
+    found = _gears_of({"driver_teeth": 42, "driven_teeth": 14}, 42.0)
+    assert found == [f"gears[0].driven_shift: the driven gear is undercut: 14 teeth at shift 0, fewer than the "
+                     f"{2 / math.sin(a) ** 2:.4g} that shift cuts whole; a shift of {least:.4g} or more avoids it"]
+    assert _gears_of({"driver_teeth": 42, "driven_teeth": 14, "driven_shift": 0.2, "driver_shift": -0.2}, 42.0) == []
+
+
+def test_pointed_teeth_are_refused_naming_the_shift(tmp_path):
+    assert_refused(TOY, {"gears.0.driven_teeth": 8, "gears.0.driven_shift": 0.8},
+                   "gears[0].driven_shift: the teeth come to a point inside the tip circle", tmp_path)

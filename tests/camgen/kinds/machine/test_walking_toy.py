@@ -259,7 +259,8 @@ def test_every_file_of_the_toy_reads_back(tmp_path):
     report = json.loads((tmp_path / "walking-toy.json").read_text())
     assert set(report["files"].values()) == {p.name for p in tmp_path.iterdir()}
     dxf = sorted(tmp_path.glob("*.dxf"))
-    assert [p.name for p in dxf] == ["walking-toy-frame.dxf", *(f"walking-toy-{leg}-{what}.dxf"
+    assert [p.name for p in dxf] == ["walking-toy-crank-legs-driven.dxf", "walking-toy-crank-legs-driver.dxf",
+                                     "walking-toy-frame.dxf", *(f"walking-toy-{leg}-{what}.dxf"
                                                                 for leg in ("left", "right")
                                                                 for what in ("assembly", "sheet"))]
     for path in dxf:
