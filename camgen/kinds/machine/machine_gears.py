@@ -16,9 +16,10 @@ shaft's turns per main turn, counter-clockwise positive) and the driven gear at 
 shared between both flanks at phi = 0. Angles counter-clockwise, lengths mm.
 
 **Planes.** A gear pair stands on one plane along both shafts: plane 2 ``layer`` as a cam's, or with no ``layer``
-the plane over every other moving part of the machine (so nothing else sweeps through it); a hub (``hub_diameter``,
-``hub_height``) fills the plane over it, round the shaft. Each gear's hole is its shaft's diameter
-(:func:`camgen.kinds.machine.frame.shaft_diameters`), made with the machine's kerf (cut) and clearance (printed).
+the lowest plane from 0 up that no other part sweeps into and none crosses either shaft under (:func:`plane_of`); a
+hub (``hub_diameter``, ``hub_height``) fills the plane over it, round the shaft. Each gear's hole is its shaft's
+diameter (:func:`camgen.kinds.machine.frame.shaft_diameters`), made with the machine's kerf (cut) and clearance
+(printed).
 """
 from __future__ import annotations
 
@@ -93,7 +94,7 @@ class MachineGear:
     thickness, hub_height : float
         The gears' thickness and their hubs' height (mm; 0: no hub).
     layer : int or None
-        The ``layer`` given (plane 2 layer), or None: over every other moving part.
+        The ``layer`` given (plane 2 layer), or None: the lowest free plane (:func:`plane_of`).
     """
 
     index: int

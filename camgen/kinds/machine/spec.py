@@ -143,7 +143,8 @@ class GearTable(Model):
                              json_schema_extra=unit("mm", allowed="< hub_height"))
     layer: int | None = Field(None, ge=0, le=MAX_LAYER, description="the pair's plane along its shafts: plane "
                               "2 layer, as a cam's (a cam on either shaft at this layer is refused)",
-                              json_schema_extra=notes(absent="the plane over every other moving part"))
+                              json_schema_extra=notes(absent="the lowest plane from 0 up that no other part "
+                                                      "sweeps into, nor crosses either shaft under"))
 
 
 class CamMount(Model):
@@ -368,15 +369,15 @@ class MachineSpec(TemplateSpec):
         from camgen.kinds.machine.machine_gears import gear_name
 
         names = _unique([gear_name(g) for g in self.gears], "gears")
-        mounts = [m.name for m in (*self.cams, *self.linkages)]
+        mounts = [c.name for c in self.cams] + [m.name for m in self.linkages]
         for i, (name, g) in enumerate(zip(names, self.gears, strict=True)):
             if name in mounts:
                 raise ValueError(f"gears[{i}].name: {name!r} names a mount already; give the pair a name of its own")
             for cam in self.cams:
                 if g.layer is not None and cam.layer == g.layer and cam.shaft in (g.driver, g.driven):
                     raise ValueError(f"gears[{i}].layer: cams.{cam.name} sits on shaft {cam.shaft} at layer "
-                                     f"{cam.layer}; give another layer (0 to {MAX_LAYER}), or none: over every "
-                                     "moving part")
+                                     f"{cam.layer}; give another layer (0 to {MAX_LAYER}), or none: the lowest "
+                                     "plane free of the other parts")
 
     def _check_couplings(self) -> None:
         cams = {c.name: i for i, c in enumerate(self.cams)}
