@@ -242,9 +242,10 @@ SWEEP_CLEARANCE_MM = 0.5
 
 def plane_of(gear: MachineGear, bodies: Any, joints: Any) -> int:
     """The plane gear pair ``gear`` stands on: 2 ``layer``, or with none the lowest plane from 0 up where no other
-    part of the clash check's ``bodies`` sweeps (over :data:`SWEEP_SAMPLES` angles, within
+    part of the clash check's ``bodies`` (gear pairs placed before it too) sweeps (over :data:`SWEEP_SAMPLES` angles, within
     :data:`SWEEP_CLEARANCE_MM`) into either gear's tip circle, nor, on the planes under it, across either shaft
-    (but the parts it carries, meeting it in ``joints``)."""
+    (but the parts it carries, meeting it in ``joints``); where none is, the plane over every part (the clash check
+    then names what meets it)."""
     import shapely
 
     from camgen.kinds.machine.clash import outlines
@@ -252,7 +253,7 @@ def plane_of(gear: MachineGear, bodies: Any, joints: Any) -> int:
     if gear.layer is not None:
         return 2 * gear.layer
     phi = np.arange(SWEEP_SAMPLES) * (2 * math.pi / SWEEP_SAMPLES)
-    others = [b for b in bodies if not b.name.startswith(("shafts.", "gears.", "spacers."))]
+    others = [b for b in bodies if not b.name.startswith(("shafts.", "spacers."))]
     swept = [(b, shapely.union_all(outlines(b, phi))) for b in others]
     tips = [shapely.Point(*c).buffer(t.tip_radius + SWEEP_CLEARANCE_MM)
             for c, t in zip(gear.centres, (gear.pair.pinion_tooth, gear.pair.gear_tooth), strict=True) if t]
@@ -281,9 +282,8 @@ def gear_bodies(design: Any, bodies: list[Any], joints: list[Any],
     overlap."""
     from camgen.kinds.machine.clash import Body, Joint, circle, still
 
-    placed = list(bodies)
     for gear in getattr(design, "gears", ()):
-        plane = plane_of(gear, placed, joints)
+        plane = plane_of(gear, bodies, joints)                # the pairs placed before it among the others
         for k, maker in enumerate(gear.makers):
             name, shaft = gear.part_name(k), gear.shafts[k]
             r = maker.stock.hole / 2

@@ -265,3 +265,24 @@ def test_an_undercut_gear_is_warned_of_naming_its_shift():
 def test_pointed_teeth_are_refused_naming_the_shift(tmp_path):
     assert_refused(TOY, {"gears.0.driven_teeth": 8, "gears.0.driven_shift": 0.8},
                    "gears[0].driven_shift: the teeth come to a point inside the tip circle", tmp_path)
+
+
+def test_a_second_pair_on_one_shaft_takes_the_next_free_plane(toy):
+    """A second pair on the crank's shaft (36 teeth driving 18 on a shaft 40.5 mm beyond it) cannot stand on plane 0,
+    where the first pair's 36 teeth turn, nor on planes 1 to 3, where the front leg's links sweep into its tip
+    circle: it takes plane 4, and its driven shaft turns -2 times a main turn."""
+    from dataclasses import replace
+
+    from camgen import api
+    from camgen.kinds.machine import clash
+    from camgen.kinds.machine.machine_gears import designed
+
+    raw = _raw()
+    raw["shafts"].append({"name": "idle", "at": [81.0, 0.0]})
+    raw["gears"].append({"driver": "crank", "driven": "idle", "driver_teeth": 36, "driven_teeth": 18, "module": 1.5})
+    spec = api.validate(raw)
+    bodies = clash.machine_parts(replace(toy, spec=spec, gears=designed(spec, toy.tolerance)), one_plate=True)[0]
+    assert [(b.name, b.low) for b in bodies if b.name.startswith("gears.")] == [
+        ("gears.crank-legs.driver", 0), ("gears.crank-legs.driven", 0),
+        ("gears.crank-idle.driver", 4), ("gears.crank-idle.driven", 4)]
+    assert spec.turns["idle"] == -2.0
