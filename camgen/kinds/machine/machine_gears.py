@@ -242,10 +242,10 @@ SWEEP_CLEARANCE_MM = 0.5
 
 def plane_of(gear: MachineGear, bodies: Any, joints: Any) -> int:
     """The plane gear pair ``gear`` stands on: 2 ``layer``, or with none the lowest plane from 0 up where no other
-    part of the clash check's ``bodies`` (gear pairs placed before it too) sweeps (over :data:`SWEEP_SAMPLES` angles, within
-    :data:`SWEEP_CLEARANCE_MM`) into either gear's tip circle, nor, on the planes under it, across either shaft
-    (but the parts it carries, meeting it in ``joints``); where none is, the plane over every part (the clash check
-    then names what meets it)."""
+    part of the clash check's ``bodies`` (gear pairs placed before it too) sweeps (over :data:`SWEEP_SAMPLES`
+    angles, within :data:`SWEEP_CLEARANCE_MM`) into either gear's tip circle, nor, on the planes under it, across
+    either shaft (but the parts it carries, meeting it in ``joints``); where none is, the plane over every part (the
+    clash check then names what meets it)."""
     import shapely
 
     from camgen.kinds.machine.clash import outlines
