@@ -371,6 +371,9 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         entry = pins.setdefault(key, ([], 0, PIVOT_PIN_MM / 2))
         if f"cams.{name}.arm" not in entry[0]:
             entry[0].append(f"cams.{name}.arm")
+    from camgen.kinds.machine.machine_gears import gear_bodies
+
+    gear_bodies(d, bodies, joints, shafts)                  # the gear pairs, over the other parts by default
     plane_of = {b.name: b.high for b in bodies}
     roof = max(plane_of.values(), default=0) + 1                       # the top plate's plane
     for i, ((x, y), (held, from_top, r)) in enumerate(pins.items()):

@@ -18,7 +18,8 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import chain_inertia, clash, frame, general_inertia, indexing, kinematics, slider_coupling
+from camgen.kinds.machine import (chain_inertia, clash, frame, general_inertia, indexing, kinematics, machine_gears,
+                                  slider_coupling)
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -157,6 +158,8 @@ class MachineDesign:
     slid: tuple[slider_coupling.SliderMotion, ...] = ()
     #: each Geneva drive between two shafts (:mod:`camgen.kinds.machine.indexing`)
     indexed: tuple[indexing.Indexer, ...] = ()
+    #: each gear pair as real involute gears (:mod:`camgen.kinds.machine.machine_gears`)
+    gears: tuple[machine_gears.MachineGear, ...] = ()
 
     @property
     def tolerance(self) -> float:
@@ -248,6 +251,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     indexed = indexing.indexers(spec, tuple(_geneva(spec, i) for i in range(len(spec.genevas))))
     cams = {mount.name: _cam_motion(spec, i, phi, indexing.wheel_of(indexed, mount.shaft))
             for i, mount in enumerate(spec.cams)}
+    gears = machine_gears.designed(spec, min((float(c.design.tolerance) for c in cams.values()), default=0.01))
     linkages = []
     slid = []
     warnings: list[str] = []
@@ -284,6 +288,8 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     warnings += [f"genevas.{g.name}: {w}" for g in indexed for w in g.design.warnings]
     made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked),
                          slid=tuple(slid), indexed=indexed)
+    warnings += [w for g in gears for w in machine_gears.warnings_of(g)]
+    made = replace(made, gears=gears, warnings=tuple(warnings))
     bodies, joints, unchecked = clash.machine_parts(made, one_plate=spec.machine.frame == "one")
     if spec.machine.frame == "two":
         bodies, joints = frame.with_top_plate(bodies, joints)

@@ -272,7 +272,7 @@ def stack(spec: Any, design: Any, bodies: Sequence[Body]) -> Stack:
 def thicknesses(design: Any) -> dict[str, float]:
     """Each flat moving part's thickness (mm) by its clash-check name: a cam's, its follower arm's or stem's (the
     cam's, or the crank's of the four-bar it drives), a four-bar's coupler and rocker and every moving link of a
-    shaft- or follower-driven general linkage (their parts')."""
+    shaft- or follower-driven general linkage (their parts'), and each gear and hub of a gear pair."""
     out: dict[str, float] = {}
     for cam in design.cams:
         for suffix, part in conjugate_parts.plates(cam.design):      # a conjugate pair's two plates
@@ -297,6 +297,9 @@ def thicknesses(design: Any) -> dict[str, float]:
     for cam in design.cams:                                     # a translating follower's stem: as its cam
         if f"cams.{cam.name}" in out:
             out[f"cams.{cam.name}.stem"] = out[f"cams.{cam.name}"]
+    from camgen.kinds.machine.machine_gears import thicknesses as gear_thicknesses
+
+    out.update(gear_thicknesses(design))
     return out
 
 

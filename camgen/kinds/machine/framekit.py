@@ -70,7 +70,9 @@ def bom(frame: Frame, design: Any) -> tuple[BomLine, ...]:
         else:
             lines.append(BomLine(f"pin {seat.diameter:g} mm", 1, f"{where}, {math.ceil(top - bottom + 2):g} mm "
                                  "long", "buy", "ISO 2338 (parallel pin)"))
-    return tuple(lines)
+    from camgen.kinds.machine.machine_gears import bom_lines
+
+    return (*lines, *bom_lines(design))
 
 
 #: main shaft angles over the turn at which the moving parts' sweep is taken (every 5 degrees)

@@ -60,6 +60,9 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
     for m in mounts:
         items += _scoped(linkgen_api.bundle(m.design)[0].items, m.name, formats, out.folders)
     report = {**machine_report(design), **_parts_summary(cams)}
+    from camgen.kinds.machine.machine_gears import gear_items
+
+    items += gear_items(design, formats)
     if design.frame is not None:
         from camgen.kinds.machine.framekit import frame_items, frame_report
 

@@ -38,11 +38,13 @@ def _style(p: poses.Placed) -> str:
         return "joint"
     if p.name.endswith(".roller"):
         return "roller"
+    if p.name.startswith("gears.") and not p.name.endswith(".hub"):
+        return "part"
     return "part" if p.name.startswith("cams.") and p.name.count(".") == 1 else "plate"
 
 
 def _still(design: Any, paths: list[np.ndarray]) -> Body:
-    """What stands still: each shaft's centre marked, each gear pair's pitch circles, the tracers' paths."""
+    """What stands still: each shaft's centre marked, each gear pair's working pitch circles, the tracers' paths."""
     at = {s.name: np.asarray(s.at, dtype=float) for s in design.spec.shafts}
     size = 6.0
     outlines = []
@@ -50,9 +52,9 @@ def _still(design: Any, paths: list[np.ndarray]) -> Body:
     for c in at.values():
         outlines += [Outline(np.array([c - across, c + across]), "guide", False),
                      Outline(np.array([c - up, c + up]), "guide", False)]
-    for g in design.spec.gears:
-        outlines += [Outline(circle(g.module * g.driver_teeth / 2, 0.05) + at[g.driver], "pitch"),
-                     Outline(circle(g.module * g.driven_teeth / 2, 0.05) + at[g.driven], "pitch")]
+    for g in design.gears:
+        outlines += [Outline(circle(radius, 0.05) + at[shaft], "pitch")
+                     for shaft, radius in zip(g.shafts, g.pair.working_pitch_radii, strict=True)]
     outlines += [Outline(path, "tracer") for path in paths]
     return Body("frame, gears' pitch circles and paths", tuple(outlines))
 

@@ -48,9 +48,9 @@ def machine_figure(design: MachineDesign) -> Any:
     """The whole machine at each of ``machine.figure_angles``, a panel each (mm, y up, one scale for all): every part
     the clash check places (:func:`camgen.kinds.machine.poses.placed_parts`, from the lowest plane up; those behind
     the frame in orange), each named point (:func:`~camgen.kinds.machine.poses.points`) as a dot, the tracers' paths
-    over the turn, the gear pairs' pitch circles (dashed) and each slider's guide over its travel (dash-dotted,
-    :mod:`camgen.kinds.machine.guides`). Each part is a patch and each point and guide a line whose ``gid`` is its
-    name."""
+    over the turn, the gear pairs' working pitch circles (dashed, over their gears) and each slider's guide over its
+    travel (dash-dotted, :mod:`camgen.kinds.machine.guides`). Each part is a patch and each point and guide a line
+    whose ``gid`` is its name."""
     from matplotlib.patches import Polygon
 
     from camgen.kinds.machine import poses
@@ -73,9 +73,9 @@ def machine_figure(design: MachineDesign) -> Any:
     for k, (ax, angle) in enumerate(zip(axes, angles, strict=False)):
         for path in paths:
             ax.plot(path[:, 0], path[:, 1], color="C3", lw=0.8, alpha=0.7)
-        for g in design.spec.gears:
-            for shaft, teeth in ((g.driver, g.driver_teeth), (g.driven, g.driven_teeth)):
-                ring = circle(g.module * teeth / 2, 0.05) + at[shaft]
+        for g in design.gears:
+            for shaft, radius in zip(g.shafts, g.pair.working_pitch_radii, strict=True):
+                ring = circle(radius, 0.05) + at[shaft]
                 ax.add_patch(Polygon(ring, closed=True, fill=False, ls="--", ec="0.5", lw=0.8))
         for guide in fixed:
             ax.plot(guide.ends[:, 0], guide.ends[:, 1], color="0.35", lw=1.2, ls="-.", gid=guide.name)

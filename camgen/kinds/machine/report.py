@@ -15,6 +15,7 @@ import numpy as np
 from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
 from camgen.kinds.machine.keeptime import timing_report
+from camgen.kinds.machine.machine_gears import report_entries
 from camgen.kinds.machine.poses import poses_report
 from camgen.speed import HeldContact, Speed
 from camgen.tables.followers import Driven
@@ -159,7 +160,7 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
                     "samples": spec.machine.samples},
         "shafts": [{"name": s.name, "at_mm": list(s.at), "turns_per_main_turn": spec.turns.get(s.name)}
                    for s in spec.shafts],
-        "gears": [g.model_dump() for g in spec.gears],
+        "gears": report_entries(design),
         "cams": {c.name: _cam_entry(design, i) for i, c in enumerate(design.cams)},
         "linkages": {m.name: _linkage_entry(design, m) for m in design.linkages},
         **({"cranked": {m.name: _cranked_entry(design, m) for m in design.cranked}} if design.cranked else {}),

@@ -121,7 +121,33 @@ class GearTable(Model):
     driven_teeth: int = Field(ge=6, le=400, description="teeth of the driven gear")
     module: float = Field(gt=0, le=50, description="the gears' module: pitch diameter / teeth",
                           json_schema_extra=unit("mm", allowed="the shafts lie module (driver_teeth + driven_teeth) "
-                                                 f"/ 2 apart, within {GEAR_DISTANCE_TOL_MM:g} mm"))
+                                                 f"/ 2 apart (with shifts: the working centre distance), within "
+                                                 f"{GEAR_DISTANCE_TOL_MM:g} mm"))
+    name: str | None = Field(None, pattern=NAME_PATTERN, description="the pair's name: its gears' files are "
+                             "<machine>-<name>-driver and -driven (.dxf cut, .stl printed)",
+                             json_schema_extra=notes(absent="<driver>-<driven>"))
+    pressure_angle: float = Field(20.0, ge=10.0, le=30.0, description="the pressure angle of the basic rack",
+                                  json_schema_extra=unit("degrees"))
+    backlash: float = Field(0.1, gt=0, le=50.0, description="play between the teeth along the working pitch "
+                            "circles: each gear's teeth thinned by half of it",
+                            json_schema_extra=unit("mm", allowed="<= pi module / 8"))
+    driver_shift: float = Field(0.0, ge=-1.0, le=0.8, description="profile shift coefficient of the driver's gear "
+                                "(thicker teeth, fewer without undercut)", json_schema_extra=unit("modules"))
+    driven_shift: float = Field(0.0, ge=-1.0, le=0.8, description="profile shift coefficient of the driven gear",
+                                json_schema_extra=unit("modules"))
+    thickness: float = length("the gears' thickness (face width)", 6.0, le=FRAME_THICKNESS_MAX_MM)
+    hub_diameter: float = Field(0.0, ge=0, le=MAX_LENGTH_MM, description="a printed hub round each gear's hole, "
+                                "0 for none", json_schema_extra=unit("mm", allowed="> the shaft, within the root "
+                                                                     "circle; with hub_height"))
+    hub_height: float = Field(0.0, ge=0, le=FRAME_THICKNESS_MAX_MM, description="the hubs' height over the gears "
+                              "(they fill the plane over the gears' in the clash check)",
+                              json_schema_extra=unit("mm", allowed="with hub_diameter"))
+    set_screw: float = Field(0.0, ge=0, le=20.0, description="a radial set-screw hole through each hub, 0 for none",
+                             json_schema_extra=unit("mm", allowed="< hub_height"))
+    layer: int | None = Field(None, ge=0, le=MAX_LAYER, description="the pair's plane along its shafts: plane "
+                              "2 layer, as a cam's (a cam on either shaft at this layer is refused)",
+                              json_schema_extra=notes(absent="the lowest plane from 0 up that no other part "
+                                                      "sweeps into, nor crosses either shaft under"))
 
 
 class CamMount(Model):
@@ -337,12 +363,16 @@ class MachineSpec(TemplateSpec):
                 raise ValueError(f"gears[{i}].driven: a coupling loop: shaft {g.driven} is driven by "
                                  f"gears[{driven[g.driven]}] already")
             driven[g.driven] = i
-            need = g.module * (g.driver_teeth + g.driven_teeth) / 2
+            from camgen.kinds.machine.machine_gears import pair_table
+
+            need = pair_table(g, i).pair.centre_distance
             apart = math.dist(at[g.driver], at[g.driven])
             if abs(apart - need) > GEAR_DISTANCE_TOL_MM:
+                how = "module x (driver_teeth + driven_teeth) / 2" + (", with their shifts" if g.driver_shift
+                                                                       or g.driven_shift else "")
                 raise ValueError(f"gears[{i}].module: the shafts {g.driver} and {g.driven} lie {apart:.6g} mm "
-                                 f"apart; these gears need {need:.6g} mm (module x (driver_teeth + driven_teeth) "
-                                 f"/ 2)")
+                                 f"apart; these gears need {need:.6g} mm ({how})")
+        self._check_gear_names()
         for i, g in enumerate(self.gears):
             seen, shaft = [g.driven], g.driver
             while shaft in driven:
@@ -350,6 +380,21 @@ class MachineSpec(TemplateSpec):
                     raise ValueError(f"gears[{i}]: a coupling loop: " + " -> ".join([*seen, shaft]))
                 seen.append(shaft)
                 shaft = self.gears[driven[shaft]].driver
+
+    def _check_gear_names(self) -> None:
+        """Refuse two gear pairs of one name, a pair named as a mount, and a pair at a cam's layer on its shafts."""
+        from camgen.kinds.machine.machine_gears import gear_name
+
+        names = _unique([gear_name(g) for g in self.gears], "gears")
+        mounts = [c.name for c in self.cams] + [m.name for m in self.linkages]
+        for i, (name, g) in enumerate(zip(names, self.gears, strict=True)):
+            if name in mounts:
+                raise ValueError(f"gears[{i}].name: {name!r} names a mount already; give the pair a name of its own")
+            for cam in self.cams:
+                if g.layer is not None and cam.layer == g.layer and cam.shaft in (g.driver, g.driven):
+                    raise ValueError(f"gears[{i}].layer: cams.{cam.name} sits on shaft {cam.shaft} at layer "
+                                     f"{cam.layer}; give another layer (0 to {MAX_LAYER}), or none: the lowest "
+                                     "plane free of the other parts")
 
     def _check_couplings(self) -> None:
         cams = {c.name: i for i, c in enumerate(self.cams)}

@@ -259,14 +259,15 @@ def test_every_file_of_the_toy_reads_back(tmp_path):
     report = json.loads((tmp_path / "walking-toy.json").read_text())
     assert set(report["files"].values()) == {p.name for p in tmp_path.iterdir()}
     dxf = sorted(tmp_path.glob("*.dxf"))
-    assert [p.name for p in dxf] == ["walking-toy-frame.dxf", *(f"walking-toy-{leg}-{what}.dxf"
+    assert [p.name for p in dxf] == ["walking-toy-crank-legs-driven.dxf", "walking-toy-crank-legs-driver.dxf",
+                                     "walking-toy-frame.dxf", *(f"walking-toy-{leg}-{what}.dxf"
                                                                 for leg in ("left", "right")
                                                                 for what in ("assembly", "sheet"))]
     for path in dxf:
         doc = ezdxf.readfile(path)
         assert not doc.audit().has_errors and len(doc.modelspace()) > 0, path.name
     solids = sorted(tmp_path.glob("*.stl"))
-    assert len(solids) == 17                       # 8 parts a leg, the ground plate included, and the frame's plate
+    assert len(solids) == 19              # 8 parts a leg (the ground plate included), the frame's plate, two gears
     for path in solids:
         stats = _admesh(path)
         assert all(stats[k] == 0 for k in stats if k != "volume"), (path.name, stats)
