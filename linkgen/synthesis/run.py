@@ -7,8 +7,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from camgen.core.errors import CamgenError, SpecError
-from linkgen.synthesis import (burmester_motion, crank_rocker, fourier_path, function, motion, path, sixbar, slider_crank,
-                               stephenson2)
+from linkgen.synthesis import (burmester_motion, crank_rocker, fourier_path, function, motion, path, sixbar,
+                               slider_crank, stephenson2)
 from linkgen.synthesis.candidates import Candidate, Offered, offer, ranked
 from linkgen.synthesis.parallel import where
 from linkgen.synthesis.progress import Cancelled, Progress, ProgressHook

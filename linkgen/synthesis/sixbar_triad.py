@@ -130,7 +130,7 @@ def _roots(t: Triad, a: np.ndarray, e: np.ndarray) -> np.ndarray:
     """Every assembly's plate turn (N, J, R) rad in [0, 2 pi) at the crank's pins a, e (N, J), R the most found at
     any, the slots of fewer roots NaN: sign changes of h on the grid, placed by Newton on h's Fourier form."""
     m = np.arange(SAMPLES) * TWO_PI / SAMPLES
-    h, _ = _h(t, a[..., None], e[..., None], np.broadcast_to(m, a.shape + (SAMPLES,)))
+    h, _ = _h(t, a[..., None], e[..., None], np.broadcast_to(m, (*a.shape, SAMPLES)))
     spectrum = np.fft.rfft(h, axis=-1) / SAMPLES
     spectrum[..., 1:] *= 2.0                  # h(psi) = Re sum_n spectrum_n e^{i n psi}, n = 0..4
     coef = np.concatenate([spectrum.real, -spectrum.imag[..., 1:]], axis=-1)          # constant, cos n, sin n

@@ -62,8 +62,8 @@ TOPOLOGIES = {
 }
 #: the Stephenson II (searched by :mod:`linkgen.synthesis.stephenson2`, not among :data:`SIXBARS`)
 STEPHENSON2 = Topology("stephenson2", ("A", "E", "C", "D", "F"),
-                       {"crank": ("O2", "A", "E"), "rod1": ("A", "C"), "rod2": ("E", "D"), "plate": ("C", "D", "F", "P"),
-                        "rocker": ("O4", "F")}, ("O2", "O4"), "plate", "F")
+                       {"crank": ("O2", "A", "E"), "rod1": ("A", "C"), "rod2": ("E", "D"),
+                        "plate": ("C", "D", "F", "P"), "rocker": ("O4", "F")}, ("O2", "O4"), "plate", "F")
 #: the six-bar types searched, as ``task.linkage`` names them
 SIXBARS = tuple(TOPOLOGIES)
 CRANK = (Input("crank", "crank", "O2"),)

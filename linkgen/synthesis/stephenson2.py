@@ -41,13 +41,16 @@ from linkgen.synthesis.candidates import Candidate, Sketch, table_fits, weighed
 from linkgen.synthesis.parallel import run_all, where
 from linkgen.synthesis.sixbar import BIG, FINE_TURN, POLISHED, SHAPE_BOX, Problem, four_bar_best, link_lengths
 from linkgen.synthesis.sixbar_triad import Triad, solve as solve_triad, transmission
-from linkgen.synthesis.sixbar_types import CRANK, STEPHENSON2
+from linkgen.synthesis.sixbar_types import STEPHENSON2
 
 TWO_PI = 2.0 * math.pi
 #: the crank angles (evenly over a turn) at which a design's triad is followed and checked during the search
 TURN = 72
 #: the least gap (mm) between the crank's other pin and the shorter rod's reach, for the parts to stack
 SWEEP_MM = 10.0
+#: the ``[linkage]`` table of a candidate, but for its joints
+TABLE = {"type": "linkage", "ground": list(STEPHENSON2.ground), "input": {"link": "crank", "pivot": "O2"},
+         "tracers": ["P"], "links": {k: list(v) for k, v in STEPHENSON2.links.items()}}
 #: each link's pairs of joints (the ground's too), for the link_range constraint: P left out
 PAIRS = (("O2", "O4"), ("O2", "A"), ("O2", "E"), ("A", "E"), ("A", "C"), ("E", "D"), ("C", "D"), ("C", "F"),
          ("D", "F"), ("O4", "F"))
@@ -160,14 +163,12 @@ def search(args: tuple[Problem, int]) -> dict[str, Any]:
 
     r = differential_evolution(counted, bounds, vectorized=True, updating="deferred", seed=seed,
                                maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False)
+    # the best distinct designs that keep every constraint, best first
+    order = [int(i) for i in np.argsort(r.population_energies) if r.population_energies[i] < BIG]
     picked: list[int] = []
-    for i in np.argsort(r.population_energies):
-        if r.population_energies[i] >= BIG:
-            break
-        if all(np.max(np.abs(r.population[i] - r.population[j])) > 1e-3 * SHAPE_BOX for j in picked):
-            picked.append(int(i))
-        if len(picked) == POLISHED:
-            break
+    for i in order:
+        gaps = [np.max(np.abs(r.population[i] - r.population[j])) for j in picked]
+        picked += [i] if min(gaps, default=np.inf) > 1e-3 * SHAPE_BOX and len(picked) < POLISHED else []
     found = [_polish(r.population[i], p) for i in picked]
     return {"found": [(v.tolist(), e) for v, e in found if e < BIG], "evaluations": designs[0],
             "best_energy": float(np.min(r.population_energies))}
@@ -198,13 +199,12 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
     does not fit a template): the ``[linkage]`` table drawn at the first target, its row, its figure."""
     from linkgen.synthesis.sixbar import structure_of
 
-    topo = p.topology
     got = placed(x, p)
     if got is None:
         return None
     joints, uzt = got
     try:
-        linkage = Linkage.of(structure_of(joints, topo))
+        linkage = Linkage.of(structure_of(joints, p.topology))
         if linkage.ranges is not None or any(len(f) for f in linkage.flips):
             return None
         first = math.atan2(joints["A"][1] - joints["O2"][1], joints["A"][0] - joints["O2"][0])
@@ -221,19 +221,17 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
     worst = float(np.min(mu))
     if worst < p.min_transmission - 1e-9:
         return None
-    table = {"type": "linkage", "ground": list(topo.ground), "input": {"link": "crank", "pivot": "O2"},
-             "tracers": ["P"], "joints": {k: list(v) for k, v in joints.items()},
-             "links": {k: list(v) for k, v in topo.links.items()}}
+    table = {**TABLE, "joints": {k: list(v) for k, v in joints.items()}}
     if not table_fits(table):
         return None
     targets = np.column_stack([p.targets.real, p.targets.imag])
     k = len(turn)
     reached = sol.points["P"][k:]
     sq = np.sum((reached - targets) ** 2, axis=1)
-    lengths = link_lengths(joints, topo)
+    lengths = link_lengths(joints, STEPHENSON2)
     if not all(MIN_LENGTH_MM <= v <= MAX_LENGTH_MM for v in lengths.values()):
         return None
-    row = {"error_mm2": float(sq.sum()), "linkage": topo.name, "timed": True, "joints": table["joints"],
+    row = {"error_mm2": float(sq.sum()), "linkage": STEPHENSON2.name, "timed": True, "joints": table["joints"],
            "link_lengths": lengths, "input_angles": [round(math.degrees(t) % 360.0, 9) % 360.0 for t in p.timing],
            "input_directions": (np.degrees(directions) % 360.0).tolist(), "errors_mm": np.sqrt(sq).tolist(),
            "transmission_worst_deg": math.degrees(worst), "defects": []}
@@ -253,12 +251,8 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
     clock = time.perf_counter()
     runs = run_all(search, [(p, int(seq.generate_state(1)[0])) for seq in spawned], jobs, scheduler)
     seconds = time.perf_counter() - clock
-    out = []
-    for run in runs:
-        for x, _ in run["found"]:
-            c = _candidate(np.asarray(x), p)
-            if c is not None:
-                out.append(weighed(c))
+    made = [_candidate(np.asarray(x), p) for run in runs for x, _ in run["found"]]
+    out = [weighed(c) for c in made if c is not None]
     tried = sum(r["evaluations"] for r in runs)
     if not out:
         raise SpecError("no stephenson2 six-bar found whose crank turns fully with its triad on its assembly, its "

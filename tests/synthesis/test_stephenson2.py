@@ -117,10 +117,12 @@ def known_task(generations: int) -> dict:
 
 @pytest.mark.slow
 def test_a_known_stephenson2_s_timed_points_are_met_far_below_the_best_four_bar(tmp_path):
-    """Seed 1, one search of 100 generations, population 15 a number, from the box (no start given): the best
-    Stephenson II meets the known one's twelve timed points to 1.38 mm^2 (measured) where the best four-bar on the
-    same targets and budget stays at 7988 mm^2; each candidate's error is what this test's own continuation of its
-    triad gives at its crank directions; the first is written and `linkgen build` builds it."""
+    """Seed 1, one search of 60 generations, population 15 a number, from the box (no start given; about 8 s of
+    CPU): the best Stephenson II meets the known one's twelve timed points to 1.377 mm^2 (measured; 100 and 250
+    generations stop there too) where the best four-bar on the same targets and budget stays at 8144 mm^2. The known
+    linkage itself (error 0) is not found from this seed: the search's best designs all polish into the basin of
+    1.377 mm^2 (from other seeds the polish of some reaches 1e-24). Each candidate's error is what this test's own
+    continuation of its triad gives at its crank directions; the first is written and `linkgen build` builds it."""
     from linkgen.cli import main
 
     spec = known_task(60)
@@ -129,7 +131,7 @@ def test_a_known_stephenson2_s_timed_points_are_met_far_below_the_best_four_bar(
     four = result.search["four_bar"]["error_mm2"]
     assert best["linkage"] == "stephenson2" and best["timed"] and best["defects"] == []
     assert best["four_bar_error_mm2"] == four
-    assert best["error_mm2"] < 1e-3 * four
+    assert best["error_mm2"] < 1.5 and four > 5000.0
     assert best["transmission_worst_deg"] >= 30.0
     targets = np.array(spec["task"]["points"])
     for c in result.candidates:
@@ -143,13 +145,15 @@ def test_a_known_stephenson2_s_timed_points_are_met_far_below_the_best_four_bar(
     assert (tmp_path / "b" / f"{name}-sheet.dxf").exists()
 
 
-TEMPLATE = """name = "bad"
+#: ten targets on a figure-eight (mm), and a Stephenson II task on them with too few generations to matter
+POINTS = [[round(100 * math.cos(t), 6), round(50 * math.sin(2 * t), 6)] for t in np.linspace(0.0, 6.0, 10)]
+TEMPLATE = f"""name = "bad"
 [task]
 kind = "path"
 linkage = "stephenson2"
 starts = 1
 generations = 10
-points = {points}
+points = {POINTS}
 """
 
 
@@ -162,8 +166,5 @@ points = {points}
 def test_bad_stephenson2_tasks_are_one_line_exit_2_and_nothing_written(tmp_path, sets, message):
     from linkgen.cli import main
 
-    points = [[round(100 * float(np.cos(t)), 6), round(50 * float(np.sin(2 * t)), 6)]
-              for t in np.linspace(0.0, 6.0, 10)]
-    template = tmp_path / "bad.toml"
-    template.write_text(TEMPLATE.format(points=points))
-    assert_refused_sets(template, sets, message, tmp_path, main, "synthesize")
+    (tmp_path / "bad.toml").write_text(TEMPLATE)
+    assert_refused_sets(tmp_path / "bad.toml", sets, message, tmp_path, main, "synthesize")
