@@ -7,7 +7,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from camgen.core.errors import CamgenError, SpecError
-from linkgen.synthesis import burmester_motion, crank_rocker, fourier_path, function, motion, path, sixbar, slider_crank
+from linkgen.synthesis import (burmester_motion, crank_rocker, fourier_path, function, motion, path, sixbar,
+                               slider_crank, stephenson2)
 from linkgen.synthesis.candidates import Candidate, Offered, offer, ranked
 from linkgen.synthesis.parallel import where
 from linkgen.synthesis.progress import Cancelled, Progress, ProgressHook
@@ -115,7 +116,9 @@ def synthesize(spec: SynthesisSpec, jobs: int = 1, scheduler: str | None = None,
     if follow is not None:
         follow(0.0, f"{task.kind} synthesis started", [])
     if task.kind == "path":
-        if getattr(task, "linkage", "four-bar") != "four-bar":
+        if getattr(task, "linkage", "four-bar") == "stephenson2":
+            found, info = stephenson2.solve(task, jobs, scheduler)
+        elif getattr(task, "linkage", "four-bar") != "four-bar":
             found, info = sixbar.solve(task, jobs, scheduler)
         elif getattr(task, "method", "evolution") == "fourier":
             found, info = fourier_path.solve(task)

@@ -18,8 +18,13 @@ differently, so each is stated by its drawing here:
   ternary coupler (A, B, C) and the dyad C-D-O6 to a third ground pivot; the tracer P on the rod C-D.
 
 Stephenson II (the ground a binary link next to one ternary link only) needs a class-III group whichever link
-next to the ground is the crank, solved by Newton continuation per design (:mod:`linkgen.kinematics.groups`), and
-is not searched.
+next to the ground is the crank, which the general solver places by Newton continuation per design
+(:mod:`linkgen.kinematics.groups`): too slow inside a search. :data:`STEPHENSON2` is searched by its own module
+(:mod:`linkgen.synthesis.stephenson2`, its triad by :mod:`linkgen.synthesis.sixbar_triad`):
+
+* **stephenson2** (Stephenson II: the ground binary, next to the ternary crank and to a binary only): the ternary
+  crank (O2, A, E) and the triad, the plate (C, D, F) held by the rods A-C and E-D and the rocker O4-F; the tracer
+  P on the plate.
 """
 from __future__ import annotations
 
@@ -55,6 +60,10 @@ TOPOLOGIES = {
                             {"crank": ("O2", "A"), "coupler": ("A", "B", "C"), "rocker": ("O4", "B"),
                              "rod": ("C", "D", "P"), "output": ("O6", "D")}, ("O2", "O4", "O6"), "rod", "C"),
 }
+#: the Stephenson II (searched by :mod:`linkgen.synthesis.stephenson2`, not among :data:`SIXBARS`)
+STEPHENSON2 = Topology("stephenson2", ("A", "E", "C", "D", "F"),
+                       {"crank": ("O2", "A", "E"), "rod1": ("A", "C"), "rod2": ("E", "D"),
+                        "plate": ("C", "D", "F", "P"), "rocker": ("O4", "F")}, ("O2", "O4"), "plate", "F")
 #: the six-bar types searched, as ``task.linkage`` names them
 SIXBARS = tuple(TOPOLOGIES)
 CRANK = (Input("crank", "crank", "O2"),)

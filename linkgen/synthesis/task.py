@@ -348,9 +348,10 @@ class PathTask(SearchOptions):
                           MAX_GUESSES)
     atlas_folder: str | None = Field(None, description="where the Fourier method keeps its atlas of coupler curves "
                                      "(default: the user's cache folder, XDG_CACHE_HOME/linkgen)", max_length=4096)
-    linkage: Literal["four-bar", "watt1", "watt2", "stephenson1", "stephenson3"] = Field(
+    linkage: Literal["four-bar", "watt1", "watt2", "stephenson1", "stephenson2", "stephenson3"] = Field(
         "four-bar", description="the linkage searched: 'four-bar', or a six-bar, 'watt1' (Watt I), 'watt2' (Watt "
-        "II), 'stephenson1' (Stephenson I) or 'stephenson3' (Stephenson III): crank = true, method 'evolution', "
+        "II), 'stephenson1' (Stephenson I), 'stephenson2' (Stephenson II, timed only) or 'stephenson3' (Stephenson "
+        "III): crank = true, method 'evolution', "
         f"{MIN_SIXBAR_TIMED} to {MAX_SIXBAR_POINTS} targets with input_angles (timed), {MIN_SIXBAR_UNTIMED} to "
         f"{MAX_SIXBAR_POINTS} without (untimed: the error to the nearest point of the curve), starts x generations x "
         f"population x 10 at most {MAX_SIXBAR_SOLVES} solves; the four-bar's best on the same targets is reported "
@@ -412,6 +413,9 @@ class PathTask(SearchOptions):
             raise ValueError(f"generations: linkage {six} would make about {solves} solves (starts x generations x "
                              f"population x 10 unknowns), at most {MAX_SIXBAR_SOLVES}: give fewer generations, "
                              "starts or population")
+        if self.linkage == "stephenson2" and self.input_angles is None:
+            raise ValueError("input_angles: linkage 'stephenson2' is searched timed only: give the crank angle at "
+                             "each target (input_angles), or use another linkage for an untimed path")
         least, how = ((MIN_SIXBAR_TIMED, "timed") if self.input_angles is not None else
                       (MIN_SIXBAR_UNTIMED, "untimed (no input_angles)"))
         if len(self.points) < least:

@@ -145,7 +145,7 @@ points = {points}
 
 
 @pytest.mark.parametrize("sets, message", [
-    (["task.linkage='stephenson2'"], "task.linkage"),
+    (["task.linkage='stephenson4'"], "task.linkage"),
     (["task.points=[[0, 0], [10, 5], [20, 0], [10, -5]]", "task.input_angles=[0, 90, 180, 270]"],
      "task.points: linkage 'watt2' timed needs at least 8 targets"),
     (["task.linkage='stephenson1'"],
