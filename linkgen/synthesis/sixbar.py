@@ -348,8 +348,8 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
 
 def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> tuple[dict[str, Any], dict[str, Any]]:
     """The best four-bar on the same targets, timing, seed and budget (:func:`linkgen.synthesis.path.solve`): its
-    error and worst transmission angle, or why none was found; and its joints drawn at the first target (empty
-    where none was found)."""
+    error, worst transmission angle, lengths, joints drawn at the first target and crank directions at the targets
+    (degrees), or why none was found; and its joints again (empty where none was found)."""
     from linkgen.synthesis import path
 
     four = task.model_copy(update={"linkage": "four-bar"})
@@ -361,7 +361,9 @@ def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> tuple[dict[str
         return {"error_mm2": None, "why": "; ".join(info["bound"])}, {}
     best = min((weighed(c) for c in found), key=lambda c: c.score)
     return ({"error_mm2": best.row["error_mm2"], "transmission_worst_deg": best.row["transmission_worst_deg"],
-             "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")]}, best.linkage["joints"])
+             "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")],
+             "joints": best.linkage["joints"], "input_directions": best.row["input_directions"]},
+            best.linkage["joints"])
 
 
 def _keeps(x: np.ndarray, p: Problem) -> bool:
