@@ -61,3 +61,16 @@ def watt1_joints(joints: dict, directions: np.ndarray) -> dict[str, np.ndarray]:
     f = rigid(j["O4"], j["B"], j["F"], o4, b)
     g = circles(e, np.linalg.norm(j["G"] - j["E"]), f, np.linalg.norm(j["G"] - j["F"]), side(j["E"], j["F"], j["G"]))
     return {"O2": o2, "O4": o4, "A": a, "B": b, "E": e, "F": f, "G": g, "P": rigid(j["F"], j["G"], j["P"], f, g)}
+
+
+def watt1_worst_transmission(joints: dict, directions: np.ndarray) -> float:
+    """The worst transmission angle (degrees, 0 to 90) of a Watt I drawn at ``joints`` over the crank's world
+    ``directions`` (rad): at B between the coupler and the rocker, at G between the rod and the output."""
+    at = watt1_joints(joints, directions)
+
+    def angle(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
+        u, v = p - q, r - q
+        return np.degrees(np.arctan2(np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]), np.sum(u * v, axis=1)))
+
+    return min(float(np.min(np.minimum(a, 180.0 - a))) for a in (angle(at["A"], at["B"], at["O4"]),
+                                                                  angle(at["E"], at["G"], at["F"])))

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from tests.conftest import ROOT
-from tests.support.six_bar_circles import four_bar_tracer, watt1_joints, watt1_tracer
+from tests.support.six_bar_circles import four_bar_tracer, watt1_joints, watt1_tracer, watt1_worst_transmission
 
 TEMPLATE = ROOT / "templates" / "synth-figure-eight.toml"
 #: the known Watt I: the crank-rocker O2-A-B-O4 (crank 25 mm at 60 degrees), the ternary coupler A-B-E and rocker
@@ -55,12 +55,6 @@ def _area(loop: np.ndarray) -> float:
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
 
 
-def _angle(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
-    """The angle (degrees, 0 to 180) at q between q -> p and q -> r, for (n, 2) arrays."""
-    u, v = p - q, r - q
-    return np.degrees(np.arctan2(np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]), np.sum(u * v, axis=1)))
-
-
 def test_the_templates_points_are_the_known_watt1s_figure_eight():
     """The template's points are the known Watt I's tracer at its crank angles, to their rounding; over a turn
     (3600 crank angles) its curve crosses itself once and the two loops turn opposite ways, each at least a fifth
@@ -71,16 +65,13 @@ def test_the_templates_points_are_the_known_watt1s_figure_eight():
     reached = watt1_tracer(KNOWN, _directions(task["input_angles"]))
     assert np.max(np.abs(reached - targets)) <= ROUNDING + 1e-9
     turn = math.radians(60.0) + np.linspace(0.0, 2 * math.pi, 3600, endpoint=False)
-    joints = watt1_joints(KNOWN, turn)
-    curve = joints["P"]
+    curve = watt1_joints(KNOWN, turn)["P"]
     [(i, j)] = _crossings(curve)
     first, second = _area(curve[i + 1:j + 1]), _area(np.vstack([curve[j + 1:], curve[:i + 1]]))
     assert first * second < 0
     assert min(abs(first), abs(second)) > 0.2 * max(abs(first), abs(second))
     assert 25.0 < float(np.max(np.ptp(curve, axis=0))) < 40.0
-    worst = min(float(np.min(np.minimum(a, 180.0 - a))) for a in (_angle(joints["A"], joints["B"], joints["O4"]),
-                                                                    _angle(joints["E"], joints["G"], joints["F"])))
-    assert worst > 45.0
+    assert watt1_worst_transmission(KNOWN, turn) > 45.0
     # the known linkage meets the points to their rounding: the least error a search can reach, about
     assert float(np.sum((reached - targets) ** 2)) < len(targets) * 2 * ROUNDING**2
 
@@ -107,6 +98,9 @@ def test_the_six_bar_beats_the_best_four_bar_on_the_figure_eight_by_a_large_fact
     assert six == pytest.approx(best["error_mm2"], rel=1e-6, abs=1e-9)
     assert fourbar == pytest.approx(four["error_mm2"], rel=1e-9)
     assert best["linkage"] == "watt1" and best["defects"] == [] and best["transmission_worst_deg"] >= 30.0
+    drawn = math.radians(best["input_directions"][0])
+    assert watt1_worst_transmission(best["joints"], drawn + np.linspace(0, 2 * math.pi, 36001)) == pytest.approx(
+        best["transmission_worst_deg"], abs=2e-3)
     assert six < len(targets) * 2 * ROUNDING**2 and fourbar > 10.0
     assert fourbar / six > 1e6
     assert best["four_bar_error_mm2"] == four["error_mm2"]
