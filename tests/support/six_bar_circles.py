@@ -32,14 +32,19 @@ def _array_joints(joints: dict) -> dict[str, np.ndarray]:
     return {k: np.array(v, dtype=float) for k, v in joints.items()}
 
 
+def _gap(j: dict[str, np.ndarray], a: str, b: str) -> float:
+    """The drawn distance (mm) between joints ``a`` and ``b``."""
+    return float(np.linalg.norm(j[a] - j[b]))
+
+
 def four_bar_tracer(joints: dict, directions: np.ndarray) -> np.ndarray:
     """P (n, 2) of a four-bar O2-A-B-O4 drawn at ``joints`` (its coupler A-B-P) with its crank at world
     ``directions`` (rad), by hand."""
     j = _array_joints(joints)
     n = len(directions)
     o4 = np.tile(j["O4"], (n, 1))
-    a = j["O2"] + np.linalg.norm(j["A"] - j["O2"]) * np.column_stack([np.cos(directions), np.sin(directions)])
-    b = circles(a, np.linalg.norm(j["B"] - j["A"]), o4, np.linalg.norm(j["B"] - j["O4"]), side(j["A"], j["O4"], j["B"]))
+    a = j["O2"] + _gap(j, "A", "O2") * np.column_stack([np.cos(directions), np.sin(directions)])
+    b = circles(a, _gap(j, "B", "A"), o4, _gap(j, "B", "O4"), side(j["A"], j["O4"], j["B"]))
     return rigid(j["A"], j["B"], j["P"], a, b)
 
 
@@ -55,11 +60,11 @@ def watt1_joints(joints: dict, directions: np.ndarray) -> dict[str, np.ndarray]:
     j = _array_joints(joints)
     n = len(directions)
     o2, o4 = np.tile(j["O2"], (n, 1)), np.tile(j["O4"], (n, 1))
-    a = o2 + np.linalg.norm(j["A"] - j["O2"]) * np.column_stack([np.cos(directions), np.sin(directions)])
-    b = circles(a, np.linalg.norm(j["B"] - j["A"]), o4, np.linalg.norm(j["B"] - j["O4"]), side(j["A"], j["O4"], j["B"]))
+    a = o2 + _gap(j, "A", "O2") * np.column_stack([np.cos(directions), np.sin(directions)])
+    b = circles(a, _gap(j, "B", "A"), o4, _gap(j, "B", "O4"), side(j["A"], j["O4"], j["B"]))
     e = rigid(j["A"], j["B"], j["E"], a, b)
     f = rigid(j["O4"], j["B"], j["F"], o4, b)
-    g = circles(e, np.linalg.norm(j["G"] - j["E"]), f, np.linalg.norm(j["G"] - j["F"]), side(j["E"], j["F"], j["G"]))
+    g = circles(e, _gap(j, "G", "E"), f, _gap(j, "G", "F"), side(j["E"], j["F"], j["G"]))
     return {"O2": o2, "O4": o4, "A": a, "B": b, "E": e, "F": f, "G": g, "P": rigid(j["F"], j["G"], j["P"], f, g)}
 
 
