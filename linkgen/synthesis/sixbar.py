@@ -12,7 +12,11 @@ The tracer's place on its link and the similarity (scale, turn, shift) that puts
 targets are linear: with R_k the tracer link's turn and F_k its reference joint at target k (complex
 numbers), the tracer is W_k = R_k u + z F_k + t, so (u, z, t) come by least squares in closed form
 (variable projection); the search runs over the ten drawing numbers only, by scipy's differential
-evolution, and its best few designs are polished by least squares on the distances.
+evolution, and its best few designs are polished by least squares on the distances. Each search stops when
+it stalls (its best and its median both: :mod:`linkgen.synthesis.sixbar_stop`) or its population collapses,
+and the ``starts`` once two agree, as the four-bar's (:mod:`linkgen.synthesis.stop`); ``designs_evaluated``
+counts the designs the differential evolution evaluated (each vectorised call a whole population),
+``vectorised_calls`` the calls.
 
 Constraints (hard: a design breaking one ranks behind every one that keeps them): every dyad closes
 over the whole turn of the crank on its drawn branch (its margin above MARGIN_FLOOR at the sampled
@@ -43,6 +47,8 @@ from linkgen.synthesis.parallel import run_all, where
 from linkgen.synthesis.sixbar_seed import embedded, embedded_stephenson1
 from linkgen.synthesis.sixbar_types import CRANK, TOPOLOGIES, Topology
 from linkgen.synthesis.sixbar_untimed import nearest_fit, nearest_on
+from linkgen.synthesis.sixbar_stop import why_stop_six
+from linkgen.synthesis.stop import rule_for, run_starts
 
 TWO_PI = 2.0 * math.pi
 #: the crank angles (evenly over a turn) at which a design's dyads are checked during the search, and a
@@ -225,15 +231,32 @@ def _first_population(p: Problem, seed: int, start: np.ndarray | None) -> np.nda
 
 def search(args: tuple[Problem, int, np.ndarray | None]) -> dict[str, Any]:
     """One seeded search: differential evolution over the drawing (its first population holding ``start``, the
-    best four-bar embedded, where given), then its best few distinct designs polished. Returns those that keep
-    every constraint (design, error) and the designs evaluated."""
+    best four-bar embedded, where given) until it stalls or its population collapses
+    (:func:`linkgen.synthesis.sixbar_stop.why_stop_six`) or its generations run out, then its best few distinct
+    designs polished. Returns those that keep every constraint (design, error), the vectorised calls (each of a whole
+    population), the designs they evaluated, the generations run and why the search stopped ("stall", "collapse"
+    or "budget")."""
     from scipy.optimize import differential_evolution
 
     p, seed, start = args
+    rule = rule_for(p.scale)
+    best: list[float] = []
+    median: list[float] = []
+    stopped: list[str] = []
+
+    def hook(intermediate_result: Any) -> bool:      # scipy passes the result so far to a parameter of this name
+        energies = np.asarray(intermediate_result.population_energies)
+        best.append(float(np.min(energies)))
+        median.append(float(np.median(energies)))
+        why = why_stop_six(best, median, energies, rule)
+        if why is not None:
+            stopped.append(why)
+        return why is not None
+
     bounds = [(-SHAPE_BOX, SHAPE_BOX)] * (2 * len(p.topology.free))
     r = differential_evolution(objective, bounds, args=(p,), vectorized=True, updating="deferred", seed=seed,
-                               maxiter=p.generations, popsize=p.population, tol=1e-12, polish=False,
-                               init=_first_population(p, seed, start))
+                               maxiter=p.generations, popsize=p.population, tol=0, atol=0, polish=False,
+                               init=_first_population(p, seed, start), callback=hook)
     picked: list[int] = []
     for i in np.argsort(r.population_energies, kind="stable"):
         if r.population_energies[i] >= BIG:
@@ -243,8 +266,10 @@ def search(args: tuple[Problem, int, np.ndarray | None]) -> dict[str, Any]:
         if len(picked) == POLISHED:
             break
     found = [_polish(r.population[i], p) for i in picked]
-    return {"found": [(v.tolist(), e) for v, e in found if math.isfinite(e)], "evaluations": int(r.nfev),
-            "best_energy": float(np.min(r.population_energies))}
+    # scipy counts a vectorised call as one evaluation (nfev); each evaluates the whole population
+    return {"found": [(v.tolist(), e) for v, e in found if math.isfinite(e)], "calls": int(r.nfev),
+            "evaluations": int(r.nfev) * len(r.population), "generations": int(r.nit),
+            "stopped": stopped[0] if stopped else "budget", "best_energy": float(np.min(r.population_energies))}
 
 
 def placed(x: np.ndarray, p: Problem) -> tuple[dict[str, tuple[float, float]], Evaluation] | None:
@@ -323,8 +348,8 @@ def _candidate(x: np.ndarray, p: Problem) -> Candidate | None:
 
 def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> tuple[dict[str, Any], dict[str, Any]]:
     """The best four-bar on the same targets, timing, seed and budget (:func:`linkgen.synthesis.path.solve`): its
-    error and worst transmission angle, or why none was found; and its joints drawn at the first target (empty
-    where none was found)."""
+    error, worst transmission angle, lengths, joints drawn at the first target and crank directions at the targets
+    (degrees), or why none was found; and its joints again (empty where none was found)."""
     from linkgen.synthesis import path
 
     four = task.model_copy(update={"linkage": "four-bar"})
@@ -336,7 +361,9 @@ def four_bar_best(task: Any, jobs: int, scheduler: str | None) -> tuple[dict[str
         return {"error_mm2": None, "why": "; ".join(info["bound"])}, {}
     best = min((weighed(c) for c in found), key=lambda c: c.score)
     return ({"error_mm2": best.row["error_mm2"], "transmission_worst_deg": best.row["transmission_worst_deg"],
-             "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")]}, best.linkage["joints"])
+             "lengths": [best.row[k] for k in ("ground", "crank", "coupler", "rocker")],
+             "joints": best.linkage["joints"], "input_directions": best.row["input_directions"]},
+            best.linkage["joints"])
 
 
 def _keeps(x: np.ndarray, p: Problem) -> bool:
@@ -365,11 +392,12 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
     """Six-bar path generation for a validated path task (``linkage`` a six-bar, timed): the candidates
     (unranked) and how the search went, the four-bar's best next to it."""
     p = problem_of(task)
-    spawned = np.random.SeedSequence(task.seed).spawn(task.starts)
+    seeds = [int(s.generate_state(1)[0]) for s in np.random.SeedSequence(task.seed).spawn(task.starts)]
     four, joints = four_bar_best(task, jobs, scheduler)
     start = _start(joints, p) if joints else None
     clock = time.perf_counter()
-    runs = run_all(search, [(p, int(seq.generate_state(1)[0]), start) for seq in spawned], jobs, scheduler)
+    runs, agree = run_starts(lambda batch: run_all(search, [(p, s, start) for s in batch], jobs, scheduler), seeds,
+                             len(seeds) if scheduler is not None else jobs, rule_for(p.scale).atol, task.candidates)
     seconds = time.perf_counter() - clock
     out = []
     for run in runs:
@@ -388,7 +416,9 @@ def solve(task: Any, jobs: int = 1, scheduler: str | None = None) -> tuple[list[
     info = {"method": f"{task.linkage} six-bar: differential evolution (scipy) over the normalised drawing, each "
                       "design solved by the general solver at the targets and over a turn, the tracer and the "
                       "similarity by least squares; polished by least squares",
-            "seed": task.seed, "starts": task.starts, "generations": task.generations,
+            "seed": task.seed, "starts": task.starts, "generations": task.generations, "starts_run": len(runs),
+            "starts_agreed": agree, "generations_run": [r["generations"] for r in runs],
+            "stopped": [r["stopped"] for r in runs], "vectorised_calls": sum(r["calls"] for r in runs),
             "designs_evaluated": tried, "seconds": round(seconds, 3), "ran_on": where(jobs, scheduler),
             "four_bar": four, "seeded_from_four_bar": start is not None, "bound": []}
     return out, info

@@ -88,14 +88,15 @@ def distinct(errors: Sequence[float], atol: float) -> int:
 def run_starts(run: Callable[[list[int]], list[dict]], seeds: list[int], batch: int, atol: float, wanted: int = 1
                ) -> tuple[list[dict], bool]:
     """The starts' runs, ``batch`` seeds at a time through ``run`` (seeds -> their runs, in order), until two agree
-    (:func:`agreed`; each run's ``found`` lists (base, branch, angles, error)) and the runs kept hold at least
+    (:func:`agreed`; each run's ``found`` lists its polished designs, each a tuple whose last item is its
+    error: the four-bar's (base, branch, angles, error), the six-bar's (design, error)) and the runs kept hold at least
     ``wanted`` designs of distinct errors (the candidates asked for); and whether they stopped so. The runs kept
     are the shortest such prefix of the seeds, whatever the batch."""
     done: list[dict] = []
     for i in range(0, len(seeds), max(1, batch)):
         done += run(seeds[i:i + max(1, batch)])
-        keep = agreed([min((f[3] for f in r["found"]), default=math.inf) for r in done], atol)
+        keep = agreed([min((f[-1] for f in r["found"]), default=math.inf) for r in done], atol)
         for m in range(keep or len(done) + 1, len(done) + 1):
-            if distinct([f[3] for r in done[:m] for f in r["found"]], atol) >= wanted:
+            if distinct([f[-1] for r in done[:m] for f in r["found"]], atol) >= wanted:
                 return done[:m], True
     return done, False

@@ -14,7 +14,7 @@ from click.testing import CliRunner
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.structure import Input, make_structure
 from linkgen.synthesis import synthesize, validate_task, write_synthesis
-from tests.support.six_bar_circles import circles, rigid, side
+from tests.support.six_bar_circles import watt1_tracer
 from tests.synthesis.test_synthesis import refused_in_one_line
 
 #: the known Watt I (the bundled watt1.toml's drawing): the crank-rocker O2-A-B-O4 with the ternary coupler A-B-E and
@@ -42,19 +42,6 @@ def written(tmp_path_factory):
     out = tmp_path_factory.mktemp("w1")
     write_synthesis(result, out)
     return result, out
-
-
-def watt1_tracer(joints: dict, directions: np.ndarray) -> np.ndarray:
-    """P (n, 2) of a Watt I drawn at ``joints`` with its crank at world ``directions`` (rad), by hand."""
-    j = {k: np.array(v, dtype=float) for k, v in joints.items()}
-    n = len(directions)
-    o2, o4 = np.tile(j["O2"], (n, 1)), np.tile(j["O4"], (n, 1))
-    a = o2 + np.linalg.norm(j["A"] - j["O2"]) * np.column_stack([np.cos(directions), np.sin(directions)])
-    b = circles(a, np.linalg.norm(j["B"] - j["A"]), o4, np.linalg.norm(j["B"] - j["O4"]), side(j["A"], j["O4"], j["B"]))
-    e = rigid(j["A"], j["B"], j["E"], a, b)
-    f = rigid(j["O4"], j["B"], j["F"], o4, b)
-    g = circles(e, np.linalg.norm(j["G"] - j["E"]), f, np.linalg.norm(j["G"] - j["F"]), side(j["E"], j["F"], j["G"]))
-    return rigid(j["F"], j["G"], j["P"], f, g)
 
 
 def test_a_known_watt1_is_recovered_below_the_best_four_bar(written):

@@ -18,6 +18,7 @@ from linkgen.spec import validate_spec
 from linkgen.synthesis import synthesize, validate_task, write_synthesis
 from linkgen.synthesis.defects import defects, sense
 from tests.conftest import ROOT
+from tests.support.six_bar_circles import watt1_worst_transmission
 
 LINE6 = ROOT / "templates" / "synth-line6.toml"
 #: a crank-rocker and coupler point the path and motion tests generate their targets from
@@ -78,6 +79,10 @@ def template_transmission(c, task_keys: dict) -> float:
         t = np.linspace(0, 2 * math.pi, 36001)
         lean = np.degrees(np.abs(np.arcsin((r * np.sin(t) - e) / rod)))       # the rod's angle to the slider line
         return float(np.min(90 - lean))
+    if table["type"] == "linkage" and "G" in table["joints"]:     # a Watt I six-bar, its crank turning fully
+        j = table["joints"]
+        drawn = math.atan2(j["A"][1] - j["O2"][1], j["A"][0] - j["O2"][0])
+        return watt1_worst_transmission(j, drawn + np.linspace(0, 2 * math.pi, 36001))
     if table["type"] == "linkage":                  # drawn in the task's frame: its lengths from its joints
         j = {k: np.array(v) for k, v in table["joints"].items()}
         table = {"ground": math.dist(j["O2"], j["O4"]), "crank": math.dist(j["O2"], j["A"]),
@@ -561,7 +566,10 @@ def test_the_impossible_gets_the_nearest_candidates_and_a_line_naming_the_limit(
                 row["transmission_worst_deg"], abs=1e-3)
 
 
-@pytest.mark.parametrize("path", sorted((ROOT / "templates").glob("synth-*.toml")), ids=lambda p: p.name)
+@pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.slow)        # a six-bar's search
+                                  if tomllib.loads(p.read_text())["task"].get("linkage", "four-bar") != "four-bar"
+                                  else p for p in sorted((ROOT / "templates").glob("synth-*.toml"))],
+                         ids=lambda p: p.name)
 def test_every_bundled_synthesis_template_gives_candidates(path):
     """Each bundled task as written (a path search on a small budget) gives candidates whose reports are their own,
     and none binds: each keeps its transmission angle at least 30 degrees over the motion it makes, as measured here
