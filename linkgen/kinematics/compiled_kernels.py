@@ -11,7 +11,7 @@ from numba import njit, prange
 from linkgen.kinematics.compiled import BLOCK, CRANK
 
 
-@njit(parallel=True, cache=True, nogil=True)
+@njit(parallel=True, cache=True, nogil=True, error_model="numpy")
 def poses(x: np.ndarray, table: np.ndarray, kind: np.ndarray, b1: np.ndarray, b2: np.ndarray, ref1: np.ndarray,
            ref2: np.ndarray, k1: np.ndarray, k2: np.ndarray, r1: np.ndarray, r2: np.ndarray, step: np.ndarray,
            fold2: np.ndarray, floor: np.ndarray, index: np.ndarray, drawn: np.ndarray, holder: np.ndarray,
@@ -108,13 +108,13 @@ def poses(x: np.ndarray, table: np.ndarray, kind: np.ndarray, b1: np.ndarray, b2
     return nearest.min()
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _bounded(v: float) -> float:
     """v, or +inf where it is NaN (rates past a toggle are unbounded, never NaN)."""
     return math.inf if v != v else v
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _over(num: float, den: float) -> float:
     """-num / den; +-inf where den is 0 (0 where both are): the numpy kernels' rule for the 2x2 solve."""
     if den != 0.0:
@@ -122,7 +122,7 @@ def _over(num: float, den: float) -> float:
     return 0.0 if num == 0.0 else math.copysign(math.inf, -num)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _dyad_rates(st: np.ndarray, pr: np.ndarray, vr: np.ndarray, vi: np.ndarray, tmp: np.ndarray, g1: int, g2: int,
                 a1r: float, a1i: float, a2r: float, a2i: float, u: int, w: int, m: int) -> None:
     """A dyad's bodies' rates over a block (compiled with the kernel): its pins' velocities and accelerations from
