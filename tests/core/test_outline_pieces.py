@@ -55,9 +55,18 @@ def test_every_bundled_linkage_is_here():
     assert len(names) >= 24 and {"watt1", "watt2", "hoekens", "slider-crank", "jansen"} <= set(names)
 
 
+class _Builds(dict):
+    """Each linkage's parts built when a test first asks for it, then kept: a worker of a parallel run builds only
+    the linkages of the tests it is given, not all of them."""
+
+    def __missing__(self, name: str):
+        self[name] = design_linkage(validate_spec(dict(LINKAGES)[name]), parts=True).build
+        return self[name]
+
+
 @pytest.fixture(scope="module")
 def builds():
-    return {name: design_linkage(validate_spec(raw), parts=True).build for name, raw in LINKAGES}
+    return _Builds()
 
 
 def _pieces(shape) -> np.ndarray:
@@ -81,14 +90,13 @@ def test_no_piece_shorter_than_the_bound(builds, name):
     assert shortest >= MIN_PIECE_MM, name
 
 
-def test_watt_output_links_are_plain_bars():
+def test_watt_output_links_are_plain_bars(builds):
     """The output link F-G-P: its third hole 1e-10 to 1e-9 mm off the line of the other two, so its outline is the
     bar round F and P (two lines, two half-turn arcs) with the corner at G merged into one vertex. Its area is
     Steiner's for the triangle's hull grown by w = 4 mm: A + w (FG + GP + PF) + pi w^2 (to 1e-9 mm^2; about
     2 w FP + pi w^2 with FP = 130 and 115 mm), and its pieces are at least 4 mm long."""
     for name, length in (("watt1", 130.0), ("watt2", 115.0)):
-        raw = dict(LINKAGES)[name]
-        build = design_linkage(validate_spec(raw), parts=True).build
+        build = builds[name]
         [output] = [p for p in build.parts if p.name == "output"]
         f, g, p = output.centres
         triangle = abs(float((g - f)[0] * (p - f)[1] - (g - f)[1] * (p - f)[0])) / 2

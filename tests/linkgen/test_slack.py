@@ -17,6 +17,7 @@
 """
 from __future__ import annotations
 
+import functools
 import json
 import math
 import tomllib
@@ -167,6 +168,12 @@ CASES = {
 }
 
 
+@functools.cache
+def _case_band(case: str):
+    """The band of ``CASES[case]``, designed once for the tests that read it (three of them; none changes it)."""
+    return _band(CASES[case]())
+
+
 def _kinked(band, k):
     """Whether dyad k's transmission angle has a kink at some pose (RRP at 90 degrees, RPR with the slot through
     its pivot): its one-sided derivative is not a central difference's."""
@@ -179,7 +186,7 @@ def test_the_response_is_the_solvers_own_to_central_differences(case):
     """Every column of the response (every point, every body's turn, every dyad's transmission angle but at a
     kink) against central differences (+-1e-5 mm) of the perturbed linkages solved by the project's solver: to
     1e-6 of the response's size."""
-    band = _band(CASES[case]())
+    band = _case_band(case)
     linkage, model = band.analysis.linkage, band.model
     x = band.inputs[None, ::6]
     r = response(linkage, linkage.solve(x, strict=False, derivatives=False), model)
@@ -258,7 +265,7 @@ def test_monte_carlo_lies_inside_the_band_and_its_second_order_error_shrinks_qua
     the first-order offsets (the second-order error); (3) that difference (a tracer's in any direction), for the
     same samples halved and quartered, falls by 4 each time (3.5 to 4.5: second order); (4) the samples reach a
     fair part of the band (at least a third)."""
-    band = _band(CASES[case]())
+    band = _case_band(case)
     assert band.reached.any()
     widest = {t.name: float(np.max(t.half_width[band.reached])) for t in band.tracers}
     widest.update({o.name: float(np.max(o.half_width[band.reached])) for o in band.outputs})
@@ -298,7 +305,7 @@ def test_the_band_is_reached_by_the_offsets_it_picks(case):
     pin's offset along its gradient, each other slack at its bound with the gradient's sign) gives a linkage that,
     solved by the project's solver, lands on the band's edge there: within the stated margin, and closer by 4 each
     time the slack is halved (second order), unless it lands there to rounding (a ram on its straight guide)."""
-    band = _band(CASES[case]())
+    band = _case_band(case)
     k2 = 2 * len(band.model.holes)
     for t in band.tracers:
         widest = float(np.max(t.half_width[band.reached]))

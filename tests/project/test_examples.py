@@ -3,6 +3,7 @@ copies one with the files it reads and never overwrites, and after a plain `pip 
 one of them is found by name and runs, from a folder outside the checkout."""
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -19,6 +20,8 @@ from linkgen.cli import main as linkgen
 from linkgen.starters import STARTERS as LINKAGE_STARTERS
 from tests.conftest import ROOT
 
+#: runs command lines in forked processes of the venv's interpreter
+FORKED = ROOT / "tests" / "support" / "forked_commands.py"
 TEMPLATES = sorted((ROOT / "templates").glob("*.toml"))
 
 
@@ -146,10 +149,33 @@ def test_every_example_runs_by_name_after_a_plain_install(tmp_path):
     run("linkgen", "build", "j.toml")
     assert (work / "out" / "j" / "j-sheet.dxf").is_file()
     starters = {"camgen": set(cam_starters()), "linkgen": set(LINKAGE_STARTERS)}
+    lines = []
     for example in bundled.examples().values():
         name = f"x-{example.name}.toml"
         flag = ["--example"] if example.name in starters[example.program] else []
-        run(example.program, "new", example.name, *flag, "-o", name)
-        run(*example.run_line(name).split())
+        lines += [" ".join([example.program, "new", example.name, *flag, "-o", name]), example.run_line(name)]
+    # each line in a process of its own, forked from one that has imported the dependencies (not camgen)
+    driver = subprocess.run([str(bin_folder / "python"), str(FORKED), str(tmp_path / "runs.json")],
+                            input="\n".join(lines), cwd=work, env=env, capture_output=True, text=True, timeout=1800)
+    assert driver.returncode == 0, driver.stderr
+    records = json.loads((tmp_path / "runs.json").read_text())
+    assert [r["line"] for r in records] == lines
+    failed = [f"{r['line']}: exit {r['code']}\n{r['output']}" for r in records if r["code"] != 0]
+    assert not failed, "\n".join(failed)
     listed = run("camgen", "examples").splitlines() + run("linkgen", "examples").splitlines()
     assert len(listed) == len(TEMPLATES)
+
+
+def test_the_forked_runner_gives_each_lines_exit_code_and_output(tmp_path):
+    """The runner the plain-install test uses (on this interpreter's console scripts): a command that fails gives
+    its own exit code and message, the ones around it theirs, in order."""
+    lines = ["camgen --version", "camgen build nosuch.toml", "linkgen --help"]
+    driver = subprocess.run([sys.executable, str(FORKED), str(tmp_path / "runs.json")], input="\n".join(lines),
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300,
+                            env={k: v for k, v in os.environ.items() if k != "PYTHONPATH"})
+    assert driver.returncode == 0, driver.stderr
+    records = json.loads((tmp_path / "runs.json").read_text())
+    assert [(r["line"], r["code"]) for r in records] == list(zip(lines, [0, 2, 0], strict=True))
+    assert records[0]["output"].startswith("camgen, version ")
+    assert "'nosuch.toml' does not exist" in records[1]["output"]
+    assert records[2]["output"].startswith("Usage: linkgen ")
