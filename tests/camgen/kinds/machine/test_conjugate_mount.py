@@ -17,6 +17,7 @@ from click.testing import CliRunner
 
 from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
+from tests.support.stem_slider_crank import stem_slider_crank
 
 PHASE_DEG, REST_DEG = 40.0, 60.0
 #: the four-bar the bell crank drives: ground, crank, coupler, rocker (mm)
@@ -235,43 +236,7 @@ def test_both_plates_are_in_the_machines_files(tmp_path):
 #: the yoke's first roller (the conjugate template's: base 40 mm, roller 8 mm, 48 mm above the shaft at rest) lifts
 #: the slider C of a slider-crank: crank O-A about O, rod A-C, C sliding along +Y
 O_DRAWN, A_DRAWN = np.array([50.0, 60.0]), np.array([24.684032711, 76.096639408])
-LIFTER = YOKE.replace('name = "conjyoke"', 'name = "conjlift"') + """
-[[linkages]]
-name = "rocker"
-
-[linkages.template.linkage]
-type = "linkage"
-ground = ["O"]
-input = { slider = "stem" }
-tracers = ["A"]
-
-[linkages.template.linkage.joints]
-C = [0.0, 0.0]
-O = [50.0, 60.0]
-A = [24.684032711, 76.096639408]
-
-[linkages.template.linkage.links]
-crank = ["O", "A"]
-rod = ["A", "C"]
-
-[linkages.template.linkage.sliders.stem]
-point = "C"
-guide = "ground"
-angle = 90.0
-
-[linkages.template.parts]
-width = 8.0
-thickness = 3.0
-pin_diameter = 3.0
-
-[[couplings]]
-cam = "yoke"
-linkage = "rocker"
-link = "stem"
-rest = 0.0
-output = "crank"
-output_torque = 1.5
-"""
+LIFTER = YOKE.replace('name = "conjyoke"', 'name = "conjlift"') + "\n" + stem_slider_crank("yoke")
 
 
 def _crank_pin(c: np.ndarray, o: np.ndarray) -> np.ndarray:

@@ -18,6 +18,7 @@ from click.testing import CliRunner
 
 from camgen.cli import main as camgen
 from tests.support.refusals import assert_refused
+from tests.support.stem_slider_crank import stem_slider_crank
 
 #: a disc cam (base 40 mm, roller 8 mm: the roller's centre 48 mm above the shaft at rest) lifting the slider C of
 #: a slider-crank 30 mm: crank O-A turning about O, rod A-C, C sliding along +Y under the cam
@@ -71,42 +72,7 @@ angle = 130.0
 type = "dwell"
 angle = 50.0
 
-[[linkages]]
-name = "rocker"
-
-[linkages.template.linkage]
-type = "linkage"
-ground = ["O"]
-input = { slider = "stem" }
-tracers = ["A"]
-
-[linkages.template.linkage.joints]
-C = [0.0, 0.0]
-O = [50.0, 60.0]
-A = [24.684032711, 76.096639408]
-
-[linkages.template.linkage.links]
-crank = ["O", "A"]
-rod = ["A", "C"]
-
-[linkages.template.linkage.sliders.stem]
-point = "C"
-guide = "ground"
-angle = 90.0
-
-[linkages.template.parts]
-width = 8.0
-thickness = 3.0
-pin_diameter = 3.0
-
-[[couplings]]
-cam = "lift"
-linkage = "rocker"
-link = "stem"
-rest = 0.0
-output = "crank"
-output_torque = 1.5
-"""
+""" + stem_slider_crank("lift")
 #: the drawing: the slider's point, the crank's pivot, the crank pin (mm)
 C0, O0, A0 = np.array([0.0, 0.0]), np.array([50.0, 60.0]), np.array([24.684032711, 76.096639408])
 #: the follower's rest point in the machine's frame: on its axis x = 0, the prime radius above the shaft
