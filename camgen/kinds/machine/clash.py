@@ -204,7 +204,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     from camgen.followers.translating_roller import TranslatingRoller
     from camgen.kinds.machine import kinematics
     from camgen.kinds.machine.design import _cam_of
-    from camgen.kinds.machine.follower_parts import arm_holes, arm_outline, roller_hole, roller_outline
+    from camgen.kinds.machine.follower_parts import arm_holes, arm_outline, made_radius, roller_hole, roller_outline
 
     d = design
     spec = d.spec                                          # type: ignore[attr-defined]
@@ -265,8 +265,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         r = f.roller_radius
         plane = 2 * mount.layer
         bodies += [Body(f"{name}.arm", plane + 1, plane + 1, arm_outline(f.arm_length, r / 2).flatten(tol), place_arm),
-                   Body(f"{name}.roller", plane, plane + 1, roller_outline(r).flatten(tol), place_roller,
-                        (roller_hole(),))]
+                   Body(f"{name}.roller", plane, plane + 1, roller_outline(made_radius(cam.design, r)).flatten(tol),
+                        place_roller, (roller_hole(),))]
         joints += [Joint(name, f"{name}.roller", roller, _margin(r)),
                    Joint(f"{name}.arm", f"{name}.roller", roller, _margin(r))]
         arms[cam.name] = (f, pivot, plane + 1, arm)

@@ -8,7 +8,8 @@ The parts are the ones the clash check and the assembly place (:func:`camgen.kin
   (``follower.arm_length`` on +X), with the pivot pin's hole at its origin, the roller's axle hole at its far end
   and, where the arm is a coupled four-bar's crank, the crank pin's hole ``crank`` mm out along it; as thick as the
   clash check makes it (the cam's, or the four-bar's crank's);
-* the roller: a disc of ``follower.roller_radius`` with the axle's hole, as thick as its cam, on the cam's plane;
+* the roller: a disc of ``follower.roller_radius`` (a grooved cam's groove is wider by its running clearance) with
+  the axle's hole, as thick as its cam, on the cam's plane;
 * the axle: a bolt of :data:`AXLE_MM` (bought) from the roller's bottom face up through the arm.
 
 Each hole is the pin's ISO 273 medium clearance hole (:func:`camgen.kinds.machine.frame.pin_hole`). The outlines
@@ -57,6 +58,12 @@ def arm_holes(length: float, pivot_pin: float, pins: tuple[tuple[float, float], 
         key = next((k for k in holes if abs(k - x) <= 1e-9), x)
         holes[key] = max(holes.get(key, 0.0), pin_hole(d) / 2)
     return tuple(((x, 0.0), r) for x, r in holes.items())
+
+
+def made_radius(cam_design: Any, radius: float) -> float:
+    """The roller's radius as made (mm): the cam spec's ``follower.roller_radius``, which a grooved cam's follower
+    (``radius``, its island's roller, grown by half the groove's running clearance) does not give."""
+    return float(getattr(cam_design.spec.follower, "roller_radius", radius))
 
 
 def roller_hole() -> tuple[tuple[float, float], float]:
@@ -111,8 +118,9 @@ def follower_parts(design: Any) -> tuple[FollowerPart, ...]:
             f"{cam.name}-arm", arm_outline(float(f.arm_length), r / 2), tuple((c, 2 * hr) for c, hr in arm.holes),
             thick[arm.name], tol)))
         roller = bodies[f"{name}.roller"]
+        outline = roller_outline(made_radius(cam.design, r))
         out.append(FollowerPart(roller.name, "roller", Plate(
-            f"{cam.name}-roller", roller_outline(r), tuple((c, 2 * hr) for c, hr in roller.holes), thick[name], tol)))
+            f"{cam.name}-roller", outline, tuple((c, 2 * hr) for c, hr in roller.holes), thick[name], tol)))
     return tuple(out)
 
 
