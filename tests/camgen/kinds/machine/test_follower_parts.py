@@ -85,10 +85,12 @@ def _frame_of(pivot: np.ndarray, roller: np.ndarray):
 
 @pytest.mark.parametrize("name", MACHINES)
 def test_each_arm_is_the_assembly_arm_with_holes_at_its_pivot_roller_and_crank_pin(designs, name, tmp_path):
-    """Each arm's DXF: its outline, placed at the pivot towards the roller, is the assembly's arm piece (its chords
-    at the cam's tolerance) to 1e-6 mm; its holes are at the pivot and the roller's centre (and a coupled
-    four-bar's crank pin, ``crank`` mm out along the arm) to 1e-9 mm, each an M4 clearance hole; the roller's DXF
-    is a circle of the roller's radius about its axle hole, the assembly's roller piece on that circle."""
+    """Each arm's DXF: its outline, placed at the pivot towards the roller, has its round ends about the pivot and
+    the roller's centre, of half the roller's radius (a grooved cam's follower's: grown by half its running
+    clearance), and is the assembly's arm piece (its chords at the cam's tolerance) to 1e-6 mm; its holes are at
+    the pivot and the roller's centre (and a coupled four-bar's crank pin, ``crank`` mm out along the arm) to 1e-9
+    mm, each an M4 clearance hole; the roller's DXF is a circle of the roller's radius about its axle hole, the
+    assembly's roller piece on that circle."""
     from camgen.core.shapes import Contour
     from camgen.kinds.machine import assembly
     from camgen.kinds.machine.follower_parts import follower_items
@@ -105,7 +107,14 @@ def test_each_arm_is_the_assembly_arm_with_holes_at_its_pivot_roller_and_crank_p
         assert math.dist(pivot, roller) == pytest.approx(spec.follower.arm_length, abs=1e-9)
         to_machine = _frame_of(pivot, roller)
         file, vertices, bulges, holes = _dxf(by_name[f"{name}-{cam.name}-arm"], tmp_path)
-        placed = to_machine(Contour(vertices, bulges).flatten(tol))
+        outline = Contour(vertices, bulges)
+        _, centres, radii, _ = outline.arcs()                # its two round ends: about the pivot and the roller
+        ends = to_machine(np.asarray(centres))
+        assert len(ends) == 2 and min(math.dist(ends[0], pivot) + math.dist(ends[1], roller),
+                                      math.dist(ends[1], pivot) + math.dist(ends[0], roller)) <= 1e-9, file
+        grown = getattr(spec.cam, "running_clearance", 0.0) / 2       # a grooved cam's follower
+        assert np.asarray(radii) == pytest.approx((spec.follower.roller_radius + grown) / 2, abs=1e-12), file
+        placed = to_machine(outline.flatten(tol))
         piece = pieces[f"cams.{cam.name}.arm"].outline
         assert piece.n_arcs == 0 and placed.shape == piece.vertices.shape, file
         assert np.abs(placed - piece.vertices).max() <= 1e-6, file
