@@ -52,10 +52,11 @@ def _placed_part(body: Body, phi: float, thickness: float, tolerance: float) -> 
 
 
 def _span(body: Body, design: Any, stack: frames.Stack, thick: dict[str, float]) -> tuple[float, float]:
-    """A body's bottom and top (mm): a flat moving part on its plane, as thick as it is made; a roller over its
-    planes; a pin from under the bottom plate or its lowest part to its highest part or the top plate's top; a shaft
-    from its stub under the bottom plate (or from the bottom face of its part behind the frame: a stub there would
-    cross the back linkage's rods) to its highest cam; a spacer between its neighbours."""
+    """A body's bottom and top (mm): a flat moving part on its plane, as thick as it is made; an arm's roller on
+    its cam's plane, as thick as the cam; a translating follower's roller over its planes; a pin from under the
+    bottom plate or its lowest part to its highest part or the top plate's top; a shaft from its stub under the
+    bottom plate (or from the bottom face of its part behind the frame: a stub there would cross the back
+    linkage's rods) to its highest cam; a spacer between its neighbours."""
     from camgen.kinds.machine.framekit import SHAFT_STUB_MM, pin_span
 
     name = body.name
@@ -70,6 +71,9 @@ def _span(body: Body, design: Any, stack: frames.Stack, thick: dict[str, float])
         if body.low < 0:           # reaching a linkage behind the frame: to its crank's face (its rods cross below)
             return stack.bottom[body.low], stack.top[body.high]
         return -SHAFT_STUB_MM, stack.top[body.high]
+    cam = name.removesuffix(".roller")
+    if name.endswith(".roller") and f"{cam}.arm" in thick:    # an arm's roller: on its cam's plane, as thick
+        return stack.bottom[body.low], stack.bottom[body.low] + thick[cam]
     if name in thick and body.low == body.high:
         return stack.bottom[body.low], stack.bottom[body.low] + thick[name]
     return stack.bottom[body.low], stack.top[body.high]
@@ -78,7 +82,7 @@ def _span(body: Body, design: Any, stack: frames.Stack, thick: dict[str, float])
 def pieces(design: Any) -> tuple[Piece, ...]:
     """Every part of ``design`` (a :class:`~camgen.kinds.machine.design.MachineDesign`) placed at
     ``machine.assembly_angle``: the frame's plates (as printed), the moving parts, the spacers, then the bought
-    parts (pins, shafts, bearings)."""
+    parts (pins, the rollers' axles, shafts, bearings)."""
     spec = design.spec
     phi = math.radians(spec.machine.assembly_angle)
     tol = min((*(float(c.design.tolerance) for c in design.cams),
@@ -99,6 +103,9 @@ def pieces(design: Any) -> tuple[Piece, ...]:
             part = Part(part.name, part.outline, (Circle(*_centre_hole(body, frame)),), part.thickness, tol)
         hardware = body.name.startswith(("pins.", "shafts."))
         (bought if hardware else made).append(Piece(part, bottom, hardware))
+    from camgen.kinds.machine.follower_parts import axles
+
+    bought += [Piece(axle.part(tol), axle.bottom, True) for axle in axles(design, stack)]
     if frame is not None:
         bought += _bare_shafts(design, frame, tol)
         for seat in frame.seats:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -204,6 +204,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     from camgen.followers.translating_roller import TranslatingRoller
     from camgen.kinds.machine import barrel_parts, conjugate_parts, kinematics
     from camgen.kinds.machine.design import _cam_of
+    from camgen.kinds.machine.follower_parts import arm_holes, arm_outline, made_radius, roller_hole, roller_outline
 
     d = design
     spec = d.spec                                          # type: ignore[attr-defined]
@@ -280,14 +281,16 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
 
         r = f.roller_radius
         plane = 2 * mount.layer
-        bodies += [Body(f"{name}.arm", plane + 1, plane + 1, bar(f.arm_length, r / 2, tol), place_arm),
-                   Body(f"{name}.roller", plane, plane + 1, circle(r, tol), place_roller)]
+        bodies += [Body(f"{name}.arm", plane + 1, plane + 1, arm_outline(f.arm_length, r / 2).flatten(tol), place_arm),
+                   Body(f"{name}.roller", plane, plane + 1, roller_outline(made_radius(cam.design, r)).flatten(tol),
+                        place_roller, (roller_hole(),))]
         joints += [Joint(name, f"{name}.roller", roller, _margin(r)),
                    Joint(f"{name}.arm", f"{name}.roller", roller, _margin(r))]
         arms[cam.name] = (f, pivot, plane + 1, arm)
     pins: dict[tuple[float, float], tuple[list[str], int, float]] = {}
     skipped += [f"genevas.{g.name} (its driver and wheel are not placed yet)"
                 for g in getattr(d, "indexed", ())]
+    crank_pins: dict[str, list[tuple[float, float]]] = {}     # a coupled four-bar's crank pin on its cam's arm
     for m in d.linkages:                                   # type: ignore[attr-defined]
         build, table = m.design.build, m.design.spec.linkage
         if build is None or m.cam not in arms:              # no [parts] table: no outlines to place
@@ -342,6 +345,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         joints += [Joint(f"cams.{m.cam}.arm", names["coupler"][0], crank_pin, _margin(hw)),
                    Joint(names["coupler"][0], names["rocker"][0], rocker_pin, _margin(hw))]
         pin_r = m.design.spec.parts.pin_diameter / 2 if m.design.spec.parts else PIVOT_PIN_MM / 2
+        crank_pins.setdefault(m.cam, []).append((float(fb.crank), 2 * pin_r))
         pins.setdefault((float(o4[0]), float(o4[1])), ([], 1, pin_r))[0].append(names["rocker"][0])
         entry = pins.setdefault((float(pivot[0]), float(pivot[1])), ([], 0, pin_r))
         entry[0].append(f"cams.{m.cam}.arm")
@@ -371,6 +375,10 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         entry = pins.setdefault(key, ([], 0, PIVOT_PIN_MM / 2))
         if f"cams.{name}.arm" not in entry[0]:
             entry[0].append(f"cams.{name}.arm")
+    for name, (f, pivot, _, _) in arms.items():               # the arm's holes: its pivot's, axle's, crank pin's
+        pin_d = 2 * next(r for k, (_, _, r) in pins.items() if math.dist(k, pivot) < 1e-9)
+        holes = arm_holes(float(f.arm_length), pin_d, tuple(crank_pins.get(name, ())))
+        bodies = [replace(b, holes=holes) if b.name == f"cams.{name}.arm" else b for b in bodies]
     from camgen.kinds.machine.machine_gears import gear_bodies
 
     gear_bodies(d, bodies, joints, shafts)                  # the gear pairs, over the other parts by default

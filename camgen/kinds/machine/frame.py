@@ -185,15 +185,22 @@ def spacer_joints(found: Sequence[Spacer]) -> list[Joint]:
 
 
 def shaft_diameters(spec: Any) -> dict[str, float]:
-    """Each shaft's diameter (mm): the smallest ``cam.bore`` of the cams on it; a shaft without a cam takes the
-    smallest bore of the machine's cams (:data:`SHAFT_MM` without any)."""
+    """Each shaft's diameter (mm): the smallest ``cam.bore`` of the cams on it; a shaft without a cam, the
+    smallest bore of the shaft-driven linkages' cranks on it (their ``parts.pin_diameter``: a crank bar
+    ``parts.width`` wide has no room for a larger bore, so the shaft is the crank's bore); a shaft carrying
+    neither takes the smallest bore of the machine's cams (:data:`SHAFT_MM` without any)."""
     bores: dict[str, list[float]] = {}
     for mount, cam_spec in zip(spec.cams, spec.cam_specs, strict=True):
         bore = getattr(cam_spec.cam, "bore", None)
         if bore:
             bores.setdefault(mount.shaft, []).append(float(bore))
     least = min((min(b) for b in bores.values()), default=SHAFT_MM)
-    return {s.name: min(bores.get(s.name, [least])) for s in spec.shafts}
+    cranks: dict[str, list[float]] = {}
+    for mount, linkage_spec in zip(spec.linkages, spec.linkage_specs, strict=True):
+        parts = getattr(linkage_spec, "parts", None)
+        if getattr(mount, "shaft", None) and parts is not None:
+            cranks.setdefault(mount.shaft, []).append(float(parts.pin_diameter))
+    return {s.name: min(bores.get(s.name) or cranks.get(s.name) or [least]) for s in spec.shafts}
 
 
 def pin_hole(diameter: float) -> float:

@@ -69,6 +69,10 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
         report["frame"] = frame_report(design.frame, design)
         items += frame_items(design.frame, design, formats)
     from camgen.kinds.machine import assembly
+    from camgen.kinds.machine.follower_parts import follower_items, followers_report
+
+    report["followers"] = followers_report(design)
+    items += follower_items(design, formats)
 
     report["assembly"] = assembly.assembly_report(design)
     for made in (mesh_files(lambda: assembly.meshes(design), f"{name}-assembly", "assembly", only=("3mf",)),

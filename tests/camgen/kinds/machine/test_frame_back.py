@@ -58,14 +58,17 @@ def test_the_toy_has_one_plate_and_builds_as_before(toy):
 
 
 def test_every_hole_of_the_plate_is_at_its_shaft_or_pivot_read_back_from_the_dxf(built):
-    """The plate's holes (the DXF's HOLES layer): each shaft's at its ``at`` (an 8 mm shaft, no cam giving a bore,
-    in a plain hole 0.2 mm over it) and the legs' frame pivot B (the leg's joint B relative to its crank's pivot O,
+    """The plate's holes (the DXF's HOLES layer): each shaft's at its ``at`` in a plain hole 0.2 mm over it (the
+    legs' shaft as thick as its cranks' pin holes, ``parts.pin_diameter``; the hand crank's 8 mm, no cam or crank
+    giving a bore) and the legs' frame pivot B (the leg's joint B relative to its crank's pivot O,
     on the legs' shaft: one M3 bolt through both legs, in its 3.4 mm clearance hole), to 1e-9 mm; nothing else."""
     import ezdxf
 
     raw = _raw()
     shafts = {s["name"]: s["at"] for s in raw["shafts"]}
-    want = [(tuple(at), 8.2 / 2) for at in shafts.values()]
+    bore = {m["shaft"]: m["template"]["parts"]["pin_diameter"] for m in raw["linkages"]}
+    assert bore == {"legs": 3.0}
+    want = [(tuple(at), (bore.get(name, 8.0) + 0.2) / 2) for name, at in shafts.items()]
     pivots = set()
     for mount in raw["linkages"]:
         joints = mount["template"]["linkage"]["joints"]

@@ -154,7 +154,7 @@ def test_freecad_reads_the_assembly_with_the_back_parts_under_the_lower_plate(bu
     assert box["frame-top"][5] == pytest.approx(roof + t, abs=1e-6)
     back = [n for n in box if n.startswith("linkages.back.")]
     front = [n for n in box if n.startswith(("cams.", "linkages.arm-bars."))]
-    assert len(back) == 3 and len(front) == 11
+    assert len(back) == 3 and len(front) == 11 + 3              # with the rollers' axles, between the plates too
     assert all(box[n][5] <= -1.0 + 1e-6 for n in back), {n: box[n][5] for n in back}
     assert all(box[n][2] >= t + 1.0 - 1e-6 and box[n][5] <= roof - 1.0 + 1e-6 for n in front)
     spacers = [n for n in box if n.startswith("spacers.")]

@@ -390,7 +390,7 @@ def test_every_solid_reads_back_closed(built):
 
     out, report = built
     solids = [n for n in report["files"].values() if n.endswith(".stl")]
-    assert len(solids) == 10                     # 3 cams, 4 links, the two frame plates, the spacer
+    assert len(solids) == 16       # 3 cams, 4 links, the two frame plates, the spacer, 3 followers' arms and rollers
     for name in solids:
         stats = _admesh(out / name)
         assert all(stats[k] == 0 for k in stats if k != "volume"), (name, stats)

@@ -92,8 +92,9 @@ def test_every_object_is_its_placed_outline_extruded_on_its_layer(built):
         # the tolerance; every other outline is the clash check's polygon, its bounds its vertices'
         tol = report["tolerance_mm"] if p["name"].startswith("frame") else 1e-6
         assert _box(objects[p["name"]]) == pytest.approx(_single(want), abs=tol), p["name"]
-    # the bought parts: the shaft, the two pivot pins, together in one object
-    assert {p["name"] for p in bought} == {"shafts.camshaft", "pins.0", "pins.1"}
+    # the bought parts: the shaft, the two pivot pins, the three rollers' axles, together in one object
+    assert {p["name"] for p in bought} == {"shafts.camshaft", "pins.0", "pins.1",
+                                           *(f"cams.{c}.axle" for c in ("head", "jaw", "arm"))}
     boxes = np.array([[*p["bounds_mm"][:2], p["z_mm"], *p["bounds_mm"][2:], p["z_mm"] + p["thickness_mm"]]
                       for p in bought])
     want = [*boxes[:, :3].min(axis=0), *boxes[:, 3:].max(axis=0)]
@@ -124,7 +125,7 @@ def test_prusaslicer_reads_the_assembly_each_object_closed(built):
     made = [p for p in report["assembly"]["pieces"] if not p["bought"]]
     assert info.count("manifold = yes") == len(made) + 1 and "manifold = no" not in info
     parts = [int(n) for n in re.findall(r"^number_of_parts =\s+(\d+)$", info, re.M)]
-    assert parts == [1] * len(made) + [3]                    # the bought object: three closed shells
+    assert parts == [1] * len(made) + [6]                    # the bought object: six closed shells
 
 
 def test_freecad_reads_the_step_file_one_solid_a_part(built, automaton):
@@ -135,7 +136,7 @@ def test_freecad_reads_the_step_file_one_solid_a_part(built, automaton):
     done = freecad_check("step", out / "automaton-assembly.step", [])
     found = json.loads(done.stdout.strip().splitlines()[-1])["solids"]
     want = pieces(automaton)
-    assert len(found) == len(want) == 17
+    assert len(found) == len(want) == 20                     # 14 made, 6 bought
     for solid, piece in zip(found, want, strict=True):
         assert solid["valid"], piece.part.name
         assert solid["volume"] == pytest.approx(piece.part.area * piece.part.thickness, rel=5e-3), piece.part.name

@@ -182,8 +182,11 @@ def _thickness(machine: Built, key: str) -> float:
     """The thickness (mm) the report gives the part of the mesh file ``key`` (``frame_stl``, ``spacer_0_3mf``,
     ``head.stl``, ``arm-bars.coupler_3mf``)."""
     frame = machine.report.get("frame")
-    if "." not in key:                                          # the frame's: a plate's or a spacer's
+    if "." not in key:                                          # the frame's or a follower's part
         stem = key.rsplit("_", 1)[0]
+        follower = [p for p in machine.report["followers"] if p["name"].replace("-", "_") == stem]
+        if follower:
+            return follower[0]["thickness_mm"]
         if stem in frame["plates"]:
             return frame["thickness_mm"]
         return frame["spacers"][int(stem.removeprefix("spacer_"))]["height_mm"]
@@ -323,7 +326,8 @@ def test_prusaslicer_slices_the_assembly_without_its_bought_parts(machine, tmp_p
 
 def _kit_pieces(bom: list[dict]) -> list[str]:
     """The assembly's name of each thing the kit buys: a shaft's (``shaft X``: ``shafts.X``), a bearing's (in the
-    seat of a shaft), a pivot pin's (a bolt or a pin, named in its line)."""
+    seat of a shaft), a pivot pin's (a bolt or a pin, named in its line), a roller's axle (a bolt, named in its
+    line)."""
     out = []
     for line in bom:
         if line["source"] != "buy":
@@ -335,18 +339,11 @@ def _kit_pieces(bom: list[dict]) -> list[str]:
             seat = re.search(r"seat of (\S+)$", line["size"]).group(1)
             out.append(f"{line['item']} of {seat}")
         else:
-            out.append(re.search(r"pivot pin (pins\.\d+)", line["size"]).group(1))
+            out.append(re.search(r"(?:pivot pin|roller axle) (pins\.\d+|cams\.\S+\.axle)", line["size"]).group(1))
     return out
 
 
-#: the walking toy's legs' shaft: the kit buys an 8 mm rod (the frame's seat, no cam giving a bore) and the plate's
-#: hole is cut for it, while the legs' cranks are bored for their 3 mm pins and the clash check and the assembly
-#: draw the shaft 3 mm across (reported, not decided here: which of the two the toy's shaft is)
-SHAFT_GAP = pytest.mark.xfail(strict=True, reason="the legs' shaft: an 8 mm rod in the kit, 3 mm in the assembly")
-
-
-@pytest.mark.parametrize("name", [pytest.param(n, marks=SHAFT_GAP) if n == "walking-toy" else n
-                                  for n in FRAMED])
+@pytest.mark.parametrize("name", FRAMED)
 def test_each_shaft_in_the_assembly_is_the_rod_the_kit_buys(bundled_builds, name):
     """With a frame: each shaft of the assembly is as thick as the kit's rod (to 0.01 mm: the clash check's circle
     is a polygon of chords) and as long, to the whole mm the kit rounds it up to."""
@@ -528,5 +525,6 @@ def test_the_kit_table_is_the_frames_bill_of_materials(machine):
     assert [(r["part"], int(r["quantity"]), r["standard"], r["size"], r["process"]) for r in rows] == [
         (b["item"], b["quantity"], b["standard"], b["size"], b["source"]) for b in frame["bom"]]
     printed = [b["item"] for b in frame["bom"] if b["source"] != "buy"]
-    assert set(printed) == set(frame["plates"]) | {s["name"] for s in frame["spacers"]}
+    assert set(printed) == (set(frame["plates"]) | {s["name"] for s in frame["spacers"]}
+                            | {p["name"] for p in machine.report["followers"]})
     assert math.isfinite(frame["thickness_mm"])

@@ -1,0 +1,206 @@
+"""A machine's cam followers as parts of their own: each oscillating roller follower's arm and roller, cut and
+printed as the machine's frame is (``<machine>-<cam>-arm.dxf|-cut.svg|.stl|.3mf``, ``<machine>-<cam>-roller...``),
+listed in the machine's kit with the roller's axle bought, and the axle drawn in the assembly. No I/O.
+
+The parts are the ones the clash check and the assembly place (:func:`camgen.kinds.machine.clash.machine_parts`):
+
+* the arm: a bar of half the roller's radius round its ends, from the pivot (its origin) to the roller's centre
+  (``follower.arm_length`` on +X), with the pivot pin's hole at its origin, the roller's axle hole at its far end
+  and, where the arm is a coupled four-bar's crank, the crank pin's hole ``crank`` mm out along it; as thick as the
+  clash check makes it (the cam's, or the four-bar's crank's);
+* the roller: a disc of ``follower.roller_radius`` (a grooved cam's groove is wider by its running clearance) with
+  the axle's hole, as thick as its cam, on the cam's plane;
+* the axle: a bolt of :data:`AXLE_MM` (bought) from the roller's bottom face up through the arm.
+
+Each hole is the pin's ISO 273 medium clearance hole (:func:`camgen.kinds.machine.frame.pin_hole`). The outlines
+are exact (lines and arcs); the clash check's bodies are these outlines split into chords within the cam's
+tolerance. A translating follower's stem has no files of its own yet: its outline ends at the roller's centre,
+where the axle's hole would be (the assembly draws it, the kit does not list it).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from camgen.core.bundle import Item, mesh_files, part_files
+from camgen.core.hardware import BOLTS, bolt_length
+from camgen.core.kit import BomLine, Plate, bolt_line
+from camgen.core.parts import Allowances, Drawing, Part
+from camgen.core.shapes import Contour, rounded_hull
+
+#: the roller's axle (mm): an M4 bolt, as a follower's pivot pin where no linkage gives one
+AXLE_MM = 4.0
+
+
+def arm_outline(length: float, half_width: float) -> Contour:
+    """A follower arm's outline (mm, its own frame): round ends of ``half_width`` about the pivot (0, 0) and the
+    roller's centre (``length``, 0), counter-clockwise."""
+    return rounded_hull(np.array([[0.0, 0.0], [length, 0.0]]), half_width)
+
+
+def roller_outline(radius: float) -> Contour:
+    """A roller's outline (mm): a circle of ``radius`` about its axle (0, 0), two exact half arcs."""
+    return rounded_hull(np.zeros((1, 2)), radius)
+
+
+def arm_holes(length: float, pivot_pin: float, pins: tuple[tuple[float, float], ...] = ()) -> tuple[
+        tuple[tuple[float, float], float], ...]:
+    """An arm's holes as (centre, radius) pairs (mm, its own frame): the pivot pin's (``pivot_pin`` mm across) at
+    the origin, the axle's at (``length``, 0), and each of ``pins`` ((distance out along the arm, pin diameter) mm:
+    a coupled crank's pin) unless it falls on one of these (within 1e-9 mm: the larger hole is kept)."""
+    from camgen.kinds.machine.frame import pin_hole
+
+    holes: dict[float, float] = {0.0: pin_hole(pivot_pin) / 2}
+    for x, d in ((length, AXLE_MM), *pins):
+        key = next((k for k in holes if abs(k - x) <= 1e-9), x)
+        holes[key] = max(holes.get(key, 0.0), pin_hole(d) / 2)
+    return tuple(((x, 0.0), r) for x, r in holes.items())
+
+
+def made_radius(cam_design: Any, radius: float) -> float:
+    """The roller's radius as made (mm): the cam spec's ``follower.roller_radius``, which a grooved cam's follower
+    (``radius``, its island's roller, grown by half the groove's running clearance) does not give."""
+    return float(getattr(cam_design.spec.follower, "roller_radius", radius))
+
+
+def roller_hole() -> tuple[tuple[float, float], float]:
+    """The roller's axle hole: (centre, radius) mm."""
+    from camgen.kinds.machine.frame import pin_hole
+
+    return (0.0, 0.0), pin_hole(AXLE_MM) / 2
+
+
+@dataclass(frozen=True)
+class FollowerPart:
+    """A follower's part: the clash check's and the assembly's ``body`` name (``cams.<cam>.arm``), what it is, and
+    its nominal part maker ``plate`` (named ``<cam>-arm``, its own frame, holes at their nominal sizes)."""
+
+    body: str
+    what: str
+    plate: Plate
+
+    @property
+    def key(self) -> str:
+        """The report's key of its files (``<cam>_arm``: ``<cam>_arm_dxf``...)."""
+        return self.plate.name.replace("-", "_")
+
+
+def _oscillating(design: Any) -> list[tuple[Any, Any]]:
+    """The machine's cams with an oscillating roller follower whose arm the clash check placed: (cam, follower)."""
+    from camgen.followers.oscillating_roller import OscillatingRoller
+    from camgen.kinds.machine.design import _cam_of
+
+    names = {b.name for b in design.bodies}
+    out = []
+    for cam in design.cams:
+        f = _cam_of(cam.design).follower
+        if isinstance(f, OscillatingRoller) and f"cams.{cam.name}.arm" in names:
+            out.append((cam, f))
+    return out
+
+
+def follower_parts(design: Any) -> tuple[FollowerPart, ...]:
+    """Each oscillating follower's arm and roller of ``design`` (a
+    :class:`~camgen.kinds.machine.design.MachineDesign`), in the cams' order: their outlines exact, their holes
+    the ones the clash check's bodies carry, as thick as the assembly makes them."""
+    from camgen.kinds.machine.frame import thicknesses
+
+    thick = thicknesses(design)
+    bodies = {b.name: b for b in design.bodies}
+    out = []
+    for cam, f in _oscillating(design):
+        tol, name = float(cam.design.tolerance), f"cams.{cam.name}"
+        arm, r = bodies[f"{name}.arm"], float(f.roller_radius)
+        out.append(FollowerPart(arm.name, "follower arm", Plate(
+            f"{cam.name}-arm", arm_outline(float(f.arm_length), r / 2), tuple((c, 2 * hr) for c, hr in arm.holes),
+            thick[arm.name], tol)))
+        roller = bodies[f"{name}.roller"]
+        outline = roller_outline(made_radius(cam.design, r))
+        out.append(FollowerPart(roller.name, "roller", Plate(
+            f"{cam.name}-roller", outline, tuple((c, 2 * hr) for c, hr in roller.holes), thick[name], tol)))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Axle:
+    """A roller's axle in the assembly: its ``name`` (``cams.<cam>.axle``), its ``centre`` at the assembly's angle
+    (mm), its ``bottom`` and ``top`` (mm, up from the bottom plate's bottom face: the roller's bottom face to the
+    arm's top)."""
+
+    name: str
+    centre: tuple[float, float]
+    bottom: float
+    top: float
+
+    def part(self, tolerance: float) -> Part:
+        """The axle as a rod of :data:`AXLE_MM` as long as it stands."""
+        return Part(self.name, roller_outline(AXLE_MM / 2).moved(0.0, np.asarray(self.centre)), (),
+                    self.top - self.bottom, tolerance)
+
+
+def axles(design: Any, stack: Any) -> tuple[Axle, ...]:
+    """Each oscillating follower's roller axle placed at ``machine.assembly_angle`` on the planes of ``stack``
+    (:class:`camgen.kinds.machine.frame.Stack`)."""
+    from camgen.kinds.machine.frame import thicknesses
+
+    thick = thicknesses(design)
+    phi = np.array([math.radians(design.spec.machine.assembly_angle)])
+    bodies = {b.name: b for b in design.bodies}
+    out = []
+    for cam, _ in _oscillating(design):
+        roller, arm = bodies[f"cams.{cam.name}.roller"], bodies[f"cams.{cam.name}.arm"]
+        centre = roller.place(phi)[1][0]
+        out.append(Axle(f"cams.{cam.name}.axle", (float(centre[0]), float(centre[1])), stack.bottom[roller.low],
+                        stack.bottom[arm.low] + thick[arm.name]))
+    return tuple(out)
+
+
+def bom_lines(design: Any, stack: Any) -> tuple[BomLine, ...]:
+    """The kit's lines of the followers: each arm and roller (made, its own files), each axle (a bolt through the
+    roller and the arm, bought; the bolt of :data:`AXLE_MM`)."""
+    lines = []
+    for p in follower_parts(design):
+        n = len(p.plate.holes)
+        lines.append(BomLine(p.plate.name, 1, f"{p.what} of {p.body.rsplit('.', 1)[0]}, {p.plate.thickness:g} mm, "
+                             f"{n} hole{'s' if n > 1 else ''} (its own files)", "laser or fdm"))
+    bolt = next(b for b in BOLTS.values() if b.diameter == AXLE_MM)
+    for a in axles(design, stack):
+        lines.append(bolt_line(bolt, bolt_length(bolt, a.top - a.bottom), 1,
+                               f"roller axle {a.name} at ({a.centre[0]:.4g}, {a.centre[1]:.4g}) mm"))
+    return tuple(lines)
+
+
+def allowances(design: Any) -> Allowances:
+    """The process allowances the followers are made with: the frame's, else ``output.kerf`` and
+    ``output.clearance`` as the frame would take them."""
+    if design.frame is not None:
+        return design.frame.allowances
+    out = design.spec.output
+    return Allowances(out.kerf, out.clearance, "output.kerf", out.elephant_foot)
+
+
+def follower_items(design: Any, formats: tuple[str, ...]) -> list[Item | None]:
+    """Each follower part's files: cut (``<machine>-<cam>-arm.dxf`` and ``-cut.svg``, the kerf applied) and printed
+    (``.stl``, ``.3mf``, the clearance applied)."""
+    from camgen.core.solids import checked_mesh
+
+    name, allow = design.spec.name, allowances(design)
+    meshes = bool({"stl", "3mf"} & set(formats))
+    items: list[Item | None] = []
+    for p in follower_parts(design):
+        stem = f"{name}-{p.plate.name}"
+        items.append(part_files(Drawing.of_part(allow.cut(p.plate)), stem, p.key))
+        items.append(mesh_files(checked_mesh(allow.printed(p.plate), stem)[0] if meshes else None, stem, p.key))
+    return [i.only(formats) if i is not None else None for i in items]
+
+
+def followers_report(design: Any) -> list[dict[str, Any]]:
+    """The report's ``followers``: each part's name, the assembly's body it is, its thickness and its holes
+    (centre and nominal diameter, mm in its own frame)."""
+    return [{"name": p.plate.name, "body": p.body, "thickness_mm": p.plate.thickness,
+             "holes": [{"x_mm": round(c[0], 9), "y_mm": round(c[1], 9), "nominal_mm": round(d, 9)}
+                       for c, d in p.plate.holes]} for p in follower_parts(design)]
+
