@@ -104,7 +104,9 @@ def test_the_dxf_outlines_equal_the_standalone_gear_pair(bundled_builds):
         assert got.shape == want.shape
         assert np.abs(got - want).max() < 1e-9
         holes = [e for e in doc.modelspace() if e.dxftype() == "CIRCLE"]
-        assert [round(h.dxf.radius, 12) for h in holes] == [4.0]
+        # each gear's hole is its shaft's: the hand crank's 8 mm (no part on it gives another), the legs' 3 mm
+        # (the legs' cranks' pins, which their 8 mm width cannot bore larger)
+        assert [round(h.dxf.radius, 12) for h in holes] == [{"driver": 4.0, "driven": 1.5}[stem]]
 
 
 def test_the_report_gives_the_textbook_contact_ratio(bundled_builds):
