@@ -191,6 +191,10 @@ def _thickness(machine: Built, key: str) -> float:
             return frame["thickness_mm"]
         return frame["spacers"][int(stem.removeprefix("spacer_"))]["height_mm"]
     mount, _, part = key.partition(".")
+    if mount == "gears":                                        # a gear pair's gear: the pair's face width and hub
+        name = part.rsplit("_", 1)[0]
+        (gear,) = [g for g in machine.report["gears"] if name in (f"{g['name']}-driver", f"{g['name']}-driven")]
+        return gear["thickness_mm"] + gear["hub_height_mm"]
     report = machine.mount(mount)
     if part in ("stl", "3mf"):                                  # a cam: one part, its own files
         return report["cam"]["thickness_mm"]
@@ -526,5 +530,7 @@ def test_the_kit_table_is_the_frames_bill_of_materials(machine):
         (b["item"], b["quantity"], b["standard"], b["size"], b["source"]) for b in frame["bom"]]
     printed = [b["item"] for b in frame["bom"] if b["source"] != "buy"]
     assert set(printed) == (set(frame["plates"]) | {s["name"] for s in frame["spacers"]}
-                            | {p["name"] for p in machine.report["followers"]})
+                            | {p["name"] for p in machine.report["followers"]}
+                            | {f"gear {g['name']}-{side}" for g in machine.report.get("gears", ())
+                               for side in ("driver", "driven")})
     assert math.isfinite(frame["thickness_mm"])
