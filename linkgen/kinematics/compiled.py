@@ -134,11 +134,12 @@ def positions(enc: Encoded, x: np.ndarray, signs: list[np.ndarray] | list[float]
     kernel = _kernel()
     import numba
 
-    runs = max(1, min(numba.get_num_threads() if threads is None else int(threads), n))
     rates = np.ones(x.shape[0]) if speeds is None else np.asarray(speeds, dtype=float).reshape(x.shape[0])
     with warnings.catch_warnings():
-        # numba says once, on its first parallel run, that it passed over an older TBB for another threading layer
+        # numba says once, when it starts its threads (asked their number, or the first parallel run), that it
+        # passed over an older TBB for another threading layer
         warnings.filterwarnings("ignore", message=r".*TBB threading layer")
+        runs = max(1, min(numba.get_num_threads() if threads is None else int(threads), n))
         folded = kernel(np.ascontiguousarray(x, dtype=float), table, enc.kind, enc.b1, enc.b2, enc.ref1, enc.ref2,
                         enc.k1, enc.k2, enc.r1, enc.r2, enc.step, enc.fold2, enc.floor, enc.index, enc.drawn,
                         enc.holder, enc.factor, enc.bodies, runs, rates, out, vel, acc, ok)
