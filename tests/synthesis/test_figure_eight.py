@@ -86,7 +86,7 @@ def found():
 @pytest.mark.slow
 def test_the_six_bar_beats_the_best_four_bar_on_the_figure_eight_by_a_large_factor(found):
     """The bundled task with one start (seed 1, 300 generations; about 40 s of CPU): the Watt I found meets the
-    twelve points to their rounding (measured 4.98e-7 mm^2, as with the task's 4 starts) where the best four-bar on
+    twelve points to their rounding (measured 4.98e-7 mm^2, as the task itself gives) where the best four-bar on
     the same targets, timing, seed and budget stays at 18.85 mm^2, a factor above 1e6 (3.8e7); both errors are the
     test's own, from each linkage's joints by circle intersections at the crank directions its row reports, and
     so is the Watt I's worst transmission angle over a turn (measured 49.3 degrees)."""
