@@ -3,9 +3,11 @@ solve on linkages nobody chose."""
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 
 import numpy as np
 
+from camgen.core.errors import SpecError
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.structure import Input, make_structure
 
@@ -32,3 +34,18 @@ def random_six_bar(rng: np.random.Generator, kind: str) -> Linkage:
         ground = ("O2", "O4", "O6")
         del pts["F"]
     return Linkage.of(make_structure(pts, links, ground, (), (Input("crank", "crank", "O2"),)))
+
+
+def random_six_bars(kind: str, count: int = 6) -> Iterator[Linkage]:
+    """``count`` six-bars of ``kind`` ("watt" or "stephenson", see :func:`random_six_bar`) from a seeded generator
+    (38 for Watt's, 3838 for Stephenson's), so every test that takes them gets the same linkages; a drawing that
+    cannot move (e.g. at a toggle) is drawn again."""
+    rng = np.random.default_rng(38 if kind == "watt" else 3838)
+    done = 0
+    while done < count:
+        try:
+            linkage = random_six_bar(rng, kind)
+        except SpecError:
+            continue
+        yield linkage
+        done += 1
