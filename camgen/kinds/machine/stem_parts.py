@@ -20,7 +20,7 @@ from collections.abc import Callable
 import numpy as np
 
 from camgen.kinds.machine.clash import Body, Joint, circle
-from camgen.kinds.machine.stem_guide import FACE_DEPTH_MM, GUIDE_GAP_MM, face_bodies, guide_bodies, guide_span
+from camgen.kinds.machine.stem_guide import FACE_DEPTH_MM, GUIDE_GAP_MM, box, face_bodies, guide_bodies, guide_span
 
 #: a flat face: its ends along it (mm from the follower's axis, +X) and its contact (phi -> (n, 2) mm)
 Face = tuple[tuple[float, float], Callable[[np.ndarray], np.ndarray]]
@@ -36,12 +36,6 @@ def stem_length(stroke: float, width: float, foot: float = 0.0) -> float:
     :data:`MIN_LENGTH_MM` and the ``stroke``, the ``foot`` (mm over the follower's point), the guide's gap and the
     ``width`` together."""
     return max(2.0 * stroke + width, MIN_LENGTH_MM, stroke + foot + GUIDE_GAP_MM + width)
-
-
-def rectangle(length: float, width: float) -> np.ndarray:
-    """(4, 2) mm: a ``width`` mm wide rectangle from (0, 0) to (0, ``length``), counter-clockwise."""
-    h = width / 2
-    return np.array([[-h, 0.0], [h, 0.0], [h, length], [-h, length]])
 
 
 def stem_bodies(cam: str, follower: object, plane: int, point: np.ndarray, lift: Callable[[np.ndarray], np.ndarray],
@@ -83,7 +77,7 @@ def stem_bodies(cam: str, follower: object, plane: int, point: np.ndarray, lift:
     def place(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return np.broadcast_to(np.eye(2), (len(phi), 2, 2)), centre(phi)
 
-    bodies = [Body(f"{name}.stem", plane + 1, plane + 1, rectangle(length, width), place)]
+    bodies = [Body(f"{name}.stem", plane + 1, plane + 1, box(-width / 2, 0.0, width / 2, length), place)]
     if radius > 0:
         bodies.append(Body(f"{name}.roller", plane, plane + 1, circle(radius, tolerance), place))
         joints = [Joint(name, f"{name}.roller", centre, 1.01 * radius + 0.05),
