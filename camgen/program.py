@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from camgen.laws import Law
-from camgen.numeric import TIE, drive, left_of, maxima_steps, present, search_grid
+from camgen.numeric import TIE, drive, grid_counts, left_of, maxima_steps, present, search_grid
 
 Kind = Literal["rise", "dwell", "return"]
 TWO_PI = 2.0 * math.pi
@@ -266,7 +266,7 @@ class Program:
         """
         owner, lo, hi, still, backwards, angles = self._pieces
         at, value, magnitude = yield from maxima_steps(
-            lo, hi, scale=scale, reverse=backwards, steady=still if steady else False, answer=values,
+            lo, hi, scale=scale, reverse=backwards, steady=still if steady else False, n=self._grids, answer=values,
             ask=ask if owner is None else lambda v, piece: ask(v, owner[piece]))     # a piece's segment
         start, beta, back = angles
         x, v = np.array(at), np.array(value)
@@ -277,17 +277,25 @@ class Program:
         rows = np.arange(len(at))
         return list(zip(v[rows, best].tolist(), degrees[rows, best].tolist(), strict=True))
 
-    def search_grid(self, steady: bool = False) -> tuple[np.ndarray, np.ndarray, int] | None:
+    def search_grid(self, steady: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         """The points :meth:`maxima_steps` (with this ``steady``) asks first, where every segment is one smooth
         piece, else None: their segments and law variables ((m,) each, read-only), the very arrays of its ask, so
-        that an ask of them in the same round of :meth:`camgen.cam.Cam.serve` is evaluated once with it; and how many
-        of them lead as every moving segment's grid of :data:`camgen.numeric.GRID` points, segment after segment,
-        each from its law variable 0 to 1 (see :func:`camgen.numeric.search_grid`)."""
+        that an ask of them in the same round of :meth:`camgen.cam.Cam.serve` is evaluated once with it; and the
+        count of points (read-only) of each grid that leads them, every moving segment's, segment after segment,
+        each from its law variable 0 to 1 (:func:`camgen.numeric.grid_counts` of its angle; see
+        :func:`camgen.numeric.search_grid`)."""
         owner, lo, hi, still, backwards, _ = self._pieces
         if owner is not None:
             return None
-        v, index, count = search_grid(lo, hi, reverse=backwards, steady=still if steady else False)
-        return index, v, count
+        v, index, sizes = search_grid(lo, hi, reverse=backwards, steady=still if steady else False, n=self._grids)
+        return index, v, sizes
+
+    @cached_property
+    def _grids(self) -> np.ndarray:
+        """Each smooth piece's count of search-grid points (see :func:`camgen.numeric.grid_counts`), from the cam
+        angle it spans (its segment's angle times the law variable's span)."""
+        _, lo, hi, _, _, (_, beta, _) = self._pieces
+        return grid_counts(beta * (np.asarray(hi) - np.asarray(lo)))
 
     @cached_property
     def _table(self) -> _Table:
