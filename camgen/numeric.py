@@ -68,8 +68,8 @@ def boundary(holds: Callable[[float], bool], good: float, bad: float, rel: float
 #: grid points per piece in :func:`piecewise_maxima` (a smooth piece's peaks are found on it, then refined)
 GRID = 129
 #: the most cam angle (radians) a step of a program's search grid spans: that of GRID points on a 45-degree piece
-#: (0.35 degrees), and the fewest points a piece's grid takes (16 steps: a law's shape in its own variable)
-GRID_STEP, LEAST_GRID = (math.pi / 4) / (GRID - 1), 17
+#: (0.35 degrees), and the fewest points a piece's grid takes (32 steps: a law's shape in its own variable)
+GRID_STEP, LEAST_GRID = (math.pi / 4) / (GRID - 1), 33
 
 
 def grid_counts(angle: ArrayLike) -> np.ndarray:
@@ -78,7 +78,7 @@ def grid_counts(angle: ArrayLike) -> np.ndarray:
     over 45 degrees, whose step is then wider). A function of cam angle whose second derivative is at most M
     (per radian squared) rises above a step's higher end by at most M step^2 / 8 inside it: every piece's grid
     bounds that as a 45-degree piece's grid of GRID points does (or more tightly), and a short piece takes few
-    points. A quantity's features in the law's own variable (its law's shape) take the fewest: 16 steps place each
+    points. A quantity's features in the law's own variable (its law's shape) take the fewest: 32 steps place each
     of a law's peaks within its step, where the refinement takes over (see :func:`maxima_steps`)."""
     a = np.asarray(angle, dtype=float).reshape(-1)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -457,7 +457,8 @@ def _first_largest(row: np.ndarray, x: np.ndarray, v: np.ndarray, ties: np.ndarr
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
-                 steady: ArrayLike = False, n: int | ArrayLike = GRID, ask: Callable[[np.ndarray, np.ndarray], Any] = _points,
+                 steady: ArrayLike = False, n: int | ArrayLike = GRID,
+                 ask: Callable[[np.ndarray, np.ndarray], Any] = _points,
                  answer: Callable[[Any], np.ndarray] = _values) -> Steps:
     """Global maxima of k smooth functions on each of p closed intervals, all at once, as a generator: it yields
     ``ask(x, piece)`` (``(x, piece)`` unless told) and is sent what ``answer`` turns into the functions' values

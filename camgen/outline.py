@@ -221,7 +221,7 @@ def _shared_grid(cam: Cam, stretches: list[tuple[int, Span]]) -> tuple[Ask, list
     """The peaks' search grid as the ask of the spacing's grids of whole moving ``stretches`` (see
     :meth:`Program.search_grid`: the very arrays, so that a design that searches its peaks in the same round
     evaluates them once), and the spacing's grids in it: every second point of each segment's search grid (of n
-    points, n from 17 to GRID: :func:`camgen.numeric.grid_counts`), (n + 1) / 2 of them, from the segment's start to
+    points, n from 33 to GRID: :func:`camgen.numeric.grid_counts`), (n + 1) / 2 of them, from the segment's start to
     its end (a return's law variable runs from its end); the stretches by the size of their grids, (their places
     among the stretches (c,), where their grids lie in the answer (c, (n + 1) / 2)) each. None where the stretches
     are not every moving segment whole, in order, or a segment is several smooth pieces (each then asks its own

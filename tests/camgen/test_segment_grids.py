@@ -1,6 +1,6 @@
 """Cam design's per-segment work done in one pass over all segments, on grids sized by each segment's angle (issue
 38 item 2): the one-pass table, pieces and jumps against the per-segment code they replace (kept here as the
-reference) and each law's closed form; the search on grids of 17 to 129 points against the search on 129 points
+reference) and each law's closed form; the search on grids of 33 to 129 points against the search on 129 points
 everywhere; short (down to 1e-9 degrees), long and exact-zero segments; and the outline against the exact
 surface."""
 from __future__ import annotations
@@ -132,7 +132,7 @@ def test_each_law_in_a_program_is_its_closed_form(name):
 
 def test_grid_counts_take_the_fewest_points_that_span_the_step():
     deg = np.radians([1e-9, 0.35, 5.6, 5.7, 11.25, 11.3, 22.5, 22.6, 45.0, 45.1, 90.0, 360.0])
-    assert grid_counts(deg).tolist() == [17, 17, 17, 33, 33, 65, 65, 129, 129, 129, 129, 129]
+    assert grid_counts(deg).tolist() == [33, 33, 33, 33, 33, 65, 65, 129, 129, 129, 129, 129]
     # each count's step is within the bound unless the count is GRID's; none fewer would be
     counts = grid_counts(deg)
     step = deg / (counts - 1)
@@ -145,7 +145,7 @@ def test_grid_counts_take_the_fewest_points_that_span_the_step():
 
 def _search(program, sizes):
     """The largest s', s'' and -s'' over the program, searched on grids of ``sizes`` points a piece."""
-    owner, lo, hi, still, back, _ = program._pieces
+    owner, lo, hi, _, back, _ = program._pieces
     table = program._table
     segment = (lambda piece: piece) if owner is None else (lambda piece: owner[piece])
 
@@ -154,13 +154,13 @@ def _search(program, sizes):
         m = table.at_law(segment(piece), v)
         return np.array([m[1], m[2], -m[2]])
 
-    at, value, _ = drive(maxima_steps(lo, hi, reverse=back, n=sizes), values)
+    _, value, _ = drive(maxima_steps(lo, hi, reverse=back, n=sizes), values)
     return np.array(value).max(axis=1)
 
 
 @pytest.mark.parametrize("n, seed", [(4, 7), (16, 8), (64, 9), (256, 10)])
 def test_the_sized_grids_find_the_peaks_of_129_points_everywhere(n, seed):
-    # every piece's largest velocity and acceleration (both signs): the same to 1e-12 of their size on grids of 17
+    # every piece's largest velocity and acceleration (both signs): the same to 1e-12 of their size on grids of 33
     # to 129 points as on 129 points a piece
     program = build_program(_random_steps(n, seed))
     sized = _search(program, program._grids)
@@ -195,7 +195,7 @@ def test_the_outline_of_short_segments_is_within_its_tolerance_of_the_exact_surf
 
 
 def test_a_tiny_a_huge_and_exact_zero_segments():
-    # a 1e-9-degree rise (17 points), a 300-degree return (129), and s'' exactly 0 at the middle grid point of a
+    # a 1e-9-degree rise (33 points), a 300-degree return (129), and s'' exactly 0 at the middle grid point of a
     # cycloidal rise (u = 1/2): the peaks against their closed forms, the outline against the exact surface
     tiny = 1e-9
     spec = _program_spec([
@@ -204,7 +204,7 @@ def test_a_tiny_a_huge_and_exact_zero_segments():
         {"type": "dwell", "angle": 40.0 - tiny},
         {"type": "return", "law": "cycloidal", "lift": 3.0 + 1e-24, "angle": 300.0}])
     cam = build_cam(spec)
-    assert cam.program._grids.tolist() == [17, 65, 129, 129]
+    assert cam.program._grids.tolist() == [33, 65, 129, 129]
     design = design_cam(spec)
     assert design.outline.max_error_mm <= 0.01
     _outline_within(design)
@@ -216,15 +216,15 @@ def test_a_tiny_a_huge_and_exact_zero_segments():
     seg = program.segments[1]
     assert top[0] == pytest.approx(2 * 3.0 / seg.beta, rel=1e-12)
     assert top[1] == pytest.approx(2 * math.pi * 3.0 / seg.beta**2, rel=1e-12)
-    # the tiny segment's own: 2 h / beta of 1e-24 mm over 1e-9 degrees, found on its 17 points
-    owner, lo, hi, still, back, _ = program._pieces
+    # the tiny segment's own: 2 h / beta of 1e-24 mm over 1e-9 degrees, found on its 33 points
+    _, lo, hi, _, back, _ = program._pieces
     table = program._table
 
     def velocity(ask):
         v, piece = ask
         return table.at_law(piece, v)[1:2]
 
-    at, value, _ = drive(maxima_steps(lo, hi, reverse=back, n=program._grids), velocity)
+    _, value, _ = drive(maxima_steps(lo, hi, reverse=back, n=program._grids), velocity)
     assert value[0][0] == pytest.approx(2e-24 / math.radians(tiny), rel=1e-9)
     assert all(math.isfinite(x) for x in value[0])
 

@@ -1,7 +1,7 @@
 """One evaluation serves the peaks' search and the outline's spacing.
 
 A design searches its peaks on a grid of every moving segment, :data:`camgen.numeric.GRID` (129) points on a segment
-of 45 degrees or more, fewer on a shorter one (down to 17: :func:`camgen.numeric.grid_counts`), and spaces its
+of 45 degrees or more, fewer on a shorter one (down to 33: :func:`camgen.numeric.grid_counts`), and spaces its
 outline's chords on grids of at most 65 points from each segment's start to its end: the same fractions, every second
 point of the 129 (every point of a shorter grid). :func:`camgen.outline._shared_grid` reads the spacing's grids from
 the search's own (a return's law variable runs from its end), and :meth:`camgen.cam.Cam.pitch_of` evaluates asks of
@@ -61,10 +61,10 @@ def test_a_design_evaluates_each_moving_segment_once_in_its_first_round(monkeypa
     assert sizes[0] == 4 * GRID + 4 + 4 * 8 + 2 * 8 + (0 if share else 4 * _AUX)
 
 
-@pytest.mark.parametrize("segments, size", [(8, _AUX), (64, 17), (256, 17)])
+@pytest.mark.parametrize("segments, size", [(8, _AUX), (64, 33), (256, 33)])
 def test_the_shared_grids_are_the_spacing_grids(segments, size):
     # a rise's grid runs with its law variable, a return's against it: both from the segment's start to its end;
-    # 45-degree segments take every second point of GRID, 5.6- and 1.4-degree ones every point of their 17
+    # 45-degree segments take every second point of GRID, 5.6- and 1.4-degree ones every point of their 33
     cam = build_cam(program_template(segments))
     stretches = _moving(cam)
     (index, v, truth), groups = _shared_grid(cam, stretches)
@@ -81,7 +81,7 @@ def test_the_shared_grids_are_the_spacing_grids(segments, size):
 
 
 def test_segments_of_several_sizes_share_their_grids_size_by_size():
-    # a 90-degree rise (129 points, 65 shared), a 10-degree return (33, every point) and a 4-degree rise (17)
+    # a 90-degree rise (129 points, 65 shared), a 10-degree return (33, every point) and a 4-degree rise (33)
     spec = validate_spec({**BASE, "motion": [
         {"type": "rise", "law": "cycloidal", "lift": 10.0, "angle": 90.0}, {"type": "dwell", "angle": 60.0},
         {"type": "return", "law": "cycloidal", "lift": 1.0, "angle": 10.0}, {"type": "dwell", "angle": 100.0},
@@ -91,11 +91,11 @@ def test_segments_of_several_sizes_share_their_grids_size_by_size():
     stretches = _moving(cam)
     (index, v, _), groups = _shared_grid(cam, stretches)
     _, _, sizes = cam.program.search_grid(cam.steady)
-    assert sizes.tolist() == [129, 33, 17, 129] and v.size == 129 + 33 + 17 + 129 + 2      # two dwells' one point
+    assert sizes.tolist() == [129, 33, 33, 129] and v.size == 129 + 33 + 33 + 129 + 2      # two dwells' one point
     theta, _ = cam.program._table.on(index, v, v.size)
     own = {tuple(m.tolist()): g for m, g in _grids([(s.start, s.end) for s in (cam.program.segments[i]
                                                                               for i, _ in stretches)])}
-    assert sorted(own) == sorted(tuple(m.tolist()) for m, _ in groups) == [(0, 3), (1,), (2,)]
+    assert sorted(own) == sorted(tuple(m.tolist()) for m, _ in groups) == [(0, 3), (1, 2)]
     for members, pick in groups:
         np.testing.assert_allclose(theta.take(pick), own[tuple(members.tolist())], rtol=0, atol=1e-12 * 2 * math.pi)
     shared_analysis, shared = _design(cam, True)
