@@ -665,11 +665,21 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
         Naming ``motion``: no segment, angles that do not add up to 360 degrees, rises and returns that do not
         balance over the turn, or a return below the follower's lowest position (s = 0).
     """
-    segments, start, level = [], 0.0, 0.0
-    for kind, angle_deg, lift, law in steps:
-        beta = math.radians(angle_deg)
-        dwell = kind == "dwell"
-        segments.append(Segment(kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
-                                law=None if dwell else law))
-        start, level = start + beta, _end_level(kind, level, lift)      # Segment.end_level's, its lift known here
-    return Program(tuple(segments))
+    if not steps:
+        return Program(())
+    kinds, angles, lifts, laws = zip(*steps, strict=True)
+    m = len(steps)
+    beta = np.radians(np.fromiter(angles, float, m))   # math.radians' numbers: the same product
+    given = np.fromiter(lifts, float, m)
+    dwell = np.fromiter((k == "dwell" for k in kinds), bool, m)
+    rise = np.fromiter((k == "rise" for k in kinds), bool, m)
+    fall = np.fromiter((k == "return" for k in kinds), bool, m)
+    # each start the sum of the angles before it, each level of the lifts before it (up on a rise, down on a return,
+    # none on a dwell, whatever its lift: _end_level's), summed in order as one segment after another sums them
+    start = np.zeros(m)
+    np.cumsum(beta[:-1], out=start[1:])
+    level = np.zeros(m)
+    np.cumsum(np.where(rise, given, np.where(fall, -given, 0.0))[:-1], out=level[1:])
+    lift = np.where(dwell, 0.0, given)
+    return Program(tuple(Segment(k, a, b, h, v, None if d else law) for k, a, b, h, v, d, law in zip(
+        kinds, start.tolist(), beta.tolist(), lift.tolist(), level.tolist(), dwell.tolist(), laws, strict=True)))

@@ -236,3 +236,35 @@ def test_the_search_ties_equal_peaks_to_the_first_on_sized_grids():
         beta = 360.0 / n
         for at in (d.analysis.pressure_angle_max_at_deg, d.analysis.pitch_rho_min_at_deg):
             assert 0.0 <= at < 4 * beta * (1 + TIE)
+
+
+def test_equal_laws_of_a_template_are_made_once_and_evaluate_as_their_own():
+    # 512 cycloidal rises and returns: one law object; parabolic rises of two ratios: one each; a polynomial of
+    # conditions (a list): its own for each segment. The motion is the same as with a law made for each segment.
+    program = build_cam(program_template(1024)).program
+    assert len({id(s.law) for s in program.segments if s.law is not None}) == 1
+    conditions = [[0, 0, 0], [0, 1, 0], [1, 0, 1], [1, 1, 0]]
+    motion = []
+    for ratio in (1.0, 1.5, 1.0, 1.5):
+        motion += [{"type": "rise", "law": "parabolic", "ratio": ratio, "lift": 2.0, "angle": 20.0},
+                   {"type": "return", "law": "polynomial", "conditions": conditions, "lift": 2.0, "angle": 20.0},
+                   {"type": "dwell", "angle": 50.0}]
+    program = build_cam(_program_spec(motion)).program
+    rises = [s.law for s in program.segments if s.kind == "rise"]
+    returns = [s.law for s in program.segments if s.kind == "return"]
+    assert rises[0] is rises[2] and rises[1] is rises[3] and rises[0] is not rises[1]
+    assert len({id(law) for law in returns}) == 4
+    own = build_program([(s.kind, math.degrees(s.beta), s.lift,
+                          None if s.law is None else make_law(s.law.name, **_parameters(s.law)))
+                         for s in program.segments])
+    theta = np.linspace(0.0, 2 * math.pi, 3001)
+    np.testing.assert_array_equal(program.evaluate(theta), own.evaluate(theta))
+
+
+def _parameters(law) -> dict:
+    """A law's parameters as :func:`make_law` takes them again (a parabolic's ratio; a polynomial's conditions)."""
+    if law.name == "parabolic":
+        return {"ratio": law.ratio}
+    if law.name == "polynomial":
+        return {"conditions": [[0, 0, 0], [0, 1, 0], [1, 0, 1], [1, 1, 0]]}
+    return {}
