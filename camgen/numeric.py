@@ -67,6 +67,27 @@ def boundary(holds: Callable[[float], bool], good: float, bad: float, rel: float
 
 #: grid points per piece in :func:`piecewise_maxima` (a smooth piece's peaks are found on it, then refined)
 GRID = 129
+#: the most cam angle (radians) a step of a program's search grid spans: that of GRID points on a 45-degree piece
+#: (0.35 degrees), and the fewest points a piece's grid takes (32 steps: a law's shape in its own variable)
+GRID_STEP, LEAST_GRID = (math.pi / 4) / (GRID - 1), 33
+
+
+def grid_counts(angle: ArrayLike) -> np.ndarray:
+    """The points of the search grid of pieces spanning ``angle`` (radians, (p,)): 2^k + 1 of them, the fewest from
+    :data:`LEAST_GRID` to :data:`GRID` whose step spans at most :data:`GRID_STEP` (GRID where no fewer do: a piece
+    over 45 degrees, whose step is then wider). A function of cam angle whose second derivative is at most M
+    (per radian squared) rises above a step's higher end by at most M step^2 / 8 inside it: every piece's grid
+    bounds that as a 45-degree piece's grid of GRID points does (or more tightly), and a short piece takes few
+    points. A quantity's features in the law's own variable (its law's shape) take the fewest: 32 steps place each
+    of a law's peaks within its step, where the refinement takes over (see :func:`maxima_steps`)."""
+    a = np.asarray(angle, dtype=float).reshape(-1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        steps = np.ceil(a / GRID_STEP * (1.0 - 1e-12))           # a whole number of steps exactly stays
+        power = np.ceil(np.log2(np.maximum(steps, LEAST_GRID - 1.0)))
+    power = np.where(np.isfinite(power), power, math.log2(GRID - 1))
+    return (2 ** np.minimum(power, math.log2(GRID - 1))).astype(np.intp) + 1
+
+
 #: spacing of the refinement stencil, as a fraction of the peak's breadth
 STENCIL = 1e-3
 #: most refinement rounds (one is the rule: more only where the first estimate was off, a peak narrower than the grid)
@@ -195,29 +216,72 @@ class _Plan(NamedTuple):
     resting_at: np.ndarray
     backwards: np.ndarray
     ask: tuple[np.ndarray, np.ndarray]
+    #: each moving piece's grid points (count,), and where its first and last lie in the first ask (count,)
+    sizes: np.ndarray
+    first: np.ndarray
+    last: np.ndarray
+    #: the moving pieces by the size of their grid: (n, their places among the moving (c,), where their grids lie in
+    #: the first ask (c, n)) each, in order of size; one block of all, its grids in order, where every grid is alike
+    blocks: tuple[tuple[int, np.ndarray, np.ndarray | None], ...]
 
 
 @functools.lru_cache(maxsize=32)
-def _plan(lo: bytes, hi: bytes, steady: tuple[Any, ...], reverse: tuple[Any, ...], n: int) -> _Plan:
+def _plan(lo: bytes, hi: bytes, steady: tuple[Any, ...], reverse: tuple[Any, ...], n: int | bytes) -> _Plan:
     """:func:`maxima_steps`' pieces (given by the bytes of their float ``lo`` and ``hi``) and flags (see
     :func:`_key`) as arrays, made once for a set of pieces (a program's are mostly [0, 1]); and its first ask: the
-    grid of ``n`` points on each piece that is not ``steady``, then each steady piece's first point; and the piece
-    of each."""
+    grid of ``n`` points (one count for all, or the bytes of one a piece, see :func:`_counts`) on each piece that is
+    not ``steady``, piece after piece, then each steady piece's first point; and the piece of each."""
     low, high = np.frombuffer(lo), np.frombuffer(hi)
     width = high - low
     p = low.size
     still = np.array(_flags(steady, p), dtype=bool)
     backwards = np.array(_flags(reverse, p), dtype=bool)
     moving, steady_pieces = (~still).nonzero()[0], still.nonzero()[0]
-    x = low[moving, None] + width[moving, None] * _unit(n)[0]
-    x[:, -1] = high[moving]
-    x = np.concatenate([x.ravel(), low[steady_pieces] + width[steady_pieces] * _unit(n)[0][0]])
-    piece = np.concatenate([np.repeat(moving, n), steady_pieces]).astype(np.intp)
+    each = np.full(p, n, dtype=np.intp) if isinstance(n, int) else np.frombuffer(n, dtype=np.int64).astype(np.intp)
+    sizes = each[moving]
+    first = np.cumsum(sizes) - sizes
+    blocks: list[tuple[int, np.ndarray, np.ndarray | None]] = []
+    if sizes.size and (sizes == sizes[0]).all():       # every grid alike: one block, in order (no gather)
+        m = int(sizes[0])
+        x = low[moving, None] + width[moving, None] * _unit(m)[0]
+        x[:, -1] = high[moving]
+        grids = x.ravel()
+        blocks.append((m, np.arange(moving.size), None))
+    else:
+        grids = np.empty(int(sizes.sum()))
+        for m in np.unique(sizes).tolist():
+            members = (sizes == m).nonzero()[0]
+            where = first[members, None] + np.arange(m)
+            x = low[moving[members], None] + width[moving[members], None] * _unit(m)[0]
+            x[:, -1] = high[moving[members]]
+            grids[where] = x
+            blocks.append((m, members, where))
+    x = np.concatenate([grids, low[steady_pieces] + width[steady_pieces] * 0.0])     # a steady piece's first point
+    piece = np.concatenate([np.repeat(moving, sizes), steady_pieces]).astype(np.intp)
     resting_at = np.where(backwards[steady_pieces], high[steady_pieces], low[steady_pieces])
-    plan = _Plan(low, high, width, moving, steady_pieces, resting_at, backwards, (x, piece))
-    for a in (*plan[:-1], x, piece):
+    plan = _Plan(low, high, width, moving, steady_pieces, resting_at, backwards, (x, piece), sizes, first,
+                 first + sizes - 1, tuple(blocks))
+    for a in (*plan[:7], x, piece, sizes, first, plan.last, *(w for b in blocks for w in b[1:] if w is not None)):
         a.flags.writeable = False
     return plan
+
+
+def _counts(n: int | ArrayLike) -> int | bytes:
+    """A grid's count for :func:`_plan`: one int for every piece, or the bytes of one int64 a piece (each >= 5)."""
+    if isinstance(n, (int, np.integer)):
+        count = int(n)
+        least = count
+    else:
+        each = np.asarray(n, dtype=np.int64).reshape(-1)
+        least = int(each.min()) if each.size else 5
+        count = int(each[0]) if each.size and (each == each[0]).all() else -1
+        if count < 0:
+            if least < 5:
+                raise ValueError(f"a grid of {least} points: the search needs 5 a piece at least")
+            return each.tobytes()
+    if least < 5:
+        raise ValueError(f"a grid of {least} points: the search needs 5 a piece at least")
+    return count
 
 
 @functools.lru_cache(maxsize=16)
@@ -306,26 +370,35 @@ class _Peaks(NamedTuple):
     end: np.ndarray
 
 
-def _estimates(y: np.ndarray, row: np.ndarray, j: np.ndarray, plan: _Plan, n: int) -> _Peaks:
+def _estimates(y: np.ndarray, row: np.ndarray, j: np.ndarray, plan: _Plan, n: int, members: np.ndarray) -> _Peaks:
     """The candidates (grid ``row`` and index ``j``, (m,) each, on the grid rows ``y``, a row for each function on
-    each piece of the plan's ``moving``), each placed by the quartic through the five grid values about it (its
-    window, kept two points from the row's ends; within a grid step of its grid point) and given its breadth and its
-    grid value."""
-    count = plan.moving.size
+    each of the moving pieces ``members`` (their places among the plan's ``moving``), all with grids of ``n``
+    points), each placed by the quartic through the five grid values about it (its window, kept two points from the
+    row's ends; within a grid step of its grid point) and given its breadth and its grid value; their rows
+    renumbered as every moving piece's (a function's rows, then the next function's)."""
+    count = members.size
     unit = _unit(n)[0]
     centre = np.minimum(np.maximum(j, 2), n - 3)             # each window's centre
     windows = y.take((row * n + centre - 2)[:, None] + _FIVE)
     from_end = (j == 0) | (j == n - 1)
     a1, a2, a3, a4 = _coefficients_apart(windows, from_end).T
     value = y.take(row * n + j)
-    piece = plan.moving[row % count]
+    f, place = np.divmod(row, count)
+    place = members[place]
+    piece = plan.moving[place]
     low, size, high = plan.lo[piece], plan.width[piece], plan.hi[piece]
     step = size / (n - 1)
     shift = (j - centre).astype(float)
     t = _vertex(a1, a2, a3, a4, shift - 1.0, shift + 1.0)
     placed = np.minimum(np.maximum(low + size * unit[centre] + np.where(np.isnan(t), shift, t) * step, low), high)
     at = np.where(j == n - 1, high, low + size * unit[j])        # the grid's own point: its last the end
-    return _Peaks(row, row // count, piece, at, value, placed, _breadth(a2, a4, step, size), from_end, value.copy())
+    return _Peaks(f * plan.moving.size + place, f, piece, at, value, placed, _breadth(a2, a4, step, size), from_end,
+                  value.copy())
+
+
+def _joined(peaks: list[_Peaks]) -> _Peaks:
+    """The candidates of several blocks of grids as one set (each array concatenated)."""
+    return peaks[0] if len(peaks) == 1 else _Peaks(*(np.concatenate(a) for a in zip(*peaks, strict=True)))
 
 
 def _refined(peaks: _Peaks, plan: _Plan, ask: Callable[[np.ndarray, np.ndarray], Any],
@@ -384,7 +457,8 @@ def _first_largest(row: np.ndarray, x: np.ndarray, v: np.ndarray, ties: np.ndarr
 
 
 def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, reverse: ArrayLike = False,
-                 steady: ArrayLike = False, n: int = GRID, ask: Callable[[np.ndarray, np.ndarray], Any] = _points,
+                 steady: ArrayLike = False, n: int | ArrayLike = GRID,
+                 ask: Callable[[np.ndarray, np.ndarray], Any] = _points,
                  answer: Callable[[Any], np.ndarray] = _values) -> Steps:
     """Global maxima of k smooth functions on each of p closed intervals, all at once, as a generator: it yields
     ``ask(x, piece)`` (``(x, piece)`` unless told) and is sent what ``answer`` turns into the functions' values
@@ -398,7 +472,8 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     ``(x, value, magnitude)`` as floats: x and value (k lists of p), and each function's magnitude (k), the larger
     of ``scale`` (k,) and its largest |value| on the grid.
 
-    One dense evaluation (``n`` >= 5 points a piece) finds each function's interior local maxima on each piece that
+    One dense evaluation (``n`` >= 5 points a piece: one count for all, or one a piece (p,); pieces of one count
+    are searched together, a block of rows) finds each function's interior local maxima on each piece that
     may be its largest, and a peak within the grid's first or last step (see :func:`_inward_ends`; none on a piece
     where it is constant, within ``TIE``); the quartic through the five grid
     values about each puts its maximiser within ~1e-9 of the piece and tells the peak's breadth; a second
@@ -411,14 +486,12 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     only, whose values stand for the rest (the same search as if all were asked: such a piece has no peak).
     Raises FloatingPointError where a value is not finite on the grid or near a peak.
     """
-    if n < 5:
-        raise ValueError(f"a grid of {n} points: the search needs 5 a piece at least")
-    plan = _plan(_exact(lo), _exact(hi), _key(steady), _key(reverse), n)
+    plan = _plan(_exact(lo), _exact(hi), _key(steady), _key(reverse), _counts(n))
     p = plan.lo.size
     got = answer((yield ask(*plan.ask)))
     k = got.shape[0]
     count = plan.moving.size
-    y = got[:, :count * n].reshape(k * count, n)              # a row for each function on each moving piece
+    lead = int(plan.sizes.sum())                               # the moving pieces' grids lead the ask
     largest = np.abs(got).max(axis=1).tolist()                 # NaN or infinite where any value is
     if not all(map(math.isfinite, largest)):
         raise FloatingPointError("function is not finite on the search grid")
@@ -426,16 +499,21 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
     magnitude = [max(s, m) for s, m in zip(scales, largest, strict=True)]
     at, value = np.empty((k, p)), np.empty((k, p))
     at[:, plan.resting] = plan.resting_at
-    value[:, plan.resting] = got[:, count * n:]                # each steady piece's value, for each function
+    value[:, plan.resting] = got[:, lead:]                     # each steady piece's value, for each function
     if count:
         rows = k * count
         sizes = np.array(magnitude).repeat(count)              # each row's function's magnitude
         ties = TIE * sizes
-        flat = np.zeros(rows, dtype=bool)
-        flat[_flat_rows(y, magnitude, count)] = True
-        row, j = _grid_candidates(y, flat, sizes)
-        peaks = _estimates(y, row, j, plan, n)
-        if row.size:
+        found = []
+        for m, members, where in plan.blocks:                  # the grids of m points, a row for each function on each
+            c = members.size
+            y = got[:, :lead].reshape(k * c, m) if where is None else got[:, where.ravel()].reshape(k * c, m)
+            flat = np.zeros(k * c, dtype=bool)
+            flat[_flat_rows(y, magnitude, c)] = True
+            row, j = _grid_candidates(y, flat, np.array(magnitude).repeat(c))
+            found.append(_estimates(y, row, j, plan, m, members))
+        peaks = _joined(found)
+        if peaks.row.size:
             yield from _refined(peaks, plan, ask, answer)
         # a peak found from an end only where it beats that end by the tie
         kept = ~peaks.from_end | (peaks.value - peaks.end > ties[peaks.row])
@@ -443,7 +521,7 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
         every = np.arange(rows)
         row_of = np.concatenate([every, every, peaks.row[kept]])        # each row's ends, then its peaks
         x = np.concatenate([plan.lo[piece], plan.hi[piece], peaks.at[kept]])
-        v = np.concatenate([y[:, 0], y[:, -1], peaks.value[kept]])
+        v = np.concatenate([got[:, plan.first].ravel(), got[:, plan.last].ravel(), peaks.value[kept]])
         chosen = _first_largest(row_of, x, v, ties, plan.backwards[piece], rows)
         at[every // count, piece] = x[chosen]
         value[every // count, piece] = v[chosen]
@@ -451,15 +529,15 @@ def maxima_steps(lo: ArrayLike, hi: ArrayLike, *, scale: ArrayLike = 0.0, revers
 
 
 def search_grid(lo: ArrayLike, hi: ArrayLike, *, reverse: ArrayLike = False, steady: ArrayLike = False,
-                n: int = GRID) -> tuple[np.ndarray, np.ndarray, int]:
+                n: int | ArrayLike = GRID) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The points that :func:`maxima_steps` asks first on these pieces and flags (the same arguments): the abscissae
     and pieces ((m,) each, read-only), the very arrays its first ask holds, so that a caller who asks them in the same
-    round as the search has them evaluated once (see :meth:`camgen.cam.Cam.pitch_of`); and how many of them lead as
-    the grids of ``n`` points of the pieces that are not ``steady``, piece after piece (the rest are each steady
+    round as the search has them evaluated once (see :meth:`camgen.cam.Cam.pitch_of`); and the count of points of
+    each piece that is not ``steady`` (read-only), whose grids lead, piece after piece (the rest are each steady
     piece's first point)."""
-    plan = _plan(_exact(lo), _exact(hi), _key(steady), _key(reverse), n)
+    plan = _plan(_exact(lo), _exact(hi), _key(steady), _key(reverse), _counts(n))
     x, piece = plan.ask
-    return x, piece, plan.moving.size * n
+    return x, piece, plan.sizes
 
 
 def present(index: np.ndarray) -> np.ndarray:

@@ -23,8 +23,8 @@ from camgen.biarcs import arc_distance, biarcs
 from camgen.cam import Ask, Cam, Maker, together
 from camgen.core.errors import DesignError
 from camgen.followers.base import PitchGeometry
-from camgen.numeric import GRID
 from camgen.core.shapes import Contour, arc_steps, reversed_pieces
+from camgen.numeric import grid_counts
 from camgen.surface import surface_deviation
 
 #: interior points a span at which a chord's and a biarc's error are measured, and points an edge of an undercut
@@ -186,43 +186,65 @@ _AUX = 65
 def _aux(cam: Cam, index: int, span: tuple[float, float] | None) -> np.ndarray:
     """The grid (radians) on which the segment ``index`` (or the ``span`` of it) is measured for its spacing."""
     seg = cam.program.segments[index]
-    return _grids([(seg.start, seg.end) if span is None else span])[0]
+    return _grids([(seg.start, seg.end) if span is None else span])[0][1][0]
 
 
-def _grids(ranges: list[tuple[float, float]]) -> np.ndarray:
-    """:func:`_aux`'s grids from each start to its end of ``ranges`` (m pairs, radians), (m, _AUX): _AUX points
-    evenly spaced from the start to the end."""
-    start, end = np.array(ranges).T
-    return start[:, None] + (end - start)[:, None] * _UNIT
+def _grids(ranges: list[tuple[float, float]]) -> list[tuple[np.ndarray, np.ndarray]]:
+    """:func:`_aux`'s grids from each start to its end of ``ranges`` (m pairs, radians), evenly spaced, by their
+    size: (the ranges' places (c,), their grids (c, k)) each, in order of size. A range's k is the peaks' search
+    grid's count for it (:func:`camgen.numeric.grid_counts`), _AUX where that is more: the same points as the
+    search's, every second one of GRID (see :func:`_shared_grid`)."""
+    start, end = np.array(ranges, dtype=float).reshape(-1, 2).T
+    sizes = _spacing_counts(end - start)
+    groups = []
+    for k in np.unique(sizes).tolist():
+        members = (sizes == k).nonzero()[0]
+        groups.append((members, start[members, None] + (end - start)[members, None] * _unit(k)))
+    return groups
 
 
-#: _AUX fractions evenly spaced from 0 to 1
-_UNIT = np.linspace(0.0, 1.0, _AUX)
+def _spacing_counts(width: np.ndarray) -> np.ndarray:
+    """The points of the spacing grid of stretches ``width`` radians wide (m,): the search's count for them, at most
+    _AUX (every second point of GRID)."""
+    return np.minimum(grid_counts(width), _AUX)
 
 
-#: the peaks' search grid's points a grid of _AUX points takes (every second one of GRID: the same fractions)
-_STRIDE = (GRID - 1) // (_AUX - 1)
-assert _STRIDE * (_AUX - 1) == GRID - 1
+@functools.cache
+def _unit(k: int) -> np.ndarray:
+    """``k`` fractions evenly spaced from 0 to 1, read-only; made once a count."""
+    out = np.linspace(0.0, 1.0, k)
+    out.setflags(write=False)
+    return out
 
 
-def _shared_grid(cam: Cam, stretches: list[tuple[int, Span]]) -> tuple[Ask, np.ndarray] | None:
+def _shared_grid(cam: Cam, stretches: list[tuple[int, Span]]) -> tuple[Ask, list[tuple[np.ndarray, np.ndarray]]] | None:
     """The peaks' search grid as the ask of the spacing's grids of whole moving ``stretches`` (see
     :meth:`Program.search_grid`: the very arrays, so that a design that searches its peaks in the same round
-    evaluates them once), and where each stretch's grid lies in its answer ((m, _AUX) indices, from the segment's
-    start to its end: a return's law variable runs from its end); None where the stretches are not every moving
-    segment whole, in order, or a segment is several smooth pieces (each then asks its own grid)."""
+    evaluates them once), and the spacing's grids in it: every second point of each segment's search grid (of n
+    points, n from 33 to GRID: :func:`camgen.numeric.grid_counts`), (n + 1) / 2 of them, from the segment's start to
+    its end (a return's law variable runs from its end); the stretches by the size of their grids, (their places
+    among the stretches (c,), where their grids lie in the answer (c, (n + 1) / 2)) each. None where the stretches
+    are not every moving segment whole, in order, or a segment is several smooth pieces (each then asks its own
+    grid)."""
     grid = cam.program.search_grid(cam.steady)
     if grid is None or any(span is not None for _, span in stretches):
         return None
-    index, v, count = grid
-    moving = index[:count:GRID]
+    index, v, sizes = grid
+    first = np.cumsum(sizes) - sizes
+    moving = index.take(first) if sizes.size else first
     if moving.size != len(stretches) or moving.tolist() != [i for i, _ in stretches]:
         return None
     segments = cam.program.segments
-    back = np.array([segments[i].kind == "return" for i in moving.tolist()])
-    step = np.where(back, -_STRIDE, _STRIDE)
-    pick = (np.arange(moving.size) * GRID + np.where(back, GRID - 1, 0))[:, None] + step[:, None] * np.arange(_AUX)
-    return (index, v, True), pick
+    back = np.array([segments[i].kind == "return" for i in moving.tolist()], dtype=bool)
+    groups = []
+    for n in np.unique(sizes).tolist():
+        members = (sizes == n).nonzero()[0]
+        aux = min(n, _AUX)                              # _spacing_counts': every second point of GRID, else each
+        stride = (n - 1) // (aux - 1)
+        step = np.where(back[members], -stride, stride)
+        start = first[members] + np.where(back[members], n - 1, 0)
+        groups.append((members, start[:, None] + step[:, None] * np.arange(aux)))
+    return (index, v, True), groups
 
 
 def _spacing(cam: Cam, index: int, tolerance: float, factor: float, rr: float,
@@ -317,6 +339,33 @@ def _spaced_all(index: list[int], aux: np.ndarray, cum: np.ndarray, tolerance: f
     return theta, sizes
 
 
+def _spaced_groups(groups: list[tuple[np.ndarray, np.ndarray, np.ndarray]], live: list[int], index: list[int],
+                   tolerance: float, factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_spaced_all` of the stretches ``live`` (in that order) whose grids come in ``groups`` of one size:
+    (their places among all stretches (c,), their grids (c, k) and counts of chords (c, k)) each; each group spaced
+    at once, the stretches' angles then put in the order of ``live`` (a single group's as they come)."""
+    if len(groups) == 1:
+        members, aux, cum = groups[0]
+        rows = np.asarray(live, dtype=np.intp)
+        return _spaced_all([index[j] for j in live], aux[rows], cum[rows], tolerance, factor[rows])
+    place = np.full(len(factor), -1, dtype=np.intp)
+    place[live] = np.arange(len(live))
+    parts, sizes = [], np.empty(len(live), dtype=np.intp)
+    owner = []
+    for members, aux, cum in groups:
+        rows = (place[members] >= 0).nonzero()[0]
+        if not rows.size:
+            continue
+        who = members[rows]
+        theta, counts = _spaced_all([index[j] for j in who.tolist()], aux[rows], cum[rows], tolerance, factor[who])
+        parts.append(theta)
+        sizes[place[who]] = counts
+        owner.append(np.repeat(place[who], counts))
+    # every angle to its stretch's place, stably (each stretch's own in order)
+    order = np.argsort(np.concatenate(owner), kind="stable")
+    return np.concatenate(parts)[order], sizes
+
+
 Span = tuple[float, float] | None
 #: how numpy treats a floating-point error (np.errstate's values)
 ErrorMode = Literal["ignore", "warn", "raise", "call", "print", "log"]
@@ -333,21 +382,29 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
     ranges = [(segments[i].start, segments[i].end) if span is None else span for i, span in stretches]
     shared = _shared_grid(cam, stretches) if share else None
     if shared is None:
-        aux = _grids(ranges)
-        (g,) = yield [(np.array(index).repeat(_AUX), aux.ravel(), False)]
-        d1, kappa = g.d1, g.kappa
+        grids = _grids(ranges)
+        at = np.array(index)
+        (g,) = yield [(np.concatenate([at[members].repeat(aux.shape[1]) for members, aux in grids]),
+                       np.concatenate([aux.ravel() for _, aux in grids]), False)]
+        groups, start = [], 0
+        for members, aux in grids:
+            part = g.part(start, start + aux.size)
+            start += aux.size
+            groups.append((members, aux, _density(aux, part.d1, part.kappa, tolerance, rr)))
     else:
-        ask, pick = shared
+        ask, picks = shared
         (g,) = yield [ask]
-        aux = g.theta.take(pick)
-        d1, kappa = g.d1.take(pick.ravel(), axis=0), g.kappa.take(pick.ravel())
-    cum = _density(aux, d1, kappa, tolerance, rr)
+        groups = []
+        for members, pick in picks:
+            aux = g.theta.take(pick)
+            d1, kappa = g.d1.take(pick.ravel(), axis=0), g.kappa.take(pick.ravel())
+            groups.append((members, aux, _density(aux, d1, kappa, tolerance, rr)))
     factor = np.ones(len(stretches))
     results: list[Any] = [None] * len(stretches)
     live = list(range(len(stretches)))
     err = [math.inf] * len(stretches)
     for _ in range(40):
-        theta, counts = _spaced_all([index[j] for j in live], aux[live], cum[live], tolerance, factor[live])
+        theta, counts = _spaced_groups(groups, live, index, tolerance, factor)
         sizes = counts.tolist()
         n = sum(sizes)
         # one ask: the vertices, then the probes of every span between neighbouring vertices (probe by probe), one

@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike
 
 from camgen.core.errors import SpecError
 from camgen.laws import Law
-from camgen.numeric import TIE, drive, left_of, maxima_steps, present, search_grid
+from camgen.numeric import TIE, drive, grid_counts, left_of, maxima_steps, present, search_grid
 
 Kind = Literal["rise", "dwell", "return"]
 TWO_PI = 2.0 * math.pi
@@ -266,7 +266,7 @@ class Program:
         """
         owner, lo, hi, still, backwards, angles = self._pieces
         at, value, magnitude = yield from maxima_steps(
-            lo, hi, scale=scale, reverse=backwards, steady=still if steady else False, answer=values,
+            lo, hi, scale=scale, reverse=backwards, steady=still if steady else False, n=self._grids, answer=values,
             ask=ask if owner is None else lambda v, piece: ask(v, owner[piece]))     # a piece's segment
         start, beta, back = angles
         x, v = np.array(at), np.array(value)
@@ -277,17 +277,25 @@ class Program:
         rows = np.arange(len(at))
         return list(zip(v[rows, best].tolist(), degrees[rows, best].tolist(), strict=True))
 
-    def search_grid(self, steady: bool = False) -> tuple[np.ndarray, np.ndarray, int] | None:
+    def search_grid(self, steady: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         """The points :meth:`maxima_steps` (with this ``steady``) asks first, where every segment is one smooth
         piece, else None: their segments and law variables ((m,) each, read-only), the very arrays of its ask, so
-        that an ask of them in the same round of :meth:`camgen.cam.Cam.serve` is evaluated once with it; and how many
-        of them lead as every moving segment's grid of :data:`camgen.numeric.GRID` points, segment after segment,
-        each from its law variable 0 to 1 (see :func:`camgen.numeric.search_grid`)."""
+        that an ask of them in the same round of :meth:`camgen.cam.Cam.serve` is evaluated once with it; and the
+        count of points (read-only) of each grid that leads them, every moving segment's, segment after segment,
+        each from its law variable 0 to 1 (:func:`camgen.numeric.grid_counts` of its angle; see
+        :func:`camgen.numeric.search_grid`)."""
         owner, lo, hi, still, backwards, _ = self._pieces
         if owner is not None:
             return None
-        v, index, count = search_grid(lo, hi, reverse=backwards, steady=still if steady else False)
-        return index, v, count
+        v, index, sizes = search_grid(lo, hi, reverse=backwards, steady=still if steady else False, n=self._grids)
+        return index, v, sizes
+
+    @cached_property
+    def _grids(self) -> np.ndarray:
+        """Each smooth piece's count of search-grid points (see :func:`camgen.numeric.grid_counts`), from the cam
+        angle it spans (its segment's angle times the law variable's span)."""
+        _, lo, hi, _, _, (_, beta, _) = self._pieces
+        return grid_counts(beta * (np.asarray(hi) - np.asarray(lo)))
 
     @cached_property
     def _table(self) -> _Table:
@@ -316,29 +324,35 @@ class Program:
         return theta, _boundary_segments(len(segments))
 
     @cached_property
-    def _pieces(self) -> tuple[np.ndarray | None, list[float], list[float], list[bool], list[bool],
+    def _pieces(self) -> tuple[np.ndarray | None, np.ndarray, np.ndarray, np.ndarray, np.ndarray,
                                tuple[np.ndarray, np.ndarray, np.ndarray]]:
         """Every segment's smooth pieces (see :meth:`Segment.pieces`) as :meth:`maxima_steps` searches them: the
         owning segment of each (an array, to map asks; None where each segment is one piece, its own), the law
-        variable's ends (floats), whether its segment holds still (a dwell) and whether it runs its law backwards (a
+        variable's ends, whether its segment holds still (a dwell) and whether it runs its law backwards (a
         return, see :meth:`Segment.angle`), and the segments' starts, angles (radians) and backwards flags (arrays, a
-        piece each). Made once a program (read-only for its readers): a roller's design searches its program once, a
-        flat face's or one with a speed up to eight times."""
-        owner, lo, hi, still, backwards, angles = [], [], [], [], [], []
-        for i, seg in enumerate(self.segments):
-            moving = seg.kind != "dwell" and seg.law is not None
-            back = moving and seg.kind == "return"
-            for a, b in seg.pieces():
-                owner.append(i)
-                lo.append(a)
-                hi.append(b)
-                still.append(not moving)
-                backwards.append(back)
-                angles.append((seg.start, seg.beta, back))
-        # each segment one piece, its own: no mapping of the asks
-        mapping = None if owner == list(range(len(self.segments))) else np.array(owner)
-        table = np.array(angles, dtype=float).reshape(-1, 3).T                # start, beta, backwards (1.0 or 0.0)
-        return mapping, lo, hi, still, backwards, (table[0], table[1], table[2] == 1.0)
+        piece each), all from :class:`_Table`'s, a group's law's pieces asked once. Made once a program (read-only for
+        its readers): a roller's design searches its program once, a flat face's or one with a speed up to eight
+        times."""
+        table = self._table
+        # each group's law's pieces, once a group (a dwell's, and a law's without breakpoints, [0, 1] whole)
+        intervals = [[(0.0, 1.0)] if law is None else law.smooth_intervals() for law in table.laws]
+        count = np.array([len(iv) for iv in intervals], dtype=np.intp).take(table.group)     # pieces a segment
+        rows, back = table.rows, table.back
+        still = ~table.moves                            # a dwell, or a segment without a law
+        angles = (rows[_START], rows[_BETA], back)
+        if not (count > 1).any():                       # each segment one piece, its own: no mapping of the asks
+            m = count.size
+            return None, np.zeros(m), np.ones(m), still, back, angles
+        owner = np.repeat(np.arange(count.size), count)
+        ends = [np.array(iv, dtype=float).reshape(-1, 2) for iv in intervals]
+        # each piece's place among its segment's: its group's interval of that rank
+        first = np.cumsum(count) - count
+        rank = np.arange(owner.size) - first[owner]
+        flat = np.concatenate(ends)
+        start = (np.cumsum([len(e) for e in ends]) - [len(e) for e in ends])
+        pick = start.take(table.group)[owner] + rank
+        lo, hi = flat[pick, 0], flat[pick, 1]
+        return owner, lo, hi, still[owner], back[owner], (angles[0][owner], angles[1][owner], back[owner])
 
     def peak(self, func: Callable[[int, np.ndarray], np.ndarray]) -> tuple[float, float]:
         """Largest value of ``func(segment index, theta array)`` over the cycle, and where (degrees in [0, 360)),
@@ -359,7 +373,6 @@ class Program:
         the segments on either side. ``motion`` (4, 2n): the motion at :attr:`boundary_points` where it has been
         evaluated with other points (the same numbers as :attr:`boundaries`' own), else :attr:`boundaries`'.
         """
-        found: list[Jump] = []
         n = len(self.segments)
         theta = self.boundary_points[0]
         if motion is None:
@@ -369,14 +382,52 @@ class Program:
         step = motion[1:, n:] - motion[1:, :n]
         limit = JUMP_TOL * np.maximum(np.maximum(table.rates, table.next_rates), 1e-300)
         order, at = (np.abs(step) > limit).nonzero()
-        for k, i, jump in zip((order + 1).tolist(), at.tolist(), step[order, at].tolist(), strict=True):
-            found.append(Jump(at_deg=round(math.degrees(theta[i]), 9) % 360.0, order=k, jump=jump, inside=False))
-        scales = table.scales
-        for i, seg in enumerate(self.segments):
-            for t, lo, hi in seg.inner_limits():
-                _compare(found, t, lo.tolist(), hi.tolist(), scales[i], scales[i], inside=True)
+        found = _found(theta.take(at), order, step[order, at], inside=False)
+        found += self._inner_jumps()
         found.sort(key=_AT_ORDER)
         return found
+
+    def _inner_jumps(self) -> list[Jump]:
+        """The jumps inside the laws (see :meth:`Segment.inner_limits`), every segment's at once: each law group's
+        breakpoints asked once, the limits on either side of all its segments' evaluated in one pass (the numbers
+        of :meth:`Segment.inner_limits`), in the order of segment, breakpoint and order."""
+        table = self._table
+        index, v, low = [], [], []
+        for g, law in enumerate(table.laws):
+            if law is None or not law.breakpoints:
+                continue
+            cuts = sorted(set(law.breakpoints))
+            members = (table.group == g).nonzero()[0]
+            index.append(members.repeat(len(cuts)))
+            v.append(np.tile(cuts, members.size))
+            low.append(np.tile([left_of(b) for b in cuts], members.size))
+        if not index:
+            return []
+        seg, b = np.concatenate(index), np.concatenate(v)
+        keep = np.argsort(seg, kind="stable")           # segment by segment, each one's breakpoints in order
+        seg, b, lo = seg[keep], b[keep], np.concatenate(low)[keep]
+        m = seg.size
+        motion = table.at_law(np.concatenate([seg, seg]), np.concatenate([lo, b]))
+        left, right = motion[:, :m], motion[:, m:]
+        back = table.back.take(seg)
+        rows = table.rows
+        start, beta = rows[_START].take(seg), rows[_BETA].take(seg)
+        theta = np.where(back, start + (1.0 - b) * beta, start + b * beta)
+        left, right = np.where(back, right, left), np.where(back, left, right)      # a return runs backwards
+        jump = (right - left)[1:]
+        own = table.rates.take(seg, axis=1)
+        order, at = (np.abs(jump) > JUMP_TOL * np.maximum(own, 1e-300)).nonzero()
+        ranked = np.lexsort((order, at))                # by point, then by order
+        order, at = order[ranked], at[ranked]
+        return _found(theta.take(at), order, jump[order, at], inside=True)
+
+
+def _found(theta: np.ndarray, order: np.ndarray, jump: np.ndarray, inside: bool) -> list[Jump]:
+    """The :class:`Jump` of each derivative ``order`` (0 for s', (m,)) jumping by ``jump`` (m,) at cam angle ``theta``
+    (m,) (radians; its degrees rounded to 1e-9 and taken into [0, 360))."""
+    degrees = np.degrees(theta).tolist()                # math.degrees' numbers: the same product
+    return [Jump(round(d, 9) % 360.0, k, j, inside)
+            for d, k, j in zip(degrees, (order + 1).tolist(), jump.tolist(), strict=True)]
 
 
 class _Table:
@@ -392,19 +443,28 @@ class _Table:
     :meth:`Segment._from_law` (0 on a dwell); ``scales`` is every segment's :meth:`Segment.scale`, as floats."""
 
     def __init__(self, segments: tuple[Segment, ...]) -> None:
-        values: list[float] = []
+        m = len(segments)
+        kinds = [seg.kind for seg in segments]
+        laws_of = [seg.law for seg in segments]
+        moving = np.fromiter((k != "dwell" and law is not None for k, law in zip(kinds, laws_of, strict=True)), bool, m)
+        back = moving & np.fromiter((k == "return" for k in kinds), bool, m)
+        lift = np.fromiter((seg.lift for seg in segments), float, m)
+        level = np.fromiter((seg.level for seg in segments), float, m)
+        sign = np.where(back, -1.0, 1.0)
+        even = moving.astype(float)
+        zero = np.where(moving, -0.0, 0.0)
+        table = np.empty((_WIDTH, m))                   # a segment a column, every row filled in one pass
+        table[_START] = np.fromiter((seg.start for seg in segments), float, m)
+        table[_BETA] = np.fromiter((seg.beta for seg in segments), float, m)
+        table[_SIGN] = sign
+        table[_OFFSET] = back
+        table[_ADDED.start] = np.where(back, level - lift, level)
+        table[_ADDED.start + 1:_ADDED.stop] = zero
+        table[_FACTORS.start::2][:2] = even
+        table[_FACTORS.start + 1::2][:2] = np.where(moving, sign, 0.0)
+        table[_H] = np.where(np.fromiter((k != "dwell" for k in kinds), bool, m), lift, 0.0)
         laws: list[Law | None] = []
-        group = []
-        for seg in segments:
-            moving = seg.kind != "dwell" and seg.law is not None
-            back = moving and seg.kind == "return"
-            sign = -1.0 if back else 1.0
-            even, odd = (1.0, sign) if moving else (0.0, 0.0)
-            zero = -0.0 if moving else 0.0
-            values += (seg.start, seg.beta, sign, 1.0 if back else 0.0, seg.level - seg.lift if back else seg.level,
-                       zero, zero, zero, even, odd, even, odd, seg.lift if seg.kind != "dwell" else 0.0)
-            group.append(_group(laws, seg.law if moving else None))
-        table = np.ascontiguousarray(np.fromiter(values, float, len(values)).reshape(len(segments), _WIDTH).T)
+        group = _groups(laws, [law if move else None for law, move in zip(laws_of, moving.tolist(), strict=True)])
         # every segment's Segment.scale, made in one pass from the table's contiguous h and beta rows: in _natural's
         # (m, 4) layout, whose power gives Segment.scale's bits at any m (an order a row, (4, m), differs in the last
         # bits of some from about 2 700 segments on)
@@ -418,8 +478,12 @@ class _Table:
         table[_FACTORS] *= natural.T
         self.rows = table[:_H]                                  # (12, m), C-ordered: gathered along its rows
         self.laws = laws
+        #: each segment's law's place in :attr:`laws` (m,); whether it moves by a law (not a dwell) and whether it
+        #: runs its law backwards (a return), (m,) bool each
+        self.group = group
+        self.moves, self.back = moving, back
         #: each law but a dwell's, with the segments it evaluates (m,) bool (a law alone evaluates every point)
-        self.moving = [(law, np.array(group) == k) for k, law in enumerate(laws) if law is not None]
+        self.moving = [(law, group == k) for k, law in enumerate(laws) if law is not None]
 
     def angle(self, index: np.ndarray, v: np.ndarray) -> np.ndarray:
         """:meth:`Segment.angle` of each law variable ``v`` (n,) on its segment ``index`` (n,) (radians)."""
@@ -529,14 +593,21 @@ def _natural(h: np.ndarray, beta: np.ndarray) -> np.ndarray:
 _POWERS = np.arange(4.0)
 
 
-def _group(laws: list[Law | None], law: Law | None) -> int:
-    """Where ``law`` (None for a dwell) stands in ``laws``, the laws evaluated so far, each once: the first it is
-    or is :func:`_alike`; added at the end when none is."""
-    for g, known in enumerate(laws):
-        if known is law or _alike(known, law):
-            return g
-    laws.append(law)
-    return len(laws) - 1
+def _groups(laws: list[Law | None], each: list[Law | None]) -> np.ndarray:
+    """Where each law of ``each`` (None for a dwell) stands in ``laws``, the laws evaluated, each once (appended to
+    it in the order they first come): the first it is or is :func:`_alike` (one class without parameters) to.
+    Returns the group of each (m,) (intp); one dictionary look-up a segment, by identity or by a parameterless
+    law's class."""
+    known: dict[Any, int] = {}
+    out = np.empty(len(each), dtype=np.intp)
+    for i, law in enumerate(each):
+        key = type(law) if law is not None and type(law).PARAMETERLESS else id(law)
+        g = known.get(key)
+        if g is None:
+            g = known[key] = len(laws)
+            laws.append(law)
+        out[i] = g
+    return out
 
 
 def _alike(a: Law | None, b: Law | None) -> bool:
@@ -544,18 +615,6 @@ def _alike(a: Law | None, b: Law | None) -> bool:
     (:attr:`Law.PARAMETERLESS`: a cycloidal rise and a cycloidal return), so that one call evaluates both segments'
     points (each point's numbers are its own)."""
     return a is not None and type(a) is type(b) and type(a).PARAMETERLESS
-
-
-def _compare(found: list[Jump], theta: float, left: list[float], right: list[float], own: list[float],
-             other: list[float], inside: bool) -> None:
-    """Add to ``found`` every jump of s', s'', s''' from ``left`` to ``right`` (s, s', s'', s''') at cam angle
-    ``theta`` (radians) larger than :data:`JUMP_TOL` of the larger of its scales ``own`` and ``other`` (h/beta^k,
-    k = 0..3: the segments' on either side of a boundary, the segment's own twice inside it)."""
-    at = round(math.degrees(theta), 9) % 360.0
-    for k in (1, 2, 3):
-        step = right[k] - left[k]
-        if abs(step) > JUMP_TOL * max(own[k], other[k], 1e-300):
-            found.append(Jump(at_deg=at, order=k, jump=step, inside=inside))
 
 
 #: the order of :meth:`Program.jumps`: by angle, then by order
@@ -606,11 +665,21 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
         Naming ``motion``: no segment, angles that do not add up to 360 degrees, rises and returns that do not
         balance over the turn, or a return below the follower's lowest position (s = 0).
     """
-    segments, start, level = [], 0.0, 0.0
-    for kind, angle_deg, lift, law in steps:
-        beta = math.radians(angle_deg)
-        dwell = kind == "dwell"
-        segments.append(Segment(kind=kind, start=start, beta=beta, lift=0.0 if dwell else lift, level=level,
-                                law=None if dwell else law))
-        start, level = start + beta, _end_level(kind, level, lift)      # Segment.end_level's, its lift known here
-    return Program(tuple(segments))
+    if not steps:
+        return Program(())
+    kinds, angles, lifts, laws = zip(*steps, strict=True)
+    m = len(steps)
+    beta = np.radians(np.fromiter(angles, float, m))   # math.radians' numbers: the same product
+    given = np.fromiter(lifts, float, m)
+    dwell = np.fromiter((k == "dwell" for k in kinds), bool, m)
+    rise = np.fromiter((k == "rise" for k in kinds), bool, m)
+    fall = np.fromiter((k == "return" for k in kinds), bool, m)
+    # each start the sum of the angles before it, each level of the lifts before it (up on a rise, down on a return,
+    # none on a dwell, whatever its lift: _end_level's), summed in order as one segment after another sums them
+    start = np.zeros(m)
+    np.cumsum(beta[:-1], out=start[1:])
+    level = np.zeros(m)
+    np.cumsum(np.where(rise, given, np.where(fall, -given, 0.0))[:-1], out=level[1:])
+    lift = np.where(dwell, 0.0, given)
+    return Program(tuple(Segment(k, a, b, h, v, None if d else law) for k, a, b, h, v, d, law in zip(
+        kinds, start.tolist(), beta.tolist(), lift.tolist(), level.tolist(), dwell.tolist(), laws, strict=True)))

@@ -21,7 +21,7 @@ from camgen.core.errors import SpecError
 from camgen.followers import FOLLOWERS
 from camgen.followers.base import FollowerType
 from camgen.followers.plate import PlateRoller
-from camgen.laws import make_law
+from camgen.laws import Law, make_law
 from camgen.program import Program, build_program
 
 if TYPE_CHECKING:
@@ -162,11 +162,16 @@ class Rig:
         """The motion program, its laws made from the segments; ``prime_radius`` (mm) is the drafted
         modified-uniform law's (its arcs' radius depends on it; None where there is none to give, refused then for
         a drafted law)."""
-        steps = []
+        steps: list[tuple[Any, float, float, Law | None]] = []
+        made: dict[Any, Law] = {}                       # the laws made here, by name and parameters
         for i, seg in enumerate(self.motion):
             law = None
             if seg.type != "dwell":
                 params = seg.law_params()
+                key = _law_key(seg.law, params) if seg.law not in _OWN_LAWS else None
+                if key is not None and key in made:     # the same law as an earlier segment's: one object
+                    steps.append((seg.type, seg.angle, seg.lift or 0.0, made[key]))
+                    continue
                 if seg.law == "modified-uniform" and params.get("form") == "drafted":
                     if prime_radius is None:
                         raise SpecError("the drafted form needs the cam's prime radius (a base radius, or a barrel's "
@@ -178,6 +183,8 @@ class Rig:
                     law = make_law(seg.law, **params)
                 except SpecError as exc:
                     raise exc.under(f"motion[{i}]") from None
+                if key is not None:
+                    made[key] = law
             steps.append((seg.type, seg.angle, seg.lift or 0.0, law))
         return build_program(steps)
 
@@ -197,3 +204,20 @@ class Rig:
     def lift_max(self) -> float:
         """The largest single segment's lift (mm, or degrees of swing): where sizing starts its search."""
         return max(seg.lift or 0.0 for seg in self.motion)
+
+
+#: the laws whose making depends on the segment (a drafted modified-uniform's prime radius, a table's angle and
+#: lift): made for each segment
+_OWN_LAWS = frozenset({"modified-uniform", "table"})
+
+
+def _law_key(name: str | None, params: dict[str, Any]) -> Any:
+    """What identifies the law ``name`` made with ``params`` among a program's (the name and the parameters' items),
+    or None where a parameter cannot be compared so (a list of a polynomial's conditions or a spline's points:
+    such a law is made for its segment)."""
+    key = (name, tuple(sorted(params.items())))
+    try:
+        hash(key)
+    except TypeError:
+        return None
+    return key
