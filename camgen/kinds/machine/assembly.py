@@ -53,7 +53,8 @@ def _placed_part(body: Body, phi: float, thickness: float, tolerance: float) -> 
 
 def _span(body: Body, design: Any, stack: frames.Stack, thick: dict[str, float]) -> tuple[float, float]:
     """A body's bottom and top (mm): a flat moving part on its plane, as thick as it is made; an arm's roller on
-    its cam's plane, as thick as the cam; a translating follower's roller over its planes; a pin from under the
+    its cam's plane, as thick as the cam, as a translating follower's roller and flat face; a stem guide's rail from
+    the plate's top face to the top of its stem's plane; a pin from under the
     bottom plate or its lowest part to its highest part or the top plate's top; a shaft from its stub under the
     bottom plate (or from the bottom face of its part behind the frame: a stub there would cross the back
     linkage's rods) to its highest cam; a spacer between its neighbours."""
@@ -71,9 +72,13 @@ def _span(body: Body, design: Any, stack: frames.Stack, thick: dict[str, float])
         if body.low < 0:           # reaching a linkage behind the frame: to its crank's face (its rods cross below)
             return stack.bottom[body.low], stack.top[body.high]
         return -SHAFT_STUB_MM, stack.top[body.high]
-    cam = name.removesuffix(".roller")
-    if name.endswith(".roller") and f"{cam}.arm" in thick:    # an arm's roller: on its cam's plane, as thick
+    cam = name.removesuffix(".roller").removesuffix(".face")
+    if name.endswith((".roller", ".face")) and f"{cam}.arm" in thick:    # a roller, a flat face: as its cam
         return stack.bottom[body.low], stack.bottom[body.low] + thick[cam]
+    if ".guide." in name:                                   # a stem's guide rail: standing on the frame's plate
+        from camgen.kinds.machine.stem_kit import rail_span
+
+        return rail_span(stack, body)
     if name in thick and body.low == body.high:
         return stack.bottom[body.low], stack.bottom[body.low] + thick[name]
     return stack.bottom[body.low], stack.top[body.high]

@@ -382,6 +382,11 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     from camgen.kinds.machine.machine_gears import gear_bodies
 
     gear_bodies(d, bodies, joints, shafts)                  # the gear pairs, over the other parts by default
+    from camgen.kinds.machine.stem_guide import guide_screws
+
+    for rail in [b for b in bodies if ".guide." in b.name]:      # a stem guide's screws: pins into the frame
+        for at_xy, screw in guide_screws(rail):
+            pins.setdefault(at_xy, ([], 0, screw))[0].append(rail.name)
     plane_of = {b.name: b.high for b in bodies}
     roof = max(plane_of.values(), default=0) + 1                       # the top plate's plane
     for i, ((x, y), (held, from_top, r)) in enumerate(pins.items()):
@@ -412,6 +417,8 @@ def _stem(d: Any, cam: Any, kin: Any, f: Any, plane: int, centre: np.ndarray, th
     from camgen.kinds.machine.slider_coupling import rest_point
     from camgen.kinds.machine.stem_parts import WIDTH_MM, stem_bodies
 
+    from camgen.kinds.machine.stem_kit import slider_joint
+
     driven = [m for m in getattr(d, "slid", ()) if m.cam == cam.name and m.design.spec.parts is not None]
     width = float(driven[0].design.spec.parts.width) if driven else WIDTH_MM
 
@@ -428,7 +435,9 @@ def _stem(d: Any, cam: Any, kin: Any, f: Any, plane: int, centre: np.ndarray, th
             return centre + kin.follower.fixed(t, kin.follower.pitch(t, kin.program.evaluate(t)))
 
         face = ((float(extent[0]) - margin, float(extent[1]) + margin), contact)
-    made, met = stem_bodies(cam.name, f, plane, centre + rest_point(f), lift, width, tol, face)
+    point = centre + rest_point(f)
+    made, met = stem_bodies(cam.name, f, plane, point, lift, width, tol, face,
+                            slider_joint(driven[0], point) if driven else None)
     bodies += made
     joints += met
 

@@ -14,8 +14,8 @@ The parts are the ones the clash check and the assembly place (:func:`camgen.kin
 
 Each hole is the pin's ISO 273 medium clearance hole (:func:`camgen.kinds.machine.frame.pin_hole`). The outlines
 are exact (lines and arcs); the clash check's bodies are these outlines split into chords within the cam's
-tolerance. A translating follower's stem has no files of its own yet: its outline ends at the roller's centre,
-where the axle's hole would be (the assembly draws it, the kit does not list it).
+tolerance. A translating follower's stem, roller, flat face and guide rails are parts too
+(:mod:`camgen.kinds.machine.stem_kit`), listed and written with these.
 """
 from __future__ import annotations
 
@@ -30,6 +30,7 @@ from camgen.core.hardware import BOLTS, bolt_length
 from camgen.core.kit import BomLine, Plate, bolt_line
 from camgen.core.parts import Allowances, Drawing, Part
 from camgen.core.shapes import Contour, rounded_hull
+from camgen.kinds.machine.slabs import Slab
 
 #: the roller's axle (mm): an M4 bolt, as a follower's pivot pin where no linkage gives one
 AXLE_MM = 4.0
@@ -80,7 +81,7 @@ class FollowerPart:
 
     body: str
     what: str
-    plate: Plate
+    plate: Plate | Slab
 
     @property
     def key(self) -> str:
@@ -104,8 +105,9 @@ def _oscillating(design: Any) -> list[tuple[Any, Any]]:
 
 def follower_parts(design: Any) -> tuple[FollowerPart, ...]:
     """Each oscillating follower's arm and roller of ``design`` (a
-    :class:`~camgen.kinds.machine.design.MachineDesign`), in the cams' order: their outlines exact, their holes
-    the ones the clash check's bodies carry, as thick as the assembly makes them."""
+    :class:`~camgen.kinds.machine.design.MachineDesign`), in the cams' order, then each translating follower's
+    parts (:func:`camgen.kinds.machine.stem_kit.stem_parts`): their outlines exact, their holes the ones the clash
+    check's bodies carry, as thick as the assembly makes them."""
     from camgen.kinds.machine.frame import thicknesses
 
     thick = thicknesses(design)
@@ -121,7 +123,9 @@ def follower_parts(design: Any) -> tuple[FollowerPart, ...]:
         outline = roller_outline(made_radius(cam.design, r))
         out.append(FollowerPart(roller.name, "roller", Plate(
             f"{cam.name}-roller", outline, tuple((c, 2 * hr) for c, hr in roller.holes), thick[name], tol)))
-    return tuple(out)
+    from camgen.kinds.machine.stem_kit import stem_parts
+
+    return (*out, *stem_parts(design))
 
 
 @dataclass(frozen=True)
@@ -143,7 +147,8 @@ class Axle:
 
 def axles(design: Any, stack: Any) -> tuple[Axle, ...]:
     """Each oscillating follower's roller axle placed at ``machine.assembly_angle`` on the planes of ``stack``
-    (:class:`camgen.kinds.machine.frame.Stack`)."""
+    (:class:`camgen.kinds.machine.frame.Stack`), then each translating roller's
+    (:func:`camgen.kinds.machine.stem_kit.stem_axles`)."""
     from camgen.kinds.machine.frame import thicknesses
 
     thick = thicknesses(design)
@@ -155,7 +160,9 @@ def axles(design: Any, stack: Any) -> tuple[Axle, ...]:
         centre = roller.place(phi)[1][0]
         out.append(Axle(f"cams.{cam.name}.axle", (float(centre[0]), float(centre[1])), stack.bottom[roller.low],
                         stack.bottom[arm.low] + thick[arm.name]))
-    return tuple(out)
+    from camgen.kinds.machine.stem_kit import stem_axles
+
+    return (*out, *stem_axles(design, stack))
 
 
 def bom_lines(design: Any, stack: Any) -> tuple[BomLine, ...]:

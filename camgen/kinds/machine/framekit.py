@@ -53,6 +53,9 @@ def bom(frame: Frame, design: Any) -> tuple[BomLine, ...]:
         d, bore = 2 * part.outline.arcs()[2][0], part.holes[0][1]
         lines.append(BomLine(part.name, 1, f"spacer {d:g} mm across, {bore:g} mm bore, {top - bottom:.4g} mm "
                              "high (its own files)", "fdm"))
+    from camgen.kinds.machine.stem_kit import guide_screws
+
+    screws = guide_screws(design)
     for seat in frame.seats:
         if seat.name.startswith("shafts."):
             length = shaft_length(frame, design, seat.name.removeprefix("shafts."))
@@ -65,7 +68,9 @@ def bom(frame: Frame, design: Any) -> tuple[BomLine, ...]:
             continue
         bottom, top = pin_span(frame, design, seat.name)
         bolt = next((b for b in BOLTS.values() if b.diameter == seat.diameter), None)
-        where = f"pivot pin {seat.name} at ({seat.centre[0]:.4g}, {seat.centre[1]:.4g}) mm"
+        held = screws.get(seat.name)
+        what = f"guide screw {seat.name} of {held}" if held else f"pivot pin {seat.name}"
+        where = f"{what} at ({seat.centre[0]:.4g}, {seat.centre[1]:.4g}) mm"
         if bolt is not None:
             lines.append(bolt_line(bolt, bolt_length(bolt, top - bottom), 1, where))
         else:

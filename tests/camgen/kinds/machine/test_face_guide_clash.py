@@ -156,9 +156,13 @@ def test_the_face_meets_its_cam_at_the_contact(faced):
 def _rail_corners() -> np.ndarray:
     """The right rail's corners (mm): 0.2 mm clear of the 8 mm stem on x = 0, 3 mm wide, from 1 mm over the roller's
     top at the top of the stroke (30 + 5 + 10 + 5 + 1) to the stem's top at lift 0 (the roller's centre at 35 plus
-    its length, twice the stroke plus its width: 28)."""
+    its length, twice the stroke plus its width: 28); then its one lug (the rail, 12 mm, is shorter than two): 7.4 mm
+    square (the M3 clearance hole, 3.4 mm, with 2 mm of wall each side) on its outer side, in its middle."""
     x0, x1, y0, y1 = 4.2, 7.2, 51.0, 63.0
-    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+    lug = 3.4 + 4.0
+    ym = (y0 + y1) / 2
+    return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1],
+                     [x1 + lug, ym - lug / 2], [x1 + lug, ym + lug / 2]])
 
 
 def test_a_crank_sweeping_into_the_guide_is_found_at_its_angle(swept):
@@ -177,17 +181,18 @@ def test_a_crank_sweeping_into_the_guide_is_found_at_its_angle(swept):
 
 
 def test_the_guide_stands_still_beside_the_stem(swept):
-    """Both rails where the rules put them at every angle, on the stem's plane, never meeting the stem or the roller
-    over the turn (the clash check names neither pair)."""
+    """Both rails where the rules put them at every angle, from the frame up to the stem's plane, never meeting the
+    stem or the roller over the turn (the clash check names neither pair)."""
     from camgen.kinds.machine.clash import outlines
 
     rails = {b.name: b for b in swept.bodies if ".guide." in b.name}
     assert sorted(rails) == ["cams.lift.guide.left", "cams.lift.guide.right"]
     x0, y0 = _rail_corners()[0]
-    x1, y1 = _rail_corners()[2]
+    y1 = _rail_corners()[2][1]
+    x1 = _rail_corners()[4][0]                              # the lug's outer side
     phi = np.radians(np.arange(0.0, 360.0, 30.0))
     for name, (a, b) in (("cams.lift.guide.right", (x0, x1)), ("cams.lift.guide.left", (-x1, -x0))):
-        assert rails[name].low == rails[name].high == 1
+        assert (rails[name].low, rails[name].high) == (0, 1)      # standing on the frame up to the stem's plane
         for shape in outlines(rails[name], phi):
             assert shape.bounds == pytest.approx((a, y0, b, y1), abs=1e-9)
     pairs = {frozenset((c.a, c.b)) for c in swept.clashes}
