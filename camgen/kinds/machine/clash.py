@@ -288,8 +288,6 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                    Joint(f"{name}.arm", f"{name}.roller", roller, _margin(r))]
         arms[cam.name] = (f, pivot, plane + 1, arm)
     pins: dict[tuple[float, float], tuple[list[str], int, float]] = {}
-    skipped += [f"genevas.{g.name} (its driver and wheel are not placed yet)"
-                for g in getattr(d, "indexed", ())]
     crank_pins: dict[str, list[tuple[float, float]]] = {}     # a coupled four-bar's crank pin on its cam's arm
     for m in d.linkages:                                   # type: ignore[attr-defined]
         build, table = m.design.build, m.design.spec.linkage
@@ -379,8 +377,10 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         pin_d = 2 * next(r for k, (_, _, r) in pins.items() if math.dist(k, pivot) < 1e-9)
         holes = arm_holes(float(f.arm_length), pin_d, tuple(crank_pins.get(name, ())))
         bodies = [replace(b, holes=holes) if b.name == f"cams.{name}.arm" else b for b in bodies]
+    from camgen.kinds.machine.geneva_bodies import geneva_bodies
     from camgen.kinds.machine.machine_gears import gear_bodies
 
+    geneva_bodies(d, bodies, joints, shafts)                # the Geneva drives, then the gear pairs
     gear_bodies(d, bodies, joints, shafts)                  # the gear pairs, over the other parts by default
     plane_of = {b.name: b.high for b in bodies}
     roof = max(plane_of.values(), default=0) + 1                       # the top plate's plane
