@@ -199,11 +199,13 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     the four-bar placed with its crank pin on the arm, ``crank`` mm from the pivot, and mirrored where the arm
     swings clockwise, on the arm's layer plus its own layer over its crank's; the shafts and pins from plane 0 up.
     The four-bar's ground link is the frame's and is not a moving part."""
+    from camgen.followers.oscillating_flat import OscillatingFlat
     from camgen.followers.oscillating_roller import OscillatingRoller
     from camgen.followers.translating_flat import TranslatingFlat
     from camgen.followers.translating_roller import TranslatingRoller
     from camgen.kinds.machine import barrel_parts, conjugate_parts, kinematics
     from camgen.kinds.machine.design import _cam_of
+    from camgen.kinds.machine.flat_arm import flat_arm
     from camgen.kinds.machine.follower_parts import arm_holes, arm_outline, made_radius, roller_hole, roller_outline
 
     d = design
@@ -213,6 +215,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     joints: list[Joint] = []
     skipped: list[str] = []
     arms: dict[str, tuple[OscillatingRoller, np.ndarray, int, Callable[[np.ndarray], np.ndarray]]] = {}
+    faced: list[tuple[str, np.ndarray]] = []               # an oscillating flat face's arm and its pivot
     shafts: dict[str, list[tuple[int, float]]] = {}
     for cam, mount in zip(d.cams, spec.cams, strict=True):  # type: ignore[attr-defined]
         kin = _cam_of(cam.design)
@@ -256,6 +259,12 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                 continue
         if isinstance(f, TranslatingRoller | TranslatingFlat):
             _stem(d, cam, kin, f, 2 * mount.layer, centre, theta, tol, bodies, joints)
+            continue
+        if isinstance(f, OscillatingFlat):                  # its arm along the face, on a pin at its pivot
+            made_arm, met, at_pivot = flat_arm(cam.name, cam.design, kin, 2 * mount.layer, centre, theta, tol)
+            bodies.append(made_arm)
+            joints.append(met)
+            faced.append((made_arm.name, at_pivot))
             continue
         if not isinstance(f, OscillatingRoller):
             skipped.append(f"cams.{cam.name}'s follower")
@@ -368,11 +377,11 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
             joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),
                                 _margin(max(p.half_width for p in m.design.build.parts))))
-    for name, (_, pivot, _, _) in arms.items():
+    for held, pivot in (*((f"cams.{name}.arm", arm[1]) for name, arm in arms.items()), *faced):
         key = next((k for k in pins if math.dist(k, pivot) < 1e-9), (float(pivot[0]), float(pivot[1])))
         entry = pins.setdefault(key, ([], 0, PIVOT_PIN_MM / 2))
-        if f"cams.{name}.arm" not in entry[0]:
-            entry[0].append(f"cams.{name}.arm")
+        if held not in entry[0]:
+            entry[0].append(held)
     for name, (f, pivot, _, _) in arms.items():               # the arm's holes: its pivot's, axle's, crank pin's
         pin_d = 2 * next(r for k, (_, _, r) in pins.items() if math.dist(k, pivot) < 1e-9)
         holes = arm_holes(float(f.arm_length), pin_d, tuple(crank_pins.get(name, ())))
