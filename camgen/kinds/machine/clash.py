@@ -220,13 +220,15 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     for cam, mount in zip(d.cams, spec.cams, strict=True):  # type: ignore[attr-defined]
         kin = _cam_of(cam.design)
         part = next(iter(dict(conjugate_parts.plates(cam.design)).values()), None)
-        if barrel_parts.is_barrel(cam.design):              # its drum; its follower moves out of the plane
+        if barrel_parts.is_barrel(cam.design):              # its drum, and its follower's plan on its plane
             at_shaft, bore = at[mount.shaft], float(cam.design.spec.cam.bore) / 2
             bodies.append(barrel_parts.drum(cam.name, cam.design, 2 * mount.layer, at_shaft,
                                             float(cam.design.tolerance)))
             shafts.setdefault(mount.shaft, []).append((2 * mount.layer, bore))
             joints.append(Joint(f"cams.{cam.name}", f"shafts.{mount.shaft}", still(at_shaft), _margin(bore)))
-            skipped.append(f"cams.{cam.name}'s follower (it {barrel_parts.OUT_OF_PLANE})")
+            carried, met = barrel_parts.follower(cam.name, cam.design, 2 * mount.layer, at_shaft)
+            bodies.append(carried)                          # its plan over the turn, as high as the drum
+            joints.append(met)
             continue
         if part is None:
             skipped.append(f"cams.{cam.name}")
