@@ -199,11 +199,13 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     the four-bar placed with its crank pin on the arm, ``crank`` mm from the pivot, and mirrored where the arm
     swings clockwise, on the arm's layer plus its own layer over its crank's; the shafts and pins from plane 0 up.
     The four-bar's ground link is the frame's and is not a moving part."""
+    from camgen.followers.oscillating_flat import OscillatingFlat
     from camgen.followers.oscillating_roller import OscillatingRoller
     from camgen.followers.translating_flat import TranslatingFlat
     from camgen.followers.translating_roller import TranslatingRoller
     from camgen.kinds.machine import barrel_parts, conjugate_parts, kinematics
     from camgen.kinds.machine.design import _cam_of
+    from camgen.kinds.machine.flat_arm import flat_arm
     from camgen.kinds.machine.follower_parts import arm_holes, arm_outline, made_radius, roller_hole, roller_outline
 
     d = design
@@ -213,17 +215,20 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     joints: list[Joint] = []
     skipped: list[str] = []
     arms: dict[str, tuple[OscillatingRoller, np.ndarray, int, Callable[[np.ndarray], np.ndarray]]] = {}
+    faced: list[tuple[str, np.ndarray]] = []               # an oscillating flat face's arm and its pivot
     shafts: dict[str, list[tuple[int, float]]] = {}
     for cam, mount in zip(d.cams, spec.cams, strict=True):  # type: ignore[attr-defined]
         kin = _cam_of(cam.design)
         part = next(iter(dict(conjugate_parts.plates(cam.design)).values()), None)
-        if barrel_parts.is_barrel(cam.design):              # its drum; its follower moves out of the plane
+        if barrel_parts.is_barrel(cam.design):              # its drum, and its follower's plan on its plane
             at_shaft, bore = at[mount.shaft], float(cam.design.spec.cam.bore) / 2
             bodies.append(barrel_parts.drum(cam.name, cam.design, 2 * mount.layer, at_shaft,
                                             float(cam.design.tolerance)))
             shafts.setdefault(mount.shaft, []).append((2 * mount.layer, bore))
             joints.append(Joint(f"cams.{cam.name}", f"shafts.{mount.shaft}", still(at_shaft), _margin(bore)))
-            skipped.append(f"cams.{cam.name}'s follower (it {barrel_parts.OUT_OF_PLANE})")
+            carried, met = barrel_parts.follower(cam.name, cam.design, 2 * mount.layer, at_shaft)
+            bodies.append(carried)                          # its plan over the turn, as high as the drum
+            joints.append(met)
             continue
         if part is None:
             skipped.append(f"cams.{cam.name}")
@@ -257,6 +262,12 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         if isinstance(f, TranslatingRoller | TranslatingFlat):
             _stem(d, cam, kin, f, 2 * mount.layer, centre, theta, tol, bodies, joints)
             continue
+        if isinstance(f, OscillatingFlat):                  # its arm along the face, on a pin at its pivot
+            made_arm, met, at_pivot = flat_arm(cam.name, cam.design, kin, 2 * mount.layer, centre, theta, tol)
+            bodies.append(made_arm)
+            joints.append(met)
+            faced.append((made_arm.name, at_pivot))
+            continue
         if not isinstance(f, OscillatingRoller):
             skipped.append(f"cams.{cam.name}'s follower")
             continue
@@ -288,8 +299,6 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                    Joint(f"{name}.arm", f"{name}.roller", roller, _margin(r))]
         arms[cam.name] = (f, pivot, plane + 1, arm)
     pins: dict[tuple[float, float], tuple[list[str], int, float]] = {}
-    skipped += [f"genevas.{g.name} (its driver and wheel are not placed yet)"
-                for g in getattr(d, "indexed", ())]
     crank_pins: dict[str, list[tuple[float, float]]] = {}     # a coupled four-bar's crank pin on its cam's arm
     for m in d.linkages:                                   # type: ignore[attr-defined]
         build, table = m.design.build, m.design.spec.linkage
@@ -370,17 +379,19 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
             joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),
                                 _margin(max(p.half_width for p in m.design.build.parts))))
-    for name, (_, pivot, _, _) in arms.items():
+    for held, pivot in (*((f"cams.{name}.arm", arm[1]) for name, arm in arms.items()), *faced):
         key = next((k for k in pins if math.dist(k, pivot) < 1e-9), (float(pivot[0]), float(pivot[1])))
         entry = pins.setdefault(key, ([], 0, PIVOT_PIN_MM / 2))
-        if f"cams.{name}.arm" not in entry[0]:
-            entry[0].append(f"cams.{name}.arm")
+        if held not in entry[0]:
+            entry[0].append(held)
     for name, (f, pivot, _, _) in arms.items():               # the arm's holes: its pivot's, axle's, crank pin's
         pin_d = 2 * next(r for k, (_, _, r) in pins.items() if math.dist(k, pivot) < 1e-9)
         holes = arm_holes(float(f.arm_length), pin_d, tuple(crank_pins.get(name, ())))
         bodies = [replace(b, holes=holes) if b.name == f"cams.{name}.arm" else b for b in bodies]
+    from camgen.kinds.machine.geneva_bodies import geneva_bodies
     from camgen.kinds.machine.machine_gears import gear_bodies
 
+    geneva_bodies(d, bodies, joints, shafts)                # the Geneva drives, then the gear pairs
     gear_bodies(d, bodies, joints, shafts)                  # the gear pairs, over the other parts by default
     from camgen.kinds.machine.stem_guide import guide_screws
 

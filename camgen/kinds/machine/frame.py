@@ -185,7 +185,8 @@ def spacer_joints(found: Sequence[Spacer]) -> list[Joint]:
 
 
 def shaft_diameters(spec: Any) -> dict[str, float]:
-    """Each shaft's diameter (mm): the smallest ``cam.bore`` of the cams on it; a shaft without a cam, the
+    """Each shaft's diameter (mm): the smallest ``cam.bore`` of the cams on it (a Geneva drive's ``driver_bore`` or
+    ``wheel_bore`` among them); a shaft without a cam, the
     smallest bore of the shaft-driven linkages' cranks on it (their ``parts.pin_diameter``: a crank bar
     ``parts.width`` wide has no room for a larger bore, so the shaft is the crank's bore); a shaft carrying
     neither takes the smallest bore of the machine's cams (:data:`SHAFT_MM` without any)."""
@@ -194,6 +195,10 @@ def shaft_diameters(spec: Any) -> dict[str, float]:
         bore = getattr(cam_spec.cam, "bore", None)
         if bore:
             bores.setdefault(mount.shaft, []).append(float(bore))
+    for mount, drive in zip(getattr(spec, "genevas", ()), getattr(spec, "geneva_specs", ()), strict=True):
+        for shaft, bore in ((mount.driver, drive.geneva.driver_bore), (mount.wheel, drive.geneva.wheel_bore)):
+            if bore:                                        # a Geneva drive's bores: its shafts'
+                bores.setdefault(shaft, []).append(float(bore))
     least = min((min(b) for b in bores.values()), default=SHAFT_MM)
     cranks: dict[str, list[float]] = {}
     for mount, linkage_spec in zip(spec.linkages, spec.linkage_specs, strict=True):
@@ -307,6 +312,9 @@ def thicknesses(design: Any) -> dict[str, float]:
     from camgen.kinds.machine.machine_gears import thicknesses as gear_thicknesses
 
     out.update(gear_thicknesses(design))
+    from camgen.kinds.machine.geneva_bodies import thicknesses as geneva_thicknesses
+
+    out.update(geneva_thicknesses(design))
     return out
 
 

@@ -246,28 +246,38 @@ def plane_of(gear: MachineGear, bodies: Any, joints: Any) -> int:
     angles, within :data:`SWEEP_CLEARANCE_MM`) into either gear's tip circle, nor, on the planes under it, across
     either shaft (but the parts it carries, meeting it in ``joints``); where none is, the plane over every part (the
     clash check then names what meets it)."""
+    if gear.layer is not None:
+        return 2 * gear.layer
+    tips = [(c, t.tip_radius) for c, t in zip(gear.centres, (gear.pair.pinion_tooth, gear.pair.gear_tooth),
+                                              strict=True) if t]
+    axes = [(c, m.stock.hole / 2) for c, m in zip(gear.centres, gear.makers, strict=True)]
+    return free_plane(bodies, joints, tips, axes, gear.shafts)
+
+
+def free_plane(bodies: Any, joints: Any, discs: Any, axes: Any, shafts: Any, height: int = 1) -> int:
+    """The lowest plane p from 0 up such that no part of the clash check's ``bodies`` on planes p to p + ``height``
+    - 1 sweeps (over :data:`SWEEP_SAMPLES` main shaft angles, within :data:`SWEEP_CLEARANCE_MM`) into any of the
+    ``discs`` ((centre, radius) mm: the area a mechanism fills), and none on the planes under p crosses any of the
+    ``axes`` ((centre, radius) mm: its shafts), but the parts those ``shafts`` (names) carry (meeting them in
+    ``joints``) and the pins; where none is, the plane over every part."""
     import shapely
 
     from camgen.kinds.machine.clash import outlines
 
-    if gear.layer is not None:
-        return 2 * gear.layer
     phi = np.arange(SWEEP_SAMPLES) * (2 * math.pi / SWEEP_SAMPLES)
     others = [b for b in bodies if not b.name.startswith(("shafts.", "spacers."))]
     swept = [(b, shapely.union_all(outlines(b, phi))) for b in others]
-    tips = [shapely.Point(*c).buffer(t.tip_radius + SWEEP_CLEARANCE_MM)
-            for c, t in zip(gear.centres, (gear.pair.pinion_tooth, gear.pair.gear_tooth), strict=True) if t]
-    carried = {j.a for j in joints if j.b in {f"shafts.{s}" for s in gear.shafts}}
-    axes = [shapely.Point(*c).buffer(m.stock.hole / 2 + SWEEP_CLEARANCE_MM)
-            for c, m in zip(gear.centres, gear.makers, strict=True)]
+    filled = [shapely.Point(*c).buffer(r + SWEEP_CLEARANCE_MM) for c, r in discs]
+    carried = {j.a for j in joints if j.b in {f"shafts.{s}" for s in shafts}}
+    crossed = [shapely.Point(*c).buffer(r + SWEEP_CLEARANCE_MM) for c, r in axes]
     top = max((b.high for b in others), default=-1) + 1
     for plane in range(0, top + 1):
-        on = [area for b, area in swept if b.low <= plane <= b.high]
-        if any(area.intersects(t) for area in on for t in tips):
+        on = [area for b, area in swept if b.low <= plane + height - 1 and plane <= b.high]
+        if any(area.intersects(t) for area in on for t in filled):
             continue
         under = [area for b, area in swept if b.low <= plane - 1 and b.high >= 0 and b.name not in carried
                  and not b.name.startswith("pins.")]
-        if any(area.intersects(a) for area in under for a in axes):
+        if any(area.intersects(a) for area in under for a in crossed):
             continue
         return plane
     return top

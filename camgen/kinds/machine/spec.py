@@ -175,8 +175,14 @@ class GenevaMount(Model):
     wheel: str = Field(description="the shaft its wheel turns (one of [[shafts]]; no gear pair or other Geneva "
                        "drive turns it), its centre_distance from the driver's")
     phase: float = Field(180.0, ge=-180, le=180, description="the driver's pin angle at the machine's start, from "
-                         "the line from the driver's shaft to the wheel's (counter-clockwise): 0 mid-index, 180 "
-                         "mid-dwell", json_schema_extra=unit("degrees"))
+                         "the line from the driver's shaft to the wheel's, in the driver's sense of rotation "
+                         "(counter-clockwise for a driver turning so, else clockwise): 0 mid-index, 180 mid-dwell",
+                         json_schema_extra=unit("degrees"))
+    layer: int | None = Field(None, ge=0, le=MAX_LAYER, description="the drive's planes along its shafts: its crank "
+                              "on plane 2 layer, its locking disc and wheel on the plane over it (the clash check's; "
+                              "see camgen.kinds.machine.geneva_bodies)",
+                              json_schema_extra=notes(absent="the lowest two planes from 0 up that no other part "
+                                                      "sweeps into, nor crosses either shaft under"))
     template: str | dict[str, Any] = _template_field("the drive: a Geneva template ([geneva]) as an inline table or "
                                                      "a Geneva template file's path",
                                                      "its geneva.rpm is the driver shaft's")

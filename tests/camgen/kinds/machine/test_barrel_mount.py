@@ -1,6 +1,6 @@
 """A barrel cam mounted on a machine's shaft (issue 35): its follower's motion in the outputs (mm along the shaft, or
 degrees of an arm's swing) equal to its program shifted by its phase; its drum a disc of its rim's radius in the
-clash check, its follower listed as not checked with the reason; a coupling from it refused in one line; its files
+clash check, its follower placed there (see test_barrel_follower_clash); a coupling from it refused in one line; its files
 among the machine's, the drum as long as it is in the assembly."""
 from __future__ import annotations
 
@@ -63,7 +63,7 @@ def test_the_followers_motion_is_its_program_shifted_by_the_phase(template, unit
     assert np.ptp(row.values) == pytest.approx(20.0 if unit == "mm" else np.ptp(expected[0]), abs=1e-9)
 
 
-def test_the_drum_is_a_disc_of_its_rim_and_its_follower_is_named_not_checked():
+def test_the_drum_is_a_disc_of_its_rim_and_its_follower_is_placed():
     design = _design(_machine("barrel.toml", 0.0))
     drum = next(b for b in design.bodies if b.name == "cams.drum")
     assert (drum.low, drum.high) == (2, 2)
@@ -71,8 +71,7 @@ def test_the_drum_is_a_disc_of_its_rim_and_its_follower_is_named_not_checked():
     radii = np.hypot(*(np.asarray(placed[1].coords) - (5.0, 15.0)).T)
     assert radii.max() == pytest.approx(33.0, abs=1e-9)           # the rim: pitch 30 + half the 6 mm groove
     assert radii.min() > 33.0 - 0.011                              # within the chords' 0.01 mm
-    assert design.unchecked == ("cams.drum's follower (it moves along the shaft (or swings across it), out of the "
-                                "frame's plane)",)
+    assert design.unchecked == ()                                  # its follower too (test_barrel_follower_clash)
     assert design.clashes == ()
 
 

@@ -470,22 +470,33 @@ def test_two_levers_on_one_layer_clash_at_the_angle_worked_in_closed_form():
     assert clash.clashes([levers[0], clash.Body("b", 1, 1, levers[1].outline, upright)], [], 720) == ()
 
 
-def test_the_automaton_has_no_clash_and_its_parts_meet_only_at_their_joints(automaton):
-    from camgen.kinds.machine import clash
+def _meets_only_at_its_joints(design, phi: np.ndarray) -> tuple:
+    """Assert that ``design`` has no clash and nothing unchecked, that every joint is a real one (its two parts
+    meet: overlap, or a roller touches its cam, to 0.02 mm, at every one of the angles ``phi``) and that on a common
+    plane they overlap only in its disc; then that, heights from the assembly, every part meets no other but inside
+    a joint's disc. The bodies and joints (with a top plate's spacers)."""
+    from camgen.kinds.machine import clash, frame
+    from tests.support.machine_meetings import assert_meet_only_at_joints, spans
 
-    assert automaton.clashes == () and automaton.unchecked == ()
-    bodies, joints, _ = clash.machine_parts(automaton)
-    names = {b.name for b in bodies}
-    assert {"cams.arm.arm", "linkages.arm-bars.coupler", "linkages.arm-bars.rocker", "shafts.camshaft"} <= names
-    phi = np.arange(720) * (2 * math.pi / 720)
-    # every joint is a real one: its two parts meet (overlap, or a roller touches its cam to 0.02 mm) at every one
-    # of the 720 angles, and on a common plane overlap only in its disc
+    assert design.clashes == () and design.unchecked == ()
+    bodies, joints, _ = clash.machine_parts(design, one_plate=design.spec.machine.frame == "one")
+    if design.spec.machine.frame == "two":
+        bodies, joints = frame.with_top_plate(bodies, joints)
     for joint in joints:
         a, b = (next(x for x in bodies if x.name == n) for n in (joint.a, joint.b))
         gap = shapely.distance(clash._shapes(a, phi), clash._shapes(b, phi))
         assert gap.max() <= 0.02, (joint.a, joint.b, gap.max())
         if a.low <= b.high and b.low <= a.high:                               # on a common plane
             assert not clash._overlap(a, b, joint, phi).any(), (joint.a, joint.b)
+    assert assert_meet_only_at_joints(bodies, joints, spans(design, bodies), phi) >= 3
+    return bodies, joints
+
+
+def test_the_automaton_has_no_clash_and_its_parts_meet_only_at_their_joints(automaton):
+    phi = np.arange(720) * (2 * math.pi / 720)
+    bodies, joints = _meets_only_at_its_joints(automaton, phi)
+    names = {b.name for b in bodies}
+    assert {"cams.arm.arm", "linkages.arm-bars.coupler", "linkages.arm-bars.rocker", "shafts.camshaft"} <= names
     # the crank pin where the coupler meets the arm is crank mm from the follower's pivot, on the arm
     coupler = next(j for j in joints if {j.a, j.b} == {"cams.arm.arm", "linkages.arm-bars.coupler"})
     arm = next(b for b in bodies if b.name == "cams.arm.arm")
@@ -493,6 +504,23 @@ def test_the_automaton_has_no_clash_and_its_parts_meet_only_at_their_joints(auto
     pin = coupler.centre(phi)
     along = np.einsum("nji,nj->ni", m, pin - pivot)                       # the pin in the arm's own frame
     assert np.allclose(along, [30.0, 0.0], atol=1e-9)
+
+
+#: every bundled machine: each template with [[shafts]]
+BUNDLED = [p.stem for p in sorted((ROOT / "templates").glob("*.toml")) if "shafts" in tomllib.loads(p.read_text())]
+
+
+def test_the_bundled_machines_are_found():
+    assert {"automaton", "keep-time", "pick-and-place", "walking-toy"} <= set(BUNDLED)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", BUNDLED)
+def test_every_bundled_machine_meets_no_part_but_at_its_joints(name):
+    """Each bundled machine (the automaton's check above, for all of them): every part placed by the kinematics at
+    720 angles meets no other except at its joints, every joint a real one, nothing unchecked."""
+    raw = tomllib.loads((ROOT / "templates" / f"{name}.toml").read_text())
+    _meets_only_at_its_joints(_design(raw), np.arange(720) * (2 * math.pi / 720))
 
 
 def test_a_clash_is_an_error_by_machine_clash_naming_both_parts(tmp_path):
