@@ -272,9 +272,10 @@ class Linkage:
             return wrapped                  # back on its branches after a turn: the end is the start, exactly
         return np.where((values >= t0) & (values <= t0 + TWO_PI), values, wrapped)
 
-    @property
+    @cached_property
     def base_signs(self) -> tuple[float, ...]:
-        """Each step's branch sign at the input value the branches are carried from (+1 for steps without one)."""
+        """Each step's branch sign at the input value the branches are carried from (+1 for steps without one),
+        found once (every fused or compiled solve asks for them)."""
         return _drawn_signs(self.structure, self.plan) if self.start is None else self.start[1]
 
     @property

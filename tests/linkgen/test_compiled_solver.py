@@ -109,8 +109,11 @@ def test_the_compiled_kernel_equals_the_numpy_kernels_on_random_six_bars(kind):
         _rates_agree(linkage, x[::10])
 
 
-@pytest.mark.parametrize("n", [1, compiled.BLOCK - 1, compiled.BLOCK, compiled.BLOCK + 1, 3 * compiled.BLOCK + 7])
+@pytest.mark.parametrize("n", [1, compiled.BLOCK - 1, compiled.BLOCK, compiled.BLOCK + 1, 3 * compiled.BLOCK + 7,
+                               2 * compiled.CHUNK - 1, 2 * compiled.CHUNK, 3 * compiled.CHUNK + 5])
 def test_threads_and_blocks_join_without_a_seam(n):
+    """On the calling thread or numba's (from two chunks of CHUNK poses on), with the blocks' edges anywhere: the
+    same bits."""
     linkage = _linkage("jansen")
     x = _inputs(linkage, n)[None, :]
     runs = [compiled.positions(linkage.compiled_program, x, list(linkage.base_signs), threads=k, speeds=np.ones(1))
@@ -190,3 +193,79 @@ def test_a_deltoid_whose_pins_meet_is_left_to_the_general_path():
     a, b = linkage.positions(t), linkage.positions(t, engine="numba")
     for name, xy in a.points.items():
         assert np.array_equal(b.points[name], xy), name
+
+
+def test_the_kernels_cosine_and_sine_are_within_an_ulp_of_50_digits():
+    """The kernel's own cosine and sine (vectorised; the C library's are not) against mpmath at 50 digits: random
+    angles on every scale up to the reduction's reach, exact multiples of pi / 4 (the quadrants' edges, where the
+    reduction cancels) and their neighbours; NaN for NaN and +-inf, as the C library's."""
+    import mpmath
+
+    from linkgen.kinematics.compiled_kernels import sincos
+
+    rng = np.random.default_rng(38)
+    edges = np.arange(-64, 65) * (math.pi / 4)
+    x = np.concatenate([rng.uniform(-r, r, 400) for r in (1.0, 10.0, 1e3, 1e6, compiled.TRIG_REACH)]
+                       + [edges, np.nextafter(edges, np.inf), np.nextafter(edges, -np.inf), [0.0, -0.0, 5e-324]])
+    with mpmath.workdps(50):
+        for v in x:
+            c, s = sincos(float(v))
+            assert abs(c - float(mpmath.cos(mpmath.mpf(float(v))))) <= 1.2e-16, v
+            assert abs(s - float(mpmath.sin(mpmath.mpf(float(v))))) <= 1.2e-16, v
+    for v in (math.nan, math.inf, -math.inf):
+        assert all(math.isnan(z) for z in sincos(v))
+
+
+def test_angles_past_the_reductions_reach_take_the_c_librarys_cosine():
+    """|crank angle - drawn| beyond TRIG_REACH (never on a crank's few turns, but given): the kernel falls back to
+    the C library, so the positions still equal the numpy kernels' (its tangent half-angle reduces exactly)."""
+    linkage = _linkage("jansen")
+    drawn = float(linkage.drawn_inputs[0])
+    x = drawn + np.array([1.0, compiled.TRIG_REACH * 0.999, compiled.TRIG_REACH * 1.5, -3e9, 1e12])
+    theirs = _numpy(linkage, x)
+    got = compiled.positions(linkage.compiled_program, x[None, :], list(linkage.base_signs))
+    assert (got.ok == theirs.ok).all()
+    for name, z in got.points.items():
+        ok = theirs.ok
+        assert np.all(np.abs(z[ok] - theirs.points[name][ok]) <= 1e-12), name
+
+
+def _limited_four_bar() -> tuple[Linkage, list[float]]:
+    """A four-bar whose crank cannot turn (O2 O4 = 100, crank 70, coupler sqrt(500), rocker sqrt(12800) mm): its
+    dyad folds (toggles) where |A - O4| = coupler +- rocker, and the crank angles there (rad) to 50 digits."""
+    import mpmath
+
+    linkage = Linkage.of(make_structure({"O2": (0.0, 0.0), "O4": (100.0, 0.0), "A": (0.0, 70.0),
+                                         "B": (20.0, 80.0)},
+                                        {"crank": ("O2", "A"), "coupler": ("A", "B"), "rocker": ("O4", "B")},
+                                        ("O2", "O4"), (), (Input("crank", "crank", "O2"),)))
+    with mpmath.workdps(50):
+        c, r = mpmath.sqrt(500), mpmath.sqrt(12800)
+        # |A - O4|^2 = 70^2 + 100^2 - 2 70 100 cos(theta), theta the crank's angle from +x
+        toggles = [float(mpmath.acos((4900 + 10000 - d * d) / 14000)) for d in (c + r, r - c)]
+    return linkage, toggles
+
+
+def test_at_and_within_1e_12_of_a_toggle_both_engines_agree_with_50_digits():
+    """Crank angles at a toggle (rounded to a double) and 1e-13 to 1e-12 rad either side: every pose in reach
+    (within the margin's allowance; the inner toggle's are just past it), no NaN, both engines' joints where 50
+    digits put them within the toggle's own conditioning (a rounding delta of the squared area, at most about
+    32 eps (r1 + r2)^2 dd, moves the joint by sqrt(delta) / (2 |d|): sqrt(32 eps) (r1 + r2) / 2, 5.7e-6 mm; they
+    are off by about 6e-7) and from each other (their rounding differs: up to about 1e-8 apart); well past it
+    (0.01 rad) out of reach on one side only, on both engines."""
+    linkage, toggles = _limited_four_bar()
+    signs = list(linkage.base_signs)
+    bound = math.sqrt(32 * np.finfo(float).eps) * (math.sqrt(500) + math.sqrt(12800)) / 2
+    for toggle in toggles:
+        t = toggle + np.concatenate([np.arange(-10, 11) * 1e-13, [-1e-12, 1e-12]])
+        theirs = _numpy(linkage, t)
+        got = compiled.positions(linkage.compiled_program, t[None, :], signs)
+        assert got.ok.all() and theirs.ok.all()
+        ref = reference(linkage, t)["B"]
+        for z in (got.points["B"], theirs.points["B"]):
+            assert not np.isnan(z).any()
+            assert np.all(np.hypot(z.real - ref[:, 0], z.imag - ref[:, 1]) <= bound)
+        assert np.all(np.abs(got.points["B"] - theirs.points["B"]) <= bound)
+        far = np.array([toggle - 0.01, toggle + 0.01])
+        reach = compiled.positions(linkage.compiled_program, far[None, :], signs).ok
+        assert reach.tolist() == _numpy(linkage, far).ok.tolist() and reach.sum() == 1
