@@ -59,11 +59,12 @@ def follower(name: str, cam_design: Any, plane: int, centre: np.ndarray) -> tupl
     g = BarrelGeometry.of(spec.cam, spec.follower, spec.motion)
     floor, _, rim = (float(r) for r in cam_design.radii)
     r, out = float(g.roller_radius), rim + CARRIER_MM
-    if g.oscillating:
+    if g.arm_length is not None and g.pivot_distance is not None:      # an arm
         psi = np.radians(np.linspace(-g.swing / 2, g.swing / 2, 721))
-        y = float(g.pivot_distance) - float(g.arm_length) * np.cos(psi)
+        pivot = float(g.pivot_distance)
+        y = pivot - float(g.arm_length) * np.cos(psi)
         lo, hi = float(y.min()), float(y.max())
-        arm = box(rim, min(lo, float(g.pivot_distance)) - r, out, max(hi, float(g.pivot_distance)) + r)
+        arm = box(rim, min(lo, pivot) - r, out, max(hi, pivot) + r)
     else:
         lo = hi = 0.0
         arm = None

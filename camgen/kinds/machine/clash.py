@@ -226,9 +226,9 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                                             float(cam.design.tolerance)))
             shafts.setdefault(mount.shaft, []).append((2 * mount.layer, bore))
             joints.append(Joint(f"cams.{cam.name}", f"shafts.{mount.shaft}", still(at_shaft), _margin(bore)))
-            carried, met = barrel_parts.follower(cam.name, cam.design, 2 * mount.layer, at_shaft)
+            carried, grooved = barrel_parts.follower(cam.name, cam.design, 2 * mount.layer, at_shaft)
             bodies.append(carried)                          # its plan over the turn, as high as the drum
-            joints.append(met)
+            joints.append(grooved)
             continue
         if part is None:
             skipped.append(f"cams.{cam.name}")
@@ -263,9 +263,9 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             _stem(d, cam, kin, f, 2 * mount.layer, centre, theta, tol, bodies, joints)
             continue
         if isinstance(f, OscillatingFlat):                  # its arm along the face, on a pin at its pivot
-            made_arm, met, at_pivot = flat_arm(cam.name, cam.design, kin, 2 * mount.layer, centre, theta, tol)
+            made_arm, riding, at_pivot = flat_arm(cam.name, cam.design, kin, 2 * mount.layer, centre, theta, tol)
             bodies.append(made_arm)
-            joints.append(met)
+            joints.append(riding)
             faced.append((made_arm.name, at_pivot))
             continue
         if not isinstance(f, OscillatingRoller):
@@ -379,11 +379,11 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
             joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),
                                 _margin(max(p.half_width for p in m.design.build.parts))))
-    for held, pivot in (*((f"cams.{name}.arm", arm[1]) for name, arm in arms.items()), *faced):
+    for holder, pivot in (*((f"cams.{name}.arm", arm[1]) for name, arm in arms.items()), *faced):
         key = next((k for k in pins if math.dist(k, pivot) < 1e-9), (float(pivot[0]), float(pivot[1])))
         entry = pins.setdefault(key, ([], 0, PIVOT_PIN_MM / 2))
-        if held not in entry[0]:
-            entry[0].append(held)
+        if holder not in entry[0]:
+            entry[0].append(holder)
     for name, (f, pivot, _, _) in arms.items():               # the arm's holes: its pivot's, axle's, crank pin's
         pin_d = 2 * next(r for k, (_, _, r) in pins.items() if math.dist(k, pivot) < 1e-9)
         holes = arm_holes(float(f.arm_length), pin_d, tuple(crank_pins.get(name, ())))

@@ -44,9 +44,10 @@ def test_the_followers_plan_is_still_where_the_rules_put_it(template, bounds):
         assert shape.bounds == pytest.approx(tuple(np.array(bounds) + np.tile(SHAFT, 2)), abs=1e-9)
     if template == "barrel-oscillating.toml":
         top = 79.4 - 80.0 * math.cos(math.radians(10.0)) + 5.0       # the roller's strip, from the floor to the rim
-        probe = shapely.box(*(SHAFT + (36.5, top + 0.01)), *(SHAFT + (43.5, top + 1.0)))
+        x0, y0 = SHAFT
+        probe = shapely.box(x0 + 36.5, y0 + top + 0.01, x0 + 43.5, y0 + top + 1.0)
         assert not shapes[0].intersects(probe)
-        assert shapes[0].contains(shapely.box(*(SHAFT + (36.5, top - 0.5)), *(SHAFT + (43.5, top - 0.01))))
+        assert shapes[0].contains(shapely.box(x0 + 36.5, y0 + top - 0.5, x0 + 43.5, y0 + top - 0.01))
 
 
 def _crossed() -> tuple[dict, float]:
@@ -58,9 +59,10 @@ def _crossed() -> tuple[dict, float]:
     reaches a corner of the follower at polar angle beta and distance d from the driver's axis when the crank points
     at beta + asin(7 / d); the least such phi over the corners within the crank's straight side."""
     raw = tomllib.loads(_machine("barrel.toml", 0.0))
-    driver = SHAFT + (98.0, 0.0)
+    driver = SHAFT + np.array([98.0, 0.0])
     raw["machine"]["frame"] = "none"
-    raw["shafts"] += [{"name": "driver", "at": list(driver)}, {"name": "wheel", "at": list(driver + (80.0, 0.0))}]
+    wheel = driver + np.array([80.0, 0.0])
+    raw["shafts"] += [{"name": "driver", "at": list(driver)}, {"name": "wheel", "at": list(wheel)}]
     raw["gears"] = [{"driver": "camshaft", "driven": "driver", "driver_teeth": 49, "driven_teeth": 49,
                      "module": 2.0}]
     raw["genevas"] = [{"name": "index", "driver": "driver", "wheel": "wheel", "phase": 0.0, "layer": 1,

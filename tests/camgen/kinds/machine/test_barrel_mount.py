@@ -1,7 +1,7 @@
 """A barrel cam mounted on a machine's shaft (issue 35): its follower's motion in the outputs (mm along the shaft, or
 degrees of an arm's swing) equal to its program shifted by its phase; its drum a disc of its rim's radius in the
-clash check, its follower placed there (see test_barrel_follower_clash); a coupling from it refused in one line; its files
-among the machine's, the drum as long as it is in the assembly."""
+clash check, its follower placed there (see test_barrel_follower_clash); a coupling from it refused in one line; its
+files among the machine's, the drum as long as it is in the assembly."""
 from __future__ import annotations
 
 import json
