@@ -14,7 +14,8 @@ joint at ``p1 + d (along + i height)`` from its pins' frame (``d = p2 - p1``, he
 triangle's squared area ``((r1 + r2)^2 - dd)(dd - (r1 - r2)^2)``); each body's drawn point ``x`` at
 ``P + a f (x - pd)``; with rates each dyad's 2x2 closure in closed form, as there. So its results equal the numpy
 kernels' to rounding (about 1e-13 mm on the bundled legs, rates to about 1e-14 relative; the crank's cosine and sine
-within 1.2e-16 of 50 digits). A deltoid whose equal-radius pins meet raises :class:`~linkgen.kinematics.fused.Folded`, as there.
+within 1.2e-16 of 50 digits). A deltoid whose equal-radius pins meet raises
+:class:`~linkgen.kinematics.fused.Folded`, as there.
 """
 from __future__ import annotations
 
@@ -121,7 +122,7 @@ def positions(enc: Encoded, x: np.ndarray, signs: list[np.ndarray] | list[float]
     if any(np.ndim(g) for g in signs):
         table = np.empty((len(signs), n))
         for row, g in enumerate(signs):
-            table[row] = g
+            table[row] = np.asarray(g, dtype=float)
     else:
         table = np.array(signs, dtype=float).reshape(len(signs), 1)
     shape = (len(enc.names), n)
