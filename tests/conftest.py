@@ -73,3 +73,13 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     """Run the tests marked ``slow`` first, the rest in their collected order: with ``-n auto`` the workers take
     the longest checks while many short ones remain, so both end at about the same time."""
     items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+
+
+@pytest.fixture(scope="session")
+def plain_install(tmp_path_factory: pytest.TempPathFactory):
+    """A plain install of the checkout with every bundled example run in it (:mod:`tests.support.plain_install`),
+    made once a run for the checks of the xdist group ``plain-install``; read it, never write into it."""
+    from tests.support.plain_install import example_runs
+
+    return example_runs(tmp_path_factory.mktemp("plain-install"))
+
