@@ -73,3 +73,39 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
     """Run the tests marked ``slow`` first, the rest in their collected order: with ``-n auto`` the workers take
     the longest checks while many short ones remain, so both end at about the same time."""
     items.sort(key=lambda item: item.get_closest_marker("slow") is None)
+
+
+@pytest.fixture(scope="session")
+def plain_install(tmp_path_factory: pytest.TempPathFactory):
+    """A plain install of the checkout with every bundled example run in it (:mod:`tests.support.plain_install`),
+    made once a run for the checks of the xdist group ``plain-install``; read it, never write into it."""
+    from tests.support.plain_install import example_runs
+
+    return example_runs(tmp_path_factory.mktemp("plain-install"))
+
+
+#: the xdist group of the checks that read the quick benches' one run
+BENCHES = "quick-benches"
+
+
+@pytest.fixture(scope="session")
+def quick_benches(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """``camgen bench --quick`` and ``linkgen bench --quick`` run once a run by the installed console scripts, from
+    a folder outside the checkout (the linkage atlas cached there, not in the user's cache): {"camgen": its output
+    folder, "linkgen": its}. For the checks of the xdist group :data:`BENCHES`; read them, never write into them."""
+    import shutil
+    import subprocess
+    import sys
+
+    folder = tmp_path_factory.mktemp("quick-benches")
+    assert not folder.is_relative_to(ROOT)
+    out = {"camgen": folder / "camgen", "linkgen": folder / "linkgen"}
+    env = {**os.environ, "XDG_CACHE_HOME": str(folder / "cache")}
+    env.pop("PYTHONPATH", None)
+    for program, target in out.items():
+        script = shutil.which(program, path=str(Path(sys.executable).parent)) or shutil.which(program)
+        assert script, f"the {program} console script is not installed: pip install '.[test]'"
+        result = subprocess.run([script, "bench", "--quick", "-o", str(target)], cwd=folder, env=env,
+                                capture_output=True, text=True, timeout=1200)
+        assert result.returncode == 0, f"{program} bench --quick: exit {result.returncode}\n{result.stderr}"
+    return out

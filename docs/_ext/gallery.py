@@ -5,7 +5,9 @@ that runs it, into ``<html output>/gallery-files/<name>/`` (two processes at a t
 the cut drawing, the page, and for a cam its S-V-A-J figure as SVG), and writes for each: its one-line summary,
 its figure and cut drawing, links to its interactive page and to its template, and the template's source.
 A template that fails to build fails the docs build. ``CAMGEN_DOCS_GALLERY=0`` leaves the gallery out (a quick
-build while writing pages).
+build while writing pages); ``CAMGEN_DOCS_GALLERY_BUILT=FOLDER`` takes each template's files from ``FOLDER/<name>``,
+built already with :func:`arguments` (the test suite builds them once for its plain-install check), instead of
+building them again.
 """
 from __future__ import annotations
 
@@ -127,6 +129,32 @@ def on_screen(drawing: Path) -> Path:
     return screen
 
 
+def _built(bundled: dict[str, Any], root: Path) -> list[str]:
+    """Build every example into ``root/<name>``, two processes at a time; what failed, one line each."""
+    jobs = [(e.name, str(e.path), e.program, e.command, str(root / e.name)) for e in bundled.values()]
+    jobs.sort(key=lambda job: job[3] != "synthesize")                 # the slowest first
+    workers = max(1, min(2, os.cpu_count() or 1))
+    context = multiprocessing.get_context("spawn")
+    failed = []
+    with concurrent.futures.ProcessPoolExecutor(workers, mp_context=context) as pool:
+        for name, code, output in pool.map(build, *zip(*jobs, strict=True)):
+            if code != 0:
+                failed.append(f"{name}: {output.strip()}")
+    return failed
+
+
+def _copied(bundled: dict[str, Any], built: Path, root: Path) -> list[str]:
+    """Copy each example's files built already (``built/<name>``) into ``root/<name>``; the examples without."""
+    failed = []
+    for name in bundled:
+        if not (built / name).is_dir():
+            failed.append(f"{name}: no folder {built / name} (CAMGEN_DOCS_GALLERY_BUILT)")
+            continue
+        shutil.rmtree(root / name, ignore_errors=True)
+        shutil.copytree(built / name, root / name)
+    return failed
+
+
 class Gallery(SphinxDirective):
     """``{gallery}``: every bundled template, built, grouped by kind."""
 
@@ -138,15 +166,8 @@ class Gallery(SphinxDirective):
         bundled = examples()
         root = Path(self.env.app.outdir) / FILES
         root.mkdir(parents=True, exist_ok=True)
-        failed = []
-        jobs = [(e.name, str(e.path), e.program, e.command, str(root / e.name)) for e in bundled.values()]
-        jobs.sort(key=lambda job: job[3] != "synthesize")             # the slowest first
-        workers = max(1, min(2, os.cpu_count() or 1))
-        context = multiprocessing.get_context("spawn")
-        with concurrent.futures.ProcessPoolExecutor(workers, mp_context=context) as pool:
-            for name, code, output in pool.map(build, *zip(*jobs, strict=True)):
-                if code != 0:
-                    failed.append(f"{name}: {output.strip()}")
+        built = os.environ.get("CAMGEN_DOCS_GALLERY_BUILT")
+        failed = _copied(bundled, Path(built), root) if built else _built(bundled, root)
         if failed:
             raise self.error("the gallery's builds failed:\n" + "\n".join(failed))
         kinds = {e.name: kind_of(e.path, e.command) for e in bundled.values()}

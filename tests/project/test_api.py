@@ -5,7 +5,6 @@ import ast
 import importlib
 import importlib.util
 import json
-import os
 import subprocess
 import sys
 import tomllib
@@ -251,46 +250,6 @@ def test_write_refuses_a_format_the_kind_does_not_write_and_writes_nothing(tmp_p
                      formats="dxf")
     assert not (tmp_path / "out").exists()
 
-
-#: a script using the API as the issue writes it, which the type checker must pass and type
-SCRIPT = '''\
-import camgen
-import linkgen
-
-spec = camgen.CamSpec.from_toml("rdrd.toml").with_changes({"motion.0.lift": 25})
-design = camgen.design(spec)
-reveal_type(design)
-written = camgen.write(design, "out", formats=["dxf", "stl"])
-reveal_type(written.files)
-linkage = linkgen.design(linkgen.LinkageSpec.from_toml("crank-rocker.toml"), angle=30, parts=True)
-reveal_type(linkage)
-reveal_type(linkgen.write(linkage, "out").report)
-try:
-    camgen.load("geneva4.toml")
-except linkgen.SpecError as error:
-    reveal_type(error)
-'''
-
-
-@pytest.mark.slow
-@pytest.mark.skipif(importlib.util.find_spec("mypy") is None, reason="mypy is not installed: pip install '.[test]'")
-def test_mypy_passes_a_script_of_the_api_and_types_its_designs(tmp_path):
-    """mypy, with the project's settings, over a script that uses the API (and one that misspells a name): the
-    script has no error and its designs have their types, not Any; the misspelt name is an error, not Any. (The
-    files are matched by name: mypy's cache may report them under the folder of the run that first saw them.)"""
-    (tmp_path / "script.py").write_text(SCRIPT)
-    (tmp_path / "typo.py").write_text("import camgen\n\ncamgen.desing\n")
-    result = subprocess.run([sys.executable, "-m", "mypy", "--follow-imports=silent", str(tmp_path / "script.py"),
-                             str(tmp_path / "typo.py")],
-                            cwd=ROOT, capture_output=True, text=True, env={**os.environ, "MYPYPATH": str(ROOT)})
-    found = {name: [line.split(": ", 1)[1].replace("builtins.", "") for line in result.stdout.splitlines()
-                    if Path(line.split(":", 1)[0]).name == name] for name in ("script.py", "typo.py")}
-    assert found == {"script.py": ['note: Revealed type is "camgen.api.Design"',
-                                   'note: Revealed type is "dict[str, pathlib.Path]"',
-                                   'note: Revealed type is "linkgen.linkage_design.LinkageDesign"',
-                                   'note: Revealed type is "dict[str, Any]"',
-                                   'note: Revealed type is "camgen.core.errors.SpecError"'],
-                     "typo.py": ['error: Module has no attribute "desing"  [attr-defined]']}, result.stdout
 
 
 def test_each_cam_kind_s_spec_is_named_as_its_table():

@@ -1,22 +1,19 @@
-"""``camgen bench --quick`` and ``linkgen bench --quick``: every figure is produced, every error is below its
-tolerance, peers are reported."""
+"""``camgen bench --quick`` and ``linkgen bench --quick`` (run once a run, by the installed scripts: the
+``quick_benches`` fixture): every figure is produced, every error is below its tolerance, peers are reported."""
 from __future__ import annotations
 
 import json
 
 import pytest
-from click.testing import CliRunner
-
-from camgen.cli import main
-from linkgen.cli import main as linkgen
+from tests.conftest import BENCHES
 
 
 @pytest.mark.slow
-def test_quick_bench_produces_every_figure(tmp_path):
-    result = CliRunner().invoke(main, ["bench", "--quick", "-o", str(tmp_path)])
-    assert result.exit_code == 0, result.output
-    assert {p.name for p in tmp_path.iterdir()} == {"RESULTS.md", "results.json", "speed-vs-error.png"}
-    r = json.loads((tmp_path / "results.json").read_text())
+@pytest.mark.xdist_group(BENCHES)
+def test_quick_bench_produces_every_figure(quick_benches):
+    folder = quick_benches["camgen"]
+    assert {p.name for p in folder.iterdir()} == {"RESULTS.md", "results.json", "speed-vs-error.png"}
+    r = json.loads((folder / "results.json").read_text())
     ours = [row for row in r["outlines"] if row["method"].startswith("camgen")]
     assert len(ours) == 4 * 2 * 3                          # four standard cams, two modes, three tolerances
     assert all(0 < row["max_error_mm"] <= row["tolerance_mm"] and row["seconds"] > 0 for row in ours)
@@ -26,7 +23,7 @@ def test_quick_bench_produces_every_figure(tmp_path):
     assert [row["cams_per_second"] > 0 and row["cpu_seconds"] > 0 for row in r["throughput"][:2]] == [True, True]
     assert r["peak_memory_mb"] > 0
     assert r["hard_cases"] and not [c for c in r["hard_cases"] if c["outcome"].startswith("WRONG")]
-    text = (tmp_path / "RESULTS.md").read_text()
+    text = (folder / "RESULTS.md").read_text()
     assert "## Hard cases" in text and "## Throughput" in text and "CPU seconds (workers included)" in text
     _speed_rows(r, text, {"design_cam: checks and outline (in-process)", "camgen build, every default output",
                           "camgen build --figures (the defaults and the PNG and SVG figures)",
@@ -46,12 +43,11 @@ def _speed_rows(r: dict, text: str, whats: set[str]) -> None:
 
 
 @pytest.mark.slow
-def test_quick_linkgen_bench(tmp_path, tmp_path_factory, monkeypatch):
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))     # the atlas: not the user's
-    result = CliRunner().invoke(linkgen, ["bench", "--quick", "-o", str(tmp_path)])
-    assert result.exit_code == 0, result.output
-    assert {p.name for p in tmp_path.iterdir()} == {"RESULTS.md", "results.json"}
-    r = json.loads((tmp_path / "results.json").read_text())
+@pytest.mark.xdist_group(BENCHES)
+def test_quick_linkgen_bench(quick_benches):
+    folder = quick_benches["linkgen"]
+    assert {p.name for p in folder.iterdir()} == {"RESULTS.md", "results.json"}
+    r = json.loads((folder / "results.json").read_text())
     methods = {row["method"] for row in r["linkages"]}
     assert any(m.startswith("pylinkage") for m in methods)                              # measured, or said missing
     assert all(row.get("status") for row in r["linkages"] if row["seconds"] is None)   # never skipped silently
@@ -64,13 +60,13 @@ def test_quick_linkgen_bench(tmp_path, tmp_path_factory, monkeypatch):
     peer = [row for (name, _), row in general.items() if name == "jansen" and "pylinkage" in row["method"]]
     assert peer and (peer[0].get("status") or peer[0]["max_error_mm"] < 1e-6)
     # synthesis: each published problem solved, our error not worse than plain differential evolution's
-    assert len(r["synthesis"]) == 4 and "## Synthesis" in (tmp_path / "RESULTS.md").read_text()
+    assert len(r["synthesis"]) == 4 and "## Synthesis" in (folder / "RESULTS.md").read_text()
     # the published problems: each paper's linkage scored beside ours, ours no worse (re-checked independently in
     # tests/synthesis/test_synthesis_published.py)
     assert [row["key"] for row in r["published"]] == ["mkh1"]                 # quick: the one that builds the atlas
     assert all(0 < row["ours_error"] <= row["published_error"] for row in r["published"])
-    assert "## Published path problems" in (tmp_path / "RESULTS.md").read_text()
-    _speed_rows(r, (tmp_path / "RESULTS.md").read_text(), {
+    assert "## Published path problems" in (folder / "RESULTS.md").read_text()
+    _speed_rows(r, (folder / "RESULTS.md").read_text(), {
         "four-bar positions, 100 000 crank angles", "kinetostatics of Jansen's leg, 3 600 crank angles",
         "forward dynamics of Jansen's leg, 10 turns from rest",
         "linkgen build crank-rocker, every default output"})                  # quick: the other commands left out

@@ -19,6 +19,7 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import ROOT
+from tests.support.plain_install import GROUP
 
 DOCS = ROOT / "docs"
 TUTORIALS = sorted(p for p in (DOCS / "tutorials").glob("*.md") if p.name != "index.md")
@@ -254,13 +255,16 @@ def _every_model() -> list[type]:
 
 
 @pytest.mark.slow
-def test_the_docs_build_with_warnings_as_errors(tmp_path):
+@pytest.mark.xdist_group(GROUP)
+def test_the_docs_build_with_warnings_as_errors(tmp_path, plain_install):
     """The site as CI builds it (warnings are errors, nothing fetched; one build, as it takes minutes), then its
-    generated pages checked against the code."""
+    generated pages checked against the code. Its gallery is the examples as the plain-install check ran them
+    (built once a run, with the gallery's own command lines: :mod:`tests.support.plain_install`)."""
     site = tmp_path / "site"
     result = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-E", "-q", "-b", "html",
                              str(DOCS), str(site)], capture_output=True, text=True, timeout=1200,
-                            env={**os.environ, "PYTHONPATH": str(ROOT)})
+                            env={**os.environ, "PYTHONPATH": str(ROOT),
+                                 "CAMGEN_DOCS_GALLERY_BUILT": str(plain_install.gallery)})
     assert result.returncode == 0, result.stderr[-6000:]
     template_reference_lists_every_key_with_its_unit_and_range(site)
     cli_reference_lists_every_command_and_option(site)

@@ -19,8 +19,9 @@ from camgen.starters import starters as cam_starters
 from linkgen.cli import main as linkgen
 from linkgen.starters import STARTERS as LINKAGE_STARTERS
 from tests.conftest import ROOT
+from tests.support.plain_install import GROUP
 
-#: runs command lines in forked processes of the venv's interpreter
+#: runs command lines in forked processes of an interpreter
 FORKED = ROOT / "tests" / "support" / "forked_commands.py"
 TEMPLATES = sorted((ROOT / "templates").glob("*.toml"))
 
@@ -120,48 +121,35 @@ def test_new_refuses_another_programs_example_and_an_unknown_name_in_one_line(tm
     assert list(tmp_path.iterdir()) == []
 
 
-def _venv_with_camgen(folder: Path) -> Path:
-    """A fresh venv (the machine's packages visible to it, for the dependencies) with camgen installed into it by a
-    plain, non-editable `pip install .` of the checkout; its bin folder."""
-    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(folder)], check=True)
-    python = folder / "bin" / "python"
-    subprocess.run([str(python), "-m", "pip", "install", "-q", str(ROOT)], check=True, capture_output=True,
-                   timeout=900)
-    return folder / "bin"
-
-
 @pytest.mark.slow
-def test_every_example_runs_by_name_after_a_plain_install(tmp_path):
-    bin_folder = _venv_with_camgen(tmp_path / "venv")
-    work = tmp_path / "work"
-    work.mkdir()
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME")}
-    env["PATH"] = f"{bin_folder}{os.pathsep}{env['PATH']}"
+@pytest.mark.xdist_group(GROUP)
+def test_every_example_runs_by_name_after_a_plain_install(plain_install):
+    """Every bundled example, copied by name (``new NAME``) and run with its documented command line (the options
+    the docs' gallery adds: the formats it shows) by the console scripts of a plain install, from a folder outside
+    the checkout; and a starter built with every file."""
+    runs = plain_install
 
     def run(*args: str) -> str:
-        result = subprocess.run(args, cwd=work, env=env, capture_output=True, text=True, timeout=900)
+        result = subprocess.run(args, cwd=runs.work, env=runs.env, capture_output=True, text=True, timeout=900)
         assert result.returncode == 0, f"{' '.join(args)}:\n{result.stdout}\n{result.stderr}"
         return result.stdout
 
-    where = run(str(bin_folder / "python"), "-c", "import camgen, camgen.examples; print(camgen.__file__)")
-    assert Path(where.strip()).is_relative_to(tmp_path / "venv"), where
+    where = run(str(runs.bin / "python"), "-c", "import camgen, camgen.examples; print(camgen.__file__)")
+    assert Path(where.strip()).is_relative_to(runs.bin.parent), where
+    examples = list(bundled.examples().values())
+    assert [r["line"].split()[:3] for r in runs.copies] == [[e.program, "new", e.name] for e in examples]
+    failed = [f"{r['line']}: exit {r['code']}\n{r['output']}" for r in runs.copies + runs.runs if r["code"] != 0]
+    assert not failed, "\n".join(failed)
+    # each run line is the example's own (program, command, its copy), and wrote its folder
+    for example, record in zip(examples, runs.runs, strict=True):
+        program, command, template = record["line"].split()[:3]
+        assert (program, command) == (example.program, example.command), record["line"]
+        assert template in (str(runs.work / example.name / f"{example.name}.toml"),
+                            str(runs.gallery / f"{example.name}.gallery.toml")), record["line"]
+        assert any((runs.gallery / example.name).iterdir()), record["line"]
     run("linkgen", "new", "jansen", "-o", "j.toml")
     run("linkgen", "build", "j.toml")
-    assert (work / "out" / "j" / "j-sheet.dxf").is_file()
-    starters = {"camgen": set(cam_starters()), "linkgen": set(LINKAGE_STARTERS)}
-    lines = []
-    for example in bundled.examples().values():
-        name = f"x-{example.name}.toml"
-        flag = ["--example"] if example.name in starters[example.program] else []
-        lines += [" ".join([example.program, "new", example.name, *flag, "-o", name]), example.run_line(name)]
-    # each line in a process of its own, forked from one that has imported the dependencies (not camgen)
-    driver = subprocess.run([str(bin_folder / "python"), str(FORKED), str(tmp_path / "runs.json")],
-                            input="\n".join(lines), cwd=work, env=env, capture_output=True, text=True, timeout=1800)
-    assert driver.returncode == 0, driver.stderr
-    records = json.loads((tmp_path / "runs.json").read_text())
-    assert [r["line"] for r in records] == lines
-    failed = [f"{r['line']}: exit {r['code']}\n{r['output']}" for r in records if r["code"] != 0]
-    assert not failed, "\n".join(failed)
+    assert (runs.work / "out" / "j" / "j-sheet.dxf").is_file()
     listed = run("camgen", "examples").splitlines() + run("linkgen", "examples").splitlines()
     assert len(listed) == len(TEMPLATES)
 

@@ -82,3 +82,27 @@ def test_a_fingerprint_reads_a_polylines_arcs():
     assert math.isclose(_polyline_length(points, True), 10.0 * math.pi, rel_tol=1e-12)
     square = [(0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (2.0, 2.0, 0.0), (0.0, 2.0, 0.0)]
     assert _polyline_area(square, True) == 4.0 and _polyline_length(square, True) == 8.0
+
+
+def test_a_fingerprint_bounds_a_polylines_arcs_exactly():
+    """The bounds of a polyline with arcs are the arcs' own, not a flattening's: the two half circles above are a
+    circle of radius 5 round (5, 0); a slot of two half circles either way; a quarter arc clockwise (bulge
+    -tan(pi/8)) from (0, 5) to (5, 0) round the origin reaches no further than its ends; the same quarter
+    counter-clockwise is the other three quarters of the circle. Each against a dense sampling of the exact arc."""
+    from tests.support.golden import _polyline_bounds
+
+    def sampled(x0, y0, x1, y1, cx, cy, sweep):
+        start, radius = math.atan2(y0 - cy, x0 - cx), math.hypot(x0 - cx, y0 - cy)
+        t = [start + sweep * k / 200_000 for k in range(200_001)]
+        xs, ys = [cx + radius * math.cos(a) for a in t], [cy + radius * math.sin(a) for a in t]
+        return [min(xs), min(ys), max(xs), max(ys)]
+
+    assert _polyline_bounds([(0.0, 0.0, 1.0), (10.0, 0.0, 1.0)], True) == pytest.approx([0, -5, 10, 5], abs=1e-12)
+    slot = [(0.0, 0.0, 0.0), (20.0, 0.0, 1.0), (20.0, 8.0, 0.0), (0.0, 8.0, 1.0)]
+    assert _polyline_bounds(slot, True) == pytest.approx([-4, 0, 24, 8], abs=1e-12)
+    b = math.tan(math.pi / 8)
+    cw = _polyline_bounds([(0.0, 5.0, -b), (5.0, 0.0, 0.0)], False)
+    assert cw == pytest.approx(sampled(0, 5, 5, 0, 0, 0, -math.pi / 2), abs=1e-9) and cw == pytest.approx([0, 0, 5, 5])
+    ccw = _polyline_bounds([(0.0, 5.0, 1.0 / b), (5.0, 0.0, 0.0)], False)
+    assert ccw == pytest.approx(sampled(0, 5, 5, 0, 0, 0, 1.5 * math.pi), abs=1e-9)
+    assert ccw == pytest.approx([-5, -5, 5, 5], abs=1e-12)

@@ -13,6 +13,7 @@ import re
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 from typing import get_args
 
 import pytest
@@ -52,12 +53,31 @@ def _findings(result: subprocess.CompletedProcess) -> list[tuple[str, str]]:
     return found
 
 
-@pytest.mark.slow                                     # about 80 s of mypy over both packages
-@needs_mypy
-def test_mypy_finds_no_errors():
-    result = _mypy(ROOT, "camgen", "linkgen")
-    new = _findings(result)
-    assert not new, f"mypy finds {len(new)} errors; fix them:\n{result.stdout}"
+#: a script using the API as the issue writes it, which the type checker must pass and type
+SCRIPT = '''\
+import camgen
+import linkgen
+
+spec = camgen.CamSpec.from_toml("rdrd.toml").with_changes({"motion.0.lift": 25})
+design = camgen.design(spec)
+reveal_type(design)
+written = camgen.write(design, "out", formats=["dxf", "stl"])
+reveal_type(written.files)
+linkage = linkgen.design(linkgen.LinkageSpec.from_toml("crank-rocker.toml"), angle=30, parts=True)
+reveal_type(linkage)
+reveal_type(linkgen.write(linkage, "out").report)
+try:
+    camgen.load("geneva4.toml")
+except linkgen.SpecError as error:
+    reveal_type(error)
+'''
+#: what mypy says of that script, and of a file that misspells a name (an error, not Any)
+REVEALED = {"script.py": ['note: Revealed type is "camgen.api.Design"',
+                          'note: Revealed type is "dict[str, pathlib.Path]"',
+                          'note: Revealed type is "linkgen.linkage_design.LinkageDesign"',
+                          'note: Revealed type is "dict[str, Any]"',
+                          'note: Revealed type is "camgen.core.errors.SpecError"'],
+            "typo.py": ['error: Module has no attribute "desing"  [attr-defined]']}
 
 
 #: a module that breaks each setting once: its lines, and the (line, code) findings mypy must give, no others
@@ -78,11 +98,31 @@ BAD = ["from typing import override",                  # 1: new in Python 3.12; 
 FINDINGS = {(1, "attr-defined"), (9, "pydantic-field"), (12, "arg-type"), (14, "unused-ignore")}
 
 
+@pytest.mark.slow                                     # about 40-80 s of mypy over both packages and the scripts
 @needs_mypy
-def test_mypy_applies_the_projects_settings(tmp_path):
-    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
-    (tmp_path / "bad.py").write_text("\n".join(BAD) + "\n", encoding="utf-8")
-    result = _mypy(tmp_path, "--cache-dir", str(tmp_path / "cache"), "bad.py")
+def test_mypy_finds_no_errors_types_the_api_and_applies_the_settings(tmp_path):
+    """One analysis of both packages (mypy's cache, then shared by the two runs, in the checkout's ``.mypy_cache``):
+
+    - over camgen, linkgen and two scripts: the packages have no error; the script that uses the API has none and its
+      designs have their types, not Any; the misspelt name is an error. (The scripts are matched by file name: mypy's
+      cache may report them under the folder of the run that first saw them.)
+    - over a file written to break each setting once, under a copy of pyproject.toml: exactly those findings, so
+      that no errors means the project's settings were read and applied.
+    """
+    (tmp_path / "script.py").write_text(SCRIPT)
+    (tmp_path / "typo.py").write_text("import camgen\n\ncamgen.desing\n")
+    result = _mypy(ROOT, "camgen", "linkgen", str(tmp_path / "script.py"), str(tmp_path / "typo.py"))
+    scripts = {name: [line.split(": ", 1)[1].replace("builtins.", "") for line in result.stdout.splitlines()
+                      if Path(line.split(":", 1)[0]).name == name] for name in REVEALED}
+    assert scripts == REVEALED, result.stdout
+    new = [finding for finding in _findings(result) if Path(finding[0]).name not in REVEALED]
+    assert not new, f"mypy finds {len(new)} errors; fix them:\n{result.stdout}"
+
+    settings = tmp_path / "settings"
+    settings.mkdir()
+    shutil.copy(ROOT / "pyproject.toml", settings / "pyproject.toml")
+    (settings / "bad.py").write_text("\n".join(BAD) + "\n", encoding="utf-8")
+    result = _mypy(settings, "--cache-dir", str(ROOT / ".mypy_cache"), "bad.py")
     found = {(int(m[1]), m[2]) for m in re.finditer(r"^bad\.py:(\d+): error: .*\[([a-z-]+)\]$", result.stdout, re.M)}
     assert _count(result) == len(FINDINGS) and found == FINDINGS, result.stdout + result.stderr
 

@@ -9,7 +9,8 @@ forks one child per line. The child loads PROGRAM's entry point from the environ
 package's own modules are imported afresh in every child, as in a new process) and calls it with the line's
 arguments, its standard output and error going to a file of its own. The lines run one after the other, in order.
 
-RESULTS.json gets one record per line, in order: ``{"line": ..., "code": exit code, "output": what it printed}``.
+RESULTS.json gets one record per line, in order: ``{"line": ..., "code": exit code, "seconds": its wall time,
+"output": what it printed}`` (the seconds to see which line a slow run spends its time on; never asserted).
 The script's own exit code is 0 when it ran every line, whatever their exit codes (the caller asserts on them).
 
 This file is run as a script by another interpreter: it imports nothing of the checkout.
@@ -21,6 +22,7 @@ import importlib.metadata
 import json
 import os
 import sys
+import time
 from pathlib import Path
 
 #: the programs' dependencies, imported once in the parent (top-level packages only; see the module's docstring)
@@ -60,11 +62,13 @@ def run_lines(lines: list[str], logs: Path) -> list[dict[str, object]]:
         log = logs / f"{number:03d}.log"
         sys.stdout.flush()
         sys.stderr.flush()
+        start = time.perf_counter()
         pid = os.fork()
         if pid == 0:                                    # the child: never returns into the loop
             os._exit(_child(program, args, log))
         _, status = os.waitpid(pid, 0)
         records.append({"line": line, "code": os.waitstatus_to_exitcode(status),
+                        "seconds": round(time.perf_counter() - start, 3),
                         "output": log.read_text(encoding="utf-8", errors="replace")})
     return records
 
