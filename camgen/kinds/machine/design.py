@@ -18,8 +18,8 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import (chain_inertia, clash, frame, general_inertia, indexing, kinematics, machine_gears,
-                                  slider_coupling)
+from camgen.kinds.machine import (arms, chain_inertia, clash, frame, general_inertia, indexing, kinematics,
+                                  machine_gears, slider_coupling)
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -342,7 +342,7 @@ def _linkage_motion(spec: MachineSpec, index: int, mount_index: int, cam: CamMot
     poses = fb.positions(chain.theta2, table.assembly)
     k3, k4, _, k4d = fb.rates(poses)
     rocker_rate, rocker_acc = kinematics.output_rates(k4, k4d, chain)
-    arm = float(_cam_of(cam.design).follower.arm_length)
+    arm = arms.lever(_cam_of(cam.design).follower, fb.crank)
     try:
         design = linkgen_api.design(lspec, parts=lspec.parts is not None)
     except SpecError as exc:
@@ -386,7 +386,7 @@ def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMot
     poses = linkage.fourbar.positions(chain.theta2, spec.linkage_specs[
         next(i for i, m in enumerate(spec.linkages) if m.name == linkage.name)].linkage.assembly)
     k4 = linkage.fourbar.rates(poses)[1]
-    arm = float(_cam_of(cam.design).follower.arm_length)
+    arm = arms.lever(_cam_of(cam.design).follower, linkage.fourbar.crank)
     load = chain_inertia.coupled_input_torque(linkage.design, chain.theta2, chain.d1, chain.d2,
                                               cam.design.spec.cam.rpm * math.pi / 30.0,
                                               linkage.coupling.output_torque, k4)

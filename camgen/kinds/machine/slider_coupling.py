@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.kinds.machine import general_inertia, kinematics
+from camgen.kinds.machine import arms, general_inertia, kinematics
 from camgen.kinds.machine.cranked import GeneralMotion
 
 #: the follower types whose stem can be a linkage's slider
@@ -199,9 +199,19 @@ def arm_motion(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, desi
     pivot = design.kinematics.table.inputs[0].pivot
     drawn = np.asarray(design.kinematics.linkage.structure.points[pivot], dtype=float)
     offset = _shaft_at(spec, cam.name) + np.asarray(f.pivot, dtype=float) - drawn
-    k = float(f._swing_sign)
-    mapping = (math.radians(coupling.rest), k * math.pi / 180.0, float(f.arm_length) * math.pi / 180.0)
+    k = arms.swing_sign(f)
+    mapping = (math.radians(coupling.rest), k * math.pi / 180.0,
+               arms.lever(f, _crank_length(design, pivot)) * math.pi / 180.0)
     return driven(spec, index, mount_index, cam, kin, design, phi, offset, mapping)
+
+
+def _crank_length(design: Any, pivot: str) -> float:
+    """The distance (mm) from the input crank's ``pivot`` to its nearest other joint in the drawing (its pin)."""
+    table = design.kinematics.table
+    points = design.kinematics.linkage.structure.points
+    at = np.asarray(points[pivot], dtype=float)
+    others = [p for p in table.links[table.inputs[0].link] if p != pivot]
+    return min(float(np.hypot(*(np.asarray(points[p], dtype=float) - at))) for p in others)
 
 
 def rest_point(follower: Any) -> np.ndarray:
