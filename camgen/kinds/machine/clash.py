@@ -318,8 +318,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                   fb: object = fb) -> object:
             cam = d.cam(m.cam)                              # type: ignore[attr-defined]
             kin = _cam_of(cam.design)
-            theta = kinematics.program_angles(phi, cam.turns, math.radians(cam.phase_deg))
-            swing = kin.program.evaluate(theta)[:3]
+            swing = kin.program.evaluate(cam.program_angles(phi))[:3]
             chain = kinematics.crank_chain(m.coupling.rest, swing, cam.turns)   # type: ignore[attr-defined]
             return fb.positions(chain.theta2, assembly), chain.theta2           # type: ignore[attr-defined]
 

@@ -105,6 +105,8 @@ class SliderMotion(GeneralMotion):
     accelerations: dict[str, np.ndarray] = field(default_factory=dict)
     output_acc: np.ndarray | None = None
     effort: np.ndarray | None = None
+    #: the cam's shaft's motion where it indexes (:class:`~camgen.kinds.machine.shaft_motion.ShaftMotion`), else None
+    shaft_motion: Any = None
 
     #: a slider-driven linkage stands on the frame's front, as its cam (the clash check's planes)
     side = 1
@@ -113,7 +115,11 @@ class SliderMotion(GeneralMotion):
     def solve(self, phi: np.ndarray) -> Any:
         """Its linkage solved at main shaft angles ``phi`` (radians) in its drawing's frame, by the slider's travel
         rest + s (velocities per mm of it): :class:`linkgen.kinematics.linkage.Solution`."""
-        theta = kinematics.program_angles(np.asarray(phi, dtype=float), self.turns, math.radians(self.phase_deg))
+        phi = np.asarray(phi, dtype=float)
+        if self.shaft_motion is None:
+            theta = kinematics.program_angles(phi, self.turns, math.radians(self.phase_deg))
+        else:
+            theta = np.mod(self.shaft_motion.own(phi)[0] - math.radians(self.phase_deg), kinematics.TWO_PI)
         values = self.base + self.scale * self.program.evaluate(theta)[0]
         return self.analysis.linkage.solve(np.asarray(values, dtype=float)[None, :])
 
@@ -221,13 +227,6 @@ def rest_point(follower: Any) -> np.ndarray:
     return np.array([float(follower.axis_x), float(follower.base_radius if height is None else height)])
 
 
-def stem_lift(follower_rows: np.ndarray, turns: float) -> np.ndarray:
-    """(3, n) the follower's lift (mm) and its rates per radian of the main shaft from its program's rows
-    (camgen's ``(s, s', s'')`` per radian of the program) on a shaft of ``turns`` turns per main turn."""
-    n = abs(turns)
-    return np.stack([follower_rows[0], n * follower_rows[1], n * n * follower_rows[2]])
-
-
 def slider_motion(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: Any,
                   phi: np.ndarray) -> SliderMotion:
     """The linkage of ``spec.linkages[mount_index]`` (designed as ``design``) driven through coupling ``index`` by
@@ -258,7 +257,7 @@ def driven(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: 
     base, scale, lever = mapping
     linkage = design.kinematics.linkage
     name = spec.linkages[mount_index].name
-    lift = stem_lift(cam.follower, cam.turns)
+    lift = cam.rates                                    # per radian of the main shaft, through its shaft's Q', Q''
     inputs = base + scale * lift[0]
     _check_reach(linkage, coupling, index, inputs, phi, name, base)
     sol = linkage.solve(inputs[None, :])
@@ -276,7 +275,8 @@ def driven(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: 
                                        spec.machine.rpm * math.pi / 30.0)
     return SliderMotion(name, cam.name, coupling, design, layer, offset, lift, inputs, points, rates, angle,
                         per_unit * lift[1], load.force, load.torque, kin.program, cam.turns, cam.phase_deg, base,
-                        scale, lever, general_inertia.accelerations(sol, d1, d2), output_acc, load.effort)
+                        scale, lever, general_inertia.accelerations(sol, d1, d2), output_acc, load.effort,
+                        cam.shaft)
 
 
 def _shaft_at(spec: Any, cam: str) -> np.ndarray:
