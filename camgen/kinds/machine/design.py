@@ -18,8 +18,8 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import (arms, chain_inertia, clash, frame, general_inertia, indexing, kinematics,
-                                  machine_gears, shaft_motion, slider_coupling)
+from camgen.kinds.machine import (arms, chain_inertia, clash, frame, general_inertia, indexed_cam, indexing,
+                                  kinematics, machine_gears, shaft_motion, slider_coupling)
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -303,6 +303,9 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             cams[coupling.cam] = _loaded(spec, cams[coupling.cam], found)
     for c in cams.values():
         warnings += [f"cams.{c.name}: {w}" for w in c.design.warnings]
+        real = indexed_cam.indexed_cam(c, _cam_of(c.design), spec.machine.rpm * math.pi / 30.0, phi)
+        if real is not None and real.warning() is not None:
+            warnings.append(str(real.warning()))
     cranked = []
     for i, mount in enumerate(spec.linkages):
         if mount.shaft is not None:

@@ -8,6 +8,7 @@ times Q; the camshaft torque of the four-bar's [dynamics] against virtual work (
 alone); the cam's real-rate acceleration against s''(Q) Q'^2 + s'(Q) Q''."""
 from __future__ import annotations
 
+import json
 import math
 import tomllib
 
@@ -323,3 +324,68 @@ template = "{ROOT / 'templates' / 'geneva4.toml'}"
     template = tmp_path / "again.toml"
     template.write_text(more)
     assert_refused(template, {}, "genevas[1].driver: shaft idle indexes (geared to a Geneva drive's wheel)", tmp_path)
+
+
+# ---- a cam on the indexing shaft at its real rates --------------------------------------------------------------
+
+
+def _real_force(indexed, rows: np.ndarray) -> np.ndarray:
+    """The oscillating roller's contact force (N) written here from its loading: preload 5 N + rate 0.5 N/mm times
+    the roller's travel L psi + the load table (the four-bar's output torque reflected, linear and periodic over its
+    rows) + the roller's 0.2 kg times its acceleration along its path, L (pi/180) s'' omega^2 / 1000 (m/s^2),
+    L = 90 mm; ``rows`` the follower's (s, ds/dphi, d^2s/dphi^2) per radian of the main shaft, omega its speed."""
+    cam = indexed.cam("lift")
+    table = np.asarray(cam.design.spec.follower.load_table, dtype=float)
+    theta = np.degrees(cam.theta)
+    loads = np.interp(theta, np.concatenate([table[:, 0], [360.0]]), np.concatenate([table[:, 1], table[:1, 1]]))
+    lever = 90.0 * math.pi / 180.0
+    return 5.0 + 0.5 * lever * rows[0] + loads + 0.2 * lever * rows[2] * indexed.omega ** 2 / 1000.0
+
+
+def test_the_cams_real_rate_figures_are_reported_against_its_mean_speed(indexed, tmp_path):
+    """``cams.lift.indexed``: the peak acceleration omega^2 |s''(Q) Q'^2 + s'(Q) Q''| (1e-9 of it, and where) against
+    the cam's own figure at its shaft's mean speed; the least contact force at the real rates as written here (1e-9 N)
+    below 0 (the follower leaves while the wheel indexes) where the mean-speed check holds (its least force the same
+    loading at the rates |n| s', n^2 s'', to 1e-6 N); the machine warns of it."""
+    from camgen import api
+    from camgen.kinds.machine.indexed_cam import speed_of
+
+    cam = indexed.cam("lift")
+    exact = cam.shaft_rates(indexed.phi)
+    s = cam.design.cam.program.evaluate(cam.theta)[:3]
+    acc = np.abs(s[2] * exact[1] ** 2 + s[1] * exact[2]) * indexed.omega ** 2
+    api.write(indexed, tmp_path / "out", formats=["json"])
+    report = json.loads((tmp_path / "out" / "indexed.json").read_text())
+    real = report["cams"]["lift"]["indexed"]
+    assert real["acceleration_max"] == pytest.approx(acc.max(), rel=1e-9)
+    assert real["acceleration_max_at_deg"] == pytest.approx(math.degrees(indexed.phi[np.argmax(acc)]), abs=1e-9)
+    speed = speed_of(cam.design)
+    assert real["mean_speed_acceleration_max"] == pytest.approx(speed.acceleration_max, rel=1e-9)
+    assert real["acceleration_max"] > 50 * real["mean_speed_acceleration_max"]      # Q' up to 9.7 while indexing
+    force = _real_force(indexed, cam.rates)
+    contact = real["contact"]
+    assert contact["least_contact_force_n"] == pytest.approx(force.min(), abs=1e-9)
+    assert contact["at_deg"] == pytest.approx(math.degrees(indexed.phi[np.argmin(force)]), abs=1e-9)
+    assert contact["least_contact_force_n"] < 0 and contact["holds"] is False
+    mean = _real_force(indexed, np.stack([s[0], s[1], s[2]]))                         # |n| = 1
+    assert contact["mean_speed_least_contact_force_n"] == pytest.approx(mean.min(), abs=1e-6)
+    assert contact["mean_speed_holds"] is True
+    assert any(w.startswith("cams.lift: at its indexing shaft's real rates the follower leaves its cam")
+               for w in indexed.warnings)
+
+
+def test_a_cam_held_at_its_real_rates_is_reported_holding():
+    """With 120 N of preload the follower stays on its cam at the real rates too: no warning, ``holds`` true, its
+    least force 115 N more than at 5 N (the preload adds to the force everywhere)."""
+    from camgen import api
+    from camgen.kinds.machine.report import _cam_entry
+
+    raw = tomllib.loads(MACHINE)
+    with (ROOT / "templates" / "oscillating.toml").open("rb") as stream:
+        cam = tomllib.load(stream)
+    cam["follower"]["preload"] = 120.0
+    raw["cams"][0]["template"] = cam
+    held = api.design(api.validate(raw))
+    real = _cam_entry(held, 0)["indexed"]["contact"]
+    assert real["holds"] is True and real["least_contact_force_n"] > 0
+    assert not any("real rates" in w for w in held.warnings)
