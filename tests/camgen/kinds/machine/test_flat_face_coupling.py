@@ -12,82 +12,27 @@ import tomllib
 import numpy as np
 import pytest
 
-#: the automaton's arm and its four-bar, the follower a flat face (base radius 95 mm, its pivot 160 mm from the
-#: cam's centre: a swing of 15 degrees over 120 of the program keeps the profile convex)
-MACHINE = """
-name = "flat-automaton"
+from tests.conftest import ROOT
 
-[machine]
-main = "camshaft"
-rpm = 20.0
-frame = "two"
+AUTOMATON = ROOT / "templates" / "automaton.toml"
 
-[[shafts]]
-name = "camshaft"
-at = [0.0, 0.0]
 
-[[cams]]
-name = "arm"
-shaft = "camshaft"
-layer = 2
-phase = 200.0
+def _flat_automaton() -> dict:
+    """The automaton's arm and its four-bar, the follower a flat face (base radius 95 mm, its pivot 160 mm from the
+    cam's centre: a swing of 15 degrees over 120 of the program, cycloidal, keeps the profile convex)."""
+    with AUTOMATON.open("rb") as stream:
+        raw = tomllib.load(stream)
+    arm = next(c for c in raw["cams"] if c["name"] == "arm")
+    template = arm["template"]
+    template["cam"]["base_radius"] = 95.0
+    template["follower"] = {"type": "oscillating-flat", "pivot_distance": 160.0, "mass": 0.1, "spring_rate": 0.5,
+                            "preload": 12.0}
+    template["motion"] = [{"type": t, "law": "cycloidal", "lift": 15.0, "angle": 120.0} if t != "dwell"
+                          else {"type": t, "angle": 60.0} for t in ("rise", "dwell", "return", "dwell")]
+    raw.update(name="flat-automaton", cams=[arm])
+    return raw
 
-[cams.template.cam]
-base_radius = 95.0
-thickness = 6.0
-bore = 8.0
 
-[cams.template.follower]
-type = "oscillating-flat"
-pivot_distance = 160.0
-mass = 0.1
-spring_rate = 0.5
-preload = 12.0
-
-[[cams.template.motion]]
-type = "rise"
-law = "cycloidal"
-lift = 15.0
-angle = 120.0
-
-[[cams.template.motion]]
-type = "dwell"
-angle = 60.0
-
-[[cams.template.motion]]
-type = "return"
-law = "cycloidal"
-lift = 15.0
-angle = 120.0
-
-[[cams.template.motion]]
-type = "dwell"
-angle = 60.0
-
-[[linkages]]
-name = "arm-bars"
-
-[linkages.template.linkage]
-type = "four-bar"
-ground = 80.0
-crank = 30.0
-coupler = 90.0
-rocker = 60.0
-point_distance = 45.0
-point_angle = 30.0
-
-[linkages.template.parts]
-width = 10.0
-thickness = 4.0
-pin_diameter = 4.0
-
-[[couplings]]
-cam = "arm"
-linkage = "arm-bars"
-link = "crank"
-rest = 60.0
-output_torque = -0.2
-"""
 GROUND, CRANK, COUPLER, ROCKER, REST, TORQUE = 80.0, 30.0, 90.0, 60.0, 60.0, -0.2
 
 
@@ -95,7 +40,7 @@ GROUND, CRANK, COUPLER, ROCKER, REST, TORQUE = 80.0, 30.0, 90.0, 60.0, 60.0, -0.
 def flat():
     from camgen import api
 
-    return api.design(api.validate(tomllib.loads(MACHINE)))
+    return api.design(api.validate(_flat_automaton()))
 
 
 def _rockers(theta2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -187,7 +132,7 @@ def test_a_general_linkage_on_the_face_takes_the_crank_pin_as_its_lever():
     differences of the circle intersection at the crank's angle k psi (k = -1, the face's sense of swing)."""
     from camgen import api
 
-    raw = tomllib.loads(MACHINE)
+    raw = _flat_automaton()
     a = CRANK * np.array([math.cos(math.radians(REST)), math.sin(math.radians(REST))])
     first, _ = _rockers(np.array([math.radians(REST)]))
     b = np.array([GROUND, 0.0]) + ROCKER * np.array([math.cos(first[0]), math.sin(first[0])])

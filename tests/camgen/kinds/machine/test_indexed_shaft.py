@@ -8,6 +8,7 @@ times Q; the camshaft torque of the four-bar's [dynamics] against virtual work (
 alone); the cam's real-rate acceleration against s''(Q) Q'^2 + s'(Q) Q''."""
 from __future__ import annotations
 
+import copy
 import json
 import math
 import tomllib
@@ -16,6 +17,7 @@ import numpy as np
 import pytest
 
 from tests.camgen.kinds.machine.test_general_inertia import _link_poses
+from tests.camgen.kinds.machine.test_geneva_mount import MACHINE as GENEVA_MACHINE
 from tests.conftest import ROOT
 from tests.support.kinetic_energy import kinetic_energy
 
@@ -23,114 +25,30 @@ from tests.support.kinetic_energy import kinetic_energy
 #: once a turn (+1, the other way from its driver) in 4 indexes; the wheel's shaft carries a cam (its follower
 #: driving a four-bar), a shaft-driven four-bar (ground 80, crank 20, coupler and rocker sqrt(30^2 + 60^2): a
 #: crank-rocker) and a 30-tooth gear turning the idle shaft's 50 (its shaft turns -30/50 of the wheel's)
-MACHINE = f"""
-name = "indexed"
+FOUR_BAR = {"type": "four-bar", "ground": 80.0, "crank": 30.0, "coupler": 90.0, "rocker": 60.0}
+ROCKER = {"linkage": {"type": "linkage", "ground": ["O", "D"], "input": {"link": "crank", "pivot": "O"},
+                      "tracers": ["B"], "joints": {"O": [0.0, 0.0], "A": [20.0, 0.0], "B": [50.0, 60.0],
+                                                   "D": [80.0, 0.0]},
+                      "links": {"crank": ["O", "A"], "coupler": ["A", "B"], "rocker": ["D", "B"]}},
+          "dynamics": {"incline": 0.0, "links": {
+              "crank": {"mass": 0.05, "centre": [10.0, 2.0], "inertia": 6.0},
+              "coupler": {"mass": 0.3, "centre": [30.0, 8.0], "inertia": 250.0},
+              "rocker": {"mass": 0.2, "centre": [30.0, -3.0], "inertia": 120.0}}}}
 
-[machine]
-main = "main"
-rpm = 60.0
-frame = "none"
 
-[[shafts]]
-name = "main"
-at = [0.0, 0.0]
-
-[[shafts]]
-name = "driver"
-at = [75.0, 0.0]
-
-[[shafts]]
-name = "wheel"
-at = [75.0, 80.0]
-
-[[shafts]]
-name = "idle"
-at = [5.717967697244908, 120.0]
-
-[[gears]]
-driver = "main"
-driven = "driver"
-driver_teeth = 60
-driven_teeth = 15
-module = 2.0
-
-[[gears]]
-driver = "wheel"
-driven = "idle"
-driver_teeth = 30
-driven_teeth = 50
-module = 2.0
-
-[[genevas]]
-name = "index"
-driver = "driver"
-wheel = "wheel"
-phase = 150.0
-template = "{ROOT / 'templates' / 'geneva4.toml'}"
-
-[[cams]]
-name = "lift"
-shaft = "wheel"
-phase = 20.0
-template = "{ROOT / 'templates' / 'oscillating.toml'}"
-
-[[linkages]]
-name = "bars"
-
-[linkages.template.linkage]
-type = "four-bar"
-ground = 80.0
-crank = 30.0
-coupler = 90.0
-rocker = 60.0
-
-[[couplings]]
-cam = "lift"
-linkage = "bars"
-link = "crank"
-rest = 60.0
-output_torque = -0.2
-
-[[linkages]]
-name = "rocker"
-shaft = "wheel"
-phase = 30.0
-
-[linkages.template.linkage]
-type = "linkage"
-ground = ["O", "D"]
-input = {{ link = "crank", pivot = "O" }}
-tracers = ["B"]
-
-[linkages.template.linkage.joints]
-O = [0.0, 0.0]
-A = [20.0, 0.0]
-B = [50.0, 60.0]
-D = [80.0, 0.0]
-
-[linkages.template.linkage.links]
-crank = ["O", "A"]
-coupler = ["A", "B"]
-rocker = ["D", "B"]
-
-[linkages.template.dynamics]
-incline = 0.0
-
-[linkages.template.dynamics.links.crank]
-mass = 0.05
-centre = [10.0, 2.0]
-inertia = 6.0
-
-[linkages.template.dynamics.links.coupler]
-mass = 0.3
-centre = [30.0, 8.0]
-inertia = 250.0
-
-[linkages.template.dynamics.links.rocker]
-mass = 0.2
-centre = [30.0, -3.0]
-inertia = 120.0
-"""
+def _machine() -> dict:
+    """The Geneva mount's machine (``test_geneva_mount.MACHINE``) at 60 rpm with no frame, its idle shaft moved to
+    80 mm from the wheel's at 150 degrees, a 30:50 gear pair from the wheel's shaft to it, the cam's follower coupled
+    to a four-bar (rest 60 degrees, -0.2 N*m on its rocker) and the shaft-driven four-bar (phase 30 degrees)."""
+    raw = tomllib.loads(GENEVA_MACHINE)
+    raw["name"] = "indexed"
+    raw["machine"].update(rpm=60.0, frame="none")
+    next(s for s in raw["shafts"] if s["name"] == "idle")["at"] = [75.0 - 40.0 * math.sqrt(3.0), 120.0]
+    raw["gears"].append({"driver": "wheel", "driven": "idle", "driver_teeth": 30, "driven_teeth": 50, "module": 2.0})
+    raw["linkages"] = [{"name": "bars", "template": {"linkage": dict(FOUR_BAR)}},
+                       {"name": "rocker", "shaft": "wheel", "phase": 30.0, "template": copy.deepcopy(ROCKER)}]
+    raw["couplings"] = [{"cam": "lift", "linkage": "bars", "link": "crank", "rest": 60.0, "output_torque": -0.2}]
+    return raw
 SLOTS, DRIVER_TURNS, START, PHASE = 4, 4.0, math.radians(150.0), math.radians(20.0)
 #: the wheel's shaft's mean turns (the other way from its driver) and the idle shaft's ratio to it
 WHEEL_TURNS, IDLE_RATIO = 1.0, -30.0 / 50.0
@@ -142,7 +60,7 @@ PHI = np.arange(1440) * (2 * math.pi / 1440)
 def indexed():
     from camgen import api
 
-    return api.design(api.validate(tomllib.loads(MACHINE)))
+    return api.design(api.validate(_machine()))
 
 
 def _wheel(phi: np.ndarray) -> np.ndarray:
@@ -310,10 +228,17 @@ def test_a_geneva_driven_by_a_shaft_geared_to_a_wheel_is_refused(tmp_path):
     naming ``genevas[1].driver``, exit code 2, nothing written."""
     from tests.support.refusals import assert_refused
 
-    more = MACHINE + f"""
+    more = GENEVA_MACHINE + f"""
+[[gears]]
+driver = "wheel"
+driven = "idle"
+driver_teeth = 40
+driven_teeth = 40
+module = 2.0
+
 [[shafts]]
 name = "second"
-at = [85.717967697244908, 120.0]
+at = [155.0, 160.0]
 
 [[genevas]]
 name = "again"
@@ -380,7 +305,7 @@ def test_a_cam_held_at_its_real_rates_is_reported_holding():
     from camgen import api
     from camgen.kinds.machine.report import _cam_entry
 
-    raw = tomllib.loads(MACHINE)
+    raw = _machine()
     with (ROOT / "templates" / "oscillating.toml").open("rb") as stream:
         cam = tomllib.load(stream)
     cam["follower"]["preload"] = 120.0
