@@ -91,7 +91,8 @@ def pieces(design: Any) -> tuple[Piece, ...]:
     spec = design.spec
     phi = math.radians(spec.machine.assembly_angle)
     tol = min((*(float(c.design.tolerance) for c in design.cams),
-               *(float(m.design.spec.parts.tolerance) for m in getattr(design, "cranked", ()))))
+               *(float(m.design.spec.parts.tolerance) for m in getattr(design, "cranked", ())
+                 if m.design.spec.parts is not None)), default=0.01)
     frame = design.frame
     stack = frame.stack if frame is not None else frames.stack(spec, design, design.bodies)
     thick = frames.thicknesses(design)

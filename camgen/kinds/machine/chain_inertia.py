@@ -75,12 +75,15 @@ def arm_force(torque: np.ndarray, arm: float) -> np.ndarray:
     return torque * 1000.0 / arm
 
 
-def cranked_shaft_torque(design: Any, inputs: np.ndarray, turns: float, omega: float) -> np.ndarray | None:
-    """The main shaft's torque (N*m) that turns a shaft-driven linkage's crank at ``inputs`` (radians) on a shaft of
-    ``turns`` turns per main turn (signed) at the main shaft's constant ``omega`` (rad/s): its effort times
-    d input / d phi = turns (its power over the main shaft's speed); None without ``[dynamics]``."""
-    effort = dynamic_effort(design, inputs, turns, 0.0, omega)
-    return None if effort is None else effort * turns
+def cranked_shaft_torque(design: Any, inputs: np.ndarray, rate: float | np.ndarray, omega: float,
+                         acceleration: float | np.ndarray = 0.0) -> np.ndarray | None:
+    """The main shaft's torque (N*m) that turns a shaft-driven linkage's crank at ``inputs`` (radians), the crank
+    turning ``rate`` = Q' rad per radian of the main shaft (a uniform shaft's signed turns per main turn; an indexing
+    shaft's Q'(phi), :mod:`camgen.kinds.machine.shaft_motion`) and accelerating ``acceleration`` = Q'' rad/rad^2
+    (0 on a uniform shaft), at the main shaft's constant ``omega`` (rad/s): its effort times d input / d phi = Q'
+    (its power over the main shaft's speed); None without ``[dynamics]``."""
+    effort = dynamic_effort(design, inputs, rate, acceleration, omega)
+    return None if effort is None else effort * rate
 
 
 def carried(load: InputTorque, output_torque: float, k4: np.ndarray, arm: float,

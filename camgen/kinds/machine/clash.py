@@ -18,6 +18,8 @@ from typing import Any
 import numpy as np
 import shapely
 
+from camgen.kinds.machine import arms
+
 #: an overlap of at most this area (mm^2) is a touch, not a clash (chordal outlines meeting tangentially)
 AREA_TOL_MM2 = 1e-3
 #: the width (degrees of the main shaft) to which a clash's first angle is refined by bisection
@@ -170,9 +172,9 @@ PIVOT_PIN_MM = 4.0
 def arm_frame(follower: object, rest_deg: float) -> np.ndarray:
     """The 2x2 matrix taking a coupled four-bar's frame (its crank's pivot at the origin, its ground line along +x)
     into the machine's, about the follower's pivot: the crank lies along the arm (the follower's rest direction at
-    crank angle ``rest_deg``), mirrored where the arm swings clockwise."""
-    k = follower._swing_sign                                                # type: ignore[attr-defined]
-    base = np.array([0.0, follower.prime_radius]) - follower.pivot          # type: ignore[attr-defined]
+    crank angle ``rest_deg``: to the roller's centre, or along a flat face to its rest contact), mirrored where the arm
+    swings clockwise (:mod:`camgen.kinds.machine.arms`)."""
+    k, base = arms.swing_sign(follower), arms.rest_vector(follower)
     alpha = math.atan2(base[1], base[0]) - k * math.radians(rest_deg)
     return rotation(np.array([alpha]))[0] @ np.diag([1.0, k])
 def _round_holes(holes: Sequence[object]) -> tuple[tuple[tuple[float, float], float], ...]:
@@ -316,8 +318,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                   fb: object = fb) -> object:
             cam = d.cam(m.cam)                              # type: ignore[attr-defined]
             kin = _cam_of(cam.design)
-            theta = kinematics.program_angles(phi, cam.turns, math.radians(cam.phase_deg))
-            swing = kin.program.evaluate(theta)[:3]
+            swing = kin.program.evaluate(cam.program_angles(phi))[:3]
             chain = kinematics.crank_chain(m.coupling.rest, swing, cam.turns)   # type: ignore[attr-defined]
             return fb.positions(chain.theta2, assembly), chain.theta2           # type: ignore[attr-defined]
 

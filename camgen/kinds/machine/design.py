@@ -18,8 +18,8 @@ import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.kinds import spec_kind
-from camgen.kinds.machine import (chain_inertia, clash, frame, general_inertia, indexing, kinematics, machine_gears,
-                                  slider_coupling)
+from camgen.kinds.machine import (arms, chain_inertia, clash, frame, general_inertia, indexed_cam, indexing,
+                                  kinematics, machine_gears, shaft_motion, slider_coupling)
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
@@ -43,15 +43,30 @@ class CamMotion:
     phase_deg: float
     theta: np.ndarray
     follower: np.ndarray
-    #: the Geneva drive whose wheel turns its shaft (:class:`~camgen.kinds.machine.indexing.Indexer`), else None
-    indexer: Any = None
+    #: its shaft's motion (:class:`~camgen.kinds.machine.shaft_motion.ShaftMotion`), None: uniform at ``turns``
+    shaft: shaft_motion.ShaftMotion | None = None
+
+    @property
+    def indexer(self) -> indexing.Indexer | None:
+        """The Geneva drive whose wheel turns its shaft (directly or through gears), else None."""
+        return None if self.shaft is None else self.shaft.indexer
+
+    @property
+    def motion(self) -> shaft_motion.ShaftMotion:
+        """Its shaft's motion (uniform at ``turns`` where none was given)."""
+        return self.shaft if self.shaft is not None else shaft_motion.ShaftMotion("", self.turns)
+
+    def shaft_rates(self, phi: np.ndarray) -> np.ndarray:
+        """(3, n): its shaft's angle and rates in its own sense (rad, rad/rad, rad/rad^2) at main shaft angles
+        ``phi`` (rad): Q, Q', Q'' (:meth:`~camgen.kinds.machine.shaft_motion.ShaftMotion.own`)."""
+        return self.motion.own(phi)
 
     def program_angles(self, phi: np.ndarray) -> np.ndarray:
         """Its program angles (rad, in [0, 2 pi)) at main shaft angles ``phi`` (rad): its shaft's angle less its
         phase (an indexing shaft's from its Geneva drive)."""
         if self.indexer is None:
             return kinematics.program_angles(phi, self.turns, math.radians(self.phase_deg))
-        return np.mod(self.indexer.wheel_motion(phi)[0] - math.radians(self.phase_deg), kinematics.TWO_PI)
+        return np.mod(self.shaft_rates(phi)[0] - math.radians(self.phase_deg), kinematics.TWO_PI)
 
     @property
     def unit(self) -> str:
@@ -59,11 +74,23 @@ class CamMotion:
         return str(_cam_of(self.design).follower.lift_unit)
 
     @property
+    def rates(self) -> np.ndarray:
+        """(3, n): the follower's (s, ds/dphi, d^2s/dphi^2) at the machine's shaft angles, per radian of the main
+        shaft, by the chain rule through its shaft's Q' and Q'': s, s' Q', s'' Q'^2 + s' Q'' (on a uniform shaft
+        Q' = |turns|, Q'' = 0)."""
+        if self.indexer is None:
+            n = abs(self.turns)
+            return np.stack([self.follower[0], n * self.follower[1], n * n * self.follower[2]])
+        q = self.shaft_rates(kinematics.shaft_angles(len(self.theta)))
+        return np.stack([self.follower[0], self.follower[1] * q[1],
+                         self.follower[2] * q[1] ** 2 + self.follower[1] * q[2]])
+
+    @property
     def rate(self) -> np.ndarray:
         """d s / d phi: the follower's rate per radian of the main shaft (on an indexing shaft, times its rate)."""
         if self.indexer is None:
             return self.follower[1] * abs(self.turns)
-        return self.follower[1] * self.indexer.wheel_motion(kinematics.shaft_angles(len(self.theta)))[1]
+        return self.rates[1]
 
 
 @dataclass(frozen=True)
@@ -249,9 +276,10 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
     frame.check_names(spec)
     phi = kinematics.shaft_angles(spec.machine.samples)
     indexed = indexing.indexers(spec, tuple(_geneva(spec, i) for i in range(len(spec.genevas))))
-    cams = {mount.name: _cam_motion(spec, i, phi, indexing.wheel_of(indexed, mount.shaft))
-            for i, mount in enumerate(spec.cams)}
-    gears = machine_gears.designed(spec, min((float(c.design.tolerance) for c in cams.values()), default=0.01))
+    shafts = shaft_motion.shaft_motions(spec, indexed)
+    cams = {mount.name: _cam_motion(spec, i, phi, shafts[mount.shaft]) for i, mount in enumerate(spec.cams)}
+    gears = machine_gears.designed(spec, min((float(c.design.tolerance) for c in cams.values()), default=0.01),
+                                   shafts)
     linkages = []
     slid = []
     warnings: list[str] = []
@@ -275,6 +303,9 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             cams[coupling.cam] = _loaded(spec, cams[coupling.cam], found)
     for c in cams.values():
         warnings += [f"cams.{c.name}: {w}" for w in c.design.warnings]
+        real = indexed_cam.indexed_cam(c, _cam_of(c.design), spec.machine.rpm * math.pi / 30.0, phi)
+        if real is not None and real.warning() is not None:
+            warnings.append(str(real.warning()))
     cranked = []
     for i, mount in enumerate(spec.linkages):
         if mount.shaft is not None:
@@ -283,7 +314,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
                 made_linkage = linkgen_api.design(lspec, parts=lspec.parts is not None)
             except SpecError as exc:
                 raise exc.under(f"linkages[{i}].template") from None
-            cranked.append(cranked_motion(spec, i, phi, made_linkage))
+            cranked.append(cranked_motion(spec, i, phi, made_linkage, shafts[mount.shaft]))
             warnings += [f"linkages.{mount.name}: {w}" for w in made_linkage.report.get("warnings", ())]
     warnings += [f"genevas.{g.name}: {w}" for g in indexed for w in g.design.warnings]
     made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked),
@@ -313,9 +344,10 @@ def _geneva(spec: MachineSpec, index: int) -> Any:
         raise exc.under(f"genevas[{index}].template") from None
 
 
-def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray, indexer: indexing.Indexer | None = None) -> CamMotion:
+def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray,
+                shaft: shaft_motion.ShaftMotion | None = None) -> CamMotion:
     """The cam of ``spec.cams[index]`` designed by its kind, and its follower's motion at shaft angles ``phi`` (its
-    shaft's angle from ``indexer``, the Geneva drive turning it, if any)."""
+    shaft's angle from ``shaft``, its shaft's motion: a Geneva drive's wheel's, or uniform)."""
     mount, cam_spec = spec.cams[index], spec.cam_specs[index]
     try:
         design = spec_kind(cam_spec).design(cam_spec)
@@ -326,7 +358,8 @@ def _cam_motion(spec: MachineSpec, index: int, phi: np.ndarray, indexer: indexin
         raise SpecError(f"{spec_kind(cam_spec).title} has no single follower program for a machine to drive "
                         "with; give a disc, plate or grooved cam", f"cams[{index}].template")
     turns = spec.turns[mount.shaft]
-    made = CamMotion(mount.name, design, turns, mount.phase, phi, np.zeros((3, len(phi))), indexer)
+    made = CamMotion(mount.name, design, turns, mount.phase, phi, np.zeros((3, len(phi))),
+                     None if shaft is None or shaft.uniform else shaft)
     theta = made.program_angles(phi)
     return replace(made, theta=theta, follower=cam.program.evaluate(theta)[:3])
 
@@ -337,12 +370,12 @@ def _linkage_motion(spec: MachineSpec, index: int, mount_index: int, cam: CamMot
     table = lspec.linkage
     fb = FourBar(table.ground, table.crank, table.coupler, table.rocker, table.point_distance,
                  math.radians(table.point_angle))
-    chain = kinematics.crank_chain(coupling.rest, cam.follower, cam.turns)
+    chain = kinematics.follower_chain(coupling.rest, cam.rates)
     _check_reach(fb, chain.theta2, index, coupling)
     poses = fb.positions(chain.theta2, table.assembly)
     k3, k4, _, k4d = fb.rates(poses)
     rocker_rate, rocker_acc = kinematics.output_rates(k4, k4d, chain)
-    arm = float(_cam_of(cam.design).follower.arm_length)
+    arm = arms.lever(_cam_of(cam.design).follower, fb.crank)
     try:
         design = linkgen_api.design(lspec, parts=lspec.parts is not None)
     except SpecError as exc:
@@ -386,7 +419,7 @@ def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMot
     poses = linkage.fourbar.positions(chain.theta2, spec.linkage_specs[
         next(i for i, m in enumerate(spec.linkages) if m.name == linkage.name)].linkage.assembly)
     k4 = linkage.fourbar.rates(poses)[1]
-    arm = float(_cam_of(cam.design).follower.arm_length)
+    arm = arms.lever(_cam_of(cam.design).follower, linkage.fourbar.crank)
     load = chain_inertia.coupled_input_torque(linkage.design, chain.theta2, chain.d1, chain.d2,
                                               cam.design.spec.cam.rpm * math.pi / 30.0,
                                               linkage.coupling.output_torque, k4)

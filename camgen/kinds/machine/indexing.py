@@ -44,19 +44,31 @@ class Indexer:
         """alpha (rad, not wrapped) at main shaft angles ``phi`` (rad)."""
         return self.driver_turns * np.asarray(phi, dtype=float) + self.start
 
-    def _turned(self, alpha: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """W (rad) and dW/dalpha at driver angles ``alpha`` (rad, not wrapped)."""
+    def _turned(self, alpha: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """W (rad), dW/dalpha and d^2W/dalpha^2 at driver angles ``alpha`` (rad, not wrapped)."""
         k = np.ceil((alpha - math.pi) / TWO_PI)
         a = alpha - TWO_PI * k                                  # in (-pi, pi]
         beta = self.law.motion(a)
-        return k * self.law.index + beta[0] + math.pi / self.law.slots, beta[1]
+        return k * self.law.index + beta[0] + math.pi / self.law.slots, beta[1], beta[2]
 
     def wheel_motion(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The wheel shaft's angle (rad, 0 at the machine's start, in the wheel's sense) and its rate (rad per rad of
         the main shaft) at main shaft angles ``phi`` (rad)."""
-        turned, rate = self._turned(self.driver_angle(phi))
+        turned, rate, _ = self.wheel_rates(phi)
+        return turned, rate
+
+    def wheel_rates(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The wheel shaft's angle W (rad, as :meth:`wheel_motion`) and its rates dW/dphi (rad/rad) and
+        d^2W/dphi^2 (rad/rad^2) at main shaft angles ``phi`` (rad): beta' n_d and beta'' n_d^2 (the driver turning
+        steadily). W'' jumps at the pin's entry and exit (by tan(pi/n) n_d^2), as the Geneva's own law does."""
+        turned, rate, acc = self._turned(self.driver_angle(phi))
         start = self._turned(np.array([self.start]))[0][0]
-        return turned - start, rate * self.driver_turns
+        return turned - start, rate * self.driver_turns, acc * self.driver_turns ** 2
+
+    @property
+    def mean_turns(self) -> float:
+        """The wheel shaft's turns per main turn, in its own sense (> 0): the driver's over the slots."""
+        return self.driver_turns / self.law.slots
 
     def indexing(self, phi: np.ndarray) -> np.ndarray:
         """Where (bool) the wheel indexes at main shaft angles ``phi``: its pin in a slot, |a| < alpha_e."""
@@ -86,8 +98,9 @@ DISTANCE_TOL_MM = 0.01
 def check_genevas(spec: Any, shafts: list[str]) -> None:
     """Refuse, in a :class:`ValueError` naming the field, a Geneva drive whose shafts do not exist, lie at another
     distance than its ``centre_distance``, or whose wheel shaft is the main one or turned by anything else (a
-    coupling loop); a Geneva driven by another's wheel, and a gear pair, a shaft-driven linkage or a coupled
-    follower on a wheel's shaft (whose angle is not a constant ratio: not supported yet)."""
+    coupling loop); a Geneva driven by an indexing shaft (another's wheel, or a shaft geared to one). Gear pairs,
+    shaft-driven linkages and coupled followers on an indexing shaft are allowed: they follow its angle
+    (:mod:`camgen.kinds.machine.shaft_motion`)."""
     at = {s.name: s.at for s in spec.shafts}
     others = {m.name for m in (*spec.cams, *spec.linkages)}
     wheels: dict[str, int] = {}
@@ -118,16 +131,20 @@ def check_genevas(spec: Any, shafts: list[str]) -> None:
         if g.driver not in spec.turns:
             raise ValueError(f"genevas[{i}].driver: shaft {g.driver} is not driven: no gear pair connects it to "
                              f"the main shaft {spec.machine.main}")
-    for i, gear in enumerate(spec.gears):
-        if gear.driver in wheels:
-            raise ValueError(f"gears[{i}].driver: shaft {gear.driver} indexes (a Geneva drive turns it): a gear pair "
-                             "on an indexing shaft is not supported yet")
-    for i, m in enumerate(spec.linkages):
-        if m.shaft in wheels:
-            raise ValueError(f"linkages[{i}].shaft: shaft {m.shaft} indexes (a Geneva drive turns it): a linkage "
-                             "on an indexing shaft is not supported yet; mount a cam there")
-    cams = {c.name: c.shaft for c in spec.cams}
-    for i, c in enumerate(spec.couplings):
-        if cams.get(c.cam) in wheels:
-            raise ValueError(f"couplings[{i}].cam: cams.{c.cam} turns with shaft {cams[c.cam]}, which indexes (a "
-                             "Geneva drive turns it): a follower there drives no linkage yet")
+    indexed = indexing_shafts(spec)
+    for i, g in enumerate(spec.genevas):
+        if g.driver in indexed and g.driver not in wheels:
+            raise ValueError(f"genevas[{i}].driver: shaft {g.driver} indexes (geared to a Geneva drive's wheel); a "
+                             "Geneva drive is driven by a shaft turning steadily (the main shaft or a geared one)")
+
+
+def indexing_shafts(spec: Any) -> set[str]:
+    """The shafts that index: each Geneva drive's wheel shaft and every shaft geared to one (through any number of
+    gear pairs)."""
+    out = {g.wheel for g in spec.genevas}
+    grown = True
+    while grown:
+        more = {gear.driven for gear in spec.gears if gear.driver in out} - out
+        out |= more
+        grown = bool(more)
+    return out

@@ -53,7 +53,14 @@ def crank_chain(rest_deg: float, swing: np.ndarray, turns: float) -> Chain:
     per radian and per radian^2 of the cam's program) on a shaft of ``turns`` turns per main turn, the crank at
     ``rest_deg`` degrees with the follower at rest."""
     n = abs(turns)
-    return Chain(np.radians(rest_deg + swing[0]), n * np.radians(swing[1]), n * n * np.radians(swing[2]))
+    return follower_chain(rest_deg, np.stack([swing[0], n * swing[1], n * n * swing[2]]))
+
+
+def follower_chain(rest_deg: float, rows: np.ndarray) -> Chain:
+    """The crank's angle and rates from a follower's swing ``rows`` (3, n) already per radian of the main shaft
+    (degrees, degrees per radian, per radian^2: on an indexing shaft s' Q' and s'' Q'^2 + s' Q'' by the chain rule
+    through its shaft's angle Q), the crank at ``rest_deg`` degrees with the follower at rest."""
+    return Chain(np.radians(rest_deg + rows[0]), np.radians(rows[1]), np.radians(rows[2]))
 
 
 def output_rates(k1: np.ndarray, k2: np.ndarray, chain: Chain) -> tuple[np.ndarray, np.ndarray]:
@@ -126,8 +133,9 @@ def overlap(a: np.ndarray, b: np.ndarray) -> list[tuple[float, float]]:
     return intervals(a & b)
 
 
-def crank_inputs(drawn: float, phase_deg: float, turns: float, phi: np.ndarray) -> np.ndarray:
-    """A shaft-driven linkage's crank input (radians, counter-clockwise from +X of its drawing) at main shaft angles
-    ``phi``: its drawn value ``drawn`` (radians) turned ``phase_deg`` degrees ahead, plus its shaft's ``turns``
-    (signed: negative where the shaft turns the other way) times ``phi``."""
-    return drawn + math.radians(phase_deg) + turns * np.asarray(phi, dtype=float)
+def crank_inputs(drawn: float, phase_deg: float, angle: np.ndarray) -> np.ndarray:
+    """A shaft-driven linkage's crank input (radians, counter-clockwise from +X of its drawing): its drawn value
+    ``drawn`` (radians) turned ``phase_deg`` degrees ahead, plus its shaft's ``angle`` Q (radians, counter-clockwise,
+    0 at the machine's start: ``turns`` x phi on a uniform shaft, negative turns the other way; an indexing shaft's
+    from its Geneva drive, :mod:`camgen.kinds.machine.shaft_motion`)."""
+    return drawn + math.radians(phase_deg) + np.asarray(angle, dtype=float)

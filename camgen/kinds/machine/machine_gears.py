@@ -9,9 +9,10 @@ pinion's shift, ``gears[i].driven_teeth`` for the gear's teeth, ...).
 
 **Placing.** linkgen's pair has the pinion's centre at the origin and the gear's at (c, 0); the machine turns that
 frame by beta, the direction from the driver's shaft to the driven one's, and moves it onto the driver's shaft. At
-main shaft angle phi (radians) the driver's gear stands at beta + theta1 with theta1 = theta_m + n1 phi (theta_m
-linkgen's mesh phase: a pinion tooth centred on the line of centres, the gear's space there too; n1 the driver
-shaft's turns per main turn, counter-clockwise positive) and the driven gear at beta + g(theta1), g linkgen's
+main shaft angle phi (radians) the driver's gear stands at beta + theta1 with theta1 = theta_m + Q1(phi) (theta_m
+linkgen's mesh phase: a pinion tooth centred on the line of centres, the gear's space there too; Q1 the driver
+shaft's angle, :mod:`camgen.kinds.machine.shaft_motion`: n1 phi, n1 its turns per main turn, counter-clockwise
+positive, or an indexing shaft's intermittent angle) and the driven gear at beta + g(theta1), g linkgen's
 :meth:`~linkgen.gears.pair.GearPair.gear_angle`: its shaft's n2 = -n1 z1 / z2 turns a main turn, and the backlash is
 shared between both flanks at phi = 0. Angles counter-clockwise, lengths mm.
 
@@ -107,6 +108,8 @@ class MachineGear:
     thickness: float
     hub_height: float
     layer: int | None
+    #: the driver shaft's motion (:class:`~camgen.kinds.machine.shaft_motion.ShaftMotion`), None: uniform
+    driver_motion: Any = None
 
     @property
     def pair(self) -> GearPair:
@@ -123,7 +126,8 @@ class MachineGear:
         """Each gear's angle (radians, counter-clockwise from the machine's +X to its tooth 0) at main shaft angles
         ``phi`` (radians)."""
         phi = np.asarray(phi, dtype=float)
-        theta = self.pair.mesh_phases[0] + self.turns[0] * phi
+        turned = self.turns[0] * phi if self.driver_motion is None else self.driver_motion.angles(phi)[0]
+        theta = self.pair.mesh_phases[0] + turned
         return self.beta + theta, self.beta + self.pair.gear_angle(theta)
 
     def placement(self, member: int) -> Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]:
@@ -142,9 +146,10 @@ class MachineGear:
         return f"gears.{self.name}.{MEMBERS[member]}"
 
 
-def designed(spec: Any, tolerance: float) -> tuple[MachineGear, ...]:
+def designed(spec: Any, tolerance: float, shafts: dict[str, Any] | None = None) -> tuple[MachineGear, ...]:
     """Every gear pair of ``spec`` (a :class:`~camgen.kinds.machine.spec.MachineSpec`) designed, its outlines within
-    ``tolerance`` mm.
+    ``tolerance`` mm, each turned by its driver shaft's motion in ``shafts`` (name to
+    :class:`~camgen.kinds.machine.shaft_motion.ShaftMotion`: an indexing shaft's gear indexes; none: uniform).
 
     Raises
     ------
@@ -189,8 +194,14 @@ def designed(spec: Any, tolerance: float) -> tuple[MachineGear, ...]:
                                      set_screw=g.set_screw))
         out.append(MachineGear(i, gear_name(g), table, (g.driver, g.driven), np.array([at[g.driver], at[g.driven]]),
                                (spec.turns[g.driver], spec.turns[g.driven]), (makers[0], makers[1]), g.thickness,
-                               g.hub_height, g.layer))
+                               g.hub_height, g.layer, _indexing(shafts, g.driver)))
     return tuple(out)
+
+
+def _indexing(shafts: dict[str, Any] | None, name: str) -> Any:
+    """The motion of shaft ``name`` in ``shafts`` where it indexes (a Geneva drive before it), else None."""
+    motion = None if shafts is None else shafts.get(name)
+    return None if motion is None or motion.uniform else motion
 
 
 def gear_name(gear: Any) -> str:

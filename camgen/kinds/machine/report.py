@@ -14,6 +14,7 @@ import numpy as np
 
 from camgen.kinds.machine import kinematics
 from camgen.kinds.machine.design import MachineDesign, Output, _cam_of
+from camgen.kinds.machine.indexed_cam import indexed_cam
 from camgen.kinds.machine.keeptime import timing_report
 from camgen.kinds.machine.machine_gears import report_entries
 from camgen.kinds.machine.poses import poses_report
@@ -61,6 +62,9 @@ def _cam_entry(design: MachineDesign, index: int) -> dict[str, Any]:
            "base_radius_mm": _num(_cam_of(cam.design).base_radius, 6), "files_prefix": cam.design.spec.name}
     if contact:
         out["contact"] = {k: v for k, v in contact.as_report().items() if not isinstance(v, list)}
+    real = indexed_cam(cam, _cam_of(cam.design), design.omega, design.phi)
+    if real is not None:
+        out["indexed"] = real.as_report()
     return out
 
 

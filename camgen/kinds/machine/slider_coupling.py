@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.kinds.machine import general_inertia, kinematics
+from camgen.kinds.machine import arms, general_inertia, kinematics
 from camgen.kinds.machine.cranked import GeneralMotion
 
 #: the follower types whose stem can be a linkage's slider
@@ -105,6 +105,8 @@ class SliderMotion(GeneralMotion):
     accelerations: dict[str, np.ndarray] = field(default_factory=dict)
     output_acc: np.ndarray | None = None
     effort: np.ndarray | None = None
+    #: the cam's shaft's motion where it indexes (:class:`~camgen.kinds.machine.shaft_motion.ShaftMotion`), else None
+    shaft_motion: Any = None
 
     #: a slider-driven linkage stands on the frame's front, as its cam (the clash check's planes)
     side = 1
@@ -113,7 +115,11 @@ class SliderMotion(GeneralMotion):
     def solve(self, phi: np.ndarray) -> Any:
         """Its linkage solved at main shaft angles ``phi`` (radians) in its drawing's frame, by the slider's travel
         rest + s (velocities per mm of it): :class:`linkgen.kinematics.linkage.Solution`."""
-        theta = kinematics.program_angles(np.asarray(phi, dtype=float), self.turns, math.radians(self.phase_deg))
+        phi = np.asarray(phi, dtype=float)
+        if self.shaft_motion is None:
+            theta = kinematics.program_angles(phi, self.turns, math.radians(self.phase_deg))
+        else:
+            theta = np.mod(self.shaft_motion.own(phi)[0] - math.radians(self.phase_deg), kinematics.TWO_PI)
         values = self.base + self.scale * self.program.evaluate(theta)[0]
         return self.analysis.linkage.solve(np.asarray(values, dtype=float)[None, :])
 
@@ -199,9 +205,19 @@ def arm_motion(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, desi
     pivot = design.kinematics.table.inputs[0].pivot
     drawn = np.asarray(design.kinematics.linkage.structure.points[pivot], dtype=float)
     offset = _shaft_at(spec, cam.name) + np.asarray(f.pivot, dtype=float) - drawn
-    k = float(f._swing_sign)
-    mapping = (math.radians(coupling.rest), k * math.pi / 180.0, float(f.arm_length) * math.pi / 180.0)
+    k = arms.swing_sign(f)
+    mapping = (math.radians(coupling.rest), k * math.pi / 180.0,
+               arms.lever(f, _crank_length(design, pivot)) * math.pi / 180.0)
     return driven(spec, index, mount_index, cam, kin, design, phi, offset, mapping)
+
+
+def _crank_length(design: Any, pivot: str) -> float:
+    """The distance (mm) from the input crank's ``pivot`` to its nearest other joint in the drawing (its pin)."""
+    table = design.kinematics.table
+    points = design.kinematics.linkage.structure.points
+    at = np.asarray(points[pivot], dtype=float)
+    others = [p for p in table.links[table.inputs[0].link] if p != pivot]
+    return min(float(np.hypot(*(np.asarray(points[p], dtype=float) - at))) for p in others)
 
 
 def rest_point(follower: Any) -> np.ndarray:
@@ -209,13 +225,6 @@ def rest_point(follower: Any) -> np.ndarray:
     (a flat face's or knife's contact height: its base radius)."""
     height = getattr(follower, "d0", None)
     return np.array([float(follower.axis_x), float(follower.base_radius if height is None else height)])
-
-
-def stem_lift(follower_rows: np.ndarray, turns: float) -> np.ndarray:
-    """(3, n) the follower's lift (mm) and its rates per radian of the main shaft from its program's rows
-    (camgen's ``(s, s', s'')`` per radian of the program) on a shaft of ``turns`` turns per main turn."""
-    n = abs(turns)
-    return np.stack([follower_rows[0], n * follower_rows[1], n * n * follower_rows[2]])
 
 
 def slider_motion(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: Any,
@@ -248,7 +257,7 @@ def driven(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: 
     base, scale, lever = mapping
     linkage = design.kinematics.linkage
     name = spec.linkages[mount_index].name
-    lift = stem_lift(cam.follower, cam.turns)
+    lift = cam.rates                                    # per radian of the main shaft, through its shaft's Q', Q''
     inputs = base + scale * lift[0]
     _check_reach(linkage, coupling, index, inputs, phi, name, base)
     sol = linkage.solve(inputs[None, :])
@@ -266,7 +275,8 @@ def driven(spec: Any, index: int, mount_index: int, cam: Any, kin: Any, design: 
                                        spec.machine.rpm * math.pi / 30.0)
     return SliderMotion(name, cam.name, coupling, design, layer, offset, lift, inputs, points, rates, angle,
                         per_unit * lift[1], load.force, load.torque, kin.program, cam.turns, cam.phase_deg, base,
-                        scale, lever, general_inertia.accelerations(sol, d1, d2), output_acc, load.effort)
+                        scale, lever, general_inertia.accelerations(sol, d1, d2), output_acc, load.effort,
+                        cam.shaft)
 
 
 def _shaft_at(spec: Any, cam: str) -> np.ndarray:
