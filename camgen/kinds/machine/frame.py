@@ -325,7 +325,7 @@ RESERVED = ("frame", "frame-top", "kit", "assembly")
 def check_names(spec: Any) -> None:
     """Refuse a cam or linkage named as the machine's own files are (:data:`RESERVED`, ``spacer-<i>``): their files
     would be the same."""
-    for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages)):
+    for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages), ("ratchets", spec.ratchets)):
         for i, mount in enumerate(mounts):
             if mount.name in RESERVED or mount.name.startswith("spacer-"):
                 raise SpecError(f"{mount.name!r} names the machine's own files (<machine>-{mount.name}...): give the "
