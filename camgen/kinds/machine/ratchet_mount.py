@@ -116,6 +116,9 @@ def check_ratchets(spec: Any) -> None:
             error = exc.errors()[0]
             where = ".".join(str(p) for p in error["loc"])
             message = str(error["msg"]).removeprefix("Value error, ")
+            head, _, rest = message.partition(": ")
+            if not where and rest and " " not in head:            # linkgen's own check names its key first
+                where, message = head, rest
             raise ValueError(f"ratchets[{i}]{'.' + where if where else ''}: {message}") from None
 
 
