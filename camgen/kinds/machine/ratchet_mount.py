@@ -222,6 +222,13 @@ class RatchetMotion:
     force: np.ndarray
     torque: np.ndarray
     sense: int = 1
+    #: the arm's program (degrees of swing) and the shaft's angle (degrees) at which it starts
+    program: Any = None
+    phase_deg: float = 0.0
+
+    def wheel_angle(self, phi: np.ndarray) -> np.ndarray:
+        """W (rad, 0 at the start, in the arm's rising sense) at any main shaft angles ``phi`` (rad)."""
+        return _turned_at(self.program, self.stroke, self.pitch, self.turns, self.phase_deg, np.asarray(phi, float))
 
     @property
     def pitch(self) -> float:
@@ -259,15 +266,23 @@ def ratchet_motion(index: int, mount: RatchetMount, program: Any, arm_mm: float,
     theta = n * np.asarray(phi, float) - math.radians(phase_deg)
     swing = program.evaluate(theta)[:2]
     psi, dpsi = np.radians(swing[0]), np.radians(swing[1]) * n
-    turned = wheel_turned(stroke, pitch, theta, psi)
-    start = wheel_turned(stroke, pitch, np.array([-math.radians(phase_deg)]),
-                         np.radians(program.evaluate(np.array([-math.radians(phase_deg)]))[0]))[0]
     driven = driving(stroke, pitch, theta, psi).astype(float)
     rate = driven * dpsi
     force = kinematics.reflected_force(-mount.load_torque, driven, arm_mm)
     torque = kinematics.shaft_torque(-mount.load_torque, driven, dpsi)
     table = mount.table(math.degrees(stroke.swing), arm_mm)
-    return RatchetMotion(mount.name, mount.cam, mount, table, stroke, n, arm_mm, turned - start, rate, force, torque, sense)
+    turned = _turned_at(program, stroke, pitch, n, phase_deg, np.asarray(phi, float))
+    return RatchetMotion(mount.name, mount.cam, mount, table, stroke, n, arm_mm, turned, rate, force, torque, sense,
+                         program, phase_deg)
+
+
+def _turned_at(program: Any, stroke: Stroke, pitch: float, turns: float, phase_deg: float,
+               phi: np.ndarray) -> np.ndarray:
+    """W (rad) at main shaft angles ``phi`` (rad) less its value at the start, the arm swinging by ``program``
+    (degrees) on a shaft of ``turns`` (> 0) turns a main turn whose program starts at its angle ``phase_deg``."""
+    theta = np.append(turns * phi, 0.0) - math.radians(phase_deg)
+    turned = wheel_turned(stroke, pitch, theta, np.radians(program.evaluate(theta)[0]))
+    return np.asarray(turned[:-1] - turned[-1])
 
 
 def program_load(motion: RatchetMotion, program: Any, theta: np.ndarray) -> np.ndarray:

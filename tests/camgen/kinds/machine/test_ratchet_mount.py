@@ -168,3 +168,37 @@ def test_a_swing_that_goes_forward_twice_a_turn_is_refused(tmp_path):
                                                         text.index("[[ratchets]]")].replace("150.0", "75.0")
                                                   .replace("30.0", "15.0")) + "[[ratchets]]", 1))
     assert_refused(template, {}, "ratchets[0].cam: its follower swings forward more than once a cam turn", tmp_path)
+
+
+def test_a_wheel_set_on_its_cams_plane_clashes_where_shapely_finds_it():
+    """The wheel put on the cam's plane (layer 0), 80 mm over its tips, on the pivot 100 mm from the cam's centre:
+    the clash check's first angle is the first of a 0.01-degree scan in which shapely finds the cam's outline
+    (turned by the main shaft's angle, counter-clockwise) and the wheel's (turned by its angle about the pivot,
+    mirrored for its clockwise drive) overlapping by more than the check's area tolerance, within 0.1 degree."""
+    import shapely
+
+    from camgen.kinds.machine.clash import AREA_TOL_MM2
+
+    design = _design(lambda raw: raw["ratchets"][0].update(layer=0, tip_diameter=80.0))
+    found = [c for c in design.clashes if "ratchets.counter.wheel" in (c.a, c.b)]
+    assert found and {found[0].a, found[0].b} == {"cams.rocker", "ratchets.counter.wheel"}
+    r = design.ratchets[0]
+    cam = next(b.outline for b in design.bodies if b.name == "cams.rocker")
+    wheel = r.table.wheel.outline()[0]
+    pivot = design.cam("rocker").design.cam.follower.pivot
+    assert r.sense == -1 and abs(math.hypot(*pivot) - 100.0) <= 1e-9
+
+    def turned(points, angle):
+        c, s = math.cos(angle), math.sin(angle)
+        return points @ np.array([[c, s], [-s, c]])
+
+    first = None
+    for deg in np.arange(0.0, 360.0, 0.01):
+        phi = math.radians(deg)
+        w = float(r.wheel_angle(np.array([phi]))[0])
+        placed = turned(wheel * np.array([-1.0, 1.0]), -w) + pivot
+        if shapely.Polygon(turned(cam, phi)).intersection(shapely.Polygon(placed)).area > AREA_TOL_MM2:
+            first = deg
+            break
+    assert first is not None and first > 1.0
+    assert abs(found[0].angle_deg - first) <= 0.1
