@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
 from pydantic import Field, ValidationError
@@ -57,11 +57,11 @@ class RatchetMount(Model):
                       "are <machine>-<name>)")
     cam: str = Field(description="the cam whose follower's arm drives it (one of [[cams]], an oscillating roller): "
                      "the wheel's shaft is the arm's pivot, the arm the ratchet's lever")
-    teeth: int = _WHEEL["teeth"]
-    tip_diameter: float = _WHEEL["tip_diameter"]
-    depth: float = _WHEEL["depth"]
-    face_angle: float = _WHEEL["face_angle"]
-    friction: float = _WHEEL["friction"]
+    teeth: Annotated[int, _WHEEL["teeth"]]
+    tip_diameter: Annotated[float, _WHEEL["tip_diameter"]]
+    depth: Annotated[float, _WHEEL["depth"]]
+    face_angle: Annotated[float, _WHEEL["face_angle"]] = _WHEEL["face_angle"].default
+    friction: Annotated[float, _WHEEL["friction"]] = _WHEEL["friction"].default
     pawl: PawlTable = Field(description="the holding pawl on its frame pin, as a ratchet's [linkage.pawl]")
     load_torque: float = Field(0.0, ge=0.0, le=MAX_LOAD_N_M, description="the torque on the wheel resisting its "
                                "advance, carried by the arm while its pawl drives (onto the follower's roller and "
@@ -82,9 +82,10 @@ class RatchetMount(Model):
 
 
 def check_ratchets(spec: Any) -> None:
-    """Refuse, in a :class:`ValueError` naming the field, a ratchet on a cam that does not exist, whose follower
-    is not an oscillating roller (a translating one has no arm, a flat face's contact no fixed arm length), which another ratchet or a coupling drives already or which turns with an indexing shaft; a mount
-    name taken; and a wheel whose teeth cannot be drawn or whose holding pawl does not hold (linkgen's checks)."""
+    """Refuse, in a :class:`ValueError` naming the field, a ratchet on a cam that does not exist, whose follower is
+    not an oscillating roller (a translating one has no arm, a flat face's contact no fixed arm length), which
+    another ratchet or a coupling drives already or which turns with an indexing shaft; a mount name taken; and a
+    wheel whose teeth cannot be drawn or whose holding pawl does not hold (linkgen's checks)."""
     cams = {c.name: i for i, c in enumerate(spec.cams)}
     taken = {m.name for m in (*spec.cams, *spec.linkages, *spec.genevas)}
     coupled = {c.cam: i for i, c in enumerate(spec.couplings)}
@@ -188,12 +189,9 @@ class RatchetMotion:
 
     Attributes
     ----------
-    name, cam : str
-        Its mount's name and the cam whose arm drives it.
-    mount : RatchetMount
-        Its mount.
-    table : RatchetTable
-        linkgen's ratchet of its wheel, its holding pawl and the arm as its lever.
+    name, cam, mount, table
+        Its mount's name, the cam whose arm drives it, the mount (:class:`RatchetMount`) and linkgen's ratchet of
+        its wheel, its holding pawl and the arm as its lever (:class:`~linkgen.mechanisms.ratchet.RatchetTable`).
     stroke : Stroke
         The arm's stroke.
     turns : float
