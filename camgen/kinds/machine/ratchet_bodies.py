@@ -8,7 +8,7 @@ it onto the arm's pivot and turns it by the wheel's angle W in the arm's rising 
 needs them): x_machine = R(sense W) diag(sense, 1) x_wheel + pivot.
 
 **Plane.** Plane 2 ``layer``, else the plane over the follower's arm (the arm's pawl rides on the arm's face); the
-wheel turns on the pivot's pin, which reaches up to it. Lengths mm, angles radians, counter-clockwise.
+wheel turns on the pivot's pin, which reaches up to it, and is as thick as the arm. Lengths mm, angles radians, counter-clockwise.
 """
 from __future__ import annotations
 
@@ -46,3 +46,14 @@ def ratchet_bodies(design: Any, arms: dict[str, tuple[Any, np.ndarray, int, Any]
                    (float(pivot[0]), float(pivot[1])))
         entry = pins.setdefault(key, ([], 0, 2.0))
         entry[0].append(name)
+
+
+def thicknesses(design: Any, known: dict[str, float]) -> dict[str, float]:
+    """Each ratchet's wheel's thickness (mm) by its clash-check name: its follower's arm's (``known``, the others'
+    thicknesses), the pawls being cut from the same stock as the arm they ride on."""
+    out = {}
+    for motion in getattr(design, "ratchets", ()):
+        arm = known.get(f"cams.{motion.cam}.arm")
+        if arm is not None:
+            out[f"ratchets.{motion.name}.wheel"] = arm
+    return out
