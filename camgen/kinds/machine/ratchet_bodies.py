@@ -8,7 +8,8 @@ it onto the arm's pivot and turns it by the wheel's angle W in the arm's rising 
 needs them): x_machine = R(sense W) diag(sense, 1) x_wheel + pivot.
 
 **Plane.** Plane 2 ``layer``, else the plane over the follower's arm (the arm's pawl rides on the arm's face); the
-wheel turns on the pivot's pin, which reaches up to it, and is as thick as the arm. Lengths mm, angles radians, counter-clockwise.
+wheel turns on the pivot's pin, which reaches up to it, and is as thick as the arm. The pawls are not bodies yet.
+Lengths mm, angles radians, counter-clockwise.
 """
 from __future__ import annotations
 
@@ -31,9 +32,13 @@ def wheel_placement(motion: Any, pivot: np.ndarray) -> Placement:
 
 
 def ratchet_bodies(design: Any, arms: dict[str, tuple[Any, np.ndarray, int, Any]], bodies: list[Body],
-                   pins: dict[tuple[float, float], tuple[list[str], int, float]]) -> None:
-    """Each ratchet's wheel added to ``bodies``, on its arm's pivot pin (its holder added to ``pins``); ``arms``:
+                   pins: dict[tuple[float, float], tuple[list[str], int, float]],
+                   arm_pins: dict[str, list[tuple[float, float]]]) -> None:
+    """Each ratchet's wheel added to ``bodies``, on its arm's pivot pin (its holder added to ``pins``), and its arm's
+    pawl's pin to ``arm_pins`` (each cam's (distance out along its arm, pin diameter) mm: the arm's holes); ``arms``:
     each cam's follower, its pivot (mm), its arm's plane and its arm's direction."""
+    from camgen.kinds.machine.ratchet_parts import PIN_MM
+
     for motion, mount in zip(design.ratchets, design.spec.ratchets, strict=True):
         if motion.cam not in arms:
             continue
@@ -44,8 +49,9 @@ def ratchet_bodies(design: Any, arms: dict[str, tuple[Any, np.ndarray, int, Any]
         bodies.append(Body(name, plane, plane, np.asarray(outline, float), wheel_placement(motion, pivot)))
         key = next((k for k in pins if float(np.hypot(k[0] - pivot[0], k[1] - pivot[1])) < 1e-9),
                    (float(pivot[0]), float(pivot[1])))
-        entry = pins.setdefault(key, ([], 0, 2.0))
+        entry = pins.setdefault(key, ([], 0, PIN_MM / 2))
         entry[0].append(name)
+        arm_pins.setdefault(motion.cam, []).append((float(np.hypot(*motion.table.holding_pawl.pivot)), PIN_MM))
 
 
 def thicknesses(design: Any, known: dict[str, float]) -> dict[str, float]:

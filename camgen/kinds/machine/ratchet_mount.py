@@ -252,7 +252,8 @@ def ratchet_motion(index: int, mount: RatchetMount, program: Any, arm_mm: float,
                    phi: np.ndarray, sense: int = 1) -> RatchetMotion:
     """The ratchet ``mount`` (``ratchets[index]``) driven by an arm ``arm_mm`` long swinging by ``program`` (degrees)
     on a shaft of ``turns`` turns per main turn, its program starting at the shaft's ``phase_deg``, at main shaft
-    angles ``phi`` (rad); a :class:`SpecError` naming ``ratchets[index].cam`` for a stroke under a tooth's pitch."""
+    angles ``phi`` (rad); a :class:`SpecError` naming ``ratchets[index].cam`` for a stroke under a tooth's pitch, or
+    ``ratchets[index].pawl.length`` for an arm's pawl whose pin would lie beyond the arm."""
     where = f"ratchets[{index}].cam"
     stroke = stroke_of(program, where)
     pitch = TWO_PI / mount.teeth
@@ -260,6 +261,12 @@ def ratchet_motion(index: int, mount: RatchetMount, program: Any, arm_mm: float,
         raise SpecError(f"cams.{mount.cam}'s arm swings {math.degrees(stroke.swing):.6g} degrees, under a tooth's "
                         f"pitch: the wheel would never advance; give a swing of at least "
                         f"{least_swing_deg(mount.teeth):.6g} degrees (360 / {mount.teeth} teeth)", where)
+    table = mount.table(math.degrees(stroke.swing), arm_mm)
+    reach = float(np.hypot(*table.holding_pawl.pivot))
+    if not reach < arm_mm:
+        raise SpecError(f"the arm's pawl's pin lies {reach:.6g} mm from the wheel's axis (the tip radius and the "
+                        f"pawl's length), beyond cams.{mount.cam}'s arm ({arm_mm:g} mm): give a shorter pawl or a "
+                        "smaller wheel", f"ratchets[{index}].pawl.length")
     n = abs(turns)
     theta = n * np.asarray(phi, float) - math.radians(phase_deg)
     swing = program.evaluate(theta)[:2]
@@ -268,7 +275,6 @@ def ratchet_motion(index: int, mount: RatchetMount, program: Any, arm_mm: float,
     rate = driven * dpsi
     force = kinematics.reflected_force(-mount.load_torque, driven, arm_mm)
     torque = kinematics.shaft_torque(-mount.load_torque, driven, dpsi)
-    table = mount.table(math.degrees(stroke.swing), arm_mm)
     turned = _turned_at(program, stroke, pitch, n, phase_deg, np.asarray(phi, float))
     return RatchetMotion(mount.name, mount.cam, mount, table, stroke, n, arm_mm, turned, rate, force, torque, sense,
                          program, phase_deg)

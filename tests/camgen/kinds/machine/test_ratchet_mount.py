@@ -79,7 +79,7 @@ def test_the_example_advances_one_tooth_a_turn_and_reports_it():
     from camgen.kinds.machine.report import machine_report
 
     report = machine_report(design)
-    entry = report["ratchets"]["counter"]
+    entry = report["ratchets"]["index"]
     assert entry["wheel_deg"] == [0.0, 18.0] and entry["teeth_per_turn"] == 1.0 and entry["lost_motion_deg"] == 6.0
     # the arm's pawl drives only after the 6 degrees of lost motion on the rise (cycloidal, 24 degrees over 150):
     # s(u) = 24 (u - sin(2 pi u) / (2 pi)) reaches 6 where u = 0.3700..., 55.5 degrees after the rise starts
@@ -88,7 +88,7 @@ def test_the_example_advances_one_tooth_a_turn_and_reports_it():
     start, end = entry["driving_deg"][0]
     assert abs(start - first) <= 0.5 and end == 149.5
     labels = [o["output"] for o in report["timing"]["outputs"]]
-    assert "ratchets.counter" in labels
+    assert "ratchets.index" in labels
 
 
 def test_the_load_on_the_roller_and_the_main_shaft_is_virtual_work():
@@ -180,8 +180,8 @@ def test_a_wheel_set_on_its_cams_plane_clashes_where_shapely_finds_it():
     from camgen.kinds.machine.clash import AREA_TOL_MM2
 
     design = _design(lambda raw: raw["ratchets"][0].update(layer=0, tip_diameter=80.0))
-    found = [c for c in design.clashes if "ratchets.counter.wheel" in (c.a, c.b)]
-    assert found and {found[0].a, found[0].b} == {"cams.rocker", "ratchets.counter.wheel"}
+    found = [c for c in design.clashes if "ratchets.index.wheel" in (c.a, c.b)]
+    assert found and {found[0].a, found[0].b} == {"cams.rocker", "ratchets.index.wheel"}
     r = design.ratchets[0]
     cam = next(b.outline for b in design.bodies if b.name == "cams.rocker")
     wheel = r.table.wheel.outline()[0]
