@@ -80,13 +80,15 @@ def test_the_example_advances_one_tooth_a_turn_and_reports_it():
 
     report = machine_report(design)
     entry = report["ratchets"]["index"]
-    assert entry["wheel_deg"] == [0.0, 18.0] and entry["teeth_per_turn"] == 1.0 and entry["lost_motion_deg"] == 6.0
+    # the cam's program starts at the shaft's 260 degrees: the turn starts mid-stroke (program angle 100 degrees)
+    assert entry["wheel_deg"][0] == 0.0 and 17.0 < entry["wheel_deg"][1] < 18.0
+    assert entry["teeth_per_turn"] == 1.0 and entry["lost_motion_deg"] == 6.0
     # the arm's pawl drives only after the 6 degrees of lost motion on the rise (cycloidal, 24 degrees over 150):
     # s(u) = 24 (u - sin(2 pi u) / (2 pi)) reaches 6 where u = 0.3700..., 55.5 degrees after the rise starts
     u = np.linspace(0, 1, 2_000_001)
     first = 150.0 * u[np.argmax(24.0 * (u - np.sin(2 * np.pi * u) / (2 * np.pi)) > 6.0)]
     start, end = entry["driving_deg"][0]
-    assert abs(start - first) <= 0.5 and end == 149.5
+    assert abs(start - 260.0 - first) <= 0.5 and end == 149.5 + 260.0
     labels = [o["output"] for o in report["timing"]["outputs"]]
     assert "ratchets.index" in labels
 
@@ -105,9 +107,10 @@ def test_the_load_on_the_roller_and_the_main_shaft_is_virtual_work():
     assert np.allclose(r.force * follower_rate, power, rtol=1e-9, atol=1e-15)
     assert np.allclose(r.torque, power, rtol=1e-9, atol=1e-15)
     assert np.allclose(design.shaft_torque, power, rtol=1e-9, atol=1e-15)
-    driving = r.rate > 0
+    driving = r.rate > 0                        # (at the stroke's top the pawl may bear with the arm at rest)
     assert np.allclose(r.force[driving], torque * 1000.0 / 80.0, rtol=1e-12)
-    assert np.all(r.force[~driving] == 0.0)
+    assert np.allclose(r.force[r.force != 0], torque * 1000.0 / 80.0, rtol=1e-12)
+    assert np.count_nonzero(r.force) - np.count_nonzero(driving) <= 2
     # the cam is designed again with that load: its load table is the force at its program angles
     table = np.array(cam.design.spec.follower.load_table)
     assert table[:, 1].max() == pytest.approx(2.5, rel=1e-9) and table[:, 1].min() == 0.0
@@ -173,13 +176,17 @@ def test_a_swing_that_goes_forward_twice_a_turn_is_refused(tmp_path):
 def test_a_wheel_set_on_its_cams_plane_clashes_where_shapely_finds_it():
     """The wheel put on the cam's plane (layer 0), 80 mm over its tips, on the pivot 100 mm from the cam's centre:
     the clash check's first angle is the first of a 0.01-degree scan in which shapely finds the cam's outline
-    (turned by the main shaft's angle, counter-clockwise) and the wheel's (turned by its angle about the pivot,
+    (its phase set to 0: turned by the main shaft's angle, counter-clockwise) and the wheel's (turned by its angle about the pivot,
     mirrored for its clockwise drive) overlapping by more than the check's area tolerance, within 0.1 degree."""
     import shapely
 
     from camgen.kinds.machine.clash import AREA_TOL_MM2
 
-    design = _design(lambda raw: raw["ratchets"][0].update(layer=0, tip_diameter=80.0))
+    def change(raw):
+        raw["ratchets"][0].update(layer=0, tip_diameter=80.0)
+        raw["cams"][0]["phase"] = 0.0
+
+    design = _design(change)
     found = [c for c in design.clashes if "ratchets.index.wheel" in (c.a, c.b)]
     assert found and {found[0].a, found[0].b} == {"cams.rocker", "ratchets.index.wheel"}
     r = design.ratchets[0]
