@@ -21,6 +21,7 @@ from camgen.kinds import spec_kind
 from camgen.kinds.machine import (arms, chain_inertia, clash, frame, general_inertia, indexed_cam, indexing,
                                   kinematics, machine_gears, shaft_motion, slider_coupling)
 from camgen.kinds.machine.cranked import CrankedMotion, cranked_motion
+from camgen.kinds.machine.ratchet_mount import RatchetMotion, program_load, ratchet_motion
 from camgen.kinds.machine.spec import Coupling, MachineSpec
 from linkgen import api as linkgen_api
 from linkgen.kinematics.fourbar import FourBar
@@ -187,6 +188,8 @@ class MachineDesign:
     indexed: tuple[indexing.Indexer, ...] = ()
     #: each gear pair as real involute gears (:mod:`camgen.kinds.machine.machine_gears`)
     gears: tuple[machine_gears.MachineGear, ...] = ()
+    #: each ratchet a follower's arm indexes (:mod:`camgen.kinds.machine.ratchet_mount`)
+    ratchets: tuple[RatchetMotion, ...] = ()
 
     @property
     def tolerance(self) -> float:
@@ -203,7 +206,8 @@ class MachineDesign:
         """The timing diagram's outputs in order: each follower (its swing in degrees, or its lift in mm), then each
         coupled four-bar's rocker (its angle in degrees), then each follower-driven general linkage's output link
         (its turn from its drawing, degrees), then each shaft-driven and each follower-driven general linkage's
-        tracers (x and y, mm in the machine's frame)."""
+        tracers (x and y, mm in the machine's frame), then each Geneva drive's wheel and each ratchet's wheel (its
+        turn from the start, degrees)."""
         cams = tuple(Output(f"cams.{c.name}", c.unit, c.follower[0], c.rate) for c in self.cams)
         traced = tuple(Output(f"linkages.{m.name}.{p}.{axis}", "mm", m.points[p][:, k], m.rates[p][:, k])
                        for m in (*self.cranked, *self.slid) for p in m.tracers for k, axis in enumerate("xy"))
@@ -211,21 +215,23 @@ class MachineDesign:
                      for m in self.slid if m.coupling.output is not None)
         wheels = tuple(Output(f"genevas.{g.name}", "deg", *map(np.degrees, g.wheel_motion(self.phi)))
                        for g in self.indexed)
+        ratchets = tuple(Output(f"ratchets.{r.name}", "deg", np.degrees(r.angle), np.degrees(r.rate))
+                         for r in self.ratchets)
         return (*cams, *(Output(f"linkages.{m.name}", "deg", np.degrees(m.theta4), np.degrees(m.rocker_rate))
-                         for m in self.linkages), *slid, *traced, *wheels)
+                         for m in self.linkages), *slid, *traced, *wheels, *ratchets)
 
     @property
     def shaft_torque(self) -> np.ndarray:
         """The main shaft's torque (N*m) working against every linkage's output torque, at its angles (and against
-        each linkage's own dynamics, where its template has ``[dynamics]``)."""
+        each linkage's own dynamics, where its template has ``[dynamics]``), and every ratchet's load."""
         cranked = (m.torque for m in self.cranked if m.torque is not None)
-        return sum((*(m.torque for m in self.linkages), *cranked, *(m.torque for m in self.slid)),
-                   np.zeros_like(self.phi))
+        return sum((*(m.torque for m in self.linkages), *cranked, *(m.torque for m in self.slid),
+                    *(r.torque for r in self.ratchets)), np.zeros_like(self.phi))
 
     def together(self, a: str, b: str) -> bool:
         """Whether outputs labelled ``a`` and ``b`` move together by construction (left out of the overlaps): a
-        follower and the linkage it drives (and its tracers), two outputs of one general linkage, or a Geneva drive's
-        wheel and a cam on its shaft."""
+        follower and the linkage it drives (and its tracers), two outputs of one general linkage, a Geneva drive's
+        wheel and a cam on its shaft, or a ratchet's wheel and the follower whose arm indexes it."""
         driven = [(m.cam, m.name) for m in self.linkages] + [(m.cam, m.name) for m in self.slid]
         pairs = {frozenset((f"cams.{cam}", f"linkages.{name}")) for cam, name in driven}
         own = [m.name for m in (*self.cranked, *self.slid) if a.startswith(f"linkages.{m.name}")
@@ -233,7 +239,8 @@ class MachineDesign:
         followed = [m.name for m in self.slid if {a, b} & {f"cams.{m.cam}"}
                     and any(x.startswith(f"linkages.{m.name}.") for x in (a, b))]
         indexed = {frozenset((f"cams.{c.name}", f"genevas.{c.indexer.name}")) for c in self.cams if c.indexer}
-        return frozenset((a, b)) in pairs | indexed or bool(own) or bool(followed)
+        ratcheted = {frozenset((f"cams.{r.cam}", f"ratchets.{r.name}")) for r in self.ratchets}
+        return frozenset((a, b)) in pairs | indexed | ratcheted or bool(own) or bool(followed)
 
     def cam(self, name: str) -> CamMotion:
         """The cam mounted as ``name``."""
@@ -301,6 +308,10 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
                             f"of a toggle over the range cams.{coupling.cam} drives it through")
         if coupling.output_torque or found.effort is not None:
             cams[coupling.cam] = _loaded(spec, cams[coupling.cam], found)
+    ratchets = tuple(_ratchet(spec, i, cams[r.cam]) for i, r in enumerate(spec.ratchets))
+    for r in ratchets:
+        if r.mount.load_torque:
+            cams[r.cam] = _loaded_ratchet(spec, cams[r.cam], r)
     for c in cams.values():
         warnings += [f"cams.{c.name}: {w}" for w in c.design.warnings]
         real = indexed_cam.indexed_cam(c, _cam_of(c.design), spec.machine.rpm * math.pi / 30.0, phi)
@@ -318,7 +329,7 @@ def design_machine(spec: MachineSpec) -> MachineDesign:
             warnings += [f"linkages.{mount.name}: {w}" for w in made_linkage.report.get("warnings", ())]
     warnings += [f"genevas.{g.name}: {w}" for g in indexed for w in g.design.warnings]
     made = MachineDesign(spec, phi, tuple(cams.values()), tuple(linkages), tuple(warnings), cranked=tuple(cranked),
-                         slid=tuple(slid), indexed=indexed)
+                         slid=tuple(slid), indexed=indexed, ratchets=ratchets)
     warnings += [w for g in gears for w in machine_gears.warnings_of(g)]
     made = replace(made, gears=gears, warnings=tuple(warnings))
     bodies, joints, unchecked = clash.machine_parts(made, one_plate=spec.machine.frame == "one")
@@ -425,6 +436,22 @@ def _loaded(spec: MachineSpec, cam: CamMotion, linkage: LinkageMotion) -> CamMot
                                               linkage.coupling.output_torque, k4)
     force = chain_inertia.carried(load, linkage.coupling.output_torque, k4, arm, chain)[0]
     return _redesigned(spec, index, cam, theta, force)
+
+
+def _ratchet(spec: MachineSpec, index: int, cam: CamMotion) -> RatchetMotion:
+    """The ratchet of ``spec.ratchets[index]`` indexed by ``cam``'s follower's arm over the machine's turn."""
+    kin = _cam_of(cam.design)
+    f = kin.follower
+    return ratchet_motion(index, spec.ratchets[index], kin.program, float(f.arm_length), cam.turns, cam.phase_deg,
+                          kinematics.shaft_angles(spec.machine.samples), int(getattr(f, "_swing_sign", 1.0)))
+
+
+def _loaded_ratchet(spec: MachineSpec, cam: CamMotion, ratchet: RatchetMotion) -> CamMotion:
+    """``cam`` designed again with its ratchet's ``load_torque`` on its follower's roller (N pressing it onto the
+    cam while the arm's pawl drives) as a load table at :data:`LOAD_ROWS` program angles."""
+    index = next(i for i, m in enumerate(spec.cams) if m.name == cam.name)
+    theta = np.arange(LOAD_ROWS) * (kinematics.TWO_PI / LOAD_ROWS)
+    return _redesigned(spec, index, cam, theta, program_load(ratchet, _cam_of(cam.design).program, theta))
 
 
 def _slider_motion(spec: MachineSpec, index: int, mount_index: int,

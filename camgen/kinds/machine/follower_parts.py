@@ -107,7 +107,8 @@ def follower_parts(design: Any) -> tuple[FollowerPart, ...]:
     """Each oscillating follower's arm and roller of ``design`` (a
     :class:`~camgen.kinds.machine.design.MachineDesign`), in the cams' order, then each translating follower's
     parts (:func:`camgen.kinds.machine.stem_kit.stem_parts`): their outlines exact, their holes the ones the clash
-    check's bodies carry, as thick as the assembly makes them."""
+    check's bodies carry, as thick as the assembly makes them; then each ratchet's wheel and pawls
+    (:func:`camgen.kinds.machine.ratchet_parts.ratchet_parts`)."""
     from camgen.kinds.machine.frame import thicknesses
 
     thick = thicknesses(design)
@@ -123,9 +124,10 @@ def follower_parts(design: Any) -> tuple[FollowerPart, ...]:
         outline = roller_outline(made_radius(cam.design, r))
         out.append(FollowerPart(roller.name, "roller", Plate(
             f"{cam.name}-roller", outline, tuple((c, 2 * hr) for c, hr in roller.holes), thick[name], tol)))
+    from camgen.kinds.machine.ratchet_parts import ratchet_parts
     from camgen.kinds.machine.stem_kit import stem_parts
 
-    return (*out, *stem_parts(design))
+    return (*out, *stem_parts(design), *ratchet_parts(design))
 
 
 @dataclass(frozen=True)

@@ -284,7 +284,8 @@ def stack(spec: Any, design: Any, bodies: Sequence[Body]) -> Stack:
 def thicknesses(design: Any) -> dict[str, float]:
     """Each flat moving part's thickness (mm) by its clash-check name: a cam's, its follower arm's or stem's (the
     cam's, or the crank's of the four-bar it drives), a four-bar's coupler and rocker and every moving link of a
-    shaft- or follower-driven general linkage (their parts'), and each gear and hub of a gear pair."""
+    shaft- or follower-driven general linkage (their parts'), each gear and hub of a gear pair, and each ratchet's
+    wheel and pawls (their arm's)."""
     out: dict[str, float] = {}
     for cam in design.cams:
         for suffix, part in conjugate_parts.plates(cam.design):      # a conjugate pair's two plates
@@ -315,6 +316,9 @@ def thicknesses(design: Any) -> dict[str, float]:
     from camgen.kinds.machine.geneva_bodies import thicknesses as geneva_thicknesses
 
     out.update(geneva_thicknesses(design))
+    from camgen.kinds.machine.ratchet_bodies import thicknesses as ratchet_thicknesses
+
+    out.update(ratchet_thicknesses(design, out))
     return out
 
 
@@ -325,7 +329,7 @@ RESERVED = ("frame", "frame-top", "kit", "assembly")
 def check_names(spec: Any) -> None:
     """Refuse a cam or linkage named as the machine's own files are (:data:`RESERVED`, ``spacer-<i>``): their files
     would be the same."""
-    for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages)):
+    for key, mounts in (("cams", spec.cams), ("linkages", spec.linkages), ("ratchets", spec.ratchets)):
         for i, mount in enumerate(mounts):
             if mount.name in RESERVED or mount.name.startswith("spacer-"):
                 raise SpecError(f"{mount.name!r} names the machine's own files (<machine>-{mount.name}...): give the "

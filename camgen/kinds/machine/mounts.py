@@ -7,8 +7,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-#: the machine's tables whose entries name a template by path
-MOUNT_TABLES = ("cams", "linkages")
+#: the machine's tables whose entries name a template by path (a ratchet names none: its wheel is inline)
+MOUNT_TABLES = ("cams", "linkages", "genevas")
 
 
 def beside(raw: dict[str, Any], folder: Path) -> dict[str, Any]:

@@ -18,6 +18,7 @@ from camgen.kinds.machine.indexed_cam import indexed_cam
 from camgen.kinds.machine.keeptime import timing_report
 from camgen.kinds.machine.machine_gears import report_entries
 from camgen.kinds.machine.poses import poses_report
+from camgen.kinds.machine.ratchet_mount import report_entry as ratchet_entry
 from camgen.speed import HeldContact, Speed
 from camgen.tables.followers import Driven
 
@@ -170,6 +171,7 @@ def machine_report(design: MachineDesign) -> dict[str, Any]:
         **({"cranked": {m.name: _cranked_entry(design, m) for m in design.cranked}} if design.cranked else {}),
         **({"slid": {m.name: slid_entry(design, m) for m in design.slid}} if design.slid else {}),
         **({"genevas": {g.name: _geneva_entry(design, g) for g in design.indexed}} if design.indexed else {}),
+        **({"ratchets": {r.name: ratchet_entry(r, design.phi) for r in design.ratchets}} if design.ratchets else {}),
         "timing": timing(design),
         "poses": poses_report(design),
         "shaft_torque_n_m": {"min": _num(torque.min(), 6), "max": _num(torque.max(), 6),
@@ -197,6 +199,7 @@ def _torque_note(design: MachineDesign) -> str:
         or any(m.torque is not None for m in design.cranked)
     return ("the main shaft's torque against the linkages' output torques"
             + (" and their own inertia, weight, springs and loads ([dynamics])" if dynamic else "")
+            + (" and the ratchets' load torques" if design.ratchets else "")
             + " (virtual work: their power over the shaft's speed); each cam's own follower forces are in its own "
             "report")
 
@@ -242,6 +245,9 @@ def summary_lines(report: dict[str, Any]) -> list[str]:
         lines.append(f"  {where} keeps time: cams.{timed['cam']} drives linkages.{timed['linkage']} through "
                      f"{len(timed.get('targets', ())) or timed.get('points')} point(s), each within {worst:.2g} "
                      f"{'mm' if 'targets' in timed else 'deg'} of its time")
+    for name, r in report.get("ratchets", {}).items():
+        lines.append(f"  ratchets.{name}: indexed by cams.{r['cam']}'s arm ({r['swing_deg']:.4g} deg a stroke), "
+                     f"{r['teeth']} teeth, {r['teeth_per_turn']:g} tooth(teeth) a turn")
     t = report["shaft_torque_n_m"]
     if t["min"] or t["max"]:
         lines.append(f"  main shaft torque against the linkages' loads: {t['min']:.4g} to {t['max']:.4g} N*m")

@@ -26,6 +26,7 @@ from camgen.kinds.machine.barrel_parts import check_coupling as check_barrel
 from camgen.kinds.machine.conjugate_parts import check_layers
 from camgen.kinds.machine.indexing import check_genevas
 from camgen.kinds.machine.keeptime import KeepTime
+from camgen.kinds.machine.ratchet_mount import RatchetMount, check_ratchets
 from camgen.kinds.machine.slider_coupling import STEMS
 from camgen.kinds.machine.slider_coupling import check as check_slider
 from camgen.kinds.machine.slider_coupling import check_arm
@@ -266,8 +267,9 @@ class MachineSpec(TemplateSpec):
         The machine's name, used for its files.
     machine : MachineTable
         The main shaft and its speed.
-    shafts, gears, cams, linkages, couplings : tuple
-        The frame's shafts, the gear pairs between them, the cams on them, the linkages and what drives them.
+    shafts, gears, cams, linkages, couplings, genevas, ratchets : tuple
+        The frame's shafts, the gear pairs between them, the cams on them, the linkages and what drives them, the
+        Geneva drives between shafts and the ratchets the followers' arms index.
     output : OutputTable
         Which files to write (each cam's and linkage's own files are those of these formats its kind writes).
     """
@@ -282,6 +284,8 @@ class MachineSpec(TemplateSpec):
     genevas: tuple[GenevaMount, ...] = Field((), max_length=MAX_MOUNTS, description="Geneva drives between shafts")
     couplings: tuple[Coupling, ...] = Field((), max_length=MAX_MOUNTS, description="each follower driving a "
                                             "linkage")
+    ratchets: tuple[RatchetMount, ...] = Field((), max_length=MAX_MOUNTS, description="ratchets, each indexed by "
+                                               "a follower's arm")
     output: MachineOutputTable = MachineOutputTable()
     #: its kind's name (the registry's key), the command that builds it and how a message names it
     kind: ClassVar[str] = "machine"
@@ -326,6 +330,7 @@ class MachineSpec(TemplateSpec):
         self.cam_specs, self.linkage_specs                  # noqa: B018 (each sub-template validated here)
         self._check_cranked()
         self._check_couplings()
+        check_ratchets(self)
         return self
 
     def _check_shaft(self, where: str, shaft: str, shafts: list[str]) -> None:

@@ -4,6 +4,7 @@ template's folder in turn. Refusals stay one line naming the mount's ``template`
 from __future__ import annotations
 
 import shutil
+from pathlib import Path
 
 import numpy as np
 from click.testing import CliRunner
@@ -140,3 +141,19 @@ def test_a_mount_path_missing_beside_the_machine_is_refused_naming_its_mount(tmp
     (tmp_path / "parts").mkdir()
     (tmp_path / "parts" / "lever.toml").write_text(LEVER)
     assert_refused(folder / "machine.toml", {}, "cams[0].template: ", tmp_path)
+
+
+def test_a_geneva_template_path_is_read_from_the_machine_templates_folder(tmp_path, monkeypatch):
+    """``genevas`` is a mount table too (:data:`camgen.kinds.machine.mounts.MOUNT_TABLES`): its ``template`` path is
+    read beside the machine, not from the current folder (it was not, and the build failed naming it)."""
+    from tests.camgen.kinds.machine.test_geneva_mount import MACHINE as GENEVA
+
+    folder = tmp_path / "machines"
+    folder.mkdir()
+    shutil.copy(ROOT / "templates" / "geneva4.toml", folder / "drive.toml")
+    (folder / "machine.toml").write_text(GENEVA.replace(f'"{ROOT / "templates" / "geneva4.toml"}"', '"drive.toml"'))
+    assert 'template = "drive.toml"' in (folder / "machine.toml").read_text()
+    monkeypatch.chdir(tmp_path)
+    design = api.design(api.load("machines/machine.toml"))
+    assert design.indexed[0].law.slots == 4
+    assert design.spec.genevas[0].template == str(Path("machines") / "drive.toml")
