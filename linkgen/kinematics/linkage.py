@@ -254,9 +254,10 @@ class Linkage:
         """Whether the one input turns a link (its values wrap every 2 pi)."""
         return len(self.structure.inputs) == 1 and self.structure.inputs[0].kind == "crank"
 
-    @property
+    @cached_property
     def revolution(self) -> float:
-        """Where a crank's revolution of input values starts (rad): ``origin``, else the drawn angle."""
+        """Where a crank's revolution of input values starts (rad): ``origin``, else the drawn angle (found once:
+        every solve asks for it)."""
         return float(self.drawn_inputs[0]) if self.origin is None else self.origin
 
     def unwrap(self, values: np.ndarray) -> np.ndarray:
