@@ -277,6 +277,7 @@ def _row(name: str, linkage: Any, point: str, n: int, repeats: int, have: bool) 
 _MEMORY_CALLS = {
     "ours positions": "linkage.positions(t)",
     "ours compiled positions": "linkage.positions(t, engine='numba')",
+    "ours compiled with rates": "linkage.positions(t, derivatives=True, engine='numba')",
     "ours solve": "linkage.solve(t, derivatives=False)",
     "ours positions with rates": "linkage.positions(t, derivatives=True)",
     "ours with rates": "linkage.solve(t)",
@@ -300,8 +301,8 @@ if {what!r}.startswith("pylinkage"):
     model.step_fast(iterations=10)
     model.step_fast_with_kinematics(iterations=10)
 linkage.positions(t[:100]); linkage.solve(t[:100])
-if {what!r} == "ours compiled positions":
-    linkage.positions(t[:100], engine="numba")
+if {what!r}.startswith("ours compiled"):
+    linkage.positions(t[:100], derivatives=True, engine="numba")
 
 def status(key):
     for line in open("/proc/self/status"):

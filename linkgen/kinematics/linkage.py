@@ -254,9 +254,10 @@ class Linkage:
         """Whether the one input turns a link (its values wrap every 2 pi)."""
         return len(self.structure.inputs) == 1 and self.structure.inputs[0].kind == "crank"
 
-    @property
+    @cached_property
     def revolution(self) -> float:
-        """Where a crank's revolution of input values starts (rad): ``origin``, else the drawn angle."""
+        """Where a crank's revolution of input values starts (rad): ``origin``, else the drawn angle (found once:
+        every solve asks for it)."""
         return float(self.drawn_inputs[0]) if self.origin is None else self.origin
 
     def unwrap(self, values: np.ndarray) -> np.ndarray:
@@ -376,13 +377,17 @@ class Linkage:
         flipped = any(len(f) for f in self.flips)
         if prog is None or x.shape[0] != 1 or (derivatives and flipped):
             return _positions_of(self.solve(x, strict=strict, derivatives=derivatives))
-        if strict:
+        # the least and largest value, found without a temporary array (a fresh one's pages cost more than the
+        # compiled kernel at 10^4 poses): NaN where one is NaN, so +-inf or NaN anywhere shows in them
+        lo, hi = (float(x[0].min()), float(x[0].max())) if len(x[0]) else (0.0, 0.0)
+        if strict and not (math.isfinite(lo) and math.isfinite(hi)):
             check_finite(x[0], "input", "input", "degrees", math.degrees)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             given = x
             # the crank's turn is periodic: values within a few turns of the drawing need no unwrapping unless a
             # change point's branch swap depends on the revolution they lie on
-            near = bool(len(x[0])) and float(np.abs(x[0] - self.revolution).max()) <= 4 * TWO_PI
+            rev = self.revolution
+            near = bool(len(x[0])) and max(hi - rev, rev - lo) <= 4 * TWO_PI
             x = self.unwrap(x[0])[None, :] if flipped or not near else x
             signs = self.signs(x) if flipped else list(self.base_signs)
             try:
