@@ -169,7 +169,7 @@ def axles(design: Any, stack: Any) -> tuple[Axle, ...]:
 
 def bom_lines(design: Any, stack: Any) -> tuple[BomLine, ...]:
     """The kit's lines of the followers: each arm and roller (made, its own files), each axle (a bolt through the
-    roller and the arm, bought; the bolt of :data:`AXLE_MM`)."""
+    roller and the arm, bought; the bolt of :data:`AXLE_MM`), each ratchet's arm's pawl's bolt."""
     lines = []
     for p in follower_parts(design):
         n = len(p.plate.holes)
@@ -179,7 +179,9 @@ def bom_lines(design: Any, stack: Any) -> tuple[BomLine, ...]:
     for a in axles(design, stack):
         lines.append(bolt_line(bolt, bolt_length(bolt, a.top - a.bottom), 1,
                                f"roller axle {a.name} at ({a.centre[0]:.4g}, {a.centre[1]:.4g}) mm"))
-    return tuple(lines)
+    from camgen.kinds.machine.ratchet_parts import pin_lines
+
+    return (*lines, *pin_lines(design, stack))
 
 
 def allowances(design: Any) -> Allowances:
