@@ -16,12 +16,13 @@ pawl is linkgen's figure turned about the axis by beta = a(phi) - angle(P), so i
 |P| out (the arm's hole); while it drives, beta - W - w0 is a whole number of pitches, so its tip bears on a face.
 The holding pawl is the figure turned by a fixed alpha = W_top + w0 + m p (W_top the wheel's angle where it is
 held, from the top of a stroke), the whole number m putting its pin nearest the side of the wheel away from the
-arm at mid-stroke: while the wheel is held its nose sits on the face it holds. Each pawl is turned about its pin by
-the least lift that keeps it its drawn nose gap (:data:`~linkgen.mechanisms.ratchet.NOSE_GAP_MM`, 0.05 mm) off the
-teeth, as its spring holds it down on them (:meth:`PawlPoses.lift`): none while it bears on a face, down onto the
-back before it where it has dropped into a tooth space, up riding on a tooth's back or tip otherwise. That lift has
-no closed form here: it is bisected on every angle at once to 1e-12 rad (rather than drawn at the highest it rides,
-resting on the tip circle: the pawl follows the teeth, its nose 0.05 mm off them at every angle).
+arm at mid-stroke: while the wheel is held its nose sits on the face it holds. A pawl bearing (the arm's while it
+drives the wheel, the holding pawl while the wheel is still) is linkgen's pose; elsewhere it is turned about its
+pin by the least lift that keeps it its drawn nose gap (:data:`~linkgen.mechanisms.ratchet.NOSE_GAP_MM`, 0.05 mm)
+off the teeth, as its spring holds it down on them (:meth:`PawlPoses.lift`): riding up a tooth's back or over its
+tip, or dropped into a tooth space. That lift has no closed form here: it is bisected on every angle at once to
+1e-12 rad (rather than drawn at the highest it rides, resting on the tip circle: the pawl follows the teeth, its
+nose 0.05 mm off them at every angle).
 
 **Plane.** Plane 2 ``layer``, else the plane over the follower's arm (the arm's pawl rides on the arm's face); the
 wheel turns on the pivot's pin, which reaches up to it, and is as thick as the arm, and so are its pawls, on its
@@ -95,19 +96,23 @@ class PawlPoses:
         """The arm's pawl's turn about the axis (rad): a(phi) - angle(P)."""
         return self.arm_angle(phi) - math.atan2(self.pivot[1], self.pivot[0])
 
-    def lift(self, turn: np.ndarray, phi: np.ndarray) -> np.ndarray:
+    def lift(self, turn: np.ndarray, phi: np.ndarray, bears: np.ndarray) -> np.ndarray:
         """The pawl's lift (rad, clockwise about its pin in the wheel's frame: its nose rising; 0 as linkgen draws
-        it bearing on a face) where it is turned ``turn`` (n,) about the axis at main shaft angles ``phi`` (n,): the
-        least, down to -``highest``, that keeps it :data:`~linkgen.mechanisms.ratchet.NOSE_GAP_MM` (its drawn gap,
-        less 1e-9 mm) off the wheel's teeth, as its spring holds it down on them: 0 bearing on a face, below 0
-        dropped into a tooth space onto the back before it, above riding on a tooth. Bisected on every angle at once
-        to :data:`LIFT_TOL_RAD` on shapely's distance, the clear end kept."""
+        it bearing on a face at the tooth's tip) where it is turned ``turn`` (n,) about the axis at main shaft
+        angles ``phi`` (n,): 0 where it ``bears``, elsewhere the least, down to -``highest``, that keeps it
+        :data:`~linkgen.mechanisms.ratchet.NOSE_GAP_MM` (its drawn gap, less 1e-9 mm) off the wheel's teeth, as its
+        spring holds it down on them: riding on a tooth (above 0) or dropped into a tooth space. Bisected on every
+        angle at once to :data:`LIFT_TOL_RAD` on shapely's distance, the clear end kept."""
         import shapely
 
         from linkgen.mechanisms.ratchet import NOSE_GAP_MM
 
+        out = np.zeros(len(phi))
+        free = ~np.asarray(bears, bool)
+        if not free.any():
+            return out
         wheel = self.motion.table.wheel.outline()[0]
-        teeth = shapely.polygons(_placed(wheel, self.motion.wheel_angle(phi) + self.w0 - turn))
+        teeth = shapely.polygons(_placed(wheel, self.motion.wheel_angle(phi[free]) + self.w0 - turn[free]))
         shapely.prepare(teeth)
         local = self.points - self.pivot
 
@@ -115,22 +120,27 @@ class PawlPoses:
             pawls = shapely.polygons(_placed(local, -delta) + self.pivot)
             return np.asarray(shapely.distance(pawls, teeth) >= NOSE_GAP_MM - 1e-9)
 
-        lo, hi = np.full(len(phi), -self.highest), np.full(len(phi), self.highest)
+        lo, hi = np.full(len(teeth), -self.highest), np.full(len(teeth), self.highest)
         down = clear(lo)
         hi[down] = lo[down]
         while np.any(hi - lo > LIFT_TOL_RAD):
             mid = 0.5 * (lo + hi)
             ok = clear(mid)
             hi, lo = np.where(ok, mid, hi), np.where(ok, lo, mid)
-        return hi
+        out[free] = hi
+        return out
 
     def turns(self, which: str, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Pawl ``which`` ("pawl", the holding pawl, or "lever-pawl", the arm's): its turn about the axis and its
         turn about its pin (rad, counter-clockwise in the wheel's frame: minus its lift) at main shaft angles
-        ``phi``."""
+        ``phi``; the arm's pawl bears where it drives the wheel, the holding pawl elsewhere."""
         phi = np.asarray(phi, float)
-        turn = np.full(len(phi), self.alpha) if which == "pawl" else self.beta(phi)
-        return turn, -self.lift(turn, phi)
+        drives = self.motion.driving_at(phi)
+        if which == "pawl":
+            turn = np.full(len(phi), self.alpha)
+            return turn, -self.lift(turn, phi, ~drives)
+        turn = self.beta(phi)
+        return turn, -self.lift(turn, phi, drives)
 
     def placement(self, which: str, centre: np.ndarray) -> Placement:
         """Pawl ``which``'s placement (phi -> (M, t)), its frame's origin at its pin, the wheel on ``centre`` (mm);
