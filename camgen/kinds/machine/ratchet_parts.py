@@ -8,7 +8,7 @@ pawl (:func:`~linkgen.mechanisms.ratchet.pawl_shape`) as wide as the follower's 
 at the origin and its pin's hole there. The arm's pawl is the holding pawl's figure (linkgen's lever pawl is the same
 outline turned to the tooth it drives), its pin in the arm's hole at its pivot's distance from the wheel's axis
 (:func:`camgen.kinds.machine.ratchet_bodies.ratchet_bodies`). Each hole is the pin's ISO 273 medium clearance hole.
-The pawls' springs are not drawn yet. The kit has the arm's pawl's bolt (:func:`pin_lines`); the holding pawl's
+The pawls' springs are not drawn yet. The arm's pawl's pin is a bolt in the kit and the assembly (:func:`pawl_pins`); the holding pawl's
 frame pin is the frame's (a seat of its plate). Lengths mm.
 """
 from __future__ import annotations
@@ -18,8 +18,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import DesignError, SpecError
-from camgen.core.hardware import BOLTS, bolt_length
-from camgen.core.kit import BomLine, Plate, bolt_line
+from camgen.core.kit import Plate
 from camgen.core.shapes import Contour
 from camgen.kinds.machine.follower_parts import FollowerPart
 from linkgen.mechanisms.ratchet import RatchetMechanism, pawl_shape
@@ -47,22 +46,27 @@ def pawl_points(design: Any, index: int, motion: Any, width: float) -> np.ndarra
     return np.asarray(points, float)
 
 
-def pin_lines(design: Any, stack: Any) -> tuple[BomLine, ...]:
-    """The kit's bolt of each ratchet's arm's pawl: an M4 (:data:`PIN_MM`) through the arm's hole and the pawl, as
-    long as the two stand, from the arm's bottom to the pawl's top (``stack``, the planes' heights)."""
+def pawl_pins(design: Any, stack: Any) -> tuple[Any, ...]:
+    """Each ratchet's arm's pawl's pin (``ratchets.<name>.pin``, an
+    :class:`~camgen.kinds.machine.follower_parts.Axle` of :data:`PIN_MM`, bought as a bolt) placed at
+    ``machine.assembly_angle``: through the arm's hole and the pawl, from the arm's bottom to the pawl's top
+    (``stack``, the planes' heights)."""
+    import math
+
+    from camgen.kinds.machine.follower_parts import Axle
     from camgen.kinds.machine.frame import thicknesses
 
     thick = thicknesses(design)
     bodies = {b.name: b for b in design.bodies}
-    bolt = next(b for b in BOLTS.values() if b.diameter == PIN_MM)
+    phi = np.array([math.radians(design.spec.machine.assembly_angle)])
     out = []
     for motion in design.ratchets:
         pawl, arm = bodies.get(f"ratchets.{motion.name}.lever-pawl"), bodies.get(f"cams.{motion.cam}.arm")
         if pawl is None or arm is None:
             continue
-        bottom, top = stack.bottom[arm.low], stack.bottom[pawl.low] + thick[pawl.name]
-        out.append(bolt_line(bolt, bolt_length(bolt, top - bottom), 1, f"arm's pawl pin of ratchets.{motion.name} "
-                             f"in cams.{motion.cam}'s arm"))
+        centre = pawl.place(phi)[1][0]
+        out.append(Axle(f"ratchets.{motion.name}.pin", (float(centre[0]), float(centre[1])), stack.bottom[arm.low],
+                        stack.bottom[pawl.low] + thick[pawl.name]))
     return tuple(out)
 
 

@@ -131,7 +131,8 @@ def built(tmp_path_factory):
 
 def test_the_frame_dxf_has_the_holding_pawls_pin_hole_and_the_kit_its_bolts(built):
     """The frame plate's DXF has a hole centred on the holding pawl's pin (to 1e-9 mm), of the M4's ISO 273 medium
-    clearance hole (4.5 mm, the kerf taken off); the kit lists a bolt for it and one for the arm's pawl's pin."""
+    clearance hole (4.5 mm, the kerf taken off); the kit lists a bolt for it and one for the arm's pawl's pin; the
+    assembly has both pawls, on the wheel's plane, and that pin among its bought parts."""
     import json
 
     import ezdxf
@@ -150,4 +151,8 @@ def test_the_frame_dxf_has_the_holding_pawls_pin_hole_and_the_kit_its_bolts(buil
     bom = report["frame"]["bom"]
     text = json.dumps(bom)
     assert f"pivot pin {seat['name']} at ({pin[0]:.4g}, {pin[1]:.4g}) mm" in text
-    assert "arm's pawl pin of ratchets.index in cams.rocker's arm" in text
+    assert "arm's pawl pin ratchets.index.pin at (" in text
+    pieces = {p["name"]: p for p in report["assembly"]["pieces"]}
+    assert {"ratchets.index.pawl", "ratchets.index.lever-pawl", "ratchets.index.wheel"} <= set(pieces)
+    assert pieces["ratchets.index.pin"]["bought"] and not pieces["ratchets.index.pawl"]["bought"]
+    assert pieces["ratchets.index.pawl"]["z_mm"] == pieces["ratchets.index.wheel"]["z_mm"]
