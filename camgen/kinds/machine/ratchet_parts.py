@@ -8,8 +8,8 @@ pawl (:func:`~linkgen.mechanisms.ratchet.pawl_shape`) as wide as the follower's 
 at the origin and its pin's hole there. The arm's pawl is the holding pawl's figure (linkgen's lever pawl is the same
 outline turned to the tooth it drives), its pin in the arm's hole at its pivot's distance from the wheel's axis
 (:func:`camgen.kinds.machine.ratchet_bodies.ratchet_bodies`). Each hole is the pin's ISO 273 medium clearance hole.
-The pawls' springs are not drawn yet. The arm's pawl's pin is a bolt in the kit and the assembly (:func:`pawl_pins`); the holding pawl's
-frame pin is the frame's (a seat of its plate). Lengths mm.
+The pawls' springs are not drawn yet. The arm's pawl's pin is a bolt in the kit and the assembly
+(:func:`pawl_pins`); the holding pawl's frame pin is the frame's (a seat of its plate). Lengths mm.
 """
 from __future__ import annotations
 

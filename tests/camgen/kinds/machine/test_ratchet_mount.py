@@ -177,8 +177,8 @@ def test_a_wheel_set_on_its_cams_plane_clashes_where_shapely_finds_it():
     """The wheel put on the cam's plane (layer 0), 80 mm over its tips, on the pivot 100 mm from the cam's centre:
     the clash check's first angle is the first of a 0.01-degree scan in which shapely finds the cam's outline
     (its phase set to 0: turned by the main shaft's angle, counter-clockwise) and the wheel's (turned by its angle
-    about the pivot, and its teeth's phase to the arm's pawl, mirrored for its clockwise drive) overlapping by more than the check's area tolerance, within
-    0.1 degree."""
+    about the pivot, and its teeth's phase to the arm's pawl, mirrored for its clockwise drive) overlapping by more
+    than the check's area tolerance, within 0.1 degree."""
     import shapely
 
     from camgen.kinds.machine.clash import AREA_TOL_MM2

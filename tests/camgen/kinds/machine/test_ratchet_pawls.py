@@ -37,9 +37,10 @@ def _placed(body, phi, points):
 
 @pytest.mark.parametrize("phase", [0.0, 260.0])
 def test_each_pawl_bears_on_a_tooth_tip_where_it_drives_or_holds(phase):
-    """Where the wheel turns (its rate > 0, and the one sample where the arm starts it from rest) the arm's pawl's contact C (linkgen's, at the tooth's tip) is a placed
-    tooth's tip, to 1e-9 mm, and more than 0.1 mm off one elsewhere; where it is still, the holding pawl's is. At all 720 angles each pawl lies its drawn
-    nose gap, 0.05 mm, off the teeth (to 1e-8 mm): riding over them, never into them."""
+    """Where the wheel turns (its rate > 0, and the one sample where the arm starts it from rest) the arm's pawl's
+    contact C (linkgen's, at the tooth's tip) is a placed tooth's tip, to 1e-9 mm, and more than 0.1 mm off one
+    elsewhere; where it is still, the holding pawl's is. At all 720 angles each pawl lies its drawn nose gap,
+    0.05 mm, off the teeth (to 1e-8 mm): riding over them, never into them."""
     design = _design(phase)
     r = design.ratchets[0]
     bodies = {b.name: b for b in design.bodies}
