@@ -387,7 +387,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             entry[0].append(holder)
     from camgen.kinds.machine.ratchet_bodies import ratchet_bodies
 
-    ratchet_bodies(d, arms, bodies, pins, crank_pins)                  # each ratchet's wheel on its arm's pivot pin
+    ratchet_bodies(d, arms, bodies, joints, pins, crank_pins)   # each ratchet's wheel on its arm's pivot, its pawls
     for name, (f, pivot, _, _) in arms.items():               # the arm's holes: its pivot's, axle's, crank pin's
         pin_d = 2 * next(r for k, (_, _, r) in pins.items() if math.dist(k, pivot) < 1e-9)
         holes = arm_holes(float(f.arm_length), pin_d, tuple(crank_pins.get(name, ())))

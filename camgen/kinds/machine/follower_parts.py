@@ -150,7 +150,8 @@ class Axle:
 def axles(design: Any, stack: Any) -> tuple[Axle, ...]:
     """Each oscillating follower's roller axle placed at ``machine.assembly_angle`` on the planes of ``stack``
     (:class:`camgen.kinds.machine.frame.Stack`), then each translating roller's
-    (:func:`camgen.kinds.machine.stem_kit.stem_axles`)."""
+    (:func:`camgen.kinds.machine.stem_kit.stem_axles`), then each ratchet's arm's pawl's pin
+    (:func:`camgen.kinds.machine.ratchet_parts.pawl_pins`)."""
     from camgen.kinds.machine.frame import thicknesses
 
     thick = thicknesses(design)
@@ -162,14 +163,15 @@ def axles(design: Any, stack: Any) -> tuple[Axle, ...]:
         centre = roller.place(phi)[1][0]
         out.append(Axle(f"cams.{cam.name}.axle", (float(centre[0]), float(centre[1])), stack.bottom[roller.low],
                         stack.bottom[arm.low] + thick[arm.name]))
+    from camgen.kinds.machine.ratchet_parts import pawl_pins
     from camgen.kinds.machine.stem_kit import stem_axles
 
-    return (*out, *stem_axles(design, stack))
+    return (*out, *stem_axles(design, stack), *pawl_pins(design, stack))
 
 
 def bom_lines(design: Any, stack: Any) -> tuple[BomLine, ...]:
     """The kit's lines of the followers: each arm and roller (made, its own files), each axle (a bolt through the
-    roller and the arm, bought; the bolt of :data:`AXLE_MM`)."""
+    roller and the arm, bought; the bolt of :data:`AXLE_MM`), each ratchet's arm's pawl's pin as one."""
     lines = []
     for p in follower_parts(design):
         n = len(p.plate.holes)
@@ -177,8 +179,9 @@ def bom_lines(design: Any, stack: Any) -> tuple[BomLine, ...]:
                              f"{n} hole{'s' if n > 1 else ''} (its own files)", "laser or fdm"))
     bolt = next(b for b in BOLTS.values() if b.diameter == AXLE_MM)
     for a in axles(design, stack):
+        what = "arm's pawl pin" if a.name.startswith("ratchets.") else "roller axle"
         lines.append(bolt_line(bolt, bolt_length(bolt, a.top - a.bottom), 1,
-                               f"roller axle {a.name} at ({a.centre[0]:.4g}, {a.centre[1]:.4g}) mm"))
+                               f"{what} {a.name} at ({a.centre[0]:.4g}, {a.centre[1]:.4g}) mm"))
     return tuple(lines)
 
 

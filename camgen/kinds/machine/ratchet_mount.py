@@ -228,6 +228,16 @@ class RatchetMotion:
         """W (rad, 0 at the start, in the arm's rising sense) at any main shaft angles ``phi`` (rad)."""
         return _turned_at(self.program, self.stroke, self.pitch, self.turns, self.phase_deg, np.asarray(phi, float))
 
+    def driving_at(self, phi: np.ndarray) -> np.ndarray:
+        """Where (bool) the arm's pawl drives the wheel at any main shaft angles ``phi`` (rad): on the forward
+        stroke past its lost motion (elsewhere the holding pawl holds it)."""
+        theta = self.turns * np.asarray(phi, float) - math.radians(self.phase_deg)
+        return driving(self.stroke, self.pitch, theta, np.radians(self.program.evaluate(theta)[0]))
+
+    def top_angle(self) -> float:
+        """A main shaft angle (rad) at which the arm is at the top of its stroke (its most swing)."""
+        return (self.stroke.top + math.radians(self.phase_deg)) / self.turns
+
     @property
     def pitch(self) -> float:
         """2 pi / z (rad)."""

@@ -472,10 +472,12 @@ def test_two_levers_on_one_layer_clash_at_the_angle_worked_in_closed_form():
 
 def _meets_only_at_its_joints(design, phi: np.ndarray) -> tuple:
     """Assert that ``design`` has no clash and nothing unchecked, that every joint is a real one (its two parts
-    meet: overlap, or a roller touches its cam, to 0.02 mm, at every one of the angles ``phi``) and that on a common
+    meet: overlap, or a roller touches its cam, to 0.02 mm, a ratchet's pawl lies its drawn nose gap off its
+    wheel's teeth, to 1e-8 mm, at every one of the angles ``phi``) and that on a common
     plane they overlap only in its disc; then that, heights from the assembly, every part meets no other but inside
     a joint's disc. The bodies and joints (with a top plate's spacers)."""
     from camgen.kinds.machine import clash, frame
+    from linkgen.mechanisms.ratchet import NOSE_GAP_MM
     from tests.support.machine_meetings import assert_meet_only_at_joints, spans
 
     assert design.clashes == () and design.unchecked == ()
@@ -485,6 +487,9 @@ def _meets_only_at_its_joints(design, phi: np.ndarray) -> tuple:
     for joint in joints:
         a, b = (next(x for x in bodies if x.name == n) for n in (joint.a, joint.b))
         gap = shapely.distance(clash._shapes(a, phi), clash._shapes(b, phi))
+        if joint.a.endswith("pawl") and joint.b.endswith(".wheel"):     # a ratchet's pawl: its drawn nose gap
+            assert np.abs(gap - NOSE_GAP_MM).max() <= 1e-8, (joint.a, joint.b, gap.min(), gap.max())
+            continue
         assert gap.max() <= 0.02, (joint.a, joint.b, gap.max())
         if a.low <= b.high and b.low <= a.high:                               # on a common plane
             assert not clash._overlap(a, b, joint, phi).any(), (joint.a, joint.b)

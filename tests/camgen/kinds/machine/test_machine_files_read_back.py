@@ -330,8 +330,8 @@ def test_prusaslicer_slices_the_assembly_without_its_bought_parts(machine, tmp_p
 
 def _kit_pieces(bom: list[dict]) -> list[str]:
     """The assembly's name of each thing the kit buys: a shaft's (``shaft X``: ``shafts.X``), a bearing's (in the
-    seat of a shaft), a pivot pin's (a bolt or a pin, named in its line), a roller's axle (a bolt, named in its
-    line)."""
+    seat of a shaft), a pivot pin's (a bolt or a pin, named in its line), a roller's axle or a ratchet's arm's
+    pawl's pin (a bolt, named in its line)."""
     out = []
     for line in bom:
         if line["source"] != "buy":
@@ -343,7 +343,8 @@ def _kit_pieces(bom: list[dict]) -> list[str]:
             seat = re.search(r"seat of (\S+)$", line["size"]).group(1)
             out.append(f"{line['item']} of {seat}")
         else:
-            out.append(re.search(r"(?:pivot pin|roller axle) (pins\.\d+|cams\.\S+\.axle)", line["size"]).group(1))
+            out.append(re.search(r"(?:pivot pin|roller axle|arm's pawl pin) "
+                                 r"(pins\.\d+|cams\.\S+\.axle|ratchets\.\S+\.pin)", line["size"]).group(1))
     return out
 
 
@@ -496,8 +497,34 @@ def test_every_figure_and_the_animation_read_back(machine):
 def test_the_timing_table_is_the_reports_timing(machine):
     """The timing CSV: a row per sample of the report's step over one turn, two columns per output (its value and
     its value over its range), each output's least and largest the report's, and its value still over each dwell."""
-    timing = machine.report["timing"]
-    with (machine.folder / machine.report["files"]["timing_csv"]).open(newline="") as stream:
+    _assert_timing_table(machine.report, machine.folder)
+
+
+def test_a_ratchet_wheels_dwell_across_the_turns_end_is_still_but_for_its_index(tmp_path):
+    """ratchet-counter at phase 0: the wheel's still run (the arm's back stroke and lost motion, from 150 degrees to
+    55.5 past the turn's end) crosses the end of the turn, where its angle goes from one tooth (18 degrees, the
+    index it gained over the turn) back to 0: the timing table's dwell holds it still, one whole index apart."""
+    from click.testing import CliRunner
+
+    from camgen.cli import main
+
+    path = _template("ratchet-counter", ROOT / "templates")
+    result = CliRunner().invoke(main, ["build", str(path), "-o", str(tmp_path), "--set", "cams.0.phase=0",
+                                       "--set", 'output.formats=["json"]'])
+    assert result.exit_code == 0, result.output
+    report = json.loads((tmp_path / "ratchet-counter.json").read_text())
+    wheel = next(o for o in report["timing"]["outputs"] if o["output"] == "ratchets.index")
+    assert report["ratchets"]["index"]["advance_per_turn_deg"] == 18.0
+    assert any(end > 360.0 for _, end in wheel["dwells_deg"])               # the run the old check refused
+    _assert_timing_table(report, tmp_path)
+
+
+def _assert_timing_table(report: dict, folder: Path) -> None:
+    """The timing CSV in ``folder`` is ``report``'s timing (see the test above). A ratchet's wheel gains its index
+    (``advance_per_turn_deg``) a turn: over a still run across the turn's end its angle past the end is that much
+    less than before it."""
+    timing = report["timing"]
+    with (folder / report["files"]["timing_csv"]).open(newline="") as stream:
         rows = list(csv.DictReader(stream))
     assert len(rows) == timing["samples"] == round(360 / timing["step_deg"])
     shaft = np.array([float(r["shaft_deg"]) for r in rows])
@@ -513,9 +540,12 @@ def test_the_timing_table_is_the_reports_timing(machine):
         span = out["max"] - out["min"]
         if span > 0:
             assert share == pytest.approx((values - out["min"]) / span, abs=1e-8), name
+        ratchet = report.get("ratchets", {}).get(name.removeprefix("ratchets."), {})
+        index = float(ratchet.get("advance_per_turn_deg", 0.0)) if name.startswith("ratchets.") else 0.0
         for start, end in out["dwells_deg"]:
             inside = ((shaft - start) % 360 <= (end - start) + 1e-9)
-            assert np.ptp(values[inside]) <= 1e-6 * max(1.0, span), (name, start, end)
+            unwrapped = values + np.where(shaft < start % 360, index, 0.0)      # past the turn's end: one index on
+            assert np.ptp(unwrapped[inside]) <= 1e-6 * max(1.0, span), (name, start, end)
 
 
 def test_the_kit_table_is_the_frames_bill_of_materials(machine):

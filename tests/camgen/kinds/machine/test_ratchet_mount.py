@@ -177,8 +177,8 @@ def test_a_wheel_set_on_its_cams_plane_clashes_where_shapely_finds_it():
     """The wheel put on the cam's plane (layer 0), 80 mm over its tips, on the pivot 100 mm from the cam's centre:
     the clash check's first angle is the first of a 0.01-degree scan in which shapely finds the cam's outline
     (its phase set to 0: turned by the main shaft's angle, counter-clockwise) and the wheel's (turned by its angle
-    about the pivot, mirrored for its clockwise drive) overlapping by more than the check's area tolerance, within
-    0.1 degree."""
+    about the pivot, and its teeth's phase to the arm's pawl, mirrored for its clockwise drive) overlapping by more
+    than the check's area tolerance, within 0.1 degree."""
     import shapely
 
     from camgen.kinds.machine.clash import AREA_TOL_MM2
@@ -200,10 +200,18 @@ def test_a_wheel_set_on_its_cams_plane_clashes_where_shapely_finds_it():
         c, s = math.cos(angle), math.sin(angle)
         return points @ np.array([[c, s], [-s, c]])
 
+    # the wheel's teeth phased to the arm's pawl: at the stroke's top (program angle 180 degrees, the shaft's 180
+    # with phase 0) the pawl's contact, |P| out on the arm less P's angle (mirrored frame), is a tooth's tip
+    arm = next(b for b in design.bodies if b.name == "cams.rocker.arm")
+    top = math.radians(180.0)
+    m = arm.place(np.array([top]))[0][0]
+    along = math.atan2(m[1, 0], -m[0, 0])                                  # the arm's direction, mirrored
+    p = r.table.holding_pawl.pivot
+    w0 = (along - math.atan2(p[1], p[0]) - float(r.wheel_angle(np.array([top]))[0])) % r.pitch
     first = None
     for deg in np.arange(0.0, 360.0, 0.01):
         phi = math.radians(deg)
-        w = float(r.wheel_angle(np.array([phi]))[0])
+        w = float(r.wheel_angle(np.array([phi]))[0]) + w0
         placed = turned(wheel * np.array([-1.0, 1.0]), -w) + pivot
         if shapely.Polygon(turned(cam, phi)).intersection(shapely.Polygon(placed)).area > AREA_TOL_MM2:
             first = deg
