@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -16,8 +17,10 @@ from pathlib import Path
 from tests.conftest import ROOT
 
 
-def _temporaries() -> set[str]:
-    return {p.name for p in Path(tempfile.gettempdir()).glob("camgen-designer-*")}
+def _temporaries(folder: Path) -> set[str]:
+    """The designer's temporary folders under ``folder`` (the server's own TMPDIR, made for it alone, so that another
+    worker's designer never shows in it)."""
+    return {p.name for p in folder.glob("camgen-designer-*")}
 
 
 def gone(pid: int, seconds: float = 60.0) -> bool:
@@ -55,8 +58,8 @@ def designer(folder: Path, template: str | None = None) -> Iterator[str]:
 @contextlib.contextmanager
 def designer_process(folder: Path, template: str | None = None) -> Iterator[tuple[str, subprocess.Popen[str]]]:
     """:func:`designer`'s address and the server's process."""
-    before = _temporaries()
-    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    private = Path(tempfile.mkdtemp(prefix="designer-tmp-"))
+    env = {**os.environ, "PYTHONPATH": str(ROOT), "TMPDIR": str(private)}
     args = [sys.executable, "-m", "camgen", "serve", *([template] if template else []), "--no-browser"]
     proc = subprocess.Popen(args, cwd=folder, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
@@ -75,4 +78,5 @@ def designer_process(folder: Path, template: str | None = None) -> Iterator[tupl
             raise AssertionError("the designer did not stop on Ctrl-C within 30 s") from None
     assert proc.returncode == 0, err
     assert "Traceback" not in err, err
-    assert _temporaries() <= before, "the designer left a temporary folder behind"
+    assert not _temporaries(private), "the designer left a temporary folder behind"
+    shutil.rmtree(private)
