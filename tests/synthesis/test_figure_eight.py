@@ -84,6 +84,7 @@ def found():
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("figure-eight-search")                # one worker: the module's search runs once
 def test_the_six_bar_beats_the_best_four_bar_on_the_figure_eight_by_a_large_factor(found):
     """The bundled task with one start (seed 1, 300 generations; about 40 s of CPU): the Watt I found meets the
     twelve points to their rounding (measured 4.98e-7 mm^2, as the task itself gives) where the best four-bar on
@@ -108,6 +109,7 @@ def test_the_six_bar_beats_the_best_four_bar_on_the_figure_eight_by_a_large_fact
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("figure-eight-search")                # one worker: the module's search runs once
 def test_the_figure_eight_search_s_record_counts_its_designs(found):
     """One start of the bundled task: its record says how many generations it ran and why it stopped, and counts
     the designs it evaluated, 150 a generation (population 15 a number of the drawing's 10) and the first

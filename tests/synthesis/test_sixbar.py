@@ -44,6 +44,7 @@ def written(tmp_path_factory):
     return result, out
 
 
+@pytest.mark.xdist_group("watt1-search")                # one worker: the module's search runs once
 def test_a_known_watt1_is_recovered_below_the_best_four_bar(written):
     """Seed 1, one search of 300 generations: the Watt I meets the twelve timed targets to rounding (measured 4e-13
     mm^2), the best four-bar on the same targets and budget stays at 0.1326 mm^2."""
@@ -57,6 +58,7 @@ def test_a_known_watt1_is_recovered_below_the_best_four_bar(written):
     assert best["transmission_worst_deg"] >= 30.0
 
 
+@pytest.mark.xdist_group("watt1-search")                # one worker: the module's search runs once
 def test_the_written_candidate_reanalyses_to_its_error_and_builds(written, tmp_path):
     """The template as written: its own circle intersections here give the error the row reports; its report's
     transmission keeps the limit; `linkgen build` takes it."""
