@@ -29,10 +29,10 @@ from dataclasses import dataclass
 from typing import Annotated, Any
 
 import numpy as np
-from pydantic import Field, ValidationError
+from pydantic import Field
 
 from camgen.core.errors import SpecError
-from camgen.core.spec import NAME_PATTERN, Model, notes, unit
+from camgen.core.spec import NAME_PATTERN, Model, notes, unit, validate
 from camgen.kinds.machine import kinematics
 from linkgen.mechanisms.ratchet import PawlTable, RatchetTable
 
@@ -72,10 +72,11 @@ class RatchetMount(Model):
 
     def table(self, swing_deg: float = _ANY_SWING_DEG, lever_mm: float = 0.0) -> RatchetTable:
         """linkgen's ratchet of this wheel and holding pawl, its lever swinging ``swing_deg`` degrees (the arm's
-        stroke) and ``lever_mm`` long (the arm's length; at least its pawl's pivot and a width out)."""
+        stroke) and ``lever_mm`` long (the arm's length; at least its pawl's pivot and a width out); a
+        :class:`SpecError` naming the field where linkgen refuses it."""
         pawl = self.pawl.model_dump()
         reach = self.tip_diameter / 2 + self.pawl.length + 2 * self.depth
-        return RatchetTable.model_validate({
+        return validate(RatchetTable, {
             "type": "ratchet", "teeth": self.teeth, "tip_diameter": self.tip_diameter, "depth": self.depth,
             "face_angle": self.face_angle, "friction": self.friction, "pawl": pawl,
             "lever": {"swing": swing_deg, "length": max(lever_mm, reach)}})
@@ -113,14 +114,8 @@ def check_ratchets(spec: Any) -> None:
         seen[r.cam] = i
         try:
             r.table()
-        except ValidationError as exc:
-            error = exc.errors()[0]
-            where = ".".join(str(p) for p in error["loc"])
-            message = str(error["msg"]).removeprefix("Value error, ")
-            head, _, rest = message.partition(": ")
-            if not where and rest and " " not in head:            # linkgen's own check names its key first
-                where, message = head, rest
-            raise ValueError(f"ratchets[{i}]{'.' + where if where else ''}: {message}") from None
+        except SpecError as exc:                                   # linkgen's refusal, named under the mount
+            raise ValueError(str(exc.under(f"ratchets[{i}]"))) from None
 
 
 @dataclass(frozen=True)
