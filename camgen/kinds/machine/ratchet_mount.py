@@ -133,6 +133,11 @@ class Stroke:
         """h = psi_hi - psi_lo (rad)."""
         return self.high - self.low
 
+    def teeth(self, pitch: float) -> int:
+        """n = floor(h / p): the whole pitches ``pitch`` (rad) a stroke advances the wheel (a swing within 1e-9 of
+        a whole number of pitches counts as that number)."""
+        return math.floor(self.swing / pitch + 1e-9)
+
     @property
     def rise(self) -> float:
         """The forward stroke's length in program angle (rad, in (0, 2 pi))."""
@@ -166,7 +171,7 @@ def forward(stroke: Stroke, theta: np.ndarray) -> np.ndarray:
 def wheel_turned(stroke: Stroke, pitch: float, theta: np.ndarray, psi: np.ndarray) -> np.ndarray:
     """W (rad, see the module's notes) at unwrapped program angles ``theta`` (rad) where the arm's swing is ``psi``
     (rad): k n p + w, k the strokes finished since program angle 0."""
-    n = math.floor(stroke.swing / pitch + 1e-9)
+    n = stroke.teeth(pitch)
     k = np.floor((np.asarray(theta, float) - stroke.start) / TWO_PI)
     w = np.where(forward(stroke, theta), np.maximum(0.0, psi - (stroke.high - n * pitch)), n * pitch)
     return np.asarray(k * n * pitch + w)
@@ -174,7 +179,7 @@ def wheel_turned(stroke: Stroke, pitch: float, theta: np.ndarray, psi: np.ndarra
 
 def driving(stroke: Stroke, pitch: float, theta: np.ndarray, psi: np.ndarray) -> np.ndarray:
     """Where (bool) the arm's pawl drives the wheel: on the forward stroke past its lost motion."""
-    n = math.floor(stroke.swing / pitch + 1e-9)
+    n = stroke.teeth(pitch)
     return np.asarray(forward(stroke, theta) & (psi > stroke.high - n * pitch))
 
 
@@ -240,7 +245,7 @@ class RatchetMotion:
 
     @property
     def teeth_per_stroke(self) -> int:
-        return math.floor(self.stroke.swing / self.pitch + 1e-9)
+        return self.stroke.teeth(self.pitch)
 
     @property
     def teeth_per_turn(self) -> float:
@@ -262,7 +267,7 @@ def ratchet_motion(index: int, mount: RatchetMount, program: Any, arm_mm: float,
     where = f"ratchets[{index}].cam"
     stroke = stroke_of(program, where)
     pitch = TWO_PI / mount.teeth
-    if math.floor(stroke.swing / pitch + 1e-9) < 1:
+    if stroke.teeth(pitch) < 1:
         raise SpecError(f"cams.{mount.cam}'s arm swings {math.degrees(stroke.swing):.6g} degrees, under a tooth's "
                         f"pitch: the wheel would never advance; give a swing of at least "
                         f"{least_swing_deg(mount.teeth):.6g} degrees (360 / {mount.teeth} teeth)", where)
