@@ -71,8 +71,3 @@ def shaft_motions(spec: Any, indexed: tuple[Indexer, ...]) -> dict[str, ShaftMot
             shaft = driver_of[shaft]
         out[name] = ShaftMotion(name, float(turns), wheel_of(indexed, shaft))
     return out
-
-
-def motion_of(spec: Any, indexed: tuple[Indexer, ...], shaft: str) -> ShaftMotion:
-    """The :class:`ShaftMotion` of ``shaft`` (:func:`shaft_motions`)."""
-    return shaft_motions(spec, indexed)[shaft]
