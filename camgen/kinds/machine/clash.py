@@ -55,6 +55,22 @@ class Joint:
 
 
 @dataclass(frozen=True)
+class Arm:
+    """A follower's arm that a coupled linkage's crank lies along (an oscillating roller's, a conjugate's bell
+    crank, an oscillating flat face's): its ``follower``, its ``pivot`` (2,) mm in the machine's frame, its top
+    ``plane`` (a coupled four-bar's crank's), its ``direction`` (phi (n,) radians -> (n, 2) mm, pivot to the
+    roller's centre or along the face to its rest contact, turned by the swing) and ``made`` (the pivot pin's
+    diameter and the crank pins' (distance out along the arm, pin diameter) mm -> the arm's body with their
+    holes)."""
+
+    follower: Any
+    pivot: np.ndarray
+    plane: int
+    direction: Callable[[np.ndarray], np.ndarray]
+    made: Callable[[float, tuple[tuple[float, float], ...]], Body]
+
+
+@dataclass(frozen=True)
 class Clash:
     """Two parts that overlap: their names and the first main shaft angle (degrees, to :data:`REFINE_DEG`)."""
 
@@ -197,9 +213,11 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
 
     Each cam (its part's outline as cut, turned by sense x its program angle about its shaft) and, for an
     oscillating roller, its follower's arm (a bar from its pivot to its roller, as wide as the roller) and roller,
-    on the cam's layer; each coupled four-bar's coupler and rocker (their parts as cut, the crank being the arm),
-    the four-bar placed with its crank pin on the arm, ``crank`` mm from the pivot, and mirrored where the arm
-    swings clockwise, on the arm's layer plus its own layer over its crank's; the shafts and pins from plane 0 up.
+    on the cam's layer (an oscillating flat face's arm along its face, :mod:`camgen.kinds.machine.flat_arm`); each
+    coupled four-bar's coupler and rocker (their parts as cut, the crank being the arm: a roller's, a bell crank's or
+    a flat face's, an :class:`Arm`), the four-bar placed with its crank pin on the arm, ``crank`` mm from the pivot,
+    and mirrored where the arm swings clockwise, on the arm's top plane plus its own layer over its crank's, the arm
+    drilled for its crank pin; the shafts and pins from plane 0 up.
     The four-bar's ground link is the frame's and is not a moving part."""
     from camgen.followers.oscillating_flat import OscillatingFlat
     from camgen.followers.oscillating_roller import OscillatingRoller
@@ -208,7 +226,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     from camgen.kinds.machine import barrel_parts, conjugate_parts, kinematics
     from camgen.kinds.machine.design import _cam_of
     from camgen.kinds.machine.flat_arm import flat_arm
-    from camgen.kinds.machine.follower_parts import arm_holes, arm_outline, made_radius, roller_hole, roller_outline
+    from camgen.kinds.machine.follower_parts import arm_outline, made_radius, roller_hole, roller_outline
 
     d = design
     spec = d.spec                                          # type: ignore[attr-defined]
@@ -216,8 +234,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     bodies: list[Body] = []
     joints: list[Joint] = []
     skipped: list[str] = []
-    arms: dict[str, tuple[OscillatingRoller, np.ndarray, int, Callable[[np.ndarray], np.ndarray]]] = {}
-    faced: list[tuple[str, np.ndarray]] = []               # an oscillating flat face's arm and its pivot
+    arms: dict[str, Arm] = {}                               # each follower's arm a coupled linkage's crank may be
     shafts: dict[str, list[tuple[int, float]]] = {}
     for cam, mount in zip(d.cams, spec.cams, strict=True):  # type: ignore[attr-defined]
         kin = _cam_of(cam.design)
@@ -258,17 +275,17 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             bodies += made
             joints += met
             shafts[mount.shaft].append((2 * mount.layer + 2, bore))
-            if arm_of is not None:
-                arms[cam.name] = (f, arm_of[0], 2 * mount.layer + 3, arm_of[1])   # its linkage over both plates
+            if arm_of is not None:                          # its linkage over both plates
+                arms[cam.name] = Arm(f, arm_of[0], 2 * mount.layer + 3, arm_of[1],
+                                     _drilled(next(b for b in made if b.name == f"{name}.arm"), f.arm_length))
                 continue
         if isinstance(f, TranslatingRoller | TranslatingFlat):
             _stem(d, cam, kin, f, 2 * mount.layer, centre, theta, tol, bodies, joints)
             continue
         if isinstance(f, OscillatingFlat):                  # its arm along the face, on a pin at its pivot
-            made_arm, riding, at_pivot = flat_arm(cam.name, cam.design, kin, 2 * mount.layer, centre, theta, tol)
-            bodies.append(made_arm)
+            arms[cam.name], riding = flat_arm(cam.name, cam.design, kin, 2 * mount.layer, centre, theta, tol)
+            bodies.append(arms[cam.name].made(PIVOT_PIN_MM, ()))
             joints.append(riding)
-            faced.append((made_arm.name, at_pivot))
             continue
         if not isinstance(f, OscillatingRoller):
             skipped.append(f"cams.{cam.name}'s follower")
@@ -294,12 +311,12 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
 
         r = f.roller_radius
         plane = 2 * mount.layer
-        bodies += [Body(f"{name}.arm", plane + 1, plane + 1, arm_outline(f.arm_length, r / 2).flatten(tol), place_arm),
-                   Body(f"{name}.roller", plane, plane + 1, roller_outline(made_radius(cam.design, r)).flatten(tol),
-                        place_roller, (roller_hole(),))]
+        lever = Body(f"{name}.arm", plane + 1, plane + 1, arm_outline(f.arm_length, r / 2).flatten(tol), place_arm)
+        bodies += [lever, Body(f"{name}.roller", plane, plane + 1,
+                               roller_outline(made_radius(cam.design, r)).flatten(tol), place_roller, (roller_hole(),))]
         joints += [Joint(name, f"{name}.roller", roller, _margin(r)),
                    Joint(f"{name}.arm", f"{name}.roller", roller, _margin(r))]
-        arms[cam.name] = (f, pivot, plane + 1, arm)
+        arms[cam.name] = Arm(f, pivot, plane + 1, arm, _drilled(lever, f.arm_length))
     pins: dict[tuple[float, float], tuple[list[str], int, float]] = {}
     crank_pins: dict[str, list[tuple[float, float]]] = {}     # a coupled four-bar's crank pin on its cam's arm
     for m in d.linkages:                                   # type: ignore[attr-defined]
@@ -307,7 +324,7 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         if build is None or m.cam not in arms:              # no [parts] table: no outlines to place
             skipped.append(f"linkages.{m.name}")
             continue
-        f, pivot, layer, _ = arms[m.cam]
+        f, pivot, layer = arms[m.cam].follower, arms[m.cam].pivot, arms[m.cam].plane
         frame = arm_frame(f, m.coupling.rest)
         hw = max(p.half_width for p in build.parts)
         cut = {p.name: p for p in build.cut}
@@ -377,10 +394,10 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
                        for b in bodies if b.name in (f"cams.{m.cam}.{p}" for p in ("stem", "roller", "face",
                                                                                 "yoke"))]   # a conjugate's yoke too
         if m.cam in arms and m.analysis.crank:              # its crank and the arm: one bell crank
-            link, pivot = m.analysis.table.inputs[0].link, arms[m.cam][1]
+            link, pivot = m.analysis.table.inputs[0].link, arms[m.cam].pivot
             joints.append(Joint(f"cams.{m.cam}.arm", f"linkages.{m.name}.{link}", still(pivot),
                                 _margin(max(p.half_width for p in m.design.build.parts))))
-    for holder, pivot in (*((f"cams.{name}.arm", arm[1]) for name, arm in arms.items()), *faced):
+    for holder, pivot in ((f"cams.{name}.arm", a.pivot) for name, a in arms.items()):
         key = next((k for k in pins if math.dist(k, pivot) < 1e-9), (float(pivot[0]), float(pivot[1])))
         entry = pins.setdefault(key, ([], 0, PIVOT_PIN_MM / 2))
         if holder not in entry[0]:
@@ -388,10 +405,10 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
     from camgen.kinds.machine.ratchet_bodies import ratchet_bodies
 
     ratchet_bodies(d, arms, bodies, joints, pins, crank_pins)   # each ratchet's wheel on its arm's pivot, its pawls
-    for name, (f, pivot, _, _) in arms.items():               # the arm's holes: its pivot's, axle's, crank pin's
-        pin_d = 2 * next(r for k, (_, _, r) in pins.items() if math.dist(k, pivot) < 1e-9)
-        holes = arm_holes(float(f.arm_length), pin_d, tuple(crank_pins.get(name, ())))
-        bodies = [replace(b, holes=holes) if b.name == f"cams.{name}.arm" else b for b in bodies]
+    for name, lever_arm in arms.items():            # the arm's holes: its pivot's, a roller's axle's, crank pins'
+        pin_d = 2 * next(r for k, (_, _, r) in pins.items() if math.dist(k, lever_arm.pivot) < 1e-9)
+        drilled = lever_arm.made(pin_d, tuple(crank_pins.get(name, ())))
+        bodies = [drilled if b.name == drilled.name else b for b in bodies]
     from camgen.kinds.machine.geneva_bodies import geneva_bodies
     from camgen.kinds.machine.machine_gears import gear_bodies
 
@@ -418,6 +435,18 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
         if r > 0:
             bodies.append(Body(f"shafts.{shaft}", bottom, top, circle(r), fixed(at[shaft])))
     return tuple(bodies), tuple(joints), tuple(skipped)
+
+
+def _drilled(arm: Body, length: float) -> Callable[[float, tuple[tuple[float, float], ...]], Body]:
+    """An oscillating roller's (or a bell crank's) ``arm`` with its holes
+    (:func:`camgen.kinds.machine.follower_parts.arm_holes`: its pivot pin's, its roller's axle ``length`` mm out,
+    its crank pins'), given the pivot pin's diameter and the crank pins (mm)."""
+    from camgen.kinds.machine.follower_parts import arm_holes
+
+    def made(pivot_pin: float, pins: tuple[tuple[float, float], ...]) -> Body:
+        return replace(arm, holes=arm_holes(float(length), pivot_pin, pins))
+
+    return made
 
 
 def _slid_point(phi: np.ndarray, m: Any, point: str) -> np.ndarray:

@@ -9,13 +9,17 @@ swing in radians). Its arm, ``cams.<cam>.arm``, lies along the face on the side 
 * in its own frame the pivot is the origin and +X runs along the face towards the contact; the arm is a rectangle
   from the pivot to the face's far end (the farthest contact, the cam's ``face_extent[1]`` mm from the pivot, plus
   ``follower.face_margin``), :data:`DEPTH_MM` deep away from the cam, its face the rectangle's edge on y = 0, with an
-  ear round the pivot pin (a disc of the pin's hole radius plus :data:`EAR_WALL_MM`);
+  ear round the pivot pin (a disc of the pin's hole radius plus :data:`EAR_WALL_MM`) and round each coupled
+  four-bar's crank pin, which lies on the face's line ``crank`` mm out (:mod:`camgen.kinds.machine.arms`);
 * it turns with the face: placed at the angle of the pivot-to-rest-contact line plus k psi, about the pivot;
 * it fills its cam's plane (its face rides the cam) and the plane over it (as a roller fills both beside its arm),
   so that a part on either meets it;
 * it meets its cam at the contact (:meth:`~camgen.followers.drawing.Pivoted.fixed`, turning with the program
   angle) in a disc of :data:`DEPTH_MM` (+ 0.05 mm), and its pivot pin (standing on the frame, plane 0 up) at the
   pivot, as an oscillating roller's arm does.
+
+It is an :class:`~camgen.kinds.machine.clash.Arm`, as an oscillating roller's arm is: a coupled four-bar's crank,
+its coupler and rocker placed from the arm's top plane with their crank pin on it.
 
 Lengths mm, angles radians, counter-clockwise.
 """
@@ -28,30 +32,34 @@ from typing import Any
 import numpy as np
 import shapely
 
-from camgen.kinds.machine.clash import Body, Joint, PIVOT_PIN_MM, rotation
+from camgen.kinds.machine import arms
+from camgen.kinds.machine.clash import Arm, Body, Joint, circle, rotation
 from camgen.kinds.machine.stem_guide import box
 
-#: (mm) the arm's depth away from its face; the wall round its pivot pin's hole (its ear)
+#: (mm) the arm's depth away from its face; the wall round its pins' holes (its ears)
 DEPTH_MM, EAR_WALL_MM = 8.0, 2.0
 
+#: a hole: its centre (x, y) and radius, mm in the arm's frame
+Hole = tuple[tuple[float, float], float]
 
-def arm_outline(far: float, side: float, pin_hole: float, tolerance: float) -> np.ndarray:
+
+def arm_outline(far: float, side: float, holes: tuple[Hole, ...], tolerance: float) -> np.ndarray:
     """The arm's outline (m, 2) mm in its own frame, counter-clockwise: the rectangle [0, ``far``] x [0, ``side``
-    :data:`DEPTH_MM`] (``side`` +1 or -1: the side away from the cam) and the ear, a disc of ``pin_hole`` / 2 +
-    :data:`EAR_WALL_MM` about the pivot (chords within ``tolerance``)."""
-    from camgen.kinds.machine.clash import circle
-
+    :data:`DEPTH_MM`] (``side`` +1 or -1: the side away from the cam) and an ear round each of ``holes`` (the pivot
+    pin's at the origin, a crank pin's on the face's line), a disc of the hole's radius plus :data:`EAR_WALL_MM`
+    (chords within ``tolerance``)."""
     lo, hi = sorted((0.0, side * DEPTH_MM))
-    body = shapely.union(shapely.Polygon(box(0.0, lo, far, hi)),
-                         shapely.Polygon(circle(pin_hole / 2 + EAR_WALL_MM, tolerance)))
+    ears = [shapely.Polygon(circle(r + EAR_WALL_MM, tolerance) + centre) for centre, r in holes]
+    body = shapely.union_all([shapely.Polygon(box(0.0, lo, far, hi)), *ears])
     ring = shapely.geometry.polygon.orient(body, 1.0)
     return np.asarray(ring.exterior.coords)[:-1]
 
 
 def flat_arm(cam: str, cam_design: Any, kin: Any, plane: int, centre: np.ndarray,
-             theta: Callable[[np.ndarray], np.ndarray], tolerance: float) -> tuple[Body, Joint, np.ndarray]:
-    """Cam ``cams.<cam>``'s oscillating flat face's arm (see the module docstring), its joint with the cam, and its
-    pivot (2,) mm in the machine's frame (the caller stands a pin there).
+             theta: Callable[[np.ndarray], np.ndarray], tolerance: float) -> tuple[Arm, Joint]:
+    """Cam ``cams.<cam>``'s oscillating flat face's arm (see the module docstring), whose ``made`` body (given its
+    pivot pin's diameter and its crank pins) the caller adds and stands a pin under (at its ``pivot``, (2,) mm in the
+    machine's frame), and its joint with the cam.
 
     Parameters
     ----------
@@ -63,27 +71,35 @@ def flat_arm(cam: str, cam_design: Any, kin: Any, plane: int, centre: np.ndarray
     theta
         phi (n,) radians -> the cam's program angles (n,) radians.
     """
-    from camgen.kinds.machine.frame import pin_hole
+    from camgen.kinds.machine.follower_parts import arm_holes
 
     f = kin.follower
     pivot = np.asarray(f.pivot, float)
-    rest = np.array([0.0, float(f.base_radius)]) - pivot
+    rest = arms.rest_vector(f)
     base = math.atan2(rest[1], rest[0])
     normal = np.array([-rest[1], rest[0]])                  # +Y of the arm's frame at rest
     side = -1.0 if float(np.dot(-pivot, normal)) > 0 else 1.0      # away from the cam's centre
     far = float(cam_design.face_extent[1]) + float(cam_design.spec.follower.face_margin)
-    k = float(f._swing)
+    k = arms.swing_sign(f)
     at = centre + pivot
+    name = f"cams.{cam}.arm"
 
-    def place(phi: np.ndarray, theta: Callable = theta, program: Any = kin.program) -> tuple[np.ndarray, np.ndarray]:
-        psi = np.radians(np.asarray(program.evaluate(theta(phi))[0], float))
-        return rotation(base + k * psi), np.broadcast_to(at, (len(phi), 2))
+    def turn(phi: np.ndarray) -> np.ndarray:
+        return base + k * np.radians(np.asarray(kin.program.evaluate(theta(phi))[0], float))
 
-    def contact(phi: np.ndarray, theta: Callable = theta) -> np.ndarray:
+    def place(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return rotation(turn(phi)), np.broadcast_to(at, (len(phi), 2))
+
+    def direction(phi: np.ndarray) -> np.ndarray:
+        a = turn(phi)
+        return float(np.hypot(*rest)) * np.column_stack([np.cos(a), np.sin(a)])
+
+    def contact(phi: np.ndarray) -> np.ndarray:
         t = np.asarray(theta(phi), float)
         return centre + f.fixed(t, f.pitch(t, kin.program.evaluate(t)))
 
-    hole = pin_hole(PIVOT_PIN_MM) / 2
-    body = Body(f"cams.{cam}.arm", plane, plane + 1, arm_outline(far, side, 2 * hole, tolerance), place,
-                (((0.0, 0.0), hole),))
-    return body, Joint(f"cams.{cam}", body.name, contact, DEPTH_MM + 0.05), at
+    def made(pivot_pin: float, pins: tuple[tuple[float, float], ...] = ()) -> Body:
+        holes = arm_holes(None, pivot_pin, pins)
+        return Body(name, plane, plane + 1, arm_outline(far, side, holes, tolerance), place, holes)
+
+    return Arm(f, at, plane + 1, direction, made), Joint(f"cams.{cam}", name, contact, DEPTH_MM + 0.05)

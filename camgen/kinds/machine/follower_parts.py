@@ -47,15 +47,17 @@ def roller_outline(radius: float) -> Contour:
     return rounded_hull(np.zeros((1, 2)), radius)
 
 
-def arm_holes(length: float, pivot_pin: float, pins: tuple[tuple[float, float], ...] = ()) -> tuple[
+def arm_holes(length: float | None, pivot_pin: float, pins: tuple[tuple[float, float], ...] = ()) -> tuple[
         tuple[tuple[float, float], float], ...]:
     """An arm's holes as (centre, radius) pairs (mm, its own frame): the pivot pin's (``pivot_pin`` mm across) at
-    the origin, the axle's at (``length``, 0), and each of ``pins`` ((distance out along the arm, pin diameter) mm:
-    a coupled crank's pin) unless it falls on one of these (within 1e-9 mm: the larger hole is kept)."""
+    the origin, the roller's axle's at (``length``, 0) (none where ``length`` is None: a flat face's arm), and each
+    of ``pins`` ((distance out along the arm, pin diameter) mm: a coupled crank's pin) unless it falls on one of
+    these (within 1e-9 mm: the larger hole is kept)."""
     from camgen.kinds.machine.frame import pin_hole
 
     holes: dict[float, float] = {0.0: pin_hole(pivot_pin) / 2}
-    for x, d in ((length, AXLE_MM), *pins):
+    axle = () if length is None else ((length, AXLE_MM),)
+    for x, d in (*axle, *pins):
         key = next((k for k in holes if abs(k - x) <= 1e-9), x)
         holes[key] = max(holes.get(key, 0.0), pin_hole(d) / 2)
     return tuple(((x, 0.0), r) for x, r in holes.items())

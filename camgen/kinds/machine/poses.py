@@ -6,7 +6,8 @@ A part's pose is a turn (degrees, counter-clockwise) and a shift (mm) of its out
 = R(turn) local + shift. A part drawn mirrored (a four-bar on an arm that swings clockwise) has its outline mirrored
 in its own x axis first (local (x, y) -> (x, -y)), then turned and shifted.
 
-Points, by name: ``cams.<cam>.roller`` (an oscillating roller's centre) and ``cams.<cam>.pivot`` (its arm's pivot);
+Points, by name: ``cams.<cam>.roller`` (an oscillating roller's centre) and ``cams.<cam>.pivot`` (its arm's pivot,
+an oscillating flat face's too);
 a coupled four-bar's ``linkages.<linkage>.A`` (its crank pin, on the arm), ``.B`` (its rocker pin), ``.O4`` (its
 rocker's pivot) and ``.P`` (its coupler point, where it has one); a shaft-driven linkage's every joint,
 ``linkages.<linkage>.<joint>``.
@@ -67,6 +68,7 @@ def placed_parts(design: Any, phi: np.ndarray) -> tuple[Placed, ...]:
 def points(design: Any, phi: np.ndarray) -> dict[str, np.ndarray]:
     """Every named point (see the module docstring) of ``design`` at main shaft angles ``phi`` (radians): (n, 2) mm
     in the machine's frame."""
+    from camgen.followers.oscillating_flat import OscillatingFlat
     from camgen.followers.oscillating_roller import OscillatingRoller
     from camgen.kinds.machine.design import _cam_of
 
@@ -76,6 +78,8 @@ def points(design: Any, phi: np.ndarray) -> dict[str, np.ndarray]:
     out: dict[str, np.ndarray] = {}
     for cam, mount in zip(design.cams, spec.cams, strict=True):
         f = _cam_of(cam.design).follower
+        if isinstance(f, OscillatingFlat):                  # a flat face's arm: its pivot
+            out[f"cams.{cam.name}.pivot"] = np.tile(at[mount.shaft] + f.pivot, (len(phi), 1))
         if not isinstance(f, OscillatingRoller):
             continue
         pivot = at[mount.shaft] + f.pivot

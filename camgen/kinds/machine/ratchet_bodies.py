@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.kinds.machine.clash import Body, Joint, Placement, rotation
+from camgen.kinds.machine.clash import Arm, Body, Joint, Placement, rotation
 
 #: the lift (rad) to which :func:`lift_angle` bisects
 LIFT_TOL_RAD = 1e-12
@@ -201,13 +201,13 @@ def wheel_placement(motion: Any, pivot: np.ndarray, offset: float = 0.0) -> Plac
     return place
 
 
-def ratchet_bodies(design: Any, arms: dict[str, tuple[Any, np.ndarray, int, Any]], bodies: list[Body],
+def ratchet_bodies(design: Any, arms: dict[str, Arm], bodies: list[Body],
                    joints: list[Joint], pins: dict[tuple[float, float], tuple[list[str], int, float]],
                    arm_pins: dict[str, list[tuple[float, float]]]) -> None:
     """Each ratchet's wheel and pawls added to ``bodies`` (their joints to ``joints``), the wheel on its arm's pivot
     pin and the holding pawl on its frame pin (both added to ``pins``), and its arm's pawl's pin to ``arm_pins``
-    (each cam's (distance out along its arm, pin diameter) mm: the arm's holes); ``arms``: each cam's follower, its
-    pivot (mm), its arm's plane and its arm's direction."""
+    (each cam's (distance out along its arm, pin diameter) mm: the arm's holes); ``arms``: each cam's follower's arm
+    (:class:`~camgen.kinds.machine.clash.Arm`: its follower, pivot (mm), plane and direction)."""
     from camgen.kinds.machine.clash import _margin
     from camgen.kinds.machine.frame import pin_hole
     from camgen.kinds.machine.ratchet_parts import PIN_MM, pawl_points
@@ -215,7 +215,8 @@ def ratchet_bodies(design: Any, arms: dict[str, tuple[Any, np.ndarray, int, Any]
     for i, (motion, mount) in enumerate(zip(design.ratchets, design.spec.ratchets, strict=True)):
         if motion.cam not in arms:
             continue
-        follower, pivot, arm_plane, arm = arms[motion.cam]
+        follower, pivot, arm_plane, arm = (arms[motion.cam].follower, arms[motion.cam].pivot, arms[motion.cam].plane,
+                                           arms[motion.cam].direction)
         plane = arm_plane + 1 if mount.layer is None else 2 * mount.layer
         points = pawl_points(design, i, motion, float(follower.roller_radius))
         poses = pawl_poses(motion, arm, points)
