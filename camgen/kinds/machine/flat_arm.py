@@ -30,11 +30,10 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
-import shapely
 
 from camgen.kinds.machine import arms
-from camgen.kinds.machine.clash import Arm, Body, Joint, circle, rotation
-from camgen.kinds.machine.stem_guide import box
+from camgen.kinds.machine.clash import Arm, Body, Joint, rotation
+from camgen.kinds.machine.flat_arm_part import FlatArmPart
 
 #: (mm) the arm's depth away from its face; the wall round its pins' holes (its ears)
 DEPTH_MM, EAR_WALL_MM = 8.0, 2.0
@@ -43,16 +42,24 @@ DEPTH_MM, EAR_WALL_MM = 8.0, 2.0
 Hole = tuple[tuple[float, float], float]
 
 
-def arm_outline(far: float, side: float, holes: tuple[Hole, ...], tolerance: float) -> np.ndarray:
-    """The arm's outline (m, 2) mm in its own frame, counter-clockwise: the rectangle [0, ``far``] x [0, ``side``
-    :data:`DEPTH_MM`] (``side`` +1 or -1: the side away from the cam) and an ear round each of ``holes`` (the pivot
-    pin's at the origin, a crank pin's on the face's line), a disc of the hole's radius plus :data:`EAR_WALL_MM`
-    (chords within ``tolerance``)."""
-    lo, hi = sorted((0.0, side * DEPTH_MM))
-    ears = [shapely.Polygon(circle(r + EAR_WALL_MM, tolerance) + centre) for centre, r in holes]
-    body = shapely.union_all([shapely.Polygon(box(0.0, lo, far, hi)), *ears])
-    ring = shapely.geometry.polygon.orient(body, 1.0)
-    return np.asarray(ring.exterior.coords)[:-1]
+def arm_part(name: str, far: float, side: float, holes: tuple[Hole, ...], thickness: float,
+             tolerance: float) -> FlatArmPart:
+    """The arm as a part maker (``name``, its own frame): the rectangle [0, ``far``] x [0, ``side``
+    :data:`DEPTH_MM`] (``side`` +1 or -1: the side away from the cam) and an ear round each of ``holes`` ((centre,
+    radius) mm: the pivot pin's at the origin, a crank pin's on the face's line), a disc of the hole's radius plus
+    :data:`EAR_WALL_MM`; ``thickness`` and chord ``tolerance`` mm."""
+    return FlatArmPart(name, far, side, DEPTH_MM, tuple((c, 2 * r) for c, r in holes),
+                       tuple(r + EAR_WALL_MM for _, r in holes), thickness, tolerance)
+
+
+def face_geometry(cam_design: Any, follower: Any) -> tuple[float, float]:
+    """The arm's far end (mm from the pivot: the farthest contact, ``face_extent[1]``, plus
+    ``follower.face_margin``) and its side (+1 or -1, away from the cam's centre) in its own frame."""
+    pivot = np.asarray(follower.pivot, float)
+    rest = arms.rest_vector(follower)
+    normal = np.array([-rest[1], rest[0]])                  # +Y of the arm's frame at rest
+    side = -1.0 if float(np.dot(-pivot, normal)) > 0 else 1.0
+    return float(cam_design.face_extent[1]) + float(cam_design.spec.follower.face_margin), side
 
 
 def flat_arm(cam: str, cam_design: Any, kin: Any, plane: int, centre: np.ndarray,
@@ -77,9 +84,7 @@ def flat_arm(cam: str, cam_design: Any, kin: Any, plane: int, centre: np.ndarray
     pivot = np.asarray(f.pivot, float)
     rest = arms.rest_vector(f)
     base = math.atan2(rest[1], rest[0])
-    normal = np.array([-rest[1], rest[0]])                  # +Y of the arm's frame at rest
-    side = -1.0 if float(np.dot(-pivot, normal)) > 0 else 1.0      # away from the cam's centre
-    far = float(cam_design.face_extent[1]) + float(cam_design.spec.follower.face_margin)
+    far, side = face_geometry(cam_design, f)
     k = arms.swing_sign(f)
     at = centre + pivot
     name = f"cams.{cam}.arm"
@@ -100,6 +105,7 @@ def flat_arm(cam: str, cam_design: Any, kin: Any, plane: int, centre: np.ndarray
 
     def made(pivot_pin: float, pins: tuple[tuple[float, float], ...] = ()) -> Body:
         holes = arm_holes(None, pivot_pin, pins)
-        return Body(name, plane, plane + 1, arm_outline(far, side, holes, tolerance), place, holes)
+        outline = arm_part(name, far, side, holes, 0.0, tolerance).outline.flatten(tolerance)
+        return Body(name, plane, plane + 1, outline, place, holes)
 
     return Arm(f, at, plane + 1, direction, made), Joint(f"cams.{cam}", name, contact, DEPTH_MM + 0.05)

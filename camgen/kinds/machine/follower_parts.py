@@ -30,6 +30,7 @@ from camgen.core.hardware import BOLTS, bolt_length
 from camgen.core.kit import BomLine, Plate, bolt_line
 from camgen.core.parts import Allowances, Drawing, Part
 from camgen.core.shapes import Contour, rounded_hull
+from camgen.kinds.machine.flat_arm_part import FlatArmPart
 from camgen.kinds.machine.slabs import Slab
 
 #: the roller's axle (mm): an M4 bolt, as a follower's pivot pin where no linkage gives one
@@ -83,7 +84,7 @@ class FollowerPart:
 
     body: str
     what: str
-    plate: Plate | Slab
+    plate: Plate | Slab | FlatArmPart
 
     @property
     def key(self) -> str:
@@ -105,9 +106,27 @@ def _oscillating(design: Any) -> list[tuple[Any, Any]]:
     return out
 
 
+def _flat_arms(design: Any, bodies: dict[str, Any], thick: dict[str, float]) -> list[FollowerPart]:
+    """Each oscillating flat face's arm the clash check placed (:mod:`camgen.kinds.machine.flat_arm`), as its
+    exact part: its holes the ones its body carries."""
+    from camgen.followers.oscillating_flat import OscillatingFlat
+    from camgen.kinds.machine.design import _cam_of
+    from camgen.kinds.machine.flat_arm import arm_part, face_geometry
+
+    out = []
+    for cam in design.cams:
+        f, arm = _cam_of(cam.design).follower, bodies.get(f"cams.{cam.name}.arm")
+        if isinstance(f, OscillatingFlat) and arm is not None:
+            far, side = face_geometry(cam.design, f)
+            out.append(FollowerPart(arm.name, "follower arm", arm_part(
+                f"{cam.name}-arm", far, side, arm.holes, thick[arm.name], float(cam.design.tolerance))))
+    return out
+
+
 def follower_parts(design: Any) -> tuple[FollowerPart, ...]:
     """Each oscillating follower's arm and roller of ``design`` (a
-    :class:`~camgen.kinds.machine.design.MachineDesign`), in the cams' order, then each translating follower's
+    :class:`~camgen.kinds.machine.design.MachineDesign`), in the cams' order, then each oscillating flat face's arm
+    (:mod:`camgen.kinds.machine.flat_arm_part`), then each translating follower's
     parts (:func:`camgen.kinds.machine.stem_kit.stem_parts`): their outlines exact, their holes the ones the clash
     check's bodies carry, as thick as the assembly makes them; then each ratchet's wheel and pawls
     (:func:`camgen.kinds.machine.ratchet_parts.ratchet_parts`)."""
@@ -126,6 +145,7 @@ def follower_parts(design: Any) -> tuple[FollowerPart, ...]:
         outline = roller_outline(made_radius(cam.design, r))
         out.append(FollowerPart(roller.name, "roller", Plate(
             f"{cam.name}-roller", outline, tuple((c, 2 * hr) for c, hr in roller.holes), thick[name], tol)))
+    out += _flat_arms(design, bodies, thick)
     from camgen.kinds.machine.ratchet_parts import ratchet_parts
     from camgen.kinds.machine.stem_kit import stem_parts
 
