@@ -45,7 +45,8 @@ def pin_span(frame: Frame, design: Any, pin: str) -> tuple[float, float]:
 
 
 def bom(frame: Frame, design: Any) -> tuple[BomLine, ...]:
-    """The bill of materials of the frame and what it carries: plates, spacers, shafts, bearings, pins, and the
+    """The bill of materials of the frame and what it carries: plates, spacers, shafts, bearings, pins, the cams and
+    the linkages' parts the machine writes (:func:`camgen.kinds.machine.coupled_kit.bom_lines`), and the
     followers' arms, rollers and axles (:func:`camgen.kinds.machine.follower_parts.bom_lines`)."""
     lines = [BomLine(p.name, 1, f"{'top' if p is frame.top else 'bottom'} frame plate, {p.thickness:g} mm, "
                      f"{len(p.holes)} holes (its own files)", "laser or fdm") for p in frame.plates]
@@ -76,9 +77,10 @@ def bom(frame: Frame, design: Any) -> tuple[BomLine, ...]:
         else:
             lines.append(BomLine(f"pin {seat.diameter:g} mm", 1, f"{where}, {math.ceil(top - bottom + 2):g} mm "
                                  "long", "buy", "ISO 2338 (parallel pin)"))
-    from camgen.kinds.machine import follower_parts, machine_gears
+    from camgen.kinds.machine import coupled_kit, follower_parts, machine_gears
 
-    return (*lines, *follower_parts.bom_lines(design, frame.stack), *machine_gears.bom_lines(design))
+    return (*lines, *coupled_kit.bom_lines(design), *follower_parts.bom_lines(design, frame.stack),
+            *machine_gears.bom_lines(design))
 
 
 #: main shaft angles over the turn at which the moving parts' sweep is taken (every 5 degrees)

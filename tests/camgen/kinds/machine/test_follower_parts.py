@@ -140,7 +140,8 @@ def test_each_arm_is_the_assembly_arm_with_holes_at_its_pivot_roller_and_crank_p
 
 
 def test_the_kit_lists_each_arm_and_roller_made_and_each_axle_bought(designs):
-    """The automaton's kit (a frame of two plates): besides the frame's lines, one line per arm and per roller
+    """The automaton's kit (a frame of two plates): besides the frame's, the cams' and the four-bar's
+    coupler and rocker lines, one line per arm and per roller
     (made, its own files, as thick as the assembly's piece) and one bought M4 bolt per roller's axle, long enough
     for the roller, the gap and the arm it goes through with a washer, a nut and a thread proud of it; the
     assembly holds each axle as a bought piece at its roller's centre."""
@@ -154,7 +155,8 @@ def test_the_kit_lists_each_arm_and_roller_made_and_each_axle_bought(designs):
     assert cams == ["head", "jaw", "arm"]
     pieces = {p.part.name: p for p in assembly.pieces(design)}
     made = {line.item: line for line in lines if line.source != "buy"}
-    assert set(made) == {"frame", "frame-top", "spacer-0"} | {f"{c}-{p}" for c in cams for p in ("arm", "roller")}
+    assert set(made) == ({"frame", "frame-top", "spacer-0", *cams, "arm-bars-coupler", "arm-bars-rocker"}
+                         | {f"{c}-{p}" for c in cams for p in ("arm", "roller")})   # the cams, the four-bar's two
     for c in cams:
         for part in ("arm", "roller"):
             thick = pieces[f"cams.{c}.{part}"].part.thickness

@@ -549,7 +549,9 @@ def _assert_timing_table(report: dict, folder: Path) -> None:
 
 
 def test_the_kit_table_is_the_frames_bill_of_materials(machine):
-    """The kit CSV (with a frame): its lines the report's bill of materials, quantities and all."""
+    """The kit CSV (with a frame): its lines the report's bill of materials, quantities and all; what it makes is
+    the frame's plates and spacers, the followers' parts, the gears, a line a cam plate (naming every cam) and a line
+    for each part a linkage's own report lists as written (no crank a follower's arm is, no ground the frame is)."""
     frame = machine.report.get("frame")
     if frame is None:
         assert "kit_csv" not in machine.report["files"]
@@ -559,8 +561,19 @@ def test_the_kit_table_is_the_frames_bill_of_materials(machine):
     assert [(r["part"], int(r["quantity"]), r["standard"], r["size"], r["process"]) for r in rows] == [
         (b["item"], b["quantity"], b["standard"], b["size"], b["source"]) for b in frame["bom"]]
     printed = [b["item"] for b in frame["bom"] if b["source"] != "buy"]
+    files = machine.report["files"]
+    cams = set(machine.report["cams"])
+    plates = {b["item"] for b in frame["bom"] if b["size"].startswith(("cam plate of", "barrel cam of"))}
+    assert {p.split(".")[0] for p in plates} == cams
+    links = set()                          # each linkage's and Geneva's parts, as its own written report lists them
+    for key in files:
+        mechanism = key.removesuffix(".json")
+        if key.endswith(".json") and mechanism not in cams:
+            own = json.loads((machine.folder / files[key]).read_text())
+            names = [p["name"] for p in own.get("parts", ())]
+            links |= {f"{mechanism}-{n}" for n in names}
     assert set(printed) == (set(frame["plates"]) | {s["name"] for s in frame["spacers"]}
-                            | {p["name"] for p in machine.report["followers"]}
+                            | {p["name"] for p in machine.report["followers"]} | plates | links
                             | {f"gear {g['name']}-{side}" for g in machine.report.get("gears", ())
                                for side in ("driver", "driven")})
     assert math.isfinite(frame["thickness_mm"])

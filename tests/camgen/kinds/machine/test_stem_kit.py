@@ -202,10 +202,11 @@ def test_the_assembly_reads_back_with_the_stem_at_its_lift(built):
     assert found["volume"] == pytest.approx(area * THICK, rel=1e-3)
 
 
-def test_a_coupled_four_bars_crank_is_not_in_the_machines_files(tmp_path):
-    """The automaton's four-bar "arm-bars" is driven by the arm of cams.arm, which carries its crank pin: the
-    machine writes its coupler, rocker and ground but no crank (no file, not on its cut sheet, which ezdxf reads
-    back with the three others' labels), and the arm carries the crank pin's hole."""
+def test_a_coupled_four_bars_crank_and_ground_are_not_in_the_machines_files(tmp_path):
+    """The automaton's four-bar "arm-bars" is driven by the arm of cams.arm, which carries its crank pin, and its
+    fixed pivots stand in the frame's plates: the machine writes its coupler and rocker but no crank and no ground
+    (no file, not on its cut sheet, which ezdxf reads back with the two others' labels), and the arm carries the
+    crank pin's hole."""
     import ezdxf
 
     from camgen import api
@@ -216,11 +217,11 @@ def test_a_coupled_four_bars_crank_is_not_in_the_machines_files(tmp_path):
     bundle, _ = machine_bundle(design)
     names = {e.name for it in bundle.items for e in it.entries}
     assert {"automaton-arm-bars-coupler.stl", "automaton-arm-bars-rocker.stl"} <= names
-    assert not [n for n in names if "crank" in n]
+    assert not [n for n in names if "crank" in n or "ground" in n]
     (sheet,) = [it for it in bundle.items for e in it.entries if e.name == "automaton-arm-bars-sheet.dxf"]
     write_dxf(sheet.payload, tmp_path / "sheet.dxf")
     msp = ezdxf.readfile(tmp_path / "sheet.dxf").modelspace()
     labels = sorted(t.dxf.text for t in msp.query("TEXT"))
     outlines = msp.query("LWPOLYLINE[layer=='OUTLINE']")
-    assert labels == ["coupler", "ground", "rocker"] and len(outlines) == 3
-    assert "crank" in {p.name for p in design.linkages[0].design.build.cut}      # the design still knows it
+    assert labels == ["coupler", "rocker"] and len(outlines) == 2
+    assert {"crank", "ground"} <= {p.name for p in design.linkages[0].design.build.cut}   # the design knows them
