@@ -81,12 +81,10 @@ def bom_lines(design: Any) -> tuple[BomLine, ...]:
         for suffix, part in conjugate_parts.plates(cam.design):
             lines.append(BomLine(f"{cam.name}{suffix}", 1, f"cam plate of cams.{cam.name}, {part.thickness:g} mm "
                                  "(its own files)", "laser or fdm"))
-    from camgen.kinds.geneva.design import PARTS
-
     for g in design.indexed:                                # each Geneva drive's wheel, locking disc and crank
-        for name in PARTS:
+        for name, part in g.design.cut.items():
             lines.append(BomLine(f"{g.name}-{name}", 1, f"Geneva {name} of genevas.{g.name}, "
-                                 f"{g.design.cut[name].thickness:g} mm (its own files)", "laser or fdm"))
+                                 f"{part.thickness:g} mm (its own files)", "laser or fdm"))
     for m, made in machine_made(design):
         if made.build is None:
             continue

@@ -205,7 +205,8 @@ def test_the_pin_rides_in_the_slot_while_the_wheel_indexes(which, crossed):
 def test_a_framed_geneva_machine_meets_only_at_its_joints_and_its_plate_holds_the_wheel_shaft():
     """With one plate and the drive's wheel bore 6 mm (its shaft carrying the wheel alone): the plate's hole at the
     wheel's shaft is 6 + 0.2 mm (the running play), at the shaft, as the driver's is its bore 8 + 0.2; every part at
-    720 angles meets no other but at its joints (heights from the assembly), nothing unchecked, no clash."""
+    720 angles meets no other but at its joints (heights from the assembly), nothing unchecked, no clash; the kit
+    lists the drive's wheel, locking disc and crank."""
     from camgen.kinds.machine import clash
 
     geneva = tomllib.loads(GENEVA.read_text())
@@ -220,3 +221,9 @@ def test_a_framed_geneva_machine_meets_only_at_its_joints_and_its_plate_holds_th
     assert float(np.abs(shaft.outline).max()) == pytest.approx(3.0, abs=1e-9)
     checked = assert_meet_only_at_joints(bodies, joints, spans(design, bodies), PHI)
     assert checked >= 8
+    from camgen.kinds.machine.framekit import bom
+
+    made = {line.item: line for line in bom(design.frame, design) if line.source != "buy"}
+    for part in ("wheel", "lock", "crank"):                 # the kit lists the drive's parts, as thick as made
+        assert f"{design.indexed[0].name}-{part}" in made
+        assert f"{design.indexed[0].design.cut[part].thickness:g} mm" in made[f"{design.indexed[0].name}-{part}"].size
