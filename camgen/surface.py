@@ -48,18 +48,18 @@ def pitch_distance(cam: Cam, points: np.ndarray) -> np.ndarray:
     high = np.array([c.max(axis=0) + _spacing(c) for c in coarse]).reshape(m, 2)
     best = np.full(len(points), np.inf)
     rows = max(1, 2**21 // max(m, 1))                  # points at a time: their distances to every box
-    for a in range(0, len(points) if m else 0, rows):
-        chunk = points[a:a + rows]
+    for first in range(0, len(points) if m else 0, rows):
+        chunk = points[first:first + rows]
         box = np.linalg.norm(np.maximum(np.maximum(low - chunk[:, None, :], chunk[:, None, :] - high), 0.0), axis=2)
         nearest = np.argmin(box, axis=1)
         here = np.arange(len(chunk))
         mine = _distance(cam, grids, coarse, start, end, nearest, chunk)   # an upper bound: the nearest box's
         box[here, nearest] = np.inf
-        p, i = np.nonzero(box <= mine[:, None])        # every other segment that could come closer
-        closer = _distance(cam, grids, coarse, start, end, i, chunk[p])
+        point, other = np.nonzero(box <= mine[:, None])   # every other segment that could come closer
+        closer = _distance(cam, grids, coarse, start, end, other, chunk[point])
         out = mine.copy()
-        np.minimum.at(out, p, closer)
-        best[a:a + rows] = out
+        np.minimum.at(out, point, closer)
+        best[first:first + rows] = out
     for i, jump in cam.steps():                        # a flat face's flats: the face line between two contacts
         if jump > 0:
             j = (i + 1) % len(segments)
