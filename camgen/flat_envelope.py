@@ -448,6 +448,8 @@ class FlatEnvelope:
             for _ in range(60):                              # halve the step until it brings the points closer
                 ta = min(max(ua + float(step[0]), bound_a[0]), bound_a[1])
                 tb = min(max(ub + float(step[1]), bound_b[0]), bound_b[1])
+                if ta == ua and tb == ub:                    # the step is lost in the floats: so is any half of it
+                    break
                 g, there = gap(np.array([ta, tb]))
                 closer = bool(np.linalg.norm(g) < size)
                 if closer:

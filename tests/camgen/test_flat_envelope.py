@@ -8,6 +8,7 @@ cam is compared with shapely's intersection of the face's half-planes.
 """
 from __future__ import annotations
 
+import functools
 import json
 import math
 
@@ -295,11 +296,13 @@ def test_the_report_and_warnings_say_where_and_how_far(tmp_path):
     assert any("falls short of the law by up to" in w and w.endswith("degrees") for w in arm["warnings"])
 
 
-def _limit(sets: list[str]) -> float:
+@functools.cache
+def _limit(sets: tuple[str, ...]) -> float:
     """The base radius (mm) at which the profile's least radius of curvature is 0, to the last float: by bisection
-    on profile_rho_min (increasing with the base radius), from 1 mm to 60 mm."""
+    on profile_rho_min (increasing with the base radius), from 1 mm to 60 mm; found once for each set of
+    overrides (the three shifts of a case share it)."""
     def rho(rb: float) -> float:
-        return profile_rho_min(build_cam(_spec(sets), base_radius=rb))
+        return profile_rho_min(build_cam(_spec(list(sets)), base_radius=rb))
 
     lo, hi = 1.0, 60.0
     assert rho(lo) < 0 < rho(hi)
@@ -317,7 +320,7 @@ def test_at_and_a_hair_from_the_limit_base_radius(sets, shift):
     """At the base radius where the profile's radius of curvature just reaches 0, and 1e-12 mm either side: a sound
     outline within the tolerance that the face touches all round (the fold is far below what can be cut); refused
     without allow_undercut exactly where the radius of curvature is not positive."""
-    rb = _limit(sets) + shift
+    rb = _limit(tuple(sets)) + shift
     spec = _spec([*sets, f"cam.base_radius={rb!r}"])
     design = design_cam(spec)
     assert shift == 0 or design.analysis.undercut == (shift < 0)

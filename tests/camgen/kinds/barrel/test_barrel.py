@@ -17,6 +17,7 @@ from camgen.cli import main
 from camgen.core.errors import DesignError
 from camgen.api import design_cam
 from camgen.spec import validate_spec
+from tests.camgen.kinds.barrel.sectors import Sectors
 from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
 
@@ -84,13 +85,13 @@ def _roller_gaps(mesh, walls: GrooveWalls, theta: np.ndarray, inner: float, oute
     keep = i + j <= 10
     bary = np.stack([i[keep], j[keep], 10 - i[keep] - j[keep]], axis=1) / 10.0
     samples = np.einsum("kb,tbc->tkc", bary, tri).reshape(-1, 3)
-    psi_s = np.arctan2(samples[:, 1], samples[:, 0])
+    sectors = Sectors(samples, np.arctan2(samples[:, 1], samples[:, 0]))
     below, above = np.empty(len(theta)), np.empty(len(theta))
     zc = walls.centre(theta)[0]
     for k, (t, z) in enumerate(zip(theta, zc, strict=True)):
         psi = -sense * t
         axis = np.array([math.cos(psi), math.sin(psi), 0.0])
-        near = (np.abs(np.angle(np.exp(1j * (psi_s - psi)))) < 0.4) & (np.abs(samples[:, 2] - z) < 8.0)
+        near = sectors.near(psi, 0.4, z, 8.0)
         p = samples[near]
         along = np.clip(p @ axis, inner, outer)
         gap = np.linalg.norm(p - along[:, None] * axis - np.array([0.0, 0.0, z]), axis=1)

@@ -17,6 +17,7 @@ from click.testing import CliRunner
 from camgen.cli import main
 from camgen.api import design_cam
 from camgen.spec import validate_spec
+from tests.camgen.kinds.barrel.sectors import Sectors
 from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
 
@@ -65,14 +66,14 @@ def test_the_cone_runs_in_the_exported_groove(tmp_path):
     keep = i + j <= 10
     bary = np.stack([i[keep], j[keep], 10 - i[keep] - j[keep]], axis=1) / 10.0
     samples = np.einsum("kb,tbc->tkc", bary, tri).reshape(-1, 3)
-    psi_s = np.arctan2(samples[:, 1], samples[:, 0])
+    sectors = Sectors(samples, np.arctan2(samples[:, 1], samples[:, 0]))
     design = design_cam(validate_spec(RAW))
     theta = np.linspace(0, 2 * math.pi, 720, endpoint=False)
     zc = 15.0 + design.cam.program.evaluate(theta)[0]                        # z0 + s, the travel mid-length
     below, above = np.empty(len(theta)), np.empty(len(theta))
     for k, (t, z) in enumerate(zip(theta, zc, strict=True)):
         d = np.array([math.cos(-t), math.sin(-t), 0.0])
-        near = (np.abs(np.angle(np.exp(1j * (psi_s + t)))) < 0.4) & (np.abs(samples[:, 2] - z) < 9.0)
+        near = sectors.near(-t, 0.4, z, 9.0)
         q = samples[near] - np.array([0.0, 0.0, z])
         a = q @ d
         rho = np.linalg.norm(q - a[:, None] * d, axis=1)

@@ -16,6 +16,7 @@ from click.testing import CliRunner
 from camgen.cli import main
 from camgen.api import design_cam
 from camgen.spec import validate_spec
+from tests.camgen.kinds.barrel.sectors import Sectors
 from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
 
@@ -75,13 +76,13 @@ def test_the_roller_on_its_arm_runs_in_the_exported_groove(tmp_path, rotation):
     sense = 1 if rotation == "ccw" else -1
     design = design_cam(validate_spec(RAW | {"cam": RAW["cam"] | {"rotation": rotation}}))
     samples = _wall_samples(trimesh.load(out / "barrel-oscillating.stl"), RI)
-    psi_s = np.arctan2(samples[:, 1], samples[:, 0])
+    sectors = Sectors(samples, np.arctan2(samples[:, 1], samples[:, 0]))
     theta = np.linspace(0, 2 * math.pi, 720 if rotation == "ccw" else 240, endpoint=False)
     ys, zs = _pose(design, theta)
     below, above = np.empty(len(theta)), np.empty(len(theta))
     for k, (t, y, z) in enumerate(zip(theta, ys, zs, strict=True)):
         foot, d = _axis(t, y, z, sense)
-        near = (np.abs(np.angle(np.exp(1j * (psi_s + sense * t)))) < 0.4) & (np.abs(samples[:, 2] - z) < 8.0)
+        near = sectors.near(-sense * t, 0.4, z, 8.0)
         p = samples[near] - foot
         along = np.clip(p @ d, math.sqrt(RI**2 - y**2), math.sqrt(RO**2 - y**2))
         gap = np.linalg.norm(p - along[:, None] * d, axis=1)
