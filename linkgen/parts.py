@@ -115,6 +115,18 @@ class Layout:
 LAYER_SEARCH_BUDGET = 200_000
 
 
+def _posed(points: np.ndarray, angle: np.ndarray, origin: np.ndarray) -> np.ndarray:
+    """Polygons (n,) of ``points`` (m, 2) mm, a part's outline flattened once in its own frame, turned by each
+    ``angle`` (n,) rad counter-clockwise and moved by each ``origin`` (n, 2) mm (one outline, n poses: flattening the
+    moved outline at each pose gives the same chords, turned)."""
+    import shapely
+
+    c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
+    x, y = points[:, 0], points[:, 1]
+    o = np.asarray(origin, float)
+    return shapely.polygons(np.stack([c * x - s * y + o[:, 0, None], s * x + c * y + o[:, 1, None]], -1))
+
+
 def layer_order(parts: tuple[LinkPart, ...], placement: Placement,
                 pin_radius: float) -> tuple[dict[str, int], tuple[str, ...]]:
     """Layers (0 = the ground plate and any other fixed part, then upwards) so that no two moving parts on one
@@ -131,11 +143,8 @@ def layer_order(parts: tuple[LinkPart, ...], placement: Placement,
 
     moving = [p.name for p in parts if p.moving]
     fixed = {p.name: 0 for p in parts if not p.moving}
-    n = len(next(iter(placement.angles.values())))
-    shapes = {p.name: np.array([shapely.Polygon(p.outline().moved(placement.angles[p.name][k],
-                                                                  placement.origins[p.name][k])
-                                                .flatten(COLLISION_TOLERANCE_MM)) for k in range(n)])
-              for p in parts if p.moving}
+    shapes = {p.name: _posed(p.outline().flatten(COLLISION_TOLERANCE_MM), placement.angles[p.name],
+                             placement.origins[p.name]) for p in parts if p.moving}
     joined = {frozenset(names) for names, _ in placement.joints.values()}
     clash = {frozenset((a, b)): frozenset((a, b)) in joined or bool(shapely.intersects(shapes[a], shapes[b]).any())
              for a, b in itertools.combinations(moving, 2)}

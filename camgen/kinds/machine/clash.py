@@ -122,7 +122,11 @@ def bar(length: float, half_width: float, tolerance: float = 0.01) -> np.ndarray
 
 def _shapes(body: Body, phi: np.ndarray) -> np.ndarray:
     m, t = body.place(phi)
-    coords = np.einsum("nij,mj->nmi", m, body.outline) + np.asarray(t)[:, None, :]
+    x, y = body.outline[:, 0], body.outline[:, 1]
+    m, t = np.asarray(m), np.asarray(t)
+    # x_machine = M x_local + t, written out per row: the same products and sums as an einsum, ~15 times faster
+    coords = np.stack([m[:, 0, 0, None] * x + m[:, 0, 1, None] * y + t[:, 0, None],
+                       m[:, 1, 0, None] * x + m[:, 1, 1, None] * y + t[:, 1, None]], -1)
     return shapely.make_valid(shapely.polygons(coords))
 
 
@@ -131,9 +135,11 @@ def outlines(body: Body, phi: np.ndarray) -> np.ndarray:
     return _shapes(body, phi)
 
 
-def _overlap(a: Body, b: Body, joint: Joint | None, phi: np.ndarray) -> np.ndarray:
-    """Where (bool (n,)) bodies ``a`` and ``b`` overlap at angles ``phi``, outside their joint's disc."""
-    pa, pb = _shapes(a, phi), _shapes(b, phi)
+def _overlap(a: Body, b: Body, joint: Joint | None, phi: np.ndarray,
+             placed: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
+    """Where (bool (n,)) bodies ``a`` and ``b`` overlap at angles ``phi``, outside their joint's disc; ``placed``:
+    their outlines at ``phi`` (:func:`outlines`) where the caller has them already."""
+    pa, pb = placed if placed is not None else (_shapes(a, phi), _shapes(b, phi))
     near = shapely.intersects(pa, pb)
     out = np.zeros(len(phi), bool)
     if not near.any():
@@ -163,12 +169,19 @@ def clashes(bodies: Sequence[Body], joints: Sequence[Joint], samples: int) -> tu
     phi = np.arange(samples) * (2 * math.pi / samples)
     pairs = {frozenset((j.a, j.b)): j for j in joints}
     found = []
+    placed: dict[int, np.ndarray] = {}                    # each body's outlines at phi, placed once for all its pairs
+
+    def at_phi(i: int) -> np.ndarray:
+        if i not in placed:
+            placed[i] = _shapes(bodies[i], phi)
+        return placed[i]
+
     for i, a in enumerate(bodies):
-        for b in bodies[i + 1:]:
+        for k, b in enumerate(bodies[i + 1:], i + 1):
             if a.high < b.low or b.high < a.low:
                 continue
             joint = pairs.get(frozenset((a.name, b.name)))
-            hit = _overlap(a, b, joint, phi)
+            hit = _overlap(a, b, joint, phi, (at_phi(i), at_phi(k)))
             if not hit.any():
                 continue
             if hit.all():

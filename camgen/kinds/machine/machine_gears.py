@@ -277,18 +277,19 @@ def free_plane(bodies: Any, joints: Any, discs: Any, axes: Any, shafts: Any, hei
 
     phi = np.arange(SWEEP_SAMPLES) * (2 * math.pi / SWEEP_SAMPLES)
     others = [b for b in bodies if not b.name.startswith(("shafts.", "spacers."))]
-    swept = [(b, shapely.union_all(outlines(b, phi))) for b in others]
+    # a part's sweep meets a disc where one of its placed outlines does: no union of them needed
+    swept = [(b, outlines(b, phi)) for b in others]
     filled = [shapely.Point(*c).buffer(r + SWEEP_CLEARANCE_MM) for c, r in discs]
     carried = {j.a for j in joints if j.b in {f"shafts.{s}" for s in shafts}}
     crossed = [shapely.Point(*c).buffer(r + SWEEP_CLEARANCE_MM) for c, r in axes]
     top = max((b.high for b in others), default=-1) + 1
     for plane in range(0, top + 1):
         on = [area for b, area in swept if b.low <= plane + height - 1 and plane <= b.high]
-        if any(area.intersects(t) for area in on for t in filled):
+        if any(shapely.intersects(area, t).any() for area in on for t in filled):
             continue
         under = [area for b, area in swept if b.low <= plane - 1 and b.high >= 0 and b.name not in carried
                  and not b.name.startswith("pins.")]
-        if any(area.intersects(a) for area in under for a in crossed):
+        if any(shapely.intersects(area, a).any() for area in under for a in crossed):
             continue
         return plane
     return top

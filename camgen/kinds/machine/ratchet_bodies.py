@@ -67,7 +67,9 @@ def lift_angle(points: np.ndarray, pivot: np.ndarray, tip_radius: float) -> floa
 
 def _placed(points: np.ndarray, angle: np.ndarray) -> np.ndarray:
     """(n, m, 2): ``points`` (m, 2) turned counter-clockwise by each of ``angle`` (n,) rad about the origin."""
-    return np.einsum("nij,mj->nmi", rotation(angle), points)
+    c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
+    x, y = points[:, 0], points[:, 1]
+    return np.stack([c * x - s * y, s * x + c * y], -1)
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,9 @@ import pytest
 from camgen.kinds.machine import kinematics
 from tests.conftest import ROOT
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-chain-inertia")
+
 AUTOMATON = ROOT / "templates" / "automaton.toml"
 
 #: each link's mass (kg), centre (mm, in its own frame: origin at its first joint, +x to its second) and inertia

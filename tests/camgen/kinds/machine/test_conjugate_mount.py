@@ -19,6 +19,9 @@ from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
 from tests.support.stem_slider_crank import stem_slider_crank
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-conjugate-mount")
+
 PHASE_DEG, REST_DEG = 40.0, 60.0
 #: the four-bar the bell crank drives: ground, crank, coupler, rocker (mm)
 BARS = (80.0, 30.0, 90.0, 60.0)

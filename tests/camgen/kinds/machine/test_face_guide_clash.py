@@ -16,6 +16,9 @@ from scipy.optimize import brentq
 
 from tests.conftest import ROOT
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-face-guide-clash")
+
 
 def _motion(steps) -> list[dict]:
     """A cam's [[motion]] tables: (kind, lift mm, angle degrees) each, cycloidal where it moves."""

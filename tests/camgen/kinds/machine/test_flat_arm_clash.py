@@ -14,6 +14,9 @@ import shapely
 from tests.camgen.kinds.machine.test_face_guide_clash import _cam, _machine
 from tests.support.machine_meetings import assert_meet_only_at_joints, spans
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-flat-arm-clash")
+
 #: the face's cam: base radius 95 mm, its pivot 160 mm from the cam's centre (so at (sqrt(160^2 - 95^2), 95)); the
 #: arm swings 15 degrees (cycloidal over 120 degrees of the program), holds, returns over 120 and rests over the
 #: program's last 60 degrees: main shaft angles 100 to 160 with the program starting at 160 degrees

@@ -16,6 +16,9 @@ from scipy.optimize import brentq
 from tests.camgen.kinds.machine.test_face_guide_clash import _cam
 from tests.support.machine_meetings import assert_meet_only_at_joints, spans
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-flat-arm-four-bar")
+
 #: the face's cam (base radius 95 mm, its pivot 160 mm from the camshaft, at (sqrt(160^2 - 95^2), 95)): a swing of
 #: 15 degrees (cycloidal over 120 degrees of its program), a hold, the return over 120 and a rest over the last 60;
 #: the program starts at 160 degrees of the main shaft (the camshaft), so the arm rests over phi in [100, 160]

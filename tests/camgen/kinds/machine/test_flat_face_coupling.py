@@ -14,6 +14,9 @@ import pytest
 
 from tests.conftest import ROOT
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-flat-face-coupling")
+
 AUTOMATON = ROOT / "templates" / "automaton.toml"
 
 

@@ -19,6 +19,9 @@ import pytest
 from camgen import api
 from tests.conftest import ROOT
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-follower-parts")
+
 #: the bundled machines with oscillating roller followers: three arms on one pivot and a coupled four-bar's crank
 #: pin (automaton), a four-bar's crank pin 30 mm out (keep-time), a bell crank (pick-and-place)
 MACHINES = ("automaton", "keep-time", "pick-and-place")

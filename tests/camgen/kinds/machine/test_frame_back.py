@@ -18,6 +18,9 @@ from click.testing import CliRunner
 from tests.conftest import ROOT
 from tests.support.machine_meetings import assert_meet_only_at_joints, freecad_boxes, spans
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-frame-back")
+
 TOY = ROOT / "templates" / "walking-toy.toml"
 ANGLE = 40.0
 #: main shaft angles of the meeting check

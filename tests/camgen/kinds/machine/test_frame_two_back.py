@@ -17,6 +17,9 @@ import shapely
 from tests.conftest import ROOT
 from tests.support.machine_meetings import assert_meet_only_at_joints, freecad_boxes, spans
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-frame-two-back")
+
 AUTOMATON = ROOT / "templates" / "automaton.toml"
 #: the back crank-rocker (mm, its drawing = the machine's frame, O = PIVOT on the camshaft): crank O-A, rod A-B,
 #: rocker B-C

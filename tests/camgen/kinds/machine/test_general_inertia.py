@@ -24,6 +24,9 @@ from tests.conftest import ROOT
 from tests.support.kinetic_energy import kinetic_energy
 from tests.support.lost_contact import assert_contact_lost
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-general-inertia")
+
 PICK = ROOT / "templates" / "pick-and-place.toml"
 
 #: each link's mass (kg), centre (mm, its own frame: origin at its first joint, +x to its second; a slider's block

@@ -17,6 +17,9 @@ import shapely
 from tests.conftest import ROOT
 from tests.support.machine_meetings import assert_meet_only_at_joints, spans
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-geneva-clash")
+
 GENEVA = ROOT / "templates" / "geneva4.toml"
 #: the drive's centre distance (mm), slots and engagement half angle (rad: pi/2 - pi/n)
 C, SLOTS = 80.0, 4

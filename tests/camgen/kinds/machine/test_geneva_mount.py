@@ -13,6 +13,9 @@ import pytest
 from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-geneva-mount")
+
 #: the driver's shaft turns 4 times a main turn (gears 60:15), so the 4-slot wheel turns once: 4 indexes a turn
 MACHINE = f"""
 name = "indexer"

@@ -21,6 +21,9 @@ from tests.camgen.kinds.machine.test_geneva_mount import MACHINE as GENEVA_MACHI
 from tests.conftest import ROOT
 from tests.support.kinetic_energy import kinetic_energy
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-indexed-shaft")
+
 #: the main shaft turns a driver 4 times a turn the other way (60:15), whose 4-slot Geneva turns the wheel's shaft
 #: once a turn (+1, the other way from its driver) in 4 indexes; the wheel's shaft carries a cam (its follower
 #: driving a four-bar), a shaft-driven four-bar (ground 80, crank 20, coupler and rocker sqrt(30^2 + 60^2): a

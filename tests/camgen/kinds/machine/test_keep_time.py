@@ -19,6 +19,9 @@ from camgen.core.errors import SpecError
 from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-keep-time")
+
 KEEP_TIME = ROOT / "templates" / "keep-time.toml"
 #: the bundled example's four-bar: ground, crank, coupler, rocker (mm), the hand at 45 mm, 30 degrees off A -> B
 LENGTHS = (80.0, 30.0, 90.0, 60.0)

@@ -14,14 +14,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from click.testing import CliRunner
 
-from camgen.cli import main as camgen
 from camgen.core.errors import SpecError
 from tests.conftest import ROOT
+from tests.camgen.kinds.machine.conftest import DESIGNS
 from tests.support.refusals import assert_refused
 
 AUTOMATON = ROOT / "templates" / "automaton.toml"
+
+#: one worker for the modules that read the bundled machines' shared designs (conftest.py)
+pytestmark = pytest.mark.xdist_group(DESIGNS)
 
 
 def _raw() -> dict:
@@ -36,8 +38,8 @@ def _design(raw: dict):
 
 
 @pytest.fixture(scope="module")
-def automaton():
-    return _design(_raw())
+def automaton(bundled_design):
+    return bundled_design("automaton")
 
 
 # ---- an independent composition: the program shifted by its phase, a circle intersection for the four-bar
@@ -326,10 +328,13 @@ def test_the_library_raises_rather_than_exits():
 
 
 @pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    out = tmp_path_factory.mktemp("automaton")
-    result = CliRunner().invoke(camgen, ["build", str(AUTOMATON), "-o", str(out)])
-    assert result.exit_code == 0, result.output
+def built(bundled_builds):
+    """``camgen build automaton.toml``'s folder and report: the build tests/project/test_golden.py compares, run
+    once a run (:mod:`tests.support.builds`; read only)."""
+    from tests.support.golden import runs
+
+    program, args = runs(AUTOMATON)[0]
+    out = bundled_builds.folder(AUTOMATON, program, args)
     return out, json.loads((out / "automaton.json").read_text())
 
 
@@ -521,11 +526,10 @@ def test_the_bundled_machines_are_found():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", BUNDLED)
-def test_every_bundled_machine_meets_no_part_but_at_its_joints(name):
+def test_every_bundled_machine_meets_no_part_but_at_its_joints(name, bundled_design):
     """Each bundled machine (the automaton's check above, for all of them): every part placed by the kinematics at
     720 angles meets no other except at its joints, every joint a real one, nothing unchecked."""
-    raw = tomllib.loads((ROOT / "templates" / f"{name}.toml").read_text())
-    _meets_only_at_its_joints(_design(raw), np.arange(720) * (2 * math.pi / 720))
+    _meets_only_at_its_joints(bundled_design(name), np.arange(720) * (2 * math.pi / 720))
 
 
 def test_a_clash_is_an_error_by_machine_clash_naming_both_parts(tmp_path):

@@ -22,6 +22,9 @@ from camgen.cli import main as camgen
 from tests.support.refusals import assert_refused
 from tests.camgen.kinds.machine.test_machine import AUTOMATON, _design, _raw
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-machine-assembly")
+
 ANGLE = 75.0
 CORE = "{http://schemas.microsoft.com/3dmanufacturing/core/2015/02}"
 

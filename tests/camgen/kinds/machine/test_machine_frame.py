@@ -21,6 +21,9 @@ from camgen.core.hardware import BOLTS, RUNNING_PLAY
 from tests.support.refusals import assert_refused
 from tests.camgen.kinds.machine.test_machine import AUTOMATON, _design, _raw, _write
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-machine-frame")
+
 KERF, CLEARANCE = 0.2, 0.3
 
 

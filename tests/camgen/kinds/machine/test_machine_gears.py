@@ -20,6 +20,9 @@ import shapely
 from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-machine-gears")
+
 TOY = ROOT / "templates" / "walking-toy.toml"
 
 

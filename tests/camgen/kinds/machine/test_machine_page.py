@@ -17,6 +17,7 @@ import shapely
 from click.testing import CliRunner
 
 from tests.conftest import ROOT
+from tests.camgen.kinds.machine.conftest import DESIGNS
 from tests.camgen.kinds.machine.test_machine import _rocker, _swing
 from tests.camgen.test_page import page_data
 from tests.project.test_page_browser import CHROMIUM, DRIVER, browser  # noqa: F401  (the fixture, shared)
@@ -26,6 +27,9 @@ MACHINES = ("automaton", "walking-toy", "pick-and-place")
 #: figure angles on whole degrees (the page's frames) for each machine's page test
 ANGLES = {"automaton": [0.0, 37.0, 200.0, 311.0], "walking-toy": [0.0, 45.0, 90.0, 135.0],
           "pick-and-place": [0.0, 60.0, 150.0, 240.0]}
+
+#: one worker for the modules that read the bundled machines' shared designs (conftest.py)
+pytestmark = pytest.mark.xdist_group(DESIGNS)
 
 
 def _design(name: str, **machine):
@@ -61,8 +65,8 @@ def automaton():
 
 
 @pytest.fixture(scope="module")
-def toy():
-    return _design("walking-toy")
+def toy(bundled_design):
+    return bundled_design("walking-toy")
 
 
 # ---- in the browser

@@ -19,6 +19,9 @@ from camgen.kinds.machine.spec import MachineSpec
 from linkgen.mechanisms.ratchet import NOSE_GAP_MM
 from tests.conftest import ROOT
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-ratchet-pawls")
+
 EXAMPLE = ROOT / "templates" / "ratchet-counter.toml"
 PHI = np.arange(720) * (2 * math.pi / 720)
 

@@ -17,8 +17,12 @@ import pytest
 from click.testing import CliRunner
 
 from camgen.cli import main as camgen
+from tests.camgen.kinds.machine.conftest import DESIGNS
 from tests.support.refusals import assert_refused
 from tests.support.stem_slider_crank import stem_slider_crank
+
+#: one worker for the modules that read the bundled machines' shared designs (conftest.py)
+pytestmark = pytest.mark.xdist_group(DESIGNS)
 
 #: a disc cam (base 40 mm, roller 8 mm: the roller's centre 48 mm above the shaft at rest) lifting the slider C of
 #: a slider-crank 30 mm: crank O-A turning about O, rod A-C, C sliding along +Y under the cam
@@ -254,10 +258,8 @@ PICK = Path(__file__).resolve().parents[4] / "templates" / "pick-and-place.toml"
 
 
 @pytest.fixture(scope="module")
-def pick():
-    from camgen import api
-
-    return api.design(api.validate(tomllib.loads(PICK.read_text())))
+def pick(bundled_design):
+    return bundled_design("pick-and-place")
 
 
 def _carriage_x(design, phi: np.ndarray) -> np.ndarray:

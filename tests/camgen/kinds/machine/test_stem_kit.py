@@ -26,6 +26,9 @@ from camgen.cli import main as camgen
 from tests.camgen.kinds.machine.test_slider_coupling import TEMPLATE
 from tests.conftest import ROOT
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-stem-kit")
+
 #: the assembly's angle (degrees of the main shaft): in the rise (the cam's phase is 30 degrees)
 ANGLE = 100.0
 FRAMED = TEMPLATE.replace('rpm = 30.0\n', f'rpm = 30.0\nframe = "one"\nassembly_angle = {ANGLE}\n', 1).replace(

@@ -18,10 +18,14 @@ from click.testing import CliRunner
 from camgen.core.errors import SpecError
 from tests.conftest import ROOT
 from tests.support.refusals import assert_refused
+from tests.camgen.kinds.machine.conftest import DESIGNS
 from tests.camgen.kinds.machine.test_machine import _design
 
 TOY = ROOT / "templates" / "walking-toy.toml"
 JANSEN = ROOT / "templates" / "jansen.toml"
+
+#: one worker for the modules that read the bundled machines' shared designs (conftest.py)
+pytestmark = pytest.mark.xdist_group(DESIGNS)
 
 
 def _raw() -> dict:
@@ -29,8 +33,8 @@ def _raw() -> dict:
 
 
 @pytest.fixture(scope="module")
-def toy():
-    return _design(_raw())
+def toy(bundled_design):
+    return bundled_design("walking-toy")
 
 
 @pytest.fixture(scope="module")
@@ -245,17 +249,16 @@ def test_the_report_and_the_timing_name_both_feet(toy, tmp_path):
     assert "2 linkage(s)" in result.output
 
 
-def test_every_file_of_the_toy_reads_back(tmp_path):
+def test_every_file_of_the_toy_reads_back(bundled_builds):
     """The toy's files, read back: every DXF by ezdxf with no audit error, every STL closed by admesh and
-    PrusaSlicer, the page and the figures; the report names exactly the files written."""
+    PrusaSlicer, the page and the figures; the report names exactly the files written. The build is the one with
+    every format a machine writes that test_machine_files_read_back.py reads (made once a run, read only)."""
     import ezdxf
 
-    from camgen.cli import main
+    from tests.camgen.kinds.machine.test_machine_files_read_back import _built
     from tests.project.test_programs import _admesh, _prusa
 
-    result = CliRunner().invoke(main, ["build", str(TOY), "-o", str(tmp_path), "--set",
-                                       'output.formats=["json", "dxf", "stl", "png", "svg", "html"]'])
-    assert result.exit_code == 0, result.output
+    tmp_path = _built(bundled_builds, "walking-toy").folder
     report = json.loads((tmp_path / "walking-toy.json").read_text())
     assert set(report["files"].values()) == {p.name for p in tmp_path.iterdir()}
     dxf = sorted(tmp_path.glob("*.dxf"))

@@ -13,6 +13,9 @@ import pytest
 from camgen import api
 from camgen.starters import starter
 
+#: one worker for the module, so that its module-scoped designs are made once a run
+pytestmark = pytest.mark.xdist_group("machine-walking-toy-starter")
+
 GROUND, CRANK, COUPLER, ROCKER = 60.0, 15.0, 50.0, 50.0
 POINT, POINT_ANGLE, TURNED = 110.0, math.radians(-70.0), math.radians(330.0)
 
