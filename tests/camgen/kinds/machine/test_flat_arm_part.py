@@ -15,6 +15,8 @@ import shapely
 from camgen.kinds.machine.flat_arm_part import FlatArmPart
 from tests.camgen.kinds.machine.test_flat_arm_four_bar import CRANK, _raw
 
+pytestmark = pytest.mark.xdist_group("machine-flat-arm-part")     # one worker designs and writes the machine once
+
 
 def _union(part: FlatArmPart, grow: float) -> shapely.Polygon:
     """The rectangle grown by ``grow`` on every side and each ear's disc by ``grow`` in radius, by shapely (discs
