@@ -154,11 +154,12 @@ def test_every_example_runs_by_name_after_a_plain_install(plain_install):
     assert len(listed) == len(TEMPLATES)
 
 
-def test_the_forked_runner_gives_each_lines_exit_code_and_output(tmp_path):
-    """The runner the plain-install test uses (on this interpreter's console scripts): a command that fails gives
-    its own exit code and message, the ones around it theirs, in order."""
+@pytest.mark.parametrize("jobs", ["1", "2"])
+def test_the_forked_runner_gives_each_lines_exit_code_and_output(tmp_path, jobs):
+    """The runner the plain-install test uses (on this interpreter's console scripts), one line at a time or two:
+    a command that fails gives its own exit code and message, the ones around it theirs, in the lines' order."""
     lines = ["camgen --version", "camgen build nosuch.toml", "linkgen --help"]
-    driver = subprocess.run([sys.executable, str(FORKED), str(tmp_path / "runs.json")], input="\n".join(lines),
+    driver = subprocess.run([sys.executable, str(FORKED), str(tmp_path / "runs.json"), jobs], input="\n".join(lines),
                             cwd=tmp_path, capture_output=True, text=True, timeout=300,
                             env={k: v for k, v in os.environ.items() if k != "PYTHONPATH"})
     assert driver.returncode == 0, driver.stderr

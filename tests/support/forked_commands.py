@@ -1,13 +1,15 @@
 """Run console-script command lines as an installed package's users do, each in its own process, without paying for
 a fresh interpreter and the dependencies' imports each time.
 
-``python forked_commands.py RESULTS.json < LINES`` (run by the interpreter of the environment under test, from the
-folder the commands run in): each line of standard input is one command line, ``PROGRAM ARG ...``, where PROGRAM is
-a console script of that environment (``camgen``, ``linkgen``). The parent imports the third-party packages the
-programs depend on (each package's own top-level import only: what any process that uses them has imported), then
-forks one child per line. The child loads PROGRAM's entry point from the environment's installed metadata (so the
-package's own modules are imported afresh in every child, as in a new process) and calls it with the line's
-arguments, its standard output and error going to a file of its own. The lines run one after the other, in order.
+``python forked_commands.py RESULTS.json [JOBS] < LINES`` (run by the interpreter of the environment under test,
+from the folder the commands run in): each line of standard input is one command line, ``PROGRAM ARG ...``, where
+PROGRAM is a console script of that environment (``camgen``, ``linkgen``). The parent imports the third-party
+packages the programs depend on (each package's top-level import, and the few of their submodules every build loads:
+pydantic's models, scipy's integration, interpolation, optimisation and spatial modules), then forks one child per
+line. The child loads PROGRAM's entry point from the environment's installed metadata (so the package's own modules
+are imported afresh in every child, as in a new process) and calls it with the line's arguments, its standard output
+and error going to a file of its own. The lines start in order, one after the other, or with JOBS (default 1) up to
+that many children at a time, the next line starting when one ends.
 
 RESULTS.json gets one record per line, in order: ``{"line": ..., "code": exit code, "seconds": its wall time,
 "output": what it printed}`` (the seconds to see which line a slow run spends its time on; never asserted).
@@ -25,8 +27,12 @@ import sys
 import time
 from pathlib import Path
 
-#: the programs' dependencies, imported once in the parent (top-level packages only; see the module's docstring)
-PRELOADED = ("numpy", "scipy", "shapely", "trimesh", "manifold3d", "ezdxf", "matplotlib", "pydantic", "click")
+#: the programs' dependencies, imported once in the parent (third-party modules only; see the module's docstring)
+PRELOADED = ("numpy", "scipy", "shapely", "trimesh", "manifold3d", "ezdxf", "matplotlib", "pydantic", "click",
+             # every template's validation loads pydantic's models, the cams' and linkages' analyses these scipy
+             # modules: about 0.1 CPU s a child (a fifth of a small build's), 12 s over the examples' 120 lines
+             "pydantic.main", "pydantic.fields", "pydantic.json_schema", "scipy.integrate", "scipy.interpolate",
+             "scipy.optimize", "scipy.spatial")
 
 
 def _child(program: str, args: list[str], log: Path) -> int:
@@ -53,23 +59,29 @@ def _child(program: str, args: list[str], log: Path) -> int:
     return code
 
 
-def run_lines(lines: list[str], logs: Path) -> list[dict[str, object]]:
-    """Each command line run in a forked child, in order; a record for each (see the module's docstring)."""
+def run_lines(lines: list[str], logs: Path, jobs: int = 1) -> list[dict[str, object]]:
+    """Each command line run in a forked child, started in order, at most ``jobs`` children at a time (the next line
+    starts when a child ends); a record for each, in the lines' order (see the module's docstring)."""
     logs.mkdir(parents=True, exist_ok=True)
-    records = []
-    for number, line in enumerate(lines):
-        program, *args = line.split()
-        log = logs / f"{number:03d}.log"
-        sys.stdout.flush()
-        sys.stderr.flush()
-        start = time.perf_counter()
-        pid = os.fork()
-        if pid == 0:                                    # the child: never returns into the loop
-            os._exit(_child(program, args, log))
-        _, status = os.waitpid(pid, 0)
-        records.append({"line": line, "code": os.waitstatus_to_exitcode(status),
-                        "seconds": round(time.perf_counter() - start, 3),
-                        "output": log.read_text(encoding="utf-8", errors="replace")})
+    records: list[dict[str, object]] = [{} for _ in lines]
+    running: dict[int, tuple[int, float]] = {}          # pid: (the line's number, its start)
+    todo = list(enumerate(lines))[::-1]
+    while todo or running:
+        while todo and len(running) < jobs:
+            number, line = todo.pop()
+            program, *args = line.split()
+            sys.stdout.flush()
+            sys.stderr.flush()
+            start = time.perf_counter()
+            pid = os.fork()
+            if pid == 0:                                # the child: never returns into the loop
+                os._exit(_child(program, args, logs / f"{number:03d}.log"))
+            running[pid] = (number, start)
+        pid, status = os.wait()
+        number, start = running.pop(pid)
+        records[number] = {"line": lines[number], "code": os.waitstatus_to_exitcode(status),
+                           "seconds": round(time.perf_counter() - start, 3),
+                           "output": (logs / f"{number:03d}.log").read_text(encoding="utf-8", errors="replace")}
     return records
 
 
@@ -77,8 +89,9 @@ def main() -> None:
     for name in PRELOADED:
         importlib.import_module(name)
     results = Path(sys.argv[1])
+    jobs = int(sys.argv[2]) if len(sys.argv) > 2 else 1
     lines = [line for line in sys.stdin.read().splitlines() if line.strip()]
-    records = run_lines(lines, results.with_suffix(".logs"))
+    records = run_lines(lines, results.with_suffix(".logs"), jobs)
     results.write_text(json.dumps(records, indent=1), encoding="utf-8")
 
 
