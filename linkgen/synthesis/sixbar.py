@@ -446,10 +446,10 @@ def _keeps(x: np.ndarray, p: Problem) -> bool:
     return e is not None and bool(np.all(e.rows >= 0)) and bool(np.all(np.isfinite(e.residuals)))
 
 
-def _error(x: np.ndarray, p: Problem) -> float:
-    """The error (mm^2) of design ``x``, infinite where it breaks a hard constraint."""
-    value = float(objective(x[:, None], p)[0])
-    return value if value < BIG else math.inf
+def errors(x: np.ndarray, p: Problem) -> np.ndarray:
+    """The error (mm^2) of each design of ``x`` (10, N), infinite where it breaks a hard constraint."""
+    value = objective(x, p)
+    return np.where(value < BIG, value, math.inf)
 
 
 def _start(joints: dict[str, Any], p: Problem) -> np.ndarray | None:
@@ -458,7 +458,7 @@ def _start(joints: dict[str, Any], p: Problem) -> np.ndarray | None:
     :func:`linkgen.synthesis.sixbar_seed.embedded_stephenson1`."""
     if p.topology.name == "stephenson1":
         shortest = p.lengths[0] / math.dist(joints["O2"], joints["O4"])
-        return embedded_stephenson1(joints, SHAPE_BOX, shortest, lambda x: _error(x, p))
+        return embedded_stephenson1(joints, SHAPE_BOX, shortest, lambda x: errors(x, p))
     return embedded(joints, p.topology.name, SHAPE_BOX, lambda x: _keeps(x, p))
 
 
