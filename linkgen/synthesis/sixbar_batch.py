@@ -49,17 +49,15 @@ class Solved:
 def drawn_ok(joints: dict[str, np.ndarray], bodies: tuple[tuple[str, ...], ...]) -> np.ndarray:
     """(N,) whether each drawing is finite and has no two joints of one body within COINCIDENT of the drawing's
     scale (its largest coordinate, at least 1): what :func:`linkgen.kinematics.structure.make_structure` refuses."""
-    z = np.stack(list(joints.values()), axis=1)
-    finite = np.all(np.isfinite(z), axis=1)
+    names = list(joints)
+    z = np.stack([joints[k] for k in names], axis=1)
+    at = {k: i for i, k in enumerate(names)}
+    pairs = np.array([(at[a], at[b]) for pts in bodies for i, a in enumerate(pts) for b in pts[i + 1:]
+                      if a in at and b in at], dtype=int).reshape(-1, 2)
     with np.errstate(invalid="ignore"):
         scale = np.maximum(1.0, np.max(np.maximum(np.abs(z.real), np.abs(z.imag)), axis=1))
-        ok = finite.copy()
-        for pts in bodies:
-            names = [p for p in pts if p in joints]
-            for i, a in enumerate(names):
-                for b in names[i + 1:]:
-                    ok &= np.abs(joints[a] - joints[b]) > COINCIDENT * scale
-    return ok
+        apart = np.all(np.abs(z[:, pairs[:, 0]] - z[:, pairs[:, 1]]) > COINCIDENT * scale[:, None], axis=1)
+    return np.all(np.isfinite(z), axis=1) & apart
 
 
 def solve_many(prog: Program, joints: dict[str, np.ndarray], links: dict[str, tuple[str, ...]],
@@ -69,12 +67,9 @@ def solve_many(prog: Program, joints: dict[str, np.ndarray], links: dict[str, tu
     tracer's link ``tracer_link`` turned, and its joint ``reference`` placed."""
     n = len(next(iter(joints.values())))
     d = {k: np.asarray(v, dtype=complex)[:, None] for k, v in joints.items()}
-    size = np.zeros((n, 1))
-    names = list(d)
-    for i, a in enumerate(names):
-        for b in names[i + 1:]:
-            size = np.maximum(size, np.abs(d[a] - d[b]))
-    size = np.maximum(size, 1e-9)
+    z = np.stack([v[:, 0] for v in d.values()], axis=1)
+    # the drawing's size: the largest distance between two of its joints (at least 1e-9), (N, 1)
+    size = np.maximum(np.max(np.abs(z[:, :, None] - z[:, None, :]), axis=(1, 2)), 1e-9)[:, None]
     P: dict[str, np.ndarray] = {}
     vec: dict[str, np.ndarray] = {}
     frame: dict[str, tuple[np.ndarray, np.ndarray]] = {}

@@ -84,7 +84,7 @@ def found(figure_eight_found):
 @pytest.mark.slow
 @pytest.mark.xdist_group(FIGURE_EIGHT_GROUP)                # one worker: the session's search runs once
 def test_the_six_bar_beats_the_best_four_bar_on_the_figure_eight_by_a_large_factor(found):
-    """The bundled task with one start (seed 1, 300 generations; about 40 s of CPU): the Watt I found meets the
+    """The bundled task with one start (seed 1, 300 generations; about 5 s of CPU): the Watt I found meets the
     twelve points to their rounding (measured 4.98e-7 mm^2, as the task itself gives) where the best four-bar on
     the same targets, timing, seed and budget stays at 18.85 mm^2, a factor above 1e6 (3.8e7); both errors are the
     test's own, from each linkage's joints by circle intersections at the crank directions its row reports, and
