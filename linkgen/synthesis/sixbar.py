@@ -5,14 +5,17 @@ with ``input_angles`` (timed) or without (untimed: each target met where the cur
 and similarity fitted by :func:`linkgen.synthesis.sixbar_untimed.nearest_fit`).
 
 A design is a drawing normalised so that O2 = (0, 0) and O4 = (1, 0) (the ground line on +X, so the
-crank's direction in it is its angle from the ground line): five free joints, ten numbers. Every
-evaluation is the general solver (:class:`linkgen.kinematics.linkage.Linkage`) on that drawing,
-batched over the targets' crank angles and a sampled turn, each dyad on the branch the drawing shows.
+crank's direction in it is its angle from the ground line): five free joints, ten numbers. A whole
+population is solved at once (:mod:`linkgen.synthesis.sixbar_batch`: the general solver's closed form, its
+solve order planned once a type, over designs by crank angles; 150 designs of a Watt I at 88 angles in about
+15 ms, where one by one through :class:`linkgen.kinematics.linkage.Linkage` took about 400 ms), at the
+targets' crank angles and over a sampled turn, each dyad on the branch the drawing shows.
 The tracer's place on its link and the similarity (scale, turn, shift) that puts the drawing onto the
 targets are linear: with R_k the tracer link's turn and F_k its reference joint at target k (complex
 numbers), the tracer is W_k = R_k u + z F_k + t, so (u, z, t) come by least squares in closed form
 (variable projection); the search runs over the ten drawing numbers only, by scipy's differential
-evolution, and its best few designs are polished by least squares on the distances. Each search stops when
+evolution, and its best few designs are polished by least squares on the distances (the Jacobian's designs
+solved at once too). Each search stops when
 it stalls (its best and its median both: :mod:`linkgen.synthesis.sixbar_stop`) or its population collapses,
 and the ``starts`` once two agree, as the four-bar's (:mod:`linkgen.synthesis.stop`); ``designs_evaluated``
 counts the designs the differential evolution evaluated (each vectorised call a whole population),
@@ -31,6 +34,7 @@ Units: mm and degrees (radians inside); angles counter-clockwise.
 """
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass
@@ -40,13 +44,15 @@ import numpy as np
 
 from camgen.core.errors import CamgenError, SpecError
 from camgen.core.spec import MAX_LENGTH_MM, MIN_LENGTH_MM
+from linkgen.kinematics.fused import Program
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.structure import Structure, make_structure, plan
 from linkgen.synthesis.candidates import Candidate, Sketch, table_fits, weighed
 from linkgen.synthesis.parallel import run_all, where
+from linkgen.synthesis.sixbar_batch import solve_many
 from linkgen.synthesis.sixbar_seed import embedded, embedded_stephenson1
 from linkgen.synthesis.sixbar_types import CRANK, TOPOLOGIES, Topology
-from linkgen.synthesis.sixbar_untimed import nearest_fit, nearest_on
+from linkgen.synthesis.sixbar_untimed import fit, nearest_fit, nearest_on
 from linkgen.synthesis.sixbar_stop import why_stop_six
 from linkgen.synthesis.stop import rule_for, run_starts
 
@@ -111,21 +117,24 @@ def structure_of(points: dict[str, tuple[float, float]], topology: Topology) -> 
     return make_structure(points, links, topology.ground, (), CRANK)
 
 
+def pairs(topology: Topology) -> tuple[tuple[str, str], ...]:
+    """Every pair of joints of one link (the ground's pivots too), P left out, in :func:`link_lengths`' order."""
+    out = []
+    for pts in (topology.ground, *topology.links.values()):
+        joints = [p for p in pts if p != "P"]
+        out += [(a, b) for i, a in enumerate(joints) for b in joints[i + 1:]]
+    return tuple(out)
+
+
 def link_lengths(points: dict[str, tuple[float, float]], topology: Topology) -> dict[str, float]:
     """Every distance between two joints of one link (the ground's pivots too), by ``"J1-J2"`` (P left out)."""
-    out = {}
-    for pts in (topology.ground, *topology.links.values()):
-        joints = [p for p in pts if p != "P" and p in points]
-        for i, a in enumerate(joints):
-            for b in joints[i + 1:]:
-                out[f"{a}-{b}"] = math.dist(points[a], points[b])
-    return out
+    return {f"{a}-{b}": math.dist(points[a], points[b]) for a, b in pairs(topology) if a in points and b in points}
 
 
 @dataclass(frozen=True)
 class Evaluation:
     """One design evaluated: the residuals (n,) complex mm, the similarity and tracer (u, z, t), the hard
-    constraints' rows (>= 0 kept, dimensionless) and the solve at the targets."""
+    constraints' rows (>= 0 kept, dimensionless) and the crank angles at the targets (rad)."""
 
     residuals: np.ndarray
     uzt: np.ndarray
@@ -133,65 +142,126 @@ class Evaluation:
     angles: np.ndarray
 
 
-def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
-    """Design ``x`` through the general solver at the targets' crank angles and over a sampled turn; None where it
-    is not a linkage (joints drawn together, a dyad that cannot close at its drawing)."""
+@dataclass(frozen=True)
+class Evaluations:
+    """N designs evaluated (:func:`evaluate_many`): whether each is a linkage (N,) (False: joints of a link drawn
+    together, or not finite), and per design as :class:`Evaluation` the residuals (N, n) complex mm (NaN where a
+    target's crank angle is not reached), (u, z, t) (N, 3) complex, the constraints' rows (N, R) (the link_range
+    rows 0 where the residuals are NaN) and the crank angles at the targets (N, n) rad."""
+
+    linkage: np.ndarray
+    residuals: np.ndarray
+    uzt: np.ndarray
+    rows: np.ndarray
+    angles: np.ndarray
+
+
+@functools.cache
+def _program(name: str) -> Program:
+    """The solve order of six-bar type ``name``, planned once (it depends on the links, not on where the joints are
+    drawn): from a drawing of its free joints spread around the ground line."""
+    topo = TOPOLOGIES[name]
+    x = np.array([v for i in range(len(topo.free)) for v in (0.5 + 0.6 * math.cos(1.3 * i + 0.7),
+                                                             0.4 + 0.5 * math.sin(1.3 * i + 0.7))])
+    s = structure_of(drawing(x, topo), topo)
+    prog = Linkage(s, plan(s)).program
+    assert prog is not None, "a six-bar type is a crank and RRR dyads"
+    return prog
+
+
+def _general(x: np.ndarray, p: Problem, angles: np.ndarray) -> tuple[np.ndarray, ...] | None:
+    """Design ``x`` (10,) by the general solver at ``angles`` (M,): reached (M,), least margin and transmission
+    angle over the dyads (M,), the tracer link's turn and its reference joint (M,) complex; None where it is not a
+    linkage. For a drawing whose deltoid's pins meet (:mod:`linkgen.synthesis.sixbar_batch`)."""
     topo = p.topology
-    if not np.all(np.isfinite(x)):
-        return None
     try:
         s = structure_of(drawing(x, topo), topo)
-        linkage = Linkage(s, plan(s))
-        turn = np.linspace(0.0, TWO_PI, TURN if p.timing is not None else UNTIMED_TURN, endpoint=False)
-        angles = turn if p.timing is None else np.concatenate([p.timing, turn])
-        sol = linkage.solve(angles[None, :], strict=False, derivatives=False)
+        sol = Linkage(s, plan(s)).solve(angles[None, :], strict=False, derivatives=False)
     except (CamgenError, ValueError, ArithmeticError):
         return None
-    n = 0 if p.timing is None else len(p.timing)
-    ok = sol.ok
     margin = np.min([d.margin for d in sol.dyads], axis=0)
     gamma = np.min([np.minimum(d.transmission, math.pi - d.transmission) for d in sol.dyads], axis=0)
+    c, sn = sol.rotations[topo.tracer_link]
+    ref = sol.points[topo.reference]
+    return sol.ok, margin, gamma, c + 1j * sn, ref[:, 0] + 1j * ref[:, 1]
+
+
+def evaluate_many(x: np.ndarray, p: Problem) -> Evaluations:
+    """Designs ``x`` (10, N) at the targets' crank angles and over a sampled turn, all at once
+    (:func:`linkgen.synthesis.sixbar_batch.solve_many`; a drawing whose deltoid's pins meet by the general solver):
+    each dyad's margin and transmission angle over the turn, the tracer and the similarity fitted by least squares
+    (timed: at the targets' crank angles; untimed: at each target's nearest point of the turn)."""
+    topo = p.topology
+    count = x.shape[1]
+    z = x[0::2] + 1j * x[1::2]
+    joints = {"O2": np.zeros(count, complex), "O4": np.ones(count, complex)} | {
+        name: z[i] for i, name in enumerate(topo.free)}
+    turn = np.linspace(0.0, TWO_PI, TURN if p.timing is not None else UNTIMED_TURN, endpoint=False)
+    angles = turn if p.timing is None else np.concatenate([p.timing, turn])
+    links = {k: tuple(j for j in v if j != "P") for k, v in topo.links.items()}
+    sol = solve_many(_program(topo.name), joints, links, topo.ground, angles, topo.tracer_link, topo.reference)
+    ok, margin, gamma, rot, ref = (np.array(v) for v in (sol.ok, sol.margin, sol.gamma, sol.rot, sol.ref))
+    linkage = sol.drawn.copy()
+    for j in np.flatnonzero(sol.general & sol.drawn):
+        got = _general(x[:, j], p, angles)
+        if got is None:
+            linkage[j] = False
+            continue
+        ok[j], margin[j], gamma[j], rot[j], ref[j] = got
+    n = 0 if p.timing is None else len(p.timing)
+    k = len(p.targets)
     rows = [np.where(ok, margin, -1.0) - MARGIN_FLOOR]
     if p.min_transmission > 0:
         rows.append(np.where(ok, gamma, -1.0) - p.min_transmission)
-    k = len(p.targets)
-    if not ok[:n].all() or (p.timing is None and not ok.all()):
-        return Evaluation(np.full(k, np.nan), np.full(3, np.nan), np.concatenate(rows), np.full(k, np.nan))
-    c, sn = sol.rotations[topo.tracer_link]
-    ref = sol.points[topo.reference]
-    rot, ref = c + 1j * sn, ref[:, 0] + 1j * ref[:, 1]
-    if p.timing is None:
-        uzt, nearest = nearest_fit(rot, ref, p.targets)
-        at, rot, ref = turn[nearest], rot[nearest], ref[nearest]
+    reached = linkage & (ok[:, :n].all(axis=1) if p.timing is not None else ok.all(axis=1))
+    uzt = np.full((count, 3), np.nan, complex)
+    at = np.full((count, k), np.nan)
+    a = np.full((count, k, 3), np.nan, complex)
+    if p.timing is not None:
+        a[reached] = np.stack([rot[reached, :n], ref[reached, :n], np.ones((int(reached.sum()), n))], axis=2)
+        uzt[reached] = fit(a[reached], p.targets)
+        at[reached] = p.timing
     else:
-        at, rot, ref = p.timing, rot[:n], ref[:n]
-        uzt, *_ = np.linalg.lstsq(np.column_stack([rot, ref, np.ones(n)]), p.targets, rcond=None)
-    a = np.column_stack([rot, ref, np.ones(k)])
-    scale = abs(uzt[1])
-    lengths = np.array(list(link_lengths(drawing(x, topo), topo).values())) * scale
+        for j in np.flatnonzero(reached):
+            uzt[j], nearest = nearest_fit(rot[j], ref[j], p.targets)
+            at[j] = turn[nearest]
+            a[j] = np.column_stack([rot[j, nearest], ref[j, nearest], np.ones(k)])
+    residuals = (a @ uzt[:, :, None])[:, :, 0] - p.targets[None, :]
+    scale = np.abs(uzt[:, 1])
+    lengths = np.stack([np.abs(joints[i] - joints[j]) for i, j in pairs(topo)], axis=1) * scale[:, None]
     lo, hi = p.lengths
-    rows.append(np.concatenate([(lengths - lo) / p.scale, (hi - lengths) / p.scale]))
-    return Evaluation(a @ uzt - p.targets, uzt, np.concatenate(rows), at)
+    fits = np.concatenate([(lengths - lo) / p.scale, (hi - lengths) / p.scale], axis=1)
+    rows.append(np.where(reached[:, None], fits, 0.0))
+    return Evaluations(linkage, residuals, uzt, np.concatenate(rows, axis=1), at)
+
+
+def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
+    """Design ``x`` (10,) as :func:`evaluate_many` gives it; None where it is not a linkage (joints drawn
+    together)."""
+    e = evaluate_many(np.asarray(x, dtype=float)[:, None], p)
+    if not e.linkage[0]:
+        return None
+    return Evaluation(e.residuals[0], e.uzt[0], e.rows[0], e.angles[0])
 
 
 def objective(x: np.ndarray, p: Problem) -> np.ndarray:
     """The error (mm^2) of each design of a population ``x`` (10, N), or BIG (1 + violation) where it breaks a hard
-    constraint: the general solver once a design, batched over its crank angles."""
-    out = np.empty(x.shape[1])
-    for j in range(x.shape[1]):
-        e = evaluate(x[:, j], p)
-        if e is None:
-            out[j] = 2.0 * BIG
-            continue
-        broken = float(np.sum(np.maximum(0.0, -e.rows)))
-        err = float(np.sum(np.abs(e.residuals) ** 2))
-        out[j] = BIG * (1.0 + broken) if broken > 0 or not math.isfinite(err) else err
-    return out
+    constraint (2 BIG where it is not a linkage): the whole population solved at once."""
+    e = evaluate_many(x, p)
+    broken = np.sum(np.maximum(0.0, -e.rows), axis=1)
+    err = np.sum(np.abs(e.residuals) ** 2, axis=1)
+    out = np.where((broken > 0) | ~np.isfinite(err), BIG * (1.0 + broken), err)
+    return np.where(e.linkage, out, 2.0 * BIG)
+
+
+#: the polish's forward-difference step (drawing units: ground lengths)
+STEP = 1e-7
 
 
 def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
-    """Design ``x`` polished by least squares on the distances (central differences); the polished design if it
-    keeps every hard constraint and is no worse, else ``x``."""
+    """Design ``x`` polished by least squares on the distances (the Jacobian by forward differences of STEP, its
+    eleven designs solved at once); the polished design if it keeps every hard constraint and is no worse, else
+    ``x``."""
     from scipy.optimize import least_squares
 
     def error(v: np.ndarray) -> float:
@@ -200,16 +270,20 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
             return math.inf
         return float(np.sum(np.abs(e.residuals) ** 2))
 
-    def residuals(v: np.ndarray) -> np.ndarray:
-        e = evaluate(v, p)
-        if e is None or not np.all(np.isfinite(e.residuals)):
-            return np.full(2 * len(p.targets), p.scale)
-        return np.concatenate([e.residuals.real, e.residuals.imag])
+    def rows(designs: np.ndarray) -> np.ndarray:
+        e = evaluate_many(designs, p)
+        r = np.where(e.linkage[:, None] & np.isfinite(e.residuals), e.residuals, p.scale)
+        return np.concatenate([r.real, r.imag], axis=1)
+
+    def jacobian(v: np.ndarray) -> np.ndarray:
+        r = rows(v[:, None] + np.hstack([np.zeros((len(v), 1)), STEP * np.eye(len(v))]))
+        return ((r[1:] - r[0]) / STEP).T
 
     found = error(x)
     try:
-        v = least_squares(residuals, x, method="trf", diff_step=1e-7, bounds=(-SHAPE_BOX, SHAPE_BOX),
-                          xtol=1e-12, ftol=1e-12, gtol=1e-12, max_nfev=60 * len(x)).x
+        v = least_squares(lambda v: rows(v[:, None])[0], x, jac=jacobian, method="trf",
+                          bounds=(-SHAPE_BOX, SHAPE_BOX), xtol=1e-12, ftol=1e-12, gtol=1e-12,
+                          max_nfev=60 * len(x)).x
     except (ValueError, ArithmeticError):
         return x, found
     polished = error(v)
@@ -372,10 +446,10 @@ def _keeps(x: np.ndarray, p: Problem) -> bool:
     return e is not None and bool(np.all(e.rows >= 0)) and bool(np.all(np.isfinite(e.residuals)))
 
 
-def _error(x: np.ndarray, p: Problem) -> float:
-    """The error (mm^2) of design ``x``, infinite where it breaks a hard constraint."""
-    value = float(objective(x[:, None], p)[0])
-    return value if value < BIG else math.inf
+def errors(x: np.ndarray, p: Problem) -> np.ndarray:
+    """The error (mm^2) of each design of ``x`` (10, N), infinite where it breaks a hard constraint."""
+    value = objective(x, p)
+    return np.where(value < BIG, value, math.inf)
 
 
 def _start(joints: dict[str, Any], p: Problem) -> np.ndarray | None:
@@ -384,7 +458,7 @@ def _start(joints: dict[str, Any], p: Problem) -> np.ndarray | None:
     :func:`linkgen.synthesis.sixbar_seed.embedded_stephenson1`."""
     if p.topology.name == "stephenson1":
         shortest = p.lengths[0] / math.dist(joints["O2"], joints["O4"])
-        return embedded_stephenson1(joints, SHAPE_BOX, shortest, lambda x: _error(x, p))
+        return embedded_stephenson1(joints, SHAPE_BOX, shortest, lambda x: errors(x, p))
     return embedded(joints, p.topology.name, SHAPE_BOX, lambda x: _keeps(x, p))
 
 

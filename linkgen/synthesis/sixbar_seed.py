@@ -53,7 +53,7 @@ TURNS = 8
 
 
 def embedded_stephenson1(joints: Mapping[str, Sequence[float]], box: float, shortest: float,
-                         error: Callable[[np.ndarray], float]) -> np.ndarray | None:
+                         errors: Callable[[np.ndarray], np.ndarray]) -> np.ndarray | None:
     """The Stephenson I design (10,) (A, B, E, F, G of the normalised drawing, O2 at 0 and O4 at 1) nearest to the
     four-bar drawn at ``joints`` (the task's frame: O2, O4, A, B and its coupler point P), or None.
 
@@ -61,8 +61,8 @@ def embedded_stephenson1(joints: Mapping[str, Sequence[float]], box: float, shor
     coupler point) with F a short offset from O4 on a ternary rocker (O4, B, F) that a short crank O2-A barely
     swings: F nearly still, the tracer nearly the four-bar's coupler curve. The grid (offsets SHORT times
     ``shortest``, the shortest link allowed in ground lengths; TURNS directions each for A, B and F) keeps the
-    design of least ``error`` (mm^2, infinite where a hard constraint breaks) within ``box``; None if every one
-    breaks one."""
+    design of least error within ``box`` (the first of them where several tie), the grid's designs (10, K) given
+    to ``errors`` at once (-> (K,) mm^2, infinite where a hard constraint breaks); None if every one breaks one."""
     if "P" not in joints:
         return None
     o2, o4 = complex(*joints["O2"]), complex(*joints["O4"])
@@ -71,7 +71,7 @@ def embedded_stephenson1(joints: Mapping[str, Sequence[float]], box: float, shor
         return (complex(*joints[key]) - o2) / (o4 - o2)
 
     e, g = normal("A"), normal("B")
-    best, found = math.inf, None
+    grid = []
     for short in SHORT:
         r = short * shortest
         for i in range(TURNS):
@@ -81,9 +81,11 @@ def embedded_stephenson1(joints: Mapping[str, Sequence[float]], box: float, shor
                 for k in range(TURNS):
                     f = 1.0 + cmath.rect(r, 2.0 * math.pi * k / TURNS)
                     x = np.array([v for z in (a, b, e, f, g) for v in (z.real, z.imag)])
-                    if not np.all(np.abs(x) <= box):
-                        continue
-                    err = error(x)
-                    if err < best:
-                        best, found = err, x
-    return found
+                    if np.all(np.abs(x) <= box):
+                        grid.append(x)
+    if not grid:
+        return None
+    designs = np.array(grid).T
+    err = np.asarray(errors(designs), dtype=float)
+    best = int(np.argmin(err))
+    return designs[:, best] if err[best] < math.inf else None

@@ -22,12 +22,17 @@ import numpy as np
 STARTS, ROUNDS = 16, 8
 
 
-def _fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray, idx: np.ndarray) -> np.ndarray:
-    """(u, z, t) (B, 3) complex by least squares for each assignment ``idx`` (B, n) of the targets to the curve."""
-    a = np.stack([rot[idx], ref[idx], np.ones(idx.shape, complex)], axis=2)          # (B, n, 3)
+def fit(a: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """(u, z, t) (B, 3) complex by least squares for each of B systems ``a`` (B, n, 3) (columns: the tracer link's
+    turn, its reference joint, 1) on the targets (n,) complex mm: the normal equations, 3 complex unknowns."""
     ah = np.conj(np.swapaxes(a, 1, 2))
     normal = ah @ a + 1e-14 * np.eye(3)
     return np.linalg.solve(normal, (ah @ targets[None, :, None]))[:, :, 0]
+
+
+def _fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    """(u, z, t) (B, 3) complex by least squares for each assignment ``idx`` (B, n) of the targets to the curve."""
+    return fit(np.stack([rot[idx], ref[idx], np.ones(idx.shape, complex)], axis=2), targets)
 
 
 def nearest_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

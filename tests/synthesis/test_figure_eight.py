@@ -11,10 +11,9 @@ import tomllib
 import numpy as np
 import pytest
 
-from tests.conftest import ROOT
 from tests.support.six_bar_circles import four_bar_tracer, watt1_joints, watt1_tracer, watt1_worst_transmission
 
-TEMPLATE = ROOT / "templates" / "synth-figure-eight.toml"
+from tests.synthesis.conftest import FIGURE_EIGHT as TEMPLATE, FIGURE_EIGHT_GROUP
 #: the known Watt I: the crank-rocker O2-A-B-O4 (crank 25 mm at 60 degrees), the ternary coupler A-B-E and rocker
 #: O4-B-F, the dyad E-G-F, the tracer P on the output F-G (mm)
 KNOWN = {"O2": (0.0, 0.0), "O4": (125.0, 0.0), "A": (12.5, 21.650635095), "B": (28.667, 87.921), "E": (79.504, 4.1),
@@ -76,17 +75,16 @@ def test_the_templates_points_are_the_known_watt1s_figure_eight():
     assert float(np.sum((reached - targets) ** 2)) < len(targets) * 2 * ROUNDING**2
 
 
-@pytest.fixture(scope="module")
-def found():
-    from linkgen.synthesis import load_task, synthesize
-
-    return synthesize(load_task(TEMPLATE, ["task.starts=1"]))
+@pytest.fixture
+def found(figure_eight_found):
+    """The bundled task with one start, searched once a session (tests/synthesis/conftest.py)."""
+    return figure_eight_found
 
 
 @pytest.mark.slow
-@pytest.mark.xdist_group("figure-eight-search")                # one worker: the module's search runs once
+@pytest.mark.xdist_group(FIGURE_EIGHT_GROUP)                # one worker: the session's search runs once
 def test_the_six_bar_beats_the_best_four_bar_on_the_figure_eight_by_a_large_factor(found):
-    """The bundled task with one start (seed 1, 300 generations; about 40 s of CPU): the Watt I found meets the
+    """The bundled task with one start (seed 1, 300 generations; about 5 s of CPU): the Watt I found meets the
     twelve points to their rounding (measured 4.98e-7 mm^2, as the task itself gives) where the best four-bar on
     the same targets, timing, seed and budget stays at 18.85 mm^2, a factor above 1e6 (3.8e7); both errors are the
     test's own, from each linkage's joints by circle intersections at the crank directions its row reports, and
@@ -109,7 +107,7 @@ def test_the_six_bar_beats_the_best_four_bar_on_the_figure_eight_by_a_large_fact
 
 
 @pytest.mark.slow
-@pytest.mark.xdist_group("figure-eight-search")                # one worker: the module's search runs once
+@pytest.mark.xdist_group(FIGURE_EIGHT_GROUP)                # one worker: the session's search runs once
 def test_the_figure_eight_search_s_record_counts_its_designs(found):
     """One start of the bundled task: its record says how many generations it ran and why it stopped, and counts
     the designs it evaluated, 150 a generation (population 15 a number of the drawing's 10) and the first

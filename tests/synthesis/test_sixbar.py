@@ -46,8 +46,8 @@ def written(tmp_path_factory):
 
 @pytest.mark.xdist_group("watt1-search")                # one worker: the module's search runs once
 def test_a_known_watt1_is_recovered_below_the_best_four_bar(written):
-    """Seed 1, one search of 300 generations: the Watt I meets the twelve timed targets to rounding (measured 4e-13
-    mm^2), the best four-bar on the same targets and budget stays at 0.1326 mm^2."""
+    """Seed 1, one search of 300 generations: the Watt I meets the twelve timed targets to rounding (measured
+    4.5e-23 mm^2), the best four-bar on the same targets and budget stays at 0.1326 mm^2."""
     result, _ = written
     four = result.search["four_bar"]["error_mm2"]
     best = result.candidates[0].row

@@ -19,6 +19,7 @@ from linkgen.synthesis import synthesize, validate_task, write_synthesis
 from linkgen.synthesis.defects import defects, sense
 from tests.conftest import ROOT
 from tests.support.six_bar_circles import watt1_worst_transmission
+from tests.synthesis.conftest import FIGURE_EIGHT, FIGURE_EIGHT_GROUP
 
 LINE6 = ROOT / "templates" / "synth-line6.toml"
 #: a crank-rocker and coupler point the path and motion tests generate their targets from
@@ -566,19 +567,31 @@ def test_the_impossible_gets_the_nearest_candidates_and_a_line_naming_the_limit(
                 row["transmission_worst_deg"], abs=1e-3)
 
 
-@pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.slow)        # a six-bar's search
-                                  if tomllib.loads(p.read_text())["task"].get("linkage", "four-bar") != "four-bar"
-                                  else p for p in sorted((ROOT / "templates").glob("synth-*.toml"))],
+def _bundled(path):
+    """A bundled synthesis template as a parameter: a six-bar's search marked slow, the figure-eight's in the xdist
+    group of the session's one search of it."""
+    marks = [pytest.mark.slow] if tomllib.loads(path.read_text())["task"].get("linkage", "four-bar") != "four-bar" \
+        else []
+    return pytest.param(path, marks=marks + ([pytest.mark.xdist_group(FIGURE_EIGHT_GROUP)] if path == FIGURE_EIGHT
+                                             else []))
+
+
+@pytest.mark.parametrize("path", [_bundled(p) for p in sorted((ROOT / "templates").glob("synth-*.toml"))],
                          ids=lambda p: p.name)
-def test_every_bundled_synthesis_template_gives_candidates(path):
-    """Each bundled task as written (a path search on a small budget) gives candidates whose reports are their own,
-    and none binds: each keeps its transmission angle at least 30 degrees over the motion it makes, as measured here
-    from its template by sampling, and reports that worst angle."""
+def test_every_bundled_synthesis_template_gives_candidates(path, request):
+    """Each bundled task as written (a four-bar path search on a small budget, 100 generations; the figure-eight's
+    six-bar search at its own 300, the session's one search that tests/synthesis/test_figure_eight.py checks too)
+    gives candidates whose reports are their own, and none binds: each keeps its transmission angle at least 30
+    degrees over the motion it makes, as measured here from its template by sampling, and reports that worst
+    angle."""
     from linkgen.synthesis import load_task
 
     keys = tomllib.loads(path.read_text())["task"]
-    spec = load_task(path, ["task.starts=1", "task.generations=100"] if keys["kind"] == "path" else [])
-    result = synthesize(spec)
+    if path == FIGURE_EIGHT:
+        result = request.getfixturevalue("figure_eight_found")
+    else:
+        result = synthesize(load_task(path, ["task.starts=1", "task.generations=100"] if keys["kind"] == "path"
+                                      else []))
     assert result.candidates
     for c in result.candidates:
         assert c.report["name"] == c.name and c.row["template"] == f"{c.name}.toml"
