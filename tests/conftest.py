@@ -11,6 +11,12 @@ from hypothesis import HealthCheck, settings
 
 ROOT = Path(__file__).resolve().parent.parent
 
+# One BLAS thread a process: the run's xdist workers already fill the cores, and OpenBLAS' own threads spinning
+# beside the other worker made small dense solves (SLSQP's, a least-squares fit) up to 100 times slower on a busy
+# 2-core machine (a 25-variable SLSQP 1.3 s against 0.013 s). Set here, before pytest-xdist starts its workers, so
+# that they and the commands the tests start inherit it before they import numpy; a user's own setting is kept.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 # --------------------------------------------------------------------------------------------------- Hypothesis
 #: Hypothesis' own deadline for one example (a call or two of a command, in seconds)
 DEADLINE_SECONDS = 10
