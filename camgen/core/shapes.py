@@ -14,6 +14,11 @@ import numpy as np
 
 
 
+#: up to this many arcs :meth:`Contour.flatten` makes their chords one arc at a time, beyond it all at once
+#: (the same numbers either way; per-arc array calls cost less than the batch's fixed ones for a few arcs)
+FEW_ARCS = 4
+
+
 def _frozen(a: np.ndarray) -> np.ndarray:
     a = np.array(a, dtype=float)
     a.setflags(write=False)
@@ -155,6 +160,35 @@ class Contour:
 
     def flatten(self, tolerance: float) -> np.ndarray:
         """Polygon vertices (m, 2), first not repeated, with every arc split into chords within ``tolerance`` mm."""
+        idx, p, chord, angle, centre = self._arc_pieces
+        if len(idx) <= FEW_ARCS:
+            return self._flatten_each(tolerance)
+        # each arc's radius, chord count and start angle from its own numbers (scalar maths, as one arc at a time)
+        to_start = (p - centre).tolist()
+        radius, steps, start = [], [], []
+        for c, a, (dx, dy) in zip(chord.tolist(), angle.tolist(), to_start, strict=True):
+            r = c / (2.0 * abs(math.sin(a / 2.0)))
+            radius.append(r)
+            steps.append(arc_steps(r, a, tolerance))
+            start.append(math.atan2(dy, dx))
+        n = np.array(steps)
+        # then every arc's inner chord ends at once: start + angle j / n for j = 1 .. n - 1
+        arc = np.repeat(np.arange(len(idx)), n - 1)
+        j = np.arange(len(arc)) - np.repeat(np.cumsum(n - 1) - (n - 1), n - 1) + 1
+        a = np.array(start)[arc] + angle[arc] * j / n[arc]
+        turn = np.empty((len(a), 2))
+        turn[:, 0], turn[:, 1] = np.cos(a), np.sin(a)
+        # each vertex, then (an arc's start) its arc's inner points
+        count = np.ones(len(self.vertices), dtype=int)
+        count[idx] += n - 1
+        first = np.cumsum(count) - count
+        out = np.empty((int(count.sum()), 2))
+        out[first] = self.vertices
+        out[first[idx][arc] + j] = centre[arc] + np.array(radius)[arc, None] * turn
+        return out
+
+    def _flatten_each(self, tolerance: float) -> np.ndarray:
+        """:meth:`flatten` one arc at a time (the same numbers: fewer array operations for a few arcs)."""
         idx, p, chord, angle, centre = self._arc_pieces
         cuts = [0, *(idx + 1).tolist(), len(self.vertices)]
         out = [self.vertices[a:b] for a, b in itertools.pairwise(cuts)]   # up to each arc's start

@@ -123,36 +123,77 @@ class Group:
                  ) -> tuple[np.ndarray, np.ndarray]:
         """The closure's residuals F (n, m) (mm, rad for a slider's angle row) and its Jacobian J (n, m, m) in the
         group's unknowns (an empty array unless ``jacobian``)."""
-        f = self.frames(q, known)
+        return self._residual(q, self._known_poses(known), known, jacobian)
+
+    def _known_poses(self, known: Mapping[str, Pose]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The known bodies' poses the pins need, in :attr:`_pin_table`'s order: c, s (n, k) and T (n, k, 2)."""
+        names = self._pin_table[0][len(self.bodies):]
+        if not names:
+            return np.empty((0, 0)), np.empty((0, 0)), np.empty((0, 0, 2))
+        return (np.stack([known[b].c for b in names], axis=1), np.stack([known[b].s for b in names], axis=1),
+                np.stack([known[b].T for b in names], axis=1))
+
+    def _residual(self, q: np.ndarray, poses: tuple[np.ndarray, np.ndarray, np.ndarray],
+                  known: Mapping[str, Pose], jacobian: bool) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`residual` with the known bodies' poses the pins need already gathered (:meth:`_known_poses`);
+        ``known`` is read only by the sliders."""
         n = len(q)
         res = np.zeros((n, self.m))
         # the rows' constant entries (the translations' and the angle rows') once, then the angles' columns
         jac = np.broadcast_to(self._constant, (n, self.m, self.m)).copy() if jacobian else np.zeros((n, self.m, 0))
-        row = 0
-        for p, a, b in self.pins:
-            ra, rb = _rot(f, a, p), _rot(f, b, p)
-            res[:, row:row + 2] = ra + f.T[a] - rb - f.T[b]
-            for body, r, sign in ((a, ra, 1.0), (b, rb, -1.0)):
-                col = self.column(body)
-                if col is not None and jacobian:
-                    jac[:, row:row + 2, col] = sign * _perp(r)
-            row += 2
-        for p, a, g, n0 in self.slides:
-            ang = np.arctan2(f.s[a] * f.c[g] - f.c[a] * f.s[g], f.c[a] * f.c[g] + f.s[a] * f.s[g])
-            res[:, row] = ang
-            ra, rg = _rot(f, a, p), _rot(f, g, p)
-            normal = _rot(f, g, n0)
-            d = ra + f.T[a] - rg - f.T[g]
-            res[:, row + 1] = _dot(normal, d)
-            ca, cg = self.column(a), self.column(g)
-            if ca is not None and jacobian:
-                jac[:, row + 1, ca] = _dot(normal, _perp(ra))
-                jac[:, row + 1, ca + 1:ca + 3] = normal
-            if cg is not None and jacobian:
-                jac[:, row + 1, cg] = _dot(_perp(normal), d) - _dot(normal, _perp(rg))
-                jac[:, row + 1, cg + 1:cg + 3] = -normal
-            row += 2
+        if self.pins:                   # every pin's two rows at once: R(phi_a) p + T_a - R(phi_b) p - T_b
+            _, sides, points, entries, pin_rows, cols, signs = self._pin_table
+            nb = len(self.bodies)
+            phi = q[:, 0:3 * nb:3]
+            if poses[0].shape[1]:       # the group's bodies, then the known ones; a column per pin side
+                c = np.concatenate([np.cos(phi), poses[0]], axis=1)[:, sides]
+                sn = np.concatenate([np.sin(phi), poses[1]], axis=1)[:, sides]
+                t = np.concatenate([q.reshape(n, nb, 3)[:, :, 1:], poses[2]], axis=1)[:, sides]
+            else:
+                c, sn, t = np.cos(phi)[:, sides], np.sin(phi)[:, sides], q.reshape(n, nb, 3)[:, sides, 1:]
+            r = np.empty((n, len(sides), 2))
+            r[..., 0], r[..., 1] = c * points[:, 0] - sn * points[:, 1], sn * points[:, 0] + c * points[:, 1]
+            k = len(self.pins)
+            res[:, :2 * k] = (r[:, :k] + t[:, :k] - r[:, k:] - t[:, k:]).reshape(n, 2 * k)
+            if jacobian:                # d/dphi of +-R(phi) p: +-perp(R(phi) p) in the body's angle column
+                jac[:, pin_rows, cols] = -signs * r[:, entries, 1]
+                jac[:, pin_rows + 1, cols] = signs * r[:, entries, 0]
+        if self.slides:
+            f = self.frames(q, known)
+            row = 2 * len(self.pins)
+            for p, a, g, n0 in self.slides:
+                ang = np.arctan2(f.s[a] * f.c[g] - f.c[a] * f.s[g], f.c[a] * f.c[g] + f.s[a] * f.s[g])
+                res[:, row] = ang
+                ra, rg = _rot(f, a, p), _rot(f, g, p)
+                normal = _rot(f, g, n0)
+                d = ra + f.T[a] - rg - f.T[g]
+                res[:, row + 1] = _dot(normal, d)
+                ca, cg = self.column(a), self.column(g)
+                if ca is not None and jacobian:
+                    jac[:, row + 1, ca] = _dot(normal, _perp(ra))
+                    jac[:, row + 1, ca + 1:ca + 3] = normal
+                if cg is not None and jacobian:
+                    jac[:, row + 1, cg] = _dot(_perp(normal), d) - _dot(normal, _perp(rg))
+                    jac[:, row + 1, cg + 1:cg + 3] = -normal
+                row += 2
         return res, jac
+
+    @cached_property
+    def _pin_table(self) -> tuple[tuple[str, ...], np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray,
+                                  np.ndarray]:
+        """The pins as arrays for :meth:`residual`: the group's bodies, then the known ones the pins join; for each
+        of the 2 k sides (every pin's a, then every pin's b) its body's index among them and the drawn point (2 k, 2)
+        mm; and the sides on a group body: which side, its pin's first row, the body's angle column, the sign (+1 a,
+        -1 b)."""
+        joined = dict.fromkeys(body for _, a, b in self.pins for body in (a, b))
+        names = self.bodies + tuple(b for b in joined if b not in self.bodies)
+        k = len(self.pins)
+        sides = np.array([names.index(a) for _, a, _ in self.pins] + [names.index(b) for _, _, b in self.pins])
+        points = np.array([p for p, _, _ in self.pins] * 2, dtype=float).reshape(2 * k, 2)
+        entries = [e for e in range(2 * k) if self.column(names[sides[e]]) is not None]
+        cols = [self.column(names[sides[e]]) for e in entries]
+        return (names, sides, points, np.array(entries, dtype=int), 2 * (np.array(entries, dtype=int) % k),
+                np.array(cols, dtype=int), np.array([1.0 if e < k else -1.0 for e in entries]))
 
     @cached_property
     def _constant(self) -> np.ndarray:
@@ -183,7 +224,14 @@ class Group:
 
     def error(self, res: np.ndarray) -> np.ndarray:
         """The largest residual at each pose, mm, relative to the drawing's scale."""
-        return np.max(np.abs(res * self.rows_scale()), axis=1) / self.scale
+        return np.max(np.abs(res * self._rows_scale), axis=1) / self.scale
+
+    @cached_property
+    def _rows_scale(self) -> np.ndarray:
+        """:meth:`rows_scale`, once per group (read-only)."""
+        out = self.rows_scale()
+        out.flags.writeable = False
+        return out
 
     def margin(self, q: np.ndarray, jac: np.ndarray) -> np.ndarray:
         """The smallest singular value of the scaled Jacobian over its largest (n,): 0 at a toggle. Each body's
@@ -203,12 +251,18 @@ class Group:
 
     def points(self, q: np.ndarray) -> np.ndarray:
         """Every drawn point of the group's bodies in the world at q (n, k, 2), for the continuation's jump test."""
-        out = []
-        for j in range(len(self.bodies)):
-            c, s, t = np.cos(q[:, 3 * j]), np.sin(q[:, 3 * j]), q[:, 3 * j + 1:3 * j + 3]
-            for p in self.drawn[j]:
-                out.append(np.stack([c * p[0] - s * p[1], s * p[0] + c * p[1]], axis=-1) + t)
-        return np.stack(out, axis=1)
+        which, p = self._drawn_table
+        phi = q[:, 3 * which]
+        c, s = np.cos(phi), np.sin(phi)
+        out = np.empty((len(q), len(which), 2))
+        out[..., 0], out[..., 1] = c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]
+        return out + q[:, (3 * which + 1)[:, None] + np.arange(2)]
+
+    @cached_property
+    def _drawn_table(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each drawn point's body (its index in :attr:`bodies`) and the point (k, 2) mm, in :meth:`points`' order."""
+        which = np.array([j for j, pts in enumerate(self.drawn) for _ in pts], dtype=int)
+        return which, np.array([p for pts in self.drawn for p in pts], dtype=float).reshape(len(which), 2)
 
 
 
@@ -258,12 +312,14 @@ def newton(group: Group, q: np.ndarray, known: Mapping[str, Pose], iterations: i
     live = np.ones(n, dtype=bool)                # still stepping: not polished, not given up
     best = np.full(n, np.inf)
     since = np.zeros(n, dtype=int)
+    poses = group._known_poses(known)
     for _ in range(iterations + 1):
         rows = np.flatnonzero(live)
         if not len(rows):
             break
-        sub = {b: _Row(p.c[rows], p.s[rows], p.T[rows]) for b, p in known.items()}
-        res, jac = group.residual(q[rows], sub)
+        sub = {b: _Row(p.c[rows], p.s[rows], p.T[rows]) for b, p in known.items()} if group.slides else known
+        at = (poses[0][rows], poses[1][rows], poses[2][rows]) if poses[0].shape[1] else poses
+        res, jac = group._residual(q[rows], at, sub, True)
         err = group.error(res)
         better = err < 0.9 * best[rows]
         best[rows] = np.minimum(best[rows], err)
@@ -274,7 +330,7 @@ def newton(group: Group, q: np.ndarray, known: Mapping[str, Pose], iterations: i
         converged = err <= RESIDUAL
         done[rows] |= converged
         live[rows] = ~converged & finite & (since[rows] < STALL)
-    res, _ = group.residual(q, known, jacobian=False)
+    res, _ = group._residual(q, poses, known, False)
     return q, done & (group.error(res) <= 10.0 * RESIDUAL)
 
 
@@ -341,6 +397,7 @@ def _walk(group: Group, x0: float, q0: np.ndarray, end: float, upstream: Upstrea
     xs: list[float] = []
     qs: list[np.ndarray] = []
     x, q, prev = x0, q0, None
+    here = group.points(q)
     smallest = MIN_STEP * max(span, 1e-300)
     i, step = 0, h
     while i < len(grid):
@@ -349,8 +406,9 @@ def _walk(group: Group, x0: float, q0: np.ndarray, end: float, upstream: Upstrea
         known = {b: _take(p, i) for b, p in known_grid.items()} if at_grid else upstream(np.array([target]))
         guess = q if prev is None else q + (q - prev[1]) * (target - x) / (x - prev[0])
         qn, ok = newton(group, guess, known, STEP_ITER)
-        if ok[0] and np.max(np.hypot(*(group.points(qn) - group.points(q))[0].T)) <= JUMP * group.size:
-            prev, x, q = (x, q), target, qn
+        moved = group.points(qn) if ok[0] else here
+        if ok[0] and np.max(np.hypot(*(moved - here)[0].T)) <= JUMP * group.size:
+            prev, x, q, here = (x, q), target, qn, moved
             xs.append(x)
             qs.append(q[0])
             i += at_grid

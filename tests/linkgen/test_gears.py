@@ -161,17 +161,45 @@ def test_a_sharper_rack_fillet_reaches_deeper_above_22_degrees():
 
 # -------------------------------------------------------------------------------------------- pairs rolled
 
+def _turn(angle: float) -> np.ndarray:
+    """The matrix M of :func:`_pose` (row vectors: p M is p turned by ``angle`` counter-clockwise)."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, s], [-s, c]])
+
+
 def _pose(points: np.ndarray, angle: float, origin) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     return points @ np.array([[c, s], [-s, c]]) + origin
 
 
-def _near(points: np.ndarray, centre: np.ndarray, reach: float) -> shapely.MultiLineString:
-    """The runs of a closed polygon's boundary within ``reach`` of ``centre``, as lines."""
-    closed = np.vstack([points, points[:1]])
-    inside = np.hypot(*(closed - centre).T) <= reach
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(int), [0]])))
-    return shapely.MultiLineString([closed[a:b] for a, b in zip(edges[::2], edges[1::2], strict=True) if b - a > 1])
+def _near(closed: np.ndarray, angles: np.ndarray, origins: np.ndarray, centre: np.ndarray, reach: float,
+          size: int = 16) -> np.ndarray:
+    """At each of k poses (a polygon turned by ``angles`` (k,) rad counter-clockwise, then moved by ``origins``
+    (k, 2) mm, as :func:`_pose` does), the runs of the polygon's boundary (``closed``: its points, the first again at
+    the end) within ``reach`` of ``centre`` (its edges with both ends that near): one MultiLineString a pose, its
+    lines cut to at most ``size`` edges each (neighbours share a vertex): the same edges, in boxes small enough that
+    ``shapely.distance`` passes over the pairs of lines whose boxes lie further apart than its best so far. The
+    points near ``centre`` are picked in the polygon's own frame (``centre`` taken back there), and only they are
+    posed."""
+    c, s = np.cos(angles), np.sin(angles)
+    back = centre - origins                                           # centre - origin, turned back by the angle
+    cx, cy = back[:, 0] * c + back[:, 1] * s, back[:, 1] * c - back[:, 0] * s
+    inside = np.hypot(closed[None, :, 0] - cx[:, None], closed[None, :, 1] - cy[:, None]) <= reach
+    flat = np.flatnonzero(inside[:, :-1] & inside[:, 1:])
+    pose, edges = np.divmod(flat, len(closed) - 1)
+    first = np.concatenate([[True], (np.diff(flat) != 1) | (np.diff(pose) != 0)])   # the first edge of each run
+    place = np.arange(len(edges)) - np.maximum.accumulate(np.where(first, np.arange(len(edges)), 0))
+    starts = first | (place % size == 0)                               # the first edge of each line
+    last = np.concatenate([starts[1:], [True]])
+    count = 1 + last                                                   # each edge's start, and a line's end
+    vertex, at = np.repeat(edges, count), np.repeat(pose, count)
+    vertex[np.cumsum(count)[last] - 1] += 1
+    x, y = closed[vertex].T
+    posed = np.column_stack([x * c[at] - y * s[at], x * s[at] + y * c[at]]) + origins[at]
+    lines = shapely.linestrings(posed, indices=np.repeat(np.cumsum(starts) - 1, count))
+    out = shapely.multilinestrings(lines, indices=pose[starts])
+    assert len(out) == len(angles)              # every pose has edges near the centre
+    return out
 
 
 PAIRS = [("external", 12, 0.3, 30, 0.0, 20.0, 0.1), ("external", 17, 0.0, 17, 0.0, 20.0, 0.2),
@@ -198,23 +226,30 @@ def test_a_pair_rolled_two_pitches_keeps_its_backlash_and_never_overlaps(kind, z
     tip = pair.pinion_tooth.tip_radius
     steps = math.ceil(2 * (2 * math.pi / z1) * tip / tol)        # the tips move one tolerance a step
     theta0 = pair.mesh_phases[0]
+    thetas = theta0 + 2 * (2 * math.pi / z1) * np.arange(steps + 1) / steps
+    wheres = pair.gear_angle(thetas)
+    if kind == "rack":        # the rack's shift: the pinion's pitch circle rolls on the rack's datum line
+        assert wheres == pytest.approx(rw1 * (thetas - theta0) + pair.gear_angle(np.array([theta0]))[0])
+        angles, origins = np.zeros_like(thetas), np.column_stack([wheres, np.full_like(thetas, -c)])
+    else:
+        angles, origins = wheres, np.tile([c, 0.0], (len(thetas), 1))
+    closed_pinion, closed_other = np.vstack([pinion, pinion[:1]]), np.vstack([other, other[:1]])
+    centre = np.array(pitch_point)
     gaps = []
-    for theta in theta0 + 2 * (2 * math.pi / z1) * np.arange(steps + 1) / steps:
-        where = float(pair.gear_angle(np.array([theta]))[0])
-        if kind == "rack":
-            moved = _pose(other, 0.0, (where, -c))
-            # the rack's shift: the pinion's pitch circle rolls on the rack's datum line
-            assert where == pytest.approx(rw1 * (theta - theta0) + pair.gear_angle(np.array([theta0]))[0])
-        else:
-            moved = _pose(other, where, (c, 0.0))
-        turned = _pose(pinion, theta, (0.0, 0.0))
-        p_lines, o_lines = _near(turned, np.array(pitch_point), reach), _near(moved, np.array(pitch_point), reach)
-        gap = shapely.distance(p_lines, o_lines)
-        gaps.append(gap)
-        # no overlap: the boundaries never meet, and a point of one is not inside the other
-        # (the pinion lies inside an internal gear's toothed hole, outside the others)
-        assert shapely.Polygon(moved).contains(shapely.Point(turned[0])) == (kind == "internal")
-    gaps = np.array(gaps)
+    for k in range(0, len(thetas), 256):        # 256 poses at a time
+        poses = slice(k, k + 256)
+        turned = _near(closed_pinion, thetas[poses], np.zeros((len(thetas[poses]), 2)), centre, reach)
+        gaps.append(shapely.distance(turned, _near(closed_other, angles[poses], origins[poses], centre, reach)))
+    gaps = np.concatenate(gaps)
+    # no overlap: the boundaries never meet, and a point of one is not inside the other (the pinion lies inside
+    # an internal gear's toothed hole, outside the others): the pinion's first point taken to the other's frame
+    solid = shapely.Polygon(other)
+    shapely.prepare(solid)
+    c_p, s_p = np.cos(thetas), np.sin(thetas)
+    back = np.column_stack([pinion[0, 0] * c_p - pinion[0, 1] * s_p, pinion[0, 0] * s_p + pinion[0, 1] * c_p]) - origins
+    c_o, s_o = np.cos(angles), np.sin(angles)
+    x, y = back[:, 0] * c_o + back[:, 1] * s_o, back[:, 1] * c_o - back[:, 0] * s_o
+    assert np.all(shapely.contains_xy(solid, x, y) == (kind == "internal"))
     normal = j * math.cos(aw) / 2                  # the circular backlash j, half on each side, along the normal
     assert gaps.min() > 0
     assert np.abs(gaps - normal).max() <= 2 * tol + 2 * flat, (gaps.min(), gaps.max(), normal)
