@@ -399,8 +399,8 @@ def machine_parts(design: object, one_plate: bool = False) -> tuple[tuple[Body, 
             skipped.append(f"linkages.{m.name}")
             continue
         _cranked_parts(m, bodies, joints, pins, shafts)
-        slider = next((x for x in m.analysis.linkage.structure.sliders if x.name == m.coupling.link), None)
-        if m.cam not in arms and slider is not None and slider.link is None:   # its stem carries its slider
+        slider = m.ground_slider
+        if m.cam not in arms and slider is not None:        # its stem carries its slider
             block = next(b for b in bodies if b.name == f"linkages.{m.name}.{slider.name}")
             joints += [Joint(b.name, block.name, functools.partial(_slid_point, m=m, point=slider.point),
                              _margin(float(np.hypot(*block.outline.T).max())))

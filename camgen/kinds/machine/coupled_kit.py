@@ -46,12 +46,9 @@ def made_by_the_machine(design: Any, linkage: Any, coupled: bool) -> frozenset[s
     names = {CRANK} if coupled else set()
     if design.frame is not None:
         names.add(GROUND)
-    if any(linkage is m for m in getattr(design, "slid", ())) and \
-            f"cams.{linkage.cam}.arm" not in {b.name for b in design.bodies}:
-        slider = next((s for s in linkage.analysis.linkage.structure.sliders if s.name == linkage.coupling.link),
-                      None)
-        if slider is not None and slider.link is None:
-            names.add(slider.name)
+    slider = getattr(linkage, "ground_slider", None)        # a stem-driven linkage's (a SliderMotion's)
+    if slider is not None and f"cams.{linkage.cam}.arm" not in {b.name for b in design.bodies}:
+        names.add(slider.name)
     return frozenset(names)
 
 
@@ -76,7 +73,7 @@ def bom_lines(design: Any) -> tuple[BomLine, ...]:
     lines = []
     for cam in design.cams:
         if barrel_parts.is_barrel(cam.design):
-            lines.append(BomLine(f"{cam.name}", 1, f"barrel cam of cams.{cam.name} (its own files)", "fdm"))
+            lines.append(BomLine(cam.name, 1, f"barrel cam of cams.{cam.name} (its own files)", "fdm"))
             continue
         for suffix, part in conjugate_parts.plates(cam.design):
             lines.append(BomLine(f"{cam.name}{suffix}", 1, f"cam plate of cams.{cam.name}, {part.thickness:g} mm "

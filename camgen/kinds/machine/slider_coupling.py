@@ -112,6 +112,13 @@ class SliderMotion(GeneralMotion):
     side = 1
     shaft = ""
 
+    @property
+    def ground_slider(self) -> Any:
+        """The slider its coupling drives where that slider slides on the ground (a stem, its cam's follower having
+        no arm, carries its block), else None."""
+        slider = next((s for s in self.analysis.linkage.structure.sliders if s.name == self.coupling.link), None)
+        return slider if slider is not None and slider.link is None else None
+
     def solve(self, phi: np.ndarray) -> Any:
         """Its linkage solved at main shaft angles ``phi`` (radians) in its drawing's frame, by the slider's travel
         rest + s (velocities per mm of it): :class:`linkgen.kinematics.linkage.Solution`."""

@@ -228,3 +228,21 @@ def test_a_coupled_four_bars_crank_and_ground_are_not_in_the_machines_files(tmp_
     outlines = msp.query("LWPOLYLINE[layer=='OUTLINE']")
     assert labels == ["coupler", "rocker"] and len(outlines) == 2
     assert {"crank", "ground"} <= {p.name for p in design.linkages[0].design.build.cut}   # the design knows them
+
+
+def test_the_stem_carries_the_slider_block_and_the_frame_the_ground(built, design):
+    """The framed lifter's slider-crank: its slider "stem" slides on the ground and the follower's stem carries its
+    joint, and its fixed pivot O stands in the frame's plate, so the machine writes its crank and rod only (the
+    linkage's own written report, and no file named for the block or the ground); the design still knows both."""
+    out, report = built
+    own = json.loads((out / report["files"]["rocker.json"]).read_text())
+    assert [p["name"] for p in own["parts"]] == ["crank", "rod"]
+    assert not [n for n in report["files"].values() if n.startswith("lifter-rocker-") and
+                ("stem" in n or "ground" in n)]
+    [rocker] = design.slid
+    assert rocker.ground_slider.name == "stem"
+    assert {"stem", "ground"} <= {p.name for p in rocker.design.build.cut}
+    from camgen.kinds.machine.framekit import bom
+
+    made = {line.item for line in bom(design.frame, design) if line.source != "buy"}
+    assert {"rocker-crank", "rocker-rod"} <= made and not {"rocker-stem", "rocker-ground"} & made
