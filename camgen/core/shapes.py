@@ -5,18 +5,12 @@ mm, angles in radians; counter-clockwise is positive (seen from +Z).
 """
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
 
-
-
-#: up to this many arcs :meth:`Contour.flatten` makes their chords one arc at a time, beyond it all at once
-#: (the same numbers either way; per-arc array calls cost less than the batch's fixed ones for a few arcs)
-FEW_ARCS = 4
 
 
 def _frozen(a: np.ndarray) -> np.ndarray:
@@ -161,8 +155,6 @@ class Contour:
     def flatten(self, tolerance: float) -> np.ndarray:
         """Polygon vertices (m, 2), first not repeated, with every arc split into chords within ``tolerance`` mm."""
         idx, p, chord, angle, centre = self._arc_pieces
-        if len(idx) <= FEW_ARCS:
-            return self._flatten_each(tolerance)
         # each arc's radius, chord count and start angle from its own numbers (scalar maths, as one arc at a time)
         to_start = (p - centre).tolist()
         radius, steps, start = [], [], []
@@ -171,7 +163,7 @@ class Contour:
             radius.append(r)
             steps.append(arc_steps(r, a, tolerance))
             start.append(math.atan2(dy, dx))
-        n = np.array(steps)
+        n = np.array(steps, dtype=int)
         # then every arc's inner chord ends at once: start + angle j / n for j = 1 .. n - 1
         arc = np.repeat(np.arange(len(idx)), n - 1)
         j = np.arange(len(arc)) - np.repeat(np.cumsum(n - 1) - (n - 1), n - 1) + 1
@@ -186,21 +178,6 @@ class Contour:
         out[first] = self.vertices
         out[first[idx][arc] + j] = centre[arc] + np.array(radius)[arc, None] * turn
         return out
-
-    def _flatten_each(self, tolerance: float) -> np.ndarray:
-        """:meth:`flatten` one arc at a time (the same numbers: fewer array operations for a few arcs)."""
-        idx, p, chord, angle, centre = self._arc_pieces
-        cuts = [0, *(idx + 1).tolist(), len(self.vertices)]
-        out = [self.vertices[a:b] for a, b in itertools.pairwise(cuts)]   # up to each arc's start
-        for k in range(len(idx)):
-            radius = chord[k] / (2.0 * abs(math.sin(angle[k] / 2.0)))
-            n = arc_steps(radius, angle[k], tolerance)
-            start = math.atan2(p[k, 1] - centre[k, 1], p[k, 0] - centre[k, 0])
-            a = start + angle[k] * np.arange(1, n) / n
-            turn = np.empty((n - 1, 2))
-            turn[:, 0], turn[:, 1] = np.cos(a), np.sin(a)       # each made contiguous, as np.column_stack took them
-            out.insert(2 * k + 1, centre[k] + radius * turn)
-        return np.concatenate(out)
 
     def flatten_error(self, tolerance: float) -> float:
         """The largest distance (mm) between this contour's arcs and the chords :meth:`flatten` puts for them."""
