@@ -5,8 +5,9 @@ numpy's kernels make a dozen passes over memory per dyad (each an array of all p
 speed is the memory's. Here a block of :data:`BLOCK` poses goes through every op while its bodies' anchors and
 vectors stay in the first-level cache, each op one loop the compiler turns into vector instructions (the crank's
 cosine and sine too: :func:`~linkgen.kinematics.compiled_kernels.sincos`, not the C library's one value at a time),
-and only the joints' positions are written. A short run stays on the calling thread; a long one is cut into chunks
-of :data:`CHUNK` poses that numba's threads take in turn. numpy stays the default: this path is taken only when asked
+and only the joints' positions are written. A run of fewer than :data:`SPLIT` poses stays on the calling thread;
+a longer one is cut into chunks (:func:`chunk_size`: a share a thread, at most :data:`CHUNK` poses) that numba's
+threads take in turn. numpy stays the default: this path is taken only when asked
 for (``Linkage.positions(..., engine="numba")``) and numba is installed (``pip install 'camgen[fast]'``).
 
 The construction is :mod:`~linkgen.kinematics.fused`'s: the crank turned by its angle from the drawing; an RRR's
@@ -37,6 +38,9 @@ BLOCK = 64
 #: poses a chunk of the parallel kernel (the threads take chunks in turn); a run of fewer than two chunks, or one
 #: thread, runs on the calling thread without waking numba's pool
 CHUNK = 8192
+#: the fewest poses a run shares among numba's threads (below it one thread runs them all: waking the pool takes
+#: some microseconds, the poses of a chunk about 30 ns each)
+SPLIT = 2048
 #: |crank angle - drawn| (rad) up to which the kernel's own cosine and sine hold (their reduction's products exact);
 #: past it (about 43 million turns) the C library's
 TRIG_REACH = 2.0 ** 28
@@ -133,14 +137,15 @@ def positions(enc: Encoded, x: np.ndarray, signs: list[np.ndarray] | list[float]
     rates = _ONE if speeds is None else np.asarray(speeds, dtype=float).reshape(x.shape[0])
     args = (np.ascontiguousarray(x, dtype=float), table, enc.ops, enc.nums, enc.holder, enc.factor, enc.bodies,
             rates, out, vel, acc, ok)
-    if n < 2 * CHUNK or threads == 1:
+    size = chunk_size(n, 1 if threads == 1 else _kernels().threads())
+    if size >= n:
         folded = _kernels().poses_serial(*args)
     else:
         with warnings.catch_warnings():
             # numba says once, when it starts its threads (the first parallel run), that it passed over an older
             # TBB for another threading layer
             warnings.filterwarnings("ignore", message=r".*TBB threading layer")
-            folded = _kernels().poses_parallel(*args)
+            folded = _kernels().poses_parallel(*args, size)
     if folded <= 0.0:
         raise Folded
 
@@ -148,6 +153,18 @@ def positions(enc: Encoded, x: np.ndarray, signs: list[np.ndarray] | list[float]
         return dict(zip(enc.names, z, strict=True)) if len(z) else {}
 
     return Poses(named(out), named(vel) if rated else {}, named(acc) if rated else {}, ok.view(bool))
+
+
+def chunk_size(n: int, threads: int) -> int:
+    """The poses a chunk of a run of ``n`` poses on ``threads`` threads: one nearly equal share a thread, in whole
+    blocks, up to :data:`CHUNK` (a run of 10^4 poses on two threads is two chunks of 5 056, not one thread's 8 192
+    and the other's 1 808; a long run many chunks of CHUNK, which the threads take in turn); ``n`` itself (one
+    chunk, on the calling thread) for one thread or fewer than :data:`SPLIT` poses, where waking numba's pool costs
+    more than the second core wins."""
+    if threads <= 1 or n < SPLIT:
+        return max(n, 1)
+    share = -(-n // threads)
+    return min(CHUNK, -(-share // BLOCK) * BLOCK)
 
 
 #: no rates asked for: the kernel's velocity and acceleration outputs have no rows

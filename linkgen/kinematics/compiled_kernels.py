@@ -4,8 +4,9 @@ construction; every function here is compiled on first use and cached by numba w
 
 Two entry points share one body (:func:`_run`, poses ``lo`` to ``hi`` block by block): :func:`poses_serial` on the
 calling thread (no thread pool woken: a short run's fixed cost is the call's), and :func:`poses_parallel`, the poses
-cut into chunks of :data:`~linkgen.kinematics.compiled.CHUNK` that numba's threads take in turn (many more chunks than
-threads, so that a thread the system holds back delays one chunk, not half the run). Each pose is computed alone,
+cut into chunks (:func:`~linkgen.kinematics.compiled.chunk_size`: :data:`~linkgen.kinematics.compiled.CHUNK` poses
+on a long run, many more chunks than threads, so that a thread the system holds back delays one chunk, not half the
+run; one nearly equal share a thread on a short one) that numba's threads take in turn. Each pose is computed alone,
 so either gives the same bits.
 """
 from __future__ import annotations
@@ -13,9 +14,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import get_num_threads, njit, prange
 
-from linkgen.kinematics.compiled import BLOCK, CHUNK, CRANK, TRIG_REACH
+from linkgen.kinematics.compiled import BLOCK, CRANK, TRIG_REACH
 
 #: pi / 2 in three parts (Cody and Waite's, as Cephes's sine): the first two with trailing zero bits, so that k times
 #: each is exact for |k| < 2^29; their sum is pi / 2 to about 1e-31
@@ -51,6 +52,11 @@ def sincos(x: float) -> tuple[float, float]:
     return cs, sn
 
 
+def threads() -> int:
+    """The threads numba's parallel kernel runs on (``NUMBA_NUM_THREADS``, or ``numba.set_num_threads``)."""
+    return int(get_num_threads())
+
+
 @njit(cache=True, nogil=True, error_model="numpy")
 def poses_serial(x: np.ndarray, table: np.ndarray, ops: np.ndarray, nums: np.ndarray, holder: np.ndarray,
                  factor: np.ndarray, bodies: int, speeds: np.ndarray, out: np.ndarray, vel: np.ndarray,
@@ -62,13 +68,13 @@ def poses_serial(x: np.ndarray, table: np.ndarray, ops: np.ndarray, nums: np.nda
 @njit(parallel=True, cache=True, nogil=True, error_model="numpy")
 def poses_parallel(x: np.ndarray, table: np.ndarray, ops: np.ndarray, nums: np.ndarray, holder: np.ndarray,
                    factor: np.ndarray, bodies: int, speeds: np.ndarray, out: np.ndarray, vel: np.ndarray,
-                   acc: np.ndarray, ok: np.ndarray) -> float:
-    """The poses in chunks of :data:`CHUNK`, numba's threads taking them in turn (see :func:`_run`)."""
+                   acc: np.ndarray, ok: np.ndarray, size: int) -> float:
+    """The poses in chunks of ``size``, numba's threads taking them in turn (see :func:`_run`)."""
     n = x.shape[1]
-    chunks = -(-n // CHUNK)
+    chunks = -(-n // size)
     nearest = np.full(chunks, np.inf)
     for chunk in prange(chunks):
-        nearest[chunk] = _run(chunk * CHUNK, min(n, (chunk + 1) * CHUNK), x, table, ops, nums, holder, factor,
+        nearest[chunk] = _run(chunk * size, min(n, (chunk + 1) * size), x, table, ops, nums, holder, factor,
                               bodies, speeds, out, vel, acc, ok)
     return nearest.min()
 

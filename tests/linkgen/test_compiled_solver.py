@@ -110,10 +110,11 @@ def test_the_compiled_kernel_equals_the_numpy_kernels_on_random_six_bars(kind):
 
 
 @pytest.mark.parametrize("n", [1, compiled.BLOCK - 1, compiled.BLOCK, compiled.BLOCK + 1, 3 * compiled.BLOCK + 7,
-                               2 * compiled.CHUNK - 1, 2 * compiled.CHUNK, 3 * compiled.CHUNK + 5])
+                               compiled.SPLIT - 1, compiled.SPLIT, 10_000, 2 * compiled.CHUNK - 1,
+                               2 * compiled.CHUNK, 3 * compiled.CHUNK + 5, 4 * compiled.CHUNK + 1])
 def test_threads_and_blocks_join_without_a_seam(n):
-    """On the calling thread or numba's (from two chunks of CHUNK poses on), with the blocks' edges anywhere: the
-    same bits."""
+    """On the calling thread or numba's (from SPLIT poses on: equal shares, then chunks of CHUNK), with the
+    blocks' edges anywhere: the same bits."""
     linkage = _linkage("jansen")
     x = _inputs(linkage, n)[None, :]
     runs = [compiled.positions(linkage.compiled_program, x, list(linkage.base_signs), threads=k, speeds=np.ones(1))
@@ -124,6 +125,25 @@ def test_threads_and_blocks_join_without_a_seam(n):
             for name, z in getattr(got, table).items():
                 assert np.array_equal(z, getattr(runs[0], table)[name]), (table, name)
     _agree(linkage, x[0], 1e-12)
+
+
+@pytest.mark.parametrize("threads", [1, 2, 3, 8])
+@pytest.mark.parametrize("n", [0, 1, compiled.SPLIT - 1, compiled.SPLIT, 5_000, 10_000, 2 * 8 * compiled.CHUNK - 1,
+                               2 * 8 * compiled.CHUNK, 10**6])
+def test_a_run_is_shared_in_whole_blocks_nearly_equally_or_in_chunks(n, threads):
+    """The chunk size covers the run: one chunk (the calling thread) for one thread or a short run; else whole
+    blocks, every thread one chunk (the last at most a block a thread short), or chunks of CHUNK once a thread's
+    share is longer."""
+    size = compiled.chunk_size(n, threads)
+    chunks = -(-n // size)
+    if threads == 1 or n < compiled.SPLIT:
+        assert size >= n and chunks <= 1
+        return
+    assert size % compiled.BLOCK == 0 and size <= compiled.CHUNK
+    if n > threads * compiled.CHUNK:
+        assert size == compiled.CHUNK and chunks > threads
+    else:
+        assert chunks <= threads and n - (chunks - 1) * size > size - threads * compiled.BLOCK
 
 
 def test_branches_given_pose_by_pose_are_taken_pose_by_pose():
