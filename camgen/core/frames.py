@@ -46,6 +46,15 @@ def render(draw: Callable[[Any, int], None], n: int, size: tuple[int, int],
     return out
 
 
+def fill(ax: Any, xy: np.ndarray, **style: Any) -> None:
+    """The polygon ``xy`` (k, 2) mm filled on a frame's ``ax`` as ``ax.fill(x, y, **style)`` fills it (the same
+    patch, drawn in the same order), without growing the axes' data limits: :func:`render` fixes the view, and
+    matplotlib's limit update walks the outline's every vertex in Python (most of a gear wheel's frame time)."""
+    from matplotlib.patches import Polygon
+
+    ax.add_artist(Polygon(np.asarray(xy, dtype=float), closed=True, **style))
+
+
 def _fitted(box: tuple[float, float, float, float], aspect: float) -> tuple[float, float, float, float]:
     """``box`` widened (or heightened) about its centre to the proportions ``aspect`` (width / height) of the
     frame, so that one mm is as many pixels across as up."""

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from camgen.core.errors import SpecError
-from camgen.core.frames import bounds, render
+from camgen.core.frames import bounds, fill, render
 
 #: the most input turns an animation's cycle may take (a ratio of large coprime numbers would need more)
 MAX_TURNS = 60
@@ -84,9 +84,9 @@ def wheel_frames(wheels: list[Wheel], arms: list[np.ndarray], paths: list[np.nda
         for w in wheels:
             xy = w.drawn(k)
             if w.internal:
-                ax.fill(*np.vstack([xy, xy[:1]]).T, fill=False, ec="k", lw=1.0)
+                fill(ax, np.vstack([xy, xy[:1]]), fill=False, ec="k", lw=1.0)
             else:
-                ax.fill(xy[:, 0], xy[:, 1], color=w.colour, alpha=0.45, lw=0)
+                fill(ax, xy, color=w.colour, alpha=0.45, lw=0)
                 ax.plot(*np.vstack([xy, xy[:1]]).T, "-", color="k", lw=0.6)
             centre = w.centres[k]
             pitch = centre + w.pitch_radius * unit

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from camgen.core.frames import bounds, cycle, render
+from camgen.core.frames import bounds, cycle, fill, render
 from camgen.core.shapes import Contour
 from linkgen.mechanisms.ratchet import Ratchet, pawl_shape
 
@@ -123,7 +123,7 @@ def ratchet_frames(ratchet: Ratchet, width: float, values: np.ndarray, size: tup
         teeth, holding, driving, bar = poses[k]
         ax.plot(path[:, 0], path[:, 1], "-", color="C1", lw=1.2)
         for xy, colour in ((teeth, "C0"), (holding, "C2"), (driving, "C2")):
-            ax.fill(xy[:, 0], xy[:, 1], color=colour, alpha=0.45, lw=0)
+            fill(ax, xy, color=colour, alpha=0.45, lw=0)
             ring = np.vstack([xy, xy[:1]])
             ax.plot(ring[:, 0], ring[:, 1], "-", color="k", lw=0.6)
         ax.plot(bar[:, 0], bar[:, 1], "-o", color="C4", lw=3.0, ms=4)

@@ -52,7 +52,7 @@ from linkgen.synthesis.parallel import run_all, where
 from linkgen.synthesis.sixbar_batch import solve_many
 from linkgen.synthesis.sixbar_seed import embedded, embedded_stephenson1
 from linkgen.synthesis.sixbar_types import CRANK, TOPOLOGIES, Topology
-from linkgen.synthesis.sixbar_untimed import fit, nearest_fit, nearest_on
+from linkgen.synthesis.sixbar_untimed import assigned_fit, fit, nearest_fit, nearest_on
 from linkgen.synthesis.sixbar_stop import why_stop_six
 from linkgen.synthesis.stop import rule_for, run_starts
 
@@ -147,13 +147,15 @@ class Evaluations:
     """N designs evaluated (:func:`evaluate_many`): whether each is a linkage (N,) (False: joints of a link drawn
     together, or not finite), and per design as :class:`Evaluation` the residuals (N, n) complex mm (NaN where a
     target's crank angle is not reached), (u, z, t) (N, 3) complex, the constraints' rows (N, R) (the link_range
-    rows 0 where the residuals are NaN) and the crank angles at the targets (N, n) rad."""
+    rows 0 where the residuals are NaN) and the crank angles at the targets (N, n) rad; untimed, the assignment
+    (N, n) of the targets to the turn's samples that (u, z, t) was fitted on (-1 where none was fitted; timed, None)."""
 
     linkage: np.ndarray
     residuals: np.ndarray
     uzt: np.ndarray
     rows: np.ndarray
     angles: np.ndarray
+    assignment: np.ndarray | None = None
 
 
 @functools.cache
@@ -186,11 +188,13 @@ def _general(x: np.ndarray, p: Problem, angles: np.ndarray) -> tuple[np.ndarray,
     return sol.ok, margin, gamma, c + 1j * sn, ref[:, 0] + 1j * ref[:, 1]
 
 
-def evaluate_many(x: np.ndarray, p: Problem) -> Evaluations:
+def evaluate_many(x: np.ndarray, p: Problem, assignment: np.ndarray | None = None) -> Evaluations:
     """Designs ``x`` (10, N) at the targets' crank angles and over a sampled turn, all at once
     (:func:`linkgen.synthesis.sixbar_batch.solve_many`; a drawing whose deltoid's pins meet by the general solver):
     each dyad's margin and transmission angle over the turn, the tracer and the similarity fitted by least squares
-    (timed: at the targets' crank angles; untimed: at each target's nearest point of the turn)."""
+    (timed: at the targets' crank angles; untimed: at each target's nearest point of the turn, found by
+    :func:`linkgen.synthesis.sixbar_untimed.nearest_fit`, or fitted on a known ``assignment`` (N, n) of the targets
+    to the turn's samples by :func:`linkgen.synthesis.sixbar_untimed.assigned_fit` where its row has no -1)."""
     topo = p.topology
     count = x.shape[1]
     z = x[0::2] + 1j * x[1::2]
@@ -217,13 +221,18 @@ def evaluate_many(x: np.ndarray, p: Problem) -> Evaluations:
     uzt = np.full((count, 3), np.nan, complex)
     at = np.full((count, k), np.nan)
     a = np.full((count, k, 3), np.nan, complex)
+    fitted = np.full((count, k), -1)
     if p.timing is not None:
         a[reached] = np.stack([rot[reached, :n], ref[reached, :n], np.ones((int(reached.sum()), n))], axis=2)
         uzt[reached] = fit(a[reached], p.targets)
         at[reached] = p.timing
     else:
         for j in np.flatnonzero(reached):
-            uzt[j], nearest = nearest_fit(rot[j], ref[j], p.targets)
+            if assignment is not None and np.all(assignment[j] >= 0):
+                fitted[j] = assignment[j]
+                uzt[j], nearest = assigned_fit(rot[j], ref[j], p.targets, fitted[j])
+            else:
+                uzt[j], nearest, fitted[j] = nearest_fit(rot[j], ref[j], p.targets)
             at[j] = turn[nearest]
             a[j] = np.column_stack([rot[j, nearest], ref[j, nearest], np.ones(k)])
     residuals = (a @ uzt[:, :, None])[:, :, 0] - p.targets[None, :]
@@ -232,7 +241,8 @@ def evaluate_many(x: np.ndarray, p: Problem) -> Evaluations:
     lo, hi = p.lengths
     fits = np.concatenate([(lengths - lo) / p.scale, (hi - lengths) / p.scale], axis=1)
     rows.append(np.where(reached[:, None], fits, 0.0))
-    return Evaluations(linkage, residuals, uzt, np.concatenate(rows, axis=1), at)
+    return Evaluations(linkage, residuals, uzt, np.concatenate(rows, axis=1), at,
+                       None if p.timing is not None else fitted)
 
 
 def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
@@ -260,8 +270,9 @@ STEP = 1e-7
 
 def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
     """Design ``x`` polished by least squares on the distances (the Jacobian by forward differences of STEP, its
-    eleven designs solved at once); the polished design if it keeps every hard constraint and is no worse, else
-    ``x``."""
+    eleven designs solved at once; untimed, the ten shifted designs keep the targets' assignment to the turn's
+    samples that the design itself was fitted on: the derivative of the error at its nearest points); the polished
+    design if it keeps every hard constraint and is no worse, else ``x``."""
     from scipy.optimize import least_squares
 
     def error(v: np.ndarray) -> float:
@@ -270,18 +281,24 @@ def _polish(x: np.ndarray, p: Problem) -> tuple[np.ndarray, float]:
             return math.inf
         return float(np.sum(np.abs(e.residuals) ** 2))
 
-    def rows(designs: np.ndarray) -> np.ndarray:
-        e = evaluate_many(designs, p)
+    def rows(designs: np.ndarray, assignment: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray | None]:
+        e = evaluate_many(designs, p, assignment)
         r = np.where(e.linkage[:, None] & np.isfinite(e.residuals), e.residuals, p.scale)
-        return np.concatenate([r.real, r.imag], axis=1)
+        return np.concatenate([r.real, r.imag], axis=1), e.assignment
 
     def jacobian(v: np.ndarray) -> np.ndarray:
-        r = rows(v[:, None] + np.hstack([np.zeros((len(v), 1)), STEP * np.eye(len(v))]))
+        shifted = v[:, None] + np.hstack([np.zeros((len(v), 1)), STEP * np.eye(len(v))])
+        if p.timing is not None:
+            r = rows(shifted)[0]
+        else:
+            r0, fitted = rows(shifted[:, :1])
+            assert fitted is not None
+            r = np.vstack([r0, rows(shifted[:, 1:], np.repeat(fitted, len(v), axis=0))[0]])
         return ((r[1:] - r[0]) / STEP).T
 
     found = error(x)
     try:
-        v = least_squares(lambda v: rows(v[:, None])[0], x, jac=jacobian, method="trf",
+        v = least_squares(lambda v: rows(v[:, None])[0][0], x, jac=jacobian, method="trf",
                           bounds=(-SHAPE_BOX, SHAPE_BOX), xtol=1e-12, ftol=1e-12, gtol=1e-12,
                           max_nfev=60 * len(x)).x
     except (ValueError, ArithmeticError):

@@ -10,7 +10,9 @@ Untimed, each target k is met at the angle of the curve's point nearest it, so t
 curve, (u, z, t) by least squares in closed form (the normal equations, 3 complex unknowns); then each target's
 nearest point of the curve so placed; neither step raises the error. It starts from STARTS assignments of the
 targets, in their order, spread evenly over the turn, each way round and from STARTS // 2 starting angles, all
-iterated together, and keeps the best.
+iterated together, and keeps the best. A design a hair from one already fitted (the polish's forward differences)
+keeps that design's assignment (:func:`assigned_fit`): one least squares and one nearest search instead of STARTS
+assignments iterated ROUNDS times, and the same numbers wherever its own iteration would end on that assignment.
 """
 from __future__ import annotations
 
@@ -35,8 +37,11 @@ def _fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray, idx: np.ndarray)
     return fit(np.stack([rot[idx], ref[idx], np.ones(idx.shape, complex)], axis=2), targets)
 
 
-def nearest_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The best (u, z, t) (3,) complex and each target's nearest index (n,) into the turn's samples.
+def nearest_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The best (u, z, t) (3,) complex, each target's nearest index (n,) into the turn's samples, and the assignment
+    (n,) (indices into the turn's samples) that (u, z, t) was fitted on (:func:`assigned_fit` gives the same two
+    from it).
 
     Parameters
     ----------
@@ -61,7 +66,17 @@ def nearest_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray) -> tuple[
     err = np.sum(np.min(np.abs(curve[:, None, :] - targets[None, :, None]) ** 2, axis=2), axis=1)
     best = int(np.argmin(err))
     gap = np.abs(curve[best][None, :] - targets[:, None]) ** 2
-    return uzt[best], np.argmin(gap, axis=1)
+    return uzt[best], np.argmin(gap, axis=1), idx[best]
+
+
+def assigned_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray, assignment: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """(u, z, t) (3,) complex fitted on a given ``assignment`` (n,) of the targets to the turn's samples and each
+    target's nearest index (n,) into them so placed: :func:`nearest_fit`'s last step, for a design whose
+    assignment is known (rot, ref and targets as there)."""
+    uzt = _fit(rot, ref, targets, np.asarray(assignment)[None, :])
+    curve = rot * uzt[0, 0] + uzt[0, 1] * ref + uzt[0, 2]
+    return uzt[0], np.argmin(np.abs(curve[None, :] - targets[:, None]) ** 2, axis=1)
 
 
 #: the crank angles tried about each target's nearest sample of the fine turn, within one sample either side, and

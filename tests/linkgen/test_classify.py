@@ -26,6 +26,8 @@ from tests.conftest import ROOT
 TEMPLATES = sorted(p.stem for p in (ROOT / "templates").glob("*.toml")
                    if "linkage" in (t := tomllib.loads(p.read_text(encoding="utf-8"))) and "sweep" not in t)
 TURN = 3600
+#: one worker: the module's designs (every bundled linkage template, some 5 s) are built once
+pytestmark = pytest.mark.xdist_group("linkgen-classify")
 
 
 @pytest.fixture(scope="module")

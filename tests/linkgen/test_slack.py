@@ -168,6 +168,11 @@ CASES = {
 }
 
 
+def _cases(names) -> list:
+    """``names`` as parameters, each in its own xdist group: one worker designs a case's band for every test of it."""
+    return [pytest.param(name, marks=pytest.mark.xdist_group(f"slack-band-{name}")) for name in names]
+
+
 @functools.cache
 def _case_band(case: str):
     """The band of ``CASES[case]``, designed once for the tests that read it (three of them; none changes it)."""
@@ -181,7 +186,7 @@ def _kinked(band, k):
     return d.kind != "RRR" and bool(np.any(np.abs(d.transmission - math.pi / 2) < 1e-6))
 
 
-@pytest.mark.parametrize("case", sorted(CASES))
+@pytest.mark.parametrize("case", _cases(sorted(CASES)))
 def test_the_response_is_the_solvers_own_to_central_differences(case):
     """Every column of the response (every point, every body's turn, every dyad's transmission angle but at a
     kink) against central differences (+-1e-5 mm) of the perturbed linkages solved by the project's solver: to
@@ -257,7 +262,7 @@ def _predicted(band, params):
     return out
 
 
-@pytest.mark.parametrize("case", sorted(CASES))
+@pytest.mark.parametrize("case", _cases(sorted(CASES)))
 def test_monte_carlo_lies_inside_the_band_and_its_second_order_error_shrinks_quadratically(case):
     """COUNT seeded samples, each solved over the 361 poses: (1) the band's first-order offset of each sample is
     within the band at every pose (the worst case bounds it); (2) the solved offsets, across each tracer's path and
@@ -299,7 +304,7 @@ def test_monte_carlo_lies_inside_the_band_and_its_second_order_error_shrinks_qua
         assert reach[name] >= REACH.get(case, 1 / 3), (name, reach[name])
 
 
-@pytest.mark.parametrize("case", ["four-bar", "jansen", "shaper", "eightbar-triad"])
+@pytest.mark.parametrize("case", _cases(["four-bar", "jansen", "shaper", "eightbar-triad"]))
 def test_the_band_is_reached_by_the_offsets_it_picks(case):
     """At each of a few poses, the slack that the band's worst case picks for a tracer's offset across its path (each
     pin's offset along its gradient, each other slack at its bound with the gradient's sign) gives a linkage that,
@@ -639,6 +644,7 @@ def test_the_model_counts_a_hole_at_every_pin_of_every_part():
                                             ("rocker", "B")])
 
 
+@pytest.mark.xdist_group("slack-band-eightbar-triad")        # the case's band, designed once
 def test_a_class_iii_groups_links_have_their_band_in_the_report(tmp_path):
     """The eight-bar's triad (a class-III group) analysed with [slack]: strict JSON with a band for each tracer on the
     triad, wider than the play alone (0.1 mm) where the bars' slack adds to it, Monte Carlo inside it; every pin of
@@ -653,7 +659,7 @@ def test_a_class_iii_groups_links_have_their_band_in_the_report(tmp_path):
     assert set(report["tracers"]) == {"C", "E", "F", "G"}
     assert all(report["tracers"][p]["width_max_mm"] > 2 * 0.1 for p in ("E", "F", "G"))
     assert report["binds"] == [] and report["monte_carlo"]["outside"] == 0
-    model = _band(_template("eightbar-triad")).model
+    model = _case_band("eightbar-triad").model
     for link, points in (("bar1", ("C", "E")), ("bar2", ("O6", "F")), ("bar3", ("O8", "G")),
                          ("triad", ("E", "F", "G"))):
         assert all(model.hole(link, p) is not None for p in points), link

@@ -117,7 +117,7 @@ def test_a_known_watt2_is_found_again_from_twelve_timed_points():
 @pytest.mark.slow
 @pytest.mark.parametrize("kind", ["watt2", "stephenson1"])
 def test_an_untimed_candidate_s_error_is_its_nearest_point_error(kind):
-    """Untimed, a short search (20 generations; about 50 s with the four-bar's search beside it): each
+    """Untimed, a short search (20 generations, the four-bar's search beside it): each
     candidate's error is the sum of squared distances from the targets to the nearest point of its curve, as this
     test's own dense curve gives it (to 1e-6 relative), and its crank directions there put its tracer on those
     nearest points."""
