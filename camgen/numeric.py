@@ -49,13 +49,16 @@ def left_of(x: float) -> float:
     return float(np.nextafter(x, -np.inf))
 
 
-def boundary(holds: Callable[[float], bool], good: float, bad: float, rel: float = 1e-9) -> float:
+def boundary(holds: Callable[[float], bool], good: float, bad: float, rel: float = 1e-9,
+             floor: float = 0.0) -> float:
     """Bisection for where ``holds`` changes between ``good`` (True there) and ``bad`` (False there).
 
-    Returns the last point found on the good side, within ``rel`` of the boundary.
+    Returns the last point found on the good side, within ``rel`` of the boundary, or within ``floor`` of it (an
+    absolute width, in the unit of the points): a boundary at 0 is never reached to a relative width, and halving
+    towards it would run on to the 200 steps' limit.
     """
     for _ in range(200):
-        if abs(good - bad) <= rel * max(abs(good), abs(bad)):
+        if abs(good - bad) <= max(rel * max(abs(good), abs(bad)), floor):
             break
         mid = 0.5 * (good + bad)
         if holds(mid):

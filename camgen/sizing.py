@@ -86,8 +86,14 @@ def _domain(rig: Rig) -> tuple[float, float]:
     return rig.mount.base_range(rig.roller_radius, rig.level_top)
 
 
+#: the narrowest bracket of the base-radius search, as a fraction of the radius it starts from
+FLOOR = 1e-12
+
+
 def _smallest(rig: Rig, ok: Callable[[Cam], bool], what: str, near: float | None = None) -> float:
-    """Smallest base radius (to 1e-9 relative) at which ``ok(cam)`` holds, by bisection from the first radius found
+    """Smallest base radius (to 1e-9 relative, or to :data:`FLOOR` of the radius the search starts from: a limit
+    that every base circle meets, as a flat face's pressure angle, is met down to 0, which halving reached only
+    after 200 cams) at which ``ok(cam)`` holds, by bisection from the first radius found
     to hold, starting from ``near`` (mm: a template's own base radius, where it gives one): doubling where the
     follower assembles on any base circle, else stepping up through the range it assembles on by 1/64 of it (an
     arm's pressure angle grows again towards the top of that range, where the arm turns radial, so halving towards
@@ -109,7 +115,7 @@ def _smallest(rig: Rig, ok: Callable[[Cam], bool], what: str, near: float | None
         if nxt > 1e7 or nxt >= top:
             raise DesignError(f"{what}: no base radius meets it (searched up to {hi:.6g} mm)")
         hi = nxt
-    return boundary(holds, hi, lo)
+    return boundary(holds, hi, lo, floor=FLOOR * hi)
 
 
 def size_cam(rig: Rig, limits: Limits, near: float | None = None) -> Sizing:

@@ -57,7 +57,8 @@ TRIES = 33
 ACROSS = 65
 #: of them refined
 PEAKS = 4
-GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+#: parabolic steps refining each peak (:func:`_peak_max`)
+PARABOLAS = 10
 
 
 @dataclass(frozen=True)
@@ -81,8 +82,8 @@ class StraightLine:
         from their chords; around each of the best few the start is narrowed 16-fold a round until it
         is fixed to rounding (the deviation, a maximum of two or more peaks, is least where they are
         equal: a kink, which a narrowing search finds where derivatives would not), each stretch's end
-        found by bisection to where the chord is ``stroke`` long and its largest deviation by
-        golden-section search on each of its highest peaks. The deviation so found is converged to
+        found by regula falsi (:func:`_bisect`) to where the chord is ``stroke`` long and its largest deviation by
+        parabolic interpolation (:func:`_peak_max`) on each of its highest peaks. The deviation so found is converged to
         about 1e-12 relative (the 2001-angle grid it replaces read 0.3 to 1.7 % high). Of stretches
         equally straight (a symmetric path has two) the one starting first.
         """
@@ -152,8 +153,8 @@ class StraightLine:
         peak[:, 1:-1] = (h[:, 1:-1] >= h[:, :-2]) & (h[:, 1:-1] >= h[:, 2:])
         top = np.argsort(np.where(peak, h, -1.0), axis=1)[:, -PEAKS:]      # the highest local maxima
         rows = np.arange(len(a))[:, None]
-        lo, hi = s[rows, np.maximum(top - 1, 0)], s[rows, np.minimum(top + 1, ACROSS - 1)]
-        dev = _golden_max(off, lo, hi).max(axis=1)
+        near = np.stack([np.maximum(top - 1, 0), top, np.minimum(top + 1, ACROSS - 1)])
+        dev = _peak_max(off, s[rows, near], h[rows, near]).max(axis=1)
         return np.where(there, dev, np.inf), np.where(there, b, np.nan)
 
 
@@ -188,29 +189,57 @@ def _least(d: np.ndarray) -> np.ndarray:
 
 
 def _bisect(f: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """Where f (negative at ``lo``, not at ``hi``) changes sign, by bisection to rounding, elementwise."""
+    """Where f (negative at ``lo``, not at ``hi``) changes sign, to rounding, elementwise: regula falsi with the
+    Illinois modification, each secant point kept a little inside the bracket (so that a root found at one end
+    closes it, as in Brent's zeroin) and a bisection wherever the bracket has not halved in two steps (so it never
+    lags bisection by much), until every bracket is a few units in the last place wide. Some 8 to 12 calls of f
+    where bisection to rounding takes 52."""
     lo, hi = lo.copy(), hi.copy()
-    for _ in range(52):                                 # 2^-52 of the bracket
-        mid = (lo + hi) / 2
-        neg = f(mid) < 0
-        lo, hi = np.where(neg, mid, lo), np.where(neg, hi, mid)
+    flo, fhi = f(lo), f(hi)
+    kept = np.zeros(lo.shape)                           # +1: lo was kept by the last step, -1: hi was
+    last = before = np.full(lo.shape, np.inf)           # the brackets' widths one and two steps ago
+    for _ in range(4 * 64):
+        width = hi - lo
+        ulps = 4 * np.finfo(float).eps * np.maximum(abs(lo), abs(hi))
+        done = ~(width > ulps)
+        if done.all():
+            break
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            x = np.clip(lo - flo * (width / (fhi - flo)), lo + ulps / 4, hi - ulps / 4)
+        secant = np.isfinite(x) & (width <= before / 2)
+        x = np.where(done, lo, np.where(secant, x, lo + width / 2))
+        fx = f(x)
+        low, zero = fx < 0, fx == 0                     # a root hit exactly closes the bracket on it
+        new = (np.where(low | zero, x, lo), np.where(low, hi, x),
+               np.where(low, fx, np.where(kept == 1, flo / 2, flo)),     # Illinois: an end kept twice counts half
+               np.where(low, np.where(kept == -1, fhi / 2, fhi), fx))
+        lo, hi, flo, fhi = (np.where(done, old, value) for old, value in zip((lo, hi, flo, fhi), new, strict=True))
+        kept = np.where(low, -1.0, 1.0)
+        last, before = width, last
     return (lo + hi) / 2
 
 
-def _golden_max(f: Callable[[np.ndarray], np.ndarray], lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
-    """The maxima of f over the brackets [lo, hi] (arrays of one shape; f unimodal in each), by golden-section
-    search to rounding."""
-    x1, x2 = hi - GOLDEN * (hi - lo), lo + GOLDEN * (hi - lo)
-    f1, f2 = f(x1), f(x2)
-    for _ in range(40):                                 # 0.618^40 = 4e-9 of the bracket: the peak to rounding
-        left = f1 >= f2                                 # the maximum lies in [lo, x2]: x1 goes on as its x2
-        lo, hi = np.where(left, lo, x1), np.where(left, x2, hi)
-        kept_x, kept_f = np.where(left, x1, x2), np.where(left, f1, f2)
-        new = np.where(left, hi - GOLDEN * (hi - lo), lo + GOLDEN * (hi - lo))
-        f_new = f(new)
-        x1, x2 = np.where(left, new, kept_x), np.where(left, kept_x, new)
-        f1, f2 = np.where(left, f_new, kept_f), np.where(left, kept_f, f_new)
-    return np.maximum(f1, f2)
+def _peak_max(f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, fx: np.ndarray) -> np.ndarray:
+    """The maxima of f near the peaks bracketed by the triples ``x`` (shape (3, ...), ascending along the first axis;
+    ``fx`` f there, the middle the highest): by successive parabolic interpolation (the vertex of the parabola
+    through the three, kept strictly inside them, else the middle of the wider side), each step keeping the highest
+    point and its two neighbours. The highest value f took: on a smooth peak the vertex converges superlinearly, and
+    the value, flat there, reaches rounding within :data:`PARABOLAS` steps (golden-section search needs some 40)."""
+    best = fx.max(axis=0)
+    for _ in range(PARABOLAS):
+        (a, b, c), (fa, fb, fc) = x, fx
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            p, q = (b - a) * (fb - fc), (b - c) * (fb - fa)
+            u = b - ((b - a) * p - (b - c) * q) / (2 * (p - q))
+        u = np.where((u > a) & (u < c) & (u != b), u, np.where(c - b > b - a, (b + c) / 2, (a + b) / 2))
+        fu = f(u)
+        best = np.maximum(best, fu)
+        xs, fs = np.concatenate([x, u[None]]), np.concatenate([fx, fu[None]])
+        order = np.argsort(xs, axis=0, kind="stable")
+        xs, fs = np.take_along_axis(xs, order, axis=0), np.take_along_axis(fs, order, axis=0)
+        m = np.clip(np.argmax(fs, axis=0), 1, 2)[None] + np.arange(-1, 2).reshape(3, *[1] * u.ndim)
+        x, fx = np.take_along_axis(xs, m, axis=0), np.take_along_axis(fs, m, axis=0)
+    return best
 
 
 def straight_line(kind: str, size: float) -> StraightLine:
