@@ -9,13 +9,15 @@ frame; frame k of an animation of ``n`` frames is the page's frame k * 360 / n, 
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 import numpy as np
 
 from camgen.core.errors import SpecError
 from camgen.core.frames import render
-from camgen.core.page import Page, Scene
+from camgen.core.page import Mover, Page, Scene
 
 #: how each outline style of a page is drawn: (fill colour or None, line colour, line width, line style)
 STYLES: dict[str, tuple[str | None, str, float, str]] = {
@@ -60,27 +62,64 @@ def scene_frames(page: Page, n: int, size: tuple[int, int], what: str) -> np.nda
     disc = np.column_stack([np.cos(ring), np.sin(ring)])
     traces = [m.points[:, j] for m in scene.movers if m.radius > 0 for j in range(m.points.shape[1])]
 
-    def draw(ax: Any, k: int) -> None:
-        frame = int(index[k])
+    #: what moves: (its points at a page frame, None where it has no pose; its fill or None; its line)
+    moving: list[tuple[Callable[[int], np.ndarray | None], Any, Any]] = []
+
+    def build(ax: Any) -> None:
+        """Every artist of the scene, each moving one listed in ``moving`` (placed by :func:`_place`)."""
         for body in scene.bodies:
             for o in body.outlines:
                 fill, colour, width, line = STYLES.get(o.style, OTHER)
-                p = _pose(np.asarray(o.points, dtype=float), body.motion, frame)
-                if o.closed:
-                    p = np.vstack([p, p[:1]])
-                if fill is not None:
-                    ax.fill(p[:, 0], p[:, 1], color=fill, lw=0)
-                ax.plot(p[:, 0], p[:, 1], line, color=colour, lw=width)
+                at = partial(_outline_at, np.asarray(o.points, dtype=float), body.motion, o.closed)
+                p = at(0)
+                patch = ax.fill(p[:, 0], p[:, 1], color=fill, lw=0)[0] if fill is not None else None
+                (drawn,) = ax.plot(p[:, 0], p[:, 1], line, color=colour, lw=width)
+                if body.motion is not None:
+                    moving.append((at, patch, drawn))
         for t in traces:
             ax.plot(t[:, 0], t[:, 1], "-", color=TRACE, lw=0.8)
         for m in scene.movers:
-            pts = m.points[frame]
             if m.radius > 0:
-                for x, y in pts[np.isfinite(pts).all(axis=1)]:
-                    ax.plot(x + m.radius * disc[:, 0], y + m.radius * disc[:, 1], color=CIRCLE, lw=1.5)
+                for j in range(m.points.shape[1]):
+                    moving.append((partial(_circle_at, m, j, disc), None, ax.plot([], [], color=CIRCLE, lw=1.5)[0]))
             else:
                 _, colour, width, line = STYLES.get(m.style, OTHER)
-                p = np.vstack([pts, pts[:1]]) if m.closed else pts
-                ax.plot(p[:, 0], p[:, 1], line, color=colour, lw=width)
+                moving.append((partial(_path_at, m), None, ax.plot([], [], line, color=colour, lw=width)[0]))
 
-    return render(draw, n, size, scene.bounds())
+    def draw(ax: Any, k: int) -> None:
+        if k == 0:
+            build(ax)
+        frame = int(index[k])
+        for at, patch, line in moving:
+            _place(at(frame), patch, line)
+
+    return render(draw, n, size, scene.bounds(), clear=False)
+
+
+def _outline_at(points: np.ndarray, motion: np.ndarray | None, closed: bool, frame: int) -> np.ndarray:
+    """A body's outline ``points`` (k, 2; mm) at its pose of ``frame``, its first point repeated if ``closed``."""
+    p = _pose(points, motion, frame)
+    return np.vstack([p, p[:1]]) if closed else p
+
+
+def _circle_at(mover: Mover, j: int, disc: np.ndarray, frame: int) -> np.ndarray | None:
+    """The circle (``disc``: unit circle's points) of ``mover``'s point ``j`` at ``frame`` (mm); None without a
+    pose there."""
+    centre = mover.points[frame, j]
+    return centre + mover.radius * disc if np.isfinite(centre).all() else None
+
+
+def _path_at(mover: Mover, frame: int) -> np.ndarray:
+    """``mover``'s polyline at ``frame`` (mm), its first point repeated if it is closed."""
+    pts = mover.points[frame]
+    return np.vstack([pts, pts[:1]]) if mover.closed else pts
+
+
+def _place(p: np.ndarray | None, patch: Any, line: Any) -> None:
+    """A moving artist's fill (if any) and line set to the points ``p`` (k, 2; mm); hidden for None."""
+    line.set_visible(p is not None)
+    if p is None:
+        return
+    if patch is not None:
+        patch.set_xy(p)
+    line.set_data(p[:, 0], p[:, 1])

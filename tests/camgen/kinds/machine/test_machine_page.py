@@ -14,7 +14,6 @@ import tomllib
 import numpy as np
 import pytest
 import shapely
-from click.testing import CliRunner
 
 from tests.conftest import ROOT
 from tests.camgen.kinds.machine.conftest import DESIGNS
@@ -42,26 +41,26 @@ def _design(name: str, **machine):
 
 
 @pytest.fixture(scope="module")
-def built(tmp_path_factory):
-    """Each machine built with json and html at the angles of :data:`ANGLES`: (page text, report)."""
-    from camgen.cli import main
+def automaton():
+    return _design("automaton", figure_angles=ANGLES["automaton"])
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory, automaton):
+    """Each machine built with json, html and its figures at the angles of :data:`ANGLES`: (page text, report,
+    folder). The files are written from the design (the automaton's the module's own): the bytes ``camgen build
+    NAME.toml --set output.formats=[...] --set machine.figure_angles=[...]`` writes, without designing the
+    automaton twice."""
+    from camgen import api
 
     out = {}
     for name in MACHINES:
         folder = tmp_path_factory.mktemp(name)
-        angles = json.dumps(ANGLES[name])
-        result = CliRunner().invoke(main, ["build", str(TEMPLATES / f"{name}.toml"), "-o", str(folder), "--set",
-                                           'output.formats=["json", "html", "png", "svg"]', "--set",
-                                           f"machine.figure_angles={angles}"])
-        assert result.exit_code == 0, result.output
+        design = automaton if name == "automaton" else _design(name, figure_angles=ANGLES[name])
+        api.write(design, folder, formats=["json", "html", "png", "svg"])
         out[name] = ((folder / f"{name}.html").read_text(encoding="utf-8"),
                      json.loads((folder / f"{name}.json").read_text()), folder)
     return out
-
-
-@pytest.fixture(scope="module")
-def automaton():
-    return _design("automaton", figure_angles=ANGLES["automaton"])
 
 
 @pytest.fixture(scope="module")

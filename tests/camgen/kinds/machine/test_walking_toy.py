@@ -252,11 +252,12 @@ def test_the_report_and_the_timing_name_both_feet(toy, tmp_path):
 def test_every_file_of_the_toy_reads_back(bundled_builds):
     """The toy's files, read back: every DXF by ezdxf with no audit error, every STL closed by admesh and
     PrusaSlicer, the page and the figures; the report names exactly the files written. The build is the one with
-    every format a machine writes that test_machine_files_read_back.py reads (made once a run, read only)."""
+    every format a machine writes that test_machine_files_read_back.py reads (made once a run, read only).
+    PrusaSlicer reads all 17 STLs in one ``--info`` call, each file its own section, each asked to be manifold."""
     import ezdxf
 
-    from tests.camgen.kinds.machine.test_machine_files_read_back import _built
-    from tests.project.test_programs import _admesh, _prusa
+    from tests.camgen.kinds.machine.test_machine_files_read_back import _built, _info
+    from tests.project.test_programs import _admesh
 
     tmp_path = _built(bundled_builds, "walking-toy").folder
     report = json.loads((tmp_path / "walking-toy.json").read_text())
@@ -271,11 +272,13 @@ def test_every_file_of_the_toy_reads_back(bundled_builds):
         assert not doc.audit().has_errors and len(doc.modelspace()) > 0, path.name
     solids = sorted(tmp_path.glob("*.stl"))
     assert len(solids) == 17              # 7 parts a leg (its ground is the frame), the frame's plate, two gears
+    read = _info(solids)                  # PrusaSlicer's --info of every STL, by file name
+    assert sorted(read) == [p.name for p in solids]
     for path in solids:
         stats = _admesh(path)
         assert all(stats[k] == 0 for k in stats if k != "volume"), (path.name, stats)
         assert stats["volume"] > 0
-        assert "manifold = yes" in _prusa(path), path.name
+        assert [found["manifold"] for found in read[path.name]] == [1.0], path.name
     assert (tmp_path / "walking-toy.html").read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
 
 
