@@ -64,6 +64,10 @@ def _check_sheet(parts: list[tuple[Contour, list]], size: tuple[float, float], g
                 assert fine[0][0].distance(fine[1][0]) - fine[0][1] - fine[1][1] >= gap - 1e-6
 
 
+#: the tests of the module's jansen build run on one worker, so it is made once a run
+JANSEN_SHEET = pytest.mark.xdist_group("core-nesting-jansen")
+
+
 @pytest.fixture(scope="module")
 def jansen(tmp_path_factory):
     from camgen.core.spec import read_template
@@ -76,6 +80,7 @@ def jansen(tmp_path_factory):
     return out, json.loads((out / "jansen.json").read_text()), design.build
 
 
+@JANSEN_SHEET
 def test_jansen_sheet_read_back_no_overlap_gaps_every_part_once_congruent(jansen):
     out, report, build = jansen
     sheet = report["sheet"]
@@ -100,6 +105,7 @@ def test_jansen_sheet_read_back_no_overlap_gaps_every_part_once_congruent(jansen
         assert sum(h.area for h in holes) == pytest.approx(sum(abs(h.area) for h in part.holes), rel=1e-3)
 
 
+@JANSEN_SHEET
 def test_utilisation_reported_and_at_least_the_shelf_figure(jansen):
     _, report, build = jansen
     sheet = report["sheet"]
