@@ -19,6 +19,11 @@ def _frozen(a: np.ndarray) -> np.ndarray:
     return a
 
 
+#: the axis directions 0, 90, 180 and 270 degrees at any turn an arc may start from (rad), and their unit vectors
+_AXIS_ANGLES = np.array([k * math.pi / 2 for k in range(-4, 9)])
+_AXIS_DIRECTIONS = np.array([[math.cos(a), math.sin(a)] for a in _AXIS_ANGLES.tolist()])
+
+
 def _moved(points: np.ndarray, angle: float, shift: np.ndarray) -> np.ndarray:
     c, s = math.cos(angle), math.sin(angle)
     return points @ np.array([[c, s], [-s, c]]) + shift
@@ -118,17 +123,15 @@ class Contour:
         return idx, centre[idx], radius, angle[idx]
 
     def bounds(self) -> tuple[float, float, float, float]:
-        """Exact (xmin, ymin, xmax, ymax) in mm: the vertices and the extreme points of the arcs."""
-        pts = [self.vertices]
-        p = self.vertices
-        for i, centre, radius, sweep in zip(*self.arcs(), strict=True):
-            start = math.atan2(p[i][1] - centre[1], p[i][0] - centre[0])
-            for k in range(-4, 9):                      # axis directions 0, 90, 180, 270 degrees, any turn
-                angle = k * math.pi / 2
-                off = (angle - start) if sweep > 0 else (start - angle)
-                if 0 < off < abs(sweep):
-                    pts.append(centre + radius * np.array([[math.cos(angle), math.sin(angle)]]))
-        allp = np.vstack(pts)
+        """Exact (xmin, ymin, xmax, ymax) in mm: the vertices and the extreme points of the arcs (where an arc
+        crosses an axis direction from its centre), all arcs at once with the numbers one arc at a time gave."""
+        _, start_point, chord, sweep, centre = self._arc_pieces
+        radius = chord / (2.0 * np.abs(np.sin(sweep / 2.0)))            # as arcs() has it
+        p = start_point - centre
+        start = np.array([math.atan2(dy, dx) for dx, dy in p.tolist()]).reshape(-1, 1)
+        off = np.where(sweep[:, None] > 0, _AXIS_ANGLES[None, :] - start, start - _AXIS_ANGLES[None, :])
+        arc, k = np.nonzero((off > 0) & (off < np.abs(sweep)[:, None]))
+        allp = np.vstack([self.vertices, centre[arc] + radius[arc, None] * _AXIS_DIRECTIONS[k]])
         return float(allp[:, 0].min()), float(allp[:, 1].min()), float(allp[:, 0].max()), float(allp[:, 1].max())
 
     @property

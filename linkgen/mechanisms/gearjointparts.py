@@ -192,19 +192,27 @@ def _crossing(sweep: Placement, parts: tuple[LinkPart, ...], order: dict[str, in
 
     by_name = {p.name: p for p in parts}
     n = len(next(iter(sweep.angles.values())))
-    shapes = {p.name: np.array([shapely.Polygon(p.outline().moved(sweep.angles[p.name][k], sweep.origins[p.name][k])
-                                                .flatten(COLLISION_TOLERANCE_MM)) for k in range(n)])
-              for p in parts if p.moving}
+    shapes: dict[str, np.ndarray] = {}
+
+    def swept(name: str) -> np.ndarray:
+        """The moving part's outline at every angle of the sweep (polygons), made when a pin first needs it."""
+        if name not in shapes:
+            p, angles, origins = by_name[name], sweep.angles[name], sweep.origins[name]
+            shapes[name] = np.array([shapely.Polygon(p.outline().moved(angles[k], origins[k])
+                                                     .flatten(COLLISION_TOLERANCE_MM)) for k in range(n)])
+        return shapes[name]
+
+    moving = {p.name for p in parts if p.moving}
     for joint, ((first, second), where) in sweep.joints.items():
         low, high = sorted((order[first], order[second]))
-        between = [name for name, layer in order.items() if low < layer < high and name in shapes]
+        between = [name for name, layer in order.items() if low < layer < high and name in moving]
         if not between:
             continue
         threaded = {name for (x, y), other in sweep.joints.values() if other.shape == where.shape
                     and np.allclose(other, where, rtol=0, atol=1e-9) for name in (x, y)}
         pins = shapely.buffer(shapely.points(where), pin_radius)
         for name in between:
-            if name not in threaded and shapely.intersects(shapes[name], pins).any():
+            if name not in threaded and shapely.intersects(swept(name), pins).any():
                 return (f"{by_name[name].name} (layer {order[name]}) sweeps over the pin {joint} between {first} "
                         f"(layer {order[first]}) and {second} (layer {order[second]})")
     return ""

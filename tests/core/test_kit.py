@@ -22,6 +22,8 @@ from linkgen.cli import main as linkgen
 from tests.conftest import ROOT
 
 TEMPLATES = ROOT / "templates"
+#: the module's builds (rdrd in both senses, oscillating, crank_rocker) are made once a run: its tests on one worker
+pytestmark = pytest.mark.xdist_group("core-kit")
 POSES = 720
 #: the files the checks read (no figures or pages: they cost time and are checked elsewhere)
 FILES = 'output.formats=["dxf", "stl", "3mf", "json"]'

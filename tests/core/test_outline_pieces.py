@@ -11,6 +11,9 @@ from __future__ import annotations
 
 import json
 import math
+import os
+import shutil
+import subprocess
 
 import numpy as np
 import pytest
@@ -23,7 +26,7 @@ from camgen.core.writers.dxf import write_dxf
 from linkgen.linkage_design import design_linkage
 from linkgen.spec import validate_spec
 from tests.conftest import ROOT
-from tests.support.freecad import freecad_check
+from tests.support.freecad import PROGRAMS, freecad_check
 
 #: the [parts] table a bundled linkage template without one is built with
 PARTS = {"width": 12.0, "thickness": 4.0, "pin_diameter": 4.0}
@@ -69,6 +72,10 @@ def builds():
     return _Builds()
 
 
+#: the tests that share the builds (and FreeCAD's reading of every sheet) run on one worker, so each is made once
+SHARED = pytest.mark.xdist_group("outline-pieces")
+
+
 def _pieces(shape) -> np.ndarray:
     """The distance between the two vertices of each piece of a contour (mm)."""
     v = shape.vertices
@@ -83,6 +90,7 @@ def _contours(build):
         yield from ((layer, s) for layer, s in drawing.items if isinstance(s, Contour))
 
 
+@SHARED
 @pytest.mark.parametrize("name", [n for n, _ in LINKAGES])
 def test_no_piece_shorter_than_the_bound(builds, name):
     build = builds[name]
@@ -90,6 +98,7 @@ def test_no_piece_shorter_than_the_bound(builds, name):
     assert shortest >= MIN_PIECE_MM, name
 
 
+@SHARED
 def test_watt_output_links_are_plain_bars(builds):
     """The output link F-G-P: its third hole 1e-10 to 1e-9 mm off the line of the other two, so its outline is the
     bar round F and P (two lines, two half-turn arcs) with the corner at G merged into one vertex. Its area is
@@ -130,15 +139,40 @@ def _expect(drawing: Drawing) -> dict:
             "box": [*boxes[:, :2].min(axis=0), *boxes[:, 2:].max(axis=0)], "box_tol": 1e-6}
 
 
+@pytest.fixture(scope="module")
+def freecad_read(builds, tmp_path_factory) -> dict[str, list[dict]]:
+    """What FreeCAD finds in each cut sheet's DXF of every linkage: {name: [{"code", "found"}, ...] a sheet}, all
+    the sheets read by one ``freecadcmd`` (tests/programs/freecad_dxf_check.py with CAMGEN_DXFS: its start is most
+    of a sheet's check), each against its own expected areas and box as :func:`_expect` gives them."""
+    program = shutil.which("freecadcmd")
+    if program is None:
+        pytest.skip("freecadcmd is not installed (Debian package freecad; .ci/run installs it)")
+    folder = tmp_path_factory.mktemp("sheets")
+    jobs, names = [], []
+    for name, _ in LINKAGES:
+        for k, sheet in enumerate(builds[name].sheets):
+            path = folder / f"{name}-{k}.dxf"
+            write_dxf(sheet, path)
+            jobs.append([str(path), _expect(sheet)])
+            names.append(name)
+    done = subprocess.run([program, str(PROGRAMS / "freecad_dxf_check.py")], capture_output=True, text=True,
+                          env={**os.environ, "CAMGEN_DXFS": json.dumps(jobs)}, timeout=600)
+    lines = done.stdout.strip().splitlines()
+    assert lines and lines[-1].startswith("["), done.stdout[-2000:] + done.stderr[-2000:]
+    found: dict[str, list[dict]] = {name: [] for name, _ in LINKAGES}
+    for name, result in zip(names, json.loads(lines[-1]), strict=True):
+        found[name].append(result)
+    return found
+
+
+@SHARED
 @pytest.mark.parametrize("name", [n for n, _ in LINKAGES])
-def test_freecad_reads_each_sheet_as_its_closed_wires(builds, name, tmp_path):
-    for k, sheet in enumerate(builds[name].sheets):
-        path = tmp_path / f"{name}-{k}.dxf"
-        write_dxf(sheet, path)
-        done = freecad_check("dxf", path, _expect(sheet))
-        assert done.returncode == 0, (name, done.stdout.strip().splitlines()[-1][:2000])
-        found = json.loads(done.stdout.strip().splitlines()[-1])
-        assert len(found["wires"]) == len(_expect(sheet)["areas"])
+def test_freecad_reads_each_sheet_as_its_closed_wires(builds, freecad_read, name):
+    sheets = builds[name].sheets
+    assert len(freecad_read[name]) == len(sheets)
+    for sheet, result in zip(sheets, freecad_read[name], strict=True):
+        assert result["code"] == 0, (name, json.dumps(result["found"])[:2000])
+        assert len(result["found"]["wires"]) == len(_expect(sheet)["areas"])
 
 
 def test_freecad_check_sees_a_zero_length_arc(tmp_path):

@@ -176,6 +176,10 @@ def assert_apart(boxes) -> None:
         assert np.abs(np.asarray(a) - np.asarray(b)).max() > 1e-3
 
 
+#: the tests of the module's command builds (rdrd_cli, crank_rocker) run on one worker, so each is made once a run
+COMMANDS = pytest.mark.xdist_group("core-step-commands")
+
+
 @pytest.fixture(scope="module")
 def rdrd_cli(tmp_path_factory):
     """``camgen build templates/rdrd.toml`` with step, stl and json, run as a process from a folder outside the
@@ -187,6 +191,7 @@ def rdrd_cli(tmp_path_factory):
     return cwd / "out" / "rdrd", done
 
 
+@COMMANDS
 def test_rdrd_step_beside_the_stl_one_exact_solid(rdrd_cli):
     """The default outline (polylines, 114 pieces) is written as biarcs: 30 arcs, each a cylindrical face."""
     out, done = rdrd_cli
@@ -564,6 +569,7 @@ def _linkage_expected(out, build) -> list[dict]:
     return wanted
 
 
+@COMMANDS
 def test_linkage_parts_as_assembled_at_the_first_dead_centre(crank_rocker):
     """crank-rocker.step: every printed part and a pin at each pivot point, as assembled at the first dead centre
     the assembly drawing shows (extended: crank and coupler in line, so |O2 B| = a + b and the crank's angle phi
@@ -696,6 +702,7 @@ def _fc(want: dict) -> dict:
     return {"volume": want["volume"], "box": want["box"].tolist(), "faces": want["faces"]}
 
 
+@COMMANDS
 def test_freecad_reads_one_valid_solid(rdrd_cli):
     out, _ = rdrd_cli
     part, _ = step_part(design_cam(template()))
@@ -710,6 +717,7 @@ def test_freecad_reads_a_keyway_and_bolt_holes(tmp_path):
     assert done.returncode == 0, done.stdout.strip().splitlines()[-1][:2000]
 
 
+@COMMANDS
 def test_freecad_reads_every_part_of_a_linkage(crank_rocker):
     """FreeCAD reads crank-rocker.step as the eight valid solids of the assembly: each part's and pin's exact volume,
     faces and box as assembled (see :func:`_linkage_expected`)."""
@@ -721,6 +729,7 @@ def test_freecad_reads_every_part_of_a_linkage(crank_rocker):
     assert len(json.loads(done.stdout.strip().splitlines()[-1])["solids"]) == 8
 
 
+@COMMANDS
 def test_freecad_check_rejects_a_wrong_volume(rdrd_cli):
     out, _ = rdrd_cli
     want = _fc(expect_plate(step_part(design_cam(template()))[0]))
