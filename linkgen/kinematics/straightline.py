@@ -53,12 +53,9 @@ COARSE = 721
 CANDIDATES = 4
 #: starts tried per round of that search, which narrows each neighbourhood 16-fold a round
 TRIES = 33
-#: samples of the path across a stretch, whose highest local maxima are then refined
-ACROSS = 65
-#: of them refined
-PEAKS = 4
-#: parabolic steps refining each peak (:func:`_peak_max`)
-PARABOLAS = 10
+#: samples of the path across a stretch; of their local maxima the PEAKS highest are refined, each by PARABOLAS
+#: parabolic steps (:func:`_peak_max`)
+ACROSS, PEAKS, PARABOLAS = 65, 4, 10
 
 
 @dataclass(frozen=True)
