@@ -57,16 +57,11 @@ def nearest_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray
     steps = np.round(np.arange(n) * m / n).astype(int)
     idx = np.concatenate([(offsets[:, None] + steps[None, :]) % m, (offsets[:, None] - steps[None, :]) % m])
     for _ in range(ROUNDS):
-        uzt = _fit(rot, ref, targets, idx)
-        curve = rot[None, :] * uzt[:, :1] + uzt[:, 1:2] * ref[None, :] + uzt[:, 2:3]           # (B, m)
-        gap = np.abs(curve[:, None, :] - targets[None, :, None]) ** 2                        # (B, n, m)
-        idx = np.argmin(gap, axis=2)
+        idx = np.argmin(_gaps(rot, ref, _fit(rot, ref, targets, idx), targets), axis=2)
     uzt = _fit(rot, ref, targets, idx)
-    curve = rot[None, :] * uzt[:, :1] + uzt[:, 1:2] * ref[None, :] + uzt[:, 2:3]
-    err = np.sum(np.min(np.abs(curve[:, None, :] - targets[None, :, None]) ** 2, axis=2), axis=1)
-    best = int(np.argmin(err))
-    gap = np.abs(curve[best][None, :] - targets[:, None]) ** 2
-    return uzt[best], np.argmin(gap, axis=1), idx[best]
+    gap = _gaps(rot, ref, uzt, targets)
+    best = int(np.argmin(np.sum(np.min(gap, axis=2), axis=1)))
+    return uzt[best], np.argmin(gap[best], axis=1), idx[best]
 
 
 def assigned_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray, assignment: np.ndarray
@@ -75,8 +70,14 @@ def assigned_fit(rot: np.ndarray, ref: np.ndarray, targets: np.ndarray, assignme
     target's nearest index (n,) into them so placed: :func:`nearest_fit`'s last step, for a design whose
     assignment is known (rot, ref and targets as there)."""
     uzt = _fit(rot, ref, targets, np.asarray(assignment)[None, :])
-    curve = rot * uzt[0, 0] + uzt[0, 1] * ref + uzt[0, 2]
-    return uzt[0], np.argmin(np.abs(curve[None, :] - targets[:, None]) ** 2, axis=1)
+    return uzt[0], np.argmin(_gaps(rot, ref, uzt, targets)[0], axis=1)
+
+
+def _gaps(rot: np.ndarray, ref: np.ndarray, uzt: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """The squared distances (B, n, m) mm^2 of each target from each of the turn's samples of the curve placed by
+    each (u, z, t) of ``uzt`` (B, 3): the curve ``u rot + z ref + t`` (B, m)."""
+    curve = rot[None, :] * uzt[:, :1] + uzt[:, 1:2] * ref[None, :] + uzt[:, 2:3]
+    return np.abs(curve[:, None, :] - targets[None, :, None]) ** 2
 
 
 #: the crank angles tried about each target's nearest sample of the fine turn, within one sample either side, and
