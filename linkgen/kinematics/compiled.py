@@ -137,16 +137,13 @@ def positions(enc: Encoded, x: np.ndarray, signs: list[np.ndarray] | list[float]
     rates = _ONE if speeds is None else np.asarray(speeds, dtype=float).reshape(x.shape[0])
     args = (np.ascontiguousarray(x, dtype=float), table, enc.ops, enc.nums, enc.holder, enc.factor, enc.bodies,
             rates, out, vel, acc, ok)
-    if threads == 1:
-        folded = _kernels().poses_serial(*args)
-    else:
-        with warnings.catch_warnings():
-            # numba says once, when it starts its threads (the first parallel run, or the first question of how
-            # many there are), that it passed over an older TBB for another threading layer
-            warnings.filterwarnings("ignore", message=r".*TBB threading layer")
-            size = chunk_size(n, _kernels().threads())
-            kernels = _kernels()
-            folded = kernels.poses_serial(*args) if size >= n else kernels.poses_parallel(*args, size)
+    kernels = _kernels()
+    with warnings.catch_warnings():
+        # numba says once, when it starts its threads (the first parallel run, or the first question of how many
+        # there are), that it passed over an older TBB for another threading layer
+        warnings.filterwarnings("ignore", message=r".*TBB threading layer")
+        size = chunk_size(n, 1 if threads == 1 else kernels.threads())
+        folded = kernels.poses_serial(*args) if size >= n else kernels.poses_parallel(*args, size)
     if folded <= 0.0:
         raise Folded
 
