@@ -295,10 +295,18 @@ def _run_batch(batch: list[tuple]) -> list[dict]:
 
 
 def _batches(work: list[tuple], workers: int) -> list[list[tuple]]:
-    """``work`` cut into batches for ``workers``: at least eight a worker (so that they even out), at most
-    ``PROGRESS_CHUNK`` members each (so that the progress bar moves)."""
-    size = max(1, min(len(work) // (8 * max(1, workers)), PROGRESS_CHUNK))
-    return [work[i:i + size] for i in range(0, len(work), size)]
+    """``work`` cut, in order, into batches for ``workers`` that shrink as the work runs out (guided
+    self-scheduling): each batch a ``2 * workers``-th of the members not yet handed out, at most
+    ``PROGRESS_CHUNK`` (so that the progress bar moves) and at least one. The last batches are single members,
+    so the workers finish within about a member of each other: equal batches of 8 left one worker building up to
+    8 members alone at the end (a 25th batch of a family of 200 on two workers: 4 % of its time)."""
+    share = 2 * max(1, workers)
+    batches, i = [], 0
+    while i < len(work):
+        size = min(PROGRESS_CHUNK, -(-(len(work) - i) // share))
+        batches.append(work[i:i + size])
+        i += size
+    return batches
 
 
 def _end_with_parent() -> None:

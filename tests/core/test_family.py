@@ -290,3 +290,26 @@ def test_the_sheet_table_is_a_model_and_every_key_documented():
                          ({"grain": "yes please"}, "sheet.grain")):
         with pytest.raises(SpecError, match=re.escape(words)):
             split_family({"name": "f", "sheet": sheet, "sweep": {}})
+
+
+@pytest.mark.parametrize("count, workers", [(200, 2), (1000, 2), (57, 3), (5, 2), (1, 1), (0, 2)])
+def test_batches_cover_the_family_in_order_and_shrink_so_the_workers_end_together(count, workers):
+    """The batches are the members in order, each of 1 to PROGRESS_CHUNK, never growing; handed out greedily to
+    ``workers`` equal workers (the next batch to the first one free), the last worker ends at most one member
+    after the first (batches of 8 left one building up to 8 members alone) and within one of an even split."""
+    import heapq
+
+    from camgen.core.family import PROGRESS_CHUNK, _batches
+
+    work = [(i,) for i in range(count)]
+    batches = _batches(work, workers)
+    sizes = [len(b) for b in batches]
+    assert [m for b in batches for m in b] == work
+    assert all(1 <= s <= PROGRESS_CHUNK for s in sizes) and sizes == sorted(sizes, reverse=True)
+    ends = [0] * workers                                    # each worker's end, in members built
+    for size in sizes:
+        heapq.heappush(ends, heapq.heappop(ends) + size)
+    assert max(ends) - min(ends) <= 1
+    assert max(ends) <= -(-count // workers) + 1            # within a member of an even split
+    if count == 200 and workers == 2:
+        assert sizes == [8] * 22 + [6, 5, 4, 3, 2, 1, 1, 1, 1]      # 31 hand-overs, not 200
