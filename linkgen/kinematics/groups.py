@@ -39,6 +39,8 @@ GROUP_KINDS = ("triad", "group")
 #: step (a fraction of the span) halving goes down to before the track ends at a toggle; the most a step may move a
 #: group's point (times the drawing's size) before it is refused as a branch jump
 TRACK_STEPS, MIN_STEP, JUMP = 180, 1e-10, 0.05
+#: the coarse walk tried first steps this many of the fine grid's steps at a time (then refined in one solve)
+COARSE = 10
 #: Newton's iterations at most, from the track and from a continuation step's prediction; the steps without
 #: progress before a pose is given up; the residual (relative to the drawing's scale) taken as converged
 MAX_ITER, STEP_ITER, STALL, RESIDUAL = 40, 8, 6, 1e-12
@@ -382,18 +384,66 @@ def track(group: Group, x0: float, lo: float, hi: float, upstream: Upstream, per
                  period, (low, high))
 
 
+def _grid(group: Group, x0: float, end: float, period: bool, per_span: int) -> np.ndarray:
+    """The inputs a walk from x0 to ``end`` steps to: a crank's turn, or a slide's travel of the drawing's size, in
+    ``per_span`` equal steps (the last one ``end``)."""
+    span = abs(end - x0)
+    steps = max(1, math.ceil(per_span * span / (2.0 * math.pi if period else group.size)))
+    grid = x0 + (end - x0) / steps * np.arange(1, steps + 1)
+    grid[-1] = end
+    return grid
+
+
 def _walk(group: Group, x0: float, q0: np.ndarray, end: float, upstream: Upstream, period: bool
           ) -> tuple[np.ndarray, np.ndarray]:
-    """One way of :func:`track`: the inputs passed and the poses there."""
+    """One way of :func:`track`: the inputs passed and the poses there.
+
+    The walk is the same on the fine grid (:data:`TRACK_STEPS` a span) as step by step, but is first tried as a
+    coarse walk (a step every :data:`COARSE` of the grid's) and one vectorised Newton solve at every point of the
+    fine grid from the coarse track: taken if every point converges within :data:`JUMP` of the drawing's size of
+    its guess and of the point before it (the step-by-step walk's own test), and the coarse walk reached ``end``
+    (no toggle on the way). Anything else (a toggle, a point refused) is walked step by step on the fine grid."""
     if end == x0:
         return np.empty(0), np.empty((0, group.m))
-    span = abs(end - x0)
-    # a crank's turn, or a slide's travel of the drawing's size, in TRACK_STEPS steps
-    steps = max(1, math.ceil(TRACK_STEPS * span / (2.0 * math.pi if period else group.size)))
-    h = (end - x0) / steps
-    grid = x0 + h * np.arange(1, steps + 1)
-    grid[-1] = end
+    grid = _grid(group, x0, end, period, TRACK_STEPS)
     known_grid = upstream(grid)
+    coarse = _steps(group, x0, q0, _grid(group, x0, end, period, max(1, TRACK_STEPS // COARSE)), upstream)
+    if len(coarse[0]) and coarse[0][-1] == end:
+        refined = _refined(group, x0, q0, grid, known_grid, coarse)
+        if refined is not None:
+            return grid, refined
+    return _steps(group, x0, q0, grid, upstream, known_grid)
+
+
+def _refined(group: Group, x0: float, q0: np.ndarray, grid: np.ndarray, known: Mapping[str, Pose],
+             coarse: tuple[np.ndarray, np.ndarray]) -> np.ndarray | None:
+    """The poses (k, m) at every point of ``grid`` (k,) by one vectorised Newton solve from the ``coarse`` walk's
+    track interpolated there, or None unless every point converged within :data:`JUMP` of the drawing's size of its
+    guess and of the point before it (x0's pose q0 before the first)."""
+    xs, qs = np.concatenate([[x0], coarse[0]]), np.concatenate([q0, coarse[1]])
+    order = np.argsort(xs)
+    guess = np.column_stack([np.interp(grid, xs[order], qs[order, k]) for k in range(group.m)])
+    q, ok = newton(group, guess, known, MAX_ITER)
+    if not ok.all():
+        return None
+    moved = group.points(q)
+    path = np.concatenate([group.points(q0), moved])
+    if np.max(np.hypot(*np.moveaxis(moved - group.points(guess), -1, 0))) > JUMP * group.size or \
+            np.max(np.hypot(*np.moveaxis(np.diff(path, axis=0), -1, 0))) > JUMP * group.size:
+        return None
+    return q
+
+
+def _steps(group: Group, x0: float, q0: np.ndarray, grid: np.ndarray, upstream: Upstream,
+           known_grid: Mapping[str, Pose] | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The walk step by step from x0 (pose q0) through ``grid``'s inputs (``known_grid`` the known bodies' poses
+    there, else asked of ``upstream``): each step predicted by the secant, corrected by Newton, halved where it does
+    not converge or jumps, down to :data:`MIN_STEP` of the span (a toggle: the walk ends there)."""
+    if known_grid is None:
+        known_grid = upstream(grid)
+    end = float(grid[-1])
+    span = abs(end - x0)
+    h = (end - x0) / len(grid)
     xs: list[float] = []
     qs: list[np.ndarray] = []
     x, q, prev = x0, q0, None
@@ -401,7 +451,9 @@ def _walk(group: Group, x0: float, q0: np.ndarray, end: float, upstream: Upstrea
     smallest = MIN_STEP * max(span, 1e-300)
     i, step = 0, h
     while i < len(grid):
-        target = float(grid[i]) if abs(step) >= abs(grid[i] - x) else x + step
+        # the grid point when the step reaches it (to rounding: grid[i] - x may be h and a few ulps, which once
+        # stepped just short of it and then the ulps, two solves for one step)
+        target = float(grid[i]) if abs(step) >= abs(grid[i] - x) * (1.0 - 1e-9) else x + step
         at_grid = target == float(grid[i])
         known = {b: _take(p, i) for b, p in known_grid.items()} if at_grid else upstream(np.array([target]))
         guess = q if prev is None else q + (q - prev[1]) * (target - x) / (x - prev[0])

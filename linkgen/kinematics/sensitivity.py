@@ -590,7 +590,7 @@ def perturbed(linkage: Linkage, params: np.ndarray, model: SlackModel | None = N
         points[p] = (float(places[0][0]), float(places[0][1]))
     turned = {b: float(turns[b][0]) for b in moving}
     sliders = tuple(replace(sl, angle=sl.angle + turned.get(sl.guide, 0.0)) for sl in s.sliders)
-    made = replace(linkage, structure=replace(s, points=points, sliders=sliders), flips=())
+    made = replace(linkage, structure=replace(s, points=points, sliders=sliders), flips=(), tracks={})
     shift = np.array([made.drawn_inputs[i] - linkage.drawn_inputs[i] if inp.kind == "crank" else 0.0
                       for i, inp in enumerate(s.inputs)])
     return Perturbed(made, shift, turned)
