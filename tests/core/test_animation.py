@@ -57,8 +57,9 @@ def test_linkage_gif_count_size_and_one_cycle(tmp_path):
     assert np.abs(again - drawn[0]).mean() < 0.05          # the same pose: only edge pixels may round otherwise
     assert np.abs(drawn[6] - drawn[0]).mean() > 1.0        # half a turn on, the linkage has moved
     assert np.abs(drawn[-1] - drawn[0]).mean() > 0.1       # the last frame is a step before the first, not it
-    # the GIF holds those frames (a palette of 256 colours a frame: a small error per pixel)
-    assert np.abs(read - drawn).mean() < 3.0
+    # the GIF holds those frames (a palette of 256 colours a frame: a small error at every pixel, none far off: median
+    # cut's palette had a mean error of 0.01 but left some antialiased pixels over 100 off on a channel)
+    assert np.abs(read - drawn).mean() < 3.0 and np.abs(read - drawn).max() <= 16
     one = tmp_path / "again.gif"
     write_animation(again[None].astype(np.uint8), one, "gif", 24)
     assert np.abs(gif_frames(one)[1][0] - read[0]).mean() < 0.5

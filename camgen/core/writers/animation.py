@@ -2,8 +2,9 @@
 (imageio with imageio-ffmpeg, the ``anim`` extra). The file is written to a temporary name beside it, then renamed,
 so that a failed encoding leaves no file behind.
 
-GIF: every frame quantised to its own adaptive palette of 256 colours, no dithering, looping for ever: the same
-frames give the same bytes. MP4: H.264 (libx264), WebM: VP9 (libvpx-vp9), both yuv420p for any player.
+GIF: every frame quantised to its own adaptive palette of 256 colours (Pillow's fast octree), no dithering,
+looping for ever: the same frames give the same bytes. MP4: H.264 (libx264), WebM: VP9 (libvpx-vp9), both yuv420p
+for any player.
 """
 from __future__ import annotations
 
@@ -46,7 +47,10 @@ def write_animation(frames: np.ndarray, path: Path, fmt: str, fps: float) -> Non
 def _gif(frames: np.ndarray, path: Path, fps: float) -> None:
     from PIL import Image
 
-    images = [Image.fromarray(f).quantize(256, dither=Image.Dither.NONE) for f in frames]
+    # the fast octree: about 2 ms a 640 x 480 frame against median cut's 18 ms (most of `animate`'s time), each
+    # pixel within 14 of its colour on every channel (median cut: a mean of 0.01 but some pixels 112 off)
+    images = [Image.fromarray(f).quantize(256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+              for f in frames]
     images[0].save(path, format="GIF", save_all=True, append_images=images[1:], loop=0,
                    duration=round(1000 / fps), optimize=False, disposal=1)
 
