@@ -138,17 +138,57 @@ def outlines(body: Body, phi: np.ndarray) -> np.ndarray:
     return _shapes(body, phi)
 
 
+#: how far (mm) a joint's centre may wander in a body's own frame over the angles and still be taken as fixed there
+FIXED_TOL_MM = 1e-6
+
+
+def _placed(m: np.ndarray, t: np.ndarray, local: Any) -> np.ndarray:
+    """A geometry ``local`` in a body's own frame (any shapely geometry: a polygon with holes, several) placed by
+    each of its placements ``m`` (n, 2, 2), ``t`` (n, 2) mm: (n,) geometries, mm."""
+    x, y = shapely.get_coordinates(local).T
+    moved = np.stack([m[:, 0, 0, None] * x + m[:, 0, 1, None] * y + t[:, 0, None],
+                      m[:, 1, 0, None] * x + m[:, 1, 1, None] * y + t[:, 1, None]], -1)
+    # set_coordinates fills the copies' coordinates in order, one copy's after another's: moved's rows
+    return shapely.set_coordinates(np.full(len(m), local, dtype=object), moved.reshape(-1, 2))
+
+
+def _cut(a: Body, b: Body, joint: Joint, phi: np.ndarray, placed: tuple[np.ndarray, np.ndarray] | None
+         ) -> tuple[np.ndarray, np.ndarray] | None:
+    """The pair's shapes with the joint's disc taken out of one of them in its own frame, where the joint's centre
+    is fixed in that body's frame (within :data:`FIXED_TOL_MM` over ``phi``: a pin through it, a roller's centre):
+    (that body less the disc, the other body: ``placed``'s where given) at ``phi``, whose overlap is the pair's
+    outside the disc. None where the centre moves in both bodies' frames."""
+    centre = joint.centre(phi)
+    for side, (cut, other) in enumerate(((a, b), (b, a))):
+        m, t = (np.asarray(v) for v in cut.place(phi))
+        local = np.linalg.solve(m, (centre - t)[:, :, None])[:, :, 0]          # M^-1 (centre - t), its own frame
+        if np.max(np.abs(local - local[0]), initial=0.0) > FIXED_TOL_MM:
+            continue
+        outline = shapely.polygons(cut.outline)
+        if not shapely.is_valid(outline):
+            outline = shapely.make_valid(outline)
+        disc = shapely.buffer(shapely.points(local[0]), joint.radius, quad_segs=32)
+        return (_placed(m, t, shapely.difference(outline, disc)),
+                _shapes(other, phi) if placed is None else placed[1 - side])
+    return None
+
+
 def _overlap(a: Body, b: Body, joint: Joint | None, phi: np.ndarray,
              placed: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Where (bool (n,)) bodies ``a`` and ``b`` overlap at angles ``phi``, outside their joint's disc; ``placed``:
-    their outlines at ``phi`` (:func:`outlines`) where the caller has them already."""
-    pa, pb = placed if placed is not None else (_shapes(a, phi), _shapes(b, phi))
+    their outlines at ``phi`` (:func:`outlines`) where the caller has them already.
+
+    With a joint whose centre is fixed in one body's frame, the disc is taken out of that body once, in its frame
+    (:func:`_cut`; (A and B) less D is (A less D) and B): most angles of a pair meeting only at its pin then need
+    no intersection at all, where each needed one, a disc and a difference."""
+    cut = _cut(a, b, joint, phi, placed) if joint is not None else None
+    pa, pb = cut if cut is not None else placed if placed is not None else (_shapes(a, phi), _shapes(b, phi))
     near = shapely.intersects(pa, pb)
     out = np.zeros(len(phi), bool)
     if not near.any():
         return out
     common = shapely.intersection(pa[near], pb[near])
-    if joint is not None:
+    if joint is not None and cut is None:
         discs = shapely.buffer(shapely.points(joint.centre(phi[near])), joint.radius, quad_segs=32)
         common = shapely.difference(common, discs)
     out[near] = shapely.area(common) > AREA_TOL_MM2
