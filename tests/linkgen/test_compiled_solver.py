@@ -23,7 +23,11 @@ from linkgen.kinematics.structure import Input, make_structure
 from tests.conftest import ROOT
 from tests.support.random_six_bars import random_six_bars
 
-pytestmark = pytest.mark.skipif(not compiled.available(), reason="numba is not installed (pip install '.[fast]')")
+#: one worker runs every check of the compiled kernels, so that numba compiles them once a run (about 9 CPU s; the
+#: other worker then loads them from numba's cache on disk, or never needs them)
+GROUP = "compiled-kernels"
+pytestmark = [pytest.mark.skipif(not compiled.available(), reason="numba is not installed (pip install '.[fast]')"),
+              pytest.mark.xdist_group(GROUP)]
 
 #: the bundled templates made of a crank and RRR dyads only: the kernels solve them
 FUSED = ("jansen", "klann", "watt1", "watt2", "stephenson1", "stephenson3", "pantograph", "single-dwell")

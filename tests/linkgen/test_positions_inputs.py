@@ -14,10 +14,15 @@ import pytest
 import linkgen
 from camgen.core.errors import SpecError
 from linkgen.kinematics import compiled
+from tests.linkgen.test_compiled_solver import GROUP
 from linkgen.kinematics.linkage import Linkage
 from tests.conftest import ROOT
 
-needs_numba = pytest.mark.skipif(not compiled.available(), reason="numba is not installed (pip install '.[fast]')")
+def needs_numba(test):
+    """A check of the compiled kernel: skipped without numba, and run by the worker that runs the kernel's own checks
+    (tests/linkgen/test_compiled_solver.py's :data:`GROUP`), so that numba compiles the kernels once a run."""
+    skip = pytest.mark.skipif(not compiled.available(), reason="numba is not installed (pip install '.[fast]')")
+    return pytest.mark.xdist_group(GROUP)(skip(test))
 
 
 def _linkage(name: str) -> Linkage:
@@ -59,7 +64,7 @@ def test_a_changed_linkage_gets_its_own_program():
         assert np.abs(got.points[name][got.ok] - xy[want.ok]).max() <= 1e-12, name
 
 
-@pytest.mark.parametrize("engine", ["numpy", "numba"])
+@pytest.mark.parametrize("engine", ["numpy", pytest.param("numba", marks=pytest.mark.xdist_group(GROUP))])
 @pytest.mark.parametrize("bad", [math.inf, -math.inf, math.nan])
 def test_a_value_that_is_not_finite_anywhere_is_refused_by_either_engine(engine, bad):
     if engine == "numba" and not compiled.available():
