@@ -36,8 +36,6 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
-from scipy.integrate import solve_ivp
-from scipy.interpolate import CubicHermiteSpline, CubicSpline, PPoly
 
 from camgen.core.errors import SolverError, SpecError
 from linkgen.dynamics.motor import Motor
@@ -46,6 +44,8 @@ from linkgen.kinematics.kinetostatics import Loads, kinetostatics
 from linkgen.kinematics.linkage import Linkage
 
 if TYPE_CHECKING:
+    from scipy.interpolate import PPoly
+
     from linkgen.dynamics.flywheel import FlywheelSize
     from linkgen.dynamics.table import DynamicsTable
 
@@ -117,6 +117,10 @@ def equation_of(linkage: Linkage, masses: Mapping[str, LinkMass], loads: Loads, 
     if not (np.isfinite(j).all() and np.isfinite(dj).all() and np.isfinite(q).all()):
         raise SpecError("the linkage locks somewhere over the turn (its inertia or the torque it needs is not "
                         "finite): it cannot be driven through it", "dynamics.motor")
+    # scipy's splines and integrators are imported where a motion is worked out (they and what they import, scipy's
+    # special functions and optimisers, are about 0.35 s of every linkage command's start that never needs them)
+    from scipy.interpolate import CubicHermiteSpline, CubicSpline, PPoly
+
     j, dj, q = (np.append(v, v[0]) for v in (j, dj, q))
     dq = CubicSpline(theta, q, bc_type="periodic")(theta, 1)
     spline = CubicHermiteSpline(theta, np.column_stack([j, q]), np.column_stack([dj, dq]))
@@ -251,6 +255,8 @@ def simulate(eq: EquationOfMotion, time: float, turns: int = MAX_TURNS, settle: 
     stall = None
     last_turn = None
     step: float | None = None
+    from scipy.integrate import solve_ivp
+
     how = method(eq)
     endless = m.constant and m.viscous == 0
     while t < time:

@@ -237,3 +237,25 @@ def test_stl_reads_back(meshes):
     cross = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     cross /= np.linalg.norm(cross, axis=1)[:, None]
     assert np.allclose(facets["n"], cross, atol=1e-5)
+
+
+#: scipy's subpackages a linkage's or a machine's build needs none of, unless its template asks for a motion from
+#: rest, a speed profile or a slider's guide (about 0.35 s of the command's start: special functions, optimisers,
+#: splines, integrators and what they import)
+SCIPY_HEAVY = ("scipy.integrate", "scipy.interpolate", "scipy.optimize", "scipy.special")
+
+
+@pytest.mark.parametrize(("program", "name"), [("linkgen", "crank-rocker"), ("linkgen", "eightbar-triad"),
+                                               ("camgen", "automaton")])
+def test_a_linkage_or_machine_build_loads_no_scipy_subpackage_it_does_not_use(tmp_path, program, name):
+    modules = _modules(_command(program, "build", str(ROOT / "templates" / f"{name}.toml"), "-o", str(tmp_path)))
+    assert (tmp_path / f"{name}.json").is_file()
+    assert not {m for m in modules for pkg in SCIPY_HEAVY if m == pkg or m.startswith(pkg + ".")}
+
+
+def test_a_motion_from_rest_still_finds_scipy_s_integrator(tmp_path):
+    """The dynamics' spline and integrator are imported where a motion is worked out: a template that asks for one
+    (jansen-motor.toml) still builds, and loads them."""
+    modules = _modules(_command("linkgen", "build", str(ROOT / "templates" / "jansen-motor.toml"), "-o",
+                                str(tmp_path)))
+    assert (tmp_path / "jansen-motor.json").is_file() and {"scipy.integrate", "scipy.interpolate"} <= modules
