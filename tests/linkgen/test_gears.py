@@ -267,6 +267,78 @@ def test_the_build_time_overlap_check_sees_teeth_too_thick_to_mesh(kind, z1, x1,
     assert overlap(GearPair(kind, rack, z1, x1, z2, x2, -0.05), travel=40.0) is not None
 
 
+def _every_vertex(pair: GearPair, travel: float) -> dict:
+    """The overlap check's sweep worked without its shortcuts: both outlines flattened as the check flattens them,
+    and every vertex of each placed at every step of the pitch at once (complex rotations) in the other member's
+    frame: the polygons, the vertices, the steps and the placed vertices."""
+    from camgen.core.shapes import Circle
+    from linkgen.mechanisms.gearparts import CHECK_RESOLUTION
+
+    res = CHECK_RESOLUTION * pair.module
+    shapes = outlines(pair, res, travel)
+    p_pts, o_pts = Contour(*shapes.pinion).flatten(res), Contour(*shapes.other).flatten(res)
+    pinion = shapely.Polygon(p_pts)
+    if pair.kind == "internal":
+        rim = Circle((0.0, 0.0), pair.gear_tooth.tip_radius + 2 * pair.module).flatten(res)
+        other = shapely.Polygon(rim, [o_pts])
+    else:
+        other = shapely.Polygon(o_pts)
+    first, _ = pair.mesh_phases
+    pitch = 2 * math.pi / pair.pinion_teeth
+    steps = math.ceil(pitch * pair.pinion_tooth.tip_radius / res)
+    theta = first + pitch * np.arange(steps + 1) / steps
+    where = pair.gear_angle(theta)
+    turn = np.zeros_like(where) if pair.kind == "rack" else where
+    origin = (np.column_stack([where, np.full_like(where, -pair.centre_distance)]) if pair.kind == "rack"
+              else np.tile([pair.centre_distance, 0.0], (len(where), 1)))
+
+    def turned(xy, a):                                      # xy (k or 1, m, 2) each turned by its own of a (k,)
+        z = (xy[..., 0] + 1j * xy[..., 1]) * np.exp(1j * a)[:, None]
+        return np.stack([z.real, z.imag], -1)
+
+    return {"pinion": pinion, "other": other, "p_pts": p_pts, "o_pts": o_pts, "theta": theta, "where": where,
+            "res": res, "reach": pair.pinion_tooth.tip_radius + res,
+            "o_in_p": turned(turned(o_pts[None], turn) + origin[:, None], -theta),
+            "p_in_o": turned(turned(p_pts[None], theta) - origin[:, None], -turn)}
+
+
+def _first_overlap_every_vertex(sweep: dict) -> float | None:
+    """The first step of :func:`_every_vertex`'s sweep at which a vertex lies inside the other member, or None."""
+    o_in_p, p_in_o = sweep["o_in_p"], sweep["p_in_o"]
+    hit = (shapely.contains_xy(sweep["pinion"], o_in_p[..., 0], o_in_p[..., 1]).any(axis=1)
+           | shapely.contains_xy(sweep["other"], p_in_o[..., 0], p_in_o[..., 1]).any(axis=1))
+    return float(sweep["theta"][np.argmax(hit)]) if hit.any() else None
+
+
+#: pairs whose teeth clear (0.05 mm of backlash), just touch (0) and overlap by a little and by more (negative)
+OVERLAPS = [("external", 12, 0.3, 30, 0.0, 0.05), ("external", 8, 0.0, 40, 0.0, -0.002),
+            ("internal", 20, 0.0, 50, 0.5, 0.0), ("internal", 12, 0.0, 30, 0.3, -0.05),
+            ("rack", 18, 0.0, 0, 0.0, -0.002), ("rack", 12, 0.35, 0, 0.0, 0.05)]
+
+
+@pytest.mark.parametrize(("kind", "z1", "x1", "z2", "x2", "backlash"), OVERLAPS)
+def test_the_overlap_check_is_every_vertex_at_every_step(kind, z1, x1, z2, x2, backlash):
+    """The build's overlap check (which tests only the vertices that can come near, a block of steps at a time)
+    gives the first step the brute force over every vertex at every step gives, or None with it; and the vertices
+    it leaves out are never near the pinion's centre nor inside the other member at any step."""
+    from linkgen.mechanisms.gearparts import _reachable, overlap
+
+    pair = GearPair(kind, BasicRack(2.0, math.radians(20)), z1, x1, z2, x2, backlash)
+    travel = 40.0 if kind == "rack" else 0.0
+    sweep = _every_vertex(pair, travel)
+    expected = _first_overlap_every_vertex(sweep)
+    assert overlap(pair, travel) == (None if expected is None else pytest.approx(expected, abs=1e-12))
+    assert (expected is None) == (backlash > 0) or backlash == 0
+    o_kept, p_kept = _reachable(pair, sweep["o_pts"], sweep["p_pts"], sweep["other"], sweep["theta"],
+                                sweep["where"], sweep["reach"], sweep["res"])
+    o_in_p, p_in_o = sweep["o_in_p"], sweep["p_in_o"]
+    near = (np.hypot(o_in_p[..., 0], o_in_p[..., 1]) <= sweep["reach"]).any(axis=0)
+    inside = shapely.contains_xy(sweep["other"], p_in_o[..., 0], p_in_o[..., 1]).any(axis=0)
+    assert not (near & ~o_kept).any() and not (inside & ~p_kept).any()
+    assert (o_kept.sum() + p_kept.sum()) / (len(o_kept) + len(p_kept)) < 0.3      # and it leaves most out
+    assert near.any() and (inside.any() or backlash > 0)                 # the comparison is not of nothing
+
+
 # ------------------------------------------------------------------------------------------ contact ratio
 
 def _aw_50_digits(a: float, total: float, span: int) -> float:
