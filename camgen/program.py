@@ -302,6 +302,17 @@ class Program:
         """The segments as arrays, to evaluate any of them at once (see :class:`_Table`)."""
         return _Table(self.segments)
 
+    def extents(self, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The start and angle (radians, (m,) each) of the segments ``index`` (m,): their :attr:`Segment.start` and
+        :attr:`Segment.beta`, taken from the table's rows in one pass."""
+        rows = self._table.rows
+        return rows[_START].take(index), rows[_BETA].take(index)
+
+    @property
+    def dwells(self) -> np.ndarray:
+        """Whether each segment is a dwell by its kind, (m,) bool (read-only)."""
+        return self._table.dwells
+
     def evaluate_on(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """s, s', s'', s''' (shape ``(4, n)``) at cam angles ``theta`` (n,) (radians) each on the segment ``index``
         (n,) gives, as :meth:`Segment.evaluate` makes them (one-sided at the segment's ends), all at once."""
@@ -462,7 +473,11 @@ class _Table:
         table[_ADDED.start + 1:_ADDED.stop] = zero
         table[_FACTORS.start::2][:2] = even
         table[_FACTORS.start + 1::2][:2] = np.where(moving, sign, 0.0)
-        table[_H] = np.where(np.fromiter((k != "dwell" for k in kinds), bool, m), lift, 0.0)
+        dwells = np.fromiter((k == "dwell" for k in kinds), bool, m)
+        table[_H] = np.where(dwells, 0.0, lift)
+        dwells.setflags(write=False)
+        #: whether each segment is a dwell by its kind (m,) bool, read-only (see :attr:`Program.dwells`)
+        self.dwells = dwells
         laws: list[Law | None] = []
         group = _groups(laws, [law if move else None for law, move in zip(laws_of, moving.tolist(), strict=True)])
         # every segment's Segment.scale, made in one pass from the table's contiguous h and beta rows: in _natural's
