@@ -422,6 +422,7 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
             aux = g.theta.take(pick)
             d1, kappa = g.d1.take(pick.ravel(), axis=0), g.kappa.take(pick.ravel())
             groups.append((members, aux, _density(aux, d1, kappa, tolerance, rr)))
+    del g                                               # the first round's geometry, not held through the next
     factor = np.ones(len(stretches))
     live = np.arange(len(stretches))
     err = np.empty(len(stretches))                     # every stretch's set in the first round
