@@ -560,7 +560,7 @@ def _segments(stretches: list[tuple[int, Span]]) -> np.ndarray:
 def _extents(cam: Cam, stretches: list[tuple[int, Span]],
              whole: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The segments (m,) (intp) of ``stretches`` and where each starts and how wide it is (radians, (m,) each): a
-    whole segment's :attr:`Segment.start` and :attr:`Segment.beta` (:meth:`Program.extents`), a span's start and
+    whole segment's ``start`` and ``beta`` (:meth:`Program.extents`), a span's start and
     its end less its start. ``whole``: the caller knows every stretch to be a whole segment."""
     at = _segments(stretches)
     if whole or all(span is None for _, span in stretches):

@@ -304,8 +304,8 @@ class Program:
         return _Table(self.segments)
 
     def extents(self, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The start and angle (radians, (m,) each) of the segments ``index`` (m,): their :attr:`Segment.start` and
-        :attr:`Segment.beta`, taken from the table's rows in one pass."""
+        """The start and angle (radians, (m,) each) of the segments ``index`` (m,): their ``start`` and ``beta`` (see
+        :class:`Segment`), taken from the table's rows in one pass."""
         rows = self._table.rows
         return rows[_START].take(index), rows[_BETA].take(index)
 
