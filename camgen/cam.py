@@ -117,7 +117,7 @@ class Cam:
     def _keep(self, motion: np.ndarray, g: PitchGeometry) -> Boundaries:
         """Keep the boundaries' ``motion`` (4, 2n) and pitch geometry ``g`` (2n) as :meth:`boundaries`."""
         n = len(self.program.segments)
-        known = self._evaluated.boundaries = Boundaries(motion, g.part(0, n), g.part(n, 2 * n))
+        known = self._evaluated.boundaries = Boundaries(motion.copy(), _own(g, 0, n), _own(g, n, 2 * n))
         return known
 
     def boundary_geometry(self) -> tuple[PitchGeometry, PitchGeometry]:
@@ -221,6 +221,13 @@ class Cam:
             ahead = side.d1[i] / side.face_rho[i]                 # the way a sound profile runs there
             out.append((i, float(gap @ ahead / np.linalg.norm(ahead))))
         return out
+
+
+def _own(g: PitchGeometry, start: int, stop: int) -> PitchGeometry:
+    """The samples ``start`` to ``stop`` of ``g`` in arrays of their own (copies, not views of ``g``'s)."""
+    part = g.part(start, stop)
+    return PitchGeometry(part.theta.copy(), part.point.copy(), part.d1.copy(), part.d2.copy(), part.normal.copy(),
+                         part.kappa.copy(), part.pressure_angle.copy(), None if part.rho is None else part.rho.copy())
 
 
 def corner_turns(left: np.ndarray, right: np.ndarray, sense: int) -> tuple[tuple[int, float], ...]:

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import contextvars
 import functools
-import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -49,6 +49,27 @@ class Outline:
     contour: Contour
     max_error_mm: float
     envelope: bool
+
+
+@dataclass(frozen=True)
+class _Made:
+    """Stretches made together (every moving stretch's chords, or every dwell's arcs): their vertices (n, 2) and
+    bulges (n,), one stretch after another (each one's end left to what follows), each stretch's count of them
+    (m,) and its measured error (mm, m floats). ``made[k]`` is stretch ``k``'s (vertices, bulges, error), views of
+    the whole."""
+
+    vertices: np.ndarray
+    bulges: np.ndarray
+    sizes: np.ndarray
+    errors: list[float]
+
+    def __len__(self) -> int:
+        return len(self.errors)
+
+    def __getitem__(self, k: int) -> tuple[np.ndarray, np.ndarray, float]:
+        stop = int(self.sizes[:k + 1].sum())
+        start = stop - int(self.sizes[k])
+        return self.vertices[start:stop], self.bulges[start:stop], self.errors[k]
 
 
 def _surface(g: PitchGeometry, rr: float) -> np.ndarray:
@@ -217,7 +238,8 @@ def _unit(k: int) -> np.ndarray:
     return out
 
 
-def _shared_grid(cam: Cam, stretches: list[tuple[int, Span]]) -> tuple[Ask, list[tuple[np.ndarray, np.ndarray]]] | None:
+def _shared_grid(cam: Cam, stretches: list[tuple[int, Span]],
+                 segment: np.ndarray | None = None) -> tuple[Ask, list[tuple[np.ndarray, np.ndarray]]] | None:
     """The peaks' search grid as the ask of the spacing's grids of whole moving ``stretches`` (see
     :meth:`Program.search_grid`: the very arrays, so that a design that searches its peaks in the same round
     evaluates them once), and the spacing's grids in it: every second point of each segment's search grid (of n
@@ -225,14 +247,14 @@ def _shared_grid(cam: Cam, stretches: list[tuple[int, Span]]) -> tuple[Ask, list
     its end (a return's law variable runs from its end); the stretches by the size of their grids, (their places
     among the stretches (c,), where their grids lie in the answer (c, (n + 1) / 2)) each. None where the stretches
     are not every moving segment whole, in order, or a segment is several smooth pieces (each then asks its own
-    grid)."""
+    grid). ``segment``: the stretches' segments (m,), where the caller has them."""
     grid = cam.program.search_grid(cam.steady)
     if grid is None or any(span is not None for _, span in stretches):
         return None
     index, v, sizes = grid
     first = np.cumsum(sizes) - sizes
     moving = index.take(first) if sizes.size else first
-    if moving.size != len(stretches) or moving.tolist() != [i for i, _ in stretches]:
+    if not np.array_equal(moving, _segments(stretches) if segment is None else segment):
         return None
     segments = cam.program.segments
     back = np.array([segments[i].kind == "return" for i in moving.tolist()], dtype=bool)
@@ -285,7 +307,7 @@ def _spaced(index: int, aux: np.ndarray, cum: np.ndarray, tolerance: float, fact
     return _spaced_all([index], aux[None, :], cum[None, :], tolerance, np.array([factor]))[0]
 
 
-def _spaced_all(index: list[int], aux: np.ndarray, cum: np.ndarray, tolerance: float,
+def _spaced_all(index: Sequence[int] | np.ndarray, aux: np.ndarray, cum: np.ndarray, tolerance: float,
                 factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`_spaced` of every stretch at once: the grids ``aux`` (m, k) (radians), their counts of chords ``cum``
     (m, k) (see :func:`_density`) and densifications ``factor`` (m,) of the segments ``index`` (m, for the error).
@@ -339,15 +361,15 @@ def _spaced_all(index: list[int], aux: np.ndarray, cum: np.ndarray, tolerance: f
     return theta, sizes
 
 
-def _spaced_groups(groups: list[tuple[np.ndarray, np.ndarray, np.ndarray]], live: list[int], index: list[int],
+def _spaced_groups(groups: list[tuple[np.ndarray, np.ndarray, np.ndarray]], live: np.ndarray, index: np.ndarray,
                    tolerance: float, factor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_spaced_all` of the stretches ``live`` (in that order) whose grids come in ``groups`` of one size:
-    (their places among all stretches (c,), their grids (c, k) and counts of chords (c, k)) each; each group spaced
-    at once, the stretches' angles then put in the order of ``live`` (a single group's as they come)."""
+    """:func:`_spaced_all` of the stretches ``live`` (their places among all, in that order) whose grids come in
+    ``groups`` of one size: (their places among all stretches (c,), their grids (c, k) and counts of chords (c, k))
+    each; each group spaced at once, the stretches' angles then put in the order of ``live`` (a single group's as
+    they come). ``index``: every stretch's segment (for the error)."""
     if len(groups) == 1:
         members, aux, cum = groups[0]
-        rows = np.asarray(live, dtype=np.intp)
-        return _spaced_all([index[j] for j in live], aux[rows], cum[rows], tolerance, factor[rows])
+        return _spaced_all(index[live], aux[live], cum[live], tolerance, factor[live])
     place = np.full(len(factor), -1, dtype=np.intp)
     place[live] = np.arange(len(live))
     parts, sizes = [], np.empty(len(live), dtype=np.intp)
@@ -357,7 +379,7 @@ def _spaced_groups(groups: list[tuple[np.ndarray, np.ndarray, np.ndarray]], live
         if not rows.size:
             continue
         who = members[rows]
-        theta, counts = _spaced_all([index[j] for j in who.tolist()], aux[rows], cum[rows], tolerance, factor[who])
+        theta, counts = _spaced_all(index[who], aux[rows], cum[rows], tolerance, factor[who])
         parts.append(theta)
         sizes[place[who]] = counts
         owner.append(np.repeat(place[who], counts))
@@ -371,20 +393,21 @@ Span = tuple[float, float] | None
 ErrorMode = Literal["ignore", "warn", "raise", "call", "print", "log"]
 
 
-def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float, share: bool = False) -> Maker:
+def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float, share: bool = False,
+            segment: np.ndarray | None = None) -> Maker:
     """Makes the chords of the moving segments (or their spans) ``stretches``, (segment index, span or None) each,
     all at once: vertices spaced from the surface's curvature, then densified until their measured error is within
     ``tolerance``; returns each stretch's vertices (its end's left to what follows), zero bulges and error. With
     ``share`` the spacing's grids are every second point of the peaks' search grid where they can be (see
-    :func:`_shared_grid`), for a design that searches its peaks in the same rounds."""
-    index = [i for i, _ in stretches]
-    segments = cam.program.segments
-    ranges = [(segments[i].start, segments[i].end) if span is None else span for i, span in stretches]
-    shared = _shared_grid(cam, stretches) if share else None
+    :func:`_shared_grid`), for a design that searches its peaks in the same rounds. ``segment``: the stretches'
+    segments (m,), where the caller has them."""
+    if segment is None:
+        segment = _segments(stretches)
+    shared = _shared_grid(cam, stretches, segment) if share else None
     if shared is None:
-        grids = _grids(ranges)
-        at = np.array(index)
-        (g,) = yield [(np.concatenate([at[members].repeat(aux.shape[1]) for members, aux in grids]),
+        segments = cam.program.segments
+        grids = _grids([(segments[i].start, segments[i].end) if span is None else span for i, span in stretches])
+        (g,) = yield [(np.concatenate([segment[members].repeat(aux.shape[1]) for members, aux in grids]),
                        np.concatenate([aux.ravel() for _, aux in grids]), False)]
         groups, start = [], 0
         for members, aux in grids:
@@ -399,47 +422,64 @@ def _chords(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: f
             aux = g.theta.take(pick)
             d1, kappa = g.d1.take(pick.ravel(), axis=0), g.kappa.take(pick.ravel())
             groups.append((members, aux, _density(aux, d1, kappa, tolerance, rr)))
+    del g                                               # the first round's geometry, not held through the next
     factor = np.ones(len(stretches))
-    results: list[Any] = [None] * len(stretches)
-    live = list(range(len(stretches)))
-    err = [math.inf] * len(stretches)
+    live = np.arange(len(stretches))
+    err = np.empty(len(stretches))                     # every stretch's set in the first round
+    done: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []     # each round's stretches within the tolerance
     for _ in range(40):
-        theta, counts = _spaced_groups(groups, live, index, tolerance, factor)
-        sizes = counts.tolist()
-        n = sum(sizes)
+        theta, counts = _spaced_groups(groups, live, segment, tolerance, factor)
+        n = theta.size
         # one ask: the vertices, then the probes of every span between neighbouring vertices (probe by probe), one
         # stretch's last to the next one's first too (none of theirs, its error left out): its probes sit at its
         # start (a width of 0.0, as x - x is), a point of its own segment
         angles = np.empty(n + _PROBES * (n - 1))
         vertex = angles[:n]
         vertex[:] = theta
-        ahead = list(itertools.accumulate(sizes))       # each stretch's end, one past its last vertex
-        across = [k - 1 for k in ahead[:-1]]            # the spans from one stretch to the next
+        ahead = np.cumsum(counts)                       # each stretch's end, one past its last vertex
+        across = ahead[:-1] - 1                         # the spans from one stretch to the next
         width = vertex[1:] - vertex[:-1]
         width[across] = 0.0
         _across(vertex[:-1], width, _PROBES, angles[n:].reshape(_PROBES, n - 1))
-        # each span's probes on its first vertex's segment: every stretch's but the last's last
-        (g,) = yield [(np.array([index[j] for j in live] * (1 + _PROBES)).repeat(
-            sizes + [*sizes[:-1], sizes[-1] - 1] * _PROBES), angles, False)]
+        # each vertex on its stretch's segment, each span's probes on its first vertex's
+        on = segment.take(live).repeat(counts)
+        (g,) = yield [(np.concatenate([on, *[on[:-1]] * _PROBES]), angles, False)]
         at = _planes(g, rr)
         spans = _chord_errors(at[:, :n], at[:, n:].reshape(2, _PROBES, n - 1), g.kappa[n:], rr)
         spans[across] = 0.0                             # under any error (errors are >= 0 or NaN)
-        worst = np.maximum.reduceat(spans, [0, *ahead[:-1]])
-        points = at[:, :n].T.copy()                     # the vertices (n, 2), in rows as a contour holds them
-        zeros = np.zeros(n)                             # every stretch's bulges, sliced
-        still = []
-        for j, e, stop, size in zip(live, worst.tolist(), ahead, sizes, strict=True):
-            err[j] = e
-            if e <= tolerance:
-                results[j] = (points[stop - size:stop - 1], zeros[stop - size:stop - 1], e)
-            else:
-                factor[j] *= max(1.1, math.sqrt(e / tolerance))
-                still.append(j)
-        live = still
-        if not live:
-            return results
-    raise DesignError(f"output.tolerance: the outline of motion[{index[live[0]]}] cannot be brought within "
-                      f"{tolerance} mm (reached {err[live[0]]:.3g} mm); loosen the tolerance")
+        worst = np.maximum.reduceat(spans, ahead - counts)
+        err[live] = worst
+        good = worst <= tolerance                       # not NaN
+        # the vertices of the stretches within the tolerance, each one's end left to what follows
+        keep = good.repeat(counts)
+        keep[ahead - 1] = False
+        done.append((live[good], counts[good] - 1, at[:, :n].T[keep]))
+        bad = ~good
+        if not bad.any():
+            return _Made(*_in_order(done, len(stretches)), err.tolist())
+        # math.sqrt's and max's numbers: fmax keeps 1.1 where the quotient is NaN, as max(1.1, nan) does
+        live = live[bad]
+        factor[live] *= np.fmax(1.1, np.sqrt(worst[bad] / tolerance))
+    first = int(live[0])
+    raise DesignError(f"output.tolerance: the outline of motion[{segment[first]}] cannot be brought within "
+                      f"{tolerance} mm (reached {err[first]:.3g} mm); loosen the tolerance")
+
+
+def _in_order(done: list[tuple[np.ndarray, np.ndarray, np.ndarray]],
+              m: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The vertices (n, 2) of ``m`` stretches made in rounds (``done``: each round's stretches (k,), in order, their
+    counts of vertices (k,) and their vertices, one stretch after another), stretch by stretch, each one's in
+    order; zero bulges (n,) and each stretch's count (m,)."""
+    if len(done) == 1:                                  # one round: every stretch, in order
+        _, sizes, points = done[0]
+    else:
+        who = np.concatenate([w for w, _, _ in done])
+        count = np.concatenate([c for _, c, _ in done])
+        order = np.argsort(who.repeat(count), kind="stable")
+        points = np.concatenate([v for _, _, v in done])[order]
+        sizes = np.empty(m, dtype=np.intp)
+        sizes[who] = count
+    return points, np.zeros(len(points)), sizes
 
 
 def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Maker:
@@ -485,22 +525,21 @@ def _biarcs(cam: Cam, index: int, tolerance: float, rr: float, span: Span) -> Ma
                       "loosen the tolerance")
 
 
-def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
+def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float, whole: bool = False) -> Maker:
     """Makes the exact arcs about the cam centre (up to 90 degrees an arc) of the dwells (or their spans)
     ``stretches``, (segment index, span or None) each, all at once: each one's vertices and bulges and their
     measured error (a list). A dwell's n arcs need n vertices (its end's left to what follows, as every stretch's)
-    and 8 n - 1 probes, asked in one ask (every dwell's vertices, then every dwell's probes)."""
-    segments = cam.program.segments
+    and 8 n - 1 probes, asked in one ask (every dwell's vertices, then every dwell's probes). ``whole``: the
+    caller knows every stretch to be a whole segment (no span)."""
     turn = -cam.follower.sense
-    at, start, beta = np.array([(i, segments[i].start, segments[i].beta) if span is None else
-                                (i, span[0], span[1] - span[0]) for i, span in stretches]).T
+    at, start, beta = _extents(cam, stretches, whole)
     n = np.maximum(np.ceil(beta / (math.pi / 2) - 1e-12), 1.0)
     probes = 8 * n - 1
     dwell, k = _ranks(n.astype(np.intp))                # each vertex's dwell and its place in it
     near, j = _ranks(probes.astype(np.intp))            # each probe's, its place counted from 1
     theta = start[dwell] + beta[dwell] * k / n[dwell]
     probe = start[near] + beta[near] * ((j + 1) / (8 * n[near]))
-    (g,) = yield [(at[np.concatenate([dwell, near])].astype(np.intp), np.concatenate([theta, probe]), False)]
+    (g,) = yield [(at[np.concatenate([dwell, near])], np.concatenate([theta, probe]), False)]
     surface = _surface(g, rr)                           # in rows, as a contour holds them
     vertices = theta.size
     distance = _length(surface)                         # from the cam centre
@@ -510,7 +549,26 @@ def _dwells(cam: Cam, stretches: list[tuple[int, Span]], rr: float) -> Maker:
     off = np.abs(distance[vertices:] - distance[first[near]])
     err = np.maximum.reduceat(off, (np.cumsum(probes) - probes).astype(np.intp)).tolist()
     bulge = np.tan(turn * beta / n / 4.0)[dwell]
-    return [(surface[a:b], bulge[a:b], e) for a, b, e in zip(first.tolist(), ends.tolist(), err, strict=True)]
+    return _Made(surface[:vertices], bulge, n.astype(np.intp), err)
+
+
+def _segments(stretches: list[tuple[int, Span]]) -> np.ndarray:
+    """The segment of each of ``stretches`` (m,) (intp)."""
+    return np.array([i for i, _ in stretches], dtype=np.intp)
+
+
+def _extents(cam: Cam, stretches: list[tuple[int, Span]],
+             whole: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The segments (m,) (intp) of ``stretches`` and where each starts and how wide it is (radians, (m,) each): a
+    whole segment's ``start`` and ``beta`` (:meth:`Program.extents`), a span's start and
+    its end less its start. ``whole``: the caller knows every stretch to be a whole segment."""
+    at = _segments(stretches)
+    if whole or all(span is None for _, span in stretches):
+        return (at, *cam.program.extents(at))
+    segments = cam.program.segments
+    start, beta = np.array([(segments[i].start, segments[i].beta) if span is None else (span[0], span[1] - span[0])
+                            for i, span in stretches], dtype=float).reshape(-1, 2).T
+    return at, start, beta
 
 
 def _ranks(sizes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -519,35 +577,66 @@ def _ranks(sizes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return group, np.arange(group.size) - (np.cumsum(sizes) - sizes)[group]
 
 
+@dataclass(frozen=True)
+class _Plan:
+    """Where :func:`_makers`' makers put each stretch's result: whether each stretch is a dwell (m,) bool; the
+    segments of the dwells' stretches (made by the first maker, where there are any) and of the moving ones (made
+    by the maker at ``moving``, chords, or by one maker a stretch from there, biarcs)."""
+
+    dwell: np.ndarray
+    dwells: np.ndarray
+    segments: np.ndarray
+    moving: int
+    biarcs: bool
+
+    def blocks(self, results: list[Any]) -> list[tuple[np.ndarray, np.ndarray, np.ndarray, list[float]]]:
+        """The makers' ``results`` as blocks of stretches (the dwells', the moving ones'): the segment of each
+        vertex (n,), the vertices (n, 2) and bulges (n,), one stretch after another, and the stretches' errors (k
+        floats)."""
+        out = []
+        if self.dwells.size:
+            made = results[0]
+            out.append((self.dwells.repeat(made.sizes), made.vertices, made.bulges, made.errors))
+        if self.segments.size and self.biarcs:
+            pieces = results[self.moving:]
+            sizes = np.fromiter((len(b) for _, b, _ in pieces), np.intp, len(pieces))
+            out.append((self.segments.repeat(sizes), np.concatenate([v for v, _, _ in pieces]),
+                        np.concatenate([b for _, b, _ in pieces]), [e for _, _, e in pieces]))
+        elif self.segments.size:
+            made = results[self.moving]
+            out.append((self.segments.repeat(made.sizes), made.vertices, made.bulges, made.errors))
+        return out
+
+
 def _makers(cam: Cam, stretches: list[tuple[int, Span]], tolerance: float, rr: float,
-            curves: str, share: bool = False) -> tuple[list[Maker], list[tuple[int, int | None]]]:
+            curves: str, share: bool = False) -> tuple[list[Maker], _Plan]:
     """What makes the ``stretches`` (segment index, span or None each): one maker for all the dwells' arcs, one
     for all the moving segments' chords, or one a moving segment for biarcs; and where each stretch's result is
-    among theirs, (maker, item of its list or None) each (see :func:`_made`)."""
-    segments = cam.program.segments
-    dwells: list[tuple[int, Span]] = []
-    moving: list[tuple[int, Span]] = []
-    places: list[tuple[bool, int]] = []                 # each stretch's place among the dwells' or the moving ones'
-    for stretch in stretches:
-        if segments[stretch[0]].kind == "dwell":
-            places.append((True, len(dwells)))
-            dwells.append(stretch)
-        else:
-            places.append((False, len(moving)))
-            moving.append(stretch)
-    makers: list[Maker] = [_dwells(cam, dwells, rr)] if dwells else []
-    chords = len(makers)
+    among theirs (see :class:`_Plan`)."""
+    segment = _segments(stretches)
+    whole = all(span is None for _, span in stretches)
+    dwell = cam.program.dwells.take(segment)
+    held, moves = dwell.nonzero()[0], (~dwell).nonzero()[0]
+    dwells = [stretches[k] for k in held.tolist()]
+    moving = [stretches[k] for k in moves.tolist()]
+    makers: list[Maker] = [_dwells(cam, dwells, rr, whole)] if dwells else []
+    plan = _Plan(dwell, segment.take(held), segment.take(moves), len(makers), curves == "biarcs")
     if curves == "biarcs":
         makers += [_biarcs(cam, i, tolerance, rr, span) for i, span in moving]
-        return makers, [(0, k) if dwell else (chords + k, None) for dwell, k in places]
-    if moving:
-        makers.append(_chords(cam, moving, tolerance, rr, share))
-    return makers, [(0, k) if dwell else (chords, k) for dwell, k in places]
+    elif moving:
+        makers.append(_chords(cam, moving, tolerance, rr, share, plan.segments))
+    return makers, plan
 
 
-def _made(plan: list[tuple[int, int | None]], results: list[Any]) -> list[Any]:
-    """The results of :func:`_makers`' makers in the order of their stretches, as its ``plan`` says."""
-    return [results[k] if item is None else results[k][item] for k, item in plan]
+def _made(plan: _Plan, results: list[Any]) -> list[Any]:
+    """The results of :func:`_makers`' makers in the order of their stretches, as its ``plan`` says: each
+    stretch's (vertices, bulges, error)."""
+    out, ranks = [], [0, 0]                             # each stretch's place among the dwells' or the moving ones'
+    for dwell in plan.dwell.tolist():
+        k = ranks[not dwell]
+        ranks[not dwell] += 1
+        out.append(results[0][k] if dwell else results[plan.moving + k] if plan.biarcs else results[plan.moving][k])
+    return out
 
 
 def stretch(cam: Cam, index: int, tolerance: float, rr: float, curves: str,
@@ -620,10 +709,10 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
     search's own (see :func:`_shared_grid`): one evaluation serves both; :func:`exact_outline`, on its own, asks its
     smaller grids."""
     rr = cam.contact_radius - offset
-    segments = cam.program.segments
+    n = len(cam.program.segments)
     plate = cam.is_plate
-    stretches: list[tuple[int, Span]] = [(i, None) for i, seg in enumerate(segments)
-                                         if not (plate and seg.kind == "dwell")]
+    dwells = cam.program.dwells
+    stretches: list[tuple[int, Span]] = [(i, None) for i in ((~dwells).nonzero()[0].tolist() if plate else range(n))]
 
     def convex() -> None:
         if rr > 0 and any(turn > 0 for _, turn in cam.corners()):
@@ -631,32 +720,42 @@ def outline_maker(cam: Cam, tolerance: float, curves: str = "polylines", offset:
                               "cutter's envelope (cam.allow_undercut)")
 
     makers, plan = _makers(cam, stretches, tolerance, rr, curves, share)
-    made = iter(_made(plan, (yield from together(makers, convex))))
+    results = yield from together(makers, convex)
     if not makers:                                      # nothing asked (a plate of dwells): checked all the same
         convex()
-    corners = {} if rr == 0 else dict(cam.corners())  # a knife edge's profile: the corner is a vertex of both sides
-    flats = {i for i, step in cam.steps() if step > 0}
+    corners = [] if rr == 0 else cam.corners()        # a knife edge's profile: the corner is a vertex of both sides
+    flats = [i for i, step in cam.steps() if step > 0]
     ends, starts = cam.boundary_geometry()
-    n = len(segments)
-    verts, bulges, errors = [], [], []
-    for i, seg in enumerate(segments):
-        if plate and seg.kind == "dwell":              # the point where it starts
-            v, b, e = _surface(starts.part((i - 1) % n, (i - 1) % n + 1), rr), np.zeros(1), 0.0
-        else:
-            v, b, e = next(made)
+    # every piece of the outline with the segment it follows and its rank there: a segment's stretch (0), the arc
+    # round a concave corner at its end (1), a flat face's flat straight on from its end (2); in the order of the
+    # segments, then of the ranks, each stretch's vertices in order
+    verts, bulges, keys, errors = [], [], [], [0.0]
+    for at, v, b, errs in plan.blocks(results):
+        keys.append(at * 3)
         verts.append(v)
         bulges.append(b)
-        errors.append(e)
-        if i in corners:
-            start, bulge, _ = _arc_round(ends.part(i, i + 1), starts.part(i, i + 1), rr)
-            verts.append(start[None, :])
-            bulges.append(np.array([bulge]))
-        if i in flats:                                  # a flat face's flat: straight on from the segment's end
-            verts.append(_surface(ends.part(i, i + 1), rr))
-            bulges.append(np.zeros(1))
+        errors += errs
+    if plate and dwells.any():                          # a plate's dwell: the point where it starts, exact
+        held = dwells.nonzero()[0]
+        before = (held - 1) % n
+        keys.append(held * 3)
+        verts.append(starts.point[before] - rr * starts.normal[before])
+        bulges.append(np.zeros(held.size))
+    for i, _ in corners:
+        start, bulge, _ = _arc_round(ends.part(i, i + 1), starts.part(i, i + 1), rr)
+        keys.append(np.array([3 * i + 1]))
+        verts.append(start[None, :])
+        bulges.append(np.array([bulge]))
+    for i in flats:                                     # a flat face's flat: straight on from the segment's end
+        keys.append(np.array([3 * i + 2]))
+        verts.append(_surface(ends.part(i, i + 1), rr))
+        bulges.append(np.zeros(1))
+    order = np.argsort(np.concatenate(keys), kind="stable")
+    pieces, arcs = [np.concatenate(verts)[order]], [np.concatenate(bulges)[order]]
     if plate:
-        verts, bulges = _close_plate(cam, verts, bulges, offset)
-    return Outline(_counter_clockwise(cam, np.concatenate(verts), np.concatenate(bulges)), max(0.0, *errors),
+        pieces, arcs = _close_plate(cam, pieces, arcs, offset)
+    # the largest error (max passes over a NaN, wherever it stands, as it did segment by segment)
+    return Outline(_counter_clockwise(cam, np.concatenate(pieces), np.concatenate(arcs)), max(errors),
                    envelope=False)
 
 

@@ -8,6 +8,7 @@ the start of the first segment, in the cam's sense of rotation.
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 import operator
 from collections.abc import Callable, Generator
@@ -302,6 +303,17 @@ class Program:
         """The segments as arrays, to evaluate any of them at once (see :class:`_Table`)."""
         return _Table(self.segments)
 
+    def extents(self, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The start and angle (radians, (m,) each) of the segments ``index`` (m,): their ``start`` and ``beta`` (see
+        :class:`Segment`), taken from the table's rows in one pass."""
+        rows = self._table.rows
+        return rows[_START].take(index), rows[_BETA].take(index)
+
+    @property
+    def dwells(self) -> np.ndarray:
+        """Whether each segment is a dwell by its kind, (m,) bool (read-only)."""
+        return self._table.dwells
+
     def evaluate_on(self, index: np.ndarray, theta: np.ndarray) -> np.ndarray:
         """s, s', s'', s''' (shape ``(4, n)``) at cam angles ``theta`` (n,) (radians) each on the segment ``index``
         (n,) gives, as :meth:`Segment.evaluate` makes them (one-sided at the segment's ends), all at once."""
@@ -382,9 +394,14 @@ class Program:
         step = motion[1:, n:] - motion[1:, :n]
         limit = JUMP_TOL * np.maximum(np.maximum(table.rates, table.next_rates), 1e-300)
         order, at = (np.abs(step) > limit).nonzero()
-        found = _found(theta.take(at), order, step[order, at], inside=False)
-        found += self._inner_jumps()
-        found.sort(key=_AT_ORDER)
+        degrees = _degrees(theta.take(at))
+        # by angle, then by order, stably: the nonzero's order (by order, then by boundary) among equal ones
+        ranked = np.lexsort((order, degrees))
+        found = _found(degrees[ranked], order[ranked], step[order, at][ranked], inside=False)
+        inner = self._inner_jumps()
+        if inner:                                       # merged in the order of the list's own sort
+            found += inner
+            found.sort(key=_AT_ORDER)
         return found
 
     def _inner_jumps(self) -> list[Jump]:
@@ -419,15 +436,31 @@ class Program:
         order, at = (np.abs(jump) > JUMP_TOL * np.maximum(own, 1e-300)).nonzero()
         ranked = np.lexsort((order, at))                # by point, then by order
         order, at = order[ranked], at[ranked]
-        return _found(theta.take(at), order, jump[order, at], inside=True)
+        return _found(_degrees(theta.take(at)), order, jump[order, at], inside=True)
 
 
-def _found(theta: np.ndarray, order: np.ndarray, jump: np.ndarray, inside: bool) -> list[Jump]:
-    """The :class:`Jump` of each derivative ``order`` (0 for s', (m,)) jumping by ``jump`` (m,) at cam angle ``theta``
-    (m,) (radians; its degrees rounded to 1e-9 and taken into [0, 360))."""
-    degrees = np.degrees(theta).tolist()                # math.degrees' numbers: the same product
-    return [Jump(round(d, 9) % 360.0, k, j, inside)
-            for d, k, j in zip(degrees, (order + 1).tolist(), jump.tolist(), strict=True)]
+def _found(degrees: np.ndarray, order: np.ndarray, jump: np.ndarray, inside: bool) -> list[Jump]:
+    """The :class:`Jump` of each derivative ``order`` (0 for s', (m,)) jumping by ``jump`` (m,) at ``degrees`` (m,),
+    a cam angle as :func:`_degrees` gives it."""
+    return list(map(Jump, degrees.tolist(), (order + 1).tolist(), jump.tolist(), itertools.repeat(inside)))
+
+
+def _degrees(theta: np.ndarray) -> np.ndarray:
+    """Cam angles ``theta`` (radians, (m,)) in degrees, rounded to 1e-9 and taken into [0, 360): for each,
+    ``round(math.degrees(t), 9) % 360.0`` to the bit, all at once. np.degrees is math.degrees' product; the
+    rounding is the integer nearest t 1e9 (ties to even) over 1e9, a correctly rounded quotient of two exact
+    numbers, which is Python's round wherever the product t 1e9, itself rounded, lies further from a half than
+    1e-15 of itself (more than twice its unit in the last place; a product of 1e15 or more never does, nor a NaN):
+    the rest are rounded by Python's round, one by one. np.remainder is Python's float %."""
+    with np.errstate(over="ignore", invalid="ignore"):  # a huge or infinite angle: Python's round and % decide
+        degrees = np.degrees(theta)
+        scaled = degrees * 1e9
+        out = np.rint(scaled)
+        off = np.abs(scaled - out)                      # to the nearest integer, exact: at most a half
+        out /= 1e9
+        for i in (~(np.abs(off - 0.5) > 1e-15 * np.abs(scaled))).nonzero()[0].tolist():
+            out[i] = round(float(degrees[i]), 9)
+        return np.remainder(out, 360.0, out=out)
 
 
 class _Table:
@@ -462,7 +495,11 @@ class _Table:
         table[_ADDED.start + 1:_ADDED.stop] = zero
         table[_FACTORS.start::2][:2] = even
         table[_FACTORS.start + 1::2][:2] = np.where(moving, sign, 0.0)
-        table[_H] = np.where(np.fromiter((k != "dwell" for k in kinds), bool, m), lift, 0.0)
+        dwells = np.fromiter((k == "dwell" for k in kinds), bool, m)
+        table[_H] = np.where(dwells, 0.0, lift)
+        dwells.setflags(write=False)
+        #: whether each segment is a dwell by its kind (m,) bool, read-only (see :attr:`Program.dwells`)
+        self.dwells = dwells
         laws: list[Law | None] = []
         group = _groups(laws, [law if move else None for law, move in zip(laws_of, moving.tolist(), strict=True)])
         # every segment's Segment.scale, made in one pass from the table's contiguous h and beta rows: in _natural's
@@ -681,5 +718,5 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
     level = np.zeros(m)
     np.cumsum(np.where(rise, given, np.where(fall, -given, 0.0))[:-1], out=level[1:])
     lift = np.where(dwell, 0.0, given)
-    return Program(tuple(Segment(k, a, b, h, v, None if d else law) for k, a, b, h, v, d, law in zip(
-        kinds, start.tolist(), beta.tolist(), lift.tolist(), level.tolist(), dwell.tolist(), laws, strict=True)))
+    moving = [None if d else law for d, law in zip(dwell.tolist(), laws, strict=True)]
+    return Program(tuple(map(Segment, kinds, start.tolist(), beta.tolist(), lift.tolist(), level.tolist(), moving)))

@@ -51,3 +51,17 @@ def test_a_replaced_cam_evaluates_its_own_boundaries():
     assert other.boundaries() is after and cam.boundaries() is before
     assert np.array_equal(after.motion, before.motion)       # the same program
     assert not np.allclose(after.ends.point, before.ends.point)
+
+
+def test_served_boundaries_hold_their_own_samples_not_the_round():
+    """The boundaries a design's first round made are kept in arrays of their own, not as views of the whole round
+    (some 20 000 points at 1 024 segments), so that a round's geometry is let go once its makers have read it, and
+    a design keeps only its boundaries' 2 n points."""
+    cam = build_cam(template({}))
+    analyze(cam)
+    served = cam.boundaries()
+    n = len(cam.program.segments)
+    assert served.motion.shape == (4, 2 * n) and served.motion.base is None
+    for g in (served.ends, served.starts):
+        for a in (g.theta, *_fields(g)):
+            assert a.shape[0] == n and a.base is None
