@@ -8,7 +8,6 @@ the start of the first segment, in the cam's sense of rotation.
 from __future__ import annotations
 
 import functools
-import itertools
 import math
 import operator
 from collections.abc import Callable, Generator
@@ -442,7 +441,8 @@ class Program:
 def _found(degrees: np.ndarray, order: np.ndarray, jump: np.ndarray, inside: bool) -> list[Jump]:
     """The :class:`Jump` of each derivative ``order`` (0 for s', (m,)) jumping by ``jump`` (m,) at ``degrees`` (m,),
     a cam angle as :func:`_degrees` gives it."""
-    return list(map(Jump, degrees.tolist(), (order + 1).tolist(), jump.tolist(), itertools.repeat(inside)))
+    return [Jump(d, k, j, inside)
+            for d, k, j in zip(degrees.tolist(), (order + 1).tolist(), jump.tolist(), strict=True)]
 
 
 def _degrees(theta: np.ndarray) -> np.ndarray:
@@ -719,4 +719,5 @@ def build_program(steps: list[tuple[Kind, float, float, Law | None]]) -> Program
     np.cumsum(np.where(rise, given, np.where(fall, -given, 0.0))[:-1], out=level[1:])
     lift = np.where(dwell, 0.0, given)
     moving = [None if d else law for d, law in zip(dwell.tolist(), laws, strict=True)]
-    return Program(tuple(map(Segment, kinds, start.tolist(), beta.tolist(), lift.tolist(), level.tolist(), moving)))
+    return Program(tuple(Segment(k, a, b, h, v, law) for k, a, b, h, v, law in zip(
+        kinds, start.tolist(), beta.tolist(), lift.tolist(), level.tolist(), moving, strict=True)))
