@@ -131,7 +131,8 @@ def _turned(points: np.ndarray, angles: np.ndarray) -> np.ndarray:
 
 
 def _other_poses(pair: GearPair, positions: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_other_pose` at each of ``positions`` (k,): the angles (k,) rad and origins (k, 2) mm."""
+    """The other member's angle (rad) and origin (mm) at each of ``positions`` (k,) (its angle, or a rack's shift):
+    angles (k,) and origins (k, 2)."""
     if pair.kind == "rack":
         return np.zeros(len(positions)), np.column_stack([positions, np.full(len(positions), -pair.centre_distance)])
     return np.asarray(positions, float), np.tile([pair.centre_distance, 0.0], (len(positions), 1))
@@ -151,8 +152,10 @@ def _swept(gamma: np.ndarray, centre: float, half: np.ndarray, t0: float, t1: fl
 
 def _half_width(q: np.ndarray) -> np.ndarray:
     """The half-width (rad) of the arc where cos(psi) >= -q about psi = 0 (of cos(phi) <= q about pi): arccos(-q),
-    that is pi - arccos(q); pi for q >= 1, and -1 (no arc) for q < -1."""
-    return np.where(q >= 1.0, math.pi, np.where(q < -1.0, -1.0, math.pi - np.arccos(np.clip(q, -1.0, 1.0))))
+    that is pi - arccos(q); pi for q >= 1 or not finite (a vertex at the centre: kept), and -1 (no arc) for
+    q < -1."""
+    keep = (q >= 1.0) | ~np.isfinite(q)
+    return np.where(keep, math.pi, np.where(q < -1.0, -1.0, math.pi - np.arccos(np.clip(q, -1.0, 1.0))))
 
 
 def _reachable(pair: GearPair, o_pts: np.ndarray, p_pts: np.ndarray, other_poly: Any, theta: np.ndarray,
@@ -182,8 +185,8 @@ def _reachable(pair: GearPair, o_pts: np.ndarray, p_pts: np.ndarray, other_poly:
         _, _, _, top = other_poly.bounds
         with np.errstate(divide="ignore", invalid="ignore"):
             q = (top - cd + res + spare) / r_p
-        p_half = _half_width(q) + spare                 # sin(phi) <= q: cos(phi + pi / 2) >= -q, about -pi / 2
-        return o_keep, _swept(gamma, -math.pi / 2, np.where(np.isfinite(p_half), p_half, math.pi), t0, t1)
+        # sin(phi) <= q: cos(phi + pi / 2) >= -q, an arc about -pi / 2
+        return o_keep, _swept(gamma, -math.pi / 2, _half_width(q) + spare, t0, t1)
     rho, alpha = np.hypot(o_pts[:, 0], o_pts[:, 1]), np.arctan2(o_pts[:, 1], o_pts[:, 0])
     w0, w1 = float(where.min()), float(where.max())
     o_keep = np.abs(rho - cd) <= reach + spare
@@ -193,20 +196,12 @@ def _reachable(pair: GearPair, o_pts: np.ndarray, p_pts: np.ndarray, other_poly:
     if pair.kind == "internal":     # inside the ring: at least `inner` from its centre (cd along +x), an arc about pi
         with np.errstate(divide="ignore", invalid="ignore"):
             q = (r_p**2 + cd**2 - inner**2) / (2 * r_p * cd)                 # |w - C| >= inner: cos(phi) <= q
-        p_half = _half_width(q) + spare
-        return o_keep, _swept(gamma, math.pi, np.where(np.isfinite(p_half), p_half, math.pi), t0, t1)
+        return o_keep, _swept(gamma, math.pi, _half_width(q) + spare, t0, t1)
     p_keep = np.abs(r_p - cd) <= outer
     if outer < cd:              # the other's disc, seen from the pinion's centre, within asin(outer / cd) of +x
         beta = math.asin(outer / cd) + spare
         p_keep &= _in_arc(gamma, -beta - t1, beta - t0)
     return o_keep, p_keep
-
-
-def _other_pose(pair: GearPair, position: float) -> tuple[float, np.ndarray]:
-    """The other member's angle (rad) and origin (mm) at ``position`` (its angle, or a rack's shift)."""
-    if pair.kind == "rack":
-        return 0.0, np.array([position, -pair.centre_distance])
-    return position, np.array([pair.centre_distance, 0.0])
 
 
 def placement(pair: GearPair, theta: np.ndarray, fixed: tuple[str, ...], others: tuple[str, ...],
@@ -311,7 +306,8 @@ def pair_layout(pair: GearPair, stock: Stock, width: float, travel: float,
 def pair_drawing(pair: GearPair, shapes: Outlines, theta: float) -> Drawing:
     """The pair at pinion angle ``theta`` (rad): both outlines, their base and working pitch circles, and the line of
     action through the pitch point (to its ends on the base circles' tangents)."""
-    turn, centre = _other_pose(pair, float(pair.gear_angle(np.array([theta]))[0]))
+    turns, centres = _other_poses(pair, pair.gear_angle(np.array([theta])))
+    turn, centre = float(turns[0]), centres[0]
     items: list = [("pinion", Contour(*shapes.pinion).moved(theta, np.zeros(2)))]
     other = Contour(*shapes.other).moved(turn, centre)
     name = {"external": "gear", "internal": "ring", "rack": "rack"}[pair.kind]

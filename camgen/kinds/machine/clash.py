@@ -120,17 +120,24 @@ def bar(length: float, half_width: float, tolerance: float = 0.01) -> np.ndarray
                            left[np.argsort(np.mod(np.arctan2(left[:, 1], left[:, 0]), 2 * math.pi))]])
 
 
+def _moved(m: np.ndarray, t: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    """Points ``xy`` (k, 2) mm of a body's frame at each of its placements ``m`` (n, 2, 2), ``t`` (n, 2): (n, k, 2),
+    x_machine = M x_local + t written out per row (the same products and sums as an einsum, ~15 times faster)."""
+    x, y = xy[:, 0], xy[:, 1]
+    return np.stack([m[:, 0, 0, None] * x + m[:, 0, 1, None] * y + t[:, 0, None],
+                     m[:, 1, 0, None] * x + m[:, 1, 1, None] * y + t[:, 1, None]], -1)
+
+
+def _valid(body: Body) -> bool:
+    """Whether ``body``'s own outline is a valid polygon (a rigid motion keeps it so: its placed copies then need no
+    repair, and make_valid of every copy was a third of a machine's clash check)."""
+    return bool(shapely.is_valid(shapely.polygons(body.outline)))
+
+
 def _shapes(body: Body, phi: np.ndarray) -> np.ndarray:
     m, t = body.place(phi)
-    x, y = body.outline[:, 0], body.outline[:, 1]
-    m, t = np.asarray(m), np.asarray(t)
-    # x_machine = M x_local + t, written out per row: the same products and sums as an einsum, ~15 times faster
-    coords = np.stack([m[:, 0, 0, None] * x + m[:, 0, 1, None] * y + t[:, 0, None],
-                       m[:, 1, 0, None] * x + m[:, 1, 1, None] * y + t[:, 1, None]], -1)
-    placed = shapely.polygons(coords)
-    # a rigid motion keeps a valid outline valid: repair the placed copies only where the body's own outline needs
-    # it (make_valid of every copy was a third of a machine's clash check)
-    return placed if shapely.is_valid(shapely.polygons(body.outline)) else shapely.make_valid(placed)
+    placed = shapely.polygons(_moved(np.asarray(m), np.asarray(t), body.outline))
+    return placed if _valid(body) else shapely.make_valid(placed)
 
 
 def outlines(body: Body, phi: np.ndarray) -> np.ndarray:
@@ -145,9 +152,7 @@ FIXED_TOL_MM = 1e-6
 def _placed(m: np.ndarray, t: np.ndarray, local: Any) -> np.ndarray:
     """A geometry ``local`` in a body's own frame (any shapely geometry: a polygon with holes, several) placed by
     each of its placements ``m`` (n, 2, 2), ``t`` (n, 2) mm: (n,) geometries, mm."""
-    x, y = shapely.get_coordinates(local).T
-    moved = np.stack([m[:, 0, 0, None] * x + m[:, 0, 1, None] * y + t[:, 0, None],
-                      m[:, 1, 0, None] * x + m[:, 1, 1, None] * y + t[:, 1, None]], -1)
+    moved = _moved(m, t, shapely.get_coordinates(local))
     # set_coordinates fills the copies' coordinates in order, one copy's after another's: moved's rows
     return shapely.set_coordinates(np.full(len(m), local, dtype=object), moved.reshape(-1, 2))
 
@@ -165,7 +170,7 @@ def _cut(a: Body, b: Body, joint: Joint, phi: np.ndarray, placed: tuple[np.ndarr
         if np.max(np.abs(local - local[0]), initial=0.0) > FIXED_TOL_MM:
             continue
         outline = shapely.polygons(cut.outline)
-        if not shapely.is_valid(outline):
+        if not _valid(cut):
             outline = shapely.make_valid(outline)
         disc = shapely.buffer(shapely.points(local[0]), joint.radius, quad_segs=32)
         return (_placed(m, t, shapely.difference(outline, disc)),

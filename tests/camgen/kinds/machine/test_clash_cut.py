@@ -7,7 +7,6 @@ not within that of the tolerance."""
 from __future__ import annotations
 
 import math
-import tomllib
 
 import numpy as np
 import pytest
@@ -15,9 +14,9 @@ import shapely
 
 from camgen.api import design_cam, load_spec
 from camgen.kinds.machine import clash, frame
+from tests.camgen.kinds.machine.test_machine import BUNDLED
 from tests.conftest import ROOT
 
-MACHINES = [p.stem for p in sorted((ROOT / "templates").glob("*.toml")) if "shafts" in tomllib.loads(p.read_text())]
 
 
 def _polygon_gap(radius: float) -> float:
@@ -25,7 +24,7 @@ def _polygon_gap(radius: float) -> float:
     return math.pi * radius**2 - 64 * radius**2 * math.sin(2 * math.pi / 128)
 
 
-@pytest.mark.parametrize("name", MACHINES)
+@pytest.mark.parametrize("name", BUNDLED)
 def test_each_joint_s_overlap_is_the_pairs_less_the_disc_where_it_stands(name):
     made = design_cam(load_spec(ROOT / "templates" / f"{name}.toml"))
     spec = made.spec
