@@ -6,14 +6,15 @@ micrometres apart or less (some 2 edges under 1.5e-5 mm for barrel-conical.toml 
 precision (a step of 3.8e-6 mm from 32 to 64 mm) such an edge turns or vanishes, and a needle triangle on it may
 fold over its neighbour: a self-intersection in the STL. :func:`without_short_edges` collapses each edge shorter
 than the bound, as the file rounds it, into its earlier end (an exact point of the cut, so the surface moves by
-less than the edge's length) and drops the two triangles on it, then checks what is left: closed and outward, no
-edge under the bound, and no triangle turned over, or made flat, by the collapse or by the rounding.
+less than the edge's length) and drops the two triangles on it, then checks what is left: no edge under the bound,
+and no triangle turned over, or made flat, by the collapse or by the rounding (closed and outward: the caller's
+one :func:`camgen.core.solids.check_mesh` of the mesh it writes).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from camgen.core.solids import Mesh, check_mesh
+from camgen.core.solids import Mesh
 
 #: the shortest edge the files hold, in steps of single precision at the cam's size (the larger of the rim's radius
 #: and the length): rounding moves each end by under 0.87 of a step, so such an edge keeps its sense
@@ -58,10 +59,12 @@ def _root(into: dict[int, int], vertex: int) -> int:
 
 def without_short_edges(mesh: Mesh, shortest: float) -> Mesh | None:
     """``mesh`` with every edge shorter than ``shortest`` (mm, as single precision rounds it) collapsed into its
-    earlier end and the triangles on it dropped (the mesh itself when there is none), checked: a closed, outward
-    solid whose vertices stay apart in single precision, no edge under ``shortest``, every triangle a collapse
-    moved facing as it did, and every triangle still facing so once rounded (its rounded normal within 90 degrees
-    of its exact one, and not of zero area). None where that check fails (another layout of the cut is needed)."""
+    earlier end and the triangles on it dropped (the mesh itself when there is none), checked: no edge under
+    ``shortest``, every triangle a collapse moved facing as it did, and every triangle still facing so once rounded
+    (its rounded normal within 90 degrees of its exact one, and not of zero area). None where that check fails
+    (another layout of the cut is needed). Whether what is left is a closed, outward solid whose vertices stay apart
+    in single precision is :func:`camgen.core.solids.check_mesh`'s to say: the caller checks the mesh it writes
+    once, whichever this returns."""
     vertices, faces = np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces)
     held = _rounded(vertices)
     before = _normals(vertices, faces)
@@ -93,5 +96,4 @@ def without_short_edges(mesh: Mesh, shortest: float) -> Mesh | None:
         return mesh
     used = np.zeros(len(vertices), dtype=bool)
     used[faces.ravel()] = True
-    result = Mesh(vertices[used], (np.cumsum(used) - 1)[faces], mesh.name)
-    return result if check_mesh(result).ok else None
+    return Mesh(vertices[used], (np.cumsum(used) - 1)[faces], mesh.name)
