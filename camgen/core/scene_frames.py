@@ -55,7 +55,9 @@ def _pose(points: np.ndarray, motion: np.ndarray | None, frame: int) -> np.ndarr
 def scene_frames(page: Page, n: int, size: tuple[int, int], what: str) -> np.ndarray:
     """``page``'s scene at ``n`` frames evenly over its cycle (:func:`frame_indices`; ``what`` names the kind in a
     refusal), ``size`` (width, height) pixels, the view the page's (:meth:`~camgen.core.page.Scene.bounds`).
-    Returns (n, height, width, 3) uint8."""
+    Returns (n, height, width, 3) uint8. The traced paths are one line (a NaN between each two), and so is each
+    run of the movers' circles: one path to draw instead of one a point (the same colour and width, so the same
+    picture; where two of them cross, the edge's antialiasing rounds differently)."""
     scene: Scene = page.scene
     index = frame_indices(len(page.inputs), n, what)
     ring = np.linspace(0.0, 2 * np.pi, 73)
@@ -76,13 +78,15 @@ def scene_frames(page: Page, n: int, size: tuple[int, int], what: str) -> np.nda
                 (drawn,) = ax.plot(p[:, 0], p[:, 1], line, color=colour, lw=width)
                 if body.motion is not None:
                     moving.append((at, patch, drawn))
-        for t in traces:
-            ax.plot(t[:, 0], t[:, 1], "-", color=TRACE, lw=0.8)
-        for m in scene.movers:
-            if m.radius > 0:
-                for j in range(m.points.shape[1]):
-                    moving.append((partial(_circle_at, m, j, disc), None, ax.plot([], [], color=CIRCLE, lw=1.5)[0]))
+        if traces:                                  # one line of every trace (NaN between): one path to draw
+            joined = _joined(traces)
+            ax.plot(joined[:, 0], joined[:, 1], "-", color=TRACE, lw=0.8)
+        for group in _runs(scene.movers):
+            if group[0].radius > 0:                 # a run of circles, one line of them all (NaN between)
+                circles = [partial(_circle_at, m, j, disc) for m in group for j in range(m.points.shape[1])]
+                moving.append((partial(_circles_at, tuple(circles)), None, ax.plot([], [], color=CIRCLE, lw=1.5)[0]))
             else:
+                (m,) = group
                 _, colour, width, line = STYLES.get(m.style, OTHER)
                 moving.append((partial(_path_at, m), None, ax.plot([], [], line, color=colour, lw=width)[0]))
 
@@ -107,6 +111,31 @@ def _circle_at(mover: Mover, j: int, disc: np.ndarray, frame: int) -> np.ndarray
     pose there."""
     centre = mover.points[frame, j]
     return centre + mover.radius * disc if np.isfinite(centre).all() else None
+
+
+def _runs(movers: tuple[Mover, ...]) -> list[list[Mover]]:
+    """``movers`` in order, each run of those drawn as circles (a radius) in one group, each other alone."""
+    out: list[list[Mover]] = []
+    for m in movers:
+        if m.radius > 0 and out and out[-1][0].radius > 0:
+            out[-1].append(m)
+        else:
+            out.append([m])
+    return out
+
+
+def _joined(lines: list[np.ndarray]) -> np.ndarray:
+    """Polylines (each (k, 2) mm) as one, a row of NaN between each two (matplotlib draws it as one path of as
+    many pieces)."""
+    gap = np.full((1, 2), np.nan)
+    return np.concatenate([part for line in lines for part in (gap, line)][1:])
+
+
+def _circles_at(circles: tuple[Callable[[int], np.ndarray | None], ...], frame: int) -> np.ndarray | None:
+    """The circles ``circles`` give at ``frame`` as one polyline (:func:`_joined`), those without a pose left out;
+    None where none has one."""
+    shown = [c for c in (at(frame) for at in circles) if c is not None]
+    return _joined(shown) if shown else None
 
 
 def _path_at(mover: Mover, frame: int) -> np.ndarray:
