@@ -144,22 +144,31 @@ def find_flips(linkage: Linkage) -> tuple[np.ndarray, ...]:
 
 def _root(f: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """A zero of f in each [a, b] (vectorised bisection to rounding), or the end where |f| is smaller when f keeps
-    its sign there."""
+    its sign there.
+
+    At most 64 halvings; once a halving leaves every bracket as it was (each at rounding: its midpoint one of its
+    ends), every later one would ask f the same and leave them so again, and the search stops there."""
     fa, fb = f(a), f(b)
     keeps = np.sign(fa) == np.sign(fb)
     for _ in range(64):
         mid = 0.5 * (a + b)
         fm = f(mid)
         left = np.sign(fm) == np.sign(fa)
+        was = a, b
         a, fa = np.where(left, mid, a), np.where(left, fm, fa)
         b = np.where(left, b, mid)
+        if np.array_equal(a, was[0]) and np.array_equal(b, was[1]):
+            break
     return np.where(keeps, np.where(np.abs(fa) <= np.abs(fb), a, b), 0.5 * (a + b))
 
 
 def _golden(f: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray,
             iterations: int = 80) -> tuple[np.ndarray, np.ndarray]:
     """Minimisers of f on the brackets [a, b] (vectorised golden sections: f is asked for both inner points of
-    every bracket at once) and f there."""
+    every bracket at once) and f there.
+
+    At most ``iterations`` sections; once a section leaves every bracket as it was (at rounding), every later one
+    would ask f the same and leave them so again, and the search stops there."""
     g = (math.sqrt(5.0) - 1.0) / 2.0
     n = len(a)
     c, d = b - g * (b - a), a + g * (b - a)
@@ -167,7 +176,10 @@ def _golden(f: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray,
     fc, fd = both[:n], both[n:]
     for _ in range(iterations):
         left = fc < fd
+        was = a, b
         b, a = np.where(left, d, b), np.where(left, a, c)
+        if np.array_equal(a, was[0]) and np.array_equal(b, was[1]):
+            break                                  # c, d and f there as they are
         c, d = b - g * (b - a), a + g * (b - a)
         both = f(np.concatenate([c, d]))
         fc, fd = both[:n], both[n:]
@@ -279,14 +291,17 @@ def origin_for(ranges: Sequence[tuple[float, float]]) -> float:
 
 def _bisect(linkage: Linkage, a: np.ndarray, b: np.ndarray, a_ok: np.ndarray) -> np.ndarray:
     """The boundary between feasible and not in each [a, b] (``a_ok``: which side is feasible), to rounding; the
-    feasible side's end."""
+    feasible side's end. At most 64 halvings, stopping once one leaves every bracket as it was (as :func:`_root`)."""
     good, bad = np.where(a_ok, a, b), np.where(a_ok, b, a)
     for _ in range(64):
         mid = 0.5 * (good + bad)
         if not len(mid):
             break
         ok = _feasible(linkage, mid)
+        was = good, bad
         good, bad = np.where(ok, mid, good), np.where(ok, bad, mid)
+        if np.array_equal(good, was[0]) and np.array_equal(bad, was[1]):
+            break
     return good
 
 

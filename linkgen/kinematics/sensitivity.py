@@ -171,12 +171,13 @@ class _Closure:
     in the slack (n, R, P)."""
 
     def __init__(self, s: Structure, model: SlackModel, state: _State, values: np.ndarray,
-                 params: np.ndarray | None) -> None:
+                 params: np.ndarray | None, places: Mapping[tuple[str, str], _Local] | None = None) -> None:
         self.s, self.model, self.state = s, model, state
         self.moving = [b for b in s.bodies if b != GROUND]
         self.column = {b: 3 * i for i, b in enumerate(self.moving)}
         self.n = values.shape[0]
         self.params = np.zeros(model.size) if params is None else params
+        self.places = _places(s, model, self.params) if places is None else places
         self.rows: list[tuple[np.ndarray, dict[int, np.ndarray], dict[int, np.ndarray]]] = []
         self._build(values)
 
@@ -193,32 +194,19 @@ class _Closure:
             return np.broadcast_to(_pt(self.s, self.s.bodies[GROUND][0]), (self.n, 2))
         return self.state.origins[body]
 
-    def _local(self, body: str, point: str) -> tuple[np.ndarray, list[tuple[int, np.ndarray]]]:
-        """The point's place in the body's drawn frame relative to its first point, with the slack (2,), and the
-        slack's columns: (index, the drawn direction (2,) that unit of it moves the point along)."""
-        d = _pt(self.s, point) - _pt(self.s, self.s.bodies[body][0])
-        terms: list[tuple[int, np.ndarray]] = []
-        h = self.model.hole(body, point)
-        if h is not None:
-            terms += [(h, np.array([1.0, 0.0])), (h + 1, np.array([0.0, 1.0]))]
-        k = self.model.length(body, point)
-        if k is not None:
-            terms.append((k, d / np.linalg.norm(d)))
-        offset = d + sum((self.params[i] * v for i, v in terms), np.zeros(2))
-        return offset, terms
-
     def point(self, body: str, point: str) -> tuple[np.ndarray, dict[int, np.ndarray], dict[int, np.ndarray]]:
         """Where the body puts its point (its pin's centre where it has a hole) (n, 2), and that position's
         derivatives (n, 2) in the unknowns' and the slack's columns."""
         c, sn = self._rotation(body)
-        local, terms = self._local(body, point)
+        local, index, directions = self.places[body, point]
         rel = _turned(local, c, sn)
         where = self._origin(body) + rel
         dq: dict[int, np.ndarray] = {}
         if body != GROUND:
             col = self.column[body]
             dq = {col: perp(rel), col + 1: _unit(self.n, 0), col + 2: _unit(self.n, 1)}
-        dp = {i: _turned(v, c, sn) for i, v in terms}
+        turned = _turned(directions, c[:, None], sn[:, None])                 # (n, terms, 2) in one pass
+        dp = {i: turned[:, j] for j, i in enumerate(index)}
         return where, dq, dp
 
     def material(self, body: str, drawn: np.ndarray) -> tuple[np.ndarray, dict[int, np.ndarray]]:
@@ -300,6 +288,32 @@ class _Closure:
         return res, jq, jp
 
 
+#: a point's place in its body's drawn frame relative to the body's first point, with the slack (2,) mm, the
+#: slack's columns that move it (their indices in pi) and the drawn direction (2,) a unit of each moves it along
+#: (one row a column)
+_Local = tuple[np.ndarray, tuple[int, ...], np.ndarray]
+
+
+def _places(s: Structure, model: SlackModel, params: np.ndarray) -> dict[tuple[str, str], _Local]:
+    """Every (body, point) of ``s``'s bodies' places with the slack ``params`` (P,): see :data:`_Local`. They do
+    not change with the pose, so Newton's steps in :func:`perturbed` share them."""
+    out: dict[tuple[str, str], _Local] = {}
+    for body, points in s.bodies.items():
+        first = _pt(s, points[0])
+        for point in points:
+            d = _pt(s, point) - first
+            terms: list[tuple[int, np.ndarray]] = []
+            h = model.hole(body, point)
+            if h is not None:
+                terms += [(h, np.array([1.0, 0.0])), (h + 1, np.array([0.0, 1.0]))]
+            k = model.length(body, point)
+            if k is not None:
+                terms.append((k, d / np.linalg.norm(d)))
+            offset = d + sum((params[i] * v for i, v in terms), np.zeros(2))
+            out[body, point] = offset, tuple(i for i, _ in terms), np.array([v for _, v in terms]).reshape(-1, 2)
+    return out
+
+
 def _pt(s: Structure, name: str) -> np.ndarray:
     return np.asarray(s.points[name], dtype=float)
 
@@ -311,8 +325,13 @@ def _unit(n: int, axis: int) -> np.ndarray:
 
 
 def _turned(v: np.ndarray, c: np.ndarray, sn: np.ndarray) -> np.ndarray:
-    """A drawn vector v (2,) turned by (c, sn) (n,): (n, 2)."""
-    return np.stack([c * v[0] - sn * v[1], sn * v[0] + c * v[1]], axis=-1)
+    """A drawn vector v (2,) (or vectors (..., 2)) turned by (c, sn) (n,) (or arrays broadcasting with v's
+    leading axes): (n, 2) (or the broadcast shape, 2)."""
+    x, y = v[..., 0], v[..., 1]
+    out = np.empty((*np.broadcast_shapes(np.shape(c), np.shape(x)), 2))
+    out[..., 0] = c * x - sn * y
+    out[..., 1] = sn * x + c * y
+    return out
 
 
 def _minus(a: Mapping[int, np.ndarray], b: Mapping[int, np.ndarray]) -> dict[int, np.ndarray]:
@@ -567,8 +586,9 @@ def perturbed(linkage: Linkage, params: np.ndarray, model: SlackModel | None = N
     turns = {b: np.zeros(1) for b in moving}
     origins = {b: _pt(s, s.bodies[b][0])[None, :].copy() for b in moving}
     values = np.zeros((1, len(s.inputs)))
+    drawn = _places(s, model, params)
     for _ in range(ASSEMBLE_STEPS):
-        closure = _Closure(s, model, _State(turns, origins), values, params)
+        closure = _Closure(s, model, _State(turns, origins), values, params, drawn)
         res, jq, _ = closure.arrays()
         if np.max(np.abs(res)) <= ASSEMBLE_TOL * s.size:
             break
