@@ -6,13 +6,15 @@ Everything is measured in the driver's frame, where the locking disc and the pin
 engagement's ends and middle among them), each least gap then refined round its worst angle
 (:func:`camgen.numeric.maximise` on its negative). The locking disc's gap is exact to the disc (a circle less a
 circular cutout, its signed distance in closed form) from points of the wheel's exact outline, 1e-3 mm apart
-in the turn's pass and 1e-5 mm in the refinement; the pin's is shapely's distance from its centre to the wheel's
-outline (chords within 1e-5 mm) less its radius.
+in the turn's pass and 1e-5 mm in the refinement, worked only at the points that can hold an angle's least
+(:func:`least_disc_gaps`); the pin's is the distance from its centre to the wheel's outline (chords within 1e-5
+mm; its nearest edge's, from a tree of the edges: :func:`edge_distances`) less its radius.
 """
 from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 from dataclasses import dataclass
 
 import numpy as np
@@ -62,6 +64,50 @@ def disc_gap(g: GenevaGeometry, points: np.ndarray) -> np.ndarray:
     return np.where((r <= disc) & (q >= cut), -gap, gap)
 
 
+def least_disc_gaps(g: GenevaGeometry, ring: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+    """The least :func:`disc_gap` (mm) of the wheel's outline points ``ring`` (m, 2, the wheel's frame) at each
+    driver angle ``alpha`` (k,), exact wherever it is the least of them all: an array (k,) whose argmin and minimum
+    are those of the gaps worked at every point, with every other entry larger than that minimum.
+
+    The disc less its cutout lies inside the disc's circle, so a point's gap is at least r - R (r its distance from
+    the driver's axis, R the disc's radius). In each block of 200 angles that bound is worked at every point, the
+    gap itself at each angle's point of least bound (the least of those gaps bounds the block's least from above),
+    and then only at the points whose bound (less 1e-9 mm for rounding) does not exceed it: about one point in
+    twenty (an angle whose every point is out keeps its least bound, larger than the least found)."""
+    out = np.empty(len(alpha))
+    for k in range(0, len(alpha), 200):
+        points = g.in_driver_frame(ring, alpha[k:k + 200])                          # (b, m, 2)
+        bound = np.hypot(points[..., 0], points[..., 1]) - g.lock_radius
+        rows = np.arange(len(points))
+        nearest = disc_gap(g, points[rows, bound.argmin(axis=1)])                  # (b,): a gap at each angle
+        pose, point = (bound - 1e-9 <= nearest.min()).nonzero()                    # row by row, in order
+        least = bound.min(axis=1)
+        found = disc_gap(g, points[pose, point])
+        starts = np.flatnonzero(np.r_[True, pose[1:] != pose[:-1]]) if pose.size else pose
+        least[pose[starts]] = np.minimum.reduceat(found, starts) if pose.size else least[:0]
+        out[k:k + 200] = least
+    return out
+
+
+def edge_tree(ring: np.ndarray) -> Any:
+    """A shapely STRtree of the edges of the closed ``ring`` (m, 2; its last point joined to its first), for
+    :func:`edge_distances`."""
+    import shapely
+
+    closed = np.vstack([ring, ring[:1]])
+    return shapely.STRtree(shapely.linestrings(np.stack([closed[:-1], closed[1:]], axis=1)))
+
+
+def edge_distances(tree: Any, points: np.ndarray) -> np.ndarray:
+    """The distance (mm, (n,)) from each shapely point of ``points`` (n,) to the ring of :func:`edge_tree` ``tree``:
+    its nearest edge's, which is shapely's distance to the whole ring (worked edge by edge, the same numbers) found
+    from the tree in about a fifth of the time at 3 600 points against 13 500 edges."""
+    (which, _), distance = tree.query_nearest(points, return_distance=True, all_matches=False)
+    out = np.empty(len(points))
+    out[which] = distance
+    return out
+
+
 def _least(gap: Callable[[np.ndarray, bool], np.ndarray], alpha: np.ndarray) -> tuple[float, float]:
     """The least of ``gap(alpha, fine)`` over a turn: coarse on the grid ``alpha``, then fine between the worst's
     neighbours."""
@@ -80,20 +126,19 @@ def check_assembly(g: GenevaGeometry) -> AssemblyCheck:
     alpha = np.unique(np.concatenate([np.linspace(-math.pi, math.pi, _POSES + 1)[1:], [-e, 0.0, e]]))
     outline = g.wheel()
     rings = {False: outline.flatten(_COARSE), True: outline.flatten(_FINE)}
-    edge = shapely.LinearRing(rings[True])
+    edges = edge_tree(rings[True])
     body = shapely.Polygon(rings[True])
-    shapely.prepare(edge)
+    shapely.prepare(body)
 
     def lock_gap(a: np.ndarray, fine: bool) -> np.ndarray:
-        return np.concatenate([disc_gap(g, g.in_driver_frame(rings[fine], a[k:k + 200])).min(axis=1)
-                               for k in range(0, len(a), 200)])
+        return least_disc_gaps(g, rings[fine], a)
 
     def pin_gap(a: np.ndarray, fine: bool) -> np.ndarray:
         # the pin's centre in the wheel's frame: turn the driver's frame back into the wheel's
         turn = -(math.pi - g.law.motion(a)[0] - a)
         x, y = g.crank_radius - g.centre_distance * np.cos(-a), -g.centre_distance * np.sin(-a)
         centres = shapely.points(np.cos(turn) * x - np.sin(turn) * y, np.sin(turn) * x + np.cos(turn) * y)
-        gap = shapely.distance(edge, centres) - g.pin_diameter / 2
+        gap = edge_distances(edges, centres) - g.pin_diameter / 2
         return np.where(shapely.contains(body, centres), -gap - g.pin_diameter, gap)
 
     lock = _least(lock_gap, alpha)
