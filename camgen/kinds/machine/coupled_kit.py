@@ -67,7 +67,7 @@ def machine_made(design: Any) -> tuple[tuple[Any, Any], ...]:
 def bom_lines(design: Any) -> tuple[BomLine, ...]:
     """The kit's lines of the machine's cams, Geneva drives and linkages' parts, each made from its own files: a
     cam's plate (or each of a conjugate pair's, a barrel's drum printed), a Geneva's wheel, locking disc and crank,
-    each link the machine writes (:func:`machine_made`), with its thickness and its holes."""
+    each link the machine writes (its ``written_linkages``, :func:`machine_made`), with its thickness and its holes."""
     from camgen.kinds.machine import barrel_parts, conjugate_parts
 
     lines = []
@@ -82,7 +82,7 @@ def bom_lines(design: Any) -> tuple[BomLine, ...]:
         for name, part in g.design.cut.items():
             lines.append(BomLine(f"{g.name}-{name}", 1, f"Geneva {name} of genevas.{g.name}, "
                                  f"{part.thickness:g} mm (its own files)", "laser or fdm"))
-    for m, made in machine_made(design):
+    for m, made in design.written_linkages:
         if made.build is None:
             continue
         for part in made.build.cut:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -190,6 +191,15 @@ class MachineDesign:
     gears: tuple[machine_gears.MachineGear, ...] = ()
     #: each ratchet a follower's arm indexes (:mod:`camgen.kinds.machine.ratchet_mount`)
     ratchets: tuple[RatchetMotion, ...] = ()
+
+    @cached_property
+    def written_linkages(self) -> tuple[tuple[Any, Any], ...]:
+        """Each mounted linkage and its design as the machine writes it, without the parts other parts of the machine
+        are (:func:`camgen.kinds.machine.coupled_kit.machine_made`): made once a design, for its files, its kit and
+        its report (each nests the linkage's cut sheets again without those parts)."""
+        from camgen.kinds.machine.coupled_kit import machine_made
+
+        return machine_made(self)
 
     @property
     def tolerance(self) -> float:

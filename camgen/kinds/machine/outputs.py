@@ -56,9 +56,7 @@ def machine_bundle(design: MachineDesign) -> tuple[Bundle, dict[str, Any]]:
         cams.append(cam_report)
     for g in design.indexed:                            # each Geneva drive's own files
         items += _scoped(spec_kind(g.design.spec).bundle(g.design)[0].items, g.name, formats, out.folders)
-    from camgen.kinds.machine.coupled_kit import machine_made
-
-    for m, made in machine_made(design):                # without the parts the arm, the frame or a stem are
+    for m, made in design.written_linkages:             # without the parts the arm, the frame or a stem are
         items += _scoped(linkgen_api.bundle(made)[0].items, m.name, formats, out.folders)
     report = {**machine_report(design), **_parts_summary(cams)}
     from camgen.kinds.machine.machine_gears import gear_items
