@@ -70,32 +70,44 @@ def _at(v: np.ndarray, branch: float, theta2: np.ndarray) -> np.ndarray:
     return np.stack([at.px, at.py], axis=-1)
 
 
-def _reach(v: np.ndarray, theta2: np.ndarray) -> np.ndarray:
-    """How far (mm) each pose is out of reach."""
+def _placed(v: np.ndarray, branch: Any, theta2: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Coupler points (..., 2) of designs ``v`` (9, ...) on ``branch`` (a number or an array broadcast with them)
+    at crank angles ``theta2``, and whether each pose is out of reach (...): one placing for both."""
     x0, y0, theta0, r1, r2, r3, r4, cx, cy = v
-    return place(x0, y0, theta0, r1, r2, r3, r4, cx, cy, 1.0, theta2).out_of_reach
+    at = place(x0, y0, theta0, r1, r2, r3, r4, cx, cy, branch, theta2)
+    return np.stack([at.px, at.py], axis=-1), at.out_of_reach > 0
 
 
 def nearest(v: np.ndarray, branch: float, targets: np.ndarray, grid: int = GRID,
             span: tuple[float, float] = (0.0, TWO_PI)) -> tuple[np.ndarray, np.ndarray]:
     """The crank angles (n,) of the nearest coupler points of design ``v`` (9,) to each target (n, 2), over the
-    crank's ``span`` (rad from the ground line), and those points (n, 2). A grid of ``grid`` angles, then golden
-    section within a step either side; poses out of reach count as far away."""
+    crank's ``span`` (rad from the ground line), and those points (n, 2): :func:`nearest_many` of one design."""
+    th, pts = nearest_many(np.asarray(v, dtype=float)[None], np.array([branch], dtype=float), targets, grid, span)
+    return th[0], pts[0]
+
+
+def nearest_many(vs: np.ndarray, branches: np.ndarray, targets: np.ndarray, grid: int = GRID,
+                 span: tuple[float, float] = (0.0, TWO_PI)) -> tuple[np.ndarray, np.ndarray]:
+    """For each design of ``vs`` (k, 9) on its branch of ``branches`` (k,), the crank angles (k, n) of its nearest
+    coupler points to each target (n, 2) over the crank's ``span`` (rad from the ground line), and those points
+    (k, n, 2). A grid of ``grid`` angles, then golden section within a step either side; poses out of reach count
+    as far away. Every design is worked by the same operations on its own numbers, all of them at once: a design's
+    row is what it gets alone."""
     lo, hi = span
     t = np.linspace(lo, hi, grid, endpoint=hi - lo < TWO_PI - 1e-12)
-    col = v[:, None]
-    pts = _at(col, branch, t[None, :])[0]
-    far = _reach(col, t[None, :])[0] > 0
-    d2 = np.sum((targets[:, None, :] - pts[None, :, :]) ** 2, axis=-1) + np.where(far, np.inf, 0.0)
-    j = np.argmin(d2, axis=1)
+    col = vs.T[:, :, None]                                                   # (9, k, 1)
+    branch = branches[:, None]
+    pts, far = _placed(col, branch, t[None, :])                              # (k, grid, 2), (k, grid)
+    d2 = np.sum((targets[None, :, None, :] - pts[:, None, :, :]) ** 2, axis=-1) + np.where(far, np.inf, 0.0)[:, None]
+    j = np.argmin(d2, axis=2)                                                # (k, n)
     h = (hi - lo) / grid
     a, b = t[j] - h, t[j] + h
     if hi - lo < TWO_PI - 1e-12:
         a, b = np.maximum(a, lo), np.minimum(b, hi)
 
     def f(x: np.ndarray) -> np.ndarray:
-        p = _at(col, branch, x[None, :])[0]
-        return np.sum((p - targets) ** 2, axis=1) + np.where(_reach(col, x[None, :])[0] > 0, np.inf, 0.0)
+        p, out = _placed(col, branch, x)
+        return np.sum((p - targets) ** 2, axis=2) + np.where(out, np.inf, 0.0)
 
     g = GOLDEN_RATIO
     c, d = b - g * (b - a), a + g * (b - a)
@@ -107,9 +119,9 @@ def nearest(v: np.ndarray, branch: float, targets: np.ndarray, grid: int = GRID,
         fx = f(np.where(left, c, d))
         fc, fd = np.where(left, fx, fd), np.where(left, fc, fx)
     best = np.where(fc <= fd, c, d)
-    better = np.minimum(fc, fd) <= d2[np.arange(len(j)), j]
+    better = np.minimum(fc, fd) <= np.take_along_axis(d2, j[:, :, None], axis=2)[:, :, 0]
     out = np.where(better, best, t[j])
-    return out, _at(col, branch, out[None, :])[0]
+    return out, _placed(col, branch, out)[0]
 
 
 def errors(v: np.ndarray, branch: float, targets: np.ndarray, crank: bool, grid: int = FINE_GRID
@@ -288,6 +300,19 @@ def guesses(targets: np.ndarray, closed: bool, entries: atlases.Atlas, count: in
     return sorted(out, key=lambda g: g[0])
 
 
+def guess_errors(first: list[tuple[float, np.ndarray, float]], targets: np.ndarray, block: int = 32) -> np.ndarray:
+    """The error (mm^2) of each guess of ``first`` (see :func:`guesses`) on the targets (n, 2) over the whole turn,
+    on the polish's grid: what :func:`errors` of each with a crank and ``GRID`` gives (the same numbers), worked
+    ``block`` guesses at once (:func:`nearest_many`)."""
+    out = np.empty(len(first))
+    for k in range(0, len(first), block):
+        vs = np.array([v for _, v, _ in first[k:k + block]])
+        branches = np.array([branch for _, _, branch in first[k:k + block]])
+        pts = nearest_many(vs, branches, targets, GRID)[1]
+        out[k:k + block] = np.sum(np.sum((pts - targets) ** 2, axis=2), axis=1)
+    return out
+
+
 def _candidate(v: np.ndarray, branch: float, p: Problem, crank: bool) -> Candidate | None:
     sq, th = errors(v, branch, p.targets, crank)
     d = dict(zip(BASE, v.tolist(), strict=True)) | {"branch": branch}
@@ -333,11 +358,8 @@ def solve(task: Any) -> tuple[list[Candidate], dict[str, Any]]:
     closed = bool(task.closed)
     entries, info = atlases.load("closed" if closed else "arcs", task.atlas_folder)
     first = guesses(p.targets, closed, entries)
-    scored = []
-    for dist, v, branch in first:
-        sq, _ = errors(v, branch, p.targets, True, GRID)
-        scored.append((float(sq.sum()), dist, v, branch))
-    scored.sort(key=lambda s: s[0])
+    scored = sorted(zip(guess_errors(first, p.targets).tolist(), *zip(*first, strict=True), strict=True),
+                    key=lambda s: s[0])
     out: list[Candidate] = []
     for w, branch in _polished([(v, branch) for _, _, v, branch in scored[:task.guesses]], p):
         c = _candidate(w, branch, p, task.crank)
