@@ -188,13 +188,17 @@ def _general(x: np.ndarray, p: Problem, angles: np.ndarray) -> tuple[np.ndarray,
     return sol.ok, margin, gamma, c + 1j * sn, ref[:, 0] + 1j * ref[:, 1]
 
 
-def evaluate_many(x: np.ndarray, p: Problem, assignment: np.ndarray | None = None) -> Evaluations:
+def evaluate_many(x: np.ndarray, p: Problem, assignment: np.ndarray | None = None,
+                  fit_broken: bool = True) -> Evaluations:
     """Designs ``x`` (10, N) at the targets' crank angles and over a sampled turn, all at once
     (:func:`linkgen.synthesis.sixbar_batch.solve_many`; a drawing whose deltoid's pins meet by the general solver):
     each dyad's margin and transmission angle over the turn, the tracer and the similarity fitted by least squares
     (timed: at the targets' crank angles; untimed: at each target's nearest point of the turn, found by
     :func:`linkgen.synthesis.sixbar_untimed.nearest_fit`, or fitted on a known ``assignment`` (N, n) of the targets
-    to the turn's samples by :func:`linkgen.synthesis.sixbar_untimed.assigned_fit` where its row has no -1)."""
+    to the turn's samples by :func:`linkgen.synthesis.sixbar_untimed.assigned_fit` where its row has no -1).
+    ``fit_broken=False`` leaves unfitted, untimed, each design a dyad's margin or transmission angle already breaks
+    (its residuals NaN, its length rows 0): for a caller that only asks which designs keep every constraint and
+    the errors of those (:func:`errors`), not how far the others break them."""
     topo = p.topology
     count = x.shape[1]
     z = x[0::2] + 1j * x[1::2]
@@ -227,6 +231,8 @@ def evaluate_many(x: np.ndarray, p: Problem, assignment: np.ndarray | None = Non
         uzt[reached] = fit(a[reached], p.targets)
         at[reached] = p.timing
     else:
+        if not fit_broken:                              # a dyad already breaks: its fit cannot mend that
+            reached = reached & np.all(np.concatenate(rows, axis=1) >= 0, axis=1)
         for j in np.flatnonzero(reached):
             if assignment is not None and np.all(assignment[j] >= 0):
                 fitted[j] = assignment[j]
@@ -254,10 +260,12 @@ def evaluate(x: np.ndarray, p: Problem) -> Evaluation | None:
     return Evaluation(e.residuals[0], e.uzt[0], e.rows[0], e.angles[0])
 
 
-def objective(x: np.ndarray, p: Problem) -> np.ndarray:
+def objective(x: np.ndarray, p: Problem, fit_broken: bool = True) -> np.ndarray:
     """The error (mm^2) of each design of a population ``x`` (10, N), or BIG (1 + violation) where it breaks a hard
-    constraint (2 BIG where it is not a linkage): the whole population solved at once."""
-    e = evaluate_many(x, p)
+    constraint (2 BIG where it is not a linkage): the whole population solved at once. ``fit_broken=False`` (see
+    :func:`evaluate_many`): a design a dyad breaks is not fitted, so its violation leaves out its links' lengths
+    (still at least BIG)."""
+    e = evaluate_many(x, p, fit_broken=fit_broken)
     broken = np.sum(np.maximum(0.0, -e.rows), axis=1)
     err = np.sum(np.abs(e.residuals) ** 2, axis=1)
     out = np.where((broken > 0) | ~np.isfinite(err), BIG * (1.0 + broken), err)
@@ -464,8 +472,9 @@ def _keeps(x: np.ndarray, p: Problem) -> bool:
 
 
 def errors(x: np.ndarray, p: Problem) -> np.ndarray:
-    """The error (mm^2) of each design of ``x`` (10, N), infinite where it breaks a hard constraint."""
-    value = objective(x, p)
+    """The error (mm^2) of each design of ``x`` (10, N), infinite where it breaks a hard constraint (a design a
+    dyad's margin or transmission angle breaks is not fitted: its error is infinite whatever its fit)."""
+    value = objective(x, p, fit_broken=False)
     return np.where(value < BIG, value, math.inf)
 
 
