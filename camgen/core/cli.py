@@ -137,8 +137,8 @@ def one_blas_thread() -> Any:
 
     A command's arrays are small (a linkage's Jacobian, a synthesis' least squares of a few dozen unknowns): the
     threads OpenBLAS starts by default only spin, and on a busy machine wait for a core. Measured on ``linkgen
-    synthesize`` of templates/synth-crank-rocker.toml: 2.34 s wall idle with the default threads against 2.20 s on
-    one, and an SLSQP polish of 3-4.7 s against 0.15 s with the machine loaded. The libraries read the variables
+    synthesize`` of templates/synth-crank-rocker.toml with both cores busy: 2.98-3.05 s wall with the default
+    threads against 2.70-2.81 s on one (idle, the same within the noise). The libraries read the variables
     when they load (numpy and scipy are imported inside the commands, after this), and the processes a command
     starts (a family's workers, a local Dask cluster's) inherit them; the library's own calls are left to their
     caller's choice."""
