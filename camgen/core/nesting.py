@@ -410,13 +410,21 @@ def _best_spot(grid: _Grid, flat: _Flat, lean: str, footprints: _Footprints, i: 
     right-hand extent or the lowest; ``flat`` is part i, its footprints from ``footprints``.
 
     Every key grows with the position's right and top, and the sheet is empty past the layout's extents, so the
-    best position lies within the layout's extents plus the part's size: only that window is searched."""
+    best position lies within the layout's extents plus the part's size: only that window is searched. A rotation
+    is searched only if the least rectangle it could keep (:func:`_least_used`, at the sheet's very corner) is no
+    larger than the best one found: the rotations are tried from the least such rectangle up, and one that cannot
+    win is left out unmade (its footprint and its transforms), with the same spot found."""
     reach = max(max(b[2] - b[0], b[3] - b[1]) for b in flat.boxes) + 2 * flat.grow
     window = (min(grid.shape[0], math.ceil((grid.ends[1] + reach) / grid.cell) + 3),
               min(grid.shape[1], math.ceil((grid.ends[0] + reach) / grid.cell) + 3))
     overlap = _Overlap(grid, window)
     best = None
-    for k, (x0, y0, x1, y1) in enumerate(flat.bounds.tolist()):
+    bounds = flat.bounds.tolist()
+    least = [_least_used(b, grid.ends) for b in bounds]
+    for k in sorted(range(len(bounds)), key=least.__getitem__):
+        if best is not None and least[k] > best[0][0]:
+            break                                   # this rotation and the rest keep a larger rectangle
+        x0, y0, x1, y1 = bounds[k]
         lo, mask = footprints.get(i, flat, k, grid)
         if mask.shape[0] > window[0] or mask.shape[1] > window[1]:
             continue
@@ -433,6 +441,16 @@ def _best_spot(grid: _Grid, flat: _Flat, lean: str, footprints: _Footprints, i: 
         if best is None or key < best[0]:
             best = (key, k, np.array([free[j, 1] * grid.cell, free[j, 0] * grid.cell]) - lo)
     return None if best is None else (best[1], best[2])
+
+
+def _least_used(bounds: list[float], ends: np.ndarray) -> float:
+    """The least layout rectangle (mm^2, rounded as :func:`_best_spot` rounds its keys) a rotation whose polygon's
+    box is ``bounds`` (xmin, ymin, xmax, ymax) could keep on a sheet whose layout reaches ``ends`` (x, y): at a
+    position's least right and top, the polygon's width and height (a position's column and row are >= 0), and
+    numpy's rounding (the very one the keys take) keeps the order of the products it rounds, so no position of
+    the rotation keeps less."""
+    x0, y0, x1, y1 = bounds
+    return float(np.round(max(x1 - x0, float(ends[0])) * max(y1 - y0, float(ends[1])), 6))
 
 
 class _Overlap:
