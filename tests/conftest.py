@@ -90,15 +90,35 @@ def plain_install(tmp_path_factory: pytest.TempPathFactory):
     return example_runs(tmp_path_factory.mktemp("plain-install"))
 
 
+@pytest.fixture(scope="session")
+def shared_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A cache folder (an ``XDG_CACHE_HOME``) shared by the run's workers, outside the checkout and the user's own
+    cache, with the closed atlas of Fourier path synthesis in its ``linkgen`` folder: built by the first worker to
+    ask (the others wait on a lock file, then read it), where the quick benches and the published problems each
+    built their own (about 3.6 CPU s one). Read it, never write into it."""
+    import fcntl
+
+    from linkgen.synthesis import atlas
+    from tests.support.builds import shared_root
+
+    root = shared_root(tmp_path_factory.getbasetemp()).parent / "shared-cache"
+    root.mkdir(parents=True, exist_ok=True)
+    with (root / ".atlas.lock").open("w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        atlas.load("closed", root / "linkgen")
+    return root
+
+
 #: the xdist group of the checks that read the quick benches' one run
 BENCHES = "quick-benches"
 
 
 @pytest.fixture(scope="session")
-def quick_benches(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+def quick_benches(tmp_path_factory: pytest.TempPathFactory, shared_cache: Path) -> dict[str, Path]:
     """``camgen bench --quick`` and ``linkgen bench --quick`` run once a run by the installed console scripts, from
-    a folder outside the checkout (the linkage atlas cached there, not in the user's cache): {"camgen": its output
-    folder, "linkgen": its}. For the checks of the xdist group :data:`BENCHES`; read them, never write into them."""
+    a folder outside the checkout (the linkage atlas read from :func:`shared_cache`, not the user's cache):
+    {"camgen": its output folder, "linkgen": its}. For the checks of the xdist group :data:`BENCHES`; read them,
+    never write into them."""
     import shutil
     import subprocess
     import sys
@@ -106,7 +126,7 @@ def quick_benches(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     folder = tmp_path_factory.mktemp("quick-benches")
     assert not folder.is_relative_to(ROOT)
     out = {"camgen": folder / "camgen", "linkgen": folder / "linkgen"}
-    env = {**os.environ, "XDG_CACHE_HOME": str(folder / "cache")}
+    env = {**os.environ, "XDG_CACHE_HOME": str(shared_cache)}
     env.pop("PYTHONPATH", None)
     for program, target in out.items():
         script = shutil.which(program, path=str(Path(sys.executable).parent)) or shutil.which(program)

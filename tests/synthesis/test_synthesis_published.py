@@ -88,9 +88,9 @@ def test_each_papers_linkage_is_recomputed_and_scored_by_the_metric(key):
 
 
 @pytest.fixture(scope="module")
-def atlas_folder(tmp_path_factory):
-    """One atlas for this module's syntheses (built once here: about 10-30 s on a loaded 2-core machine)."""
-    return str(tmp_path_factory.mktemp("atlas"))
+def atlas_folder(shared_cache):
+    """The run's one closed atlas for this module's syntheses (:func:`tests.conftest.shared_cache`)."""
+    return str(shared_cache / "linkgen")
 
 
 def _beats_the_paper(key, atlas_folder):
