@@ -33,6 +33,16 @@ if TYPE_CHECKING:
 
 #: poses sampled over the revolution or the travel
 GRID = 4096
+#: how narrow (relative to max(1, |input|)) a transmission extreme's bracket is made (golden sections once went on
+#: to rounding): where the angle is smooth it is flat there, and its value moves by far less than its rounding (its
+#: second derivative times a width squared), where it has a corner (0 or 180 degrees at a toggle) by at most the
+#: width (under 4e-10 degrees); its place was never known better than the square root of the rounding (a search by
+#: values on a flat function)
+EXTREME_WIDTH = 1e-12
+#: the inputs a round of a transmission extreme's search asks at in each bracket (:func:`_sections`)
+SECTIONS = 17
+#: the most rounds of :func:`_sections` (each narrows a bracket 8-fold: some 20 reach rounding from a whole turn)
+ROUNDS = 64
 #: a slide input is searched this many times the drawing's own size (its largest distance between two points)
 #: either way
 SLIDE_REACH = 4.0
@@ -186,9 +196,32 @@ def _golden(f: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray,
     return np.where(fc < fd, c, d), np.minimum(fc, fd)
 
 
+def _sections(f: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarray, width: float,
+              points: int = SECTIONS) -> tuple[np.ndarray, np.ndarray]:
+    """Minimisers of f on the brackets [a, b] and f there, by sections: each round asks f at ``points`` evenly
+    spaced inputs of every bracket at once (one call, the brackets' first inputs, then their second..., as
+    :func:`_golden` asks its two) and keeps the two sections about the least, so that a
+    bracket narrows (points - 1) / 2-fold a round, until each is at most ``width`` times max(1, |a|) wide or at
+    rounding. A solve of a few columns costs about what one of a few hundred does, so few rounds of many points
+    each cost less than golden sections' many rounds of two (the narrowing a solve is what sets the cost)."""
+    n = len(a)
+    rows = np.arange(n)
+    u = np.linspace(0.0, 1.0, points)
+    for _ in range(ROUNDS):
+        x = a[:, None] + (b - a)[:, None] * u
+        fx = f(x.T.ravel()).reshape(points, n).T
+        k = np.argmin(fx, axis=1)
+        lo, hi = x[rows, np.maximum(k - 1, 0)], x[rows, np.minimum(k + 1, points - 1)]
+        if np.all(hi - lo <= width * np.maximum(1.0, np.abs(lo))) or (np.array_equal(lo, a) and
+                                                                       np.array_equal(hi, b)):
+            break
+        a, b = lo, hi
+    return x[rows, k], fx[rows, k]
+
+
 def transmission_extremes(linkage: Linkage, lo: float, hi: float) -> list[tuple[float, float, float, float]]:
     """Each dyad's smallest and largest transmission angle (rad) over the inputs lo..hi, and where: (min, at,
-    max, at), found on :data:`GRID` poses and refined by golden sections (every dyad's two at once)."""
+    max, at), found on :data:`GRID` poses and refined by sections (:func:`_sections`, every dyad's two at once)."""
     grid = np.linspace(lo, hi, GRID + 1)
     sol = linkage.solve(grid[None, :], strict=False, derivatives=False)
     if not sol.dyads:
@@ -214,7 +247,7 @@ def transmission_extremes(linkage: Linkage, lo: float, hi: float) -> list[tuple[
         value = sign * table[which, np.arange(len(x))]
         return np.where(s.ok & np.isfinite(value), value, np.inf)
 
-    x, value = _golden(f, grid[np.maximum(k_a - 1, 0)], grid[np.minimum(k_a + 1, GRID)])
+    x, value = _sections(f, grid[np.maximum(k_a - 1, 0)], grid[np.minimum(k_a + 1, GRID)], EXTREME_WIDTH)
     def extreme(j: int) -> tuple[float, float]:
         if value[j] < best[j]:                     # golden sections keep the grid's best if they lose it
             return float(signs_a[j] * value[j]), float(x[j])
