@@ -53,6 +53,8 @@ DIP = 1e-2
 #: a refined limit position's rate is at most this times the output's median rate over the grid (else the rate
 #: changed sign through a pole: no limit there)
 STOPPED = 1e-7
+#: an output whose values over the grid stay within this of their size of each other does not move (:func:`_still`)
+STILL = 1e-12
 
 
 def reach(linkage: Linkage) -> float:
@@ -458,13 +460,15 @@ def limits(linkage: Linkage, outputs: Sequence[Output], lo: float, hi: float) ->
     periodic = _repeats(linkage, sol, lo, hi)
     owner, xa, xb, scale = [], [], [], []
     for k, name in enumerate(outputs):
-        _, rate, _ = values_of(linkage, sol, name)
+        value, rate, _ = values_of(linkage, sol, name)
+        finite = np.abs(rate[np.isfinite(rate)])
+        scale.append(float(np.median(finite)) if len(finite) else 0.0)
+        if _still(value):
+            continue                            # it does not move: its rate's signs are rounding's, no limits
         a, b = _brackets(grid, rate, periodic)
         owner += [k] * len(a)
         xa.append(a)
         xb.append(b)
-        finite = np.abs(rate[np.isfinite(rate)])
-        scale.append(float(np.median(finite)) if len(finite) else 0.0)
     out: dict[Output, tuple[Extreme, ...]] = {name: () for name in outputs}
     if not owner:
         return out
@@ -482,6 +486,16 @@ def limits(linkage: Linkage, outputs: Sequence[Output], lo: float, hi: float) ->
         out[name] = tuple(Extreme(str(name), float(v), float(p))
                           for v, p in zip(x[mine][order], value[mine][order], strict=True))
     return out
+
+
+def _still(value: np.ndarray) -> bool:
+    """Whether an output's values over the grid stay within :data:`STILL` of their size (max(1, |value|)) of each
+    other: it does not move (a slider's point across its guide, a pin on the ground), and the signs of its rate
+    are rounding's, no limit positions (their brackets were every grid step, each refined to no purpose)."""
+    finite = value[np.isfinite(value)]
+    if not len(finite):
+        return False
+    return float(np.ptp(finite)) <= STILL * max(1.0, float(np.max(np.abs(finite))))
 
 
 def _pick(linkage: Linkage, outputs: Sequence[Output], who: np.ndarray, x: np.ndarray

@@ -27,13 +27,13 @@ def _linkage_and_range(name: str):
 
 
 def _solves(monkeypatch, linkage) -> list[int]:
-    """Counts the linkage's solves."""
+    """Records the linkage's solves: the poses each asks for."""
     asked: list[int] = []
     solve = type(linkage).solve
 
-    def counting(self, *args, **kwargs):
-        asked.append(1)
-        return solve(self, *args, **kwargs)
+    def counting(self, x, *args, **kwargs):
+        asked.append(np.shape(x)[-1])
+        return solve(self, x, *args, **kwargs)
 
     monkeypatch.setattr(type(linkage), "solve", counting)
     return asked
@@ -91,3 +91,26 @@ def test_sections_to_rounding_stop_and_keep_a_bracket_of_one_point():
     x, value = motion._sections(f, np.array([0.0, 0.5]), np.array([1.0, 0.5]), 0.0)
     assert abs(x[0] - 1.0 / 3.0) <= 1e-7 and value[0] <= 1e-14 and x[1] == 0.5
     assert len(calls) < motion.ROUNDS
+
+
+def test_an_output_that_does_not_move_is_not_refined_and_the_extents_stay(monkeypatch):
+    """toggle-press' ram slides on a vertical guide: its x does not move, and the signs of its rate over the grid
+    are rounding's (a bracket at some 700 grid steps, each refined with the rest to no purpose). Left unrefined,
+    the extents are the same within 1e-12 mm, with a fraction of the poses solved; the check itself
+    (:func:`motion._still`) holds for a constant with rounding noise, not for a motion of 1e-9 of its size, nor for
+    no finite value."""
+    linkage, lo, hi = _linkage_and_range("toggle-press")
+    points = list(linkage.structure.points)
+    asked = _solves(monkeypatch, linkage)
+    ours = motion.extents(linkage, points, lo, hi)
+    poses = sum(asked)
+    asked.clear()
+    monkeypatch.setattr(motion, "STILL", -1.0)                             # every output refined
+    every = motion.extents(linkage, points, lo, hi)
+    for point in points:
+        assert np.allclose(np.array(ours[point]), np.array(every[point]), rtol=0.0, atol=1e-12), point
+    assert poses < 0.5 * sum(asked)
+    monkeypatch.undo()
+    noisy = 250.0 + np.random.default_rng(1).normal(0.0, 1e-14, 4097)
+    assert motion._still(noisy) and not motion._still(noisy + 2.5e-7 * np.sin(np.linspace(0.0, 6.0, 4097)))
+    assert not motion._still(np.full(9, np.nan)) and motion._still(np.array([np.nan, 0.0, 1e-13]))

@@ -73,6 +73,17 @@ def test_the_comparison_takes_noise_and_finds_a_change(bundled_builds, name):
     assert list(differences(print_, _reworded(print_)))
 
 
+def test_a_place_in_degrees_is_compared_round_the_turn():
+    """A smooth extreme's place found just under 360 degrees matches one recorded just over 0 (a flat extreme at
+    the turn's start, placed within the search's noise either side), as it does within the place's tolerance
+    anywhere; half a turn away, or a place in mm 360 away, does not."""
+    assert not list(differences({"transmission_min_at_deg": 6.9e-7}, {"transmission_min_at_deg": 359.999999445}))
+    assert not list(differences({"a.limit_at_deg": 359.9999995}, {"a.limit_at_deg": 2e-7}))
+    assert list(differences({"transmission_min_at_deg": 0.0}, {"transmission_min_at_deg": 180.0}))
+    assert list(differences({"transmission_min_at_deg": 0.0}, {"transmission_min_at_deg": 359.99}))
+    assert list(differences({"stroke_at_mm": 0.0}, {"stroke_at_mm": 360.0}))
+
+
 def test_a_fingerprint_reads_a_polylines_arcs():
     """A closed polyline of two half circles (bulge 1) of radius 5: area 25 pi, length 10 pi."""
     from tests.support.golden import _polyline_area, _polyline_length
