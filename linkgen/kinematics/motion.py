@@ -513,10 +513,15 @@ def _pick(linkage: Linkage, outputs: Sequence[Output], who: np.ndarray, x: np.nd
 def _newton(linkage: Linkage, outputs: Sequence[Output], who: np.ndarray, xa: np.ndarray,
             xb: np.ndarray) -> np.ndarray:
     """The zero of each column's output's rate in its bracket [xa, xb]: Newton's method with its acceleration,
-    bisection where a step would leave the bracket."""
+    bisection where a step would leave the bracket.
+
+    At most 60 rounds; once a round leaves every column's input, bracket and rate at its end as they were (a
+    column whose rate is rounding's about a flat zero, its Newton steps leaving the bracket and its bisection at
+    rounding), every later round would ask the same and leave them so again, and the search stops there."""
     fa = _pick(linkage, outputs, who, xa)[1]
     x = 0.5 * (xa + xb)
     for _ in range(60):
+        was = x, xa, xb, fa
         _, w, al = _pick(linkage, outputs, who, x)
         left = np.sign(w) == np.sign(fa)
         xa, xb = np.where(left, x, xa), np.where(left, xb, x)
@@ -527,7 +532,8 @@ def _newton(linkage: Linkage, outputs: Sequence[Output], who: np.ndarray, xa: np
         done = np.abs(step) <= 1e-15 * np.maximum(1.0, np.abs(x))
         inside = (nxt >= xa) & (nxt <= xb) & np.isfinite(nxt)
         x = np.where(done, x, np.where(inside, nxt, 0.5 * (xa + xb)))
-        if done.all():
+        if done.all() or all(np.array_equal(a, b, equal_nan=True) for a, b in zip(was, (x, xa, xb, fa),
+                                                                                  strict=True)):
             break
     return x
 

@@ -1,7 +1,8 @@
-"""A transmission extreme is refined by sections (linkgen.kinematics.motion._sections: 17 inputs a round, until
-the bracket is EXTREME_WIDTH narrow): the extremes are those golden sections to rounding find (the search they
-replace, an independent method), their values to the last few bits and their places where the angle is flat, with
-a fraction of the solves; a corner (a toggle's 0 degrees) is found within the width."""
+"""How linkgen.kinematics.motion refines extremes. A transmission extreme by sections (``_sections``: 17 inputs a
+round, until the bracket is EXTREME_WIDTH narrow): the extremes golden sections to rounding find (the search they
+replace, an independent method), their values to the last few bits and their places where the angle is flat, with a
+fraction of the solves; a corner (a toggle's 0 degrees) within the width. An output that does not move is left out
+of the limit search, and the search stops at its fixed point, with the same limits."""
 from __future__ import annotations
 
 import math
@@ -114,3 +115,30 @@ def test_an_output_that_does_not_move_is_not_refined_and_the_extents_stay(monkey
     noisy = 250.0 + np.random.default_rng(1).normal(0.0, 1e-14, 4097)
     assert motion._still(noisy) and not motion._still(noisy + 2.5e-7 * np.sin(np.linspace(0.0, 6.0, 4097)))
     assert not motion._still(np.full(9, np.nan)) and motion._still(np.array([np.nan, 0.0, 1e-13]))
+
+
+@pytest.mark.parametrize("name", ["toggle-press", "jansen", "shaper"])
+def test_newton_stops_at_its_fixed_point_with_the_limits_of_all_sixty_rounds(monkeypatch, name):
+    """Once a round leaves every column as it was, the limit search stops: the limit positions are those of all
+    60 rounds to the bit (the rounds compare nothing, here, so that none stops early), in fewer rounds where a
+    column sits on a flat zero (toggle-press)."""
+    linkage, lo, hi = _linkage_and_range(name)
+    outputs = [(p, axis) for p in linkage.structure.points for axis in (0, 1)]
+    rounds: list[int] = []
+    pick = motion._pick
+
+    def counted(*args):
+        rounds.append(1)
+        return pick(*args)
+
+    monkeypatch.setattr(motion, "_pick", counted)
+    ours = motion.limits(linkage, outputs, lo, hi)
+    fewer = len(rounds)
+    rounds.clear()
+    monkeypatch.setattr(motion.np, "array_equal", lambda *args, **kwargs: False)
+    every = motion.limits(linkage, outputs, lo, hi)
+    monkeypatch.undo()
+    assert ours == every
+    assert fewer <= len(rounds)
+    if name == "toggle-press":
+        assert fewer < len(rounds)
