@@ -202,10 +202,10 @@ def _sections(f: Callable[[np.ndarray], np.ndarray], a: np.ndarray, b: np.ndarra
               points: int = SECTIONS) -> tuple[np.ndarray, np.ndarray]:
     """Minimisers of f on the brackets [a, b] and f there, by sections: each round asks f at ``points`` evenly
     spaced inputs of every bracket at once (one call, the brackets' first inputs, then their second..., as
-    :func:`_golden` asks its two) and keeps the two sections about the least, so that a
-    bracket narrows (points - 1) / 2-fold a round, until each is at most ``width`` times max(1, |a|) wide or at
-    rounding. A solve of a few columns costs about what one of a few hundred does, so few rounds of many points
-    each cost less than golden sections' many rounds of two (the narrowing a solve is what sets the cost)."""
+    :func:`_golden` asks its two) and keeps the two sections about the least, so that a bracket narrows
+    (points - 1) / 2-fold a round, until each is at most ``width`` times max(1, |a|) wide or at rounding (at most
+    :data:`ROUNDS` rounds). A solve of a few columns costs about what one of a few hundred does, so few rounds of
+    many points each cost less than golden sections' many rounds of two: the narrowing a solve sets the cost."""
     n = len(a)
     rows = np.arange(n)
     u = np.linspace(0.0, 1.0, points)
@@ -251,7 +251,7 @@ def transmission_extremes(linkage: Linkage, lo: float, hi: float) -> list[tuple[
 
     x, value = _sections(f, grid[np.maximum(k_a - 1, 0)], grid[np.minimum(k_a + 1, GRID)], EXTREME_WIDTH)
     def extreme(j: int) -> tuple[float, float]:
-        if value[j] < best[j]:                     # golden sections keep the grid's best if they lose it
+        if value[j] < best[j]:                     # the sections keep the grid's best if they lose it
             return float(signs_a[j] * value[j]), float(x[j])
         return float(signs_a[j] * best[j]) if np.isfinite(best[j]) else float("nan"), float(grid[k_a[j]])
 
