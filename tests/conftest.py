@@ -99,9 +99,9 @@ def shared_cache(tmp_path_factory: pytest.TempPathFactory) -> Path:
     import fcntl
 
     from linkgen.synthesis import atlas
-    from tests.support.builds import shared_root
+    from tests.support.builds import run_base
 
-    root = shared_root(tmp_path_factory.getbasetemp()).parent / "shared-cache"
+    root = run_base(tmp_path_factory.getbasetemp()) / "shared-cache"
     root.mkdir(parents=True, exist_ok=True)
     with (root / ".atlas.lock").open("w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)

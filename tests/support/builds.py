@@ -27,11 +27,15 @@ from tests.support.golden import run, run_id_of
 CACHE = "bundled-builds"
 
 
+def run_base(basetemp: Path) -> Path:
+    """The run's base temporary folder, which every worker of the run shares, given this process' own
+    (``tmp_path_factory.getbasetemp()``): under xdist a worker's is ``<run's base>/popen-gwN``."""
+    return basetemp.parent if os.environ.get("PYTEST_XDIST_WORKER") else basetemp
+
+
 def shared_root(basetemp: Path) -> Path:
-    """The folder the cache lives in, given this process' base temporary folder (``tmp_path_factory.getbasetemp()``):
-    under xdist a worker's base folder is ``<run's base>/popen-gwN``, and the run's base is shared by the workers."""
-    base = basetemp.parent if os.environ.get("PYTEST_XDIST_WORKER") else basetemp
-    return base / CACHE
+    """The folder the cache lives in, given this process' base temporary folder (see :func:`run_base`)."""
+    return run_base(basetemp) / CACHE
 
 
 @dataclass(frozen=True)
