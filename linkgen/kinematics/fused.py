@@ -13,8 +13,9 @@ Stephenson's six-bars) this module does the same work with
 * the poses cut into chunks of :data:`CHUNK` that stay in the processor's cache, each result
   written in place into its slice of the full outputs, so a long run holds only the outputs and one
   chunk's temporaries;
-* the chunks shared among :data:`WORKERS` threads in contiguous runs (numpy releases the interpreter lock inside
-  its array operations), each writing only its own slices, so the result does not depend on the thread count.
+* the outputs made as one block of each kind (huge pages for a long run), each chunk writing only its own slices
+  of them, so the chunks may be shared among threads (``workers``; one by default, :data:`WORKERS`) and the result
+  does not depend on the thread count.
 
 Signs and frames are :mod:`linkgen.kinematics.linkage`'s: an RRR's joint lies to the left of
 pin 1 -> pin 2 for sign +1; velocities per unit input speed, accelerations at constant input speed.
@@ -27,7 +28,6 @@ whose joint is placed by the motion's limit there.
 from __future__ import annotations
 
 import functools
-import os
 from concurrent.futures import ThreadPoolExecutor, wait
 from dataclasses import dataclass
 
@@ -40,9 +40,12 @@ from linkgen.kinematics.structure import GROUND, DyadStep, InputStep, Pin, Struc
 CHUNK = 8192
 
 
-#: threads the chunks are shared among (numpy releases the interpreter lock inside its array operations, so two
-#: threads run two chunks at once on two cores); a run of fewer than two chunks stays on the calling thread
-WORKERS = min(2, os.cpu_count() or 1)
+#: threads a run's chunks are shared among by default: one, the calling thread. numpy releases the interpreter
+#: lock inside each array operation, but a chunk's take a few microseconds each and two threads take turns at the
+#: lock between them: on two free cores two threads took 1.2x to 2.7x the time of one at 10^4 poses and 1.0x to
+#: 1.3x from 3 10^4 to 10^6 (Jansen's and Klann's legs, a Watt I six-bar; positions, and with rates). Where they
+#: looked faster, they were sharing the page faults of outputs made as separate arrays (see :func:`allocate`)
+WORKERS = 1
 
 
 #: a point of a body over the poses: its body (None: the ground) and its drawn name
@@ -179,20 +182,26 @@ class Outputs:
 
 def allocate(prog: Program, n: int, derivatives: bool, extras: bool) -> Outputs:
     """Empty outputs for n poses (moving points only: a ground point is a constant); ``extras`` the rotations, the
-    bodies' rates and the dyads' results besides the points."""
+    bodies' rates and the dyads' results besides the points. Each output is a row of one complex or one float block
+    (a result kept keeps its block): numpy gives a block of 4 MiB or more huge pages, and the first writes to a
+    fresh block fault once a 2 MiB page where separate arrays of under 4 MiB faulted once a 4 KiB one (Jansen's
+    leg at 10^5 poses, one thread: 2.6 ms where it took 6.0, its outputs' faults more than its arithmetic)."""
     moving = [name for name, holder, _ in prog.points if holder is not None]
     dyads = sum(isinstance(op, RRROp) for op in prog.ops) if extras else 0
     rates = derivatives and extras
+    bodies = len(prog.bodies)
+    complexes = iter(np.empty((len(moving) * (3 if derivatives else 1) + (bodies if extras else 0), n), dtype=complex))
+    reals = iter(np.empty(((2 * bodies if rates else 0) + dyads * (4 if derivatives else 3), n)))
 
     def cplx(names: list[str] | tuple[str, ...], want: bool = True) -> dict[str, np.ndarray]:
-        return {k: np.empty(n, dtype=complex) for k in names} if want else {}
+        return {k: next(complexes) for k in names} if want else {}
 
     def real(count: int) -> list[np.ndarray]:
-        return [np.empty(n) for _ in range(count)]
+        return [next(reals) for _ in range(count)]
 
     return Outputs(cplx(moving), cplx(moving, derivatives), cplx(moving, derivatives), cplx(prog.bodies, extras),
-                   {b: np.empty(n) for b in prog.bodies} if rates else {},
-                   {b: np.empty(n) for b in prog.bodies} if rates else {},
+                   {b: next(reals) for b in prog.bodies} if rates else {},
+                   {b: next(reals) for b in prog.bodies} if rates else {},
                    real(dyads), real(dyads), real(dyads), real(dyads if derivatives else 0), np.ones(n, dtype=bool))
 
 
