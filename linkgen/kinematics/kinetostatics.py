@@ -456,22 +456,33 @@ def _by_blocks(linkage: Linkage, sol: Solution, pairs: tuple[Pair, ...],
     known = {b: np.zeros((n, 3)) for b in model.centres}
     values: list[np.ndarray] = [np.zeros((n, 2))] * len(pairs)
     effort = np.zeros(n)
+    toggled = np.zeros(n, dtype=bool)
     placed = _step_bodies(linkage)
     for step in range(len(placed) - 1, -1, -1):
         own = [k for k, p in enumerate(pairs) if p.step == step]
         rows = {b: 3 * i for i, b in enumerate(placed[step])}
         width = 2 * len(own) + (1 if step == 0 else 0)
-        a = np.zeros((3 * len(rows), width, n))
-        for i, k in enumerate(own):
-            pair = pairs[k]
-            for body, sign in ((pair.on, 1.0), (pair.by, -1.0)):
-                if body in rows:
-                    r = rows[body]
-                    _columns(s, sol, pair, model.centres[body], sign, a[r:r + 3, 2 * i:2 * i + 2])
-                    if k == 0:
-                        a[r:r + 3, width - 1] += _effort_column(s, sol, pair, model.centres[body], sign)
         b = np.concatenate([(model.inertial[body] - model.applied[body] - known[body]).T for body in rows])
-        x = _solve(a, b)
+        closed = None
+        if step and len(rows) == 2 and all(pairs[k].kind == "pin" for k in own):
+            closed = _pinned_dyad(sol, [pairs[k] for k in own], tuple(rows), model.centres, b)
+        if closed is None or closed[1].any():
+            a = np.zeros((3 * len(rows), width, n))
+            for i, k in enumerate(own):
+                pair = pairs[k]
+                for body, sign in ((pair.on, 1.0), (pair.by, -1.0)):
+                    if body in rows:
+                        r = rows[body]
+                        _columns(s, sol, pair, model.centres[body], sign, a[r:r + 3, 2 * i:2 * i + 2])
+                        if k == 0:
+                            a[r:r + 3, width - 1] += _effort_column(s, sol, pair, model.centres[body], sign)
+        if closed is None:
+            x = _solve(a, b)
+        else:
+            x, weak = closed
+            if weak.any():
+                x[weak] = _solve(a[..., weak], b[:, weak])
+        toggled |= np.isinf(x).any(axis=1)
         if step == 0:
             effort = x[:, width - 1]
         for i, k in enumerate(own):
@@ -482,7 +493,60 @@ def _by_blocks(linkage: Linkage, sol: Solution, pairs: tuple[Pair, ...],
                     known[body] += _wrench(s, sol, pair, model.centres[body], sign, values[k])
                     if k == 0:
                         known[body] += (_effort_column(s, sol, pair, model.centres[body], sign) * effort).T
+    if toggled.any():                  # a toggle's infinite forces carried into the blocks before it: inf, not NaN
+        for v in values:
+            v[toggled[:, None] & np.isnan(v)] = np.inf
+        effort[toggled & np.isnan(effort)] = np.inf
     return values, effort
+
+
+#: the least sine of the angle between an RRR dyad's two lines (attachment to joint) that its closed form takes;
+#: nearer its toggle the cross product of the lines is rounding's (the pins' coordinates cancel in it), and the
+#: pose's block is solved whole as before (its forces near 1 / that sine either way)
+PINNED_SINE = 1e-6
+
+
+def _pinned_dyad(sol: Solution, own: list[Pair], bodies: tuple[str, ...], centres: Mapping[str, np.ndarray],
+                 b: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """A dyad's block in closed form where its three pairs are pins (an RRR dyad), or None where they are not one
+    attachment a body and a joint between the two. The pin forces (n, 6), each pair's two in ``own``'s order, from
+    ``b`` (6, n): each body's three right-hand sides (Fx, Fy, moment about its centre), in ``bodies``' order; and
+    the poses (n,) bool within :data:`PINNED_SINE` of the dyad's toggle, whose forces the caller solves whole.
+
+    Body i's equations are s_o F_o + s_j F_j = R_i and s_o (r_o x F_o) + s_j (r_j x F_j) = M_i (s a pair's sign on
+    the body, r its point from the body's centre): the first gives the attachment's force from the joint's, and
+    the moment about the attachment, s_j ((J - O) x F_j) = M_i - r_o x R_i, leaves the joint's force alone: two
+    such equations for its two components, the textbook's dyad method, in place of the block's 6 x 6 solve. Their
+    determinant is the cross product of the bodies' lines from their attachments to the joint, zero at the dyad's
+    toggle."""
+    joints = [p for p in own if p.on in bodies and p.by in bodies]
+    if len(own) != 3 or len(joints) != 1:
+        return None
+    joint = joints[0]
+    outer, lines, rhs = [], [], []
+    for i, body in enumerate(bodies):
+        held = [k for k, p in enumerate(own) if p is not joint and body in (p.on, p.by)]
+        if len(held) != 1:
+            return None
+        attach = own[held[0]]
+        s_o = 1.0 if attach.on == body else -1.0
+        s_j = 1.0 if joint.on == body else -1.0
+        force, moment = b[3 * i:3 * i + 2].T, b[3 * i + 2]
+        lines.append(s_j * (sol.points[joint.point] - sol.points[attach.point]) * MM)
+        rhs.append(moment - cross(sol.points[attach.point] * MM - centres[body], force))
+        outer.append((held[0], s_o, s_j, force))
+    (u, v), (c1, c2) = lines, rhs
+    out = np.empty((len(c1), 6))
+    with np.errstate(all="ignore"):
+        det = cross(u, v)
+        fj = np.column_stack([c1 * v[:, 0] - u[:, 0] * c2, c1 * v[:, 1] - u[:, 1] * c2]) / det[:, None]
+        for k, s_o, s_j, force in outer:
+            out[:, 2 * k:2 * k + 2] = s_o * (force - s_j * fj)
+    k = own.index(joint)
+    out[:, 2 * k:2 * k + 2] = fj
+    size = np.hypot(u[:, 0], u[:, 1]) * np.hypot(v[:, 0], v[:, 1])
+    weak = ~(np.abs(det) > PINNED_SINE * size)         # NaN or infinite lines too: the whole solve's rule
+    return out, weak
 
 
 def _finish(s: Structure, sol: Solution, forces: tuple[PairForce, ...], effort: np.ndarray, model: _Model,

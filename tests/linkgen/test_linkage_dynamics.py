@@ -14,12 +14,13 @@ from linkgen.kinematics import equivalents
 from linkgen.kinematics.balance import counterweight, fluctuation, flywheel_inertia
 from linkgen.kinematics.fourbar import FourBar
 from linkgen.kinematics.inertia import LinkMass, generalised_inertia, moving_links
+from linkgen.kinematics import kinetostatics as kinetostatic
 from linkgen.kinematics.kinetostatics import Loads, Spring, kinetostatics
 from linkgen.kinematics.linkage import Linkage
 from linkgen.kinematics.quickreturn import CrankShaper, Whitworth
 from linkgen.kinematics.slidercrank import SliderCrank
 from linkgen.kinematics.statics import LinkTorque, PointForce, input_effort
-from linkgen.kinematics.structure import GROUND
+from linkgen.kinematics.structure import GROUND, Input, make_structure
 from linkgen.mechanisms.general import LinkageTable, structure_of
 from linkgen.spec import load_spec
 from tests.conftest import ROOT
@@ -442,3 +443,57 @@ def test_the_torque_is_the_equation_of_motions_terms(name):
     near = linkage.solve((theta[:, None] + h * OFFSETS[None, :]).reshape(-1))
     j_near = generalised_inertia(s, near, masses)[0].reshape(len(theta), len(OFFSETS))
     assert np.abs(j_near @ D1 / (h * per) - dj).max() <= 1e-10 * np.abs(dj).max()
+
+
+#: the linkages with RRR dyads (blocks of three pins: the closed form takes them); the others have none
+PINNED = ("eightbar-triad", "four-bar", "jansen", "pendulum-pump", "stephenson", "watt")
+
+
+@pytest.mark.parametrize("name", sorted(LINKAGES))
+def test_every_pairs_force_by_blocks_is_the_whole_systems(name, monkeypatch):
+    """The blocks' solution (an RRR dyad's in closed form, the rest by stacked solves) against the whole system
+    solved at once (one stacked LU solve of every unknown): every pair's force and the effort to 1e-10 of the
+    largest. The closed form is taken wherever the dyads are pins, and only there."""
+    taken: list[int] = []
+    original = kinetostatic._pinned_dyad
+
+    def counted(*args):
+        found = original(*args)
+        taken.append(found is not None)
+        return found
+
+    monkeypatch.setattr(kinetostatic, "_pinned_dyad", counted)
+    linkage = LINKAGES[name]()
+    sol = linkage.solve(_inputs(linkage, 120, 0.37))
+    masses, loads = _masses(linkage), _loads(linkage)
+    speed, acceleration = (25.0, -15.0) if linkage.is_crank() else (0.3, -0.5)
+    blocks = kinetostatics(linkage, sol, masses, speed, acceleration, loads)
+    dense = kinetostatics(linkage, sol, masses, speed, acceleration, loads, method="dense")
+    scale = max(np.abs(pf.force).max() for pf in dense.pairs)
+    for ours, whole in zip(blocks.pairs, dense.pairs, strict=True):
+        assert np.abs(ours.force - whole.force).max() <= 1e-10 * scale, ours.pair.name
+    assert np.abs(blocks.effort - dense.effort).max() <= 1e-10 * np.abs(dense.effort).max()
+    assert (any(taken) and all(taken)) if name in PINNED else not any(taken), taken
+
+
+def test_near_a_dyads_toggle_its_block_is_solved_whole():
+    """A four-bar drawn at its coupler and rocker's toggle (crank O2-A 10 mm pointing away from the rocker's
+    pivot, coupler 50 + rocker 20 = the 70 mm between A and O4): at the toggle and 1e-12 and 1e-9 rad from it the
+    lines' cross product is rounding's, so those poses' block is the whole 6 x 6 solve (forces over 1e60 N, within
+    1e-3 of the whole system's, whose rounding they are); 0.3 rad away the closed form, within 1e-12 of it. At the
+    toggle every force and the effort are +inf, never NaN, as the whole system's solve gives them."""
+    linkage = Linkage.of(make_structure({"O2": (0.0, 0.0), "O4": (60.0, 0.0), "A": (-10.0, 0.0), "B": (40.0, 0.0)},
+                                        {"crank": ("O2", "A"), "coupler": ("A", "B"), "rocker": ("O4", "B")},
+                                        ("O2", "O4"), (), (Input("crank", "crank", "O2"),)))
+    masses = {"crank": LinkMass(0.02, (5.0, 1.0), 3.0), "coupler": LinkMass(0.03, (15.0, 2.0), 4.0),
+              "rocker": LinkMass(0.04, (50.0, -1.0), 5.0)}
+    sol = linkage.solve(math.pi + np.array([0.0, 1e-12, -1e-9, 0.3]))
+    with np.errstate(all="ignore"):                   # the toggle's own pose: infinite rates, as before
+        blocks = kinetostatics(linkage, sol, masses, 10.0, 0.0, Loads((0.0, -9.81)))
+        dense = kinetostatics(linkage, sol, masses, 10.0, 0.0, Loads((0.0, -9.81)), method="dense")
+    for ours, whole in zip(blocks.pairs, dense.pairs, strict=True):
+        near, far = ours.force[1:3], whole.force[1:3]
+        assert np.all(np.abs(near) > 1e60) and np.allclose(near, far, rtol=1e-3), ours.pair.name
+        assert np.abs(ours.force[3] - whole.force[3]).max() <= 1e-12 * np.abs(whole.force[3]).max()
+        assert np.isposinf(ours.force[0]).all() and np.isposinf(whole.force[0]).all(), ours.pair.name
+    assert np.isposinf(blocks.effort[0]) and np.isposinf(dense.effort[0])
